@@ -1,0 +1,99 @@
+#include "core/geometry.h"
+
+#include <cmath>
+
+namespace trilab {
+
+void BoundingBox::extend(const Point& p) {
+    if (empty) {
+        min = max = p;
+        empty = false;
+        return;
+    }
+    min = min.cwiseMin(p);
+    max = max.cwiseMax(p);
+}
+
+Vector3 face_area_vector(const HalfedgeMesh& mesh, Face f) {
+    const auto c = mesh.face_vertices(f);
+    const Point& x0 = mesh.position(c[0]);
+    return (mesh.position(c[1]) - x0).cross(mesh.position(c[2]) - x0);
+}
+
+Vector3 face_normal(const HalfedgeMesh& mesh, Face f) {
+    const Vector3 n = face_area_vector(mesh, f);
+    const double len = n.norm();
+    return len > 0 && std::isfinite(len) ? Vector3(n / len) : Vector3::Zero();
+}
+
+double face_area(const HalfedgeMesh& mesh, Face f) { return 0.5 * face_area_vector(mesh, f).norm(); }
+
+Point face_centroid(const HalfedgeMesh& mesh, Face f) {
+    const auto c = mesh.face_vertices(f);
+    return (mesh.position(c[0]) + mesh.position(c[1]) + mesh.position(c[2])) / 3.0;
+}
+
+Vector3 vertex_normal(const HalfedgeMesh& mesh, Vertex v) {
+    Vector3 n = Vector3::Zero();
+    for (Face f : mesh.faces_around(v)) n += face_area_vector(mesh, f);
+    const double len = n.norm();
+    return len > 0 && std::isfinite(len) ? Vector3(n / len) : Vector3::Zero();
+}
+
+void compute_vertex_normals(HalfedgeMesh& mesh) {
+    auto normals = mesh.vertex_property<Vector3>("v:normal", Vector3::Zero());
+    for (Vertex v : mesh.vertices()) normals[v] = vertex_normal(mesh, v);
+}
+
+double edge_length(const HalfedgeMesh& mesh, Edge e) {
+    return (mesh.position(mesh.vertex(e, 0)) - mesh.position(mesh.vertex(e, 1))).norm();
+}
+
+double mean_edge_length(const HalfedgeMesh& mesh) {
+    double sum = 0;
+    for (Edge e : mesh.edges()) sum += edge_length(mesh, e);
+    return mesh.n_edges() ? sum / double(mesh.n_edges()) : 0.0;
+}
+
+BoundingBox bounding_box(const HalfedgeMesh& mesh) {
+    BoundingBox box;
+    for (Vertex v : mesh.vertices()) box.extend(mesh.position(v));
+    return box;
+}
+
+double surface_area(const HalfedgeMesh& mesh) {
+    double a = 0;
+    for (Face f : mesh.faces()) a += face_area(mesh, f);
+    return a;
+}
+
+double volume(const HalfedgeMesh& mesh) {
+    double v = 0;
+    for (Face f : mesh.faces()) v += face_centroid(mesh, f).dot(face_area_vector(mesh, f));
+    return v / 6.0;
+}
+
+bool is_closed(const HalfedgeMesh& mesh) {
+    if (mesh.n_faces() == 0) return false;
+    for (Edge e : mesh.edges())
+        if (mesh.is_boundary(e)) return false;
+    return true;
+}
+
+double cotangent_opposite(const HalfedgeMesh& mesh, Halfedge h) {
+    if (mesh.is_boundary(h)) return 0.0;
+    const Point& a = mesh.position(mesh.from_vertex(h));
+    const Point& b = mesh.position(mesh.to_vertex(h));
+    const Point& c = mesh.position(mesh.to_vertex(mesh.next(h)));
+    const Vector3 u = a - c, w = b - c;
+    const double sin_scaled = u.cross(w).norm();
+    if (!(sin_scaled > 0) || !std::isfinite(sin_scaled)) return 0.0;
+    return u.dot(w) / sin_scaled;
+}
+
+double cotangent_weight(const HalfedgeMesh& mesh, Edge e) {
+    return 0.5 * (cotangent_opposite(mesh, HalfedgeMesh::halfedge(e, 0)) +
+                  cotangent_opposite(mesh, HalfedgeMesh::halfedge(e, 1)));
+}
+
+}  // namespace trilab

@@ -1,0 +1,278 @@
+#include "core/halfedge_mesh.h"
+
+#include <algorithm>
+
+#include "core/errors.h"
+
+namespace trilab {
+
+namespace {
+// Built-in arrays: part of the connectivity, never removable by users.
+const char* const kBuiltinNames[] = {"v:position", "v:halfedge", "v:deleted", "h:to",
+                                     "h:next",     "h:prev",     "h:face",    "e:deleted",
+                                     "f:halfedge", "f:deleted"};
+bool is_builtin(const std::string& name) {
+    return std::find(std::begin(kBuiltinNames), std::end(kBuiltinNames), name) !=
+           std::end(kBuiltinNames);
+}
+}  // namespace
+
+HalfedgeMesh::HalfedgeMesh() {
+    vprops_.add<Point>("v:position", Point::Zero());
+    vprops_.add<Halfedge>("v:halfedge");
+    vprops_.add<std::uint8_t>("v:deleted", 0);
+    hprops_.add<Vertex>("h:to");
+    hprops_.add<Halfedge>("h:next");
+    hprops_.add<Halfedge>("h:prev");
+    hprops_.add<Face>("h:face");
+    eprops_.add<std::uint8_t>("e:deleted", 0);
+    fprops_.add<Halfedge>("f:halfedge");
+    fprops_.add<std::uint8_t>("f:deleted", 0);
+    bind_builtins();
+}
+
+HalfedgeMesh::HalfedgeMesh(const HalfedgeMesh& other)
+    : vprops_(other.vprops_),
+      hprops_(other.hprops_),
+      eprops_(other.eprops_),
+      fprops_(other.fprops_),
+      n_deleted_vertices_(other.n_deleted_vertices_),
+      n_deleted_edges_(other.n_deleted_edges_),
+      n_deleted_faces_(other.n_deleted_faces_) {
+    bind_builtins();
+}
+
+HalfedgeMesh& HalfedgeMesh::operator=(const HalfedgeMesh& other) {
+    if (this == &other) return *this;
+    vprops_ = other.vprops_;
+    hprops_ = other.hprops_;
+    eprops_ = other.eprops_;
+    fprops_ = other.fprops_;
+    n_deleted_vertices_ = other.n_deleted_vertices_;
+    n_deleted_edges_ = other.n_deleted_edges_;
+    n_deleted_faces_ = other.n_deleted_faces_;
+    bind_builtins();
+    return *this;
+}
+
+HalfedgeMesh::HalfedgeMesh(HalfedgeMesh&& other) noexcept
+    : vprops_(std::move(other.vprops_)),
+      hprops_(std::move(other.hprops_)),
+      eprops_(std::move(other.eprops_)),
+      fprops_(std::move(other.fprops_)),
+      n_deleted_vertices_(other.n_deleted_vertices_),
+      n_deleted_edges_(other.n_deleted_edges_),
+      n_deleted_faces_(other.n_deleted_faces_) {
+    bind_builtins();
+    other.clear();
+}
+
+HalfedgeMesh& HalfedgeMesh::operator=(HalfedgeMesh&& other) noexcept {
+    if (this == &other) return *this;
+    vprops_ = std::move(other.vprops_);
+    hprops_ = std::move(other.hprops_);
+    eprops_ = std::move(other.eprops_);
+    fprops_ = std::move(other.fprops_);
+    n_deleted_vertices_ = other.n_deleted_vertices_;
+    n_deleted_edges_ = other.n_deleted_edges_;
+    n_deleted_faces_ = other.n_deleted_faces_;
+    bind_builtins();
+    other.clear();
+    return *this;
+}
+
+void HalfedgeMesh::bind_builtins() {
+    vpoint_ = VertexProperty<Point>(vprops_.get<Point>("v:position"));
+    vhalfedge_ = VertexProperty<Halfedge>(vprops_.get<Halfedge>("v:halfedge"));
+    vdeleted_ = VertexProperty<std::uint8_t>(vprops_.get<std::uint8_t>("v:deleted"));
+    hto_ = HalfedgeProperty<Vertex>(hprops_.get<Vertex>("h:to"));
+    hnext_ = HalfedgeProperty<Halfedge>(hprops_.get<Halfedge>("h:next"));
+    hprev_ = HalfedgeProperty<Halfedge>(hprops_.get<Halfedge>("h:prev"));
+    hface_ = HalfedgeProperty<Face>(hprops_.get<Face>("h:face"));
+    edeleted_ = EdgeProperty<std::uint8_t>(eprops_.get<std::uint8_t>("e:deleted"));
+    fhalfedge_ = FaceProperty<Halfedge>(fprops_.get<Halfedge>("f:halfedge"));
+    fdeleted_ = FaceProperty<std::uint8_t>(fprops_.get<std::uint8_t>("f:deleted"));
+}
+
+void HalfedgeMesh::clear() {
+    HalfedgeMesh fresh;
+    vprops_ = std::move(fresh.vprops_);
+    hprops_ = std::move(fresh.hprops_);
+    eprops_ = std::move(fresh.eprops_);
+    fprops_ = std::move(fresh.fprops_);
+    n_deleted_vertices_ = n_deleted_edges_ = n_deleted_faces_ = 0;
+    bind_builtins();
+}
+
+void HalfedgeMesh::reserve(std::size_t nv, std::size_t ne, std::size_t nf) {
+    vprops_.reserve(nv);
+    hprops_.reserve(2 * ne);
+    eprops_.reserve(ne);
+    fprops_.reserve(nf);
+}
+
+template <class T>
+PropertyArray<T>* HalfedgeMesh::checked_add(PropertyContainer& c, const std::string& name,
+                                            T def) {
+    PropertyArray<T>* a = c.add<T>(name, std::move(def));
+    if (!a) throw InvalidArgument("add property: a property named '" + name + "' exists already");
+    return a;
+}
+
+void HalfedgeMesh::checked_remove(PropertyContainer& c, const std::string& name) {
+    if (is_builtin(name))
+        throw InvalidArgument("remove property: '" + name + "' is part of the connectivity");
+    c.remove(name);
+}
+
+std::vector<Halfedge> HalfedgeMesh::halfedges() const {
+    std::vector<Halfedge> out;
+    out.reserve(2 * n_edges());
+    for (Edge e : edges()) {
+        out.push_back(halfedge(e, 0));
+        out.push_back(halfedge(e, 1));
+    }
+    return out;
+}
+
+Halfedge HalfedgeMesh::find_halfedge(Vertex a, Vertex b) const {
+    for (Halfedge h : halfedges_around(a))
+        if (to_vertex(h) == b) return h;
+    return Halfedge();
+}
+
+Edge HalfedgeMesh::find_edge(Vertex a, Vertex b) const {
+    Halfedge h = find_halfedge(a, b);
+    return h.is_valid() ? edge(h) : Edge();
+}
+
+bool HalfedgeMesh::is_boundary(Face f) const {
+    for (Halfedge h : halfedges_of(f))
+        if (is_boundary(twin(h))) return true;
+    return false;
+}
+
+unsigned HalfedgeMesh::valence(Vertex v) const {
+    unsigned n = 0;
+    for (Halfedge h : halfedges_around(v)) {
+        (void)h;
+        ++n;
+    }
+    return n;
+}
+
+Vertex HalfedgeMesh::add_vertex(const Point& p) {
+    vprops_.push_back();
+    Vertex v(Index(vprops_.size() - 1));
+    vpoint_[v] = p;
+    return v;
+}
+
+Vertex HalfedgeMesh::add_vertex_copy(Vertex source) {
+    vprops_.push_back();
+    Vertex v(Index(vprops_.size() - 1));
+    vprops_.copy_element(source.idx(), v.idx());
+    vhalfedge_[v] = Halfedge();
+    vdeleted_[v] = 0;
+    return v;
+}
+
+Halfedge HalfedgeMesh::new_edge(Vertex a, Vertex b) {
+    eprops_.push_back();
+    hprops_.push_back();
+    hprops_.push_back();
+    Halfedge h(Index(hprops_.size() - 2));
+    hto_[h] = b;
+    hto_[twin(h)] = a;
+    return h;
+}
+
+Face HalfedgeMesh::new_face() {
+    fprops_.push_back();
+    return Face(Index(fprops_.size() - 1));
+}
+
+void HalfedgeMesh::adjust_outgoing_halfedge(Vertex v) {
+    Halfedge start = halfedge(v);
+    if (!start.is_valid()) return;
+    Halfedge h = start;
+    do {
+        if (is_boundary(h)) {
+            set_halfedge(v, h);
+            return;
+        }
+        h = ccw_rotated(h);
+    } while (h != start);
+}
+
+void HalfedgeMesh::mark_deleted(Vertex v) {
+    if (vdeleted_[v]) return;
+    vdeleted_[v] = 1;
+    vhalfedge_[v] = Halfedge();
+    ++n_deleted_vertices_;
+}
+
+void HalfedgeMesh::mark_deleted(Edge e) {
+    if (edeleted_[e]) return;
+    edeleted_[e] = 1;
+    ++n_deleted_edges_;
+}
+
+void HalfedgeMesh::mark_deleted(Face f) {
+    if (fdeleted_[f]) return;
+    fdeleted_[f] = 1;
+    ++n_deleted_faces_;
+}
+
+IndexRemap HalfedgeMesh::garbage_collection() {
+    IndexRemap remap;
+    auto build = [](std::size_t n, const std::vector<std::uint8_t>& deleted,
+                    std::vector<Index>& old_to_new, std::vector<Index>& new_to_old) {
+        old_to_new.assign(n, kInvalidIndex);
+        new_to_old.clear();
+        for (std::size_t i = 0; i < n; ++i) {
+            if (deleted[i]) continue;
+            old_to_new[i] = Index(new_to_old.size());
+            new_to_old.push_back(Index(i));
+        }
+    };
+    std::vector<Index> v_keep, e_keep, f_keep;
+    build(vertices_size(), vdeleted_.vector(), remap.vertices, v_keep);
+    build(edges_size(), edeleted_.vector(), remap.edges, e_keep);
+    build(faces_size(), fdeleted_.vector(), remap.faces, f_keep);
+    std::vector<Index> h_keep;
+    h_keep.reserve(2 * e_keep.size());
+    remap.halfedges.assign(halfedges_size(), kInvalidIndex);
+    for (Index e : e_keep) {
+        for (unsigned i = 0; i < 2; ++i) {
+            remap.halfedges[2 * e + i] = Index(h_keep.size());
+            h_keep.push_back(2 * e + i);
+        }
+    }
+
+    vprops_.gather(v_keep);
+    hprops_.gather(h_keep);
+    eprops_.gather(e_keep);
+    fprops_.gather(f_keep);
+    bind_builtins();
+
+    auto map_h = [&](Halfedge h) {
+        return h.is_valid() ? Halfedge(remap.halfedges[h.idx()]) : h;
+    };
+    for (Halfedge& h : vhalfedge_.vector()) h = map_h(h);
+    for (Halfedge& h : fhalfedge_.vector()) h = map_h(h);
+    for (Halfedge& h : hnext_.vector()) h = map_h(h);
+    for (Halfedge& h : hprev_.vector()) h = map_h(h);
+    for (Vertex& v : hto_.vector()) v = Vertex(remap.vertices[v.idx()]);
+    for (Face& f : hface_.vector())
+        if (f.is_valid()) f = Face(remap.faces[f.idx()]);
+
+    n_deleted_vertices_ = n_deleted_edges_ = n_deleted_faces_ = 0;
+    vprops_.shrink_to_fit();
+    hprops_.shrink_to_fit();
+    eprops_.shrink_to_fit();
+    fprops_.shrink_to_fit();
+    return remap;
+}
+
+}  // namespace trilab

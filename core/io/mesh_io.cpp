@@ -1,0 +1,50 @@
+#include "core/io/mesh_io.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include "core/errors.h"
+
+namespace trilab {
+
+std::vector<std::string> supported_mesh_extensions() { return {"obj", "off", "ply", "stl", "om"}; }
+
+std::string file_extension(const std::string& path) {
+    const std::size_t slash = path.find_last_of("/\\");
+    const std::size_t dot = path.find_last_of('.');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+    std::string ext = path.substr(dot + 1);
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+namespace {
+[[noreturn]] void unknown_format(const std::string& path) {
+    throw IoError(path, 0,
+                  "unknown mesh format '." + file_extension(path) +
+                      "' (supported: .obj, .off, .ply, .stl, .om)");
+}
+}  // namespace
+
+LoadedMesh read_mesh(const std::string& path) {
+    const std::string ext = file_extension(path);
+    if (ext == "obj") return read_obj(path);
+    if (ext == "off") return read_off(path);
+    if (ext == "ply") return read_ply(path);
+    if (ext == "stl") return read_stl(path);
+    if (ext == "om") return read_om(path);
+    unknown_format(path);
+}
+
+void write_mesh(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options) {
+    const std::string ext = file_extension(path);
+    if (ext == "obj") return write_obj(mesh, path, options);
+    if (ext == "off") return write_off(mesh, path, options);
+    if (ext == "ply") return write_ply(mesh, path, options);
+    if (ext == "stl") return write_stl(mesh, path, options);
+    if (ext == "om") return write_om(mesh, path, options);
+    unknown_format(path);
+}
+
+}  // namespace trilab

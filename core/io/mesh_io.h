@@ -1,0 +1,54 @@
+#pragma once
+// Reading and writing mesh files. The format is chosen by the file extension:
+//   .obj  Wavefront OBJ (positions, texture coordinates, normals; polygons triangulated)
+//   .off  Object File Format (OFF, COFF, NOFF, STOFF and combinations; polygons)
+//   .ply  Stanford PLY, ASCII and binary little/big endian (faces and tristrips)
+//   .stl  STL, ASCII or binary (decided by the binary size rule 84 + 50 n)
+//   .om   OpenMesh binary, read 1.2 to 2.2, written as 2.2
+// Readers throw IoError naming the file, the line (text formats) and the reason; nothing is
+// returned half-loaded. Writers write to a temporary file in the target's folder and rename
+// it over the target, so a failed write leaves any existing file untouched.
+#include <string>
+#include <vector>
+
+#include "core/halfedge_mesh.h"
+#include "core/mesh_builder.h"
+
+namespace trilab {
+
+struct LoadedMesh {
+    HalfedgeMesh mesh;
+    LoadReport report;
+};
+
+struct WriteOptions {
+    bool ascii = false;          ///< PLY and STL: write text instead of binary
+    bool big_endian = false;     ///< binary PLY: big-endian instead of little-endian
+    bool write_normals = true;   ///< write "v:normal" where the format can carry it
+    bool write_colors = true;    ///< write "v:color" where the format can carry it
+    bool write_texcoords = true; ///< write "v:texcoord" / "h:texcoord" where possible
+};
+
+/// Formats by lower-case extension without the dot: "obj", "off", "ply", "stl", "om".
+std::vector<std::string> supported_mesh_extensions();
+/// The lower-case extension of `path` without the dot ("" when there is none).
+std::string file_extension(const std::string& path);
+
+/// Reads any supported format (chosen by extension).
+LoadedMesh read_mesh(const std::string& path);
+/// Writes any supported format (chosen by extension).
+void write_mesh(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options = {});
+
+// Per-format entry points (same contracts as above).
+LoadedMesh read_obj(const std::string& path);
+void write_obj(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options);
+LoadedMesh read_off(const std::string& path);
+void write_off(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options);
+LoadedMesh read_ply(const std::string& path);
+void write_ply(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options);
+LoadedMesh read_stl(const std::string& path);
+void write_stl(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options);
+LoadedMesh read_om(const std::string& path);
+void write_om(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options);
+
+}  // namespace trilab

@@ -1,0 +1,73 @@
+#pragma once
+// Building a HalfedgeMesh from a polygon soup, as file readers produce it.
+//
+// The soup may be anything a file holds: polygons of any size, non-manifold edges and
+// vertices, inconsistent orientation, duplicated faces, unused vertices. Nothing is lost:
+//  - polygons with more than three corners are triangulated (ear clipping in the polygon's
+//    best-fit plane; a fan where that fails);
+//  - a face with a repeated vertex index (or fewer than three corners) is the only kind that
+//    is dropped: it has no area and no orientation;
+//  - a face that would give an edge a third face, or a second face on the same side (an
+//    inconsistent orientation or a duplicate) is added detached, with its own copies of its
+//    vertices, as OpenMesh's importer does;
+//  - a vertex whose faces form several fans is split into one copy per fan;
+//  - vertices that no face uses are kept (isolated) and counted.
+// Everything done is counted in the LoadReport. Complexity: linear in the soup size.
+#include <string>
+#include <vector>
+
+#include "core/halfedge_mesh.h"
+
+namespace trilab {
+
+/// Faces as vertex-index lists with optional attributes, in the order a file gives them.
+struct PolygonSoup {
+    std::vector<Point> positions;
+    /// Corner vertex indices of all faces, concatenated.
+    std::vector<Index> corners;
+    /// Face f has corners [face_offsets[f], face_offsets[f + 1]); size n_faces + 1.
+    std::vector<std::size_t> face_offsets{0};
+    /// Optional per-vertex attributes: empty, or one value per position.
+    std::vector<Vector3> normals;
+    std::vector<Color> colors;
+    std::vector<TexCoord> texcoords;
+    /// Optional per-corner texture coordinates: empty, or one per entry of `corners`.
+    std::vector<TexCoord> corner_texcoords;
+
+    std::size_t n_faces() const { return face_offsets.size() - 1; }
+    /// Appends a face; `uv`, when given, holds one texture coordinate per corner.
+    void add_face(const std::vector<Index>& face, const std::vector<TexCoord>& uv = {});
+};
+
+/// What loading a file did, for `trilab-cli info` and the viewer's log.
+struct LoadReport {
+    std::string file;
+    std::string format;
+    std::size_t file_vertices = 0;           ///< vertices declared / read from the file
+    std::size_t file_faces = 0;              ///< faces read from the file
+    std::size_t polygons_triangulated = 0;   ///< faces with more than three corners
+    std::size_t triangles_from_polygons = 0; ///< triangles those polygons became
+    std::size_t degenerate_faces_dropped = 0;///< faces with a repeated vertex or < 3 corners
+    std::size_t detached_faces = 0;          ///< added with their own vertex copies
+    std::size_t nonmanifold_vertices_split = 0;  ///< vertices with several fans
+    std::size_t vertex_copies_added = 0;     ///< copies made for detached faces and fans
+    std::size_t isolated_vertices = 0;       ///< vertices used by no face (kept)
+    std::size_t merged_vertices = 0;         ///< duplicate corners merged (STL)
+    std::vector<std::string> notes;          ///< anything else worth telling the user
+
+    /// One line per non-zero count, for logs.
+    std::vector<std::string> lines() const;
+};
+
+/// Builds a valid HalfedgeMesh from `soup` (see the file comment). Attributes in the soup
+/// become "v:normal", "v:color", "v:texcoord" and "h:texcoord" (the texture coordinate of
+/// the corner at to_vertex(h) in face(h)). Throws InvalidArgument naming the face and corner
+/// if a corner index is out of range or an attribute array has the wrong size; the report
+/// is filled in on success.
+HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report);
+
+/// The inverse: every live face as a triangle, with per-vertex attributes; vertices are
+/// numbered in storage order with deleted ones skipped.
+PolygonSoup to_soup(const HalfedgeMesh& mesh);
+
+}  // namespace trilab

@@ -1,0 +1,239 @@
+// Topological operators of HalfedgeMesh: edge collapse, edge flip, edge split, face split.
+// Each keeps every invariant listed in halfedge_mesh.h; the legality checks say when.
+#include <string>
+
+#include "core/errors.h"
+#include "core/halfedge_mesh.h"
+
+namespace trilab {
+
+namespace {
+// The corner opposite to h in its face (invalid for a boundary halfedge).
+Vertex opposite_vertex(const HalfedgeMesh& m, Halfedge h) {
+    return m.is_boundary(h) ? Vertex() : m.to_vertex(m.next(h));
+}
+// Whether the triangle {a, b, c} exists (in either orientation).
+bool has_triangle(const HalfedgeMesh& m, Vertex a, Vertex b, Vertex c) {
+    Halfedge h = m.find_halfedge(a, b);
+    if (!h.is_valid()) return false;
+    return opposite_vertex(m, h) == c || opposite_vertex(m, HalfedgeMesh::twin(h)) == c;
+}
+}  // namespace
+
+bool HalfedgeMesh::is_collapse_ok(Halfedge h) const {
+    if (!is_valid(h) || is_deleted(h)) return false;
+    const Halfedge o = twin(h);
+    const Vertex v0 = from_vertex(h), v1 = to_vertex(h);
+    Vertex vl, vr;
+    // A triangle whose two other edges are both on the boundary would vanish into a dangling
+    // edge.
+    if (!is_boundary(h)) {
+        const Halfedge h1 = next(h), h2 = next(h1);
+        vl = to_vertex(h1);
+        if (is_boundary(twin(h1)) && is_boundary(twin(h2))) return false;
+    }
+    if (!is_boundary(o)) {
+        const Halfedge o1 = next(o), o2 = next(o1);
+        vr = to_vertex(o1);
+        if (is_boundary(twin(o1)) && is_boundary(twin(o2))) return false;
+    }
+    if (vl == vr) return false;
+    // An interior edge between two boundary vertices would pinch the surface.
+    if (is_boundary(v0) && is_boundary(v1) && !is_boundary(h) && !is_boundary(o)) return false;
+    // Link condition on vertices: the only common neighbours may be vl and vr.
+    unsigned common = 0;
+    for (Vertex a : vertices_around(v0)) {
+        if (a == v1 || a == vl || a == vr) continue;
+        for (Vertex b : vertices_around(v1))
+            if (a == b) ++common;
+    }
+    if (common > 0) return false;
+    // Link condition on edges: the triangles {v0, vl, vr} and {v1, vl, vr} must not both
+    // exist (a tetrahedron would collapse into a doubly covered triangle).
+    if (vl.is_valid() && vr.is_valid() && has_triangle(*this, v0, vl, vr) &&
+        has_triangle(*this, v1, vl, vr))
+        return false;
+    return true;
+}
+
+void HalfedgeMesh::collapse(Halfedge h) {
+    if (!is_collapse_ok(h))
+        throw TopologyError("collapse: halfedge " + std::to_string(h.idx()) +
+                            " fails the link condition");
+    const Halfedge o = twin(h);
+    const Vertex v0 = from_vertex(h), v1 = to_vertex(h);
+    const Halfedge hn = next(h), hp = prev(h), on = next(o), op = prev(o);
+    const Face fh = face(h), fo = face(o);
+
+    // Every halfedge that pointed to v0 now points to v1.
+    for (Halfedge x : halfedges_around(v0)) set_to_vertex(twin(x), v1);
+
+    // Unlink h and o from their loops.
+    set_next(hp, hn);
+    set_next(op, on);
+    if (fh.is_valid()) set_halfedge(fh, hn);
+    if (fo.is_valid()) set_halfedge(fo, on);
+    if (halfedge(v1) == o) set_halfedge(v1, hn);
+    adjust_outgoing_halfedge(v1);
+
+    mark_deleted(v0);
+    mark_deleted(edge(h));
+
+    // The faces at the edge have become loops of two halfedges: remove them.
+    if (fh.is_valid() && next(next(hn)) == hn) remove_loop(hn);
+    if (fo.is_valid() && next(next(on)) == on) remove_loop(on);
+}
+
+// Removes a face that has degenerated into a loop of two halfedges h0 (v1 -> v0) and
+// h1 (v0 -> v1): h1 takes the place of twin(h0), and h0's edge and the face are deleted.
+void HalfedgeMesh::remove_loop(Halfedge h0) {
+    const Halfedge h1 = next(h0), o0 = twin(h0), o1 = twin(h1);
+    const Vertex v0 = to_vertex(h0), v1 = to_vertex(h1);
+    const Face fh = face(h0), fo = face(o0);
+
+    set_next(prev(o0), h1);
+    set_next(h1, next(o0));
+    set_face(h1, fo);
+    set_halfedge(v0, h1);
+    adjust_outgoing_halfedge(v0);
+    set_halfedge(v1, o1);
+    adjust_outgoing_halfedge(v1);
+    if (fo.is_valid() && halfedge(fo) == o0) set_halfedge(fo, h1);
+
+    mark_deleted(fh);
+    mark_deleted(edge(h0));
+}
+
+bool HalfedgeMesh::is_flip_ok(Edge e) const {
+    if (!is_valid(e) || is_deleted(e) || is_boundary(e)) return false;
+    const Halfedge h = halfedge(e, 0), o = halfedge(e, 1);
+    const Vertex c = to_vertex(next(h)), d = to_vertex(next(o));
+    if (c == d) return false;
+    return !find_halfedge(c, d).is_valid();
+}
+
+void HalfedgeMesh::flip(Edge e) {
+    if (!is_flip_ok(e))
+        throw TopologyError("flip: edge " + std::to_string(e.idx()) +
+                            " is on the boundary or its flipped edge exists already");
+    // Before: h = a->b in (a, b, c), o = b->a in (b, a, d). After: h = d->c, o = c->d.
+    const Halfedge h = halfedge(e, 0), o = halfedge(e, 1);
+    const Halfedge h1 = next(h), h2 = next(h1), o1 = next(o), o2 = next(o1);
+    const Vertex a = from_vertex(h), b = to_vertex(h);
+    const Vertex c = to_vertex(h1), d = to_vertex(o1);
+    const Face fh = face(h), fo = face(o);
+
+    if (halfedge(a) == h) set_halfedge(a, o1);
+    if (halfedge(b) == o) set_halfedge(b, h1);
+
+    set_to_vertex(h, c);
+    set_to_vertex(o, d);
+    set_next(h, h2);
+    set_next(h2, o1);
+    set_next(o1, h);
+    set_next(o, o2);
+    set_next(o2, h1);
+    set_next(h1, o);
+    set_face(o1, fh);
+    set_face(h1, fo);
+    set_halfedge(fh, h);
+    set_halfedge(fo, o);
+}
+
+Vertex HalfedgeMesh::split(Edge e, const Point& p) {
+    if (!is_valid(e) || is_deleted(e))
+        throw TopologyError("split: edge " + std::to_string(e.idx()) + " does not exist");
+    // h0 = a->b becomes a->v, the new h1 = v->b; o0 = b->a becomes v->a, the new o1 = b->v.
+    const Halfedge h0 = halfedge(e, 0), o0 = halfedge(e, 1);
+    const Vertex b = to_vertex(h0);
+    const Halfedge hn = next(h0), op = prev(o0), on = next(o0);
+    const Face fh = face(h0), fo = face(o0);
+
+    const Vertex v = add_vertex(p);
+    const Halfedge h1 = new_edge(v, b), o1 = twin(h1);
+    set_to_vertex(h0, v);
+    set_next(h1, hn);
+    set_next(h0, h1);
+    set_face(h1, fh);
+    set_next(op, o1);
+    set_next(o1, o0);
+    set_face(o1, fo);
+    set_halfedge(v, h1);
+    if (halfedge(b) == o0) set_halfedge(b, o1);
+
+    if (fh.is_valid()) {
+        // Loop a->v (h0), v->b (h1), b->c (hn), c->a (hc): cut along v->c.
+        const Halfedge hc = next(hn);
+        const Vertex c = to_vertex(hn);
+        const Halfedge x = new_edge(v, c), y = twin(x);
+        const Face f2 = new_face();
+        set_next(h0, x);
+        set_next(x, hc);
+        set_face(x, fh);
+        set_halfedge(fh, h0);
+        set_next(h1, hn);
+        set_next(hn, y);
+        set_next(y, h1);
+        set_face(h1, f2);
+        set_face(hn, f2);
+        set_face(y, f2);
+        set_halfedge(f2, h1);
+    }
+    if (fo.is_valid()) {
+        // Loop b->v (o1), v->a (o0), a->d (on), d->b (op): cut along v->d.
+        const Vertex d = to_vertex(on);
+        const Halfedge x = new_edge(v, d), y = twin(x);
+        const Face f3 = new_face();
+        set_next(on, y);
+        set_next(y, o0);
+        set_face(y, fo);
+        set_halfedge(fo, o0);
+        set_next(o1, x);
+        set_next(x, op);
+        set_next(op, o1);
+        set_face(o1, f3);
+        set_face(x, f3);
+        set_face(op, f3);
+        set_halfedge(f3, o1);
+    }
+    adjust_outgoing_halfedge(v);
+    return v;
+}
+
+Vertex HalfedgeMesh::split(Face f, const Point& p) {
+    if (!is_valid(f) || is_deleted(f))
+        throw TopologyError("split: face " + std::to_string(f.idx()) + " does not exist");
+    // Corners: h0 = c->a, h1 = a->b, h2 = b->c; spokes x* = v->*, y* = *->v.
+    const Halfedge h0 = halfedge(f), h1 = next(h0), h2 = next(h1);
+    const Vertex a = to_vertex(h0), b = to_vertex(h1), c = to_vertex(h2);
+    const Vertex v = add_vertex(p);
+    const Halfedge xa = new_edge(v, a), ya = twin(xa);
+    const Halfedge xb = new_edge(v, b), yb = twin(xb);
+    const Halfedge xc = new_edge(v, c), yc = twin(xc);
+    const Face f1 = new_face(), f2 = new_face();
+
+    set_next(h0, ya);
+    set_next(ya, xc);
+    set_next(xc, h0);
+    set_next(h1, yb);
+    set_next(yb, xa);
+    set_next(xa, h1);
+    set_next(h2, yc);
+    set_next(yc, xb);
+    set_next(xb, h2);
+    set_face(ya, f);
+    set_face(xc, f);
+    set_face(h1, f1);
+    set_face(yb, f1);
+    set_face(xa, f1);
+    set_face(h2, f2);
+    set_face(yc, f2);
+    set_face(xb, f2);
+    set_halfedge(f, h0);
+    set_halfedge(f1, h1);
+    set_halfedge(f2, h2);
+    set_halfedge(v, xa);
+    return v;
+}
+
+}  // namespace trilab

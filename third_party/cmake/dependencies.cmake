@@ -1,0 +1,34 @@
+# Finds every Debian package trilab uses (see third_party/packages.txt) and generates the
+# OpenGL 3.3 core loader with glad 2 at build time. Nothing here is vendored source.
+
+find_package(Eigen3 3.3 REQUIRED NO_MODULE)
+# The installed version string ("2rc10") cannot be compared: never ask for a version.
+find_package(tinyobjloader REQUIRED)
+
+if(TRILAB_BUILD_VIEWER)
+    find_package(glfw3 3.3 REQUIRED)
+    find_package(glm REQUIRED)
+    find_package(PkgConfig REQUIRED)
+    # libimgui-dev ships the GLFW and OpenGL 3 backends inside libimgui.a; imgui.pc pulls in stb.
+    pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)
+
+    # glad 2: generate the GL 3.3 core loader (and EGL 1.5 for offscreen rendering) into the
+    # build tree. --reproducible makes glad use its bundled Khronos XML (no network).
+    find_program(GLAD_EXECUTABLE glad REQUIRED)
+    set(GLAD_OUT ${CMAKE_BINARY_DIR}/glad)
+    add_custom_command(
+        OUTPUT ${GLAD_OUT}/src/gl.c ${GLAD_OUT}/include/glad/gl.h
+               ${GLAD_OUT}/src/egl.c ${GLAD_OUT}/include/glad/egl.h
+        COMMAND ${GLAD_EXECUTABLE} --api "gl:core=3.3,egl=1.5"
+                --extensions "EGL_EXT_platform_base,EGL_MESA_platform_surfaceless,EGL_KHR_surfaceless_context,EGL_KHR_create_context"
+                --out-path ${GLAD_OUT} --reproducible --quiet c --loader
+        COMMENT "Generating the OpenGL 3.3 core loader with glad"
+        VERBATIM)
+    add_library(glad STATIC ${GLAD_OUT}/src/gl.c ${GLAD_OUT}/src/egl.c)
+    target_include_directories(glad SYSTEM PUBLIC ${GLAD_OUT}/include)
+    target_link_libraries(glad PUBLIC ${CMAKE_DL_LIBS})
+endif()
+
+if(TRILAB_BUILD_TESTS)
+    find_package(Catch2 REQUIRED)
+endif()
