@@ -111,12 +111,8 @@ void HalfedgeMesh::reserve(std::size_t nv, std::size_t ne, std::size_t nf) {
     fprops_.reserve(nf);
 }
 
-template <class T>
-PropertyArray<T>* HalfedgeMesh::checked_add(PropertyContainer& c, const std::string& name,
-                                            T def) {
-    PropertyArray<T>* a = c.add<T>(name, std::move(def));
-    if (!a) throw InvalidArgument("add property: a property named '" + name + "' exists already");
-    return a;
+void HalfedgeMesh::throw_name_taken(const std::string& name) {
+    throw InvalidArgument("add property: a property named '" + name + "' exists already");
 }
 
 void HalfedgeMesh::checked_remove(PropertyContainer& c, const std::string& name) {

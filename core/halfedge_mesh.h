@@ -240,7 +240,7 @@ public:
     // be removed. add_* throws InvalidArgument if the name is taken; get_* returns an empty
     // view if no property of that name and type exists; *_or_add returns existing or new.
     template <class T>
-    VertexProperty<T> add_vertex_property(const std::string& name, T def = T()) {
+    VertexProperty<T> add_vertex_property(const std::string& name, T def = zero_value<T>()) {
         return VertexProperty<T>(checked_add(vprops_, name, std::move(def)));
     }
     template <class T>
@@ -248,12 +248,12 @@ public:
         return VertexProperty<T>(vprops_.get<T>(name));
     }
     template <class T>
-    VertexProperty<T> vertex_property(const std::string& name, T def = T()) {
+    VertexProperty<T> vertex_property(const std::string& name, T def = zero_value<T>()) {
         auto* a = vprops_.get<T>(name);
         return VertexProperty<T>(a ? a : checked_add(vprops_, name, std::move(def)));
     }
     template <class T>
-    HalfedgeProperty<T> add_halfedge_property(const std::string& name, T def = T()) {
+    HalfedgeProperty<T> add_halfedge_property(const std::string& name, T def = zero_value<T>()) {
         return HalfedgeProperty<T>(checked_add(hprops_, name, std::move(def)));
     }
     template <class T>
@@ -261,12 +261,12 @@ public:
         return HalfedgeProperty<T>(hprops_.get<T>(name));
     }
     template <class T>
-    HalfedgeProperty<T> halfedge_property(const std::string& name, T def = T()) {
+    HalfedgeProperty<T> halfedge_property(const std::string& name, T def = zero_value<T>()) {
         auto* a = hprops_.get<T>(name);
         return HalfedgeProperty<T>(a ? a : checked_add(hprops_, name, std::move(def)));
     }
     template <class T>
-    EdgeProperty<T> add_edge_property(const std::string& name, T def = T()) {
+    EdgeProperty<T> add_edge_property(const std::string& name, T def = zero_value<T>()) {
         return EdgeProperty<T>(checked_add(eprops_, name, std::move(def)));
     }
     template <class T>
@@ -274,12 +274,12 @@ public:
         return EdgeProperty<T>(eprops_.get<T>(name));
     }
     template <class T>
-    EdgeProperty<T> edge_property(const std::string& name, T def = T()) {
+    EdgeProperty<T> edge_property(const std::string& name, T def = zero_value<T>()) {
         auto* a = eprops_.get<T>(name);
         return EdgeProperty<T>(a ? a : checked_add(eprops_, name, std::move(def)));
     }
     template <class T>
-    FaceProperty<T> add_face_property(const std::string& name, T def = T()) {
+    FaceProperty<T> add_face_property(const std::string& name, T def = zero_value<T>()) {
         return FaceProperty<T>(checked_add(fprops_, name, std::move(def)));
     }
     template <class T>
@@ -287,7 +287,7 @@ public:
         return FaceProperty<T>(fprops_.get<T>(name));
     }
     template <class T>
-    FaceProperty<T> face_property(const std::string& name, T def = T()) {
+    FaceProperty<T> face_property(const std::string& name, T def = zero_value<T>()) {
         auto* a = fprops_.get<T>(name);
         return FaceProperty<T>(a ? a : checked_add(fprops_, name, std::move(def)));
     }
@@ -347,7 +347,12 @@ public:
 
 private:
     template <class T>
-    PropertyArray<T>* checked_add(PropertyContainer& c, const std::string& name, T def);
+    PropertyArray<T>* checked_add(PropertyContainer& c, const std::string& name, T def) {
+        PropertyArray<T>* a = c.add<T>(name, std::move(def));
+        if (!a) throw_name_taken(name);
+        return a;
+    }
+    [[noreturn]] static void throw_name_taken(const std::string& name);
     void checked_remove(PropertyContainer& c, const std::string& name);
     void bind_builtins();
     void mark_deleted(Vertex v);

@@ -9,13 +9,26 @@
 #include <cassert>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <typeinfo>
 #include <utility>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "core/handles.h"
 
 namespace trilab {
+
+/// A zero value for any attribute type: Eigen vectors are zeroed (their default
+/// constructor leaves them uninitialized), everything else is value-initialized.
+template <class T>
+T zero_value() {
+    if constexpr (std::is_base_of_v<Eigen::MatrixBase<T>, T>)
+        return T::Zero();
+    else
+        return T{};
+}
 
 class BasePropertyArray {
 public:
@@ -112,7 +125,7 @@ public:
 
     /// Adds a new array; returns nullptr when a property of that name exists already.
     template <class T>
-    PropertyArray<T>* add(const std::string& name, T default_value = T()) {
+    PropertyArray<T>* add(const std::string& name, T default_value = zero_value<T>()) {
         if (find_base(name)) return nullptr;
         auto array = std::make_unique<PropertyArray<T>>(name, std::move(default_value));
         array->resize(size_);

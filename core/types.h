@@ -1,6 +1,7 @@
 #pragma once
 // Scalar and vector types shared by the whole core.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace trilab {
 
