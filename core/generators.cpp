@@ -73,11 +73,14 @@ HalfedgeMesh make_icosphere(unsigned frequency) {
     // points on shared edges and corners are created once.
     std::map<std::array<Index, 6>, Index> ids;
     auto point = [&](const std::array<Index, 3>& v, Index a, Index b, Index c) {
-        std::array<std::pair<Index, Index>, 3> w = {{{v[0], a}, {v[1], b}, {v[2], c}}};
+        auto entry = [](Index vertex, Index weight) {
+            return std::make_pair(weight ? vertex : kInvalidIndex, weight);
+        };
+        std::array<std::pair<Index, Index>, 3> w = {entry(v[0], a), entry(v[1], b), entry(v[2], c)};
         std::sort(w.begin(), w.end());
         std::array<Index, 6> key{};
         for (int k = 0; k < 3; ++k) {
-            key[2 * k] = w[k].second ? w[k].first : kInvalidIndex;
+            key[2 * k] = w[k].first;
             key[2 * k + 1] = w[k].second;
         }
         auto [it, inserted] = ids.emplace(key, Index(soup.positions.size()));

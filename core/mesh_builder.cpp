@@ -244,7 +244,7 @@ HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
             hface[he[k]] = f;
         }
         face_tri.push_back(t);
-        face_halfedge.push_back(he[0]);
+        face_halfedge.push_back(he[2]);  // ends at corner 0, as OpenMesh's add_face does
         hnext.resize(hface.size(), kInvalidIndex);
         hprev.resize(hface.size(), kInvalidIndex);
         for (int k = 0; k < 3; ++k) {
@@ -364,7 +364,7 @@ HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
             vhalfedge[vs[k]] = h0 + 2 * ((k + 2) % 3) + 1;  // outgoing boundary from vs[k]
         }
         face_tri.push_back(t);
-        face_halfedge.push_back(h0);
+        face_halfedge.push_back(h0 + 4);  // vs[2] -> vs[0]: ends at corner 0
         ++report.detached_faces;
     }
 
@@ -402,11 +402,10 @@ HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
     if (!soup.corner_texcoords.empty()) {
         auto p = mesh.halfedge_property<TexCoord>("h:texcoord", TexCoord::Zero());
         for (Index f = 0; f < n_f; ++f) {
-            // The halfedge leaving corner k ends at corner k + 1.
+            // The face's halfedge ends at corner 0; its next ends at corner 1, and so on.
             Halfedge h(face_halfedge[f]);
             const Tri& c = tri_corners[face_tri[f]];
-            for (int k = 0; k < 3; ++k, h = mesh.next(h))
-                p[h] = soup.corner_texcoords[c[(k + 1) % 3]];
+            for (int k = 0; k < 3; ++k, h = mesh.next(h)) p[h] = soup.corner_texcoords[c[k]];
         }
     }
     return mesh;

@@ -55,6 +55,7 @@ void write_file_atomically(const std::string& path,
 
 HalfedgeMesh build_mesh_for_file(const PolygonSoup& soup, LoadReport& report,
                                  const std::string& path) {
+    if (soup.positions.empty()) throw IoError(path, 0, "the file holds no vertices");
     try {
         return build_mesh(soup, report);
     } catch (const IoError&) {
@@ -73,6 +74,30 @@ void check_declared_count(std::size_t count, std::size_t min_bytes_each,
                       "the header declares " + std::to_string(count) + " " + what +
                           ", more than the file's " + std::to_string(available_bytes) +
                           " bytes can hold");
+}
+
+}  // namespace trilab
+
+#include <charconv>
+
+namespace trilab {
+
+void append_number(std::string& out, double value) {
+    char buf[32];
+    auto res = std::to_chars(buf, buf + sizeof(buf), value);
+    out.append(buf, res.ptr);
+}
+
+void append_number(std::string& out, float value) {
+    char buf[32];
+    auto res = std::to_chars(buf, buf + sizeof(buf), value);
+    out.append(buf, res.ptr);
+}
+
+void append_number(std::string& out, std::size_t value) {
+    char buf[24];
+    auto res = std::to_chars(buf, buf + sizeof(buf), value);
+    out.append(buf, res.ptr);
 }
 
 }  // namespace trilab

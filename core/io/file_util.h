@@ -17,7 +17,8 @@ std::string read_file_bytes(const std::string& path);
 /// target is left untouched, and IoError is thrown.
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
-/// Runs build_mesh and turns its InvalidArgument into an IoError naming `path`.
+/// Runs build_mesh and turns its InvalidArgument into an IoError naming `path`. A soup
+/// without vertices is refused ("the file holds no vertices").
 HalfedgeMesh build_mesh_for_file(const PolygonSoup& soup, LoadReport& report,
                                  const std::string& path);
 
@@ -28,4 +29,12 @@ void check_declared_count(std::size_t count, std::size_t min_bytes_each,
                           std::size_t available_bytes, const char* what,
                           const std::string& path, std::size_t line);
 
+}  // namespace trilab
+
+namespace trilab {
+/// Appends the shortest decimal text that reads back as exactly `value`.
+void append_number(std::string& out, double value);
+/// Appends a float's shortest round-trip text.
+void append_number(std::string& out, float value);
+void append_number(std::string& out, std::size_t value);
 }  // namespace trilab

@@ -1,0 +1,292 @@
+// Half-edge core: handles, properties, circulators, construction from soups, validate().
+#include <set>
+
+#include "core/errors.h"
+#include "core/generators.h"
+#include "core/geometry.h"
+#include "core/mesh_builder.h"
+#include "core/mesh_stats.h"
+#include "test_helpers.h"
+
+using namespace trilab;
+
+namespace {
+HalfedgeMesh build(const PolygonSoup& soup, LoadReport* report_out = nullptr) {
+    LoadReport report;
+    HalfedgeMesh m = build_mesh(soup, report);
+    if (report_out) *report_out = report;
+    return m;
+}
+PolygonSoup soup_of(std::vector<Point> pts, std::vector<std::vector<Index>> faces) {
+    PolygonSoup s;
+    s.positions = std::move(pts);
+    for (auto& f : faces) s.add_face(f);
+    return s;
+}
+}  // namespace
+
+TEST_CASE("handles are distinct typed indices with an invalid value", "[core]") {
+    Vertex v;
+    REQUIRE_FALSE(v.is_valid());
+    REQUIRE(Vertex(3).idx() == 3);
+    REQUIRE(Vertex(3) == Vertex(3));
+    REQUIRE(Vertex(2) < Vertex(3));
+    REQUIRE(HalfedgeMesh::twin(Halfedge(6)) == Halfedge(7));
+    REQUIRE(HalfedgeMesh::twin(Halfedge(7)) == Halfedge(6));
+    REQUIRE(HalfedgeMesh::edge(Halfedge(7)) == Edge(3));
+    STATIC_REQUIRE_FALSE(std::is_convertible_v<Vertex, Face>);
+}
+
+TEST_CASE("every built-in model is valid with the expected counts", "[core][generators]") {
+    for (const std::string& name : generator_names()) {
+        INFO(name);
+        HalfedgeMesh m = generate(name);
+        REQUIRE_VALID(m);
+        REQUIRE(m.n_faces() > 0);
+        REQUIRE(2 * m.n_edges() == m.n_halfedges());
+    }
+    HalfedgeMesh sphere = make_icosphere(10);
+    REQUIRE(sphere.n_vertices() == 1002);
+    REQUIRE(sphere.n_faces() == 2000);
+    REQUIRE(make_default_model().n_vertices() == 1002);
+}
+
+TEST_CASE("Euler characteristic, genus and boundary loops", "[core][stats]") {
+    MeshStats sphere = compute_stats(make_icosphere(4));
+    REQUIRE(sphere.euler == 2);
+    REQUIRE(sphere.genus == 0);
+    REQUIRE(sphere.boundary_loops == 0);
+    REQUIRE(sphere.components == 1);
+    REQUIRE(sphere.volume.has_value());
+    MeshStats torus = compute_stats(make_torus(20, 10, 1.0, 0.3));
+    REQUIRE(torus.euler == 0);
+    REQUIRE(torus.genus == 1);
+    MeshStats grid = compute_stats(make_grid(5));
+    REQUIRE(grid.boundary_loops == 1);
+    REQUIRE(grid.euler == 1);
+    REQUIRE_FALSE(grid.volume.has_value());
+    MeshStats cyl = compute_stats(make_cylinder(12, 3));
+    REQUIRE(cyl.boundary_loops == 2);
+    REQUIRE(cyl.genus == 0);
+}
+
+TEST_CASE("circulators visit each neighbourhood once and agree with each other", "[core]") {
+    for (HalfedgeMesh m : {make_icosphere(3), make_grid(4), make_cylinder(8, 2)}) {
+        std::size_t valence_sum = 0, face_corner_sum = 0;
+        for (Vertex v : m.vertices()) {
+            std::set<Index> ring;
+            for (Vertex w : m.vertices_around(v)) {
+                REQUIRE(m.find_halfedge(v, w).is_valid());
+                REQUIRE(m.to_vertex(m.find_halfedge(v, w)) == w);
+                ring.insert(w.idx());
+            }
+            REQUIRE(ring.size() == m.valence(v));
+            valence_sum += m.valence(v);
+            std::size_t faces = 0;
+            for (Face f : m.faces_around(v)) {
+                const auto c = m.face_vertices(f);
+                REQUIRE((c[0] == v || c[1] == v || c[2] == v));
+                ++faces;
+            }
+            face_corner_sum += faces;
+            REQUIRE(faces == m.valence(v) - (m.is_boundary(v) ? 1u : 0u));
+        }
+        REQUIRE(valence_sum == 2 * m.n_edges());
+        REQUIRE(face_corner_sum == 3 * m.n_faces());
+        for (Face f : m.faces()) {
+            int n = 0;
+            for (Halfedge h : m.halfedges_of(f)) {
+                REQUIRE(m.face(h) == f);
+                ++n;
+            }
+            REQUIRE(n == 3);
+        }
+    }
+}
+
+TEST_CASE("boundary detection on an open grid", "[core]") {
+    HalfedgeMesh m = make_grid(3);
+    std::size_t boundary_vertices = 0, boundary_edges = 0;
+    for (Vertex v : m.vertices()) boundary_vertices += m.is_boundary(v);
+    for (Edge e : m.edges()) boundary_edges += m.is_boundary(e);
+    REQUIRE(boundary_vertices == 12);
+    REQUIRE(boundary_edges == 12);
+    for (Vertex v : m.vertices())
+        if (m.is_boundary(v)) REQUIRE(m.is_boundary(m.halfedge(v)));
+}
+
+TEST_CASE("named typed properties", "[core][properties]") {
+    HalfedgeMesh m = make_tetrahedron();
+    auto weight = m.add_vertex_property<double>("v:weight", 1.5);
+    REQUIRE(weight);
+    REQUIRE(weight[Vertex(2)] == 1.5);
+    weight[Vertex(2)] = 7.0;
+    REQUIRE(m.get_vertex_property<double>("v:weight")[Vertex(2)] == 7.0);
+    // Wrong type or name gives an empty view; a taken name throws.
+    REQUIRE_FALSE(m.get_vertex_property<float>("v:weight"));
+    REQUIRE_FALSE(m.get_vertex_property<double>("v:nothing"));
+    REQUIRE_THROWS_AS(m.add_vertex_property<double>("v:weight"), InvalidArgument);
+    // Built-in connectivity cannot be removed.
+    REQUIRE_THROWS_AS(m.remove_vertex_property("v:position"), InvalidArgument);
+    // New elements get the default; copies are deep.
+    HalfedgeMesh copy = m;
+    copy.get_vertex_property<double>("v:weight")[Vertex(2)] = -1.0;
+    REQUIRE(m.get_vertex_property<double>("v:weight")[Vertex(2)] == 7.0);
+    Vertex v = m.add_vertex(Point(0, 0, 0));
+    REQUIRE(weight[v] == 1.5);
+    m.remove_vertex_property("v:weight");
+    REQUIRE_FALSE(m.has_vertex_property("v:weight"));
+    // Eigen-typed properties default to zero, not garbage.
+    auto n = m.vertex_property<Vector3>("v:normal");
+    REQUIRE(n[Vertex(0)] == Vector3::Zero());
+    auto fl = m.face_property<int>("f:label", 4);
+    auto el = m.edge_property<float>("e:len");
+    auto hl = m.halfedge_property<int>("h:mark", -1);
+    REQUIRE(fl[Face(1)] == 4);
+    REQUIRE(el.vector().size() == m.edges_size());
+    REQUIRE(hl.vector().size() == m.halfedges_size());
+}
+
+TEST_CASE("a mesh copy is independent and moves leave an empty mesh", "[core]") {
+    HalfedgeMesh a = make_icosphere(2);
+    HalfedgeMesh b = a;
+    b.position(Vertex(0)) = Point(9, 9, 9);
+    REQUIRE(a.position(Vertex(0)) != Point(9, 9, 9));
+    REQUIRE_VALID(b);
+    HalfedgeMesh c = std::move(b);
+    REQUIRE_VALID(c);
+    REQUIRE(b.n_vertices() == 0);  // NOLINT(bugprone-use-after-move): moved-from is empty
+    REQUIRE_VALID(b);
+    c.clear();
+    REQUIRE(c.n_vertices() == 0);
+}
+
+// ---- construction from soups --------------------------------------------------------------
+
+TEST_CASE("build_mesh splits a non-manifold vertex into one copy per fan", "[core][builder]") {
+    LoadReport r;
+    HalfedgeMesh m = build(soup_of({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}},
+                                   {{0, 1, 2}, {0, 3, 4}}),
+                           &r);
+    REQUIRE_VALID(m);
+    REQUIRE(m.n_faces() == 2);
+    REQUIRE(m.n_vertices() == 6);
+    REQUIRE(r.nonmanifold_vertices_split == 1);
+    REQUIRE(r.vertex_copies_added == 1);
+    REQUIRE(compute_stats(m).components == 2);
+}
+
+TEST_CASE("build_mesh detaches faces on a non-manifold edge", "[core][builder]") {
+    LoadReport r;
+    HalfedgeMesh m =
+        build(soup_of({{0, 0, 0}, {1, 0, 0}, {.5, 1, 0}, {.5, -1, 0}, {.5, 0, 1}},
+                      {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}),
+              &r);
+    REQUIRE_VALID(m);
+    REQUIRE(m.n_faces() == 3);
+    REQUIRE(r.detached_faces == 1);
+    REQUIRE(r.degenerate_faces_dropped == 0);
+}
+
+TEST_CASE("build_mesh keeps duplicated and flipped faces detached", "[core][builder]") {
+    LoadReport r;
+    HalfedgeMesh dup = build(soup_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 1, 2}}), &r);
+    REQUIRE_VALID(dup);
+    REQUIRE(dup.n_faces() == 2);
+    REQUIRE(r.detached_faces == 1);
+    LoadReport r2;
+    HalfedgeMesh flip =
+        build(soup_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, {{0, 1, 2}, {1, 2, 3}}), &r2);
+    REQUIRE_VALID(flip);
+    REQUIRE(flip.n_faces() == 2);
+    REQUIRE(r2.detached_faces == 1);
+}
+
+TEST_CASE("build_mesh drops only faces with a repeated vertex and keeps isolated vertices",
+          "[core][builder]") {
+    LoadReport r;
+    HalfedgeMesh m = build(soup_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {7, 7, 7}},
+                                   {{0, 1, 2}, {1, 3, 2}, {1, 1, 3}, {0, 1}}),
+                           &r);
+    REQUIRE_VALID(m);
+    REQUIRE(m.n_faces() == 2);
+    REQUIRE(m.n_vertices() == 5);
+    REQUIRE(r.degenerate_faces_dropped == 2);
+    REQUIRE(r.isolated_vertices == 1);
+    REQUIRE(m.is_isolated(Vertex(4)));
+}
+
+TEST_CASE("build_mesh triangulates concave polygons without folding", "[core][builder]") {
+    LoadReport r;
+    // L-shaped hexagon starting at the reflex corner: a fan from it would overlap.
+    HalfedgeMesh m = build(
+        soup_of({{1, 1, 0}, {1, 2, 0}, {0, 2, 0}, {0, 0, 0}, {2, 0, 0}, {2, 1, 0}},
+                {{0, 1, 2, 3, 4, 5}}),
+        &r);
+    REQUIRE_VALID(m);
+    REQUIRE(m.n_faces() == 4);
+    REQUIRE(r.polygons_triangulated == 1);
+    REQUIRE(surface_area(m) == Approx(3.0));
+    for (Face f : m.faces()) REQUIRE(face_area_vector(m, f).z() > 0);
+}
+
+TEST_CASE("build_mesh refuses bad indices and non-finite positions", "[core][builder]") {
+    LoadReport r;
+    REQUIRE_THROWS_AS(build_mesh(soup_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 5}}), r),
+                      InvalidArgument);
+    REQUIRE_THROWS_AS(
+        build_mesh(soup_of({{0, 0, 0}, {1, 0, 0}, {0, std::nan(""), 0}}, {{0, 1, 2}}), r),
+        InvalidArgument);
+}
+
+TEST_CASE("build_mesh survives a fan of many faces around one edge and vertex",
+          "[core][builder]") {
+    // Ten triangles sharing the edge 0-1, alternating orientation, plus a repeated copy.
+    PolygonSoup s;
+    s.positions = {{0, 0, 0}, {1, 0, 0}};
+    for (int i = 0; i < 10; ++i) {
+        s.positions.emplace_back(0.5, std::cos(i * 0.6), std::sin(i * 0.6));
+        if (i % 2) s.add_face({0, 1, Index(2 + i)});
+        else s.add_face({1, 0, Index(2 + i)});
+    }
+    s.add_face({0, 1, 3});
+    LoadReport r;
+    HalfedgeMesh m = build_mesh(s, r);
+    REQUIRE_VALID(m);
+    REQUIRE(m.n_faces() == 11);
+    REQUIRE(r.detached_faces == 9);
+}
+
+TEST_CASE("to_soup and build_mesh round-trip a mesh with corner texture coordinates",
+          "[core][builder]") {
+    PolygonSoup s = soup_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, {});
+    s.add_face({0, 1, 2}, {{0, 0}, {1, 0}, {0, 1}});
+    s.add_face({1, 3, 2}, {{0.5, 0}, {1, 1}, {0, 0.5}});
+    LoadReport r;
+    HalfedgeMesh m = build_mesh(s, r);
+    REQUIRE_VALID(m);
+    auto uv = m.get_halfedge_property<TexCoord>("h:texcoord");
+    REQUIRE(uv);
+    PolygonSoup back = to_soup(m);
+    REQUIRE(back.corners == s.corners);
+    REQUIRE(back.corner_texcoords == s.corner_texcoords);
+}
+
+TEST_CASE("validate reports broken connectivity", "[core][validate]") {
+    HalfedgeMesh m = make_icosphere(2);
+    REQUIRE_VALID(m);
+    HalfedgeMesh a = m;
+    a.set_next(Halfedge(0), Halfedge(4));
+    REQUIRE_FALSE(validate(a).ok);
+    HalfedgeMesh b = m;
+    b.set_to_vertex(Halfedge(0), Vertex(Index(b.vertices_size() + 5)));
+    REQUIRE_FALSE(validate(b).ok);
+    HalfedgeMesh c = m;
+    c.set_halfedge(Vertex(0), HalfedgeMesh::twin(c.halfedge(Vertex(0))));
+    auto r = validate(c);
+    REQUIRE_FALSE(r.ok);
+    REQUIRE_FALSE(r.message.empty());
+    HalfedgeMesh d = m;
+    d.set_face(Halfedge(0), Face());
+    REQUIRE_FALSE(validate(d).ok);
+}
