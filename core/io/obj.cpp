@@ -1,13 +1,17 @@
-// Wavefront OBJ. Reading uses tinyobjloader (double precision build) for the parse, with two
-// checks of our own that it does not make: every number on v/vt/vn lines must be a finite
-// number (tinyobjloader silently reads "nan" or "abc" as 0), and every index must be in range
-// (reported with the line of the offending `f` statement). Polygons are triangulated by
+// Wavefront OBJ. Reading uses tinyobjloader (double precision build) for the statements and
+// faces, with checks of our own that it does not make: every number on v/vt/vn lines must be
+// a finite number (tinyobjloader silently reads "nan" or "abc" as 0; we also re-parse them
+// with std::from_chars, which is correctly rounded, so written files read back bit for bit),
+// and every index must be in range (reported with the line of the offending `f` statement). Polygons are triangulated by
 // build_mesh. Texture coordinates become "v:texcoord" when every vertex has one texture
 // coordinate, otherwise per-corner "h:texcoord" (seams stay seams); normals become "v:normal"
 // (the first normal given for a vertex). Materials are ignored.
 // Writing: v (and vt, vn) with shortest round-trip decimals, then f v/vt/vn triples.
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <cstring>
 #include <ostream>
 #include <string_view>
@@ -16,6 +20,7 @@
 #include "core/errors.h"
 #include "core/io/file_util.h"
 #include "core/io/mesh_io.h"
+#include "core/io/text_scanner.h"
 
 namespace trilab {
 
@@ -23,43 +28,64 @@ namespace {
 
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
-/// Checks the numbers on v/vt/vn lines; returns the line and token of the first bad one.
-void check_obj_numbers(std::string_view text, const std::string& path) {
+/// Numbers of the v, vt and vn statements, parsed exactly (correctly rounded).
+struct ObjNumbers {
+    std::vector<double> v, vt, vn;
+};
+
+/// Parses every number on v/vt/vn lines with std::from_chars (tinyobjloader's own parser is
+/// off by an ulp at times, and reads "nan" or "abc" as 0). Throws IoError naming the line of
+/// the first token that is not a finite number, or of a statement with too few numbers.
+ObjNumbers scan_obj_numbers(std::string_view text, const std::string& path) {
+    ObjNumbers out;
     std::size_t line = 0;
     std::size_t pos = 0;
+    double values[4];
     while (pos < text.size()) {
         ++line;
         std::size_t end = text.find('\n', pos);
         if (end == std::string_view::npos) end = text.size();
         std::size_t i = pos;
         while (i < end && is_space(text[i])) ++i;
-        if (i + 1 < end && text[i] == 'v' &&
-            (is_space(text[i + 1]) ||
-             ((text[i + 1] == 't' || text[i + 1] == 'n') && i + 2 < end && is_space(text[i + 2])))) {
-            i += is_space(text[i + 1]) ? 1 : 2;
+        int kind = -1;  // 0: v, 1: vt, 2: vn
+        if (i + 1 < end && text[i] == 'v') {
+            if (is_space(text[i + 1])) kind = 0;
+            else if (i + 2 < end && is_space(text[i + 2]))
+                kind = text[i + 1] == 't' ? 1 : text[i + 1] == 'n' ? 2 : -1;
+        }
+        if (kind >= 0) {
+            i += kind == 0 ? 1 : 2;
+            const int want = kind == 1 ? 2 : 3;
+            int count = 0;
             while (i < end) {
                 while (i < end && is_space(text[i])) ++i;
-                if (i >= end || text[i] == '#') break;
-                const std::size_t t0 = i;
-                bool ok = true;
-                while (i < end && !is_space(text[i])) {
-                    const char c = text[i];
-                    ok = ok && ((c >= '0' && c <= '9') || c == '.' || c == '-' || c == '+' ||
-                                c == 'e' || c == 'E');
-                    ++i;
-                }
-                const std::string_view token = text.substr(t0, i - t0);
-                // A token must hold a digit and use 'e' only as an exponent.
-                bool has_digit = false;
-                for (char c : token) has_digit = has_digit || (c >= '0' && c <= '9');
-                if (!ok || !has_digit || token.front() == 'e' || token.front() == 'E')
+                if (i >= end || text[i] == '#' || text[i] == '\r') break;
+                std::size_t t0 = i;
+                while (i < end && !is_space(text[i])) ++i;
+                const char* first = text.data() + t0;
+                const char* last = text.data() + i;
+                if (*first == '+') ++first;
+                double value = 0;
+                auto res = std::from_chars(first, last, value);
+                if (res.ec != std::errc() || res.ptr != last || !std::isfinite(value))
                     throw IoError(path, line,
-                                  "'" + std::string(token.substr(0, 40)) +
+                                  "'" + printable(text.substr(t0, i - t0)) +
                                       "' is not a finite number");
+                if (count < 4) values[count] = value;
+                ++count;
             }
+            if (count < (kind == 1 ? 1 : 3))
+                throw IoError(path, line,
+                              std::string(kind == 0 ? "v" : kind == 1 ? "vt" : "vn") +
+                                  " needs at least " + std::to_string(kind == 1 ? 1 : 3) +
+                                  " numbers");
+            if (kind == 1 && count < 2) values[1] = 0.0;
+            std::vector<double>& dst = kind == 0 ? out.v : kind == 1 ? out.vt : out.vn;
+            dst.insert(dst.end(), values, values + want);
         }
         pos = end + 1;
     }
+    return out;
 }
 
 /// Line number of the n-th (0-based) face statement, for error messages.
@@ -93,7 +119,7 @@ std::string first_line(std::string s) {
 
 LoadedMesh read_obj(const std::string& path) {
     const std::string text = read_file_bytes(path);
-    check_obj_numbers(text, path);
+    const ObjNumbers exact = scan_obj_numbers(text, path);
 
     tinyobj::ObjReaderConfig config;
     config.triangulate = false;  // build_mesh triangulates (ear clipping, keeps corner data)
@@ -103,7 +129,11 @@ LoadedMesh read_obj(const std::string& path) {
         const std::string msg = first_line(reader.Error());
         throw IoError(path, line_in_message(msg), msg.empty() ? "not a valid OBJ file" : msg);
     }
-    const tinyobj::attrib_t& attrib = reader.GetAttrib();
+    tinyobj::attrib_t attrib = reader.GetAttrib();
+    // Use the exactly parsed numbers where our scan saw the same statements as tinyobjloader.
+    if (exact.v.size() == attrib.vertices.size()) attrib.vertices = exact.v;
+    if (exact.vt.size() == attrib.texcoords.size()) attrib.texcoords = exact.vt;
+    if (exact.vn.size() == attrib.normals.size()) attrib.normals = exact.vn;
     const std::size_t nv = attrib.vertices.size() / 3;
     const std::size_t nt = attrib.texcoords.size() / 2;
     const std::size_t nn = attrib.normals.size() / 3;

@@ -55,9 +55,9 @@ LoadedMesh read_off(const std::string& path) {
         keyword.remove_prefix(1);
     }
     if (!keyword.empty() && (keyword[0] == '4' || keyword[0] == 'n'))
-        in.fail("'" + std::string(full) + "': only 3-dimensional OFF is supported");
+        in.fail("'" + printable(full) + "': only 3-dimensional OFF is supported");
     if (keyword != "OFF")
-        in.fail("'" + std::string(full.substr(0, 40)) + "' is not an OFF header keyword");
+        in.fail("'" + printable(full) + "' is not an OFF header keyword");
 
     std::string_view first = in.next_token();
     if (first == "BINARY") in.fail("binary OFF is not supported; convert it to ASCII OFF");
@@ -67,7 +67,7 @@ LoadedMesh read_off(const std::string& path) {
         try {
             value = one.next_integer(what);
         } catch (const IoError&) {
-            in.fail("'" + std::string(t.substr(0, 40)) + "' is not a count (" + what + ")");
+            in.fail("'" + printable(t) + "' is not a count (" + what + ")");
         }
         if (value < 0) in.fail(std::string("negative ") + what);
         return std::size_t(value);

@@ -6,6 +6,13 @@
 
 namespace trilab {
 
+std::string printable(std::string_view text) {
+    std::string out;
+    for (char c : text.substr(0, 40)) out += (c >= 32 && c < 127) ? c : '?';
+    if (text.size() > 40) out += "...";
+    return out;
+}
+
 void TextScanner::skip_space() {
     while (pos_ < text_.size()) {
         const char c = text_[pos_];
@@ -37,7 +44,11 @@ std::string_view TextScanner::next_token() {
 
 std::string_view TextScanner::expect_token(const char* what) {
     std::string_view t = next_token();
-    if (t.empty()) fail(std::string("unexpected end of file, expected ") + what);
+    if (t.empty()) {
+        // Report the last line that has text, not the empty one after the final newline.
+        if (!text_.empty() && text_.back() == '\n' && token_line_ > 1) --token_line_;
+        fail(std::string("unexpected end of file, expected ") + what);
+    }
     return t;
 }
 
@@ -62,16 +73,14 @@ double TextScanner::next_double(const char* what) {
     // std::from_chars for double is not in GCC 12's libstdc++ for all targets; strtod on a
     // bounded copy is portable and handles nan/inf spellings.
     char buf[64];
-    if (t.size() >= sizeof(buf)) fail(std::string("'") + std::string(t.substr(0, 32)) +
-                                      "...' is not a number (" + what + ")");
+    if (t.size() >= sizeof(buf)) fail("'" + printable(t) + "' is not a number (" + what + ")");
     t.copy(buf, t.size());
     buf[t.size()] = '\0';
     char* end = nullptr;
     const double value = std::strtod(buf, &end);
     if (end != buf + t.size())
-        fail("'" + std::string(t) + "' is not a number (" + what + ")");
-    if (!std::isfinite(value))
-        fail("'" + std::string(t) + "' is not a finite number (" + what + ")");
+        fail("'" + printable(t) + "' is not a number (" + what + ")");
+    if (!std::isfinite(value)) fail("'" + printable(t) + "' is not a finite number (" + what + ")");
     return value;
 }
 
@@ -82,7 +91,7 @@ long long TextScanner::next_integer(const char* what) {
     if (!t.empty() && t[0] == '+') ++first;
     auto [ptr, ec] = std::from_chars(first, t.data() + t.size(), value);
     if (ec != std::errc() || ptr != t.data() + t.size())
-        fail("'" + std::string(t) + "' is not an integer (" + what + ")");
+        fail("'" + printable(t) + "' is not an integer (" + what + ")");
     return value;
 }
 

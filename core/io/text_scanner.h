@@ -10,6 +10,10 @@
 
 namespace trilab {
 
+/// `text` made safe for an error message: at most 40 characters, non-printable bytes
+/// replaced by '?'.
+std::string printable(std::string_view text);
+
 class TextScanner {
 public:
     /// `comment` starts a comment that runs to the end of the line ('\0' for none).

@@ -1,0 +1,274 @@
+// OBJ and OFF readers and writers, the format dispatch, atomic saving, and the shared meshes.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "core/errors.h"
+#include "core/generators.h"
+#include "core/geometry.h"
+#include "core/io/file_util.h"
+#include "core/io/mesh_io.h"
+#include "core/mesh_stats.h"
+#include "test_helpers.h"
+
+using namespace trilab;
+using namespace trilab::test;
+using Catch::Matchers::Contains;
+
+namespace {
+/// Positions and faces (as vertex triples) equal, positions within `tol`.
+void require_same_mesh(const HalfedgeMesh& a, const HalfedgeMesh& b, double tol = 0.0) {
+    REQUIRE(a.n_vertices() == b.n_vertices());
+    REQUIRE(a.n_faces() == b.n_faces());
+    const PolygonSoup sa = to_soup(a), sb = to_soup(b);
+    for (std::size_t i = 0; i < sa.positions.size(); ++i)
+        REQUIRE((sa.positions[i] - sb.positions[i]).norm() <= tol);
+    REQUIRE(sa.corners == sb.corners);
+}
+
+HalfedgeMesh decorated_sphere() {
+    HalfedgeMesh m = make_icosphere(3);
+    compute_vertex_normals(m);
+    auto uv = m.vertex_property<TexCoord>("v:texcoord");
+    auto color = m.vertex_property<Color>("v:color");
+    for (Vertex v : m.vertices()) {
+        const Point& p = m.position(v);
+        uv[v] = TexCoord(0.5 + 0.5 * p.x(), 0.5 + 0.5 * p.y());
+        color[v] = Color(float(v.idx() % 256) / 255.0f, 0.5f, 1.0f);
+    }
+    return m;
+}
+
+std::string error_of(const std::string& path) {
+    try {
+        read_mesh(path);
+    } catch (const IoError& e) {
+        return e.what();
+    }
+    return "";
+}
+}  // namespace
+
+TEST_CASE("file_extension and dispatch", "[io]") {
+    REQUIRE(file_extension("a/b.c/mesh.OBJ") == "obj");
+    REQUIRE(file_extension("a/b.c/mesh") == "");
+    REQUIRE(file_extension("x.tar.gz") == "gz");
+    TempDir dir;
+    REQUIRE_THROWS_WITH(read_mesh(dir.path("m.xyz")), Contains("unknown mesh format"));
+    REQUIRE_THROWS_AS(write_mesh(make_cube(), dir.path("m.xyz")), IoError);
+    REQUIRE_THROWS_WITH(read_mesh(dir.path("missing.obj")), Contains("cannot open"));
+}
+
+TEST_CASE("OBJ round trip keeps positions exactly, faces, normals and texture coordinates",
+          "[io][obj]") {
+    TempDir dir;
+    HalfedgeMesh m = decorated_sphere();
+    write_obj(m, dir.path("s.obj"), {});
+    LoadedMesh back = read_obj(dir.path("s.obj"));
+    REQUIRE_VALID(back.mesh);
+    require_same_mesh(m, back.mesh);
+    auto uv0 = m.get_vertex_property<TexCoord>("v:texcoord");
+    auto uv1 = back.mesh.get_vertex_property<TexCoord>("v:texcoord");
+    auto n0 = m.get_vertex_property<Vector3>("v:normal");
+    auto n1 = back.mesh.get_vertex_property<Vector3>("v:normal");
+    REQUIRE(uv1);
+    REQUIRE(n1);
+    for (Vertex v : m.vertices()) {
+        REQUIRE(uv0[v] == uv1[v]);
+        REQUIRE(n0[v] == n1[v]);
+    }
+    REQUIRE(back.report.format == "obj");
+}
+
+TEST_CASE("OBJ keeps texture seams as per-corner coordinates", "[io][obj]") {
+    LoadedMesh seams = read_obj(data_file("good/seams.obj"));
+    REQUIRE_VALID(seams.mesh);
+    REQUIRE(seams.mesh.n_vertices() == 4);  // geometry stays connected across the seam
+    REQUIRE(seams.mesh.n_faces() == 2);
+    auto corner = seams.mesh.get_halfedge_property<TexCoord>("h:texcoord");
+    REQUIRE(corner);
+    REQUIRE_FALSE(seams.mesh.has_vertex_property("v:texcoord"));
+    // Write and read back: the seam survives.
+    TempDir dir;
+    write_obj(seams.mesh, dir.path("seams.obj"), {});
+    LoadedMesh back = read_obj(dir.path("seams.obj"));
+    auto corner_back = back.mesh.get_halfedge_property<TexCoord>("h:texcoord");
+    REQUIRE(corner_back);
+    REQUIRE(to_soup(back.mesh).corner_texcoords == to_soup(seams.mesh).corner_texcoords);
+}
+
+TEST_CASE("OBJ polygons are triangulated with their corner data", "[io][obj]") {
+    LoadedMesh l = read_obj(data_file("good/concave_polygon.obj"));
+    REQUIRE_VALID(l.mesh);
+    REQUIRE(l.mesh.n_faces() == 4);
+    REQUIRE(l.report.polygons_triangulated == 1);
+    REQUIRE(surface_area(l.mesh) == Approx(3.0));
+    // Each vertex has one texture coordinate here, so they are per vertex.
+    auto uv = l.mesh.get_vertex_property<TexCoord>("v:texcoord");
+    REQUIRE(uv);
+    REQUIRE(uv[Vertex(1)] == TexCoord(1, 0));
+}
+
+TEST_CASE("OFF round trip with every header variant", "[io][off]") {
+    TempDir dir;
+    HalfedgeMesh m = decorated_sphere();
+    for (int variant = 0; variant < 4; ++variant) {
+        WriteOptions o;
+        o.write_normals = variant & 1;
+        o.write_colors = variant & 2;
+        o.write_texcoords = variant != 0;
+        write_off(m, dir.path("s.off"), o);
+        LoadedMesh back = read_off(dir.path("s.off"));
+        REQUIRE_VALID(back.mesh);
+        require_same_mesh(m, back.mesh);
+        REQUIRE(back.mesh.has_vertex_property("v:normal") == o.write_normals);
+        REQUIRE(back.mesh.has_vertex_property("v:color") == o.write_colors);
+        REQUIRE(back.mesh.has_vertex_property("v:texcoord") == o.write_texcoords);
+        if (o.write_colors) {
+            auto c0 = m.get_vertex_property<Color>("v:color");
+            auto c1 = back.mesh.get_vertex_property<Color>("v:color");
+            for (Vertex v : m.vertices()) REQUIRE((c0[v] - c1[v]).norm() < 1e-6f);
+        }
+    }
+}
+
+TEST_CASE("OFF header variants: comments, counts on the keyword line, COFF bytes, polygons",
+          "[io][off]") {
+    LoadedMesh l = read_off(data_file("good/header_variants.off"));
+    REQUIRE_VALID(l.mesh);
+    REQUIRE(l.mesh.n_vertices() == 4);
+    REQUIRE(l.mesh.n_faces() == 3);  // a quad (two triangles) and a triangle
+    auto c = l.mesh.get_vertex_property<Color>("v:color");
+    REQUIRE(c);
+    REQUIRE(c[Vertex(0)].x() == Approx(1.0f));
+    REQUIRE(c[Vertex(1)].y() == Approx(1.0f));
+    REQUIRE(l.report.polygons_triangulated == 1);
+}
+
+TEST_CASE("repairable inputs load as valid meshes with a report", "[io][repair]") {
+    SECTION("non-manifold vertex") {
+        LoadedMesh l = read_mesh(data_file("good/bowtie.off"));
+        REQUIRE_VALID(l.mesh);
+        REQUIRE(l.report.nonmanifold_vertices_split == 1);
+        REQUIRE(l.mesh.n_faces() == 2);
+    }
+    SECTION("non-manifold edge") {
+        LoadedMesh l = read_mesh(data_file("good/nonmanifold_edge.off"));
+        REQUIRE_VALID(l.mesh);
+        REQUIRE(l.report.detached_faces == 1);
+        REQUIRE(l.mesh.n_faces() == 3);
+    }
+    SECTION("duplicated face") {
+        LoadedMesh l = read_mesh(data_file("good/duplicated_face.off"));
+        REQUIRE_VALID(l.mesh);
+        REQUIRE(l.report.detached_faces == 1);
+    }
+    SECTION("flipped neighbour") {
+        LoadedMesh l = read_mesh(data_file("good/flipped_neighbour.off"));
+        REQUIRE_VALID(l.mesh);
+        REQUIRE(l.report.detached_faces == 1);
+    }
+    SECTION("degenerate face and isolated vertex") {
+        LoadedMesh l = read_mesh(data_file("good/degenerate_and_isolated.off"));
+        REQUIRE_VALID(l.mesh);
+        REQUIRE(l.report.degenerate_faces_dropped == 1);
+        REQUIRE(l.report.isolated_vertices == 1);
+        REQUIRE(l.mesh.n_vertices() == 5);
+    }
+    SECTION("zero faces") {
+        LoadedMesh l = read_mesh(data_file("good/zero_faces.off"));
+        REQUIRE_VALID(l.mesh);
+        REQUIRE(l.mesh.n_faces() == 0);
+        REQUIRE(l.report.isolated_vertices == 3);
+    }
+}
+
+TEST_CASE("bad OBJ and OFF files give an error naming the file, the line and the reason",
+          "[io][bad]") {
+    struct Case {
+        const char* file;
+        const char* line;  // ":N" expected in the message, or "" for no line
+        const char* reason;
+    };
+    const Case cases[] = {
+        {"obj_nan.obj", ":2", "not a finite number"},
+        {"obj_garbage_number.obj", ":3", "not a finite number"},
+        {"obj_out_of_range.obj", ":5", "refers to vertex 7"},
+        {"obj_negative_index.obj", ":4", "refers to vertex"},
+        {"obj_zero_index.obj", ":4", "zero"},
+        {"obj_empty.obj", "", "no vertices"},
+        {"off_truncated.off", ":7", "unexpected end of file"},
+        {"off_absurd_count.off", ":2", "declares 4000000000 vertices"},
+        {"off_negative_index.off", ":6", "refers to vertex -2"},
+        {"off_out_of_range.off", ":6", "refers to vertex 3"},
+        {"off_nan.off", ":4", "not a finite number"},
+        {"off_garbage.off", ":1", "is not an OFF header keyword"},
+        {"off_wrong_keyword.off", ":1", "not an OFF header"},
+        {"off_absurd_face_size.off", ":6", "corners"},
+        {"off_4d.off", ":1", "3-dimensional"},
+    };
+    for (const Case& c : cases) {
+        INFO(c.file);
+        const std::string msg = error_of(data_file(std::string("bad/") + c.file));
+        REQUIRE_THAT(msg, Contains(c.file));
+        REQUIRE_THAT(msg, Contains(c.reason));
+        if (*c.line) REQUIRE_THAT(msg, Contains(std::string(c.file) + c.line));
+    }
+}
+
+TEST_CASE("saving is atomic: a failed save leaves the old file intact", "[io][atomic]") {
+    TempDir dir;
+    const std::string path = dir.path("keep.obj");
+    write_mesh(make_cube(), path);
+    const std::string before = read_file_bytes(path);
+    REQUIRE_THROWS_AS(write_file_atomically(path,
+                                            [](std::ostream& os) {
+                                                os << "partial";
+                                                throw IoError("x", 0, "simulated failure");
+                                            }),
+                      IoError);
+    REQUIRE(read_file_bytes(path) == before);
+    // No temporary file is left behind.
+    std::size_t files = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dir.dir())) {
+        (void)entry;
+        ++files;
+    }
+    REQUIRE(files == 1);
+    REQUIRE_THROWS_AS(write_mesh(make_cube(), dir.path("no/such/folder/x.obj")), IoError);
+}
+
+TEST_CASE("the shared Stanford bunny loads with its isolated vertices", "[io][shared]") {
+    const std::string path = shared_mesh("stanford-bunny.obj");
+    SKIP_IF_MISSING(path);
+    LoadedMesh l = read_mesh(path);
+    REQUIRE_VALID(l.mesh);
+    REQUIRE(l.mesh.n_vertices() == 35947);
+    REQUIRE(l.mesh.n_faces() == 69451);
+    REQUIRE(l.report.isolated_vertices == 1113);
+    const MeshStats s = compute_stats(l.mesh);
+    REQUIRE(s.isolated_vertices == 1113);
+    REQUIRE(s.components == 1);
+    REQUIRE(s.boundary_loops == 5);
+}
+
+TEST_CASE("every shared mesh loads valid and survives OBJ and OFF round trips",
+          "[io][shared]") {
+    const std::string dir = shared_dir() + "/meshes";
+    SKIP_IF_MISSING(dir);
+    TempDir tmp;
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+        const std::string path = entry.path().string();
+        const std::string ext = file_extension(path);
+        if (ext != "obj" && ext != "off") continue;
+        INFO(path);
+        LoadedMesh l = read_mesh(path);
+        REQUIRE_VALID(l.mesh);
+        for (const char* out : {"r.obj", "r.off"}) {
+            write_mesh(l.mesh, tmp.path(out));
+            LoadedMesh back = read_mesh(tmp.path(out));
+            REQUIRE_VALID(back.mesh);
+            require_same_mesh(l.mesh, back.mesh);
+        }
+    }
+}
