@@ -157,6 +157,15 @@ unsigned HalfedgeMesh::valence(Vertex v) const {
     return n;
 }
 
+void HalfedgeMesh::resize_elements(std::size_t nv, std::size_t ne, std::size_t nf) {
+    if (has_garbage())
+        throw TopologyError("resize_elements: collect the garbage first (deleted elements)");
+    vprops_.resize(nv);
+    hprops_.resize(2 * ne);
+    eprops_.resize(ne);
+    fprops_.resize(nf);
+}
+
 Vertex HalfedgeMesh::add_vertex(const Point& p) {
     vprops_.push_back();
     Vertex v(Index(vprops_.size() - 1));

@@ -305,6 +305,9 @@ public:
     std::vector<std::string> face_property_names() const { return fprops_.names(); }
 
     // ---- low-level construction (callers keep the invariants; validate() checks) ---------
+    /// Resizes storage to exactly these element counts; new elements have invalid
+    /// connectivity and zero/default attributes (bulk construction, e.g. by build_mesh).
+    void resize_elements(std::size_t n_vertices, std::size_t n_edges, std::size_t n_faces);
     Vertex add_vertex(const Point& p);
     /// A new vertex with all attributes of `source` (used to split non-manifold vertices).
     Vertex add_vertex_copy(Vertex source);

@@ -1,5 +1,6 @@
 #include "core/mesh_builder.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -203,62 +204,99 @@ HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
         }
     }
 
-    // 2. Edges: halfedge 2e runs edge_from[e] -> edge_to[e]. Accept a triangle only if each
-    //    of its three directed halfedges is still free.
-    EdgeTable table(tris.size() * 3 / 2 + 16);
-    std::vector<Index> edge_from, edge_to, hface, hnext, hprev;
-    edge_from.reserve(tris.size() * 3 / 2 + 16);
-    edge_to.reserve(edge_from.capacity());
-    std::vector<Index> face_tri;       // accepted face -> triangle index
-    std::vector<Index> face_halfedge;  // accepted face -> its first halfedge
-    std::vector<Index> detached;       // triangle indices added detached
-    for (Index t = 0; t < tris.size(); ++t) {
-        const Tri& tri = tris[t];
-        std::array<Index, 3> he{};
-        bool free = true;
-        for (int k = 0; k < 3 && free; ++k) {
-            const Index u = tri[k], w = tri[(k + 1) % 3];
-            const Index e = table.find(EdgeTable::key(u, w));
-            if (e == kInvalidIndex) {
-                he[k] = kInvalidIndex;
-                continue;
+    // 2. Edges. Group the 3T directed corner edges by their unordered vertex pair (a
+    //    counting sort on the smaller vertex, then the larger one within each bucket), then
+    //    accept triangles in file order when each of their three directed halfedges is still
+    //    free. Halfedge 2e runs from the smaller to the larger vertex of edge e.
+    const std::size_t n_tris = tris.size();
+    auto corner_lo = [&](std::size_t c) {
+        const Tri& t = tris[c / 3];
+        return std::min(t[c % 3], t[(c % 3 + 1) % 3]);
+    };
+    auto corner_hi = [&](std::size_t c) {
+        const Tri& t = tris[c / 3];
+        return std::max(t[c % 3], t[(c % 3 + 1) % 3]);
+    };
+    std::vector<Index> group_of(3 * n_tris);
+    Index n_groups = 0;
+    {
+        std::vector<Index> bucket(n_input_vertices + 1, 0);
+        for (std::size_t c = 0; c < 3 * n_tris; ++c) ++bucket[corner_lo(c) + 1];
+        for (std::size_t v = 0; v < n_input_vertices; ++v) bucket[v + 1] += bucket[v];
+        std::vector<Index> order(3 * n_tris);
+        {
+            std::vector<Index> fill(bucket.begin(), bucket.end() - 1);
+            for (std::size_t c = 0; c < 3 * n_tris; ++c) order[fill[corner_lo(c)]++] = Index(c);
+        }
+        std::vector<std::pair<Index, Index>> sorted;
+        for (std::size_t v = 0; v < n_input_vertices; ++v) {
+            const Index begin = bucket[v], end = bucket[v + 1];
+            if (end - begin <= 16) {
+                for (Index i = begin; i < end; ++i) {
+                    const Index c = order[i], hi = corner_hi(c);
+                    Index j = begin;
+                    while (j < i && corner_hi(order[j]) != hi) ++j;
+                    group_of[c] = j < i ? group_of[order[j]] : n_groups++;
+                }
+            } else {  // a high-valence vertex: sort its bucket instead of a quadratic scan
+                sorted.clear();
+                for (Index i = begin; i < end; ++i) sorted.emplace_back(corner_hi(order[i]), order[i]);
+                std::sort(sorted.begin(), sorted.end());
+                for (std::size_t i = 0; i < sorted.size(); ++i) {
+                    if (i == 0 || sorted[i].first != sorted[i - 1].first) ++n_groups;
+                    group_of[sorted[i].second] = n_groups - 1;
+                }
             }
-            he[k] = 2 * e + (edge_from[e] == u ? 0 : 1);
-            free = hface[he[k]] == kInvalidIndex;
+        }
+    }
+    std::vector<std::uint8_t> slot_used(2 * std::size_t(n_groups), 0);
+    std::vector<Index> edge_of_group(n_groups, kInvalidIndex);
+    std::vector<Index> hto;  // per halfedge: the vertex it points to
+    hto.reserve(2 * std::size_t(n_groups));
+    std::vector<Index> face_tri;       // accepted face -> triangle index
+    std::vector<Index> face_halfedge;  // accepted face -> its halfedge ending at corner 0
+    std::vector<Tri> face_he;          // accepted face -> its three halfedges
+    std::vector<Index> detached;       // triangle indices added detached
+    face_tri.reserve(n_tris);
+    face_halfedge.reserve(n_tris);
+    face_he.reserve(n_tris);
+    for (Index t = 0; t < n_tris; ++t) {
+        const Tri& tri = tris[t];
+        std::array<std::size_t, 3> slot{};
+        bool free = true;
+        for (int k = 0; k < 3; ++k) {
+            slot[k] = 2 * std::size_t(group_of[3 * t + k]) + (tri[k] < tri[(k + 1) % 3] ? 0 : 1);
+            free = free && !slot_used[slot[k]];
         }
         if (!free) {
             detached.push_back(t);
             continue;
         }
-        const Index f = Index(face_tri.size());
+        Tri he{};
         for (int k = 0; k < 3; ++k) {
-            if (he[k] == kInvalidIndex) {
-                const Index u = tri[k], w = tri[(k + 1) % 3];
-                const Index e = Index(edge_from.size());
-                table.insert(EdgeTable::key(u, w), e);
-                edge_from.push_back(u);
-                edge_to.push_back(w);
-                hface.resize(hface.size() + 2, kInvalidIndex);
-                he[k] = 2 * e;
+            slot_used[slot[k]] = 1;
+            const Index g = Index(slot[k] / 2);
+            if (edge_of_group[g] == kInvalidIndex) {
+                edge_of_group[g] = Index(hto.size() / 2);
+                hto.push_back(std::max(tri[k], tri[(k + 1) % 3]));
+                hto.push_back(std::min(tri[k], tri[(k + 1) % 3]));
             }
-            hface[he[k]] = f;
+            he[k] = 2 * edge_of_group[g] + Index(slot[k] & 1);
         }
         face_tri.push_back(t);
         face_halfedge.push_back(he[2]);  // ends at corner 0, as OpenMesh's add_face does
-        hnext.resize(hface.size(), kInvalidIndex);
-        hprev.resize(hface.size(), kInvalidIndex);
+        face_he.push_back(he);
+    }
+    const std::size_t n_h = hto.size();
+    std::vector<Index> hface(n_h, kInvalidIndex), hnext(n_h, kInvalidIndex),
+        hprev(n_h, kInvalidIndex);
+    for (Index f = 0; f < face_he.size(); ++f) {
+        const Tri& he = face_he[f];
         for (int k = 0; k < 3; ++k) {
+            hface[he[k]] = f;
             hnext[he[k]] = he[(k + 1) % 3];
             hprev[he[(k + 1) % 3]] = he[k];
         }
-    }
-    hnext.resize(hface.size(), kInvalidIndex);
-    hprev.resize(hface.size(), kInvalidIndex);
-    const std::size_t n_h = hface.size();
-    std::vector<Index> hto(n_h);
-    for (Index e = 0; e < edge_from.size(); ++e) {
-        hto[2 * e] = edge_to[e];
-        hto[2 * e + 1] = edge_from[e];
     }
 
     // 3. Fans: group the outgoing halfedges of each vertex into fans; keep the first fan on
@@ -344,8 +382,6 @@ HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
         const Index f = Index(face_tri.size());
         const Index h0 = Index(hface.size());
         for (int k = 0; k < 3; ++k) {
-            edge_from.push_back(vs[k]);
-            edge_to.push_back(vs[(k + 1) % 3]);
             hto.push_back(vs[(k + 1) % 3]);
             hto.push_back(vs[k]);
             hface.push_back(f);
@@ -368,24 +404,22 @@ HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
         ++report.detached_faces;
     }
 
-    // 5. Assemble the mesh.
-    const std::size_t n_v = source_vertex.size(), n_e = edge_from.size(),
-                      n_f = face_tri.size();
+    // 5. Assemble the mesh (bulk: no per-element property calls).
+    const std::size_t n_v = source_vertex.size(), n_e = hto.size() / 2, n_f = face_tri.size();
     HalfedgeMesh mesh;
-    mesh.reserve(n_v, n_e, n_f);
-    for (Index v = 0; v < n_v; ++v) mesh.add_vertex(soup.positions[source_vertex[v]]);
-    for (Index e = 0; e < n_e; ++e) mesh.new_edge(Vertex(hto[2 * e + 1]), Vertex(hto[2 * e]));
-    for (Index f = 0; f < n_f; ++f) mesh.set_halfedge(mesh.new_face(), Halfedge(face_halfedge[f]));
-    for (Index h = 0; h < hface.size(); ++h) {
+    mesh.resize_elements(n_v, n_e, n_f);
+    std::vector<Point>& positions = mesh.positions();
+    for (Index v = 0; v < n_v; ++v) {
+        positions[v] = soup.positions[source_vertex[v]];
+        if (vhalfedge[v] != kInvalidIndex) mesh.set_halfedge(Vertex(v), Halfedge(vhalfedge[v]));
+        else ++report.isolated_vertices;
+    }
+    for (Index h = 0; h < hto.size(); ++h) {
+        mesh.set_to_vertex(Halfedge(h), Vertex(hto[h]));
         mesh.set_next(Halfedge(h), Halfedge(hnext[h]));
         if (hface[h] != kInvalidIndex) mesh.set_face(Halfedge(h), Face(hface[h]));
     }
-    for (Index v = 0; v < n_v; ++v) {
-        if (vhalfedge[v] != kInvalidIndex)
-            mesh.set_halfedge(Vertex(v), Halfedge(vhalfedge[v]));
-        else
-            ++report.isolated_vertices;
-    }
+    for (Index f = 0; f < n_f; ++f) mesh.set_halfedge(Face(f), Halfedge(face_halfedge[f]));
 
     if (!soup.normals.empty()) {
         auto p = mesh.vertex_property<Vector3>("v:normal");
