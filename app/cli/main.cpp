@@ -13,6 +13,7 @@
 #include "core/generators.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh_stats.h"
+#include "core/platform.h"
 #include "core/validate.h"
 
 namespace trilab::cli {
@@ -172,6 +173,7 @@ int cmd_generate(const Args& a) {
 
 int main(int argc, char** argv) {
     using namespace trilab::cli;
+    trilab::tune_heap_for_large_meshes();
     if (argc < 2) {
         std::fputs(kUsage, stderr);
         return 2;

@@ -19,6 +19,8 @@ namespace trilab {
 struct LoadedMesh {
     HalfedgeMesh mesh;
     LoadReport report;
+    /// A texture image the file refers to (OBJ: map_Kd of its material library), or "".
+    std::string texture_path;
 };
 
 struct WriteOptions {

@@ -1,11 +1,16 @@
-// Wavefront OBJ. Reading uses tinyobjloader (double precision build) for the statements and
-// faces, with checks of our own that it does not make: every number on v/vt/vn lines must be
-// a finite number (tinyobjloader silently reads "nan" or "abc" as 0; we also re-parse them
-// with std::from_chars, which is correctly rounded, so written files read back bit for bit),
-// and every index must be in range (reported with the line of the offending `f` statement). Polygons are triangulated by
-// build_mesh. Texture coordinates become "v:texcoord" when every vertex has one texture
-// coordinate, otherwise per-corner "h:texcoord" (seams stay seams); normals become "v:normal"
-// (the first normal given for a vertex). Materials are ignored.
+// Wavefront OBJ.
+// Reading: our own single-pass parser for the geometry statements v, vt, vn and f (numbers
+// with std::from_chars, which is correctly rounded, so files we write read back bit for bit;
+// "nan", "abc" or an index out of range is an error naming the line), and tinyobjloader for
+// the material libraries named by `mtllib` (the first material's diffuse texture, map_Kd,
+// becomes LoadedMesh::texture_path). tinyobjloader's own OBJ parser was measured at 1.0-1.7 s
+// for a 1M-face file (the floor for the whole load is 1.5 s), is off by an ulp on some
+// numbers and reads "nan" as 0, which is why the geometry does not go through it.
+// Faces: "f a b c ...", with a, a/t, a//n or a/t/n corners, negative indices counting back
+// from the last vertex; polygons are triangulated by build_mesh. Other statements (o, g, s,
+// usemtl, l, p, ...) are ignored. Texture coordinates become "v:texcoord" when every vertex has
+// one texture coordinate, otherwise per-corner "h:texcoord" (seams stay seams); normals become
+// "v:normal" (the first normal given for a vertex).
 // Writing: v (and vt, vn) with shortest round-trip decimals, then f v/vt/vn triples.
 #include <tiny_obj_loader.h>
 
@@ -13,6 +18,9 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
 #include <ostream>
 #include <string_view>
 #include <unordered_map>
@@ -28,178 +36,184 @@ namespace {
 
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
-/// Numbers of the v, vt and vn statements, parsed exactly (correctly rounded).
-struct ObjNumbers {
-    std::vector<double> v, vt, vn;
+/// Everything the geometry statements of an OBJ file hold.
+struct ObjContents {
+    std::vector<double> v, vt, vn;  // 3, 2 and 3 numbers per statement
+    std::vector<Index> corners;     // vertex index per face corner
+    std::vector<int> corner_vt, corner_vn;  // -1 where absent
+    std::vector<std::size_t> face_offsets{0};
+    std::vector<std::string> mtllibs;
+    std::size_t ignored_statements = 0;
 };
 
-/// Parses every number on v/vt/vn lines with std::from_chars (tinyobjloader's own parser is
-/// off by an ulp at times, and reads "nan" or "abc" as 0). Throws IoError naming the line of
-/// the first token that is not a finite number, or of a statement with too few numbers.
-ObjNumbers scan_obj_numbers(std::string_view text, const std::string& path) {
-    ObjNumbers out;
-    std::size_t line = 0;
-    std::size_t pos = 0;
-    double values[4];
-    while (pos < text.size()) {
-        ++line;
-        std::size_t end = text.find('\n', pos);
-        if (end == std::string_view::npos) end = text.size();
-        std::size_t i = pos;
-        while (i < end && is_space(text[i])) ++i;
-        int kind = -1;  // 0: v, 1: vt, 2: vn
-        if (i + 1 < end && text[i] == 'v') {
-            if (is_space(text[i + 1])) kind = 0;
-            else if (i + 2 < end && is_space(text[i + 2]))
-                kind = text[i + 1] == 't' ? 1 : text[i + 1] == 'n' ? 2 : -1;
+class ObjParser {
+public:
+    ObjParser(std::string_view text, const std::string& path) : text_(text), path_(path) {}
+
+    ObjContents parse() {
+        std::size_t pos = 0;
+        while (pos < text_.size()) {
+            ++line_;
+            std::size_t end = text_.find('\n', pos);
+            if (end == std::string_view::npos) end = text_.size();
+            statement(pos, end);
+            pos = end + 1;
         }
-        if (kind >= 0) {
-            i += kind == 0 ? 1 : 2;
-            const int want = kind == 1 ? 2 : 3;
-            int count = 0;
-            while (i < end) {
-                while (i < end && is_space(text[i])) ++i;
-                if (i >= end || text[i] == '#' || text[i] == '\r') break;
-                std::size_t t0 = i;
-                while (i < end && !is_space(text[i])) ++i;
-                const char* first = text.data() + t0;
-                const char* last = text.data() + i;
-                if (*first == '+') ++first;
-                double value = 0;
-                auto res = std::from_chars(first, last, value);
-                if (res.ec != std::errc() || res.ptr != last || !std::isfinite(value))
-                    throw IoError(path, line,
-                                  "'" + printable(text.substr(t0, i - t0)) +
-                                      "' is not a finite number");
-                if (count < 4) values[count] = value;
-                ++count;
+        return std::move(out_);
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& reason) const { throw IoError(path_, line_, reason); }
+
+    void skip_space(std::size_t& i, std::size_t end) const {
+        while (i < end && is_space(text_[i])) ++i;
+    }
+    /// The next token on the line, or an empty view.
+    std::string_view token(std::size_t& i, std::size_t end) const {
+        skip_space(i, end);
+        if (i >= end || text_[i] == '#') return {};
+        const std::size_t t0 = i;
+        while (i < end && !is_space(text_[i]) && text_[i] != '#') ++i;
+        return text_.substr(t0, i - t0);
+    }
+
+    void statement(std::size_t i, std::size_t end) {
+        const std::string_view key = token(i, end);
+        if (key.empty()) return;
+        if (key == "v") numbers(i, end, out_.v, 3, 3, "v");
+        else if (key == "vt") numbers(i, end, out_.vt, 1, 2, "vt");
+        else if (key == "vn") numbers(i, end, out_.vn, 3, 3, "vn");
+        else if (key == "f") face(i, end);
+        else if (key == "mtllib") {
+            for (std::string_view t = token(i, end); !t.empty(); t = token(i, end))
+                out_.mtllibs.emplace_back(t);
+        } else if (key == "o" || key == "g" || key == "s" || key == "usemtl") {
+            // grouping and material statements carry no geometry
+        } else {
+            ++out_.ignored_statements;
+        }
+    }
+
+    /// Reads at least `min` numbers, keeps the first `keep` (missing ones are 0).
+    void numbers(std::size_t i, std::size_t end, std::vector<double>& dst, int min, int keep,
+                 const char* what) {
+        double values[3] = {0, 0, 0};
+        int count = 0;
+        for (std::string_view t = token(i, end); !t.empty(); t = token(i, end)) {
+            const char* first = t.data();
+            const char* last = t.data() + t.size();
+            if (*first == '+') ++first;
+            double value = 0;
+            const auto res = std::from_chars(first, last, value);
+            if (res.ec != std::errc() || res.ptr != last || !std::isfinite(value))
+                fail("'" + printable(t) + "' is not a finite number");
+            if (count < keep) values[count] = value;
+            ++count;
+        }
+        if (count < min)
+            fail(std::string(what) + " needs at least " + std::to_string(min) + " numbers");
+        dst.insert(dst.end(), values, values + keep);
+    }
+
+    /// An OBJ index (1-based, or negative counting back) resolved against `count` elements.
+    int index(std::string_view t, std::size_t count, const char* what) const {
+        long long value = 0;
+        const auto res = std::from_chars(t.data(), t.data() + t.size(), value);
+        if (res.ec != std::errc() || res.ptr != t.data() + t.size())
+            fail("'" + printable(t) + "' is not a " + what + " index");
+        if (value == 0) fail(std::string("index 0 is invalid (OBJ ") + what + " indices start at 1)");
+        const long long resolved = value > 0 ? value - 1 : (long long)count + value;
+        if (resolved < 0 || resolved >= (long long)count)
+            fail("face refers to " + std::string(what) + " " + std::to_string(value) +
+                 " but the file has " + std::to_string(count) + " so far");
+        return int(resolved);
+    }
+
+    void face(std::size_t i, std::size_t end) {
+        const std::size_t nv = out_.v.size() / 3, nt = out_.vt.size() / 2,
+                          nn = out_.vn.size() / 3;
+        for (std::string_view t = token(i, end); !t.empty(); t = token(i, end)) {
+            const std::size_t s1 = t.find('/');
+            const std::string_view a = t.substr(0, s1);
+            std::string_view b, c;
+            if (s1 != std::string_view::npos) {
+                const std::size_t s2 = t.find('/', s1 + 1);
+                b = t.substr(s1 + 1, s2 == std::string_view::npos ? std::string_view::npos
+                                                                   : s2 - s1 - 1);
+                if (s2 != std::string_view::npos) c = t.substr(s2 + 1);
             }
-            if (count < (kind == 1 ? 1 : 3))
-                throw IoError(path, line,
-                              std::string(kind == 0 ? "v" : kind == 1 ? "vt" : "vn") +
-                                  " needs at least " + std::to_string(kind == 1 ? 1 : 3) +
-                                  " numbers");
-            if (kind == 1 && count < 2) values[1] = 0.0;
-            std::vector<double>& dst = kind == 0 ? out.v : kind == 1 ? out.vt : out.vn;
-            dst.insert(dst.end(), values, values + want);
+            out_.corners.push_back(Index(index(a, nv, "vertex")));
+            out_.corner_vt.push_back(b.empty() ? -1 : index(b, nt, "texture coordinate"));
+            out_.corner_vn.push_back(c.empty() ? -1 : index(c, nn, "normal"));
         }
-        pos = end + 1;
+        out_.face_offsets.push_back(out_.corners.size());
     }
-    return out;
-}
 
-/// Line number of the n-th (0-based) face statement, for error messages.
-std::size_t face_line(std::string_view text, std::size_t n) {
-    std::size_t line = 0, pos = 0, seen = 0;
-    while (pos < text.size()) {
-        ++line;
-        std::size_t end = text.find('\n', pos);
-        if (end == std::string_view::npos) end = text.size();
-        std::size_t i = pos;
-        while (i < end && is_space(text[i])) ++i;
-        if (i + 1 < end && text[i] == 'f' && is_space(text[i + 1]) && seen++ == n) return line;
-        pos = end + 1;
+    std::string_view text_;
+    const std::string& path_;
+    std::size_t line_ = 0;
+    ObjContents out_;
+};
+
+/// The diffuse texture of the first material that names one, resolved against `folder`.
+std::string find_texture(const std::vector<std::string>& mtllibs,
+                         const std::filesystem::path& folder, LoadReport& report) {
+    for (const std::string& lib : mtllibs) {
+        const std::filesystem::path mtl_path = folder / lib;
+        std::ifstream in(mtl_path);
+        if (!in) {
+            report.notes.push_back("material library " + lib + " not found");
+            continue;
+        }
+        std::vector<tinyobj::material_t> materials;
+        std::map<std::string, int> names;
+        std::string warning, error;
+        tinyobj::LoadMtl(&names, &materials, &in, &warning, &error);
+        for (const tinyobj::material_t& m : materials)
+            if (!m.diffuse_texname.empty()) return (folder / m.diffuse_texname).string();
     }
-    return 0;
-}
-
-std::size_t line_in_message(const std::string& msg) {
-    const std::size_t at = msg.find("line ");
-    if (at == std::string::npos) return 0;
-    return std::strtoul(msg.c_str() + at + 5, nullptr, 10);
-}
-
-std::string first_line(std::string s) {
-    const std::size_t nl = s.find('\n');
-    if (nl != std::string::npos) s.resize(nl);
-    return s;
+    return {};
 }
 
 }  // namespace
 
 LoadedMesh read_obj(const std::string& path) {
     const std::string text = read_file_bytes(path);
-    const ObjNumbers exact = scan_obj_numbers(text, path);
-
-    tinyobj::ObjReaderConfig config;
-    config.triangulate = false;  // build_mesh triangulates (ear clipping, keeps corner data)
-    config.vertex_color = false;
-    tinyobj::ObjReader reader;
-    if (!reader.ParseFromString(text, "", config)) {
-        const std::string msg = first_line(reader.Error());
-        throw IoError(path, line_in_message(msg), msg.empty() ? "not a valid OBJ file" : msg);
-    }
-    tinyobj::attrib_t attrib = reader.GetAttrib();
-    // Use the exactly parsed numbers where our scan saw the same statements as tinyobjloader.
-    if (exact.v.size() == attrib.vertices.size()) attrib.vertices = exact.v;
-    if (exact.vt.size() == attrib.texcoords.size()) attrib.texcoords = exact.vt;
-    if (exact.vn.size() == attrib.normals.size()) attrib.normals = exact.vn;
-    const std::size_t nv = attrib.vertices.size() / 3;
-    const std::size_t nt = attrib.texcoords.size() / 2;
-    const std::size_t nn = attrib.normals.size() / 3;
+    ObjContents obj = ObjParser(text, path).parse();
+    const std::size_t nv = obj.v.size() / 3;
 
     PolygonSoup soup;
     soup.positions.resize(nv);
     for (std::size_t i = 0; i < nv; ++i)
-        soup.positions[i] = Point(attrib.vertices[3 * i], attrib.vertices[3 * i + 1],
-                                  attrib.vertices[3 * i + 2]);
-
-    // Faces, with per-corner texture-coordinate and normal indices.
-    std::vector<int> corner_uv, corner_normal;
-    std::size_t face_index = 0;
-    bool any_uv = false, any_normal = false;
-    for (const tinyobj::shape_t& shape : reader.GetShapes()) {
-        const auto& m = shape.mesh;
-        std::size_t offset = 0;
-        for (std::size_t f = 0; f < m.num_face_vertices.size(); ++f, ++face_index) {
-            const std::size_t n = m.num_face_vertices[f];
-            if (offset + n > m.indices.size())
-                throw IoError(path, face_line(text, face_index), "face list is inconsistent");
-            for (std::size_t k = 0; k < n; ++k) {
-                const tinyobj::index_t& idx = m.indices[offset + k];
-                if (idx.vertex_index < 0 || std::size_t(idx.vertex_index) >= nv)
-                    throw IoError(path, face_line(text, face_index),
-                                  "face refers to vertex " + std::to_string(idx.vertex_index + 1) +
-                                      " but the file has " + std::to_string(nv) + " vertices");
-                if (idx.texcoord_index >= 0 && std::size_t(idx.texcoord_index) >= nt)
-                    throw IoError(path, face_line(text, face_index),
-                                  "face refers to texture coordinate " +
-                                      std::to_string(idx.texcoord_index + 1) + " but the file has " +
-                                      std::to_string(nt));
-                if (idx.normal_index >= 0 && std::size_t(idx.normal_index) >= nn)
-                    throw IoError(path, face_line(text, face_index),
-                                  "face refers to normal " + std::to_string(idx.normal_index + 1) +
-                                      " but the file has " + std::to_string(nn));
-                soup.corners.push_back(Index(idx.vertex_index));
-                corner_uv.push_back(idx.texcoord_index);
-                corner_normal.push_back(idx.normal_index);
-                any_uv = any_uv || idx.texcoord_index >= 0;
-                any_normal = any_normal || idx.normal_index >= 0;
-            }
-            soup.face_offsets.push_back(soup.corners.size());
-            offset += n;
-        }
-    }
+        soup.positions[i] = Point(obj.v[3 * i], obj.v[3 * i + 1], obj.v[3 * i + 2]);
+    soup.corners = std::move(obj.corners);
+    soup.face_offsets = std::move(obj.face_offsets);
 
     LoadReport report;
     report.file = path;
     report.format = "obj";
     report.file_vertices = nv;
     report.file_faces = soup.n_faces();
+    if (obj.ignored_statements)
+        report.notes.push_back(std::to_string(obj.ignored_statements) +
+                               " statements of unsupported kinds ignored");
 
+    const bool any_uv = std::any_of(obj.corner_vt.begin(), obj.corner_vt.end(),
+                                    [](int i) { return i >= 0; });
+    const bool any_normal = std::any_of(obj.corner_vn.begin(), obj.corner_vn.end(),
+                                        [](int i) { return i >= 0; });
     if (any_uv) {
         // Per vertex when every corner of a vertex uses the same coordinate, else per corner.
         std::vector<int> uv_of_vertex(nv, -2);  // -2: unseen
         bool per_vertex = true;
         for (std::size_t c = 0; c < soup.corners.size() && per_vertex; ++c) {
             int& u = uv_of_vertex[soup.corners[c]];
-            if (u == -2) u = corner_uv[c];
-            per_vertex = u == corner_uv[c] && u >= 0;
+            if (u == -2) u = obj.corner_vt[c];
+            per_vertex = u == obj.corner_vt[c] && u >= 0;
         }
         auto uv = [&](int i) {
             return i < 0 ? TexCoord(0, 0)
-                         : TexCoord(attrib.texcoords[2 * std::size_t(i)],
-                                    attrib.texcoords[2 * std::size_t(i) + 1]);
+                         : TexCoord(obj.vt[2 * std::size_t(i)], obj.vt[2 * std::size_t(i) + 1]);
         };
         if (per_vertex) {
             soup.texcoords.assign(nv, TexCoord(0, 0));
@@ -208,7 +222,7 @@ LoadedMesh read_obj(const std::string& path) {
         } else {
             soup.corner_texcoords.reserve(soup.corners.size());
             std::size_t missing = 0;
-            for (int i : corner_uv) {
+            for (int i : obj.corner_vt) {
                 soup.corner_texcoords.push_back(uv(i));
                 missing += i < 0;
             }
@@ -222,14 +236,14 @@ LoadedMesh read_obj(const std::string& path) {
         std::vector<int> normal_of_vertex(nv, -1);
         std::size_t conflicting = 0;
         for (std::size_t c = 0; c < soup.corners.size(); ++c) {
-            const int i = corner_normal[c];
+            const int i = obj.corner_vn[c];
             if (i < 0) continue;
             int& n = normal_of_vertex[soup.corners[c]];
             if (n < 0) {
                 n = i;
                 soup.normals[soup.corners[c]] =
-                    Vector3(attrib.normals[3 * std::size_t(i)], attrib.normals[3 * std::size_t(i) + 1],
-                            attrib.normals[3 * std::size_t(i) + 2]);
+                    Vector3(obj.vn[3 * std::size_t(i)], obj.vn[3 * std::size_t(i) + 1],
+                            obj.vn[3 * std::size_t(i) + 2]);
             } else if (n != i) {
                 ++conflicting;
             }
@@ -238,11 +252,11 @@ LoadedMesh read_obj(const std::string& path) {
             report.notes.push_back(std::to_string(conflicting) +
                                    " corners had a second normal for their vertex (first kept)");
     }
-    const std::string warn = first_line(reader.Warning());
-    if (!warn.empty()) report.notes.push_back("tinyobjloader: " + warn);
 
     LoadedMesh out;
     out.mesh = build_mesh_for_file(soup, report, path);
+    out.texture_path =
+        find_texture(obj.mtllibs, std::filesystem::path(path).parent_path(), report);
     out.report = std::move(report);
     return out;
 }

@@ -16,6 +16,7 @@
 
 #include "core/generators.h"
 #include "core/io/mesh_io.h"
+#include "core/platform.h"
 
 using namespace trilab;
 
@@ -90,6 +91,7 @@ const Result* find(const std::vector<Result>& rs, const std::string& mesh, const
 }  // namespace
 
 int main(int argc, char** argv) {
+    tune_heap_for_large_meshes();
     int runs = 5;
     bool check = false;
     for (int i = 1; i < argc; ++i) {

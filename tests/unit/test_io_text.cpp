@@ -193,9 +193,9 @@ TEST_CASE("bad OBJ and OFF files give an error naming the file, the line and the
     const Case cases[] = {
         {"obj_nan.obj", ":2", "not a finite number"},
         {"obj_garbage_number.obj", ":3", "not a finite number"},
-        {"obj_out_of_range.obj", ":5", "refers to vertex 7"},
-        {"obj_negative_index.obj", ":4", "refers to vertex"},
-        {"obj_zero_index.obj", ":4", "zero"},
+        {"obj_out_of_range.obj", ":5", "refers to vertex 7 but the file has 3"},
+        {"obj_negative_index.obj", ":4", "refers to vertex -9"},
+        {"obj_zero_index.obj", ":4", "index 0 is invalid"},
         {"obj_empty.obj", "", "no vertices"},
         {"off_truncated.off", ":7", "unexpected end of file"},
         {"off_absurd_count.off", ":2", "declares 4000000000 vertices"},
@@ -271,4 +271,33 @@ TEST_CASE("every shared mesh loads valid and survives OBJ and OFF round trips",
             require_same_mesh(l.mesh, back.mesh);
         }
     }
+}
+
+TEST_CASE("OBJ material libraries give the texture file", "[io][obj]") {
+    LoadedMesh l = read_obj(data_file("good/textured.obj"));
+    REQUIRE_VALID(l.mesh);
+    REQUIRE_THAT(l.texture_path, Contains("checker.png"));
+    REQUIRE(std::filesystem::path(l.texture_path).parent_path() ==
+            std::filesystem::path(data_file("good/textured.obj")).parent_path());
+    // A missing library is a note, not an error.
+    TempDir dir;
+    {
+        std::ofstream out(dir.path("m.obj"));
+        out << "mtllib nowhere.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    }
+    LoadedMesh m = read_obj(dir.path("m.obj"));
+    REQUIRE(m.texture_path.empty());
+    REQUIRE(m.report.notes.size() == 1);
+}
+
+TEST_CASE("OBJ negative indices count back from the last vertex", "[io][obj]") {
+    TempDir dir;
+    {
+        std::ofstream out(dir.path("n.obj"));
+        out << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nv 1 1 0\nf 2 -1 3\n";
+    }
+    LoadedMesh m = read_obj(dir.path("n.obj"));
+    REQUIRE_VALID(m.mesh);
+    REQUIRE(m.mesh.n_faces() == 2);
+    REQUIRE(m.report.detached_faces == 0);
 }

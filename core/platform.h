@@ -1,0 +1,12 @@
+#pragma once
+// Process-wide settings the executables (viewer, CLI, benchmark) apply at start-up.
+
+namespace trilab {
+
+/// Keeps large freed buffers in the heap instead of returning them to the system: glibc
+/// otherwise unmaps every buffer above 128 KiB on free, and the next large allocation pays
+/// a page fault per 4 KiB again (measured: 2-3x slower mesh loads, and llvmpipe frames, see
+/// shared/docs/toolchain.md section 5). No effect on other C libraries.
+void tune_heap_for_large_meshes();
+
+}  // namespace trilab
