@@ -1,10 +1,881 @@
-// Placeholder until the ply reader and writer land.
+// Stanford PLY reader and writer.
+//
+// Reading: the header (comments and obj_info allowed) is tokenized with TextScanner; the body
+// may be ascii, binary_little_endian or binary_big_endian, with elements in any order. The
+// elements "vertex" (x, y, z; nx, ny, nz; red, green, blue; u/v, s/t, texture_u/texture_v or
+// texture_s/texture_t), "face" (a vertex_indices or vertex_index list, polygons allowed, and an
+// optional per-face "texcoord" list of two floats per corner) and "tristrips" (a vertex_indices
+// list where -1 restarts the strip) are used; every other element and property is skipped,
+// list properties included. All PLY scalar types are accepted under both spellings. Binary
+// rows of fixed size are decoded with memcpy at precomputed offsets (with a dedicated loop
+// for float x, y, z and for uchar/int triangle lists); every declared count is checked
+// against the bytes left before anything is reserved, and every read is bounds-checked.
+// Errors name the file and the line (ascii) or the element number (binary).
+//
+// Writing: binary little-endian by default, ascii or big-endian on request. Positions are
+// float32 (so a round trip is exact to float precision, ~6e-8 relative), normals float32,
+// colours uchar, per-vertex texture coordinates float u, v; faces are
+// "property list uchar int vertex_indices".
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <vector>
+
 #include "core/errors.h"
+#include "core/io/file_util.h"
 #include "core/io/mesh_io.h"
+#include "core/io/text_scanner.h"
 
 namespace trilab {
-LoadedMesh read_ply(const std::string& path) { throw IoError(path, 0, "ply: not implemented yet"); }
-void write_ply(const HalfedgeMesh&, const std::string& path, const WriteOptions&) {
-    throw IoError(path, 0, "ply: not implemented yet");
+namespace {
+
+// ---- scalar types ---------------------------------------------------------------------------
+
+enum class ScalarType : std::uint8_t {
+    kInt8,
+    kUint8,
+    kInt16,
+    kUint16,
+    kInt32,
+    kUint32,
+    kF32,
+    kF64
+};
+
+std::size_t type_size(ScalarType t) {
+    switch (t) {
+        case ScalarType::kInt8:
+        case ScalarType::kUint8:
+            return 1;
+        case ScalarType::kInt16:
+        case ScalarType::kUint16:
+            return 2;
+        case ScalarType::kInt32:
+        case ScalarType::kUint32:
+        case ScalarType::kF32:
+            return 4;
+        case ScalarType::kF64:
+            return 8;
+    }
+    return 1;
 }
+
+bool is_float_type(ScalarType t) {
+    return t == ScalarType::kF32 || t == ScalarType::kF64;
+}
+
+bool parse_type(std::string_view s, ScalarType& t) {
+    struct Name {
+        const char* name;
+        ScalarType type;
+    };
+    static const Name names[] = {
+        {"char", ScalarType::kInt8},     {"int8", ScalarType::kInt8},
+        {"uchar", ScalarType::kUint8},   {"uint8", ScalarType::kUint8},
+        {"short", ScalarType::kInt16},   {"int16", ScalarType::kInt16},
+        {"ushort", ScalarType::kUint16}, {"uint16", ScalarType::kUint16},
+        {"int", ScalarType::kInt32},     {"int32", ScalarType::kInt32},
+        {"uint", ScalarType::kUint32},   {"uint32", ScalarType::kUint32},
+        {"float", ScalarType::kF32},     {"float32", ScalarType::kF32},
+        {"double", ScalarType::kF64},    {"float64", ScalarType::kF64},
+    };
+    for (const Name& n : names)
+        if (s == n.name) {
+            t = n.type;
+            return true;
+        }
+    return false;
+}
+
+bool host_is_little_endian() {
+    const std::uint16_t one = 1;
+    unsigned char first;
+    std::memcpy(&first, &one, 1);
+    return first == 1;
+}
+
+/// Loads a T stored at p, byte-swapped when Swap.
+template <class T, bool Swap>
+inline T load(const unsigned char* p) {
+    T v;
+    if constexpr (Swap && sizeof(T) > 1) {
+        unsigned char b[sizeof(T)];
+        for (std::size_t i = 0; i < sizeof(T); ++i) b[i] = p[sizeof(T) - 1 - i];
+        std::memcpy(&v, b, sizeof(T));
+    } else {
+        std::memcpy(&v, p, sizeof(T));
+    }
+    return v;
+}
+
+template <bool Swap>
+double load_double(const unsigned char* p, ScalarType t) {
+    switch (t) {
+        case ScalarType::kInt8:
+            return load<std::int8_t, Swap>(p);
+        case ScalarType::kUint8:
+            return load<std::uint8_t, Swap>(p);
+        case ScalarType::kInt16:
+            return load<std::int16_t, Swap>(p);
+        case ScalarType::kUint16:
+            return load<std::uint16_t, Swap>(p);
+        case ScalarType::kInt32:
+            return load<std::int32_t, Swap>(p);
+        case ScalarType::kUint32:
+            return load<std::uint32_t, Swap>(p);
+        case ScalarType::kF32:
+            return load<float, Swap>(p);
+        case ScalarType::kF64:
+            return load<double, Swap>(p);
+    }
+    return 0;
+}
+
+/// An integer stored in any type; float values are truncated (false when not representable).
+template <bool Swap>
+bool load_integer(const unsigned char* p, ScalarType t, long long& out) {
+    switch (t) {
+        case ScalarType::kInt8:
+            out = load<std::int8_t, Swap>(p);
+            return true;
+        case ScalarType::kUint8:
+            out = load<std::uint8_t, Swap>(p);
+            return true;
+        case ScalarType::kInt16:
+            out = load<std::int16_t, Swap>(p);
+            return true;
+        case ScalarType::kUint16:
+            out = load<std::uint16_t, Swap>(p);
+            return true;
+        case ScalarType::kInt32:
+            out = load<std::int32_t, Swap>(p);
+            return true;
+        case ScalarType::kUint32:
+            out = load<std::uint32_t, Swap>(p);
+            return true;
+        case ScalarType::kF32:
+        case ScalarType::kF64: {
+            const double d = load_double<Swap>(p, t);
+            if (!(d > -9e18 && d < 9e18)) return false;
+            out = static_cast<long long>(d);
+            return true;
+        }
+    }
+    return false;
+}
+
+// ---- header -----------------------------------------------------------------------------
+
+/// What a property is used for.
+enum Role : std::uint8_t {
+    kNone,
+    kX,
+    kY,
+    kZ,
+    kNx,
+    kNy,
+    kNz,
+    kRed,
+    kGreen,
+    kBlue,
+    kU,
+    kV,
+    kIndices,   // face / tristrips vertex index list
+    kTexcoord,  // per-face corner texture coordinate list
+    kRoleCount
+};
+
+struct PlyProperty {
+    std::string name;
+    ScalarType type = ScalarType::kF32;  ///< the scalar type, or the item type of a list
+    ScalarType count_type = ScalarType::kUint8;
+    bool is_list = false;
+    Role role = kNone;
+};
+
+enum class ElementKind { kOther, kVertex, kFace, kTristrips };
+
+struct PlyElement {
+    std::string name;
+    std::uint64_t count = 0;
+    std::size_t line = 0;  ///< header line of the element statement
+    ElementKind kind = ElementKind::kOther;
+    std::vector<PlyProperty> props;
+
+    bool has_lists() const {
+        for (const PlyProperty& p : props)
+            if (p.is_list) return true;
+        return false;
+    }
+    /// Bytes of a binary row without lists; the minimum bytes of a row with lists.
+    std::size_t min_row_bytes() const {
+        std::size_t n = 0;
+        for (const PlyProperty& p : props) n += type_size(p.is_list ? p.count_type : p.type);
+        return n;
+    }
+    bool has_role(Role r) const {
+        for (const PlyProperty& p : props)
+            if (p.role == r) return true;
+        return false;
+    }
+};
+
+enum class Encoding { kAscii, kBinaryLittle, kBinaryBig };
+
+const char* element_label(const PlyElement& e) {
+    switch (e.kind) {
+        case ElementKind::kVertex:
+            return "vertex";
+        case ElementKind::kFace:
+            return "face";
+        case ElementKind::kTristrips:
+            return "tristrips";
+        case ElementKind::kOther:
+            break;
+    }
+    return "entry";
+}
+
+// ---- reader -----------------------------------------------------------------------------
+
+class PlyReader {
+public:
+    PlyReader(const std::string& path, const std::string& data)
+        : path_(path), data_(data), sc_(data, path, '\0') {}
+
+    LoadedMesh read() {
+        parse_header();
+        assign_roles();
+        if (encoding_ == Encoding::kAscii) {
+            read_ascii();
+        } else {
+            const bool file_little = encoding_ == Encoding::kBinaryLittle;
+            if (file_little == host_is_little_endian())
+                read_binary<false>();
+            else
+                read_binary<true>();
+        }
+        finish_soup();
+        LoadedMesh out;
+        out.report.file = path_;
+        out.report.format = "ply";
+        out.report.file_vertices = soup_.positions.size();
+        out.report.file_faces = file_faces_;
+        out.report.notes = notes_;
+        out.mesh = build_mesh_for_file(soup_, out.report, path_);
+        return out;
+    }
+
+private:
+    // ---- header ---------------------------------------------------------------------------
+    void parse_header() {
+        if (data_.compare(0, 3, "ply") != 0 ||
+            (data_.size() > 3 && data_[3] != '\n' && data_[3] != '\r' && data_[3] != ' ' &&
+             data_[3] != '\t'))
+            throw IoError(path_, 1, "not a PLY file (it must start with a 'ply' line)");
+        sc_.next_token();
+        bool have_format = false;
+        for (;;) {
+            const std::size_t last_line = sc_.line();
+            const std::string_view kw = sc_.next_token();
+            if (kw.empty()) throw IoError(path_, last_line, "the header has no end_header line");
+            if (kw == "comment" || kw == "obj_info") {
+                sc_.rest_of_line();
+            } else if (kw == "format") {
+                const std::string_view enc = sc_.expect_token("the format's encoding");
+                if (enc == "ascii")
+                    encoding_ = Encoding::kAscii;
+                else if (enc == "binary_little_endian")
+                    encoding_ = Encoding::kBinaryLittle;
+                else if (enc == "binary_big_endian")
+                    encoding_ = Encoding::kBinaryBig;
+                else
+                    sc_.fail("unknown PLY encoding '" + printable(enc) +
+                             "' (expected ascii, binary_little_endian or binary_big_endian)");
+                const std::string_view version = sc_.expect_token("the format's version");
+                if (version != "1.0" && version != "1")
+                    sc_.fail("unsupported PLY version '" + printable(version) + "'");
+                have_format = true;
+            } else if (kw == "element") {
+                PlyElement e;
+                e.name = std::string(sc_.expect_token("an element name"));
+                e.line = sc_.line();
+                const long long count = sc_.next_integer("the element count");
+                if (count < 0) sc_.fail("negative element count for '" + printable(e.name) + "'");
+                e.count = static_cast<std::uint64_t>(count);
+                elements_.push_back(std::move(e));
+            } else if (kw == "property") {
+                if (elements_.empty()) sc_.fail("'property' before any 'element'");
+                PlyProperty p;
+                std::string_view t = sc_.expect_token("a property type");
+                if (t == "list") {
+                    p.is_list = true;
+                    t = sc_.expect_token("the list's count type");
+                    if (!parse_type(t, p.count_type))
+                        sc_.fail("unknown property type '" + printable(t) + "'");
+                    t = sc_.expect_token("the list's item type");
+                }
+                if (!parse_type(t, p.type))
+                    sc_.fail("unknown property type '" + printable(t) + "'");
+                p.name = std::string(sc_.expect_token("a property name"));
+                elements_.back().props.push_back(std::move(p));
+            } else if (kw == "end_header") {
+                sc_.rest_of_line();
+                break;
+            } else {
+                sc_.fail("unexpected '" + printable(kw) + "' in the PLY header");
+            }
+        }
+        if (!have_format) sc_.fail("the header has no 'format' line");
+        data_offset_ = sc_.offset();
+    }
+
+    /// Sets element kinds and property roles; checks what the known elements need.
+    void assign_roles() {
+        bool seen_vertex = false;
+        for (PlyElement& e : elements_) {
+            if (e.name == "vertex") {
+                if (seen_vertex)
+                    throw IoError(path_, e.line, "a second 'vertex' element (only one allowed)");
+                seen_vertex = true;
+                e.kind = ElementKind::kVertex;
+                n_vertices_declared_ = e.count;
+                for (PlyProperty& p : e.props) {
+                    if (p.is_list) continue;
+                    const std::string& n = p.name;
+                    Role r = kNone;
+                    if (n == "x")
+                        r = kX;
+                    else if (n == "y")
+                        r = kY;
+                    else if (n == "z")
+                        r = kZ;
+                    else if (n == "nx")
+                        r = kNx;
+                    else if (n == "ny")
+                        r = kNy;
+                    else if (n == "nz")
+                        r = kNz;
+                    else if (n == "red")
+                        r = kRed;
+                    else if (n == "green")
+                        r = kGreen;
+                    else if (n == "blue")
+                        r = kBlue;
+                    else if (n == "u" || n == "s" || n == "texture_u" || n == "texture_s")
+                        r = kU;
+                    else if (n == "v" || n == "t" || n == "texture_v" || n == "texture_t")
+                        r = kV;
+                    if (r != kNone && !e.has_role(r)) p.role = r;
+                    if (r == kRed || r == kGreen || r == kBlue) color_type_ = p.type;
+                }
+                if (!e.has_role(kX) || !e.has_role(kY) || !e.has_role(kZ))
+                    throw IoError(path_, e.line, "element 'vertex' lacks an x, y or z property");
+                has_normals_ = e.has_role(kNx) && e.has_role(kNy) && e.has_role(kNz);
+                has_colors_ = e.has_role(kRed) && e.has_role(kGreen) && e.has_role(kBlue);
+                has_uv_ = e.has_role(kU) && e.has_role(kV);
+            } else if (e.name == "face" || e.name == "tristrips") {
+                e.kind = e.name == "face" ? ElementKind::kFace : ElementKind::kTristrips;
+                for (PlyProperty& p : e.props) {
+                    if (!p.is_list) continue;
+                    if ((p.name == "vertex_indices" || p.name == "vertex_index") &&
+                        !e.has_role(kIndices))
+                        p.role = kIndices;
+                    else if (e.kind == ElementKind::kFace && p.name == "texcoord" &&
+                             !e.has_role(kTexcoord))
+                        p.role = kTexcoord;
+                }
+                if (!e.has_role(kIndices) && e.count > 0)
+                    throw IoError(path_, e.line,
+                                  "element '" + e.name + "' lacks a vertex_indices list property");
+            } else if (e.count > 0) {
+                notes_.push_back("skipped PLY element '" + e.name + "' (" +
+                                 std::to_string(e.count) + " entries)");
+            }
+        }
+    }
+
+    // ---- shared row handling ---------------------------------------------------------------
+    void begin_vertices(const PlyElement& e) {
+        const std::size_t n = static_cast<std::size_t>(e.count);
+        soup_.positions.resize(n);
+        if (has_normals_) soup_.normals.resize(n);
+        if (has_colors_) soup_.colors.resize(n);
+        if (has_uv_) soup_.texcoords.resize(n);
+    }
+
+    float color_channel(double c) const {
+        double scale = 1.0;
+        if (!is_float_type(color_type_))
+            scale = (color_type_ == ScalarType::kUint16 || color_type_ == ScalarType::kInt16)
+                        ? 1.0 / 65535.0
+                        : 1.0 / 255.0;
+        return static_cast<float>(std::clamp(c * scale, 0.0, 1.0));
+    }
+
+    void store_vertex(std::size_t i, const double* v) {
+        soup_.positions[i] = Point(v[kX], v[kY], v[kZ]);
+        if (has_normals_) soup_.normals[i] = Vector3(v[kNx], v[kNy], v[kNz]);
+        if (has_colors_)
+            soup_.colors[i] =
+                Color(color_channel(v[kRed]), color_channel(v[kGreen]), color_channel(v[kBlue]));
+        if (has_uv_) soup_.texcoords[i] = TexCoord(v[kU], v[kV]);
+    }
+
+    /// Checks one index of face / strip `row` of element e (-1 allowed in strips).
+    /// Returns false for a strip restart.
+    bool check_index(long long v, const PlyElement& e, std::uint64_t row, std::size_t line) {
+        if (v >= 0 && static_cast<std::uint64_t>(v) < n_vertices_declared_) return true;
+        if (v == -1 && e.kind == ElementKind::kTristrips) return false;
+        index_error(v, e, row, line);
+    }
+
+    [[noreturn]] void index_error(long long v, const PlyElement& e, std::uint64_t row,
+                                  std::size_t line) const {
+        const std::string where = std::string(element_label(e)) + " " + std::to_string(row);
+        if (v < 0)
+            throw IoError(path_, line, where + ": negative vertex index " + std::to_string(v));
+        throw IoError(path_, line,
+                      where + ": vertex index " + std::to_string(v) +
+                          " is out of range (the file declares " +
+                          std::to_string(n_vertices_declared_) + " vertices)");
+    }
+
+    /// Ends a face row whose indices were appended to soup_.corners; row_uv_ holds the row's
+    /// texcoord list (if the element has one).
+    void end_face_row(bool has_texcoord_list) {
+        const std::size_t n = soup_.corners.size() - soup_.face_offsets.back();
+        soup_.face_offsets.push_back(soup_.corners.size());
+        ++file_faces_;
+        if (has_texcoord_list) {
+            if (row_uv_.size() == 2 * n) {
+                for (std::size_t k = 0; k < n; ++k)
+                    soup_.corner_texcoords.emplace_back(row_uv_[2 * k], row_uv_[2 * k + 1]);
+            } else {
+                corner_uv_ok_ = false;
+            }
+        } else {
+            faces_without_uv_ = true;
+        }
+    }
+
+    /// Turns the strip in strip_ (with -1 restarts) into triangles.
+    void end_strip_row() {
+        std::size_t start = 0;
+        for (std::size_t i = 0; i <= strip_.size(); ++i) {
+            if (i < strip_.size() && strip_[i] >= 0) continue;
+            // strip_[start, i) is one strip
+            for (std::size_t k = start; k + 2 < i; ++k) {
+                Index a = Index(strip_[k]), b = Index(strip_[k + 1]);
+                const Index c = Index(strip_[k + 2]);
+                if ((k - start) % 2 == 1) std::swap(a, b);
+                if (a == b || b == c || a == c) continue;  // stitching triangle
+                soup_.corners.push_back(a);
+                soup_.corners.push_back(b);
+                soup_.corners.push_back(c);
+                soup_.face_offsets.push_back(soup_.corners.size());
+                ++file_faces_;
+                faces_without_uv_ = true;
+            }
+            start = i + 1;
+        }
+        strip_.clear();
+    }
+
+    void finish_soup() {
+        if (soup_.corner_texcoords.empty()) return;
+        if (!corner_uv_ok_ || faces_without_uv_ ||
+            soup_.corner_texcoords.size() != soup_.corners.size()) {
+            soup_.corner_texcoords.clear();
+            notes_.push_back(
+                "per-face texcoord lists ignored: not every face has two values per corner");
+        }
+    }
+
+    // ---- ascii -----------------------------------------------------------------------------
+    long long ascii_integer(ScalarType t, const char* what) {
+        if (!is_float_type(t)) return sc_.next_integer(what);
+        const double d = sc_.next_double(what);
+        if (!(d > -9e18 && d < 9e18)) sc_.fail(std::string(what) + " is out of range");
+        return static_cast<long long>(d);
+    }
+
+    long long ascii_list_count(const PlyElement& e, const PlyProperty& p) {
+        const long long n = ascii_integer(p.count_type, "a list length");
+        if (n < 0)
+            sc_.fail("negative list length " + std::to_string(n) + " for property '" + p.name +
+                     "' of element '" + e.name + "'");
+        return n;
+    }
+
+    void read_ascii() {
+        for (const PlyElement& e : elements_) {
+            if (e.count == 0 || e.props.empty()) continue;
+            const std::size_t remaining = data_.size() - sc_.offset();
+            check_declared_count(static_cast<std::size_t>(std::min<std::uint64_t>(
+                                     e.count, std::numeric_limits<std::size_t>::max())),
+                                 2 * e.props.size(), remaining + 1,
+                                 ("'" + e.name + "' elements").c_str(), path_, e.line);
+            double vals[kRoleCount] = {};
+            if (e.kind == ElementKind::kVertex) begin_vertices(e);
+            if (e.kind == ElementKind::kFace) reserve_faces(e, remaining / 2, remaining / 2);
+            const bool has_uv_list = e.has_role(kTexcoord);
+            for (std::uint64_t row = 0; row < e.count; ++row) {
+                for (const PlyProperty& p : e.props) {
+                    if (!p.is_list) {
+                        if (p.role == kNone)
+                            sc_.expect_token("a property value");
+                        else
+                            vals[p.role] = sc_.next_double(p.name.c_str());
+                        continue;
+                    }
+                    const long long n = ascii_list_count(e, p);
+                    if (p.role == kIndices) {
+                        for (long long k = 0; k < n; ++k) {
+                            const long long v = ascii_integer(p.type, "a vertex index");
+                            const bool ok = check_index(v, e, row, sc_.line());
+                            if (e.kind == ElementKind::kFace)
+                                soup_.corners.push_back(Index(v));
+                            else
+                                strip_.push_back(ok ? v : -1);
+                        }
+                    } else if (p.role == kTexcoord) {
+                        row_uv_.clear();
+                        for (long long k = 0; k < n; ++k)
+                            row_uv_.push_back(sc_.next_double("a texture coordinate"));
+                    } else {
+                        for (long long k = 0; k < n; ++k) sc_.expect_token("a list item");
+                    }
+                }
+                if (e.kind == ElementKind::kVertex)
+                    store_vertex(static_cast<std::size_t>(row), vals);
+                else if (e.kind == ElementKind::kFace)
+                    end_face_row(has_uv_list);
+                else if (e.kind == ElementKind::kTristrips)
+                    end_strip_row();
+            }
+        }
+    }
+
+    void reserve_faces(const PlyElement& e, std::size_t max_faces, std::size_t max_corners) {
+        const std::size_t n = static_cast<std::size_t>(e.count);
+        soup_.face_offsets.reserve(soup_.face_offsets.size() + std::min(n, max_faces));
+        soup_.corners.reserve(soup_.corners.size() + std::min(3 * n, max_corners));
+    }
+
+    // ---- binary ----------------------------------------------------------------------------
+    [[noreturn]] void truncated(const PlyElement& e, std::uint64_t row) const {
+        throw IoError(path_, 0,
+                      "the file ends inside " + std::string(element_label(e)) + " " +
+                          std::to_string(row) + " of element '" + e.name + "' (truncated?)");
+    }
+
+    template <bool Swap>
+    void read_binary() {
+        const auto* base = reinterpret_cast<const unsigned char*>(data_.data());
+        std::size_t pos = data_offset_;
+        for (const PlyElement& e : elements_) {
+            if (e.count == 0 || e.props.empty()) continue;
+            const std::size_t remaining = data_.size() - pos;
+            const std::size_t min_row = e.min_row_bytes();
+            check_declared_count(static_cast<std::size_t>(std::min<std::uint64_t>(
+                                     e.count, std::numeric_limits<std::size_t>::max())),
+                                 min_row, remaining, ("'" + e.name + "' elements").c_str(), path_,
+                                 e.line);
+            const std::size_t n = static_cast<std::size_t>(e.count);
+            if (!e.has_lists()) {
+                // Fixed-size rows: the check above guarantees n * min_row <= remaining.
+                if (e.kind == ElementKind::kVertex) read_fixed_vertices<Swap>(e, base + pos);
+                pos += n * min_row;
+            } else if (!Swap && e.kind == ElementKind::kFace && e.props.size() == 1 &&
+                       e.props[0].count_type == ScalarType::kUint8 &&
+                       (e.props[0].type == ScalarType::kInt32 ||
+                        e.props[0].type == ScalarType::kUint32)) {
+                pos = read_simple_faces(e, base, pos);
+            } else {
+                pos = read_rows<Swap>(e, base, pos);
+            }
+        }
+    }
+
+    template <bool Swap>
+    void read_fixed_vertices(const PlyElement& e, const unsigned char* p) {
+        begin_vertices(e);
+        const std::size_t n = static_cast<std::size_t>(e.count);
+        const std::size_t stride = e.min_row_bytes();
+        struct Field {
+            std::size_t offset;
+            ScalarType type;
+            Role role;
+        };
+        std::vector<Field> fields;
+        std::size_t off = 0;
+        for (const PlyProperty& prop : e.props) {
+            if (prop.role != kNone) fields.push_back({off, prop.type, prop.role});
+            off += type_size(prop.type);
+        }
+        const bool plain_xyz =
+            !Swap && fields.size() == 3 && fields[0].role == kX && fields[1].role == kY &&
+            fields[2].role == kZ && fields[0].type == ScalarType::kF32 &&
+            fields[1].type == ScalarType::kF32 && fields[2].type == ScalarType::kF32 &&
+            fields[0].offset == 0 && fields[1].offset == 4 && fields[2].offset == 8;
+        if (plain_xyz) {
+            Point* out = soup_.positions.data();
+            for (std::size_t i = 0; i < n; ++i, p += stride) {
+                float xyz[3];
+                std::memcpy(xyz, p, sizeof(xyz));
+                out[i] = Point(xyz[0], xyz[1], xyz[2]);
+            }
+            return;
+        }
+        double vals[kRoleCount] = {};
+        for (std::size_t i = 0; i < n; ++i, p += stride) {
+            for (const Field& f : fields) vals[f.role] = load_double<Swap>(p + f.offset, f.type);
+            store_vertex(i, vals);
+        }
+    }
+
+    /// Faces as one uchar-counted list of native-endian 32-bit indices.
+    std::size_t read_simple_faces(const PlyElement& e, const unsigned char* base, std::size_t pos) {
+        const std::size_t size = data_.size();
+        const std::size_t n = static_cast<std::size_t>(e.count);
+        reserve_faces(e, n, (size - pos) / 4);
+        const bool is_signed = e.props[0].type == ScalarType::kInt32;
+        const std::uint64_t nv = n_vertices_declared_;
+        for (std::size_t row = 0; row < n; ++row) {
+            if (pos >= size) truncated(e, row);
+            const std::size_t k = base[pos++];
+            if (4 * k > size - pos) truncated(e, row);
+            for (std::size_t j = 0; j < k; ++j, pos += 4) {
+                std::uint32_t u;
+                std::memcpy(&u, base + pos, 4);
+                if (u >= nv) {
+                    const long long v = is_signed ? static_cast<long long>(std::int32_t(u))
+                                                  : static_cast<long long>(u);
+                    index_error(v, e, row, 0);
+                }
+                soup_.corners.push_back(u);
+            }
+            soup_.face_offsets.push_back(soup_.corners.size());
+        }
+        file_faces_ += n;
+        faces_without_uv_ = true;
+        return pos;
+    }
+
+    /// Any element, row by row, with a bounds check before every read.
+    template <bool Swap>
+    std::size_t read_rows(const PlyElement& e, const unsigned char* base, std::size_t pos) {
+        const std::size_t size = data_.size();
+        const std::size_t n = static_cast<std::size_t>(e.count);
+        if (e.kind == ElementKind::kVertex) begin_vertices(e);
+        if (e.kind == ElementKind::kFace) reserve_faces(e, n, (size - pos) / 4);
+        const bool has_uv_list = e.has_role(kTexcoord);
+        double vals[kRoleCount] = {};
+        for (std::size_t row = 0; row < n; ++row) {
+            for (const PlyProperty& p : e.props) {
+                if (!p.is_list) {
+                    const std::size_t s = type_size(p.type);
+                    if (s > size - pos) truncated(e, row);
+                    if (p.role != kNone) vals[p.role] = load_double<Swap>(base + pos, p.type);
+                    pos += s;
+                    continue;
+                }
+                const std::size_t cs = type_size(p.count_type);
+                if (cs > size - pos) truncated(e, row);
+                long long count = 0;
+                if (!load_integer<Swap>(base + pos, p.count_type, count) || count < 0)
+                    throw IoError(path_, 0,
+                                  std::string(element_label(e)) + " " + std::to_string(row) +
+                                      ": invalid list length for property '" + p.name + "'");
+                pos += cs;
+                const std::size_t is = type_size(p.type);
+                const std::size_t items = static_cast<std::size_t>(count);
+                if (items > (size - pos) / is) truncated(e, row);
+                if (p.role == kIndices) {
+                    for (std::size_t k = 0; k < items; ++k, pos += is) {
+                        long long v = -2;
+                        if (!load_integer<Swap>(base + pos, p.type, v)) v = -2;
+                        const bool ok = check_index(v, e, row, 0);
+                        if (e.kind == ElementKind::kFace)
+                            soup_.corners.push_back(Index(v));
+                        else
+                            strip_.push_back(ok ? v : -1);
+                    }
+                } else if (p.role == kTexcoord) {
+                    row_uv_.clear();
+                    for (std::size_t k = 0; k < items; ++k, pos += is)
+                        row_uv_.push_back(load_double<Swap>(base + pos, p.type));
+                } else {
+                    pos += items * is;
+                }
+            }
+            if (e.kind == ElementKind::kVertex)
+                store_vertex(row, vals);
+            else if (e.kind == ElementKind::kFace)
+                end_face_row(has_uv_list);
+            else if (e.kind == ElementKind::kTristrips)
+                end_strip_row();
+        }
+        return pos;
+    }
+
+    const std::string& path_;
+    const std::string& data_;
+    TextScanner sc_;
+    Encoding encoding_ = Encoding::kAscii;
+    std::vector<PlyElement> elements_;
+    std::size_t data_offset_ = 0;
+    std::uint64_t n_vertices_declared_ = 0;
+    bool has_normals_ = false, has_colors_ = false, has_uv_ = false;
+    ScalarType color_type_ = ScalarType::kUint8;
+    PolygonSoup soup_;
+    std::size_t file_faces_ = 0;
+    std::vector<double> row_uv_;
+    std::vector<long long> strip_;
+    bool corner_uv_ok_ = true;
+    bool faces_without_uv_ = false;
+    std::vector<std::string> notes_;
+};
+
+// ---- writer -----------------------------------------------------------------------------
+
+/// Buffers output and hands it to the stream in large blocks.
+class OutBuffer {
+public:
+    OutBuffer(std::ostream& out, bool swap) : out_(out), swap_(swap) { buf_.reserve(kBlock + 256); }
+    void text(std::string_view s) {
+        buf_.append(s.data(), s.size());
+        maybe_flush();
+    }
+    template <class T>
+    void binary(T v) {
+        char b[sizeof(T)];
+        std::memcpy(b, &v, sizeof(T));
+        if (swap_) std::reverse(b, b + sizeof(T));
+        buf_.append(b, sizeof(T));
+    }
+    template <class T>
+    void number(T v) {
+        char b[64];
+        const auto r = std::to_chars(b, b + sizeof(b), v);
+        buf_.append(b, static_cast<std::size_t>(r.ptr - b));
+    }
+    void maybe_flush() {
+        if (buf_.size() >= kBlock) flush();
+    }
+    void flush() {
+        out_.write(buf_.data(), static_cast<std::streamsize>(buf_.size()));
+        buf_.clear();
+    }
+
+private:
+    static constexpr std::size_t kBlock = 1 << 20;
+    std::ostream& out_;
+    bool swap_;
+    std::string buf_;
+};
+
+std::uint8_t color_byte(float c) {
+    return static_cast<std::uint8_t>(std::lround(std::clamp(c, 0.0f, 1.0f) * 255.0f));
+}
+
+}  // namespace
+
+LoadedMesh read_ply(const std::string& path) {
+    const std::string data = read_file_bytes(path);
+    PlyReader reader(path, data);
+    return reader.read();
+}
+
+void write_ply(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options) {
+    const PolygonSoup soup = to_soup(mesh);
+    if (soup.positions.size() > std::size_t(std::numeric_limits<std::int32_t>::max()))
+        throw IoError(path, 0, "too many vertices for PLY int indices");
+    const bool normals = options.write_normals && !soup.normals.empty();
+    const bool colors = options.write_colors && !soup.colors.empty();
+    const bool uv = options.write_texcoords && !soup.texcoords.empty();
+    const bool ascii = options.ascii;
+    const bool big = options.big_endian;
+
+    std::string header = "ply\nformat ";
+    header += ascii ? "ascii" : big ? "binary_big_endian" : "binary_little_endian";
+    header += " 1.0\ncomment written by trilab\n";
+    header += "element vertex " + std::to_string(soup.positions.size()) + "\n";
+    header += "property float x\nproperty float y\nproperty float z\n";
+    if (normals) header += "property float nx\nproperty float ny\nproperty float nz\n";
+    if (colors) header += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+    if (uv) header += "property float u\nproperty float v\n";
+    header += "element face " + std::to_string(soup.n_faces()) + "\n";
+    header += "property list uchar int vertex_indices\nend_header\n";
+
+    write_file_atomically(path, [&](std::ostream& os) {
+        OutBuffer out(os, !ascii && big == host_is_little_endian());
+        out.text(header);
+        const std::size_t nv = soup.positions.size();
+        for (std::size_t i = 0; i < nv; ++i) {
+            float f[11];
+            int nf = 0;
+            const Point& p = soup.positions[i];
+            for (int k = 0; k < 3; ++k) f[nf++] = static_cast<float>(p[k]);
+            if (normals)
+                for (int k = 0; k < 3; ++k) f[nf++] = static_cast<float>(soup.normals[i][k]);
+            std::uint8_t c[3] = {0, 0, 0};
+            if (colors)
+                for (int k = 0; k < 3; ++k) c[k] = color_byte(soup.colors[i][k]);
+            float t[2] = {0, 0};
+            if (uv)
+                for (int k = 0; k < 2; ++k) t[k] = static_cast<float>(soup.texcoords[i][k]);
+            if (ascii) {
+                for (int k = 0; k < nf; ++k) {
+                    if (k) out.text(" ");
+                    out.number(f[k]);
+                }
+                if (colors)
+                    for (int k = 0; k < 3; ++k) {
+                        out.text(" ");
+                        out.number(int(c[k]));
+                    }
+                if (uv)
+                    for (int k = 0; k < 2; ++k) {
+                        out.text(" ");
+                        out.number(t[k]);
+                    }
+                out.text("\n");
+            } else {
+                for (int k = 0; k < nf; ++k) out.binary(f[k]);
+                if (colors)
+                    for (int k = 0; k < 3; ++k) out.binary(c[k]);
+                if (uv)
+                    for (int k = 0; k < 2; ++k) out.binary(t[k]);
+                out.maybe_flush();
+            }
+        }
+        for (std::size_t f = 0; f < soup.n_faces(); ++f) {
+            const std::size_t b = soup.face_offsets[f], e = soup.face_offsets[f + 1];
+            const std::uint8_t n = static_cast<std::uint8_t>(e - b);  // triangles: always 3
+            if (ascii) {
+                out.number(int(n));
+                for (std::size_t c = b; c < e; ++c) {
+                    out.text(" ");
+                    out.number(static_cast<std::int32_t>(soup.corners[c]));
+                }
+                out.text("\n");
+            } else {
+                out.binary(n);
+                for (std::size_t c = b; c < e; ++c)
+                    out.binary(static_cast<std::int32_t>(soup.corners[c]));
+                out.maybe_flush();
+            }
+        }
+        out.flush();
+    });
+}
+
 }  // namespace trilab
