@@ -176,7 +176,9 @@ HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
     // 1. Triangles (with the soup corner each triangle corner came from).
     std::vector<Tri> tris, tri_corners;
     tris.reserve(soup.corners.size() / 3 + 1);
-    tri_corners.reserve(tris.capacity());
+    // Which soup corner each triangle corner came from: only needed for corner texcoords.
+    const bool keep_corners = !soup.corner_texcoords.empty();
+    if (keep_corners) tri_corners.reserve(tris.capacity());
     std::vector<Point> poly;
     for (std::size_t f = 0; f < soup.n_faces(); ++f) {
         const std::size_t begin = soup.face_offsets[f], n = soup.face_offsets[f + 1] - begin;
@@ -190,7 +192,8 @@ HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
         }
         if (n == 3) {
             tris.push_back({soup.corners[begin], soup.corners[begin + 1], soup.corners[begin + 2]});
-            tri_corners.push_back({Index(begin), Index(begin + 1), Index(begin + 2)});
+            if (keep_corners)
+                tri_corners.push_back({Index(begin), Index(begin + 1), Index(begin + 2)});
             continue;
         }
         poly.clear();
@@ -199,7 +202,9 @@ HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
         for (const Tri& t : triangulate_polygon(poly)) {
             tris.push_back({soup.corners[begin + t[0]], soup.corners[begin + t[1]],
                             soup.corners[begin + t[2]]});
-            tri_corners.push_back({Index(begin + t[0]), Index(begin + t[1]), Index(begin + t[2])});
+            if (keep_corners)
+                tri_corners.push_back(
+                    {Index(begin + t[0]), Index(begin + t[1]), Index(begin + t[2])});
             ++report.triangles_from_polygons;
         }
     }
