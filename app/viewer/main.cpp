@@ -1,0 +1,104 @@
+// trilab: the interactive viewer. Shows a mesh file, or the built-in noisy sphere when none is
+// given. Exit status: 0 on a normal exit, 1 when the window, the GL context or a requested
+// screenshot fails, 2 for bad command-line arguments. A mesh file that cannot be read is not
+// fatal: the error goes to stderr and to the window, and the default model stays.
+
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include "app/viewer/viewer.h"
+#include "core/platform.h"
+
+namespace {
+
+constexpr const char* kUsage = R"(usage: trilab [options] [MESH]
+
+Shows MESH (.obj .off .ply .stl .om), or the built-in noisy sphere without one.
+
+options:
+  --size WxH         window size in screen coordinates (default 1280x800)
+  --frames N         render N frames, then exit (for tests and screenshots)
+  --screenshot FILE  write the last frame as PNG before exiting (needs --frames)
+  --help             this text
+)";
+
+/// Parses "WxH" with both numbers in [1, 16384].
+bool parse_size(const std::string& text, int& width, int& height) {
+    int w = 0, h = 0;
+    char x = 0, rest = 0;
+    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &rest) != 3 || (x != 'x' && x != 'X'))
+        return false;
+    if (w < 1 || h < 1 || w > 16384 || h > 16384) return false;
+    width = w;
+    height = h;
+    return true;
+}
+
+bool parse_count(const std::string& text, int& value) {
+    int n = 0;
+    char rest = 0;
+    if (std::sscanf(text.c_str(), "%d%c", &n, &rest) != 1 || n < 1) return false;
+    value = n;
+    return true;
+}
+
+/// Fills `options`; returns an error message, or "" on success.
+std::string parse_args(int argc, char** argv, trilab::viewer::ViewerOptions& options, bool& help) {
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        auto value = [&](std::string& out) {
+            if (i + 1 >= argc) return false;
+            out = argv[++i];
+            return true;
+        };
+        std::string v;
+        if (arg == "--help" || arg == "-h") {
+            help = true;
+        } else if (arg == "--size") {
+            if (!value(v) || !parse_size(v, options.width, options.height))
+                return "--size needs WxH, e.g. 1280x800";
+        } else if (arg == "--frames") {
+            if (!value(v) || !parse_count(v, options.frames))
+                return "--frames needs a positive number";
+        } else if (arg == "--screenshot") {
+            if (!value(options.screenshot) || options.screenshot.empty())
+                return "--screenshot needs a file name";
+        } else if (arg.size() > 1 && arg[0] == '-') {
+            return "unknown option '" + arg + "'";
+        } else if (options.mesh_path.empty()) {
+            options.mesh_path = arg;
+        } else {
+            return "more than one mesh file given ('" + arg + "')";
+        }
+    }
+    if (!options.screenshot.empty() && options.frames == 0) return "--screenshot needs --frames N";
+    return "";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    // llvmpipe page-faults on every frame when glibc keeps trimming and unmapping its large
+    // buffers (docs/toolchain.md, section 5): keep big blocks mapped.
+    trilab::tune_heap_for_large_meshes();
+
+    trilab::viewer::ViewerOptions options;
+    bool help = false;
+    const std::string error = parse_args(argc, argv, options, help);
+    if (help) {
+        std::fputs(kUsage, stdout);
+        return 0;
+    }
+    if (!error.empty()) {
+        std::fprintf(stderr, "trilab: %s\n%s", error.c_str(), kUsage);
+        return 2;
+    }
+    try {
+        trilab::viewer::Viewer viewer(options);
+        return viewer.run();
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "trilab: %s\n", e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,364 @@
+#include "app/viewer/viewer.h"
+
+// glad before GLFW: GLFW must not include the system GL header.
+#include <glad/gl.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+#include <stb/stb_image_write.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <utility>
+#include <vector>
+
+#include "core/errors.h"
+#include "core/generators.h"
+#include "core/geometry.h"
+#include "core/io/mesh_io.h"
+
+namespace trilab::viewer {
+namespace {
+
+constexpr const char* kTitle = "trilab";
+constexpr std::size_t kWireframeMaxFacesAtStart = 100000;
+constexpr int kFramesAfterInput = 4;  ///< ImGui settles hover and popups within a few frames
+
+void glfw_error(int code, const char* description) {
+    std::fprintf(stderr, "trilab: GLFW error %d: %s\n", code, description);
+}
+
+glm::vec3 to_glm(const Point& p) {
+    return glm::vec3(float(p.x()), float(p.y()), float(p.z()));
+}
+
+}  // namespace
+
+// ---- RAII pieces: destroyed in reverse order (renderer, ImGui, window, GLFW) --------------
+
+struct Viewer::GlfwLibrary {
+    GlfwLibrary() {
+        glfwSetErrorCallback(glfw_error);
+        if (!glfwInit()) throw Error("cannot initialise GLFW (is DISPLAY set?)");
+    }
+    ~GlfwLibrary() { glfwTerminate(); }
+    GlfwLibrary(const GlfwLibrary&) = delete;
+    GlfwLibrary& operator=(const GlfwLibrary&) = delete;
+};
+
+void Viewer::WindowDeleter::operator()(GLFWwindow* window) const {
+    glfwSetWindowUserPointer(window, nullptr);  // no callback may reach a half-destroyed Viewer
+    glfwDestroyWindow(window);
+}
+
+struct Viewer::ImGuiLayer {
+    ImGuiLayer(GLFWwindow* window, float scale) {
+        IMGUI_CHECKVERSION();
+        ImGui::CreateContext();
+        ImGuiIO& io = ImGui::GetIO();
+        io.IniFilename = nullptr;
+        ImGui::StyleColorsDark();
+        ImGuiStyle& style = ImGui::GetStyle();
+        style.WindowRounding = 4.0f;
+        style.FrameRounding = 3.0f;
+        if (scale > 1.0f) {
+            // Re-rasterize the font at the scaled size instead of stretching it.
+            ImFontConfig font;
+            font.SizePixels = 13.0f * scale;
+            io.Fonts->AddFontDefault(&font);
+            style.ScaleAllSizes(scale);
+        }
+        // The backend chains to the callbacks installed before it (Viewer::wake).
+        if (!ImGui_ImplGlfw_InitForOpenGL(window, true)) {
+            ImGui::DestroyContext();
+            throw Error("ImGui GLFW backend initialisation failed");
+        }
+        if (!ImGui_ImplOpenGL3_Init("#version 330 core")) {
+            ImGui_ImplGlfw_Shutdown();
+            ImGui::DestroyContext();
+            throw Error("ImGui OpenGL 3 backend initialisation failed");
+        }
+    }
+    ~ImGuiLayer() {
+        ImGui_ImplOpenGL3_Shutdown();
+        ImGui_ImplGlfw_Shutdown();
+        ImGui::DestroyContext();
+    }
+    ImGuiLayer(const ImGuiLayer&) = delete;
+    ImGuiLayer& operator=(const ImGuiLayer&) = delete;
+};
+
+// ---- construction ---------------------------------------------------------------------------
+
+GLFWwindow* Viewer::create_window(const ViewerOptions& options, Viewer* viewer) {
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);
+    // No multisampling: on llvmpipe 4x MSAA made frames 3-4 times slower, and the wireframe
+    // overlay is anti-aliased in the shader anyway.
+    glfwWindowHint(GLFW_SAMPLES, 0);
+    GLFWwindow* window = glfwCreateWindow(options.width, options.height, kTitle, nullptr, nullptr);
+    if (!window) throw Error("cannot create a window with an OpenGL 3.3 core context");
+    glfwSetWindowUserPointer(window, viewer);
+    // Every input or window event keeps the loop drawing for a few frames; otherwise it
+    // sleeps in glfwWaitEvents. Installed before ImGui's, which call these in turn.
+    glfwSetCursorPosCallback(window, [](GLFWwindow* w, double, double) { wake(w); });
+    glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int, int, int) { wake(w); });
+    glfwSetScrollCallback(window, [](GLFWwindow* w, double, double) { wake(w); });
+    glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) {
+        wake(w);
+        if (Viewer* v = from(w); v && action == GLFW_PRESS) v->key_presses_.push_back({key, mods});
+    });
+    glfwSetCharCallback(window, [](GLFWwindow* w, unsigned) { wake(w); });
+    glfwSetCursorEnterCallback(window, [](GLFWwindow* w, int) { wake(w); });
+    glfwSetWindowFocusCallback(window, [](GLFWwindow* w, int) { wake(w); });
+    glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int, int) { wake(w); });
+    glfwSetWindowRefreshCallback(window, [](GLFWwindow* w) { wake(w); });
+    return window;
+}
+
+Viewer* Viewer::from(GLFWwindow* window) {
+    return static_cast<Viewer*>(glfwGetWindowUserPointer(window));
+}
+
+void Viewer::wake(GLFWwindow* window) {
+    if (Viewer* viewer = from(window)) viewer->active_frames_ = kFramesAfterInput;
+}
+
+Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
+    glfw_ = std::make_unique<GlfwLibrary>();
+    window_.reset(create_window(options_, this));
+    glfwMakeContextCurrent(window_.get());
+    if (gladLoadGL(glfwGetProcAddress) == 0)
+        throw Error("cannot load the OpenGL 3.3 core functions");
+    glfwSwapInterval(options_.frames > 0 ? 0 : 1);
+
+    // HiDPI: fonts and line widths follow the monitor's content scale; input stays in window
+    // coordinates and the GL viewport in framebuffer pixels.
+    float scale_x = 1.0f, scale_y = 1.0f;
+    glfwGetWindowContentScale(window_.get(), &scale_x, &scale_y);
+    int window_w = 0, window_h = 0, fb_w = 0, fb_h = 0;
+    glfwGetWindowSize(window_.get(), &window_w, &window_h);
+    glfwGetFramebufferSize(window_.get(), &fb_w, &fb_h);
+    // Where the framebuffer is already larger than the window (macOS), ImGui scales itself.
+    float fb_ratio = window_w > 0 ? float(fb_w) / float(window_w) : 1.0f;
+    ui_scale_ = std::max(1.0f, scale_x / std::max(fb_ratio, 1.0f));
+    imgui_ = std::make_unique<ImGuiLayer>(window_.get(), ui_scale_);
+
+    renderer_ = std::make_unique<MeshRenderer>();
+    view_.camera.set_viewport(float(window_w), float(window_h));
+    set_document(make_default_model(), "default model", "");
+    if (!options_.mesh_path.empty()) load(options_.mesh_path);
+    // The overlay starts on where the edges can still be told apart; W toggles it.
+    view_.style.wireframe = document_.mesh.n_faces() <= kWireframeMaxFacesAtStart;
+    open_dialog_.path = options_.mesh_path;
+}
+
+Viewer::~Viewer() = default;
+
+// ---- documents and commands -----------------------------------------------------------------
+
+void Viewer::set_document(HalfedgeMesh mesh, std::string name, std::string path) {
+    document_.mesh = std::move(mesh);
+    document_.name = std::move(name);
+    document_.path = std::move(path);
+    renderer_->upload(document_.mesh);
+    fit_view();
+    glfwSetWindowTitle(window_.get(), (document_.name + " - " + kTitle).c_str());
+}
+
+void Viewer::load(const std::string& path) {
+    try {
+        LoadedMesh loaded = read_mesh(path);
+        std::string name = std::filesystem::path(path).filename().string();
+        notice_ = Notice{Notice::Level::Info, "Loaded " + name, loaded.report.lines(), false};
+        set_document(std::move(loaded.mesh), std::move(name), path);
+    } catch (const std::exception& e) {
+        // IoError (and anything else the reader throws) leaves the current document as is.
+        std::fprintf(stderr, "trilab: %s\n", e.what());
+        notice_ = Notice{Notice::Level::Error, e.what(), {}, true};
+    }
+}
+
+void Viewer::fit_view() {
+    const HalfedgeMesh& mesh = document_.mesh;
+    BoundingBox box = bounding_box(mesh);
+    if (box.empty) {
+        view_.camera.fit_sphere(glm::vec3(0.0f), 1.0f);
+        return;
+    }
+    // The smallest sphere around the box centre that holds every vertex: tighter than the
+    // box's own bounding sphere, so round models fill the view.
+    Point center = box.center();
+    double radius2 = 0.0;
+    for (Vertex v : mesh.vertices())
+        radius2 = std::max(radius2, (mesh.position(v) - center).squaredNorm());
+    view_.camera.fit_sphere(to_glm(center), float(std::sqrt(radius2)));
+}
+
+void Viewer::execute(const Command& command) {
+    if (auto* load_file = std::get_if<LoadFile>(&command)) {
+        load(load_file->path);
+    } else if (std::holds_alternative<FitView>(command)) {
+        fit_view();
+    } else if (std::holds_alternative<Quit>(command)) {
+        quit_ = true;
+    }
+}
+
+// ---- one frame ------------------------------------------------------------------------------
+
+void Viewer::handle_input() {
+    const ImGuiIO& io = ImGui::GetIO();
+    Camera& camera = view_.camera;
+    camera.set_viewport(io.DisplaySize.x, io.DisplaySize.y);
+
+    if (!io.WantCaptureMouse && ImGui::IsMousePosValid()) {
+        const glm::vec2 pos(io.MousePos.x, io.MousePos.y);
+        const glm::vec2 delta(io.MouseDelta.x, io.MouseDelta.y);
+        const bool moved = delta.x != 0.0f || delta.y != 0.0f;
+        if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) {
+            commands_.push_back(FitView{});
+        } else if (moved && ImGui::IsMouseDown(ImGuiMouseButton_Left) && !io.KeyShift) {
+            camera.rotate(pos - delta, pos);
+        } else if (moved && (ImGui::IsMouseDown(ImGuiMouseButton_Middle) ||
+                             (ImGui::IsMouseDown(ImGuiMouseButton_Left) && io.KeyShift))) {
+            camera.pan(delta);
+        }
+        if (io.MouseWheel != 0.0f) camera.zoom(io.MouseWheel);
+    }
+
+    std::vector<KeyPress> presses;
+    presses.swap(key_presses_);
+    if (io.WantCaptureKeyboard) return;  // typing into a text field, or a popup is open
+    RenderStyle& style = view_.style;
+    for (const KeyPress& press : presses) {
+        if (press.mods == GLFW_MOD_CONTROL) {
+            if (press.key == GLFW_KEY_O) open_dialog_.open_requested = true;
+            if (press.key == GLFW_KEY_Q) commands_.push_back(Quit{});
+        } else if (press.mods == 0) {
+            switch (press.key) {
+                case GLFW_KEY_HOME:
+                    commands_.push_back(FitView{});
+                    break;
+                case GLFW_KEY_W:
+                    style.wireframe = !style.wireframe;
+                    break;
+                case GLFW_KEY_B:
+                    style.back_face_color = !style.back_face_color;
+                    break;
+                case GLFW_KEY_F:
+                    style.shading =
+                        style.shading == Shading::Flat ? Shading::Smooth : Shading::Flat;
+                    break;
+                case GLFW_KEY_F1:
+                    help_.open = !help_.open;
+                    break;
+                default:
+                    break;
+            }
+        }
+    }
+}
+
+void Viewer::draw_ui() {
+    menu_bar(view_.style, open_dialog_, help_, commands_);
+    StatusInfo status;
+    status.n_vertices = document_.mesh.n_vertices();
+    status.n_faces = document_.mesh.n_faces();
+    status.file_name = document_.name;
+    status.frame_ms = frame_ms();
+    status_bar(status, notice_);
+    help_window(help_);
+    open_dialog(open_dialog_, commands_);
+    error_popup(notice_);
+}
+
+void Viewer::render_scene() {
+    int fb_w = 0, fb_h = 0;
+    glfwGetFramebufferSize(window_.get(), &fb_w, &fb_h);
+    glViewport(0, 0, fb_w, fb_h);
+    glClearColor(0.17f, 0.18f, 0.21f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    if (fb_w <= 0 || fb_h <= 0) return;  // minimized
+
+    RenderStyle style = view_.style;
+    style.wire_width *= ui_scale_;
+    renderer_->draw(view_.camera.view(), view_.camera.projection(), style);
+}
+
+std::string Viewer::write_screenshot(const std::string& path) const {
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(window_.get(), &w, &h);
+    if (w <= 0 || h <= 0) return "the window has no pixels";
+    std::vector<unsigned char> pixels(std::size_t(w) * std::size_t(h) * 3);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RGB, GL_UNSIGNED_BYTE, pixels.data());
+    stbi_flip_vertically_on_write(1);  // GL rows go bottom-up
+    if (!stbi_write_png(path.c_str(), w, h, 3, pixels.data(), w * 3))
+        return "cannot write the screenshot '" + path + "'";
+    return "";
+}
+
+double Viewer::frame_ms() const {
+    std::size_t n = std::min(n_frame_times_, frame_times_ms_.size());
+    if (n == 0) return 0.0;
+    auto sorted = frame_times_ms_;
+    std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.begin() + n);
+    return sorted[n / 2];
+}
+
+int Viewer::run() {
+    int frame = 0;
+    active_frames_ = kFramesAfterInput;
+    while (!glfwWindowShouldClose(window_.get()) && !quit_) {
+        // Idle viewers sleep; a timeout keeps the text cursor blinking in the open dialog.
+        if (options_.frames > 0 || active_frames_ > 0) {
+            glfwPollEvents();
+        } else {
+            glfwWaitEventsTimeout(ImGui::GetIO().WantTextInput ? 0.5 : 10.0);
+            if (active_frames_ == 0 && !ImGui::GetIO().WantTextInput) continue;
+        }
+        if (active_frames_ > 0) --active_frames_;
+
+        const double start = glfwGetTime();
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        handle_input();
+        draw_ui();
+        ImGui::Render();
+
+        for (const Command& command : commands_) execute(command);
+        // Commands and popups change the UI over the next frames: keep drawing.
+        if (!commands_.empty() || notice_.popup_pending || open_dialog_.open_requested)
+            active_frames_ = kFramesAfterInput;
+        commands_.clear();
+
+        render_scene();
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+
+        ++frame;
+        const bool last = options_.frames > 0 && frame >= options_.frames;
+        if (last && !options_.screenshot.empty()) {
+            std::string error = write_screenshot(options_.screenshot);
+            if (!error.empty()) {
+                std::fprintf(stderr, "trilab: %s\n", error.c_str());
+                return 1;
+            }
+        }
+        glfwSwapBuffers(window_.get());
+        frame_times_ms_[n_frame_times_++ % frame_times_ms_.size()] =
+            1000.0 * (glfwGetTime() - start);
+        if (last) break;
+    }
+    return 0;
+}
+
+}  // namespace trilab::viewer

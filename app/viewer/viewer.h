@@ -1,0 +1,111 @@
+#pragma once
+// Viewer: the trilab window. Owns the GLFW window and GL context, the ImGui layer, the
+// document (the mesh being shown), the view (camera and render style) and the panel state,
+// and runs the frame loop. Panels edit their own state and queue commands; the viewer
+// executes the commands, so loading, fitting and quitting happen in one place.
+#include <array>
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/viewer/panels.h"
+#include "core/halfedge_mesh.h"
+#include "render/camera.h"
+#include "render/mesh_renderer.h"
+
+struct GLFWwindow;
+
+namespace trilab::viewer {
+
+/// Command-line options (see kUsage in main.cpp).
+struct ViewerOptions {
+    std::string mesh_path;   ///< empty: the built-in default model
+    int frames = 0;          ///< > 0: render that many frames, then return 0
+    std::string screenshot;  ///< non-empty: write the last frame (before the swap) as PNG
+    int width = 1280;        ///< window size in screen coordinates
+    int height = 800;
+};
+
+/// The mesh being shown and where it came from.
+struct Document {
+    HalfedgeMesh mesh;
+    std::string name;  ///< file name, or "default model"
+    std::string path;  ///< file path; empty for the default model
+};
+
+/// How the document is looked at.
+struct ViewState {
+    Camera camera;
+    RenderStyle style;
+};
+
+class Viewer {
+public:
+    /// Opens the window, creates the GL context and ImGui, uploads the default model and,
+    /// when options.mesh_path is set, loads that file (a load error becomes a notice, not an
+    /// exception). Throws trilab::Error when no window or GL 3.3 core context can be had or
+    /// the shaders fail.
+    explicit Viewer(ViewerOptions options);
+    ~Viewer();
+    Viewer(const Viewer&) = delete;
+    Viewer& operator=(const Viewer&) = delete;
+
+    /// Runs until the window closes, Quit, or options.frames frames. Returns the exit status:
+    /// 0, or 1 when the screenshot cannot be written.
+    int run();
+
+private:
+    struct GlfwLibrary;
+    struct WindowDeleter {
+        void operator()(GLFWwindow* window) const;
+    };
+    struct ImGuiLayer;
+
+    /// A key press as GLFW reported it. Shortcuts are read from these rather than from
+    /// ImGui's key state, which (before ImGui 1.87) misses a press and release that fall
+    /// into the same frame.
+    struct KeyPress {
+        int key;
+        int mods;
+    };
+
+    static GLFWwindow* create_window(const ViewerOptions& options, Viewer* viewer);
+    static Viewer* from(GLFWwindow* window);
+    static void wake(GLFWwindow* window);
+
+    void handle_input();
+    void draw_ui();
+    void execute(const Command& command);
+    void load(const std::string& path);
+    void set_document(HalfedgeMesh mesh, std::string name, std::string path);
+    void fit_view();
+    void render_scene();
+    /// Reads the back buffer and writes it as PNG; returns an error message or "".
+    std::string write_screenshot(const std::string& path) const;
+
+    ViewerOptions options_;
+    std::unique_ptr<GlfwLibrary> glfw_;
+    std::unique_ptr<GLFWwindow, WindowDeleter> window_;
+    std::unique_ptr<ImGuiLayer> imgui_;
+    std::unique_ptr<MeshRenderer> renderer_;
+
+    Document document_;
+    ViewState view_;
+    OpenDialogState open_dialog_;
+    HelpState help_;
+    Notice notice_;
+    CommandQueue commands_;
+    std::vector<KeyPress> key_presses_;  ///< since the last frame
+
+    float ui_scale_ = 1.0f;  ///< content scale of the monitor (HiDPI)
+    int active_frames_ = 0;  ///< frames still to draw after the last event or command
+    bool quit_ = false;
+    /// Wall time of the most recent frames (events excluded), for a median that ignores the
+    /// slow first frame (shader compilation, font upload).
+    std::array<double, 15> frame_times_ms_{};
+    std::size_t n_frame_times_ = 0;
+    double frame_ms() const;
+};
+
+}  // namespace trilab::viewer

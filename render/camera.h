@@ -1,0 +1,61 @@
+#pragma once
+// Camera: an orbiting perspective camera for inspecting one object.
+//
+// The camera looks at `target` from `distance` along the view direction given by a unit
+// quaternion (world -> camera rotation). Input is in window coordinates (pixels, origin at
+// the top left, y down) over a viewport set with set_viewport(); on HiDPI screens pass the
+// window size, not the framebuffer size. Pure math: no GL, usable in tests.
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+namespace trilab {
+
+class Camera {
+public:
+    /// The window size in pixels that mouse input and the aspect ratio refer to.
+    void set_viewport(float width, float height);
+    glm::vec2 viewport() const { return viewport_; }
+
+    /// Centres the sphere (center, radius) and moves the camera so that it fills the view
+    /// with a small margin. Keeps the rotation. A radius <= 0 counts as 1.
+    void fit_sphere(const glm::vec3& center, float radius);
+    /// fit_sphere() for the bounding sphere of the box [lo, hi].
+    void fit_box(const glm::vec3& lo, const glm::vec3& hi);
+    /// Looks along -z with +y up (the initial orientation).
+    void reset_rotation() { rotation_ = glm::quat(1, 0, 0, 0); }
+
+    /// Virtual trackball (Shoemake's arcball with Bell's hyperbolic sheet outside the ball):
+    /// rotates about the target as if the ball under the cursor were dragged from `from` to
+    /// `to` (window pixels).
+    void rotate(const glm::vec2& from, const glm::vec2& to);
+    /// Moves the target in the view plane so the surface at the target's depth follows a
+    /// cursor movement of `delta` window pixels.
+    void pan(const glm::vec2& delta);
+    /// Moves towards the target by `steps` wheel notches (negative: away), 10 % per notch,
+    /// clamped to [radius / 1000, radius * 1000] of the fitted sphere.
+    void zoom(float steps);
+
+    glm::mat4 view() const;
+    /// Perspective projection for the viewport's aspect ratio; near and far planes enclose
+    /// the fitted sphere.
+    glm::mat4 projection() const;
+
+    const glm::quat& rotation() const { return rotation_; }
+    const glm::vec3& target() const { return target_; }
+    float distance() const { return distance_; }
+    float fov_y() const { return fov_y_; }
+    /// The camera position in world coordinates.
+    glm::vec3 eye() const;
+
+private:
+    glm::vec3 ball_point(const glm::vec2& window) const;
+
+    glm::quat rotation_{1, 0, 0, 0};  ///< world -> camera
+    glm::vec3 target_{0.0f};
+    float distance_ = 3.0f;
+    float radius_ = 1.0f;                ///< of the fitted sphere
+    float fov_y_ = glm::radians(40.0f);  ///< vertical field of view
+    glm::vec2 viewport_{1.0f, 1.0f};
+};
+
+}  // namespace trilab
