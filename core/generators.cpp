@@ -28,9 +28,9 @@ PolygonSoup soup_of(std::vector<Point> positions, const std::vector<std::vector<
 const std::vector<Point>& icosahedron_points() {
     static const std::vector<Point> pts = [] {
         const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-        std::vector<Point> p = {{-1, t, 0}, {1, t, 0},  {-1, -t, 0}, {1, -t, 0},
-                                {0, -1, t}, {0, 1, t},  {0, -1, -t}, {0, 1, -t},
-                                {t, 0, -1}, {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+        std::vector<Point> p = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
+                                {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
+                                {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
         for (Point& x : p) x.normalize();
         return p;
     }();
@@ -38,9 +38,9 @@ const std::vector<Point>& icosahedron_points() {
 }
 const std::vector<std::vector<Index>>& icosahedron_faces() {
     static const std::vector<std::vector<Index>> f = {
-        {0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+        {0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
         {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-        {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+        {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
     return f;
 }
 }  // namespace
@@ -51,18 +51,19 @@ HalfedgeMesh make_tetrahedron() {
 }
 
 HalfedgeMesh make_octahedron() {
-    return from_soup(soup_of({{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}},
-                             {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
-                              {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}}));
+    return from_soup(soup_of(
+        {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}},
+        {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}}));
 }
 
-HalfedgeMesh make_icosahedron() { return from_soup(soup_of(icosahedron_points(), icosahedron_faces())); }
+HalfedgeMesh make_icosahedron() {
+    return from_soup(soup_of(icosahedron_points(), icosahedron_faces()));
+}
 
 HalfedgeMesh make_cube() {
-    return from_soup(soup_of({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
-                              {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}},
-                             {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
-                              {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}));
+    return from_soup(soup_of(
+        {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}},
+        {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}));
 }
 
 HalfedgeMesh make_icosphere(unsigned frequency) {
@@ -85,8 +86,9 @@ HalfedgeMesh make_icosphere(unsigned frequency) {
         }
         auto [it, inserted] = ids.emplace(key, Index(soup.positions.size()));
         if (inserted) {
-            const Point p = (double(a) * ico[v[0]] + double(b) * ico[v[1]] + double(c) * ico[v[2]]) /
-                            double(frequency);
+            const Point p =
+                (double(a) * ico[v[0]] + double(b) * ico[v[1]] + double(c) * ico[v[2]]) /
+                double(frequency);
             soup.positions.push_back(p.normalized());
         }
         return it->second;
@@ -147,7 +149,8 @@ HalfedgeMesh make_grid(unsigned n) {
     if (n < 1) throw InvalidArgument("make_grid: n must be at least 1");
     PolygonSoup soup;
     for (unsigned j = 0; j <= n; ++j)
-        for (unsigned i = 0; i <= n; ++i) soup.positions.emplace_back(double(i) / n, double(j) / n, 0);
+        for (unsigned i = 0; i <= n; ++i)
+            soup.positions.emplace_back(double(i) / n, double(j) / n, 0);
     auto id = [&](unsigned i, unsigned j) { return Index(j * (n + 1) + i); };
     for (unsigned j = 0; j < n; ++j) {
         for (unsigned i = 0; i < n; ++i) {
@@ -176,11 +179,13 @@ HalfedgeMesh make_cylinder(unsigned segments, unsigned rings) {
     return from_soup(soup);
 }
 
-HalfedgeMesh make_default_model() { return make_noisy_sphere(10, 0.03, 1); }
+HalfedgeMesh make_default_model() {
+    return make_noisy_sphere(10, 0.03, 1);
+}
 
 std::vector<std::string> generator_names() {
-    return {"default", "sphere", "noisy-sphere", "tetrahedron", "octahedron",
-            "icosahedron", "cube", "torus", "grid", "cylinder"};
+    return {"default",     "sphere", "noisy-sphere", "tetrahedron", "octahedron",
+            "icosahedron", "cube",   "torus",        "grid",        "cylinder"};
 }
 
 HalfedgeMesh generate(const std::string& name) {

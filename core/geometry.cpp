@@ -26,7 +26,9 @@ Vector3 face_normal(const HalfedgeMesh& mesh, Face f) {
     return len > 0 && std::isfinite(len) ? Vector3(n / len) : Vector3::Zero();
 }
 
-double face_area(const HalfedgeMesh& mesh, Face f) { return 0.5 * face_area_vector(mesh, f).norm(); }
+double face_area(const HalfedgeMesh& mesh, Face f) {
+    return 0.5 * face_area_vector(mesh, f).norm();
+}
 
 Point face_centroid(const HalfedgeMesh& mesh, Face f) {
     const auto c = mesh.face_vertices(f);

@@ -261,9 +261,7 @@ IndexRemap HalfedgeMesh::garbage_collection() {
     fprops_.gather(f_keep);
     bind_builtins();
 
-    auto map_h = [&](Halfedge h) {
-        return h.is_valid() ? Halfedge(remap.halfedges[h.idx()]) : h;
-    };
+    auto map_h = [&](Halfedge h) { return h.is_valid() ? Halfedge(remap.halfedges[h.idx()]) : h; };
     for (Halfedge& h : vhalfedge_.vector()) h = map_h(h);
     for (Halfedge& h : fhalfedge_.vector()) h = map_h(h);
     for (Halfedge& h : hnext_.vector()) h = map_h(h);

@@ -403,8 +403,7 @@ struct HalfedgeMesh::FaceVertexPolicy : FaceHalfedgePolicy {
     static Vertex deref(const HalfedgeMesh& m, Halfedge h) { return m.to_vertex(h); }
 };
 
-inline Circulator<HalfedgeMesh::VertexVertexPolicy> HalfedgeMesh::vertices_around(
-    Vertex v) const {
+inline Circulator<HalfedgeMesh::VertexVertexPolicy> HalfedgeMesh::vertices_around(Vertex v) const {
     return {this, halfedge(v)};
 }
 inline Circulator<HalfedgeMesh::VertexHalfedgePolicy> HalfedgeMesh::halfedges_around(

@@ -143,13 +143,12 @@ void check_soup(const PolygonSoup& soup) {
         throw InvalidArgument("build_mesh: face_offsets do not match the corner list");
     for (std::size_t f = 0; f + 1 < soup.face_offsets.size(); ++f) {
         if (soup.face_offsets[f + 1] < soup.face_offsets[f])
-            throw InvalidArgument("build_mesh: face_offsets decrease at face " +
-                                  std::to_string(f));
+            throw InvalidArgument("build_mesh: face_offsets decrease at face " + std::to_string(f));
         for (std::size_t c = soup.face_offsets[f]; c < soup.face_offsets[f + 1]; ++c)
             if (soup.corners[c] >= nv)
-                throw InvalidArgument("build_mesh: face " + std::to_string(f) +
-                                      " uses vertex " + std::to_string(soup.corners[c]) +
-                                      " but there are only " + std::to_string(nv) + " vertices");
+                throw InvalidArgument("build_mesh: face " + std::to_string(f) + " uses vertex " +
+                                      std::to_string(soup.corners[c]) + " but there are only " +
+                                      std::to_string(nv) + " vertices");
     }
     for (std::size_t v = 0; v < nv; ++v)
         if (!soup.positions[v].allFinite())
@@ -157,9 +156,8 @@ void check_soup(const PolygonSoup& soup) {
                                   " has a non-finite coordinate");
     auto check_size = [&](std::size_t n, std::size_t want, const char* what) {
         if (n != 0 && n != want)
-            throw InvalidArgument(std::string("build_mesh: ") + what + " has " +
-                                  std::to_string(n) + " entries, expected " +
-                                  std::to_string(want));
+            throw InvalidArgument(std::string("build_mesh: ") + what + " has " + std::to_string(n) +
+                                  " entries, expected " + std::to_string(want));
     };
     check_size(soup.normals.size(), nv, "normals");
     check_size(soup.colors.size(), nv, "colors");
@@ -245,7 +243,8 @@ HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
                 }
             } else {  // a high-valence vertex: sort its bucket instead of a quadratic scan
                 sorted.clear();
-                for (Index i = begin; i < end; ++i) sorted.emplace_back(corner_hi(order[i]), order[i]);
+                for (Index i = begin; i < end; ++i)
+                    sorted.emplace_back(corner_hi(order[i]), order[i]);
                 std::sort(sorted.begin(), sorted.end());
                 for (std::size_t i = 0; i < sorted.size(); ++i) {
                     if (i == 0 || sorted[i].first != sorted[i - 1].first) ++n_groups;
@@ -416,8 +415,10 @@ HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
     std::vector<Point>& positions = mesh.positions();
     for (Index v = 0; v < n_v; ++v) {
         positions[v] = soup.positions[source_vertex[v]];
-        if (vhalfedge[v] != kInvalidIndex) mesh.set_halfedge(Vertex(v), Halfedge(vhalfedge[v]));
-        else ++report.isolated_vertices;
+        if (vhalfedge[v] != kInvalidIndex)
+            mesh.set_halfedge(Vertex(v), Halfedge(vhalfedge[v]));
+        else
+            ++report.isolated_vertices;
     }
     for (Index h = 0; h < hto.size(); ++h) {
         mesh.set_to_vertex(Halfedge(h), Vertex(hto[h]));

@@ -43,17 +43,17 @@ struct PolygonSoup {
 struct LoadReport {
     std::string file;
     std::string format;
-    std::size_t file_vertices = 0;           ///< vertices declared / read from the file
-    std::size_t file_faces = 0;              ///< faces read from the file
-    std::size_t polygons_triangulated = 0;   ///< faces with more than three corners
-    std::size_t triangles_from_polygons = 0; ///< triangles those polygons became
-    std::size_t degenerate_faces_dropped = 0;///< faces with a repeated vertex or < 3 corners
-    std::size_t detached_faces = 0;          ///< added with their own vertex copies
+    std::size_t file_vertices = 0;               ///< vertices declared / read from the file
+    std::size_t file_faces = 0;                  ///< faces read from the file
+    std::size_t polygons_triangulated = 0;       ///< faces with more than three corners
+    std::size_t triangles_from_polygons = 0;     ///< triangles those polygons became
+    std::size_t degenerate_faces_dropped = 0;    ///< faces with a repeated vertex or < 3 corners
+    std::size_t detached_faces = 0;              ///< added with their own vertex copies
     std::size_t nonmanifold_vertices_split = 0;  ///< vertices with several fans
-    std::size_t vertex_copies_added = 0;     ///< copies made for detached faces and fans
-    std::size_t isolated_vertices = 0;       ///< vertices used by no face (kept)
-    std::size_t merged_vertices = 0;         ///< duplicate corners merged (STL)
-    std::vector<std::string> notes;          ///< anything else worth telling the user
+    std::size_t vertex_copies_added = 0;         ///< copies made for detached faces and fans
+    std::size_t isolated_vertices = 0;           ///< vertices used by no face (kept)
+    std::size_t merged_vertices = 0;             ///< duplicate corners merged (STL)
+    std::vector<std::string> notes;              ///< anything else worth telling the user
 
     /// One line per non-zero count, for logs.
     std::vector<std::string> lines() const;

@@ -8,9 +8,15 @@
 namespace trilab {
 
 namespace {
-std::string hs(Halfedge h) { return "halfedge " + std::to_string(h.idx()); }
-std::string vs(Vertex v) { return "vertex " + std::to_string(v.idx()); }
-std::string fs(Face f) { return "face " + std::to_string(f.idx()); }
+std::string hs(Halfedge h) {
+    return "halfedge " + std::to_string(h.idx());
+}
+std::string vs(Vertex v) {
+    return "vertex " + std::to_string(v.idx());
+}
+std::string fs(Face f) {
+    return "face " + std::to_string(f.idx());
+}
 }  // namespace
 
 ValidationResult validate(const HalfedgeMesh& m) {

@@ -13,8 +13,12 @@ public:
     JsonObject& add(const std::string& key, const std::string& value) {
         return raw(key, quote(value));
     }
-    JsonObject& add(const std::string& key, const char* value) { return add(key, std::string(value)); }
-    JsonObject& add(const std::string& key, bool value) { return raw(key, value ? "true" : "false"); }
+    JsonObject& add(const std::string& key, const char* value) {
+        return add(key, std::string(value));
+    }
+    JsonObject& add(const std::string& key, bool value) {
+        return raw(key, value ? "true" : "false");
+    }
     JsonObject& add(const std::string& key, double value) { return raw(key, number(value)); }
     JsonObject& add(const std::string& key, long long value) {
         return raw(key, std::to_string(value));
@@ -47,11 +51,21 @@ public:
         std::string out = "\"";
         for (unsigned char c : s) {
             switch (c) {
-                case '"': out += "\\\""; break;
-                case '\\': out += "\\\\"; break;
-                case '\n': out += "\\n"; break;
-                case '\t': out += "\\t"; break;
-                case '\r': out += "\\r"; break;
+                case '"':
+                    out += "\\\"";
+                    break;
+                case '\\':
+                    out += "\\\\";
+                    break;
+                case '\n':
+                    out += "\\n";
+                    break;
+                case '\t':
+                    out += "\\t";
+                    break;
+                case '\r':
+                    out += "\\r";
+                    break;
                 default:
                     if (c < 0x20) {
                         char buf[8];

@@ -74,7 +74,9 @@ JsonObject report_json(const LoadReport& r) {
     return j;
 }
 
-std::vector<double> vec(const Point& p) { return {p.x(), p.y(), p.z()}; }
+std::vector<double> vec(const Point& p) {
+    return {p.x(), p.y(), p.z()};
+}
 
 int cmd_info(const Args& a) {
     if (a.positional.size() != 1) throw InvalidArgument("info: expected one MESH file");
@@ -100,8 +102,10 @@ int cmd_info(const Args& a) {
             .add("bbox_min", vec(s.bbox.min))
             .add("bbox_max", vec(s.bbox.max))
             .add("area", s.area);
-        if (s.volume) j.add("volume", *s.volume);
-        else j.add_null("volume");
+        if (s.volume)
+            j.add("volume", *s.volume);
+        else
+            j.add_null("volume");
         j.add("valid", valid.ok).add("load_report", report_json(r)).add("ms", ms);
         std::cout << j.str() << "\n";
     } else {
@@ -117,8 +121,10 @@ int cmd_info(const Args& a) {
         std::printf("bbox:            [%g %g %g] - [%g %g %g]\n", s.bbox.min.x(), s.bbox.min.y(),
                     s.bbox.min.z(), s.bbox.max.x(), s.bbox.max.y(), s.bbox.max.z());
         std::printf("area:            %.9g\n", s.area);
-        if (s.volume) std::printf("volume:          %.9g\n", *s.volume);
-        else std::printf("volume:          (open mesh: not defined)\n");
+        if (s.volume)
+            std::printf("volume:          %.9g\n", *s.volume);
+        else
+            std::printf("volume:          (open mesh: not defined)\n");
         std::printf("valid:           %s\n", valid.ok ? "yes" : valid.message.c_str());
         std::printf("load report:\n");
         const auto lines = r.lines();
@@ -141,8 +147,10 @@ int cmd_convert(const Args& a) {
     write_mesh(loaded.mesh, a.positional[1], write_options(a));
     if (a.has("--json")) {
         JsonObject j;
-        j.add("input", a.positional[0]).add("output", a.positional[1])
-            .add("vertices", loaded.mesh.n_vertices()).add("faces", loaded.mesh.n_faces())
+        j.add("input", a.positional[0])
+            .add("output", a.positional[1])
+            .add("vertices", loaded.mesh.n_vertices())
+            .add("faces", loaded.mesh.n_faces())
             .add("ms", 0.0);
         std::cout << j.str() << "\n";
     }
@@ -161,8 +169,11 @@ int cmd_generate(const Args& a) {
     write_mesh(mesh, a.positional[1], write_options(a));
     if (a.has("--json")) {
         JsonObject j;
-        j.add("model", a.positional[0]).add("output", a.positional[1])
-            .add("vertices", mesh.n_vertices()).add("faces", mesh.n_faces()).add("ms", ms);
+        j.add("model", a.positional[0])
+            .add("output", a.positional[1])
+            .add("vertices", mesh.n_vertices())
+            .add("faces", mesh.n_faces())
+            .add("ms", ms);
         std::cout << j.str() << "\n";
     }
     return 0;

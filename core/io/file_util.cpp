@@ -45,8 +45,7 @@ void write_file_atomically(const std::string& path,
             if (!out) throw IoError(path, 0, "write error (disk full?)");
         }
         if (std::rename(tmp.c_str(), path.c_str()) != 0)
-            throw IoError(path, 0, std::string("cannot replace the file: ") +
-                                       std::strerror(errno));
+            throw IoError(path, 0, std::string("cannot replace the file: ") + std::strerror(errno));
     } catch (...) {
         std::remove(tmp.c_str());
         throw;
@@ -66,8 +65,8 @@ HalfedgeMesh build_mesh_for_file(const PolygonSoup& soup, LoadReport& report,
 }
 
 void check_declared_count(std::size_t count, std::size_t min_bytes_each,
-                          std::size_t available_bytes, const char* what,
-                          const std::string& path, std::size_t line) {
+                          std::size_t available_bytes, const char* what, const std::string& path,
+                          std::size_t line) {
     if (min_bytes_each == 0) min_bytes_each = 1;
     if (count > available_bytes / min_bytes_each)
         throw IoError(path, line,

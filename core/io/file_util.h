@@ -15,7 +15,8 @@ std::string read_file_bytes(const std::string& path);
 /// Calls `write` on a stream to a temporary file beside `path`, then renames it over
 /// `path`. If writing fails (exception or stream error) the temporary file is removed, the
 /// target is left untouched, and IoError is thrown.
-void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+void write_file_atomically(const std::string& path,
+                           const std::function<void(std::ostream&)>& write);
 
 /// Runs build_mesh and turns its InvalidArgument into an IoError naming `path`. A soup
 /// without vertices is refused ("the file holds no vertices").
@@ -26,8 +27,8 @@ HalfedgeMesh build_mesh_for_file(const PolygonSoup& soup, LoadReport& report,
 /// at least `min_bytes_each` bytes must fit in `available_bytes`. Prevents huge allocations
 /// from a lying header. Throws IoError naming `what`.
 void check_declared_count(std::size_t count, std::size_t min_bytes_each,
-                          std::size_t available_bytes, const char* what,
-                          const std::string& path, std::size_t line);
+                          std::size_t available_bytes, const char* what, const std::string& path,
+                          std::size_t line);
 
 }  // namespace trilab
 

@@ -7,7 +7,9 @@
 
 namespace trilab {
 
-std::vector<std::string> supported_mesh_extensions() { return {"obj", "off", "ply", "stl", "om"}; }
+std::vector<std::string> supported_mesh_extensions() {
+    return {"obj", "off", "ply", "stl", "om"};
+}
 
 std::string file_extension(const std::string& path) {
     const std::size_t slash = path.find_last_of("/\\");

@@ -24,11 +24,11 @@ struct LoadedMesh {
 };
 
 struct WriteOptions {
-    bool ascii = false;          ///< PLY and STL: write text instead of binary
-    bool big_endian = false;     ///< binary PLY: big-endian instead of little-endian
-    bool write_normals = true;   ///< write "v:normal" where the format can carry it
-    bool write_colors = true;    ///< write "v:color" where the format can carry it
-    bool write_texcoords = true; ///< write "v:texcoord" / "h:texcoord" where possible
+    bool ascii = false;           ///< PLY and STL: write text instead of binary
+    bool big_endian = false;      ///< binary PLY: big-endian instead of little-endian
+    bool write_normals = true;    ///< write "v:normal" where the format can carry it
+    bool write_colors = true;     ///< write "v:color" where the format can carry it
+    bool write_texcoords = true;  ///< write "v:texcoord" / "h:texcoord" where possible
 };
 
 /// Formats by lower-case extension without the dot: "obj", "off", "ply", "stl", "om".
@@ -39,7 +39,8 @@ std::string file_extension(const std::string& path);
 /// Reads any supported format (chosen by extension).
 LoadedMesh read_mesh(const std::string& path);
 /// Writes any supported format (chosen by extension).
-void write_mesh(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options = {});
+void write_mesh(const HalfedgeMesh& mesh, const std::string& path,
+                const WriteOptions& options = {});
 
 // Per-format entry points (same contracts as above).
 LoadedMesh read_obj(const std::string& path);

@@ -34,12 +34,14 @@ namespace trilab {
 
 namespace {
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+bool is_space(char c) {
+    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
 
 /// Everything the geometry statements of an OBJ file hold.
 struct ObjContents {
-    std::vector<double> v, vt, vn;  // 3, 2 and 3 numbers per statement
-    std::vector<Index> corners;     // vertex index per face corner
+    std::vector<double> v, vt, vn;          // 3, 2 and 3 numbers per statement
+    std::vector<Index> corners;             // vertex index per face corner
     std::vector<int> corner_vt, corner_vn;  // -1 where absent
     std::vector<std::size_t> face_offsets{0};
     std::vector<std::string> mtllibs;
@@ -80,10 +82,14 @@ private:
     void statement(std::size_t i, std::size_t end) {
         const std::string_view key = token(i, end);
         if (key.empty()) return;
-        if (key == "v") numbers(i, end, out_.v, 3, 3, "v");
-        else if (key == "vt") numbers(i, end, out_.vt, 1, 2, "vt");
-        else if (key == "vn") numbers(i, end, out_.vn, 3, 3, "vn");
-        else if (key == "f") face(i, end);
+        if (key == "v")
+            numbers(i, end, out_.v, 3, 3, "v");
+        else if (key == "vt")
+            numbers(i, end, out_.vt, 1, 2, "vt");
+        else if (key == "vn")
+            numbers(i, end, out_.vn, 3, 3, "vn");
+        else if (key == "f")
+            face(i, end);
         else if (key == "mtllib") {
             for (std::string_view t = token(i, end); !t.empty(); t = token(i, end))
                 out_.mtllibs.emplace_back(t);
@@ -121,7 +127,8 @@ private:
         const auto res = std::from_chars(t.data(), t.data() + t.size(), value);
         if (res.ec != std::errc() || res.ptr != t.data() + t.size())
             fail("'" + printable(t) + "' is not a " + what + " index");
-        if (value == 0) fail(std::string("index 0 is invalid (OBJ ") + what + " indices start at 1)");
+        if (value == 0)
+            fail(std::string("index 0 is invalid (OBJ ") + what + " indices start at 1)");
         const long long resolved = value > 0 ? value - 1 : (long long)count + value;
         if (resolved < 0 || resolved >= (long long)count)
             fail("face refers to " + std::string(what) + " " + std::to_string(value) +
@@ -130,16 +137,15 @@ private:
     }
 
     void face(std::size_t i, std::size_t end) {
-        const std::size_t nv = out_.v.size() / 3, nt = out_.vt.size() / 2,
-                          nn = out_.vn.size() / 3;
+        const std::size_t nv = out_.v.size() / 3, nt = out_.vt.size() / 2, nn = out_.vn.size() / 3;
         for (std::string_view t = token(i, end); !t.empty(); t = token(i, end)) {
             const std::size_t s1 = t.find('/');
             const std::string_view a = t.substr(0, s1);
             std::string_view b, c;
             if (s1 != std::string_view::npos) {
                 const std::size_t s2 = t.find('/', s1 + 1);
-                b = t.substr(s1 + 1, s2 == std::string_view::npos ? std::string_view::npos
-                                                                   : s2 - s1 - 1);
+                b = t.substr(s1 + 1,
+                             s2 == std::string_view::npos ? std::string_view::npos : s2 - s1 - 1);
                 if (s2 != std::string_view::npos) c = t.substr(s2 + 1);
             }
             out_.corners.push_back(Index(index(a, nv, "vertex")));
@@ -198,10 +204,10 @@ LoadedMesh read_obj(const std::string& path) {
         report.notes.push_back(std::to_string(obj.ignored_statements) +
                                " statements of unsupported kinds ignored");
 
-    const bool any_uv = std::any_of(obj.corner_vt.begin(), obj.corner_vt.end(),
-                                    [](int i) { return i >= 0; });
-    const bool any_normal = std::any_of(obj.corner_vn.begin(), obj.corner_vn.end(),
-                                        [](int i) { return i >= 0; });
+    const bool any_uv =
+        std::any_of(obj.corner_vt.begin(), obj.corner_vt.end(), [](int i) { return i >= 0; });
+    const bool any_normal =
+        std::any_of(obj.corner_vn.begin(), obj.corner_vn.end(), [](int i) { return i >= 0; });
     if (any_uv) {
         // Per vertex when every corner of a vertex uses the same coordinate, else per corner.
         std::vector<int> uv_of_vertex(nv, -2);  // -2: unseen
@@ -255,8 +261,7 @@ LoadedMesh read_obj(const std::string& path) {
 
     LoadedMesh out;
     out.mesh = build_mesh_for_file(soup, report, path);
-    out.texture_path =
-        find_texture(obj.mtllibs, std::filesystem::path(path).parent_path(), report);
+    out.texture_path = find_texture(obj.mtllibs, std::filesystem::path(path).parent_path(), report);
     out.report = std::move(report);
     return out;
 }
@@ -333,7 +338,8 @@ void write_obj(const HalfedgeMesh& mesh, const std::string& path, const WriteOpt
         }
         out += '\n';
     }
-    write_file_atomically(path, [&](std::ostream& os) { os.write(out.data(), std::streamsize(out.size())); });
+    write_file_atomically(
+        path, [&](std::ostream& os) { os.write(out.data(), std::streamsize(out.size())); });
 }
 
 }  // namespace trilab

@@ -56,8 +56,7 @@ LoadedMesh read_off(const std::string& path) {
     }
     if (!keyword.empty() && (keyword[0] == '4' || keyword[0] == 'n'))
         in.fail("'" + printable(full) + "': only 3-dimensional OFF is supported");
-    if (keyword != "OFF")
-        in.fail("'" + printable(full) + "' is not an OFF header keyword");
+    if (keyword != "OFF") in.fail("'" + printable(full) + "' is not an OFF header keyword");
 
     std::string_view first = in.next_token();
     if (first == "BINARY") in.fail("binary OFF is not supported; convert it to ASCII OFF");
@@ -104,16 +103,16 @@ LoadedMesh read_off(const std::string& path) {
         if (color) {
             const std::size_t want = tail.size() - (st ? 2 : 0);
             if (tail.size() < (st ? 5u : 3u) || (want != 3 && want != 4))
-                throw IoError(path, line, "vertex " + std::to_string(v) +
-                                              ": expected an RGB or RGBA colour");
+                throw IoError(path, line,
+                              "vertex " + std::to_string(v) + ": expected an RGB or RGBA colour");
             soup.colors[v] = Color(float(tail[0]), float(tail[1]), float(tail[2]));
             for (int i = 0; i < 3; ++i) colors_are_bytes = colors_are_bytes || tail[i] > 1.0;
             k = want;
         }
         if (st) {
             if (tail.size() < k + 2)
-                throw IoError(path, line, "vertex " + std::to_string(v) +
-                                              ": expected texture coordinates s t");
+                throw IoError(path, line,
+                              "vertex " + std::to_string(v) + ": expected texture coordinates s t");
             soup.texcoords[v] = TexCoord(tail[k], tail[k + 1]);
             k += 2;
         }
@@ -127,8 +126,9 @@ LoadedMesh read_off(const std::string& path) {
         const long long n = in.next_integer("face corner count");
         const std::size_t line = in.line();
         if (n < 0 || std::size_t(n) > corner_budget)
-            throw IoError(path, line, "face " + std::to_string(f) + " declares " +
-                                          std::to_string(n) + " corners");
+            throw IoError(
+                path, line,
+                "face " + std::to_string(f) + " declares " + std::to_string(n) + " corners");
         for (long long k = 0; k < n; ++k) {
             const long long i = in.next_integer("face vertex index");
             if (i < 0 || std::size_t(i) >= nv)
@@ -148,8 +148,9 @@ LoadedMesh read_off(const std::string& path) {
     report.file_vertices = nv;
     report.file_faces = nf;
     if (ignored_extra)
-        report.notes.push_back(std::to_string(ignored_extra) +
-                               " vertex lines had extra values the header does not announce (ignored)");
+        report.notes.push_back(
+            std::to_string(ignored_extra) +
+            " vertex lines had extra values the header does not announce (ignored)");
     LoadedMesh out;
     out.mesh = build_mesh_for_file(soup, report, path);
     out.report = std::move(report);
@@ -207,7 +208,8 @@ void write_off(const HalfedgeMesh& mesh, const std::string& path, const WriteOpt
         }
         out += '\n';
     }
-    write_file_atomically(path, [&](std::ostream& os) { os.write(out.data(), std::streamsize(out.size())); });
+    write_file_atomically(
+        path, [&](std::ostream& os) { os.write(out.data(), std::streamsize(out.size())); });
 }
 
 }  // namespace trilab

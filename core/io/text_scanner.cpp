@@ -78,8 +78,7 @@ double TextScanner::next_double(const char* what) {
     buf[t.size()] = '\0';
     char* end = nullptr;
     const double value = std::strtod(buf, &end);
-    if (end != buf + t.size())
-        fail("'" + printable(t) + "' is not a number (" + what + ")");
+    if (end != buf + t.size()) fail("'" + printable(t) + "' is not a number (" + what + ")");
     if (!std::isfinite(value)) fail("'" + printable(t) + "' is not a finite number (" + what + ")");
     return value;
 }

@@ -101,8 +101,10 @@ int main(int argc, char** argv) {
     int runs = 5;
     bool check = false;
     for (int i = 1; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--runs") && i + 1 < argc) runs = std::max(1, std::atoi(argv[++i]));
-        else if (!std::strcmp(argv[i], "--check")) check = true;
+        if (!std::strcmp(argv[i], "--runs") && i + 1 < argc)
+            runs = std::max(1, std::atoi(argv[++i]));
+        else if (!std::strcmp(argv[i], "--check"))
+            check = true;
         else {
             std::fprintf(stderr, "usage: trilab_bench [--runs N] [--check]\n");
             return 2;
@@ -111,15 +113,16 @@ int main(int argc, char** argv) {
     const auto dir = std::filesystem::temp_directory_path() / "trilab_bench";
     std::filesystem::create_directories(dir);
     std::vector<Result> results;
-    std::printf("trilab file-format benchmark: median of %d runs per figure; 'read' is the whole\n"
-                "load (parse, build the half-edge mesh, repair checks), 'first' the first run\n\n",
-                runs);
+    std::printf(
+        "trilab file-format benchmark: median of %d runs per figure; 'read' is the whole\n"
+        "load (parse, build the half-edge mesh, repair checks), 'first' the first run\n\n",
+        runs);
 
     const std::string bunny = std::string(TRILAB_SHARED_DIR) + "/meshes/stanford-bunny.obj";
     if (std::filesystem::exists(bunny)) {
         LoadedMesh b = read_mesh(bunny);
-        std::printf("bunny: %zu vertices, %zu faces (%s)\n", b.mesh.n_vertices(),
-                    b.mesh.n_faces(), bunny.c_str());
+        std::printf("bunny: %zu vertices, %zu faces (%s)\n", b.mesh.n_vertices(), b.mesh.n_faces(),
+                    bunny.c_str());
         run("bunny", b.mesh, runs, dir, results);
     } else {
         std::printf("bunny: skipped, %s is absent\n", bunny.c_str());

@@ -11,14 +11,18 @@
 namespace trilab::test {
 
 /// ../shared beside the repository (may be absent: tests using it skip with a message).
-inline std::string shared_dir() { return TRILAB_SHARED_DIR; }
+inline std::string shared_dir() {
+    return TRILAB_SHARED_DIR;
+}
 inline std::string shared_mesh(const std::string& name) {
     return shared_dir() + "/meshes/" + name;
 }
 inline std::string data_file(const std::string& name) {
     return std::string(TRILAB_SOURCE_DIR) + "/tests/data/" + name;
 }
-inline bool exists(const std::string& path) { return std::filesystem::exists(path); }
+inline bool exists(const std::string& path) {
+    return std::filesystem::exists(path);
+}
 
 /// A fresh folder under the system temp dir, removed when the object dies.
 class TempDir {
@@ -37,18 +41,18 @@ private:
 }  // namespace trilab::test
 
 /// Asserts validate(mesh) and prints the first violation when it fails.
-#define REQUIRE_VALID(mesh)                             \
-    do {                                                \
-        const auto trilab_vr = trilab::validate(mesh);  \
-        INFO("validate: " << trilab_vr.message);        \
-        REQUIRE(trilab_vr.ok);                          \
+#define REQUIRE_VALID(mesh)                            \
+    do {                                               \
+        const auto trilab_vr = trilab::validate(mesh); \
+        INFO("validate: " << trilab_vr.message);       \
+        REQUIRE(trilab_vr.ok);                         \
     } while (0)
 
 /// Skips the current test (with a message) when a shared file is absent.
-#define SKIP_IF_MISSING(path)                                                   \
-    do {                                                                        \
-        if (!trilab::test::exists(path)) {                                      \
+#define SKIP_IF_MISSING(path)                                                            \
+    do {                                                                                 \
+        if (!trilab::test::exists(path)) {                                               \
             WARN("skipped: " << (path) << " is absent (../shared not beside the repo)"); \
-            return;                                                             \
-        }                                                                       \
+            return;                                                                      \
+        }                                                                                \
     } while (0)

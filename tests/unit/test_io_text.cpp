@@ -252,8 +252,7 @@ TEST_CASE("the shared Stanford bunny loads with its isolated vertices", "[io][sh
     REQUIRE(s.boundary_loops == 5);
 }
 
-TEST_CASE("every shared mesh loads valid and survives OBJ and OFF round trips",
-          "[io][shared]") {
+TEST_CASE("every shared mesh loads valid and survives OBJ and OFF round trips", "[io][shared]") {
     const std::string dir = shared_dir() + "/meshes";
     SKIP_IF_MISSING(dir);
     TempDir tmp;

@@ -165,9 +165,9 @@ TEST_CASE("a mesh copy is independent and moves leave an empty mesh", "[core]") 
 
 TEST_CASE("build_mesh splits a non-manifold vertex into one copy per fan", "[core][builder]") {
     LoadReport r;
-    HalfedgeMesh m = build(soup_of({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}},
-                                   {{0, 1, 2}, {0, 3, 4}}),
-                           &r);
+    HalfedgeMesh m = build(
+        soup_of({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}}, {{0, 1, 2}, {0, 3, 4}}),
+        &r);
     REQUIRE_VALID(m);
     REQUIRE(m.n_faces() == 2);
     REQUIRE(m.n_vertices() == 6);
@@ -178,10 +178,9 @@ TEST_CASE("build_mesh splits a non-manifold vertex into one copy per fan", "[cor
 
 TEST_CASE("build_mesh detaches faces on a non-manifold edge", "[core][builder]") {
     LoadReport r;
-    HalfedgeMesh m =
-        build(soup_of({{0, 0, 0}, {1, 0, 0}, {.5, 1, 0}, {.5, -1, 0}, {.5, 0, 1}},
-                      {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}),
-              &r);
+    HalfedgeMesh m = build(soup_of({{0, 0, 0}, {1, 0, 0}, {.5, 1, 0}, {.5, -1, 0}, {.5, 0, 1}},
+                                   {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}),
+                           &r);
     REQUIRE_VALID(m);
     REQUIRE(m.n_faces() == 3);
     REQUIRE(r.detached_faces == 1);
@@ -190,7 +189,8 @@ TEST_CASE("build_mesh detaches faces on a non-manifold edge", "[core][builder]")
 
 TEST_CASE("build_mesh keeps duplicated and flipped faces detached", "[core][builder]") {
     LoadReport r;
-    HalfedgeMesh dup = build(soup_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 1, 2}}), &r);
+    HalfedgeMesh dup =
+        build(soup_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 1, 2}}), &r);
     REQUIRE_VALID(dup);
     REQUIRE(dup.n_faces() == 2);
     REQUIRE(r.detached_faces == 1);
@@ -219,10 +219,10 @@ TEST_CASE("build_mesh drops only faces with a repeated vertex and keeps isolated
 TEST_CASE("build_mesh triangulates concave polygons without folding", "[core][builder]") {
     LoadReport r;
     // L-shaped hexagon starting at the reflex corner: a fan from it would overlap.
-    HalfedgeMesh m = build(
-        soup_of({{1, 1, 0}, {1, 2, 0}, {0, 2, 0}, {0, 0, 0}, {2, 0, 0}, {2, 1, 0}},
-                {{0, 1, 2, 3, 4, 5}}),
-        &r);
+    HalfedgeMesh m =
+        build(soup_of({{1, 1, 0}, {1, 2, 0}, {0, 2, 0}, {0, 0, 0}, {2, 0, 0}, {2, 1, 0}},
+                      {{0, 1, 2, 3, 4, 5}}),
+              &r);
     REQUIRE_VALID(m);
     REQUIRE(m.n_faces() == 4);
     REQUIRE(r.polygons_triangulated == 1);
@@ -239,15 +239,16 @@ TEST_CASE("build_mesh refuses bad indices and non-finite positions", "[core][bui
         InvalidArgument);
 }
 
-TEST_CASE("build_mesh survives a fan of many faces around one edge and vertex",
-          "[core][builder]") {
+TEST_CASE("build_mesh survives a fan of many faces around one edge and vertex", "[core][builder]") {
     // Ten triangles sharing the edge 0-1, alternating orientation, plus a repeated copy.
     PolygonSoup s;
     s.positions = {{0, 0, 0}, {1, 0, 0}};
     for (int i = 0; i < 10; ++i) {
         s.positions.emplace_back(0.5, std::cos(i * 0.6), std::sin(i * 0.6));
-        if (i % 2) s.add_face({0, 1, Index(2 + i)});
-        else s.add_face({1, 0, Index(2 + i)});
+        if (i % 2)
+            s.add_face({0, 1, Index(2 + i)});
+        else
+            s.add_face({1, 0, Index(2 + i)});
     }
     s.add_face({0, 1, 3});
     LoadReport r;

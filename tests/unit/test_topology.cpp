@@ -194,8 +194,8 @@ TEST_CASE("garbage collection compacts storage and reports the remapping", "[top
 TEST_CASE("random sequences of operators keep the mesh valid", "[topology][stress]") {
     const std::uint32_t seed = GENERATE(1u, 2u, 3u);
     std::mt19937 rng(seed);
-    HalfedgeMesh m = GENERATE(as<HalfedgeMesh>{}, make_icosphere(3), make_grid(6),
-                              make_cylinder(10, 4));
+    HalfedgeMesh m =
+        GENERATE(as<HalfedgeMesh>{}, make_icosphere(3), make_grid(6), make_cylinder(10, 4));
     const long long euler = compute_stats(m).euler;
     for (int step = 0; step < 400; ++step) {
         const int op = int(rng() % 4);
