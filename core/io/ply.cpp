@@ -801,6 +801,8 @@ void write_ply(const HalfedgeMesh& mesh, const std::string& path, const WriteOpt
     const bool normals = options.write_normals && !soup.normals.empty();
     const bool colors = options.write_colors && !soup.colors.empty();
     const bool uv = options.write_texcoords && !soup.texcoords.empty();
+    // Texture seams (per-corner coordinates only): the per-face `texcoord` list MeshLab uses.
+    const bool corner_uv = options.write_texcoords && !uv && !soup.corner_texcoords.empty();
     const bool ascii = options.ascii;
     const bool big = options.big_endian;
 
@@ -813,7 +815,9 @@ void write_ply(const HalfedgeMesh& mesh, const std::string& path, const WriteOpt
     if (colors) header += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
     if (uv) header += "property float u\nproperty float v\n";
     header += "element face " + std::to_string(soup.n_faces()) + "\n";
-    header += "property list uchar int vertex_indices\nend_header\n";
+    header += "property list uchar int vertex_indices\n";
+    if (corner_uv) header += "property list uchar float texcoord\n";
+    header += "end_header\n";
 
     write_file_atomically(path, [&](std::ostream& os) {
         OutBuffer out(os, !ascii && big == host_is_little_endian());
@@ -866,11 +870,26 @@ void write_ply(const HalfedgeMesh& mesh, const std::string& path, const WriteOpt
                     out.text(" ");
                     out.number(static_cast<std::int32_t>(soup.corners[c]));
                 }
+                if (corner_uv) {
+                    out.text(" ");
+                    out.number(int(2 * n));
+                    for (std::size_t c = b; c < e; ++c)
+                        for (int k = 0; k < 2; ++k) {
+                            out.text(" ");
+                            out.number(static_cast<float>(soup.corner_texcoords[c][k]));
+                        }
+                }
                 out.text("\n");
             } else {
                 out.binary(n);
                 for (std::size_t c = b; c < e; ++c)
                     out.binary(static_cast<std::int32_t>(soup.corners[c]));
+                if (corner_uv) {
+                    out.binary(static_cast<std::uint8_t>(2 * n));
+                    for (std::size_t c = b; c < e; ++c)
+                        for (int k = 0; k < 2; ++k)
+                            out.binary(static_cast<float>(soup.corner_texcoords[c][k]));
+                }
                 out.maybe_flush();
             }
         }

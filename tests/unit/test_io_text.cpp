@@ -300,3 +300,40 @@ TEST_CASE("OBJ negative indices count back from the last vertex", "[io][obj]") {
     REQUIRE(m.mesh.n_faces() == 2);
     REQUIRE(m.report.detached_faces == 0);
 }
+
+TEST_CASE("texture coordinates survive every format that can carry them", "[io][texcoords]") {
+    TempDir dir;
+    // Per-vertex coordinates: OBJ, OFF (STOFF), PLY, OM.
+    HalfedgeMesh m = decorated_sphere();
+    auto uv = m.get_vertex_property<TexCoord>("v:texcoord");
+    for (const char* name : {"v.obj", "v.off", "v.ply", "v.om"}) {
+        INFO(name);
+        write_mesh(m, dir.path(name));
+        LoadedMesh back = read_mesh(dir.path(name));
+        REQUIRE_VALID(back.mesh);
+        auto uv_back = back.mesh.get_vertex_property<TexCoord>("v:texcoord");
+        REQUIRE(uv_back);
+        for (Vertex v : m.vertices()) REQUIRE((uv[v] - uv_back[v]).norm() < 1e-6);
+    }
+    // Per-corner coordinates (a seam): OBJ, PLY (face texcoord lists, every encoding), OM.
+    LoadedMesh seams = read_obj(data_file("good/seams.obj"));
+    const auto corners = to_soup(seams.mesh).corner_texcoords;
+    REQUIRE(corners.size() == 6);
+    for (const char* name : {"s.obj", "s.ply", "s.om"}) {
+        for (int variant = 0; variant < 3; ++variant) {
+            if (variant > 0 && std::string(name) != "s.ply") continue;
+            INFO(name << " variant " << variant);
+            WriteOptions o;
+            o.ascii = variant == 1;
+            o.big_endian = variant == 2;
+            write_mesh(seams.mesh, dir.path(name), o);
+            LoadedMesh back = read_mesh(dir.path(name));
+            REQUIRE_VALID(back.mesh);
+            REQUIRE(back.mesh.has_halfedge_property("h:texcoord"));
+            const auto back_corners = to_soup(back.mesh).corner_texcoords;
+            REQUIRE(back_corners.size() == corners.size());
+            for (std::size_t i = 0; i < corners.size(); ++i)
+                REQUIRE((corners[i] - back_corners[i]).norm() < 1e-6);
+        }
+    }
+}
