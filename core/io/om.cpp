@@ -37,6 +37,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/io/byte_io.h"
 #include "core/io/file_util.h"
 #include "core/io/mesh_io.h"
 
@@ -46,24 +47,11 @@ namespace {
 
 // ---- little-endian scalars ---------------------------------------------------------------
 
-#if defined(__BYTE_ORDER__) && defined(__ORDER_BIG_ENDIAN__) && \
-    __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
-constexpr bool kBigEndianHost = true;
-#else
-constexpr bool kBigEndianHost = false;
-#endif
+constexpr bool kBigEndianHost = !kLittleEndianHost;
 
 template <class T>
 T load_le(const unsigned char* p) {
-    T v;
-    if constexpr (kBigEndianHost) {
-        unsigned char b[sizeof(T)];
-        for (std::size_t i = 0; i < sizeof(T); ++i) b[i] = p[sizeof(T) - 1 - i];
-        std::memcpy(&v, b, sizeof(T));
-    } else {
-        std::memcpy(&v, p, sizeof(T));
-    }
-    return v;
+    return load_bytes<T, kBigEndianHost>(p);
 }
 
 template <class T>

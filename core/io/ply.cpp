@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/io/byte_io.h"
 #include "core/io/file_util.h"
 #include "core/io/mesh_io.h"
 #include "core/io/text_scanner.h"
@@ -93,46 +94,25 @@ bool parse_type(std::string_view s, ScalarType& t) {
     return false;
 }
 
-bool host_is_little_endian() {
-    const std::uint16_t one = 1;
-    unsigned char first;
-    std::memcpy(&first, &one, 1);
-    return first == 1;
-}
-
-/// Loads a T stored at p, byte-swapped when Swap.
-template <class T, bool Swap>
-inline T load(const unsigned char* p) {
-    T v;
-    if constexpr (Swap && sizeof(T) > 1) {
-        unsigned char b[sizeof(T)];
-        for (std::size_t i = 0; i < sizeof(T); ++i) b[i] = p[sizeof(T) - 1 - i];
-        std::memcpy(&v, b, sizeof(T));
-    } else {
-        std::memcpy(&v, p, sizeof(T));
-    }
-    return v;
-}
-
 template <bool Swap>
 double load_double(const unsigned char* p, ScalarType t) {
     switch (t) {
         case ScalarType::kInt8:
-            return load<std::int8_t, Swap>(p);
+            return load_bytes<std::int8_t, Swap>(p);
         case ScalarType::kUint8:
-            return load<std::uint8_t, Swap>(p);
+            return load_bytes<std::uint8_t, Swap>(p);
         case ScalarType::kInt16:
-            return load<std::int16_t, Swap>(p);
+            return load_bytes<std::int16_t, Swap>(p);
         case ScalarType::kUint16:
-            return load<std::uint16_t, Swap>(p);
+            return load_bytes<std::uint16_t, Swap>(p);
         case ScalarType::kInt32:
-            return load<std::int32_t, Swap>(p);
+            return load_bytes<std::int32_t, Swap>(p);
         case ScalarType::kUint32:
-            return load<std::uint32_t, Swap>(p);
+            return load_bytes<std::uint32_t, Swap>(p);
         case ScalarType::kF32:
-            return load<float, Swap>(p);
+            return load_bytes<float, Swap>(p);
         case ScalarType::kF64:
-            return load<double, Swap>(p);
+            return load_bytes<double, Swap>(p);
     }
     return 0;
 }
@@ -142,22 +122,22 @@ template <bool Swap>
 bool load_integer(const unsigned char* p, ScalarType t, long long& out) {
     switch (t) {
         case ScalarType::kInt8:
-            out = load<std::int8_t, Swap>(p);
+            out = load_bytes<std::int8_t, Swap>(p);
             return true;
         case ScalarType::kUint8:
-            out = load<std::uint8_t, Swap>(p);
+            out = load_bytes<std::uint8_t, Swap>(p);
             return true;
         case ScalarType::kInt16:
-            out = load<std::int16_t, Swap>(p);
+            out = load_bytes<std::int16_t, Swap>(p);
             return true;
         case ScalarType::kUint16:
-            out = load<std::uint16_t, Swap>(p);
+            out = load_bytes<std::uint16_t, Swap>(p);
             return true;
         case ScalarType::kInt32:
-            out = load<std::int32_t, Swap>(p);
+            out = load_bytes<std::int32_t, Swap>(p);
             return true;
         case ScalarType::kUint32:
-            out = load<std::uint32_t, Swap>(p);
+            out = load_bytes<std::uint32_t, Swap>(p);
             return true;
         case ScalarType::kF32:
         case ScalarType::kF64: {
@@ -745,42 +725,6 @@ private:
 };
 
 // ---- writer -----------------------------------------------------------------------------
-
-/// Buffers output and hands it to the stream in large blocks.
-class OutBuffer {
-public:
-    OutBuffer(std::ostream& out, bool swap) : out_(out), swap_(swap) { buf_.reserve(kBlock + 256); }
-    void text(std::string_view s) {
-        buf_.append(s.data(), s.size());
-        maybe_flush();
-    }
-    template <class T>
-    void binary(T v) {
-        char b[sizeof(T)];
-        std::memcpy(b, &v, sizeof(T));
-        if (swap_) std::reverse(b, b + sizeof(T));
-        buf_.append(b, sizeof(T));
-    }
-    template <class T>
-    void number(T v) {
-        char b[64];
-        const auto r = std::to_chars(b, b + sizeof(b), v);
-        buf_.append(b, static_cast<std::size_t>(r.ptr - b));
-    }
-    void maybe_flush() {
-        if (buf_.size() >= kBlock) flush();
-    }
-    void flush() {
-        out_.write(buf_.data(), static_cast<std::streamsize>(buf_.size()));
-        buf_.clear();
-    }
-
-private:
-    static constexpr std::size_t kBlock = 1 << 20;
-    std::ostream& out_;
-    bool swap_;
-    std::string buf_;
-};
 
 std::uint8_t color_byte(float c) {
     return static_cast<std::uint8_t>(std::lround(std::clamp(c, 0.0f, 1.0f) * 255.0f));

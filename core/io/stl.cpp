@@ -28,19 +28,13 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/io/byte_io.h"
 #include "core/io/file_util.h"
 #include "core/io/mesh_io.h"
 #include "core/io/text_scanner.h"
 
 namespace trilab {
 namespace {
-
-bool host_is_little_endian() {
-    const std::uint16_t one = 1;
-    unsigned char first;
-    std::memcpy(&first, &one, 1);
-    return first == 1;
-}
 
 /// Little-endian u32 / f32 at p.
 std::uint32_t load_u32_le(const unsigned char* p) {
@@ -287,41 +281,6 @@ bool starts_with_solid(const std::string& data) {
 
 // ---- writing ------------------------------------------------------------------------------
 
-class OutBuffer {
-public:
-    explicit OutBuffer(std::ostream& out) : out_(out) { buf_.reserve(kBlock + 256); }
-    void text(std::string_view s) { buf_.append(s.data(), s.size()); }
-    void number(double v) {
-        char b[64];
-        const auto r = std::to_chars(b, b + sizeof(b), v);
-        buf_.append(b, static_cast<std::size_t>(r.ptr - b));
-    }
-    void f32(float f) {
-        unsigned char b[4];
-        std::uint32_t u;
-        std::memcpy(&u, &f, 4);
-        for (int k = 0; k < 4; ++k) b[k] = static_cast<unsigned char>(u >> (8 * k));
-        buf_.append(reinterpret_cast<const char*>(b), 4);
-    }
-    void u32(std::uint32_t u) {
-        unsigned char b[4];
-        for (int k = 0; k < 4; ++k) b[k] = static_cast<unsigned char>(u >> (8 * k));
-        buf_.append(reinterpret_cast<const char*>(b), 4);
-    }
-    void maybe_flush() {
-        if (buf_.size() >= kBlock) flush();
-    }
-    void flush() {
-        out_.write(buf_.data(), static_cast<std::streamsize>(buf_.size()));
-        buf_.clear();
-    }
-
-private:
-    static constexpr std::size_t kBlock = 1 << 20;
-    std::ostream& out_;
-    std::string buf_;
-};
-
 Vector3 face_normal(const Point& a, const Point& b, const Point& c) {
     Vector3 n = (b - a).cross(c - a);
     const double len = n.norm();
@@ -354,7 +313,7 @@ void write_stl(const HalfedgeMesh& mesh, const std::string& path, const WriteOpt
     if (mesh.n_faces() > std::numeric_limits<std::uint32_t>::max())
         throw IoError(path, 0, "too many faces for binary STL");
     write_file_atomically(path, [&](std::ostream& os) {
-        OutBuffer out(os);
+        OutBuffer out(os, !host_is_little_endian());
         if (options.ascii) {
             out.text("solid trilab\n");
         } else {
@@ -362,7 +321,7 @@ void write_stl(const HalfedgeMesh& mesh, const std::string& path, const WriteOpt
             const char title[] = "trilab binary STL";
             std::memcpy(header, title, sizeof(title) - 1);
             out.text(std::string_view(header, sizeof(header)));
-            out.u32(static_cast<std::uint32_t>(mesh.n_faces()));
+            out.binary<std::uint32_t>(static_cast<std::uint32_t>(mesh.n_faces()));
         }
         for (Face f : mesh.faces()) {
             const auto vs = mesh.face_vertices(f);
@@ -387,9 +346,9 @@ void write_stl(const HalfedgeMesh& mesh, const std::string& path, const WriteOpt
                 }
                 out.text("    endloop\n  endfacet\n");
             } else {
-                for (int k = 0; k < 3; ++k) out.f32(static_cast<float>(n[k]));
+                for (int k = 0; k < 3; ++k) out.binary<float>(static_cast<float>(n[k]));
                 for (const Point* p : {&a, &b, &c})
-                    for (int k = 0; k < 3; ++k) out.f32(static_cast<float>((*p)[k]));
+                    for (int k = 0; k < 3; ++k) out.binary<float>(static_cast<float>((*p)[k]));
                 out.text(std::string_view("\0\0", 2));
             }
             out.maybe_flush();

@@ -3,7 +3,19 @@
 #include <atomic>
 #include <random>
 
+#include "core/errors.h"
+#include "core/io/mesh_io.h"
+
 namespace trilab::test {
+
+std::string read_error(const std::string& path) {
+    try {
+        read_mesh(path);
+    } catch (const IoError& e) {
+        return e.what();
+    }
+    return "";
+}
 
 TempDir::TempDir() {
     static std::atomic<int> counter{0};

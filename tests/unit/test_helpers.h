@@ -24,6 +24,9 @@ inline bool exists(const std::string& path) {
     return std::filesystem::exists(path);
 }
 
+/// The message of the IoError that reading `path` throws ("" when none is thrown).
+std::string read_error(const std::string& path);
+
 /// A fresh folder under the system temp dir, removed when the object dies.
 class TempDir {
 public:

@@ -39,14 +39,6 @@ HalfedgeMesh decorated_sphere() {
     return m;
 }
 
-std::string error_of(const std::string& path) {
-    try {
-        read_mesh(path);
-    } catch (const IoError& e) {
-        return e.what();
-    }
-    return "";
-}
 }  // namespace
 
 TEST_CASE("file_extension and dispatch", "[io]") {
@@ -209,7 +201,7 @@ TEST_CASE("bad OBJ and OFF files give an error naming the file, the line and the
     };
     for (const Case& c : cases) {
         INFO(c.file);
-        const std::string msg = error_of(data_file(std::string("bad/") + c.file));
+        const std::string msg = read_error(data_file(std::string("bad/") + c.file));
         REQUIRE_THAT(msg, Contains(c.file));
         REQUIRE_THAT(msg, Contains(c.reason));
         if (*c.line) REQUIRE_THAT(msg, Contains(std::string(c.file) + c.line));

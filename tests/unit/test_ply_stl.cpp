@@ -148,16 +148,6 @@ private:
 
 const char* const kEncodings[] = {"ascii", "binary_little_endian", "binary_big_endian"};
 
-/// The message of the IoError that reading `path` throws ("" when none is thrown).
-std::string read_error(const std::string& path) {
-    try {
-        read_mesh(path);
-    } catch (const IoError& e) {
-        return e.what();
-    }
-    return "";
-}
-
 }  // namespace
 
 // ---- PLY ---------------------------------------------------------------------------------
