@@ -4,9 +4,24 @@
 #include <random>
 
 #include "core/errors.h"
+#include "core/generators.h"
+#include "core/geometry.h"
 #include "core/io/mesh_io.h"
 
 namespace trilab::test {
+
+HalfedgeMesh attributed_sphere() {
+    HalfedgeMesh m = make_icosphere(3);
+    compute_vertex_normals(m);
+    auto uv = m.vertex_property<TexCoord>("v:texcoord");
+    auto color = m.vertex_property<Color>("v:color");
+    for (Vertex v : m.vertices()) {
+        const Point& p = m.position(v);
+        uv[v] = TexCoord(0.5 + 0.5 * p.x(), 0.25 + 0.5 * p.y());
+        color[v] = Color(float(v.idx() % 256) / 255.0f, 0.5f, float(p.z() * 0.5 + 0.5));
+    }
+    return m;
+}
 
 std::string read_error(const std::string& path) {
     try {

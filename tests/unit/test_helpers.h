@@ -24,6 +24,9 @@ inline bool exists(const std::string& path) {
     return std::filesystem::exists(path);
 }
 
+/// A sphere with normals, colours and texture coordinates on its vertices.
+HalfedgeMesh attributed_sphere();
+
 /// The message of the IoError that reading `path` throws ("" when none is thrown).
 std::string read_error(const std::string& path);
 

@@ -26,19 +26,6 @@ void require_same_mesh(const HalfedgeMesh& a, const HalfedgeMesh& b, double tol 
     REQUIRE(sa.corners == sb.corners);
 }
 
-HalfedgeMesh decorated_sphere() {
-    HalfedgeMesh m = make_icosphere(3);
-    compute_vertex_normals(m);
-    auto uv = m.vertex_property<TexCoord>("v:texcoord");
-    auto color = m.vertex_property<Color>("v:color");
-    for (Vertex v : m.vertices()) {
-        const Point& p = m.position(v);
-        uv[v] = TexCoord(0.5 + 0.5 * p.x(), 0.5 + 0.5 * p.y());
-        color[v] = Color(float(v.idx() % 256) / 255.0f, 0.5f, 1.0f);
-    }
-    return m;
-}
-
 }  // namespace
 
 TEST_CASE("file_extension and dispatch", "[io]") {
@@ -54,7 +41,7 @@ TEST_CASE("file_extension and dispatch", "[io]") {
 TEST_CASE("OBJ round trip keeps positions exactly, faces, normals and texture coordinates",
           "[io][obj]") {
     TempDir dir;
-    HalfedgeMesh m = decorated_sphere();
+    HalfedgeMesh m = attributed_sphere();
     write_obj(m, dir.path("s.obj"), {});
     LoadedMesh back = read_obj(dir.path("s.obj"));
     REQUIRE_VALID(back.mesh);
@@ -103,7 +90,7 @@ TEST_CASE("OBJ polygons are triangulated with their corner data", "[io][obj]") {
 
 TEST_CASE("OFF round trip with every header variant", "[io][off]") {
     TempDir dir;
-    HalfedgeMesh m = decorated_sphere();
+    HalfedgeMesh m = attributed_sphere();
     for (int variant = 0; variant < 4; ++variant) {
         WriteOptions o;
         o.write_normals = variant & 1;
@@ -296,7 +283,7 @@ TEST_CASE("OBJ negative indices count back from the last vertex", "[io][obj]") {
 TEST_CASE("texture coordinates survive every format that can carry them", "[io][texcoords]") {
     TempDir dir;
     // Per-vertex coordinates: OBJ, OFF (STOFF), PLY, OM.
-    HalfedgeMesh m = decorated_sphere();
+    HalfedgeMesh m = attributed_sphere();
     auto uv = m.get_vertex_property<TexCoord>("v:texcoord");
     for (const char* name : {"v.obj", "v.off", "v.ply", "v.om"}) {
         INFO(name);

@@ -30,20 +30,6 @@ void write_bytes(const std::string& path, const std::string& bytes) {
     REQUIRE(out.good());
 }
 
-/// A sphere with normals, colours and texture coordinates on its vertices.
-HalfedgeMesh attributed_sphere() {
-    HalfedgeMesh m = make_icosphere(3);
-    compute_vertex_normals(m);
-    auto uv = m.vertex_property<TexCoord>("v:texcoord");
-    auto color = m.vertex_property<Color>("v:color");
-    for (Vertex v : m.vertices()) {
-        const Point& p = m.position(v);
-        uv[v] = TexCoord(0.5 + 0.5 * p.x(), 0.25 + 0.5 * p.y());
-        color[v] = Color(float(v.idx() % 256) / 255.0f, 0.5f, float(p.z() * 0.5 + 0.5));
-    }
-    return m;
-}
-
 /// Same vertex order and faces; positions within `tol`.
 void require_same_mesh(const HalfedgeMesh& a, const HalfedgeMesh& b, double tol) {
     REQUIRE(a.n_vertices() == b.n_vertices());
