@@ -226,30 +226,29 @@ HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
         std::vector<Index> bucket(n_input_vertices + 1, 0);
         for (std::size_t c = 0; c < 3 * n_tris; ++c) ++bucket[corner_lo(c) + 1];
         for (std::size_t v = 0; v < n_input_vertices; ++v) bucket[v + 1] += bucket[v];
-        std::vector<Index> order(3 * n_tris);
+        // (larger vertex, corner) per bucket entry, so the scans below read memory in order.
+        std::vector<std::pair<Index, Index>> entry(3 * n_tris);
         {
             std::vector<Index> fill(bucket.begin(), bucket.end() - 1);
-            for (std::size_t c = 0; c < 3 * n_tris; ++c) order[fill[corner_lo(c)]++] = Index(c);
+            for (std::size_t c = 0; c < 3 * n_tris; ++c)
+                entry[fill[corner_lo(c)]++] = {corner_hi(c), Index(c)};
         }
-        std::vector<std::pair<Index, Index>> sorted;
         for (std::size_t v = 0; v < n_input_vertices; ++v) {
             const Index begin = bucket[v], end = bucket[v + 1];
-            if (end - begin <= 16) {
-                for (Index i = begin; i < end; ++i) {
-                    const Index c = order[i], hi = corner_hi(c);
-                    Index j = begin;
-                    while (j < i && corner_hi(order[j]) != hi) ++j;
-                    group_of[c] = j < i ? group_of[order[j]] : n_groups++;
+            // A high-valence vertex is sorted (equal partners become neighbours) instead of
+            // scanned quadratically.
+            const bool sorted = end - begin > 16;
+            if (sorted) std::sort(entry.begin() + begin, entry.begin() + end);
+            for (Index i = begin; i < end; ++i) {
+                const Index hi = entry[i].first;
+                Index j = i;
+                if (sorted) {
+                    if (i > begin && entry[i - 1].first == hi) j = i - 1;
+                } else {
+                    j = begin;
+                    while (j < i && entry[j].first != hi) ++j;
                 }
-            } else {  // a high-valence vertex: sort its bucket instead of a quadratic scan
-                sorted.clear();
-                for (Index i = begin; i < end; ++i)
-                    sorted.emplace_back(corner_hi(order[i]), order[i]);
-                std::sort(sorted.begin(), sorted.end());
-                for (std::size_t i = 0; i < sorted.size(); ++i) {
-                    if (i == 0 || sorted[i].first != sorted[i - 1].first) ++n_groups;
-                    group_of[sorted[i].second] = n_groups - 1;
-                }
+                group_of[entry[i].second] = j < i ? group_of[entry[j].second] : n_groups++;
             }
         }
     }

@@ -291,3 +291,22 @@ TEST_CASE("validate reports broken connectivity", "[core][validate]") {
     d.set_face(Halfedge(0), Face());
     REQUIRE_FALSE(validate(d).ok);
 }
+
+TEST_CASE("build_mesh handles high-valence vertices (a 500-triangle fan)", "[core][builder]") {
+    // A disk: one centre joined to a ring of 500 vertices, plus a duplicate of one face.
+    PolygonSoup s;
+    const Index n = 500;
+    s.positions.emplace_back(0, 0, 0);
+    for (Index i = 0; i < n; ++i)
+        s.positions.emplace_back(std::cos(2 * M_PI * i / n), std::sin(2 * M_PI * i / n), 0);
+    for (Index i = 0; i < n; ++i) s.add_face({0, 1 + i, 1 + (i + 1) % n});
+    s.add_face({0, 1, 2});
+    LoadReport r;
+    HalfedgeMesh m = build_mesh(s, r);
+    REQUIRE_VALID(m);
+    REQUIRE(m.n_faces() == n + 1);
+    REQUIRE(r.detached_faces == 1);
+    REQUIRE(m.valence(Vertex(0)) == n);
+    REQUIRE(m.n_edges() == 2 * n + 3);  // spokes + rim + the detached triangle's three
+    REQUIRE(compute_stats(m).boundary_loops == 2);
+}
