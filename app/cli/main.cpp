@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/cli/json_writer.h"
+#include "app/cli/render_command.h"
 #include "core/errors.h"
 #include "core/generators.h"
 #include "core/io/mesh_io.h"
@@ -27,6 +28,8 @@ commands:
                                   convert between .obj .off .ply .stl .om (by extension);
                                   .stl and .ply are written binary unless --ascii
   generate NAME OUT [--json]      write a built-in model (see `trilab-cli generate --list`)
+  render MESH --out FILE.png [options]
+                                  render offscreen to a PNG (`trilab-cli render --help`)
   help                            this text
 )";
 
@@ -198,6 +201,8 @@ int main(int argc, char** argv) {
         if (cmd == "info") return cmd_info(parse(argc, argv, 2, {"--json"}));
         if (cmd == "convert")
             return cmd_convert(parse(argc, argv, 2, {"--json", "--ascii", "--big-endian"}));
+        if (cmd == "render")
+            return run_render_command(std::vector<std::string>(argv + 2, argv + argc));
         if (cmd == "generate")
             return cmd_generate(
                 parse(argc, argv, 2, {"--json", "--ascii", "--big-endian", "--list"}));

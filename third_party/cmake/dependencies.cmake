@@ -4,11 +4,13 @@
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 # The installed version string ("2rc10") cannot be compared: never ask for a version.
 find_package(tinyobjloader REQUIRED)
+# stb (stb_image, stb_image_write) is a compiled library in Debian: link PkgConfig::STB.
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
 
 if(TRILAB_BUILD_VIEWER)
     find_package(glfw3 3.3 REQUIRED)
     find_package(glm REQUIRED)
-    find_package(PkgConfig REQUIRED)
     # libimgui-dev ships the GLFW and OpenGL 3 backends inside libimgui.a; imgui.pc pulls in stb.
     pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)
 

@@ -1,0 +1,63 @@
+#pragma once
+// Colour maps and vertex colourings: turns a per-vertex quantity into colours and a legend.
+//
+// Sequential quantities use a perceptually ordered map (dark blue -> yellow); signed
+// quantities use a diverging map centred on zero (blue - white - red). The value range
+// clamps outliers: by default it spans the 2nd to 98th percentile of the valid values, so
+// curvature noise does not wash the picture out; signed ranges are made symmetric.
+#include <string>
+#include <vector>
+
+#include "core/halfedge_mesh.h"
+
+namespace trilab {
+
+enum class ColorMapKind { Sequential, Diverging };
+
+struct ValueRange {
+    double min = 0, max = 1;
+};
+
+/// What a vertex colouring shows. Later issues add more (smoothing distance, ...).
+enum class VertexColoring {
+    None,
+    Normal,       ///< the unit normal as RGB ((n + 1) / 2)
+    K1,           ///< first principal curvature
+    K2,           ///< second principal curvature
+    Mean,         ///< mean curvature
+    Gaussian,     ///< Gaussian curvature
+    ShapeIndex,   ///< shape index in [-1, 1]
+};
+
+struct ColoringOptions {
+    double low_percentile = 2.0;   ///< lower end of the range, in percent of the values
+    double high_percentile = 98.0; ///< upper end of the range
+};
+
+/// Colours for every vertex (indexed by storage index) and what the legend shows.
+struct VertexColors {
+    std::vector<Color> colors;
+    ValueRange range;      ///< the values that map to the ends of the colour bar
+    ColorMapKind kind = ColorMapKind::Sequential;
+    std::string label;     ///< e.g. "mean curvature"
+    bool has_legend = false;  ///< false for None and Normal
+};
+
+/// The colour of `value` in `range` (clamped) on the given map.
+Color map_color(double value, const ValueRange& range, ColorMapKind kind);
+/// The range spanning [low, high] percentiles of the values whose `valid` entry is non-zero
+/// (all values when `valid` is empty); non-finite values are ignored. Throws InvalidArgument
+/// if 0 <= low < high <= 100 does not hold.
+ValueRange percentile_range(const std::vector<double>& values,
+                            const std::vector<std::uint8_t>& valid, double low, double high);
+/// [-m, m] with m the larger magnitude of the range's ends.
+ValueRange symmetric_range(const ValueRange& range);
+/// Computes the quantity and its colours.
+VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
+                            const ColoringOptions& options = {});
+/// Names for menus and the CLI: "none", "normal", "k1", "k2", "mean", "gaussian", "shape-index".
+const char* coloring_name(VertexColoring coloring);
+/// Parses coloring_name() strings; throws InvalidArgument listing the names otherwise.
+VertexColoring parse_coloring(const std::string& name);
+
+}  // namespace trilab

@@ -1,0 +1,27 @@
+#pragma once
+// Texture images: reading BMP, PNG and PNM (P1-P6) through stb_image and our own readers for
+// what stb lacks, XBM and XPM (our own small readers); writing PNG (stb_image_write).
+// Errors are IoErrors naming the file, the line for the text formats, and the reason.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace trilab {
+
+/// 8-bit RGBA pixels, rows from top to bottom.
+struct Image {
+    int width = 0, height = 0;
+    std::vector<std::uint8_t> rgba;  ///< width * height * 4 bytes
+    bool empty() const { return width == 0 || height == 0; }
+};
+
+/// Extensions read_image() accepts (lower case, without the dot).
+std::vector<std::string> supported_image_extensions();
+/// Reads any supported image, chosen by extension. Throws IoError.
+Image read_image(const std::string& path);
+/// Writes a PNG through a temporary file and a rename. Throws IoError.
+void write_png(const Image& image, const std::string& path);
+/// A checkerboard of `squares` x `squares` alternating light and dark squares.
+Image make_checkerboard(int size = 512, int squares = 8);
+
+}  // namespace trilab
