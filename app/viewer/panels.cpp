@@ -3,10 +3,11 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include <cmath>
+
 namespace trilab::viewer {
 namespace {
 
-constexpr const char* kOpenDialogTitle = "Open mesh";
 constexpr const char* kErrorPopupTitle = "Error";
 
 /// Pushes one style variable for the lifetime of the guard.
@@ -28,12 +29,19 @@ constexpr Binding kBindings[] = {
     {"Middle drag, Shift + left drag", "pan"},
     {"Mouse wheel", "zoom"},
     {"Home, double-click", "fit the model into the view"},
+    {"Right click", "rendering menu"},
     {"W", "toggle the wireframe overlay"},
-    {"F", "toggle flat / smooth shading"},
     {"B", "toggle the back-face colour"},
+    {"F", "fog on / off"},
+    {"S", "specular highlight on / off"},
+    {"T", "cycle texture modes (off, modulate, replace)"},
+    {"I", "print model and scene information (and show it)"},
+    {"L", "show the log"},
     {"Ctrl+O", "open a mesh file"},
+    {"Ctrl+S", "save the mesh as"},
     {"Ctrl+Q", "quit"},
     {"F1", "this window"},
+    {"Drop a file", "open a mesh, or load an image as texture"},
 };
 
 ImVec4 notice_color(Notice::Level level) {
@@ -43,32 +51,75 @@ ImVec4 notice_color(Notice::Level level) {
 
 }  // namespace
 
-void menu_bar(RenderStyle& style, OpenDialogState& open_dialog, HelpState& help,
+void rendering_menu_items(RenderStyle& style, CommandQueue& commands) {
+    if (ImGui::MenuItem("Smooth shading", nullptr, style.shading == Shading::Smooth))
+        style.shading = Shading::Smooth;
+    if (ImGui::MenuItem("Flat shading", nullptr, style.shading == Shading::Flat))
+        style.shading = Shading::Flat;
+    ImGui::Separator();
+    ImGui::MenuItem("Wireframe overlay", "W", &style.wireframe);
+    ImGui::MenuItem("Back-face colour", "B", &style.back_face_color);
+    ImGui::Separator();
+    if (ImGui::MenuItem("Fit view", "Home")) commands.push_back(FitView{});
+}
+
+void menu_bar(RenderStyle& style, PanelState& panels, const MenuContext& context,
               CommandQueue& commands) {
     if (!ImGui::BeginMainMenuBar()) return;
     if (ImGui::BeginMenu("File")) {
-        if (ImGui::MenuItem("Open...", "Ctrl+O")) open_dialog.open_requested = true;
+        if (ImGui::MenuItem("Open...", "Ctrl+O", false, !context.busy))
+            panels.file_browser.request(FileBrowserState::Purpose::OpenMesh, context.document_path);
+        const bool has_recent = context.recent_files && !context.recent_files->empty();
+        if (ImGui::BeginMenu("Open recent", has_recent && !context.busy)) {
+            for (const std::string& path : *context.recent_files)
+                if (ImGui::MenuItem(path.c_str())) commands.push_back(LoadFile{path});
+            ImGui::EndMenu();
+        }
+        if (ImGui::MenuItem("Revert", nullptr, false, context.has_file && !context.busy))
+            commands.push_back(RevertFile{});
+        if (ImGui::MenuItem("Save as...", "Ctrl+S", false, !context.busy))
+            panels.file_browser.request(FileBrowserState::Purpose::SaveMesh, context.document_path);
+        ImGui::Separator();
+        if (ImGui::MenuItem("Load texture...", nullptr, false, !context.busy))
+            panels.file_browser.request(FileBrowserState::Purpose::LoadTexture, "");
         ImGui::Separator();
         if (ImGui::MenuItem("Quit", "Ctrl+Q")) commands.push_back(Quit{});
         ImGui::EndMenu();
     }
+    if (ImGui::BeginMenu("Algorithms")) {
+        // The operation panels arrive with their issues; listed so the menu shows the plan.
+        ImGui::MenuItem("Fairing", nullptr, false, false);
+        ImGui::MenuItem("Frequency decomposition", nullptr, false, false);
+        ImGui::MenuItem("Subdivision", nullptr, false, false);
+        ImGui::MenuItem("Decimation", nullptr, false, false);
+        ImGui::EndMenu();
+    }
     if (ImGui::BeginMenu("Rendering")) {
-        if (ImGui::MenuItem("Smooth", "F", style.shading == Shading::Smooth))
-            style.shading = Shading::Smooth;
-        if (ImGui::MenuItem("Flat", "F", style.shading == Shading::Flat))
-            style.shading = Shading::Flat;
-        ImGui::Separator();
-        ImGui::MenuItem("Wireframe overlay", "W", &style.wireframe);
-        ImGui::MenuItem("Back-face colour", "B", &style.back_face_color);
-        ImGui::Separator();
-        if (ImGui::MenuItem("Fit view", "Home")) commands.push_back(FitView{});
+        rendering_menu_items(style, commands);
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Window")) {
+        ImGui::MenuItem("Model information", "I", &panels.info_open);
+        ImGui::MenuItem("Log", "L", &panels.log_open);
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Help")) {
-        ImGui::MenuItem("Key bindings", "F1", &help.open);
+        ImGui::MenuItem("Key bindings", "F1", &panels.help_open);
+        ImGui::MenuItem("About trilab", nullptr, &panels.about_open);
         ImGui::EndMenu();
     }
     ImGui::EndMainMenuBar();
+}
+
+void context_menu(RenderStyle& style, PanelState& panels, CommandQueue& commands) {
+    if (panels.context_menu_requested) {
+        ImGui::OpenPopup("##rendering_context");
+        panels.context_menu_requested = false;
+    }
+    if (ImGui::BeginPopup("##rendering_context")) {
+        rendering_menu_items(style, commands);
+        ImGui::EndPopup();
+    }
 }
 
 void status_bar(const StatusInfo& info, const Notice& notice) {
@@ -102,39 +153,12 @@ void status_bar(const StatusInfo& info, const Notice& notice) {
     ImGui::End();
 }
 
-void open_dialog(OpenDialogState& state, CommandQueue& commands) {
-    if (state.open_requested) {
-        ImGui::OpenPopup(kOpenDialogTitle);
-        state.open_requested = false;
-    }
-    const ImGuiIO& io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(ImVec2(0.5f * io.DisplaySize.x, 0.4f * io.DisplaySize.y),
-                            ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
-    if (!ImGui::BeginPopupModal(kOpenDialogTitle, nullptr, ImGuiWindowFlags_AlwaysAutoResize))
-        return;
-    ImGui::TextUnformatted("Path of a mesh file (.obj .off .ply .stl .om):");
-    if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
-    ImGui::SetNextItemWidth(36.0f * ImGui::GetFontSize());
-    bool open = ImGui::InputText("##path", &state.path, ImGuiInputTextFlags_EnterReturnsTrue);
-    open = ImGui::Button("Open") || open;
-    ImGui::SameLine();
-    bool cancel =
-        ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape));
-    if (open && !state.path.empty()) {
-        commands.push_back(LoadFile{state.path});
-        ImGui::CloseCurrentPopup();
-    } else if (cancel) {
-        ImGui::CloseCurrentPopup();
-    }
-    ImGui::EndPopup();
-}
-
-void help_window(HelpState& state) {
-    if (!state.open) return;
+void help_window(PanelState& panels) {
+    if (!panels.help_open) return;
     ImGui::SetNextWindowPos(
         ImVec2(0.5f * ImGui::GetIO().DisplaySize.x, 0.4f * ImGui::GetIO().DisplaySize.y),
         ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
-    if (ImGui::Begin("Key bindings", &state.open,
+    if (ImGui::Begin("Key bindings", &panels.help_open,
                      ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse)) {
         if (ImGui::BeginTable("bindings", 2,
                               ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
@@ -147,6 +171,70 @@ void help_window(HelpState& state) {
             }
             ImGui::EndTable();
         }
+    }
+    ImGui::End();
+}
+
+void about_window(PanelState& panels) {
+    if (!panels.about_open) return;
+    if (ImGui::Begin("About trilab", &panels.about_open, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::TextUnformatted("trilab: a laboratory for triangle meshes");
+        ImGui::Separator();
+        ImGui::TextUnformatted("Half-edge core, OpenGL 3.3 renderer, Dear ImGui " IMGUI_VERSION);
+        ImGui::TextUnformatted("Formats: .obj .off .ply .stl .om");
+    }
+    ImGui::End();
+}
+
+void job_progress(const JobInfo& job, CommandQueue& commands) {
+    const ImGuiIO& io = ImGui::GetIO();
+    ImGui::SetNextWindowPos(
+        ImVec2(0.5f * io.DisplaySize.x, io.DisplaySize.y - 3.0f * ImGui::GetFrameHeight()),
+        ImGuiCond_Always, ImVec2(0.5f, 1.0f));
+    ImGui::SetNextWindowSize(ImVec2(26.0f * ImGui::GetFontSize(), 0.0f));
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+                                   ImGuiWindowFlags_NoSavedSettings |
+                                   ImGuiWindowFlags_NoFocusOnAppearing;
+    if (ImGui::Begin("##job", nullptr, flags)) {
+        ImGui::Text("%s  (%.1f s)", job.name.c_str(), job.seconds);
+        if (!job.stage.empty()) ImGui::TextDisabled("%s", job.stage.c_str());
+        // Unknown progress: a bar that sweeps, so the user sees the program is alive.
+        const float f = job.fraction >= 0.0 ? float(job.fraction)
+                                            : float(0.5 + 0.5 * std::sin(3.0 * job.seconds));
+        ImGui::ProgressBar(f, ImVec2(-1.0f - 6.0f * ImGui::GetFontSize(), 0.0f),
+                           job.fraction >= 0.0 ? nullptr : "");
+        ImGui::SameLine();
+        if (job.cancel_requested)
+            ImGui::TextDisabled("cancelling");
+        else if (ImGui::Button("Cancel"))
+            commands.push_back(CancelJob{});
+    }
+    ImGui::End();
+}
+
+void log_window(PanelState& panels, const Log& log) {
+    if (!panels.log_open) return;
+    ImGui::SetNextWindowSize(ImVec2(40.0f * ImGui::GetFontSize(), 14.0f * ImGui::GetFontSize()),
+                             ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("Log", &panels.log_open)) {
+        const std::vector<LogEntry> entries = log.entries();
+        for (const LogEntry& e : entries) {
+            if (e.level == LogEntry::Level::Error)
+                ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.40f, 1.0f), "%s", e.text.c_str());
+            else if (e.level == LogEntry::Level::Warning)
+                ImGui::TextColored(ImVec4(1.0f, 0.80f, 0.35f, 1.0f), "%s", e.text.c_str());
+            else
+                ImGui::TextUnformatted(e.text.c_str());
+        }
+        if (ImGui::GetScrollY() >= ImGui::GetScrollMaxY()) ImGui::SetScrollHereY(1.0f);
+    }
+    ImGui::End();
+}
+
+void info_window(PanelState& panels, const std::vector<std::string>& lines) {
+    if (!panels.info_open) return;
+    if (ImGui::Begin("Model information", &panels.info_open, ImGuiWindowFlags_AlwaysAutoResize)) {
+        for (const std::string& line : lines) ImGui::TextUnformatted(line.c_str());
     }
     ImGui::End();
 }

@@ -1,26 +1,18 @@
 #pragma once
-// The viewer's ImGui panels. Each panel is a function over one plain state struct: it edits
-// what it owns directly and asks the viewer for everything else by queueing a Command, so
-// panels never touch the document, the window or the GPU.
+// The viewer's ImGui panels. Each panel is a function over plain state: it edits what it
+// owns directly and asks the viewer for everything else by queueing a Command (commands.h),
+// so panels never touch the document, the window or the GPU.
 #include <cstddef>
 #include <string>
-#include <variant>
 #include <vector>
 
+#include "app/viewer/commands.h"
+#include "app/viewer/file_browser.h"
+#include "app/viewer/log.h"
 #include "render/mesh_renderer.h"
 
 namespace trilab::viewer {
 
-// ---- commands ----------------------------------------------------------------------------
-struct LoadFile {
-    std::string path;
-};
-struct FitView {};
-struct Quit {};
-using Command = std::variant<LoadFile, FitView, Quit>;
-using CommandQueue = std::vector<Command>;
-
-// ---- panel state -------------------------------------------------------------------------
 /// The last thing the viewer has to tell the user. Errors also open a modal popup once.
 struct Notice {
     enum class Level { None, Info, Error };
@@ -30,13 +22,22 @@ struct Notice {
     bool popup_pending = false;        ///< an error the popup has not shown yet
 };
 
-struct OpenDialogState {
-    bool open_requested = false;  ///< open the dialog on the next frame
-    std::string path;             ///< the text field's contents
+/// Which windows are open, and the dialogs' own state.
+struct PanelState {
+    FileBrowserState file_browser;
+    bool help_open = false;
+    bool about_open = false;
+    bool log_open = false;
+    bool info_open = false;
+    bool context_menu_requested = false;  ///< right click in the view: open the Rendering popup
 };
 
-struct HelpState {
-    bool open = false;
+/// What the menus need to know about the document and the job runner.
+struct MenuContext {
+    bool has_file = false;  ///< the document came from a file (Revert, Save as near it)
+    bool busy = false;      ///< a job runs: document commands are disabled
+    std::string document_path;
+    const std::vector<std::string>* recent_files = nullptr;
 };
 
 /// What the status bar shows.
@@ -47,16 +48,33 @@ struct StatusInfo {
     double frame_ms = 0.0;
 };
 
-// ---- panels ------------------------------------------------------------------------------
-/// File (Open..., Quit), Rendering (shading, overlays, fit) and Help menus.
-void menu_bar(RenderStyle& style, OpenDialogState& open_dialog, HelpState& help,
+/// The running job, for the progress window.
+struct JobInfo {
+    std::string name;
+    std::string stage;
+    double fraction = -1.0;  ///< negative: unknown
+    double seconds = 0.0;
+    bool cancel_requested = false;
+};
+
+/// File, Algorithms, Rendering and Help menus.
+void menu_bar(RenderStyle& style, PanelState& panels, const MenuContext& context,
               CommandQueue& commands);
+/// The Rendering menu's items (also the right-click popup in the view).
+void rendering_menu_items(RenderStyle& style, CommandQueue& commands);
+/// The right-click popup with the rendering items.
+void context_menu(RenderStyle& style, PanelState& panels, CommandQueue& commands);
 /// A one-line bar along the bottom edge of the window.
 void status_bar(const StatusInfo& info, const Notice& notice);
-/// Modal dialog with a path text field; queues LoadFile on Open or Enter.
-void open_dialog(OpenDialogState& state, CommandQueue& commands);
+/// A small window with the job's name, a progress bar and Cancel.
+void job_progress(const JobInfo& job, CommandQueue& commands);
 /// The key and mouse bindings.
-void help_window(HelpState& state);
+void help_window(PanelState& panels);
+void about_window(PanelState& panels);
+/// The messages of the session, errors highlighted.
+void log_window(PanelState& panels, const Log& log);
+/// Model and scene information (the `I` key prints the same lines to the console).
+void info_window(PanelState& panels, const std::vector<std::string>& lines);
 /// Modal popup showing an error notice once.
 void error_popup(Notice& notice);
 

@@ -20,6 +20,7 @@
 #include "core/generators.h"
 #include "core/geometry.h"
 #include "core/io/mesh_io.h"
+#include "core/mesh_stats.h"
 
 namespace trilab::viewer {
 namespace {
@@ -120,6 +121,11 @@ GLFWwindow* Viewer::create_window(const ViewerOptions& options, Viewer* viewer) 
     glfwSetWindowFocusCallback(window, [](GLFWwindow* w, int) { wake(w); });
     glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int, int) { wake(w); });
     glfwSetWindowRefreshCallback(window, [](GLFWwindow* w) { wake(w); });
+    glfwSetDropCallback(window, [](GLFWwindow* w, int count, const char** paths) {
+        wake(w);
+        if (Viewer* v = from(w))
+            for (int i = 0; i < count; ++i) v->dropped_paths_.emplace_back(paths[i]);
+    });
     return window;
 }
 
@@ -153,37 +159,137 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
 
     renderer_ = std::make_unique<MeshRenderer>();
     view_.camera.set_viewport(float(window_w), float(window_h));
-    set_document(make_default_model(), "default model", "");
+    // Recent files persist only for interactive sessions, not for scripted runs.
+    if (options_.frames == 0) recent_.load(RecentFiles::default_file());
+    set_document(make_default_model(), "default model", "", LoadReport{});
+    log_.info("OpenGL " + std::string(reinterpret_cast<const char*>(glGetString(GL_VERSION))) +
+              " on " + reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
     if (!options_.mesh_path.empty()) load(options_.mesh_path);
-    // The overlay starts on where the edges can still be told apart; W toggles it.
-    view_.style.wireframe = document_.mesh.n_faces() <= kWireframeMaxFacesAtStart;
-    open_dialog_.path = options_.mesh_path;
 }
 
 Viewer::~Viewer() = default;
 
 // ---- documents and commands -----------------------------------------------------------------
 
-void Viewer::set_document(HalfedgeMesh mesh, std::string name, std::string path) {
+void Viewer::set_document(HalfedgeMesh mesh, std::string name, std::string path,
+                          LoadReport report) {
     document_.mesh = std::move(mesh);
     document_.name = std::move(name);
     document_.path = std::move(path);
+    document_.report = std::move(report);
+    const MeshStats s = compute_stats(document_.mesh);
+    char buf[256];
+    std::vector<std::string>& info = document_.info;
+    info.clear();
+    info.push_back("model: " + document_.name +
+                   (document_.path.empty() ? "" : " (" + document_.path + ")"));
+    std::snprintf(buf, sizeof(buf), "vertices %zu (%zu isolated), edges %zu, faces %zu", s.vertices,
+                  s.isolated_vertices, s.edges, s.faces);
+    info.push_back(buf);
+    std::snprintf(buf, sizeof(buf), "components %zu, boundary loops %zu, Euler %lld, genus %lld",
+                  s.components, s.boundary_loops, s.euler, s.genus);
+    info.push_back(buf);
+    std::snprintf(buf, sizeof(buf), "bounding box [%g %g %g] - [%g %g %g]", s.bbox.min.x(),
+                  s.bbox.min.y(), s.bbox.min.z(), s.bbox.max.x(), s.bbox.max.y(), s.bbox.max.z());
+    info.push_back(buf);
+    if (s.volume)
+        std::snprintf(buf, sizeof(buf), "area %.6g, volume %.6g", s.area, *s.volume);
+    else
+        std::snprintf(buf, sizeof(buf), "area %.6g, volume undefined (open mesh)", s.area);
+    info.push_back(buf);
+    for (const std::string& line : document_.report.lines()) info.push_back("load: " + line);
+
     renderer_->upload(document_.mesh);
     fit_view();
+    // The overlay starts on where the edges can still be told apart; W toggles it.
+    view_.style.wireframe = document_.mesh.n_faces() <= kWireframeMaxFacesAtStart;
     glfwSetWindowTitle(window_.get(), (document_.name + " - " + kTitle).c_str());
 }
 
+void Viewer::notify_error(const std::string& text) {
+    log_.error(text);
+    notice_ = Notice{Notice::Level::Error, text, {}, true};
+}
+
 void Viewer::load(const std::string& path) {
-    try {
-        LoadedMesh loaded = read_mesh(path);
-        std::string name = std::filesystem::path(path).filename().string();
-        notice_ = Notice{Notice::Level::Info, "Loaded " + name, loaded.report.lines(), false};
-        set_document(std::move(loaded.mesh), std::move(name), path);
-    } catch (const std::exception& e) {
-        // IoError (and anything else the reader throws) leaves the current document as is.
-        std::fprintf(stderr, "trilab: %s\n", e.what());
-        notice_ = Notice{Notice::Level::Error, e.what(), {}, true};
+    const std::string name = std::filesystem::path(path).filename().string();
+    const bool started = jobs_.start("Loading " + name, [this, path, name](Progress& progress) {
+        progress.report(-1.0, "reading and building the half-edge mesh");
+        auto loaded = std::make_shared<LoadedMesh>(read_mesh(path));
+        // Runs on the render thread when the job succeeded and was not cancelled.
+        return JobRunner::Finish([this, loaded, path, name] {
+            notice_ = Notice{Notice::Level::Info, "Loaded " + name, loaded->report.lines(), false};
+            log_.info("loaded " + path);
+            for (const std::string& line : loaded->report.lines()) log_.info("  " + line);
+            if (!loaded->texture_path.empty()) log_.info("  texture: " + loaded->texture_path);
+            set_document(std::move(loaded->mesh), name, path, std::move(loaded->report));
+            recent_.add(path);
+        });
+    });
+    if (!started) notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
+}
+
+void Viewer::save(const std::string& path) {
+    auto copy = std::make_shared<HalfedgeMesh>(document_.mesh);
+    const std::string name = std::filesystem::path(path).filename().string();
+    const bool started =
+        jobs_.start("Saving " + name, [this, copy, path, name](Progress& progress) {
+            progress.report(-1.0, "writing");
+            write_mesh(*copy, path);
+            return JobRunner::Finish([this, path, name] {
+                notice_ = Notice{Notice::Level::Info, "Saved " + name, {}, false};
+                log_.info("saved " + path);
+                recent_.add(path);
+            });
+        });
+    if (!started) notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
+}
+
+void Viewer::load_texture(const std::string& path) {
+    const std::string name = std::filesystem::path(path).filename().string();
+    const bool started = jobs_.start("Loading texture " + name, [this, path, name](Progress&) {
+        auto image = std::make_shared<Image>(read_image(path));
+        return JobRunner::Finish([this, image, path, name] {
+            texture_ = std::move(*image);
+            log_.info("texture " + path + ": " + std::to_string(texture_.width) + " x " +
+                      std::to_string(texture_.height));
+            notice_ = Notice{Notice::Level::Info, "Texture " + name, {}, false};
+        });
+    });
+    if (!started) notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
+}
+
+void Viewer::poll_jobs() {
+    const JobRunner::Outcome outcome = jobs_.poll();
+    using Kind = JobRunner::Outcome::Kind;
+    if (outcome.kind == Kind::None) return;
+    active_frames_ = kFramesAfterInput;
+    if (outcome.kind == Kind::Failed) {
+        notify_error(outcome.message);
+    } else if (outcome.kind == Kind::Cancelled) {
+        log_.warning(outcome.name + ": cancelled, nothing changed");
+        notice_ = Notice{Notice::Level::Info, outcome.name + ": cancelled", {}, false};
+    } else {
+        char buf[64];
+        std::snprintf(buf, sizeof(buf), " (%.0f ms)", outcome.seconds * 1000.0);
+        log_.info(outcome.name + " done" + buf);
     }
+}
+
+std::vector<std::string> Viewer::scene_info() const {
+    std::vector<std::string> lines = document_.info;
+    const glm::vec3 eye = glm::vec3(glm::inverse(view_.camera.view())[3]);
+    char buf[200];
+    std::snprintf(buf, sizeof(buf), "camera at (%.3g, %.3g, %.3g), frame %.1f ms", eye.x, eye.y,
+                  eye.z, frame_ms());
+    lines.push_back(buf);
+    lines.push_back(std::string("shading ") +
+                    (view_.style.shading == Shading::Flat ? "flat" : "smooth") +
+                    (view_.style.wireframe ? ", wireframe overlay" : ""));
+    if (!texture_.empty())
+        lines.push_back("texture " + std::to_string(texture_.width) + " x " +
+                        std::to_string(texture_.height));
+    return lines;
 }
 
 void Viewer::fit_view() {
@@ -203,10 +309,21 @@ void Viewer::fit_view() {
 }
 
 void Viewer::execute(const Command& command) {
-    if (auto* load_file = std::get_if<LoadFile>(&command)) {
-        load(load_file->path);
+    if (auto* c = std::get_if<LoadFile>(&command)) {
+        load(c->path);
+    } else if (auto* save_file = std::get_if<SaveFile>(&command)) {
+        save(save_file->path);
+    } else if (std::holds_alternative<RevertFile>(command)) {
+        if (!document_.path.empty()) load(document_.path);
+    } else if (auto* texture = std::get_if<LoadTexture>(&command)) {
+        load_texture(texture->path);
     } else if (std::holds_alternative<FitView>(command)) {
         fit_view();
+    } else if (std::holds_alternative<PrintInfo>(command)) {
+        for (const std::string& line : scene_info()) log_.info(line);
+        panels_.info_open = true;
+    } else if (std::holds_alternative<CancelJob>(command)) {
+        jobs_.cancel();
     } else if (std::holds_alternative<Quit>(command)) {
         quit_ = true;
     }
@@ -234,13 +351,31 @@ void Viewer::handle_input() {
         if (io.MouseWheel != 0.0f) camera.zoom(io.MouseWheel);
     }
 
+    // Files dropped on the window: images become the texture, anything else is opened.
+    for (const std::string& path : dropped_paths_) {
+        const std::vector<std::string> images = supported_image_extensions();
+        const bool image =
+            std::find(images.begin(), images.end(), file_extension(path)) != images.end();
+        commands_.push_back(image ? Command(LoadTexture{path}) : Command(LoadFile{path}));
+    }
+    dropped_paths_.clear();
+
+    // A right click that did not drag opens the Rendering menu as a popup.
+    if (!io.WantCaptureMouse && ImGui::IsMouseReleased(ImGuiMouseButton_Right) &&
+        ImGui::GetMouseDragDelta(ImGuiMouseButton_Right).x == 0.0f &&
+        ImGui::GetMouseDragDelta(ImGuiMouseButton_Right).y == 0.0f)
+        panels_.context_menu_requested = true;
+
     std::vector<KeyPress> presses;
     presses.swap(key_presses_);
     if (io.WantCaptureKeyboard) return;  // typing into a text field, or a popup is open
     RenderStyle& style = view_.style;
     for (const KeyPress& press : presses) {
         if (press.mods == GLFW_MOD_CONTROL) {
-            if (press.key == GLFW_KEY_O) open_dialog_.open_requested = true;
+            if (press.key == GLFW_KEY_O && !jobs_.busy())
+                panels_.file_browser.request(FileBrowserState::Purpose::OpenMesh, document_.path);
+            if (press.key == GLFW_KEY_S && !jobs_.busy())
+                panels_.file_browser.request(FileBrowserState::Purpose::SaveMesh, document_.path);
             if (press.key == GLFW_KEY_Q) commands_.push_back(Quit{});
         } else if (press.mods == 0) {
             switch (press.key) {
@@ -253,12 +388,14 @@ void Viewer::handle_input() {
                 case GLFW_KEY_B:
                     style.back_face_color = !style.back_face_color;
                     break;
-                case GLFW_KEY_F:
-                    style.shading =
-                        style.shading == Shading::Flat ? Shading::Smooth : Shading::Flat;
+                case GLFW_KEY_I:
+                    commands_.push_back(PrintInfo{});
+                    break;
+                case GLFW_KEY_L:
+                    panels_.log_open = !panels_.log_open;
                     break;
                 case GLFW_KEY_F1:
-                    help_.open = !help_.open;
+                    panels_.help_open = !panels_.help_open;
                     break;
                 default:
                     break;
@@ -268,15 +405,33 @@ void Viewer::handle_input() {
 }
 
 void Viewer::draw_ui() {
-    menu_bar(view_.style, open_dialog_, help_, commands_);
+    MenuContext context;
+    context.has_file = !document_.path.empty();
+    context.busy = jobs_.busy();
+    context.document_path = document_.path;
+    context.recent_files = &recent_.paths();
+    menu_bar(view_.style, panels_, context, commands_);
+    context_menu(view_.style, panels_, commands_);
     StatusInfo status;
     status.n_vertices = document_.mesh.n_vertices();
     status.n_faces = document_.mesh.n_faces();
     status.file_name = document_.name;
     status.frame_ms = frame_ms();
     status_bar(status, notice_);
-    help_window(help_);
-    open_dialog(open_dialog_, commands_);
+    if (jobs_.busy()) {
+        JobInfo job;
+        job.name = jobs_.name();
+        job.stage = jobs_.stage();
+        job.fraction = jobs_.fraction();
+        job.seconds = jobs_.elapsed_seconds();
+        job.cancel_requested = jobs_.cancel_requested();
+        job_progress(job, commands_);
+    }
+    help_window(panels_);
+    about_window(panels_);
+    log_window(panels_, log_);
+    if (panels_.info_open) info_window(panels_, scene_info());
+    file_browser(panels_.file_browser, commands_);
     error_popup(notice_);
 }
 
@@ -327,6 +482,14 @@ int Viewer::run() {
         }
         if (active_frames_ > 0) --active_frames_;
 
+        // Scripted runs (--frames) show the result of the initial load, not the progress.
+        while (options_.frames > 0 && jobs_.busy()) {
+            poll_jobs();
+            if (jobs_.busy()) glfwWaitEventsTimeout(0.002);
+        }
+        poll_jobs();
+        if (jobs_.busy()) active_frames_ = std::max(active_frames_, 1);  // animate the progress
+
         const double start = glfwGetTime();
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
@@ -337,7 +500,8 @@ int Viewer::run() {
 
         for (const Command& command : commands_) execute(command);
         // Commands and popups change the UI over the next frames: keep drawing.
-        if (!commands_.empty() || notice_.popup_pending || open_dialog_.open_requested)
+        if (!commands_.empty() || notice_.popup_pending || panels_.file_browser.open_requested ||
+            panels_.context_menu_requested)
             active_frames_ = kFramesAfterInput;
         commands_.clear();
 

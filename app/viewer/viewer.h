@@ -9,8 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "app/viewer/job_runner.h"
+#include "app/viewer/log.h"
 #include "app/viewer/panels.h"
 #include "core/halfedge_mesh.h"
+#include "core/io/image_io.h"
+#include "core/mesh_builder.h"
 #include "render/camera.h"
 #include "render/mesh_renderer.h"
 
@@ -30,8 +34,10 @@ struct ViewerOptions {
 /// The mesh being shown and where it came from.
 struct Document {
     HalfedgeMesh mesh;
-    std::string name;  ///< file name, or "default model"
-    std::string path;  ///< file path; empty for the default model
+    std::string name;               ///< file name, or "default model"
+    std::string path;               ///< file path; empty for the default model
+    LoadReport report;              ///< what loading it did (empty for built-in models)
+    std::vector<std::string> info;  ///< model information lines, computed once per document
 };
 
 /// How the document is looked at.
@@ -77,8 +83,17 @@ private:
     void handle_input();
     void draw_ui();
     void execute(const Command& command);
+    /// Starts a job that reads `path`; the document changes when it succeeds.
     void load(const std::string& path);
-    void set_document(HalfedgeMesh mesh, std::string name, std::string path);
+    /// Starts a job that writes a copy of the document to `path`.
+    void save(const std::string& path);
+    void load_texture(const std::string& path);
+    /// Applies a finished job (or its failure) on the render thread.
+    void poll_jobs();
+    void set_document(HalfedgeMesh mesh, std::string name, std::string path, LoadReport report);
+    /// Model and scene information, for the Info panel and the `I` key.
+    std::vector<std::string> scene_info() const;
+    void notify_error(const std::string& text);
     void fit_view();
     void render_scene();
     /// Reads the back buffer and writes it as PNG; returns an error message or "".
@@ -92,11 +107,15 @@ private:
 
     Document document_;
     ViewState view_;
-    OpenDialogState open_dialog_;
-    HelpState help_;
+    Image texture_;  ///< the loaded texture image (empty: none)
+    PanelState panels_;
     Notice notice_;
+    Log log_;
+    JobRunner jobs_;
+    RecentFiles recent_;
     CommandQueue commands_;
-    std::vector<KeyPress> key_presses_;  ///< since the last frame
+    std::vector<KeyPress> key_presses_;       ///< since the last frame
+    std::vector<std::string> dropped_paths_;  ///< files dropped on the window since the last frame
 
     float ui_scale_ = 1.0f;  ///< content scale of the monitor (HiDPI)
     int active_frames_ = 0;  ///< frames still to draw after the last event or command

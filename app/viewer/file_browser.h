@@ -1,0 +1,50 @@
+#pragma once
+// The file browser panel: a modal dialog that lists a folder (sub-folders first, then the
+// files whose extension fits the purpose), lets the user walk the tree, type a name or a
+// whole path, and queues a command when a file is chosen. Also the recent-files list, kept
+// in $XDG_CONFIG_HOME/trilab/recent-files (or ~/.config/...).
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "app/viewer/commands.h"
+
+namespace trilab::viewer {
+
+struct FileBrowserState {
+    enum class Purpose { OpenMesh, SaveMesh, LoadTexture };
+    Purpose purpose = Purpose::OpenMesh;
+    bool open_requested = false;  ///< open the dialog on the next frame
+    std::filesystem::path folder;
+    std::string name;  ///< the text field: a file name or a whole path
+    bool show_all_files = false;
+    std::string error;  ///< why the folder cannot be listed, or the name is bad
+    bool confirm_overwrite = false;
+
+    /// Opens the dialog for `purpose`, starting in the folder of `near` (or the current
+    /// folder when empty).
+    void request(Purpose p, const std::string& near);
+};
+
+/// Draws the dialog when open; queues LoadFile, SaveFile or LoadTexture.
+void file_browser(FileBrowserState& state, CommandQueue& commands);
+
+/// Most recently used files, newest first, at most kMax.
+class RecentFiles {
+public:
+    static constexpr std::size_t kMax = 10;
+    /// Reads the list from `file` (missing or unreadable: empty list).
+    void load(const std::filesystem::path& file);
+    /// Moves `path` to the front and writes the list back (errors are ignored: the list is
+    /// a convenience).
+    void add(const std::string& path);
+    const std::vector<std::string>& paths() const { return paths_; }
+    /// The default location of the list, or empty when no home folder is known.
+    static std::filesystem::path default_file();
+
+private:
+    std::filesystem::path file_;
+    std::vector<std::string> paths_;
+};
+
+}  // namespace trilab::viewer
