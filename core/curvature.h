@@ -24,6 +24,8 @@ struct VertexCurvatures {
     std::vector<double> k2;           ///< second (smaller) principal curvature
     std::vector<double> shape_index;  ///< Koenderink's S = (2/pi) atan((k1 + k2) / (k1 - k2))
     std::vector<std::uint8_t> valid;  ///< 1 where the values are meaningful
+    std::vector<double> area;         ///< mixed Voronoi area A_mixed (0 where valid is 0);
+                                      ///< sum(gaussian * area) is the total curvature
 };
 
 VertexCurvatures compute_curvatures(const HalfedgeMesh& mesh);

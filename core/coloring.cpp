@@ -1,0 +1,230 @@
+// Colour maps and vertex colourings.
+//
+// Both maps interpolate linearly (per RGB channel) between a few control points:
+//  - Sequential: a ramp designed for trilab, dark blue -> blue -> teal -> green -> yellow,
+//    whose Rec. 709 luminance 0.2126 R + 0.7152 G + 0.0722 B rises at every control point, so
+//    it rises monotonically along the whole ramp (linear pieces between increasing points);
+//  - Diverging: blue -> light blue -> white -> light red -> red, symmetric in lightness, with
+//    white exactly at the centre of the range.
+// Values are mapped to t = (value - min) / (max - min) in double precision and clamped to
+// [0, 1]; a non-finite value or a degenerate range maps to the centre of the map.
+//
+// color_vertices: None paints every vertex the front colour (0.5, 0.62, 0.8); Normal paints
+// (n + 1) / 2 of the area-weighted vertex normal (grey where there is none); the curvatures
+// come from compute_curvatures() (Meyer et al. 2003) and, being signed, use the diverging map:
+// K1, K2, Mean and Gaussian over symmetric_range(percentile_range(...)) of the valid values,
+// ShapeIndex over the fixed range [-1, 1]. Vertices without a valid value (boundary, isolated,
+// zero area) get the neutral grey (0.55, 0.55, 0.55). Percentiles are checked before any
+// work (InvalidArgument naming low_percentile / high_percentile). Complexity: linear, plus
+// O(n) expected for the percentiles (nth_element).
+#include "core/coloring.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <sstream>
+
+#include "core/curvature.h"
+#include "core/errors.h"
+#include "core/geometry.h"
+
+namespace trilab {
+
+namespace {
+
+struct ControlPoint {
+    double t;
+    double r, g, b;
+};
+
+// Rec. 709 luminance of the control points: 0.088, 0.198, 0.379, 0.613, 0.854.
+constexpr std::array<ControlPoint, 5> kSequential = {{
+    {0.00, 0.085, 0.065, 0.320},
+    {0.25, 0.120, 0.180, 0.600},
+    {0.50, 0.080, 0.450, 0.560},
+    {0.75, 0.380, 0.710, 0.340},
+    {1.00, 0.990, 0.880, 0.200},
+}};
+
+// Luminance 0.297, 0.675, 1, 0.674, 0.298: both halves fade to white at the same rate.
+constexpr std::array<ControlPoint, 5> kDiverging = {{
+    {0.00, 0.200, 0.280, 0.750},
+    {0.25, 0.560, 0.680, 0.960},
+    {0.50, 1.000, 1.000, 1.000},
+    {0.75, 0.950, 0.610, 0.500},
+    {1.00, 0.820, 0.155, 0.170},
+}};
+
+const Color kFrontColor(0.5f, 0.62f, 0.8f);
+const Color kInvalidColor(0.55f, 0.55f, 0.55f);
+
+template <std::size_t N>
+Color interpolate(const std::array<ControlPoint, N>& map, double t) {
+    std::size_t k = 1;
+    while (k + 1 < N && t > map[k].t) ++k;
+    const ControlPoint& a = map[k - 1];
+    const ControlPoint& b = map[k];
+    // (1 - s) a + s b reproduces b exactly at s = 1 (white at the diverging centre).
+    const double s = std::clamp((t - a.t) / (b.t - a.t), 0.0, 1.0);
+    return Color(float((1 - s) * a.r + s * b.r), float((1 - s) * a.g + s * b.g),
+                 float((1 - s) * a.b + s * b.b));
+}
+
+struct ColoringEntry {
+    VertexColoring coloring;
+    const char* name;
+    const char* label;
+};
+
+constexpr std::array<ColoringEntry, 7> kColorings = {{
+    {VertexColoring::None, "none", ""},
+    {VertexColoring::Normal, "normal", "vertex normal"},
+    {VertexColoring::K1, "k1", "first principal curvature k1"},
+    {VertexColoring::K2, "k2", "second principal curvature k2"},
+    {VertexColoring::Mean, "mean", "mean curvature H"},
+    {VertexColoring::Gaussian, "gaussian", "Gaussian curvature K"},
+    {VertexColoring::ShapeIndex, "shape-index", "shape index"},
+}};
+
+const ColoringEntry& entry(VertexColoring coloring) {
+    for (const auto& e : kColorings)
+        if (e.coloring == coloring) return e;
+    throw InvalidArgument("coloring: unknown VertexColoring value " +
+                          std::to_string(static_cast<int>(coloring)));
+}
+
+void check_percentiles(const char* where, const char* low_name, double low, const char* high_name,
+                       double high) {
+    if (low >= 0 && low < high && high <= 100) return;
+    std::ostringstream s;
+    s << where << ": " << low_name << " = " << low << " and " << high_name << " = " << high
+      << " must satisfy 0 <= " << low_name << " < " << high_name << " <= 100";
+    throw InvalidArgument(s.str());
+}
+
+/// The value of rank `position` (fractional, linear interpolation) in `v`; reorders `v`.
+double order_statistic(std::vector<double>& v, double position) {
+    const std::size_t below = std::min(std::size_t(position), v.size() - 1);
+    const double frac = position - double(below);
+    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(below), v.end());
+    const double a = v[below];
+    if (frac <= 0 || below + 1 >= v.size()) return a;
+    // The next order statistic is the smallest value above `below`.
+    const double b = *std::min_element(v.begin() + std::ptrdiff_t(below) + 1, v.end());
+    return a + frac * (b - a);
+}
+
+}  // namespace
+
+Color map_color(double value, const ValueRange& range, ColorMapKind kind) {
+    const double width = range.max - range.min;
+    double t = 0.5;
+    if (std::isfinite(value) && width > 0 && std::isfinite(width))
+        t = std::clamp((value - range.min) / width, 0.0, 1.0);
+    return kind == ColorMapKind::Sequential ? interpolate(kSequential, t)
+                                            : interpolate(kDiverging, t);
+}
+
+ValueRange percentile_range(const std::vector<double>& values,
+                            const std::vector<std::uint8_t>& valid, double low, double high) {
+    check_percentiles("percentile_range", "low", low, "high", high);
+    if (!valid.empty() && valid.size() != values.size())
+        throw InvalidArgument("percentile_range: valid has " + std::to_string(valid.size()) +
+                              " entries but values has " + std::to_string(values.size()) +
+                              " (it must be empty or the same size)");
+    std::vector<double> v;
+    v.reserve(values.size());
+    for (std::size_t i = 0; i < values.size(); ++i)
+        if ((valid.empty() || valid[i]) && std::isfinite(values[i])) v.push_back(values[i]);
+    if (v.empty()) return {};
+    const double last = double(v.size() - 1);
+    ValueRange r;
+    r.min = order_statistic(v, low / 100 * last);
+    r.max = order_statistic(v, high / 100 * last);
+    if (!(r.max > r.min)) {
+        const double centre = 0.5 * (r.min + r.max);
+        const double half = std::max(std::abs(centre), 1e-12);
+        r.min = centre - half;
+        r.max = centre + half;
+    }
+    return r;
+}
+
+ValueRange symmetric_range(const ValueRange& range) {
+    double m = std::max(std::abs(range.min), std::abs(range.max));
+    if (!(m > 0)) m = 1e-12;
+    return {-m, m};
+}
+
+VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
+                            const ColoringOptions& options) {
+    check_percentiles("color_vertices", "low_percentile", options.low_percentile, "high_percentile",
+                      options.high_percentile);
+    const ColoringEntry& e = entry(coloring);
+    VertexColors out;
+    out.label = e.label;
+    const std::size_t n = mesh.vertices_size();
+
+    if (coloring == VertexColoring::None) {
+        out.colors.assign(n, kFrontColor);
+        return out;
+    }
+    if (coloring == VertexColoring::Normal) {
+        out.colors.assign(n, kInvalidColor);
+        for (Vertex v : mesh.vertices()) {
+            const Vector3 normal = vertex_normal(mesh, v);
+            // Isolated vertices and fully degenerate fans have no normal: neutral grey.
+            if (normal != Vector3::Zero())
+                out.colors[v.idx()] = ((normal + Vector3::Ones()) * 0.5).cast<float>();
+        }
+        out.range = {-1, 1};
+        return out;
+    }
+
+    const VertexCurvatures c = compute_curvatures(mesh);
+    const std::vector<double>* field = nullptr;
+    switch (coloring) {
+        case VertexColoring::K1:
+            field = &c.k1;
+            break;
+        case VertexColoring::K2:
+            field = &c.k2;
+            break;
+        case VertexColoring::Mean:
+            field = &c.mean;
+            break;
+        case VertexColoring::Gaussian:
+            field = &c.gaussian;
+            break;
+        default:
+            field = &c.shape_index;
+            break;
+    }
+    out.kind = ColorMapKind::Diverging;
+    out.has_legend = true;
+    out.range = coloring == VertexColoring::ShapeIndex
+                    ? ValueRange{-1, 1}
+                    : symmetric_range(percentile_range(*field, c.valid, options.low_percentile,
+                                                       options.high_percentile));
+    out.colors.assign(n, kInvalidColor);
+    for (Vertex v : mesh.vertices())
+        if (c.valid[v.idx()])
+            out.colors[v.idx()] = map_color((*field)[v.idx()], out.range, out.kind);
+    return out;
+}
+
+const char* coloring_name(VertexColoring coloring) {
+    return entry(coloring).name;
+}
+
+VertexColoring parse_coloring(const std::string& name) {
+    std::string known;
+    for (const auto& e : kColorings) {
+        if (name == e.name) return e.coloring;
+        known += (known.empty() ? "" : ", ") + std::string(e.name);
+    }
+    throw InvalidArgument("parse_coloring: unknown colouring '" + name + "' (known: " + known +
+                          ")");
+}
+
+}  // namespace trilab
