@@ -17,7 +17,16 @@ struct Image {
 
 /// Extensions read_image() accepts (lower case, without the dot).
 std::vector<std::string> supported_image_extensions();
-/// Reads any supported image, chosen by extension. Throws IoError.
+/// Reads any supported image, chosen by extension (case-insensitive). Throws IoError.
+///
+/// Variants: PNG (any bit depth and colour type stb_image reads); BMP 1/4/8/16/24/32 bit,
+/// uncompressed or bitfields, bottom-up or top-down (no RLE); PNM P1-P6 under .pnm, .ppm, .pgm
+/// or .pbm, maxval up to 65535 scaled to 8 bits; XBM (X11 char or X10 short bits, 1 = black);
+/// XPM3 (1-8 characters per pixel, #RGB to #RRRRGGGGBBBB scaled to 8 bits, common X11 names,
+/// grayN, None = transparent; the c key is used, else g, g4, m). Sizes over 32768 pixels per
+/// side or 2^28 pixels, and sizes the file cannot hold, are refused before allocating. Binary
+/// PNM may carry bytes after the raster (a Netpbm stream of several images: the first is
+/// read); the text formats must hold exactly the declared pixels.
 Image read_image(const std::string& path);
 /// Writes a PNG through a temporary file and a rename. Throws IoError.
 void write_png(const Image& image, const std::string& path);

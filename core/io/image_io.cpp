@@ -1,0 +1,935 @@
+#include "core/io/image_io.h"
+
+#include <stb/stb_image.h>
+#include <stb/stb_image_write.h>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <climits>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <ostream>
+#include <string_view>
+#include <unordered_map>
+
+#include "core/errors.h"
+#include "core/io/file_util.h"
+#include "core/io/text_scanner.h"
+
+// Readers:
+//  - PNG and BMP go through stb_image (after our own signature check, a size check that
+//    refuses absurd dimensions before stb allocates, and for BMP a check that the pixel data
+//    is all there: stb quietly reads zeros past the end of a truncated BMP).
+//  - PNM (P1-P6) is our own reader: stb reads only binary P5/P6, and we want line numbers in
+//    the errors of the ASCII variants.
+//  - XBM and XPM are our own readers over a tiny C tokenizer (comments, identifiers, numbers,
+//    string literals, punctuation), so errors name the line.
+// Every reader checks the declared size against the limits and against what the file can
+// hold before it allocates the pixels.
+
+namespace trilab {
+
+namespace {
+
+constexpr long long kMaxSide = 32768;
+constexpr long long kMaxPixels = 1LL << 28;
+
+// ---- shared helpers -------------------------------------------------------------------------
+
+std::string lower(std::string s) {
+    for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+std::string extension_of(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    if (!ext.empty() && ext[0] == '.') ext.erase(0, 1);
+    return lower(ext);
+}
+
+/// Refuses sizes that are not positive or exceed the limits (before anything is allocated).
+void check_dimensions(long long width, long long height, const std::string& path,
+                      std::size_t line) {
+    const std::string size = std::to_string(width) + " x " + std::to_string(height);
+    if (width <= 0 || height <= 0)
+        throw IoError(path, line, "invalid image size " + size + " (must be positive)");
+    if (width > kMaxSide || height > kMaxSide)
+        throw IoError(path, line,
+                      "image size " + size + " exceeds the limit of " + std::to_string(kMaxSide) +
+                          " pixels per side");
+    if (width * height > kMaxPixels)
+        throw IoError(path, line,
+                      "image size " + size + " exceeds the limit of " + std::to_string(kMaxPixels) +
+                          " pixels");
+}
+
+Image make_image(long long width, long long height) {
+    Image image;
+    image.width = int(width);
+    image.height = int(height);
+    image.rgba.assign(std::size_t(width) * std::size_t(height) * 4, 0);
+    return image;
+}
+
+void put(Image& image, std::size_t pixel, std::uint32_t r, std::uint32_t g, std::uint32_t b,
+         std::uint32_t a = 255) {
+    std::uint8_t* p = image.rgba.data() + 4 * pixel;
+    p[0] = std::uint8_t(r);
+    p[1] = std::uint8_t(g);
+    p[2] = std::uint8_t(b);
+    p[3] = std::uint8_t(a);
+}
+
+/// `value` in [0, max] scaled to [0, 255], rounded to nearest.
+std::uint32_t scale_to_8bit(std::uint32_t value, std::uint32_t max) {
+    if (max == 255) return value;
+    return std::uint32_t((std::uint64_t(value) * 255 + max / 2) / max);
+}
+
+// ---- PNG and BMP through stb_image ----------------------------------------------------------
+
+std::string stb_reason() {
+    const char* r = stbi_failure_reason();
+    return r ? r : "unknown error";
+}
+
+std::uint32_t le_u32(const std::string& b, std::size_t at) {
+    return std::uint32_t(std::uint8_t(b[at])) | std::uint32_t(std::uint8_t(b[at + 1])) << 8 |
+           std::uint32_t(std::uint8_t(b[at + 2])) << 16 |
+           std::uint32_t(std::uint8_t(b[at + 3])) << 24;
+}
+std::uint32_t be_u32(const std::string& b, std::size_t at) {
+    return std::uint32_t(std::uint8_t(b[at])) << 24 | std::uint32_t(std::uint8_t(b[at + 1])) << 16 |
+           std::uint32_t(std::uint8_t(b[at + 2])) << 8 | std::uint32_t(std::uint8_t(b[at + 3]));
+}
+std::uint32_t le_u16(const std::string& b, std::size_t at) {
+    return std::uint32_t(std::uint8_t(b[at])) | std::uint32_t(std::uint8_t(b[at + 1])) << 8;
+}
+
+/// Checks the BMP headers ourselves: the size limits, and that uncompressed pixel data is
+/// complete (stb_image reads zeros past the end of a truncated file instead of failing).
+void check_bmp(const std::string& bytes, const std::string& path) {
+    if (bytes.size() < 2 || bytes.compare(0, 2, "BM") != 0)
+        throw IoError(path, 0, "not a BMP file (the signature 'BM' is missing)");
+    if (bytes.size() < 26) throw IoError(path, 0, "truncated BMP header");
+    const std::uint64_t offset = le_u32(bytes, 10);
+    const std::uint32_t header_size = le_u32(bytes, 14);
+    long long width = 0, height = 0;
+    std::uint32_t bpp = 0, compression = 0;
+    if (header_size == 12) {
+        width = le_u16(bytes, 18);
+        height = le_u16(bytes, 20);
+        bpp = le_u16(bytes, 24);
+    } else if (header_size >= 40 && header_size <= 124) {
+        if (bytes.size() < 54) throw IoError(path, 0, "truncated BMP header");
+        width = std::int32_t(le_u32(bytes, 18));
+        height = std::int32_t(le_u32(bytes, 22));
+        bpp = le_u16(bytes, 28);
+        compression = le_u32(bytes, 30);
+    } else {
+        throw IoError(path, 0, "unsupported BMP info header size " + std::to_string(header_size));
+    }
+    if (height < 0) height = -height;  // top-down rows
+    check_dimensions(width, height, path, 0);
+    if (bpp != 1 && bpp != 4 && bpp != 8 && bpp != 16 && bpp != 24 && bpp != 32)
+        throw IoError(path, 0, "unsupported BMP bit depth " + std::to_string(bpp));
+    const bool uncompressed = compression == 0 || compression == 3 || compression == 6;
+    if (!uncompressed)
+        throw IoError(path, 0,
+                      "unsupported BMP compression " + std::to_string(compression) +
+                          " (RLE and embedded JPEG/PNG are not read)");
+    const std::uint64_t stride = (std::uint64_t(width) * bpp + 31) / 32 * 4;
+    const std::uint64_t needed = offset + stride * std::uint64_t(height);
+    if (bytes.size() < needed)
+        throw IoError(path, 0,
+                      "truncated: the pixel data ends at byte " + std::to_string(needed) +
+                          ", the file has " + std::to_string(bytes.size()) + " bytes");
+}
+
+Image read_with_stb(const std::string& path, const char* format) {
+    const std::string bytes = read_file_bytes(path);
+    const std::string fmt = format;
+    if (bytes.empty()) throw IoError(path, 0, "the file is empty");
+    if (bytes.size() > std::size_t(INT_MAX))
+        throw IoError(path, 0, "the file is too large (over 2 GiB)");
+    if (fmt == "PNG") {
+        static const char kSignature[] = "\x89PNG\r\n\x1a\n";
+        if (bytes.size() < 8 || bytes.compare(0, 8, kSignature, 8) != 0)
+            throw IoError(path, 0, "not a PNG file (the PNG signature is missing)");
+        // Our own size check: stb refuses large sizes with a vague "unknown image type".
+        if (bytes.size() < 24 || bytes.compare(12, 4, "IHDR") != 0)
+            throw IoError(path, 0, "truncated PNG: the IHDR chunk is missing");
+        check_dimensions(be_u32(bytes, 16), be_u32(bytes, 20), path, 0);
+    } else {
+        check_bmp(bytes, path);
+    }
+    const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+    const int length = int(bytes.size());
+    int width = 0, height = 0, channels = 0;
+    if (!stbi_info_from_memory(data, length, &width, &height, &channels))
+        throw IoError(path, 0, "cannot read the " + fmt + " header: " + stb_reason());
+    check_dimensions(width, std::abs(height), path, 0);  // stb gives top-down BMPs as < 0
+    // The flag is global in stb; trilab's convention is "rows top to bottom", so make sure
+    // nobody's earlier call left it on.
+    stbi_set_flip_vertically_on_load(0);
+    std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
+        stbi_load_from_memory(data, length, &width, &height, &channels, 4), stbi_image_free);
+    if (!pixels) throw IoError(path, 0, "cannot decode the " + fmt + " data: " + stb_reason());
+    check_dimensions(width, height, path, 0);
+    Image image = make_image(width, height);
+    std::memcpy(image.rgba.data(), pixels.get(), image.rgba.size());
+    return image;
+}
+
+// ---- PNM: P1-P6 -----------------------------------------------------------------------------
+
+Image read_pnm(const std::string& path) {
+    const std::string bytes = read_file_bytes(path);
+    if (bytes.empty()) throw IoError(path, 0, "the file is empty");
+    TextScanner sc(bytes, path, '#');
+    const std::string_view magic = sc.expect_token("the PNM magic number (P1 to P6)");
+    if (magic.size() != 2 || magic[0] != 'P' || magic[1] < '1' || magic[1] > '6')
+        sc.fail("not a PNM file: the magic number is '" + printable(magic) +
+                "', expected P1 to P6");
+    const int kind = magic[1] - '0';
+    const bool bitmap = kind == 1 || kind == 4;
+    const int channels = (kind == 3 || kind == 6) ? 3 : 1;
+    const bool ascii = kind <= 3;
+    const long long width = sc.next_integer("the width");
+    const long long height = sc.next_integer("the height");
+    check_dimensions(width, height, path, sc.line());
+    long long maxval = 1;
+    if (!bitmap) {
+        maxval = sc.next_integer("the maximum value");
+        if (maxval < 1 || maxval > 65535)
+            sc.fail("the maximum value " + std::to_string(maxval) + " is outside 1 to 65535");
+    }
+    const std::size_t n_pixels = std::size_t(width) * std::size_t(height);
+    const std::size_t n_samples = n_pixels * std::size_t(channels);
+    const std::size_t header_end = sc.offset();
+    const std::uint32_t max = std::uint32_t(maxval);
+
+    if (ascii) {
+        // Every sample takes at least one character.
+        check_declared_count(n_samples, 1, bytes.size() - header_end, "samples", path, sc.line());
+        Image image = make_image(width, height);
+        if (kind == 1) {
+            // Plain PBM: '1' is black, '0' white; whitespace between bits is optional.
+            std::size_t pixel = 0;
+            while (pixel < n_pixels) {
+                const std::string_view t = sc.expect_token("more bits (0 or 1)");
+                for (char c : t) {
+                    if (c != '0' && c != '1')
+                        sc.fail("'" + printable(t) + "' is not a sequence of bits (0 or 1)");
+                    if (pixel == n_pixels)
+                        sc.fail("more than the " + std::to_string(n_pixels) +
+                                " bits that the size " + std::to_string(width) + " x " +
+                                std::to_string(height) + " declares");
+                    const std::uint32_t v = c == '1' ? 0 : 255;
+                    put(image, pixel++, v, v, v);
+                }
+            }
+        } else {
+            std::uint32_t s[3] = {0, 0, 0};
+            for (std::size_t pixel = 0; pixel < n_pixels; ++pixel) {
+                for (int k = 0; k < channels; ++k) {
+                    const long long v = sc.next_integer("a sample value");
+                    if (v < 0 || v > maxval)
+                        sc.fail("sample " + std::to_string(v) + " is outside 0 to " +
+                                std::to_string(maxval));
+                    s[k] = scale_to_8bit(std::uint32_t(v), max);
+                }
+                if (channels == 1)
+                    put(image, pixel, s[0], s[0], s[0]);
+                else
+                    put(image, pixel, s[0], s[1], s[2]);
+            }
+        }
+        if (!sc.at_end()) {
+            sc.next_token();
+            sc.fail("more values than the " + std::to_string(width) + " x " +
+                    std::to_string(height) + " pixels that the header declares");
+        }
+        return image;
+    }
+
+    // Binary: exactly one whitespace character separates the header from the raster.
+    if (header_end >= bytes.size())
+        throw IoError(path, sc.line(), "unexpected end of file after the header");
+    const char sep = bytes[header_end];
+    if (sep != ' ' && sep != '\t' && sep != '\n' && sep != '\r' && sep != '\f' && sep != '\v')
+        sc.fail("expected whitespace after the header");
+    const std::size_t start = header_end + 1;
+    const std::size_t available = bytes.size() - start;
+    const std::size_t row_bytes =
+        kind == 4 ? (std::size_t(width) + 7) / 8
+                  : std::size_t(width) * std::size_t(channels) * (maxval > 255 ? 2 : 1);
+    const std::size_t needed = row_bytes * std::size_t(height);
+    if (available < needed)
+        throw IoError(path, 0,
+                      "truncated: the pixel data needs " + std::to_string(needed) +
+                          " bytes, the file has " + std::to_string(available) +
+                          " after the header");
+    // Bytes after the raster are ignored (a Netpbm stream may hold several images).
+    Image image = make_image(width, height);
+    const auto* raster = reinterpret_cast<const std::uint8_t*>(bytes.data() + start);
+    for (std::size_t y = 0; y < std::size_t(height); ++y) {
+        const std::uint8_t* row = raster + y * row_bytes;
+        for (std::size_t x = 0; x < std::size_t(width); ++x) {
+            const std::size_t pixel = y * std::size_t(width) + x;
+            if (kind == 4) {
+                // Bits packed MSB first, 1 is black.
+                const bool black = (row[x / 8] >> (7 - x % 8)) & 1;
+                const std::uint32_t v = black ? 0 : 255;
+                put(image, pixel, v, v, v);
+                continue;
+            }
+            std::uint32_t s[3] = {0, 0, 0};
+            for (int k = 0; k < channels; ++k) {
+                const std::size_t i = x * std::size_t(channels) + std::size_t(k);
+                std::uint32_t v =
+                    maxval > 255 ? std::uint32_t(row[2 * i]) << 8 | row[2 * i + 1] : row[i];
+                if (v > max)
+                    throw IoError(path, 0,
+                                  "sample " + std::to_string(v) + " of pixel (" +
+                                      std::to_string(x) + ", " + std::to_string(y) +
+                                      ") exceeds the maximum value " + std::to_string(max));
+                s[k] = scale_to_8bit(v, max);
+            }
+            if (channels == 1)
+                put(image, pixel, s[0], s[0], s[0]);
+            else
+                put(image, pixel, s[0], s[1], s[2]);
+        }
+    }
+    return image;
+}
+
+// ---- a tiny C tokenizer for XBM and XPM -----------------------------------------------------
+
+struct CToken {
+    enum Kind { End, Identifier, Number, String, Punct } kind = End;
+    std::string_view text;  ///< source text (for strings: with the quotes)
+    std::string value;      ///< the unescaped contents of a string literal
+    std::size_t line = 0;
+};
+
+class CLexer {
+public:
+    CLexer(std::string_view text, const std::string& path) : text_(text), path_(path) {}
+
+    CToken next() {
+        skip_space_and_comments();
+        CToken t;
+        t.line = line_;
+        if (pos_ >= text_.size()) return t;
+        const std::size_t begin = pos_;
+        const char c = text_[pos_];
+        if (is_ident_start(c) || is_digit(c)) {
+            while (pos_ < text_.size() && (is_ident_start(text_[pos_]) || is_digit(text_[pos_])))
+                ++pos_;
+            t.kind = is_digit(c) ? CToken::Number : CToken::Identifier;
+        } else if (c == '"') {
+            t.kind = CToken::String;
+            read_string(t.value);
+        } else {
+            t.kind = CToken::Punct;
+            ++pos_;
+        }
+        t.text = text_.substr(begin, pos_ - begin);
+        return t;
+    }
+
+    std::size_t line() const { return line_; }
+    [[noreturn]] void fail(std::size_t line, const std::string& reason) const {
+        throw IoError(path_, line, reason);
+    }
+
+private:
+    static bool is_digit(char c) { return c >= '0' && c <= '9'; }
+    static bool is_ident_start(char c) {
+        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+    }
+
+    void skip_space_and_comments() {
+        while (pos_ < text_.size()) {
+            const char c = text_[pos_];
+            if (c == '\n') {
+                ++line_;
+                ++pos_;
+            } else if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') {
+                ++pos_;
+            } else if (text_.compare(pos_, 2, "/*") == 0) {
+                const std::size_t start_line = line_;
+                pos_ += 2;
+                for (;;) {
+                    if (pos_ >= text_.size()) fail(start_line, "unterminated comment");
+                    if (text_.compare(pos_, 2, "*/") == 0) {
+                        pos_ += 2;
+                        break;
+                    }
+                    if (text_[pos_] == '\n') ++line_;
+                    ++pos_;
+                }
+            } else if (text_.compare(pos_, 2, "//") == 0) {
+                while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
+            } else {
+                break;
+            }
+        }
+    }
+
+    static int hex_value(char c) {
+        if (c >= '0' && c <= '9') return c - '0';
+        if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+        if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+        return -1;
+    }
+
+    void read_string(std::string& out) {
+        ++pos_;  // opening quote
+        for (;;) {
+            if (pos_ >= text_.size() || text_[pos_] == '\n')
+                fail(line_, "unterminated string literal");
+            const char c = text_[pos_++];
+            if (c == '"') return;
+            if (c != '\\') {
+                out += c;
+                continue;
+            }
+            if (pos_ >= text_.size()) fail(line_, "unterminated string literal");
+            const char e = text_[pos_++];
+            switch (e) {
+                case 'n':
+                    out += '\n';
+                    break;
+                case 't':
+                    out += '\t';
+                    break;
+                case 'r':
+                    out += '\r';
+                    break;
+                case '0':
+                case '1':
+                case '2':
+                case '3':
+                case '4':
+                case '5':
+                case '6':
+                case '7': {
+                    int v = e - '0';
+                    for (int k = 0;
+                         k < 2 && pos_ < text_.size() && text_[pos_] >= '0' && text_[pos_] <= '7';
+                         ++k)
+                        v = v * 8 + (text_[pos_++] - '0');
+                    out += char(v & 0xff);
+                    break;
+                }
+                case 'x': {
+                    int v = 0, digits = 0;
+                    while (pos_ < text_.size() && hex_value(text_[pos_]) >= 0 && digits < 2) {
+                        v = v * 16 + hex_value(text_[pos_++]);
+                        ++digits;
+                    }
+                    if (digits == 0) fail(line_, "invalid \\x escape in a string literal");
+                    out += char(v);
+                    break;
+                }
+                case '\n':  // line continuation
+                    ++line_;
+                    break;
+                default:
+                    out += e;
+                    break;  // \" \\ \' \? and the rest stand for themselves
+            }
+        }
+    }
+
+    std::string_view text_;
+    const std::string& path_;
+    std::size_t pos_ = 0;
+    std::size_t line_ = 1;
+};
+
+std::string describe(const CToken& t) {
+    if (t.kind == CToken::End) return "the end of the file";
+    return "'" + printable(t.text) + "'";
+}
+
+/// A C integer literal (decimal, 0x hexadecimal or 0 octal), or -1 if it is none.
+long long parse_c_integer(std::string_view s) {
+    int base = 10;
+    if (s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X')) {
+        base = 16;
+        s.remove_prefix(2);
+    } else if (s.size() > 1 && s[0] == '0') {
+        base = 8;
+        s.remove_prefix(1);
+    }
+    long long v = 0;
+    auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v, base);
+    if (ec != std::errc() || ptr != s.data() + s.size() || v < 0) return -1;
+    return v;
+}
+
+bool ends_with(std::string_view s, std::string_view suffix) {
+    return s.size() >= suffix.size() && s.substr(s.size() - suffix.size()) == suffix;
+}
+
+// ---- XBM ------------------------------------------------------------------------------------
+
+Image read_xbm(const std::string& path) {
+    const std::string text = read_file_bytes(path);
+    CLexer lex(text, path);
+    long long width = -1, height = -1;
+    std::size_t size_line = 1;
+    CToken t = lex.next();
+    if (t.kind == CToken::End) throw IoError(path, 0, "the file is empty");
+    // #define name_width W / name_height H / name_x_hot X / name_y_hot Y
+    while (t.kind == CToken::Punct && t.text == "#") {
+        const CToken directive = lex.next();
+        if (directive.kind != CToken::Identifier || directive.text != "define")
+            lex.fail(directive.line, "expected #define, found " + describe(directive));
+        const CToken name = lex.next();
+        if (name.kind != CToken::Identifier)
+            lex.fail(name.line, "expected a name after #define, found " + describe(name));
+        const CToken value = lex.next();
+        const long long v = value.kind == CToken::Number ? parse_c_integer(value.text) : -1;
+        if (v < 0)
+            lex.fail(value.line, "expected a non-negative number for " + printable(name.text) +
+                                     ", found " + describe(value));
+        if (ends_with(name.text, "_width")) {
+            width = v;
+            size_line = name.line;
+        } else if (ends_with(name.text, "_height")) {
+            height = v;
+            size_line = name.line;
+        }  // the hot spot and any other define are not needed
+        t = lex.next();
+    }
+    if (width < 0) lex.fail(t.line, "missing '#define <name>_width' before the bits");
+    if (height < 0) lex.fail(t.line, "missing '#define <name>_height' before the bits");
+    check_dimensions(width, height, path, size_line);
+
+    // static [const] [unsigned] char|short name_bits[] = {
+    bool is_short = false, is_char = false;
+    std::size_t decl_line = t.line;
+    while (t.kind == CToken::Identifier) {
+        if (t.text == "short") is_short = true;
+        if (t.text == "char") is_char = true;
+        t = lex.next();
+    }
+    if (!(t.kind == CToken::Punct && t.text == "["))
+        lex.fail(t.line,
+                 "expected the declaration 'static char <name>_bits[] = {', found " + describe(t));
+    if (is_short == is_char) lex.fail(decl_line, "the bits array must be of type char or short");
+    t = lex.next();
+    if (t.kind == CToken::Number) t = lex.next();
+    if (!(t.kind == CToken::Punct && t.text == "]"))
+        lex.fail(t.line, "expected ']', found " + describe(t));
+    t = lex.next();
+    if (!(t.kind == CToken::Punct && t.text == "="))
+        lex.fail(t.line, "expected '=', found " + describe(t));
+    t = lex.next();
+    if (!(t.kind == CToken::Punct && t.text == "{"))
+        lex.fail(t.line, "expected '{', found " + describe(t));
+
+    // X11 XBM: bytes; X10 XBM: 16-bit words. Bits LSB first, rows padded to whole units.
+    const int unit_bits = is_short ? 16 : 8;
+    const long long max_value = is_short ? 0xffff : 0xff;
+    const std::size_t units_per_row = (std::size_t(width) + unit_bits - 1) / unit_bits;
+    const std::size_t n_units = units_per_row * std::size_t(height);
+    // Each value takes at least one character.
+    check_declared_count(n_units, 1, text.size(), "bit values", path, size_line);
+    Image image = make_image(width, height);
+    std::size_t count = 0;
+    for (;;) {
+        t = lex.next();
+        if (t.kind == CToken::Punct && t.text == "}") break;
+        if (t.kind != CToken::Number)
+            lex.fail(t.line, "expected a number or '}', found " + describe(t));
+        const long long v = parse_c_integer(t.text);
+        if (v < 0 || v > max_value)
+            lex.fail(t.line, "'" + printable(t.text) + "' is not a " +
+                                 (is_short ? "16-bit" : "byte") + " value");
+        if (count == n_units)
+            lex.fail(t.line, "more than the " + std::to_string(n_units) + " values that " +
+                                 std::to_string(width) + " x " + std::to_string(height) +
+                                 " pixels need");
+        const std::size_t y = count / units_per_row;
+        const std::size_t x0 = (count % units_per_row) * std::size_t(unit_bits);
+        for (int bit = 0; bit < unit_bits && x0 + std::size_t(bit) < std::size_t(width); ++bit) {
+            const std::uint32_t c = ((v >> bit) & 1) ? 0 : 255;  // 1 is black
+            put(image, y * std::size_t(width) + x0 + std::size_t(bit), c, c, c);
+        }
+        ++count;
+        t = lex.next();
+        if (t.kind == CToken::Punct && t.text == "}") break;
+        if (!(t.kind == CToken::Punct && t.text == ","))
+            lex.fail(t.line, "expected ',' or '}', found " + describe(t));
+    }
+    if (count != n_units)
+        lex.fail(t.line, "found " + std::to_string(count) + " values, but " +
+                             std::to_string(width) + " x " + std::to_string(height) +
+                             " pixels need " + std::to_string(n_units));
+    t = lex.next();
+    if (t.kind == CToken::Punct && t.text == ";") t = lex.next();
+    if (t.kind != CToken::End)
+        lex.fail(t.line, "unexpected " + describe(t) + " after the bits array");
+    return image;
+}
+
+// ---- XPM ------------------------------------------------------------------------------------
+
+struct Rgba {
+    std::uint8_t r = 0, g = 0, b = 0, a = 255;
+};
+
+struct NamedColor {
+    const char* name;
+    std::uint8_t r, g, b;
+};
+
+// The X11 (rgb.txt) values of the common names; lookups ignore case and spaces.
+constexpr NamedColor kNamedColors[] = {
+    {"black", 0, 0, 0},          {"white", 255, 255, 255},     {"red", 255, 0, 0},
+    {"green", 0, 255, 0},        {"blue", 0, 0, 255},          {"yellow", 255, 255, 0},
+    {"cyan", 0, 255, 255},       {"magenta", 255, 0, 255},     {"gray", 190, 190, 190},
+    {"grey", 190, 190, 190},     {"orange", 255, 165, 0},      {"darkgray", 169, 169, 169},
+    {"darkgrey", 169, 169, 169}, {"lightgray", 211, 211, 211}, {"lightgrey", 211, 211, 211},
+    {"dimgray", 105, 105, 105},  {"dimgrey", 105, 105, 105},   {"brown", 165, 42, 42},
+    {"pink", 255, 192, 203},     {"purple", 160, 32, 240},     {"violet", 238, 130, 238},
+    {"navy", 0, 0, 128},         {"navyblue", 0, 0, 128},      {"maroon", 176, 48, 96},
+    {"gold", 255, 215, 0},       {"darkred", 139, 0, 0},       {"darkgreen", 0, 100, 0},
+    {"darkblue", 0, 0, 139},     {"lightblue", 173, 216, 230}, {"skyblue", 135, 206, 235},
+    {"beige", 245, 245, 220},
+};
+
+int hex_digit(char c) {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+}
+
+/// An XPM colour: None, #RGB / #RRGGBB / #RRRGGGBBB / #RRRRGGGGBBBB (each component scaled
+/// to 8 bits, so #fff is white), an X11 name from kNamedColors, or grayN / greyN (N 0-100).
+bool parse_xpm_color(const std::string& spec, Rgba& out) {
+    if (spec.empty()) return false;
+    if (spec[0] == '#') {
+        const std::size_t n = spec.size() - 1;
+        if (n == 0 || n % 3 != 0 || n > 12) return false;
+        const std::size_t digits = n / 3;
+        const std::uint32_t max = (1u << (4 * digits)) - 1;
+        std::uint32_t c[3];
+        for (int k = 0; k < 3; ++k) {
+            std::uint32_t v = 0;
+            for (std::size_t i = 0; i < digits; ++i) {
+                const int d = hex_digit(spec[1 + std::size_t(k) * digits + i]);
+                if (d < 0) return false;
+                v = v * 16 + std::uint32_t(d);
+            }
+            c[k] = scale_to_8bit(v, max);
+        }
+        out = {std::uint8_t(c[0]), std::uint8_t(c[1]), std::uint8_t(c[2]), 255};
+        return true;
+    }
+    std::string key;
+    for (char ch : spec)
+        if (ch != ' ' && ch != '\t') key += char(std::tolower(static_cast<unsigned char>(ch)));
+    if (key == "none") {
+        out = {0, 0, 0, 0};
+        return true;
+    }
+    for (const NamedColor& c : kNamedColors) {
+        if (key == c.name) {
+            out = {c.r, c.g, c.b, 255};
+            return true;
+        }
+    }
+    if ((key.rfind("gray", 0) == 0 || key.rfind("grey", 0) == 0) && key.size() > 4 &&
+        key.size() <= 7) {
+        int level = 0;
+        auto [ptr, ec] = std::from_chars(key.data() + 4, key.data() + key.size(), level);
+        if (ec == std::errc() && ptr == key.data() + key.size() && level >= 0 && level <= 100) {
+            const auto v = std::uint8_t((level * 255 + 49) / 100);  // rgb.txt's rounding
+            out = {v, v, v, 255};
+            return true;
+        }
+    }
+    return false;
+}
+
+struct XpmString {
+    std::string text;
+    std::size_t line;
+};
+
+std::vector<std::string_view> split_words(std::string_view s) {
+    std::vector<std::string_view> words;
+    std::size_t i = 0;
+    while (i < s.size()) {
+        while (i < s.size() && (s[i] == ' ' || s[i] == '\t')) ++i;
+        const std::size_t begin = i;
+        while (i < s.size() && s[i] != ' ' && s[i] != '\t') ++i;
+        if (i > begin) words.push_back(s.substr(begin, i - begin));
+    }
+    return words;
+}
+
+std::uint64_t pixel_code(std::string_view chars) {
+    std::uint64_t code = 0;
+    for (char c : chars) code = code << 8 | std::uint8_t(c);
+    return code;
+}
+
+Image read_xpm(const std::string& path) {
+    const std::string text = read_file_bytes(path);
+    if (text.empty()) throw IoError(path, 0, "the file is empty");
+    {
+        // XPM3 files start with the comment /* XPM */.
+        std::size_t i = 0, line = 1;
+        while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i])))
+            line += text[i++] == '\n';
+        const std::size_t end =
+            text.compare(i, 2, "/*") == 0 ? text.find("*/", i + 2) : std::string::npos;
+        if (end == std::string::npos ||
+            std::string_view(text).substr(i, end - i).find("XPM") == std::string_view::npos)
+            throw IoError(path, line, "not an XPM file (it must start with /* XPM */)");
+    }
+    CLexer lex(text, path);
+    // static [const] char *name[] = {
+    CToken t = lex.next();
+    while (!(t.kind == CToken::Punct && t.text == "{")) {
+        const bool declaration_part = t.kind == CToken::Identifier || t.kind == CToken::Number ||
+                                      (t.kind == CToken::Punct && (t.text == "*" || t.text == "[" ||
+                                                                   t.text == "]" || t.text == "="));
+        if (!declaration_part)
+            lex.fail(t.line,
+                     "expected the declaration 'static char* <name>[] = {', found " + describe(t));
+        t = lex.next();
+    }
+    // The array of strings; adjacent literals concatenate as in C.
+    std::vector<XpmString> strings;
+    t = lex.next();
+    while (!(t.kind == CToken::Punct && t.text == "}")) {
+        if (t.kind != CToken::String)
+            lex.fail(t.line, "expected a string or '}', found " + describe(t));
+        XpmString s{std::move(t.value), t.line};
+        t = lex.next();
+        while (t.kind == CToken::String) {
+            s.text += t.value;
+            t = lex.next();
+        }
+        strings.push_back(std::move(s));
+        if (t.kind == CToken::Punct && t.text == ",") {
+            t = lex.next();
+        } else if (!(t.kind == CToken::Punct && t.text == "}")) {
+            lex.fail(t.line, "expected ',' or '}', found " + describe(t));
+        }
+    }
+    const std::size_t close_line = t.line;
+    t = lex.next();
+    if (t.kind == CToken::Punct && t.text == ";") t = lex.next();
+    if (t.kind != CToken::End)
+        lex.fail(t.line, "unexpected " + describe(t) + " after the string array");
+    if (strings.empty()) lex.fail(close_line, "the string array is empty");
+
+    // "width height ncolors chars_per_pixel [x_hot y_hot] [XPMEXT]"
+    const XpmString& header = strings[0];
+    const auto values = split_words(header.text);
+    auto header_number = [&](std::size_t i, const char* what) {
+        if (i >= values.size())
+            lex.fail(header.line, std::string("the values line lacks the ") + what);
+        long long v = 0;
+        auto [ptr, ec] = std::from_chars(values[i].data(), values[i].data() + values[i].size(), v);
+        if (ec != std::errc() || ptr != values[i].data() + values[i].size())
+            lex.fail(header.line,
+                     "'" + printable(values[i]) + "' is not an integer (" + what + ")");
+        return v;
+    };
+    const long long width = header_number(0, "width");
+    const long long height = header_number(1, "height");
+    const long long n_colors = header_number(2, "number of colours");
+    const long long cpp = header_number(3, "characters per pixel");
+    std::size_t next_value = 4;
+    if (values.size() > 4 && values[4] != "XPMEXT") {
+        header_number(4, "hot spot x");
+        header_number(5, "hot spot y");
+        next_value = 6;
+    }
+    const bool extensions = next_value < values.size() && values[next_value] == "XPMEXT";
+    if (extensions) ++next_value;
+    if (next_value < values.size())
+        lex.fail(header.line,
+                 "unexpected '" + printable(values[next_value]) + "' in the values line");
+    check_dimensions(width, height, path, header.line);
+    if (cpp < 1 || cpp > 8)
+        lex.fail(header.line, "characters per pixel " + std::to_string(cpp) + " is outside 1 to 8");
+    if (n_colors < 1) lex.fail(header.line, "the number of colours must be at least 1");
+    const std::size_t n_rows = std::size_t(height);
+    if (std::size_t(n_colors) > strings.size() ||
+        1 + std::size_t(n_colors) + n_rows > strings.size())
+        lex.fail(strings.back().line, "the values line declares " + std::to_string(n_colors) +
+                                          " colours and " + std::to_string(height) +
+                                          " rows, but the file holds only " +
+                                          std::to_string(strings.size() - 1) + " strings after it");
+    const std::size_t first_row = 1 + std::size_t(n_colors);
+    const std::size_t end_rows = first_row + n_rows;
+    // Extension data ("XPMEXT name ...", free lines, "XPMENDEXT") follows the rows; it is
+    // skipped. Anything else there is an error.
+    if (end_rows < strings.size() &&
+        (!extensions || strings[end_rows].text.rfind("XPMEXT", 0) != 0))
+        lex.fail(strings[end_rows].line, "more strings than the " + std::to_string(n_colors) +
+                                             " colours and " + std::to_string(height) +
+                                             " rows that the values line declares");
+
+    // Colours: "<chars> <key> <colour> [<key> <colour>]..."; keys c, m, s, g4, g. The
+    // colour key c is used, else g, g4, m; symbolic names (s) are ignored.
+    const std::size_t chars = std::size_t(cpp);
+    std::unordered_map<std::uint64_t, Rgba> table;
+    for (std::size_t i = 1; i < first_row; ++i) {
+        const XpmString& s = strings[i];
+        if (s.text.size() < chars)
+            lex.fail(s.line, "the colour line is shorter than the " + std::to_string(chars) +
+                                 " characters of a pixel");
+        const std::string_view code = std::string_view(s.text).substr(0, chars);
+        const auto words = split_words(std::string_view(s.text).substr(chars));
+        auto is_key = [](std::string_view w) {
+            return w == "c" || w == "m" || w == "s" || w == "g" || w == "g4";
+        };
+        std::string by_key[4];  // c, g, g4, m
+        for (std::size_t w = 0; w < words.size();) {
+            const std::string_view key = words[w++];
+            if (!is_key(key))
+                lex.fail(s.line, "expected a colour key (c, m, s, g or g4), found '" +
+                                     printable(key) + "'");
+            std::string value;
+            while (w < words.size() && !is_key(words[w])) {
+                if (!value.empty()) value += ' ';
+                value += words[w++];
+            }
+            if (value.empty()) lex.fail(s.line, "the key '" + std::string(key) + "' has no colour");
+            if (key == "c") by_key[0] = value;
+            if (key == "g") by_key[1] = value;
+            if (key == "g4") by_key[2] = value;
+            if (key == "m") by_key[3] = value;
+        }
+        const std::string* spec = nullptr;
+        for (const std::string& v : by_key)
+            if (!spec && !v.empty()) spec = &v;
+        if (!spec)
+            lex.fail(s.line,
+                     "no colour (key c, g, g4 or m) for the pixel code '" + printable(code) + "'");
+        Rgba rgba;
+        if (!parse_xpm_color(*spec, rgba))
+            lex.fail(s.line, "unknown colour '" + printable(*spec) + "'");
+        if (!table.emplace(pixel_code(code), rgba).second)
+            lex.fail(s.line, "the pixel code '" + printable(code) + "' is defined twice");
+    }
+
+    const std::size_t row_length = std::size_t(width) * chars;
+    for (std::size_t y = 0; y < n_rows; ++y) {
+        const XpmString& s = strings[first_row + y];
+        if (s.text.size() != row_length)
+            lex.fail(s.line, "the pixel row has " + std::to_string(s.text.size()) +
+                                 " characters, expected " + std::to_string(row_length) + " (" +
+                                 std::to_string(width) + " pixels of " + std::to_string(chars) +
+                                 ")");
+    }
+    Image image = make_image(width, height);
+    for (std::size_t y = 0; y < n_rows; ++y) {
+        const XpmString& s = strings[first_row + y];
+        for (std::size_t x = 0; x < std::size_t(width); ++x) {
+            const std::string_view code = std::string_view(s.text).substr(x * chars, chars);
+            const auto it = table.find(pixel_code(code));
+            if (it == table.end())
+                lex.fail(s.line, "unknown pixel code '" + printable(code) + "' in column " +
+                                     std::to_string(x + 1));
+            const Rgba& c = it->second;
+            put(image, y * std::size_t(width) + x, c.r, c.g, c.b, c.a);
+        }
+    }
+    return image;
+}
+
+}  // namespace
+
+std::vector<std::string> supported_image_extensions() {
+    return {"bmp", "png", "pnm", "ppm", "pgm", "pbm", "xbm", "xpm"};
+}
+
+Image read_image(const std::string& path) {
+    const std::string ext = extension_of(path);
+    if (ext == "png") return read_with_stb(path, "PNG");
+    if (ext == "bmp") return read_with_stb(path, "BMP");
+    if (ext == "pnm" || ext == "ppm" || ext == "pgm" || ext == "pbm") return read_pnm(path);
+    if (ext == "xbm") return read_xbm(path);
+    if (ext == "xpm") return read_xpm(path);
+    std::string list;
+    for (const std::string& e : supported_image_extensions())
+        list += (list.empty() ? "" : ", ") + e;
+    throw IoError(path, 0,
+                  (ext.empty() ? std::string("the file name has no extension")
+                               : "unsupported image extension '." + ext + "'") +
+                      " (supported: " + list + ")");
+}
+
+void write_png(const Image& image, const std::string& path) {
+    if (image.empty())
+        throw IoError(path, 0,
+                      "cannot write an empty image (" + std::to_string(image.width) + " x " +
+                          std::to_string(image.height) + ")");
+    check_dimensions(image.width, image.height, path, 0);
+    const std::size_t expected = std::size_t(image.width) * std::size_t(image.height) * 4;
+    if (image.rgba.size() != expected)
+        throw IoError(path, 0,
+                      "the image holds " + std::to_string(image.rgba.size()) + " bytes, but " +
+                          std::to_string(image.width) + " x " + std::to_string(image.height) +
+                          " RGBA pixels need " + std::to_string(expected));
+    // Encode in memory first: the callback runs inside C code, where nothing may throw.
+    struct Sink {
+        std::string bytes;
+        bool failed = false;
+    } sink;
+    auto append = [](void* context, void* data, int size) {
+        auto* s = static_cast<Sink*>(context);
+        try {
+            s->bytes.append(static_cast<const char*>(data), std::size_t(size));
+        } catch (...) {
+            s->failed = true;
+        }
+    };
+    // The flag is global in stb and the viewer's screenshot turns it on: rows go top down.
+    stbi_flip_vertically_on_write(0);
+    const int ok = stbi_write_png_to_func(append, &sink, image.width, image.height, 4,
+                                          image.rgba.data(), image.width * 4);
+    if (!ok || sink.failed) throw IoError(path, 0, "PNG encoding failed (out of memory?)");
+    write_file_atomically(path, [&](std::ostream& out) {
+        out.write(sink.bytes.data(), std::streamsize(sink.bytes.size()));
+    });
+}
+
+Image make_checkerboard(int size, int squares) {
+    if (size < 1 || size > kMaxSide)
+        throw InvalidArgument("make_checkerboard: size " + std::to_string(size) +
+                              " is outside 1 to " + std::to_string(kMaxSide));
+    if (squares < 1 || squares > size)
+        throw InvalidArgument("make_checkerboard: squares " + std::to_string(squares) +
+                              " is outside 1 to size (" + std::to_string(size) + ")");
+    constexpr std::uint32_t kLight = 204, kDark = 122;
+    Image image = make_image(size, size);
+    const auto n = std::size_t(size), k = std::size_t(squares);
+    for (std::size_t y = 0; y < n; ++y)
+        for (std::size_t x = 0; x < n; ++x) {
+            const bool light = ((x * k / n) + (y * k / n)) % 2 == 0;
+            const std::uint32_t v = light ? kLight : kDark;
+            put(image, y * n + x, v, v, v);
+        }
+    return image;
+}
+
+}  // namespace trilab
