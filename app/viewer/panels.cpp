@@ -4,6 +4,7 @@
 #include <imgui_stdlib.h>
 
 #include <cmath>
+#include <cstdio>
 
 namespace trilab::viewer {
 namespace {
@@ -237,6 +238,60 @@ void info_window(PanelState& panels, const std::vector<std::string>& lines) {
         for (const std::string& line : lines) ImGui::TextUnformatted(line.c_str());
     }
     ImGui::End();
+}
+
+bool color_legend(const VertexColors& colors, ColoringOptions& options) {
+    if (!colors.has_legend) return false;
+    const ImGuiIO& io = ImGui::GetIO();
+    const float em = ImGui::GetFontSize();
+    ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - em, 2.5f * em), ImGuiCond_Always,
+                            ImVec2(1.0f, 0.0f));
+    ImGui::SetNextWindowBgAlpha(0.75f);
+    bool changed = false;
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration |
+                                   ImGuiWindowFlags_AlwaysAutoResize |
+                                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoMove;
+    if (ImGui::Begin("##legend", nullptr, flags)) {
+        ImGui::TextUnformatted(colors.label.c_str());
+        // The bar: the map sampled in 48 steps, from range.min (left) to range.max (right).
+        const ImVec2 size(14.0f * em, 1.2f * em);
+        const ImVec2 p0 = ImGui::GetCursorScreenPos();
+        ImDrawList* draw = ImGui::GetWindowDrawList();
+        const int steps = 48;
+        auto to_u32 = [](const Color& c) {
+            return ImGui::ColorConvertFloat4ToU32(ImVec4(c.x(), c.y(), c.z(), 1.0f));
+        };
+        for (int i = 0; i < steps; ++i) {
+            const double t0 = double(i) / steps, t1 = double(i + 1) / steps;
+            const ValueRange& r = colors.range;
+            const Color c0 = map_color(r.min + t0 * (r.max - r.min), r, colors.kind);
+            const Color c1 = map_color(r.min + t1 * (r.max - r.min), r, colors.kind);
+            draw->AddRectFilledMultiColor(ImVec2(p0.x + float(t0) * size.x, p0.y),
+                                          ImVec2(p0.x + float(t1) * size.x, p0.y + size.y),
+                                          to_u32(c0), to_u32(c1), to_u32(c1), to_u32(c0));
+        }
+        ImGui::Dummy(size);
+        ImGui::Text("%-10.4g", colors.range.min);
+        ImGui::SameLine(size.x * 0.5f - 1.5f * em);
+        ImGui::Text("%.4g", 0.5 * (colors.range.min + colors.range.max));
+        char right[32];
+        std::snprintf(right, sizeof(right), "%.4g", colors.range.max);
+        ImGui::SameLine(size.x - ImGui::CalcTextSize(right).x + ImGui::GetStyle().WindowPadding.x);
+        ImGui::TextUnformatted(right);
+        // Outliers beyond these percentiles are clamped to the ends of the bar.
+        float low = float(options.low_percentile), high = float(options.high_percentile);
+        ImGui::SetNextItemWidth(size.x);
+        if (ImGui::DragFloatRange2("##percentiles", &low, &high, 0.2f, 0.0f, 100.0f, "from %.1f %%",
+                                   "to %.1f %%", ImGuiSliderFlags_AlwaysClamp)) {
+            if (high - low >= 0.5f) {
+                options.low_percentile = low;
+                options.high_percentile = high;
+                changed = true;
+            }
+        }
+    }
+    ImGui::End();
+    return changed;
 }
 
 void error_popup(Notice& notice) {

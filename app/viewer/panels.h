@@ -9,6 +9,7 @@
 #include "app/viewer/commands.h"
 #include "app/viewer/file_browser.h"
 #include "app/viewer/log.h"
+#include "core/coloring.h"
 #include "render/mesh_renderer.h"
 
 namespace trilab::viewer {
@@ -75,6 +76,9 @@ void about_window(PanelState& panels);
 void log_window(PanelState& panels, const Log& log);
 /// Model and scene information (the `I` key prints the same lines to the console).
 void info_window(PanelState& panels, const std::vector<std::string>& lines);
+/// The colour bar of a vertex colouring with its value range, and the percentile sliders
+/// that choose the range. Returns true when the user changed the options.
+bool color_legend(const VertexColors& colors, ColoringOptions& options);
 /// Modal popup showing an error notice once.
 void error_popup(Notice& notice);
 

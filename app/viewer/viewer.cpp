@@ -7,7 +7,6 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
-#include <stb/stb_image_write.h>
 
 #include <algorithm>
 #include <cmath>
@@ -452,12 +451,24 @@ std::string Viewer::write_screenshot(const std::string& path) const {
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_.get(), &w, &h);
     if (w <= 0 || h <= 0) return "the window has no pixels";
-    std::vector<unsigned char> pixels(std::size_t(w) * std::size_t(h) * 3);
+    Image image;
+    image.width = w;
+    image.height = h;
+    image.rgba.resize(std::size_t(w) * std::size_t(h) * 4);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, w, h, GL_RGB, GL_UNSIGNED_BYTE, pixels.data());
-    stbi_flip_vertically_on_write(1);  // GL rows go bottom-up
-    if (!stbi_write_png(path.c_str(), w, h, 3, pixels.data(), w * 3))
-        return "cannot write the screenshot '" + path + "'";
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
+    // GL rows go bottom-up; images top-down.
+    const std::size_t row = std::size_t(w) * 4;
+    for (int y = 0; y < h / 2; ++y)
+        std::swap_ranges(image.rgba.begin() + std::ptrdiff_t(y * row),
+                         image.rgba.begin() + std::ptrdiff_t((y + 1) * row),
+                         image.rgba.begin() + std::ptrdiff_t((h - 1 - y) * row));
+    for (std::size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;
+    try {
+        write_png(image, path);
+    } catch (const std::exception& e) {
+        return e.what();
+    }
     return "";
 }
 
