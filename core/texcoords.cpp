@@ -123,10 +123,12 @@ void project_spherical(const HalfedgeMesh& mesh, const std::vector<Vertex>& vs,
     const Point c = centroid(mesh, vs);
     for (std::size_t i = 0; i < vs.size(); ++i) {
         const Vector3 d = mesh.position(vs[i]) - c;
-        const double r_xy = std::hypot(d.x(), d.y());
+        // y is up (the OBJ convention and the viewer's); longitude 0 faces +z, the seam is
+        // at the back (-z).
+        const double r_zx = std::hypot(d.z(), d.x());
         // On the axis (the poles, and the centre itself) longitude is undefined: take 0.
-        const double longitude = r_xy > 1e-12 * d.norm() ? std::atan2(d.y(), d.x()) : 0.0;
-        const double latitude = d.norm() > 0 ? std::atan2(d.z(), r_xy) : 0.0;
+        const double longitude = r_zx > 1e-12 * d.norm() ? std::atan2(d.x(), d.z()) : 0.0;
+        const double latitude = d.norm() > 0 ? std::atan2(d.y(), r_zx) : 0.0;
         uv[i] = TexCoord(std::clamp(longitude / (2 * kPi) + 0.5, 0.0, 1.0),
                          std::clamp(latitude / kPi + 0.5, 0.0, 1.0));
     }

@@ -21,10 +21,11 @@ bool has_texcoords(const HalfedgeMesh& mesh);
 /// coordinate axes break the tie, so an axis-aligned grid gets u = x, v = y. The frame is
 /// oriented so the texture reads unmirrored from the side the faces face.
 ///
-/// Spherical: around the centroid of the vertices with z as the pole axis,
-/// u = longitude / 2pi + 0.5 and v = latitude / pi + 0.5, so v grows with z. Vertices on
-/// the axis (the poles) get u = 0.5. Seam: per-vertex coordinates cannot split a vertex, so
-/// the triangles that cross the date line (longitude +-pi, the -x side) interpolate u from
+/// Spherical: around the centroid of the vertices with y (up) as the pole axis,
+/// u = longitude / 2pi + 0.5 with longitude 0 towards +z, and v = latitude / pi + 0.5, so v
+/// grows with y. Vertices on the axis (the poles) get u = 0.5. Seam: per-vertex coordinates
+/// cannot split a vertex, so the triangles that cross the date line (longitude +-pi, the -z
+/// side) interpolate u from
 /// near 1 back to near 0 and show the whole texture squeezed into one strip; triangles at
 /// the poles are similarly pinched. Splitting the seam needs per-corner ("h:texcoord")
 /// coordinates, which this function does not write.

@@ -24,6 +24,77 @@ void Camera::fit_box(const glm::vec3& lo, const glm::vec3& hi) {
     fit_sphere(0.5f * (lo + hi), 0.5f * glm::length(hi - lo));
 }
 
+void Camera::fit_points_in_view(const std::vector<glm::vec3>& points, float margin) {
+    if (points.empty()) {
+        fit_box_in_view(glm::vec3(-1.0f), glm::vec3(1.0f), margin);
+        return;
+    }
+    glm::vec3 lo = points[0], hi = points[0];
+    for (const glm::vec3& p : points) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    fit_box(lo, hi);  // radius (zoom limits, clipping planes)
+
+    const float tan_y = std::tan(0.5f * fov_y_) * (1.0f - std::clamp(margin, 0.0f, 0.9f));
+    const float tan_x = tan_y * viewport_.x / viewport_.y;
+    // In camera axes (z towards the viewer), a point (x, y, z) is in view from the camera
+    // position (cx, cy, cz) when |x - cx| <= (cz - z) tan_x, and likewise for y. For x that
+    // is cz >= z + x / tan_x - cx / tan_x and cz >= z - x / tan_x + cx / tan_x for every
+    // point; with A and B the maxima of z + x / tan_x and z - x / tan_x, the smallest cz is
+    // (A + B) / 2, at cx = tan_x (A - B) / 2.
+    std::vector<glm::vec3> c(points.size());
+    float ax = -INFINITY, bx = -INFINITY, ay = -INFINITY, by = -INFINITY;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        c[i] = rotation_ * points[i];
+        ax = std::max(ax, c[i].z + c[i].x / tan_x);
+        bx = std::max(bx, c[i].z - c[i].x / tan_x);
+        ay = std::max(ay, c[i].z + c[i].y / tan_y);
+        by = std::max(by, c[i].z - c[i].y / tan_y);
+    }
+    const float czx = 0.5f * (ax + bx), czy = 0.5f * (ay + by);
+    glm::vec3 eye(0.5f * tan_x * (ax - bx), 0.5f * tan_y * (ay - by), std::max(czx, czy));
+    // The other axis has room to spare at this distance: centre its projection, i.e. find
+    // the offset where the largest tangents on both sides are equal (bisection: the
+    // difference decreases as the offset grows).
+    const int axis = czx >= czy ? 1 : 0;
+    if (eye.z > std::min(czx, czy)) {
+        float lo_offset = INFINITY, hi_offset = -INFINITY;
+        for (const glm::vec3& q : c) {
+            lo_offset = std::min(lo_offset, q[axis]);
+            hi_offset = std::max(hi_offset, q[axis]);
+        }
+        for (int iteration = 0; iteration < 40 && hi_offset - lo_offset > 0.0f; ++iteration) {
+            const float offset = 0.5f * (lo_offset + hi_offset);
+            float positive = -INFINITY, negative = -INFINITY;
+            for (const glm::vec3& q : c) {
+                const float depth = std::max(eye.z - q.z, 1e-12f);
+                positive = std::max(positive, (q[axis] - offset) / depth);
+                negative = std::max(negative, (offset - q[axis]) / depth);
+            }
+            (positive > negative ? lo_offset : hi_offset) = offset;
+        }
+        eye[axis] = 0.5f * (lo_offset + hi_offset);
+    }
+    const float center_depth = (rotation_ * (0.5f * (lo + hi))).z;
+    distance_ = std::max(eye.z - center_depth, 1e-3f * radius_);
+    target_ = glm::conjugate(rotation_) * glm::vec3(eye.x, eye.y, eye.z - distance_);
+}
+
+void Camera::fit_box_in_view(const glm::vec3& lo, const glm::vec3& hi, float margin) {
+    std::vector<glm::vec3> corners;
+    for (int i = 0; i < 8; ++i)
+        corners.emplace_back((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z);
+    fit_points_in_view(corners, margin);
+}
+
+void Camera::set_view_angles(float azimuth_deg, float elevation_deg) {
+    // World -> camera: undo the azimuth (about y), then tilt down by the elevation (about x).
+    const glm::quat tilt = glm::angleAxis(glm::radians(elevation_deg), glm::vec3(1, 0, 0));
+    const glm::quat turn = glm::angleAxis(glm::radians(-azimuth_deg), glm::vec3(0, 1, 0));
+    rotation_ = glm::normalize(tilt * turn);
+}
+
 glm::vec3 Camera::ball_point(const glm::vec2& window) const {
     float scale = 0.5f * std::min(viewport_.x, viewport_.y);
     float x = (window.x - 0.5f * viewport_.x) / scale;

@@ -7,6 +7,7 @@
 // window size, not the framebuffer size. Pure math: no GL, usable in tests.
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <vector>
 
 namespace trilab {
 
@@ -19,8 +20,26 @@ public:
     /// Centres the sphere (center, radius) and moves the camera so that it fills the view
     /// with a small margin. Keeps the rotation. A radius <= 0 counts as 1.
     void fit_sphere(const glm::vec3& center, float radius);
-    /// fit_sphere() for the bounding sphere of the box [lo, hi].
+    /// fit_sphere() for the bounding sphere of the box [lo, hi]: the model stays in view
+    /// whichever way it is turned afterwards.
     void fit_box(const glm::vec3& lo, const glm::vec3& hi);
+    /// Frames the points tightly for the current rotation and viewport: the camera moves in
+    /// its view plane and along its axis to the nearest position from which every point lies
+    /// inside the view with `margin` (a fraction of the half-width and half-height) to spare,
+    /// with the points' projection centred horizontally and vertically. The target (the centre
+    /// of rotation) is then placed at the depth of the points' bounding-box centre. Zoom
+    /// limits and clipping planes enclose the bounding box's sphere. Tighter than fit_box()
+    /// for still images. An empty list frames the unit cube. O(n): at most 42 passes over
+    /// the points.
+    void fit_points_in_view(const std::vector<glm::vec3>& points, float margin = 0.04f);
+    /// fit_points_in_view() for the eight corners of the box [lo, hi].
+    void fit_box_in_view(const glm::vec3& lo, const glm::vec3& hi, float margin = 0.04f);
+    /// Looks at the target from azimuth `azimuth_deg` around the world y axis (0: from +z,
+    /// 90: from +x) and elevation `elevation_deg` above the xz plane (90: from +y, looking
+    /// down with -z up on the screen), keeping world +y up on the screen elsewhere. The
+    /// rotation is the product of two axis rotations (a quaternion), so it passes the poles
+    /// without a flip.
+    void set_view_angles(float azimuth_deg, float elevation_deg);
     /// Looks along -z with +y up (the initial orientation).
     void reset_rotation() { rotation_ = glm::quat(1, 0, 0, 0); }
 

@@ -1,89 +1,249 @@
 #include "render/mesh_renderer.h"
 
+#include <algorithm>
+#include <cmath>
 #include <glm/gtc/matrix_inverse.hpp>
-#include <vector>
+#include <limits>
 
-#include "core/geometry.h"
+#include "core/errors.h"
 
 namespace trilab {
 namespace {
 
-/// One vertex as the vertex shader reads it (locations 0 and 1).
+/// One vertex as the vertex shaders read it (locations 0 and 1).
 struct GpuVertex {
     float position[3];
     float normal[3];
 };
 static_assert(sizeof(GpuVertex) == 6 * sizeof(float), "GpuVertex must be tightly packed");
 
-/// Positions and normals by vertex storage index; deleted vertices get zeros.
-std::vector<GpuVertex> vertex_data(const HalfedgeMesh& mesh) {
-    std::vector<Vector3> computed;
-    const std::vector<Vector3>* normals = &computed;
-    if (auto stored = mesh.get_vertex_property<Vector3>("v:normal")) {
-        normals = &stored.vector();
-    } else {
-        // Area-weighted normals (vertex_normal()), accumulated face by face: O(faces).
-        computed.assign(mesh.vertices_size(), Vector3::Zero());
-        for (Face f : mesh.faces()) {
-            Vector3 n = face_area_vector(mesh, f);
-            for (Vertex v : mesh.face_vertices(f)) computed[v.idx()] += n;
+constexpr GLuint kPosition = 0, kNormal = 1, kColor = 2, kTexcoord = 3;
+
+/// What upload() derives from the connectivity: the GPU vertices and the index buffers.
+struct Layout {
+    std::vector<Index> source;      ///< GPU vertex -> mesh vertex; empty = identity
+    std::size_t n_gpu = 0;          ///< GPU vertex count
+    std::vector<GLuint> triangles;  ///< 3 GPU vertices per live face
+    std::vector<GLuint> points;     ///< one GPU vertex per live mesh vertex
+    std::vector<float> texcoords;   ///< 2 per GPU vertex, or empty
+};
+
+Layout build_layout(const HalfedgeMesh& mesh) {
+    Layout layout;
+    const auto corner_uv = mesh.get_halfedge_property<TexCoord>("h:texcoord");
+    const auto vertex_uv = mesh.get_vertex_property<TexCoord>("v:texcoord");
+    layout.triangles.reserve(3 * mesh.n_faces());
+    layout.points.reserve(mesh.n_vertices());
+
+    if (!corner_uv) {
+        // Shared vertices: GPU vertex i is mesh vertex i.
+        layout.n_gpu = mesh.vertices_size();
+        for (Face f : mesh.faces())
+            for (Vertex v : mesh.face_vertices(f)) layout.triangles.push_back(v.idx());
+        for (Vertex v : mesh.vertices()) layout.points.push_back(v.idx());
+        if (vertex_uv) {
+            layout.texcoords.resize(2 * layout.n_gpu, 0.0f);
+            for (Vertex v : mesh.vertices()) {
+                layout.texcoords[2 * v.idx()] = float(vertex_uv[v].x());
+                layout.texcoords[2 * v.idx() + 1] = float(vertex_uv[v].y());
+            }
         }
-        for (Vector3& n : computed) {
-            double len = n.norm();
-            if (len > 0) n /= len;
-        }
+        return layout;
     }
-    std::vector<GpuVertex> data(mesh.vertices_size(), GpuVertex{{0, 0, 0}, {0, 0, 0}});
+
+    // Per-corner texture coordinates: one GPU vertex per (mesh vertex, distinct coordinate).
+    // first[v] starts a chain (through chain[]) of the GPU vertices made for v.
+    const Index none = kInvalidIndex;
+    std::vector<Index> first(mesh.vertices_size(), none);
+    std::vector<Index> chain;
+    chain.reserve(mesh.vertices_size() + mesh.vertices_size() / 4);
+    layout.source.reserve(chain.capacity());
+    layout.texcoords.reserve(2 * chain.capacity());
+    auto gpu_vertex = [&](Vertex v, float u, float w) -> Index {
+        for (Index g = first[v.idx()]; g != none; g = chain[g])
+            if (layout.texcoords[2 * g] == u && layout.texcoords[2 * g + 1] == w) return g;
+        const Index g = Index(layout.source.size());
+        layout.source.push_back(v.idx());
+        layout.texcoords.push_back(u);
+        layout.texcoords.push_back(w);
+        chain.push_back(first[v.idx()]);
+        first[v.idx()] = g;
+        return g;
+    };
+    for (Face f : mesh.faces())
+        for (Halfedge h : mesh.halfedges_of(f)) {
+            const TexCoord& t = corner_uv[h];
+            layout.triangles.push_back(gpu_vertex(mesh.to_vertex(h), float(t.x()), float(t.y())));
+        }
     for (Vertex v : mesh.vertices()) {
-        const Point& p = mesh.position(v);
-        const Vector3& n = (*normals)[v.idx()];
-        data[v.idx()] = GpuVertex{{float(p.x()), float(p.y()), float(p.z())},
-                                  {float(n.x()), float(n.y()), float(n.z())}};
+        if (first[v.idx()] == none) {  // isolated: no corner
+            TexCoord t = vertex_uv ? vertex_uv[v] : TexCoord(0, 0);
+            gpu_vertex(v, float(t.x()), float(t.y()));
+        }
+        layout.points.push_back(first[v.idx()]);
     }
-    return data;
+    layout.n_gpu = layout.source.size();
+    return layout;
+}
+
+/// Area-weighted vertex normals by storage index (vertex_normal() for all vertices at once).
+std::vector<Vector3> area_weighted_normals(const HalfedgeMesh& mesh) {
+    std::vector<Vector3> normals(mesh.vertices_size(), Vector3::Zero());
+    const std::vector<Point>& p = mesh.positions();
+    for (Face f : mesh.faces()) {
+        const auto c = mesh.face_vertices(f);
+        const Point& p0 = p[c[0].idx()];
+        const Vector3 n = (p[c[1].idx()] - p0).cross(p[c[2].idx()] - p0);
+        for (Vertex v : c) normals[v.idx()] += n;
+    }
+    for (Vector3& n : normals) {
+        const double len = n.norm();
+        if (len > 0) n /= len;
+    }
+    return normals;
+}
+
+GLsizeiptr bytes(std::size_t n, std::size_t size) {
+    return GLsizeiptr(n * size);
 }
 
 }  // namespace
 
+const char* render_mode_name(RenderMode mode) {
+    switch (mode) {
+        case RenderMode::Wireframe:
+            return "wireframe";
+        case RenderMode::HiddenLine:
+            return "hidden-line";
+        case RenderMode::Flat:
+            return "flat";
+        case RenderMode::Smooth:
+            return "gouraud";
+        case RenderMode::Points:
+            return "points";
+        case RenderMode::Textured:
+            return "textured";
+    }
+    return "?";
+}
+
+RenderMode parse_render_mode(const std::string& name) {
+    for (RenderMode m : {RenderMode::Wireframe, RenderMode::HiddenLine, RenderMode::Flat,
+                         RenderMode::Smooth, RenderMode::Points, RenderMode::Textured})
+        if (name == render_mode_name(m)) return m;
+    if (name == "smooth") return RenderMode::Smooth;
+    throw InvalidArgument("unknown render mode '" + name +
+                          "' (expected gouraud, flat, wireframe, hidden-line, points or textured)");
+}
+
+const char* texture_mode_name(TextureMode mode) {
+    switch (mode) {
+        case TextureMode::Off:
+            return "off";
+        case TextureMode::Modulate:
+            return "modulate";
+        case TextureMode::Replace:
+            return "replace";
+    }
+    return "?";
+}
+
+void clear_background(const RenderStyle& style, float alpha) {
+    if (alpha <= 0.0f) {
+        glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    } else {
+        glClearColor(style.background.r, style.background.g, style.background.b, alpha);
+    }
+    glDepthMask(GL_TRUE);
+    glClearDepth(1.0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+}
+
 MeshRenderer::MeshRenderer()
     : surface_program_({embedded_shader("mesh.vert.glsl"), embedded_shader("mesh.frag.glsl")}),
-      wireframe_program_({embedded_shader("mesh.vert.glsl"), embedded_shader("mesh.geom.glsl"),
-                          with_defines(embedded_shader("mesh.frag.glsl"), {"TRILAB_WIREFRAME"})}) {
-    glGenVertexArrays(1, &vao_);
-    glGenBuffers(1, &vertex_buffer_);
-    glGenBuffers(1, &index_buffer_);
+      wire_program_({embedded_shader("mesh.vert.glsl"), embedded_shader("mesh.geom.glsl"),
+                     with_defines(embedded_shader("mesh.frag.glsl"), {"TRILAB_WIREFRAME"})}),
+      points_program_({embedded_shader("mesh.vert.glsl"),
+                       with_defines(embedded_shader("mesh.frag.glsl"), {"TRILAB_POINTS"})}),
+      depth_program_({embedded_shader("mesh.vert.glsl"), embedded_shader("depth.frag.glsl")}),
+      face_vector_program_(
+          {embedded_shader("vectors.vert.glsl"),
+           with_defines(embedded_shader("vectors.geom.glsl"), {"TRILAB_FACE_VECTORS"}),
+           embedded_shader("vectors.frag.glsl")}),
+      vertex_vector_program_({embedded_shader("vectors.vert.glsl"),
+                              embedded_shader("vectors.geom.glsl"),
+                              embedded_shader("vectors.frag.glsl")}) {
+    glGenVertexArrays(1, &triangle_vao_);
+    glGenVertexArrays(1, &point_vao_);
+    GLuint buffers[5];
+    glGenBuffers(5, buffers);
+    geometry_buffer_ = buffers[0];
+    color_buffer_ = buffers[1];
+    texcoord_buffer_ = buffers[2];
+    triangle_buffer_ = buffers[3];
+    point_buffer_ = buffers[4];
+    setup_vertex_array(triangle_vao_, triangle_buffer_);
+    setup_vertex_array(point_vao_, point_buffer_);
+}
 
-    glBindVertexArray(vao_);
-    glBindBuffer(GL_ARRAY_BUFFER, vertex_buffer_);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(GpuVertex),
+MeshRenderer::~MeshRenderer() {
+    const GLuint buffers[5] = {geometry_buffer_, color_buffer_, texcoord_buffer_, triangle_buffer_,
+                               point_buffer_};
+    glDeleteBuffers(5, buffers);
+    glDeleteVertexArrays(1, &point_vao_);
+    glDeleteVertexArrays(1, &triangle_vao_);
+    if (texture_ != 0) glDeleteTextures(1, &texture_);
+}
+
+void MeshRenderer::setup_vertex_array(GLuint vao, GLuint element_buffer) const {
+    glBindVertexArray(vao);
+    glBindBuffer(GL_ARRAY_BUFFER, geometry_buffer_);
+    glEnableVertexAttribArray(kPosition);
+    glVertexAttribPointer(kPosition, 3, GL_FLOAT, GL_FALSE, sizeof(GpuVertex),
                           reinterpret_cast<const void*>(offsetof(GpuVertex, position)));
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(GpuVertex),
+    glEnableVertexAttribArray(kNormal);
+    glVertexAttribPointer(kNormal, 3, GL_FLOAT, GL_FALSE, sizeof(GpuVertex),
                           reinterpret_cast<const void*>(offsetof(GpuVertex, normal)));
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, index_buffer_);  // recorded in the VAO
+    glBindBuffer(GL_ARRAY_BUFFER, color_buffer_);
+    glVertexAttribPointer(kColor, 4, GL_UNSIGNED_BYTE, GL_TRUE, 4, nullptr);
+    glBindBuffer(GL_ARRAY_BUFFER, texcoord_buffer_);
+    glVertexAttribPointer(kTexcoord, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, element_buffer);  // recorded in the VAO
     glBindVertexArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
-MeshRenderer::~MeshRenderer() {
-    glDeleteBuffers(1, &index_buffer_);
-    glDeleteBuffers(1, &vertex_buffer_);
-    glDeleteVertexArrays(1, &vao_);
-}
-
 void MeshRenderer::upload(const HalfedgeMesh& mesh) {
-    std::vector<GLuint> indices;
-    indices.reserve(3 * mesh.n_faces());
-    for (Face f : mesh.faces())
-        for (Vertex v : mesh.face_vertices(f)) indices.push_back(v.idx());
+    Layout layout = build_layout(mesh);
+    gpu_source_ = std::move(layout.source);
+    n_vertices_ = mesh.vertices_size();
+    n_gpu_vertices_ = layout.n_gpu;
+    write_geometry(mesh);
 
-    write_vertices(mesh);
-    glBindVertexArray(vao_);
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(GLuint)),
-                 indices.data(), GL_STATIC_DRAW);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);  // no VAO bound: safe to use the binding point
+    glBindBuffer(GL_ARRAY_BUFFER, triangle_buffer_);
+    glBufferData(GL_ARRAY_BUFFER, bytes(layout.triangles.size(), sizeof(GLuint)),
+                 layout.triangles.data(), GL_STATIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, point_buffer_);
+    glBufferData(GL_ARRAY_BUFFER, bytes(layout.points.size(), sizeof(GLuint)), layout.points.data(),
+                 GL_STATIC_DRAW);
+    n_triangle_indices_ = layout.triangles.size();
+    n_point_indices_ = layout.points.size();
+
+    has_texcoords_ = !layout.texcoords.empty();
+    glBindBuffer(GL_ARRAY_BUFFER, texcoord_buffer_);
+    glBufferData(GL_ARRAY_BUFFER, bytes(layout.texcoords.size(), sizeof(float)),
+                 layout.texcoords.data(), GL_STATIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    for (GLuint vao : {triangle_vao_, point_vao_}) {
+        glBindVertexArray(vao);
+        if (has_texcoords_)
+            glEnableVertexAttribArray(kTexcoord);
+        else
+            glDisableVertexAttribArray(kTexcoord);
+    }
     glBindVertexArray(0);
-    n_indices_ = indices.size();
+    clear_vertex_colors();
 }
 
 void MeshRenderer::update_positions(const HalfedgeMesh& mesh) {
@@ -91,59 +251,272 @@ void MeshRenderer::update_positions(const HalfedgeMesh& mesh) {
         upload(mesh);
         return;
     }
-    write_vertices(mesh);
+    write_geometry(mesh);
 }
 
-void MeshRenderer::write_vertices(const HalfedgeMesh& mesh) {
-    std::vector<GpuVertex> data = vertex_data(mesh);
-    glBindBuffer(GL_ARRAY_BUFFER, vertex_buffer_);
-    // Same size: overwrite in place; otherwise reallocate.
-    if (data.size() == n_vertices_ && !data.empty()) {
-        glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(data.size() * sizeof(GpuVertex)),
-                        data.data());
+void MeshRenderer::write_geometry(const HalfedgeMesh& mesh) {
+    std::vector<Vector3> computed;
+    const std::vector<Vector3>* normals = &computed;
+    if (auto stored = mesh.get_vertex_property<Vector3>("v:normal")) {
+        normals = &stored.vector();
     } else {
-        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(data.size() * sizeof(GpuVertex)), data.data(),
-                     GL_DYNAMIC_DRAW);
+        computed = area_weighted_normals(mesh);
     }
+    const std::vector<Point>& positions = mesh.positions();
+
+    // Bounding box of the live vertices (for fog and vector lengths).
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (Vertex v : mesh.vertices()) {
+        const Point& p = positions[v.idx()];
+        const glm::vec3 q(float(p.x()), float(p.y()), float(p.z()));
+        lo = glm::min(lo, q);
+        hi = glm::max(hi, q);
+    }
+    if (mesh.n_vertices() == 0) lo = hi = glm::vec3(0.0f);
+    bbox_min_ = lo;
+    bbox_max_ = hi;
+
+    // Deleted vertices keep whatever they had (zeros in practice); nothing indexes them.
+    std::vector<GpuVertex> data(n_gpu_vertices_);
+    for (std::size_t i = 0; i < n_gpu_vertices_; ++i) {
+        const std::size_t v = gpu_source_.empty() ? i : gpu_source_[i];
+        const Point& p = positions[v];
+        const Vector3& n = (*normals)[v];
+        data[i] = GpuVertex{{float(p.x()), float(p.y()), float(p.z())},
+                            {float(n.x()), float(n.y()), float(n.z())}};
+    }
+    // glBufferData also for same-size rewrites: the driver can orphan the old storage
+    // instead of waiting for draws that still read it.
+    glBindBuffer(GL_ARRAY_BUFFER, geometry_buffer_);
+    glBufferData(GL_ARRAY_BUFFER, bytes(data.size(), sizeof(GpuVertex)), data.data(),
+                 GL_DYNAMIC_DRAW);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
-    n_vertices_ = data.size();
+}
+
+void MeshRenderer::set_vertex_colors(const std::vector<Color>& colors) {
+    if (colors.size() != n_vertices_)
+        throw InvalidArgument("MeshRenderer::set_vertex_colors: " + std::to_string(colors.size()) +
+                              " colours for a mesh with vertex storage size " +
+                              std::to_string(n_vertices_));
+    auto byte = [](float c) {
+        return std::uint8_t(
+            std::lround(255.0f * std::clamp(std::isfinite(c) ? c : 0.0f, 0.0f, 1.0f)));
+    };
+    std::vector<std::uint8_t> rgba(4 * n_gpu_vertices_);
+    for (std::size_t i = 0; i < n_gpu_vertices_; ++i) {
+        const Color& c = colors[gpu_source_.empty() ? i : gpu_source_[i]];
+        rgba[4 * i] = byte(c.x());
+        rgba[4 * i + 1] = byte(c.y());
+        rgba[4 * i + 2] = byte(c.z());
+        rgba[4 * i + 3] = 255;
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, color_buffer_);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(rgba.size()), rgba.data(), GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    for (GLuint vao : {triangle_vao_, point_vao_}) {
+        glBindVertexArray(vao);
+        glEnableVertexAttribArray(kColor);
+    }
+    glBindVertexArray(0);
+    has_colors_ = true;
+}
+
+void MeshRenderer::clear_vertex_colors() {
+    for (GLuint vao : {triangle_vao_, point_vao_}) {
+        glBindVertexArray(vao);
+        glDisableVertexAttribArray(kColor);
+    }
+    glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, color_buffer_);
+    glBufferData(GL_ARRAY_BUFFER, 0, nullptr, GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    has_colors_ = false;
+}
+
+void MeshRenderer::set_texture(const Image& image) {
+    if (image.empty() || image.rgba.size() != std::size_t(image.width) * image.height * 4)
+        throw InvalidArgument("MeshRenderer::set_texture: empty or inconsistent image");
+    GLint max_size = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+    if (image.width > max_size || image.height > max_size)
+        throw InvalidArgument("MeshRenderer::set_texture: " + std::to_string(image.width) + "x" +
+                              std::to_string(image.height) + " exceeds the GL texture size limit " +
+                              std::to_string(max_size));
+    // GL's first row is the bottom one (t = 0); the image's first row is the top one.
+    const std::size_t row = std::size_t(image.width) * 4;
+    std::vector<std::uint8_t> flipped(image.rgba.size());
+    for (int y = 0; y < image.height; ++y)
+        std::copy_n(image.rgba.begin() + std::ptrdiff_t(row * (image.height - 1 - y)), row,
+                    flipped.begin() + std::ptrdiff_t(row * y));
+
+    if (texture_ == 0) glGenTextures(1, &texture_);
+    glBindTexture(GL_TEXTURE_2D, texture_);
+    GLint alignment = 4;
+    glGetIntegerv(GL_UNPACK_ALIGNMENT, &alignment);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, image.width, image.height, 0, GL_RGBA,
+                 GL_UNSIGNED_BYTE, flipped.data());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, alignment);
+    glGenerateMipmap(GL_TEXTURE_2D);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    has_texture_ = true;
+}
+
+void MeshRenderer::clear_texture() {
+    if (texture_ != 0) glDeleteTextures(1, &texture_);
+    texture_ = 0;
+    has_texture_ = false;
 }
 
 void MeshRenderer::clear() {
-    glBindBuffer(GL_ARRAY_BUFFER, vertex_buffer_);
-    glBufferData(GL_ARRAY_BUFFER, 0, nullptr, GL_DYNAMIC_DRAW);
+    for (GLuint buffer : {geometry_buffer_, texcoord_buffer_, triangle_buffer_, point_buffer_}) {
+        glBindBuffer(GL_ARRAY_BUFFER, buffer);
+        glBufferData(GL_ARRAY_BUFFER, 0, nullptr, GL_STATIC_DRAW);
+    }
     glBindBuffer(GL_ARRAY_BUFFER, 0);
-    glBindVertexArray(vao_);
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, 0, nullptr, GL_STATIC_DRAW);
-    glBindVertexArray(0);
-    n_vertices_ = n_indices_ = 0;
+    clear_vertex_colors();
+    gpu_source_.clear();
+    n_vertices_ = n_gpu_vertices_ = n_triangle_indices_ = n_point_indices_ = 0;
+    has_texcoords_ = false;
+    bbox_min_ = bbox_max_ = glm::vec3(0.0f);
 }
 
-void MeshRenderer::draw(const glm::mat4& view, const glm::mat4& projection,
-                        const RenderStyle& style) const {
-    if (n_indices_ == 0) return;
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
-
-    const GlProgram& program = style.wireframe ? wireframe_program_ : surface_program_;
+void MeshRenderer::set_common_uniforms(const GlProgram& program, const glm::mat4& view,
+                                       const glm::mat4& projection,
+                                       const RenderStyle& style) const {
     program.use();
     program.set("u_model_view", view);
     program.set("u_projection", projection);
     program.set("u_normal_matrix", glm::inverseTranspose(glm::mat3(view)));
-    program.set("u_flat", style.shading == Shading::Flat ? 1 : 0);
-    program.set("u_back_face_color", style.back_face_color ? 1 : 0);
-    program.set("u_front_color", style.front_color);
-    program.set("u_back_color", style.back_color);
-    program.set("u_wire_color", style.wire_color);
-    program.set("u_wire_width", style.wire_width);
-    program.set("u_ambient", style.ambient);
-    program.set("u_specular", style.specular);
-    program.set("u_shininess", style.shininess);
+    program.set("u_background", style.background);
+    program.set("u_fog", style.fog ? 1 : 0);
+    if (style.fog) {
+        // Fog over the depth range of the bounding box's corners, as seen from this view.
+        float near_depth = std::numeric_limits<float>::max(), far_depth = -near_depth;
+        for (int i = 0; i < 8; ++i) {
+            const glm::vec3 corner((i & 1) ? bbox_max_.x : bbox_min_.x,
+                                   (i & 2) ? bbox_max_.y : bbox_min_.y,
+                                   (i & 4) ? bbox_max_.z : bbox_min_.z);
+            const float depth = -(view * glm::vec4(corner, 1.0f)).z;
+            near_depth = std::min(near_depth, depth);
+            far_depth = std::max(far_depth, depth);
+        }
+        program.set("u_fog_near", near_depth);
+        program.set("u_fog_far", far_depth);
+        program.set("u_fog_amount", std::clamp(style.fog_amount, 0.0f, 1.0f));
+    }
+}
 
-    glBindVertexArray(vao_);
-    glDrawElements(GL_TRIANGLES, GLsizei(n_indices_), GL_UNSIGNED_INT, nullptr);
+void MeshRenderer::draw(const glm::mat4& view, const glm::mat4& projection,
+                        const RenderStyle& style) const {
+    if (n_point_indices_ == 0) return;
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+
+    const RenderMode mode = style.mode;
+    if (mode == RenderMode::Points) {
+        if (style.occlude_points && n_triangle_indices_ > 0) {
+            // Depth of the surface, pushed back by about a point radius of depth slope so
+            // that a point is not cut by the triangles around its own vertex.
+            set_common_uniforms(depth_program_, view, projection, style);
+            glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+            glEnable(GL_POLYGON_OFFSET_FILL);
+            glPolygonOffset(0.5f * std::max(style.point_size, 1.0f) + 1.0f, 4.0f);
+            glBindVertexArray(triangle_vao_);
+            glDrawElements(GL_TRIANGLES, GLsizei(n_triangle_indices_), GL_UNSIGNED_INT, nullptr);
+            glDisable(GL_POLYGON_OFFSET_FILL);
+            glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        }
+        set_common_uniforms(points_program_, view, projection, style);
+        points_program_.set("u_point_size", std::max(style.point_size, 1.0f));
+        points_program_.set("u_back_face_color", style.back_face_color ? 1 : 0);
+        points_program_.set("u_use_vertex_color", has_colors_ && style.vertex_colors ? 1 : 0);
+        points_program_.set("u_front_color", style.front_color);
+        points_program_.set("u_back_color", style.back_color);
+        points_program_.set("u_ambient", style.ambient);
+        points_program_.set("u_specular", style.specular ? style.specular_strength : 0.0f);
+        points_program_.set("u_shininess", style.shininess);
+        glEnable(GL_PROGRAM_POINT_SIZE);
+        glBindVertexArray(point_vao_);
+        glDrawElements(GL_POINTS, GLsizei(n_point_indices_), GL_UNSIGNED_INT, nullptr);
+        glDisable(GL_PROGRAM_POINT_SIZE);
+    } else if (n_triangle_indices_ > 0) {
+        const bool edges_only = mode == RenderMode::Wireframe;
+        const bool hidden_line = mode == RenderMode::HiddenLine;
+        const bool wires = edges_only || hidden_line || style.wireframe;
+        const GlProgram& program = wires ? wire_program_ : surface_program_;
+        set_common_uniforms(program, view, projection, style);
+        program.set("u_surface", edges_only ? 2 : hidden_line ? 1 : 0);
+        program.set("u_flat", mode == RenderMode::Flat ? 1 : 0);
+        program.set("u_back_face_color", style.back_face_color ? 1 : 0);
+        program.set("u_use_vertex_color", has_colors_ && style.vertex_colors ? 1 : 0);
+        program.set("u_front_color", style.front_color);
+        program.set("u_back_color", style.back_color);
+        program.set("u_ambient", style.ambient);
+        program.set("u_specular", style.specular ? style.specular_strength : 0.0f);
+        program.set("u_shininess", style.shininess);
+        program.set("u_wire_color",
+                    edges_only || hidden_line ? style.line_color : style.wire_color);
+        program.set("u_wire_width", std::max(style.wire_width, 0.0f));
+        const bool textured = mode == RenderMode::Textured &&
+                              style.texture_mode != TextureMode::Off && has_texture_ &&
+                              has_texcoords_;
+        program.set("u_texture_mode", textured ? int(style.texture_mode) : 0);
+        program.set("u_texture", 0);
+        if (textured) {
+            glActiveTexture(GL_TEXTURE0);
+            glBindTexture(GL_TEXTURE_2D, texture_);
+        }
+        if (edges_only) {
+            // Every edge, hidden ones too: no depth test, blended by coverage. The alpha
+            // channel accumulates too, so a transparent background stays correct.
+            glDisable(GL_DEPTH_TEST);
+            glEnable(GL_BLEND);
+            glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE,
+                                GL_ONE_MINUS_SRC_ALPHA);
+        }
+        glBindVertexArray(triangle_vao_);
+        if (edges_only) {
+            // Back-facing triangles first, so that the edges of the front ones end on top.
+            glEnable(GL_CULL_FACE);
+            glCullFace(GL_FRONT);
+            glDrawElements(GL_TRIANGLES, GLsizei(n_triangle_indices_), GL_UNSIGNED_INT, nullptr);
+            glCullFace(GL_BACK);
+            glDrawElements(GL_TRIANGLES, GLsizei(n_triangle_indices_), GL_UNSIGNED_INT, nullptr);
+            glDisable(GL_CULL_FACE);
+            glDisable(GL_BLEND);
+            glEnable(GL_DEPTH_TEST);
+        } else {
+            glDrawElements(GL_TRIANGLES, GLsizei(n_triangle_indices_), GL_UNSIGNED_INT, nullptr);
+        }
+        if (textured) glBindTexture(GL_TEXTURE_2D, 0);
+    }
+
+    // Normals as 1-pixel segments, depth-tested against the surface.
+    const float length = style.vector_length * glm::length(bbox_max_ - bbox_min_);
+    if ((style.face_normals && n_triangle_indices_ > 0) || style.vertex_normals) {
+        if (style.face_normals && n_triangle_indices_ > 0) {
+            set_common_uniforms(face_vector_program_, view, projection, style);
+            face_vector_program_.set("u_length", length);
+            face_vector_program_.set("u_color", style.face_normal_color);
+            glBindVertexArray(triangle_vao_);
+            glDrawElements(GL_TRIANGLES, GLsizei(n_triangle_indices_), GL_UNSIGNED_INT, nullptr);
+        }
+        if (style.vertex_normals) {
+            set_common_uniforms(vertex_vector_program_, view, projection, style);
+            vertex_vector_program_.set("u_length", length);
+            vertex_vector_program_.set("u_color", style.vertex_normal_color);
+            glBindVertexArray(point_vao_);
+            glDrawElements(GL_POINTS, GLsizei(n_point_indices_), GL_UNSIGNED_INT, nullptr);
+        }
+    }
     glBindVertexArray(0);
     glUseProgram(0);
 }

@@ -1,84 +1,214 @@
 #pragma once
-// MeshRenderer: the GPU mirror of one HalfedgeMesh and the shader that draws it.
+// MeshRenderer: the GPU mirror of one HalfedgeMesh and the shaders that draw it.
 //
-// The renderer never owns the mesh: upload() copies what it needs (float positions and
-// normals per vertex, a uint32 index buffer of triangles) into one vertex array object.
-// A geometry-only change goes through update_positions(), which rewrites the vertex buffer
-// and keeps the index buffer; a topology change goes through upload().
+// The renderer never owns the mesh. upload() copies what it needs into GPU buffers:
+//  - positions and normals (float, interleaved), one entry per GPU vertex;
+//  - optional per-vertex colours (RGBA8), set_vertex_colors();
+//  - optional texture coordinates (float), from "v:texcoord", or from per-corner
+//    "h:texcoord": then every mesh vertex gets one GPU vertex per distinct texture coordinate
+//    of its corners, so seams stay seams (positions, normals and colours are gathered through
+//    that mapping);
+//  - a uint32 index buffer of triangles and one of points (one GPU vertex per live mesh
+//    vertex, isolated ones included).
+// Upload only what changed: update_positions() rewrites positions and normals for a pure
+// geometry change, set_vertex_colors() rewrites the colours only, upload() (topology change)
+// rewrites everything and drops the vertex colours.
 //
 // Normals: the mesh's "v:normal" (Vector3) when it has one, otherwise area-weighted vertex
 // normals computed on the fly (the same as core's vertex_normal()). A caller that moves
 // vertices of a mesh carrying "v:normal" must refresh that attribute (compute_vertex_normals)
 // or remove it before update_positions(), or the shading uses the stale normals.
 //
-// Drawing is one pass. Flat normals come from screen-space derivatives in the fragment stage.
-// With the wireframe overlay on, a second variant of the program (mesh.vert, mesh.geom,
-// mesh.frag with TRILAB_WIREFRAME) adds a geometry stage that gives each triangle corner
-// barycentric coordinates, from which the fragment stage draws the edges; vertices stay
-// shared. Without the overlay no geometry stage runs, which matters on llvmpipe.
+// Shaders (shaders/*.glsl, compiled at construction into program variants):
+//  - mesh.vert + mesh.frag: Flat, Smooth and Textured without overlay. Lighting is per
+//    fragment: a head light (light at the eye), ambient + Lambert + optional Blinn-Phong
+//    specular. Flat normals come from screen-space derivatives.
+//  - mesh.vert + mesh.geom + mesh.frag [TRILAB_WIREFRAME]: the geometry stage gives every
+//    triangle corner barycentric coordinates, from which the fragment stage draws
+//    anti-aliased edges of any width in pixels (glLineWidth > 1 is not available in core
+//    profiles). Used for the overlay and for the Wireframe and HiddenLine modes. Without
+//    wires no geometry stage runs, which matters on llvmpipe.
+//  - mesh.vert + mesh.frag [TRILAB_POINTS]: round, lit point sprites; mesh.vert + depth.frag
+//    lays down the surface's depth first so that it hides the points behind it.
+//  - vectors.vert + vectors.geom + vectors.frag: face normals (one segment per triangle, from
+//    its centroid) and vertex normals (one per vertex), built on the GPU from the uploaded
+//    positions, so they need no buffers of their own and follow update_positions().
 //
 // Every member function needs the GL 3.3 core context that was current at construction.
+// render/ never includes ImGui: the viewer edits a RenderStyle and calls draw().
 #include <glad/gl.h>
 
 #include <cstddef>
 #include <glm/glm.hpp>
+#include <string>
+#include <vector>
 
 #include "core/halfedge_mesh.h"
+#include "core/io/image_io.h"
 #include "render/gl_program.h"
 
 namespace trilab {
 
-enum class Shading {
-    Smooth,  ///< Gouraud-style: per-vertex normals interpolated (lit per fragment)
-    Flat,    ///< one normal per triangle
+/// What draw() draws. Names for menus and the CLI: render_mode_name() / parse_render_mode().
+enum class RenderMode {
+    Wireframe,   ///< every triangle edge, hidden ones too (no surface)
+    HiddenLine,  ///< the edges that a surface in the background colour does not hide
+    Flat,        ///< one normal per triangle
+    Smooth,      ///< Gouraud-style: vertex normals interpolated, lit per fragment
+    Points,      ///< one round point per vertex, lit by its normal
+    Textured,    ///< Smooth with the texture applied as texture_mode says
 };
 
-/// How draw() shades the mesh. Colours are linear RGB in [0, 1].
-struct RenderStyle {
-    Shading shading = Shading::Smooth;
-    bool wireframe = false;       ///< overlay the triangle edges
-    bool back_face_color = true;  ///< back faces in back_color instead of front_color
-    glm::vec3 front_color{0.50f, 0.62f, 0.80f};
-    glm::vec3 back_color{0.85f, 0.42f, 0.30f};
-    glm::vec3 wire_color{0.10f, 0.12f, 0.16f};
-    float wire_width = 1.0f;  ///< line width in framebuffer pixels
-    float ambient = 0.15f;    ///< fraction of the base colour lit regardless of the normal
-    float specular = 0.25f;   ///< strength of the white highlight
-    float shininess = 64.0f;  ///< Blinn-Phong exponent
+/// How Textured mode combines the texture with the shading. Off draws Textured mode exactly
+/// like Smooth. Without a texture (MeshRenderer::has_texture()) or texture coordinates
+/// (MeshRenderer::has_texcoords()) Textured mode also draws like Smooth: the caller tells
+/// the user why.
+enum class TextureMode {
+    Off,
+    Modulate,  ///< texture colour (x the vertex colour when shown), then lit
+    Replace,   ///< the texture colour as it is, unlit
 };
+
+/// Every switch of draw(). A plain struct: copy it, edit it, pass it. Colours are linear RGB
+/// in [0, 1]; widths and sizes are in framebuffer pixels (multiply by the HiDPI scale).
+struct RenderStyle {
+    RenderMode mode = RenderMode::Smooth;
+    /// Overlay the triangle edges on the shaded modes (Flat, Smooth, Textured). Wireframe and
+    /// HiddenLine always draw edges; Points ignores it.
+    bool wireframe = false;
+    float wire_width = 1.0f;                    ///< total edge width in pixels (anti-aliased)
+    glm::vec3 wire_color{0.10f, 0.12f, 0.16f};  ///< edges of the overlay
+    glm::vec3 line_color{0.86f, 0.89f, 0.93f};  ///< edges of Wireframe and HiddenLine modes
+
+    /// Back faces (the side facing away from the normal's orientation) in back_color, in
+    /// every mode: shaded modes use it as base colour, HiddenLine tints its surface with it,
+    /// Wireframe draws the edges of back-facing triangles faded towards the background, and
+    /// Points colours points whose normal faces away. Off: both sides look alike.
+    bool back_face_color = true;
+    glm::vec3 front_color{0.50f, 0.62f, 0.80f};  ///< base colour without vertex colours
+    glm::vec3 back_color{0.85f, 0.42f, 0.30f};
+
+    /// Vertex colours (MeshRenderer::set_vertex_colors()) replace front_color when set. This
+    /// switch hides them without discarding the uploaded buffer.
+    bool vertex_colors = true;
+
+    float point_size = 4.0f;  ///< diameter of a point in Points mode, pixels
+    /// Points mode: an invisible surface (depth only) hides the points behind it, as
+    /// HiddenLine does for edges. Off: every point shows (meshes without faces always).
+    bool occlude_points = true;
+
+    // Lighting: one head light (light and eye coincide).
+    float ambient = 0.15f;            ///< fraction of the base colour lit regardless of the normal
+    bool specular = true;             ///< Blinn-Phong highlight on/off (viewer key S)
+    float specular_strength = 0.25f;  ///< strength of the white highlight
+    float shininess = 64.0f;          ///< Blinn-Phong exponent
+
+    /// Fog by depth (viewer key F): blends towards `background`, linearly from nothing at the
+    /// depth of the mesh's nearest bounding-box corner to fog_amount at the farthest one.
+    bool fog = false;
+    float fog_amount = 0.85f;  ///< in [0, 1]
+    /// The background colour: clear_background() clears to it, fog fades to it, HiddenLine
+    /// paints its surface in it.
+    glm::vec3 background{0.16f, 0.17f, 0.19f};
+
+    TextureMode texture_mode = TextureMode::Modulate;  ///< used by Textured mode only
+
+    // Vectors: segments of vector_length x (bounding-box diagonal of the mesh), 1 pixel wide.
+    bool face_normals = false;    ///< one per triangle, from its centroid
+    bool vertex_normals = false;  ///< one per vertex
+    float vector_length = 0.02f;
+    glm::vec3 face_normal_color{0.95f, 0.80f, 0.20f};
+    glm::vec3 vertex_normal_color{0.30f, 0.85f, 0.45f};
+};
+
+/// "wireframe", "hidden-line", "flat", "gouraud", "points", "textured".
+const char* render_mode_name(RenderMode mode);
+/// Parses render_mode_name() strings ("smooth" is accepted for "gouraud"). Throws
+/// InvalidArgument listing the names otherwise.
+RenderMode parse_render_mode(const std::string& name);
+/// "off", "modulate", "replace".
+const char* texture_mode_name(TextureMode mode);
+
+/// Clears colour and depth of the bound framebuffer (all of it, unless a scissor box is
+/// set) to style.background with the given alpha. Use alpha 0 for a transparent background: then
+/// clear_background() clears to (0, 0, 0, 0) so that the drawn pixels are premultiplied by alpha.
+void clear_background(const RenderStyle& style, float alpha = 1.0f);
 
 class MeshRenderer {
 public:
-    /// Compiles both program variants. Throws GlError (with the driver's log) if one fails.
+    /// Compiles every program variant. Throws GlError (with the driver's log) if one fails.
     MeshRenderer();
     ~MeshRenderer();
     MeshRenderer(const MeshRenderer&) = delete;
     MeshRenderer& operator=(const MeshRenderer&) = delete;
 
-    /// Copies positions, normals and triangles of `mesh` to the GPU, replacing what was
-    /// there. Vertices are addressed by storage index, so a mesh with deleted elements
-    /// (garbage) draws correctly. O(vertices + faces).
+    /// Copies positions, normals, texture coordinates and triangles of `mesh` to the GPU,
+    /// replacing what was there, and drops the vertex colours. Vertices are addressed by
+    /// storage index, so a mesh with deleted elements (garbage) draws correctly.
+    /// O(vertices + faces).
     void upload(const HalfedgeMesh& mesh);
-    /// Rewrites positions and normals only, for a mesh whose faces are unchanged since the
-    /// last upload(). Falls back to upload() when the vertex storage size differs.
+    /// Rewrites positions and normals only, for a mesh whose faces (and texture coordinates)
+    /// are unchanged since the last upload(). Falls back to upload() when the vertex storage
+    /// size differs. O(vertices + faces).
     void update_positions(const HalfedgeMesh& mesh);
-    /// Forgets the uploaded mesh; draw() then draws nothing.
+    /// Forgets the uploaded mesh and colours; draw() then draws nothing. Keeps the texture.
     void clear();
 
-    /// Draws the uploaded mesh (model matrix = identity) into the current framebuffer with
-    /// depth testing. Leaves the depth test enabled and the program and VAO unbound.
+    /// Per-vertex colours indexed by vertex storage index (size == n_vertices(), the storage
+    /// size at the last upload()); they replace front_color while style.vertex_colors is on.
+    /// Uploads the colours only. Throws InvalidArgument on a size mismatch.
+    void set_vertex_colors(const std::vector<Color>& colors);
+    void clear_vertex_colors();
+    bool has_vertex_colors() const { return has_colors_; }
+
+    /// Uploads `image` (RGBA8, rows top-down) as the texture of Textured mode, with mipmaps
+    /// and repeat wrapping; texture coordinate (0, 0) is the image's bottom-left corner (the
+    /// OBJ convention). Throws InvalidArgument for an empty image or one above the GL limit.
+    void set_texture(const Image& image);
+    void clear_texture();
+    bool has_texture() const { return has_texture_; }
+    /// Whether the uploaded mesh had texture coordinates ("v:texcoord" or "h:texcoord").
+    bool has_texcoords() const { return has_texcoords_; }
+
+    /// Draws the uploaded mesh (model matrix = identity) into the current framebuffer and
+    /// viewport with depth testing; does not clear (see clear_background()). Leaves depth
+    /// test enabled, blending disabled, and no program, VAO or texture bound.
     void draw(const glm::mat4& view, const glm::mat4& projection, const RenderStyle& style) const;
 
+    /// Vertex storage size of the uploaded mesh (what set_vertex_colors() expects).
     std::size_t n_vertices() const { return n_vertices_; }
-    std::size_t n_triangles() const { return n_indices_ / 3; }
+    std::size_t n_triangles() const { return n_triangle_indices_ / 3; }
+    /// Vertices on the GPU: n_vertices(), or more where per-corner texture coordinates split
+    /// vertices at seams.
+    std::size_t n_gpu_vertices() const { return n_gpu_vertices_; }
+    /// Bounding box of the uploaded positions (live vertices), updated by update_positions().
+    glm::vec3 bbox_min() const { return bbox_min_; }
+    glm::vec3 bbox_max() const { return bbox_max_; }
 
 private:
-    void write_vertices(const HalfedgeMesh& mesh);
+    void write_geometry(const HalfedgeMesh& mesh);
+    void setup_vertex_array(GLuint vao, GLuint element_buffer) const;
+    void set_common_uniforms(const GlProgram& program, const glm::mat4& view,
+                             const glm::mat4& projection, const RenderStyle& style) const;
 
-    GlProgram surface_program_;    ///< mesh.vert + mesh.frag
-    GlProgram wireframe_program_;  ///< mesh.vert + mesh.geom + mesh.frag [TRILAB_WIREFRAME]
-    GLuint vao_ = 0, vertex_buffer_ = 0, index_buffer_ = 0;
-    std::size_t n_vertices_ = 0, n_indices_ = 0;
+    GlProgram surface_program_;        ///< mesh.vert + mesh.frag
+    GlProgram wire_program_;           ///< mesh.vert + mesh.geom + mesh.frag [TRILAB_WIREFRAME]
+    GlProgram points_program_;         ///< mesh.vert + mesh.frag [TRILAB_POINTS]
+    GlProgram depth_program_;          ///< mesh.vert + depth.frag
+    GlProgram face_vector_program_;    ///< vectors.* [TRILAB_FACE_VECTORS]: triangles in
+    GlProgram vertex_vector_program_;  ///< vectors.*: points in
+
+    GLuint triangle_vao_ = 0, point_vao_ = 0;
+    GLuint geometry_buffer_ = 0, color_buffer_ = 0, texcoord_buffer_ = 0;
+    GLuint triangle_buffer_ = 0, point_buffer_ = 0;
+    GLuint texture_ = 0;
+
+    /// GPU vertex -> mesh vertex storage index; empty when that is the identity.
+    std::vector<Index> gpu_source_;
+    std::size_t n_vertices_ = 0, n_gpu_vertices_ = 0;
+    std::size_t n_triangle_indices_ = 0, n_point_indices_ = 0;
+    bool has_colors_ = false, has_texcoords_ = false, has_texture_ = false;
+    glm::vec3 bbox_min_{0.0f}, bbox_max_{0.0f};
 };
 
 }  // namespace trilab

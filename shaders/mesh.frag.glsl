@@ -1,51 +1,114 @@
 #version 330 core
-// Mesh fragment stage: Blinn-Phong with a headlight (light at the eye), smooth or flat
-// normals, a distinct colour for back faces and, when compiled with TRILAB_WIREFRAME (after
-// mesh.geom), an anti-aliased wireframe overlay of constant width in pixels.
+// Mesh fragment stage. One file, three variants:
+//  - default: shaded surface (Flat, Smooth, Textured);
+//  - TRILAB_WIREFRAME (after mesh.geom): the same plus anti-aliased edges of constant width
+//    in pixels from barycentric coordinates; u_surface also selects the HiddenLine surface
+//    (background colour) and the Wireframe mode (edges only, blended);
+//  - TRILAB_POINTS: round point sprites lit by the vertex normal.
+// Lighting: a head light (light at the eye, so the half vector is the light direction),
+// ambient + Lambert + optional Blinn-Phong specular. Fog blends towards the background by
+// view depth.
 
 #ifdef TRILAB_WIREFRAME
 in MeshFragment {
     vec3 position;
     vec3 normal;
+    vec3 color;
+    vec2 texcoord;
     vec3 barycentric;
 } fs_in;
 #else
 in MeshVertex {
     vec3 position;
     vec3 normal;
+    vec3 color;
+    vec2 texcoord;
 } fs_in;
 #endif
 
+uniform int u_surface;  // 0 shaded, 1 background colour (HiddenLine), 2 none (Wireframe)
 uniform bool u_flat;
 uniform bool u_back_face_color;
+uniform bool u_use_vertex_color;
 uniform vec3 u_front_color;
 uniform vec3 u_back_color;
+uniform int u_texture_mode;  // 0 off, 1 modulate, 2 replace
+uniform sampler2D u_texture;
+uniform float u_ambient;
+uniform float u_specular;  // 0 when the highlight is off
+uniform float u_shininess;
+uniform bool u_fog;
+uniform float u_fog_near;  // view depth where the fog starts
+uniform float u_fog_far;   // view depth where it reaches u_fog_amount
+uniform float u_fog_amount;
+uniform vec3 u_background;
 uniform vec3 u_wire_color;
 uniform float u_wire_width;  // total line width in framebuffer pixels
-uniform float u_ambient;
-uniform float u_specular;
-uniform float u_shininess;
 
 out vec4 frag_color;
 
-void main() {
-    vec3 n;
-    if (u_flat) {
-        // The triangle's plane from screen-space derivatives; this normal always faces the
-        // viewer, so it is not flipped for back faces.
-        n = cross(dFdx(fs_in.position), dFdy(fs_in.position));
-    } else {
-        n = gl_FrontFacing ? fs_in.normal : -fs_in.normal;
-    }
-    float len = length(n);
-    n = len > 0.0 ? n / len : vec3(0.0, 0.0, 1.0);
-    vec3 base = (gl_FrontFacing || !u_back_face_color) ? u_front_color : u_back_color;
+vec3 apply_fog(vec3 color) {
+    if (!u_fog) return color;
+    float depth = -fs_in.position.z;
+    float t = clamp((depth - u_fog_near) / max(u_fog_far - u_fog_near, 1e-6), 0.0, 1.0);
+    return mix(color, u_background, t * u_fog_amount);
+}
 
-    // Headlight: light and viewer coincide, so the half vector is the light direction.
+vec3 lit(vec3 base, vec3 n) {
     vec3 l = normalize(-fs_in.position);
     float diffuse = max(dot(n, l), 0.0);
     float spec = diffuse > 0.0 ? pow(diffuse, u_shininess) : 0.0;
-    vec3 color = base * (u_ambient + (1.0 - u_ambient) * diffuse) + vec3(u_specular * spec);
+    return base * (u_ambient + (1.0 - u_ambient) * diffuse) + vec3(u_specular * spec);
+}
+
+vec3 front_base() {
+    return u_use_vertex_color ? fs_in.color : u_front_color;
+}
+
+#ifdef TRILAB_POINTS
+void main() {
+    vec2 d = 2.0 * gl_PointCoord - 1.0;
+    float r2 = dot(d, d);
+    if (r2 > 1.0) discard;
+    vec3 n = fs_in.normal;
+    float len = length(n);
+    n = len > 0.0 ? n / len : normalize(-fs_in.position);
+    bool back = dot(n, -fs_in.position) < 0.0;
+    vec3 base = (back && u_back_face_color) ? u_back_color : front_base();
+    if (back) n = -n;
+    // Darken towards the rim so that a point reads as a small ball.
+    vec3 color = lit(base, n) * (0.65 + 0.35 * sqrt(1.0 - r2));
+    frag_color = vec4(apply_fog(color), 1.0);
+}
+#else
+void main() {
+    bool back = !gl_FrontFacing && u_back_face_color;
+    vec3 color = vec3(0.0);
+    if (u_surface == 0) {
+        vec3 n;
+        if (u_flat) {
+            // The triangle's plane from screen-space derivatives; this normal always faces
+            // the viewer, so it is not flipped for back faces.
+            n = cross(dFdx(fs_in.position), dFdy(fs_in.position));
+        } else {
+            n = gl_FrontFacing ? fs_in.normal : -fs_in.normal;
+        }
+        float len = length(n);
+        n = len > 0.0 ? n / len : vec3(0.0, 0.0, 1.0);
+        if (back) {
+            color = lit(u_back_color, n);
+        } else if (u_texture_mode == 2) {
+            color = texture(u_texture, fs_in.texcoord).rgb;
+        } else if (u_texture_mode == 1) {
+            vec3 tint = u_use_vertex_color ? fs_in.color : vec3(1.0);
+            color = lit(texture(u_texture, fs_in.texcoord).rgb * tint, n);
+        } else {
+            color = lit(front_base(), n);
+        }
+        color = apply_fog(color);
+    } else if (u_surface == 1) {
+        color = back ? mix(u_background, u_back_color, 0.3) : u_background;
+    }
 
 #ifdef TRILAB_WIREFRAME
     // Distance to the nearest edge in pixels; each side of an edge draws half the width.
@@ -53,7 +116,16 @@ void main() {
     float d = min(min(pixels.x, pixels.y), pixels.z);
     float half_width = 0.5 * u_wire_width;
     float edge = 1.0 - smoothstep(half_width - 0.5, half_width + 0.5, d);
-    color = mix(color, u_wire_color, edge);
+    vec3 wire = u_wire_color;
+    if (u_surface == 2) {
+        // Edges only, blended over what is there; back-facing triangles' edges fade.
+        if (edge <= 0.0) discard;
+        if (back) wire = mix(wire, u_background, 0.6);
+        frag_color = vec4(apply_fog(wire), edge);
+        return;
+    }
+    color = mix(color, apply_fog(wire), edge);
 #endif
     frag_color = vec4(color, 1.0);
 }
+#endif

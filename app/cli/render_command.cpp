@@ -1,11 +1,276 @@
+// `trilab-cli render`: one offscreen image of a mesh (render/offscreen.h: an EGL surfaceless
+// context, no X server needed), written as a PNG.
 #include "app/cli/render_command.h"
 
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <string>
+
+#include "app/cli/json_writer.h"
+#include "core/coloring.h"
 #include "core/errors.h"
+#include "core/io/image_io.h"
+#include "core/io/mesh_io.h"
+#include "core/texcoords.h"
+
+#ifdef TRILAB_HAS_RENDER
+#include "render/offscreen.h"
+#endif
 
 namespace trilab::cli {
+namespace {
 
-int run_render_command(const std::vector<std::string>&) {
-    throw Error("render: not implemented yet");
+constexpr const char* kRenderUsage =
+    R"(usage: trilab-cli render MESH --out FILE.png [options]
+
+Renders MESH without a window (EGL surfaceless context; Mesa's llvmpipe on machines without
+a GPU) and writes a PNG. The camera frames the mesh's bounding box.
+
+options:
+  --out FILE.png        the image to write (required)
+  --size WxH            image size in pixels (default 1280x800)
+  --mode MODE           gouraud (default), flat, wireframe, hidden-line, points, textured
+  --color QUANTITY      colour the vertices: none (default), normal, k1, k2, mean,
+                        gaussian, shape-index
+  --texture IMG         texture image for --mode textured (BMP, PNG, PNM, XBM, XPM); implies
+                        --mode textured when no --mode is given. Without it textured mode
+                        uses a built-in checkerboard. Meshes without texture coordinates get
+                        a spherical projection.
+  --view AZ,EL          view direction in degrees: azimuth around +y from +z, elevation
+                        above the xz plane (default 0,0: looking along -z, +y up)
+  --transparent         alpha 0 where no surface is drawn
+  --json                print one JSON object (with "ms": the time spent rendering, file
+                        reading and writing excluded)
+)";
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// Parses a whole string as a number; false on garbage or trailing characters.
+bool parse_double(const std::string& s, double& out) {
+    if (s.empty()) return false;
+    char* end = nullptr;
+    out = std::strtod(s.c_str(), &end);
+    return end == s.c_str() + s.size() && std::isfinite(out);
+}
+
+bool parse_int(const std::string& s, int& out) {
+    double d = 0;
+    if (!parse_double(s, d) || d != std::floor(d) || std::abs(d) > 1e9) return false;
+    out = int(d);
+    return true;
+}
+
+struct RenderArgs {
+    std::string mesh, out, texture;
+    int width = 1280, height = 800;
+    std::string mode = "gouraud";
+    bool mode_given = false;
+    std::string color = "none";
+    double azimuth = 0, elevation = 0;
+    bool transparent = false, json = false, help = false;
+};
+
+RenderArgs parse_args(const std::vector<std::string>& args) {
+    RenderArgs r;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        // "--name=value" is the same as "--name value".
+        std::string a = args[i], inline_value;
+        bool has_inline_value = false;
+        const std::size_t eq = a.find('=');
+        if (a.rfind("--", 0) == 0 && eq != std::string::npos) {
+            inline_value = a.substr(eq + 1);
+            a = a.substr(0, eq);
+            has_inline_value = true;
+        }
+        auto value = [&]() -> const std::string& {
+            if (has_inline_value) {
+                has_inline_value = false;
+                return inline_value;
+            }
+            if (i + 1 >= args.size()) throw InvalidArgument(a + ": missing value");
+            return args[++i];
+        };
+        if (a == "--help" || a == "-h") {
+            r.help = true;
+        } else if (a == "--json") {
+            r.json = true;
+        } else if (a == "--transparent") {
+            r.transparent = true;
+        } else if (a == "--out") {
+            r.out = value();
+        } else if (a == "--texture") {
+            r.texture = value();
+        } else if (a == "--mode") {
+            r.mode = value();
+            r.mode_given = true;
+        } else if (a == "--color") {
+            r.color = value();
+        } else if (a == "--size") {
+            const std::string& v = value();
+            const std::size_t x = v.find_first_of("xX");
+            if (x == std::string::npos || !parse_int(v.substr(0, x), r.width) ||
+                !parse_int(v.substr(x + 1), r.height) || r.width < 1 || r.height < 1 ||
+                r.width > 16384 || r.height > 16384)
+                throw InvalidArgument(
+                    "--size: expected WxH with whole numbers from 1 to 16384, "
+                    "got '" +
+                    v + "'");
+        } else if (a == "--view") {
+            const std::string& v = value();
+            const std::size_t comma = v.find(',');
+            if (comma == std::string::npos || !parse_double(v.substr(0, comma), r.azimuth) ||
+                !parse_double(v.substr(comma + 1), r.elevation))
+                throw InvalidArgument(
+                    "--view: expected AZIMUTH,ELEVATION in degrees (e.g. "
+                    "30,20), got '" +
+                    v + "'");
+        } else if (a.rfind("--", 0) == 0) {
+            throw InvalidArgument("unknown option '" + a + "' (see `trilab-cli render --help`)");
+        } else if (r.mesh.empty()) {
+            r.mesh = a;
+        } else {
+            throw InvalidArgument("unexpected argument '" + a + "': expected one MESH file");
+        }
+        if (has_inline_value) throw InvalidArgument(a + " takes no value");
+    }
+    return r;
+}
+
+}  // namespace
+
+int run_render_command(const std::vector<std::string>& args) {
+    const RenderArgs a = parse_args(args);
+    if (a.help) {
+        std::fputs(kRenderUsage, stdout);
+        return 0;
+    }
+    if (a.mesh.empty())
+        throw InvalidArgument("expected a MESH file (see `trilab-cli render --help`)");
+    if (a.out.empty()) throw InvalidArgument("--out FILE.png is required");
+    const std::filesystem::path out_dir = std::filesystem::path(a.out).parent_path();
+    if (!out_dir.empty() && !std::filesystem::is_directory(out_dir))
+        throw InvalidArgument("--out: the folder '" + out_dir.string() + "' does not exist");
+
+#ifndef TRILAB_HAS_RENDER
+    throw Error("this trilab-cli was built without the renderer (TRILAB_BUILD_VIEWER=OFF)");
+#else
+    // Options first, so that a bad one fails before any file is read.
+    OffscreenOptions options;
+    options.width = a.width;
+    options.height = a.height;
+    options.azimuth = float(a.azimuth);
+    options.elevation = float(a.elevation);
+    options.transparent = a.transparent;
+    try {
+        options.style.mode = parse_render_mode(a.mode);
+    } catch (const InvalidArgument& e) {
+        throw InvalidArgument(std::string("--mode: ") + e.what());
+    }
+    if (!a.texture.empty()) {
+        if (!a.mode_given)
+            options.style.mode = RenderMode::Textured;
+        else if (options.style.mode != RenderMode::Textured)
+            throw InvalidArgument("--texture: only --mode textured uses a texture (got --mode " +
+                                  a.mode + ")");
+    }
+    VertexColoring coloring = VertexColoring::None;
+    try {
+        coloring = parse_coloring(a.color);
+    } catch (const InvalidArgument& e) {
+        throw InvalidArgument(std::string("--color: ") + e.what());
+    }
+    const bool textured = options.style.mode == RenderMode::Textured;
+
+    // File input (not timed).
+    LoadedMesh loaded = read_mesh(a.mesh);
+    HalfedgeMesh& mesh = loaded.mesh;
+    std::string texture_source = "none";
+    if (textured) {
+        if (!a.texture.empty()) {
+            options.texture = read_image(a.texture);
+            texture_source = a.texture;
+        } else {
+            options.texture = make_checkerboard();
+            texture_source = "checkerboard";
+        }
+    }
+
+    const auto t0 = std::chrono::steady_clock::now();
+    std::vector<std::string> notes;
+    std::string texcoords = has_texcoords(mesh) ? "mesh" : "none";
+    if (textured && !has_texcoords(mesh)) {
+        project_texcoords(mesh, TexCoordProjection::Spherical);
+        texcoords = "spherical projection";
+        notes.push_back(
+            "the mesh has no texture coordinates: textured mode uses a spherical "
+            "projection around the centroid (z is the pole axis)");
+    }
+    VertexColors colors;
+    if (coloring != VertexColoring::None) {
+        colors = color_vertices(mesh, coloring);
+        options.vertex_colors = colors.colors;
+    }
+    const double prepare_ms = ms_since(t0);
+
+    const auto t1 = std::chrono::steady_clock::now();
+    OffscreenRenderer renderer;
+    const double context_ms = ms_since(t1);
+    const auto t2 = std::chrono::steady_clock::now();
+    const Image image = renderer.render(mesh, options);
+    const double render_ms = ms_since(t2);
+    const double ms = ms_since(t0);
+
+    write_png(image, a.out);  // file output (not timed)
+
+    if (a.json) {
+        JsonObject j;
+        j.add("input", a.mesh)
+            .add("output", a.out)
+            .add("width", a.width)
+            .add("height", a.height)
+            .add("mode", render_mode_name(options.style.mode))
+            .add("color", coloring_name(coloring));
+        if (colors.has_legend) {
+            JsonObject legend;
+            legend.add("label", colors.label)
+                .add("min", colors.range.min)
+                .add("max", colors.range.max)
+                .add("map", colors.kind == ColorMapKind::Diverging ? "diverging" : "sequential");
+            j.add("legend", legend);
+        } else {
+            j.add_null("legend");
+        }
+        j.add("view", std::vector<double>{a.azimuth, a.elevation})
+            .add("transparent", a.transparent)
+            .add("texture", texture_source)
+            .add("texcoords", texcoords)
+            .add("vertices", mesh.n_vertices())
+            .add("faces", mesh.n_faces())
+            .add("renderer", renderer.context().description())
+            .add("notes", notes)
+            .add("prepare_ms", prepare_ms)
+            .add("context_ms", context_ms)
+            .add("render_ms", render_ms)
+            .add("ms", ms);
+        std::cout << j.str() << "\n";
+    } else {
+        std::printf("wrote %s: %dx%d, %s", a.out.c_str(), a.width, a.height,
+                    render_mode_name(options.style.mode));
+        if (colors.has_legend)
+            std::printf(", %s in [%.6g, %.6g]", colors.label.c_str(), colors.range.min,
+                        colors.range.max);
+        else if (coloring != VertexColoring::None)
+            std::printf(", %s colouring", coloring_name(coloring));
+        std::printf(" (%.1f ms; %s)\n", ms, renderer.context().description().c_str());
+        for (const std::string& n : notes) std::printf("note: %s\n", n.c_str());
+    }
+    return 0;
+#endif
 }
 
 }  // namespace trilab::cli

@@ -20,6 +20,8 @@ options:
   --size WxH         window size in screen coordinates (default 1280x800)
   --frames N         render N frames, then exit (for tests and screenshots)
   --screenshot FILE  write the last frame as PNG before exiting (needs --frames)
+  --mode MODE        wireframe, hidden-line, flat, gouraud, points or textured
+  --color C          none, normal, k1, k2, mean, gaussian or shape-index
   --help             this text
 )";
 
@@ -64,6 +66,10 @@ std::string parse_args(int argc, char** argv, trilab::viewer::ViewerOptions& opt
         } else if (arg == "--screenshot") {
             if (!value(options.screenshot) || options.screenshot.empty())
                 return "--screenshot needs a file name";
+        } else if (arg == "--mode") {
+            if (!value(options.mode)) return "--mode needs a name";
+        } else if (arg == "--color") {
+            if (!value(options.color)) return "--color needs a name";
         } else if (arg.size() > 1 && arg[0] == '-') {
             return "unknown option '" + arg + "'";
         } else if (options.mesh_path.empty()) {

@@ -3,8 +3,10 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 
 namespace trilab::viewer {
 namespace {
@@ -36,6 +38,7 @@ constexpr Binding kBindings[] = {
     {"F", "fog on / off"},
     {"S", "specular highlight on / off"},
     {"T", "cycle texture modes (off, modulate, replace)"},
+    {"F12", "screenshot (any resolution, without panels)"},
     {"I", "print model and scene information (and show it)"},
     {"L", "show the log"},
     {"Ctrl+O", "open a mesh file"},
@@ -52,20 +55,103 @@ ImVec4 notice_color(Notice::Level level) {
 
 }  // namespace
 
-void rendering_menu_items(RenderStyle& style, CommandQueue& commands) {
-    if (ImGui::MenuItem("Smooth shading", nullptr, style.shading == Shading::Smooth))
-        style.shading = Shading::Smooth;
-    if (ImGui::MenuItem("Flat shading", nullptr, style.shading == Shading::Flat))
-        style.shading = Shading::Flat;
+void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState& panels,
+                          const RenderContext& render, CommandQueue& commands) {
+    const RenderMode modes[] = {RenderMode::Wireframe, RenderMode::HiddenLine,
+                                RenderMode::Flat,      RenderMode::Smooth,
+                                RenderMode::Points,    RenderMode::Textured};
+    for (RenderMode mode : modes)
+        if (ImGui::MenuItem(render_mode_name(mode), nullptr, style.mode == mode)) style.mode = mode;
     ImGui::Separator();
     ImGui::MenuItem("Wireframe overlay", "W", &style.wireframe);
     ImGui::MenuItem("Back-face colour", "B", &style.back_face_color);
+    if (ImGui::BeginMenu("Colour by vertex")) {
+        const VertexColoring colorings[] = {VertexColoring::None,      VertexColoring::Normal,
+                                            VertexColoring::K1,        VertexColoring::K2,
+                                            VertexColoring::Mean,      VertexColoring::Gaussian,
+                                            VertexColoring::ShapeIndex};
+        const char* labels[] = {"None",
+                                "Normal direction",
+                                "First principal curvature",
+                                "Second principal curvature",
+                                "Mean curvature",
+                                "Gaussian curvature",
+                                "Shape index"};
+        for (std::size_t i = 0; i < std::size(colorings); ++i) {
+            if (ImGui::MenuItem(labels[i], nullptr, settings.coloring == colorings[i]) &&
+                settings.coloring != colorings[i]) {
+                settings.coloring = colorings[i];
+                commands.push_back(UpdateColoring{});
+            }
+        }
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Texture")) {
+        const TextureMode tmodes[] = {TextureMode::Off, TextureMode::Modulate,
+                                      TextureMode::Replace};
+        for (TextureMode m : tmodes) {
+            const bool on = style.mode == RenderMode::Textured && style.texture_mode == m;
+            if (ImGui::MenuItem(texture_mode_name(m), m == TextureMode::Off ? "T" : nullptr, on)) {
+                style.texture_mode = m;
+                style.mode = m == TextureMode::Off ? RenderMode::Smooth : RenderMode::Textured;
+            }
+        }
+        ImGui::Separator();
+        if (ImGui::MenuItem("Checkerboard", nullptr, settings.use_checkerboard))
+            settings.use_checkerboard = true;
+        if (ImGui::MenuItem("Loaded image", nullptr, !settings.use_checkerboard,
+                            render.has_loaded_texture))
+            settings.use_checkerboard = false;
+        if (ImGui::MenuItem("Load image..."))
+            panels.file_browser.request(FileBrowserState::Purpose::LoadTexture, "");
+        ImGui::Separator();
+        if (render.has_texcoords) {
+            ImGui::TextDisabled("the model has texture coordinates");
+        } else {
+            ImGui::TextDisabled("no texture coordinates: project them");
+            if (ImGui::MenuItem("Planar projection")) {
+                settings.projection = TexCoordProjection::Planar;
+                commands.push_back(ProjectTexCoords{});
+            }
+            if (ImGui::MenuItem("Spherical projection")) {
+                settings.projection = TexCoordProjection::Spherical;
+                commands.push_back(ProjectTexCoords{});
+            }
+        }
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Vectors")) {
+        ImGui::MenuItem("Face normals", nullptr, &style.face_normals);
+        ImGui::MenuItem("Vertex normals", nullptr, &style.vertex_normals);
+        ImGui::SetNextItemWidth(10.0f * ImGui::GetFontSize());
+        ImGui::SliderFloat("length", &style.vector_length, 0.002f, 0.2f, "%.3f",
+                           ImGuiSliderFlags_Logarithmic);
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Lighting and colours")) {
+        ImGui::MenuItem("Specular highlight", "S", &style.specular);
+        ImGui::MenuItem("Fog", "F", &style.fog);
+        ImGui::SetNextItemWidth(10.0f * ImGui::GetFontSize());
+        ImGui::SliderFloat("fog amount", &style.fog_amount, 0.0f, 1.0f);
+        ImGui::SetNextItemWidth(10.0f * ImGui::GetFontSize());
+        ImGui::ColorEdit3("background", &style.background.x);
+        ImGui::SetNextItemWidth(10.0f * ImGui::GetFontSize());
+        ImGui::ColorEdit3("front", &style.front_color.x);
+        ImGui::SetNextItemWidth(10.0f * ImGui::GetFontSize());
+        ImGui::ColorEdit3("back", &style.back_color.x);
+        ImGui::SetNextItemWidth(10.0f * ImGui::GetFontSize());
+        ImGui::SliderFloat("line width", &style.wire_width, 0.5f, 4.0f, "%.1f px");
+        ImGui::SetNextItemWidth(10.0f * ImGui::GetFontSize());
+        ImGui::SliderFloat("point size", &style.point_size, 1.0f, 12.0f, "%.1f px");
+        ImGui::EndMenu();
+    }
     ImGui::Separator();
     if (ImGui::MenuItem("Fit view", "Home")) commands.push_back(FitView{});
+    if (ImGui::MenuItem("Screenshot...", "F12")) panels.screenshot.open = true;
 }
 
-void menu_bar(RenderStyle& style, PanelState& panels, const MenuContext& context,
-              CommandQueue& commands) {
+void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
+              const MenuContext& context, const RenderContext& render, CommandQueue& commands) {
     if (!ImGui::BeginMainMenuBar()) return;
     if (ImGui::BeginMenu("File")) {
         if (ImGui::MenuItem("Open...", "Ctrl+O", false, !context.busy))
@@ -96,7 +182,7 @@ void menu_bar(RenderStyle& style, PanelState& panels, const MenuContext& context
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Rendering")) {
-        rendering_menu_items(style, commands);
+        rendering_menu_items(style, settings, panels, render, commands);
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Window")) {
@@ -112,13 +198,14 @@ void menu_bar(RenderStyle& style, PanelState& panels, const MenuContext& context
     ImGui::EndMainMenuBar();
 }
 
-void context_menu(RenderStyle& style, PanelState& panels, CommandQueue& commands) {
+void context_menu(RenderStyle& style, ViewSettings& settings, PanelState& panels,
+                  const RenderContext& render, CommandQueue& commands) {
     if (panels.context_menu_requested) {
         ImGui::OpenPopup("##rendering_context");
         panels.context_menu_requested = false;
     }
     if (ImGui::BeginPopup("##rendering_context")) {
-        rendering_menu_items(style, commands);
+        rendering_menu_items(style, settings, panels, render, commands);
         ImGui::EndPopup();
     }
 }
@@ -172,6 +259,26 @@ void help_window(PanelState& panels) {
             }
             ImGui::EndTable();
         }
+    }
+    ImGui::End();
+}
+
+void screenshot_dialog(ScreenshotState& state, CommandQueue& commands) {
+    if (!state.open) return;
+    if (ImGui::Begin("Screenshot", &state.open, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::TextUnformatted("The scene without the panels, as PNG.");
+        ImGui::SetNextItemWidth(20.0f * ImGui::GetFontSize());
+        ImGui::InputText("file", &state.path);
+        int size[2] = {state.width, state.height};
+        ImGui::SetNextItemWidth(12.0f * ImGui::GetFontSize());
+        if (ImGui::InputInt2("width, height", size)) {
+            state.width = std::clamp(size[0], 1, 16384);
+            state.height = std::clamp(size[1], 1, 16384);
+        }
+        ImGui::Checkbox("transparent background", &state.transparent);
+        if (ImGui::Button("Save") && !state.path.empty())
+            commands.push_back(
+                TakeScreenshot{state.path, state.width, state.height, state.transparent});
     }
     ImGui::End();
 }

@@ -10,6 +10,7 @@
 #include "app/viewer/file_browser.h"
 #include "app/viewer/log.h"
 #include "core/coloring.h"
+#include "core/texcoords.h"
 #include "render/mesh_renderer.h"
 
 namespace trilab::viewer {
@@ -23,8 +24,25 @@ struct Notice {
     bool popup_pending = false;        ///< an error the popup has not shown yet
 };
 
+/// The screenshot dialog: a PNG of the scene without the panels, at any resolution.
+struct ScreenshotState {
+    bool open = false;
+    std::string path = "trilab-screenshot.png";
+    int width = 1920, height = 1080;
+    bool transparent = false;
+};
+
+/// Rendering settings that live in the viewer rather than in RenderStyle.
+struct ViewSettings {
+    VertexColoring coloring = VertexColoring::None;
+    ColoringOptions coloring_options;
+    TexCoordProjection projection = TexCoordProjection::Spherical;
+    bool use_checkerboard = true;  ///< the built-in texture instead of the loaded image
+};
+
 /// Which windows are open, and the dialogs' own state.
 struct PanelState {
+    ScreenshotState screenshot;
     FileBrowserState file_browser;
     bool help_open = false;
     bool about_open = false;
@@ -58,13 +76,23 @@ struct JobInfo {
     bool cancel_requested = false;
 };
 
-/// File, Algorithms, Rendering and Help menus.
-void menu_bar(RenderStyle& style, PanelState& panels, const MenuContext& context,
-              CommandQueue& commands);
+/// What the Rendering menu needs to know to explain what cannot be shown.
+struct RenderContext {
+    bool has_texcoords = false;
+    bool has_loaded_texture = false;
+};
+
+/// File, Algorithms, Rendering, Window and Help menus.
+void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
+              const MenuContext& context, const RenderContext& render, CommandQueue& commands);
 /// The Rendering menu's items (also the right-click popup in the view).
-void rendering_menu_items(RenderStyle& style, CommandQueue& commands);
+void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState& panels,
+                          const RenderContext& render, CommandQueue& commands);
 /// The right-click popup with the rendering items.
-void context_menu(RenderStyle& style, PanelState& panels, CommandQueue& commands);
+void context_menu(RenderStyle& style, ViewSettings& settings, PanelState& panels,
+                  const RenderContext& render, CommandQueue& commands);
+/// The screenshot dialog; queues TakeScreenshot.
+void screenshot_dialog(ScreenshotState& state, CommandQueue& commands);
 /// A one-line bar along the bottom edge of the window.
 void status_bar(const StatusInfo& info, const Notice& notice);
 /// A small window with the job's name, a progress bar and Cancel.

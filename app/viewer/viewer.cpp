@@ -20,13 +20,17 @@
 #include "core/geometry.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh_stats.h"
+#include "core/texcoords.h"
+#include "render/offscreen.h"
 
 namespace trilab::viewer {
 namespace {
 
 constexpr const char* kTitle = "trilab";
-constexpr std::size_t kWireframeMaxFacesAtStart = 100000;
-constexpr int kFramesAfterInput = 4;  ///< ImGui settles hover and popups within a few frames
+constexpr std::size_t kWireframeMaxFacesAtStart = 20000;
+constexpr int kFramesAfterInput = 4;
+constexpr std::size_t kColoringJobFaces = 200000;  ///< larger meshes colour in a job  ///< ImGui
+                                                   ///< settles hover and popups within a few frames
 
 void glfw_error(int code, const char* description) {
     std::fprintf(stderr, "trilab: GLFW error %d: %s\n", code, description);
@@ -157,12 +161,20 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
     imgui_ = std::make_unique<ImGuiLayer>(window_.get(), ui_scale_);
 
     renderer_ = std::make_unique<MeshRenderer>();
+    checkerboard_ = make_checkerboard();
+    update_texture();
     view_.camera.set_viewport(float(window_w), float(window_h));
     // Recent files persist only for interactive sessions, not for scripted runs.
     if (options_.frames == 0) recent_.load(RecentFiles::default_file());
     set_document(make_default_model(), "default model", "", LoadReport{});
     log_.info("OpenGL " + std::string(reinterpret_cast<const char*>(glGetString(GL_VERSION))) +
               " on " + reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
+    // Initial rendering options; bad names throw InvalidArgument before any window work.
+    if (!options_.mode.empty()) view_.style.mode = parse_render_mode(options_.mode);
+    if (!options_.color.empty()) {
+        view_.settings.coloring = parse_coloring(options_.color);
+        update_coloring();
+    }
     if (!options_.mesh_path.empty()) load(options_.mesh_path);
 }
 
@@ -176,6 +188,7 @@ void Viewer::set_document(HalfedgeMesh mesh, std::string name, std::string path,
     document_.name = std::move(name);
     document_.path = std::move(path);
     document_.report = std::move(report);
+    document_.texcoords_projected = false;
     const MeshStats s = compute_stats(document_.mesh);
     char buf[256];
     std::vector<std::string>& info = document_.info;
@@ -199,6 +212,8 @@ void Viewer::set_document(HalfedgeMesh mesh, std::string name, std::string path,
     for (const std::string& line : document_.report.lines()) info.push_back("load: " + line);
 
     renderer_->upload(document_.mesh);
+    view_.colors = VertexColors{};
+    if (view_.settings.coloring != VertexColoring::None) update_coloring();
     fit_view();
     // The overlay starts on where the edges can still be told apart; W toggles it.
     view_.style.wireframe = document_.mesh.n_faces() <= kWireframeMaxFacesAtStart;
@@ -250,6 +265,8 @@ void Viewer::load_texture(const std::string& path) {
         auto image = std::make_shared<Image>(read_image(path));
         return JobRunner::Finish([this, image, path, name] {
             texture_ = std::move(*image);
+            view_.settings.use_checkerboard = false;
+            update_texture();
             log_.info("texture " + path + ": " + std::to_string(texture_.width) + " x " +
                       std::to_string(texture_.height));
             notice_ = Notice{Notice::Level::Info, "Texture " + name, {}, false};
@@ -262,6 +279,10 @@ void Viewer::poll_jobs() {
     const JobRunner::Outcome outcome = jobs_.poll();
     using Kind = JobRunner::Outcome::Kind;
     if (outcome.kind == Kind::None) return;
+    if (coloring_pending_) {
+        coloring_pending_ = false;
+        commands_.push_back(UpdateColoring{});
+    }
     active_frames_ = kFramesAfterInput;
     if (outcome.kind == Kind::Failed) {
         notify_error(outcome.message);
@@ -282,9 +303,14 @@ std::vector<std::string> Viewer::scene_info() const {
     std::snprintf(buf, sizeof(buf), "camera at (%.3g, %.3g, %.3g), frame %.1f ms", eye.x, eye.y,
                   eye.z, frame_ms());
     lines.push_back(buf);
-    lines.push_back(std::string("shading ") +
-                    (view_.style.shading == Shading::Flat ? "flat" : "smooth") +
-                    (view_.style.wireframe ? ", wireframe overlay" : ""));
+    lines.push_back(std::string("mode ") + render_mode_name(view_.style.mode) +
+                    (view_.style.wireframe ? ", wireframe overlay" : "") +
+                    (view_.style.fog ? ", fog" : "") + (view_.style.specular ? ", specular" : ""));
+    if (view_.colors.has_legend) {
+        std::snprintf(buf, sizeof(buf), "colour: %s in [%.4g, %.4g]", view_.colors.label.c_str(),
+                      view_.colors.range.min, view_.colors.range.max);
+        lines.push_back(buf);
+    }
     if (!texture_.empty())
         lines.push_back("texture " + std::to_string(texture_.width) + " x " +
                         std::to_string(texture_.height));
@@ -307,6 +333,96 @@ void Viewer::fit_view() {
     view_.camera.fit_sphere(to_glm(center), float(std::sqrt(radius2)));
 }
 
+void Viewer::apply_colors(VertexColors colors) {
+    view_.colors = std::move(colors);
+    if (view_.settings.coloring == VertexColoring::None || view_.colors.colors.empty())
+        renderer_->clear_vertex_colors();
+    else
+        renderer_->set_vertex_colors(view_.colors.colors);
+}
+
+void Viewer::update_coloring() {
+    const VertexColoring coloring = view_.settings.coloring;
+    const ColoringOptions options = view_.settings.coloring_options;
+    if (coloring == VertexColoring::None) {
+        apply_colors(VertexColors{});
+        return;
+    }
+    if (document_.mesh.n_faces() < kColoringJobFaces) {
+        apply_colors(color_vertices(document_.mesh, coloring, options));
+        return;
+    }
+    // Large meshes: compute on the worker; the document cannot change while a job runs.
+    if (jobs_.busy()) {  // e.g. dragging the legend's range: colour again when it is done
+        coloring_pending_ = true;
+        return;
+    }
+    const bool started = jobs_.start(std::string("Colouring by ") + coloring_name(coloring),
+                                     [this, coloring, options](Progress&) {
+                                         auto colors = std::make_shared<VertexColors>(
+                                             color_vertices(document_.mesh, coloring, options));
+                                         return JobRunner::Finish([this, colors, coloring] {
+                                             // Ignore a result the user has already replaced.
+                                             if (view_.settings.coloring == coloring)
+                                                 apply_colors(std::move(*colors));
+                                         });
+                                     });
+    if (!started) notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
+}
+
+void Viewer::update_texture() {
+    const Image& image =
+        view_.settings.use_checkerboard || texture_.empty() ? checkerboard_ : texture_;
+    try {
+        renderer_->set_texture(image);
+    } catch (const std::exception& e) {
+        notify_error(std::string("texture: ") + e.what());
+    }
+}
+
+void Viewer::project_texcoords_now() {
+    if (jobs_.busy()) {
+        notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
+        return;
+    }
+    project_texcoords(document_.mesh, view_.settings.projection);
+    document_.texcoords_projected = true;
+    renderer_->upload(document_.mesh);
+    apply_colors(std::move(view_.colors));
+    log_.info(std::string(view_.settings.projection == TexCoordProjection::Planar ? "planar"
+                                                                                  : "spherical") +
+              " texture coordinates computed on the current shape");
+}
+
+void Viewer::take_screenshot(const TakeScreenshot& request) {
+    try {
+        Framebuffer framebuffer;
+        framebuffer.create(request.width, request.height, 4);
+        framebuffer.bind();
+        RenderStyle style = view_.style;
+        // Line widths and point sizes keep their look relative to the picture's size.
+        int window_w = 0, window_h = 0;
+        glfwGetFramebufferSize(window_.get(), &window_w, &window_h);
+        const float scale = window_h > 0 ? float(request.height) / float(window_h) : 1.0f;
+        style.wire_width *= ui_scale_ * scale;
+        style.point_size *= ui_scale_ * scale;
+        clear_background(style, request.transparent ? 0.0f : 1.0f);
+        Camera camera = view_.camera;
+        camera.set_viewport(float(request.width), float(request.height));
+        renderer_->draw(camera.view(), camera.projection(), style);
+        Image image = framebuffer.read_rgba();
+        Framebuffer::bind_default();
+        if (request.transparent) unpremultiply_alpha(image);
+        write_png(image, request.path);
+        log_.info("screenshot " + request.path + " (" + std::to_string(request.width) + " x " +
+                  std::to_string(request.height) + ")");
+        notice_ = Notice{Notice::Level::Info, "Saved " + request.path, {}, false};
+    } catch (const std::exception& e) {
+        Framebuffer::bind_default();
+        notify_error(std::string("screenshot: ") + e.what());
+    }
+}
+
 void Viewer::execute(const Command& command) {
     if (auto* c = std::get_if<LoadFile>(&command)) {
         load(c->path);
@@ -318,6 +434,12 @@ void Viewer::execute(const Command& command) {
         load_texture(texture->path);
     } else if (std::holds_alternative<FitView>(command)) {
         fit_view();
+    } else if (std::holds_alternative<UpdateColoring>(command)) {
+        update_coloring();
+    } else if (std::holds_alternative<ProjectTexCoords>(command)) {
+        project_texcoords_now();
+    } else if (auto* shot = std::get_if<TakeScreenshot>(&command)) {
+        take_screenshot(*shot);
     } else if (std::holds_alternative<PrintInfo>(command)) {
         for (const std::string& line : scene_info()) log_.info(line);
         panels_.info_open = true;
@@ -390,6 +512,31 @@ void Viewer::handle_input() {
                 case GLFW_KEY_I:
                     commands_.push_back(PrintInfo{});
                     break;
+                case GLFW_KEY_F:
+                    style.fog = !style.fog;
+                    break;
+                case GLFW_KEY_S:
+                    style.specular = !style.specular;
+                    break;
+                case GLFW_KEY_T:  // off -> modulate -> replace -> off
+                    if (style.mode != RenderMode::Textured ||
+                        style.texture_mode == TextureMode::Off) {
+                        style.mode = RenderMode::Textured;
+                        style.texture_mode = TextureMode::Modulate;
+                    } else if (style.texture_mode == TextureMode::Modulate) {
+                        style.texture_mode = TextureMode::Replace;
+                    } else {
+                        style.mode = RenderMode::Smooth;
+                        style.texture_mode = TextureMode::Off;
+                    }
+                    if (style.mode == RenderMode::Textured && !renderer_->has_texcoords())
+                        log_.warning(
+                            "textured mode: the model has no texture coordinates "
+                            "(Rendering > Texture > planar or spherical projection)");
+                    break;
+                case GLFW_KEY_F12:
+                    panels_.screenshot.open = true;
+                    break;
                 case GLFW_KEY_L:
                     panels_.log_open = !panels_.log_open;
                     break;
@@ -409,8 +556,16 @@ void Viewer::draw_ui() {
     context.busy = jobs_.busy();
     context.document_path = document_.path;
     context.recent_files = &recent_.paths();
-    menu_bar(view_.style, panels_, context, commands_);
-    context_menu(view_.style, panels_, commands_);
+    RenderContext render;
+    render.has_texcoords = renderer_->has_texcoords();
+    render.has_loaded_texture = !texture_.empty();
+    const bool checker = view_.settings.use_checkerboard;
+    menu_bar(view_.style, view_.settings, panels_, context, render, commands_);
+    context_menu(view_.style, view_.settings, panels_, render, commands_);
+    if (checker != view_.settings.use_checkerboard) update_texture();
+    if (color_legend(view_.colors, view_.settings.coloring_options))
+        commands_.push_back(UpdateColoring{});
+    screenshot_dialog(panels_.screenshot, commands_);
     StatusInfo status;
     status.n_vertices = document_.mesh.n_vertices();
     status.n_faces = document_.mesh.n_faces();
@@ -438,12 +593,12 @@ void Viewer::render_scene() {
     int fb_w = 0, fb_h = 0;
     glfwGetFramebufferSize(window_.get(), &fb_w, &fb_h);
     glViewport(0, 0, fb_w, fb_h);
-    glClearColor(0.17f, 0.18f, 0.21f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    clear_background(view_.style);
     if (fb_w <= 0 || fb_h <= 0) return;  // minimized
 
     RenderStyle style = view_.style;
     style.wire_width *= ui_scale_;
+    style.point_size *= ui_scale_;
     renderer_->draw(view_.camera.view(), view_.camera.projection(), style);
 }
 
@@ -515,6 +670,12 @@ int Viewer::run() {
             panels_.context_menu_requested)
             active_frames_ = kFramesAfterInput;
         commands_.clear();
+
+        // Textured mode on a model without texture coordinates: project them once, on the
+        // shape as it is now, so that later vertex drift shows in the texture.
+        if (view_.style.mode == RenderMode::Textured && !renderer_->has_texcoords() &&
+            !document_.texcoords_projected && !jobs_.busy())
+            project_texcoords_now();
 
         render_scene();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

@@ -29,21 +29,26 @@ struct ViewerOptions {
     std::string screenshot;  ///< non-empty: write the last frame (before the swap) as PNG
     int width = 1280;        ///< window size in screen coordinates
     int height = 800;
+    std::string mode;   ///< initial render mode name (render_mode_name()), empty: default
+    std::string color;  ///< initial vertex colouring name (coloring_name()), empty: none
 };
 
 /// The mesh being shown and where it came from.
 struct Document {
     HalfedgeMesh mesh;
-    std::string name;               ///< file name, or "default model"
-    std::string path;               ///< file path; empty for the default model
-    LoadReport report;              ///< what loading it did (empty for built-in models)
-    std::vector<std::string> info;  ///< model information lines, computed once per document
+    std::string name;                  ///< file name, or "default model"
+    std::string path;                  ///< file path; empty for the default model
+    LoadReport report;                 ///< what loading it did (empty for built-in models)
+    std::vector<std::string> info;     ///< model information lines, computed once per document
+    bool texcoords_projected = false;  ///< texture coordinates were computed by projection
 };
 
 /// How the document is looked at.
 struct ViewState {
     Camera camera;
     RenderStyle style;
+    ViewSettings settings;
+    VertexColors colors;  ///< the current vertex colouring (empty colors: none uploaded)
 };
 
 class Viewer {
@@ -93,6 +98,15 @@ private:
     void set_document(HalfedgeMesh mesh, std::string name, std::string path, LoadReport report);
     /// Model and scene information, for the Info panel and the `I` key.
     std::vector<std::string> scene_info() const;
+    /// Computes the vertex colouring of view_.settings (as a job for large meshes) and
+    /// uploads it.
+    void update_coloring();
+    void apply_colors(VertexColors colors);
+    /// Uploads the texture chosen in view_.settings (checkerboard or the loaded image).
+    void update_texture();
+    void project_texcoords_now();
+    /// Renders the scene without the panels into an offscreen framebuffer and writes a PNG.
+    void take_screenshot(const TakeScreenshot& request);
     void notify_error(const std::string& text);
     void fit_view();
     void render_scene();
@@ -107,7 +121,8 @@ private:
 
     Document document_;
     ViewState view_;
-    Image texture_;  ///< the loaded texture image (empty: none)
+    Image texture_;       ///< the loaded texture image (empty: none)
+    Image checkerboard_;  ///< the built-in texture
     PanelState panels_;
     Notice notice_;
     Log log_;
@@ -120,6 +135,7 @@ private:
     float ui_scale_ = 1.0f;  ///< content scale of the monitor (HiDPI)
     int active_frames_ = 0;  ///< frames still to draw after the last event or command
     bool quit_ = false;
+    bool coloring_pending_ = false;  ///< a colouring was asked for while a job ran
     /// Wall time of the most recent frames (events excluded), for a median that ignores the
     /// slow first frame (shader compilation, font upload).
     std::array<double, 15> frame_times_ms_{};

@@ -120,25 +120,25 @@ TEST_CASE("planar texcoords of a curved mesh stay in the unit square", "[texcoor
     }
 }
 
-TEST_CASE("spherical texcoords: v grows with z, u with longitude", "[texcoords]") {
+TEST_CASE("spherical texcoords: v grows with y (up), u with longitude", "[texcoords]") {
     HalfedgeMesh m = make_icosphere(6);
     project_texcoords(m, TexCoordProjection::Spherical);
     require_unit_square(m);
     const auto uv = m.get_vertex_property<TexCoord>("v:texcoord");
     std::vector<Vertex> vs = live_vertices(m);
     std::sort(vs.begin(), vs.end(),
-              [&](Vertex a, Vertex b) { return m.position(a).z() < m.position(b).z(); });
+              [&](Vertex a, Vertex b) { return m.position(a).y() < m.position(b).y(); });
     for (std::size_t i = 1; i < vs.size(); ++i) {
         REQUIRE(uv[vs[i]].y() >= uv[vs[i - 1]].y() - 1e-12);
-        if (m.position(vs[i]).z() > m.position(vs[i - 1]).z() + 1e-9)
+        if (m.position(vs[i]).y() > m.position(vs[i - 1]).y() + 1e-9)
             REQUIRE(uv[vs[i]].y() > uv[vs[i - 1]].y());
     }
     for (Vertex v : m.vertices()) {
         const Point& p = m.position(v);
         REQUIRE(uv[v].y() ==
-                Approx(std::asin(std::clamp(p.z(), -1.0, 1.0)) / kPi + 0.5).margin(1e-9));
-        if (std::hypot(p.x(), p.y()) > 1e-6)
-            REQUIRE(uv[v].x() == Approx(std::atan2(p.y(), p.x()) / (2 * kPi) + 0.5).margin(1e-9));
+                Approx(std::asin(std::clamp(p.y(), -1.0, 1.0)) / kPi + 0.5).margin(1e-9));
+        if (std::hypot(p.z(), p.x()) > 1e-6)
+            REQUIRE(uv[v].x() == Approx(std::atan2(p.x(), p.z()) / (2 * kPi) + 0.5).margin(1e-9));
     }
 }
 
@@ -154,7 +154,7 @@ TEST_CASE("isolated vertices get texcoords too", "[texcoords]") {
     REQUIRE(require_similarity(m) == Approx(0.5));
 
     HalfedgeMesh s = make_icosphere(3);
-    const Vertex top = s.add_vertex(Point(0, 0, 5));
+    const Vertex top = s.add_vertex(Point(0, 5, 0));  // above the north pole (y is up)
     project_texcoords(s, TexCoordProjection::Spherical);
     require_unit_square(s);
     REQUIRE(s.get_vertex_property<TexCoord>("v:texcoord")[top].y() == Approx(1.0).margin(1e-2));
