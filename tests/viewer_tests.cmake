@@ -1,7 +1,24 @@
-# Smoke test of the viewer under a virtual X server: three frames of the default model and a
-# screenshot, exit status 0. Included from tests/CMakeLists.txt when the viewer is built.
+# Smoke tests of the viewer under a virtual X server. Included from tests/CMakeLists.txt when
+# the viewer is built.
 if(TARGET trilab)
+    set(TRILAB_XVFB xvfb-run -a -s "-screen 0 1280x800x24")
+    # Three frames of the default model and a screenshot, exit status 0.
     add_test(NAME viewer_smoke
-             COMMAND xvfb-run -a -s "-screen 0 1280x800x24" $<TARGET_FILE:trilab> --frames 3
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --frames 3
                      --screenshot ${CMAKE_CURRENT_BINARY_DIR}/viewer_smoke.png)
+    # A file loaded as a job, a render mode and a colouring with its legend.
+    add_test(NAME viewer_modes
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab>
+                     ${CMAKE_CURRENT_SOURCE_DIR}/data/good/header_variants.off
+                     --mode hidden-line --color gaussian --frames 3
+                     --screenshot ${CMAKE_CURRENT_BINARY_DIR}/viewer_modes.png)
+    set_tests_properties(viewer_modes PROPERTIES PASS_REGULAR_EXPRESSION "loaded .*header_variants.off")
+    # A bad file: the viewer keeps the default model, says why (file and line), exits 0.
+    add_test(NAME viewer_bad_file
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab>
+                     ${CMAKE_CURRENT_SOURCE_DIR}/data/bad/off_nan.off --frames 2)
+    set_tests_properties(viewer_bad_file PROPERTIES PASS_REGULAR_EXPRESSION "off_nan.off:4: ")
+    # A bad option is refused.
+    add_test(NAME viewer_bad_option COMMAND $<TARGET_FILE:trilab> --mode bogus --frames 1)
+    set_tests_properties(viewer_bad_option PROPERTIES WILL_FAIL TRUE)
 endif()

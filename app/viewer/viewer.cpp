@@ -694,6 +694,12 @@ int Viewer::run() {
             1000.0 * (glfwGetTime() - start);
         if (last) break;
     }
+    if (options_.frames > 0) {
+        char buf[96];
+        std::snprintf(buf, sizeof(buf), "median frame time %.1f ms over the last %zu frames",
+                      frame_ms(), std::min(n_frame_times_, frame_times_ms_.size()));
+        log_.info(buf);
+    }
     return 0;
 }
 

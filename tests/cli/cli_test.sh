@@ -55,5 +55,14 @@ check "an unknown model fails and lists the names" bash -c \
 check "a failed save leaves the old file intact" bash -c \
     "cp '$tmp/d.obj' '$tmp/keep.obj' && ! '$cli' convert '$data/bad/off_nan.off' '$tmp/keep.obj' \
      2>/dev/null && cmp -s '$tmp/d.obj' '$tmp/keep.obj'"
+if "$cli" render --help >/dev/null 2>&1; then
+    check "render writes a PNG of the requested size" bash -c \
+        "'$cli' render '$tmp/d.obj' --out '$tmp/r.png' --size 320x200 --json > '$tmp/r.json' && \
+         $(declare -f json_has); json_has '$tmp/r.json' ms && \
+         head -c 24 '$tmp/r.png' | od -An -tx1 | tr -d ' \n' | grep -q '00000140000000c8'"
+    check "render refuses an unknown mode naming the option" bash -c \
+        "! '$cli' render '$tmp/d.obj' --out '$tmp/x.png' --mode nope 2> '$tmp/e' && \
+         grep -q -- 'mode' '$tmp/e' && [ ! -e '$tmp/x.png' ]"
+fi
 echo "cli: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]
