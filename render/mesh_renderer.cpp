@@ -87,9 +87,8 @@ Layout build_layout(const HalfedgeMesh& mesh) {
 }
 
 /// Area-weighted vertex normals by storage index (vertex_normal() for all vertices at once).
-std::vector<Vector3> area_weighted_normals(const HalfedgeMesh& mesh) {
+std::vector<Vector3> area_weighted_normals(const HalfedgeMesh& mesh, const std::vector<Point>& p) {
     std::vector<Vector3> normals(mesh.vertices_size(), Vector3::Zero());
-    const std::vector<Point>& p = mesh.positions();
     for (Face f : mesh.faces()) {
         const auto c = mesh.face_vertices(f);
         const Point& p0 = p[c[0].idx()];
@@ -254,15 +253,28 @@ void MeshRenderer::update_positions(const HalfedgeMesh& mesh) {
     write_geometry(mesh);
 }
 
-void MeshRenderer::write_geometry(const HalfedgeMesh& mesh) {
+void MeshRenderer::update_positions(const HalfedgeMesh& topology,
+                                    const std::vector<Point>& positions) {
+    if (positions.size() != topology.vertices_size())
+        throw InvalidArgument(
+            "MeshRenderer::update_positions: " + std::to_string(positions.size()) +
+            " positions for a mesh with vertex storage size " +
+            std::to_string(topology.vertices_size()));
+    if (topology.vertices_size() != n_vertices_) upload(topology);
+    write_geometry(topology, &positions);
+}
+
+void MeshRenderer::write_geometry(const HalfedgeMesh& mesh,
+                                  const std::vector<Point>* moved_positions) {
+    const std::vector<Point>& positions = moved_positions ? *moved_positions : mesh.positions();
     std::vector<Vector3> computed;
     const std::vector<Vector3>* normals = &computed;
-    if (auto stored = mesh.get_vertex_property<Vector3>("v:normal")) {
+    auto stored = mesh.get_vertex_property<Vector3>("v:normal");
+    if (stored && !moved_positions) {
         normals = &stored.vector();
     } else {
-        computed = area_weighted_normals(mesh);
+        computed = area_weighted_normals(mesh, positions);
     }
-    const std::vector<Point>& positions = mesh.positions();
 
     // Bounding box of the live vertices (for fog and vector lengths).
     glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());

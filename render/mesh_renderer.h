@@ -151,6 +151,11 @@ public:
     /// are unchanged since the last upload(). Falls back to upload() when the vertex storage
     /// size differs. O(vertices + faces).
     void update_positions(const HalfedgeMesh& mesh);
+    /// The same with positions given apart from the mesh (one per vertex storage index of
+    /// `topology`), for morph frames: normals are computed from these positions (a stored
+    /// "v:normal" is ignored). Uploads `topology` first when its vertex storage size differs
+    /// from the uploaded mesh's. Throws InvalidArgument on a size mismatch.
+    void update_positions(const HalfedgeMesh& topology, const std::vector<Point>& positions);
     /// Forgets the uploaded mesh and colours; draw() then draws nothing. Keeps the texture.
     void clear();
 
@@ -186,7 +191,8 @@ public:
     glm::vec3 bbox_max() const { return bbox_max_; }
 
 private:
-    void write_geometry(const HalfedgeMesh& mesh);
+    void write_geometry(const HalfedgeMesh& mesh,
+                        const std::vector<Point>* moved_positions = nullptr);
     void setup_vertex_array(GLuint vao, GLuint element_buffer) const;
     void set_common_uniforms(const GlProgram& program, const glm::mat4& view,
                              const glm::mat4& projection, const RenderStyle& style) const;
