@@ -18,6 +18,14 @@ if(TARGET trilab)
              COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab>
                      ${CMAKE_CURRENT_SOURCE_DIR}/data/bad/off_nan.off --frames 2)
     set_tests_properties(viewer_bad_file PROPERTIES PASS_REGULAR_EXPRESSION "off_nan.off:4: ")
+    # An operation applied after start-up becomes a history entry and plays its morph.
+    add_test(NAME viewer_operation
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --op "noise --amount 30" --color mean
+                     --frames 10)
+    set_tests_properties(viewer_operation PROPERTIES PASS_REGULAR_EXPRESSION "Add noise --amount 30")
+    add_test(NAME viewer_bad_operation COMMAND $<TARGET_FILE:trilab> --op "noise --amount -1"
+                                              --frames 1)
+    set_tests_properties(viewer_bad_operation PROPERTIES WILL_FAIL TRUE)
     # A bad option is refused.
     add_test(NAME viewer_bad_option COMMAND $<TARGET_FILE:trilab> --mode bogus --frames 1)
     set_tests_properties(viewer_bad_option PROPERTIES WILL_FAIL TRUE)

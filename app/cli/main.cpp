@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "app/cli/json_writer.h"
+#include "app/cli/noise_command.h"
+#include "app/cli/record_command.h"
 #include "app/cli/render_command.h"
 #include "core/errors.h"
 #include "core/generators.h"
@@ -30,6 +32,10 @@ commands:
   generate NAME OUT [--json]      write a built-in model (see `trilab-cli generate --list`)
   render MESH --out FILE.png [options]
                                   render offscreen to a PNG (`trilab-cli render --help`)
+  noise [--amount PCT] [--seed S] IN OUT [--json]
+                                  displace vertices along their normals (`noise --help`)
+  record MESH --op "OP" --out DIR [options]
+                                  render an operation's morph to PNG frames (`record --help`)
   help                            this text
 )";
 
@@ -203,6 +209,8 @@ int main(int argc, char** argv) {
             return cmd_convert(parse(argc, argv, 2, {"--json", "--ascii", "--big-endian"}));
         if (cmd == "render")
             return run_render_command(std::vector<std::string>(argv + 2, argv + argc));
+        if (cmd == "noise") return run_noise_command({argv + 2, argv + argc});
+        if (cmd == "record") return run_record_command({argv + 2, argv + argc});
         if (cmd == "generate")
             return cmd_generate(
                 parse(argc, argv, 2, {"--json", "--ascii", "--big-endian", "--list"}));

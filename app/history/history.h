@@ -9,6 +9,33 @@
 // from. A memory budget (default a quarter of the RAM) drops the oldest entries, with a
 // message, rather than running out of memory. Undo and redo move a cursor; pushing after an
 // undo drops the redo entries.
+//
+// Sharing rule. A step is stored "shared" (positions over a base) when its correspondence is
+// SameVertices and, compared with the full mesh that holds its predecessor's connectivity
+// (the predecessor itself, or the predecessor's base): the storage sizes and live counts are
+// equal, the attribute names of every element kind are equal and in the same order, the
+// connectivity arrays (v:halfedge, h:to, h:next, h:prev, h:face, f:halfedge, the deleted
+// flags) are equal bit for bit, and every other attribute has the same type from a fixed
+// list (Eigen 2/3/4-vectors of double and float, double, float, 8- to 64-bit integers,
+// handles). A shared step keeps its own positions and a copy of each attribute array whose
+// values differ from the base's (e.g. normals recomputed after a move); everything else
+// comes from the base, held by shared_ptr. Any other step (another correspondence, other
+// connectivity, an attribute of a type outside the list) stores its full mesh. Rebuilding a
+// shared step copies the base and overwrites positions and those arrays, so every state
+// comes back bit for bit. (Attribute default values, used only when elements are added
+// later, are not visible through the mesh's interface: a rebuilt state has its base's.)
+//
+// Accounting. An entry's bytes are its full meshes (storage size x bytes per element, summed
+// over every array; 16 bytes per element for a type outside the list), its shared steps'
+// positions and attribute copies, and its correspondences' positions. A base counts once,
+// with the entry that owns it; when that entry is dropped, it counts with the oldest entry
+// whose shared steps still hold it. Not counted: the current state when its step is shared
+// (one rebuilt mesh), and the shared states that morph() rebuilt (kept until the next change).
+//
+// Threads: current_mesh(), info(), mesh(), size() and the other const queries only read, so
+// a job may read the current mesh while the render thread calls morph(); morph() fills a
+// cache, so call it from one thread at a time; the non-const functions need exclusive access.
+// Copies of a History share one stack.
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -38,36 +65,54 @@ public:
     /// Starts a new history with `mesh` as its first entry (a load). Clears everything.
     void reset(HalfedgeMesh mesh, std::string label, std::string parameters = "",
                double ms = 0);
-    /// Appends an entry after the current one (dropping any redo entries). Each step's
-    /// correspondence must fit its predecessor (check_correspondence); throws InvalidArgument
-    /// otherwise, with the history unchanged. Returns messages about entries dropped to stay
-    /// within the budget.
+    /// Appends an entry after the current one (dropping any redo entries) and makes it the
+    /// current one. Each step's correspondence must fit its predecessor (check_correspondence:
+    /// step 0 against the current state, step k against step k - 1); throws InvalidArgument
+    /// otherwise, with the history unchanged, as also for an empty history, no steps, or
+    /// step and correspondence counts that differ. Then drops the oldest entries (never the
+    /// current one) while bytes() exceeds the budget, and returns one message per dropped
+    /// entry naming it and the bytes freed.
     std::vector<std::string> push(std::string label, std::string parameters, double ms,
                                   std::vector<HalfedgeMesh> step_meshes,
                                   std::vector<MorphCorrespondence> correspondences);
 
     bool can_undo() const;
     bool can_redo() const;
+    /// Moves to the previous / next entry; does nothing where there is none.
     void undo();
     void redo();
-    /// Makes entry `index` the current one.
+    /// Makes entry `index` the current one. Throws InvalidArgument when there is no such entry.
     void jump(std::size_t index);
 
+    /// The number of entries (0 before the first reset) and the current entry's index. Entry
+    /// indices shift down when the budget drops the oldest entries.
     std::size_t size() const;
     std::size_t current() const;
+    /// Throws InvalidArgument when there is no such entry (so do mesh() and morph()).
     EntryInfo info(std::size_t index) const;
-    /// The mesh of the current state (the last step of the current entry).
+    /// The mesh of the current state (the last step of the current entry); an empty mesh
+    /// before the first reset. Cheap: the state is rebuilt when it becomes current. The
+    /// reference stays valid until the next reset, push, undo, redo, jump or trim.
     const HalfedgeMesh& current_mesh() const;
-    /// The mesh after step `step` of entry `index`.
+    /// The mesh after step `step` of entry `index` (a copy).
     HalfedgeMesh mesh(std::size_t index, std::size_t step) const;
     /// The morph of entry `index` (>= 1) from the state before it (t = 0) through its steps
-    /// to its last step (t = 1): the steps are chained, each taking an equal share of t. The
-    /// frame's topology points into the History and stays valid until it next changes.
+    /// to its last step (t = 1): the steps are chained, each taking an equal share of t
+    /// (clamped to [0, 1]), and the step that t falls in is evaluated by morph_frame. The
+    /// frame's topology points into the History: the mesh of one of the two states of that
+    /// step, itself (its positions and attributes are that state's), which stays valid until
+    /// the next reset, push, undo, redo, jump or trim. Calls for the same step return the same
+    /// pointer until then (a new pointer means new connectivity to upload).
     MorphFrame morph(std::size_t index, double t) const;
 
+    /// The memory the entries hold (the sum of info(i).bytes).
     std::size_t bytes() const;
     std::size_t budget() const;
+    /// Sets the budget; it applies at the next push, or now through trim_to_budget().
     void set_budget(std::size_t bytes);
+    /// Drops the oldest entries (never the current one) while bytes() exceeds the budget;
+    /// one message per dropped entry, as push returns.
+    std::vector<std::string> trim_to_budget();
 
 private:
     struct Impl;

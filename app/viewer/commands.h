@@ -1,6 +1,7 @@
 #pragma once
 // What panels ask the viewer to do. Panels never touch the document, the window or the GPU:
 // they queue commands, and the viewer executes them in one place after the UI is drawn.
+#include <cstddef>
 #include <string>
 #include <variant>
 #include <vector>
@@ -18,6 +19,15 @@ struct LoadTexture {
     std::string path;
 };
 struct FitView {};
+struct Undo {};
+struct Redo {};
+struct JumpTo {
+    std::size_t entry = 0;
+};
+/// An operation string as app/ops/operation.h parses it, e.g. "noise --amount 2 --seed 7".
+struct RunOperation {
+    std::string text;
+};
 /// Recompute the vertex colouring (its kind or options changed).
 struct UpdateColoring {};
 /// Compute texture coordinates by the chosen projection (the mesh has none).
@@ -29,11 +39,14 @@ struct TakeScreenshot {
     bool transparent = false;
 };
 struct PrintInfo {};
+struct StartRecording {};
+struct CancelRecording {};
 struct CancelJob {};
 struct Quit {};
 
-using Command = std::variant<LoadFile, SaveFile, RevertFile, LoadTexture, FitView, UpdateColoring,
-                             ProjectTexCoords, TakeScreenshot, PrintInfo, CancelJob, Quit>;
+using Command = std::variant<LoadFile, SaveFile, RevertFile, LoadTexture, FitView, Undo, Redo,
+                             JumpTo, RunOperation, UpdateColoring, ProjectTexCoords, TakeScreenshot,
+                             PrintInfo, StartRecording, CancelRecording, CancelJob, Quit>;
 using CommandQueue = std::vector<Command>;
 
 }  // namespace trilab::viewer

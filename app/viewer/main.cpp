@@ -22,6 +22,7 @@ options:
   --screenshot FILE  write the last frame as PNG before exiting (needs --frames)
   --mode MODE        wireframe, hidden-line, flat, gouraud, points or textured
   --color C          none, normal, k1, k2, mean, gaussian or shape-index
+  --op "OPERATION"   apply an operation after loading, e.g. --op "noise --amount 2"
   --help             this text
 )";
 
@@ -68,6 +69,9 @@ std::string parse_args(int argc, char** argv, trilab::viewer::ViewerOptions& opt
                 return "--screenshot needs a file name";
         } else if (arg == "--mode") {
             if (!value(options.mode)) return "--mode needs a name";
+        } else if (arg == "--op") {
+            if (!value(options.operation))
+                return "--op needs an operation, e.g. \"noise --amount 2\"";
         } else if (arg == "--color") {
             if (!value(options.color)) return "--color needs a name";
         } else if (arg.size() > 1 && arg[0] == '-') {

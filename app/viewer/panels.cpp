@@ -41,6 +41,9 @@ constexpr Binding kBindings[] = {
     {"F12", "screenshot (any resolution, without panels)"},
     {"I", "print model and scene information (and show it)"},
     {"L", "show the log"},
+    {"Ctrl+Z, Ctrl+Shift+Z / Ctrl+Y", "undo, redo"},
+    {"H, M, R", "the History, Morph and Record panels"},
+    {"Space", "play or stop the morph animation"},
     {"Ctrl+O", "open a mesh file"},
     {"Ctrl+S", "save the mesh as"},
     {"Ctrl+Q", "quit"},
@@ -173,6 +176,21 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
         if (ImGui::MenuItem("Quit", "Ctrl+Q")) commands.push_back(Quit{});
         ImGui::EndMenu();
     }
+    if (ImGui::BeginMenu("Edit")) {
+        if (ImGui::MenuItem("Undo", "Ctrl+Z", false, context.can_undo && !context.busy))
+            commands.push_back(Undo{});
+        if (ImGui::MenuItem("Redo", "Ctrl+Shift+Z", false, context.can_redo && !context.busy))
+            commands.push_back(Redo{});
+        ImGui::Separator();
+        ImGui::MenuItem("History", "H", &panels.history_open);
+        ImGui::MenuItem("Morph", "M", &panels.morph_open);
+        ImGui::MenuItem("Record", "R", &panels.record.open);
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Tools")) {
+        ImGui::MenuItem("Add noise", nullptr, &panels.tools_open);
+        ImGui::EndMenu();
+    }
     if (ImGui::BeginMenu("Algorithms")) {
         // The operation panels arrive with their issues; listed so the menu shows the plan.
         ImGui::MenuItem("Fairing", nullptr, false, false);
@@ -261,6 +279,156 @@ void help_window(PanelState& panels) {
         }
     }
     ImGui::End();
+}
+
+void history_window(PanelState& panels, const History& history, bool busy, CommandQueue& commands) {
+    if (!panels.history_open) return;
+    ImGui::SetNextWindowSize(ImVec2(30.0f * ImGui::GetFontSize(), 16.0f * ImGui::GetFontSize()),
+                             ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("History", &panels.history_open)) {
+        ImGui::Text("%zu entries, %.1f MB of %.0f MB", history.size(), history.bytes() / 1e6,
+                    history.budget() / 1e6);
+        ImGui::Separator();
+        for (std::size_t i = 0; i < history.size(); ++i) {
+            const History::EntryInfo e = history.info(i);
+            char label[512];
+            std::snprintf(label, sizeof(label), "%zu  %s %s##entry%zu", i, e.label.c_str(),
+                          e.parameters.c_str(), i);
+            const bool current = i == history.current();
+            if (ImGui::Selectable(label, current) && !current && !busy)
+                commands.push_back(JumpTo{i});
+            if (ImGui::IsItemHovered()) {
+                ImGui::BeginTooltip();
+                ImGui::Text("%zu step%s, %.1f ms, %.2f MB", e.steps.size(),
+                            e.steps.size() == 1 ? "" : "s", e.ms, e.bytes / 1e6);
+                if (!e.steps.empty())
+                    ImGui::Text("%zu vertices, %zu faces", e.steps.back().vertices,
+                                e.steps.back().faces);
+                ImGui::EndTooltip();
+            }
+            if (i > history.current()) {  // redo entries
+                ImGui::SameLine();
+                ImGui::TextDisabled("(redo)");
+            }
+        }
+    }
+    ImGui::End();
+}
+
+void tools_window(PanelState& panels, bool busy, CommandQueue& commands) {
+    if (!panels.tools_open) return;
+    ToolsState& t = panels.tools;
+    if (ImGui::Begin("Tools", &panels.tools_open, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::TextUnformatted("Add noise: move vertices along their normals");
+        ImGui::SetNextItemWidth(10.0f * ImGui::GetFontSize());
+        ImGui::SliderFloat("amount (% of mean edge)", &t.noise_amount, 0.0f, 100.0f, "%.2f",
+                           ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+        ImGui::SetNextItemWidth(10.0f * ImGui::GetFontSize());
+        ImGui::InputInt("seed", &t.noise_seed);
+        t.noise_seed = std::max(t.noise_seed, 0);
+        if (busy) ImGui::BeginDisabled();
+        if (ImGui::Button("Apply")) {
+            char op[96];
+            std::snprintf(op, sizeof(op), "noise --amount %g --seed %d", double(t.noise_amount),
+                          t.noise_seed);
+            commands.push_back(RunOperation{op});
+            panels.morph_open = true;
+        }
+        if (busy) ImGui::EndDisabled();
+    }
+    ImGui::End();
+}
+
+void morph_window(PanelState& panels, MorphState& morph, const History& history, double now) {
+    if (!panels.morph_open) return;
+    if (ImGui::Begin("Morph", &panels.morph_open, ImGuiWindowFlags_AlwaysAutoResize)) {
+        const std::size_t entry = history.current();
+        if (entry == 0) {
+            ImGui::TextDisabled("the first state has nothing before it");
+        } else {
+            const History::EntryInfo info = history.info(entry);
+            ImGui::Text("%s %s: before -> after", info.label.c_str(), info.parameters.c_str());
+            float t = float(morph.t);
+            ImGui::SetNextItemWidth(16.0f * ImGui::GetFontSize());
+            if (ImGui::SliderFloat("##t", &t, 0.0f, 1.0f, "t = %.3f")) {
+                morph.t = t;
+                morph.playing = false;
+            }
+            if (!morph.playing) {
+                if (ImGui::Button("Animate")) {
+                    morph.playing = true;
+                    morph.play_start = now;
+                }
+            } else if (ImGui::Button("Stop")) {
+                morph.playing = false;
+            }
+            ImGui::SameLine();
+            if (ImGui::Button("Before"))
+                morph = MorphState{0.0, false, morph.duration, morph.easing, morph.playback, 0.0};
+            ImGui::SameLine();
+            if (ImGui::Button("After"))
+                morph = MorphState{1.0, false, morph.duration, morph.easing, morph.playback, 0.0};
+            float duration = float(morph.duration);
+            ImGui::SetNextItemWidth(8.0f * ImGui::GetFontSize());
+            if (ImGui::SliderFloat("duration", &duration, 0.2f, 20.0f, "%.1f s",
+                                   ImGuiSliderFlags_Logarithmic))
+                morph.duration = duration;
+            const char* easings[] = {"linear", "smooth step", "ease in-out (cubic)"};
+            int e = int(morph.easing);
+            ImGui::SetNextItemWidth(8.0f * ImGui::GetFontSize());
+            if (ImGui::Combo("easing", &e, easings, 3)) morph.easing = Easing(e);
+            const char* modes[] = {"once", "loop", "ping-pong"};
+            int m = int(morph.playback);
+            ImGui::SetNextItemWidth(8.0f * ImGui::GetFontSize());
+            if (ImGui::Combo("playback", &m, modes, 3)) morph.playback = Playback(m);
+            if (info.steps.size() > 1) ImGui::TextDisabled("%zu steps, chained", info.steps.size());
+        }
+    }
+    ImGui::End();
+}
+
+void record_window(PanelState& panels, bool can_record, CommandQueue& commands) {
+    RecordState& r = panels.record;
+    if (!r.open && !r.running) return;
+    bool open = true;
+    if (ImGui::Begin("Record", &open, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::TextUnformatted("Writes the morph of the current entry as PNG frames.");
+        const float w = 10.0f * ImGui::GetFontSize();
+        if (r.running) ImGui::BeginDisabled();
+        ImGui::SetNextItemWidth(w);
+        if (ImGui::InputInt("frames", &r.frames)) r.frames = std::clamp(r.frames, 2, 100000);
+        ImGui::SetNextItemWidth(w);
+        if (ImGui::InputInt("frames per second", &r.fps)) r.fps = std::clamp(r.fps, 1, 240);
+        ImGui::Text("duration %.2f s", double(r.frames) / r.fps);
+        int size[2] = {r.width, r.height};
+        ImGui::SetNextItemWidth(w);
+        if (ImGui::InputInt2("width, height", size)) {
+            r.width = std::clamp(size[0], 16, 8192);
+            r.height = std::clamp(size[1], 16, 8192);
+        }
+        ImGui::SetNextItemWidth(2 * w);
+        ImGui::InputText("folder", &r.folder);
+        ImGui::SetNextItemWidth(w);
+        ImGui::InputText("name", &r.name);
+        ImGui::TextDisabled("%s/%s_0000.png ...", r.folder.c_str(), r.name.c_str());
+        ImGui::Checkbox("also an MP4 (needs ffmpeg on the PATH)", &r.mp4);
+        if (r.running) ImGui::EndDisabled();
+        if (r.running) {
+            ImGui::ProgressBar(float(r.next) / float(r.frames), ImVec2(w * 1.5f, 0.0f));
+            ImGui::SameLine();
+            if (ImGui::Button("Cancel")) commands.push_back(CancelRecording{});
+        } else {
+            if (!can_record) ImGui::BeginDisabled();
+            if (ImGui::Button("Record")) commands.push_back(StartRecording{});
+            if (!can_record) {
+                ImGui::EndDisabled();
+                ImGui::SameLine();
+                ImGui::TextDisabled("(apply an operation first)");
+            }
+        }
+    }
+    ImGui::End();
+    if (!open) r.open = false;
 }
 
 void screenshot_dialog(ScreenshotState& state, CommandQueue& commands) {

@@ -6,10 +6,12 @@
 #include <string>
 #include <vector>
 
+#include "app/history/history.h"
 #include "app/viewer/commands.h"
 #include "app/viewer/file_browser.h"
 #include "app/viewer/log.h"
 #include "core/coloring.h"
+#include "core/morph.h"
 #include "core/texcoords.h"
 #include "render/mesh_renderer.h"
 
@@ -32,6 +34,37 @@ struct ScreenshotState {
     bool transparent = false;
 };
 
+/// The morph of the current history entry: the slider and the animation.
+struct MorphState {
+    double t = 1.0;  ///< 0: the state before the entry, 1: after it
+    bool playing = false;
+    double duration = 2.0;  ///< seconds for one pass
+    Easing easing = Easing::SmoothStep;
+    Playback playback = Playback::PingPong;
+    double play_start = 0.0;  ///< glfw time when playback started
+};
+
+/// The Record panel: writes the current entry's morph as PNG frames (and an MP4 when ffmpeg
+/// is on the PATH), one frame per UI frame so the window stays responsive.
+struct RecordState {
+    bool open = false;
+    int frames = 60;
+    int fps = 30;
+    int width = 1280, height = 720;
+    std::string folder = "trilab-frames";
+    std::string name = "frame";
+    bool mp4 = false;
+    // While recording:
+    bool running = false;
+    int next = 0;  ///< the next frame to write
+};
+
+/// The Tools panel's parameters.
+struct ToolsState {
+    float noise_amount = 1.0f;  ///< percent of the mean edge length
+    int noise_seed = 1;
+};
+
 /// Rendering settings that live in the viewer rather than in RenderStyle.
 struct ViewSettings {
     VertexColoring coloring = VertexColoring::None;
@@ -43,6 +76,11 @@ struct ViewSettings {
 /// Which windows are open, and the dialogs' own state.
 struct PanelState {
     ScreenshotState screenshot;
+    RecordState record;
+    ToolsState tools;
+    bool history_open = false;
+    bool tools_open = false;
+    bool morph_open = false;
     FileBrowserState file_browser;
     bool help_open = false;
     bool about_open = false;
@@ -55,6 +93,7 @@ struct PanelState {
 struct MenuContext {
     bool has_file = false;  ///< the document came from a file (Revert, Save as near it)
     bool busy = false;      ///< a job runs: document commands are disabled
+    bool can_undo = false, can_redo = false;
     std::string document_path;
     const std::vector<std::string>* recent_files = nullptr;
 };
@@ -91,6 +130,14 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
 /// The right-click popup with the rendering items.
 void context_menu(RenderStyle& style, ViewSettings& settings, PanelState& panels,
                   const RenderContext& render, CommandQueue& commands);
+/// The History panel: every entry with its steps, timing and memory; a click jumps there.
+void history_window(PanelState& panels, const History& history, bool busy, CommandQueue& commands);
+/// The Tools panel (Add noise); queues RunOperation.
+void tools_window(PanelState& panels, bool busy, CommandQueue& commands);
+/// The morph slider and the animation controls for the current history entry.
+void morph_window(PanelState& panels, MorphState& morph, const History& history, double now);
+/// The Record panel; queues StartRecording / CancelRecording.
+void record_window(PanelState& panels, bool can_record, CommandQueue& commands);
 /// The screenshot dialog; queues TakeScreenshot.
 void screenshot_dialog(ScreenshotState& state, CommandQueue& commands);
 /// A one-line bar along the bottom edge of the window.

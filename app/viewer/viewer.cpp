@@ -11,10 +11,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <utility>
 #include <vector>
 
+#include "app/ops/operation.h"
 #include "core/errors.h"
 #include "core/generators.h"
 #include "core/geometry.h"
@@ -166,7 +168,7 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
     view_.camera.set_viewport(float(window_w), float(window_h));
     // Recent files persist only for interactive sessions, not for scripted runs.
     if (options_.frames == 0) recent_.load(RecentFiles::default_file());
-    set_document(make_default_model(), "default model", "", LoadReport{});
+    push_loaded(make_default_model(), "Default model", "default model", "", LoadReport{});
     log_.info("OpenGL " + std::string(reinterpret_cast<const char*>(glGetString(GL_VERSION))) +
               " on " + reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
     // Initial rendering options; bad names throw InvalidArgument before any window work.
@@ -175,26 +177,53 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
         view_.settings.coloring = parse_coloring(options_.color);
         update_coloring();
     }
+    if (!options_.operation.empty()) parse_operation(options_.operation);  // refuse bad ones now
     if (!options_.mesh_path.empty()) load(options_.mesh_path);
+    if (!options_.operation.empty() && options_.mesh_path.empty())
+        commands_.push_back(RunOperation{options_.operation});
 }
 
 Viewer::~Viewer() = default;
 
 // ---- documents and commands -----------------------------------------------------------------
 
-void Viewer::set_document(HalfedgeMesh mesh, std::string name, std::string path,
-                          LoadReport report) {
-    document_.mesh = std::move(mesh);
+void Viewer::push_loaded(HalfedgeMesh mesh, std::string label, std::string name, std::string path,
+                         LoadReport report) {
+    // A load shows no motion: every vertex "starts" where it is.
+    MorphCorrespondence none{MorphCorrespondence::Kind::FromEarlier, mesh.positions()};
+    const std::string parameters = path;
+    if (document_.history.size() == 0)
+        document_.history.reset(std::move(mesh), std::move(label), parameters);
+    else
+        log_history_messages(document_.history.push(std::move(label), parameters, 0.0,
+                                                    {std::move(mesh)}, {std::move(none)}));
     document_.name = std::move(name);
     document_.path = std::move(path);
     document_.report = std::move(report);
-    document_.texcoords_projected = false;
-    const MeshStats s = compute_stats(document_.mesh);
+    on_state_changed(true);
+    // The overlay starts on where the edges can still be told apart; W toggles it.
+    view_.style.wireframe = document_.mesh().n_faces() <= kWireframeMaxFacesAtStart;
+    glfwSetWindowTitle(window_.get(), (document_.name + " - " + kTitle).c_str());
+}
+
+void Viewer::log_history_messages(const std::vector<std::string>& messages) {
+    for (const std::string& m : messages) log_.warning(m);
+}
+
+void Viewer::on_state_changed(bool fit) {
+    const HalfedgeMesh& mesh = document_.mesh();
+    document_.texcoords_projected =
+        mesh.has_vertex_property("v:texcoord") && document_.texcoords_projected;
+    const MeshStats s = compute_stats(mesh);
     char buf[256];
     std::vector<std::string>& info = document_.info;
     info.clear();
     info.push_back("model: " + document_.name +
                    (document_.path.empty() ? "" : " (" + document_.path + ")"));
+    const History::EntryInfo entry = document_.history.info(document_.history.current());
+    info.push_back("state " + std::to_string(document_.history.current()) + " of " +
+                   std::to_string(document_.history.size()) + ": " + entry.label + " " +
+                   entry.parameters);
     std::snprintf(buf, sizeof(buf), "vertices %zu (%zu isolated), edges %zu, faces %zu", s.vertices,
                   s.isolated_vertices, s.edges, s.faces);
     info.push_back(buf);
@@ -211,13 +240,164 @@ void Viewer::set_document(HalfedgeMesh mesh, std::string name, std::string path,
     info.push_back(buf);
     for (const std::string& line : document_.report.lines()) info.push_back("load: " + line);
 
-    renderer_->upload(document_.mesh);
+    morph_ = MorphState{1.0, false, morph_.duration, morph_.easing, morph_.playback, 0.0};
+    morph_topology_ = nullptr;
+    renderer_->upload(mesh);
     view_.colors = VertexColors{};
     if (view_.settings.coloring != VertexColoring::None) update_coloring();
-    fit_view();
-    // The overlay starts on where the edges can still be told apart; W toggles it.
-    view_.style.wireframe = document_.mesh.n_faces() <= kWireframeMaxFacesAtStart;
-    glfwSetWindowTitle(window_.get(), (document_.name + " - " + kTitle).c_str());
+    if (fit) fit_view();
+}
+
+void Viewer::run_operation_job(const std::string& op_text) {
+    Operation op;
+    try {
+        op = parse_operation(op_text);
+    } catch (const std::exception& e) {
+        notify_error(e.what());
+        return;
+    }
+    const bool started = jobs_.start(op_text, [this, op](Progress& progress) {
+        auto result =
+            std::make_shared<OperationResult>(run_operation(op, document_.mesh(), progress));
+        return JobRunner::Finish([this, result] {
+            std::vector<HalfedgeMesh> meshes;
+            std::vector<MorphCorrespondence> correspondences;
+            for (OperationStep& step : result->steps) {
+                meshes.push_back(std::move(step.mesh));
+                correspondences.push_back(std::move(step.correspondence));
+            }
+            log_history_messages(document_.history.push(result->label, result->parameters,
+                                                        result->ms, std::move(meshes),
+                                                        std::move(correspondences)));
+            log_.info(result->label + " " + result->parameters);
+            for (const std::string& line : result->report) log_.info("  " + line);
+            on_state_changed(false);
+            // Show the change: play the morph once from before to after.
+            morph_.t = 0.0;
+            morph_.playing = true;
+            morph_.playback = Playback::Once;
+            morph_.play_start = glfwGetTime();
+        });
+    });
+    if (!started) notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
+}
+
+void Viewer::start_recording() {
+    RecordState& r = panels_.record;
+    const History& h = document_.history;
+    if (h.current() == 0 || r.running) return;
+    std::error_code ec;
+    std::filesystem::create_directories(r.folder, ec);
+    if (ec || !std::filesystem::is_directory(r.folder)) {
+        notify_error("record: cannot create the folder " + r.folder);
+        return;
+    }
+    // Frame the union of the states before and after the entry, fixed for all frames.
+    BoundingBox box;
+    for (double t : {0.0, 1.0}) {
+        const MorphFrame f = h.morph(h.current(), t);
+        for (Vertex v : f.topology->vertices()) box.extend(f.positions[v.idx()]);
+    }
+    record_camera_ = view_.camera;
+    record_camera_.set_viewport(float(r.width), float(r.height));
+    const Point c = box.center();
+    record_camera_.fit_sphere(glm::vec3(float(c.x()), float(c.y()), float(c.z())),
+                              float(0.5 * std::max(box.diagonal(), 1e-9)));
+    morph_.playing = false;
+    r.running = true;
+    r.next = 0;
+    log_.info("recording " + std::to_string(r.frames) + " frames to " + r.folder);
+}
+
+void Viewer::record_next_frame() {
+    RecordState& r = panels_.record;
+    if (!r.running) return;
+    active_frames_ = std::max(active_frames_, 1);
+    try {
+        // Show frame `next` of the morph (this also updates the window).
+        morph_.t = r.frames > 1 ? double(r.next) / double(r.frames - 1) : 1.0;
+        update_morph();
+        Framebuffer framebuffer;
+        framebuffer.create(r.width, r.height, 4);
+        framebuffer.bind();
+        RenderStyle style = view_.style;
+        clear_background(style);
+        renderer_->draw(record_camera_.view(), record_camera_.projection(), style);
+        Image image = framebuffer.read_rgba();
+        Framebuffer::bind_default();
+        char file[64];
+        std::snprintf(file, sizeof(file), "_%04d.png", r.next);
+        write_png(image, (std::filesystem::path(r.folder) / (r.name + file)).string());
+    } catch (const std::exception& e) {
+        Framebuffer::bind_default();
+        notify_error(std::string("record: ") + e.what());
+        finish_recording(true);
+        return;
+    }
+    if (++r.next >= r.frames) finish_recording(false);
+}
+
+void Viewer::finish_recording(bool cancelled) {
+    RecordState& r = panels_.record;
+    r.running = false;
+    if (cancelled) {
+        log_.warning("recording stopped after " + std::to_string(r.next) + " frames");
+        return;
+    }
+    log_.info("recorded " + std::to_string(r.frames) + " frames in " + r.folder);
+    if (!r.mp4) return;
+    if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0) {
+        log_.warning("no ffmpeg on the PATH: the PNG frames are written, no MP4");
+        return;
+    }
+    const std::string pattern = (std::filesystem::path(r.folder) / (r.name + "_%04d.png")).string();
+    const std::string mp4 = (std::filesystem::path(r.folder) / (r.name + ".mp4")).string();
+    const std::string command = "ffmpeg -y -loglevel error -framerate " + std::to_string(r.fps) +
+                                " -i '" + pattern +
+                                "' -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' -c:v libx264 -pix_fmt "
+                                "yuv420p '" +
+                                mp4 + "'";
+    if (std::system(command.c_str()) == 0)
+        log_.info("wrote " + mp4);
+    else
+        log_.warning("ffmpeg failed; the PNG frames are in " + r.folder);
+}
+
+void Viewer::update_morph() {
+    const std::size_t entry = document_.history.current();
+    if (morph_.playing) {
+        morph_.t =
+            playback_time(morph_.playback, glfwGetTime() - morph_.play_start, morph_.duration);
+        if (morph_.playback == Playback::Once && morph_.t >= 1.0) morph_.playing = false;
+        active_frames_ = std::max(active_frames_, 1);
+    }
+    const bool morphing = entry > 0 && (morph_.playing || morph_.t < 1.0);
+    if (!morphing) {
+        if (morph_topology_) {  // back to the current state as it is
+            morph_topology_ = nullptr;
+            renderer_->upload(document_.mesh());
+            apply_colors(std::move(view_.colors));
+        }
+        return;
+    }
+    try {
+        const MorphFrame frame = document_.history.morph(entry, ease(morph_.easing, morph_.t));
+        if (frame.topology != morph_topology_) {
+            // A new connectivity to show: upload it once; colours are computed on it at its
+            // own (final) shape, so each vertex keeps its colour while it moves.
+            morph_topology_ = frame.topology;
+            renderer_->upload(*frame.topology);
+            if (view_.settings.coloring != VertexColoring::None) {
+                VertexColors colors = color_vertices(*frame.topology, view_.settings.coloring,
+                                                     view_.settings.coloring_options);
+                renderer_->set_vertex_colors(colors.colors);
+            }
+        }
+        renderer_->update_positions(*frame.topology, frame.positions);
+    } catch (const std::exception& e) {
+        morph_ = MorphState{1.0, false, morph_.duration, morph_.easing, morph_.playback, 0.0};
+        notify_error(std::string("morph: ") + e.what());
+    }
 }
 
 void Viewer::notify_error(const std::string& text) {
@@ -236,7 +416,13 @@ void Viewer::load(const std::string& path) {
             log_.info("loaded " + path);
             for (const std::string& line : loaded->report.lines()) log_.info("  " + line);
             if (!loaded->texture_path.empty()) log_.info("  texture: " + loaded->texture_path);
-            set_document(std::move(loaded->mesh), name, path, std::move(loaded->report));
+            const bool revert = path == document_.path;
+            push_loaded(std::move(loaded->mesh), revert ? "Revert" : "Load " + name, name, path,
+                        std::move(loaded->report));
+            if (!options_.operation.empty() && path == options_.mesh_path && !initial_op_done_) {
+                initial_op_done_ = true;
+                commands_.push_back(RunOperation{options_.operation});
+            }
             recent_.add(path);
         });
     });
@@ -244,7 +430,7 @@ void Viewer::load(const std::string& path) {
 }
 
 void Viewer::save(const std::string& path) {
-    auto copy = std::make_shared<HalfedgeMesh>(document_.mesh);
+    auto copy = std::make_shared<HalfedgeMesh>(document_.mesh());
     const std::string name = std::filesystem::path(path).filename().string();
     const bool started =
         jobs_.start("Saving " + name, [this, copy, path, name](Progress& progress) {
@@ -318,7 +504,7 @@ std::vector<std::string> Viewer::scene_info() const {
 }
 
 void Viewer::fit_view() {
-    const HalfedgeMesh& mesh = document_.mesh;
+    const HalfedgeMesh& mesh = document_.mesh();
     BoundingBox box = bounding_box(mesh);
     if (box.empty) {
         view_.camera.fit_sphere(glm::vec3(0.0f), 1.0f);
@@ -348,8 +534,8 @@ void Viewer::update_coloring() {
         apply_colors(VertexColors{});
         return;
     }
-    if (document_.mesh.n_faces() < kColoringJobFaces) {
-        apply_colors(color_vertices(document_.mesh, coloring, options));
+    if (document_.mesh().n_faces() < kColoringJobFaces) {
+        apply_colors(color_vertices(document_.mesh(), coloring, options));
         return;
     }
     // Large meshes: compute on the worker; the document cannot change while a job runs.
@@ -360,7 +546,7 @@ void Viewer::update_coloring() {
     const bool started = jobs_.start(std::string("Colouring by ") + coloring_name(coloring),
                                      [this, coloring, options](Progress&) {
                                          auto colors = std::make_shared<VertexColors>(
-                                             color_vertices(document_.mesh, coloring, options));
+                                             color_vertices(document_.mesh(), coloring, options));
                                          return JobRunner::Finish([this, colors, coloring] {
                                              // Ignore a result the user has already replaced.
                                              if (view_.settings.coloring == coloring)
@@ -385,10 +571,15 @@ void Viewer::project_texcoords_now() {
         notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
         return;
     }
-    project_texcoords(document_.mesh, view_.settings.projection);
+    HalfedgeMesh textured = document_.mesh();
+    project_texcoords(textured, view_.settings.projection);
+    const char* kind =
+        view_.settings.projection == TexCoordProjection::Planar ? "planar" : "spherical";
+    // An entry of its own, so it can be undone; the shape does not move.
+    log_history_messages(document_.history.push("Texture coordinates", kind, 0.0,
+                                                {std::move(textured)}, {MorphCorrespondence{}}));
     document_.texcoords_projected = true;
-    renderer_->upload(document_.mesh);
-    apply_colors(std::move(view_.colors));
+    on_state_changed(false);
     log_.info(std::string(view_.settings.projection == TexCoordProjection::Planar ? "planar"
                                                                                   : "spherical") +
               " texture coordinates computed on the current shape");
@@ -434,6 +625,29 @@ void Viewer::execute(const Command& command) {
         load_texture(texture->path);
     } else if (std::holds_alternative<FitView>(command)) {
         fit_view();
+    } else if (std::holds_alternative<Undo>(command) || std::holds_alternative<Redo>(command) ||
+               std::holds_alternative<JumpTo>(command)) {
+        History& h = document_.history;
+        if (jobs_.busy()) {
+            notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
+            return;
+        }
+        if (std::holds_alternative<Undo>(command) && h.can_undo())
+            h.undo();
+        else if (std::holds_alternative<Redo>(command) && h.can_redo())
+            h.redo();
+        else if (auto* jump = std::get_if<JumpTo>(&command); jump && jump->entry < h.size())
+            h.jump(jump->entry);
+        else
+            return;
+        log_.info("now at state " + std::to_string(h.current()) + ": " + h.info(h.current()).label);
+        on_state_changed(false);
+    } else if (std::holds_alternative<StartRecording>(command)) {
+        start_recording();
+    } else if (std::holds_alternative<CancelRecording>(command)) {
+        finish_recording(true);
+    } else if (auto* op = std::get_if<RunOperation>(&command)) {
+        run_operation_job(op->text);
     } else if (std::holds_alternative<UpdateColoring>(command)) {
         update_coloring();
     } else if (std::holds_alternative<ProjectTexCoords>(command)) {
@@ -492,7 +706,11 @@ void Viewer::handle_input() {
     if (io.WantCaptureKeyboard) return;  // typing into a text field, or a popup is open
     RenderStyle& style = view_.style;
     for (const KeyPress& press : presses) {
-        if (press.mods == GLFW_MOD_CONTROL) {
+        if (press.mods == (GLFW_MOD_CONTROL | GLFW_MOD_SHIFT) && press.key == GLFW_KEY_Z) {
+            commands_.push_back(Redo{});
+        } else if (press.mods == GLFW_MOD_CONTROL) {
+            if (press.key == GLFW_KEY_Z) commands_.push_back(Undo{});
+            if (press.key == GLFW_KEY_Y) commands_.push_back(Redo{});
             if (press.key == GLFW_KEY_O && !jobs_.busy())
                 panels_.file_browser.request(FileBrowserState::Purpose::OpenMesh, document_.path);
             if (press.key == GLFW_KEY_S && !jobs_.busy())
@@ -540,6 +758,21 @@ void Viewer::handle_input() {
                 case GLFW_KEY_L:
                     panels_.log_open = !panels_.log_open;
                     break;
+                case GLFW_KEY_H:
+                    panels_.history_open = !panels_.history_open;
+                    break;
+                case GLFW_KEY_M:
+                    panels_.morph_open = !panels_.morph_open;
+                    break;
+                case GLFW_KEY_R:
+                    panels_.record.open = !panels_.record.open;
+                    break;
+                case GLFW_KEY_SPACE:
+                    if (document_.history.current() > 0) {
+                        morph_.playing = !morph_.playing;
+                        morph_.play_start = glfwGetTime();
+                    }
+                    break;
                 case GLFW_KEY_F1:
                     panels_.help_open = !panels_.help_open;
                     break;
@@ -554,6 +787,8 @@ void Viewer::draw_ui() {
     MenuContext context;
     context.has_file = !document_.path.empty();
     context.busy = jobs_.busy();
+    context.can_undo = document_.history.can_undo();
+    context.can_redo = document_.history.can_redo();
     context.document_path = document_.path;
     context.recent_files = &recent_.paths();
     RenderContext render;
@@ -566,9 +801,13 @@ void Viewer::draw_ui() {
     if (color_legend(view_.colors, view_.settings.coloring_options))
         commands_.push_back(UpdateColoring{});
     screenshot_dialog(panels_.screenshot, commands_);
+    history_window(panels_, document_.history, jobs_.busy(), commands_);
+    tools_window(panels_, jobs_.busy(), commands_);
+    morph_window(panels_, morph_, document_.history, glfwGetTime());
+    record_window(panels_, document_.history.current() > 0 && !jobs_.busy(), commands_);
     StatusInfo status;
-    status.n_vertices = document_.mesh.n_vertices();
-    status.n_faces = document_.mesh.n_faces();
+    status.n_vertices = document_.mesh().n_vertices();
+    status.n_faces = document_.mesh().n_faces();
     status.file_name = document_.name;
     status.frame_ms = frame_ms();
     status_bar(status, notice_);
@@ -677,6 +916,10 @@ int Viewer::run() {
             !document_.texcoords_projected && !jobs_.busy())
             project_texcoords_now();
 
+        if (panels_.record.running)
+            record_next_frame();
+        else
+            update_morph();
         render_scene();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 

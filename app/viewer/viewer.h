@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "app/history/history.h"
 #include "app/viewer/job_runner.h"
 #include "app/viewer/log.h"
 #include "app/viewer/panels.h"
@@ -29,13 +30,15 @@ struct ViewerOptions {
     std::string screenshot;  ///< non-empty: write the last frame (before the swap) as PNG
     int width = 1280;        ///< window size in screen coordinates
     int height = 800;
-    std::string mode;   ///< initial render mode name (render_mode_name()), empty: default
-    std::string color;  ///< initial vertex colouring name (coloring_name()), empty: none
+    std::string mode;       ///< initial render mode name (render_mode_name()), empty: default
+    std::string color;      ///< initial vertex colouring name (coloring_name()), empty: none
+    std::string operation;  ///< an operation to apply after loading, empty: none
 };
 
-/// The mesh being shown and where it came from.
+/// The model: its history of states (the current one is shown) and where it came from.
 struct Document {
-    HalfedgeMesh mesh;
+    History history;
+    const HalfedgeMesh& mesh() const { return history.current_mesh(); }
     std::string name;                  ///< file name, or "default model"
     std::string path;                  ///< file path; empty for the default model
     LoadReport report;                 ///< what loading it did (empty for built-in models)
@@ -95,7 +98,21 @@ private:
     void load_texture(const std::string& path);
     /// Applies a finished job (or its failure) on the render thread.
     void poll_jobs();
-    void set_document(HalfedgeMesh mesh, std::string name, std::string path, LoadReport report);
+    /// Pushes `mesh` as a new state (a load or revert): no morph, the view is fitted.
+    void push_loaded(HalfedgeMesh mesh, std::string label, std::string name, std::string path,
+                     LoadReport report);
+    /// After the current state changed (push, undo, redo, jump): uploads it, refreshes the
+    /// information and colours; fits the view when asked.
+    void on_state_changed(bool fit);
+    void log_history_messages(const std::vector<std::string>& messages);
+    /// Runs an operation ("noise --amount 2") as a job; its result becomes a history entry.
+    void run_operation_job(const std::string& op_text);
+    /// Advances playback and shows the morph of the current entry, or the current state.
+    void update_morph();
+    /// Recording: starts, writes the next frame (once per UI frame), finishes.
+    void start_recording();
+    void record_next_frame();
+    void finish_recording(bool cancelled);
     /// Model and scene information, for the Info panel and the `I` key.
     std::vector<std::string> scene_info() const;
     /// Computes the vertex colouring of view_.settings (as a job for large meshes) and
@@ -136,6 +153,10 @@ private:
     int active_frames_ = 0;  ///< frames still to draw after the last event or command
     bool quit_ = false;
     bool coloring_pending_ = false;  ///< a colouring was asked for while a job ran
+    MorphState morph_;
+    const HalfedgeMesh* morph_topology_ = nullptr;  ///< uploaded for the morph (null: none)
+    bool initial_op_done_ = false;                  ///< options_.operation has been queued
+    Camera record_camera_;  ///< the recording's framing, fixed for the whole sequence
     /// Wall time of the most recent frames (events excluded), for a median that ignores the
     /// slow first frame (shader compilation, font upload).
     std::array<double, 15> frame_times_ms_{};

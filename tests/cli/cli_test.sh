@@ -55,6 +55,22 @@ check "an unknown model fails and lists the names" bash -c \
 check "a failed save leaves the old file intact" bash -c \
     "cp '$tmp/d.obj' '$tmp/keep.obj' && ! '$cli' convert '$data/bad/off_nan.off' '$tmp/keep.obj' \
      2>/dev/null && cmp -s '$tmp/d.obj' '$tmp/keep.obj'"
+check "noise writes the file" bash -c \
+    "'$cli' noise --amount 2 --seed 7 '$tmp/d.obj' '$tmp/n1.obj' && \
+     '$cli' info '$tmp/n1.obj' --json | grep -q '\"faces\": 2000' && ! cmp -s '$tmp/d.obj' '$tmp/n1.obj'"
+check "noise --json has its keys" bash -c \
+    "'$cli' noise --amount 2 --seed 7 '$tmp/d.obj' '$tmp/n2.obj' --json > '$tmp/n.json' && \
+     $(declare -f json_has); json_has '$tmp/n.json' ms amount seed vertices max_displacement && \
+     grep -q '\"seed\": 7' '$tmp/n.json'"
+check "noise with the same seed writes identical files" bash -c \
+    "'$cli' noise --seed 7 --amount 2 '$tmp/d.obj' '$tmp/n3.obj' && cmp '$tmp/n1.obj' '$tmp/n3.obj'"
+check "noise with another seed writes a different file" bash -c \
+    "'$cli' noise --amount 2 --seed 8 '$tmp/d.obj' '$tmp/n4.obj' && ! cmp -s '$tmp/n1.obj' '$tmp/n4.obj'"
+check "noise refuses a bad amount with one line naming the option" bash -c \
+    "! '$cli' noise --amount 2000 '$tmp/d.obj' '$tmp/bad.obj' 2> '$tmp/e' && \
+     [ \$(wc -l < '$tmp/e') -eq 1 ] && grep -q -- '--amount' '$tmp/e' && [ ! -e '$tmp/bad.obj' ]"
+check "noise refuses an unknown option naming it" bash -c \
+    "! '$cli' noise --bogus 1 '$tmp/d.obj' '$tmp/bad.obj' 2> '$tmp/e' && grep -q -- '--bogus' '$tmp/e'"
 if "$cli" render --help >/dev/null 2>&1; then
     check "render writes a PNG of the requested size" bash -c \
         "'$cli' render '$tmp/d.obj' --out '$tmp/r.png' --size 320x200 --json > '$tmp/r.json' && \
@@ -63,6 +79,24 @@ if "$cli" render --help >/dev/null 2>&1; then
     check "render refuses an unknown mode naming the option" bash -c \
         "! '$cli' render '$tmp/d.obj' --out '$tmp/x.png' --mode nope 2> '$tmp/e' && \
          grep -q -- 'mode' '$tmp/e' && [ ! -e '$tmp/x.png' ]"
+    check "record writes the requested number of frames" bash -c \
+        "'$cli' record '$tmp/d.obj' --op 'noise --amount 20' --frames 7 --size 160x120 \
+         --out '$tmp/rec' --json > '$tmp/rec.json' && \
+         $(declare -f json_has); json_has '$tmp/rec.json' ms frames files mp4 operation notes && \
+         [ \$(ls '$tmp/rec' | grep -c '^frame_[0-9]\\{4\\}\\.png\$') -eq 7 ] && \
+         [ \$(ls '$tmp/rec' | wc -l) -eq 7 ] && ! cmp -s '$tmp/rec/frame_0000.png' '$tmp/rec/frame_0006.png'"
+    check "record --mp4 succeeds with or without ffmpeg" bash -c \
+        "'$cli' record '$tmp/d.obj' --op 'noise --amount 5' --frames 3 --size 65x49 --name m \
+         --out '$tmp/rec4' --mp4 --json > '$tmp/rec4.json' && \
+         if command -v ffmpeg >/dev/null; then [ -s '$tmp/rec4/m.mp4' ]; \
+         else grep -q '\"mp4\": null' '$tmp/rec4.json' && grep -q 'ffmpeg' '$tmp/rec4.json'; fi"
+    check "record refuses a bad --frames with one line naming it, writing nothing" bash -c \
+        "! '$cli' record '$tmp/d.obj' --op 'noise --amount 2' --frames 1 --out '$tmp/rec2' \
+         2> '$tmp/e' && [ \$(wc -l < '$tmp/e') -eq 1 ] && grep -q -- '--frames' '$tmp/e' && \
+         [ ! -e '$tmp/rec2' ]"
+    check "record refuses an unknown operation, writing nothing" bash -c \
+        "! '$cli' record '$tmp/d.obj' --op 'frobnicate' --out '$tmp/rec3' 2> '$tmp/e' && \
+         [ \$(wc -l < '$tmp/e') -eq 1 ] && grep -q -- '--op' '$tmp/e' && [ ! -e '$tmp/rec3' ]"
 fi
 echo "cli: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -1,0 +1,75 @@
+// Add noise (core/noise.h): each live vertex moves along its area-weighted normal (core's
+// vertex_normal, taken before anything moves) by r x a, a = amount% x the mean edge length,
+// with r uniform in [-1, 1). r comes from a counter-based generator, splitmix64 (Steele, Lea
+// and Flood 2014) of the seed and the vertex's storage index, so it depends on nothing but
+// those two: the same seed gives bit-identical positions on every platform and standard
+// library. Guarantees: connectivity is untouched; |offset| <= a; isolated vertices and
+// vertices with a zero normal stay put; bad options throw before anything changes.
+#include "core/noise.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "core/errors.h"
+#include "core/geometry.h"
+
+namespace trilab {
+namespace {
+
+/// splitmix64's output function: a bijective mix of 64 bits.
+std::uint64_t splitmix64(std::uint64_t x) {
+    x += 0x9e3779b97f4a7c15ull;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    return x ^ (x >> 31);
+}
+
+/// A uniform number in [-1, 1) for vertex `index` under `seed`: the top 53 bits of the hash,
+/// scaled exactly (every step is exact in double precision).
+double signed_unit(std::uint32_t seed, std::size_t index) {
+    const std::uint64_t key = (std::uint64_t(seed) << 32) ^ std::uint64_t(index);
+    const std::uint64_t bits = splitmix64(splitmix64(key)) >> 11;  // 53 bits
+    return double(bits) * 0x1.0p-52 - 1.0;
+}
+
+std::string number_text(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof(buf), "%g", v);
+    return buf;
+}
+
+}  // namespace
+
+NoiseReport add_noise(HalfedgeMesh& mesh, const NoiseOptions& options) {
+    const double pct = options.amount_percent;
+    if (!std::isfinite(pct) || pct < 0 || pct > kMaxNoiseAmountPercent)
+        throw InvalidArgument("add_noise: amount_percent must be a number from 0 to " +
+                              number_text(kMaxNoiseAmountPercent) + ", got " + number_text(pct));
+
+    NoiseReport report;
+    report.mean_edge_length = mean_edge_length(mesh);
+    const double amplitude = pct / 100.0 * report.mean_edge_length;
+    if (!(amplitude > 0) || !std::isfinite(amplitude)) return report;  // nothing moves
+
+    // Offsets first, from the unmoved surface; then move.
+    const std::size_t n = mesh.vertices_size();
+    std::vector<Vector3> offsets(n, Vector3::Zero());
+    for (Vertex v : mesh.vertices()) {
+        if (mesh.is_isolated(v)) continue;
+        const Vector3 normal = vertex_normal(mesh, v);
+        if (normal.isZero(0.0)) continue;
+        const double r = signed_unit(options.seed, v.idx()) * amplitude;
+        if (r == 0) continue;
+        offsets[v.idx()] = r * normal;
+        report.max_displacement = std::max(report.max_displacement, std::abs(r));
+        ++report.moved_vertices;
+    }
+    for (Vertex v : mesh.vertices()) mesh.position(v) += offsets[v.idx()];
+    if (mesh.get_vertex_property<Vector3>("v:normal")) compute_vertex_normals(mesh);
+    return report;
+}
+
+}  // namespace trilab
