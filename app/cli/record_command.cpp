@@ -210,26 +210,6 @@ std::string frame_file_name(const std::string& name, int index, int digits) {
     return name + "_" + number + ".png";
 }
 
-/// The executable `program` in a folder of $PATH, or "" when there is none.
-std::string find_on_path(const std::string& program) {
-    const char* path = std::getenv("PATH");
-    if (!path) return "";
-    const std::string dirs = path;
-    std::size_t start = 0;
-    while (start <= dirs.size()) {
-        std::size_t end = dirs.find(':', start);
-        if (end == std::string::npos) end = dirs.size();
-        const std::string dir = end > start ? dirs.substr(start, end - start) : ".";
-        const std::string candidate = dir + "/" + program;
-        struct stat st {};
-        if (::stat(candidate.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
-            ::access(candidate.c_str(), X_OK) == 0)
-            return candidate;
-        start = end + 1;
-    }
-    return "";
-}
-
 /// The last non-empty line of a text file (at most 300 characters), or "".
 std::string last_line(const std::string& path) {
     std::ifstream in(path);
@@ -342,6 +322,26 @@ std::string encode_mp4(const RecordOptions& o, int digits, std::vector<std::stri
 #endif  // TRILAB_HAS_RENDER
 
 }  // namespace
+
+/// The executable `program` in a folder of $PATH, or "" when there is none.
+std::string find_on_path(const std::string& program) {
+    const char* path = std::getenv("PATH");
+    if (!path) return "";
+    const std::string dirs = path;
+    std::size_t start = 0;
+    while (start <= dirs.size()) {
+        std::size_t end = dirs.find(':', start);
+        if (end == std::string::npos) end = dirs.size();
+        const std::string dir = end > start ? dirs.substr(start, end - start) : ".";
+        const std::string candidate = dir + "/" + program;
+        struct stat st {};
+        if (::stat(candidate.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
+            ::access(candidate.c_str(), X_OK) == 0)
+            return candidate;
+        start = end + 1;
+    }
+    return "";
+}
 
 void check_record_options(const RecordOptions& o) {
     if (o.input.empty())

@@ -81,4 +81,7 @@ RecordSummary record_morph(const RecordOptions& options);
 /// exit code; throws trilab::Error for bad arguments or files.
 int run_record_command(const std::vector<std::string>& args);
 
+/// The executable `program` in a folder of $PATH, or "" when there is none.
+std::string find_on_path(const std::string& program);
+
 }  // namespace trilab::cli

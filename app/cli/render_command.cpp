@@ -46,7 +46,7 @@ options:
                         reading and writing excluded)
 )";
 
-double ms_since(std::chrono::steady_clock::time_point t0) {
+[[maybe_unused]] double ms_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 

@@ -346,16 +346,17 @@ struct History::Impl {
         return slot;
     }
 
-    /// After every change of the entries or of the current one: drops morph()'s states and
-    /// makes the current state (`built`: the current state when the caller has it at hand).
-    void changed(MeshPtr built = nullptr) {
-        morph_states.clear();
-        current_state.reset();
-        if (entries.empty()) return;
-        const Step& s = current_step();
-        current_state = s.full  ? s.full
+    /// After every change of the entries or of the current one: makes entry `index` the
+    /// current one, with its state (`built`: that state when the caller has it at hand), and
+    /// drops morph()'s states. Builds first, so a failure leaves everything as it was.
+    void set_current(std::size_t index, MeshPtr built = nullptr) {
+        const Step& s = entries[index].steps.back();
+        MeshPtr state = s.full  ? s.full
                         : built ? std::move(built)
                                 : std::make_shared<const HalfedgeMesh>(reconstruct(s));
+        morph_states.clear();
+        current = index;
+        current_state = std::move(state);
     }
 
     const HalfedgeMesh& current_mesh() const { return current_state ? *current_state : empty; }
@@ -393,7 +394,7 @@ struct History::Impl {
             if (freed == 0) msg += " (its mesh is still shared by later entries)";
             messages.push_back(msg + ".");
         }
-        if (!messages.empty()) changed(current_state);  // indices moved; same current state
+        if (!messages.empty()) set_current(current, current_state);  // indices moved
         return messages;
     }
 };
@@ -422,8 +423,7 @@ void History::reset(HalfedgeMesh mesh, std::string label, std::string parameters
     Impl& im = *impl_;
     im.entries.clear();
     im.entries.push_back(std::move(e));
-    im.current = 0;
-    im.changed();
+    im.set_current(0);
     im.recount();
 }
 
@@ -465,8 +465,12 @@ std::vector<std::string> History::push(std::string label, std::string parameters
         if (s.correspondence.kind == MorphCorrespondence::Kind::SameVertices &&
             shares_structure(mesh, *predecessor, s.overrides)) {
             s.base = predecessor;
-            s.positions = mesh.positions();
-            if (last) last_state = std::make_shared<const HalfedgeMesh>(std::move(mesh));
+            if (last) {
+                s.positions = mesh.positions();
+                last_state = std::make_shared<const HalfedgeMesh>(std::move(mesh));
+            } else {
+                s.positions = std::move(mesh.positions());  // the mesh is not needed again
+            }
         } else {
             s.full = std::make_shared<const HalfedgeMesh>(std::move(mesh));
         }
@@ -477,10 +481,9 @@ std::vector<std::string> History::push(std::string label, std::string parameters
     im.entries.reserve(im.current + 2);  // so that push_back cannot throw after the erase
     im.entries.erase(im.entries.begin() + std::ptrdiff_t(im.current) + 1, im.entries.end());
     im.entries.push_back(std::move(e));
-    im.current = im.entries.size() - 1;
     // A shared last step's incoming mesh is the current state exactly (its arrays equal the
     // base's, its positions and overrides are the step's): keep it rather than rebuild it.
-    im.changed(std::move(last_state));
+    im.set_current(im.entries.size() - 1, std::move(last_state));
     im.recount();
     return im.trim();
 }
@@ -508,8 +511,7 @@ void History::redo() {
 void History::jump(std::size_t index) {
     impl_->entry(index, "jump");
     if (index == impl_->current) return;
-    impl_->current = index;
-    impl_->changed();
+    impl_->set_current(index);
 }
 
 std::size_t History::size() const {

@@ -71,7 +71,7 @@ check "noise refuses a bad amount with one line naming the option" bash -c \
      [ \$(wc -l < '$tmp/e') -eq 1 ] && grep -q -- '--amount' '$tmp/e' && [ ! -e '$tmp/bad.obj' ]"
 check "noise refuses an unknown option naming it" bash -c \
     "! '$cli' noise --bogus 1 '$tmp/d.obj' '$tmp/bad.obj' 2> '$tmp/e' && grep -q -- '--bogus' '$tmp/e'"
-if "$cli" render --help >/dev/null 2>&1; then
+if "$cli" render "$tmp/d.obj" --out "$tmp/probe.png" --size 16x16 >/dev/null 2>&1; then
     check "render writes a PNG of the requested size" bash -c \
         "'$cli' render '$tmp/d.obj' --out '$tmp/r.png' --size 320x200 --json > '$tmp/r.json' && \
          $(declare -f json_has); json_has '$tmp/r.json' ms && \

@@ -1,12 +1,6 @@
 // `trilab-cli record` (app/cli/record_command.h): the frames of an operation's morph, checked
 // against independent offscreen renders of the two states, plus option errors.
-//
-// record_command.cpp belongs to the trilab-cli executable, not to a library, so it is
-// compiled into this test program here (with the renderer, as trilab-cli has it).
-#ifndef TRILAB_HAS_RENDER
-#define TRILAB_HAS_RENDER 1
-#endif
-#include "app/cli/record_command.cpp"
+#include "app/cli/record_command.h"
 
 #include <cstdlib>
 #include <filesystem>
