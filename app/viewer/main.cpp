@@ -23,6 +23,8 @@ options:
   --mode MODE        wireframe, hidden-line, flat, gouraud, points or textured
   --color C          none, normal, k1, k2, mean, gaussian or shape-index
   --op "OPERATION"   apply an operation after loading, e.g. --op "noise --amount 2"
+  --show PANELS      open panels at start: comma-separated history, morph, tools, record,
+                     log, info
   --help             this text
 )";
 
@@ -69,6 +71,8 @@ std::string parse_args(int argc, char** argv, trilab::viewer::ViewerOptions& opt
                 return "--screenshot needs a file name";
         } else if (arg == "--mode") {
             if (!value(options.mode)) return "--mode needs a name";
+        } else if (arg == "--show") {
+            if (!value(options.show)) return "--show needs panel names, e.g. history,morph";
         } else if (arg == "--op") {
             if (!value(options.operation))
                 return "--op needs an operation, e.g. \"noise --amount 2\"";

@@ -283,11 +283,16 @@ void help_window(PanelState& panels) {
 
 void history_window(PanelState& panels, const History& history, bool busy, CommandQueue& commands) {
     if (!panels.history_open) return;
-    ImGui::SetNextWindowSize(ImVec2(30.0f * ImGui::GetFontSize(), 16.0f * ImGui::GetFontSize()),
-                             ImGuiCond_FirstUseEver);
+    const float em = ImGui::GetFontSize();
+    ImGui::SetNextWindowPos(ImVec2(0.8f * em, 2.5f * em), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(26.0f * em, 14.0f * em), ImGuiCond_FirstUseEver);
     if (ImGui::Begin("History", &panels.history_open)) {
-        ImGui::Text("%zu entries, %.1f MB of %.0f MB", history.size(), history.bytes() / 1e6,
-                    history.budget() / 1e6);
+        ImGui::Text("%zu entries, %.1f MB of the %.0f MB budget", history.size(),
+                    history.bytes() / 1e6, history.budget() / 1e6);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip(
+                "When the history grows past its budget the oldest entries are "
+                "dropped (with a message in the log).");
         ImGui::Separator();
         for (std::size_t i = 0; i < history.size(); ++i) {
             const History::EntryInfo e = history.info(i);
@@ -318,6 +323,10 @@ void history_window(PanelState& panels, const History& history, bool busy, Comma
 void tools_window(PanelState& panels, bool busy, CommandQueue& commands) {
     if (!panels.tools_open) return;
     ToolsState& t = panels.tools;
+    const ImGuiIO& io = ImGui::GetIO();
+    ImGui::SetNextWindowPos(
+        ImVec2(io.DisplaySize.x - 0.8f * ImGui::GetFontSize(), 9.0f * ImGui::GetFontSize()),
+        ImGuiCond_FirstUseEver, ImVec2(1.0f, 0.0f));
     if (ImGui::Begin("Tools", &panels.tools_open, ImGuiWindowFlags_AlwaysAutoResize)) {
         ImGui::TextUnformatted("Add noise: move vertices along their normals");
         ImGui::SetNextItemWidth(10.0f * ImGui::GetFontSize());
@@ -341,6 +350,8 @@ void tools_window(PanelState& panels, bool busy, CommandQueue& commands) {
 
 void morph_window(PanelState& panels, MorphState& morph, const History& history, double now) {
     if (!panels.morph_open) return;
+    ImGui::SetNextWindowPos(ImVec2(0.8f * ImGui::GetFontSize(), 17.5f * ImGui::GetFontSize()),
+                            ImGuiCond_FirstUseEver);
     if (ImGui::Begin("Morph", &panels.morph_open, ImGuiWindowFlags_AlwaysAutoResize)) {
         const std::size_t entry = history.current();
         if (entry == 0) {
@@ -391,6 +402,10 @@ void record_window(PanelState& panels, bool can_record, CommandQueue& commands) 
     RecordState& r = panels.record;
     if (!r.open && !r.running) return;
     bool open = true;
+    const ImGuiIO& io = ImGui::GetIO();
+    ImGui::SetNextWindowPos(
+        ImVec2(io.DisplaySize.x - 0.8f * ImGui::GetFontSize(), 17.5f * ImGui::GetFontSize()),
+        ImGuiCond_FirstUseEver, ImVec2(1.0f, 0.0f));
     if (ImGui::Begin("Record", &open, ImGuiWindowFlags_AlwaysAutoResize)) {
         ImGui::TextUnformatted("Writes the morph of the current entry as PNG frames.");
         const float w = 10.0f * ImGui::GetFontSize();

@@ -178,6 +178,27 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
         update_coloring();
     }
     if (!options_.operation.empty()) parse_operation(options_.operation);  // refuse bad ones now
+    for (std::size_t pos = 0; pos < options_.show.size();) {
+        std::size_t comma = options_.show.find(',', pos);
+        if (comma == std::string::npos) comma = options_.show.size();
+        const std::string panel = options_.show.substr(pos, comma - pos);
+        pos = comma + 1;
+        if (panel == "history")
+            panels_.history_open = true;
+        else if (panel == "morph")
+            panels_.morph_open = true;
+        else if (panel == "tools")
+            panels_.tools_open = true;
+        else if (panel == "record")
+            panels_.record.open = true;
+        else if (panel == "log")
+            panels_.log_open = true;
+        else if (panel == "info")
+            panels_.info_open = true;
+        else
+            throw InvalidArgument("--show: unknown panel '" + panel +
+                                  "' (history, morph, tools, record, log, info)");
+    }
     if (!options_.mesh_path.empty()) load(options_.mesh_path);
     if (!options_.operation.empty() && options_.mesh_path.empty())
         commands_.push_back(RunOperation{options_.operation});

@@ -33,6 +33,7 @@ struct ViewerOptions {
     std::string mode;       ///< initial render mode name (render_mode_name()), empty: default
     std::string color;      ///< initial vertex colouring name (coloring_name()), empty: none
     std::string operation;  ///< an operation to apply after loading, empty: none
+    std::string show;       ///< panels to open at start, comma-separated
 };
 
 /// The model: its history of states (the current one is shown) and where it came from.
