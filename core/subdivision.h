@@ -1,0 +1,57 @@
+#pragma once
+// Uniform subdivision of triangle meshes, with boundaries (section 1.3 of the reference):
+//  - Loop (Loop 1987; approximating, 1-to-4): beta_n = (1/n)(5/8 - (3/8 + cos(2 pi/n)/4)^2);
+//    boundary curves use the cubic B-spline rules (odd 1/2, 1/2; even 1/8, 3/4, 1/8).
+//  - Sqrt3 (Kobbelt 2000; approximating): a vertex at every face centroid, every old interior
+//    edge flipped, even vertices relaxed with alpha_n = (4 - 2 cos(2 pi/n)) / 9; boundary
+//    edges are split in every second step so that two steps make a tri-adic boundary split.
+//  - Butterfly (Dyn, Levin, Gregory 1990; interpolating): the 8-point stencil, w = 1/16.
+//  - Modified Butterfly (Zorin, Schröder, Sweldens 1996; interpolating): the 10-point regular
+//    stencil, extraordinary-vertex rules, the 4-point boundary rule.
+// Every iteration keeps the previous level; each new vertex records where it starts on the
+// coarser surface (for the morph) and its level (for the "subdivision vertices" colouring).
+// Texture coordinates ("v:texcoord", "h:texcoord") are interpolated linearly.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/halfedge_mesh.h"
+#include "core/morph.h"
+#include "core/progress.h"
+
+namespace trilab {
+
+enum class SubdivisionScheme { Loop, Sqrt3, Butterfly, ModifiedButterfly };
+
+/// "loop", "sqrt3", "butterfly", "modified-butterfly".
+const char* scheme_name(SubdivisionScheme scheme);
+/// Parses scheme_name() strings; throws InvalidArgument listing them otherwise.
+SubdivisionScheme parse_scheme(const std::string& name);
+
+struct SubdivisionOptions {
+    SubdivisionScheme scheme = SubdivisionScheme::Loop;
+    int iterations = 1;  ///< 1 to 10 (refused above, or when the result would be absurdly big)
+};
+
+/// One subdivision level: the refined mesh and how it morphs from the previous level
+/// (MorphCorrespondence::Kind::FromEarlier: every vertex's start position on the coarser
+/// surface; even vertices start at their old position, odd ones at their parent edge's
+/// midpoint or parent face's centroid). The mesh carries "v:subdivision_level" (int: the
+/// iteration that created the vertex, 0 for the original vertices).
+struct SubdivisionLevel {
+    HalfedgeMesh mesh;
+    MorphCorrespondence correspondence;
+};
+
+struct SubdivisionResult {
+    std::vector<SubdivisionLevel> levels;  ///< one per iteration, coarse to fine
+    double ms = 0;
+};
+
+/// Subdivides a copy of `mesh` `options.iterations` times. The input must be a triangle mesh
+/// without garbage (call garbage_collection() first) — it is not modified. Throws
+/// InvalidArgument for bad options (naming them), Cancelled when `progress` asks to stop.
+SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& options,
+                            Progress& progress);
+
+}  // namespace trilab
