@@ -76,7 +76,7 @@ struct ColoringEntry {
     const char* label;
 };
 
-constexpr std::array<ColoringEntry, 7> kColorings = {{
+constexpr std::array<ColoringEntry, 8> kColorings = {{
     {VertexColoring::None, "none", ""},
     {VertexColoring::Normal, "normal", "vertex normal"},
     {VertexColoring::K1, "k1", "first principal curvature k1"},
@@ -84,6 +84,7 @@ constexpr std::array<ColoringEntry, 7> kColorings = {{
     {VertexColoring::Mean, "mean", "mean curvature H"},
     {VertexColoring::Gaussian, "gaussian", "Gaussian curvature K"},
     {VertexColoring::ShapeIndex, "shape-index", "shape index"},
+    {VertexColoring::SubdivisionLevel, "subdivision", "subdivision level of each vertex"},
 }};
 
 const ColoringEntry& entry(VertexColoring coloring) {
@@ -178,6 +179,22 @@ VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
                 out.colors[v.idx()] = ((normal + Vector3::Ones()) * 0.5).cast<float>();
         }
         out.range = {-1, 1};
+        return out;
+    }
+
+    if (coloring == VertexColoring::SubdivisionLevel) {
+        // Even/odd vertices per level: level 0 (the original vertices) dark, the newest
+        // level bright, on the sequential map over [0, highest level].
+        auto level = mesh.get_vertex_property<int>("v:subdivision_level");
+        int highest = 0;
+        if (level)
+            for (Vertex v : mesh.vertices()) highest = std::max(highest, level[v]);
+        out.kind = ColorMapKind::Sequential;
+        out.has_legend = true;
+        out.range = {0.0, double(std::max(highest, 1))};
+        out.colors.assign(n, kInvalidColor);
+        for (Vertex v : mesh.vertices())
+            out.colors[v.idx()] = map_color(level ? double(level[v]) : 0.0, out.range, out.kind);
         return out;
     }
 

@@ -21,25 +21,26 @@ struct ValueRange {
 /// What a vertex colouring shows. Later issues add more (smoothing distance, ...).
 enum class VertexColoring {
     None,
-    Normal,       ///< the unit normal as RGB ((n + 1) / 2)
-    K1,           ///< first principal curvature
-    K2,           ///< second principal curvature
-    Mean,         ///< mean curvature
-    Gaussian,     ///< Gaussian curvature
-    ShapeIndex,   ///< shape index in [-1, 1]
+    Normal,            ///< the unit normal as RGB ((n + 1) / 2)
+    K1,                ///< first principal curvature
+    K2,                ///< second principal curvature
+    Mean,              ///< mean curvature
+    Gaussian,          ///< Gaussian curvature
+    ShapeIndex,        ///< shape index in [-1, 1]
+    SubdivisionLevel,  ///< the subdivision step that created each vertex ("v:subdivision_level")
 };
 
 struct ColoringOptions {
-    double low_percentile = 2.0;   ///< lower end of the range, in percent of the values
-    double high_percentile = 98.0; ///< upper end of the range
+    double low_percentile = 2.0;    ///< lower end of the range, in percent of the values
+    double high_percentile = 98.0;  ///< upper end of the range
 };
 
 /// Colours for every vertex (indexed by storage index) and what the legend shows.
 struct VertexColors {
     std::vector<Color> colors;
-    ValueRange range;      ///< the values that map to the ends of the colour bar
+    ValueRange range;  ///< the values that map to the ends of the colour bar
     ColorMapKind kind = ColorMapKind::Sequential;
-    std::string label;     ///< e.g. "mean curvature"
+    std::string label;        ///< e.g. "mean curvature"
     bool has_legend = false;  ///< false for None and Normal
 };
 
@@ -55,7 +56,8 @@ ValueRange symmetric_range(const ValueRange& range);
 /// Computes the quantity and its colours.
 VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
                             const ColoringOptions& options = {});
-/// Names for menus and the CLI: "none", "normal", "k1", "k2", "mean", "gaussian", "shape-index".
+/// Names for menus and the CLI: "none", "normal", "k1", "k2", "mean", "gaussian", "shape-index",
+/// "subdivision".
 const char* coloring_name(VertexColoring coloring);
 /// Parses coloring_name() strings; throws InvalidArgument listing the names otherwise.
 VertexColoring parse_coloring(const std::string& name);

@@ -320,3 +320,23 @@ TEST_CASE("coloring_name and parse_coloring round trip; unknown names list the k
     REQUIRE(message.find("'curvature'") != std::string::npos);
     for (const auto& name : names) REQUIRE(message.find(name) != std::string::npos);
 }
+
+TEST_CASE("subdivision-level colouring: level 0 dark, the newest level bright", "[coloring]") {
+    HalfedgeMesh m = make_icosphere(2);
+    auto level = m.add_vertex_property<int>("v:subdivision_level", 0);
+    level[Vertex(0)] = 2;
+    level[Vertex(1)] = 1;
+    const VertexColors c = color_vertices(m, VertexColoring::SubdivisionLevel);
+    REQUIRE(c.has_legend);
+    REQUIRE(c.range.min == 0.0);
+    REQUIRE(c.range.max == 2.0);
+    const auto lum = [](const Color& x) {
+        return 0.2126f * x.x() + 0.7152f * x.y() + 0.0722f * x.z();
+    };
+    REQUIRE(lum(c.colors[0]) > lum(c.colors[1]));
+    REQUIRE(lum(c.colors[1]) > lum(c.colors[2]));
+    REQUIRE(parse_coloring("subdivision") == VertexColoring::SubdivisionLevel);
+    // A mesh never subdivided is all level 0.
+    const VertexColors plain = color_vertices(make_icosahedron(), VertexColoring::SubdivisionLevel);
+    for (const Color& x : plain.colors) REQUIRE(x == plain.colors[0]);
+}
