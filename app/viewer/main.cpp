@@ -23,8 +23,8 @@ options:
   --mode MODE        wireframe, hidden-line, flat, gouraud, points or textured
   --color C          none, normal, k1, k2, mean, gaussian or shape-index
   --op "OPERATION"   apply an operation after loading, e.g. --op "noise --amount 2"
-  --show PANELS      open panels at start: comma-separated history, morph, tools, record,
-                     log, info
+  --show PANELS      open panels at start: comma-separated history, morph, tools,
+                     subdivision, record, log, info
   --help             this text
 )";
 

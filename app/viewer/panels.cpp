@@ -69,17 +69,19 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
     ImGui::MenuItem("Wireframe overlay", "W", &style.wireframe);
     ImGui::MenuItem("Back-face colour", "B", &style.back_face_color);
     if (ImGui::BeginMenu("Colour by vertex")) {
-        const VertexColoring colorings[] = {VertexColoring::None,      VertexColoring::Normal,
-                                            VertexColoring::K1,        VertexColoring::K2,
-                                            VertexColoring::Mean,      VertexColoring::Gaussian,
-                                            VertexColoring::ShapeIndex};
+        const VertexColoring colorings[] = {
+            VertexColoring::None,       VertexColoring::Normal,
+            VertexColoring::K1,         VertexColoring::K2,
+            VertexColoring::Mean,       VertexColoring::Gaussian,
+            VertexColoring::ShapeIndex, VertexColoring::SubdivisionLevel};
         const char* labels[] = {"None",
                                 "Normal direction",
                                 "First principal curvature",
                                 "Second principal curvature",
                                 "Mean curvature",
                                 "Gaussian curvature",
-                                "Shape index"};
+                                "Shape index",
+                                "Subdivision vertices"};
         for (std::size_t i = 0; i < std::size(colorings); ++i) {
             if (ImGui::MenuItem(labels[i], nullptr, settings.coloring == colorings[i]) &&
                 settings.coloring != colorings[i]) {
@@ -195,7 +197,7 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
         // The operation panels arrive with their issues; listed so the menu shows the plan.
         ImGui::MenuItem("Fairing", nullptr, false, false);
         ImGui::MenuItem("Frequency decomposition", nullptr, false, false);
-        ImGui::MenuItem("Subdivision", nullptr, false, false);
+        ImGui::MenuItem("Subdivision", nullptr, &panels.subdivision.open);
         ImGui::MenuItem("Decimation", nullptr, false, false);
         ImGui::EndMenu();
     }
@@ -316,6 +318,35 @@ void history_window(PanelState& panels, const History& history, bool busy, Comma
                 ImGui::TextDisabled("(redo)");
             }
         }
+    }
+    ImGui::End();
+}
+
+void subdivision_window(PanelState& panels, bool busy, CommandQueue& commands) {
+    SubdivisionPanelState& state = panels.subdivision;
+    if (!state.open) return;
+    const ImGuiIO& io = ImGui::GetIO();
+    ImGui::SetNextWindowPos(
+        ImVec2(io.DisplaySize.x - 0.8f * ImGui::GetFontSize(), 9.0f * ImGui::GetFontSize()),
+        ImGuiCond_FirstUseEver, ImVec2(1.0f, 0.0f));
+    if (ImGui::Begin("Subdivision", &state.open, ImGuiWindowFlags_AlwaysAutoResize)) {
+        const char* schemes[] = {"Loop", "Sqrt3", "Butterfly", "Modified Butterfly"};
+        const char* names[] = {"loop", "sqrt3", "butterfly", "modified-butterfly"};
+        ImGui::SetNextItemWidth(12.0f * ImGui::GetFontSize());
+        ImGui::Combo("scheme", &state.scheme, schemes, 4);
+        ImGui::SetNextItemWidth(12.0f * ImGui::GetFontSize());
+        ImGui::SliderInt("iterations", &state.iterations, 1, 6);
+        if (busy) ImGui::BeginDisabled();
+        if (ImGui::Button("Subdivide")) {
+            commands.push_back(RunOperation{std::string("subdivide --scheme ") +
+                                            names[std::clamp(state.scheme, 0, 3)] +
+                                            " --iterations " + std::to_string(state.iterations)});
+            panels.morph_open = true;
+        }
+        if (busy) ImGui::EndDisabled();
+        ImGui::TextDisabled(
+            "Animate and scrub in the Morph panel (M);\n"
+            "Rendering > Colour by vertex > Subdivision vertices.");
     }
     ImGui::End();
 }

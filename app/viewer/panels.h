@@ -59,6 +59,13 @@ struct RecordState {
     int next = 0;  ///< the next frame to write
 };
 
+/// The Subdivision panel's parameters.
+struct SubdivisionPanelState {
+    bool open = false;
+    int scheme = 0;  ///< index into loop, sqrt3, butterfly, modified-butterfly
+    int iterations = 1;
+};
+
 /// The Tools panel's parameters.
 struct ToolsState {
     float noise_amount = 1.0f;  ///< percent of the mean edge length
@@ -76,6 +83,7 @@ struct ViewSettings {
 /// Which windows are open, and the dialogs' own state.
 struct PanelState {
     ScreenshotState screenshot;
+    SubdivisionPanelState subdivision;
     RecordState record;
     ToolsState tools;
     bool history_open = false;
@@ -132,6 +140,9 @@ void context_menu(RenderStyle& style, ViewSettings& settings, PanelState& panels
                   const RenderContext& render, CommandQueue& commands);
 /// The History panel: every entry with its steps, timing and memory; a click jumps there.
 void history_window(PanelState& panels, const History& history, bool busy, CommandQueue& commands);
+/// The Subdivision panel (scheme, iterations, Subdivide; the morph lives in the Morph panel,
+/// which it opens); queues RunOperation.
+void subdivision_window(PanelState& panels, bool busy, CommandQueue& commands);
 /// The Tools panel (Add noise); queues RunOperation.
 void tools_window(PanelState& panels, bool busy, CommandQueue& commands);
 /// The morph slider and the animation controls for the current history entry.

@@ -197,7 +197,7 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
             panels_.info_open = true;
         else
             throw InvalidArgument("--show: unknown panel '" + panel +
-                                  "' (history, morph, tools, record, log, info)");
+                                  "' (history, morph, tools, subdivision, record, log, info)");
     }
     if (!options_.mesh_path.empty()) load(options_.mesh_path);
     if (!options_.operation.empty() && options_.mesh_path.empty())
@@ -824,6 +824,7 @@ void Viewer::draw_ui() {
     screenshot_dialog(panels_.screenshot, commands_);
     history_window(panels_, document_.history, jobs_.busy(), commands_);
     tools_window(panels_, jobs_.busy(), commands_);
+    subdivision_window(panels_, jobs_.busy(), commands_);
     morph_window(panels_, morph_, document_.history, glfwGetTime());
     record_window(panels_, document_.history.current() > 0 && !jobs_.busy(), commands_);
     StatusInfo status;
