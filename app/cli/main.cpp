@@ -12,6 +12,7 @@
 #include "app/cli/noise_command.h"
 #include "app/cli/record_command.h"
 #include "app/cli/render_command.h"
+#include "app/cli/subdivide_command.h"
 #include "core/errors.h"
 #include "core/generators.h"
 #include "core/io/mesh_io.h"
@@ -34,6 +35,9 @@ commands:
                                   render offscreen to a PNG (`trilab-cli render --help`)
   noise [--amount PCT] [--seed S] IN OUT [--json]
                                   displace vertices along their normals (`noise --help`)
+  subdivide [--scheme S] [--iterations N] IN OUT [--json]
+                                  Loop, Sqrt3, Butterfly or Modified Butterfly subdivision;
+                                  S: loop|sqrt3|butterfly|modified-butterfly (`subdivide --help`)
   record MESH --op "OP" --out DIR [options]
                                   render an operation's morph to PNG frames (`record --help`)
   help                            this text
@@ -210,6 +214,7 @@ int main(int argc, char** argv) {
         if (cmd == "render")
             return run_render_command(std::vector<std::string>(argv + 2, argv + argc));
         if (cmd == "noise") return run_noise_command({argv + 2, argv + argc});
+        if (cmd == "subdivide") return run_subdivide_command({argv + 2, argv + argc});
         if (cmd == "record") return run_record_command({argv + 2, argv + argc});
         if (cmd == "generate")
             return cmd_generate(

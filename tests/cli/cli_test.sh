@@ -71,6 +71,30 @@ check "noise refuses a bad amount with one line naming the option" bash -c \
      [ \$(wc -l < '$tmp/e') -eq 1 ] && grep -q -- '--amount' '$tmp/e' && [ ! -e '$tmp/bad.obj' ]"
 check "noise refuses an unknown option naming it" bash -c \
     "! '$cli' noise --bogus 1 '$tmp/d.obj' '$tmp/bad.obj' 2> '$tmp/e' && grep -q -- '--bogus' '$tmp/e'"
+check "subdivide: one Loop step of the default model gives V+E vertices" bash -c \
+    "'$cli' subdivide --scheme loop --iterations 1 '$tmp/d.obj' '$tmp/s1.obj' && \
+     '$cli' info '$tmp/s1.obj' --json | grep -q '\"vertices\": 4002, \"edges\": 12000, \"faces\": 8000'"
+check "subdivide --json has its keys and counts" bash -c \
+    "'$cli' subdivide --scheme sqrt3 --iterations 2 '$tmp/d.obj' '$tmp/s2.ply' --json > '$tmp/s.json' && \
+     $(declare -f json_has); json_has '$tmp/s.json' ms scheme iterations vertices faces && \
+     grep -q '\"scheme\": \"sqrt3\"' '$tmp/s.json' && grep -q '\"iterations\": 2' '$tmp/s.json' && \
+     grep -q '\"faces\": 18000' '$tmp/s.json'"
+check "subdivide defaults to one Loop step" bash -c \
+    "'$cli' subdivide '$tmp/d.obj' '$tmp/s3.off' --json | grep -q '\"scheme\": \"loop\", \"iterations\": 1, \"vertices\": 4002, \"faces\": 8000'"
+for scheme in butterfly modified-butterfly; do
+    check "subdivide --scheme $scheme writes V+E vertices" bash -c \
+        "'$cli' subdivide --scheme $scheme '$tmp/d.obj' '$tmp/s-$scheme.om' && \
+         '$cli' info '$tmp/s-$scheme.om' --json | grep -q '\"vertices\": 4002'"
+done
+check "subdivide refuses a bad scheme with one line naming the option" bash -c \
+    "! '$cli' subdivide --scheme nope '$tmp/d.obj' '$tmp/bad.obj' 2> '$tmp/e' && \
+     [ \$(wc -l < '$tmp/e') -eq 1 ] && grep -q -- '--scheme' '$tmp/e' && grep -q 'sqrt3' '$tmp/e' && \
+     [ ! -e '$tmp/bad.obj' ]"
+check "subdivide refuses bad iterations with one line naming the option" bash -c \
+    "! '$cli' subdivide --iterations 11 '$tmp/d.obj' '$tmp/bad.obj' 2> '$tmp/e' && \
+     [ \$(wc -l < '$tmp/e') -eq 1 ] && grep -q -- '--iterations' '$tmp/e' && [ ! -e '$tmp/bad.obj' ]"
+check "subdivide refuses a missing OUT" bash -c \
+    "! '$cli' subdivide '$tmp/d.obj' 2> '$tmp/e' && [ \$(wc -l < '$tmp/e') -eq 1 ]"
 if "$cli" render "$tmp/d.obj" --out "$tmp/probe.png" --size 16x16 >/dev/null 2>&1; then
     check "render writes a PNG of the requested size" bash -c \
         "'$cli' render '$tmp/d.obj' --out '$tmp/r.png' --size 320x200 --json > '$tmp/r.json' && \

@@ -7,6 +7,7 @@
 #include "core/errors.h"
 #include "core/generators.h"
 #include "core/noise.h"
+#include "core/subdivision.h"
 #include "test_helpers.h"
 
 using namespace trilab;
@@ -142,5 +143,152 @@ TEST_CASE("a cancelled operation throws Cancelled and leaves the input alone", "
     const HalfedgeMesh copy = input;
     CancelAtOnce cancel;
     REQUIRE_THROWS_AS(run_operation(parse_operation("noise --amount 3"), input, cancel), Cancelled);
+    REQUIRE(bit_identical(input.positions(), copy.positions()));
+}
+
+// ---- subdivide ----------------------------------------------------------------------------
+
+namespace {
+
+double value_of(const OperationResult& r, const std::string& key) {
+    for (const auto& [k, v] : r.values)
+        if (k == key) return v;
+    FAIL("no value '" << key << "'");
+    return 0;
+}
+
+}  // namespace
+
+TEST_CASE("subdivide is registered with its options", "[ops]") {
+    const auto names = operation_names();
+    REQUIRE(std::find(names.begin(), names.end(), "subdivide") != names.end());
+    REQUIRE_THAT(operation_usage("subdivide"), Catch::Contains("--scheme") &&
+                                                   Catch::Contains("--iterations") &&
+                                                   Catch::Contains("modified-butterfly"));
+    const Operation op = parse_operation("subdivide --scheme sqrt3 --iterations=2");
+    REQUIRE(op.name == "subdivide");
+    REQUIRE(op.args == std::vector<std::string>{"--scheme", "sqrt3", "--iterations=2"});
+}
+
+TEST_CASE("subdivide gives one step per level with FromEarlier correspondences", "[ops]") {
+    const HalfedgeMesh input = make_default_model();  // 1002 vertices, 3000 edges, 2000 faces
+    const HalfedgeMesh copy = input;
+    NullProgress progress;
+    const OperationResult r =
+        run_operation(parse_operation("subdivide --scheme loop --iterations 2"), input, progress);
+    REQUIRE(bit_identical(input.positions(), copy.positions()));
+    REQUIRE(r.label == "Subdivide");
+    REQUIRE(r.parameters == "--scheme loop --iterations 2");
+    REQUIRE(r.steps.size() == 2);
+    REQUIRE(r.steps[0].mesh.n_vertices() == 1002 + 3000);
+    REQUIRE(r.steps[0].mesh.n_faces() == 4 * 2000);
+    REQUIRE(r.steps[1].mesh.n_faces() == 16 * 2000);
+    const HalfedgeMesh* before = &input;
+    for (const OperationStep& step : r.steps) {
+        REQUIRE(step.correspondence.kind == MorphCorrespondence::Kind::FromEarlier);
+        REQUIRE(step.correspondence.positions.size() == step.mesh.vertices_size());
+        REQUIRE_NOTHROW(check_correspondence(*before, step.mesh, step.correspondence));
+        REQUIRE_VALID(step.mesh);
+        before = &step.mesh;
+    }
+    REQUIRE(r.ms >= 0);
+    // Report: one line per level with its counts, then a summary with the time.
+    REQUIRE(r.report.size() == 3);
+    REQUIRE_THAT(r.report[0], Catch::Contains("4002 vertices") && Catch::Contains("8000 faces"));
+    REQUIRE_THAT(r.report[1], Catch::Contains("32000 faces"));
+    REQUIRE_THAT(r.report[2], Catch::Contains("ms"));
+    // Values, in their fixed order.
+    REQUIRE(r.values.size() == 4);
+    REQUIRE(r.values[0].first == "scheme");
+    REQUIRE(r.values[1].first == "iterations");
+    REQUIRE(r.values[2].first == "vertices");
+    REQUIRE(r.values[3].first == "faces");
+    REQUIRE(value_of(r, "scheme") == double(int(SubdivisionScheme::Loop)));
+    REQUIRE(value_of(r, "iterations") == 2);
+    REQUIRE(value_of(r, "vertices") == double(r.steps[1].mesh.n_vertices()));
+    REQUIRE(value_of(r, "faces") == 32000);
+
+    // The same as calling the core directly.
+    const SubdivisionResult direct =
+        subdivide(input, SubdivisionOptions{SubdivisionScheme::Loop, 2}, progress);
+    REQUIRE(direct.levels.size() == 2);
+    for (std::size_t i = 0; i < 2; ++i) {
+        REQUIRE(bit_identical(direct.levels[i].mesh.positions(), r.steps[i].mesh.positions()));
+        REQUIRE(bit_identical(direct.levels[i].correspondence.positions,
+                              r.steps[i].correspondence.positions));
+    }
+}
+
+TEST_CASE("subdivide runs every scheme with the expected counts", "[ops]") {
+    const std::string scheme =
+        GENERATE(std::string("loop"), std::string("sqrt3"), std::string("butterfly"),
+                 std::string("modified-butterfly"));
+    INFO(scheme);
+    const HalfedgeMesh input = make_icosahedron();  // V 12, E 30, F 20
+    NullProgress progress;
+    const OperationResult r =
+        run_operation(parse_operation("subdivide --scheme " + scheme), input, progress);
+    REQUIRE(r.parameters == "--scheme " + scheme + " --iterations 1");
+    REQUIRE(r.steps.size() == 1);
+    const HalfedgeMesh& m = r.steps[0].mesh;
+    REQUIRE_VALID(m);
+    if (scheme == "sqrt3") {
+        REQUIRE(m.n_vertices() == 12 + 20);
+        REQUIRE(m.n_faces() == 3 * 20);
+    } else {
+        REQUIRE(m.n_vertices() == 12 + 30);
+        REQUIRE(m.n_faces() == 4 * 20);
+    }
+    REQUIRE(value_of(r, "scheme") == double(int(parse_scheme(scheme))));
+    REQUIRE(value_of(r, "vertices") == double(m.n_vertices()));
+    REQUIRE_NOTHROW(check_correspondence(input, m, r.steps[0].correspondence));
+}
+
+TEST_CASE("subdivide defaults to one Loop step and its parameters parse back", "[ops]") {
+    NullProgress progress;
+    const HalfedgeMesh input = make_icosahedron();
+    const OperationResult r = run_operation(parse_operation("subdivide"), input, progress);
+    REQUIRE(r.parameters == "--scheme loop --iterations 1");
+    REQUIRE(r.steps.size() == 1);
+    const std::string text = GENERATE(std::string("subdivide --iterations=3 --scheme sqrt3"),
+                                      std::string("subdivide --scheme modified-butterfly"),
+                                      std::string("subdivide --iterations 02"));
+    INFO(text);
+    const OperationResult first = run_operation(parse_operation(text), input, progress);
+    const OperationResult again =
+        run_operation(parse_operation("subdivide " + first.parameters), input, progress);
+    REQUIRE(again.parameters == first.parameters);
+    REQUIRE(first.steps.size() == again.steps.size());
+    REQUIRE(
+        bit_identical(first.steps.back().mesh.positions(), again.steps.back().mesh.positions()));
+}
+
+TEST_CASE("bad subdivide strings are refused, naming the option", "[ops]") {
+    REQUIRE_THAT(parse_error("subdivide --scheme nope"),
+                 Catch::Contains("--scheme") && Catch::Contains("'nope'") &&
+                     Catch::Contains("loop") && Catch::Contains("modified-butterfly"));
+    REQUIRE_THAT(parse_error("subdivide --scheme"),
+                 Catch::Contains("--scheme") && Catch::Contains("missing value"));
+    REQUIRE_THAT(parse_error("subdivide --iterations 0"),
+                 Catch::Contains("--iterations") && Catch::Contains("1 to 10"));
+    REQUIRE_THAT(parse_error("subdivide --iterations 11"), Catch::Contains("--iterations"));
+    REQUIRE_THAT(parse_error("subdivide --iterations 1.5"), Catch::Contains("--iterations"));
+    REQUIRE_THAT(parse_error("subdivide --iterations -1"), Catch::Contains("--iterations"));
+    REQUIRE_THAT(parse_error("subdivide --amount 2"),
+                 Catch::Contains("--amount") && Catch::Contains("subdivide"));
+    REQUIRE_THAT(parse_error("subdivide --scheme loop --scheme sqrt3"),
+                 Catch::Contains("more than once"));
+    NullProgress progress;
+    REQUIRE_THROWS_WITH(
+        run_operation(Operation{"subdivide", {"--iterations", "0"}}, make_icosahedron(), progress),
+        Catch::Contains("--iterations"));
+}
+
+TEST_CASE("a cancelled subdivision throws Cancelled and leaves the input alone", "[ops]") {
+    const HalfedgeMesh input = make_icosphere(2);
+    const HalfedgeMesh copy = input;
+    CancelAtOnce cancel;
+    REQUIRE_THROWS_AS(run_operation(parse_operation("subdivide --iterations 2"), input, cancel),
+                      Cancelled);
     REQUIRE(bit_identical(input.positions(), copy.positions()));
 }

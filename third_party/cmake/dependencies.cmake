@@ -34,3 +34,28 @@ endif()
 if(TRILAB_BUILD_TESTS)
     find_package(Catch2 REQUIRED)
 endif()
+
+# OpenMesh (Debian libopenmesh-dev), OPTIONAL and benchmark-only: trilab_subdivision_bench
+# compares against its uniform subdividers when it is installed. The product, the tests and CI
+# never need it, so it is not in packages.txt.
+if(TRILAB_BUILD_TESTS)
+    find_package(OpenMesh CONFIG QUIET)
+    if(TARGET OpenMeshTools)
+        set(TRILAB_OPENMESH_TARGET OpenMeshTools)
+    else()
+        find_path(OPENMESH_INCLUDE_DIR OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh)
+        find_library(OPENMESH_CORE_LIBRARY OpenMeshCore)
+        if(OPENMESH_INCLUDE_DIR AND OPENMESH_CORE_LIBRARY)
+            add_library(trilab_openmesh INTERFACE)
+            target_include_directories(trilab_openmesh SYSTEM INTERFACE ${OPENMESH_INCLUDE_DIR})
+            target_link_libraries(trilab_openmesh INTERFACE ${OPENMESH_CORE_LIBRARY})
+            set(TRILAB_OPENMESH_TARGET trilab_openmesh)
+        endif()
+    endif()
+    if(TRILAB_OPENMESH_TARGET)
+        message(STATUS "OpenMesh found: the subdivision benchmark compares against it")
+    else()
+        message(STATUS "OpenMesh not found (optional, benchmark only): the subdivision benchmark "
+                       "runs without the comparison; apt-get install libopenmesh-dev to add it")
+    endif()
+endif()
