@@ -23,6 +23,12 @@ if(TARGET trilab)
              COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --op "noise --amount 30" --color mean
                      --frames 10)
     set_tests_properties(viewer_operation PROPERTIES PASS_REGULAR_EXPRESSION "Add noise --amount 30")
+    add_test(NAME viewer_subdivision
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab>
+                     --op "subdivide --scheme modified-butterfly --iterations 2"
+                     --color subdivision --show subdivision,history --frames 10)
+    set_tests_properties(viewer_subdivision PROPERTIES
+                         PASS_REGULAR_EXPRESSION "Subdivide --scheme modified-butterfly")
     add_test(NAME viewer_bad_operation COMMAND $<TARGET_FILE:trilab> --op "noise --amount -1"
                                               --frames 1)
     set_tests_properties(viewer_bad_operation PROPERTIES WILL_FAIL TRUE)

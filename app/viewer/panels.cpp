@@ -11,6 +11,8 @@
 namespace trilab::viewer {
 namespace {
 
+void morph_controls(MorphState& morph, const History& history, double now);
+
 constexpr const char* kErrorPopupTitle = "Error";
 
 /// Pushes one style variable for the lifetime of the guard.
@@ -322,7 +324,8 @@ void history_window(PanelState& panels, const History& history, bool busy, Comma
     ImGui::End();
 }
 
-void subdivision_window(PanelState& panels, bool busy, CommandQueue& commands) {
+void subdivision_window(PanelState& panels, MorphState& morph, const History& history, bool busy,
+                        double now, CommandQueue& commands) {
     SubdivisionPanelState& state = panels.subdivision;
     if (!state.open) return;
     const ImGuiIO& io = ImGui::GetIO();
@@ -341,12 +344,11 @@ void subdivision_window(PanelState& panels, bool busy, CommandQueue& commands) {
             commands.push_back(RunOperation{std::string("subdivide --scheme ") +
                                             names[std::clamp(state.scheme, 0, 3)] +
                                             " --iterations " + std::to_string(state.iterations)});
-            panels.morph_open = true;
         }
         if (busy) ImGui::EndDisabled();
-        ImGui::TextDisabled(
-            "Animate and scrub in the Morph panel (M);\n"
-            "Rendering > Colour by vertex > Subdivision vertices.");
+        ImGui::Separator();
+        morph_controls(morph, history, now);
+        ImGui::TextDisabled("Rendering > Colour by vertex > Subdivision vertices");
     }
     ImGui::End();
 }
@@ -379,53 +381,63 @@ void tools_window(PanelState& panels, bool busy, CommandQueue& commands) {
     ImGui::End();
 }
 
+namespace {
+/// The morph slider and animation controls for the current history entry.
+void morph_controls(MorphState& morph, const History& history, double now) {
+    const std::size_t entry = history.current();
+    if (entry == 0) {
+        ImGui::TextDisabled("the first state has nothing before it");
+        return;
+    }
+    const History::EntryInfo info = history.info(entry);
+    ImGui::Text("%s %s: before -> after", info.label.c_str(), info.parameters.c_str());
+    float t = float(morph.t);
+    ImGui::SetNextItemWidth(16.0f * ImGui::GetFontSize());
+    if (ImGui::SliderFloat("##t", &t, 0.0f, 1.0f, "t = %.3f")) {
+        morph.t = t;
+        morph.playing = false;
+    }
+    if (!morph.playing) {
+        if (ImGui::Button("Animate")) {
+            morph.playing = true;
+            morph.play_start = now;
+        }
+    } else if (ImGui::Button("Stop")) {
+        morph.playing = false;
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Before")) {
+        morph.t = 0.0;
+        morph.playing = false;
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("After")) {
+        morph.t = 1.0;
+        morph.playing = false;
+    }
+    float duration = float(morph.duration);
+    ImGui::SetNextItemWidth(8.0f * ImGui::GetFontSize());
+    if (ImGui::SliderFloat("duration", &duration, 0.2f, 20.0f, "%.1f s",
+                           ImGuiSliderFlags_Logarithmic))
+        morph.duration = duration;
+    const char* easings[] = {"linear", "smooth step", "ease in-out (cubic)"};
+    int e = int(morph.easing);
+    ImGui::SetNextItemWidth(8.0f * ImGui::GetFontSize());
+    if (ImGui::Combo("easing", &e, easings, 3)) morph.easing = Easing(e);
+    const char* modes[] = {"once", "loop", "ping-pong"};
+    int m = int(morph.playback);
+    ImGui::SetNextItemWidth(8.0f * ImGui::GetFontSize());
+    if (ImGui::Combo("playback", &m, modes, 3)) morph.playback = Playback(m);
+    if (info.steps.size() > 1) ImGui::TextDisabled("%zu steps, chained", info.steps.size());
+}
+}  // namespace
+
 void morph_window(PanelState& panels, MorphState& morph, const History& history, double now) {
     if (!panels.morph_open) return;
     ImGui::SetNextWindowPos(ImVec2(0.8f * ImGui::GetFontSize(), 17.5f * ImGui::GetFontSize()),
                             ImGuiCond_FirstUseEver);
-    if (ImGui::Begin("Morph", &panels.morph_open, ImGuiWindowFlags_AlwaysAutoResize)) {
-        const std::size_t entry = history.current();
-        if (entry == 0) {
-            ImGui::TextDisabled("the first state has nothing before it");
-        } else {
-            const History::EntryInfo info = history.info(entry);
-            ImGui::Text("%s %s: before -> after", info.label.c_str(), info.parameters.c_str());
-            float t = float(morph.t);
-            ImGui::SetNextItemWidth(16.0f * ImGui::GetFontSize());
-            if (ImGui::SliderFloat("##t", &t, 0.0f, 1.0f, "t = %.3f")) {
-                morph.t = t;
-                morph.playing = false;
-            }
-            if (!morph.playing) {
-                if (ImGui::Button("Animate")) {
-                    morph.playing = true;
-                    morph.play_start = now;
-                }
-            } else if (ImGui::Button("Stop")) {
-                morph.playing = false;
-            }
-            ImGui::SameLine();
-            if (ImGui::Button("Before"))
-                morph = MorphState{0.0, false, morph.duration, morph.easing, morph.playback, 0.0};
-            ImGui::SameLine();
-            if (ImGui::Button("After"))
-                morph = MorphState{1.0, false, morph.duration, morph.easing, morph.playback, 0.0};
-            float duration = float(morph.duration);
-            ImGui::SetNextItemWidth(8.0f * ImGui::GetFontSize());
-            if (ImGui::SliderFloat("duration", &duration, 0.2f, 20.0f, "%.1f s",
-                                   ImGuiSliderFlags_Logarithmic))
-                morph.duration = duration;
-            const char* easings[] = {"linear", "smooth step", "ease in-out (cubic)"};
-            int e = int(morph.easing);
-            ImGui::SetNextItemWidth(8.0f * ImGui::GetFontSize());
-            if (ImGui::Combo("easing", &e, easings, 3)) morph.easing = Easing(e);
-            const char* modes[] = {"once", "loop", "ping-pong"};
-            int m = int(morph.playback);
-            ImGui::SetNextItemWidth(8.0f * ImGui::GetFontSize());
-            if (ImGui::Combo("playback", &m, modes, 3)) morph.playback = Playback(m);
-            if (info.steps.size() > 1) ImGui::TextDisabled("%zu steps, chained", info.steps.size());
-        }
-    }
+    if (ImGui::Begin("Morph", &panels.morph_open, ImGuiWindowFlags_AlwaysAutoResize))
+        morph_controls(morph, history, now);
     ImGui::End();
 }
 

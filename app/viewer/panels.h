@@ -140,9 +140,10 @@ void context_menu(RenderStyle& style, ViewSettings& settings, PanelState& panels
                   const RenderContext& render, CommandQueue& commands);
 /// The History panel: every entry with its steps, timing and memory; a click jumps there.
 void history_window(PanelState& panels, const History& history, bool busy, CommandQueue& commands);
-/// The Subdivision panel (scheme, iterations, Subdivide; the morph lives in the Morph panel,
-/// which it opens); queues RunOperation.
-void subdivision_window(PanelState& panels, bool busy, CommandQueue& commands);
+/// The Subdivision panel (scheme, iterations, Subdivide, and the morph slider and Animate of
+/// the current entry); queues RunOperation.
+void subdivision_window(PanelState& panels, MorphState& morph, const History& history, bool busy,
+                        double now, CommandQueue& commands);
 /// The Tools panel (Add noise); queues RunOperation.
 void tools_window(PanelState& panels, bool busy, CommandQueue& commands);
 /// The morph slider and the animation controls for the current history entry.

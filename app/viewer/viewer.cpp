@@ -189,6 +189,8 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
             panels_.morph_open = true;
         else if (panel == "tools")
             panels_.tools_open = true;
+        else if (panel == "subdivision")
+            panels_.subdivision.open = true;
         else if (panel == "record")
             panels_.record.open = true;
         else if (panel == "log")
@@ -824,7 +826,7 @@ void Viewer::draw_ui() {
     screenshot_dialog(panels_.screenshot, commands_);
     history_window(panels_, document_.history, jobs_.busy(), commands_);
     tools_window(panels_, jobs_.busy(), commands_);
-    subdivision_window(panels_, jobs_.busy(), commands_);
+    subdivision_window(panels_, morph_, document_.history, jobs_.busy(), glfwGetTime(), commands_);
     morph_window(panels_, morph_, document_.history, glfwGetTime());
     record_window(panels_, document_.history.current() > 0 && !jobs_.busy(), commands_);
     StatusInfo status;

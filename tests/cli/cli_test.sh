@@ -122,5 +122,11 @@ if "$cli" render "$tmp/d.obj" --out "$tmp/probe.png" --size 16x16 >/dev/null 2>&
         "! '$cli' record '$tmp/d.obj' --op 'frobnicate' --out '$tmp/rec3' 2> '$tmp/e' && \
          [ \$(wc -l < '$tmp/e') -eq 1 ] && grep -q -- '--op' '$tmp/e' && [ ! -e '$tmp/rec3' ]"
 fi
+if "$cli" render "$tmp/d.obj" --out "$tmp/probe.png" --size 16x16 >/dev/null 2>&1; then
+    check "record --op subdivide writes the refinement morph" bash -c \
+        "'$cli' record '$tmp/d.obj' --op 'subdivide --scheme sqrt3 --iterations 2' --frames 3 \
+         --size 64x48 --out '$tmp/subrec' --color subdivision >/dev/null 2>&1 && \
+         [ \$(ls '$tmp/subrec' | grep -c '^frame_.*png\$') -eq 3 ]"
+fi
 echo "cli: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]
