@@ -63,8 +63,7 @@ public:
     static std::size_t default_budget();  ///< a quarter of the physical memory
 
     /// Starts a new history with `mesh` as its first entry (a load). Clears everything.
-    void reset(HalfedgeMesh mesh, std::string label, std::string parameters = "",
-               double ms = 0);
+    void reset(HalfedgeMesh mesh, std::string label, std::string parameters = "", double ms = 0);
     /// Appends an entry after the current one (dropping any redo entries) and makes it the
     /// current one. Each step's correspondence must fit its predecessor (check_correspondence:
     /// step 0 against the current state, step k against step k - 1); throws InvalidArgument

@@ -23,6 +23,7 @@ options:
   --mode MODE        wireframe, hidden-line, flat, gouraud, points or textured
   --color C          none, normal, k1, k2, mean, gaussian or shape-index
   --op "OPERATION"   apply an operation after loading, e.g. --op "noise --amount 2"
+  --memory-budget MB the history's memory budget (default: a quarter of the RAM)
   --show PANELS      open panels at start: comma-separated history, morph, tools,
                      subdivision, record, log, info
   --help             this text
@@ -71,6 +72,9 @@ std::string parse_args(int argc, char** argv, trilab::viewer::ViewerOptions& opt
                 return "--screenshot needs a file name";
         } else if (arg == "--mode") {
             if (!value(options.mode)) return "--mode needs a name";
+        } else if (arg == "--memory-budget") {
+            if (!value(v) || !parse_count(v, options.memory_budget_mb))
+                return "--memory-budget needs a positive number of megabytes";
         } else if (arg == "--show") {
             if (!value(options.show)) return "--show needs panel names, e.g. history,morph";
         } else if (arg == "--op") {

@@ -168,6 +168,8 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
     view_.camera.set_viewport(float(window_w), float(window_h));
     // Recent files persist only for interactive sessions, not for scripted runs.
     if (options_.frames == 0) recent_.load(RecentFiles::default_file());
+    if (options_.memory_budget_mb > 0)
+        document_.history.set_budget(std::size_t(options_.memory_budget_mb) << 20);
     push_loaded(make_default_model(), "Default model", "default model", "", LoadReport{});
     log_.info("OpenGL " + std::string(reinterpret_cast<const char*>(glGetString(GL_VERSION))) +
               " on " + reinterpret_cast<const char*>(glGetString(GL_RENDERER)));

@@ -30,10 +30,11 @@ struct ViewerOptions {
     std::string screenshot;  ///< non-empty: write the last frame (before the swap) as PNG
     int width = 1280;        ///< window size in screen coordinates
     int height = 800;
-    std::string mode;       ///< initial render mode name (render_mode_name()), empty: default
-    std::string color;      ///< initial vertex colouring name (coloring_name()), empty: none
-    std::string operation;  ///< an operation to apply after loading, empty: none
-    std::string show;       ///< panels to open at start, comma-separated
+    std::string mode;          ///< initial render mode name (render_mode_name()), empty: default
+    std::string color;         ///< initial vertex colouring name (coloring_name()), empty: none
+    std::string operation;     ///< an operation to apply after loading, empty: none
+    std::string show;          ///< panels to open at start, comma-separated
+    int memory_budget_mb = 0;  ///< the history's budget; 0: a quarter of the RAM
 };
 
 /// The model: its history of states (the current one is shown) and where it came from.
