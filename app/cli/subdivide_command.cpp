@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <iostream>
 
-#include "app/cli/json_writer.h"
+#include "app/cli/operation_command.h"
 #include "app/ops/operation.h"
 #include "core/errors.h"
 #include "core/io/mesh_io.h"
@@ -38,84 +38,26 @@ options:
                         "faces", "levels" (vertices and faces per level), ...
 )";
 
-struct SubdivideArgs {
-    std::string op_text = "subdivide";
-    std::vector<std::string> files;
-    bool json = false, help = false;
-    WriteOptions write;
-};
-
-SubdivideArgs parse_args(const std::vector<std::string>& args) {
-    SubdivideArgs a;
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        const std::string& s = args[i];
-        if (s == "--help" || s == "-h") {
-            a.help = true;
-        } else if (s == "--json") {
-            a.json = true;
-        } else if (s == "--ascii") {
-            a.write.ascii = true;
-        } else if (s == "--big-endian") {
-            a.write.big_endian = true;
-        } else if (s.rfind("--", 0) == 0) {
-            // An operation option: it and its value go to the operation, which checks both.
-            a.op_text += " " + s;
-            if (s.find('=') == std::string::npos && i + 1 < args.size())
-                a.op_text += " " + args[++i];
-        } else {
-            a.files.push_back(s);
-        }
-    }
-    return a;
-}
-
 }  // namespace
 
 int run_subdivide_command(const std::vector<std::string>& args) {
-    const SubdivideArgs a = parse_args(args);
-    if (a.help) {
-        std::fputs(kSubdivideUsage, stdout);
-        return 0;
-    }
-    const Operation op = parse_operation(a.op_text);  // bad options fail before any file
-    if (a.files.size() != 2)
-        throw InvalidArgument("expected IN and OUT files (see `trilab-cli subdivide --help`)");
-
-    const LoadedMesh loaded = read_mesh(a.files[0]);  // not timed
-    NullProgress progress;
-    const OperationResult result = run_operation(op, loaded.mesh, progress);
-    const HalfedgeMesh& out = result.steps.back().mesh;
-    write_mesh(out, a.files[1], a.write);  // not timed
-
-    if (a.json) {
-        JsonObject j;
-        j.add("input", a.files[0])
-            .add("output", a.files[1])
-            .add("operation", op.name)
-            .add("parameters", result.parameters);
-        for (const auto& [key, value] : result.values) {
-            if (key == "scheme")  // the registry gives its index; JSON gets the name
-                j.add(key, scheme_name(static_cast<SubdivisionScheme>(int(value))));
-            else if (key == "vertices" || key == "faces" || key == "iterations")
-                j.add(key, static_cast<std::size_t>(value));
-            else
-                j.add(key, value);
-        }
-        std::vector<double> level_vertices, level_faces;
-        for (const OperationStep& step : result.steps) {
-            level_vertices.push_back(double(step.mesh.n_vertices()));
-            level_faces.push_back(double(step.mesh.n_faces()));
-        }
-        JsonObject levels;
-        levels.add("vertices", level_vertices).add("faces", level_faces);
-        j.add("levels", levels).add("report", result.report).add("ms", result.ms);
-        std::cout << j.str() << "\n";
-    } else {
-        std::printf("wrote %s: %s %s (%.1f ms)\n", a.files[1].c_str(), result.label.c_str(),
-                    result.parameters.c_str(), result.ms);
-        for (const std::string& line : result.report) std::printf("  %s\n", line.c_str());
-    }
-    return 0;
+    return run_operation_command(
+        "subdivide", kSubdivideUsage, args, [](JsonObject& j, const OperationResult& result) {
+            for (const auto& [key, value] : result.values) {
+                if (key == "scheme")  // the registry gives its index; JSON gets the name
+                    j.add(key, scheme_name(static_cast<SubdivisionScheme>(int(value))));
+                else if (key == "iterations")
+                    j.add(key, static_cast<std::size_t>(value));
+            }
+            std::vector<double> level_vertices, level_faces;
+            for (const OperationStep& step : result.steps) {
+                level_vertices.push_back(double(step.mesh.n_vertices()));
+                level_faces.push_back(double(step.mesh.n_faces()));
+            }
+            JsonObject levels;
+            levels.add("vertices", level_vertices).add("faces", level_faces);
+            j.add("levels", levels);
+        });
 }
 
 }  // namespace trilab::cli
