@@ -26,6 +26,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/cli/arg_reader.h"
 #include "app/cli/json_writer.h"
 #include "app/history/history.h"
 #include "app/ops/operation.h"
@@ -121,24 +122,10 @@ struct CommandLine {
 CommandLine parse_args(const std::vector<std::string>& args) {
     CommandLine c;
     RecordOptions& o = c.options;
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        // "--name=value" is the same as "--name value".
-        std::string a = args[i], inline_value;
-        bool has_inline_value = false;
-        const std::size_t eq = a.find('=');
-        if (a.rfind("--", 0) == 0 && eq != std::string::npos) {
-            inline_value = a.substr(eq + 1);
-            a = a.substr(0, eq);
-            has_inline_value = true;
-        }
-        auto value = [&]() -> std::string {
-            if (has_inline_value) {
-                has_inline_value = false;
-                return inline_value;
-            }
-            if (i + 1 >= args.size()) throw InvalidArgument(a + ": missing value");
-            return args[++i];
-        };
+    ArgReader reader(args);
+    while (reader.next()) {
+        const std::string& a = reader.arg();
+        auto value = [&] { return reader.value(); };
         if (a == "--help" || a == "-h") {
             c.help = true;
         } else if (a == "--json") {
@@ -189,7 +176,7 @@ CommandLine parse_args(const std::vector<std::string>& args) {
         } else {
             throw InvalidArgument("unexpected argument '" + a + "': expected one MESH file");
         }
-        if (has_inline_value) throw InvalidArgument(a + " takes no value");
+        if (reader.has_unused_value()) throw InvalidArgument(a + " takes no value");
     }
     return c;
 }

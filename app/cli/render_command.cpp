@@ -9,6 +9,7 @@
 #include <iostream>
 #include <string>
 
+#include "app/cli/arg_reader.h"
 #include "app/cli/json_writer.h"
 #include "core/coloring.h"
 #include "core/errors.h"
@@ -77,24 +78,10 @@ struct RenderArgs {
 
 RenderArgs parse_args(const std::vector<std::string>& args) {
     RenderArgs r;
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        // "--name=value" is the same as "--name value".
-        std::string a = args[i], inline_value;
-        bool has_inline_value = false;
-        const std::size_t eq = a.find('=');
-        if (a.rfind("--", 0) == 0 && eq != std::string::npos) {
-            inline_value = a.substr(eq + 1);
-            a = a.substr(0, eq);
-            has_inline_value = true;
-        }
-        auto value = [&]() -> const std::string& {
-            if (has_inline_value) {
-                has_inline_value = false;
-                return inline_value;
-            }
-            if (i + 1 >= args.size()) throw InvalidArgument(a + ": missing value");
-            return args[++i];
-        };
+    ArgReader reader(args);
+    while (reader.next()) {
+        const std::string& a = reader.arg();
+        auto value = [&] { return reader.value(); };
         if (a == "--help" || a == "-h") {
             r.help = true;
         } else if (a == "--json") {
@@ -136,7 +123,7 @@ RenderArgs parse_args(const std::vector<std::string>& args) {
         } else {
             throw InvalidArgument("unexpected argument '" + a + "': expected one MESH file");
         }
-        if (has_inline_value) throw InvalidArgument(a + " takes no value");
+        if (reader.has_unused_value()) throw InvalidArgument(a + " takes no value");
     }
     return r;
 }
