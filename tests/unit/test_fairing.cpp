@@ -1,0 +1,345 @@
+// Fairing: the four discrete Laplacians (sign convention, constants, linear precision,
+// symmetric forms) and smooth() (noise reduction, stability, volume, first-order agreement of
+// implicit and explicit steps, boundaries, degenerate input, option checks).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "core/curvature.h"
+#include "core/errors.h"
+#include "core/fairing.h"
+#include "core/generators.h"
+#include "core/geometry.h"
+#include "core/laplacian.h"
+#include "core/mesh_builder.h"
+#include "core/noise.h"
+#include "test_helpers.h"
+
+using namespace trilab;
+
+namespace {
+
+const LaplacianOperator kOperators[] = {
+    LaplacianOperator::Umbrella, LaplacianOperator::ImprovedUmbrella,
+    LaplacianOperator::CurvatureFlow, LaplacianOperator::SecondOrder};
+
+HalfedgeMesh noisy_sphere() {
+    return make_noisy_sphere(10, 0.01, 7);
+}
+
+/// A flat grid whose interior vertices are moved in the plane (an irregular triangulation).
+HalfedgeMesh jittered_grid() {
+    HalfedgeMesh m = make_grid(8);
+    unsigned k = 0;
+    for (Vertex v : m.vertices()) {
+        if (m.is_boundary(v)) continue;
+        ++k;
+        m.position(v).x() += 0.02 * std::sin(3.1 * k);
+        m.position(v).y() += 0.02 * std::cos(1.7 * k);
+    }
+    return m;
+}
+
+double variance_of_mean_curvature(const HalfedgeMesh& m) {
+    const VertexCurvatures c = compute_curvatures(m);
+    double sum = 0, sum2 = 0, n = 0;
+    for (std::size_t i = 0; i < c.mean.size(); ++i) {
+        if (!c.valid[i]) continue;
+        sum += c.mean[i];
+        sum2 += c.mean[i] * c.mean[i];
+        n += 1;
+    }
+    REQUIRE(n > 0);
+    return sum2 / n - (sum / n) * (sum / n);
+}
+
+void require_finite(const HalfedgeMesh& m) {
+    for (Vertex v : m.vertices()) {
+        INFO("vertex " << v.idx());
+        REQUIRE(m.position(v).allFinite());
+    }
+}
+
+void require_sane(const FairingResult& r, std::size_t expected_steps) {
+    REQUIRE(r.steps.size() == expected_steps);
+    for (const HalfedgeMesh& s : r.steps) {
+        REQUIRE_VALID(s);
+        require_finite(s);
+    }
+}
+
+double max_abs(const Eigen::MatrixXd& x) {
+    return x.size() ? x.cwiseAbs().maxCoeff() : 0.0;
+}
+
+double steps_for_explicit(LaplacianOperator op) {
+    switch (op) {
+        case LaplacianOperator::ImprovedUmbrella:
+            return 0.002;
+        case LaplacianOperator::SecondOrder:
+            return 0.2;
+        default:
+            return 0.5;
+    }
+}
+
+}  // namespace
+
+TEST_CASE("every Laplacian annihilates constants and has symmetric K, positive S", "[fairing]") {
+    const LaplacianOperator op = GENERATE(from_range(std::begin(kOperators), std::end(kOperators)));
+    const bool sphere = GENERATE(true, false);
+    INFO(laplacian_operator_name(op) << (sphere ? " on a noisy sphere" : " on a jittered grid"));
+    const HalfedgeMesh m = sphere ? noisy_sphere() : jittered_grid();
+    const Laplacian lap = build_laplacian(m, op);
+    const auto n = Eigen::Index(lap.map.rows());
+    REQUIRE(n == Eigen::Index(m.n_vertices()));
+    const Eigen::VectorXd ones = Eigen::VectorXd::Ones(n);
+    const double kscale =
+        std::max(1.0, Eigen::Map<const Eigen::VectorXd>(lap.K.valuePtr(), lap.K.nonZeros())
+                          .cwiseAbs()
+                          .maxCoeff());
+    CHECK(max_abs(lap.L * ones) < 1e-12);
+    CHECK(max_abs(lap.K * ones) < 1e-12 * kscale);
+    const SparseMatrix kt = lap.K.transpose();
+    CHECK((lap.K - kt).norm() <= 1e-12 * kscale);
+    // L = -S⁻¹ K on free rows, 0 on fixed rows; S > 0.
+    for (Eigen::Index r = 0; r < n; ++r) REQUIRE(lap.S[r] > 0);
+    const Eigen::MatrixXd x = gather_positions(m, lap.map);
+    const Eigen::MatrixXd lx = lap.L * x, kx = lap.K * x;
+    for (Eigen::Index r = 0; r < n; ++r) {
+        if (lap.fixed[std::size_t(r)])
+            REQUIRE(lx.row(r).norm() == 0.0);
+        else
+            REQUIRE((lx.row(r) + kx.row(r) / lap.S[r]).norm() <= 1e-9 * (1 + kx.row(r).norm()));
+    }
+    // PSD: xᵀ K x >= 0 for the coordinates (a cheap spot check of the sign convention).
+    for (int c = 0; c < 3; ++c) CHECK(x.col(c).dot(lap.K * x.col(c)) >= -1e-9 * kscale);
+    // Boundary rows are fixed by default.
+    for (std::size_t r = 0; r < lap.map.rows(); ++r)
+        if (m.is_boundary(lap.map.vertex_of[r])) REQUIRE(lap.fixed[r] == 1);
+    CHECK(lap.diagnostics.degenerate_corners == 0);
+}
+
+TEST_CASE("cotangent and second-order Laplacians have linear precision on a flat grid",
+          "[fairing]") {
+    const HalfedgeMesh m = jittered_grid();
+    LaplacianOptions keep_negative;
+    keep_negative.clamp_negative_cotangents = false;
+    auto linear_residual = [&](LaplacianOperator op, const LaplacianOptions& opt) {
+        const Laplacian lap = build_laplacian(m, op, opt);
+        Eigen::VectorXd f(Eigen::Index(lap.map.rows()));
+        for (std::size_t r = 0; r < lap.map.rows(); ++r) {
+            const Point& p = m.position(lap.map.vertex_of[r]);
+            f[Eigen::Index(r)] = 2.0 * p.x() - 3.0 * p.y() + 0.5;
+        }
+        REQUIRE(lap.n_free() == 49);
+        return max_abs(lap.L * f);
+    };
+    CHECK(linear_residual(LaplacianOperator::CurvatureFlow, keep_negative) < 1e-10);
+    CHECK(linear_residual(LaplacianOperator::SecondOrder, {}) < 1e-10);
+    // The umbrella operators depend on the parametrization: not linear-precise here.
+    CHECK(linear_residual(LaplacianOperator::Umbrella, {}) > 1e-3);
+    CHECK(linear_residual(LaplacianOperator::ImprovedUmbrella, {}) > 1e-3);
+    // And on the unperturbed grid the cotangent weights need no clamping at all.
+    const Laplacian regular = build_laplacian(make_grid(8), LaplacianOperator::CurvatureFlow);
+    CHECK(regular.diagnostics.negative_weights_clamped == 0);
+}
+
+TEST_CASE("smoothing a noisy sphere lowers the variance of mean curvature", "[fairing]") {
+    const HalfedgeMesh m = noisy_sphere();
+    const double before = variance_of_mean_curvature(m);
+    const auto op = GENERATE(FairingOperator::Umbrella, FairingOperator::ImprovedUmbrella,
+                             FairingOperator::CurvatureFlow, FairingOperator::SecondOrder,
+                             FairingOperator::Taubin);
+    const auto integration = GENERATE(Integration::Explicit, Integration::Implicit);
+    if (op == FairingOperator::Taubin && integration == Integration::Implicit) return;
+    INFO(fairing_operator_name(op) << " " << integration_name(integration));
+    FairingOptions o;
+    o.op = op;
+    o.integration = integration;
+    o.iterations = 5;
+    if (op != FairingOperator::Taubin) {
+        const auto lop = static_cast<LaplacianOperator>(static_cast<int>(op));
+        o.step = integration == Integration::Explicit         ? steps_for_explicit(lop)
+                 : lop == LaplacianOperator::ImprovedUmbrella ? 0.01
+                                                              : 1.0;
+    }
+    const FairingResult r = smooth(m, o);
+    require_sane(r, 5);
+    CHECK_FALSE(r.diverged);
+    const double after = variance_of_mean_curvature(r.steps.back());
+    INFO("variance before " << before << " after " << after);
+    CHECK(after < 0.5 * before);
+    if (integration == Integration::Implicit) {
+        CHECK(r.solver == "SimplicialLDLT");
+        CHECK(r.max_residual < 1e-8);
+    }
+}
+
+TEST_CASE("explicit umbrella with step 20 blows up, implicit stays bounded", "[fairing]") {
+    const HalfedgeMesh m = noisy_sphere();
+    const double d0 = bounding_box(m).diagonal();
+    FairingOptions o;
+    o.step = 20;
+    o.iterations = 3;
+    const FairingResult ex = smooth(m, o);
+    require_sane(ex, 3);
+    CHECK(bounding_box(ex.steps.back()).diagonal() > 10 * d0);
+    o.integration = Integration::Implicit;
+    const FairingResult im = smooth(m, o);
+    require_sane(im, 3);
+    CHECK(bounding_box(im.steps.back()).diagonal() <= d0 * (1 + 1e-9));
+    CHECK(variance_of_mean_curvature(im.steps.front()) < variance_of_mean_curvature(m));
+    CHECK(im.factorizations == 1);  // umbrella weights are fixed: one factorization reused
+
+    // Many explicit iterations stop before overflowing instead of producing NaN.
+    o.integration = Integration::Explicit;
+    o.iterations = 200;
+    const FairingResult far = smooth(m, o);
+    CHECK(far.diverged);
+    CHECK(far.steps.size() < 200);
+    for (const auto& s : far.steps) require_finite(s);
+}
+
+TEST_CASE("volume preservation keeps the volume of a closed mesh", "[fairing]") {
+    const HalfedgeMesh m = noisy_sphere();
+    const double v0 = volume(m);
+    const auto op = GENERATE(FairingOperator::Umbrella, FairingOperator::ImprovedUmbrella,
+                             FairingOperator::CurvatureFlow, FairingOperator::SecondOrder);
+    INFO(fairing_operator_name(op));
+    FairingOptions o;
+    o.op = op;
+    o.integration = Integration::Implicit;
+    o.step = op == FairingOperator::ImprovedUmbrella ? 0.01 : 1.0;
+    o.iterations = 4;
+    const FairingResult shrunk = smooth(m, o);
+    require_sane(shrunk, 4);
+    CHECK(volume(shrunk.steps.back()) < (1 - 1e-4) * v0);
+    o.preserve_volume = true;
+    const FairingResult kept = smooth(m, o);
+    require_sane(kept, 4);
+    for (const auto& s : kept.steps) CHECK(std::abs(volume(s) - v0) <= 1e-6 * v0);
+    CHECK(kept.initial_volume == Approx(v0));
+}
+
+TEST_CASE("preserve_volume is refused on meshes with boundary", "[fairing]") {
+    FairingOptions o;
+    o.preserve_volume = true;
+    CHECK_THROWS_WITH(smooth(make_grid(4), o), Catch::Contains("preserve_volume"));
+    CHECK_THROWS_AS(smooth(make_grid(4), o), InvalidArgument);
+}
+
+TEST_CASE("an implicit step with a tiny step size agrees with the explicit one to first order",
+          "[fairing]") {
+    const HalfedgeMesh m = noisy_sphere();
+    const LaplacianOperator op = GENERATE(from_range(std::begin(kOperators), std::end(kOperators)));
+    INFO(laplacian_operator_name(op));
+    auto discrepancy = [&](double dt) {
+        FairingOptions o;
+        o.op = static_cast<FairingOperator>(static_cast<int>(op));
+        o.step = dt;
+        const FairingResult ex = smooth(m, o);
+        o.integration = Integration::Implicit;
+        const FairingResult im = smooth(m, o);
+        double diff = 0, moved = 0;
+        for (Vertex v : m.vertices()) {
+            diff = std::max(diff, (ex.steps[0].position(v) - im.steps[0].position(v)).norm());
+            moved = std::max(moved, (ex.steps[0].position(v) - m.position(v)).norm());
+        }
+        REQUIRE(moved > 0);
+        return diff / moved;
+    };
+    // Steps well inside the explicit stability range (the improved umbrella scales as 1/h²).
+    const double dt = op == LaplacianOperator::ImprovedUmbrella ? 1e-5 : 1e-3;
+    const double r1 = discrepancy(dt), r2 = discrepancy(0.1 * dt);
+    INFO("relative discrepancy " << r1 << " at " << dt << ", " << r2 << " at " << 0.1 * dt);
+    CHECK(r1 < 1e-2);
+    CHECK(r2 < 0.2 * r1);  // the discrepancy is O(dt²): it shrinks with the step
+}
+
+TEST_CASE("boundary and isolated vertices stay fixed; degenerate input gives no NaN", "[fairing]") {
+    // A noisy grid, plus an isolated vertex and a zero-area (collinear) triangle.
+    PolygonSoup soup = to_soup(make_grid(6));
+    const Index n0 = Index(soup.positions.size());
+    soup.positions.push_back(Point(5, 5, 5));  // isolated
+    soup.positions.push_back(Point(2, 0, 0));
+    soup.positions.push_back(Point(3, 0, 0));
+    soup.positions.push_back(Point(4, 0, 0));  // collinear with the two before
+    soup.positions.push_back(Point(3, 0, 0));  // coincides with n0 + 2 (zero-length edges)
+    soup.add_face({n0 + 1, n0 + 2, n0 + 3});
+    soup.add_face({n0 + 2, n0 + 4, n0 + 3});
+    LoadReport report;
+    HalfedgeMesh m = build_mesh(soup, report);
+    REQUIRE_VALID(m);
+    NoiseOptions noise;
+    noise.amount_percent = 20;
+    add_noise(m, noise);
+    const HalfedgeMesh input = m;
+
+    const auto op = GENERATE(FairingOperator::Umbrella, FairingOperator::ImprovedUmbrella,
+                             FairingOperator::CurvatureFlow, FairingOperator::SecondOrder,
+                             FairingOperator::Taubin);
+    const auto integration = GENERATE(Integration::Explicit, Integration::Implicit);
+    if (op == FairingOperator::Taubin && integration == Integration::Implicit) return;
+    INFO(fairing_operator_name(op) << " " << integration_name(integration));
+    FairingOptions o;
+    o.op = op;
+    o.integration = integration;
+    o.step = op == FairingOperator::ImprovedUmbrella ? 1e-3 : 0.3;
+    o.iterations = 3;
+    const FairingResult r = smooth(m, o);
+    require_sane(r, 3);
+    for (Vertex v : m.vertices()) REQUIRE(m.position(v) == input.position(v));  // input intact
+    bool moved = false;
+    for (Vertex v : m.vertices()) {
+        const Point& p = r.steps.back().position(v);
+        if (m.is_boundary(v))
+            REQUIRE(p == m.position(v));  // boundary and isolated vertices do not move
+        else if (p != m.position(v))
+            moved = true;
+    }
+    CHECK(moved);
+    // The degenerate triangles were noticed and reported, not silently turned into NaN.
+    if (op == FairingOperator::CurvatureFlow || op == FairingOperator::SecondOrder)
+        CHECK(r.diagnostics.degenerate_corners > 0);
+    if (op == FairingOperator::ImprovedUmbrella) CHECK(r.diagnostics.short_edges > 0);
+    if (r.diagnostics.total() > 0)
+        CHECK(std::any_of(r.report.begin(), r.report.end(),
+                          [](const std::string& l) { return l.rfind("clamped:", 0) == 0; }));
+}
+
+TEST_CASE("smooth rejects bad options naming them and reports its solver", "[fairing]") {
+    const HalfedgeMesh m = make_icosphere(4);
+    FairingOptions o;
+    o.step = -1;
+    CHECK_THROWS_WITH(smooth(m, o), Catch::Contains("step"));
+    o.step = std::numeric_limits<double>::quiet_NaN();
+    CHECK_THROWS_AS(smooth(m, o), InvalidArgument);
+    o.step = 1;
+    o.iterations = 0;
+    CHECK_THROWS_WITH(smooth(m, o), Catch::Contains("iterations"));
+    o.iterations = kMaxFairingIterations + 1;
+    CHECK_THROWS_WITH(smooth(m, o), Catch::Contains("iterations"));
+    o.iterations = 1;
+    o.op = FairingOperator::Taubin;
+    o.taubin_mu = -0.4;
+    CHECK_THROWS_WITH(smooth(m, o), Catch::Contains("taubin_mu"));
+    o.taubin_mu = -0.53;
+    o.integration = Integration::Implicit;
+    CHECK_THROWS_WITH(smooth(m, o), Catch::Contains("integration"));
+    CHECK(parse_fairing_operator("second-order") == FairingOperator::SecondOrder);
+    CHECK_THROWS_AS(parse_fairing_operator("gauss"), InvalidArgument);
+
+    FairingOptions cg;
+    cg.op = FairingOperator::CurvatureFlow;
+    cg.integration = Integration::Implicit;
+    cg.solver = ImplicitSolver::Iterative;
+    cg.iterations = 2;
+    const FairingResult r = smooth(noisy_sphere(), cg);
+    require_sane(r, 2);
+    CHECK(r.solver == "ConjugateGradient(Jacobi)");
+    CHECK(r.max_residual < 1e-8);
+    CHECK(r.factorizations == 0);
+    CHECK(r.report.size() >= 3);
+}
