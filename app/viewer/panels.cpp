@@ -329,9 +329,9 @@ void subdivision_window(PanelState& panels, MorphState& morph, const History& hi
     SubdivisionPanelState& state = panels.subdivision;
     if (!state.open) return;
     const ImGuiIO& io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(
-        ImVec2(io.DisplaySize.x - 0.8f * ImGui::GetFontSize(), 9.0f * ImGui::GetFontSize()),
-        ImGuiCond_FirstUseEver, ImVec2(1.0f, 0.0f));
+    ImGui::SetNextWindowPos(ImVec2(std::max(0.0f, io.DisplaySize.x - 31.0f * ImGui::GetFontSize()),
+                                   9.0f * ImGui::GetFontSize()),
+                            ImGuiCond_FirstUseEver);
     if (ImGui::Begin("Subdivision", &state.open, ImGuiWindowFlags_AlwaysAutoResize)) {
         const char* schemes[] = {"Loop", "Sqrt3", "Butterfly", "Modified Butterfly"};
         const char* names[] = {"loop", "sqrt3", "butterfly", "modified-butterfly"};
@@ -357,9 +357,9 @@ void tools_window(PanelState& panels, bool busy, CommandQueue& commands) {
     if (!panels.tools_open) return;
     ToolsState& t = panels.tools;
     const ImGuiIO& io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(
-        ImVec2(io.DisplaySize.x - 0.8f * ImGui::GetFontSize(), 9.0f * ImGui::GetFontSize()),
-        ImGuiCond_FirstUseEver, ImVec2(1.0f, 0.0f));
+    ImGui::SetNextWindowPos(ImVec2(std::max(0.0f, io.DisplaySize.x - 31.0f * ImGui::GetFontSize()),
+                                   9.0f * ImGui::GetFontSize()),
+                            ImGuiCond_FirstUseEver);
     if (ImGui::Begin("Tools", &panels.tools_open, ImGuiWindowFlags_AlwaysAutoResize)) {
         ImGui::TextUnformatted("Add noise: move vertices along their normals");
         ImGui::SetNextItemWidth(10.0f * ImGui::GetFontSize());
@@ -446,9 +446,9 @@ void record_window(PanelState& panels, bool can_record, CommandQueue& commands) 
     if (!r.open && !r.running) return;
     bool open = true;
     const ImGuiIO& io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(
-        ImVec2(io.DisplaySize.x - 0.8f * ImGui::GetFontSize(), 17.5f * ImGui::GetFontSize()),
-        ImGuiCond_FirstUseEver, ImVec2(1.0f, 0.0f));
+    ImGui::SetNextWindowPos(ImVec2(std::max(0.0f, io.DisplaySize.x - 31.0f * ImGui::GetFontSize()),
+                                   17.5f * ImGui::GetFontSize()),
+                            ImGuiCond_FirstUseEver);
     if (ImGui::Begin("Record", &open, ImGuiWindowFlags_AlwaysAutoResize)) {
         ImGui::TextUnformatted("Writes the morph of the current entry as PNG frames.");
         const float w = 10.0f * ImGui::GetFontSize();
