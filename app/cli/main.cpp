@@ -12,6 +12,7 @@
 #include "app/cli/noise_command.h"
 #include "app/cli/record_command.h"
 #include "app/cli/render_command.h"
+#include "app/cli/smooth_command.h"
 #include "app/cli/subdivide_command.h"
 #include "core/errors.h"
 #include "core/generators.h"
@@ -40,6 +41,8 @@ commands:
                                   S: loop|sqrt3|butterfly|modified-butterfly (`subdivide --help`)
   record MESH --op "OP" --out DIR [options]
                                   render an operation's morph to PNG frames (`record --help`)
+  smooth [--operator OP] [--integration I] [--step T] [--iterations N] [--preserve-volume]
+         IN OUT [--json]          fair a mesh (`trilab-cli smooth --help`)
   help                            this text
 )";
 
@@ -214,6 +217,8 @@ int main(int argc, char** argv) {
         if (cmd == "render")
             return run_render_command(std::vector<std::string>(argv + 2, argv + argc));
         if (cmd == "noise") return run_noise_command({argv + 2, argv + argc});
+        if (cmd == "smooth")
+            return run_smooth_command(std::vector<std::string>(argv + 2, argv + argc));
         if (cmd == "subdivide") return run_subdivide_command({argv + 2, argv + argc});
         if (cmd == "record") return run_record_command({argv + 2, argv + argc});
         if (cmd == "generate")

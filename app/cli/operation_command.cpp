@@ -1,5 +1,6 @@
 #include "app/cli/operation_command.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -18,7 +19,8 @@ struct OperationArgs {
     WriteOptions write;
 };
 
-OperationArgs parse_args(const std::string& name, const std::vector<std::string>& args) {
+OperationArgs parse_args(const std::string& name, const std::vector<std::string>& args,
+                         const std::vector<std::string>& flags) {
     OperationArgs a;
     a.op_text = name;
     for (std::size_t i = 0; i < args.size(); ++i) {
@@ -34,7 +36,8 @@ OperationArgs parse_args(const std::string& name, const std::vector<std::string>
         } else if (s.rfind("--", 0) == 0) {
             // An operation option: it and its value go to the operation, which checks both.
             a.op_text += " " + s;
-            if (s.find('=') == std::string::npos && i + 1 < args.size())
+            const bool flag = std::find(flags.begin(), flags.end(), s) != flags.end();
+            if (!flag && s.find('=') == std::string::npos && i + 1 < args.size())
                 a.op_text += " " + args[++i];
         } else {
             a.files.push_back(s);
@@ -56,8 +59,9 @@ void add_operation_values(JsonObject& json, const OperationResult& result) {
 }
 
 int run_operation_command(const std::string& name, const char* usage,
-                          const std::vector<std::string>& args, const AddJson& add_json) {
-    const OperationArgs a = parse_args(name, args);
+                          const std::vector<std::string>& args, const AddJson& add_json,
+                          const std::vector<std::string>& flags) {
+    const OperationArgs a = parse_args(name, args, flags);
     if (a.help) {
         std::fputs(usage, stdout);
         return 0;
@@ -81,6 +85,7 @@ int run_operation_command(const std::string& name, const char* usage,
             .add("vertices", out.n_vertices())
             .add("faces", out.n_faces());
         add_json(j, result);
+        for (const auto& [key, text] : result.texts) j.add(key, text);
         j.add("report", result.report).add("ms", result.ms);
         std::cout << j.str() << "\n";
     } else {

@@ -23,8 +23,10 @@ void add_operation_values(JsonObject& json, const OperationResult& result);
 
 /// Runs `trilab-cli NAME ARGS...` for the registered operation `name`; `usage` is printed
 /// for --help. Returns the exit code; throws trilab::Error for bad arguments or files.
+/// `flags` names the operation's options that take no value (e.g. "--preserve-volume").
 int run_operation_command(const std::string& name, const char* usage,
                           const std::vector<std::string>& args,
-                          const AddJson& add_json = add_operation_values);
+                          const AddJson& add_json = add_operation_values,
+                          const std::vector<std::string>& flags = {});
 
 }  // namespace trilab::cli

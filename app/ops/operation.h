@@ -47,6 +47,8 @@ struct OperationResult {
     /// Named numbers for machine-readable output (the CLI's --json), parameters included,
     /// in a fixed order, e.g. {"amount", 2}, {"seed", 7}, {"max_displacement", 0.013}.
     std::vector<std::pair<std::string, double>> values;
+    /// Named texts for --json (e.g. the solver that ran).
+    std::vector<std::pair<std::string, std::string>> texts;
 };
 
 /// A parsed operation, ready to run.

@@ -124,6 +124,12 @@ if "$cli" render "$tmp/d.obj" --out "$tmp/probe.png" --size 16x16 >/dev/null 2>&
         "! '$cli' record '$tmp/d.obj' --op 'frobnicate' --out '$tmp/rec3' 2> '$tmp/e' && \
          [ \$(wc -l < '$tmp/e') -eq 1 ] && grep -q -- '--op' '$tmp/e' && [ ! -e '$tmp/rec3' ]"
 fi
+check "smooth --json names the solver of implicit steps" bash -c \
+    "'$cli' smooth --operator umbrella --integration implicit --step 1 --iterations 2 \
+     '$tmp/d.obj' '$tmp/sm.obj' --json | grep -q '\"solver\": \"SimplicialLDLT\"'"
+check "smooth --preserve-volume refuses an open mesh naming the reason" bash -c \
+    "'$cli' generate grid '$tmp/grid.obj' && ! '$cli' smooth --preserve-volume '$tmp/grid.obj' \
+     '$tmp/gs.obj' 2> '$tmp/e' && grep -q 'closed mesh' '$tmp/e' && [ ! -e '$tmp/gs.obj' ]"
 if "$cli" render "$tmp/d.obj" --out "$tmp/probe.png" --size 16x16 >/dev/null 2>&1; then
     check "record --op subdivide writes the refinement morph" bash -c \
         "'$cli' record '$tmp/d.obj' --op 'subdivide --scheme sqrt3 --iterations 2' --frames 3 \

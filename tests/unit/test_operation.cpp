@@ -6,6 +6,7 @@
 #include "app/ops/operation.h"
 #include "core/errors.h"
 #include "core/generators.h"
+#include "core/geometry.h"
 #include "core/noise.h"
 #include "core/subdivision.h"
 #include "test_helpers.h"
@@ -134,8 +135,8 @@ TEST_CASE("bad operation strings are refused, naming the bad part", "[ops]") {
     const HalfedgeMesh mesh = make_icosahedron();
     REQUIRE_THROWS_WITH(run_operation(Operation{"noise", {"--amount", "-3"}}, mesh, progress),
                         Catch::Contains("--amount"));
-    REQUIRE_THROWS_WITH(run_operation(Operation{"smooth", {}}, mesh, progress),
-                        Catch::Contains("unknown operation 'smooth'"));
+    REQUIRE_THROWS_WITH(run_operation(Operation{"decimate", {}}, mesh, progress),
+                        Catch::Contains("unknown operation 'decimate'"));
 }
 
 TEST_CASE("a cancelled operation throws Cancelled and leaves the input alone", "[ops]") {
@@ -291,4 +292,32 @@ TEST_CASE("a cancelled subdivision throws Cancelled and leaves the input alone",
     REQUIRE_THROWS_AS(run_operation(parse_operation("subdivide --iterations 2"), input, cancel),
                       Cancelled);
     REQUIRE(bit_identical(input.positions(), copy.positions()));
+}
+
+TEST_CASE("smooth runs fairing as geometry-only steps the history accepts", "[ops]") {
+    const HalfedgeMesh m = make_noisy_sphere(6, 0.05, 3);
+    const Operation op = parse_operation(
+        "smooth --operator curvature-flow --integration implicit --step 0.01 --iterations 3 "
+        "--preserve-volume");
+    NullProgress progress;
+    const OperationResult r = run_operation(op, m, progress);
+    REQUIRE(r.label == "Smooth");
+    REQUIRE(r.steps.size() == 3);
+    REQUIRE(r.parameters ==
+            "--operator curvature-flow --integration implicit --step 0.01 --iterations 3 "
+            "--preserve-volume");
+    for (const OperationStep& s : r.steps) {
+        REQUIRE_VALID(s.mesh);
+        REQUIRE(s.correspondence.kind == MorphCorrespondence::Kind::SameVertices);
+    }
+    REQUIRE(volume(r.steps.back().mesh) == Approx(volume(m)).epsilon(1e-6));
+    REQUIRE(r.texts.size() == 1);
+    REQUIRE(r.texts[0].second == "SimplicialLDLT");
+    // Volume preservation on an open mesh and bad values are refused, naming the option.
+    REQUIRE_THROWS_AS(run_operation(parse_operation("smooth --preserve-volume"), make_grid(4),
+                                    progress),
+                      InvalidArgument);
+    REQUIRE_THROWS_WITH(parse_operation("smooth --operator nope"),
+                        Catch::Matchers::Contains("--operator"));
+    REQUIRE_THROWS_WITH(parse_operation("smooth --step -1"), Catch::Matchers::Contains("--step"));
 }
