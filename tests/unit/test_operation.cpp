@@ -314,9 +314,9 @@ TEST_CASE("smooth runs fairing as geometry-only steps the history accepts", "[op
     REQUIRE(r.texts.size() == 1);
     REQUIRE(r.texts[0].second == "SimplicialLDLT");
     // Volume preservation on an open mesh and bad values are refused, naming the option.
-    REQUIRE_THROWS_AS(run_operation(parse_operation("smooth --preserve-volume"), make_grid(4),
-                                    progress),
-                      InvalidArgument);
+    REQUIRE_THROWS_AS(
+        run_operation(parse_operation("smooth --preserve-volume"), make_grid(4), progress),
+        InvalidArgument);
     REQUIRE_THROWS_WITH(parse_operation("smooth --operator nope"),
                         Catch::Matchers::Contains("--operator"));
     REQUIRE_THROWS_WITH(parse_operation("smooth --step -1"), Catch::Matchers::Contains("--step"));
