@@ -29,6 +29,11 @@ if(TARGET trilab)
                      --color subdivision --show subdivision,history --frames 10)
     set_tests_properties(viewer_subdivision PROPERTIES
                          PASS_REGULAR_EXPRESSION "Subdivide --scheme modified-butterfly")
+    add_test(NAME viewer_fairing
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab>
+                     --op "smooth --operator second-order --integration implicit --step 0.01 --iterations 3"
+                     --show fairing --frames 10)
+    set_tests_properties(viewer_fairing PROPERTIES PASS_REGULAR_EXPRESSION "Smooth --operator second-order")
     add_test(NAME viewer_bad_operation COMMAND $<TARGET_FILE:trilab> --op "noise --amount -1"
                                               --frames 1)
     set_tests_properties(viewer_bad_operation PROPERTIES WILL_FAIL TRUE)

@@ -197,7 +197,7 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
     }
     if (ImGui::BeginMenu("Algorithms")) {
         // The operation panels arrive with their issues; listed so the menu shows the plan.
-        ImGui::MenuItem("Fairing", nullptr, false, false);
+        ImGui::MenuItem("Fairing", nullptr, &panels.fairing.open);
         ImGui::MenuItem("Frequency decomposition", nullptr, false, false);
         ImGui::MenuItem("Subdivision", nullptr, &panels.subdivision.open);
         ImGui::MenuItem("Decimation", nullptr, false, false);
@@ -349,6 +349,67 @@ void subdivision_window(PanelState& panels, MorphState& morph, const History& hi
         ImGui::Separator();
         morph_controls(morph, history, now);
         ImGui::TextDisabled("Rendering > Colour by vertex > Subdivision vertices");
+    }
+    ImGui::End();
+}
+
+void fairing_window(PanelState& panels, MorphState& morph, const History& history, bool closed,
+                    bool busy, double now, CommandQueue& commands) {
+    FairingPanelState& f = panels.fairing;
+    if (!f.open) return;
+    const ImGuiIO& io = ImGui::GetIO();
+    ImGui::SetNextWindowPos(ImVec2(std::max(0.0f, io.DisplaySize.x - 31.0f * ImGui::GetFontSize()),
+                                   9.0f * ImGui::GetFontSize()),
+                            ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("Fairing", &f.open, ImGuiWindowFlags_AlwaysAutoResize)) {
+        const char* labels[] = {"Umbrella", "Improved umbrella", "Curvature flow",
+                                "Second-order difference", "Taubin lambda|mu"};
+        const char* names[] = {"umbrella", "improved-umbrella", "curvature-flow", "second-order",
+                               "taubin"};
+        const float w = 12.0f * ImGui::GetFontSize();
+        ImGui::SetNextItemWidth(w);
+        ImGui::Combo("operator", &f.op, labels, 5);
+        if (f.op == 4) f.implicit = false;  // Taubin is explicit
+        int integration = f.implicit ? 1 : 0;
+        ImGui::RadioButton("explicit", &integration, 0);
+        ImGui::SameLine();
+        if (f.op == 4) ImGui::BeginDisabled();
+        ImGui::RadioButton("implicit", &integration, 1);
+        if (f.op == 4) ImGui::EndDisabled();
+        f.implicit = integration == 1;
+        // The step: type any value ("2e-2" works) or drag the logarithmic slider.
+        ImGui::SetNextItemWidth(w * 0.5f);
+        ImGui::InputDouble("##step", &f.step, 0.0, 0.0, "%g");
+        ImGui::SameLine();
+        float step = float(f.step);
+        ImGui::SetNextItemWidth(w * 0.5f);
+        if (ImGui::SliderFloat("step", &step, 1e-4f, 100.0f, "%.4g", ImGuiSliderFlags_Logarithmic))
+            f.step = step;
+        f.step = std::clamp(std::isfinite(f.step) ? f.step : 0.5, 0.0, 1e6);
+        ImGui::SetNextItemWidth(w);
+        ImGui::SliderInt("iterations", &f.iterations, 1, 200);
+        if (!closed) {
+            f.preserve_volume = false;
+            ImGui::BeginDisabled();
+        }
+        ImGui::Checkbox("preserve volume", &f.preserve_volume);
+        if (!closed) {
+            ImGui::EndDisabled();
+            if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+                ImGui::SetTooltip("The mesh has a boundary: its volume is not defined.");
+        }
+        if (busy) ImGui::BeginDisabled();
+        if (ImGui::Button("Smooth")) {
+            char op[256];
+            std::snprintf(op, sizeof(op),
+                          "smooth --operator %s --integration %s --step %g --iterations %d%s",
+                          names[std::clamp(f.op, 0, 4)], f.implicit ? "implicit" : "explicit",
+                          f.step, f.iterations, f.preserve_volume ? " --preserve-volume" : "");
+            commands.push_back(RunOperation{op});
+        }
+        if (busy) ImGui::EndDisabled();
+        ImGui::Separator();
+        morph_controls(morph, history, now);
     }
     ImGui::End();
 }

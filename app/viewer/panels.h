@@ -66,6 +66,16 @@ struct SubdivisionPanelState {
     int iterations = 1;
 };
 
+/// The Fairing panel's parameters.
+struct FairingPanelState {
+    bool open = false;
+    int op = 0;  ///< umbrella, improved-umbrella, curvature-flow, second-order, taubin
+    bool implicit = false;
+    double step = 0.5;  ///< lambda * dt
+    int iterations = 10;
+    bool preserve_volume = false;
+};
+
 /// The Tools panel's parameters.
 struct ToolsState {
     float noise_amount = 1.0f;  ///< percent of the mean edge length
@@ -84,6 +94,7 @@ struct ViewSettings {
 struct PanelState {
     ScreenshotState screenshot;
     SubdivisionPanelState subdivision;
+    FairingPanelState fairing;
     RecordState record;
     ToolsState tools;
     bool history_open = false;
@@ -144,6 +155,11 @@ void history_window(PanelState& panels, const History& history, bool busy, Comma
 /// the current entry); queues RunOperation.
 void subdivision_window(PanelState& panels, MorphState& morph, const History& history, bool busy,
                         double now, CommandQueue& commands);
+/// The Fairing panel (operator, integration, step, iterations, volume preservation, Smooth,
+/// and the morph of the current entry); queues RunOperation. `closed` says whether the mesh
+/// has a volume (volume preservation is disabled otherwise, with a tooltip saying why).
+void fairing_window(PanelState& panels, MorphState& morph, const History& history, bool closed,
+                    bool busy, double now, CommandQueue& commands);
 /// The Tools panel (Add noise); queues RunOperation.
 void tools_window(PanelState& panels, bool busy, CommandQueue& commands);
 /// The morph slider and the animation controls for the current history entry.

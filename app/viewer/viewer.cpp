@@ -191,6 +191,8 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
             panels_.morph_open = true;
         else if (panel == "tools")
             panels_.tools_open = true;
+        else if (panel == "fairing")
+            panels_.fairing.open = true;
         else if (panel == "subdivision")
             panels_.subdivision.open = true;
         else if (panel == "record")
@@ -200,8 +202,9 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
         else if (panel == "info")
             panels_.info_open = true;
         else
-            throw InvalidArgument("--show: unknown panel '" + panel +
-                                  "' (history, morph, tools, subdivision, record, log, info)");
+            throw InvalidArgument(
+                "--show: unknown panel '" + panel +
+                "' (history, morph, tools, subdivision, fairing, record, log, info)");
     }
     if (!options_.mesh_path.empty()) load(options_.mesh_path);
     if (!options_.operation.empty() && options_.mesh_path.empty())
@@ -240,6 +243,7 @@ void Viewer::on_state_changed(bool fit) {
     document_.texcoords_projected =
         mesh.has_vertex_property("v:texcoord") && document_.texcoords_projected;
     const MeshStats s = compute_stats(mesh);
+    document_.closed = s.volume.has_value();
     char buf[256];
     std::vector<std::string>& info = document_.info;
     info.clear();
@@ -829,6 +833,8 @@ void Viewer::draw_ui() {
     history_window(panels_, document_.history, jobs_.busy(), commands_);
     tools_window(panels_, jobs_.busy(), commands_);
     subdivision_window(panels_, morph_, document_.history, jobs_.busy(), glfwGetTime(), commands_);
+    fairing_window(panels_, morph_, document_.history, document_.closed, jobs_.busy(),
+                   glfwGetTime(), commands_);
     morph_window(panels_, morph_, document_.history, glfwGetTime());
     record_window(panels_, document_.history.current() > 0 && !jobs_.busy(), commands_);
     StatusInfo status;

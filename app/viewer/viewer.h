@@ -45,6 +45,7 @@ struct Document {
     std::string path;                  ///< file path; empty for the default model
     LoadReport report;                 ///< what loading it did (empty for built-in models)
     std::vector<std::string> info;     ///< model information lines, computed once per document
+    bool closed = false;               ///< the current state has no boundary (volume is defined)
     bool texcoords_projected = false;  ///< texture coordinates were computed by projection
 };
 
