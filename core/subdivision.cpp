@@ -116,6 +116,21 @@ struct Stage {
 // 1-to-4 refinement (Loop, Butterfly, Modified Butterfly)
 // ---------------------------------------------------------------------------------------
 
+/// Sum of the neighbours' positions around the interior vertex whose outgoing halfedge is
+/// h0; `n` receives the valence.
+inline Point ring_sum(const HalfedgeMesh& m, const std::vector<Point>& x, Halfedge h0,
+                      unsigned& n) {
+    Point s = Point::Zero();
+    n = 0;
+    Halfedge h = h0;
+    do {
+        s += x[m.to_vertex(h).idx()];
+        ++n;
+        h = m.ccw_rotated(h);
+    } while (h != h0);
+    return s;
+}
+
 inline Index half_a(Index h) {
     return 4 * (h >> 1) + 2 * (h & 1u);
 }
@@ -246,14 +261,8 @@ void loop_positions(const HalfedgeMesh& m, std::vector<Point>& p, const Stage& s
             p[vi] = 0.75 * x[vi] +
                     0.125 * (x[m.to_vertex(h0).idx()] + x[m.from_vertex(m.prev(h0)).idx()]);
         } else {
-            Point s = Point::Zero();
             unsigned n = 0;
-            Halfedge h = h0;
-            do {
-                s += x[m.to_vertex(h).idx()];
-                ++n;
-                h = m.ccw_rotated(h);
-            } while (h != h0);
+            const Point s = ring_sum(m, x, h0, n);
             const double b = beta_of(n);
             p[vi] = (1.0 - n * b) * x[vi] + b * s;
         }
@@ -531,14 +540,8 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& m, bool even_step, int level,
                                       27.0)
                               : x[vi];
         } else {
-            Point s = Point::Zero();
             unsigned n = 0;
-            Halfedge h = h0;
-            do {
-                s += x[m.to_vertex(h).idx()];
-                ++n;
-                h = m.ccw_rotated(h);
-            } while (h != h0);
+            const Point s = ring_sum(m, x, h0, n);
             if (n >= alpha.size()) alpha.resize(n + 1, -1.0);
             if (alpha[n] < 0) alpha[n] = (4.0 - 2.0 * std::cos(2 * kPi / n)) / 9.0;
             p[vi] = (1.0 - alpha[n]) * x[vi] + (alpha[n] / n) * s;
