@@ -9,8 +9,9 @@
 // no quoting. Errors are InvalidArgument messages that name the operation or the option
 // ("--amount: expected a number from 0 to 1000 ..., got 'abc'").
 //
-// Adding an operation (subdivide, smooth, decimate, ...) is one entry in registry() in
-// app/ops/operation.cpp plus its two functions there:
+// Adding an operation (decimate, spectrum, ...) is a file app/ops/<name>_op.cpp holding its
+// two functions and an entry function declared in app/ops/operation_entries.h, plus one line
+// in registry() in app/ops/operation.cpp:
 //   XOptions parse_x(OptionReader& r);   // loop `while (r.next())`, `r.is("--iterations")`,
 //                                        // r.number() / r.whole_number() / r.choice(...), and
 //                                        // r.unknown() for anything else; own checks
@@ -19,7 +20,8 @@
 //                                        // copies `mesh`, fills one OperationStep per
 //                                        // iteration with its MorphCorrespondence, sets label,
 //                                        // canonical parameters, report lines, values and ms
-//   make_entry<XOptions>("x", "--iterations N ...", parse_x, run_x),   // the entry
+//   OperationEntry x_operation() {      // the entry
+//       return make_entry<XOptions>("x", "--iterations N ...", parse_x, run_x); }
 // parse_operation() then checks the arguments without running, and run_operation() parses
 // again (cheap) and runs; nothing else changes (CLI record --op, viewer, history).
 #include <string>
