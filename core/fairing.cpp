@@ -1,7 +1,9 @@
 #include "core/fairing.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include <Eigen/IterativeLinearSolvers>
@@ -96,6 +98,127 @@ struct ImplicitSystem {
     }
 };
 
+/// Boundary vertices sliding along the input's boundary curves (BoundaryMode::Slide). Each
+/// loop keeps its original polyline; a vertex is an arc-length parameter u on it, smoothed by
+/// the 1-D umbrella u_i <- u_i + t·((u_{i-1} + u_{i+1})/2 - u_i) (parameters unwrapped across
+/// the loop's start), explicitly for t <= 1 and implicitly otherwise (the cyclic system
+/// (I + t/2·C)·u' = u + t/2·c, C the cyclic second difference and c the wrap-around terms
+/// ∓length at the loop's first and last vertex). Both keep the vertices in order, so each
+/// stays on the curve between its neighbours. Positions are the polyline at u (linear between
+/// the original vertices).
+class BoundarySlider {
+public:
+    BoundarySlider(const HalfedgeMesh& mesh, const VertexIndexMap& map) {
+        std::vector<std::uint8_t> seen(mesh.halfedges_size(), 0);
+        for (Halfedge h0 : mesh.halfedges()) {
+            if (!mesh.is_boundary(h0) || seen[h0.idx()]) continue;
+            Loop loop;
+            Halfedge h = h0;
+            do {
+                seen[h.idx()] = 1;
+                const Vertex v = mesh.from_vertex(h);
+                loop.rows.push_back(map.row_of[v.idx()]);
+                loop.points.push_back(mesh.position(v));
+                h = mesh.next(h);
+            } while (h != h0 && loop.rows.size() <= mesh.n_halfedges());
+            const std::size_t m = loop.rows.size();
+            loop.arc.resize(m + 1, 0.0);
+            for (std::size_t k = 0; k < m; ++k)
+                loop.arc[k + 1] = loop.arc[k] + (loop.points[(k + 1) % m] - loop.points[k]).norm();
+            loop.length = loop.arc[m];
+            loop.u.assign(loop.arc.begin(), loop.arc.end() - 1);
+            if (m >= 3 && loop.length > 0 && std::isfinite(loop.length))
+                loops_.push_back(std::move(loop));
+        }
+    }
+    std::size_t loops() const { return loops_.size(); }
+
+    /// One step of size t; writes the new positions into the loops' rows of x.
+    void step(double t, bool implicit, Eigen::MatrixXd& x) {
+        for (Loop& loop : loops_) {
+            const std::size_t m = loop.u.size();
+            const std::vector<double> u = loop.u;
+            auto prev = [&](std::size_t k) { return k == 0 ? u[m - 1] - loop.length : u[k - 1]; };
+            auto next = [&](std::size_t k) { return k + 1 == m ? u[0] + loop.length : u[k + 1]; };
+            if (!implicit) {
+                for (std::size_t k = 0; k < m; ++k)
+                    loop.u[k] = u[k] + t * (0.5 * (prev(k) + next(k)) - u[k]);
+            } else {
+                std::vector<Triplet> trip;
+                Eigen::VectorXd rhs(static_cast<Eigen::Index>(m));
+                for (std::size_t k = 0; k < m; ++k) {
+                    const auto i = Eigen::Index(k);
+                    trip.emplace_back(i, i, 1.0 + t);
+                    trip.emplace_back(i, Eigen::Index((k + m - 1) % m), -0.5 * t);
+                    trip.emplace_back(i, Eigen::Index((k + 1) % m), -0.5 * t);
+                    rhs[i] = u[k];
+                }
+                rhs[0] -= 0.5 * t * loop.length;
+                rhs[Eigen::Index(m - 1)] += 0.5 * t * loop.length;
+                SparseMatrix a(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
+                a.setFromTriplets(trip.begin(), trip.end());
+                Eigen::SimplicialLDLT<SparseMatrix> ldlt(a);
+                const Eigen::VectorXd sol = ldlt.solve(rhs);
+                if (ldlt.info() == Eigen::Success && sol.allFinite())
+                    for (std::size_t k = 0; k < m; ++k) loop.u[k] = sol[Eigen::Index(k)];
+            }
+            for (std::size_t k = 0; k < m; ++k)
+                x.row(loop.rows[k]) = position_at(loop, loop.u[k]).transpose();
+        }
+    }
+
+private:
+    struct Loop {
+        std::vector<Index> rows;    ///< operator rows, in loop order
+        std::vector<Point> points;  ///< the original polyline
+        std::vector<double> arc;    ///< arc length at each original vertex (m + 1 entries)
+        double length = 0;
+        std::vector<double> u;  ///< current parameters (unwrapped, increasing)
+    };
+    static Point position_at(const Loop& loop, double u) {
+        double w = std::fmod(u, loop.length);
+        if (w < 0) w += loop.length;
+        const std::size_t m = loop.points.size();
+        const std::size_t k = std::size_t(std::clamp<std::ptrdiff_t>(
+            std::upper_bound(loop.arc.begin(), loop.arc.end(), w) - loop.arc.begin() - 1, 0,
+            std::ptrdiff_t(m - 1)));
+        const double seg = loop.arc[k + 1] - loop.arc[k];
+        const double a = seg > 0 ? std::clamp((w - loop.arc[k]) / seg, 0.0, 1.0) : 0.0;
+        return (1 - a) * loop.points[k] + a * loop.points[(k + 1) % m];
+    }
+    std::vector<Loop> loops_;
+};
+
+/// Automatic solver choice for implicit steps. The system S + t·K, preconditioned by its
+/// diagonal, has its condition number bounded by 1 + t·max_i 2·K_ii/S_i (Gershgorin on
+/// S⁻¹K, whose rows sum to zero): 1 + 2t for umbrella, curvature flow and second order
+/// (normalized), but large for the scale-dependent improved umbrella (K_ii/S_i ~ 1/h²).
+/// Jacobi-preconditioned conjugate gradients warm-started from the current positions need
+/// about sqrt(bound)·ln(2/tol)/2 iterations of O(nnz) each, far less than a sparse Cholesky
+/// factorization (whose fill grows superlinearly with the mesh) when the bound is moderate.
+/// So CG runs unless the bound exceeds kCgConditionLimit, or the weights are fixed
+/// (umbrella), the factorization is reused by many iterations and the mesh is small enough
+/// for it to be cheap.
+constexpr double kCgConditionLimit = 1e3;
+constexpr std::size_t kDirectRowsLimit = 60000;
+constexpr int kDirectReuseIterations = 8;
+
+/// The bound above over the free rows of `lap`.
+double condition_bound(const Laplacian& lap, double step) {
+    double m = 0;
+    for (std::size_t r = 0; r < lap.map.rows(); ++r) {
+        if (lap.fixed[r]) continue;
+        const double ratio = 2.0 * lap.K.valuePtr()[lap.diag_slots[r]] / lap.S[Eigen::Index(r)];
+        if (std::isfinite(ratio)) m = std::max(m, ratio);
+    }
+    return 1.0 + step * m;
+}
+
+double ms_between(std::chrono::steady_clock::time_point a,
+                  std::chrono::steady_clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
 const char* kLdlt = "SimplicialLDLT";
 const char* kCg = "ConjugateGradient(Jacobi)";
 
@@ -125,6 +248,17 @@ FairingOperator parse_fairing_operator(const std::string& name) {
     throw InvalidArgument("parse_fairing_operator: unknown operator '" + name +
                           "' (expected umbrella, improved-umbrella, curvature-flow, "
                           "second-order, taubin)");
+}
+
+const char* boundary_mode_name(BoundaryMode mode) {
+    return mode == BoundaryMode::Fixed ? "fixed" : "slide";
+}
+
+BoundaryMode parse_boundary_mode(const std::string& name) {
+    if (name == "fixed") return BoundaryMode::Fixed;
+    if (name == "slide") return BoundaryMode::Slide;
+    throw InvalidArgument("parse_boundary_mode: unknown boundary mode '" + name +
+                          "' (expected fixed, slide)");
 }
 
 const char* integration_name(Integration integration) {
@@ -164,16 +298,24 @@ FairingResult smooth(const HalfedgeMesh& mesh, const FairingOptions& o, Progress
     const double v0 = res.initial_volume;
 
     HalfedgeMesh current = mesh;
+    const bool slide = o.boundary == BoundaryMode::Slide && !is_closed(mesh);
+    std::optional<BoundarySlider> slider;
     Laplacian lap;
     bool have_lap = false;
     ImplicitSystem sys;
-    res.steps.reserve(std::size_t(o.iterations));
+    if (o.keep_steps) res.steps.reserve(std::size_t(o.iterations));
+    bool slide_explicit_fallback = false;
 
+    int done = 0;
+    bool use_direct = o.solver == ImplicitSolver::Direct;
     for (int it = 0; it < o.iterations; ++it) {
         progress.check_cancelled();
         progress.report(double(it) / o.iterations, "smoothing");
         if (!have_lap || !weights_fixed) {
-            lap = build_laplacian(current, lop);
+            if (have_lap)
+                refresh_laplacian(current, lap);
+            else
+                lap = build_laplacian(current, lop);
             auto& d = res.diagnostics;
             const auto& n = lap.diagnostics;
             d.negative_weights_clamped += n.negative_weights_clamped;
@@ -182,9 +324,32 @@ FairingResult smooth(const HalfedgeMesh& mesh, const FairingOptions& o, Progress
             d.short_edges += n.short_edges;
             d.stalled_vertices = std::max(d.stalled_vertices, n.stalled_vertices);
             have_lap = true;
-            if (implicit) sys.build(lap, o.step);
+            if (implicit) {
+                sys.build(lap, o.step);
+                if (it == 0 && o.solver == ImplicitSolver::Auto) {
+                    const double cond = condition_bound(lap, o.step);
+                    use_direct = cond > kCgConditionLimit ||
+                                 (weights_fixed && o.iterations >= kDirectReuseIterations &&
+                                  lap.map.rows() <= kDirectRowsLimit);
+                    std::ostringstream s;
+                    s << "solver choice: condition bound " << cond << ", " << lap.map.rows()
+                      << " rows -> " << (use_direct ? kLdlt : kCg);
+                    res.report.push_back(s.str());
+                }
+            }
+            if (slide && !slider) {
+                slider.emplace(mesh, lap.map);
+                res.report.push_back("boundary: " + std::to_string(slider->loops()) +
+                                     " loop(s) sliding along the input's boundary curves");
+            }
         }
         Eigen::MatrixXd x = gather_positions(current, lap.map);
+        if (slider) {
+            const double t = taubin ? o.taubin_lambda : o.step;
+            const bool implicit_curve = implicit || t > 1.0;
+            slide_explicit_fallback = slide_explicit_fallback || (!implicit && t > 1.0);
+            slider->step(t, implicit_curve, x);
+        }
         if (taubin) {
             x += o.taubin_lambda * (lap.L * x);
             x += o.taubin_mu * (lap.L * x);
@@ -198,21 +363,26 @@ FairingResult smooth(const HalfedgeMesh& mesh, const FairingOptions& o, Progress
             Eigen::MatrixXd y;
             bool ok = false;
             const char* used = kLdlt;
-            if (o.solver != ImplicitSolver::Iterative) {
+            if (use_direct) {
                 if (!sys.factored) {
+                    const auto t0 = std::chrono::steady_clock::now();
                     sys.ldlt.compute(sys.A);
+                    res.factorization_ms += ms_between(t0, std::chrono::steady_clock::now());
                     sys.factored = true;
                     sys.factor_ok = sys.ldlt.info() == Eigen::Success;
                     ++res.factorizations;
                 }
                 if (sys.factor_ok) {
+                    const auto t0 = std::chrono::steady_clock::now();
                     y = sys.ldlt.solve(rhs);
+                    res.solve_ms += ms_between(t0, std::chrono::steady_clock::now());
                     ok = sys.ldlt.info() == Eigen::Success && finite_and_bounded(y);
                     if (!ok) sys.factor_ok = false;
                 }
             }
             if (!ok) {
                 used = kCg;
+                const auto t0 = std::chrono::steady_clock::now();
                 Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper,
                                          Eigen::DiagonalPreconditioner<double>>
                     cg;
@@ -220,6 +390,8 @@ FairingResult smooth(const HalfedgeMesh& mesh, const FairingOptions& o, Progress
                 cg.setMaxIterations(std::max<Eigen::Index>(1000, 4 * nf));
                 cg.compute(sys.A);
                 y = cg.solveWithGuess(rhs, xf);
+                res.cg_iterations += std::size_t(cg.iterations());
+                res.solve_ms += ms_between(t0, std::chrono::steady_clock::now());
             }
             const double rn = rhs.norm();
             const double residual = rn > 0 ? (sys.A * y - rhs).norm() / rn : (sys.A * y).norm();
@@ -255,10 +427,16 @@ FairingResult smooth(const HalfedgeMesh& mesh, const FairingOptions& o, Progress
                                      std::to_string(vn) + ")");
             }
         }
-        res.steps.push_back(current);
+        if (o.keep_steps) res.steps.push_back(current);
+        ++done;
     }
+    if (!o.keep_steps && done > 0) res.steps.push_back(std::move(current));
+    if (slide_explicit_fallback)
+        res.report.push_back(
+            "boundary: steps above 1 move along the curve implicitly (an "
+            "explicit 1-D step above 1 is unstable)");
     progress.report(1.0, "smoothing");
-    if (is_closed(mesh)) res.final_volume = volume(current);
+    if (is_closed(mesh) && !res.steps.empty()) res.final_volume = volume(res.steps.back());
     const auto& d = res.diagnostics;
     if (d.total() > 0) {
         std::ostringstream s;
@@ -270,8 +448,9 @@ FairingResult smooth(const HalfedgeMesh& mesh, const FairingOptions& o, Progress
     }
     if (implicit) {
         std::ostringstream s;
-        s << "solver " << res.solver << ", " << res.factorizations
-          << " factorization(s), max relative residual " << res.max_residual;
+        s << "solver " << res.solver << ", " << res.factorizations << " factorization(s), "
+          << res.cg_iterations << " CG iteration(s), max relative "
+          << "residual " << res.max_residual;
         res.report.push_back(s.str());
     }
     return res;

@@ -35,6 +35,11 @@ namespace trilab {
 enum class FairingOperator { Umbrella, ImprovedUmbrella, CurvatureFlow, SecondOrder, Taubin };
 enum class Integration { Explicit, Implicit };
 enum class ImplicitSolver { Auto, Direct, Iterative };
+/// What boundary vertices do: stay where they are, or slide along the boundary curve.
+enum class BoundaryMode { Fixed, Slide };
+
+const char* boundary_mode_name(BoundaryMode mode);  ///< "fixed", "slide"
+BoundaryMode parse_boundary_mode(const std::string& name);
 
 /// "umbrella", "improved-umbrella", "curvature-flow", "second-order", "taubin".
 const char* fairing_operator_name(FairingOperator op);
@@ -57,6 +62,9 @@ struct FairingOptions {
     /// Auto/Direct: SimplicialLDLT, CG when it fails. Iterative: CG only.
     ImplicitSolver solver = ImplicitSolver::Auto;
     double cg_tolerance = 1e-10;  ///< relative residual target of the iterative solver
+    BoundaryMode boundary = BoundaryMode::Fixed;
+    /// false: steps holds only the result (saves a mesh copy per iteration).
+    bool keep_steps = true;
 };
 
 struct FairingResult {
@@ -67,6 +75,9 @@ struct FairingResult {
     std::string solver;       ///< "none", "SimplicialLDLT", "ConjugateGradient(Jacobi)"
     double max_residual = 0;  ///< largest relative residual of the implicit solves
     std::size_t factorizations = 0;
+    std::size_t cg_iterations = 0;     ///< summed over the iterative solves
+    double factorization_ms = 0;       ///< time in sparse Cholesky factorizations
+    double solve_ms = 0;               ///< time in implicit solves (either solver)
     LaplacianDiagnostics diagnostics;  ///< summed over all builds (stalled: largest per build)
     double initial_volume = 0, final_volume = 0;
     bool diverged = false;

@@ -78,20 +78,90 @@ std::size_t Laplacian::n_free() const {
     return std::size_t(std::count(fixed.begin(), fixed.end(), std::uint8_t(0)));
 }
 
+namespace {
+
+/// The position of entry (row, col) in the compressed column-major K (it must exist).
+Index slot_of(const SparseMatrix& K, Eigen::Index row, Eigen::Index col) {
+    const int* begin = K.innerIndexPtr() + K.outerIndexPtr()[col];
+    const int* end = K.innerIndexPtr() + K.outerIndexPtr()[col + 1];
+    const int* it = std::lower_bound(begin, end, int(row));
+    return Index(it - K.innerIndexPtr());
+}
+
+/// The operator's hinge (SecondOrder) or edge (other operators) entries of one edge, in the
+/// order of the slots recorded for it.
+struct Hinge {
+    Index r[4];
+};
+
+}  // namespace
+
 Laplacian build_laplacian(const HalfedgeMesh& mesh, LaplacianOperator op,
                           const LaplacianOptions& options) {
     Laplacian lap;
     lap.op = op;
+    lap.options = options;
     lap.map = make_vertex_index_map(mesh);
-    const std::size_t n = lap.map.rows();
-    auto& diag = lap.diagnostics;
+    const auto n = Eigen::Index(lap.map.rows());
     const auto& row = lap.map.row_of;
-    Eigen::VectorXd S = Eigen::VectorXd::Zero(Eigen::Index(n));
+    // The sparsity pattern, once: the diagonal, and each edge's pairs (each hinge's 4 x 4
+    // block for SecondOrder). refresh_laplacian() then writes values into fixed slots.
     std::vector<Triplet> trip;
+    for (Eigen::Index r = 0; r < n; ++r) trip.emplace_back(r, r, 0.0);
+    for (Edge e : mesh.edges()) {
+        const Halfedge h0 = HalfedgeMesh::halfedge(e, 0);
+        const Index i = row[mesh.from_vertex(h0).idx()], j = row[mesh.to_vertex(h0).idx()];
+        if (op == LaplacianOperator::SecondOrder) {
+            if (mesh.is_boundary(e)) continue;
+            const Index r[4] = {i, j, row[mesh.to_vertex(mesh.next(h0)).idx()],
+                                row[mesh.to_vertex(mesh.next(HalfedgeMesh::twin(h0))).idx()]};
+            for (int a = 0; a < 4; ++a)
+                for (int b = 0; b < 4; ++b) trip.emplace_back(r[a], r[b], 0.0);
+        } else {
+            trip.emplace_back(i, j, 0.0);
+            trip.emplace_back(j, i, 0.0);
+        }
+    }
+    lap.K.resize(n, n);
+    lap.K.setFromTriplets(trip.begin(), trip.end());
+    lap.K.makeCompressed();
+    trip = {};
+    lap.diag_slots.resize(std::size_t(n));
+    for (Eigen::Index r = 0; r < n; ++r) lap.diag_slots[std::size_t(r)] = slot_of(lap.K, r, r);
+    for (Edge e : mesh.edges()) {
+        const Halfedge h0 = HalfedgeMesh::halfedge(e, 0);
+        const Index i = row[mesh.from_vertex(h0).idx()], j = row[mesh.to_vertex(h0).idx()];
+        if (op == LaplacianOperator::SecondOrder) {
+            if (mesh.is_boundary(e)) continue;
+            const Index r[4] = {i, j, row[mesh.to_vertex(mesh.next(h0)).idx()],
+                                row[mesh.to_vertex(mesh.next(HalfedgeMesh::twin(h0))).idx()]};
+            for (int a = 0; a < 4; ++a)
+                for (int b = 0; b < 4; ++b) lap.edge_slots.push_back(slot_of(lap.K, r[a], r[b]));
+        } else {
+            lap.edge_slots.push_back(slot_of(lap.K, i, j));
+            lap.edge_slots.push_back(slot_of(lap.K, j, i));
+        }
+    }
+    lap.L = lap.K;  // same pattern; fixed rows hold explicit zeros
+    lap.S.resize(n);
+    lap.fixed.assign(std::size_t(n), 0);
+    refresh_laplacian(mesh, lap);
+    return lap;
+}
+
+void refresh_laplacian(const HalfedgeMesh& mesh, Laplacian& lap) {
+    const LaplacianOperator op = lap.op;
+    const std::size_t n = lap.map.rows();
+    LaplacianDiagnostics diag;
+    const auto& row = lap.map.row_of;
+    double* k = lap.K.valuePtr();
+    std::fill(k, k + lap.K.nonZeros(), 0.0);
+    Eigen::VectorXd& S = lap.S;
+    S.setZero();
+    std::size_t slot = 0;
 
     if (op == LaplacianOperator::SecondOrder) {
         // K = Cᵀ C, one hinge per interior edge; see the header for the coefficients.
-        trip.reserve(mesh.n_edges() * 16);
         for (Edge e : mesh.edges()) {
             if (mesh.is_boundary(e)) continue;
             const Halfedge h0 = HalfedgeMesh::halfedge(e, 0);  // v1 -> v2, in T1
@@ -102,19 +172,15 @@ Laplacian build_laplacian(const HalfedgeMesh& mesh, LaplacianOperator op,
             const Point &p3 = mesh.position(v3), &p4 = mesh.position(v4);
             const double t1_1 = corner_cot(p1, p2, p3, diag), t1_2 = corner_cot(p2, p3, p1, diag);
             const double t2_1 = corner_cot(p1, p4, p2, diag), t2_2 = corner_cot(p2, p1, p4, diag);
-            const Index r[4] = {row[v1.idx()], row[v2.idx()], row[v3.idx()], row[v4.idx()]};
             const double c[4] = {-(t1_2 + t2_2), -(t1_1 + t2_1), t1_1 + t1_2, t2_1 + t2_2};
             for (int a = 0; a < 4; ++a)
-                for (int b = 0; b < 4; ++b) trip.emplace_back(r[a], r[b], c[a] * c[b]);
+                for (int b = 0; b < 4; ++b) k[lap.edge_slots[slot++]] += c[a] * c[b];
         }
-        lap.K.resize(Eigen::Index(n), Eigen::Index(n));
-        lap.K.setFromTriplets(trip.begin(), trip.end());
-        S = lap.K.diagonal();
+        for (std::size_t r = 0; r < n; ++r) S[Eigen::Index(r)] = k[lap.diag_slots[r]];
     } else {
         double min_len = 0;
         if (op == LaplacianOperator::ImprovedUmbrella) min_len = 1e-6 * mean_edge_length(mesh);
         if (!(min_len > 0) || !std::isfinite(min_len)) min_len = 1e-300;
-        trip.reserve(mesh.n_edges() * 4);
         for (Edge e : mesh.edges()) {
             const Halfedge h = HalfedgeMesh::halfedge(e, 0);
             const Index i = row[mesh.from_vertex(h).idx()], j = row[mesh.to_vertex(h).idx()];
@@ -131,7 +197,7 @@ Laplacian build_laplacian(const HalfedgeMesh& mesh, LaplacianOperator op,
                 S[j] += 0.5 * len;
             } else if (op == LaplacianOperator::CurvatureFlow) {
                 w = cot_opposite(mesh, h, diag) + cot_opposite(mesh, HalfedgeMesh::twin(h), diag);
-                if (w < 0 && options.clamp_negative_cotangents) {
+                if (w < 0 && lap.options.clamp_negative_cotangents) {
                     ++diag.negative_weights_clamped;
                     w = 0;
                 }
@@ -140,24 +206,21 @@ Laplacian build_laplacian(const HalfedgeMesh& mesh, LaplacianOperator op,
                 S[i] += w;
                 S[j] += w;
             }
-            trip.emplace_back(i, j, -w);
-            trip.emplace_back(j, i, -w);
-            trip.emplace_back(i, i, w);
-            trip.emplace_back(j, j, w);
+            k[lap.edge_slots[slot++]] -= w;
+            k[lap.edge_slots[slot++]] -= w;
+            k[lap.diag_slots[i]] += w;
+            k[lap.diag_slots[j]] += w;
         }
-        lap.K.resize(Eigen::Index(n), Eigen::Index(n));
-        lap.K.setFromTriplets(trip.begin(), trip.end());
     }
-    lap.K.makeCompressed();
 
     // Fixed rows: boundary (by option) and stalled vertices.
-    lap.fixed.assign(n, 0);
     double s_max = 0;
     for (Eigen::Index r = 0; r < S.size(); ++r)
         if (std::isfinite(S[r])) s_max = std::max(s_max, std::abs(S[r]));
     for (std::size_t r = 0; r < n; ++r) {
         const Vertex v = lap.map.vertex_of[r];
-        if (options.fix_boundary && mesh.is_boundary(v)) {
+        lap.fixed[r] = 0;
+        if (lap.options.fix_boundary && mesh.is_boundary(v)) {
             lap.fixed[r] = 1;
         } else if (!(S[Eigen::Index(r)] > 1e-12 * s_max)) {
             lap.fixed[r] = 1;
@@ -165,19 +228,15 @@ Laplacian build_laplacian(const HalfedgeMesh& mesh, LaplacianOperator op,
         }
         if (lap.fixed[r]) S[Eigen::Index(r)] = 1.0;
     }
-    lap.S = S;
 
-    // L = -S⁻¹ K on free rows.
-    std::vector<Triplet> lt;
-    lt.reserve(std::size_t(lap.K.nonZeros()));
-    for (Eigen::Index c = 0; c < lap.K.outerSize(); ++c)
-        for (SparseMatrix::InnerIterator it(lap.K, c); it; ++it)
-            if (!lap.fixed[std::size_t(it.row())])
-                lt.emplace_back(it.row(), it.col(), -it.value() / S[it.row()]);
-    lap.L.resize(Eigen::Index(n), Eigen::Index(n));
-    lap.L.setFromTriplets(lt.begin(), lt.end());
-    lap.L.makeCompressed();
-    return lap;
+    // L = -S⁻¹ K on free rows (same pattern as K, zeros on fixed rows).
+    const int* inner = lap.K.innerIndexPtr();
+    double* l = lap.L.valuePtr();
+    for (Eigen::Index p = 0; p < lap.K.nonZeros(); ++p) {
+        const int r = inner[p];
+        l[p] = lap.fixed[std::size_t(r)] ? 0.0 : -k[p] / S[r];
+    }
+    lap.diagnostics = diag;
 }
 
 Eigen::MatrixXd gather_positions(const HalfedgeMesh& mesh, const VertexIndexMap& map) {

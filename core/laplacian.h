@@ -48,7 +48,7 @@
 // Degenerate geometry never produces NaN: corners of zero-area triangles get cotangent 0,
 // cotangents are clamped to ±kMaxCotangent, edge lengths below 1e-6 x the mean edge length are
 // raised to it; every such event is counted in LaplacianDiagnostics.
-// Complexity: O(vertices + faces) to build.
+// Complexity: O(vertices + faces) to build (the pattern once, then values in place).
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -103,11 +103,16 @@ using SparseMatrix = Eigen::SparseMatrix<double>;
 struct Laplacian {
     LaplacianOperator op = LaplacianOperator::Umbrella;
     VertexIndexMap map;
-    SparseMatrix K;                   ///< symmetric PSD, rows() x rows()
-    Eigen::VectorXd S;                ///< diagonal normalizer; 1 on fixed rows (unused there)
-    std::vector<std::uint8_t> fixed;  ///< per row: 1 = does not move
-    SparseMatrix L;                   ///< -S⁻¹K on free rows, zero rows on fixed ones
-    LaplacianDiagnostics diagnostics;
+    SparseMatrix K;                    ///< symmetric PSD, rows() x rows()
+    Eigen::VectorXd S;                 ///< diagonal normalizer; 1 on fixed rows (unused there)
+    std::vector<std::uint8_t> fixed;   ///< per row: 1 = does not move
+    SparseMatrix L;                    ///< -S⁻¹K on free rows, zero rows on fixed ones
+    LaplacianDiagnostics diagnostics;  ///< of the last build or refresh
+    LaplacianOptions options;
+    /// Value positions in K (and L) that refresh_laplacian() writes: per row its diagonal,
+    /// per edge its two off-diagonal entries (SecondOrder: per interior edge its hinge's
+    /// 4 x 4 block). Internal to build/refresh.
+    std::vector<Index> diag_slots, edge_slots;
     std::size_t n_free() const;
 };
 
@@ -115,6 +120,11 @@ struct Laplacian {
 /// but std::bad_alloc.
 Laplacian build_laplacian(const HalfedgeMesh& mesh, LaplacianOperator op,
                           const LaplacianOptions& options = {});
+
+/// Recomputes the values of `lap` (K, S, L, fixed, diagnostics) over the current positions of
+/// `mesh`, which must have the connectivity `lap` was built on. No allocation: explicit
+/// fairing calls it every iteration.
+void refresh_laplacian(const HalfedgeMesh& mesh, Laplacian& lap);
 
 /// Positions of the mapped vertices, one row per map row (rows() x 3).
 Eigen::MatrixXd gather_positions(const HalfedgeMesh& mesh, const VertexIndexMap& map);

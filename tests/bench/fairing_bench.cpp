@@ -1,0 +1,232 @@
+// Fairing benchmark (not a test): times core/fairing.h's smooth() on the shared Stanford bunny
+// (35,947 vertices), on the bunny Loop-subdivided twice (556k vertices, the large
+// mesh) and on a torus of 1,000,000 vertices, and prints medians against the floors:
+//   - one explicit umbrella iteration on 1M vertices under 50 ms;
+//   - one implicit cotangent step on the bunny under 150 ms, factorization included;
+//   - one implicit step on the 556k-vertex mesh under 1.5 s;
+// and the ratio of one implicit step to 20 explicit iterations (the reference found ~15x).
+//
+//   trilab_fairing_bench [--runs N] [--check] [--quick]
+//
+// A timed call is one smooth() call on a mesh already in memory, with keep_steps off (only
+// the result is kept, as trilab-cli smooth does); "per iteration" divides a 10-iteration
+// call by 10. Every explicit operator, and every implicit operator with each solver (the
+// sparse Cholesky with its factorization and solve timed apart, the conjugate gradients, and
+// the automatic choice), is timed. --quick uses a 40k-vertex torus instead of the large
+// meshes (for a smoke run); --check exits non-zero when a floor is missed.
+//
+// Peers, compiled in when found at configure time (benchmark-only, see
+// third_party/cmake/dependencies.cmake): OpenMesh 9's JacobiLaplaceSmootherT (uniform and
+// cotangent, 10 iterations, tangential and normal, no boundary fixing needed on closed
+// meshes) on the 556k mesh (aim: trilab 3x faster), and CGAL 5.5's smooth_shape (one
+// implicit mean-curvature-flow step) on the bunny (aim: 2x).
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/fairing.h"
+#include "core/generators.h"
+#include "core/io/mesh_io.h"
+#include "core/platform.h"
+#include "core/progress.h"
+#include "core/subdivision.h"
+#include "fairing_bench_peers.h"
+
+using namespace trilab;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+double time_ms(const std::function<void()>& f, int runs) {
+    f();  // warm-up
+    std::vector<double> t;
+    for (int i = 0; i < runs; ++i) {
+        const auto t0 = Clock::now();
+        f();
+        t.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    }
+    return median(t);
+}
+
+FairingOptions options(FairingOperator op, Integration integration, double step, int iterations,
+                       ImplicitSolver solver = ImplicitSolver::Auto) {
+    FairingOptions o;
+    o.op = op;
+    o.integration = integration;
+    o.step = step;
+    o.iterations = iterations;
+    o.solver = solver;
+    o.keep_steps = false;
+    return o;
+}
+
+const FairingOperator kOperators[] = {FairingOperator::Umbrella, FairingOperator::ImprovedUmbrella,
+                                      FairingOperator::CurvatureFlow, FairingOperator::SecondOrder,
+                                      FairingOperator::Taubin};
+
+struct Floors {
+    bool ok = true;
+    void check(const char* what, double ms, double floor_ms) {
+        const bool met = ms < floor_ms;
+        ok = ok && met;
+        std::printf("  floor %-52s %9.1f ms < %7.0f ms  ratio %5.2f  %s\n", what, ms, floor_ms,
+                    floor_ms / ms, met ? "met" : "MISSED");
+    }
+};
+
+/// Times every explicit operator (1 iteration and 10 iterations) on `mesh`.
+void explicit_table(const char* name, const HalfedgeMesh& mesh, int runs) {
+    std::printf("\n%s (%zu vertices): explicit, step 0.5\n", name, mesh.n_vertices());
+    std::printf("  %-18s %12s %16s\n", "operator", "1 call", "per iter (x10)");
+    for (FairingOperator op : kOperators) {
+        const double one =
+            time_ms([&] { smooth(mesh, options(op, Integration::Explicit, 0.5, 1)); }, runs);
+        const double ten =
+            time_ms([&] { smooth(mesh, options(op, Integration::Explicit, 0.5, 10)); }, runs);
+        std::printf("  %-18s %9.1f ms %13.1f ms\n", fairing_operator_name(op), one, ten / 10);
+    }
+}
+
+/// Times one implicit step of every operator with each solver on `mesh`.
+void implicit_table(const char* name, const HalfedgeMesh& mesh, int runs, bool with_direct) {
+    std::printf("\n%s (%zu vertices): one implicit step, step 1\n", name, mesh.n_vertices());
+    std::printf("  %-18s %10s %10s %10s %10s %10s  %s\n", "operator", "auto", "LDLT", "factor",
+                "solve", "CG", "auto ran");
+    for (FairingOperator op : kOperators) {
+        if (op == FairingOperator::Taubin) continue;
+        FairingResult last;
+        const double autom =
+            time_ms([&] { last = smooth(mesh, options(op, Integration::Implicit, 1.0, 1)); }, runs);
+        double direct = 0, factor = 0, solve = 0;
+        if (with_direct) {
+            FairingResult d;
+            direct = time_ms(
+                [&] {
+                    d = smooth(mesh,
+                               options(op, Integration::Implicit, 1.0, 1, ImplicitSolver::Direct));
+                },
+                runs);
+            factor = d.factorization_ms;
+            solve = d.solve_ms;
+        }
+        const double cg = time_ms(
+            [&] {
+                smooth(mesh, options(op, Integration::Implicit, 1.0, 1, ImplicitSolver::Iterative));
+            },
+            runs);
+        std::printf("  %-18s %7.1f ms %7.1f ms %7.1f ms %7.1f ms %7.1f ms  %s\n",
+                    fairing_operator_name(op), autom, direct, factor, solve, cg,
+                    last.solver.c_str());
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    int runs = 5;
+    bool check = false, quick = false;
+    for (int i = 1; i < argc; ++i) {
+        if (!std::strcmp(argv[i], "--runs") && i + 1 < argc)
+            runs = std::max(1, std::atoi(argv[++i]));
+        else if (!std::strcmp(argv[i], "--check"))
+            check = true;
+        else if (!std::strcmp(argv[i], "--quick"))
+            quick = true;
+        else {
+            std::fprintf(stderr, "usage: trilab_fairing_bench [--runs N] [--check] [--quick]\n");
+            return 2;
+        }
+    }
+    tune_heap_for_large_meshes();
+    Floors floors;
+
+    const std::filesystem::path bunny_path =
+        std::filesystem::path(TRILAB_SHARED_DIR) / "meshes" / "stanford-bunny.obj";
+    HalfedgeMesh bunny, large;
+    const bool have_bunny = std::filesystem::exists(bunny_path);
+    if (have_bunny) {
+        bunny = read_mesh(bunny_path.string()).mesh;
+    } else {
+        std::printf("%s not found: the bunny rows are skipped and the large mesh is a torus\n",
+                    bunny_path.string().c_str());
+    }
+    const HalfedgeMesh huge =
+        quick ? make_torus(200, 200, 1.0, 0.3) : make_torus(1000, 1000, 1.0, 0.3);
+    if (quick) {
+        large = make_torus(200, 200, 1.0, 0.3);
+    } else if (have_bunny) {
+        SubdivisionOptions so;
+        so.scheme = SubdivisionScheme::Loop;
+        so.iterations = 2;
+        NullProgress np;
+        large = subdivide(bunny, so, np).levels.back().mesh;
+    } else {
+        large = make_torus(745, 745, 1.0, 0.3);
+    }
+    std::printf("trilab_fairing_bench: medians of %d runs after one warm-up\n", runs);
+
+    // Explicit iterations.
+    if (have_bunny) explicit_table("bunny", bunny, runs);
+    explicit_table(quick ? "torus 40k" : "large", large, runs);
+    const double umbrella_huge_10 = time_ms(
+        [&] { smooth(huge, options(FairingOperator::Umbrella, Integration::Explicit, 0.5, 10)); },
+        runs);
+    const double umbrella_huge_1 = time_ms(
+        [&] { smooth(huge, options(FairingOperator::Umbrella, Integration::Explicit, 0.5, 1)); },
+        runs);
+    std::printf(
+        "\ntorus (%zu vertices): explicit umbrella 1 call %.1f ms, per iteration of 10 "
+        "%.1f ms\n",
+        huge.n_vertices(), umbrella_huge_1, umbrella_huge_10 / 10);
+
+    // Implicit steps.
+    if (have_bunny) implicit_table("bunny", bunny, runs, true);
+    implicit_table(quick ? "torus 40k" : "large", large, quick ? runs : std::min(runs, 3), quick);
+
+    std::printf("\nfloors:\n");
+    floors.check("explicit umbrella iteration, 1M vertices (of 10)", umbrella_huge_10 / 10, 50);
+    floors.check("explicit umbrella, 1M vertices, single call", umbrella_huge_1, 50);
+    if (have_bunny) {
+        const double imp = time_ms(
+            [&] {
+                smooth(bunny,
+                       options(FairingOperator::CurvatureFlow, Integration::Implicit, 1.0, 1));
+            },
+            runs);
+        floors.check("implicit cotangent step, bunny, incl. factorization", imp, 150);
+        const double exp20 = time_ms(
+            [&] {
+                smooth(bunny,
+                       options(FairingOperator::CurvatureFlow, Integration::Explicit, 0.5, 20));
+            },
+            runs);
+        std::printf(
+            "  implicit cotangent step / 20 explicit iterations: %.1f / %.1f ms = %.2f "
+            "(reference: about 15)\n",
+            imp, exp20, imp / exp20);
+    }
+    for (FairingOperator op : {FairingOperator::Umbrella, FairingOperator::CurvatureFlow}) {
+        const double imp = time_ms(
+            [&] { smooth(large, options(op, Integration::Implicit, 1.0, 1)); }, std::min(runs, 3));
+        const std::string what = std::string("implicit ") + fairing_operator_name(op) + " step, " +
+                                 std::to_string(large.n_vertices()) + " vertices";
+        floors.check(what.c_str(), imp, 1500);
+    }
+
+    run_peers(have_bunny ? &bunny : nullptr, large, runs);
+    if (check && !floors.ok) return 1;
+    return 0;
+}
