@@ -76,7 +76,7 @@ struct ColoringEntry {
     const char* label;
 };
 
-constexpr std::array<ColoringEntry, 8> kColorings = {{
+constexpr std::array<ColoringEntry, 9> kColorings = {{
     {VertexColoring::None, "none", ""},
     {VertexColoring::Normal, "normal", "vertex normal"},
     {VertexColoring::K1, "k1", "first principal curvature k1"},
@@ -85,6 +85,8 @@ constexpr std::array<ColoringEntry, 8> kColorings = {{
     {VertexColoring::Gaussian, "gaussian", "Gaussian curvature K"},
     {VertexColoring::ShapeIndex, "shape-index", "shape index"},
     {VertexColoring::SubdivisionLevel, "subdivision", "subdivision level of each vertex"},
+    {VertexColoring::SmoothingDistance, "smoothing-distance",
+     "smoothing distance (along the normal)"},
 }};
 
 const ColoringEntry& entry(VertexColoring coloring) {
@@ -157,8 +159,23 @@ ValueRange symmetric_range(const ValueRange& range) {
     return {-m, m};
 }
 
+std::vector<double> smoothing_distance(const HalfedgeMesh& mesh,
+                                       const std::vector<Point>& reference) {
+    if (reference.size() != mesh.vertices_size())
+        throw InvalidArgument("smoothing_distance: " + std::to_string(reference.size()) +
+                              " reference positions for " + std::to_string(mesh.vertices_size()) +
+                              " vertices");
+    std::vector<double> d(mesh.vertices_size(), 0.0);
+    for (Vertex v : mesh.vertices()) {
+        const Vector3 normal = vertex_normal(mesh, v);
+        const double value = (mesh.position(v) - reference[v.idx()]).dot(normal);
+        if (std::isfinite(value)) d[v.idx()] = value;
+    }
+    return d;
+}
+
 VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
-                            const ColoringOptions& options) {
+                            const ColoringOptions& options, const std::vector<Point>* reference) {
     check_percentiles("color_vertices", "low_percentile", options.low_percentile, "high_percentile",
                       options.high_percentile);
     const ColoringEntry& e = entry(coloring);
@@ -195,6 +212,24 @@ VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
         out.colors.assign(n, kInvalidColor);
         for (Vertex v : mesh.vertices())
             out.colors[v.idx()] = map_color(level ? double(level[v]) : 0.0, out.range, out.kind);
+        return out;
+    }
+
+    if (coloring == VertexColoring::SmoothingDistance) {
+        const bool have = reference && reference->size() == mesh.vertices_size();
+        const std::vector<double> d =
+            have ? smoothing_distance(mesh, *reference) : std::vector<double>(n, 0.0);
+        if (!have) out.label += " - no earlier state";
+        std::vector<std::uint8_t> valid(n, 0);
+        for (Vertex v : mesh.vertices()) valid[v.idx()] = !mesh.is_isolated(v);
+        out.kind = ColorMapKind::Diverging;
+        out.has_legend = true;
+        out.range = symmetric_range(
+            percentile_range(d, valid, options.low_percentile, options.high_percentile));
+        if (!(out.range.max > 0)) out.range = {-1e-12, 1e-12};
+        out.colors.assign(n, kInvalidColor);
+        for (Vertex v : mesh.vertices())
+            if (valid[v.idx()]) out.colors[v.idx()] = map_color(d[v.idx()], out.range, out.kind);
         return out;
     }
 

@@ -28,6 +28,9 @@ enum class VertexColoring {
     Gaussian,          ///< Gaussian curvature
     ShapeIndex,        ///< shape index in [-1, 1]
     SubdivisionLevel,  ///< the subdivision step that created each vertex ("v:subdivision_level")
+    /// Displacement from a reference state (the state before the last operation), signed
+    /// along the current vertex normal: positive where the surface moved outwards.
+    SmoothingDistance,
 };
 
 struct ColoringOptions {
@@ -53,11 +56,19 @@ ValueRange percentile_range(const std::vector<double>& values,
                             const std::vector<std::uint8_t>& valid, double low, double high);
 /// [-m, m] with m the larger magnitude of the range's ends.
 ValueRange symmetric_range(const ValueRange& range);
-/// Computes the quantity and its colours.
+/// Computes the quantity and its colours. `reference` (SmoothingDistance only): one earlier
+/// position per vertex storage index of `mesh`; without it, or when its size differs, every
+/// distance is zero and the label says there is no earlier state.
 VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
-                            const ColoringOptions& options = {});
+                            const ColoringOptions& options = {},
+                            const std::vector<Point>* reference = nullptr);
+/// Per vertex storage index: (p - reference) · n(p), n the unit vertex normal of `mesh`
+/// (0 for isolated vertices and where the normal is undefined). Throws InvalidArgument when
+/// reference.size() != mesh.vertices_size().
+std::vector<double> smoothing_distance(const HalfedgeMesh& mesh,
+                                       const std::vector<Point>& reference);
 /// Names for menus and the CLI: "none", "normal", "k1", "k2", "mean", "gaussian", "shape-index",
-/// "subdivision".
+/// "subdivision", "smoothing-distance".
 const char* coloring_name(VertexColoring coloring);
 /// Parses coloring_name() strings; throws InvalidArgument listing the names otherwise.
 VertexColoring parse_coloring(const std::string& name);

@@ -214,6 +214,40 @@ double condition_bound(const Laplacian& lap, double step) {
     return 1.0 + step * m;
 }
 
+/// lx = L·x for the operator's rows, computed as -S⁻¹(K·x) by gathering along K's columns
+/// (K is symmetric, so column r holds row r) from a row-major copy of x: one contiguous
+/// 3-vector read per neighbour instead of Eigen's scattered column-major product. Fixed rows
+/// get zero.
+void apply_laplacian(const Laplacian& lap, const Eigen::MatrixXd& x,
+                     Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& xr,
+                     Eigen::MatrixXd& lx) {
+    const Eigen::Index n = x.rows();
+    xr = x;
+    lx.resize(n, 3);
+    const int* outer = lap.K.outerIndexPtr();
+    const int* inner = lap.K.innerIndexPtr();
+    const double* value = lap.K.valuePtr();
+    const double* p = xr.data();
+    for (Eigen::Index r = 0; r < n; ++r) {
+        if (lap.fixed[std::size_t(r)]) {
+            lx(r, 0) = lx(r, 1) = lx(r, 2) = 0.0;
+            continue;
+        }
+        double ax = 0, ay = 0, az = 0;
+        for (int k = outer[r]; k < outer[r + 1]; ++k) {
+            const double w = value[k];
+            const double* q = p + 3 * std::ptrdiff_t(inner[k]);
+            ax += w * q[0];
+            ay += w * q[1];
+            az += w * q[2];
+        }
+        const double s = -1.0 / lap.S[r];
+        lx(r, 0) = s * ax;
+        lx(r, 1) = s * ay;
+        lx(r, 2) = s * az;
+    }
+}
+
 double ms_between(std::chrono::steady_clock::time_point a,
                   std::chrono::steady_clock::time_point b) {
     return std::chrono::duration<double, std::milli>(b - a).count();
@@ -307,6 +341,11 @@ FairingResult smooth(const HalfedgeMesh& mesh, const FairingOptions& o, Progress
     bool slide_explicit_fallback = false;
 
     int done = 0;
+    Eigen::MatrixXd x, lx, x_good;  // positions of the operator's rows, L·x, last good x
+    // The mesh follows x only where something reads it: a kept step, the next build of
+    // geometry-dependent weights, the volume, or the end.
+    const bool lazy_mesh = !o.keep_steps && weights_fixed && !o.preserve_volume;
+    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> xr;
     bool use_direct = o.solver == ImplicitSolver::Direct;
     for (int it = 0; it < o.iterations; ++it) {
         progress.check_cancelled();
@@ -343,7 +382,8 @@ FairingResult smooth(const HalfedgeMesh& mesh, const FairingOptions& o, Progress
                                      " loop(s) sliding along the input's boundary curves");
             }
         }
-        Eigen::MatrixXd x = gather_positions(current, lap.map);
+        if (it == 0) x = gather_positions(current, lap.map);  // x stays in sync from here on
+        if (lazy_mesh && it > 0) x_good = x;  // what the mesh would hold now
         if (slider) {
             const double t = taubin ? o.taubin_lambda : o.step;
             const bool implicit_curve = implicit || t > 1.0;
@@ -351,10 +391,13 @@ FairingResult smooth(const HalfedgeMesh& mesh, const FairingOptions& o, Progress
             slider->step(t, implicit_curve, x);
         }
         if (taubin) {
-            x += o.taubin_lambda * (lap.L * x);
-            x += o.taubin_mu * (lap.L * x);
+            apply_laplacian(lap, x, xr, lx);
+            x += o.taubin_lambda * lx;
+            apply_laplacian(lap, x, xr, lx);
+            x += o.taubin_mu * lx;
         } else if (!implicit) {
-            x += o.step * (lap.L * x);
+            apply_laplacian(lap, x, xr, lx);
+            x += o.step * lx;
         } else if (!sys.free_rows.empty()) {
             const auto nf = Eigen::Index(sys.free_rows.size());
             Eigen::MatrixXd xf(nf, 3);
@@ -408,11 +451,13 @@ FairingResult smooth(const HalfedgeMesh& mesh, const FairingOptions& o, Progress
         }
         if (!finite_and_bounded(x)) {
             res.diverged = true;
+            if (lazy_mesh && done > 0) scatter_positions(current, lap.map, x_good);
             res.report.push_back("diverged at iteration " + std::to_string(it + 1) +
                                  ": stopped (use a smaller step or implicit integration)");
             break;
         }
-        scatter_positions(current, lap.map, x);
+        if (!lazy_mesh || it + 1 == o.iterations)
+            scatter_positions(current, lap.map, x);
         if (o.preserve_volume) {
             const double vn = volume(current);
             const double ratio = v0 / vn;

@@ -35,7 +35,10 @@ options:
   --size WxH            image size in pixels (default 1280x800)
   --mode MODE           gouraud (default), flat, wireframe, hidden-line, points, textured
   --color QUANTITY      colour the vertices: none (default), normal, k1, k2, mean,
-                        gaussian, shape-index
+                        gaussian, shape-index, subdivision, smoothing-distance
+  --reference MESH      the state before smoothing, for --color smoothing-distance: each
+                        vertex's displacement from it, signed along the normal (MESH must
+                        have the same vertices, e.g. the input of trilab-cli smooth)
   --texture IMG         texture image for --mode textured (BMP, PNG, PNM, XBM, XPM); implies
                         --mode textured when no --mode is given. Without it textured mode
                         uses a built-in checkerboard. Meshes without texture coordinates get
@@ -67,7 +70,7 @@ bool parse_int(const std::string& s, int& out) {
 }
 
 struct RenderArgs {
-    std::string mesh, out, texture;
+    std::string mesh, out, texture, reference;
     int width = 1280, height = 800;
     std::string mode = "gouraud";
     bool mode_given = false;
@@ -90,6 +93,8 @@ RenderArgs parse_args(const std::vector<std::string>& args) {
             r.transparent = true;
         } else if (a == "--out") {
             r.out = value();
+        } else if (a == "--reference") {
+            r.reference = value();
         } else if (a == "--texture") {
             r.texture = value();
         } else if (a == "--mode") {
@@ -171,6 +176,9 @@ int run_render_command(const std::vector<std::string>& args) {
     } catch (const InvalidArgument& e) {
         throw InvalidArgument(std::string("--color: ") + e.what());
     }
+    if (!a.reference.empty() && coloring != VertexColoring::SmoothingDistance)
+        throw InvalidArgument("--reference: only --color smoothing-distance uses a reference "
+                              "mesh (got --color " + a.color + ")");
     const bool textured = options.style.mode == RenderMode::Textured;
 
     // File input (not timed).
@@ -199,7 +207,19 @@ int run_render_command(const std::vector<std::string>& args) {
     }
     VertexColors colors;
     if (coloring != VertexColoring::None) {
-        colors = color_vertices(mesh, coloring);
+        std::vector<Point> reference;
+        if (!a.reference.empty()) {
+            const LoadedMesh before = read_mesh(a.reference);
+            if (before.mesh.vertices_size() != mesh.vertices_size())
+                throw InvalidArgument("--reference: " + a.reference + " has " +
+                                      std::to_string(before.mesh.vertices_size()) +
+                                      " vertices, " + a.mesh + " has " +
+                                      std::to_string(mesh.vertices_size()) +
+                                      " (it must be the same mesh before smoothing)");
+            reference = before.mesh.positions();
+        }
+        colors = color_vertices(mesh, coloring, ColoringOptions{},
+                                a.reference.empty() ? nullptr : &reference);
         options.vertex_colors = colors.colors;
     }
     const double prepare_ms = ms_since(t0);

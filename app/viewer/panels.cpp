@@ -75,7 +75,8 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
             VertexColoring::None,       VertexColoring::Normal,
             VertexColoring::K1,         VertexColoring::K2,
             VertexColoring::Mean,       VertexColoring::Gaussian,
-            VertexColoring::ShapeIndex, VertexColoring::SubdivisionLevel};
+            VertexColoring::ShapeIndex, VertexColoring::SubdivisionLevel,
+            VertexColoring::SmoothingDistance};
         const char* labels[] = {"None",
                                 "Normal direction",
                                 "First principal curvature",
@@ -83,7 +84,8 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
                                 "Mean curvature",
                                 "Gaussian curvature",
                                 "Shape index",
-                                "Subdivision vertices"};
+                                "Subdivision vertices",
+                                "Smoothing distance"};
         for (std::size_t i = 0; i < std::size(colorings); ++i) {
             if (ImGui::MenuItem(labels[i], nullptr, settings.coloring == colorings[i]) &&
                 settings.coloring != colorings[i]) {
@@ -398,13 +400,28 @@ void fairing_window(PanelState& panels, MorphState& morph, const History& histor
             if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
                 ImGui::SetTooltip("The mesh has a boundary: its volume is not defined.");
         }
+        if (closed) {
+            f.slide_boundary = false;
+            ImGui::BeginDisabled();
+        }
+        ImGui::Checkbox("boundary slides along its curve", &f.slide_boundary);
+        if (closed) {
+            ImGui::EndDisabled();
+            if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+                ImGui::SetTooltip("The mesh is closed: it has no boundary.");
+        } else if (ImGui::IsItemHovered()) {
+            ImGui::SetTooltip("Off: boundary vertices stay fixed. On: they move along the "
+                              "boundary curve (which keeps its shape), evening out their "
+                              "spacing.");
+        }
         if (busy) ImGui::BeginDisabled();
         if (ImGui::Button("Smooth")) {
-            char op[256];
+            char op[320];
             std::snprintf(op, sizeof(op),
-                          "smooth --operator %s --integration %s --step %g --iterations %d%s",
+                          "smooth --operator %s --integration %s --step %.17g --iterations %d%s%s",
                           names[std::clamp(f.op, 0, 4)], f.implicit ? "implicit" : "explicit",
-                          f.step, f.iterations, f.preserve_volume ? " --preserve-volume" : "");
+                          f.step, f.iterations, f.preserve_volume ? " --preserve-volume" : "",
+                          f.slide_boundary ? " --boundary slide" : "");
             commands.push_back(RunOperation{op});
         }
         if (busy) ImGui::EndDisabled();

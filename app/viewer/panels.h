@@ -74,6 +74,7 @@ struct FairingPanelState {
     double step = 0.5;  ///< lambda * dt
     int iterations = 10;
     bool preserve_volume = false;
+    bool slide_boundary = false;  ///< boundary vertices move along the boundary curve
 };
 
 /// The Tools panel's parameters.

@@ -417,8 +417,9 @@ void Viewer::update_morph() {
             morph_topology_ = frame.topology;
             renderer_->upload(*frame.topology);
             if (view_.settings.coloring != VertexColoring::None) {
+                const std::vector<Point> reference = reference_positions();
                 VertexColors colors = color_vertices(*frame.topology, view_.settings.coloring,
-                                                     view_.settings.coloring_options);
+                                                     view_.settings.coloring_options, &reference);
                 renderer_->set_vertex_colors(colors.colors);
             }
         }
@@ -563,8 +564,11 @@ void Viewer::update_coloring() {
         apply_colors(VertexColors{});
         return;
     }
+    auto reference = std::make_shared<const std::vector<Point>>(
+        coloring == VertexColoring::SmoothingDistance ? reference_positions()
+                                                      : std::vector<Point>{});
     if (document_.mesh().n_faces() < kColoringJobFaces) {
-        apply_colors(color_vertices(document_.mesh(), coloring, options));
+        apply_colors(color_vertices(document_.mesh(), coloring, options, reference.get()));
         return;
     }
     // Large meshes: compute on the worker; the document cannot change while a job runs.
@@ -573,9 +577,10 @@ void Viewer::update_coloring() {
         return;
     }
     const bool started = jobs_.start(std::string("Colouring by ") + coloring_name(coloring),
-                                     [this, coloring, options](Progress&) {
+                                     [this, coloring, options, reference](Progress&) {
                                          auto colors = std::make_shared<VertexColors>(
-                                             color_vertices(document_.mesh(), coloring, options));
+                                             color_vertices(document_.mesh(), coloring, options,
+                                                            reference.get()));
                                          return JobRunner::Finish([this, colors, coloring] {
                                              // Ignore a result the user has already replaced.
                                              if (view_.settings.coloring == coloring)
@@ -583,6 +588,20 @@ void Viewer::update_coloring() {
                                          });
                                      });
     if (!started) notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
+}
+
+std::vector<Point> Viewer::reference_positions() const {
+    // The state before the current entry, on the current connectivity: the morph's start.
+    const History& history = document_.history;
+    if (history.size() == 0 || history.current() == 0) return {};
+    try {
+        MorphFrame start = history.morph(history.current(), 0.0);
+        if (start.topology && start.positions.size() == document_.mesh().vertices_size())
+            return std::move(start.positions);
+    } catch (const std::exception&) {
+        // No usable earlier state: the colouring says so.
+    }
+    return {};
 }
 
 void Viewer::update_texture() {

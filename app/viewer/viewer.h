@@ -120,6 +120,9 @@ private:
     std::vector<std::string> scene_info() const;
     /// Computes the vertex colouring of view_.settings (as a job for large meshes) and
     /// uploads it.
+    /// Positions of the state before the current history entry, one per vertex of the
+    /// current mesh (empty when there is none or the connectivity differs).
+    std::vector<Point> reference_positions() const;
     void update_coloring();
     void apply_colors(VertexColors colors);
     /// Uploads the texture chosen in view_.settings (checkerboard or the loaded image).

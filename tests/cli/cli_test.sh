@@ -126,11 +126,27 @@ if "$cli" render "$tmp/d.obj" --out "$tmp/probe.png" --size 16x16 >/dev/null 2>&
 fi
 check "smooth --json names the solver of implicit steps" bash -c \
     "'$cli' smooth --operator umbrella --integration implicit --step 1 --iterations 2 \
-     '$tmp/d.obj' '$tmp/sm.obj' --json | grep -q '\"solver\": \"SimplicialLDLT\"'"
+     '$tmp/d.obj' '$tmp/sm.obj' --json | grep -Eq '\"solver\": \"(SimplicialLDLT|ConjugateGradient)'"
+check "smooth --json reports the smoothing distance" bash -c \
+    "'$cli' smooth --operator curvature-flow --iterations 3 '$tmp/d.obj' '$tmp/sm2.obj' --json \
+     > '$tmp/sm2.json' && $(declare -f json_has); json_has '$tmp/sm2.json' \
+     max_smoothing_distance mean_smoothing_distance cg_iterations factorizations"
+check "smooth --boundary slide runs on an open mesh" bash -c \
+    "'$cli' generate grid '$tmp/grid0.obj' && '$cli' smooth --boundary slide --iterations 5 \
+     '$tmp/grid0.obj' '$tmp/gslide.obj' --json | grep -q -- '--boundary slide'"
+check "smooth refuses a bad --boundary naming the option" bash -c \
+    "! '$cli' smooth --boundary free '$tmp/d.obj' '$tmp/bb.obj' 2> '$tmp/e' && \
+     grep -q -- '--boundary' '$tmp/e' && [ ! -e '$tmp/bb.obj' ]"
 check "smooth --preserve-volume refuses an open mesh naming the reason" bash -c \
     "'$cli' generate grid '$tmp/grid.obj' && ! '$cli' smooth --preserve-volume '$tmp/grid.obj' \
      '$tmp/gs.obj' 2> '$tmp/e' && grep -q 'closed mesh' '$tmp/e' && [ ! -e '$tmp/gs.obj' ]"
 if "$cli" render "$tmp/d.obj" --out "$tmp/probe.png" --size 16x16 >/dev/null 2>&1; then
+    check "render colours the smoothing distance against a reference" bash -c \
+        "'$cli' render '$tmp/sm2.obj' --reference '$tmp/d.obj' --color smoothing-distance \
+         --out '$tmp/sd.png' --size 64x48 --json | grep -q 'smoothing distance'"
+    check "render refuses a reference with other vertices" bash -c \
+        "! '$cli' render '$tmp/sm2.obj' --reference '$tmp/grid0.obj' --color smoothing-distance \
+         --out '$tmp/sd2.png' --size 64x48 2> '$tmp/e' && grep -q -- '--reference' '$tmp/e'"
     check "record --op subdivide writes the refinement morph" bash -c \
         "'$cli' record '$tmp/d.obj' --op 'subdivide --scheme sqrt3 --iterations 2' --frames 3 \
          --size 64x48 --out '$tmp/subrec' --color subdivision >/dev/null 2>&1 && \

@@ -8,6 +8,7 @@
 #include "core/curvature.h"
 #include "core/errors.h"
 #include "core/generators.h"
+#include "core/geometry.h"
 #include "core/mesh_builder.h"
 #include "test_helpers.h"
 
@@ -339,4 +340,29 @@ TEST_CASE("subdivision-level colouring: level 0 dark, the newest level bright", 
     // A mesh never subdivided is all level 0.
     const VertexColors plain = color_vertices(make_icosahedron(), VertexColoring::SubdivisionLevel);
     for (const Color& x : plain.colors) REQUIRE(x == plain.colors[0]);
+}
+
+TEST_CASE("smoothing distance is the displacement along the normal", "[coloring]") {
+    const HalfedgeMesh before = make_icosphere(3);
+    HalfedgeMesh after = before;
+    // Move every vertex outwards by 0.1 along its normal and a little tangentially.
+    for (Vertex v : after.vertices()) {
+        const Vector3 n = vertex_normal(before, v);
+        const Vector3 t = n.unitOrthogonal();
+        after.position(v) += 0.1 * n + 0.05 * t;
+    }
+    const std::vector<double> d = smoothing_distance(after, before.positions());
+    for (Vertex v : after.vertices()) CHECK(d[v.idx()] == Approx(0.1).epsilon(0.05));  // not |0.1 n + 0.05 t| = 0.112
+    const VertexColors colors =
+        color_vertices(after, VertexColoring::SmoothingDistance, {}, &before.positions());
+    CHECK(colors.has_legend);
+    CHECK(colors.kind == ColorMapKind::Diverging);
+    CHECK(colors.range.max == Approx(-colors.range.min));
+    CHECK(colors.range.max > 0.09);
+    // Without a reference: zero everywhere, and the label says so.
+    const VertexColors none = color_vertices(after, VertexColoring::SmoothingDistance);
+    CHECK(none.label.find("no earlier state") != std::string::npos);
+    CHECK(parse_coloring("smoothing-distance") == VertexColoring::SmoothingDistance);
+    std::vector<Point> wrong(3, Point::Zero());
+    CHECK_THROWS_AS(smoothing_distance(after, wrong), InvalidArgument);
 }
