@@ -383,7 +383,7 @@ FairingResult smooth(const HalfedgeMesh& mesh, const FairingOptions& o, Progress
             }
         }
         if (it == 0) x = gather_positions(current, lap.map);  // x stays in sync from here on
-        if (lazy_mesh && it > 0) x_good = x;  // what the mesh would hold now
+        if (lazy_mesh && it > 0) x_good = x;                  // what the mesh would hold now
         if (slider) {
             const double t = taubin ? o.taubin_lambda : o.step;
             const bool implicit_curve = implicit || t > 1.0;
@@ -456,8 +456,7 @@ FairingResult smooth(const HalfedgeMesh& mesh, const FairingOptions& o, Progress
                                  ": stopped (use a smaller step or implicit integration)");
             break;
         }
-        if (!lazy_mesh || it + 1 == o.iterations)
-            scatter_positions(current, lap.map, x);
+        if (!lazy_mesh || it + 1 == o.iterations) scatter_positions(current, lap.map, x);
         if (o.preserve_volume) {
             const double vn = volume(current);
             const double ratio = v0 / vn;

@@ -16,26 +16,19 @@ using Triplet = Eigen::Triplet<double>;
 /// counted.
 double corner_cot(const Point& o, const Point& a, const Point& b, LaplacianDiagnostics& d) {
     const Vector3 u = a - o, w = b - o;
-    const double cross = u.cross(w).norm();
-    const double dot = u.dot(w);
-    const double scale = u.norm() * w.norm();
-    if (!(scale > 0) || !std::isfinite(scale) || !(cross > 1e-14 * scale)) {
+    const double cross2 = u.cross(w).squaredNorm();
+    const double scale2 = u.squaredNorm() * w.squaredNorm();
+    // Degenerate: a zero-length side, overflow, or sin(angle) below 1e-14 (one square root).
+    if (!(scale2 > 0) || !std::isfinite(scale2) || !(cross2 > 1e-28 * scale2)) {
         ++d.degenerate_corners;
         return 0.0;
     }
-    double c = dot / cross;
+    double c = u.dot(w) / std::sqrt(cross2);
     if (std::abs(c) > kMaxCotangent) {
         ++d.cotangents_clamped;
         c = std::clamp(c, -kMaxCotangent, kMaxCotangent);
     }
     return c;
-}
-
-/// Cotangent of the corner opposite h in its face (0 for a boundary halfedge).
-double cot_opposite(const HalfedgeMesh& m, Halfedge h, LaplacianDiagnostics& d) {
-    if (m.is_boundary(h)) return 0.0;
-    return corner_cot(m.position(m.to_vertex(m.next(h))), m.position(m.from_vertex(h)),
-                      m.position(m.to_vertex(h)), d);
 }
 
 }  // namespace
@@ -106,26 +99,47 @@ Laplacian build_laplacian(const HalfedgeMesh& mesh, LaplacianOperator op,
     const auto& row = lap.map.row_of;
     // The sparsity pattern, once: the diagonal, and each edge's pairs (each hinge's 4 x 4
     // block for SecondOrder). refresh_laplacian() then writes values into fixed slots.
-    std::vector<Triplet> trip;
-    for (Eigen::Index r = 0; r < n; ++r) trip.emplace_back(r, r, 0.0);
-    for (Edge e : mesh.edges()) {
-        const Halfedge h0 = HalfedgeMesh::halfedge(e, 0);
-        const Index i = row[mesh.from_vertex(h0).idx()], j = row[mesh.to_vertex(h0).idx()];
-        if (op == LaplacianOperator::SecondOrder) {
+    if (op == LaplacianOperator::SecondOrder) {
+        std::vector<Triplet> trip;
+        for (Eigen::Index r = 0; r < n; ++r) trip.emplace_back(r, r, 0.0);
+        for (Edge e : mesh.edges()) {
             if (mesh.is_boundary(e)) continue;
-            const Index r[4] = {i, j, row[mesh.to_vertex(mesh.next(h0)).idx()],
+            const Halfedge h0 = HalfedgeMesh::halfedge(e, 0);
+            const Index r[4] = {row[mesh.from_vertex(h0).idx()], row[mesh.to_vertex(h0).idx()],
+                                row[mesh.to_vertex(mesh.next(h0)).idx()],
                                 row[mesh.to_vertex(mesh.next(HalfedgeMesh::twin(h0))).idx()]};
             for (int a = 0; a < 4; ++a)
                 for (int b = 0; b < 4; ++b) trip.emplace_back(r[a], r[b], 0.0);
-        } else {
-            trip.emplace_back(i, j, 0.0);
-            trip.emplace_back(j, i, 0.0);
         }
+        lap.K.resize(n, n);
+        lap.K.setFromTriplets(trip.begin(), trip.end());
+    } else {
+        // Column r (= row r, K is symmetric): r itself and its one-ring, sorted, built
+        // directly in compressed form from the half-edge fans.
+        std::vector<int> outer(std::size_t(n) + 1, 0), inner;
+        inner.reserve(std::size_t(n) + 2 * mesh.n_edges());
+        std::vector<int> column;
+        for (Eigen::Index r = 0; r < n; ++r) {
+            column.clear();
+            column.push_back(int(r));
+            const Vertex v = lap.map.vertex_of[std::size_t(r)];
+            const Halfedge first = mesh.halfedge(v);
+            Halfedge h = first;
+            std::size_t guard = 0;
+            do {
+                column.push_back(int(row[mesh.to_vertex(h).idx()]));
+                h = mesh.cw_rotated(h);
+            } while (h != first && ++guard < mesh.halfedges_size());
+            std::sort(column.begin(), column.end());
+            column.erase(std::unique(column.begin(), column.end()), column.end());
+            inner.insert(inner.end(), column.begin(), column.end());
+            outer[std::size_t(r) + 1] = int(inner.size());
+        }
+        const std::vector<double> zeros(inner.size(), 0.0);
+        lap.K = Eigen::Map<const SparseMatrix>(n, n, Eigen::Index(inner.size()), outer.data(),
+                                               inner.data(), zeros.data());
     }
-    lap.K.resize(n, n);
-    lap.K.setFromTriplets(trip.begin(), trip.end());
     lap.K.makeCompressed();
-    trip = {};
     lap.diag_slots.resize(std::size_t(n));
     for (Eigen::Index r = 0; r < n; ++r) lap.diag_slots[std::size_t(r)] = slot_of(lap.K, r, r);
     for (Edge e : mesh.edges()) {
@@ -178,6 +192,21 @@ void refresh_laplacian(const HalfedgeMesh& mesh, Laplacian& lap) {
         }
         for (std::size_t r = 0; r < n; ++r) S[Eigen::Index(r)] = k[lap.diag_slots[r]];
     } else {
+        // CurvatureFlow: the cotangent of the corner opposite each halfedge, one face at a
+        // time (its three corners from three position loads), 0 on boundary halfedges.
+        std::vector<double>& cot = lap.halfedge_cotangents;
+        if (op == LaplacianOperator::CurvatureFlow) {
+            cot.assign(mesh.halfedges_size(), 0.0);
+            for (Face f : mesh.faces()) {
+                const Halfedge h0 = mesh.halfedge(f), h1 = mesh.next(h0), h2 = mesh.next(h1);
+                const Point& a = mesh.position(mesh.from_vertex(h0));
+                const Point& b = mesh.position(mesh.to_vertex(h0));
+                const Point& c = mesh.position(mesh.to_vertex(h1));
+                cot[h0.idx()] = corner_cot(c, a, b, diag);
+                cot[h1.idx()] = corner_cot(a, b, c, diag);
+                cot[h2.idx()] = corner_cot(b, c, a, diag);
+            }
+        }
         double min_len = 0;
         if (op == LaplacianOperator::ImprovedUmbrella) min_len = 1e-6 * mean_edge_length(mesh);
         if (!(min_len > 0) || !std::isfinite(min_len)) min_len = 1e-300;
@@ -196,7 +225,7 @@ void refresh_laplacian(const HalfedgeMesh& mesh, Laplacian& lap) {
                 S[i] += 0.5 * len;
                 S[j] += 0.5 * len;
             } else if (op == LaplacianOperator::CurvatureFlow) {
-                w = cot_opposite(mesh, h, diag) + cot_opposite(mesh, HalfedgeMesh::twin(h), diag);
+                w = cot[h.idx()] + cot[HalfedgeMesh::twin(h).idx()];
                 if (w < 0 && lap.options.clamp_negative_cotangents) {
                     ++diag.negative_weights_clamped;
                     w = 0;

@@ -113,6 +113,7 @@ struct Laplacian {
     /// per edge its two off-diagonal entries (SecondOrder: per interior edge its hinge's
     /// 4 x 4 block). Internal to build/refresh.
     std::vector<Index> diag_slots, edge_slots;
+    std::vector<double> halfedge_cotangents;  ///< CurvatureFlow: refresh's per-halfedge buffer
     std::size_t n_free() const;
 };
 
