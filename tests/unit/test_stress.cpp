@@ -1,0 +1,174 @@
+// Randomized operation stress: long random sequences of every registered operation with
+// random parameters, interleaved with undo, redo and jumps on the History, on the built-in
+// models and the shared meshes. After every step: validate(), no NaN or infinite position,
+// and the History's current state equal to the mesh the sequence expects.
+//
+// Reproducible: the seed and the length come from the environment,
+//   TRILAB_STRESS_SEED=12345 TRILAB_STRESS_STEPS=400 ./build/tests/trilab_tests "[stress]"
+// (defaults: seed 20261122, 60 steps per mesh); a failure prints the seed, the step and the
+// operation text, which replays alone with `trilab-cli record --op "..."` or the viewer's --op.
+// Every registered operation must have a parameter generator here: a new operation without
+// one fails the test, so the stress test grows with the registry.
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <functional>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/history/history.h"
+#include "app/ops/operation.h"
+#include "core/errors.h"
+#include "core/generators.h"
+#include "core/io/mesh_io.h"
+#include "core/mesh_stats.h"
+#include "test_helpers.h"
+
+using namespace trilab;
+
+namespace {
+
+using Rng = std::mt19937_64;
+
+std::uint64_t env_number(const char* name, std::uint64_t fallback) {
+    const char* text = std::getenv(name);
+    if (!text || !*text) return fallback;
+    char* end = nullptr;
+    const unsigned long long v = std::strtoull(text, &end, 10);
+    return end && *end == '\0' ? v : fallback;
+}
+
+int pick(Rng& rng, int lo, int hi) {
+    return std::uniform_int_distribution<int>(lo, hi)(rng);
+}
+
+template <class T>
+const T& pick_of(Rng& rng, const std::vector<T>& v) {
+    return v[std::size_t(pick(rng, 0, int(v.size()) - 1))];
+}
+
+/// Random parameters for each registered operation; sizes kept so a sequence stays quick.
+using Generator = std::function<std::string(Rng&, const HalfedgeMesh&)>;
+
+const std::map<std::string, Generator>& generators() {
+    static const std::map<std::string, Generator> g = {
+        {"noise",
+         [](Rng& rng, const HalfedgeMesh&) {
+             return "noise --amount " + std::to_string(pick(rng, 0, 30)) + " --seed " +
+                    std::to_string(pick(rng, 0, 1000));
+         }},
+        {"subdivide",
+         [](Rng& rng, const HalfedgeMesh& m) {
+             // Keep the meshes small: subdivide only below 20k faces, one iteration.
+             const std::vector<std::string> schemes = {"loop", "sqrt3", "butterfly",
+                                                       "modified-butterfly"};
+             if (m.n_faces() > 20000) return std::string("noise --amount 1");
+             return "subdivide --scheme " + pick_of(rng, schemes) + " --iterations 1";
+         }},
+        {"smooth",
+         [](Rng& rng, const HalfedgeMesh&) {
+             const std::vector<std::string> ops = {"umbrella", "improved-umbrella",
+                                                   "curvature-flow", "second-order", "taubin"};
+             const std::string op = pick_of(rng, ops);
+             const bool implicit = op != "taubin" && pick(rng, 0, 1) == 1;
+             const std::vector<std::string> steps = {"0.01", "0.1", "0.5", "1", "5", "20"};
+             std::string text = "smooth --operator " + op + " --integration " +
+                                (implicit ? "implicit" : "explicit") + " --step " +
+                                pick_of(rng, steps) + " --iterations " +
+                                std::to_string(pick(rng, 1, 4));
+             if (pick(rng, 0, 3) == 0) text += " --boundary slide";
+             return text;
+         }},
+    };
+    return g;
+}
+
+void require_finite(const HalfedgeMesh& m) {
+    for (Vertex v : m.vertices()) REQUIRE(m.position(v).allFinite());
+}
+
+/// Runs `steps` random actions on `start`; returns the number of operations that ran.
+int stress(const HalfedgeMesh& start, const std::string& name, std::uint64_t seed, int steps) {
+    Rng rng(seed);
+    History history;
+    history.reset(start, "load " + name);
+    int ran = 0;
+    const std::vector<std::string> names = operation_names();
+    for (const std::string& op : names) {
+        INFO("operation '" << op << "' has no generator in tests/unit/test_stress.cpp");
+        REQUIRE(generators().count(op) == 1);
+    }
+    for (int step = 0; step < steps; ++step) {
+        const int action = pick(rng, 0, 9);
+        std::string what;
+        if (action == 0) {
+            what = "undo";
+            history.undo();
+        } else if (action == 1) {
+            what = "redo";
+            history.redo();
+        } else if (action == 2 && history.size() > 0) {
+            const auto index = std::size_t(pick(rng, 0, int(history.size()) - 1));
+            what = "jump " + std::to_string(index);
+            history.jump(index);
+        } else {
+            const HalfedgeMesh& mesh = history.current_mesh();
+            what = generators().at(pick_of(rng, names))(rng, mesh);
+            INFO(name << ": seed " << seed << ", step " << step << ": " << what);
+            try {
+                NullProgress progress;
+                OperationResult result = run_operation(parse_operation(what), mesh, progress);
+                REQUIRE_FALSE(result.steps.empty());
+                std::vector<HalfedgeMesh> meshes;
+                std::vector<MorphCorrespondence> correspondences;
+                for (OperationStep& s : result.steps) {
+                    REQUIRE_VALID(s.mesh);
+                    require_finite(s.mesh);
+                    meshes.push_back(std::move(s.mesh));
+                    correspondences.push_back(std::move(s.correspondence));
+                }
+                history.push(result.label, result.parameters, result.ms, std::move(meshes),
+                             std::move(correspondences));
+                ++ran;
+            } catch (const InvalidArgument& e) {
+                // A refusal is fine when it says why (e.g. too small a mesh).
+                INFO("refused: " << e.what());
+                CHECK(std::string(e.what()).size() > 10);
+            }
+        }
+        INFO(name << ": seed " << seed << ", step " << step << ": " << what);
+        const HalfedgeMesh& now = history.current_mesh();
+        REQUIRE_VALID(now);
+        require_finite(now);
+    }
+    return ran;
+}
+
+}  // namespace
+
+TEST_CASE("random operation sequences keep every mesh valid and finite", "[stress]") {
+    const std::uint64_t seed = env_number("TRILAB_STRESS_SEED", 20261122);
+    const int steps = int(env_number("TRILAB_STRESS_STEPS", 60));
+    std::vector<std::pair<std::string, HalfedgeMesh>> meshes;
+    meshes.emplace_back("default model", make_default_model());
+    meshes.emplace_back("grid (open)", make_grid(6));
+    meshes.emplace_back("cylinder (two boundary loops)", make_cylinder(12, 4));
+    meshes.emplace_back("tetrahedron", make_tetrahedron());
+    for (const char* file : {"spot.obj", "fandisk.obj"}) {
+        const std::string path = test::shared_mesh(file);
+        if (test::exists(path))
+            meshes.emplace_back(file, read_mesh(path).mesh);
+        else
+            WARN("skipped: " << path << " is absent (../shared not beside the repo)");
+    }
+    std::uint64_t k = 0;
+    for (const auto& [name, mesh] : meshes) {
+        INFO("mesh " << name << ", TRILAB_STRESS_SEED=" << seed);
+        REQUIRE_VALID(mesh);
+        const int ran = stress(mesh, name, seed + 7919 * k++, steps);
+        CHECK(ran > 0);
+    }
+}
