@@ -34,6 +34,17 @@ if(TARGET trilab)
                      --op "smooth --operator second-order --integration implicit --step 0.01 --iterations 3"
                      --show fairing --frames 10)
     set_tests_properties(viewer_fairing PROPERTIES PASS_REGULAR_EXPRESSION "Smooth --operator second-order")
+    # Closing the window (pressed after frame 2, seen in frame 3): an unchanged document quits; unsaved changes ask first
+    # (the modal stays open, so the run lasts its --frames).
+    add_test(NAME viewer_close_unchanged
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --close-after 2 --frames 20)
+    set_tests_properties(viewer_close_unchanged PROPERTIES PASS_REGULAR_EXPRESSION
+                         "quit after 3 frames")
+    add_test(NAME viewer_close_unsaved
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --op "noise --amount 5" --close-after 3
+                     --frames 12)
+    set_tests_properties(viewer_close_unsaved PROPERTIES PASS_REGULAR_EXPRESSION
+                         "unsaved changes: asking before quitting.*frames done")
     add_test(NAME viewer_bad_operation COMMAND $<TARGET_FILE:trilab> --op "noise --amount -1"
                                               --frames 1)
     set_tests_properties(viewer_bad_operation PROPERTIES WILL_FAIL TRUE)

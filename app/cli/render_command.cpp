@@ -177,8 +177,10 @@ int run_render_command(const std::vector<std::string>& args) {
         throw InvalidArgument(std::string("--color: ") + e.what());
     }
     if (!a.reference.empty() && coloring != VertexColoring::SmoothingDistance)
-        throw InvalidArgument("--reference: only --color smoothing-distance uses a reference "
-                              "mesh (got --color " + a.color + ")");
+        throw InvalidArgument(
+            "--reference: only --color smoothing-distance uses a reference "
+            "mesh (got --color " +
+            a.color + ")");
     const bool textured = options.style.mode == RenderMode::Textured;
 
     // File input (not timed).
@@ -212,9 +214,8 @@ int run_render_command(const std::vector<std::string>& args) {
             const LoadedMesh before = read_mesh(a.reference);
             if (before.mesh.vertices_size() != mesh.vertices_size())
                 throw InvalidArgument("--reference: " + a.reference + " has " +
-                                      std::to_string(before.mesh.vertices_size()) +
-                                      " vertices, " + a.mesh + " has " +
-                                      std::to_string(mesh.vertices_size()) +
+                                      std::to_string(before.mesh.vertices_size()) + " vertices, " +
+                                      a.mesh + " has " + std::to_string(mesh.vertices_size()) +
                                       " (it must be the same mesh before smoothing)");
             reference = before.mesh.positions();
         }

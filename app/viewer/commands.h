@@ -10,6 +10,7 @@ namespace trilab::viewer {
 
 struct LoadFile {
     std::string path;
+    bool discard_changes = false;  ///< true: do not ask about unsaved changes
 };
 struct SaveFile {
     std::string path;
@@ -42,11 +43,16 @@ struct PrintInfo {};
 struct StartRecording {};
 struct CancelRecording {};
 struct CancelJob {};
-struct Quit {};
+struct Quit {
+    bool discard_changes = false;  ///< true: do not ask about unsaved changes
+};
+/// Save the document to its own file, then carry out the pending Quit or LoadFile.
+struct SaveAndContinue {};
 
-using Command = std::variant<LoadFile, SaveFile, RevertFile, LoadTexture, FitView, Undo, Redo,
-                             JumpTo, RunOperation, UpdateColoring, ProjectTexCoords, TakeScreenshot,
-                             PrintInfo, StartRecording, CancelRecording, CancelJob, Quit>;
+using Command =
+    std::variant<LoadFile, SaveFile, RevertFile, LoadTexture, FitView, Undo, Redo, JumpTo,
+                 RunOperation, UpdateColoring, ProjectTexCoords, TakeScreenshot, PrintInfo,
+                 StartRecording, CancelRecording, CancelJob, Quit, SaveAndContinue>;
 using CommandQueue = std::vector<Command>;
 
 }  // namespace trilab::viewer

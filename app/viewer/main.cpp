@@ -20,6 +20,8 @@ options:
   --size WxH         window size in screen coordinates (default 1280x800)
   --frames N         render N frames, then exit (for tests and screenshots)
   --screenshot FILE  write the last frame as PNG before exiting (needs --frames)
+  --close-after N    press the window's close button after N frames (tests the
+                     unsaved-changes question)
   --mode MODE        wireframe, hidden-line, flat, gouraud, points or textured
   --color C          none, normal, k1, k2, mean, gaussian or shape-index
   --op "OPERATION"   apply an operation after loading, e.g. --op "noise --amount 2"
@@ -67,6 +69,9 @@ std::string parse_args(int argc, char** argv, trilab::viewer::ViewerOptions& opt
         } else if (arg == "--frames") {
             if (!value(v) || !parse_count(v, options.frames))
                 return "--frames needs a positive number";
+        } else if (arg == "--close-after") {
+            if (!value(v) || !parse_count(v, options.close_after))
+                return "--close-after needs a positive number";
         } else if (arg == "--screenshot") {
             if (!value(options.screenshot) || options.screenshot.empty())
                 return "--screenshot needs a file name";

@@ -71,12 +71,15 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
     ImGui::MenuItem("Wireframe overlay", "W", &style.wireframe);
     ImGui::MenuItem("Back-face colour", "B", &style.back_face_color);
     if (ImGui::BeginMenu("Colour by vertex")) {
-        const VertexColoring colorings[] = {
-            VertexColoring::None,       VertexColoring::Normal,
-            VertexColoring::K1,         VertexColoring::K2,
-            VertexColoring::Mean,       VertexColoring::Gaussian,
-            VertexColoring::ShapeIndex, VertexColoring::SubdivisionLevel,
-            VertexColoring::SmoothingDistance};
+        const VertexColoring colorings[] = {VertexColoring::None,
+                                            VertexColoring::Normal,
+                                            VertexColoring::K1,
+                                            VertexColoring::K2,
+                                            VertexColoring::Mean,
+                                            VertexColoring::Gaussian,
+                                            VertexColoring::ShapeIndex,
+                                            VertexColoring::SubdivisionLevel,
+                                            VertexColoring::SmoothingDistance};
         const char* labels[] = {"None",
                                 "Normal direction",
                                 "First principal curvature",
@@ -410,9 +413,10 @@ void fairing_window(PanelState& panels, MorphState& morph, const History& histor
             if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
                 ImGui::SetTooltip("The mesh is closed: it has no boundary.");
         } else if (ImGui::IsItemHovered()) {
-            ImGui::SetTooltip("Off: boundary vertices stay fixed. On: they move along the "
-                              "boundary curve (which keeps its shape), evening out their "
-                              "spacing.");
+            ImGui::SetTooltip(
+                "Off: boundary vertices stay fixed. On: they move along the "
+                "boundary curve (which keeps its shape), evening out their "
+                "spacing.");
         }
         if (busy) ImGui::BeginDisabled();
         if (ImGui::Button("Smooth")) {
@@ -703,6 +707,43 @@ bool color_legend(const VertexColors& colors, ColoringOptions& options) {
     }
     ImGui::End();
     return changed;
+}
+
+void unsaved_changes_popup(UnsavedPrompt& prompt, CommandQueue& commands) {
+    constexpr const char* kTitle = "Unsaved changes";
+    if (prompt.open_requested) {
+        ImGui::OpenPopup(kTitle);
+        prompt.open_requested = false;
+    }
+    const ImGuiIO& io = ImGui::GetIO();
+    ImGui::SetNextWindowPos(ImVec2(0.5f * io.DisplaySize.x, 0.4f * io.DisplaySize.y),
+                            ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+    if (!ImGui::BeginPopupModal(kTitle, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+    ImGui::PushTextWrapPos(36.0f * ImGui::GetFontSize());
+    ImGui::TextUnformatted(prompt.quitting
+                               ? "The mesh has changes that are not saved to a file. Quit anyway?"
+                               : "The mesh has changes that are not saved to a file. Open the "
+                                 "other file anyway? (The changes stay in the history: Edit -> "
+                                 "Undo brings them back.)");
+    ImGui::PopTextWrapPos();
+    if (!prompt.document_path.empty()) {
+        if (ImGui::Button(("Save to " + prompt.document_path).c_str())) {
+            commands.push_back(SaveAndContinue{});
+            ImGui::CloseCurrentPopup();
+        }
+        ImGui::SameLine();
+    }
+    if (ImGui::Button(prompt.quitting ? "Discard and quit" : "Discard and open")) {
+        if (prompt.quitting)
+            commands.push_back(Quit{true});
+        else
+            commands.push_back(LoadFile{prompt.path, true});
+        ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)))
+        ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
 }
 
 void error_popup(Notice& notice) {

@@ -92,7 +92,16 @@ struct ViewSettings {
 };
 
 /// Which windows are open, and the dialogs' own state.
+/// The "unsaved changes" question asked before quitting or opening another file.
+struct UnsavedPrompt {
+    bool open_requested = false;  ///< open the modal on the next frame
+    bool quitting = false;        ///< the pending action: quit (true) or open `path`
+    std::string path;
+    std::string document_path;  ///< where "Save" writes (empty: only Save as)
+};
+
 struct PanelState {
+    UnsavedPrompt unsaved;
     ScreenshotState screenshot;
     SubdivisionPanelState subdivision;
     FairingPanelState fairing;
@@ -110,6 +119,11 @@ struct PanelState {
 };
 
 /// What the menus need to know about the document and the job runner.
+/// Asks what to do with unsaved changes: save them (to the document's file) and go on,
+/// discard them and go on, or cancel. Queues SaveAndContinue, or Quit / LoadFile with
+/// discard_changes set.
+void unsaved_changes_popup(UnsavedPrompt& prompt, CommandQueue& commands);
+
 struct MenuContext {
     bool has_file = false;  ///< the document came from a file (Revert, Save as near it)
     bool busy = false;      ///< a job runs: document commands are disabled

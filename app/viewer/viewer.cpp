@@ -229,6 +229,7 @@ void Viewer::push_loaded(HalfedgeMesh mesh, std::string label, std::string name,
     document_.path = std::move(path);
     document_.report = std::move(report);
     on_state_changed(true);
+    document_.unsaved = false;
     // The overlay starts on where the edges can still be told apart; W toggles it.
     view_.style.wireframe = document_.mesh().n_faces() <= kWireframeMaxFacesAtStart;
     glfwSetWindowTitle(window_.get(), (document_.name + " - " + kTitle).c_str());
@@ -239,6 +240,7 @@ void Viewer::log_history_messages(const std::vector<std::string>& messages) {
 }
 
 void Viewer::on_state_changed(bool fit) {
+    document_.unsaved = true;
     const HalfedgeMesh& mesh = document_.mesh();
     document_.texcoords_projected =
         mesh.has_vertex_property("v:texcoord") && document_.texcoords_projected;
@@ -470,6 +472,15 @@ void Viewer::save(const std::string& path) {
                 notice_ = Notice{Notice::Level::Info, "Saved " + name, {}, false};
                 log_.info("saved " + path);
                 recent_.add(path);
+                document_.unsaved = false;
+                // A prompt's "Save and go on": now go on.
+                if (continue_after_save_) {
+                    continue_after_save_ = false;
+                    if (panels_.unsaved.quitting)
+                        commands_.push_back(Quit{true});
+                    else
+                        commands_.push_back(LoadFile{panels_.unsaved.path, true});
+                }
             });
         });
     if (!started) notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
@@ -576,17 +587,17 @@ void Viewer::update_coloring() {
         coloring_pending_ = true;
         return;
     }
-    const bool started = jobs_.start(std::string("Colouring by ") + coloring_name(coloring),
-                                     [this, coloring, options, reference](Progress&) {
-                                         auto colors = std::make_shared<VertexColors>(
-                                             color_vertices(document_.mesh(), coloring, options,
-                                                            reference.get()));
-                                         return JobRunner::Finish([this, colors, coloring] {
-                                             // Ignore a result the user has already replaced.
-                                             if (view_.settings.coloring == coloring)
-                                                 apply_colors(std::move(*colors));
-                                         });
-                                     });
+    const bool started =
+        jobs_.start(std::string("Colouring by ") + coloring_name(coloring),
+                    [this, coloring, options, reference](Progress&) {
+                        auto colors = std::make_shared<VertexColors>(
+                            color_vertices(document_.mesh(), coloring, options, reference.get()));
+                        return JobRunner::Finish([this, colors, coloring] {
+                            // Ignore a result the user has already replaced.
+                            if (view_.settings.coloring == coloring)
+                                apply_colors(std::move(*colors));
+                        });
+                    });
     if (!started) notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
 }
 
@@ -602,6 +613,21 @@ std::vector<Point> Viewer::reference_positions() const {
         // No usable earlier state: the colouring says so.
     }
     return {};
+}
+
+bool Viewer::confirm_discard(bool quitting, const std::string& path) {
+    // Unchanged documents never ask; scripted runs (--frames) only when they test the
+    // close button (--close-after).
+    if (!document_.unsaved || (options_.frames > 0 && options_.close_after == 0)) return true;
+    log_.info(quitting ? "unsaved changes: asking before quitting"
+                       : "unsaved changes: asking before opening " + path);
+    UnsavedPrompt& prompt = panels_.unsaved;
+    prompt.open_requested = true;
+    prompt.quitting = quitting;
+    prompt.path = path;
+    prompt.document_path = document_.path;
+    active_frames_ = std::max(active_frames_, kFramesAfterInput);
+    return false;
 }
 
 void Viewer::update_texture() {
@@ -664,8 +690,9 @@ void Viewer::take_screenshot(const TakeScreenshot& request) {
 
 void Viewer::execute(const Command& command) {
     if (auto* c = std::get_if<LoadFile>(&command)) {
-        load(c->path);
+        if (c->discard_changes || confirm_discard(false, c->path)) load(c->path);
     } else if (auto* save_file = std::get_if<SaveFile>(&command)) {
+        continue_after_save_ = false;
         save(save_file->path);
     } else if (std::holds_alternative<RevertFile>(command)) {
         if (!document_.path.empty()) load(document_.path);
@@ -707,8 +734,13 @@ void Viewer::execute(const Command& command) {
         panels_.info_open = true;
     } else if (std::holds_alternative<CancelJob>(command)) {
         jobs_.cancel();
-    } else if (std::holds_alternative<Quit>(command)) {
-        quit_ = true;
+    } else if (auto* quit = std::get_if<Quit>(&command)) {
+        if (quit->discard_changes || confirm_discard(true, "")) quit_ = true;
+    } else if (std::holds_alternative<SaveAndContinue>(command)) {
+        if (!document_.path.empty()) {
+            continue_after_save_ = true;
+            save(document_.path);
+        }
     }
 }
 
@@ -877,6 +909,7 @@ void Viewer::draw_ui() {
     if (panels_.info_open) info_window(panels_, scene_info());
     file_browser(panels_.file_browser, commands_);
     error_popup(notice_);
+    unsaved_changes_popup(panels_.unsaved, commands_);
 }
 
 void Viewer::render_scene() {
@@ -928,7 +961,13 @@ double Viewer::frame_ms() const {
 int Viewer::run() {
     int frame = 0;
     active_frames_ = kFramesAfterInput;
-    while (!glfwWindowShouldClose(window_.get()) && !quit_) {
+    while (!quit_) {
+        // The window's close button asks like File -> Quit does.
+        if (glfwWindowShouldClose(window_.get())) {
+            glfwSetWindowShouldClose(window_.get(), GLFW_FALSE);
+            commands_.push_back(Quit{});
+            active_frames_ = std::max(active_frames_, 1);
+        }
         // Idle viewers sleep; a timeout keeps the text cursor blinking in the open dialog.
         if (options_.frames > 0 || active_frames_ > 0) {
             glfwPollEvents();
@@ -975,6 +1014,7 @@ int Viewer::run() {
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
         ++frame;
+        if (frame == options_.close_after) glfwSetWindowShouldClose(window_.get(), GLFW_TRUE);
         const bool last = options_.frames > 0 && frame >= options_.frames;
         if (last && !options_.screenshot.empty()) {
             std::string error = write_screenshot(options_.screenshot);
@@ -994,6 +1034,7 @@ int Viewer::run() {
                       frame_ms(), std::min(n_frame_times_, frame_times_ms_.size()));
         log_.info(buf);
     }
+    log_.info(quit_ ? "quit after " + std::to_string(frame) + " frames" : "frames done");
     return 0;
 }
 

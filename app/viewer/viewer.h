@@ -27,6 +27,7 @@ namespace trilab::viewer {
 struct ViewerOptions {
     std::string mesh_path;   ///< empty: the built-in default model
     int frames = 0;          ///< > 0: render that many frames, then return 0
+    int close_after = 0;     ///< > 0: press the window's close button after that many frames
     std::string screenshot;  ///< non-empty: write the last frame (before the swap) as PNG
     int width = 1280;        ///< window size in screen coordinates
     int height = 800;
@@ -47,6 +48,9 @@ struct Document {
     std::vector<std::string> info;     ///< model information lines, computed once per document
     bool closed = false;               ///< the current state has no boundary (volume is defined)
     bool texcoords_projected = false;  ///< texture coordinates were computed by projection
+    /// The current state differs from the file it came from or was last saved to (any
+    /// operation, undo, redo or jump since; conservative: undoing back still counts).
+    bool unsaved = false;
 };
 
 /// How the document is looked at.
@@ -123,6 +127,9 @@ private:
     /// Positions of the state before the current history entry, one per vertex of the
     /// current mesh (empty when there is none or the connectivity differs).
     std::vector<Point> reference_positions() const;
+    /// Whether `action` (a Quit or a LoadFile) may go ahead now; when changes are unsaved it
+    /// opens the prompt instead and returns false.
+    bool confirm_discard(bool quitting, const std::string& path);
     void update_coloring();
     void apply_colors(VertexColors colors);
     /// Uploads the texture chosen in view_.settings (checkerboard or the loaded image).
@@ -158,7 +165,8 @@ private:
     float ui_scale_ = 1.0f;  ///< content scale of the monitor (HiDPI)
     int active_frames_ = 0;  ///< frames still to draw after the last event or command
     bool quit_ = false;
-    bool coloring_pending_ = false;  ///< a colouring was asked for while a job ran
+    bool continue_after_save_ = false;  ///< the unsaved-changes prompt's Save: then go on
+    bool coloring_pending_ = false;     ///< a colouring was asked for while a job ran
     MorphState morph_;
     const HalfedgeMesh* morph_topology_ = nullptr;  ///< uploaded for the morph (null: none)
     bool initial_op_done_ = false;                  ///< options_.operation has been queued

@@ -352,7 +352,8 @@ TEST_CASE("smoothing distance is the displacement along the normal", "[coloring]
         after.position(v) += 0.1 * n + 0.05 * t;
     }
     const std::vector<double> d = smoothing_distance(after, before.positions());
-    for (Vertex v : after.vertices()) CHECK(d[v.idx()] == Approx(0.1).epsilon(0.05));  // not |0.1 n + 0.05 t| = 0.112
+    for (Vertex v : after.vertices())
+        CHECK(d[v.idx()] == Approx(0.1).epsilon(0.05));  // not |0.1 n + 0.05 t| = 0.112
     const VertexColors colors =
         color_vertices(after, VertexColoring::SmoothingDistance, {}, &before.positions());
     CHECK(colors.has_legend);
