@@ -28,6 +28,8 @@ enum class VertexColoring {
     Gaussian,          ///< Gaussian curvature
     ShapeIndex,        ///< shape index in [-1, 1]
     SubdivisionLevel,  ///< the subdivision step that created each vertex ("v:subdivision_level")
+    Frequency,         ///< an eigenvector's values (core/spectral.h frequency_field); signed
+    FrequencyMass,     ///< |part of the position carried by a band| (band_magnitude_field)
 };
 
 struct ColoringOptions {
@@ -53,11 +55,21 @@ ValueRange percentile_range(const std::vector<double>& values,
                             const std::vector<std::uint8_t>& valid, double low, double high);
 /// [-m, m] with m the larger magnitude of the range's ends.
 ValueRange symmetric_range(const ValueRange& range);
-/// Computes the quantity and its colours.
+/// Computes the quantity and its colours. Throws InvalidArgument for the colourings that
+/// need a field (coloring_needs_field()).
 VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
                             const ColoringOptions& options = {});
+/// Whether the colouring needs a per-vertex field from outside the mesh (Frequency,
+/// FrequencyMass: a spectral decomposition); color_vertices() refuses those.
+bool coloring_needs_field(VertexColoring coloring);
+/// Colours a given per-vertex field (indexed by storage index; NaN: no value, grey) as
+/// `coloring` shows it: Frequency on the diverging map over a symmetric percentile range,
+/// FrequencyMass (and any other) on the sequential map over the percentile range. Throws
+/// InvalidArgument when values.size() != mesh.vertices_size() or for bad percentiles.
+VertexColors color_field(const HalfedgeMesh& mesh, const std::vector<double>& values,
+                         VertexColoring coloring, const ColoringOptions& options = {});
 /// Names for menus and the CLI: "none", "normal", "k1", "k2", "mean", "gaussian", "shape-index",
-/// "subdivision".
+/// "subdivision", "frequency", "frequency-mass".
 const char* coloring_name(VertexColoring coloring);
 /// Parses coloring_name() strings; throws InvalidArgument listing the names otherwise.
 VertexColoring parse_coloring(const std::string& name);

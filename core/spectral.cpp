@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <string>
 #include <utility>
@@ -23,6 +24,10 @@ namespace {
 
 using Triplet = Eigen::Triplet<double>;
 using Ldlt = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>>;
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
 
 /// The eigenproblem in its standard form A = D K D, D = S^-½, over the free rows.
 struct Problem {
@@ -92,6 +97,8 @@ Eigen::VectorXd start_vector(Eigen::Index n, std::uint64_t seed) {
     return v;
 }
 
+SparseMatrix shifted(const Problem& p, double sigma);
+
 /// (A - σI)⁻¹ = S^½ (K - σS)⁻¹ S^½ for Spectra's SymEigsShiftSolver.
 class ShiftInvertOp {
 public:
@@ -110,11 +117,10 @@ public:
     Eigen::Index cols() const { return p_.n(); }
     /// Factorizes K - σS (the pattern was analysed once by the caller).
     void set_shift(double sigma) {
-        SparseMatrix m = p_.K;
-        for (Eigen::Index c = 0; c < m.outerSize(); ++c)
-            for (SparseMatrix::InnerIterator it(m, c); it; ++it)
-                if (it.row() == it.col()) it.valueRef() -= sigma * p_.S[c];
+        const SparseMatrix m = shifted(p_, sigma);
+        const auto t0 = std::chrono::steady_clock::now();
         ldlt_.factorize(m);
+        factor_ms += ms_since(t0);
         ++factorizations;
         if (ldlt_.info() != Eigen::Success)
             throw Error("spectrum: the sparse LDLT factorization of K - sigma*S failed at sigma = " +
@@ -125,18 +131,22 @@ public:
     }
     void perform_op(const double* x_in, double* y_out) const {
         progress_.check_cancelled();
+        const auto t0 = std::chrono::steady_clock::now();
         Eigen::Map<const Eigen::VectorXd> x(x_in, p_.n());
         Eigen::Map<Eigen::VectorXd> y(y_out, p_.n());
         a_ = p_.sqrt_s.cwiseProduct(x);
         b_ = ldlt_.solve(a_);
         y = p_.sqrt_s.cwiseProduct(b_);
+        solve_ms += ms_since(t0);
         ++operations;
         if ((operations & 7) == 0)
             progress_.report(base_ + span_ * std::min(0.95, double(operations) / expected_),
                              "Lanczos (shift-invert)");
     }
     mutable std::size_t operations = 0;
+    mutable double solve_ms = 0;
     std::size_t factorizations = 0;
+    double factor_ms = 0;
 
 private:
     const Problem& p_;
@@ -158,13 +168,16 @@ public:
         progress_.check_cancelled();
         Eigen::Map<const Eigen::VectorXd> x(x_in, p_.n());
         Eigen::Map<Eigen::VectorXd> y(y_out, p_.n());
+        const auto t0 = std::chrono::steady_clock::now();
         a_ = p_.d.cwiseProduct(x);
         y = p_.d.cwiseProduct(p_.K * a_);
+        solve_ms += ms_since(t0);
         ++operations;
         if ((operations & 15) == 0)
             progress_.report(std::min(0.95, double(operations) / expected_), "Lanczos");
     }
     mutable std::size_t operations = 0;
+    mutable double solve_ms = 0;
 
 private:
     const Problem& p_;
@@ -201,6 +214,8 @@ Band shift_invert_band(const Problem& p, Ldlt& ldlt, double sigma, Eigen::Index 
                      Spectra::SortRule::SmallestAlge);
         report.factorizations += op.factorizations;
         report.operations += op.operations;
+        report.factor_ms += op.factor_ms;
+        report.solve_ms += op.solve_ms;
         report.restarts += std::size_t(eigs.num_iterations());
         if (eigs.info() == Spectra::CompInfo::Successful) {
             ++report.bands;
@@ -215,84 +230,259 @@ Band shift_invert_band(const Problem& p, Ldlt& ldlt, double sigma, Eigen::Index 
     return {};
 }
 
-/// The k smallest eigenpairs, band by band. Returns values (ascending) and y-space vectors.
+/// K - σS (same pattern as K, whose diagonal is stored).
+SparseMatrix shifted(const Problem& p, double sigma) {
+    SparseMatrix m = p.K;
+    for (Eigen::Index c = 0; c < m.outerSize(); ++c)
+        for (SparseMatrix::InnerIterator it(m, c); it; ++it)
+            if (it.row() == it.col()) it.valueRef() -= sigma * p.S[c];
+    return m;
+}
+
+/// The number of eigenvalues of K x = λ S x below τ: the negative pivots of the LDLᵀ
+/// factorization of K - τS (Sylvester's law of inertia).
+std::size_t count_below(const Problem& p, Ldlt& ldlt, double tau, SpectralReport& report) {
+    const auto t0 = std::chrono::steady_clock::now();
+    ldlt.factorize(shifted(p, tau));
+    report.factor_ms += ms_since(t0);
+    ++report.factorizations;
+    if (ldlt.info() != Eigen::Success || !ldlt.vectorD().allFinite())
+        throw Error("spectrum: the LDLT factorization for the eigenvalue count failed at " +
+                    std::to_string(tau));
+    return std::size_t((ldlt.vectorD().array() < 0.0).count());
+}
+
+/// x -> P·f(P·x) with P = I - Q·Qᵀ: an operator with the columns of Q deflated (sent to 0).
+class DeflatedOp {
+public:
+    using Scalar = double;
+    using Apply = std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>;
+    DeflatedOp(Eigen::Index n, Apply f, const Eigen::MatrixXd& q, Progress& progress)
+        : n_(n), f_(std::move(f)), q_(q), progress_(progress), a_(n), b_(n) {}
+    Eigen::Index rows() const { return n_; }
+    Eigen::Index cols() const { return n_; }
+    void perform_op(const double* x_in, double* y_out) const {
+        progress_.check_cancelled();
+        Eigen::Map<const Eigen::VectorXd> x(x_in, n_);
+        Eigen::Map<Eigen::VectorXd> y(y_out, n_);
+        a_ = x - q_ * (q_.transpose() * x);
+        f_(a_, b_);
+        y = b_ - q_ * (q_.transpose() * b_);
+        ++operations;
+    }
+    mutable std::size_t operations = 0;
+
+private:
+    Eigen::Index n_;
+    Apply f_;
+    const Eigen::MatrixXd& q_;
+    Progress& progress_;
+    mutable Eigen::VectorXd a_, b_;
+};
+
+/// Orthonormalizes the columns of y in place (Cholesky QR, twice): removes the rounding
+/// that shift-invert leaves in the Ritz vectors (mostly along near-null directions).
+void orthonormalize(Eigen::MatrixXd& y) {
+    for (int pass = 0; pass < 2; ++pass) {
+        const Eigen::MatrixXd g = y.transpose() * y;
+        Eigen::LLT<Eigen::MatrixXd> llt(g);
+        if (llt.info() != Eigen::Success) return;  // dependent columns: left to the caller
+        y = llt.matrixU().solve<Eigen::OnTheRight>(y);
+    }
+}
+
+/// The accepted eigenpairs (unsorted), with the de-duplication of new candidates.
+struct Accepted {
+    std::vector<double> values;
+    Eigen::MatrixXd vectors;  ///< n x capacity; the first values.size() columns are used
+    std::size_t duplicates = 0;
+
+    std::size_t size() const { return values.size(); }
+    std::size_t count_below(double tau) const {
+        return std::size_t(std::count_if(values.begin(), values.end(),
+                                         [tau](double v) { return v < tau; }));
+    }
+    /// Adds (λ, y) unless y lies (to 1/2) in the span of accepted vectors with λ_j within
+    /// `window` of λ (the same eigenpair found twice, e.g. in the overlap of two bands).
+    /// y is first made orthogonal to those and to the vectors of earlier bands (index below
+    /// `first_new`) with λ_j within 1% of λ: the Ritz vectors of two bands are orthogonal
+    /// only to (residual / gap), which is largest for close eigenvalues.
+    bool add(double lambda, Eigen::VectorXd y, double window, std::size_t first_new = 0) {
+        const double wide = std::max(window, 1e-2 * std::abs(lambda));
+        std::vector<Eigen::Index> near;
+        for (std::size_t j = 0; j < values.size(); ++j) {
+            const double gap = std::abs(values[j] - lambda);
+            if (gap <= window || (j < first_new && gap <= wide)) near.push_back(Eigen::Index(j));
+        }
+        for (int pass = 0; pass < 2; ++pass)
+            for (Eigen::Index j : near) y -= vectors.col(j).dot(y) * vectors.col(j);
+        const double norm = y.norm();
+        if (!(norm >= 0.5)) {
+            ++duplicates;
+            return false;
+        }
+        if (Eigen::Index(values.size()) == vectors.cols())
+            vectors.conservativeResize(Eigen::NoChange, vectors.cols() + vectors.cols() / 2 + 8);
+        vectors.col(Eigen::Index(values.size())) = y / norm;
+        values.push_back(lambda);
+        return true;
+    }
+};
+
+/// Midpoint of the widest gap between consecutive sorted values in [from, to).
+double widest_gap_midpoint(std::vector<double> v, std::size_t from, std::size_t to) {
+    std::sort(v.begin(), v.end());
+    double best = -1, tau = v.back();
+    for (std::size_t j = from; j + 1 < std::min(to, v.size()); ++j)
+        if (v[j + 1] - v[j] > best) {
+            best = v[j + 1] - v[j];
+            tau = 0.5 * (v[j] + v[j + 1]);
+        }
+    return tau;
+}
+
+/// The k smallest eigenpairs, band by band; every band is verified by an eigenvalue count
+/// (inertia) and missed eigenvalues (repeated ones, which Lanczos may find only once) are
+/// recovered by a deflated run. Returns values (ascending) and y-space vectors.
 Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progress& progress,
               SpectralReport& report) {
     const Eigen::Index n = p.n();
-    std::size_t band = o.band_size ? o.band_size : (k <= 200 ? k : 150);
-    band = std::min<std::size_t>({band, k, std::size_t(n - 1)});
+    const std::size_t extra = std::max<std::size_t>(4, k / 20);
+    std::size_t band = o.band_size ? o.band_size : (k <= 200 ? k + extra : 100);
+    band = std::min<std::size_t>(band, std::size_t(n - 1));
     const Eigen::Index m = Eigen::Index(band);
-    Ldlt ldlt;
+    Ldlt ldlt, counter;
     ldlt.analyzePattern(p.K);
-    report.solver = "Spectra shift-invert Lanczos + SimplicialLDLT (AMD)";
+    counter.analyzePattern(p.K);
+    report.solver = "Spectra shift-invert Lanczos + SimplicialLDLT (AMD), inertia-checked";
 
-    Band out;
-    out.values.resize(Eigen::Index(k));
-    out.vectors.resize(n, Eigen::Index(k));
-    std::size_t have = 0;
+    Accepted acc;
+    acc.vectors.resize(n, Eigen::Index(std::min<std::size_t>(k + band, std::size_t(n))));
     const double tiny = 1e-12 * std::max(p.a_max, 1e-300);
+    const auto window = [&](double lambda) { return 1e-6 * std::abs(lambda) + tiny; };
     double sigma = -1e-8 * std::max(p.a_max, 1e-300);
-    double last = 0, width = 0;
-    while (have < k) {
-        const double base = double(have) / double(k), span = double(band) / double(k);
+    double verified = -std::numeric_limits<double>::infinity();  // all eigenvalues below: found
+    while (true) {
+        const double base = std::min(1.0, double(acc.size()) / double(k));
+        const double span = std::min(1.0, double(band) / double(k));
         Band b = shift_invert_band(p, ldlt, sigma, m, o, progress, base, span, report);
-        if (have == 0) {
-            const std::size_t take = std::min<std::size_t>(k, std::size_t(b.values.size()));
-            out.values.head(Eigen::Index(take)) = b.values.head(Eigen::Index(take));
-            out.vectors.leftCols(Eigen::Index(take)) = b.vectors.leftCols(Eigen::Index(take));
-            have = take;
-        } else {
-            // The band must reach down to the last accepted eigenvalue, else there may be a gap.
-            const double tol = 1e-6 * std::abs(last) + tiny;
-            if (b.values[0] > last + tol) {
-                if (sigma - last < 1e-6 * width)
-                    throw Error(not_converged(have, k, "(bands do not overlap)"));
-                sigma = last + 0.5 * (sigma - last);
+        orthonormalize(b.vectors);
+        const double lo_b = b.values[0], hi_b = b.values[b.values.size() - 1];
+        if (acc.size() > 0 && lo_b > verified) {  // a gap above the verified range: move down
+            if (!(sigma - verified > 1e-6 * (hi_b - lo_b)))
+                throw Error(not_converged(acc.size(), k, "(bands do not overlap)"));
+            sigma = verified + 0.5 * (sigma - verified);
+            continue;
+        }
+        const std::size_t before = acc.size();
+        for (Eigen::Index i = 0; i < b.values.size(); ++i) {
+            if (b.values[i] < verified) {
+                ++acc.duplicates;
                 continue;
             }
-            // Accepted vectors in the cluster at `last` (for de-duplication).
-            std::vector<Eigen::Index> cluster;
-            for (Eigen::Index j = Eigen::Index(have) - 1; j >= 0 && out.values[j] >= last - tol; --j)
-                cluster.push_back(j);
-            for (Eigen::Index i = 0; i < b.values.size() && have < k; ++i) {
-                const double lambda = b.values[i];
-                if (lambda < last - tol) {
-                    ++report.duplicates_removed;
-                    continue;
-                }
-                Eigen::VectorXd y = b.vectors.col(i);
-                if (lambda <= last + tol) {
-                    for (int pass = 0; pass < 2; ++pass)
-                        for (Eigen::Index j : cluster)
-                            y -= out.vectors.col(j).dot(y) * out.vectors.col(j);
-                    const double norm = y.norm();
-                    if (norm < 0.5) {
-                        ++report.duplicates_removed;
-                        continue;
-                    }
-                    y /= norm;
-                    cluster.push_back(Eigen::Index(have));
-                }
-                out.values[Eigen::Index(have)] = lambda;
-                out.vectors.col(Eigen::Index(have)) = y;
-                ++have;
+            acc.add(b.values[i], b.vectors.col(i), window(b.values[i]), before);
+        }
+        // Verify up to τ, in the widest gap of the upper part of this band (or, once k are
+        // there, between the k-th and the rest).
+        std::vector<double> sorted = acc.values;
+        std::sort(sorted.begin(), sorted.end());
+        const bool last_band = acc.size() > k || (acc.size() == k && band >= k);
+        std::size_t from = last_band ? k - 1 : before + 2 * (acc.size() - before) / 3;
+        from = std::min(from, sorted.size() - 1);
+        // A cut inside a cluster of (nearly) equal eigenvalues would make the count
+        // ambiguous: without a clear gap, count just above the largest found value.
+        const double width_b = std::max(hi_b - lo_b, tiny);
+        double tau = sorted.back() + 1e-3 * width_b + tiny;
+        if (acc.size() > 1) {
+            const double mid = widest_gap_midpoint(sorted, from, sorted.size());
+            const auto above_mid = std::upper_bound(sorted.begin(), sorted.end(), mid);
+            if (above_mid != sorted.begin() && above_mid != sorted.end() &&
+                *above_mid - *(above_mid - 1) > 1e-3 * width_b)
+                tau = mid;
+        }
+        std::size_t expected = count_below(p, counter, tau, report);
+        for (int attempt = 0; acc.count_below(tau) < expected && attempt < 4; ++attempt) {
+            // Deflate the accepted vectors near this band and look again around σ.
+            std::vector<Eigen::Index> cols;
+            for (std::size_t j = 0; j < acc.size(); ++j)
+                if (acc.values[j] >= std::min(lo_b, verified) - window(lo_b)) cols.push_back(Eigen::Index(j));
+            Eigen::MatrixXd q(n, Eigen::Index(cols.size()));
+            for (std::size_t c = 0; c < cols.size(); ++c) q.col(Eigen::Index(c)) = acc.vectors.col(cols[c]);
+            const std::size_t missing = expected - acc.count_below(tau);
+            const Eigen::Index nev =
+                std::min<Eigen::Index>(Eigen::Index(missing + 3), n - q.cols() - 1);
+            if (nev < 1) break;
+            const Eigen::Index ncv = std::min<Eigen::Index>(n - q.cols(), std::max(2 * nev + 1, nev + 20));
+            if (ncv <= nev) break;
+            DeflatedOp op(n,
+                          [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+                              y = p.sqrt_s.cwiseProduct(ldlt.solve(p.sqrt_s.cwiseProduct(x)));
+                          },
+                          q, progress);
+            Spectra::SymEigsSolver<DeflatedOp> eigs(op, nev, ncv);
+            const Eigen::VectorXd v0 = start_vector(n, 1000 + std::uint64_t(attempt));
+            eigs.init(v0.data());
+            eigs.compute(Spectra::SortRule::LargestMagn, o.max_iterations, o.tolerance,
+                         Spectra::SortRule::LargestMagn);
+            report.operations += op.operations;
+            report.restarts += std::size_t(eigs.num_iterations());
+            ++report.repairs;
+            if (eigs.info() != Spectra::CompInfo::Successful) break;
+            const Eigen::VectorXd mu = eigs.eigenvalues();
+            const Eigen::MatrixXd y = eigs.eigenvectors();
+            for (Eigen::Index i = 0; i < mu.size(); ++i) {
+                if (!(std::abs(mu[i]) > 0)) continue;
+                const double lambda = sigma + 1.0 / mu[i];
+                if (lambda < tau && lambda >= verified)
+                    acc.add(lambda, y.col(i) - q * (q.transpose() * y.col(i)), window(lambda));
             }
         }
-        progress.report(double(have) / double(k), "Lanczos (shift-invert)");
-        if (have >= k) break;
-        width = std::max(b.values[b.values.size() - 1] - b.values[0], tiny);
-        last = out.values[Eigen::Index(have) - 1];
-        sigma = last + 0.4 * width;
+        const std::size_t found = acc.count_below(tau);
+        if (found != expected)
+            throw Error("spectrum: " + std::to_string(expected) +
+                        " eigenvalues lie below " + std::to_string(tau) + " but " +
+                        std::to_string(found) +
+                        " were found (repeated eigenvalues of a symmetric mesh that the Lanczos "
+                        "iteration missed); try another k, a smaller band_size, or the full method "
+                        "(meshes up to max_full_rows vertices)");
+        verified = tau;
+        progress.report(std::min(1.0, double(found) / double(k)), "Lanczos (shift-invert)");
+        if (found >= k) break;
+        if (acc.size() >= std::size_t(n)) break;
+        const double width = std::max(hi_b - lo_b, tiny);
+        sigma = tau + 0.45 * width;
     }
+    report.duplicates_removed = acc.duplicates;
+
+    // Sort ascending and keep the k smallest.
+    std::vector<std::size_t> order(acc.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t c) { return acc.values[a] < acc.values[c]; });
+    const std::size_t keep = std::min(k, order.size());
+    Band out;
+    out.values.resize(Eigen::Index(keep));
+    out.vectors.resize(n, Eigen::Index(keep));
+    for (std::size_t i = 0; i < keep; ++i) {
+        out.values[Eigen::Index(i)] = acc.values[order[i]];
+        out.vectors.col(Eigen::Index(i)) = acc.vectors.col(Eigen::Index(order[i]));
+    }
+    if (keep < k) throw Error(not_converged(keep, k, "(band by band)"));
+    // Ritz vectors of different bands are orthogonal only to (residual / gap): one Cholesky QR
+    // over all of them (O(rows · k²)) makes them orthonormal to rounding.
+    if (report.bands > 1) orthonormalize(out.vectors);
     return out;
 }
 
 Band largest(const Problem& p, std::size_t k, const SpectralOptions& o, Progress& progress,
              SpectralReport& report) {
-    const Eigen::Index n = p.n(), m = Eigen::Index(k);
+    const Eigen::Index n = p.n();
+    const std::size_t extra = std::max<std::size_t>(4, k / 20);
+    const Eigen::Index m = std::min<Eigen::Index>(Eigen::Index(k + extra), n - 1);
     Eigen::Index ncv = std::min(n, std::max(2 * m + 1, m + 20));
     int max_it = o.max_iterations;
-    report.solver = "Spectra Lanczos (sparse products)";
+    report.solver = "Spectra Lanczos (sparse products), inertia-checked";
+    Band b;
     for (int attempt = 0; attempt < 2; ++attempt) {
         ProductOp op(p, progress, 4.0 * double(ncv));
         Spectra::SymEigsSolver<ProductOp> eigs(op, m, ncv);
@@ -301,17 +491,86 @@ Band largest(const Problem& p, std::size_t k, const SpectralOptions& o, Progress
         eigs.compute(Spectra::SortRule::LargestAlge, max_it, o.tolerance,
                      Spectra::SortRule::SmallestAlge);
         report.operations += op.operations;
+        report.solve_ms += op.solve_ms;
         report.restarts += std::size_t(eigs.num_iterations());
         if (eigs.info() == Spectra::CompInfo::Successful) {
             report.bands = 1;
-            return Band{eigs.eigenvalues(), eigs.eigenvectors()};
+            b = Band{eigs.eigenvalues(), eigs.eigenvectors()};
+            break;
         }
         if (attempt == 1)
             throw Error(not_converged(std::size_t(eigs.eigenvalues().size()), k, "(largest)"));
         ncv = std::min(n, 2 * ncv);
         max_it *= 2;
     }
-    return {};
+    orthonormalize(b.vectors);
+    Accepted acc;
+    acc.vectors.resize(n, b.values.size() + 8);
+    const double tiny = 1e-12 * std::max(p.a_max, 1e-300);
+    const auto window = [&](double lambda) { return 1e-6 * std::abs(lambda) + tiny; };
+    for (Eigen::Index i = 0; i < b.values.size(); ++i)
+        acc.add(b.values[i], b.vectors.col(i), window(b.values[i]));
+    // Verify with the count of eigenvalues above τ, in the widest gap among the lowest found.
+    std::vector<double> sorted = acc.values;
+    std::sort(sorted.begin(), sorted.end());
+    const std::size_t top = sorted.size() > k ? sorted.size() - k : 0;
+    const double width_b = std::max(sorted.back() - sorted.front(), tiny);
+    double tau = sorted.front() - 1e-3 * width_b - tiny;
+    {
+        const double mid = widest_gap_midpoint(sorted, 0, top + 1);
+        const auto above_mid = std::upper_bound(sorted.begin(), sorted.end(), mid);
+        if (above_mid != sorted.begin() && above_mid != sorted.end() &&
+            *above_mid - *(above_mid - 1) > 1e-3 * width_b)
+            tau = mid;
+    }
+    Ldlt counter;
+    counter.analyzePattern(p.K);
+    const std::size_t expected = std::size_t(n) - count_below(p, counter, tau, report);
+    const auto above = [&] { return acc.size() - acc.count_below(tau); };
+    for (int attempt = 0; above() < expected && attempt < 4; ++attempt) {
+        const Eigen::MatrixXd q = acc.vectors.leftCols(Eigen::Index(acc.size()));
+        const Eigen::Index nev =
+            std::min<Eigen::Index>(Eigen::Index(expected - above() + 3), n - q.cols() - 1);
+        const Eigen::Index ncv2 = std::min<Eigen::Index>(n - q.cols(), std::max(2 * nev + 1, nev + 20));
+        if (nev < 1 || ncv2 <= nev) break;
+        DeflatedOp op(n,
+                      [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+                          y = p.d.cwiseProduct(p.K * p.d.cwiseProduct(x));
+                      },
+                      q, progress);
+        Spectra::SymEigsSolver<DeflatedOp> eigs(op, nev, ncv2);
+        const Eigen::VectorXd v0 = start_vector(n, 1000 + std::uint64_t(attempt));
+        eigs.init(v0.data());
+        eigs.compute(Spectra::SortRule::LargestAlge, o.max_iterations, o.tolerance,
+                     Spectra::SortRule::LargestAlge);
+        report.operations += op.operations;
+        ++report.repairs;
+        if (eigs.info() != Spectra::CompInfo::Successful) break;
+        for (Eigen::Index i = 0; i < eigs.eigenvalues().size(); ++i)
+            if (eigs.eigenvalues()[i] > tau)
+                acc.add(eigs.eigenvalues()[i], eigs.eigenvectors().col(i),
+                        window(eigs.eigenvalues()[i]));
+    }
+    if (above() != expected)
+        throw Error("spectrum: " + std::to_string(expected) + " eigenvalues lie above " +
+                    std::to_string(tau) + " but " + std::to_string(above()) +
+                    " were found; try another k or the full method (meshes up to max_full_rows "
+                    "vertices)");
+    report.duplicates_removed = acc.duplicates;
+    std::vector<std::size_t> order(acc.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t c) { return acc.values[a] < acc.values[c]; });
+    if (order.size() < k) throw Error(not_converged(order.size(), k, "(largest)"));
+    Band out;
+    out.values.resize(Eigen::Index(k));
+    out.vectors.resize(n, Eigen::Index(k));
+    for (std::size_t i = 0; i < k; ++i) {
+        const std::size_t j = order[order.size() - k + i];
+        out.values[Eigen::Index(i)] = acc.values[j];
+        out.vectors.col(Eigen::Index(i)) = acc.vectors.col(Eigen::Index(j));
+    }
+    return out;
 }
 
 Band full(const Problem& p, std::size_t k, SpectrumEnd end, Progress& progress,

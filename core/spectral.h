@@ -89,8 +89,11 @@ struct SpectralReport {
     std::size_t operations = 0;     ///< operator applications (solves or products)
     std::size_t restarts = 0;       ///< Lanczos restarts, all bands
     std::size_t duplicates_removed = 0;  ///< overlap eigenvectors dropped between bands
+    std::size_t repairs = 0;  ///< deflated runs that looked for eigenvalues a band missed
     double max_residual = 0;  ///< max_k |K e_k - λ_k S e_k| / (|K|_inf |e_k|), relative
     double ms = 0;            ///< wall time
+    double factor_ms = 0;     ///< of which sparse factorizations
+    double solve_ms = 0;      ///< of which operator applications (solves, products)
     LaplacianDiagnostics diagnostics;
 };
 

@@ -171,6 +171,9 @@ int run_render_command(const std::vector<std::string>& args) {
     } catch (const InvalidArgument& e) {
         throw InvalidArgument(std::string("--color: ") + e.what());
     }
+    if (coloring_needs_field(coloring))
+        throw InvalidArgument("--color: '" + a.color +
+                              "' needs a spectral decomposition (the viewer's Frequency panel)");
     const bool textured = options.style.mode == RenderMode::Textured;
 
     // File input (not timed).

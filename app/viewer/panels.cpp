@@ -75,7 +75,8 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
             VertexColoring::None,       VertexColoring::Normal,
             VertexColoring::K1,         VertexColoring::K2,
             VertexColoring::Mean,       VertexColoring::Gaussian,
-            VertexColoring::ShapeIndex, VertexColoring::SubdivisionLevel};
+            VertexColoring::ShapeIndex, VertexColoring::SubdivisionLevel,
+            VertexColoring::Frequency,  VertexColoring::FrequencyMass};
         const char* labels[] = {"None",
                                 "Normal direction",
                                 "First principal curvature",
@@ -83,7 +84,9 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
                                 "Mean curvature",
                                 "Gaussian curvature",
                                 "Shape index",
-                                "Subdivision vertices"};
+                                "Subdivision vertices",
+                                "Frequency (the visualized eigenvector)",
+                                "Frequency mass (geometry in the band)"};
         for (std::size_t i = 0; i < std::size(colorings); ++i) {
             if (ImGui::MenuItem(labels[i], nullptr, settings.coloring == colorings[i]) &&
                 settings.coloring != colorings[i]) {
@@ -198,7 +201,7 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
     if (ImGui::BeginMenu("Algorithms")) {
         // The operation panels arrive with their issues; listed so the menu shows the plan.
         ImGui::MenuItem("Fairing", nullptr, &panels.fairing.open);
-        ImGui::MenuItem("Frequency decomposition", nullptr, false, false);
+        ImGui::MenuItem("Frequency decomposition", nullptr, &panels.frequency.open);
         ImGui::MenuItem("Subdivision", nullptr, &panels.subdivision.open);
         ImGui::MenuItem("Decimation", nullptr, false, false);
         ImGui::EndMenu();

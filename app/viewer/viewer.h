@@ -12,6 +12,7 @@
 #include "app/history/history.h"
 #include "app/viewer/job_runner.h"
 #include "app/viewer/log.h"
+#include "app/viewer/frequency_panel.h"
 #include "app/viewer/panels.h"
 #include "core/halfedge_mesh.h"
 #include "core/io/image_io.h"
@@ -47,6 +48,7 @@ struct Document {
     std::vector<std::string> info;     ///< model information lines, computed once per document
     bool closed = false;               ///< the current state has no boundary (volume is defined)
     bool texcoords_projected = false;  ///< texture coordinates were computed by projection
+    FrequencyDocument frequency;       ///< the last frequency decomposition (Frequency panel)
 };
 
 /// How the document is looked at.
@@ -116,6 +118,15 @@ private:
     void start_recording();
     void record_next_frame();
     void finish_recording(bool cancelled);
+    /// The Frequency panel and its actions (viewer_frequency.cpp).
+    void frequency_ui();
+    void start_decomposition();
+    /// Shows the panel's band live (positions only).
+    void preview_band();
+    /// Pushes the panel's band (or, with `restore`, the decomposed shape) as a history entry.
+    void push_frequency_state(bool restore);
+    /// The Frequency / Frequency mass colours of `mesh` (empty without a fitting decomposition).
+    VertexColors frequency_colors(const HalfedgeMesh& mesh) const;
     /// Model and scene information, for the Info panel and the `I` key.
     std::vector<std::string> scene_info() const;
     /// Computes the vertex colouring of view_.settings (as a job for large meshes) and
