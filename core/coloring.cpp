@@ -251,10 +251,9 @@ VertexColors color_field(const HalfedgeMesh& mesh, const std::vector<double>& va
     VertexColors out;
     out.label = entry(coloring).label;
     out.has_legend = true;
-    out.kind = coloring == VertexColoring::Frequency ? ColorMapKind::Diverging
-                                                     : ColorMapKind::Sequential;
-    out.range =
-        percentile_range(values, {}, options.low_percentile, options.high_percentile);
+    out.kind =
+        coloring == VertexColoring::Frequency ? ColorMapKind::Diverging : ColorMapKind::Sequential;
+    out.range = percentile_range(values, {}, options.low_percentile, options.high_percentile);
     if (out.kind == ColorMapKind::Diverging) out.range = symmetric_range(out.range);
     out.colors.assign(values.size(), kInvalidColor);
     for (Vertex v : mesh.vertices())

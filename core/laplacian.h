@@ -100,8 +100,8 @@ const char* mass_matrix_name(MassMatrix mass);
 MassMatrix parse_mass_matrix(const std::string& name);
 
 struct LaplacianOptions {
-    bool fix_boundary = true;               ///< boundary vertices get zero rows in L
-    bool clamp_negative_cotangents = true;  ///< CurvatureFlow: w_ij < 0 -> 0 (keeps K PSD)
+    bool fix_boundary = true;                  ///< boundary vertices get zero rows in L
+    bool clamp_negative_cotangents = true;     ///< CurvatureFlow: w_ij < 0 -> 0 (keeps K PSD)
     MassMatrix mass = MassMatrix::Normalizer;  ///< what S holds
 };
 

@@ -11,10 +11,10 @@
 #include <utility>
 #include <vector>
 
-#include <Eigen/Eigenvalues>
-#include <Eigen/SparseCholesky>
 #include <Spectra/SymEigsShiftSolver.h>
 #include <Spectra/SymEigsSolver.h>
+#include <Eigen/Eigenvalues>
+#include <Eigen/SparseCholesky>
 
 #include "core/errors.h"
 
@@ -32,12 +32,12 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 /// The eigenproblem in its standard form A = D K D, D = S^-½, over the free rows.
 struct Problem {
     VertexIndexMap map;
-    SparseMatrix K;         ///< free rows and columns
-    Eigen::VectorXd S;      ///< mass diagonal
-    Eigen::VectorXd d;      ///< S^-½
-    Eigen::VectorXd sqrt_s; ///< S^½
-    double a_max = 0;       ///< max_i K_ii / S_i (scale of the spectrum)
-    double k_norm = 0;      ///< |K|_inf
+    SparseMatrix K;          ///< free rows and columns
+    Eigen::VectorXd S;       ///< mass diagonal
+    Eigen::VectorXd d;       ///< S^-½
+    Eigen::VectorXd sqrt_s;  ///< S^½
+    double a_max = 0;        ///< max_i K_ii / S_i (scale of the spectrum)
+    double k_norm = 0;       ///< |K|_inf
     LaplacianDiagnostics diagnostics;
     Eigen::Index n() const { return K.rows(); }
 };
@@ -123,8 +123,9 @@ public:
         factor_ms += ms_since(t0);
         ++factorizations;
         if (ldlt_.info() != Eigen::Success)
-            throw Error("spectrum: the sparse LDLT factorization of K - sigma*S failed at sigma = " +
-                        std::to_string(sigma));
+            throw Error(
+                "spectrum: the sparse LDLT factorization of K - sigma*S failed at sigma = " +
+                std::to_string(sigma));
         const Eigen::VectorXd& dd = ldlt_.vectorD();
         if (!dd.allFinite() || (dd.array() == 0.0).any())
             throw Error("spectrum: K - sigma*S is singular at sigma = " + std::to_string(sigma));
@@ -203,7 +204,8 @@ Band shift_invert_band(const Problem& p, Ldlt& ldlt, double sigma, Eigen::Index 
                        const SpectralOptions& o, Progress& progress, double base, double span,
                        SpectralReport& report) {
     const Eigen::Index n = p.n();
-    Eigen::Index ncv = std::min(n, std::max(2 * m + 1, m + 20));
+    const Eigen::Index wanted = Eigen::Index(std::ceil(o.krylov_factor * double(m))) + 1;
+    Eigen::Index ncv = std::min(n, std::max(wanted, m + 20));
     int max_it = o.max_iterations;
     for (int attempt = 0; attempt < 2; ++attempt) {
         ShiftInvertOp op(p, ldlt, progress, base, span, 2.0 * double(ncv));
@@ -299,8 +301,8 @@ struct Accepted {
 
     std::size_t size() const { return values.size(); }
     std::size_t count_below(double tau) const {
-        return std::size_t(std::count_if(values.begin(), values.end(),
-                                         [tau](double v) { return v < tau; }));
+        return std::size_t(
+            std::count_if(values.begin(), values.end(), [tau](double v) { return v < tau; }));
     }
     /// Adds (λ, y) unless y lies (to 1/2) in the span of accepted vectors with λ_j within
     /// `window` of λ (the same eigenpair found twice, e.g. in the overlap of two bands).
@@ -348,7 +350,7 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
               SpectralReport& report) {
     const Eigen::Index n = p.n();
     const std::size_t extra = std::max<std::size_t>(4, k / 20);
-    std::size_t band = o.band_size ? o.band_size : (k <= 200 ? k + extra : 100);
+    std::size_t band = o.band_size ? o.band_size : (k <= 60 ? k + extra : 40);
     band = std::min<std::size_t>(band, std::size_t(n - 1));
     const Eigen::Index m = Eigen::Index(band);
     Ldlt ldlt, counter;
@@ -405,20 +407,24 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
             // Deflate the accepted vectors near this band and look again around σ.
             std::vector<Eigen::Index> cols;
             for (std::size_t j = 0; j < acc.size(); ++j)
-                if (acc.values[j] >= std::min(lo_b, verified) - window(lo_b)) cols.push_back(Eigen::Index(j));
+                if (acc.values[j] >= std::min(lo_b, verified) - window(lo_b))
+                    cols.push_back(Eigen::Index(j));
             Eigen::MatrixXd q(n, Eigen::Index(cols.size()));
-            for (std::size_t c = 0; c < cols.size(); ++c) q.col(Eigen::Index(c)) = acc.vectors.col(cols[c]);
+            for (std::size_t c = 0; c < cols.size(); ++c)
+                q.col(Eigen::Index(c)) = acc.vectors.col(cols[c]);
             const std::size_t missing = expected - acc.count_below(tau);
             const Eigen::Index nev =
                 std::min<Eigen::Index>(Eigen::Index(missing + 3), n - q.cols() - 1);
             if (nev < 1) break;
-            const Eigen::Index ncv = std::min<Eigen::Index>(n - q.cols(), std::max(2 * nev + 1, nev + 20));
+            const Eigen::Index ncv =
+                std::min<Eigen::Index>(n - q.cols(), std::max(2 * nev + 1, nev + 20));
             if (ncv <= nev) break;
-            DeflatedOp op(n,
-                          [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
-                              y = p.sqrt_s.cwiseProduct(ldlt.solve(p.sqrt_s.cwiseProduct(x)));
-                          },
-                          q, progress);
+            DeflatedOp op(
+                n,
+                [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+                    y = p.sqrt_s.cwiseProduct(ldlt.solve(p.sqrt_s.cwiseProduct(x)));
+                },
+                q, progress);
             Spectra::SymEigsSolver<DeflatedOp> eigs(op, nev, ncv);
             const Eigen::VectorXd v0 = start_vector(n, 1000 + std::uint64_t(attempt));
             eigs.init(v0.data());
@@ -439,9 +445,8 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
         }
         const std::size_t found = acc.count_below(tau);
         if (found != expected)
-            throw Error("spectrum: " + std::to_string(expected) +
-                        " eigenvalues lie below " + std::to_string(tau) + " but " +
-                        std::to_string(found) +
+            throw Error("spectrum: " + std::to_string(expected) + " eigenvalues lie below " +
+                        std::to_string(tau) + " but " + std::to_string(found) +
                         " were found (repeated eigenvalues of a symmetric mesh that the Lanczos "
                         "iteration missed); try another k, a smaller band_size, or the full method "
                         "(meshes up to max_full_rows vertices)");
@@ -450,7 +455,7 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
         if (found >= k) break;
         if (acc.size() >= std::size_t(n)) break;
         const double width = std::max(hi_b - lo_b, tiny);
-        sigma = tau + 0.45 * width;
+        sigma = tau + 0.3 * width;
     }
     report.duplicates_removed = acc.duplicates;
 
@@ -531,13 +536,15 @@ Band largest(const Problem& p, std::size_t k, const SpectralOptions& o, Progress
         const Eigen::MatrixXd q = acc.vectors.leftCols(Eigen::Index(acc.size()));
         const Eigen::Index nev =
             std::min<Eigen::Index>(Eigen::Index(expected - above() + 3), n - q.cols() - 1);
-        const Eigen::Index ncv2 = std::min<Eigen::Index>(n - q.cols(), std::max(2 * nev + 1, nev + 20));
+        const Eigen::Index ncv2 =
+            std::min<Eigen::Index>(n - q.cols(), std::max(2 * nev + 1, nev + 20));
         if (nev < 1 || ncv2 <= nev) break;
-        DeflatedOp op(n,
-                      [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
-                          y = p.d.cwiseProduct(p.K * p.d.cwiseProduct(x));
-                      },
-                      q, progress);
+        DeflatedOp op(
+            n,
+            [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+                y = p.d.cwiseProduct(p.K * p.d.cwiseProduct(x));
+            },
+            q, progress);
         Spectra::SymEigsSolver<DeflatedOp> eigs(op, nev, ncv2);
         const Eigen::VectorXd v0 = start_vector(n, 1000 + std::uint64_t(attempt));
         eigs.init(v0.data());
@@ -629,6 +636,8 @@ SpectralDecomposition decompose(const HalfedgeMesh& mesh, const SpectralOptions&
     if (!(o.tolerance > 0 && o.tolerance < 1))
         throw InvalidArgument("tolerance: expected a number in (0, 1)");
     if (o.max_iterations < 1) throw InvalidArgument("max_iterations: expected at least 1");
+    if (!(o.krylov_factor >= 1.2 && o.krylov_factor <= 10))
+        throw InvalidArgument("krylov_factor: expected a number from 1.2 to 10");
     for (const Point& q : mesh.positions())
         if (!q.allFinite())
             throw InvalidArgument("spectrum: the mesh has non-finite vertex positions");
@@ -640,8 +649,9 @@ SpectralDecomposition decompose(const HalfedgeMesh& mesh, const SpectralOptions&
         throw InvalidArgument("spectrum: the mesh has " + std::to_string(n) +
                               " vertices in the eigenproblem (at least 2 needed)");
     if (!p.S.allFinite() || (p.S.array() <= 0).any() || !std::isfinite(p.k_norm))
-        throw InvalidArgument("spectrum: the operator has a non-positive or non-finite mass "
-                              "(degenerate geometry)");
+        throw InvalidArgument(
+            "spectrum: the operator has a non-positive or non-finite mass "
+            "(degenerate geometry)");
 
     SpectralDecomposition d;
     d.op = o.op;
@@ -652,15 +662,13 @@ SpectralDecomposition decompose(const HalfedgeMesh& mesh, const SpectralOptions&
     Band b;
     if (o.method == SpectralMethod::Full) {
         if (n > o.max_full_rows)
-            throw InvalidArgument("full: the dense decomposition is limited to " +
-                                  std::to_string(o.max_full_rows) +
-                                  " vertices (max_full_rows) and this mesh has " +
-                                  std::to_string(n) +
-                                  "; use the partial method with k frequencies");
+            throw InvalidArgument(
+                "full: the dense decomposition is limited to " + std::to_string(o.max_full_rows) +
+                " vertices (max_full_rows) and this mesh has " + std::to_string(n) +
+                "; use the partial method with k frequencies");
         if (o.k > n)
             throw InvalidArgument("k: expected a whole number from 0 (all) to " +
-                                  std::to_string(n) + " for this mesh, got " +
-                                  std::to_string(o.k));
+                                  std::to_string(n) + " for this mesh, got " + std::to_string(o.k));
         b = full(p, o.k == 0 ? n : o.k, o.end, progress, d.report);
     } else {
         if (o.k < 1 || o.k > n - 1)
@@ -694,8 +702,8 @@ SpectralDecomposition decompose(const HalfedgeMesh& mesh, const SpectralOptions&
     d.map = std::move(p.map);
     d.S = std::move(p.S);
     d.base_positions = mesh.positions();
-    d.report.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                      .count();
+    d.report.ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     progress.report(1, "done");
     return d;
 }
@@ -715,8 +723,8 @@ std::vector<Point> reconstruct_positions(const SpectralDecomposition& d, std::si
     return out;
 }
 
-HalfedgeMesh reconstruct(const HalfedgeMesh& mesh, const SpectralDecomposition& d,
-                         std::size_t lo, std::size_t hi) {
+HalfedgeMesh reconstruct(const HalfedgeMesh& mesh, const SpectralDecomposition& d, std::size_t lo,
+                         std::size_t hi) {
     if (mesh.vertices_size() != d.base_positions.size())
         throw InvalidArgument("reconstruct: the mesh has " + std::to_string(mesh.vertices_size()) +
                               " vertices but the decomposition was made for " +
@@ -748,8 +756,7 @@ std::vector<double> band_magnitude_field(const SpectralDecomposition& d, std::si
 
 double s_orthonormality_error(const SpectralDecomposition& d) {
     if (d.empty()) return 0;
-    const Eigen::MatrixXd g =
-        d.eigenvectors.transpose() * (d.S.asDiagonal() * d.eigenvectors);
+    const Eigen::MatrixXd g = d.eigenvectors.transpose() * (d.S.asDiagonal() * d.eigenvectors);
     return (g - Eigen::MatrixXd::Identity(g.rows(), g.cols())).cwiseAbs().maxCoeff();
 }
 

@@ -14,10 +14,16 @@
 //    with one sparse LDLᵀ (Eigen SimplicialLDLT, AMD ordering) of K - σS per shift. σ is
 //    strictly negative (-1e-8 x the largest diagonal of A), so K - σS is SPD even with several
 //    zero eigenvalues (disconnected meshes). More than `band_size` frequencies are computed
-//    band by band (Vallet & Lévy 2008): each band is the band_size eigenvalues nearest a shift
-//    placed 40% of the last band's width above its largest eigenvalue; a band must overlap
-//    the one below (otherwise its shift is lowered and it is recomputed), and eigenvectors
-//    of the overlap are de-duplicated by S-orthogonal projection against the accepted ones.
+//    band by band (Vallet & Lévy 2008): each band is the band_size eigenvalues nearest a shift;
+//    the next shift lies 30% of the band's width above the verified end of the band; a band
+//    must overlap the verified range (otherwise its shift is lowered and it is recomputed),
+//    and eigenvectors of the overlap are de-duplicated by S-orthogonal projection.
+//    Verification: Lanczos can miss copies of a repeated eigenvalue (symmetric meshes: a
+//    sphere's l(l+1) has multiplicity 2l+1). After each band the number of eigenvalues below
+//    a cut τ (in a clear gap of the band's upper part) is counted exactly by Sylvester's law
+//    of inertia (the negative pivots of LDLᵀ(K - τS)); missing ones are found by a Lanczos
+//    run with the accepted eigenvectors deflated. A count that still differs throws. Each
+//    band's vectors are orthonormalized (Cholesky QR), and all k once at the end.
 //  - Partial, largest k: Lanczos on A itself (sparse products only).
 //  - Full: Eigen's dense SelfAdjointEigenSolver on A, refused above max_full_rows (default
 //    5,000) rows: O(n²) memory and O(n³) time.
@@ -75,19 +81,22 @@ struct SpectralOptions {
     std::size_t k = 50;
     std::size_t max_full_rows = kDefaultMaxFullRows;  ///< full is refused above this
     /// Smallest end: frequencies per shift-invert band (more are computed band by band);
-    /// 0 chooses automatically.
+    /// 0 chooses automatically: one band up to 60 frequencies, bands of 40 above (the
+    /// Lanczos basis of a band costs O(rows · band²) memory traffic per restart, which
+    /// dominates for large bands; a band costs two sparse factorizations).
     std::size_t band_size = 0;
-    double tolerance = 1e-10;  ///< Lanczos relative tolerance on the Ritz values
-    int max_iterations = 1000;  ///< Lanczos restarts per band
+    double tolerance = 1e-10;    ///< Lanczos relative tolerance on the Ritz values
+    double krylov_factor = 2.0;  ///< Krylov space size (ncv) per wanted eigenpair, >= 1.2
+    int max_iterations = 1000;   ///< Lanczos restarts per band
 };
 
 /// What a decomposition computed and how.
 struct SpectralReport {
-    std::string solver;             ///< e.g. "Spectra shift-invert Lanczos + SimplicialLDLT"
-    std::size_t bands = 0;          ///< shift-invert bands (partial smallest)
-    std::size_t factorizations = 0; ///< sparse LDLᵀ factorizations
-    std::size_t operations = 0;     ///< operator applications (solves or products)
-    std::size_t restarts = 0;       ///< Lanczos restarts, all bands
+    std::string solver;                  ///< e.g. "Spectra shift-invert Lanczos + SimplicialLDLT"
+    std::size_t bands = 0;               ///< shift-invert bands (partial smallest)
+    std::size_t factorizations = 0;      ///< sparse LDLᵀ factorizations
+    std::size_t operations = 0;          ///< operator applications (solves or products)
+    std::size_t restarts = 0;            ///< Lanczos restarts, all bands
     std::size_t duplicates_removed = 0;  ///< overlap eigenvectors dropped between bands
     std::size_t repairs = 0;  ///< deflated runs that looked for eigenvalues a band missed
     double max_residual = 0;  ///< max_k |K e_k - λ_k S e_k| / (|K|_inf |e_k|), relative
@@ -103,11 +112,11 @@ struct SpectralDecomposition {
     MassMatrix mass = MassMatrix::Normalizer;
     SpectralMethod method = SpectralMethod::Partial;
     SpectrumEnd end = SpectrumEnd::Smallest;
-    VertexIndexMap map;              ///< rows of the eigenproblem <-> vertices
-    Eigen::VectorXd S;               ///< the mass diagonal per row
-    Eigen::VectorXd eigenvalues;     ///< ascending, >= 0 (up to rounding)
-    Eigen::MatrixXd eigenvectors;    ///< rows x k, S-orthonormal columns
-    Eigen::MatrixXd coefficients;    ///< k x 3: α_k = e_kᵀ S X
+    VertexIndexMap map;                 ///< rows of the eigenproblem <-> vertices
+    Eigen::VectorXd S;                  ///< the mass diagonal per row
+    Eigen::VectorXd eigenvalues;        ///< ascending, >= 0 (up to rounding)
+    Eigen::MatrixXd eigenvectors;       ///< rows x k, S-orthonormal columns
+    Eigen::MatrixXd coefficients;       ///< k x 3: α_k = e_kᵀ S X
     std::vector<Point> base_positions;  ///< every vertex (storage index) when decomposed
     SpectralReport report;
 
@@ -132,8 +141,8 @@ std::vector<Point> reconstruct_positions(const SpectralDecomposition& d, std::si
 
 /// A copy of `mesh` with reconstruct_positions(). Throws InvalidArgument when `mesh` does
 /// not have the decomposed mesh's vertices (vertices_size differs).
-HalfedgeMesh reconstruct(const HalfedgeMesh& mesh, const SpectralDecomposition& d,
-                         std::size_t lo, std::size_t hi);
+HalfedgeMesh reconstruct(const HalfedgeMesh& mesh, const SpectralDecomposition& d, std::size_t lo,
+                         std::size_t hi);
 
 /// Per vertex (storage index) the value of eigenvector `index`; NaN for vertices outside the
 /// eigenproblem. For the "Frequency" colouring (signed: a diverging map).

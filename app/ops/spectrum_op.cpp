@@ -35,8 +35,8 @@ SpectrumOptions parse_spectrum(OptionReader& r) {
     std::string band_text;
     while (r.next()) {
         if (r.is("--operator")) {
-            o.spectral.op = parse_laplacian_operator(r.choice(
-                {"umbrella", "improved-umbrella", "curvature-flow", "second-order"}));
+            o.spectral.op = parse_laplacian_operator(
+                r.choice({"umbrella", "improved-umbrella", "curvature-flow", "second-order"}));
         } else if (r.is("--k")) {
             o.spectral.k = std::size_t(r.whole_number(1, kMaxK));
             o.k_given = true;
@@ -71,9 +71,9 @@ SpectrumOptions parse_spectrum(OptionReader& r) {
     }
     if (o.spectral.method == SpectralMethod::Full && !o.k_given) o.spectral.k = 0;
     if (o.band_given && o.k_given && o.hi >= o.spectral.k)
-        throw InvalidArgument("--band: expected LO:HI with 0 <= LO <= HI < K = " +
-                              std::to_string(o.spectral.k) + ", got '" +
-                              std::to_string(o.lo) + ":" + std::to_string(o.hi) + "'");
+        throw InvalidArgument(
+            "--band: expected LO:HI with 0 <= LO <= HI < K = " + std::to_string(o.spectral.k) +
+            ", got '" + std::to_string(o.lo) + ":" + std::to_string(o.hi) + "'");
     return o;
 }
 
@@ -97,9 +97,9 @@ OperationResult run_spectrum(const SpectrumOptions& o, const HalfedgeMesh& mesh,
     const std::size_t k = d.size();
     const std::size_t lo = o.band_given ? o.lo : 0, hi = o.band_given ? o.hi : k - 1;
     if (hi >= k)
-        throw InvalidArgument("--band: expected LO:HI with 0 <= LO <= HI < K = " +
-                              std::to_string(k) + ", got '" + std::to_string(lo) + ":" +
-                              std::to_string(hi) + "'");
+        throw InvalidArgument(
+            "--band: expected LO:HI with 0 <= LO <= HI < K = " + std::to_string(k) + ", got '" +
+            std::to_string(lo) + ":" + std::to_string(hi) + "'");
     HalfedgeMesh out = reconstruct(mesh, d, lo, hi);
     OperationResult result;
     result.ms = ms_since(t0);
@@ -126,11 +126,10 @@ OperationResult run_spectrum(const SpectrumOptions& o, const HalfedgeMesh& mesh,
                   rep.max_residual);
     result.report.push_back(line);
     if (rep.diagnostics.total() > 0)
-        result.report.push_back("operator: " +
-                                std::to_string(rep.diagnostics.negative_weights_clamped) +
-                                " negative cotangent weights clamped, " +
-                                std::to_string(rep.diagnostics.degenerate_corners) +
-                                " degenerate corners");
+        result.report.push_back(
+            "operator: " + std::to_string(rep.diagnostics.negative_weights_clamped) +
+            " negative cotangent weights clamped, " +
+            std::to_string(rep.diagnostics.degenerate_corners) + " degenerate corners");
     result.steps.push_back(OperationStep{std::move(out), MorphCorrespondence{}});
     result.values = {{"k", double(k)},
                      {"lo", double(lo)},
@@ -147,8 +146,8 @@ OperationResult run_spectrum(const SpectrumOptions& o, const HalfedgeMesh& mesh,
                     {"method", spectral_method_name(d.method)},
                     {"which", spectrum_end_name(d.end)},
                     {"solver", rep.solver}};
-    result.series = {{"eigenvalues", std::vector<double>(d.eigenvalues.data(),
-                                                         d.eigenvalues.data() + k)}};
+    result.series = {
+        {"eigenvalues", std::vector<double>(d.eigenvalues.data(), d.eigenvalues.data() + k)}};
     return result;
 }
 

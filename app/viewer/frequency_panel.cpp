@@ -34,9 +34,10 @@ void frequency_bar(const FrequencyDocument& doc, int lo, int hi) {
     }
     ImGui::Dummy(ImVec2(w, h));
     if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("grey: the %zu computed frequencies; green: the band of the current "
-                          "state; orange: the sliders' band",
-                          k);
+        ImGui::SetTooltip(
+            "grey: the %zu computed frequencies; green: the band of the current "
+            "state; orange: the sliders' band",
+            k);
 }
 
 /// A line plot with the band [lo, hi] shaded.
@@ -66,8 +67,7 @@ SpectralOptions frequency_options(const FrequencyPanelState& s) {
     return o;
 }
 
-FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocument& doc,
-                                  bool busy) {
+FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocument& doc, bool busy) {
     FrequencyActions act;
     if (!s.open) return act;
     const ImGuiIO& io = ImGui::GetIO();
@@ -87,8 +87,9 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
     ImGui::SetNextItemWidth(14.0f * em);
     ImGui::Combo("mass S", &s.mass, masses, 3);
     if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("K x = lambda S x: S is the operator's normalizer, or a lumped area "
-                          "(with curvature flow: the Laplace-Beltrami spectrum)");
+        ImGui::SetTooltip(
+            "K x = lambda S x: S is the operator's normalizer, or a lumped area "
+            "(with curvature flow: the Laplace-Beltrami spectrum)");
     int method = s.full ? 0 : 1;
     ImGui::RadioButton("full", &method, 0);
     if (ImGui::IsItemHovered())
@@ -111,8 +112,9 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
     ImGui::SameLine();
     ImGui::Checkbox("fixed boundary", &s.fix_boundary);
     if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("off: boundary vertices are free (Neumann), the shape's spectrum; on: "
-                          "they stay where they are (Dirichlet)");
+        ImGui::SetTooltip(
+            "off: boundary vertices are free (Neumann), the shape's spectrum; on: "
+            "they stay where they are (Dirichlet)");
 
     if (busy) ImGui::BeginDisabled();
     act.decompose = ImGui::Button("Decompose");
@@ -166,8 +168,9 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
             ImGui::SetTooltip("eigenvalue lambda_k against k (ascending), band shaded");
         band_plot("coefficients", doc.log_coefficients, s.lo, s.hi, "log10 |alpha_k|");
         if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("log10 of |alpha_k|, the length of the positions' coefficient "
-                              "(x, y, z) on frequency k");
+            ImGui::SetTooltip(
+                "log10 of |alpha_k|, the length of the positions' coefficient "
+                "(x, y, z) on frequency k");
     }
     ImGui::End();
     return act;

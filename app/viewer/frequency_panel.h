@@ -33,7 +33,7 @@ struct FrequencyPanelState {
 struct FrequencyDocument {
     std::shared_ptr<const SpectralDecomposition> decomposition;
     std::size_t n_vertices = 0, n_faces = 0;  ///< of the decomposed mesh (to check validity)
-    bool valid = false;  ///< the current mesh has the decomposed connectivity
+    bool valid = false;                       ///< the current mesh has the decomposed connectivity
     bool applied = false;
     std::size_t applied_lo = 0, applied_hi = 0;  ///< the band of the current state
     std::vector<float> eigenvalues;              ///< for the spectrum plot

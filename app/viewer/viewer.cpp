@@ -419,11 +419,10 @@ void Viewer::update_morph() {
             morph_topology_ = frame.topology;
             renderer_->upload(*frame.topology);
             if (view_.settings.coloring != VertexColoring::None) {
-                VertexColors colors =
-                    coloring_needs_field(view_.settings.coloring)
-                        ? frequency_colors(*frame.topology)
-                        : color_vertices(*frame.topology, view_.settings.coloring,
-                                         view_.settings.coloring_options);
+                VertexColors colors = coloring_needs_field(view_.settings.coloring)
+                                          ? frequency_colors(*frame.topology)
+                                          : color_vertices(*frame.topology, view_.settings.coloring,
+                                                           view_.settings.coloring_options);
                 if (colors.colors.empty())
                     renderer_->clear_vertex_colors();
                 else

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "app/history/history.h"
+#include "app/viewer/frequency_panel.h"
 #include "app/viewer/job_runner.h"
 #include "app/viewer/log.h"
-#include "app/viewer/frequency_panel.h"
 #include "app/viewer/panels.h"
 #include "core/halfedge_mesh.h"
 #include "core/io/image_io.h"

@@ -2,8 +2,6 @@
 // live band preview (positions-only uploads), the history entries made when a slider is
 // released or Restore is pressed, and the two frequency colourings. The decomposition lives
 // in document_.frequency; the panel holds only its controls.
-#include <GLFW/glfw3.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -47,13 +45,12 @@ void Viewer::frequency_ui() {
 
 void Viewer::start_decomposition() {
     const SpectralOptions options = frequency_options(panels_.frequency);
-    const std::string name = std::string("Frequency decomposition (") +
-                             laplacian_operator_name(options.op) + ", " +
-                             (options.method == SpectralMethod::Full
-                                  ? std::string("full")
-                                  : std::to_string(options.k) + " " +
-                                        spectrum_end_name(options.end)) +
-                             ")";
+    const std::string name =
+        std::string("Frequency decomposition (") + laplacian_operator_name(options.op) + ", " +
+        (options.method == SpectralMethod::Full
+             ? std::string("full")
+             : std::to_string(options.k) + " " + spectrum_end_name(options.end)) +
+        ")";
     const bool started = jobs_.start(name, [this, options](Progress& progress) {
         auto d = std::make_shared<const SpectralDecomposition>(
             decompose(document_.mesh(), options, progress));
@@ -73,8 +70,9 @@ void Viewer::start_decomposition() {
                           "%zu frequencies (%s) of %zu vertices, lambda %.4g .. %.4g, %.0f ms, "
                           "%s, max residual %.1e",
                           d->size(), spectrum_end_name(d->end), d->rows(),
-                          double(d->eigenvalues[0]), double(d->eigenvalues[d->eigenvalues.size() - 1]),
-                          d->report.ms, d->report.solver.c_str(), d->report.max_residual);
+                          double(d->eigenvalues[0]),
+                          double(d->eigenvalues[d->eigenvalues.size() - 1]), d->report.ms,
+                          d->report.solver.c_str(), d->report.max_residual);
             doc.summary = buf;
             log_.info(std::string("Frequency decomposition: ") + buf);
             FrequencyPanelState& s = panels_.frequency;
@@ -98,8 +96,8 @@ void Viewer::preview_band() {
         apply_colors(std::move(view_.colors));
     }
     try {
-        renderer_->update_positions(
-            document_.mesh(), reconstruct_positions(d, std::size_t(s.lo), std::size_t(s.hi)));
+        renderer_->update_positions(document_.mesh(),
+                                    reconstruct_positions(d, std::size_t(s.lo), std::size_t(s.hi)));
     } catch (const std::exception& e) {
         notify_error(std::string("frequency band: ") + e.what());
     }
@@ -124,8 +122,8 @@ void Viewer::push_frequency_state(bool restore) {
     // A geometry-only step: the same vertices, so the morph interpolates positions.
     std::vector<HalfedgeMesh> meshes;
     meshes.push_back(std::move(mesh));
-    log_history_messages(document_.history.push(label, parameters, 0.0, std::move(meshes),
-                                                {MorphCorrespondence{}}));
+    log_history_messages(
+        document_.history.push(label, parameters, 0.0, std::move(meshes), {MorphCorrespondence{}}));
     log_.info(label + " " + parameters);
     on_state_changed(false);
 }

@@ -17,10 +17,10 @@
 // when a floor is missed.
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -77,6 +77,8 @@ int main(int argc, char** argv) {
             skip_1000 = true;
         else if (a == "--operator" && i + 1 < argc)
             base.op = parse_laplacian_operator(argv[++i]);
+        else if (a == "--krylov" && i + 1 < argc)
+            base.krylov_factor = std::atof(argv[++i]);
         else if (a == "--band-size" && i + 1 < argc)
             base.band_size = std::size_t(std::atoi(argv[++i]));
         else {
@@ -95,8 +97,7 @@ int main(int argc, char** argv) {
         if (cow.n_vertices() != 2904) return 1;
         NullProgress none;
         cow = subdivide(cow, SubdivisionOptions{}, none).levels.back().mesh;
-        std::printf("cow Loop-subdivided once: %zu vertices (expected 11,610)\n",
-                    cow.n_vertices());
+        std::printf("cow Loop-subdivided once: %zu vertices (expected 11,610)\n", cow.n_vertices());
         if (cow.n_vertices() != 11610) return 1;
         bunny = read_mesh(dir + "stanford-bunny.obj").mesh;
         std::printf("bunny: %zu vertices\n", bunny.n_vertices());
@@ -104,16 +105,15 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "cannot load the shared meshes: %s\n", e.what());
         return 1;
     }
-    std::printf("operator %s, band size %s, %d runs (median)\n\n",
-                laplacian_operator_name(base.op),
+    std::printf("operator %s, band size %s, %d runs (median)\n\n", laplacian_operator_name(base.op),
                 base.band_size ? std::to_string(base.band_size).c_str() : "auto", runs);
 
     std::vector<Case> cases = {{"cow 11,610 V, 150 lowest", &cow, 150, 1000, runs},
                                {"bunny 34,834 V, 150 lowest", &bunny, 150, 4000, runs}};
     if (!skip_1000) cases.push_back({"bunny 34,834 V, 1,000 lowest", &bunny, 1000, 120000, 1});
     bool ok = true;
-    std::printf("%-30s %10s %10s %7s %6s %6s %8s %10s\n", "case", "median ms", "floor ms",
-                "ratio", "bands", "facts", "ops", "residual");
+    std::printf("%-30s %10s %10s %7s %6s %6s %8s %10s\n", "case", "median ms", "floor ms", "ratio",
+                "bands", "facts", "ops", "residual");
     for (const Case& c : cases) {
         std::vector<double> t, cpu;
         SpectralDecomposition d;
@@ -141,14 +141,15 @@ int main(int argc, char** argv) {
                     c.name.c_str(), med, c.floor_ms, med / c.floor_ms, d.report.bands,
                     d.report.factorizations, d.report.operations, d.report.max_residual, t.front(),
                     t.back());
-        std::printf("%-30s CPU time median %.0f ms (ratio to floor %.2f; wall > CPU when the "
-                    "machine is shared)\n",
-                    "", cpu[cpu.size() / 2], cpu[cpu.size() / 2] / c.floor_ms);
-        std::printf("%-30s lambda_0 = %.3g, lambda_%zu = %.6g; last run: factorizations %.0f ms, "
-                    "solves %.0f ms, the rest (Lanczos, coefficients) %.0f ms\n",
-                    "", d.eigenvalues[0], c.k - 1, d.eigenvalues[Eigen::Index(c.k - 1)],
-                    d.report.factor_ms, d.report.solve_ms,
-                    d.report.ms - d.report.factor_ms - d.report.solve_ms);
+        std::printf(
+            "%-30s CPU time median %.0f ms (ratio to floor %.2f; wall > CPU when the "
+            "machine is shared)\n",
+            "", cpu[cpu.size() / 2], cpu[cpu.size() / 2] / c.floor_ms);
+        std::printf(
+            "%-30s lambda_0 = %.3g, lambda_%zu = %.6g; last run: factorizations %.0f ms, "
+            "solves %.0f ms, the rest (Lanczos, coefficients) %.0f ms\n",
+            "", d.eigenvalues[0], c.k - 1, d.eigenvalues[Eigen::Index(c.k - 1)], d.report.factor_ms,
+            d.report.solve_ms, d.report.ms - d.report.factor_ms - d.report.solve_ms);
         std::fflush(stdout);
     }
     std::printf("\nratio = median / floor (below 1 meets the floor): %s\n",

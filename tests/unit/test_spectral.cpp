@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "app/ops/operation.h"
 #include "core/errors.h"
 #include "core/generators.h"
 #include "core/geometry.h"
@@ -133,7 +134,8 @@ TEST_CASE("partial and full decompositions agree on every operator", "[spectral]
             REQUIRE(part.size() == 20);
             CHECK(s_orthonormality_error(part) < 1e-8);
             CHECK(part.report.max_residual < 1e-8);
-            const Eigen::Index first = end == SpectrumEnd::Smallest ? 0 : full.eigenvalues.size() - 20;
+            const Eigen::Index first =
+                end == SpectrumEnd::Smallest ? 0 : full.eigenvalues.size() - 20;
             const Eigen::VectorXd ref = full.eigenvalues.segment(first, 20);
             for (Eigen::Index j = 0; j < 20; ++j)
                 CHECK(std::abs(part.eigenvalues[j] - ref[j]) <=
@@ -157,7 +159,8 @@ TEST_CASE("band-by-band shift-invert gives the same frequencies as one band", "[
     const SpectralDecomposition banded = decompose(mesh, o);
     REQUIRE(banded.size() == 90);
     CHECK(banded.report.bands >= 5);
-    INFO("one band: " << one.eigenvalues.transpose() << "\nbands: " << banded.eigenvalues.transpose());
+    INFO("one band: " << one.eigenvalues.transpose()
+                      << "\nbands: " << banded.eigenvalues.transpose());
     for (Eigen::Index j = 0; j < 90; ++j)
         CHECK(std::abs(banded.eigenvalues[j] - one.eigenvalues[j]) <=
               1e-8 * std::max(1.0, one.eigenvalues[j]));
@@ -290,8 +293,7 @@ TEST_CASE("frequency fields and band magnitudes", "[spectral]") {
     // The full computed band carries most of the position: |X_band| is close to |X| for a
     // sphere around the origin.
     const std::vector<double> m = band_magnitude_field(d, 0, 11);
-    for (Vertex v : mesh.vertices())
-        CHECK(std::abs(m[v.idx()] - mesh.position(v).norm()) < 0.1);
+    for (Vertex v : mesh.vertices()) CHECK(std::abs(m[v.idx()] - mesh.position(v).norm()) < 0.1);
 }
 
 TEST_CASE("bad spectral options are refused with the option's name", "[spectral]") {
@@ -349,4 +351,36 @@ TEST_CASE("the shared bunny: isolated vertices are left out and keep their posit
     for (Vertex v : bunny.vertices())
         if (bunny.is_isolated(v)) CHECK(low.position(v) == bunny.position(v));
     CHECK(roughness(low) < roughness(bunny));
+}
+
+TEST_CASE("the spectrum operation of the registry", "[spectral][operation]") {
+    const HalfedgeMesh mesh = make_noisy_sphere(6, 0.03, 8);
+    NullProgress none;
+    const OperationResult r = run_operation(
+        parse_operation("spectrum --operator curvature-flow --k 12 --band 0:8"), mesh, none);
+    REQUIRE(r.steps.size() == 1);
+    REQUIRE_VALID(r.steps[0].mesh);
+    CHECK(r.steps[0].mesh.n_vertices() == mesh.n_vertices());
+    CHECK(r.steps[0].correspondence.kind == MorphCorrespondence{}.kind);
+    REQUIRE(r.series.size() == 1);
+    CHECK(r.series[0].second.size() == 12);
+    CHECK(std::is_sorted(r.series[0].second.begin(), r.series[0].second.end()));
+    // The canonical parameters run again to the same result.
+    const OperationResult again =
+        run_operation(parse_operation("spectrum " + r.parameters), mesh, none);
+    CHECK(again.steps[0].mesh.positions() == r.steps[0].mesh.positions());
+    auto message = [&](const std::string& text) {
+        try {
+            run_operation(parse_operation(text), mesh, none);
+        } catch (const InvalidArgument& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    CHECK(message("spectrum --k 10 --band 2:10").rfind("--band: expected LO:HI", 0) == 0);
+    CHECK(message("spectrum --band 3:1").rfind("--band: expected LO:HI", 0) == 0);
+    CHECK(message("spectrum --k 0").rfind("--k: expected a whole number from 1", 0) == 0);
+    CHECK(message("spectrum --k 100000").find("--k: expected a whole number from 1 to") == 0);
+    CHECK(message("spectrum --full --max-full 100").rfind("--full: the dense", 0) == 0);
+    CHECK(message("spectrum --which middle").rfind("--which: expected one of", 0) == 0);
 }
