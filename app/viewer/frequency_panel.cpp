@@ -12,6 +12,7 @@ namespace {
 constexpr LaplacianOperator kOperators[] = {
     LaplacianOperator::Umbrella, LaplacianOperator::ImprovedUmbrella,
     LaplacianOperator::CurvatureFlow, LaplacianOperator::SecondOrder};
+constexpr float kPlotWidthEm = 26.0f;  ///< width of the bar and the plots (auto-resized window)
 constexpr MassMatrix kMasses[] = {MassMatrix::Normalizer, MassMatrix::Barycentric,
                                   MassMatrix::Voronoi};
 
@@ -19,7 +20,7 @@ constexpr MassMatrix kMasses[] = {MassMatrix::Normalizer, MassMatrix::Barycentri
 /// and the slider band outlined in orange.
 void frequency_bar(const FrequencyDocument& doc, int lo, int hi) {
     const std::size_t k = doc.eigenvalues.size();
-    const float w = ImGui::GetContentRegionAvail().x, h = ImGui::GetFrameHeight() * 0.7f;
+    const float w = kPlotWidthEm * ImGui::GetFontSize(), h = ImGui::GetFrameHeight() * 0.7f;
     const ImVec2 p = ImGui::GetCursorScreenPos();
     ImDrawList* dl = ImGui::GetWindowDrawList();
     dl->AddRectFilled(p, ImVec2(p.x + w, p.y + h), IM_COL32(70, 70, 70, 255));
@@ -44,7 +45,7 @@ void frequency_bar(const FrequencyDocument& doc, int lo, int hi) {
 void band_plot(const char* label, const std::vector<float>& values, int lo, int hi,
                const char* overlay) {
     if (values.empty()) return;
-    const float w = ImGui::GetContentRegionAvail().x;
+    const float w = kPlotWidthEm * ImGui::GetFontSize();
     ImGui::PlotLines(label, values.data(), int(values.size()), 0, overlay, FLT_MAX, FLT_MAX,
                      ImVec2(w, 5.0f * ImGui::GetFontSize()));
     const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
@@ -72,10 +73,9 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
     if (!s.open) return act;
     const ImGuiIO& io = ImGui::GetIO();
     const float em = ImGui::GetFontSize();
-    ImGui::SetNextWindowPos(ImVec2(std::max(0.0f, io.DisplaySize.x - 33.0f * em), 6.0f * em),
+    ImGui::SetNextWindowPos(ImVec2(std::max(0.0f, io.DisplaySize.x - 37.0f * em), 9.0f * em),
                             ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(30.0f * em, 0.0f), ImGuiCond_FirstUseEver);
-    if (!ImGui::Begin("Frequency decomposition", &s.open)) {
+    if (!ImGui::Begin("Frequency decomposition", &s.open, ImGuiWindowFlags_AlwaysAutoResize)) {
         ImGui::End();
         return act;
     }
@@ -125,8 +125,12 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
     if (!have) ImGui::EndDisabled();
     if (busy) ImGui::EndDisabled();
     if (doc.decomposition && !doc.valid)
-        ImGui::TextWrapped("The decomposition belongs to another mesh: decompose again.");
-    if (!doc.summary.empty()) ImGui::TextWrapped("%s", doc.summary.c_str());
+        ImGui::TextUnformatted("The decomposition belongs to another mesh: decompose again.");
+    if (!doc.summary.empty()) {
+        ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + kPlotWidthEm * em);
+        ImGui::TextUnformatted(doc.summary.c_str());
+        ImGui::PopTextWrapPos();
+    }
 
     if (have) {
         const int last = int(doc.eigenvalues.size()) - 1;
@@ -135,11 +139,11 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
         ImGui::Separator();
         frequency_bar(doc, s.lo, s.hi);
         if (busy) ImGui::BeginDisabled();
-        ImGui::SetNextItemWidth(-6.0f * em);
+        ImGui::SetNextItemWidth(kPlotWidthEm * em - 6.0f * em);
         const int old_lo = s.lo, old_hi = s.hi;
         ImGui::SliderInt("band from", &s.lo, 0, last);
         const bool lo_done = ImGui::IsItemDeactivatedAfterEdit();
-        ImGui::SetNextItemWidth(-6.0f * em);
+        ImGui::SetNextItemWidth(kPlotWidthEm * em - 6.0f * em);
         ImGui::SliderInt("band to", &s.hi, 0, last);
         const bool hi_done = ImGui::IsItemDeactivatedAfterEdit();
         s.lo = std::clamp(s.lo, 0, last);
@@ -152,7 +156,7 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
         }
         act.preview = s.lo != old_lo || s.hi != old_hi;
         act.commit = lo_done || hi_done;
-        ImGui::SetNextItemWidth(-6.0f * em);
+        ImGui::SetNextItemWidth(kPlotWidthEm * em - 6.0f * em);
         const int old_vis = s.visualize;
         ImGui::SliderInt("visualize", &s.visualize, 0, last);
         s.visualize = std::clamp(s.visualize, 0, last);

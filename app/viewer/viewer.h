@@ -36,6 +36,7 @@ struct ViewerOptions {
     std::string operation;     ///< an operation to apply after loading, empty: none
     std::string show;          ///< panels to open at start, comma-separated
     int memory_budget_mb = 0;  ///< the history's budget; 0: a quarter of the RAM
+    std::string decompose;     ///< "K" or "K:LO:HI": Frequency panel Decompose (and a band)
 };
 
 /// The model: its history of states (the current one is shown) and where it came from.
@@ -121,6 +122,8 @@ private:
     /// The Frequency panel and its actions (viewer_frequency.cpp).
     void frequency_ui();
     void start_decomposition();
+    /// options_.decompose: Decompose once the model is there, then apply the band.
+    void scripted_decomposition(FrequencyActions& act);
     /// Shows the panel's band live (positions only).
     void preview_band();
     /// Pushes the panel's band (or, with `restore`, the decomposed shape) as a history entry.
@@ -170,7 +173,8 @@ private:
     MorphState morph_;
     const HalfedgeMesh* morph_topology_ = nullptr;  ///< uploaded for the morph (null: none)
     bool initial_op_done_ = false;                  ///< options_.operation has been queued
-    Camera record_camera_;  ///< the recording's framing, fixed for the whole sequence
+    int scripted_decompose_ = 0;  ///< options_.decompose: 0 to do, 1 started, 2 done
+    Camera record_camera_;        ///< the recording's framing, fixed for the whole sequence
     /// Wall time of the most recent frames (events excluded), for a median that ignores the
     /// slow first frame (shader compilation, font upload).
     std::array<double, 15> frame_times_ms_{};

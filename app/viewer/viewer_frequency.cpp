@@ -33,14 +33,48 @@ void Viewer::frequency_ui() {
     doc.applied_lo = lo;
     doc.applied_hi = hi;
 
-    const FrequencyActions act = frequency_window(panels_.frequency, doc, jobs_.busy());
+    FrequencyActions act = frequency_window(panels_.frequency, doc, jobs_.busy());
+    scripted_decomposition(act);
     if (act.decompose) start_decomposition();
     if (!doc.valid || jobs_.busy()) return;
+    FrequencyPanelState& s = panels_.frequency;
+    const int last = int(doc.eigenvalues.size()) - 1;
+    s.lo = std::clamp(s.lo, 0, last);
+    s.hi = std::clamp(s.hi, s.lo, last);
     if (act.restore) push_frequency_state(true);
     if (act.preview) preview_band();
     if (act.commit) push_frequency_state(false);
     if (act.visualize_changed && view_.settings.coloring == VertexColoring::Frequency)
         update_coloring();
+}
+
+void Viewer::scripted_decomposition(FrequencyActions& act) {
+    if (options_.decompose.empty() || scripted_decompose_ == 2 || jobs_.busy()) return;
+    // Wait for the initial load (a job) and operation before decomposing.
+    if (!options_.mesh_path.empty() && document_.path.empty()) return;
+    if (!options_.operation.empty() && !initial_op_done_ && !options_.mesh_path.empty()) return;
+    unsigned k = 0, lo = 0, hi = 0;
+    const int n = std::sscanf(options_.decompose.c_str(), "%u:%u:%u", &k, &lo, &hi);
+    FrequencyPanelState& s = panels_.frequency;
+    if (scripted_decompose_ == 0) {
+        scripted_decompose_ = 1;
+        if (n < 1 || k < 1) {
+            scripted_decompose_ = 2;
+            notify_error("--decompose: expected K or K:LO:HI, got '" + options_.decompose + "'");
+            return;
+        }
+        s.k = int(k);
+        act.decompose = true;
+    } else if (document_.frequency.valid) {
+        scripted_decompose_ = 2;
+        if (n == 3) {
+            s.lo = int(lo);
+            s.hi = int(hi);
+            act.preview = act.commit = true;
+        }
+    } else {
+        scripted_decompose_ = 2;  // the decomposition failed (its error is shown)
+    }
 }
 
 void Viewer::start_decomposition() {
@@ -75,6 +109,11 @@ void Viewer::start_decomposition() {
                           d->report.solver.c_str(), d->report.max_residual);
             doc.summary = buf;
             log_.info(std::string("Frequency decomposition: ") + buf);
+            notice_ =
+                Notice{Notice::Level::Info,
+                       "Frequency decomposition: " + std::to_string(d->size()) + " frequencies",
+                       {buf},
+                       false};
             FrequencyPanelState& s = panels_.frequency;
             s.lo = 0;
             s.hi = int(d->size()) - 1;
