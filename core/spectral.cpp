@@ -141,8 +141,9 @@ public:
         solve_ms += ms_since(t0);
         ++operations;
         if ((operations & 7) == 0)
-            progress_.report(base_ + span_ * std::min(0.95, double(operations) / expected_),
-                             "Lanczos (shift-invert)");
+            progress_.report(
+                std::min(0.99, base_ + span_ * std::min(0.95, double(operations) / expected_)),
+                "Lanczos (shift-invert)");
     }
     mutable std::size_t operations = 0;
     mutable double solve_ms = 0;
@@ -389,7 +390,7 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
         std::vector<double> sorted = acc.values;
         std::sort(sorted.begin(), sorted.end());
         const bool last_band = acc.size() > k || (acc.size() == k && band >= k);
-        std::size_t from = last_band ? k - 1 : before + 2 * (acc.size() - before) / 3;
+        std::size_t from = last_band ? k - 1 : before + 4 * (acc.size() - before) / 5;
         from = std::min(from, sorted.size() - 1);
         // A cut inside a cluster of (nearly) equal eigenvalues would make the count
         // ambiguous: without a clear gap, count just above the largest found value.
@@ -455,7 +456,7 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
         if (found >= k) break;
         if (acc.size() >= std::size_t(n)) break;
         const double width = std::max(hi_b - lo_b, tiny);
-        sigma = tau + 0.3 * width;
+        sigma = tau + 0.35 * width;
     }
     report.duplicates_removed = acc.duplicates;
 

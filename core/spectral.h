@@ -15,12 +15,12 @@
 //    strictly negative (-1e-8 x the largest diagonal of A), so K - σS is SPD even with several
 //    zero eigenvalues (disconnected meshes). More than `band_size` frequencies are computed
 //    band by band (Vallet & Lévy 2008): each band is the band_size eigenvalues nearest a shift;
-//    the next shift lies 30% of the band's width above the verified end of the band; a band
+//    the next shift lies 35% of the band's width above the verified end of the band; a band
 //    must overlap the verified range (otherwise its shift is lowered and it is recomputed),
 //    and eigenvectors of the overlap are de-duplicated by S-orthogonal projection.
 //    Verification: Lanczos can miss copies of a repeated eigenvalue (symmetric meshes: a
 //    sphere's l(l+1) has multiplicity 2l+1). After each band the number of eigenvalues below
-//    a cut τ (in a clear gap of the band's upper part) is counted exactly by Sylvester's law
+//    a cut τ (in a clear gap of the band's top fifth) is counted exactly by Sylvester's law
 //    of inertia (the negative pivots of LDLᵀ(K - τS)); missing ones are found by a Lanczos
 //    run with the accepted eigenvectors deflated. A count that still differs throws. Each
 //    band's vectors are orthonormalized (Cholesky QR), and all k once at the end.

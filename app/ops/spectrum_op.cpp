@@ -70,7 +70,8 @@ SpectrumOptions parse_spectrum(OptionReader& r) {
         }
     }
     if (o.spectral.method == SpectralMethod::Full && !o.k_given) o.spectral.k = 0;
-    if (o.band_given && o.k_given && o.hi >= o.spectral.k)
+    const bool k_known = o.k_given || o.spectral.method == SpectralMethod::Partial;
+    if (o.band_given && k_known && o.hi >= o.spectral.k)
         throw InvalidArgument(
             "--band: expected LO:HI with 0 <= LO <= HI < K = " + std::to_string(o.spectral.k) +
             ", got '" + std::to_string(o.lo) + ":" + std::to_string(o.hi) + "'");
