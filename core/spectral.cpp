@@ -372,12 +372,6 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
         Band b = shift_invert_band(p, ldlt, sigma, m, o, progress, base, span, report);
         orthonormalize(b.vectors);
         const double lo_b = b.values[0], hi_b = b.values[b.values.size() - 1];
-        if (acc.size() > 0 && lo_b > verified) {  // a gap above the verified range: move down
-            if (!(sigma - verified > 1e-6 * (hi_b - lo_b)))
-                throw Error(not_converged(acc.size(), k, "(bands do not overlap)"));
-            sigma = verified + 0.5 * (sigma - verified);
-            continue;
-        }
         const std::size_t before = acc.size();
         for (Eigen::Index i = 0; i < b.values.size(); ++i) {
             if (b.values[i] < verified) {
@@ -386,25 +380,36 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
             }
             acc.add(b.values[i], b.vectors.col(i), window(b.values[i]), before);
         }
-        // Verify up to τ, in the widest gap of the upper part of this band (or, once k are
-        // there, between the k-th and the rest).
+        // A cut in the widest gap of the top fifth of this band (or, once k are there, between
+        // the k-th and the rest). A cut inside a cluster of (nearly) equal eigenvalues would
+        // make a count ambiguous: without a clear gap, cut just above the largest found value.
         std::vector<double> sorted = acc.values;
         std::sort(sorted.begin(), sorted.end());
         const bool last_band = acc.size() > k || (acc.size() == k && band >= k);
         std::size_t from = last_band ? k - 1 : before + 4 * (acc.size() - before) / 5;
         from = std::min(from, sorted.size() - 1);
-        // A cut inside a cluster of (nearly) equal eigenvalues would make the count
-        // ambiguous: without a clear gap, count just above the largest found value.
         const double width_b = std::max(hi_b - lo_b, tiny);
-        double tau = sorted.back() + 1e-3 * width_b + tiny;
+        double cut = sorted.back() + 1e-3 * width_b + tiny;
         if (acc.size() > 1) {
             const double mid = widest_gap_midpoint(sorted, from, sorted.size());
             const auto above_mid = std::upper_bound(sorted.begin(), sorted.end(), mid);
             if (above_mid != sorted.begin() && above_mid != sorted.end() &&
                 *above_mid - *(above_mid - 1) > 1e-3 * width_b)
-                tau = mid;
+                cut = mid;
         }
-        std::size_t expected = count_below(p, counter, tau, report);
+        // Verify up to τ: for the last band the cut (one more factorization); otherwise the
+        // band's own shift, whose factorization counts the eigenvalues below it for free (the
+        // first band's negative shift has none below it).
+        double tau = cut;
+        std::size_t expected = 0;
+        if (last_band) {
+            expected = count_below(p, counter, tau, report);
+        } else if (sigma > 0) {
+            tau = sigma;
+            expected = std::size_t((ldlt.vectorD().array() < 0.0).count());
+        } else {
+            tau = sigma;
+        }
         for (int attempt = 0; acc.count_below(tau) < expected && attempt < 4; ++attempt) {
             // Deflate the accepted vectors near this band and look again around σ.
             std::vector<Eigen::Index> cols;
@@ -453,11 +458,13 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
                         "iteration missed); try another k, a smaller band_size, or the full method "
                         "(meshes up to max_full_rows vertices)");
         verified = tau;
-        progress.report(std::min(1.0, double(found) / double(k)), "Lanczos (shift-invert)");
-        if (found >= k) break;
+        progress.report(std::min(1.0, double(acc.count_below(cut)) / double(k)),
+                        "Lanczos (shift-invert)");
+        if (last_band) break;
         if (acc.size() >= std::size_t(n)) break;
-        const double width = std::max(hi_b - lo_b, tiny);
-        sigma = tau + 0.35 * width;
+        // The next band: centred 35% of this band's width above the cut, so that it overlaps
+        // this one; whatever still lies between them is found by the count at its shift.
+        sigma = cut + 0.35 * width_b;
     }
     report.duplicates_removed = acc.duplicates;
 
