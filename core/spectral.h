@@ -14,17 +14,19 @@
 //    with one sparse LDLᵀ (Eigen SimplicialLDLT, AMD ordering) of K - σS per shift. σ is
 //    strictly negative (-1e-8 x the largest diagonal of A), so K - σS is SPD even with several
 //    zero eigenvalues (disconnected meshes). More than `band_size` frequencies are computed
-//    band by band (Vallet & Lévy 2008): each band is the band_size eigenvalues nearest a shift;
-//    the next shift lies 35% of the band's width above the verified end of the band; a band
-//    must overlap the verified range (otherwise its shift is lowered and it is recomputed),
-//    and eigenvectors of the overlap are de-duplicated by S-orthogonal projection.
+//    band by band (Vallet & Lévy 2008): each band is the band_size eigenvalues nearest a shift
+//    (both sides); the next shift lies 35% of the band's width above a cut in the widest gap
+//    of the band's top fifth, so consecutive bands overlap; eigenvectors found twice are
+//    de-duplicated by S-orthogonal projection against accepted ones of the same eigenvalue.
 //    Verification: Lanczos can miss copies of a repeated eigenvalue (symmetric meshes: a
-//    sphere's l(l+1) has multiplicity 2l+1). After each band the number of eigenvalues below
-//    a cut τ (in a clear gap of the band's top fifth) is counted exactly by Sylvester's law
-//    of inertia (the negative pivots of LDLᵀ(K - τS)); missing ones are found by a Lanczos
-//    run with the accepted eigenvectors deflated. A count that still differs throws. Each
-//    band's vectors are orthonormalized (Cholesky QR), and all k once at the end.
-//  - Partial, largest k: Lanczos on A itself (sparse products only).
+//    sphere's l(l+1) has multiplicity 2l+1), and bands could leave a gap. The number of
+//    eigenvalues below a shift τ is exact by Sylvester's law of inertia: the negative pivots
+//    of LDLᵀ(K - τS). Each band is checked at its own shift (its factorization gives the count
+//    for free), the last band at a cut above the k-th eigenvalue (one more factorization);
+//    missing ones are found by Lanczos runs with the accepted eigenvectors deflated, and a
+//    count that still differs throws. Each band's vectors are orthonormalized (Cholesky QR),
+//    and all k once at the end (O(rows · k²)).
+//  - Partial, largest k: Lanczos on A itself (sparse products only), checked the same way.
 //  - Full: Eigen's dense SelfAdjointEigenSolver on A, refused above max_full_rows (default
 //    5,000) rows: O(n²) memory and O(n³) time.
 // The start vector is deterministic, so the same input gives the same output. A run that
@@ -47,7 +49,8 @@
 // mesh is never modified.
 // Complexity: building the operator O(V + F); per shift one sparse factorization (for
 // surfaces about O(V^1.5)) and one pair of triangular solves per Lanczos step; the Lanczos
-// basis costs O(V·ncv²) per restart with ncv ≈ 2·band + 1.
+// basis costs O(V·ncv²) per restart with ncv ≈ 2·band + 1, so O(V·k·band) in all; the final
+// orthonormalization O(V·k²). Memory O(V·k). Figures: README.md, Benchmarks.
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -83,7 +86,7 @@ struct SpectralOptions {
     /// Smallest end: frequencies per shift-invert band (more are computed band by band);
     /// 0 chooses automatically: one band up to 60 frequencies, bands of 40 above (the
     /// Lanczos basis of a band costs O(rows · band²) memory traffic per restart, which
-    /// dominates for large bands; a band costs two sparse factorizations).
+    /// dominates for large bands; each band costs one sparse factorization).
     std::size_t band_size = 0;
     double tolerance = 1e-10;    ///< Lanczos relative tolerance on the Ritz values
     double krylov_factor = 2.0;  ///< Krylov space size (ncv) per wanted eigenpair, >= 1.2
