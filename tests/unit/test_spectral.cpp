@@ -170,6 +170,8 @@ TEST_CASE("band-by-band shift-invert gives the same frequencies as one band", "[
     CHECK(subspace_gap(banded.eigenvectors.leftCols(81), one.eigenvectors, one.S) < 1e-8);
 }
 
+namespace {
+
 /// A grid with a bump (a flat grid's coordinates lie in a few low frequencies).
 HalfedgeMesh bumpy_grid() {
     HalfedgeMesh m = make_grid(12);
@@ -183,6 +185,8 @@ HalfedgeMesh bumpy_torus() {
     for (Vertex v : m.vertices()) m.position(v) *= 1.0 + 0.03 * std::sin(7.3 * v.idx());
     return m;
 }
+
+}  // namespace
 
 TEST_CASE("a full decomposition reconstructs the mesh from all frequencies", "[spectral]") {
     const HalfedgeMesh meshes[] = {make_noisy_sphere(5, 0.05, 9), bumpy_grid(), bumpy_torus()};
