@@ -352,7 +352,10 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
               SpectralReport& report) {
     const Eigen::Index n = p.n();
     const std::size_t extra = std::max<std::size_t>(4, k / 20);
-    std::size_t band = o.band_size ? o.band_size : (k <= 60 ? k + extra : 40);
+    // Bands of 40, or 30 above 20,000 rows: the Lanczos basis of a band (rows x 2·band
+    // doubles) is swept several times per step, so it should stay near the cache size.
+    const std::size_t auto_band = n > 20000 ? 30 : 40;
+    std::size_t band = o.band_size ? o.band_size : (k <= 60 ? k + extra : auto_band);
     band = std::min<std::size_t>(band, std::size_t(n - 1));
     const Eigen::Index m = Eigen::Index(band);
     Ldlt ldlt, counter;

@@ -84,9 +84,9 @@ struct SpectralOptions {
     std::size_t k = 50;
     std::size_t max_full_rows = kDefaultMaxFullRows;  ///< full is refused above this
     /// Smallest end: frequencies per shift-invert band (more are computed band by band);
-    /// 0 chooses automatically: one band up to 60 frequencies, bands of 40 above (the
-    /// Lanczos basis of a band costs O(rows · band²) memory traffic per restart, which
-    /// dominates for large bands; each band costs one sparse factorization).
+    /// 0 chooses automatically: one band up to 60 frequencies, bands of 40 above (30 above
+    /// 20,000 rows): the Lanczos basis of a band costs O(rows · band²) memory traffic per
+    /// restart, which dominates for large bands; each band costs one sparse factorization.
     std::size_t band_size = 0;
     double tolerance = 1e-10;    ///< Lanczos relative tolerance on the Ritz values
     double krylov_factor = 2.0;  ///< Krylov space size (ncv) per wanted eigenpair, >= 1.2

@@ -2,7 +2,7 @@
 // core/spectral.h, median wall time and the ratio to each floor.
 //
 //   trilab_spectral_bench [--runs N] [--check] [--operator OP] [--band-size B] [--krylov F]
-//                         [--skip-1000] [--baseline]
+//                         [--tol T] [--skip-1000] [--baseline]
 //
 //  - 150 lowest frequencies of the reference's 11,610-vertex cow: ../shared/meshes/cow.obj
 //    (the loader splits its one non-manifold vertex: 2,904 vertices, checked) Loop-subdivided
@@ -17,7 +17,8 @@
 // figures are wall-clock times: run it on an otherwise idle machine (the CPU time of the
 // process is printed too). --check exits non-zero when a floor is missed. --baseline adds the
 // 150-frequency cases computed as one band (about the straightforward solver) for comparison;
-// --band-size and --krylov override the solver's band size and Krylov factor.
+// --band-size, --krylov and --tol override the solver's band size, Krylov factor and
+// Lanczos tolerance.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -82,6 +83,8 @@ int main(int argc, char** argv) {
             skip_1000 = true;
         else if (a == "--operator" && i + 1 < argc)
             base.op = parse_laplacian_operator(argv[++i]);
+        else if (a == "--tol" && i + 1 < argc)
+            base.tolerance = std::atof(argv[++i]);
         else if (a == "--krylov" && i + 1 < argc)
             base.krylov_factor = std::atof(argv[++i]);
         else if (a == "--band-size" && i + 1 < argc)
@@ -89,7 +92,7 @@ int main(int argc, char** argv) {
         else {
             std::fprintf(stderr,
                          "usage: trilab_spectral_bench [--runs N] [--check] [--operator OP] "
-                         "[--band-size B] [--krylov F] [--skip-1000] [--baseline]\n");
+                         "[--band-size B] [--krylov F] [--tol T] [--skip-1000] [--baseline]\n");
             return 2;
         }
     }
