@@ -76,7 +76,7 @@ struct ColoringEntry {
     const char* label;
 };
 
-constexpr std::array<ColoringEntry, 9> kColorings = {{
+constexpr std::array<ColoringEntry, 11> kColorings = {{
     {VertexColoring::None, "none", ""},
     {VertexColoring::Normal, "normal", "vertex normal"},
     {VertexColoring::K1, "k1", "first principal curvature k1"},
@@ -87,6 +87,8 @@ constexpr std::array<ColoringEntry, 9> kColorings = {{
     {VertexColoring::SubdivisionLevel, "subdivision", "subdivision level of each vertex"},
     {VertexColoring::SmoothingDistance, "smoothing-distance",
      "smoothing distance (along the normal)"},
+    {VertexColoring::Frequency, "frequency", "frequency (eigenvector values)"},
+    {VertexColoring::FrequencyMass, "frequency-mass", "geometry carried by the band"},
 }};
 
 const ColoringEntry& entry(VertexColoring coloring) {
@@ -233,6 +235,10 @@ VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
         return out;
     }
 
+    if (coloring_needs_field(coloring))
+        throw InvalidArgument(std::string("color_vertices: the '") + e.name +
+                              "' colouring needs a spectral decomposition (the viewer's "
+                              "Frequency panel)");
     const VertexCurvatures c = compute_curvatures(mesh);
     const std::vector<double>* field = nullptr;
     switch (coloring) {
@@ -262,6 +268,32 @@ VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
     for (Vertex v : mesh.vertices())
         if (c.valid[v.idx()])
             out.colors[v.idx()] = map_color((*field)[v.idx()], out.range, out.kind);
+    return out;
+}
+
+bool coloring_needs_field(VertexColoring coloring) {
+    return coloring == VertexColoring::Frequency || coloring == VertexColoring::FrequencyMass;
+}
+
+VertexColors color_field(const HalfedgeMesh& mesh, const std::vector<double>& values,
+                         VertexColoring coloring, const ColoringOptions& options) {
+    check_percentiles("color_field", "low_percentile", options.low_percentile, "high_percentile",
+                      options.high_percentile);
+    if (values.size() != mesh.vertices_size())
+        throw InvalidArgument("color_field: " + std::to_string(values.size()) +
+                              " values for a mesh of " + std::to_string(mesh.vertices_size()) +
+                              " vertices");
+    VertexColors out;
+    out.label = entry(coloring).label;
+    out.has_legend = true;
+    out.kind =
+        coloring == VertexColoring::Frequency ? ColorMapKind::Diverging : ColorMapKind::Sequential;
+    out.range = percentile_range(values, {}, options.low_percentile, options.high_percentile);
+    if (out.kind == ColorMapKind::Diverging) out.range = symmetric_range(out.range);
+    out.colors.assign(values.size(), kInvalidColor);
+    for (Vertex v : mesh.vertices())
+        if (std::isfinite(values[v.idx()]))
+            out.colors[v.idx()] = map_color(values[v.idx()], out.range, out.kind);
     return out;
 }
 

@@ -31,6 +31,8 @@ enum class VertexColoring {
     /// Displacement from a reference state (the state before the last operation), signed
     /// along the current vertex normal: positive where the surface moved outwards.
     SmoothingDistance,
+    Frequency,      ///< an eigenvector's values (core/spectral.h frequency_field); signed
+    FrequencyMass,  ///< |part of the position carried by a band| (band_magnitude_field)
 };
 
 struct ColoringOptions {
@@ -58,7 +60,8 @@ ValueRange percentile_range(const std::vector<double>& values,
 ValueRange symmetric_range(const ValueRange& range);
 /// Computes the quantity and its colours. `reference` (SmoothingDistance only): one earlier
 /// position per vertex storage index of `mesh`; without it, or when its size differs, every
-/// distance is zero and the label says there is no earlier state.
+/// distance is zero and the label says there is no earlier state. Throws InvalidArgument for
+/// the colourings that need a field (coloring_needs_field()).
 VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
                             const ColoringOptions& options = {},
                             const std::vector<Point>* reference = nullptr);
@@ -67,8 +70,17 @@ VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
 /// reference.size() != mesh.vertices_size().
 std::vector<double> smoothing_distance(const HalfedgeMesh& mesh,
                                        const std::vector<Point>& reference);
+/// Whether the colouring needs a per-vertex field from outside the mesh (Frequency,
+/// FrequencyMass: a spectral decomposition); color_vertices() refuses those.
+bool coloring_needs_field(VertexColoring coloring);
+/// Colours a given per-vertex field (indexed by storage index; NaN: no value, grey) as
+/// `coloring` shows it: Frequency on the diverging map over a symmetric percentile range,
+/// FrequencyMass (and any other) on the sequential map over the percentile range. Throws
+/// InvalidArgument when values.size() != mesh.vertices_size() or for bad percentiles.
+VertexColors color_field(const HalfedgeMesh& mesh, const std::vector<double>& values,
+                         VertexColoring coloring, const ColoringOptions& options = {});
 /// Names for menus and the CLI: "none", "normal", "k1", "k2", "mean", "gaussian", "shape-index",
-/// "subdivision", "smoothing-distance".
+/// "subdivision", "smoothing-distance", "frequency", "frequency-mass".
 const char* coloring_name(VertexColoring coloring);
 /// Parses coloring_name() strings; throws InvalidArgument listing the names otherwise.
 VertexColoring parse_coloring(const std::string& name);

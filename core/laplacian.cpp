@@ -31,7 +31,62 @@ double corner_cot(const Point& o, const Point& a, const Point& b, LaplacianDiagn
     return c;
 }
 
+/// Adds 2 x the lumped (barycentric or mixed Voronoi) area of every mapped vertex to S.
+void lumped_mass(const HalfedgeMesh& m, const VertexIndexMap& map, MassMatrix mass,
+                 Eigen::VectorXd& S) {
+    S.setZero();
+    for (Face f : m.faces()) {
+        const auto v = m.face_vertices(f);
+        const Point* p[3] = {&m.position(v[0]), &m.position(v[1]), &m.position(v[2])};
+        const double area = 0.5 * (*p[1] - *p[0]).cross(*p[2] - *p[0]).norm();
+        if (!(area > 0) || !std::isfinite(area)) continue;
+        double a[3] = {area / 3, area / 3, area / 3};
+        if (mass == MassMatrix::Voronoi) {
+            // Corner dot products: d[i] = (p[i+1]-p[i])·(p[i+2]-p[i]); d[i] < 0: obtuse at i.
+            double d[3];
+            for (int i = 0; i < 3; ++i)
+                d[i] = (*p[(i + 1) % 3] - *p[i]).dot(*p[(i + 2) % 3] - *p[i]);
+            const int obtuse = d[0] < 0 ? 0 : d[1] < 0 ? 1 : d[2] < 0 ? 2 : -1;
+            if (obtuse >= 0) {
+                for (int i = 0; i < 3; ++i) a[i] = i == obtuse ? area / 2 : area / 4;
+            } else {
+                // Voronoi area of corner i: (|p_i p_j|² cot k + |p_i p_k|² cot j) / 8, with
+                // cot at corner c = d[c] / (2·area).
+                for (int i = 0; i < 3; ++i) {
+                    const int j = (i + 1) % 3, k = (i + 2) % 3;
+                    a[i] = ((*p[j] - *p[i]).squaredNorm() * d[k] +
+                            (*p[k] - *p[i]).squaredNorm() * d[j]) /
+                           (16.0 * area);
+                }
+            }
+        }
+        for (int i = 0; i < 3; ++i) {
+            const Index r = map.row_of[v[std::size_t(i)].idx()];
+            if (r != kInvalidIndex) S[Eigen::Index(r)] += 2.0 * a[i];
+        }
+    }
+}
+
 }  // namespace
+
+const char* mass_matrix_name(MassMatrix mass) {
+    switch (mass) {
+        case MassMatrix::Normalizer:
+            return "normalizer";
+        case MassMatrix::Barycentric:
+            return "barycentric";
+        case MassMatrix::Voronoi:
+            return "voronoi";
+    }
+    return "?";
+}
+
+MassMatrix parse_mass_matrix(const std::string& name) {
+    for (auto m : {MassMatrix::Normalizer, MassMatrix::Barycentric, MassMatrix::Voronoi})
+        if (name == mass_matrix_name(m)) return m;
+    throw InvalidArgument("parse_mass_matrix: unknown mass matrix '" + name +
+                          "' (expected normalizer, barycentric, voronoi)");
+}
 
 const char* laplacian_operator_name(LaplacianOperator op) {
     switch (op) {
@@ -241,6 +296,7 @@ void refresh_laplacian(const HalfedgeMesh& mesh, Laplacian& lap) {
             k[lap.diag_slots[j]] += w;
         }
     }
+    if (lap.options.mass != MassMatrix::Normalizer) lumped_mass(mesh, lap.map, lap.options.mass, S);
 
     // Fixed rows: boundary (by option) and stalled vertices.
     double s_max = 0;

@@ -45,6 +45,14 @@
 // default (a fixed row of L is zero). A free vertex whose normalizer S_i vanishes (all its
 // weights clamped, degenerate fan) is fixed too and counted as stalled.
 //
+// Mass matrix option (used by the spectral decomposition, core/spectral.h): by default S is
+// the row normalizer above. MassMatrix::Barycentric and MassMatrix::Voronoi replace it by a
+// lumped mass S_i = 2·A_i with A_i the barycentric (a third of the incident triangle areas)
+// or the mixed Voronoi area (Meyer, Desbrun, Schröder, Barr 2003: Voronoi region of non-obtuse
+// triangles, half / a quarter of an obtuse triangle's area). The factor 2 matches K's full
+// cotangent weights (cot a + cot b = 2 x the FEM stiffness), so for CurvatureFlow K·x = λ·S·x
+// approximates the Laplace-Beltrami eigenproblem (on a sphere of radius r: l(l+1)/r²).
+//
 // Degenerate geometry never produces NaN: corners of zero-area triangles get cotangent 0,
 // cotangents are clamped to ±kMaxCotangent, edge lengths below 1e-6 x the mean edge length are
 // raised to it; every such event is counted in LaplacianDiagnostics.
@@ -80,9 +88,21 @@ struct VertexIndexMap {
 /// Live, non-isolated vertices in storage order.
 VertexIndexMap make_vertex_index_map(const HalfedgeMesh& mesh);
 
+/// What S (the diagonal of L = -S⁻¹K) holds; see the file comment.
+enum class MassMatrix {
+    Normalizer,   ///< the operator's own row normalizer (valence, E_i/2, sum of weights, K_ii)
+    Barycentric,  ///< 2 x (a third of the incident triangle areas)
+    Voronoi,      ///< 2 x the mixed Voronoi area (Meyer et al. 2003)
+};
+/// "normalizer", "barycentric", "voronoi".
+const char* mass_matrix_name(MassMatrix mass);
+/// Throws InvalidArgument listing the names.
+MassMatrix parse_mass_matrix(const std::string& name);
+
 struct LaplacianOptions {
-    bool fix_boundary = true;               ///< boundary vertices get zero rows in L
-    bool clamp_negative_cotangents = true;  ///< CurvatureFlow: w_ij < 0 -> 0 (keeps K PSD)
+    bool fix_boundary = true;                  ///< boundary vertices get zero rows in L
+    bool clamp_negative_cotangents = true;     ///< CurvatureFlow: w_ij < 0 -> 0 (keeps K PSD)
+    MassMatrix mass = MassMatrix::Normalizer;  ///< what S holds
 };
 
 /// What was clamped while building (all zero on a well-shaped mesh).

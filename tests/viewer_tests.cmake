@@ -45,6 +45,14 @@ if(TARGET trilab)
                      --frames 12)
     set_tests_properties(viewer_close_unsaved PROPERTIES PASS_REGULAR_EXPRESSION
                          "unsaved changes: asking before quitting.*frames done")
+    # The Frequency panel's path: a decomposition job, a band previewed and pushed as a
+    # history entry, the frequency-mass colouring from the decomposition.
+    add_test(NAME viewer_frequency
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --decompose 30:0:9 --color frequency-mass
+                     --show frequency,history --frames 10
+                     --screenshot ${CMAKE_CURRENT_BINARY_DIR}/viewer_frequency.png)
+    set_tests_properties(viewer_frequency PROPERTIES
+                         PASS_REGULAR_EXPRESSION "Frequency band 0:9 of 30")
     add_test(NAME viewer_bad_operation COMMAND $<TARGET_FILE:trilab> --op "noise --amount -1"
                                               --frames 1)
     set_tests_properties(viewer_bad_operation PROPERTIES WILL_FAIL TRUE)

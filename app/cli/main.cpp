@@ -13,6 +13,7 @@
 #include "app/cli/record_command.h"
 #include "app/cli/render_command.h"
 #include "app/cli/smooth_command.h"
+#include "app/cli/spectrum_command.h"
 #include "app/cli/subdivide_command.h"
 #include "core/errors.h"
 #include "core/generators.h"
@@ -43,6 +44,10 @@ commands:
                                   render an operation's morph to PNG frames (`record --help`)
   smooth [--operator OP] [--integration I] [--step T] [--iterations N] [--preserve-volume]
          IN OUT [--json]          fair a mesh (`trilab-cli smooth --help`)
+  spectrum --operator OP --k K [--which smallest|largest] [--band LO:HI] [--full]
+         IN OUT [--eigenvalues FILE] [--json]
+                                  frequency decomposition and band reconstruction
+                                  (`trilab-cli spectrum --help`)
   help                            this text
 )";
 
@@ -219,6 +224,8 @@ int main(int argc, char** argv) {
         if (cmd == "noise") return run_noise_command({argv + 2, argv + argc});
         if (cmd == "smooth")
             return run_smooth_command(std::vector<std::string>(argv + 2, argv + argc));
+        if (cmd == "spectrum")
+            return run_spectrum_command(std::vector<std::string>(argv + 2, argv + argc));
         if (cmd == "subdivide") return run_subdivide_command({argv + 2, argv + argc});
         if (cmd == "record") return run_record_command({argv + 2, argv + argc});
         if (cmd == "generate")

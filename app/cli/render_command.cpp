@@ -181,6 +181,9 @@ int run_render_command(const std::vector<std::string>& args) {
             "--reference: only --color smoothing-distance uses a reference "
             "mesh (got --color " +
             a.color + ")");
+    if (coloring_needs_field(coloring))
+        throw InvalidArgument("--color: '" + a.color +
+                              "' needs a spectral decomposition (the viewer's Frequency panel)");
     const bool textured = options.style.mode == RenderMode::Textured;
 
     // File input (not timed).

@@ -51,6 +51,8 @@ struct OperationResult {
     std::vector<std::pair<std::string, double>> values;
     /// Named texts for --json (e.g. the solver that ran).
     std::vector<std::pair<std::string, std::string>> texts;
+    /// Named lists of numbers (e.g. the eigenvalues of "spectrum").
+    std::vector<std::pair<std::string, std::vector<double>>> series;
 };
 
 /// A parsed operation, ready to run.

@@ -26,8 +26,10 @@ options:
   --color C          none, normal, k1, k2, mean, gaussian or shape-index
   --op "OPERATION"   apply an operation after loading, e.g. --op "noise --amount 2"
   --memory-budget MB the history's memory budget (default: a quarter of the RAM)
+  --decompose K[:LO:HI]  decompose the model into K frequencies (the Frequency panel's
+                     settings) and apply the band LO..HI, for scripts and tests
   --show PANELS      open panels at start: comma-separated history, morph, tools,
-                     subdivision, fairing, record, log, info
+                     subdivision, fairing, frequency, record, log, info
   --help             this text
 )";
 
@@ -85,6 +87,8 @@ std::string parse_args(int argc, char** argv, trilab::viewer::ViewerOptions& opt
         } else if (arg == "--op") {
             if (!value(options.operation))
                 return "--op needs an operation, e.g. \"noise --amount 2\"";
+        } else if (arg == "--decompose") {
+            if (!value(options.decompose)) return "--decompose needs K or K:LO:HI";
         } else if (arg == "--color") {
             if (!value(options.color)) return "--color needs a name";
         } else if (arg.size() > 1 && arg[0] == '-') {

@@ -79,7 +79,9 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
                                             VertexColoring::Gaussian,
                                             VertexColoring::ShapeIndex,
                                             VertexColoring::SubdivisionLevel,
-                                            VertexColoring::SmoothingDistance};
+                                            VertexColoring::SmoothingDistance,
+                                            VertexColoring::Frequency,
+                                            VertexColoring::FrequencyMass};
         const char* labels[] = {"None",
                                 "Normal direction",
                                 "First principal curvature",
@@ -88,7 +90,9 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
                                 "Gaussian curvature",
                                 "Shape index",
                                 "Subdivision vertices",
-                                "Smoothing distance"};
+                                "Smoothing distance",
+                                "Frequency (the visualized eigenvector)",
+                                "Frequency mass (geometry in the band)"};
         for (std::size_t i = 0; i < std::size(colorings); ++i) {
             if (ImGui::MenuItem(labels[i], nullptr, settings.coloring == colorings[i]) &&
                 settings.coloring != colorings[i]) {
@@ -203,7 +207,7 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
     if (ImGui::BeginMenu("Algorithms")) {
         // The operation panels arrive with their issues; listed so the menu shows the plan.
         ImGui::MenuItem("Fairing", nullptr, &panels.fairing.open);
-        ImGui::MenuItem("Frequency decomposition", nullptr, false, false);
+        ImGui::MenuItem("Frequency decomposition", nullptr, &panels.frequency.open);
         ImGui::MenuItem("Subdivision", nullptr, &panels.subdivision.open);
         ImGui::MenuItem("Decimation", nullptr, false, false);
         ImGui::EndMenu();

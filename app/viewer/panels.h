@@ -9,6 +9,7 @@
 #include "app/history/history.h"
 #include "app/viewer/commands.h"
 #include "app/viewer/file_browser.h"
+#include "app/viewer/frequency_panel.h"
 #include "app/viewer/log.h"
 #include "core/coloring.h"
 #include "core/morph.h"
@@ -105,6 +106,7 @@ struct PanelState {
     ScreenshotState screenshot;
     SubdivisionPanelState subdivision;
     FairingPanelState fairing;
+    FrequencyPanelState frequency;
     RecordState record;
     ToolsState tools;
     bool history_open = false;

@@ -195,6 +195,8 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
             panels_.fairing.open = true;
         else if (panel == "subdivision")
             panels_.subdivision.open = true;
+        else if (panel == "frequency")
+            panels_.frequency.open = true;
         else if (panel == "record")
             panels_.record.open = true;
         else if (panel == "log")
@@ -204,7 +206,7 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
         else
             throw InvalidArgument(
                 "--show: unknown panel '" + panel +
-                "' (history, morph, tools, subdivision, fairing, record, log, info)");
+                "' (history, morph, tools, subdivision, fairing, frequency, record, log, info)");
     }
     if (!options_.mesh_path.empty()) load(options_.mesh_path);
     if (!options_.operation.empty() && options_.mesh_path.empty())
@@ -420,9 +422,15 @@ void Viewer::update_morph() {
             renderer_->upload(*frame.topology);
             if (view_.settings.coloring != VertexColoring::None) {
                 const std::vector<Point> reference = reference_positions();
-                VertexColors colors = color_vertices(*frame.topology, view_.settings.coloring,
-                                                     view_.settings.coloring_options, &reference);
-                renderer_->set_vertex_colors(colors.colors);
+                VertexColors colors =
+                    coloring_needs_field(view_.settings.coloring)
+                        ? frequency_colors(*frame.topology)
+                        : color_vertices(*frame.topology, view_.settings.coloring,
+                                         view_.settings.coloring_options, &reference);
+                if (colors.colors.empty())
+                    renderer_->clear_vertex_colors();
+                else
+                    renderer_->set_vertex_colors(colors.colors);
             }
         }
         renderer_->update_positions(*frame.topology, frame.positions);
@@ -573,6 +581,17 @@ void Viewer::update_coloring() {
     const ColoringOptions options = view_.settings.coloring_options;
     if (coloring == VertexColoring::None) {
         apply_colors(VertexColors{});
+        return;
+    }
+    if (coloring_needs_field(coloring)) {  // from the decomposition: cheap, on this thread
+        VertexColors colors = frequency_colors(document_.mesh());
+        if (colors.colors.empty())
+            notice_ = Notice{Notice::Level::Info,
+                             "the frequency colourings need a decomposition (Algorithms > "
+                             "Frequency decomposition)",
+                             {},
+                             false};
+        apply_colors(std::move(colors));
         return;
     }
     auto reference = std::make_shared<const std::vector<Point>>(
@@ -887,6 +906,7 @@ void Viewer::draw_ui() {
     fairing_window(panels_, morph_, document_.history, document_.closed, jobs_.busy(),
                    glfwGetTime(), commands_);
     morph_window(panels_, morph_, document_.history, glfwGetTime());
+    frequency_ui();
     record_window(panels_, document_.history.current() > 0 && !jobs_.busy(), commands_);
     StatusInfo status;
     status.n_vertices = document_.mesh().n_vertices();

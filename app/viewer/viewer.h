@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/history/history.h"
+#include "app/viewer/frequency_panel.h"
 #include "app/viewer/job_runner.h"
 #include "app/viewer/log.h"
 #include "app/viewer/panels.h"
@@ -36,6 +37,7 @@ struct ViewerOptions {
     std::string operation;     ///< an operation to apply after loading, empty: none
     std::string show;          ///< panels to open at start, comma-separated
     int memory_budget_mb = 0;  ///< the history's budget; 0: a quarter of the RAM
+    std::string decompose;     ///< "K" or "K:LO:HI": Frequency panel Decompose (and a band)
 };
 
 /// The model: its history of states (the current one is shown) and where it came from.
@@ -51,6 +53,7 @@ struct Document {
     /// The current state differs from the file it came from or was last saved to (any
     /// operation, undo, redo or jump since; conservative: undoing back still counts).
     bool unsaved = false;
+    FrequencyDocument frequency;  ///< the last frequency decomposition (Frequency panel)
 };
 
 /// How the document is looked at.
@@ -120,6 +123,17 @@ private:
     void start_recording();
     void record_next_frame();
     void finish_recording(bool cancelled);
+    /// The Frequency panel and its actions (viewer_frequency.cpp).
+    void frequency_ui();
+    void start_decomposition();
+    /// options_.decompose: Decompose once the model is there, then apply the band.
+    void scripted_decomposition(FrequencyActions& act);
+    /// Shows the panel's band live (positions only).
+    void preview_band();
+    /// Pushes the panel's band (or, with `restore`, the decomposed shape) as a history entry.
+    void push_frequency_state(bool restore);
+    /// The Frequency / Frequency mass colours of `mesh` (empty without a fitting decomposition).
+    VertexColors frequency_colors(const HalfedgeMesh& mesh) const;
     /// Model and scene information, for the Info panel and the `I` key.
     std::vector<std::string> scene_info() const;
     /// Computes the vertex colouring of view_.settings (as a job for large meshes) and
@@ -170,7 +184,8 @@ private:
     MorphState morph_;
     const HalfedgeMesh* morph_topology_ = nullptr;  ///< uploaded for the morph (null: none)
     bool initial_op_done_ = false;                  ///< options_.operation has been queued
-    Camera record_camera_;  ///< the recording's framing, fixed for the whole sequence
+    int scripted_decompose_ = 0;  ///< options_.decompose: 0 to do, 1 started, 2 done
+    Camera record_camera_;        ///< the recording's framing, fixed for the whole sequence
     /// Wall time of the most recent frames (events excluded), for a median that ignores the
     /// slow first frame (shader compilation, font upload).
     std::array<double, 15> frame_times_ms_{};

@@ -140,6 +140,42 @@ check "smooth refuses a bad --boundary naming the option" bash -c \
 check "smooth --preserve-volume refuses an open mesh naming the reason" bash -c \
     "'$cli' generate grid '$tmp/grid.obj' && ! '$cli' smooth --preserve-volume '$tmp/grid.obj' \
      '$tmp/gs.obj' 2> '$tmp/e' && grep -q 'closed mesh' '$tmp/e' && [ ! -e '$tmp/gs.obj' ]"
+check "spectrum writes the band reconstruction and ascending non-negative eigenvalues" bash -c \
+    "'$cli' spectrum --operator curvature-flow --k 20 '$tmp/d.obj' '$tmp/sp.obj' \
+     --eigenvalues '$tmp/ev.txt' --json > '$tmp/sp.json' && \
+     $(declare -f json_has); json_has '$tmp/sp.json' k lo hi rows bands solver max_residual \
+     eigenvalues ms && [ \$(wc -l < '$tmp/ev.txt') -eq 20 ] && sort -g -c '$tmp/ev.txt' && \
+     ! grep -q '^-' '$tmp/ev.txt' && '$cli' info '$tmp/sp.obj' --json | grep -q '\"faces\": 2000'"
+check "spectrum --band 0:0 collapses the sphere onto its centroid" bash -c \
+    "'$cli' spectrum --operator umbrella --k 5 --band 0:0 '$tmp/d.obj' '$tmp/sp0.obj' && \
+     '$cli' info '$tmp/sp0.obj' --json | grep -o '\"area\": [^,]*' | awk '{exit !(\$2 < 1e-12)}'"
+check "spectrum --full with all frequencies returns the mesh" bash -c \
+    "'$cli' spectrum --operator second-order --full '$tmp/d.obj' '$tmp/spf.obj' --json | \
+     grep -q '\"k\": 1002' && a1=\$('$cli' info '$tmp/spf.obj' --json | \
+     grep -o '\"area\": [^,]*' | cut -d' ' -f2) && a0=\$('$cli' info '$tmp/d.obj' --json | \
+     grep -o '\"area\": [^,]*' | cut -d' ' -f2) && \
+     awk -v a=\"\$a1\" -v b=\"\$a0\" 'BEGIN {d = a - b; if (d < 0) d = -d; exit !(d < 1e-9 * b)}'"
+check "spectrum --which largest" bash -c \
+    "'$cli' spectrum --operator umbrella --k 10 --which largest '$tmp/d.obj' '$tmp/spl.obj' \
+     --eigenvalues '$tmp/evl.txt' && [ \$(wc -l < '$tmp/evl.txt') -eq 10 ]"
+check "spectrum --k refuses a value out of range naming the option" bash -c \
+    "! '$cli' spectrum --k 0 '$tmp/d.obj' '$tmp/x.obj' 2> '$tmp/e' && \
+     [ \$(wc -l < '$tmp/e') -eq 1 ] && grep -q -- '--k: expected a whole number from 1' '$tmp/e' && \
+     ! '$cli' spectrum --k 5000 '$tmp/d.obj' '$tmp/x.obj' 2> '$tmp/e' && \
+     grep -q -- '--k: expected a whole number from 1 to 1001' '$tmp/e' && [ ! -e '$tmp/x.obj' ]"
+check "spectrum --band refuses HI >= K naming the option" bash -c \
+    "! '$cli' spectrum --k 10 --band 3:10 '$tmp/d.obj' '$tmp/x.obj' 2> '$tmp/e' && \
+     grep -q -- '--band: expected LO:HI with 0 <= LO <= HI < K' '$tmp/e' && \
+     ! '$cli' spectrum --band 5:2 '$tmp/d.obj' '$tmp/x.obj' 2>/dev/null && [ ! -e '$tmp/x.obj' ]"
+check "spectrum --full is refused above the size limit naming it" bash -c \
+    "! '$cli' spectrum --full --max-full 500 '$tmp/d.obj' '$tmp/x.obj' 2> '$tmp/e' && \
+     grep -q -- '--full: the dense decomposition is limited to 500' '$tmp/e' && [ ! -e '$tmp/x.obj' ]"
+check "spectrum refuses an unknown operator" bash -c \
+    "! '$cli' spectrum --operator taubin '$tmp/d.obj' '$tmp/x.obj' 2> '$tmp/e' && \
+     grep -q -- '--operator' '$tmp/e'"
+check "render refuses the frequency colouring (it needs a decomposition)" bash -c \
+    "! '$cli' render '$tmp/d.obj' --out '$tmp/x.png' --color frequency 2> '$tmp/e' && \
+     grep -q 'decomposition' '$tmp/e'"
 if "$cli" render "$tmp/d.obj" --out "$tmp/probe.png" --size 16x16 >/dev/null 2>&1; then
     check "render colours the smoothing distance against a reference" bash -c \
         "'$cli' render '$tmp/sm2.obj' --reference '$tmp/d.obj' --color smoothing-distance \
@@ -151,6 +187,10 @@ if "$cli" render "$tmp/d.obj" --out "$tmp/probe.png" --size 16x16 >/dev/null 2>&
         "'$cli' record '$tmp/d.obj' --op 'subdivide --scheme sqrt3 --iterations 2' --frames 3 \
          --size 64x48 --out '$tmp/subrec' --color subdivision >/dev/null 2>&1 && \
          [ \$(ls '$tmp/subrec' | grep -c '^frame_.*png\$') -eq 3 ]"
+    check "record --op spectrum writes the morph to a band" bash -c \
+        "'$cli' record '$tmp/d.obj' --op 'spectrum --operator umbrella --k 30' --frames 2 \
+         --size 64x48 --out '$tmp/sprec' >/dev/null 2>&1 && \
+         [ \$(ls '$tmp/sprec' | grep -c '^frame_.*png\$') -eq 2 ]"
 fi
 echo "cli: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -1,0 +1,59 @@
+#pragma once
+// The Frequency panel (Algorithms -> Frequency decomposition, section 1.2.11 of the reference):
+// operator, method (full / partial), number of frequencies, smallest or largest, Decompose,
+// Restore, a frequency bar with the computed and applied ranges, the two band sliders (the
+// mesh follows live while dragging; releasing a slider makes one history entry), the
+// frequency to visualize, a spectrum plot (eigenvalue against index, band highlighted) and a
+// coefficient plot (|alpha_k| against k). The panel owns only its controls; the decomposition
+// lives in the viewer's FrequencyDocument, and the panel reports what the user did as
+// FrequencyActions for the viewer to execute.
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/spectral.h"
+
+namespace trilab::viewer {
+
+/// The Frequency panel's controls.
+struct FrequencyPanelState {
+    bool open = false;
+    int op = 2;    ///< umbrella, improved-umbrella, curvature-flow, second-order
+    int mass = 0;  ///< normalizer, barycentric, voronoi
+    bool full = false;
+    int k = 50;  ///< frequencies to compute (partial)
+    bool largest = false;
+    bool fix_boundary = false;
+    int lo = 0, hi = 0;  ///< the band used for the reconstruction
+    int visualize = 1;   ///< the frequency the "Frequency" colouring shows
+};
+
+/// The current decomposition and what the viewer derived from it for display.
+struct FrequencyDocument {
+    std::shared_ptr<const SpectralDecomposition> decomposition;
+    std::size_t n_vertices = 0, n_faces = 0;  ///< of the decomposed mesh (to check validity)
+    bool valid = false;                       ///< the current mesh has the decomposed connectivity
+    bool applied = false;
+    std::size_t applied_lo = 0, applied_hi = 0;  ///< the band of the current state
+    std::vector<float> eigenvalues;              ///< for the spectrum plot
+    std::vector<float> log_coefficients;         ///< log10 |alpha_k|, for the coefficient plot
+    std::string summary;                         ///< one line: count, time, solver
+};
+
+/// What the user did in the panel this frame.
+struct FrequencyActions {
+    bool decompose = false;          ///< start a decomposition job with frequency_options()
+    bool restore = false;            ///< back to the decomposed shape (a history entry)
+    bool preview = false;            ///< a band slider moved: show [lo, hi] live
+    bool commit = false;             ///< a band slider was released: push [lo, hi]
+    bool visualize_changed = false;  ///< the frequency to visualize changed: recolour
+};
+
+/// The core options the panel's controls describe.
+SpectralOptions frequency_options(const FrequencyPanelState& state);
+/// "Frequency decomposition" window; `busy`: a job runs (Decompose and the sliders disabled).
+FrequencyActions frequency_window(FrequencyPanelState& state, const FrequencyDocument& doc,
+                                  bool busy);
+
+}  // namespace trilab::viewer

@@ -1,0 +1,775 @@
+// The only translation unit that includes Spectra (it compiles slowly); see core/spectral.h.
+#include "core/spectral.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Spectra/SymEigsShiftSolver.h>
+#include <Spectra/SymEigsSolver.h>
+#include <Eigen/Eigenvalues>
+#include <Eigen/SparseCholesky>
+
+#include "core/errors.h"
+
+namespace trilab {
+
+namespace {
+
+using Triplet = Eigen::Triplet<double>;
+using Ldlt = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>>;
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// The eigenproblem in its standard form A = D K D, D = S^-½, over the free rows.
+struct Problem {
+    VertexIndexMap map;
+    SparseMatrix K;          ///< free rows and columns
+    Eigen::VectorXd S;       ///< mass diagonal
+    Eigen::VectorXd d;       ///< S^-½
+    Eigen::VectorXd sqrt_s;  ///< S^½
+    double a_max = 0;        ///< max_i K_ii / S_i (scale of the spectrum)
+    double k_norm = 0;       ///< |K|_inf
+    LaplacianDiagnostics diagnostics;
+    Eigen::Index n() const { return K.rows(); }
+};
+
+Problem make_problem(const HalfedgeMesh& mesh, const SpectralOptions& o) {
+    LaplacianOptions lo;
+    lo.fix_boundary = o.fix_boundary;
+    lo.mass = o.mass;
+    const Laplacian lap = build_laplacian(mesh, o.op, lo);
+    Problem p;
+    p.diagnostics = lap.diagnostics;
+    const std::size_t rows = lap.map.rows();
+    std::vector<Index> reduced(rows, kInvalidIndex);
+    p.map.row_of.assign(mesh.vertices_size(), kInvalidIndex);
+    for (std::size_t r = 0; r < rows; ++r) {
+        if (lap.fixed[r]) continue;
+        const Vertex v = lap.map.vertex_of[r];
+        reduced[r] = Index(p.map.vertex_of.size());
+        p.map.row_of[v.idx()] = reduced[r];
+        p.map.vertex_of.push_back(v);
+    }
+    const Eigen::Index n = Eigen::Index(p.map.rows());
+    std::vector<Triplet> trip;
+    trip.reserve(std::size_t(lap.K.nonZeros()) + std::size_t(n));
+    for (Eigen::Index c = 0; c < lap.K.outerSize(); ++c)
+        for (SparseMatrix::InnerIterator it(lap.K, c); it; ++it) {
+            const Index i = reduced[std::size_t(it.row())], j = reduced[std::size_t(it.col())];
+            if (i != kInvalidIndex && j != kInvalidIndex) trip.emplace_back(i, j, it.value());
+        }
+    for (Eigen::Index i = 0; i < n; ++i) trip.emplace_back(i, i, 0.0);  // a full diagonal
+    p.K.resize(n, n);
+    p.K.setFromTriplets(trip.begin(), trip.end());
+    p.K.makeCompressed();
+    p.S.resize(n);
+    for (std::size_t r = 0; r < rows; ++r)
+        if (reduced[r] != kInvalidIndex) p.S[Eigen::Index(reduced[r])] = lap.S[Eigen::Index(r)];
+    p.sqrt_s = p.S.array().sqrt();
+    p.d = p.sqrt_s.array().inverse();
+    Eigen::VectorXd row_sum = Eigen::VectorXd::Zero(n);
+    for (Eigen::Index c = 0; c < p.K.outerSize(); ++c)
+        for (SparseMatrix::InnerIterator it(p.K, c); it; ++it) {
+            row_sum[it.row()] += std::abs(it.value());
+            if (it.row() == it.col()) p.a_max = std::max(p.a_max, it.value() / p.S[it.row()]);
+        }
+    p.k_norm = n > 0 ? row_sum.maxCoeff() : 0.0;
+    return p;
+}
+
+/// A deterministic start vector with every component non-zero (a 64-bit LCG).
+Eigen::VectorXd start_vector(Eigen::Index n, std::uint64_t seed) {
+    Eigen::VectorXd v(n);
+    std::uint64_t x = 0x9E3779B97F4A7C15ull ^ seed;
+    for (Eigen::Index i = 0; i < n; ++i) {
+        x = x * 6364136223846793005ull + 1442695040888963407ull;
+        v[i] = 0.5 + double(x >> 11) * 0x1.0p-53;  // in [0.5, 1.5)
+    }
+    return v;
+}
+
+SparseMatrix shifted(const Problem& p, double sigma);
+
+/// (A - σI)⁻¹ = S^½ (K - σS)⁻¹ S^½ for Spectra's SymEigsShiftSolver.
+class ShiftInvertOp {
+public:
+    using Scalar = double;
+    ShiftInvertOp(const Problem& p, Ldlt& ldlt, Progress& progress, double base, double span,
+                  double expected_ops)
+        : p_(p),
+          ldlt_(ldlt),
+          progress_(progress),
+          base_(base),
+          span_(span),
+          expected_(expected_ops),
+          a_(p.n()),
+          b_(p.n()) {}
+    Eigen::Index rows() const { return p_.n(); }
+    Eigen::Index cols() const { return p_.n(); }
+    /// Factorizes K - σS (the pattern was analysed once by the caller).
+    void set_shift(double sigma) {
+        const SparseMatrix m = shifted(p_, sigma);
+        const auto t0 = std::chrono::steady_clock::now();
+        ldlt_.factorize(m);
+        factor_ms += ms_since(t0);
+        ++factorizations;
+        if (ldlt_.info() != Eigen::Success)
+            throw Error(
+                "spectrum: the sparse LDLT factorization of K - sigma*S failed at sigma = " +
+                std::to_string(sigma));
+        const Eigen::VectorXd& dd = ldlt_.vectorD();
+        if (!dd.allFinite() || (dd.array() == 0.0).any())
+            throw Error("spectrum: K - sigma*S is singular at sigma = " + std::to_string(sigma));
+    }
+    void perform_op(const double* x_in, double* y_out) const {
+        progress_.check_cancelled();
+        const auto t0 = std::chrono::steady_clock::now();
+        Eigen::Map<const Eigen::VectorXd> x(x_in, p_.n());
+        Eigen::Map<Eigen::VectorXd> y(y_out, p_.n());
+        a_ = p_.sqrt_s.cwiseProduct(x);
+        b_ = ldlt_.solve(a_);
+        y = p_.sqrt_s.cwiseProduct(b_);
+        solve_ms += ms_since(t0);
+        ++operations;
+        if ((operations & 7) == 0)
+            progress_.report(
+                std::min(0.99, base_ + span_ * std::min(0.95, double(operations) / expected_)),
+                "Lanczos (shift-invert)");
+    }
+    mutable std::size_t operations = 0;
+    mutable double solve_ms = 0;
+    std::size_t factorizations = 0;
+    double factor_ms = 0;
+
+private:
+    const Problem& p_;
+    Ldlt& ldlt_;
+    Progress& progress_;
+    double base_, span_, expected_;
+    mutable Eigen::VectorXd a_, b_;
+};
+
+/// A = S^-½ K S^-½ for Spectra's SymEigsSolver (largest eigenvalues).
+class ProductOp {
+public:
+    using Scalar = double;
+    ProductOp(const Problem& p, Progress& progress, double expected_ops)
+        : p_(p), progress_(progress), expected_(expected_ops), a_(p.n()) {}
+    Eigen::Index rows() const { return p_.n(); }
+    Eigen::Index cols() const { return p_.n(); }
+    void perform_op(const double* x_in, double* y_out) const {
+        progress_.check_cancelled();
+        Eigen::Map<const Eigen::VectorXd> x(x_in, p_.n());
+        Eigen::Map<Eigen::VectorXd> y(y_out, p_.n());
+        const auto t0 = std::chrono::steady_clock::now();
+        a_ = p_.d.cwiseProduct(x);
+        y = p_.d.cwiseProduct(p_.K * a_);
+        solve_ms += ms_since(t0);
+        ++operations;
+        if ((operations & 15) == 0)
+            progress_.report(std::min(0.95, double(operations) / expected_), "Lanczos");
+    }
+    mutable std::size_t operations = 0;
+    mutable double solve_ms = 0;
+
+private:
+    const Problem& p_;
+    Progress& progress_;
+    double expected_;
+    mutable Eigen::VectorXd a_;
+};
+
+std::string not_converged(std::size_t got, std::size_t wanted, const char* where) {
+    return "spectrum: the Lanczos iteration " + std::string(where) + " converged for only " +
+           std::to_string(got) + " of " + std::to_string(wanted) +
+           " eigenpairs; ask for fewer frequencies (k), a smaller band_size, a larger "
+           "max_iterations, or use the full method (meshes up to max_full_rows vertices)";
+}
+
+/// Eigenpairs (ascending) of the m eigenvalues of A nearest σ, in y-space.
+struct Band {
+    Eigen::VectorXd values;
+    Eigen::MatrixXd vectors;
+};
+
+Band shift_invert_band(const Problem& p, Ldlt& ldlt, double sigma, Eigen::Index m,
+                       const SpectralOptions& o, Progress& progress, double base, double span,
+                       SpectralReport& report) {
+    const Eigen::Index n = p.n();
+    const Eigen::Index wanted = Eigen::Index(std::ceil(o.krylov_factor * double(m))) + 1;
+    Eigen::Index ncv = std::min(n, std::max(wanted, m + 20));
+    int max_it = o.max_iterations;
+    for (int attempt = 0; attempt < 2; ++attempt) {
+        ShiftInvertOp op(p, ldlt, progress, base, span, 2.0 * double(ncv));
+        Spectra::SymEigsShiftSolver<ShiftInvertOp> eigs(op, m, ncv, sigma);
+        const Eigen::VectorXd v0 = start_vector(n, std::uint64_t(report.bands));
+        eigs.init(v0.data());
+        eigs.compute(Spectra::SortRule::LargestMagn, max_it, o.tolerance,
+                     Spectra::SortRule::SmallestAlge);
+        report.factorizations += op.factorizations;
+        report.operations += op.operations;
+        report.factor_ms += op.factor_ms;
+        report.solve_ms += op.solve_ms;
+        report.restarts += std::size_t(eigs.num_iterations());
+        if (eigs.info() == Spectra::CompInfo::Successful) {
+            ++report.bands;
+            return Band{eigs.eigenvalues(), eigs.eigenvectors()};
+        }
+        if (attempt == 1)
+            throw Error(not_converged(std::size_t(eigs.eigenvalues().size()), std::size_t(m),
+                                      ("around sigma = " + std::to_string(sigma)).c_str()));
+        ncv = std::min(n, 2 * ncv);
+        max_it *= 2;
+    }
+    return {};
+}
+
+/// K - σS (same pattern as K, whose diagonal is stored).
+SparseMatrix shifted(const Problem& p, double sigma) {
+    SparseMatrix m = p.K;
+    for (Eigen::Index c = 0; c < m.outerSize(); ++c)
+        for (SparseMatrix::InnerIterator it(m, c); it; ++it)
+            if (it.row() == it.col()) it.valueRef() -= sigma * p.S[c];
+    return m;
+}
+
+/// The number of eigenvalues of K x = λ S x below τ: the negative pivots of the LDLᵀ
+/// factorization of K - τS (Sylvester's law of inertia).
+std::size_t count_below(const Problem& p, Ldlt& ldlt, double tau, SpectralReport& report) {
+    const auto t0 = std::chrono::steady_clock::now();
+    ldlt.factorize(shifted(p, tau));
+    report.factor_ms += ms_since(t0);
+    ++report.factorizations;
+    if (ldlt.info() != Eigen::Success || !ldlt.vectorD().allFinite())
+        throw Error("spectrum: the LDLT factorization for the eigenvalue count failed at " +
+                    std::to_string(tau));
+    return std::size_t((ldlt.vectorD().array() < 0.0).count());
+}
+
+/// x -> P·f(P·x) with P = I - Q·Qᵀ: an operator with the columns of Q deflated (sent to 0).
+class DeflatedOp {
+public:
+    using Scalar = double;
+    using Apply = std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>;
+    DeflatedOp(Eigen::Index n, Apply f, const Eigen::MatrixXd& q, Progress& progress)
+        : n_(n), f_(std::move(f)), q_(q), progress_(progress), a_(n), b_(n) {}
+    Eigen::Index rows() const { return n_; }
+    Eigen::Index cols() const { return n_; }
+    void perform_op(const double* x_in, double* y_out) const {
+        progress_.check_cancelled();
+        Eigen::Map<const Eigen::VectorXd> x(x_in, n_);
+        Eigen::Map<Eigen::VectorXd> y(y_out, n_);
+        a_ = x - q_ * (q_.transpose() * x);
+        f_(a_, b_);
+        y = b_ - q_ * (q_.transpose() * b_);
+        ++operations;
+    }
+    mutable std::size_t operations = 0;
+
+private:
+    Eigen::Index n_;
+    Apply f_;
+    const Eigen::MatrixXd& q_;
+    Progress& progress_;
+    mutable Eigen::VectorXd a_, b_;
+};
+
+/// Orthonormalizes the columns of y in place (Cholesky QR): removes the rounding that
+/// shift-invert leaves in the Ritz vectors (mostly along near-null directions). One pass is
+/// enough for columns that are orthonormal to ~1e-8 already (the error is cond(y)² · eps).
+void orthonormalize(Eigen::MatrixXd& y) {
+    Eigen::MatrixXd g(y.cols(), y.cols());
+    g.setZero();
+    g.selfadjointView<Eigen::Lower>().rankUpdate(y.transpose());
+    Eigen::LLT<Eigen::MatrixXd> llt(g);
+    if (llt.info() != Eigen::Success) return;  // dependent columns: left to the caller
+    y = llt.matrixU().solve<Eigen::OnTheRight>(y);
+}
+
+/// The accepted eigenpairs (unsorted), with the de-duplication of new candidates.
+struct Accepted {
+    std::vector<double> values;
+    Eigen::MatrixXd vectors;  ///< n x capacity; the first values.size() columns are used
+    std::size_t duplicates = 0;
+
+    std::size_t size() const { return values.size(); }
+    std::size_t count_below(double tau) const {
+        return std::size_t(
+            std::count_if(values.begin(), values.end(), [tau](double v) { return v < tau; }));
+    }
+    /// Adds (λ, y) unless y lies (to 1/2) in the span of accepted vectors with λ_j within
+    /// `window` of λ (the same eigenpair found twice, e.g. in the overlap of two bands).
+    /// y is first made orthogonal to those and to the vectors of earlier bands (index below
+    /// `first_new`) with λ_j within 1% of λ: the Ritz vectors of two bands are orthogonal
+    /// only to (residual / gap), which is largest for close eigenvalues.
+    bool add(double lambda, Eigen::VectorXd y, double window, std::size_t first_new = 0) {
+        const double wide = std::max(window, 1e-2 * std::abs(lambda));
+        std::vector<Eigen::Index> near;
+        for (std::size_t j = 0; j < values.size(); ++j) {
+            const double gap = std::abs(values[j] - lambda);
+            if (gap <= window || (j < first_new && gap <= wide)) near.push_back(Eigen::Index(j));
+        }
+        for (int pass = 0; pass < 2; ++pass)
+            for (Eigen::Index j : near) y -= vectors.col(j).dot(y) * vectors.col(j);
+        const double norm = y.norm();
+        if (!(norm >= 0.5)) {
+            ++duplicates;
+            return false;
+        }
+        if (Eigen::Index(values.size()) == vectors.cols())
+            vectors.conservativeResize(Eigen::NoChange, vectors.cols() + vectors.cols() / 2 + 8);
+        vectors.col(Eigen::Index(values.size())) = y / norm;
+        values.push_back(lambda);
+        return true;
+    }
+};
+
+/// Midpoint of the widest gap between consecutive sorted values in [from, to).
+double widest_gap_midpoint(std::vector<double> v, std::size_t from, std::size_t to) {
+    std::sort(v.begin(), v.end());
+    double best = -1, tau = v.back();
+    for (std::size_t j = from; j + 1 < std::min(to, v.size()); ++j)
+        if (v[j + 1] - v[j] > best) {
+            best = v[j + 1] - v[j];
+            tau = 0.5 * (v[j] + v[j + 1]);
+        }
+    return tau;
+}
+
+/// The k smallest eigenpairs, band by band; every band is verified by an eigenvalue count
+/// (inertia) and missed eigenvalues (repeated ones, which Lanczos may find only once) are
+/// recovered by a deflated run. Returns values (ascending) and y-space vectors.
+Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progress& progress,
+              SpectralReport& report) {
+    const Eigen::Index n = p.n();
+    const std::size_t extra = std::max<std::size_t>(4, k / 20);
+    // Bands of 40, or 30 above 20,000 rows: the Lanczos basis of a band (rows x 2·band
+    // doubles) is swept several times per step, so it should stay near the cache size.
+    const std::size_t auto_band = n > 20000 ? 30 : 40;
+    std::size_t band = o.band_size ? o.band_size : (k <= 60 ? k + extra : auto_band);
+    band = std::min<std::size_t>(band, std::size_t(n - 1));
+    const Eigen::Index m = Eigen::Index(band);
+    Ldlt ldlt, counter;
+    ldlt.analyzePattern(p.K);
+    counter.analyzePattern(p.K);
+    report.solver = "Spectra shift-invert Lanczos + SimplicialLDLT (AMD), inertia-checked";
+
+    Accepted acc;
+    acc.vectors.resize(n, Eigen::Index(std::min<std::size_t>(k + band, std::size_t(n))));
+    const double tiny = 1e-12 * std::max(p.a_max, 1e-300);
+    const auto window = [&](double lambda) { return 1e-6 * std::abs(lambda) + tiny; };
+    double sigma = -1e-8 * std::max(p.a_max, 1e-300);
+    double verified = -std::numeric_limits<double>::infinity();  // all eigenvalues below: found
+    while (true) {
+        const double base = std::min(1.0, double(acc.size()) / double(k));
+        const double span = std::min(1.0, double(band) / double(k));
+        Band b = shift_invert_band(p, ldlt, sigma, m, o, progress, base, span, report);
+        orthonormalize(b.vectors);
+        const double lo_b = b.values[0], hi_b = b.values[b.values.size() - 1];
+        const std::size_t before = acc.size();
+        for (Eigen::Index i = 0; i < b.values.size(); ++i) {
+            if (b.values[i] < verified) {
+                ++acc.duplicates;
+                continue;
+            }
+            acc.add(b.values[i], b.vectors.col(i), window(b.values[i]), before);
+        }
+        // A cut in the widest gap of the top fifth of this band (or, once k are there, between
+        // the k-th and the rest). A cut inside a cluster of (nearly) equal eigenvalues would
+        // make a count ambiguous: without a clear gap, cut just above the largest found value.
+        std::vector<double> sorted = acc.values;
+        std::sort(sorted.begin(), sorted.end());
+        const bool last_band = acc.size() > k || (acc.size() == k && band >= k);
+        std::size_t from = last_band ? k - 1 : before + 4 * (acc.size() - before) / 5;
+        from = std::min(from, sorted.size() - 1);
+        const double width_b = std::max(hi_b - lo_b, tiny);
+        double cut = sorted.back() + 1e-3 * width_b + tiny;
+        if (acc.size() > 1) {
+            const double mid = widest_gap_midpoint(sorted, from, sorted.size());
+            const auto above_mid = std::upper_bound(sorted.begin(), sorted.end(), mid);
+            if (above_mid != sorted.begin() && above_mid != sorted.end() &&
+                *above_mid - *(above_mid - 1) > 1e-3 * width_b)
+                cut = mid;
+        }
+        // Verify up to τ: for the last band the cut (one more factorization); otherwise the
+        // band's own shift, whose factorization counts the eigenvalues below it for free (the
+        // first band's negative shift has none below it).
+        double tau = cut;
+        std::size_t expected = 0;
+        if (last_band) {
+            expected = count_below(p, counter, tau, report);
+        } else if (sigma > 0) {
+            tau = sigma;
+            expected = std::size_t((ldlt.vectorD().array() < 0.0).count());
+        } else {
+            tau = sigma;
+        }
+        for (int attempt = 0; acc.count_below(tau) < expected && attempt < 4; ++attempt) {
+            // Deflate the accepted vectors near this band and look again around σ.
+            std::vector<Eigen::Index> cols;
+            for (std::size_t j = 0; j < acc.size(); ++j)
+                if (acc.values[j] >= std::min(lo_b, verified) - window(lo_b))
+                    cols.push_back(Eigen::Index(j));
+            Eigen::MatrixXd q(n, Eigen::Index(cols.size()));
+            for (std::size_t c = 0; c < cols.size(); ++c)
+                q.col(Eigen::Index(c)) = acc.vectors.col(cols[c]);
+            const std::size_t missing = expected - acc.count_below(tau);
+            const Eigen::Index nev =
+                std::min<Eigen::Index>(Eigen::Index(missing + 3), n - q.cols() - 1);
+            if (nev < 1) break;
+            const Eigen::Index ncv =
+                std::min<Eigen::Index>(n - q.cols(), std::max(2 * nev + 1, nev + 20));
+            if (ncv <= nev) break;
+            DeflatedOp op(
+                n,
+                [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+                    y = p.sqrt_s.cwiseProduct(ldlt.solve(p.sqrt_s.cwiseProduct(x)));
+                },
+                q, progress);
+            Spectra::SymEigsSolver<DeflatedOp> eigs(op, nev, ncv);
+            const Eigen::VectorXd v0 = start_vector(n, 1000 + std::uint64_t(attempt));
+            eigs.init(v0.data());
+            eigs.compute(Spectra::SortRule::LargestMagn, o.max_iterations, o.tolerance,
+                         Spectra::SortRule::LargestMagn);
+            report.operations += op.operations;
+            report.restarts += std::size_t(eigs.num_iterations());
+            ++report.repairs;
+            if (eigs.info() != Spectra::CompInfo::Successful) break;
+            const Eigen::VectorXd mu = eigs.eigenvalues();
+            const Eigen::MatrixXd y = eigs.eigenvectors();
+            for (Eigen::Index i = 0; i < mu.size(); ++i) {
+                if (!(std::abs(mu[i]) > 0)) continue;
+                const double lambda = sigma + 1.0 / mu[i];
+                if (lambda < tau && lambda >= verified)
+                    acc.add(lambda, y.col(i) - q * (q.transpose() * y.col(i)), window(lambda));
+            }
+        }
+        const std::size_t found = acc.count_below(tau);
+        if (found != expected)
+            throw Error("spectrum: " + std::to_string(expected) + " eigenvalues lie below " +
+                        std::to_string(tau) + " but " + std::to_string(found) +
+                        " were found (repeated eigenvalues of a symmetric mesh that the Lanczos "
+                        "iteration missed); try another k, a smaller band_size, or the full method "
+                        "(meshes up to max_full_rows vertices)");
+        verified = tau;
+        progress.report(std::min(1.0, double(acc.count_below(cut)) / double(k)),
+                        "Lanczos (shift-invert)");
+        if (last_band) break;
+        if (acc.size() >= std::size_t(n)) break;
+        // The next band: centred 35% of this band's width above the cut, so that it overlaps
+        // this one; whatever still lies between them is found by the count at its shift.
+        sigma = cut + 0.35 * width_b;
+    }
+    report.duplicates_removed = acc.duplicates;
+
+    // Sort ascending and keep the k smallest.
+    std::vector<std::size_t> order(acc.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t c) { return acc.values[a] < acc.values[c]; });
+    const std::size_t keep = std::min(k, order.size());
+    Band out;
+    out.values.resize(Eigen::Index(keep));
+    out.vectors.resize(n, Eigen::Index(keep));
+    for (std::size_t i = 0; i < keep; ++i) {
+        out.values[Eigen::Index(i)] = acc.values[order[i]];
+        out.vectors.col(Eigen::Index(i)) = acc.vectors.col(Eigen::Index(order[i]));
+    }
+    if (keep < k) throw Error(not_converged(keep, k, "(band by band)"));
+    // Ritz vectors of different bands are orthogonal only to (residual / gap): one Cholesky QR
+    // over all of them (O(rows · k²)) makes them orthonormal to rounding.
+    if (report.bands > 1) orthonormalize(out.vectors);
+    return out;
+}
+
+Band largest(const Problem& p, std::size_t k, const SpectralOptions& o, Progress& progress,
+             SpectralReport& report) {
+    const Eigen::Index n = p.n();
+    const std::size_t extra = std::max<std::size_t>(4, k / 20);
+    const Eigen::Index m = std::min<Eigen::Index>(Eigen::Index(k + extra), n - 1);
+    Eigen::Index ncv = std::min(n, std::max(2 * m + 1, m + 20));
+    int max_it = o.max_iterations;
+    report.solver = "Spectra Lanczos (sparse products), inertia-checked";
+    Band b;
+    for (int attempt = 0; attempt < 2; ++attempt) {
+        ProductOp op(p, progress, 4.0 * double(ncv));
+        Spectra::SymEigsSolver<ProductOp> eigs(op, m, ncv);
+        const Eigen::VectorXd v0 = start_vector(n, 0);
+        eigs.init(v0.data());
+        eigs.compute(Spectra::SortRule::LargestAlge, max_it, o.tolerance,
+                     Spectra::SortRule::SmallestAlge);
+        report.operations += op.operations;
+        report.solve_ms += op.solve_ms;
+        report.restarts += std::size_t(eigs.num_iterations());
+        if (eigs.info() == Spectra::CompInfo::Successful) {
+            report.bands = 1;
+            b = Band{eigs.eigenvalues(), eigs.eigenvectors()};
+            break;
+        }
+        if (attempt == 1)
+            throw Error(not_converged(std::size_t(eigs.eigenvalues().size()), k, "(largest)"));
+        ncv = std::min(n, 2 * ncv);
+        max_it *= 2;
+    }
+    orthonormalize(b.vectors);
+    Accepted acc;
+    acc.vectors.resize(n, b.values.size() + 8);
+    const double tiny = 1e-12 * std::max(p.a_max, 1e-300);
+    const auto window = [&](double lambda) { return 1e-6 * std::abs(lambda) + tiny; };
+    for (Eigen::Index i = 0; i < b.values.size(); ++i)
+        acc.add(b.values[i], b.vectors.col(i), window(b.values[i]));
+    // Verify with the count of eigenvalues above τ, in the widest gap among the lowest found.
+    std::vector<double> sorted = acc.values;
+    std::sort(sorted.begin(), sorted.end());
+    const std::size_t top = sorted.size() > k ? sorted.size() - k : 0;
+    const double width_b = std::max(sorted.back() - sorted.front(), tiny);
+    double tau = sorted.front() - 1e-3 * width_b - tiny;
+    {
+        const double mid = widest_gap_midpoint(sorted, 0, top + 1);
+        const auto above_mid = std::upper_bound(sorted.begin(), sorted.end(), mid);
+        if (above_mid != sorted.begin() && above_mid != sorted.end() &&
+            *above_mid - *(above_mid - 1) > 1e-3 * width_b)
+            tau = mid;
+    }
+    Ldlt counter;
+    counter.analyzePattern(p.K);
+    const std::size_t expected = std::size_t(n) - count_below(p, counter, tau, report);
+    const auto above = [&] { return acc.size() - acc.count_below(tau); };
+    for (int attempt = 0; above() < expected && attempt < 4; ++attempt) {
+        const Eigen::MatrixXd q = acc.vectors.leftCols(Eigen::Index(acc.size()));
+        const Eigen::Index nev =
+            std::min<Eigen::Index>(Eigen::Index(expected - above() + 3), n - q.cols() - 1);
+        const Eigen::Index ncv2 =
+            std::min<Eigen::Index>(n - q.cols(), std::max(2 * nev + 1, nev + 20));
+        if (nev < 1 || ncv2 <= nev) break;
+        DeflatedOp op(
+            n,
+            [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+                y = p.d.cwiseProduct(p.K * p.d.cwiseProduct(x));
+            },
+            q, progress);
+        Spectra::SymEigsSolver<DeflatedOp> eigs(op, nev, ncv2);
+        const Eigen::VectorXd v0 = start_vector(n, 1000 + std::uint64_t(attempt));
+        eigs.init(v0.data());
+        eigs.compute(Spectra::SortRule::LargestAlge, o.max_iterations, o.tolerance,
+                     Spectra::SortRule::LargestAlge);
+        report.operations += op.operations;
+        ++report.repairs;
+        if (eigs.info() != Spectra::CompInfo::Successful) break;
+        for (Eigen::Index i = 0; i < eigs.eigenvalues().size(); ++i)
+            if (eigs.eigenvalues()[i] > tau)
+                acc.add(eigs.eigenvalues()[i], eigs.eigenvectors().col(i),
+                        window(eigs.eigenvalues()[i]));
+    }
+    if (above() != expected)
+        throw Error("spectrum: " + std::to_string(expected) + " eigenvalues lie above " +
+                    std::to_string(tau) + " but " + std::to_string(above()) +
+                    " were found; try another k or the full method (meshes up to max_full_rows "
+                    "vertices)");
+    report.duplicates_removed = acc.duplicates;
+    std::vector<std::size_t> order(acc.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t c) { return acc.values[a] < acc.values[c]; });
+    if (order.size() < k) throw Error(not_converged(order.size(), k, "(largest)"));
+    Band out;
+    out.values.resize(Eigen::Index(k));
+    out.vectors.resize(n, Eigen::Index(k));
+    for (std::size_t i = 0; i < k; ++i) {
+        const std::size_t j = order[order.size() - k + i];
+        out.values[Eigen::Index(i)] = acc.values[j];
+        out.vectors.col(Eigen::Index(i)) = acc.vectors.col(Eigen::Index(j));
+    }
+    return out;
+}
+
+Band full(const Problem& p, std::size_t k, SpectrumEnd end, Progress& progress,
+          SpectralReport& report) {
+    const Eigen::Index n = p.n();
+    progress.report(-1, "dense symmetric eigen solver");
+    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
+    for (Eigen::Index c = 0; c < p.K.outerSize(); ++c)
+        for (SparseMatrix::InnerIterator it(p.K, c); it; ++it)
+            a(it.row(), it.col()) = it.value() * p.d[it.row()] * p.d[it.col()];
+    progress.check_cancelled();
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(a);
+    if (es.info() != Eigen::Success)
+        throw Error("spectrum: the dense eigen solver did not converge; use the partial method");
+    report.solver = "Eigen SelfAdjointEigenSolver (dense)";
+    report.bands = 1;
+    const Eigen::Index keep = Eigen::Index(k);
+    const Eigen::Index first = end == SpectrumEnd::Smallest ? 0 : n - keep;
+    return Band{es.eigenvalues().segment(first, keep), es.eigenvectors().middleCols(first, keep)};
+}
+
+void check_band(const SpectralDecomposition& d, std::size_t lo, std::size_t hi) {
+    if (d.empty())
+        throw InvalidArgument("band: the decomposition is empty (decompose the mesh first)");
+    if (!(lo <= hi && hi < d.size()))
+        throw InvalidArgument("band: expected LO:HI with 0 <= LO <= HI < " +
+                              std::to_string(d.size()) + ", got " + std::to_string(lo) + ":" +
+                              std::to_string(hi));
+}
+
+}  // namespace
+
+const char* spectral_method_name(SpectralMethod method) {
+    return method == SpectralMethod::Full ? "full" : "partial";
+}
+
+const char* spectrum_end_name(SpectrumEnd end) {
+    return end == SpectrumEnd::Largest ? "largest" : "smallest";
+}
+
+SpectrumEnd parse_spectrum_end(const std::string& name) {
+    if (name == "smallest") return SpectrumEnd::Smallest;
+    if (name == "largest") return SpectrumEnd::Largest;
+    throw InvalidArgument("parse_spectrum_end: unknown end '" + name +
+                          "' (expected smallest, largest)");
+}
+
+SpectralDecomposition decompose(const HalfedgeMesh& mesh, const SpectralOptions& o) {
+    NullProgress none;
+    return decompose(mesh, o, none);
+}
+
+SpectralDecomposition decompose(const HalfedgeMesh& mesh, const SpectralOptions& o,
+                                Progress& progress) {
+    const auto t0 = std::chrono::steady_clock::now();
+    if (!(o.tolerance > 0 && o.tolerance < 1))
+        throw InvalidArgument("tolerance: expected a number in (0, 1)");
+    if (o.max_iterations < 1) throw InvalidArgument("max_iterations: expected at least 1");
+    if (!(o.krylov_factor >= 1.2 && o.krylov_factor <= 10))
+        throw InvalidArgument("krylov_factor: expected a number from 1.2 to 10");
+    for (const Point& q : mesh.positions())
+        if (!q.allFinite())
+            throw InvalidArgument("spectrum: the mesh has non-finite vertex positions");
+
+    progress.report(0, "building the operator");
+    Problem p = make_problem(mesh, o);
+    const std::size_t n = p.map.rows();
+    if (n < 2)
+        throw InvalidArgument("spectrum: the mesh has " + std::to_string(n) +
+                              " vertices in the eigenproblem (at least 2 needed)");
+    if (!p.S.allFinite() || (p.S.array() <= 0).any() || !std::isfinite(p.k_norm))
+        throw InvalidArgument(
+            "spectrum: the operator has a non-positive or non-finite mass "
+            "(degenerate geometry)");
+
+    SpectralDecomposition d;
+    d.op = o.op;
+    d.mass = o.mass;
+    d.method = o.method;
+    d.end = o.end;
+    d.report.diagnostics = p.diagnostics;
+    Band b;
+    if (o.method == SpectralMethod::Full) {
+        if (n > o.max_full_rows)
+            throw InvalidArgument(
+                "full: the dense decomposition is limited to " + std::to_string(o.max_full_rows) +
+                " vertices (max_full_rows) and this mesh has " + std::to_string(n) +
+                "; use the partial method with k frequencies");
+        if (o.k > n)
+            throw InvalidArgument("k: expected a whole number from 0 (all) to " +
+                                  std::to_string(n) + " for this mesh, got " + std::to_string(o.k));
+        b = full(p, o.k == 0 ? n : o.k, o.end, progress, d.report);
+    } else {
+        if (o.k < 1 || o.k > n - 1)
+            throw InvalidArgument("k: expected a whole number from 1 to " + std::to_string(n - 1) +
+                                  " for this mesh (" + std::to_string(n) +
+                                  " vertices in the eigenproblem; the full method gives all), "
+                                  "got " +
+                                  std::to_string(o.k));
+        b = o.end == SpectrumEnd::Smallest ? smallest(p, o.k, o, progress, d.report)
+                                           : largest(p, o.k, o, progress, d.report);
+    }
+    progress.report(0.97, "coefficients");
+
+    // x = S^-½ y: S-orthonormal eigenvectors of K x = λ S x.
+    d.eigenvalues = std::move(b.values);
+    d.eigenvectors = std::move(b.vectors);
+    d.eigenvectors.array().colwise() *= p.d.array();
+    if (!d.eigenvalues.allFinite() || !d.eigenvectors.allFinite())
+        throw Error("spectrum: the eigen solver returned non-finite values");
+    const Eigen::MatrixXd x = gather_positions(mesh, p.map);
+    d.coefficients = d.eigenvectors.transpose() * (p.S.asDiagonal() * x);
+
+    // Residuals |K e - λ S e| / (|K|_inf |e|).
+    const Eigen::MatrixXd ke = p.K * d.eigenvectors;
+    for (Eigen::Index j = 0; j < ke.cols(); ++j) {
+        const double r =
+            (ke.col(j) - d.eigenvalues[j] * p.S.cwiseProduct(d.eigenvectors.col(j))).norm();
+        d.report.max_residual = std::max(
+            d.report.max_residual, r / (std::max(p.k_norm, 1e-300) * d.eigenvectors.col(j).norm()));
+    }
+    d.map = std::move(p.map);
+    d.S = std::move(p.S);
+    d.base_positions = mesh.positions();
+    d.report.ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    progress.report(1, "done");
+    return d;
+}
+
+Eigen::MatrixXd band_positions(const SpectralDecomposition& d, std::size_t lo, std::size_t hi) {
+    check_band(d, lo, hi);
+    const Eigen::Index a = Eigen::Index(lo), count = Eigen::Index(hi - lo + 1);
+    return d.eigenvectors.middleCols(a, count) * d.coefficients.middleRows(a, count);
+}
+
+std::vector<Point> reconstruct_positions(const SpectralDecomposition& d, std::size_t lo,
+                                         std::size_t hi) {
+    const Eigen::MatrixXd x = band_positions(d, lo, hi);
+    std::vector<Point> out = d.base_positions;
+    for (std::size_t r = 0; r < d.map.rows(); ++r)
+        out[d.map.vertex_of[r].idx()] = x.row(Eigen::Index(r)).transpose();
+    return out;
+}
+
+HalfedgeMesh reconstruct(const HalfedgeMesh& mesh, const SpectralDecomposition& d, std::size_t lo,
+                         std::size_t hi) {
+    if (mesh.vertices_size() != d.base_positions.size())
+        throw InvalidArgument("reconstruct: the mesh has " + std::to_string(mesh.vertices_size()) +
+                              " vertices but the decomposition was made for " +
+                              std::to_string(d.base_positions.size()));
+    std::vector<Point> positions = reconstruct_positions(d, lo, hi);
+    HalfedgeMesh out = mesh;
+    out.positions() = std::move(positions);
+    return out;
+}
+
+std::vector<double> frequency_field(const SpectralDecomposition& d, std::size_t index) {
+    if (index >= d.size())
+        throw InvalidArgument("frequency: expected an index below " + std::to_string(d.size()) +
+                              ", got " + std::to_string(index));
+    std::vector<double> out(d.base_positions.size(), std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t r = 0; r < d.map.rows(); ++r)
+        out[d.map.vertex_of[r].idx()] = d.eigenvectors(Eigen::Index(r), Eigen::Index(index));
+    return out;
+}
+
+std::vector<double> band_magnitude_field(const SpectralDecomposition& d, std::size_t lo,
+                                         std::size_t hi) {
+    const Eigen::MatrixXd x = band_positions(d, lo, hi);
+    std::vector<double> out(d.base_positions.size(), std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t r = 0; r < d.map.rows(); ++r)
+        out[d.map.vertex_of[r].idx()] = x.row(Eigen::Index(r)).norm();
+    return out;
+}
+
+double s_orthonormality_error(const SpectralDecomposition& d) {
+    if (d.empty()) return 0;
+    const Eigen::MatrixXd g = d.eigenvectors.transpose() * (d.S.asDiagonal() * d.eigenvectors);
+    return (g - Eigen::MatrixXd::Identity(g.rows(), g.cols())).cwiseAbs().maxCoeff();
+}
+
+}  // namespace trilab

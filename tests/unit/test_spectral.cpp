@@ -1,0 +1,390 @@
+// Frequency decomposition (core/spectral.h): the sphere's spectrum, partial against full,
+// band by band against one band, S-orthonormality, exact reconstruction, low-pass smoothing,
+// disconnected meshes, boundaries, isolated vertices, option errors and cancellation.
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "app/ops/operation.h"
+#include "core/errors.h"
+#include "core/generators.h"
+#include "core/geometry.h"
+#include "core/io/mesh_io.h"
+#include "core/laplacian.h"
+#include "core/mesh_builder.h"
+#include "core/spectral.h"
+#include "test_helpers.h"
+
+using namespace trilab;
+
+namespace {
+
+const LaplacianOperator kOperators[] = {
+    LaplacianOperator::Umbrella, LaplacianOperator::ImprovedUmbrella,
+    LaplacianOperator::CurvatureFlow, LaplacianOperator::SecondOrder};
+
+SpectralOptions options(LaplacianOperator op, std::size_t k,
+                        SpectralMethod method = SpectralMethod::Partial) {
+    SpectralOptions o;
+    o.op = op;
+    o.k = k;
+    o.method = method;
+    return o;
+}
+
+/// Largest |x - y| / max(|y|_max, tiny) over all coordinates.
+double relative_distance(const HalfedgeMesh& a, const HalfedgeMesh& b) {
+    double diff = 0, scale = 1e-300;
+    for (Vertex v : a.vertices()) {
+        diff = std::max(diff, (a.position(v) - b.position(v)).cwiseAbs().maxCoeff());
+        scale = std::max(scale, b.position(v).cwiseAbs().maxCoeff());
+    }
+    return diff / scale;
+}
+
+/// Mean squared length of the umbrella Laplacian of the positions (a roughness measure).
+double roughness(const HalfedgeMesh& m) {
+    const Laplacian lap = build_laplacian(m, LaplacianOperator::Umbrella);
+    const Eigen::MatrixXd lx = lap.L * gather_positions(m, lap.map);
+    return lx.rowwise().squaredNorm().mean();
+}
+
+/// Mean |‖p‖ - 1| over the vertices (distance to the unit sphere).
+double sphere_deviation(const HalfedgeMesh& m) {
+    double s = 0;
+    for (Vertex v : m.vertices()) s += std::abs(m.position(v).norm() - 1.0);
+    return s / double(m.n_vertices());
+}
+
+/// Two disjoint spheres plus one isolated vertex.
+HalfedgeMesh two_spheres_and_a_point() {
+    PolygonSoup soup;
+    for (int copy = 0; copy < 2; ++copy) {
+        const HalfedgeMesh s = make_icosphere(4);
+        const Index offset = Index(soup.positions.size());
+        for (Vertex v : s.vertices())
+            soup.positions.push_back(s.position(v) + Point(3.0 * copy, 0, 0));
+        for (Face f : s.faces()) {
+            for (Vertex v : s.face_vertices(f)) soup.corners.push_back(offset + v.idx());
+            soup.face_offsets.push_back(soup.corners.size());
+        }
+    }
+    soup.positions.push_back(Point(10, 10, 10));
+    LoadReport report;
+    return build_mesh(soup, report);
+}
+
+/// Whether every column of `a` lies (S-orthogonally) in the span of the columns of `b`
+/// to `tol`: 1 - |projection|² per column.
+double subspace_gap(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, const Eigen::VectorXd& S) {
+    const Eigen::MatrixXd c = b.transpose() * (S.asDiagonal() * a);  // b is S-orthonormal
+    double gap = 0;
+    for (Eigen::Index j = 0; j < c.cols(); ++j)
+        gap = std::max(gap, std::abs(1.0 - c.col(j).squaredNorm()));
+    return gap;
+}
+
+class CancelAfter final : public Progress {
+public:
+    explicit CancelAfter(int reports) : left_(reports) {}
+    void report(double, const char*) override { --left_; }
+    bool cancel_requested() const override { return left_ <= 0; }
+
+private:
+    int left_;
+};
+
+}  // namespace
+
+TEST_CASE("the sphere's lowest eigenvalues cluster as l(l+1) with multiplicities 2l+1",
+          "[spectral]") {
+    const HalfedgeMesh sphere = make_icosphere(12);  // 1,442 vertices, radius 1
+    for (MassMatrix mass : {MassMatrix::Voronoi, MassMatrix::Barycentric}) {
+        SpectralOptions o = options(LaplacianOperator::CurvatureFlow, 16);
+        o.mass = mass;
+        const SpectralDecomposition d = decompose(sphere, o);
+        REQUIRE(d.size() == 16);
+        INFO("mass " << mass_matrix_name(mass) << ", eigenvalues " << d.eigenvalues.transpose());
+        CHECK(std::abs(d.eigenvalues[0]) < 1e-8);
+        std::size_t i = 1;
+        for (int l = 1; l <= 3; ++l)
+            for (int m = 0; m < 2 * l + 1; ++m, ++i)
+                CHECK(std::abs(d.eigenvalues[Eigen::Index(i)] / (l * (l + 1)) - 1.0) < 0.03);
+        // The clusters are separated: the first of each cluster is far from the previous one.
+        CHECK(d.eigenvalues[4] > 1.5 * d.eigenvalues[3]);
+        CHECK(d.eigenvalues[9] > 1.5 * d.eigenvalues[8]);
+    }
+}
+
+TEST_CASE("partial and full decompositions agree on every operator", "[spectral]") {
+    const HalfedgeMesh mesh = make_noisy_sphere(5, 0.05, 3);  // 252 vertices
+    for (LaplacianOperator op : kOperators) {
+        INFO("operator " << laplacian_operator_name(op));
+        const SpectralDecomposition full = decompose(mesh, options(op, 0, SpectralMethod::Full));
+        REQUIRE(full.size() == mesh.n_vertices());
+        CHECK(s_orthonormality_error(full) < 1e-8);
+        CHECK(full.eigenvalues.minCoeff() > -1e-9 * full.eigenvalues.maxCoeff());
+        const double scale = full.eigenvalues.maxCoeff();
+        for (SpectrumEnd end : {SpectrumEnd::Smallest, SpectrumEnd::Largest}) {
+            INFO("end " << spectrum_end_name(end));
+            SpectralOptions o = options(op, 20);
+            o.end = end;
+            const SpectralDecomposition part = decompose(mesh, o);
+            REQUIRE(part.size() == 20);
+            CHECK(s_orthonormality_error(part) < 1e-8);
+            CHECK(part.report.max_residual < 1e-8);
+            const Eigen::Index first =
+                end == SpectrumEnd::Smallest ? 0 : full.eigenvalues.size() - 20;
+            const Eigen::VectorXd ref = full.eigenvalues.segment(first, 20);
+            for (Eigen::Index j = 0; j < 20; ++j)
+                CHECK(std::abs(part.eigenvalues[j] - ref[j]) <=
+                      1e-8 * std::max(std::abs(ref[j]), 1e-3 * scale));
+            // Eigenvector subspaces: every partial vector lies in the span of the full ones
+            // (widened by one on each side for a possible cluster at the end).
+            const Eigen::Index lo = std::max<Eigen::Index>(first - 1, 0);
+            const Eigen::Index hi = std::min<Eigen::Index>(first + 21, full.eigenvalues.size());
+            CHECK(subspace_gap(part.eigenvectors, full.eigenvectors.middleCols(lo, hi - lo),
+                               full.S) < 1e-8);
+        }
+    }
+}
+
+TEST_CASE("band-by-band shift-invert gives the same frequencies as one band", "[spectral]") {
+    const HalfedgeMesh mesh = make_icosphere(8);  // 642 vertices, many exact multiplicities
+    SpectralOptions o = options(LaplacianOperator::CurvatureFlow, 90);
+    o.mass = MassMatrix::Voronoi;
+    const SpectralDecomposition one = decompose(mesh, o);
+    o.band_size = 20;
+    const SpectralDecomposition banded = decompose(mesh, o);
+    REQUIRE(banded.size() == 90);
+    CHECK(banded.report.bands >= 5);
+    INFO("one band: " << one.eigenvalues.transpose()
+                      << "\nbands: " << banded.eigenvalues.transpose());
+    for (Eigen::Index j = 0; j < 90; ++j)
+        CHECK(std::abs(banded.eigenvalues[j] - one.eigenvalues[j]) <=
+              1e-8 * std::max(1.0, one.eigenvalues[j]));
+    CHECK(s_orthonormality_error(banded) < 1e-8);
+    // The spans agree up to the last (possibly cut) cluster: compare the first 81 = (8+1)²
+    // frequencies, l <= 8, against all 90 of one band.
+    CHECK(subspace_gap(banded.eigenvectors.leftCols(81), one.eigenvectors, one.S) < 1e-8);
+}
+
+namespace {
+
+/// A grid with a bump (a flat grid's coordinates lie in a few low frequencies).
+HalfedgeMesh bumpy_grid() {
+    HalfedgeMesh m = make_grid(12);
+    for (Vertex v : m.vertices()) m.position(v).z() = 0.1 * std::sin(5.1 * v.idx());
+    return m;
+}
+
+/// A torus with every vertex moved a little (a perfect torus lives in a few low frequencies).
+HalfedgeMesh bumpy_torus() {
+    HalfedgeMesh m = make_torus(16, 8, 1, 0.3);
+    for (Vertex v : m.vertices()) m.position(v) *= 1.0 + 0.03 * std::sin(7.3 * v.idx());
+    return m;
+}
+
+}  // namespace
+
+TEST_CASE("a full decomposition reconstructs the mesh from all frequencies", "[spectral]") {
+    const HalfedgeMesh meshes[] = {make_noisy_sphere(5, 0.05, 9), bumpy_grid(), bumpy_torus()};
+    for (const HalfedgeMesh& mesh : meshes) {
+        for (LaplacianOperator op : kOperators) {
+            for (bool fix : {false, true}) {
+                INFO("operator " << laplacian_operator_name(op) << " fix_boundary " << fix);
+                SpectralOptions o = options(op, 0, SpectralMethod::Full);
+                o.fix_boundary = fix;
+                const SpectralDecomposition d = decompose(mesh, o);
+                const HalfedgeMesh r = reconstruct(mesh, d, 0, d.size() - 1);
+                REQUIRE_VALID(r);
+                CHECK(relative_distance(r, mesh) < 1e-9);
+                // A proper sub-band does not reconstruct it.
+                const HalfedgeMesh low = reconstruct(mesh, d, 0, d.size() / 2);
+                REQUIRE_VALID(low);
+                CHECK(relative_distance(low, mesh) > 1e-6);
+            }
+        }
+    }
+}
+
+TEST_CASE("a low-pass reconstruction of a noisy sphere is smooth and close to the sphere",
+          "[spectral]") {
+    const HalfedgeMesh noisy = make_noisy_sphere(10, 0.03, 5);  // 1,002 vertices
+    for (LaplacianOperator op : kOperators) {
+        INFO("operator " << laplacian_operator_name(op));
+        const SpectralDecomposition d = decompose(noisy, options(op, 36));
+        const HalfedgeMesh low = reconstruct(noisy, d, 0, 35);  // l <= 5 on a sphere
+        REQUIRE_VALID(low);
+        CHECK(roughness(low) < 0.2 * roughness(noisy));
+        CHECK(sphere_deviation(low) < 0.5 * sphere_deviation(noisy));
+        CHECK(sphere_deviation(low) < 0.02);
+    }
+}
+
+TEST_CASE("disconnected meshes have one zero eigenvalue per piece; isolated vertices stay",
+          "[spectral]") {
+    const HalfedgeMesh mesh = two_spheres_and_a_point();
+    REQUIRE_VALID(mesh);
+    Vertex isolated;
+    for (Vertex v : mesh.vertices())
+        if (mesh.is_isolated(v)) isolated = v;
+    REQUIRE(isolated.is_valid());
+    for (LaplacianOperator op : kOperators) {
+        INFO("operator " << laplacian_operator_name(op));
+        const SpectralDecomposition d = decompose(mesh, options(op, 10));
+        CHECK(d.rows() == mesh.n_vertices() - 1);
+        INFO("eigenvalues " << d.eigenvalues.transpose());
+        const double scale = d.eigenvalues[9];
+        CHECK(std::abs(d.eigenvalues[0]) < 1e-8 * scale);
+        CHECK(std::abs(d.eigenvalues[1]) < 1e-8 * scale);
+        CHECK(d.eigenvalues[2] > 1e-3 * scale);
+        CHECK(s_orthonormality_error(d) < 1e-8);
+        // The two zero frequencies carry each sphere's centroid: the reconstruction from them
+        // puts every vertex of a sphere at its centre.
+        const HalfedgeMesh centres = reconstruct(mesh, d, 0, 1);
+        REQUIRE_VALID(centres);
+        for (Vertex v : centres.vertices()) {
+            if (v == isolated) continue;
+            const Point c = mesh.position(v).x() > 1.5 ? Point(3, 0, 0) : Point(0, 0, 0);
+            CHECK((centres.position(v) - c).norm() < 1e-6);
+        }
+        CHECK(centres.position(isolated) == mesh.position(isolated));
+        const std::vector<double> f = frequency_field(d, 3);
+        CHECK(std::isnan(f[isolated.idx()]));
+    }
+}
+
+TEST_CASE("boundaries: free rows give a zero eigenvalue, fixed rows do not", "[spectral]") {
+    const HalfedgeMesh grid = make_grid(10);
+    for (LaplacianOperator op : kOperators) {
+        INFO("operator " << laplacian_operator_name(op));
+        SpectralOptions o = options(op, 5);
+        const SpectralDecomposition free_ = decompose(grid, o);
+        CHECK(free_.rows() == grid.n_vertices());
+        CHECK(std::abs(free_.eigenvalues[0]) < 1e-8 * free_.eigenvalues[4]);
+        // The zero eigenvector is constant (second order: linear functions of the flat grid
+        // are in its null space too).
+        const Eigen::VectorXd e0 = free_.eigenvectors.col(0);
+        if (op != LaplacianOperator::SecondOrder)
+            CHECK(e0.maxCoeff() - e0.minCoeff() < 1e-6 * e0.cwiseAbs().maxCoeff());
+        o.fix_boundary = true;
+        const SpectralDecomposition fixed = decompose(grid, o);
+        CHECK(fixed.rows() < grid.n_vertices());
+        CHECK(fixed.eigenvalues[0] > 1e-4 * fixed.eigenvalues[4]);
+        // Boundary vertices keep their positions in any reconstruction.
+        const HalfedgeMesh r = reconstruct(grid, fixed, 1, 3);
+        REQUIRE_VALID(r);
+        for (Vertex v : grid.vertices())
+            if (grid.is_boundary(v)) CHECK(r.position(v) == grid.position(v));
+    }
+}
+
+TEST_CASE("frequency fields and band magnitudes", "[spectral]") {
+    const HalfedgeMesh mesh = make_noisy_sphere(6, 0.02, 4);
+    const SpectralDecomposition d = decompose(mesh, options(LaplacianOperator::Umbrella, 12));
+    const std::vector<double> f = frequency_field(d, 5);
+    REQUIRE(f.size() == mesh.vertices_size());
+    double s2 = 0;
+    for (std::size_t r = 0; r < d.rows(); ++r)
+        s2 += d.S[Eigen::Index(r)] * f[d.map.vertex_of[r].idx()] * f[d.map.vertex_of[r].idx()];
+    CHECK(std::abs(s2 - 1.0) < 1e-8);  // S-normalized
+    // The magnitude of band [0, 0] is the centroid's distance for every vertex (constant e_0).
+    const std::vector<double> m0 = band_magnitude_field(d, 0, 0);
+    const auto [lo, hi] = std::minmax_element(m0.begin(), m0.end());
+    CHECK(*hi - *lo < 1e-9 + 1e-6 * *hi);
+    // The full computed band carries most of the position: |X_band| is close to |X| for a
+    // sphere around the origin.
+    const std::vector<double> m = band_magnitude_field(d, 0, 11);
+    for (Vertex v : mesh.vertices()) CHECK(std::abs(m[v.idx()] - mesh.position(v).norm()) < 0.1);
+}
+
+TEST_CASE("bad spectral options are refused with the option's name", "[spectral]") {
+    const HalfedgeMesh mesh = make_icosphere(3);  // 92 vertices
+    auto message = [&](const SpectralOptions& o) {
+        try {
+            decompose(mesh, o);
+        } catch (const InvalidArgument& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    CHECK(message(options(LaplacianOperator::Umbrella, 0)).rfind("k: expected", 0) == 0);
+    CHECK(message(options(LaplacianOperator::Umbrella, 92)).find("1 to 91") != std::string::npos);
+    SpectralOptions full = options(LaplacianOperator::Umbrella, 0, SpectralMethod::Full);
+    full.max_full_rows = 50;
+    CHECK(message(full).find("max_full_rows") != std::string::npos);
+    CHECK(message(options(LaplacianOperator::Umbrella, 0, SpectralMethod::Full)).empty());
+    HalfedgeMesh nan_mesh = mesh;
+    nan_mesh.position(Vertex(0)).x() = std::nan("");
+    CHECK_THROWS_AS(decompose(nan_mesh, options(LaplacianOperator::Umbrella, 5)), InvalidArgument);
+    const SpectralDecomposition d = decompose(mesh, options(LaplacianOperator::Umbrella, 5));
+    CHECK_THROWS_WITH(band_positions(d, 3, 5), Catch::Contains("band: expected LO:HI"));
+    CHECK_THROWS_AS(band_positions(d, 3, 2), InvalidArgument);
+    CHECK_THROWS_AS(frequency_field(d, 5), InvalidArgument);
+    CHECK_THROWS_AS(reconstruct(make_icosphere(2), d, 0, 4), InvalidArgument);
+    CHECK_THROWS_AS(decompose(HalfedgeMesh(), options(LaplacianOperator::Umbrella, 1)),
+                    InvalidArgument);
+}
+
+TEST_CASE("a decomposition can be cancelled and is deterministic", "[spectral]") {
+    const HalfedgeMesh mesh = make_noisy_sphere(10, 0.02, 2);
+    CancelAfter cancel(3);
+    CHECK_THROWS_AS(decompose(mesh, options(LaplacianOperator::CurvatureFlow, 30), cancel),
+                    Cancelled);
+    const SpectralDecomposition a = decompose(mesh, options(LaplacianOperator::CurvatureFlow, 30));
+    const SpectralDecomposition b = decompose(mesh, options(LaplacianOperator::CurvatureFlow, 30));
+    CHECK(a.eigenvalues == b.eigenvalues);
+    CHECK(a.eigenvectors == b.eigenvectors);
+}
+
+TEST_CASE("the shared bunny: isolated vertices are left out and keep their positions",
+          "[spectral][shared]") {
+    const std::string path = test::shared_mesh("stanford-bunny.obj");
+    SKIP_IF_MISSING(path);
+    const HalfedgeMesh bunny = read_mesh(path).mesh;
+    std::size_t isolated = 0;
+    for (Vertex v : bunny.vertices()) isolated += bunny.is_isolated(v);
+    REQUIRE(isolated == 1113);
+    const SpectralDecomposition d = decompose(bunny, options(LaplacianOperator::CurvatureFlow, 20));
+    CHECK(d.rows() == bunny.n_vertices() - isolated);
+    CHECK(s_orthonormality_error(d) < 1e-8);
+    const HalfedgeMesh low = reconstruct(bunny, d, 0, 19);
+    REQUIRE_VALID(low);
+    for (Vertex v : bunny.vertices())
+        if (bunny.is_isolated(v)) CHECK(low.position(v) == bunny.position(v));
+    CHECK(roughness(low) < roughness(bunny));
+}
+
+TEST_CASE("the spectrum operation of the registry", "[spectral][operation]") {
+    const HalfedgeMesh mesh = make_noisy_sphere(6, 0.03, 8);
+    NullProgress none;
+    const OperationResult r = run_operation(
+        parse_operation("spectrum --operator curvature-flow --k 12 --band 0:8"), mesh, none);
+    REQUIRE(r.steps.size() == 1);
+    REQUIRE_VALID(r.steps[0].mesh);
+    CHECK(r.steps[0].mesh.n_vertices() == mesh.n_vertices());
+    CHECK(r.steps[0].correspondence.kind == MorphCorrespondence{}.kind);
+    REQUIRE(r.series.size() == 1);
+    CHECK(r.series[0].second.size() == 12);
+    CHECK(std::is_sorted(r.series[0].second.begin(), r.series[0].second.end()));
+    // The canonical parameters run again to the same result.
+    const OperationResult again =
+        run_operation(parse_operation("spectrum " + r.parameters), mesh, none);
+    CHECK(again.steps[0].mesh.positions() == r.steps[0].mesh.positions());
+    auto message = [&](const std::string& text) {
+        try {
+            run_operation(parse_operation(text), mesh, none);
+        } catch (const InvalidArgument& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    CHECK(message("spectrum --k 10 --band 2:10").rfind("--band: expected LO:HI", 0) == 0);
+    CHECK(message("spectrum --band 3:1").rfind("--band: expected LO:HI", 0) == 0);
+    CHECK(message("spectrum --k 0").rfind("--k: expected a whole number from 1", 0) == 0);
+    CHECK(message("spectrum --k 100000").find("--k: expected a whole number from 1 to") == 0);
+    CHECK(message("spectrum --full --max-full 100").rfind("--full: the dense", 0) == 0);
+    CHECK(message("spectrum --which middle").rfind("--which: expected one of", 0) == 0);
+}
