@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "app/cli/compare_command.h"
+#include "app/cli/decimate_command.h"
 #include "app/cli/json_writer.h"
 #include "app/cli/noise_command.h"
 #include "app/cli/record_command.h"
@@ -43,6 +45,11 @@ commands:
                                   render an operation's morph to PNG frames (`record --help`)
   smooth [--operator OP] [--integration I] [--step T] [--iterations N] [--preserve-volume]
          IN OUT [--json]          fair a mesh (`trilab-cli smooth --help`)
+  decimate [--cost quadric|roundness] [--normal-flip DEG] [--roundness MIN]
+           [--independent-set] (--percent P --iterations N | --target-vertices K)
+           IN OUT [--json]        edge-collapse decimation (`trilab-cli decimate --help`)
+  compare A B [--samples N] [--json]
+                                  sampled Hausdorff and RMS distance between two meshes
   help                            this text
 )";
 
@@ -219,6 +226,8 @@ int main(int argc, char** argv) {
         if (cmd == "noise") return run_noise_command({argv + 2, argv + argc});
         if (cmd == "smooth")
             return run_smooth_command(std::vector<std::string>(argv + 2, argv + argc));
+        if (cmd == "decimate") return run_decimate_command({argv + 2, argv + argc});
+        if (cmd == "compare") return run_compare_command({argv + 2, argv + argc});
         if (cmd == "subdivide") return run_subdivide_command({argv + 2, argv + argc});
         if (cmd == "record") return run_record_command({argv + 2, argv + argc});
         if (cmd == "generate")

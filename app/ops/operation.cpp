@@ -24,6 +24,7 @@ const std::vector<OperationEntry>& registry() {
         noise_operation(),
         subdivide_operation(),
         smooth_operation(),
+        decimate_operation(),
     };
     return entries;
 }
