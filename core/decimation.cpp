@@ -2,13 +2,16 @@
 //
 // The loop, per iteration:
 //   target = V - floor(P/100 V)   (or the requested vertex count)
-//   fill the heap: for every edge, its best collapse direction, placement and cost
-//   while V > target and the heap is not empty:
-//     pop (cost, e, stamp); skip if e is dead or stamp is stale
+//   price every edge: its best collapse direction, placement and cost
+//   big meshes: batch passes (cheapest edges first, in sorted order) down to
+//               max(50,000, 4 target) vertices
+//   fill the heap; while V > target and the heap is not empty:
+//     pop (cost, e); skip if e is dead or its cost changed since (a stale entry)
 //     refuse if: a locked end (independent set), error above max_error, the link condition,
 //                a face normal turning too far, a triangle rounder than allowed, a seam vertex
 //     collapse: record the vertex split, move the kept vertex, add the quadrics, carry the
-//               texture coordinates, lock the one-ring, re-price the edges at the kept vertex
+//               texture coordinates, lock the one-ring (independent set), re-price the edges
+//               at the kept vertex
 //     when the heap runs dry early: refill once more (refusals may have become legal)
 //   copy the mesh, collect its garbage, and give every vertex of the previous mesh its end
 //   position (the position of the vertex it collapsed into) for the geomorph.
@@ -63,10 +66,11 @@ double normalized_roundness(const Point& a, const Point& b, const Point& c) {
 
 namespace {
 
+// A heap entry is valid while its cost equals the edge's current cost (lazy invalidation:
+// re-pricing an edge pushes a new entry and leaves the old one to be skipped). 8 bytes.
 struct HeapEntry {
-    double cost;
+    float cost;
     std::uint32_t edge;
-    std::uint32_t stamp;
 };
 struct HeapOrder {
     // std::push_heap builds a max-heap; "greater" makes the cheapest entry the top.
@@ -75,11 +79,17 @@ struct HeapOrder {
     }
 };
 
+// Meshes with more vertices than this are first decimated in batches (below), down to
+// max(kExactVertices, 4 x target); the exact priority order takes over from there.
+constexpr std::size_t kExactVertices = 50000;
+
 // Weight of a boundary constraint plane relative to a face plane (Garland-Heckbert 1997).
 constexpr double kBoundaryWeight = 100.0;
 // An optimal placement farther than this many edge lengths from the edge's midpoint is
 // treated as ill-conditioned.
 constexpr double kMaxPlacementDistance = 3.0;
+
+constexpr double kNoCollapse = std::numeric_limits<double>::max();
 
 enum class Refusal { None, Topology, NormalFlip, Roundness, IndependentSet, MaxError, Seam };
 
@@ -91,7 +101,9 @@ public:
         cos_max_angle_ = std::cos(o_.max_normal_angle * M_PI / 180.0);
         max_error2_ = o_.max_error > 0 ? o_.max_error * o_.max_error
                                        : std::numeric_limits<double>::infinity();
-        stamp_.assign(m_.edges_size(), 0);
+        cost_.assign(m_.edges_size(), kNoCollapse);
+        boundary_.assign(m_.vertices_size(), 0);
+        for (Vertex v : m_.vertices()) boundary_[v.idx()] = m_.is_boundary(v) ? 1 : 0;
         dir_.assign(m_.edges_size(), 0);
         target_.assign(m_.edges_size(), Point::Zero());
         locked_.assign(m_.vertices_size(), 0);
@@ -99,6 +111,7 @@ public:
         vuv_ = m_.get_vertex_property<TexCoord>("v:texcoord");
         huv_ = m_.get_halfedge_property<TexCoord>("h:texcoord");
         init_quadrics();
+        for (Edge e : m_.edges()) price(e);
     }
 
     /// Runs one iteration down to `target` vertices; returns whether it got there, and
@@ -109,7 +122,24 @@ public:
         const std::size_t start = m_.n_vertices();
         std::size_t constraint_refusals = 0;
         bool hit_max_error = false;
-        for (int round = 0; m_.n_vertices() > target; ++round) {
+        const auto report_progress = [&]() {
+            if ((report_.collapses & 1023u) != 0) return;
+            progress.check_cancelled();
+            const double done =
+                double(start - m_.n_vertices()) / double(std::max<std::size_t>(1, start - target));
+            progress.report(progress_base + progress_span * done, "collapsing edges");
+        };
+        // Batches on big meshes: every pass takes the cheapest edges up to a cost threshold
+        // (a selection, O(E)), sorts them and collapses them in order, skipping those whose
+        // cost changed since the selection (re-priced by an earlier collapse of the pass:
+        // they wait for the next pass); a sixth of the vertices per pass at most. The exact
+        // heap does the last, most visible collapses.
+        const std::size_t batch_floor = std::max(kExactVertices, 4 * target);
+        while (m_.n_vertices() > batch_floor && !hit_max_error) {
+            const std::size_t done = batch_pass(batch_floor, hit_max_error, report_progress);
+            if (done == 0) break;
+        }
+        for (int round = 0; m_.n_vertices() > target && !hit_max_error; ++round) {
             fill_heap();
             std::size_t collapses_this_round = 0;
             constraint_refusals = 0;
@@ -118,10 +148,10 @@ public:
                 const HeapEntry top = heap_.back();
                 heap_.pop_back();
                 const Edge e(top.edge);
-                if (m_.is_deleted(e) || stamp_[e.idx()] != top.stamp) continue;
+                if (m_.is_deleted(e) || float(cost_[e.idx()]) != top.cost) continue;
                 const Halfedge h = HalfedgeMesh::halfedge(e, dir_[e.idx()]);
                 const Point p = target_[e.idx()];
-                if (o_.cost == DecimationCost::Quadric && top.cost > max_error2_) {
+                if (o_.cost == DecimationCost::Quadric && cost_[e.idx()] > max_error2_) {
                     ++report_.refused_max_error;
                     hit_max_error = true;
                     heap_.clear();
@@ -135,18 +165,14 @@ public:
                 }
                 collapse(h, p);
                 ++collapses_this_round;
-                if ((report_.collapses & 1023u) == 0) {
-                    progress.check_cancelled();
-                    const double done = double(start - m_.n_vertices()) /
-                                        double(std::max<std::size_t>(1, start - target));
-                    progress.report(progress_base + progress_span * done, "collapsing edges");
-                }
+                report_progress();
             }
             if (hit_max_error || m_.n_vertices() <= target) break;
             // The heap ran dry: refill once more only if this round changed something (a
             // refused collapse may have become legal) and locks do not forbid it anyway.
             if (collapses_this_round == 0 || o_.independent_set || round >= 8) break;
         }
+        heap_.clear();
         if (m_.n_vertices() <= target) return true;
         stop = hit_max_error            ? DecimationStop::MaxError
                : constraint_refusals > 0 ? DecimationStop::Constraints
@@ -202,8 +228,52 @@ private:
 
     void fill_heap() {
         heap_.clear();
-        heap_.reserve(m_.n_edges());
-        for (Edge e : m_.edges()) push(e);
+        heap_.reserve(2 * m_.n_edges());
+        for (Edge e : m_.edges())
+            if (cost_[e.idx()] < kNoCollapse) heap_.push_back({float(cost_[e.idx()]), e.idx()});
+        std::make_heap(heap_.begin(), heap_.end(), HeapOrder());
+    }
+
+    // One batch pass (see iterate()); returns the number of collapses.
+    template <class Report>
+    std::size_t batch_pass(std::size_t floor, bool& hit_max_error, const Report& report) {
+        ++pass_;
+        const std::size_t surplus = m_.n_vertices() - floor;
+        batch_.clear();
+        for (Edge e : m_.edges())
+            if (cost_[e.idx()] < kNoCollapse) batch_.push_back({float(cost_[e.idx()]), e.idx()});
+        // At most a sixth of the vertices per pass.
+        const std::size_t budget =
+            std::min({surplus, batch_.size(), std::max<std::size_t>(1, m_.n_vertices() / 6)});
+        if (budget == 0) return 0;
+        const auto by_cost = [](const HeapEntry& a, const HeapEntry& b) {
+            return a.cost < b.cost || (a.cost == b.cost && a.edge < b.edge);
+        };
+        std::nth_element(batch_.begin(), batch_.begin() + (budget - 1), batch_.end(), by_cost);
+        batch_.resize(budget);
+        std::sort(batch_.begin(), batch_.end(), by_cost);
+        std::size_t done = 0;
+        for (const HeapEntry& c : batch_) {
+            const Edge e(c.edge);
+            if (m_.is_deleted(e) || float(cost_[e.idx()]) != c.cost) continue;
+            const Halfedge h = HalfedgeMesh::halfedge(e, dir_[e.idx()]);
+            const Point p = target_[e.idx()];
+            if (o_.cost == DecimationCost::Quadric && cost_[e.idx()] > max_error2_) {
+                hit_max_error = true;
+                ++report_.refused_max_error;
+                break;
+            }
+            const Refusal r = check(h, p);
+            if (r != Refusal::None) {
+                count(r);
+                continue;
+            }
+            collapse(h, p);
+            ++done;
+            report();
+            if (m_.n_vertices() <= floor) break;
+        }
+        return done;
     }
 
     // ---- pricing ----------------------------------------------------------------------------
@@ -234,7 +304,7 @@ private:
     // only moves along a boundary edge; seam vertices never move.
     bool direction_allowed(Halfedge h, bool boundary_edge) const {
         const Vertex from = m_.from_vertex(h);
-        if (m_.is_boundary(from) && !boundary_edge) return false;
+        if (boundary_[from.idx()] && !boundary_edge) return false;
         return !on_seam(from);
     }
 
@@ -255,9 +325,10 @@ private:
         return r;
     }
 
-    // Prices edge e: sets dir_, target_ and pushes; nothing when no direction is allowed.
-    void push(Edge e) {
-        const std::uint32_t stamp = ++stamp_[e.idx()];
+    // Prices edge e: sets cost_, dir_ and target_, and pushes it when the heap is in use;
+    // cost kNoCollapse when no direction is allowed.
+    void price(Edge e) {
+        cost_[e.idx()] = kNoCollapse;
         const Halfedge h0 = HalfedgeMesh::halfedge(e, 0), h1 = HalfedgeMesh::halfedge(e, 1);
         const bool be = m_.is_boundary(e);
         const bool ok0 = direction_allowed(h0, be), ok1 = direction_allowed(h1, be);
@@ -289,14 +360,14 @@ private:
                         cost = cm;
                     }
                 }
-            } else if (ok0 && (!m_.is_boundary(b) || be) && !on_seam(b)) {
+            } else if (ok0 && (!boundary_[b.idx()] || be) && !on_seam(b)) {
                 // Only a may move, b is free: optimal placement still applies to b... unless b
                 // is pinned (boundary vertex at an interior edge, or a seam vertex).
                 if (!(q.optimize(p) &&
                       (p - 0.5 * (xa + xb)).norm() <= kMaxPlacementDistance * (xb - xa).norm()))
                     p = xb;
                 cost = q(p);
-            } else if (ok1 && (!m_.is_boundary(a) || be) && !on_seam(a)) {
+            } else if (ok1 && (!boundary_[a.idx()] || be) && !on_seam(a)) {
                 if (!(q.optimize(p) &&
                       (p - 0.5 * (xa + xb)).norm() <= kMaxPlacementDistance * (xb - xa).norm()))
                     p = xa;
@@ -318,8 +389,11 @@ private:
             target_[e.idx()] = dir == 0 ? xb : xa;
             cost = -(dir == 0 ? r0 : r1);  // largest minimum roundness first
         }
-        heap_.push_back(HeapEntry{cost, e.idx(), stamp});
-        std::push_heap(heap_.begin(), heap_.end(), HeapOrder());
+        cost_[e.idx()] = cost;
+        if (!heap_.empty()) {
+            heap_.push_back(HeapEntry{float(cost), e.idx()});
+            std::push_heap(heap_.begin(), heap_.end(), HeapOrder());
+        }
     }
 
     // ---- legality ---------------------------------------------------------------------------
@@ -454,13 +528,14 @@ private:
         const TexCoord survivor0_uv =
             huv_ && f0.is_valid() ? huv_[HalfedgeMesh::twin(m_.next(h))] : TexCoord::Zero();
 
-        m_.collapse(h);
+        m_.collapse_unchecked(h);  // check() ran is_collapse_ok(h)
         if (pinned_corners) {
             if (survivor0.is_valid() && !m_.is_deleted(survivor0)) huv_[survivor0] = survivor0_uv;
             if (survivor1.is_valid() && !m_.is_deleted(survivor1)) huv_[survivor1] = corner_uv;
         }
         m_.position(v1) = p;
         quadric_[v1.idx()] += quadric_[v0.idx()];
+        boundary_[v1.idx()] |= boundary_[v0.idx()];
         parent_[v0.idx()] = v1;
         ++report_.collapses;
 
@@ -480,7 +555,7 @@ private:
         // Re-price: the edges at v1 (and, for roundness, at its neighbours, whose faces
         // changed shape).
         do {
-            push(HalfedgeMesh::edge(g));
+            price(HalfedgeMesh::edge(g));
             g = m_.ccw_rotated(g);
         } while (g != start);
         if (o_.cost == DecimationCost::Roundness) {
@@ -489,7 +564,7 @@ private:
                 const Halfedge ws = m_.halfedge(w);
                 Halfedge k = ws;
                 do {
-                    if (m_.to_vertex(k) != v1) push(HalfedgeMesh::edge(k));
+                    if (m_.to_vertex(k) != v1) price(HalfedgeMesh::edge(k));
                     k = m_.ccw_rotated(k);
                 } while (k != ws);
                 g = m_.ccw_rotated(g);
@@ -503,7 +578,10 @@ private:
     DecimationReport& report_;
     double cos_max_angle_ = 0, max_error2_ = 0;
     std::vector<Quadric> quadric_;
-    std::vector<std::uint32_t> stamp_;
+    std::vector<double> cost_;
+    std::vector<std::uint8_t> boundary_;  ///< per vertex; v1 inherits v0's on collapse
+    std::vector<HeapEntry> batch_;
+    std::uint32_t pass_ = 0;
     std::vector<std::uint8_t> dir_;
     std::vector<Point> target_;
     std::vector<std::uint32_t> locked_;

@@ -2,9 +2,13 @@
 // Mesh decimation by edge collapse (section 1.4 of the reference report).
 //
 // Method: every edge gets a cost and the cheapest collapse goes first, from a binary heap of
-// (cost, edge, stamp) entries with lazy invalidation (an entry whose stamp is older than its
-// edge's is skipped), so the queue stays exact while costs change; after a collapse only the
-// edges at the kept vertex are re-priced. Costs:
+// (cost, edge) entries with lazy invalidation (an entry whose cost is no longer its edge's is
+// skipped), so the queue stays exact while costs change; after a collapse only the edges at
+// the kept vertex are re-priced. Meshes of more than 50,000 vertices are first reduced in
+// batches down to max(50,000, 4 x target): each pass selects the cheapest sixth of the
+// vertices' worth of edges (nth_element), sorts them and collapses them in that order,
+// skipping edges re-priced during the pass; the exact heap then does the last collapses, the
+// ones that shape the result. Costs:
 //  - Quadric (Garland, Heckbert, "Surface simplification using quadric error metrics",
 //    SIGGRAPH 1997): per-vertex quadrics of the incident face planes, summed on collapse; the
 //    kept vertex moves to the minimizer of Q0 + Q1 (the 3x3 system), or, where that is
@@ -30,8 +34,9 @@
 // The input is never modified. Progressive mesh (Hoppe, "Progressive meshes", SIGGRAPH 1996):
 // every collapse is recorded with the vertex split that undoes it.
 //
-// Complexity: O(E log E) to fill the heap, then O(d^2 + d log E) per collapse for valence d;
-// no allocation per collapse; garbage collection once per iteration (on the iteration's copy).
+// Complexity: O(E) per batch pass (O(E) passes in all, geometrically shrinking), O(E log E)
+// to fill the heap, then O(d^2 + d log E) per collapse for valence d; no allocation per
+// collapse; garbage collection once per iteration (on the iteration's copy).
 #include <array>
 #include <cstdint>
 #include <string>

@@ -60,6 +60,10 @@ void HalfedgeMesh::collapse(Halfedge h) {
     if (!is_collapse_ok(h))
         throw TopologyError("collapse: halfedge " + std::to_string(h.idx()) +
                             " fails the link condition");
+    collapse_unchecked(h);
+}
+
+void HalfedgeMesh::collapse_unchecked(Halfedge h) {
     const Halfedge o = twin(h);
     const Vertex v0 = from_vertex(h), v1 = to_vertex(h);
     const Halfedge hn = next(h), hp = prev(h), on = next(o), op = prev(o);

@@ -1,14 +1,15 @@
 // CGAL 5.5 peer of the decimation benchmark: Surface_mesh over Simple_cartesian<double>,
 // Surface_mesh_simplification::edge_collapse with GarlandHeckbert_plane_policies (cost and
-// placement) and a Face_count_stop_predicate. Kept in its own file: CGAL compiles slowly.
+// placement) and a Count_stop_predicate (edges; 5.5 has no face-count predicate). Kept in its own file: CGAL compiles slowly.
 #include <chrono>
+#include <ctime>
 
 #include "peers.h"
 
 #ifdef TRILAB_HAS_CGAL
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
-#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Face_count_stop_predicate.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_stop_predicate.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/GarlandHeckbert_plane_policies.h>
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 #endif
@@ -24,7 +25,7 @@ namespace SMS = CGAL::Surface_mesh_simplification;
 
 bool have_cgal() { return true; }
 
-PeerRun cgal_decimate(const Soup& in, std::size_t target_faces) {
+PeerRun cgal_decimate(const Soup& in, std::size_t target_edges) {
     SurfaceMesh mesh;
     std::vector<SurfaceMesh::Vertex_index> vh;
     vh.reserve(in.positions.size());
@@ -32,15 +33,17 @@ PeerRun cgal_decimate(const Soup& in, std::size_t target_faces) {
     for (const auto& f : in.faces) mesh.add_face(vh[f[0]], vh[f[1]], vh[f[2]]);
     PeerRun run;
     const auto t0 = std::chrono::steady_clock::now();
+    const std::clock_t c0 = std::clock();
     {
         SMS::GarlandHeckbert_plane_policies<SurfaceMesh, Kernel> policies(mesh);
-        SMS::Face_count_stop_predicate<SurfaceMesh> stop(target_faces);
+        SMS::Count_stop_predicate<SurfaceMesh> stop(target_edges);
         SMS::edge_collapse(mesh, stop,
                            CGAL::parameters::get_cost(policies.get_cost())
                                .get_placement(policies.get_placement()));
         mesh.collect_garbage();
     }
     run.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    run.cpu_ms = 1000.0 * double(std::clock() - c0) / CLOCKS_PER_SEC;
     for (auto v : mesh.vertices()) {
         const auto& p = mesh.point(v);
         run.soup.positions.push_back({p.x(), p.y(), p.z()});

@@ -18,13 +18,14 @@ struct Soup {
 
 struct PeerRun {
     Soup soup;
-    double ms = 0;
+    double ms = 0;      ///< wall clock
+    double cpu_ms = 0;  ///< process CPU time (the machine may be shared)
 };
 
 /// Down to `target_vertices` (OpenMesh decimates to a vertex count).
 PeerRun openmesh_decimate(const Soup& in, std::size_t target_vertices);
-/// Down to `target_faces` (CGAL's Face_count_stop_predicate).
-PeerRun cgal_decimate(const Soup& in, std::size_t target_faces);
+/// Down to fewer than `target_edges` edges (CGAL 5.5's Count_stop_predicate).
+PeerRun cgal_decimate(const Soup& in, std::size_t target_edges);
 /// Down to `target_faces` (meshopt_simplify's target index count / 3), no error limit.
 PeerRun meshopt_decimate(const Soup& in, std::size_t target_faces);
 
