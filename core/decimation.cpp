@@ -116,8 +116,8 @@ public:
 
     /// Runs one iteration down to `target` vertices; returns whether it got there, and
     /// otherwise sets `stop`.
-    bool iterate(std::size_t target, Progress& progress, double progress_base,
-                 double progress_span, DecimationStop& stop) {
+    bool iterate(std::size_t target, Progress& progress, double progress_base, double progress_span,
+                 DecimationStop& stop) {
         ++iteration_;
         const std::size_t start = m_.n_vertices();
         std::size_t constraint_refusals = 0;
@@ -174,7 +174,7 @@ public:
         }
         heap_.clear();
         if (m_.n_vertices() <= target) return true;
-        stop = hit_max_error            ? DecimationStop::MaxError
+        stop = hit_max_error             ? DecimationStop::MaxError
                : constraint_refusals > 0 ? DecimationStop::Constraints
                                          : DecimationStop::Topology;
         return false;
@@ -212,8 +212,8 @@ private:
                 if (!m_.is_boundary(h) || m_.is_boundary(HalfedgeMesh::twin(h))) continue;
                 const Face f = m_.face(HalfedgeMesh::twin(h));
                 const auto c = m_.face_vertices(f);
-                const Vector3 fn =
-                    (m_.position(c[1]) - m_.position(c[0])).cross(m_.position(c[2]) - m_.position(c[0]));
+                const Vector3 fn = (m_.position(c[1]) - m_.position(c[0]))
+                                       .cross(m_.position(c[2]) - m_.position(c[0]));
                 const Point& a = m_.position(m_.from_vertex(h));
                 const Point& b = m_.position(m_.to_vertex(h));
                 Vector3 n = (b - a).cross(fn);
@@ -623,8 +623,9 @@ std::string stop_text(DecimationStop stop, const DecimationReport& r, std::size_
                    std::to_string(r.refused_independent_set) + ", texture seam " +
                    std::to_string(r.refused_texture_seam) + " refusals in all)";
         case DecimationStop::Topology:
-            return s + "no remaining collapse keeps the mesh manifold with its topology (link "
-                       "condition)";
+            return s +
+                   "no remaining collapse keeps the mesh manifold with its topology (link "
+                   "condition)";
         case DecimationStop::Done:
             break;
     }
@@ -667,6 +668,7 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
     report.input_vertices = work.n_vertices() - isolated;
     const int iterations = options.target_vertices > 0 ? 1 : options.iterations;
     std::size_t last_target = report.input_vertices;
+    std::size_t final_vertices = work.n_vertices();
     for (int it = 0; it < iterations; ++it) {
         progress.check_cancelled();
         const std::size_t v = work.n_vertices() - isolated;
@@ -678,13 +680,11 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
         if (target >= v) break;  // nothing to remove (already small enough)
         const std::size_t collapses_before = report.collapses;
         DecimationStop stop = DecimationStop::Done;
-        const bool reached = decimater.iterate(target + isolated, progress,
-                                               double(it) / iterations, 1.0 / iterations, stop);
+        const bool reached = decimater.iterate(target + isolated, progress, double(it) / iterations,
+                                               1.0 / iterations, stop);
         if (report.collapses > collapses_before) {
             DecimationLevel level;
             level.target_vertices = target;
-            level.mesh = work;
-            const IndexRemap remap = level.mesh.garbage_collection();
             level.correspondence.kind = MorphCorrespondence::Kind::ToLater;
             level.correspondence.positions.resize(before_to_work.size());
             for (Index i = 0; i < before_to_work.size(); ++i) {
@@ -692,6 +692,13 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
                 level.correspondence.positions[i] =
                     work.position(work.is_deleted(w) ? decimater.representative(w) : w);
             }
+            final_vertices = work.n_vertices();
+            // The last iteration takes the working mesh itself (no copy of a big mesh).
+            if (it + 1 == iterations)
+                level.mesh = std::move(work);
+            else
+                level.mesh = work;
+            const IndexRemap remap = level.mesh.garbage_collection();
             std::vector<Index> next(level.mesh.vertices_size(), kInvalidIndex);
             for (Index w = 0; w < remap.vertices.size(); ++w)
                 if (remap.vertices[w] != kInvalidIndex) next[remap.vertices[w]] = w;
@@ -709,10 +716,10 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
             report.stop = DecimationStop::Done;
         }
     }
-    report.output_vertices = work.n_vertices() - isolated;
+    report.output_vertices = final_vertices - isolated;
     report.stop_message = stop_text(report.stop, report, last_target);
-    report.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                    .count();
+    report.ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     progress.report(1.0, "decimated");
     return result;
 }

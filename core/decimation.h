@@ -61,25 +61,25 @@ struct DecimationOptions {
     /// the start of the iteration (the reference's "collapse P percent per iteration").
     /// Vertex counts are of the vertices with faces: isolated vertices are kept as they are
     /// and not counted.
-    double percent = 60;             ///< (0, 100]
-    int iterations = 1;              ///< 1 to 1000
+    double percent = 60;              ///< (0, 100]
+    int iterations = 1;               ///< 1 to 1000
     std::size_t target_vertices = 0;  ///< 0: use percent and iterations
 
-    bool normal_flip = true;        ///< the normal-flipping constraint
-    double max_normal_angle = 90;   ///< degrees, (0, 180]
-    bool roundness = false;         ///< the roundness constraint
-    double min_roundness = 0.2;     ///< normalized roundness, (0, 1]
-    bool independent_set = false;   ///< the independent-set constraint
-    double max_error = 0;           ///< quadric error as a distance; 0: no limit
-    bool record_progressive = true; ///< fill DecimationResult::progressive
+    bool normal_flip = true;         ///< the normal-flipping constraint
+    double max_normal_angle = 90;    ///< degrees, (0, 180]
+    bool roundness = false;          ///< the roundness constraint
+    double min_roundness = 0.2;      ///< normalized roundness, (0, 1]
+    bool independent_set = false;    ///< the independent-set constraint
+    double max_error = 0;            ///< quadric error as a distance; 0: no limit
+    bool record_progressive = true;  ///< fill DecimationResult::progressive
 };
 
 /// Why a decimation ended.
 enum class DecimationStop {
-    Done,              ///< every iteration reached its vertex count
-    MaxError,          ///< the next collapse would exceed max_error
-    Constraints,       ///< every remaining collapse was refused by a binary constraint
-    Topology,          ///< no collapse keeps a manifold mesh (e.g. a tetrahedron)
+    Done,         ///< every iteration reached its vertex count
+    MaxError,     ///< the next collapse would exceed max_error
+    Constraints,  ///< every remaining collapse was refused by a binary constraint
+    Topology,     ///< no collapse keeps a manifold mesh (e.g. a tetrahedron)
 };
 /// "done", "max-error", "constraints", "topology".
 const char* decimation_stop_name(DecimationStop stop);
@@ -87,9 +87,9 @@ const char* decimation_stop_name(DecimationStop stop);
 /// What a run did; refusals count every time a collapse candidate was refused.
 struct DecimationReport {
     std::size_t input_vertices = 0, output_vertices = 0;  ///< vertices with faces
-    std::size_t isolated_vertices = 0;                     ///< kept, in addition
+    std::size_t isolated_vertices = 0;                    ///< kept, in addition
     std::size_t collapses = 0;
-    std::size_t refused_topology = 0;         ///< link condition
+    std::size_t refused_topology = 0;  ///< link condition
     std::size_t refused_normal_flip = 0;
     std::size_t refused_roundness = 0;
     std::size_t refused_independent_set = 0;
@@ -122,10 +122,10 @@ struct VertexSplit {
 
 /// A progressive mesh: the fine mesh as a face list plus its collapses in order.
 struct ProgressiveMesh {
-    std::vector<Point> positions;               ///< fine positions, per input vertex index
-    std::vector<std::array<Vertex, 3>> faces;   ///< fine corners, per input face index
-    std::vector<std::uint8_t> face_alive;       ///< 0 for faces deleted in the input
-    std::vector<std::uint8_t> vertex_alive;     ///< 0 for vertices deleted in the input
+    std::vector<Point> positions;              ///< fine positions, per input vertex index
+    std::vector<std::array<Vertex, 3>> faces;  ///< fine corners, per input face index
+    std::vector<std::uint8_t> face_alive;      ///< 0 for faces deleted in the input
+    std::vector<std::uint8_t> vertex_alive;    ///< 0 for vertices deleted in the input
     std::vector<VertexSplit> collapses;
     std::vector<Face> moved_faces;
 };

@@ -111,8 +111,8 @@ public:
             if (n.count > 0) {
                 for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
                     const auto& t = tri_[order_[i]];
-                    const double d = (closest_point_on_triangle(p, t[0], t[1], t[2]) - p)
-                                         .squaredNorm();
+                    const double d =
+                        (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).squaredNorm();
                     best = std::min(best, d);
                 }
                 continue;
@@ -168,8 +168,8 @@ private:
             if (ext.y() > ext[axis]) axis = 1;
             if (ext.z() > ext[axis]) axis = 2;
             const std::uint32_t mid = t.begin + (t.end - t.begin) / 2;
-            std::nth_element(order_.begin() + t.begin, order_.begin() + mid,
-                             order_.begin() + t.end, [&](std::uint32_t x, std::uint32_t y) {
+            std::nth_element(order_.begin() + t.begin, order_.begin() + mid, order_.begin() + t.end,
+                             [&](std::uint32_t x, std::uint32_t y) {
                                  return centroid_[x][axis] < centroid_[y][axis];
                              });
             const std::uint32_t left = std::uint32_t(nodes_.size());
@@ -202,8 +202,7 @@ std::vector<Point> sample_surface(const HalfedgeMesh& mesh, std::size_t n) {
     std::size_t k = 0;
     for (Face f : mesh.faces()) {
         const auto c = mesh.face_vertices(f);
-        const Point &x0 = mesh.position(c[0]), &x1 = mesh.position(c[1]),
-                    &x2 = mesh.position(c[2]);
+        const Point &x0 = mesh.position(c[0]), &x1 = mesh.position(c[1]), &x2 = mesh.position(c[2]);
         const double want = double(n) * 0.5 * (x1 - x0).cross(x2 - x0).norm() / total + carry;
         const std::size_t m = std::size_t(want);
         carry = want - double(m);
@@ -238,8 +237,8 @@ MeshDistance mesh_distance(const HalfedgeMesh& a, const HalfedgeMesh& b,
                            const MeshDistanceOptions& options) {
     if (a.n_faces() == 0 || b.n_faces() == 0)
         throw InvalidArgument("mesh_distance: both meshes need faces (got " +
-                              std::to_string(a.n_faces()) + " and " +
-                              std::to_string(b.n_faces()) + ")");
+                              std::to_string(a.n_faces()) + " and " + std::to_string(b.n_faces()) +
+                              ")");
     if (options.samples == 0) throw InvalidArgument("mesh_distance: samples must be at least 1");
     MeshDistance d;
     d.diagonal = bounding_box(a).diagonal();

@@ -24,12 +24,12 @@ struct MeshDistanceOptions {
 };
 
 struct MeshDistance {
-    double hausdorff = 0;           ///< max of the two one-sided maxima
-    double rms = 0;                 ///< over all samples of both sides
+    double hausdorff = 0;                   ///< max of the two one-sided maxima
+    double rms = 0;                         ///< over all samples of both sides
     double a_to_b_max = 0, a_to_b_rms = 0;  ///< samples of A against B's surface
     double b_to_a_max = 0, b_to_a_rms = 0;  ///< samples of B against A's surface
-    double diagonal = 0;            ///< bounding-box diagonal of A (to make errors relative)
-    std::size_t samples = 0;        ///< total samples (both sides)
+    double diagonal = 0;      ///< bounding-box diagonal of A (to make errors relative)
+    std::size_t samples = 0;  ///< total samples (both sides)
 };
 
 MeshDistance mesh_distance(const HalfedgeMesh& a, const HalfedgeMesh& b,

@@ -54,14 +54,13 @@ public:
     /// The minimizer of Q, written to `x`; false (x untouched) when the 3x3 system is
     /// ill-conditioned: |det A| <= rel_tolerance * |A|_F^3.
     bool optimize(Point& x, double rel_tolerance = 1e-7) const {
-        const double a00 = q_[0], a01 = q_[1], a02 = q_[2], a11 = q_[4], a12 = q_[5],
-                     a22 = q_[7];
+        const double a00 = q_[0], a01 = q_[1], a02 = q_[2], a11 = q_[4], a12 = q_[5], a22 = q_[7];
         const double c00 = a11 * a22 - a12 * a12;
         const double c01 = a02 * a12 - a01 * a22;
         const double c02 = a01 * a12 - a02 * a11;
         const double det = a00 * c00 + a01 * c01 + a02 * c02;
-        const double norm = std::sqrt(a00 * a00 + a11 * a11 + a22 * a22 +
-                                      2 * (a01 * a01 + a02 * a02 + a12 * a12));
+        const double norm =
+            std::sqrt(a00 * a00 + a11 * a11 + a22 * a22 + 2 * (a01 * a01 + a02 * a02 + a12 * a12));
         if (!(std::abs(det) > rel_tolerance * norm * norm * norm)) return false;
         const double c11 = a00 * a22 - a02 * a02;
         const double c12 = a01 * a02 - a00 * a12;

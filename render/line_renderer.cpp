@@ -28,8 +28,8 @@ void LineRenderer::set_segments(const std::vector<glm::vec3>& endpoints) {
     glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
-void LineRenderer::draw(const glm::mat4& view, const glm::mat4& projection,
-                        const glm::vec3& color, float width) const {
+void LineRenderer::draw(const glm::mat4& view, const glm::mat4& projection, const glm::vec3& color,
+                        float width) const {
     if (n_points_ == 0) return;
     program_.use();
     program_.set("u_model_view", view);

@@ -47,8 +47,10 @@ int run_compare_command(const std::vector<std::string>& args) {
             const char* end = text.data() + text.size();
             const auto [ptr, ec] = std::from_chars(text.data(), end, n);
             if (text.empty() || ec != std::errc() || ptr != end || n < 1 || n > 100000000ull)
-                throw InvalidArgument("--samples: expected a whole number from 1 to 100000000, "
-                                      "got '" + text + "'");
+                throw InvalidArgument(
+                    "--samples: expected a whole number from 1 to 100000000, "
+                    "got '" +
+                    text + "'");
             options.samples = std::size_t(n);
         } else if (s.rfind("--", 0) == 0) {
             throw InvalidArgument("unknown option '" + s + "' (see `trilab-cli compare --help`)");

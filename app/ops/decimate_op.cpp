@@ -49,8 +49,7 @@ DecimationOptions parse_decimate(OptionReader& r) {
             }
         } else if (r.is("--roundness")) {
             o.min_roundness = r.number(0, 1);
-            if (o.min_roundness <= 0)
-                throw r.bad_value("a number from 0 to 1 (above 0)", "0");
+            if (o.min_roundness <= 0) throw r.bad_value("a number from 0 to 1 (above 0)", "0");
             o.roundness = true;
         } else if (r.is("--independent-set")) {
             o.independent_set = true;
@@ -135,8 +134,7 @@ OperationResult run_decimate(const DecimationOptions& o, const HalfedgeMesh& mes
 }  // namespace
 
 OperationEntry decimate_operation() {
-    return make_entry<DecimationOptions>("decimate", kDecimateUsage, parse_decimate,
-                                         run_decimate);
+    return make_entry<DecimationOptions>("decimate", kDecimateUsage, parse_decimate, run_decimate);
 }
 
 }  // namespace trilab

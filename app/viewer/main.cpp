@@ -25,7 +25,8 @@ options:
   --op "OPERATION"   apply an operation after loading, e.g. --op "noise --amount 2"
   --memory-budget MB the history's memory budget (default: a quarter of the RAM)
   --show PANELS      open panels at start: comma-separated history, morph, tools,
-                     subdivision, fairing, record, log, info
+                     subdivision, fairing, decimation, collapsing-edges, record,
+                     log, info
   --help             this text
 )";
 

@@ -420,8 +420,8 @@ void fairing_window(PanelState& panels, MorphState& morph, const History& histor
 std::string decimate_operation_text(const DecimationPanelState& d) {
     char op[320];
     std::snprintf(op, sizeof(op), "decimate --cost %s --percent %g --iterations %d",
-                  d.cost == 1 ? "roundness" : "quadric", double(std::clamp(d.percent, 0.1f, 100.0f)),
-                  std::clamp(d.iterations, 1, 1000));
+                  d.cost == 1 ? "roundness" : "quadric",
+                  double(std::clamp(d.percent, 0.1f, 100.0f)), std::clamp(d.iterations, 1, 1000));
     std::string text = op;
     if (d.normal_flip) {
         std::snprintf(op, sizeof(op), " --normal-flip %g",

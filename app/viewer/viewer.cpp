@@ -197,6 +197,10 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
             panels_.fairing.open = true;
         else if (panel == "subdivision")
             panels_.subdivision.open = true;
+        else if (panel == "decimation")
+            panels_.decimation.open = true;
+        else if (panel == "collapsing-edges")
+            panels_.decimation.show_collapsing_edges = true;
         else if (panel == "record")
             panels_.record.open = true;
         else if (panel == "log")

@@ -8,6 +8,7 @@
 #include <set>
 #include <vector>
 
+#include "app/ops/operation.h"
 #include "core/decimation.h"
 #include "core/errors.h"
 #include "core/generators.h"
@@ -158,8 +159,8 @@ TEST_CASE("decimate follows the floor(P/100 V) rule and keeps closed meshes vali
 
 TEST_CASE("decimate keeps boundary loops, genus and components on open and toroidal meshes",
           "[decimation]") {
-    const HalfedgeMesh mesh = GENERATE(make_grid(20), make_cylinder(24, 12),
-                                       make_torus(24, 12, 1.0, 0.3));
+    const HalfedgeMesh mesh =
+        GENERATE(make_grid(20), make_cylinder(24, 12), make_torus(24, 12, 1.0, 0.3));
     const DecimationCost cost = GENERATE(DecimationCost::Quadric, DecimationCost::Roundness);
     const MeshStats before = compute_stats(mesh);
     DecimationOptions o;
@@ -308,8 +309,7 @@ TEST_CASE("the decimation geomorph starts at the fine shape and ends at the coar
         CHECK(c.kind == MorphCorrespondence::Kind::ToLater);
         const MorphFrame start = morph_frame(*before, level.mesh, c, 0.0);
         CHECK(start.topology == before);
-        for (Vertex v : before->vertices())
-            CHECK(start.positions[v.idx()] == before->position(v));
+        for (Vertex v : before->vertices()) CHECK(start.positions[v.idx()] == before->position(v));
         const MorphFrame end = morph_frame(*before, level.mesh, c, 1.0);
         CHECK(end.topology == &level.mesh);
         // Just before the end the fine mesh sits on the coarse mesh's vertices: every end
@@ -342,8 +342,7 @@ TEST_CASE("quadric decimation of a finely tessellated cube keeps exactly its cor
     CHECK(out.n_faces() == 12);
     for (Vertex v : out.vertices()) {
         const Point& p = out.position(v);
-        for (int i = 0; i < 3; ++i)
-            CHECK(std::min(std::abs(p[i]), std::abs(p[i] - 1)) < 1e-9);
+        for (int i = 0; i < 3; ++i) CHECK(std::min(std::abs(p[i]), std::abs(p[i] - 1)) < 1e-9);
     }
     const MeshDistance d = mesh_distance(cube, out, {20000});
     CHECK(d.hausdorff < 1e-9);
@@ -535,8 +534,8 @@ TEST_CASE("decimate cancels when asked", "[decimation]") {
 
 TEST_CASE("decimating the shared bunny, horse and fandisk keeps them valid and close",
           "[decimation][shared]") {
-    const std::string name = GENERATE(as<std::string>(), "stanford-bunny.obj", "horse.ply",
-                                      "fandisk.obj");
+    const std::string name =
+        GENERATE(as<std::string>(), "stanford-bunny.obj", "horse.ply", "fandisk.obj");
     const std::string path = test::shared_mesh(name);
     SKIP_IF_MISSING(path);
     const HalfedgeMesh mesh = read_mesh(path).mesh;
@@ -559,4 +558,53 @@ TEST_CASE("decimating the shared bunny, horse and fandisk keeps them valid and c
                   << 100 * d.rms / d.diagonal << "% of the diagonal, " << r.report.ms << " ms");
         CHECK(d.hausdorff / d.diagonal < (fraction > 0.05 ? 0.01 : 0.03));
     }
+}
+
+TEST_CASE("the decimate operation parses, names bad options and gives one step per iteration",
+          "[decimation]") {
+    const auto message = [](const std::string& text) {
+        try {
+            parse_operation(text);
+        } catch (const InvalidArgument& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    CHECK(message("decimate --percent 150").find("--percent: expected a number from 0 to 100") !=
+          std::string::npos);
+    CHECK(message("decimate --percent 0").find("--percent") != std::string::npos);
+    CHECK(message("decimate --cost qem").find("--cost") != std::string::npos);
+    CHECK(message("decimate --normal-flip 200").find("--normal-flip") != std::string::npos);
+    CHECK(message("decimate --roundness 2").find("--roundness") != std::string::npos);
+    CHECK(message("decimate --percent 50 --target-vertices 10").find("--target-vertices") !=
+          std::string::npos);
+    CHECK(message("decimate --cost roundness --normal-flip off --independent-set --roundness 0.3 "
+                  "--percent 30 --iterations 2")
+              .empty());
+
+    const HalfedgeMesh sphere = make_icosphere(8);
+    NullProgress progress;
+    const OperationResult r = run_operation(
+        parse_operation("decimate --cost quadric --percent 60 --iterations 3"), sphere, progress);
+    REQUIRE(r.steps.size() == 3);
+    const HalfedgeMesh* before = &sphere;
+    for (const OperationStep& step : r.steps) {
+        REQUIRE_VALID(step.mesh);
+        CHECK(step.correspondence.kind == MorphCorrespondence::Kind::ToLater);
+        CHECK_NOTHROW(check_correspondence(*before, step.mesh, step.correspondence));
+        before = &step.mesh;
+    }
+    CHECK(r.parameters == "--cost quadric --percent 60 --iterations 3 --normal-flip 90");
+    // The canonical parameters parse back to the same operation.
+    CHECK_NOTHROW(parse_operation("decimate " + r.parameters));
+    bool has_stop = false;
+    for (const auto& [key, text] : r.texts)
+        has_stop = has_stop || (key == "stop_reason" && text == "done");
+    CHECK(has_stop);
+    // A tetrahedron: nothing to collapse, one unchanged step, the reason in the report.
+    const OperationResult t = run_operation(parse_operation("decimate --target-vertices 3"),
+                                            make_tetrahedron(), progress);
+    REQUIRE(t.steps.size() == 1);
+    CHECK(t.steps[0].mesh.n_vertices() == 4);
+    CHECK(t.report.back().find("link condition") != std::string::npos);
 }

@@ -18,8 +18,7 @@ TEST_CASE("closest_point_on_triangle covers its Voronoi regions", "[distance]") 
     CHECK(closest_point_on_triangle(Point(-1, 2, 0), a, b, c) == c);
     CHECK((closest_point_on_triangle(Point(0.5, -1, 0), a, b, c) - Point(0.5, 0, 0)).norm() <
           1e-15);
-    CHECK((closest_point_on_triangle(Point(1, 1, 0), a, b, c) - Point(0.5, 0.5, 0)).norm() <
-          1e-15);
+    CHECK((closest_point_on_triangle(Point(1, 1, 0), a, b, c) - Point(0.5, 0.5, 0)).norm() < 1e-15);
     // Degenerate: all on a line.
     CHECK((closest_point_on_triangle(Point(0.5, 1, 0), a, b, Point(2, 0, 0)) - Point(0.5, 0, 0))
               .norm() < 1e-15);
@@ -51,8 +50,7 @@ TEST_CASE("mesh_distance measures a translated grid exactly", "[distance]") {
     CHECK(s.rms < s.hausdorff);
 }
 
-TEST_CASE("mesh_distance of nested spheres is their radius difference, both ways",
-          "[distance]") {
+TEST_CASE("mesh_distance of nested spheres is their radius difference, both ways", "[distance]") {
     const HalfedgeMesh a = make_icosphere(16);
     HalfedgeMesh b = a;
     for (Vertex v : b.vertices()) b.position(v) *= 1.2;

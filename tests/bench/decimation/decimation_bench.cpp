@@ -76,7 +76,9 @@ Soup to_bench_soup(const HalfedgeMesh& m) {
 struct Built {
     HalfedgeMesh mesh;
     std::size_t nonmanifold_edges = 0, duplicate_faces = 0, repaired = 0;
-    bool manifold() const { return nonmanifold_edges == 0 && duplicate_faces == 0 && repaired == 0; }
+    bool manifold() const {
+        return nonmanifold_edges == 0 && duplicate_faces == 0 && repaired == 0;
+    }
 };
 
 Built from_bench_soup(const Soup& s) {
@@ -99,8 +101,8 @@ Built from_bench_soup(const Soup& s) {
         if (n > 2) ++b.nonmanifold_edges;
     LoadReport report;
     b.mesh = build_mesh(p, report);
-    b.repaired = report.detached_faces + report.nonmanifold_vertices_split +
-                 report.degenerate_faces_dropped;
+    b.repaired =
+        report.detached_faces + report.nonmanifold_vertices_split + report.degenerate_faces_dropped;
     return b;
 }
 
@@ -113,8 +115,7 @@ struct Outcome {
     std::string note;
 };
 
-double run_trilab(const HalfedgeMesh& mesh, std::size_t target, HalfedgeMesh* out,
-                  double* cpu_ms) {
+double run_trilab(const HalfedgeMesh& mesh, std::size_t target, HalfedgeMesh* out, double* cpu_ms) {
     DecimationOptions o;
     o.target_vertices = target;
     o.record_progressive = false;
@@ -136,8 +137,8 @@ void measure(Outcome& o, const HalfedgeMesh& input, const HalfedgeMesh& out, con
     o.faces = out.n_faces();
 }
 
-Outcome trilab_outcome(const HalfedgeMesh& mesh, std::size_t target, const Config& c,
-                       int runs, bool quality) {
+Outcome trilab_outcome(const HalfedgeMesh& mesh, std::size_t target, const Config& c, int runs,
+                       bool quality) {
     Outcome o;
     o.ran = true;
     std::vector<double> ms, cpu;
@@ -204,11 +205,11 @@ void print_row(const char* who, const Outcome& o, bool quality) {
         std::printf("    %-14s (not built: library not found at configure time)\n", who);
         return;
     }
-    std::printf("    %-14s %9.1f ms (CPU %9.1f ms)  %7zu V %8zu F", who, o.ms, o.cpu_ms,
-                o.vertices, o.faces);
+    std::printf("    %-14s %9.1f ms (CPU %9.1f ms)  %7zu V %8zu F", who, o.ms, o.cpu_ms, o.vertices,
+                o.faces);
     if (quality) std::printf("  Hausdorff %.4f%%  RMS %.5f%%", 100 * o.hausdorff, 100 * o.rms);
-    std::printf("  %s%s%s\n", o.manifold ? "manifold" : "NON-MANIFOLD",
-                o.note.empty() ? "" : ": ", o.note.c_str());
+    std::printf("  %s%s%s\n", o.manifold ? "manifold" : "NON-MANIFOLD", o.note.empty() ? "" : ": ",
+                o.note.c_str());
 }
 
 HalfedgeMesh load(const std::string& name, bool& ok) {
@@ -249,9 +250,8 @@ int main(int argc, char** argv) {
         }
     }
     bool missed = false;
-    std::printf("peers: OpenMesh %s, CGAL %s, meshoptimizer %s\n",
-                have_openmesh() ? "yes" : "no", have_cgal() ? "yes" : "no",
-                have_meshopt() ? "yes" : "no");
+    std::printf("peers: OpenMesh %s, CGAL %s, meshoptimizer %s\n", have_openmesh() ? "yes" : "no",
+                have_cgal() ? "yes" : "no", have_meshopt() ? "yes" : "no");
 
     bool have_bunny = false;
     const HalfedgeMesh bunny = load("stanford-bunny.obj", have_bunny);
@@ -308,16 +308,18 @@ int main(int argc, char** argv) {
     }
     // The floor is judged on CPU time: on a shared machine the wall clock also counts the
     // time other processes held the core (both are printed).
-    std::printf("  floor: 1.1M faces to 1 %% in %.0f ms CPU, %.0f ms wall (floor < %.0f ms: "
-                "%s, %.2fx of the budget)\n",
-                floor_cpu_ms, floor_ms, kTimeFloorMs, floor_cpu_ms < kTimeFloorMs ? "met" : "MISSED",
-                floor_cpu_ms / kTimeFloorMs);
+    std::printf(
+        "  floor: 1.1M faces to 1 %% in %.0f ms CPU, %.0f ms wall (floor < %.0f ms: "
+        "%s, %.2fx of the budget)\n",
+        floor_cpu_ms, floor_ms, kTimeFloorMs, floor_cpu_ms < kTimeFloorMs ? "met" : "MISSED",
+        floor_cpu_ms / kTimeFloorMs);
     if (floor_cpu_ms >= kTimeFloorMs) missed = true;
 
     // ---- quality -----------------------------------------------------------------------------
-    std::printf("\n== quality (Hausdorff and RMS relative to the bounding-box diagonal, %zu "
-                "samples per mesh) ==\n",
-                c.samples);
+    std::printf(
+        "\n== quality (Hausdorff and RMS relative to the bounding-box diagonal, %zu "
+        "samples per mesh) ==\n",
+        c.samples);
     for (const char* name : {"stanford-bunny.obj", "horse.ply", "fandisk.obj"}) {
         bool ok = false;
         const HalfedgeMesh mesh = load(name, ok);
@@ -343,10 +345,11 @@ int main(int argc, char** argv) {
                                          : trilab_outcome(mesh, cgal.vertices, c, 1, true);
                 if (cgal.vertices != t.vertices) print_row("trilab @CGAL V", same, true);
                 const double ratio = same.hausdorff / cgal.hausdorff;
-                std::printf("      Hausdorff trilab / CGAL = %.3f (floor <= %.1f: %s), RMS "
-                            "ratio %.3f\n",
-                            ratio, kQualityFloor, ratio <= kQualityFloor ? "met" : "MISSED",
-                            same.rms / cgal.rms);
+                std::printf(
+                    "      Hausdorff trilab / CGAL = %.3f (floor <= %.1f: %s), RMS "
+                    "ratio %.3f\n",
+                    ratio, kQualityFloor, ratio <= kQualityFloor ? "met" : "MISSED",
+                    same.rms / cgal.rms);
                 if (ratio > kQualityFloor) missed = true;
             }
         }

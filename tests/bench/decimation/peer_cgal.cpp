@@ -1,6 +1,7 @@
 // CGAL 5.5 peer of the decimation benchmark: Surface_mesh over Simple_cartesian<double>,
 // Surface_mesh_simplification::edge_collapse with GarlandHeckbert_plane_policies (cost and
-// placement) and a Count_stop_predicate (edges; 5.5 has no face-count predicate). Kept in its own file: CGAL compiles slowly.
+// placement) and a Count_stop_predicate (edges; 5.5 has no face-count predicate). Kept in its own
+// file: CGAL compiles slowly.
 #include <chrono>
 #include <ctime>
 
@@ -23,13 +24,16 @@ using SurfaceMesh = CGAL::Surface_mesh<Kernel::Point_3>;
 namespace SMS = CGAL::Surface_mesh_simplification;
 }  // namespace
 
-bool have_cgal() { return true; }
+bool have_cgal() {
+    return true;
+}
 
 PeerRun cgal_decimate(const Soup& in, std::size_t target_edges) {
     SurfaceMesh mesh;
     std::vector<SurfaceMesh::Vertex_index> vh;
     vh.reserve(in.positions.size());
-    for (const auto& p : in.positions) vh.push_back(mesh.add_vertex(Kernel::Point_3(p[0], p[1], p[2])));
+    for (const auto& p : in.positions)
+        vh.push_back(mesh.add_vertex(Kernel::Point_3(p[0], p[1], p[2])));
     for (const auto& f : in.faces) mesh.add_face(vh[f[0]], vh[f[1]], vh[f[2]]);
     PeerRun run;
     const auto t0 = std::chrono::steady_clock::now();
@@ -42,7 +46,8 @@ PeerRun cgal_decimate(const Soup& in, std::size_t target_edges) {
                                .get_placement(policies.get_placement()));
         mesh.collect_garbage();
     }
-    run.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    run.ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     run.cpu_ms = 1000.0 * double(std::clock() - c0) / CLOCKS_PER_SEC;
     for (auto v : mesh.vertices()) {
         const auto& p = mesh.point(v);
@@ -57,8 +62,12 @@ PeerRun cgal_decimate(const Soup& in, std::size_t target_edges) {
     return run;
 }
 #else
-bool have_cgal() { return false; }
-PeerRun cgal_decimate(const Soup&, std::size_t) { return {}; }
+bool have_cgal() {
+    return false;
+}
+PeerRun cgal_decimate(const Soup&, std::size_t) {
+    return {};
+}
 #endif
 
 }  // namespace trilab::bench

@@ -30,7 +30,9 @@ Soup compact(const Soup& s) {
 }
 
 #ifdef TRILAB_HAS_MESHOPT
-bool have_meshopt() { return true; }
+bool have_meshopt() {
+    return true;
+}
 
 PeerRun meshopt_decimate(const Soup& in, std::size_t target_faces) {
     std::vector<float> xyz;
@@ -44,10 +46,11 @@ PeerRun meshopt_decimate(const Soup& in, std::size_t target_faces) {
     PeerRun run;
     const auto t0 = std::chrono::steady_clock::now();
     const std::clock_t c0 = std::clock();
-    const std::size_t n = meshopt_simplify(out.data(), indices.data(), indices.size(), xyz.data(),
-                                           in.positions.size(), 3 * sizeof(float),
-                                           3 * target_faces, 1.0f);
-    run.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const std::size_t n =
+        meshopt_simplify(out.data(), indices.data(), indices.size(), xyz.data(),
+                         in.positions.size(), 3 * sizeof(float), 3 * target_faces, 1.0f);
+    run.ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     run.cpu_ms = 1000.0 * double(std::clock() - c0) / CLOCKS_PER_SEC;
     Soup s;
     s.positions = in.positions;
@@ -56,8 +59,12 @@ PeerRun meshopt_decimate(const Soup& in, std::size_t target_faces) {
     return run;
 }
 #else
-bool have_meshopt() { return false; }
-PeerRun meshopt_decimate(const Soup&, std::size_t) { return {}; }
+bool have_meshopt() {
+    return false;
+}
+PeerRun meshopt_decimate(const Soup&, std::size_t) {
+    return {};
+}
 #endif
 
 }  // namespace trilab::bench

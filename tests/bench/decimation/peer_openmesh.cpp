@@ -25,13 +25,16 @@ struct DoubleTraits : OpenMesh::DefaultTraits {
 using OmMesh = OpenMesh::TriMesh_ArrayKernelT<DoubleTraits>;
 }  // namespace
 
-bool have_openmesh() { return true; }
+bool have_openmesh() {
+    return true;
+}
 
 PeerRun openmesh_decimate(const Soup& in, std::size_t target_vertices) {
     OmMesh mesh;
     std::vector<OmMesh::VertexHandle> vh;
     vh.reserve(in.positions.size());
-    for (const auto& p : in.positions) vh.push_back(mesh.add_vertex(OmMesh::Point(p[0], p[1], p[2])));
+    for (const auto& p : in.positions)
+        vh.push_back(mesh.add_vertex(OmMesh::Point(p[0], p[1], p[2])));
     for (const auto& f : in.faces) mesh.add_face(vh[f[0]], vh[f[1]], vh[f[2]]);
     PeerRun run;
     const auto t0 = std::chrono::steady_clock::now();
@@ -45,7 +48,8 @@ PeerRun openmesh_decimate(const Soup& in, std::size_t target_vertices) {
         decimater.decimate_to(target_vertices);
         mesh.garbage_collection();
     }
-    run.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    run.ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     run.cpu_ms = 1000.0 * double(std::clock() - c0) / CLOCKS_PER_SEC;
     for (auto v : mesh.vertices()) {
         const auto& p = mesh.point(v);
@@ -60,8 +64,12 @@ PeerRun openmesh_decimate(const Soup& in, std::size_t target_vertices) {
     return run;
 }
 #else
-bool have_openmesh() { return false; }
-PeerRun openmesh_decimate(const Soup&, std::size_t) { return {}; }
+bool have_openmesh() {
+    return false;
+}
+PeerRun openmesh_decimate(const Soup&, std::size_t) {
+    return {};
+}
 #endif
 
 }  // namespace trilab::bench
