@@ -89,7 +89,19 @@ constexpr double kBoundaryWeight = 100.0;
 // treated as ill-conditioned.
 constexpr double kMaxPlacementDistance = 3.0;
 
-constexpr double kNoCollapse = std::numeric_limits<double>::max();
+constexpr float kNoCollapse = std::numeric_limits<float>::max();
+
+// The best collapse of an edge: cost, placement, direction (halfedge(e, dir)'s from-vertex
+// goes). Only cost and direction are stored per edge (EdgeCost, 8 bytes).
+struct EdgeChoice {
+    double cost = 0;
+    Point target = Point::Zero();
+    std::uint8_t dir = 0;
+};
+struct EdgeCost {
+    float cost = kNoCollapse;
+    std::uint8_t dir = 0;
+};
 
 enum class Refusal { None, Topology, NormalFlip, Roundness, IndependentSet, MaxError, Seam };
 
@@ -101,11 +113,9 @@ public:
         cos_max_angle_ = std::cos(o_.max_normal_angle * M_PI / 180.0);
         max_error2_ = o_.max_error > 0 ? o_.max_error * o_.max_error
                                        : std::numeric_limits<double>::infinity();
-        cost_.assign(m_.edges_size(), kNoCollapse);
+        edge_.assign(m_.edges_size(), EdgeCost());
         boundary_.assign(m_.vertices_size(), 0);
         for (Vertex v : m_.vertices()) boundary_[v.idx()] = m_.is_boundary(v) ? 1 : 0;
-        dir_.assign(m_.edges_size(), 0);
-        target_.assign(m_.edges_size(), Point::Zero());
         locked_.assign(m_.vertices_size(), 0);
         parent_.assign(m_.vertices_size(), Vertex());
         vuv_ = m_.get_vertex_property<TexCoord>("v:texcoord");
@@ -148,10 +158,12 @@ public:
                 const HeapEntry top = heap_.back();
                 heap_.pop_back();
                 const Edge e(top.edge);
-                if (m_.is_deleted(e) || float(cost_[e.idx()]) != top.cost) continue;
-                const Halfedge h = HalfedgeMesh::halfedge(e, dir_[e.idx()]);
-                const Point p = target_[e.idx()];
-                if (o_.cost == DecimationCost::Quadric && cost_[e.idx()] > max_error2_) {
+                if (m_.is_deleted(e) || edge_[e.idx()].cost != top.cost) continue;
+                EdgeChoice choice;  // as priced: nothing around e changed since
+                if (!evaluate(e, choice)) continue;
+                const Halfedge h = HalfedgeMesh::halfedge(e, choice.dir);
+                const Point p = choice.target;
+                if (o_.cost == DecimationCost::Quadric && choice.cost > max_error2_) {
                     ++report_.refused_max_error;
                     hit_max_error = true;
                     heap_.clear();
@@ -230,7 +242,7 @@ private:
         heap_.clear();
         heap_.reserve(2 * m_.n_edges());
         for (Edge e : m_.edges())
-            if (cost_[e.idx()] < kNoCollapse) heap_.push_back({float(cost_[e.idx()]), e.idx()});
+            if (edge_[e.idx()].cost < kNoCollapse) heap_.push_back({edge_[e.idx()].cost, e.idx()});
         std::make_heap(heap_.begin(), heap_.end(), HeapOrder());
     }
 
@@ -241,7 +253,7 @@ private:
         const std::size_t surplus = m_.n_vertices() - floor;
         batch_.clear();
         for (Edge e : m_.edges())
-            if (cost_[e.idx()] < kNoCollapse) batch_.push_back({float(cost_[e.idx()]), e.idx()});
+            if (edge_[e.idx()].cost < kNoCollapse) batch_.push_back({edge_[e.idx()].cost, e.idx()});
         // At most a sixth of the vertices per pass.
         const std::size_t budget =
             std::min({surplus, batch_.size(), std::max<std::size_t>(1, m_.n_vertices() / 6)});
@@ -255,10 +267,12 @@ private:
         std::size_t done = 0;
         for (const HeapEntry& c : batch_) {
             const Edge e(c.edge);
-            if (m_.is_deleted(e) || float(cost_[e.idx()]) != c.cost) continue;
-            const Halfedge h = HalfedgeMesh::halfedge(e, dir_[e.idx()]);
-            const Point p = target_[e.idx()];
-            if (o_.cost == DecimationCost::Quadric && cost_[e.idx()] > max_error2_) {
+            if (m_.is_deleted(e) || edge_[e.idx()].cost != c.cost) continue;
+            EdgeChoice choice;
+            if (!evaluate(e, choice)) continue;
+            const Halfedge h = HalfedgeMesh::halfedge(e, choice.dir);
+            const Point p = choice.target;
+            if (o_.cost == DecimationCost::Quadric && choice.cost > max_error2_) {
                 hit_max_error = true;
                 ++report_.refused_max_error;
                 break;
@@ -325,14 +339,12 @@ private:
         return r;
     }
 
-    // Prices edge e: sets cost_, dir_ and target_, and pushes it when the heap is in use;
-    // cost kNoCollapse when no direction is allowed.
-    void price(Edge e) {
-        cost_[e.idx()] = kNoCollapse;
+    // The best collapse of edge e: false when no direction is allowed.
+    bool evaluate(Edge e, EdgeChoice& out) const {
         const Halfedge h0 = HalfedgeMesh::halfedge(e, 0), h1 = HalfedgeMesh::halfedge(e, 1);
         const bool be = m_.is_boundary(e);
         const bool ok0 = direction_allowed(h0, be), ok1 = direction_allowed(h1, be);
-        if (!ok0 && !ok1) return;
+        if (!ok0 && !ok1) return false;
         const Vertex a = m_.from_vertex(h0), b = m_.to_vertex(h0);
         const Point &xa = m_.position(a), &xb = m_.position(b);
         double cost;
@@ -376,8 +388,8 @@ private:
                 p = ok0 ? xb : xa;  // the kept vertex is pinned where it is
                 cost = q(p);
             }
-            dir_[e.idx()] = std::uint8_t(dir);
-            target_[e.idx()] = p;
+            out.dir = std::uint8_t(dir);
+            out.target = p;
         } else {
             // Roundness: halfedge collapses (the kept vertex stays); the rounder one.
             double r0 = -1, r1 = -1;
@@ -385,13 +397,27 @@ private:
             if (ok0) r0 = min_roundness_at(a, xb, fa, fb);
             if (ok1) r1 = min_roundness_at(b, xa, fa, fb);
             const unsigned dir = r0 >= r1 ? 0 : 1;
-            dir_[e.idx()] = std::uint8_t(dir);
-            target_[e.idx()] = dir == 0 ? xb : xa;
+            out.dir = std::uint8_t(dir);
+            out.target = dir == 0 ? xb : xa;
             cost = -(dir == 0 ? r0 : r1);  // largest minimum roundness first
         }
-        cost_[e.idx()] = cost;
+        out.cost = cost;
+        return true;
+    }
+
+    // Prices edge e: stores its cost and direction (the placement is recomputed when the
+    // edge comes up, which keeps this array at 8 bytes an edge) and pushes it when the heap
+    // is in use; cost kNoCollapse when no direction is allowed.
+    void price(Edge e) {
+        EdgeChoice c;
+        if (!evaluate(e, c)) {
+            edge_[e.idx()].cost = kNoCollapse;
+            return;
+        }
+        const float cost = float(c.cost);
+        edge_[e.idx()] = EdgeCost{cost, c.dir};
         if (!heap_.empty()) {
-            heap_.push_back(HeapEntry{float(cost), e.idx()});
+            heap_.push_back(HeapEntry{cost, e.idx()});
             std::push_heap(heap_.begin(), heap_.end(), HeapOrder());
         }
     }
@@ -578,12 +604,10 @@ private:
     DecimationReport& report_;
     double cos_max_angle_ = 0, max_error2_ = 0;
     std::vector<Quadric> quadric_;
-    std::vector<double> cost_;
+    std::vector<EdgeCost> edge_;          ///< per edge: cost and direction of its best collapse
     std::vector<std::uint8_t> boundary_;  ///< per vertex; v1 inherits v0's on collapse
     std::vector<HeapEntry> batch_;
     std::uint32_t pass_ = 0;
-    std::vector<std::uint8_t> dir_;
-    std::vector<Point> target_;
     std::vector<std::uint32_t> locked_;
     std::vector<Vertex> parent_;
     std::vector<HeapEntry> heap_;
