@@ -898,6 +898,14 @@ void Viewer::update_collapsing_edges() {
     if (key == collapse_key_) return;
     collapse_key_ = key;
     std::vector<glm::vec3> points;
+    // Computed on the render thread: a dry run of the next iteration, a fraction of a second
+    // up to a few hundred thousand vertices; bigger meshes skip the overlay.
+    constexpr std::size_t kMaxOverlayVertices = 300000;
+    if (mesh.n_vertices() > kMaxOverlayVertices) {
+        log_.warning("Collapsing edges: shown for meshes of up to 300,000 vertices only");
+        collapse_lines_->set_segments(points);
+        return;
+    }
     try {
         DecimationOptions o;
         o.cost = d.cost == 1 ? DecimationCost::Roundness : DecimationCost::Quadric;
