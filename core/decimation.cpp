@@ -3,7 +3,7 @@
 // The loop, per iteration:
 //   target = V - floor(P/100 V)   (or the requested vertex count)
 //   price every edge: its best collapse direction, placement and cost
-//   big meshes: batch passes (cheapest edges first, in sorted order) down to
+//   big meshes: batch passes (the cheapest edges of the moment, in memory order) down to
 //               max(50,000, 4 target) vertices
 //   fill the heap; while V > target and the heap is not empty:
 //     pop (cost, e); skip if e is dead or its cost changed since (a stale entry)
@@ -139,11 +139,11 @@ public:
                 double(start - m_.n_vertices()) / double(std::max<std::size_t>(1, start - target));
             progress.report(progress_base + progress_span * done, "collapsing edges");
         };
-        // Batches on big meshes: every pass takes the cheapest edges up to a cost threshold
-        // (a selection, O(E)), sorts them and collapses them in order, skipping those whose
-        // cost changed since the selection (re-priced by an earlier collapse of the pass:
-        // they wait for the next pass); a sixth of the vertices per pass at most. The exact
-        // heap does the last, most visible collapses.
+        // Batches on big meshes: every pass selects the cheapest edges (nth_element, O(E)),
+        // half of the vertices' worth at most, and collapses them in memory order, skipping
+        // those whose cost changed since the selection (re-priced by an earlier collapse of
+        // the pass: they wait for the next pass). The exact heap does the last, most visible
+        // collapses.
         const std::size_t batch_floor = std::max(kExactVertices, 4 * target);
         while (m_.n_vertices() > batch_floor && !hit_max_error) {
             const std::size_t done = batch_pass(batch_floor, hit_max_error, report_progress);
@@ -254,16 +254,19 @@ private:
         batch_.clear();
         for (Edge e : m_.edges())
             if (edge_[e.idx()].cost < kNoCollapse) batch_.push_back({edge_[e.idx()].cost, e.idx()});
-        // At most a sixth of the vertices per pass.
+        // At most half of the vertices per pass.
         const std::size_t budget =
-            std::min({surplus, batch_.size(), std::max<std::size_t>(1, m_.n_vertices() / 6)});
+            std::min({surplus, batch_.size(), std::max<std::size_t>(1, m_.n_vertices() / 2)});
         if (budget == 0) return 0;
         const auto by_cost = [](const HeapEntry& a, const HeapEntry& b) {
             return a.cost < b.cost || (a.cost == b.cost && a.edge < b.edge);
         };
         std::nth_element(batch_.begin(), batch_.begin() + (budget - 1), batch_.end(), by_cost);
         batch_.resize(budget);
-        std::sort(batch_.begin(), batch_.end(), by_cost);
+        // All of them are below the pass's threshold: take them in memory order (far fewer
+        // cache misses than cost order, the same quality in the benchmark).
+        std::sort(batch_.begin(), batch_.end(),
+                  [](const HeapEntry& a, const HeapEntry& b) { return a.edge < b.edge; });
         std::size_t done = 0;
         for (const HeapEntry& c : batch_) {
             const Edge e(c.edge);

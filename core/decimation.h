@@ -5,8 +5,8 @@
 // (cost, edge) entries with lazy invalidation (an entry whose cost is no longer its edge's is
 // skipped), so the queue stays exact while costs change; after a collapse only the edges at
 // the kept vertex are re-priced. Meshes of more than 50,000 vertices are first reduced in
-// batches down to max(50,000, 4 x target): each pass selects the cheapest sixth of the
-// vertices' worth of edges (nth_element), sorts them and collapses them in that order,
+// batches down to max(50,000, 4 x target): each pass selects the cheapest edges, up to half
+// the vertex count (nth_element), and collapses them in memory order (for the cache),
 // skipping edges re-priced during the pass; the exact heap then does the last collapses, the
 // ones that shape the result. Costs:
 //  - Quadric (Garland, Heckbert, "Surface simplification using quadric error metrics",
