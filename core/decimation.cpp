@@ -8,13 +8,15 @@
 //   fill the heap; while V > target and the heap is not empty:
 //     pop (cost, e); skip if e is dead or its cost changed since (a stale entry)
 //     refuse if: a locked end (independent set), error above max_error, the link condition,
-//                a face normal turning too far, a triangle rounder than allowed, a seam vertex
+//                a face normal turning too far, a triangle less round than allowed, a seam
+//                vertex
 //     collapse: record the vertex split, move the kept vertex, add the quadrics, carry the
 //               texture coordinates, lock the one-ring (independent set), re-price the edges
 //               at the kept vertex
 //     when the heap runs dry early: refill once more (refusals may have become legal)
-//   copy the mesh, collect its garbage, and give every vertex of the previous mesh its end
-//   position (the position of the vertex it collapsed into) for the geomorph.
+//   give every vertex of the previous mesh its end position (the position of the vertex it
+//   collapsed into) for the geomorph; copy the mesh (the last iteration takes it) and collect
+//   its garbage.
 #include "core/decimation.h"
 
 #include <algorithm>

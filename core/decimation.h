@@ -34,9 +34,9 @@
 // The input is never modified. Progressive mesh (Hoppe, "Progressive meshes", SIGGRAPH 1996):
 // every collapse is recorded with the vertex split that undoes it.
 //
-// Complexity: O(E) per batch pass (O(E) passes in all, geometrically shrinking), O(E log E)
-// to fill the heap, then O(d^2 + d log E) per collapse for valence d; no allocation per
-// collapse; garbage collection once per iteration (on the iteration's copy).
+// Complexity: O(E) per batch pass (a few dozen passes: the mesh shrinks geometrically), O(E)
+// to fill the heap (make_heap), then O(d^2 + d log E) per collapse for valence d; no
+// allocation per collapse (amortized); garbage collection once per iteration.
 #include <array>
 #include <cstdint>
 #include <string>
