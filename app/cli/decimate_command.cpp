@@ -30,9 +30,12 @@ options:
                         below MIN (0 < MIN <= 1; off by default)
   --independent-set     lock the one-ring of every collapse until the next iteration
   --max-error D         refuse collapses whose quadric error exceeds D (a distance)
-  --json                one JSON object: "vertices" reached, "collapses", "refused_*" per
-                        constraint, "stop_reason" (done, max-error, constraints, topology),
+  --json                one JSON object: "surface_vertices" reached, "vertices" (in OUT,
+                        isolated ones included), "collapses", "refused_*" per constraint,
+                        "stop_reason" (done, max-error, constraints, topology),
                         "stop_message", "ms" (the decimation itself)
+
+Vertex counts are of the vertices with faces: isolated vertices are kept and not counted.
 )";
 
 }  // namespace

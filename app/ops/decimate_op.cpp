@@ -117,6 +117,8 @@ OperationResult run_decimate(const DecimationOptions& o, const HalfedgeMesh& mes
     result.values = {{"vertices", double(last.n_vertices())},
                      {"faces", double(last.n_faces())},
                      {"input_vertices", double(rep.input_vertices)},
+                     {"surface_vertices", double(rep.output_vertices)},
+                     {"isolated_vertices", double(rep.isolated_vertices)},
                      {"iterations_done", double(d.levels.size())},
                      {"collapses", double(rep.collapses)},
                      {"refused_link_condition", double(rep.refused_topology)},
