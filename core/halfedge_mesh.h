@@ -334,6 +334,9 @@ public:
     /// Collapses h: from_vertex(h) is removed, to_vertex(h) is kept at its position. The one
     /// or two faces at the edge disappear. Throws TopologyError if !is_collapse_ok(h).
     void collapse(Halfedge h);
+    /// collapse() without the check, for callers that have just called is_collapse_ok(h)
+    /// (decimation); on a halfedge that fails it the mesh is left invalid.
+    void collapse_unchecked(Halfedge h);
     /// Whether flipping e keeps a valid mesh: interior edge, and the two opposite corners are
     /// distinct and not already joined by an edge.
     bool is_flip_ok(Edge e) const;

@@ -40,14 +40,28 @@ bool HalfedgeMesh::is_collapse_ok(Halfedge h) const {
     if (vl == vr) return false;
     // An interior edge between two boundary vertices would pinch the surface.
     if (is_boundary(v0) && is_boundary(v1) && !is_boundary(h) && !is_boundary(o)) return false;
-    // Link condition on vertices: the only common neighbours may be vl and vr.
-    unsigned common = 0;
+    // Link condition on vertices: the only common neighbours may be vl and vr. v1's ring is
+    // gathered once (a small local array; the nested walk for very high valences).
+    constexpr unsigned kRing = 64;
+    Vertex ring1[kRing];
+    unsigned n1 = 0;
+    for (Vertex b : vertices_around(v1)) {
+        if (n1 == kRing) {
+            n1 = kRing + 1;
+            break;
+        }
+        ring1[n1++] = b;
+    }
     for (Vertex a : vertices_around(v0)) {
         if (a == v1 || a == vl || a == vr) continue;
-        for (Vertex b : vertices_around(v1))
-            if (a == b) ++common;
+        if (n1 <= kRing) {
+            for (unsigned i = 0; i < n1; ++i)
+                if (ring1[i] == a) return false;
+        } else {
+            for (Vertex b : vertices_around(v1))
+                if (a == b) return false;
+        }
     }
-    if (common > 0) return false;
     // Link condition on edges: the triangles {v0, vl, vr} and {v1, vl, vr} must not both
     // exist (a tetrahedron would collapse into a doubly covered triangle).
     if (vl.is_valid() && vr.is_valid() && has_triangle(*this, v0, vl, vr) &&
@@ -60,6 +74,10 @@ void HalfedgeMesh::collapse(Halfedge h) {
     if (!is_collapse_ok(h))
         throw TopologyError("collapse: halfedge " + std::to_string(h.idx()) +
                             " fails the link condition");
+    collapse_unchecked(h);
+}
+
+void HalfedgeMesh::collapse_unchecked(Halfedge h) {
     const Halfedge o = twin(h);
     const Vertex v0 = from_vertex(h), v1 = to_vertex(h);
     const Halfedge hn = next(h), hp = prev(h), on = next(o), op = prev(o);

@@ -53,6 +53,14 @@ if(TARGET trilab)
                      --screenshot ${CMAKE_CURRENT_BINARY_DIR}/viewer_frequency.png)
     set_tests_properties(viewer_frequency PROPERTIES
                          PASS_REGULAR_EXPRESSION "Frequency band 0:9 of 30")
+    # Decimation with its panel open and the collapsing-edges overlay drawn.
+    add_test(NAME viewer_decimation
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab>
+                     --op "decimate --cost quadric --percent 60 --iterations 2"
+                     --show decimation,collapsing-edges,history --frames 10
+                     --screenshot ${CMAKE_CURRENT_BINARY_DIR}/viewer_decimation.png)
+    set_tests_properties(viewer_decimation PROPERTIES
+                         PASS_REGULAR_EXPRESSION "Decimate --cost quadric --percent 60")
     add_test(NAME viewer_bad_operation COMMAND $<TARGET_FILE:trilab> --op "noise --amount -1"
                                               --frames 1)
     set_tests_properties(viewer_bad_operation PROPERTIES WILL_FAIL TRUE)

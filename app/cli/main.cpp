@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "app/cli/compare_command.h"
+#include "app/cli/decimate_command.h"
 #include "app/cli/json_writer.h"
 #include "app/cli/noise_command.h"
 #include "app/cli/record_command.h"
@@ -48,6 +50,11 @@ commands:
          IN OUT [--eigenvalues FILE] [--json]
                                   frequency decomposition and band reconstruction
                                   (`trilab-cli spectrum --help`)
+  decimate [--cost quadric|roundness] [--normal-flip DEG] [--roundness MIN]
+           [--independent-set] (--percent P --iterations N | --target-vertices K)
+           IN OUT [--json]        edge-collapse decimation (`trilab-cli decimate --help`)
+  compare A B [--samples N] [--json]
+                                  sampled Hausdorff and RMS distance between two meshes
   help                            this text
 )";
 
@@ -226,6 +233,8 @@ int main(int argc, char** argv) {
             return run_smooth_command(std::vector<std::string>(argv + 2, argv + argc));
         if (cmd == "spectrum")
             return run_spectrum_command(std::vector<std::string>(argv + 2, argv + argc));
+        if (cmd == "decimate") return run_decimate_command({argv + 2, argv + argc});
+        if (cmd == "compare") return run_compare_command({argv + 2, argv + argc});
         if (cmd == "subdivide") return run_subdivide_command({argv + 2, argv + argc});
         if (cmd == "record") return run_record_command({argv + 2, argv + argc});
         if (cmd == "generate")

@@ -21,10 +21,8 @@ namespace {
 /// Every operation, in menu order (see app/ops/operation_entries.h).
 const std::vector<OperationEntry>& registry() {
     static const std::vector<OperationEntry> entries = {
-        noise_operation(),
-        subdivide_operation(),
-        smooth_operation(),
-        spectrum_operation(),
+        noise_operation(),    subdivide_operation(), smooth_operation(),
+        spectrum_operation(), decimate_operation(),
     };
     return entries;
 }

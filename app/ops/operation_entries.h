@@ -10,5 +10,6 @@ OperationEntry noise_operation();      ///< app/ops/noise_op.cpp
 OperationEntry subdivide_operation();  ///< app/ops/subdivide_op.cpp
 OperationEntry smooth_operation();     ///< app/ops/smooth_op.cpp
 OperationEntry spectrum_operation();   ///< app/ops/spectrum_op.cpp
+OperationEntry decimate_operation();   ///< app/ops/decimate_op.cpp
 
 }  // namespace trilab

@@ -29,7 +29,8 @@ options:
   --decompose K[:LO:HI]  decompose the model into K frequencies (the Frequency panel's
                      settings) and apply the band LO..HI, for scripts and tests
   --show PANELS      open panels at start: comma-separated history, morph, tools,
-                     subdivision, fairing, frequency, record, log, info
+                     subdivision, fairing, frequency, decimation, collapsing-edges,
+                     record, log, info
   --help             this text
 )";
 

@@ -139,6 +139,9 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
     if (ImGui::BeginMenu("Vectors")) {
         ImGui::MenuItem("Face normals", nullptr, &style.face_normals);
         ImGui::MenuItem("Vertex normals", nullptr, &style.vertex_normals);
+        ImGui::MenuItem("Collapsing edges", nullptr, &panels.decimation.show_collapsing_edges);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("The edges the Decimation panel's next iteration collapses");
         ImGui::SetNextItemWidth(10.0f * ImGui::GetFontSize());
         ImGui::SliderFloat("length", &style.vector_length, 0.002f, 0.2f, "%.3f",
                            ImGuiSliderFlags_Logarithmic);
@@ -209,7 +212,7 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
         ImGui::MenuItem("Fairing", nullptr, &panels.fairing.open);
         ImGui::MenuItem("Frequency decomposition", nullptr, &panels.frequency.open);
         ImGui::MenuItem("Subdivision", nullptr, &panels.subdivision.open);
-        ImGui::MenuItem("Decimation", nullptr, false, false);
+        ImGui::MenuItem("Decimation", nullptr, &panels.decimation.open);
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Rendering")) {
@@ -433,6 +436,73 @@ void fairing_window(PanelState& panels, MorphState& morph, const History& histor
             commands.push_back(RunOperation{op});
         }
         if (busy) ImGui::EndDisabled();
+        ImGui::Separator();
+        morph_controls(morph, history, now);
+    }
+    ImGui::End();
+}
+
+std::string decimate_operation_text(const DecimationPanelState& d) {
+    char op[320];
+    std::snprintf(op, sizeof(op), "decimate --cost %s --percent %g --iterations %d",
+                  d.cost == 1 ? "roundness" : "quadric",
+                  double(std::clamp(d.percent, 0.1f, 100.0f)), std::clamp(d.iterations, 1, 1000));
+    std::string text = op;
+    if (d.normal_flip) {
+        std::snprintf(op, sizeof(op), " --normal-flip %g",
+                      double(std::clamp(d.max_normal_angle, 1.0f, 180.0f)));
+        text += op;
+    } else {
+        text += " --normal-flip off";
+    }
+    if (d.roundness) {
+        std::snprintf(op, sizeof(op), " --roundness %g",
+                      double(std::clamp(d.min_roundness, 0.01f, 1.0f)));
+        text += op;
+    }
+    if (d.independent_set) text += " --independent-set";
+    return text;
+}
+
+void decimation_window(PanelState& panels, MorphState& morph, const History& history, bool busy,
+                       double now, std::size_t collapsing_edges, CommandQueue& commands) {
+    DecimationPanelState& d = panels.decimation;
+    if (!d.open) return;
+    const ImGuiIO& io = ImGui::GetIO();
+    ImGui::SetNextWindowPos(ImVec2(std::max(0.0f, io.DisplaySize.x - 31.0f * ImGui::GetFontSize()),
+                                   9.0f * ImGui::GetFontSize()),
+                            ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("Decimation", &d.open, ImGuiWindowFlags_AlwaysAutoResize)) {
+        const float w = 12.0f * ImGui::GetFontSize();
+        const char* costs[] = {"Quadrics", "Roundness"};
+        ImGui::SetNextItemWidth(w);
+        ImGui::Combo("cost", &d.cost, costs, 2);
+        ImGui::TextDisabled("Binary constraints");
+        ImGui::Checkbox("roundness##constraint", &d.roundness);
+        ImGui::SameLine();
+        if (!d.roundness) ImGui::BeginDisabled();
+        ImGui::SetNextItemWidth(w * 0.6f);
+        ImGui::SliderFloat("min##roundness", &d.min_roundness, 0.01f, 1.0f, "%.2f");
+        if (!d.roundness) ImGui::EndDisabled();
+        ImGui::Checkbox("normal flipping", &d.normal_flip);
+        ImGui::SameLine();
+        if (!d.normal_flip) ImGui::BeginDisabled();
+        ImGui::SetNextItemWidth(w * 0.6f);
+        ImGui::SliderFloat("max angle", &d.max_normal_angle, 1.0f, 180.0f, "%.0f deg");
+        if (!d.normal_flip) ImGui::EndDisabled();
+        ImGui::Checkbox("independent set", &d.independent_set);
+        ImGui::SetNextItemWidth(w);
+        ImGui::SliderFloat("percent per iteration", &d.percent, 1.0f, 100.0f, "%.0f %%");
+        ImGui::SetNextItemWidth(w);
+        ImGui::SliderInt("iterations", &d.iterations, 1, 20);
+        if (busy) ImGui::BeginDisabled();
+        if (ImGui::Button("Decimate")) commands.push_back(RunOperation{decimate_operation_text(d)});
+        if (busy) ImGui::EndDisabled();
+        ImGui::Checkbox("show collapsing edges", &d.show_collapsing_edges);
+        if (d.show_collapsing_edges) {
+            ImGui::SameLine();
+            ImGui::TextDisabled("(%zu)", collapsing_edges);
+        }
         ImGui::Separator();
         morph_controls(morph, history, now);
     }

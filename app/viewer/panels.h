@@ -78,6 +78,24 @@ struct FairingPanelState {
     bool slide_boundary = false;  ///< boundary vertices move along the boundary curve
 };
 
+/// The Decimation panel's parameters (section 1.4.4 of the reference).
+struct DecimationPanelState {
+    bool open = false;
+    int cost = 0;  ///< 0 quadric, 1 roundness
+    bool normal_flip = true;
+    float max_normal_angle = 90.0f;  ///< degrees
+    bool roundness = false;
+    float min_roundness = 0.2f;
+    bool independent_set = false;
+    float percent = 60.0f;  ///< of the vertices, per iteration
+    int iterations = 1;
+    /// Rendering > Vectors > Collapsing edges: the edges the next iteration collapses.
+    bool show_collapsing_edges = false;
+};
+
+/// The op string ("decimate --cost quadric --percent 60 --iterations 1 ...") of the panel.
+std::string decimate_operation_text(const DecimationPanelState& state);
+
 /// The Tools panel's parameters.
 struct ToolsState {
     float noise_amount = 1.0f;  ///< percent of the mean edge length
@@ -107,6 +125,7 @@ struct PanelState {
     SubdivisionPanelState subdivision;
     FairingPanelState fairing;
     FrequencyPanelState frequency;
+    DecimationPanelState decimation;
     RecordState record;
     ToolsState tools;
     bool history_open = false;
@@ -177,6 +196,11 @@ void subdivision_window(PanelState& panels, MorphState& morph, const History& hi
 /// has a volume (volume preservation is disabled otherwise, with a tooltip saying why).
 void fairing_window(PanelState& panels, MorphState& morph, const History& history, bool closed,
                     bool busy, double now, CommandQueue& commands);
+/// The Decimation panel (cost, the three constraints with their thresholds, percentage per
+/// iteration, iterations, Decimate, and the morph slider and Animate of the current entry);
+/// queues RunOperation. `collapsing_edges` is how many edges the overlay shows (0: none).
+void decimation_window(PanelState& panels, MorphState& morph, const History& history, bool busy,
+                       double now, std::size_t collapsing_edges, CommandQueue& commands);
 /// The Tools panel (Add noise); queues RunOperation.
 void tools_window(PanelState& panels, bool busy, CommandQueue& commands);
 /// The morph slider and the animation controls for the current history entry.

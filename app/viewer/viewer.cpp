@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "app/ops/operation.h"
+#include "core/decimation.h"
 #include "core/errors.h"
 #include "core/generators.h"
 #include "core/geometry.h"
@@ -163,6 +164,7 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
     imgui_ = std::make_unique<ImGuiLayer>(window_.get(), ui_scale_);
 
     renderer_ = std::make_unique<MeshRenderer>();
+    collapse_lines_ = std::make_unique<LineRenderer>();
     checkerboard_ = make_checkerboard();
     update_texture();
     view_.camera.set_viewport(float(window_w), float(window_h));
@@ -197,6 +199,10 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
             panels_.subdivision.open = true;
         else if (panel == "frequency")
             panels_.frequency.open = true;
+        else if (panel == "decimation")
+            panels_.decimation.open = true;
+        else if (panel == "collapsing-edges")
+            panels_.decimation.show_collapsing_edges = true;
         else if (panel == "record")
             panels_.record.open = true;
         else if (panel == "log")
@@ -905,6 +911,10 @@ void Viewer::draw_ui() {
     subdivision_window(panels_, morph_, document_.history, jobs_.busy(), glfwGetTime(), commands_);
     fairing_window(panels_, morph_, document_.history, document_.closed, jobs_.busy(),
                    glfwGetTime(), commands_);
+    update_collapsing_edges();
+    decimation_window(panels_, morph_, document_.history, jobs_.busy(), glfwGetTime(),
+                      panels_.decimation.show_collapsing_edges ? collapse_lines_->n_segments() : 0,
+                      commands_);
     morph_window(panels_, morph_, document_.history, glfwGetTime());
     frequency_ui();
     record_window(panels_, document_.history.current() > 0 && !jobs_.busy(), commands_);
@@ -943,6 +953,50 @@ void Viewer::render_scene() {
     style.wire_width *= ui_scale_;
     style.point_size *= ui_scale_;
     renderer_->draw(view_.camera.view(), view_.camera.projection(), style);
+    if (panels_.decimation.show_collapsing_edges)
+        collapse_lines_->draw(view_.camera.view(), view_.camera.projection(),
+                              glm::vec3(0.95f, 0.25f, 0.20f), 2.0f * ui_scale_);
+}
+
+void Viewer::update_collapsing_edges() {
+    const DecimationPanelState& d = panels_.decimation;
+    if (!d.show_collapsing_edges) return;
+    const HalfedgeMesh& mesh = document_.mesh();
+    // The mesh (its address, entry and size) and the options the edges were computed for.
+    char id[96];
+    std::snprintf(id, sizeof(id), "%p %zu %zu %zu ", static_cast<const void*>(&mesh),
+                  document_.history.current(), mesh.n_vertices(), mesh.n_faces());
+    const std::string key = id + decimate_operation_text(d);
+    if (key == collapse_key_) return;
+    collapse_key_ = key;
+    std::vector<glm::vec3> points;
+    // Computed on the render thread: a dry run of the next iteration, a fraction of a second
+    // up to a few hundred thousand vertices; bigger meshes skip the overlay.
+    constexpr std::size_t kMaxOverlayVertices = 300000;
+    if (mesh.n_vertices() > kMaxOverlayVertices) {
+        log_.warning("Collapsing edges: shown for meshes of up to 300,000 vertices only");
+        collapse_lines_->set_segments(points);
+        return;
+    }
+    try {
+        DecimationOptions o;
+        o.cost = d.cost == 1 ? DecimationCost::Roundness : DecimationCost::Quadric;
+        o.percent = std::clamp(double(d.percent), 0.1, 100.0);
+        o.normal_flip = d.normal_flip;
+        o.max_normal_angle = std::clamp(double(d.max_normal_angle), 1.0, 180.0);
+        o.roundness = d.roundness;
+        o.min_roundness = std::clamp(double(d.min_roundness), 0.01, 1.0);
+        o.independent_set = d.independent_set;
+        for (const auto& pair : next_collapses(mesh, o)) {
+            const Point& a = mesh.position(pair[0]);
+            const Point& b = mesh.position(pair[1]);
+            points.emplace_back(float(a.x()), float(a.y()), float(a.z()));
+            points.emplace_back(float(b.x()), float(b.y()), float(b.z()));
+        }
+    } catch (const Error& e) {
+        notify_error(std::string("Collapsing edges: ") + e.what());
+    }
+    collapse_lines_->set_segments(points);
 }
 
 std::string Viewer::write_screenshot(const std::string& path) const {

@@ -18,6 +18,7 @@
 #include "core/io/image_io.h"
 #include "core/mesh_builder.h"
 #include "render/camera.h"
+#include "render/line_renderer.h"
 #include "render/mesh_renderer.h"
 
 struct GLFWwindow;
@@ -191,6 +192,12 @@ private:
     std::array<double, 15> frame_times_ms_{};
     std::size_t n_frame_times_ = 0;
     double frame_ms() const;
+
+    /// Rendering > Vectors > Collapsing edges: the next decimation iteration's edges,
+    /// recomputed when the mesh or the Decimation panel's options change.
+    void update_collapsing_edges();
+    std::unique_ptr<LineRenderer> collapse_lines_;
+    std::string collapse_key_;  ///< what the drawn edges were computed for
 };
 
 }  // namespace trilab::viewer

@@ -176,6 +176,34 @@ check "spectrum refuses an unknown operator" bash -c \
 check "render refuses the frequency colouring (it needs a decomposition)" bash -c \
     "! '$cli' render '$tmp/d.obj' --out '$tmp/x.png' --color frequency 2> '$tmp/e' && \
      grep -q 'decomposition' '$tmp/e'"
+check "decimate --json reports vertices, refusals and the stop reason" bash -c \
+    "'$cli' decimate --cost quadric --percent 60 --iterations 2 '$tmp/d.obj' '$tmp/dec.obj' \
+     --json > '$tmp/dec.json' && $(declare -f json_has); json_has '$tmp/dec.json' vertices \
+     collapses refused_link_condition refused_normal_flip refused_roundness \
+     refused_independent_set stop_reason ms && grep -q '\"vertices\": 161,' '$tmp/dec.json' && \
+     grep -q '\"stop_reason\": \"done\"' '$tmp/dec.json'"
+check "decimate --target-vertices with roundness and the independent set stops and says why" \
+    bash -c "'$cli' decimate --cost roundness --independent-set --roundness 0.3 \
+     --target-vertices 10 '$tmp/d.obj' '$tmp/dec2.obj' --json | \
+     grep -q '\"stop_reason\": \"constraints\"'"
+check "a tetrahedron cannot be decimated below 4 vertices" bash -c \
+    "'$cli' generate tetrahedron '$tmp/tet.obj' && '$cli' decimate --target-vertices 3 \
+     '$tmp/tet.obj' '$tmp/tet2.obj' --json | grep -q '\"stop_reason\": \"topology\"'"
+check "decimate refuses a bad percent naming the option, writing nothing" bash -c \
+    "! '$cli' decimate --percent 150 '$tmp/d.obj' '$tmp/bad.obj' 2> '$tmp/e' && \
+     [ \$(wc -l < '$tmp/e') -eq 1 ] && grep -q -- '--percent: expected a number from 0 to 100' \
+     '$tmp/e' && [ ! -e '$tmp/bad.obj' ]"
+check "decimate refuses --percent with --target-vertices" bash -c \
+    "! '$cli' decimate --percent 50 --target-vertices 10 '$tmp/d.obj' '$tmp/bad.obj' 2>/dev/null"
+check "compare --json measures the decimation error" bash -c \
+    "'$cli' compare '$tmp/d.obj' '$tmp/dec.obj' --samples 20000 --json > '$tmp/cmp.json' && \
+     $(declare -f json_has); json_has '$tmp/cmp.json' hausdorff rms hausdorff_relative \
+     rms_relative samples ms && ! grep -q '\"hausdorff\": 0,' '$tmp/cmp.json'"
+check "compare of a mesh with itself is zero (up to rounding)" bash -c \
+    "'$cli' compare '$tmp/d.obj' '$tmp/d.obj' --samples 1000 --json | \
+     grep -E -q '\"hausdorff\": (0|[0-9.]+e-(1[2-9]|[2-9][0-9])),'"
+check "compare refuses a bad sample count naming the option" bash -c \
+    "! '$cli' compare '$tmp/d.obj' '$tmp/d.obj' --samples abc 2> '$tmp/e' && grep -q -- '--samples' '$tmp/e'"
 if "$cli" render "$tmp/d.obj" --out "$tmp/probe.png" --size 16x16 >/dev/null 2>&1; then
     check "render colours the smoothing distance against a reference" bash -c \
         "'$cli' render '$tmp/sm2.obj' --reference '$tmp/d.obj' --color smoothing-distance \

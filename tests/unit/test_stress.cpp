@@ -5,12 +5,14 @@
 //
 // Reproducible: the seed and the length come from the environment,
 //   TRILAB_STRESS_SEED=12345 TRILAB_STRESS_STEPS=400 ./build/tests/trilab_tests "[stress]"
-// (defaults: seed 20261122, 60 steps per mesh); a failure prints the seed, the step and the
-// operation text, which replays alone with `trilab-cli record --op "..."` or the viewer's --op.
-// Every registered operation must have a parameter generator here: a new operation without
-// one fails the test, so the stress test grows with the registry.
+// (defaults: seed 20261122, 60 steps per mesh; TRILAB_STRESS_VERBOSE=1 prints each operation
+// and writes its input mesh to trilab-stress-input.om in the working directory); a failure prints
+// the seed, the step and the operation text, which replays alone with `trilab-cli record --op
+// "..."` or the viewer's --op. Every registered operation must have a parameter generator here: a
+// new operation without one fails the test, so the stress test grows with the registry.
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <functional>
 #include <map>
@@ -82,6 +84,22 @@ const std::map<std::string, Generator>& generators() {
              if (pick(rng, 0, 3) == 0) text += " --boundary slide";
              return text;
          }},
+        {"decimate",
+         [](Rng& rng, const HalfedgeMesh&) {
+             std::string text =
+                 std::string("decimate --cost ") + (pick(rng, 0, 1) ? "quadric" : "roundness");
+             if (pick(rng, 0, 1))
+                 text += " --percent " + std::to_string(pick(rng, 1, 90)) + " --iterations " +
+                         std::to_string(pick(rng, 1, 3));
+             else
+                 text += " --target-vertices " + std::to_string(pick(rng, 3, 400));
+             const int flip = pick(rng, 0, 3);  // default, an angle, or off
+             if (flip == 1) text += " --normal-flip " + std::to_string(pick(rng, 5, 120));
+             if (flip == 2) text += " --normal-flip off";
+             if (pick(rng, 0, 3) == 0) text += " --roundness 0." + std::to_string(pick(rng, 1, 5));
+             if (pick(rng, 0, 3) == 0) text += " --independent-set";
+             return text;
+         }},
         {"spectrum",
          [](Rng& rng, const HalfedgeMesh& m) {
              const std::vector<std::string> ops = {"umbrella", "improved-umbrella",
@@ -111,6 +129,7 @@ void require_finite(const HalfedgeMesh& m) {
 /// Runs `steps` random actions on `start`; returns the number of operations that ran.
 int stress(const HalfedgeMesh& start, const std::string& name, std::uint64_t seed, int steps) {
     Rng rng(seed);
+    const bool verbose = env_number("TRILAB_STRESS_VERBOSE", 0) != 0;
     History history;
     history.reset(start, "load " + name);
     int ran = 0;
@@ -136,6 +155,11 @@ int stress(const HalfedgeMesh& start, const std::string& name, std::uint64_t see
             const HalfedgeMesh& mesh = history.current_mesh();
             what = generators().at(pick_of(rng, names))(rng, mesh);
             INFO(name << ": seed " << seed << ", step " << step << ": " << what);
+            if (verbose) {  // the input of each operation, to replay one with trilab-cli
+                std::fprintf(stderr, "%s: step %d: %s (%zu vertices)\n", name.c_str(), step,
+                             what.c_str(), mesh.n_vertices());
+                write_mesh(mesh, "trilab-stress-input.om");
+            }
             try {
                 NullProgress progress;
                 OperationResult result = run_operation(parse_operation(what), mesh, progress);
