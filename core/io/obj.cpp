@@ -183,8 +183,11 @@ std::string find_texture(const std::vector<std::string>& mtllibs,
 
 }  // namespace
 
-LoadedMesh read_obj(const std::string& path) {
-    const std::string text = read_file_bytes(path);
+namespace {
+
+/// Reads OBJ text; the material libraries it names are returned in `mtllibs`.
+LoadedMesh read_obj_text(const std::string& text, const std::string& path,
+                         std::vector<std::string>& mtllibs) {
     ObjContents obj = ObjParser(text, path).parse();
     const std::size_t nv = obj.v.size() / 3;
 
@@ -261,9 +264,23 @@ LoadedMesh read_obj(const std::string& path) {
 
     LoadedMesh out;
     out.mesh = build_mesh_for_file(soup, report, path);
-    out.texture_path = find_texture(obj.mtllibs, std::filesystem::path(path).parent_path(), report);
     out.report = std::move(report);
+    mtllibs = std::move(obj.mtllibs);
     return out;
+}
+
+}  // namespace
+
+LoadedMesh read_obj(const std::string& path) {
+    std::vector<std::string> mtllibs;
+    LoadedMesh out = read_obj_text(read_file_bytes(path), path, mtllibs);
+    out.texture_path = find_texture(mtllibs, std::filesystem::path(path).parent_path(), out.report);
+    return out;
+}
+
+LoadedMesh read_obj_bytes(const std::string& bytes, const std::string& name) {
+    std::vector<std::string> mtllibs;
+    return read_obj_text(bytes, name, mtllibs);
 }
 
 void write_obj(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options) {
