@@ -161,11 +161,24 @@ private:
     ObjContents out_;
 };
 
+constexpr std::uintmax_t kMaxMaterialLibraryBytes = 64u << 20;
+
 /// The diffuse texture of the first material that names one, resolved against `folder`.
 std::string find_texture(const std::vector<std::string>& mtllibs,
                          const std::filesystem::path& folder, LoadReport& report) {
     for (const std::string& lib : mtllibs) {
         const std::filesystem::path mtl_path = folder / lib;
+        // Only regular files of a sane size: a library naming a device, a FIFO or a folder
+        // (mtllib /dev/zero) must not hang or exhaust memory.
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(mtl_path, ec)) {
+            report.notes.push_back("material library " + lib + " not found (or not a file)");
+            continue;
+        }
+        if (std::filesystem::file_size(mtl_path, ec) > kMaxMaterialLibraryBytes) {
+            report.notes.push_back("material library " + lib + " ignored (over 64 MiB)");
+            continue;
+        }
         std::ifstream in(mtl_path);
         if (!in) {
             report.notes.push_back("material library " + lib + " not found");
