@@ -119,8 +119,9 @@ TEST_CASE("saving into a read-only folder fails and keeps the old file", "[io][n
     }
     ReadOnlyFolder read_only(dir.dir());
     if (!read_only.enforced()) {
-        WARN("skipped: this process can write into a read-only folder (running as root?); the "
-             "other no-data-loss tests cover failed saves without permissions");
+        WARN(
+            "skipped: this process can write into a read-only folder (running as root?); the "
+            "other no-data-loss tests cover failed saves without permissions");
         return;
     }
     for (std::size_t i = 0; i < std::size(kMeshFiles); ++i) {
@@ -188,8 +189,7 @@ TEST_CASE("a save keeps the permissions of the file it replaces", "[io][no-data-
     TempDir dir;
     const std::string path = dir.path("m.obj");
     write_mesh(make_icosahedron(), path);
-    const fs::perms custom = fs::perms::owner_read | fs::perms::owner_write |
-                             fs::perms::group_read;
+    const fs::perms custom = fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read;
     fs::permissions(path, custom);
     write_mesh(make_cube(), path);
     CHECK((fs::status(path).permissions() & fs::perms::mask) == custom);
