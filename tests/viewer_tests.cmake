@@ -41,17 +41,3 @@ if(TARGET trilab)
     add_test(NAME viewer_bad_option COMMAND $<TARGET_FILE:trilab> --mode bogus --frames 1)
     set_tests_properties(viewer_bad_option PROPERTIES WILL_FAIL TRUE)
 endif()
-
-# Sanitizer build: Mesa's GLX driver (llvmpipe, loaded through GLFW) leaks strdup'ed strings
-# and is unloaded before LeakSanitizer reports, so its frames show as "<unknown module>" and
-# cannot be suppressed by name. Leak checking is therefore off for the viewer tests only;
-# ASan's memory-error checks and UBSan stay on, and our own code's leaks are checked by the
-# unit, render (EGL), app and CLI tests.
-if(TARGET trilab AND TRILAB_SANITIZE)
-    get_property(trilab_all_tests DIRECTORY PROPERTY TESTS)
-    foreach(t IN LISTS trilab_all_tests)
-        if(t MATCHES "^viewer_")
-            set_tests_properties(${t} PROPERTIES ENVIRONMENT "ASAN_OPTIONS=detect_leaks=0")
-        endif()
-    endforeach()
-endif()
