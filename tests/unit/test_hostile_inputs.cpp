@@ -4,7 +4,11 @@
 // and round-tripped through every file format; then every registered operation runs on each
 // with several parameter sets. Each either works (every step valid, no NaN or infinity) or
 // refuses with a trilab::Error carrying a message; nothing else is acceptable.
+#include <sys/stat.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <string>
 #include <vector>
@@ -199,5 +203,28 @@ TEST_CASE("hostile meshes survive every file format or are refused with a messag
             if (file_extension(path) != "stl") CHECK(loaded.mesh.n_vertices() == mesh.n_vertices());
             run_every_operation(loaded.mesh);
         }
+    }
+}
+
+TEST_CASE("an OBJ whose material library is a device, a FIFO or a folder loads without hanging",
+          "[hostile][io]") {
+    TempDir dir;
+    REQUIRE(mkfifo(dir.path("fifo.mtl").c_str(), 0600) == 0);  // opening it would block
+    std::filesystem::create_directory(dir.path("folder.mtl"));
+    for (const std::string lib : {"/dev/zero", "fifo.mtl", "folder.mtl", "missing.mtl"}) {
+        INFO("mtllib " << lib);
+        const std::string path = dir.path("m.obj");
+        {
+            std::ofstream out(path);
+            out << "mtllib " << lib << "\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        }
+        const LoadedMesh loaded = read_mesh(path);
+        REQUIRE_VALID(loaded.mesh);
+        CHECK(loaded.mesh.n_faces() == 1);
+        CHECK(loaded.texture_path.empty());
+        bool noted = false;
+        for (const std::string& note : loaded.report.notes)
+            noted = noted || note.find("material library " + lib) != std::string::npos;
+        CHECK(noted);
     }
 }
