@@ -12,13 +12,15 @@ for item in "$@"; do
     r="${item%%:*}"
     end=$(($(date +%s) + ${item##*:} * 60))
     case "$r" in ply | stl | om) max_len=8192 ;; *) max_len=4096 ;; esac
+    dict=()
+    [ -f "$here/$r.dict" ] && dict=(-dict="$here/$r.dict")
     mkdir -p "$build/fuzz-work/$r" "$build/long-artifacts/$r" "$build/long-logs"
     run=0
     while [ "$(date +%s)" -lt "$end" ]; do
         run=$((run + 1))
         left=$((end - $(date +%s)))
         nice -n 19 "$build/tests/fuzz/fuzz_$r" "$build/fuzz-work/$r" "$here/corpus/$r" \
-            -dict="$here/$r.dict" -max_len=$max_len -timeout=10 -rss_limit_mb=2048 \
+            "${dict[@]}" -max_len=$max_len -timeout=10 -rss_limit_mb=2048 \
             -max_total_time=$left -print_final_stats=1 \
             -artifact_prefix="$build/long-artifacts/$r/" >"$build/long-logs/$r.$run.log" 2>&1
         [ $? -eq 0 ] || sleep 5

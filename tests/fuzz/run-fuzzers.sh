@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs the libFuzzer targets built in BUILD_DIR (cmake -DTRILAB_FUZZ=ON, see README
 # "Hardening") for SECONDS each, one after the other, on their seed corpora in
-# tests/fuzz/corpus/<reader>/ with the dictionary tests/fuzz/<reader>.dict.
+# tests/fuzz/corpus/<reader>/ with the dictionary tests/fuzz/<reader>.dict where there is one.
 #   tests/fuzz/run-fuzzers.sh BUILD_DIR SECONDS [READER...]     (default: every reader)
 # New interesting inputs go to BUILD_DIR/fuzz-work/<reader>/ (the committed seeds are never
 # modified); a failing input is written to BUILD_DIR/fuzz-artifacts/<reader>/ and the script
@@ -12,7 +12,7 @@ build="${1:?usage: run-fuzzers.sh BUILD_DIR SECONDS [READER...]}"
 seconds="${2:?usage: run-fuzzers.sh BUILD_DIR SECONDS [READER...]}"
 shift 2
 readers=("$@")
-[ ${#readers[@]} -gt 0 ] || readers=(obj off ply stl om xbm xpm pnm)
+[ ${#readers[@]} -gt 0 ] || readers=(obj off ply stl om xbm xpm pnm builder)
 failed=()
 for r in "${readers[@]}"; do
     exe="$build/tests/fuzz/fuzz_$r"
@@ -23,7 +23,9 @@ for r in "${readers[@]}"; do
     esac
     mkdir -p "$build/fuzz-work/$r" "$build/fuzz-artifacts/$r" "$build/fuzz-logs"
     log="$build/fuzz-logs/$r.log"
-    "$exe" "$build/fuzz-work/$r" "$here/corpus/$r" -dict="$here/$r.dict" \
+    dict=()
+    [ -f "$here/$r.dict" ] && dict=(-dict="$here/$r.dict")
+    "$exe" "$build/fuzz-work/$r" "$here/corpus/$r" "${dict[@]}" \
         -max_len=$max_len -timeout=10 -rss_limit_mb=2048 -max_total_time="$seconds" \
         -print_final_stats=1 -artifact_prefix="$build/fuzz-artifacts/$r/" >"$log" 2>&1
     rc=$?
