@@ -58,8 +58,8 @@
 // an old interior edge is not kept by Sqrt3 (vertex uvs are exact). Every other attribute
 // (normals, colours, ...) is dropped; "v:subdivision_level" is added (input vertices 0).
 // Isolated vertices are kept, unmoved. An input with garbage is collected on a copy first
-// (indices then refer to the collected mesh). Known limit: Sqrt3 on a closed two-triangle
-// "pillow" component would create a double edge (validate() reports it).
+// (indices then refer to the collected mesh). Two faces with the same three vertices (a closed
+// two-triangle "pillow") would give double edges in every scheme: subdivide() refuses them.
 //
 // Implementation: the 1-to-4 refinement is built directly into the new mesh's arrays (no
 // edge splits, no hash maps): old vertex v keeps index v, the odd vertex of edge e is V + e,
@@ -69,6 +69,8 @@
 // Complexity: linear in the mesh size per iteration.
 #include "core/subdivision.h"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -332,7 +334,7 @@ void butterfly_positions(const HalfedgeMesh& m, std::vector<Point>& p, bool modi
                          const Stage& stage) {
     const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size());
     const auto& x = m.positions();
-    std::memcpy(static_cast<void*>(p.data()), x.data(), sizeof(Point) * nv);
+    std::copy_n(x.begin(), nv, p.begin());  // not memcpy: data() is null for an empty mesh
     // Valences and boundary flags, for the extraordinary rules.
     std::vector<unsigned> valence;
     std::vector<std::uint8_t> boundary;
@@ -656,6 +658,42 @@ SubdivisionScheme parse_scheme(const std::string& name) {
                           "' unknown: use loop, sqrt3, butterfly or modified-butterfly");
 }
 
+namespace {
+
+/// Refuses a mesh where two faces have the same three vertices (a closed two-triangle
+/// "pillow", possibly part of a larger mesh after non-manifold repairs): the 1-to-4 split
+/// would join two of its edge midpoints twice and Sqrt3 would join its two centroids three
+/// times, i.e. the result would have double edges.
+void check_no_pillows(const HalfedgeMesh& m, int iteration) {
+    std::vector<std::array<Index, 4>> triples;  // sorted vertices, then the face
+    triples.reserve(m.n_faces());
+    for (Face f : m.faces()) {
+        std::array<Index, 4> t{};
+        const Halfedge h = m.halfedge(f);
+        t[0] = Index(m.to_vertex(h).idx());
+        t[1] = Index(m.to_vertex(m.next(h)).idx());
+        t[2] = Index(m.to_vertex(m.next(m.next(h))).idx());
+        std::sort(t.begin(), t.begin() + 3);
+        t[3] = Index(f.idx());
+        triples.push_back(t);
+    }
+    std::sort(triples.begin(), triples.end());
+    for (std::size_t i = 1; i < triples.size(); ++i) {
+        const auto& a = triples[i - 1];
+        const auto& b = triples[i];
+        if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2])
+            throw TopologyError(
+                "subdivide: faces " + std::to_string(a[3]) + " and " + std::to_string(b[3]) +
+                " have the same three vertices (" + std::to_string(a[0]) + ", " +
+                std::to_string(a[1]) + ", " + std::to_string(a[2]) +
+                "), a closed two-triangle component; subdividing it would create double "
+                "edges" +
+                (iteration > 1 ? " (iteration " + std::to_string(iteration) + ")" : ""));
+    }
+}
+
+}  // namespace
+
 SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& options,
                             Progress& progress) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -683,6 +721,7 @@ SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& 
     const double span = 1.0 / options.iterations;
     for (int it = 1; it <= options.iterations; ++it) {
         progress.check_cancelled();
+        check_no_pillows(*current, it);
         Stage stage{progress, (it - 1) * span, span};
         stage.report(0);
         if (sqrt3)

@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -41,9 +42,14 @@ void write_file_atomically(const std::string& path,
                               std::string("cannot create a temporary file beside it: ") +
                                   std::strerror(errno));
             write(out);
-            out.flush();
-            if (!out) throw IoError(path, 0, "write error (disk full?)");
+            out.close();  // close() flushes; its failure is a write error too
+            if (out.fail()) throw IoError(path, 0, "write error (disk full?)");
         }
+        // The new file keeps the permissions of the one it replaces.
+        std::error_code ec;
+        const std::filesystem::file_status old = std::filesystem::status(path, ec);
+        if (!ec && std::filesystem::is_regular_file(old))
+            std::filesystem::permissions(tmp, old.permissions(), ec);
         if (std::rename(tmp.c_str(), path.c_str()) != 0)
             throw IoError(path, 0, std::string("cannot replace the file: ") + std::strerror(errno));
     } catch (...) {

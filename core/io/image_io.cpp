@@ -149,8 +149,7 @@ void check_bmp(const std::string& bytes, const std::string& path) {
                           ", the file has " + std::to_string(bytes.size()) + " bytes");
 }
 
-Image read_with_stb(const std::string& path, const char* format) {
-    const std::string bytes = read_file_bytes(path);
+Image read_with_stb(const std::string& bytes, const std::string& path, const char* format) {
     const std::string fmt = format;
     if (bytes.empty()) throw IoError(path, 0, "the file is empty");
     if (bytes.size() > std::size_t(INT_MAX))
@@ -186,8 +185,7 @@ Image read_with_stb(const std::string& path, const char* format) {
 
 // ---- PNM: P1-P6 -----------------------------------------------------------------------------
 
-Image read_pnm(const std::string& path) {
-    const std::string bytes = read_file_bytes(path);
+Image read_pnm(const std::string& bytes, const std::string& path) {
     if (bytes.empty()) throw IoError(path, 0, "the file is empty");
     TextScanner sc(bytes, path, '#');
     const std::string_view magic = sc.expect_token("the PNM magic number (P1 to P6)");
@@ -481,8 +479,7 @@ bool ends_with(std::string_view s, std::string_view suffix) {
 
 // ---- XBM ------------------------------------------------------------------------------------
 
-Image read_xbm(const std::string& path) {
-    const std::string text = read_file_bytes(path);
+Image read_xbm(const std::string& text, const std::string& path) {
     CLexer lex(text, path);
     long long width = -1, height = -1;
     std::size_t size_line = 1;
@@ -686,8 +683,7 @@ std::uint64_t pixel_code(std::string_view chars) {
     return code;
 }
 
-Image read_xpm(const std::string& path) {
-    const std::string text = read_file_bytes(path);
+Image read_xpm(const std::string& text, const std::string& path) {
     if (text.empty()) throw IoError(path, 0, "the file is empty");
     {
         // XPM3 files start with the comment /* XPM */.
@@ -862,13 +858,16 @@ std::vector<std::string> supported_image_extensions() {
     return {"bmp", "png", "pnm", "ppm", "pgm", "pbm", "xbm", "xpm"};
 }
 
+namespace {
+bool is_supported_image_extension(const std::string& ext) {
+    const std::vector<std::string> all = supported_image_extensions();
+    return std::find(all.begin(), all.end(), ext) != all.end();
+}
+}  // namespace
+
 Image read_image(const std::string& path) {
     const std::string ext = extension_of(path);
-    if (ext == "png") return read_with_stb(path, "PNG");
-    if (ext == "bmp") return read_with_stb(path, "BMP");
-    if (ext == "pnm" || ext == "ppm" || ext == "pgm" || ext == "pbm") return read_pnm(path);
-    if (ext == "xbm") return read_xbm(path);
-    if (ext == "xpm") return read_xpm(path);
+    if (is_supported_image_extension(ext)) return read_image_bytes(read_file_bytes(path), path);
     std::string list;
     for (const std::string& e : supported_image_extensions())
         list += (list.empty() ? "" : ", ") + e;
@@ -876,6 +875,16 @@ Image read_image(const std::string& path) {
                   (ext.empty() ? std::string("the file name has no extension")
                                : "unsupported image extension '." + ext + "'") +
                       " (supported: " + list + ")");
+}
+
+Image read_image_bytes(const std::string& bytes, const std::string& name) {
+    const std::string ext = extension_of(name);
+    if (ext == "png") return read_with_stb(bytes, name, "PNG");
+    if (ext == "bmp") return read_with_stb(bytes, name, "BMP");
+    if (ext == "pnm" || ext == "ppm" || ext == "pgm" || ext == "pbm") return read_pnm(bytes, name);
+    if (ext == "xbm") return read_xbm(bytes, name);
+    if (ext == "xpm") return read_xpm(bytes, name);
+    throw IoError(name, 0, "unsupported image extension '." + ext + "'");
 }
 
 void write_png(const Image& image, const std::string& path) {

@@ -28,6 +28,10 @@ std::vector<std::string> supported_image_extensions();
 /// PNM may carry bytes after the raster (a Netpbm stream of several images: the first is
 /// read); the text formats must hold exactly the declared pixels.
 Image read_image(const std::string& path);
+/// Reads an image whose whole file is already in memory; the format is chosen by the
+/// extension of `name`, which also labels the errors. (read_image reads the file and calls
+/// this; the fuzzers call it directly.) Throws IoError.
+Image read_image_bytes(const std::string& bytes, const std::string& name);
 /// Writes a PNG through a temporary file and a rename. Throws IoError.
 void write_png(const Image& image, const std::string& path);
 /// A checkerboard of `squares` x `squares` alternating light and dark squares.

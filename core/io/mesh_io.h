@@ -54,4 +54,13 @@ void write_stl(const HalfedgeMesh& mesh, const std::string& path, const WriteOpt
 LoadedMesh read_om(const std::string& path);
 void write_om(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options);
 
+// In-memory readers: parse a whole file's `bytes` already in memory (the path readers read
+// the file and call these; the fuzzers call them directly). `name` only labels the errors
+// and the report. The OBJ variant does not look for material libraries (it has no folder).
+LoadedMesh read_obj_bytes(const std::string& bytes, const std::string& name);
+LoadedMesh read_off_bytes(const std::string& bytes, const std::string& name);
+LoadedMesh read_ply_bytes(const std::string& bytes, const std::string& name);
+LoadedMesh read_stl_bytes(const std::string& bytes, const std::string& name);
+LoadedMesh read_om_bytes(const std::string& bytes, const std::string& name);
+
 }  // namespace trilab

@@ -161,11 +161,24 @@ private:
     ObjContents out_;
 };
 
+constexpr std::uintmax_t kMaxMaterialLibraryBytes = 64u << 20;
+
 /// The diffuse texture of the first material that names one, resolved against `folder`.
 std::string find_texture(const std::vector<std::string>& mtllibs,
                          const std::filesystem::path& folder, LoadReport& report) {
     for (const std::string& lib : mtllibs) {
         const std::filesystem::path mtl_path = folder / lib;
+        // Only regular files of a sane size: a library naming a device, a FIFO or a folder
+        // (mtllib /dev/zero) must not hang or exhaust memory.
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(mtl_path, ec)) {
+            report.notes.push_back("material library " + lib + " not found (or not a file)");
+            continue;
+        }
+        if (std::filesystem::file_size(mtl_path, ec) > kMaxMaterialLibraryBytes) {
+            report.notes.push_back("material library " + lib + " ignored (over 64 MiB)");
+            continue;
+        }
         std::ifstream in(mtl_path);
         if (!in) {
             report.notes.push_back("material library " + lib + " not found");
@@ -183,8 +196,11 @@ std::string find_texture(const std::vector<std::string>& mtllibs,
 
 }  // namespace
 
-LoadedMesh read_obj(const std::string& path) {
-    const std::string text = read_file_bytes(path);
+namespace {
+
+/// Reads OBJ text; the material libraries it names are returned in `mtllibs`.
+LoadedMesh read_obj_text(const std::string& text, const std::string& path,
+                         std::vector<std::string>& mtllibs) {
     ObjContents obj = ObjParser(text, path).parse();
     const std::size_t nv = obj.v.size() / 3;
 
@@ -261,9 +277,23 @@ LoadedMesh read_obj(const std::string& path) {
 
     LoadedMesh out;
     out.mesh = build_mesh_for_file(soup, report, path);
-    out.texture_path = find_texture(obj.mtllibs, std::filesystem::path(path).parent_path(), report);
     out.report = std::move(report);
+    mtllibs = std::move(obj.mtllibs);
     return out;
+}
+
+}  // namespace
+
+LoadedMesh read_obj(const std::string& path) {
+    std::vector<std::string> mtllibs;
+    LoadedMesh out = read_obj_text(read_file_bytes(path), path, mtllibs);
+    out.texture_path = find_texture(mtllibs, std::filesystem::path(path).parent_path(), out.report);
+    return out;
+}
+
+LoadedMesh read_obj_bytes(const std::string& bytes, const std::string& name) {
+    std::vector<std::string> mtllibs;
+    return read_obj_text(bytes, name, mtllibs);
 }
 
 void write_obj(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options) {

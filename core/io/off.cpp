@@ -36,7 +36,10 @@ std::vector<double> parse_tail(std::string_view tail, TextScanner& scanner) {
 }  // namespace
 
 LoadedMesh read_off(const std::string& path) {
-    const std::string text = read_file_bytes(path);
+    return read_off_bytes(read_file_bytes(path), path);
+}
+
+LoadedMesh read_off_bytes(const std::string& text, const std::string& path) {
     TextScanner in(text, path);
     std::string_view keyword = in.next_token();
     if (keyword.empty()) in.fail("empty file, expected the OFF header");

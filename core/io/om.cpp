@@ -66,22 +66,6 @@ void store_le(unsigned char*& p, T v) {
     p += sizeof(T);
 }
 
-// ---- the file's bytes ------------------------------------------------------------------
-
-/// Read-only view of a whole file, read into memory. (A memory map would save the copy,
-/// but a file truncated by another process while mapped kills the reader with SIGBUS.)
-class FileBytes {
-public:
-    explicit FileBytes(const std::string& path) : copy_(read_file_bytes(path)) {}
-    const unsigned char* data() const {
-        return reinterpret_cast<const unsigned char*>(copy_.data());
-    }
-    std::size_t size() const { return copy_.size(); }
-
-private:
-    std::string copy_;
-};
-
 // ---- chunk header fields (om-format.md §3) -----------------------------------------------
 
 enum Entity : unsigned { kVertex = 0, kMesh = 1, kFace = 2, kEdge = 4, kHalf = 6, kSentinel = 7 };
@@ -816,8 +800,11 @@ std::uint8_t to_u8(float c) {
 }  // namespace
 
 LoadedMesh read_om(const std::string& path) {
-    const FileBytes bytes(path);
-    Cursor in(path, bytes.data(), bytes.size());
+    return read_om_bytes(read_file_bytes(path), path);
+}
+
+LoadedMesh read_om_bytes(const std::string& bytes, const std::string& path) {
+    Cursor in(path, reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size());
     OmContents c;
     parse(in, path, c);
 

@@ -733,7 +733,10 @@ std::uint8_t color_byte(float c) {
 }  // namespace
 
 LoadedMesh read_ply(const std::string& path) {
-    const std::string data = read_file_bytes(path);
+    return read_ply_bytes(read_file_bytes(path), path);
+}
+
+LoadedMesh read_ply_bytes(const std::string& data, const std::string& path) {
     PlyReader reader(path, data);
     return reader.read();
 }

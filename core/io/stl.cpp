@@ -291,7 +291,10 @@ Vector3 face_normal(const Point& a, const Point& b, const Point& c) {
 }  // namespace
 
 LoadedMesh read_stl(const std::string& path) {
-    const std::string data = read_file_bytes(path);
+    return read_stl_bytes(read_file_bytes(path), path);
+}
+
+LoadedMesh read_stl_bytes(const std::string& data, const std::string& path) {
     if (data.size() >= 84) {
         const std::uint64_t n =
             load_u32_le(reinterpret_cast<const unsigned char*>(data.data()) + 80);
