@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <functional>
 #include <limits>
 #include <string>
@@ -17,6 +18,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "core/errors.h"
+#include "core/geometry.h"
 
 namespace trilab {
 
@@ -24,6 +26,17 @@ namespace {
 
 using Triplet = Eigen::Triplet<double>;
 using Ldlt = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>>;
+
+/// Below these (relative) sizes the eigenproblem is refused as degenerate.
+constexpr double kDegenerateAreaRatio = 1e-12;  ///< surface area / bbox diagonal²
+constexpr double kDegenerateMassRatio = 1e-12;  ///< smallest mass / largest mass
+
+/// A number in short scientific notation (std::to_string prints 1e-19 as 0.000000).
+std::string sci(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", x);
+    return buf;
+}
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -209,6 +222,7 @@ Band shift_invert_band(const Problem& p, Ldlt& ldlt, double sigma, Eigen::Index 
     Eigen::Index ncv = std::min(n, std::max(wanted, m + 20));
     int max_it = o.max_iterations;
     for (int attempt = 0; attempt < 2; ++attempt) {
+        progress.check_cancelled();
         ShiftInvertOp op(p, ldlt, progress, base, span, 2.0 * double(ncv));
         Spectra::SymEigsShiftSolver<ShiftInvertOp> eigs(op, m, ncv, sigma);
         const Eigen::VectorXd v0 = start_vector(n, std::uint64_t(report.bands));
@@ -369,7 +383,19 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
     const auto window = [&](double lambda) { return 1e-6 * std::abs(lambda) + tiny; };
     double sigma = -1e-8 * std::max(p.a_max, 1e-300);
     double verified = -std::numeric_limits<double>::infinity();  // all eigenvalues below: found
+    // Every band moves the shift up (checked below) and normally verifies about half a band of
+    // new eigenvalues; far more bands than k / band mean a spectrum this method cannot
+    // resolve, so the loop is bounded instead of trusting it to end.
+    const std::size_t max_bands = 8 * ((k + band - 1) / band) + 16;
+    std::size_t bands_run = 0;
     while (true) {
+        progress.check_cancelled();
+        if (++bands_run > max_bands)
+            throw Error("spectrum: the band-by-band iteration did not reach " + std::to_string(k) +
+                        " frequencies in " + std::to_string(max_bands) +
+                        " bands (badly scaled or degenerate operator); ask for fewer "
+                        "frequencies (k), a larger band_size, or use the full method (meshes up "
+                        "to max_full_rows vertices)");
         const double base = std::min(1.0, double(acc.size()) / double(k));
         const double span = std::min(1.0, double(band) / double(k));
         Band b = shift_invert_band(p, ldlt, sigma, m, o, progress, base, span, report);
@@ -414,6 +440,7 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
             tau = sigma;
         }
         for (int attempt = 0; acc.count_below(tau) < expected && attempt < 4; ++attempt) {
+            progress.check_cancelled();
             // Deflate the accepted vectors near this band and look again around σ.
             std::vector<Eigen::Index> cols;
             for (std::size_t j = 0; j < acc.size(); ++j)
@@ -423,6 +450,15 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
             for (std::size_t c = 0; c < cols.size(); ++c)
                 q.col(Eigen::Index(c)) = acc.vectors.col(cols[c]);
             const std::size_t missing = expected - acc.count_below(tau);
+            // A repair recovers the few copies of repeated eigenvalues that a band missed; a
+            // Krylov space for many more (the inertia count of a spectrum of rounding noise
+            // said thousands) costs O(rows · ncv²) per restart, for up to max_iterations.
+            if (missing > 2 * band + 8)
+                throw Error("spectrum: " + std::to_string(expected) + " eigenvalues lie below " +
+                            sci(tau) + " but only " + std::to_string(expected - missing) +
+                            " were found, too many to recover (a badly scaled or degenerate "
+                            "operator); try a smaller band_size or the full method (meshes up "
+                            "to max_full_rows vertices)");
             const Eigen::Index nev =
                 std::min<Eigen::Index>(Eigen::Index(missing + 3), n - q.cols() - 1);
             if (nev < 1) break;
@@ -467,7 +503,13 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
         if (acc.size() >= std::size_t(n)) break;
         // The next band: centred 35% of this band's width above the cut, so that it overlaps
         // this one; whatever still lies between them is found by the count at its shift.
-        sigma = cut + 0.35 * width_b;
+        const double next = cut + 0.35 * width_b;
+        if (!std::isfinite(next) || !(next > sigma))
+            throw Error("spectrum: the shift of the next band does not move above sigma = " +
+                        std::to_string(sigma) +
+                        " (badly scaled or degenerate operator); use the full method (meshes up "
+                        "to max_full_rows vertices)");
+        sigma = next;
     }
     report.duplicates_removed = acc.duplicates;
 
@@ -545,6 +587,13 @@ Band largest(const Problem& p, std::size_t k, const SpectralOptions& o, Progress
     const std::size_t expected = std::size_t(n) - count_below(p, counter, tau, report);
     const auto above = [&] { return acc.size() - acc.count_below(tau); };
     for (int attempt = 0; above() < expected && attempt < 4; ++attempt) {
+        progress.check_cancelled();
+        if (expected - above() > 2 * std::size_t(m) + 8)
+            throw Error("spectrum: " + std::to_string(expected) + " eigenvalues lie above " +
+                        sci(tau) + " but only " + std::to_string(above()) +
+                        " were found, too many to recover (a badly scaled or degenerate "
+                        "operator); try another k or the full method (meshes up to "
+                        "max_full_rows vertices)");
         const Eigen::MatrixXd q = acc.vectors.leftCols(Eigen::Index(acc.size()));
         const Eigen::Index nev =
             std::min<Eigen::Index>(Eigen::Index(expected - above() + 3), n - q.cols() - 1);
@@ -654,6 +703,24 @@ SpectralDecomposition decompose(const HalfedgeMesh& mesh, const SpectralOptions&
         if (!q.allFinite())
             throw InvalidArgument("spectrum: the mesh has non-finite vertex positions");
 
+    const bool combinatorial =
+        o.op == LaplacianOperator::Umbrella && o.mass == MassMatrix::Normalizer;
+    if (!combinatorial && mesh.n_faces() > 0) {
+        // A mesh collapsed to (almost) nothing has no meaningful geometric spectrum: its
+        // masses and weights are rounding noise, on which the Lanczos iteration need not
+        // converge. (The umbrella operator with its valence mass does not see the geometry.)
+        const double area = surface_area(mesh);
+        const double diag = bounding_box(mesh).diagonal();
+        if (!(area > kDegenerateAreaRatio * diag * diag))
+            throw InvalidArgument("spectrum: the mesh is degenerate: its surface area (" +
+                                  sci(area) +
+                                  ") is below 1e-12 of its bounding-box diagonal "
+                                  "squared (" +
+                                  sci(diag * diag) +
+                                  "); repair or rescale the mesh first (the umbrella operator "
+                                  "with the normalizer mass does not need its geometry)");
+    }
+
     progress.report(0, "building the operator");
     Problem p = make_problem(mesh, o);
     const std::size_t n = p.map.rows();
@@ -662,8 +729,21 @@ SpectralDecomposition decompose(const HalfedgeMesh& mesh, const SpectralOptions&
                               " vertices in the eigenproblem (at least 2 needed)");
     if (!p.S.allFinite() || (p.S.array() <= 0).any() || !std::isfinite(p.k_norm))
         throw InvalidArgument(
-            "spectrum: the operator has a non-positive or non-finite mass "
-            "(degenerate geometry)");
+            "spectrum: the mesh is degenerate: the operator has a non-positive or non-finite "
+            "mass");
+    const double s_max = p.S.maxCoeff();
+    for (Eigen::Index i = 0; i < p.S.size(); ++i)
+        if (!(p.S[i] >= kDegenerateMassRatio * s_max) || !std::isnormal(p.d[i]))
+            throw InvalidArgument(
+                "spectrum: the mesh is degenerate: the mass of vertex " +
+                std::to_string(p.map.vertex_of[std::size_t(i)].idx()) + " (" + sci(p.S[i]) +
+                ") is below 1e-12 of the largest (" + sci(s_max) +
+                "); remove its zero-area faces (e.g. decimate or clean the mesh) or use another "
+                "mass");
+    if (!(p.k_norm > 0) || !std::isfinite(p.a_max))
+        throw InvalidArgument(
+            "spectrum: the mesh is degenerate: the operator K is zero or its scale is not "
+            "finite");
 
     SpectralDecomposition d;
     d.op = o.op;

@@ -46,7 +46,11 @@
 //
 // Errors: InvalidArgument naming the option (k, band, max_full_rows, ...) before any work;
 // Error when the solver fails (with what to change); Cancelled from the progress. The input
-// mesh is never modified.
+// mesh is never modified. A degenerate mesh is refused up front (InvalidArgument "the mesh is
+// degenerate: ..."): surface area below 1e-12 of the bounding-box diagonal squared (except for
+// the purely combinatorial umbrella operator with its valence mass), a vertex mass below 1e-12
+// of the largest, or a zero K. Every loop is bounded (bands, restarts, repairs): a spectrum
+// the bands cannot resolve ends in an Error, never in an endless iteration.
 // Complexity: building the operator O(V + F); per shift one sparse factorization (for
 // surfaces about O(V^1.5)) and one pair of triangular solves per Lanczos step; the Lanczos
 // basis costs O(V·ncv²) per restart with ncv ≈ 2·band + 1, so O(V·k·band) in all; the final

@@ -2,7 +2,9 @@
 // band by band against one band, S-orthonormality, exact reconstruction, low-pass smoothing,
 // disconnected meshes, boundaries, isolated vertices, option errors and cancellation.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -83,6 +85,24 @@ double subspace_gap(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, const Ei
     for (Eigen::Index j = 0; j < c.cols(); ++j)
         gap = std::max(gap, std::abs(1.0 - c.col(j).squaredNorm()));
     return gap;
+}
+
+/// An icosphere collapsed onto a line (as repeated smoothing leaves a mesh): every vertex at
+/// z·(0.05, -0.13, 1)·0.01 plus a jitter of `jitter` (absolute, deterministic), so that the
+/// triangles have areas of rounding size (many exactly zero): the stress test's mesh.
+HalfedgeMesh collapsed_sphere(unsigned frequency, double jitter) {
+    HalfedgeMesh m = make_icosphere(frequency);
+    std::uint64_t x = 12345;
+    auto uniform = [&x] {
+        x = x * 6364136223846793005ull + 1442695040888963407ull;
+        return double(x >> 11) * 0x1.0p-52 - 1.0;  // in [-1, 1)
+    };
+    for (Vertex v : m.vertices()) {
+        const double t = 0.01 * m.position(v).z();
+        const double a = uniform(), b = uniform(), c = uniform();
+        m.position(v) = Point(0.05 * t + jitter * a, -0.13 * t + jitter * b, t + jitter * c);
+    }
+    return m;
 }
 
 class CancelAfter final : public Progress {
@@ -337,6 +357,58 @@ TEST_CASE("a decomposition can be cancelled and is deterministic", "[spectral]")
     const SpectralDecomposition b = decompose(mesh, options(LaplacianOperator::CurvatureFlow, 30));
     CHECK(a.eigenvalues == b.eigenvalues);
     CHECK(a.eigenvectors == b.eigenvectors);
+}
+
+TEST_CASE("a mesh collapsed to a line is refused or decomposed quickly, never hangs",
+          "[spectral]") {
+    // Found by the stress test: the shift-invert bands never finished (repairs and bands
+    // without bound on a spectrum of rounding noise). Now: refused up front as degenerate, or
+    // a valid decomposition, or an Error with a message, in bounded time.
+    const HalfedgeMesh mesh = collapsed_sphere(20, 1e-18);  // 4002 vertices
+    const HalfedgeMesh small = collapsed_sphere(8, 1e-18);  // 642, for the dense method
+    const MassMatrix masses[] = {MassMatrix::Normalizer, MassMatrix::Barycentric,
+                                 MassMatrix::Voronoi};
+    std::size_t refused = 0;
+    for (LaplacianOperator op : kOperators)
+        for (MassMatrix mass : masses)
+            for (SpectralMethod method : {SpectralMethod::Partial, SpectralMethod::Full})
+                for (SpectrumEnd end : {SpectrumEnd::Smallest, SpectrumEnd::Largest}) {
+                    if (method == SpectralMethod::Full && end == SpectrumEnd::Largest) continue;
+                    SpectralOptions o =
+                        options(op, method == SpectralMethod::Full ? 10 : 2, method);
+                    o.mass = mass;
+                    o.end = end;
+                    CAPTURE(laplacian_operator_name(op), mass_matrix_name(mass),
+                            spectral_method_name(method), spectrum_end_name(end));
+                    const auto t0 = std::chrono::steady_clock::now();
+                    std::string message;
+                    try {
+                        const SpectralDecomposition d =
+                            decompose(method == SpectralMethod::Full ? small : mesh, o);
+                        CHECK(d.eigenvalues.allFinite());
+                        CHECK(d.eigenvectors.allFinite());
+                        CHECK(s_orthonormality_error(d) < 1e-6);
+                    } catch (const Error& e) {
+                        message = e.what();
+                        CHECK(!message.empty());
+                        if (message.find("the mesh is degenerate") != std::string::npos) ++refused;
+                    }
+                    const double s =
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+                            .count();
+                    CAPTURE(message);
+                    CHECK(s < 5.0);
+                }
+    CHECK(refused > 0);
+    // The umbrella operator with its valence mass does not see the geometry: decomposed.
+    SpectralOptions o = options(LaplacianOperator::Umbrella, 5);
+    const SpectralDecomposition d = decompose(mesh, o);
+    CHECK(d.size() == 5);
+    CHECK(s_orthonormality_error(d) < 1e-8);
+    // The stress test's command: refused with the reason.
+    o = options(LaplacianOperator::SecondOrder, 2);
+    o.mass = MassMatrix::Voronoi;
+    CHECK_THROWS_WITH(decompose(mesh, o), Catch::Contains("the mesh is degenerate"));
 }
 
 TEST_CASE("the shared bunny: isolated vertices are left out and keep their positions",
