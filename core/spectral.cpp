@@ -15,6 +15,7 @@
 #include <Spectra/SymEigsShiftSolver.h>
 #include <Spectra/SymEigsSolver.h>
 #include <Eigen/Eigenvalues>
+#include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
 
 #include "core/errors.h"
@@ -25,7 +26,9 @@ namespace trilab {
 namespace {
 
 using Triplet = Eigen::Triplet<double>;
-using Ldlt = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>>;
+/// The problem's rows are already in a fill-reducing (AMD) order, so the factorizations need
+/// no permutation of their own (make_problem()).
+using Ldlt = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::NaturalOrdering<int>>;
 
 /// Below these (relative) sizes the eigenproblem is refused as degenerate.
 constexpr double kDegenerateAreaRatio = 1e-12;  ///< surface area / bbox diagonal²
@@ -42,10 +45,13 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-/// The eigenproblem in its standard form A = D K D, D = S^-½, over the free rows.
+/// The eigenproblem in its standard form A = D K D, D = S^-½, over the free rows, which are
+/// numbered in the approximate-minimum-degree order of K (Amestoy, Davis & Duff 1996) so
+/// that the LDLᵀ factors of A - σI have little fill and need no permutation.
 struct Problem {
     VertexIndexMap map;
     SparseMatrix K;          ///< free rows and columns
+    SparseMatrix A;          ///< D K D, the same pattern (with a full diagonal)
     Eigen::VectorXd S;       ///< mass diagonal
     Eigen::VectorXd d;       ///< S^-½
     Eigen::VectorXd sqrt_s;  ///< S^½
@@ -63,16 +69,12 @@ Problem make_problem(const HalfedgeMesh& mesh, const SpectralOptions& o) {
     Problem p;
     p.diagnostics = lap.diagnostics;
     const std::size_t rows = lap.map.rows();
+    // Free rows, first in storage order, then renumbered in the AMD order of their pattern.
     std::vector<Index> reduced(rows, kInvalidIndex);
-    p.map.row_of.assign(mesh.vertices_size(), kInvalidIndex);
-    for (std::size_t r = 0; r < rows; ++r) {
-        if (lap.fixed[r]) continue;
-        const Vertex v = lap.map.vertex_of[r];
-        reduced[r] = Index(p.map.vertex_of.size());
-        p.map.row_of[v.idx()] = reduced[r];
-        p.map.vertex_of.push_back(v);
-    }
-    const Eigen::Index n = Eigen::Index(p.map.rows());
+    Index n_free = 0;
+    for (std::size_t r = 0; r < rows; ++r)
+        if (!lap.fixed[r]) reduced[r] = n_free++;
+    const Eigen::Index n = Eigen::Index(n_free);
     std::vector<Triplet> trip;
     trip.reserve(std::size_t(lap.K.nonZeros()) + std::size_t(n));
     for (Eigen::Index c = 0; c < lap.K.outerSize(); ++c)
@@ -81,14 +83,36 @@ Problem make_problem(const HalfedgeMesh& mesh, const SpectralOptions& o) {
             if (i != kInvalidIndex && j != kInvalidIndex) trip.emplace_back(i, j, it.value());
         }
     for (Eigen::Index i = 0; i < n; ++i) trip.emplace_back(i, i, 0.0);  // a full diagonal
+    SparseMatrix storage_order(n, n);
+    storage_order.setFromTriplets(trip.begin(), trip.end());
+    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> elimination;  // [new] = old
+    Eigen::AMDOrdering<int>()(storage_order, elimination);
+    std::vector<Index> new_of_old(static_cast<std::size_t>(n));
+    for (Eigen::Index k = 0; k < n; ++k)
+        new_of_old[std::size_t(elimination.indices()[k])] = Index(k);
+    for (Triplet& t : trip)
+        t = Triplet(Eigen::Index(new_of_old[std::size_t(t.row())]),
+                    Eigen::Index(new_of_old[std::size_t(t.col())]), t.value());
     p.K.resize(n, n);
     p.K.setFromTriplets(trip.begin(), trip.end());
     p.K.makeCompressed();
+    p.map.row_of.assign(mesh.vertices_size(), kInvalidIndex);
+    p.map.vertex_of.resize(std::size_t(n));
     p.S.resize(n);
     for (std::size_t r = 0; r < rows; ++r)
-        if (reduced[r] != kInvalidIndex) p.S[Eigen::Index(reduced[r])] = lap.S[Eigen::Index(r)];
+        if (reduced[r] != kInvalidIndex) {
+            const Index row = new_of_old[std::size_t(reduced[r])];
+            const Vertex v = lap.map.vertex_of[r];
+            p.map.vertex_of[std::size_t(row)] = v;
+            p.map.row_of[v.idx()] = row;
+            p.S[Eigen::Index(row)] = lap.S[Eigen::Index(r)];
+        }
     p.sqrt_s = p.S.array().sqrt();
     p.d = p.sqrt_s.array().inverse();
+    p.A = p.K;
+    for (Eigen::Index c = 0; c < p.A.outerSize(); ++c)
+        for (SparseMatrix::InnerIterator it(p.A, c); it; ++it)
+            it.valueRef() *= p.d[it.row()] * p.d[c];
     Eigen::VectorXd row_sum = Eigen::VectorXd::Zero(n);
     for (Eigen::Index c = 0; c < p.K.outerSize(); ++c)
         for (SparseMatrix::InnerIterator it(p.K, c); it; ++it) {
@@ -111,8 +135,9 @@ Eigen::VectorXd start_vector(Eigen::Index n, std::uint64_t seed) {
 }
 
 SparseMatrix shifted(const Problem& p, double sigma);
+void ldlt_solve_in_place(const Ldlt& ldlt, double* z);
 
-/// (A - σI)⁻¹ = S^½ (K - σS)⁻¹ S^½ for Spectra's SymEigsShiftSolver.
+/// (A - σI)⁻¹ for Spectra's SymEigsShiftSolver, by the LDLᵀ factors of A - σI.
 class ShiftInvertOp {
 public:
     using Scalar = double;
@@ -123,12 +148,10 @@ public:
           progress_(progress),
           base_(base),
           span_(span),
-          expected_(expected_ops),
-          a_(p.n()),
-          b_(p.n()) {}
+          expected_(expected_ops) {}
     Eigen::Index rows() const { return p_.n(); }
     Eigen::Index cols() const { return p_.n(); }
-    /// Factorizes K - σS (the pattern was analysed once by the caller).
+    /// Factorizes A - σI (the pattern was analysed once by the caller).
     void set_shift(double sigma) {
         const SparseMatrix m = shifted(p_, sigma);
         const auto t0 = std::chrono::steady_clock::now();
@@ -148,9 +171,8 @@ public:
         const auto t0 = std::chrono::steady_clock::now();
         Eigen::Map<const Eigen::VectorXd> x(x_in, p_.n());
         Eigen::Map<Eigen::VectorXd> y(y_out, p_.n());
-        a_ = p_.sqrt_s.cwiseProduct(x);
-        b_ = ldlt_.solve(a_);
-        y = p_.sqrt_s.cwiseProduct(b_);
+        y = x;
+        ldlt_solve_in_place(ldlt_, y.data());
         solve_ms += ms_since(t0);
         ++operations;
         if ((operations & 7) == 0)
@@ -168,7 +190,6 @@ private:
     Ldlt& ldlt_;
     Progress& progress_;
     double base_, span_, expected_;
-    mutable Eigen::VectorXd a_, b_;
 };
 
 /// A = S^-½ K S^-½ for Spectra's SymEigsSolver (largest eigenvalues).
@@ -176,7 +197,7 @@ class ProductOp {
 public:
     using Scalar = double;
     ProductOp(const Problem& p, Progress& progress, double expected_ops)
-        : p_(p), progress_(progress), expected_(expected_ops), a_(p.n()) {}
+        : p_(p), progress_(progress), expected_(expected_ops) {}
     Eigen::Index rows() const { return p_.n(); }
     Eigen::Index cols() const { return p_.n(); }
     void perform_op(const double* x_in, double* y_out) const {
@@ -184,8 +205,7 @@ public:
         Eigen::Map<const Eigen::VectorXd> x(x_in, p_.n());
         Eigen::Map<Eigen::VectorXd> y(y_out, p_.n());
         const auto t0 = std::chrono::steady_clock::now();
-        a_ = p_.d.cwiseProduct(x);
-        y = p_.d.cwiseProduct(p_.K * a_);
+        y.noalias() = p_.A * x;
         solve_ms += ms_since(t0);
         ++operations;
         if ((operations & 15) == 0)
@@ -198,7 +218,6 @@ private:
     const Problem& p_;
     Progress& progress_;
     double expected_;
-    mutable Eigen::VectorXd a_;
 };
 
 std::string not_converged(std::size_t got, std::size_t wanted, const char* where) {
@@ -247,17 +266,42 @@ Band shift_invert_band(const Problem& p, Ldlt& ldlt, double sigma, Eigen::Index 
     return {};
 }
 
-/// K - σS (same pattern as K, whose diagonal is stored).
+/// A - σI = D (K - σS) D (same pattern as A, whose diagonal is stored): congruent to K - σS,
+/// so it has the same inertia.
 SparseMatrix shifted(const Problem& p, double sigma) {
-    SparseMatrix m = p.K;
+    SparseMatrix m = p.A;
     for (Eigen::Index c = 0; c < m.outerSize(); ++c)
         for (SparseMatrix::InnerIterator it(m, c); it; ++it)
-            if (it.row() == it.col()) it.valueRef() -= sigma * p.S[c];
+            if (it.row() == it.col()) it.valueRef() -= sigma;
     return m;
 }
 
+/// z <- (LDLᵀ)⁻¹ z in place, straight over the factor's arrays (L unit lower triangular,
+/// column-major, without its diagonal; no permutation: see Ldlt).
+void ldlt_solve_in_place(const Ldlt& ldlt, double* z) {
+    const SparseMatrix& l = ldlt.matrixL().nestedExpression();
+    const Eigen::Index n = l.cols();
+    const int* outer = l.outerIndexPtr();
+    const int* nnz = l.innerNonZeroPtr();
+    const int* inner = l.innerIndexPtr();
+    const double* value = l.valuePtr();
+    const auto end = [&](Eigen::Index j) { return nnz ? outer[j] + nnz[j] : outer[j + 1]; };
+    for (Eigen::Index j = 0; j < n; ++j) {  // L·w = z, by columns
+        const double zj = z[j];
+        if (zj != 0.0)
+            for (int k = outer[j]; k < end(j); ++k) z[inner[k]] -= value[k] * zj;
+    }
+    const Eigen::VectorXd& d = ldlt.vectorD();
+    for (Eigen::Index j = 0; j < n; ++j) z[j] /= d[j];
+    for (Eigen::Index j = n - 1; j >= 0; --j) {  // Lᵀ·x = w, by rows of Lᵀ
+        double acc = z[j];
+        for (int k = outer[j]; k < end(j); ++k) acc -= value[k] * z[inner[k]];
+        z[j] = acc;
+    }
+}
+
 /// The number of eigenvalues of K x = λ S x below τ: the negative pivots of the LDLᵀ
-/// factorization of K - τS (Sylvester's law of inertia).
+/// factorization of A - τI, congruent to K - τS (Sylvester's law of inertia).
 std::size_t count_below(const Problem& p, Ldlt& ldlt, double tau, SpectralReport& report) {
     const auto t0 = std::chrono::steady_clock::now();
     ldlt.factorize(shifted(p, tau));
@@ -373,9 +417,10 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
     band = std::min<std::size_t>(band, std::size_t(n - 1));
     const Eigen::Index m = Eigen::Index(band);
     Ldlt ldlt, counter;
-    ldlt.analyzePattern(p.K);
-    counter.analyzePattern(p.K);
-    report.solver = "Spectra shift-invert Lanczos + SimplicialLDLT (AMD), inertia-checked";
+    ldlt.analyzePattern(p.A);
+    counter.analyzePattern(p.A);
+    report.solver =
+        "Spectra shift-invert Lanczos + SimplicialLDLT (AMD-ordered rows), inertia-checked";
 
     Accepted acc;
     acc.vectors.resize(n, Eigen::Index(std::min<std::size_t>(k + band, std::size_t(n))));
@@ -468,7 +513,8 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
             DeflatedOp op(
                 n,
                 [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
-                    y = p.sqrt_s.cwiseProduct(ldlt.solve(p.sqrt_s.cwiseProduct(x)));
+                    y = x;
+                    ldlt_solve_in_place(ldlt, y.data());
                 },
                 q, progress);
             Spectra::SymEigsSolver<DeflatedOp> eigs(op, nev, ncv);
@@ -583,7 +629,7 @@ Band largest(const Problem& p, std::size_t k, const SpectralOptions& o, Progress
             tau = mid;
     }
     Ldlt counter;
-    counter.analyzePattern(p.K);
+    counter.analyzePattern(p.A);
     const std::size_t expected = std::size_t(n) - count_below(p, counter, tau, report);
     const auto above = [&] { return acc.size() - acc.count_below(tau); };
     for (int attempt = 0; above() < expected && attempt < 4; ++attempt) {
@@ -601,11 +647,8 @@ Band largest(const Problem& p, std::size_t k, const SpectralOptions& o, Progress
             std::min<Eigen::Index>(n - q.cols(), std::max(2 * nev + 1, nev + 20));
         if (nev < 1 || ncv2 <= nev) break;
         DeflatedOp op(
-            n,
-            [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
-                y = p.d.cwiseProduct(p.K * p.d.cwiseProduct(x));
-            },
-            q, progress);
+            n, [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) { y.noalias() = p.A * x; }, q,
+            progress);
         Spectra::SymEigsSolver<DeflatedOp> eigs(op, nev, ncv2);
         const Eigen::VectorXd v0 = start_vector(n, 1000 + std::uint64_t(attempt));
         eigs.init(v0.data());
@@ -646,9 +689,8 @@ Band full(const Problem& p, std::size_t k, SpectrumEnd end, Progress& progress,
     const Eigen::Index n = p.n();
     progress.report(-1, "dense symmetric eigen solver");
     Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
-    for (Eigen::Index c = 0; c < p.K.outerSize(); ++c)
-        for (SparseMatrix::InnerIterator it(p.K, c); it; ++it)
-            a(it.row(), it.col()) = it.value() * p.d[it.row()] * p.d[it.col()];
+    for (Eigen::Index c = 0; c < p.A.outerSize(); ++c)
+        for (SparseMatrix::InnerIterator it(p.A, c); it; ++it) a(it.row(), it.col()) = it.value();
     progress.check_cancelled();
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(a);
     if (es.info() != Eigen::Success)
