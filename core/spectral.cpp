@@ -2,13 +2,17 @@
 #include "core/spectral.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <exception>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -403,9 +407,289 @@ double widest_gap_midpoint(std::vector<double> v, std::size_t from, std::size_t 
     return tau;
 }
 
-/// The k smallest eigenpairs, band by band; every band is verified by an eigenvalue count
-/// (inertia) and missed eigenvalues (repeated ones, which Lanczos may find only once) are
-/// recovered by a deflated run. Returns values (ascending) and y-space vectors.
+/// A Progress for a worker thread: it never reports (the caller's thread does), and it
+/// cancels when the user cancels or when another slice failed.
+class WorkerProgress final : public Progress {
+public:
+    WorkerProgress(const Progress& user, const std::atomic<bool>& stop)
+        : user_(user), stop_(stop) {}
+    void report(double, const char*) override {}
+    bool cancel_requested() const override { return stop_.load() || user_.cancel_requested(); }
+
+private:
+    const Progress& user_;
+    const std::atomic<bool>& stop_;
+};
+
+/// One slice [lower, upper) of the spectrum, swept band by band upward from a first shift.
+/// The number of eigenvalues below either end is exact (inertia), so slices are independent
+/// problems and can run at once (spectrum slicing: Campos & Roman 2012, "Strategies for
+/// spectrum slicing based on restarted Lanczos methods"). Every band is verified by an
+/// eigenvalue count and missed eigenvalues (repeated ones, which Lanczos may find only once)
+/// are recovered by a deflated run; see the file comment of core/spectral.h. The slice
+/// without an upper end runs until k eigenvalues lie below its last cut.
+class Slice {
+public:
+    Slice(const Problem& p, const SpectralOptions& o, std::size_t k, std::size_t band,
+          Progress& progress, SpectralReport& report, double lower, std::size_t below_lower,
+          double first_sigma)
+        : p_(p),
+          o_(o),
+          k_(k),
+          band_(band),
+          progress_(progress),
+          report_(report),
+          tiny_(1e-12 * std::max(p.a_max, 1e-300)),
+          sigma_(first_sigma),
+          verified_(lower),
+          below_lower_(below_lower),
+          // Every band moves the shift up (checked below) and normally verifies about half a
+          // band of new eigenvalues; far more bands than k / band mean a spectrum this method
+          // cannot resolve, so the sweep is bounded instead of trusting it to end.
+          max_bands_(8 * ((k + band - 1) / band) + 16) {
+        ldlt_.analyzePattern(p.A);
+        counter_.analyzePattern(p.A);
+        acc.vectors.resize(p.n(),
+                           Eigen::Index(std::min<std::size_t>(k + band, std::size_t(p.n()))));
+    }
+    /// Ends the slice at `upper`, below which `below_upper` eigenvalues lie in all.
+    void set_upper(double upper, std::size_t below_upper) {
+        upper_ = upper;
+        below_upper_ = below_upper;
+    }
+    /// The eigenvalues found so far plus those below the slice.
+    std::size_t total() const { return below_lower_ + acc.size(); }
+    /// Progress also counts what `other` (a slice on another thread) found.
+    void count_progress_of(const Slice& other) { other_ = &other.found_; }
+    /// Runs one band; false once the slice is complete.
+    bool step();
+    void run() {
+        while (step()) {
+        }
+    }
+    /// The accepted eigenpairs: every eigenvalue in [lower, upper) (or up to the k-th), and
+    /// possibly some above.
+    Accepted acc;
+
+private:
+    double window(double lambda) const { return 1e-6 * std::abs(lambda) + tiny_; }
+    double fraction_done(std::size_t found_here) const {
+        const std::size_t other = other_ ? other_->load() : 0;
+        return std::min(1.0, double(found_here + other) / double(k_));
+    }
+    void repair(double tau, std::size_t expected, double lo_b);
+
+    const Problem& p_;
+    const SpectralOptions& o_;
+    std::size_t k_, band_;
+    Progress& progress_;
+    SpectralReport& report_;
+    Ldlt ldlt_, counter_;
+    double tiny_, sigma_;
+    double verified_;  ///< every eigenvalue in [lower, verified) has been accepted
+    std::size_t below_lower_;
+    double upper_ = std::numeric_limits<double>::infinity();
+    std::size_t below_upper_ = 0;
+    std::size_t max_bands_, bands_run_ = 0;
+    bool done_ = false;
+    std::atomic<std::size_t> found_{0};  ///< accepted eigenvalues, for the other thread
+    const std::atomic<std::size_t>* other_ = nullptr;
+};
+
+bool Slice::step() {
+    if (done_) return false;
+    const Eigen::Index n = p_.n(), m = Eigen::Index(band_);
+    progress_.check_cancelled();
+    if (++bands_run_ > max_bands_)
+        throw Error("spectrum: the band-by-band iteration did not reach " + std::to_string(k_) +
+                    " frequencies in " + std::to_string(max_bands_) +
+                    " bands (badly scaled or degenerate operator); ask for fewer "
+                    "frequencies (k), a larger band_size, or use the full method (meshes up "
+                    "to max_full_rows vertices)");
+    const double base = fraction_done(total());
+    const double span = std::min(1.0, double(band_) / double(k_));
+    Band b = shift_invert_band(p_, ldlt_, sigma_, m, o_, progress_, base, span, report_);
+    orthonormalize(b.vectors);
+    const double lo_b = b.values[0], hi_b = b.values[b.values.size() - 1];
+    const std::size_t before = acc.size();
+    for (Eigen::Index i = 0; i < b.values.size(); ++i) {
+        if (b.values[i] < verified_) {
+            ++acc.duplicates;
+            continue;
+        }
+        acc.add(b.values[i], b.vectors.col(i), window(b.values[i]), before);
+    }
+    if (acc.size() == 0)
+        throw Error("spectrum: a band around sigma = " + sci(sigma_) +
+                    " found no eigenvalue above " + sci(verified_) +
+                    " (badly scaled or degenerate operator); use the full method (meshes up to "
+                    "max_full_rows vertices)");
+    // A cut in the widest gap of the top fifth of this band (or, once k are there, between
+    // the k-th and the rest). A cut inside a cluster of (nearly) equal eigenvalues would
+    // make a count ambiguous: without a clear gap, cut just above the largest found value.
+    std::vector<double> sorted = acc.values;
+    std::sort(sorted.begin(), sorted.end());
+    const bool at_upper = std::isfinite(upper_) && (hi_b >= upper_ || sigma_ >= upper_);
+    const bool at_k = !std::isfinite(upper_) && (total() > k_ || (total() == k_ && band_ >= k_));
+    std::size_t from = at_k ? k_ - 1 - below_lower_ : before + 4 * (acc.size() - before) / 5;
+    from = std::min(from, sorted.size() - 1);
+    const double width_b = std::max(hi_b - lo_b, tiny_);
+    double cut = sorted.back() + 1e-3 * width_b + tiny_;
+    if (acc.size() > 1) {
+        const double mid = widest_gap_midpoint(sorted, from, sorted.size());
+        const auto above_mid = std::upper_bound(sorted.begin(), sorted.end(), mid);
+        if (above_mid != sorted.begin() && above_mid != sorted.end() &&
+            *above_mid - *(above_mid - 1) > 1e-3 * width_b)
+            cut = mid;
+    }
+    // Verify up to τ: at the slice's upper end, whose count is known; for the k-th the cut (one
+    // more factorization); otherwise the band's own shift, whose factorization counts the
+    // eigenvalues below it for free (the first band's negative shift has none below it).
+    double tau = sigma_;
+    std::size_t expected = below_lower_;
+    if (at_upper) {
+        tau = upper_;
+        expected = below_upper_;
+    } else if (at_k) {
+        tau = cut;
+        expected = count_below(p_, counter_, tau, report_);
+    } else if (sigma_ > 0) {
+        expected = std::size_t((ldlt_.vectorD().array() < 0.0).count());
+    }
+    if (expected < below_lower_)
+        throw Error("spectrum: the eigenvalue counts are inconsistent (" +
+                    std::to_string(expected) + " below " + sci(tau) + ", " +
+                    std::to_string(below_lower_) + " below " + sci(verified_) +
+                    "): a badly scaled or degenerate operator; use the full method");
+    expected -= below_lower_;
+    repair(tau, expected, lo_b);
+    const std::size_t found = acc.count_below(tau);
+    if (found != expected)
+        throw Error("spectrum: " + std::to_string(expected + below_lower_) +
+                    " eigenvalues lie below " + std::to_string(tau) + " but " +
+                    std::to_string(found + below_lower_) +
+                    " were found (repeated eigenvalues of a symmetric mesh that the Lanczos "
+                    "iteration missed); try another k, a smaller band_size, or the full method "
+                    "(meshes up to max_full_rows vertices)");
+    verified_ = tau;
+    progress_.report(std::min(1.0, double(below_lower_ + acc.count_below(cut)) / double(k_)),
+                     "Lanczos (shift-invert)");
+    if (at_upper || at_k || total() >= std::size_t(n)) {
+        done_ = true;
+        return false;
+    }
+    // The next band: centred 35% of this band's width above the cut, so that it overlaps
+    // this one; whatever still lies between them is found by the count at its shift. A band
+    // that is one cluster (a multiplicity as large as the band) can be narrow or lie wholly
+    // below σ: then (σ, σ + r) holds no eigenvalue (r: the band's radius around σ), and the
+    // shift moves past it; it always moves by a quarter of a typical band (band x the mean
+    // spacing), and never above the slice's end.
+    const double spacing =
+        (sorted.back() - sorted.front()) / double(std::max<std::size_t>(sorted.size() - 1, 1));
+    const double typical = std::max(double(band_) * spacing, tiny_);
+    double next = cut + 0.35 * width_b;
+    if (hi_b < sigma_) next = std::max(next, sigma_ + (sigma_ - lo_b) + 0.35 * typical);
+    next = std::min(std::max(next, sigma_ + 0.25 * typical), upper_);
+    if (!std::isfinite(next) || !(next > sigma_))
+        throw Error("spectrum: the shift of the next band does not move above sigma = " +
+                    std::to_string(sigma_) +
+                    " (badly scaled or degenerate operator); use the full method (meshes up "
+                    "to max_full_rows vertices)");
+    sigma_ = next;
+    return true;
+}
+
+/// Looks for the eigenvalues below τ that the band missed, with the accepted vectors near
+/// the band deflated, until `expected` lie in [lower, τ) (at most four runs).
+void Slice::repair(double tau, std::size_t expected, double lo_b) {
+    const Eigen::Index n = p_.n();
+    if (acc.count_below(tau) >= expected) return;
+    // The missing eigenvalues lie in [verified, τ), within R of σ. So do all eigenvalues
+    // that are not deflated but lie nearer σ (above τ, or below the slice): the deflated run
+    // must ask for all of them, or the missing ones stay beyond its reach. Two counts
+    // (factorizations) say how many there are.
+    const double radius =
+        std::max(tau - sigma_, std::isfinite(verified_) ? sigma_ - verified_ : 0.0);
+    const double window_lo = sigma_ - radius, window_hi = sigma_ + radius + window(sigma_ + radius);
+    const std::size_t in_window = count_below(p_, counter_, window_hi, report_) -
+                                  count_below(p_, counter_, window_lo, report_);
+    for (int attempt = 0; acc.count_below(tau) < expected && attempt < 4; ++attempt) {
+        progress_.check_cancelled();
+        std::vector<Eigen::Index> cols;
+        std::size_t deflated_in_window = 0;
+        for (std::size_t j = 0; j < acc.size(); ++j)
+            if (acc.values[j] >= std::min(lo_b, verified_) - window(lo_b)) {
+                cols.push_back(Eigen::Index(j));
+                if (acc.values[j] >= window_lo && acc.values[j] < window_hi) ++deflated_in_window;
+            }
+        Eigen::MatrixXd q(n, Eigen::Index(cols.size()));
+        for (std::size_t c = 0; c < cols.size(); ++c)
+            q.col(Eigen::Index(c)) = acc.vectors.col(cols[c]);
+        const std::size_t missing = expected - acc.count_below(tau);
+        const std::size_t wanted =
+            std::max(missing, in_window - std::min(in_window, deflated_in_window)) + 3;
+        // A repair recovers the few copies of repeated eigenvalues that a band missed; a
+        // Krylov space for many more (the inertia count of a spectrum of rounding noise
+        // said thousands) costs O(rows · ncv²) per restart, for up to max_iterations.
+        if (missing > 2 * band_ + 8 || wanted > 4 * band_ + 16)
+            throw Error("spectrum: " + std::to_string(expected + below_lower_) +
+                        " eigenvalues lie below " + sci(tau) + " but only " +
+                        std::to_string(expected - missing + below_lower_) +
+                        " were found, too many to recover (a badly scaled or degenerate "
+                        "operator); try a smaller band_size or the full method (meshes up "
+                        "to max_full_rows vertices)");
+        const Eigen::Index nev = std::min<Eigen::Index>(Eigen::Index(wanted), n - q.cols() - 1);
+        if (nev < 1) break;
+        const Eigen::Index ncv =
+            std::min<Eigen::Index>(n - q.cols(), std::max(2 * nev + 1, nev + 20));
+        if (ncv <= nev) break;
+        DeflatedOp op(
+            n,
+            [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+                y = x;
+                ldlt_solve_in_place(ldlt_, y.data());
+            },
+            q, progress_);
+        Spectra::SymEigsSolver<DeflatedOp> eigs(op, nev, ncv);
+        const Eigen::VectorXd v0 = start_vector(n, 1000 + std::uint64_t(attempt));
+        eigs.init(v0.data());
+        eigs.compute(Spectra::SortRule::LargestMagn, o_.max_iterations, o_.tolerance,
+                     Spectra::SortRule::LargestMagn);
+        report_.operations += op.operations;
+        report_.restarts += std::size_t(eigs.num_iterations());
+        ++report_.repairs;
+        if (eigs.info() != Spectra::CompInfo::Successful) break;
+        const Eigen::VectorXd mu = eigs.eigenvalues();
+        const Eigen::MatrixXd y = eigs.eigenvectors();
+        for (Eigen::Index i = 0; i < mu.size(); ++i) {
+            if (!(std::abs(mu[i]) > 0)) continue;
+            const double lambda = sigma_ + 1.0 / mu[i];
+            if (lambda < tau && lambda >= verified_)
+                acc.add(lambda, y.col(i) - q * (q.transpose() * y.col(i)), window(lambda));
+        }
+    }
+}
+
+/// Adds the eigenpairs of `acc` with λ below `upper` to `out` (λ, column of acc.vectors).
+void collect(const Accepted& acc, double upper,
+             std::vector<std::pair<double, const double*>>& out) {
+    for (std::size_t j = 0; j < acc.size(); ++j)
+        if (acc.values[j] < upper)
+            out.emplace_back(acc.values[j], acc.vectors.col(Eigen::Index(j)).data());
+}
+
+/// The number of threads for spectrum slicing: `requested`, or for 0 up to two when the
+/// machine has them.
+unsigned slice_threads(std::size_t requested) {
+    if (requested > 0) return unsigned(std::min<std::size_t>(requested, 2));
+    return std::thread::hardware_concurrency() >= 2 ? 2u : 1u;
+}
+
+/// The k smallest eigenpairs: a first band at a negative shift, then (with two threads and
+/// enough left to do) the rest of [0, λ_k] in two slices at once, split where Weyl's law
+/// (λ_i grows linearly with i on a surface) extrapolated from the first band puts the middle
+/// of the remaining eigenvalues; otherwise one sweep. Returns values (ascending) and y-space
+/// vectors.
 Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progress& progress,
               SpectralReport& report) {
     const Eigen::Index n = p.n();
@@ -415,162 +699,100 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
     const std::size_t auto_band = n > 20000 ? 30 : 40;
     std::size_t band = o.band_size ? o.band_size : (k <= 60 ? k + extra : auto_band);
     band = std::min<std::size_t>(band, std::size_t(n - 1));
-    const Eigen::Index m = Eigen::Index(band);
-    Ldlt ldlt, counter;
-    ldlt.analyzePattern(p.A);
-    counter.analyzePattern(p.A);
     report.solver =
         "Spectra shift-invert Lanczos + SimplicialLDLT (AMD-ordered rows), inertia-checked";
 
-    Accepted acc;
-    acc.vectors.resize(n, Eigen::Index(std::min<std::size_t>(k + band, std::size_t(n))));
-    const double tiny = 1e-12 * std::max(p.a_max, 1e-300);
-    const auto window = [&](double lambda) { return 1e-6 * std::abs(lambda) + tiny; };
-    double sigma = -1e-8 * std::max(p.a_max, 1e-300);
-    double verified = -std::numeric_limits<double>::infinity();  // all eigenvalues below: found
-    // Every band moves the shift up (checked below) and normally verifies about half a band of
-    // new eigenvalues; far more bands than k / band mean a spectrum this method cannot
-    // resolve, so the loop is bounded instead of trusting it to end.
-    const std::size_t max_bands = 8 * ((k + band - 1) / band) + 16;
-    std::size_t bands_run = 0;
-    while (true) {
-        progress.check_cancelled();
-        if (++bands_run > max_bands)
-            throw Error("spectrum: the band-by-band iteration did not reach " + std::to_string(k) +
-                        " frequencies in " + std::to_string(max_bands) +
-                        " bands (badly scaled or degenerate operator); ask for fewer "
-                        "frequencies (k), a larger band_size, or use the full method (meshes up "
-                        "to max_full_rows vertices)");
-        const double base = std::min(1.0, double(acc.size()) / double(k));
-        const double span = std::min(1.0, double(band) / double(k));
-        Band b = shift_invert_band(p, ldlt, sigma, m, o, progress, base, span, report);
-        orthonormalize(b.vectors);
-        const double lo_b = b.values[0], hi_b = b.values[b.values.size() - 1];
-        const std::size_t before = acc.size();
-        for (Eigen::Index i = 0; i < b.values.size(); ++i) {
-            if (b.values[i] < verified) {
-                ++acc.duplicates;
-                continue;
-            }
-            acc.add(b.values[i], b.vectors.col(i), window(b.values[i]), before);
-        }
-        // A cut in the widest gap of the top fifth of this band (or, once k are there, between
-        // the k-th and the rest). A cut inside a cluster of (nearly) equal eigenvalues would
-        // make a count ambiguous: without a clear gap, cut just above the largest found value.
-        std::vector<double> sorted = acc.values;
-        std::sort(sorted.begin(), sorted.end());
-        const bool last_band = acc.size() > k || (acc.size() == k && band >= k);
-        std::size_t from = last_band ? k - 1 : before + 4 * (acc.size() - before) / 5;
-        from = std::min(from, sorted.size() - 1);
-        const double width_b = std::max(hi_b - lo_b, tiny);
-        double cut = sorted.back() + 1e-3 * width_b + tiny;
-        if (acc.size() > 1) {
-            const double mid = widest_gap_midpoint(sorted, from, sorted.size());
-            const auto above_mid = std::upper_bound(sorted.begin(), sorted.end(), mid);
-            if (above_mid != sorted.begin() && above_mid != sorted.end() &&
-                *above_mid - *(above_mid - 1) > 1e-3 * width_b)
-                cut = mid;
-        }
-        // Verify up to τ: for the last band the cut (one more factorization); otherwise the
-        // band's own shift, whose factorization counts the eigenvalues below it for free (the
-        // first band's negative shift has none below it).
-        double tau = cut;
-        std::size_t expected = 0;
-        if (last_band) {
-            expected = count_below(p, counter, tau, report);
-        } else if (sigma > 0) {
-            tau = sigma;
-            expected = std::size_t((ldlt.vectorD().array() < 0.0).count());
-        } else {
-            tau = sigma;
-        }
-        for (int attempt = 0; acc.count_below(tau) < expected && attempt < 4; ++attempt) {
-            progress.check_cancelled();
-            // Deflate the accepted vectors near this band and look again around σ.
-            std::vector<Eigen::Index> cols;
-            for (std::size_t j = 0; j < acc.size(); ++j)
-                if (acc.values[j] >= std::min(lo_b, verified) - window(lo_b))
-                    cols.push_back(Eigen::Index(j));
-            Eigen::MatrixXd q(n, Eigen::Index(cols.size()));
-            for (std::size_t c = 0; c < cols.size(); ++c)
-                q.col(Eigen::Index(c)) = acc.vectors.col(cols[c]);
-            const std::size_t missing = expected - acc.count_below(tau);
-            // A repair recovers the few copies of repeated eigenvalues that a band missed; a
-            // Krylov space for many more (the inertia count of a spectrum of rounding noise
-            // said thousands) costs O(rows · ncv²) per restart, for up to max_iterations.
-            if (missing > 2 * band + 8)
-                throw Error("spectrum: " + std::to_string(expected) + " eigenvalues lie below " +
-                            sci(tau) + " but only " + std::to_string(expected - missing) +
-                            " were found, too many to recover (a badly scaled or degenerate "
-                            "operator); try a smaller band_size or the full method (meshes up "
-                            "to max_full_rows vertices)");
-            const Eigen::Index nev =
-                std::min<Eigen::Index>(Eigen::Index(missing + 3), n - q.cols() - 1);
-            if (nev < 1) break;
-            const Eigen::Index ncv =
-                std::min<Eigen::Index>(n - q.cols(), std::max(2 * nev + 1, nev + 20));
-            if (ncv <= nev) break;
-            DeflatedOp op(
-                n,
-                [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
-                    y = x;
-                    ldlt_solve_in_place(ldlt, y.data());
-                },
-                q, progress);
-            Spectra::SymEigsSolver<DeflatedOp> eigs(op, nev, ncv);
-            const Eigen::VectorXd v0 = start_vector(n, 1000 + std::uint64_t(attempt));
-            eigs.init(v0.data());
-            eigs.compute(Spectra::SortRule::LargestMagn, o.max_iterations, o.tolerance,
-                         Spectra::SortRule::LargestMagn);
-            report.operations += op.operations;
-            report.restarts += std::size_t(eigs.num_iterations());
-            ++report.repairs;
-            if (eigs.info() != Spectra::CompInfo::Successful) break;
-            const Eigen::VectorXd mu = eigs.eigenvalues();
-            const Eigen::MatrixXd y = eigs.eigenvectors();
-            for (Eigen::Index i = 0; i < mu.size(); ++i) {
-                if (!(std::abs(mu[i]) > 0)) continue;
-                const double lambda = sigma + 1.0 / mu[i];
-                if (lambda < tau && lambda >= verified)
-                    acc.add(lambda, y.col(i) - q * (q.transpose() * y.col(i)), window(lambda));
+    const double sigma0 = -1e-8 * std::max(p.a_max, 1e-300);
+    Slice first(p, o, k, band, progress, report, -std::numeric_limits<double>::infinity(), 0,
+                sigma0);
+    std::vector<std::pair<double, const double*>> found;
+    std::size_t duplicates = 0;
+    std::atomic<bool> stop{false};
+    WorkerProgress worker(progress, stop);
+    std::unique_ptr<Slice> second;
+    SpectralReport second_report;
+    double split = std::numeric_limits<double>::infinity();
+    if (first.step() && slice_threads(o.threads) >= 2 && k >= first.total() + 2 * band) {
+        // Weyl: λ_i ≈ hi · i / c_hi from the first band's largest value hi (c_hi found).
+        const double hi = *std::max_element(first.acc.values.begin(), first.acc.values.end());
+        const double c_hi = double(first.total());
+        const double target = 0.5 * (c_hi + double(k));
+        const double tau = hi * target / c_hi;
+        if (std::isfinite(tau) && tau > hi) {
+            Ldlt counter;
+            counter.analyzePattern(p.A);
+            const std::size_t below = count_below(p, counter, tau, report);
+            // Split only where the estimate left real work on both sides.
+            if (below >= first.total() + band / 2 && below + band / 2 <= k) {
+                split = tau;
+                first.set_upper(tau, below);
+                const double width = hi * double(band) / c_hi;
+                second = std::make_unique<Slice>(p, o, k, band, worker, second_report, tau, below,
+                                                 tau + 0.5 * width);
             }
         }
-        const std::size_t found = acc.count_below(tau);
-        if (found != expected)
-            throw Error("spectrum: " + std::to_string(expected) + " eigenvalues lie below " +
-                        std::to_string(tau) + " but " + std::to_string(found) +
-                        " were found (repeated eigenvalues of a symmetric mesh that the Lanczos "
-                        "iteration missed); try another k, a smaller band_size, or the full method "
-                        "(meshes up to max_full_rows vertices)");
-        verified = tau;
-        progress.report(std::min(1.0, double(acc.count_below(cut)) / double(k)),
-                        "Lanczos (shift-invert)");
-        if (last_band) break;
-        if (acc.size() >= std::size_t(n)) break;
-        // The next band: centred 35% of this band's width above the cut, so that it overlaps
-        // this one; whatever still lies between them is found by the count at its shift.
-        const double next = cut + 0.35 * width_b;
-        if (!std::isfinite(next) || !(next > sigma))
-            throw Error("spectrum: the shift of the next band does not move above sigma = " +
-                        std::to_string(sigma) +
-                        " (badly scaled or degenerate operator); use the full method (meshes up "
-                        "to max_full_rows vertices)");
-        sigma = next;
     }
-    report.duplicates_removed = acc.duplicates;
+    if (second) {
+        first.count_progress_of(*second);
+        std::exception_ptr worker_failure, main_failure;
+        std::thread thread([&] {
+            try {
+                second->run();
+            } catch (...) {
+                worker_failure = std::current_exception();
+            }
+        });
+        try {
+            first.run();
+        } catch (...) {
+            main_failure = std::current_exception();
+            stop = true;  // the worker throws Cancelled at its next check
+        }
+        thread.join();
+        if (main_failure || worker_failure) {
+            if (progress.cancel_requested()) throw Cancelled();
+            for (const std::exception_ptr& failure : {main_failure, worker_failure}) {
+                if (!failure) continue;
+                try {
+                    std::rethrow_exception(failure);
+                } catch (const Error&) {  // solver trouble (or the stop): handled below
+                }                         // anything else (std::bad_alloc) propagates
+            }
+            // A slice end that fell among close eigenvalues the estimate could not see, or a
+            // repair that needed vectors of the other slice: one sweep instead.
+            SpectralOptions one = o;
+            one.threads = 1;
+            return smallest(p, k, one, progress, report);
+        }
+    } else {
+        first.run();
+    }
+    collect(first.acc, split, found);
+    duplicates += first.acc.duplicates;
+    if (second) {
+        collect(second->acc, std::numeric_limits<double>::infinity(), found);
+        duplicates += second->acc.duplicates;
+        report.bands += second_report.bands;
+        report.factorizations += second_report.factorizations;
+        report.operations += second_report.operations;
+        report.restarts += second_report.restarts;
+        report.repairs += second_report.repairs;
+        report.factor_ms += second_report.factor_ms;
+        report.solve_ms += second_report.solve_ms;
+        report.slices = 2;
+    }
+    report.duplicates_removed = duplicates;
 
     // Sort ascending and keep the k smallest.
-    std::vector<std::size_t> order(acc.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(),
-              [&](std::size_t a, std::size_t c) { return acc.values[a] < acc.values[c]; });
-    const std::size_t keep = std::min(k, order.size());
+    std::stable_sort(found.begin(), found.end(),
+                     [](const auto& a, const auto& c) { return a.first < c.first; });
+    const std::size_t keep = std::min(k, found.size());
     Band out;
     out.values.resize(Eigen::Index(keep));
     out.vectors.resize(n, Eigen::Index(keep));
     for (std::size_t i = 0; i < keep; ++i) {
-        out.values[Eigen::Index(i)] = acc.values[order[i]];
-        out.vectors.col(Eigen::Index(i)) = acc.vectors.col(Eigen::Index(order[i]));
+        out.values[Eigen::Index(i)] = found[i].first;
+        out.vectors.col(Eigen::Index(i)) = Eigen::Map<const Eigen::VectorXd>(found[i].second, n);
     }
     if (keep < k) throw Error(not_converged(keep, k, "(band by band)"));
     // Ritz vectors of different bands are orthogonal only to (residual / gap): one Cholesky QR

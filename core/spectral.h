@@ -10,22 +10,33 @@
 // view; Vallet & Lévy 2008, "Spectral geometry processing with manifold harmonics"). With
 // y = S^½·x it is the standard problem A·y = λ·y, A = S^-½·K·S^-½ (exact: S is diagonal).
 //  - Partial, smallest k: shift-invert Lanczos (Lehoucq, Sorensen, Yang: ARPACK's implicitly
-//    restarted Lanczos, in Spectra 1.0 SymEigsShiftSolver) on (A - σI)⁻¹ = S^½ (K - σS)⁻¹ S^½
-//    with one sparse LDLᵀ (Eigen SimplicialLDLT, AMD ordering) of K - σS per shift. σ is
-//    strictly negative (-1e-8 x the largest diagonal of A), so K - σS is SPD even with several
-//    zero eigenvalues (disconnected meshes). More than `band_size` frequencies are computed
-//    band by band (Vallet & Lévy 2008): each band is the band_size eigenvalues nearest a shift
-//    (both sides); the next shift lies 35% of the band's width above a cut in the widest gap
-//    of the band's top fifth, so consecutive bands overlap; eigenvectors found twice are
+//    restarted Lanczos, in Spectra 1.0 SymEigsShiftSolver) on (A - σI)⁻¹ with one sparse LDLᵀ
+//    of A - σI per shift (Eigen SimplicialLDLT; the rows are numbered once in the approximate
+//    minimum degree order of K, so the factors need no permutation, and the solves run
+//    straight over the factor's arrays). A - σI = S^-½ (K - σS) S^-½ is congruent to K - σS.
+//    σ is first strictly negative (-1e-8 x the largest diagonal of A), so A - σI is SPD even
+//    with several zero eigenvalues (disconnected meshes). More than `band_size` frequencies
+//    are computed band by band (Vallet & Lévy 2008): each band is the band_size eigenvalues
+//    nearest a shift (both sides); the next shift lies 35% of the band's width above a cut in
+//    the widest gap of the band's top fifth, so consecutive bands overlap (and it moves past
+//    a band that is one cluster of repeated eigenvalues); eigenvectors found twice are
 //    de-duplicated by S-orthogonal projection against accepted ones of the same eigenvalue.
 //    Verification: Lanczos can miss copies of a repeated eigenvalue (symmetric meshes: a
 //    sphere's l(l+1) has multiplicity 2l+1), and bands could leave a gap. The number of
 //    eigenvalues below a shift τ is exact by Sylvester's law of inertia: the negative pivots
-//    of LDLᵀ(K - τS). Each band is checked at its own shift (its factorization gives the count
+//    of LDLᵀ(A - τI). Each band is checked at its own shift (its factorization gives the count
 //    for free), the last band at a cut above the k-th eigenvalue (one more factorization);
 //    missing ones are found by Lanczos runs with the accepted eigenvectors deflated, and a
 //    count that still differs throws. Each band's vectors are orthonormalized (Cholesky QR),
 //    and all k once at the end (O(rows · k²)).
+//    Spectrum slicing (Campos & Roman 2012): because the counts are exact, [0, λ_k] splits
+//    into slices that are independent problems. After the first band, Weyl's law (λ_i grows
+//    linearly in i on a surface) extrapolated from it places a split τ near the middle of the
+//    remaining eigenvalues, one factorization counts the eigenvalues below τ, and the two
+//    slices are swept band by band on two threads at once (`threads`; 0: two when the
+//    machine has two cores). Each slice is verified at its ends; should either fail (a split
+//    among close eigenvalues, a repair that needed the other slice's vectors), the whole
+//    range is swept once on one thread. The results do not depend on thread timing.
 //  - Partial, largest k: Lanczos on A itself (sparse products only), checked the same way.
 //  - Full: Eigen's dense SelfAdjointEigenSolver on A, refused above max_full_rows (default
 //    5,000) rows: O(n²) memory and O(n³) time.
@@ -54,7 +65,8 @@
 // Complexity: building the operator O(V + F); per shift one sparse factorization (for
 // surfaces about O(V^1.5)) and one pair of triangular solves per Lanczos step; the Lanczos
 // basis costs O(V·ncv²) per restart with ncv ≈ 2·band + 1, so O(V·k·band) in all; the final
-// orthonormalization O(V·k²). Memory O(V·k). Figures: README.md, Benchmarks.
+// orthonormalization O(V·k²). Memory O(V·k) (two slices: two factors and two Lanczos bases at
+// once). Figures: README.md, Benchmarks.
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -95,6 +107,8 @@ struct SpectralOptions {
     double tolerance = 1e-10;    ///< Lanczos relative tolerance on the Ritz values
     double krylov_factor = 2.0;  ///< Krylov space size (ncv) per wanted eigenpair, >= 1.2
     int max_iterations = 1000;   ///< Lanczos restarts per band
+    /// Smallest end: threads for spectrum slicing (1 or 2); 0: two when the machine has them.
+    std::size_t threads = 0;
 };
 
 /// What a decomposition computed and how.
@@ -106,10 +120,11 @@ struct SpectralReport {
     std::size_t restarts = 0;            ///< Lanczos restarts, all bands
     std::size_t duplicates_removed = 0;  ///< overlap eigenvectors dropped between bands
     std::size_t repairs = 0;  ///< deflated runs that looked for eigenvalues a band missed
+    std::size_t slices = 1;   ///< spectrum slices swept at once (threads)
     double max_residual = 0;  ///< max_k |K e_k - λ_k S e_k| / (|K|_inf |e_k|), relative
     double ms = 0;            ///< wall time
-    double factor_ms = 0;     ///< of which sparse factorizations
-    double solve_ms = 0;      ///< of which operator applications (solves, products)
+    double factor_ms = 0;     ///< sparse factorizations (summed over the slices' threads)
+    double solve_ms = 0;      ///< operator applications: solves, products (summed likewise)
     LaplacianDiagnostics diagnostics;
 };
 

@@ -22,7 +22,7 @@ namespace {
 
 constexpr const char* kSpectrumUsage =
     R"(usage: trilab-cli spectrum --operator OP --k K [--which smallest|largest] [--band LO:HI]
-                             [--full] [--mass M] [--fix-boundary] [--max-full N]
+                             [--full] [--mass M] [--fix-boundary] [--max-full N] [--threads T]
                              IN OUT [--eigenvalues FILE] [--json] [--ascii] [--big-endian]
 
 Decomposes the geometry of IN into the eigenvectors of a fairing Laplacian (K x = lambda S x,
@@ -44,6 +44,8 @@ options:
                       voronoi (lumped area mass matrices; with curvature-flow the eigenvalues
                       approximate the Laplace-Beltrami spectrum)
   --fix-boundary      boundary vertices fixed (Dirichlet); default free (Neumann)
+  --threads T         1 or 2: smallest end, two spectrum slices at once (default 2 when the
+                      machine has two cores; the results agree to the solver's tolerance)
   --eigenvalues FILE  write the K eigenvalues, one per line, ascending, non-negative
   --json              one JSON object: "ms", "k", "lo", "hi", "rows", "bands", "solver",
                       "max_residual", "eigenvalues", ...

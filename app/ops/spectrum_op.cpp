@@ -19,7 +19,7 @@ constexpr const char* kSpectrumUsage =
     "--which smallest|largest (default smallest), --band LO:HI (0 <= LO <= HI < K, default "
     "all), --full (dense, up to --max-full vertices), --max-full N (default 5000), "
     "--mass normalizer|barycentric|voronoi (default normalizer), --fix-boundary (Dirichlet; "
-    "default free)";
+    "default free), --threads 1|2 (spectrum slicing; default 2 when the machine has them)";
 
 constexpr std::uint64_t kMaxK = 10000000;
 
@@ -65,6 +65,8 @@ SpectrumOptions parse_spectrum(OptionReader& r) {
             o.spectral.mass = parse_mass_matrix(r.choice({"normalizer", "barycentric", "voronoi"}));
         } else if (r.is("--fix-boundary")) {
             o.spectral.fix_boundary = true;
+        } else if (r.is("--threads")) {
+            o.spectral.threads = std::size_t(r.whole_number(1, 2));
         } else {
             r.unknown();
         }
@@ -116,15 +118,17 @@ OperationResult run_spectrum(const SpectrumOptions& o, const HalfedgeMesh& mesh,
     if (o.spectral.fix_boundary) params += " --fix-boundary";
     if (o.spectral.max_full_rows != kDefaultMaxFullRows)
         params += " --max-full " + std::to_string(o.spectral.max_full_rows);
+    if (o.spectral.threads) params += " --threads " + std::to_string(o.spectral.threads);
     result.parameters = params;
     const SpectralReport& rep = d.report;
     char line[256];
     std::snprintf(line, sizeof line,
                   "%zu frequencies (%s, %s) of %zu vertices, band %zu:%zu, %.0f ms: %s, %zu "
-                  "band(s), %zu factorization(s), %zu operator applications, max residual %.1e",
+                  "band(s) in %zu slice(s), %zu factorization(s), %zu operator applications, "
+                  "max residual %.1e",
                   k, spectral_method_name(d.method), spectrum_end_name(d.end), d.rows(), lo, hi,
-                  rep.ms, rep.solver.c_str(), rep.bands, rep.factorizations, rep.operations,
-                  rep.max_residual);
+                  rep.ms, rep.solver.c_str(), rep.bands, rep.slices, rep.factorizations,
+                  rep.operations, rep.max_residual);
     result.report.push_back(line);
     if (rep.diagnostics.total() > 0)
         result.report.push_back(
@@ -137,6 +141,7 @@ OperationResult run_spectrum(const SpectrumOptions& o, const HalfedgeMesh& mesh,
                      {"hi", double(hi)},
                      {"rows", double(d.rows())},
                      {"bands", double(rep.bands)},
+                     {"slices", double(rep.slices)},
                      {"factorizations", double(rep.factorizations)},
                      {"operations", double(rep.operations)},
                      {"max_residual", rep.max_residual},

@@ -146,6 +146,15 @@ check "spectrum writes the band reconstruction and ascending non-negative eigenv
      $(declare -f json_has); json_has '$tmp/sp.json' k lo hi rows bands solver max_residual \
      eigenvalues ms && [ \$(wc -l < '$tmp/ev.txt') -eq 20 ] && sort -g -c '$tmp/ev.txt' && \
      ! grep -q '^-' '$tmp/ev.txt' && '$cli' info '$tmp/sp.obj' --json | grep -q '\"faces\": 2000'"
+check "spectrum --threads 1 and 2 give the same eigenvalues; --threads 3 is refused" bash -c \
+    "'$cli' spectrum --operator curvature-flow --k 120 --threads 1 '$tmp/d.obj' '$tmp/t1.obj' \
+     --eigenvalues '$tmp/t1.txt' --json | grep -q '\"slices\": 1' && \
+     '$cli' spectrum --operator curvature-flow --k 120 --threads 2 '$tmp/d.obj' '$tmp/t2.obj' \
+     --eigenvalues '$tmp/t2.txt' --json | grep -q '\"slices\": 2' && \
+     paste '$tmp/t1.txt' '$tmp/t2.txt' | awk '{d = \$1 - \$2; if (d < 0) d = -d; \
+     if (d > 1e-8 * (\$1 > 1 ? \$1 : 1)) bad = 1} END {exit bad || NR != 120}' && \
+     ! '$cli' spectrum --threads 3 '$tmp/d.obj' '$tmp/x.obj' 2> '$tmp/e' && \
+     grep -q -- '--threads' '$tmp/e' && [ ! -e '$tmp/x.obj' ]"
 check "spectrum --band 0:0 collapses the sphere onto its centroid" bash -c \
     "'$cli' spectrum --operator umbrella --k 5 --band 0:0 '$tmp/d.obj' '$tmp/sp0.obj' && \
      '$cli' info '$tmp/sp0.obj' --json | grep -o '\"area\": [^,]*' | awk '{exit !(\$2 < 1e-12)}'"

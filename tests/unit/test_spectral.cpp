@@ -2,6 +2,7 @@
 // band by band against one band, S-orthonormality, exact reconstruction, low-pass smoothing,
 // disconnected meshes, boundaries, isolated vertices, option errors and cancellation.
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -346,6 +347,66 @@ TEST_CASE("bad spectral options are refused with the option's name", "[spectral]
     CHECK_THROWS_AS(reconstruct(make_icosphere(2), d, 0, 4), InvalidArgument);
     CHECK_THROWS_AS(decompose(HalfedgeMesh(), options(LaplacianOperator::Umbrella, 1)),
                     InvalidArgument);
+}
+
+TEST_CASE("spectrum slicing on two threads gives the frequencies of one sweep", "[spectral]") {
+    struct Case {
+        const char* name;
+        HalfedgeMesh mesh;
+        std::size_t k, band;
+        std::size_t compare;  // leading frequencies whose span must agree (whole clusters)
+    };
+    const Case cases[] = {{"icosphere (exact multiplicities)", make_icosphere(8), 90, 20, 81},
+                          {"noisy sphere", make_noisy_sphere(12, 0.03, 5), 70, 15, 69}};
+    for (const Case& c : cases) {
+        INFO(c.name);
+        SpectralOptions o = options(LaplacianOperator::CurvatureFlow, c.k);
+        o.mass = MassMatrix::Voronoi;
+        o.band_size = c.band;
+        o.threads = 1;
+        const SpectralDecomposition one = decompose(c.mesh, o);
+        o.threads = 2;
+        const SpectralDecomposition two = decompose(c.mesh, o);
+        CHECK(one.report.slices == 1);
+        CHECK(two.report.slices == 2);
+        REQUIRE(two.size() == c.k);
+        INFO("one sweep: " << one.eigenvalues.transpose()
+                           << "\ntwo slices: " << two.eigenvalues.transpose());
+        for (Eigen::Index j = 0; j < Eigen::Index(c.k); ++j)
+            CHECK(std::abs(two.eigenvalues[j] - one.eigenvalues[j]) <=
+                  1e-8 * std::max(1.0, one.eigenvalues[j]));
+        CHECK(s_orthonormality_error(two) < 1e-8);
+        CHECK(two.report.max_residual < 1e-8);
+        CHECK(subspace_gap(two.eigenvectors.leftCols(Eigen::Index(c.compare)), one.eigenvectors,
+                           one.S) < 1e-8);
+    }
+}
+
+namespace {
+
+/// Cancels after a number of reports; asked from both slicing threads, so atomic.
+class AtomicCancelAfter final : public Progress {
+public:
+    explicit AtomicCancelAfter(int reports) : left_(reports) {}
+    void report(double, const char*) override { --left_; }
+    bool cancel_requested() const override { return left_.load() <= 0; }
+
+private:
+    std::atomic<int> left_;
+};
+
+}  // namespace
+
+TEST_CASE("a sliced decomposition stops both threads when cancelled", "[spectral]") {
+    const HalfedgeMesh mesh = make_icosphere(8);
+    SpectralOptions o = options(LaplacianOperator::CurvatureFlow, 90);
+    o.band_size = 20;
+    o.threads = 2;
+    for (int reports : {2, 6, 12, 20}) {
+        INFO("cancelled after " << reports << " progress reports");
+        AtomicCancelAfter cancel(reports);
+        CHECK_THROWS_AS(decompose(mesh, o, cancel), Cancelled);
+    }
 }
 
 TEST_CASE("a decomposition can be cancelled and is deterministic", "[spectral]") {
