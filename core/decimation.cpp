@@ -6,7 +6,8 @@
 //   big meshes: batch passes (the cheapest edges of the moment, in memory order) down to
 //               max(50,000, 4 target) vertices
 //   fill the heap; while V > target and the heap is not empty:
-//     pop (cost, e); skip if e is dead or its cost changed since (a stale entry)
+//     pop the cheapest edge e (an addressable heap: re-pricing an edge moves its key, a
+//     deleted edge leaves it, so every key popped is live and current)
 //     refuse if: a locked end (independent set), error above max_error, the link condition,
 //                a face normal turning too far, a triangle less round than allowed, a seam
 //                vertex
@@ -22,6 +23,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "core/errors.h"
@@ -68,17 +70,130 @@ double normalized_roundness(const Point& a, const Point& b, const Point& c) {
 
 namespace {
 
-// A heap entry is valid while its cost equals the edge's current cost (lazy invalidation:
-// re-pricing an edge pushes a new entry and leaves the old one to be skipped). 8 bytes.
-struct HeapEntry {
+// Priority of an edge: its cost, then its index, packed into one integer key so that
+// comparisons are single integer compares (the float's bits mapped to an order-preserving
+// unsigned integer in the upper half, the edge index in the lower half).
+using EdgeKey = std::uint64_t;
+
+EdgeKey edge_key(float cost, std::uint32_t edge) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &cost, sizeof bits);
+    bits = (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u);
+    return (EdgeKey(bits) << 32) | edge;
+}
+float key_cost(EdgeKey k) {
+    std::uint32_t bits = std::uint32_t(k >> 32);
+    bits = (bits & 0x80000000u) ? (bits & 0x7fffffffu) : ~bits;
     float cost;
-    std::uint32_t edge;
-};
-struct HeapOrder {
-    // std::push_heap builds a max-heap; "greater" makes the cheapest entry the top.
-    bool operator()(const HeapEntry& a, const HeapEntry& b) const {
-        return a.cost > b.cost || (a.cost == b.cost && a.edge > b.edge);
+    std::memcpy(&cost, &bits, sizeof cost);
+    return cost;
+}
+std::uint32_t key_edge(EdgeKey k) {
+    return std::uint32_t(k);
+}
+// Radix buckets of keys for the batch selection: their top bits (sign, exponent and the
+// first mantissa bits of the cost), so bucket order is key order.
+constexpr unsigned kBucketBits = 16;
+std::size_t bucket(EdgeKey k) {
+    return std::size_t(k >> (64 - kBucketBits));
+}
+
+// Where an edge's key is in the EdgeHeap, kept in the edge's slot of the per-edge costs.
+constexpr std::uint32_t kNotInHeap = std::numeric_limits<std::uint32_t>::max();
+
+// An addressable 4-ary min-heap of edge keys (the cheapest edge on top). Every edge is in it
+// at most once, at its current cost: re-pricing moves its key, deleting the edge removes it,
+// so nothing stale is ever popped. Slot must have a `heap_pos` member: the heap records each
+// key's position there. Four children per node: half the depth of a binary heap, and the
+// children of a node lie side by side in memory.
+template <class Slot>
+class EdgeHeap {
+public:
+    explicit EdgeHeap(std::vector<Slot>& slots) : slots_(slots) {}
+    bool empty() const { return a_.empty(); }
+    bool contains(std::uint32_t edge) const { return slots_[edge].heap_pos != kNotInHeap; }
+    /// Removes every key.
+    void clear() {
+        for (EdgeKey k : a_) slots_[key_edge(k)].heap_pos = kNotInHeap;
+        a_.clear();
     }
+    void reserve(std::size_t n) { a_.reserve(n); }
+    /// Adds a key without restoring the heap order (call make_heap() after the last one).
+    void append(EdgeKey k) {
+        slots_[key_edge(k)].heap_pos = std::uint32_t(a_.size());
+        a_.push_back(k);
+    }
+    void make_heap() {
+        for (std::size_t i = a_.size() / 4 + 1; i-- > 0;)
+            if (i < a_.size()) sift_down(i, a_[i]);
+    }
+    void push(EdgeKey k) {
+        a_.push_back(k);
+        sift_up(a_.size() - 1, k);
+    }
+    /// Removes and returns the smallest key; the heap must not be empty.
+    EdgeKey pop() {
+        const EdgeKey top = a_[0];
+        slots_[key_edge(top)].heap_pos = kNotInHeap;
+        const EdgeKey last = a_.back();
+        a_.pop_back();
+        if (!a_.empty()) sift_down(0, last);
+        return top;
+    }
+    /// Gives an edge in the heap a new key (same edge).
+    void update(EdgeKey k) {
+        const std::size_t i = slots_[key_edge(k)].heap_pos;
+        if (k < a_[i])
+            sift_up(i, k);
+        else
+            sift_down(i, k);
+    }
+    /// Removes an edge that is in the heap.
+    void remove(std::uint32_t edge) {
+        const std::size_t i = slots_[edge].heap_pos;
+        slots_[edge].heap_pos = kNotInHeap;
+        const EdgeKey old = a_[i], last = a_.back();
+        a_.pop_back();
+        if (i == a_.size()) return;  // it was the last one
+        if (last < old)
+            sift_up(i, last);
+        else
+            sift_down(i, last);
+    }
+
+private:
+    void place(std::size_t i, EdgeKey k) {
+        a_[i] = k;
+        slots_[key_edge(k)].heap_pos = std::uint32_t(i);
+    }
+    // Places k at node i or above it.
+    void sift_up(std::size_t i, EdgeKey k) {
+        while (i > 0) {
+            const std::size_t parent = (i - 1) / 4;
+            if (!(k < a_[parent])) break;
+            place(i, a_[parent]);
+            i = parent;
+        }
+        place(i, k);
+    }
+    // Places k at node i or below it.
+    void sift_down(std::size_t i, EdgeKey k) {
+        const std::size_t n = a_.size();
+        for (;;) {
+            const std::size_t first = 4 * i + 1;
+            if (first >= n) break;
+            std::size_t best = first;
+            const std::size_t end = std::min(first + 4, n);
+            for (std::size_t c = first + 1; c < end; ++c)
+                if (a_[c] < a_[best]) best = c;
+            if (!(a_[best] < k)) break;
+            place(i, a_[best]);
+            i = best;
+        }
+        place(i, k);
+    }
+    std::vector<Slot>& slots_;
+    std::vector<EdgeKey> a_;
 };
 
 // Meshes with more vertices than this are first decimated in batches (below), down to
@@ -93,16 +208,21 @@ constexpr double kMaxPlacementDistance = 3.0;
 
 constexpr float kNoCollapse = std::numeric_limits<float>::max();
 
+// How many edges ahead the loops over edges ask the cache for their vertices' data.
+constexpr std::size_t kPrefetchAhead = 8;
+
 // The best collapse of an edge: cost, placement, direction (halfedge(e, dir)'s from-vertex
-// goes). Only cost and direction are stored per edge (EdgeCost, 8 bytes).
+// goes). Only the cost is stored per edge (EdgeCost, 8 bytes); the rest is recomputed when the
+// edge comes up.
 struct EdgeChoice {
     double cost = 0;
     Point target = Point::Zero();
     std::uint8_t dir = 0;
 };
+// Per edge: its current cost, and where its key is in the heap (the exact phase).
 struct EdgeCost {
     float cost = kNoCollapse;
-    std::uint8_t dir = 0;
+    std::uint32_t heap_pos = kNotInHeap;
 };
 
 enum class Refusal { None, Topology, NormalFlip, Roundness, IndependentSet, MaxError, Seam };
@@ -123,7 +243,11 @@ public:
         vuv_ = m_.get_vertex_property<TexCoord>("v:texcoord");
         huv_ = m_.get_halfedge_property<TexCoord>("h:texcoord");
         init_quadrics();
-        for (Edge e : m_.edges()) price(e);
+        const Index n_edges = Index(m_.edges_size());
+        for (Index i = 0; i < n_edges; ++i) {
+            if (i + kPrefetchAhead < n_edges) prefetch(Edge(i + kPrefetchAhead));
+            if (!m_.is_deleted(Edge(i))) price(Edge(i));
+        }
     }
 
     /// Runs one iteration down to `target` vertices; returns whether it got there, and
@@ -156,11 +280,8 @@ public:
             std::size_t collapses_this_round = 0;
             constraint_refusals = 0;
             while (!heap_.empty() && m_.n_vertices() > target) {
-                std::pop_heap(heap_.begin(), heap_.end(), HeapOrder());
-                const HeapEntry top = heap_.back();
-                heap_.pop_back();
-                const Edge e(top.edge);
-                if (m_.is_deleted(e) || edge_[e.idx()].cost != top.cost) continue;
+                // The cheapest live edge, at its current cost.
+                const Edge e(key_edge(heap_.pop()));
                 EdgeChoice choice;  // as priced: nothing around e changed since
                 if (!evaluate(e, choice)) continue;
                 const Halfedge h = HalfedgeMesh::halfedge(e, choice.dir);
@@ -168,7 +289,6 @@ public:
                 if (o_.cost == DecimationCost::Quadric && choice.cost > max_error2_) {
                     ++report_.refused_max_error;
                     hit_max_error = true;
-                    heap_.clear();
                     break;
                 }
                 const Refusal r = check(h, p);
@@ -181,6 +301,8 @@ public:
                 ++collapses_this_round;
                 report_progress();
             }
+            heap_.clear();
+            heap_active_ = false;
             if (hit_max_error || m_.n_vertices() <= target) break;
             // The heap ran dry: refill once more only if this round changed something (a
             // refused collapse may have become legal) and locks do not forbid it anyway.
@@ -242,10 +364,12 @@ private:
 
     void fill_heap() {
         heap_.clear();
-        heap_.reserve(2 * m_.n_edges());
+        heap_.reserve(m_.n_edges());
         for (Edge e : m_.edges())
-            if (edge_[e.idx()].cost < kNoCollapse) heap_.push_back({edge_[e.idx()].cost, e.idx()});
-        std::make_heap(heap_.begin(), heap_.end(), HeapOrder());
+            if (edge_[e.idx()].cost < kNoCollapse)
+                heap_.append(edge_key(edge_[e.idx()].cost, e.idx()));
+        heap_.make_heap();
+        heap_active_ = true;
     }
 
     // One batch pass (see iterate()); returns the number of collapses.
@@ -253,26 +377,48 @@ private:
     std::size_t batch_pass(std::size_t floor, bool& hit_max_error, const Report& report) {
         ++pass_;
         const std::size_t surplus = m_.n_vertices() - floor;
-        batch_.clear();
-        for (Edge e : m_.edges())
-            if (edge_[e.idx()].cost < kNoCollapse) batch_.push_back({edge_[e.idx()].cost, e.idx()});
+        // Selection by radix: a histogram of the keys' top bits finds the bucket of the
+        // budget-th cheapest edge, nth_element finds it among that bucket's keys alone.
+        bucket_count_.assign(std::size_t(1) << kBucketBits, 0);
+        std::size_t candidates = 0;
+        for (Edge e : m_.edges()) {
+            const float cost = edge_[e.idx()].cost;
+            if (cost < kNoCollapse) {
+                ++bucket_count_[bucket(edge_key(cost, e.idx()))];
+                ++candidates;
+            }
+        }
         // At most half of the vertices per pass.
         const std::size_t budget =
-            std::min({surplus, batch_.size(), std::max<std::size_t>(1, m_.n_vertices() / 2)});
+            std::min({surplus, candidates, std::max<std::size_t>(1, m_.n_vertices() / 2)});
         if (budget == 0) return 0;
-        const auto by_cost = [](const HeapEntry& a, const HeapEntry& b) {
-            return a.cost < b.cost || (a.cost == b.cost && a.edge < b.edge);
-        };
-        std::nth_element(batch_.begin(), batch_.begin() + (budget - 1), batch_.end(), by_cost);
-        batch_.resize(budget);
+        std::size_t below = 0, b = 0;  // keys in the buckets before b
+        while (below + bucket_count_[b] < budget) below += bucket_count_[b++];
+        batch_.clear();
+        for (Edge e : m_.edges()) {
+            const float cost = edge_[e.idx()].cost;
+            if (cost < kNoCollapse && bucket(edge_key(cost, e.idx())) == b)
+                batch_.push_back(edge_key(cost, e.idx()));
+        }
+        const auto nth = batch_.begin() + std::ptrdiff_t(budget - 1 - below);
+        std::nth_element(batch_.begin(), nth, batch_.end());
+        const EdgeKey threshold = *nth;
         // All of them are below the pass's threshold: take them in memory order (far fewer
-        // cache misses than cost order, the same quality in the benchmark).
-        std::sort(batch_.begin(), batch_.end(),
-                  [](const HeapEntry& a, const HeapEntry& b) { return a.edge < b.edge; });
+        // cache misses than cost order, the same quality in the benchmark). A last scan
+        // lists them in that order (cheaper than sorting them).
+        batch_.clear();
+        for (Edge e : m_.edges()) {
+            const float cost = edge_[e.idx()].cost;
+            if (cost < kNoCollapse && edge_key(cost, e.idx()) <= threshold)
+                batch_.push_back(edge_key(cost, e.idx()));
+        }
         std::size_t done = 0;
-        for (const HeapEntry& c : batch_) {
-            const Edge e(c.edge);
-            if (m_.is_deleted(e) || edge_[e.idx()].cost != c.cost) continue;
+        for (std::size_t i = 0; i < batch_.size(); ++i) {
+            if (i + kPrefetchAhead < batch_.size())
+                prefetch(Edge(key_edge(batch_[i + kPrefetchAhead])));
+            const EdgeKey k = batch_[i];
+            const Edge e(key_edge(k));
+            if (edge_[e.idx()].cost != key_cost(k) || m_.is_deleted(e)) continue;
             EdgeChoice choice;
             if (!evaluate(e, choice)) continue;
             const Halfedge h = HalfedgeMesh::halfedge(e, choice.dir);
@@ -296,6 +442,23 @@ private:
     }
 
     // ---- pricing ----------------------------------------------------------------------------
+    // Asks the cache for what pricing e reads about its two vertices: positions, quadrics
+    // (two cache lines each), boundary flags. No effect where unsupported.
+    void prefetch(Edge e) const {
+#if defined(__GNUC__)
+        for (unsigned i = 0; i < 2; ++i) {
+            const Vertex v = m_.to_vertex(HalfedgeMesh::halfedge(e, i));
+            __builtin_prefetch(&m_.position(v));
+            const char* q = reinterpret_cast<const char*>(&quadric_[v.idx()]);
+            __builtin_prefetch(q);
+            __builtin_prefetch(q + sizeof(Quadric) - 1);
+            __builtin_prefetch(&boundary_[v.idx()]);
+        }
+#else
+        (void)e;
+#endif
+    }
+
     // Whether v's corners carry more than one per-corner texture coordinate.
     bool on_seam(Vertex v) const {
         if (!huv_) return false;
@@ -410,21 +573,25 @@ private:
         return true;
     }
 
-    // Prices edge e: stores its cost and direction (the placement is recomputed when the
-    // edge comes up, which keeps this array at 8 bytes an edge) and pushes it when the heap
-    // is in use; cost kNoCollapse when no direction is allowed.
+    // Prices edge e: stores its cost (direction and placement are recomputed when the edge
+    // comes up, which keeps this array at 8 bytes an edge) and, when the heap is in use,
+    // moves its key there; cost kNoCollapse (out of the heap) when no direction is allowed.
     void price(Edge e) {
         EdgeChoice c;
+        EdgeCost& ec = edge_[e.idx()];
         if (!evaluate(e, c)) {
-            edge_[e.idx()].cost = kNoCollapse;
+            ec.cost = kNoCollapse;
+            if (heap_active_ && heap_.contains(e.idx())) heap_.remove(e.idx());
             return;
         }
-        const float cost = float(c.cost);
-        edge_[e.idx()] = EdgeCost{cost, c.dir};
-        if (!heap_.empty()) {
-            heap_.push_back(HeapEntry{cost, e.idx()});
-            std::push_heap(heap_.begin(), heap_.end(), HeapOrder());
-        }
+        // +0.0f turns a -0 into +0 (the heap key orders the two apart).
+        const float cost = float(c.cost) + 0.0f;
+        ec.cost = cost;
+        if (!heap_active_) return;
+        if (heap_.contains(e.idx()))
+            heap_.update(edge_key(cost, e.idx()));
+        else
+            heap_.push(edge_key(cost, e.idx()));
     }
 
     // ---- legality ---------------------------------------------------------------------------
@@ -495,6 +662,12 @@ private:
     }
 
     // ---- the collapse -----------------------------------------------------------------------
+    // An edge about to be deleted: no cost, out of the heap.
+    void forget(Edge e) {
+        if (heap_.contains(e.idx())) heap_.remove(e.idx());
+        edge_[e.idx()].cost = kNoCollapse;
+    }
+
     void collapse(Halfedge h, const Point& p) {
         const Halfedge o = HalfedgeMesh::twin(h);
         const Vertex v0 = m_.from_vertex(h), v1 = m_.to_vertex(h);
@@ -559,6 +732,10 @@ private:
         const TexCoord survivor0_uv =
             huv_ && f0.is_valid() ? huv_[HalfedgeMesh::twin(m_.next(h))] : TexCoord::Zero();
 
+        // The edges the collapse deletes: h's, and one more per face at it (remove_loop).
+        forget(HalfedgeMesh::edge(h));
+        if (f0.is_valid()) forget(HalfedgeMesh::edge(m_.next(h)));
+        if (f1.is_valid()) forget(HalfedgeMesh::edge(m_.next(o)));
         m_.collapse_unchecked(h);  // check() ran is_collapse_ok(h)
         if (pinned_corners) {
             if (survivor0.is_valid() && !m_.is_deleted(survivor0)) huv_[survivor0] = survivor0_uv;
@@ -573,14 +750,16 @@ private:
         const Halfedge start = m_.halfedge(v1);
         if (!start.is_valid()) return;
         Halfedge g = start;
-        do {
-            if (huv_ && !pinned_corners) {
-                const Halfedge in = HalfedgeMesh::twin(g);
-                if (!m_.is_boundary(in)) huv_[in] = corner_uv;
-            }
-            if (o_.independent_set) locked_[m_.to_vertex(g).idx()] = iteration_;
-            g = m_.ccw_rotated(g);
-        } while (g != start);
+        if ((huv_ && !pinned_corners) || o_.independent_set) {
+            do {
+                if (huv_ && !pinned_corners) {
+                    const Halfedge in = HalfedgeMesh::twin(g);
+                    if (!m_.is_boundary(in)) huv_[in] = corner_uv;
+                }
+                if (o_.independent_set) locked_[m_.to_vertex(g).idx()] = iteration_;
+                g = m_.ccw_rotated(g);
+            } while (g != start);
+        }
         if (o_.independent_set) locked_[v1.idx()] = iteration_;
 
         // Re-price: the edges at v1 (and, for roundness, at its neighbours, whose faces
@@ -609,13 +788,15 @@ private:
     DecimationReport& report_;
     double cos_max_angle_ = 0, max_error2_ = 0;
     std::vector<Quadric> quadric_;
-    std::vector<EdgeCost> edge_;          ///< per edge: cost and direction of its best collapse
+    std::vector<EdgeCost> edge_;          ///< per edge: cost of its best collapse, heap position
     std::vector<std::uint8_t> boundary_;  ///< per vertex; v1 inherits v0's on collapse
-    std::vector<HeapEntry> batch_;
+    std::vector<EdgeKey> batch_;
+    std::vector<std::uint32_t> bucket_count_;  ///< batch selection: keys per bucket
     std::uint32_t pass_ = 0;
     std::vector<std::uint32_t> locked_;
     std::vector<Vertex> parent_;
-    std::vector<HeapEntry> heap_;
+    EdgeHeap<EdgeCost> heap_{edge_};
+    bool heap_active_ = false;  ///< the exact phase: re-priced edges go into the heap
     VertexProperty<TexCoord> vuv_;
     HalfedgeProperty<TexCoord> huv_;
     std::uint32_t iteration_ = 0;

@@ -82,6 +82,9 @@ void HalfedgeMesh::collapse_unchecked(Halfedge h) {
     const Vertex v0 = from_vertex(h), v1 = to_vertex(h);
     const Halfedge hn = next(h), hp = prev(h), on = next(o), op = prev(o);
     const Face fh = face(h), fo = face(o);
+    // v1 ends on the boundary exactly when one of the two ends was on it; only then can its
+    // outgoing halfedge need adjusting (the ring walks are the costly part of a collapse).
+    const bool boundary = is_boundary(v0) || is_boundary(v1);
 
     // Every halfedge that pointed to v0 now points to v1.
     for (Halfedge x : halfedges_around(v0)) set_to_vertex(twin(x), v1);
@@ -92,7 +95,7 @@ void HalfedgeMesh::collapse_unchecked(Halfedge h) {
     if (fh.is_valid()) set_halfedge(fh, hn);
     if (fo.is_valid()) set_halfedge(fo, on);
     if (halfedge(v1) == o) set_halfedge(v1, hn);
-    adjust_outgoing_halfedge(v1);
+    if (boundary) adjust_outgoing_halfedge(v1);
 
     mark_deleted(v0);
     mark_deleted(edge(h));
@@ -108,14 +111,17 @@ void HalfedgeMesh::remove_loop(Halfedge h0) {
     const Halfedge h1 = next(h0), o0 = twin(h0), o1 = twin(h1);
     const Vertex v0 = to_vertex(h0), v1 = to_vertex(h1);
     const Face fh = face(h0), fo = face(o0);
+    // Removing the loop changes neither vertex's boundary status (halfedge(v) is up to date
+    // here): an interior vertex needs no search for a boundary halfedge.
+    const bool boundary0 = is_boundary(v0), boundary1 = is_boundary(v1);
 
     set_next(prev(o0), h1);
     set_next(h1, next(o0));
     set_face(h1, fo);
     set_halfedge(v0, h1);
-    adjust_outgoing_halfedge(v0);
+    if (boundary0) adjust_outgoing_halfedge(v0);
     set_halfedge(v1, o1);
-    adjust_outgoing_halfedge(v1);
+    if (boundary1) adjust_outgoing_halfedge(v1);
     if (fo.is_valid() && halfedge(fo) == o0) set_halfedge(fo, h1);
 
     mark_deleted(fh);

@@ -3,6 +3,7 @@
 // policies) and meshoptimizer (meshopt_simplify), in the same run, on the same meshes.
 //
 //   trilab_decimation_bench [--runs N] [--peer-runs N] [--samples N] [--quick] [--check]
+//                           [--speed-only]
 //
 // Speed: the shared bunny and the bunny Loop-subdivided twice (~556k vertices, 1.1M faces;
 // a 1M-face torus when the bunny is absent), down to 10 % and 1 % of the vertices: median
@@ -18,7 +19,8 @@
 // Floors (issue 8): the 1.1M-face mesh to 1 % in under 2000 ms; Hausdorff at most 1.1x
 // CGAL's at the same vertex count on bunny, horse and fandisk at 10 % and 1 %; never a
 // non-manifold output. --check exits non-zero when a floor is missed; --quick runs only the
-// bunny at 10 % without peers (a smoke test).
+// bunny at 10 % without peers (a smoke test); --speed-only runs the speed cases for trilab
+// alone, without peers, distances or the quality table (quick before/after timings).
 //
 // Options used for trilab: the defaults of DecimationOptions (quadric, normal flip 90 deg).
 #include <algorithm>
@@ -54,7 +56,7 @@ constexpr double kQualityFloor = 1.1;
 struct Config {
     int runs = 3, peer_runs = 1;
     std::size_t samples = 200000;
-    bool quick = false, check = false;
+    bool quick = false, check = false, speed_only = false;
 };
 
 double median(std::vector<double> v) {
@@ -242,10 +244,12 @@ int main(int argc, char** argv) {
             c.quick = true;
         else if (a == "--check")
             c.check = true;
+        else if (a == "--speed-only")
+            c.speed_only = true;
         else {
             std::fprintf(stderr,
                          "usage: trilab_decimation_bench [--runs N] [--peer-runs N] "
-                         "[--samples N] [--quick] [--check]\n");
+                         "[--samples N] [--quick] [--check] [--speed-only]\n");
             return 2;
         }
     }
@@ -289,11 +293,13 @@ int main(int argc, char** argv) {
             const std::size_t target = std::size_t(fraction * double(s.mesh->n_vertices()));
             std::printf("  %s: %zu V, %zu F -> %zu V (%g %%)\n", s.name, s.mesh->n_vertices(),
                         s.mesh->n_faces(), target, 100 * fraction);
-            const bool quality = s.mesh == &big;  // small meshes: see the quality table
+            // Small meshes: see the quality table.
+            const bool quality = s.mesh == &big && !c.speed_only;
             const Outcome t = trilab_outcome(*s.mesh, target, c, c.runs, quality);
             print_row("trilab", t, quality);
             if (!t.manifold) missed = true;
             for (Peer p : {Peer::OpenMesh, Peer::Cgal, Peer::Meshopt}) {
+                if (c.speed_only) break;
                 const Outcome o = peer_outcome(p, *s.mesh, soup, target, c, quality);
                 print_row(peer_name(p), o, quality);
                 if (o.ran)
@@ -314,6 +320,10 @@ int main(int argc, char** argv) {
         floor_cpu_ms, floor_ms, kTimeFloorMs, floor_cpu_ms < kTimeFloorMs ? "met" : "MISSED",
         floor_cpu_ms / kTimeFloorMs);
     if (floor_cpu_ms >= kTimeFloorMs) missed = true;
+    if (c.speed_only) {
+        std::printf("\n%s\n", missed ? "some floors MISSED" : "all floors met");
+        return c.check && missed ? 1 : 0;
+    }
 
     // ---- quality -----------------------------------------------------------------------------
     std::printf(
