@@ -345,6 +345,30 @@ private:
     mutable Eigen::VectorXd a_, b_;
 };
 
+/// One repair run: the `nev` eigenpairs of the symmetric operator `apply` with the columns of
+/// q deflated, the largest by `rule` (a Krylov space of max(2·nev + 1, nev + 20)). Returns
+/// false when there is no room for it or it did not converge.
+bool deflated_eigenpairs(Eigen::Index n, DeflatedOp::Apply apply, const Eigen::MatrixXd& q,
+                         Eigen::Index nev, Spectra::SortRule rule, int attempt,
+                         const SpectralOptions& o, Progress& progress, SpectralReport& report,
+                         Eigen::VectorXd& values, Eigen::MatrixXd& vectors) {
+    nev = std::min<Eigen::Index>(nev, n - q.cols() - 1);
+    const Eigen::Index ncv = std::min<Eigen::Index>(n - q.cols(), std::max(2 * nev + 1, nev + 20));
+    if (nev < 1 || ncv <= nev) return false;
+    DeflatedOp op(n, std::move(apply), q, progress);
+    Spectra::SymEigsSolver<DeflatedOp> eigs(op, nev, ncv);
+    const Eigen::VectorXd v0 = start_vector(n, 1000 + std::uint64_t(attempt));
+    eigs.init(v0.data());
+    eigs.compute(rule, o.max_iterations, o.tolerance, rule);
+    report.operations += op.operations;
+    report.restarts += std::size_t(eigs.num_iterations());
+    ++report.repairs;
+    if (eigs.info() != Spectra::CompInfo::Successful) return false;
+    values = eigs.eigenvalues();
+    vectors = eigs.eigenvectors();
+    return true;
+}
+
 /// Orthonormalizes the columns of y in place (Cholesky QR): removes the rounding that
 /// shift-invert leaves in the Ritz vectors (mostly along near-null directions). One pass is
 /// enough for columns that are orthonormal to ~1e-8 already (the error is cond(y)² · eps).
@@ -638,29 +662,15 @@ void Slice::repair(double tau, std::size_t expected, double lo_b) {
                         " were found, too many to recover (a badly scaled or degenerate "
                         "operator); try a smaller band_size or the full method (meshes up "
                         "to max_full_rows vertices)");
-        const Eigen::Index nev = std::min<Eigen::Index>(Eigen::Index(wanted), n - q.cols() - 1);
-        if (nev < 1) break;
-        const Eigen::Index ncv =
-            std::min<Eigen::Index>(n - q.cols(), std::max(2 * nev + 1, nev + 20));
-        if (ncv <= nev) break;
-        DeflatedOp op(
-            n,
-            [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
-                y = x;
-                ldlt_solve_in_place(ldlt_, y.data());
-            },
-            q, progress_);
-        Spectra::SymEigsSolver<DeflatedOp> eigs(op, nev, ncv);
-        const Eigen::VectorXd v0 = start_vector(n, 1000 + std::uint64_t(attempt));
-        eigs.init(v0.data());
-        eigs.compute(Spectra::SortRule::LargestMagn, o_.max_iterations, o_.tolerance,
-                     Spectra::SortRule::LargestMagn);
-        report_.operations += op.operations;
-        report_.restarts += std::size_t(eigs.num_iterations());
-        ++report_.repairs;
-        if (eigs.info() != Spectra::CompInfo::Successful) break;
-        const Eigen::VectorXd mu = eigs.eigenvalues();
-        const Eigen::MatrixXd y = eigs.eigenvectors();
+        Eigen::VectorXd mu;
+        Eigen::MatrixXd y;
+        const auto solve = [&](const Eigen::VectorXd& x, Eigen::VectorXd& out) {
+            out = x;
+            ldlt_solve_in_place(ldlt_, out.data());
+        };
+        if (!deflated_eigenpairs(n, solve, q, Eigen::Index(wanted), Spectra::SortRule::LargestMagn,
+                                 attempt, o_, progress_, report_, mu, y))
+            break;
         for (Eigen::Index i = 0; i < mu.size(); ++i) {
             if (!(std::abs(mu[i]) > 0)) continue;
             const double lambda = sigma_ + 1.0 / mu[i];
@@ -863,26 +873,17 @@ Band largest(const Problem& p, std::size_t k, const SpectralOptions& o, Progress
                         "operator); try another k or the full method (meshes up to "
                         "max_full_rows vertices)");
         const Eigen::MatrixXd q = acc.vectors.leftCols(Eigen::Index(acc.size()));
-        const Eigen::Index nev =
-            std::min<Eigen::Index>(Eigen::Index(expected - above() + 3), n - q.cols() - 1);
-        const Eigen::Index ncv2 =
-            std::min<Eigen::Index>(n - q.cols(), std::max(2 * nev + 1, nev + 20));
-        if (nev < 1 || ncv2 <= nev) break;
-        DeflatedOp op(
-            n, [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) { y.noalias() = p.A * x; }, q,
-            progress);
-        Spectra::SymEigsSolver<DeflatedOp> eigs(op, nev, ncv2);
-        const Eigen::VectorXd v0 = start_vector(n, 1000 + std::uint64_t(attempt));
-        eigs.init(v0.data());
-        eigs.compute(Spectra::SortRule::LargestAlge, o.max_iterations, o.tolerance,
-                     Spectra::SortRule::LargestAlge);
-        report.operations += op.operations;
-        ++report.repairs;
-        if (eigs.info() != Spectra::CompInfo::Successful) break;
-        for (Eigen::Index i = 0; i < eigs.eigenvalues().size(); ++i)
-            if (eigs.eigenvalues()[i] > tau)
-                acc.add(eigs.eigenvalues()[i], eigs.eigenvectors().col(i),
-                        window(eigs.eigenvalues()[i]));
+        Eigen::VectorXd values;
+        Eigen::MatrixXd vectors;
+        const auto product = [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+            y.noalias() = p.A * x;
+        };
+        if (!deflated_eigenpairs(n, product, q, Eigen::Index(expected - above() + 3),
+                                 Spectra::SortRule::LargestAlge, attempt, o, progress, report,
+                                 values, vectors))
+            break;
+        for (Eigen::Index i = 0; i < values.size(); ++i)
+            if (values[i] > tau) acc.add(values[i], vectors.col(i), window(values[i]));
     }
     if (above() != expected)
         throw Error("spectrum: " + std::to_string(expected) + " eigenvalues lie above " +

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <map>
 
 #include "core/errors.h"
 #include "core/io/mesh_io.h"
@@ -15,16 +16,41 @@ namespace {
 struct OperationArgs {
     std::string op_text;
     std::vector<std::string> files;
+    std::map<std::string, std::string> own;  ///< the command's own value options
     bool json = false, help = false;
     WriteOptions write;
 };
 
+/// The command's own option `s` (with "=VALUE" or the next argument) when it is one of
+/// `names`: stores its value in `own` and returns true.
+bool take_own_option(const std::vector<std::string>& names, const std::vector<std::string>& args,
+                     std::size_t& i, std::map<std::string, std::string>& own) {
+    const std::string& s = args[i];
+    for (const std::string& name : names) {
+        std::string value;
+        if (s == name) {
+            if (i + 1 >= args.size()) throw InvalidArgument(name + ": missing FILE");
+            value = args[++i];
+        } else if (s.rfind(name + "=", 0) == 0) {
+            value = s.substr(name.size() + 1);
+        } else {
+            continue;
+        }
+        if (value.empty()) throw InvalidArgument(name + ": missing FILE");
+        own[name] = value;
+        return true;
+    }
+    return false;
+}
+
 OperationArgs parse_args(const std::string& name, const std::vector<std::string>& args,
-                         const std::vector<std::string>& flags) {
+                         const std::vector<std::string>& flags,
+                         const std::vector<std::string>& value_options) {
     OperationArgs a;
     a.op_text = name;
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& s = args[i];
+        if (take_own_option(value_options, args, i, a.own)) continue;
         if (s == "--help" || s == "-h") {
             a.help = true;
         } else if (s == "--json") {
@@ -60,8 +86,8 @@ void add_operation_values(JsonObject& json, const OperationResult& result) {
 
 int run_operation_command(const std::string& name, const char* usage,
                           const std::vector<std::string>& args, const AddJson& add_json,
-                          const std::vector<std::string>& flags) {
-    const OperationArgs a = parse_args(name, args, flags);
+                          const std::vector<std::string>& flags, const CommandExtras& extras) {
+    const OperationArgs a = parse_args(name, args, flags, extras.value_options);
     if (a.help) {
         std::fputs(usage, stdout);
         return 0;
@@ -86,12 +112,14 @@ int run_operation_command(const std::string& name, const char* usage,
             .add("faces", out.n_faces());
         add_json(j, result);
         for (const auto& [key, text] : result.texts) j.add(key, text);
+        if (extras.finish) extras.finish(result, a.own, &j);
         j.add("report", result.report).add("ms", result.ms);
         std::cout << j.str() << "\n";
     } else {
         std::printf("wrote %s: %s %s (%.1f ms)\n", a.files[1].c_str(), result.label.c_str(),
                     result.parameters.c_str(), result.ms);
         for (const std::string& line : result.report) std::printf("  %s\n", line.c_str());
+        if (extras.finish) extras.finish(result, a.own, nullptr);
     }
     return 0;
 }

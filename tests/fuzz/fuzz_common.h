@@ -11,6 +11,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "core/io/image_io.h"
 #include "core/io/mesh_io.h"
 #include "core/validate.h"
 
@@ -40,6 +41,22 @@ int run_mesh_reader(const std::uint8_t* data, std::size_t size, Read read) {
             std::fprintf(stderr, "trilab::Error with an empty message\n");
             std::abort();
         }
+    }
+    return 0;
+}
+
+/// The same for the image reader (read_image_bytes, the format from `name`'s extension): an
+/// image must have exactly width x height RGBA pixels.
+inline int run_image_reader(const std::uint8_t* data, std::size_t size, const char* name) {
+    const std::string bytes(reinterpret_cast<const char*>(data), size);
+    try {
+        const Image image = read_image_bytes(bytes, name);
+        if (image.rgba.size() != std::size_t(image.width) * std::size_t(image.height) * 4) {
+            std::fprintf(stderr, "image size does not match its pixels\n");
+            std::abort();
+        }
+    } catch (const Error& e) {
+        if (std::string(e.what()).empty()) std::abort();
     }
     return 0;
 }
