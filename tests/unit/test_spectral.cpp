@@ -379,6 +379,10 @@ TEST_CASE("spectrum slicing on two threads gives the frequencies of one sweep", 
         CHECK(two.report.max_residual < 1e-8);
         CHECK(subspace_gap(two.eigenvectors.leftCols(Eigen::Index(c.compare)), one.eigenvectors,
                            one.S) < 1e-8);
+        // The reconstruction from the sliced frequencies is a valid mesh with the same faces.
+        const HalfedgeMesh low = reconstruct(c.mesh, two, 0, c.k - 1);
+        REQUIRE_VALID(low);
+        CHECK(low.n_faces() == c.mesh.n_faces());
     }
 }
 
