@@ -33,27 +33,15 @@
 namespace trilab {
 
 const char* decimation_cost_name(DecimationCost cost) {
-    return cost == DecimationCost::Quadric ? "quadric" : "roundness";
+    return enum_id<DecimationCost>(kDecimationCosts, cost);
 }
 
 DecimationCost parse_decimation_cost(const std::string& name) {
-    if (name == "quadric") return DecimationCost::Quadric;
-    if (name == "roundness") return DecimationCost::Roundness;
-    throw InvalidArgument("decimation cost: expected quadric or roundness, got '" + name + "'");
+    return parse_enum<DecimationCost>(kDecimationCosts, name, "decimation cost");
 }
 
 const char* decimation_stop_name(DecimationStop stop) {
-    switch (stop) {
-        case DecimationStop::Done:
-            return "done";
-        case DecimationStop::MaxError:
-            return "max-error";
-        case DecimationStop::Constraints:
-            return "constraints";
-        case DecimationStop::Topology:
-            return "topology";
-    }
-    return "done";
+    return enum_id<DecimationStop>(kDecimationStops, stop);
 }
 
 double normalized_roundness(const Point& a, const Point& b, const Point& c) {

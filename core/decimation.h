@@ -42,6 +42,7 @@
 #include <string>
 #include <vector>
 
+#include "core/enum_table.h"
 #include "core/halfedge_mesh.h"
 #include "core/morph.h"
 #include "core/progress.h"
@@ -49,6 +50,11 @@
 namespace trilab {
 
 enum class DecimationCost { Quadric, Roundness };
+/// The one table of DecimationCost (core/enum_table.h): identifier and label of each value.
+inline constexpr EnumEntry<DecimationCost> kDecimationCosts[] = {
+    {DecimationCost::Quadric, "quadric", "Quadrics"},
+    {DecimationCost::Roundness, "roundness", "Roundness"},
+};
 /// "quadric", "roundness".
 const char* decimation_cost_name(DecimationCost cost);
 /// Parses decimation_cost_name() strings; throws InvalidArgument listing them otherwise.
@@ -80,6 +86,13 @@ enum class DecimationStop {
     MaxError,     ///< the next collapse would exceed max_error
     Constraints,  ///< every remaining collapse was refused by a binary constraint
     Topology,     ///< no collapse keeps a manifold mesh (e.g. a tetrahedron)
+};
+/// The one table of DecimationStop (core/enum_table.h): identifier and label of each value.
+inline constexpr EnumEntry<DecimationStop> kDecimationStops[] = {
+    {DecimationStop::Done, "done", "done"},
+    {DecimationStop::MaxError, "max-error", "maximum error"},
+    {DecimationStop::Constraints, "constraints", "constraints"},
+    {DecimationStop::Topology, "topology", "topology"},
 };
 /// "done", "max-error", "constraints", "topology".
 const char* decimation_stop_name(DecimationStop stop);

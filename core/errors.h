@@ -20,6 +20,13 @@ public:
     using Error::Error;
 };
 
+/// A run that stopped before its end because its result could not be trusted (a diverging
+/// iteration, a solve that missed its tolerance); names the iteration and the reason.
+class RunStopped : public Error {
+public:
+    using Error::Error;
+};
+
 /// An operation that would break the mesh's connectivity invariants.
 class TopologyError : public Error {
 public:

@@ -276,51 +276,27 @@ const char* kCg = "ConjugateGradient(Jacobi)";
 }  // namespace
 
 const char* fairing_operator_name(FairingOperator op) {
-    switch (op) {
-        case FairingOperator::Umbrella:
-            return "umbrella";
-        case FairingOperator::ImprovedUmbrella:
-            return "improved-umbrella";
-        case FairingOperator::CurvatureFlow:
-            return "curvature-flow";
-        case FairingOperator::SecondOrder:
-            return "second-order";
-        case FairingOperator::Taubin:
-            return "taubin";
-    }
-    return "?";
+    return enum_id<FairingOperator>(kFairingOperators, op);
 }
 
 FairingOperator parse_fairing_operator(const std::string& name) {
-    for (auto op :
-         {FairingOperator::Umbrella, FairingOperator::ImprovedUmbrella,
-          FairingOperator::CurvatureFlow, FairingOperator::SecondOrder, FairingOperator::Taubin})
-        if (name == fairing_operator_name(op)) return op;
-    throw InvalidArgument("parse_fairing_operator: unknown operator '" + name +
-                          "' (expected umbrella, improved-umbrella, curvature-flow, "
-                          "second-order, taubin)");
+    return parse_enum<FairingOperator>(kFairingOperators, name, "fairing operator");
 }
 
 const char* boundary_mode_name(BoundaryMode mode) {
-    return mode == BoundaryMode::Fixed ? "fixed" : "slide";
+    return enum_id<BoundaryMode>(kBoundaryModes, mode);
 }
 
 BoundaryMode parse_boundary_mode(const std::string& name) {
-    if (name == "fixed") return BoundaryMode::Fixed;
-    if (name == "slide") return BoundaryMode::Slide;
-    throw InvalidArgument("parse_boundary_mode: unknown boundary mode '" + name +
-                          "' (expected fixed, slide)");
+    return parse_enum<BoundaryMode>(kBoundaryModes, name, "boundary mode");
 }
 
 const char* integration_name(Integration integration) {
-    return integration == Integration::Explicit ? "explicit" : "implicit";
+    return enum_id<Integration>(kIntegrations, integration);
 }
 
 Integration parse_integration(const std::string& name) {
-    if (name == "explicit") return Integration::Explicit;
-    if (name == "implicit") return Integration::Implicit;
-    throw InvalidArgument("parse_integration: unknown integration '" + name +
-                          "' (expected explicit, implicit)");
+    return parse_enum<Integration>(kIntegrations, name, "integration");
 }
 
 FairingResult smooth(const HalfedgeMesh& mesh, const FairingOptions& options) {

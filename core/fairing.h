@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "core/enum_table.h"
 #include "core/halfedge_mesh.h"
 #include "core/laplacian.h"
 #include "core/progress.h"
@@ -33,10 +34,28 @@
 namespace trilab {
 
 enum class FairingOperator { Umbrella, ImprovedUmbrella, CurvatureFlow, SecondOrder, Taubin };
+/// The one table of FairingOperator (core/enum_table.h): identifier and label of each value.
+inline constexpr EnumEntry<FairingOperator> kFairingOperators[] = {
+    {FairingOperator::Umbrella, "umbrella", "Umbrella"},
+    {FairingOperator::ImprovedUmbrella, "improved-umbrella", "Improved umbrella"},
+    {FairingOperator::CurvatureFlow, "curvature-flow", "Curvature flow (cotangent)"},
+    {FairingOperator::SecondOrder, "second-order", "Second-order difference"},
+    {FairingOperator::Taubin, "taubin", "Taubin lambda|mu"},
+};
 enum class Integration { Explicit, Implicit };
+/// The one table of Integration (core/enum_table.h): identifier and label of each value.
+inline constexpr EnumEntry<Integration> kIntegrations[] = {
+    {Integration::Explicit, "explicit", "Explicit"},
+    {Integration::Implicit, "implicit", "Implicit"},
+};
 enum class ImplicitSolver { Auto, Direct, Iterative };
 /// What boundary vertices do: stay where they are, or slide along the boundary curve.
 enum class BoundaryMode { Fixed, Slide };
+/// The one table of BoundaryMode (core/enum_table.h): identifier and label of each value.
+inline constexpr EnumEntry<BoundaryMode> kBoundaryModes[] = {
+    {BoundaryMode::Fixed, "fixed", "Fixed"},
+    {BoundaryMode::Slide, "slide", "Slides along its curve"},
+};
 
 const char* boundary_mode_name(BoundaryMode mode);  ///< "fixed", "slide"
 BoundaryMode parse_boundary_mode(const std::string& name);
@@ -54,7 +73,7 @@ inline constexpr int kMaxFairingIterations = 10000;
 struct FairingOptions {
     FairingOperator op = FairingOperator::Umbrella;
     Integration integration = Integration::Explicit;
-    double step = 1.0;             ///< λ·dt, finite and >= 0
+    double step = 0.5;             ///< λ·dt, finite and >= 0
     int iterations = 1;            ///< in [1, 10000]
     bool preserve_volume = false;  ///< closed meshes only
     double taubin_lambda = 0.5;    ///< in (0, 1]

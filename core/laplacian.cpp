@@ -70,45 +70,19 @@ void lumped_mass(const HalfedgeMesh& m, const VertexIndexMap& map, MassMatrix ma
 }  // namespace
 
 const char* mass_matrix_name(MassMatrix mass) {
-    switch (mass) {
-        case MassMatrix::Normalizer:
-            return "normalizer";
-        case MassMatrix::Barycentric:
-            return "barycentric";
-        case MassMatrix::Voronoi:
-            return "voronoi";
-    }
-    return "?";
+    return enum_id<MassMatrix>(kMassMatrices, mass);
 }
 
 MassMatrix parse_mass_matrix(const std::string& name) {
-    for (auto m : {MassMatrix::Normalizer, MassMatrix::Barycentric, MassMatrix::Voronoi})
-        if (name == mass_matrix_name(m)) return m;
-    throw InvalidArgument("parse_mass_matrix: unknown mass matrix '" + name +
-                          "' (expected normalizer, barycentric, voronoi)");
+    return parse_enum<MassMatrix>(kMassMatrices, name, "mass matrix");
 }
 
 const char* laplacian_operator_name(LaplacianOperator op) {
-    switch (op) {
-        case LaplacianOperator::Umbrella:
-            return "umbrella";
-        case LaplacianOperator::ImprovedUmbrella:
-            return "improved-umbrella";
-        case LaplacianOperator::CurvatureFlow:
-            return "curvature-flow";
-        case LaplacianOperator::SecondOrder:
-            return "second-order";
-    }
-    return "?";
+    return enum_id<LaplacianOperator>(kLaplacianOperators, op);
 }
 
 LaplacianOperator parse_laplacian_operator(const std::string& name) {
-    for (auto op : {LaplacianOperator::Umbrella, LaplacianOperator::ImprovedUmbrella,
-                    LaplacianOperator::CurvatureFlow, LaplacianOperator::SecondOrder})
-        if (name == laplacian_operator_name(op)) return op;
-    throw InvalidArgument("parse_laplacian_operator: unknown operator '" + name +
-                          "' (expected umbrella, improved-umbrella, curvature-flow, "
-                          "second-order)");
+    return parse_enum<LaplacianOperator>(kLaplacianOperators, name, "operator");
 }
 
 VertexIndexMap make_vertex_index_map(const HalfedgeMesh& mesh) {

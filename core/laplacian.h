@@ -65,11 +65,19 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include "core/enum_table.h"
 #include "core/halfedge_mesh.h"
 
 namespace trilab {
 
 enum class LaplacianOperator { Umbrella, ImprovedUmbrella, CurvatureFlow, SecondOrder };
+/// The one table of LaplacianOperator (core/enum_table.h): identifier and label of each value.
+inline constexpr EnumEntry<LaplacianOperator> kLaplacianOperators[] = {
+    {LaplacianOperator::Umbrella, "umbrella", "Umbrella"},
+    {LaplacianOperator::ImprovedUmbrella, "improved-umbrella", "Improved umbrella"},
+    {LaplacianOperator::CurvatureFlow, "curvature-flow", "Curvature flow (cotangent)"},
+    {LaplacianOperator::SecondOrder, "second-order", "Second-order difference"},
+};
 
 /// "umbrella", "improved-umbrella", "curvature-flow", "second-order".
 const char* laplacian_operator_name(LaplacianOperator op);
@@ -93,6 +101,12 @@ enum class MassMatrix {
     Normalizer,   ///< the operator's own row normalizer (valence, E_i/2, sum of weights, K_ii)
     Barycentric,  ///< 2 x (a third of the incident triangle areas)
     Voronoi,      ///< 2 x the mixed Voronoi area (Meyer et al. 2003)
+};
+/// The one table of MassMatrix (core/enum_table.h): identifier and label of each value.
+inline constexpr EnumEntry<MassMatrix> kMassMatrices[] = {
+    {MassMatrix::Normalizer, "normalizer", "Operator's normalizer"},
+    {MassMatrix::Barycentric, "barycentric", "Barycentric area"},
+    {MassMatrix::Voronoi, "voronoi", "Voronoi area"},
 };
 /// "normalizer", "barycentric", "voronoi".
 const char* mass_matrix_name(MassMatrix mass);

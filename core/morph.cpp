@@ -136,22 +136,11 @@ double ease(Easing easing, double t) {
 }
 
 const char* easing_name(Easing easing) {
-    switch (easing) {
-        case Easing::Linear:
-            return "linear";
-        case Easing::SmoothStep:
-            return "smooth-step";
-        case Easing::EaseInOutCubic:
-            return "ease-in-out-cubic";
-    }
-    return "?";
+    return enum_id<Easing>(kEasings, easing);
 }
 
 Easing parse_easing(const std::string& name) {
-    for (Easing e : {Easing::Linear, Easing::SmoothStep, Easing::EaseInOutCubic})
-        if (name == easing_name(e)) return e;
-    throw InvalidArgument("unknown easing '" + name +
-                          "' (known: linear, smooth-step, ease-in-out-cubic)");
+    return parse_enum<Easing>(kEasings, name, "easing");
 }
 
 double playback_time(Playback playback, double elapsed, double duration) {
@@ -177,21 +166,11 @@ double playback_time(Playback playback, double elapsed, double duration) {
 }
 
 const char* playback_name(Playback playback) {
-    switch (playback) {
-        case Playback::Once:
-            return "once";
-        case Playback::Loop:
-            return "loop";
-        case Playback::PingPong:
-            return "ping-pong";
-    }
-    return "?";
+    return enum_id<Playback>(kPlaybacks, playback);
 }
 
 Playback parse_playback(const std::string& name) {
-    for (Playback p : {Playback::Once, Playback::Loop, Playback::PingPong})
-        if (name == playback_name(p)) return p;
-    throw InvalidArgument("unknown playback '" + name + "' (known: once, loop, ping-pong)");
+    return parse_enum<Playback>(kPlaybacks, name, "playback");
 }
 
 }  // namespace trilab

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "core/enum_table.h"
 #include "core/halfedge_mesh.h"
 
 namespace trilab {
@@ -44,6 +45,12 @@ void check_correspondence(const HalfedgeMesh& before, const HalfedgeMesh& after,
                           const MorphCorrespondence& correspondence);
 
 enum class Easing { Linear, SmoothStep, EaseInOutCubic };
+/// The one table of Easing (core/enum_table.h): identifier and label of each value.
+inline constexpr EnumEntry<Easing> kEasings[] = {
+    {Easing::Linear, "linear", "Linear"},
+    {Easing::SmoothStep, "smooth-step", "Smooth step"},
+    {Easing::EaseInOutCubic, "ease-in-out-cubic", "Cubic"},
+};
 /// The eased time for t in [0, 1] (ease(e, 0) = 0, ease(e, 1) = 1, monotone).
 double ease(Easing easing, double t);
 /// "linear", "smooth-step", "ease-in-out-cubic".
@@ -54,6 +61,12 @@ Easing parse_easing(const std::string& name);
 /// Playback of an animation of `duration` seconds: the morph time at `elapsed` seconds,
 /// once (clamped), looping, or ping-pong.
 enum class Playback { Once, Loop, PingPong };
+/// The one table of Playback (core/enum_table.h): identifier and label of each value.
+inline constexpr EnumEntry<Playback> kPlaybacks[] = {
+    {Playback::Once, "once", "Once"},
+    {Playback::Loop, "loop", "Loop"},
+    {Playback::PingPong, "ping-pong", "Ping-pong"},
+};
 /// A duration <= 0 (or not finite) gives 1, the end of the morph; a NaN elapsed time gives 0.
 double playback_time(Playback playback, double elapsed, double duration);
 /// "once", "loop", "ping-pong".

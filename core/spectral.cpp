@@ -937,18 +937,15 @@ void check_band(const SpectralDecomposition& d, std::size_t lo, std::size_t hi) 
 }  // namespace
 
 const char* spectral_method_name(SpectralMethod method) {
-    return method == SpectralMethod::Full ? "full" : "partial";
+    return enum_id<SpectralMethod>(kSpectralMethods, method);
 }
 
 const char* spectrum_end_name(SpectrumEnd end) {
-    return end == SpectrumEnd::Largest ? "largest" : "smallest";
+    return enum_id<SpectrumEnd>(kSpectrumEnds, end);
 }
 
 SpectrumEnd parse_spectrum_end(const std::string& name) {
-    if (name == "smallest") return SpectrumEnd::Smallest;
-    if (name == "largest") return SpectrumEnd::Largest;
-    throw InvalidArgument("parse_spectrum_end: unknown end '" + name +
-                          "' (expected smallest, largest)");
+    return parse_enum<SpectrumEnd>(kSpectrumEnds, name, "spectrum end");
 }
 
 SpectralDecomposition decompose(const HalfedgeMesh& mesh, const SpectralOptions& o) {

@@ -73,6 +73,7 @@
 
 #include <Eigen/Core>
 
+#include "core/enum_table.h"
 #include "core/halfedge_mesh.h"
 #include "core/laplacian.h"
 #include "core/progress.h"
@@ -80,7 +81,17 @@
 namespace trilab {
 
 enum class SpectralMethod { Partial, Full };
+/// The one table of SpectralMethod (core/enum_table.h): identifier and label of each value.
+inline constexpr EnumEntry<SpectralMethod> kSpectralMethods[] = {
+    {SpectralMethod::Partial, "partial", "Partial"},
+    {SpectralMethod::Full, "full", "Full"},
+};
 enum class SpectrumEnd { Smallest, Largest };
+/// The one table of SpectrumEnd (core/enum_table.h): identifier and label of each value.
+inline constexpr EnumEntry<SpectrumEnd> kSpectrumEnds[] = {
+    {SpectrumEnd::Smallest, "smallest", "Smallest"},
+    {SpectrumEnd::Largest, "largest", "Largest"},
+};
 
 const char* spectral_method_name(SpectralMethod method);  ///< "partial", "full"
 const char* spectrum_end_name(SpectrumEnd end);           ///< "smallest", "largest"

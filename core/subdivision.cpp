@@ -637,25 +637,11 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& m, bool even_step, int level,
 }  // namespace
 
 const char* scheme_name(SubdivisionScheme scheme) {
-    switch (scheme) {
-        case SubdivisionScheme::Loop:
-            return "loop";
-        case SubdivisionScheme::Sqrt3:
-            return "sqrt3";
-        case SubdivisionScheme::Butterfly:
-            return "butterfly";
-        case SubdivisionScheme::ModifiedButterfly:
-            return "modified-butterfly";
-    }
-    return "loop";
+    return enum_id<SubdivisionScheme>(kSubdivisionSchemes, scheme);
 }
 
 SubdivisionScheme parse_scheme(const std::string& name) {
-    for (SubdivisionScheme s : {SubdivisionScheme::Loop, SubdivisionScheme::Sqrt3,
-                                SubdivisionScheme::Butterfly, SubdivisionScheme::ModifiedButterfly})
-        if (name == scheme_name(s)) return s;
-    throw InvalidArgument("subdivision scheme '" + name +
-                          "' unknown: use loop, sqrt3, butterfly or modified-butterfly");
+    return parse_enum<SubdivisionScheme>(kSubdivisionSchemes, name, "subdivision scheme");
 }
 
 namespace {

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "core/enum_table.h"
 #include "core/halfedge_mesh.h"
 #include "core/morph.h"
 #include "core/progress.h"
@@ -22,6 +23,13 @@
 namespace trilab {
 
 enum class SubdivisionScheme { Loop, Sqrt3, Butterfly, ModifiedButterfly };
+/// The one table of SubdivisionScheme (core/enum_table.h): identifier and label of each value.
+inline constexpr EnumEntry<SubdivisionScheme> kSubdivisionSchemes[] = {
+    {SubdivisionScheme::Loop, "loop", "Loop"},
+    {SubdivisionScheme::Sqrt3, "sqrt3", "Sqrt3"},
+    {SubdivisionScheme::Butterfly, "butterfly", "Butterfly"},
+    {SubdivisionScheme::ModifiedButterfly, "modified-butterfly", "Modified Butterfly"},
+};
 
 /// "loop", "sqrt3", "butterfly", "modified-butterfly".
 const char* scheme_name(SubdivisionScheme scheme);

@@ -1,6 +1,7 @@
 // trilab-cli: the viewer's operations, headless. Every command exits 0 on success and
 // non-zero with one line on stderr otherwise; --json prints one JSON object on stdout that
 // includes "ms", the time spent in the operation itself (file reading/writing excluded).
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -9,14 +10,11 @@
 #include <vector>
 
 #include "app/cli/compare_command.h"
-#include "app/cli/decimate_command.h"
 #include "app/cli/json_writer.h"
-#include "app/cli/noise_command.h"
+#include "app/cli/operation_command.h"
 #include "app/cli/record_command.h"
 #include "app/cli/render_command.h"
-#include "app/cli/smooth_command.h"
-#include "app/cli/spectrum_command.h"
-#include "app/cli/subdivide_command.h"
+#include "app/ops/operation.h"
 #include "core/errors.h"
 #include "core/generators.h"
 #include "core/io/mesh_io.h"
@@ -37,26 +35,25 @@ commands:
   generate NAME OUT [--json]      write a built-in model (see `trilab-cli generate --list`)
   render MESH --out FILE.png [options]
                                   render offscreen to a PNG (`trilab-cli render --help`)
-  noise [--amount PCT] [--seed S] IN OUT [--json]
-                                  displace vertices along their normals (`noise --help`)
-  subdivide [--scheme S] [--iterations N] IN OUT [--json]
-                                  Loop, Sqrt3, Butterfly or Modified Butterfly subdivision;
-                                  S: loop|sqrt3|butterfly|modified-butterfly (`subdivide --help`)
   record MESH --op "OP" --out DIR [options]
                                   render an operation's morph to PNG frames (`record --help`)
-  smooth [--operator OP] [--integration I] [--step T] [--iterations N] [--preserve-volume]
-         IN OUT [--json]          fair a mesh (`trilab-cli smooth --help`)
-  spectrum --operator OP --k K [--which smallest|largest] [--band LO:HI] [--full]
-         IN OUT [--eigenvalues FILE] [--json]
-                                  frequency decomposition and band reconstruction
-                                  (`trilab-cli spectrum --help`)
-  decimate [--cost quadric|roundness] [--normal-flip DEG] [--roundness MIN]
-           [--independent-set] (--percent P --iterations N | --target-vertices K)
-           IN OUT [--json]        edge-collapse decimation (`trilab-cli decimate --help`)
   compare A B [--samples N] [--json]
                                   sampled Hausdorff and RMS distance between two meshes
   help                            this text
+
+operations (options: `trilab-cli NAME --help`):
 )";
+
+/// kUsage, then one line per registered operation, from its declaration.
+std::string usage_text() {
+    std::string s = kUsage;
+    for (const trilab::OperationDef* def : trilab::operation_defs()) {
+        std::string head = "  " + def->name + " [options] IN OUT [--json]";
+        head.resize(std::max<std::size_t>(head.size() + 1, 34), ' ');
+        s += head + def->label + "\n";
+    }
+    return s;
+}
 
 /// Command-line arguments split into positionals and --flags.
 struct Args {
@@ -214,13 +211,13 @@ int main(int argc, char** argv) {
     using namespace trilab::cli;
     trilab::tune_heap_for_large_meshes();
     if (argc < 2) {
-        std::fputs(kUsage, stderr);
+        std::fputs(usage_text().c_str(), stderr);
         return 2;
     }
     const std::string cmd = argv[1];
     try {
         if (cmd == "help" || cmd == "--help" || cmd == "-h") {
-            std::fputs(kUsage, stdout);
+            std::fputs(usage_text().c_str(), stdout);
             return 0;
         }
         if (cmd == "info") return cmd_info(parse(argc, argv, 2, {"--json"}));
@@ -228,14 +225,9 @@ int main(int argc, char** argv) {
             return cmd_convert(parse(argc, argv, 2, {"--json", "--ascii", "--big-endian"}));
         if (cmd == "render")
             return run_render_command(std::vector<std::string>(argv + 2, argv + argc));
-        if (cmd == "noise") return run_noise_command({argv + 2, argv + argc});
-        if (cmd == "smooth")
-            return run_smooth_command(std::vector<std::string>(argv + 2, argv + argc));
-        if (cmd == "spectrum")
-            return run_spectrum_command(std::vector<std::string>(argv + 2, argv + argc));
-        if (cmd == "decimate") return run_decimate_command({argv + 2, argv + argc});
+        for (const std::string& name : trilab::operation_names())
+            if (cmd == name) return run_operation_command(name, {argv + 2, argv + argc});
         if (cmd == "compare") return run_compare_command({argv + 2, argv + argc});
-        if (cmd == "subdivide") return run_subdivide_command({argv + 2, argv + argc});
         if (cmd == "record") return run_record_command({argv + 2, argv + argc});
         if (cmd == "generate")
             return cmd_generate(
@@ -243,6 +235,9 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "trilab-cli: unknown command '%s' (try `trilab-cli help`)\n",
                      cmd.c_str());
         return 2;
+    } catch (const trilab::RunStopped& e) {
+        std::fprintf(stderr, "trilab-cli %s: stopped early: %s\n", cmd.c_str(), e.what());
+        return 4;
     } catch (const trilab::Error& e) {
         std::fprintf(stderr, "trilab-cli %s: %s\n", cmd.c_str(), e.what());
         return 1;

@@ -14,14 +14,14 @@ namespace trilab::cli {
 namespace {
 
 struct OperationArgs {
-    std::string op_text;
+    std::vector<std::string> op_args;
     std::vector<std::string> files;
     std::map<std::string, std::string> own;  ///< the command's own value options
-    bool json = false, help = false;
+    bool json = false, help = false, keep_partial = false;
     WriteOptions write;
 };
 
-/// The command's own option `s` (with "=VALUE" or the next argument) when it is one of
+/// The command's own option args[i] (with "=VALUE" or the next argument) when it is one of
 /// `names`: stores its value in `own` and returns true.
 bool take_own_option(const std::vector<std::string>& names, const std::vector<std::string>& args,
                      std::size_t& i, std::map<std::string, std::string>& own) {
@@ -43,14 +43,20 @@ bool take_own_option(const std::vector<std::string>& names, const std::vector<st
     return false;
 }
 
-OperationArgs parse_args(const std::string& name, const std::vector<std::string>& args,
-                         const std::vector<std::string>& flags,
-                         const std::vector<std::string>& value_options) {
+/// Whether "--name" is a flag of the operation (takes no value).
+bool is_flag(const OperationDef& def, const std::string& option) {
+    const std::string name = option.substr(2);
+    for (const ParamSpec& p : def.params)
+        if (p.name == name) return p.kind == ParamKind::Flag;
+    return false;
+}
+
+OperationArgs parse_args(const OperationDef& def, const std::vector<std::string>& args,
+                         const CommandExtras& extras) {
     OperationArgs a;
-    a.op_text = name;
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& s = args[i];
-        if (take_own_option(value_options, args, i, a.own)) continue;
+        if (take_own_option(extras.value_options, args, i, a.own)) continue;
         if (s == "--help" || s == "-h") {
             a.help = true;
         } else if (s == "--json") {
@@ -59,12 +65,13 @@ OperationArgs parse_args(const std::string& name, const std::vector<std::string>
             a.write.ascii = true;
         } else if (s == "--big-endian") {
             a.write.big_endian = true;
+        } else if (s == "--keep-partial") {
+            a.keep_partial = true;
         } else if (s.rfind("--", 0) == 0) {
             // An operation option: it and its value go to the operation, which checks both.
-            a.op_text += " " + s;
-            const bool flag = std::find(flags.begin(), flags.end(), s) != flags.end();
-            if (!flag && s.find('=') == std::string::npos && i + 1 < args.size())
-                a.op_text += " " + args[++i];
+            a.op_args.push_back(s);
+            if (!is_flag(def, s) && s.find('=') == std::string::npos && i + 1 < args.size())
+                a.op_args.push_back(args[++i]);
         } else {
             a.files.push_back(s);
         }
@@ -72,9 +79,50 @@ OperationArgs parse_args(const std::string& name, const std::vector<std::string>
     return a;
 }
 
-}  // namespace
+/// The operation's parameters as typed JSON values (keys with '_' for '-'), skipping the
+/// ones that do not apply, unset optional ones, and keys the result reports itself.
+void add_parameter_echo(JsonObject& json, const Operation& op, const OperationResult& result) {
+    const auto reported = [&](const std::string& key) {
+        for (const auto& [k, v] : result.values)
+            if (k == key) return true;
+        for (const auto& [k, v] : result.texts)
+            if (k == key) return true;
+        return key == "vertices" || key == "faces";
+    };
+    for (std::size_t i = 0; i < op.def->params.size(); ++i) {
+        const ParamSpec& p = op.def->params[i];
+        const ParamValue& v = op.values[i];
+        std::string key = p.name;
+        std::replace(key.begin(), key.end(), '-', '_');
+        if (op.def->why_not(op.values, i) || reported(key)) continue;
+        if (p.optional && !v.on) continue;
+        switch (p.kind) {
+            case ParamKind::Flag:
+                json.add(key, v.x != 0);
+                break;
+            case ParamKind::Choice:
+                json.add(key, format_param_value(p, v));
+                break;
+            case ParamKind::Switchable:
+                if (v.on)
+                    json.add(key, v.x);
+                else
+                    json.add(key, p.off_word);
+                break;
+            case ParamKind::Range:
+                json.add(key, std::vector<double>{v.x, v.y});
+                break;
+            case ParamKind::Integer:
+                json.add(key, static_cast<long long>(v.x));
+                break;
+            case ParamKind::Number:
+                json.add(key, v.x);
+                break;
+        }
+    }
+}
 
-void add_operation_values(JsonObject& json, const OperationResult& result) {
+void add_values(JsonObject& json, const OperationResult& result) {
     for (const auto& [key, value] : result.values) {
         if (key == "vertices" || key == "faces") continue;
         if (value == std::floor(value) && std::abs(value) < 9e15)
@@ -84,21 +132,58 @@ void add_operation_values(JsonObject& json, const OperationResult& result) {
     }
 }
 
-int run_operation_command(const std::string& name, const char* usage,
-                          const std::vector<std::string>& args, const AddJson& add_json,
-                          const std::vector<std::string>& flags, const CommandExtras& extras) {
-    const OperationArgs a = parse_args(name, args, flags, extras.value_options);
+}  // namespace
+
+std::string operation_command_help(const std::string& name) {
+    const OperationDef& def = operation_def(name);
+    const CommandExtras extras = command_extras(name);
+    std::string s = "usage: trilab-cli " + name + " [options] IN OUT [--json] [--ascii] " +
+                    "[--big-endian] [--keep-partial]\n\n";
+    // The summary, wrapped at 95 columns.
+    std::string line, word, text;
+    for (char c : def.summary + " ") {
+        if (c != ' ') {
+            word += c;
+            continue;
+        }
+        if (line.size() + word.size() + 1 > 95) {
+            text += line + "\n";
+            line.clear();
+        }
+        line += (line.empty() ? "" : " ") + word;
+        word.clear();
+    }
+    text += line;
+    s += text + "\n\noptions:\n" + def.help() + extras.help;
+    s += "  --ascii, --big-endian (how to write .ply and .stl, as for `trilab-cli convert`)\n";
+    s += "  --keep-partial (a run that stops early writes its last good state, still exit 4)\n";
+    s += "  --json (one JSON object: the parameters, the result's figures, \"ms\" the operation "
+         "itself)\n";
+    return s;
+}
+
+int run_operation_command(const std::string& name, const std::vector<std::string>& args) {
+    const OperationDef& def = operation_def(name);
+    const CommandExtras extras = command_extras(name);
+    const OperationArgs a = parse_args(def, args, extras);
     if (a.help) {
-        std::fputs(usage, stdout);
+        std::fputs(operation_command_help(name).c_str(), stdout);
         return 0;
     }
-    const Operation op = parse_operation(a.op_text);  // bad options fail before any file
+    const Operation op = parse_operation(name, a.op_args);  // bad options fail before any file
     if (a.files.size() != 2)
         throw InvalidArgument("expected IN and OUT files (see `trilab-cli " + name + " --help`)");
 
     const LoadedMesh loaded = read_mesh(a.files[0]);  // not timed
     NullProgress progress;
-    const OperationResult result = run_operation(op, loaded.mesh, progress);
+    RunSettings settings;
+    settings.keep_steps = false;  // only the last state is written
+    settings.morph = false;
+    const OperationResult result = run_operation(op, loaded.mesh, progress, settings);
+    if (result.stopped_early && !a.keep_partial)
+        throw RunStopped(result.stop_reason +
+                         " (nothing written; --keep-partial writes the last "
+                         "good state)");
     const HalfedgeMesh& out = result.steps.back().mesh;
     write_mesh(out, a.files[1], a.write);  // not timed
 
@@ -106,13 +191,15 @@ int run_operation_command(const std::string& name, const char* usage,
         JsonObject j;
         j.add("input", a.files[0])
             .add("output", a.files[1])
-            .add("operation", op.name)
-            .add("parameters", result.parameters)
-            .add("vertices", out.n_vertices())
-            .add("faces", out.n_faces());
-        add_json(j, result);
+            .add("operation", op.name())
+            .add("parameters", result.parameters);
+        add_parameter_echo(j, op, result);
+        j.add("vertices", out.n_vertices()).add("faces", out.n_faces());
+        add_values(j, result);
         for (const auto& [key, text] : result.texts) j.add(key, text);
         if (extras.finish) extras.finish(result, a.own, &j);
+        j.add("stopped_early", result.stopped_early);
+        if (result.stopped_early) j.add("stop_reason", result.stop_reason);
         j.add("report", result.report).add("ms", result.ms);
         std::cout << j.str() << "\n";
     } else {
@@ -120,6 +207,12 @@ int run_operation_command(const std::string& name, const char* usage,
                     result.parameters.c_str(), result.ms);
         for (const std::string& line : result.report) std::printf("  %s\n", line.c_str());
         if (extras.finish) extras.finish(result, a.own, nullptr);
+    }
+    if (result.stopped_early) {
+        std::fflush(stdout);
+        std::fprintf(stderr, "trilab-cli %s: %s (wrote the last good state: --keep-partial)\n",
+                     name.c_str(), result.stop_reason.c_str());
+        return 4;
     }
     return 0;
 }

@@ -1,10 +1,15 @@
 #pragma once
-// The shape every mesh-operation command of trilab-cli shares (noise, subdivide, and the
-// operations later issues add): `trilab-cli NAME [operation options] IN OUT [--json]
-// [--ascii] [--big-endian]`. The command's own flags are taken out and every other "--option"
-// goes, with its value, into the operation text, so the CLI accepts exactly what the viewer
-// and `record --op` accept. The options are checked before any file is read; the output is
-// written (atomically) only when everything succeeded; "ms" is the operation alone.
+// The one shape of every mesh-operation command of trilab-cli (noise, subdivide, smooth,
+// spectrum, decimate, and any operation registered later):
+//   trilab-cli NAME [operation options] IN OUT [--json] [--ascii] [--big-endian]
+//                   [--keep-partial]
+// The operation's options, their --help lines, their errors and their JSON echo all come
+// from the operation's declaration (app/ops/operation_decl.h): nothing here knows an
+// operation's parameters. The options are checked before any file is read; the output is
+// written (atomically) only when everything succeeded; "ms" is the operation alone. A run
+// that stopped early (e.g. a diverging fairing) exits 4 with one line naming the iteration
+// and the reason, and writes nothing, or with --keep-partial the last good state and
+// "stopped_early": true.
 #include <functional>
 #include <map>
 #include <string>
@@ -15,32 +20,27 @@
 
 namespace trilab::cli {
 
-/// Adds a command's own keys to the JSON object (after input, output, operation,
-/// parameters, vertices and faces; before report and ms).
-using AddJson = std::function<void(JsonObject&, const OperationResult&)>;
-
-/// Adds every entry of result.values except vertices and faces (whole numbers as integers).
-void add_operation_values(JsonObject& json, const OperationResult& result);
-
 /// What a command adds to the shared shape: options of its own that take a value (kept out
-/// of the operation text, e.g. spectrum's "--eigenvalues FILE"), and `finish`, called once
-/// OUT is written with their values (by option name): it writes the command's own outputs,
-/// and adds its keys to `json` (after the result's texts) or, without --json (null), prints
-/// its lines after the report.
+/// of the operation's options, e.g. spectrum's "--eigenvalues FILE", with their help lines),
+/// and `finish`, called once OUT is written with their values (by option name): it writes
+/// the command's own outputs, and adds its keys to `json` (after the result's texts) or,
+/// without --json (null), prints its lines after the report.
 struct CommandExtras {
     std::vector<std::string> value_options;
+    std::string help;  ///< lines for --help, one per own option
     std::function<void(const OperationResult&, const std::map<std::string, std::string>& values,
                        JsonObject* json)>
         finish;
 };
 
-/// Runs `trilab-cli NAME ARGS...` for the registered operation `name`; `usage` is printed
-/// for --help. Returns the exit code; throws trilab::Error for bad arguments or files.
-/// `flags` names the operation's options that take no value (e.g. "--preserve-volume").
-int run_operation_command(const std::string& name, const char* usage,
-                          const std::vector<std::string>& args,
-                          const AddJson& add_json = add_operation_values,
-                          const std::vector<std::string>& flags = {},
-                          const CommandExtras& extras = {});
+/// The extras of command `name` (spectrum's eigenvalues, subdivide's levels; none for others).
+CommandExtras command_extras(const std::string& name);
+
+/// Runs `trilab-cli NAME ARGS...` for the registered operation `name`. Returns the exit
+/// code; throws trilab::Error for bad arguments or files.
+int run_operation_command(const std::string& name, const std::vector<std::string>& args);
+
+/// The --help text of command `name`, from its declaration.
+std::string operation_command_help(const std::string& name);
 
 }  // namespace trilab::cli

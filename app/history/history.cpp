@@ -280,6 +280,7 @@ struct Step {
 
 struct Entry {
     std::string label, parameters;
+    Operation operation;  ///< the typed operation (none for loads and viewer-made states)
     double ms = 0;
     std::vector<Step> steps;
     std::size_t bytes = 0;
@@ -429,7 +430,8 @@ void History::reset(HalfedgeMesh mesh, std::string label, std::string parameters
 
 std::vector<std::string> History::push(std::string label, std::string parameters, double ms,
                                        std::vector<HalfedgeMesh> step_meshes,
-                                       std::vector<MorphCorrespondence> correspondences) {
+                                       std::vector<MorphCorrespondence> correspondences,
+                                       Operation operation) {
     Impl& im = *impl_;
     const std::string where = "History::push \"" + label + "\": ";
     if (im.entries.empty())
@@ -451,6 +453,7 @@ std::vector<std::string> History::push(std::string label, std::string parameters
     Entry e;
     e.label = std::move(label);
     e.parameters = std::move(parameters);
+    e.operation = std::move(operation);
     e.ms = ms;
     MeshPtr last_state;  // the state after the last step, when already at hand
     MeshPtr predecessor = im.current_step().structure();
@@ -527,6 +530,7 @@ History::EntryInfo History::info(std::size_t index) const {
     EntryInfo out;
     out.label = e.label;
     out.parameters = e.parameters;
+    out.operation = e.operation;
     out.ms = e.ms;
     out.bytes = e.bytes;
     for (const Step& s : e.steps) out.steps.push_back({s.vertices, s.faces, s.correspondence.kind});

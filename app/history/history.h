@@ -41,6 +41,7 @@
 #include <string>
 #include <vector>
 
+#include "app/ops/operation.h"
 #include "core/halfedge_mesh.h"
 #include "core/morph.h"
 
@@ -54,6 +55,9 @@ public:
     };
     struct EntryInfo {
         std::string label, parameters;
+        /// The typed operation that made the entry (empty `def` for loads and states the
+        /// viewer made itself); the text above is for people.
+        Operation operation;
         double ms = 0;
         std::vector<StepInfo> steps;
         std::size_t bytes = 0;  ///< memory this entry holds on its own
@@ -73,7 +77,8 @@ public:
     /// entry naming it and the bytes freed.
     std::vector<std::string> push(std::string label, std::string parameters, double ms,
                                   std::vector<HalfedgeMesh> step_meshes,
-                                  std::vector<MorphCorrespondence> correspondences);
+                                  std::vector<MorphCorrespondence> correspondences,
+                                  Operation operation = {});
 
     bool can_undo() const;
     bool can_redo() const;

@@ -1,95 +1,35 @@
 // The "decimate" operation: edge collapse with quadric or roundness costs and binary
 // constraints (core/decimation.h). One step per iteration, each with its geomorph.
-#include <charconv>
 #include <chrono>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <utility>
 
+#include "app/ops/operation_decl.h"
 #include "app/ops/operation_entries.h"
-#include "app/ops/operation_entry.h"
 #include "core/decimation.h"
 
 namespace trilab {
 namespace {
 
-constexpr const char* kDecimateUsage =
-    "--cost quadric|roundness (default quadric), --percent P (0 to 100, default 60) "
-    "--iterations N (1 to 1000, default 1) or --target-vertices K, --normal-flip DEG|off "
-    "(default 90), --roundness MIN (0 to 1; off by default), --independent-set, "
-    "--max-error D (0: none)";
+/// The operation's options: the core's, with the vertex target optional.
+struct DecimateOptions {
+    DecimationOptions core;
+    std::optional<std::size_t> target_vertices;
+};
 
-DecimationOptions parse_decimate(OptionReader& r) {
-    DecimationOptions o;
-    bool amount_by_percent = false;
-    while (r.next()) {
-        if (r.is("--cost")) {
-            o.cost = parse_decimation_cost(r.choice({"quadric", "roundness"}));
-        } else if (r.is("--percent")) {
-            o.percent = r.number(0, 100);
-            if (o.percent <= 0) throw r.bad_value("a number from 0 to 100 (above 0)", "0");
-            amount_by_percent = true;
-        } else if (r.is("--iterations")) {
-            o.iterations = int(r.whole_number(1, 1000));
-            amount_by_percent = true;
-        } else if (r.is("--target-vertices")) {
-            o.target_vertices = std::size_t(r.whole_number(1, 4000000000ull));
-        } else if (r.is("--normal-flip")) {
-            const std::string text = r.value();
-            if (text == "off") {
-                o.normal_flip = false;
-            } else {
-                double deg = 0;
-                const char* end = text.data() + text.size();
-                const auto [ptr, ec] = std::from_chars(text.data(), end, deg);
-                if (text.empty() || ec != std::errc() || ptr != end || !(deg > 0 && deg <= 180))
-                    throw r.bad_value("a number of degrees above 0 and up to 180, or off", text);
-                o.max_normal_angle = deg;
-                o.normal_flip = true;
-            }
-        } else if (r.is("--roundness")) {
-            o.min_roundness = r.number(0, 1);
-            if (o.min_roundness <= 0) throw r.bad_value("a number from 0 to 1 (above 0)", "0");
-            o.roundness = true;
-        } else if (r.is("--independent-set")) {
-            o.independent_set = true;
-        } else if (r.is("--max-error")) {
-            o.max_error = r.number(0, 1e300);
-        } else {
-            r.unknown();
-        }
-    }
-    if (amount_by_percent && o.target_vertices > 0)
-        throw InvalidArgument(
-            "--target-vertices: give either --target-vertices or --percent/--iterations");
-    return o;
-}
-
-std::string canonical_parameters(const DecimationOptions& o) {
-    std::string s = std::string("--cost ") + decimation_cost_name(o.cost);
-    if (o.target_vertices > 0)
-        s += " --target-vertices " + std::to_string(o.target_vertices);
-    else
-        s += " --percent " + OptionReader::format_number(o.percent) + " --iterations " +
-             std::to_string(o.iterations);
-    s += " --normal-flip " +
-         (o.normal_flip ? OptionReader::format_number(o.max_normal_angle) : std::string("off"));
-    if (o.roundness) s += " --roundness " + OptionReader::format_number(o.min_roundness);
-    if (o.independent_set) s += " --independent-set";
-    if (o.max_error > 0) s += " --max-error " + OptionReader::format_number(o.max_error);
-    return s;
-}
-
-OperationResult run_decimate(const DecimationOptions& o, const HalfedgeMesh& mesh,
-                             Progress& progress) {
+OperationResult run_decimate(const DecimateOptions& d_options, const HalfedgeMesh& mesh,
+                             Progress& progress, const RunSettings&) {
+    const DecimationOptions& o = d_options.core;
     DecimationOptions options = o;
+    options.target_vertices = d_options.target_vertices.value_or(0);
     options.record_progressive = false;  // the steps carry the geomorphs
     DecimationResult d = decimate(mesh, options, progress);
     const DecimationReport& rep = d.report;
     OperationResult result;
     result.ms = rep.ms;
     result.label = "Decimate";
-    result.parameters = canonical_parameters(o);
     char line[200];
     for (std::size_t i = 0; i < d.levels.size(); ++i) {
         const HalfedgeMesh& m = d.levels[i].mesh;
@@ -135,8 +75,62 @@ OperationResult run_decimate(const DecimationOptions& o, const HalfedgeMesh& mes
 
 }  // namespace
 
-OperationEntry decimate_operation() {
-    return make_entry<DecimationOptions>("decimate", kDecimateUsage, parse_decimate, run_decimate);
+DecimationOptions decimation_options(const Operation& op) {
+    const auto o = std::any_cast<DecimateOptions>(operation_def("decimate").options(op.values));
+    DecimationOptions core = o.core;
+    core.target_vertices = o.target_vertices.value_or(0);
+    return core;
+}
+
+std::unique_ptr<OperationDef> decimate_operation() {
+    OperationDecl<DecimateOptions> d(
+        "decimate", "Decimate",
+        "Collapses edges in the order of a cost (Garland, Heckbert 1997 quadrics, or normalized "
+        "roundness), vetoed by binary constraints; each iteration is a step with its geomorph. "
+        "The result is a valid manifold with the input's boundary loops and genus.");
+    const auto without_target = [](const DecimateOptions& o) -> const char* {
+        return o.target_vertices ? "does not apply with --target-vertices (give one or the other)"
+                                 : nullptr;
+    };
+    d.choice(
+        "cost", [](DecimateOptions & o) -> auto& { return o.core.cost; },
+        EnumTableView(kDecimationCosts), "the collapse order");
+    d.number(
+         "percent", [](DecimateOptions & o) -> auto& { return o.core.percent; }, 0, 100,
+         "vertices removed per iteration, in percent")
+        .above_min()
+        .label("percent per iteration")
+        .slider(1, 100)
+        .only_if(without_target);
+    d.integer(
+         "iterations", [](DecimateOptions & o) -> auto& { return o.core.iterations; }, 1, 1000,
+         "iterations, each a step")
+        .slider(1, 20)
+        .only_if(without_target);
+    d.integer("target-vertices", &DecimateOptions::target_vertices, 1, 4e9,
+              "one iteration down to K vertices")
+        .default_note("none (--percent and --iterations)");
+    d.switchable(
+         "normal-flip", [](DecimateOptions & o) -> auto& { return o.core.normal_flip; },
+         [](DecimateOptions & o) -> auto& { return o.core.max_normal_angle; }, 0, 180, "off",
+         "largest angle a face normal may turn", " degrees")
+        .above_min()
+        .label("normal flipping, max angle");
+    d.switchable(
+         "roundness", [](DecimateOptions & o) -> auto& { return o.core.roundness; },
+         [](DecimateOptions & o) -> auto& { return o.core.min_roundness; }, 0, 1, "off",
+         "smallest normalized roundness a new triangle may have")
+        .above_min()
+        .label("roundness, min");
+    d.flag(
+        "independent-set", [](DecimateOptions & o) -> auto& { return o.core.independent_set; },
+        "lock the one-ring of each collapse for the rest of the iteration");
+    d.number(
+         "max-error", [](DecimateOptions & o) -> auto& { return o.core.max_error; }, 0, 1e300,
+         "largest quadric error as a distance (0: no limit)")
+        .hide_default();
+    d.run(run_decimate);
+    return d.build();
 }
 
 }  // namespace trilab

@@ -5,38 +5,19 @@
 #include <string>
 #include <utility>
 
+#include "app/ops/operation_decl.h"
 #include "app/ops/operation_entries.h"
-#include "app/ops/operation_entry.h"
 #include "core/noise.h"
 
 namespace trilab {
 namespace {
 
-constexpr const char* kNoiseUsage =
-    "--amount PCT (percent of the mean edge length, 0 to 1000, default 1), "
-    "--seed S (0 to 4294967295, default 1)";
-
-NoiseOptions parse_noise(OptionReader& r) {
-    NoiseOptions o;
-    while (r.next()) {
-        if (r.is("--amount"))
-            o.amount_percent =
-                r.number(0, kMaxNoiseAmountPercent, " (percent of the mean edge length)");
-        else if (r.is("--seed"))
-            o.seed = std::uint32_t(r.whole_number(0, std::numeric_limits<std::uint32_t>::max()));
-        else
-            r.unknown();
-    }
-    return o;
-}
-
-OperationResult run_noise(const NoiseOptions& o, const HalfedgeMesh& mesh, Progress& progress) {
+OperationResult run_noise(const NoiseOptions& o, const HalfedgeMesh& mesh, Progress& progress,
+                          const RunSettings&) {
     progress.check_cancelled();
     progress.report(0, "adding noise");
     OperationResult result;
     result.label = "Add noise";
-    result.parameters = "--amount " + OptionReader::format_number(o.amount_percent) + " --seed " +
-                        std::to_string(o.seed);
     OperationStep step{mesh, MorphCorrespondence{MorphCorrespondence::Kind::SameVertices, {}}};
     const auto t0 = std::chrono::steady_clock::now();
     const NoiseReport report = add_noise(step.mesh, o);
@@ -62,8 +43,19 @@ OperationResult run_noise(const NoiseOptions& o, const HalfedgeMesh& mesh, Progr
 
 }  // namespace
 
-OperationEntry noise_operation() {
-    return make_entry<NoiseOptions>("noise", kNoiseUsage, parse_noise, run_noise);
+std::unique_ptr<OperationDef> noise_operation() {
+    OperationDecl<NoiseOptions> d("noise", "Add noise",
+                                  "Moves every vertex along its normal by a uniform random amount "
+                                  "of up to a percentage of the mean edge length, reproducible "
+                                  "from the seed.");
+    d.number("amount", &NoiseOptions::amount_percent, 0, kMaxNoiseAmountPercent,
+             "percent of the mean edge length", " (percent of the mean edge length)")
+        .label("amount (% of mean edge)")
+        .slider(0.01, 100, true);
+    d.integer("seed", &NoiseOptions::seed, 0, std::numeric_limits<std::uint32_t>::max(),
+              "random seed");
+    d.run(run_noise);
+    return d.build();
 }
 
 }  // namespace trilab

@@ -1,15 +1,21 @@
 #pragma once
-// The registered operations, one function per file app/ops/<name>_op.cpp. Adding an
-// operation: write its file (parser, runner, entry function), declare the function here and
-// add one line to registry() in app/ops/operation.cpp.
-#include "app/ops/operation_entry.h"
+// The registered operations, one function per file app/ops/<name>_op.cpp, each returning
+// its declaration (app/ops/operation_decl.h). Adding an operation: write its file, declare
+// its function here and add one line to operation_defs() in app/ops/operation.cpp.
+#include <memory>
+
+#include "app/ops/operation.h"
 
 namespace trilab {
 
-OperationEntry noise_operation();      ///< app/ops/noise_op.cpp
-OperationEntry subdivide_operation();  ///< app/ops/subdivide_op.cpp
-OperationEntry smooth_operation();     ///< app/ops/smooth_op.cpp
-OperationEntry spectrum_operation();   ///< app/ops/spectrum_op.cpp
-OperationEntry decimate_operation();   ///< app/ops/decimate_op.cpp
+std::unique_ptr<OperationDef> noise_operation();      ///< app/ops/noise_op.cpp
+std::unique_ptr<OperationDef> subdivide_operation();  ///< app/ops/subdivide_op.cpp
+std::unique_ptr<OperationDef> smooth_operation();     ///< app/ops/smooth_op.cpp
+std::unique_ptr<OperationDef> spectrum_operation();   ///< app/ops/spectrum_op.cpp
+std::unique_ptr<OperationDef> decimate_operation();   ///< app/ops/decimate_op.cpp
+
+/// The core options of a "decimate" operation (for the collapsing-edges overlay).
+struct DecimationOptions;
+DecimationOptions decimation_options(const Operation& op);
 
 }  // namespace trilab

@@ -7,59 +7,29 @@
 #include <string>
 #include <utility>
 
+#include "app/ops/operation_decl.h"
 #include "app/ops/operation_entries.h"
-#include "app/ops/operation_entry.h"
 #include "core/coloring.h"
 #include "core/fairing.h"
 
 namespace trilab {
 namespace {
 
-constexpr const char* kSmoothUsage =
-    "--operator umbrella|improved-umbrella|curvature-flow|second-order|taubin (default "
-    "umbrella), --integration explicit|implicit (default explicit), --step T (default 0.5), "
-    "--iterations N (1 to 10000, default 1), --preserve-volume, --boundary fixed|slide (default "
-    "fixed)";
-
-FairingOptions parse_smooth(OptionReader& r) {
-    FairingOptions o;
-    o.step = 0.5;
-    while (r.next()) {
-        if (r.is("--operator"))
-            o.op = parse_fairing_operator(r.choice(
-                {"umbrella", "improved-umbrella", "curvature-flow", "second-order", "taubin"}));
-        else if (r.is("--integration"))
-            o.integration = parse_integration(r.choice({"explicit", "implicit"}));
-        else if (r.is("--step"))
-            o.step = r.number(0.0, 1e6);
-        else if (r.is("--iterations"))
-            o.iterations = int(r.whole_number(1, 10000));
-        else if (r.is("--preserve-volume"))
-            o.preserve_volume = true;
-        else if (r.is("--boundary"))
-            o.boundary = parse_boundary_mode(r.choice({"fixed", "slide"}));
-        else
-            r.unknown();
-    }
-    return o;
-}
-
-OperationResult run_smooth(const FairingOptions& o, const HalfedgeMesh& mesh, Progress& progress) {
+OperationResult run_smooth(const FairingOptions& options, const HalfedgeMesh& mesh,
+                           Progress& progress, const RunSettings& settings) {
+    FairingOptions o = options;
+    o.keep_steps = settings.keep_steps;
     const auto t0 = std::chrono::steady_clock::now();
     FairingResult fairing = smooth(mesh, o, progress);
     OperationResult result;
     result.ms = ms_since(t0);
     result.label = "Smooth";
-    result.parameters = std::string("--operator ") + fairing_operator_name(o.op) +
-                        " --integration " + integration_name(o.integration) + " --step " +
-                        OptionReader::format_number(o.step) + " --iterations " +
-                        std::to_string(o.iterations) +
-                        (o.preserve_volume ? " --preserve-volume" : "") +
-                        (o.boundary == BoundaryMode::Slide ? " --boundary slide" : "");
     result.report = fairing.report;
-    if (fairing.diverged)
-        result.report.push_back(
-            "stopped early: the step diverged (try a smaller step or implicit)");
+    if (fairing.diverged) {
+        result.stopped_early = true;
+        result.stop_reason = "the step diverged (try a smaller step or implicit integration)";
+        result.report.push_back("stopped early: " + result.stop_reason);
+    }
     // Geometry-only steps: every iteration keeps the vertices of the one before.
     for (HalfedgeMesh& step : fairing.steps)
         result.steps.push_back(OperationStep{std::move(step), MorphCorrespondence{}});
@@ -78,7 +48,9 @@ OperationResult run_smooth(const FairingOptions& o, const HalfedgeMesh& mesh, Pr
                   "smoothing distance along the normal: largest %.6g, mean %.6g", max_distance,
                   mean_distance);
     result.report.emplace_back(line);
-    result.values = {{"iterations_done", double(result.steps.size())},
+    const double done =
+        o.keep_steps || fairing.diverged ? double(result.steps.size()) : double(o.iterations);
+    result.values = {{"iterations_done", done},
                      {"max_residual", fairing.max_residual},
                      {"initial_volume", fairing.initial_volume},
                      {"final_volume", fairing.final_volume},
@@ -92,8 +64,52 @@ OperationResult run_smooth(const FairingOptions& o, const HalfedgeMesh& mesh, Pr
 
 }  // namespace
 
-OperationEntry smooth_operation() {
-    return make_entry<FairingOptions>("smooth", kSmoothUsage, parse_smooth, run_smooth);
+std::unique_ptr<OperationDef> smooth_operation() {
+    OperationDecl<FairingOptions> d(
+        "smooth", "Smooth",
+        "Fairs the mesh by diffusion (sections 1.2.1-1.2.10 of the reference; Desbrun, Meyer, "
+        "Schroeder, Barr 1999; Guskov, Sweldens, Schroeder 1999; Taubin 1995), one step per "
+        "iteration. Boundary vertices stay fixed unless --boundary slide; isolated vertices do "
+        "not move.");
+    const auto taubin_only = [](const FairingOptions& o) -> const char* {
+        return o.op == FairingOperator::Taubin ? nullptr : "applies to --operator taubin only";
+    };
+    const auto not_taubin = [](const FairingOptions& o) -> const char* {
+        return o.op == FairingOperator::Taubin
+                   ? "does not apply to --operator taubin (it uses --lambda and --mu)"
+                   : nullptr;
+    };
+    d.choice("operator", &FairingOptions::op, EnumTableView(kFairingOperators),
+             "the Laplacian of the diffusion");
+    d.choice("integration", &FairingOptions::integration, EnumTableView(kIntegrations),
+             "explicit Euler, or implicit (backward Euler: stable for any step)")
+        .only_if(not_taubin);
+    d.number("step", &FairingOptions::step, 0, 1e6, "lambda * dt")
+        .slider(1e-4, 100, true)
+        .only_if(not_taubin);
+    d.integer("iterations", &FairingOptions::iterations, 1, kMaxFairingIterations,
+              "steps, each kept in the history")
+        .slider(1, 200);
+    d.number("lambda", &FairingOptions::taubin_lambda, 0, 1, "Taubin's shrinking factor")
+        .above_min()
+        .slider(0.01, 1)
+        .only_if(taubin_only);
+    d.number("mu", &FairingOptions::taubin_mu, -10, 0, "Taubin's inflating factor, below -lambda")
+        .slider(-1.5, -0.01)
+        .only_if(taubin_only);
+    d.flag("preserve-volume", &FairingOptions::preserve_volume,
+           "scale back to the initial volume after every step (closed meshes)");
+    d.choice("boundary", &FairingOptions::boundary, EnumTableView(kBoundaryModes),
+             "boundary vertices stay fixed, or slide along the input's boundary curve")
+        .hide_default();
+    d.check([](const FairingOptions& o, const auto&) {
+        if (o.op == FairingOperator::Taubin && !(o.taubin_mu < -o.taubin_lambda))
+            throw InvalidArgument(
+                "--mu: expected a value below -lambda = " + format_number(-o.taubin_lambda) +
+                ", got " + format_number(o.taubin_mu));
+    });
+    d.run(run_smooth);
+    return d.build();
 }
 
 }  // namespace trilab

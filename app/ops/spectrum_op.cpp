@@ -3,82 +3,27 @@
 #include <chrono>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 
+#include "app/ops/operation_decl.h"
 #include "app/ops/operation_entries.h"
-#include "app/ops/operation_entry.h"
 #include "core/spectral.h"
 
 namespace trilab {
 namespace {
 
-constexpr const char* kSpectrumUsage =
-    "--operator umbrella|improved-umbrella|curvature-flow|second-order (default umbrella), "
-    "--k K (frequencies, 1 to vertices - 1, default 50; with --full default all), "
-    "--which smallest|largest (default smallest), --band LO:HI (0 <= LO <= HI < K, default "
-    "all), --full (dense, up to --max-full vertices), --max-full N (default 5000), "
-    "--mass normalizer|barycentric|voronoi (default normalizer), --fix-boundary (Dirichlet; "
-    "default free), --threads 1|2 (spectrum slicing; default 2 when the machine has them)";
-
-constexpr std::uint64_t kMaxK = 10000000;
-
+/// The operation's options: the core's, with the count and the band optional.
 struct SpectrumOptions {
     SpectralOptions spectral;
-    bool k_given = false;
-    bool band_given = false;
-    std::size_t lo = 0, hi = 0;
+    std::optional<std::size_t> k;  ///< unset: 50, or every frequency with --full
+    bool full = false;
+    std::optional<std::pair<std::size_t, std::size_t>> band;  ///< unset: all
+    std::optional<std::size_t> threads;                       ///< unset: the machine's
 };
 
-SpectrumOptions parse_spectrum(OptionReader& r) {
-    SpectrumOptions o;
-    std::string band_text;
-    while (r.next()) {
-        if (r.is("--operator")) {
-            o.spectral.op = parse_laplacian_operator(
-                r.choice({"umbrella", "improved-umbrella", "curvature-flow", "second-order"}));
-        } else if (r.is("--k")) {
-            o.spectral.k = std::size_t(r.whole_number(1, kMaxK));
-            o.k_given = true;
-        } else if (r.is("--which")) {
-            o.spectral.end = parse_spectrum_end(r.choice({"smallest", "largest"}));
-        } else if (r.is("--band")) {
-            band_text = r.value();
-            const std::size_t colon = band_text.find(':');
-            const auto digits = [](const std::string& s) {
-                return !s.empty() && s.size() < 9 &&
-                       s.find_first_not_of("0123456789") == std::string::npos;
-            };
-            const std::string a = band_text.substr(0, colon);
-            const std::string b = colon == std::string::npos ? "" : band_text.substr(colon + 1);
-            if (colon == std::string::npos || !digits(a) || !digits(b) ||
-                std::stoul(a) > std::stoul(b))
-                throw r.bad_value("LO:HI with 0 <= LO <= HI < K", band_text);
-            o.lo = std::stoul(a);
-            o.hi = std::stoul(b);
-            o.band_given = true;
-        } else if (r.is("--full")) {
-            o.spectral.method = SpectralMethod::Full;
-        } else if (r.is("--max-full")) {
-            o.spectral.max_full_rows = std::size_t(r.whole_number(2, 100000));
-        } else if (r.is("--mass")) {
-            o.spectral.mass = parse_mass_matrix(r.choice({"normalizer", "barycentric", "voronoi"}));
-        } else if (r.is("--fix-boundary")) {
-            o.spectral.fix_boundary = true;
-        } else if (r.is("--threads")) {
-            o.spectral.threads = std::size_t(r.whole_number(1, 2));
-        } else {
-            r.unknown();
-        }
-    }
-    if (o.spectral.method == SpectralMethod::Full && !o.k_given) o.spectral.k = 0;
-    const bool k_known = o.k_given || o.spectral.method == SpectralMethod::Partial;
-    if (o.band_given && k_known && o.hi >= o.spectral.k)
-        throw InvalidArgument(
-            "--band: expected LO:HI with 0 <= LO <= HI < K = " + std::to_string(o.spectral.k) +
-            ", got '" + std::to_string(o.lo) + ":" + std::to_string(o.hi) + "'");
-    return o;
-}
+constexpr double kMaxK = 10000000;
 
 /// Core messages name the option without dashes ("k: ..."); the CLI's options have them.
 [[noreturn]] void rethrow_with_dashes(const InvalidArgument& e) {
@@ -88,17 +33,24 @@ SpectrumOptions parse_spectrum(OptionReader& r) {
     throw e;
 }
 
-OperationResult run_spectrum(const SpectrumOptions& o, const HalfedgeMesh& mesh,
-                             Progress& progress) {
+OperationResult run_spectrum(const SpectrumOptions& o, const HalfedgeMesh& mesh, Progress& progress,
+                             const RunSettings&) {
     const auto t0 = std::chrono::steady_clock::now();
+    SpectralOptions spectral = o.spectral;
+    spectral.method = o.full ? SpectralMethod::Full : SpectralMethod::Partial;
+    if (o.k)
+        spectral.k = *o.k;
+    else if (o.full)
+        spectral.k = 0;
+    spectral.threads = o.threads.value_or(0);
     SpectralDecomposition d;
     try {
-        d = decompose(mesh, o.spectral, progress);
+        d = decompose(mesh, spectral, progress);
     } catch (const InvalidArgument& e) {
         rethrow_with_dashes(e);
     }
     const std::size_t k = d.size();
-    const std::size_t lo = o.band_given ? o.lo : 0, hi = o.band_given ? o.hi : k - 1;
+    const std::size_t lo = o.band ? o.band->first : 0, hi = o.band ? o.band->second : k - 1;
     if (hi >= k)
         throw InvalidArgument(
             "--band: expected LO:HI with 0 <= LO <= HI < K = " + std::to_string(k) + ", got '" +
@@ -107,19 +59,6 @@ OperationResult run_spectrum(const SpectrumOptions& o, const HalfedgeMesh& mesh,
     OperationResult result;
     result.ms = ms_since(t0);
     result.label = "Spectrum";
-    std::string params = std::string("--operator ") + laplacian_operator_name(o.spectral.op);
-    if (o.spectral.method == SpectralMethod::Full) params += " --full";
-    if (o.spectral.method == SpectralMethod::Partial || o.k_given)
-        params += " --k " + std::to_string(o.spectral.k);
-    params += std::string(" --which ") + spectrum_end_name(o.spectral.end) + " --band " +
-              std::to_string(lo) + ":" + std::to_string(hi);
-    if (o.spectral.mass != MassMatrix::Normalizer)
-        params += std::string(" --mass ") + mass_matrix_name(o.spectral.mass);
-    if (o.spectral.fix_boundary) params += " --fix-boundary";
-    if (o.spectral.max_full_rows != kDefaultMaxFullRows)
-        params += " --max-full " + std::to_string(o.spectral.max_full_rows);
-    if (o.spectral.threads) params += " --threads " + std::to_string(o.spectral.threads);
-    result.parameters = params;
     const SpectralReport& rep = d.report;
     char line[256];
     std::snprintf(line, sizeof line,
@@ -159,8 +98,47 @@ OperationResult run_spectrum(const SpectrumOptions& o, const HalfedgeMesh& mesh,
 
 }  // namespace
 
-OperationEntry spectrum_operation() {
-    return make_entry<SpectrumOptions>("spectrum", kSpectrumUsage, parse_spectrum, run_spectrum);
+std::unique_ptr<OperationDef> spectrum_operation() {
+    OperationDecl<SpectrumOptions> d(
+        "spectrum", "Spectrum",
+        "Decomposes the geometry into the eigenvectors of a fairing Laplacian, K x = lambda S x "
+        "(sections 1.2.2, 1.2.11, 1.2.12 of the reference; Taubin 1995; Vallet, Levy 2008), "
+        "and reconstructs the mesh from the band LO..HI of the computed frequencies.");
+    d.choice(
+        "operator", [](SpectrumOptions & o) -> auto& { return o.spectral.op; },
+        EnumTableView(kLaplacianOperators), "the Laplacian");
+    d.integer("k", &SpectrumOptions::k, 1, kMaxK, "frequencies, 1 to vertices - 1")
+        .default_note("50; with --full all");
+    d.choice(
+        "which", [](SpectrumOptions & o) -> auto& { return o.spectral.end; },
+        EnumTableView(kSpectrumEnds), "which end of the spectrum");
+    d.range("band", &SpectrumOptions::band, 0, kMaxK,
+            "the frequencies of the reconstruction, 0-based, ascending")
+        .default_note("all");
+    d.flag("full", &SpectrumOptions::full, "every frequency, dense (up to --max-full vertices)");
+    d.integer(
+         "max-full", [](SpectrumOptions & o) -> auto& { return o.spectral.max_full_rows; }, 2,
+         100000, "largest mesh for --full, in vertices")
+        .hide_default();
+    d.choice(
+         "mass", [](SpectrumOptions & o) -> auto& { return o.spectral.mass; },
+         EnumTableView(kMassMatrices), "S: the operator's normalizer or a lumped area")
+        .hide_default();
+    d.flag(
+        "fix-boundary", [](SpectrumOptions & o) -> auto& { return o.spectral.fix_boundary; },
+        "fixed (Dirichlet) boundary; default free");
+    d.integer("threads", &SpectrumOptions::threads, 1, 2, "spectrum slicing threads (smallest end)")
+        .default_note("2 when the machine has them");
+    d.check([](const SpectrumOptions& o, const auto&) {
+        const bool k_known = o.k.has_value() || !o.full;
+        const std::size_t k = o.k.value_or(o.spectral.k);
+        if (o.band && k_known && o.band->second >= k)
+            throw InvalidArgument(
+                "--band: expected LO:HI with 0 <= LO <= HI < K = " + std::to_string(k) + ", got '" +
+                std::to_string(o.band->first) + ":" + std::to_string(o.band->second) + "'");
+    });
+    d.run(run_spectrum);
+    return d.build();
 }
 
 }  // namespace trilab

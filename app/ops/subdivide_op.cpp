@@ -5,37 +5,18 @@
 #include <string>
 #include <utility>
 
+#include "app/ops/operation_decl.h"
 #include "app/ops/operation_entries.h"
-#include "app/ops/operation_entry.h"
 #include "core/subdivision.h"
 
 namespace trilab {
 namespace {
 
-constexpr const char* kSubdivideUsage =
-    "--scheme loop|sqrt3|butterfly|modified-butterfly (default loop), "
-    "--iterations N (1 to 10, default 1)";
-
-SubdivisionOptions parse_subdivide(OptionReader& r) {
-    SubdivisionOptions o;
-    while (r.next()) {
-        if (r.is("--scheme"))
-            o.scheme = parse_scheme(r.choice({"loop", "sqrt3", "butterfly", "modified-butterfly"}));
-        else if (r.is("--iterations"))
-            o.iterations = int(r.whole_number(1, 10));
-        else
-            r.unknown();
-    }
-    return o;
-}
-
 OperationResult run_subdivide(const SubdivisionOptions& o, const HalfedgeMesh& mesh,
-                              Progress& progress) {
+                              Progress& progress, const RunSettings&) {
     progress.check_cancelled();
     OperationResult result;
     result.label = "Subdivide";
-    result.parameters = std::string("--scheme ") + scheme_name(o.scheme) + " --iterations " +
-                        std::to_string(o.iterations);
     SubdivisionResult sub;
     if (mesh.has_garbage()) {  // subdivide() wants a compact mesh: compact a copy
         HalfedgeMesh compact = mesh;
@@ -56,24 +37,34 @@ OperationResult run_subdivide(const SubdivisionOptions& o, const HalfedgeMesh& m
                   scheme_name(o.scheme), o.iterations, o.iterations == 1 ? "" : "s", mesh.n_faces(),
                   sub.levels.empty() ? 0 : sub.levels.back().mesh.n_faces(), sub.ms);
     result.report.emplace_back(line);
+    std::vector<double> level_vertices, level_faces;
+    for (const SubdivisionLevel& level : sub.levels) {
+        level_vertices.push_back(double(level.mesh.n_vertices()));
+        level_faces.push_back(double(level.mesh.n_faces()));
+    }
+    result.series = {{"level_vertices", level_vertices}, {"level_faces", level_faces}};
     for (SubdivisionLevel& level : sub.levels)
         result.steps.push_back(
             OperationStep{std::move(level.mesh), std::move(level.correspondence)});
     const HalfedgeMesh& last = result.steps.back().mesh;
-    // "scheme" as a number: its SubdivisionScheme index (0 loop, 1 sqrt3, 2 butterfly,
-    // 3 modified-butterfly); the parameters text carries the name.
-    result.values = {{"scheme", double(int(o.scheme))},
-                     {"iterations", double(o.iterations)},
-                     {"vertices", double(last.n_vertices())},
-                     {"faces", double(last.n_faces())}};
+    result.values = {{"vertices", double(last.n_vertices())}, {"faces", double(last.n_faces())}};
     return result;
 }
 
 }  // namespace
 
-OperationEntry subdivide_operation() {
-    return make_entry<SubdivisionOptions>("subdivide", kSubdivideUsage, parse_subdivide,
-                                          run_subdivide);
+std::unique_ptr<OperationDef> subdivide_operation() {
+    OperationDecl<SubdivisionOptions> d(
+        "subdivide", "Subdivide",
+        "Subdivides the triangle mesh N times and keeps every level as a step (Loop 1987; Kobbelt "
+        "2000; Dyn, Levin, Gregory 1990; Zorin, Schroeder, Sweldens 1996). Boundaries stay "
+        "boundaries; texture coordinates are interpolated.");
+    d.choice("scheme", &SubdivisionOptions::scheme, EnumTableView(kSubdivisionSchemes),
+             "loop and sqrt3 approximate, the butterflies interpolate");
+    d.integer("iterations", &SubdivisionOptions::iterations, 1, 10, "refinement steps")
+        .slider(1, 6);
+    d.run(run_subdivide);
+    return d.build();
 }
 
 }  // namespace trilab

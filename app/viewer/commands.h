@@ -6,6 +6,8 @@
 #include <variant>
 #include <vector>
 
+#include "app/ops/operation.h"
+
 namespace trilab::viewer {
 
 struct LoadFile {
@@ -25,9 +27,9 @@ struct Redo {};
 struct JumpTo {
     std::size_t entry = 0;
 };
-/// An operation string as app/ops/operation.h parses it, e.g. "noise --amount 2 --seed 7".
+/// An operation with its typed parameters (app/ops/operation.h), e.g. a panel's.
 struct RunOperation {
-    std::string text;
+    Operation op;
 };
 /// Recompute the vertex colouring (its kind or options changed).
 struct UpdateColoring {};

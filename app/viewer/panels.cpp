@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <iterator>
 
+#include "core/fairing.h"
+
 namespace trilab::viewer {
 namespace {
 
@@ -204,7 +206,7 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Tools")) {
-        ImGui::MenuItem("Add noise", nullptr, &panels.tools_open);
+        ImGui::MenuItem("Add noise", nullptr, &panels.tools.open);
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Algorithms")) {
@@ -336,28 +338,130 @@ void history_window(PanelState& panels, const History& history, bool busy, Comma
     ImGui::End();
 }
 
-void subdivision_window(PanelState& panels, MorphState& morph, const History& history, bool busy,
-                        double now, CommandQueue& commands) {
-    SubdivisionPanelState& state = panels.subdivision;
-    if (!state.open) return;
+bool operation_widgets(Operation& op) {
+    bool changed = false;
+    const OperationDef& def = *op.def;
+    const float w = 12.0f * ImGui::GetFontSize();
+    for (std::size_t i = 0; i < def.params.size(); ++i) {
+        if (def.why_not(op.values, i)) continue;  // hidden: it does not apply
+        const ParamSpec& p = def.params[i];
+        ParamValue& v = op.values[i];
+        const ParamValue before = v;
+        ImGui::PushID(p.name.c_str());
+        const double lo = p.ui_min != 0 || p.ui_max != 0 ? p.ui_min : p.min;
+        const double hi = p.ui_min != 0 || p.ui_max != 0 ? p.ui_max : p.max;
+        const ImGuiSliderFlags flags =
+            p.logarithmic ? ImGuiSliderFlags_Logarithmic : ImGuiSliderFlags_None;
+        switch (p.kind) {
+            case ParamKind::Choice: {
+                int current = 0;
+                for (std::size_t c = 0; c < p.choices.size(); ++c)
+                    if (p.choices[c].value == int(v.x)) current = int(c);
+                ImGui::SetNextItemWidth(w);
+                if (ImGui::BeginCombo(p.label.c_str(), p.choices[current].label.c_str())) {
+                    for (std::size_t c = 0; c < p.choices.size(); ++c)
+                        if (ImGui::Selectable(p.choices[c].label.c_str(), int(c) == current))
+                            v.x = p.choices[c].value;
+                    ImGui::EndCombo();
+                }
+                break;
+            }
+            case ParamKind::Flag: {
+                bool on = v.x != 0;
+                if (ImGui::Checkbox(p.label.c_str(), &on)) v.x = on ? 1 : 0;
+                break;
+            }
+            case ParamKind::Integer: {
+                if (p.optional) {
+                    ImGui::Checkbox("##set", &v.on);
+                    ImGui::SameLine();
+                }
+                int x = int(v.x);
+                ImGui::SetNextItemWidth(w);
+                if (!v.on) ImGui::BeginDisabled();
+                if (hi - lo <= 1000)
+                    ImGui::SliderInt(p.label.c_str(), &x, int(lo), int(hi), "%d",
+                                     ImGuiSliderFlags_AlwaysClamp);
+                else
+                    ImGui::InputInt(p.label.c_str(), &x);
+                if (!v.on) ImGui::EndDisabled();
+                v.x = std::clamp(double(x), p.min, p.max);
+                break;
+            }
+            case ParamKind::Switchable:
+            case ParamKind::Number: {
+                if (p.kind == ParamKind::Switchable) {
+                    ImGui::Checkbox("##on", &v.on);
+                    ImGui::SameLine();
+                    if (!v.on) ImGui::BeginDisabled();
+                }
+                // Type any value ("2e-2" works) or drag the slider.
+                ImGui::SetNextItemWidth(w * 0.45f);
+                double x = v.x;
+                if (ImGui::InputDouble("##value", &x, 0.0, 0.0, "%g") && std::isfinite(x)) v.x = x;
+                ImGui::SameLine();
+                float f = float(v.x);
+                ImGui::SetNextItemWidth(w * 0.55f);
+                if (ImGui::SliderFloat(p.label.c_str(), &f, float(lo), float(hi), "%.4g", flags))
+                    v.x = f;
+                v.x = std::clamp(v.x, p.min, p.max);
+                if (p.min_exclusive && v.x <= p.min) v.x = std::max(lo, p.min + 1e-9);
+                if (p.kind == ParamKind::Switchable && !v.on) ImGui::EndDisabled();
+                break;
+            }
+            case ParamKind::Range: {
+                int range[2] = {int(v.x), int(v.y)};
+                ImGui::SetNextItemWidth(w);
+                if (ImGui::InputInt2(p.label.c_str(), range)) {
+                    v.x = std::clamp(double(range[0]), p.min, p.max);
+                    v.y = std::clamp(double(range[1]), v.x, p.max);
+                }
+                break;
+            }
+        }
+        if (ImGui::IsItemHovered() && !p.help.empty()) ImGui::SetTooltip("%s", p.help.c_str());
+        ImGui::PopID();
+        if (v != before) {
+            v.given = true;
+            changed = true;
+        }
+    }
+    return changed;
+}
+
+namespace {
+/// The parameters of an operation panel, its Apply button, and the morph of the current
+/// entry.
+void operation_panel_body(OperationPanelState& state, const char* apply, bool busy,
+                          CommandQueue& commands) {
+    operation_widgets(state.op);
+    std::string error;
+    try {
+        check_operation(state.op);
+    } catch (const Error& e) {
+        error = e.what();
+    }
+    if (!error.empty()) ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.40f, 1.0f), "%s", error.c_str());
+    if (busy || !error.empty()) ImGui::BeginDisabled();
+    if (ImGui::Button(apply)) commands.push_back(RunOperation{state.op});
+    if (busy || !error.empty()) ImGui::EndDisabled();
+}
+
+void place_tool_window() {
     const ImGuiIO& io = ImGui::GetIO();
     ImGui::SetNextWindowPos(ImVec2(std::max(0.0f, io.DisplaySize.x - 31.0f * ImGui::GetFontSize()),
                                    9.0f * ImGui::GetFontSize()),
                             ImGuiCond_FirstUseEver);
+}
+}  // namespace
+
+void subdivision_window(PanelState& panels, MorphState& morph, const History& history, bool busy,
+                        double now, CommandQueue& commands) {
+    OperationPanelState& state = panels.subdivision;
+    if (!state.open) return;
+    place_tool_window();
     if (ImGui::Begin("Subdivision", &state.open, ImGuiWindowFlags_AlwaysAutoResize)) {
-        const char* schemes[] = {"Loop", "Sqrt3", "Butterfly", "Modified Butterfly"};
-        const char* names[] = {"loop", "sqrt3", "butterfly", "modified-butterfly"};
-        ImGui::SetNextItemWidth(12.0f * ImGui::GetFontSize());
-        ImGui::Combo("scheme", &state.scheme, schemes, 4);
-        ImGui::SetNextItemWidth(12.0f * ImGui::GetFontSize());
-        ImGui::SliderInt("iterations", &state.iterations, 1, 6);
-        if (busy) ImGui::BeginDisabled();
-        if (ImGui::Button("Subdivide")) {
-            commands.push_back(RunOperation{std::string("subdivide --scheme ") +
-                                            names[std::clamp(state.scheme, 0, 3)] +
-                                            " --iterations " + std::to_string(state.iterations)});
-        }
-        if (busy) ImGui::EndDisabled();
+        operation_panel_body(state, "Subdivide", busy, commands);
         ImGui::Separator();
         morph_controls(morph, history, now);
         ImGui::TextDisabled("Rendering > Colour by vertex > Subdivision vertices");
@@ -367,137 +471,30 @@ void subdivision_window(PanelState& panels, MorphState& morph, const History& hi
 
 void fairing_window(PanelState& panels, MorphState& morph, const History& history, bool closed,
                     bool busy, double now, CommandQueue& commands) {
-    FairingPanelState& f = panels.fairing;
-    if (!f.open) return;
-    const ImGuiIO& io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(ImVec2(std::max(0.0f, io.DisplaySize.x - 31.0f * ImGui::GetFontSize()),
-                                   9.0f * ImGui::GetFontSize()),
-                            ImGuiCond_FirstUseEver);
-    if (ImGui::Begin("Fairing", &f.open, ImGuiWindowFlags_AlwaysAutoResize)) {
-        const char* labels[] = {"Umbrella", "Improved umbrella", "Curvature flow",
-                                "Second-order difference", "Taubin lambda|mu"};
-        const char* names[] = {"umbrella", "improved-umbrella", "curvature-flow", "second-order",
-                               "taubin"};
-        const float w = 12.0f * ImGui::GetFontSize();
-        ImGui::SetNextItemWidth(w);
-        ImGui::Combo("operator", &f.op, labels, 5);
-        if (f.op == 4) f.implicit = false;  // Taubin is explicit
-        int integration = f.implicit ? 1 : 0;
-        ImGui::RadioButton("explicit", &integration, 0);
-        ImGui::SameLine();
-        if (f.op == 4) ImGui::BeginDisabled();
-        ImGui::RadioButton("implicit", &integration, 1);
-        if (f.op == 4) ImGui::EndDisabled();
-        f.implicit = integration == 1;
-        // The step: type any value ("2e-2" works) or drag the logarithmic slider.
-        ImGui::SetNextItemWidth(w * 0.5f);
-        ImGui::InputDouble("##step", &f.step, 0.0, 0.0, "%g");
-        ImGui::SameLine();
-        float step = float(f.step);
-        ImGui::SetNextItemWidth(w * 0.5f);
-        if (ImGui::SliderFloat("step", &step, 1e-4f, 100.0f, "%.4g", ImGuiSliderFlags_Logarithmic))
-            f.step = step;
-        f.step = std::clamp(std::isfinite(f.step) ? f.step : 0.5, 0.0, 1e6);
-        ImGui::SetNextItemWidth(w);
-        ImGui::SliderInt("iterations", &f.iterations, 1, 200);
-        if (!closed) {
-            f.preserve_volume = false;
-            ImGui::BeginDisabled();
-        }
-        ImGui::Checkbox("preserve volume", &f.preserve_volume);
-        if (!closed) {
-            ImGui::EndDisabled();
-            if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-                ImGui::SetTooltip("The mesh has a boundary: its volume is not defined.");
-        }
-        if (closed) {
-            f.slide_boundary = false;
-            ImGui::BeginDisabled();
-        }
-        ImGui::Checkbox("boundary slides along its curve", &f.slide_boundary);
-        if (closed) {
-            ImGui::EndDisabled();
-            if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-                ImGui::SetTooltip("The mesh is closed: it has no boundary.");
-        } else if (ImGui::IsItemHovered()) {
-            ImGui::SetTooltip(
-                "Off: boundary vertices stay fixed. On: they move along the "
-                "boundary curve (which keeps its shape), evening out their "
-                "spacing.");
-        }
-        if (busy) ImGui::BeginDisabled();
-        if (ImGui::Button("Smooth")) {
-            char op[320];
-            std::snprintf(op, sizeof(op),
-                          "smooth --operator %s --integration %s --step %.17g --iterations %d%s%s",
-                          names[std::clamp(f.op, 0, 4)], f.implicit ? "implicit" : "explicit",
-                          f.step, f.iterations, f.preserve_volume ? " --preserve-volume" : "",
-                          f.slide_boundary ? " --boundary slide" : "");
-            commands.push_back(RunOperation{op});
-        }
-        if (busy) ImGui::EndDisabled();
+    OperationPanelState& state = panels.fairing;
+    if (!state.open) return;
+    place_tool_window();
+    if (ImGui::Begin("Fairing", &state.open, ImGuiWindowFlags_AlwaysAutoResize)) {
+        // What the mesh cannot do is switched off with the reason, never ignored.
+        ParamValue& volume = state.op.value("preserve-volume");
+        ParamValue& boundary = state.op.value("boundary");
+        if (!closed) volume.x = 0;
+        if (closed) boundary.x = int(BoundaryMode::Fixed);
+        operation_panel_body(state, "Smooth", busy, commands);
+        if (!closed) ImGui::TextDisabled("open mesh: no volume to preserve");
         ImGui::Separator();
         morph_controls(morph, history, now);
     }
     ImGui::End();
 }
 
-std::string decimate_operation_text(const DecimationPanelState& d) {
-    char op[320];
-    std::snprintf(op, sizeof(op), "decimate --cost %s --percent %g --iterations %d",
-                  d.cost == 1 ? "roundness" : "quadric",
-                  double(std::clamp(d.percent, 0.1f, 100.0f)), std::clamp(d.iterations, 1, 1000));
-    std::string text = op;
-    if (d.normal_flip) {
-        std::snprintf(op, sizeof(op), " --normal-flip %g",
-                      double(std::clamp(d.max_normal_angle, 1.0f, 180.0f)));
-        text += op;
-    } else {
-        text += " --normal-flip off";
-    }
-    if (d.roundness) {
-        std::snprintf(op, sizeof(op), " --roundness %g",
-                      double(std::clamp(d.min_roundness, 0.01f, 1.0f)));
-        text += op;
-    }
-    if (d.independent_set) text += " --independent-set";
-    return text;
-}
-
 void decimation_window(PanelState& panels, MorphState& morph, const History& history, bool busy,
                        double now, std::size_t collapsing_edges, CommandQueue& commands) {
     DecimationPanelState& d = panels.decimation;
     if (!d.open) return;
-    const ImGuiIO& io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(ImVec2(std::max(0.0f, io.DisplaySize.x - 31.0f * ImGui::GetFontSize()),
-                                   9.0f * ImGui::GetFontSize()),
-                            ImGuiCond_FirstUseEver);
+    place_tool_window();
     if (ImGui::Begin("Decimation", &d.open, ImGuiWindowFlags_AlwaysAutoResize)) {
-        const float w = 12.0f * ImGui::GetFontSize();
-        const char* costs[] = {"Quadrics", "Roundness"};
-        ImGui::SetNextItemWidth(w);
-        ImGui::Combo("cost", &d.cost, costs, 2);
-        ImGui::TextDisabled("Binary constraints");
-        ImGui::Checkbox("roundness##constraint", &d.roundness);
-        ImGui::SameLine();
-        if (!d.roundness) ImGui::BeginDisabled();
-        ImGui::SetNextItemWidth(w * 0.6f);
-        ImGui::SliderFloat("min##roundness", &d.min_roundness, 0.01f, 1.0f, "%.2f");
-        if (!d.roundness) ImGui::EndDisabled();
-        ImGui::Checkbox("normal flipping", &d.normal_flip);
-        ImGui::SameLine();
-        if (!d.normal_flip) ImGui::BeginDisabled();
-        ImGui::SetNextItemWidth(w * 0.6f);
-        ImGui::SliderFloat("max angle", &d.max_normal_angle, 1.0f, 180.0f, "%.0f deg");
-        if (!d.normal_flip) ImGui::EndDisabled();
-        ImGui::Checkbox("independent set", &d.independent_set);
-        ImGui::SetNextItemWidth(w);
-        ImGui::SliderFloat("percent per iteration", &d.percent, 1.0f, 100.0f, "%.0f %%");
-        ImGui::SetNextItemWidth(w);
-        ImGui::SliderInt("iterations", &d.iterations, 1, 20);
-        if (busy) ImGui::BeginDisabled();
-        if (ImGui::Button("Decimate")) commands.push_back(RunOperation{decimate_operation_text(d)});
-        if (busy) ImGui::EndDisabled();
+        operation_panel_body(d, "Decimate", busy, commands);
         ImGui::Checkbox("show collapsing edges", &d.show_collapsing_edges);
         if (d.show_collapsing_edges) {
             ImGui::SameLine();
@@ -510,29 +507,14 @@ void decimation_window(PanelState& panels, MorphState& morph, const History& his
 }
 
 void tools_window(PanelState& panels, bool busy, CommandQueue& commands) {
-    if (!panels.tools_open) return;
-    ToolsState& t = panels.tools;
-    const ImGuiIO& io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(ImVec2(std::max(0.0f, io.DisplaySize.x - 31.0f * ImGui::GetFontSize()),
-                                   9.0f * ImGui::GetFontSize()),
-                            ImGuiCond_FirstUseEver);
-    if (ImGui::Begin("Tools", &panels.tools_open, ImGuiWindowFlags_AlwaysAutoResize)) {
+    OperationPanelState& state = panels.tools;
+    if (!state.open) return;
+    place_tool_window();
+    if (ImGui::Begin("Tools", &state.open, ImGuiWindowFlags_AlwaysAutoResize)) {
         ImGui::TextUnformatted("Add noise: move vertices along their normals");
-        ImGui::SetNextItemWidth(10.0f * ImGui::GetFontSize());
-        ImGui::SliderFloat("amount (% of mean edge)", &t.noise_amount, 0.0f, 100.0f, "%.2f",
-                           ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
-        ImGui::SetNextItemWidth(10.0f * ImGui::GetFontSize());
-        ImGui::InputInt("seed", &t.noise_seed);
-        t.noise_seed = std::max(t.noise_seed, 0);
-        if (busy) ImGui::BeginDisabled();
-        if (ImGui::Button("Apply")) {
-            char op[96];
-            std::snprintf(op, sizeof(op), "noise --amount %g --seed %d", double(t.noise_amount),
-                          t.noise_seed);
-            commands.push_back(RunOperation{op});
-            panels.morph_open = true;
-        }
-        if (busy) ImGui::EndDisabled();
+        const std::size_t before = commands.size();
+        operation_panel_body(state, "Apply", busy, commands);
+        if (commands.size() > before) panels.morph_open = true;
     }
     ImGui::End();
 }

@@ -60,47 +60,26 @@ struct RecordState {
     int next = 0;  ///< the next frame to write
 };
 
-/// The Subdivision panel's parameters.
-struct SubdivisionPanelState {
+/// An operation panel's state: open or not, and the operation with the values its widgets
+/// edit (the declaration's defaults at first).
+struct OperationPanelState {
+    explicit OperationPanelState(const char* name) : op(make_operation(name)) {}
     bool open = false;
-    int scheme = 0;  ///< index into loop, sqrt3, butterfly, modified-butterfly
-    int iterations = 1;
+    Operation op;
 };
 
-/// The Fairing panel's parameters.
-struct FairingPanelState {
-    bool open = false;
-    int op = 0;  ///< umbrella, improved-umbrella, curvature-flow, second-order, taubin
-    bool implicit = false;
-    double step = 0.5;  ///< lambda * dt
-    int iterations = 10;
-    bool preserve_volume = false;
-    bool slide_boundary = false;  ///< boundary vertices move along the boundary curve
-};
-
-/// The Decimation panel's parameters (section 1.4.4 of the reference).
-struct DecimationPanelState {
-    bool open = false;
-    int cost = 0;  ///< 0 quadric, 1 roundness
-    bool normal_flip = true;
-    float max_normal_angle = 90.0f;  ///< degrees
-    bool roundness = false;
-    float min_roundness = 0.2f;
-    bool independent_set = false;
-    float percent = 60.0f;  ///< of the vertices, per iteration
-    int iterations = 1;
+/// The Decimation panel: its operation, and the collapsing-edges overlay.
+struct DecimationPanelState : OperationPanelState {
+    DecimationPanelState() : OperationPanelState("decimate") {}
     /// Rendering > Vectors > Collapsing edges: the edges the next iteration collapses.
     bool show_collapsing_edges = false;
 };
 
-/// The op string ("decimate --cost quadric --percent 60 --iterations 1 ...") of the panel.
-std::string decimate_operation_text(const DecimationPanelState& state);
-
-/// The Tools panel's parameters.
-struct ToolsState {
-    float noise_amount = 1.0f;  ///< percent of the mean edge length
-    int noise_seed = 1;
-};
+/// Draws one widget per parameter of `op` that applies to its current values, from the
+/// operation's declaration (combo boxes for choices, sliders for numbers, check boxes for
+/// flags and switchable numbers, two fields for a range). Returns true when a value changed;
+/// changed values are marked `given`.
+bool operation_widgets(Operation& op);
 
 /// Rendering settings that live in the viewer rather than in RenderStyle.
 struct ViewSettings {
@@ -122,14 +101,13 @@ struct UnsavedPrompt {
 struct PanelState {
     UnsavedPrompt unsaved;
     ScreenshotState screenshot;
-    SubdivisionPanelState subdivision;
-    FairingPanelState fairing;
+    OperationPanelState subdivision{"subdivide"};
+    OperationPanelState fairing{"smooth"};
     FrequencyPanelState frequency;
     DecimationPanelState decimation;
     RecordState record;
-    ToolsState tools;
+    OperationPanelState tools{"noise"};
     bool history_open = false;
-    bool tools_open = false;
     bool morph_open = false;
     FileBrowserState file_browser;
     bool help_open = false;

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "app/ops/operation.h"
+#include "app/ops/operation_entries.h"
 #include "core/decimation.h"
 #include "core/errors.h"
 #include "core/generators.h"
@@ -192,7 +193,7 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
         else if (panel == "morph")
             panels_.morph_open = true;
         else if (panel == "tools")
-            panels_.tools_open = true;
+            panels_.tools.open = true;
         else if (panel == "fairing")
             panels_.fairing.open = true;
         else if (panel == "subdivision")
@@ -216,7 +217,7 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
     }
     if (!options_.mesh_path.empty()) load(options_.mesh_path);
     if (!options_.operation.empty() && options_.mesh_path.empty())
-        commands_.push_back(RunOperation{options_.operation});
+        commands_.push_back(RunOperation{parse_operation(options_.operation)});
 }
 
 Viewer::~Viewer() = default;
@@ -287,18 +288,18 @@ void Viewer::on_state_changed(bool fit) {
     if (fit) fit_view();
 }
 
-void Viewer::run_operation_job(const std::string& op_text) {
-    Operation op;
+void Viewer::run_operation_job(const Operation& op) {
     try {
-        op = parse_operation(op_text);
+        check_operation(op);
     } catch (const std::exception& e) {
         notify_error(e.what());
         return;
     }
+    const std::string op_text = op.text();
     const bool started = jobs_.start(op_text, [this, op](Progress& progress) {
         auto result =
             std::make_shared<OperationResult>(run_operation(op, document_.mesh(), progress));
-        return JobRunner::Finish([this, result] {
+        return JobRunner::Finish([this, result, op] {
             std::vector<HalfedgeMesh> meshes;
             std::vector<MorphCorrespondence> correspondences;
             for (OperationStep& step : result->steps) {
@@ -307,10 +308,13 @@ void Viewer::run_operation_job(const std::string& op_text) {
             }
             log_history_messages(document_.history.push(result->label, result->parameters,
                                                         result->ms, std::move(meshes),
-                                                        std::move(correspondences)));
+                                                        std::move(correspondences), op));
             log_.info(result->label + " " + result->parameters);
             for (const std::string& line : result->report) log_.info("  " + line);
             on_state_changed(false);
+            // A run that stopped early keeps its good steps and says why, never silently.
+            if (result->stopped_early)
+                notify_error(result->label + " stopped early: " + result->stop_reason);
             // Show the change: play the morph once from before to after.
             morph_.t = 0.0;
             morph_.playing = true;
@@ -467,7 +471,7 @@ void Viewer::load(const std::string& path) {
                         std::move(loaded->report));
             if (!options_.operation.empty() && path == options_.mesh_path && !initial_op_done_) {
                 initial_op_done_ = true;
-                commands_.push_back(RunOperation{options_.operation});
+                commands_.push_back(RunOperation{parse_operation(options_.operation)});
             }
             recent_.add(path);
         });
@@ -747,7 +751,7 @@ void Viewer::execute(const Command& command) {
     } else if (std::holds_alternative<CancelRecording>(command)) {
         finish_recording(true);
     } else if (auto* op = std::get_if<RunOperation>(&command)) {
-        run_operation_job(op->text);
+        run_operation_job(op->op);
     } else if (std::holds_alternative<UpdateColoring>(command)) {
         update_coloring();
     } else if (std::holds_alternative<ProjectTexCoords>(command)) {
@@ -966,7 +970,7 @@ void Viewer::update_collapsing_edges() {
     char id[96];
     std::snprintf(id, sizeof(id), "%p %zu %zu %zu ", static_cast<const void*>(&mesh),
                   document_.history.current(), mesh.n_vertices(), mesh.n_faces());
-    const std::string key = id + decimate_operation_text(d);
+    const std::string key = id + d.op.text();
     if (key == collapse_key_) return;
     collapse_key_ = key;
     std::vector<glm::vec3> points;
@@ -979,14 +983,7 @@ void Viewer::update_collapsing_edges() {
         return;
     }
     try {
-        DecimationOptions o;
-        o.cost = d.cost == 1 ? DecimationCost::Roundness : DecimationCost::Quadric;
-        o.percent = std::clamp(double(d.percent), 0.1, 100.0);
-        o.normal_flip = d.normal_flip;
-        o.max_normal_angle = std::clamp(double(d.max_normal_angle), 1.0, 180.0);
-        o.roundness = d.roundness;
-        o.min_roundness = std::clamp(double(d.min_roundness), 0.01, 1.0);
-        o.independent_set = d.independent_set;
+        const DecimationOptions o = decimation_options(d.op);
         for (const auto& pair : next_collapses(mesh, o)) {
             const Point& a = mesh.position(pair[0]);
             const Point& b = mesh.position(pair[1]);

@@ -116,8 +116,8 @@ private:
     /// information and colours; fits the view when asked.
     void on_state_changed(bool fit);
     void log_history_messages(const std::vector<std::string>& messages);
-    /// Runs an operation ("noise --amount 2") as a job; its result becomes a history entry.
-    void run_operation_job(const std::string& op_text);
+    /// Runs an operation as a job; its result becomes a history entry.
+    void run_operation_job(const Operation& op);
     /// Advances playback and shows the morph of the current entry, or the current state.
     void update_morph();
     /// Recording: starts, writes the next frame (once per UI frame), finishes.

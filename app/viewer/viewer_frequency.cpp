@@ -27,8 +27,12 @@ void Viewer::frequency_ui() {
     // The applied band is the current history entry's, so undo and redo keep it right.
     const History::EntryInfo entry = document_.history.info(document_.history.current());
     std::size_t lo = 0, hi = 0;
-    doc.applied = doc.valid && entry.label == kBandLabel &&
-                  std::sscanf(entry.parameters.c_str(), "%zu:%zu", &lo, &hi) == 2 &&
+    if (entry.label == kBandLabel && entry.operation.def) {
+        const ParamValue& band = entry.operation.value("band");
+        lo = std::size_t(band.x);
+        hi = std::size_t(band.y);
+    }
+    doc.applied = doc.valid && entry.label == kBandLabel && entry.operation.def &&
                   hi < doc.eigenvalues.size();
     doc.applied_lo = lo;
     doc.applied_hi = hi;
@@ -148,6 +152,7 @@ void Viewer::push_frequency_state(bool restore) {
     const SpectralDecomposition& d = *document_.frequency.decomposition;
     HalfedgeMesh mesh = document_.mesh();
     std::string label, parameters;
+    Operation band;  // the band as the spectrum operation's typed parameter
     if (restore) {
         mesh.positions() = d.base_positions;
         label = kRestoreLabel;
@@ -155,14 +160,19 @@ void Viewer::push_frequency_state(bool restore) {
     } else {
         mesh.positions() = reconstruct_positions(d, std::size_t(s.lo), std::size_t(s.hi));
         label = kBandLabel;
+        band = make_operation("spectrum");
+        ParamValue& v = band.value("band");
+        v.x = double(s.lo);
+        v.y = double(s.hi);
+        v.on = v.given = true;
         parameters = std::to_string(s.lo) + ":" + std::to_string(s.hi) + " of " +
                      std::to_string(d.size()) + " (" + laplacian_operator_name(d.op) + ")";
     }
     // A geometry-only step: the same vertices, so the morph interpolates positions.
     std::vector<HalfedgeMesh> meshes;
     meshes.push_back(std::move(mesh));
-    log_history_messages(
-        document_.history.push(label, parameters, 0.0, std::move(meshes), {MorphCorrespondence{}}));
+    log_history_messages(document_.history.push(label, parameters, 0.0, std::move(meshes),
+                                                {MorphCorrespondence{}}, band));
     log_.info(label + " " + parameters);
     on_state_changed(false);
 }

@@ -26,6 +26,11 @@ public:
     bool cancel_requested() const override { return true; }
 };
 
+Operation with_value(Operation op, const char* name, double x) {
+    op.value(name).x = x;
+    return op;
+}
+
 std::string parse_error(const std::string& text) {
     try {
         parse_operation(text);
@@ -45,12 +50,17 @@ TEST_CASE("noise is registered", "[ops]") {
     REQUIRE_THROWS_AS(operation_usage("nope"), InvalidArgument);
 }
 
-TEST_CASE("parse_operation splits the name and the arguments", "[ops]") {
+TEST_CASE("parse_operation gives typed values, marking what was named", "[ops]") {
     const Operation op = parse_operation("  noise\t--amount 2   --seed 7 ");
-    REQUIRE(op.name == "noise");
-    REQUIRE(op.args == std::vector<std::string>{"--amount", "2", "--seed", "7"});
-    REQUIRE(parse_operation("noise").args.empty());
-    REQUIRE(parse_operation("noise --amount=2.5").args.size() == 1);
+    REQUIRE(op.name() == "noise");
+    REQUIRE(op.value("amount").x == 2);
+    REQUIRE(op.value("amount").given);
+    REQUIRE(op.value("seed").x == 7);
+    const Operation defaults = parse_operation("noise");
+    REQUIRE(defaults == make_operation("noise"));
+    REQUIRE_FALSE(defaults.value("seed").given);
+    REQUIRE(parse_operation("noise --amount=2.5").value("amount").x == 2.5);
+    REQUIRE(op.text() == "noise --amount 2 --seed 7");
 }
 
 TEST_CASE("running noise gives one geometry-only step and leaves the input alone", "[ops]") {
@@ -133,9 +143,12 @@ TEST_CASE("bad operation strings are refused, naming the bad part", "[ops]") {
     // And run_operation refuses the same when given an Operation built by hand.
     NullProgress progress;
     const HalfedgeMesh mesh = make_icosahedron();
-    REQUIRE_THROWS_WITH(run_operation(Operation{"noise", {"--amount", "-3"}}, mesh, progress),
-                        Catch::Contains("--amount"));
-    REQUIRE_THROWS_WITH(run_operation(Operation{"frobnicate", {}}, mesh, progress),
+    Operation bad = make_operation("noise");
+    bad.value("amount").x = -3;
+    REQUIRE_THROWS_WITH(run_operation(bad, mesh, progress), Catch::Contains("--amount"));
+    REQUIRE_THROWS_WITH(run_operation(Operation{}, mesh, progress),
+                        Catch::Contains("empty operation"));
+    REQUIRE_THROWS_WITH(make_operation("frobnicate"),
                         Catch::Contains("unknown operation 'frobnicate'"));
 }
 
@@ -167,8 +180,8 @@ TEST_CASE("subdivide is registered with its options", "[ops]") {
                                                    Catch::Contains("--iterations") &&
                                                    Catch::Contains("modified-butterfly"));
     const Operation op = parse_operation("subdivide --scheme sqrt3 --iterations=2");
-    REQUIRE(op.name == "subdivide");
-    REQUIRE(op.args == std::vector<std::string>{"--scheme", "sqrt3", "--iterations=2"});
+    REQUIRE(op.name() == "subdivide");
+    REQUIRE(op.text() == "subdivide --scheme sqrt3 --iterations 2");
 }
 
 TEST_CASE("subdivide gives one step per level with FromEarlier correspondences", "[ops]") {
@@ -198,14 +211,11 @@ TEST_CASE("subdivide gives one step per level with FromEarlier correspondences",
     REQUIRE_THAT(r.report[0], Catch::Contains("4002 vertices") && Catch::Contains("8000 faces"));
     REQUIRE_THAT(r.report[1], Catch::Contains("32000 faces"));
     REQUIRE_THAT(r.report[2], Catch::Contains("ms"));
-    // Values, in their fixed order.
-    REQUIRE(r.values.size() == 4);
-    REQUIRE(r.values[0].first == "scheme");
-    REQUIRE(r.values[1].first == "iterations");
-    REQUIRE(r.values[2].first == "vertices");
-    REQUIRE(r.values[3].first == "faces");
-    REQUIRE(value_of(r, "scheme") == double(int(SubdivisionScheme::Loop)));
-    REQUIRE(value_of(r, "iterations") == 2);
+    // Values, in their fixed order (the parameters are the operation's, not values).
+    REQUIRE(r.values.size() == 2);
+    REQUIRE(r.values[0].first == "vertices");
+    REQUIRE(r.values[1].first == "faces");
+    REQUIRE(r.parameters == "--scheme loop --iterations 2");
     REQUIRE(value_of(r, "vertices") == double(r.steps[1].mesh.n_vertices()));
     REQUIRE(value_of(r, "faces") == 32000);
 
@@ -240,7 +250,6 @@ TEST_CASE("subdivide runs every scheme with the expected counts", "[ops]") {
         REQUIRE(m.n_vertices() == 12 + 30);
         REQUIRE(m.n_faces() == 4 * 20);
     }
-    REQUIRE(value_of(r, "scheme") == double(int(parse_scheme(scheme))));
     REQUIRE(value_of(r, "vertices") == double(m.n_vertices()));
     REQUIRE_NOTHROW(check_correspondence(input, m, r.steps[0].correspondence));
 }
@@ -280,9 +289,9 @@ TEST_CASE("bad subdivide strings are refused, naming the option", "[ops]") {
     REQUIRE_THAT(parse_error("subdivide --scheme loop --scheme sqrt3"),
                  Catch::Contains("more than once"));
     NullProgress progress;
-    REQUIRE_THROWS_WITH(
-        run_operation(Operation{"subdivide", {"--iterations", "0"}}, make_icosahedron(), progress),
-        Catch::Contains("--iterations"));
+    REQUIRE_THROWS_WITH(run_operation(with_value(make_operation("subdivide"), "iterations", 0),
+                                      make_icosahedron(), progress),
+                        Catch::Contains("--iterations"));
 }
 
 TEST_CASE("a cancelled subdivision throws Cancelled and leaves the input alone", "[ops]") {
