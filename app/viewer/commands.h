@@ -31,6 +31,18 @@ struct JumpTo {
 struct RunOperation {
     Operation op;
 };
+/// Show `op` applied to the current state without committing it (a panel's parameter
+/// changed); a newer request replaces an older one that is still computing.
+struct PreviewOperation {
+    Operation op;
+};
+/// Commit `op` as one history entry: the shown preview when it was computed for `op`,
+/// otherwise a run of its own.
+struct ApplyOperation {
+    Operation op;
+};
+/// Drop the preview and show the current state again (the panel's Cancel, or Esc).
+struct CancelPreview {};
 /// Recompute the vertex colouring (its kind or options changed).
 struct UpdateColoring {};
 /// Compute texture coordinates by the chosen projection (the mesh has none).
@@ -51,10 +63,10 @@ struct Quit {
 /// Save the document to its own file, then carry out the pending Quit or LoadFile.
 struct SaveAndContinue {};
 
-using Command =
-    std::variant<LoadFile, SaveFile, RevertFile, LoadTexture, FitView, Undo, Redo, JumpTo,
-                 RunOperation, UpdateColoring, ProjectTexCoords, TakeScreenshot, PrintInfo,
-                 StartRecording, CancelRecording, CancelJob, Quit, SaveAndContinue>;
+using Command = std::variant<LoadFile, SaveFile, RevertFile, LoadTexture, FitView, Undo, Redo,
+                             JumpTo, RunOperation, PreviewOperation, ApplyOperation, CancelPreview,
+                             UpdateColoring, ProjectTexCoords, TakeScreenshot, PrintInfo,
+                             StartRecording, CancelRecording, CancelJob, Quit, SaveAndContinue>;
 using CommandQueue = std::vector<Command>;
 
 }  // namespace trilab::viewer

@@ -3,6 +3,7 @@
 // screenshot fails, 2 for bad command-line arguments. A mesh file that cannot be read is not
 // fatal: the error goes to stderr and to the window, and the default model stays.
 
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -28,6 +29,10 @@ options:
   --memory-budget MB the history's memory budget (default: a quarter of the RAM)
   --decompose K[:LO:HI]  decompose the model into K frequencies (the Frequency panel's
                      settings) and apply the band LO..HI, for scripts and tests
+  --sweep "OPERATION" --param NAME --range FROM:TO:COUNT
+                     open OPERATION's panel, set NAME to COUNT evenly spaced values, wait
+                     for each live preview to show, then print
+                     "sweep: previews=N median_ms=X max_ms=Y" and exit
   --show PANELS      open panels at start: comma-separated history, morph, tools,
                      subdivision, fairing, frequency, decimation, collapsing-edges,
                      record, log, info
@@ -88,6 +93,20 @@ std::string parse_args(int argc, char** argv, trilab::viewer::ViewerOptions& opt
         } else if (arg == "--op") {
             if (!value(options.operation))
                 return "--op needs an operation, e.g. \"noise --amount 2\"";
+        } else if (arg == "--sweep") {
+            if (!value(options.sweep_op) || options.sweep_op.empty())
+                return "--sweep needs an operation, e.g. \"smooth --iterations 10\"";
+        } else if (arg == "--param") {
+            if (!value(options.sweep_param) || options.sweep_param.empty())
+                return "--param needs a parameter name";
+        } else if (arg == "--range") {
+            char colon1 = 0, colon2 = 0, rest = 0;
+            if (!value(v) ||
+                std::sscanf(v.c_str(), "%lf%c%lf%c%d%c", &options.sweep_from, &colon1,
+                            &options.sweep_to, &colon2, &options.sweep_count, &rest) != 5 ||
+                colon1 != ':' || colon2 != ':' || options.sweep_count < 1 ||
+                !std::isfinite(options.sweep_from) || !std::isfinite(options.sweep_to))
+                return "--range needs FROM:TO:COUNT, e.g. 0.1:1:20";
         } else if (arg == "--decompose") {
             if (!value(options.decompose)) return "--decompose needs K or K:LO:HI";
         } else if (arg == "--color") {
@@ -101,6 +120,9 @@ std::string parse_args(int argc, char** argv, trilab::viewer::ViewerOptions& opt
         }
     }
     if (!options.screenshot.empty() && options.frames == 0) return "--screenshot needs --frames N";
+    if (options.sweep_op.empty() != options.sweep_param.empty() ||
+        options.sweep_op.empty() != (options.sweep_count == 0))
+        return "--sweep, --param and --range go together";
     return "";
 }
 

@@ -434,17 +434,28 @@ namespace {
 /// entry.
 void operation_panel_body(OperationPanelState& state, const char* apply, bool busy,
                           CommandQueue& commands) {
-    operation_widgets(state.op);
+    if (operation_widgets(state.op)) state.dirty = true;
     std::string error;
     try {
         check_operation(state.op);
     } catch (const Error& e) {
         error = e.what();
     }
+    // Live: every change previews at once; slow inputs preview when the drag is released.
+    if (state.dirty && error.empty() && (state.live || !ImGui::IsAnyItemActive())) {
+        commands.push_back(PreviewOperation{state.op});
+        state.dirty = false;
+    }
     if (!error.empty()) ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.40f, 1.0f), "%s", error.c_str());
-    if (busy || !error.empty()) ImGui::BeginDisabled();
-    if (ImGui::Button(apply)) commands.push_back(RunOperation{state.op});
-    if (busy || !error.empty()) ImGui::EndDisabled();
+    if ((busy && !state.previewing) || !error.empty()) ImGui::BeginDisabled();
+    if (ImGui::Button(apply)) commands.push_back(ApplyOperation{state.op});
+    if ((busy && !state.previewing) || !error.empty()) ImGui::EndDisabled();
+    if (state.previewing) {
+        ImGui::SameLine();
+        if (ImGui::Button("Cancel")) commands.push_back(CancelPreview{});
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("back to the state before (Esc)");
+    }
+    if (!state.preview_note.empty()) ImGui::TextDisabled("%s", state.preview_note.c_str());
 }
 
 void place_tool_window() {

@@ -66,6 +66,11 @@ struct OperationPanelState {
     explicit OperationPanelState(const char* name) : op(make_operation(name)) {}
     bool open = false;
     Operation op;
+    // Live preview (the viewer sets these each frame; see README "Live panels").
+    bool live = true;          ///< false: the preview waits until a drag is released
+    bool dirty = false;        ///< changed since the last preview request
+    bool previewing = false;   ///< a preview of this panel is computing or shown
+    std::string preview_note;  ///< e.g. "preview 38 ms" or why it waits for the release
 };
 
 /// The Decimation panel: its operation, and the collapsing-edges overlay.

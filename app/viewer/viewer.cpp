@@ -299,30 +299,40 @@ void Viewer::run_operation_job(const Operation& op) {
     const bool started = jobs_.start(op_text, [this, op](Progress& progress) {
         auto result =
             std::make_shared<OperationResult>(run_operation(op, document_.mesh(), progress));
-        return JobRunner::Finish([this, result, op] {
-            std::vector<HalfedgeMesh> meshes;
-            std::vector<MorphCorrespondence> correspondences;
-            for (OperationStep& step : result->steps) {
-                meshes.push_back(std::move(step.mesh));
-                correspondences.push_back(std::move(step.correspondence));
-            }
-            log_history_messages(document_.history.push(result->label, result->parameters,
-                                                        result->ms, std::move(meshes),
-                                                        std::move(correspondences), op));
-            log_.info(result->label + " " + result->parameters);
-            for (const std::string& line : result->report) log_.info("  " + line);
-            on_state_changed(false);
-            // A run that stopped early keeps its good steps and says why, never silently.
-            if (result->stopped_early)
-                notify_error(result->label + " stopped early: " + result->stop_reason);
-            // Show the change: play the morph once from before to after.
-            morph_.t = 0.0;
-            morph_.playing = true;
-            morph_.playback = Playback::Once;
-            morph_.play_start = glfwGetTime();
-        });
+        return JobRunner::Finish([this, result, op] { commit_result(op, std::move(*result)); });
     });
     if (!started) notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
+}
+
+bool Viewer::ready_for_script() const {
+    if (jobs_.busy()) return false;
+    if (!options_.mesh_path.empty() && document_.path.empty()) return false;  // still loading
+    if (!options_.operation.empty() && !initial_op_done_ && !options_.mesh_path.empty())
+        return false;
+    return true;
+}
+
+void Viewer::commit_result(const Operation& op, OperationResult result_value) {
+    OperationResult* result = &result_value;
+    std::vector<HalfedgeMesh> meshes;
+    std::vector<MorphCorrespondence> correspondences;
+    for (OperationStep& step : result->steps) {
+        meshes.push_back(std::move(step.mesh));
+        correspondences.push_back(std::move(step.correspondence));
+    }
+    log_history_messages(document_.history.push(result->label, result->parameters, result->ms,
+                                                std::move(meshes), std::move(correspondences), op));
+    log_.info(result->label + " " + result->parameters);
+    for (const std::string& line : result->report) log_.info("  " + line);
+    on_state_changed(false);
+    // A run that stopped early keeps its good steps and says why, never silently.
+    if (result->stopped_early)
+        notify_error(result->label + " stopped early: " + result->stop_reason);
+    // Show the change: play the morph once from before to after.
+    morph_.t = 0.0;
+    morph_.playing = true;
+    morph_.playback = Playback::Once;
+    morph_.play_start = glfwGetTime();
 }
 
 void Viewer::start_recording() {
@@ -407,6 +417,10 @@ void Viewer::finish_recording(bool cancelled) {
 }
 
 void Viewer::update_morph() {
+    if (preview_.result) {
+        show_preview();
+        return;
+    }
     const std::size_t entry = document_.history.current();
     if (morph_.playing) {
         morph_.t =
@@ -529,6 +543,13 @@ void Viewer::poll_jobs() {
         commands_.push_back(UpdateColoring{});
     }
     active_frames_ = kFramesAfterInput;
+    const bool preview = outcome.name.rfind("Preview: ", 0) == 0;
+    if (preview && outcome.kind != Kind::Failed) {
+        if (outcome.kind == Kind::Succeeded && preview_.requested &&
+            preview_.computed_op == *preview_.requested && !sweep_.active)
+            note_preview_latency(1000.0 * (glfwGetTime() - preview_.requested_at));
+        return;
+    }
     if (outcome.kind == Kind::Failed) {
         notify_error(outcome.message);
     } else if (outcome.kind == Kind::Cancelled) {
@@ -719,6 +740,7 @@ void Viewer::take_screenshot(const TakeScreenshot& request) {
 
 void Viewer::execute(const Command& command) {
     if (auto* c = std::get_if<LoadFile>(&command)) {
+        clear_preview(true);
         if (c->discard_changes || confirm_discard(false, c->path)) load(c->path);
     } else if (auto* save_file = std::get_if<SaveFile>(&command)) {
         continue_after_save_ = false;
@@ -732,6 +754,7 @@ void Viewer::execute(const Command& command) {
     } else if (std::holds_alternative<Undo>(command) || std::holds_alternative<Redo>(command) ||
                std::holds_alternative<JumpTo>(command)) {
         History& h = document_.history;
+        clear_preview(true);  // a preview belongs to the state it was computed on
         if (jobs_.busy()) {
             notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
             return;
@@ -751,7 +774,14 @@ void Viewer::execute(const Command& command) {
     } else if (std::holds_alternative<CancelRecording>(command)) {
         finish_recording(true);
     } else if (auto* op = std::get_if<RunOperation>(&command)) {
+        clear_preview(true);
         run_operation_job(op->op);
+    } else if (auto* preview = std::get_if<PreviewOperation>(&command)) {
+        request_preview(preview->op);
+    } else if (auto* apply = std::get_if<ApplyOperation>(&command)) {
+        apply_operation(apply->op);
+    } else if (std::holds_alternative<CancelPreview>(command)) {
+        clear_preview(true);
     } else if (std::holds_alternative<UpdateColoring>(command)) {
         update_coloring();
     } else if (std::holds_alternative<ProjectTexCoords>(command)) {
@@ -885,6 +915,9 @@ void Viewer::handle_input() {
                 case GLFW_KEY_F1:
                     panels_.help_open = !panels_.help_open;
                     break;
+                case GLFW_KEY_ESCAPE:  // back to the state before the preview
+                    if (preview_.requested) commands_.push_back(CancelPreview{});
+                    break;
                 default:
                     break;
             }
@@ -910,6 +943,7 @@ void Viewer::draw_ui() {
     if (color_legend(view_.colors, view_.settings.coloring_options))
         commands_.push_back(UpdateColoring{});
     screenshot_dialog(panels_.screenshot, commands_);
+    update_preview_flags();
     history_window(panels_, document_.history, jobs_.busy(), commands_);
     tools_window(panels_, jobs_.busy(), commands_);
     subdivision_window(panels_, morph_, document_.history, jobs_.busy(), glfwGetTime(), commands_);
@@ -928,7 +962,8 @@ void Viewer::draw_ui() {
     status.file_name = document_.name;
     status.frame_ms = frame_ms();
     status_bar(status, notice_);
-    if (jobs_.busy()) {
+    // A preview's progress shows only when it takes a while.
+    if (jobs_.busy() && !(is_preview_job() && jobs_.elapsed_seconds() < 0.5)) {
         JobInfo job;
         job.name = jobs_.name();
         job.stage = jobs_.stage();
@@ -1049,11 +1084,20 @@ int Viewer::run() {
         if (active_frames_ > 0) --active_frames_;
 
         // Scripted runs (--frames) show the result of the initial load, not the progress.
-        while (options_.frames > 0 && jobs_.busy()) {
+        while (options_.frames > 0 && jobs_.busy() && !is_preview_job()) {
             poll_jobs();
             if (jobs_.busy()) glfwWaitEventsTimeout(0.002);
         }
         poll_jobs();
+        start_pending_preview();
+        if (sweep_.active ||
+            (!options_.sweep_op.empty() && !sweep_started_ && ready_for_script())) {
+            if (!sweep_started_) {
+                sweep_started_ = true;
+                start_sweep();
+            }
+            active_frames_ = std::max(active_frames_, 1);
+        }
         if (jobs_.busy()) active_frames_ = std::max(active_frames_, 1);  // animate the progress
 
         const double start = glfwGetTime();
@@ -1094,9 +1138,11 @@ int Viewer::run() {
                 return 1;
             }
         }
+        if (sweep_.active) glFinish();  // the frame is on the screen when we time it
         glfwSwapBuffers(window_.get());
         frame_times_ms_[n_frame_times_++ % frame_times_ms_.size()] =
             1000.0 * (glfwGetTime() - start);
+        if (sweep_.active) step_sweep(preview_uploaded_ != nullptr);
         if (last) break;
     }
     if (options_.frames > 0) {

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,11 @@ struct ViewerOptions {
     std::string show;          ///< panels to open at start, comma-separated
     int memory_budget_mb = 0;  ///< the history's budget; 0: a quarter of the RAM
     std::string decompose;     ///< "K" or "K:LO:HI": Frequency panel Decompose (and a band)
+    /// --sweep OP --param NAME --range FROM:TO:COUNT: preview OP with NAME at COUNT evenly
+    /// spaced values, print "sweep: previews=N median_ms=X max_ms=Y" and exit.
+    std::string sweep_op, sweep_param;
+    double sweep_from = 0, sweep_to = 0;
+    int sweep_count = 0;
 };
 
 /// The model: its history of states (the current one is shown) and where it came from.
@@ -118,6 +124,47 @@ private:
     void log_history_messages(const std::vector<std::string>& messages);
     /// Runs an operation as a job; its result becomes a history entry.
     void run_operation_job(const Operation& op);
+    /// Pushes an operation's result as one history entry and plays its morph.
+    void commit_result(const Operation& op, OperationResult result);
+
+    // Live previews (viewer_preview.cpp; the rule is in that file's comment).
+    struct PreviewState {
+        std::optional<Operation> requested;  ///< the newest request
+        std::optional<Operation> pending;    ///< requested, not started yet
+        std::shared_ptr<OperationResult> result;
+        Operation computed_op;       ///< what `result` was computed for
+        Operation shown_op;          ///< what is shown (computed_op or fewer iterations)
+        std::size_t shown_step = 0;  ///< the step of `result` shown
+        std::size_t base_entry = 0;  ///< the history entry `result` applies to
+        double requested_at = 0, shown_at = 0;
+    };
+    struct Sweep {
+        bool active = false, waiting = false;
+        Operation op, current;
+        std::size_t param = 0;
+        int next = 0;
+        double t0 = 0;
+        std::vector<double> ms;
+    };
+    bool is_preview_job() const;
+    OperationPanelState* panel_of(const Operation& op);
+    void request_preview(const Operation& op);
+    void start_pending_preview();
+    void show_preview();
+    /// Drops the preview (cancelling its job); `reupload`: show the current state again.
+    void clear_preview(bool reupload);
+    void apply_operation(const Operation& op);
+    void update_preview_flags();
+    void note_preview_latency(double ms);
+    void start_sweep();
+    /// After each frame: `frame_shown` says whether the frame showed the preview.
+    void step_sweep(bool frame_shown);
+    PreviewState preview_;
+    const HalfedgeMesh* preview_uploaded_ = nullptr;  ///< the preview mesh on the GPU
+    Sweep sweep_;
+    bool sweep_started_ = false;
+    /// The initial load and --op are done and no job runs: scripted actions may start.
+    bool ready_for_script() const;
     /// Advances playback and shows the morph of the current entry, or the current state.
     void update_morph();
     /// Recording: starts, writes the next frame (once per UI frame), finishes.
