@@ -338,6 +338,21 @@ void history_window(PanelState& panels, const History& history, bool busy, Comma
     ImGui::End();
 }
 
+namespace {
+WidgetRectHook widget_rect_hook;  // tests only; see set_widget_rect_hook()
+
+/// Reports the last item's rectangle to the test hook, when one is set.
+void note_widget(const std::string& id) {
+    if (!widget_rect_hook) return;
+    const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+    widget_rect_hook(id, a.x, a.y, b.x, b.y);
+}
+}  // namespace
+
+void set_widget_rect_hook(WidgetRectHook hook) {
+    widget_rect_hook = std::move(hook);
+}
+
 bool operation_widgets(Operation& op) {
     bool changed = false;
     const OperationDef& def = *op.def;
@@ -374,24 +389,29 @@ bool operation_widgets(Operation& op) {
             case ParamKind::Integer: {
                 if (p.optional) {
                     ImGui::Checkbox("##set", &v.on);
+                    note_widget(p.name + ":on");
                     ImGui::SameLine();
                 }
-                int x = int(v.x);
                 ImGui::SetNextItemWidth(w);
                 if (!v.on) ImGui::BeginDisabled();
-                if (hi - lo <= 1000)
-                    ImGui::SliderInt(p.label.c_str(), &x, int(lo), int(hi), "%d",
-                                     ImGuiSliderFlags_AlwaysClamp);
-                else
-                    ImGui::InputInt(p.label.c_str(), &x);
+                if (hi - lo <= 1000) {
+                    int x = int(std::clamp(v.x, lo, hi));
+                    if (ImGui::SliderInt(p.label.c_str(), &x, int(lo), int(hi), "%d",
+                                         ImGuiSliderFlags_AlwaysClamp))
+                        v.x = x;
+                } else {  // wide ranges (vertex counts): type the number
+                    long long x = std::llround(v.x);
+                    if (ImGui::InputScalar(p.label.c_str(), ImGuiDataType_S64, &x))
+                        v.x = std::clamp(double(x), p.min, p.max);
+                }
                 if (!v.on) ImGui::EndDisabled();
-                v.x = std::clamp(double(x), p.min, p.max);
                 break;
             }
             case ParamKind::Switchable:
             case ParamKind::Number: {
                 if (p.kind == ParamKind::Switchable) {
                     ImGui::Checkbox("##on", &v.on);
+                    note_widget(p.name + ":on");
                     ImGui::SameLine();
                     if (!v.on) ImGui::BeginDisabled();
                 }
@@ -399,11 +419,18 @@ bool operation_widgets(Operation& op) {
                 ImGui::SetNextItemWidth(w * 0.45f);
                 double x = v.x;
                 if (ImGui::InputDouble("##value", &x, 0.0, 0.0, "%g") && std::isfinite(x)) v.x = x;
-                ImGui::SameLine();
-                float f = float(v.x);
-                ImGui::SetNextItemWidth(w * 0.55f);
-                if (ImGui::SliderFloat(p.label.c_str(), &f, float(lo), float(hi), "%.4g", flags))
-                    v.x = f;
+                // A slider where its span fits a float's (max-error has none: scale-dependent).
+                if (std::abs(lo) < 1e30 && std::abs(hi) < 1e30) {
+                    ImGui::SameLine();
+                    float f = float(std::clamp(v.x, lo, hi));
+                    ImGui::SetNextItemWidth(w * 0.55f);
+                    if (ImGui::SliderFloat(p.label.c_str(), &f, float(lo), float(hi), "%.4g",
+                                           flags))
+                        v.x = f;
+                } else {
+                    ImGui::SameLine();
+                    ImGui::TextUnformatted(p.label.c_str());
+                }
                 v.x = std::clamp(v.x, p.min, p.max);
                 if (p.min_exclusive && v.x <= p.min) v.x = std::max(lo, p.min + 1e-9);
                 if (p.kind == ParamKind::Switchable && !v.on) ImGui::EndDisabled();
@@ -419,6 +446,7 @@ bool operation_widgets(Operation& op) {
                 break;
             }
         }
+        note_widget(p.name);
         if (ImGui::IsItemHovered() && !p.help.empty()) ImGui::SetTooltip("%s", p.help.c_str());
         ImGui::PopID();
         if (v != before) {
@@ -449,10 +477,12 @@ void operation_panel_body(OperationPanelState& state, const char* apply, bool bu
     if (!error.empty()) ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.40f, 1.0f), "%s", error.c_str());
     if ((busy && !state.previewing) || !error.empty()) ImGui::BeginDisabled();
     if (ImGui::Button(apply)) commands.push_back(ApplyOperation{state.op});
+    note_widget(apply);
     if ((busy && !state.previewing) || !error.empty()) ImGui::EndDisabled();
     if (state.previewing) {
         ImGui::SameLine();
         if (ImGui::Button("Cancel")) commands.push_back(CancelPreview{});
+        note_widget("Cancel");
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("back to the state before (Esc)");
     }
     if (!state.preview_note.empty()) ImGui::TextDisabled("%s", state.preview_note.c_str());

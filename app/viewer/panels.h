@@ -3,6 +3,7 @@
 // owns directly and asks the viewer for everything else by queueing a Command (commands.h),
 // so panels never touch the document, the window or the GPU.
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -85,6 +86,13 @@ struct DecimationPanelState : OperationPanelState {
 /// flags and switchable numbers, two fields for a range). Returns true when a value changed;
 /// changed values are marked `given`.
 bool operation_widgets(Operation& op);
+
+/// Tests only: called after each widget of the operation panels is drawn, with its id (the
+/// parameter's name, or the button's label) and its screen rectangle, so panel tests can click
+/// widgets under an ImGui context that has no window (tests/app/test_panels.cpp).
+using WidgetRectHook =
+    std::function<void(const std::string& id, float x0, float y0, float x1, float y1)>;
+void set_widget_rect_hook(WidgetRectHook hook);
 
 /// Rendering settings that live in the viewer rather than in RenderStyle.
 struct ViewSettings {
