@@ -14,6 +14,9 @@ std::unique_ptr<OperationDef> smooth_operation();     ///< app/ops/smooth_op.cpp
 std::unique_ptr<OperationDef> spectrum_operation();   ///< app/ops/spectrum_op.cpp
 std::unique_ptr<OperationDef> decimate_operation();   ///< app/ops/decimate_op.cpp
 
+/// The core options of a "spectrum" operation (the Frequency panel's Decompose).
+struct SpectralOptions;
+SpectralOptions spectral_options(const Operation& op);
 /// The core options of a "decimate" operation (for the collapsing-edges overlay).
 struct DecimationOptions;
 DecimationOptions decimation_options(const Operation& op);

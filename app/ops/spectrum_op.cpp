@@ -33,9 +33,8 @@ constexpr double kMaxK = 10000000;
     throw e;
 }
 
-OperationResult run_spectrum(const SpectrumOptions& o, const HalfedgeMesh& mesh, Progress& progress,
-                             const RunSettings&) {
-    const auto t0 = std::chrono::steady_clock::now();
+/// The core's options: the method from --full, the count and threads from their defaults.
+SpectralOptions core_options(const SpectrumOptions& o) {
     SpectralOptions spectral = o.spectral;
     spectral.method = o.full ? SpectralMethod::Full : SpectralMethod::Partial;
     if (o.k)
@@ -43,6 +42,13 @@ OperationResult run_spectrum(const SpectrumOptions& o, const HalfedgeMesh& mesh,
     else if (o.full)
         spectral.k = 0;
     spectral.threads = o.threads.value_or(0);
+    return spectral;
+}
+
+OperationResult run_spectrum(const SpectrumOptions& o, const HalfedgeMesh& mesh, Progress& progress,
+                             const RunSettings&) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const SpectralOptions spectral = core_options(o);
     SpectralDecomposition d;
     try {
         d = decompose(mesh, spectral, progress);
@@ -97,6 +103,11 @@ OperationResult run_spectrum(const SpectrumOptions& o, const HalfedgeMesh& mesh,
 }
 
 }  // namespace
+
+SpectralOptions spectral_options(const Operation& op) {
+    return core_options(
+        std::any_cast<SpectrumOptions>(operation_def("spectrum").options(op.values)));
+}
 
 std::unique_ptr<OperationDef> spectrum_operation() {
     OperationDecl<SpectrumOptions> d(

@@ -1,6 +1,8 @@
 // The Frequency panel; see frequency_panel.h.
 #include "app/viewer/frequency_panel.h"
 
+#include "app/viewer/panels.h"
+
 #include <imgui.h>
 
 #include <algorithm>
@@ -9,12 +11,7 @@
 namespace trilab::viewer {
 namespace {
 
-constexpr LaplacianOperator kOperators[] = {
-    LaplacianOperator::Umbrella, LaplacianOperator::ImprovedUmbrella,
-    LaplacianOperator::CurvatureFlow, LaplacianOperator::SecondOrder};
 constexpr float kPlotWidthEm = 26.0f;  ///< width of the bar and the plots (auto-resized window)
-constexpr MassMatrix kMasses[] = {MassMatrix::Normalizer, MassMatrix::Barycentric,
-                                  MassMatrix::Voronoi};
 
 /// The frequency bar: every computed frequency as a grey strip, the applied band in green
 /// and the slider band outlined in orange.
@@ -57,17 +54,6 @@ void band_plot(const char* label, const std::vector<float>& values, int lo, int 
 
 }  // namespace
 
-SpectralOptions frequency_options(const FrequencyPanelState& s) {
-    SpectralOptions o;
-    o.op = kOperators[std::clamp(s.op, 0, 3)];
-    o.mass = kMasses[std::clamp(s.mass, 0, 2)];
-    o.method = s.full ? SpectralMethod::Full : SpectralMethod::Partial;
-    o.k = s.full ? 0 : std::size_t(std::max(s.k, 1));
-    o.end = s.largest ? SpectrumEnd::Largest : SpectrumEnd::Smallest;
-    o.fix_boundary = s.fix_boundary;
-    return o;
-}
-
 FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocument& doc, bool busy) {
     FrequencyActions act;
     if (!s.open) return act;
@@ -79,43 +65,9 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
         ImGui::End();
         return act;
     }
-    const char* ops[] = {"Umbrella", "Improved umbrella", "Curvature flow (cotangent)",
-                         "Second-order difference"};
-    const char* masses[] = {"row normalizer", "barycentric area", "Voronoi area"};
-    ImGui::SetNextItemWidth(14.0f * em);
-    ImGui::Combo("operator", &s.op, ops, 4);
-    ImGui::SetNextItemWidth(14.0f * em);
-    ImGui::Combo("mass S", &s.mass, masses, 3);
-    if (ImGui::IsItemHovered())
-        ImGui::SetTooltip(
-            "K x = lambda S x: S is the operator's normalizer, or a lumped area "
-            "(with curvature flow: the Laplace-Beltrami spectrum)");
-    int method = s.full ? 0 : 1;
-    ImGui::RadioButton("full", &method, 0);
-    if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("every frequency, dense solver (up to %zu vertices)",
-                          kDefaultMaxFullRows);
-    ImGui::SameLine();
-    ImGui::RadioButton("partial", &method, 1);
-    s.full = method == 0;
-    if (s.full) ImGui::BeginDisabled();
-    ImGui::SameLine();
-    ImGui::SetNextItemWidth(6.0f * em);
-    ImGui::InputInt("frequencies", &s.k, 10, 100);
-    s.k = std::clamp(s.k, 1, 100000);
-    int end = s.largest ? 1 : 0;
-    ImGui::RadioButton("smallest", &end, 0);
-    ImGui::SameLine();
-    ImGui::RadioButton("largest", &end, 1);
-    s.largest = end == 1;
-    if (s.full) ImGui::EndDisabled();
-    ImGui::SameLine();
-    ImGui::Checkbox("fixed boundary", &s.fix_boundary);
-    if (ImGui::IsItemHovered())
-        ImGui::SetTooltip(
-            "off: boundary vertices are free (Neumann), the shape's spectrum; on: "
-            "they stay where they are (Dirichlet)");
-
+    // The decomposition's parameters, drawn from the operation's declaration (the band is
+    // the sliders below; threads and the size limit keep their defaults here).
+    operation_widgets(s.op, {"band", "threads", "max-full"});
     if (busy) ImGui::BeginDisabled();
     act.decompose = ImGui::Button("Decompose");
     ImGui::SameLine();

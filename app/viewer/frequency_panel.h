@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "app/ops/operation.h"
 #include "core/spectral.h"
 
 namespace trilab::viewer {
@@ -19,12 +20,9 @@ namespace trilab::viewer {
 /// The Frequency panel's controls.
 struct FrequencyPanelState {
     bool open = false;
-    int op = 2;    ///< umbrella, improved-umbrella, curvature-flow, second-order
-    int mass = 0;  ///< normalizer, barycentric, voronoi
-    bool full = false;
-    int k = 50;  ///< frequencies to compute (partial)
-    bool largest = false;
-    bool fix_boundary = false;
+    /// The decomposition's parameters: the "spectrum" operation's declaration (its band is
+    /// the sliders below, set when a band is pushed).
+    Operation op = make_operation("spectrum");
     int lo = 0, hi = 0;  ///< the band used for the reconstruction
     int visualize = 1;   ///< the frequency the "Frequency" colouring shows
 };
@@ -50,8 +48,6 @@ struct FrequencyActions {
     bool visualize_changed = false;  ///< the frequency to visualize changed: recolour
 };
 
-/// The core options the panel's controls describe.
-SpectralOptions frequency_options(const FrequencyPanelState& state);
 /// "Frequency decomposition" window; `busy`: a job runs (Decompose and the sliders disabled).
 FrequencyActions frequency_window(FrequencyPanelState& state, const FrequencyDocument& doc,
                                   bool busy);

@@ -353,13 +353,14 @@ void set_widget_rect_hook(WidgetRectHook hook) {
     widget_rect_hook = std::move(hook);
 }
 
-bool operation_widgets(Operation& op) {
+bool operation_widgets(Operation& op, const std::vector<std::string>& skip) {
     bool changed = false;
     const OperationDef& def = *op.def;
     const float w = 12.0f * ImGui::GetFontSize();
     for (std::size_t i = 0; i < def.params.size(); ++i) {
         if (def.why_not(op.values, i)) continue;  // hidden: it does not apply
         const ParamSpec& p = def.params[i];
+        if (std::find(skip.begin(), skip.end(), p.name) != skip.end()) continue;
         ParamValue& v = op.values[i];
         const ParamValue before = v;
         ImGui::PushID(p.name.c_str());
@@ -388,12 +389,18 @@ bool operation_widgets(Operation& op) {
             }
             case ParamKind::Integer: {
                 if (p.optional) {
-                    ImGui::Checkbox("##set", &v.on);
+                    if (ImGui::Checkbox("##set", &v.on) && v.on)
+                        v.x = std::clamp(v.x, p.min, p.max);  // from "unset" to a value
                     note_widget(p.name + ":on");
                     ImGui::SameLine();
                 }
+                if (!v.on) {  // unset: the run's default, said in words
+                    ImGui::TextDisabled("%s: %s", p.label.c_str(),
+                                        p.default_note.empty() ? "default"
+                                                               : p.default_note.c_str());
+                    break;
+                }
                 ImGui::SetNextItemWidth(w);
-                if (!v.on) ImGui::BeginDisabled();
                 if (hi - lo <= 1000) {
                     int x = int(std::clamp(v.x, lo, hi));
                     if (ImGui::SliderInt(p.label.c_str(), &x, int(lo), int(hi), "%d",
@@ -404,7 +411,6 @@ bool operation_widgets(Operation& op) {
                     if (ImGui::InputScalar(p.label.c_str(), ImGuiDataType_S64, &x))
                         v.x = std::clamp(double(x), p.min, p.max);
                 }
-                if (!v.on) ImGui::EndDisabled();
                 break;
             }
             case ParamKind::Switchable:

@@ -84,8 +84,8 @@ struct DecimationPanelState : OperationPanelState {
 /// Draws one widget per parameter of `op` that applies to its current values, from the
 /// operation's declaration (combo boxes for choices, sliders for numbers, check boxes for
 /// flags and switchable numbers, two fields for a range). Returns true when a value changed;
-/// changed values are marked `given`.
-bool operation_widgets(Operation& op);
+/// changed values are marked `given`. Parameters named in `skip` are left to the caller.
+bool operation_widgets(Operation& op, const std::vector<std::string>& skip = {});
 
 /// Tests only: called after each widget of the operation panels is drawn, with its id (the
 /// parameter's name, or the button's label) and its screen rectangle, so panel tests can click

@@ -8,6 +8,7 @@
 #include <memory>
 #include <utility>
 
+#include "app/ops/operation_entries.h"
 #include "app/viewer/viewer.h"
 #include "core/errors.h"
 
@@ -67,7 +68,9 @@ void Viewer::scripted_decomposition(FrequencyActions& act) {
             notify_error("--decompose: expected K or K:LO:HI, got '" + options_.decompose + "'");
             return;
         }
-        s.k = int(k);
+        ParamValue& count = s.op.value("k");
+        count.x = double(k);
+        count.on = count.given = true;
         act.decompose = true;
     } else if (document_.frequency.valid) {
         scripted_decompose_ = 2;
@@ -82,7 +85,7 @@ void Viewer::scripted_decomposition(FrequencyActions& act) {
 }
 
 void Viewer::start_decomposition() {
-    const SpectralOptions options = frequency_options(panels_.frequency);
+    const SpectralOptions options = spectral_options(panels_.frequency.op);
     const std::string name =
         std::string("Frequency decomposition (") + laplacian_operator_name(options.op) + ", " +
         (options.method == SpectralMethod::Full
