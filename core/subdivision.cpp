@@ -199,48 +199,75 @@ inline Index half_b(Index h) {
     return 4 * (h >> 1) + 3 - 2 * (h & 1u);
 }
 
-/// Builds the connectivity of the 1-to-4 split of `m` into `mesh` (positions not set).
+/// Position of face halfedge h in its face (h_0 = halfedge(f), h_1, h_2), from the
+/// face's halfedge and h's neighbours.
+inline Index corner_of(const In& m, Index h) {
+    const Index f0 = m.fh[m.face[h].idx()].idx();
+    return f0 == h ? 0 : (f0 == m.prev_i(h) ? 1 : 2);
+}
+
+/// Builds the connectivity of the 1-to-4 split of `m` into `mesh` (positions not set). Each
+/// new halfedge is written once, in the order of its index: the interior edges face by face,
+/// then the halves of the old edges edge by edge.
 void build_1to4(const In& m, HalfedgeMesh& mesh, const Stage& stage) {
     const Index nv = m.nv, ne = m.ne, nf = m.nf;
     mesh.resize_elements(std::size_t(nv) + ne, 2 * std::size_t(ne) + 3 * std::size_t(nf),
                          4 * std::size_t(nf));
     Out out(mesh);
+    // Face f: corner faces 4f + k (at to_vertex(h_k)), centre face 4f + 3; interior edge k
+    // joins mid(h_k) and mid(h_k1): halfedge `in` (mid(h_k1) -> mid(h_k)) in corner face k,
+    // its twin in the centre face.
     for (Index fi = 0; fi < nf; ++fi) {
         stage.tick(fi);
         Index h[3];
         h[0] = m.fh[fi].idx();
         h[1] = m.next_i(h[0]);
         h[2] = m.next_i(h[1]);
-        const Index mid[3] = {nv + (h[0] >> 1), nv + (h[1] >> 1), nv + (h[2] >> 1)};
-        const Index first_inner = 2 * (2 * ne + 3 * fi);  // halfedge of interior edge k: +2k
-        for (int k = 0; k < 3; ++k) {
-            const int k1 = k == 2 ? 0 : k + 1;
-            const Index corner = 4 * fi + Index(k);
-            const Index b = half_b(h[k]), a = half_a(h[k1]), in = first_inner + 2 * Index(k);
-            out.triangle(corner, b, m.to_i(h[k]), a, mid[k1], in, mid[k]);
-            // The centre face: mid(h_k) -> mid(h_k1).
-            const Index cin = in + 1;
-            out.link(cin, first_inner + 2 * Index(k1) + 1);
+        const Index first = 2 * (2 * ne + 3 * fi);  // halfedge `in` of interior edge k: +2k
+        for (Index k = 0; k < 3; ++k) {
+            const Index k1 = k == 2 ? 0 : k + 1, k2 = k == 0 ? 2 : k - 1;
+            const Index in = first + 2 * k, cin = in + 1;
+            out.next[in] = Halfedge(half_b(h[k]));
+            out.prev[in] = Halfedge(half_a(h[k1]));
+            out.face[in] = Face(4 * fi + k);
+            out.to[in] = Vertex(nv + (h[k] >> 1));
+            out.next[cin] = Halfedge(first + 2 * k1 + 1);
+            out.prev[cin] = Halfedge(first + 2 * k2 + 1);
             out.face[cin] = Face(4 * fi + 3);
-            out.to[cin] = Vertex(mid[k1]);
+            out.to[cin] = Vertex(nv + (h[k1] >> 1));
+            out.fh[4 * fi + k] = Halfedge(half_b(h[k]));
         }
-        out.fh[4 * fi + 3] = Halfedge(first_inner + 1);
+        out.fh[4 * fi + 3] = Halfedge(first + 1);
     }
     stage.report(0.3);
-    // Boundary halfedges (a -> mid -> b) and the odd vertices' outgoing halfedges.
+    // Old halfedge h (from a to b, in corner k of face f) becomes A = half_a(h) (a -> mid, in
+    // corner face k - 1) and B = half_b(h) (mid -> b, in corner face k); on the boundary A
+    // and B follow each other.
     for (Index e = 0; e < ne; ++e) {
         stage.tick(e);
-        Index out_h = 2 * e;
+        const Index mid = nv + e;
         for (Index hi = 2 * e; hi <= 2 * e + 1; ++hi) {
-            if (!m.boundary(hi)) continue;
             const Index a = half_a(hi), b = half_b(hi);
-            out.link(a, b);
-            out.link(b, half_a(m.next_i(hi)));
-            out.to[a] = Vertex(nv + e);
+            const Index hn = m.next_i(hi), hp = m.prev_i(hi);
+            out.prev[a] = Halfedge(half_b(hp));
+            out.to[a] = Vertex(mid);
+            out.next[b] = Halfedge(half_a(hn));
             out.to[b] = m.to[hi];
-            if (hi & 1u) out_h = hi;
+            const Face f = m.face[hi];
+            if (f.is_valid()) {
+                const Index k = corner_of(m, hi), k2 = k == 0 ? 2 : k - 1;
+                const Index first = 2 * (2 * ne + 3 * f.idx());
+                out.next[a] = Halfedge(first + 2 * k2);
+                out.face[a] = Face(4 * f.idx() + k2);
+                out.prev[b] = Halfedge(first + 2 * k);
+                out.face[b] = Face(4 * f.idx() + k);
+            } else {
+                out.next[a] = Halfedge(b);
+                out.prev[b] = Halfedge(a);
+            }
         }
-        out.vh[nv + e] = Halfedge(half_b(out_h));
+        // The odd vertex's outgoing halfedge: the boundary one if the edge has one.
+        out.vh[mid] = Halfedge(half_b(m.boundary(2 * e + 1) ? 2 * e + 1 : 2 * e));
     }
     for (Index vi = 0; vi < nv; ++vi) {
         const Halfedge h = m.vh[vi];
