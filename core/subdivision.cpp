@@ -312,10 +312,33 @@ void carry_uv_1to4(const HalfedgeMesh& mesh, HalfedgeMesh& out) {
     }
 }
 
-/// Loop positions of the refined mesh (even vertices first, then odd ones).
+/// Loop positions of the refined mesh. One pass over the edges computes the odd vertices and
+/// sums each even vertex's neighbours (into its slot of `p`) and valence; a pass over the
+/// vertices then applies the even rules.
 void loop_positions(const In& m, Point* p, const Stage& stage) {
     const Index nv = m.nv, ne = m.ne;
     const Point* x = m.x;
+    std::vector<unsigned> valence(nv, 0);
+    std::fill_n(p, nv, Point::Zero());
+    for (Index e = 0; e < ne; ++e) {
+        stage.tick(e);
+        const Index h = 2 * e, t = 2 * e + 1;
+        const Index ia = m.to_i(t), ib = m.to_i(h);
+        const Point& a = x[ia];
+        const Point& b = x[ib];
+        p[ia] += b;
+        p[ib] += a;
+        ++valence[ia];
+        ++valence[ib];
+        if (m.boundary(h) || m.boundary(t)) {
+            p[nv + e] = 0.5 * (a + b);
+        } else {
+            const Point& c = x[m.to_i(m.next_i(h))];
+            const Point& d = x[m.to_i(m.next_i(t))];
+            p[nv + e] = 0.375 * (a + b) + 0.125 * (c + d);
+        }
+    }
+    stage.report(0.6);
     std::vector<double> beta(8, -1.0);
     for (Index vi = 0; vi < nv; ++vi) {
         stage.tick(vi);
@@ -325,29 +348,14 @@ void loop_positions(const In& m, Point* p, const Stage& stage) {
         } else if (m.boundary(h0.idx())) {
             p[vi] = 0.75 * x[vi] + 0.125 * (x[m.to_i(h0.idx())] + x[m.from_i(m.prev_i(h0.idx()))]);
         } else {
-            unsigned n = 0;
-            const Point s = ring_sum(m, h0.idx(), n);
+            const unsigned n = valence[vi];
             if (n >= beta.size()) beta.resize(2 * std::size_t(n) + 1, -1.0);
             if (beta[n] < 0) {
                 const double t = 0.375 + 0.25 * std::cos(2 * kPi / n);
                 beta[n] = (0.625 - t * t) / n;
             }
             const double b = beta[n];
-            p[vi] = (1.0 - n * b) * x[vi] + b * s;
-        }
-    }
-    stage.report(0.6);
-    for (Index e = 0; e < ne; ++e) {
-        stage.tick(e);
-        const Index h = 2 * e, t = 2 * e + 1;
-        const Point& a = x[m.to_i(t)];
-        const Point& b = x[m.to_i(h)];
-        if (m.boundary(h) || m.boundary(t)) {
-            p[nv + e] = 0.5 * (a + b);
-        } else {
-            const Point& c = x[m.to_i(m.next_i(h))];
-            const Point& d = x[m.to_i(m.next_i(t))];
-            p[nv + e] = 0.375 * (a + b) + 0.125 * (c + d);
+            p[vi] = (1.0 - n * b) * x[vi] + b * p[vi];
         }
     }
 }
