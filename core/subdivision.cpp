@@ -530,51 +530,122 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
     };
     // Boundary split vertices of boundary halfedge t (b -> a): P0 near b, P1 near a.
     auto split_vertex = [&](Index t, Index which) { return nv + nf + 2 * id[t] + which; };
+    // Every new halfedge is written once. Corner k of face f is halfedge h (a -> b) with
+    // twin t; c is f's centroid. Triangle id(h) is (a, c_g, c) when t is interior (face g),
+    // (a, b, c) on the boundary in odd steps, (a, p, c) in even steps. The spoke s_in(h)
+    // (c -> a) closes triangle id(h); s_out(h) (a -> c) lies in the triangle of
+    // g = twin(prev(h)), or on the boundary next to prev(h).
     for (Index fi = 0; fi < nf; ++fi) {
         stage.tick(fi);
-        const Index c = nv + fi;
-        Index h = m.fh[fi].idx();
-        out.vh[c] = Halfedge(s_in(h));
-        for (int k = 0; k < 3; ++k, h = m.next_i(h)) {
-            const Index t = h ^ 1u;
-            const Index a = m.from_i(h), b = m.to_i(h);
-            const Index own = id[h];
+        Index h[3];
+        h[0] = m.fh[fi].idx();
+        h[1] = m.next_i(h[0]);
+        h[2] = m.next_i(h[1]);
+        out.vh[nv + fi] = Halfedge(s_in(h[0]));
+        for (Index k = 0; k < 3; ++k) {
+            const Index k1 = k == 2 ? 0 : k + 1, k2 = k == 0 ? 2 : k - 1;
+            const Index hk = h[k], hp = h[k2], t = hk ^ 1u, g = hp ^ 1u;
+            const Index own = 3 * fi + k;  // id[hk]
+            const Index si = 2 * (ne + own) + 1, so = si - 1;
+            out.to[si] = m.to[hp];
+            out.face[si] = Face(own);
             if (!m.boundary(t)) {
-                // (a, c_g, c_f): the flipped edge is h itself, from c_g to c_f.
-                const Index cg = nv + m.face[t].idx();
-                out.triangle(own, s_out(m.next_i(t)), cg, h, c, s_in(h), a);
-            } else if (!even_step) {
-                out.triangle(own, h, b, s_out(m.next_i(h)), c, s_in(h), a);
+                const Index first = s_out(m.next_i(t));
+                out.next[si] = Halfedge(first);
+                out.prev[si] = Halfedge(hk);
+                out.fh[own] = Halfedge(first);
             } else {
-                const Index p = split_vertex(t, 1), q = split_vertex(t, 0);
-                const Index j = id[t];
-                out.triangle(own, h, p, split_edge(t, 2), c, s_in(h), a);
-                out.triangle(3 * nf + 2 * j, split_edge(t, 0), q, split_edge(t, 3), c,
-                             split_edge(t, 2) + 1, p);
-                out.triangle(3 * nf + 2 * j + 1, split_edge(t, 1), b, s_out(m.next_i(h)), c,
-                             split_edge(t, 3) + 1, q);
+                out.next[si] = Halfedge(hk);
+                out.prev[si] = Halfedge(even_step ? split_edge(t, 2) : 2 * (ne + 3 * fi + k1));
+                out.fh[own] = Halfedge(hk);
+            }
+            out.to[so] = Vertex(nv + fi);
+            if (!m.boundary(g)) {
+                out.next[so] = Halfedge(g);
+                out.prev[so] = Halfedge(s_in(g));
+                out.face[so] = Face(id[g]);
+            } else if (!even_step) {
+                out.next[so] = Halfedge(2 * (ne + 3 * fi + k2) + 1);  // s_in(hp)
+                out.prev[so] = Halfedge(hp);
+                out.face[so] = Face(3 * fi + k2);
+            } else {
+                out.next[so] = Halfedge(split_edge(g, 3) + 1);
+                out.prev[so] = Halfedge(split_edge(g, 1));
+                out.face[so] = Face(3 * nf + 2 * id[g] + 1);
             }
         }
     }
-    stage.report(0.4);
-    // Boundary loops.
-    for (Index t = 0; t < 2 * ne; ++t) {
-        if (!m.boundary(t)) continue;
-        const Index n = m.next_i(t);
-        out.to[t] = m.to[t];
-        if (!even_step) {
-            out.link(t, n);
-            continue;
+    stage.report(0.3);
+    // The old halfedges keep their indices: an interior edge flipped (h from c_g to c), a
+    // boundary one in place (in even steps shortened to its last third).
+    for (Index hi = 0; hi < 2 * ne; ++hi) {
+        stage.tick(hi);
+        const Index t = hi ^ 1u;
+        const Face f = m.face[hi];
+        if (f.is_valid()) {
+            const Index own = id[hi];
+            out.face[hi] = Face(own);
+            if (!m.boundary(t)) {
+                out.to[hi] = Vertex(nv + f.idx());
+                out.next[hi] = Halfedge(2 * (ne + own) + 1);
+                out.prev[hi] = Halfedge(s_out(m.next_i(t)));
+            } else if (!even_step) {
+                out.to[hi] = m.to[hi];
+                out.next[hi] = Halfedge(s_out(m.next_i(hi)));
+                out.prev[hi] = Halfedge(2 * (ne + own) + 1);
+            } else {
+                out.to[hi] = Vertex(split_vertex(t, 1));
+                out.next[hi] = Halfedge(split_edge(t, 2));
+                out.prev[hi] = Halfedge(2 * (ne + own) + 1);
+            }
+        } else {
+            out.to[hi] = m.to[hi];
+            if (!even_step) {
+                out.next[hi] = m.next[hi];
+                out.prev[hi] = m.prev[hi];
+            } else {  // b -> q -> p -> a, then on to the next boundary halfedge's b -> q
+                out.next[hi] = Halfedge(split_edge(m.next_i(hi), 1) + 1);
+                out.prev[hi] = Halfedge(split_edge(hi, 0) + 1);
+            }
         }
-        // b -> q -> p -> a, then on to the first piece of the next boundary halfedge.
-        const Index bq = split_edge(t, 1) + 1, qp = split_edge(t, 0) + 1;
-        out.link(bq, qp);
-        out.link(qp, t);
-        out.link(t, split_edge(n, 1) + 1);
-        out.to[bq] = Vertex(split_vertex(t, 0));
-        out.to[qp] = Vertex(split_vertex(t, 1));
-        out.vh[split_vertex(t, 0)] = Halfedge(qp);
-        out.vh[split_vertex(t, 1)] = Halfedge(t);
+    }
+    // Even steps: the pieces of each boundary edge b -> q -> p -> a and the two new
+    // triangles (p, q, c) and (q, b, c) at it.
+    for (Index t = 0; even_step && t < 2 * ne; ++t) {
+        if (!m.boundary(t)) continue;
+        const Index h = t ^ 1u, own = id[h], j = id[t];
+        const Index c = nv + m.face[h].idx(), p = split_vertex(t, 1), q = split_vertex(t, 0);
+        const Index pq = split_edge(t, 0), qb = split_edge(t, 1), pc = split_edge(t, 2),
+                    qc = split_edge(t, 3);
+        const Index bq = qb + 1, qp = pq + 1, cp = pc + 1, cq = qc + 1;
+        const Index f2 = 3 * nf + 2 * j, f3 = f2 + 1;
+        const Index so_next = s_out(m.next_i(h));
+        // In triangle id(h) = (a, p, c): p -> c.
+        out.next[pc] = Halfedge(2 * (ne + own) + 1);
+        out.prev[pc] = Halfedge(h);
+        out.face[pc] = Face(own);
+        out.to[pc] = Vertex(c);
+        // Triangle f2 = (p, q, c): p -> q -> c -> p.
+        out.triangle(f2, pq, q, qc, c, cp, p);
+        // Triangle f3 = (q, b, c): q -> b, b -> c (s_out(next(h))), c -> q.
+        out.next[qb] = Halfedge(so_next);
+        out.prev[qb] = Halfedge(cq);
+        out.face[qb] = Face(f3);
+        out.to[qb] = Vertex(m.from_i(t));
+        out.next[cq] = Halfedge(qb);
+        out.prev[cq] = Halfedge(so_next);
+        out.face[cq] = Face(f3);
+        out.to[cq] = Vertex(q);
+        out.fh[f3] = Halfedge(qb);
+        // The boundary pieces b -> q and q -> p.
+        out.next[bq] = Halfedge(qp);
+        out.prev[bq] = m.prev[t];
+        out.to[bq] = Vertex(q);
+        out.next[qp] = Halfedge(t);
+        out.prev[qp] = Halfedge(bq);
+        out.to[qp] = Vertex(p);
+        out.vh[q] = Halfedge(qp);
+        out.vh[p] = Halfedge(t);
     }
     for (Index vi = 0; vi < nv; ++vi) {
         const Halfedge hv = m.vh[vi];
