@@ -174,20 +174,6 @@ void add_levels(const HalfedgeMesh& m, HalfedgeMesh& out, int level) {
     std::fill_n(levels.begin(), nv, 0);
 }
 
-/// Sum of the neighbours' positions around the interior vertex whose outgoing halfedge is
-/// h0; `n` receives the valence.
-inline Point ring_sum(const In& m, Index h0, unsigned& n) {
-    Point s = Point::Zero();
-    n = 0;
-    Index h = h0;
-    do {
-        s += m.x[m.to_i(h)];
-        ++n;
-        h = m.prev_i(h) ^ 1u;
-    } while (h != h0);
-    return s;
-}
-
 // ---------------------------------------------------------------------------------------
 // 1-to-4 refinement (Loop, Butterfly, Modified Butterfly)
 // ---------------------------------------------------------------------------------------
@@ -522,6 +508,7 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
                              std::size_t(ne) + 3 * std::size_t(nf) + 4 * std::size_t(nb),
                              3 * std::size_t(nf) + 2 * std::size_t(nb));
     Out out(mesh_out);
+    Point* p = out.p;
     const Index eb = ne + 3 * nf;  // first edge of the boundary splits
     auto s_out = [&](Index h) { return 2 * (ne + id[h]); };
     auto s_in = [&](Index h) { return 2 * (ne + id[h]) + 1; };
@@ -541,13 +528,15 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
         h[0] = m.fh[fi].idx();
         h[1] = m.next_i(h[0]);
         h[2] = m.next_i(h[1]);
+        const Vertex v[3] = {m.to[h[0]], m.to[h[1]], m.to[h[2]]};
+        p[nv + fi] = (x[v[0].idx()] + x[v[1].idx()] + x[v[2].idx()]) / 3.0;  // the centroid
         out.vh[nv + fi] = Halfedge(s_in(h[0]));
         for (Index k = 0; k < 3; ++k) {
             const Index k1 = k == 2 ? 0 : k + 1, k2 = k == 0 ? 2 : k - 1;
             const Index hk = h[k], hp = h[k2], t = hk ^ 1u, g = hp ^ 1u;
             const Index own = 3 * fi + k;  // id[hk]
             const Index si = 2 * (ne + own) + 1, so = si - 1;
-            out.to[si] = m.to[hp];
+            out.to[si] = v[k2];
             out.face[si] = Face(own);
             if (!m.boundary(t)) {
                 const Index first = s_out(m.next_i(t));
@@ -578,9 +567,19 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
     stage.report(0.3);
     // The old halfedges keep their indices: an interior edge flipped (h from c_g to c), a
     // boundary one in place (in even steps shortened to its last third).
+    // Alongside, each old vertex's neighbour sum (in its slot of p) and valence.
+    std::vector<unsigned> valence(nv, 0);
+    std::fill_n(p, nv, Point::Zero());
     for (Index hi = 0; hi < 2 * ne; ++hi) {
         stage.tick(hi);
         const Index t = hi ^ 1u;
+        if (!(hi & 1u)) {
+            const Index a = m.to_i(t), b = m.to_i(hi);
+            p[a] += x[b];
+            p[b] += x[a];
+            ++valence[a];
+            ++valence[b];
+        }
         const Face f = m.face[hi];
         if (f.is_valid()) {
             const Index own = id[hi];
@@ -614,7 +613,7 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
     for (Index t = 0; even_step && t < 2 * ne; ++t) {
         if (!m.boundary(t)) continue;
         const Index h = t ^ 1u, own = id[h], j = id[t];
-        const Index c = nv + m.face[h].idx(), p = split_vertex(t, 1), q = split_vertex(t, 0);
+        const Index c = nv + m.face[h].idx(), vp = split_vertex(t, 1), vq = split_vertex(t, 0);
         const Index pq = split_edge(t, 0), qb = split_edge(t, 1), pc = split_edge(t, 2),
                     qc = split_edge(t, 3);
         const Index bq = qb + 1, qp = pq + 1, cp = pc + 1, cq = qc + 1;
@@ -626,7 +625,7 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
         out.face[pc] = Face(own);
         out.to[pc] = Vertex(c);
         // Triangle f2 = (p, q, c): p -> q -> c -> p.
-        out.triangle(f2, pq, q, qc, c, cp, p);
+        out.triangle(f2, pq, vq, qc, c, cp, vp);
         // Triangle f3 = (q, b, c): q -> b, b -> c (s_out(next(h))), c -> q.
         out.next[qb] = Halfedge(so_next);
         out.prev[qb] = Halfedge(cq);
@@ -635,17 +634,17 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
         out.next[cq] = Halfedge(qb);
         out.prev[cq] = Halfedge(so_next);
         out.face[cq] = Face(f3);
-        out.to[cq] = Vertex(q);
+        out.to[cq] = Vertex(vq);
         out.fh[f3] = Halfedge(qb);
         // The boundary pieces b -> q and q -> p.
         out.next[bq] = Halfedge(qp);
         out.prev[bq] = m.prev[t];
-        out.to[bq] = Vertex(q);
+        out.to[bq] = Vertex(vq);
         out.next[qp] = Halfedge(t);
         out.prev[qp] = Halfedge(bq);
-        out.to[qp] = Vertex(p);
-        out.vh[q] = Halfedge(qp);
-        out.vh[p] = Halfedge(t);
+        out.to[qp] = Vertex(vp);
+        out.vh[vq] = Halfedge(qp);
+        out.vh[vp] = Halfedge(t);
     }
     for (Index vi = 0; vi < nv; ++vi) {
         const Halfedge hv = m.vh[vi];
@@ -659,8 +658,7 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
     stage.progress.check_cancelled();
     stage.report(0.5);
 
-    // Positions and morph start positions.
-    Point* p = out.p;
+    // Positions (the centroids are set) and morph start positions.
     Point* start = nullptr;
     result.correspondence.kind = MorphCorrespondence::Kind::FromEarlier;
     if (morph) {
@@ -680,17 +678,11 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
                                       27.0)
                               : x[vi];
         } else {
-            unsigned n = 0;
-            const Point s = ring_sum(m, h0.idx(), n);
+            const unsigned n = valence[vi];
             if (n >= alpha.size()) alpha.resize(n + 1, -1.0);
             if (alpha[n] < 0) alpha[n] = (4.0 - 2.0 * std::cos(2 * kPi / n)) / 9.0;
-            p[vi] = (1.0 - alpha[n]) * x[vi] + (alpha[n] / n) * s;
+            p[vi] = (1.0 - alpha[n]) * x[vi] + (alpha[n] / n) * p[vi];
         }
-    }
-    for (Index fi = 0; fi < nf; ++fi) {
-        stage.tick(fi);
-        const Index h = m.fh[fi].idx(), hn = m.next_i(h);
-        p[nv + fi] = (x[m.to_i(h)] + x[m.to_i(hn)] + x[m.to_i(m.next_i(hn))]) / 3.0;
     }
     if (start) std::copy_n(p + nv, nf, start + nv);
     if (even_step) {
