@@ -347,22 +347,23 @@ void loop_positions(const In& m, Point* p, const Stage& stage) {
 }
 
 /// The corner opposite the wing edge `w` (a halfedge of a face), or its reflection across
-/// `w` when twin(w) is a boundary halfedge.
-inline Point wing(const In& m, Index w) {
-    const Index t = w ^ 1u;
-    if (!m.boundary(t)) return m.x[m.to_i(m.next_i(t))];
-    return m.x[m.to_i(w)] + m.x[m.from_i(w)] - m.x[m.to_i(m.next_i(w))];
+/// `w` when twin(w) is a boundary halfedge. opp[h] is the corner opposite face halfedge h
+/// (to_vertex(next(h))), invalid on boundary halfedges.
+inline Point wing(const In& m, const Index* opp, Index w) {
+    const Index o = opp[w ^ 1u];
+    if (o != kInvalidIndex) return m.x[o];
+    return m.x[m.to_i(w)] + m.x[m.from_i(w)] - m.x[opp[w]];
 }
 
 /// The 8-point butterfly stencil (w = 1/16) on interior halfedge h.
-inline Point butterfly8(const In& m, Index h) {
+inline Point butterfly8(const In& m, const Index* opp, Index h) {
     const Index t = h ^ 1u;
-    const Index hn = m.next_i(h), tn = m.next_i(t);
     const Point& a = m.x[m.from_i(h)];
     const Point& b = m.x[m.to_i(h)];
-    const Point& c = m.x[m.to_i(hn)];
-    const Point& d = m.x[m.to_i(tn)];
-    const Point e = wing(m, hn) + wing(m, m.prev_i(h)) + wing(m, tn) + wing(m, m.prev_i(t));
+    const Point& c = m.x[opp[h]];
+    const Point& d = m.x[opp[t]];
+    const Point e = wing(m, opp, m.next_i(h)) + wing(m, opp, m.prev_i(h)) +
+                    wing(m, opp, m.next_i(t)) + wing(m, opp, m.prev_i(t));
     return 0.5 * (a + b) + 0.125 * (c + d) - 0.0625 * e;
 }
 
@@ -409,6 +410,10 @@ void butterfly_positions(const In& m, Point* p, bool modified, const Stage& stag
             extraordinary_vertex[vi] = !boundary && valence[vi] != 6 ? 1 : 0;
         }
     }
+    std::unique_ptr<Index[]> opp_storage(new Index[2 * std::size_t(ne)]);
+    Index* opp = opp_storage.get();
+    for (Index hi = 0; hi < 2 * ne; ++hi)
+        opp[hi] = m.boundary(hi) ? kInvalidIndex : m.to_i(m.next_i(hi));
     stage.report(0.5);
     auto extraordinary = [&](Index h) {  // stencil at from_vertex(h), h interior
         const Index a = m.from_i(h);
@@ -440,9 +445,9 @@ void butterfly_positions(const In& m, Point* p, bool modified, const Stage& stag
             else if (eb)
                 q = extraordinary(t);
             else
-                q = butterfly8(m, h);
+                q = butterfly8(m, opp, h);
         } else {
-            q = butterfly8(m, h);
+            q = butterfly8(m, opp, h);
         }
         p[nv + e] = q;
     }
