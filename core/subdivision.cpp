@@ -65,7 +65,12 @@
 // edge splits, no hash maps): old vertex v keeps index v, the odd vertex of edge e is V + e,
 // old halfedge h = 2e + s becomes A(h) = 4e + 2s (from_vertex(h) -> midpoint) and
 // B(h) = 4e + 3 - 2s (midpoint -> to_vertex(h)), face f becomes corner faces 4f + k and the
-// centre face 4f + 3 with interior edges 2E + 3f + k. Sqrt3 is built the same way.
+// centre face 4f + 3 with interior edges 2E + 3f + k. Sqrt3 is built the same way. The inner
+// loops index the connectivity arrays directly and write every new halfedge once, in the
+// order of its index (the new faces' halfedges face by face, then the old halfedges' pieces
+// edge by edge), so that the writes stream; the neighbour sums of the smoothing rules are
+// gathered in the same edge pass. The morph correspondence is computed only when asked for,
+// and intermediate levels are released at once when the caller keeps only the finest.
 // Complexity: linear in the mesh size per iteration.
 #include "core/subdivision.h"
 
