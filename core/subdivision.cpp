@@ -498,17 +498,29 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
     const In m(mesh);
     const Index nv = m.nv, ne = m.ne, nf = m.nf;
     const Point* x = m.x;
-    // Corner ids of interior halfedges and numbers of boundary halfedges (every halfedge is
-    // one or the other, so every entry is written).
-    std::unique_ptr<Index[]> id_storage(new Index[2 * std::size_t(ne)]);
-    Index* id = id_storage.get();
+    // Corner ids of face halfedges (with the id of the next halfedge beside them, so that
+    // s_out(next(h)) is read where h is) and numbers of boundary halfedges: every halfedge is
+    // one or the other, so every id is written. corner[3f + k] is halfedge k of face f, so
+    // that the spoke pass reads them in order.
+    struct Ids {
+        Index id, next_id;  // next_id: for face halfedges only
+    };
+    std::unique_ptr<Ids[]> ids_storage(new Ids[2 * std::size_t(ne)]);
+    std::unique_ptr<Index[]> corner_storage(new Index[3 * std::size_t(nf)]);
+    Ids* ids = ids_storage.get();
+    Index* corner = corner_storage.get();
     Index nb = 0;
     for (Index fi = 0; fi < nf; ++fi) {
-        Index h = m.fh[fi].idx();
-        for (Index k = 0; k < 3; ++k, h = m.next_i(h)) id[h] = 3 * fi + k;
+        const Index h0 = m.fh[fi].idx(), h1 = m.next_i(h0), h2 = m.next_i(h1);
+        ids[h0] = {3 * fi, 3 * fi + 1};
+        ids[h1] = {3 * fi + 1, 3 * fi + 2};
+        ids[h2] = {3 * fi + 2, 3 * fi};
+        corner[3 * std::size_t(fi)] = h0;
+        corner[3 * std::size_t(fi) + 1] = h1;
+        corner[3 * std::size_t(fi) + 2] = h2;
     }
     for (Index hi = 0; hi < 2 * ne; ++hi)
-        if (m.boundary(hi)) id[hi] = nb++;
+        if (m.boundary(hi)) ids[hi].id = nb++;
     if (!even_step) nb = 0;  // boundary edges are not split in odd steps
     stage.report(0.1);
 
@@ -520,13 +532,14 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
     Out out(mesh_out);
     Point* p = out.p;
     const Index eb = ne + 3 * nf;  // first edge of the boundary splits
-    auto s_out = [&](Index h) { return 2 * (ne + id[h]); };
-    auto s_in = [&](Index h) { return 2 * (ne + id[h]) + 1; };
+    auto s_out = [&](Index h) { return 2 * (ne + ids[h].id); };
+    auto s_in = [&](Index h) { return 2 * (ne + ids[h].id) + 1; };
+    auto s_out_next = [&](Index h) { return 2 * (ne + ids[h].next_id); };  // s_out(next(h))
     auto split_edge = [&](Index boundary, Index which) {  // 0: p-q, 1: q-b, 2: p-c, 3: q-c
-        return 2 * (eb + 4 * id[boundary] + which);
+        return 2 * (eb + 4 * ids[boundary].id + which);
     };
     // Boundary split vertices of boundary halfedge t (b -> a): P0 near b, P1 near a.
-    auto split_vertex = [&](Index t, Index which) { return nv + nf + 2 * id[t] + which; };
+    auto split_vertex = [&](Index t, Index which) { return nv + nf + 2 * ids[t].id + which; };
     // Every new halfedge is written once. Corner k of face f is halfedge h (a -> b) with
     // twin t; c is f's centroid. Triangle id(h) is (a, c_g, c) when t is interior (face g),
     // (a, b, c) on the boundary in odd steps, (a, p, c) in even steps. The spoke s_in(h)
@@ -534,10 +547,7 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
     // g = twin(prev(h)), or on the boundary next to prev(h).
     for (Index fi = 0; fi < nf; ++fi) {
         stage.tick(fi);
-        Index h[3];
-        h[0] = m.fh[fi].idx();
-        h[1] = m.next_i(h[0]);
-        h[2] = m.next_i(h[1]);
+        const Index* h = corner + 3 * std::size_t(fi);
         const Vertex v[3] = {m.to[h[0]], m.to[h[1]], m.to[h[2]]};
         p[nv + fi] = (x[v[0].idx()] + x[v[1].idx()] + x[v[2].idx()]) / 3.0;  // the centroid
         out.vh[nv + fi] = Halfedge(s_in(h[0]));
@@ -549,7 +559,7 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
             out.to[si] = v[k2];
             out.face[si] = Face(own);
             if (!m.boundary(t)) {
-                const Index first = s_out(m.next_i(t));
+                const Index first = s_out_next(t);
                 out.next[si] = Halfedge(first);
                 out.prev[si] = Halfedge(hk);
                 out.fh[own] = Halfedge(first);
@@ -562,7 +572,7 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
             if (!m.boundary(g)) {
                 out.next[so] = Halfedge(g);
                 out.prev[so] = Halfedge(s_in(g));
-                out.face[so] = Face(id[g]);
+                out.face[so] = Face(ids[g].id);
             } else if (!even_step) {
                 out.next[so] = Halfedge(2 * (ne + 3 * fi + k2) + 1);  // s_in(hp)
                 out.prev[so] = Halfedge(hp);
@@ -570,7 +580,7 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
             } else {
                 out.next[so] = Halfedge(split_edge(g, 3) + 1);
                 out.prev[so] = Halfedge(split_edge(g, 1));
-                out.face[so] = Face(3 * nf + 2 * id[g] + 1);
+                out.face[so] = Face(3 * nf + 2 * ids[g].id + 1);
             }
         }
     }
@@ -592,15 +602,15 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
         }
         const Face f = m.face[hi];
         if (f.is_valid()) {
-            const Index own = id[hi];
+            const Index own = ids[hi].id;
             out.face[hi] = Face(own);
             if (!m.boundary(t)) {
                 out.to[hi] = Vertex(nv + f.idx());
                 out.next[hi] = Halfedge(2 * (ne + own) + 1);
-                out.prev[hi] = Halfedge(s_out(m.next_i(t)));
+                out.prev[hi] = Halfedge(s_out_next(t));
             } else if (!even_step) {
                 out.to[hi] = m.to[hi];
-                out.next[hi] = Halfedge(s_out(m.next_i(hi)));
+                out.next[hi] = Halfedge(s_out_next(hi));
                 out.prev[hi] = Halfedge(2 * (ne + own) + 1);
             } else {
                 out.to[hi] = Vertex(split_vertex(t, 1));
@@ -622,13 +632,13 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
     // triangles (p, q, c) and (q, b, c) at it.
     for (Index t = 0; even_step && t < 2 * ne; ++t) {
         if (!m.boundary(t)) continue;
-        const Index h = t ^ 1u, own = id[h], j = id[t];
+        const Index h = t ^ 1u, own = ids[h].id, j = ids[t].id;
         const Index c = nv + m.face[h].idx(), vp = split_vertex(t, 1), vq = split_vertex(t, 0);
         const Index pq = split_edge(t, 0), qb = split_edge(t, 1), pc = split_edge(t, 2),
                     qc = split_edge(t, 3);
         const Index bq = qb + 1, qp = pq + 1, cp = pc + 1, cq = qc + 1;
         const Index f2 = 3 * nf + 2 * j, f3 = f2 + 1;
-        const Index so_next = s_out(m.next_i(h));
+        const Index so_next = s_out_next(h);
         // In triangle id(h) = (a, p, c): p -> c.
         out.next[pc] = Halfedge(2 * (ne + own) + 1);
         out.prev[pc] = Halfedge(h);
@@ -755,10 +765,10 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
                 uv[s_in(h)] = ua;
                 if (!m.boundary(t)) {
                     uv[h] = centre[fi];
-                    uv[s_out(m.next_i(t))] = centre[m.face[t].idx()];
+                    uv[s_out_next(t)] = centre[m.face[t].idx()];
                 } else if (!even_step) {
                     uv[h] = ub;
-                    uv[s_out(m.next_i(h))] = centre[fi];
+                    uv[s_out_next(h)] = centre[fi];
                 } else {
                     const TexCoord up = (2.0 * ua + ub) / 3.0, uq = (ua + 2.0 * ub) / 3.0;
                     uv[h] = up;
@@ -767,7 +777,7 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
                     uv[split_edge(t, 3)] = centre[fi];
                     uv[split_edge(t, 2) + 1] = up;
                     uv[split_edge(t, 1)] = ub;
-                    uv[s_out(m.next_i(h))] = centre[fi];
+                    uv[s_out_next(h)] = centre[fi];
                     uv[split_edge(t, 3) + 1] = uq;
                 }
             }
