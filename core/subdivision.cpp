@@ -65,15 +65,19 @@
 // edge splits, no hash maps): old vertex v keeps index v, the odd vertex of edge e is V + e,
 // old halfedge h = 2e + s becomes A(h) = 4e + 2s (from_vertex(h) -> midpoint) and
 // B(h) = 4e + 3 - 2s (midpoint -> to_vertex(h)), face f becomes corner faces 4f + k and the
-// centre face 4f + 3 with interior edges 2E + 3f + k. Sqrt3 is built the same way.
+// centre face 4f + 3 with interior edges 2E + 3f + k. Sqrt3 is built the same way. The inner
+// loops index the connectivity arrays directly and write every new halfedge once, in the
+// order of its index (the new faces' halfedges face by face, then the old halfedges' pieces
+// edge by edge), so that the writes stream; the neighbour sums of the smoothing rules are
+// gathered in the same edge pass. The morph correspondence is computed only when asked for,
+// and intermediate levels are released at once when the caller keeps only the finest.
 // Complexity: linear in the mesh size per iteration.
 #include "core/subdivision.h"
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
-#include <cstring>
+#include <memory>
 
 #include "core/errors.h"
 
@@ -87,22 +91,68 @@ constexpr std::size_t kCheckMask = 0xFFFF;  // check for cancellation every 64k 
 
 const char* const kLevelName = "v:subdivision_level";
 
-/// Attributes carried from one level to the next.
-struct Carried {
-    VertexProperty<TexCoord> vuv;
-    HalfedgeProperty<TexCoord> huv;
-    VertexProperty<int> level;
+/// Plain pointers into a mesh's connectivity and position arrays (its built-in properties),
+/// fetched once so that the inner loops index arrays instead of going through the property
+/// views. `Out` is taken after resize_elements() and stays valid while no element is added.
+struct In {
+    Index nv, ne, nf;
+    const Vertex* to;
+    const Halfedge* next;
+    const Halfedge* prev;
+    const Face* face;
+    const Halfedge* vh;
+    const Halfedge* fh;
+    const Point* x;
+    explicit In(const HalfedgeMesh& m)
+        : nv(Index(m.vertices_size())),
+          ne(Index(m.edges_size())),
+          nf(Index(m.faces_size())),
+          to(m.get_halfedge_property<Vertex>("h:to").vector().data()),
+          next(m.get_halfedge_property<Halfedge>("h:next").vector().data()),
+          prev(m.get_halfedge_property<Halfedge>("h:prev").vector().data()),
+          face(m.get_halfedge_property<Face>("h:face").vector().data()),
+          vh(m.get_vertex_property<Halfedge>("v:halfedge").vector().data()),
+          fh(m.get_face_property<Halfedge>("f:halfedge").vector().data()),
+          x(m.positions().data()) {}
+    Index to_i(Index h) const { return to[h].idx(); }
+    Index from_i(Index h) const { return to[h ^ 1u].idx(); }
+    Index next_i(Index h) const { return next[h].idx(); }
+    Index prev_i(Index h) const { return prev[h].idx(); }
+    bool boundary(Index h) const { return !face[h].is_valid(); }
 };
 
-/// The attributes of `m` to carry into level `level`. The input's own "v:subdivision_level"
-/// (from an earlier subdivision) is not carried: the input's vertices are level 0.
-Carried carried_of(const HalfedgeMesh& m, int level) {
-    Carried c{m.get_vertex_property<TexCoord>("v:texcoord"),
-              m.get_halfedge_property<TexCoord>("h:texcoord"),
-              {}};
-    if (level > 1) c.level = m.get_vertex_property<int>(kLevelName);
-    return c;
-}
+struct Out {
+    Vertex* to;
+    Halfedge* next;
+    Halfedge* prev;
+    Face* face;
+    Halfedge* vh;
+    Halfedge* fh;
+    Point* p;
+    explicit Out(HalfedgeMesh& m)
+        : to(m.get_halfedge_property<Vertex>("h:to").vector().data()),
+          next(m.get_halfedge_property<Halfedge>("h:next").vector().data()),
+          prev(m.get_halfedge_property<Halfedge>("h:prev").vector().data()),
+          face(m.get_halfedge_property<Face>("h:face").vector().data()),
+          vh(m.get_vertex_property<Halfedge>("v:halfedge").vector().data()),
+          fh(m.get_face_property<Halfedge>("f:halfedge").vector().data()),
+          p(m.positions().data()) {}
+    void link(Index h, Index n) {
+        next[h] = Halfedge(n);
+        prev[n] = Halfedge(h);
+    }
+    /// Face f is the loop h0 -> h1 -> h2, the halfedges ending at v0, v1, v2.
+    void triangle(Index f, Index h0, Index v0, Index h1, Index v1, Index h2, Index v2) {
+        link(h0, h1);
+        link(h1, h2);
+        link(h2, h0);
+        face[h0] = face[h1] = face[h2] = Face(f);
+        to[h0] = Vertex(v0);
+        to[h1] = Vertex(v1);
+        to[h2] = Vertex(v2);
+        fh[f] = Halfedge(h0);
+    }
+};
 
 /// Progress within one iteration, mapped onto the whole run.
 struct Stage {
@@ -114,24 +164,24 @@ struct Stage {
     }
 };
 
+/// The levels of the vertices kept from `m` (the input's own "v:subdivision_level", from an
+/// earlier subdivision, is not carried: the input's vertices are level 0) and `level` for
+/// the new ones, as `out`'s "v:subdivision_level".
+void add_levels(const HalfedgeMesh& m, HalfedgeMesh& out, int level) {
+    auto& levels = out.add_vertex_property<int>(kLevelName, level).vector();
+    const std::size_t nv = m.vertices_size();
+    if (level > 1) {
+        if (auto in = m.get_vertex_property<int>(kLevelName)) {
+            std::copy_n(in.vector().begin(), nv, levels.begin());
+            return;
+        }
+    }
+    std::fill_n(levels.begin(), nv, 0);
+}
+
 // ---------------------------------------------------------------------------------------
 // 1-to-4 refinement (Loop, Butterfly, Modified Butterfly)
 // ---------------------------------------------------------------------------------------
-
-/// Sum of the neighbours' positions around the interior vertex whose outgoing halfedge is
-/// h0; `n` receives the valence.
-inline Point ring_sum(const HalfedgeMesh& m, const std::vector<Point>& x, Halfedge h0,
-                      unsigned& n) {
-    Point s = Point::Zero();
-    n = 0;
-    Halfedge h = h0;
-    do {
-        s += x[m.to_vertex(h).idx()];
-        ++n;
-        h = m.ccw_rotated(h);
-    } while (h != h0);
-    return s;
-}
 
 inline Index half_a(Index h) {
     return 4 * (h >> 1) + 2 * (h & 1u);
@@ -140,168 +190,185 @@ inline Index half_b(Index h) {
     return 4 * (h >> 1) + 3 - 2 * (h & 1u);
 }
 
-/// Builds the connectivity of the 1-to-4 split of `m` into `out` (positions not set).
-void build_1to4(const HalfedgeMesh& m, HalfedgeMesh& out, const Stage& stage) {
-    const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
-                nf = Index(m.faces_size());
-    out.resize_elements(std::size_t(nv) + ne, 2 * std::size_t(ne) + 3 * std::size_t(nf),
-                        4 * std::size_t(nf));
-    auto mid = [&](Halfedge h) { return Vertex(nv + (h.idx() >> 1)); };
+/// Position of face halfedge h in its face (h_0 = halfedge(f), h_1, h_2), from the
+/// face's halfedge and h's neighbours.
+inline Index corner_of(const In& m, Index h) {
+    const Index f0 = m.fh[m.face[h].idx()].idx();
+    return f0 == h ? 0 : (f0 == m.prev_i(h) ? 1 : 2);
+}
+
+/// Builds the connectivity of the 1-to-4 split of `m` into `mesh` (positions not set). Each
+/// new halfedge is written once, in the order of its index: the interior edges face by face,
+/// then the halves of the old edges edge by edge.
+void build_1to4(const In& m, HalfedgeMesh& mesh, const Stage& stage) {
+    const Index nv = m.nv, ne = m.ne, nf = m.nf;
+    mesh.resize_elements(std::size_t(nv) + ne, 2 * std::size_t(ne) + 3 * std::size_t(nf),
+                         4 * std::size_t(nf));
+    Out out(mesh);
+    // Face f: corner faces 4f + k (at to_vertex(h_k)), centre face 4f + 3; interior edge k
+    // joins mid(h_k) and mid(h_k1): halfedge `in` (mid(h_k1) -> mid(h_k)) in corner face k,
+    // its twin in the centre face.
     for (Index fi = 0; fi < nf; ++fi) {
         stage.tick(fi);
-        Face f(fi);
-        Halfedge h[3];
-        h[0] = m.halfedge(f);
-        h[1] = m.next(h[0]);
-        h[2] = m.next(h[1]);
-        for (int k = 0; k < 3; ++k) {
-            const int k1 = (k + 1) % 3;
-            Face corner(4 * fi + Index(k));
-            Halfedge b(half_b(h[k].idx())), a(half_a(h[k1].idx()));
-            Halfedge in(2 * (2 * ne + 3 * fi + Index(k)));
-            out.set_next(b, a);
-            out.set_next(a, in);
-            out.set_next(in, b);
-            out.set_face(b, corner);
-            out.set_face(a, corner);
-            out.set_face(in, corner);
-            out.set_halfedge(corner, b);
-            out.set_to_vertex(b, m.to_vertex(h[k]));
-            out.set_to_vertex(a, mid(h[k1]));
-            out.set_to_vertex(in, mid(h[k]));
-            // The centre face: mid(h_k) -> mid(h_k1).
-            Halfedge cin(in.idx() + 1), cnext(2 * (2 * ne + 3 * fi + Index(k1)) + 1);
-            Face centre(4 * fi + 3);
-            out.set_next(cin, cnext);
-            out.set_face(cin, centre);
-            out.set_to_vertex(cin, mid(h[k1]));
+        Index h[3];
+        h[0] = m.fh[fi].idx();
+        h[1] = m.next_i(h[0]);
+        h[2] = m.next_i(h[1]);
+        const Index first = 2 * (2 * ne + 3 * fi);  // halfedge `in` of interior edge k: +2k
+        for (Index k = 0; k < 3; ++k) {
+            const Index k1 = k == 2 ? 0 : k + 1, k2 = k == 0 ? 2 : k - 1;
+            const Index in = first + 2 * k, cin = in + 1;
+            out.next[in] = Halfedge(half_b(h[k]));
+            out.prev[in] = Halfedge(half_a(h[k1]));
+            out.face[in] = Face(4 * fi + k);
+            out.to[in] = Vertex(nv + (h[k] >> 1));
+            out.next[cin] = Halfedge(first + 2 * k1 + 1);
+            out.prev[cin] = Halfedge(first + 2 * k2 + 1);
+            out.face[cin] = Face(4 * fi + 3);
+            out.to[cin] = Vertex(nv + (h[k1] >> 1));
+            out.fh[4 * fi + k] = Halfedge(half_b(h[k]));
         }
-        out.set_halfedge(Face(4 * fi + 3), Halfedge(2 * (2 * ne + 3 * fi) + 1));
+        out.fh[4 * fi + 3] = Halfedge(first + 1);
     }
     stage.report(0.3);
-    for (Index hi = 0; hi < 2 * ne; ++hi) {
-        Halfedge h(hi);
-        if (!m.is_boundary(h)) continue;
-        Halfedge a(half_a(hi)), b(half_b(hi));
-        out.set_next(a, b);
-        out.set_next(b, Halfedge(half_a(m.next(h).idx())));
-        out.set_to_vertex(a, mid(h));
-        out.set_to_vertex(b, m.to_vertex(h));
+    // Old halfedge h (from a to b, in corner k of face f) becomes A = half_a(h) (a -> mid, in
+    // corner face k - 1) and B = half_b(h) (mid -> b, in corner face k); on the boundary A
+    // and B follow each other.
+    for (Index e = 0; e < ne; ++e) {
+        stage.tick(e);
+        const Index mid = nv + e;
+        for (Index hi = 2 * e; hi <= 2 * e + 1; ++hi) {
+            const Index a = half_a(hi), b = half_b(hi);
+            const Index hn = m.next_i(hi), hp = m.prev_i(hi);
+            out.prev[a] = Halfedge(half_b(hp));
+            out.to[a] = Vertex(mid);
+            out.next[b] = Halfedge(half_a(hn));
+            out.to[b] = m.to[hi];
+            const Face f = m.face[hi];
+            if (f.is_valid()) {
+                const Index k = corner_of(m, hi), k2 = k == 0 ? 2 : k - 1;
+                const Index first = 2 * (2 * ne + 3 * f.idx());
+                out.next[a] = Halfedge(first + 2 * k2);
+                out.face[a] = Face(4 * f.idx() + k2);
+                out.prev[b] = Halfedge(first + 2 * k);
+                out.face[b] = Face(4 * f.idx() + k);
+            } else {
+                out.next[a] = Halfedge(b);
+                out.prev[b] = Halfedge(a);
+            }
+        }
+        // The odd vertex's outgoing halfedge: the boundary one if the edge has one.
+        out.vh[mid] = Halfedge(half_b(m.boundary(2 * e + 1) ? 2 * e + 1 : 2 * e));
     }
     for (Index vi = 0; vi < nv; ++vi) {
-        Halfedge h = m.halfedge(Vertex(vi));
-        if (h.is_valid()) out.set_halfedge(Vertex(vi), Halfedge(half_a(h.idx())));
-    }
-    for (Index e = 0; e < ne; ++e) {
-        Halfedge h(2 * e);
-        if (m.is_boundary(Halfedge(2 * e + 1))) h = Halfedge(2 * e + 1);
-        out.set_halfedge(Vertex(nv + e), Halfedge(half_b(h.idx())));
+        const Halfedge h = m.vh[vi];
+        if (h.is_valid()) out.vh[vi] = Halfedge(half_a(h.idx()));
     }
 }
 
-/// Texture coordinates and levels of the 1-to-4 split.
-void carry_1to4(const HalfedgeMesh& m, const Carried& in, HalfedgeMesh& out, int level) {
-    const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
-                nf = Index(m.faces_size());
-    auto& levels = out.add_vertex_property<int>(kLevelName, 0).vector();
-    for (Index v = 0; v < nv; ++v) levels[v] = in.level ? in.level[Vertex(v)] : 0;
-    for (Index e = 0; e < ne; ++e) levels[nv + e] = level;
-    if (in.vuv) {
-        auto uv = out.add_vertex_property<TexCoord>("v:texcoord", TexCoord::Zero());
-        for (Index v = 0; v < nv; ++v) uv[Vertex(v)] = in.vuv[Vertex(v)];
+/// Texture coordinates of the 1-to-4 split.
+void carry_uv_1to4(const HalfedgeMesh& mesh, HalfedgeMesh& out) {
+    const In m(mesh);
+    const Index nv = m.nv, ne = m.ne, nf = m.nf;
+    if (auto vuv = mesh.get_vertex_property<TexCoord>("v:texcoord")) {
+        const TexCoord* in = vuv.vector().data();
+        TexCoord* uv =
+            out.add_vertex_property<TexCoord>("v:texcoord", TexCoord::Zero()).vector().data();
+        std::copy_n(in, nv, uv);
         for (Index e = 0; e < ne; ++e)
-            uv[Vertex(nv + e)] =
-                0.5 * (in.vuv[m.vertex(Edge(e), 0)] + in.vuv[m.vertex(Edge(e), 1)]);
+            uv[nv + e] = 0.5 * (in[m.to_i(2 * e)] + in[m.to_i(2 * e + 1)]);
     }
-    if (in.huv) {
-        auto uv = out.add_halfedge_property<TexCoord>("h:texcoord", TexCoord::Zero());
+    if (auto huv = mesh.get_halfedge_property<TexCoord>("h:texcoord")) {
+        const TexCoord* in = huv.vector().data();
+        TexCoord* uv =
+            out.add_halfedge_property<TexCoord>("h:texcoord", TexCoord::Zero()).vector().data();
         for (Index fi = 0; fi < nf; ++fi) {
-            Halfedge h[3];
-            h[0] = m.halfedge(Face(fi));
-            h[1] = m.next(h[0]);
-            h[2] = m.next(h[1]);
+            Index h[3];
+            h[0] = m.fh[fi].idx();
+            h[1] = m.next_i(h[0]);
+            h[2] = m.next_i(h[1]);
             TexCoord c[3], md[3];
-            for (int k = 0; k < 3; ++k) c[k] = in.huv[h[k]];
+            for (int k = 0; k < 3; ++k) c[k] = in[h[k]];
             // h_k runs from corner k-1 to corner k.
             for (int k = 0; k < 3; ++k) md[k] = 0.5 * (c[k] + c[(k + 2) % 3]);
             for (int k = 0; k < 3; ++k) {
                 const int k1 = (k + 1) % 3;
-                Halfedge in_h(2 * (2 * ne + 3 * fi + Index(k)));
-                uv[Halfedge(half_b(h[k].idx()))] = c[k];
-                uv[Halfedge(half_a(h[k1].idx()))] = md[k1];
+                const Index in_h = 2 * (2 * ne + 3 * fi + Index(k));
+                uv[half_b(h[k])] = c[k];
+                uv[half_a(h[k1])] = md[k1];
                 uv[in_h] = md[k];
-                uv[Halfedge(in_h.idx() + 1)] = md[k1];
+                uv[in_h + 1] = md[k1];
             }
         }
     }
 }
 
-/// Loop positions of the refined mesh (even vertices first, then odd ones).
-void loop_positions(const HalfedgeMesh& m, std::vector<Point>& p, const Stage& stage) {
-    const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size());
-    const auto& x = m.positions();
-    std::vector<double> beta(8, 0.0);
-    auto beta_of = [&](unsigned n) {
-        if (n >= beta.size()) {
-            std::size_t old = beta.size();
-            beta.resize(2 * n + 1);
-            for (std::size_t i = old; i < beta.size(); ++i) beta[i] = 0;
-        }
-        if (beta[n] == 0) {
-            const double t = 0.375 + 0.25 * std::cos(2 * kPi / n);
-            beta[n] = (0.625 - t * t) / n;
-        }
-        return beta[n];
-    };
-    for (Index vi = 0; vi < nv; ++vi) {
-        stage.tick(vi);
-        Vertex v(vi);
-        const Halfedge h0 = m.halfedge(v);
-        if (!h0.is_valid()) {
-            p[vi] = x[vi];
-        } else if (m.is_boundary(h0)) {
-            p[vi] = 0.75 * x[vi] +
-                    0.125 * (x[m.to_vertex(h0).idx()] + x[m.from_vertex(m.prev(h0)).idx()]);
+/// Loop positions of the refined mesh. One pass over the edges computes the odd vertices and
+/// sums each even vertex's neighbours (into its slot of `p`) and valence; a pass over the
+/// vertices then applies the even rules.
+void loop_positions(const In& m, Point* p, const Stage& stage) {
+    const Index nv = m.nv, ne = m.ne;
+    const Point* x = m.x;
+    std::vector<unsigned> valence(nv, 0);
+    std::fill_n(p, nv, Point::Zero());
+    for (Index e = 0; e < ne; ++e) {
+        stage.tick(e);
+        const Index h = 2 * e, t = 2 * e + 1;
+        const Index ia = m.to_i(t), ib = m.to_i(h);
+        const Point& a = x[ia];
+        const Point& b = x[ib];
+        p[ia] += b;
+        p[ib] += a;
+        ++valence[ia];
+        ++valence[ib];
+        if (m.boundary(h) || m.boundary(t)) {
+            p[nv + e] = 0.5 * (a + b);
         } else {
-            unsigned n = 0;
-            const Point s = ring_sum(m, x, h0, n);
-            const double b = beta_of(n);
-            p[vi] = (1.0 - n * b) * x[vi] + b * s;
+            const Point& c = x[m.to_i(m.next_i(h))];
+            const Point& d = x[m.to_i(m.next_i(t))];
+            p[nv + e] = 0.375 * (a + b) + 0.125 * (c + d);
         }
     }
     stage.report(0.6);
-    for (Index e = 0; e < ne; ++e) {
-        stage.tick(e);
-        Halfedge h(2 * e), t(2 * e + 1);
-        const Point& a = x[m.to_vertex(t).idx()];
-        const Point& b = x[m.to_vertex(h).idx()];
-        if (m.is_boundary(h) || m.is_boundary(t)) {
-            p[nv + e] = 0.5 * (a + b);
+    std::vector<double> beta(8, -1.0);
+    for (Index vi = 0; vi < nv; ++vi) {
+        stage.tick(vi);
+        const Halfedge h0 = m.vh[vi];
+        if (!h0.is_valid()) {
+            p[vi] = x[vi];
+        } else if (m.boundary(h0.idx())) {
+            p[vi] = 0.75 * x[vi] + 0.125 * (x[m.to_i(h0.idx())] + x[m.from_i(m.prev_i(h0.idx()))]);
         } else {
-            const Point& c = x[m.to_vertex(m.next(h)).idx()];
-            const Point& d = x[m.to_vertex(m.next(t)).idx()];
-            p[nv + e] = 0.375 * (a + b) + 0.125 * (c + d);
+            const unsigned n = valence[vi];
+            if (n >= beta.size()) beta.resize(2 * std::size_t(n) + 1, -1.0);
+            if (beta[n] < 0) {
+                const double t = 0.375 + 0.25 * std::cos(2 * kPi / n);
+                beta[n] = (0.625 - t * t) / n;
+            }
+            const double b = beta[n];
+            p[vi] = (1.0 - n * b) * x[vi] + b * p[vi];
         }
     }
 }
 
 /// The corner opposite the wing edge `w` (a halfedge of a face), or its reflection across
-/// `w` when twin(w) is a boundary halfedge.
-inline Point wing(const HalfedgeMesh& m, const std::vector<Point>& x, Halfedge w) {
-    Halfedge t = HalfedgeMesh::twin(w);
-    if (!m.is_boundary(t)) return x[m.to_vertex(m.next(t)).idx()];
-    return x[m.to_vertex(w).idx()] + x[m.from_vertex(w).idx()] - x[m.to_vertex(m.next(w)).idx()];
+/// `w` when twin(w) is a boundary halfedge. opp[h] is the corner opposite face halfedge h
+/// (to_vertex(next(h))), invalid on boundary halfedges.
+inline Point wing(const In& m, const Index* opp, Index w) {
+    const Index o = opp[w ^ 1u];
+    if (o != kInvalidIndex) return m.x[o];
+    return m.x[m.to_i(w)] + m.x[m.from_i(w)] - m.x[opp[w]];
 }
 
 /// The 8-point butterfly stencil (w = 1/16) on interior halfedge h.
-inline Point butterfly8(const HalfedgeMesh& m, const std::vector<Point>& x, Halfedge h) {
-    Halfedge t = HalfedgeMesh::twin(h);
-    const Point& a = x[m.from_vertex(h).idx()];
-    const Point& b = x[m.to_vertex(h).idx()];
-    const Point& c = x[m.to_vertex(m.next(h)).idx()];
-    const Point& d = x[m.to_vertex(m.next(t)).idx()];
-    const Point e = wing(m, x, m.next(h)) + wing(m, x, m.prev(h)) + wing(m, x, m.next(t)) +
-                    wing(m, x, m.prev(t));
+inline Point butterfly8(const In& m, const Index* opp, Index h) {
+    const Index t = h ^ 1u;
+    const Point& a = m.x[m.from_i(h)];
+    const Point& b = m.x[m.to_i(h)];
+    const Point& c = m.x[opp[h]];
+    const Point& d = m.x[opp[t]];
+    const Point e = wing(m, opp, m.next_i(h)) + wing(m, opp, m.prev_i(h)) +
+                    wing(m, opp, m.next_i(t)) + wing(m, opp, m.prev_i(t));
     return 0.5 * (a + b) + 0.125 * (c + d) - 0.0625 * e;
 }
 
@@ -330,46 +397,52 @@ private:
 };
 
 /// Odd positions of the butterfly schemes; even vertices keep their position.
-void butterfly_positions(const HalfedgeMesh& m, std::vector<Point>& p, bool modified,
-                         const Stage& stage) {
-    const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size());
-    const auto& x = m.positions();
-    std::copy_n(x.begin(), nv, p.begin());  // not memcpy: data() is null for an empty mesh
-    // Valences and boundary flags, for the extraordinary rules.
+void butterfly_positions(const In& m, Point* p, bool modified, const Stage& stage) {
+    const Index nv = m.nv, ne = m.ne;
+    const Point* x = m.x;
+    std::copy_n(x, nv, p);
+    // Valences and "extraordinary interior" flags, for the extraordinary rules.
     std::vector<unsigned> valence;
-    std::vector<std::uint8_t> boundary;
+    std::vector<std::uint8_t> extraordinary_vertex;
     ExtraordinaryWeights weights;
     if (modified) {
         valence.assign(nv, 0);
-        boundary.assign(nv, 0);
-        for (Index hi = 0; hi < 2 * ne; ++hi) ++valence[m.to_vertex(Halfedge(hi)).idx()];
-        for (Index vi = 0; vi < nv; ++vi) boundary[vi] = m.is_boundary(Vertex(vi)) ? 1 : 0;
+        extraordinary_vertex.assign(nv, 0);
+        for (Index hi = 0; hi < 2 * ne; ++hi) ++valence[m.to_i(hi)];
+        for (Index vi = 0; vi < nv; ++vi) {
+            const Halfedge h = m.vh[vi];
+            const bool boundary = !h.is_valid() || m.boundary(h.idx());
+            extraordinary_vertex[vi] = !boundary && valence[vi] != 6 ? 1 : 0;
+        }
     }
+    std::unique_ptr<Index[]> opp_storage(new Index[2 * std::size_t(ne)]);
+    Index* opp = opp_storage.get();
+    for (Index hi = 0; hi < 2 * ne; ++hi)
+        opp[hi] = m.boundary(hi) ? kInvalidIndex : m.to_i(m.next_i(hi));
     stage.report(0.5);
-    auto extraordinary = [&](Halfedge h) {  // stencil at from_vertex(h), h interior
-        const Index a = m.from_vertex(h).idx();
+    auto extraordinary = [&](Index h) {  // stencil at from_vertex(h), h interior
+        const Index a = m.from_i(h);
         const unsigned n = valence[a];
         const double* s = weights.of(n);
         Point q = 0.75 * x[a];
-        Halfedge g = h;
-        for (unsigned j = 0; j < n; ++j, g = m.ccw_rotated(g)) q += s[j] * x[m.to_vertex(g).idx()];
+        Index g = h;
+        for (unsigned j = 0; j < n; ++j, g = m.prev_i(g) ^ 1u) q += s[j] * x[m.to_i(g)];
         return q;
     };
     for (Index e = 0; e < ne; ++e) {
         stage.tick(e);
-        Halfedge h(2 * e), t(2 * e + 1);
+        const Index h = 2 * e, t = 2 * e + 1;
         Point q;
-        if (m.is_boundary(h) || m.is_boundary(t)) {
-            Halfedge bh = m.is_boundary(h) ? h : t;  // boundary halfedge a -> b
-            const Point& a = x[m.from_vertex(bh).idx()];
-            const Point& b = x[m.to_vertex(bh).idx()];
-            const Point& a0 = x[m.from_vertex(m.prev(bh)).idx()];
-            const Point& b1 = x[m.to_vertex(m.next(bh)).idx()];
+        if (m.boundary(h) || m.boundary(t)) {
+            const Index bh = m.boundary(h) ? h : t;  // boundary halfedge a -> b
+            const Point& a = x[m.from_i(bh)];
+            const Point& b = x[m.to_i(bh)];
+            const Point& a0 = x[m.from_i(m.prev_i(bh))];
+            const Point& b1 = x[m.to_i(m.next_i(bh))];
             q = 0.5625 * (a + b) - 0.0625 * (a0 + b1);
         } else if (modified) {
-            const Index a = m.from_vertex(h).idx(), b = m.to_vertex(h).idx();
-            const bool ea = !boundary[a] && valence[a] != 6;
-            const bool eb = !boundary[b] && valence[b] != 6;
+            const bool ea = extraordinary_vertex[m.from_i(h)] != 0;
+            const bool eb = extraordinary_vertex[m.to_i(h)] != 0;
             if (ea && eb)
                 q = 0.5 * (extraordinary(h) + extraordinary(t));
             else if (ea)
@@ -377,36 +450,37 @@ void butterfly_positions(const HalfedgeMesh& m, std::vector<Point>& p, bool modi
             else if (eb)
                 q = extraordinary(t);
             else
-                q = butterfly8(m, x, h);
+                q = butterfly8(m, opp, h);
         } else {
-            q = butterfly8(m, x, h);
+            q = butterfly8(m, opp, h);
         }
         p[nv + e] = q;
     }
 }
 
-SubdivisionLevel refine_1to4(const HalfedgeMesh& m, SubdivisionScheme scheme, int level,
-                             const Stage& stage) {
+SubdivisionLevel refine_1to4(const HalfedgeMesh& mesh, SubdivisionScheme scheme, int level,
+                             bool morph, const Stage& stage) {
     SubdivisionLevel out;
-    const Carried in = carried_of(m, level);
+    out.correspondence.kind = MorphCorrespondence::Kind::FromEarlier;
+    const In m(mesh);
     build_1to4(m, out.mesh, stage);
     stage.progress.check_cancelled();
-    auto& p = out.mesh.positions();
+    Point* p = out.mesh.positions().data();
     if (scheme == SubdivisionScheme::Loop)
         loop_positions(m, p, stage);
     else
         butterfly_positions(m, p, scheme == SubdivisionScheme::ModifiedButterfly, stage);
     stage.progress.check_cancelled();
-    carry_1to4(m, in, out.mesh, level);
-    // Morph: even vertices start where they were, odd ones at their edge's midpoint.
-    const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size());
-    out.correspondence.kind = MorphCorrespondence::Kind::FromEarlier;
-    auto& start = out.correspondence.positions;
-    start.resize(std::size_t(nv) + ne);
-    const auto& x = m.positions();
-    for (Index v = 0; v < nv; ++v) start[v] = x[v];
-    for (Index e = 0; e < ne; ++e)
-        start[nv + e] = 0.5 * (x[m.vertex(Edge(e), 0).idx()] + x[m.vertex(Edge(e), 1).idx()]);
+    add_levels(mesh, out.mesh, level);
+    carry_uv_1to4(mesh, out.mesh);
+    if (morph) {
+        // Even vertices start where they were, odd ones at their edge's midpoint.
+        auto& start = out.correspondence.positions;
+        start.resize(std::size_t(m.nv) + m.ne);
+        std::copy_n(m.x, m.nv, start.begin());
+        for (Index e = 0; e < m.ne; ++e)
+            start[m.nv + e] = 0.5 * (m.x[m.to_i(2 * e)] + m.x[m.to_i(2 * e + 1)]);
+    }
     return out;
 }
 
@@ -419,213 +493,292 @@ SubdivisionLevel refine_1to4(const HalfedgeMesh& m, SubdivisionScheme scheme, in
 /// face(h) is edge E + id(h) with id(h) = 3f + k, and in even steps boundary halfedge number j
 /// adds the edges E + 3F + 4j + {0: p-q, 1: q-b, 2: p-c, 3: q-c} and the faces 3F + 2j + {0,
 /// 1}. Face id(h) is the triangle that interior halfedge h keeps.
-SubdivisionLevel refine_sqrt3(const HalfedgeMesh& m, bool even_step, int level,
+SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int level, bool morph,
                               const Stage& stage) {
-    const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
-                nf = Index(m.faces_size());
-    const auto& x = m.positions();
-    // Corner ids of interior halfedges and numbers of boundary halfedges.
-    std::vector<Index> id(2 * std::size_t(ne));
+    const In m(mesh);
+    const Index nv = m.nv, ne = m.ne, nf = m.nf;
+    const Point* x = m.x;
+    // Corner ids of face halfedges (with the id of the next halfedge beside them, so that
+    // s_out(next(h)) is read where h is) and numbers of boundary halfedges: every halfedge is
+    // one or the other, so every id is written. corner[3f + k] is halfedge k of face f, so
+    // that the spoke pass reads them in order.
+    struct Ids {
+        Index id, next_id;  // next_id: for face halfedges only
+    };
+    std::unique_ptr<Ids[]> ids_storage(new Ids[2 * std::size_t(ne)]);
+    std::unique_ptr<Index[]> corner_storage(new Index[3 * std::size_t(nf)]);
+    Ids* ids = ids_storage.get();
+    Index* corner = corner_storage.get();
     Index nb = 0;
     for (Index fi = 0; fi < nf; ++fi) {
-        Halfedge h = m.halfedge(Face(fi));
-        for (Index k = 0; k < 3; ++k, h = m.next(h)) id[h.idx()] = 3 * fi + k;
+        const Index h0 = m.fh[fi].idx(), h1 = m.next_i(h0), h2 = m.next_i(h1);
+        ids[h0] = {3 * fi, 3 * fi + 1};
+        ids[h1] = {3 * fi + 1, 3 * fi + 2};
+        ids[h2] = {3 * fi + 2, 3 * fi};
+        corner[3 * std::size_t(fi)] = h0;
+        corner[3 * std::size_t(fi) + 1] = h1;
+        corner[3 * std::size_t(fi) + 2] = h2;
     }
     for (Index hi = 0; hi < 2 * ne; ++hi)
-        if (m.is_boundary(Halfedge(hi))) id[hi] = nb++;
+        if (m.boundary(hi)) ids[hi].id = nb++;
     if (!even_step) nb = 0;  // boundary edges are not split in odd steps
     stage.report(0.1);
 
     SubdivisionLevel result;
-    HalfedgeMesh& out = result.mesh;
-    out.resize_elements(std::size_t(nv) + nf + 2 * std::size_t(nb),
-                        std::size_t(ne) + 3 * std::size_t(nf) + 4 * std::size_t(nb),
-                        3 * std::size_t(nf) + 2 * std::size_t(nb));
+    HalfedgeMesh& mesh_out = result.mesh;
+    mesh_out.resize_elements(std::size_t(nv) + nf + 2 * std::size_t(nb),
+                             std::size_t(ne) + 3 * std::size_t(nf) + 4 * std::size_t(nb),
+                             3 * std::size_t(nf) + 2 * std::size_t(nb));
+    Out out(mesh_out);
+    Point* p = out.p;
     const Index eb = ne + 3 * nf;  // first edge of the boundary splits
-    auto s_out = [&](Halfedge h) { return Halfedge(2 * (ne + id[h.idx()])); };
-    auto s_in = [&](Halfedge h) { return Halfedge(2 * (ne + id[h.idx()]) + 1); };
-    auto split_edge = [&](Halfedge boundary, Index which) {  // 0: p-q, 1: q-b, 2: p-c, 3: q-c
-        return Halfedge(2 * (eb + 4 * id[boundary.idx()] + which));
+    auto s_out = [&](Index h) { return 2 * (ne + ids[h].id); };
+    auto s_in = [&](Index h) { return 2 * (ne + ids[h].id) + 1; };
+    auto s_out_next = [&](Index h) { return 2 * (ne + ids[h].next_id); };  // s_out(next(h))
+    auto split_edge = [&](Index boundary, Index which) {  // 0: p-q, 1: q-b, 2: p-c, 3: q-c
+        return 2 * (eb + 4 * ids[boundary].id + which);
     };
     // Boundary split vertices of boundary halfedge t (b -> a): P0 near b, P1 near a.
-    auto split_vertex = [&](Halfedge t, Index which) {
-        return Vertex(nv + nf + 2 * id[t.idx()] + which);
-    };
-    auto triangle = [&](Face f, Halfedge h0, Vertex v0, Halfedge h1, Vertex v1, Halfedge h2,
-                        Vertex v2) {
-        out.set_next(h0, h1);
-        out.set_next(h1, h2);
-        out.set_next(h2, h0);
-        out.set_face(h0, f);
-        out.set_face(h1, f);
-        out.set_face(h2, f);
-        out.set_to_vertex(h0, v0);
-        out.set_to_vertex(h1, v1);
-        out.set_to_vertex(h2, v2);
-        out.set_halfedge(f, h0);
-    };
+    auto split_vertex = [&](Index t, Index which) { return nv + nf + 2 * ids[t].id + which; };
+    // Every new halfedge is written once. Corner k of face f is halfedge h (a -> b) with
+    // twin t; c is f's centroid. Triangle id(h) is (a, c_g, c) when t is interior (face g),
+    // (a, b, c) on the boundary in odd steps, (a, p, c) in even steps. The spoke s_in(h)
+    // (c -> a) closes triangle id(h); s_out(h) (a -> c) lies in the triangle of
+    // g = twin(prev(h)), or on the boundary next to prev(h).
     for (Index fi = 0; fi < nf; ++fi) {
         stage.tick(fi);
-        const Vertex c(nv + fi);
-        Halfedge h = m.halfedge(Face(fi));
-        out.set_halfedge(c, s_in(h));
-        for (int k = 0; k < 3; ++k, h = m.next(h)) {
-            const Halfedge t = HalfedgeMesh::twin(h);
-            const Vertex a = m.from_vertex(h), b = m.to_vertex(h);
-            const Face own(id[h.idx()]);
-            if (!m.is_boundary(t)) {
-                // (a, c_g, c_f): the flipped edge is h itself, from c_g to c_f.
-                const Vertex cg(nv + m.face(t).idx());
-                triangle(own, s_out(m.next(t)), cg, h, c, s_in(h), a);
-            } else if (!even_step) {
-                triangle(own, h, b, s_out(m.next(h)), c, s_in(h), a);
+        const Index* h = corner + 3 * std::size_t(fi);
+        const Vertex v[3] = {m.to[h[0]], m.to[h[1]], m.to[h[2]]};
+        p[nv + fi] = (x[v[0].idx()] + x[v[1].idx()] + x[v[2].idx()]) / 3.0;  // the centroid
+        out.vh[nv + fi] = Halfedge(s_in(h[0]));
+        for (Index k = 0; k < 3; ++k) {
+            const Index k1 = k == 2 ? 0 : k + 1, k2 = k == 0 ? 2 : k - 1;
+            const Index hk = h[k], hp = h[k2], t = hk ^ 1u, g = hp ^ 1u;
+            const Index own = 3 * fi + k;  // id[hk]
+            const Index si = 2 * (ne + own) + 1, so = si - 1;
+            out.to[si] = v[k2];
+            out.face[si] = Face(own);
+            if (!m.boundary(t)) {
+                const Index first = s_out_next(t);
+                out.next[si] = Halfedge(first);
+                out.prev[si] = Halfedge(hk);
+                out.fh[own] = Halfedge(first);
             } else {
-                const Vertex p = split_vertex(t, 1), q = split_vertex(t, 0);
-                const Index j = id[t.idx()];
-                triangle(own, h, p, split_edge(t, 2), c, s_in(h), a);
-                triangle(Face(3 * nf + 2 * j), split_edge(t, 0), q, split_edge(t, 3), c,
-                         Halfedge(split_edge(t, 2).idx() + 1), p);
-                triangle(Face(3 * nf + 2 * j + 1), split_edge(t, 1), b, s_out(m.next(h)), c,
-                         Halfedge(split_edge(t, 3).idx() + 1), q);
+                out.next[si] = Halfedge(hk);
+                out.prev[si] = Halfedge(even_step ? split_edge(t, 2) : 2 * (ne + 3 * fi + k1));
+                out.fh[own] = Halfedge(hk);
+            }
+            out.to[so] = Vertex(nv + fi);
+            if (!m.boundary(g)) {
+                out.next[so] = Halfedge(g);
+                out.prev[so] = Halfedge(s_in(g));
+                out.face[so] = Face(ids[g].id);
+            } else if (!even_step) {
+                out.next[so] = Halfedge(2 * (ne + 3 * fi + k2) + 1);  // s_in(hp)
+                out.prev[so] = Halfedge(hp);
+                out.face[so] = Face(3 * fi + k2);
+            } else {
+                out.next[so] = Halfedge(split_edge(g, 3) + 1);
+                out.prev[so] = Halfedge(split_edge(g, 1));
+                out.face[so] = Face(3 * nf + 2 * ids[g].id + 1);
             }
         }
     }
-    stage.report(0.4);
-    // Boundary loops.
+    stage.report(0.3);
+    // The old halfedges keep their indices: an interior edge flipped (h from c_g to c), a
+    // boundary one in place (in even steps shortened to its last third).
+    // Alongside, each old vertex's neighbour sum (in its slot of p) and valence.
+    std::vector<unsigned> valence(nv, 0);
+    std::fill_n(p, nv, Point::Zero());
     for (Index hi = 0; hi < 2 * ne; ++hi) {
-        const Halfedge t(hi);
-        if (!m.is_boundary(t)) continue;
-        const Halfedge n = m.next(t);
-        if (!even_step) {
-            out.set_next(t, n);
-            out.set_to_vertex(t, m.to_vertex(t));
-            continue;
+        stage.tick(hi);
+        const Index t = hi ^ 1u;
+        if (!(hi & 1u)) {
+            const Index a = m.to_i(t), b = m.to_i(hi);
+            p[a] += x[b];
+            p[b] += x[a];
+            ++valence[a];
+            ++valence[b];
         }
-        // b -> q -> p -> a, then on to the first piece of the next boundary halfedge.
-        const Halfedge bq(split_edge(t, 1).idx() + 1), qp(split_edge(t, 0).idx() + 1);
-        out.set_next(bq, qp);
-        out.set_next(qp, t);
-        out.set_next(t, Halfedge(split_edge(n, 1).idx() + 1));
-        out.set_to_vertex(bq, split_vertex(t, 0));
-        out.set_to_vertex(qp, split_vertex(t, 1));
-        out.set_to_vertex(t, m.to_vertex(t));
-        out.set_halfedge(split_vertex(t, 0), qp);
-        out.set_halfedge(split_vertex(t, 1), t);
+        const Face f = m.face[hi];
+        if (f.is_valid()) {
+            const Index own = ids[hi].id;
+            out.face[hi] = Face(own);
+            if (!m.boundary(t)) {
+                out.to[hi] = Vertex(nv + f.idx());
+                out.next[hi] = Halfedge(2 * (ne + own) + 1);
+                out.prev[hi] = Halfedge(s_out_next(t));
+            } else if (!even_step) {
+                out.to[hi] = m.to[hi];
+                out.next[hi] = Halfedge(s_out_next(hi));
+                out.prev[hi] = Halfedge(2 * (ne + own) + 1);
+            } else {
+                out.to[hi] = Vertex(split_vertex(t, 1));
+                out.next[hi] = Halfedge(split_edge(t, 2));
+                out.prev[hi] = Halfedge(2 * (ne + own) + 1);
+            }
+        } else {
+            out.to[hi] = m.to[hi];
+            if (!even_step) {
+                out.next[hi] = m.next[hi];
+                out.prev[hi] = m.prev[hi];
+            } else {  // b -> q -> p -> a, then on to the next boundary halfedge's b -> q
+                out.next[hi] = Halfedge(split_edge(m.next_i(hi), 1) + 1);
+                out.prev[hi] = Halfedge(split_edge(hi, 0) + 1);
+            }
+        }
+    }
+    // Even steps: the pieces of each boundary edge b -> q -> p -> a and the two new
+    // triangles (p, q, c) and (q, b, c) at it.
+    for (Index t = 0; even_step && t < 2 * ne; ++t) {
+        if (!m.boundary(t)) continue;
+        const Index h = t ^ 1u, own = ids[h].id, j = ids[t].id;
+        const Index c = nv + m.face[h].idx(), vp = split_vertex(t, 1), vq = split_vertex(t, 0);
+        const Index pq = split_edge(t, 0), qb = split_edge(t, 1), pc = split_edge(t, 2),
+                    qc = split_edge(t, 3);
+        const Index bq = qb + 1, qp = pq + 1, cp = pc + 1, cq = qc + 1;
+        const Index f2 = 3 * nf + 2 * j, f3 = f2 + 1;
+        const Index so_next = s_out_next(h);
+        // In triangle id(h) = (a, p, c): p -> c.
+        out.next[pc] = Halfedge(2 * (ne + own) + 1);
+        out.prev[pc] = Halfedge(h);
+        out.face[pc] = Face(own);
+        out.to[pc] = Vertex(c);
+        // Triangle f2 = (p, q, c): p -> q -> c -> p.
+        out.triangle(f2, pq, vq, qc, c, cp, vp);
+        // Triangle f3 = (q, b, c): q -> b, b -> c (s_out(next(h))), c -> q.
+        out.next[qb] = Halfedge(so_next);
+        out.prev[qb] = Halfedge(cq);
+        out.face[qb] = Face(f3);
+        out.to[qb] = Vertex(m.from_i(t));
+        out.next[cq] = Halfedge(qb);
+        out.prev[cq] = Halfedge(so_next);
+        out.face[cq] = Face(f3);
+        out.to[cq] = Vertex(vq);
+        out.fh[f3] = Halfedge(qb);
+        // The boundary pieces b -> q and q -> p.
+        out.next[bq] = Halfedge(qp);
+        out.prev[bq] = m.prev[t];
+        out.to[bq] = Vertex(vq);
+        out.next[qp] = Halfedge(t);
+        out.prev[qp] = Halfedge(bq);
+        out.to[qp] = Vertex(vp);
+        out.vh[vq] = Halfedge(qp);
+        out.vh[vp] = Halfedge(t);
     }
     for (Index vi = 0; vi < nv; ++vi) {
-        const Halfedge h = m.halfedge(Vertex(vi));
-        if (!h.is_valid()) continue;
-        if (!m.is_boundary(h))
-            out.set_halfedge(Vertex(vi), s_out(h));
+        const Halfedge hv = m.vh[vi];
+        if (!hv.is_valid()) continue;
+        const Index h = hv.idx();
+        if (!m.boundary(h))
+            out.vh[vi] = Halfedge(s_out(h));
         else
-            out.set_halfedge(Vertex(vi), even_step ? Halfedge(split_edge(h, 1).idx() + 1) : h);
+            out.vh[vi] = Halfedge(even_step ? split_edge(h, 1) + 1 : h);
     }
     stage.progress.check_cancelled();
     stage.report(0.5);
 
-    // Positions and morph start positions.
-    auto& p = out.positions();
-    auto& start = result.correspondence.positions;
+    // Positions (the centroids are set) and morph start positions.
+    Point* start = nullptr;
     result.correspondence.kind = MorphCorrespondence::Kind::FromEarlier;
-    start.resize(p.size());
+    if (morph) {
+        result.correspondence.positions.resize(mesh_out.vertices_size());
+        start = result.correspondence.positions.data();
+        std::copy_n(x, nv, start);
+    }
     std::vector<double> alpha;
     for (Index vi = 0; vi < nv; ++vi) {
         stage.tick(vi);
-        const Vertex v(vi);
-        const Halfedge h0 = m.halfedge(v);
-        start[vi] = x[vi];
+        const Halfedge h0 = m.vh[vi];
         if (!h0.is_valid()) {
             p[vi] = x[vi];
-        } else if (m.is_boundary(h0)) {
-            p[vi] = even_step ? Point((4.0 * x[m.from_vertex(m.prev(h0)).idx()] + 19.0 * x[vi] +
-                                       4.0 * x[m.to_vertex(h0).idx()]) /
+        } else if (m.boundary(h0.idx())) {
+            p[vi] = even_step ? Point((4.0 * x[m.from_i(m.prev_i(h0.idx()))] + 19.0 * x[vi] +
+                                       4.0 * x[m.to_i(h0.idx())]) /
                                       27.0)
                               : x[vi];
         } else {
-            unsigned n = 0;
-            const Point s = ring_sum(m, x, h0, n);
+            const unsigned n = valence[vi];
             if (n >= alpha.size()) alpha.resize(n + 1, -1.0);
             if (alpha[n] < 0) alpha[n] = (4.0 - 2.0 * std::cos(2 * kPi / n)) / 9.0;
-            p[vi] = (1.0 - alpha[n]) * x[vi] + (alpha[n] / n) * s;
+            p[vi] = (1.0 - alpha[n]) * x[vi] + (alpha[n] / n) * p[vi];
         }
     }
-    for (Index fi = 0; fi < nf; ++fi) {
-        stage.tick(fi);
-        const auto c = m.face_vertices(Face(fi));
-        p[nv + fi] = (x[c[0].idx()] + x[c[1].idx()] + x[c[2].idx()]) / 3.0;
-        start[nv + fi] = p[nv + fi];
-    }
+    if (start) std::copy_n(p + nv, nf, start + nv);
     if (even_step) {
-        for (Index hi = 0; hi < 2 * ne; ++hi) {
-            const Halfedge t(hi);
-            if (!m.is_boundary(t)) continue;
+        for (Index t = 0; t < 2 * ne; ++t) {
+            if (!m.boundary(t)) continue;
             // Along t: p0 = from(prev t), p1 = from(t), p2 = to(t), p3 = to(next t).
-            const Point& p0 = x[m.from_vertex(m.prev(t)).idx()];
-            const Point& p1 = x[m.from_vertex(t).idx()];
-            const Point& p2 = x[m.to_vertex(t).idx()];
-            const Point& p3 = x[m.to_vertex(m.next(t)).idx()];
-            const Index i0 = split_vertex(t, 0).idx(), i1 = split_vertex(t, 1).idx();
+            const Point& p0 = x[m.from_i(m.prev_i(t))];
+            const Point& p1 = x[m.from_i(t)];
+            const Point& p2 = x[m.to_i(t)];
+            const Point& p3 = x[m.to_i(m.next_i(t))];
+            const Index i0 = split_vertex(t, 0), i1 = split_vertex(t, 1);
             p[i0] = (p0 + 16.0 * p1 + 10.0 * p2) / 27.0;
             p[i1] = (10.0 * p1 + 16.0 * p2 + p3) / 27.0;
-            start[i0] = (2.0 * p1 + p2) / 3.0;
-            start[i1] = (p1 + 2.0 * p2) / 3.0;
+            if (start) {
+                start[i0] = (2.0 * p1 + p2) / 3.0;
+                start[i1] = (p1 + 2.0 * p2) / 3.0;
+            }
         }
     }
     stage.progress.check_cancelled();
     stage.report(0.8);
 
     // Levels and texture coordinates.
-    const Carried in = carried_of(m, level);
-    auto& levels = out.add_vertex_property<int>(kLevelName, level).vector();
-    for (Index v = 0; v < nv; ++v) levels[v] = in.level ? in.level[Vertex(v)] : 0;
-    if (in.vuv) {
-        auto uv = out.add_vertex_property<TexCoord>("v:texcoord", TexCoord::Zero());
-        for (Index v = 0; v < nv; ++v) uv[Vertex(v)] = in.vuv[Vertex(v)];
+    add_levels(mesh, mesh_out, level);
+    if (auto vuv = mesh.get_vertex_property<TexCoord>("v:texcoord")) {
+        const TexCoord* in = vuv.vector().data();
+        TexCoord* uv =
+            mesh_out.add_vertex_property<TexCoord>("v:texcoord", TexCoord::Zero()).vector().data();
+        std::copy_n(in, nv, uv);
         for (Index fi = 0; fi < nf; ++fi) {
-            const auto c = m.face_vertices(Face(fi));
-            uv[Vertex(nv + fi)] = (in.vuv[c[0]] + in.vuv[c[1]] + in.vuv[c[2]]) / 3.0;
+            const Index h = m.fh[fi].idx(), hn = m.next_i(h);
+            uv[nv + fi] = (in[m.to_i(h)] + in[m.to_i(hn)] + in[m.to_i(m.next_i(hn))]) / 3.0;
         }
-        for (Index hi = 0; even_step && hi < 2 * ne; ++hi) {
-            const Halfedge t(hi);
-            if (!m.is_boundary(t)) continue;
-            const TexCoord &u1 = in.vuv[m.from_vertex(t)], &u2 = in.vuv[m.to_vertex(t)];
+        for (Index t = 0; even_step && t < 2 * ne; ++t) {
+            if (!m.boundary(t)) continue;
+            const TexCoord &u1 = in[m.from_i(t)], &u2 = in[m.to_i(t)];
             uv[split_vertex(t, 0)] = (2.0 * u1 + u2) / 3.0;
             uv[split_vertex(t, 1)] = (u1 + 2.0 * u2) / 3.0;
         }
     }
-    if (in.huv) {
+    if (auto huv = mesh.get_halfedge_property<TexCoord>("h:texcoord")) {
         // Corner uvs come from the old face each new corner lies in; a new triangle that
         // straddles a flipped edge takes its old corner's uv from face(h) and the far
         // centroid's from its own face.
-        auto uv = out.add_halfedge_property<TexCoord>("h:texcoord", TexCoord::Zero());
+        const TexCoord* in = huv.vector().data();
+        TexCoord* uv = mesh_out.add_halfedge_property<TexCoord>("h:texcoord", TexCoord::Zero())
+                           .vector()
+                           .data();
         std::vector<TexCoord> centre(nf);
         for (Index fi = 0; fi < nf; ++fi) {
-            const Halfedge h = m.halfedge(Face(fi));
-            centre[fi] = (in.huv[h] + in.huv[m.next(h)] + in.huv[m.prev(h)]) / 3.0;
+            const Index h = m.fh[fi].idx();
+            centre[fi] = (in[h] + in[m.next_i(h)] + in[m.prev_i(h)]) / 3.0;
         }
         for (Index fi = 0; fi < nf; ++fi) {
-            Halfedge h = m.halfedge(Face(fi));
-            for (int k = 0; k < 3; ++k, h = m.next(h)) {
-                const Halfedge t = HalfedgeMesh::twin(h);
-                const TexCoord& ua = in.huv[m.prev(h)];
-                const TexCoord& ub = in.huv[h];
+            Index h = m.fh[fi].idx();
+            for (int k = 0; k < 3; ++k, h = m.next_i(h)) {
+                const Index t = h ^ 1u;
+                const TexCoord& ua = in[m.prev_i(h)];
+                const TexCoord& ub = in[h];
                 uv[s_in(h)] = ua;
-                if (!m.is_boundary(t)) {
+                if (!m.boundary(t)) {
                     uv[h] = centre[fi];
-                    uv[s_out(m.next(t))] = centre[m.face(t).idx()];
+                    uv[s_out_next(t)] = centre[m.face[t].idx()];
                 } else if (!even_step) {
                     uv[h] = ub;
-                    uv[s_out(m.next(h))] = centre[fi];
+                    uv[s_out_next(h)] = centre[fi];
                 } else {
                     const TexCoord up = (2.0 * ua + ub) / 3.0, uq = (ua + 2.0 * ub) / 3.0;
                     uv[h] = up;
                     uv[split_edge(t, 2)] = centre[fi];
                     uv[split_edge(t, 0)] = uq;
                     uv[split_edge(t, 3)] = centre[fi];
-                    uv[Halfedge(split_edge(t, 2).idx() + 1)] = up;
+                    uv[split_edge(t, 2) + 1] = up;
                     uv[split_edge(t, 1)] = ub;
-                    uv[s_out(m.next(h))] = centre[fi];
-                    uv[Halfedge(split_edge(t, 3).idx() + 1)] = uq;
+                    uv[s_out_next(h)] = centre[fi];
+                    uv[split_edge(t, 3) + 1] = uq;
                 }
             }
         }
@@ -649,32 +802,24 @@ namespace {
 /// Refuses a mesh where two faces have the same three vertices (a closed two-triangle
 /// "pillow", possibly part of a larger mesh after non-manifold repairs): the 1-to-4 split
 /// would join two of its edge midpoints twice and Sqrt3 would join its two centroids three
-/// times, i.e. the result would have double edges.
-void check_no_pillows(const HalfedgeMesh& m, int iteration) {
-    std::vector<std::array<Index, 4>> triples;  // sorted vertices, then the face
-    triples.reserve(m.n_faces());
-    for (Face f : m.faces()) {
-        std::array<Index, 4> t{};
-        const Halfedge h = m.halfedge(f);
-        t[0] = Index(m.to_vertex(h).idx());
-        t[1] = Index(m.to_vertex(m.next(h)).idx());
-        t[2] = Index(m.to_vertex(m.next(m.next(h))).idx());
-        std::sort(t.begin(), t.begin() + 3);
-        t[3] = Index(f.idx());
-        triples.push_back(t);
-    }
-    std::sort(triples.begin(), triples.end());
-    for (std::size_t i = 1; i < triples.size(); ++i) {
-        const auto& a = triples[i - 1];
-        const auto& b = triples[i];
-        if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2])
-            throw TopologyError(
-                "subdivide: faces " + std::to_string(a[3]) + " and " + std::to_string(b[3]) +
-                " have the same three vertices (" + std::to_string(a[0]) + ", " +
-                std::to_string(a[1]) + ", " + std::to_string(a[2]) +
-                "), a closed two-triangle component; subdividing it would create double "
-                "edges" +
-                (iteration > 1 ? " (iteration " + std::to_string(iteration) + ")" : ""));
+/// times, i.e. the result would have double edges. No two edges join the same two vertices
+/// (a mesh invariant), so two faces share their three vertices exactly when they share their
+/// three edges: face f is half of a pillow when the twins of its three halfedges lie in one
+/// face. Reports the pillow of the lowest face index.
+void check_no_pillows(const HalfedgeMesh& mesh, int iteration) {
+    const In m(mesh);
+    for (Index fi = 0; fi < m.nf; ++fi) {
+        const Index h0 = m.fh[fi].idx(), h1 = m.next_i(h0), h2 = m.next_i(h1);
+        const Face g = m.face[h0 ^ 1u];
+        if (!g.is_valid() || m.face[h1 ^ 1u] != g || m.face[h2 ^ 1u] != g) continue;
+        Index v[3] = {m.to_i(h0), m.to_i(h1), m.to_i(h2)};
+        std::sort(v, v + 3);
+        throw TopologyError(
+            "subdivide: faces " + std::to_string(fi) + " and " + std::to_string(g.idx()) +
+            " have the same three vertices (" + std::to_string(v[0]) + ", " + std::to_string(v[1]) +
+            ", " + std::to_string(v[2]) +
+            "), a closed two-triangle component; subdividing it would create double edges" +
+            (iteration > 1 ? " (iteration " + std::to_string(iteration) + ")" : ""));
     }
 }
 
@@ -703,19 +848,27 @@ SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& 
         current = &collected;
     }
     SubdivisionResult result;
-    result.levels.reserve(std::size_t(options.iterations));
+    result.levels.reserve(options.keep_levels ? std::size_t(options.iterations) : 1);
+    SubdivisionLevel latest;  // the last level built, when only the finest is kept
     const double span = 1.0 / options.iterations;
     for (int it = 1; it <= options.iterations; ++it) {
         progress.check_cancelled();
         check_no_pillows(*current, it);
         Stage stage{progress, (it - 1) * span, span};
         stage.report(0);
-        if (sqrt3)
-            result.levels.push_back(refine_sqrt3(*current, it % 2 == 0, it, stage));
-        else
-            result.levels.push_back(refine_1to4(*current, options.scheme, it, stage));
-        current = &result.levels.back().mesh;
+        SubdivisionLevel level =
+            sqrt3 ? refine_sqrt3(*current, it % 2 == 0, it, options.morph, stage)
+                  : refine_1to4(*current, options.scheme, it, options.morph, stage);
+        if (options.keep_levels) {
+            result.levels.push_back(std::move(level));  // reserved: `current` stays valid
+            current = &result.levels.back().mesh;
+        } else {
+            latest = std::move(level);  // releases the level before
+            current = &latest.mesh;
+        }
+        if (it == 1) collected.clear();  // the collected copy of the input is no longer read
     }
+    if (!options.keep_levels) result.levels.push_back(std::move(latest));
     progress.check_cancelled();
     progress.report(1.0, "subdividing");
     result.ms =

@@ -8,8 +8,10 @@
 //  - Butterfly (Dyn, Levin, Gregory 1990; interpolating): the 8-point stencil, w = 1/16.
 //  - Modified Butterfly (Zorin, Schröder, Sweldens 1996; interpolating): the 10-point regular
 //    stencil, extraordinary-vertex rules, the 4-point boundary rule.
-// Every iteration keeps the previous level; each new vertex records where it starts on the
-// coarser surface (for the morph) and its level (for the "subdivision vertices" colouring).
+// By default every iteration's level is returned and each new vertex records where it starts
+// on the coarser surface (for the morph); callers that need neither (the CLI) switch both off
+// in SubdivisionOptions. Every vertex records its level (for the "subdivision vertices"
+// colouring).
 // Texture coordinates ("v:texcoord", "h:texcoord") are interpolated linearly.
 #include <cstdint>
 #include <string>
@@ -39,6 +41,12 @@ SubdivisionScheme parse_scheme(const std::string& name);
 struct SubdivisionOptions {
     SubdivisionScheme scheme = SubdivisionScheme::Loop;
     int iterations = 1;  ///< 1 to 10 (refused above, or when the result would be absurdly big)
+    /// Return every level (coarse to fine). When false only the finest level is returned and
+    /// each intermediate level is released as soon as the next one is built.
+    bool keep_levels = true;
+    /// Compute each returned level's MorphCorrespondence (the start positions). When false its
+    /// `positions` stay empty (check_correspondence() refuses it) and no time is spent on it.
+    bool morph = true;
 };
 
 /// One subdivision level: the refined mesh and how it morphs from the previous level
@@ -52,7 +60,9 @@ struct SubdivisionLevel {
 };
 
 struct SubdivisionResult {
-    std::vector<SubdivisionLevel> levels;  ///< one per iteration, coarse to fine
+    /// One per iteration, coarse to fine; only the finest (the last iteration's) when
+    /// options.keep_levels is false.
+    std::vector<SubdivisionLevel> levels;
     double ms = 0;
 };
 

@@ -489,3 +489,92 @@ TEST_CASE("a mesh with garbage or earlier levels subdivides from level 0", "[sub
         REQUIRE(zero == once.n_vertices());
     }
 }
+
+TEST_CASE("without levels and morph only the finest level comes back, the same mesh",
+          "[subdivision]") {
+    // The CLI's call (keep_levels and morph off) must give exactly the mesh of the viewer's
+    // call (every level, with the morph): same connectivity, positions, levels and uvs.
+    HalfedgeMesh open = make_cylinder(9, 3);
+    auto vuv = open.vertex_property<TexCoord>("v:texcoord");
+    auto huv = open.halfedge_property<TexCoord>("h:texcoord");
+    for (Vertex v : open.vertices()) vuv[v] = TexCoord(open.position(v).x(), open.position(v).z());
+    for (Halfedge h : open.halfedges())
+        if (!open.is_boundary(h)) huv[h] = vuv[open.to_vertex(h)] + TexCoord(0.5, 0);
+    const std::vector<HalfedgeMesh> meshes = {make_noisy_sphere(2, 0.1, 5), open};
+    NullProgress progress;
+    for (const HalfedgeMesh& mesh : meshes) {
+        for (Scheme s : kAllSchemes) {
+            INFO(scheme_name(s));
+            SubdivisionOptions all;
+            all.scheme = s;
+            all.iterations = 3;
+            const SubdivisionResult full = subdivide(mesh, all, progress);
+            for (bool morph : {false, true}) {
+                SubdivisionOptions lean = all;
+                lean.keep_levels = false;
+                lean.morph = morph;
+                const SubdivisionResult r = subdivide(mesh, lean, progress);
+                REQUIRE(r.levels.size() == 1);
+                const HalfedgeMesh& a = r.levels[0].mesh;
+                const HalfedgeMesh& b = full.levels.back().mesh;
+                REQUIRE_VALID(a);
+                REQUIRE(a.vertices_size() == b.vertices_size());
+                REQUIRE(a.halfedges_size() == b.halfedges_size());
+                REQUIRE(a.faces_size() == b.faces_size());
+                REQUIRE(a.positions() == b.positions());
+                for (Halfedge h : b.halfedges()) {
+                    REQUIRE(a.to_vertex(h) == b.to_vertex(h));
+                    REQUIRE(a.next(h) == b.next(h));
+                    REQUIRE(a.face(h) == b.face(h));
+                }
+                for (Vertex v : b.vertices()) REQUIRE(a.halfedge(v) == b.halfedge(v));
+                REQUIRE(a.vertex_property_names() == b.vertex_property_names());
+                REQUIRE(a.halfedge_property_names() == b.halfedge_property_names());
+                REQUIRE(a.get_vertex_property<int>("v:subdivision_level").vector() ==
+                        b.get_vertex_property<int>("v:subdivision_level").vector());
+                if (auto uv = b.get_halfedge_property<TexCoord>("h:texcoord"))
+                    REQUIRE(a.get_halfedge_property<TexCoord>("h:texcoord").vector() ==
+                            uv.vector());
+                const MorphCorrespondence& c = r.levels[0].correspondence;
+                REQUIRE(c.kind == MorphCorrespondence::Kind::FromEarlier);
+                if (morph) {
+                    REQUIRE(c.positions == full.levels.back().correspondence.positions);
+                    REQUIRE_NOTHROW(check_correspondence(full.levels[1].mesh, a, c));
+                } else {
+                    REQUIRE(c.positions.empty());
+                    REQUIRE_THROWS_AS(check_correspondence(full.levels[1].mesh, a, c),
+                                      InvalidArgument);
+                }
+            }
+        }
+    }
+}
+
+TEST_CASE("two faces with the same three vertices are refused, naming them", "[subdivision]") {
+    // A closed two-triangle "pillow" beside an icosahedron: faces 20 and 21 of the soup.
+    PolygonSoup soup = to_soup(make_icosahedron());
+    const Index first = Index(soup.positions.size());
+    soup.positions.emplace_back(3, 0, 0);
+    soup.positions.emplace_back(4, 0, 0);
+    soup.positions.emplace_back(3, 1, 0);
+    soup.add_face({first, first + 1, first + 2});
+    soup.add_face({first, first + 2, first + 1});
+    LoadReport report;
+    const HalfedgeMesh mesh = build_mesh(soup, report);
+    REQUIRE_VALID(mesh);
+    REQUIRE(mesh.n_faces() == 22);
+    for (Scheme s : kAllSchemes) {
+        INFO(scheme_name(s));
+        try {
+            run(mesh, s, 1);
+            FAIL("no error");
+        } catch (const TopologyError& e) {
+            const std::string what = e.what();
+            INFO(what);
+            REQUIRE(what.find("faces 20 and 21") != std::string::npos);
+            REQUIRE(what.find("(12, 13, 14)") != std::string::npos);
+        }
+    }
+    // Without the pillow the icosahedron subdivides.
+    REQUIRE_NOTHROW(run(make_icosahedron(), Scheme::Sqrt3, 2));
+}
