@@ -12,8 +12,11 @@
 namespace trilab {
 namespace {
 
-OperationResult run_subdivide(const SubdivisionOptions& o, const HalfedgeMesh& mesh,
-                              Progress& progress, const RunSettings&) {
+OperationResult run_subdivide(const SubdivisionOptions& options, const HalfedgeMesh& mesh,
+                              Progress& progress, const RunSettings& settings) {
+    SubdivisionOptions o = options;
+    o.keep_levels = settings.keep_steps;  // the CLI writes the finest level only
+    o.morph = settings.morph;
     progress.check_cancelled();
     OperationResult result;
     result.label = "Subdivide";

@@ -72,8 +72,8 @@ double median_ms(int runs, const std::function<double()>& work) {
 }
 
 struct CliRun {
-    double ms = -1;         ///< the JSON's "ms"
-    double peak_mb = 0;     ///< the process's peak resident memory
+    double ms = -1;      ///< the JSON's "ms"
+    double peak_mb = 0;  ///< the process's peak resident memory
     bool ok = false;
 };
 
@@ -111,7 +111,7 @@ CliRun run_cli(const std::string& cli, const std::vector<std::string>& args) {
 
 struct Case {
     std::string name;
-    std::string op_text;  ///< the operation as the CLI and run_operation take it
+    std::string op_text;           ///< the operation as the CLI and run_operation take it
     std::function<double()> core;  ///< one timed core run, ms
     double floor_ms = 0;           ///< absolute floor through the CLI (0: none)
     std::optional<double> peer_ms;
@@ -210,14 +210,16 @@ int main(int argc, char** argv) {
     if (!quick) {
         SubdivisionOptions two;
         two.iterations = 2;
-        big = std::move(subdivide(big, two).levels.back().mesh);
+        NullProgress none;
+        big = std::move(subdivide(big, two, none).levels.back().mesh);
     }
     big.garbage_collection();
     const std::string big_ply = (tmp / "big.ply").string();
     write_mesh(big, big_ply);
     big = read_mesh(big_ply).mesh;  // exactly what the CLI reads (float32 positions)
     HalfedgeMesh cow = read_mesh(shared + "cow.obj").mesh;
-    cow = std::move(subdivide(cow, SubdivisionOptions{}).levels.back().mesh);
+    NullProgress no_progress;
+    cow = std::move(subdivide(cow, SubdivisionOptions{}, no_progress).levels.back().mesh);
     const std::string cow_ply = (tmp / "cow.ply").string();
     write_mesh(cow, cow_ply);
     cow = read_mesh(cow_ply).mesh;
@@ -239,15 +241,17 @@ int main(int argc, char** argv) {
                              o.scheme = s;
                              o.keep_levels = false;
                              o.morph = false;
+                             NullProgress quiet;
                              const auto t0 = Clock::now();
-                             const SubdivisionResult r = subdivide(big, o);
+                             const SubdivisionResult r = subdivide(big, o, quiet);
                              return ms_since(t0) + 0 * double(r.levels.size());
                          },
                          0,
                          {},
                          s == SubdivisionScheme::ModifiedButterfly ? 0.0 : 2.0,
                          "OpenMesh 9"});
-    cases.push_back({"smooth umbrella x10", "smooth --iterations 10",
+    cases.push_back({"smooth umbrella x10",
+                     "smooth --iterations 10",
                      [&big] {
                          FairingOptions o;
                          o.iterations = 10;
@@ -256,7 +260,10 @@ int main(int argc, char** argv) {
                          const FairingResult r = smooth(big, o);
                          return ms_since(t0);
                      },
-                     0, {}, 3.0, "OpenMesh JacobiLaplaceSmootherT"});
+                     0,
+                     {},
+                     3.0,
+                     "OpenMesh JacobiLaplaceSmootherT"});
     cases.push_back({"smooth cotangent implicit x1",
                      "smooth --operator curvature-flow --integration implicit --step 1",
                      [&big] {
@@ -269,8 +276,12 @@ int main(int argc, char** argv) {
                          const FairingResult r = smooth(big, o);
                          return ms_since(t0);
                      },
-                     0, {}, 0, ""});
-    cases.push_back({"decimate to 1 %", "decimate --target-vertices " + std::to_string(target),
+                     0,
+                     {},
+                     0,
+                     ""});
+    cases.push_back({"decimate to 1 %",
+                     "decimate --target-vertices " + std::to_string(target),
                      [&big, target] {
                          DecimationOptions o;
                          o.target_vertices = target;
@@ -279,8 +290,12 @@ int main(int argc, char** argv) {
                          const DecimationResult r = decimate(big, o);
                          return ms_since(t0);
                      },
-                     2000, {}, 0, ""});
-    cases.push_back({"spectrum cow 150", "spectrum --operator curvature-flow --k 150",
+                     2000,
+                     {},
+                     0,
+                     ""});
+    cases.push_back({"spectrum cow 150",
+                     "spectrum --operator curvature-flow --k 150",
                      [&cow] {
                          SpectralOptions o;
                          o.op = LaplacianOperator::CurvatureFlow;
@@ -290,7 +305,10 @@ int main(int argc, char** argv) {
                          const HalfedgeMesh out = reconstruct(cow, d, 0, d.size() - 1);
                          return ms_since(t0);
                      },
-                     1000, {}, 0, ""});
+                     1000,
+                     {},
+                     0,
+                     ""});
 
 #ifdef TRILAB_HAS_OPENMESH
     {
@@ -299,7 +317,8 @@ int main(int argc, char** argv) {
             if (c.name.rfind("subdivide", 0) == 0 && c.peer_floor > 0) {
                 const SubdivisionScheme s = parse_scheme(c.name.substr(10));
                 c.peer_ms = openmesh_subdivide_ms(om, s, runs);
-                if (s == SubdivisionScheme::Butterfly) c.peer_name = "OpenMesh 9 ModifiedButterflyT";
+                if (s == SubdivisionScheme::Butterfly)
+                    c.peer_name = "OpenMesh 9 ModifiedButterflyT";
             }
             if (c.name == "smooth umbrella x10") c.peer_ms = openmesh_jacobi_ms(om, runs);
         }
@@ -312,7 +331,7 @@ int main(int argc, char** argv) {
     for (Case& c : cases) {
         const std::string in = c.name.rfind("spectrum", 0) == 0 ? cow_ply : big_ply;
         const HalfedgeMesh& mesh = c.name.rfind("spectrum", 0) == 0 ? cow : big;
-        std::vector<double> core, op, cli, peak;
+        std::vector<double> core, op, cli_ms, peak;
         RunSettings settings;
         settings.keep_steps = false;
         settings.morph = false;
@@ -320,8 +339,8 @@ int main(int argc, char** argv) {
         // Alternate the three ways so that machine noise falls on all of them.
         for (int i = 0; i < runs; ++i) {
             core.push_back(c.core());
-            NullProgress none;
-            const OperationResult r = run_operation(operation, mesh, none, settings);
+            NullProgress quiet;
+            const OperationResult r = run_operation(operation, mesh, quiet, settings);
             op.push_back(r.ms);
             std::vector<std::string> args;
             std::string word;
@@ -338,10 +357,10 @@ int main(int argc, char** argv) {
             args.push_back("--json");
             const CliRun run = run_cli(cli, args);
             all_ok = all_ok && run.ok;
-            cli.push_back(run.ms);
+            cli_ms.push_back(run.ms);
             peak.push_back(run.peak_mb);
         }
-        const double mc = median(core), mo = median(op), ml = median(cli);
+        const double mc = median(core), mo = median(op), ml = median(cli_ms);
         std::string floors;
         char buf[200];
         const bool layer_ok = ml <= 1.2 * mc;
@@ -363,14 +382,15 @@ int main(int argc, char** argv) {
                     mo / mc, ml / mc, median(peak), floors.c_str());
     }
     // Peak memory of 1 against 10 explicit iterations through the CLI.
-    const CliRun one = run_cli(cli, {"smooth", "--iterations", "1", big_ply,
-                                     (tmp / "out.ply").string(), "--json"});
-    const CliRun ten = run_cli(cli, {"smooth", "--iterations", "10", big_ply,
-                                     (tmp / "out.ply").string(), "--json"});
-    std::printf("\nsmooth peak memory through the CLI: 1 iteration %.0f MB, 10 iterations %.0f MB: "
-                "%.2fx (floor 1.5x) %s\n",
-                one.peak_mb, ten.peak_mb, ten.peak_mb / one.peak_mb,
-                ten.peak_mb <= 1.5 * one.peak_mb ? "met" : "MISSED");
+    const CliRun one = run_cli(
+        cli, {"smooth", "--iterations", "1", big_ply, (tmp / "out.ply").string(), "--json"});
+    const CliRun ten = run_cli(
+        cli, {"smooth", "--iterations", "10", big_ply, (tmp / "out.ply").string(), "--json"});
+    std::printf(
+        "\nsmooth peak memory through the CLI: 1 iteration %.0f MB, 10 iterations %.0f MB: "
+        "%.2fx (floor 1.5x) %s\n",
+        one.peak_mb, ten.peak_mb, ten.peak_mb / one.peak_mb,
+        ten.peak_mb <= 1.5 * one.peak_mb ? "met" : "MISSED");
     std::error_code ec;
     fs::remove_all(tmp, ec);
     return all_ok ? 0 : 1;
