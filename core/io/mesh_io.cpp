@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <sstream>
 
 #include "core/errors.h"
 
@@ -47,6 +48,24 @@ void write_mesh(const HalfedgeMesh& mesh, const std::string& path, const WriteOp
     if (ext == "stl") return write_stl(mesh, path, options);
     if (ext == "om") return write_om(mesh, path, options);
     unknown_format(path);
+}
+
+void write_mesh_to(const HalfedgeMesh& mesh, std::ostream& out, const std::string& name,
+                   const WriteOptions& options) {
+    const std::string ext = file_extension(name);
+    if (ext == "obj") return write_obj_to(mesh, out, name, options);
+    if (ext == "off") return write_off_to(mesh, out, name, options);
+    if (ext == "ply") return write_ply_to(mesh, out, name, options);
+    if (ext == "stl") return write_stl_to(mesh, out, name, options);
+    if (ext == "om") return write_om_to(mesh, out, name, options);
+    unknown_format(name);
+}
+
+std::string write_mesh_bytes(const HalfedgeMesh& mesh, const std::string& name,
+                             const WriteOptions& options) {
+    std::ostringstream out(std::ios::binary);
+    write_mesh_to(mesh, out, name, options);
+    return out.str();
 }
 
 }  // namespace trilab
