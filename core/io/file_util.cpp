@@ -68,6 +68,19 @@ std::string size_text(std::uint64_t bytes) {
 
 std::string read_bytes(const std::string& path, std::uint64_t max_bytes, const char* why);
 
+void require_regular(const std::string& path, const struct stat& st) {
+    if (!S_ISREG(st.st_mode))
+        throw IoError(path, 0,
+                      "not a regular file: it is " + file_type_name(st.st_mode) +
+                          " (only regular files are read)");
+}
+
+/// stat (following links) and require_regular.
+void stat_regular(const std::string& path, struct stat& st) {
+    if (::stat(path.c_str(), &st) != 0) throw IoError(path, 0, "cannot open: " + errno_text(errno));
+    require_regular(path, st);
+}
+
 class FileDescriptor {
 public:
     explicit FileDescriptor(int fd = -1) : fd_(fd) {}
@@ -102,6 +115,11 @@ std::string read_file_bytes(const std::string& path) {
                       "from the file)");
 }
 
+void check_regular_file(const std::string& path) {
+    struct stat st;
+    stat_regular(path, st);
+}
+
 std::string read_file_bytes(const std::string& path, std::uint64_t max_bytes) {
     return read_bytes(path, max_bytes, "");
 }
@@ -112,11 +130,7 @@ std::string read_bytes(const std::string& path, std::uint64_t max_bytes, const c
     // The type first, by stat (which follows links): opening a FIFO would block until a
     // writer comes, and opening a device can have effects.
     struct stat st;
-    if (::stat(path.c_str(), &st) != 0) throw IoError(path, 0, "cannot open: " + errno_text(errno));
-    if (!S_ISREG(st.st_mode))
-        throw IoError(path, 0,
-                      "not a regular file: it is " + file_type_name(st.st_mode) +
-                          " (only regular files are read)");
+    stat_regular(path, st);
     if (std::uint64_t(st.st_size) > max_bytes)
         too_big(path, std::uint64_t(st.st_size), max_bytes, false, why);
     // O_NONBLOCK: should the path have been replaced by a FIFO since the stat, the open
@@ -124,10 +138,7 @@ std::string read_bytes(const std::string& path, std::uint64_t max_bytes, const c
     FileDescriptor fd(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY));
     if (fd.get() < 0) throw IoError(path, 0, "cannot open: " + errno_text(errno));
     if (::fstat(fd.get(), &st) != 0) throw IoError(path, 0, "cannot stat: " + errno_text(errno));
-    if (!S_ISREG(st.st_mode))
-        throw IoError(path, 0,
-                      "not a regular file: it is " + file_type_name(st.st_mode) +
-                          " (only regular files are read)");
+    require_regular(path, st);
     const std::uint64_t size = std::uint64_t(st.st_size);
     if (size > max_bytes) too_big(path, size, max_bytes, false, why);
 

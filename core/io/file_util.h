@@ -19,6 +19,9 @@ namespace trilab {
 /// process. A file larger than max_readable_file_bytes() is refused before reading, with
 /// its size and the limit. Throws IoError naming `path` and the reason.
 std::string read_file_bytes(const std::string& path);
+/// Throws the IoError read_file_bytes(path) would throw for a missing file or one that is
+/// not a regular file (readers check this before complaining about a file name).
+void check_regular_file(const std::string& path);
 /// The same with an explicit limit in bytes (material libraries use a small one; tests).
 std::string read_file_bytes(const std::string& path, std::uint64_t max_bytes);
 /// The size limit of read_file_bytes(path): half of available_memory_bytes() (core/platform.h),

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/io/file_util.h"
 
 namespace trilab {
 
@@ -37,6 +39,9 @@ LoadedMesh read_mesh(const std::string& path) {
     if (ext == "ply") return read_ply(path);
     if (ext == "stl") return read_stl(path);
     if (ext == "om") return read_om(path);
+    // "/dev/zero: not a regular file: it is a character device" says more than its extension.
+    std::error_code ec;
+    if (std::filesystem::exists(path, ec)) check_regular_file(path);
     unknown_format(path);
 }
 
