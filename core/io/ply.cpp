@@ -20,7 +20,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <ostream>
@@ -152,11 +151,11 @@ bool load_integer(const unsigned char* p, ScalarType t, long long& out) {
     return false;
 }
 
-/// A number for messages (shortest form that reads back, "nan", "inf").
+/// A number for messages: the shortest text that reads back as it ("2.5", "1e+39", "nan").
 std::string number_text(double d) {
-    char buf[40];
-    std::snprintf(buf, sizeof(buf), "%.17g", d);
-    return buf;
+    std::string out;
+    append_number(out, d);
+    return out;
 }
 
 // ---- header -----------------------------------------------------------------------------
@@ -511,11 +510,7 @@ private:
         };
         if (t == ScalarType::kF64) return d;
         const Range& r = ranges[static_cast<int>(t)];
-        auto text = [&] {
-            char buf[40];
-            std::snprintf(buf, sizeof(buf), "%.17g", d);
-            return std::string(buf);
-        };
+        auto text = [&] { return number_text(d); };
         if (t != ScalarType::kF32 && d != std::floor(d))
             sc_.fail(std::string(what) + ": " + text() + " is not a whole number, as type " +
                      r.name + " requires");
@@ -526,7 +521,9 @@ private:
                                        : std::to_string(static_cast<long long>(r.lo)) + " to " +
                                              std::to_string(static_cast<long long>(r.hi))) +
                 ")");
-        return d;
+        // A float property holds a float: the decimal text rounded as the binary encodings
+        // would store it, so that ASCII and binary files of the same values read the same.
+        return t == ScalarType::kF32 ? double(static_cast<float>(d)) : d;
     }
 
     long long ascii_integer(ScalarType t, const char* what) {
