@@ -31,7 +31,7 @@ Renders MESH without a window (EGL surfaceless context; Mesa's llvmpipe on machi
 a GPU) and writes a PNG. The camera frames the mesh's bounding box.
 
 options:
-  --out FILE.png        the image to write (required)
+  --out FILE.png        the image to write (required; PNG only, so it must end in .png)
   --size WxH            image size in pixels (default 1280x800)
   --mode MODE           gouraud (default), flat, wireframe, hidden-line, points, textured
   --color QUANTITY      colour the vertices: none (default), normal, k1, k2, mean,
