@@ -11,7 +11,11 @@
 // usemtl, l, p, ...) are ignored. Texture coordinates become "v:texcoord" when every vertex has
 // one texture coordinate, otherwise per-corner "h:texcoord" (seams stay seams); normals become
 // "v:normal" (the first normal given for a vertex).
-// Writing: v (and vt, vn) with shortest round-trip decimals, then f v/vt/vn triples.
+// A UTF-8 byte-order mark is skipped (in the material library too), UTF-16 refused. Material
+// libraries are read through read_file_bytes (regular files of at most 64 MiB; anything else
+// becomes a note in the report).
+// Writing: v (and vt, vn) with shortest round-trip decimals, then f v/vt/vn triples;
+// non-finite values are refused.
 #include <tiny_obj_loader.h>
 
 #include <algorithm>

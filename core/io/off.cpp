@@ -3,7 +3,9 @@
 // anywhere; vertex lines "x y z [nx ny nz] [r g b [a]] [s t]" with colours as 0..255
 // integers or 0..1 floats; faces "n i0 .. in-1 [colour]" with any n (polygons are
 // triangulated by build_mesh, face colours ignored). 4OFF, nOFF and binary OFF are refused
-// with a message. Writing emits the same header letters for what the mesh carries.
+// with a message; so are colour components outside 0..255 and (as everywhere) NaN and
+// infinity. A UTF-8 byte-order mark is skipped, UTF-16 refused. Writing emits the same header
+// letters for what the mesh carries (colours clamped to 0..1, non-finite values refused).
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>

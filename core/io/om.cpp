@@ -26,7 +26,8 @@
 // are written as f64 (0x5600 / 0x5620, allowed since 2.1) so that our doubles round-trip
 // exactly; colours are u8, texture coordinates f32 (the only widths the format has for
 // them). The index width is the smallest of 1, 2, 4 bytes that holds every index. Custom
-// attributes are not written.
+// attributes are not written. Non-finite values, and texture coordinates that float32
+// cannot hold, are refused; the reader refuses NaN and infinity in every attribute.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

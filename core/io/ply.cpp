@@ -10,12 +10,18 @@
 // rows of fixed size are decoded with memcpy at precomputed offsets (with a dedicated loop
 // for float x, y, z and for uchar/int triangle lists); every declared count is checked
 // against the bytes left before anything is reserved, and every read is bounds-checked.
-// Errors name the file and the line (ascii) or the element number (binary).
+// Errors name the file and the line (ascii) or the element number (binary). A UTF-8
+// byte-order mark before "ply" is skipped, UTF-16 refused. ASCII values must fit their
+// declared type (uchar 0..255, whole numbers for integer types, float within float's range;
+// a float value is rounded to float, as a binary file stores it); float-typed list lengths
+// and indices must be whole numbers. NaN and infinity in any used property are refused
+// (build_mesh_for_file checks the soup, naming the vertex and the attribute).
 //
-// Writing: binary little-endian by default, ascii or big-endian on request. Positions are
-// float32 (so a round trip is exact to float precision, ~6e-8 relative), normals float32,
-// colours uchar, per-vertex texture coordinates float u, v; faces are
-// "property list uchar int vertex_indices".
+// Writing: binary little-endian by default, ascii or big-endian on request. Positions,
+// normals and texture coordinates are float32 (a round trip is exact to float precision,
+// ~6e-8 relative), or double for a group whose values float32 cannot hold with full
+// precision (float_range_suffices); colours uchar; faces are
+// "property list uchar int vertex_indices". Non-finite values are refused.
 #include <algorithm>
 #include <charconv>
 #include <cmath>

@@ -14,8 +14,11 @@
 //
 // Writing: binary by default (an 80-byte header that does not start with "solid", normals
 // computed from the geometry, attribute byte count 0; coordinates are float32 as the format
-// requires); ASCII with options.ascii ("solid trilab" ... "endsolid trilab", coordinates in
-// the shortest form that reads back to the same double).
+// requires, and a mesh whose coordinates float32 cannot hold is refused); ASCII with
+// options.ascii ("solid trilab" ... "endsolid trilab", coordinates in the shortest form that
+// reads back to the same double). A mesh without faces, or with a non-finite position, is
+// refused. A file that is not binary may start with a UTF-8 byte-order mark; UTF-16 is
+// refused.
 #include <algorithm>
 #include <array>
 #include <charconv>
