@@ -144,27 +144,29 @@ std::string read_bytes(const std::string& path, std::uint64_t max_bytes, const c
 
     std::string data(static_cast<std::size_t>(size), '\0');
     std::size_t have = 0;
+    char more[1 << 16];
     for (;;) {
-        if (have == data.size()) {
-            // At the announced size (0 for files of /proc): look for more, in bounded steps.
-            if (data.size() >= max_bytes) {
-                char probe;
-                const ssize_t n = ::read(fd.get(), &probe, 1);
-                if (n == 0) break;
-                if (n > 0) too_big(path, std::uint64_t(data.size()) + 1, max_bytes, true, why);
+        if (have < data.size()) {
+            const ssize_t n = ::read(fd.get(), &data[have], data.size() - have);
+            if (n == 0) break;  // shorter than announced
+            if (n < 0) {
                 if (errno == EINTR) continue;
                 throw IoError(path, 0, "read error: " + errno_text(errno));
             }
-            const std::size_t grow = std::size_t(std::min<std::uint64_t>(
-                std::max<std::size_t>(data.size() / 2, 1 << 16), max_bytes - data.size()));
-            data.resize(data.size() + grow);
+            have += std::size_t(n);
+            continue;
         }
-        const ssize_t n = ::read(fd.get(), &data[have], data.size() - have);
+        // At the announced size (0 for files of /proc): anything more is appended, within
+        // the limit.
+        const ssize_t n = ::read(fd.get(), more, sizeof(more));
         if (n == 0) break;
         if (n < 0) {
             if (errno == EINTR) continue;
             throw IoError(path, 0, "read error: " + errno_text(errno));
         }
+        if (std::uint64_t(have) + std::uint64_t(n) > max_bytes)
+            too_big(path, std::uint64_t(have) + std::uint64_t(n), max_bytes, true, why);
+        data.append(more, std::size_t(n));
         have += std::size_t(n);
     }
     data.resize(have);
@@ -179,6 +181,7 @@ namespace {
 
 std::atomic<bool> g_force_named{false};
 std::atomic<bool> g_sync{true};
+std::atomic<bool> g_no_link{false};
 
 /// A stream buffer writing to a file descriptor in 64 KiB blocks; remembers the first error.
 class FdOutBuf : public std::streambuf {
@@ -310,6 +313,28 @@ void remove_stale_temporaries(const std::string& folder, const std::string& name
     for (const std::string& entry : stale) ::unlink((folder + "/" + entry).c_str());
 }
 
+/// Copies the first `size` bytes of `from` to the same offsets of `to`. Throws IoError
+/// (`context` says where) on a read or write error.
+void copy_all(int from, int to, off_t size, const std::string& path, const char* context) {
+    std::vector<char> buf(1 << 20);
+    for (off_t off = 0; off < size;) {
+        const ssize_t n = ::pread(from, buf.data(), buf.size(), off);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0)
+            throw IoError(path, 0, "cannot read the temporary file back: " + errno_text(errno));
+        for (ssize_t done = 0; done < n;) {
+            const ssize_t w = ::pwrite(to, buf.data() + done, std::size_t(n - done), off + done);
+            if (w < 0 && errno == EINTR) continue;
+            if (w < 0)
+                throw IoError(path, 0,
+                              std::string("write error") + context + ": " + errno_text(errno) +
+                                  " (disk full?)");
+            done += w;
+        }
+        off += n;
+    }
+}
+
 /// Copies the whole temporary file `from` over `target` in place (hard-linked targets).
 void copy_in_place(int from, const std::string& target, const struct stat& expected,
                    const std::string& path) {
@@ -328,24 +353,7 @@ void copy_in_place(int from, const std::string& target, const struct stat& expec
             throw IoError(path, 0,
                           "not enough disk space to rewrite it in place: " + errno_text(err));
     }
-    std::vector<char> buf(1 << 20);
-    for (off_t off = 0; off < size;) {
-        const ssize_t n = ::pread(from, buf.data(), buf.size(), off);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0)
-            throw IoError(path, 0, "cannot read the temporary file back: " + errno_text(errno));
-        for (ssize_t done = 0; done < n;) {
-            const ssize_t w =
-                ::pwrite(out.get(), buf.data() + done, std::size_t(n - done), off + done);
-            if (w < 0 && errno == EINTR) continue;
-            if (w < 0)
-                throw IoError(path, 0,
-                              "write error while rewriting it in place: " + errno_text(errno) +
-                                  " (the file may be incomplete)");
-            done += w;
-        }
-        off += n;
-    }
+    copy_all(from, out.get(), size, path, " while rewriting it in place");
     if (::ftruncate(out.get(), size) != 0 || (g_sync && ::fsync(out.get()) != 0) ||
         out.close_checked() != 0)
         throw IoError(path, 0,
@@ -362,6 +370,9 @@ void set_sync_saves(bool on) {
 namespace detail {
 void force_named_temporary_files(bool on) {
     g_force_named = on;
+}
+void force_unlinkable_temporary_files(bool on) {
+    g_no_link = on;
 }
 std::string temporary_file_prefix(const std::string& file_name) {
     return "." + file_name + ".trilab-tmp-";
@@ -447,16 +458,44 @@ void write_file_atomically(const std::string& path,
                 int err = EEXIST;
                 for (int attempt = 0; attempt < 8 && err == EEXIST; ++attempt) {
                     const std::string candidate = temp_name + random_suffix();
-                    int rc = ::linkat(AT_FDCWD, proc.c_str(), AT_FDCWD, candidate.c_str(),
-                                      AT_SYMLINK_FOLLOW);
-                    if (rc != 0 && errno != EEXIST)  // no /proc: the privileged way
+                    int rc = g_no_link ? (errno = ENOENT, -1)
+                                       : ::linkat(AT_FDCWD, proc.c_str(), AT_FDCWD,
+                                                  candidate.c_str(), AT_SYMLINK_FOLLOW);
+                    if (rc != 0 && errno != EEXIST && !g_no_link)  // no /proc: privileged way
                         rc = ::linkat(fd.get(), "", AT_FDCWD, candidate.c_str(), AT_EMPTY_PATH);
                     err = rc == 0 ? 0 : errno;
                     if (rc == 0) named = candidate;
                 }
-                if (err != 0)
-                    throw IoError(path, 0,
-                                  "cannot give the temporary file a name: " + errno_text(err));
+                if (err != 0) {
+                    // No way to name it (no /proc, no privilege): copy it into a named
+                    // temporary file, which the next save removes should this one be killed.
+                    FileDescriptor copy;
+                    for (int attempt = 0; attempt < 8 && copy.get() < 0; ++attempt) {
+                        named = temp_name + random_suffix();
+                        copy.reset(
+                            ::open(named.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0666));
+                        if (copy.get() < 0 && errno != EEXIST) break;
+                    }
+                    if (copy.get() < 0) {
+                        named.clear();
+                        throw IoError(path, 0,
+                                      "cannot give the temporary file a name: " + errno_text(err));
+                    }
+                    const off_t size = ::lseek(fd.get(), 0, SEEK_END);
+                    if (size < 0)
+                        throw IoError(path, 0,
+                                      "cannot read the temporary file: " + errno_text(errno));
+                    copy_all(fd.get(), copy.get(), size, path, "");
+                    struct stat mode;
+                    if (::fstat(fd.get(), &mode) == 0) {
+                        if (::fchown(copy.get(), mode.st_uid, mode.st_gid) != 0) {
+                        }  // as above: only root may give a file away
+                        ::fchmod(copy.get(), mode.st_mode & 07777);
+                    }
+                    if ((g_sync && ::fsync(copy.get()) != 0) || copy.close_checked() != 0)
+                        throw IoError(path, 0,
+                                      "write error: " + errno_text(errno) + " (disk full?)");
+                }
             }
             if (fd.close_checked() != 0)
                 throw IoError(path, 0, "write error: " + errno_text(errno) + " (disk full?)");

@@ -64,6 +64,9 @@ namespace detail {
 /// Test hook: while set, write_file_atomically uses a named temporary file even where
 /// O_TMPFILE works (to test the removal of stale ones).
 void force_named_temporary_files(bool on);
+/// Test hook: while set, an unnamed temporary file cannot be linked (as without /proc), so
+/// write_file_atomically copies it into a named one.
+void force_unlinkable_temporary_files(bool on);
 /// The prefix of the named temporary files of `path`'s file name: ".NAME.trilab-tmp-".
 std::string temporary_file_prefix(const std::string& file_name);
 }  // namespace detail

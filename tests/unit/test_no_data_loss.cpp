@@ -362,6 +362,24 @@ TEST_CASE("a save refuses a read-only target, even as root", "[io][no-data-loss]
     CHECK(entries(dir.dir()) == std::vector<std::string>{"link.ply", "m.ply"});
 }
 
+TEST_CASE("a save whose unnamed temporary file cannot be linked copies it into a named one",
+          "[io][no-data-loss]") {
+    TempDir dir;
+    if (!supports_unnamed_temporaries(dir.dir())) {
+        WARN("skipped: " << dir.dir() << " has no O_TMPFILE");
+        return;
+    }
+    const std::string path = dir.path("m.ply");
+    write_mesh(make_icosahedron(), path);
+    fs::permissions(path, fs::perms::owner_read | fs::perms::owner_write);
+    detail::force_unlinkable_temporary_files(true);
+    write_mesh(make_cube(), path);
+    detail::force_unlinkable_temporary_files(false);
+    CHECK(read_mesh(path).mesh.n_vertices() == make_cube().n_vertices());
+    CHECK(mode_of(path) == (fs::perms::owner_read | fs::perms::owner_write));
+    CHECK(entries(dir.dir()) == std::vector<std::string>{"m.ply"});
+}
+
 TEST_CASE("a save keeps the permissions of the file it replaces", "[io][no-data-loss]") {
     TempDir dir;
     const std::string path = dir.path("m.obj");
