@@ -26,8 +26,8 @@
 // are written as f64 (0x5600 / 0x5620, allowed since 2.1) so that our doubles round-trip
 // exactly; colours are u8, texture coordinates f32 (the only widths the format has for
 // them). The index width is the smallest of 1, 2, 4 bytes that holds every index. Custom
-// attributes are not written. Non-finite values, and texture coordinates that float32
-// cannot hold, are refused; the reader refuses NaN and infinity in every attribute.
+// attributes are not written. Non-finite values, and texture coordinates beyond float32's
+// range, are refused; the reader refuses NaN and infinity in every attribute.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -889,12 +889,14 @@ void write_om_to(const HalfedgeMesh& input, std::ostream& os, const std::string&
     const bool write_corner_uv = corner_uv && n_e > 0;
     check_finite_for_writing(mesh, path, bool(normals), bool(colors),
                              bool(texcoords) || write_corner_uv);
-    // Texture coordinates are float32 in .om (the format has no other width).
-    if ((texcoords && !float_range_suffices(max_abs_component(texcoords.vector()))) ||
-        (write_corner_uv && !float_range_suffices(max_abs_component(corner_uv.vector()))))
+    // Texture coordinates are float32 in .om (the format has no other width): values beyond
+    // its range are refused (tiny ones only lose precision that texture lookups never see).
+    constexpr double kFloatMax = double(std::numeric_limits<float>::max());
+    if ((texcoords && max_abs_component(texcoords.vector()) > kFloatMax) ||
+        (write_corner_uv && max_abs_component(corner_uv.vector()) > kFloatMax))
         throw IoError(path, 0,
                       ".om stores texture coordinates as float32, which cannot hold these "
-                      "(too large or too small); not written: use OBJ, OFF or PLY");
+                      "(beyond 3.4e38); not written: use OBJ, OFF or PLY");
 
     std::uint64_t total = 16 + (2 + 24 * n_v) + 2;  // header, positions, sentinel
     if (normals) total += 2 + 24 * n_v;
