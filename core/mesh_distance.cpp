@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <vector>
 
@@ -204,6 +205,9 @@ std::vector<Point> sample_surface(const HalfedgeMesh& mesh, std::size_t n) {
         const auto c = mesh.face_vertices(f);
         const Point &x0 = mesh.position(c[0]), &x1 = mesh.position(c[1]), &x2 = mesh.position(c[2]);
         const double want = double(n) * 0.5 * (x1 - x0).cross(x2 - x0).norm() / total + carry;
+        // The caller scales the coordinates so that areas are finite: want is in [0, n + 1].
+        if (!(want >= 0 && want <= double(n) + 1))
+            throw InvalidArgument("mesh_distance: the face areas cannot be computed (overflow)");
         const std::size_t m = std::size_t(want);
         carry = want - double(m);
         for (std::size_t i = 0; i < m; ++i, ++k) {
@@ -231,15 +235,8 @@ void one_side(const std::vector<Point>& samples, const TriangleTree& tree, doubl
     max = std::sqrt(max);
 }
 
-}  // namespace
-
-MeshDistance mesh_distance(const HalfedgeMesh& a, const HalfedgeMesh& b,
-                           const MeshDistanceOptions& options) {
-    if (a.n_faces() == 0 || b.n_faces() == 0)
-        throw InvalidArgument("mesh_distance: both meshes need faces (got " +
-                              std::to_string(a.n_faces()) + " and " + std::to_string(b.n_faces()) +
-                              ")");
-    if (options.samples == 0) throw InvalidArgument("mesh_distance: samples must be at least 1");
+MeshDistance distance_unscaled(const HalfedgeMesh& a, const HalfedgeMesh& b,
+                               const MeshDistanceOptions& options) {
     MeshDistance d;
     d.diagonal = bounding_box(a).diagonal();
     const TriangleTree ta(a), tb(b);
@@ -253,6 +250,64 @@ MeshDistance mesh_distance(const HalfedgeMesh& a, const HalfedgeMesh& b,
     d.samples = sa.size() + sb.size();
     d.hausdorff = std::max(d.a_to_b_max, d.b_to_a_max);
     d.rms = d.samples ? std::sqrt((s_ab + s_ba) / double(d.samples)) : 0;
+    return d;
+}
+
+std::string number_text(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof(buf), "%g", v);
+    return buf;
+}
+
+/// The largest coordinate magnitude; throws for a non-finite one.
+double max_abs_coordinate(const HalfedgeMesh& m, const char* which) {
+    double r = 0;
+    for (Vertex v : m.vertices()) {
+        const Point& p = m.position(v);
+        if (!p.allFinite())
+            throw InvalidArgument(std::string("mesh_distance: ") + which +
+                                  " mesh has a non-finite "
+                                  "position at vertex " +
+                                  std::to_string(v.idx()));
+        r = std::max(r, p.cwiseAbs().maxCoeff());
+    }
+    return r;
+}
+
+HalfedgeMesh scaled_copy(const HalfedgeMesh& m, double s) {
+    HalfedgeMesh out = m;
+    for (Point& p : out.positions()) p *= s;
+    return out;
+}
+
+}  // namespace
+
+MeshDistance mesh_distance(const HalfedgeMesh& a, const HalfedgeMesh& b,
+                           const MeshDistanceOptions& options) {
+    if (a.n_faces() == 0 || b.n_faces() == 0)
+        throw InvalidArgument("mesh_distance: both meshes need faces (got " +
+                              std::to_string(a.n_faces()) + " and " + std::to_string(b.n_faces()) +
+                              ")");
+    if (options.samples == 0) throw InvalidArgument("mesh_distance: samples must be at least 1");
+    // Squared distances and areas of coordinates far from 1 overflow (1e200) or underflow
+    // (1e-200): such meshes are measured scaled by a power of two (exact), and the distances
+    // scaled back.
+    const double m =
+        std::max(max_abs_coordinate(a, "the first"), max_abs_coordinate(b, "the second"));
+    if (!(m > 0x1p100 || (m > 0 && m < 0x1p-100))) return distance_unscaled(a, b, options);
+    int exponent = 0;
+    std::frexp(m, &exponent);
+    MeshDistance d = distance_unscaled(scaled_copy(a, std::ldexp(1.0, -exponent)),
+                                       scaled_copy(b, std::ldexp(1.0, -exponent)), options);
+    for (double* x : {&d.hausdorff, &d.rms, &d.a_to_b_max, &d.a_to_b_rms, &d.b_to_a_max,
+                      &d.b_to_a_rms, &d.diagonal}) {
+        *x = std::ldexp(*x, exponent);
+        if (!std::isfinite(*x))
+            throw InvalidArgument(
+                "mesh_distance: the distances between these meshes exceed the largest double "
+                "(coordinates up to " +
+                number_text(m) + ")");
+    }
     return d;
 }
 

@@ -10,8 +10,12 @@
 // together. The Hausdorff distance is a lower bound of the true one (it is sampled); RMS
 // weights every sample equally. Isolated vertices are not sampled (no surface).
 //
+// Meshes with coordinates far from 1 (above 2^100 or, not all zero, below 2^-100 in
+// magnitude), whose squared distances and areas would overflow or underflow, are measured
+// scaled by a power of two (exact) and the distances scaled back.
 // Complexity: O(F log F) to build each tree, O(S log F) for S samples (typical).
-// Throws InvalidArgument when a mesh has no faces or the sample count is 0.
+// Throws InvalidArgument when a mesh has no faces, a non-finite position, when the sample
+// count is 0, or when a distance exceeds the largest double.
 #include <cstddef>
 
 #include "core/halfedge_mesh.h"

@@ -823,6 +823,26 @@ void check_no_pillows(const HalfedgeMesh& mesh, int iteration) {
     }
 }
 
+/// Refuses a level whose positions or carried attributes overflowed (coordinates near the
+/// largest double: the schemes' affine combinations of finite points can reach infinity).
+void check_finite_level(const HalfedgeMesh& m, SubdivisionScheme scheme, int iteration) {
+    auto refuse = [&](const std::string& what, Index i) {
+        throw InvalidArgument(std::string("subdivide: ") + scheme_name(scheme) + " iteration " +
+                              std::to_string(iteration) + " produced a non-finite " + what +
+                              " at vertex " + std::to_string(i) +
+                              " (the input's values are too large for the scheme's weights; "
+                              "scale the mesh down)");
+    };
+    for (Vertex v : m.vertices())
+        if (!m.position(v).allFinite()) refuse("position", v.idx());
+    if (const auto p = m.get_vertex_property<TexCoord>("v:texcoord"))
+        for (Vertex v : m.vertices())
+            if (!p[v].allFinite()) refuse("texture coordinate", v.idx());
+    if (const auto p = m.get_halfedge_property<TexCoord>("h:texcoord"))
+        for (Halfedge h : m.halfedges())
+            if (!p[h].allFinite()) refuse("corner texture coordinate", m.to_vertex(h).idx());
+}
+
 }  // namespace
 
 SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& options,
@@ -866,6 +886,7 @@ SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& 
             latest = std::move(level);  // releases the level before
             current = &latest.mesh;
         }
+        check_finite_level(*current, options.scheme, it);
         if (it == 1) collected.clear();  // the collected copy of the input is no longer read
     }
     if (!options.keep_levels) result.levels.push_back(std::move(latest));

@@ -68,7 +68,9 @@ struct SubdivisionResult {
 
 /// Subdivides a copy of `mesh` `options.iterations` times. The input must be a triangle mesh
 /// without garbage (call garbage_collection() first) — it is not modified. Throws
-/// InvalidArgument for bad options (naming them), Cancelled when `progress` asks to stop.
+/// InvalidArgument for bad options (naming them) and for a level whose positions or texture
+/// coordinates overflow to infinity (coordinates near the largest double), Cancelled when
+/// `progress` asks to stop.
 SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& options,
                             Progress& progress);
 

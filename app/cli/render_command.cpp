@@ -31,7 +31,7 @@ Renders MESH without a window (EGL surfaceless context; Mesa's llvmpipe on machi
 a GPU) and writes a PNG. The camera frames the mesh's bounding box.
 
 options:
-  --out FILE.png        the image to write (required)
+  --out FILE.png        the image to write (required; PNG only, so it must end in .png)
   --size WxH            image size in pixels (default 1280x800)
   --mode MODE           gouraud (default), flat, wireframe, hidden-line, points, textured
   --color QUANTITY      colour the vertices: none (default), normal, k1, k2, mean,
@@ -144,6 +144,9 @@ int run_render_command(const std::vector<std::string>& args) {
     if (a.mesh.empty())
         throw InvalidArgument("expected a MESH file (see `trilab-cli render --help`)");
     if (a.out.empty()) throw InvalidArgument("--out FILE.png is required");
+    if (file_extension(a.out) != "png")
+        throw InvalidArgument("--out: '" + a.out +
+                              "': only PNG is written, so the file name must end in .png");
     const std::filesystem::path out_dir = std::filesystem::path(a.out).parent_path();
     if (!out_dir.empty() && !std::filesystem::is_directory(out_dir))
         throw InvalidArgument("--out: the folder '" + out_dir.string() + "' does not exist");

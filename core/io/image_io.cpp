@@ -879,6 +879,13 @@ Image read_image(const std::string& path) {
 
 Image read_image_bytes(const std::string& bytes, const std::string& name) {
     const std::string ext = extension_of(name);
+    // The text formats (and PNM, which starts as text) skip a UTF-8 byte-order mark and
+    // refuse UTF-16/32, as the mesh readers do.
+    if (ext == "xpm" || ext == "xbm" || ext == "pnm" || ext == "ppm" || ext == "pgm" ||
+        ext == "pbm") {
+        const std::string_view text = strip_utf8_bom(bytes, name);
+        if (text.size() != bytes.size()) return read_image_bytes(std::string(text), name);
+    }
     if (ext == "png") return read_with_stb(bytes, name, "PNG");
     if (ext == "bmp") return read_with_stb(bytes, name, "BMP");
     if (ext == "pnm" || ext == "ppm" || ext == "pgm" || ext == "pbm") return read_pnm(bytes, name);

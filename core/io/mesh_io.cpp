@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
+#include <sstream>
 
 #include "core/errors.h"
+#include "core/io/file_util.h"
 
 namespace trilab {
 
@@ -36,6 +39,9 @@ LoadedMesh read_mesh(const std::string& path) {
     if (ext == "ply") return read_ply(path);
     if (ext == "stl") return read_stl(path);
     if (ext == "om") return read_om(path);
+    // "/dev/zero: not a regular file: it is a character device" says more than its extension.
+    std::error_code ec;
+    if (std::filesystem::exists(path, ec)) check_regular_file(path);
     unknown_format(path);
 }
 
@@ -47,6 +53,24 @@ void write_mesh(const HalfedgeMesh& mesh, const std::string& path, const WriteOp
     if (ext == "stl") return write_stl(mesh, path, options);
     if (ext == "om") return write_om(mesh, path, options);
     unknown_format(path);
+}
+
+void write_mesh_to(const HalfedgeMesh& mesh, std::ostream& out, const std::string& name,
+                   const WriteOptions& options) {
+    const std::string ext = file_extension(name);
+    if (ext == "obj") return write_obj_to(mesh, out, name, options);
+    if (ext == "off") return write_off_to(mesh, out, name, options);
+    if (ext == "ply") return write_ply_to(mesh, out, name, options);
+    if (ext == "stl") return write_stl_to(mesh, out, name, options);
+    if (ext == "om") return write_om_to(mesh, out, name, options);
+    unknown_format(name);
+}
+
+std::string write_mesh_bytes(const HalfedgeMesh& mesh, const std::string& name,
+                             const WriteOptions& options) {
+    std::ostringstream out(std::ios::binary);
+    write_mesh_to(mesh, out, name, options);
+    return out.str();
 }
 
 }  // namespace trilab

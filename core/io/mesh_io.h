@@ -6,8 +6,18 @@
 //   .stl  STL, ASCII or binary (decided by the binary size rule 84 + 50 n)
 //   .om   OpenMesh binary, read 1.2 to 2.2, written as 2.2
 // Readers throw IoError naming the file, the line (text formats) and the reason; nothing is
-// returned half-loaded. Writers write to a temporary file in the target's folder and rename
-// it over the target, so a failed write leaves any existing file untouched.
+// returned half-loaded. Only regular files are read, up to a size limit derived from the
+// available memory (core/io/file_util.h: read_file_bytes). Text formats skip a UTF-8
+// byte-order mark and refuse UTF-16 and UTF-32. NaN and infinity are refused in every
+// attribute (positions, normals, colours, texture coordinates): text formats name the line,
+// binary formats the element. Writers never write what their reader refuses: a non-finite
+// value is refused; values that float32 cannot hold are written as double where the format
+// has double (PLY), else refused naming the format (binary STL positions, .om texture
+// coordinates); STL refuses a mesh without faces. Writers go through write_file_atomically
+// (a temporary file in the target's folder, renamed over it; see file_util.h for symbolic
+// links, hard links, permissions and what is never replaced), so a failed write leaves any
+// existing file untouched.
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -53,6 +63,25 @@ LoadedMesh read_stl(const std::string& path);
 void write_stl(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options);
 LoadedMesh read_om(const std::string& path);
 void write_om(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options);
+
+// Writing to a stream: what the path writers write, for tests and fuzzers. `name` labels
+// the errors and chooses the format by its extension (write_mesh_to); the same checks and
+// refusals as the path writers.
+void write_mesh_to(const HalfedgeMesh& mesh, std::ostream& out, const std::string& name,
+                   const WriteOptions& options = {});
+/// write_mesh_to into a string.
+std::string write_mesh_bytes(const HalfedgeMesh& mesh, const std::string& name,
+                             const WriteOptions& options = {});
+void write_obj_to(const HalfedgeMesh& mesh, std::ostream& out, const std::string& name,
+                  const WriteOptions& options);
+void write_off_to(const HalfedgeMesh& mesh, std::ostream& out, const std::string& name,
+                  const WriteOptions& options);
+void write_ply_to(const HalfedgeMesh& mesh, std::ostream& out, const std::string& name,
+                  const WriteOptions& options);
+void write_stl_to(const HalfedgeMesh& mesh, std::ostream& out, const std::string& name,
+                  const WriteOptions& options);
+void write_om_to(const HalfedgeMesh& mesh, std::ostream& out, const std::string& name,
+                 const WriteOptions& options);
 
 // In-memory readers: parse a whole file's `bytes` already in memory (the path readers read
 // the file and call these; the fuzzers call them directly). `name` only labels the errors

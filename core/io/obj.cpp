@@ -11,7 +11,11 @@
 // usemtl, l, p, ...) are ignored. Texture coordinates become "v:texcoord" when every vertex has
 // one texture coordinate, otherwise per-corner "h:texcoord" (seams stay seams); normals become
 // "v:normal" (the first normal given for a vertex).
-// Writing: v (and vt, vn) with shortest round-trip decimals, then f v/vt/vn triples.
+// A UTF-8 byte-order mark is skipped (in the material library too), UTF-16 refused. Material
+// libraries are read through read_file_bytes (regular files of at most 64 MiB; anything else
+// becomes a note in the report).
+// Writing: v (and vt, vn) with shortest round-trip decimals, then f v/vt/vn triples;
+// non-finite values are refused.
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
@@ -19,9 +23,9 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <ostream>
+#include <sstream>
 #include <string_view>
 #include <unordered_map>
 
@@ -83,11 +87,11 @@ private:
         const std::string_view key = token(i, end);
         if (key.empty()) return;
         if (key == "v")
-            numbers(i, end, out_.v, 3, 3, "v");
+            numbers(i, end, out_.v, 3, 3, "v", "position");
         else if (key == "vt")
-            numbers(i, end, out_.vt, 1, 2, "vt");
+            numbers(i, end, out_.vt, 1, 2, "vt", "texture coordinate");
         else if (key == "vn")
-            numbers(i, end, out_.vn, 3, 3, "vn");
+            numbers(i, end, out_.vn, 3, 3, "vn", "normal");
         else if (key == "f")
             face(i, end);
         else if (key == "mtllib") {
@@ -102,7 +106,7 @@ private:
 
     /// Reads at least `min` numbers, keeps the first `keep` (missing ones are 0).
     void numbers(std::size_t i, std::size_t end, std::vector<double>& dst, int min, int keep,
-                 const char* what) {
+                 const char* what, const char* attribute) {
         double values[3] = {0, 0, 0};
         int count = 0;
         for (std::string_view t = token(i, end); !t.empty(); t = token(i, end)) {
@@ -112,7 +116,7 @@ private:
             double value = 0;
             const auto res = std::from_chars(first, last, value);
             if (res.ec != std::errc() || res.ptr != last || !std::isfinite(value))
-                fail("'" + printable(t) + "' is not a finite number");
+                fail("'" + printable(t) + "' is not a finite number (" + attribute + ")");
             if (count < keep) values[count] = value;
             ++count;
         }
@@ -168,22 +172,17 @@ std::string find_texture(const std::vector<std::string>& mtllibs,
                          const std::filesystem::path& folder, LoadReport& report) {
     for (const std::string& lib : mtllibs) {
         const std::filesystem::path mtl_path = folder / lib;
-        // Only regular files of a sane size: a library naming a device, a FIFO or a folder
-        // (mtllib /dev/zero) must not hang or exhaust memory.
-        std::error_code ec;
-        if (!std::filesystem::is_regular_file(mtl_path, ec)) {
-            report.notes.push_back("material library " + lib + " not found (or not a file)");
+        // Only regular files of a sane size (read_file_bytes refuses devices, FIFOs and
+        // folders without opening them): `mtllib /dev/zero` must not hang or exhaust memory.
+        std::string text;
+        try {
+            text = std::string(strip_utf8_bom(
+                read_file_bytes(mtl_path.string(), kMaxMaterialLibraryBytes), mtl_path.string()));
+        } catch (const IoError& e) {
+            report.notes.push_back("material library " + lib + " not read: " + e.reason());
             continue;
         }
-        if (std::filesystem::file_size(mtl_path, ec) > kMaxMaterialLibraryBytes) {
-            report.notes.push_back("material library " + lib + " ignored (over 64 MiB)");
-            continue;
-        }
-        std::ifstream in(mtl_path);
-        if (!in) {
-            report.notes.push_back("material library " + lib + " not found");
-            continue;
-        }
+        std::istringstream in(text);
         std::vector<tinyobj::material_t> materials;
         std::map<std::string, int> names;
         std::string warning, error;
@@ -201,7 +200,7 @@ namespace {
 /// Reads OBJ text; the material libraries it names are returned in `mtllibs`.
 LoadedMesh read_obj_text(const std::string& text, const std::string& path,
                          std::vector<std::string>& mtllibs) {
-    ObjContents obj = ObjParser(text, path).parse();
+    ObjContents obj = ObjParser(strip_utf8_bom(text, path), path).parse();
     const std::size_t nv = obj.v.size() / 3;
 
     PolygonSoup soup;
@@ -296,11 +295,13 @@ LoadedMesh read_obj_bytes(const std::string& bytes, const std::string& name) {
     return read_obj_text(bytes, name, mtllibs);
 }
 
-void write_obj(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options) {
+void write_obj_to(const HalfedgeMesh& mesh, std::ostream& os, const std::string& path,
+                  const WriteOptions& options) {
     const PolygonSoup soup = to_soup(mesh);
     const bool normals = options.write_normals && !soup.normals.empty();
     const bool vertex_uv = options.write_texcoords && !soup.texcoords.empty();
     const bool corner_uv = options.write_texcoords && !vertex_uv && !soup.corner_texcoords.empty();
+    check_finite_for_writing(soup, path, normals, false, vertex_uv || corner_uv);
 
     std::string out;
     out.reserve(soup.positions.size() * 40 + soup.corners.size() * 12 + 64);
@@ -368,8 +369,11 @@ void write_obj(const HalfedgeMesh& mesh, const std::string& path, const WriteOpt
         }
         out += '\n';
     }
-    write_file_atomically(
-        path, [&](std::ostream& os) { os.write(out.data(), std::streamsize(out.size())); });
+    os.write(out.data(), std::streamsize(out.size()));
+}
+
+void write_obj(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options) {
+    write_file_atomically(path, [&](std::ostream& os) { write_obj_to(mesh, os, path, options); });
 }
 
 }  // namespace trilab

@@ -3,7 +3,10 @@
 // anywhere; vertex lines "x y z [nx ny nz] [r g b [a]] [s t]" with colours as 0..255
 // integers or 0..1 floats; faces "n i0 .. in-1 [colour]" with any n (polygons are
 // triangulated by build_mesh, face colours ignored). 4OFF, nOFF and binary OFF are refused
-// with a message. Writing emits the same header letters for what the mesh carries.
+// with a message; so are colour components outside 0..255 and (as everywhere) NaN and
+// infinity. A UTF-8 byte-order mark is skipped, UTF-16 refused. Writing emits the same header
+// letters for what the mesh carries (colours clamped to 0..1, non-finite values refused).
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <ostream>
@@ -18,14 +21,20 @@ namespace trilab {
 
 namespace {
 
-std::vector<double> parse_tail(std::string_view tail, TextScanner& scanner) {
+std::string shortest(double v) {
+    std::string out;
+    append_number(out, v);
+    return out;
+}
+
+std::vector<double> parse_tail(std::string_view tail, TextScanner& scanner, const char* what) {
     const std::size_t hash = tail.find('#');
     if (hash != std::string_view::npos) tail = tail.substr(0, hash);
     std::vector<double> values;
     TextScanner sub(tail, scanner.file(), '\0');
     while (!sub.at_end()) {
         try {
-            values.push_back(sub.next_double("vertex attribute"));
+            values.push_back(sub.next_double(what));
         } catch (const IoError& e) {
             scanner.fail(e.reason());
         }
@@ -39,7 +48,8 @@ LoadedMesh read_off(const std::string& path) {
     return read_off_bytes(read_file_bytes(path), path);
 }
 
-LoadedMesh read_off_bytes(const std::string& text, const std::string& path) {
+LoadedMesh read_off_bytes(const std::string& bytes, const std::string& path) {
+    const std::string_view text = strip_utf8_bom(bytes, path);
     TextScanner in(text, path);
     std::string_view keyword = in.next_token();
     if (keyword.empty()) in.fail("empty file, expected the OFF header");
@@ -101,15 +111,25 @@ LoadedMesh read_off_bytes(const std::string& text, const std::string& path) {
             soup.normals[v] = Vector3(a, b, c);
         }
         const std::size_t line = in.line();
-        std::vector<double> tail = parse_tail(in.rest_of_line(), in);
+        std::vector<double> tail =
+            parse_tail(in.rest_of_line(), in,
+                       color ? (st ? "colour or texture coordinate" : "colour")
+                             : (st ? "texture coordinate" : "vertex attribute"));
         std::size_t k = 0;
         if (color) {
             const std::size_t want = tail.size() - (st ? 2 : 0);
             if (tail.size() < (st ? 5u : 3u) || (want != 3 && want != 4))
                 throw IoError(path, line,
                               "vertex " + std::to_string(v) + ": expected an RGB or RGBA colour");
+            for (int i = 0; i < 3; ++i) {
+                if (!(tail[i] >= 0 && tail[i] <= 255))
+                    throw IoError(path, line,
+                                  "vertex " + std::to_string(v) + ": colour component " +
+                                      shortest(tail[i]) +
+                                      " is outside 0 to 1 (or 0 to 255 for byte colours)");
+                colors_are_bytes = colors_are_bytes || tail[i] > 1.0;
+            }
             soup.colors[v] = Color(float(tail[0]), float(tail[1]), float(tail[2]));
-            for (int i = 0; i < 3; ++i) colors_are_bytes = colors_are_bytes || tail[i] > 1.0;
             k = want;
         }
         if (st) {
@@ -160,11 +180,13 @@ LoadedMesh read_off_bytes(const std::string& text, const std::string& path) {
     return out;
 }
 
-void write_off(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options) {
+void write_off_to(const HalfedgeMesh& mesh, std::ostream& os, const std::string& path,
+                  const WriteOptions& options) {
     const PolygonSoup soup = to_soup(mesh);
     const bool st = options.write_texcoords && !soup.texcoords.empty();
     const bool color = options.write_colors && !soup.colors.empty();
     const bool normal = options.write_normals && !soup.normals.empty();
+    check_finite_for_writing(soup, path, normal, color, st);
     std::string out;
     out.reserve(soup.positions.size() * 48 + soup.corners.size() * 8 + 64);
     if (st) out += "ST";
@@ -191,7 +213,8 @@ void write_off(const HalfedgeMesh& mesh, const std::string& path, const WriteOpt
         if (color) {
             for (int i = 0; i < 3; ++i) {
                 out += ' ';
-                append_number(out, soup.colors[v][i]);
+                // In 0..1: the reader takes any value above 1 as a 0..255 byte colour.
+                append_number(out, std::clamp(soup.colors[v][i], 0.0f, 1.0f));
             }
             out += " 1";
         }
@@ -211,8 +234,11 @@ void write_off(const HalfedgeMesh& mesh, const std::string& path, const WriteOpt
         }
         out += '\n';
     }
-    write_file_atomically(
-        path, [&](std::ostream& os) { os.write(out.data(), std::streamsize(out.size())); });
+    os.write(out.data(), std::streamsize(out.size()));
+}
+
+void write_off(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options) {
+    write_file_atomically(path, [&](std::ostream& os) { write_off_to(mesh, os, path, options); });
 }
 
 }  // namespace trilab

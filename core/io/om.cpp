@@ -26,7 +26,8 @@
 // are written as f64 (0x5600 / 0x5620, allowed since 2.1) so that our doubles round-trip
 // exactly; colours are u8, texture coordinates f32 (the only widths the format has for
 // them). The index width is the smallest of 1, 2, 4 bytes that holds every index. Custom
-// attributes are not written.
+// attributes are not written. Non-finite values, and texture coordinates beyond float32's
+// range, are refused; the reader refuses NaN and infinity in every attribute.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -655,8 +656,6 @@ bool adopt_2x(const Topology2& t, Assembly& a) {
     std::vector<Point>& pos = m.positions();
     for (std::size_t v = 0; v < n_v; ++v) {
         pos[v] = vec3_at(c.positions, v);
-        if (!pos[v].allFinite())
-            throw Error("vertex " + std::to_string(v) + " has a non-finite coordinate");
         const std::int32_t vh = c.vtopo[v];
         if (vh >= 0) m.set_halfedge(Vertex(Index(v)), Halfedge(Index(vh)));
     }
@@ -827,6 +826,7 @@ LoadedMesh read_om_bytes(const std::string& bytes, const std::string& path) {
     report.file_vertices = c.n_v;
     report.file_faces = c.n_f;
     if (a.adopted) {
+        check_finite_mesh(a.mesh, path);  // what build_mesh_for_file checks for a soup
         out.mesh = std::move(a.mesh);
         report.isolated_vertices = a.isolated;
     } else {
@@ -855,7 +855,8 @@ LoadedMesh read_om_bytes(const std::string& bytes, const std::string& path) {
     return out;
 }
 
-void write_om(const HalfedgeMesh& input, const std::string& path, const WriteOptions& options) {
+void write_om_to(const HalfedgeMesh& input, std::ostream& os, const std::string& path,
+                 const WriteOptions& options) {
     HalfedgeMesh compacted;
     const HalfedgeMesh* source = &input;
     if (input.has_garbage()) {
@@ -886,6 +887,16 @@ void write_om(const HalfedgeMesh& input, const std::string& path, const WriteOpt
                                ? mesh.get_halfedge_property<TexCoord>("h:texcoord")
                                : HalfedgeProperty<TexCoord>();
     const bool write_corner_uv = corner_uv && n_e > 0;
+    check_finite_for_writing(mesh, path, bool(normals), bool(colors),
+                             bool(texcoords) || write_corner_uv);
+    // Texture coordinates are float32 in .om (the format has no other width): values beyond
+    // its range are refused (tiny ones only lose precision that texture lookups never see).
+    constexpr double kFloatMax = double(std::numeric_limits<float>::max());
+    if ((texcoords && max_abs_component(texcoords.vector()) > kFloatMax) ||
+        (write_corner_uv && max_abs_component(corner_uv.vector()) > kFloatMax))
+        throw IoError(path, 0,
+                      ".om stores texture coordinates as float32, which cannot hold these "
+                      "(beyond 3.4e38); not written: use OBJ, OFF or PLY");
 
     std::uint64_t total = 16 + (2 + 24 * n_v) + 2;  // header, positions, sentinel
     if (normals) total += 2 + 24 * n_v;
@@ -964,9 +975,11 @@ void write_om(const HalfedgeMesh& input, const std::string& path, const WriteOpt
     if (std::uint64_t(p - buffer.data()) != total)
         throw IoError(path, 0, "internal error: .om size mismatch");
 
-    write_file_atomically(path, [&](std::ostream& out) {
-        out.write(reinterpret_cast<const char*>(buffer.data()), std::streamsize(buffer.size()));
-    });
+    os.write(reinterpret_cast<const char*>(buffer.data()), std::streamsize(buffer.size()));
+}
+
+void write_om(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options) {
+    write_file_atomically(path, [&](std::ostream& os) { write_om_to(mesh, os, path, options); });
 }
 
 }  // namespace trilab

@@ -10,12 +10,18 @@
 // rows of fixed size are decoded with memcpy at precomputed offsets (with a dedicated loop
 // for float x, y, z and for uchar/int triangle lists); every declared count is checked
 // against the bytes left before anything is reserved, and every read is bounds-checked.
-// Errors name the file and the line (ascii) or the element number (binary).
+// Errors name the file and the line (ascii) or the element number (binary). A UTF-8
+// byte-order mark before "ply" is skipped, UTF-16 refused. ASCII values must fit their
+// declared type (uchar 0..255, whole numbers for integer types, float within float's range;
+// a float value is rounded to float, as a binary file stores it); float-typed list lengths
+// and indices must be whole numbers. NaN and infinity in any used property are refused
+// (build_mesh_for_file checks the soup, naming the vertex and the attribute).
 //
-// Writing: binary little-endian by default, ascii or big-endian on request. Positions are
-// float32 (so a round trip is exact to float precision, ~6e-8 relative), normals float32,
-// colours uchar, per-vertex texture coordinates float u, v; faces are
-// "property list uchar int vertex_indices".
+// Writing: binary little-endian by default, ascii or big-endian on request. Positions,
+// normals and texture coordinates are float32 (a round trip is exact to float precision,
+// ~6e-8 relative), or double for a group whose values float32 cannot hold with full
+// precision (float_range_suffices); colours uchar; faces are
+// "property list uchar int vertex_indices". Non-finite values are refused.
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -117,7 +123,8 @@ double load_double(const unsigned char* p, ScalarType t) {
     return 0;
 }
 
-/// An integer stored in any type; float values are truncated (false when not representable).
+/// An integer stored in any type; false for a float value that is not a whole number in
+/// the range of long long (2.5, NaN, 1e300).
 template <bool Swap>
 bool load_integer(const unsigned char* p, ScalarType t, long long& out) {
     switch (t) {
@@ -142,12 +149,19 @@ bool load_integer(const unsigned char* p, ScalarType t, long long& out) {
         case ScalarType::kF32:
         case ScalarType::kF64: {
             const double d = load_double<Swap>(p, t);
-            if (!(d > -9e18 && d < 9e18)) return false;
+            if (!(d > -9e18 && d < 9e18) || d != std::floor(d)) return false;
             out = static_cast<long long>(d);
             return true;
         }
     }
     return false;
+}
+
+/// A number for messages: the shortest text that reads back as it ("2.5", "1e+39", "nan").
+std::string number_text(double d) {
+    std::string out;
+    append_number(out, d);
+    return out;
 }
 
 // ---- header -----------------------------------------------------------------------------
@@ -173,6 +187,7 @@ enum Role : std::uint8_t {
 
 struct PlyProperty {
     std::string name;
+    std::string label;  ///< "property 'x'", or "an item of list 'name'", for messages
     ScalarType type = ScalarType::kF32;  ///< the scalar type, or the item type of a list
     ScalarType count_type = ScalarType::kUint8;
     bool is_list = false;
@@ -226,7 +241,7 @@ const char* element_label(const PlyElement& e) {
 
 class PlyReader {
 public:
-    PlyReader(const std::string& path, const std::string& data)
+    PlyReader(const std::string& path, std::string_view data)
         : path_(path), data_(data), sc_(data, path, '\0') {}
 
     LoadedMesh read() {
@@ -304,6 +319,7 @@ private:
                 if (!parse_type(t, p.type))
                     sc_.fail("unknown property type '" + printable(t) + "'");
                 p.name = std::string(sc_.expect_token("a property name"));
+                p.label = (p.is_list ? "an item of list '" : "property '") + p.name + "'";
                 elements_.back().props.push_back(std::move(p));
             } else if (kw == "end_header") {
                 sc_.rest_of_line();
@@ -479,10 +495,47 @@ private:
     }
 
     // ---- ascii -----------------------------------------------------------------------------
-    long long ascii_integer(ScalarType t, const char* what) {
-        if (!is_float_type(t)) return sc_.next_integer(what);
+    /// The next ASCII value, checked against its declared type: an integer type needs a
+    /// whole number within its range (uchar 300 and int 2.5 are refused), float a value
+    /// within float's range; every value is finite.
+    double ascii_value(ScalarType t, const char* what) {
         const double d = sc_.next_double(what);
-        if (!(d > -9e18 && d < 9e18)) sc_.fail(std::string(what) + " is out of range");
+        struct Range {
+            double lo, hi;
+            const char* name;
+        };
+        static const Range ranges[] = {
+            {-128.0, 127.0, "char"},
+            {0.0, 255.0, "uchar"},
+            {-32768.0, 32767.0, "short"},
+            {0.0, 65535.0, "ushort"},
+            {-2147483648.0, 2147483647.0, "int"},
+            {0.0, 4294967295.0, "uint"},
+            {-double(std::numeric_limits<float>::max()), double(std::numeric_limits<float>::max()),
+             "float"},
+        };
+        if (t == ScalarType::kF64) return d;
+        const Range& r = ranges[static_cast<int>(t)];
+        auto text = [&] { return number_text(d); };
+        if (t != ScalarType::kF32 && d != std::floor(d))
+            sc_.fail(std::string(what) + ": " + text() + " is not a whole number, as type " +
+                     r.name + " requires");
+        if (d < r.lo || d > r.hi)
+            sc_.fail(
+                std::string(what) + ": " + text() + " is out of range for type " + r.name + " (" +
+                (t == ScalarType::kF32 ? std::string("at most 3.4e38 in magnitude")
+                                       : std::to_string(static_cast<long long>(r.lo)) + " to " +
+                                             std::to_string(static_cast<long long>(r.hi))) +
+                ")");
+        // A float property holds a float: the decimal text rounded as the binary encodings
+        // would store it, so that ASCII and binary files of the same values read the same.
+        return t == ScalarType::kF32 ? double(static_cast<float>(d)) : d;
+    }
+
+    long long ascii_integer(ScalarType t, const char* what) {
+        const double d = ascii_value(t, what);
+        if (d != std::floor(d) || !(d > -9e18 && d < 9e18))
+            sc_.fail(std::string(what) + ": " + number_text(d) + " is not a whole number");
         return static_cast<long long>(d);
     }
 
@@ -509,10 +562,8 @@ private:
             for (std::uint64_t row = 0; row < e.count; ++row) {
                 for (const PlyProperty& p : e.props) {
                     if (!p.is_list) {
-                        if (p.role == kNone)
-                            sc_.expect_token("a property value");
-                        else
-                            vals[p.role] = sc_.next_double(p.name.c_str());
+                        const double value = ascii_value(p.type, p.label.c_str());
+                        if (p.role != kNone) vals[p.role] = value;
                         continue;
                     }
                     const long long n = ascii_list_count(e, p);
@@ -528,9 +579,9 @@ private:
                     } else if (p.role == kTexcoord) {
                         row_uv_.clear();
                         for (long long k = 0; k < n; ++k)
-                            row_uv_.push_back(sc_.next_double("a texture coordinate"));
+                            row_uv_.push_back(ascii_value(p.type, "a texture coordinate"));
                     } else {
-                        for (long long k = 0; k < n; ++k) sc_.expect_token("a list item");
+                        for (long long k = 0; k < n; ++k) ascii_value(p.type, p.label.c_str());
                     }
                 }
                 if (e.kind == ElementKind::kVertex)
@@ -673,7 +724,9 @@ private:
                 if (!load_integer<Swap>(base + pos, p.count_type, count) || count < 0)
                     throw IoError(path_, 0,
                                   std::string(element_label(e)) + " " + std::to_string(row) +
-                                      ": invalid list length for property '" + p.name + "'");
+                                      ": invalid list length " +
+                                      number_text(load_double<Swap>(base + pos, p.count_type)) +
+                                      " for property '" + p.name + "'");
                 pos += cs;
                 const std::size_t is = type_size(p.type);
                 const std::size_t items = static_cast<std::size_t>(count);
@@ -681,7 +734,12 @@ private:
                 if (p.role == kIndices) {
                     for (std::size_t k = 0; k < items; ++k, pos += is) {
                         long long v = -2;
-                        if (!load_integer<Swap>(base + pos, p.type, v)) v = -2;
+                        if (!load_integer<Swap>(base + pos, p.type, v))
+                            throw IoError(path_, 0,
+                                          std::string(element_label(e)) + " " +
+                                              std::to_string(row) + ": vertex index " +
+                                              number_text(load_double<Swap>(base + pos, p.type)) +
+                                              " is not a whole number");
                         const bool ok = check_index(v, e, row, 0);
                         if (e.kind == ElementKind::kFace)
                             soup_.corners.push_back(Index(v));
@@ -707,7 +765,7 @@ private:
     }
 
     const std::string& path_;
-    const std::string& data_;
+    std::string_view data_;
     TextScanner sc_;
     Encoding encoding_ = Encoding::kAscii;
     std::vector<PlyElement> elements_;
@@ -737,11 +795,12 @@ LoadedMesh read_ply(const std::string& path) {
 }
 
 LoadedMesh read_ply_bytes(const std::string& data, const std::string& path) {
-    PlyReader reader(path, data);
+    PlyReader reader(path, strip_utf8_bom(data, path));
     return reader.read();
 }
 
-void write_ply(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options) {
+void write_ply_to(const HalfedgeMesh& mesh, std::ostream& os, const std::string& path,
+                  const WriteOptions& options) {
     const PolygonSoup soup = to_soup(mesh);
     if (soup.positions.size() > std::size_t(std::numeric_limits<std::int32_t>::max()))
         throw IoError(path, 0, "too many vertices for PLY int indices");
@@ -750,98 +809,104 @@ void write_ply(const HalfedgeMesh& mesh, const std::string& path, const WriteOpt
     const bool uv = options.write_texcoords && !soup.texcoords.empty();
     // Texture seams (per-corner coordinates only): the per-face `texcoord` list MeshLab uses.
     const bool corner_uv = options.write_texcoords && !uv && !soup.corner_texcoords.empty();
+    check_finite_for_writing(soup, path, normals, colors, uv || corner_uv);
     const bool ascii = options.ascii;
     const bool big = options.big_endian;
+    // float32 where it holds the values with full precision, else double (PLY has both).
+    const bool pos_d = !float_range_suffices(max_abs_component(soup.positions));
+    const bool nrm_d = normals && !float_range_suffices(max_abs_component(soup.normals));
+    const bool uv_d = uv && !float_range_suffices(max_abs_component(soup.texcoords));
+    const bool cuv_d = corner_uv && !float_range_suffices(max_abs_component(soup.corner_texcoords));
+    auto type = [](bool d) { return d ? "double" : "float"; };
 
     std::string header = "ply\nformat ";
     header += ascii ? "ascii" : big ? "binary_big_endian" : "binary_little_endian";
     header += " 1.0\ncomment written by trilab\n";
     header += "element vertex " + std::to_string(soup.positions.size()) + "\n";
-    header += "property float x\nproperty float y\nproperty float z\n";
-    if (normals) header += "property float nx\nproperty float ny\nproperty float nz\n";
+    for (const char* n : {"x", "y", "z"})
+        header += std::string("property ") + type(pos_d) + " " + n + "\n";
+    if (normals)
+        for (const char* n : {"nx", "ny", "nz"})
+            header += std::string("property ") + type(nrm_d) + " " + n + "\n";
     if (colors) header += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
-    if (uv) header += "property float u\nproperty float v\n";
+    if (uv)
+        for (const char* n : {"u", "v"})
+            header += std::string("property ") + type(uv_d) + " " + n + "\n";
     header += "element face " + std::to_string(soup.n_faces()) + "\n";
     header += "property list uchar int vertex_indices\n";
-    if (corner_uv) header += "property list uchar float texcoord\n";
+    if (corner_uv) header += std::string("property list uchar ") + type(cuv_d) + " texcoord\n";
     header += "end_header\n";
 
-    write_file_atomically(path, [&](std::ostream& os) {
-        OutBuffer out(os, !ascii && big == host_is_little_endian());
-        out.text(header);
-        const std::size_t nv = soup.positions.size();
-        for (std::size_t i = 0; i < nv; ++i) {
-            float f[11];
-            int nf = 0;
-            const Point& p = soup.positions[i];
-            for (int k = 0; k < 3; ++k) f[nf++] = static_cast<float>(p[k]);
-            if (normals)
-                for (int k = 0; k < 3; ++k) f[nf++] = static_cast<float>(soup.normals[i][k]);
-            std::uint8_t c[3] = {0, 0, 0};
-            if (colors)
-                for (int k = 0; k < 3; ++k) c[k] = color_byte(soup.colors[i][k]);
-            float t[2] = {0, 0};
-            if (uv)
-                for (int k = 0; k < 2; ++k) t[k] = static_cast<float>(soup.texcoords[i][k]);
-            if (ascii) {
-                for (int k = 0; k < nf; ++k) {
-                    if (k) out.text(" ");
-                    out.number(f[k]);
-                }
-                if (colors)
-                    for (int k = 0; k < 3; ++k) {
-                        out.text(" ");
-                        out.number(int(c[k]));
-                    }
-                if (uv)
-                    for (int k = 0; k < 2; ++k) {
-                        out.text(" ");
-                        out.number(t[k]);
-                    }
-                out.text("\n");
-            } else {
-                for (int k = 0; k < nf; ++k) out.binary(f[k]);
-                if (colors)
-                    for (int k = 0; k < 3; ++k) out.binary(c[k]);
-                if (uv)
-                    for (int k = 0; k < 2; ++k) out.binary(t[k]);
-                out.maybe_flush();
-            }
+    OutBuffer out(os, !ascii && big == host_is_little_endian());
+    // One value as float or double, as text or binary.
+    auto put = [&](double v, bool as_double, bool first) {
+        if (ascii) {
+            if (!first) out.text(" ");
+            if (as_double)
+                out.number(v);
+            else
+                out.number(static_cast<float>(v));
+        } else if (as_double) {
+            out.binary(v);
+        } else {
+            out.binary(static_cast<float>(v));
         }
-        for (std::size_t f = 0; f < soup.n_faces(); ++f) {
-            const std::size_t b = soup.face_offsets[f], e = soup.face_offsets[f + 1];
-            const std::uint8_t n = static_cast<std::uint8_t>(e - b);  // triangles: always 3
-            if (ascii) {
-                out.number(int(n));
-                for (std::size_t c = b; c < e; ++c) {
+    };
+    out.text(header);
+    const std::size_t nv = soup.positions.size();
+    for (std::size_t i = 0; i < nv; ++i) {
+        const Point& p = soup.positions[i];
+        for (int k = 0; k < 3; ++k) put(p[k], pos_d, k == 0);
+        if (normals)
+            for (int k = 0; k < 3; ++k) put(soup.normals[i][k], nrm_d, false);
+        if (colors)
+            for (int k = 0; k < 3; ++k) {
+                const std::uint8_t c = color_byte(soup.colors[i][k]);
+                if (ascii) {
                     out.text(" ");
-                    out.number(static_cast<std::int32_t>(soup.corners[c]));
+                    out.number(int(c));
+                } else {
+                    out.binary(c);
                 }
-                if (corner_uv) {
-                    out.text(" ");
-                    out.number(int(2 * n));
-                    for (std::size_t c = b; c < e; ++c)
-                        for (int k = 0; k < 2; ++k) {
-                            out.text(" ");
-                            out.number(static_cast<float>(soup.corner_texcoords[c][k]));
-                        }
-                }
-                out.text("\n");
-            } else {
-                out.binary(n);
+            }
+        if (uv)
+            for (int k = 0; k < 2; ++k) put(soup.texcoords[i][k], uv_d, false);
+        if (ascii) out.text("\n");
+        out.maybe_flush();
+    }
+    for (std::size_t f = 0; f < soup.n_faces(); ++f) {
+        const std::size_t b = soup.face_offsets[f], e = soup.face_offsets[f + 1];
+        const std::uint8_t n = static_cast<std::uint8_t>(e - b);  // triangles: always 3
+        if (ascii) {
+            out.number(int(n));
+            for (std::size_t c = b; c < e; ++c) {
+                out.text(" ");
+                out.number(static_cast<std::int32_t>(soup.corners[c]));
+            }
+            if (corner_uv) {
+                out.text(" ");
+                out.number(int(2 * n));
                 for (std::size_t c = b; c < e; ++c)
-                    out.binary(static_cast<std::int32_t>(soup.corners[c]));
-                if (corner_uv) {
-                    out.binary(static_cast<std::uint8_t>(2 * n));
-                    for (std::size_t c = b; c < e; ++c)
-                        for (int k = 0; k < 2; ++k)
-                            out.binary(static_cast<float>(soup.corner_texcoords[c][k]));
-                }
-                out.maybe_flush();
+                    for (int k = 0; k < 2; ++k) put(soup.corner_texcoords[c][k], cuv_d, false);
+            }
+            out.text("\n");
+        } else {
+            out.binary(n);
+            for (std::size_t c = b; c < e; ++c)
+                out.binary(static_cast<std::int32_t>(soup.corners[c]));
+            if (corner_uv) {
+                out.binary(static_cast<std::uint8_t>(2 * n));
+                for (std::size_t c = b; c < e; ++c)
+                    for (int k = 0; k < 2; ++k) put(soup.corner_texcoords[c][k], cuv_d, false);
             }
         }
-        out.flush();
-    });
+        out.maybe_flush();
+    }
+    out.flush();
+}
+
+void write_ply(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options) {
+    write_file_atomically(path, [&](std::ostream& os) { write_ply_to(mesh, os, path, options); });
 }
 
 }  // namespace trilab

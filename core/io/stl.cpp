@@ -14,12 +14,17 @@
 //
 // Writing: binary by default (an 80-byte header that does not start with "solid", normals
 // computed from the geometry, attribute byte count 0; coordinates are float32 as the format
-// requires); ASCII with options.ascii ("solid trilab" ... "endsolid trilab", coordinates in
-// the shortest form that reads back to the same double).
+// requires, and a mesh whose coordinates float32 cannot hold is refused); ASCII with
+// options.ascii ("solid trilab" ... "endsolid trilab", coordinates in the shortest form that
+// reads back to the same double). A mesh without faces, or with a non-finite position, is
+// refused. A file that is not binary may start with a UTF-8 byte-order mark; UTF-16 is
+// refused.
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <ostream>
@@ -180,7 +185,7 @@ LoadedMesh read_binary_stl(const std::string& path, const std::string& data, std
             if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
                 throw IoError(path, 0,
                               "triangle " + std::to_string(t) + ", corner " + std::to_string(k) +
-                                  ": non-finite coordinate (NaN or infinity)");
+                                  ": non-finite position (NaN or infinity)");
             merger.add_corner(x, y, z);
         }
         merger.end_face();
@@ -201,7 +206,7 @@ bool iequals(std::string_view a, const char* b) {
     return true;
 }
 
-LoadedMesh read_ascii_stl(const std::string& path, const std::string& data) {
+LoadedMesh read_ascii_stl(const std::string& path, std::string_view data) {
     TextScanner sc(data, path, '\0');
     // A facet takes well over 100 bytes of text; this is only a reservation hint.
     SoupMerger<std::uint64_t> merger(data.size() / 128);
@@ -271,12 +276,12 @@ LoadedMesh read_ascii_stl(const std::string& path, const std::string& data) {
     return out;
 }
 
-bool starts_with_solid(const std::string& data) {
+bool starts_with_solid(std::string_view data) {
     std::size_t i = 0;
     while (i < data.size() &&
            (data[i] == ' ' || data[i] == '\t' || data[i] == '\r' || data[i] == '\n'))
         ++i;
-    return data.size() - i >= 5 && iequals(std::string_view(data).substr(i, 5), "solid");
+    return data.size() - i >= 5 && iequals(data.substr(i, 5), "solid");
 }
 
 // ---- writing ------------------------------------------------------------------------------
@@ -300,22 +305,54 @@ LoadedMesh read_stl_bytes(const std::string& data, const std::string& path) {
             load_u32_le(reinterpret_cast<const unsigned char*>(data.data()) + 80);
         const std::uint64_t expected = 84 + 50 * n;
         if (data.size() == expected) return read_binary_stl(path, data, std::size_t(n));
+    }
+    // Not binary: text, after a UTF-8 byte-order mark (UTF-16 is refused).
+    const std::string_view text = strip_utf8_bom(data, path);
+    if (data.size() >= 84) {
+        const std::uint64_t n =
+            load_u32_le(reinterpret_cast<const unsigned char*>(data.data()) + 80);
+        const std::uint64_t expected = 84 + 50 * n;
         // Neither text nor a binary file of the right size: report it as a binary STL of the
         // wrong size rather than as garbage text.
-        if (!starts_with_solid(data) || std::memchr(data.data(), '\0', data.size()) != nullptr)
+        if (!starts_with_solid(text) || std::memchr(data.data(), '\0', data.size()) != nullptr)
             throw IoError(path, 0,
                           "not an ASCII STL, and as binary STL its header declares " +
                               std::to_string(n) + " triangles (" + std::to_string(expected) +
                               " bytes) but the file has " + std::to_string(data.size()) +
                               " bytes (truncated or corrupt?)");
     }
-    return read_ascii_stl(path, data);
+    return read_ascii_stl(path, text);
 }
 
-void write_stl(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options) {
-    if (mesh.n_faces() > std::numeric_limits<std::uint32_t>::max())
+void write_stl_to(const HalfedgeMesh& mesh, std::ostream& os, const std::string& path,
+                  const WriteOptions& options) {
+    if (mesh.n_faces() == 0)
+        throw IoError(path, 0,
+                      "STL holds only triangles and the mesh has no faces (" +
+                          std::to_string(mesh.n_vertices()) +
+                          " vertices): not written; use OBJ, OFF, PLY or .om for points");
+    if (!options.ascii && mesh.n_faces() > std::numeric_limits<std::uint32_t>::max())
         throw IoError(path, 0, "too many faces for binary STL");
-    write_file_atomically(path, [&](std::ostream& os) {
+    // Positions of the vertices the faces use (STL has nothing else).
+    double max_abs = 0;
+    for (Face f : mesh.faces())
+        for (Vertex v : mesh.face_vertices(f)) {
+            const Point& p = mesh.position(v);
+            if (!p.allFinite())
+                throw IoError(path, 0,
+                              "vertex " + std::to_string(v.idx()) +
+                                  ": non-finite position; not written: no reader accepts it");
+            max_abs = std::max(max_abs, p.cwiseAbs().maxCoeff());
+        }
+    if (!options.ascii && !float_range_suffices(max_abs)) {
+        char buf[64];
+        std::snprintf(buf, sizeof(buf), "%g", max_abs);
+        throw IoError(path, 0,
+                      std::string("binary STL stores float32 coordinates, which cannot hold "
+                                  "this mesh's (largest magnitude ") +
+                          buf + "); not written: use ASCII STL (--ascii), PLY, OBJ, OFF or .om");
+    }
+    {
         OutBuffer out(os, !host_is_little_endian());
         if (options.ascii) {
             out.text("solid trilab\n");
@@ -358,7 +395,11 @@ void write_stl(const HalfedgeMesh& mesh, const std::string& path, const WriteOpt
         }
         if (options.ascii) out.text("endsolid trilab\n");
         out.flush();
-    });
+    }
+}
+
+void write_stl(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options) {
+    write_file_atomically(path, [&](std::ostream& os) { write_stl_to(mesh, os, path, options); });
 }
 
 }  // namespace trilab

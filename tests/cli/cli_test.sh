@@ -229,5 +229,68 @@ if "$cli" render "$tmp/d.obj" --out "$tmp/probe.png" --size 16x16 >/dev/null 2>&
          --size 64x48 --out '$tmp/sprec' >/dev/null 2>&1 && \
          [ \$(ls '$tmp/sprec' | grep -c '^frame_.*png\$') -eq 2 ]"
 fi
+# Hostile files (issue 17). `timeout` turns a hang into a failure (exit 124).
+mkfifo "$tmp/fifo.obj" "$tmp/fifo.png" "$tmp/fifo_out.ply"
+mkdir "$tmp/folder.ply"
+check "a FIFO as input fails at once, naming the file and what it is" bash -c \
+    "timeout 10 '$cli' info '$tmp/fifo.obj' 2> '$tmp/e'; [ \$? -eq 1 ] && \
+     [ \$(wc -l < '$tmp/e') -eq 1 ] && grep -q 'fifo.obj: not a regular file: it is a FIFO' '$tmp/e'"
+check "a device as input fails at once (no gigabytes read from /dev/zero)" bash -c \
+    "timeout 10 '$cli' info /dev/zero 2> '$tmp/e'; [ \$? -eq 1 ] && \
+     grep -q '/dev/zero: not a regular file: it is a character device' '$tmp/e'"
+check "a folder as input is named" bash -c \
+    "timeout 10 '$cli' info '$tmp/folder.ply' 2> '$tmp/e'; [ \$? -eq 1 ] && \
+     grep -q 'folder.ply: not a regular file: it is a directory' '$tmp/e'"
+check "a file larger than the memory allows is refused with its size and the limit" bash -c \
+    "truncate -s 1T '$tmp/huge.obj' && timeout 10 '$cli' info '$tmp/huge.obj' 2> '$tmp/e'; \
+     [ \$? -eq 1 ] && grep -q 'huge.obj: the file is 1099511627776 bytes (1.0 TiB), more than the limit of' '$tmp/e'"
+check "an OBJ with a UTF-8 byte-order mark keeps its first vertex" bash -c \
+    "printf '\\357\\273\\277v -1 -2 -3\\nv 1 0 0\\nv 0 1 0\\nf 1 2 3\\n' > '$tmp/bom.obj' && \
+     '$cli' info '$tmp/bom.obj' --json | grep -q '\"vertices\": 3, .*\"bbox_min\": \\[-1, -2, -3\\]'"
+check "a UTF-16 OBJ is refused naming the encoding" bash -c \
+    "printf '\\377\\376v\\000 \\0000\\000' > '$tmp/u16.obj' && ! '$cli' info '$tmp/u16.obj' 2> '$tmp/e' && \
+     grep -q 'u16.obj:1: the file is UTF-16 little-endian' '$tmp/e'"
+check "a save onto a FIFO is refused at once and the FIFO stays" bash -c \
+    "timeout 10 '$cli' convert '$tmp/d.obj' '$tmp/fifo_out.ply' 2> '$tmp/e'; [ \$? -eq 1 ] && \
+     grep -q 'fifo_out.ply: cannot replace it: it is a FIFO' '$tmp/e' && [ -p '$tmp/fifo_out.ply' ]"
+check "a save through a symbolic link writes the file it points to, the link stays" bash -c \
+    "mkdir -p '$tmp/real' && cp '$tmp/d.obj' '$tmp/real/t.obj' && ln -s real/t.obj '$tmp/link.obj' && \
+     '$cli' generate cube '$tmp/link.obj' && [ -L '$tmp/link.obj' ] && \
+     '$cli' info '$tmp/real/t.obj' --json | grep -q '\"vertices\": 8,' && [ \$(ls -A '$tmp/real' | wc -l) -eq 1 ]"
+check "a read-only target is refused (as root too) and kept" bash -c \
+    "cp '$tmp/d.obj' '$tmp/ro.obj' && chmod 0444 '$tmp/ro.obj' && \
+     ! '$cli' generate cube '$tmp/ro.obj' 2> '$tmp/e' && grep -q 'ro.obj: it is read-only' '$tmp/e' && \
+     cmp -s '$tmp/d.obj' '$tmp/ro.obj'"
+check "a save keeps the target's permissions and leaves no temporary file" bash -c \
+    "cp '$tmp/d.obj' '$tmp/perm.off' && chmod 0640 '$tmp/perm.off' && \
+     '$cli' generate cube '$tmp/perm.off' && [ \$(stat -c %a '$tmp/perm.off') = 640 ] && \
+     ! ls -A '$tmp' | grep -q 'trilab-tmp'"
+printf 'v 0 0 0\nv 1e300 0 0\nv 0 1e300 0\nv 0 0 1e300\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' \
+    > "$tmp/h300.obj"
+check "coordinates beyond float32: PLY writes doubles, binary STL refuses naming the format" \
+    bash -c "'$cli' convert '$tmp/h300.obj' '$tmp/h300.ply' && grep -a -q 'property double x' \
+     '$tmp/h300.ply' && '$cli' info '$tmp/h300.ply' --json | grep -q '\"bbox_max\": \\[1[.0-9]*e+300' && \
+     ! '$cli' convert '$tmp/h300.obj' '$tmp/h300.stl' 2> '$tmp/e' && \
+     grep -q 'binary STL stores float32' '$tmp/e' && [ ! -e '$tmp/h300.stl' ]"
+check "STL refuses a mesh without faces, saying why" bash -c \
+    "! '$cli' convert '$data/good/zero_faces.off' '$tmp/points.stl' 2> '$tmp/e' && \
+     grep -q 'STL holds only triangles and the mesh has no faces' '$tmp/e' && [ ! -e '$tmp/points.stl' ]"
+check "compare works on coordinates of 1e200" bash -c \
+    "sed 's/1e300/1e200/g' '$tmp/h300.obj' > '$tmp/h200.obj' && timeout 60 '$cli' compare \
+     '$tmp/h200.obj' '$tmp/h200.obj' --samples 1000 --json > '$tmp/c.json' && \
+     grep -q '\"diagonal\": 1.73205080756887[0-9]*e+200' '$tmp/c.json' && ! grep -qi 'inf\\|nan' '$tmp/c.json'"
+check "Butterfly refuses a result that overflows, writing nothing" bash -c \
+    "sed 's/1e300/1e308/g' '$tmp/h300.obj' > '$tmp/h308.obj' && \
+     ! '$cli' subdivide --scheme butterfly '$tmp/h308.obj' '$tmp/h308b.obj' 2> '$tmp/e' && \
+     grep -q 'non-finite position' '$tmp/e' && [ ! -e '$tmp/h308b.obj' ]"
+check "render refuses an --out that is not .png" bash -c \
+    "! '$cli' render '$tmp/d.obj' --out '$tmp/x.jpg' 2> '$tmp/e' && \
+     grep -q -- \"--out: '$tmp/x.jpg': only PNG is written\" '$tmp/e' && [ ! -e '$tmp/x.jpg' ]"
+if "$cli" render "$tmp/d.obj" --out "$tmp/probe.png" --size 16x16 >/dev/null 2>&1; then
+    check "a FIFO as a texture fails at once" bash -c \
+        "timeout 20 '$cli' render '$tmp/d.obj' --out '$tmp/t.png' --size 16x16 \
+         --texture '$tmp/fifo.png' 2> '$tmp/e'; [ \$? -eq 1 ] && \
+         grep -q 'fifo.png: not a regular file: it is a FIFO' '$tmp/e' && [ ! -e '$tmp/t.png' ]"
+fi
 echo "cli: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -1,8 +1,7 @@
-// libFuzzer target: the OBJ reader (read_obj_bytes). See tests/fuzz/README.md.
+// libFuzzer target: the OBJ reader (read_obj_bytes), then its writer and reader again. See
+// tests/fuzz/README.md.
 #include "fuzz_common.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    return trilab::fuzz::run_mesh_reader(data, size, [](const std::string& bytes) {
-        return trilab::read_obj_bytes(bytes, "fuzz.obj");
-    });
+    return trilab::fuzz::run_mesh_reader(data, size, "fuzz.obj", trilab::read_obj_bytes);
 }

@@ -1,8 +1,7 @@
-// libFuzzer target: the OM reader (read_om_bytes). See tests/fuzz/README.md.
+// libFuzzer target: the OM reader (read_om_bytes), then its writer and reader again. See
+// tests/fuzz/README.md.
 #include "fuzz_common.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    return trilab::fuzz::run_mesh_reader(data, size, [](const std::string& bytes) {
-        return trilab::read_om_bytes(bytes, "fuzz.om");
-    });
+    return trilab::fuzz::run_mesh_reader(data, size, "fuzz.om", trilab::read_om_bytes);
 }

@@ -1,8 +1,7 @@
-// libFuzzer target: the STL reader (read_stl_bytes). See tests/fuzz/README.md.
+// libFuzzer target: the STL reader (read_stl_bytes), then its writer and reader again. See
+// tests/fuzz/README.md.
 #include "fuzz_common.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    return trilab::fuzz::run_mesh_reader(data, size, [](const std::string& bytes) {
-        return trilab::read_stl_bytes(bytes, "fuzz.stl");
-    });
+    return trilab::fuzz::run_mesh_reader(data, size, "fuzz.stl", trilab::read_stl_bytes);
 }

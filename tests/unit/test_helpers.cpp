@@ -6,9 +6,19 @@
 #include "core/errors.h"
 #include "core/generators.h"
 #include "core/geometry.h"
+#include "core/io/file_util.h"
 #include "core/io/mesh_io.h"
 
 namespace trilab::test {
+
+namespace {
+// The tests save hundreds of small files: no fsync for each (about 7 ms on this disk).
+// test_no_data_loss.cpp turns it on where the synced path itself is tested.
+[[maybe_unused]] const bool kNoSyncedSaves = [] {
+    set_sync_saves(false);
+    return true;
+}();
+}  // namespace
 
 HalfedgeMesh attributed_sphere() {
     HalfedgeMesh m = make_icosphere(3);

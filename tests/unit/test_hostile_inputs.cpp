@@ -7,16 +7,25 @@
 #include <sys/stat.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "app/ops/operation.h"
 #include "core/errors.h"
+#include "core/generators.h"
+#include "core/geometry.h"
+#include "core/io/file_util.h"
+#include "core/io/image_io.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh_builder.h"
+#include "core/mesh_distance.h"
+#include "core/platform.h"
 #include "test_helpers.h"
 
 using namespace trilab;
@@ -89,6 +98,12 @@ std::vector<Hostile> hostile_meshes() {
         }
         h.push_back({"huge and tiny together", soup_of(p, f)});
     }
+    h.push_back(
+        {"coordinates near the largest double (1e300)", soup_of(scaled(kTet, 1e300), kTetFaces)});
+    h.push_back(
+        {"coordinates near the largest double (1e308)", soup_of(scaled(kTet, 1e308), kTetFaces)});
+    h.push_back({"coordinates near the smallest double (1e-300)",
+                 soup_of(scaled(kTet, 1e-300), kTetFaces)});
     h.push_back({"single triangle",
                  soup_of({Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0)}, {{0, 1, 2}})});
     h.push_back({"isolated vertices only", soup_of({Point(0, 0, 0), Point(1, 2, 3)}, {})});
@@ -227,4 +242,274 @@ TEST_CASE("an OBJ whose material library is a device, a FIFO or a folder loads w
             noted = noted || note.find("material library " + lib) != std::string::npos;
         CHECK(noted);
     }
+}
+
+// ---- opening: only regular files, within a size limit --------------------------------------
+
+namespace {
+
+void write_file(const std::string& path, const std::string& bytes) {
+    std::ofstream out(path, std::ios::binary);
+    out.write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+/// The IoError of `read` (which must throw one naming `path`).
+template <class F>
+IoError read_failure(const std::string& path, F&& read) {
+    try {
+        read();
+    } catch (const IoError& e) {
+        CHECK(e.file() == path);
+        return e;
+    }
+    FAIL("no IoError for " << path);
+    return IoError(path, 0, "");
+}
+
+}  // namespace
+
+TEST_CASE("only regular files are opened: FIFOs, devices, folders and sockets are named",
+          "[hostile][io][open]") {
+    TempDir dir;
+    // A FIFO without a writer: opening it for reading would block forever.
+    REQUIRE(mkfifo(dir.path("fifo.obj").c_str(), 0600) == 0);
+    REQUIRE(mkfifo(dir.path("fifo.png").c_str(), 0600) == 0);
+    std::filesystem::create_directory(dir.path("folder.ply"));
+    std::filesystem::create_symlink("/dev/zero", dir.path("zero.stl"));
+    std::filesystem::create_symlink("/dev/urandom", dir.path("random.om"));
+    struct Case {
+        std::string path, what;
+    };
+    for (const Case& c : {Case{dir.path("fifo.obj"), "a FIFO (named pipe)"},
+                          Case{dir.path("folder.ply"), "a directory"},
+                          Case{dir.path("zero.stl"), "a character device"},
+                          Case{dir.path("random.om"), "a character device"},
+                          Case{"/dev/zero", "a character device"}}) {
+        INFO(c.path);
+        const IoError e = read_failure(c.path, [&] { read_mesh(c.path); });
+        CHECK(e.reason() ==
+              "not a regular file: it is " + c.what + " (only regular files are read)");
+    }
+    // Texture images take the same path.
+    const IoError e = read_failure(dir.path("fifo.png"), [&] { read_image(dir.path("fifo.png")); });
+    CHECK(e.reason().find("a FIFO") != std::string::npos);
+    // A missing file says so.
+    CHECK(read_failure(dir.path("missing.obj"), [&] {
+              read_mesh(dir.path("missing.obj"));
+          }).reason() == "cannot open: No such file or directory");
+}
+
+TEST_CASE("reading stops at the size limit, naming the file's size and the limit",
+          "[hostile][io][open]") {
+    TempDir dir;
+    const std::uint64_t limit = max_readable_file_bytes();
+    REQUIRE(limit > (std::uint64_t(1) << 20));
+    REQUIRE(limit <= available_memory_bytes());
+
+    // A 1 TiB sparse file is refused before a byte is read.
+    const std::string big = dir.path("big.obj");
+    write_file(big, "v 0 0 0\n");
+    std::filesystem::resize_file(big, std::uint64_t(1) << 40);
+    IoError e = read_failure(big, [&] { read_mesh(big); });
+    CHECK(e.reason().find("1099511627776 bytes (1.0 TiB)") != std::string::npos);
+    CHECK(e.reason().find("more than the limit of " + std::to_string(limit / 1024 / 1024)) ==
+          std::string::npos);  // the limit is printed in bytes first
+    CHECK(e.reason().find("half the memory available") != std::string::npos);
+
+    // An explicit limit.
+    const std::string small = dir.path("small.txt");
+    write_file(small, std::string(200, 'x'));
+    CHECK(read_file_bytes(small, 200).size() == 200);
+    e = read_failure(small, [&] { read_file_bytes(small, 100); });
+    CHECK(e.reason() == "the file is 200 bytes, more than the limit of 100 bytes");
+
+    // Files whose size is unknown in advance (/proc) are read to their end, within the limit.
+    const std::string status = read_file_bytes("/proc/self/status");
+    CHECK(status.find("Name:") != std::string::npos);
+    e = read_failure("/proc/self/status", [&] { read_file_bytes("/proc/self/status", 10); });
+    CHECK_THAT(e.reason(), Catch::Matchers::StartsWith("the file is at least ") &&
+                               Catch::Matchers::EndsWith(", more than the limit of 10 bytes"));
+}
+
+// ---- non-finite values: every reader refuses them in every attribute -----------------------
+
+namespace {
+
+std::string binary_ply(const std::string& vertex_properties, const std::string& face_properties,
+                       const std::vector<std::vector<double>>& vertices, bool double_values,
+                       const std::vector<std::vector<double>>& face_uv = {}) {
+    std::string h = "ply\nformat binary_little_endian 1.0\nelement vertex " +
+                    std::to_string(vertices.size()) + "\n" + vertex_properties +
+                    "element face 1\nproperty list uchar int vertex_indices\n" + face_properties +
+                    "end_header\n";
+    auto put = [&](auto v) { h.append(reinterpret_cast<const char*>(&v), sizeof(v)); };
+    for (const auto& row : vertices)
+        for (double v : row) double_values ? put(v) : put(float(v));
+    put(std::uint8_t(3));
+    for (std::int32_t i : {0, 1, 2}) put(i);
+    for (const auto& uv : face_uv) {
+        put(std::uint8_t(uv.size()));
+        for (double v : uv) put(float(v));
+    }
+    return h;
+}
+
+}  // namespace
+
+TEST_CASE("every reader refuses NaN and infinity in every attribute, naming where",
+          "[hostile][io][nonfinite]") {
+    TempDir dir;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double inf = std::numeric_limits<double>::infinity();
+    struct TextCase {
+        std::string file, text;
+        std::size_t line;
+        std::string attribute;
+    };
+    // Text formats: the line and the attribute.
+    const std::vector<TextCase> text_cases = {
+        {"p.obj", "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n", 2, "(position)"},
+        {"n.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 inf\nf 1//1 2//1 3//1\n", 4, "(normal)"},
+        {"t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt -inf 0\nf 1/1 2/1 3/1\n", 4,
+         "(texture coordinate)"},
+        {"n.off", "NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 nan 0 1\n0 1 0 0 0 1\n3 0 1 2\n", 4,
+         "(normal x)"},
+        {"c.off", "COFF\n3 1 0\n0 0 0 1 0 0 1\n1 0 0 nan 0 0 1\n0 1 0 1 0 0 1\n3 0 1 2\n", 4,
+         "(colour)"},
+        {"t.off", "STOFF\n3 1 0\n0 0 0 0 0\n1 0 0 0 inf\n0 1 0 0 0\n3 0 1 2\n", 4,
+         "(texture coordinate)"},
+        {"n.ply",
+         "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+         "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+         "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+         "0 0 0 0 0 1\n1 0 0 0 nan 1\n0 1 0 0 0 1\n3 0 1 2\n",
+         14, "(property 'ny')"},
+        {"c.ply",
+         "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+         "property float z\nproperty float red\nproperty float green\nproperty float blue\n"
+         "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+         "0 0 0 1 1 1\n1 0 0 1 1 1\n0 1 0 inf 1 1\n3 0 1 2\n",
+         15, "(property 'red')"},
+        {"t.ply",
+         "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+         "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+         "property list uchar float texcoord\nend_header\n"
+         "0 0 0\n1 0 0\n0 1 0\n3 0 1 2 6 0 0 1 0 nan 1\n",
+         14, "(a texture coordinate)"},
+        {"p.stl",
+         "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 inf\nvertex 0 1 0\n"
+         "endloop\nendfacet\nendsolid s\n",
+         5, "(a vertex coordinate)"},
+    };
+    for (const TextCase& c : text_cases) {
+        INFO(c.file);
+        const std::string path = dir.path(c.file);
+        write_file(path, c.text);
+        const IoError e = read_failure(path, [&] { read_mesh(path); });
+        CHECK(e.line() == c.line);
+        CHECK(e.reason().find("is not a finite number " + c.attribute) != std::string::npos);
+    }
+
+    // Binary formats: the element and the attribute, in the same words everywhere.
+    const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
+    const std::string dxyz = "property double x\nproperty double y\nproperty double z\n";
+    struct BinaryCase {
+        std::string file, bytes, reason;
+    };
+    std::vector<BinaryCase> binary_cases = {
+        {"p.ply", binary_ply(dxyz, "", {{0, 0, 0}, {1, inf, 0}, {0, 1, 0}}, true),
+         "vertex 1: non-finite position (1 inf 0)"},
+        {"n.ply",
+         binary_ply(xyz + "property float nx\nproperty float ny\nproperty float nz\n", "",
+                    {{0, 0, 0, 0, 0, 1}, {1, 0, 0, 0, 0, 1}, {0, 1, 0, nan, 0, 1}}, false),
+         "vertex 2: non-finite normal (nan 0 1)"},
+        {"c.ply",
+         binary_ply(xyz + "property float red\nproperty float green\nproperty float blue\n", "",
+                    {{0, 0, 0, 1, 1, 1}, {1, 0, 0, 1, nan, 1}, {0, 1, 0, 1, 1, 1}}, false),
+         "vertex 1: non-finite colour (1 nan 1)"},
+        {"t.ply",
+         binary_ply(xyz + "property float u\nproperty float v\n", "",
+                    {{0, 0, 0, 0, 0}, {1, 0, 0, -inf, 0}, {0, 1, 0, 0, 1}}, false),
+         "vertex 1: non-finite texture coordinate (-inf 0)"},
+        {"ct.ply",
+         binary_ply(xyz, "property list uchar float texcoord\n", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}},
+                    false, {{0, 0, 1, nan, 0, 1}}),
+         "face corner 1: non-finite texture coordinate (1 nan)"},
+    };
+    {
+        // Binary STL: 80-byte header, count, one facet whose second corner has a NaN.
+        std::string stl(80, ' ');
+        auto put = [&](auto v) { stl.append(reinterpret_cast<const char*>(&v), sizeof(v)); };
+        put(std::uint32_t(1));
+        for (float v : {0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, float(nan), 0.f, 0.f, 1.f, 0.f}) put(v);
+        put(std::uint16_t(0));
+        binary_cases.push_back(
+            {"p.stl", stl, "triangle 0, corner 1: non-finite position (NaN or infinity)"});
+    }
+    {
+        // .om: a tetrahedron with normals and texture coordinates, then one value broken.
+        HalfedgeMesh tet = make_tetrahedron();
+        compute_vertex_normals(tet);
+        auto uv = tet.vertex_property<TexCoord>("v:texcoord");
+        for (Vertex v : tet.vertices()) uv[v] = TexCoord(0.25 * v.idx(), 0.5);
+        const std::string om = write_mesh_bytes(tet, "t.om");
+        const std::size_t nv = tet.n_vertices();
+        const std::size_t positions = 16 + 2, normals = positions + 24 * nv + 2,
+                          texcoords = normals + 24 * nv + 2;
+        auto broken = [&](std::size_t offset, auto value) {
+            std::string b = om;
+            std::memcpy(&b[offset], &value, sizeof(value));
+            return b;
+        };
+        binary_cases.push_back(
+            {"p.om", broken(positions + 24 * 2 + 8, inf), "vertex 2: non-finite position"});
+        binary_cases.push_back(
+            {"n.om", broken(normals + 24 * 1, nan), "vertex 1: non-finite normal (nan"});
+        binary_cases.push_back({"t.om", broken(texcoords + 8 * 3 + 4, float(inf)),
+                                "vertex 3: non-finite texture coordinate (0.75 inf)"});
+    }
+    for (const BinaryCase& c : binary_cases) {
+        INFO(c.file);
+        const std::string path = dir.path(c.file);
+        write_file(path, c.bytes);
+        const IoError e = read_failure(path, [&] { read_mesh(path); });
+        CHECK(e.line() == 0);
+        CHECK(e.reason().rfind(c.reason, 0) == 0);
+    }
+}
+
+TEST_CASE("compare works on finite coordinates near the ends of double's range",
+          "[hostile][distance]") {
+    // The same two shapes at scale 1 and near the ends of double's range: the distances
+    // scale with them (at 1e200 the areas overflow double unless the measurement scales the
+    // meshes back). Power-of-two scales change no rounding: the results are the same to the
+    // bit; decimal ones round differently, so a sample or two may move.
+    HalfedgeMesh a = make_icosphere(2), b = make_icosphere(2);
+    for (Point& p : b.positions()) p *= 1.25;
+    MeshDistanceOptions options;
+    options.samples = 5000;
+    const MeshDistance unit = mesh_distance(a, b, options);
+    REQUIRE(unit.hausdorff > 0.2);
+    for (const double scale : {0x1p660, 0x1p-660, 0x1p1000, 1e200, 1e-200, 1e300}) {
+        INFO("scale " << scale);
+        HalfedgeMesh sa = a, sb = b;
+        for (Point& p : sa.positions()) p *= scale;
+        for (Point& p : sb.positions()) p *= scale;
+        const MeshDistance d = mesh_distance(sa, sb, options);
+        if (std::exp2(std::round(std::log2(scale))) == scale) {
+            CHECK(d.samples == unit.samples);
+            CHECK(d.hausdorff / scale == unit.hausdorff);
+            CHECK(d.rms / scale == unit.rms);
+        } else {
+            CHECK(std::abs(double(d.samples) - double(unit.samples)) <= 2);
+            CHECK(d.hausdorff / scale == Approx(unit.hausdorff).epsilon(1e-3));
+            CHECK(d.rms / scale == Approx(unit.rms).epsilon(1e-3));
+        }
+        CHECK(d.diagonal / scale == Approx(unit.diagonal).epsilon(1e-12));
+    }
+    // Distances beyond the largest double are refused, not returned as infinity.
+    HalfedgeMesh far = a, near = a;
+    for (Point& p : far.positions()) p = p * 1e300 + Point(1.5e308, 0, 0);
+    for (Point& p : near.positions()) p = p * 1e300 - Point(1.5e308, 0, 0);
+    CHECK_THROWS_AS(mesh_distance(far, near, options), InvalidArgument);
 }

@@ -2,11 +2,13 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <utility>
 
 #include "core/errors.h"
 #include "core/generators.h"
 #include "core/geometry.h"
 #include "core/io/file_util.h"
+#include "core/io/image_io.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh_stats.h"
 #include "test_helpers.h"
@@ -314,5 +316,146 @@ TEST_CASE("texture coordinates survive every format that can carry them", "[io][
             for (std::size_t i = 0; i < corners.size(); ++i)
                 REQUIRE((corners[i] - back_corners[i]).norm() < 1e-6);
         }
+    }
+}
+
+// ---- byte-order marks ----------------------------------------------------------------------
+
+namespace {
+
+const std::string kUtf8Bom = "\xEF\xBB\xBF";
+
+/// `text` as UTF-16 with a byte-order mark (ASCII only).
+std::string utf16(const std::string& text, bool little_endian) {
+    std::string out = little_endian ? std::string("\xFF\xFE") : std::string("\xFE\xFF");
+    for (char c : text) {
+        if (little_endian) {
+            out += c;
+            out += '\0';
+        } else {
+            out += '\0';
+            out += c;
+        }
+    }
+    return out;
+}
+
+std::string file_text(const std::string& path) {
+    return read_file_bytes(path);
+}
+
+}  // namespace
+
+TEST_CASE("text formats skip a UTF-8 byte-order mark and keep every vertex", "[io][bom]") {
+    // Every text format, with and without the mark: the same mesh, the first vertex kept and
+    // the indices unshifted (an OBJ used to lose its first vertex).
+    const HalfedgeMesh source = attributed_sphere();
+    struct Format {
+        const char* name;
+        bool ascii;
+    };
+    for (const Format& f : {Format{"m.obj", false}, Format{"m.off", false}, Format{"m.ply", true},
+                            Format{"m.stl", true}}) {
+        INFO(f.name);
+        WriteOptions options;
+        options.ascii = f.ascii;
+        const std::string text = write_mesh_bytes(source, f.name, options);
+        const LoadedMesh plain = [&] {
+            const std::string ext = file_extension(f.name);
+            if (ext == "obj") return read_obj_bytes(text, f.name);
+            if (ext == "off") return read_off_bytes(text, f.name);
+            if (ext == "ply") return read_ply_bytes(text, f.name);
+            return read_stl_bytes(text, f.name);
+        }();
+        TempDir dir;
+        const std::string path = dir.path(f.name);
+        {
+            std::ofstream out(path, std::ios::binary);
+            out << kUtf8Bom << text;
+        }
+        const LoadedMesh with_bom = read_mesh(path);
+        REQUIRE_VALID(with_bom.mesh);
+        require_same_mesh(plain.mesh, with_bom.mesh);
+        CHECK(with_bom.report.lines() == plain.report.lines());
+    }
+    // The OBJ of the issue: three vertices, one face, a mark in front.
+    const LoadedMesh obj =
+        read_obj_bytes(kUtf8Bom + "v 1 2 3\nv 4 5 6\nv 7 8 10\nf 1 2 3\n", "bom.obj");
+    REQUIRE(obj.mesh.n_vertices() == 3);
+    CHECK(obj.mesh.position(Vertex(0)) == Point(1, 2, 3));
+    CHECK(obj.mesh.n_faces() == 1);
+    // A binary PLY may carry the mark before its header, too.
+    const std::string binary = write_mesh_bytes(source, "b.ply");
+    require_same_mesh(read_ply_bytes(kUtf8Bom + binary, "b.ply").mesh,
+                      read_ply_bytes(binary, "b.ply").mesh);
+    // A binary STL is recognised by its size first: its 80-byte header may hold anything,
+    // the mark included.
+    std::string stl = write_mesh_bytes(source, "b.stl");
+    stl.replace(0, 3, kUtf8Bom);
+    CHECK(read_stl_bytes(stl, "b.stl").mesh.n_faces() == source.n_faces());
+}
+
+TEST_CASE("a material library with a byte-order mark gives its texture", "[io][bom][obj]") {
+    TempDir dir;
+    {
+        std::ofstream mtl(dir.path("m.mtl"), std::ios::binary);
+        mtl << kUtf8Bom << "newmtl skin\nmap_Kd skin.png\n";
+        std::ofstream obj(dir.path("m.obj"), std::ios::binary);
+        obj << kUtf8Bom << "mtllib m.mtl\nusemtl skin\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    }
+    const LoadedMesh l = read_mesh(dir.path("m.obj"));
+    CHECK(l.texture_path == dir.path("skin.png"));
+}
+
+TEST_CASE("text formats refuse UTF-16 and UTF-32 with a clear message", "[io][bom]") {
+    const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    const std::string off = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    const std::string ply =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+        "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    const std::string stl =
+        "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+        "endloop\nendfacet\nendsolid s\n";
+    TempDir dir;
+    for (const bool little : {true, false}) {
+        for (const auto& [name, text] : {std::pair<std::string, std::string>{"m.obj", obj},
+                                         {"m.off", off},
+                                         {"m.ply", ply},
+                                         {"m.stl", stl}}) {
+            INFO(name << (little ? " UTF-16LE" : " UTF-16BE"));
+            const std::string path = dir.path(name);
+            {
+                std::ofstream out(path, std::ios::binary);
+                out << utf16(text, little);
+            }
+            try {
+                read_mesh(path);
+                FAIL("no error");
+            } catch (const IoError& e) {
+                CHECK(e.file() == path);
+                CHECK(e.line() == 1);
+                CHECK(e.reason() == std::string("the file is UTF-16 ") +
+                                        (little ? "little-endian (byte-order mark FF FE)"
+                                                : "big-endian (byte-order mark FE FF)") +
+                                        " text, which is not supported; save it as UTF-8 or ASCII");
+            }
+        }
+    }
+    CHECK_THROWS_WITH(read_obj_bytes(std::string("\xFF\xFE\0\0", 4) + "v", "u32.obj"),
+                      Contains("UTF-32 little-endian"));
+}
+
+TEST_CASE("text images skip a UTF-8 byte-order mark and refuse UTF-16", "[io][bom][image]") {
+    for (const char* name :
+         {"bits_4x3.xbm", "rgba_4x3.xpm", "gray_p2.pgm", "rgb_p3.ppm", "bits_p1.pbm"}) {
+        INFO(name);
+        const std::string text = file_text(data_file(std::string("images/") + name));
+        const Image plain = read_image_bytes(text, name);
+        const Image with_bom = read_image_bytes(kUtf8Bom + text, name);
+        CHECK(with_bom.width == plain.width);
+        CHECK(with_bom.height == plain.height);
+        CHECK(with_bom.rgba == plain.rgba);
+        CHECK_THROWS_WITH(read_image_bytes(utf16(text, true), name), Contains("UTF-16"));
     }
 }

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -16,6 +17,7 @@
 #include "core/geometry.h"
 #include "core/io/file_util.h"
 #include "core/io/mesh_io.h"
+#include "core/mesh_builder.h"
 #include "test_helpers.h"
 
 using namespace trilab;
@@ -623,4 +625,244 @@ TEST_CASE("write_ply and write_stl into a missing folder throw IoError", "[ply][
         REQUIRE_THROWS_AS(write_stl(m, dir.path("missing/folder/m.stl"), o), IoError);
     }
     REQUIRE_THROWS_WITH(write_mesh(m, dir.path("missing/m.stl")), Contains("missing/m.stl"));
+}
+
+// ---- values out of their type's range, non-integral indices ---------------------------------
+
+namespace {
+
+/// A one-triangle PLY whose third vertex carries `type name` = `value` (ascii) after x y z.
+std::string ply_with_value(const std::string& encoding, const std::string& type,
+                           const std::string& name, double value) {
+    PlyBuilder b(encoding);
+    b.header("element vertex 3\nproperty float x\nproperty float y\nproperty float z\nproperty " +
+             type + " " + name + "\nelement face 1\nproperty list uchar int vertex_indices\n");
+    b.val("float", 0).val("float", 0).val("float", 0).val(type, 0).end_row();
+    b.val("float", 1).val("float", 0).val("float", 0).val(type, 0).end_row();
+    b.val("float", 0).val("float", 1).val("float", 0).val(type, value).end_row();
+    b.list("uchar", "int", {0, 1, 2}).end_row();
+    return b.bytes();
+}
+
+}  // namespace
+
+TEST_CASE("ASCII PLY refuses values outside their declared type", "[ply][range]") {
+    struct Case {
+        std::string type, name;
+        double value;
+        std::string reason;
+    };
+    const Case bad[] = {
+        {"uchar", "red", 300, "property 'red': 300 is out of range for type uchar (0 to 255)"},
+        {"uchar", "red", -1, "property 'red': -1 is out of range for type uchar (0 to 255)"},
+        {"char", "quality", -129,
+         "property 'quality': -129 is out of range for type char (-128 to 127)"},
+        {"ushort", "id", 70000,
+         "property 'id': 70000 is out of range for type ushort (0 to 65535)"},
+        {"int", "id", 2.5, "property 'id': 2.5 is not a whole number, as type int requires"},
+        {"uint", "id", 4294967296.0,
+         "property 'id': 4294967296 is out of range for type uint (0 to 4294967295)"},
+        {"float", "nx", 1e39,
+         "property 'nx': 1e+39 is out of range for type float (at most 3.4e38 "
+         "in magnitude)"},
+    };
+    for (const Case& c : bad) {
+        INFO(c.type << " " << c.value);
+        const std::string msg = [&] {
+            try {
+                read_ply_bytes(ply_with_value("ascii", c.type, c.name, c.value), "r.ply");
+            } catch (const IoError& e) {
+                CHECK(e.line() == 14);  // the third vertex row
+                return e.reason();
+            }
+            return std::string();
+        }();
+        CHECK(msg == c.reason);
+    }
+    // The extremes themselves are fine, used or skipped.
+    for (const Case& c : {Case{"uchar", "red", 255, ""}, Case{"char", "quality", -128, ""},
+                          Case{"double", "nx", 1e300, ""}, Case{"float", "s", 3.4e38, ""}}) {
+        INFO(c.type << " " << c.value);
+        CHECK(read_ply_bytes(ply_with_value("ascii", c.type, c.name, c.value), "r.ply")
+                  .mesh.n_faces() == 1);
+    }
+    // List lengths and indices are whole numbers in their type's range too.
+    PlyBuilder b("ascii");
+    b.header(
+        "element vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face "
+        "1\nproperty list uchar float vertex_indices\n");
+    b.val("float", 0).val("float", 0).val("float", 0).end_row();
+    b.val("float", 1).val("float", 0).val("float", 0).end_row();
+    b.val("float", 0).val("float", 1).val("float", 0).end_row();
+    b.list("uchar", "float", {0, 1.5, 2}).end_row();
+    CHECK_THROWS_WITH(read_ply_bytes(b.bytes(), "i.ply"),
+                      Contains("i.ply:14: a vertex index: 1.5 is not a whole number"));
+}
+
+TEST_CASE("binary PLY refuses float vertex indices that are not whole numbers", "[ply][range]") {
+    for (const char* enc : {"binary_little_endian", "binary_big_endian"}) {
+        for (const char* type : {"float", "double"}) {
+            INFO(enc << " " << type);
+            auto ply = [&](double index) {
+                PlyBuilder b(enc);
+                b.header(std::string("element vertex 3\nproperty float x\nproperty float y\n"
+                                     "property float z\nelement face 2\nproperty list uchar ") +
+                         type + " vertex_indices\n");
+                b.val("float", 0).val("float", 0).val("float", 0);
+                b.val("float", 1).val("float", 0).val("float", 0);
+                b.val("float", 0).val("float", 1).val("float", 0);
+                b.list("uchar", type, {0, 1, 2}).list("uchar", type, {0, index, 1});
+                return b.bytes();
+            };
+            // 2.0 is a whole number: a second face (a detached duplicate)
+            CHECK(read_ply_bytes(ply(2.0), "f.ply").mesh.n_faces() == 2);
+            CHECK_THROWS_WITH(read_ply_bytes(ply(2.5), "f.ply"),
+                              Contains("f.ply: face 1: vertex index 2.5 is not a whole number"));
+            CHECK_THROWS_WITH(read_ply_bytes(ply(std::nan("")), "f.ply"),
+                              Contains("face 1: vertex index nan is not a whole number"));
+        }
+    }
+}
+
+// ---- writers never write what their readers refuse ------------------------------------------
+
+namespace {
+
+/// A tetrahedron scaled by `s`, with normals, colours and texture coordinates.
+HalfedgeMesh attributed_tetrahedron(double s = 1) {
+    HalfedgeMesh m = make_tetrahedron();
+    for (Point& p : m.positions()) p *= s;
+    auto n = m.vertex_property<Vector3>("v:normal");
+    auto c = m.vertex_property<Color>("v:color");
+    auto uv = m.vertex_property<TexCoord>("v:texcoord");
+    for (Vertex v : m.vertices()) {
+        n[v] = m.position(v).normalized();
+        c[v] = Color(0.25f, 0.5f, 1.0f);
+        uv[v] = TexCoord(0.1 * v.idx(), 0.5);
+    }
+    return m;
+}
+
+/// The reason of the IoError writing `mesh` to `name` throws ("" when none).
+std::string write_refusal(const HalfedgeMesh& mesh, const std::string& name,
+                          const WriteOptions& options = {}) {
+    try {
+        write_mesh_bytes(mesh, name, options);
+    } catch (const IoError& e) {
+        CHECK(e.file() == name);
+        return e.reason();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST_CASE("writers refuse non-finite values in what they write", "[ply][stl][io][nonfinite]") {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const char* const formats[] = {"m.obj", "m.off", "m.ply", "m.stl", "m.om"};
+    for (const char* name : formats) {
+        INFO(name);
+        HalfedgeMesh m = attributed_tetrahedron();
+        m.position(Vertex(2)) = Point(0, std::numeric_limits<double>::infinity(), 0);
+        CHECK(write_refusal(m, name).find("vertex 2: non-finite position") == 0);
+        CHECK(write_refusal(m, name).find("not written") != std::string::npos);
+    }
+    struct Attribute {
+        const char* name;
+        std::function<void(HalfedgeMesh&)> spoil;
+        const char* reason;
+        std::vector<std::string> carriers;  // the formats that write it
+    };
+    const Attribute attributes[] = {
+        {"normal",
+         [&](HalfedgeMesh& m) { m.vertex_property<Vector3>("v:normal")[Vertex(1)].x() = nan; },
+         "vertex 1: non-finite normal",
+         {"m.obj", "m.off", "m.ply", "m.om"}},
+        {"colour",
+         [&](HalfedgeMesh& m) { m.vertex_property<Color>("v:color")[Vertex(3)].y() = NAN; },
+         "vertex 3: non-finite colour",
+         {"m.off", "m.ply", "m.om"}},
+        {"texcoord",
+         [&](HalfedgeMesh& m) { m.vertex_property<TexCoord>("v:texcoord")[Vertex(0)].y() = nan; },
+         "vertex 0: non-finite texture coordinate",
+         {"m.obj", "m.off", "m.ply", "m.om"}},
+    };
+    for (const Attribute& a : attributes) {
+        HalfedgeMesh m = attributed_tetrahedron();
+        a.spoil(m);
+        for (const char* name : formats) {
+            INFO(a.name << " " << name);
+            const bool carried =
+                std::find(a.carriers.begin(), a.carriers.end(), name) != a.carriers.end();
+            if (carried)
+                CHECK(write_refusal(m, name).find(a.reason) == 0);
+            else
+                CHECK(write_refusal(m, name).empty());  // not written, so not refused
+        }
+        // Switched off, the attribute is not written and not refused.
+        WriteOptions off;
+        off.write_normals = off.write_colors = off.write_texcoords = false;
+        for (const char* name : formats) CHECK(write_refusal(m, name, off).empty());
+    }
+}
+
+TEST_CASE("values float32 cannot hold: PLY writes doubles, binary STL and .om refuse",
+          "[ply][stl][om][range]") {
+    for (const double scale : {1e300, 1e-35, 1e39}) {
+        INFO("scale " << scale);
+        const HalfedgeMesh m = attributed_tetrahedron(scale);
+        for (const bool ascii : {false, true}) {
+            WriteOptions options;
+            options.ascii = ascii;
+            const std::string ply = write_mesh_bytes(m, "m.ply", options);
+            CHECK(ply.find("property double x\nproperty double y\nproperty double z\n") !=
+                  std::string::npos);
+            CHECK(ply.find("property float nx") != std::string::npos);  // unit normals fit
+            const LoadedMesh back = read_ply_bytes(ply, "m.ply");
+            require_same_mesh(m, back.mesh, 0.0);  // doubles: exact
+        }
+        // Binary STL: float32 only.
+        const std::string reason = write_refusal(m, "m.stl");
+        CHECK(reason.find("binary STL stores float32 coordinates") == 0);
+        CHECK(reason.find("--ascii") != std::string::npos);
+        // ASCII STL: shortest decimals of the doubles, exact.
+        WriteOptions ascii;
+        ascii.ascii = true;
+        require_same_faces(m, read_stl_bytes(write_mesh_bytes(m, "a.stl", ascii), "a.stl").mesh,
+                           0.0);
+    }
+    // Ordinary values stay float32.
+    CHECK(write_mesh_bytes(attributed_tetrahedron(), "m.ply").find("property float x") !=
+          std::string::npos);
+    // Normals and texture coordinates too big for float: doubles in PLY, refused by .om
+    // (texture coordinates; its normals are doubles already).
+    HalfedgeMesh m = attributed_tetrahedron();
+    m.vertex_property<Vector3>("v:normal")[Vertex(0)] = Vector3(1e300, 0, 0);
+    m.vertex_property<TexCoord>("v:texcoord")[Vertex(1)] = TexCoord(1e40, 0);
+    const std::string ply = write_mesh_bytes(m, "m.ply");
+    CHECK(ply.find("property double nx") != std::string::npos);
+    CHECK(ply.find("property double u") != std::string::npos);
+    const LoadedMesh back = read_ply_bytes(ply, "m.ply");
+    CHECK(back.mesh.get_vertex_property<Vector3>("v:normal")[Vertex(0)] == Vector3(1e300, 0, 0));
+    CHECK(back.mesh.get_vertex_property<TexCoord>("v:texcoord")[Vertex(1)] == TexCoord(1e40, 0));
+    CHECK(write_refusal(m, "m.om").find(".om stores texture coordinates as float32") == 0);
+    CHECK(read_om_bytes(write_mesh_bytes(attributed_tetrahedron(1e300), "m.om"), "m.om")
+              .mesh.position(Vertex(1)) == attributed_tetrahedron(1e300).position(Vertex(1)));
+}
+
+TEST_CASE("STL refuses a mesh without faces, saying why", "[stl]") {
+    PolygonSoup soup;
+    soup.positions = {Point(0, 0, 0), Point(1, 2, 3)};
+    LoadReport report;
+    const HalfedgeMesh points = build_mesh(soup, report);
+    for (const bool ascii : {false, true}) {
+        WriteOptions options;
+        options.ascii = ascii;
+        CHECK(write_refusal(points, "p.stl", options) ==
+              "STL holds only triangles and the mesh has no faces (2 vertices): not written; use "
+              "OBJ, OFF, PLY or .om for points");
+    }
+    TempDir dir;
+    CHECK_THROWS_AS(write_mesh(points, dir.path("p.stl")), IoError);
+    CHECK_FALSE(exists(dir.path("p.stl")));
 }
