@@ -876,9 +876,10 @@ SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& 
         check_no_pillows(*current, it);
         Stage stage{progress, (it - 1) * span, span};
         stage.report(0);
-        SubdivisionLevel level =
-            sqrt3 ? refine_sqrt3(*current, it % 2 == 0, it, options.morph, stage)
-                  : refine_1to4(*current, options.scheme, it, options.morph, stage);
+        // Morph start positions only for the levels returned.
+        const bool morph = options.morph && (options.keep_levels || it == options.iterations);
+        SubdivisionLevel level = sqrt3 ? refine_sqrt3(*current, it % 2 == 0, it, morph, stage)
+                                       : refine_1to4(*current, options.scheme, it, morph, stage);
         if (options.keep_levels) {
             result.levels.push_back(std::move(level));  // reserved: `current` stays valid
             current = &result.levels.back().mesh;

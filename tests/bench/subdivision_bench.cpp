@@ -10,9 +10,10 @@
 // building the input are not timed. Each scheme is timed two ways, each a single subdivide()
 // call: "core" as trilab-cli calls it (keep_levels and morph off: the refined mesh only) and
 // "+morph" as the viewer calls it (the level with its morph correspondence). One untimed
-// warm-up step per mesh comes first, and the runs of trilab and OpenMesh alternate, so that a
-// change of the machine's load hits both. The machine should be otherwise idle: the figures
-// are wall-clock times (--cpu-time measures the thread's CPU time instead, for a busy machine).
+// warm-up step per mesh comes first, and the runs of trilab and OpenMesh alternate (the two
+// trilab calls in turn first), so that a change of the machine's load hits all of them. The
+// machine should be otherwise idle: the figures are wall-clock times (--cpu-time measures the
+// thread's CPU time instead, for a busy machine).
 //
 // The OpenMesh comparison (issue 14's floor: trilab at least 2x faster than OpenMesh 9's
 // uniform subdividers through the CLI; the core alone at least 2.4x on the 1.1M-face mesh, to
@@ -204,8 +205,10 @@ void bench_mesh(const std::string& label, bool large, const HalfedgeMesh& mesh, 
 #endif
         try {
             for (int i = 0; i < runs; ++i) {
-                t_core.push_back(time_subdivide(mesh, core, ours));
+                // Alternating which trilab call follows OpenMesh's run (and its heap use).
+                if (i % 2 == 0) t_core.push_back(time_subdivide(mesh, core, ours));
                 t_morph.push_back(time_subdivide(mesh, viewer, with_morph));
+                if (i % 2 == 1) t_core.push_back(time_subdivide(mesh, core, ours));
 #ifdef TRILAB_HAS_OPENMESH
                 t_om.push_back(om_float ? om_single->run(scheme, theirs)
                                         : om_double->run(scheme, theirs));
