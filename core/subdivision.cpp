@@ -888,6 +888,7 @@ SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& 
             current = &latest.mesh;
         }
         check_finite_level(*current, options.scheme, it);
+        result.level_counts.push_back({current->n_vertices(), current->n_faces()});
         if (it == 1) collected.clear();  // the collected copy of the input is no longer read
     }
     if (!options.keep_levels) result.levels.push_back(std::move(latest));

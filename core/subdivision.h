@@ -13,6 +13,8 @@
 // in SubdivisionOptions. Every vertex records its level (for the "subdivision vertices"
 // colouring).
 // Texture coordinates ("v:texcoord", "h:texcoord") are interpolated linearly.
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -63,6 +65,8 @@ struct SubdivisionResult {
     /// One per iteration, coarse to fine; only the finest (the last iteration's) when
     /// options.keep_levels is false.
     std::vector<SubdivisionLevel> levels;
+    /// Vertices and faces of every level, coarse to fine, whether kept or not.
+    std::vector<std::array<std::size_t, 2>> level_counts;
     double ms = 0;
 };
 

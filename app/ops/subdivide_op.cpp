@@ -30,10 +30,9 @@ OperationResult run_subdivide(const SubdivisionOptions& options, const HalfedgeM
     }
     result.ms = sub.ms;
     char line[160];
-    for (std::size_t i = 0; i < sub.levels.size(); ++i) {
-        const HalfedgeMesh& m = sub.levels[i].mesh;
+    for (std::size_t i = 0; i < sub.level_counts.size(); ++i) {
         std::snprintf(line, sizeof(line), "level %zu: %zu vertices, %zu faces", i + 1,
-                      m.n_vertices(), m.n_faces());
+                      sub.level_counts[i][0], sub.level_counts[i][1]);
         result.report.emplace_back(line);
     }
     std::snprintf(line, sizeof(line), "%s, %d iteration%s: %zu -> %zu faces in %.1f ms",
@@ -41,9 +40,9 @@ OperationResult run_subdivide(const SubdivisionOptions& options, const HalfedgeM
                   sub.levels.empty() ? 0 : sub.levels.back().mesh.n_faces(), sub.ms);
     result.report.emplace_back(line);
     std::vector<double> level_vertices, level_faces;
-    for (const SubdivisionLevel& level : sub.levels) {
-        level_vertices.push_back(double(level.mesh.n_vertices()));
-        level_faces.push_back(double(level.mesh.n_faces()));
+    for (const auto& counts : sub.level_counts) {
+        level_vertices.push_back(double(counts[0]));
+        level_faces.push_back(double(counts[1]));
     }
     result.series = {{"level_vertices", level_vertices}, {"level_faces", level_faces}};
     for (SubdivisionLevel& level : sub.levels)
