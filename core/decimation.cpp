@@ -681,15 +681,21 @@ private:
             s.kept_before = m_.position(v1);
             s.kept_after = p;
             s.faces = {f0, f1};
-            s.moved_begin = std::uint32_t(pm_->moved_faces.size());
-            const Halfedge start = m_.halfedge(v0);
-            Halfedge g = start;
-            do {
-                const Face f = m_.face(g);
-                if (f.is_valid() && f != f0 && f != f1) pm_->moved_faces.push_back(f);
-                g = m_.ccw_rotated(g);
-            } while (g != start);
-            s.moved_end = std::uint32_t(pm_->moved_faces.size());
+            // The faces at v1 after the collapse: v0's (moved to v1), then v1's own.
+            s.moved_begin = std::uint32_t(pm_->ring_faces.size());
+            for (int side = 0; side < 2; ++side) {
+                const Halfedge start = m_.halfedge(side == 0 ? v0 : v1);
+                Halfedge g = start;
+                do {
+                    const Face f = m_.face(g);
+                    if (f.is_valid() && f != f0 && f != f1) pm_->ring_faces.push_back(f);
+                    g = m_.ccw_rotated(g);
+                } while (g != start);
+                if (side == 0) s.moved_end = std::uint32_t(pm_->ring_faces.size());
+            }
+            s.ring_end = std::uint32_t(pm_->ring_faces.size());
+            if (pm_->ring_faces.size() >= std::numeric_limits<std::uint32_t>::max())
+                throw Error("decimate: the progressive mesh outgrew its 32-bit face list");
             pm_->collapses.push_back(s);
         }
 
@@ -879,6 +885,36 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
     const int iterations = options.target_vertices > 0 ? 1 : options.iterations;
     std::size_t last_target = report.input_vertices;
     std::size_t final_vertices = work.n_vertices();
+    bool any_collapse = false;
+    std::size_t level_target = 0;  ///< the target of the last iteration that collapsed
+    // One level from the working mesh: its geomorph from the mesh before (before_to_work
+    // maps that mesh's vertices to working indices; updated for the next level).
+    const auto make_level = [&](HalfedgeMesh& w, bool take, Decimater& d,
+                                std::vector<Index>& before, std::size_t target) {
+        DecimationLevel level;
+        level.target_vertices = target;
+        level.correspondence.kind = MorphCorrespondence::Kind::ToLater;
+        if (options.record_geomorph) {
+            level.correspondence.positions.resize(before.size());
+            for (Index i = 0; i < before.size(); ++i) {
+                const Vertex v(before[i]);
+                level.correspondence.positions[i] =
+                    w.position(w.is_deleted(v) ? d.representative(v) : v);
+            }
+        }
+        if (take)
+            level.mesh = std::move(w);
+        else
+            level.mesh = w;
+        const IndexRemap remap = level.mesh.garbage_collection();
+        if (!take) {
+            std::vector<Index> next(level.mesh.vertices_size(), kInvalidIndex);
+            for (Index v = 0; v < remap.vertices.size(); ++v)
+                if (remap.vertices[v] != kInvalidIndex) next[remap.vertices[v]] = v;
+            before = std::move(next);
+        }
+        return level;
+    };
     for (int it = 0; it < iterations; ++it) {
         progress.check_cancelled();
         const std::size_t v = work.n_vertices() - isolated;
@@ -893,27 +929,14 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
         const bool reached = decimater.iterate(target + isolated, progress, double(it) / iterations,
                                                1.0 / iterations, stop);
         if (report.collapses > collapses_before) {
-            DecimationLevel level;
-            level.target_vertices = target;
-            level.correspondence.kind = MorphCorrespondence::Kind::ToLater;
-            level.correspondence.positions.resize(before_to_work.size());
-            for (Index i = 0; i < before_to_work.size(); ++i) {
-                const Vertex w(before_to_work[i]);
-                level.correspondence.positions[i] =
-                    work.position(work.is_deleted(w) ? decimater.representative(w) : w);
-            }
             final_vertices = work.n_vertices();
-            // The last iteration takes the working mesh itself (no copy of a big mesh).
-            if (it + 1 == iterations)
-                level.mesh = std::move(work);
-            else
-                level.mesh = work;
-            const IndexRemap remap = level.mesh.garbage_collection();
-            std::vector<Index> next(level.mesh.vertices_size(), kInvalidIndex);
-            for (Index w = 0; w < remap.vertices.size(); ++w)
-                if (remap.vertices[w] != kInvalidIndex) next[remap.vertices[w]] = w;
-            before_to_work = std::move(next);
-            result.levels.push_back(std::move(level));
+            any_collapse = true;
+            level_target = target;
+            if (options.levels == DecimationLevels::All) {
+                // The last iteration takes the working mesh itself (no copy of a big mesh).
+                result.levels.push_back(
+                    make_level(work, it + 1 == iterations, decimater, before_to_work, target));
+            }
         }
         if (!reached) {
             report.stop = stop;
@@ -926,6 +949,8 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
             report.stop = DecimationStop::Done;
         }
     }
+    if (options.levels == DecimationLevels::Last && any_collapse)
+        result.levels.push_back(make_level(work, true, decimater, before_to_work, level_target));
     report.output_vertices = final_vertices - isolated;
     report.stop_message = stop_text(report.stop, report, last_target);
     report.ms =
@@ -951,38 +976,327 @@ std::vector<std::array<Vertex, 2>> next_collapses(const HalfedgeMesh& mesh,
     return pairs;
 }
 
+namespace {
+
+// ceil(percent / 100 * vertices), up to a rounding error of the product (1 % of 300
+// vertices keeps 3, not 4).
+std::size_t kept_vertices(double percent, std::size_t vertices) {
+    const double x = percent / 100.0 * double(vertices);
+    return std::min(vertices, std::size_t(std::max(0.0, std::ceil(x - 1e-6))));
+}
+
+}  // namespace
+
+ProgressiveBuild build_progressive_mesh(const HalfedgeMesh& mesh, const DecimationOptions& options,
+                                        double min_percent, Progress& progress) {
+    if (!(min_percent > 0 && min_percent <= 100))
+        throw InvalidArgument("build_progressive_mesh: min_percent must be in (0, 100], got " +
+                              std::to_string(min_percent));
+    std::size_t surface = 0;
+    for (Vertex v : mesh.vertices())
+        if (!mesh.is_isolated(v)) ++surface;
+    DecimationOptions o = options;
+    o.target_vertices = std::max<std::size_t>(1, kept_vertices(min_percent, surface));
+    o.iterations = 1;
+    o.independent_set = false;
+    o.levels = DecimationLevels::None;
+    o.record_geomorph = false;
+    o.record_progressive = true;
+    DecimationResult r = decimate(mesh, o, progress);
+    return ProgressiveBuild{std::move(r.progressive), r.report};
+}
+
 // ---- level of detail --------------------------------------------------------------------------
+
+namespace {
+
+bool has_corner(const std::array<Vertex, 3>& c, Vertex v) {
+    return c[0] == v || c[1] == v || c[2] == v;
+}
+
+void replace_corner(std::array<Vertex, 3>& c, Vertex from, Vertex to) {
+    for (Vertex& x : c)
+        if (x == from) x = to;
+}
+
+[[noreturn]] void bad_progressive(std::size_t collapse, const std::string& what) {
+    throw InvalidArgument("LevelOfDetail: inconsistent progressive mesh at collapse " +
+                          std::to_string(collapse) + ": " + what);
+}
+
+}  // namespace
 
 LevelOfDetail::LevelOfDetail(const ProgressiveMesh& pm)
     : pm_(&pm),
       faces_(pm.faces),
       face_alive_(pm.face_alive),
       vertex_alive_(pm.vertex_alive),
-      positions_(pm.positions) {}
+      positions_(pm.positions) {
+    const std::size_t nv = positions_.size(), nf = faces_.size();
+    if (vertex_alive_.size() != nv || face_alive_.size() != nf)
+        throw InvalidArgument(
+            "LevelOfDetail: the progressive mesh's sizes disagree (" + std::to_string(nv) +
+            " positions, " + std::to_string(vertex_alive_.size()) + " vertex flags, " +
+            std::to_string(nf) + " faces, " + std::to_string(face_alive_.size()) + " face flags)");
+    if (nv >= kInvalidIndex || nf >= kInvalidIndex)
+        throw InvalidArgument("LevelOfDetail: too many vertices or faces for 32-bit indices");
+    // Fine mesh: corners of live faces are live, distinct vertices; valences.
+    std::vector<std::uint32_t> valence(nv, 0);
+    for (std::size_t f = 0; f < nf; ++f) {
+        if (!face_alive_[f]) continue;
+        const auto& c = faces_[f];
+        for (Vertex v : c)
+            if (!v.is_valid() || v.idx() >= nv || !vertex_alive_[v.idx()])
+                throw InvalidArgument("LevelOfDetail: face " + std::to_string(f) +
+                                      " has a corner that is not a live vertex");
+        if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2])
+            throw InvalidArgument("LevelOfDetail: face " + std::to_string(f) + " repeats a corner");
+        for (Vertex v : c) ++valence[v.idx()];
+        ++fine_faces_;
+    }
+    std::uint64_t max_valence = 1;
+    for (std::size_t v = 0; v < nv; ++v) {
+        if (valence[v] > 0) ++fine_vertices_;
+        max_valence = std::max<std::uint64_t>(max_valence, valence[v]);
+    }
+    // Every collapse against a dry run (so that set_level() can trust the record), prefix
+    // sums for set_level()'s cost estimate, and the bounds for fixed-point normals.
+    const std::size_t nc = pm.collapses.size();
+    if (nc > fine_vertices_) bad_progressive(nc, "more collapses than vertices with faces");
+    ring_prefix_.assign(nc + 1, 0);
+    removed_prefix_.assign(nc + 1, 0);
+    std::vector<std::array<Vertex, 3>> corners = faces_;
+    std::vector<std::uint8_t> face_on = face_alive_, vertex_on = vertex_alive_;
+    Point lo = Point::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    const auto extend = [&](const Point& p) {
+        if (!p.allFinite())
+            throw InvalidArgument("LevelOfDetail: the progressive mesh has a non-finite position");
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+    };
+    for (std::size_t v = 0; v < nv; ++v)
+        if (valence[v] > 0) extend(positions_[v]);
+    const std::size_t nr = pm.ring_faces.size();
+    for (std::size_t k = 0; k < nc; ++k) {
+        const VertexSplit& s = pm.collapses[k];
+        const Vertex r = s.removed, q = s.kept;
+        if (!r.is_valid() || !q.is_valid() || r.idx() >= nv || q.idx() >= nv || r == q ||
+            !vertex_on[r.idx()] || !vertex_on[q.idx()])
+            bad_progressive(k, "its vertices are not two live vertices");
+        if (!(s.moved_begin <= s.moved_end && s.moved_end <= s.ring_end && s.ring_end <= nr))
+            bad_progressive(k, "its ring range is out of order or out of range");
+        std::uint32_t removed_faces = 0;
+        for (Face f : s.faces) {
+            if (!f.is_valid()) continue;
+            if (f.idx() >= nf || !face_on[f.idx()] || !has_corner(corners[f.idx()], r) ||
+                !has_corner(corners[f.idx()], q))
+                bad_progressive(k, "a face it removes is not a live face at its edge");
+            face_on[f.idx()] = 0;
+            for (Vertex v : corners[f.idx()]) --valence[v.idx()];
+            ++removed_faces;
+        }
+        if (removed_faces == 0) bad_progressive(k, "it removes no face");
+        for (std::uint32_t i = s.moved_begin; i < s.ring_end; ++i) {
+            const Face f = pm.ring_faces[i];
+            const bool moved = i < s.moved_end;
+            if (!f.is_valid() || f.idx() >= nf || !face_on[f.idx()])
+                bad_progressive(k, "a face of its ring is not live");
+            auto& c = corners[f.idx()];
+            if (has_corner(c, moved ? r : q) == false || has_corner(c, moved ? q : r))
+                bad_progressive(k, "a face of its ring is not at the vertex it names");
+            if (moved) {
+                replace_corner(c, r, q);
+                --valence[r.idx()];
+                ++valence[q.idx()];
+            }
+        }
+        // The ring lists every face at the kept vertex, each once, and the removed vertex
+        // has none left.
+        if (valence[r.idx()] != 0 || valence[q.idx()] != s.ring_end - s.moved_begin)
+            bad_progressive(k, "its ring does not list the faces at its vertices");
+        vertex_on[r.idx()] = 0;
+        extend(s.kept_after);
+        extend(s.removed_position);
+        extend(s.kept_before);
+        max_valence = std::max<std::uint64_t>(max_valence, s.ring_end - s.moved_begin);
+        ring_prefix_[k + 1] = ring_prefix_[k] + (s.ring_end - s.moved_begin);
+        removed_prefix_[k + 1] = removed_prefix_[k] + removed_faces;
+    }
+    // Fixed point: every component of a face normal is at most diagonal^2 in size and a
+    // vertex has at most max_valence faces at any level, so the sums stay below 2^62.
+    const double diagonal2 = fine_faces_ > 0 ? (hi - lo).squaredNorm() : 0.0;
+    normal_scale_ = diagonal2 > 0 ? std::ldexp(1.0, 61) / (double(max_valence) * diagonal2) : 1.0;
+
+    face_slot_.assign(nf, kInvalidIndex);
+    triangles_.reserve(fine_faces_);
+    slot_face_.reserve(fine_faces_);
+    for (Index f = 0; f < nf; ++f)
+        if (face_alive_[f]) revive_face(f);
+    vertex_slot_.assign(nv, kInvalidIndex);
+    for (Index v = 0; v < nv; ++v)
+        if (vertex_alive_[v]) {
+            vertex_slot_[v] = Index(live_vertices_.size());
+            live_vertices_.push_back(v);
+        }
+    normal_sum_.assign(nv, NormalSum{0, 0, 0});
+    changed_flag_.assign(nv, 0);
+    recompute_normals();
+    all_changed_ = true;
+}
+
+void LevelOfDetail::kill_face(Index f) {
+    const Index slot = face_slot_[f], last = Index(triangles_.size() - 1);
+    triangles_[slot] = triangles_[last];
+    slot_face_[slot] = slot_face_[last];
+    face_slot_[slot_face_[slot]] = slot;
+    triangles_.pop_back();
+    slot_face_.pop_back();
+    face_slot_[f] = kInvalidIndex;
+    face_alive_[f] = 0;
+}
+
+void LevelOfDetail::revive_face(Index f) {
+    const auto& c = faces_[f];
+    face_slot_[f] = Index(triangles_.size());
+    slot_face_.push_back(f);
+    triangles_.push_back({c[0].idx(), c[1].idx(), c[2].idx()});
+    face_alive_[f] = 1;
+}
+
+void LevelOfDetail::add_face_normal(Index f, int sign) {
+    const auto& c = faces_[f];
+    const Point& p0 = positions_[c[0].idx()];
+    const Vector3 n = (positions_[c[1].idx()] - p0).cross(positions_[c[2].idx()] - p0);
+    const std::int64_t q[3] = {sign * std::llround(n.x() * normal_scale_),
+                               sign * std::llround(n.y() * normal_scale_),
+                               sign * std::llround(n.z() * normal_scale_)};
+    for (Vertex v : c) {
+        NormalSum& sum = normal_sum_[v.idx()];
+        sum[0] += q[0];
+        sum[1] += q[1];
+        sum[2] += q[2];
+    }
+}
+
+void LevelOfDetail::recompute_normals() {
+    std::fill(normal_sum_.begin(), normal_sum_.end(), NormalSum{0, 0, 0});
+    for (Index f : slot_face_) add_face_normal(f, 1);
+}
+
+Vector3 LevelOfDetail::vertex_normal(Index v) const {
+    const NormalSum& s = normal_sum_[v];
+    const Vector3 n{double(s[0]), double(s[1]), double(s[2])};
+    const double len = n.norm();
+    return len > 0 ? Vector3(n / len) : Vector3::Zero();
+}
+
+void LevelOfDetail::collapse_step(const VertexSplit& s, bool normals) {
+    const std::vector<Face>& ring = pm_->ring_faces;
+    if (normals) {
+        for (std::uint32_t i = s.moved_begin; i < s.ring_end; ++i)
+            add_face_normal(ring[i].idx(), -1);
+        for (Face f : s.faces)
+            if (f.is_valid()) add_face_normal(f.idx(), -1);
+    }
+    if (!all_changed_) {
+        for (std::uint32_t i = s.moved_begin; i < s.ring_end; ++i)
+            for (Vertex v : faces_[ring[i].idx()]) mark(v.idx());
+        for (Face f : s.faces)
+            if (f.is_valid())
+                for (Vertex v : faces_[f.idx()]) mark(v.idx());
+    }
+    for (Face f : s.faces)
+        if (f.is_valid()) kill_face(f.idx());
+    for (std::uint32_t i = s.moved_begin; i < s.moved_end; ++i) {
+        const Index f = ring[i].idx();
+        replace_corner(faces_[f], s.removed, s.kept);
+        for (Index& c : triangles_[face_slot_[f]])
+            if (c == s.removed.idx()) c = s.kept.idx();
+    }
+    positions_[s.kept.idx()] = s.kept_after;
+    const Index r = s.removed.idx(), slot = vertex_slot_[r];
+    live_vertices_[slot] = live_vertices_.back();
+    vertex_slot_[live_vertices_[slot]] = slot;
+    live_vertices_.pop_back();
+    vertex_slot_[r] = kInvalidIndex;
+    vertex_alive_[r] = 0;
+    if (normals)
+        for (std::uint32_t i = s.moved_begin; i < s.ring_end; ++i)
+            add_face_normal(ring[i].idx(), 1);
+}
+
+void LevelOfDetail::split_step(const VertexSplit& s, bool normals) {
+    const std::vector<Face>& ring = pm_->ring_faces;
+    if (normals)
+        for (std::uint32_t i = s.moved_begin; i < s.ring_end; ++i)
+            add_face_normal(ring[i].idx(), -1);
+    for (std::uint32_t i = s.moved_begin; i < s.moved_end; ++i) {
+        const Index f = ring[i].idx();
+        replace_corner(faces_[f], s.kept, s.removed);
+        for (Index& c : triangles_[face_slot_[f]])
+            if (c == s.kept.idx()) c = s.removed.idx();
+    }
+    positions_[s.kept.idx()] = s.kept_before;
+    const Index r = s.removed.idx();
+    positions_[r] = s.removed_position;
+    vertex_slot_[r] = Index(live_vertices_.size());
+    live_vertices_.push_back(r);
+    vertex_alive_[r] = 1;
+    for (Face f : s.faces)
+        if (f.is_valid()) revive_face(f.idx());
+    if (normals) {
+        for (std::uint32_t i = s.moved_begin; i < s.ring_end; ++i)
+            add_face_normal(ring[i].idx(), 1);
+        for (Face f : s.faces)
+            if (f.is_valid()) add_face_normal(f.idx(), 1);
+    }
+    if (!all_changed_) {
+        for (std::uint32_t i = s.moved_begin; i < s.ring_end; ++i)
+            for (Vertex v : faces_[ring[i].idx()]) mark(v.idx());
+        for (Face f : s.faces)
+            if (f.is_valid())
+                for (Vertex v : faces_[f.idx()]) mark(v.idx());
+    }
+}
 
 void LevelOfDetail::set_level(std::size_t level) {
     level = std::min(level, pm_->collapses.size());
-    while (level_ < level) {  // collapse
-        const VertexSplit& s = pm_->collapses[level_++];
-        for (std::uint32_t i = s.moved_begin; i < s.moved_end; ++i)
-            for (Vertex& c : faces_[pm_->moved_faces[i].idx()])
-                if (c == s.removed) c = s.kept;
-        for (Face f : s.faces)
-            if (f.is_valid()) face_alive_[f.idx()] = 0;
-        vertex_alive_[s.removed.idx()] = 0;
-        positions_[s.kept.idx()] = s.kept_after;
+    if (level == level_) return;
+    // Updating the normals step by step touches every ring face twice; recomputing them
+    // touches every live face of the new level once.
+    const std::size_t a = std::min(level, level_), b = std::max(level, level_);
+    const std::uint64_t stepwise =
+        2 * (ring_prefix_[b] - ring_prefix_[a]) + (removed_prefix_[b] - removed_prefix_[a]);
+    const std::uint64_t all = fine_faces_ - removed_prefix_[level];
+    const bool normals = stepwise <= all;
+    if (!normals && !all_changed_) {
+        for (Index v : changed_) changed_flag_[v] = 0;
+        changed_.clear();
+        all_changed_ = true;
     }
-    while (level_ > level) {  // vertex split
-        const VertexSplit& s = pm_->collapses[--level_];
-        for (std::uint32_t i = s.moved_begin; i < s.moved_end; ++i)
-            for (Vertex& c : faces_[pm_->moved_faces[i].idx()])
-                if (c == s.kept) c = s.removed;
-        for (Face f : s.faces)
-            if (f.is_valid()) face_alive_[f.idx()] = 1;
-        vertex_alive_[s.removed.idx()] = 1;
-        positions_[s.kept.idx()] = s.kept_before;
-        positions_[s.removed.idx()] = s.removed_position;
-    }
+    while (level_ < level) collapse_step(pm_->collapses[level_++], normals);
+    while (level_ > level) split_step(pm_->collapses[--level_], normals);
+    if (!normals) recompute_normals();
+}
+
+void LevelOfDetail::clear_changes() {
+    for (Index v : changed_) changed_flag_[v] = 0;
+    changed_.clear();
+    all_changed_ = false;
+}
+
+std::size_t LevelOfDetail::level_for_percent(double percent) const {
+    if (!(percent >= 0 && percent <= 100))
+        throw InvalidArgument("level of detail: percent must be from 0 to 100, got " +
+                              std::to_string(percent));
+    const std::size_t keep = kept_vertices(percent, fine_vertices_);
+    return std::min(fine_vertices_ - keep, max_level());
+}
+
+double LevelOfDetail::percent_at_level(std::size_t level) const {
+    if (fine_vertices_ == 0) return 100;
+    level = std::min(level, max_level());
+    return 100.0 * double(fine_vertices_ - level) / double(fine_vertices_);
 }
 
 HalfedgeMesh LevelOfDetail::mesh() const {

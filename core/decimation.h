@@ -54,6 +54,13 @@ const char* decimation_cost_name(DecimationCost cost);
 /// Parses decimation_cost_name() strings; throws InvalidArgument listing them otherwise.
 DecimationCost parse_decimation_cost(const std::string& name);
 
+/// Which meshes DecimationResult::levels holds.
+enum class DecimationLevels {
+    All,   ///< one per iteration, each with its geomorph from the one before
+    Last,  ///< only the last iteration's mesh, its geomorph from the input (no per-iteration copy)
+    None,  ///< none (for a run that only records the progressive mesh)
+};
+
 struct DecimationOptions {
     DecimationCost cost = DecimationCost::Quadric;
     /// Amount: when target_vertices > 0, one iteration down to that many vertices; otherwise
@@ -65,13 +72,19 @@ struct DecimationOptions {
     int iterations = 1;               ///< 1 to 1000
     std::size_t target_vertices = 0;  ///< 0: use percent and iterations
 
-    bool normal_flip = true;         ///< the normal-flipping constraint
-    double max_normal_angle = 90;    ///< degrees, (0, 180]
-    bool roundness = false;          ///< the roundness constraint
-    double min_roundness = 0.2;      ///< normalized roundness, (0, 1]
-    bool independent_set = false;    ///< the independent-set constraint
-    double max_error = 0;            ///< quadric error as a distance; 0: no limit
-    bool record_progressive = true;  ///< fill DecimationResult::progressive
+    bool normal_flip = true;       ///< the normal-flipping constraint
+    double max_normal_angle = 90;  ///< degrees, (0, 180]
+    bool roundness = false;        ///< the roundness constraint
+    double min_roundness = 0.2;    ///< normalized roundness, (0, 1]
+    bool independent_set = false;  ///< the independent-set constraint
+    double max_error = 0;          ///< quadric error as a distance; 0: no limit
+
+    // What the result carries besides the algorithm (a caller that wants only the decimated
+    // mesh sets levels = Last and record_geomorph = false and pays for the collapses alone,
+    // plus one copy of the input and one compaction of the output).
+    DecimationLevels levels = DecimationLevels::All;
+    bool record_geomorph = true;      ///< fill each level's correspondence (O(V) per level)
+    bool record_progressive = false;  ///< fill DecimationResult::progressive (about 10 % more)
 };
 
 /// Why a decimation ended.
@@ -102,7 +115,9 @@ struct DecimationReport {
 
 /// One iteration: the decimated mesh (compact) and its geomorph from the previous mesh
 /// (MorphCorrespondence::Kind::ToLater: every vertex of the previous mesh ends where the
-/// vertex it collapsed into ends; kept vertices end at their new position).
+/// vertex it collapsed into ends; kept vertices end at their new position). With
+/// DecimationLevels::Last the previous mesh is the input; without record_geomorph the
+/// correspondence is empty.
 struct DecimationLevel {
     HalfedgeMesh mesh;
     MorphCorrespondence correspondence;
@@ -111,13 +126,15 @@ struct DecimationLevel {
 
 /// The vertex split that undoes one collapse (indices of the input mesh's storage): `removed`
 /// came back at `removed_position`, `kept` returns from `kept_after` to `kept_before`, the
-/// faces [moved_begin, moved_end) of ProgressiveMesh::moved_faces get `removed` back as the
-/// corner that is `kept`, and `faces` (one, or two for an interior edge) reappear.
+/// faces [moved_begin, moved_end) of ProgressiveMesh::ring_faces get `removed` back as the
+/// corner that is `kept`, and `faces` (one, or two for an interior edge) reappear. The faces
+/// [moved_begin, ring_end) are all faces at `kept` after the collapse (the moved ones, then
+/// kept's own): the faces whose shape the collapse changes.
 struct VertexSplit {
     Vertex removed, kept;
     Point removed_position, kept_before, kept_after;
     std::array<Face, 2> faces;
-    std::uint32_t moved_begin = 0, moved_end = 0;
+    std::uint32_t moved_begin = 0, moved_end = 0, ring_end = 0;
 };
 
 /// A progressive mesh: the fine mesh as a face list plus its collapses in order.
@@ -127,11 +144,11 @@ struct ProgressiveMesh {
     std::vector<std::uint8_t> face_alive;      ///< 0 for faces deleted in the input
     std::vector<std::uint8_t> vertex_alive;    ///< 0 for vertices deleted in the input
     std::vector<VertexSplit> collapses;
-    std::vector<Face> moved_faces;
+    std::vector<Face> ring_faces;  ///< see VertexSplit
 };
 
 struct DecimationResult {
-    std::vector<DecimationLevel> levels;  ///< one per iteration done (may be fewer, see stop)
+    std::vector<DecimationLevel> levels;  ///< see DecimationLevels (may be fewer, see stop)
     DecimationReport report;
     ProgressiveMesh progressive;  ///< empty unless options.record_progressive
 };
@@ -154,27 +171,107 @@ std::vector<std::array<Vertex, 2>> next_collapses(const HalfedgeMesh& mesh,
 /// in [0, 1], 1 for an equilateral triangle, 0 for a degenerate one.
 double normalized_roundness(const Point& a, const Point& b, const Point& c);
 
-/// Level of detail over a progressive mesh: moves between any two numbers of collapses by
-/// replaying collapses (forward) and vertex splits (backward); each step is O(faces moved).
+/// The progressive mesh of a level-of-detail slider: decimates a copy of `mesh` with the cost
+/// and constraints of `options` (its amount, levels, geomorph and progressive fields are
+/// ignored, and so is the independent-set constraint, which only shapes iterations) down to
+/// ceil(min_percent / 100 * V) of its V vertices with faces, or as far as the constraints
+/// allow (the report says), recording every collapse and nothing else. Throws InvalidArgument
+/// for bad options or a min_percent outside (0, 100], Cancelled when `progress` asks to stop.
+struct ProgressiveBuild {
+    ProgressiveMesh progressive;
+    DecimationReport report;
+};
+ProgressiveBuild build_progressive_mesh(const HalfedgeMesh& mesh, const DecimationOptions& options,
+                                        double min_percent, Progress& progress);
+
+/// Level of detail over a progressive mesh (Hoppe, "Progressive meshes", SIGGRAPH 1996):
+/// set_level() replays collapses (coarser) and vertex splits (finer) from the current level,
+/// so a move costs O(the faces around the collapses between the two levels), never a
+/// rebuild of a mesh. Alongside the fine mesh's face and vertex arrays it keeps what a
+/// renderer draws: a compact list of the live triangles (in no particular order), the live
+/// vertices, area-weighted vertex normals of the current level, and the vertices whose
+/// position or normal changed since clear_changes(). Normals are sums of face normals in
+/// fixed point (exact integer sums), so a level's normals do not depend on the path taken to
+/// it. A move so long that updating the normals of every face around every step would cost
+/// more than recomputing them all recomputes them all (O(live faces)) and reports every
+/// vertex as changed. `pm` must outlive the LevelOfDetail and stay unchanged.
 class LevelOfDetail {
 public:
+    /// Starts at level 0 (the fine mesh). Throws InvalidArgument when `pm` is inconsistent
+    /// (sizes, indices out of range). O(V + F + collapses).
     explicit LevelOfDetail(const ProgressiveMesh& pm);
-    /// Number of collapses applied, 0 (fine) to pm.collapses.size() (coarse).
+    /// Number of collapses applied, 0 (fine) to max_level() (coarsest).
     std::size_t level() const { return level_; }
+    std::size_t max_level() const { return pm_->collapses.size(); }
+    /// Moves to `level` (clamped to max_level()).
     void set_level(std::size_t level);
+
+    /// Vertices with faces at level 0 (isolated vertices are kept at every level and not
+    /// counted), and at the current level: fine_vertices() - level().
+    std::size_t fine_vertices() const { return fine_vertices_; }
+    std::size_t vertices() const { return fine_vertices_ - level_; }
+    /// The level that keeps ceil(percent / 100 * fine_vertices()) vertices, clamped to
+    /// [0, max_level()]: 100 gives 0, 0 the coarsest level. Throws InvalidArgument unless
+    /// 0 <= percent <= 100.
+    std::size_t level_for_percent(double percent) const;
+    /// 100 * vertices at `level` / fine_vertices() (100 for a mesh without faces).
+    double percent_at_level(std::size_t level) const;
+
     /// The mesh at the current level: live vertices and faces, compacted (vertex order kept).
+    /// O(V + F): for saving or applying a level, not for drawing it.
     HalfedgeMesh mesh() const;
-    /// Current corners of every face of the fine mesh (dead faces have invalid corners).
+    /// Current corners of every face of the fine mesh (dead faces keep their last corners).
     const std::vector<std::array<Vertex, 3>>& faces() const { return faces_; }
     const std::vector<std::uint8_t>& face_alive() const { return face_alive_; }
+    const std::vector<std::uint8_t>& vertex_alive() const { return vertex_alive_; }
+    /// Current positions, per fine vertex index (dead vertices keep their last position).
     const std::vector<Point>& positions() const { return positions_; }
 
+    /// The live faces as triangles of fine vertex indices, in no particular order.
+    const std::vector<std::array<Index, 3>>& triangles() const { return triangles_; }
+    /// The live vertices (isolated ones included), in no particular order.
+    const std::vector<Index>& live_vertices() const { return live_vertices_; }
+    /// Unit area-weighted normal of v at the current level (zero without faces).
+    Vector3 vertex_normal(Index v) const;
+
+    /// Whether every vertex may have changed since clear_changes() (then changed_vertices()
+    /// is empty); otherwise changed_vertices() lists, once each, the vertices whose position,
+    /// normal or liveness changed.
+    bool all_vertices_changed() const { return all_changed_; }
+    const std::vector<Index>& changed_vertices() const { return changed_; }
+    void clear_changes();
+
 private:
+    using NormalSum = std::array<std::int64_t, 3>;
+    void collapse_step(const VertexSplit& s, bool normals);
+    void split_step(const VertexSplit& s, bool normals);
+    void add_face_normal(Index f, int sign);
+    void recompute_normals();
+    void kill_face(Index f);
+    void revive_face(Index f);
+    void mark(Index v) {
+        if (!changed_flag_[v]) {
+            changed_flag_[v] = 1;
+            changed_.push_back(v);
+        }
+    }
+
     const ProgressiveMesh* pm_;
-    std::size_t level_ = 0;
+    std::size_t level_ = 0, fine_vertices_ = 0;
     std::vector<std::array<Vertex, 3>> faces_;
     std::vector<std::uint8_t> face_alive_, vertex_alive_;
     std::vector<Point> positions_;
+    std::vector<std::array<Index, 3>> triangles_;
+    std::vector<Index> face_slot_, slot_face_;  ///< live face <-> its place in triangles_
+    std::vector<Index> live_vertices_, vertex_slot_;
+    std::vector<NormalSum> normal_sum_;
+    double normal_scale_ = 1;  ///< fixed-point units per unit of face normal
+    /// Prefix sums over the collapses: ring faces, and faces removed, before collapse k.
+    std::vector<std::uint64_t> ring_prefix_, removed_prefix_;
+    std::size_t fine_faces_ = 0;
+    std::vector<std::uint8_t> changed_flag_;
+    std::vector<Index> changed_;
+    bool all_changed_ = true;
 };
 
 }  // namespace trilab
