@@ -1014,11 +1014,6 @@ bool has_corner(const std::array<Vertex, 3>& c, Vertex v) {
     return c[0] == v || c[1] == v || c[2] == v;
 }
 
-void replace_corner(std::array<Vertex, 3>& c, Vertex from, Vertex to) {
-    for (Vertex& x : c)
-        if (x == from) x = to;
-}
-
 [[noreturn]] void bad_progressive(std::size_t collapse, const std::string& what) {
     throw InvalidArgument("LevelOfDetail: inconsistent progressive mesh at collapse " +
                           std::to_string(collapse) + ": " + what);
@@ -1026,27 +1021,23 @@ void replace_corner(std::array<Vertex, 3>& c, Vertex from, Vertex to) {
 
 }  // namespace
 
-LevelOfDetail::LevelOfDetail(const ProgressiveMesh& pm)
-    : pm_(&pm),
-      faces_(pm.faces),
-      face_alive_(pm.face_alive),
-      vertex_alive_(pm.vertex_alive),
-      positions_(pm.positions) {
-    const std::size_t nv = positions_.size(), nf = faces_.size();
-    if (vertex_alive_.size() != nv || face_alive_.size() != nf)
-        throw InvalidArgument(
-            "LevelOfDetail: the progressive mesh's sizes disagree (" + std::to_string(nv) +
-            " positions, " + std::to_string(vertex_alive_.size()) + " vertex flags, " +
-            std::to_string(nf) + " faces, " + std::to_string(face_alive_.size()) + " face flags)");
-    if (nv >= kInvalidIndex || nf >= kInvalidIndex)
-        throw InvalidArgument("LevelOfDetail: too many vertices or faces for 32-bit indices");
-    // Fine mesh: corners of live faces are live, distinct vertices; valences.
+LevelOfDetail::LevelOfDetail(const ProgressiveMesh& pm) {
+    const std::size_t nv = pm.positions.size(), nf = pm.faces.size();
+    if (pm.vertex_alive.size() != nv || pm.face_alive.size() != nf)
+        throw InvalidArgument("LevelOfDetail: the progressive mesh's sizes disagree (" +
+                              std::to_string(nv) + " positions, " +
+                              std::to_string(pm.vertex_alive.size()) + " vertex flags, " +
+                              std::to_string(nf) + " faces, " +
+                              std::to_string(pm.face_alive.size()) + " face flags)");
+    if (nv >= kInvalidIndex || nf >= (std::size_t(1) << 30))
+        throw InvalidArgument("LevelOfDetail: too many vertices or faces");
+    // The fine mesh: corners of live faces are distinct live vertices; valences.
     std::vector<std::uint32_t> valence(nv, 0);
     for (std::size_t f = 0; f < nf; ++f) {
-        if (!face_alive_[f]) continue;
-        const auto& c = faces_[f];
+        if (!pm.face_alive[f]) continue;
+        const auto& c = pm.faces[f];
         for (Vertex v : c)
-            if (!v.is_valid() || v.idx() >= nv || !vertex_alive_[v.idx()])
+            if (!v.is_valid() || v.idx() >= nv || !pm.vertex_alive[v.idx()])
                 throw InvalidArgument("LevelOfDetail: face " + std::to_string(f) +
                                       " has a corner that is not a live vertex");
         if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2])
@@ -1057,121 +1048,183 @@ LevelOfDetail::LevelOfDetail(const ProgressiveMesh& pm)
     std::uint64_t max_valence = 1;
     for (std::size_t v = 0; v < nv; ++v) {
         if (valence[v] > 0) ++fine_vertices_;
+        if (pm.vertex_alive[v]) ++live_at_fine_;
         max_valence = std::max<std::uint64_t>(max_valence, valence[v]);
     }
-    // Every collapse against a dry run (so that set_level() can trust the record), prefix
-    // sums for set_level()'s cost estimate, and the bounds for fixed-point normals.
+
+    // A dry run of every collapse (so that set_level() can trust the record): the faces it
+    // names are live and at its vertices, its ring lists every face at the kept vertex once,
+    // and the removed vertex has no face left. Records where each moved face has the
+    // removed vertex (its corner), the bounds for fixed-point normals and prefix sums.
     const std::size_t nc = pm.collapses.size();
     if (nc > fine_vertices_) bad_progressive(nc, "more collapses than vertices with faces");
+    const std::size_t nr = pm.ring_faces.size();
+    std::vector<std::uint8_t> ring_corner(nr, 0);
     ring_prefix_.assign(nc + 1, 0);
     removed_prefix_.assign(nc + 1, 0);
-    std::vector<std::array<Vertex, 3>> corners = faces_;
-    std::vector<std::uint8_t> face_on = face_alive_, vertex_on = vertex_alive_;
-    Point lo = Point::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-    const auto extend = [&](const Point& p) {
-        if (!p.allFinite())
-            throw InvalidArgument("LevelOfDetail: the progressive mesh has a non-finite position");
-        lo = lo.cwiseMin(p);
-        hi = hi.cwiseMax(p);
-    };
-    for (std::size_t v = 0; v < nv; ++v)
-        if (valence[v] > 0) extend(positions_[v]);
-    const std::size_t nr = pm.ring_faces.size();
+    {
+        std::vector<std::array<Vertex, 3>> corners = pm.faces;
+        std::vector<std::uint8_t> face_on = pm.face_alive, vertex_on = pm.vertex_alive;
+        Point lo = Point::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+        const auto extend = [&](const Point& p) {
+            if (!p.allFinite())
+                throw InvalidArgument(
+                    "LevelOfDetail: the progressive mesh has a non-finite position");
+            lo = lo.cwiseMin(p);
+            hi = hi.cwiseMax(p);
+        };
+        for (std::size_t v = 0; v < nv; ++v)
+            if (valence[v] > 0) extend(pm.positions[v]);
+        for (std::size_t k = 0; k < nc; ++k) {
+            const VertexSplit& s = pm.collapses[k];
+            const Vertex r = s.removed, q = s.kept;
+            if (!r.is_valid() || !q.is_valid() || r.idx() >= nv || q.idx() >= nv || r == q ||
+                !vertex_on[r.idx()] || !vertex_on[q.idx()])
+                bad_progressive(k, "its vertices are not two live vertices");
+            if (!(s.moved_begin <= s.moved_end && s.moved_end <= s.ring_end && s.ring_end <= nr))
+                bad_progressive(k, "its ring range is out of order or out of range");
+            std::uint32_t removed_faces = 0;
+            for (Face f : s.faces) {
+                if (!f.is_valid()) continue;
+                if (f.idx() >= nf || !face_on[f.idx()] || !has_corner(corners[f.idx()], r) ||
+                    !has_corner(corners[f.idx()], q))
+                    bad_progressive(k, "a face it removes is not a live face at its edge");
+                face_on[f.idx()] = 0;
+                for (Vertex v : corners[f.idx()]) --valence[v.idx()];
+                ++removed_faces;
+            }
+            if (removed_faces == 0) bad_progressive(k, "it removes no face");
+            for (std::uint32_t i = s.moved_begin; i < s.ring_end; ++i) {
+                const Face f = pm.ring_faces[i];
+                const bool moved = i < s.moved_end;
+                if (!f.is_valid() || f.idx() >= nf || !face_on[f.idx()])
+                    bad_progressive(k, "a face of its ring is not live");
+                auto& c = corners[f.idx()];
+                if (!has_corner(c, moved ? r : q) || has_corner(c, moved ? q : r))
+                    bad_progressive(k, "a face of its ring is not at the vertex it names");
+                if (moved) {
+                    const int j = c[0] == r ? 0 : c[1] == r ? 1 : 2;
+                    ring_corner[i] = std::uint8_t(j);
+                    c[j] = q;
+                    --valence[r.idx()];
+                    ++valence[q.idx()];
+                }
+            }
+            if (valence[r.idx()] != 0 || valence[q.idx()] != s.ring_end - s.moved_begin)
+                bad_progressive(k, "its ring does not list the faces at its vertices");
+            vertex_on[r.idx()] = 0;
+            extend(s.kept_after);
+            extend(s.kept_before);
+            max_valence = std::max<std::uint64_t>(max_valence, s.ring_end - s.moved_begin);
+            ring_prefix_[k + 1] = ring_prefix_[k] + (s.ring_end - s.moved_begin);
+            removed_prefix_[k + 1] = removed_prefix_[k] + removed_faces;
+        }
+        // Fixed point: a component of a face normal is at most diagonal^2 in size and a vertex
+        // has at most max_valence faces at any level, so the sums stay below 2^61.
+        const double diagonal2 = fine_faces_ > 0 ? (hi - lo).squaredNorm() : 0.0;
+        normal_scale_ =
+            diagonal2 > 0 ? std::ldexp(1.0, 61) / (double(max_valence) * diagonal2) : 1.0;
+    }
+
+    // Drawing order: faces along a Morton curve of their centroids (10 bits an axis, ties in
+    // index order), vertices in the order the faces first use them, then isolated vertices,
+    // then vertices deleted in the input (never live).
+    {
+        Point lo = Point::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+        for (std::size_t f = 0; f < nf; ++f)
+            if (pm.face_alive[f])
+                for (Vertex v : pm.faces[f]) {
+                    lo = lo.cwiseMin(pm.positions[v.idx()]);
+                    hi = hi.cwiseMax(pm.positions[v.idx()]);
+                }
+        const Vector3 extent = (hi - lo).cwiseMax(Vector3::Constant(1e-300));
+        const auto spread = [](std::uint32_t x) {  // 10 bits to every third of 30
+            std::uint32_t r = 0;
+            for (int i = 0; i < 10; ++i) r |= ((x >> i) & 1u) << (3 * i);
+            return r;
+        };
+        std::vector<std::uint64_t> keys;
+        keys.reserve(fine_faces_);
+        for (std::size_t f = 0; f < nf; ++f) {
+            if (!pm.face_alive[f]) continue;
+            const auto& c = pm.faces[f];
+            const Point centre =
+                (pm.positions[c[0].idx()] + pm.positions[c[1].idx()] + pm.positions[c[2].idx()]) /
+                3.0;
+            std::uint32_t code = 0;
+            for (int axis = 0; axis < 3; ++axis) {
+                const double t = (centre[axis] - lo[axis]) / extent[axis];
+                const auto cell = std::uint32_t(std::min(1023.0, std::max(0.0, t * 1024.0)));
+                code |= spread(cell) << axis;
+            }
+            keys.push_back(std::uint64_t(code) << 32 | f);
+        }
+        std::sort(keys.begin(), keys.end());
+        face_of_.assign(nf, kInvalidIndex);
+        fine_face_.resize(fine_faces_);
+        vertex_of_.assign(nv, kInvalidIndex);
+        fine_vertex_.reserve(nv);
+        const auto add_vertex = [&](Index v) {
+            vertex_of_[v] = Index(fine_vertex_.size());
+            fine_vertex_.push_back(v);
+        };
+        for (std::size_t i = 0; i < keys.size(); ++i) {
+            const Index f = Index(keys[i] & 0xffffffffu);
+            face_of_[f] = Index(i);
+            fine_face_[i] = f;
+            for (Vertex v : pm.faces[f])
+                if (vertex_of_[v.idx()] == kInvalidIndex) add_vertex(v.idx());
+        }
+        for (Index v = 0; v < nv; ++v)
+            if (pm.vertex_alive[v] && vertex_of_[v] == kInvalidIndex) add_vertex(v);
+        for (Index v = 0; v < nv; ++v)
+            if (!pm.vertex_alive[v]) add_vertex(v);
+    }
+
+    positions_.resize(nv);
+    vertex_alive_.resize(nv);
+    for (Index v = 0; v < nv; ++v) {
+        positions_[v] = pm.positions[fine_vertex_[v]];
+        vertex_alive_[v] = pm.vertex_alive[fine_vertex_[v]];
+    }
+    faces_.resize(fine_faces_);
+    face_alive_.assign(fine_faces_, 1);
+    for (Index f = 0; f < fine_faces_; ++f) {
+        const auto& c = pm.faces[fine_face_[f]];
+        faces_[f] = {vertex_of_[c[0].idx()], vertex_of_[c[1].idx()], vertex_of_[c[2].idx()]};
+    }
+    steps_.resize(nc);
+    ring_.resize(nr);
     for (std::size_t k = 0; k < nc; ++k) {
         const VertexSplit& s = pm.collapses[k];
-        const Vertex r = s.removed, q = s.kept;
-        if (!r.is_valid() || !q.is_valid() || r.idx() >= nv || q.idx() >= nv || r == q ||
-            !vertex_on[r.idx()] || !vertex_on[q.idx()])
-            bad_progressive(k, "its vertices are not two live vertices");
-        if (!(s.moved_begin <= s.moved_end && s.moved_end <= s.ring_end && s.ring_end <= nr))
-            bad_progressive(k, "its ring range is out of order or out of range");
-        std::uint32_t removed_faces = 0;
-        for (Face f : s.faces) {
-            if (!f.is_valid()) continue;
-            if (f.idx() >= nf || !face_on[f.idx()] || !has_corner(corners[f.idx()], r) ||
-                !has_corner(corners[f.idx()], q))
-                bad_progressive(k, "a face it removes is not a live face at its edge");
-            face_on[f.idx()] = 0;
-            for (Vertex v : corners[f.idx()]) --valence[v.idx()];
-            ++removed_faces;
-        }
-        if (removed_faces == 0) bad_progressive(k, "it removes no face");
-        for (std::uint32_t i = s.moved_begin; i < s.ring_end; ++i) {
-            const Face f = pm.ring_faces[i];
-            const bool moved = i < s.moved_end;
-            if (!f.is_valid() || f.idx() >= nf || !face_on[f.idx()])
-                bad_progressive(k, "a face of its ring is not live");
-            auto& c = corners[f.idx()];
-            if (has_corner(c, moved ? r : q) == false || has_corner(c, moved ? q : r))
-                bad_progressive(k, "a face of its ring is not at the vertex it names");
-            if (moved) {
-                replace_corner(c, r, q);
-                --valence[r.idx()];
-                ++valence[q.idx()];
-            }
-        }
-        // The ring lists every face at the kept vertex, each once, and the removed vertex
-        // has none left.
-        if (valence[r.idx()] != 0 || valence[q.idx()] != s.ring_end - s.moved_begin)
-            bad_progressive(k, "its ring does not list the faces at its vertices");
-        vertex_on[r.idx()] = 0;
-        extend(s.kept_after);
-        extend(s.removed_position);
-        extend(s.kept_before);
-        max_valence = std::max<std::uint64_t>(max_valence, s.ring_end - s.moved_begin);
-        ring_prefix_[k + 1] = ring_prefix_[k] + (s.ring_end - s.moved_begin);
-        removed_prefix_[k + 1] = removed_prefix_[k] + removed_faces;
+        Step& step = steps_[k];
+        step.kept = vertex_of_[s.kept.idx()];
+        step.removed = vertex_of_[s.removed.idx()];
+        for (int i = 0; i < 2; ++i)
+            step.dead[i] = s.faces[i].is_valid() ? face_of_[s.faces[i].idx()] : kInvalidIndex;
+        step.ring_begin = s.moved_begin;
+        step.moved_end = s.moved_end;
+        step.ring_end = s.ring_end;
+        step.kept_before = s.kept_before;
+        step.kept_after = s.kept_after;
+        for (std::uint32_t i = s.moved_begin; i < s.ring_end; ++i)
+            ring_[i] = (face_of_[pm.ring_faces[i].idx()] << 2) | ring_corner[i];
     }
-    // Fixed point: every component of a face normal is at most diagonal^2 in size and a
-    // vertex has at most max_valence faces at any level, so the sums stay below 2^62.
-    const double diagonal2 = fine_faces_ > 0 ? (hi - lo).squaredNorm() : 0.0;
-    normal_scale_ = diagonal2 > 0 ? std::ldexp(1.0, 61) / (double(max_valence) * diagonal2) : 1.0;
-
-    face_slot_.assign(nf, kInvalidIndex);
-    triangles_.reserve(fine_faces_);
-    slot_face_.reserve(fine_faces_);
-    for (Index f = 0; f < nf; ++f)
-        if (face_alive_[f]) revive_face(f);
-    vertex_slot_.assign(nv, kInvalidIndex);
-    for (Index v = 0; v < nv; ++v)
-        if (vertex_alive_[v]) {
-            vertex_slot_[v] = Index(live_vertices_.size());
-            live_vertices_.push_back(v);
-        }
     normal_sum_.assign(nv, NormalSum{0, 0, 0});
-    changed_flag_.assign(nv, 0);
+    vertex_changed_.assign(nv, 0);
     recompute_normals();
     all_changed_ = true;
 }
 
-void LevelOfDetail::kill_face(Index f) {
-    const Index slot = face_slot_[f], last = Index(triangles_.size() - 1);
-    triangles_[slot] = triangles_[last];
-    slot_face_[slot] = slot_face_[last];
-    face_slot_[slot_face_[slot]] = slot;
-    triangles_.pop_back();
-    slot_face_.pop_back();
-    face_slot_[f] = kInvalidIndex;
-    face_alive_[f] = 0;
-}
-
-void LevelOfDetail::revive_face(Index f) {
+void LevelOfDetail::face_normal(Index f, int sign) {
     const auto& c = faces_[f];
-    face_slot_[f] = Index(triangles_.size());
-    slot_face_.push_back(f);
-    triangles_.push_back({c[0].idx(), c[1].idx(), c[2].idx()});
-    face_alive_[f] = 1;
-}
-
-void LevelOfDetail::add_face_normal(Index f, int sign) {
-    const auto& c = faces_[f];
-    const Point& p0 = positions_[c[0].idx()];
-    const Vector3 n = (positions_[c[1].idx()] - p0).cross(positions_[c[2].idx()] - p0);
-    const std::int64_t q[3] = {sign * std::llround(n.x() * normal_scale_),
-                               sign * std::llround(n.y() * normal_scale_),
-                               sign * std::llround(n.z() * normal_scale_)};
-    for (Vertex v : c) {
-        NormalSum& sum = normal_sum_[v.idx()];
+    const Point& p0 = positions_[c[0]];
+    const Vector3 n = (positions_[c[1]] - p0).cross(positions_[c[2]] - p0) * normal_scale_;
+    // Any rounding gives exact sums as long as a face adds and removes the same integers.
+    const std::int64_t q[3] = {sign * std::int64_t(n.x()), sign * std::int64_t(n.y()),
+                               sign * std::int64_t(n.z())};
+    for (Index v : c) {
+        NormalSum& sum = normal_sum_[v];
         sum[0] += q[0];
         sum[1] += q[1];
         sum[2] += q[2];
@@ -1180,7 +1233,8 @@ void LevelOfDetail::add_face_normal(Index f, int sign) {
 
 void LevelOfDetail::recompute_normals() {
     std::fill(normal_sum_.begin(), normal_sum_.end(), NormalSum{0, 0, 0});
-    for (Index f : slot_face_) add_face_normal(f, 1);
+    for (Index f = 0; f < faces_.size(); ++f)
+        if (face_alive_[f]) face_normal(f, 1);
 }
 
 Vector3 LevelOfDetail::vertex_normal(Index v) const {
@@ -1190,98 +1244,94 @@ Vector3 LevelOfDetail::vertex_normal(Index v) const {
     return len > 0 ? Vector3(n / len) : Vector3::Zero();
 }
 
-void LevelOfDetail::collapse_step(const VertexSplit& s, bool normals) {
-    const std::vector<Face>& ring = pm_->ring_faces;
+void LevelOfDetail::collapse_step(const Step& s, bool normals, bool track) {
     if (normals) {
-        for (std::uint32_t i = s.moved_begin; i < s.ring_end; ++i)
-            add_face_normal(ring[i].idx(), -1);
-        for (Face f : s.faces)
-            if (f.is_valid()) add_face_normal(f.idx(), -1);
+        for (std::uint32_t i = s.ring_begin; i < s.ring_end; ++i) face_normal(ring_[i] >> 2, -1);
+        for (Index f : s.dead)
+            if (f != kInvalidIndex) face_normal(f, -1);
     }
-    if (!all_changed_) {
-        for (std::uint32_t i = s.moved_begin; i < s.ring_end; ++i)
-            for (Vertex v : faces_[ring[i].idx()]) mark(v.idx());
-        for (Face f : s.faces)
-            if (f.is_valid())
-                for (Vertex v : faces_[f.idx()]) mark(v.idx());
+    if (track) {
+        for (std::uint32_t i = s.ring_begin; i < s.ring_end; ++i) mark_vertices(ring_[i] >> 2);
+        for (Index f : s.dead)
+            if (f != kInvalidIndex) mark_vertices(f);
     }
-    for (Face f : s.faces)
-        if (f.is_valid()) kill_face(f.idx());
-    for (std::uint32_t i = s.moved_begin; i < s.moved_end; ++i) {
-        const Index f = ring[i].idx();
-        replace_corner(faces_[f], s.removed, s.kept);
-        for (Index& c : triangles_[face_slot_[f]])
-            if (c == s.removed.idx()) c = s.kept.idx();
-    }
-    positions_[s.kept.idx()] = s.kept_after;
-    const Index r = s.removed.idx(), slot = vertex_slot_[r];
-    live_vertices_[slot] = live_vertices_.back();
-    vertex_slot_[live_vertices_[slot]] = slot;
-    live_vertices_.pop_back();
-    vertex_slot_[r] = kInvalidIndex;
-    vertex_alive_[r] = 0;
+    for (Index f : s.dead)
+        if (f != kInvalidIndex) face_alive_[f] = 0;
+    for (std::uint32_t i = s.ring_begin; i < s.moved_end; ++i)
+        faces_[ring_[i] >> 2][ring_[i] & 3] = s.kept;
+    positions_[s.kept] = s.kept_after;
+    vertex_alive_[s.removed] = 0;
     if (normals)
-        for (std::uint32_t i = s.moved_begin; i < s.ring_end; ++i)
-            add_face_normal(ring[i].idx(), 1);
+        for (std::uint32_t i = s.ring_begin; i < s.ring_end; ++i) face_normal(ring_[i] >> 2, 1);
 }
 
-void LevelOfDetail::split_step(const VertexSplit& s, bool normals) {
-    const std::vector<Face>& ring = pm_->ring_faces;
+void LevelOfDetail::split_step(const Step& s, bool normals, bool track) {
     if (normals)
-        for (std::uint32_t i = s.moved_begin; i < s.ring_end; ++i)
-            add_face_normal(ring[i].idx(), -1);
-    for (std::uint32_t i = s.moved_begin; i < s.moved_end; ++i) {
-        const Index f = ring[i].idx();
-        replace_corner(faces_[f], s.kept, s.removed);
-        for (Index& c : triangles_[face_slot_[f]])
-            if (c == s.kept.idx()) c = s.removed.idx();
-    }
-    positions_[s.kept.idx()] = s.kept_before;
-    const Index r = s.removed.idx();
-    positions_[r] = s.removed_position;
-    vertex_slot_[r] = Index(live_vertices_.size());
-    live_vertices_.push_back(r);
-    vertex_alive_[r] = 1;
-    for (Face f : s.faces)
-        if (f.is_valid()) revive_face(f.idx());
+        for (std::uint32_t i = s.ring_begin; i < s.ring_end; ++i) face_normal(ring_[i] >> 2, -1);
+    for (std::uint32_t i = s.ring_begin; i < s.moved_end; ++i)
+        faces_[ring_[i] >> 2][ring_[i] & 3] = s.removed;
+    positions_[s.kept] = s.kept_before;
+    vertex_alive_[s.removed] = 1;
+    for (Index f : s.dead)
+        if (f != kInvalidIndex) face_alive_[f] = 1;
     if (normals) {
-        for (std::uint32_t i = s.moved_begin; i < s.ring_end; ++i)
-            add_face_normal(ring[i].idx(), 1);
-        for (Face f : s.faces)
-            if (f.is_valid()) add_face_normal(f.idx(), 1);
+        for (std::uint32_t i = s.ring_begin; i < s.ring_end; ++i) face_normal(ring_[i] >> 2, 1);
+        for (Index f : s.dead)
+            if (f != kInvalidIndex) face_normal(f, 1);
     }
-    if (!all_changed_) {
-        for (std::uint32_t i = s.moved_begin; i < s.ring_end; ++i)
-            for (Vertex v : faces_[ring[i].idx()]) mark(v.idx());
-        for (Face f : s.faces)
-            if (f.is_valid())
-                for (Vertex v : faces_[f.idx()]) mark(v.idx());
+    if (track) {
+        for (std::uint32_t i = s.ring_begin; i < s.ring_end; ++i) mark_vertices(ring_[i] >> 2);
+        for (Index f : s.dead)
+            if (f != kInvalidIndex) mark_vertices(f);
     }
 }
 
 void LevelOfDetail::set_level(std::size_t level) {
-    level = std::min(level, pm_->collapses.size());
+    level = std::min(level, steps_.size());
     if (level == level_) return;
     // Updating the normals step by step touches every ring face twice; recomputing them
-    // touches every live face of the new level once.
+    // touches every live face of the new level once (and scans the others).
     const std::size_t a = std::min(level, level_), b = std::max(level, level_);
     const std::uint64_t stepwise =
         2 * (ring_prefix_[b] - ring_prefix_[a]) + (removed_prefix_[b] - removed_prefix_[a]);
-    const std::uint64_t all = fine_faces_ - removed_prefix_[level];
+    const std::uint64_t all = fine_faces_ - removed_prefix_[level] + fine_faces_ / 8;
     const bool normals = stepwise <= all;
     if (!normals && !all_changed_) {
-        for (Index v : changed_) changed_flag_[v] = 0;
-        changed_.clear();
+        clear_changes();
         all_changed_ = true;
     }
-    while (level_ < level) collapse_step(pm_->collapses[level_++], normals);
-    while (level_ > level) split_step(pm_->collapses[--level_], normals);
+    const bool track = !all_changed_;
+    while (level_ < level) collapse_step(steps_[level_++], normals, track);
+    while (level_ > level) split_step(steps_[--level_], normals, track);
     if (!normals) recompute_normals();
+    triangles_stale_ = live_vertices_stale_ = true;
+}
+
+const std::vector<std::array<Index, 3>>& LevelOfDetail::triangles() const {
+    if (triangles_stale_) {
+        triangles_.resize(n_triangles());
+        std::size_t n = 0;
+        for (Index f = 0; f < faces_.size(); ++f)
+            if (face_alive_[f]) triangles_[n++] = faces_[f];
+        triangles_stale_ = false;
+    }
+    return triangles_;
+}
+
+const std::vector<Index>& LevelOfDetail::live_vertices() const {
+    if (live_vertices_stale_) {
+        live_vertices_.resize(n_live_vertices());
+        std::size_t n = 0;
+        for (Index v = 0; v < vertex_alive_.size(); ++v)
+            if (vertex_alive_[v]) live_vertices_[n++] = v;
+        live_vertices_stale_ = false;
+    }
+    return live_vertices_;
 }
 
 void LevelOfDetail::clear_changes() {
-    for (Index v : changed_) changed_flag_[v] = 0;
-    changed_.clear();
+    for (Index v : changed_vertices_) vertex_changed_[v] = 0;
+    changed_vertices_.clear();
     all_changed_ = false;
 }
 
@@ -1302,15 +1352,17 @@ double LevelOfDetail::percent_at_level(std::size_t level) const {
 HalfedgeMesh LevelOfDetail::mesh() const {
     PolygonSoup soup;
     std::vector<Index> index(positions_.size(), kInvalidIndex);
-    for (Index v = 0; v < positions_.size(); ++v) {
+    for (Index fine = 0; fine < vertex_of_.size(); ++fine) {
+        const Index v = vertex_of_[fine];
         if (!vertex_alive_[v]) continue;
         index[v] = Index(soup.positions.size());
         soup.positions.push_back(positions_[v]);
     }
-    for (std::size_t f = 0; f < faces_.size(); ++f) {
-        if (!face_alive_[f]) continue;
+    for (Index fine = 0; fine < face_of_.size(); ++fine) {
+        const Index f = face_of_[fine];
+        if (f == kInvalidIndex || !face_alive_[f]) continue;
         const auto& c = faces_[f];
-        soup.add_face({index[c[0].idx()], index[c[1].idx()], index[c[2].idx()]});
+        soup.add_face({index[c[0]], index[c[1]], index[c[2]]});
     }
     LoadReport report;
     return build_mesh(soup, report);

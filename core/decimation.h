@@ -184,25 +184,32 @@ struct ProgressiveBuild {
 ProgressiveBuild build_progressive_mesh(const HalfedgeMesh& mesh, const DecimationOptions& options,
                                         double min_percent, Progress& progress);
 
-/// Level of detail over a progressive mesh (Hoppe, "Progressive meshes", SIGGRAPH 1996):
-/// set_level() replays collapses (coarser) and vertex splits (finer) from the current level,
-/// so a move costs O(the faces around the collapses between the two levels), never a
-/// rebuild of a mesh. Alongside the fine mesh's face and vertex arrays it keeps what a
-/// renderer draws: a compact list of the live triangles (in no particular order), the live
-/// vertices, area-weighted vertex normals of the current level, and the vertices whose
-/// position or normal changed since clear_changes(). Normals are sums of face normals in
-/// fixed point (exact integer sums), so a level's normals do not depend on the path taken to
-/// it. A move so long that updating the normals of every face around every step would cost
-/// more than recomputing them all recomputes them all (O(live faces)) and reports every
-/// vertex as changed. `pm` must outlive the LevelOfDetail and stay unchanged.
+/// Level of detail over a progressive mesh (Hoppe, "Progressive meshes", SIGGRAPH 1996).
+///
+/// set_level() replays collapses (coarser) and vertex splits (finer) from the current level:
+/// a collapse moves one vertex, re-points the corners of the faces around it and drops one
+/// or two faces, so a move costs O(the faces around the collapses between the two levels),
+/// never a rebuild of a mesh. Vertices and faces are numbered in a drawing order of their
+/// own, made once: faces along a Morton curve of their centroids, vertices in the order the
+/// faces first use them, so that consecutive triangles share vertices (a software
+/// rasterizer's vertex cache depends on that). Area-weighted vertex normals of the current
+/// level are kept as sums of face normals in fixed point (exact integer sums: a level's
+/// normals do not depend on the path taken to it). For a renderer that keeps a copy of
+/// positions and normals, the level of detail lists the vertices whose position or normal
+/// changed since clear_changes(); a move so long that updating the normals step by step
+/// would cost more than recomputing them for the new level recomputes them (O(live faces))
+/// and reports every vertex as changed.
+///
+/// It copies what it needs from the progressive mesh (which may be dropped afterwards).
 class LevelOfDetail {
 public:
     /// Starts at level 0 (the fine mesh). Throws InvalidArgument when `pm` is inconsistent
-    /// (sizes, indices out of range). O(V + F + collapses).
+    /// (sizes, indices, a collapse that does not match the faces it names, non-finite
+    /// positions). O(V + F log F + the progressive record).
     explicit LevelOfDetail(const ProgressiveMesh& pm);
     /// Number of collapses applied, 0 (fine) to max_level() (coarsest).
     std::size_t level() const { return level_; }
-    std::size_t max_level() const { return pm_->collapses.size(); }
+    std::size_t max_level() const { return steps_.size(); }
     /// Moves to `level` (clamped to max_level()).
     void set_level(std::size_t level);
 
@@ -217,61 +224,83 @@ public:
     /// 100 * vertices at `level` / fine_vertices() (100 for a mesh without faces).
     double percent_at_level(std::size_t level) const;
 
-    /// The mesh at the current level: live vertices and faces, compacted (vertex order kept).
-    /// O(V + F): for saving or applying a level, not for drawing it.
+    /// The mesh at the current level: live vertices in the fine mesh's order (compacted),
+    /// faces in the fine mesh's order. O(V + F): for saving or applying a level, not for
+    /// drawing it.
     HalfedgeMesh mesh() const;
-    /// Current corners of every face of the fine mesh (dead faces keep their last corners).
-    const std::vector<std::array<Vertex, 3>>& faces() const { return faces_; }
+
+    // Drawing data, in the level of detail's own order (see above).
+    /// Current positions of all vertices (dead ones keep their last position).
+    const std::vector<Point>& positions() const { return positions_; }
+    /// Unit area-weighted normal of vertex v at the current level (zero without faces).
+    Vector3 vertex_normal(Index v) const;
+    /// The live faces of the current level as vertex triples, in drawing order. Rebuilt on
+    /// the first call after a move: O(fine faces).
+    const std::vector<std::array<Index, 3>>& triangles() const;
+    /// The live vertices (isolated ones included), in order. Rebuilt on the first call after
+    /// a move: O(fine vertices).
+    const std::vector<Index>& live_vertices() const;
+    std::size_t n_triangles() const { return fine_faces_ - removed_prefix_[level_]; }
+    std::size_t n_live_vertices() const { return live_at_fine_ - level_; }
+
+    /// Every face of the fine mesh with its current corners (dead faces keep their last
+    /// ones), and whether it is live; vertex liveness.
+    const std::vector<std::array<Index, 3>>& faces() const { return faces_; }
     const std::vector<std::uint8_t>& face_alive() const { return face_alive_; }
     const std::vector<std::uint8_t>& vertex_alive() const { return vertex_alive_; }
-    /// Current positions, per fine vertex index (dead vertices keep their last position).
-    const std::vector<Point>& positions() const { return positions_; }
+    /// The fine mesh's (ProgressiveMesh's) vertex index of vertex v and back (kInvalidIndex
+    /// for a vertex deleted in the input); the face (index into faces()) of a fine face.
+    Index fine_vertex(Index v) const { return fine_vertex_[v]; }
+    Index vertex_of(Index fine_vertex) const { return vertex_of_[fine_vertex]; }
+    Index face_of(Index fine_face) const { return face_of_[fine_face]; }
 
-    /// The live faces as triangles of fine vertex indices, in no particular order.
-    const std::vector<std::array<Index, 3>>& triangles() const { return triangles_; }
-    /// The live vertices (isolated ones included), in no particular order.
-    const std::vector<Index>& live_vertices() const { return live_vertices_; }
-    /// Unit area-weighted normal of v at the current level (zero without faces).
-    Vector3 vertex_normal(Index v) const;
-
-    /// Whether every vertex may have changed since clear_changes() (then changed_vertices()
-    /// is empty); otherwise changed_vertices() lists, once each, the vertices whose position,
-    /// normal or liveness changed.
-    bool all_vertices_changed() const { return all_changed_; }
-    const std::vector<Index>& changed_vertices() const { return changed_; }
+    /// What changed since clear_changes(), for a renderer's copy of positions and normals:
+    /// all_changed() says that any vertex may have (then changed_vertices() is empty);
+    /// otherwise changed_vertices() lists, once each, the vertices whose position or normal
+    /// changed (or that died or came back).
+    bool all_changed() const { return all_changed_; }
+    const std::vector<Index>& changed_vertices() const { return changed_vertices_; }
     void clear_changes();
 
 private:
     using NormalSum = std::array<std::int64_t, 3>;
-    void collapse_step(const VertexSplit& s, bool normals);
-    void split_step(const VertexSplit& s, bool normals);
-    void add_face_normal(Index f, int sign);
+    /// One collapse in the level of detail's numbering.
+    struct Step {
+        Index kept, removed;
+        std::array<Index, 2> dead;  ///< the faces it removes (kInvalidIndex: none)
+        std::uint32_t ring_begin, moved_end, ring_end;  ///< into ring_
+        Point kept_before, kept_after;
+    };
+    void collapse_step(const Step& s, bool normals, bool track);
+    void split_step(const Step& s, bool normals, bool track);
+    void face_normal(Index f, int sign);
     void recompute_normals();
-    void kill_face(Index f);
-    void revive_face(Index f);
-    void mark(Index v) {
-        if (!changed_flag_[v]) {
-            changed_flag_[v] = 1;
-            changed_.push_back(v);
-        }
+    void mark_vertices(Index f) {
+        for (Index v : faces_[f])
+            if (!vertex_changed_[v]) {
+                vertex_changed_[v] = 1;
+                changed_vertices_.push_back(v);
+            }
     }
 
-    const ProgressiveMesh* pm_;
-    std::size_t level_ = 0, fine_vertices_ = 0;
-    std::vector<std::array<Vertex, 3>> faces_;
-    std::vector<std::uint8_t> face_alive_, vertex_alive_;
+    std::size_t level_ = 0, fine_vertices_ = 0, live_at_fine_ = 0, fine_faces_ = 0;
+    std::vector<Step> steps_;
+    /// Per step: face << 2 | corner for the moved faces, face << 2 for kept's own.
+    std::vector<std::uint32_t> ring_;
     std::vector<Point> positions_;
-    std::vector<std::array<Index, 3>> triangles_;
-    std::vector<Index> face_slot_, slot_face_;  ///< live face <-> its place in triangles_
-    std::vector<Index> live_vertices_, vertex_slot_;
+    std::vector<std::array<Index, 3>> faces_;
+    std::vector<std::uint8_t> face_alive_, vertex_alive_;
+    std::vector<Index> fine_vertex_, vertex_of_, face_of_, fine_face_;
     std::vector<NormalSum> normal_sum_;
     double normal_scale_ = 1;  ///< fixed-point units per unit of face normal
-    /// Prefix sums over the collapses: ring faces, and faces removed, before collapse k.
+    /// Prefix sums over the steps: ring faces, and faces removed, before step k.
     std::vector<std::uint64_t> ring_prefix_, removed_prefix_;
-    std::size_t fine_faces_ = 0;
-    std::vector<std::uint8_t> changed_flag_;
-    std::vector<Index> changed_;
+    std::vector<std::uint8_t> vertex_changed_;
+    std::vector<Index> changed_vertices_;
     bool all_changed_ = true;
+    mutable std::vector<std::array<Index, 3>> triangles_;
+    mutable std::vector<Index> live_vertices_;
+    mutable bool triangles_stale_ = true, live_vertices_stale_ = true;
 };
 
 }  // namespace trilab

@@ -279,6 +279,35 @@ void MeshRenderer::write_level_vertex(const LevelOfDetail& lod, Index v) {
     out[5] = float(n.z());
 }
 
+namespace {
+
+// Uploads the elements `changed` (indices into `data`, `stride` bytes each) of the bound
+// GL_ARRAY_BUFFER in runs: neighbours up to kGap elements apart go in one call; with more
+// than kMaxRuns runs the whole of `data` (`n` elements) goes in one call instead.
+void upload_runs(std::vector<Index> changed, const void* data, std::size_t stride, std::size_t n) {
+    constexpr Index kGap = 32;
+    constexpr std::size_t kMaxRuns = 256;
+    std::sort(changed.begin(), changed.end());
+    std::vector<std::pair<Index, Index>> runs;  // [first, last]
+    for (Index i : changed) {
+        if (!runs.empty() && i <= runs.back().second + kGap)
+            runs.back().second = i;
+        else
+            runs.emplace_back(i, i);
+    }
+    const auto* bytes_of = static_cast<const char*>(data);
+    if (runs.size() > kMaxRuns) {
+        glBufferSubData(GL_ARRAY_BUFFER, 0, bytes(n, stride), bytes_of);
+        return;
+    }
+    for (const auto& [first, last] : runs)
+        glBufferSubData(GL_ARRAY_BUFFER, GLintptr(std::size_t(first) * stride),
+                        bytes(std::size_t(last - first) + 1, stride),
+                        bytes_of + std::size_t(first) * stride);
+}
+
+}  // namespace
+
 void MeshRenderer::write_level_indices(const LevelOfDetail& lod) {
     static_assert(sizeof(std::array<Index, 3>) == 3 * sizeof(GLuint) && sizeof(Index) == 4,
                   "triangles must be tightly packed uint32 triples");
@@ -305,6 +334,7 @@ void MeshRenderer::upload_level(LevelOfDetail& lod) {
     glBindBuffer(GL_ARRAY_BUFFER, geometry_buffer_);
     glBufferData(GL_ARRAY_BUFFER, bytes(level_vertices_.size(), sizeof(float)),
                  level_vertices_.data(), GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
     write_level_indices(lod);
 
     glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
@@ -336,34 +366,15 @@ void MeshRenderer::update_level(LevelOfDetail& lod) {
         upload_level(lod);
         return;
     }
-    const std::size_t stride = 6 * sizeof(float);
     glBindBuffer(GL_ARRAY_BUFFER, geometry_buffer_);
-    if (lod.all_vertices_changed()) {
+    if (lod.all_changed()) {
+        // Dead vertices keep stale entries: they are rewritten when they come back.
         for (Index v : lod.live_vertices()) write_level_vertex(lod, v);
-        glBufferData(GL_ARRAY_BUFFER, bytes(n, stride), level_vertices_.data(), GL_DYNAMIC_DRAW);
+        glBufferSubData(GL_ARRAY_BUFFER, 0, bytes(level_vertices_.size(), sizeof(float)),
+                        level_vertices_.data());
     } else {
-        // Patch the copy, then upload it in runs of changed vertices (gaps of up to
-        // kGap unchanged vertices are sent along rather than cut into more calls).
-        constexpr Index kGap = 32;
-        constexpr std::size_t kMaxRuns = 256;
-        std::vector<Index> changed = lod.changed_vertices();
-        for (Index v : changed) write_level_vertex(lod, v);
-        std::sort(changed.begin(), changed.end());
-        std::vector<std::pair<Index, Index>> runs;  // [first, last]
-        for (Index v : changed) {
-            if (!runs.empty() && v <= runs.back().second + kGap)
-                runs.back().second = v;
-            else
-                runs.emplace_back(v, v);
-        }
-        if (runs.size() > kMaxRuns) {
-            glBufferSubData(GL_ARRAY_BUFFER, 0, bytes(n, stride), level_vertices_.data());
-        } else {
-            for (const auto& [first, last] : runs)
-                glBufferSubData(GL_ARRAY_BUFFER, GLintptr(std::size_t(first) * stride),
-                                bytes(std::size_t(last - first) + 1, stride),
-                                &level_vertices_[6 * std::size_t(first)]);
-        }
+        for (Index v : lod.changed_vertices()) write_level_vertex(lod, v);
+        upload_runs(lod.changed_vertices(), level_vertices_.data(), 6 * sizeof(float), n);
     }
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     write_level_indices(lod);

@@ -15,14 +15,15 @@
 // rewrites everything and drops the vertex colours.
 //
 // Level of detail (LevelOfDetail, core/decimation.h, for a slider over a progressive mesh):
-// upload_level() puts the fine mesh's whole vertex storage on the GPU once (positions and the
-// level's area-weighted normals, per fine vertex index) with the live triangles and vertices;
-// update_level() after LevelOfDetail::set_level() rewrites the triangle and point index
-// buffers (O(live faces)) and only the vertices the move changed (their positions and
-// normals, a few ranges of the vertex buffer), or the whole vertex buffer when the level of
-// detail reports that every vertex changed. This path has no texture coordinates;
-// upload_level() drops vertex colours (set_vertex_colors() takes them per fine vertex index);
-// the bounding box (fog, vector length) stays the one of upload_level().
+// upload_level() puts every vertex of the fine mesh on the GPU once, in the level of
+// detail's drawing order (positions and the level's area-weighted normals), with the live
+// triangles and vertices; update_level() after LevelOfDetail::set_level() rewrites the index
+// buffers (O(live faces): the software rasterizer wants the drawing order, which a list
+// patched in place would lose) and only the vertices the move changed (a few ranges of the
+// vertex buffer), or all of them when the level of detail reports that all changed. This
+// path has no texture coordinates; upload_level() drops vertex colours (set_vertex_colors()
+// takes them per level-of-detail vertex); the bounding box (fog, vector length) stays the one
+// of upload_level().
 //
 // Normals: the mesh's "v:normal" (Vector3) when it has one, otherwise area-weighted vertex
 // normals computed on the fly (the same as core's vertex_normal()). A caller that moves
@@ -167,15 +168,15 @@ public:
     /// "v:normal" is ignored). Uploads `topology` first when its vertex storage size differs
     /// from the uploaded mesh's. Throws InvalidArgument on a size mismatch.
     void update_positions(const HalfedgeMesh& topology, const std::vector<Point>& positions);
-    /// Shows the current level of `lod`: uploads positions and normals of every fine vertex,
-    /// the live triangles and vertices, drops texture coordinates and vertex colours, and
-    /// clears the level of detail's change list (this renderer consumes it). O(fine vertices
-    /// + live faces).
+    /// Shows the current level of `lod`: uploads positions and normals of every vertex, the
+    /// live triangles and vertices, drops texture coordinates and vertex colours, and clears
+    /// the level of detail's changes (this renderer consumes them). O(fine vertices + faces).
     void upload_level(LevelOfDetail& lod);
-    /// Shows the current level of `lod` after set_level(): the index buffers, and the
-    /// vertices that changed since the last upload_level()/update_level() (see the top of
-    /// this file); clears the change list. Falls back to upload_level() when the last upload
-    /// was not of a level of detail of this size. O(live faces + changed vertices).
+    /// Shows the current level of `lod` after set_level(): the index buffers and the vertices
+    /// that changed since the last upload_level()/update_level() (see the top of this file);
+    /// clears the changes. Falls back to upload_level() when the last upload was not of a
+    /// level of detail of this size. O(fine faces + changed vertices), O(fine vertices +
+    /// faces) when all changed.
     void update_level(LevelOfDetail& lod);
     /// Forgets the uploaded mesh and colours; draw() then draws nothing. Keeps the texture.
     void clear();

@@ -76,10 +76,10 @@ TEST_CASE("the level-of-detail path draws every level like a full upload of its 
     double coarse_difference = 0;
     for (double percent : percents) {
         lod.set_level(lod.level_for_percent(percent));
-        (lod.all_vertices_changed() ? recomputed : stepwise) = true;
+        (lod.all_changed() ? recomputed : stepwise) = true;
         level_renderer.update_level(lod);
         CHECK(lod.changed_vertices().empty());
-        CHECK_FALSE(lod.all_vertices_changed());
+        CHECK_FALSE(lod.all_changed());
         const HalfedgeMesh level_mesh = lod.mesh();
         full.upload(level_mesh);
         INFO(percent << " %: " << lod.vertices() << " vertices");

@@ -77,22 +77,8 @@ DecimationOptions percent_options(DecimationCost cost, double percent, int itera
     return o;
 }
 
-/// Live triangles as sorted vertex triples of rotated-to-smallest-first corners.
-std::vector<std::array<Index, 3>> triangles(const std::vector<std::array<Vertex, 3>>& faces,
-                                            const std::vector<std::uint8_t>& alive) {
-    std::vector<std::array<Index, 3>> t;
-    for (std::size_t f = 0; f < faces.size(); ++f) {
-        if (!alive[f]) continue;
-        std::array<Index, 3> c{faces[f][0].idx(), faces[f][1].idx(), faces[f][2].idx()};
-        std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
-        t.push_back(c);
-    }
-    std::sort(t.begin(), t.end());
-    return t;
-}
-
-Vector3 triangle_normal(const std::vector<Point>& x, const std::array<Vertex, 3>& c) {
-    return (x[c[1].idx()] - x[c[0].idx()]).cross(x[c[2].idx()] - x[c[0].idx()]);
+Vector3 triangle_normal(const std::vector<Point>& x, const std::array<Index, 3>& c) {
+    return (x[c[1]] - x[c[0]]).cross(x[c[2]] - x[c[0]]);
 }
 
 }  // namespace
@@ -244,9 +230,9 @@ TEST_CASE("with the normal-flip constraint no collapse turns a face further than
         lod.set_level(k + 1);
         const VertexSplit& s = r.progressive.collapses[k];
         for (std::uint32_t i = s.moved_begin; i < s.ring_end; ++i) {
-            const Face f = r.progressive.ring_faces[i];
-            const Vector3 a = triangle_normal(x0, faces0[f.idx()]);
-            const Vector3 b = triangle_normal(lod.positions(), lod.faces()[f.idx()]);
+            const Index f = lod.face_of(r.progressive.ring_faces[i].idx());
+            const Vector3 a = triangle_normal(x0, faces0[f]);
+            const Vector3 b = triangle_normal(lod.positions(), lod.faces()[f]);
             worst = std::min(worst, a.normalized().dot(b.normalized()));
         }
     }
@@ -265,7 +251,7 @@ TEST_CASE("the progressive mesh replays to the decimated mesh and splits back to
     const ProgressiveMesh& pm = r.progressive;
     CHECK(pm.collapses.size() == r.report.collapses);
     LevelOfDetail lod(pm);
-    const auto original = triangles(lod.faces(), lod.face_alive());
+    const auto original = lod.faces();
     lod.set_level(pm.collapses.size());
     const HalfedgeMesh coarse = lod.mesh();
     REQUIRE_VALID(coarse);
@@ -291,7 +277,7 @@ TEST_CASE("the progressive mesh replays to the decimated mesh and splits back to
     CHECK(a == b);
     // Splits all the way back: the original connectivity and positions.
     lod.set_level(0);
-    CHECK(triangles(lod.faces(), lod.face_alive()) == original);
+    CHECK(lod.faces() == original);
     const HalfedgeMesh fine = lod.mesh();
     REQUIRE_VALID(fine);
     CHECK(fine.n_faces() == mesh.n_faces());
@@ -631,21 +617,25 @@ std::vector<std::array<Index, 3>> mesh_triangles(const HalfedgeMesh& m) {
     return t;
 }
 
-/// LevelOfDetail::triangles() as rotated, sorted triples.
-std::vector<std::array<Index, 3>> compact_triangles(const LevelOfDetail& lod) {
+/// The live triangles of the level of detail, in the fine mesh's vertex indices, as
+/// rotated, sorted triples.
+std::vector<std::array<Index, 3>> live_triangles(const LevelOfDetail& lod) {
     std::vector<std::array<Index, 3>> t = lod.triangles();
-    for (auto& x : t) std::rotate(x.begin(), std::min_element(x.begin(), x.end()), x.end());
+    for (auto& x : t) {
+        for (Index& v : x) v = lod.fine_vertex(v);
+        std::rotate(x.begin(), std::min_element(x.begin(), x.end()), x.end());
+    }
     std::sort(t.begin(), t.end());
     return t;
 }
 
-/// Area-weighted unit vertex normals of the current level, in doubles, from faces().
+/// Area-weighted unit vertex normals of the current level, in doubles, from the live
+/// triangles.
 std::vector<Vector3> direct_normals(const LevelOfDetail& lod) {
     std::vector<Vector3> n(lod.positions().size(), Vector3::Zero());
-    for (std::size_t f = 0; f < lod.faces().size(); ++f) {
-        if (!lod.face_alive()[f]) continue;
-        const Vector3 fn = triangle_normal(lod.positions(), lod.faces()[f]);
-        for (Vertex v : lod.faces()[f]) n[v.idx()] += fn;
+    for (const auto& t : lod.triangles()) {
+        const Vector3 fn = triangle_normal(lod.positions(), t);
+        for (Index v : t) n[v] += fn;
     }
     for (Vector3& x : n)
         if (x.norm() > 0) x.normalize();
@@ -788,26 +778,22 @@ TEST_CASE(
     const ProgressiveMesh& pm = pb.progressive;
     REQUIRE(pm.collapses.size() > 100);
     LevelOfDetail lod(pm);
-    CHECK(lod.all_vertices_changed());  // nothing consumed yet
-    // A renderer's copy of positions and normals, updated from the change reports only.
-    std::vector<Point> seen_positions;
-    std::vector<Vector3> seen_normals;
+    CHECK(lod.all_changed());  // nothing consumed yet
+    // A renderer's copy of positions and normals, kept right for the live vertices from the
+    // change reports alone.
+    std::vector<Point> seen_positions(lod.positions().size());
+    std::vector<Vector3> seen_normals(lod.positions().size());
     const auto consume = [&]() {
-        const std::size_t n = lod.positions().size();
-        if (lod.all_vertices_changed()) {
-            seen_positions = lod.positions();
-            seen_normals.resize(n);
-            for (Index v = 0; v < n; ++v) seen_normals[v] = lod.vertex_normal(v);
-        } else {
-            for (Index v : lod.changed_vertices()) {
-                seen_positions[v] = lod.positions()[v];
-                seen_normals[v] = lod.vertex_normal(v);
-            }
+        const std::vector<Index>& which =
+            lod.all_changed() ? lod.live_vertices() : lod.changed_vertices();
+        for (Index v : which) {
+            seen_positions[v] = lod.positions()[v];
+            seen_normals[v] = lod.vertex_normal(v);
         }
         lod.clear_changes();
     };
     consume();
-    CHECK_FALSE(lod.all_vertices_changed());
+    CHECK_FALSE(lod.all_changed());
     CHECK(lod.changed_vertices().empty());
 
     std::uint32_t seed = 12345;
@@ -822,32 +808,33 @@ TEST_CASE(
                                        ? random(pm.collapses.size() + 1)
                                        : std::min(pm.collapses.size(), lod.level() + random(8));
         lod.set_level(target);
-        (lod.all_vertices_changed() ? recomputed : stepwise) = true;
+        (lod.all_changed() ? recomputed : stepwise) = true;
         consume();
         INFO("move " << move << " to level " << target);
-        // The same as replaying from the fine mesh straight to that level.
+        // The same as replaying from the fine mesh straight to that level, bit for bit
+        // (fixed-point normals: whatever the path).
         LevelOfDetail fresh(pm);
         fresh.set_level(target);
         REQUIRE(lod.level() == target);
         CHECK(lod.vertices() == lod.fine_vertices() - target);
+        CHECK(lod.n_live_vertices() == mesh.n_vertices() - target);
+        CHECK(lod.faces() == fresh.faces());
         CHECK(lod.face_alive() == fresh.face_alive());
         CHECK(lod.vertex_alive() == fresh.vertex_alive());
-        CHECK(triangles(lod.faces(), lod.face_alive()) ==
-              triangles(fresh.faces(), fresh.face_alive()));
-        CHECK(compact_triangles(lod) == triangles(lod.faces(), lod.face_alive()));
-        std::vector<Index> live = lod.live_vertices();
-        std::sort(live.begin(), live.end());
+        CHECK(lod.positions() == fresh.positions());
+        CHECK(lod.triangles() == fresh.triangles());
+        CHECK(lod.triangles().size() == lod.n_triangles());
         std::vector<Index> alive;
         for (Index v = 0; v < lod.vertex_alive().size(); ++v)
             if (lod.vertex_alive()[v]) alive.push_back(v);
-        CHECK(live == alive);
-        CHECK(mesh_triangles(lod.mesh()) == mesh_triangles(fresh.mesh()));
+        CHECK(lod.live_vertices() == alive);
+        const HalfedgeMesh level = lod.mesh();
+        CHECK(level.n_vertices() == lod.n_live_vertices());
+        CHECK(level.n_faces() == lod.n_triangles());
         const std::vector<Vector3> direct = direct_normals(lod);
         double worst_normal = 0;
         std::size_t stale = 0;
         for (Index v : alive) {
-            CHECK(lod.positions()[v] == fresh.positions()[v]);
-            // Fixed-point sums: the same normal bit for bit, whatever the path.
             CHECK(lod.vertex_normal(v) == fresh.vertex_normal(v));
             worst_normal = std::max(worst_normal, (lod.vertex_normal(v) - direct[v]).norm());
             if (seen_positions[v] != lod.positions()[v] || seen_normals[v] != lod.vertex_normal(v))
@@ -858,9 +845,10 @@ TEST_CASE(
     }
     CHECK(stepwise);
     CHECK(recomputed);
-    // And back to the fine mesh.
+    // And back to the fine mesh: its triangles, in the fine mesh's vertex order.
     lod.set_level(0);
     CHECK(mesh_triangles(lod.mesh()) == mesh_triangles(mesh));
+    CHECK(live_triangles(lod) == mesh_triangles(mesh));
 }
 
 TEST_CASE("the level of detail refuses an inconsistent progressive mesh", "[decimation][lod]") {
