@@ -1052,10 +1052,11 @@ LevelOfDetail::LevelOfDetail(const ProgressiveMesh& pm) {
         max_valence = std::max<std::uint64_t>(max_valence, valence[v]);
     }
 
-    // A dry run of every collapse (so that set_level() can trust the record): the faces it
-    // names are live and at its vertices, its ring lists every face at the kept vertex once,
-    // and the removed vertex has no face left. Records where each moved face has the
-    // removed vertex (its corner), the bounds for fixed-point normals and prefix sums.
+    // A dry run of every collapse (so that set_level() can trust the record): its vertices
+    // are live and where it says, the faces it names are live and at its vertices, its ring
+    // lists every face at the kept vertex once, and the removed vertex has no face left. Records
+    // where each moved face has the removed vertex (its corner), the bounds for fixed-point normals
+    // and prefix sums.
     const std::size_t nc = pm.collapses.size();
     if (nc > fine_vertices_) bad_progressive(nc, "more collapses than vertices with faces");
     const std::size_t nr = pm.ring_faces.size();
@@ -1065,6 +1066,7 @@ LevelOfDetail::LevelOfDetail(const ProgressiveMesh& pm) {
     {
         std::vector<std::array<Vertex, 3>> corners = pm.faces;
         std::vector<std::uint8_t> face_on = pm.face_alive, vertex_on = pm.vertex_alive;
+        std::vector<Point> at = pm.positions;
         Point lo = Point::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
         const auto extend = [&](const Point& p) {
             if (!p.allFinite())
@@ -1083,6 +1085,9 @@ LevelOfDetail::LevelOfDetail(const ProgressiveMesh& pm) {
                 bad_progressive(k, "its vertices are not two live vertices");
             if (!(s.moved_begin <= s.moved_end && s.moved_end <= s.ring_end && s.ring_end <= nr))
                 bad_progressive(k, "its ring range is out of order or out of range");
+            if (at[r.idx()] != s.removed_position || at[q.idx()] != s.kept_before)
+                bad_progressive(k, "its positions before the collapse are not the vertices'");
+            at[q.idx()] = s.kept_after;
             std::uint32_t removed_faces = 0;
             for (Face f : s.faces) {
                 if (!f.is_valid()) continue;

@@ -879,6 +879,9 @@ TEST_CASE("the level of detail refuses an inconsistent progressive mesh", "[deci
     --pm.collapses[6].ring_end;  // one face at the kept vertex left out
     CHECK(message(pm).find("collapse 6: its ring does not list") != std::string::npos);
     pm = pb.progressive;
+    pm.collapses[7].kept_before.x() += 1e-9;  // not where the vertex is
+    CHECK(message(pm).find("collapse 7: its positions") != std::string::npos);
+    pm = pb.progressive;
     pm.face_alive.pop_back();
     CHECK(message(pm).find("sizes") != std::string::npos);
     pm = pb.progressive;
