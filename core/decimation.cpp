@@ -669,15 +669,21 @@ private:
             s.kept_before = m_.position(v1);
             s.kept_after = p;
             s.faces = {f0, f1};
-            s.moved_begin = std::uint32_t(pm_->moved_faces.size());
-            const Halfedge start = m_.halfedge(v0);
-            Halfedge g = start;
-            do {
-                const Face f = m_.face(g);
-                if (f.is_valid() && f != f0 && f != f1) pm_->moved_faces.push_back(f);
-                g = m_.ccw_rotated(g);
-            } while (g != start);
-            s.moved_end = std::uint32_t(pm_->moved_faces.size());
+            // The faces at v1 after the collapse: v0's (moved to v1), then v1's own.
+            s.moved_begin = std::uint32_t(pm_->ring_faces.size());
+            for (int side = 0; side < 2; ++side) {
+                const Halfedge start = m_.halfedge(side == 0 ? v0 : v1);
+                Halfedge g = start;
+                do {
+                    const Face f = m_.face(g);
+                    if (f.is_valid() && f != f0 && f != f1) pm_->ring_faces.push_back(f);
+                    g = m_.ccw_rotated(g);
+                } while (g != start);
+                if (side == 0) s.moved_end = std::uint32_t(pm_->ring_faces.size());
+            }
+            s.ring_end = std::uint32_t(pm_->ring_faces.size());
+            if (pm_->ring_faces.size() >= std::numeric_limits<std::uint32_t>::max())
+                throw Error("decimate: the progressive mesh outgrew its 32-bit face list");
             pm_->collapses.push_back(s);
         }
 
@@ -867,6 +873,36 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
     const int iterations = options.target_vertices > 0 ? 1 : options.iterations;
     std::size_t last_target = report.input_vertices;
     std::size_t final_vertices = work.n_vertices();
+    bool any_collapse = false;
+    std::size_t level_target = 0;  ///< the target of the last iteration that collapsed
+    // One level from the working mesh: its geomorph from the mesh before (before_to_work
+    // maps that mesh's vertices to working indices; updated for the next level).
+    const auto make_level = [&](HalfedgeMesh& w, bool take, Decimater& d,
+                                std::vector<Index>& before, std::size_t target) {
+        DecimationLevel level;
+        level.target_vertices = target;
+        level.correspondence.kind = MorphCorrespondence::Kind::ToLater;
+        if (options.record_geomorph) {
+            level.correspondence.positions.resize(before.size());
+            for (Index i = 0; i < before.size(); ++i) {
+                const Vertex v(before[i]);
+                level.correspondence.positions[i] =
+                    w.position(w.is_deleted(v) ? d.representative(v) : v);
+            }
+        }
+        if (take)
+            level.mesh = std::move(w);
+        else
+            level.mesh = w;
+        const IndexRemap remap = level.mesh.garbage_collection();
+        if (!take) {
+            std::vector<Index> next(level.mesh.vertices_size(), kInvalidIndex);
+            for (Index v = 0; v < remap.vertices.size(); ++v)
+                if (remap.vertices[v] != kInvalidIndex) next[remap.vertices[v]] = v;
+            before = std::move(next);
+        }
+        return level;
+    };
     for (int it = 0; it < iterations; ++it) {
         progress.check_cancelled();
         const std::size_t v = work.n_vertices() - isolated;
@@ -881,27 +917,14 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
         const bool reached = decimater.iterate(target + isolated, progress, double(it) / iterations,
                                                1.0 / iterations, stop);
         if (report.collapses > collapses_before) {
-            DecimationLevel level;
-            level.target_vertices = target;
-            level.correspondence.kind = MorphCorrespondence::Kind::ToLater;
-            level.correspondence.positions.resize(before_to_work.size());
-            for (Index i = 0; i < before_to_work.size(); ++i) {
-                const Vertex w(before_to_work[i]);
-                level.correspondence.positions[i] =
-                    work.position(work.is_deleted(w) ? decimater.representative(w) : w);
-            }
             final_vertices = work.n_vertices();
-            // The last iteration takes the working mesh itself (no copy of a big mesh).
-            if (it + 1 == iterations)
-                level.mesh = std::move(work);
-            else
-                level.mesh = work;
-            const IndexRemap remap = level.mesh.garbage_collection();
-            std::vector<Index> next(level.mesh.vertices_size(), kInvalidIndex);
-            for (Index w = 0; w < remap.vertices.size(); ++w)
-                if (remap.vertices[w] != kInvalidIndex) next[remap.vertices[w]] = w;
-            before_to_work = std::move(next);
-            result.levels.push_back(std::move(level));
+            any_collapse = true;
+            level_target = target;
+            if (options.levels == DecimationLevels::All) {
+                // The last iteration takes the working mesh itself (no copy of a big mesh).
+                result.levels.push_back(
+                    make_level(work, it + 1 == iterations, decimater, before_to_work, target));
+            }
         }
         if (!reached) {
             report.stop = stop;
@@ -914,6 +937,8 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
             report.stop = DecimationStop::Done;
         }
     }
+    if (options.levels == DecimationLevels::Last && any_collapse)
+        result.levels.push_back(make_level(work, true, decimater, before_to_work, level_target));
     report.output_vertices = final_vertices - isolated;
     report.stop_message = stop_text(report.stop, report, last_target);
     report.ms =
@@ -939,52 +964,398 @@ std::vector<std::array<Vertex, 2>> next_collapses(const HalfedgeMesh& mesh,
     return pairs;
 }
 
+namespace {
+
+// ceil(percent / 100 * vertices), up to a rounding error of the product (1 % of 300
+// vertices keeps 3, not 4).
+std::size_t kept_vertices(double percent, std::size_t vertices) {
+    const double x = percent / 100.0 * double(vertices);
+    return std::min(vertices, std::size_t(std::max(0.0, std::ceil(x - 1e-6))));
+}
+
+}  // namespace
+
+ProgressiveBuild build_progressive_mesh(const HalfedgeMesh& mesh, const DecimationOptions& options,
+                                        double min_percent, Progress& progress) {
+    if (!(min_percent > 0 && min_percent <= 100))
+        throw InvalidArgument("build_progressive_mesh: min_percent must be in (0, 100], got " +
+                              std::to_string(min_percent));
+    std::size_t surface = 0;
+    for (Vertex v : mesh.vertices())
+        if (!mesh.is_isolated(v)) ++surface;
+    DecimationOptions o = options;
+    o.target_vertices = std::max<std::size_t>(1, kept_vertices(min_percent, surface));
+    o.iterations = 1;
+    o.independent_set = false;
+    o.levels = DecimationLevels::None;
+    o.record_geomorph = false;
+    o.record_progressive = true;
+    DecimationResult r = decimate(mesh, o, progress);
+    return ProgressiveBuild{std::move(r.progressive), r.report};
+}
+
 // ---- level of detail --------------------------------------------------------------------------
 
-LevelOfDetail::LevelOfDetail(const ProgressiveMesh& pm)
-    : pm_(&pm),
-      faces_(pm.faces),
-      face_alive_(pm.face_alive),
-      vertex_alive_(pm.vertex_alive),
-      positions_(pm.positions) {}
+namespace {
+
+bool has_corner(const std::array<Vertex, 3>& c, Vertex v) {
+    return c[0] == v || c[1] == v || c[2] == v;
+}
+
+[[noreturn]] void bad_progressive(std::size_t collapse, const std::string& what) {
+    throw InvalidArgument("LevelOfDetail: inconsistent progressive mesh at collapse " +
+                          std::to_string(collapse) + ": " + what);
+}
+
+}  // namespace
+
+LevelOfDetail::LevelOfDetail(const ProgressiveMesh& pm) {
+    const std::size_t nv = pm.positions.size(), nf = pm.faces.size();
+    if (pm.vertex_alive.size() != nv || pm.face_alive.size() != nf)
+        throw InvalidArgument("LevelOfDetail: the progressive mesh's sizes disagree (" +
+                              std::to_string(nv) + " positions, " +
+                              std::to_string(pm.vertex_alive.size()) + " vertex flags, " +
+                              std::to_string(nf) + " faces, " +
+                              std::to_string(pm.face_alive.size()) + " face flags)");
+    if (nv >= kInvalidIndex || nf >= (std::size_t(1) << 30))
+        throw InvalidArgument("LevelOfDetail: too many vertices or faces");
+    // The fine mesh: corners of live faces are distinct live vertices; valences.
+    std::vector<std::uint32_t> valence(nv, 0);
+    for (std::size_t f = 0; f < nf; ++f) {
+        if (!pm.face_alive[f]) continue;
+        const auto& c = pm.faces[f];
+        for (Vertex v : c)
+            if (!v.is_valid() || v.idx() >= nv || !pm.vertex_alive[v.idx()])
+                throw InvalidArgument("LevelOfDetail: face " + std::to_string(f) +
+                                      " has a corner that is not a live vertex");
+        if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2])
+            throw InvalidArgument("LevelOfDetail: face " + std::to_string(f) + " repeats a corner");
+        for (Vertex v : c) ++valence[v.idx()];
+        ++fine_faces_;
+    }
+    std::uint64_t max_valence = 1;
+    for (std::size_t v = 0; v < nv; ++v) {
+        if (valence[v] > 0) ++fine_vertices_;
+        if (pm.vertex_alive[v]) ++live_at_fine_;
+        max_valence = std::max<std::uint64_t>(max_valence, valence[v]);
+    }
+
+    // A dry run of every collapse (so that set_level() can trust the record): its vertices
+    // are live and where it says, the faces it names are live and at its vertices, its ring
+    // lists every face at the kept vertex once, and the removed vertex has no face left. Records
+    // where each moved face has the removed vertex (its corner), the bounds for fixed-point normals
+    // and prefix sums.
+    const std::size_t nc = pm.collapses.size();
+    if (nc > fine_vertices_) bad_progressive(nc, "more collapses than vertices with faces");
+    const std::size_t nr = pm.ring_faces.size();
+    std::vector<std::uint8_t> ring_corner(nr, 0);
+    ring_prefix_.assign(nc + 1, 0);
+    removed_prefix_.assign(nc + 1, 0);
+    {
+        std::vector<std::array<Vertex, 3>> corners = pm.faces;
+        std::vector<std::uint8_t> face_on = pm.face_alive, vertex_on = pm.vertex_alive;
+        std::vector<Point> at = pm.positions;
+        Point lo = Point::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+        const auto extend = [&](const Point& p) {
+            if (!p.allFinite())
+                throw InvalidArgument(
+                    "LevelOfDetail: the progressive mesh has a non-finite position");
+            lo = lo.cwiseMin(p);
+            hi = hi.cwiseMax(p);
+        };
+        for (std::size_t v = 0; v < nv; ++v)
+            if (valence[v] > 0) extend(pm.positions[v]);
+        for (std::size_t k = 0; k < nc; ++k) {
+            const VertexSplit& s = pm.collapses[k];
+            const Vertex r = s.removed, q = s.kept;
+            if (!r.is_valid() || !q.is_valid() || r.idx() >= nv || q.idx() >= nv || r == q ||
+                !vertex_on[r.idx()] || !vertex_on[q.idx()])
+                bad_progressive(k, "its vertices are not two live vertices");
+            if (!(s.moved_begin <= s.moved_end && s.moved_end <= s.ring_end && s.ring_end <= nr))
+                bad_progressive(k, "its ring range is out of order or out of range");
+            if (at[r.idx()] != s.removed_position || at[q.idx()] != s.kept_before)
+                bad_progressive(k, "its positions before the collapse are not the vertices'");
+            at[q.idx()] = s.kept_after;
+            std::uint32_t removed_faces = 0;
+            for (Face f : s.faces) {
+                if (!f.is_valid()) continue;
+                if (f.idx() >= nf || !face_on[f.idx()] || !has_corner(corners[f.idx()], r) ||
+                    !has_corner(corners[f.idx()], q))
+                    bad_progressive(k, "a face it removes is not a live face at its edge");
+                face_on[f.idx()] = 0;
+                for (Vertex v : corners[f.idx()]) --valence[v.idx()];
+                ++removed_faces;
+            }
+            if (removed_faces == 0) bad_progressive(k, "it removes no face");
+            for (std::uint32_t i = s.moved_begin; i < s.ring_end; ++i) {
+                const Face f = pm.ring_faces[i];
+                const bool moved = i < s.moved_end;
+                if (!f.is_valid() || f.idx() >= nf || !face_on[f.idx()])
+                    bad_progressive(k, "a face of its ring is not live");
+                auto& c = corners[f.idx()];
+                if (!has_corner(c, moved ? r : q) || has_corner(c, moved ? q : r))
+                    bad_progressive(k, "a face of its ring is not at the vertex it names");
+                if (moved) {
+                    const int j = c[0] == r ? 0 : c[1] == r ? 1 : 2;
+                    ring_corner[i] = std::uint8_t(j);
+                    c[j] = q;
+                    --valence[r.idx()];
+                    ++valence[q.idx()];
+                }
+            }
+            if (valence[r.idx()] != 0 || valence[q.idx()] != s.ring_end - s.moved_begin)
+                bad_progressive(k, "its ring does not list the faces at its vertices");
+            vertex_on[r.idx()] = 0;
+            extend(s.kept_after);
+            extend(s.kept_before);
+            max_valence = std::max<std::uint64_t>(max_valence, s.ring_end - s.moved_begin);
+            ring_prefix_[k + 1] = ring_prefix_[k] + (s.ring_end - s.moved_begin);
+            removed_prefix_[k + 1] = removed_prefix_[k] + removed_faces;
+        }
+        // Fixed point: a component of a face normal is at most diagonal^2 in size and a vertex
+        // has at most max_valence faces at any level, so the sums stay below 2^61.
+        const double diagonal2 = fine_faces_ > 0 ? (hi - lo).squaredNorm() : 0.0;
+        normal_scale_ =
+            diagonal2 > 0 ? std::ldexp(1.0, 61) / (double(max_valence) * diagonal2) : 1.0;
+    }
+
+    // Drawing order: faces along a Morton curve of their centroids (10 bits an axis, ties in
+    // index order), vertices in the order the faces first use them, then isolated vertices,
+    // then vertices deleted in the input (never live).
+    {
+        Point lo = Point::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+        for (std::size_t f = 0; f < nf; ++f)
+            if (pm.face_alive[f])
+                for (Vertex v : pm.faces[f]) {
+                    lo = lo.cwiseMin(pm.positions[v.idx()]);
+                    hi = hi.cwiseMax(pm.positions[v.idx()]);
+                }
+        const Vector3 extent = (hi - lo).cwiseMax(Vector3::Constant(1e-300));
+        const auto spread = [](std::uint32_t x) {  // 10 bits to every third of 30
+            std::uint32_t r = 0;
+            for (int i = 0; i < 10; ++i) r |= ((x >> i) & 1u) << (3 * i);
+            return r;
+        };
+        std::vector<std::uint64_t> keys;
+        keys.reserve(fine_faces_);
+        for (std::size_t f = 0; f < nf; ++f) {
+            if (!pm.face_alive[f]) continue;
+            const auto& c = pm.faces[f];
+            const Point centre =
+                (pm.positions[c[0].idx()] + pm.positions[c[1].idx()] + pm.positions[c[2].idx()]) /
+                3.0;
+            std::uint32_t code = 0;
+            for (int axis = 0; axis < 3; ++axis) {
+                const double t = (centre[axis] - lo[axis]) / extent[axis];
+                const auto cell = std::uint32_t(std::min(1023.0, std::max(0.0, t * 1024.0)));
+                code |= spread(cell) << axis;
+            }
+            keys.push_back(std::uint64_t(code) << 32 | f);
+        }
+        std::sort(keys.begin(), keys.end());
+        face_of_.assign(nf, kInvalidIndex);
+        fine_face_.resize(fine_faces_);
+        vertex_of_.assign(nv, kInvalidIndex);
+        fine_vertex_.reserve(nv);
+        const auto add_vertex = [&](Index v) {
+            vertex_of_[v] = Index(fine_vertex_.size());
+            fine_vertex_.push_back(v);
+        };
+        for (std::size_t i = 0; i < keys.size(); ++i) {
+            const Index f = Index(keys[i] & 0xffffffffu);
+            face_of_[f] = Index(i);
+            fine_face_[i] = f;
+            for (Vertex v : pm.faces[f])
+                if (vertex_of_[v.idx()] == kInvalidIndex) add_vertex(v.idx());
+        }
+        for (Index v = 0; v < nv; ++v)
+            if (pm.vertex_alive[v] && vertex_of_[v] == kInvalidIndex) add_vertex(v);
+        for (Index v = 0; v < nv; ++v)
+            if (!pm.vertex_alive[v]) add_vertex(v);
+    }
+
+    positions_.resize(nv);
+    vertex_alive_.resize(nv);
+    for (Index v = 0; v < nv; ++v) {
+        positions_[v] = pm.positions[fine_vertex_[v]];
+        vertex_alive_[v] = pm.vertex_alive[fine_vertex_[v]];
+    }
+    faces_.resize(fine_faces_);
+    face_alive_.assign(fine_faces_, 1);
+    for (Index f = 0; f < fine_faces_; ++f) {
+        const auto& c = pm.faces[fine_face_[f]];
+        faces_[f] = {vertex_of_[c[0].idx()], vertex_of_[c[1].idx()], vertex_of_[c[2].idx()]};
+    }
+    steps_.resize(nc);
+    ring_.resize(nr);
+    for (std::size_t k = 0; k < nc; ++k) {
+        const VertexSplit& s = pm.collapses[k];
+        Step& step = steps_[k];
+        step.kept = vertex_of_[s.kept.idx()];
+        step.removed = vertex_of_[s.removed.idx()];
+        for (int i = 0; i < 2; ++i)
+            step.dead[i] = s.faces[i].is_valid() ? face_of_[s.faces[i].idx()] : kInvalidIndex;
+        step.ring_begin = s.moved_begin;
+        step.moved_end = s.moved_end;
+        step.ring_end = s.ring_end;
+        step.kept_before = s.kept_before;
+        step.kept_after = s.kept_after;
+        for (std::uint32_t i = s.moved_begin; i < s.ring_end; ++i)
+            ring_[i] = (face_of_[pm.ring_faces[i].idx()] << 2) | ring_corner[i];
+    }
+    normal_sum_.assign(nv, NormalSum{0, 0, 0});
+    vertex_changed_.assign(nv, 0);
+    recompute_normals();
+    all_changed_ = true;
+}
+
+void LevelOfDetail::face_normal(Index f, int sign) {
+    const auto& c = faces_[f];
+    const Point& p0 = positions_[c[0]];
+    const Vector3 n = (positions_[c[1]] - p0).cross(positions_[c[2]] - p0) * normal_scale_;
+    // Any rounding gives exact sums as long as a face adds and removes the same integers.
+    const std::int64_t q[3] = {sign * std::int64_t(n.x()), sign * std::int64_t(n.y()),
+                               sign * std::int64_t(n.z())};
+    for (Index v : c) {
+        NormalSum& sum = normal_sum_[v];
+        sum[0] += q[0];
+        sum[1] += q[1];
+        sum[2] += q[2];
+    }
+}
+
+void LevelOfDetail::recompute_normals() {
+    std::fill(normal_sum_.begin(), normal_sum_.end(), NormalSum{0, 0, 0});
+    for (Index f = 0; f < faces_.size(); ++f)
+        if (face_alive_[f]) face_normal(f, 1);
+}
+
+Vector3 LevelOfDetail::vertex_normal(Index v) const {
+    const NormalSum& s = normal_sum_[v];
+    const Vector3 n{double(s[0]), double(s[1]), double(s[2])};
+    const double len = n.norm();
+    return len > 0 ? Vector3(n / len) : Vector3::Zero();
+}
+
+void LevelOfDetail::collapse_step(const Step& s, bool normals, bool track) {
+    if (normals) {
+        for (std::uint32_t i = s.ring_begin; i < s.ring_end; ++i) face_normal(ring_[i] >> 2, -1);
+        for (Index f : s.dead)
+            if (f != kInvalidIndex) face_normal(f, -1);
+    }
+    if (track) {
+        for (std::uint32_t i = s.ring_begin; i < s.ring_end; ++i) mark_vertices(ring_[i] >> 2);
+        for (Index f : s.dead)
+            if (f != kInvalidIndex) mark_vertices(f);
+    }
+    for (Index f : s.dead)
+        if (f != kInvalidIndex) face_alive_[f] = 0;
+    for (std::uint32_t i = s.ring_begin; i < s.moved_end; ++i)
+        faces_[ring_[i] >> 2][ring_[i] & 3] = s.kept;
+    positions_[s.kept] = s.kept_after;
+    vertex_alive_[s.removed] = 0;
+    if (normals)
+        for (std::uint32_t i = s.ring_begin; i < s.ring_end; ++i) face_normal(ring_[i] >> 2, 1);
+}
+
+void LevelOfDetail::split_step(const Step& s, bool normals, bool track) {
+    if (normals)
+        for (std::uint32_t i = s.ring_begin; i < s.ring_end; ++i) face_normal(ring_[i] >> 2, -1);
+    for (std::uint32_t i = s.ring_begin; i < s.moved_end; ++i)
+        faces_[ring_[i] >> 2][ring_[i] & 3] = s.removed;
+    positions_[s.kept] = s.kept_before;
+    vertex_alive_[s.removed] = 1;
+    for (Index f : s.dead)
+        if (f != kInvalidIndex) face_alive_[f] = 1;
+    if (normals) {
+        for (std::uint32_t i = s.ring_begin; i < s.ring_end; ++i) face_normal(ring_[i] >> 2, 1);
+        for (Index f : s.dead)
+            if (f != kInvalidIndex) face_normal(f, 1);
+    }
+    if (track) {
+        for (std::uint32_t i = s.ring_begin; i < s.ring_end; ++i) mark_vertices(ring_[i] >> 2);
+        for (Index f : s.dead)
+            if (f != kInvalidIndex) mark_vertices(f);
+    }
+}
 
 void LevelOfDetail::set_level(std::size_t level) {
-    level = std::min(level, pm_->collapses.size());
-    while (level_ < level) {  // collapse
-        const VertexSplit& s = pm_->collapses[level_++];
-        for (std::uint32_t i = s.moved_begin; i < s.moved_end; ++i)
-            for (Vertex& c : faces_[pm_->moved_faces[i].idx()])
-                if (c == s.removed) c = s.kept;
-        for (Face f : s.faces)
-            if (f.is_valid()) face_alive_[f.idx()] = 0;
-        vertex_alive_[s.removed.idx()] = 0;
-        positions_[s.kept.idx()] = s.kept_after;
+    level = std::min(level, steps_.size());
+    if (level == level_) return;
+    // Updating the normals step by step touches every ring face twice; recomputing them
+    // touches every live face of the new level once (and scans the others).
+    const std::size_t a = std::min(level, level_), b = std::max(level, level_);
+    const std::uint64_t stepwise =
+        2 * (ring_prefix_[b] - ring_prefix_[a]) + (removed_prefix_[b] - removed_prefix_[a]);
+    const std::uint64_t all = fine_faces_ - removed_prefix_[level] + fine_faces_ / 8;
+    const bool normals = stepwise <= all;
+    if (!normals && !all_changed_) {
+        clear_changes();
+        all_changed_ = true;
     }
-    while (level_ > level) {  // vertex split
-        const VertexSplit& s = pm_->collapses[--level_];
-        for (std::uint32_t i = s.moved_begin; i < s.moved_end; ++i)
-            for (Vertex& c : faces_[pm_->moved_faces[i].idx()])
-                if (c == s.kept) c = s.removed;
-        for (Face f : s.faces)
-            if (f.is_valid()) face_alive_[f.idx()] = 1;
-        vertex_alive_[s.removed.idx()] = 1;
-        positions_[s.kept.idx()] = s.kept_before;
-        positions_[s.removed.idx()] = s.removed_position;
+    const bool track = !all_changed_;
+    while (level_ < level) collapse_step(steps_[level_++], normals, track);
+    while (level_ > level) split_step(steps_[--level_], normals, track);
+    if (!normals) recompute_normals();
+    triangles_stale_ = live_vertices_stale_ = true;
+}
+
+const std::vector<std::array<Index, 3>>& LevelOfDetail::triangles() const {
+    if (triangles_stale_) {
+        triangles_.resize(n_triangles());
+        std::size_t n = 0;
+        for (Index f = 0; f < faces_.size(); ++f)
+            if (face_alive_[f]) triangles_[n++] = faces_[f];
+        triangles_stale_ = false;
     }
+    return triangles_;
+}
+
+const std::vector<Index>& LevelOfDetail::live_vertices() const {
+    if (live_vertices_stale_) {
+        live_vertices_.resize(n_live_vertices());
+        std::size_t n = 0;
+        for (Index v = 0; v < vertex_alive_.size(); ++v)
+            if (vertex_alive_[v]) live_vertices_[n++] = v;
+        live_vertices_stale_ = false;
+    }
+    return live_vertices_;
+}
+
+void LevelOfDetail::clear_changes() {
+    for (Index v : changed_vertices_) vertex_changed_[v] = 0;
+    changed_vertices_.clear();
+    all_changed_ = false;
+}
+
+std::size_t LevelOfDetail::level_for_percent(double percent) const {
+    if (!(percent >= 0 && percent <= 100))
+        throw InvalidArgument("level of detail: percent must be from 0 to 100, got " +
+                              std::to_string(percent));
+    const std::size_t keep = kept_vertices(percent, fine_vertices_);
+    return std::min(fine_vertices_ - keep, max_level());
+}
+
+double LevelOfDetail::percent_at_level(std::size_t level) const {
+    if (fine_vertices_ == 0) return 100;
+    level = std::min(level, max_level());
+    return 100.0 * double(fine_vertices_ - level) / double(fine_vertices_);
 }
 
 HalfedgeMesh LevelOfDetail::mesh() const {
     PolygonSoup soup;
     std::vector<Index> index(positions_.size(), kInvalidIndex);
-    for (Index v = 0; v < positions_.size(); ++v) {
+    for (Index fine = 0; fine < vertex_of_.size(); ++fine) {
+        const Index v = vertex_of_[fine];
         if (!vertex_alive_[v]) continue;
         index[v] = Index(soup.positions.size());
         soup.positions.push_back(positions_[v]);
     }
-    for (std::size_t f = 0; f < faces_.size(); ++f) {
-        if (!face_alive_[f]) continue;
+    for (Index fine = 0; fine < face_of_.size(); ++fine) {
+        const Index f = face_of_[fine];
+        if (f == kInvalidIndex || !face_alive_[f]) continue;
         const auto& c = faces_[f];
-        soup.add_face({index[c[0].idx()], index[c[1].idx()], index[c[2].idx()]});
+        soup.add_face({index[c[0]], index[c[1]], index[c[2]]});
     }
     LoadReport report;
     return build_mesh(soup, report);

@@ -60,6 +60,13 @@ const char* decimation_cost_name(DecimationCost cost);
 /// Parses decimation_cost_name() strings; throws InvalidArgument listing them otherwise.
 DecimationCost parse_decimation_cost(const std::string& name);
 
+/// Which meshes DecimationResult::levels holds.
+enum class DecimationLevels {
+    All,   ///< one per iteration, each with its geomorph from the one before
+    Last,  ///< only the last iteration's mesh, its geomorph from the input (no per-iteration copy)
+    None,  ///< none (for a run that only records the progressive mesh)
+};
+
 struct DecimationOptions {
     DecimationCost cost = DecimationCost::Quadric;
     /// Amount: when target_vertices > 0, one iteration down to that many vertices; otherwise
@@ -71,13 +78,19 @@ struct DecimationOptions {
     int iterations = 1;               ///< 1 to 1000
     std::size_t target_vertices = 0;  ///< 0: use percent and iterations
 
-    bool normal_flip = true;         ///< the normal-flipping constraint
-    double max_normal_angle = 90;    ///< degrees, (0, 180]
-    bool roundness = false;          ///< the roundness constraint
-    double min_roundness = 0.2;      ///< normalized roundness, (0, 1]
-    bool independent_set = false;    ///< the independent-set constraint
-    double max_error = 0;            ///< quadric error as a distance; 0: no limit
-    bool record_progressive = true;  ///< fill DecimationResult::progressive
+    bool normal_flip = true;       ///< the normal-flipping constraint
+    double max_normal_angle = 90;  ///< degrees, (0, 180]
+    bool roundness = false;        ///< the roundness constraint
+    double min_roundness = 0.2;    ///< normalized roundness, (0, 1]
+    bool independent_set = false;  ///< the independent-set constraint
+    double max_error = 0;          ///< quadric error as a distance; 0: no limit
+
+    // What the result carries besides the algorithm (a caller that wants only the decimated
+    // mesh sets levels = Last and record_geomorph = false and pays for the collapses alone,
+    // plus one copy of the input and one compaction of the output).
+    DecimationLevels levels = DecimationLevels::All;
+    bool record_geomorph = true;      ///< fill each level's correspondence (O(V) per level)
+    bool record_progressive = false;  ///< fill DecimationResult::progressive (about 10 % more)
 };
 
 /// Why a decimation ended.
@@ -115,7 +128,9 @@ struct DecimationReport {
 
 /// One iteration: the decimated mesh (compact) and its geomorph from the previous mesh
 /// (MorphCorrespondence::Kind::ToLater: every vertex of the previous mesh ends where the
-/// vertex it collapsed into ends; kept vertices end at their new position).
+/// vertex it collapsed into ends; kept vertices end at their new position). With
+/// DecimationLevels::Last the previous mesh is the input; without record_geomorph the
+/// correspondence is empty.
 struct DecimationLevel {
     HalfedgeMesh mesh;
     MorphCorrespondence correspondence;
@@ -124,13 +139,15 @@ struct DecimationLevel {
 
 /// The vertex split that undoes one collapse (indices of the input mesh's storage): `removed`
 /// came back at `removed_position`, `kept` returns from `kept_after` to `kept_before`, the
-/// faces [moved_begin, moved_end) of ProgressiveMesh::moved_faces get `removed` back as the
-/// corner that is `kept`, and `faces` (one, or two for an interior edge) reappear.
+/// faces [moved_begin, moved_end) of ProgressiveMesh::ring_faces get `removed` back as the
+/// corner that is `kept`, and `faces` (one, or two for an interior edge) reappear. The faces
+/// [moved_begin, ring_end) are all faces at `kept` after the collapse (the moved ones, then
+/// kept's own): the faces whose shape the collapse changes.
 struct VertexSplit {
     Vertex removed, kept;
     Point removed_position, kept_before, kept_after;
     std::array<Face, 2> faces;
-    std::uint32_t moved_begin = 0, moved_end = 0;
+    std::uint32_t moved_begin = 0, moved_end = 0, ring_end = 0;
 };
 
 /// A progressive mesh: the fine mesh as a face list plus its collapses in order.
@@ -140,11 +157,11 @@ struct ProgressiveMesh {
     std::vector<std::uint8_t> face_alive;      ///< 0 for faces deleted in the input
     std::vector<std::uint8_t> vertex_alive;    ///< 0 for vertices deleted in the input
     std::vector<VertexSplit> collapses;
-    std::vector<Face> moved_faces;
+    std::vector<Face> ring_faces;  ///< see VertexSplit
 };
 
 struct DecimationResult {
-    std::vector<DecimationLevel> levels;  ///< one per iteration done (may be fewer, see stop)
+    std::vector<DecimationLevel> levels;  ///< see DecimationLevels (may be fewer, see stop)
     DecimationReport report;
     ProgressiveMesh progressive;  ///< empty unless options.record_progressive
 };
@@ -167,27 +184,136 @@ std::vector<std::array<Vertex, 2>> next_collapses(const HalfedgeMesh& mesh,
 /// in [0, 1], 1 for an equilateral triangle, 0 for a degenerate one.
 double normalized_roundness(const Point& a, const Point& b, const Point& c);
 
-/// Level of detail over a progressive mesh: moves between any two numbers of collapses by
-/// replaying collapses (forward) and vertex splits (backward); each step is O(faces moved).
+/// The progressive mesh of a level-of-detail slider: decimates a copy of `mesh` with the cost
+/// and constraints of `options` (its amount, levels, geomorph and progressive fields are
+/// ignored, and so is the independent-set constraint, which only shapes iterations) down to
+/// ceil(min_percent / 100 * V) of its V vertices with faces, or as far as the constraints
+/// allow (the report says), recording every collapse and nothing else. Throws InvalidArgument
+/// for bad options or a min_percent outside (0, 100], Cancelled when `progress` asks to stop.
+struct ProgressiveBuild {
+    ProgressiveMesh progressive;
+    DecimationReport report;
+};
+ProgressiveBuild build_progressive_mesh(const HalfedgeMesh& mesh, const DecimationOptions& options,
+                                        double min_percent, Progress& progress);
+
+/// Level of detail over a progressive mesh (Hoppe, "Progressive meshes", SIGGRAPH 1996).
+///
+/// set_level() replays collapses (coarser) and vertex splits (finer) from the current level:
+/// a collapse moves one vertex, re-points the corners of the faces around it and drops one
+/// or two faces, so a move costs O(the faces around the collapses between the two levels),
+/// never a rebuild of a mesh. Vertices and faces are numbered in a drawing order of their
+/// own, made once: faces along a Morton curve of their centroids, vertices in the order the
+/// faces first use them, so that consecutive triangles share vertices (a software
+/// rasterizer's vertex cache depends on that). Area-weighted vertex normals of the current
+/// level are kept as sums of face normals in fixed point (exact integer sums: a level's
+/// normals do not depend on the path taken to it). For a renderer that keeps a copy of
+/// positions and normals, the level of detail lists the vertices whose position or normal
+/// changed since clear_changes(); a move so long that updating the normals step by step
+/// would cost more than recomputing them for the new level recomputes them (O(live faces))
+/// and reports every vertex as changed.
+///
+/// It copies what it needs from the progressive mesh (which may be dropped afterwards).
 class LevelOfDetail {
 public:
+    /// Starts at level 0 (the fine mesh). Throws InvalidArgument when `pm` is inconsistent
+    /// (sizes, indices, a collapse that does not match the faces it names, non-finite
+    /// positions). O(V + F log F + the progressive record).
     explicit LevelOfDetail(const ProgressiveMesh& pm);
-    /// Number of collapses applied, 0 (fine) to pm.collapses.size() (coarse).
+    /// Number of collapses applied, 0 (fine) to max_level() (coarsest).
     std::size_t level() const { return level_; }
+    std::size_t max_level() const { return steps_.size(); }
+    /// Moves to `level` (clamped to max_level()).
     void set_level(std::size_t level);
-    /// The mesh at the current level: live vertices and faces, compacted (vertex order kept).
+
+    /// Vertices with faces at level 0 (isolated vertices are kept at every level and not
+    /// counted), and at the current level: fine_vertices() - level().
+    std::size_t fine_vertices() const { return fine_vertices_; }
+    std::size_t vertices() const { return fine_vertices_ - level_; }
+    /// The level that keeps ceil(percent / 100 * fine_vertices()) vertices, clamped to
+    /// [0, max_level()]: 100 gives 0, 0 the coarsest level. Throws InvalidArgument unless
+    /// 0 <= percent <= 100.
+    std::size_t level_for_percent(double percent) const;
+    /// 100 * vertices at `level` / fine_vertices() (100 for a mesh without faces).
+    double percent_at_level(std::size_t level) const;
+
+    /// The mesh at the current level: live vertices in the fine mesh's order (compacted),
+    /// faces in the fine mesh's order. O(V + F): for saving or applying a level, not for
+    /// drawing it.
     HalfedgeMesh mesh() const;
-    /// Current corners of every face of the fine mesh (dead faces have invalid corners).
-    const std::vector<std::array<Vertex, 3>>& faces() const { return faces_; }
-    const std::vector<std::uint8_t>& face_alive() const { return face_alive_; }
+
+    // Drawing data, in the level of detail's own order (see above).
+    /// Current positions of all vertices (dead ones keep their last position).
     const std::vector<Point>& positions() const { return positions_; }
+    /// Unit area-weighted normal of vertex v at the current level (zero without faces).
+    Vector3 vertex_normal(Index v) const;
+    /// The live faces of the current level as vertex triples, in drawing order. Rebuilt on
+    /// the first call after a move: O(fine faces).
+    const std::vector<std::array<Index, 3>>& triangles() const;
+    /// The live vertices (isolated ones included), in order. Rebuilt on the first call after
+    /// a move: O(fine vertices).
+    const std::vector<Index>& live_vertices() const;
+    std::size_t n_triangles() const { return fine_faces_ - removed_prefix_[level_]; }
+    std::size_t n_live_vertices() const { return live_at_fine_ - level_; }
+
+    /// Every face of the fine mesh with its current corners (dead faces keep their last
+    /// ones), and whether it is live; vertex liveness.
+    const std::vector<std::array<Index, 3>>& faces() const { return faces_; }
+    const std::vector<std::uint8_t>& face_alive() const { return face_alive_; }
+    const std::vector<std::uint8_t>& vertex_alive() const { return vertex_alive_; }
+    /// The fine mesh's (ProgressiveMesh's) vertex index of vertex v and back (kInvalidIndex
+    /// for a vertex deleted in the input); the face (index into faces()) of a fine face.
+    Index fine_vertex(Index v) const { return fine_vertex_[v]; }
+    Index vertex_of(Index fine_vertex) const { return vertex_of_[fine_vertex]; }
+    Index face_of(Index fine_face) const { return face_of_[fine_face]; }
+
+    /// What changed since clear_changes(), for a renderer's copy of positions and normals:
+    /// all_changed() says that any vertex may have (then changed_vertices() is empty);
+    /// otherwise changed_vertices() lists, once each, the vertices whose position or normal
+    /// changed (or that died or came back).
+    bool all_changed() const { return all_changed_; }
+    const std::vector<Index>& changed_vertices() const { return changed_vertices_; }
+    void clear_changes();
 
 private:
-    const ProgressiveMesh* pm_;
-    std::size_t level_ = 0;
-    std::vector<std::array<Vertex, 3>> faces_;
-    std::vector<std::uint8_t> face_alive_, vertex_alive_;
+    using NormalSum = std::array<std::int64_t, 3>;
+    /// One collapse in the level of detail's numbering.
+    struct Step {
+        Index kept, removed;
+        std::array<Index, 2> dead;  ///< the faces it removes (kInvalidIndex: none)
+        std::uint32_t ring_begin, moved_end, ring_end;  ///< into ring_
+        Point kept_before, kept_after;
+    };
+    void collapse_step(const Step& s, bool normals, bool track);
+    void split_step(const Step& s, bool normals, bool track);
+    void face_normal(Index f, int sign);
+    void recompute_normals();
+    void mark_vertices(Index f) {
+        for (Index v : faces_[f])
+            if (!vertex_changed_[v]) {
+                vertex_changed_[v] = 1;
+                changed_vertices_.push_back(v);
+            }
+    }
+
+    std::size_t level_ = 0, fine_vertices_ = 0, live_at_fine_ = 0, fine_faces_ = 0;
+    std::vector<Step> steps_;
+    /// Per step: face << 2 | corner for the moved faces, face << 2 for kept's own.
+    std::vector<std::uint32_t> ring_;
     std::vector<Point> positions_;
+    std::vector<std::array<Index, 3>> faces_;
+    std::vector<std::uint8_t> face_alive_, vertex_alive_;
+    std::vector<Index> fine_vertex_, vertex_of_, face_of_, fine_face_;
+    std::vector<NormalSum> normal_sum_;
+    double normal_scale_ = 1;  ///< fixed-point units per unit of face normal
+    /// Prefix sums over the steps: ring faces, and faces removed, before step k.
+    std::vector<std::uint64_t> ring_prefix_, removed_prefix_;
+    std::vector<std::uint8_t> vertex_changed_;
+    std::vector<Index> changed_vertices_;
+    bool all_changed_ = true;
+    mutable std::vector<std::array<Index, 3>> triangles_;
+    mutable std::vector<Index> live_vertices_;
+    mutable bool triangles_stale_ = true, live_vertices_stale_ = true;
 };
 
 }  // namespace trilab

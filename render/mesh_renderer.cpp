@@ -1,9 +1,11 @@
 #include "render/mesh_renderer.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <limits>
+#include <utility>
 
 #include "core/errors.h"
 
@@ -213,6 +215,7 @@ void MeshRenderer::setup_vertex_array(GLuint vao, GLuint element_buffer) const {
 }
 
 void MeshRenderer::upload(const HalfedgeMesh& mesh) {
+    level_vertices_.clear();
     Layout layout = build_layout(mesh);
     gpu_source_ = std::move(layout.source);
     n_vertices_ = mesh.vertices_size();
@@ -246,7 +249,7 @@ void MeshRenderer::upload(const HalfedgeMesh& mesh) {
 }
 
 void MeshRenderer::update_positions(const HalfedgeMesh& mesh) {
-    if (mesh.vertices_size() != n_vertices_) {
+    if (mesh.vertices_size() != n_vertices_ || !level_vertices_.empty()) {
         upload(mesh);
         return;
     }
@@ -260,8 +263,122 @@ void MeshRenderer::update_positions(const HalfedgeMesh& topology,
             "MeshRenderer::update_positions: " + std::to_string(positions.size()) +
             " positions for a mesh with vertex storage size " +
             std::to_string(topology.vertices_size()));
-    if (topology.vertices_size() != n_vertices_) upload(topology);
+    if (topology.vertices_size() != n_vertices_ || !level_vertices_.empty()) upload(topology);
     write_geometry(topology, &positions);
+}
+
+void MeshRenderer::write_level_vertex(const LevelOfDetail& lod, Index v) {
+    const Point& p = lod.positions()[v];
+    const Vector3 n = lod.vertex_normal(v);
+    float* out = &level_vertices_[6 * std::size_t(v)];
+    out[0] = float(p.x());
+    out[1] = float(p.y());
+    out[2] = float(p.z());
+    out[3] = float(n.x());
+    out[4] = float(n.y());
+    out[5] = float(n.z());
+}
+
+namespace {
+
+// Uploads the elements `changed` (indices into `data`, `stride` bytes each) of the bound
+// GL_ARRAY_BUFFER in runs: neighbours up to kGap elements apart go in one call; with more
+// than kMaxRuns runs the whole of `data` (`n` elements) goes in one call instead.
+void upload_runs(std::vector<Index> changed, const void* data, std::size_t stride, std::size_t n) {
+    constexpr Index kGap = 32;
+    constexpr std::size_t kMaxRuns = 256;
+    std::sort(changed.begin(), changed.end());
+    std::vector<std::pair<Index, Index>> runs;  // [first, last]
+    for (Index i : changed) {
+        if (!runs.empty() && i <= runs.back().second + kGap)
+            runs.back().second = i;
+        else
+            runs.emplace_back(i, i);
+    }
+    const auto* bytes_of = static_cast<const char*>(data);
+    if (runs.size() > kMaxRuns) {
+        glBufferSubData(GL_ARRAY_BUFFER, 0, bytes(n, stride), bytes_of);
+        return;
+    }
+    for (const auto& [first, last] : runs)
+        glBufferSubData(GL_ARRAY_BUFFER, GLintptr(std::size_t(first) * stride),
+                        bytes(std::size_t(last - first) + 1, stride),
+                        bytes_of + std::size_t(first) * stride);
+}
+
+}  // namespace
+
+void MeshRenderer::write_level_indices(const LevelOfDetail& lod) {
+    static_assert(sizeof(std::array<Index, 3>) == 3 * sizeof(GLuint) && sizeof(Index) == 4,
+                  "triangles must be tightly packed uint32 triples");
+    const auto& triangles = lod.triangles();
+    const auto& points = lod.live_vertices();
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);  // no VAO bound: safe to use the binding point
+    glBindBuffer(GL_ARRAY_BUFFER, triangle_buffer_);
+    glBufferData(GL_ARRAY_BUFFER, bytes(triangles.size(), 3 * sizeof(GLuint)), triangles.data(),
+                 GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, point_buffer_);
+    glBufferData(GL_ARRAY_BUFFER, bytes(points.size(), sizeof(GLuint)), points.data(),
+                 GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    n_triangle_indices_ = 3 * triangles.size();
+    n_point_indices_ = points.size();
+}
+
+void MeshRenderer::upload_level(LevelOfDetail& lod) {
+    const std::size_t n = lod.positions().size();
+    gpu_source_.clear();
+    n_vertices_ = n_gpu_vertices_ = n;
+    level_vertices_.assign(6 * n, 0.0f);
+    for (Index v = 0; v < n; ++v) write_level_vertex(lod, v);
+    glBindBuffer(GL_ARRAY_BUFFER, geometry_buffer_);
+    glBufferData(GL_ARRAY_BUFFER, bytes(level_vertices_.size(), sizeof(float)),
+                 level_vertices_.data(), GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    write_level_indices(lod);
+
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (Index v : lod.live_vertices()) {
+        const float* x = &level_vertices_[6 * std::size_t(v)];
+        lo = glm::min(lo, glm::vec3(x[0], x[1], x[2]));
+        hi = glm::max(hi, glm::vec3(x[0], x[1], x[2]));
+    }
+    if (lod.live_vertices().empty()) lo = hi = glm::vec3(0.0f);
+    bbox_min_ = lo;
+    bbox_max_ = hi;
+
+    has_texcoords_ = false;
+    glBindBuffer(GL_ARRAY_BUFFER, texcoord_buffer_);
+    glBufferData(GL_ARRAY_BUFFER, 0, nullptr, GL_STATIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    for (GLuint vao : {triangle_vao_, point_vao_}) {
+        glBindVertexArray(vao);
+        glDisableVertexAttribArray(kTexcoord);
+    }
+    glBindVertexArray(0);
+    clear_vertex_colors();
+    lod.clear_changes();
+}
+
+void MeshRenderer::update_level(LevelOfDetail& lod) {
+    const std::size_t n = lod.positions().size();
+    if (level_vertices_.size() != 6 * n || n != n_vertices_) {
+        upload_level(lod);
+        return;
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, geometry_buffer_);
+    if (lod.all_changed()) {
+        // Dead vertices keep stale entries: they are rewritten when they come back.
+        for (Index v : lod.live_vertices()) write_level_vertex(lod, v);
+        glBufferSubData(GL_ARRAY_BUFFER, 0, bytes(level_vertices_.size(), sizeof(float)),
+                        level_vertices_.data());
+    } else {
+        for (Index v : lod.changed_vertices()) write_level_vertex(lod, v);
+        upload_runs(lod.changed_vertices(), level_vertices_.data(), 6 * sizeof(float), n);
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    write_level_indices(lod);
+    lod.clear_changes();
 }
 
 void MeshRenderer::write_geometry(const HalfedgeMesh& mesh,
@@ -392,6 +509,7 @@ void MeshRenderer::clear() {
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     clear_vertex_colors();
     gpu_source_.clear();
+    level_vertices_.clear();
     n_vertices_ = n_gpu_vertices_ = n_triangle_indices_ = n_point_indices_ = 0;
     has_texcoords_ = false;
     bbox_min_ = bbox_max_ = glm::vec3(0.0f);

@@ -14,6 +14,17 @@
 // geometry change, set_vertex_colors() rewrites the colours only, upload() (topology change)
 // rewrites everything and drops the vertex colours.
 //
+// Level of detail (LevelOfDetail, core/decimation.h, for a slider over a progressive mesh):
+// upload_level() puts every vertex of the fine mesh on the GPU once, in the level of
+// detail's drawing order (positions and the level's area-weighted normals), with the live
+// triangles and vertices; update_level() after LevelOfDetail::set_level() rewrites the index
+// buffers (O(live faces): the software rasterizer wants the drawing order, which a list
+// patched in place would lose) and only the vertices the move changed (a few ranges of the
+// vertex buffer), or all of them when the level of detail reports that all changed. This
+// path has no texture coordinates; upload_level() drops vertex colours (set_vertex_colors()
+// takes them per level-of-detail vertex); the bounding box (fog, vector length) stays the one
+// of upload_level().
+//
 // Normals: the mesh's "v:normal" (Vector3) when it has one, otherwise area-weighted vertex
 // normals computed on the fly (the same as core's vertex_normal()). A caller that moves
 // vertices of a mesh carrying "v:normal" must refresh that attribute (compute_vertex_normals)
@@ -43,6 +54,7 @@
 #include <string>
 #include <vector>
 
+#include "core/decimation.h"
 #include "core/halfedge_mesh.h"
 #include "core/io/image_io.h"
 #include "render/gl_program.h"
@@ -156,6 +168,16 @@ public:
     /// "v:normal" is ignored). Uploads `topology` first when its vertex storage size differs
     /// from the uploaded mesh's. Throws InvalidArgument on a size mismatch.
     void update_positions(const HalfedgeMesh& topology, const std::vector<Point>& positions);
+    /// Shows the current level of `lod`: uploads positions and normals of every vertex, the
+    /// live triangles and vertices, drops texture coordinates and vertex colours, and clears
+    /// the level of detail's changes (this renderer consumes them). O(fine vertices + faces).
+    void upload_level(LevelOfDetail& lod);
+    /// Shows the current level of `lod` after set_level(): the index buffers and the vertices
+    /// that changed since the last upload_level()/update_level() (see the top of this file);
+    /// clears the changes. Falls back to upload_level() when the last upload was not of a
+    /// level of detail of this size. O(fine faces + changed vertices), O(fine vertices +
+    /// faces) when all changed.
+    void update_level(LevelOfDetail& lod);
     /// Forgets the uploaded mesh and colours; draw() then draws nothing. Keeps the texture.
     void clear();
 
@@ -193,6 +215,8 @@ public:
 private:
     void write_geometry(const HalfedgeMesh& mesh,
                         const std::vector<Point>* moved_positions = nullptr);
+    void write_level_vertex(const LevelOfDetail& lod, Index v);
+    void write_level_indices(const LevelOfDetail& lod);
     void setup_vertex_array(GLuint vao, GLuint element_buffer) const;
     void set_common_uniforms(const GlProgram& program, const glm::mat4& view,
                              const glm::mat4& projection, const RenderStyle& style) const;
@@ -214,6 +238,9 @@ private:
     std::size_t n_vertices_ = 0, n_gpu_vertices_ = 0;
     std::size_t n_triangle_indices_ = 0, n_point_indices_ = 0;
     bool has_colors_ = false, has_texcoords_ = false, has_texture_ = false;
+    /// The level-of-detail path: a copy of the vertex buffer (6 floats a vertex, position
+    /// and normal) to patch changed vertices in; empty when the last upload was a mesh.
+    std::vector<float> level_vertices_;
     glm::vec3 bbox_min_{0.0f}, bbox_max_{0.0f};
 };
 

@@ -77,22 +77,8 @@ DecimationOptions percent_options(DecimationCost cost, double percent, int itera
     return o;
 }
 
-/// Live triangles as sorted vertex triples of rotated-to-smallest-first corners.
-std::vector<std::array<Index, 3>> triangles(const std::vector<std::array<Vertex, 3>>& faces,
-                                            const std::vector<std::uint8_t>& alive) {
-    std::vector<std::array<Index, 3>> t;
-    for (std::size_t f = 0; f < faces.size(); ++f) {
-        if (!alive[f]) continue;
-        std::array<Index, 3> c{faces[f][0].idx(), faces[f][1].idx(), faces[f][2].idx()};
-        std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
-        t.push_back(c);
-    }
-    std::sort(t.begin(), t.end());
-    return t;
-}
-
-Vector3 triangle_normal(const std::vector<Point>& x, const std::array<Vertex, 3>& c) {
-    return (x[c[1].idx()] - x[c[0].idx()]).cross(x[c[2].idx()] - x[c[0].idx()]);
+Vector3 triangle_normal(const std::vector<Point>& x, const std::array<Index, 3>& c) {
+    return (x[c[1]] - x[c[0]]).cross(x[c[2]] - x[c[0]]);
 }
 
 }  // namespace
@@ -227,12 +213,14 @@ TEST_CASE("with the normal-flip constraint no collapse turns a face further than
     const HalfedgeMesh mesh = make_noisy_sphere(10, 0.2, 3);
     const double angle = GENERATE(20.0, 45.0, 90.0);
     DecimationOptions o = percent_options(DecimationCost::Quadric, 50, 3);
+    o.record_progressive = true;
     o.normal_flip = true;
     o.max_normal_angle = angle;
     const DecimationResult r = decimate(mesh, o);
     REQUIRE_FALSE(r.levels.empty());
     for (const auto& level : r.levels) REQUIRE_VALID(level.mesh);
-    // Replay the collapses one by one and compare every surviving face's normal.
+    // Replay the collapses one by one and compare the normal of every face at the kept vertex
+    // (v0's moved faces and v1's own: the faces the collapse changes).
     LevelOfDetail lod(r.progressive);
     const double cos_max = std::cos(angle * M_PI / 180.0);
     double worst = 1;
@@ -241,10 +229,10 @@ TEST_CASE("with the normal-flip constraint no collapse turns a face further than
         const auto faces0 = lod.faces();
         lod.set_level(k + 1);
         const VertexSplit& s = r.progressive.collapses[k];
-        for (std::uint32_t i = s.moved_begin; i < s.moved_end; ++i) {
-            const Face f = r.progressive.moved_faces[i];
-            const Vector3 a = triangle_normal(x0, faces0[f.idx()]);
-            const Vector3 b = triangle_normal(lod.positions(), lod.faces()[f.idx()]);
+        for (std::uint32_t i = s.moved_begin; i < s.ring_end; ++i) {
+            const Index f = lod.face_of(r.progressive.ring_faces[i].idx());
+            const Vector3 a = triangle_normal(x0, faces0[f]);
+            const Vector3 b = triangle_normal(lod.positions(), lod.faces()[f]);
             worst = std::min(worst, a.normalized().dot(b.normalized()));
         }
     }
@@ -256,12 +244,14 @@ TEST_CASE("with the normal-flip constraint no collapse turns a face further than
 TEST_CASE("the progressive mesh replays to the decimated mesh and splits back to the original",
           "[decimation]") {
     const HalfedgeMesh mesh = make_noisy_sphere(8, 0.1, 5);
-    const DecimationResult r = decimate(mesh, percent_options(DecimationCost::Quadric, 60, 3));
+    DecimationOptions o = percent_options(DecimationCost::Quadric, 60, 3);
+    o.record_progressive = true;
+    const DecimationResult r = decimate(mesh, o);
     REQUIRE(r.levels.size() == 3);
     const ProgressiveMesh& pm = r.progressive;
     CHECK(pm.collapses.size() == r.report.collapses);
     LevelOfDetail lod(pm);
-    const auto original = triangles(lod.faces(), lod.face_alive());
+    const auto original = lod.faces();
     lod.set_level(pm.collapses.size());
     const HalfedgeMesh coarse = lod.mesh();
     REQUIRE_VALID(coarse);
@@ -287,7 +277,7 @@ TEST_CASE("the progressive mesh replays to the decimated mesh and splits back to
     CHECK(a == b);
     // Splits all the way back: the original connectivity and positions.
     lod.set_level(0);
-    CHECK(triangles(lod.faces(), lod.face_alive()) == original);
+    CHECK(lod.faces() == original);
     const HalfedgeMesh fine = lod.mesh();
     REQUIRE_VALID(fine);
     CHECK(fine.n_faces() == mesh.n_faces());
@@ -429,6 +419,7 @@ TEST_CASE("binary constraints stop decimation early and say why", "[decimation]"
     SECTION("independent set: one iteration removes at most a fraction") {
         DecimationOptions o = percent_options(DecimationCost::Quadric, 90, 1);
         o.independent_set = true;
+        o.record_progressive = true;
         const DecimationResult r = decimate(sphere, o);
         CHECK(r.report.stop == DecimationStop::Constraints);
         CHECK(r.report.refused_independent_set > 0);
@@ -607,4 +598,293 @@ TEST_CASE("the decimate operation parses, names bad options and gives one step p
     REQUIRE(t.steps.size() == 1);
     CHECK(t.steps[0].mesh.n_vertices() == 4);
     CHECK(t.report.back().find("link condition") != std::string::npos);
+}
+
+// ---- what a run records, and the level of detail -------------------------------------------
+
+namespace {
+
+/// Live triangles of a HalfedgeMesh as rotated, sorted vertex triples.
+std::vector<std::array<Index, 3>> mesh_triangles(const HalfedgeMesh& m) {
+    std::vector<std::array<Index, 3>> t;
+    for (Face f : m.faces()) {
+        const auto c = m.face_vertices(f);
+        std::array<Index, 3> x{c[0].idx(), c[1].idx(), c[2].idx()};
+        std::rotate(x.begin(), std::min_element(x.begin(), x.end()), x.end());
+        t.push_back(x);
+    }
+    std::sort(t.begin(), t.end());
+    return t;
+}
+
+/// The live triangles of the level of detail, in the fine mesh's vertex indices, as
+/// rotated, sorted triples.
+std::vector<std::array<Index, 3>> live_triangles(const LevelOfDetail& lod) {
+    std::vector<std::array<Index, 3>> t = lod.triangles();
+    for (auto& x : t) {
+        for (Index& v : x) v = lod.fine_vertex(v);
+        std::rotate(x.begin(), std::min_element(x.begin(), x.end()), x.end());
+    }
+    std::sort(t.begin(), t.end());
+    return t;
+}
+
+/// Area-weighted unit vertex normals of the current level, in doubles, from the live
+/// triangles.
+std::vector<Vector3> direct_normals(const LevelOfDetail& lod) {
+    std::vector<Vector3> n(lod.positions().size(), Vector3::Zero());
+    for (const auto& t : lod.triangles()) {
+        const Vector3 fn = triangle_normal(lod.positions(), t);
+        for (Index v : t) n[v] += fn;
+    }
+    for (Vector3& x : n)
+        if (x.norm() > 0) x.normalize();
+    return n;
+}
+
+}  // namespace
+
+TEST_CASE("the amount of output: all levels, the last one only, or none", "[decimation]") {
+    const HalfedgeMesh mesh = make_noisy_sphere(8, 0.1, 11);
+    DecimationOptions o = percent_options(DecimationCost::Quadric, 40, 3);
+    const DecimationResult all = decimate(mesh, o);
+    REQUIRE(all.levels.size() == 3);
+    CHECK(all.progressive.collapses.empty());  // not recorded unless asked for
+    CHECK(all.progressive.faces.empty());
+
+    o.levels = DecimationLevels::Last;
+    const DecimationResult last = decimate(mesh, o);
+    REQUIRE(last.levels.size() == 1);
+    const HalfedgeMesh& a = all.levels.back().mesh;
+    const HalfedgeMesh& b = last.levels[0].mesh;
+    REQUIRE_VALID(b);
+    CHECK(last.report.collapses == all.report.collapses);
+    CHECK(last.levels[0].target_vertices == all.levels.back().target_vertices);
+    REQUIRE(a.vertices_size() == b.vertices_size());
+    for (Vertex v : a.vertices()) CHECK(a.position(v) == b.position(v));
+    CHECK(mesh_triangles(a) == mesh_triangles(b));
+    // Its geomorph starts at the input: every input vertex ends on the last mesh.
+    CHECK_NOTHROW(check_correspondence(mesh, b, last.levels[0].correspondence));
+    CHECK(last.levels[0].correspondence.positions.size() == mesh.vertices_size());
+
+    o.record_geomorph = false;
+    const DecimationResult bare = decimate(mesh, o);
+    REQUIRE(bare.levels.size() == 1);
+    CHECK(bare.levels[0].correspondence.positions.empty());
+    CHECK(mesh_triangles(bare.levels[0].mesh) == mesh_triangles(a));
+
+    o.levels = DecimationLevels::None;
+    o.record_progressive = true;
+    const DecimationResult none = decimate(mesh, o);
+    CHECK(none.levels.empty());
+    CHECK(none.report.output_vertices == all.report.output_vertices);
+    CHECK(none.progressive.collapses.size() == all.report.collapses);
+    // The progressive mesh alone gives the same coarse mesh.
+    LevelOfDetail lod(none.progressive);
+    lod.set_level(lod.max_level());
+    const HalfedgeMesh coarse = lod.mesh();
+    REQUIRE_VALID(coarse);
+    CHECK(mesh_triangles(coarse) == mesh_triangles(a));
+}
+
+TEST_CASE("build_progressive_mesh goes down to the smallest level and maps percentages to levels",
+          "[decimation][lod]") {
+    const HalfedgeMesh mesh = make_noisy_sphere(12, 0.1, 13);  // 1442 vertices
+    const std::size_t v = mesh.n_vertices();
+    NullProgress progress;
+    const ProgressiveBuild pb = build_progressive_mesh(mesh, DecimationOptions(), 1.0, progress);
+    const std::size_t keep = (v + 99) / 100;  // ceil(1 % of V)
+    CHECK(pb.report.stop == DecimationStop::Done);
+    CHECK(pb.report.output_vertices == keep);
+    REQUIRE(pb.progressive.collapses.size() == v - keep);
+
+    LevelOfDetail lod(pb.progressive);
+    CHECK(lod.fine_vertices() == v);
+    CHECK(lod.max_level() == v - keep);
+    CHECK(lod.level_for_percent(100) == 0);
+    CHECK(lod.level_for_percent(1) == lod.max_level());
+    CHECK(lod.level_for_percent(0) == lod.max_level());
+    CHECK(lod.level_for_percent(50) == v - (v + 1) / 2);
+    CHECK(lod.level_for_percent(10) == v - std::size_t(std::ceil(0.1 * double(v))));
+    std::size_t previous = 0;
+    for (int p = 100; p >= 1; --p) {
+        const std::size_t level = lod.level_for_percent(p);
+        CHECK(level >= previous);  // fewer vertices, higher level
+        previous = level;
+        // The level keeps at least p % of the vertices, and not one more than needed.
+        const double kept = lod.percent_at_level(level);
+        CHECK(kept >= p - 1e-9);
+        CHECK(kept - 100.0 / double(v) < p);
+    }
+    CHECK(lod.percent_at_level(0) == 100);
+    CHECK_THROWS_AS(lod.level_for_percent(-1), InvalidArgument);
+    CHECK_THROWS_AS(lod.level_for_percent(100.5), InvalidArgument);
+    CHECK_THROWS_AS(lod.level_for_percent(std::nan("")), InvalidArgument);
+
+    lod.set_level(lod.level_for_percent(1));
+    CHECK(lod.vertices() == keep);
+    const HalfedgeMesh coarse = lod.mesh();
+    REQUIRE_VALID(coarse);
+    CHECK(coarse.n_vertices() == keep);
+
+    CHECK_THROWS_AS(build_progressive_mesh(mesh, DecimationOptions(), 0.0, progress),
+                    InvalidArgument);
+    CHECK_THROWS_AS(build_progressive_mesh(mesh, DecimationOptions(), 101.0, progress),
+                    InvalidArgument);
+    DecimationOptions bad;
+    bad.max_normal_angle = 0;
+    CHECK_THROWS_AS(build_progressive_mesh(mesh, bad, 1.0, progress), InvalidArgument);
+    // Where constraints stop early the progressive mesh ends there and the report says so.
+    DecimationOptions strict;
+    strict.max_error = 1e-3;
+    const ProgressiveBuild limited = build_progressive_mesh(mesh, strict, 1.0, progress);
+    CHECK(limited.report.stop == DecimationStop::MaxError);
+    CHECK(limited.progressive.collapses.size() == limited.report.collapses);
+    CHECK(limited.progressive.collapses.size() < v - keep);
+    LevelOfDetail limited_lod(limited.progressive);
+    CHECK(limited_lod.level_for_percent(1) == limited_lod.max_level());
+}
+
+TEST_CASE("a level of the progressive mesh is the mesh that decimating to its vertex count gives",
+          "[decimation][lod]") {
+    // Below 50,000 vertices decimation runs in exact priority order, so stopping at K
+    // vertices is a prefix of the run down to 1 %.
+    const HalfedgeMesh mesh = GENERATE(make_noisy_sphere(10, 0.15, 17), make_grid(24));
+    NullProgress progress;
+    const ProgressiveBuild pb = build_progressive_mesh(mesh, DecimationOptions(), 1.0, progress);
+    LevelOfDetail lod(pb.progressive);
+    for (double percent : {90.0, 55.0, 20.0, 5.0}) {
+        lod.set_level(lod.level_for_percent(percent));
+        const HalfedgeMesh level = lod.mesh();
+        REQUIRE_VALID(level);
+        DecimationOptions o;
+        o.target_vertices = lod.vertices();
+        const DecimationResult r = decimate(mesh, o);
+        REQUIRE(r.levels.size() == 1);
+        const HalfedgeMesh& direct = r.levels[0].mesh;
+        INFO(percent << " %: " << lod.vertices() << " vertices");
+        REQUIRE(level.vertices_size() == direct.vertices_size());
+        for (Vertex v : direct.vertices()) CHECK(level.position(v) == direct.position(v));
+        CHECK(mesh_triangles(level) == mesh_triangles(direct));
+    }
+}
+
+TEST_CASE(
+    "the level of detail gives the same level whatever the path, with its normals and changes",
+    "[decimation][lod]") {
+    const HalfedgeMesh mesh = GENERATE(make_noisy_sphere(10, 0.2, 19), make_grid(20));
+    NullProgress progress;
+    const ProgressiveBuild pb = build_progressive_mesh(mesh, DecimationOptions(), 1.0, progress);
+    const ProgressiveMesh& pm = pb.progressive;
+    REQUIRE(pm.collapses.size() > 100);
+    LevelOfDetail lod(pm);
+    CHECK(lod.all_changed());  // nothing consumed yet
+    // A renderer's copy of positions and normals, kept right for the live vertices from the
+    // change reports alone.
+    std::vector<Point> seen_positions(lod.positions().size());
+    std::vector<Vector3> seen_normals(lod.positions().size());
+    const auto consume = [&]() {
+        const std::vector<Index>& which =
+            lod.all_changed() ? lod.live_vertices() : lod.changed_vertices();
+        for (Index v : which) {
+            seen_positions[v] = lod.positions()[v];
+            seen_normals[v] = lod.vertex_normal(v);
+        }
+        lod.clear_changes();
+    };
+    consume();
+    CHECK_FALSE(lod.all_changed());
+    CHECK(lod.changed_vertices().empty());
+
+    std::uint32_t seed = 12345;
+    const auto random = [&](std::size_t n) {
+        seed = seed * 1664525u + 1013904223u;
+        return std::size_t(seed >> 8) % n;
+    };
+    bool stepwise = false, recomputed = false;
+    for (int move = 0; move < 40; ++move) {
+        // Long jumps and short steps both.
+        const std::size_t target = move % 2 == 0
+                                       ? random(pm.collapses.size() + 1)
+                                       : std::min(pm.collapses.size(), lod.level() + random(8));
+        lod.set_level(target);
+        (lod.all_changed() ? recomputed : stepwise) = true;
+        consume();
+        INFO("move " << move << " to level " << target);
+        // The same as replaying from the fine mesh straight to that level, bit for bit
+        // (fixed-point normals: whatever the path).
+        LevelOfDetail fresh(pm);
+        fresh.set_level(target);
+        REQUIRE(lod.level() == target);
+        CHECK(lod.vertices() == lod.fine_vertices() - target);
+        CHECK(lod.n_live_vertices() == mesh.n_vertices() - target);
+        CHECK(lod.faces() == fresh.faces());
+        CHECK(lod.face_alive() == fresh.face_alive());
+        CHECK(lod.vertex_alive() == fresh.vertex_alive());
+        CHECK(lod.positions() == fresh.positions());
+        CHECK(lod.triangles() == fresh.triangles());
+        CHECK(lod.triangles().size() == lod.n_triangles());
+        std::vector<Index> alive;
+        for (Index v = 0; v < lod.vertex_alive().size(); ++v)
+            if (lod.vertex_alive()[v]) alive.push_back(v);
+        CHECK(lod.live_vertices() == alive);
+        const HalfedgeMesh level = lod.mesh();
+        CHECK(level.n_vertices() == lod.n_live_vertices());
+        CHECK(level.n_faces() == lod.n_triangles());
+        const std::vector<Vector3> direct = direct_normals(lod);
+        double worst_normal = 0;
+        std::size_t stale = 0;
+        for (Index v : alive) {
+            CHECK(lod.vertex_normal(v) == fresh.vertex_normal(v));
+            worst_normal = std::max(worst_normal, (lod.vertex_normal(v) - direct[v]).norm());
+            if (seen_positions[v] != lod.positions()[v] || seen_normals[v] != lod.vertex_normal(v))
+                ++stale;
+        }
+        CHECK(worst_normal < 1e-9);
+        CHECK(stale == 0);  // the change reports covered every change
+    }
+    CHECK(stepwise);
+    CHECK(recomputed);
+    // And back to the fine mesh: its triangles, in the fine mesh's vertex order.
+    lod.set_level(0);
+    CHECK(mesh_triangles(lod.mesh()) == mesh_triangles(mesh));
+    CHECK(live_triangles(lod) == mesh_triangles(mesh));
+}
+
+TEST_CASE("the level of detail refuses an inconsistent progressive mesh", "[decimation][lod]") {
+    NullProgress progress;
+    const ProgressiveBuild pb =
+        build_progressive_mesh(make_icosphere(6), DecimationOptions(), 10.0, progress);
+    REQUIRE(pb.progressive.collapses.size() > 10);
+    const auto message = [](const ProgressiveMesh& pm) {
+        try {
+            LevelOfDetail lod(pm);
+        } catch (const InvalidArgument& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    CHECK(message(pb.progressive).empty());
+    ProgressiveMesh pm = pb.progressive;
+    pm.ring_faces[3] = Face(Index(pm.faces.size() + 5));
+    CHECK(message(pm).find("ring") != std::string::npos);
+    pm = pb.progressive;
+    pm.collapses[5].removed = pm.collapses[2].removed;  // already gone by then
+    CHECK(message(pm).find("collapse 5") != std::string::npos);
+    pm = pb.progressive;
+    pm.collapses[4].ring_end = pm.collapses[4].moved_begin;  // before moved_end
+    CHECK(message(pm).find("collapse 4") != std::string::npos);
+    pm = pb.progressive;
+    REQUIRE(pm.collapses[6].ring_end > pm.collapses[6].moved_end);
+    --pm.collapses[6].ring_end;  // one face at the kept vertex left out
+    CHECK(message(pm).find("collapse 6: its ring does not list") != std::string::npos);
+    pm = pb.progressive;
+    pm.collapses[7].kept_before.x() += 1e-9;  // not where the vertex is
+    CHECK(message(pm).find("collapse 7: its positions") != std::string::npos);
+    pm = pb.progressive;
+    pm.face_alive.pop_back();
+    CHECK(message(pm).find("sizes") != std::string::npos);
+    pm = pb.progressive;
+    pm.collapses[1].kept_after = Point(std::nan(""), 0, 0);
+    CHECK(message(pm).find("non-finite") != std::string::npos);
 }

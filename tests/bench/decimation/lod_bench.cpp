@@ -1,0 +1,231 @@
+// Level-of-detail benchmark (not a test): the decimation panel's slider over a progressive
+// mesh, timed from the parameter change to the frame that shows it.
+//
+//   trilab_lod_bench [--pairs N] [--runs N] [--check] [--quick] [--mesh PATH]...
+//
+// Meshes: the shared bunny and the bunny Loop-subdivided twice (557k vertices, 1.1M faces),
+// or the --mesh files instead. For each: the time to build the progressive mesh down to 1 %
+// of the vertices (build_progressive_mesh with the default options, median of --runs, default
+// 1) and the LevelOfDetail over it; then, in an offscreen EGL context (llvmpipe without a
+// GPU) at 1280x800, one sample, the default Gouraud style, N random pairs of slider
+// positions (percent of the vertices kept, uniform in [1, 100], default 40 pairs): the
+// slider is put at the first (untimed), then moved to the second and timed through
+// LevelOfDetail::level_for_percent + set_level, MeshRenderer::update_level, and one frame
+// drawn with glFinish. Prints median and max of that total (wall clock), of the process's CPU
+// time over the same span (all threads: what the move costs the machine, steadier than the
+// wall clock where other work shares the cores) and of the parts, the same for the
+// two extreme moves (100 % <-> 1 %) and for a sweep of 20 evenly spaced positions from 100
+// to 1 (the issue's `--range 100:1:20`). Floors (issue 14): every move <= 50 ms on the bunny
+// and <= 300 ms on the 557k-vertex mesh; --check exits non-zero when a max misses its floor.
+// --quick: the bunny alone, 10 pairs.
+#include <glad/gl.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/decimation.h"
+#include "core/geometry.h"
+#include "core/io/mesh_io.h"
+#include "core/platform.h"
+#include "core/subdivision.h"
+#include "render/camera.h"
+#include "render/mesh_renderer.h"
+#include "render/offscreen.h"
+
+using namespace trilab;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+struct Series {
+    std::vector<double> v;
+    double median() const {
+        std::vector<double> s = v;
+        std::sort(s.begin(), s.end());
+        return s.empty() ? 0 : s[s.size() / 2];
+    }
+    double max() const { return v.empty() ? 0 : *std::max_element(v.begin(), v.end()); }
+};
+
+struct Move {
+    Series total, cpu, core, upload, frame;
+    void print(const char* label) const {
+        std::printf(
+            "  %-26s median %6.1f ms, max %6.1f ms; CPU median %6.1f, max %6.1f  (set_level "
+            "%.1f / %.1f, update_level %.1f / %.1f, frame %.1f / %.1f: median / max)\n",
+            label, total.median(), total.max(), cpu.median(), cpu.max(), core.median(), core.max(),
+            upload.median(), upload.max(), frame.median(), frame.max());
+    }
+};
+
+struct Scene {
+    MeshRenderer& renderer;
+    Framebuffer& fb;
+    Camera camera;
+    RenderStyle style;
+};
+
+// Moves the slider to `percent` and draws the frame that shows it; adds the times to `m`.
+void move_to(LevelOfDetail& lod, double percent, Scene& s, Move* m) {
+    const std::clock_t c0 = std::clock();
+    const auto t0 = Clock::now();
+    lod.set_level(lod.level_for_percent(percent));
+    const auto t1 = Clock::now();
+    s.renderer.update_level(lod);
+    glFinish();
+    const auto t2 = Clock::now();
+    s.fb.bind();
+    clear_background(s.style);
+    s.renderer.draw(s.camera.view(), s.camera.projection(), s.style);
+    glFinish();
+    if (!m) return;
+    const double a = std::chrono::duration<double, std::milli>(t1 - t0).count();
+    const double b = std::chrono::duration<double, std::milli>(t2 - t1).count();
+    const double c = ms_since(t2);
+    m->core.v.push_back(a);
+    m->upload.v.push_back(b);
+    m->frame.v.push_back(c);
+    m->total.v.push_back(a + b + c);
+    m->cpu.v.push_back(1000.0 * double(std::clock() - c0) / CLOCKS_PER_SEC);
+}
+
+struct Config {
+    int pairs = 40, runs = 1;
+    bool check = false, quick = false;
+    std::vector<std::string> meshes;
+};
+
+// Returns whether the floor was met.
+bool bench(const std::string& label, const HalfedgeMesh& mesh, double floor_ms, const Config& c,
+           MeshRenderer& renderer, Framebuffer& fb) {
+    std::printf("\n%s: %zu vertices, %zu faces\n", label.c_str(), mesh.n_vertices(),
+                mesh.n_faces());
+    Series build;
+    ProgressiveBuild pb;
+    for (int i = 0; i < c.runs; ++i) {
+        NullProgress progress;
+        const auto t0 = Clock::now();
+        pb = build_progressive_mesh(mesh, DecimationOptions(), 1.0, progress);
+        build.v.push_back(ms_since(t0));
+    }
+    const auto t0 = Clock::now();
+    LevelOfDetail lod(pb.progressive);
+    const double lod_ms = ms_since(t0);
+    std::printf(
+        "  build_progressive_mesh to 1 %%: %.0f ms (median of %d; %zu collapses, %s), "
+        "LevelOfDetail: %.1f ms\n",
+        build.median(), c.runs, pb.progressive.collapses.size(), pb.report.stop_message.c_str(),
+        lod_ms);
+
+    Scene s{renderer, fb, Camera(), RenderStyle()};
+    s.camera.set_viewport(float(fb.width()), float(fb.height()));
+    const BoundingBox box = bounding_box(mesh);
+    s.camera.fit_sphere(
+        glm::vec3(float(box.center().x()), float(box.center().y()), float(box.center().z())),
+        float(0.5 * box.diagonal()));
+    auto t = Clock::now();
+    renderer.upload_level(lod);
+    s.fb.bind();
+    clear_background(s.style);
+    renderer.draw(s.camera.view(), s.camera.projection(), s.style);
+    glFinish();
+    std::printf("  upload_level and the first frame: %.1f ms\n", ms_since(t));
+
+    Move random_moves, extremes, sweep;
+    std::uint32_t seed = 2024;
+    const auto uniform_percent = [&]() {
+        seed = seed * 1664525u + 1013904223u;
+        return 1.0 + 99.0 * double(seed >> 8) / double(1u << 24);
+    };
+    for (int i = 0; i < c.pairs; ++i) {
+        const double from = uniform_percent(), to = uniform_percent();
+        move_to(lod, from, s, nullptr);
+        move_to(lod, to, s, &random_moves);
+    }
+    for (int i = 0; i < 3; ++i) {
+        move_to(lod, 100, s, nullptr);
+        move_to(lod, 1, s, &extremes);
+        move_to(lod, 100, s, &extremes);
+    }
+    move_to(lod, 100, s, nullptr);
+    for (int i = 1; i < 20; ++i) move_to(lod, 100.0 - 99.0 * i / 19.0, s, &sweep);
+    Framebuffer::bind_default();
+
+    random_moves.print((std::to_string(c.pairs) + " random pairs").c_str());
+    extremes.print("100 % <-> 1 % (3 each way)");
+    sweep.print("sweep 100:1:20");
+    const double worst =
+        std::max({random_moves.total.max(), extremes.total.max(), sweep.total.max()});
+    const bool met = worst <= floor_ms;
+    std::printf("  floor: every move <= %.0f ms: %s (worst %.1f ms, %.2fx the floor)\n", floor_ms,
+                met ? "met" : "MISSED", worst, worst / floor_ms);
+    return met;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    tune_heap_for_large_meshes();
+    Config c;
+    for (int i = 1; i < argc; ++i) {
+        if (!std::strcmp(argv[i], "--pairs") && i + 1 < argc) {
+            c.pairs = std::max(1, std::atoi(argv[++i]));
+        } else if (!std::strcmp(argv[i], "--runs") && i + 1 < argc) {
+            c.runs = std::max(1, std::atoi(argv[++i]));
+        } else if (!std::strcmp(argv[i], "--mesh") && i + 1 < argc) {
+            c.meshes.push_back(argv[++i]);
+        } else if (!std::strcmp(argv[i], "--check")) {
+            c.check = true;
+        } else if (!std::strcmp(argv[i], "--quick")) {
+            c.quick = true;
+            c.pairs = 10;
+        } else {
+            std::fprintf(stderr,
+                         "usage: trilab_lod_bench [--pairs N] [--runs N] [--check] [--quick] "
+                         "[--mesh PATH]...\n");
+            return 2;
+        }
+    }
+    OffscreenContext context;
+    std::printf("level-of-detail benchmark: %s\n1280x800, 1 sample, gouraud, glFinish included\n",
+                context.description().c_str());
+    Framebuffer fb;
+    fb.create(1280, 800, 1);
+    MeshRenderer renderer;
+    bool ok = true;
+    if (!c.meshes.empty()) {
+        for (const std::string& path : c.meshes) {
+            const HalfedgeMesh mesh = read_mesh(path).mesh;
+            ok = bench(path, mesh, mesh.n_vertices() > 100000 ? 300 : 50, c, renderer, fb) && ok;
+        }
+    } else {
+        const std::string path = std::string(TRILAB_SHARED_DIR) + "/meshes/stanford-bunny.obj";
+        if (!std::filesystem::exists(path)) {
+            std::printf("bunny: skipped, %s is absent\n", path.c_str());
+            return c.check ? 1 : 0;
+        }
+        const HalfedgeMesh bunny = read_mesh(path).mesh;
+        ok = bench("bunny", bunny, 50, c, renderer, fb) && ok;
+        if (!c.quick) {
+            NullProgress progress;
+            SubdivisionOptions so;
+            so.iterations = 2;
+            const HalfedgeMesh big = std::move(subdivide(bunny, so, progress).levels.back().mesh);
+            ok = bench("bunny Loop-subdivided twice", big, 300, c, renderer, fb) && ok;
+        }
+    }
+    std::printf("\n%s\n", ok ? "all floors met" : "a floor was missed");
+    return c.check && !ok ? 1 : 0;
+}
