@@ -920,6 +920,7 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
             final_vertices = work.n_vertices();
             any_collapse = true;
             level_target = target;
+            ++report.iterations_done;
             if (options.levels == DecimationLevels::All) {
                 // The last iteration takes the working mesh itself (no copy of a big mesh).
                 result.levels.push_back(

@@ -115,6 +115,7 @@ struct DecimationReport {
     std::size_t input_vertices = 0, output_vertices = 0;  ///< vertices with faces
     std::size_t isolated_vertices = 0;                    ///< kept, in addition
     std::size_t collapses = 0;
+    std::size_t iterations_done = 0;   ///< iterations that collapsed anything
     std::size_t refused_topology = 0;  ///< link condition
     std::size_t refused_normal_flip = 0;
     std::size_t refused_roundness = 0;

@@ -20,11 +20,13 @@ struct DecimateOptions {
 };
 
 OperationResult run_decimate(const DecimateOptions& d_options, const HalfedgeMesh& mesh,
-                             Progress& progress, const RunSettings&) {
+                             Progress& progress, const RunSettings& settings) {
     const DecimationOptions& o = d_options.core;
     DecimationOptions options = o;
     options.target_vertices = d_options.target_vertices.value_or(0);
     options.record_progressive = false;  // the steps carry the geomorphs
+    options.levels = settings.keep_steps ? DecimationLevels::All : DecimationLevels::Last;
+    options.record_geomorph = settings.morph;
     DecimationResult d = decimate(mesh, options, progress);
     const DecimationReport& rep = d.report;
     OperationResult result;
@@ -59,7 +61,7 @@ OperationResult run_decimate(const DecimateOptions& d_options, const HalfedgeMes
                      {"input_vertices", double(rep.input_vertices)},
                      {"surface_vertices", double(rep.output_vertices)},
                      {"isolated_vertices", double(rep.isolated_vertices)},
-                     {"iterations_done", double(d.levels.size())},
+                     {"iterations_done", double(rep.iterations_done)},
                      {"collapses", double(rep.collapses)},
                      {"refused_link_condition", double(rep.refused_topology)},
                      {"refused_normal_flip", double(rep.refused_normal_flip)},

@@ -43,6 +43,16 @@ struct ApplyOperation {
 };
 /// Drop the preview and show the current state again (the panel's Cancel, or Esc).
 struct CancelPreview {};
+/// Decimation's level-of-detail slider: build the progressive mesh of the current state with
+/// `op`'s cost and constraints (a job), show the level keeping `percent` of the vertices, or
+/// commit the shown level as one history entry.
+struct BuildLevelOfDetail {
+    Operation op;
+};
+struct ShowLevelOfDetail {
+    double percent = 100;
+};
+struct ApplyLevelOfDetail {};
 /// Recompute the vertex colouring (its kind or options changed).
 struct UpdateColoring {};
 /// Compute texture coordinates by the chosen projection (the mesh has none).
@@ -65,6 +75,7 @@ struct SaveAndContinue {};
 
 using Command = std::variant<LoadFile, SaveFile, RevertFile, LoadTexture, FitView, Undo, Redo,
                              JumpTo, RunOperation, PreviewOperation, ApplyOperation, CancelPreview,
+                             BuildLevelOfDetail, ShowLevelOfDetail, ApplyLevelOfDetail,
                              UpdateColoring, ProjectTexCoords, TakeScreenshot, PrintInfo,
                              StartRecording, CancelRecording, CancelJob, Quit, SaveAndContinue>;
 using CommandQueue = std::vector<Command>;

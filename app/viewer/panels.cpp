@@ -395,9 +395,9 @@ bool operation_widgets(Operation& op, const std::vector<std::string>& skip) {
                     ImGui::SameLine();
                 }
                 if (!v.on) {  // unset: the run's default, said in words
-                    ImGui::TextDisabled("%s: %s", p.label.c_str(),
-                                        p.default_note.empty() ? "default"
-                                                               : p.default_note.c_str());
+                    ImGui::TextDisabled(
+                        "%s: %s", p.label.c_str(),
+                        p.default_note.empty() ? "default" : p.default_note.c_str());
                     break;
                 }
                 ImGui::SetNextItemWidth(w);
@@ -542,6 +542,30 @@ void decimation_window(PanelState& panels, MorphState& morph, const History& his
     place_tool_window();
     if (ImGui::Begin("Decimation", &d.open, ImGuiWindowFlags_AlwaysAutoResize)) {
         operation_panel_body(d, "Decimate", busy, commands);
+        // Level of detail: a slider over the progressive mesh of the current state.
+        if (ImGui::CollapsingHeader("Level of detail")) {
+            if (!d.lod_ready) {
+                if (busy || d.lod_building) ImGui::BeginDisabled();
+                if (ImGui::Button("Build levels")) commands.push_back(BuildLevelOfDetail{d.op});
+                note_widget("Build levels");
+                if (busy || d.lod_building) ImGui::EndDisabled();
+                if (ImGui::IsItemHovered())
+                    ImGui::SetTooltip(
+                        "decimate down to 1 %% with this cost and these "
+                        "constraints, recording every collapse");
+            } else {
+                ImGui::SetNextItemWidth(12.0f * ImGui::GetFontSize());
+                if (ImGui::SliderFloat("lod (% of vertices)", &d.lod_percent, 100.0f, 1.0f,
+                                       "%.1f %%", ImGuiSliderFlags_AlwaysClamp))
+                    commands.push_back(ShowLevelOfDetail{double(d.lod_percent)});
+                note_widget("lod");
+                if (ImGui::Button("Apply level")) commands.push_back(ApplyLevelOfDetail{});
+                note_widget("Apply level");
+                ImGui::SameLine();
+                if (ImGui::Button("Cancel##lod")) commands.push_back(CancelPreview{});
+            }
+            if (!d.lod_note.empty()) ImGui::TextDisabled("%s", d.lod_note.c_str());
+        }
         ImGui::Checkbox("show collapsing edges", &d.show_collapsing_edges);
         if (d.show_collapsing_edges) {
             ImGui::SameLine();

@@ -79,6 +79,11 @@ struct DecimationPanelState : OperationPanelState {
     DecimationPanelState() : OperationPanelState("decimate") {}
     /// Rendering > Vectors > Collapsing edges: the edges the next iteration collapses.
     bool show_collapsing_edges = false;
+    /// The level-of-detail slider over the progressive mesh (percent of the vertices kept).
+    float lod_percent = 100.0f;
+    bool lod_ready = false;  ///< the viewer has a progressive mesh of the current state
+    bool lod_building = false;
+    std::string lod_note;  ///< what the progressive mesh reaches, or the last move's time
 };
 
 /// Draws one widget per parameter of `op` that applies to its current values, from the

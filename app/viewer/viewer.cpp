@@ -249,6 +249,7 @@ void Viewer::log_history_messages(const std::vector<std::string>& messages) {
 }
 
 void Viewer::on_state_changed(bool fit) {
+    clear_level_of_detail(true);  // a level of detail belongs to the state it was built on
     document_.unsaved = true;
     const HalfedgeMesh& mesh = document_.mesh();
     document_.texcoords_projected =
@@ -417,6 +418,7 @@ void Viewer::finish_recording(bool cancelled) {
 }
 
 void Viewer::update_morph() {
+    if (lod_.shown) return;  // the level-of-detail slider owns the view
     if (preview_.result) {
         show_preview();
         return;
@@ -755,6 +757,7 @@ void Viewer::execute(const Command& command) {
                std::holds_alternative<JumpTo>(command)) {
         History& h = document_.history;
         clear_preview(true);  // a preview belongs to the state it was computed on
+        clear_level_of_detail(true);
         if (jobs_.busy()) {
             notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
             return;
@@ -782,6 +785,13 @@ void Viewer::execute(const Command& command) {
         apply_operation(apply->op);
     } else if (std::holds_alternative<CancelPreview>(command)) {
         clear_preview(true);
+        clear_level_of_detail(false);
+    } else if (auto* build = std::get_if<BuildLevelOfDetail>(&command)) {
+        build_level_of_detail(build->op);
+    } else if (auto* show = std::get_if<ShowLevelOfDetail>(&command)) {
+        show_level_of_detail(show->percent);
+    } else if (std::holds_alternative<ApplyLevelOfDetail>(command)) {
+        apply_level_of_detail();
     } else if (std::holds_alternative<UpdateColoring>(command)) {
         update_coloring();
     } else if (std::holds_alternative<ProjectTexCoords>(command)) {
@@ -1142,7 +1152,7 @@ int Viewer::run() {
         glfwSwapBuffers(window_.get());
         frame_times_ms_[n_frame_times_++ % frame_times_ms_.size()] =
             1000.0 * (glfwGetTime() - start);
-        if (sweep_.active) step_sweep(preview_uploaded_ != nullptr);
+        if (sweep_.active) step_sweep(preview_uploaded_ != nullptr || lod_.shown);
         if (last) break;
     }
     if (options_.frames > 0) {

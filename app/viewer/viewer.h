@@ -15,6 +15,7 @@
 #include "app/viewer/job_runner.h"
 #include "app/viewer/log.h"
 #include "app/viewer/panels.h"
+#include "core/decimation.h"
 #include "core/halfedge_mesh.h"
 #include "core/io/image_io.h"
 #include "core/mesh_builder.h"
@@ -140,6 +141,7 @@ private:
     };
     struct Sweep {
         bool active = false, waiting = false;
+        bool lod = false;  ///< the level-of-detail slider ("decimate" with --param lod)
         Operation op, current;
         std::size_t param = 0;
         int next = 0;
@@ -159,6 +161,19 @@ private:
     void start_sweep();
     /// After each frame: `frame_shown` says whether the frame showed the preview.
     void step_sweep(bool frame_shown);
+    // Decimation's level-of-detail slider (viewer_preview.cpp).
+    struct LodState {
+        std::shared_ptr<const ProgressiveMesh> progressive;
+        std::shared_ptr<LevelOfDetail> lod;
+        std::size_t base_entry = 0;  ///< the history entry it was built on
+        bool shown = false;          ///< the renderer shows a level
+    };
+    void build_level_of_detail(const Operation& op);
+    void show_level_of_detail(double percent);
+    void apply_level_of_detail();
+    /// Drops the level shown (and, with `forget`, the progressive mesh).
+    void clear_level_of_detail(bool forget);
+    LodState lod_;
     PreviewState preview_;
     const HalfedgeMesh* preview_uploaded_ = nullptr;  ///< the preview mesh on the GPU
     Sweep sweep_;

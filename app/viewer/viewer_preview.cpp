@@ -18,8 +18,10 @@
 #include <memory>
 #include <utility>
 
+#include "app/ops/operation_entries.h"
 #include "app/viewer/viewer.h"
 #include "core/coloring.h"
+#include "core/decimation.h"
 
 namespace trilab::viewer {
 namespace {
@@ -61,6 +63,7 @@ void Viewer::request_preview(const Operation& op) {
     } catch (const std::exception& e) {
         return;  // the panel shows the error next to its widgets
     }
+    clear_level_of_detail(false);
     preview_.requested_at = glfwGetTime();
     preview_.requested = op;
     // Within the computed iterations: show the computed step at once.
@@ -216,11 +219,116 @@ void Viewer::note_preview_latency(double ms) {
     panel->preview_note = buf;
 }
 
+// ---- the level-of-detail slider ------------------------------------------------------------
+
+void Viewer::build_level_of_detail(const Operation& op) {
+    clear_preview(true);
+    clear_level_of_detail(true);
+    DecimationOptions options;
+    try {
+        options = decimation_options(op);
+    } catch (const std::exception& e) {
+        notify_error(e.what());
+        return;
+    }
+    const std::size_t base = document_.history.current();
+    panels_.decimation.lod_building = true;
+    const auto t0 = glfwGetTime();
+    jobs_.start("Building levels of detail", [this, options, base, t0](Progress& progress) {
+        auto build = std::make_shared<ProgressiveBuild>(
+            build_progressive_mesh(document_.mesh(), options, 1.0, progress));
+        auto lod = std::make_shared<LevelOfDetail>(build->progressive);
+        return JobRunner::Finish([this, build, lod, base, t0] {
+            panels_.decimation.lod_building = false;
+            if (base != document_.history.current()) return;
+            lod_.progressive = std::shared_ptr<const ProgressiveMesh>(build, &build->progressive);
+            lod_.lod = lod;
+            lod_.base_entry = base;
+            panels_.decimation.lod_ready = true;
+            panels_.decimation.lod_percent = 100.0f;
+            char buf[200];
+            std::snprintf(buf, sizeof buf, "%zu levels, down to %.1f %% of the vertices (%.0f ms)",
+                          lod->max_level(), lod->percent_at_level(lod->max_level()),
+                          1000.0 * (glfwGetTime() - t0));
+            panels_.decimation.lod_note = buf;
+            if (build->report.stop != DecimationStop::Done)
+                panels_.decimation.lod_note += ": " + build->report.stop_message;
+        });
+    });
+}
+
+void Viewer::show_level_of_detail(double percent) {
+    if (!lod_.lod || lod_.base_entry != document_.history.current()) return;
+    clear_preview(false);
+    LevelOfDetail& lod = *lod_.lod;
+    lod.set_level(lod.level_for_percent(std::clamp(percent, 0.0, 100.0)));
+    if (lod_.shown)
+        renderer_->update_level(lod);
+    else
+        renderer_->upload_level(lod);
+    lod_.shown = true;
+    morph_topology_ = nullptr;
+    active_frames_ = std::max(active_frames_, 2);
+}
+
+void Viewer::clear_level_of_detail(bool forget) {
+    if (lod_.shown) {
+        lod_.shown = false;
+        renderer_->upload(document_.mesh());
+        apply_colors(std::move(view_.colors));
+    }
+    if (forget) {
+        lod_ = LodState{};
+        panels_.decimation.lod_ready = false;
+        panels_.decimation.lod_percent = 100.0f;
+    }
+}
+
+void Viewer::apply_level_of_detail() {
+    if (!lod_.lod || lod_.base_entry != document_.history.current()) return;
+    const LevelOfDetail& lod = *lod_.lod;
+    const ProgressiveMesh& pm = *lod_.progressive;
+    OperationResult result;
+    result.label = "Decimate";
+    HalfedgeMesh mesh = lod.mesh();
+    // Each kept vertex starts where it was on the finer mesh (the level's vertices are the
+    // live fine vertices, in the fine order).
+    std::vector<Point> start;
+    for (Index i = 0; i < Index(pm.positions.size()); ++i) {
+        if (!pm.vertex_alive[i]) continue;
+        const Index v = lod.vertex_of(i);
+        if (v != kInvalidIndex && lod.vertex_alive()[v]) start.push_back(pm.positions[i]);
+    }
+    if (start.size() != mesh.vertices_size()) start = mesh.positions();  // no motion then
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "level of detail: %zu of %zu vertices (%.1f %%)", lod.vertices(),
+                  lod.fine_vertices(), lod.percent_at_level(lod.level()));
+    result.report.push_back(buf);
+    result.steps.push_back(OperationStep{
+        std::move(mesh), MorphCorrespondence{MorphCorrespondence::Kind::FromEarlier, start}});
+    Operation op = panels_.decimation.op;
+    ParamValue& target = op.value("target-vertices");
+    target.x = double(lod.vertices());
+    target.on = target.given = true;
+    result.parameters = op.parameters();
+    clear_level_of_detail(true);
+    commit_result(op, std::move(result));
+}
+
 // ---- scripted sweeps (--sweep) --------------------------------------------------------------
 
 void Viewer::start_sweep() {
     Sweep& s = sweep_;
     s.op = parse_operation(options_.sweep_op);
+    // Decimation's level-of-detail slider is "lod" (percent of the vertices kept).
+    s.lod = s.op.name() == "decimate" && options_.sweep_param == "lod";
+    if (s.lod) {
+        panels_.decimation.open = true;
+        panels_.decimation.op = s.op;
+        build_level_of_detail(s.op);
+        s.active = true;
+        return;
+    }
     const std::size_t i = s.op.def->index(options_.sweep_param);
     s.param = i;
     if (OperationPanelState* panel = panel_of(s.op)) {
@@ -233,6 +341,20 @@ void Viewer::start_sweep() {
 void Viewer::step_sweep(bool frame_shown) {
     Sweep& s = sweep_;
     if (!s.active) return;
+    if (s.lod && !lod_.lod) {
+        if (!jobs_.busy()) {  // the build failed (its error is shown)
+            std::fprintf(stderr, "trilab: --sweep: no levels of detail could be built\n");
+            s.active = false;
+            quit_ = true;
+        }
+        return;
+    }
+    if (s.lod && s.waiting) {
+        if (!frame_shown) return;
+        s.ms.push_back(1000.0 * (glfwGetTime() - s.t0));
+        s.waiting = false;
+        ++s.next;
+    }
     if (s.waiting) {
         // Done when the frame just drawn showed the preview asked for.
         if (!frame_shown || !preview_.result || preview_.shown_op != s.current) return;
@@ -255,6 +377,19 @@ void Viewer::step_sweep(bool frame_shown) {
     const int n = options_.sweep_count;
     const double t = n > 1 ? double(s.next) / double(n - 1) : 0.0;
     double value = options_.sweep_from + t * (options_.sweep_to - options_.sweep_from);
+    if (s.lod) {
+        if (!(value >= 0 && value <= 100)) {
+            std::fprintf(stderr, "trilab: --sweep: lod takes percentages from 0 to 100\n");
+            s.active = false;
+            quit_ = true;
+            return;
+        }
+        panels_.decimation.lod_percent = float(value);
+        s.t0 = glfwGetTime();
+        s.waiting = true;
+        show_level_of_detail(value);
+        return;
+    }
     const ParamSpec& spec = s.op.def->params[s.param];
     if (spec.kind == ParamKind::Integer) value = std::round(value);
     s.current = s.op;
