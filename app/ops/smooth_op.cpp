@@ -57,12 +57,15 @@ OperationResult run_smooth(const FairingOptions& o, const HalfedgeMesh& mesh, Pr
                         (o.preserve_volume ? " --preserve-volume" : "") +
                         (o.boundary == BoundaryMode::Slide ? " --boundary slide" : "");
     result.report = fairing.report;
-    if (fairing.diverged)
-        result.report.push_back(
-            "stopped early: the step diverged (try a smaller step or implicit)");
+    // A run that stopped (diverged, failed solve) is an error, never a result.
+    if (fairing.stopped_early) throw Error("smooth: stopped at " + fairing.stop_reason);
     // Geometry-only steps: every iteration keeps the vertices of the one before.
-    for (HalfedgeMesh& step : fairing.steps)
+    for (std::size_t k = 0; k < fairing.step_positions.size(); ++k) {
+        HalfedgeMesh step =
+            k + 1 == fairing.step_positions.size() ? std::move(fairing.mesh) : fairing.mesh;
+        step.positions() = std::move(fairing.step_positions[k]);
         result.steps.push_back(OperationStep{std::move(step), MorphCorrespondence{}});
+    }
     if (result.steps.empty()) throw Error("smooth: no step could be computed");
     // The smoothing distance of the result against the input (the viewer's colouring).
     const std::vector<double> distance =
@@ -79,6 +82,7 @@ OperationResult run_smooth(const FairingOptions& o, const HalfedgeMesh& mesh, Pr
                   mean_distance);
     result.report.emplace_back(line);
     result.values = {{"iterations_done", double(result.steps.size())},
+                     {"max_stable_step", fairing.max_stable_step},
                      {"max_residual", fairing.max_residual},
                      {"initial_volume", fairing.initial_volume},
                      {"final_volume", fairing.final_volume},
