@@ -315,29 +315,39 @@ double gershgorin_bound(const Laplacian& lap) {
 }
 
 /// out = P + t·L·P for the operator's rows (other vertices copied); boxes and finiteness as
-/// UmbrellaOperator::step.
+/// UmbrellaOperator::step, and Gershgorin's bound (gershgorin_bound()) from the same pass.
+/// `rows` is scratch: the rows' positions gathered contiguously.
 bool laplacian_step(const Laplacian& lap, const Positions& P, double t, Positions& out,
-                    Box& box_before, Box& box_after) {
+                    std::vector<Point>& rows, Box& box_before, Box& box_after, double& gershgorin) {
     out = P;
+    const std::size_t n = lap.map.rows();
+    const auto& vertex_of = lap.map.vertex_of;
+    rows.resize(n);
+    for (std::size_t r = 0; r < n; ++r) rows[r] = P[vertex_of[r].idx()];
     const int* outer = lap.K.outerIndexPtr();
     const int* inner = lap.K.innerIndexPtr();
     const double* value = lap.K.valuePtr();
-    const auto& vertex_of = lap.map.vertex_of;
-    bool finite = true;
-    for (std::size_t r = 0; r < lap.map.rows(); ++r) {
+    double sum = 0;
+    gershgorin = 0;
+    for (std::size_t r = 0; r < n; ++r) {
         const Index v = vertex_of[r].idx();
-        const Point& p = P[v];
+        const Point& p = rows[r];
         if (!lap.fixed[r]) {
             Vector3 kx = Vector3::Zero();
-            for (int k = outer[r]; k < outer[r + 1]; ++k)
-                kx += value[k] * P[vertex_of[std::size_t(inner[k])].idx()];
-            out[v] = p - (t / lap.S[Eigen::Index(r)]) * kx;
-            finite = finite && finite_and_bounded(out[v]);
+            double abs_sum = 0;
+            for (int k = outer[r]; k < outer[r + 1]; ++k) {
+                kx += value[k] * rows[std::size_t(inner[k])];
+                abs_sum += std::abs(value[k]);
+            }
+            const double s = lap.S[Eigen::Index(r)];
+            out[v] = p - (t / s) * kx;
+            sum += out[v].x() + out[v].y() + out[v].z();
+            if (std::isfinite(abs_sum / s)) gershgorin = std::max(gershgorin, abs_sum / s);
         }
         box_before.add(p);
         box_after.add(out[v]);
     }
-    return finite;
+    return std::isfinite(sum) && box_after.bounded();
 }
 
 /// xᵀKx over the operator's rows and the rounding scale sum_i (sum_j |K_ij|) |x_i|².
@@ -678,8 +688,9 @@ void run_fairing(const FairingOptions& o, Progress& progress, FairingResult& res
             finite = umbrella->step(P, o.step, cand, box_before, box_after);
             check_energy = o.step > 1.0;  // Gershgorin: the umbrella's spectrum is in [0, 2]
         } else if (!implicit) {
-            finite = laplacian_step(lap, P, o.step, cand, box_before, box_after);
-            check_energy = o.step * gershgorin_bound(lap) > 2.0;
+            double g = 0;
+            finite = laplacian_step(lap, P, o.step, cand, tmp, box_before, box_after, g);
+            check_energy = o.step * g > 2.0;
         } else {
             cand = P;
             const auto nf = Eigen::Index(sys.free_rows.size());

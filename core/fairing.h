@@ -15,11 +15,13 @@
 //
 // What `step` means (every operator is scale-free, so it means the same on any mesh size):
 //  - Umbrella, CurvatureFlow: the fraction of the way to the neighbours' (weighted) average
-//    that each vertex moves; explicit is stable up to about 1.3 (every step <= 1 is).
-//  - ImprovedUmbrella: twice that, on a mesh of equal edges (lengths in units of the mean edge
-//    length); explicit is stable up to about 0.6.
+//    each vertex moves; every explicit step <= 1 is stable, the limit is about 1.3 (umbrella)
+//    and 1.0-1.3 (curvature flow) on typical meshes.
+//  - ImprovedUmbrella: twice that on a mesh of equal edges (lengths in units of the mean edge
+//    length); the explicit limit is about 0.4-0.5, and it falls during a run when short edges
+//    shorten further (the reference's "numerical instability"): prefer implicit.
 //  - SecondOrder: step 1 is the relaxation (1.12) damped so that no frequency overshoots;
-//    explicit steps below 2 are always stable.
+//    every explicit step below 2 is stable (the limit is about 2.4-2.6).
 //  - implicit: any step > 0 is stable; step t smooths about like t explicit steps of 1.
 // max_stable_explicit_step() estimates the limit for the actual mesh (explicit Euler is stable
 // while step < 2/ρ(S⁻¹K)).
@@ -31,10 +33,14 @@
 // of the step's own operator grows (explicit Euler below the stable limit never lets it grow;
 // Taubin: more than its pass-band gain allows), the surface area falls below 10 % of the
 // previous iteration's, or the volume of a closed mesh changes sign (implicit runs check the
-// residual, finiteness and the volume's sign). The energy, area and volume checks are skipped
-// where they provably cannot fail (a fixed-weight operator with a step within its Gershgorin
-// bound). A stopped run keeps the iterations before the failing one: result.mesh is the last
-// good state, stopped_early is set and stop_reason names the iteration and the reason.
+// residual, finiteness and the volume's sign). The energy check runs where the step is not
+// provably stable (step·G > 2, G Gershgorin's bound on S⁻¹K: 2 for umbrella and curvature
+// flow, 1 for second order); the area and volume checks run for the geometry-dependent
+// operators and for such steps, so a provably stable umbrella or Taubin iteration costs one
+// pass over the edges and one over the vertices. A stopped run keeps the iterations before
+// the failing one: result.mesh is the last good state, stopped_early is set and stop_reason
+// names the iteration and the reason (for an explicit instability with the stable limit at
+// the last good state).
 //
 // Boundary vertices stay fixed (or slide along the boundary curve); isolated vertices never
 // move. Connectivity and attributes other than positions are copied unchanged.
@@ -43,7 +49,7 @@
 // `max_relative_residual`, `cg_max_iterations`) before doing anything; Cancelled from the
 // progress. The input mesh is never modified.
 // Complexity: explicit O(iterations · (V + F)) with one position-sized buffer beyond the
-// result (umbrella and Taubin build no matrix); implicit one sparse factorization per
+// result (two for Taubin; umbrella and Taubin build no matrix); implicit one factorization per
 // iteration (one in all for umbrella) plus a solve per iteration.
 #include <cstddef>
 #include <limits>

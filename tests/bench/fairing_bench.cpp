@@ -86,6 +86,7 @@ FairingOptions options(FairingOperator op, Integration integration, double step,
     o.iterations = iterations;
     o.solver = solver;
     o.keep_steps = false;
+    o.estimate_max_stable_step = false;  // timed on its own (stable-step rows)
     return o;
 }
 
@@ -219,6 +220,20 @@ int main(int argc, char** argv) {
         "\ntorus (%zu vertices): explicit umbrella: 1 call %.1f ms, 10 iterations %.1f ms "
         "(%.1f per iteration), one more iteration %.1f ms\n",
         huge.n_vertices(), umbrella_huge_1, umbrella_huge_10, umbrella_huge_10 / 10, marginal);
+
+    // The stable-step estimate (20 Lanczos products; smooth() runs it by default).
+    std::printf("\nlargest stable explicit step (max_stable_explicit_step, 20 Lanczos steps):\n");
+    for (const auto& [name, mesh] : {std::pair<const char*, const HalfedgeMesh*>{"bunny", &bunny},
+                                     {quick ? "torus 40k" : "large", &large}}) {
+        if (mesh->n_vertices() == 0) continue;
+        for (FairingOperator op : {FairingOperator::Umbrella, FairingOperator::CurvatureFlow,
+                                   FairingOperator::SecondOrder}) {
+            double limit = 0;
+            const double ms = time_ms([&] { limit = max_stable_explicit_step(*mesh, op); }, runs);
+            std::printf("  %-10s %-16s %8.1f ms  limit %.4g\n", name, fairing_operator_name(op), ms,
+                        limit);
+        }
+    }
 
     // Implicit steps.
     if (have_bunny) implicit_table("bunny", bunny, runs, true);
