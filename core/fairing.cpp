@@ -123,19 +123,24 @@ bool finite_and_bounded(const Point& p) {
 }
 
 struct AreaVolume {
-    double area = 0, volume = 0;
+    double area = std::numeric_limits<double>::quiet_NaN();  ///< NaN: not computed
+    double volume = 0;
 };
 
-/// Surface area and signed volume (as geometry.h's volume()) over positions P.
-AreaVolume area_volume(const HalfedgeMesh& mesh, const Positions& P) {
+/// Signed volume (as geometry.h's volume()) over positions P and, with `with_area`, the
+/// surface area (the square roots are most of the pass's cost).
+AreaVolume area_volume(const HalfedgeMesh& mesh, const Positions& P, bool with_area) {
     AreaVolume r;
+    double area = 0, volume = 0;
     for (Face f : mesh.faces()) {
         const auto v = mesh.face_vertices(f);
         const Point &a = P[v[0].idx()], &b = P[v[1].idx()], &c = P[v[2].idx()];
         const Vector3 n = (b - a).cross(c - a);
-        r.area += 0.5 * n.norm();
-        r.volume += (a + b + c).dot(n) / 18.0;
+        if (with_area) area += 0.5 * n.norm();
+        volume += (a + b + c).dot(n);
     }
+    if (with_area) r.area = area;
+    r.volume = volume / 18.0;
     return r;
 }
 
@@ -577,10 +582,10 @@ void run_fairing(const FairingOptions& o, Progress& progress, FairingResult& res
         res.report.push_back(s.str());
     }
     const bool closed = is_closed(mesh);
-    AreaVolume last;  // of the last good positions, where known
+    AreaVolume last;  // of the last good positions, where known (area: NaN when not)
     bool last_known = false;
     if (closed) {
-        last = area_volume(mesh, mesh.positions());
+        last = area_volume(mesh, mesh.positions(), true);
         last_known = true;
         res.initial_volume = last.volume;
     }
@@ -817,11 +822,16 @@ void run_fairing(const FairingOptions& o, Progress& progress, FairingResult& res
             slider->step(t, implicit_curve, cand);
             energy_known = false;
         }
-        const bool geometry_checks = o.preserve_volume || (implicit && check_volume_sign) ||
-                                     (!implicit && (!weights_fixed || check_energy));
-        if (geometry_checks) {
-            const AreaVolume g = area_volume(mesh, cand);
-            if (!implicit && last_known && last.area > 0 && g.area < kAreaCollapse * last.area) {
+        // The area collapse check runs with the energy check and for the geometry-dependent
+        // operators; the volume's sign is checked on every iteration of a closed mesh (a
+        // provably stable step can still turn a very coarse mesh inside out: umbrella step 1
+        // maps a tetrahedron to its reflection scaled by 1/3).
+        const bool area_check = !implicit && (!weights_fixed || check_energy);
+        if (area_check || check_volume_sign || o.preserve_volume) {
+            if (area_check && !(last_known && last.area >= 0))
+                last = area_volume(mesh, P, true);  // the last good state's area, once
+            const AreaVolume g = area_volume(mesh, cand, area_check);
+            if (area_check && last.area > 0 && g.area < kAreaCollapse * last.area) {
                 stop(iteration, "the surface area fell to " + format_percent(g.area / last.area) +
                                     " of the previous iteration's" + instability_hint());
                 break;

@@ -35,9 +35,11 @@
 // previous iteration's, or the volume of a closed mesh changes sign (implicit runs check the
 // residual, finiteness and the volume's sign). The energy check runs where the step is not
 // provably stable (step·G > 2, G Gershgorin's bound on S⁻¹K: 2 for umbrella and curvature
-// flow, 1 for second order); the area and volume checks run for the geometry-dependent
-// operators and for such steps, so a provably stable umbrella or Taubin iteration costs one
-// pass over the edges and one over the vertices. A stopped run keeps the iterations before
+// flow, 1 for second order); the area check with it and for the geometry-dependent
+// operators; the volume's sign on every iteration of a closed mesh (even a stable step turns
+// a tetrahedron inside out). So a provably stable umbrella or Taubin iteration costs one pass
+// over the edges and one over the vertices (and one over the faces on a closed mesh). A
+// stopped run keeps the iterations before
 // the failing one: result.mesh is the last good state, stopped_early is set and stop_reason
 // names the iteration and the reason (for an explicit instability with the stable limit at
 // the last good state).

@@ -926,3 +926,23 @@ TEST_CASE("steps are positions only; a moved-in mesh gives the same result", "[f
     CHECK(moved.mesh.positions() == kept.mesh.positions());
     REQUIRE_VALID(moved.mesh);
 }
+
+TEST_CASE("a step that turns a coarse closed mesh inside out or flat is stopped", "[fairing]") {
+    // Umbrella step 1 (within every stable limit) moves each corner of a tetrahedron to the
+    // centroid of the other three: the reflection through the centroid scaled by 1/3. On an
+    // octahedron it puts every vertex at the centre.
+    const HalfedgeMesh shapes[] = {make_tetrahedron(), make_octahedron()};
+    for (const HalfedgeMesh& m : shapes) {
+        INFO(m.n_vertices() << " vertices");
+        const FairingResult r =
+            smooth(m, options(FairingOperator::Umbrella, Integration::Explicit, 1.0, 3));
+        INFO(r.stop_reason);
+        CHECK(r.stopped_early);
+        CHECK(r.stopped_at_iteration == 1);
+        CHECK_THAT(r.stop_reason, Catch::Contains("the volume changed sign"));
+        CHECK(r.mesh.positions() == m.positions());
+        // A gentle step is fine.
+        require_sane(smooth(m, options(FairingOperator::Umbrella, Integration::Explicit, 0.2, 3)),
+                     3);
+    }
+}
