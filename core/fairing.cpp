@@ -522,7 +522,7 @@ private:
 
 /// Automatic solver choice for implicit steps. The system S + t·K, preconditioned by S, has
 /// its condition number bounded by 1 + t·G with G Gershgorin's bound on S⁻¹K (2 for umbrella
-/// and curvature flow, 1 for second order, about 4 for the improved umbrella).
+/// curvature flow and second order, about 4 for the improved umbrella).
 /// Jacobi-preconditioned conjugate gradients warm-started from the current positions need
 /// about sqrt(bound)·ln(2/tol)/2 iterations of O(nnz) each, far less than a sparse Cholesky
 /// factorization (whose fill grows superlinearly with the mesh) when the bound is moderate.

@@ -20,8 +20,9 @@
 //  - ImprovedUmbrella: twice that on a mesh of equal edges (lengths in units of the mean edge
 //    length); the explicit limit is about 0.4-0.5, and it falls during a run when short edges
 //    shorten further (the reference's "numerical instability"): prefer implicit.
-//  - SecondOrder: step 1 is the relaxation (1.12) damped so that no frequency overshoots;
-//    every explicit step below 2 is stable (the limit is about 2.4-2.6).
+//  - SecondOrder: step 1 is the relaxation (1.12), damped per vertex (about 2/3) so that the
+//    simultaneous update is stable; every explicit step <= 1 is stable (the limit is about
+//    1.2-1.3).
 //  - implicit: any step > 0 is stable; step t smooths about like t explicit steps of 1.
 // max_stable_explicit_step() estimates the limit for the actual mesh (explicit Euler is stable
 // while step < 2/ρ(S⁻¹K)).
@@ -34,15 +35,14 @@
 // Taubin: more than its pass-band gain allows), the surface area falls below 10 % of the
 // previous iteration's, or the volume of a closed mesh changes sign (implicit runs check the
 // residual, finiteness and the volume's sign). The energy check runs where the step is not
-// provably stable (step·G > 2, G Gershgorin's bound on S⁻¹K: 2 for umbrella and curvature
-// flow, 1 for second order); the area check with it and for the geometry-dependent
-// operators; the volume's sign on every iteration of a closed mesh (even a stable step turns
-// a tetrahedron inside out). So a provably stable umbrella or Taubin iteration costs one pass
-// over the edges and one over the vertices (and one over the faces on a closed mesh). A
-// stopped run keeps the iterations before
-// the failing one: result.mesh is the last good state, stopped_early is set and stop_reason
-// names the iteration and the reason (for an explicit instability with the stable limit at
-// the last good state).
+// provably stable (step·G > 2, G Gershgorin's bound on S⁻¹K: 2 for umbrella, curvature flow
+// and second order, about 4 for the improved umbrella); the area check with it and for the
+// geometry-dependent operators; the volume's sign on every iteration of a closed mesh (even a
+// stable step turns a tetrahedron inside out). So a provably stable umbrella or Taubin iteration
+// costs one pass over the edges and one over the vertices (and one over the faces on a closed
+// mesh). A stopped run keeps the iterations before the failing one: result.mesh is the last good
+// state, stopped_early is set and stop_reason names the iteration and the reason (for an explicit
+// instability with the stable limit at the last good state).
 //
 // Boundary vertices stay fixed (or slide along the boundary curve); isolated vertices never
 // move. Connectivity and attributes other than positions are copied unchanged.

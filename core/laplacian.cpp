@@ -245,12 +245,12 @@ void refresh_laplacian(const HalfedgeMesh& mesh, Laplacian& lap) {
             for (int a = 0; a < 4; ++a)
                 for (int b = 0; b < 4; ++b) k[lap.edge_slots[slot++]] += c[a] * c[b];
         }
-        // S_i = sum_j |K_ij| (column i of the symmetric K): eigenvalues of S⁻¹K in [0, 1].
+        // S_i = ½ sum_j |K_ij| (column i of the symmetric K): eigenvalues of S⁻¹K in [0, 2].
         const int* outer = lap.K.outerIndexPtr();
         for (std::size_t r = 0; r < n; ++r) {
             double sum = 0;
             for (int p = outer[r]; p < outer[r + 1]; ++p) sum += std::abs(k[p]);
-            S[Eigen::Index(r)] = sum;
+            S[Eigen::Index(r)] = 0.5 * sum;
         }
     } else {
         // CurvatureFlow: the cotangent of the corner opposite each halfedge, one face at a

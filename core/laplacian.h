@@ -26,11 +26,12 @@
 //    relaxation update (1.12): x_i <- -(sum_e c_{e,i} a_e) / sum_e c_{e,i}² with a_e =
 //    sum_{j != i} c_{e,j} x_j. Applied to every vertex at once (Jacobi) that update is not
 //    stable: K is a discrete bi-Laplacian, whose highest frequency has K's Rayleigh quotient
-//    well above 2 K_ii (16/6 K_ii for the 1-D stencil 1 -4 6 -4 1), so x <- x - D⁻¹K·x
-//    amplifies it (a regular pattern of spikes). So S_i = sum_j |K_ij| (K's absolute row
-//    sum): by Gershgorin every eigenvalue of S⁻¹K lies in [0, 1], explicit steps below 2
-//    are stable, and step 1 is the relaxation (1.12) damped per vertex by K_ii / S_i <= 1/2,
-//    the largest step for which no frequency overshoots.
+//    above 2 K_ii (16/6 K_ii for the 1-D stencil 1 -4 6 -4 1; about 2.3 K_ii on a noisy
+//    sphere), so x <- x - D⁻¹K·x amplifies it (a regular pattern of spikes). So S_i = ½ sum_j
+//    |K_ij| (half K's absolute row sum): by Gershgorin every eigenvalue of S⁻¹K lies in
+//    [0, 2], as for the umbrella, every explicit step <= 1 is stable, and step 1 is the
+//    relaxation (1.12) damped per vertex by 2 K_ii / sum_j |K_ij| <= 1 (about 2/3; exactly
+//    1 where the row's off-diagonal entries are all <= 0).
 // Fixed-weight operators (Umbrella) do not depend on the positions; the others are rebuilt
 // from the current positions for every step.
 //
