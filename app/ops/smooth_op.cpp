@@ -58,7 +58,7 @@ OperationResult run_smooth(const FairingOptions& o, const HalfedgeMesh& mesh, Pr
                         (o.boundary == BoundaryMode::Slide ? " --boundary slide" : "");
     result.report = fairing.report;
     // A run that stopped (diverged, failed solve) is an error, never a result.
-    if (fairing.stopped_early) throw Error("smooth: stopped at " + fairing.stop_reason);
+    if (fairing.stopped_early) throw Error("stopped at " + fairing.stop_reason);
     // Geometry-only steps: every iteration keeps the vertices of the one before.
     for (std::size_t k = 0; k < fairing.step_positions.size(); ++k) {
         HalfedgeMesh step =
