@@ -9,7 +9,8 @@
 //   trilab_fairing_bench [--runs N] [--check] [--quick]
 //
 // A timed call is one smooth() call on a mesh already in memory, with keep_steps off (only
-// the result is kept, as trilab-cli smooth does); "per iteration" divides a 10-iteration
+// the result is kept, as trilab-cli smooth does) and the stable-step estimate off (its rows
+// time max_stable_explicit_step() on its own); "per iteration" divides a 10-iteration
 // call by 10. Every explicit operator, and every implicit operator with each solver (the
 // sparse Cholesky with its factorization and solve timed apart, the conjugate gradients, and
 // the automatic choice), is timed (on the large mesh, the sparse Cholesky only through the
