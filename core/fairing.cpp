@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <optional>
 #include <sstream>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 
@@ -17,6 +20,7 @@ namespace trilab {
 namespace {
 
 using Triplet = Eigen::Triplet<double>;
+using Positions = std::vector<Point>;
 
 // smooth() maps the first four FairingOperator values onto LaplacianOperator by value.
 static_assert(int(FairingOperator::Umbrella) == int(LaplacianOperator::Umbrella));
@@ -24,14 +28,29 @@ static_assert(int(FairingOperator::ImprovedUmbrella) == int(LaplacianOperator::I
 static_assert(int(FairingOperator::CurvatureFlow) == int(LaplacianOperator::CurvatureFlow));
 static_assert(int(FairingOperator::SecondOrder) == int(LaplacianOperator::SecondOrder));
 
-constexpr double kDivergenceBound = 1e100;
+// Health-check thresholds (see the header). A stable explicit step never lets the fairing
+// energy grow (up to rounding: kEnergyRelativeSlack of it, plus kEnergyRoundingSlack of
+// sum_i K_ii |x_i|², the size of a rounding error of the coordinates themselves); it can move
+// the extreme vertices outwards a little (non-convex weights), far less than kBoxGrowth.
+constexpr double kBoxGrowth = 0.10;     ///< largest growth of the bbox diagonal per iteration
+constexpr double kAreaCollapse = 0.10;  ///< smallest area ratio to the previous iteration
+constexpr double kEnergyRelativeSlack = 1e-9;
+constexpr double kEnergyRoundingSlack = 1e-20;
+constexpr double kDivergenceBound = 1e100;  ///< larger coordinates count as not finite
 
-bool finite_and_bounded(const Eigen::MatrixXd& x) {
-    for (Eigen::Index i = 0; i < x.size(); ++i) {
-        const double v = x.data()[i];
-        if (!std::isfinite(v) || std::abs(v) > kDivergenceBound) return false;
-    }
-    return true;
+std::string format_number(double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof(buffer), "%.3g", v);
+    return buffer;
+}
+
+std::string format_percent(double ratio) {
+    return format_number(100.0 * ratio) + "%";
+}
+
+double taubin_mu(const FairingOptions& o) {
+    return o.taubin_pass_band > 0 ? 1.0 / (o.taubin_pass_band - 1.0 / o.taubin_lambda)
+                                  : o.taubin_mu;
 }
 
 void check_options(const HalfedgeMesh& mesh, const FairingOptions& o) {
@@ -43,16 +62,318 @@ void check_options(const HalfedgeMesh& mesh, const FairingOptions& o) {
              std::to_string(o.iterations) + ")");
     if (o.op == FairingOperator::Taubin) {
         if (!std::isfinite(o.taubin_lambda) || !(o.taubin_lambda > 0) || o.taubin_lambda > 1)
-            fail("taubin_lambda must be in (0, 1]");
-        if (!std::isfinite(o.taubin_mu) || !(o.taubin_mu < -o.taubin_lambda) || o.taubin_mu < -1.0)
-            fail("taubin_mu must be in [-1, -taubin_lambda)");
+            fail("taubin_lambda must be in (0, 1] (got " + format_number(o.taubin_lambda) + ")");
+        if (!std::isfinite(o.taubin_pass_band) || o.taubin_pass_band < 0)
+            fail("taubin_pass_band must be 0 (use taubin_mu) or in (0, 1/taubin_lambda) (got " +
+                 format_number(o.taubin_pass_band) + ")");
+        if (o.taubin_pass_band > 0) {
+            const double mu = taubin_mu(o);
+            if (!(o.taubin_pass_band < 1.0) || !(mu >= -1.0))
+                fail(
+                    "taubin_pass_band must be in (0, 1) and at most 1/taubin_lambda - 1, so that "
+                    "mu = 1/(k_PB - 1/lambda) is in [-1, -lambda) (got k_PB " +
+                    format_number(o.taubin_pass_band) + ", lambda " +
+                    format_number(o.taubin_lambda) + ")");
+        } else if (!std::isfinite(o.taubin_mu) || !(o.taubin_mu < -o.taubin_lambda) ||
+                   o.taubin_mu < -1.0) {
+            fail("taubin_mu must be in [-1, -taubin_lambda) (got " + format_number(o.taubin_mu) +
+                 ", lambda " + format_number(o.taubin_lambda) + ")");
+        } else if (!(1.0 / o.taubin_lambda + 1.0 / o.taubin_mu < 1.0)) {
+            // Beyond 1 the pass band covers most of the umbrella's spectrum [0, 2]: the mesh
+            // grows instead of being smoothed.
+            fail("taubin_mu must put the pass band 1/lambda + 1/mu below 1 (got " +
+                 format_number(1.0 / o.taubin_lambda + 1.0 / o.taubin_mu) + " for lambda " +
+                 format_number(o.taubin_lambda) + ", mu " + format_number(o.taubin_mu) +
+                 "; Taubin suggests 0.01 to 0.1)");
+        }
         if (o.integration != Integration::Explicit)
             fail("integration must be explicit for taubin (an implicit μ step is not stable)");
     }
     if (!std::isfinite(o.cg_tolerance) || !(o.cg_tolerance > 0))
         fail("cg_tolerance must be finite and > 0");
+    if (!std::isfinite(o.max_relative_residual) || !(o.max_relative_residual > 0) ||
+        o.max_relative_residual > 1e-2)
+        fail("max_relative_residual must be in (0, 1e-2] (got " +
+             format_number(o.max_relative_residual) + ")");
+    if (o.cg_max_iterations < 0) fail("cg_max_iterations must be >= 0 (0: automatic)");
     if (o.preserve_volume && !is_closed(mesh))
         fail("preserve_volume needs a closed mesh (volume is not defined with a boundary)");
+}
+
+// ---- vertex-space helpers ------------------------------------------------------------------
+
+struct Box {
+    Point lo = Point::Constant(std::numeric_limits<double>::infinity());
+    Point hi = Point::Constant(-std::numeric_limits<double>::infinity());
+    void add(const Point& p) {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+    }
+    double diagonal() const { return lo.x() <= hi.x() ? (hi - lo).norm() : 0.0; }
+    /// Every coordinate within ±kDivergenceBound (true when empty).
+    bool bounded() const {
+        return !(lo.x() <= hi.x()) ||
+               std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()) <= kDivergenceBound;
+    }
+};
+
+bool finite_and_bounded(const Point& p) {
+    return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z()) &&
+           p.cwiseAbs().maxCoeff() <= kDivergenceBound;
+}
+
+struct AreaVolume {
+    double area = std::numeric_limits<double>::quiet_NaN();  ///< NaN: not computed
+    double volume = 0;
+};
+
+/// Signed volume (as geometry.h's volume()) over positions P and, with `with_area`, the
+/// surface area (the square roots are most of the pass's cost).
+AreaVolume area_volume(const HalfedgeMesh& mesh, const Positions& P, bool with_area) {
+    AreaVolume r;
+    double area = 0, volume = 0;
+    for (Face f : mesh.faces()) {
+        const auto v = mesh.face_vertices(f);
+        const Point &a = P[v[0].idx()], &b = P[v[1].idx()], &c = P[v[2].idx()];
+        const Vector3 n = (b - a).cross(c - a);
+        if (with_area) area += 0.5 * n.norm();
+        volume += (a + b + c).dot(n);
+    }
+    if (with_area) r.area = area;
+    r.volume = volume / 18.0;
+    return r;
+}
+
+/// Lanczos estimate of the largest eigenvalue of D·K·D (D = S^-½ on free entries, 0 on fixed
+/// ones), i.e. of S⁻¹K over the free entries: the largest Ritz value after `steps` steps (no
+/// reorthogonalization: only the extreme Ritz value is used). The start vector is a fixed
+/// pseudo-random sign pattern. Returns 0 when nothing is free.
+template <class ApplyK>
+double lanczos_largest(const Eigen::VectorXd& d, const ApplyK& apply_k, int steps) {
+    const Eigen::Index n = d.size();
+    Eigen::VectorXd q = Eigen::VectorXd::Zero(n), q_prev = q, u(n), w(n);
+    std::uint64_t state = 0x9E3779B97F4A7C15ull;
+    for (Eigen::Index i = 0; i < n; ++i) {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        if (d[i] > 0) q[i] = (state & 1) ? 1.0 : -1.0;
+    }
+    const double qn = q.norm();
+    if (!(qn > 0)) return 0;
+    q /= qn;
+    std::vector<double> alpha, beta;
+    double beta_prev = 0;
+    for (int j = 0; j < steps; ++j) {
+        u = d.cwiseProduct(q);
+        apply_k(u, w);
+        w = d.cwiseProduct(w);
+        const double a = w.dot(q);
+        alpha.push_back(a);
+        w -= a * q + beta_prev * q_prev;
+        const double b = w.norm();
+        if (!std::isfinite(b) || b <= 1e-12 * std::abs(a)) break;
+        if (j + 1 < steps) beta.push_back(b);
+        q_prev.swap(q);
+        q = w / b;
+        beta_prev = b;
+    }
+    const auto k = Eigen::Index(alpha.size());
+    Eigen::MatrixXd t = Eigen::MatrixXd::Zero(k, k);
+    for (Eigen::Index i = 0; i < k; ++i) {
+        t(i, i) = alpha[std::size_t(i)];
+        if (i + 1 < k) t(i, i + 1) = t(i + 1, i) = beta[std::size_t(i)];
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(t, Eigen::EigenvaluesOnly);
+    return std::max(0.0, eig.eigenvalues().maxCoeff());
+}
+
+double stable_step_of(double rho) {
+    return rho > 0 ? 2.0 / rho : std::numeric_limits<double>::infinity();
+}
+
+/// The umbrella operator in vertex space, without a matrix: per vertex storage index its
+/// valence and whether it is fixed (found by the first product, one pass over the edges
+/// either way); products by one pass over the edges.
+class UmbrellaOperator {
+public:
+    explicit UmbrellaOperator(const HalfedgeMesh& mesh) : mesh_(mesh) {}
+
+    /// out = P + t·L·P (fixed vertices copied); the bounding boxes of P and out over the
+    /// vertices with edges, and whether every new coordinate is finite and bounded.
+    bool step(const Positions& P, double t, Positions& out, Box& box_before, Box& box_after) {
+        const std::size_t nv = P.size();
+        out.assign(nv, Point::Zero());
+        if (!known_) {
+            // The first product also counts valences and finds the boundary.
+            valence_.assign(nv, 0);
+            fixed_.assign(nv, 0);
+            for (Edge e : mesh_.edges()) {
+                const Halfedge h = HalfedgeMesh::halfedge(e, 0), g = HalfedgeMesh::twin(h);
+                const Index i = mesh_.to_vertex(g).idx(), j = mesh_.to_vertex(h).idx();
+                out[i] += P[j];
+                out[j] += P[i];
+                ++valence_[i];
+                ++valence_[j];
+                if (mesh_.is_boundary(h) || mesh_.is_boundary(g)) fixed_[i] = fixed_[j] = 1;
+            }
+            for (std::size_t v = 0; v < nv; ++v)
+                if (valence_[v] == 0) fixed_[v] = 1;
+            known_ = true;
+        } else {
+            for (Edge e : mesh_.edges()) {
+                const Halfedge h = HalfedgeMesh::halfedge(e, 0);
+                const Index i = mesh_.to_vertex(HalfedgeMesh::twin(h)).idx();
+                const Index j = mesh_.to_vertex(h).idx();
+                out[i] += P[j];
+                out[j] += P[i];
+            }
+        }
+        // NaN and infinities propagate into the sum; the box bounds the magnitude.
+        double sum = 0;
+        for (std::size_t v = 0; v < nv; ++v) {
+            const Point& p = P[v];
+            if (fixed_[v]) {
+                out[v] = p;
+                if (valence_[v] == 0) continue;
+            } else {
+                out[v] = p + t * (out[v] / double(valence_[v]) - p);
+                sum += out[v].x() + out[v].y() + out[v].z();
+            }
+            box_before.add(p);
+            box_after.add(out[v]);
+        }
+        return std::isfinite(sum) && box_after.bounded();
+    }
+
+    /// The energy xᵀKx = sum over edges |x_i - x_j|² and the rounding scale sum_i K_ii |x_i|².
+    std::pair<double, double> energy(const Positions& P) const {
+        double e = 0, q = 0;
+        for (Edge ed : mesh_.edges()) {
+            const Halfedge h = HalfedgeMesh::halfedge(ed, 0);
+            const Point& a = P[mesh_.to_vertex(HalfedgeMesh::twin(h)).idx()];
+            const Point& b = P[mesh_.to_vertex(h).idx()];
+            e += (a - b).squaredNorm();
+            q += a.squaredNorm() + b.squaredNorm();
+        }
+        return {e, q};
+    }
+
+    /// The Lanczos estimate of the largest stable explicit step.
+    double max_stable_step(int steps) {
+        if (!known_) {
+            Positions scratch;
+            Box a, b;
+            step(mesh_.positions(), 0.0, scratch, a, b);
+        }
+        const std::size_t nv = valence_.size();
+        Eigen::VectorXd d = Eigen::VectorXd::Zero(Eigen::Index(nv));
+        for (std::size_t v = 0; v < nv; ++v)
+            if (!fixed_[v]) d[Eigen::Index(v)] = 1.0 / std::sqrt(double(valence_[v]));
+        return stable_step_of(lanczos_largest(
+            d, [&](const Eigen::VectorXd& u, Eigen::VectorXd& w) { apply_k(u, w); }, steps));
+    }
+
+private:
+    /// w = K·u (all entries).
+    void apply_k(const Eigen::VectorXd& u, Eigen::VectorXd& w) const {
+        for (std::size_t v = 0; v < valence_.size(); ++v)
+            w[Eigen::Index(v)] = double(valence_[v]) * u[Eigen::Index(v)];
+        for (Edge e : mesh_.edges()) {
+            const Halfedge h = HalfedgeMesh::halfedge(e, 0);
+            const auto i = Eigen::Index(mesh_.to_vertex(HalfedgeMesh::twin(h)).idx());
+            const auto j = Eigen::Index(mesh_.to_vertex(h).idx());
+            w[i] -= u[j];
+            w[j] -= u[i];
+        }
+    }
+
+    const HalfedgeMesh& mesh_;
+    bool known_ = false;
+    std::vector<std::uint32_t> valence_;  ///< 0: isolated or deleted
+    std::vector<std::uint8_t> fixed_;     ///< 1: does not move (boundary, isolated, deleted)
+};
+
+double max_stable_step_laplacian(const Laplacian& lap, int steps) {
+    const auto n = Eigen::Index(lap.map.rows());
+    Eigen::VectorXd d = Eigen::VectorXd::Zero(n);
+    for (Eigen::Index r = 0; r < n; ++r)
+        if (!lap.fixed[std::size_t(r)]) d[r] = 1.0 / std::sqrt(lap.S[r]);
+    return stable_step_of(lanczos_largest(
+        d, [&](const Eigen::VectorXd& u, Eigen::VectorXd& w) { w.noalias() = lap.K * u; }, steps));
+}
+
+/// Gershgorin's bound on the eigenvalues of S⁻¹K over the free rows: max_i sum_j |K_ij| / S_i
+/// (explicit steps up to 2 over it are stable for sure).
+double gershgorin_bound(const Laplacian& lap) {
+    double m = 0;
+    const int* outer = lap.K.outerIndexPtr();
+    const double* value = lap.K.valuePtr();
+    for (std::size_t r = 0; r < lap.map.rows(); ++r) {
+        if (lap.fixed[r]) continue;
+        double row_sum = 0;
+        for (int k = outer[r]; k < outer[r + 1]; ++k) row_sum += std::abs(value[k]);
+        const double ratio = row_sum / lap.S[Eigen::Index(r)];
+        if (std::isfinite(ratio)) m = std::max(m, ratio);
+    }
+    return m;
+}
+
+/// out = P + t·L·P for the operator's rows (other vertices copied); boxes and finiteness as
+/// UmbrellaOperator::step, and Gershgorin's bound (gershgorin_bound()) from the same pass.
+/// `rows` is scratch: the rows' positions gathered contiguously.
+bool laplacian_step(const Laplacian& lap, const Positions& P, double t, Positions& out,
+                    std::vector<Point>& rows, Box& box_before, Box& box_after, double& gershgorin) {
+    out = P;
+    const std::size_t n = lap.map.rows();
+    const auto& vertex_of = lap.map.vertex_of;
+    rows.resize(n);
+    for (std::size_t r = 0; r < n; ++r) rows[r] = P[vertex_of[r].idx()];
+    const int* outer = lap.K.outerIndexPtr();
+    const int* inner = lap.K.innerIndexPtr();
+    const double* value = lap.K.valuePtr();
+    double sum = 0;
+    gershgorin = 0;
+    for (std::size_t r = 0; r < n; ++r) {
+        const Index v = vertex_of[r].idx();
+        const Point& p = rows[r];
+        if (!lap.fixed[r]) {
+            Vector3 kx = Vector3::Zero();
+            double abs_sum = 0;
+            for (int k = outer[r]; k < outer[r + 1]; ++k) {
+                kx += value[k] * rows[std::size_t(inner[k])];
+                abs_sum += std::abs(value[k]);
+            }
+            const double s = lap.S[Eigen::Index(r)];
+            out[v] = p - (t / s) * kx;
+            sum += out[v].x() + out[v].y() + out[v].z();
+            if (std::isfinite(abs_sum / s)) gershgorin = std::max(gershgorin, abs_sum / s);
+        }
+        box_before.add(p);
+        box_after.add(out[v]);
+    }
+    return std::isfinite(sum) && box_after.bounded();
+}
+
+/// xᵀKx over the operator's rows and the rounding scale sum_i (sum_j |K_ij|) |x_i|².
+std::pair<double, double> laplacian_energy(const Laplacian& lap, const Positions& P) {
+    const int* outer = lap.K.outerIndexPtr();
+    const int* inner = lap.K.innerIndexPtr();
+    const double* value = lap.K.valuePtr();
+    const auto& vertex_of = lap.map.vertex_of;
+    double e = 0, q = 0;
+    for (std::size_t r = 0; r < lap.map.rows(); ++r) {
+        const Point& p = P[vertex_of[r].idx()];
+        Vector3 kx = Vector3::Zero();
+        double abs_sum = 0;
+        for (int k = outer[r]; k < outer[r + 1]; ++k) {
+            kx += value[k] * P[vertex_of[std::size_t(inner[k])].idx()];
+            abs_sum += std::abs(value[k]);
+        }
+        e += p.dot(kx);
+        q += abs_sum * p.squaredNorm();
+    }
+    return {e, q};
 }
 
 /// The implicit system over the free rows of one Laplacian.
@@ -105,7 +426,6 @@ struct ImplicitSystem {
         A.setFromTriplets(ta.begin(), ta.end());
         Kfb.resize(nf, Eigen::Index(n));
         Kfb.setFromTriplets(tb.begin(), tb.end());
-        factored = factor_ok = false;
     }
 };
 
@@ -119,7 +439,7 @@ struct ImplicitSystem {
 /// the original vertices).
 class BoundarySlider {
 public:
-    BoundarySlider(const HalfedgeMesh& mesh, const VertexIndexMap& map) {
+    explicit BoundarySlider(const HalfedgeMesh& mesh) {
         std::vector<std::uint8_t> seen(mesh.halfedges_size(), 0);
         for (Halfedge h0 : mesh.halfedges()) {
             if (!mesh.is_boundary(h0) || seen[h0.idx()]) continue;
@@ -128,11 +448,11 @@ public:
             do {
                 seen[h.idx()] = 1;
                 const Vertex v = mesh.from_vertex(h);
-                loop.rows.push_back(map.row_of[v.idx()]);
+                loop.vertices.push_back(v.idx());
                 loop.points.push_back(mesh.position(v));
                 h = mesh.next(h);
-            } while (h != h0 && loop.rows.size() <= mesh.n_halfedges());
-            const std::size_t m = loop.rows.size();
+            } while (h != h0 && loop.vertices.size() <= mesh.n_halfedges());
+            const std::size_t m = loop.vertices.size();
             loop.arc.resize(m + 1, 0.0);
             for (std::size_t k = 0; k < m; ++k)
                 loop.arc[k + 1] = loop.arc[k] + (loop.points[(k + 1) % m] - loop.points[k]).norm();
@@ -144,8 +464,8 @@ public:
     }
     std::size_t loops() const { return loops_.size(); }
 
-    /// One step of size t; writes the new positions into the loops' rows of x.
-    void step(double t, bool implicit, Eigen::MatrixXd& x) {
+    /// One step of size t; writes the new positions of the loops' vertices into out.
+    void step(double t, bool implicit, Positions& out) {
         for (Loop& loop : loops_) {
             const std::size_t m = loop.u.size();
             const std::vector<double> u = loop.u;
@@ -174,15 +494,15 @@ public:
                     for (std::size_t k = 0; k < m; ++k) loop.u[k] = sol[Eigen::Index(k)];
             }
             for (std::size_t k = 0; k < m; ++k)
-                x.row(loop.rows[k]) = position_at(loop, loop.u[k]).transpose();
+                out[loop.vertices[k]] = position_at(loop, loop.u[k]);
         }
     }
 
 private:
     struct Loop {
-        std::vector<Index> rows;    ///< operator rows, in loop order
-        std::vector<Point> points;  ///< the original polyline
-        std::vector<double> arc;    ///< arc length at each original vertex (m + 1 entries)
+        std::vector<Index> vertices;  ///< vertex indices, in loop order
+        std::vector<Point> points;    ///< the original polyline
+        std::vector<double> arc;      ///< arc length at each original vertex (m + 1 entries)
         double length = 0;
         std::vector<double> u;  ///< current parameters (unwrapped, increasing)
     };
@@ -201,10 +521,8 @@ private:
 };
 
 /// Automatic solver choice for implicit steps. The system S + t·K, preconditioned by S, has
-/// its condition number bounded by 1 + t·max_i (K_ii + sum_j |K_ij|)/S_i (Gershgorin on
-/// S⁻¹K): 1 + 2t for umbrella and curvature flow (normalized, off-diagonals <= 0), a small
-/// multiple of t for second order, but large for the scale-dependent improved umbrella
-/// (K_ii/S_i ~ 1/h²).
+/// its condition number bounded by 1 + t·G with G Gershgorin's bound on S⁻¹K (2 for umbrella
+/// curvature flow and second order, about 4 for the improved umbrella).
 /// Jacobi-preconditioned conjugate gradients warm-started from the current positions need
 /// about sqrt(bound)·ln(2/tol)/2 iterations of O(nnz) each, far less than a sparse Cholesky
 /// factorization (whose fill grows superlinearly with the mesh) when the bound is moderate.
@@ -214,56 +532,7 @@ private:
 constexpr double kCgConditionLimit = 1e3;
 constexpr std::size_t kDirectRowsLimit = 60000;
 constexpr int kDirectReuseIterations = 8;
-
-/// The bound above over the free rows of `lap`: Gershgorin's 1 + step·max_i (K_ii +
-/// sum_j |K_ij|) / S_i (which is 1 + step·2·K_ii/S_i where off-diagonals are all <= 0).
-double condition_bound(const Laplacian& lap, double step) {
-    double m = 0;
-    const int* outer = lap.K.outerIndexPtr();
-    const double* value = lap.K.valuePtr();
-    for (std::size_t r = 0; r < lap.map.rows(); ++r) {
-        if (lap.fixed[r]) continue;
-        double row_sum = 0;
-        for (int k = outer[r]; k < outer[r + 1]; ++k) row_sum += std::abs(value[k]);
-        const double ratio = row_sum / lap.S[Eigen::Index(r)];
-        if (std::isfinite(ratio)) m = std::max(m, ratio);
-    }
-    return 1.0 + step * m;
-}
-
-/// lx = L·x for the operator's rows, computed as -S⁻¹(K·x) by gathering along K's columns
-/// (K is symmetric, so column r holds row r) from a row-major copy of x: one contiguous
-/// 3-vector read per neighbour instead of Eigen's scattered column-major product. Fixed rows
-/// get zero.
-void apply_laplacian(const Laplacian& lap, const Eigen::MatrixXd& x,
-                     Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& xr,
-                     Eigen::MatrixXd& lx) {
-    const Eigen::Index n = x.rows();
-    xr = x;
-    lx.resize(n, 3);
-    const int* outer = lap.K.outerIndexPtr();
-    const int* inner = lap.K.innerIndexPtr();
-    const double* value = lap.K.valuePtr();
-    const double* p = xr.data();
-    for (Eigen::Index r = 0; r < n; ++r) {
-        if (lap.fixed[std::size_t(r)]) {
-            lx(r, 0) = lx(r, 1) = lx(r, 2) = 0.0;
-            continue;
-        }
-        double ax = 0, ay = 0, az = 0;
-        for (int k = outer[r]; k < outer[r + 1]; ++k) {
-            const double w = value[k];
-            const double* q = p + 3 * std::ptrdiff_t(inner[k]);
-            ax += w * q[0];
-            ay += w * q[1];
-            az += w * q[2];
-        }
-        const double s = -1.0 / lap.S[r];
-        lx(r, 0) = s * ax;
-        lx(r, 1) = s * ay;
-        lx(r, 2) = s * az;
-    }
-}
+constexpr int kLanczosSteps = 20;
 
 double ms_between(std::chrono::steady_clock::time_point a,
                   std::chrono::steady_clock::time_point b) {
@@ -272,6 +541,375 @@ double ms_between(std::chrono::steady_clock::time_point a,
 
 const char* kLdlt = "SimplicialLDLT";
 const char* kCg = "ConjugateGradient(Jacobi)";
+
+/// Taubin's transfer function f(k) = (1 - λk)(1 - μk) over the umbrella's spectrum [0, 2]:
+/// its largest value (the pass-band gain, >= 1) and its value at k = 2.
+struct TaubinGain {
+    double gain = 1, at_two = 1;
+};
+TaubinGain taubin_gain(double lambda, double mu) {
+    auto f = [&](double k) { return (1 - lambda * k) * (1 - mu * k); };
+    TaubinGain g;
+    g.at_two = f(2.0);
+    g.gain = std::max(1.0, g.at_two);
+    const double k_star = (lambda + mu) / (2 * lambda * mu);  // f is concave (λμ < 0)
+    if (k_star > 0 && k_star < 2) g.gain = std::max(g.gain, f(k_star));
+    return g;
+}
+
+/// One smooth() run on res.mesh (the caller's copy or moved-in mesh).
+void run_fairing(const FairingOptions& o, Progress& progress, FairingResult& res) {
+    HalfedgeMesh& mesh = res.mesh;
+    res.solver = "none";
+    const bool taubin = o.op == FairingOperator::Taubin;
+    const double mu = taubin_mu(o);
+    const LaplacianOperator lop = taubin ? LaplacianOperator::Umbrella
+                                         : static_cast<LaplacianOperator>(static_cast<int>(o.op));
+    const bool weights_fixed = lop == LaplacianOperator::Umbrella;
+    const bool implicit = o.integration == Integration::Implicit && !taubin;
+    const bool fast = weights_fixed && !implicit;  // vertex-space umbrella, no matrix
+    {
+        std::ostringstream s;
+        s << "operator " << fairing_operator_name(o.op) << ", " << integration_name(o.integration);
+        if (taubin)
+            s << ", lambda " << o.taubin_lambda << ", mu " << mu
+              << (o.taubin_pass_band > 0 ? " (from the pass band k_PB " : "")
+              << (o.taubin_pass_band > 0 ? format_number(o.taubin_pass_band) + ")" : "");
+        else
+            s << ", step " << o.step;
+        s << ", " << o.iterations << " iteration(s)";
+        if (o.preserve_volume) s << ", volume preserved";
+        res.report.push_back(s.str());
+    }
+    const bool closed = is_closed(mesh);
+    AreaVolume last;  // of the last good positions, where known (area: NaN when not)
+    bool last_known = false;
+    if (closed) {
+        last = area_volume(mesh, mesh.positions(), true);
+        last_known = true;
+        res.initial_volume = last.volume;
+    }
+    const double v0 = res.initial_volume;
+    // The volume's sign is checked where it is well defined: a closed mesh whose volume is
+    // not negligible against its bounding box.
+    const double diag0 = closed ? bounding_box(mesh).diagonal() : 0.0;
+    const bool check_volume_sign = closed && std::abs(v0) > 1e-9 * diag0 * diag0 * diag0;
+
+    std::optional<UmbrellaOperator> umbrella;
+    if (fast) umbrella.emplace(mesh);
+    Laplacian lap;
+    bool have_lap = false;
+    ImplicitSystem sys;
+    const bool slide = o.boundary == BoundaryMode::Slide && !closed;
+    std::optional<BoundarySlider> slider;
+    if (slide) {
+        slider.emplace(mesh);
+        res.report.push_back("boundary: " + std::to_string(slider->loops()) +
+                             " loop(s) sliding along the input's boundary curves");
+    }
+    bool slide_explicit_fallback = false;
+    bool use_direct = o.solver == ImplicitSolver::Direct;
+    bool used_ldlt = false, used_cg = false;
+    const TaubinGain gain = taubin ? taubin_gain(o.taubin_lambda, mu) : TaubinGain{};
+    if (fast && o.estimate_max_stable_step)
+        res.max_stable_step = umbrella->max_stable_step(kLanczosSteps);
+    if (o.keep_steps) res.step_positions.reserve(std::size_t(o.iterations));
+
+    Positions cand, tmp;
+    // The energy of the current positions under a fixed operator (reused by the next check).
+    std::pair<double, double> energy_now{0, 0};
+    bool energy_known = false;
+
+    auto stop = [&](int iteration, const std::string& why) {
+        res.stopped_early = true;
+        res.stopped_at_iteration = iteration;
+        res.stop_reason = "iteration " + std::to_string(iteration) + ": " + why;
+        res.report.push_back("stopped: " + res.stop_reason);
+    };
+    // The hint for an explicit instability, with the stable limit at the last good state.
+    auto instability_hint = [&]() {
+        const double limit = fast ? umbrella->max_stable_step(kLanczosSteps)
+                                  : max_stable_step_laplacian(lap, kLanczosSteps);
+        if (taubin)
+            return " (lambda " + format_number(o.taubin_lambda) + " and mu " + format_number(mu) +
+                   " are unstable on this mesh: the umbrella's stable step here is about " +
+                   format_number(limit) + "; keep lambda and |mu| below it)";
+        if (o.step > limit)
+            return " (step " + format_number(o.step) + " is above the stable limit " +
+                   format_number(limit) +
+                   " of this mesh; use a smaller step or implicit integration)";
+        return " (step " + format_number(o.step) + ", stable limit about " + format_number(limit) +
+               " on this mesh; use a smaller step or implicit integration)";
+    };
+
+    for (int it = 0; it < o.iterations; ++it) {
+        const int iteration = it + 1;
+        progress.check_cancelled();
+        progress.report(double(it) / o.iterations, "smoothing");
+        const Positions& P = mesh.positions();
+        if (!fast && (!have_lap || !weights_fixed)) {
+            if (have_lap)
+                refresh_laplacian(mesh, lap);
+            else
+                lap = build_laplacian(mesh, lop);
+            auto& d = res.diagnostics;
+            const auto& n = lap.diagnostics;
+            d.negative_weights_clamped += n.negative_weights_clamped;
+            d.degenerate_corners += n.degenerate_corners;
+            d.cotangents_clamped += n.cotangents_clamped;
+            d.short_edges += n.short_edges;
+            d.stalled_vertices = std::max(d.stalled_vertices, n.stalled_vertices);
+            if (!have_lap && o.estimate_max_stable_step)
+                res.max_stable_step = max_stable_step_laplacian(lap, kLanczosSteps);
+            have_lap = true;
+            energy_known = false;
+            if (implicit) {
+                sys.build(lap, o.step);
+                if (it == 0 && o.solver == ImplicitSolver::Auto) {
+                    const double cond = 1.0 + o.step * gershgorin_bound(lap);
+                    use_direct = cond > kCgConditionLimit ||
+                                 (weights_fixed && o.iterations >= kDirectReuseIterations &&
+                                  lap.map.rows() <= kDirectRowsLimit);
+                    std::ostringstream s;
+                    s << "solver choice: condition bound " << cond << ", " << lap.map.rows()
+                      << " rows -> " << (use_direct ? kLdlt : kCg);
+                    res.report.push_back(s.str());
+                }
+            }
+        }
+
+        // The candidate positions of this iteration.
+        Box box_before, box_after;
+        bool finite = true;
+        bool check_energy = false;  // the step is not provably stable
+        double energy_gain = 1;     // the largest energy factor a stable step allows
+        if (fast && taubin) {
+            Box unused;
+            finite = umbrella->step(P, o.taubin_lambda, tmp, box_before, unused);
+            finite = umbrella->step(tmp, mu, cand, unused, box_after) && finite;
+            energy_gain = gain.gain * gain.gain;
+            check_energy = gain.at_two < -gain.gain;
+        } else if (fast) {
+            finite = umbrella->step(P, o.step, cand, box_before, box_after);
+            check_energy = o.step > 1.0;  // Gershgorin: the umbrella's spectrum is in [0, 2]
+        } else if (!implicit) {
+            double g = 0;
+            finite = laplacian_step(lap, P, o.step, cand, tmp, box_before, box_after, g);
+            check_energy = o.step * g > 2.0;
+        } else {
+            cand = P;
+            const auto nf = Eigen::Index(sys.free_rows.size());
+            if (nf > 0) {
+                const auto n = Eigen::Index(lap.map.rows());
+                Eigen::MatrixXd x(n, 3), xf(nf, 3);
+                for (Eigen::Index r = 0; r < n; ++r)
+                    x.row(r) = P[lap.map.vertex_of[std::size_t(r)].idx()].transpose();
+                for (Eigen::Index f = 0; f < nf; ++f)
+                    xf.row(f) = x.row(sys.free_rows[std::size_t(f)]);
+                Eigen::MatrixXd rhs = sys.S.asDiagonal() * xf;
+                if (sys.Kfb.nonZeros() > 0) rhs -= o.step * (sys.Kfb * x);
+                const double rn = rhs.norm();
+                const bool direct_first = use_direct;
+                Eigen::MatrixXd y;
+                bool accepted = false;
+                std::string failures;
+                for (int attempt = 0; attempt < 2 && !accepted; ++attempt) {
+                    const bool direct = (attempt == 0) == direct_first;
+                    double residual = std::numeric_limits<double>::infinity();
+                    std::ostringstream line;
+                    line << "iteration " << iteration << ": " << (direct ? kLdlt : kCg);
+                    if (direct) {
+                        if (!sys.factored) {
+                            const auto t0 = std::chrono::steady_clock::now();
+                            sys.ldlt.compute(sys.A);
+                            res.factorization_ms +=
+                                ms_between(t0, std::chrono::steady_clock::now());
+                            sys.factored = true;
+                            sys.factor_ok = sys.ldlt.info() == Eigen::Success;
+                            ++res.factorizations;
+                        }
+                        if (sys.factor_ok) {
+                            const auto t0 = std::chrono::steady_clock::now();
+                            y = sys.ldlt.solve(rhs);
+                            res.solve_ms += ms_between(t0, std::chrono::steady_clock::now());
+                            if (sys.ldlt.info() != Eigen::Success) y.resize(0, 0);
+                        } else {
+                            y.resize(0, 0);
+                            line << " (the factorization failed)";
+                        }
+                    } else {
+                        const auto t0 = std::chrono::steady_clock::now();
+                        Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper,
+                                                 Eigen::DiagonalPreconditioner<double>>
+                            cg;
+                        cg.setTolerance(o.cg_tolerance);
+                        cg.setMaxIterations(o.cg_max_iterations > 0
+                                                ? Eigen::Index(o.cg_max_iterations)
+                                                : std::max<Eigen::Index>(1000, 4 * nf));
+                        cg.compute(sys.A);
+                        y = cg.solveWithGuess(rhs, xf);
+                        res.cg_iterations += std::size_t(cg.iterations());
+                        res.solve_ms += ms_between(t0, std::chrono::steady_clock::now());
+                        line << " (" << cg.iterations() << " iteration(s))";
+                    }
+                    if (y.rows() == nf && y.allFinite())
+                        residual = rn > 0 ? (sys.A * y - rhs).norm() / rn : (sys.A * y).norm();
+                    if (!std::isfinite(residual))
+                        residual = std::numeric_limits<double>::infinity();
+                    line << ", relative residual " << residual;
+                    accepted = residual <= o.max_relative_residual;
+                    if (!accepted) {
+                        line << " above " << o.max_relative_residual;
+                        if (attempt == 0) line << "; retrying with " << (direct ? kCg : kLdlt);
+                        failures += std::string(failures.empty() ? "" : ", ") +
+                                    (direct ? kLdlt : kCg) + " relative residual " +
+                                    format_number(residual);
+                    } else {
+                        (direct ? used_ldlt : used_cg) = true;
+                        res.max_residual = std::max(res.max_residual, residual);
+                    }
+                    res.report.push_back(line.str());
+                }
+                if (!accepted) {
+                    stop(iteration, "the implicit solve failed (" + failures + "; required " +
+                                        format_number(o.max_relative_residual) + ")");
+                    break;
+                }
+                for (Eigen::Index f = 0; f < nf; ++f) {
+                    const Index v =
+                        lap.map.vertex_of[std::size_t(sys.free_rows[std::size_t(f)])].idx();
+                    cand[v] = y.row(f).transpose();
+                    finite = finite && finite_and_bounded(cand[v]);
+                }
+            }
+        }
+
+        // Health checks of the step itself (before the boundary slides and the volume is
+        // restored, which are not part of the operator).
+        if (!finite) {
+            stop(iteration, std::string("a coordinate is not finite or above 1e100") +
+                                (implicit ? "" : instability_hint()));
+            break;
+        }
+        if (!implicit) {
+            const double d0 = box_before.diagonal(), d1 = box_after.diagonal();
+            if (d0 > 0 && d1 > (1 + kBoxGrowth) * d0) {
+                stop(iteration, "the bounding box grew by " + format_percent(d1 / d0 - 1) +
+                                    " in one iteration" + instability_hint());
+                break;
+            }
+            if (check_energy) {
+                if (!energy_known)
+                    energy_now = fast ? umbrella->energy(P) : laplacian_energy(lap, P);
+                const auto next = fast ? umbrella->energy(cand) : laplacian_energy(lap, cand);
+                const double e0 = energy_now.first, limit = energy_gain * e0;
+                if (!(next.first <= limit + kEnergyRelativeSlack * limit +
+                                        kEnergyRoundingSlack * energy_now.second)) {
+                    stop(iteration,
+                         "the fairing energy grew by " +
+                             (e0 > 0 ? format_percent(next.first / e0 - 1) : std::string("?")) +
+                             instability_hint());
+                    break;
+                }
+                energy_now = next;  // valid for the next iteration only with fixed weights
+                energy_known = weights_fixed;
+            }
+        }
+        if (slider) {
+            const double t = taubin ? o.taubin_lambda : o.step;
+            const bool implicit_curve = implicit || t > 1.0;
+            slide_explicit_fallback = slide_explicit_fallback || (!implicit && t > 1.0);
+            slider->step(t, implicit_curve, cand);
+            energy_known = false;
+        }
+        // The area collapse check runs with the energy check and for the geometry-dependent
+        // operators; the volume's sign is checked on every iteration of a closed mesh (a
+        // provably stable step can still turn a very coarse mesh inside out: umbrella step 1
+        // maps a tetrahedron to its reflection scaled by 1/3).
+        const bool area_check = !implicit && (!weights_fixed || check_energy);
+        if (area_check || check_volume_sign || o.preserve_volume) {
+            if (area_check && !(last_known && last.area >= 0))
+                last = area_volume(mesh, P, true);  // the last good state's area, once
+            const AreaVolume g = area_volume(mesh, cand, area_check);
+            if (area_check && last.area > 0 && g.area < kAreaCollapse * last.area) {
+                stop(iteration, "the surface area fell to " + format_percent(g.area / last.area) +
+                                    " of the previous iteration's" + instability_hint());
+                break;
+            }
+            if (check_volume_sign && !(g.volume * v0 > 0)) {
+                stop(iteration, "the volume changed sign (from " + format_number(v0) + " to " +
+                                    format_number(g.volume) + ")" +
+                                    (implicit ? "" : instability_hint()));
+                break;
+            }
+            last = g;
+            last_known = true;
+        } else {
+            last_known = false;
+        }
+        if (o.preserve_volume) {
+            // Scale about the centroid of the vertices with edges by (V0/Vn)^(1/3).
+            const double beta = std::cbrt(v0 / last.volume);
+            Point c = Point::Zero();
+            std::size_t count = 0;
+            for (Vertex v : mesh.vertices())
+                if (!mesh.is_isolated(v)) {
+                    c += cand[v.idx()];
+                    ++count;
+                }
+            if (count > 0) c /= double(count);
+            bool ok = std::isfinite(beta) && beta > 0;
+            for (Vertex v : mesh.vertices()) {
+                if (!ok || mesh.is_isolated(v)) continue;
+                Point& p = cand[v.idx()];
+                p = c + beta * (p - c);
+                ok = finite_and_bounded(p);
+            }
+            if (!ok) {
+                stop(iteration, "the volume could not be restored (volume " +
+                                    format_number(last.volume) + ")");
+                break;
+            }
+            last.area *= beta * beta;
+            last.volume = v0;
+            energy_known = false;
+        }
+        // Commit: the candidate becomes the mesh's positions (a swap, no copy).
+        std::swap(mesh.positions(), cand);
+        ++res.iterations_done;
+        if (o.keep_steps) res.step_positions.push_back(mesh.positions());
+    }
+    if (slide_explicit_fallback)
+        res.report.push_back(
+            "boundary: steps above 1 move along the curve implicitly (an "
+            "explicit 1-D step above 1 is unstable)");
+    progress.report(1.0, "smoothing");
+    if (closed) res.final_volume = last_known ? last.volume : volume(mesh);
+    if (!std::isnan(res.max_stable_step))
+        res.report.push_back("largest stable explicit step at the input: about " +
+                             format_number(res.max_stable_step) +
+                             (taubin ? " (the umbrella's, which bounds lambda)" : ""));
+    const auto& d = res.diagnostics;
+    if (d.total() > 0) {
+        std::ostringstream s;
+        s << "clamped: " << d.negative_weights_clamped << " negative cotangent weight(s), "
+          << d.degenerate_corners << " degenerate corner(s), " << d.cotangents_clamped
+          << " large cotangent(s), " << d.short_edges << " short edge(s), " << d.stalled_vertices
+          << " vertex(es) fixed for lack of weight";
+        res.report.push_back(s.str());
+    }
+    if (implicit) {
+        res.solver = used_ldlt && used_cg ? std::string(kLdlt) + " + " + kCg
+                     : used_ldlt          ? kLdlt
+                     : used_cg            ? kCg
+                                          : "none";
+        std::ostringstream s;
+        s << "solver " << res.solver << ", " << res.factorizations << " factorization(s), "
+          << res.cg_iterations << " CG iteration(s), max relative "
+          << "residual " << res.max_residual;
+        res.report.push_back(s.str());
+    }
+}
 
 }  // namespace
 
@@ -304,193 +942,33 @@ FairingResult smooth(const HalfedgeMesh& mesh, const FairingOptions& options) {
     return smooth(mesh, options, progress);
 }
 
-FairingResult smooth(const HalfedgeMesh& mesh, const FairingOptions& o, Progress& progress) {
-    check_options(mesh, o);
+FairingResult smooth(const HalfedgeMesh& mesh, const FairingOptions& options, Progress& progress) {
+    check_options(mesh, options);
     FairingResult res;
-    res.solver = "none";
-    const bool taubin = o.op == FairingOperator::Taubin;
-    const LaplacianOperator lop = taubin ? LaplacianOperator::Umbrella
-                                         : static_cast<LaplacianOperator>(static_cast<int>(o.op));
-    const bool weights_fixed = lop == LaplacianOperator::Umbrella;
-    const bool implicit = o.integration == Integration::Implicit && !taubin;
-    {
-        std::ostringstream s;
-        s << "operator " << fairing_operator_name(o.op) << ", " << integration_name(o.integration)
-          << ", step " << o.step << ", " << o.iterations << " iteration(s)";
-        if (taubin) s << ", lambda " << o.taubin_lambda << ", mu " << o.taubin_mu;
-        if (o.preserve_volume) s << ", volume preserved";
-        res.report.push_back(s.str());
-    }
-    if (o.preserve_volume || is_closed(mesh)) res.initial_volume = volume(mesh);
-    const double v0 = res.initial_volume;
-
-    HalfedgeMesh current = mesh;
-    const bool slide = o.boundary == BoundaryMode::Slide && !is_closed(mesh);
-    std::optional<BoundarySlider> slider;
-    Laplacian lap;
-    bool have_lap = false;
-    ImplicitSystem sys;
-    if (o.keep_steps) res.steps.reserve(std::size_t(o.iterations));
-    bool slide_explicit_fallback = false;
-
-    int done = 0;
-    Eigen::MatrixXd x, lx, x_good;  // positions of the operator's rows, L·x, last good x
-    // The mesh follows x only where something reads it: a kept step, the next build of
-    // geometry-dependent weights, the volume, or the end.
-    const bool lazy_mesh = !o.keep_steps && weights_fixed && !o.preserve_volume;
-    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> xr;
-    bool use_direct = o.solver == ImplicitSolver::Direct;
-    for (int it = 0; it < o.iterations; ++it) {
-        progress.check_cancelled();
-        progress.report(double(it) / o.iterations, "smoothing");
-        if (!have_lap || !weights_fixed) {
-            if (have_lap)
-                refresh_laplacian(current, lap);
-            else
-                lap = build_laplacian(current, lop);
-            auto& d = res.diagnostics;
-            const auto& n = lap.diagnostics;
-            d.negative_weights_clamped += n.negative_weights_clamped;
-            d.degenerate_corners += n.degenerate_corners;
-            d.cotangents_clamped += n.cotangents_clamped;
-            d.short_edges += n.short_edges;
-            d.stalled_vertices = std::max(d.stalled_vertices, n.stalled_vertices);
-            have_lap = true;
-            if (implicit) {
-                sys.build(lap, o.step);
-                if (it == 0 && o.solver == ImplicitSolver::Auto) {
-                    const double cond = condition_bound(lap, o.step);
-                    use_direct = cond > kCgConditionLimit ||
-                                 (weights_fixed && o.iterations >= kDirectReuseIterations &&
-                                  lap.map.rows() <= kDirectRowsLimit);
-                    std::ostringstream s;
-                    s << "solver choice: condition bound " << cond << ", " << lap.map.rows()
-                      << " rows -> " << (use_direct ? kLdlt : kCg);
-                    res.report.push_back(s.str());
-                }
-            }
-            if (slide && !slider) {
-                slider.emplace(mesh, lap.map);
-                res.report.push_back("boundary: " + std::to_string(slider->loops()) +
-                                     " loop(s) sliding along the input's boundary curves");
-            }
-        }
-        if (it == 0) x = gather_positions(current, lap.map);  // x stays in sync from here on
-        if (lazy_mesh && it > 0) x_good = x;                  // what the mesh would hold now
-        if (slider) {
-            const double t = taubin ? o.taubin_lambda : o.step;
-            const bool implicit_curve = implicit || t > 1.0;
-            slide_explicit_fallback = slide_explicit_fallback || (!implicit && t > 1.0);
-            slider->step(t, implicit_curve, x);
-        }
-        if (taubin) {
-            apply_laplacian(lap, x, xr, lx);
-            x += o.taubin_lambda * lx;
-            apply_laplacian(lap, x, xr, lx);
-            x += o.taubin_mu * lx;
-        } else if (!implicit) {
-            apply_laplacian(lap, x, xr, lx);
-            x += o.step * lx;
-        } else if (!sys.free_rows.empty()) {
-            const auto nf = Eigen::Index(sys.free_rows.size());
-            Eigen::MatrixXd xf(nf, 3);
-            for (Eigen::Index f = 0; f < nf; ++f) xf.row(f) = x.row(sys.free_rows[std::size_t(f)]);
-            const Eigen::MatrixXd rhs = sys.S.asDiagonal() * xf - o.step * (sys.Kfb * x);
-            Eigen::MatrixXd y;
-            bool ok = false;
-            const char* used = kLdlt;
-            if (use_direct) {
-                if (!sys.factored) {
-                    const auto t0 = std::chrono::steady_clock::now();
-                    sys.ldlt.compute(sys.A);
-                    res.factorization_ms += ms_between(t0, std::chrono::steady_clock::now());
-                    sys.factored = true;
-                    sys.factor_ok = sys.ldlt.info() == Eigen::Success;
-                    ++res.factorizations;
-                }
-                if (sys.factor_ok) {
-                    const auto t0 = std::chrono::steady_clock::now();
-                    y = sys.ldlt.solve(rhs);
-                    res.solve_ms += ms_between(t0, std::chrono::steady_clock::now());
-                    ok = sys.ldlt.info() == Eigen::Success && finite_and_bounded(y);
-                    if (!ok) sys.factor_ok = false;
-                }
-            }
-            if (!ok) {
-                used = kCg;
-                const auto t0 = std::chrono::steady_clock::now();
-                Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper,
-                                         Eigen::DiagonalPreconditioner<double>>
-                    cg;
-                cg.setTolerance(o.cg_tolerance);
-                cg.setMaxIterations(std::max<Eigen::Index>(1000, 4 * nf));
-                cg.compute(sys.A);
-                y = cg.solveWithGuess(rhs, xf);
-                res.cg_iterations += std::size_t(cg.iterations());
-                res.solve_ms += ms_between(t0, std::chrono::steady_clock::now());
-            }
-            const double rn = rhs.norm();
-            const double residual = rn > 0 ? (sys.A * y - rhs).norm() / rn : (sys.A * y).norm();
-            res.max_residual =
-                std::max(res.max_residual, std::isfinite(residual) ? residual : 1e300);
-            if (res.solver == "none" || res.solver == used)
-                res.solver = used;
-            else
-                res.solver = std::string(kLdlt) + " + " + kCg;
-            std::ostringstream s;
-            s << "iteration " << it + 1 << ": " << used << ", relative residual " << residual;
-            res.report.push_back(s.str());
-            for (Eigen::Index f = 0; f < nf; ++f) x.row(sys.free_rows[std::size_t(f)]) = y.row(f);
-        }
-        if (!finite_and_bounded(x)) {
-            res.diverged = true;
-            if (lazy_mesh && done > 0) scatter_positions(current, lap.map, x_good);
-            res.report.push_back("diverged at iteration " + std::to_string(it + 1) +
-                                 ": stopped (use a smaller step or implicit integration)");
-            break;
-        }
-        if (!lazy_mesh || it + 1 == o.iterations) scatter_positions(current, lap.map, x);
-        if (o.preserve_volume) {
-            const double vn = volume(current);
-            const double ratio = v0 / vn;
-            if (std::isfinite(ratio) && ratio > 0 && lap.map.rows() > 0) {
-                const double beta = std::cbrt(ratio);
-                const Eigen::RowVector3d c = x.colwise().mean();
-                x = ((x.rowwise() - c) * beta).rowwise() + c;
-                if (finite_and_bounded(x)) scatter_positions(current, lap.map, x);
-            } else {
-                res.report.push_back("iteration " + std::to_string(it + 1) +
-                                     ": volume could not be restored (volume " +
-                                     std::to_string(vn) + ")");
-            }
-        }
-        if (o.keep_steps) res.steps.push_back(current);
-        ++done;
-    }
-    if (!o.keep_steps && done > 0) res.steps.push_back(std::move(current));
-    if (slide_explicit_fallback)
-        res.report.push_back(
-            "boundary: steps above 1 move along the curve implicitly (an "
-            "explicit 1-D step above 1 is unstable)");
-    progress.report(1.0, "smoothing");
-    if (is_closed(mesh) && !res.steps.empty()) res.final_volume = volume(res.steps.back());
-    const auto& d = res.diagnostics;
-    if (d.total() > 0) {
-        std::ostringstream s;
-        s << "clamped: " << d.negative_weights_clamped << " negative cotangent weight(s), "
-          << d.degenerate_corners << " degenerate corner(s), " << d.cotangents_clamped
-          << " large cotangent(s), " << d.short_edges << " short edge(s), " << d.stalled_vertices
-          << " vertex(es) fixed for lack of weight";
-        res.report.push_back(s.str());
-    }
-    if (implicit) {
-        std::ostringstream s;
-        s << "solver " << res.solver << ", " << res.factorizations << " factorization(s), "
-          << res.cg_iterations << " CG iteration(s), max relative "
-          << "residual " << res.max_residual;
-        res.report.push_back(s.str());
-    }
+    res.mesh = mesh;
+    run_fairing(options, progress, res);
     return res;
+}
+
+FairingResult smooth(HalfedgeMesh&& mesh, const FairingOptions& options, Progress& progress) {
+    check_options(mesh, options);
+    FairingResult res;
+    res.mesh = std::move(mesh);
+    run_fairing(options, progress, res);
+    return res;
+}
+
+double max_stable_explicit_step(const HalfedgeMesh& mesh, FairingOperator op, int lanczos_steps) {
+    if (lanczos_steps < 1 || lanczos_steps > 1000)
+        throw InvalidArgument("max_stable_explicit_step: lanczos_steps must be in [1, 1000] (got " +
+                              std::to_string(lanczos_steps) + ")");
+    if (op == FairingOperator::Umbrella || op == FairingOperator::Taubin) {
+        UmbrellaOperator umbrella(mesh);
+        return umbrella.max_stable_step(lanczos_steps);
+    }
+    const Laplacian lap =
+        build_laplacian(mesh, static_cast<LaplacianOperator>(static_cast<int>(op)));
+    return max_stable_step_laplacian(lap, lanczos_steps);
 }
 
 }  // namespace trilab

@@ -219,7 +219,13 @@ void refresh_laplacian(const HalfedgeMesh& mesh, Laplacian& lap) {
             for (int a = 0; a < 4; ++a)
                 for (int b = 0; b < 4; ++b) k[lap.edge_slots[slot++]] += c[a] * c[b];
         }
-        for (std::size_t r = 0; r < n; ++r) S[Eigen::Index(r)] = k[lap.diag_slots[r]];
+        // S_i = ½ sum_j |K_ij| (column i of the symmetric K): eigenvalues of S⁻¹K in [0, 2].
+        const int* outer = lap.K.outerIndexPtr();
+        for (std::size_t r = 0; r < n; ++r) {
+            double sum = 0;
+            for (int p = outer[r]; p < outer[r + 1]; ++p) sum += std::abs(k[p]);
+            S[Eigen::Index(r)] = 0.5 * sum;
+        }
     } else {
         // CurvatureFlow: the cotangent of the corner opposite each halfedge, one face at a
         // time (its three corners from three position loads), 0 on boundary halfedges.
@@ -236,9 +242,15 @@ void refresh_laplacian(const HalfedgeMesh& mesh, Laplacian& lap) {
                 cot[h2.idx()] = corner_cot(b, c, a, diag);
             }
         }
-        double min_len = 0;
-        if (op == LaplacianOperator::ImprovedUmbrella) min_len = 1e-6 * mean_edge_length(mesh);
-        if (!(min_len > 0) || !std::isfinite(min_len)) min_len = 1e-300;
+        // ImprovedUmbrella: lengths in units of the mean edge length (scale-free weights).
+        double unit = 1, min_len = 1e-300;
+        if (op == LaplacianOperator::ImprovedUmbrella) {
+            const double mean = mean_edge_length(mesh);
+            if (mean > 0 && std::isfinite(mean)) {
+                unit = mean;
+                min_len = 1e-6 * mean;
+            }
+        }
         for (Edge e : mesh.edges()) {
             const Halfedge h = HalfedgeMesh::halfedge(e, 0);
             const Index i = row[mesh.from_vertex(h).idx()], j = row[mesh.to_vertex(h).idx()];
@@ -250,9 +262,9 @@ void refresh_laplacian(const HalfedgeMesh& mesh, Laplacian& lap) {
                     ++diag.short_edges;
                     len = min_len;
                 }
-                w = 1.0 / len;
-                S[i] += 0.5 * len;
-                S[j] += 0.5 * len;
+                w = unit / len;
+                S[i] += 0.5 * len / unit;
+                S[j] += 0.5 * len / unit;
             } else if (op == LaplacianOperator::CurvatureFlow) {
                 w = cot[h.idx()] + cot[HalfedgeMesh::twin(h).idx()];
                 if (w < 0 && lap.options.clamp_negative_cotangents) {

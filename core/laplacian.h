@@ -10,18 +10,30 @@
 // Implicit Euler (1.13-1.14), (I - dt·L)·X' = X, is solved in the symmetric form
 // (S + dt·K)·X' = S·X, which is SPD whenever K is PSD and S > 0.
 //
-// Operators (w_ij: symmetric edge weight; K = D - W with D_ii = sum_j w_ij):
+// Operators (w_ij: symmetric edge weight; K = D - W with D_ii = sum_j w_ij). Every operator is
+// scale-free: L·x scales like x, so a mesh and the same mesh scaled by any factor smooth alike.
 //  - Umbrella (1.5): w_ij = 1, S_i = valence. L_i = 1/m sum (x_j - x_i).
-//  - ImprovedUmbrella (1.7): w_ij = 1/|e_ij|, S_i = E_i/2 with E_i = sum_j |e_ij|, so
-//    L_i = 2/E sum (x_j - x_i)/|e_ij|. Lengths are frozen for one build (one step).
+//  - ImprovedUmbrella (1.7) with every length measured in units of the mean edge length h
+//    (of the positions it is built on): w_ij = h/|e_ij|, S_i = E_i/(2h) with E_i = sum_j
+//    |e_ij|, so L_i = 2h²/E sum (x_j - x_i)/|e_ij|, i.e. h² x (1.7). On a mesh of equal edges
+//    it is twice the umbrella. Lengths are frozen for one build (one step).
 //  - CurvatureFlow (1.9, Desbrun-Meyer-Schröder-Barr 1999): w_ij = cot a_ij + cot b_ij,
 //    S_i = sum_j w_ij (normalized cotangent weights). Negative weights (obtuse pairs) are
 //    clamped to 0 by default and counted; then K stays PSD. Linear precision holds where
 //    nothing was clamped (e.g. a flat grid).
-//  - SecondOrder (1.10-1.12, Guskov-Sweldens-Schröder 1999): K = Cᵀ·C, S_i = K_ii, where C
-//    has one row per interior edge e holding the hinge coefficients c_{e,·}, so that
-//    (K·x)_i / K_ii is exactly the update (1.12): x_i <- -(sum_e c_{e,i} a_e) / sum_e c_{e,i}²
-//    with a_e = sum_{j != i} c_{e,j} x_j, i.e. L_i = x_i(new) - x_i.
+//  - SecondOrder (1.10-1.12, Guskov-Sweldens-Schröder 1999): K = Cᵀ·C, where C has one row
+//    per interior edge e holding the hinge coefficients c_{e,·}. (K·x)_i / K_ii is the
+//    relaxation update (1.12): x_i <- -(sum_e c_{e,i} a_e) / sum_e c_{e,i}² with a_e =
+//    sum_{j != i} c_{e,j} x_j. Applied to every vertex at once (Jacobi) that update is not
+//    stable: K is a discrete bi-Laplacian, whose highest frequency has K's Rayleigh quotient
+//    above 2 K_ii (16/6 K_ii for the 1-D stencil 1 -4 6 -4 1; about 2.3 K_ii on a noisy
+//    sphere), so x <- x - D⁻¹K·x amplifies it (a regular pattern of spikes). So S_i = ½ sum_j
+//    |K_ij| (half K's absolute row sum): by Gershgorin every eigenvalue of S⁻¹K lies in
+//    [0, 2], as for the umbrella, every explicit step <= 1 is stable, and step 1 is the
+//    relaxation (1.12) damped per vertex by 2 K_ii / sum_j |K_ij| <= 1 (about 2/3; exactly
+//    1 where the row's off-diagonal entries are all <= 0).
+// Fixed-weight operators (Umbrella) do not depend on the positions; the others are rebuilt
+// from the current positions for every step.
 //
 // Derivation of the hinge coefficients. Edge e = (v1, v2), length l, unit direction t,
 // triangles T1 = (v1, v2, v3) and T2 = (v2, v1, v4) unfolded into the plane, n the in-plane

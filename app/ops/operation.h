@@ -47,6 +47,9 @@ struct OperationResult {
     /// in `stop_reason`; callers report it as a failure unless asked to keep partial results.
     bool stopped_early = false;
     std::string stop_reason;
+    /// false: the run changed nothing (it stopped at its first iteration; the one step is
+    /// the input), so there is nothing to keep.
+    bool changed = true;
 };
 
 /// What the caller needs from a run beyond the final mesh. The CLI asks for neither (it

@@ -25,15 +25,23 @@ OperationResult run_smooth(const FairingOptions& options, const HalfedgeMesh& me
     result.ms = ms_since(t0);
     result.label = "Smooth";
     result.report = fairing.report;
-    if (fairing.diverged) {
+    // A run that stopped (diverged, failed solve) keeps its good iterations and says why;
+    // callers report it as a failure (the CLI exits 4, the viewer says so).
+    if (fairing.stopped_early) {
         result.stopped_early = true;
-        result.stop_reason = "the step diverged (try a smaller step or implicit integration)";
+        result.stop_reason = fairing.stop_reason;
         result.report.push_back("stopped early: " + result.stop_reason);
+        result.changed = fairing.iterations_done > 0;
     }
     // Geometry-only steps: every iteration keeps the vertices of the one before.
-    for (HalfedgeMesh& step : fairing.steps)
+    for (std::size_t k = 0; k < fairing.step_positions.size(); ++k) {
+        HalfedgeMesh step =
+            k + 1 == fairing.step_positions.size() ? std::move(fairing.mesh) : fairing.mesh;
+        step.positions() = std::move(fairing.step_positions[k]);
         result.steps.push_back(OperationStep{std::move(step), MorphCorrespondence{}});
-    if (result.steps.empty()) throw Error("smooth: no step could be computed");
+    }
+    if (result.steps.empty())  // no steps kept (the CLI), or none good: the last good state
+        result.steps.push_back(OperationStep{std::move(fairing.mesh), MorphCorrespondence{}});
     // The smoothing distance of the result against the input (the viewer's colouring).
     const std::vector<double> distance =
         smoothing_distance(result.steps.back().mesh, mesh.positions());
@@ -48,9 +56,8 @@ OperationResult run_smooth(const FairingOptions& options, const HalfedgeMesh& me
                   "smoothing distance along the normal: largest %.6g, mean %.6g", max_distance,
                   mean_distance);
     result.report.emplace_back(line);
-    const double done =
-        o.keep_steps || fairing.diverged ? double(result.steps.size()) : double(o.iterations);
-    result.values = {{"iterations_done", done},
+    result.values = {{"iterations_done", double(fairing.iterations_done)},
+                     {"max_stable_step", fairing.max_stable_step},
                      {"max_residual", fairing.max_residual},
                      {"initial_volume", fairing.initial_volume},
                      {"final_volume", fairing.final_volume},

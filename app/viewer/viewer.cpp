@@ -315,6 +315,11 @@ bool Viewer::ready_for_script() const {
 
 void Viewer::commit_result(const Operation& op, OperationResult result_value) {
     OperationResult* result = &result_value;
+    if (!result->changed) {  // stopped before its first good iteration: nothing to keep
+        for (const std::string& line : result->report) log_.info("  " + line);
+        notify_error(result->label + " stopped early, nothing changed: " + result->stop_reason);
+        return;
+    }
     std::vector<HalfedgeMesh> meshes;
     std::vector<MorphCorrespondence> correspondences;
     for (OperationStep& step : result->steps) {

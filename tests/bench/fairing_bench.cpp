@@ -9,7 +9,8 @@
 //   trilab_fairing_bench [--runs N] [--check] [--quick]
 //
 // A timed call is one smooth() call on a mesh already in memory, with keep_steps off (only
-// the result is kept, as trilab-cli smooth does); "per iteration" divides a 10-iteration
+// the result is kept, as trilab-cli smooth does) and the stable-step estimate off (its rows
+// time max_stable_explicit_step() on its own); "per iteration" divides a 10-iteration
 // call by 10. Every explicit operator, and every implicit operator with each solver (the
 // sparse Cholesky with its factorization and solve timed apart, the conjugate gradients, and
 // the automatic choice), is timed (on the large mesh, the sparse Cholesky only through the
@@ -86,6 +87,7 @@ FairingOptions options(FairingOperator op, Integration integration, double step,
     o.iterations = iterations;
     o.solver = solver;
     o.keep_steps = false;
+    o.estimate_max_stable_step = false;  // timed on its own (stable-step rows)
     return o;
 }
 
@@ -219,6 +221,20 @@ int main(int argc, char** argv) {
         "\ntorus (%zu vertices): explicit umbrella: 1 call %.1f ms, 10 iterations %.1f ms "
         "(%.1f per iteration), one more iteration %.1f ms\n",
         huge.n_vertices(), umbrella_huge_1, umbrella_huge_10, umbrella_huge_10 / 10, marginal);
+
+    // The stable-step estimate (20 Lanczos products; smooth() runs it by default).
+    std::printf("\nlargest stable explicit step (max_stable_explicit_step, 20 Lanczos steps):\n");
+    for (const auto& [name, mesh] : {std::pair<const char*, const HalfedgeMesh*>{"bunny", &bunny},
+                                     {quick ? "torus 40k" : "large", &large}}) {
+        if (mesh->n_vertices() == 0) continue;
+        for (FairingOperator op : {FairingOperator::Umbrella, FairingOperator::CurvatureFlow,
+                                   FairingOperator::SecondOrder}) {
+            double limit = 0;
+            const double ms = time_ms([&] { limit = max_stable_explicit_step(*mesh, op); }, runs);
+            std::printf("  %-10s %-16s %8.1f ms  limit %.4g\n", name, fairing_operator_name(op), ms,
+                        limit);
+        }
+    }
 
     // Implicit steps.
     if (have_bunny) implicit_table("bunny", bunny, runs, true);

@@ -59,6 +59,7 @@ double trilab_ms(const HalfedgeMesh& mesh, FairingOperator op, Integration integ
     o.step = step;
     o.iterations = iterations;
     o.keep_steps = false;
+    o.estimate_max_stable_step = false;
     return median_of(runs, [&] {
         const auto t0 = Clock::now();
         smooth(mesh, o);
