@@ -1,5 +1,6 @@
 #pragma once
 // A minimal streaming JSON object writer for the CLI's --json output.
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -78,11 +79,12 @@ public:
         }
         return out + "\"";
     }
+    /// Shortest text that reads back as exactly `v` (null for NaN and infinity).
     static std::string number(double v) {
         if (!std::isfinite(v)) return "null";
-        char buf[32];
-        std::snprintf(buf, sizeof(buf), "%.17g", v);
-        return buf;
+        char buf[64];
+        const auto [end, ec] = std::to_chars(buf, buf + sizeof(buf), v);
+        return ec == std::errc() ? std::string(buf, end) : "null";
     }
 
 private:

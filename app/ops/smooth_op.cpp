@@ -101,8 +101,18 @@ std::unique_ptr<OperationDef> smooth_operation() {
         .above_min()
         .slider(0.01, 1)
         .only_if(taubin_only);
-    d.number("mu", &FairingOptions::taubin_mu, -10, 0, "Taubin's inflating factor, below -lambda")
-        .slider(-1.5, -0.01)
+    d.number("mu", &FairingOptions::taubin_mu, -1, 0,
+             "Taubin's inflating factor, below -lambda (or give --pass-band)")
+        .slider(-1, -0.01)
+        .only_if([](const FairingOptions& o) -> const char* {
+            if (o.op != FairingOperator::Taubin) return "applies to --operator taubin only";
+            return o.taubin_pass_band > 0 ? "does not apply with --pass-band (it sets mu)"
+                                          : nullptr;
+        });
+    d.number("pass-band", &FairingOptions::taubin_pass_band, 0, 1,
+             "Taubin's pass-band frequency k_PB, 1/lambda + 1/mu = k_PB (0: use --mu)")
+        .slider(0, 0.2)
+        .hide_default()
         .only_if(taubin_only);
     d.flag("preserve-volume", &FairingOptions::preserve_volume,
            "scale back to the initial volume after every step (closed meshes)");
@@ -110,7 +120,8 @@ std::unique_ptr<OperationDef> smooth_operation() {
              "boundary vertices stay fixed, or slide along the input's boundary curve")
         .hide_default();
     d.check([](const FairingOptions& o, const auto&) {
-        if (o.op == FairingOperator::Taubin && !(o.taubin_mu < -o.taubin_lambda))
+        if (o.op == FairingOperator::Taubin && o.taubin_pass_band == 0 &&
+            !(o.taubin_mu < -o.taubin_lambda))
             throw InvalidArgument(
                 "--mu: expected a value below -lambda = " + format_number(-o.taubin_lambda) +
                 ", got " + format_number(o.taubin_mu));

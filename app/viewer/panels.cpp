@@ -494,6 +494,37 @@ void operation_panel_body(OperationPanelState& state, const char* apply, bool bu
     if (!state.preview_note.empty()) ImGui::TextDisabled("%s", state.preview_note.c_str());
 }
 
+/// The largest stable explicit step of the mesh and operator; a larger explicit step in red
+/// with the reason, and a button that switches to implicit integration.
+void stability_guidance(FairingPanelState& state) {
+    const double limit = state.max_stable_step;
+    const bool taubin = int(state.op.value("operator").x) == int(FairingOperator::Taubin);
+    const bool explicit_run =
+        taubin || int(state.op.value("integration").x) == int(Integration::Explicit);
+    if (!(limit > 0)) {
+        ImGui::TextDisabled("largest stable explicit step: estimating...");
+        return;
+    }
+    const double step = taubin ? state.op.value("lambda").x : state.op.value("step").x;
+    ImGui::TextDisabled("largest stable explicit %s: %.3g", taubin ? "lambda" : "step", limit);
+    note_widget("stable-step");
+    if (explicit_run && step > limit) {
+        ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.40f, 1.0f),
+                           "%s %.3g is above it: the run would diverge and stop",
+                           taubin ? "lambda" : "step", step);
+        note_widget("unstable");
+        if (!taubin) {
+            if (ImGui::Button("Use implicit integration")) {
+                ParamValue& integration = state.op.value("integration");
+                integration.x = int(Integration::Implicit);
+                integration.given = true;
+                state.dirty = true;
+            }
+            note_widget("Use implicit integration");
+        }
+    }
+}
+
 void place_tool_window() {
     const ImGuiIO& io = ImGui::GetIO();
     ImGui::SetNextWindowPos(ImVec2(std::max(0.0f, io.DisplaySize.x - 31.0f * ImGui::GetFontSize()),
@@ -518,10 +549,11 @@ void subdivision_window(PanelState& panels, MorphState& morph, const History& hi
 
 void fairing_window(PanelState& panels, MorphState& morph, const History& history, bool closed,
                     bool busy, double now, CommandQueue& commands) {
-    OperationPanelState& state = panels.fairing;
+    FairingPanelState& state = panels.fairing;
     if (!state.open) return;
     place_tool_window();
     if (ImGui::Begin("Fairing", &state.open, ImGuiWindowFlags_AlwaysAutoResize)) {
+        stability_guidance(state);
         // What the mesh cannot do is switched off with the reason, never ignored.
         ParamValue& volume = state.op.value("preserve-volume");
         ParamValue& boundary = state.op.value("boundary");

@@ -4,6 +4,7 @@
 // so panels never touch the document, the window or the GPU.
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -74,6 +75,15 @@ struct OperationPanelState {
     std::string preview_note;  ///< e.g. "preview 38 ms" or why it waits for the release
 };
 
+/// The Fairing panel: its operation, and the stability guidance the viewer keeps up to date.
+struct FairingPanelState : OperationPanelState {
+    FairingPanelState() : OperationPanelState("smooth") {}
+    /// The largest stable explicit step of the current mesh and operator (NaN: not known yet).
+    double max_stable_step = std::numeric_limits<double>::quiet_NaN();
+    std::size_t stable_step_entry = std::size_t(-1);  ///< the history entry it was estimated on
+    int stable_step_operator = -1;                    ///< and the operator
+};
+
 /// The Decimation panel: its operation, and the collapsing-edges overlay.
 struct DecimationPanelState : OperationPanelState {
     DecimationPanelState() : OperationPanelState("decimate") {}
@@ -120,7 +130,7 @@ struct PanelState {
     UnsavedPrompt unsaved;
     ScreenshotState screenshot;
     OperationPanelState subdivision{"subdivide"};
-    OperationPanelState fairing{"smooth"};
+    FairingPanelState fairing;
     FrequencyPanelState frequency;
     DecimationPanelState decimation;
     RecordState record;

@@ -20,6 +20,7 @@
 #include "app/ops/operation_entries.h"
 #include "core/decimation.h"
 #include "core/errors.h"
+#include "core/fairing.h"
 #include "core/generators.h"
 #include "core/geometry.h"
 #include "core/io/mesh_io.h"
@@ -303,6 +304,37 @@ void Viewer::run_operation_job(const Operation& op) {
         return JobRunner::Finish([this, result, op] { commit_result(op, std::move(*result)); });
     });
     if (!started) notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
+}
+
+void Viewer::update_stable_step() {
+    FairingPanelState& f = panels_.fairing;
+    if (!f.open) return;
+    const int op = int(f.op.value("operator").x);
+    const std::size_t entry = document_.history.current();
+    // A preview of this state reports it (any size); small meshes get it at once.
+    if (preview_.result && preview_.base_entry == entry && preview_.computed_op.def == f.op.def &&
+        int(preview_.computed_op.value("operator").x) == op) {
+        for (const auto& [key, value] : preview_.result->values)
+            if (key == "max_stable_step" && std::isfinite(value)) f.max_stable_step = value;
+        f.stable_step_entry = entry;
+        f.stable_step_operator = op;
+        return;
+    }
+    if (f.stable_step_entry == entry && f.stable_step_operator == op) return;
+    f.stable_step_entry = entry;
+    f.stable_step_operator = op;
+    f.max_stable_step = std::numeric_limits<double>::quiet_NaN();
+    constexpr std::size_t kAtOnceVertices = 100000;  // a few ms to tens of ms
+    if (document_.mesh().n_vertices() <= kAtOnceVertices) {
+        try {
+            const FairingOperator fo = op == int(FairingOperator::Taubin)
+                                           ? FairingOperator::Umbrella
+                                           : FairingOperator(op);
+            f.max_stable_step = max_stable_explicit_step(document_.mesh(), fo);
+        } catch (const std::exception& e) {
+            log_.warning(std::string("stable step: ") + e.what());
+        }
+    }
 }
 
 bool Viewer::ready_for_script() const {
@@ -962,6 +994,7 @@ void Viewer::draw_ui() {
     history_window(panels_, document_.history, jobs_.busy(), commands_);
     tools_window(panels_, jobs_.busy(), commands_);
     subdivision_window(panels_, morph_, document_.history, jobs_.busy(), glfwGetTime(), commands_);
+    update_stable_step();
     fairing_window(panels_, morph_, document_.history, document_.closed, jobs_.busy(),
                    glfwGetTime(), commands_);
     update_collapsing_edges();

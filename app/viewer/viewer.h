@@ -157,6 +157,8 @@ private:
     void clear_preview(bool reupload);
     void apply_operation(const Operation& op);
     void update_preview_flags();
+    /// Keeps the Fairing panel's largest stable explicit step for the current state.
+    void update_stable_step();
     void note_preview_latency(double ms);
     void start_sweep();
     /// After each frame: `frame_shown` says whether the frame showed the preview.

@@ -200,3 +200,32 @@ TEST_CASE("Cancel shows while a preview is up and queues CancelPreview", "[panel
     CHECK(commands_of<CancelPreview>(commands).size() == 1);
     CHECK(commands_of<ApplyOperation>(commands).empty());
 }
+
+TEST_CASE("the Fairing panel marks a step above the stable limit and offers implicit", "[panels]") {
+    Ui ui;
+    PanelState panels;
+    MorphState morph;
+    History history;
+    panels.fairing.open = true;
+    panels.fairing.max_stable_step = 1.35;
+    CommandQueue commands;
+    const auto draw = [&] { fairing_window(panels, morph, history, true, false, 0.0, commands); };
+    ui.frame(draw);
+    ui.frame(draw);
+    CHECK(ui.has("stable-step"));
+    CHECK_FALSE(ui.has("unstable"));  // the default step is below the limit
+    panels.fairing.op.value("step").x = 20;
+    ui.frame(draw);
+    ui.frame(draw);
+    REQUIRE(ui.has("unstable"));
+    const Rect use_implicit = ui.rect("Use implicit integration");
+    commands.clear();
+    ui.click(draw, (use_implicit.x0 + use_implicit.x1) / 2,
+             (use_implicit.y0 + use_implicit.y1) / 2);
+    const auto previews = commands_of<PreviewOperation>(commands);
+    REQUIRE_FALSE(previews.empty());
+    CHECK(int(previews.back()->op.value("integration").x) == int(Integration::Implicit));
+    CHECK(previews.back()->op.value("step").x == 20);
+    ui.frame(draw);
+    CHECK_FALSE(ui.has("unstable"));  // implicit: any step is stable
+}

@@ -292,5 +292,30 @@ if "$cli" render "$tmp/d.obj" --out "$tmp/probe.png" --size 16x16 >/dev/null 2>&
          --texture '$tmp/fifo.png' 2> '$tmp/e'; [ \$? -eq 1 ] && \
          grep -q 'fifo.png: not a regular file: it is a FIFO' '$tmp/e' && [ ! -e '$tmp/t.png' ]"
 fi
+# The operation layer (issue 14) and fairing that checks itself (issue 15).
+check "smooth --help lists every declared option with its range and default" bash -c \
+    "'$cli' smooth --help > '$tmp/h' && grep -q -- '--lambda' '$tmp/h' && grep -q -- '--pass-band' '$tmp/h' && \
+     grep -q -- '--keep-partial' '$tmp/h' && grep -q 'default 0.5' '$tmp/h'"
+check "smooth refuses --step with --operator taubin, naming it" bash -c \
+    "! '$cli' smooth --operator taubin --step 0.3 '$tmp/d.obj' '$tmp/tb.obj' 2> '$tmp/e' && \
+     [ \$(wc -l < '$tmp/e') -eq 1 ] && grep -q -- '--step: does not apply' '$tmp/e' && [ ! -e '$tmp/tb.obj' ]"
+check "smooth refuses --lambda without taubin" bash -c \
+    "! '$cli' smooth --lambda 0.3 '$tmp/d.obj' '$tmp/tb.obj' 2> '$tmp/e' && grep -q -- '--lambda' '$tmp/e'"
+check "taubin takes lambda and mu, echoed typed in --json" bash -c \
+    "'$cli' smooth --operator taubin --lambda 0.6 --mu -0.65 --iterations 3 '$tmp/d.obj' \
+     '$tmp/tb.obj' --json > '$tmp/tb.json' && grep -q '\"lambda\": 0.6' '$tmp/tb.json' && \
+     grep -q '\"mu\": -0.65' '$tmp/tb.json' && grep -q '\"operator\": \"taubin\"' '$tmp/tb.json' && \
+     ! grep -q '\"step\"' '$tmp/tb.json'"
+check "a diverging explicit smooth exits 4 with one line naming the iteration, writing nothing" bash -c \
+    "'$cli' smooth --step 20 '$tmp/d.obj' '$tmp/div.obj' 2> '$tmp/e'; [ \$? -eq 4 ] && \
+     [ \$(wc -l < '$tmp/e') -eq 1 ] && grep -q 'iteration 1' '$tmp/e' && grep -q 'stable limit' '$tmp/e' && \
+     [ ! -e '$tmp/div.obj' ]"
+check "--keep-partial writes the last good state and says stopped_early, still exit 4" bash -c \
+    "'$cli' smooth --step 20 --iterations 3 '$tmp/d.obj' '$tmp/div.obj' --keep-partial --json \
+     > '$tmp/div.json' 2> '$tmp/e'; [ \$? -eq 4 ] && [ -e '$tmp/div.obj' ] && \
+     grep -q '\"stopped_early\": true' '$tmp/div.json' && grep -q 'max_stable_step' '$tmp/div.json'"
+check "the implicit run with the same step stays bounded" bash -c \
+    "'$cli' smooth --step 20 --integration implicit '$tmp/d.obj' '$tmp/imp.obj' --json \
+     | grep -q '\"stopped_early\": false'"
 echo "cli: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]
