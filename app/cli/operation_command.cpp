@@ -174,11 +174,12 @@ int run_operation_command(const std::string& name, const std::vector<std::string
     if (a.files.size() != 2)
         throw InvalidArgument("expected IN and OUT files (see `trilab-cli " + name + " --help`)");
 
-    const LoadedMesh loaded = read_mesh(a.files[0]);  // not timed
+    LoadedMesh loaded = read_mesh(a.files[0]);  // not timed
     NullProgress progress;
     RunSettings settings;
     settings.keep_steps = false;  // only the last state is written
     settings.morph = false;
+    settings.consumable = &loaded.mesh;  // the input is not needed after the run
     const OperationResult result = run_operation(op, loaded.mesh, progress, settings);
     if (result.stopped_early && !a.keep_partial)
         throw RunStopped(result.stop_reason +

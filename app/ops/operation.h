@@ -57,6 +57,10 @@ struct OperationResult {
 struct RunSettings {
     bool keep_steps = true;  ///< one step per iteration; false: only the last
     bool morph = true;       ///< morph correspondences; false: SameVertices/none where allowed
+    /// The caller gives up the input: when this points at the `mesh` passed to run_operation(),
+    /// an operation may move it into its result instead of copying it (the CLI, whose input
+    /// is not needed after the run). It is left valid but unspecified.
+    HalfedgeMesh* consumable = nullptr;
 };
 
 class OperationDef;

@@ -19,8 +19,19 @@ OperationResult run_smooth(const FairingOptions& options, const HalfedgeMesh& me
                            Progress& progress, const RunSettings& settings) {
     FairingOptions o = options;
     o.keep_steps = settings.keep_steps;
+    // The stable-step estimate is ~20 passes over the mesh: above this size it would cost
+    // more than the smoothing, so it is left out (a run that diverges still estimates it).
+    constexpr std::size_t kEstimateVertices = 2000000;
+    const bool estimate = mesh.n_vertices() <= kEstimateVertices;
+    o.estimate_max_stable_step = estimate;
+    // The input's positions, for the smoothing distance, before the input may be consumed.
+    const std::size_t n_vertices = mesh.n_vertices();
+    const bool consume = settings.consumable == &mesh;
+    std::vector<Point> input_positions;
+    if (consume) input_positions = mesh.positions();
     const auto t0 = std::chrono::steady_clock::now();
-    FairingResult fairing = smooth(mesh, o, progress);
+    FairingResult fairing =
+        consume ? smooth(std::move(*settings.consumable), o, progress) : smooth(mesh, o, progress);
     OperationResult result;
     result.ms = ms_since(t0);
     result.label = "Smooth";
@@ -44,13 +55,13 @@ OperationResult run_smooth(const FairingOptions& options, const HalfedgeMesh& me
         result.steps.push_back(OperationStep{std::move(fairing.mesh), MorphCorrespondence{}});
     // The smoothing distance of the result against the input (the viewer's colouring).
     const std::vector<double> distance =
-        smoothing_distance(result.steps.back().mesh, mesh.positions());
+        smoothing_distance(result.steps.back().mesh, consume ? input_positions : mesh.positions());
     double max_distance = 0, sum_distance = 0;
     for (double d : distance) {
         max_distance = std::max(max_distance, std::abs(d));
         sum_distance += std::abs(d);
     }
-    const double mean_distance = mesh.n_vertices() ? sum_distance / double(mesh.n_vertices()) : 0;
+    const double mean_distance = n_vertices ? sum_distance / double(n_vertices) : 0;
     char line[160];
     std::snprintf(line, sizeof(line),
                   "smoothing distance along the normal: largest %.6g, mean %.6g", max_distance,
@@ -66,6 +77,11 @@ OperationResult run_smooth(const FairingOptions& options, const HalfedgeMesh& me
                      {"max_smoothing_distance", max_distance},
                      {"mean_smoothing_distance", mean_distance}};
     result.texts = {{"solver", fairing.solver}};
+    if (!estimate && !std::isfinite(fairing.max_stable_step))
+        result.texts.push_back(
+            {"max_stable_step_note",
+             "not estimated above 2,000,000 vertices (explicit umbrella steps up to 1 are always "
+             "stable: Gershgorin)"});
     return result;
 }
 
