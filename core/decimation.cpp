@@ -1120,9 +1120,9 @@ LevelOfDetail::LevelOfDetail(const ProgressiveMesh& pm) {
             diagonal2 > 0 ? std::ldexp(1.0, 61) / (double(max_valence) * diagonal2) : 1.0;
     }
 
-    // Drawing order: faces along a Morton curve of their centroids (10 bits an axis, ties in
-    // index order), vertices in the order the faces first use them, then isolated vertices,
-    // then vertices deleted in the input (never live).
+    // Drawing order: faces along a Hilbert curve through their centroids (10 bits an axis,
+    // ties in index order), vertices in the order the faces first use them, then isolated
+    // vertices, then vertices deleted in the input (never live).
     {
         Point lo = Point::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
         for (std::size_t f = 0; f < nf; ++f)
@@ -1132,7 +1132,7 @@ LevelOfDetail::LevelOfDetail(const ProgressiveMesh& pm) {
                     hi = hi.cwiseMax(pm.positions[v.idx()]);
                 }
         const Vector3 extent = (hi - lo).cwiseMax(Vector3::Constant(1e-300));
-        const auto spread = [](std::uint32_t x) {  // 10 bits to every third of 30
+        const auto spread = [](std::uint32_t x) {  // 10 bits to every third bit of 30
             std::uint32_t r = 0;
             for (int i = 0; i < 10; ++i) r |= ((x >> i) & 1u) << (3 * i);
             return r;
@@ -1145,12 +1145,33 @@ LevelOfDetail::LevelOfDetail(const ProgressiveMesh& pm) {
             const Point centre =
                 (pm.positions[c[0].idx()] + pm.positions[c[1].idx()] + pm.positions[c[2].idx()]) /
                 3.0;
-            std::uint32_t code = 0;
+            std::uint32_t x[3];
             for (int axis = 0; axis < 3; ++axis) {
                 const double t = (centre[axis] - lo[axis]) / extent[axis];
-                const auto cell = std::uint32_t(std::min(1023.0, std::max(0.0, t * 1024.0)));
-                code |= spread(cell) << axis;
+                x[axis] = std::uint32_t(std::min(1023.0, std::max(0.0, t * 1024.0)));
             }
+            // The Hilbert index of the cell (Skilling, "Programming the Hilbert curve", AIP
+            // Conf. Proc. 707, 2004: axes to the transposed index, whose bits interleave).
+            for (std::uint32_t q = 1u << 9; q > 1; q >>= 1) {
+                const std::uint32_t p = q - 1;
+                for (int i = 0; i < 3; ++i) {
+                    if (x[i] & q) {
+                        x[0] ^= p;
+                    } else {
+                        const std::uint32_t t = (x[0] ^ x[i]) & p;
+                        x[0] ^= t;
+                        x[i] ^= t;
+                    }
+                }
+            }
+            x[1] ^= x[0];
+            x[2] ^= x[1];
+            std::uint32_t t = 0;
+            for (std::uint32_t q = 1u << 9; q > 1; q >>= 1)
+                if (x[2] & q) t ^= q - 1;
+            for (auto& xi : x) xi ^= t;
+            std::uint32_t code = 0;
+            for (int axis = 0; axis < 3; ++axis) code |= spread(x[axis]) << (2 - axis);
             keys.push_back(std::uint64_t(code) << 32 | f);
         }
         std::sort(keys.begin(), keys.end());
@@ -1208,6 +1229,10 @@ LevelOfDetail::LevelOfDetail(const ProgressiveMesh& pm) {
     vertex_changed_.assign(nv, 0);
     recompute_normals();
     all_changed_ = true;
+    fine_faces_state_ = faces_;
+    fine_positions_state_ = positions_;
+    fine_normals_state_ = normal_sum_;
+    fine_vertex_alive_state_ = vertex_alive_;
 }
 
 void LevelOfDetail::face_normal(Index f, int sign) {
@@ -1283,6 +1308,19 @@ void LevelOfDetail::split_step(const Step& s, bool normals, bool track) {
 void LevelOfDetail::set_level(std::size_t level) {
     level = std::min(level, steps_.size());
     if (level == level_) return;
+    if (level < level_ && 2 * level < level_ - level) {
+        // Far towards the fine mesh: from the fine state, fewer steps.
+        faces_ = fine_faces_state_;
+        positions_ = fine_positions_state_;
+        normal_sum_ = fine_normals_state_;
+        vertex_alive_ = fine_vertex_alive_state_;
+        std::fill(face_alive_.begin(), face_alive_.end(), std::uint8_t(1));
+        level_ = 0;
+        clear_changes();
+        all_changed_ = true;
+        triangles_stale_ = live_vertices_stale_ = true;
+        if (level == 0) return;
+    }
     // Updating the normals step by step touches every ring face twice; recomputing them
     // touches every live face of the new level once (and scans the others).
     const std::size_t a = std::min(level, level_), b = std::max(level, level_);

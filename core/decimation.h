@@ -204,7 +204,7 @@ ProgressiveBuild build_progressive_mesh(const HalfedgeMesh& mesh, const Decimati
 /// a collapse moves one vertex, re-points the corners of the faces around it and drops one
 /// or two faces, so a move costs O(the faces around the collapses between the two levels),
 /// never a rebuild of a mesh. Vertices and faces are numbered in a drawing order of their
-/// own, made once: faces along a Morton curve of their centroids, vertices in the order the
+/// own, made once: faces along a Hilbert curve through their centroids, vertices in the order the
 /// faces first use them, so that consecutive triangles share vertices (a software
 /// rasterizer's vertex cache depends on that). Area-weighted vertex normals of the current
 /// level are kept as sums of face normals in fixed point (exact integer sums: a level's
@@ -212,7 +212,9 @@ ProgressiveBuild build_progressive_mesh(const HalfedgeMesh& mesh, const Decimati
 /// positions and normals, the level of detail lists the vertices whose position or normal
 /// changed since clear_changes(); a move so long that updating the normals step by step
 /// would cost more than recomputing them for the new level recomputes them (O(live faces))
-/// and reports every vertex as changed.
+/// and reports every vertex as changed. A move towards the fine mesh that is more than twice
+/// as long as the way from the fine mesh starts over from a copy of the fine state (O(V + F)
+/// memory copies) and collapses from there.
 ///
 /// It copies what it needs from the progressive mesh (which may be dropped afterwards).
 class LevelOfDetail {
@@ -312,6 +314,11 @@ private:
     std::vector<std::uint8_t> vertex_changed_;
     std::vector<Index> changed_vertices_;
     bool all_changed_ = true;
+    /// The fine state (level 0), for long moves towards it.
+    std::vector<std::array<Index, 3>> fine_faces_state_;
+    std::vector<Point> fine_positions_state_;
+    std::vector<NormalSum> fine_normals_state_;
+    std::vector<std::uint8_t> fine_vertex_alive_state_;
     mutable std::vector<std::array<Index, 3>> triangles_;
     mutable std::vector<Index> live_vertices_;
     mutable bool triangles_stale_ = true, live_vertices_stale_ = true;
