@@ -1157,6 +1157,7 @@ int Viewer::run() {
         ImGui::Render();
 
         for (const Command& command : commands_) execute(command);
+        wait_for_preview();
         // Commands and popups change the UI over the next frames: keep drawing.
         if (!commands_.empty() || notice_.popup_pending || panels_.file_browser.open_requested ||
             panels_.context_menu_requested)

@@ -152,6 +152,8 @@ private:
     OperationPanelState* panel_of(const Operation& op);
     void request_preview(const Operation& op);
     void start_pending_preview();
+    /// Waits a bounded time for a running preview, so that it shows in the coming frame.
+    void wait_for_preview();
     void show_preview();
     /// Drops the preview (cancelling its job); `reupload`: show the current state again.
     void clear_preview(bool reupload);

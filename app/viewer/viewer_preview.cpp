@@ -91,7 +91,19 @@ void Viewer::request_preview(const Operation& op) {
     }
     preview_.pending = op;
     if (is_preview_job()) jobs_.cancel();  // outdated: its result would be discarded
+    start_pending_preview();               // at once when the runner is free
     active_frames_ = std::max(active_frames_, 2);
+}
+
+void Viewer::wait_for_preview() {
+    // A preview that is about to finish shows in this frame rather than the next: wait for it
+    // a bounded time (a frame's hiccup, never a freeze).
+    constexpr double kWaitSeconds = 0.1;
+    const double until = glfwGetTime() + kWaitSeconds;
+    while (is_preview_job() && jobs_.elapsed_seconds() < kWaitSeconds && glfwGetTime() < until) {
+        poll_jobs();
+        if (is_preview_job()) glfwWaitEventsTimeout(0.001);
+    }
 }
 
 void Viewer::start_pending_preview() {
