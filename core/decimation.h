@@ -204,8 +204,8 @@ ProgressiveBuild build_progressive_mesh(const HalfedgeMesh& mesh, const Decimati
 /// a collapse moves one vertex, re-points the corners of the faces around it and drops one
 /// or two faces, so a move costs O(the faces around the collapses between the two levels),
 /// never a rebuild of a mesh. Vertices and faces are numbered in a drawing order of their
-/// own, made once: faces along a Hilbert curve through their centroids, vertices in the order the
-/// faces first use them, so that consecutive triangles share vertices (a software
+/// own, made once: faces along a Hilbert curve through their centroids, vertices in the order
+/// the faces first use them, so that consecutive triangles share vertices (a software
 /// rasterizer's vertex cache depends on that). Area-weighted vertex normals of the current
 /// level are kept as sums of face normals in fixed point (exact integer sums: a level's
 /// normals do not depend on the path taken to it). For a renderer that keeps a copy of
@@ -216,7 +216,8 @@ ProgressiveBuild build_progressive_mesh(const HalfedgeMesh& mesh, const Decimati
 /// as long as the way from the fine mesh starts over from a copy of the fine state (O(V + F)
 /// memory copies) and collapses from there.
 ///
-/// It copies what it needs from the progressive mesh (which may be dropped afterwards).
+/// It copies what it needs from the progressive mesh (which may be dropped afterwards). Use it
+/// from one thread at a time (triangles() and live_vertices() fill caches).
 class LevelOfDetail {
 public:
     /// Starts at level 0 (the fine mesh). Throws InvalidArgument when `pm` is inconsistent
@@ -264,8 +265,9 @@ public:
     const std::vector<std::array<Index, 3>>& faces() const { return faces_; }
     const std::vector<std::uint8_t>& face_alive() const { return face_alive_; }
     const std::vector<std::uint8_t>& vertex_alive() const { return vertex_alive_; }
-    /// The fine mesh's (ProgressiveMesh's) vertex index of vertex v and back (kInvalidIndex
-    /// for a vertex deleted in the input); the face (index into faces()) of a fine face.
+    /// The fine mesh's (ProgressiveMesh's) vertex index of vertex v and back (vertices
+    /// deleted in the input are numbered last and never live); the face (index into faces())
+    /// of a fine face, kInvalidIndex for a face deleted in the input.
     Index fine_vertex(Index v) const { return fine_vertex_[v]; }
     Index vertex_of(Index fine_vertex) const { return vertex_of_[fine_vertex]; }
     Index face_of(Index fine_face) const { return face_of_[fine_face]; }
