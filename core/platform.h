@@ -1,5 +1,7 @@
 #pragma once
-// Process-wide settings the executables (viewer, CLI, benchmark) apply at start-up.
+// Process-wide settings the executables (viewer, CLI, benchmark) apply at start-up, and the
+// few facts about the machine the core needs.
+#include <cstdint>
 
 namespace trilab {
 
@@ -9,5 +11,11 @@ namespace trilab {
 /// 450-700 ms here; llvmpipe frames suffer the same way, see
 /// shared/docs/toolchain.md section 5). No effect on other C libraries.
 void tune_heap_for_large_meshes();
+
+/// Bytes of memory this process can still get now: the smaller of MemAvailable in
+/// /proc/meminfo and what the memory cgroup (v2 memory.max - memory.current, or v1
+/// memory.limit_in_bytes - memory.usage_in_bytes) leaves; sysconf(_SC_AVPHYS_PAGES) where
+/// /proc is absent; 2 GiB when nothing can be read.
+std::uint64_t available_memory_bytes();
 
 }  // namespace trilab
