@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "core/errors.h"
@@ -170,7 +171,8 @@ HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
         ++position[std::min(tri[c], tri[next_corner(c)]) + 1];
     for (std::size_t v = 0; v < n_input_vertices; ++v) position[v + 1] += position[v];
     // First the larger vertex of each corner edge in bucket order, then the group links.
-    std::vector<std::uint64_t> entry(n_corners);
+    // Every entry is written by the sort below: no zero fill first.
+    std::unique_ptr<std::uint64_t[]> entry(new std::uint64_t[n_corners]);
     {
         std::vector<Index> fill(position.begin(), position.end() - 1);
         for (std::size_t c = 0; c < n_corners; ++c) {
@@ -289,7 +291,7 @@ HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
         if (keep_corners) face_tri.push_back(Index(t));
     }
     // Release the grouping before the vertices are built.
-    std::vector<std::uint64_t>().swap(entry);
+    entry.reset();
     std::vector<Index>().swap(position);
     hto.resize(n_h);
     hnext.resize(n_h);

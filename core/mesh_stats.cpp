@@ -30,7 +30,7 @@ Index find_root(std::vector<Index>& parent, Index v) {
 }  // namespace
 
 std::size_t count_boundary_loops(const HalfedgeMesh& mesh) {
-    std::vector<std::uint8_t> seen(mesh.halfedges_size(), 0);
+    std::vector<bool> seen(mesh.halfedges_size(), false);  // one bit a halfedge
     std::size_t loops = 0;
     for (Edge e : mesh.edges()) {
         for (unsigned i = 0; i < 2; ++i) {
@@ -39,7 +39,7 @@ std::size_t count_boundary_loops(const HalfedgeMesh& mesh) {
             ++loops;
             Halfedge x = h;
             do {
-                seen[x.idx()] = 1;
+                seen[x.idx()] = true;
                 x = mesh.next(x);
             } while (x != h && !seen[x.idx()]);
         }
@@ -82,7 +82,16 @@ MeshStats compute_stats(const HalfedgeMesh& mesh) {
     s.euler = (long long)s.vertices - (long long)s.edges + (long long)s.faces;
     const long long chi_surface = s.euler - (long long)s.isolated_vertices;
     s.genus = (2 * (long long)s.components - chi_surface - (long long)s.boundary_loops) / 2;
-    s.bbox = bounding_box(mesh);
+    for (Vertex v : mesh.vertices()) {  // bounding_box(mesh), inlined
+        const Point& p = mesh.position(v);
+        if (s.bbox.empty) {
+            s.bbox.min = s.bbox.max = p;
+            s.bbox.empty = false;
+        } else {
+            s.bbox.min = s.bbox.min.cwiseMin(p);
+            s.bbox.max = s.bbox.max.cwiseMax(p);
+        }
+    }
     // Area and volume in one pass over the faces, summed in face order with the formulas of
     // surface_area() and volume() (so the results are the same to the bit).
     const bool closed = is_closed(mesh);

@@ -107,18 +107,22 @@ ValidationResult validate(const HalfedgeMesh& m) {
         if (!face[i].is_valid()) ++out_boundary[from];
     }
     // A fan is walked by a chain of dependent reads, so kLanes vertices are walked side by
-    // side, one step each in turn, and each step prefetches what the lane reads next.
-    constexpr std::size_t kLanes = 8;
+    // side, one step each in turn, and each step prefetches what the lane reads next. A lane
+    // keeps the neighbours it met: up to kShort in place (a duplicate is found by a scan),
+    // more in a list sorted at the end.
+    constexpr std::size_t kLanes = 8, kShort = 16;
     struct Lane {
         Vertex v;
         Halfedge h, x;
         unsigned count = 0, degree = 0;
-        std::vector<Index> seen_neighbour;
+        std::array<Index, kShort> near{};
+        std::vector<Index> many;
     };
     std::array<Lane, kLanes> lanes;
     std::size_t next_vertex = 0;
     std::string error;
-    // Starts the lane on the next vertex that has edges (false: an error, in `error`).
+    // Starts the lane on the next vertex that has edges (false: an error, in `error`). That
+    // its halfedge is outgoing is checked at the first step, when its line has arrived.
     auto start = [&](Lane& lane) {
         lane.v = Vertex();
         while (next_vertex < nv) {
@@ -134,15 +138,11 @@ ValidationResult validate(const HalfedgeMesh& m) {
                 error = vs(v) + " has a missing or deleted halfedge";
                 return false;
             }
-            if (to[h.idx() ^ 1] != v) {
-                error = vs(v) + "'s halfedge is not outgoing";
-                return false;
-            }
             lane.v = v;
             lane.h = lane.x = h;
             lane.count = 0;
             lane.degree = out_degree[v.idx()];
-            lane.seen_neighbour.clear();
+            lane.many.clear();
             prefetch(&prev[h.idx()]);
             prefetch(&to[h.idx()]);
             return true;
@@ -159,11 +159,14 @@ ValidationResult validate(const HalfedgeMesh& m) {
         else if (out_boundary[v.idx()] == 1 && face[lane.h.idx()].is_valid())
             error = vs(v) + " is on the boundary but its halfedge is not";
         if (!error.empty()) return false;
-        std::vector<Index>& seen = lane.seen_neighbour;
-        std::sort(seen.begin(), seen.end());
-        if (std::adjacent_find(seen.begin(), seen.end()) != seen.end()) {
-            error = vs(v) + " has two edges to the same neighbour";
-            return false;
+        if (lane.count > kShort) {
+            std::vector<Index>& seen = lane.many;
+            seen.insert(seen.end(), lane.near.begin(), lane.near.end());
+            std::sort(seen.begin(), seen.end());
+            if (std::adjacent_find(seen.begin(), seen.end()) != seen.end()) {
+                error = vs(v) + " has two edges to the same neighbour";
+                return false;
+            }
         }
         return true;
     };
@@ -175,7 +178,17 @@ ValidationResult validate(const HalfedgeMesh& m) {
             if (!lane.v.is_valid()) continue;
             busy = true;
             const Index x = lane.x.idx();
-            lane.seen_neighbour.push_back(to[x].idx());
+            if (lane.count == 0 && to[x ^ 1] != lane.v)
+                return fail(vs(lane.v) + "'s halfedge is not outgoing");
+            const Index w = to[x].idx();
+            if (lane.count < kShort) {
+                for (unsigned i = 0; i < lane.count; ++i)
+                    if (lane.near[i] == w)
+                        return fail(vs(lane.v) + " has two edges to the same neighbour");
+                lane.near[lane.count] = w;
+            } else {
+                lane.many.push_back(w);
+            }
             if (++lane.count > lane.degree)
                 return fail("rotating around " + vs(lane.v) + " does not come back");
             lane.x = Halfedge(prev[x].idx() ^ 1);  // counter-clockwise
