@@ -166,6 +166,31 @@ void HalfedgeMesh::resize_elements(std::size_t nv, std::size_t ne, std::size_t n
     fprops_.resize(nf);
 }
 
+void HalfedgeMesh::assign_connectivity(std::vector<Point>&& positions,
+                                       std::vector<Halfedge>&& vertex_halfedge,
+                                       std::vector<Vertex>&& to, std::vector<Halfedge>&& next,
+                                       std::vector<Halfedge>&& prev, std::vector<Face>&& face,
+                                       std::vector<Halfedge>&& face_halfedge) {
+    if (vertices_size() + edges_size() + faces_size() != 0)
+        throw InvalidArgument("assign_connectivity: the mesh is not empty");
+    const std::size_t nv = positions.size(), nh = to.size(), nf = face_halfedge.size();
+    if (vertex_halfedge.size() != nv || nh % 2 != 0 || next.size() != nh || prev.size() != nh ||
+        face.size() != nh)
+        throw InvalidArgument("assign_connectivity: the array sizes disagree");
+    vpoint_.vector().swap(positions);
+    vhalfedge_.vector().swap(vertex_halfedge);
+    hto_.vector().swap(to);
+    hnext_.vector().swap(next);
+    hprev_.vector().swap(prev);
+    hface_.vector().swap(face);
+    fhalfedge_.vector().swap(face_halfedge);
+    // The other arrays (deleted flags) grow to the new sizes; the swapped ones have them.
+    vprops_.resize(nv);
+    hprops_.resize(nh);
+    eprops_.resize(nh / 2);
+    fprops_.resize(nf);
+}
+
 Vertex HalfedgeMesh::add_vertex(const Point& p) {
     vprops_.push_back();
     Vertex v(Index(vprops_.size() - 1));

@@ -308,6 +308,14 @@ public:
     /// Resizes storage to exactly these element counts; new elements have invalid
     /// connectivity and zero/default attributes (bulk construction, e.g. by build_mesh).
     void resize_elements(std::size_t n_vertices, std::size_t n_edges, std::size_t n_faces);
+    /// Bulk construction without copies (build_mesh): an empty mesh takes these arrays by
+    /// move and becomes exactly their elements (n_v = positions.size(), n_e = to.size() / 2,
+    /// n_f = face_halfedge.size()); nothing is deleted. Throws InvalidArgument when the mesh
+    /// is not empty or the sizes disagree.
+    void assign_connectivity(std::vector<Point>&& positions,
+                             std::vector<Halfedge>&& vertex_halfedge, std::vector<Vertex>&& to,
+                             std::vector<Halfedge>&& next, std::vector<Halfedge>&& prev,
+                             std::vector<Face>&& face, std::vector<Halfedge>&& face_halfedge);
     Vertex add_vertex(const Point& p);
     /// A new vertex with all attributes of `source` (used to split non-manifold vertices).
     Vertex add_vertex_copy(Vertex source);

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "core/errors.h"
+#include "core/triangulate.h"
 
 namespace trilab {
 
@@ -34,110 +36,20 @@ std::vector<std::string> LoadReport::lines() const {
 
 namespace {
 
-using Tri = std::array<Index, 3>;
-
-/// Ear-clipping triangulation of a simple polygon in its best-fit (Newell) plane. Returns
-/// triangles as local corner indices; falls back to a fan when no ear can be found.
-std::vector<Tri> triangulate_polygon(const std::vector<Point>& p) {
-    const std::size_t n = p.size();
-    std::vector<Tri> out;
-    if (n == 3) return {{0, 1, 2}};
-    Vector3 normal = Vector3::Zero();
-    for (std::size_t i = 0; i < n; ++i) {
-        const Point& a = p[i];
-        const Point& b = p[(i + 1) % n];
-        normal += Vector3((a.y() - b.y()) * (a.z() + b.z()), (a.z() - b.z()) * (a.x() + b.x()),
-                          (a.x() - b.x()) * (a.y() + b.y()));
-    }
-    auto fan = [&] {
-        std::vector<Tri> f;
-        for (Index i = 1; i + 1 < n; ++i) f.push_back({0, i, i + 1});
-        return f;
-    };
-    if (!(normal.norm() > 0)) return fan();
-    normal.normalize();
-    std::vector<Index> ring(n);
-    for (Index i = 0; i < n; ++i) ring[i] = i;
-    auto cross_n = [&](Index a, Index b, Index c) {
-        return (p[b] - p[a]).cross(p[c] - p[a]).dot(normal);
-    };
-    while (ring.size() > 3) {
-        const std::size_t m = ring.size();
-        bool clipped = false;
-        for (std::size_t i = 0; i < m && !clipped; ++i) {
-            const Index a = ring[(i + m - 1) % m], b = ring[i], c = ring[(i + 1) % m];
-            if (!(cross_n(a, b, c) > 0)) continue;  // reflex or degenerate corner
-            bool inside = false;
-            for (std::size_t j = 0; j < m && !inside; ++j) {
-                const Index q = ring[j];
-                if (q == a || q == b || q == c) continue;
-                inside = cross_n(a, b, q) >= 0 && cross_n(b, c, q) >= 0 && cross_n(c, a, q) >= 0;
-            }
-            if (inside) continue;
-            out.push_back({a, b, c});
-            ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(i));
-            clipped = true;
-        }
-        if (!clipped) return fan();
-    }
-    out.push_back({ring[0], ring[1], ring[2]});
-    return out;
+/// A hint that `p` will be read soon (no effect where the compiler has no such builtin).
+inline void prefetch(const void* p) {
+#if defined(__GNUC__) || defined(__clang__)
+    __builtin_prefetch(p);
+#else
+    (void)p;
+#endif
 }
-
-/// Open-addressing hash table from an undirected vertex pair to an edge index.
-class EdgeTable {
-public:
-    explicit EdgeTable(std::size_t expected) {
-        std::size_t cap = 16;
-        while (cap < 2 * expected) cap <<= 1;
-        keys_.assign(cap, kEmpty);
-        values_.resize(cap);
-        mask_ = cap - 1;
-    }
-    static std::uint64_t key(Index a, Index b) {
-        if (a > b) std::swap(a, b);
-        return (std::uint64_t(a) << 32) | b;
-    }
-    Index find(std::uint64_t k) const {
-        for (std::size_t i = slot(k);; i = (i + 1) & mask_) {
-            if (keys_[i] == k) return values_[i];
-            if (keys_[i] == kEmpty) return kInvalidIndex;
-        }
-    }
-    void insert(std::uint64_t k, Index value) {
-        if (2 * (count_ + 1) > keys_.size()) grow();
-        std::size_t i = slot(k);
-        while (keys_[i] != kEmpty) i = (i + 1) & mask_;
-        keys_[i] = k;
-        values_[i] = value;
-        ++count_;
-    }
-
-private:
-    static constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
-    std::size_t slot(std::uint64_t k) const {
-        k ^= k >> 33;
-        k *= 0xff51afd7ed558ccdULL;
-        k ^= k >> 33;
-        return std::size_t(k) & mask_;
-    }
-    void grow() {
-        std::vector<std::uint64_t> old_keys = std::move(keys_);
-        std::vector<Index> old_values = std::move(values_);
-        keys_.assign(old_keys.size() * 2, kEmpty);
-        values_.assign(old_keys.size() * 2, 0);
-        mask_ = keys_.size() - 1;
-        count_ = 0;
-        for (std::size_t i = 0; i < old_keys.size(); ++i)
-            if (old_keys[i] != kEmpty) insert(old_keys[i], old_values[i]);
-    }
-    std::vector<std::uint64_t> keys_;
-    std::vector<Index> values_;
-    std::size_t mask_ = 0, count_ = 0;
-};
 
 void check_soup(const PolygonSoup& soup) {
     const std::size_t nv = soup.positions.size();
+    if (nv >= std::size_t(kInvalidIndex) / 2)
+        throw InvalidArgument("build_mesh: " + std::to_string(nv) +
+                              " vertices are more than 32-bit indices can number");
     if (soup.face_offsets.empty() || soup.face_offsets.front() != 0 ||
         soup.face_offsets.back() != soup.corners.size())
         throw InvalidArgument("build_mesh: face_offsets do not match the corner list");
@@ -170,281 +82,377 @@ void check_soup(const PolygonSoup& soup) {
 HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
     check_soup(soup);
     const std::size_t n_input_vertices = soup.positions.size();
-
-    // 1. Triangles (with the soup corner each triangle corner came from).
-    std::vector<Tri> tris, tri_corners;
-    tris.reserve(soup.corners.size() / 3 + 1);
-    // Which soup corner each triangle corner came from: only needed for corner texcoords.
     const bool keep_corners = !soup.corner_texcoords.empty();
-    if (keep_corners) tri_corners.reserve(tris.capacity());
-    std::vector<Point> poly;
-    for (std::size_t f = 0; f < soup.n_faces(); ++f) {
-        const std::size_t begin = soup.face_offsets[f], n = soup.face_offsets[f + 1] - begin;
-        bool repeated = n < 3;
-        for (std::size_t i = 0; i < n && !repeated; ++i)
-            for (std::size_t j = i + 1; j < n && !repeated; ++j)
-                repeated = soup.corners[begin + i] == soup.corners[begin + j];
-        if (repeated) {
-            ++report.degenerate_faces_dropped;
-            continue;
+
+    // 1. Triangles as a flat corner list, three per triangle: the soup's own list when every
+    //    face is a triangle without a repeated corner (no copy), else a new one with the
+    //    polygons triangulated and the degenerate faces dropped. `tri_corner` gives the
+    //    soup corner of each triangle corner (identity when the soup's list is used).
+    bool clean_triangles = soup.corners.size() == 3 * soup.n_faces();
+    for (std::size_t f = 0; f < soup.n_faces() && clean_triangles; ++f) {
+        const std::size_t b = soup.face_offsets[f];
+        clean_triangles =
+            soup.face_offsets[f + 1] == b + 3 && soup.corners[b] != soup.corners[b + 1] &&
+            soup.corners[b + 1] != soup.corners[b + 2] && soup.corners[b] != soup.corners[b + 2];
+    }
+    std::vector<Index> own_tris, own_tri_corner;
+    if (!clean_triangles) {
+        own_tris.reserve(soup.corners.size());
+        if (keep_corners) own_tri_corner.reserve(soup.corners.size());
+        PolygonTriangulator triangulator;
+        std::vector<Point> poly;
+        std::vector<PolygonTriangle> local;
+        std::vector<Index> sorted;
+        std::size_t fanned = 0;
+        for (std::size_t f = 0; f < soup.n_faces(); ++f) {
+            const std::size_t begin = soup.face_offsets[f], n = soup.face_offsets[f + 1] - begin;
+            const Index* c = soup.corners.data() + begin;
+            bool repeated = n < 3;
+            if (!repeated && n <= 16) {
+                for (std::size_t i = 0; i < n && !repeated; ++i)
+                    for (std::size_t j = i + 1; j < n && !repeated; ++j) repeated = c[i] == c[j];
+            } else if (!repeated) {
+                sorted.assign(c, c + n);
+                std::sort(sorted.begin(), sorted.end());
+                repeated = std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end();
+            }
+            if (repeated) {
+                ++report.degenerate_faces_dropped;
+                continue;
+            }
+            if (n == 3) {
+                own_tris.insert(own_tris.end(), c, c + 3);
+                if (keep_corners)
+                    for (std::size_t k = 0; k < 3; ++k) own_tri_corner.push_back(Index(begin + k));
+                continue;
+            }
+            poly.clear();
+            for (std::size_t i = 0; i < n; ++i) poly.push_back(soup.positions[c[i]]);
+            ++report.polygons_triangulated;
+            local.clear();
+            if (triangulator.triangulate(poly, local) == TriangulationMethod::kFan) ++fanned;
+            for (const PolygonTriangle& t : local) {
+                for (int k = 0; k < 3; ++k) {
+                    own_tris.push_back(c[t[k]]);
+                    if (keep_corners) own_tri_corner.push_back(Index(begin + t[k]));
+                }
+                ++report.triangles_from_polygons;
+            }
         }
-        if (n == 3) {
-            tris.push_back({soup.corners[begin], soup.corners[begin + 1], soup.corners[begin + 2]});
-            if (keep_corners)
-                tri_corners.push_back({Index(begin), Index(begin + 1), Index(begin + 2)});
-            continue;
-        }
-        poly.clear();
-        for (std::size_t i = 0; i < n; ++i) poly.push_back(soup.positions[soup.corners[begin + i]]);
-        ++report.polygons_triangulated;
-        for (const Tri& t : triangulate_polygon(poly)) {
-            tris.push_back({soup.corners[begin + t[0]], soup.corners[begin + t[1]],
-                            soup.corners[begin + t[2]]});
-            if (keep_corners)
-                tri_corners.push_back(
-                    {Index(begin + t[0]), Index(begin + t[1]), Index(begin + t[2])});
-            ++report.triangles_from_polygons;
+        if (fanned)
+            report.notes.push_back(std::to_string(fanned) +
+                                   " polygons are not simple in their best-fit plane (they cross "
+                                   "or fold over themselves, or have no area): triangulated as "
+                                   "fans, which may overlap");
+    }
+    const Index* tri = clean_triangles ? soup.corners.data() : own_tris.data();
+    const std::size_t n_corners = clean_triangles ? soup.corners.size() : own_tris.size();
+    const std::size_t n_tris = n_corners / 3;
+    if (n_corners >= std::size_t(kInvalidIndex))
+        throw InvalidArgument("build_mesh: " + std::to_string(n_tris) +
+                              " triangles are more than the " + std::to_string(kInvalidIndex / 3) +
+                              " that 32-bit indices hold");
+    // The corner that follows corner c in its triangle.
+    auto next_corner = [](std::size_t c) { return c % 3 == 2 ? c - 2 : c + 1; };
+
+    // 2. Edges. The 3T corner edges are grouped by their unordered vertex pair: a counting
+    //    sort on the smaller vertex, then the larger one within each bucket (a short bucket
+    //    is scanned, a long one sorted). The first entry of a group holds its state (the
+    //    edge, once made, and which of its two halfedges are taken), the others point to it.
+    //    Triangles are then accepted in file order when each of their three directed
+    //    halfedges is still free; halfedge 2e runs from the smaller to the larger vertex of
+    //    edge e, and edges are numbered in the order they are first used. Both passes visit
+    //    the corners in the same order, so a running position per bucket finds each corner's
+    //    entry again without storing it.
+    constexpr std::uint64_t kHead = std::uint64_t(1) << 32;   // the group's first entry
+    constexpr std::uint64_t kTaken = std::uint64_t(1) << 33;  // << 0: lo -> hi, << 1: hi -> lo
+    std::vector<Index> position(n_input_vertices + 1, 0);
+    for (std::size_t c = 0; c < n_corners; ++c)
+        ++position[std::min(tri[c], tri[next_corner(c)]) + 1];
+    for (std::size_t v = 0; v < n_input_vertices; ++v) position[v + 1] += position[v];
+    // First the larger vertex of each corner edge in bucket order, then the group links.
+    // Every entry is written by the sort below: no zero fill first.
+    std::unique_ptr<std::uint64_t[]> entry(new std::uint64_t[n_corners]);
+    {
+        std::vector<Index> fill(position.begin(), position.end() - 1);
+        for (std::size_t c = 0; c < n_corners; ++c) {
+            const Index a = tri[c], b = tri[next_corner(c)];
+            entry[fill[std::min(a, b)]++] = std::max(a, b);
         }
     }
-
-    // 2. Edges. Group the 3T directed corner edges by their unordered vertex pair (a
-    //    counting sort on the smaller vertex, then the larger one within each bucket), then
-    //    accept triangles in file order when each of their three directed halfedges is still
-    //    free. Halfedge 2e runs from the smaller to the larger vertex of edge e.
-    const std::size_t n_tris = tris.size();
-    auto corner_lo = [&](std::size_t c) {
-        const Tri& t = tris[c / 3];
-        return std::min(t[c % 3], t[(c % 3 + 1) % 3]);
-    };
-    auto corner_hi = [&](std::size_t c) {
-        const Tri& t = tris[c / 3];
-        return std::max(t[c % 3], t[(c % 3 + 1) % 3]);
-    };
-    std::vector<Index> group_of(3 * n_tris);
-    Index n_groups = 0;
+    std::size_t n_groups = 0;
     {
-        std::vector<Index> bucket(n_input_vertices + 1, 0);
-        for (std::size_t c = 0; c < 3 * n_tris; ++c) ++bucket[corner_lo(c) + 1];
-        for (std::size_t v = 0; v < n_input_vertices; ++v) bucket[v + 1] += bucket[v];
-        // (larger vertex, corner) per bucket entry, so the scans below read memory in order.
-        std::vector<std::pair<Index, Index>> entry(3 * n_tris);
-        {
-            std::vector<Index> fill(bucket.begin(), bucket.end() - 1);
-            for (std::size_t c = 0; c < 3 * n_tris; ++c)
-                entry[fill[corner_lo(c)]++] = {corner_hi(c), Index(c)};
-        }
+        constexpr Index kScan = 16;
+        Index partner[kScan];
+        std::vector<std::pair<Index, Index>> sorted;  // (larger vertex, position)
         for (std::size_t v = 0; v < n_input_vertices; ++v) {
-            const Index begin = bucket[v], end = bucket[v + 1];
-            // A high-valence vertex is sorted (equal partners become neighbours) instead of
-            // scanned quadratically.
-            const bool sorted = end - begin > 16;
-            if (sorted) std::sort(entry.begin() + begin, entry.begin() + end);
-            for (Index i = begin; i < end; ++i) {
-                const Index hi = entry[i].first;
-                Index j = i;
-                if (sorted) {
-                    if (i > begin && entry[i - 1].first == hi) j = i - 1;
-                } else {
-                    j = begin;
-                    while (j < i && entry[j].first != hi) ++j;
+            const Index begin = position[v], end = position[v + 1], m = end - begin;
+            if (m <= kScan) {
+                for (Index i = 0; i < m; ++i) partner[i] = Index(entry[begin + i]);
+                for (Index i = 0; i < m; ++i) {
+                    Index j = 0;
+                    while (j < i && partner[j] != partner[i]) ++j;
+                    if (j < i) {
+                        entry[begin + i] = begin + j;
+                    } else {
+                        entry[begin + i] = kHead | kInvalidIndex;
+                        ++n_groups;
+                    }
                 }
-                group_of[entry[i].second] = j < i ? group_of[entry[j].second] : n_groups++;
+            } else {
+                sorted.clear();
+                for (Index i = begin; i < end; ++i) sorted.push_back({Index(entry[i]), i});
+                std::sort(sorted.begin(), sorted.end());
+                Index head = 0;
+                for (std::size_t i = 0; i < sorted.size(); ++i) {
+                    if (i == 0 || sorted[i].first != sorted[i - 1].first) {
+                        head = sorted[i].second;
+                        entry[head] = kHead | kInvalidIndex;
+                        ++n_groups;
+                    } else {
+                        entry[sorted[i].second] = head;
+                    }
+                }
             }
         }
     }
-    std::vector<std::uint8_t> slot_used(2 * std::size_t(n_groups), 0);
-    std::vector<Index> edge_of_group(n_groups, kInvalidIndex);
-    std::vector<Index> hto;  // per halfedge: the vertex it points to
-    hto.reserve(2 * std::size_t(n_groups));
-    std::vector<Index> face_tri;       // accepted face -> triangle index
-    std::vector<Index> face_halfedge;  // accepted face -> its halfedge ending at corner 0
-    std::vector<Tri> face_he;          // accepted face -> its three halfedges
-    std::vector<Index> detached;       // triangle indices added detached
-    face_tri.reserve(n_tris);
+    std::vector<Vertex> hto;  // per halfedge: the vertex it points to
+    std::vector<Halfedge> hnext, hprev;
+    std::vector<Face> hface;
+    std::vector<Halfedge> face_halfedge;  // per face: its halfedge ending at corner 0
+    std::vector<Index> face_tri;          // per face: its triangle (for corner texcoords)
+    std::vector<Index> detached;          // triangles added detached
+    // Sized for every group becoming an edge (the usual case); trimmed after.
+    hto.resize(2 * n_groups);
+    hnext.resize(2 * n_groups);
+    hprev.resize(2 * n_groups);
+    hface.resize(2 * n_groups);
+    std::size_t n_h = 0;
     face_halfedge.reserve(n_tris);
-    face_he.reserve(n_tris);
-    for (Index t = 0; t < n_tris; ++t) {
-        const Tri& tri = tris[t];
-        std::array<std::size_t, 3> slot{};
+    if (keep_corners) face_tri.reserve(n_tris);
+    // The entries are looked up kAhead triangles early and prefetched (the loop waits on
+    // memory, not on arithmetic); the running positions still advance in corner order.
+    constexpr std::size_t kAhead = 16;
+    std::array<std::array<Index, 3>, kAhead> ahead{};
+    auto look_up = [&](std::size_t t) {
+        for (std::size_t k = 0; k < 3; ++k) {
+            const std::size_t c = 3 * t + k;
+            const Index pos = position[std::min(tri[c], tri[next_corner(c)])]++;
+            ahead[t % kAhead][k] = pos;
+            prefetch(&entry[pos]);
+        }
+    };
+    for (std::size_t t = 0; t < std::min(kAhead, n_tris); ++t) look_up(t);
+    for (std::size_t t = 0; t < n_tris; ++t) {
+        const std::array<Index, 3> pos3 = ahead[t % kAhead];
+        if (t + kAhead < n_tris) look_up(t + kAhead);
+        if (t + 2 * kAhead < n_tris)
+            for (std::size_t k = 0; k < 3; ++k) {
+                const std::size_t c = 3 * (t + 2 * kAhead) + k;
+                prefetch(&position[std::min(tri[c], tri[next_corner(c)])]);
+            }
+        std::array<std::uint64_t*, 3> head;
+        std::array<Index, 3> dir;
         bool free = true;
-        for (int k = 0; k < 3; ++k) {
-            slot[k] = 2 * std::size_t(group_of[3 * t + k]) + (tri[k] < tri[(k + 1) % 3] ? 0 : 1);
-            free = free && !slot_used[slot[k]];
+        for (std::size_t k = 0; k < 3; ++k) {
+            const std::size_t c = 3 * t + k;
+            const Index a = tri[c], b = tri[next_corner(c)];
+            const Index pos = pos3[k];
+            const std::uint64_t x = entry[pos];
+            head[k] = &entry[(x & kHead) ? pos : Index(x)];
+            dir[k] = a < b ? 0 : 1;
+            free = free && !(*head[k] & (kTaken << dir[k]));
         }
         if (!free) {
-            detached.push_back(t);
+            detached.push_back(Index(t));
             continue;
         }
-        Tri he{};
-        for (int k = 0; k < 3; ++k) {
-            slot_used[slot[k]] = 1;
-            const Index g = Index(slot[k] / 2);
-            if (edge_of_group[g] == kInvalidIndex) {
-                edge_of_group[g] = Index(hto.size() / 2);
-                hto.push_back(std::max(tri[k], tri[(k + 1) % 3]));
-                hto.push_back(std::min(tri[k], tri[(k + 1) % 3]));
+        std::array<Halfedge, 3> he;
+        for (std::size_t k = 0; k < 3; ++k) {
+            std::uint64_t& state = *head[k];
+            state |= kTaken << dir[k];
+            if (Index(state) == kInvalidIndex) {
+                const std::size_t c = 3 * t + k;
+                const Index a = tri[c], b = tri[next_corner(c)];
+                state = (state & ~std::uint64_t(kInvalidIndex)) | Index(n_h / 2);
+                hto[n_h++] = Vertex(std::max(a, b));
+                hto[n_h++] = Vertex(std::min(a, b));
             }
-            he[k] = 2 * edge_of_group[g] + Index(slot[k] & 1);
+            he[k] = Halfedge(2 * Index(state) + dir[k]);
         }
-        face_tri.push_back(t);
+        const Face f(Index(face_halfedge.size()));
+        for (std::size_t k = 0; k < 3; ++k) {
+            const Halfedge h = he[k], n = he[(k + 1) % 3];
+            hface[h.idx()] = f;
+            hnext[h.idx()] = n;
+            hprev[n.idx()] = h;
+        }
         face_halfedge.push_back(he[2]);  // ends at corner 0, as OpenMesh's add_face does
-        face_he.push_back(he);
+        if (keep_corners) face_tri.push_back(Index(t));
     }
-    const std::size_t n_h = hto.size();
-    std::vector<Index> hface(n_h, kInvalidIndex), hnext(n_h, kInvalidIndex),
-        hprev(n_h, kInvalidIndex);
-    for (Index f = 0; f < face_he.size(); ++f) {
-        const Tri& he = face_he[f];
-        for (int k = 0; k < 3; ++k) {
-            hface[he[k]] = f;
-            hnext[he[k]] = he[(k + 1) % 3];
-            hprev[he[(k + 1) % 3]] = he[k];
-        }
-    }
+    // Release the grouping before the vertices are built.
+    entry.reset();
+    std::vector<Index>().swap(position);
+    hto.resize(n_h);
+    hnext.resize(n_h);
+    hprev.resize(n_h);
+    hface.resize(n_h);
 
-    // 3. Fans: group the outgoing halfedges of each vertex into fans; keep the first fan on
-    //    the vertex and give every further fan a copy of it.
-    std::vector<Index> source_vertex(n_input_vertices);  // vertex -> soup vertex it copies
-    for (Index v = 0; v < n_input_vertices; ++v) source_vertex[v] = v;
-    std::vector<Index> vhalfedge(n_input_vertices, kInvalidIndex);
-    std::vector<std::size_t> out_begin(n_input_vertices + 1, 0);
-    for (Index h = 0; h < n_h; ++h) ++out_begin[hto[h ^ 1] + 1];
-    for (std::size_t v = 0; v < n_input_vertices; ++v) out_begin[v + 1] += out_begin[v];
-    std::vector<Index> outgoing(n_h);
+    // 3. Fans: the faces around each vertex split into fans (walked from each face halfedge
+    //    in index order, so a vertex's first fan is the one holding its lowest halfedge);
+    //    the first fan keeps the vertex, every further one gets a copy. Boundary halfedges
+    //    are linked where a fan ends.
+    std::vector<Halfedge> vhalfedge(n_input_vertices);
+    std::vector<Index> copy_source;  // vertex n_input_vertices + i copies copy_source[i]
+    struct ExtraFan {
+        Index vertex, start;
+        Halfedge first;
+    };
+    std::vector<ExtraFan> extra_fans;
     {
-        std::vector<std::size_t> fill(out_begin.begin(), out_begin.end() - 1);
-        for (Index h = 0; h < n_h; ++h) outgoing[fill[hto[h ^ 1]]++] = h;
-    }
-    std::vector<std::uint8_t> visited(n_h, 0);
-    std::vector<Index> fan;
-    for (Index v = 0; v < n_input_vertices; ++v) {
-        unsigned n_fans = 0;
-        for (std::size_t i = out_begin[v]; i < out_begin[v + 1]; ++i) {
-            const Index h = outgoing[i];
-            if (visited[h] || hface[h] == kInvalidIndex) continue;
-            // Walk clockwise (x -> next(twin(x))) to the start of the fan.
-            Index start = h;
-            for (;;) {
-                const Index t = start ^ 1;
-                if (hface[t] == kInvalidIndex) break;
-                const Index y = hnext[t];
-                if (y == h) break;
-                start = y;
-            }
-            // Walk counter-clockwise (x -> twin(prev(x))) collecting the fan.
-            fan.clear();
-            Index boundary_out = kInvalidIndex;
-            for (Index cur = start;;) {
-                fan.push_back(cur);
+        std::vector<std::uint8_t> visited(n_h, 0);
+        for (Index h = 0; h < n_h; ++h) {
+            if (visited[h] || !hface[h].is_valid()) continue;
+            // Walk counter-clockwise (x -> twin(prev(x))) from h. A closed fan comes back
+            // to h and starts at ccw(h) (so that clockwise from there comes back first to
+            // h); an open one ends at a boundary halfedge, and its start is then found
+            // walking clockwise (x -> next(twin(x))) from h.
+            Halfedge boundary_out;
+            Index start = hprev[h].idx() ^ 1;
+            for (Index cur = h;;) {
                 visited[cur] = 1;
-                const Index nxt = hprev[cur] ^ 1;
-                if (hface[nxt] == kInvalidIndex) {
-                    boundary_out = nxt;
-                    fan.push_back(nxt);
+                const Index nxt = hprev[cur].idx() ^ 1;
+                if (!hface[nxt].is_valid()) {
+                    boundary_out = Halfedge(nxt);
                     visited[nxt] = 1;
                     break;
                 }
-                if (nxt == start) break;
+                if (nxt == h) break;
                 cur = nxt;
             }
-            Index vv = v;
-            if (n_fans++ > 0) {
-                vv = Index(source_vertex.size());
-                source_vertex.push_back(v);
-                vhalfedge.push_back(kInvalidIndex);
-                ++report.vertex_copies_added;
-                for (Index x : fan) hto[x ^ 1] = vv;
+            if (boundary_out.is_valid()) {
+                start = h;
+                for (;;) {
+                    const Index t = start ^ 1;
+                    if (!hface[t].is_valid()) break;
+                    start = hnext[t].idx();
+                    visited[start] = 1;
+                }
+                const Halfedge boundary_in(start ^ 1);
+                hnext[boundary_in.idx()] = boundary_out;
+                hprev[boundary_out.idx()] = boundary_in;
             }
-            if (boundary_out != kInvalidIndex) {
-                const Index boundary_in = start ^ 1;
-                hnext[boundary_in] = boundary_out;
-                hprev[boundary_out] = boundary_in;
-                vhalfedge[vv] = boundary_out;
-            } else {
-                vhalfedge[vv] = start;
-            }
+            const Halfedge first = boundary_out.is_valid() ? boundary_out : Halfedge(start);
+            const Index v = hto[h ^ 1].idx();
+            if (!vhalfedge[v].is_valid())
+                vhalfedge[v] = first;
+            else
+                extra_fans.push_back({v, start, first});
         }
-        if (n_fans > 1) ++report.nonmanifold_vertices_split;
+    }
+    // Copies in vertex order, each vertex's fans in the order found.
+    std::stable_sort(extra_fans.begin(), extra_fans.end(),
+                     [](const ExtraFan& a, const ExtraFan& b) { return a.vertex < b.vertex; });
+    for (std::size_t i = 0; i < extra_fans.size(); ++i) {
+        const ExtraFan& fan = extra_fans[i];
+        if (i == 0 || extra_fans[i - 1].vertex != fan.vertex) ++report.nonmanifold_vertices_split;
+        const Vertex copy(Index(n_input_vertices + copy_source.size()));
+        copy_source.push_back(fan.vertex);
+        vhalfedge.push_back(fan.first);
+        ++report.vertex_copies_added;
+        for (Index cur = fan.start;;) {
+            hto[cur ^ 1] = copy;
+            const Index nxt = hprev[cur].idx() ^ 1;
+            if (!hface[nxt].is_valid()) {
+                hto[nxt ^ 1] = copy;
+                break;
+            }
+            if (nxt == fan.start) break;
+            cur = nxt;
+        }
     }
 
     // 4. Detached triangles: fresh edges; corners reuse a vertex only if nothing uses it yet.
+    hto.reserve(n_h + 6 * detached.size());
+    hnext.reserve(n_h + 6 * detached.size());
+    hprev.reserve(n_h + 6 * detached.size());
+    hface.reserve(n_h + 6 * detached.size());
     for (Index t : detached) {
-        const Tri& tri = tris[t];
-        std::array<Index, 3> vs{};
-        for (int k = 0; k < 3; ++k) {
-            const Index v = tri[k];
-            if (vhalfedge[v] == kInvalidIndex) {
-                vs[k] = v;
+        std::array<Vertex, 3> vs;
+        for (std::size_t k = 0; k < 3; ++k) {
+            const Index v = tri[3 * std::size_t(t) + k];
+            if (!vhalfedge[v].is_valid()) {
+                vs[k] = Vertex(v);
             } else {
-                vs[k] = Index(source_vertex.size());
-                source_vertex.push_back(v);
-                vhalfedge.push_back(kInvalidIndex);
+                vs[k] = Vertex(Index(n_input_vertices + copy_source.size()));
+                copy_source.push_back(v);
+                vhalfedge.push_back(Halfedge());
                 ++report.vertex_copies_added;
             }
         }
-        const Index f = Index(face_tri.size());
-        const Index h0 = Index(hface.size());
-        for (int k = 0; k < 3; ++k) {
+        const Face f(Index(face_halfedge.size()));
+        const Index h0 = Index(hto.size());
+        for (std::size_t k = 0; k < 3; ++k) {
             hto.push_back(vs[(k + 1) % 3]);
             hto.push_back(vs[k]);
             hface.push_back(f);
-            hface.push_back(kInvalidIndex);
+            hface.push_back(Face());
         }
-        hnext.resize(hface.size());
-        hprev.resize(hface.size());
-        for (int k = 0; k < 3; ++k) {
+        hnext.resize(hto.size());
+        hprev.resize(hto.size());
+        for (Index k = 0; k < 3; ++k) {
             const Index inner = h0 + 2 * k, inner_next = h0 + 2 * ((k + 1) % 3);
-            hnext[inner] = inner_next;
-            hprev[inner_next] = inner;
-            // Boundary loop runs the other way round.
+            hnext[inner] = Halfedge(inner_next);
+            hprev[inner_next] = Halfedge(inner);
+            // The boundary loop runs the other way round.
             const Index outer = inner + 1, outer_next = h0 + 2 * ((k + 2) % 3) + 1;
-            hnext[outer] = outer_next;
-            hprev[outer_next] = outer;
-            vhalfedge[vs[k]] = h0 + 2 * ((k + 2) % 3) + 1;  // outgoing boundary from vs[k]
+            hnext[outer] = Halfedge(outer_next);
+            hprev[outer_next] = Halfedge(outer);
+            vhalfedge[vs[k].idx()] = Halfedge(h0 + 2 * ((k + 2) % 3) + 1);  // boundary, out
         }
-        face_tri.push_back(t);
-        face_halfedge.push_back(h0 + 4);  // vs[2] -> vs[0]: ends at corner 0
+        face_halfedge.push_back(Halfedge(h0 + 4));  // vs[2] -> vs[0]: ends at corner 0
+        if (keep_corners) face_tri.push_back(t);
         ++report.detached_faces;
     }
 
-    // 5. Assemble the mesh (bulk: no per-element property calls).
-    const std::size_t n_v = source_vertex.size(), n_e = hto.size() / 2, n_f = face_tri.size();
+    // 5. The mesh takes the arrays (no copy); attributes follow each vertex's source.
+    const std::size_t n_v = vhalfedge.size();
+    auto source = [&](std::size_t v) {
+        return v < n_input_vertices ? v : std::size_t(copy_source[v - n_input_vertices]);
+    };
+    std::vector<Point> positions;
+    positions.reserve(n_v);
+    positions.assign(soup.positions.begin(), soup.positions.end());
+    for (Index s : copy_source) positions.push_back(soup.positions[s]);
+    for (const Halfedge& h : vhalfedge)
+        if (!h.is_valid()) ++report.isolated_vertices;
+    const std::size_t n_f = face_halfedge.size();
     HalfedgeMesh mesh;
-    mesh.resize_elements(n_v, n_e, n_f);
-    std::vector<Point>& positions = mesh.positions();
-    for (Index v = 0; v < n_v; ++v) {
-        positions[v] = soup.positions[source_vertex[v]];
-        if (vhalfedge[v] != kInvalidIndex)
-            mesh.set_halfedge(Vertex(v), Halfedge(vhalfedge[v]));
-        else
-            ++report.isolated_vertices;
-    }
-    for (Index h = 0; h < hto.size(); ++h) {
-        mesh.set_to_vertex(Halfedge(h), Vertex(hto[h]));
-        mesh.set_next(Halfedge(h), Halfedge(hnext[h]));
-        if (hface[h] != kInvalidIndex) mesh.set_face(Halfedge(h), Face(hface[h]));
-    }
-    for (Index f = 0; f < n_f; ++f) mesh.set_halfedge(Face(f), Halfedge(face_halfedge[f]));
+    mesh.assign_connectivity(std::move(positions), std::move(vhalfedge), std::move(hto),
+                             std::move(hnext), std::move(hprev), std::move(hface),
+                             std::move(face_halfedge));
 
     if (!soup.normals.empty()) {
         auto p = mesh.vertex_property<Vector3>("v:normal");
-        for (Index v = 0; v < n_v; ++v) p[Vertex(v)] = soup.normals[source_vertex[v]];
+        for (std::size_t v = 0; v < n_v; ++v) p[Vertex(Index(v))] = soup.normals[source(v)];
     }
     if (!soup.colors.empty()) {
         auto p = mesh.vertex_property<Color>("v:color");
-        for (Index v = 0; v < n_v; ++v) p[Vertex(v)] = soup.colors[source_vertex[v]];
+        for (std::size_t v = 0; v < n_v; ++v) p[Vertex(Index(v))] = soup.colors[source(v)];
     }
     if (!soup.texcoords.empty()) {
         auto p = mesh.vertex_property<TexCoord>("v:texcoord");
-        for (Index v = 0; v < n_v; ++v) p[Vertex(v)] = soup.texcoords[source_vertex[v]];
+        for (std::size_t v = 0; v < n_v; ++v) p[Vertex(Index(v))] = soup.texcoords[source(v)];
     }
-    if (!soup.corner_texcoords.empty()) {
+    if (keep_corners) {
+        const Index* tri_corner = clean_triangles ? nullptr : own_tri_corner.data();
         auto p = mesh.halfedge_property<TexCoord>("h:texcoord", TexCoord::Zero());
         for (Index f = 0; f < n_f; ++f) {
             // The face's halfedge ends at corner 0; its next ends at corner 1, and so on.
-            Halfedge h(face_halfedge[f]);
-            const Tri& c = tri_corners[face_tri[f]];
-            for (int k = 0; k < 3; ++k, h = mesh.next(h)) p[h] = soup.corner_texcoords[c[k]];
+            Halfedge h = mesh.halfedge(Face(f));
+            const std::size_t c0 = 3 * std::size_t(face_tri[f]);
+            for (std::size_t k = 0; k < 3; ++k, h = mesh.next(h))
+                p[h] = soup.corner_texcoords[tri_corner ? tri_corner[c0 + k] : c0 + k];
         }
     }
     return mesh;

@@ -3,8 +3,9 @@
 //
 // The soup may be anything a file holds: polygons of any size, non-manifold edges and
 // vertices, inconsistent orientation, duplicated faces, unused vertices. Nothing is lost:
-//  - polygons with more than three corners are triangulated (ear clipping in the polygon's
-//    best-fit plane; a fan where that fails);
+//  - polygons with more than three corners are triangulated in their best-fit plane
+//    (core/triangulate.h: ear clipping up to 16 corners, a monotone partition above, in
+//    O(n log n); a fan for a polygon that crosses itself, noted in the report);
 //  - a face with a repeated vertex index (or fewer than three corners) is the only kind that
 //    is dropped: it has no area and no orientation;
 //  - a face that would give an edge a third face, or a second face on the same side (an
@@ -12,7 +13,10 @@
 //    vertices, as OpenMesh's importer does;
 //  - a vertex whose faces form several fans is split into one copy per fan;
 //  - vertices that no face uses are kept (isolated) and counted.
-// Everything done is counted in the LoadReport. Complexity: linear in the soup size.
+// Everything done is counted in the LoadReport. Complexity: linear in the soup size (plus
+// O(n log n) per polygon of n > 16 corners). Memory: the triangle soup's own corner list is
+// used when every face is a triangle; edges are found by a counting sort of the corner
+// edges (no hash map), and the mesh takes the connectivity arrays without a copy.
 #include <string>
 #include <vector>
 

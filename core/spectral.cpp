@@ -24,6 +24,7 @@
 
 #include "core/errors.h"
 #include "core/geometry.h"
+#include "core/platform.h"
 
 namespace trilab {
 
@@ -907,6 +908,26 @@ Band largest(const Problem& p, std::size_t k, const SpectralOptions& o, Progress
     return out;
 }
 
+/// Refuses a dense decomposition whose memory exceeds what the machine has available now.
+/// Its peak is two n x n matrices of doubles: the dense matrix with the solver's eigenvector
+/// matrix, then that with the k <= n kept eigenvectors, then those with K times them.
+void check_dense_memory(std::size_t n) {
+    const double rows = double(n);
+    const double need = 8.0 * 2.0 * rows * rows;
+    const double available = double(available_memory_bytes());
+    if (need <= available) return;
+    auto gib = [](double bytes) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.1f GiB", bytes / double(1u << 30));
+        return std::string(buf);
+    };
+    throw InvalidArgument("full: the dense decomposition of " + std::to_string(n) +
+                          " rows needs about " + gib(need) + " (two " + std::to_string(n) + " x " +
+                          std::to_string(n) + " matrices of doubles), more than the " +
+                          gib(available) +
+                          " of memory available now; use the partial method with k frequencies");
+}
+
 Band full(const Problem& p, std::size_t k, SpectrumEnd end, Progress& progress,
           SpectralReport& report) {
     const Eigen::Index n = p.n();
@@ -916,6 +937,7 @@ Band full(const Problem& p, std::size_t k, SpectrumEnd end, Progress& progress,
         for (SparseMatrix::InnerIterator it(p.A, c); it; ++it) a(it.row(), it.col()) = it.value();
     progress.check_cancelled();
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(a);
+    a.resize(0, 0);  // the solver keeps its own n x n matrix; the result adds n x k
     if (es.info() != Eigen::Success)
         throw Error("spectrum: the dense eigen solver did not converge; use the partial method");
     report.solver = "Eigen SelfAdjointEigenSolver (dense)";
@@ -1023,6 +1045,7 @@ SpectralDecomposition decompose(const HalfedgeMesh& mesh, const SpectralOptions&
         if (o.k > n)
             throw InvalidArgument("k: expected a whole number from 0 (all) to " +
                                   std::to_string(n) + " for this mesh, got " + std::to_string(o.k));
+        check_dense_memory(n);
         b = full(p, o.k == 0 ? n : o.k, o.end, progress, d.report);
     } else {
         if (o.k < 1 || o.k > n - 1)

@@ -39,7 +39,9 @@
 //    range is swept once on one thread. The results do not depend on thread timing.
 //  - Partial, largest k: Lanczos on A itself (sparse products only), checked the same way.
 //  - Full: Eigen's dense SelfAdjointEigenSolver on A, refused above max_full_rows (default
-//    5,000) rows: O(n²) memory and O(n³) time.
+//    5,000) rows: O(n²) memory and O(n³) time. Also refused (InvalidArgument, with the
+//    numbers) when its peak, two n x n matrices of doubles (16·n² bytes), exceeds the memory
+//    available now (available_memory_bytes(), core/platform.h).
 // The start vector is deterministic, so the same input gives the same output. A run that
 // does not converge is retried once with a larger Krylov space, then throws an Error that
 // says what to change.

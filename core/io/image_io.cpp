@@ -2,11 +2,14 @@
 
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <climits>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -18,11 +21,19 @@
 #include "core/errors.h"
 #include "core/io/file_util.h"
 #include "core/io/text_scanner.h"
+#include "core/io/x11_colors.h"
+#include "core/platform.h"
 
 // Readers:
-//  - PNG and BMP go through stb_image (after our own signature check, a size check that
-//    refuses absurd dimensions before stb allocates, and for BMP a check that the pixel data
-//    is all there: stb quietly reads zeros past the end of a truncated BMP).
+//  - PNG and BMP go through stb_image, after our own checks: the signature; the dimensions
+//    against the pixel budget and the available memory, read from the header before stb
+//    allocates; for PNG the chunk structure and the image data inflated once with zlib into
+//    a small scratch buffer (nothing kept), so that data inflating past the size the header
+//    declares (a "zlib bomb": stb would grow its buffer to whatever the data holds) or ending
+//    before it is refused; for BMP a check that the pixel data is all there (stb quietly
+//    reads zeros past the end of a truncated BMP). stb decodes to the file's own channels,
+//    which we expand to RGBA (no second RGBA copy).
+//  - RLE-compressed BMP (RLE8, RLE4: stb has no RLE) is our own reader.
 //  - PNM (P1-P6) is our own reader: stb reads only binary P5/P6, and we want line numbers in
 //    the errors of the ASCII variants.
 //  - XBM and XPM are our own readers over a tiny C tokenizer (comments, identifiers, numbers,
@@ -35,7 +46,8 @@ namespace trilab {
 namespace {
 
 constexpr long long kMaxSide = 32768;
-constexpr long long kMaxPixels = 1LL << 28;
+/// The pixel budget: 64 Mpixel (2^26, e.g. 8192 x 8192), 256 MiB as RGBA.
+constexpr long long kMaxPixels = 1LL << 26;
 
 // ---- shared helpers -------------------------------------------------------------------------
 
@@ -50,9 +62,18 @@ std::string extension_of(const std::string& path) {
     return lower(ext);
 }
 
-/// Refuses sizes that are not positive or exceed the limits (before anything is allocated).
-void check_dimensions(long long width, long long height, const std::string& path,
-                      std::size_t line) {
+std::string mebibytes(double bytes) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.0f MiB", std::ceil(bytes / double(1 << 20)));
+    return buf;
+}
+
+/// Refuses sizes that are not positive or exceed the limits, and images whose decoding
+/// would need more than half the memory available now: the RGBA image, a decoder's buffer
+/// of the same size, and `extra_bytes` (a PNG's inflated data). Called before anything of
+/// the image's size is allocated.
+void check_dimensions(long long width, long long height, const std::string& path, std::size_t line,
+                      double extra_bytes = 0) {
     const std::string size = std::to_string(width) + " x " + std::to_string(height);
     if (width <= 0 || height <= 0)
         throw IoError(path, line, "invalid image size " + size + " (must be positive)");
@@ -62,8 +83,16 @@ void check_dimensions(long long width, long long height, const std::string& path
                           " pixels per side");
     if (width * height > kMaxPixels)
         throw IoError(path, line,
-                      "image size " + size + " exceeds the limit of " + std::to_string(kMaxPixels) +
-                          " pixels");
+                      "image size " + size + " (" + std::to_string(width * height) +
+                          " pixels) exceeds the limit of " + std::to_string(kMaxPixels) +
+                          " pixels (64 Mpixel)");
+    const double need = 2.0 * 4.0 * double(width) * double(height) + extra_bytes;
+    const double available = double(available_memory_bytes());
+    if (need > available / 2)
+        throw IoError(path, line,
+                      "decoding the " + size + " image needs about " + mebibytes(need) +
+                          ", more than half of the " + mebibytes(available) +
+                          " of memory available now");
 }
 
 Image make_image(long long width, long long height) {
@@ -109,44 +138,258 @@ std::uint32_t le_u16(const std::string& b, std::size_t at) {
     return std::uint32_t(std::uint8_t(b[at])) | std::uint32_t(std::uint8_t(b[at + 1])) << 8;
 }
 
-/// Checks the BMP headers ourselves: the size limits, and that uncompressed pixel data is
-/// complete (stb_image reads zeros past the end of a truncated file instead of failing).
-void check_bmp(const std::string& bytes, const std::string& path) {
+/// What the BMP headers say (the fields the readers use).
+struct BmpHeader {
+    std::uint64_t offset = 0;  ///< where the pixel data starts
+    std::uint32_t header_size = 0;
+    long long width = 0, height = 0;  ///< height < 0: rows top to bottom
+    std::uint32_t bpp = 0, compression = 0, colours_used = 0;
+};
+
+BmpHeader read_bmp_header(const std::string& bytes, const std::string& path) {
     if (bytes.size() < 2 || bytes.compare(0, 2, "BM") != 0)
         throw IoError(path, 0, "not a BMP file (the signature 'BM' is missing)");
     if (bytes.size() < 26) throw IoError(path, 0, "truncated BMP header");
-    const std::uint64_t offset = le_u32(bytes, 10);
-    const std::uint32_t header_size = le_u32(bytes, 14);
-    long long width = 0, height = 0;
-    std::uint32_t bpp = 0, compression = 0;
-    if (header_size == 12) {
-        width = le_u16(bytes, 18);
-        height = le_u16(bytes, 20);
-        bpp = le_u16(bytes, 24);
-    } else if (header_size >= 40 && header_size <= 124) {
+    BmpHeader h;
+    h.offset = le_u32(bytes, 10);
+    h.header_size = le_u32(bytes, 14);
+    if (h.header_size == 12) {
+        h.width = le_u16(bytes, 18);
+        h.height = le_u16(bytes, 20);
+        h.bpp = le_u16(bytes, 24);
+    } else if (h.header_size >= 40 && h.header_size <= 124) {
         if (bytes.size() < 54) throw IoError(path, 0, "truncated BMP header");
-        width = std::int32_t(le_u32(bytes, 18));
-        height = std::int32_t(le_u32(bytes, 22));
-        bpp = le_u16(bytes, 28);
-        compression = le_u32(bytes, 30);
+        h.width = std::int32_t(le_u32(bytes, 18));
+        h.height = std::int32_t(le_u32(bytes, 22));
+        h.bpp = le_u16(bytes, 28);
+        h.compression = le_u32(bytes, 30);
+        h.colours_used = le_u32(bytes, 46);
     } else {
-        throw IoError(path, 0, "unsupported BMP info header size " + std::to_string(header_size));
+        throw IoError(path, 0, "unsupported BMP info header size " + std::to_string(h.header_size));
     }
-    if (height < 0) height = -height;  // top-down rows
-    check_dimensions(width, height, path, 0);
-    if (bpp != 1 && bpp != 4 && bpp != 8 && bpp != 16 && bpp != 24 && bpp != 32)
-        throw IoError(path, 0, "unsupported BMP bit depth " + std::to_string(bpp));
-    const bool uncompressed = compression == 0 || compression == 3 || compression == 6;
+    check_dimensions(h.width, h.height < 0 ? -h.height : h.height, path, 0);
+    if (h.bpp != 1 && h.bpp != 4 && h.bpp != 8 && h.bpp != 16 && h.bpp != 24 && h.bpp != 32)
+        throw IoError(path, 0, "unsupported BMP bit depth " + std::to_string(h.bpp));
+    return h;
+}
+
+/// Checks an uncompressed BMP for stb_image: that the pixel data is complete (stb_image
+/// reads zeros past the end of a truncated file instead of failing).
+void check_bmp(const std::string& bytes, const std::string& path, const BmpHeader& h) {
+    const bool uncompressed = h.compression == 0 || h.compression == 3 || h.compression == 6;
     if (!uncompressed)
         throw IoError(path, 0,
-                      "unsupported BMP compression " + std::to_string(compression) +
-                          " (RLE and embedded JPEG/PNG are not read)");
-    const std::uint64_t stride = (std::uint64_t(width) * bpp + 31) / 32 * 4;
-    const std::uint64_t needed = offset + stride * std::uint64_t(height);
+                      "unsupported BMP compression " + std::to_string(h.compression) +
+                          " (RLE8, RLE4, bit fields and uncompressed are read; not embedded "
+                          "JPEG/PNG)");
+    const long long rows = h.height < 0 ? -h.height : h.height;
+    const std::uint64_t stride = (std::uint64_t(h.width) * h.bpp + 31) / 32 * 4;
+    const std::uint64_t needed = h.offset + stride * std::uint64_t(rows);
     if (bytes.size() < needed)
         throw IoError(path, 0,
                       "truncated: the pixel data ends at byte " + std::to_string(needed) +
                           ", the file has " + std::to_string(bytes.size()) + " bytes");
+}
+
+/// RLE8 (compression 1) and RLE4 (compression 2) BMP: runs of one palette index (RLE4: two
+/// alternating ones), absolute runs (padded to 16 bits), and the escapes end of line, end of
+/// bitmap and delta (skip right and up). Rows run bottom to top. Pixels the data skips stay
+/// transparent black. Refused: a run past the end of a row or past the last row, a palette
+/// index outside the palette, data that ends before the end-of-bitmap escape.
+Image read_bmp_rle(const std::string& bytes, const std::string& path, const BmpHeader& h) {
+    const bool rle8 = h.compression == 1;
+    const std::uint32_t want_bpp = rle8 ? 8 : 4;
+    const char* kind = rle8 ? "RLE8" : "RLE4";
+    if (h.bpp != want_bpp)
+        throw IoError(path, 0,
+                      std::string(kind) + " compression needs " + std::to_string(want_bpp) +
+                          " bits per pixel, the header says " + std::to_string(h.bpp));
+    if (h.height < 0)
+        throw IoError(path, 0, std::string("a top-down BMP (negative height) cannot be ") + kind);
+    // The palette: B, G, R, reserved per entry, after the info header.
+    const std::uint32_t max_colours = 1u << want_bpp;
+    const std::uint32_t n_colours = h.colours_used == 0 ? max_colours : h.colours_used;
+    if (n_colours > max_colours)
+        throw IoError(path, 0,
+                      "the header declares " + std::to_string(n_colours) + " palette colours, " +
+                          kind + " has at most " + std::to_string(max_colours));
+    const std::uint64_t palette = 14 + std::uint64_t(h.header_size);
+    if (palette + 4 * std::uint64_t(n_colours) > bytes.size())
+        throw IoError(path, 0,
+                      "truncated: the palette of " + std::to_string(n_colours) +
+                          " colours ends past the end of the file");
+    if (h.offset >= bytes.size())
+        throw IoError(path, 0,
+                      "the pixel data offset " + std::to_string(h.offset) +
+                          " is past the end of the file (" + std::to_string(bytes.size()) +
+                          " bytes)");
+    const auto* b = reinterpret_cast<const std::uint8_t*>(bytes.data());
+    const std::size_t width = std::size_t(h.width), height = std::size_t(h.height);
+    Image image = make_image(h.width, h.height);  // all transparent black
+    std::size_t x = 0, y = 0;                     // y counts rows from the bottom
+    std::size_t p = std::size_t(h.offset);
+    auto need = [&](std::size_t n) {
+        if (bytes.size() - p < n)
+            throw IoError(path, 0,
+                          std::string("truncated ") + kind + " data: it ends at byte " +
+                              std::to_string(bytes.size()) + " before the end-of-bitmap escape");
+    };
+    auto put_index = [&](std::uint32_t index) {
+        if (y >= height)
+            throw IoError(path, 0,
+                          std::string(kind) + " data at byte " + std::to_string(p) +
+                              " runs past the last row (the image has " + std::to_string(height) +
+                              " rows)");
+        if (x >= width)
+            throw IoError(path, 0,
+                          std::string(kind) + " data at byte " + std::to_string(p) +
+                              " runs past the end of row " + std::to_string(y) +
+                              " from the bottom (width " + std::to_string(width) + ")");
+        if (index >= n_colours)
+            throw IoError(path, 0,
+                          "palette index " + std::to_string(index) + " at byte " +
+                              std::to_string(p) + " is outside the " + std::to_string(n_colours) +
+                              " colours of the palette");
+        const std::uint8_t* c = b + palette + 4 * index;
+        put(image, (height - 1 - y) * width + x, c[2], c[1], c[0]);
+        ++x;
+    };
+    for (;;) {
+        need(2);
+        const std::uint32_t count = b[p], value = b[p + 1];
+        p += 2;
+        if (count > 0) {  // a run: one index (RLE4: two, alternating, high nibble first)
+            for (std::uint32_t k = 0; k < count; ++k)
+                put_index(rle8 ? value : (k % 2 == 0 ? value >> 4 : value & 15));
+        } else if (value == 0) {  // end of line
+            x = 0;
+            ++y;
+        } else if (value == 1) {  // end of bitmap
+            break;
+        } else if (value == 2) {  // delta: right and up
+            need(2);
+            x += b[p];
+            y += b[p + 1];
+            p += 2;
+            if (x > width || y > height)
+                throw IoError(path, 0,
+                              std::string(kind) + " delta at byte " + std::to_string(p - 4) +
+                                  " moves past the image (to column " + std::to_string(x) +
+                                  ", row " + std::to_string(y) + " from the bottom)");
+        } else {  // absolute run of `value` indices, padded to a 16-bit boundary
+            const std::size_t n = value, data = rle8 ? n : (n + 1) / 2;
+            need((data + 1) / 2 * 2);
+            const std::size_t start = p;
+            for (std::size_t k = 0; k < n; ++k) {
+                const std::uint32_t byte = b[start + (rle8 ? k : k / 2)];
+                put_index(rle8 ? byte : (k % 2 == 0 ? byte >> 4 : byte & 15));
+            }
+            p = start + (data + 1) / 2 * 2;
+        }
+    }
+    return image;
+}
+
+/// Bytes of the inflated PNG image data that a header declares: per row a filter byte and
+/// the row's packed samples; an interlaced (Adam7) image has seven passes of smaller rows.
+std::uint64_t png_raw_size(std::uint64_t width, std::uint64_t height, std::uint64_t bits,
+                           bool interlaced) {
+    auto rows = [&](std::uint64_t cols, std::uint64_t n_rows) {
+        return cols == 0 || n_rows == 0 ? 0 : n_rows * (1 + (cols * bits + 7) / 8);
+    };
+    if (!interlaced) return rows(width, height);
+    // Adam7 passes: first column and row, then the steps between columns and rows.
+    static const std::uint64_t pass[7][4] = {{0, 0, 8, 8}, {4, 0, 8, 8}, {0, 4, 4, 8}, {2, 0, 4, 4},
+                                             {0, 2, 2, 4}, {1, 0, 2, 2}, {0, 1, 1, 2}};
+    std::uint64_t total = 0;
+    for (const auto& q : pass) {
+        const std::uint64_t cols = width > q[0] ? (width - q[0] + q[2] - 1) / q[2] : 0;
+        const std::uint64_t n_rows = height > q[1] ? (height - q[1] + q[3] - 1) / q[3] : 0;
+        total += rows(cols, n_rows);
+    }
+    return total;
+}
+
+/// Checks a PNG before stb_image decodes it: the chunk structure, the dimensions (limits and
+/// memory, with the inflated data), and the image data inflated once with zlib into a 64 KiB
+/// scratch buffer, counting bytes: data that inflates past the size the header declares is
+/// refused as soon as it does, and so is data that is corrupt or ends before that size.
+void check_png(const std::string& bytes, const std::string& path) {
+    static const char kSignature[] = "\x89PNG\r\n\x1a\n";
+    if (bytes.size() < 8 || bytes.compare(0, 8, kSignature, 8) != 0)
+        throw IoError(path, 0, "not a PNG file (the PNG signature is missing)");
+    if (bytes.size() < 33 || bytes.compare(12, 4, "IHDR") != 0 || be_u32(bytes, 8) < 13)
+        throw IoError(path, 0, "truncated PNG: the IHDR chunk is missing");
+    const std::uint64_t width = be_u32(bytes, 16), height = be_u32(bytes, 20);
+    const unsigned depth = std::uint8_t(bytes[24]), colour_type = std::uint8_t(bytes[25]);
+    const bool interlaced = bytes[28] != 0;
+    // Samples per pixel by colour type: grey, -, RGB, palette, grey + alpha, -, RGBA.
+    static const int kChannels[7] = {1, 0, 3, 1, 2, 0, 4};
+    const int channels = colour_type < 7 ? kChannels[colour_type] : 0;
+    if (channels == 0)
+        throw IoError(path, 0, "unsupported PNG colour type " + std::to_string(colour_type));
+    if (depth != 1 && depth != 2 && depth != 4 && depth != 8 && depth != 16)
+        throw IoError(path, 0, "unsupported PNG bit depth " + std::to_string(depth));
+    const std::uint64_t expected =
+        png_raw_size(width, height, std::uint64_t(channels) * depth, interlaced);
+    check_dimensions(static_cast<long long>(width), static_cast<long long>(height), path, 0,
+                     double(expected) + double(bytes.size()));
+
+    // The IDAT chunks' data, in order, through one inflate stream.
+    z_stream zs{};
+    if (inflateInit(&zs) != Z_OK) throw IoError(path, 0, "cannot start zlib");
+    struct End {
+        z_stream* zs;
+        ~End() { inflateEnd(zs); }
+    } end{&zs};
+    std::vector<unsigned char> scratch(std::size_t(1) << 16);
+    std::uint64_t produced = 0;
+    bool stream_end = false, any_idat = false;
+    const std::string size = std::to_string(width) + " x " + std::to_string(height);
+    for (std::size_t pos = 8; pos + 12 <= bytes.size() && !stream_end;) {
+        const std::uint64_t length = be_u32(bytes, pos);
+        if (length > bytes.size() - pos - 12)
+            throw IoError(path, 0,
+                          "truncated PNG: chunk '" + printable(bytes.substr(pos + 4, 4)) +
+                              "' at byte " + std::to_string(pos) +
+                              " ends past the end of the file");
+        const std::string type = bytes.substr(pos + 4, 4);
+        if (type == "IEND") break;
+        if (type == "IDAT") {
+            any_idat = true;
+            zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data() + pos + 8));
+            zs.avail_in = uInt(length);
+            for (;;) {
+                zs.next_out = scratch.data();
+                zs.avail_out = uInt(scratch.size());
+                const int ret = inflate(&zs, Z_NO_FLUSH);
+                produced += scratch.size() - zs.avail_out;
+                if (produced > expected)
+                    throw IoError(path, 0,
+                                  "the PNG image data inflates past the " +
+                                      std::to_string(expected) + " bytes that its " + size +
+                                      " pixels (colour type " + std::to_string(colour_type) + ", " +
+                                      std::to_string(depth) + " bits) declare");
+                if (ret == Z_STREAM_END) {
+                    stream_end = true;
+                    break;
+                }
+                if (ret == Z_BUF_ERROR) break;  // needs the next chunk's data
+                if (ret != Z_OK)
+                    throw IoError(path, 0,
+                                  std::string("corrupt PNG image data (zlib: ") +
+                                      (zs.msg ? zs.msg : "error " + std::to_string(ret)) + ")");
+                if (zs.avail_in == 0 && zs.avail_out != 0) break;
+            }
+        }
+        pos += 12 + std::size_t(length);
+    }
+    if (!any_idat) throw IoError(path, 0, "truncated PNG: no image data (IDAT chunk)");
+    if (!stream_end || produced < expected)
+        throw IoError(path, 0,
+                      "truncated PNG: the image data ends after " + std::to_string(produced) +
+                          " of the " + std::to_string(expected) + " bytes that its " + size +
+                          " pixels declare");
 }
 
 Image read_with_stb(const std::string& bytes, const std::string& path, const char* format) {
@@ -155,15 +398,11 @@ Image read_with_stb(const std::string& bytes, const std::string& path, const cha
     if (bytes.size() > std::size_t(INT_MAX))
         throw IoError(path, 0, "the file is too large (over 2 GiB)");
     if (fmt == "PNG") {
-        static const char kSignature[] = "\x89PNG\r\n\x1a\n";
-        if (bytes.size() < 8 || bytes.compare(0, 8, kSignature, 8) != 0)
-            throw IoError(path, 0, "not a PNG file (the PNG signature is missing)");
-        // Our own size check: stb refuses large sizes with a vague "unknown image type".
-        if (bytes.size() < 24 || bytes.compare(12, 4, "IHDR") != 0)
-            throw IoError(path, 0, "truncated PNG: the IHDR chunk is missing");
-        check_dimensions(be_u32(bytes, 16), be_u32(bytes, 20), path, 0);
+        check_png(bytes, path);
     } else {
-        check_bmp(bytes, path);
+        const BmpHeader h = read_bmp_header(bytes, path);
+        if (h.compression == 1 || h.compression == 2) return read_bmp_rle(bytes, path, h);
+        check_bmp(bytes, path, h);
     }
     const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
     const int length = int(bytes.size());
@@ -174,12 +413,34 @@ Image read_with_stb(const std::string& bytes, const std::string& path, const cha
     // The flag is global in stb; trilab's convention is "rows top to bottom", so make sure
     // nobody's earlier call left it on.
     stbi_set_flip_vertically_on_load(0);
+    // The file's own channels (1 to 4, 8 bits each), expanded to RGBA here: stb's own RGBA
+    // conversion would allocate a second image.
     std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
-        stbi_load_from_memory(data, length, &width, &height, &channels, 4), stbi_image_free);
+        stbi_load_from_memory(data, length, &width, &height, &channels, 0), stbi_image_free);
     if (!pixels) throw IoError(path, 0, "cannot decode the " + fmt + " data: " + stb_reason());
     check_dimensions(width, height, path, 0);
+    if (channels < 1 || channels > 4)
+        throw IoError(path, 0,
+                      "the " + fmt + " decoder returned " + std::to_string(channels) + " channels");
     Image image = make_image(width, height);
-    std::memcpy(image.rgba.data(), pixels.get(), image.rgba.size());
+    const std::size_t n = std::size_t(width) * std::size_t(height);
+    const stbi_uc* in = pixels.get();
+    for (std::size_t i = 0; i < n; ++i, in += channels) {
+        switch (channels) {
+            case 1:
+                put(image, i, in[0], in[0], in[0]);
+                break;
+            case 2:
+                put(image, i, in[0], in[0], in[0], in[1]);
+                break;
+            case 3:
+                put(image, i, in[0], in[1], in[2]);
+                break;
+            default:
+                put(image, i, in[0], in[1], in[2], in[3]);
+                break;
+        }
+    }
     return image;
 }
 
@@ -585,26 +846,6 @@ struct Rgba {
     std::uint8_t r = 0, g = 0, b = 0, a = 255;
 };
 
-struct NamedColor {
-    const char* name;
-    std::uint8_t r, g, b;
-};
-
-// The X11 (rgb.txt) values of the common names; lookups ignore case and spaces.
-constexpr NamedColor kNamedColors[] = {
-    {"black", 0, 0, 0},          {"white", 255, 255, 255},     {"red", 255, 0, 0},
-    {"green", 0, 255, 0},        {"blue", 0, 0, 255},          {"yellow", 255, 255, 0},
-    {"cyan", 0, 255, 255},       {"magenta", 255, 0, 255},     {"gray", 190, 190, 190},
-    {"grey", 190, 190, 190},     {"orange", 255, 165, 0},      {"darkgray", 169, 169, 169},
-    {"darkgrey", 169, 169, 169}, {"lightgray", 211, 211, 211}, {"lightgrey", 211, 211, 211},
-    {"dimgray", 105, 105, 105},  {"dimgrey", 105, 105, 105},   {"brown", 165, 42, 42},
-    {"pink", 255, 192, 203},     {"purple", 160, 32, 240},     {"violet", 238, 130, 238},
-    {"navy", 0, 0, 128},         {"navyblue", 0, 0, 128},      {"maroon", 176, 48, 96},
-    {"gold", 255, 215, 0},       {"darkred", 139, 0, 0},       {"darkgreen", 0, 100, 0},
-    {"darkblue", 0, 0, 139},     {"lightblue", 173, 216, 230}, {"skyblue", 135, 206, 235},
-    {"beige", 245, 245, 220},
-};
-
 int hex_digit(char c) {
     if (c >= '0' && c <= '9') return c - '0';
     if (c >= 'a' && c <= 'f') return c - 'a' + 10;
@@ -613,7 +854,8 @@ int hex_digit(char c) {
 }
 
 /// An XPM colour: None, #RGB / #RRGGBB / #RRRGGGBBB / #RRRRGGGGBBBB (each component scaled
-/// to 8 bits, so #fff is white), an X11 name from kNamedColors, or grayN / greyN (N 0-100).
+/// to 8 bits, so #fff is white), or any X11 colour name (x11-common's rgb.txt, embedded at
+/// build time: core/io/x11_colors.h), ignoring case and spaces as X11 does.
 bool parse_xpm_color(const std::string& spec, Rgba& out) {
     if (spec.empty()) return false;
     if (spec[0] == '#') {
@@ -641,21 +883,9 @@ bool parse_xpm_color(const std::string& spec, Rgba& out) {
         out = {0, 0, 0, 0};
         return true;
     }
-    for (const NamedColor& c : kNamedColors) {
-        if (key == c.name) {
-            out = {c.r, c.g, c.b, 255};
-            return true;
-        }
-    }
-    if ((key.rfind("gray", 0) == 0 || key.rfind("grey", 0) == 0) && key.size() > 4 &&
-        key.size() <= 7) {
-        int level = 0;
-        auto [ptr, ec] = std::from_chars(key.data() + 4, key.data() + key.size(), level);
-        if (ec == std::errc() && ptr == key.data() + key.size() && level >= 0 && level <= 100) {
-            const auto v = std::uint8_t((level * 255 + 49) / 100);  // rgb.txt's rounding
-            out = {v, v, v, 255};
-            return true;
-        }
+    if (const X11Color* c = find_x11_color(key)) {
+        out = {c->r, c->g, c->b, 255};
+        return true;
     }
     return false;
 }
@@ -822,7 +1052,9 @@ Image read_xpm(const std::string& text, const std::string& path) {
                      "no colour (key c, g, g4 or m) for the pixel code '" + printable(code) + "'");
         Rgba rgba;
         if (!parse_xpm_color(*spec, rgba))
-            lex.fail(s.line, "unknown colour '" + printable(*spec) + "'");
+            lex.fail(s.line, "unknown colour '" + printable(*spec) +
+                                 "' (neither None, #hex, nor one of the " +
+                                 std::to_string(kX11ColorCount) + " X11 colour names)");
         if (!table.emplace(pixel_code(code), rgba).second)
             lex.fail(s.line, "the pixel code '" + printable(code) + "' is defined twice");
     }

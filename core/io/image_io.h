@@ -1,6 +1,7 @@
 #pragma once
-// Texture images: reading BMP, PNG and PNM (P1-P6) through stb_image and our own readers for
-// what stb lacks, XBM and XPM (our own small readers); writing PNG (stb_image_write).
+// Texture images: reading PNG and BMP through stb_image (with our own checks first), and our
+// own readers for what stb lacks: RLE BMP, PNM (P1-P6), XBM and XPM; writing PNG
+// (stb_image_write).
 // Errors are IoErrors naming the file, the line for the text formats, and the reason.
 #include <cstdint>
 #include <string>
@@ -20,13 +21,19 @@ std::vector<std::string> supported_image_extensions();
 /// Reads any supported image, chosen by extension (case-insensitive). Throws IoError.
 ///
 /// Variants: PNG (any bit depth and colour type stb_image reads); BMP 1/4/8/16/24/32 bit,
-/// uncompressed or bitfields, bottom-up or top-down (no RLE); PNM P1-P6 under .pnm, .ppm, .pgm
-/// or .pbm, maxval up to 65535 scaled to 8 bits; XBM (X11 char or X10 short bits, 1 = black);
-/// XPM3 (1-8 characters per pixel, #RGB to #RRRRGGGGBBBB scaled to 8 bits, common X11 names,
-/// grayN, None = transparent; the c key is used, else g, g4, m). Sizes over 32768 pixels per
-/// side or 2^28 pixels, and sizes the file cannot hold, are refused before allocating. Binary
-/// PNM may carry bytes after the raster (a Netpbm stream of several images: the first is
-/// read); the text formats must hold exactly the declared pixels.
+/// uncompressed or bitfields, bottom-up or top-down, and RLE8 / RLE4 (our reader; pixels the
+/// data skips stay transparent black); PNM P1-P6 under .pnm, .ppm, .pgm or .pbm, maxval up to
+/// 65535 scaled to 8 bits; XBM (X11 char or X10 short bits, 1 = black); XPM3 (1-8 characters
+/// per pixel, #RGB to #RRRRGGGGBBBB scaled to 8 bits, every X11 colour name of x11-common's
+/// rgb.txt ignoring case and spaces, None = transparent; the c key is used, else g, g4, m).
+/// Budget: at most 32768 pixels a side and 64 Mpixel (2^26 pixels, 256 MiB as RGBA), and the
+/// decoding (the RGBA image, a decoder buffer of the same size and a PNG's inflated data)
+/// within half the memory available now; sizes over these, and sizes the file cannot hold,
+/// are refused from the header, with the numbers, before anything of the image's size is
+/// allocated. A PNG's image data is inflated once, bounded, before it is decoded: data that
+/// inflates past the size its header declares (or ends before it, or is corrupt) is refused.
+/// Binary PNM may carry bytes after the raster (a Netpbm stream of several images: the first
+/// is read); the text formats must hold exactly the declared pixels.
 Image read_image(const std::string& path);
 /// Reads an image whose whole file is already in memory; the format is chosen by the
 /// extension of `name`, which also labels the errors. (read_image reads the file and calls

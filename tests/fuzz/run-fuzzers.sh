@@ -12,7 +12,7 @@ build="${1:?usage: run-fuzzers.sh BUILD_DIR SECONDS [READER...]}"
 seconds="${2:?usage: run-fuzzers.sh BUILD_DIR SECONDS [READER...]}"
 shift 2
 readers=("$@")
-[ ${#readers[@]} -gt 0 ] || readers=(obj off ply stl om xbm xpm pnm builder)
+[ ${#readers[@]} -gt 0 ] || readers=(obj off ply stl om xbm xpm pnm bmp png builder)
 failed=()
 for r in "${readers[@]}"; do
     exe="$build/tests/fuzz/fuzz_$r"

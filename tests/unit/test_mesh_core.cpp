@@ -292,6 +292,85 @@ TEST_CASE("validate reports broken connectivity", "[core][validate]") {
     REQUIRE_FALSE(validate(d).ok);
 }
 
+TEST_CASE("validate names the vertex-level violations", "[core][validate]") {
+    auto message = [](const HalfedgeMesh& mesh) {
+        const ValidationResult r = validate(mesh);
+        REQUIRE_FALSE(r.ok);
+        return r.message;
+    };
+    SECTION("two fans on one vertex") {
+        // A bowtie: the loader gives the shared vertex a copy; joining them again leaves one
+        // vertex with two fans.
+        PolygonSoup s;
+        s.positions = {Point(0, 0, 0), Point(1, 0, 0), Point(1, 1, 0), Point(-1, 0, 0),
+                       Point(-1, -1, 0)};
+        s.add_face({0, 1, 2});
+        s.add_face({0, 3, 4});
+        LoadReport report;
+        HalfedgeMesh m = build_mesh(s, report);
+        REQUIRE_VALID(m);
+        REQUIRE(m.n_vertices() == 6);
+        const Vertex copy(5);
+        for (Halfedge h : m.halfedges())
+            if (m.to_vertex(h) == copy) m.set_to_vertex(h, Vertex(0));
+        m.set_halfedge(copy, Halfedge());
+        CHECK_THAT(message(m), Catch::Contains("vertex 0 is non-manifold"));
+    }
+    SECTION("two spokes to the same neighbour") {
+        // A pyramid without its base (a closed fan around the apex 0); pointing the spoke to
+        // corner 3 at corner 1 instead gives the apex two edges to corner 1.
+        PolygonSoup s;
+        s.positions = {Point(0, 0, 1), Point(1, 0, 0), Point(0, 1, 0), Point(-1, 0, 0),
+                       Point(0, -1, 0)};
+        s.add_face({0, 1, 2});
+        s.add_face({0, 2, 3});
+        s.add_face({0, 3, 4});
+        s.add_face({0, 4, 1});
+        LoadReport report;
+        HalfedgeMesh m = build_mesh(s, report);
+        REQUIRE_VALID(m);
+        for (Halfedge h : m.halfedges())
+            if (m.to_vertex(h) == Vertex(3)) m.set_to_vertex(h, Vertex(1));
+        m.set_halfedge(Vertex(3), Halfedge());
+        // Corners 2 and 4 now have two edges to corner 1 too, and corner 1 has two fans: any
+        // of these violations may be the one reported.
+        const std::string msg = message(m);
+        INFO(msg);
+        CHECK((msg.find("has two edges to the same neighbour") != std::string::npos ||
+               msg.find("vertex 1 is non-manifold") != std::string::npos));
+    }
+    SECTION("a boundary vertex whose halfedge is not the boundary one") {
+        HalfedgeMesh m = make_grid(2);
+        REQUIRE_VALID(m);
+        const Vertex v(0);
+        REQUIRE(m.is_boundary(m.halfedge(v)));
+        m.set_halfedge(v, m.ccw_rotated(m.halfedge(v)));
+        CHECK_THAT(message(m),
+                   Catch::Contains("vertex 0 is on the boundary but its halfedge is not"));
+    }
+    SECTION("edges but no outgoing halfedge") {
+        HalfedgeMesh m = make_icosphere(1);
+        m.set_halfedge(Vertex(3), Halfedge());
+        CHECK_THAT(message(m), Catch::Contains("vertex 3 has edges but no outgoing halfedge"));
+    }
+    SECTION("a live halfedge pointing to a deleted vertex (a mesh with garbage)") {
+        HalfedgeMesh m = make_icosphere(1);
+        const Halfedge h = m.halfedge(Edge(10), 0);
+        REQUIRE(m.is_collapse_ok(h));
+        const Vertex gone = m.from_vertex(h);  // collapse removes it
+        m.collapse(h);
+        REQUIRE(m.has_garbage());
+        REQUIRE_VALID(m);
+        REQUIRE(m.is_deleted(gone));
+        for (Halfedge x : m.halfedges())
+            if (!m.is_deleted(x)) {
+                m.set_to_vertex(x, gone);
+                break;
+            }
+        CHECK_THAT(message(m), Catch::Contains("points to a missing or deleted vertex"));
+    }
+}
+
 TEST_CASE("build_mesh handles high-valence vertices (a 500-triangle fan)", "[core][builder]") {
     // A disk: one centre joined to a ring of 500 vertices, plus a duplicate of one face.
     PolygonSoup s;

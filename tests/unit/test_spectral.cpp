@@ -16,6 +16,7 @@
 #include "core/io/mesh_io.h"
 #include "core/laplacian.h"
 #include "core/mesh_builder.h"
+#include "core/platform.h"
 #include "core/spectral.h"
 #include "test_helpers.h"
 
@@ -319,6 +320,36 @@ TEST_CASE("frequency fields and band magnitudes", "[spectral]") {
     // sphere around the origin.
     const std::vector<double> m = band_magnitude_field(d, 0, 11);
     for (Vertex v : mesh.vertices()) CHECK(std::abs(m[v.idx()] - mesh.position(v).norm()) < 0.1);
+}
+
+TEST_CASE("a dense decomposition larger than the available memory is refused with the numbers",
+          "[spectral]") {
+    // The dense path needs 16 n^2 bytes for n rows: take n with that above twice what this
+    // machine has available now, and let max_full_rows allow it.
+    const double available = double(available_memory_bytes());
+    const double rows = std::sqrt(available / 8.0) + 1;
+    if (rows > 4e6) {
+        WARN("skipped: " << available << " bytes available would need a mesh of " << rows
+                         << " vertices");
+        return;
+    }
+    const unsigned n = unsigned(std::ceil(std::sqrt(rows)));
+    const HalfedgeMesh mesh = make_grid(n);  // (n + 1)^2 vertices
+    REQUIRE(double(mesh.n_vertices()) >= rows);
+    SpectralOptions o = options(LaplacianOperator::Umbrella, 10, SpectralMethod::Full);
+    o.max_full_rows = mesh.n_vertices();
+    try {
+        decompose(mesh, o);
+        FAIL("the dense decomposition was accepted");
+    } catch (const InvalidArgument& e) {
+        const std::string what = e.what();
+        INFO(what);
+        CHECK(what.rfind("full: the dense decomposition of " + std::to_string(mesh.n_vertices()) +
+                             " rows needs about ",
+                         0) == 0);
+        CHECK(what.find("GiB") != std::string::npos);
+        CHECK(what.find("of memory available now") != std::string::npos);
+    }
 }
 
 TEST_CASE("bad spectral options are refused with the option's name", "[spectral]") {

@@ -9,6 +9,9 @@ find_package(tinyobjloader REQUIRED)
 # stb (stb_image, stb_image_write) is a compiled library in Debian: link PkgConfig::STB.
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
+# zlib: the PNG reader inflates the image data once, bounded, before stb_image decodes it
+# (core/io/image_io.cpp), to refuse data that inflates past the declared size.
+find_package(ZLIB REQUIRED)
 
 if(TRILAB_BUILD_VIEWER)
     find_package(glfw3 3.3 REQUIRED)
