@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "core/prefetch.h"
 #include "core/triangulate.h"
 
 namespace trilab {
@@ -35,15 +36,6 @@ std::vector<std::string> LoadReport::lines() const {
 }
 
 namespace {
-
-/// A hint that `p` will be read soon (no effect where the compiler has no such builtin).
-inline void prefetch(const void* p) {
-#if defined(__GNUC__) || defined(__clang__)
-    __builtin_prefetch(p);
-#else
-    (void)p;
-#endif
-}
 
 void check_soup(const PolygonSoup& soup) {
     const std::size_t nv = soup.positions.size();

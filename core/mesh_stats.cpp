@@ -4,19 +4,11 @@
 #include <utility>
 #include <vector>
 
+#include "core/prefetch.h"
+
 namespace trilab {
 
 namespace {
-
-/// A hint that `p` will be read soon (the face pass reads the connectivity a few faces
-/// ahead of where it works, so that the memory latency overlaps).
-inline void prefetch(const void* p) {
-#if defined(__GNUC__) || defined(__clang__)
-    __builtin_prefetch(p);
-#else
-    (void)p;
-#endif
-}
 
 /// Union-find root with path halving.
 Index find_root(std::vector<Index>& parent, Index v) {

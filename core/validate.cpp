@@ -5,6 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include "core/prefetch.h"
+
 namespace trilab {
 
 namespace {
@@ -18,15 +20,6 @@ std::string fs(Face f) {
     return "face " + std::to_string(f.idx());
 }
 
-/// A hint that `p` will be read soon: the passes below read the connectivity arrays at
-/// places known a few elements ahead, so the memory latency overlaps.
-inline void prefetch(const void* p) {
-#if defined(__GNUC__) || defined(__clang__)
-    __builtin_prefetch(p);
-#else
-    (void)p;
-#endif
-}
 constexpr std::size_t kAhead = 8;
 }  // namespace
 

@@ -22,8 +22,8 @@
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Tools/Smoother/JacobiLaplaceSmootherT.hh>
+#include "openmesh_mesh.h"
 #endif
 
 #ifdef TRILAB_HAS_CGAL
@@ -74,25 +74,8 @@ void print_ratio(const char* what, double peer_ms, double ours_ms, double aim) {
 }
 
 #ifdef TRILAB_HAS_OPENMESH
-struct DoubleTraits : OpenMesh::DefaultTraits {
-    typedef OpenMesh::Vec3d Point;
-    typedef OpenMesh::Vec3d Normal;
-};
-using OMMesh = OpenMesh::TriMesh_ArrayKernelT<DoubleTraits>;
-
-OMMesh to_openmesh(const HalfedgeMesh& m) {
-    OMMesh om;
-    std::vector<OMMesh::VertexHandle> handles(m.vertices_size());
-    for (Vertex v : m.vertices()) {
-        const Point& p = m.position(v);
-        handles[v.idx()] = om.add_vertex(OMMesh::Point(p.x(), p.y(), p.z()));
-    }
-    for (Face f : m.faces()) {
-        const auto vs = m.face_vertices(f);
-        om.add_face(handles[vs[0].idx()], handles[vs[1].idx()], handles[vs[2].idx()]);
-    }
-    return om;
-}
+using OMMesh = bench::OpenMeshDouble;
+using bench::to_openmesh;
 
 double openmesh_ms(const OMMesh& source, bool cotangent, int runs) {
     using Smoother = OpenMesh::Smoother::JacobiLaplaceSmootherT<OMMesh>;

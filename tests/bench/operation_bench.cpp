@@ -41,11 +41,11 @@
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Tools/Smoother/JacobiLaplaceSmootherT.hh>
 #include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
 #include <OpenMesh/Tools/Subdivider/Uniform/ModifiedButterFlyT.hh>
 #include <OpenMesh/Tools/Subdivider/Uniform/Sqrt3T.hh>
+#include "openmesh_mesh.h"
 #endif
 
 using namespace trilab;
@@ -120,25 +120,8 @@ struct Case {
 };
 
 #ifdef TRILAB_HAS_OPENMESH
-struct DoubleTraits : OpenMesh::DefaultTraits {
-    typedef OpenMesh::Vec3d Point;
-    typedef OpenMesh::Vec3d Normal;
-};
-using OMMesh = OpenMesh::TriMesh_ArrayKernelT<DoubleTraits>;
-
-OMMesh to_openmesh(const HalfedgeMesh& m) {
-    OMMesh om;
-    std::vector<OMMesh::VertexHandle> handles(m.vertices_size());
-    for (Vertex v : m.vertices()) {
-        const Point& p = m.position(v);
-        handles[v.idx()] = om.add_vertex(OMMesh::Point(p.x(), p.y(), p.z()));
-    }
-    for (Face f : m.faces()) {
-        const auto vs = m.face_vertices(f);
-        om.add_face(handles[vs[0].idx()], handles[vs[1].idx()], handles[vs[2].idx()]);
-    }
-    return om;
-}
+using OMMesh = bench::OpenMeshDouble;
+using bench::to_openmesh;
 
 double openmesh_subdivide_ms(const OMMesh& source, SubdivisionScheme scheme, int runs) {
     return median_ms(runs, [&] {
