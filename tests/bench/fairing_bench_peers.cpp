@@ -22,8 +22,9 @@
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
+#include "openmesh_mesh.h"  // first: the tools need the mesh kernel
+
 #include <OpenMesh/Tools/Smoother/JacobiLaplaceSmootherT.hh>
-#include "openmesh_mesh.h"
 #endif
 
 #ifdef TRILAB_HAS_CGAL
