@@ -346,7 +346,7 @@ void check_png(const std::string& bytes, const std::string& path) {
     std::uint64_t produced = 0;
     bool stream_end = false, any_idat = false;
     const std::string size = std::to_string(width) + " x " + std::to_string(height);
-    for (std::size_t pos = 8; pos + 12 <= bytes.size() && !stream_end;) {
+    for (std::size_t pos = 8; pos + 12 <= bytes.size();) {
         const std::uint64_t length = be_u32(bytes, pos);
         if (length > bytes.size() - pos - 12)
             throw IoError(path, 0,
@@ -355,7 +355,14 @@ void check_png(const std::string& bytes, const std::string& path) {
                               " ends past the end of the file");
         const std::string type = bytes.substr(pos + 4, 4);
         if (type == "IEND") break;
-        if (type == "IDAT") {
+        // Image data after the end of the zlib stream: a decoder that reads the IDAT chunks as
+        // one stream would go on past it (stb_image grows its output buffer then), so refuse.
+        if (type == "IDAT" && stream_end && length > 0)
+            throw IoError(path, 0,
+                          "corrupt PNG: image data (IDAT) continues after the end of its zlib "
+                          "stream, at byte " +
+                              std::to_string(pos));
+        if (type == "IDAT" && !stream_end) {
             any_idat = true;
             zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data() + pos + 8));
             zs.avail_in = uInt(length);
@@ -372,6 +379,11 @@ void check_png(const std::string& bytes, const std::string& path) {
                                       std::to_string(depth) + " bits) declare");
                 if (ret == Z_STREAM_END) {
                     stream_end = true;
+                    if (zs.avail_in != 0)
+                        throw IoError(path, 0,
+                                      "corrupt PNG: " + std::to_string(zs.avail_in) +
+                                          " bytes of image data after the end of its zlib "
+                                          "stream");
                     break;
                 }
                 if (ret == Z_BUF_ERROR) break;  // needs the next chunk's data
