@@ -70,8 +70,8 @@ struct SubdivisionResult {
     double ms = 0;
 };
 
-/// Subdivides a copy of `mesh` `options.iterations` times. The input must be a triangle mesh
-/// without garbage (call garbage_collection() first) — it is not modified. Throws
+/// Subdivides a copy of `mesh` `options.iterations` times. The input must be a triangle mesh;
+/// one with garbage is compacted in a copy first. It is not modified. Throws
 /// InvalidArgument for bad options (naming them) and for a level whose positions or texture
 /// coordinates overflow to infinity (coordinates near the largest double), Cancelled when
 /// `progress` asks to stop.

@@ -20,14 +20,7 @@ OperationResult run_subdivide(const SubdivisionOptions& options, const HalfedgeM
     progress.check_cancelled();
     OperationResult result;
     result.label = "Subdivide";
-    SubdivisionResult sub;
-    if (mesh.has_garbage()) {  // subdivide() wants a compact mesh: compact a copy
-        HalfedgeMesh compact = mesh;
-        compact.garbage_collection();
-        sub = subdivide(compact, o, progress);
-    } else {
-        sub = subdivide(mesh, o, progress);
-    }
+    SubdivisionResult sub = subdivide(mesh, o, progress);  // compacts a copy if needed
     result.ms = sub.ms;
     char line[160];
     for (std::size_t i = 0; i < sub.level_counts.size(); ++i) {

@@ -46,12 +46,8 @@
 #include "core/subdivision.h"
 
 #ifdef TRILAB_HAS_OPENMESH
-// OpenMesh's VectorT default constructor leaves its elements uninitialized on purpose; GCC 12
-// flags that where its property containers get inlined here (not our code).
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include "openmesh_mesh.h"  // first: the subdividers need the mesh kernel
+
 #include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
 #include <OpenMesh/Tools/Subdivider/Uniform/ModifiedButterFlyT.hh>
 #include <OpenMesh/Tools/Subdivider/Uniform/Sqrt3T.hh>
@@ -90,10 +86,7 @@ struct Counts {
 };
 
 #ifdef TRILAB_HAS_OPENMESH
-struct DoubleTraits : OpenMesh::DefaultTraits {
-    typedef OpenMesh::Vec3d Point;
-    typedef OpenMesh::Vec3d Normal;
-};
+using bench::DoubleTraits;
 
 /// The OpenMesh subdivider trilab's `scheme` is compared with (OpenMesh has no plain
 /// Butterfly: its ModifiedButterflyT stands in).

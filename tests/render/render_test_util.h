@@ -10,6 +10,8 @@
 #include <string>
 
 #include "core/errors.h"
+#include "render/camera.h"
+#include "render/mesh_renderer.h"
 #include "render/offscreen.h"
 #include "test_helpers.h"
 
@@ -97,6 +99,23 @@ inline PixelStats foreground(const Image& image, const glm::vec3& background) {
     return pixel_stats(image, [&](const Rgba& p, int, int) {
         return color_distance(p, background) > 2.5 / 255.0;
     });
+}
+
+/// `renderer`'s mesh drawn into `fb` from `camera` with `style`, read back.
+inline Image draw(const MeshRenderer& renderer, Framebuffer& fb, const Camera& camera,
+                  const RenderStyle& style = {}) {
+    fb.bind();
+    clear_background(style);
+    renderer.draw(camera.view(), camera.projection(), style);
+    return fb.read_rgba();
+}
+
+/// Mean absolute difference of two images of the same size, per channel byte (0 to 255).
+inline double mean_difference(const Image& a, const Image& b) {
+    double sum = 0;
+    for (std::size_t i = 0; i < a.rgba.size(); ++i)
+        sum += std::abs(int(a.rgba[i]) - int(b.rgba[i]));
+    return sum / double(a.rgba.size());
 }
 
 }  // namespace trilab::test

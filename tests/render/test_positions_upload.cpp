@@ -13,23 +13,6 @@
 using namespace trilab;
 using namespace trilab::test;
 
-namespace {
-Image draw(MeshRenderer& renderer, Framebuffer& fb, const Camera& camera) {
-    RenderStyle style;
-    fb.bind();
-    clear_background(style);
-    renderer.draw(camera.view(), camera.projection(), style);
-    return fb.read_rgba();
-}
-
-double mean_difference(const Image& a, const Image& b) {
-    double sum = 0;
-    for (std::size_t i = 0; i < a.rgba.size(); ++i)
-        sum += std::abs(int(a.rgba[i]) - int(b.rgba[i]));
-    return sum / double(a.rgba.size());
-}
-}  // namespace
-
 TEST_CASE("update_positions with separate positions draws like a moved mesh", "[render]") {
     OffscreenRenderer& r = offscreen();
     MeshRenderer& renderer = r.mesh_renderer();
