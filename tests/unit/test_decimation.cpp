@@ -516,10 +516,7 @@ TEST_CASE("next_collapses lists the next iteration's edges", "[decimation]") {
 }
 
 TEST_CASE("decimate cancels when asked", "[decimation]") {
-    struct CancelNow : Progress {
-        void report(double, const char*) override {}
-        bool cancel_requested() const override { return true; }
-    } cancel;
+    auto cancel = test::CancellingProgress::at_once();
     CHECK_THROWS_AS(decimate(make_icosphere(6), DecimationOptions(), cancel), Cancelled);
 }
 
