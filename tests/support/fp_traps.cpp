@@ -9,6 +9,11 @@ void enable_fp_traps() {
     feenableexcept(kTrappedExceptions);
 }
 
+void disable_fp_traps() {
+    fedisableexcept(FE_ALL_EXCEPT);
+    std::feclearexcept(FE_ALL_EXCEPT);
+}
+
 FpTrapsOff::FpTrapsOff() : saved_(fegetexcept()) {
     fedisableexcept(FE_ALL_EXCEPT);
 }

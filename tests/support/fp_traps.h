@@ -12,6 +12,9 @@ constexpr int kTrappedExceptions = FE_INVALID | FE_DIVBYZERO | FE_OVERFLOW;
 
 /// Unmasks kTrappedExceptions in the calling thread (the runner calls it once at start-up).
 void enable_fp_traps();
+/// Masks every trap in the calling thread for good, for code we do not own that raises
+/// floating-point exceptions as a matter of course (Mesa's llvmpipe, see render_test_util.h).
+void disable_fp_traps();
 
 /// Masks every floating-point trap for its lifetime, for a test that feeds deliberately
 /// non-finite input (NaN, inf, a diverging run) to code that must detect it. Restores the

@@ -10,6 +10,7 @@
 #include "core/validate.h"
 #include "tests/support/cancelling_progress.h"
 #include "tests/support/error_text.h"
+#include "tests/support/fp_traps.h"
 #include "tests/support/skip.h"
 
 namespace trilab::test {

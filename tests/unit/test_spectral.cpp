@@ -272,12 +272,12 @@ TEST_CASE("boundaries: free rows give a zero eigenvalue, fixed rows do not", "[s
     for (LaplacianOperator op : kOperators) {
         INFO("operator " << laplacian_operator_name(op));
         SpectralOptions o = options(op, 5);
-        const SpectralDecomposition free_ = decompose(grid, o);
-        CHECK(free_.rows() == grid.n_vertices());
-        CHECK(std::abs(free_.eigenvalues[0]) < 1e-8 * free_.eigenvalues[4]);
+        const SpectralDecomposition free_rows = decompose(grid, o);
+        CHECK(free_rows.rows() == grid.n_vertices());
+        CHECK(std::abs(free_rows.eigenvalues[0]) < 1e-8 * free_rows.eigenvalues[4]);
         // The zero eigenvector is constant (second order: linear functions of the flat grid
         // are in its null space too).
-        const Eigen::VectorXd e0 = free_.eigenvectors.col(0);
+        const Eigen::VectorXd e0 = free_rows.eigenvectors.col(0);
         if (op != LaplacianOperator::SecondOrder)
             CHECK(e0.maxCoeff() - e0.minCoeff() < 1e-6 * e0.cwiseAbs().maxCoeff());
         o.fix_boundary = true;

@@ -43,8 +43,8 @@ if(TRILAB_BUILD_TESTS)
 endif()
 
 # OpenMesh (Debian libopenmesh-dev), OPTIONAL and benchmark-only: the subdivision, operation,
-# fairing and decimation benchmarks compare against it when installed. The product, the tests and CI
-# never need it, so it is not in packages.txt.
+# fairing and decimation benchmarks compare against it when installed. The product, the tests
+# and CI never need it, so it is not in packages.txt.
 if(TRILAB_BUILD_TESTS)
     find_package(OpenMesh CONFIG QUIET)
     if(TARGET OpenMeshTools)
