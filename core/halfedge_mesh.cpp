@@ -1,6 +1,7 @@
 #include "core/halfedge_mesh.h"
 
 #include <algorithm>
+#include <iterator>
 #include <string>
 
 #include "core/errors.h"
@@ -147,16 +148,6 @@ void HalfedgeMesh::checked_remove(PropertyContainer& c, const std::string& name)
     c.remove(name);
 }
 
-std::vector<Halfedge> HalfedgeMesh::halfedges() const {
-    std::vector<Halfedge> out;
-    out.reserve(2 * n_edges());
-    for (Edge e : edges()) {
-        out.push_back(halfedge(e, 0));
-        out.push_back(halfedge(e, 1));
-    }
-    return out;
-}
-
 Halfedge HalfedgeMesh::find_halfedge(Vertex a, Vertex b) const {
     for (Halfedge h : halfedges_around(a))
         if (to_vertex(h) == b) return h;
@@ -175,12 +166,8 @@ bool HalfedgeMesh::is_boundary(Face f) const {
 }
 
 unsigned HalfedgeMesh::valence(Vertex v) const {
-    unsigned n = 0;
-    for (Halfedge h : halfedges_around(v)) {
-        (void)h;
-        ++n;
-    }
-    return n;
+    const auto around = halfedges_around(v);
+    return unsigned(std::distance(around.begin(), around.end()));
 }
 
 void HalfedgeMesh::resize_elements(std::size_t nv, std::size_t ne, std::size_t nf) {

@@ -17,6 +17,9 @@
 //  - live elements never reference deleted ones. Deleted elements stay in storage until
 //    garbage_collection(), which compacts and reports the index remapping.
 #include <array>
+#include <cstddef>
+#include <cstdint>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -37,14 +40,22 @@ using EdgeProperty = Property<Edge, T>;
 template <class T>
 using FaceProperty = Property<Face, T>;
 
-/// Iterates over the live (not deleted) elements of one kind.
+/// Iterates over the live (not deleted) elements of one kind. An element i is deleted when
+/// deleted[i >> shift] is set (shift 1 for halfedges, whose flags are their edges').
 template <class H>
 class ElementRange {
 public:
     class iterator {
     public:
-        iterator(Index i, Index end, const std::vector<std::uint8_t>* deleted)
-            : i_(i), end_(end), deleted_(deleted) {
+        using iterator_category = std::input_iterator_tag;  // yields handles by value
+        using value_type = H;
+        using difference_type = std::ptrdiff_t;
+        using pointer = void;
+        using reference = H;
+
+        iterator() = default;
+        iterator(Index i, Index end, const std::vector<std::uint8_t>* deleted, unsigned shift)
+            : i_(i), end_(end), shift_(shift), deleted_(deleted) {
             skip();
         }
         H operator*() const { return H(i_); }
@@ -53,23 +64,31 @@ public:
             skip();
             return *this;
         }
+        iterator operator++(int) {
+            iterator old = *this;
+            ++*this;
+            return old;
+        }
         bool operator!=(const iterator& o) const { return i_ != o.i_; }
         bool operator==(const iterator& o) const { return i_ == o.i_; }
 
     private:
         void skip() {
             if (!deleted_) return;
-            while (i_ < end_ && (*deleted_)[i_]) ++i_;
+            while (i_ < end_ && (*deleted_)[i_ >> shift_]) ++i_;
         }
-        Index i_, end_;
-        const std::vector<std::uint8_t>* deleted_;
+        Index i_ = 0, end_ = 0;
+        unsigned shift_ = 0;
+        const std::vector<std::uint8_t>* deleted_ = nullptr;
     };
-    ElementRange(Index n, const std::vector<std::uint8_t>* deleted) : n_(n), deleted_(deleted) {}
-    iterator begin() const { return iterator(0, n_, deleted_); }
-    iterator end() const { return iterator(n_, n_, deleted_); }
+    ElementRange(Index n, const std::vector<std::uint8_t>* deleted, unsigned shift = 0)
+        : n_(n), shift_(shift), deleted_(deleted) {}
+    iterator begin() const { return iterator(0, n_, deleted_, shift_); }
+    iterator end() const { return iterator(n_, n_, deleted_, shift_); }
 
 private:
     Index n_;
+    unsigned shift_;
     const std::vector<std::uint8_t>* deleted_;
 };
 
@@ -82,6 +101,13 @@ public:
     using value_type = typename Policy::value_type;
     class iterator {
     public:
+        using iterator_category = std::input_iterator_tag;  // yields handles by value
+        using value_type = typename Policy::value_type;
+        using difference_type = std::ptrdiff_t;
+        using pointer = void;
+        using reference = value_type;
+
+        iterator() = default;
         iterator(const HalfedgeMesh* m, Halfedge h, bool at_end)
             : mesh_(m), start_(h), h_(h), at_end_(at_end || !h.is_valid()) {
             if (!at_end_ && Policy::skip(*mesh_, h_)) advance();
@@ -90,6 +116,11 @@ public:
         iterator& operator++() {
             advance();
             return *this;
+        }
+        iterator operator++(int) {
+            iterator old = *this;
+            advance();
+            return old;
         }
         bool operator!=(const iterator& o) const { return at_end_ != o.at_end_ || h_ != o.h_; }
         bool operator==(const iterator& o) const { return !(*this != o); }
@@ -105,9 +136,9 @@ public:
                 }
             } while (Policy::skip(*mesh_, h_));
         }
-        const HalfedgeMesh* mesh_;
+        const HalfedgeMesh* mesh_ = nullptr;
         Halfedge start_, h_;
-        bool at_end_;
+        bool at_end_ = true;
     };
     Circulator(const HalfedgeMesh* m, Halfedge start) : mesh_(m), start_(start) {}
     iterator begin() const { return iterator(mesh_, start_, false); }
@@ -162,7 +193,9 @@ public:
         return {Index(faces_size()), n_deleted_faces_ ? &fdeleted_.vector() : nullptr};
     }
     /// All live halfedges (both halves of each live edge).
-    std::vector<Halfedge> halfedges() const;
+    ElementRange<Halfedge> halfedges() const {
+        return {Index(halfedges_size()), n_deleted_edges_ ? &edeleted_.vector() : nullptr, 1};
+    }
 
     // ---- handle arithmetic ---------------------------------------------------------------
     static Halfedge twin(Halfedge h) { return Halfedge(h.idx() ^ 1u); }

@@ -450,3 +450,37 @@ TEST_CASE("mesh copies share their arrays until one of them writes", "[core][pro
     CHECK(block_ids(e) == block_ids(a));
     CHECK_THROWS_AS(e.set_positions(std::vector<Point>(3)), InvalidArgument);
 }
+
+TEST_CASE("ranges and circulators are standard iterators; halfedges() skips deleted edges",
+          "[core]") {
+    using namespace trilab;
+    using It = ElementRange<Vertex>::iterator;
+    static_assert(std::is_same_v<std::iterator_traits<It>::value_type, Vertex>);
+    static_assert(
+        std::is_same_v<std::iterator_traits<It>::iterator_category, std::input_iterator_tag>);
+    using Around = decltype(std::declval<HalfedgeMesh>().vertices_around(Vertex(0)).begin());
+    static_assert(std::is_same_v<std::iterator_traits<Around>::value_type, Vertex>);
+
+    HalfedgeMesh m = make_icosphere(2);
+    const auto vs = m.vertices();
+    CHECK(std::size_t(std::distance(vs.begin(), vs.end())) == m.n_vertices());
+    const std::vector<Vertex> around(m.vertices_around(Vertex(0)).begin(),
+                                     m.vertices_around(Vertex(0)).end());
+    CHECK(around.size() == m.valence(Vertex(0)));
+    const auto hs = m.halfedges();
+    CHECK(std::size_t(std::distance(hs.begin(), hs.end())) == m.n_halfedges());
+
+    // After a collapse (before garbage collection) the deleted edges' halfedges are skipped.
+    const Halfedge h = m.halfedge(Vertex(0));
+    REQUIRE(m.is_collapse_ok(h));
+    m.collapse(h);
+    REQUIRE(m.has_garbage());
+    std::size_t live = 0;
+    for (Halfedge x : m.halfedges()) {
+        CHECK_FALSE(m.is_deleted(x));
+        ++live;
+    }
+    CHECK(live == m.n_halfedges());
+    CHECK(std::count_if(m.halfedges().begin(), m.halfedges().end(),
+                        [&](Halfedge x) { return m.is_boundary(x); }) == 0);
+}
