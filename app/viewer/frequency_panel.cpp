@@ -97,8 +97,8 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
         const float plot_width = kPlotWidthEm * em;
         const IndexPlot spectrum_axis{"", "", &doc.eigenvalues, 0, -1, -1, 0.0};
         const IndexPlot coefficient_axis{"", "", &doc.log_coefficients, 0, -1, -1, 1.0};
-        const float margin = std::max(index_plot_margin(spectrum_axis, kPlotHeightEm * em),
-                                      index_plot_margin(coefficient_axis, kPlotHeightEm * em));
+        const float margin =
+            std::max(index_plot_margin(spectrum_axis), index_plot_margin(coefficient_axis));
         frequency_bar(doc, s.lo, s.hi, s.visualize, plot_width, margin);
         if (busy) ImGui::BeginDisabled();
         ImGui::SetNextItemWidth(kPlotWidthEm * em - 6.0f * em);

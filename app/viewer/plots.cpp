@@ -255,7 +255,7 @@ float index_plot_right_pad() {
     return 1.5f * ImGui::GetFontSize();
 }
 
-float index_plot_margin(const IndexPlot& plot, float) {
+float index_plot_margin(const IndexPlot& plot) {
     float widest = ImGui::CalcTextSize("0").x;
     for (const double t : y_axis(plot).ticks)
         widest = std::max(widest, ImGui::CalcTextSize(tick_text(t).c_str()).x);

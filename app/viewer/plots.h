@@ -78,7 +78,7 @@ struct IndexPlot {
 };
 void index_plot(const IndexPlot& plot, float width, float height, float left_margin);
 /// The left margin that fits the y tick labels of `plot`.
-float index_plot_margin(const IndexPlot& plot, float height);
+float index_plot_margin(const IndexPlot& plot);
 /// The space kept right of a plot area (room for the last x tick label).
 float index_plot_right_pad();
 
