@@ -342,6 +342,44 @@ TEST_CASE("textured mode samples the texture; without coordinates it draws plain
     CHECK(offscreen().render(sphere, o).rgba == offscreen().render(sphere, plain).rgba);
 }
 
+TEST_CASE("a z-up model with --up z looks like its y-up twin, texture projection included",
+          "[render][offscreen][texture]") {
+    // A tall, bent shape standing on +y, and its twin standing on +z: world (x, y, z) of the
+    // z-up frame reads as (x, z, -y) in the y-up frame (core/up_axis.h).
+    HalfedgeMesh y_up = make_icosphere(12);
+    for (Vertex v : y_up.vertices()) {
+        Point& p = y_up.position(v);
+        p.y() *= 2.0;
+        p.x() += 0.3 * p.y() * p.y() + 0.2 * p.z();
+    }
+    HalfedgeMesh z_up = y_up;
+    for (Vertex v : z_up.vertices()) {
+        const Point p = y_up.position(v);
+        z_up.position(v) = Point(p.x(), -p.z(), p.y());
+    }
+    project_texcoords(y_up, TexCoordProjection::Spherical, UpAxis::Y);
+    project_texcoords(z_up, TexCoordProjection::Spherical, UpAxis::Z);
+    for (const auto& [az, el] : {std::pair<float, float>{0, 0}, {40, 25}}) {
+        OffscreenOptions o = small_options();
+        o.style.mode = RenderMode::Textured;
+        o.texture = make_checkerboard();
+        o.azimuth = az;
+        o.elevation = el;
+        const Image a = offscreen().render(y_up, o);
+        o.up = UpAxis::Z;
+        const Image b = offscreen().render(z_up, o);
+        // Seen with +y up, the z-up twin lies on its back: a different picture.
+        o.up = UpAxis::Y;
+        const Image lying = offscreen().render(z_up, o);
+        dump(a, "up_y");
+        dump(b, "up_z");
+        INFO("view " << az << "," << el << ": y-up vs z-up " << mean_difference(a, b)
+                     << ", vs lying " << mean_difference(a, lying));
+        CHECK(mean_difference(a, b) < 0.5);
+        CHECK(mean_difference(a, lying) > 5.0);
+    }
+}
+
 TEST_CASE("per-corner texture coordinates keep seams sharp", "[render][offscreen][texture]") {
     // Every triangle of a cube maps into one checker square, alternating light and dark, so
     // every vertex has corners in both kinds of square: shared vertices would smear them.
