@@ -40,6 +40,15 @@ public:
     /// rotation is the product of two axis rotations (a quaternion), so it passes the poles
     /// without a flip.
     void set_view_angles(float azimuth_deg, float elevation_deg);
+    /// For a picture of width x height pixels of what the camera shows: sets that viewport and
+    /// widens the vertical field of view where the picture's aspect ratio is narrower than the
+    /// current viewport's, so that everything visible now stays visible, centred, and fills
+    /// the picture in one direction (the other gets the extra room). Screenshots and recorded
+    /// frames use it so that they are framed like the view.
+    void reframe_for_viewport(float width, float height);
+    /// Viewport pixels per world unit at the target's depth (how long a unit segment facing
+    /// the camera appears there).
+    float pixels_per_unit() const;
     /// Looks along -z with +y up (the initial orientation).
     void reset_rotation() { rotation_ = glm::quat(1, 0, 0, 0); }
 

@@ -11,13 +11,18 @@
 namespace trilab::viewer {
 namespace {
 
-constexpr float kPlotWidthEm = 26.0f;  ///< width of the bar and the plots (auto-resized window)
+constexpr float kPlotWidthEm = 26.0f;  ///< the most width the bar and the plots take
+
+/// The width of the bar and the plots: kPlotWidthEm, less in a narrow sidebar.
+float plot_width() {
+    return std::min(kPlotWidthEm * ImGui::GetFontSize(), ImGui::GetContentRegionAvail().x);
+}
 
 /// The frequency bar: every computed frequency as a grey strip, the applied band in green
 /// and the slider band outlined in orange.
 void frequency_bar(const FrequencyDocument& doc, int lo, int hi) {
     const std::size_t k = doc.eigenvalues.size();
-    const float w = kPlotWidthEm * ImGui::GetFontSize(), h = ImGui::GetFrameHeight() * 0.7f;
+    const float w = plot_width(), h = ImGui::GetFrameHeight() * 0.7f;
     const ImVec2 p = ImGui::GetCursorScreenPos();
     ImDrawList* dl = ImGui::GetWindowDrawList();
     dl->AddRectFilled(p, ImVec2(p.x + w, p.y + h), IM_COL32(70, 70, 70, 255));
@@ -42,7 +47,7 @@ void frequency_bar(const FrequencyDocument& doc, int lo, int hi) {
 void band_plot(const char* label, const std::vector<float>& values, int lo, int hi,
                const char* overlay) {
     if (values.empty()) return;
-    const float w = kPlotWidthEm * ImGui::GetFontSize();
+    const float w = plot_width();
     ImGui::PlotLines(label, values.data(), int(values.size()), 0, overlay, FLT_MAX, FLT_MAX,
                      ImVec2(w, 5.0f * ImGui::GetFontSize()));
     const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
@@ -56,15 +61,8 @@ void band_plot(const char* label, const std::vector<float>& values, int lo, int 
 
 FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocument& doc, bool busy) {
     FrequencyActions act;
-    if (!s.open) return act;
-    const ImGuiIO& io = ImGui::GetIO();
+    if (!section_header("Frequency decomposition", s.open)) return act;
     const float em = ImGui::GetFontSize();
-    ImGui::SetNextWindowPos(ImVec2(std::max(0.0f, io.DisplaySize.x - 37.0f * em), 9.0f * em),
-                            ImGuiCond_FirstUseEver);
-    if (!ImGui::Begin("Frequency decomposition", &s.open, ImGuiWindowFlags_AlwaysAutoResize)) {
-        ImGui::End();
-        return act;
-    }
     // The decomposition's parameters, drawn from the operation's declaration (the band is
     // the sliders below; threads and the size limit keep their defaults here).
     operation_widgets(s.op, {"band", "threads", "max-full"});
@@ -77,9 +75,9 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
     if (!have) ImGui::EndDisabled();
     if (busy) ImGui::EndDisabled();
     if (doc.decomposition && !doc.valid)
-        ImGui::TextUnformatted("The decomposition belongs to another mesh: decompose again.");
+        ImGui::TextWrapped("The decomposition belongs to another mesh: decompose again.");
     if (!doc.summary.empty()) {
-        ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + kPlotWidthEm * em);
+        ImGui::PushTextWrapPos(0.0f);
         ImGui::TextUnformatted(doc.summary.c_str());
         ImGui::PopTextWrapPos();
     }
@@ -91,11 +89,11 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
         ImGui::Separator();
         frequency_bar(doc, s.lo, s.hi);
         if (busy) ImGui::BeginDisabled();
-        ImGui::SetNextItemWidth(kPlotWidthEm * em - 6.0f * em);
+        ImGui::SetNextItemWidth(std::max(4.0f * em, plot_width() - 6.0f * em));
         const int old_lo = s.lo, old_hi = s.hi;
         ImGui::SliderInt("band from", &s.lo, 0, last);
         const bool lo_done = ImGui::IsItemDeactivatedAfterEdit();
-        ImGui::SetNextItemWidth(kPlotWidthEm * em - 6.0f * em);
+        ImGui::SetNextItemWidth(std::max(4.0f * em, plot_width() - 6.0f * em));
         ImGui::SliderInt("band to", &s.hi, 0, last);
         const bool hi_done = ImGui::IsItemDeactivatedAfterEdit();
         s.lo = std::clamp(s.lo, 0, last);
@@ -108,7 +106,7 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
         }
         act.preview = s.lo != old_lo || s.hi != old_hi;
         act.commit = lo_done || hi_done;
-        ImGui::SetNextItemWidth(kPlotWidthEm * em - 6.0f * em);
+        ImGui::SetNextItemWidth(std::max(4.0f * em, plot_width() - 6.0f * em));
         const int old_vis = s.visualize;
         ImGui::SliderInt("visualize", &s.visualize, 0, last);
         s.visualize = std::clamp(s.visualize, 0, last);
@@ -128,7 +126,6 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
                 "log10 of |alpha_k|, the length of the positions' coefficient "
                 "(x, y, z) on frequency k");
     }
-    ImGui::End();
     return act;
 }
 

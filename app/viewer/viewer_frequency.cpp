@@ -135,7 +135,8 @@ void Viewer::preview_band() {
     const FrequencyPanelState& s = panels_.frequency;
     const SpectralDecomposition& d = *document_.frequency.decomposition;
     // Stop any morph: the view shows the band now.
-    morph_ = MorphState{1.0, false, morph_.duration, morph_.easing, morph_.playback, 0.0};
+    morph_ =
+        MorphState{1.0, false, morph_.duration, morph_.easing, morph_.playback, 0.0, morph_.moves};
     if (morph_topology_) {
         morph_topology_ = nullptr;
         renderer_->upload(document_.mesh());
