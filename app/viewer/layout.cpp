@@ -30,7 +30,7 @@ Layout compute_layout(const LayoutInput& in, LayoutState& state) {
     // view keeps at least a third of it.
     state.sidebar_width =
         clamp_size(state.sidebar_width, 26.0f * em, std::min(14.0f * em, 0.4f * W), 0.4f * W);
-    l.sidebar = Rect{0, middle_y, state.sidebar_width, middle_h};
+    if (in.sidebar) l.sidebar = Rect{0, middle_y, state.sidebar_width, middle_h};
     float right_x = W;
     if (in.history) {
         state.history_width =
@@ -38,7 +38,8 @@ Layout compute_layout(const LayoutInput& in, LayoutState& state) {
         right_x = W - state.history_width;
         l.history = Rect{right_x, middle_y, state.history_width, middle_h};
     }
-    const float strip_x = l.sidebar.right(), strip_w = std::max(0.0f, right_x - strip_x);
+    const float strip_x = in.sidebar ? l.sidebar.right() : 0.0f,
+                strip_w = std::max(0.0f, right_x - strip_x);
 
     // The bottom strip under the view: the log and the colour legend side by side.
     float strip_h = 0;

@@ -47,6 +47,7 @@ struct LayoutInput {
     float width = 0, height = 0;  ///< the display (ImGui's DisplaySize)
     float em = 13;                ///< the font size
     float frame_height = 19;      ///< a widget's height (font size + frame padding)
+    bool sidebar = true;          ///< the sidebar is shown
     bool history = false;         ///< the History column is open
     bool log = false;             ///< the Log is open
     bool legend = false;          ///< a colour legend is shown

@@ -236,6 +236,7 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Window")) {
+        ImGui::MenuItem("Sidebar", nullptr, &panels.sidebar_open);
         ImGui::MenuItem("Model information", "I", &panels.info_open);
         ImGui::MenuItem("Log", "L", &panels.log_open);
         ImGui::EndMenu();

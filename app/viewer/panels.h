@@ -153,6 +153,7 @@ struct PanelState {
     bool info_open = false;
     bool context_menu_requested = false;  ///< right click in the view: open the Rendering popup
     LayoutState layout;                   ///< the regions' sizes (layout.h)
+    bool sidebar_open = true;             ///< Window > Sidebar
 };
 
 /// What the menus need to know about the document and the job runner.

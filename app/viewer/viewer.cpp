@@ -38,9 +38,9 @@ constexpr int kFramesAfterInput = 4;
 constexpr std::size_t kColoringJobFaces = 200000;  ///< larger meshes colour in a job
 /// The automatic wireframe overlay is on while a typical edge is at least this many line
 /// widths long on the screen, and goes off below the second figure (no flicker at the edge).
-constexpr double kWireOnLineWidths = 6.0, kWireOffLineWidths = 5.0;
+constexpr double kWireOnLineWidths = 10.0, kWireOffLineWidths = 8.0;
 /// Scripted runs wait at most this many extra frames for jobs and morphs to end.
-constexpr int kMaxSettleFrames = 100000;
+constexpr int kMaxSettleFrames = 1000;
 
 void glfw_error(int code, const char* description) {
     std::fprintf(stderr, "trilab: GLFW error %d: %s\n", code, description);
@@ -242,6 +242,7 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
                 "' (all, history, morph, tools, subdivision, fairing, frequency, decimation, "
                 "collapsing-edges, record, log, info, help, about, screenshot)");
     }
+    initial_load_ended_ = options_.mesh_path.empty();
     if (!options_.mesh_path.empty()) load(options_.mesh_path);
     if (!options_.operation.empty() && options_.mesh_path.empty())
         commands_.push_back(RunOperation{parse_operation(options_.operation)});
@@ -292,8 +293,8 @@ void Viewer::on_state_changed(bool fit) {
                    (document_.path.empty() ? "" : " (" + document_.path + ")"));
     const History::EntryInfo entry = document_.history.info(document_.history.current());
     info.push_back("state " + std::to_string(document_.history.current()) + " of " +
-                   std::to_string(document_.history.size()) + ": " + entry.label + " " +
-                   entry.parameters);
+                   std::to_string(document_.history.size()) + ": " + entry.label +
+                   (entry.parameters.empty() ? "" : " " + entry.parameters));
     std::snprintf(buf, sizeof(buf), "vertices %zu (%zu isolated), edges %zu, faces %zu", s.vertices,
                   s.isolated_vertices, s.edges, s.faces);
     info.push_back(buf);
@@ -374,7 +375,7 @@ void Viewer::update_stable_step() {
 
 bool Viewer::ready_for_script() const {
     if (jobs_.busy()) return false;
-    if (!options_.mesh_path.empty() && document_.path.empty()) return false;  // still loading
+    if (!initial_load_ended_) return false;  // still loading
     if (!options_.operation.empty() && !initial_op_done_ && !options_.mesh_path.empty())
         return false;
     return true;
@@ -622,6 +623,7 @@ void Viewer::poll_jobs() {
         commands_.push_back(UpdateColoring{});
     }
     active_frames_ = kFramesAfterInput;
+    if (outcome.name.rfind("Loading ", 0) == 0) initial_load_ended_ = true;  // or failed
     const bool preview = outcome.name.rfind("Preview: ", 0) == 0;
     if (preview && outcome.kind != Kind::Failed) {
         if (outcome.kind == Kind::Succeeded && preview_.requested &&
@@ -1065,6 +1067,7 @@ void Viewer::draw_ui() {
     in.height = io.DisplaySize.y;
     in.em = ImGui::GetFontSize();
     in.frame_height = ImGui::GetFrameHeight();
+    in.sidebar = panels_.sidebar_open;
     in.history = panels_.history_open;
     in.log = panels_.log_open;
     in.legend = view_.colors.has_legend;
@@ -1091,7 +1094,7 @@ void Viewer::draw_ui() {
     update_preview_flags();
     update_stable_step();
     update_collapsing_edges();
-    if (begin_sidebar(layout.sidebar, sizes)) {
+    if (panels_.sidebar_open && begin_sidebar(layout.sidebar, sizes)) {
         tools_section(panels_, jobs_.busy(), commands_);
         fairing_section(panels_, morph_, document_.history, document_.closed, jobs_.busy(),
                         glfwGetTime(), commands_);
@@ -1106,8 +1109,13 @@ void Viewer::draw_ui() {
         record_section(panels_, document_.history.current() > 0 && morph_.moves && !jobs_.busy(),
                        commands_);
         info_section(panels_, panels_.info_open ? scene_info() : std::vector<std::string>{});
+        ImGui::Spacing();
+        ImGui::PushTextWrapPos(0.0f);
+        ImGui::TextDisabled(
+            "The Tools and Algorithms menus open these sections; H the history, L the log.");
+        ImGui::PopTextWrapPos();
     }
-    end_region();
+    if (panels_.sidebar_open) end_region();
     layout = compute_layout(in, sizes);
     history_window(panels_, document_.history, jobs_.busy(), layout.history, commands_);
     layout = compute_layout(in, sizes);
@@ -1141,11 +1149,10 @@ void Viewer::draw_ui() {
 }
 
 void Viewer::view_viewport(int& x, int& y, int& w, int& h) const {
-    int fb_w = 0, fb_h = 0, win_w = 0, win_h = 0;
-    glfwGetFramebufferSize(window_.get(), &fb_w, &fb_h);
-    glfwGetWindowSize(window_.get(), &win_w, &win_h);
-    const float sx = win_w > 0 ? float(fb_w) / float(win_w) : 1.0f;
-    const float sy = win_h > 0 ? float(fb_h) / float(win_h) : 1.0f;
+    // The backend reads the window and framebuffer sizes once a frame; no X round trip here.
+    const ImGuiIO& io = ImGui::GetIO();
+    const float sx = io.DisplayFramebufferScale.x, sy = io.DisplayFramebufferScale.y;
+    const int fb_h = int(std::lround(io.DisplaySize.y * sy));
     x = int(std::lround(view_rect_.x * sx));
     w = std::max(1, int(std::lround(view_rect_.w * sx)));
     h = std::max(1, int(std::lround(view_rect_.h * sy)));
@@ -1154,32 +1161,29 @@ void Viewer::view_viewport(int& x, int& y, int& w, int& h) const {
 
 void Viewer::update_wireframe() {
     RenderStyle& style = view_.style;
-    switch (view_.settings.wireframe) {
-        case WireframeOverlay::On:
-            style.wireframe = true;
-            return;
-        case WireframeOverlay::Off:
-            style.wireframe = false;
-            return;
-        case WireframeOverlay::Auto:
-            break;
-    }
     // A typical edge of the shown mesh: the side of an equilateral triangle of the mean
     // triangle area (the current state's area over the shown triangles, so previews,
     // morphs and levels of detail count their own density). Two multiplications a frame.
     const std::size_t triangles = renderer_->n_triangles();
-    if (triangles == 0 || !(surface_area_ > 0)) {
-        style.wireframe = wire_auto_on_ = false;
-        return;
+    edge_pixels_ = 0;
+    if (triangles > 0 && surface_area_ > 0) {
+        const double edge = std::sqrt(4.0 * surface_area_ / (std::sqrt(3.0) * double(triangles)));
+        edge_pixels_ = edge * double(view_.camera.pixels_per_unit()) *
+                       double(ImGui::GetIO().DisplayFramebufferScale.y);
     }
-    int x = 0, y = 0, w = 0, h = 0;
-    view_viewport(x, y, w, h);
-    const double edge = std::sqrt(4.0 * surface_area_ / (std::sqrt(3.0) * double(triangles)));
-    const double pixels =
-        edge * double(view_.camera.pixels_per_unit()) * double(h) / double(view_rect_.h);
     const double line = std::max(1.0, double(style.wire_width * ui_scale_));
-    wire_auto_on_ = pixels >= (wire_auto_on_ ? kWireOffLineWidths : kWireOnLineWidths) * line;
-    style.wireframe = wire_auto_on_;
+    wire_auto_on_ = edge_pixels_ >= (wire_auto_on_ ? kWireOffLineWidths : kWireOnLineWidths) * line;
+    switch (view_.settings.wireframe) {
+        case WireframeOverlay::On:
+            style.wireframe = true;
+            break;
+        case WireframeOverlay::Off:
+            style.wireframe = false;
+            break;
+        case WireframeOverlay::Auto:
+            style.wireframe = wire_auto_on_;
+            break;
+    }
 }
 
 void Viewer::render_scene() {
@@ -1290,8 +1294,8 @@ bool Viewer::entry_moves() const {
 }
 
 bool Viewer::script_settled() {
-    if (jobs_.busy() || preview_.pending || !ready_for_script() || sweep_.active ||
-        panels_.record.running)
+    if (jobs_.busy() || !commands_.empty() || preview_.pending || !ready_for_script() ||
+        sweep_.active || panels_.record.running)
         return false;
     if (!options_.decompose.empty() && scripted_decompose_ != 2) return false;
     if (!options_.sweep_op.empty() && !sweep_started_) return false;
@@ -1440,6 +1444,21 @@ int Viewer::run() {
         std::snprintf(buf, sizeof(buf), "median frame time %.1f ms over the last %zu frames",
                       frame_ms(), std::min(n_frame_times_, frame_times_ms_.size()));
         log_.info(buf);
+        // What the last frame showed, for scripts and tests.
+        const History& h = document_.history;
+        std::string entries;
+        for (std::size_t i = 0; i < h.size() && i < 20; ++i)
+            entries += (i ? " | " : "") + std::to_string(i) + " " + h.info(i).label;
+        log_.info("history: " + entries);
+        std::snprintf(buf, sizeof(buf), ", morph t = %.3f", morph_.t);
+        log_.info("last frame: " + document_.info[1] + buf);
+        const char* setting = view_.settings.wireframe == WireframeOverlay::Auto ? "automatic"
+                              : view_.settings.wireframe == WireframeOverlay::On ? "on"
+                                                                                 : "off";
+        std::snprintf(buf, sizeof(buf), "wireframe overlay %s (%s; edges %.1f px on the screen)",
+                      view_.style.wireframe ? "on" : "off", setting, edge_pixels_);
+        log_.info(buf);
+        log_.info("status: " + notice_.text);
     }
     log_.info(quit_ ? "quit after " + std::to_string(frame) + " frames" : "frames done");
     return 0;

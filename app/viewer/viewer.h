@@ -268,6 +268,7 @@ private:
     bool drag_in_view_ = false;    ///< the mouse drag began in the view
     double surface_area_ = 0;      ///< of the current state (the wireframe decision)
     bool wire_auto_on_ = false;    ///< the automatic overlay's last decision (hysteresis)
+    double edge_pixels_ = 0;       ///< a typical edge on the screen (framebuffer pixels)
     bool morph_t_done_ = false;    ///< options_.morph_t has been applied
     float record_line_scale_ = 1;  ///< line widths of recorded frames relative to the view
     int active_frames_ = 0;        ///< frames still to draw after the last event or command
@@ -277,8 +278,9 @@ private:
     MorphState morph_;
     const HalfedgeMesh* morph_topology_ = nullptr;  ///< uploaded for the morph (null: none)
     bool initial_op_done_ = false;                  ///< options_.operation has been queued
-    int scripted_decompose_ = 0;  ///< options_.decompose: 0 to do, 1 started, 2 done
-    Camera record_camera_;        ///< the recording's framing, fixed for the whole sequence
+    bool initial_load_ended_ = true;  ///< options_.mesh_path was read (or failed to be)
+    int scripted_decompose_ = 0;      ///< options_.decompose: 0 to do, 1 started, 2 done
+    Camera record_camera_;            ///< the recording's framing, fixed for the whole sequence
     /// Wall time of the most recent frames (events excluded), for a median that ignores the
     /// slow first frame (shader compilation, font upload).
     std::array<double, 15> frame_times_ms_{};

@@ -306,7 +306,7 @@ TEST_CASE("the layout's regions tile the window at every size, scale and panel s
     const float user[] = {0.0f, 1.0f, 1e6f};
     for (const auto& size : sizes)
         for (float scale : scales)
-            for (int panels = 0; panels < 8; ++panels)
+            for (int panels = 0; panels < 16; ++panels)
                 for (float u : user) {
                     LayoutInput in;
                     in.width = size[0];
@@ -316,6 +316,7 @@ TEST_CASE("the layout's regions tile the window at every size, scale and panel s
                     in.history = panels & 1;
                     in.log = panels & 2;
                     in.legend = panels & 4;
+                    in.sidebar = !(panels & 8);
                     LayoutState state;
                     state.sidebar_width = state.history_width = state.log_height = u;
                     state.legend_width = state.legend_height = u;
@@ -326,6 +327,7 @@ TEST_CASE("the layout's regions tile the window at every size, scale and panel s
                     CHECK(l.history.empty() == !in.history);
                     CHECK(l.log.empty() == !in.log);
                     CHECK(l.legend.empty() == !in.legend);
+                    CHECK(l.sidebar.empty() == !in.sidebar);
                     // The clamped sizes are kept: a second pass gives the same regions.
                     const Layout again = compute_layout(in, state);
                     CHECK(again.view.x == l.view.x);
