@@ -197,7 +197,10 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
         view_.settings.coloring = parse_coloring(options_.color);
         update_coloring();
     }
-    if (!options_.operation.empty()) parse_operation(options_.operation);  // refuse bad ones now
+    if (!options_.operation.empty()) {  // refuse bad ones now; the panel shows its values
+        const Operation op = parse_operation(options_.operation);
+        if (OperationPanelState* panel = panel_of(op)) panel->op = op;
+    }
     for (std::size_t pos = 0; pos < options_.show.size();) {
         std::size_t comma = options_.show.find(',', pos);
         if (comma == std::string::npos) comma = options_.show.size();
