@@ -58,6 +58,14 @@ constexpr Binding kBindings[] = {
     {"Drop a file", "open a mesh, or load an image as texture"},
 };
 
+/// Inside a dialog's Begin: Esc closes it while it has the focus (the viewer's key handler
+/// also closes the dialogs, for presses ImGui 1.86 misses).
+void close_on_escape(bool& open) {
+    if (ImGui::IsWindowFocused(ImGuiFocusedFlags_RootAndChildWindows) &&
+        ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false))
+        open = false;
+}
+
 ImVec4 notice_color(Notice::Level level) {
     return level == Notice::Level::Error ? ImVec4(1.0f, 0.45f, 0.40f, 1.0f)
                                          : ImVec4(0.70f, 0.85f, 0.70f, 1.0f);
@@ -400,6 +408,7 @@ void help_window(PanelState& panels) {
     if (ImGui::Begin("Key bindings", &panels.help_open,
                      ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse)) {
         keep_dialog_inside();
+        close_on_escape(panels.help_open);
         if (ImGui::BeginTable("bindings", 2,
                               ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
             for (const Binding& b : kBindings) {
@@ -840,6 +849,7 @@ void screenshot_dialog(ScreenshotState& state, CommandQueue& commands) {
     place_dialog();
     if (ImGui::Begin("Screenshot", &state.open, ImGuiWindowFlags_AlwaysAutoResize)) {
         keep_dialog_inside();
+        close_on_escape(state.open);
         ImGui::TextUnformatted("The scene without the panels, framed as the view, as PNG.");
         ImGui::SetNextItemWidth(20.0f * ImGui::GetFontSize());
         ImGui::InputText("file", &state.path);
@@ -862,6 +872,7 @@ void about_window(PanelState& panels) {
     place_dialog();
     if (ImGui::Begin("About trilab", &panels.about_open, ImGuiWindowFlags_AlwaysAutoResize)) {
         keep_dialog_inside();
+        close_on_escape(panels.about_open);
         ImGui::TextUnformatted("trilab: a laboratory for triangle meshes");
         ImGui::Separator();
         ImGui::TextUnformatted("Half-edge core, OpenGL 3.3 renderer, Dear ImGui " IMGUI_VERSION);

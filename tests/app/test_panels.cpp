@@ -421,3 +421,20 @@ TEST_CASE("the unsaved-changes question offers Save as", "[panels]") {
     CHECK(commands_of<SaveAsAndContinue>(commands).size() == 1);
     CHECK(commands_of<SaveAndContinue>(commands).empty());
 }
+
+TEST_CASE("Esc closes the key bindings", "[panels]") {
+    Ui ui;
+    PanelState panels;
+    panels.help_open = true;
+    ImGuiIO& io = ImGui::GetIO();
+    io.KeyMap[ImGuiKey_Escape] = 256;  // any free slot of KeysDown
+    const auto draw = [&] { help_window(panels); };
+    ui.frame(draw);
+    ui.frame(draw);
+    REQUIRE(panels.help_open);
+    io.KeysDown[256] = true;
+    ui.frame(draw);
+    io.KeysDown[256] = false;
+    ui.frame(draw);
+    CHECK_FALSE(panels.help_open);
+}
