@@ -1,6 +1,7 @@
 #include "core/halfedge_mesh.h"
 
 #include <algorithm>
+#include <string>
 
 #include "core/errors.h"
 
@@ -92,6 +93,31 @@ void HalfedgeMesh::bind_builtins() {
     edeleted_ = EdgeProperty<std::uint8_t>(eprops_.get<std::uint8_t>("e:deleted"));
     fhalfedge_ = FaceProperty<Halfedge>(fprops_.get<Halfedge>("f:halfedge"));
     fdeleted_ = FaceProperty<std::uint8_t>(fprops_.get<std::uint8_t>("f:deleted"));
+}
+
+void HalfedgeMesh::set_positions(std::vector<Point> positions) {
+    if (positions.size() != vertices_size())
+        throw InvalidArgument("HalfedgeMesh::set_positions: " + std::to_string(positions.size()) +
+                              " positions for a vertex storage size of " +
+                              std::to_string(vertices_size()));
+    vpoint_.array()->assign(std::move(positions));
+}
+
+std::vector<HalfedgeMesh::MemoryBlock> HalfedgeMesh::memory_blocks() const {
+    std::vector<MemoryBlock> out;
+    for (const PropertyContainer* c : {&vprops_, &hprops_, &eprops_, &fprops_})
+        c->for_each_array([&](const std::string&, const void* id, std::size_t bytes) {
+            out.push_back({id, bytes});
+        });
+    return out;
+}
+
+std::size_t HalfedgeMesh::share_equal_arrays(const HalfedgeMesh& other) {
+    if (vertices_size() != other.vertices_size() || halfedges_size() != other.halfedges_size() ||
+        faces_size() != other.faces_size())
+        return 0;
+    return vprops_.share_equal_arrays(other.vprops_) + hprops_.share_equal_arrays(other.hprops_) +
+           eprops_.share_equal_arrays(other.eprops_) + fprops_.share_equal_arrays(other.fprops_);
 }
 
 void HalfedgeMesh::clear() {

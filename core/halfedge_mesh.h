@@ -234,6 +234,21 @@ public:
     Point& position(Vertex v) { return vpoint_[v]; }
     std::vector<Point>& positions() { return vpoint_.vector(); }
     const std::vector<Point>& positions() const { return vpoint_.vector(); }
+    /// Replaces every position (one per vertex storage slot) without copying the old ones.
+    /// Throws InvalidArgument for another count.
+    void set_positions(std::vector<Point> positions);
+
+    // ---- sharing (copy-on-write, see core/property.h) -------------------------------------
+    /// One block of stored values: its identity (equal for meshes sharing it) and bytes.
+    struct MemoryBlock {
+        const void* id;
+        std::size_t bytes;
+    };
+    /// Every array's values (connectivity, positions, attributes).
+    std::vector<MemoryBlock> memory_blocks() const;
+    /// Shares `other`'s arrays wherever an array of the same name holds equal values bit for
+    /// bit; returns how many arrays are shared with it now. Nothing visible changes.
+    std::size_t share_equal_arrays(const HalfedgeMesh& other);
 
     // ---- attributes ----------------------------------------------------------------------
     // Names follow "v:name", "h:name", "e:name", "f:name". Built-in connectivity names cannot
@@ -244,8 +259,12 @@ public:
         return VertexProperty<T>(checked_add(vprops_, name, std::move(def)));
     }
     template <class T>
-    VertexProperty<T> get_vertex_property(const std::string& name) const {
+    VertexProperty<T> get_vertex_property(const std::string& name) {
         return VertexProperty<T>(vprops_.get<T>(name));
+    }
+    template <class T>
+    VertexProperty<const T> get_vertex_property(const std::string& name) const {
+        return VertexProperty<const T>(vprops_.get<T>(name));
     }
     template <class T>
     VertexProperty<T> vertex_property(const std::string& name, T def = zero_value<T>()) {
@@ -257,8 +276,12 @@ public:
         return HalfedgeProperty<T>(checked_add(hprops_, name, std::move(def)));
     }
     template <class T>
-    HalfedgeProperty<T> get_halfedge_property(const std::string& name) const {
+    HalfedgeProperty<T> get_halfedge_property(const std::string& name) {
         return HalfedgeProperty<T>(hprops_.get<T>(name));
+    }
+    template <class T>
+    HalfedgeProperty<const T> get_halfedge_property(const std::string& name) const {
+        return HalfedgeProperty<const T>(hprops_.get<T>(name));
     }
     template <class T>
     HalfedgeProperty<T> halfedge_property(const std::string& name, T def = zero_value<T>()) {
@@ -270,8 +293,12 @@ public:
         return EdgeProperty<T>(checked_add(eprops_, name, std::move(def)));
     }
     template <class T>
-    EdgeProperty<T> get_edge_property(const std::string& name) const {
+    EdgeProperty<T> get_edge_property(const std::string& name) {
         return EdgeProperty<T>(eprops_.get<T>(name));
+    }
+    template <class T>
+    EdgeProperty<const T> get_edge_property(const std::string& name) const {
+        return EdgeProperty<const T>(eprops_.get<T>(name));
     }
     template <class T>
     EdgeProperty<T> edge_property(const std::string& name, T def = zero_value<T>()) {
@@ -283,8 +310,12 @@ public:
         return FaceProperty<T>(checked_add(fprops_, name, std::move(def)));
     }
     template <class T>
-    FaceProperty<T> get_face_property(const std::string& name) const {
+    FaceProperty<T> get_face_property(const std::string& name) {
         return FaceProperty<T>(fprops_.get<T>(name));
+    }
+    template <class T>
+    FaceProperty<const T> get_face_property(const std::string& name) const {
+        return FaceProperty<const T>(fprops_.get<T>(name));
     }
     template <class T>
     FaceProperty<T> face_property(const std::string& name, T def = zero_value<T>()) {

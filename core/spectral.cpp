@@ -1108,7 +1108,7 @@ HalfedgeMesh reconstruct(const HalfedgeMesh& mesh, const SpectralDecomposition& 
                               std::to_string(d.base_positions.size()));
     std::vector<Point> positions = reconstruct_positions(d, lo, hi);
     HalfedgeMesh out = mesh;
-    out.positions() = std::move(positions);
+    out.set_positions(std::move(positions));
     return out;
 }
 

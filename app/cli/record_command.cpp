@@ -528,7 +528,7 @@ RecordSummary record_morph(const RecordOptions& o) {
             gl.renderer.upload(*shown);
             if (coloring != VertexColoring::None) {
                 HalfedgeMesh shape = *shown;
-                shape.positions() = last_shape(shown, t);
+                shape.set_positions(last_shape(shown, t));
                 if (shape.has_vertex_property("v:normal")) shape.remove_vertex_property("v:normal");
                 const VertexColors colors = color_vertices(shape, coloring);
                 gl.renderer.set_vertex_colors(colors.colors);
