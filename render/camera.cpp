@@ -10,6 +10,20 @@ void Camera::set_viewport(float width, float height) {
     viewport_ = glm::vec2(std::max(width, 1.0f), std::max(height, 1.0f));
 }
 
+void Camera::reframe_for_viewport(float width, float height) {
+    const float old_aspect = viewport_.x / viewport_.y;
+    set_viewport(width, height);
+    const float new_aspect = viewport_.x / viewport_.y;
+    if (new_aspect < old_aspect) {  // narrower: keep the width, gain room at top and bottom
+        const float tan_half = std::tan(0.5f * fov_y_) * old_aspect / new_aspect;
+        fov_y_ = 2.0f * std::atan(tan_half);
+    }
+}
+
+float Camera::pixels_per_unit() const {
+    return viewport_.y / (2.0f * distance_ * std::tan(0.5f * fov_y_));
+}
+
 void Camera::fit_sphere(const glm::vec3& center, float radius) {
     target_ = center;
     radius_ = radius > 0.0f && std::isfinite(radius) ? radius : 1.0f;

@@ -47,6 +47,15 @@ public:
     /// The default view for the up axis: looks at the model's front (+z for y-up, -y for
     /// z-up) with the up axis up on the screen; set_view_angles(0, 0, up).
     void reset_rotation(UpAxis up = UpAxis::Y) { set_view_angles(0.0f, 0.0f, up); }
+    /// For a picture of width x height pixels of what the camera shows: sets that viewport and
+    /// widens the vertical field of view where the picture's aspect ratio is narrower than the
+    /// current viewport's, so that everything visible now stays visible, centred, and fills
+    /// the picture in one direction (the other gets the extra room). Screenshots and recorded
+    /// frames use it so that they are framed like the view.
+    void reframe_for_viewport(float width, float height);
+    /// Viewport pixels per world unit at the target's depth (how long a unit segment facing
+    /// the camera appears there).
+    float pixels_per_unit() const;
 
     /// Virtual trackball (Shoemake's arcball with Bell's hyperbolic sheet outside the ball):
     /// rotates about the target as if the ball under the cursor were dragged from `from` to

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <system_error>
 
+#include "app/viewer/panels.h"
 #include "core/io/image_io.h"
 #include "core/io/mesh_io.h"
 
@@ -74,6 +75,7 @@ void FileBrowserState::request(Purpose p, const std::string& near) {
     open_requested = true;
     error.clear();
     confirm_overwrite = false;
+    then_continue = false;
     std::error_code ec;
     std::filesystem::path start =
         near.empty() ? std::filesystem::current_path(ec) : std::filesystem::absolute(near, ec);
@@ -91,12 +93,9 @@ void file_browser(FileBrowserState& state, CommandQueue& commands) {
         ImGui::OpenPopup(kTitle);
         state.open_requested = false;
     }
-    const ImGuiIO& io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(ImVec2(0.5f * io.DisplaySize.x, 0.45f * io.DisplaySize.y),
-                            ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
-    ImGui::SetNextWindowSize(ImVec2(40.0f * ImGui::GetFontSize(), 28.0f * ImGui::GetFontSize()),
-                             ImGuiCond_Appearing);
+    place_dialog(40.0f, 28.0f);
     if (!ImGui::BeginPopupModal(kTitle, nullptr)) return;
+    keep_dialog_inside();
 
     const std::vector<std::string> exts = extensions_for(state.purpose);
     ImGui::TextUnformatted(state.folder.string().c_str());
@@ -166,7 +165,7 @@ void file_browser(FileBrowserState& state, CommandQueue& commands) {
                     commands.push_back(LoadFile{path});
                     break;
                 case FileBrowserState::Purpose::SaveMesh:
-                    commands.push_back(SaveFile{path});
+                    commands.push_back(SaveFile{path, state.then_continue});
                     break;
                 case FileBrowserState::Purpose::LoadTexture:
                     commands.push_back(LoadTexture{path});

@@ -23,6 +23,9 @@ struct FileBrowserState {
     bool show_all_files = false;
     std::string error;  ///< why the folder cannot be listed, or the name is bad
     bool confirm_overwrite = false;
+    /// The save was asked for by the unsaved-changes question: once written, carry out the
+    /// question's pending action (quit or open).
+    bool then_continue = false;
 
     /// Opens the dialog for `purpose`, starting in the folder of `near` (or the current
     /// folder when empty).

@@ -12,8 +12,13 @@
 namespace trilab::viewer {
 namespace {
 
-constexpr float kPlotWidthEm = 26.0f;  ///< width of the bar and the plots (auto-resized window)
+constexpr float kPlotWidthEm = 26.0f;  ///< the most width the bar and the plots take
 constexpr float kPlotHeightEm = 7.0f;  ///< height of each plot, tick labels included
+
+/// The width of the bar and the plots: kPlotWidthEm, less in a narrow sidebar.
+float plot_width() {
+    return std::min(kPlotWidthEm * ImGui::GetFontSize(), ImGui::GetContentRegionAvail().x);
+}
 
 /// The frequency bar: every computed frequency as a grey slot, the applied band in green, the
 /// slider band outlined in orange and the visualized frequency in red. Its slots are the
@@ -60,15 +65,8 @@ void frequency_bar(const FrequencyDocument& doc, int lo, int hi, int marker, flo
 
 FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocument& doc, bool busy) {
     FrequencyActions act;
-    if (!s.open) return act;
-    const ImGuiIO& io = ImGui::GetIO();
+    if (!section_header("Frequency decomposition", s.open)) return act;
     const float em = ImGui::GetFontSize();
-    ImGui::SetNextWindowPos(ImVec2(std::max(0.0f, io.DisplaySize.x - 37.0f * em), 9.0f * em),
-                            ImGuiCond_FirstUseEver);
-    if (!ImGui::Begin("Frequency decomposition", &s.open, ImGuiWindowFlags_AlwaysAutoResize)) {
-        ImGui::End();
-        return act;
-    }
     // The decomposition's parameters, drawn from the operation's declaration (the band is
     // the sliders below; threads and the size limit keep their defaults here).
     operation_widgets(s.op, {"band", "threads", "max-full"});
@@ -81,9 +79,9 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
     if (!have) ImGui::EndDisabled();
     if (busy) ImGui::EndDisabled();
     if (doc.decomposition && !doc.valid)
-        ImGui::TextUnformatted("The decomposition belongs to another mesh: decompose again.");
+        ImGui::TextWrapped("The decomposition belongs to another mesh: decompose again.");
     if (!doc.summary.empty()) {
-        ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + kPlotWidthEm * em);
+        ImGui::PushTextWrapPos(0.0f);
         ImGui::TextUnformatted(doc.summary.c_str());
         ImGui::PopTextWrapPos();
     }
@@ -94,18 +92,18 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
         s.hi = std::clamp(s.hi, s.lo, last);
         ImGui::Separator();
         // The bar and both plots share their x range, so a frequency is at the same x in all.
-        const float plot_width = kPlotWidthEm * em;
+        const float width = plot_width();
         const IndexPlot spectrum_axis{"", "", &doc.eigenvalues, 0, -1, -1, 0.0};
         const IndexPlot coefficient_axis{"", "", &doc.log_coefficients, 0, -1, -1, 1.0};
         const float margin =
             std::max(index_plot_margin(spectrum_axis), index_plot_margin(coefficient_axis));
-        frequency_bar(doc, s.lo, s.hi, s.visualize, plot_width, margin);
+        frequency_bar(doc, s.lo, s.hi, s.visualize, width, margin);
         if (busy) ImGui::BeginDisabled();
-        ImGui::SetNextItemWidth(kPlotWidthEm * em - 6.0f * em);
+        ImGui::SetNextItemWidth(std::max(4.0f * em, width - 6.0f * em));
         const int old_lo = s.lo, old_hi = s.hi;
         ImGui::SliderInt("band from", &s.lo, 0, last);
         const bool lo_done = ImGui::IsItemDeactivatedAfterEdit();
-        ImGui::SetNextItemWidth(kPlotWidthEm * em - 6.0f * em);
+        ImGui::SetNextItemWidth(std::max(4.0f * em, width - 6.0f * em));
         ImGui::SliderInt("band to", &s.hi, 0, last);
         const bool hi_done = ImGui::IsItemDeactivatedAfterEdit();
         s.lo = std::clamp(s.lo, 0, last);
@@ -118,7 +116,7 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
         }
         act.preview = s.lo != old_lo || s.hi != old_hi;
         act.commit = lo_done || hi_done;
-        ImGui::SetNextItemWidth(kPlotWidthEm * em - 6.0f * em);
+        ImGui::SetNextItemWidth(std::max(4.0f * em, width - 6.0f * em));
         const int old_vis = s.visualize;
         ImGui::SliderInt("visualize", &s.visualize, 0, last);
         s.visualize = std::clamp(s.visualize, 0, last);
@@ -137,10 +135,9 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
                                      s.hi,
                                      s.visualize,
                                      1.0};
-        index_plot(spectrum, plot_width, kPlotHeightEm * em, margin);
-        index_plot(coefficients, plot_width, kPlotHeightEm * em, margin);
+        index_plot(spectrum, width, kPlotHeightEm * em, margin);
+        index_plot(coefficients, width, kPlotHeightEm * em, margin);
     }
-    ImGui::End();
     return act;
 }
 

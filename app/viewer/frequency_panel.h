@@ -50,7 +50,8 @@ struct FrequencyActions {
     bool visualize_changed = false;  ///< the frequency to visualize changed: recolour
 };
 
-/// "Frequency decomposition" window; `busy`: a job runs (Decompose and the sliders disabled).
+/// The "Frequency decomposition" section of the sidebar (its header, and its body when open);
+/// `busy`: a job runs (Decompose and the sliders disabled).
 FrequencyActions frequency_window(FrequencyPanelState& state, const FrequencyDocument& doc,
                                   bool busy);
 

@@ -126,7 +126,7 @@ constexpr ImU32 kLine = IM_COL32(120, 190, 255, 255);
 
 // ---- legend ---------------------------------------------------------------------------------
 
-bool legend_contents(const VertexColors& colors, ColoringOptions& options) {
+bool legend_contents(const VertexColors& colors, ColoringOptions& options, float max_width) {
     const float em = ImGui::GetFontSize();
     ImDrawList* draw = ImGui::GetWindowDrawList();
     ImGui::TextUnformatted(colors.label.c_str());
@@ -151,7 +151,7 @@ bool legend_contents(const VertexColors& colors, ColoringOptions& options) {
 
     // The bar: the map sampled in 48 steps, from range.min (left) to range.max (right).
     const ValueRange& r = colors.range;
-    const ImVec2 size(14.0f * em, 1.2f * em);
+    const ImVec2 size(std::max(4.0f * em, std::min(14.0f * em, max_width)), 1.2f * em);
     const ImVec2 p0 = ImGui::GetCursorScreenPos();
     const int steps = 48;
     for (int i = 0; i < steps; ++i) {

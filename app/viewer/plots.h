@@ -59,8 +59,8 @@ std::string tick_text(double value);
 /// fits) and the percentile range control; for a categorical map one swatch per category
 /// with its label and vertex count, and no range control. Returns true when the user changed
 /// the options. Test hook ids: "legend: bar", "legend: label TEXT", "legend: swatch LABEL",
-/// "legend: percentiles".
-bool legend_contents(const VertexColors& colors, ColoringOptions& options);
+/// "legend: percentiles". The bar is at most `max_width` wide (at least 4 em).
+bool legend_contents(const VertexColors& colors, ColoringOptions& options, float max_width = 1e30f);
 
 /// A line plot of values over their index (see the file comment), with a y axis title above,
 /// tick labels on both axes, the band [lo, hi] shaded and `marker` (-1: none) drawn as a red

@@ -1,7 +1,8 @@
 // The operation panels drawn under an ImGui context with no window and no GL (the idea of
 // Polyscope's mock backend): the mouse is moved and pressed through ImGuiIO, the widgets are
 // found through the panels' test hook (set_widget_rect_hook), and the tests assert the typed
-// commands the panels queue.
+// commands the panels queue. The sections are drawn in the real sidebar (layout.h), whose
+// regions are checked here too.
 #include <imgui.h>
 #include <catch2/catch.hpp>
 
@@ -18,13 +19,14 @@
 #include "app/viewer/panels.h"
 #include "app/viewer/plots.h"
 #include "core/fairing.h"
+#include "core/generators.h"
 
 using namespace trilab;
 using namespace trilab::viewer;
 
 namespace {
 
-struct Rect {
+struct Box {
     float x0, y0, x1, y1;
 };
 
@@ -36,11 +38,12 @@ public:
         ImGuiIO& io = ImGui::GetIO();
         io.DisplaySize = ImVec2(1280, 800);
         io.IniFilename = nullptr;
+        io.BackendFlags |= ImGuiBackendFlags_HasMouseCursors;  // resizing from window edges
         unsigned char* pixels = nullptr;
         int w = 0, h = 0;
         io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
         set_widget_rect_hook([this](const std::string& id, float x0, float y0, float x1, float y1) {
-            rects_[id] = Rect{x0, y0, x1, y1};
+            rects_[id] = Box{x0, y0, x1, y1};
         });
     }
     ~Ui() {
@@ -71,13 +74,13 @@ public:
     }
     bool has(const std::string& id) const { return rects_.count(id) > 0; }
     /// Every rectangle whose id starts with `prefix`, with its id.
-    std::vector<std::pair<std::string, Rect>> with_prefix(const std::string& prefix) const {
-        std::vector<std::pair<std::string, Rect>> out;
+    std::vector<std::pair<std::string, Box>> with_prefix(const std::string& prefix) const {
+        std::vector<std::pair<std::string, Box>> out;
         for (const auto& [id, r] : rects_)
             if (id.rfind(prefix, 0) == 0) out.emplace_back(id, r);
         return out;
     }
-    Rect rect(const std::string& id) const {
+    Box rect(const std::string& id) const {
         const auto it = rects_.find(id);
         REQUIRE(it != rects_.end());
         return it->second;
@@ -85,15 +88,15 @@ public:
 
 private:
     ImGuiContext* ctx_ = nullptr;
-    std::map<std::string, Rect> rects_;
+    std::map<std::string, Box> rects_;
 };
 
-bool overlap(const Rect& a, const Rect& b) {
+bool overlap(const Box& a, const Box& b) {
     return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
 }
 
 /// Asserts that no two of the rectangles overlap.
-void require_disjoint(const std::vector<std::pair<std::string, Rect>>& rects) {
+void require_disjoint(const std::vector<std::pair<std::string, Box>>& rects) {
     for (std::size_t i = 0; i < rects.size(); ++i)
         for (std::size_t j = i + 1; j < rects.size(); ++j) {
             INFO(rects[i].first << " and " << rects[j].first);
@@ -103,7 +106,25 @@ void require_disjoint(const std::vector<std::pair<std::string, Rect>>& rects) {
 
 /// The legend window as the viewer draws it, for `colors`.
 void draw_legend(const VertexColors& colors, ColoringOptions& options) {
-    color_legend(colors, options);
+    LegendSlot slot;
+    slot.right = 1280;
+    slot.bottom = 800;
+    slot.max_width = 600;
+    slot.max_height = 400;
+    color_legend(colors, options, slot);
+}
+
+/// Draws `body` in the sidebar of the 1280 x 800 layout, as the viewer does.
+template <class Body>
+void in_sidebar(LayoutState& sizes, Body body) {
+    LayoutInput in;
+    in.width = 1280;
+    in.height = 800;
+    in.em = ImGui::GetFontSize();
+    in.frame_height = ImGui::GetFrameHeight();
+    const Layout layout = compute_layout(in, sizes);
+    if (begin_sidebar(layout.sidebar, sizes)) body();
+    end_region();
 }
 
 template <class T>
@@ -123,12 +144,15 @@ TEST_CASE("the Subdivision panel's Subdivide queues the typed operation it shows
     History history;
     panels.subdivision.open = true;
     CommandQueue commands;
-    const auto draw = [&] { subdivision_window(panels, morph, history, false, 0.0, commands); };
+    const auto draw = [&] {
+        in_sidebar(panels.layout,
+                   [&] { subdivision_section(panels, morph, history, false, 0.0, commands); });
+    };
     ui.frame(draw);
     ui.frame(draw);  // auto-resized windows take their size on the second frame
     REQUIRE(ui.has("scheme"));
     REQUIRE(ui.has("iterations"));
-    const Rect apply = ui.rect("Subdivide");
+    const Box apply = ui.rect("Subdivide");
     commands.clear();
     ui.click(draw, (apply.x0 + apply.x1) / 2, (apply.y0 + apply.y1) / 2);
     const auto applied = commands_of<ApplyOperation>(commands);
@@ -144,10 +168,13 @@ TEST_CASE("dragging a slider previews live with the new typed value", "[panels]"
     History history;
     panels.decimation.open = true;
     CommandQueue commands;
-    const auto draw = [&] { decimation_window(panels, morph, history, false, 0.0, 0, commands); };
+    const auto draw = [&] {
+        in_sidebar(panels.layout,
+                   [&] { decimation_section(panels, morph, history, false, 0.0, 0, commands); });
+    };
     ui.frame(draw);
     ui.frame(draw);
-    const Rect percent = ui.rect("percent");
+    const Box percent = ui.rect("percent");
     commands.clear();
     // Press at the slider's left end: the value jumps to the slider's minimum while held.
     ui.frame(draw, percent.x0 + 1, (percent.y0 + percent.y1) / 2, false);
@@ -168,10 +195,13 @@ TEST_CASE("slow panels preview once, when the drag is released", "[panels]") {
     panels.decimation.open = true;
     panels.decimation.live = false;  // the viewer found the last preview over the budget
     CommandQueue commands;
-    const auto draw = [&] { decimation_window(panels, morph, history, false, 0.0, 0, commands); };
+    const auto draw = [&] {
+        in_sidebar(panels.layout,
+                   [&] { decimation_section(panels, morph, history, false, 0.0, 0, commands); });
+    };
     ui.frame(draw);
     ui.frame(draw);
-    const Rect percent = ui.rect("percent");
+    const Box percent = ui.rect("percent");
     const float y = (percent.y0 + percent.y1) / 2;
     commands.clear();
     ui.frame(draw, percent.x0 + 1, y, false);
@@ -192,7 +222,10 @@ TEST_CASE("the Fairing panel shows only the parameters that apply", "[panels]") 
     History history;
     panels.fairing.open = true;
     CommandQueue commands;
-    const auto draw = [&] { fairing_window(panels, morph, history, true, false, 0.0, commands); };
+    const auto draw = [&] {
+        in_sidebar(panels.layout,
+                   [&] { fairing_section(panels, morph, history, true, false, 0.0, commands); });
+    };
     ui.frame(draw);
     ui.frame(draw);
     CHECK(ui.has("step"));
@@ -206,7 +239,7 @@ TEST_CASE("the Fairing panel shows only the parameters that apply", "[panels]") 
     CHECK(ui.has("lambda"));
     CHECK(ui.has("mu"));
     // A click on "preserve volume" (a closed mesh) previews with the flag set.
-    const Rect volume = ui.rect("preserve-volume");
+    const Box volume = ui.rect("preserve-volume");
     commands.clear();
     ui.click(draw, volume.x0 + 5, (volume.y0 + volume.y1) / 2);
     const auto previews = commands_of<PreviewOperation>(commands);
@@ -220,13 +253,15 @@ TEST_CASE("Cancel shows while a preview is up and queues CancelPreview", "[panel
     PanelState panels;
     panels.tools.open = true;
     CommandQueue commands;
-    const auto draw = [&] { tools_window(panels, false, commands); };
+    const auto draw = [&] {
+        in_sidebar(panels.layout, [&] { tools_section(panels, false, commands); });
+    };
     ui.frame(draw);
     ui.frame(draw);
     CHECK_FALSE(ui.has("Cancel"));
     panels.tools.previewing = true;
     ui.frame(draw);
-    const Rect cancel = ui.rect("Cancel");
+    const Box cancel = ui.rect("Cancel");
     commands.clear();
     ui.click(draw, (cancel.x0 + cancel.x1) / 2, (cancel.y0 + cancel.y1) / 2);
     CHECK(commands_of<CancelPreview>(commands).size() == 1);
@@ -241,7 +276,10 @@ TEST_CASE("the Fairing panel marks a step above the stable limit and offers impl
     panels.fairing.open = true;
     panels.fairing.max_stable_step = 1.35;
     CommandQueue commands;
-    const auto draw = [&] { fairing_window(panels, morph, history, true, false, 0.0, commands); };
+    const auto draw = [&] {
+        in_sidebar(panels.layout,
+                   [&] { fairing_section(panels, morph, history, true, false, 0.0, commands); });
+    };
     ui.frame(draw);
     ui.frame(draw);
     CHECK(ui.has("stable-step"));
@@ -250,7 +288,7 @@ TEST_CASE("the Fairing panel marks a step above the stable limit and offers impl
     ui.frame(draw);
     ui.frame(draw);
     REQUIRE(ui.has("unstable"));
-    const Rect use_implicit = ui.rect("Use implicit integration");
+    const Box use_implicit = ui.rect("Use implicit integration");
     commands.clear();
     ui.click(draw, (use_implicit.x0 + use_implicit.x1) / 2,
              (use_implicit.y0 + use_implicit.y1) / 2);
@@ -288,12 +326,12 @@ TEST_CASE("legend labels never overlap; both ends always show, the centre where 
             ui.frame(draw);
             const auto labels = ui.with_prefix("legend: label ");
             require_disjoint(labels);
-            const Rect bar = ui.rect("legend: bar");
+            const Box bar = ui.rect("legend: bar");
             char min_text[32], max_text[32];
             std::snprintf(min_text, sizeof min_text, "%.4g", r.min);
             std::snprintf(max_text, sizeof max_text, "%.4g", r.max);
-            const Rect lo = ui.rect(std::string("legend: label ") + min_text);
-            const Rect hi = ui.rect(std::string("legend: label ") + max_text);
+            const Box lo = ui.rect(std::string("legend: label ") + min_text);
+            const Box hi = ui.rect(std::string("legend: label ") + max_text);
             CHECK(lo.x0 == Approx(bar.x0));  // the ends sit under the ends of the bar
             CHECK(hi.x1 == Approx(bar.x1));
             for (const auto& [id, rect] : labels) {
@@ -372,7 +410,7 @@ TEST_CASE("a categorical legend shows one swatch per value and no range control"
     require_disjoint(swatches);
     float last_y = -1;
     for (int level = 0; level < 4; ++level) {  // one row per level, in order
-        const Rect r = ui.rect("legend: swatch level " + std::to_string(level));
+        const Box r = ui.rect("legend: swatch level " + std::to_string(level));
         CHECK(r.y0 > last_y);
         last_y = r.y0;
     }
@@ -416,9 +454,9 @@ TEST_CASE("the frequency plots shade exactly the band's share and mark the visua
     for (const char* plot : {"spectrum", "coefficients", "frequency bar"}) {
         INFO(plot);
         const std::string p = plot;
-        const Rect area = ui.rect(p == "frequency bar" ? p : p + ": area");
-        const Rect band = ui.rect(p + ": band");
-        const Rect marker = ui.rect(p + ": marker");
+        const Box area = ui.rect(p == "frequency bar" ? p : p + ": area");
+        const Box band = ui.rect(p + ": band");
+        const Box marker = ui.rect(p + ": marker");
         const float w = area.x1 - area.x0;
         REQUIRE(w > 100);
         // Band 0..24 of 50: exactly half the plot area, from its left edge (the issue saw
@@ -428,13 +466,13 @@ TEST_CASE("the frequency plots shade exactly the band's share and mark the visua
         // The marker sits at the centre of slot 7.
         CHECK((marker.x0 + marker.x1) / 2 == Approx(area.x0 + 7.5f / 50.0f * w).margin(0.01));
         // The bar and the plots share their x range.
-        const Rect spectrum = ui.rect("spectrum: area");
+        const Box spectrum = ui.rect("spectrum: area");
         CHECK(area.x0 == Approx(spectrum.x0));
         CHECK(area.x1 == Approx(spectrum.x1));
     }
     // The applied band (0..9) on the bar: 10 of 50 slots.
-    const Rect bar = ui.rect("frequency bar");
-    const Rect applied = ui.rect("frequency bar: applied");
+    const Box bar = ui.rect("frequency bar");
+    const Box applied = ui.rect("frequency bar: applied");
     CHECK((applied.x1 - applied.x0) / (bar.x1 - bar.x0) == Approx(0.2).margin(1e-4));
     // Axes with tick labels that do not overlap: index ticks starting at 0, value ticks.
     for (const char* plot : {"spectrum", "coefficients"}) {
@@ -447,7 +485,7 @@ TEST_CASE("the frequency plots shade exactly the band's share and mark the visua
         auto all = x_ticks;
         all.insert(all.end(), y_ticks.begin(), y_ticks.end());
         require_disjoint(all);
-        const Rect area = ui.rect(std::string(plot) + ": area");
+        const Box area = ui.rect(std::string(plot) + ": area");
         for (const auto& [id, r] : x_ticks) CHECK(r.y0 >= area.y1);  // below the area
         for (const auto& [id, r] : y_ticks) CHECK(r.x1 <= area.x0);  // left of it
     }
@@ -457,11 +495,11 @@ TEST_CASE("the frequency plots shade exactly the band's share and mark the visua
     state.lo = state.hi = 49;
     state.visualize = 0;
     ui.frame(draw);
-    const Rect area = ui.rect("spectrum: area");
-    const Rect band = ui.rect("spectrum: band");
+    const Box area = ui.rect("spectrum: area");
+    const Box band = ui.rect("spectrum: band");
     CHECK(band.x1 == Approx(area.x1).margin(0.01));
     CHECK((band.x1 - band.x0) == Approx((area.x1 - area.x0) / 50).margin(0.01));
-    const Rect marker = ui.rect("spectrum: marker");
+    const Box marker = ui.rect("spectrum: marker");
     CHECK((marker.x0 + marker.x1) / 2 == Approx(area.x0 + 0.5f / 50 * (area.x1 - area.x0)));
 }
 
@@ -496,4 +534,179 @@ TEST_CASE("the up axis is remembered in the settings file, other keys kept", "[p
     none.up = UpAxis::Z;
     none.save();
     CHECK_FALSE(std::filesystem::exists(dir));
+}
+
+namespace {
+
+/// The layout rule on compute_layout's regions: inside the display, whole pixels, no two
+/// overlapping; the view keeps a third of the width and half of the height between the bars.
+void check_regions(const LayoutInput& in, const Layout& l) {
+    const std::vector<std::pair<const char*, Rect>> regions = {
+        {"menu", l.menu},     {"sidebar", l.sidebar}, {"status", l.status}, {"log", l.log},
+        {"legend", l.legend}, {"history", l.history}, {"view", l.view}};
+    for (const auto& [name, r] : regions) {
+        if (r.empty()) continue;
+        INFO(name << " " << r.x << " " << r.y << " " << r.w << " " << r.h);
+        CHECK(r.x >= 0);
+        CHECK(r.y >= 0);
+        CHECK(r.right() <= in.width);
+        CHECK(r.bottom() <= in.height);
+        CHECK(r.x == std::floor(r.x));
+        CHECK(r.w == std::floor(r.w));
+        CHECK(r.h == std::floor(r.h));
+    }
+    for (std::size_t i = 0; i < regions.size(); ++i)
+        for (std::size_t j = i + 1; j < regions.size(); ++j) {
+            const Rect &a = regions[i].second, &b = regions[j].second;
+            if (a.empty() || b.empty()) continue;
+            INFO(regions[i].first << " and " << regions[j].first);
+            const bool apart =
+                a.right() <= b.x || b.right() <= a.x || a.bottom() <= b.y || b.bottom() <= a.y;
+            CHECK(apart);
+        }
+    CHECK(l.view.w >= in.width / 3);
+    CHECK(l.view.h >= 0.5f * (in.height - l.menu.h - l.status.h) - 1);
+    CHECK(l.legend.w <= l.legend_max_width);
+}
+
+}  // namespace
+
+TEST_CASE("the layout's regions tile the window at every size, scale and panel set", "[layout]") {
+    const float sizes[][2] = {{1280, 720}, {1920, 1080}, {2560, 1440}, {1400, 900}, {800, 600}};
+    const float scales[] = {1.0f, 2.0f};
+    // The user's sizes: the defaults, dragged to nothing, dragged past the window.
+    const float user[] = {0.0f, 1.0f, 1e6f};
+    for (const auto& size : sizes)
+        for (float scale : scales)
+            for (int panels = 0; panels < 16; ++panels)
+                for (float u : user) {
+                    LayoutInput in;
+                    in.width = size[0];
+                    in.height = size[1];
+                    in.em = 13.0f * scale;
+                    in.frame_height = 19.0f * scale;
+                    in.history = panels & 1;
+                    in.log = panels & 2;
+                    in.legend = panels & 4;
+                    in.sidebar = !(panels & 8);
+                    LayoutState state;
+                    state.sidebar_width = state.history_width = state.log_height = u;
+                    state.legend_width = state.legend_height = u;
+                    INFO(size[0] << " x " << size[1] << " scale " << scale << " panels " << panels
+                                 << " user size " << u);
+                    const Layout l = compute_layout(in, state);
+                    check_regions(in, l);
+                    CHECK(l.history.empty() == !in.history);
+                    CHECK(l.log.empty() == !in.log);
+                    CHECK(l.legend.empty() == !in.legend);
+                    CHECK(l.sidebar.empty() == !in.sidebar);
+                    // The clamped sizes are kept: a second pass gives the same regions.
+                    const Layout again = compute_layout(in, state);
+                    CHECK(again.view.x == l.view.x);
+                    CHECK(again.view.w == l.view.w);
+                    CHECK(again.view.h == l.view.h);
+                }
+}
+
+TEST_CASE("dragging the sidebar's edge resizes it and the view follows", "[layout]") {
+    Ui ui;
+    PanelState panels;
+    CommandQueue commands;
+    panels.tools.open = true;
+    const auto draw = [&] {
+        in_sidebar(panels.layout, [&] { tools_section(panels, false, commands); });
+    };
+    ui.frame(draw);
+    ui.frame(draw);
+    const float before = panels.layout.sidebar_width;
+    REQUIRE(before > 0);
+    const float y = 400;
+    ui.frame(draw, before - 1, y, false);  // hover the right edge
+    ui.frame(draw, before - 1, y, true);
+    ui.frame(draw, before + 60, y, true);
+    ui.frame(draw, before + 120, y, true);
+    ui.frame(draw, before + 120, y, false);
+    ui.frame(draw);
+    CHECK(panels.layout.sidebar_width == Approx(before + 121).margin(2));
+    LayoutInput in;
+    in.width = 1280;
+    in.height = 800;
+    in.em = ImGui::GetFontSize();
+    const Layout l = compute_layout(in, panels.layout);
+    CHECK(l.view.x == panels.layout.sidebar_width);
+}
+
+TEST_CASE("a section opened elsewhere shows its body; its header closes it", "[layout]") {
+    Ui ui;
+    PanelState panels;
+    CommandQueue commands;
+    const auto draw = [&] {
+        in_sidebar(panels.layout, [&] { tools_section(panels, false, commands); });
+    };
+    ui.frame(draw);
+    CHECK_FALSE(ui.has("Apply"));  // collapsed: only the header
+    REQUIRE(ui.has("section:Tools: add noise"));
+    panels.tools.open = true;  // the menu item, or --show tools
+    ui.frame(draw);
+    CHECK(ui.has("Apply"));
+    const Box header = ui.rect("section:Tools: add noise");
+    ui.click(draw, (header.x0 + header.x1) / 2, (header.y0 + header.y1) / 2);
+    CHECK_FALSE(panels.tools.open);
+    ui.frame(draw);
+    CHECK_FALSE(ui.has("Apply"));
+}
+
+TEST_CASE("the morph controls offer no animation for a state that moves nothing", "[panels]") {
+    Ui ui;
+    PanelState panels;
+    MorphState morph;
+    History history;
+    HalfedgeMesh a = make_default_model();
+    history.reset(a, "Load a.off");
+    history.push("Load b.off", "", 0.0, {a},
+                 {MorphCorrespondence{MorphCorrespondence::Kind::FromEarlier, a.positions()}});
+    panels.morph_open = true;
+    CommandQueue commands;
+    const auto draw = [&] {
+        in_sidebar(panels.layout, [&] { morph_section(panels, morph, history, 0.0); });
+    };
+    ui.frame(draw);
+    CHECK(ui.has("Animate"));
+    morph.moves = false;  // the viewer's finding for a load
+    ui.frame(draw);
+    CHECK_FALSE(ui.has("Animate"));
+}
+
+TEST_CASE("the unsaved-changes question offers Save as", "[panels]") {
+    Ui ui;
+    UnsavedPrompt prompt;
+    prompt.open_requested = true;
+    prompt.quitting = true;
+    prompt.document_path = "/tmp/original.off";
+    CommandQueue commands;
+    const auto draw = [&] { unsaved_changes_popup(prompt, commands); };
+    ui.frame(draw);
+    ui.frame(draw);
+    const Box save_as = ui.rect("Save as...");
+    commands.clear();
+    ui.click(draw, (save_as.x0 + save_as.x1) / 2, (save_as.y0 + save_as.y1) / 2);
+    CHECK(commands_of<SaveAsAndContinue>(commands).size() == 1);
+    CHECK(commands_of<SaveAndContinue>(commands).empty());
+}
+
+TEST_CASE("Esc closes the key bindings", "[panels]") {
+    Ui ui;
+    PanelState panels;
+    panels.help_open = true;
+    ImGuiIO& io = ImGui::GetIO();
+    io.KeyMap[ImGuiKey_Escape] = 256;  // any free slot of KeysDown
+    const auto draw = [&] { help_window(panels); };
+    ui.frame(draw);
+    ui.frame(draw);
+    REQUIRE(panels.help_open);
+    io.KeysDown[256] = true;
+    ui.frame(draw);
+    io.KeysDown[256] = false;
+    ui.frame(draw);
+    CHECK_FALSE(panels.help_open);
 }
