@@ -26,6 +26,7 @@
 #include <cstring>
 #include <limits>
 
+#include "core/coincident.h"
 #include "core/errors.h"
 #include "core/mesh_builder.h"
 #include "core/quadric.h"
@@ -230,6 +231,12 @@ public:
         parent_.assign(m_.vertices_size(), Vertex());
         vuv_ = m_.get_vertex_property<TexCoord>("v:texcoord");
         huv_ = m_.get_halfedge_property<TexCoord>("h:texcoord");
+        // Vertices with a coincident copy (a seam's two sides, the copies of a split vertex)
+        // never move: a collapse would move one copy away from the others.
+        coincident_.assign(m_.vertices_size(), 0);
+        for (Index v : find_coincident_vertices(m_).members) coincident_[v] = 1;
+        report_.coincident_vertices =
+            std::size_t(std::count(coincident_.begin(), coincident_.end(), std::uint8_t(1)));
         init_quadrics();
         const Index n_edges = Index(m_.edges_size());
         for (Index i = 0; i < n_edges; ++i) {
@@ -470,12 +477,17 @@ private:
         return false;
     }
 
+    // Whether v stays where it is: a texture seam vertex, or one with a coincident copy.
+    bool pinned(Vertex v) const {
+        return coincident_[v.idx()] || on_seam(v);
+    }
+
     // Whether h (from_vertex moves into to_vertex) is an allowed direction: a boundary vertex
-    // only moves along a boundary edge; seam vertices never move.
+    // only moves along a boundary edge; pinned vertices never move.
     bool direction_allowed(Halfedge h, bool boundary_edge) const {
         const Vertex from = m_.from_vertex(h);
         if (boundary_[from.idx()] && !boundary_edge) return false;
-        return !on_seam(from);
+        return !pinned(from);
     }
 
     // Smallest normalized roundness of the faces at v (other than f0, f1) with v at p.
@@ -528,14 +540,14 @@ private:
                         cost = cm;
                     }
                 }
-            } else if (ok0 && (!boundary_[b.idx()] || be) && !on_seam(b)) {
+            } else if (ok0 && (!boundary_[b.idx()] || be) && !pinned(b)) {
                 // Only a may move, b is free: optimal placement still applies to b... unless b
-                // is pinned (boundary vertex at an interior edge, or a seam vertex).
+                // is pinned (boundary vertex at an interior edge, a seam or coincident vertex).
                 if (!(q.optimize(p) &&
                       (p - 0.5 * (xa + xb)).norm() <= kMaxPlacementDistance * (xb - xa).norm()))
                     p = xb;
                 cost = q(p);
-            } else if (ok1 && (!boundary_[a.idx()] || be) && !on_seam(a)) {
+            } else if (ok1 && (!boundary_[a.idx()] || be) && !pinned(a)) {
                 if (!(q.optimize(p) &&
                       (p - 0.5 * (xa + xb)).norm() <= kMaxPlacementDistance * (xb - xa).norm()))
                     p = xa;
@@ -615,6 +627,7 @@ private:
             return Refusal::MaxError;
         if (!m_.is_collapse_ok(h)) return Refusal::Topology;
         if (huv_ && on_seam(v0)) return Refusal::Seam;
+        if (coincident_[v0.idx()]) return Refusal::Topology;  // evaluate() never offers it
         const Face f0 = m_.face(h), f1 = m_.face(HalfedgeMesh::twin(h));
         if (o_.normal_flip && (!normals_ok(v0, p, f0, f1) || !normals_ok(v1, p, f0, f1)))
             return Refusal::NormalFlip;
@@ -782,8 +795,9 @@ private:
     DecimationReport& report_;
     double cos_max_angle_ = 0, max_error2_ = 0;
     std::vector<Quadric> quadric_;
-    std::vector<EdgeCost> edge_;          ///< per edge: cost of its best collapse, heap position
-    std::vector<std::uint8_t> boundary_;  ///< per vertex; v1 inherits v0's on collapse
+    std::vector<EdgeCost> edge_;            ///< per edge: cost of its best collapse, heap position
+    std::vector<std::uint8_t> boundary_;    ///< per vertex; v1 inherits v0's on collapse
+    std::vector<std::uint8_t> coincident_;  ///< per vertex: has a coincident copy (pinned)
     std::vector<EdgeKey> batch_;
     std::vector<std::uint32_t> bucket_count_;  ///< batch selection: keys per bucket
     std::uint32_t pass_ = 0;

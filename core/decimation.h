@@ -30,7 +30,10 @@
 // boundary loops, components and genus; a boundary vertex only moves along a boundary edge.
 // With "v:texcoord" the kept vertex's uv is interpolated along the edge; with per-corner
 // "h:texcoord", vertices on a texture seam are never removed and the corners that move keep
-// the seam's side (no seam is torn open). Other attributes ride along with the kept vertex.
+// the seam's side (no seam is torn open). Vertices with a coincident copy (core/coincident.h:
+// the two sides of a patch seam, the copies of a split non-manifold vertex) are never removed
+// or moved either (neighbours may collapse into them), so no crack opens between copies.
+// Other attributes ride along with the kept vertex.
 // The input is never modified. Progressive mesh (Hoppe, "Progressive meshes", SIGGRAPH 1996):
 // every collapse is recorded with the vertex split that undoes it.
 //
@@ -122,6 +125,9 @@ struct DecimationReport {
     std::size_t refused_independent_set = 0;
     std::size_t refused_max_error = 0;
     std::size_t refused_texture_seam = 0;
+    /// Vertices kept where they are because another vertex coincides with them (a seam's two
+    /// sides, the copies of a split non-manifold vertex: core/coincident.h).
+    std::size_t coincident_vertices = 0;
     DecimationStop stop = DecimationStop::Done;
     std::string stop_message;  ///< how far it got and why, for the user
     double ms = 0;

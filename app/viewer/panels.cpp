@@ -207,6 +207,7 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
     }
     if (ImGui::BeginMenu("Tools")) {
         ImGui::MenuItem("Add noise", nullptr, &panels.tools.open);
+        ImGui::MenuItem("Weld coincident vertices...", nullptr, &panels.weld.open);
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Algorithms")) {
@@ -609,7 +610,23 @@ void decimation_window(PanelState& panels, MorphState& morph, const History& his
     ImGui::End();
 }
 
+namespace {
+/// Tools > Weld coincident vertices: the tolerance and Weld.
+void weld_window(OperationPanelState& state, bool busy, CommandQueue& commands) {
+    if (!state.open) return;
+    place_tool_window();
+    if (ImGui::Begin("Weld coincident vertices", &state.open, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::TextUnformatted(
+            "Join vertices at the same position (tolerance 0: exactly) where the\n"
+            "mesh stays manifold; what is left apart is explained in the log.");
+        operation_panel_body(state, "Weld", busy, commands);
+    }
+    ImGui::End();
+}
+}  // namespace
+
 void tools_window(PanelState& panels, bool busy, CommandQueue& commands) {
+    weld_window(panels.weld, busy, commands);
     OperationPanelState& state = panels.tools;
     if (!state.open) return;
     place_tool_window();

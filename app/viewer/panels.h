@@ -135,6 +135,7 @@ struct PanelState {
     DecimationPanelState decimation;
     RecordState record;
     OperationPanelState tools{"noise"};
+    OperationPanelState weld{"weld"};  ///< Tools > Weld coincident vertices
     bool history_open = false;
     bool morph_open = false;
     FileBrowserState file_browser;
@@ -207,7 +208,7 @@ void fairing_window(PanelState& panels, MorphState& morph, const History& histor
 /// queues RunOperation. `collapsing_edges` is how many edges the overlay shows (0: none).
 void decimation_window(PanelState& panels, MorphState& morph, const History& history, bool busy,
                        double now, std::size_t collapsing_edges, CommandQueue& commands);
-/// The Tools panel (Add noise); queues RunOperation.
+/// The Tools windows (Add noise; Weld coincident vertices); queue RunOperation.
 void tools_window(PanelState& panels, bool busy, CommandQueue& commands);
 /// The morph slider and the animation controls for the current history entry.
 void morph_window(PanelState& panels, MorphState& morph, const History& history, double now);
