@@ -29,7 +29,7 @@ namespace {
 constexpr const char* kUsage = R"(usage: trilab-cli COMMAND [options]
 
 commands:
-  info MESH [--json]              counts, topology, bounding box, area, volume, load report
+  info MESH [--json]              counts, topology, seams, bounding box, area, volume, load report
   convert IN OUT [--ascii] [--big-endian] [--json]
                                   convert between .obj .off .ply .stl .om (by extension);
                                   .stl and .ply are written binary unless --ascii
