@@ -51,8 +51,8 @@ OperationResult run_decimate(const DecimateOptions& d_options, const HalfedgeMes
     result.report.emplace_back(line);
     if (rep.coincident_vertices > 0) {
         std::snprintf(line, sizeof(line),
-                      "%zu vertices with a coincident copy (seams, split non-manifold vertices) "
-                      "kept in place",
+                      "%zu vertices with a coincident copy (seams, split non-manifold vertices): "
+                      "collapsed only together with it",
                       rep.coincident_vertices);
         result.report.emplace_back(line);
     }
