@@ -206,19 +206,25 @@ std::size_t unify_groups(const CoincidentGroups& groups, Point* values) {
 }
 
 BoundaryPairing pair_boundary_edges(const HalfedgeMesh& mesh) {
+    // Only boundary vertices matter: every boundary halfedge is the outgoing boundary
+    // halfedge (halfedge(v)) of exactly one vertex, so one pass over the vertices finds them.
     BoundaryPairing r;
-    const CoincidentGroups groups = find_coincident_vertices(mesh);
-    const std::vector<Index> group = groups.group_of(mesh.vertices_size());
+    const std::size_t n = mesh.vertices_size();
+    std::vector<std::uint8_t> skip(n, 1);
+    for (Vertex v : mesh.vertices())
+        if (!mesh.is_isolated(v) && mesh.is_boundary(v)) skip[v.idx()] = 0;
+    const CoincidentGroups groups = find_coincident_points(mesh.positions().data(), n, skip.data());
+    const std::vector<Index> group = groups.group_of(n);
     // Ids: a group's id is its number, an ungrouped vertex's is n_groups + its index.
     auto id = [&](Vertex v) {
         const Index g = group[v.idx()];
         return g != kInvalidIndex ? std::uint64_t(g) : std::uint64_t(groups.size()) + v.idx();
     };
     std::vector<std::pair<std::uint64_t, std::uint64_t>> keys;
-    for (Edge e : mesh.edges()) {
-        if (!mesh.is_boundary(e)) continue;
+    for (Vertex a : mesh.vertices()) {
+        if (skip[a.idx()]) continue;
         ++r.boundary_edges;
-        const Vertex a = mesh.vertex(e, 0), b = mesh.vertex(e, 1);
+        const Vertex b = mesh.to_vertex(mesh.halfedge(a));
         // A partner needs an end at a grouped vertex (otherwise it would be the same edge).
         if (group[a.idx()] == kInvalidIndex && group[b.idx()] == kInvalidIndex) continue;
         const std::uint64_t ia = id(a), ib = id(b);

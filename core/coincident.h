@@ -58,7 +58,7 @@ struct BoundaryPairing {
     std::size_t paired_edges = 0;    ///< boundary edges with at least one partner
     std::size_t unpaired_edges = 0;  ///< boundary edges with none: open boundary or a crack
 };
-/// O(V + E) expected.
+/// O(V) expected (a pass over the vertices, a hash of the boundary ones).
 BoundaryPairing pair_boundary_edges(const HalfedgeMesh& mesh);
 
 }  // namespace trilab

@@ -964,13 +964,13 @@ namespace {
 /// where a seam is interior and the copies of a split vertex are one vertex, with the copies
 /// that the weld cannot join fixed; every copy then takes its welded vertex's positions.
 void smooth_coincident(FairingResult& res, const FairingOptions& o, Progress& progress) {
-    const WeldResult weld = weld_coincident_vertices(res.mesh);
+    WeldResult weld = weld_coincident_vertices(res.mesh);
     check_options(weld.mesh, o);  // closed when welded: volume preservation applies
     Pinned pinned(weld.mesh.vertices_size(), 0);
     const CoincidentGroups apart = find_coincident_vertices(weld.mesh);
     for (Index v : apart.members) pinned[v] = 1;
     FairingResult welded;
-    welded.mesh = weld.mesh;
+    welded.mesh = std::move(weld.mesh);
     run_fairing(o, progress, welded, pinned);
     HalfedgeMesh mesh = std::move(res.mesh);
     auto unweld = [&](const Positions& pw) {
