@@ -975,7 +975,8 @@ void smooth_coincident(FairingResult& res, const FairingOptions& o, Progress& pr
     HalfedgeMesh mesh = std::move(res.mesh);
     auto unweld = [&](const Positions& pw) {
         Positions p = mesh.positions();
-        for (Vertex v : mesh.vertices()) p[v.idx()] = pw[weld.vertex_map[v.idx()]];
+        for (Vertex v : mesh.vertices())  // isolated vertices stay (the weld may join them)
+            if (!mesh.is_isolated(v)) p[v.idx()] = pw[weld.vertex_map[v.idx()]];
         return p;
     };
     mesh.positions() = unweld(welded.mesh.positions());

@@ -484,7 +484,8 @@ void welded_positions_1to4(const HalfedgeMesh& mesh, SubdivisionScheme scheme, P
     const In m(mesh);
     std::vector<Point> pw(std::size_t(w.nv) + w.ne);
     positions_1to4(w, scheme, pw.data(), stage);
-    for (Index v = 0; v < m.nv; ++v) p[v] = pw[weld.vertex_map[v]];
+    for (Index v = 0; v < m.nv; ++v)  // isolated vertices stay (the weld may join them)
+        p[v] = m.vh[v].is_valid() ? pw[weld.vertex_map[v]] : m.x[v];
     for (Index f = 0; f < m.nf; ++f) {
         Index h = m.fh[f].idx(), g = w.fh[f].idx();
         for (int k = 0; k < 3; ++k, h = m.next_i(h), g = w.next_i(g))

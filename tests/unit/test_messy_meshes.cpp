@@ -361,6 +361,22 @@ TEST_CASE("the teapot's seams stay closed and its poles keep no hole when subdiv
     }
 }
 
+TEST_CASE("an isolated vertex on a seam stays where it is", "[subdivision][fairing][coincident]") {
+    PolygonSoup soup = to_soup(seamed_grid(4, 2));
+    const Point on_seam = soup.positions[2];  // (cut, 0) of the left half
+    soup.positions.push_back(on_seam);
+    const HalfedgeMesh mesh = build(soup);
+    const Vertex isolated(Index(soup.positions.size() - 1));
+    REQUIRE(mesh.is_isolated(isolated));
+    for (Scheme s : kAllSchemes) {
+        const HalfedgeMesh out = subdivide_n(mesh, s, 2).levels.back().mesh;
+        REQUIRE(out.position(isolated) == on_seam);
+        if (s == Scheme::Loop) REQUIRE(out.position(Vertex(2)) != on_seam);  // approximating
+    }
+    const FairingResult r = smooth(mesh, FairingOptions{});
+    REQUIRE(r.mesh.position(isolated) == on_seam);
+}
+
 TEST_CASE("non-manifold points stay together through subdivision", "[subdivision][coincident]") {
     for (const HalfedgeMesh& mesh : {two_cones(), bow_tie()}) {
         const CoincidentGroups copies = find_coincident_vertices(mesh);
