@@ -132,6 +132,23 @@ CoincidentGroups tolerance_groups(const Point* p, std::size_t n, const std::uint
         cells[cell_of[i]].push_back(Index(i));
         parent[i] = Index(i);
     }
+    // Refuse a tolerance so large that the comparisons would be quadratic (most vertices
+    // within reach of each other): count them first.
+    std::uint64_t pairs = 0;
+    for (const auto& [cell, points] : cells)
+        for (std::int64_t dx = -1; dx <= 1; ++dx)
+            for (std::int64_t dy = -1; dy <= 1; ++dy)
+                for (std::int64_t dz = -1; dz <= 1; ++dz) {
+                    const auto it = cells.find(Cell{cell.x + dx, cell.y + dy, cell.z + dz});
+                    if (it != cells.end())
+                        pairs += std::uint64_t(points.size()) * it->second.size();
+                }
+    const std::uint64_t limit = 200 * std::uint64_t(n) + 1000000;
+    if (pairs > limit)
+        throw InvalidArgument("coincident vertices: tolerance " + std::to_string(d) +
+                              " is too large for this mesh: about " + std::to_string(pairs / 2) +
+                              " pairs of vertices lie within two cells of each other (use a "
+                              "tolerance well below the edge lengths)");
     const double d2 = d * d;
     for (std::size_t i = 0; i < n; ++i) {
         if (parent[i] == kInvalidIndex) continue;

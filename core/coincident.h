@@ -36,8 +36,10 @@ struct CoincidentGroups {
 };
 
 /// Groups the points p[0..n) that are not skipped (skip[i] != 0; `skip` may be null). Throws
-/// InvalidArgument when `tolerance` is negative or not finite, or so small against the
-/// coordinates that grid cells cannot be numbered (|x| / tolerance above 2^50).
+/// InvalidArgument when `tolerance` is negative or not finite, so small against the
+/// coordinates that grid cells cannot be numbered (|x| / tolerance above 2^50), or so large
+/// that the comparisons would be quadratic (more than 200 n + 10^6 candidate pairs: most
+/// points within reach of each other).
 CoincidentGroups find_coincident_points(const Point* p, std::size_t n,
                                         const std::uint8_t* skip = nullptr, double tolerance = 0);
 

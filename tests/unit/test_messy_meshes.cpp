@@ -171,6 +171,11 @@ TEST_CASE("coincident points: exact groups treat -0 as +0, a tolerance links cha
     REQUIRE(std::vector<Index>(near.begin(1), near.end(1)) == std::vector<Index>{1, 3, 4});
     REQUIRE_THROWS_AS(find_coincident_points(p.data(), p.size(), nullptr, -1), InvalidArgument);
     REQUIRE_THROWS_AS(find_coincident_points(p.data(), p.size(), nullptr, 1e-300), InvalidArgument);
+    // A tolerance that puts everything within reach of everything is refused, not quadratic.
+    const HalfedgeMesh sphere = make_icosphere(80);  // 64,002 vertices
+    REQUIRE_THROWS_WITH(find_coincident_vertices(sphere, 10.0),
+                        Catch::Matchers::Contains("too large"));
+    REQUIRE(find_coincident_vertices(sphere, 1e-9).empty());
 
     std::vector<Point> values = {{1, 0, 0}, {0, 0, 0}, {3, 0, 0}, {0, 0, 0}, {2, 0, 0}, {0, 0, 0}};
     REQUIRE(unify_groups(exact, values.data()) == 2);
