@@ -617,8 +617,9 @@ void weld_window(OperationPanelState& state, bool busy, CommandQueue& commands) 
     place_tool_window();
     if (ImGui::Begin("Weld coincident vertices", &state.open, ImGuiWindowFlags_AlwaysAutoResize)) {
         ImGui::TextUnformatted(
-            "Join vertices at the same position (tolerance 0: exactly) where the\n"
-            "mesh stays manifold; what is left apart is explained in the log.");
+            "Join coincident vertices where the mesh\n"
+            "stays manifold (tolerance 0: exactly the\n"
+            "same position); the log says what stays apart.");
         operation_panel_body(state, "Weld", busy, commands);
     }
     ImGui::End();

@@ -195,6 +195,8 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
             panels_.morph_open = true;
         else if (panel == "tools")
             panels_.tools.open = true;
+        else if (panel == "weld")
+            panels_.weld.open = true;
         else if (panel == "fairing")
             panels_.fairing.open = true;
         else if (panel == "subdivision")
@@ -214,7 +216,8 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
         else
             throw InvalidArgument(
                 "--show: unknown panel '" + panel +
-                "' (history, morph, tools, subdivision, fairing, frequency, record, log, info)");
+                "' (history, morph, tools, weld, subdivision, fairing, frequency, record, log, "
+                "info)");
     }
     if (!options_.mesh_path.empty()) load(options_.mesh_path);
     if (!options_.operation.empty() && options_.mesh_path.empty())
