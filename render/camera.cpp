@@ -88,11 +88,16 @@ void Camera::fit_box_in_view(const glm::vec3& lo, const glm::vec3& hi, float mar
     fit_points_in_view(corners, margin);
 }
 
-void Camera::set_view_angles(float azimuth_deg, float elevation_deg) {
-    // World -> camera: undo the azimuth (about y), then tilt down by the elevation (about x).
+void Camera::set_view_angles(float azimuth_deg, float elevation_deg, UpAxis up) {
+    // World -> camera: for z-up first turn the world into the y-up frame (-90 degrees about
+    // x: z -> y, -y -> z), then undo the azimuth (about y), then tilt down by the elevation
+    // (about x).
+    const glm::quat frame = up == UpAxis::Z
+                                ? glm::angleAxis(glm::radians(-90.0f), glm::vec3(1, 0, 0))
+                                : glm::quat(1, 0, 0, 0);
     const glm::quat tilt = glm::angleAxis(glm::radians(elevation_deg), glm::vec3(1, 0, 0));
     const glm::quat turn = glm::angleAxis(glm::radians(-azimuth_deg), glm::vec3(0, 1, 0));
-    rotation_ = glm::normalize(tilt * turn);
+    rotation_ = glm::normalize(tilt * turn * frame);
 }
 
 glm::vec3 Camera::ball_point(const glm::vec2& window) const {

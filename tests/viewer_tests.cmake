@@ -61,6 +61,14 @@ if(TARGET trilab)
                      --screenshot ${CMAKE_CURRENT_BINARY_DIR}/viewer_decimation.png)
     set_tests_properties(viewer_decimation PROPERTIES
                          PASS_REGULAR_EXPRESSION "Decimate --cost quadric --percent 60")
+    # Tools > Flip orientation is a history entry; with --up z the spherical projection of
+    # textured mode puts its poles on z (issue 16). A bad --up is refused.
+    add_test(NAME viewer_up_axis_flip
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --op flip --up z --mode textured --frames 6)
+    set_tests_properties(viewer_up_axis_flip PROPERTIES PASS_REGULAR_EXPRESSION
+                         "volume 4.15508 -> -4.15508.*spherical, \\+z up texture coordinates")
+    add_test(NAME viewer_bad_up_axis COMMAND $<TARGET_FILE:trilab> --up x --frames 1)
+    set_tests_properties(viewer_bad_up_axis PROPERTIES WILL_FAIL TRUE)
     add_test(NAME viewer_bad_operation COMMAND $<TARGET_FILE:trilab> --op "noise --amount -1"
                                               --frames 1)
     set_tests_properties(viewer_bad_operation PROPERTIES WILL_FAIL TRUE)

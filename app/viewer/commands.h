@@ -22,6 +22,9 @@ struct LoadTexture {
     std::string path;
 };
 struct FitView {};
+/// The default view for ViewSettings::up (the model's front, the up axis up), fitted; also
+/// remembers the up axis (View > Up axis, View > Default view).
+struct ResetView {};
 struct Undo {};
 struct Redo {};
 struct JumpTo {
@@ -73,11 +76,12 @@ struct Quit {
 /// Save the document to its own file, then carry out the pending Quit or LoadFile.
 struct SaveAndContinue {};
 
-using Command = std::variant<LoadFile, SaveFile, RevertFile, LoadTexture, FitView, Undo, Redo,
-                             JumpTo, RunOperation, PreviewOperation, ApplyOperation, CancelPreview,
-                             BuildLevelOfDetail, ShowLevelOfDetail, ApplyLevelOfDetail,
-                             UpdateColoring, ProjectTexCoords, TakeScreenshot, PrintInfo,
-                             StartRecording, CancelRecording, CancelJob, Quit, SaveAndContinue>;
+using Command =
+    std::variant<LoadFile, SaveFile, RevertFile, LoadTexture, FitView, ResetView, Undo, Redo,
+                 JumpTo, RunOperation, PreviewOperation, ApplyOperation, CancelPreview,
+                 BuildLevelOfDetail, ShowLevelOfDetail, ApplyLevelOfDetail, UpdateColoring,
+                 ProjectTexCoords, TakeScreenshot, PrintInfo, StartRecording, CancelRecording,
+                 CancelJob, Quit, SaveAndContinue>;
 using CommandQueue = std::vector<Command>;
 
 }  // namespace trilab::viewer

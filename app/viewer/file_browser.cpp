@@ -212,4 +212,40 @@ void RecentFiles::add(const std::string& path) {
     for (const std::string& p : paths_) out << p << "\n";
 }
 
+std::filesystem::path Preferences::default_file() {
+    const std::filesystem::path recent = RecentFiles::default_file();
+    return recent.empty() ? recent : recent.parent_path() / "settings";
+}
+
+void Preferences::load(const std::filesystem::path& file) {
+    file_ = file;
+    up = UpAxis::Y;
+    others_.clear();
+    std::ifstream in(file);
+    std::string line;
+    while (std::getline(in, line)) {
+        const std::size_t space = line.find(' ');
+        if (line.empty() || space == std::string::npos) continue;
+        const std::string key = line.substr(0, space), value = line.substr(space + 1);
+        if (key == "up-axis") {
+            try {
+                up = parse_up_axis(value);
+            } catch (const std::exception&) {
+                up = UpAxis::Y;
+            }
+        } else {
+            others_.emplace_back(key, value);
+        }
+    }
+}
+
+void Preferences::save() const {
+    if (file_.empty()) return;
+    std::error_code ec;
+    std::filesystem::create_directories(file_.parent_path(), ec);
+    std::ofstream out(file_);
+    out << "up-axis " << up_axis_name(up) << "\n";
+    for (const auto& [key, value] : others_) out << key << " " << value << "\n";
+}
+
 }  // namespace trilab::viewer

@@ -24,7 +24,10 @@ options:
   --close-after N    press the window's close button after N frames (tests the
                      unsaved-changes question)
   --mode MODE        wireframe, hidden-line, flat, gouraud, points or textured
-  --color C          none, normal, k1, k2, mean, gaussian or shape-index
+  --color C          none, normal, k1, k2, mean, gaussian, shape-index, subdivision,
+                     smoothing-distance, frequency or frequency-mass
+  --up y|z           the model's up axis for this run (default: the one chosen in
+                     View > Up axis, remembered; +y at first)
   --op "OPERATION"   apply an operation after loading, e.g. --op "noise --amount 2"
   --memory-budget MB the history's memory budget (default: a quarter of the RAM)
   --decompose K[:LO:HI]  decompose the model into K frequencies (the Frequency panel's
@@ -111,6 +114,9 @@ std::string parse_args(int argc, char** argv, trilab::viewer::ViewerOptions& opt
             if (!value(options.decompose)) return "--decompose needs K or K:LO:HI";
         } else if (arg == "--color") {
             if (!value(options.color)) return "--color needs a name";
+        } else if (arg == "--up") {
+            if (!value(options.up) || (options.up != "y" && options.up != "z"))
+                return "--up needs y or z";
         } else if (arg.size() > 1 && arg[0] == '-') {
             return "unknown option '" + arg + "'";
         } else if (options.mesh_path.empty()) {

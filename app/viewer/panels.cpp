@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <iterator>
 
+#include "app/viewer/plots.h"
 #include "core/fairing.h"
 
 namespace trilab::viewer {
@@ -205,8 +206,11 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
         ImGui::MenuItem("Record", "R", &panels.record.open);
         ImGui::EndMenu();
     }
+    view_menu(settings, commands);
     if (ImGui::BeginMenu("Tools")) {
         ImGui::MenuItem("Add noise", nullptr, &panels.tools.open);
+        if (ImGui::MenuItem("Flip orientation", nullptr, false, !context.busy))
+            commands.push_back(ApplyOperation{make_operation("flip")});
         ImGui::MenuItem("Weld coincident vertices...", nullptr, &panels.weld.open);
         ImGui::EndMenu();
     }
@@ -233,6 +237,28 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
         ImGui::EndMenu();
     }
     ImGui::EndMainMenuBar();
+}
+
+void view_menu(ViewSettings& settings, CommandQueue& commands) {
+    if (!ImGui::BeginMenu("View")) return;
+    if (ImGui::MenuItem("Default view")) commands.push_back(ResetView{});
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("look at the model's front with its up axis up, and fit it");
+    if (ImGui::BeginMenu("Up axis")) {
+        for (const EnumEntry<UpAxis>& e : kUpAxes) {
+            if (ImGui::MenuItem(e.label, nullptr, settings.up == e.value) &&
+                settings.up != e.value) {
+                settings.up = e.value;
+                commands.push_back(ResetView{});
+            }
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip(
+                    "the model's up axis (remembered): the default view keeps it up, and the "
+                    "spherical texture projection puts its poles on it");
+        }
+        ImGui::EndMenu();
+    }
+    ImGui::EndMenu();
 }
 
 void context_menu(RenderStyle& style, ViewSettings& settings, PanelState& panels,
@@ -352,6 +378,10 @@ void note_widget(const std::string& id) {
 
 void set_widget_rect_hook(WidgetRectHook hook) {
     widget_rect_hook = std::move(hook);
+}
+
+void note_widget_rect(const std::string& id, float x0, float y0, float x1, float y1) {
+    if (widget_rect_hook) widget_rect_hook(id, x0, y0, x1, y1);
 }
 
 bool operation_widgets(Operation& op, const std::vector<std::string>& skip) {
@@ -843,45 +873,7 @@ bool color_legend(const VertexColors& colors, ColoringOptions& options) {
     const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration |
                                    ImGuiWindowFlags_AlwaysAutoResize |
                                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoMove;
-    if (ImGui::Begin("##legend", nullptr, flags)) {
-        ImGui::TextUnformatted(colors.label.c_str());
-        // The bar: the map sampled in 48 steps, from range.min (left) to range.max (right).
-        const ImVec2 size(14.0f * em, 1.2f * em);
-        const ImVec2 p0 = ImGui::GetCursorScreenPos();
-        ImDrawList* draw = ImGui::GetWindowDrawList();
-        const int steps = 48;
-        auto to_u32 = [](const Color& c) {
-            return ImGui::ColorConvertFloat4ToU32(ImVec4(c.x(), c.y(), c.z(), 1.0f));
-        };
-        for (int i = 0; i < steps; ++i) {
-            const double t0 = double(i) / steps, t1 = double(i + 1) / steps;
-            const ValueRange& r = colors.range;
-            const Color c0 = map_color(r.min + t0 * (r.max - r.min), r, colors.kind);
-            const Color c1 = map_color(r.min + t1 * (r.max - r.min), r, colors.kind);
-            draw->AddRectFilledMultiColor(ImVec2(p0.x + float(t0) * size.x, p0.y),
-                                          ImVec2(p0.x + float(t1) * size.x, p0.y + size.y),
-                                          to_u32(c0), to_u32(c1), to_u32(c1), to_u32(c0));
-        }
-        ImGui::Dummy(size);
-        ImGui::Text("%-10.4g", colors.range.min);
-        ImGui::SameLine(size.x * 0.5f - 1.5f * em);
-        ImGui::Text("%.4g", 0.5 * (colors.range.min + colors.range.max));
-        char right[32];
-        std::snprintf(right, sizeof(right), "%.4g", colors.range.max);
-        ImGui::SameLine(size.x - ImGui::CalcTextSize(right).x + ImGui::GetStyle().WindowPadding.x);
-        ImGui::TextUnformatted(right);
-        // Outliers beyond these percentiles are clamped to the ends of the bar.
-        float low = float(options.low_percentile), high = float(options.high_percentile);
-        ImGui::SetNextItemWidth(size.x);
-        if (ImGui::DragFloatRange2("##percentiles", &low, &high, 0.2f, 0.0f, 100.0f, "from %.1f %%",
-                                   "to %.1f %%", ImGuiSliderFlags_AlwaysClamp)) {
-            if (high - low >= 0.5f) {
-                options.low_percentile = low;
-                options.high_percentile = high;
-                changed = true;
-            }
-        }
-    }
+    if (ImGui::Begin("##legend", nullptr, flags)) changed = legend_contents(colors, options);
     ImGui::End();
     return changed;
 }

@@ -108,12 +108,18 @@ bool operation_widgets(Operation& op, const std::vector<std::string>& skip = {})
 using WidgetRectHook =
     std::function<void(const std::string& id, float x0, float y0, float x1, float y1)>;
 void set_widget_rect_hook(WidgetRectHook hook);
+/// Reports a rectangle to the test hook (nothing without one): plots and legends name the
+/// parts they draw (plots.h).
+void note_widget_rect(const std::string& id, float x0, float y0, float x1, float y1);
 
 /// Rendering settings that live in the viewer rather than in RenderStyle.
 struct ViewSettings {
     VertexColoring coloring = VertexColoring::None;
     ColoringOptions coloring_options;
     TexCoordProjection projection = TexCoordProjection::Spherical;
+    /// The model's up axis (View > Up axis, remembered): the default view keeps it up on the
+    /// screen, and the spherical projection puts its poles on it.
+    UpAxis up = UpAxis::Y;
     bool use_checkerboard = true;  ///< the built-in texture instead of the loaded image
 };
 
@@ -189,6 +195,8 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
 /// The Rendering menu's items (also the right-click popup in the view).
 void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState& panels,
                           const RenderContext& render, CommandQueue& commands);
+/// The View menu (in the menu bar): Default view, and Up axis (+y or +z; queues ResetView).
+void view_menu(ViewSettings& settings, CommandQueue& commands);
 /// The right-click popup with the rendering items.
 void context_menu(RenderStyle& style, ViewSettings& settings, PanelState& panels,
                   const RenderContext& render, CommandQueue& commands);

@@ -25,6 +25,7 @@
 #include "core/geometry.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh_stats.h"
+#include "core/orientation.h"
 #include "core/texcoords.h"
 #include "render/offscreen.h"
 
@@ -172,6 +173,9 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
     view_.camera.set_viewport(float(window_w), float(window_h));
     // Recent files persist only for interactive sessions, not for scripted runs.
     if (options_.frames == 0) recent_.load(RecentFiles::default_file());
+    if (options_.frames == 0) preferences_.load(Preferences::default_file());
+    view_.settings.up = options_.up.empty() ? preferences_.up : parse_up_axis(options_.up, "--up");
+    view_.camera.reset_rotation(view_.settings.up);
     if (options_.memory_budget_mb > 0)
         document_.history.set_budget(std::size_t(options_.memory_budget_mb) << 20);
     push_loaded(make_default_model(), "Default model", "default model", "", LoadReport{});
@@ -241,6 +245,7 @@ void Viewer::push_loaded(HalfedgeMesh mesh, std::string label, std::string name,
     document_.name = std::move(name);
     document_.path = std::move(path);
     document_.report = std::move(report);
+    view_.camera.reset_rotation(view_.settings.up);  // a new model: the default view
     on_state_changed(true);
     document_.unsaved = false;
     // The overlay starts on where the edges can still be told apart; W toggles it.
@@ -365,6 +370,12 @@ void Viewer::commit_result(const Operation& op, OperationResult result_value) {
                                                 std::move(meshes), std::move(correspondences), op));
     log_.info(result->label + " " + result->parameters);
     for (const std::string& line : result->report) log_.info("  " + line);
+    if (op.def && op.name() == "flip") {  // replaces a load's "its faces point inwards"
+        std::string text = result->label;
+        for (std::size_t i = 0; i < result->report.size(); ++i)
+            text += (i ? "; " : ": ") + result->report[i];
+        notice_ = Notice{Notice::Level::Info, text, {}, false};
+    }
     on_state_changed(false);
     // A run that stopped early keeps its good steps and says why, never silently.
     if (result->stopped_early)
@@ -517,10 +528,21 @@ void Viewer::load(const std::string& path) {
         progress.report(-1.0, "reading and building the half-edge mesh");
         auto loaded = std::make_shared<LoadedMesh>(read_mesh(path));
         // Runs on the render thread when the job succeeded and was not cancelled.
-        return JobRunner::Finish([this, loaded, path, name] {
+        // A closed mesh turned inside out (read_mesh notes it): said where it shows.
+        auto inward = std::make_shared<std::string>(inward_orientation_note(loaded->mesh));
+        return JobRunner::Finish([this, loaded, path, name, inward] {
             notice_ = Notice{Notice::Level::Info, "Loaded " + name, loaded->report.lines(), false};
+            if (!inward->empty())
+                notice_.text +=
+                    ": its faces point inwards (negative volume); Tools > Flip "
+                    "orientation turns them outwards";
             log_.info("loaded " + path);
-            for (const std::string& line : loaded->report.lines()) log_.info("  " + line);
+            for (const std::string& line : loaded->report.lines()) {
+                if (line == *inward)
+                    log_.warning("  " + line);
+                else
+                    log_.info("  " + line);
+            }
             if (!loaded->texture_path.empty()) log_.info("  texture: " + loaded->texture_path);
             const bool revert = path == document_.path;
             push_loaded(std::move(loaded->mesh), revert ? "Revert" : "Load " + name, name, path,
@@ -623,6 +645,22 @@ std::vector<std::string> Viewer::scene_info() const {
         lines.push_back("texture " + std::to_string(texture_.width) + " x " +
                         std::to_string(texture_.height));
     return lines;
+}
+
+void Viewer::reset_view() {
+    const UpAxis up = view_.settings.up;
+    view_.camera.reset_rotation(up);
+    fit_view();
+    if (preferences_.up != up) {
+        preferences_.up = up;
+        preferences_.save();
+        log_.info(std::string("up axis: +") + up_axis_name(up) +
+                  " (the default view and the spherical texture projection)");
+        // Coordinates the viewer projected around the other axis follow (a history entry).
+        if (document_.texcoords_projected &&
+            view_.settings.projection == TexCoordProjection::Spherical)
+            project_texcoords_now();
+    }
 }
 
 void Viewer::fit_view() {
@@ -738,17 +776,16 @@ void Viewer::project_texcoords_now() {
         return;
     }
     HalfedgeMesh textured = document_.mesh();
-    project_texcoords(textured, view_.settings.projection);
-    const char* kind =
-        view_.settings.projection == TexCoordProjection::Planar ? "planar" : "spherical";
+    project_texcoords(textured, view_.settings.projection, view_.settings.up);
+    const bool planar = view_.settings.projection == TexCoordProjection::Planar;
+    const std::string kind =
+        planar ? "planar" : std::string("spherical, +") + up_axis_name(view_.settings.up) + " up";
     // An entry of its own, so it can be undone; the shape does not move.
     log_history_messages(document_.history.push("Texture coordinates", kind, 0.0,
                                                 {std::move(textured)}, {MorphCorrespondence{}}));
     document_.texcoords_projected = true;
     on_state_changed(false);
-    log_.info(std::string(view_.settings.projection == TexCoordProjection::Planar ? "planar"
-                                                                                  : "spherical") +
-              " texture coordinates computed on the current shape");
+    log_.info(kind + " texture coordinates computed on the current shape");
 }
 
 void Viewer::take_screenshot(const TakeScreenshot& request) {
@@ -793,6 +830,8 @@ void Viewer::execute(const Command& command) {
         load_texture(texture->path);
     } else if (std::holds_alternative<FitView>(command)) {
         fit_view();
+    } else if (std::holds_alternative<ResetView>(command)) {
+        reset_view();
     } else if (std::holds_alternative<Undo>(command) || std::holds_alternative<Redo>(command) ||
                std::holds_alternative<JumpTo>(command)) {
         History& h = document_.history;

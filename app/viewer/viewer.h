@@ -41,6 +41,7 @@ struct ViewerOptions {
     std::string show;          ///< panels to open at start, comma-separated
     int memory_budget_mb = 0;  ///< the history's budget; 0: a quarter of the RAM
     std::string decompose;     ///< "K" or "K:LO:HI": Frequency panel Decompose (and a band)
+    std::string up;            ///< "y" or "z": the up axis for this run; empty: the remembered one
     /// --sweep OP --param NAME --range FROM:TO:COUNT: preview OP with NAME at COUNT evenly
     /// spaced values, print "sweep: previews=N median_ms=X max_ms=Y" and exit.
     std::string sweep_op, sweep_param;
@@ -220,6 +221,9 @@ private:
     void take_screenshot(const TakeScreenshot& request);
     void notify_error(const std::string& text);
     void fit_view();
+    /// The default view for the up axis (View > Default view, View > Up axis), fitted; a new
+    /// up axis is remembered, and spherical texture coordinates the viewer projected follow it.
+    void reset_view();
     void render_scene();
     /// Reads the back buffer and writes it as PNG; returns an error message or "".
     std::string write_screenshot(const std::string& path) const;
@@ -239,6 +243,7 @@ private:
     Log log_;
     JobRunner jobs_;
     RecentFiles recent_;
+    Preferences preferences_;  ///< remembered settings (interactive sessions only)
     CommandQueue commands_;
     std::vector<KeyPress> key_presses_;       ///< since the last frame
     std::vector<std::string> dropped_paths_;  ///< files dropped on the window since the last frame

@@ -157,11 +157,11 @@ void Viewer::push_frequency_state(bool restore) {
     std::string label, parameters;
     Operation band;  // the band as the spectrum operation's typed parameter
     if (restore) {
-        mesh.positions() = d.base_positions;
+        mesh.set_positions(d.base_positions);
         label = kRestoreLabel;
         parameters = "the decomposed shape";
     } else {
-        mesh.positions() = reconstruct_positions(d, std::size_t(s.lo), std::size_t(s.hi));
+        mesh.set_positions(reconstruct_positions(d, std::size_t(s.lo), std::size_t(s.hi)));
         label = kBandLabel;
         band = make_operation("spectrum");
         ParamValue& v = band.value("band");

@@ -5,11 +5,18 @@
 #include <imgui.h>
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <string>
 #include <variant>
 
 #include "app/viewer/panels.h"
+#include "app/viewer/plots.h"
 #include "core/fairing.h"
 
 using namespace trilab;
@@ -63,6 +70,13 @@ public:
         frame(draw, x, y, false);
     }
     bool has(const std::string& id) const { return rects_.count(id) > 0; }
+    /// Every rectangle whose id starts with `prefix`, with its id.
+    std::vector<std::pair<std::string, Rect>> with_prefix(const std::string& prefix) const {
+        std::vector<std::pair<std::string, Rect>> out;
+        for (const auto& [id, r] : rects_)
+            if (id.rfind(prefix, 0) == 0) out.emplace_back(id, r);
+        return out;
+    }
     Rect rect(const std::string& id) const {
         const auto it = rects_.find(id);
         REQUIRE(it != rects_.end());
@@ -73,6 +87,24 @@ private:
     ImGuiContext* ctx_ = nullptr;
     std::map<std::string, Rect> rects_;
 };
+
+bool overlap(const Rect& a, const Rect& b) {
+    return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+}
+
+/// Asserts that no two of the rectangles overlap.
+void require_disjoint(const std::vector<std::pair<std::string, Rect>>& rects) {
+    for (std::size_t i = 0; i < rects.size(); ++i)
+        for (std::size_t j = i + 1; j < rects.size(); ++j) {
+            INFO(rects[i].first << " and " << rects[j].first);
+            REQUIRE_FALSE(overlap(rects[i].second, rects[j].second));
+        }
+}
+
+/// The legend window as the viewer draws it, for `colors`.
+void draw_legend(const VertexColors& colors, ColoringOptions& options) {
+    color_legend(colors, options);
+}
 
 template <class T>
 std::vector<const T*> commands_of(const CommandQueue& q) {
@@ -228,4 +260,240 @@ TEST_CASE("the Fairing panel marks a step above the stable limit and offers impl
     CHECK(previews.back()->op.value("step").x == 20);
     ui.frame(draw);
     CHECK_FALSE(ui.has("unstable"));  // implicit: any step is stable
+}
+
+// ---- legends and plots (issue 16) ------------------------------------------------------------
+
+TEST_CASE("legend labels never overlap; both ends always show, the centre where it fits",
+          "[panels][legend]") {
+    Ui ui;
+    ColoringOptions options;
+    // The issue's Gaussian curvature range, and ranges with long and short labels.
+    const ValueRange ranges[] = {{-3.568e+05, 3.568e+05},
+                                 {-1.234567e-300, 1.234567e-300},
+                                 {-0.5, 0.5},
+                                 {2.5e-7, 9.875e+12},
+                                 {0.0, 1.0},
+                                 {-123456.7, 9.0}};
+    for (const ValueRange& r : ranges) {
+        for (const ColorMapKind kind : {ColorMapKind::Diverging, ColorMapKind::Sequential}) {
+            INFO("range " << r.min << " .. " << r.max << ", " << color_map_name(kind));
+            VertexColors colors;
+            colors.has_legend = true;
+            colors.kind = kind;
+            colors.label = "Gaussian curvature K";
+            colors.range = r;
+            const auto draw = [&] { draw_legend(colors, options); };
+            ui.frame(draw);
+            ui.frame(draw);
+            const auto labels = ui.with_prefix("legend: label ");
+            require_disjoint(labels);
+            const Rect bar = ui.rect("legend: bar");
+            char min_text[32], max_text[32];
+            std::snprintf(min_text, sizeof min_text, "%.4g", r.min);
+            std::snprintf(max_text, sizeof max_text, "%.4g", r.max);
+            const Rect lo = ui.rect(std::string("legend: label ") + min_text);
+            const Rect hi = ui.rect(std::string("legend: label ") + max_text);
+            CHECK(lo.x0 == Approx(bar.x0));  // the ends sit under the ends of the bar
+            CHECK(hi.x1 == Approx(bar.x1));
+            for (const auto& [id, rect] : labels) {
+                CHECK(rect.x0 >= bar.x0 - 0.01f);
+                CHECK(rect.x1 <= bar.x1 + 0.01f);
+                CHECK(rect.y0 >= bar.y1);  // under the bar, not on it
+            }
+            // The centre of a symmetric range is 0; it shows on these (room enough).
+            if (r.min == -r.max) CHECK(ui.has("legend: label 0"));
+            CHECK(ui.has("legend: percentiles"));  // a continuous map has the range control
+        }
+    }
+}
+
+TEST_CASE("place_labels drops what would overlap, keeping the most important labels",
+          "[panels][legend]") {
+    // Ends (priority 2) at 0 and 100, a centre (1) at 50: wide labels push the centre out.
+    std::vector<LabelSpec> specs = {{0, 45, 0.0f, 2}, {50, 20, 0.5f, 1}, {100, 45, 1.0f, 2}};
+    auto at = place_labels(specs, 0, 100, 4);
+    REQUIRE(at[0]);
+    REQUIRE(at[2]);
+    CHECK_FALSE(at[1]);
+    CHECK(*at[0] == 0);
+    CHECK(*at[2] == 55);
+    // Narrow labels all fit, each at its anchor.
+    specs = {{0, 10, 0.0f, 2}, {50, 10, 0.5f, 1}, {100, 10, 1.0f, 2}};
+    at = place_labels(specs, 0, 100, 4);
+    REQUIRE(at[1]);
+    CHECK(*at[1] == 45);
+    // A label that would stick out is moved inside.
+    at = place_labels({{98, 10, 0.5f, 0}}, 0, 100, 4);
+    REQUIRE(at[0]);
+    CHECK(*at[0] == 90);
+}
+
+TEST_CASE("nice_ticks: 1-2-5 steps inside the range, at most the count asked", "[panels][plots]") {
+    const auto ticks = nice_ticks(0, 49, 6, 1);
+    REQUIRE(ticks.size() >= 2);
+    REQUIRE(ticks.size() <= 6);
+    CHECK(ticks.front() == 0);
+    const double step = ticks[1] - ticks[0];
+    CHECK((step == 10 || step == 20 || step == 50));
+    for (std::size_t i = 1; i < ticks.size(); ++i) CHECK(ticks[i] - ticks[i - 1] == Approx(step));
+    for (const double t : ticks) CHECK((t >= 0 && t <= 49));
+    const auto small = nice_ticks(-0.031, 0.047, 5);
+    REQUIRE(small.size() >= 2);
+    for (const double t : small) CHECK((t >= -0.031 && t <= 0.047));
+    CHECK(nice_ticks(0, 3, 10, 1) == std::vector<double>{0, 1, 2, 3});  // whole steps only
+    CHECK(nice_ticks(2, 2, 5) == std::vector<double>{2});
+    CHECK(nice_ticks(0, NAN, 5).empty());
+    CHECK(tick_text(-0.0) == "0");
+}
+
+TEST_CASE("a categorical legend shows one swatch per value and no range control",
+          "[panels][legend]") {
+    Ui ui;
+    ColoringOptions options;
+    VertexColors colors;
+    colors.has_legend = true;
+    colors.kind = ColorMapKind::Categorical;
+    colors.label = "subdivision level of each vertex";
+    for (int level = 0; level < 4; ++level) {
+        ColorCategory c;
+        c.value = level;
+        c.color = categorical_color(std::size_t(level));
+        c.label = "level " + std::to_string(level);
+        c.count = std::size_t(12) << (2 * level);
+        colors.categories.push_back(c);
+    }
+    colors.range = {0, 3};
+    const auto draw = [&] { draw_legend(colors, options); };
+    ui.frame(draw);
+    ui.frame(draw);
+    const auto swatches = ui.with_prefix("legend: swatch ");
+    REQUIRE(swatches.size() == 4);
+    require_disjoint(swatches);
+    float last_y = -1;
+    for (int level = 0; level < 4; ++level) {  // one row per level, in order
+        const Rect r = ui.rect("legend: swatch level " + std::to_string(level));
+        CHECK(r.y0 > last_y);
+        last_y = r.y0;
+    }
+    CHECK_FALSE(ui.has("legend: percentiles"));
+    CHECK_FALSE(ui.has("legend: bar"));
+}
+
+namespace {
+
+/// A decomposition's display data: k eigenvalues and coefficients, the band of a state.
+FrequencyDocument frequency_document(std::size_t k) {
+    FrequencyDocument doc;
+    doc.decomposition = std::make_shared<const SpectralDecomposition>();
+    doc.valid = true;
+    for (std::size_t i = 0; i < k; ++i) {
+        doc.eigenvalues.push_back(float(0.01 * double(i) * double(i)));
+        doc.log_coefficients.push_back(float(-0.1 * double(i)));
+    }
+    doc.log_coefficients[3] = -INFINITY;  // |alpha| = 0: no point, no crash
+    doc.applied = true;
+    doc.applied_lo = 0;
+    doc.applied_hi = 9;
+    return doc;
+}
+
+}  // namespace
+
+TEST_CASE("the frequency plots shade exactly the band's share and mark the visualized frequency",
+          "[panels][plots]") {
+    Ui ui;
+    FrequencyPanelState state;
+    state.open = true;
+    const std::size_t k = 50;
+    const FrequencyDocument doc = frequency_document(k);
+    state.lo = 0;
+    state.hi = 24;
+    state.visualize = 7;
+    const auto draw = [&] { frequency_window(state, doc, false); };
+    ui.frame(draw);
+    ui.frame(draw);
+    for (const char* plot : {"spectrum", "coefficients", "frequency bar"}) {
+        INFO(plot);
+        const std::string p = plot;
+        const Rect area = ui.rect(p == "frequency bar" ? p : p + ": area");
+        const Rect band = ui.rect(p + ": band");
+        const Rect marker = ui.rect(p + ": marker");
+        const float w = area.x1 - area.x0;
+        REQUIRE(w > 100);
+        // Band 0..24 of 50: exactly half the plot area, from its left edge (the issue saw
+        // 58 %: the band was scaled to the plot plus its label).
+        CHECK(band.x0 == Approx(area.x0).margin(0.01));
+        CHECK((band.x1 - band.x0) / w == Approx(25.0 / 50.0).margin(1e-4));
+        // The marker sits at the centre of slot 7.
+        CHECK((marker.x0 + marker.x1) / 2 == Approx(area.x0 + 7.5f / 50.0f * w).margin(0.01));
+        // The bar and the plots share their x range.
+        const Rect spectrum = ui.rect("spectrum: area");
+        CHECK(area.x0 == Approx(spectrum.x0));
+        CHECK(area.x1 == Approx(spectrum.x1));
+    }
+    // The applied band (0..9) on the bar: 10 of 50 slots.
+    const Rect bar = ui.rect("frequency bar");
+    const Rect applied = ui.rect("frequency bar: applied");
+    CHECK((applied.x1 - applied.x0) / (bar.x1 - bar.x0) == Approx(0.2).margin(1e-4));
+    // Axes with tick labels that do not overlap: index ticks starting at 0, value ticks.
+    for (const char* plot : {"spectrum", "coefficients"}) {
+        INFO(plot);
+        const auto x_ticks = ui.with_prefix(std::string(plot) + ": x tick ");
+        const auto y_ticks = ui.with_prefix(std::string(plot) + ": y tick ");
+        CHECK(x_ticks.size() >= 3);
+        CHECK(y_ticks.size() >= 2);
+        CHECK(ui.has(std::string(plot) + ": x tick 0"));
+        auto all = x_ticks;
+        all.insert(all.end(), y_ticks.begin(), y_ticks.end());
+        require_disjoint(all);
+        const Rect area = ui.rect(std::string(plot) + ": area");
+        for (const auto& [id, r] : x_ticks) CHECK(r.y0 >= area.y1);  // below the area
+        for (const auto& [id, r] : y_ticks) CHECK(r.x1 <= area.x0);  // left of it
+    }
+    // The spectrum's y ticks span its values (0 .. 24.01).
+    CHECK(ui.has("spectrum: y tick 0"));
+    // A single-frequency band is one slot wide; the marker follows the slider's value.
+    state.lo = state.hi = 49;
+    state.visualize = 0;
+    ui.frame(draw);
+    const Rect area = ui.rect("spectrum: area");
+    const Rect band = ui.rect("spectrum: band");
+    CHECK(band.x1 == Approx(area.x1).margin(0.01));
+    CHECK((band.x1 - band.x0) == Approx((area.x1 - area.x0) / 50).margin(0.01));
+    const Rect marker = ui.rect("spectrum: marker");
+    CHECK((marker.x0 + marker.x1) / 2 == Approx(area.x0 + 0.5f / 50 * (area.x1 - area.x0)));
+}
+
+TEST_CASE("the up axis is remembered in the settings file, other keys kept", "[panels][prefs]") {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("trilab-prefs-" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
+    const std::filesystem::path file = dir / "trilab" / "settings";
+    Preferences p;
+    p.load(file);  // missing: the defaults
+    CHECK(p.up == UpAxis::Y);
+    p.up = UpAxis::Z;
+    p.save();  // creates the folder
+    Preferences q;
+    q.load(file);
+    CHECK(q.up == UpAxis::Z);
+    // Keys of other versions survive a save; a bad value falls back to the default.
+    {
+        std::ofstream out(file);
+        out << "up-axis sideways\nfuture-key 42\n";
+    }
+    q.load(file);
+    CHECK(q.up == UpAxis::Y);
+    q.save();
+    std::ifstream in(file);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    CHECK(text.find("future-key 42") != std::string::npos);
+    CHECK(text.find("up-axis y") != std::string::npos);
+    std::filesystem::remove_all(dir);
+    // Without a file (scripted runs) nothing is written.
+    Preferences none;
+    none.up = UpAxis::Z;
+    none.save();
+    CHECK_FALSE(std::filesystem::exists(dir));
 }

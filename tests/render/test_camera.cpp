@@ -166,6 +166,46 @@ TEST_CASE("Camera::set_view_angles looks from the stated direction", "[camera]")
     CHECK(glm::row(camera.view(), 1).y > 0.5f);
 }
 
+TEST_CASE("Camera view angles and the default view follow the up axis", "[camera]") {
+    struct Case {
+        float az, el;
+        glm::vec3 eye_dir, screen_up;
+    };
+    // z-up: azimuth around +z from the front (-y), elevation above the xy plane.
+    const Case cases[] = {
+        {0, 0, {0, -1, 0}, {0, 0, 1}},
+        {90, 0, {1, 0, 0}, {0, 0, 1}},
+        {180, 0, {0, 1, 0}, {0, 0, 1}},
+        {0, 90, {0, 0, 1}, {0, 1, 0}},
+    };
+    for (const Case& c : cases) {
+        Camera camera;
+        camera.set_view_angles(c.az, c.el, UpAxis::Z);
+        INFO("z-up view " << c.az << "," << c.el);
+        const glm::vec3 eye = glm::normalize(camera.eye() - camera.target());
+        CHECK(glm::length(eye - c.eye_dir) < 1e-5f);
+        const glm::vec3 up = glm::vec3(glm::row(camera.view(), 1));
+        CHECK(glm::length(up - c.screen_up) < 1e-5f);
+        require_orthonormal(camera.view());
+    }
+    // The default view: the up axis is the screen's up vector, the front faces the camera.
+    for (const UpAxis axis : {UpAxis::Y, UpAxis::Z}) {
+        INFO("up " << up_axis_name(axis));
+        Camera camera;
+        camera.set_view_angles(30, 20);
+        camera.reset_rotation(axis);
+        const Vector3 u = up_vector(axis), f = front_vector(axis);
+        const glm::vec3 up = glm::vec3(glm::row(camera.view(), 1));
+        CHECK(glm::length(up - glm::vec3(float(u.x()), float(u.y()), float(u.z()))) < 1e-5f);
+        const glm::vec3 eye = glm::normalize(camera.eye() - camera.target());
+        CHECK(glm::length(eye - glm::vec3(float(f.x()), float(f.y()), float(f.z()))) < 1e-5f);
+    }
+    // y-up is the identity rotation, as before.
+    Camera camera;
+    camera.reset_rotation();
+    CHECK(angle_between(camera.rotation(), glm::quat(1, 0, 0, 0)) < 1e-3f);
+}
+
 TEST_CASE("Camera has no gimbal flip at the poles", "[camera]") {
     SECTION("view angles through the pole change the rotation continuously") {
         Camera camera;

@@ -124,6 +124,7 @@ const std::map<std::string, Generator>& generators() {
              if (pick(rng, 0, 3) == 0) text += " --fix-boundary";
              return text;
          }},
+        {"flip", [](Rng&, const HalfedgeMesh&) { return std::string("flip"); }},
     };
     return g;
 }
