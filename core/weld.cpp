@@ -98,7 +98,9 @@ WeldResult weld_coincident_vertices(const HalfedgeMesh& mesh, const WeldOptions&
         const std::size_t run = j - i;
         std::size_t boundary = 0;
         for (std::size_t k = i; k < j; ++k) boundary += mesh.is_boundary(Edge(keyed[k].edge));
-        if (run == 2 && boundary == 2 && keyed[i].lo != keyed[i].hi) {
+        if (keyed[i].lo == keyed[i].hi) {
+            // Edges of length zero inside one group: never glued (they would become loops).
+        } else if (run == 2 && boundary == 2) {
             const Halfedge h1 = boundary_half(Edge(keyed[i].edge));
             const Halfedge h2 = boundary_half(Edge(keyed[i + 1].edge));
             const bool opposite = key(mesh.from_vertex(h1)) == key(mesh.to_vertex(h2)) &&
