@@ -44,7 +44,7 @@ options:
                      for each live preview to show, then print
                      "sweep: previews=N median_ms=X max_ms=Y" and exit
   --show PANELS      open panels at start: comma-separated all, history, morph, tools,
-                     subdivision, fairing, frequency, decimation, collapsing-edges,
+                     weld, subdivision, fairing, frequency, decimation, collapsing-edges,
                      record, log, info, and the dialogs help, about, screenshot
   --help             this text
 )";

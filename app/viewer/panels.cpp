@@ -233,6 +233,7 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
         ImGui::MenuItem("Add noise", nullptr, &panels.tools.open);
         if (ImGui::MenuItem("Flip orientation", nullptr, false, !context.busy))
             commands.push_back(ApplyOperation{make_operation("flip")});
+        ImGui::MenuItem("Weld coincident vertices...", nullptr, &panels.weld.open);
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Algorithms")) {
@@ -760,10 +761,16 @@ void decimation_section(PanelState& panels, MorphState& morph, const History& hi
 }
 
 void tools_section(PanelState& panels, bool busy, CommandQueue& commands) {
-    OperationPanelState& state = panels.tools;
-    if (!section_header("Tools: add noise", state.open)) return;
-    ImGui::TextWrapped("Moves the vertices along their normals.");
-    operation_panel_body(state, "Apply", busy, commands);
+    if (section_header("Tools: add noise", panels.tools.open)) {
+        ImGui::TextWrapped("Moves the vertices along their normals.");
+        operation_panel_body(panels.tools, "Apply", busy, commands);
+    }
+    if (section_header("Tools: weld coincident vertices", panels.weld.open)) {
+        ImGui::TextWrapped(
+            "Joins coincident vertices where the mesh stays manifold (tolerance 0: exactly the "
+            "same position); the log says what stays apart.");
+        operation_panel_body(panels.weld, "Weld", busy, commands);
+    }
 }
 
 namespace {

@@ -150,6 +150,7 @@ struct PanelState {
     DecimationPanelState decimation;
     RecordState record;
     OperationPanelState tools{"noise"};
+    OperationPanelState weld{"weld"};  ///< Tools > Weld coincident vertices
     bool history_open = false;
     bool morph_open = false;
     FileBrowserState file_browser;
@@ -245,7 +246,7 @@ void fairing_section(PanelState& panels, MorphState& morph, const History& histo
 /// `collapsing_edges` is how many edges the overlay shows (0: none).
 void decimation_section(PanelState& panels, MorphState& morph, const History& history, bool busy,
                         double now, std::size_t collapsing_edges, CommandQueue& commands);
-/// Tools: Add noise.
+/// Tools: Add noise; Weld coincident vertices.
 void tools_section(PanelState& panels, bool busy, CommandQueue& commands);
 /// The morph slider and the animation controls for the current history entry.
 void morph_section(PanelState& panels, MorphState& morph, const History& history, double now);

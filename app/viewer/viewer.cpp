@@ -212,7 +212,8 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
         pos = comma + 1;
         if (panel == "all") {  // every panel (not the dialogs)
             panels_.history_open = panels_.morph_open = panels_.log_open = true;
-            panels_.info_open = panels_.tools.open = panels_.fairing.open = true;
+            panels_.info_open = panels_.tools.open = panels_.weld.open = panels_.fairing.open =
+                true;
             panels_.subdivision.open = panels_.frequency.open = true;
             panels_.decimation.open = panels_.record.open = true;
         } else if (panel == "help")
@@ -227,6 +228,8 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
             panels_.morph_open = true;
         else if (panel == "tools")
             panels_.tools.open = true;
+        else if (panel == "weld")
+            panels_.weld.open = true;
         else if (panel == "fairing")
             panels_.fairing.open = true;
         else if (panel == "subdivision")
@@ -246,8 +249,8 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
         else
             throw InvalidArgument(
                 "--show: unknown panel '" + panel +
-                "' (all, history, morph, tools, subdivision, fairing, frequency, decimation, "
-                "collapsing-edges, record, log, info, help, about, screenshot)");
+                "' (all, history, morph, tools, weld, subdivision, fairing, frequency, "
+                "decimation, collapsing-edges, record, log, info, help, about, screenshot)");
     }
     initial_load_ended_ = options_.mesh_path.empty();
     if (!options_.mesh_path.empty()) load(options_.mesh_path);

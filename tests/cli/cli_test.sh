@@ -339,5 +339,23 @@ if "$cli" render "$tmp/d.obj" --out "$tmp/probe.png" --size 16x16 >/dev/null 2>&
          [ \$(grep -o '\"count\": ' '$tmp/lv.json' | wc -l) -eq 3 ] && \
          grep -q 'level 0 (original)' '$tmp/lv.json' && grep -q '\"count\": 12000' '$tmp/lv.json'"
 fi
+# Messy meshes (issue 17, item 8): welding seams, pillows left as they are.
+check "info counts the boundary edges that pair up across a seam" bash -c \
+    "'$cli' info '$data/good/two_patches.obj' --json > '$tmp/tp.json' && \
+     grep -q '\"boundary_edges\": 8, \"paired_boundary_edges\": 2, \"unpaired_boundary_edges\": 6' '$tmp/tp.json'"
+check "weld glues the seam: one vertex pair less twice, one edge pair glued" bash -c \
+    "'$cli' weld --tolerance 0 '$data/good/two_patches.obj' '$tmp/welded.obj' --json > '$tmp/w.json' && \
+     grep -q '\"vertices_joined\": 2' '$tmp/w.json' && grep -q '\"edges_glued\": 1' '$tmp/w.json' && \
+     '$cli' info '$tmp/welded.obj' --json | grep -q '\"vertices\": 6, .*\"paired_boundary_edges\": 0'"
+check "weld explains what it leaves apart (a bow-tie's two fans)" bash -c \
+    "'$cli' weld '$data/good/bowtie.off' '$tmp/bw.obj' | grep -q 'note: 1 coincident vertices left apart'"
+check "weld refuses a negative tolerance with one line naming it" bash -c \
+    "! '$cli' weld --tolerance -1 '$data/good/two_patches.obj' '$tmp/bad.obj' 2> '$tmp/e' && \
+     [ \$(wc -l < '$tmp/e') -eq 1 ] && grep -q -- '--tolerance' '$tmp/e' && [ ! -e '$tmp/bad.obj' ]"
+check "subdivide leaves a pillow as it is and says so, in text and --json" bash -c \
+    "'$cli' subdivide '$data/good/pillow_beside_tetrahedron.off' '$tmp/pl.obj' | \
+     grep -q 'note: 1 component left as it is: two triangles on the same three vertices' && \
+     '$cli' subdivide '$data/good/pillow_beside_tetrahedron.off' '$tmp/pl.obj' --json | \
+     grep -q '\"faces\": 18, .*note: 1 component left as it is'"
 echo "cli: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]
