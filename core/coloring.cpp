@@ -7,13 +7,15 @@
 //  - Diverging: blue -> light blue -> white -> light red -> red, symmetric in lightness, with
 //    white exactly at the centre of the range.
 // Values are mapped to t = (value - min) / (max - min) in double precision and clamped to
-// [0, 1]; a non-finite value or a degenerate range maps to the centre of the map.
+// [0, 1]; a non-finite value or a degenerate range maps to the centre of the map. The
+// categorical map is a table of ten colours indexed by the (rounded) value itself.
 //
 // color_vertices: None paints every vertex the front colour (0.5, 0.62, 0.8); Normal paints
 // (n + 1) / 2 of the area-weighted vertex normal (grey where there is none); the curvatures
 // come from compute_curvatures() (Meyer et al. 2003) and, being signed, use the diverging map:
 // K1, K2, Mean and Gaussian over symmetric_range(percentile_range(...)) of the valid values,
-// ShapeIndex over the fixed range [-1, 1]. Vertices without a valid value (boundary, isolated,
+// ShapeIndex over the fixed range [-1, 1]; SubdivisionLevel on the categorical map, with one
+// category per level present. Vertices without a valid value (boundary, isolated,
 // zero area) get the neutral grey (0.55, 0.55, 0.55). Percentiles are checked before any
 // work (InvalidArgument naming low_percentile / high_percentile). Complexity: linear, plus
 // O(n) expected for the percentiles (nth_element).
@@ -22,6 +24,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <sstream>
 
 #include "core/curvature.h"
@@ -119,9 +122,49 @@ double order_statistic(std::vector<double>& v, double position) {
     return a + frac * (b - a);
 }
 
+// Ten hues chosen apart in hue and lightness; 0 is the dark slate of the original vertices.
+constexpr std::array<std::array<float, 3>, 10> kCategorical = {{
+    {0.30f, 0.33f, 0.42f},  // slate
+    {0.93f, 0.60f, 0.12f},  // orange
+    {0.22f, 0.58f, 0.92f},  // sky blue
+    {0.84f, 0.22f, 0.28f},  // red
+    {0.36f, 0.74f, 0.34f},  // green
+    {0.62f, 0.42f, 0.82f},  // violet
+    {0.96f, 0.86f, 0.30f},  // yellow
+    {0.58f, 0.38f, 0.22f},  // brown
+    {0.96f, 0.56f, 0.76f},  // pink
+    {0.40f, 0.84f, 0.80f},  // teal
+}};
+
 }  // namespace
 
+const char* color_map_name(ColorMapKind kind) {
+    switch (kind) {
+        case ColorMapKind::Diverging:
+            return "diverging";
+        case ColorMapKind::Categorical:
+            return "categorical";
+        default:
+            return "sequential";
+    }
+}
+
+Color categorical_color(std::size_t index) {
+    const auto& c = kCategorical[index % kCategorical.size()];
+    const std::size_t round = index / kCategorical.size();
+    Color out(c[0], c[1], c[2]);
+    if (round == 0) return out;
+    // Odd rounds darker, even rounds lighter, a little further each time round.
+    const float amount = std::min(0.8f, 0.35f * float((round + 1) / 2));
+    return round % 2 == 1 ? Color(out * (1.0f - amount))
+                          : Color(out + (Color::Ones() - out) * amount);
+}
+
 Color map_color(double value, const ValueRange& range, ColorMapKind kind) {
+    if (kind == ColorMapKind::Categorical)  // the value is the category, whatever the range
+        return std::isfinite(value) && value >= 0 && value < 1e9
+                   ? categorical_color(std::size_t(std::llround(value)))
+                   : kInvalidColor;
     const double width = range.max - range.min;
     double t = 0.5;
     if (std::isfinite(value) && width > 0 && std::isfinite(width))
@@ -202,18 +245,30 @@ VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
     }
 
     if (coloring == VertexColoring::SubdivisionLevel) {
-        // Even/odd vertices per level: level 0 (the original vertices) dark, the newest
-        // level bright, on the sequential map over [0, highest level].
+        // One colour per level (categorical): level 0 (the original vertices) slate, each
+        // later level its own hue, the same hue for the same level on every mesh.
         auto level = mesh.get_vertex_property<int>("v:subdivision_level");
-        int highest = 0;
-        if (level)
-            for (Vertex v : mesh.vertices()) highest = std::max(highest, level[v]);
-        out.kind = ColorMapKind::Sequential;
+        std::map<int, std::size_t> counts;
+        for (Vertex v : mesh.vertices()) ++counts[level ? level[v] : 0];
+        out.kind = ColorMapKind::Categorical;
         out.has_legend = true;
-        out.range = {0.0, double(std::max(highest, 1))};
         out.colors.assign(n, kInvalidColor);
-        for (Vertex v : mesh.vertices())
-            out.colors[v.idx()] = map_color(level ? double(level[v]) : 0.0, out.range, out.kind);
+        for (const auto& [value, count] : counts) {
+            ColorCategory c;
+            c.value = value;
+            c.count = count;
+            // A negative level is no step of a subdivision: grey, labelled as it is.
+            c.color = value >= 0 ? categorical_color(std::size_t(value)) : kInvalidColor;
+            c.label = "level " + std::to_string(value) + (value == 0 ? " (original)" : "");
+            out.categories.push_back(std::move(c));
+        }
+        if (!out.categories.empty())
+            out.range = {out.categories.front().value, out.categories.back().value};
+        for (Vertex v : mesh.vertices()) {
+            const int value = level ? level[v] : 0;
+            out.colors[v.idx()] =
+                value >= 0 ? categorical_color(std::size_t(value)) : kInvalidColor;
+        }
         return out;
     }
 

@@ -5,6 +5,9 @@
 // quantities use a diverging map centred on zero (blue - white - red). The value range
 // clamps outliers: by default it spans the 2nd to 98th percentile of the valid values, so
 // curvature noise does not wash the picture out; signed ranges are made symmetric.
+// Discrete quantities (the subdivision level) use a categorical map: one fixed, distinct
+// colour per value and a legend of swatches, with no range to choose.
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -12,7 +15,17 @@
 
 namespace trilab {
 
-enum class ColorMapKind { Sequential, Diverging };
+enum class ColorMapKind { Sequential, Diverging, Categorical };
+/// "sequential", "diverging", "categorical" (the CLI's --json legends).
+const char* color_map_name(ColorMapKind kind);
+
+/// One value of a categorical colouring and its legend swatch.
+struct ColorCategory {
+    double value = 0;
+    Color color = Color::Zero();
+    std::string label;      ///< e.g. "level 0 (original)"
+    std::size_t count = 0;  ///< vertices with this value
+};
 
 struct ValueRange {
     double min = 0, max = 1;
@@ -21,13 +34,14 @@ struct ValueRange {
 /// What a vertex colouring shows. Later issues add more (smoothing distance, ...).
 enum class VertexColoring {
     None,
-    Normal,            ///< the unit normal as RGB ((n + 1) / 2)
-    K1,                ///< first principal curvature
-    K2,                ///< second principal curvature
-    Mean,              ///< mean curvature
-    Gaussian,          ///< Gaussian curvature
-    ShapeIndex,        ///< shape index in [-1, 1]
-    SubdivisionLevel,  ///< the subdivision step that created each vertex ("v:subdivision_level")
+    Normal,      ///< the unit normal as RGB ((n + 1) / 2)
+    K1,          ///< first principal curvature
+    K2,          ///< second principal curvature
+    Mean,        ///< mean curvature
+    Gaussian,    ///< Gaussian curvature
+    ShapeIndex,  ///< shape index in [-1, 1]
+    /// The subdivision step that created each vertex ("v:subdivision_level"): categorical.
+    SubdivisionLevel,
     /// Displacement from a reference state (the state before the last operation), signed
     /// along the current vertex normal: positive where the surface moved outwards.
     SmoothingDistance,
@@ -47,9 +61,17 @@ struct VertexColors {
     ColorMapKind kind = ColorMapKind::Sequential;
     std::string label;        ///< e.g. "mean curvature"
     bool has_legend = false;  ///< false for None and Normal
+    /// Categorical only: one entry per value present, ascending (range spans their values).
+    std::vector<ColorCategory> categories;
 };
 
-/// The colour of `value` in `range` (clamped) on the given map.
+/// The colour of category `index` of a categorical map: ten distinct hues, index 0 a dark
+/// slate (a subdivision's original vertices); above 9 the hues repeat, darker (10-19) then
+/// lighter (20-29), and so on.
+Color categorical_color(std::size_t index);
+
+/// The colour of `value` in `range` (clamped) on the given map; on the categorical map the
+/// colour of category round(value) (grey for a negative or non-finite value), range unused.
 Color map_color(double value, const ValueRange& range, ColorMapKind kind);
 /// The range spanning [low, high] percentiles of the values whose `valid` entry is non-zero
 /// (all values when `valid` is empty); non-finite values are ignored. Throws InvalidArgument

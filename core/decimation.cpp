@@ -26,6 +26,7 @@
 #include <cstring>
 #include <limits>
 
+#include "core/coincident.h"
 #include "core/errors.h"
 #include "core/mesh_builder.h"
 #include "core/quadric.h"
@@ -232,6 +233,24 @@ public:
         parent_.assign(m_.vertices_size(), Vertex());
         vuv_ = m_.get_vertex_property<TexCoord>("v:texcoord");
         huv_ = m_.get_halfedge_property<TexCoord>("h:texcoord");
+        // Vertices with a coincident copy (a seam's two sides, the copies of a split vertex)
+        // never move alone: a seam vertex with exactly one copy goes together with it, along
+        // the seam on both sides (seam_partner()), every other copy stays where it is.
+        groups_ = find_coincident_vertices(m_);
+        const CoincidentGroups& groups = groups_;
+        coincident_.assign(m_.vertices_size(), 0);
+        group_.assign(m_.vertices_size(), kInvalidIndex);
+        copy_.assign(m_.vertices_size(), Vertex());
+        for (std::size_t g = 0; g < groups.size(); ++g) {
+            const Index* b = groups.begin(g);
+            const bool pair = groups.end(g) - b == 2;
+            for (const Index* v = b; v != groups.end(g); ++v) {
+                coincident_[*v] = 1;
+                group_[*v] = Index(g);
+                if (pair) copy_[*v] = Vertex(*v == b[0] ? b[1] : b[0]);
+            }
+        }
+        report_.coincident_vertices = groups.members.size();
         init_quadrics();
         const Index n_edges = Index(m_.edges_size());
         for (Index i = 0; i < n_edges; ++i) {
@@ -261,10 +280,12 @@ public:
         // the pass: they wait for the next pass). The exact heap does the last, most visible
         // collapses.
         const std::size_t batch_floor = std::max(kExactVertices, 4 * target);
+        target_ = batch_floor;
         while (m_.n_vertices() > batch_floor && !hit_max_error) {
             const std::size_t done = batch_pass(batch_floor, hit_max_error, report_progress);
             if (done == 0) break;
         }
+        target_ = target;
         for (int round = 0; m_.n_vertices() > target && !hit_max_error; ++round) {
             fill_heap();
             std::size_t collapses_this_round = 0;
@@ -472,12 +493,104 @@ private:
         return false;
     }
 
+    // Whether v stays where it is: a texture seam vertex, or one with a coincident copy.
+    bool pinned(Vertex v) const {
+        return coincident_[v.idx()] || on_seam(v);
+    }
+
     // Whether h (from_vertex moves into to_vertex) is an allowed direction: a boundary vertex
-    // only moves along a boundary edge; seam vertices never move.
+    // only moves along a boundary edge; pinned vertices never move.
     bool direction_allowed(Halfedge h, bool boundary_edge) const {
         const Vertex from = m_.from_vertex(h);
         if (boundary_[from.idx()] && !boundary_edge) return false;
-        return !on_seam(from);
+        if (coincident_[from.idx()]) return !on_seam(from) && seam_partner(h).is_valid();
+        return !pinned(from);
+    }
+
+    // The other side of a seam collapse: for h = a -> b along a boundary edge, where a has
+    // exactly one copy a' and a' has exactly one boundary edge to a copy b' of b, the
+    // halfedge a' -> b' (collapsing both keeps a' on a and b' on b); invalid otherwise.
+    Halfedge seam_partner(Halfedge h) const {
+        const Vertex a = m_.from_vertex(h), b = m_.to_vertex(h);
+        const Vertex a2 = copy_[a.idx()];
+        const Index gb = group_[b.idx()];
+        if (!a2.is_valid() || gb == kInvalidIndex || !m_.is_boundary(HalfedgeMesh::edge(h)) ||
+            on_seam(a2))
+            return Halfedge();
+        Halfedge found;
+        const Halfedge start = m_.halfedge(a2);
+        Halfedge g = start;
+        do {
+            if (group_[m_.to_vertex(g).idx()] == gb && m_.is_boundary(HalfedgeMesh::edge(g))) {
+                if (found.is_valid()) return Halfedge();  // ambiguous
+                found = g;
+            }
+            g = m_.ccw_rotated(g);
+        } while (g != start);
+        return found;
+    }
+
+    // The link condition on the welded surface (core/weld.h: every coincident group as one
+    // vertex) of collapsing h, with h2 the other side of a seam collapse (else invalid): the
+    // only vertices next to both ends are the third corners of the faces at the edge, which
+    // differ. So the result can still be welded: no two faces folded onto each other, no edge
+    // doubled between two groups.
+    bool welded_link_ok(Halfedge h, Halfedge h2) const {
+        const auto id = [&](Vertex v) {
+            const Index g = group_[v.idx()];
+            return g != kInvalidIndex ? std::uint64_t(g) : std::uint64_t(kInvalidIndex) + v.idx();
+        };
+        std::uint64_t ends[2];
+        unsigned n_ends = 0;
+        for (Halfedge k : {h, h2}) {
+            if (!k.is_valid()) continue;
+            for (Halfedge f : {k, HalfedgeMesh::twin(k)})
+                if (!m_.is_boundary(f)) ends[n_ends++] = id(m_.to_vertex(m_.next(f)));
+        }
+        if (n_ends == 2 && ends[0] == ends[1]) return false;
+        const Vertex kept = m_.to_vertex(h);
+        const std::uint64_t a = id(m_.from_vertex(h)), b = id(kept);
+        std::uint64_t around_a[128];
+        unsigned n = 0;
+        for (Halfedge k : {h, h2}) {
+            if (!k.is_valid()) continue;
+            for (Vertex w : m_.vertices_around(m_.from_vertex(k))) {
+                if (n == 128) return false;
+                around_a[n++] = id(w);
+            }
+        }
+        // The kept end's copies (itself when it has none).
+        const Index g = group_[kept.idx()];
+        const Index self = kept.idx();
+        const Index* copies = g == kInvalidIndex ? &self : groups_.begin(g);
+        const Index* copies_end = g == kInvalidIndex ? &self + 1 : groups_.end(g);
+        for (const Index* c = copies; c != copies_end; ++c) {
+            const Vertex copy(*c);
+            if (m_.is_deleted(copy) || m_.is_isolated(copy)) continue;
+            for (Vertex w : m_.vertices_around(copy)) {
+                const std::uint64_t x = id(w);
+                if (x == a || x == b || std::find(ends, ends + n_ends, x) != ends + n_ends)
+                    continue;
+                if (std::find(around_a, around_a + n, x) != around_a + n) return false;
+            }
+        }
+        return true;
+    }
+
+    // Whether the one-rings of a and b (with a and b) share no vertex: then collapsing an
+    // edge at a leaves the link condition at b as it was.
+    bool rings_apart(Vertex a, Vertex b) const {
+        Vertex ring[64];
+        unsigned n = 0;
+        ring[n++] = a;
+        for (Vertex w : m_.vertices_around(a)) {
+            if (n == 64) return false;
+            ring[n++] = w;
+        }
+        if (std::find(ring, ring + n, b) != ring + n) return false;
+        for (Vertex w : m_.vertices_around(b))
+            if (std::find(ring, ring + n, w) != ring + n) return false;
+        return true;
     }
 
     // Smallest normalized roundness of the faces at v (other than f0, f1) with v at p.
@@ -500,6 +613,8 @@ private:
     // The best collapse of edge e: false when no direction is allowed.
     bool evaluate(Edge e, EdgeChoice& out) const {
         const Halfedge h0 = HalfedgeMesh::halfedge(e, 0), h1 = HalfedgeMesh::halfedge(e, 1);
+        if (coincident_[m_.to_vertex(h0).idx()] && coincident_[m_.to_vertex(h1).idx()])
+            return evaluate_seam(e, out);
         const bool be = m_.is_boundary(e);
         const bool ok0 = direction_allowed(h0, be), ok1 = direction_allowed(h1, be);
         if (!ok0 && !ok1) return false;
@@ -530,14 +645,14 @@ private:
                         cost = cm;
                     }
                 }
-            } else if (ok0 && (!boundary_[b.idx()] || be) && !on_seam(b)) {
+            } else if (ok0 && (!boundary_[b.idx()] || be) && !pinned(b)) {
                 // Only a may move, b is free: optimal placement still applies to b... unless b
-                // is pinned (boundary vertex at an interior edge, or a seam vertex).
+                // is pinned (boundary vertex at an interior edge, a seam or coincident vertex).
                 if (!(q.optimize(p) &&
                       (p - 0.5 * (xa + xb)).norm() <= kMaxPlacementDistance * (xb - xa).norm()))
                     p = xb;
                 cost = q(p);
-            } else if (ok1 && (!boundary_[a.idx()] || be) && !on_seam(a)) {
+            } else if (ok1 && (!boundary_[a.idx()] || be) && !pinned(a)) {
                 if (!(q.optimize(p) &&
                       (p - 0.5 * (xa + xb)).norm() <= kMaxPlacementDistance * (xb - xa).norm()))
                     p = xa;
@@ -561,6 +676,38 @@ private:
         }
         out.cost = cost;
         return true;
+    }
+
+    // An edge between two coincident vertices: only a seam collapse (both sides at once, the
+    // kept copies staying where they are), costed with the quadrics of both sides (the welded
+    // vertex's) or the smaller roundness of the two sides.
+    bool evaluate_seam(Edge e, EdgeChoice& out) const {
+        bool any = false;
+        for (unsigned dir = 0; dir < 2; ++dir) {
+            const Halfedge h = HalfedgeMesh::halfedge(e, dir);
+            if (!direction_allowed(h, true)) continue;
+            const Halfedge h2 = seam_partner(h);
+            const Vertex a = m_.from_vertex(h), b = m_.to_vertex(h);
+            const Vertex a2 = m_.from_vertex(h2), b2 = m_.to_vertex(h2);
+            double cost;
+            if (o_.cost == DecimationCost::Quadric) {
+                const Quadric q =
+                    quadric_[a.idx()] + quadric_[b.idx()] + quadric_[a2.idx()] + quadric_[b2.idx()];
+                cost = q(m_.position(b));
+            } else {
+                cost = -std::min(
+                    min_roundness_at(a, m_.position(b), m_.face(h), m_.face(HalfedgeMesh::twin(h))),
+                    min_roundness_at(a2, m_.position(b2), m_.face(h2),
+                                     m_.face(HalfedgeMesh::twin(h2))));
+            }
+            if (!any || cost < out.cost) {
+                out.cost = cost;
+                out.dir = std::uint8_t(dir);
+                out.target = m_.position(b);
+            }
+            any = true;
+        }
+        return any;
     }
 
     // Prices edge e: stores its cost (direction and placement are recomputed when the edge
@@ -620,6 +767,27 @@ private:
             return Refusal::MaxError;
         if (!m_.is_collapse_ok(h)) return Refusal::Topology;
         if (huv_ && on_seam(v0)) return Refusal::Seam;
+        if (coincident_[v0.idx()]) {
+            // A seam collapse: the other side must be legal at the same time, and the pair
+            // may not overshoot the target.
+            const Halfedge h2 = seam_partner(h);
+            if (!h2.is_valid() || m_.n_vertices() < target_ + 2 || !m_.is_collapse_ok(h2) ||
+                !rings_apart(v0, m_.from_vertex(h2)) || !welded_link_ok(h, h2))
+                return Refusal::Topology;
+            const Vertex w0 = m_.from_vertex(h2), w1 = m_.to_vertex(h2);
+            if (o_.independent_set &&
+                (locked_[w0.idx()] == iteration_ || locked_[w1.idx()] == iteration_))
+                return Refusal::IndependentSet;
+            const Point& p2 = m_.position(w1);
+            const Face g0 = m_.face(h2), g1 = m_.face(HalfedgeMesh::twin(h2));
+            if (o_.normal_flip && (!normals_ok(w0, p2, g0, g1) || !normals_ok(w1, p2, g0, g1)))
+                return Refusal::NormalFlip;
+            if (o_.roundness && std::min(min_roundness_at(w0, p2, g0, g1),
+                                         min_roundness_at(w1, p2, g0, g1)) < o_.min_roundness)
+                return Refusal::Roundness;
+        } else if (!groups_.empty() && !welded_link_ok(h, Halfedge())) {
+            return Refusal::Topology;
+        }
         const Face f0 = m_.face(h), f1 = m_.face(HalfedgeMesh::twin(h));
         if (o_.normal_flip && (!normals_ok(v0, p, f0, f1) || !normals_ok(v1, p, f0, f1)))
             return Refusal::NormalFlip;
@@ -661,7 +829,26 @@ private:
         edge_[e.idx()].cost = kNoCollapse;
     }
 
+    // Collapses h to p; a seam collapse (from a coincident vertex) collapses the other side
+    // too, and re-prices the first side's edges again (their cost reads both sides).
     void collapse(Halfedge h, const Point& p) {
+        if (!coincident_[m_.from_vertex(h).idx()]) {
+            collapse_one(h, p);
+            return;
+        }
+        const Halfedge h2 = seam_partner(h);  // check() made sure it exists
+        const Vertex kept = m_.to_vertex(h), kept2 = m_.to_vertex(h2);
+        collapse_one(h, p);
+        collapse_one(h2, m_.position(kept2));
+        const Halfedge start = m_.halfedge(kept);
+        Halfedge g = start;
+        do {
+            price(HalfedgeMesh::edge(g));
+            g = m_.ccw_rotated(g);
+        } while (g != start);
+    }
+
+    void collapse_one(Halfedge h, const Point& p) {
         const Halfedge o = HalfedgeMesh::twin(h);
         const Vertex v0 = m_.from_vertex(h), v1 = m_.to_vertex(h);
         const Face f0 = m_.face(h), f1 = m_.face(o);
@@ -787,8 +974,13 @@ private:
     DecimationReport& report_;
     double cos_max_angle_ = 0, max_error2_ = 0;
     std::vector<Quadric> quadric_;
-    std::vector<EdgeCost> edge_;          ///< per edge: cost of its best collapse, heap position
-    std::vector<std::uint8_t> boundary_;  ///< per vertex; v1 inherits v0's on collapse
+    std::vector<EdgeCost> edge_;            ///< per edge: cost of its best collapse, heap position
+    std::vector<std::uint8_t> boundary_;    ///< per vertex; v1 inherits v0's on collapse
+    std::vector<std::uint8_t> coincident_;  ///< per vertex: has a coincident copy
+    CoincidentGroups groups_;               ///< of the input
+    std::vector<Index> group_;              ///< per vertex: its coincident group, if any
+    std::vector<Vertex> copy_;              ///< per vertex: its only copy (groups of two)
+    std::size_t target_ = 0;                ///< vertex count the current phase aims at
     std::vector<EdgeKey> batch_;
     std::vector<std::uint32_t> bucket_count_;  ///< batch selection: keys per bucket
     std::uint32_t pass_ = 0;

@@ -12,8 +12,10 @@
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 
+#include "core/coincident.h"
 #include "core/errors.h"
 #include "core/geometry.h"
+#include "core/weld.h"
 
 namespace trilab {
 
@@ -21,6 +23,9 @@ namespace {
 
 using Triplet = Eigen::Triplet<double>;
 using Positions = std::vector<Point>;
+/// Per vertex storage index: 1 = kept where it is (copies of a coincident vertex that the
+/// weld cannot join); empty: none.
+using Pinned = std::vector<std::uint8_t>;
 
 // smooth() maps the first four FairingOperator values onto LaplacianOperator by value.
 static_assert(int(FairingOperator::Umbrella) == int(LaplacianOperator::Umbrella));
@@ -194,10 +199,11 @@ double stable_step_of(double rho) {
 
 /// The umbrella operator in vertex space, without a matrix: per vertex storage index its
 /// valence and whether it is fixed (found by the first product, one pass over the edges
-/// either way); products by one pass over the edges.
+/// either way; `pinned` vertices too); products by one pass over the edges.
 class UmbrellaOperator {
 public:
-    explicit UmbrellaOperator(const HalfedgeMesh& mesh) : mesh_(mesh) {}
+    explicit UmbrellaOperator(const HalfedgeMesh& mesh, const Pinned* pinned = nullptr)
+        : mesh_(mesh), pinned_(pinned) {}
 
     /// out = P + t·L·P (fixed vertices copied); the bounding boxes of P and out over the
     /// vertices with edges, and whether every new coordinate is finite and bounded.
@@ -218,7 +224,7 @@ public:
                 if (mesh_.is_boundary(h) || mesh_.is_boundary(g)) fixed_[i] = fixed_[j] = 1;
             }
             for (std::size_t v = 0; v < nv; ++v)
-                if (valence_[v] == 0) fixed_[v] = 1;
+                if (valence_[v] == 0 || (pinned_ && (*pinned_)[v])) fixed_[v] = 1;
             known_ = true;
         } else {
             for (Edge e : mesh_.edges()) {
@@ -289,6 +295,7 @@ private:
     }
 
     const HalfedgeMesh& mesh_;
+    const Pinned* pinned_;
     bool known_ = false;
     std::vector<std::uint32_t> valence_;  ///< 0: isolated or deleted
     std::vector<std::uint8_t> fixed_;     ///< 1: does not move (boundary, isolated, deleted)
@@ -439,7 +446,7 @@ struct ImplicitSystem {
 /// the original vertices).
 class BoundarySlider {
 public:
-    explicit BoundarySlider(const HalfedgeMesh& mesh) {
+    explicit BoundarySlider(const HalfedgeMesh& mesh, const Pinned& pinned) {
         std::vector<std::uint8_t> seen(mesh.halfedges_size(), 0);
         for (Halfedge h0 : mesh.halfedges()) {
             if (!mesh.is_boundary(h0) || seen[h0.idx()]) continue;
@@ -450,6 +457,7 @@ public:
                 const Vertex v = mesh.from_vertex(h);
                 loop.vertices.push_back(v.idx());
                 loop.points.push_back(mesh.position(v));
+                loop.pinned.push_back(pinned.empty() ? 0 : pinned[v.idx()]);
                 h = mesh.next(h);
             } while (h != h0 && loop.vertices.size() <= mesh.n_halfedges());
             const std::size_t m = loop.vertices.size();
@@ -473,19 +481,23 @@ public:
             auto next = [&](std::size_t k) { return k + 1 == m ? u[0] + loop.length : u[k + 1]; };
             if (!implicit) {
                 for (std::size_t k = 0; k < m; ++k)
-                    loop.u[k] = u[k] + t * (0.5 * (prev(k) + next(k)) - u[k]);
+                    if (!loop.pinned[k]) loop.u[k] = u[k] + t * (0.5 * (prev(k) + next(k)) - u[k]);
             } else {
                 std::vector<Triplet> trip;
                 Eigen::VectorXd rhs(static_cast<Eigen::Index>(m));
                 for (std::size_t k = 0; k < m; ++k) {
                     const auto i = Eigen::Index(k);
+                    rhs[i] = u[k];
+                    if (loop.pinned[k]) {
+                        trip.emplace_back(i, i, 1.0);
+                        continue;
+                    }
                     trip.emplace_back(i, i, 1.0 + t);
                     trip.emplace_back(i, Eigen::Index((k + m - 1) % m), -0.5 * t);
                     trip.emplace_back(i, Eigen::Index((k + 1) % m), -0.5 * t);
-                    rhs[i] = u[k];
                 }
-                rhs[0] -= 0.5 * t * loop.length;
-                rhs[Eigen::Index(m - 1)] += 0.5 * t * loop.length;
+                if (!loop.pinned[0]) rhs[0] -= 0.5 * t * loop.length;
+                if (!loop.pinned[m - 1]) rhs[Eigen::Index(m - 1)] += 0.5 * t * loop.length;
                 SparseMatrix a(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
                 a.setFromTriplets(trip.begin(), trip.end());
                 Eigen::SimplicialLDLT<SparseMatrix> ldlt(a);
@@ -494,7 +506,7 @@ public:
                     for (std::size_t k = 0; k < m; ++k) loop.u[k] = sol[Eigen::Index(k)];
             }
             for (std::size_t k = 0; k < m; ++k)
-                out[loop.vertices[k]] = position_at(loop, loop.u[k]);
+                if (!loop.pinned[k]) out[loop.vertices[k]] = position_at(loop, loop.u[k]);
         }
     }
 
@@ -504,7 +516,8 @@ private:
         std::vector<Point> points;    ///< the original polyline
         std::vector<double> arc;      ///< arc length at each original vertex (m + 1 entries)
         double length = 0;
-        std::vector<double> u;  ///< current parameters (unwrapped, increasing)
+        std::vector<double> u;             ///< current parameters (unwrapped, increasing)
+        std::vector<std::uint8_t> pinned;  ///< per loop vertex: 1 = stays where it is
     };
     static Point position_at(const Loop& loop, double u) {
         double w = std::fmod(u, loop.length);
@@ -558,7 +571,8 @@ TaubinGain taubin_gain(double lambda, double mu) {
 }
 
 /// One smooth() run on res.mesh (the caller's copy or moved-in mesh).
-void run_fairing(const FairingOptions& o, Progress& progress, FairingResult& res) {
+void run_fairing(const FairingOptions& o, Progress& progress, FairingResult& res,
+                 const Pinned& pinned) {
     HalfedgeMesh& mesh = res.mesh;
     res.solver = "none";
     const bool taubin = o.op == FairingOperator::Taubin;
@@ -595,15 +609,17 @@ void run_fairing(const FairingOptions& o, Progress& progress, FairingResult& res
     const double diag0 = closed ? bounding_box(mesh).diagonal() : 0.0;
     const bool check_volume_sign = closed && std::abs(v0) > 1e-9 * diag0 * diag0 * diag0;
 
+    LaplacianOptions lap_options;
+    lap_options.fixed_vertices = pinned;
     std::optional<UmbrellaOperator> umbrella;
-    if (fast) umbrella.emplace(mesh);
+    if (fast) umbrella.emplace(mesh, pinned.empty() ? nullptr : &pinned);
     Laplacian lap;
     bool have_lap = false;
     ImplicitSystem sys;
     const bool slide = o.boundary == BoundaryMode::Slide && !closed;
     std::optional<BoundarySlider> slider;
     if (slide) {
-        slider.emplace(mesh);
+        slider.emplace(mesh, pinned);
         res.report.push_back("boundary: " + std::to_string(slider->loops()) +
                              " loop(s) sliding along the input's boundary curves");
     }
@@ -651,7 +667,7 @@ void run_fairing(const FairingOptions& o, Progress& progress, FairingResult& res
             if (have_lap)
                 refresh_laplacian(mesh, lap);
             else
-                lap = build_laplacian(mesh, lop);
+                lap = build_laplacian(mesh, lop, lap_options);
             auto& d = res.diagnostics;
             const auto& n = lap.diagnostics;
             d.negative_weights_clamped += n.negative_weights_clamped;
@@ -942,20 +958,63 @@ FairingResult smooth(const HalfedgeMesh& mesh, const FairingOptions& options) {
     return smooth(mesh, options, progress);
 }
 
-FairingResult smooth(const HalfedgeMesh& mesh, const FairingOptions& options, Progress& progress) {
-    check_options(mesh, options);
-    FairingResult res;
-    res.mesh = mesh;
-    run_fairing(options, progress, res);
+namespace {
+
+/// smooth() of res.mesh, which has coincident vertices: the run is on its weld (core/weld.h),
+/// where a seam is interior and the copies of a split vertex are one vertex, with the copies
+/// that the weld cannot join fixed; every copy then takes its welded vertex's positions.
+void smooth_coincident(FairingResult& res, const FairingOptions& o, Progress& progress) {
+    WeldResult weld = weld_coincident_vertices(res.mesh);
+    check_options(weld.mesh, o);  // closed when welded: volume preservation applies
+    Pinned pinned(weld.mesh.vertices_size(), 0);
+    const CoincidentGroups apart = find_coincident_vertices(weld.mesh);
+    for (Index v : apart.members) pinned[v] = 1;
+    FairingResult welded;
+    welded.mesh = std::move(weld.mesh);
+    run_fairing(o, progress, welded, pinned);
+    HalfedgeMesh mesh = std::move(res.mesh);
+    auto unweld = [&](const Positions& pw) {
+        Positions p = mesh.positions();
+        for (Vertex v : mesh.vertices())  // isolated vertices stay (the weld may join them)
+            if (!mesh.is_isolated(v)) p[v.idx()] = pw[weld.vertex_map[v.idx()]];
+        return p;
+    };
+    mesh.positions() = unweld(welded.mesh.positions());
+    for (Positions& step : welded.step_positions) step = unweld(step);
+    res = std::move(welded);
+    res.mesh = std::move(mesh);
+    std::ostringstream s;
+    s << "coincident vertices (seams, copies of split vertices): "
+      << weld.report.coincident_vertices << " in " << weld.report.groups
+      << " groups smoothed as one surface (" << weld.report.vertices_joined
+      << " joined for the operator)";
+    if (!apart.empty())
+        s << ", " << apart.members.size() << " kept where they are (they cannot be joined)";
+    res.report.insert(res.report.begin() + 1, s.str());
+}
+
+FairingResult smooth_mesh(FairingResult res, const FairingOptions& options, Progress& progress) {
+    if (find_coincident_vertices(res.mesh).empty()) {
+        check_options(res.mesh, options);
+        run_fairing(options, progress, res, Pinned());
+    } else {
+        smooth_coincident(res, options, progress);
+    }
     return res;
 }
 
+}  // namespace
+
+FairingResult smooth(const HalfedgeMesh& mesh, const FairingOptions& options, Progress& progress) {
+    FairingResult res;
+    res.mesh = mesh;
+    return smooth_mesh(std::move(res), options, progress);
+}
+
 FairingResult smooth(HalfedgeMesh&& mesh, const FairingOptions& options, Progress& progress) {
-    check_options(mesh, options);
     FairingResult res;
     res.mesh = std::move(mesh);
-    run_fairing(options, progress, res);
-    return res;
+    return smooth_mesh(std::move(res), options, progress);
 }
 
 double max_stable_explicit_step(const HalfedgeMesh& mesh, FairingOperator op, int lanczos_steps) {

@@ -46,6 +46,12 @@
 //
 // Boundary vertices stay fixed (or slide along the boundary curve); isolated vertices never
 // move. Connectivity and attributes other than positions are copied unchanged.
+// Coincident vertices (core/coincident.h: a seam between patches, the copies build_mesh()
+// makes of a non-manifold vertex) move as one: the run is on the mesh welded where that keeps
+// it manifold (core/weld.h), so a seam is smoothed as interior surface (its curve is a
+// boundary only where no partner lies on it) and a mesh closed up to its seams counts as
+// closed (volume preservation applies); copies that cannot be joined (surfaces touching at a
+// point) stay where they are. Every copy gets its joined vertex's positions, bit for bit.
 // Throws InvalidArgument naming the option (`step`, `iterations`, `taubin_lambda`,
 // `taubin_mu`, `taubin_pass_band`, `integration`, `preserve_volume`, `cg_tolerance`,
 // `max_relative_residual`, `cg_max_iterations`) before doing anything; Cancelled from the

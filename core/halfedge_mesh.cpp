@@ -1,6 +1,8 @@
 #include "core/halfedge_mesh.h"
 
 #include <algorithm>
+#include <iterator>
+#include <string>
 
 #include "core/errors.h"
 
@@ -94,6 +96,31 @@ void HalfedgeMesh::bind_builtins() {
     fdeleted_ = FaceProperty<std::uint8_t>(fprops_.get<std::uint8_t>("f:deleted"));
 }
 
+void HalfedgeMesh::set_positions(std::vector<Point> positions) {
+    if (positions.size() != vertices_size())
+        throw InvalidArgument("HalfedgeMesh::set_positions: " + std::to_string(positions.size()) +
+                              " positions for a vertex storage size of " +
+                              std::to_string(vertices_size()));
+    vpoint_.array()->assign(std::move(positions));
+}
+
+std::vector<HalfedgeMesh::MemoryBlock> HalfedgeMesh::memory_blocks() const {
+    std::vector<MemoryBlock> out;
+    for (const PropertyContainer* c : {&vprops_, &hprops_, &eprops_, &fprops_})
+        c->for_each_array([&](const std::string&, const void* id, std::size_t bytes) {
+            out.push_back({id, bytes});
+        });
+    return out;
+}
+
+std::size_t HalfedgeMesh::share_equal_arrays(const HalfedgeMesh& other) {
+    if (vertices_size() != other.vertices_size() || halfedges_size() != other.halfedges_size() ||
+        faces_size() != other.faces_size())
+        return 0;
+    return vprops_.share_equal_arrays(other.vprops_) + hprops_.share_equal_arrays(other.hprops_) +
+           eprops_.share_equal_arrays(other.eprops_) + fprops_.share_equal_arrays(other.fprops_);
+}
+
 void HalfedgeMesh::clear() {
     HalfedgeMesh fresh;
     vprops_ = std::move(fresh.vprops_);
@@ -121,16 +148,6 @@ void HalfedgeMesh::checked_remove(PropertyContainer& c, const std::string& name)
     c.remove(name);
 }
 
-std::vector<Halfedge> HalfedgeMesh::halfedges() const {
-    std::vector<Halfedge> out;
-    out.reserve(2 * n_edges());
-    for (Edge e : edges()) {
-        out.push_back(halfedge(e, 0));
-        out.push_back(halfedge(e, 1));
-    }
-    return out;
-}
-
 Halfedge HalfedgeMesh::find_halfedge(Vertex a, Vertex b) const {
     for (Halfedge h : halfedges_around(a))
         if (to_vertex(h) == b) return h;
@@ -149,12 +166,8 @@ bool HalfedgeMesh::is_boundary(Face f) const {
 }
 
 unsigned HalfedgeMesh::valence(Vertex v) const {
-    unsigned n = 0;
-    for (Halfedge h : halfedges_around(v)) {
-        (void)h;
-        ++n;
-    }
-    return n;
+    const auto around = halfedges_around(v);
+    return unsigned(std::distance(around.begin(), around.end()));
 }
 
 void HalfedgeMesh::resize_elements(std::size_t nv, std::size_t ne, std::size_t nf) {

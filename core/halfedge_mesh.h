@@ -17,6 +17,9 @@
 //  - live elements never reference deleted ones. Deleted elements stay in storage until
 //    garbage_collection(), which compacts and reports the index remapping.
 #include <array>
+#include <cstddef>
+#include <cstdint>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -37,14 +40,22 @@ using EdgeProperty = Property<Edge, T>;
 template <class T>
 using FaceProperty = Property<Face, T>;
 
-/// Iterates over the live (not deleted) elements of one kind.
+/// Iterates over the live (not deleted) elements of one kind. An element i is deleted when
+/// deleted[i >> shift] is set (shift 1 for halfedges, whose flags are their edges').
 template <class H>
 class ElementRange {
 public:
     class iterator {
     public:
-        iterator(Index i, Index end, const std::vector<std::uint8_t>* deleted)
-            : i_(i), end_(end), deleted_(deleted) {
+        using iterator_category = std::input_iterator_tag;  // yields handles by value
+        using value_type = H;
+        using difference_type = std::ptrdiff_t;
+        using pointer = void;
+        using reference = H;
+
+        iterator() = default;
+        iterator(Index i, Index end, const std::vector<std::uint8_t>* deleted, unsigned shift)
+            : i_(i), end_(end), shift_(shift), deleted_(deleted) {
             skip();
         }
         H operator*() const { return H(i_); }
@@ -53,23 +64,31 @@ public:
             skip();
             return *this;
         }
+        iterator operator++(int) {
+            iterator old = *this;
+            ++*this;
+            return old;
+        }
         bool operator!=(const iterator& o) const { return i_ != o.i_; }
         bool operator==(const iterator& o) const { return i_ == o.i_; }
 
     private:
         void skip() {
             if (!deleted_) return;
-            while (i_ < end_ && (*deleted_)[i_]) ++i_;
+            while (i_ < end_ && (*deleted_)[i_ >> shift_]) ++i_;
         }
-        Index i_, end_;
-        const std::vector<std::uint8_t>* deleted_;
+        Index i_ = 0, end_ = 0;
+        unsigned shift_ = 0;
+        const std::vector<std::uint8_t>* deleted_ = nullptr;
     };
-    ElementRange(Index n, const std::vector<std::uint8_t>* deleted) : n_(n), deleted_(deleted) {}
-    iterator begin() const { return iterator(0, n_, deleted_); }
-    iterator end() const { return iterator(n_, n_, deleted_); }
+    ElementRange(Index n, const std::vector<std::uint8_t>* deleted, unsigned shift = 0)
+        : n_(n), shift_(shift), deleted_(deleted) {}
+    iterator begin() const { return iterator(0, n_, deleted_, shift_); }
+    iterator end() const { return iterator(n_, n_, deleted_, shift_); }
 
 private:
     Index n_;
+    unsigned shift_;
     const std::vector<std::uint8_t>* deleted_;
 };
 
@@ -82,6 +101,13 @@ public:
     using value_type = typename Policy::value_type;
     class iterator {
     public:
+        using iterator_category = std::input_iterator_tag;  // yields handles by value
+        using value_type = typename Policy::value_type;
+        using difference_type = std::ptrdiff_t;
+        using pointer = void;
+        using reference = value_type;
+
+        iterator() = default;
         iterator(const HalfedgeMesh* m, Halfedge h, bool at_end)
             : mesh_(m), start_(h), h_(h), at_end_(at_end || !h.is_valid()) {
             if (!at_end_ && Policy::skip(*mesh_, h_)) advance();
@@ -90,6 +116,11 @@ public:
         iterator& operator++() {
             advance();
             return *this;
+        }
+        iterator operator++(int) {
+            iterator old = *this;
+            advance();
+            return old;
         }
         bool operator!=(const iterator& o) const { return at_end_ != o.at_end_ || h_ != o.h_; }
         bool operator==(const iterator& o) const { return !(*this != o); }
@@ -105,9 +136,9 @@ public:
                 }
             } while (Policy::skip(*mesh_, h_));
         }
-        const HalfedgeMesh* mesh_;
+        const HalfedgeMesh* mesh_ = nullptr;
         Halfedge start_, h_;
-        bool at_end_;
+        bool at_end_ = true;
     };
     Circulator(const HalfedgeMesh* m, Halfedge start) : mesh_(m), start_(start) {}
     iterator begin() const { return iterator(mesh_, start_, false); }
@@ -162,7 +193,9 @@ public:
         return {Index(faces_size()), n_deleted_faces_ ? &fdeleted_.vector() : nullptr};
     }
     /// All live halfedges (both halves of each live edge).
-    std::vector<Halfedge> halfedges() const;
+    ElementRange<Halfedge> halfedges() const {
+        return {Index(halfedges_size()), n_deleted_edges_ ? &edeleted_.vector() : nullptr, 1};
+    }
 
     // ---- handle arithmetic ---------------------------------------------------------------
     static Halfedge twin(Halfedge h) { return Halfedge(h.idx() ^ 1u); }
@@ -234,6 +267,21 @@ public:
     Point& position(Vertex v) { return vpoint_[v]; }
     std::vector<Point>& positions() { return vpoint_.vector(); }
     const std::vector<Point>& positions() const { return vpoint_.vector(); }
+    /// Replaces every position (one per vertex storage slot) without copying the old ones.
+    /// Throws InvalidArgument for another count.
+    void set_positions(std::vector<Point> positions);
+
+    // ---- sharing (copy-on-write, see core/property.h) -------------------------------------
+    /// One block of stored values: its identity (equal for meshes sharing it) and bytes.
+    struct MemoryBlock {
+        const void* id;
+        std::size_t bytes;
+    };
+    /// Every array's values (connectivity, positions, attributes).
+    std::vector<MemoryBlock> memory_blocks() const;
+    /// Shares `other`'s arrays wherever an array of the same name holds equal values bit for
+    /// bit; returns how many arrays are shared with it now. Nothing visible changes.
+    std::size_t share_equal_arrays(const HalfedgeMesh& other);
 
     // ---- attributes ----------------------------------------------------------------------
     // Names follow "v:name", "h:name", "e:name", "f:name". Built-in connectivity names cannot
@@ -244,8 +292,12 @@ public:
         return VertexProperty<T>(checked_add(vprops_, name, std::move(def)));
     }
     template <class T>
-    VertexProperty<T> get_vertex_property(const std::string& name) const {
+    VertexProperty<T> get_vertex_property(const std::string& name) {
         return VertexProperty<T>(vprops_.get<T>(name));
+    }
+    template <class T>
+    VertexProperty<const T> get_vertex_property(const std::string& name) const {
+        return VertexProperty<const T>(vprops_.get<T>(name));
     }
     template <class T>
     VertexProperty<T> vertex_property(const std::string& name, T def = zero_value<T>()) {
@@ -257,8 +309,12 @@ public:
         return HalfedgeProperty<T>(checked_add(hprops_, name, std::move(def)));
     }
     template <class T>
-    HalfedgeProperty<T> get_halfedge_property(const std::string& name) const {
+    HalfedgeProperty<T> get_halfedge_property(const std::string& name) {
         return HalfedgeProperty<T>(hprops_.get<T>(name));
+    }
+    template <class T>
+    HalfedgeProperty<const T> get_halfedge_property(const std::string& name) const {
+        return HalfedgeProperty<const T>(hprops_.get<T>(name));
     }
     template <class T>
     HalfedgeProperty<T> halfedge_property(const std::string& name, T def = zero_value<T>()) {
@@ -270,8 +326,12 @@ public:
         return EdgeProperty<T>(checked_add(eprops_, name, std::move(def)));
     }
     template <class T>
-    EdgeProperty<T> get_edge_property(const std::string& name) const {
+    EdgeProperty<T> get_edge_property(const std::string& name) {
         return EdgeProperty<T>(eprops_.get<T>(name));
+    }
+    template <class T>
+    EdgeProperty<const T> get_edge_property(const std::string& name) const {
+        return EdgeProperty<const T>(eprops_.get<T>(name));
     }
     template <class T>
     EdgeProperty<T> edge_property(const std::string& name, T def = zero_value<T>()) {
@@ -283,8 +343,12 @@ public:
         return FaceProperty<T>(checked_add(fprops_, name, std::move(def)));
     }
     template <class T>
-    FaceProperty<T> get_face_property(const std::string& name) const {
+    FaceProperty<T> get_face_property(const std::string& name) {
         return FaceProperty<T>(fprops_.get<T>(name));
+    }
+    template <class T>
+    FaceProperty<const T> get_face_property(const std::string& name) const {
+        return FaceProperty<const T>(fprops_.get<T>(name));
     }
     template <class T>
     FaceProperty<T> face_property(const std::string& name, T def = zero_value<T>()) {
@@ -356,6 +420,14 @@ public:
     Vertex split(Edge e, const Point& p);
     /// Splits f 1-to-3 at p (a new vertex joined to its three corners). Returns the vertex.
     Vertex split(Face f, const Point& p);
+    /// Reverses the orientation of every face (core/orientation.h flip_orientation() adds the
+    /// attribute semantics): each halfedge moves to the other side of its edge, so face f
+    /// keeps its three vertices in the opposite order; vertex, edge and face indices and all
+    /// their attributes are kept. Halfedge attributes follow their corner: the value of the
+    /// corner at (vertex v, face f) stays at that corner (per-corner "h:texcoord"). Boundary
+    /// loops are reversed too; halfedge(v) stays a boundary halfedge at boundary vertices.
+    /// O(vertices + halfedges); keeps every invariant.
+    void reverse_orientation();
     /// Compacts storage, removing deleted elements. Returns the index remapping.
     IndexRemap garbage_collection();
 

@@ -291,7 +291,8 @@ void refresh_laplacian(const HalfedgeMesh& mesh, Laplacian& lap) {
     for (std::size_t r = 0; r < n; ++r) {
         const Vertex v = lap.map.vertex_of[r];
         lap.fixed[r] = 0;
-        if (lap.options.fix_boundary && mesh.is_boundary(v)) {
+        if ((lap.options.fix_boundary && mesh.is_boundary(v)) ||
+            (!lap.options.fixed_vertices.empty() && lap.options.fixed_vertices[v.idx()])) {
             lap.fixed[r] = 1;
         } else if (!(S[Eigen::Index(r)] > 1e-12 * s_max)) {
             lap.fixed[r] = 1;

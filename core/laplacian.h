@@ -129,6 +129,9 @@ struct LaplacianOptions {
     bool fix_boundary = true;                  ///< boundary vertices get zero rows in L
     bool clamp_negative_cotangents = true;     ///< CurvatureFlow: w_ij < 0 -> 0 (keeps K PSD)
     MassMatrix mass = MassMatrix::Normalizer;  ///< what S holds
+    /// Vertices fixed besides the boundary, per vertex storage index (1 = fixed); empty:
+    /// none. Fairing fixes the coincident copies that cannot be joined (core/fairing.h).
+    std::vector<std::uint8_t> fixed_vertices;
 };
 
 /// What was clamped while building (all zero on a well-shaped mesh).

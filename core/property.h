@@ -3,10 +3,19 @@
 //
 // A PropertyContainer holds the arrays for one element kind (vertices, halfedges, edges or
 // faces); all its arrays always have the same length. A Property<H, T> is a cheap typed view
-// that indexes one array with a handle of kind H. Views stay valid until the property is
-// removed or the container is destroyed; copying a container deep-copies its arrays.
+// that indexes one array with a handle of kind H; Property<H, const T> is a read-only view
+// (what a const mesh hands out). Views stay valid until the property is removed or the
+// container is destroyed.
+//
+// Copy-on-write: copying a container shares its arrays' values; the first write access to a
+// shared array (a mutable view's operator[] or vector(), or any resizing) copies it first. So
+// a copy of a mesh costs one pointer per array, and copies that change only the positions
+// (a smoothing step, a history snapshot) share every other array by construction. Reading
+// never copies, so const objects may be read from several threads while the owner of another
+// copy writes to its own.
 // `bool` is not allowed as T (std::vector<bool> has no references): use std::uint8_t.
 #include <cassert>
+#include <cstring>
 #include <memory>
 #include <string>
 #include <type_traits>
@@ -30,6 +39,24 @@ T zero_value() {
         return T{};
 }
 
+template <class T>
+struct is_handle : std::false_type {};
+template <class Tag>
+struct is_handle<Handle<Tag>> : std::true_type {};
+
+/// Whether arrays of T can be compared bit for bit with memcmp (no padding bytes): numbers,
+/// fixed-size Eigen vectors of numbers, and the one-index handle types.
+template <class T>
+constexpr bool is_bitwise_comparable() {
+    if constexpr (std::is_arithmetic_v<T>)
+        return true;
+    else if constexpr (std::is_base_of_v<Eigen::MatrixBase<T>, T>)
+        return T::SizeAtCompileTime > 0 &&
+               sizeof(T) == std::size_t(T::SizeAtCompileTime) * sizeof(typename T::Scalar);
+    else
+        return is_handle<T>::value;
+}
+
 class BasePropertyArray {
 public:
     explicit BasePropertyArray(std::string name) : name_(std::move(name)) {}
@@ -44,7 +71,15 @@ public:
     /// Keeps element old_index[i] at position i, for i < old_index.size(), then shrinks.
     virtual void gather(const std::vector<Index>& old_index) = 0;
     virtual void shrink_to_fit() = 0;
+    /// A new array of the same name sharing these values (copy-on-write).
     virtual std::unique_ptr<BasePropertyArray> clone() const = 0;
+    /// Identifies the stored values: equal for arrays that share them.
+    virtual const void* values_id() const = 0;
+    /// Bytes of the stored values (size x element size).
+    virtual std::size_t bytes() const = 0;
+    /// Shares `other`'s values when it has the same type and equal values bit for bit (only
+    /// for is_bitwise_comparable types); returns whether it does now.
+    virtual bool share_if_equal(const BasePropertyArray& other) = 0;
 
 private:
     std::string name_;
@@ -56,53 +91,108 @@ class PropertyArray final : public BasePropertyArray {
 
 public:
     PropertyArray(std::string name, T default_value)
-        : BasePropertyArray(std::move(name)), default_(std::move(default_value)) {}
+        : BasePropertyArray(std::move(name)),
+          values_(std::make_shared<std::vector<T>>()),
+          default_(std::move(default_value)) {}
     const std::type_info& type() const override { return typeid(T); }
-    void reserve(std::size_t n) override { data_.reserve(n); }
-    void resize(std::size_t n) override { data_.resize(n, default_); }
-    void push_back() override { data_.push_back(default_); }
-    void copy_element(std::size_t from, std::size_t to) override { data_[to] = data_[from]; }
-    void swap_elements(std::size_t a, std::size_t b) override { std::swap(data_[a], data_[b]); }
-    void gather(const std::vector<Index>& old_index) override {
-        std::vector<T> out;
-        out.reserve(old_index.size());
-        for (Index i : old_index) out.push_back(std::move(data_[i]));
-        data_ = std::move(out);
+    void reserve(std::size_t n) override {
+        if (n > values_->capacity()) data().reserve(n);
     }
-    void shrink_to_fit() override { data_.shrink_to_fit(); }
+    void resize(std::size_t n) override {
+        if (n != values_->size()) data().resize(n, default_);
+    }
+    void push_back() override { data().push_back(default_); }
+    void copy_element(std::size_t from, std::size_t to) override {
+        std::vector<T>& d = data();
+        d[to] = d[from];
+    }
+    void swap_elements(std::size_t a, std::size_t b) override {
+        std::vector<T>& d = data();
+        std::swap(d[a], d[b]);
+    }
+    void gather(const std::vector<Index>& old_index) override {
+        const std::vector<T>& in = *values_;
+        auto out = std::make_shared<std::vector<T>>();
+        out->reserve(old_index.size());
+        for (Index i : old_index) out->push_back(in[i]);
+        values_ = std::move(out);
+    }
+    void shrink_to_fit() override {
+        if (values_.use_count() == 1) values_->shrink_to_fit();  // a shared copy is tight
+    }
     std::unique_ptr<BasePropertyArray> clone() const override {
         return std::make_unique<PropertyArray>(*this);
     }
-    std::vector<T>& data() { return data_; }
-    const std::vector<T>& data() const { return data_; }
+    const void* values_id() const override { return values_.get(); }
+    std::size_t bytes() const override { return values_->size() * sizeof(T); }
+    bool share_if_equal(const BasePropertyArray& other) override {
+        if constexpr (is_bitwise_comparable<T>()) {
+            if (other.type() != typeid(T)) return false;
+            const auto& o = static_cast<const PropertyArray&>(other);
+            if (o.values_ == values_) return true;
+            const std::vector<T>& a = *values_;
+            const std::vector<T>& b = *o.values_;
+            if (a.size() != b.size() ||
+                (!a.empty() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) != 0))
+                return false;
+            values_ = o.values_;
+            return true;
+        } else {
+            (void)other;
+            return false;
+        }
+    }
+    /// The values for writing: copied first when shared with another array.
+    std::vector<T>& data() {
+        if (values_.use_count() != 1) values_ = std::make_shared<std::vector<T>>(*values_);
+        return *values_;
+    }
+    const std::vector<T>& data() const { return *values_; }
+    /// Replaces the values without copying the old ones.
+    void assign(std::vector<T> values) {
+        values_ = std::make_shared<std::vector<T>>(std::move(values));
+    }
     const T& default_value() const { return default_; }
 
 private:
-    std::vector<T> data_;
+    std::shared_ptr<std::vector<T>> values_;
     T default_;
 };
 
-/// Typed view of one property array, indexed by handles of kind H.
+/// Typed view of one property array, indexed by handles of kind H; with a const T, a
+/// read-only view. A mutable view's operator[] and vector() are write accesses (see the
+/// file comment); read through a const view (or std::as_const) where nothing is written.
 template <class H, class T>
 class Property {
+    using Value = std::remove_const_t<T>;
+    using Array =
+        std::conditional_t<std::is_const_v<T>, const PropertyArray<Value>, PropertyArray<Value>>;
+
 public:
     Property() = default;
-    explicit Property(PropertyArray<T>* array) : array_(array) {}
+    explicit Property(Array* array) : array_(array) {}
+    /// A mutable view converts to a read-only one.
+    template <class U, class = std::enable_if_t<std::is_const_v<T> && std::is_same_v<U, Value>>>
+    Property(const Property<H, U>& other) : array_(other.array()) {}
     explicit operator bool() const { return array_ != nullptr; }
     T& operator[](H h) {
         assert(array_ && h.idx() < array_->data().size());
         return array_->data()[h.idx()];
     }
-    const T& operator[](H h) const {
-        assert(array_ && h.idx() < array_->data().size());
-        return array_->data()[h.idx()];
+    const Value& operator[](H h) const {
+        assert(array_ && h.idx() < std::as_const(*array_).data().size());
+        return std::as_const(*array_).data()[h.idx()];
     }
-    std::vector<T>& vector() { return array_->data(); }
-    const std::vector<T>& vector() const { return array_->data(); }
+    std::conditional_t<std::is_const_v<T>, const std::vector<Value>&, std::vector<Value>&>
+    vector() {
+        return array_->data();
+    }
+    const std::vector<Value>& vector() const { return std::as_const(*array_).data(); }
     const std::string& name() const { return array_->name(); }
+    Array* array() const { return array_; }
 
 private:
-    PropertyArray<T>* array_ = nullptr;
+    Array* array_ = nullptr;
 };
 
 /// All property arrays of one element kind.
@@ -135,10 +225,16 @@ public:
     }
     /// The array of that name and type, or nullptr.
     template <class T>
-    PropertyArray<T>* get(const std::string& name) const {
+    PropertyArray<T>* get(const std::string& name) {
         BasePropertyArray* base = find_base(name);
         if (!base || base->type() != typeid(T)) return nullptr;
         return static_cast<PropertyArray<T>*>(base);
+    }
+    template <class T>
+    const PropertyArray<T>* get(const std::string& name) const {
+        const BasePropertyArray* base = find_base(name);
+        if (!base || base->type() != typeid(T)) return nullptr;
+        return static_cast<const PropertyArray<T>*>(base);
     }
     bool exists(const std::string& name) const { return find_base(name) != nullptr; }
     /// Removes the array of that name; returns whether one was removed.
@@ -184,6 +280,21 @@ public:
     void clear() {
         arrays_.clear();
         size_ = 0;
+    }
+
+    /// Calls f(name, values_id, bytes) for every array (see BasePropertyArray).
+    template <class F>
+    void for_each_array(F&& f) const {
+        for (const auto& a : arrays_) f(a->name(), a->values_id(), a->bytes());
+    }
+    /// Shares the values of `other`'s array of the same name wherever they are equal bit for
+    /// bit (BasePropertyArray::share_if_equal); returns how many arrays are shared now.
+    std::size_t share_equal_arrays(const PropertyContainer& other) {
+        std::size_t shared = 0;
+        for (auto& a : arrays_)
+            if (const BasePropertyArray* b = other.find_base(a->name()))
+                shared += a->share_if_equal(*b) ? 1 : 0;
+        return shared;
     }
 
 private:

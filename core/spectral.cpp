@@ -1108,7 +1108,7 @@ HalfedgeMesh reconstruct(const HalfedgeMesh& mesh, const SpectralDecomposition& 
                               std::to_string(d.base_positions.size()));
     std::vector<Point> positions = reconstruct_positions(d, lo, hi);
     HalfedgeMesh out = mesh;
-    out.positions() = std::move(positions);
+    out.set_positions(std::move(positions));
     return out;
 }
 
@@ -1124,9 +1124,26 @@ std::vector<double> frequency_field(const SpectralDecomposition& d, std::size_t 
 
 std::vector<double> band_magnitude_field(const SpectralDecomposition& d, std::size_t lo,
                                          std::size_t hi) {
-    const Eigen::MatrixXd x = band_positions(d, lo, hi);
+    check_band(d, lo, hi);
     std::vector<double> out(d.base_positions.size(), std::numeric_limits<double>::quiet_NaN());
-    for (std::size_t r = 0; r < d.map.rows(); ++r)
+    if (d.rows() == 0) return out;
+    // The S-weighted centroid c of the decomposed rows. The band's part of X - 1·cᵀ has the
+    // coefficients α_k - (e_kᵀ·S·1)·cᵀ: a translation t adds (e_kᵀ·S·1)·tᵀ to α_k and t to c,
+    // so they cancel and the field is the same wherever the mesh sits.
+    Eigen::RowVector3d c = Eigen::RowVector3d::Zero();
+    double mass = 0;
+    for (std::size_t r = 0; r < d.rows(); ++r) {
+        const double s = d.S[Eigen::Index(r)];
+        c += s * d.base_positions[d.map.vertex_of[r].idx()].transpose();
+        mass += s;
+    }
+    c /= mass;
+    const Eigen::Index a = Eigen::Index(lo), count = Eigen::Index(hi - lo + 1);
+    const auto e = d.eigenvectors.middleCols(a, count);
+    const Eigen::VectorXd w = e.transpose() * d.S;  // e_kᵀ·S·1
+    const Eigen::MatrixXd alpha = d.coefficients.middleRows(a, count) - w * c;
+    const Eigen::MatrixXd x = e * alpha;
+    for (std::size_t r = 0; r < d.rows(); ++r)
         out[d.map.vertex_of[r].idx()] = x.row(Eigen::Index(r)).norm();
     return out;
 }

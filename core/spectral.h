@@ -183,8 +183,14 @@ HalfedgeMesh reconstruct(const HalfedgeMesh& mesh, const SpectralDecomposition& 
 /// eigenproblem. For the "Frequency" colouring (signed: a diverging map).
 std::vector<double> frequency_field(const SpectralDecomposition& d, std::size_t index);
 
-/// Per vertex (storage index) |Σ_{lo<=k<=hi} e_k(v)·α_k|: the length of the part of the
-/// position carried by the band; NaN outside the eigenproblem. For "Frequency mass".
+/// Per vertex (storage index) the length of the part of its position relative to the
+/// centroid that the band carries: |Σ_{lo<=k<=hi} e_k(v)·α'_k| with α'_k the coefficients
+/// of X - 1·cᵀ, c the S-weighted centroid of the rows (α'_k = α_k - (e_kᵀ·S·1)·cᵀ); NaN
+/// outside the eigenproblem. For "Frequency mass". Invariant under rigid motions: without
+/// the centring, the constant frequency (λ = 0 on a connected mesh with a free boundary)
+/// carries the centroid, and every band that holds it would show the distance from the world
+/// origin; with it, that frequency carries nothing. Throws InvalidArgument unless
+/// lo <= hi < size(). O(rows · (hi - lo + 1)).
 std::vector<double> band_magnitude_field(const SpectralDecomposition& d, std::size_t lo,
                                          std::size_t hi);
 

@@ -59,7 +59,11 @@
 // (normals, colours, ...) is dropped; "v:subdivision_level" is added (input vertices 0).
 // Isolated vertices are kept, unmoved. An input with garbage is collected on a copy first
 // (indices then refer to the collected mesh). Two faces with the same three vertices (a closed
-// two-triangle "pillow") would give double edges in every scheme: subdivide() refuses them.
+// two-triangle "pillow") would give double edges in every scheme: subdivide() sets them aside
+// and puts them back unchanged (core/pillows.h).
+// Coincident vertices (core/coincident.h): when the input has any, each level's positions
+// are computed on its weld (1-to-4 schemes) and new vertices with the same start position are
+// made to coincide (keep_coincident_together()); see the header.
 //
 // Implementation: the 1-to-4 refinement is built directly into the new mesh's arrays (no
 // edge splits, no hash maps): old vertex v keeps index v, the odd vertex of edge e is V + e,
@@ -79,7 +83,10 @@
 #include <cmath>
 #include <memory>
 
+#include "core/coincident.h"
 #include "core/errors.h"
+#include "core/pillows.h"
+#include "core/weld.h"
 
 namespace trilab {
 
@@ -458,18 +465,46 @@ void butterfly_positions(const In& m, Point* p, bool modified, const Stage& stag
     }
 }
 
+/// The positions of the 1-to-4 split of `m` by `scheme`: odd vertex of edge e at p[nv + e].
+void positions_1to4(const In& m, SubdivisionScheme scheme, Point* p, const Stage& stage) {
+    if (scheme == SubdivisionScheme::Loop)
+        loop_positions(m, p, stage);
+    else
+        butterfly_positions(m, p, scheme == SubdivisionScheme::ModifiedButterfly, stage);
+}
+
+/// The positions of the 1-to-4 split of `mesh` (compact) computed on its weld (core/weld.h):
+/// a seam's two sides and the copies of a split vertex get the stencils of the welded surface
+/// (the partner's faces are the other side of a seam edge), one value for all copies. The
+/// weld keeps the faces in order, so face f's halfedges match the welded face f's.
+void welded_positions_1to4(const HalfedgeMesh& mesh, SubdivisionScheme scheme, Point* p,
+                           const Stage& stage) {
+    const WeldResult weld = weld_coincident_vertices(mesh);
+    const In w(weld.mesh);
+    const In m(mesh);
+    std::vector<Point> pw(std::size_t(w.nv) + w.ne);
+    positions_1to4(w, scheme, pw.data(), stage);
+    for (Index v = 0; v < m.nv; ++v)  // isolated vertices stay (the weld may join them)
+        p[v] = m.vh[v].is_valid() ? pw[weld.vertex_map[v]] : m.x[v];
+    for (Index f = 0; f < m.nf; ++f) {
+        Index h = m.fh[f].idx(), g = w.fh[f].idx();
+        for (int k = 0; k < 3; ++k, h = m.next_i(h), g = w.next_i(g))
+            p[m.nv + (h >> 1)] = pw[w.nv + (g >> 1)];
+    }
+}
+
 SubdivisionLevel refine_1to4(const HalfedgeMesh& mesh, SubdivisionScheme scheme, int level,
-                             bool morph, const Stage& stage) {
+                             bool morph, bool welded, const Stage& stage) {
     SubdivisionLevel out;
     out.correspondence.kind = MorphCorrespondence::Kind::FromEarlier;
     const In m(mesh);
     build_1to4(m, out.mesh, stage);
     stage.progress.check_cancelled();
     Point* p = out.mesh.positions().data();
-    if (scheme == SubdivisionScheme::Loop)
-        loop_positions(m, p, stage);
+    if (welded)
+        welded_positions_1to4(mesh, scheme, p, stage);
     else
-        butterfly_positions(m, p, scheme == SubdivisionScheme::ModifiedButterfly, stage);
+        positions_1to4(m, scheme, p, stage);
     stage.progress.check_cancelled();
     add_levels(mesh, out.mesh, level);
     carry_uv_1to4(mesh, out.mesh);
@@ -800,7 +835,7 @@ SubdivisionScheme parse_scheme(const std::string& name) {
 namespace {
 
 /// Refuses a mesh where two faces have the same three vertices (a closed two-triangle
-/// "pillow", possibly part of a larger mesh after non-manifold repairs): the 1-to-4 split
+/// "pillow"; subdivide() sets the input's aside, so this only guards the levels): the 1-to-4 split
 /// would join two of its edge midpoints twice and Sqrt3 would join its two centroids three
 /// times, i.e. the result would have double edges. No two edges join the same two vertices
 /// (a mesh invariant), so two faces share their three vertices exactly when they share their
@@ -843,6 +878,31 @@ void check_finite_level(const HalfedgeMesh& m, SubdivisionScheme scheme, int ite
             if (!p[h].allFinite()) refuse("corner texture coordinate", m.to_vertex(h).idx());
 }
 
+/// Makes the vertices of a new level that start at the same place (their coarse parents
+/// coincide: the two sides of a seam, the copies of a split vertex) end at the same place:
+/// where the level's rule gave them different positions (copies that the weld could not
+/// join, a non-manifold point or edge; Sqrt3, whose flips would dissolve a seam, treats one
+/// as a boundary curve on both sides) they get their mean, bit for bit the same.
+void keep_coincident_together(SubdivisionLevel& level) {
+    const std::vector<Point>& start = level.correspondence.positions;
+    HalfedgeMesh& m = level.mesh;
+    std::vector<std::uint8_t> skip(m.vertices_size(), 0);
+    for (Vertex v : m.vertices()) skip[v.idx()] = m.is_isolated(v) ? 1 : 0;
+    const CoincidentGroups groups = find_coincident_points(start.data(), start.size(), skip.data());
+    unify_groups(groups, m.positions().data());
+}
+
+/// Appends the pillows set aside to a level (subdivision level 0, starting where they are).
+void put_back(const HalfedgeMesh& pillows, SubdivisionLevel& level) {
+    const Index first = append_mesh(level.mesh, pillows);
+    if (auto levels = level.mesh.get_vertex_property<int>(kLevelName))
+        for (std::size_t v = first; v < level.mesh.vertices_size(); ++v)
+            levels[Vertex(Index(v))] = 0;
+    auto& start = level.correspondence.positions;
+    if (!start.empty())
+        for (Vertex v : pillows.vertices()) start.push_back(pillows.position(v));
+}
+
 }  // namespace
 
 SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& options,
@@ -868,6 +928,15 @@ SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& 
         current = &collected;
     }
     SubdivisionResult result;
+    // Pillows cannot be refined: they are set aside and put back unchanged on every level.
+    PillowSplit pillows;
+    if (!pillow_faces(*current).empty()) {
+        pillows = split_off_pillows(*current);
+        current = &pillows.rest;
+        result.notes.push_back(pillow_note(pillows.count));
+    }
+    // Coincident vertices (seams, copies of a split vertex) are kept together on every level.
+    const bool coincident = !find_coincident_vertices(*current).empty();
     result.levels.reserve(options.keep_levels ? std::size_t(options.iterations) : 1);
     SubdivisionLevel latest;  // the last level built, when only the finest is kept
     const double span = 1.0 / options.iterations;
@@ -876,10 +945,16 @@ SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& 
         check_no_pillows(*current, it);
         Stage stage{progress, (it - 1) * span, span};
         stage.report(0);
-        // Morph start positions only for the levels returned.
+        // Morph start positions for the levels returned, and to find the coincident ones.
         const bool morph = options.morph && (options.keep_levels || it == options.iterations);
-        SubdivisionLevel level = sqrt3 ? refine_sqrt3(*current, it % 2 == 0, it, morph, stage)
-                                       : refine_1to4(*current, options.scheme, it, morph, stage);
+        SubdivisionLevel level =
+            sqrt3
+                ? refine_sqrt3(*current, it % 2 == 0, it, morph || coincident, stage)
+                : refine_1to4(*current, options.scheme, it, morph || coincident, coincident, stage);
+        if (coincident) {
+            keep_coincident_together(level);
+            if (!morph) std::vector<Point>().swap(level.correspondence.positions);
+        }
         if (options.keep_levels) {
             result.levels.push_back(std::move(level));  // reserved: `current` stays valid
             current = &result.levels.back().mesh;
@@ -888,10 +963,16 @@ SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& 
             current = &latest.mesh;
         }
         check_finite_level(*current, options.scheme, it);
-        result.level_counts.push_back({current->n_vertices(), current->n_faces()});
-        if (it == 1) collected.clear();  // the collected copy of the input is no longer read
+        result.level_counts.push_back(
+            {current->n_vertices() + 3 * pillows.count, current->n_faces() + 2 * pillows.count});
+        if (it == 1) {  // the input's copies are no longer read
+            collected.clear();
+            pillows.rest.clear();
+        }
     }
     if (!options.keep_levels) result.levels.push_back(std::move(latest));
+    if (pillows.count > 0)
+        for (SubdivisionLevel& level : result.levels) put_back(pillows.pillows, level);
     progress.check_cancelled();
     progress.report(1.0, "subdividing");
     result.ms =

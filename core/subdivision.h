@@ -13,6 +13,16 @@
 // in SubdivisionOptions. Every vertex records its level (for the "subdivision vertices"
 // colouring).
 // Texture coordinates ("v:texcoord", "h:texcoord") are interpolated linearly.
+// Messy meshes (core/coincident.h): vertices at the same position (a seam between patches,
+// the copies build_mesh() makes of a non-manifold vertex) stay together on every level. The
+// 1-to-4 schemes compute their positions on the mesh welded where that keeps it manifold
+// (core/weld.h), so a seam edge gets the interior stencil with the partner's faces as its
+// other side and the copies of a split vertex the rule of the joined vertex; Sqrt3, whose edge
+// flips would dissolve a seam, refines each seam as a boundary curve on both sides. Then new
+// vertices whose coarse parents coincide (same start position) and still differ (copies the
+// weld cannot join: surfaces touching at a point or three sheets at an edge) get their mean.
+// Seams stay seams (boundaries): welding is a separate tool. Pillows (core/pillows.h) are set
+// aside, the rest is refined, and they come back unchanged on every level with a note.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -67,11 +77,14 @@ struct SubdivisionResult {
     std::vector<SubdivisionLevel> levels;
     /// Vertices and faces of every level, coarse to fine, whether kept or not.
     std::vector<std::array<std::size_t, 2>> level_counts;
+    /// Lines for the user about what was left as it is (pillows).
+    std::vector<std::string> notes;
     double ms = 0;
 };
 
 /// Subdivides a copy of `mesh` `options.iterations` times. The input must be a triangle mesh;
-/// one with garbage is compacted in a copy first. It is not modified. Throws
+/// one with garbage is compacted in a copy first, pillows are set aside (see above). It is not
+/// modified. Throws
 /// InvalidArgument for bad options (naming them) and for a level whose positions or texture
 /// coordinates overflow to infinity (coordinates near the largest double), Cancelled when
 /// `progress` asks to stop.

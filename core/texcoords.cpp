@@ -118,17 +118,20 @@ void project_planar(const HalfedgeMesh& mesh, const std::vector<Vertex>& vs,
         t = ((t - lo) * scale).cwiseMax(0.0).cwiseMin(1.0);  // clamp rounding only
 }
 
-void project_spherical(const HalfedgeMesh& mesh, const std::vector<Vertex>& vs,
+void project_spherical(const HalfedgeMesh& mesh, const std::vector<Vertex>& vs, UpAxis up,
                        std::vector<TexCoord>& uv) {
     const Point c = centroid(mesh, vs);
+    // The frame of the up axis (core/up_axis.h): longitude 0 faces the front, the seam is at
+    // the back; for y-up (right, front, up) = (x, z, y), for z-up (x, -y, z).
+    const Vector3 up_axis = up_vector(up), front = front_vector(up);
+    const Vector3 right = up_axis.cross(front);
     for (std::size_t i = 0; i < vs.size(); ++i) {
         const Vector3 d = mesh.position(vs[i]) - c;
-        // y is up (the OBJ convention and the viewer's); longitude 0 faces +z, the seam is
-        // at the back (-z).
-        const double r_zx = std::hypot(d.z(), d.x());
+        const double a = d.dot(right), b = d.dot(front), h = d.dot(up_axis);
+        const double r_horizontal = std::hypot(a, b);
         // On the axis (the poles, and the centre itself) longitude is undefined: take 0.
-        const double longitude = r_zx > 1e-12 * d.norm() ? std::atan2(d.x(), d.z()) : 0.0;
-        const double latitude = d.norm() > 0 ? std::atan2(d.y(), r_zx) : 0.0;
+        const double longitude = r_horizontal > 1e-12 * d.norm() ? std::atan2(a, b) : 0.0;
+        const double latitude = d.norm() > 0 ? std::atan2(h, r_horizontal) : 0.0;
         uv[i] = TexCoord(std::clamp(longitude / (2 * kPi) + 0.5, 0.0, 1.0),
                          std::clamp(latitude / kPi + 0.5, 0.0, 1.0));
     }
@@ -141,7 +144,7 @@ bool has_texcoords(const HalfedgeMesh& mesh) {
            bool(mesh.get_halfedge_property<TexCoord>("h:texcoord"));
 }
 
-void project_texcoords(HalfedgeMesh& mesh, TexCoordProjection projection) {
+void project_texcoords(HalfedgeMesh& mesh, TexCoordProjection projection, UpAxis up) {
     const std::vector<Vertex> vs = live_vertices(mesh);
     std::vector<TexCoord> uv(vs.size(), TexCoord::Zero());
     switch (projection) {
@@ -149,7 +152,7 @@ void project_texcoords(HalfedgeMesh& mesh, TexCoordProjection projection) {
             project_planar(mesh, vs, uv);
             break;
         case TexCoordProjection::Spherical:
-            project_spherical(mesh, vs, uv);
+            project_spherical(mesh, vs, up, uv);
             break;
         default:
             throw InvalidArgument("project_texcoords: unknown projection");

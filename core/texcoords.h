@@ -4,6 +4,7 @@
 // centroid (longitude, latitude). Computed once, on the current positions, so later vertex
 // drift (smoothing) shows as moving texture.
 #include "core/halfedge_mesh.h"
+#include "core/up_axis.h"
 
 namespace trilab {
 
@@ -21,19 +22,21 @@ bool has_texcoords(const HalfedgeMesh& mesh);
 /// coordinate axes break the tie, so an axis-aligned grid gets u = x, v = y. The frame is
 /// oriented so the texture reads unmirrored from the side the faces face.
 ///
-/// Spherical: around the centroid of the vertices with y (up) as the pole axis,
-/// u = longitude / 2pi + 0.5 with longitude 0 towards +z, and v = latitude / pi + 0.5, so v
-/// grows with y. Vertices on the axis (the poles) get u = 0.5. Seam: per-vertex coordinates
-/// cannot split a vertex, so the triangles that cross the date line (longitude +-pi, the -z
-/// side) interpolate u from
-/// near 1 back to near 0 and show the whole texture squeezed into one strip; triangles at
-/// the poles are similarly pinched. Splitting the seam needs per-corner ("h:texcoord")
+/// Spherical: around the centroid of the vertices with the up axis `up` (core/up_axis.h) as
+/// the pole axis, u = longitude / 2pi + 0.5 with longitude 0 towards the front
+/// (front_vector(up): +z for y-up, -y for z-up) and growing towards +x, and
+/// v = latitude / pi + 0.5, so v grows along the up axis. Vertices on the axis (the poles)
+/// get u = 0.5. Seam: per-vertex coordinates cannot split a vertex, so the triangles that
+/// cross the date line (longitude +-pi, at the back: -z for y-up, +y for z-up) interpolate u
+/// from near 1 back to near 0 and show the whole texture squeezed into one strip; triangles
+/// at the poles are similarly pinched. Splitting the seam needs per-corner ("h:texcoord")
 /// coordinates, which this function does not write.
 ///
 /// Isolated vertices are projected too; deleted ones are skipped. A "v:texcoord" of another
 /// type is replaced; an existing "h:texcoord" is left untouched. A mesh whose vertices all
 /// coincide gets (0, 0) (planar) everywhere. Throws InvalidArgument, before changing the
 /// mesh, if a position is not finite. Linear in the number of vertices and faces.
-void project_texcoords(HalfedgeMesh& mesh, TexCoordProjection projection);
+/// `up` matters only to the spherical projection.
+void project_texcoords(HalfedgeMesh& mesh, TexCoordProjection projection, UpAxis up = UpAxis::Y);
 
 }  // namespace trilab

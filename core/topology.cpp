@@ -1,6 +1,8 @@
-// Topological operators of HalfedgeMesh: edge collapse, edge flip, edge split, face split.
+// Topological operators of HalfedgeMesh: edge collapse, edge flip, edge split, face split,
+// orientation reversal.
 // Each keeps every invariant listed in halfedge_mesh.h; the legality checks say when.
 #include <string>
+#include <vector>
 
 #include "core/errors.h"
 #include "core/halfedge_mesh.h"
@@ -258,6 +260,39 @@ Vertex HalfedgeMesh::split(Face f, const Point& p) {
     set_halfedge(f2, h2);
     set_halfedge(v, xa);
     return v;
+}
+
+void HalfedgeMesh::reverse_orientation() {
+    // Halfedge h keeps its direction (to_vertex) and moves to the other side of its edge:
+    //   face'(h) = face(twin(h)),  next'(h) = twin(prev(twin(h))),  prev'(h) = twin(next(twin(h))).
+    // Face f then consists of the twins of its old halfedges, in reverse order; a boundary loop
+    // likewise. The corner (to_vertex(g), face'(g)) of halfedge g was the corner of the old
+    // halfedge prev(twin(g)) of the same face, so halfedge attributes are gathered from there.
+    const std::size_t nh = halfedges_size();
+    std::vector<Halfedge> next2(hnext_.vector()), prev2(hprev_.vector());
+    std::vector<Face> face2(hface_.vector());
+    const std::vector<Vertex> to(hto_.vector());
+    std::vector<Index> source(nh);
+    for (std::size_t i = 0; i < nh; ++i) {
+        const Halfedge h(static_cast<Index>(i));
+        source[i] = static_cast<Index>(i);
+        if (is_deleted(h)) continue;
+        const Halfedge t = twin(h);
+        face2[i] = face(t);
+        next2[i] = twin(prev(t));
+        prev2[i] = twin(next(t));
+        source[i] = prev(t).idx();
+    }
+    std::vector<Halfedge> vertex_halfedge(vhalfedge_.vector());
+    for (Vertex v : vertices())
+        if (!is_isolated(v)) vertex_halfedge[v.idx()] = twin(prev(halfedge(v)));
+    for (Face f : faces()) fhalfedge_[f] = twin(halfedge(f));
+    hprops_.gather(source);  // every halfedge attribute follows its corner ...
+    hto_.vector() = to;      // ... then the connectivity is set
+    hnext_.vector() = std::move(next2);
+    hprev_.vector() = std::move(prev2);
+    hface_.vector() = std::move(face2);
+    vhalfedge_.vector() = std::move(vertex_halfedge);
 }
 
 }  // namespace trilab

@@ -10,6 +10,20 @@ void Camera::set_viewport(float width, float height) {
     viewport_ = glm::vec2(std::max(width, 1.0f), std::max(height, 1.0f));
 }
 
+void Camera::reframe_for_viewport(float width, float height) {
+    const float old_aspect = viewport_.x / viewport_.y;
+    set_viewport(width, height);
+    const float new_aspect = viewport_.x / viewport_.y;
+    if (new_aspect < old_aspect) {  // narrower: keep the width, gain room at top and bottom
+        const float tan_half = std::tan(0.5f * fov_y_) * old_aspect / new_aspect;
+        fov_y_ = 2.0f * std::atan(tan_half);
+    }
+}
+
+float Camera::pixels_per_unit() const {
+    return viewport_.y / (2.0f * distance_ * std::tan(0.5f * fov_y_));
+}
+
 void Camera::fit_sphere(const glm::vec3& center, float radius) {
     target_ = center;
     radius_ = radius > 0.0f && std::isfinite(radius) ? radius : 1.0f;
@@ -88,11 +102,16 @@ void Camera::fit_box_in_view(const glm::vec3& lo, const glm::vec3& hi, float mar
     fit_points_in_view(corners, margin);
 }
 
-void Camera::set_view_angles(float azimuth_deg, float elevation_deg) {
-    // World -> camera: undo the azimuth (about y), then tilt down by the elevation (about x).
+void Camera::set_view_angles(float azimuth_deg, float elevation_deg, UpAxis up) {
+    // World -> camera: for z-up first turn the world into the y-up frame (-90 degrees about
+    // x: z -> y, -y -> z), then undo the azimuth (about y), then tilt down by the elevation
+    // (about x).
+    const glm::quat frame = up == UpAxis::Z
+                                ? glm::angleAxis(glm::radians(-90.0f), glm::vec3(1, 0, 0))
+                                : glm::quat(1, 0, 0, 0);
     const glm::quat tilt = glm::angleAxis(glm::radians(elevation_deg), glm::vec3(1, 0, 0));
     const glm::quat turn = glm::angleAxis(glm::radians(-azimuth_deg), glm::vec3(0, 1, 0));
-    rotation_ = glm::normalize(tilt * turn);
+    rotation_ = glm::normalize(tilt * turn * frame);
 }
 
 glm::vec3 Camera::ball_point(const glm::vec2& window) const {

@@ -9,6 +9,8 @@
 #include <glm/gtc/quaternion.hpp>
 #include <vector>
 
+#include "core/up_axis.h"
+
 namespace trilab {
 
 class Camera {
@@ -38,10 +40,22 @@ public:
     /// 90: from +x) and elevation `elevation_deg` above the xz plane (90: from +y, looking
     /// down with -z up on the screen), keeping world +y up on the screen elsewhere. The
     /// rotation is the product of two axis rotations (a quaternion), so it passes the poles
-    /// without a flip.
-    void set_view_angles(float azimuth_deg, float elevation_deg);
-    /// Looks along -z with +y up (the initial orientation).
-    void reset_rotation() { rotation_ = glm::quat(1, 0, 0, 0); }
+    /// without a flip. With `up` = UpAxis::Z (core/up_axis.h) the same in the z-up frame:
+    /// azimuth around z from the front (-y; 90: from +x), elevation above the xy plane, +z up
+    /// on the screen.
+    void set_view_angles(float azimuth_deg, float elevation_deg, UpAxis up = UpAxis::Y);
+    /// The default view for the up axis: looks at the model's front (+z for y-up, -y for
+    /// z-up) with the up axis up on the screen; set_view_angles(0, 0, up).
+    void reset_rotation(UpAxis up = UpAxis::Y) { set_view_angles(0.0f, 0.0f, up); }
+    /// For a picture of width x height pixels of what the camera shows: sets that viewport and
+    /// widens the vertical field of view where the picture's aspect ratio is narrower than the
+    /// current viewport's, so that everything visible now stays visible, centred, and fills
+    /// the picture in one direction (the other gets the extra room). Screenshots and recorded
+    /// frames use it so that they are framed like the view.
+    void reframe_for_viewport(float width, float height);
+    /// Viewport pixels per world unit at the target's depth (how long a unit segment facing
+    /// the camera appears there).
+    float pixels_per_unit() const;
 
     /// Virtual trackball (Shoemake's arcball with Bell's hyperbolic sheet outside the ball):
     /// rotates about the target as if the ball under the cursor were dragged from `from` to

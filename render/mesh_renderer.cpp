@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/errors.h"
+#include "core/mesh_stats.h"
 
 namespace trilab {
 namespace {
@@ -160,8 +161,32 @@ void clear_background(const RenderStyle& style, float alpha) {
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 }
 
+namespace {
+
+GlProgram surface_variant(bool vertex_colors, bool texture) {
+    std::vector<std::string> defines;
+    if (!vertex_colors) defines.push_back("TRILAB_NO_VERTEX_COLOR");
+    if (!texture) defines.push_back("TRILAB_NO_TEXTURE");
+    return GlProgram({embedded_shader("mesh.vert.glsl"),
+                      with_defines(embedded_shader("mesh.frag.glsl"), defines)});
+}
+
+// Whether every corner of the box [lo, hi] lies strictly in front of the near plane of
+// `clip` (projection * view): no part of the mesh is cut open by it.
+bool in_front_of_near_plane(const glm::mat4& clip, const glm::vec3& lo, const glm::vec3& hi) {
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec4 c = clip * glm::vec4((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y,
+                                             (i & 4) ? hi.z : lo.z, 1.0f);
+        if (!(c.w > 0.0f && c.z > -c.w)) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
 MeshRenderer::MeshRenderer()
-    : surface_program_({embedded_shader("mesh.vert.glsl"), embedded_shader("mesh.frag.glsl")}),
+    : surface_programs_{surface_variant(false, false), surface_variant(true, false),
+                        surface_variant(false, true), surface_variant(true, true)},
       wire_program_({embedded_shader("mesh.vert.glsl"), embedded_shader("mesh.geom.glsl"),
                      with_defines(embedded_shader("mesh.frag.glsl"), {"TRILAB_WIREFRAME"})}),
       points_program_({embedded_shader("mesh.vert.glsl"),
@@ -220,6 +245,15 @@ void MeshRenderer::upload(const HalfedgeMesh& mesh) {
     gpu_source_ = std::move(layout.source);
     n_vertices_ = mesh.vertices_size();
     n_gpu_vertices_ = layout.n_gpu;
+    component_of_vertex_.clear();
+    n_components_ = 0;
+    bool closed = mesh.n_faces() > 0;
+    for (Edge e : mesh.edges())
+        if (mesh.is_boundary(e)) {
+            closed = false;
+            break;
+        }
+    if (closed) n_components_ = label_components(mesh, component_of_vertex_);
     write_geometry(mesh);
 
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);  // no VAO bound: safe to use the binding point
@@ -328,6 +362,9 @@ void MeshRenderer::write_level_indices(const LevelOfDetail& lod) {
 void MeshRenderer::upload_level(LevelOfDetail& lod) {
     const std::size_t n = lod.positions().size();
     gpu_source_.clear();
+    component_of_vertex_.clear();
+    n_components_ = 0;
+    outward_ = false;
     n_vertices_ = n_gpu_vertices_ = n;
     level_vertices_.assign(6 * n, 0.0f);
     for (Index v = 0; v < n; ++v) write_level_vertex(lod, v);
@@ -404,6 +441,20 @@ void MeshRenderer::write_geometry(const HalfedgeMesh& mesh,
     if (mesh.n_vertices() == 0) lo = hi = glm::vec3(0.0f);
     bbox_min_ = lo;
     bbox_max_ = hi;
+
+    // Signed volume of each closed component (formula (1.15), about the box's corner).
+    outward_ = false;
+    if (n_components_ > 0) {
+        std::vector<double> volume(n_components_, 0.0);
+        const Point origin(lo.x, lo.y, lo.z);
+        for (Face f : mesh.faces()) {
+            const auto [a, b, c] = mesh.face_vertices(f);
+            volume[component_of_vertex_[a.idx()]] +=
+                (positions[a.idx()] - origin)
+                    .dot((positions[b.idx()] - origin).cross(positions[c.idx()] - origin));
+        }
+        outward_ = std::all_of(volume.begin(), volume.end(), [](double v) { return v > 0.0; });
+    }
 
     // Deleted vertices keep whatever they had (zeros in practice); nothing indexes them.
     std::vector<GpuVertex> data(n_gpu_vertices_);
@@ -541,6 +592,10 @@ void MeshRenderer::set_common_uniforms(const GlProgram& program, const glm::mat4
     }
 }
 
+bool MeshRenderer::culls_back_faces(const glm::mat4& view, const glm::mat4& projection) const {
+    return outward_ && in_front_of_near_plane(projection * view, bbox_min_, bbox_max_);
+}
+
 void MeshRenderer::draw(const glm::mat4& view, const glm::mat4& projection,
                         const RenderStyle& style) const {
     if (n_point_indices_ == 0) return;
@@ -581,12 +636,17 @@ void MeshRenderer::draw(const glm::mat4& view, const glm::mat4& projection,
         const bool edges_only = mode == RenderMode::Wireframe;
         const bool hidden_line = mode == RenderMode::HiddenLine;
         const bool wires = edges_only || hidden_line || style.wireframe;
-        const GlProgram& program = wires ? wire_program_ : surface_program_;
+        const bool textured = mode == RenderMode::Textured &&
+                              style.texture_mode != TextureMode::Off && has_texture_ &&
+                              has_texcoords_;
+        const bool colored = has_colors_ && style.vertex_colors;
+        const GlProgram& program =
+            wires ? wire_program_ : surface_programs_[(colored ? 1 : 0) + (textured ? 2 : 0)];
         set_common_uniforms(program, view, projection, style);
         program.set("u_surface", edges_only ? 2 : hidden_line ? 1 : 0);
         program.set("u_flat", mode == RenderMode::Flat ? 1 : 0);
         program.set("u_back_face_color", style.back_face_color ? 1 : 0);
-        program.set("u_use_vertex_color", has_colors_ && style.vertex_colors ? 1 : 0);
+        program.set("u_use_vertex_color", colored ? 1 : 0);
         program.set("u_front_color", style.front_color);
         program.set("u_back_color", style.back_color);
         program.set("u_ambient", style.ambient);
@@ -595,9 +655,6 @@ void MeshRenderer::draw(const glm::mat4& view, const glm::mat4& projection,
         program.set("u_wire_color",
                     edges_only || hidden_line ? style.line_color : style.wire_color);
         program.set("u_wire_width", std::max(style.wire_width, 0.0f));
-        const bool textured = mode == RenderMode::Textured &&
-                              style.texture_mode != TextureMode::Off && has_texture_ &&
-                              has_texcoords_;
         program.set("u_texture_mode", textured ? int(style.texture_mode) : 0);
         program.set("u_texture", 0);
         if (textured) {
@@ -624,7 +681,12 @@ void MeshRenderer::draw(const glm::mat4& view, const glm::mat4& projection,
             glDisable(GL_BLEND);
             glEnable(GL_DEPTH_TEST);
         } else {
+            // No back face can be seen (see outward_): the rasterizer skips about half the
+            // triangles, which on a software renderer is about half the frame.
+            const bool cull = style.cull_hidden_back_faces && culls_back_faces(view, projection);
+            if (cull) glEnable(GL_CULL_FACE);
             glDrawElements(GL_TRIANGLES, GLsizei(n_triangle_indices_), GL_UNSIGNED_INT, nullptr);
+            if (cull) glDisable(GL_CULL_FACE);
         }
         if (textured) glBindTexture(GL_TEXTURE_2D, 0);
     }

@@ -49,6 +49,7 @@
 // render/ never includes ImGui: the viewer edits a RenderStyle and calls draw().
 #include <glad/gl.h>
 
+#include <array>
 #include <cstddef>
 #include <glm/glm.hpp>
 #include <string>
@@ -97,6 +98,8 @@ struct RenderStyle {
     /// Wireframe draws the edges of back-facing triangles faded towards the background, and
     /// Points colours points whose normal faces away. Off: both sides look alike.
     bool back_face_color = true;
+    /// Let draw() skip back faces where none can be seen (see culls_back_faces()).
+    bool cull_hidden_back_faces = true;
     glm::vec3 front_color{0.50f, 0.62f, 0.80f};  ///< base colour without vertex colours
     glm::vec3 back_color{0.85f, 0.42f, 0.30f};
 
@@ -202,6 +205,13 @@ public:
     /// test enabled, blending disabled, and no program, VAO or texture bound.
     void draw(const glm::mat4& view, const glm::mat4& projection, const RenderStyle& style) const;
 
+    /// Whether draw() may skip back-facing triangles because none can be seen: every
+    /// component of the uploaded mesh is closed with positive volume (a ray from outside
+    /// first meets a front face) and the whole mesh lies in front of the near plane (none of
+    /// it is cut open). The image is the same; on a software renderer the frame is about
+    /// half as long.
+    bool culls_back_faces(const glm::mat4& view, const glm::mat4& projection) const;
+
     /// Vertex storage size of the uploaded mesh (what set_vertex_colors() expects).
     std::size_t n_vertices() const { return n_vertices_; }
     std::size_t n_triangles() const { return n_triangle_indices_ / 3; }
@@ -221,7 +231,9 @@ private:
     void set_common_uniforms(const GlProgram& program, const glm::mat4& view,
                              const glm::mat4& projection, const RenderStyle& style) const;
 
-    GlProgram surface_program_;        ///< mesh.vert + mesh.frag
+    /// mesh.vert + mesh.frag, indexed by (vertex colours read) + 2 (texture read): the
+    /// variants without an input leave it out (TRILAB_NO_VERTEX_COLOR, TRILAB_NO_TEXTURE).
+    std::array<GlProgram, 4> surface_programs_;
     GlProgram wire_program_;           ///< mesh.vert + mesh.geom + mesh.frag [TRILAB_WIREFRAME]
     GlProgram points_program_;         ///< mesh.vert + mesh.frag [TRILAB_POINTS]
     GlProgram depth_program_;          ///< mesh.vert + depth.frag
@@ -242,6 +254,13 @@ private:
     /// and normal) to patch changed vertices in; empty when the last upload was a mesh.
     std::vector<float> level_vertices_;
     glm::vec3 bbox_min_{0.0f}, bbox_max_{0.0f};
+    /// Back faces can be culled exactly when every component is closed with positive volume
+    /// (a ray from outside first hits a front face) and the whole box lies in front of the
+    /// near plane (checked per draw): `component_of_vertex_` is filled (upload) only for a
+    /// closed mesh, `outward_` is recomputed with every geometry write.
+    std::vector<Index> component_of_vertex_;
+    std::size_t n_components_ = 0;
+    bool outward_ = false;
 };
 
 }  // namespace trilab

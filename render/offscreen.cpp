@@ -297,7 +297,7 @@ void OffscreenContext::make_current() const {
 Camera offscreen_camera(const HalfedgeMesh& mesh, const OffscreenOptions& options) {
     Camera camera;
     camera.set_viewport(float(options.width), float(options.height));
-    camera.set_view_angles(options.azimuth, options.elevation);
+    camera.set_view_angles(options.azimuth, options.elevation, options.up);
     std::vector<glm::vec3> points;
     points.reserve(mesh.n_vertices());
     for (Vertex v : mesh.vertices()) {

@@ -92,11 +92,13 @@ private:
 struct OffscreenOptions {
     int width = 1280, height = 800;  ///< pixels
     RenderStyle style;
-    /// View direction (Camera::set_view_angles()): degrees around +y from +z, and above the
-    /// xz plane. The camera then frames the mesh's vertices tightly and centred
+    /// View direction (Camera::set_view_angles()): degrees around the up axis from the front
+    /// (+y up: around +y from +z; +z up: around +z from -y), and above the horizontal plane.
+    /// The camera then frames the mesh's vertices tightly and centred
     /// (Camera::fit_points_in_view()).
     float azimuth = 0.0f, elevation = 0.0f;
-    float margin = 0.07f;  ///< free border, as a fraction of the half-width/half-height
+    UpAxis up = UpAxis::Y;  ///< the model's up axis (core/up_axis.h)
+    float margin = 0.07f;   ///< free border, as a fraction of the half-width/half-height
     /// Alpha 0 where no surface is drawn (colours un-premultiplied); otherwise the
     /// background is style.background with alpha 1.
     bool transparent = false;

@@ -5,6 +5,9 @@
 //    in pixels from barycentric coordinates; u_surface also selects the HiddenLine surface
 //    (background colour) and the Wireframe mode (edges only, blended);
 //  - TRILAB_POINTS: round point sprites lit by the vertex normal.
+// The default variant also compiles with TRILAB_NO_VERTEX_COLOR and/or TRILAB_NO_TEXTURE:
+// inputs a variant does not read are dropped by the linker, and on a software rasterizer
+// every interpolated input costs per-triangle setup work.
 // Lighting: a head light (light at the eye, so the half vector is the light direction),
 // ambient + Lambert + optional Blinn-Phong specular. Fog blends towards the background by
 // view depth.
@@ -62,7 +65,11 @@ vec3 lit(vec3 base, vec3 n) {
 }
 
 vec3 front_base() {
+#ifdef TRILAB_NO_VERTEX_COLOR
+    return u_front_color;
+#else
     return u_use_vertex_color ? fs_in.color : u_front_color;
+#endif
 }
 
 #ifdef TRILAB_POINTS
@@ -97,11 +104,17 @@ void main() {
         n = len > 0.0 ? n / len : vec3(0.0, 0.0, 1.0);
         if (back) {
             color = lit(u_back_color, n);
+#ifndef TRILAB_NO_TEXTURE
         } else if (u_texture_mode == 2) {
             color = texture(u_texture, fs_in.texcoord).rgb;
         } else if (u_texture_mode == 1) {
+#ifdef TRILAB_NO_VERTEX_COLOR
+            vec3 tint = vec3(1.0);
+#else
             vec3 tint = u_use_vertex_color ? fs_in.color : vec3(1.0);
+#endif
             color = lit(texture(u_texture, fs_in.texcoord).rgb * tint, n);
+#endif
         } else {
             color = lit(front_base(), n);
         }

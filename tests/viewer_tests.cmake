@@ -12,17 +12,76 @@ if(TARGET trilab)
                      ${CMAKE_CURRENT_SOURCE_DIR}/data/good/header_variants.off
                      --mode hidden-line --color gaussian --frames 3
                      --screenshot ${CMAKE_CURRENT_BINARY_DIR}/viewer_modes.png)
-    set_tests_properties(viewer_modes PROPERTIES PASS_REGULAR_EXPRESSION "loaded .*header_variants.off")
+    # The history starts with the file, not with the built-in model it replaced.
+    set_tests_properties(viewer_modes PROPERTIES PASS_REGULAR_EXPRESSION
+                         "loaded .*header_variants.off.*history: 0 Load header_variants.off\n")
     # A bad file: the viewer keeps the default model, says why (file and line), exits 0.
     add_test(NAME viewer_bad_file
              COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab>
                      ${CMAKE_CURRENT_SOURCE_DIR}/data/bad/off_nan.off --frames 2)
     set_tests_properties(viewer_bad_file PROPERTIES PASS_REGULAR_EXPRESSION "off_nan.off:4: ")
-    # An operation applied after start-up becomes a history entry and plays its morph.
+    # An operation applied after start-up becomes a history entry and plays its morph; the
+    # last frame (and its screenshot) shows the end of the morph, the status bar the new state.
     add_test(NAME viewer_operation
              COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --op "noise --amount 30" --color mean
-                     --frames 10)
-    set_tests_properties(viewer_operation PROPERTIES PASS_REGULAR_EXPRESSION "Add noise --amount 30")
+                     --frames 2 --screenshot ${CMAKE_CURRENT_BINARY_DIR}/viewer_operation.png)
+    set_tests_properties(viewer_operation PROPERTIES PASS_REGULAR_EXPRESSION
+                         "last frame: state 1 of 2: Add noise --amount 30[^\n]*, morph t = 1.000\n.*status: state 1: Add noise")
+    # --morph-t: the last frame shows the morph at that time.
+    add_test(NAME viewer_morph_t
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --op "noise --amount 30" --morph-t 0.25
+                     --frames 2)
+    set_tests_properties(viewer_morph_t PROPERTIES PASS_REGULAR_EXPRESSION
+                         "last frame: state 1 of 2: Add noise[^\n]*, morph t = 0.250\n")
+    # The automatic wireframe overlay: on for the default model (edges tens of pixels long),
+    # off after three Loop steps (128,000 faces, edges a few pixels); --wireframe forces it.
+    add_test(NAME viewer_wireframe_auto_on
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --frames 2)
+    set_tests_properties(viewer_wireframe_auto_on PROPERTIES PASS_REGULAR_EXPRESSION
+                         "wireframe overlay on \\(automatic")
+    add_test(NAME viewer_wireframe_auto_off
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --op "subdivide --iterations 3" --frames 2)
+    set_tests_properties(viewer_wireframe_auto_off PROPERTIES PASS_REGULAR_EXPRESSION
+                         "wireframe overlay off \\(automatic")
+    add_test(NAME viewer_wireframe_forced
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --op "subdivide --iterations 3"
+                     --wireframe on --frames 2)
+    set_tests_properties(viewer_wireframe_forced PROPERTIES PASS_REGULAR_EXPRESSION
+                         "wireframe overlay on \\(on;")
+    add_test(NAME viewer_bad_wireframe COMMAND $<TARGET_FILE:trilab> --wireframe sometimes --frames 1)
+    set_tests_properties(viewer_bad_wireframe PROPERTIES WILL_FAIL TRUE)
+    # The layout rule (viewer_layout_check.cmake) with every panel open, a colour legend and a
+    # history entry, at three framebuffer sizes and two UI scales; then with the dialogs open.
+    foreach(size 1280x720 1920x1080 2560x1440)
+        foreach(scale 1 2)
+            add_test(NAME viewer_layout_${size}_scale${scale}
+                     COMMAND ${CMAKE_COMMAND} -DTRILAB=$<TARGET_FILE:trilab> -DSIZE=${size}
+                             -DSCALE=${scale}
+                             "-DARGS=--show;all;--color;mean;--op;noise --amount 5"
+                             "-DREQUIRE=Sidebar;History;Log;Status;##MainMenuBar;##legend"
+                             -P ${CMAKE_CURRENT_SOURCE_DIR}/viewer_layout_check.cmake)
+        endforeach()
+    endforeach()
+    add_test(NAME viewer_layout_dialogs
+             COMMAND ${CMAKE_COMMAND} -DTRILAB=$<TARGET_FILE:trilab> -DSIZE=1280x720 -DSCALE=2
+                     "-DARGS=--show;all,help,about,screenshot;--color;mean"
+                     "-DDIALOGS=Key bindings;About trilab;Screenshot"
+                     "-DREQUIRE=Sidebar;Key bindings;About trilab;Screenshot"
+                     -P ${CMAKE_CURRENT_SOURCE_DIR}/viewer_layout_check.cmake)
+    # The check itself fails on a window that overlaps another or leaves the framebuffer.
+    foreach(bad overlap outside)
+        add_test(NAME viewer_layout_check_refuses_${bad}
+                 COMMAND ${CMAKE_COMMAND}
+                         -DLAYOUT_FILE=${CMAKE_CURRENT_SOURCE_DIR}/data/layout/${bad}.txt
+                         "-DDIALOGS=Key bindings"
+                         -P ${CMAKE_CURRENT_SOURCE_DIR}/viewer_layout_check.cmake)
+        set_tests_properties(viewer_layout_check_refuses_${bad} PROPERTIES WILL_FAIL TRUE)
+    endforeach()
+    add_test(NAME viewer_layout_check_accepts_dialog
+             COMMAND ${CMAKE_COMMAND}
+                     -DLAYOUT_FILE=${CMAKE_CURRENT_SOURCE_DIR}/data/layout/dialog_ok.txt
+                     "-DDIALOGS=Key bindings"
+                     -P ${CMAKE_CURRENT_SOURCE_DIR}/viewer_layout_check.cmake)
     add_test(NAME viewer_subdivision
              COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab>
                      --op "subdivide --scheme modified-butterfly --iterations 2"
@@ -61,6 +120,14 @@ if(TARGET trilab)
                      --screenshot ${CMAKE_CURRENT_BINARY_DIR}/viewer_decimation.png)
     set_tests_properties(viewer_decimation PROPERTIES
                          PASS_REGULAR_EXPRESSION "Decimate --cost quadric --percent 60")
+    # Tools > Flip orientation is a history entry; with --up z the spherical projection of
+    # textured mode puts its poles on z (issue 16). A bad --up is refused.
+    add_test(NAME viewer_up_axis_flip
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --op flip --up z --mode textured --frames 6)
+    set_tests_properties(viewer_up_axis_flip PROPERTIES PASS_REGULAR_EXPRESSION
+                         "volume 4.15508 -> -4.15508.*spherical, \\+z up texture coordinates")
+    add_test(NAME viewer_bad_up_axis COMMAND $<TARGET_FILE:trilab> --up x --frames 1)
+    set_tests_properties(viewer_bad_up_axis PROPERTIES WILL_FAIL TRUE)
     add_test(NAME viewer_bad_operation COMMAND $<TARGET_FILE:trilab> --op "noise --amount -1"
                                               --frames 1)
     set_tests_properties(viewer_bad_operation PROPERTIES WILL_FAIL TRUE)

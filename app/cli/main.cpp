@@ -15,6 +15,7 @@
 #include "app/cli/record_command.h"
 #include "app/cli/render_command.h"
 #include "app/ops/operation.h"
+#include "core/coincident.h"
 #include "core/errors.h"
 #include "core/generators.h"
 #include "core/io/mesh_io.h"
@@ -28,7 +29,7 @@ namespace {
 constexpr const char* kUsage = R"(usage: trilab-cli COMMAND [options]
 
 commands:
-  info MESH [--json]              counts, topology, bounding box, area, volume, load report
+  info MESH [--json]              counts, topology, seams, bounding box, area, volume, load report
   convert IN OUT [--ascii] [--big-endian] [--json]
                                   convert between .obj .off .ply .stl .om (by extension);
                                   .stl and .ply are written binary unless --ascii
@@ -109,6 +110,7 @@ int cmd_info(const Args& a) {
     const auto t0 = std::chrono::steady_clock::now();
     const MeshStats s = compute_stats(loaded.mesh);
     const ValidationResult valid = validate(loaded.mesh);
+    const BoundaryPairing pairing = pair_boundary_edges(loaded.mesh);
     const double ms = ms_since(t0);
     const LoadReport& r = loaded.report;
     const bool manifold = r.detached_faces == 0 && r.nonmanifold_vertices_split == 0;
@@ -119,6 +121,9 @@ int cmd_info(const Args& a) {
             .add("edges", s.edges)
             .add("faces", s.faces)
             .add("boundary_loops", s.boundary_loops)
+            .add("boundary_edges", pairing.boundary_edges)
+            .add("paired_boundary_edges", pairing.paired_edges)
+            .add("unpaired_boundary_edges", pairing.unpaired_edges)
             .add("components", s.components)
             .add("isolated_vertices", s.isolated_vertices)
             .add("euler", s.euler)
@@ -139,6 +144,10 @@ int cmd_info(const Args& a) {
         std::printf("edges:           %zu\n", s.edges);
         std::printf("faces:           %zu\n", s.faces);
         std::printf("boundary loops:  %zu\n", s.boundary_loops);
+        std::printf(
+            "boundary edges:  %zu (%zu on seams: another boundary edge coincides; %zu "
+            "unpaired)\n",
+            pairing.boundary_edges, pairing.paired_edges, pairing.unpaired_edges);
         std::printf("components:      %zu\n", s.components);
         std::printf("euler:           %lld\n", s.euler);
         std::printf("genus:           %lld\n", s.genus);

@@ -204,8 +204,8 @@ int run_operation_command(const std::string& name, const std::vector<std::string
         j.add("report", result.report).add("ms", result.ms);
         std::cout << j.str() << "\n";
     } else {
-        std::printf("wrote %s: %s %s (%.1f ms)\n", a.files[1].c_str(), result.label.c_str(),
-                    result.parameters.c_str(), result.ms);
+        std::printf("wrote %s: %s%s%s (%.1f ms)\n", a.files[1].c_str(), result.label.c_str(),
+                    result.parameters.empty() ? "" : " ", result.parameters.c_str(), result.ms);
         for (const std::string& line : result.report) std::printf("  %s\n", line.c_str());
         if (extras.finish) extras.finish(result, a.own, nullptr);
     }

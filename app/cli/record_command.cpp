@@ -28,6 +28,7 @@
 
 #include "app/cli/arg_reader.h"
 #include "app/cli/json_writer.h"
+#include "app/cli/legend_output.h"
 #include "app/history/history.h"
 #include "app/ops/operation.h"
 #include "core/coloring.h"
@@ -75,8 +76,11 @@ options:
   --mode MODE           gouraud (default), flat, wireframe, hidden-line, points, textured
   --color QUANTITY      colour the vertices: none (default), normal, k1, k2, mean,
                         gaussian, shape-index
-  --view AZ,EL          view direction in degrees: azimuth around +y from +z, elevation
-                        above the xz plane (default 0,0)
+  --view AZ,EL          view direction in degrees: azimuth around the up axis from the
+                        front, elevation above the horizontal plane (default 0,0)
+  --up y|z              the model's up axis (default y): +y up with the front at +z, or
+                        +z up with the front at -y; also the pole axis of the spherical
+                        projection of textured mode
   --easing EASING       linear (default), smoothstep, cubic (ease in and out)
   --name NAME           file names NAME_0000.png ... (default frame; at least 4 digits)
   --mp4                 also encode DIR/NAME.mp4 (H.264, yuv420p) when ffmpeg is on the
@@ -142,6 +146,8 @@ CommandLine parse_args(const std::vector<std::string>& args) {
             o.color = value();
         } else if (a == "--easing") {
             o.easing = value();
+        } else if (a == "--up") {
+            o.up = value();
         } else if (a == "--name") {
             o.name = value();
         } else if (a == "--frames") {
@@ -365,6 +371,7 @@ void check_record_options(const RecordOptions& o) {
         throw InvalidArgument(std::string("--color: ") + e.what());
     }
     easing_from_name(o.easing);
+    parse_up_axis(o.up, "--up");
     try {
         parse_operation(o.operation);
     } catch (const InvalidArgument& e) {
@@ -383,6 +390,7 @@ RecordSummary record_morph(const RecordOptions& o) {
     const Operation operation = parse_operation(o.operation);
     const Easing easing = easing_from_name(o.easing);
     const VertexColoring coloring = parse_coloring(o.color);
+    const UpAxis up = parse_up_axis(o.up, "--up");
     RenderStyle style;
     style.mode = parse_render_mode(o.mode);
     const bool textured = style.mode == RenderMode::Textured;
@@ -394,6 +402,7 @@ RecordSummary record_morph(const RecordOptions& o) {
     s.mode = render_mode_name(style.mode);
     s.color = coloring_name(coloring);
     s.easing = easing_name(easing);
+    s.up = up_axis_name(up);
 
     // File input (not timed).
     LoadedMesh loaded = read_mesh(o.input);
@@ -404,10 +413,11 @@ RecordSummary record_morph(const RecordOptions& o) {
     const auto t_op = std::chrono::steady_clock::now();
     if (textured && !has_texcoords(mesh)) {
         // Projected once, on the loaded shape, so the texture travels with the vertices.
-        project_texcoords(mesh, TexCoordProjection::Spherical);
+        project_texcoords(mesh, TexCoordProjection::Spherical, up);
         s.notes.push_back(
             "the mesh has no texture coordinates: textured mode uses a spherical projection "
-            "of the loaded shape around its centroid (z is the pole axis)");
+            "of the loaded shape around its centroid (the poles on the up axis, +" +
+            std::string(up_axis_name(up)) + ")");
     }
     NullProgress no_progress;
     OperationResult result;
@@ -478,7 +488,7 @@ RecordSummary record_morph(const RecordOptions& o) {
     s.renderer = gl.context.description();
     Camera camera;
     camera.set_viewport(float(o.width), float(o.height));
-    camera.set_view_angles(float(o.azimuth), float(o.elevation));
+    camera.set_view_angles(float(o.azimuth), float(o.elevation), up);
     camera.fit_points_in_view(points, defaults.margin);
     const glm::mat4 view = camera.view(), projection = camera.projection();
     s.context_ms = ms_since(t_context);
@@ -528,15 +538,13 @@ RecordSummary record_morph(const RecordOptions& o) {
             gl.renderer.upload(*shown);
             if (coloring != VertexColoring::None) {
                 HalfedgeMesh shape = *shown;
-                shape.positions() = last_shape(shown, t);
+                shape.set_positions(last_shape(shown, t));
                 if (shape.has_vertex_property("v:normal")) shape.remove_vertex_property("v:normal");
                 const VertexColors colors = color_vertices(shape, coloring);
                 gl.renderer.set_vertex_colors(colors.colors);
                 ++s.colorings;
-                s.legend_label = colors.has_legend ? colors.label : "";
-                s.legend_map = colors.kind == ColorMapKind::Diverging ? "diverging" : "sequential";
-                s.legend_min = colors.range.min;
-                s.legend_max = colors.range.max;
+                s.legend = colors;
+                s.legend.colors.clear();  // the legend, not the colours
             }
         }
         gl.renderer.update_positions(*shown, frame.positions);
@@ -611,18 +619,10 @@ int run_record_command(const std::vector<std::string>& args) {
         else
             j.add("mp4", s.mp4);
         j.add("width", s.width).add("height", s.height).add("mode", s.mode).add("color", s.color);
-        if (!s.legend_label.empty()) {
-            JsonObject legend;
-            legend.add("label", s.legend_label)
-                .add("min", s.legend_min)
-                .add("max", s.legend_max)
-                .add("map", s.legend_map);
-            j.add("legend", legend);
-        } else {
-            j.add_null("legend");
-        }
+        add_legend(j, s.legend);
         j.add("easing", s.easing)
             .add("view", std::vector<double>{c.options.azimuth, c.options.elevation})
+            .add("up", s.up)
             .add("vertices_before", s.vertices_before)
             .add("faces_before", s.faces_before)
             .add("vertices_after", s.vertices_after)
@@ -639,8 +639,8 @@ int run_record_command(const std::vector<std::string>& args) {
     } else {
         std::printf("wrote %d frames %s ... %s: %dx%d, %s", s.frames, s.files.front().c_str(),
                     s.files.back().c_str(), s.width, s.height, s.mode.c_str());
-        if (!s.legend_label.empty())
-            std::printf(", %s in [%.6g, %.6g]", s.legend_label.c_str(), s.legend_min, s.legend_max);
+        if (s.legend.has_legend)
+            std::printf(", %s", legend_text(s.legend).c_str());
         else if (s.color != "none")
             std::printf(", %s colouring", s.color.c_str());
         std::printf("; %s %s (%.1f ms operation + rendering; %s)\n", s.label.c_str(),

@@ -19,6 +19,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/coloring.h"
+
 namespace trilab::cli {
 
 /// What to record. The strings take the CLI's spellings (`trilab-cli record --help`).
@@ -31,6 +33,7 @@ struct RecordOptions {
     std::string mode = "gouraud";       ///< render_mode_name() spellings
     std::string color = "none";         ///< coloring_name() spellings
     double azimuth = 0, elevation = 0;  ///< view direction in degrees, as `render --view`
+    std::string up = "y";               ///< the up axis, "y" or "z" (core/up_axis.h)
     /// "linear", "smoothstep" (or "smooth-step"), "cubic" (or "ease-in-out-cubic").
     std::string easing = "linear";
     std::string name = "frame";  ///< files are out_dir/name_0000.png ...; no '/' allowed
@@ -50,10 +53,9 @@ struct RecordSummary {
     std::size_t steps = 0;  ///< steps (iterations) of the entry
     std::size_t vertices_before = 0, faces_before = 0;
     std::size_t vertices_after = 0, faces_after = 0;
-    std::string mode, color, easing;  ///< canonical names
-    /// The legend of the last colouring (empty label when there is no legend).
-    std::string legend_label, legend_map;
-    double legend_min = 0, legend_max = 0;
+    std::string mode, color, easing, up;  ///< canonical names
+    /// The legend of the last colouring (its colours dropped; has_legend false without one).
+    VertexColors legend;
     int colorings = 0;     ///< how many times the colouring was computed (0 without --color)
     std::string renderer;  ///< OffscreenContext::description()
     std::vector<std::string> notes;

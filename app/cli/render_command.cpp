@@ -11,6 +11,7 @@
 
 #include "app/cli/arg_reader.h"
 #include "app/cli/json_writer.h"
+#include "app/cli/legend_output.h"
 #include "core/coloring.h"
 #include "core/errors.h"
 #include "core/io/image_io.h"
@@ -35,7 +36,8 @@ options:
   --size WxH            image size in pixels (default 1280x800)
   --mode MODE           gouraud (default), flat, wireframe, hidden-line, points, textured
   --color QUANTITY      colour the vertices: none (default), normal, k1, k2, mean,
-                        gaussian, shape-index, subdivision, smoothing-distance
+                        gaussian, shape-index, subdivision (categorical: one colour per
+                        level), smoothing-distance
   --reference MESH      the state before smoothing, for --color smoothing-distance: each
                         vertex's displacement from it, signed along the normal (MESH must
                         have the same vertices, e.g. the input of trilab-cli smooth)
@@ -43,8 +45,12 @@ options:
                         --mode textured when no --mode is given. Without it textured mode
                         uses a built-in checkerboard. Meshes without texture coordinates get
                         a spherical projection.
-  --view AZ,EL          view direction in degrees: azimuth around +y from +z, elevation
-                        above the xz plane (default 0,0: looking along -z, +y up)
+  --view AZ,EL          view direction in degrees: azimuth around the up axis from the
+                        front, elevation above the horizontal plane (default 0,0: the
+                        front view; +y up: looking along -z)
+  --up y|z              the model's up axis (default y): +y up with the front at +z, or
+                        +z up with the front at -y; also the pole axis of the spherical
+                        projection of textured mode
   --transparent         alpha 0 where no surface is drawn
   --json                print one JSON object (with "ms": the time spent rendering, file
                         reading and writing excluded)
@@ -75,6 +81,7 @@ struct RenderArgs {
     std::string mode = "gouraud";
     bool mode_given = false;
     std::string color = "none";
+    std::string up = "y";
     double azimuth = 0, elevation = 0;
     bool transparent = false, json = false, help = false;
 };
@@ -102,6 +109,8 @@ RenderArgs parse_args(const std::vector<std::string>& args) {
             r.mode_given = true;
         } else if (a == "--color") {
             r.color = value();
+        } else if (a == "--up") {
+            r.up = value();
         } else if (a == "--size") {
             const std::string& v = value();
             const std::size_t x = v.find_first_of("xX");
@@ -161,6 +170,7 @@ int run_render_command(const std::vector<std::string>& args) {
     options.azimuth = float(a.azimuth);
     options.elevation = float(a.elevation);
     options.transparent = a.transparent;
+    options.up = parse_up_axis(a.up, "--up");
     try {
         options.style.mode = parse_render_mode(a.mode);
     } catch (const InvalidArgument& e) {
@@ -207,11 +217,12 @@ int run_render_command(const std::vector<std::string>& args) {
     std::vector<std::string> notes;
     std::string texcoords = has_texcoords(mesh) ? "mesh" : "none";
     if (textured && !has_texcoords(mesh)) {
-        project_texcoords(mesh, TexCoordProjection::Spherical);
+        project_texcoords(mesh, TexCoordProjection::Spherical, options.up);
         texcoords = "spherical projection";
         notes.push_back(
             "the mesh has no texture coordinates: textured mode uses a spherical "
-            "projection around the centroid (z is the pole axis)");
+            "projection around the centroid (the poles on the up axis, +" +
+            std::string(up_axis_name(options.up)) + ")");
     }
     VertexColors colors;
     if (coloring != VertexColoring::None) {
@@ -249,17 +260,9 @@ int run_render_command(const std::vector<std::string>& args) {
             .add("height", a.height)
             .add("mode", render_mode_name(options.style.mode))
             .add("color", coloring_name(coloring));
-        if (colors.has_legend) {
-            JsonObject legend;
-            legend.add("label", colors.label)
-                .add("min", colors.range.min)
-                .add("max", colors.range.max)
-                .add("map", colors.kind == ColorMapKind::Diverging ? "diverging" : "sequential");
-            j.add("legend", legend);
-        } else {
-            j.add_null("legend");
-        }
+        add_legend(j, colors);
         j.add("view", std::vector<double>{a.azimuth, a.elevation})
+            .add("up", up_axis_name(options.up))
             .add("transparent", a.transparent)
             .add("texture", texture_source)
             .add("texcoords", texcoords)
@@ -276,8 +279,7 @@ int run_render_command(const std::vector<std::string>& args) {
         std::printf("wrote %s: %dx%d, %s", a.out.c_str(), a.width, a.height,
                     render_mode_name(options.style.mode));
         if (colors.has_legend)
-            std::printf(", %s in [%.6g, %.6g]", colors.label.c_str(), colors.range.min,
-                        colors.range.max);
+            std::printf(", %s", legend_text(colors).c_str());
         else if (coloring != VertexColoring::None)
             std::printf(", %s colouring", coloring_name(coloring));
         std::printf(" (%.1f ms; %s)\n", ms, renderer.context().description().c_str());

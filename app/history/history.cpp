@@ -5,235 +5,14 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
-#include <type_traits>
-#include <unordered_map>
 #include <unordered_set>
 #include <utility>
-#include <variant>
 
 #include "core/errors.h"
 
 namespace trilab {
 
 namespace {
-
-// ---- attribute types the history can compare, copy and size -----------------------------
-// Attributes of other types cannot be compared through the mesh's interface: a step that
-// carries one is stored as a full mesh, and it is counted at kUnknownElementBytes.
-
-template <class... Ts>
-struct TypeList {};
-
-using KnownTypes = TypeList<Eigen::Vector3d, Eigen::Vector2d, Eigen::Vector4d, Eigen::Vector3f,
-                            Eigen::Vector2f, Eigen::Vector4f, double, float, std::int8_t,
-                            std::uint8_t, std::int16_t, std::uint16_t, std::int32_t, std::uint32_t,
-                            std::int64_t, std::uint64_t, Vertex, Halfedge, Edge, Face>;
-
-constexpr std::size_t kUnknownElementBytes = 16;
-
-template <class T>
-constexpr bool has_no_padding() {
-    if constexpr (std::is_base_of_v<Eigen::MatrixBase<T>, T>)
-        return sizeof(T) == std::size_t(T::SizeAtCompileTime) * sizeof(typename T::Scalar);
-    else if constexpr (std::is_arithmetic_v<T>)
-        return true;
-    else
-        return sizeof(T) == sizeof(Index);  // the handle types: one Index each
-}
-
-template <class L>
-struct ArrayVariantOf;
-template <class... Ts>
-struct ArrayVariantOf<TypeList<Ts...>> {
-    using type = std::variant<std::vector<Ts>...>;
-};
-/// One attribute array of any known type.
-using AnyArray = ArrayVariantOf<KnownTypes>::type;
-
-enum class ElementKind { Vertex, Halfedge, Edge, Face };
-constexpr ElementKind kAllKinds[] = {ElementKind::Vertex, ElementKind::Halfedge, ElementKind::Edge,
-                                     ElementKind::Face};
-
-/// The connectivity arrays: a step shares a base only when these are equal.
-bool is_connectivity(const std::string& name) {
-    static const char* const names[] = {"v:halfedge", "v:deleted",  "h:to",
-                                        "h:next",     "h:prev",     "h:face",
-                                        "e:deleted",  "f:halfedge", "f:deleted"};
-    return std::find(std::begin(names), std::end(names), name) != std::end(names);
-}
-
-std::vector<std::string> property_names(const HalfedgeMesh& m, ElementKind kind) {
-    switch (kind) {
-        case ElementKind::Vertex:
-            return m.vertex_property_names();
-        case ElementKind::Halfedge:
-            return m.halfedge_property_names();
-        case ElementKind::Edge:
-            return m.edge_property_names();
-        case ElementKind::Face:
-            return m.face_property_names();
-    }
-    return {};
-}
-
-std::size_t storage_size(const HalfedgeMesh& m, ElementKind kind) {
-    switch (kind) {
-        case ElementKind::Vertex:
-            return m.vertices_size();
-        case ElementKind::Halfedge:
-            return m.halfedges_size();
-        case ElementKind::Edge:
-            return m.edges_size();
-        case ElementKind::Face:
-            return m.faces_size();
-    }
-    return 0;
-}
-
-/// The array of that name and type (nullptr when there is none of that type).
-template <class T>
-const std::vector<T>* typed_array(const HalfedgeMesh& m, ElementKind kind,
-                                  const std::string& name) {
-    switch (kind) {
-        case ElementKind::Vertex: {
-            auto p = m.get_vertex_property<T>(name);
-            return p ? &p.vector() : nullptr;
-        }
-        case ElementKind::Halfedge: {
-            auto p = m.get_halfedge_property<T>(name);
-            return p ? &p.vector() : nullptr;
-        }
-        case ElementKind::Edge: {
-            auto p = m.get_edge_property<T>(name);
-            return p ? &p.vector() : nullptr;
-        }
-        case ElementKind::Face: {
-            auto p = m.get_face_property<T>(name);
-            return p ? &p.vector() : nullptr;
-        }
-    }
-    return nullptr;
-}
-
-template <class T>
-std::vector<T>* typed_array(HalfedgeMesh& m, ElementKind kind, const std::string& name) {
-    return const_cast<std::vector<T>*>(typed_array<T>(std::as_const(m), kind, name));
-}
-
-/// sizeof the element type of the attribute, or 0 when its type is not a known one.
-template <class... Ts>
-std::size_t element_bytes(const HalfedgeMesh& m, ElementKind kind, const std::string& name,
-                          TypeList<Ts...>) {
-    std::size_t bytes = 0;
-    (void)((typed_array<Ts>(m, kind, name) ? (bytes = sizeof(Ts), true) : false) || ...);
-    return bytes;
-}
-
-/// Bit-for-bit equality (so -0.0 differs from 0.0 and equal NaNs are equal).
-template <class T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-    static_assert(has_no_padding<T>(), "memcmp needs a type without padding");
-    return a.size() == b.size() &&
-           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
-
-enum class Comparison { UnknownType, TypeMismatch, Equal, Different };
-
-template <class T>
-bool compare_as(const HalfedgeMesh& a, const HalfedgeMesh& b, ElementKind kind,
-                const std::string& name, Comparison& out) {
-    const std::vector<T>* x = typed_array<T>(a, kind, name);
-    if (!x) return false;
-    const std::vector<T>* y = typed_array<T>(b, kind, name);
-    out = !y                  ? Comparison::TypeMismatch
-          : same_bits(*x, *y) ? Comparison::Equal
-                              : Comparison::Different;
-    return true;
-}
-
-template <class... Ts>
-Comparison compare_attribute(const HalfedgeMesh& a, const HalfedgeMesh& b, ElementKind kind,
-                             const std::string& name, TypeList<Ts...>) {
-    Comparison out = Comparison::UnknownType;
-    (void)(compare_as<Ts>(a, b, kind, name, out) || ...);
-    return out;
-}
-
-template <class T>
-bool copy_as(const HalfedgeMesh& m, ElementKind kind, const std::string& name, AnyArray& out) {
-    const std::vector<T>* x = typed_array<T>(m, kind, name);
-    if (!x) return false;
-    out = *x;
-    return true;
-}
-
-template <class... Ts>
-AnyArray copy_attribute(const HalfedgeMesh& m, ElementKind kind, const std::string& name,
-                        TypeList<Ts...>) {
-    AnyArray out;
-    (void)(copy_as<Ts>(m, kind, name, out) || ...);
-    return out;
-}
-
-/// An attribute array that differs from the base's (e.g. normals recomputed after a move).
-struct AttributeOverride {
-    ElementKind kind;
-    std::string name;
-    AnyArray values;
-};
-
-std::size_t array_bytes(const AnyArray& a) {
-    return std::visit([](const auto& v) { return v.size() * sizeof(v[0]); }, a);
-}
-
-/// An estimate of a mesh's memory: storage size x bytes per element, over every array.
-std::size_t mesh_bytes(const HalfedgeMesh& m) {
-    std::size_t total = 0;
-    for (ElementKind kind : kAllKinds) {
-        std::size_t per_element = 0;
-        for (const std::string& name : property_names(m, kind)) {
-            const std::size_t b = element_bytes(m, kind, name, KnownTypes{});
-            per_element += b ? b : kUnknownElementBytes;
-        }
-        total += per_element * storage_size(m, kind);
-    }
-    return total;
-}
-
-/// Whether `mesh` can be stored as positions (plus attribute overrides) over `base`: equal
-/// storage sizes and live counts, the same attribute names in the same order, equal
-/// connectivity arrays bit for bit, and every other attribute of a known type (equal, or
-/// recorded in `overrides`). Any attribute of an unknown type makes the answer false.
-bool shares_structure(const HalfedgeMesh& mesh, const HalfedgeMesh& base,
-                      std::vector<AttributeOverride>& overrides) {
-    overrides.clear();
-    for (ElementKind kind : kAllKinds)
-        if (storage_size(mesh, kind) != storage_size(base, kind)) return false;
-    if (mesh.n_vertices() != base.n_vertices() || mesh.n_edges() != base.n_edges() ||
-        mesh.n_faces() != base.n_faces())
-        return false;
-    for (ElementKind kind : kAllKinds) {
-        const std::vector<std::string> names = property_names(mesh, kind);
-        if (names != property_names(base, kind)) return false;
-        for (const std::string& name : names) {
-            if (kind == ElementKind::Vertex && name == "v:position") continue;
-            switch (compare_attribute(mesh, base, kind, name, KnownTypes{})) {
-                case Comparison::UnknownType:
-                case Comparison::TypeMismatch:
-                    return false;
-                case Comparison::Equal:
-                    break;
-                case Comparison::Different:
-                    if (is_connectivity(name)) return false;
-                    overrides.push_back(
-                        {kind, name, copy_attribute(mesh, kind, name, KnownTypes{})});
-                    break;
-            }
-        }
-    }
-    return true;
-}
 
 std::string format_bytes(std::size_t bytes) {
     const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB"};
@@ -254,28 +33,11 @@ std::string format_bytes(std::size_t bytes) {
 using MeshPtr = std::shared_ptr<const HalfedgeMesh>;
 
 struct Step {
-    std::uint64_t id = 0;  ///< unique in the history's lifetime (key of morph()'s states)
-    /// The whole mesh, or null for a shared step.
-    MeshPtr full;
-    /// A shared step: the full mesh whose connectivity and attributes it shares (the base of
-    /// its predecessor, or the predecessor itself), its own positions and the attribute
-    /// arrays that differ from the base's.
-    MeshPtr base;
-    std::vector<Point> positions;
-    std::vector<AttributeOverride> overrides;
+    std::uint64_t id = 0;  ///< unique in the history's lifetime
+    /// The mesh after the step. Its arrays are shared (copy-on-write, core/property.h) with
+    /// the step before wherever they hold the same values.
+    MeshPtr mesh;
     MorphCorrespondence correspondence;
-    std::size_t vertices = 0, faces = 0;
-
-    /// The full mesh that holds this step's connectivity and attributes.
-    const MeshPtr& structure() const { return full ? full : base; }
-    /// Memory this step holds on its own (its base not included).
-    std::size_t own_bytes() const {
-        std::size_t b = correspondence.positions.size() * sizeof(Point);
-        if (full) return b + mesh_bytes(*full);
-        b += positions.size() * sizeof(Point);
-        for (const AttributeOverride& o : overrides) b += array_bytes(o.values);
-        return b;
-    }
 };
 
 struct Entry {
@@ -285,21 +47,6 @@ struct Entry {
     std::vector<Step> steps;
     std::size_t bytes = 0;
 };
-
-/// The state after a shared step: a copy of its base with its positions and overrides.
-HalfedgeMesh reconstruct(const Step& step) {
-    HalfedgeMesh m = *step.base;
-    m.positions() = step.positions;
-    for (const AttributeOverride& o : step.overrides) {
-        std::visit(
-            [&](const auto& values) {
-                using T = typename std::decay_t<decltype(values)>::value_type;
-                *typed_array<T>(m, o.kind, o.name) = values;
-            },
-            o.values);
-    }
-    return m;
-}
 
 std::string entry_name(const Entry& e) {
     std::string s = "\"" + e.label + "\"";
@@ -321,11 +68,7 @@ struct History::Impl {
     std::size_t total_bytes = 0;
     HalfedgeMesh empty;  ///< current_mesh() of an empty history
 
-    // The current state, rebuilt eagerly on every change so that current_mesh() only reads,
-    // and the states morph() rebuilt since the last change (kept so that the topology of a
-    // frame stays valid, and so that playback does not rebuild them frame after frame).
-    MeshPtr current_state;
-    mutable std::unordered_map<std::uint64_t, MeshPtr> morph_states;
+    MeshPtr current_state;  ///< the last step of the current entry
 
     const Entry& entry(std::size_t index, const char* what) const {
         if (index >= entries.size())
@@ -337,45 +80,25 @@ struct History::Impl {
 
     const Step& current_step() const { return entries[current].steps.back(); }
 
-    /// The state after `step` for morph(): its full mesh, the current state, or a
-    /// reconstruction kept until the next change.
-    MeshPtr morph_state(const Step& step) const {
-        if (step.full) return step.full;
-        if (&step == &current_step()) return current_state;
-        MeshPtr& slot = morph_states[step.id];
-        if (!slot) slot = std::make_shared<const HalfedgeMesh>(reconstruct(step));
-        return slot;
-    }
-
-    /// After every change of the entries or of the current one: makes entry `index` the
-    /// current one, with its state (`built`: that state when the caller has it at hand), and
-    /// drops morph()'s states. Builds first, so a failure leaves everything as it was.
-    void set_current(std::size_t index, MeshPtr built = nullptr) {
-        const Step& s = entries[index].steps.back();
-        MeshPtr state = s.full  ? s.full
-                        : built ? std::move(built)
-                                : std::make_shared<const HalfedgeMesh>(reconstruct(s));
-        morph_states.clear();
+    void set_current(std::size_t index) {
         current = index;
-        current_state = std::move(state);
+        current_state = entries[index].steps.back().mesh;
     }
 
     const HalfedgeMesh& current_mesh() const { return current_state ? *current_state : empty; }
 
-    /// Recounts every entry's bytes: full meshes and shared steps' own arrays count with
-    /// their entry; a base counts with the oldest entry that holds it (its owner, or, once
-    /// the owner was dropped, the oldest entry whose shared steps keep it alive).
+    /// Recounts every entry's bytes: each block of values (core/property.h) counts once,
+    /// with the oldest entry that holds it; correspondences count with their step.
     void recount() {
-        std::unordered_set<const HalfedgeMesh*> counted;
+        std::unordered_set<const void*> counted;
         total_bytes = 0;
         for (Entry& e : entries) {
             e.bytes = 0;
             for (const Step& s : e.steps) {
-                e.bytes += s.own_bytes();
-                if (s.full) counted.insert(s.full.get());
+                e.bytes += s.correspondence.positions.size() * sizeof(Point);
+                for (const HalfedgeMesh::MemoryBlock& b : s.mesh->memory_blocks())
+                    if (counted.insert(b.id).second) e.bytes += b.bytes;
             }
-            for (const Step& s : e.steps)
-                if (!s.full && counted.insert(s.base.get()).second) e.bytes += mesh_bytes(*s.base);
             total_bytes += e.bytes;
         }
     }
@@ -395,7 +118,7 @@ struct History::Impl {
             if (freed == 0) msg += " (its mesh is still shared by later entries)";
             messages.push_back(msg + ".");
         }
-        if (!messages.empty()) set_current(current, current_state);  // indices moved
+        if (!messages.empty()) set_current(current);  // indices moved
         return messages;
     }
 };
@@ -416,9 +139,7 @@ void History::reset(HalfedgeMesh mesh, std::string label, std::string parameters
     e.ms = ms;
     Step s;
     s.id = impl_->next_id++;
-    s.vertices = mesh.n_vertices();
-    s.faces = mesh.n_faces();
-    s.full = std::make_shared<const HalfedgeMesh>(std::move(mesh));
+    s.mesh = std::make_shared<const HalfedgeMesh>(std::move(mesh));
     e.steps.push_back(std::move(s));
 
     Impl& im = *impl_;
@@ -455,38 +176,25 @@ std::vector<std::string> History::push(std::string label, std::string parameters
     e.parameters = std::move(parameters);
     e.operation = std::move(operation);
     e.ms = ms;
-    MeshPtr last_state;  // the state after the last step, when already at hand
-    MeshPtr predecessor = im.current_step().structure();
+    const HalfedgeMesh* predecessor = &im.current_mesh();
     for (std::size_t k = 0; k < step_meshes.size(); ++k) {
         HalfedgeMesh& mesh = step_meshes[k];
         Step s;
         s.id = im.next_id++;
-        s.vertices = mesh.n_vertices();
-        s.faces = mesh.n_faces();
         s.correspondence = std::move(correspondences[k]);
-        const bool last = k + 1 == step_meshes.size();
-        if (s.correspondence.kind == MorphCorrespondence::Kind::SameVertices &&
-            shares_structure(mesh, *predecessor, s.overrides)) {
-            s.base = predecessor;
-            if (last) {
-                s.positions = mesh.positions();
-                last_state = std::make_shared<const HalfedgeMesh>(std::move(mesh));
-            } else {
-                s.positions = std::move(mesh.positions());  // the mesh is not needed again
-            }
-        } else {
-            s.full = std::make_shared<const HalfedgeMesh>(std::move(mesh));
-        }
-        predecessor = s.structure();
+        // Steps that keep the vertices share every array their predecessor holds the same
+        // values in (most are shared already when the step was made from a copy).
+        if (s.correspondence.kind == MorphCorrespondence::Kind::SameVertices)
+            mesh.share_equal_arrays(*predecessor);
+        s.mesh = std::make_shared<const HalfedgeMesh>(std::move(mesh));
+        predecessor = s.mesh.get();
         e.steps.push_back(std::move(s));
     }
 
     im.entries.reserve(im.current + 2);  // so that push_back cannot throw after the erase
     im.entries.erase(im.entries.begin() + std::ptrdiff_t(im.current) + 1, im.entries.end());
     im.entries.push_back(std::move(e));
-    // A shared last step's incoming mesh is the current state exactly (its arrays equal the
-    // base's, its positions and overrides are the step's): keep it rather than rebuild it.
-    im.set_current(im.entries.size() - 1, std::move(last_state));
+    im.set_current(im.entries.size() - 1);
     im.recount();
     return im.trim();
 }
@@ -533,7 +241,8 @@ History::EntryInfo History::info(std::size_t index) const {
     out.operation = e.operation;
     out.ms = e.ms;
     out.bytes = e.bytes;
-    for (const Step& s : e.steps) out.steps.push_back({s.vertices, s.faces, s.correspondence.kind});
+    for (const Step& s : e.steps)
+        out.steps.push_back({s.mesh->n_vertices(), s.mesh->n_faces(), s.correspondence.kind});
     return out;
 }
 
@@ -547,8 +256,7 @@ HalfedgeMesh History::mesh(std::size_t index, std::size_t step) const {
         throw InvalidArgument("History::mesh: entry " + std::to_string(index) + " has " +
                               std::to_string(e.steps.size()) + " steps, not step " +
                               std::to_string(step));
-    const Step& s = e.steps[step];
-    return s.full ? *s.full : reconstruct(s);
+    return *e.steps[step].mesh;
 }
 
 MorphFrame History::morph(std::size_t index, double t) const {
@@ -565,11 +273,8 @@ MorphFrame History::morph(std::size_t index, double t) const {
 
     const Step& before = k == 0 ? im.entries[index - 1].steps.back() : e.steps[k - 1];
     const Step& after = e.steps[k];
-    // Both states stay alive (full meshes in their entries, reconstructions in morph_states)
-    // until the next change, so the frame's topology does too.
-    const MeshPtr a = im.morph_state(before);
-    const MeshPtr b = im.morph_state(after);
-    return morph_frame(*a, *b, after.correspondence, local);
+    // Both states live in their entries until the next change, so the frame's topology does.
+    return morph_frame(*before.mesh, *after.mesh, after.correspondence, local);
 }
 
 std::size_t History::bytes() const {

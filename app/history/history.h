@@ -4,37 +4,20 @@
 //
 // An entry is one operation (load, revert, noise, ...) with its label, parameters, timing and
 // one or more steps (iterations); each step holds the mesh after it and how it morphs from
-// the previous state (core/morph.h). Entries share unchanged data: a geometry-only step
-// stores only its positions and shares the connectivity and attributes of the mesh it came
-// from. A memory budget (default a quarter of the RAM) drops the oldest entries, with a
-// message, rather than running out of memory. Undo and redo move a cursor; pushing after an
-// undo drops the redo entries.
+// the previous state (core/morph.h). Steps share unchanged data through the mesh's
+// copy-on-write arrays (core/property.h): a step made from a copy of the mesh before it
+// shares every array it did not change, and a step that keeps the vertices is also made to
+// share every array whose values equal its predecessor's bit for bit. So a geometry-only step
+// costs its positions (and whatever else it changed, e.g. normals). A memory budget (default a
+// quarter of the RAM) drops the oldest entries, with a message, rather than running out of
+// memory. Undo and redo move a cursor; pushing after an undo drops the redo entries.
 //
-// Sharing rule. A step is stored "shared" (positions over a base) when its correspondence is
-// SameVertices and, compared with the full mesh that holds its predecessor's connectivity
-// (the predecessor itself, or the predecessor's base): the storage sizes and live counts are
-// equal, the attribute names of every element kind are equal and in the same order, the
-// connectivity arrays (v:halfedge, h:to, h:next, h:prev, h:face, f:halfedge, the deleted
-// flags) are equal bit for bit, and every other attribute has the same type from a fixed
-// list (Eigen 2/3/4-vectors of double and float, double, float, 8- to 64-bit integers,
-// handles). A shared step keeps its own positions and a copy of each attribute array whose
-// values differ from the base's (e.g. normals recomputed after a move); everything else
-// comes from the base, held by shared_ptr. Any other step (another correspondence, other
-// connectivity, an attribute of a type outside the list) stores its full mesh. Rebuilding a
-// shared step copies the base and overwrites positions and those arrays, so every state
-// comes back bit for bit. (Attribute default values, used only when elements are added
-// later, are not visible through the mesh's interface: a rebuilt state has its base's.)
+// Accounting. Every block of array values counts once, with the oldest entry that holds it;
+// a step's correspondence positions count with it. Dropping an entry frees what no later
+// entry shares.
 //
-// Accounting. An entry's bytes are its full meshes (storage size x bytes per element, summed
-// over every array; 16 bytes per element for a type outside the list), its shared steps'
-// positions and attribute copies, and its correspondences' positions. A base counts once,
-// with the entry that owns it; when that entry is dropped, it counts with the oldest entry
-// whose shared steps still hold it. Not counted: the current state when its step is shared
-// (one rebuilt mesh), and the shared states that morph() rebuilt (kept until the next change).
-//
-// Threads: current_mesh(), info(), mesh(), size() and the other const queries only read, so
-// a job may read the current mesh while the render thread calls morph(); morph() fills a
-// cache, so call it from one thread at a time; the non-const functions need exclusive access.
+// Threads: the const functions only read, so a job may read the current mesh while the render
+// thread calls morph(); the non-const functions need exclusive access.
 // Copies of a History share one stack.
 #include <cstddef>
 #include <memory>
@@ -95,10 +78,10 @@ public:
     /// Throws InvalidArgument when there is no such entry (so do mesh() and morph()).
     EntryInfo info(std::size_t index) const;
     /// The mesh of the current state (the last step of the current entry); an empty mesh
-    /// before the first reset. Cheap: the state is rebuilt when it becomes current. The
-    /// reference stays valid until the next reset, push, undo, redo, jump or trim.
+    /// before the first reset. The reference stays valid until the next reset, push, undo,
+    /// redo, jump or trim.
     const HalfedgeMesh& current_mesh() const;
-    /// The mesh after step `step` of entry `index` (a copy).
+    /// The mesh after step `step` of entry `index` (a copy: cheap, its arrays are shared).
     HalfedgeMesh mesh(std::size_t index, std::size_t step) const;
     /// The morph of entry `index` (>= 1) from the state before it (t = 0) through its steps
     /// to its last step (t = 1): the steps are chained, each taking an equal share of t

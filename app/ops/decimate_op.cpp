@@ -49,6 +49,13 @@ OperationResult run_decimate(const DecimateOptions& d_options, const HalfedgeMes
                   rep.refused_topology, rep.refused_normal_flip, rep.refused_roundness,
                   rep.refused_independent_set, rep.refused_max_error, rep.refused_texture_seam);
     result.report.emplace_back(line);
+    if (rep.coincident_vertices > 0) {
+        std::snprintf(line, sizeof(line),
+                      "%zu vertices with a coincident copy (seams, split non-manifold vertices): "
+                      "collapsed only together with it",
+                      rep.coincident_vertices);
+        result.report.emplace_back(line);
+    }
     if (rep.stop != DecimationStop::Done) result.report.push_back(rep.stop_message);
     for (DecimationLevel& level : d.levels)
         result.steps.push_back(
@@ -68,7 +75,8 @@ OperationResult run_decimate(const DecimateOptions& d_options, const HalfedgeMes
                      {"refused_roundness", double(rep.refused_roundness)},
                      {"refused_independent_set", double(rep.refused_independent_set)},
                      {"refused_max_error", double(rep.refused_max_error)},
-                     {"refused_texture_seam", double(rep.refused_texture_seam)}};
+                     {"refused_texture_seam", double(rep.refused_texture_seam)},
+                     {"coincident_vertices", double(rep.coincident_vertices)}};
     result.texts = {{"cost", decimation_cost_name(o.cost)},
                     {"stop_reason", decimation_stop_name(rep.stop)},
                     {"stop_message", rep.stop_message}};

@@ -312,6 +312,8 @@ const std::vector<const OperationDef*>& operation_defs() {
         v.push_back(smooth_operation());
         v.push_back(spectrum_operation());
         v.push_back(decimate_operation());
+        v.push_back(flip_operation());
+        v.push_back(weld_operation());
         return v;
     }();
     static const std::vector<const OperationDef*> defs = [] {

@@ -13,6 +13,8 @@ std::unique_ptr<OperationDef> subdivide_operation();  ///< app/ops/subdivide_op.
 std::unique_ptr<OperationDef> smooth_operation();     ///< app/ops/smooth_op.cpp
 std::unique_ptr<OperationDef> spectrum_operation();   ///< app/ops/spectrum_op.cpp
 std::unique_ptr<OperationDef> decimate_operation();   ///< app/ops/decimate_op.cpp
+std::unique_ptr<OperationDef> flip_operation();       ///< app/ops/flip_op.cpp
+std::unique_ptr<OperationDef> weld_operation();       ///< app/ops/weld_op.cpp
 
 /// The core options of a "spectrum" operation (the Frequency panel's Decompose).
 struct SpectralOptions;

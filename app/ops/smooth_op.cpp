@@ -48,7 +48,7 @@ OperationResult run_smooth(const FairingOptions& options, const HalfedgeMesh& me
     for (std::size_t k = 0; k < fairing.step_positions.size(); ++k) {
         HalfedgeMesh step =
             k + 1 == fairing.step_positions.size() ? std::move(fairing.mesh) : fairing.mesh;
-        step.positions() = std::move(fairing.step_positions[k]);
+        step.set_positions(std::move(fairing.step_positions[k]));
         result.steps.push_back(OperationStep{std::move(step), MorphCorrespondence{}});
     }
     if (result.steps.empty())  // no steps kept (the CLI), or none good: the last good state

@@ -32,6 +32,7 @@ OperationResult run_subdivide(const SubdivisionOptions& options, const HalfedgeM
                   scheme_name(o.scheme), o.iterations, o.iterations == 1 ? "" : "s", mesh.n_faces(),
                   sub.levels.empty() ? 0 : sub.levels.back().mesh.n_faces(), sub.ms);
     result.report.emplace_back(line);
+    for (const std::string& note : sub.notes) result.report.push_back("note: " + note);
     std::vector<double> level_vertices, level_faces;
     for (const auto& counts : sub.level_counts) {
         level_vertices.push_back(double(counts[0]));

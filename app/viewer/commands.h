@@ -16,12 +16,16 @@ struct LoadFile {
 };
 struct SaveFile {
     std::string path;
+    bool then_continue = false;  ///< then carry out the unsaved-changes question's action
 };
 struct RevertFile {};
 struct LoadTexture {
     std::string path;
 };
 struct FitView {};
+/// The default view for ViewSettings::up (the model's front, the up axis up), fitted; also
+/// remembers the up axis (View > Up axis, View > Default view).
+struct ResetView {};
 struct Undo {};
 struct Redo {};
 struct JumpTo {
@@ -72,12 +76,15 @@ struct Quit {
 };
 /// Save the document to its own file, then carry out the pending Quit or LoadFile.
 struct SaveAndContinue {};
+/// Ask for a file name (the file browser), save there, then carry out the pending action.
+struct SaveAsAndContinue {};
 
-using Command = std::variant<LoadFile, SaveFile, RevertFile, LoadTexture, FitView, Undo, Redo,
-                             JumpTo, RunOperation, PreviewOperation, ApplyOperation, CancelPreview,
-                             BuildLevelOfDetail, ShowLevelOfDetail, ApplyLevelOfDetail,
-                             UpdateColoring, ProjectTexCoords, TakeScreenshot, PrintInfo,
-                             StartRecording, CancelRecording, CancelJob, Quit, SaveAndContinue>;
+using Command =
+    std::variant<LoadFile, SaveFile, RevertFile, LoadTexture, FitView, ResetView, Undo, Redo,
+                 JumpTo, RunOperation, PreviewOperation, ApplyOperation, CancelPreview,
+                 BuildLevelOfDetail, ShowLevelOfDetail, ApplyLevelOfDetail, UpdateColoring,
+                 ProjectTexCoords, TakeScreenshot, PrintInfo, StartRecording, CancelRecording,
+                 CancelJob, Quit, SaveAndContinue, SaveAsAndContinue>;
 using CommandQueue = std::vector<Command>;
 
 }  // namespace trilab::viewer

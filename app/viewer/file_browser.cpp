@@ -8,6 +8,7 @@
 #include <fstream>
 #include <system_error>
 
+#include "app/viewer/panels.h"
 #include "core/io/image_io.h"
 #include "core/io/mesh_io.h"
 
@@ -74,6 +75,7 @@ void FileBrowserState::request(Purpose p, const std::string& near) {
     open_requested = true;
     error.clear();
     confirm_overwrite = false;
+    then_continue = false;
     std::error_code ec;
     std::filesystem::path start =
         near.empty() ? std::filesystem::current_path(ec) : std::filesystem::absolute(near, ec);
@@ -91,12 +93,9 @@ void file_browser(FileBrowserState& state, CommandQueue& commands) {
         ImGui::OpenPopup(kTitle);
         state.open_requested = false;
     }
-    const ImGuiIO& io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(ImVec2(0.5f * io.DisplaySize.x, 0.45f * io.DisplaySize.y),
-                            ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
-    ImGui::SetNextWindowSize(ImVec2(40.0f * ImGui::GetFontSize(), 28.0f * ImGui::GetFontSize()),
-                             ImGuiCond_Appearing);
+    place_dialog(40.0f, 28.0f);
     if (!ImGui::BeginPopupModal(kTitle, nullptr)) return;
+    keep_dialog_inside();
 
     const std::vector<std::string> exts = extensions_for(state.purpose);
     ImGui::TextUnformatted(state.folder.string().c_str());
@@ -166,7 +165,7 @@ void file_browser(FileBrowserState& state, CommandQueue& commands) {
                     commands.push_back(LoadFile{path});
                     break;
                 case FileBrowserState::Purpose::SaveMesh:
-                    commands.push_back(SaveFile{path});
+                    commands.push_back(SaveFile{path, state.then_continue});
                     break;
                 case FileBrowserState::Purpose::LoadTexture:
                     commands.push_back(LoadTexture{path});
@@ -210,6 +209,42 @@ void RecentFiles::add(const std::string& path) {
     std::filesystem::create_directories(file_.parent_path(), ec);
     std::ofstream out(file_);
     for (const std::string& p : paths_) out << p << "\n";
+}
+
+std::filesystem::path Preferences::default_file() {
+    const std::filesystem::path recent = RecentFiles::default_file();
+    return recent.empty() ? recent : recent.parent_path() / "settings";
+}
+
+void Preferences::load(const std::filesystem::path& file) {
+    file_ = file;
+    up = UpAxis::Y;
+    others_.clear();
+    std::ifstream in(file);
+    std::string line;
+    while (std::getline(in, line)) {
+        const std::size_t space = line.find(' ');
+        if (line.empty() || space == std::string::npos) continue;
+        const std::string key = line.substr(0, space), value = line.substr(space + 1);
+        if (key == "up-axis") {
+            try {
+                up = parse_up_axis(value);
+            } catch (const std::exception&) {
+                up = UpAxis::Y;
+            }
+        } else {
+            others_.emplace_back(key, value);
+        }
+    }
+}
+
+void Preferences::save() const {
+    if (file_.empty()) return;
+    std::error_code ec;
+    std::filesystem::create_directories(file_.parent_path(), ec);
+    std::ofstream out(file_);
+    out << "up-axis " << up_axis_name(up) << "\n";
+    for (const auto& [key, value] : others_) out << key << " " << value << "\n";
 }
 
 }  // namespace trilab::viewer

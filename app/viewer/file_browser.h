@@ -2,12 +2,15 @@
 // The file browser panel: a modal dialog that lists a folder (sub-folders first, then the
 // files whose extension fits the purpose), lets the user walk the tree, type a name or a
 // whole path, and queues a command when a file is chosen. Also the recent-files list, kept
-// in $XDG_CONFIG_HOME/trilab/recent-files (or ~/.config/...).
+// in $XDG_CONFIG_HOME/trilab/recent-files (or ~/.config/...), and the other remembered
+// settings (Preferences) in $XDG_CONFIG_HOME/trilab/settings.
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app/viewer/commands.h"
+#include "core/up_axis.h"
 
 namespace trilab::viewer {
 
@@ -20,6 +23,9 @@ struct FileBrowserState {
     bool show_all_files = false;
     std::string error;  ///< why the folder cannot be listed, or the name is bad
     bool confirm_overwrite = false;
+    /// The save was asked for by the unsaved-changes question: once written, carry out the
+    /// question's pending action (quit or open).
+    bool then_continue = false;
 
     /// Opens the dialog for `purpose`, starting in the folder of `near` (or the current
     /// folder when empty).
@@ -45,6 +51,25 @@ public:
 private:
     std::filesystem::path file_;
     std::vector<std::string> paths_;
+};
+
+/// Settings the viewer remembers between sessions, one "key value" line each (unknown keys
+/// are kept as they are when the file is written back).
+class Preferences {
+public:
+    UpAxis up = UpAxis::Y;  ///< "up-axis y" or "up-axis z" (View > Up axis)
+
+    /// Reads `file` (missing or unreadable: the defaults; a bad value: that setting's default).
+    void load(const std::filesystem::path& file);
+    /// Writes the settings to the file given to load() (nothing without one; errors are
+    /// ignored: remembering is a convenience).
+    void save() const;
+    /// The default location, or empty when no home folder is known.
+    static std::filesystem::path default_file();
+
+private:
+    std::filesystem::path file_;
+    std::vector<std::pair<std::string, std::string>> others_;  ///< keys this version ignores
 };
 
 }  // namespace trilab::viewer

@@ -2,6 +2,7 @@
 #include "app/viewer/frequency_panel.h"
 
 #include "app/viewer/panels.h"
+#include "app/viewer/plots.h"
 
 #include <imgui.h>
 
@@ -11,60 +12,61 @@
 namespace trilab::viewer {
 namespace {
 
-constexpr float kPlotWidthEm = 26.0f;  ///< width of the bar and the plots (auto-resized window)
+constexpr float kPlotWidthEm = 26.0f;  ///< the most width the bar and the plots take
+constexpr float kPlotHeightEm = 7.0f;  ///< height of each plot, tick labels included
 
-/// The frequency bar: every computed frequency as a grey strip, the applied band in green
-/// and the slider band outlined in orange.
-void frequency_bar(const FrequencyDocument& doc, int lo, int hi) {
+/// The width of the bar and the plots: kPlotWidthEm, less in a narrow sidebar.
+float plot_width() {
+    return std::min(kPlotWidthEm * ImGui::GetFontSize(), ImGui::GetContentRegionAvail().x);
+}
+
+/// The frequency bar: every computed frequency as a grey slot, the applied band in green, the
+/// slider band outlined in orange and the visualized frequency in red. Its slots are the
+/// plots' slots (the same x range: `left_margin` in, index_plot_right_pad() from the right).
+void frequency_bar(const FrequencyDocument& doc, int lo, int hi, int marker, float width,
+                   float left_margin) {
     const std::size_t k = doc.eigenvalues.size();
-    const float w = kPlotWidthEm * ImGui::GetFontSize(), h = ImGui::GetFrameHeight() * 0.7f;
+    const float h = ImGui::GetFrameHeight() * 0.7f;
     const ImVec2 p = ImGui::GetCursorScreenPos();
+    const float x0 = p.x + left_margin, x1 = p.x + width - index_plot_right_pad();
     ImDrawList* dl = ImGui::GetWindowDrawList();
-    dl->AddRectFilled(p, ImVec2(p.x + w, p.y + h), IM_COL32(70, 70, 70, 255));
+    dl->AddRectFilled(ImVec2(x0, p.y), ImVec2(x1, p.y + h), IM_COL32(70, 70, 70, 255));
+    note_widget_rect("frequency bar", x0, p.y, x1, p.y + h);
     if (k > 0) {
-        const auto x = [&](double i) { return p.x + float(i / double(k)) * w; };
-        if (doc.applied)
-            dl->AddRectFilled(ImVec2(x(double(doc.applied_lo)), p.y),
-                              ImVec2(x(double(doc.applied_hi) + 1), p.y + h),
-                              IM_COL32(60, 170, 90, 255));
-        dl->AddRect(ImVec2(x(lo), p.y), ImVec2(x(hi + 1), p.y + h), IM_COL32(255, 160, 40, 255),
-                    0.0f, 0, 2.0f);
+        if (doc.applied && doc.applied_lo <= doc.applied_hi && doc.applied_hi < k) {
+            const Span a = band_span(x0, x1, k, doc.applied_lo, doc.applied_hi);
+            dl->AddRectFilled(ImVec2(a.x0, p.y), ImVec2(a.x1, p.y + h), IM_COL32(60, 170, 90, 255));
+            note_widget_rect("frequency bar: applied", a.x0, p.y, a.x1, p.y + h);
+        }
+        if (lo >= 0 && lo <= hi && std::size_t(hi) < k) {
+            const Span b = band_span(x0, x1, k, std::size_t(lo), std::size_t(hi));
+            dl->AddRect(ImVec2(b.x0, p.y), ImVec2(b.x1, p.y + h), IM_COL32(255, 160, 40, 255), 0.0f,
+                        0, 2.0f);
+            note_widget_rect("frequency bar: band", b.x0, p.y, b.x1, p.y + h);
+        }
+        if (marker >= 0 && std::size_t(marker) < k) {
+            const Span m = index_slot(x0, x1, k, std::size_t(marker));
+            const float half = std::max(1.0f, 0.5f * m.width());
+            const float c = m.centre();
+            dl->AddRectFilled(ImVec2(c - half, p.y - 2.0f), ImVec2(c + half, p.y + h + 2.0f),
+                              IM_COL32(230, 50, 50, 255));
+            note_widget_rect("frequency bar: marker", c - half, p.y, c + half, p.y + h);
+        }
     }
-    ImGui::Dummy(ImVec2(w, h));
+    ImGui::Dummy(ImVec2(width, h));
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip(
             "grey: the %zu computed frequencies; green: the band of the current "
-            "state; orange: the sliders' band",
+            "state; orange: the sliders' band; red: the visualized frequency",
             k);
-}
-
-/// A line plot with the band [lo, hi] shaded.
-void band_plot(const char* label, const std::vector<float>& values, int lo, int hi,
-               const char* overlay) {
-    if (values.empty()) return;
-    const float w = kPlotWidthEm * ImGui::GetFontSize();
-    ImGui::PlotLines(label, values.data(), int(values.size()), 0, overlay, FLT_MAX, FLT_MAX,
-                     ImVec2(w, 5.0f * ImGui::GetFontSize()));
-    const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
-    const float n = float(std::max<std::size_t>(values.size() - 1, 1));
-    const float x0 = a.x + (b.x - a.x) * float(lo) / n, x1 = a.x + (b.x - a.x) * float(hi) / n;
-    ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(x0, a.y), ImVec2(std::max(x1, x0 + 1), b.y),
-                                              IM_COL32(255, 160, 40, 60));
 }
 
 }  // namespace
 
 FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocument& doc, bool busy) {
     FrequencyActions act;
-    if (!s.open) return act;
-    const ImGuiIO& io = ImGui::GetIO();
+    if (!section_header("Frequency decomposition", s.open)) return act;
     const float em = ImGui::GetFontSize();
-    ImGui::SetNextWindowPos(ImVec2(std::max(0.0f, io.DisplaySize.x - 37.0f * em), 9.0f * em),
-                            ImGuiCond_FirstUseEver);
-    if (!ImGui::Begin("Frequency decomposition", &s.open, ImGuiWindowFlags_AlwaysAutoResize)) {
-        ImGui::End();
-        return act;
-    }
     // The decomposition's parameters, drawn from the operation's declaration (the band is
     // the sliders below; threads and the size limit keep their defaults here).
     operation_widgets(s.op, {"band", "threads", "max-full"});
@@ -77,9 +79,9 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
     if (!have) ImGui::EndDisabled();
     if (busy) ImGui::EndDisabled();
     if (doc.decomposition && !doc.valid)
-        ImGui::TextUnformatted("The decomposition belongs to another mesh: decompose again.");
+        ImGui::TextWrapped("The decomposition belongs to another mesh: decompose again.");
     if (!doc.summary.empty()) {
-        ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + kPlotWidthEm * em);
+        ImGui::PushTextWrapPos(0.0f);
         ImGui::TextUnformatted(doc.summary.c_str());
         ImGui::PopTextWrapPos();
     }
@@ -89,13 +91,19 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
         s.lo = std::clamp(s.lo, 0, last);
         s.hi = std::clamp(s.hi, s.lo, last);
         ImGui::Separator();
-        frequency_bar(doc, s.lo, s.hi);
+        // The bar and both plots share their x range, so a frequency is at the same x in all.
+        const float width = plot_width();
+        const IndexPlot spectrum_axis{"", "", &doc.eigenvalues, 0, -1, -1, 0.0};
+        const IndexPlot coefficient_axis{"", "", &doc.log_coefficients, 0, -1, -1, 1.0};
+        const float margin =
+            std::max(index_plot_margin(spectrum_axis), index_plot_margin(coefficient_axis));
+        frequency_bar(doc, s.lo, s.hi, s.visualize, width, margin);
         if (busy) ImGui::BeginDisabled();
-        ImGui::SetNextItemWidth(kPlotWidthEm * em - 6.0f * em);
+        ImGui::SetNextItemWidth(std::max(4.0f * em, width - 6.0f * em));
         const int old_lo = s.lo, old_hi = s.hi;
         ImGui::SliderInt("band from", &s.lo, 0, last);
         const bool lo_done = ImGui::IsItemDeactivatedAfterEdit();
-        ImGui::SetNextItemWidth(kPlotWidthEm * em - 6.0f * em);
+        ImGui::SetNextItemWidth(std::max(4.0f * em, width - 6.0f * em));
         ImGui::SliderInt("band to", &s.hi, 0, last);
         const bool hi_done = ImGui::IsItemDeactivatedAfterEdit();
         s.lo = std::clamp(s.lo, 0, last);
@@ -108,7 +116,7 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
         }
         act.preview = s.lo != old_lo || s.hi != old_hi;
         act.commit = lo_done || hi_done;
-        ImGui::SetNextItemWidth(kPlotWidthEm * em - 6.0f * em);
+        ImGui::SetNextItemWidth(std::max(4.0f * em, width - 6.0f * em));
         const int old_vis = s.visualize;
         ImGui::SliderInt("visualize", &s.visualize, 0, last);
         s.visualize = std::clamp(s.visualize, 0, last);
@@ -116,19 +124,20 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("the frequency that Rendering > Colour by vertex > Frequency shows");
         if (busy) ImGui::EndDisabled();
-        char overlay[96];
-        std::snprintf(overlay, sizeof overlay, "lambda_%d = %.4g", s.visualize,
-                      double(doc.eigenvalues[std::size_t(s.visualize)]));
-        band_plot("spectrum", doc.eigenvalues, s.lo, s.hi, overlay);
-        if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("eigenvalue lambda_k against k (ascending), band shaded");
-        band_plot("coefficients", doc.log_coefficients, s.lo, s.hi, "log10 |alpha_k|");
-        if (ImGui::IsItemHovered())
-            ImGui::SetTooltip(
-                "log10 of |alpha_k|, the length of the positions' coefficient "
-                "(x, y, z) on frequency k");
+        ImGui::Text("visualized: k = %d, lambda_%d = %.4g", s.visualize, s.visualize,
+                    double(doc.eigenvalues[std::size_t(s.visualize)]));
+        const IndexPlot spectrum{
+            "spectrum", "eigenvalue lambda_k", &doc.eigenvalues, s.lo, s.hi, s.visualize, 0.0};
+        const IndexPlot coefficients{"coefficients",
+                                     "log10 |alpha_k| (coefficient length)",
+                                     &doc.log_coefficients,
+                                     s.lo,
+                                     s.hi,
+                                     s.visualize,
+                                     1.0};
+        index_plot(spectrum, width, kPlotHeightEm * em, margin);
+        index_plot(coefficients, width, kPlotHeightEm * em, margin);
     }
-    ImGui::End();
     return act;
 }
 

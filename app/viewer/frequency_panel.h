@@ -3,9 +3,11 @@
 // operator, method (full / partial), number of frequencies, smallest or largest, Decompose,
 // Restore, a frequency bar with the computed and applied ranges, the two band sliders (the
 // mesh follows live while dragging; releasing a slider makes one history entry), the
-// frequency to visualize, a spectrum plot (eigenvalue against index, band highlighted) and a
-// coefficient plot (|alpha_k| against k). The panel owns only its controls; the decomposition
-// lives in the viewer's FrequencyDocument, and the panel reports what the user did as
+// frequency to visualize, a spectrum plot (eigenvalue against index) and a coefficient plot
+// (log10 |alpha_k| against k), both with axes and tick labels (app/viewer/plots.h). The bar
+// and the plots share one x range: the band's shading covers exactly its share of it, and
+// a red marker shows the visualized frequency in all three. The panel owns only its controls; the
+// decomposition lives in the viewer's FrequencyDocument, and the panel reports what the user did as
 // FrequencyActions for the viewer to execute.
 #include <cstddef>
 #include <memory>
@@ -48,7 +50,8 @@ struct FrequencyActions {
     bool visualize_changed = false;  ///< the frequency to visualize changed: recolour
 };
 
-/// "Frequency decomposition" window; `busy`: a job runs (Decompose and the sliders disabled).
+/// The "Frequency decomposition" section of the sidebar (its header, and its body when open);
+/// `busy`: a job runs (Decompose and the sliders disabled).
 FrequencyActions frequency_window(FrequencyPanelState& state, const FrequencyDocument& doc,
                                   bool busy);
 

@@ -20,11 +20,21 @@ Shows MESH (.obj .off .ply .stl .om), or the built-in noisy sphere without one.
 options:
   --size WxH         window size in screen coordinates (default 1280x800)
   --frames N         render N frames, then exit (for tests and screenshots)
-  --screenshot FILE  write the last frame as PNG before exiting (needs --frames)
+  --screenshot FILE  write the last frame as PNG before exiting (needs --frames); the
+                     last frame waits until jobs, previews and the morph animation end
+  --morph-t T        show the current entry's morph at time T in [0, 1] in the last frame
+  --print-layout     after the last frame print "framebuffer W H", "view X Y W H" and
+                     one line 'window "TITLE" X Y W H' per visible window (needs --frames)
+  --ui-scale S       scale the panels and fonts by S in [0.5, 4] (default: the monitor's)
+  --wireframe W      the wireframe overlay: on, off or auto (default: on while the edges
+                     are long enough on the screen)
   --close-after N    press the window's close button after N frames (tests the
                      unsaved-changes question)
   --mode MODE        wireframe, hidden-line, flat, gouraud, points or textured
-  --color C          none, normal, k1, k2, mean, gaussian or shape-index
+  --color C          none, normal, k1, k2, mean, gaussian, shape-index, subdivision,
+                     smoothing-distance, frequency or frequency-mass
+  --up y|z           the model's up axis for this run (default: the one chosen in
+                     View > Up axis, remembered; +y at first)
   --op "OPERATION"   apply an operation after loading, e.g. --op "noise --amount 2"
   --memory-budget MB the history's memory budget (default: a quarter of the RAM)
   --decompose K[:LO:HI]  decompose the model into K frequencies (the Frequency panel's
@@ -33,9 +43,9 @@ options:
                      open OPERATION's panel, set NAME to COUNT evenly spaced values, wait
                      for each live preview to show, then print
                      "sweep: previews=N median_ms=X max_ms=Y" and exit
-  --show PANELS      open panels at start: comma-separated history, morph, tools,
-                     subdivision, fairing, frequency, decimation, collapsing-edges,
-                     record, log, info
+  --show PANELS      open panels at start: comma-separated all, history, morph, tools,
+                     weld, subdivision, fairing, frequency, decimation, collapsing-edges,
+                     record, log, info, and the dialogs help, about, screenshot
   --help             this text
 )";
 
@@ -83,6 +93,23 @@ std::string parse_args(int argc, char** argv, trilab::viewer::ViewerOptions& opt
         } else if (arg == "--screenshot") {
             if (!value(options.screenshot) || options.screenshot.empty())
                 return "--screenshot needs a file name";
+        } else if (arg == "--print-layout") {
+            options.print_layout = true;
+        } else if (arg == "--ui-scale") {
+            char rest = 0;
+            if (!value(v) || std::sscanf(v.c_str(), "%f%c", &options.ui_scale, &rest) != 1 ||
+                !(options.ui_scale >= 0.5f && options.ui_scale <= 4.0f))
+                return "--ui-scale needs a number in [0.5, 4]";
+        } else if (arg == "--wireframe") {
+            if (!value(options.wireframe) ||
+                (options.wireframe != "on" && options.wireframe != "off" &&
+                 options.wireframe != "auto"))
+                return "--wireframe needs on, off or auto";
+        } else if (arg == "--morph-t") {
+            char rest = 0;
+            if (!value(v) || std::sscanf(v.c_str(), "%lf%c", &options.morph_t, &rest) != 1 ||
+                !(options.morph_t >= 0.0 && options.morph_t <= 1.0))
+                return "--morph-t needs a time in [0, 1]";
         } else if (arg == "--mode") {
             if (!value(options.mode)) return "--mode needs a name";
         } else if (arg == "--memory-budget") {
@@ -111,6 +138,9 @@ std::string parse_args(int argc, char** argv, trilab::viewer::ViewerOptions& opt
             if (!value(options.decompose)) return "--decompose needs K or K:LO:HI";
         } else if (arg == "--color") {
             if (!value(options.color)) return "--color needs a name";
+        } else if (arg == "--up") {
+            if (!value(options.up) || (options.up != "y" && options.up != "z"))
+                return "--up needs y or z";
         } else if (arg.size() > 1 && arg[0] == '-') {
             return "unknown option '" + arg + "'";
         } else if (options.mesh_path.empty()) {
@@ -120,6 +150,8 @@ std::string parse_args(int argc, char** argv, trilab::viewer::ViewerOptions& opt
         }
     }
     if (!options.screenshot.empty() && options.frames == 0) return "--screenshot needs --frames N";
+    if (options.print_layout && options.frames == 0) return "--print-layout needs --frames N";
+    if (options.morph_t >= 0 && options.frames == 0) return "--morph-t needs --frames N";
     if (options.sweep_op.empty() != options.sweep_param.empty() ||
         options.sweep_op.empty() != (options.sweep_count == 0))
         return "--sweep, --param and --range go together";

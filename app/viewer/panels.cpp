@@ -8,12 +8,14 @@
 #include <cstdio>
 #include <iterator>
 
+#include "app/viewer/plots.h"
 #include "core/fairing.h"
 
 namespace trilab::viewer {
 namespace {
 
 void morph_controls(MorphState& morph, const History& history, double now);
+void note_widget(const std::string& id);
 
 constexpr const char* kErrorPopupTitle = "Error";
 
@@ -37,23 +39,33 @@ constexpr Binding kBindings[] = {
     {"Mouse wheel", "zoom"},
     {"Home, double-click", "fit the model into the view"},
     {"Right click", "rendering menu"},
-    {"W", "toggle the wireframe overlay"},
+    {"W", "wireframe overlay on / off (Rendering menu: automatic)"},
     {"B", "toggle the back-face colour"},
     {"F", "fog on / off"},
     {"S", "specular highlight on / off"},
     {"T", "cycle texture modes (off, modulate, replace)"},
     {"F12", "screenshot (any resolution, without panels)"},
     {"I", "print model and scene information (and show it)"},
-    {"L", "show the log"},
+    {"L", "show the log (along the bottom)"},
     {"Ctrl+Z, Ctrl+Shift+Z / Ctrl+Y", "undo, redo"},
-    {"H, M, R", "the History, Morph and Record panels"},
+    {"H", "the History column"},
+    {"M, R", "the Morph and Record sections of the sidebar"},
     {"Space", "play or stop the morph animation"},
     {"Ctrl+O", "open a mesh file"},
     {"Ctrl+S", "save the mesh as"},
     {"Ctrl+Q", "quit"},
-    {"F1", "this window"},
+    {"F1", "this window (Esc closes it)"},
+    {"Esc", "cancel a preview; close a dialog"},
     {"Drop a file", "open a mesh, or load an image as texture"},
 };
+
+/// Inside a dialog's Begin: Esc closes it while it has the focus (the viewer's key handler
+/// also closes the dialogs, for presses ImGui 1.86 misses).
+void close_on_escape(bool& open) {
+    if (ImGui::IsWindowFocused(ImGuiFocusedFlags_RootAndChildWindows) &&
+        ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false))
+        open = false;
+}
 
 ImVec4 notice_color(Notice::Level level) {
     return level == Notice::Level::Error ? ImVec4(1.0f, 0.45f, 0.40f, 1.0f)
@@ -70,7 +82,17 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
     for (RenderMode mode : modes)
         if (ImGui::MenuItem(render_mode_name(mode), nullptr, style.mode == mode)) style.mode = mode;
     ImGui::Separator();
-    ImGui::MenuItem("Wireframe overlay", "W", &style.wireframe);
+    if (ImGui::BeginMenu("Wireframe overlay")) {
+        if (ImGui::MenuItem("Automatic", nullptr, settings.wireframe == WireframeOverlay::Auto))
+            settings.wireframe = WireframeOverlay::Auto;
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("on while the edges are long enough on the screen to tell apart");
+        if (ImGui::MenuItem("On", "W", settings.wireframe == WireframeOverlay::On))
+            settings.wireframe = WireframeOverlay::On;
+        if (ImGui::MenuItem("Off", "W", settings.wireframe == WireframeOverlay::Off))
+            settings.wireframe = WireframeOverlay::Off;
+        ImGui::EndMenu();
+    }
     ImGui::MenuItem("Back-face colour", "B", &style.back_face_color);
     if (ImGui::BeginMenu("Colour by vertex")) {
         const VertexColoring colorings[] = {VertexColoring::None,
@@ -174,6 +196,7 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
 void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
               const MenuContext& context, const RenderContext& render, CommandQueue& commands) {
     if (!ImGui::BeginMainMenuBar()) return;
+    panels.layout.menu_height = ImGui::GetWindowHeight();
     if (ImGui::BeginMenu("File")) {
         if (ImGui::MenuItem("Open...", "Ctrl+O", false, !context.busy))
             panels.file_browser.request(FileBrowserState::Purpose::OpenMesh, context.document_path);
@@ -205,8 +228,12 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
         ImGui::MenuItem("Record", "R", &panels.record.open);
         ImGui::EndMenu();
     }
+    view_menu(settings, commands);
     if (ImGui::BeginMenu("Tools")) {
         ImGui::MenuItem("Add noise", nullptr, &panels.tools.open);
+        if (ImGui::MenuItem("Flip orientation", nullptr, false, !context.busy))
+            commands.push_back(ApplyOperation{make_operation("flip")});
+        ImGui::MenuItem("Weld coincident vertices...", nullptr, &panels.weld.open);
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Algorithms")) {
@@ -222,6 +249,7 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Window")) {
+        ImGui::MenuItem("Sidebar", nullptr, &panels.sidebar_open);
         ImGui::MenuItem("Model information", "I", &panels.info_open);
         ImGui::MenuItem("Log", "L", &panels.log_open);
         ImGui::EndMenu();
@@ -232,6 +260,28 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
         ImGui::EndMenu();
     }
     ImGui::EndMainMenuBar();
+}
+
+void view_menu(ViewSettings& settings, CommandQueue& commands) {
+    if (!ImGui::BeginMenu("View")) return;
+    if (ImGui::MenuItem("Default view")) commands.push_back(ResetView{});
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("look at the model's front with its up axis up, and fit it");
+    if (ImGui::BeginMenu("Up axis")) {
+        for (const EnumEntry<UpAxis>& e : kUpAxes) {
+            if (ImGui::MenuItem(e.label, nullptr, settings.up == e.value) &&
+                settings.up != e.value) {
+                settings.up = e.value;
+                commands.push_back(ResetView{});
+            }
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip(
+                    "the model's up axis (remembered): the default view keeps it up, and the "
+                    "spherical texture projection puts its poles on it");
+        }
+        ImGui::EndMenu();
+    }
+    ImGui::EndMenu();
 }
 
 void context_menu(RenderStyle& style, ViewSettings& settings, PanelState& panels,
@@ -246,26 +296,110 @@ void context_menu(RenderStyle& style, ViewSettings& settings, PanelState& panels
     }
 }
 
-void status_bar(const StatusInfo& info, const Notice& notice) {
+bool begin_region(const char* title, const Rect& r, bool* open, char resizable, float& width,
+                  float& height, int extra_flags) {
+    ImGui::SetNextWindowPos(ImVec2(r.x, r.y), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(r.w, r.h), ImGuiCond_Always);
+    // Only the inner edge moves: the other dimension is held by the constraint.
     const ImGuiIO& io = ImGui::GetIO();
+    const bool horizontal = resizable == 'l' || resizable == 'r';
+    ImGui::SetNextWindowSizeConstraints(
+        horizontal ? ImVec2(0.0f, r.h) : ImVec2(r.w, 0.0f),
+        horizontal ? ImVec2(io.DisplaySize.x, r.h) : ImVec2(r.w, io.DisplaySize.y));
+    ImGuiWindowFlags flags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
+                             ImGuiWindowFlags_NoSavedSettings |
+                             ImGuiWindowFlags_NoBringToFrontOnFocus | extra_flags;
+    if (resizable == 0) flags |= ImGuiWindowFlags_NoResize;
+    ScopedStyleVar rounding(ImGuiStyleVar_WindowRounding, 0.0f);
+    const bool visible = ImGui::Begin(title, open, flags);
+    // A drag of an edge has resized the window: keep the new size (the layout clamps it).
+    // A drag of the outer edge moved it; it snaps back next frame.
+    const ImVec2 size = ImGui::GetWindowSize();
+    if (horizontal && size.x != r.w) width = size.x;
+    if (resizable == 't' && size.y != r.h) height = size.y;
+    return visible;
+}
+
+void end_region() {
+    ImGui::End();
+}
+
+bool begin_sidebar(const Rect& r, LayoutState& layout) {
+    float height = r.h;
+    return begin_region("Sidebar", r, nullptr, 'r', layout.sidebar_width, height,
+                        ImGuiWindowFlags_NoTitleBar);
+}
+
+bool section_header(const char* label, bool& open) {
+    // Remember whether the section was open last frame, in the window's storage: a section
+    // opened from a menu or a key (not by its header) is scrolled into view.
+    ImGuiStorage* storage = ImGui::GetStateStorage();
+    const ImGuiID id = ImGui::GetID((std::string(label) + "##was-open").c_str());
+    const int was = storage->GetInt(id, -1);
+    ImGui::SetNextItemOpen(open, ImGuiCond_Always);
+    const bool clicked_open = ImGui::CollapsingHeader(label);
+    note_widget(std::string("section:") + label);
+    const bool by_click = clicked_open != open;
+    open = clicked_open;
+    if (open && was == 0 && !by_click) ImGui::SetScrollHereY(0.0f);
+    storage->SetInt(id, open ? 1 : 0);
+    if (open) ImGui::Spacing();
+    return open;
+}
+
+void place_dialog(float width_em, float height_em) {
+    const ImGuiIO& io = ImGui::GetIO();
+    const float em = ImGui::GetFontSize(), margin = 0.5f * em;
+    const ImVec2 most(std::max(1.0f, io.DisplaySize.x - 2.0f * margin),
+                      std::max(1.0f, io.DisplaySize.y - 2.0f * margin));
+    ImGui::SetNextWindowPos(ImVec2(0.5f * io.DisplaySize.x, 0.5f * io.DisplaySize.y),
+                            ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+    if (width_em > 0 && height_em > 0)
+        ImGui::SetNextWindowSize(
+            ImVec2(std::min(width_em * em, most.x), std::min(height_em * em, most.y)),
+            ImGuiCond_Appearing);
+    ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), most);
+}
+
+void keep_dialog_inside() {
+    const ImGuiIO& io = ImGui::GetIO();
+    const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+    const ImVec2 fixed(std::clamp(pos.x, 0.0f, std::max(0.0f, io.DisplaySize.x - size.x)),
+                       std::clamp(pos.y, 0.0f, std::max(0.0f, io.DisplaySize.y - size.y)));
+    if (fixed.x != pos.x || fixed.y != pos.y) ImGui::SetWindowPos(fixed);
+}
+
+void status_bar(const StatusInfo& info, const Notice& notice, const JobInfo* job,
+                const Rect& region, CommandQueue& commands) {
     const ImGuiStyle& style = ImGui::GetStyle();
-    const float height = ImGui::GetFrameHeight();
-    ImGui::SetNextWindowPos(ImVec2(0.0f, io.DisplaySize.y - height));
-    ImGui::SetNextWindowSize(ImVec2(io.DisplaySize.x, height));
+    const float em = ImGui::GetFontSize();
+    ImGui::SetNextWindowPos(ImVec2(region.x, region.y));
+    ImGui::SetNextWindowSize(ImVec2(region.w, region.h));
     const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
                                    ImGuiWindowFlags_NoSavedSettings |
                                    ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav |
                                    ImGuiWindowFlags_NoBringToFrontOnFocus;
-    ScopedStyleVar padding(ImGuiStyleVar_WindowPadding,
-                           ImVec2(style.FramePadding.x * 2.0f, style.FramePadding.y));
+    const float pad_y = std::max(0.0f, 0.5f * (region.h - ImGui::GetFrameHeight()));
+    ScopedStyleVar padding(ImGuiStyleVar_WindowPadding, ImVec2(style.FramePadding.x * 2.0f, pad_y));
     ScopedStyleVar rounding(ImGuiStyleVar_WindowRounding, 0.0f);
     ScopedStyleVar border(ImGuiStyleVar_WindowBorderSize, 0.0f);
-    if (ImGui::Begin("##status_bar", nullptr, flags)) {
+    ScopedStyleVar min_size(ImGuiStyleVar_WindowMinSize, ImVec2(1.0f, 1.0f));  // not 32 px
+    if (ImGui::Begin("Status", nullptr, flags)) {
+        // The running job takes the right end: name, time, progress, Cancel.
+        const float job_w = job ? std::min(30.0f * em, 0.55f * region.w) : 0.0f;
+        const float text_right = region.w - job_w - 2.0f * style.FramePadding.x;
+        ImGui::AlignTextToFramePadding();
         ImGui::Text("%zu vertices   %zu faces   %s   %.1f ms", info.n_vertices, info.n_faces,
                     info.file_name.c_str(), info.frame_ms);
-        if (notice.level != Notice::Level::None) {
+        if (notice.level != Notice::Level::None &&
+            ImGui::GetItemRectMax().x + 3.0f * style.ItemSpacing.x < text_right) {
             ImGui::SameLine(0.0f, 3.0f * style.ItemSpacing.x);
+            ImGui::PushClipRect(
+                ImGui::GetCursorScreenPos(),
+                ImVec2(ImGui::GetWindowPos().x + text_right, ImGui::GetWindowPos().y + region.h),
+                true);
             ImGui::TextColored(notice_color(notice.level), "%s", notice.text.c_str());
+            ImGui::PopClipRect();
             if (ImGui::IsItemHovered()) {  // the whole text (the bar may clip it) and details
                 ImGui::BeginTooltip();
                 ImGui::TextUnformatted(notice.text.c_str());
@@ -273,17 +407,35 @@ void status_bar(const StatusInfo& info, const Notice& notice) {
                 ImGui::EndTooltip();
             }
         }
+        if (job) {
+            ImGui::SameLine(region.w - job_w);
+            const float cancel_w = ImGui::CalcTextSize("cancelling").x + 2 * style.FramePadding.x;
+            char label[256];
+            std::snprintf(label, sizeof label, "%s%s%s (%.1f s)", job->name.c_str(),
+                          job->stage.empty() ? "" : ": ", job->stage.c_str(), job->seconds);
+            // Unknown progress: a bar that sweeps, so the user sees the program is alive.
+            const float f = job->fraction >= 0.0 ? float(job->fraction)
+                                                 : float(0.5 + 0.5 * std::sin(3.0 * job->seconds));
+            ImGui::ProgressBar(f, ImVec2(job_w - cancel_w - 2.0f * style.ItemSpacing.x, 0.0f),
+                               label);
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", label);
+            ImGui::SameLine();
+            if (job->cancel_requested)
+                ImGui::TextDisabled("cancelling");
+            else if (ImGui::Button("Cancel##job"))
+                commands.push_back(CancelJob{});
+        }
     }
     ImGui::End();
 }
 
 void help_window(PanelState& panels) {
     if (!panels.help_open) return;
-    ImGui::SetNextWindowPos(
-        ImVec2(0.5f * ImGui::GetIO().DisplaySize.x, 0.4f * ImGui::GetIO().DisplaySize.y),
-        ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+    place_dialog();
     if (ImGui::Begin("Key bindings", &panels.help_open,
                      ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse)) {
+        keep_dialog_inside();
+        close_on_escape(panels.help_open);
         if (ImGui::BeginTable("bindings", 2,
                               ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
             for (const Binding& b : kBindings) {
@@ -299,14 +451,14 @@ void help_window(PanelState& panels) {
     ImGui::End();
 }
 
-void history_window(PanelState& panels, const History& history, bool busy, CommandQueue& commands) {
+void history_window(PanelState& panels, const History& history, bool busy, const Rect& region,
+                    CommandQueue& commands) {
     if (!panels.history_open) return;
-    const float em = ImGui::GetFontSize();
-    ImGui::SetNextWindowPos(ImVec2(0.8f * em, 2.5f * em), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(26.0f * em, 14.0f * em), ImGuiCond_FirstUseEver);
-    if (ImGui::Begin("History", &panels.history_open)) {
-        ImGui::Text("%zu entries, %.1f MB of the %.0f MB budget", history.size(),
-                    history.bytes() / 1e6, history.budget() / 1e6);
+    float height = region.h;
+    if (begin_region("History", region, &panels.history_open, 'l', panels.layout.history_width,
+                     height)) {
+        ImGui::TextWrapped("%zu entries, %.1f MB of the %.0f MB budget", history.size(),
+                           history.bytes() / 1e6, history.budget() / 1e6);
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip(
                 "When the history grows past its budget the oldest entries are "
@@ -315,13 +467,14 @@ void history_window(PanelState& panels, const History& history, bool busy, Comma
         for (std::size_t i = 0; i < history.size(); ++i) {
             const History::EntryInfo e = history.info(i);
             char label[512];
-            std::snprintf(label, sizeof(label), "%zu  %s %s##entry%zu", i, e.label.c_str(),
-                          e.parameters.c_str(), i);
+            std::snprintf(label, sizeof(label), "%zu  %s %s%s##entry%zu", i, e.label.c_str(),
+                          e.parameters.c_str(), i > history.current() ? " (redo)" : "", i);
             const bool current = i == history.current();
             if (ImGui::Selectable(label, current) && !current && !busy)
                 commands.push_back(JumpTo{i});
             if (ImGui::IsItemHovered()) {
                 ImGui::BeginTooltip();
+                ImGui::Text("%zu  %s %s", i, e.label.c_str(), e.parameters.c_str());
                 ImGui::Text("%zu step%s, %.1f ms, %.2f MB", e.steps.size(),
                             e.steps.size() == 1 ? "" : "s", e.ms, e.bytes / 1e6);
                 if (!e.steps.empty())
@@ -329,13 +482,9 @@ void history_window(PanelState& panels, const History& history, bool busy, Comma
                                 e.steps.back().faces);
                 ImGui::EndTooltip();
             }
-            if (i > history.current()) {  // redo entries
-                ImGui::SameLine();
-                ImGui::TextDisabled("(redo)");
-            }
         }
     }
-    ImGui::End();
+    end_region();
 }
 
 namespace {
@@ -347,16 +496,28 @@ void note_widget(const std::string& id) {
     const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
     widget_rect_hook(id, a.x, a.y, b.x, b.y);
 }
+
+/// The width of a widget with its label at the right: `wanted_em`, less in a narrow sidebar
+/// (the label keeps `label_share` of the line), never under 4 em.
+float widget_width(float wanted_em = 12.0f, float label_share = 0.4f) {
+    const float em = ImGui::GetFontSize();
+    const float avail = ImGui::GetContentRegionAvail().x;
+    return std::max(4.0f * em, std::min(wanted_em * em, (1.0f - label_share) * avail));
+}
 }  // namespace
 
 void set_widget_rect_hook(WidgetRectHook hook) {
     widget_rect_hook = std::move(hook);
 }
 
+void note_widget_rect(const std::string& id, float x0, float y0, float x1, float y1) {
+    if (widget_rect_hook) widget_rect_hook(id, x0, y0, x1, y1);
+}
+
 bool operation_widgets(Operation& op, const std::vector<std::string>& skip) {
     bool changed = false;
     const OperationDef& def = *op.def;
-    const float w = 12.0f * ImGui::GetFontSize();
+    const float w = widget_width();
     for (std::size_t i = 0; i < def.params.size(); ++i) {
         if (def.why_not(op.values, i)) continue;  // hidden: it does not apply
         const ParamSpec& p = def.params[i];
@@ -371,9 +532,15 @@ bool operation_widgets(Operation& op, const std::vector<std::string>& skip) {
         switch (p.kind) {
             case ParamKind::Choice: {
                 int current = 0;
-                for (std::size_t c = 0; c < p.choices.size(); ++c)
+                float widest = 0;  // the combo shows its longest choice whole where it can
+                for (std::size_t c = 0; c < p.choices.size(); ++c) {
                     if (p.choices[c].value == int(v.x)) current = int(c);
-                ImGui::SetNextItemWidth(w);
+                    widest = std::max(widest, ImGui::CalcTextSize(p.choices[c].label.c_str()).x);
+                }
+                const float fit =
+                    widest + ImGui::GetFrameHeight() + 2.0f * ImGui::GetStyle().FramePadding.x;
+                ImGui::SetNextItemWidth(
+                    std::max(w, std::min(fit, widget_width(fit / ImGui::GetFontSize(), 0.3f))));
                 if (ImGui::BeginCombo(p.label.c_str(), p.choices[current].label.c_str())) {
                     for (std::size_t c = 0; c < p.choices.size(); ++c)
                         if (ImGui::Selectable(p.choices[c].label.c_str(), int(c) == current))
@@ -527,54 +694,39 @@ void stability_guidance(FairingPanelState& state) {
     }
 }
 
-void place_tool_window() {
-    const ImGuiIO& io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(ImVec2(std::max(0.0f, io.DisplaySize.x - 31.0f * ImGui::GetFontSize()),
-                                   9.0f * ImGui::GetFontSize()),
-                            ImGuiCond_FirstUseEver);
-}
 }  // namespace
 
-void subdivision_window(PanelState& panels, MorphState& morph, const History& history, bool busy,
-                        double now, CommandQueue& commands) {
+void subdivision_section(PanelState& panels, MorphState& morph, const History& history, bool busy,
+                         double now, CommandQueue& commands) {
     OperationPanelState& state = panels.subdivision;
-    if (!state.open) return;
-    place_tool_window();
-    if (ImGui::Begin("Subdivision", &state.open, ImGuiWindowFlags_AlwaysAutoResize)) {
-        operation_panel_body(state, "Subdivide", busy, commands);
-        ImGui::Separator();
-        morph_controls(morph, history, now);
-        ImGui::TextDisabled("Rendering > Colour by vertex > Subdivision vertices");
-    }
-    ImGui::End();
+    if (!section_header("Subdivision", state.open)) return;
+    operation_panel_body(state, "Subdivide", busy, commands);
+    ImGui::Separator();
+    morph_controls(morph, history, now);
+    ImGui::TextDisabled("colour: Rendering > Colour by vertex > Subdivision vertices");
 }
 
-void fairing_window(PanelState& panels, MorphState& morph, const History& history, bool closed,
-                    bool busy, double now, CommandQueue& commands) {
+void fairing_section(PanelState& panels, MorphState& morph, const History& history, bool closed,
+                     bool busy, double now, CommandQueue& commands) {
     FairingPanelState& state = panels.fairing;
-    if (!state.open) return;
-    place_tool_window();
-    if (ImGui::Begin("Fairing", &state.open, ImGuiWindowFlags_AlwaysAutoResize)) {
-        stability_guidance(state);
-        // What the mesh cannot do is switched off with the reason, never ignored.
-        ParamValue& volume = state.op.value("preserve-volume");
-        ParamValue& boundary = state.op.value("boundary");
-        if (!closed) volume.x = 0;
-        if (closed) boundary.x = int(BoundaryMode::Fixed);
-        operation_panel_body(state, "Smooth", busy, commands);
-        if (!closed) ImGui::TextDisabled("open mesh: no volume to preserve");
-        ImGui::Separator();
-        morph_controls(morph, history, now);
-    }
-    ImGui::End();
+    if (!section_header("Fairing", state.open)) return;
+    stability_guidance(state);
+    // What the mesh cannot do is switched off with the reason, never ignored.
+    ParamValue& volume = state.op.value("preserve-volume");
+    ParamValue& boundary = state.op.value("boundary");
+    if (!closed) volume.x = 0;
+    if (closed) boundary.x = int(BoundaryMode::Fixed);
+    operation_panel_body(state, "Smooth", busy, commands);
+    if (!closed) ImGui::TextDisabled("open mesh: no volume to preserve");
+    ImGui::Separator();
+    morph_controls(morph, history, now);
 }
 
-void decimation_window(PanelState& panels, MorphState& morph, const History& history, bool busy,
-                       double now, std::size_t collapsing_edges, CommandQueue& commands) {
+void decimation_section(PanelState& panels, MorphState& morph, const History& history, bool busy,
+                        double now, std::size_t collapsing_edges, CommandQueue& commands) {
     DecimationPanelState& d = panels.decimation;
-    if (!d.open) return;
-    place_tool_window();
-    if (ImGui::Begin("Decimation", &d.open, ImGuiWindowFlags_AlwaysAutoResize)) {
+    if (!section_header("Decimation", d.open)) return;
+    {
         operation_panel_body(d, "Decimate", busy, commands);
         // Level of detail: a slider over the progressive mesh of the current state.
         if (ImGui::CollapsingHeader("Level of detail")) {
@@ -588,7 +740,7 @@ void decimation_window(PanelState& panels, MorphState& morph, const History& his
                         "decimate down to 1 %% with this cost and these "
                         "constraints, recording every collapse");
             } else {
-                ImGui::SetNextItemWidth(12.0f * ImGui::GetFontSize());
+                ImGui::SetNextItemWidth(widget_width());
                 if (ImGui::SliderFloat("lod (% of vertices)", &d.lod_percent, 100.0f, 1.0f,
                                        "%.1f %%", ImGuiSliderFlags_AlwaysClamp))
                     commands.push_back(ShowLevelOfDetail{double(d.lod_percent)});
@@ -608,20 +760,19 @@ void decimation_window(PanelState& panels, MorphState& morph, const History& his
         ImGui::Separator();
         morph_controls(morph, history, now);
     }
-    ImGui::End();
 }
 
-void tools_window(PanelState& panels, bool busy, CommandQueue& commands) {
-    OperationPanelState& state = panels.tools;
-    if (!state.open) return;
-    place_tool_window();
-    if (ImGui::Begin("Tools", &state.open, ImGuiWindowFlags_AlwaysAutoResize)) {
-        ImGui::TextUnformatted("Add noise: move vertices along their normals");
-        const std::size_t before = commands.size();
-        operation_panel_body(state, "Apply", busy, commands);
-        if (commands.size() > before) panels.morph_open = true;
+void tools_section(PanelState& panels, bool busy, CommandQueue& commands) {
+    if (section_header("Tools: add noise", panels.tools.open)) {
+        ImGui::TextWrapped("Moves the vertices along their normals.");
+        operation_panel_body(panels.tools, "Apply", busy, commands);
     }
-    ImGui::End();
+    if (section_header("Tools: weld coincident vertices", panels.weld.open)) {
+        ImGui::TextWrapped(
+            "Joins coincident vertices where the mesh stays manifold (tolerance 0: exactly the "
+            "same position); the log says what stays apart.");
+        operation_panel_body(panels.weld, "Weld", busy, commands);
+    }
 }
 
 namespace {
@@ -629,13 +780,21 @@ namespace {
 void morph_controls(MorphState& morph, const History& history, double now) {
     const std::size_t entry = history.current();
     if (entry == 0) {
-        ImGui::TextDisabled("the first state has nothing before it");
+        ImGui::TextDisabled("morph: the first state has nothing before it");
         return;
     }
     const History::EntryInfo info = history.info(entry);
+    if (!morph.moves) {  // a load, a revert, texture coordinates: no vertex moves
+        ImGui::PushTextWrapPos(0.0f);
+        ImGui::TextDisabled("morph: %s moves no vertex", info.label.c_str());
+        ImGui::PopTextWrapPos();
+        return;
+    }
+    ImGui::PushTextWrapPos(0.0f);
     ImGui::Text("%s %s: before -> after", info.label.c_str(), info.parameters.c_str());
+    ImGui::PopTextWrapPos();
     float t = float(morph.t);
-    ImGui::SetNextItemWidth(16.0f * ImGui::GetFontSize());
+    ImGui::SetNextItemWidth(widget_width(16.0f, 0.0f));
     if (ImGui::SliderFloat("##t", &t, 0.0f, 1.0f, "t = %.3f")) {
         morph.t = t;
         morph.playing = false;
@@ -645,6 +804,7 @@ void morph_controls(MorphState& morph, const History& history, double now) {
             morph.playing = true;
             morph.play_start = now;
         }
+        note_widget("Animate");
     } else if (ImGui::Button("Stop")) {
         morph.playing = false;
     }
@@ -659,83 +819,77 @@ void morph_controls(MorphState& morph, const History& history, double now) {
         morph.playing = false;
     }
     float duration = float(morph.duration);
-    ImGui::SetNextItemWidth(8.0f * ImGui::GetFontSize());
+    ImGui::SetNextItemWidth(widget_width(8.0f));
     if (ImGui::SliderFloat("duration", &duration, 0.2f, 20.0f, "%.1f s",
                            ImGuiSliderFlags_Logarithmic))
         morph.duration = duration;
     const char* easings[] = {"linear", "smooth step", "ease in-out (cubic)"};
     int e = int(morph.easing);
-    ImGui::SetNextItemWidth(8.0f * ImGui::GetFontSize());
+    ImGui::SetNextItemWidth(widget_width(8.0f));
     if (ImGui::Combo("easing", &e, easings, 3)) morph.easing = Easing(e);
     const char* modes[] = {"once", "loop", "ping-pong"};
     int m = int(morph.playback);
-    ImGui::SetNextItemWidth(8.0f * ImGui::GetFontSize());
+    ImGui::SetNextItemWidth(widget_width(8.0f));
     if (ImGui::Combo("playback", &m, modes, 3)) morph.playback = Playback(m);
     if (info.steps.size() > 1) ImGui::TextDisabled("%zu steps, chained", info.steps.size());
 }
 }  // namespace
 
-void morph_window(PanelState& panels, MorphState& morph, const History& history, double now) {
-    if (!panels.morph_open) return;
-    ImGui::SetNextWindowPos(ImVec2(0.8f * ImGui::GetFontSize(), 17.5f * ImGui::GetFontSize()),
-                            ImGuiCond_FirstUseEver);
-    if (ImGui::Begin("Morph", &panels.morph_open, ImGuiWindowFlags_AlwaysAutoResize))
-        morph_controls(morph, history, now);
-    ImGui::End();
+void morph_section(PanelState& panels, MorphState& morph, const History& history, double now) {
+    if (!section_header("Morph", panels.morph_open)) return;
+    morph_controls(morph, history, now);
 }
 
-void record_window(PanelState& panels, bool can_record, CommandQueue& commands) {
+void record_section(PanelState& panels, bool can_record, CommandQueue& commands) {
     RecordState& r = panels.record;
-    if (!r.open && !r.running) return;
-    bool open = true;
-    const ImGuiIO& io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(ImVec2(std::max(0.0f, io.DisplaySize.x - 31.0f * ImGui::GetFontSize()),
-                                   17.5f * ImGui::GetFontSize()),
-                            ImGuiCond_FirstUseEver);
-    if (ImGui::Begin("Record", &open, ImGuiWindowFlags_AlwaysAutoResize)) {
-        ImGui::TextUnformatted("Writes the morph of the current entry as PNG frames.");
-        const float w = 10.0f * ImGui::GetFontSize();
-        if (r.running) ImGui::BeginDisabled();
-        ImGui::SetNextItemWidth(w);
-        if (ImGui::InputInt("frames", &r.frames)) r.frames = std::clamp(r.frames, 2, 100000);
-        ImGui::SetNextItemWidth(w);
-        if (ImGui::InputInt("frames per second", &r.fps)) r.fps = std::clamp(r.fps, 1, 240);
-        ImGui::Text("duration %.2f s", double(r.frames) / r.fps);
-        int size[2] = {r.width, r.height};
-        ImGui::SetNextItemWidth(w);
-        if (ImGui::InputInt2("width, height", size)) {
-            r.width = std::clamp(size[0], 16, 8192);
-            r.height = std::clamp(size[1], 16, 8192);
-        }
-        ImGui::SetNextItemWidth(2 * w);
-        ImGui::InputText("folder", &r.folder);
-        ImGui::SetNextItemWidth(w);
-        ImGui::InputText("name", &r.name);
-        ImGui::TextDisabled("%s/%s_0000.png ...", r.folder.c_str(), r.name.c_str());
-        ImGui::Checkbox("also an MP4 (needs ffmpeg on the PATH)", &r.mp4);
-        if (r.running) ImGui::EndDisabled();
-        if (r.running) {
-            ImGui::ProgressBar(float(r.next) / float(r.frames), ImVec2(w * 1.5f, 0.0f));
+    if (r.running) r.open = true;  // the progress and Cancel stay visible
+    if (!section_header("Record", r.open)) return;
+    ImGui::TextWrapped("Writes the morph of the current entry as PNG frames, framed as the view.");
+    const float w = widget_width(10.0f);
+    if (r.running) ImGui::BeginDisabled();
+    ImGui::SetNextItemWidth(w);
+    if (ImGui::InputInt("frames", &r.frames)) r.frames = std::clamp(r.frames, 2, 100000);
+    ImGui::SetNextItemWidth(w);
+    if (ImGui::InputInt("per second", &r.fps)) r.fps = std::clamp(r.fps, 1, 240);
+    ImGui::Text("duration %.2f s", double(r.frames) / r.fps);
+    int size[2] = {r.width, r.height};
+    ImGui::SetNextItemWidth(w);
+    if (ImGui::InputInt2("width, height", size)) {
+        r.width = std::clamp(size[0], 16, 8192);
+        r.height = std::clamp(size[1], 16, 8192);
+    }
+    ImGui::SetNextItemWidth(w);
+    ImGui::InputText("folder", &r.folder);
+    ImGui::SetNextItemWidth(w);
+    ImGui::InputText("name", &r.name);
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextDisabled("%s/%s_0000.png ...", r.folder.c_str(), r.name.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::Checkbox("also an MP4", &r.mp4);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("needs ffmpeg on the PATH");
+    if (r.running) ImGui::EndDisabled();
+    if (r.running) {
+        ImGui::ProgressBar(float(r.next) / float(r.frames), ImVec2(w, 0.0f));
+        ImGui::SameLine();
+        if (ImGui::Button("Cancel##record")) commands.push_back(CancelRecording{});
+    } else {
+        if (!can_record) ImGui::BeginDisabled();
+        if (ImGui::Button("Record")) commands.push_back(StartRecording{});
+        if (!can_record) {
+            ImGui::EndDisabled();
             ImGui::SameLine();
-            if (ImGui::Button("Cancel")) commands.push_back(CancelRecording{});
-        } else {
-            if (!can_record) ImGui::BeginDisabled();
-            if (ImGui::Button("Record")) commands.push_back(StartRecording{});
-            if (!can_record) {
-                ImGui::EndDisabled();
-                ImGui::SameLine();
-                ImGui::TextDisabled("(apply an operation first)");
-            }
+            ImGui::TextDisabled("(apply an operation first)");
         }
     }
-    ImGui::End();
-    if (!open) r.open = false;
 }
 
 void screenshot_dialog(ScreenshotState& state, CommandQueue& commands) {
     if (!state.open) return;
+    place_dialog();
     if (ImGui::Begin("Screenshot", &state.open, ImGuiWindowFlags_AlwaysAutoResize)) {
-        ImGui::TextUnformatted("The scene without the panels, as PNG.");
+        keep_dialog_inside();
+        close_on_escape(state.open);
+        ImGui::TextUnformatted("The scene without the panels, framed as the view, as PNG.");
         ImGui::SetNextItemWidth(20.0f * ImGui::GetFontSize());
         ImGui::InputText("file", &state.path);
         int size[2] = {state.width, state.height};
@@ -754,7 +908,10 @@ void screenshot_dialog(ScreenshotState& state, CommandQueue& commands) {
 
 void about_window(PanelState& panels) {
     if (!panels.about_open) return;
+    place_dialog();
     if (ImGui::Begin("About trilab", &panels.about_open, ImGuiWindowFlags_AlwaysAutoResize)) {
+        keep_dialog_inside();
+        close_on_escape(panels.about_open);
         ImGui::TextUnformatted("trilab: a laboratory for triangle meshes");
         ImGui::Separator();
         ImGui::TextUnformatted("Half-edge core, OpenGL 3.3 renderer, Dear ImGui " IMGUI_VERSION);
@@ -763,38 +920,12 @@ void about_window(PanelState& panels) {
     ImGui::End();
 }
 
-void job_progress(const JobInfo& job, CommandQueue& commands) {
-    const ImGuiIO& io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(
-        ImVec2(0.5f * io.DisplaySize.x, io.DisplaySize.y - 3.0f * ImGui::GetFrameHeight()),
-        ImGuiCond_Always, ImVec2(0.5f, 1.0f));
-    ImGui::SetNextWindowSize(ImVec2(26.0f * ImGui::GetFontSize(), 0.0f));
-    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
-                                   ImGuiWindowFlags_NoSavedSettings |
-                                   ImGuiWindowFlags_NoFocusOnAppearing;
-    if (ImGui::Begin("##job", nullptr, flags)) {
-        ImGui::Text("%s  (%.1f s)", job.name.c_str(), job.seconds);
-        if (!job.stage.empty()) ImGui::TextDisabled("%s", job.stage.c_str());
-        // Unknown progress: a bar that sweeps, so the user sees the program is alive.
-        const float f = job.fraction >= 0.0 ? float(job.fraction)
-                                            : float(0.5 + 0.5 * std::sin(3.0 * job.seconds));
-        ImGui::ProgressBar(f, ImVec2(-1.0f - 6.0f * ImGui::GetFontSize(), 0.0f),
-                           job.fraction >= 0.0 ? nullptr : "");
-        ImGui::SameLine();
-        if (job.cancel_requested)
-            ImGui::TextDisabled("cancelling");
-        else if (ImGui::Button("Cancel"))
-            commands.push_back(CancelJob{});
-    }
-    ImGui::End();
-}
-
-void log_window(PanelState& panels, const Log& log) {
+void log_window(PanelState& panels, const Log& log, const Rect& region) {
     if (!panels.log_open) return;
-    ImGui::SetNextWindowSize(ImVec2(40.0f * ImGui::GetFontSize(), 14.0f * ImGui::GetFontSize()),
-                             ImGuiCond_FirstUseEver);
-    if (ImGui::Begin("Log", &panels.log_open)) {
+    float width = region.w;
+    if (begin_region("Log", region, &panels.log_open, 't', width, panels.layout.log_height)) {
         const std::vector<LogEntry> entries = log.entries();
+        ImGui::PushTextWrapPos(0.0f);
         for (const LogEntry& e : entries) {
             if (e.level == LogEntry::Level::Error)
                 ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.40f, 1.0f), "%s", e.text.c_str());
@@ -803,68 +934,34 @@ void log_window(PanelState& panels, const Log& log) {
             else
                 ImGui::TextUnformatted(e.text.c_str());
         }
+        ImGui::PopTextWrapPos();
         if (ImGui::GetScrollY() >= ImGui::GetScrollMaxY()) ImGui::SetScrollHereY(1.0f);
     }
-    ImGui::End();
+    end_region();
 }
 
-void info_window(PanelState& panels, const std::vector<std::string>& lines) {
-    if (!panels.info_open) return;
-    if (ImGui::Begin("Model information", &panels.info_open, ImGuiWindowFlags_AlwaysAutoResize)) {
-        for (const std::string& line : lines) ImGui::TextUnformatted(line.c_str());
-    }
-    ImGui::End();
+void info_section(PanelState& panels, const std::vector<std::string>& lines) {
+    if (!section_header("Model information", panels.info_open)) return;
+    ImGui::PushTextWrapPos(0.0f);
+    for (const std::string& line : lines) ImGui::TextUnformatted(line.c_str());
+    ImGui::PopTextWrapPos();
 }
 
-bool color_legend(const VertexColors& colors, ColoringOptions& options) {
+bool color_legend(const VertexColors& colors, ColoringOptions& options, LegendSlot& slot) {
+    slot.width = slot.height = 0;
     if (!colors.has_legend) return false;
-    const ImGuiIO& io = ImGui::GetIO();
-    const float em = ImGui::GetFontSize();
-    ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - em, 2.5f * em), ImGuiCond_Always,
-                            ImVec2(1.0f, 0.0f));
-    ImGui::SetNextWindowBgAlpha(0.75f);
+    // In its fixed region (layout.h): the bottom right of the view, at most the slot's size.
+    ImGui::SetNextWindowPos(ImVec2(slot.right, slot.bottom), ImGuiCond_Always, ImVec2(1.0f, 1.0f));
+    ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(slot.max_width, slot.max_height));
     bool changed = false;
     const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration |
                                    ImGuiWindowFlags_AlwaysAutoResize |
                                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoMove;
     if (ImGui::Begin("##legend", nullptr, flags)) {
-        ImGui::TextUnformatted(colors.label.c_str());
-        // The bar: the map sampled in 48 steps, from range.min (left) to range.max (right).
-        const ImVec2 size(14.0f * em, 1.2f * em);
-        const ImVec2 p0 = ImGui::GetCursorScreenPos();
-        ImDrawList* draw = ImGui::GetWindowDrawList();
-        const int steps = 48;
-        auto to_u32 = [](const Color& c) {
-            return ImGui::ColorConvertFloat4ToU32(ImVec4(c.x(), c.y(), c.z(), 1.0f));
-        };
-        for (int i = 0; i < steps; ++i) {
-            const double t0 = double(i) / steps, t1 = double(i + 1) / steps;
-            const ValueRange& r = colors.range;
-            const Color c0 = map_color(r.min + t0 * (r.max - r.min), r, colors.kind);
-            const Color c1 = map_color(r.min + t1 * (r.max - r.min), r, colors.kind);
-            draw->AddRectFilledMultiColor(ImVec2(p0.x + float(t0) * size.x, p0.y),
-                                          ImVec2(p0.x + float(t1) * size.x, p0.y + size.y),
-                                          to_u32(c0), to_u32(c1), to_u32(c1), to_u32(c0));
-        }
-        ImGui::Dummy(size);
-        ImGui::Text("%-10.4g", colors.range.min);
-        ImGui::SameLine(size.x * 0.5f - 1.5f * em);
-        ImGui::Text("%.4g", 0.5 * (colors.range.min + colors.range.max));
-        char right[32];
-        std::snprintf(right, sizeof(right), "%.4g", colors.range.max);
-        ImGui::SameLine(size.x - ImGui::CalcTextSize(right).x + ImGui::GetStyle().WindowPadding.x);
-        ImGui::TextUnformatted(right);
-        // Outliers beyond these percentiles are clamped to the ends of the bar.
-        float low = float(options.low_percentile), high = float(options.high_percentile);
-        ImGui::SetNextItemWidth(size.x);
-        if (ImGui::DragFloatRange2("##percentiles", &low, &high, 0.2f, 0.0f, 100.0f, "from %.1f %%",
-                                   "to %.1f %%", ImGuiSliderFlags_AlwaysClamp)) {
-            if (high - low >= 0.5f) {
-                options.low_percentile = low;
-                options.high_percentile = high;
-                changed = true;
-            }
-        }
+        const float padding = 2.0f * ImGui::GetStyle().WindowPadding.x;
+        changed = legend_contents(colors, options, slot.max_width - padding);
+        slot.width = ImGui::GetWindowWidth();
+        slot.height = ImGui::GetWindowHeight();
     }
     ImGui::End();
     return changed;
@@ -876,11 +973,11 @@ void unsaved_changes_popup(UnsavedPrompt& prompt, CommandQueue& commands) {
         ImGui::OpenPopup(kTitle);
         prompt.open_requested = false;
     }
-    const ImGuiIO& io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(ImVec2(0.5f * io.DisplaySize.x, 0.4f * io.DisplaySize.y),
-                            ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+    place_dialog();
     if (!ImGui::BeginPopupModal(kTitle, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
-    ImGui::PushTextWrapPos(36.0f * ImGui::GetFontSize());
+    keep_dialog_inside();
+    ImGui::PushTextWrapPos(
+        std::min(36.0f * ImGui::GetFontSize(), 0.8f * ImGui::GetIO().DisplaySize.x));
     ImGui::TextUnformatted(prompt.quitting
                                ? "The mesh has changes that are not saved to a file. Quit anyway?"
                                : "The mesh has changes that are not saved to a file. Open the "
@@ -888,12 +985,20 @@ void unsaved_changes_popup(UnsavedPrompt& prompt, CommandQueue& commands) {
                                  "Undo brings them back.)");
     ImGui::PopTextWrapPos();
     if (!prompt.document_path.empty()) {
-        if (ImGui::Button(("Save to " + prompt.document_path).c_str())) {
+        if (ImGui::Button("Save (overwrite)")) {
             commands.push_back(SaveAndContinue{});
             ImGui::CloseCurrentPopup();
         }
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("replace %s with the current mesh", prompt.document_path.c_str());
         ImGui::SameLine();
     }
+    if (ImGui::Button("Save as...")) {
+        commands.push_back(SaveAsAndContinue{});
+        ImGui::CloseCurrentPopup();
+    }
+    note_widget("Save as...");
+    ImGui::SameLine();
     if (ImGui::Button(prompt.quitting ? "Discard and quit" : "Discard and open")) {
         if (prompt.quitting)
             commands.push_back(Quit{true});
@@ -912,12 +1017,12 @@ void error_popup(Notice& notice) {
         ImGui::OpenPopup(kErrorPopupTitle);
         notice.popup_pending = false;
     }
-    const ImGuiIO& io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(ImVec2(0.5f * io.DisplaySize.x, 0.4f * io.DisplaySize.y),
-                            ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+    place_dialog();
     if (!ImGui::BeginPopupModal(kErrorPopupTitle, nullptr, ImGuiWindowFlags_AlwaysAutoResize))
         return;
-    ImGui::PushTextWrapPos(40.0f * ImGui::GetFontSize());
+    keep_dialog_inside();
+    ImGui::PushTextWrapPos(
+        std::min(40.0f * ImGui::GetFontSize(), 0.8f * ImGui::GetIO().DisplaySize.x));
     ImGui::TextColored(notice_color(Notice::Level::Error), "%s", notice.text.c_str());
     ImGui::PopTextWrapPos();
     if (ImGui::Button("OK") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter)) ||

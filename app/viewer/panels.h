@@ -12,6 +12,7 @@
 #include "app/viewer/commands.h"
 #include "app/viewer/file_browser.h"
 #include "app/viewer/frequency_panel.h"
+#include "app/viewer/layout.h"
 #include "app/viewer/log.h"
 #include "core/coloring.h"
 #include "core/morph.h"
@@ -45,6 +46,9 @@ struct MorphState {
     Easing easing = Easing::SmoothStep;
     Playback playback = Playback::PingPong;
     double play_start = 0.0;  ///< glfw time when playback started
+    /// The entry moves vertices (false for loads, reverts, texture coordinates: nothing to
+    /// animate, so the morph controls say so instead).
+    bool moves = true;
 };
 
 /// The Record panel: writes the current entry's morph as PNG frames (and an MP4 when ffmpeg
@@ -108,12 +112,23 @@ bool operation_widgets(Operation& op, const std::vector<std::string>& skip = {})
 using WidgetRectHook =
     std::function<void(const std::string& id, float x0, float y0, float x1, float y1)>;
 void set_widget_rect_hook(WidgetRectHook hook);
+/// Reports a rectangle to the test hook (nothing without one): plots and legends name the
+/// parts they draw (plots.h).
+void note_widget_rect(const std::string& id, float x0, float y0, float x1, float y1);
+
+/// The wireframe overlay: on, off, or automatic (on while the edges are long enough on the
+/// screen to tell apart; decided again on zoom and when the shown mesh changes).
+enum class WireframeOverlay { Auto, On, Off };
 
 /// Rendering settings that live in the viewer rather than in RenderStyle.
 struct ViewSettings {
+    WireframeOverlay wireframe = WireframeOverlay::Auto;
     VertexColoring coloring = VertexColoring::None;
     ColoringOptions coloring_options;
     TexCoordProjection projection = TexCoordProjection::Spherical;
+    /// The model's up axis (View > Up axis, remembered): the default view keeps it up on the
+    /// screen, and the spherical projection puts its poles on it.
+    UpAxis up = UpAxis::Y;
     bool use_checkerboard = true;  ///< the built-in texture instead of the loaded image
 };
 
@@ -135,6 +150,7 @@ struct PanelState {
     DecimationPanelState decimation;
     RecordState record;
     OperationPanelState tools{"noise"};
+    OperationPanelState weld{"weld"};  ///< Tools > Weld coincident vertices
     bool history_open = false;
     bool morph_open = false;
     FileBrowserState file_browser;
@@ -143,6 +159,8 @@ struct PanelState {
     bool log_open = false;
     bool info_open = false;
     bool context_menu_requested = false;  ///< right click in the view: open the Rendering popup
+    LayoutState layout;                   ///< the regions' sizes (layout.h)
+    bool sidebar_open = true;             ///< Window > Sidebar
 };
 
 /// What the menus need to know about the document and the job runner.
@@ -167,7 +185,7 @@ struct StatusInfo {
     double frame_ms = 0.0;
 };
 
-/// The running job, for the progress window.
+/// The running job, for the progress shown in the status bar.
 struct JobInfo {
     std::string name;
     std::string stage;
@@ -188,47 +206,85 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
 /// The Rendering menu's items (also the right-click popup in the view).
 void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState& panels,
                           const RenderContext& render, CommandQueue& commands);
+/// The View menu (in the menu bar): Default view, and Up axis (+y or +z; queues ResetView).
+void view_menu(ViewSettings& settings, CommandQueue& commands);
 /// The right-click popup with the rendering items.
 void context_menu(RenderStyle& style, ViewSettings& settings, PanelState& panels,
                   const RenderContext& render, CommandQueue& commands);
-/// The History panel: every entry with its steps, timing and memory; a click jumps there.
-void history_window(PanelState& panels, const History& history, bool busy, CommandQueue& commands);
-/// The Subdivision panel (scheme, iterations, Subdivide, and the morph slider and Animate of
-/// the current entry); queues RunOperation.
-void subdivision_window(PanelState& panels, MorphState& morph, const History& history, bool busy,
-                        double now, CommandQueue& commands);
-/// The Fairing panel (operator, integration, step, iterations, volume preservation, Smooth,
-/// and the morph of the current entry); queues RunOperation. `closed` says whether the mesh
-/// has a volume (volume preservation is disabled otherwise, with a tooltip saying why).
-void fairing_window(PanelState& panels, MorphState& morph, const History& history, bool closed,
-                    bool busy, double now, CommandQueue& commands);
-/// The Decimation panel (cost, the three constraints with their thresholds, percentage per
-/// iteration, iterations, Decimate, and the morph slider and Animate of the current entry);
-/// queues RunOperation. `collapsing_edges` is how many edges the overlay shows (0: none).
-void decimation_window(PanelState& panels, MorphState& morph, const History& history, bool busy,
-                       double now, std::size_t collapsing_edges, CommandQueue& commands);
-/// The Tools panel (Add noise); queues RunOperation.
-void tools_window(PanelState& panels, bool busy, CommandQueue& commands);
+// ---- fixed regions (layout.h) ---------------------------------------------------------------
+
+/// Begins the window of a fixed region at `r`: not movable, no saved settings. The user may
+/// drag its inner edge: `resizable` 'r' (the right edge: the sidebar), 'l' (the left edge: the
+/// history column) or 't' (the top edge: the log); after the call the window's size is in
+/// `width` or `height` (the other stays). Always pair with end_region().
+bool begin_region(const char* title, const Rect& r, bool* open, char resizable, float& width,
+                  float& height, int extra_flags = 0);
+void end_region();
+
+/// The left sidebar: one window holding the tool sections; pair with end_region().
+bool begin_sidebar(const Rect& r, LayoutState& layout);
+
+/// Draws a collapsing section header bound to `open` (a click toggles it; a menu or key that
+/// sets it expands the section and scrolls the sidebar to it). Returns `open`.
+bool section_header(const char* label, bool& open);
+
+/// The History column: every entry with its steps, timing and memory; a click jumps there.
+void history_window(PanelState& panels, const History& history, bool busy, const Rect& region,
+                    CommandQueue& commands);
+/// The tool sections of the sidebar (each draws its header and, when open, its body).
+/// Subdivision: scheme, iterations, Subdivide, and the morph slider and Animate of the current
+/// entry; queues RunOperation.
+void subdivision_section(PanelState& panels, MorphState& morph, const History& history, bool busy,
+                         double now, CommandQueue& commands);
+/// Fairing (operator, integration, step, iterations, volume preservation, Smooth, and the
+/// morph of the current entry). `closed` says whether the mesh has a volume (volume
+/// preservation is disabled otherwise, with a tooltip saying why).
+void fairing_section(PanelState& panels, MorphState& morph, const History& history, bool closed,
+                     bool busy, double now, CommandQueue& commands);
+/// Decimation (cost, the three constraints with their thresholds, percentage per iteration,
+/// iterations, Decimate, the level-of-detail slider, the morph of the current entry).
+/// `collapsing_edges` is how many edges the overlay shows (0: none).
+void decimation_section(PanelState& panels, MorphState& morph, const History& history, bool busy,
+                        double now, std::size_t collapsing_edges, CommandQueue& commands);
+/// Tools: Add noise; Weld coincident vertices.
+void tools_section(PanelState& panels, bool busy, CommandQueue& commands);
 /// The morph slider and the animation controls for the current history entry.
-void morph_window(PanelState& panels, MorphState& morph, const History& history, double now);
-/// The Record panel; queues StartRecording / CancelRecording.
-void record_window(PanelState& panels, bool can_record, CommandQueue& commands);
-/// The screenshot dialog; queues TakeScreenshot.
-void screenshot_dialog(ScreenshotState& state, CommandQueue& commands);
-/// A one-line bar along the bottom edge of the window.
-void status_bar(const StatusInfo& info, const Notice& notice);
-/// A small window with the job's name, a progress bar and Cancel.
-void job_progress(const JobInfo& job, CommandQueue& commands);
-/// The key and mouse bindings.
-void help_window(PanelState& panels);
-void about_window(PanelState& panels);
-/// The messages of the session, errors highlighted.
-void log_window(PanelState& panels, const Log& log);
+void morph_section(PanelState& panels, MorphState& morph, const History& history, double now);
+/// Record; queues StartRecording / CancelRecording.
+void record_section(PanelState& panels, bool can_record, CommandQueue& commands);
 /// Model and scene information (the `I` key prints the same lines to the console).
-void info_window(PanelState& panels, const std::vector<std::string>& lines);
+void info_section(PanelState& panels, const std::vector<std::string>& lines);
+
+/// The status bar along the bottom edge: counts, file, frame time, the last notice, and the
+/// running job (name, progress, Cancel) when `job` is set.
+void status_bar(const StatusInfo& info, const Notice& notice, const JobInfo* job,
+                const Rect& region, CommandQueue& commands);
+/// The log along the bottom of the view: the messages of the session, errors highlighted.
+void log_window(PanelState& panels, const Log& log, const Rect& region);
+
+/// Where the colour legend goes: its bottom-right corner and the largest size it may take;
+/// color_legend() writes the size it took (for the next frame's layout).
+struct LegendSlot {
+    float right = 0, bottom = 0, max_width = 0, max_height = 0;
+    float width = 0, height = 0;  ///< out: the legend's size (0: not shown)
+};
 /// The colour bar of a vertex colouring with its value range, and the percentile sliders
 /// that choose the range. Returns true when the user changed the options.
-bool color_legend(const VertexColors& colors, ColoringOptions& options);
+bool color_legend(const VertexColors& colors, ColoringOptions& options, LegendSlot& slot);
+
+// ---- dialogs: floating, kept inside the window ----------------------------------------------
+
+/// Before a dialog's Begin: centred in the display when it appears, at most the display's size
+/// less a margin (larger content scrolls).
+void place_dialog(float width_em = 0, float height_em = 0);
+/// After a dialog's Begin: moves it back inside the display when it was dragged or the
+/// window shrank.
+void keep_dialog_inside();
+/// The screenshot dialog; queues TakeScreenshot.
+void screenshot_dialog(ScreenshotState& state, CommandQueue& commands);
+/// The key and mouse bindings (Esc closes it).
+void help_window(PanelState& panels);
+void about_window(PanelState& panels);
 /// Modal popup showing an error notice once.
 void error_popup(Notice& notice);
 

@@ -7,6 +7,7 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
+#include <imgui_internal.h>  // --print-layout reads the window list
 
 #include <algorithm>
 #include <cmath>
@@ -25,6 +26,7 @@
 #include "core/geometry.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh_stats.h"
+#include "core/orientation.h"
 #include "core/texcoords.h"
 #include "render/offscreen.h"
 
@@ -32,10 +34,14 @@ namespace trilab::viewer {
 namespace {
 
 constexpr const char* kTitle = "trilab";
-constexpr std::size_t kWireframeMaxFacesAtStart = 20000;
+/// ImGui settles hover and popups within a few frames.
 constexpr int kFramesAfterInput = 4;
-constexpr std::size_t kColoringJobFaces = 200000;  ///< larger meshes colour in a job  ///< ImGui
-                                                   ///< settles hover and popups within a few frames
+constexpr std::size_t kColoringJobFaces = 200000;  ///< larger meshes colour in a job
+/// The automatic wireframe overlay is on while a typical edge is at least this many line
+/// widths long on the screen, and goes off below the second figure (no flicker at the edge).
+constexpr double kWireOnLineWidths = 10.0, kWireOffLineWidths = 8.0;
+/// Scripted runs wait at most this many extra frames for jobs and morphs to end.
+constexpr int kMaxSettleFrames = 1000;
 
 void glfw_error(int code, const char* description) {
     std::fprintf(stderr, "trilab: GLFW error %d: %s\n", code, description);
@@ -163,6 +169,7 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
     // Where the framebuffer is already larger than the window (macOS), ImGui scales itself.
     float fb_ratio = window_w > 0 ? float(fb_w) / float(window_w) : 1.0f;
     ui_scale_ = std::max(1.0f, scale_x / std::max(fb_ratio, 1.0f));
+    if (options_.ui_scale > 0) ui_scale_ = options_.ui_scale;
     imgui_ = std::make_unique<ImGuiLayer>(window_.get(), ui_scale_);
 
     renderer_ = std::make_unique<MeshRenderer>();
@@ -170,8 +177,12 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
     checkerboard_ = make_checkerboard();
     update_texture();
     view_.camera.set_viewport(float(window_w), float(window_h));
+    view_rect_ = Rect{0, 0, float(window_w), float(window_h)};
     // Recent files persist only for interactive sessions, not for scripted runs.
     if (options_.frames == 0) recent_.load(RecentFiles::default_file());
+    if (options_.frames == 0) preferences_.load(Preferences::default_file());
+    view_.settings.up = options_.up.empty() ? preferences_.up : parse_up_axis(options_.up, "--up");
+    view_.camera.reset_rotation(view_.settings.up);
     if (options_.memory_budget_mb > 0)
         document_.history.set_budget(std::size_t(options_.memory_budget_mb) << 20);
     push_loaded(make_default_model(), "Default model", "default model", "", LoadReport{});
@@ -179,22 +190,46 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
               " on " + reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
     // Initial rendering options; bad names throw InvalidArgument before any window work.
     if (!options_.mode.empty()) view_.style.mode = parse_render_mode(options_.mode);
+    if (options_.wireframe == "on")
+        view_.settings.wireframe = WireframeOverlay::On;
+    else if (options_.wireframe == "off")
+        view_.settings.wireframe = WireframeOverlay::Off;
+    else if (!options_.wireframe.empty() && options_.wireframe != "auto")
+        throw InvalidArgument("--wireframe: expected on, off or auto, got '" + options_.wireframe +
+                              "'");
     if (!options_.color.empty()) {
         view_.settings.coloring = parse_coloring(options_.color);
         update_coloring();
     }
-    if (!options_.operation.empty()) parse_operation(options_.operation);  // refuse bad ones now
+    if (!options_.operation.empty()) {  // refuse bad ones now; the panel shows its values
+        const Operation op = parse_operation(options_.operation);
+        if (OperationPanelState* panel = panel_of(op)) panel->op = op;
+    }
     for (std::size_t pos = 0; pos < options_.show.size();) {
         std::size_t comma = options_.show.find(',', pos);
         if (comma == std::string::npos) comma = options_.show.size();
         const std::string panel = options_.show.substr(pos, comma - pos);
         pos = comma + 1;
-        if (panel == "history")
+        if (panel == "all") {  // every panel (not the dialogs)
+            panels_.history_open = panels_.morph_open = panels_.log_open = true;
+            panels_.info_open = panels_.tools.open = panels_.weld.open = panels_.fairing.open =
+                true;
+            panels_.subdivision.open = panels_.frequency.open = true;
+            panels_.decimation.open = panels_.record.open = true;
+        } else if (panel == "help")
+            panels_.help_open = true;
+        else if (panel == "about")
+            panels_.about_open = true;
+        else if (panel == "screenshot")
+            panels_.screenshot.open = true;
+        else if (panel == "history")
             panels_.history_open = true;
         else if (panel == "morph")
             panels_.morph_open = true;
         else if (panel == "tools")
             panels_.tools.open = true;
+        else if (panel == "weld")
+            panels_.weld.open = true;
         else if (panel == "fairing")
             panels_.fairing.open = true;
         else if (panel == "subdivision")
@@ -214,8 +249,10 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
         else
             throw InvalidArgument(
                 "--show: unknown panel '" + panel +
-                "' (history, morph, tools, subdivision, fairing, frequency, record, log, info)");
+                "' (all, history, morph, tools, weld, subdivision, fairing, frequency, "
+                "decimation, collapsing-edges, record, log, info, help, about, screenshot)");
     }
+    initial_load_ended_ = options_.mesh_path.empty();
     if (!options_.mesh_path.empty()) load(options_.mesh_path);
     if (!options_.operation.empty() && options_.mesh_path.empty())
         commands_.push_back(RunOperation{parse_operation(options_.operation)});
@@ -230,7 +267,10 @@ void Viewer::push_loaded(HalfedgeMesh mesh, std::string label, std::string name,
     // A load shows no motion: every vertex "starts" where it is.
     MorphCorrespondence none{MorphCorrespondence::Kind::FromEarlier, mesh.positions()};
     const std::string parameters = path;
-    if (document_.history.size() == 0)
+    // The first file replaces the built-in model while nothing was done to it.
+    const bool untouched_default =
+        document_.history.size() == 1 && document_.path.empty() && !document_.unsaved;
+    if (document_.history.size() == 0 || untouched_default)
         document_.history.reset(std::move(mesh), std::move(label), parameters);
     else
         log_history_messages(document_.history.push(std::move(label), parameters, 0.0,
@@ -238,10 +278,9 @@ void Viewer::push_loaded(HalfedgeMesh mesh, std::string label, std::string name,
     document_.name = std::move(name);
     document_.path = std::move(path);
     document_.report = std::move(report);
+    view_.camera.reset_rotation(view_.settings.up);  // a new model: the default view
     on_state_changed(true);
     document_.unsaved = false;
-    // The overlay starts on where the edges can still be told apart; W toggles it.
-    view_.style.wireframe = document_.mesh().n_faces() <= kWireframeMaxFacesAtStart;
     glfwSetWindowTitle(window_.get(), (document_.name + " - " + kTitle).c_str());
 }
 
@@ -257,6 +296,7 @@ void Viewer::on_state_changed(bool fit) {
         mesh.has_vertex_property("v:texcoord") && document_.texcoords_projected;
     const MeshStats s = compute_stats(mesh);
     document_.closed = s.volume.has_value();
+    surface_area_ = s.area;
     char buf[256];
     std::vector<std::string>& info = document_.info;
     info.clear();
@@ -264,8 +304,8 @@ void Viewer::on_state_changed(bool fit) {
                    (document_.path.empty() ? "" : " (" + document_.path + ")"));
     const History::EntryInfo entry = document_.history.info(document_.history.current());
     info.push_back("state " + std::to_string(document_.history.current()) + " of " +
-                   std::to_string(document_.history.size()) + ": " + entry.label + " " +
-                   entry.parameters);
+                   std::to_string(document_.history.size()) + ": " + entry.label +
+                   (entry.parameters.empty() ? "" : " " + entry.parameters));
     std::snprintf(buf, sizeof(buf), "vertices %zu (%zu isolated), edges %zu, faces %zu", s.vertices,
                   s.isolated_vertices, s.edges, s.faces);
     info.push_back(buf);
@@ -283,7 +323,14 @@ void Viewer::on_state_changed(bool fit) {
     for (const std::string& line : document_.report.lines()) info.push_back("load: " + line);
 
     morph_ = MorphState{1.0, false, morph_.duration, morph_.easing, morph_.playback, 0.0};
+    morph_.moves = entry_moves();
     morph_topology_ = nullptr;
+    // The status bar tells where the document is now (a load says more afterwards).
+    notice_ = Notice{Notice::Level::Info,
+                     "state " + std::to_string(document_.history.current()) + ": " + entry.label +
+                         (entry.parameters.empty() ? "" : " " + entry.parameters),
+                     {},
+                     false};
     renderer_->upload(mesh);
     view_.colors = VertexColors{};
     if (view_.settings.coloring != VertexColoring::None) update_coloring();
@@ -339,7 +386,7 @@ void Viewer::update_stable_step() {
 
 bool Viewer::ready_for_script() const {
     if (jobs_.busy()) return false;
-    if (!options_.mesh_path.empty() && document_.path.empty()) return false;  // still loading
+    if (!initial_load_ended_) return false;  // still loading
     if (!options_.operation.empty() && !initial_op_done_ && !options_.mesh_path.empty())
         return false;
     return true;
@@ -362,6 +409,12 @@ void Viewer::commit_result(const Operation& op, OperationResult result_value) {
                                                 std::move(meshes), std::move(correspondences), op));
     log_.info(result->label + " " + result->parameters);
     for (const std::string& line : result->report) log_.info("  " + line);
+    if (op.def && op.name() == "flip") {  // replaces a load's "its faces point inwards"
+        std::string text = result->label;
+        for (std::size_t i = 0; i < result->report.size(); ++i)
+            text += (i ? "; " : ": ") + result->report[i];
+        notice_ = Notice{Notice::Level::Info, text, {}, false};
+    }
     on_state_changed(false);
     // A run that stopped early keeps its good steps and says why, never silently.
     if (result->stopped_early)
@@ -383,17 +436,13 @@ void Viewer::start_recording() {
         notify_error("record: cannot create the folder " + r.folder);
         return;
     }
-    // Frame the union of the states before and after the entry, fixed for all frames.
-    BoundingBox box;
-    for (double t : {0.0, 1.0}) {
-        const MorphFrame f = h.morph(h.current(), t);
-        for (Vertex v : f.topology->vertices()) box.extend(f.positions[v.idx()]);
-    }
+    // Framed as the view, fixed for all frames.
     record_camera_ = view_.camera;
-    record_camera_.set_viewport(float(r.width), float(r.height));
-    const Point c = box.center();
-    record_camera_.fit_sphere(glm::vec3(float(c.x()), float(c.y()), float(c.z())),
-                              float(0.5 * std::max(box.diagonal(), 1e-9)));
+    record_camera_.reframe_for_viewport(float(r.width), float(r.height));
+    int x = 0, y = 0, view_w = 0, view_h = 0;
+    view_viewport(x, y, view_w, view_h);
+    record_line_scale_ =
+        ui_scale_ * std::min(float(r.width) / float(view_w), float(r.height) / float(view_h));
     morph_.playing = false;
     r.running = true;
     r.next = 0;
@@ -412,6 +461,8 @@ void Viewer::record_next_frame() {
         framebuffer.create(r.width, r.height, 4);
         framebuffer.bind();
         RenderStyle style = view_.style;
+        style.wire_width *= record_line_scale_;
+        style.point_size *= record_line_scale_;
         clear_background(style);
         renderer_->draw(record_camera_.view(), record_camera_.projection(), style);
         Image image = framebuffer.read_rgba();
@@ -498,7 +549,8 @@ void Viewer::update_morph() {
         }
         renderer_->update_positions(*frame.topology, frame.positions);
     } catch (const std::exception& e) {
-        morph_ = MorphState{1.0, false, morph_.duration, morph_.easing, morph_.playback, 0.0};
+        morph_ = MorphState{1.0, false,       morph_.duration, morph_.easing, morph_.playback,
+                            0.0, morph_.moves};
         notify_error(std::string("morph: ") + e.what());
     }
 }
@@ -514,14 +566,27 @@ void Viewer::load(const std::string& path) {
         progress.report(-1.0, "reading and building the half-edge mesh");
         auto loaded = std::make_shared<LoadedMesh>(read_mesh(path));
         // Runs on the render thread when the job succeeded and was not cancelled.
-        return JobRunner::Finish([this, loaded, path, name] {
-            notice_ = Notice{Notice::Level::Info, "Loaded " + name, loaded->report.lines(), false};
+        // A closed mesh turned inside out (read_mesh notes it): said where it shows.
+        auto inward = std::make_shared<std::string>(inward_orientation_note(loaded->mesh));
+        return JobRunner::Finish([this, loaded, path, name, inward] {
             log_.info("loaded " + path);
-            for (const std::string& line : loaded->report.lines()) log_.info("  " + line);
+            for (const std::string& line : loaded->report.lines()) {
+                if (line == *inward)
+                    log_.warning("  " + line);
+                else
+                    log_.info("  " + line);
+            }
             if (!loaded->texture_path.empty()) log_.info("  texture: " + loaded->texture_path);
             const bool revert = path == document_.path;
+            std::vector<std::string> report_lines = loaded->report.lines();
             push_loaded(std::move(loaded->mesh), revert ? "Revert" : "Load " + name, name, path,
                         std::move(loaded->report));
+            notice_ = Notice{Notice::Level::Info, (revert ? "Reverted to " : "Loaded ") + name,
+                             std::move(report_lines), false};
+            if (!inward->empty())
+                notice_.text +=
+                    ": its faces point inwards (negative volume); Tools > Flip "
+                    "orientation turns them outwards";
             if (!options_.operation.empty() && path == options_.mesh_path && !initial_op_done_) {
                 initial_op_done_ = true;
                 commands_.push_back(RunOperation{parse_operation(options_.operation)});
@@ -565,6 +630,10 @@ void Viewer::load_texture(const std::string& path) {
             texture_ = std::move(*image);
             view_.settings.use_checkerboard = false;
             update_texture();
+            // A texture was asked for: show it.
+            view_.style.mode = RenderMode::Textured;
+            if (view_.style.texture_mode == TextureMode::Off)
+                view_.style.texture_mode = TextureMode::Modulate;
             log_.info("texture " + path + ": " + std::to_string(texture_.width) + " x " +
                       std::to_string(texture_.height));
             notice_ = Notice{Notice::Level::Info, "Texture " + name, {}, false};
@@ -582,6 +651,7 @@ void Viewer::poll_jobs() {
         commands_.push_back(UpdateColoring{});
     }
     active_frames_ = kFramesAfterInput;
+    if (outcome.name.rfind("Loading ", 0) == 0) initial_load_ended_ = true;  // or failed
     const bool preview = outcome.name.rfind("Preview: ", 0) == 0;
     if (preview && outcome.kind != Kind::Failed) {
         if (outcome.kind == Kind::Succeeded && preview_.requested &&
@@ -622,20 +692,40 @@ std::vector<std::string> Viewer::scene_info() const {
     return lines;
 }
 
+void Viewer::reset_view() {
+    const UpAxis up = view_.settings.up;
+    view_.camera.reset_rotation(up);
+    fit_view();
+    if (preferences_.up != up) {
+        preferences_.up = up;
+        preferences_.save();
+        log_.info(std::string("up axis: +") + up_axis_name(up) +
+                  " (the default view and the spherical texture projection)");
+        // Coordinates the viewer projected around the other axis follow (a history entry).
+        if (document_.texcoords_projected &&
+            view_.settings.projection == TexCoordProjection::Spherical)
+            project_texcoords_now();
+    }
+}
+
 void Viewer::fit_view() {
     const HalfedgeMesh& mesh = document_.mesh();
     BoundingBox box = bounding_box(mesh);
-    if (box.empty) {
-        view_.camera.fit_sphere(glm::vec3(0.0f), 1.0f);
-        return;
+    fit_center_ = glm::vec3(0.0f);
+    fit_radius_ = 1.0f;
+    if (!box.empty) {
+        // The smallest sphere around the box centre that holds every vertex: tighter than the
+        // box's own bounding sphere, so round models fill the view.
+        Point center = box.center();
+        double radius2 = 0.0;
+        for (Vertex v : mesh.vertices())
+            radius2 = std::max(radius2, (mesh.position(v) - center).squaredNorm());
+        fit_center_ = to_glm(center);
+        fit_radius_ = float(std::sqrt(radius2));
     }
-    // The smallest sphere around the box centre that holds every vertex: tighter than the
-    // box's own bounding sphere, so round models fill the view.
-    Point center = box.center();
-    double radius2 = 0.0;
-    for (Vertex v : mesh.vertices())
-        radius2 = std::max(radius2, (mesh.position(v) - center).squaredNorm());
-    view_.camera.fit_sphere(to_glm(center), float(std::sqrt(radius2)));
+    view_.camera.set_viewport(std::max(view_rect_.w, 1.0f), std::max(view_rect_.h, 1.0f));
+    view_.camera.fit_sphere(fit_center_, fit_radius_);
+    camera_fitted_ = true;
 }
 
 void Viewer::apply_colors(VertexColors colors) {
@@ -735,17 +825,16 @@ void Viewer::project_texcoords_now() {
         return;
     }
     HalfedgeMesh textured = document_.mesh();
-    project_texcoords(textured, view_.settings.projection);
-    const char* kind =
-        view_.settings.projection == TexCoordProjection::Planar ? "planar" : "spherical";
+    project_texcoords(textured, view_.settings.projection, view_.settings.up);
+    const bool planar = view_.settings.projection == TexCoordProjection::Planar;
+    const std::string kind =
+        planar ? "planar" : std::string("spherical, +") + up_axis_name(view_.settings.up) + " up";
     // An entry of its own, so it can be undone; the shape does not move.
     log_history_messages(document_.history.push("Texture coordinates", kind, 0.0,
                                                 {std::move(textured)}, {MorphCorrespondence{}}));
     document_.texcoords_projected = true;
     on_state_changed(false);
-    log_.info(std::string(view_.settings.projection == TexCoordProjection::Planar ? "planar"
-                                                                                  : "spherical") +
-              " texture coordinates computed on the current shape");
+    log_.info(kind + " texture coordinates computed on the current shape");
 }
 
 void Viewer::take_screenshot(const TakeScreenshot& request) {
@@ -754,15 +843,16 @@ void Viewer::take_screenshot(const TakeScreenshot& request) {
         framebuffer.create(request.width, request.height, 4);
         framebuffer.bind();
         RenderStyle style = view_.style;
-        // Line widths and point sizes keep their look relative to the picture's size.
-        int window_w = 0, window_h = 0;
-        glfwGetFramebufferSize(window_.get(), &window_w, &window_h);
-        const float scale = window_h > 0 ? float(request.height) / float(window_h) : 1.0f;
+        // Framed as the view; line widths and point sizes keep their look relative to it.
+        int x = 0, y = 0, view_w = 0, view_h = 0;
+        view_viewport(x, y, view_w, view_h);
+        const float scale =
+            std::min(float(request.width) / float(view_w), float(request.height) / float(view_h));
         style.wire_width *= ui_scale_ * scale;
         style.point_size *= ui_scale_ * scale;
         clear_background(style, request.transparent ? 0.0f : 1.0f);
         Camera camera = view_.camera;
-        camera.set_viewport(float(request.width), float(request.height));
+        camera.reframe_for_viewport(float(request.width), float(request.height));
         renderer_->draw(camera.view(), camera.projection(), style);
         Image image = framebuffer.read_rgba();
         Framebuffer::bind_default();
@@ -782,14 +872,19 @@ void Viewer::execute(const Command& command) {
         clear_preview(true);
         if (c->discard_changes || confirm_discard(false, c->path)) load(c->path);
     } else if (auto* save_file = std::get_if<SaveFile>(&command)) {
-        continue_after_save_ = false;
+        continue_after_save_ = save_file->then_continue;
         save(save_file->path);
+    } else if (std::holds_alternative<SaveAsAndContinue>(command)) {
+        panels_.file_browser.request(FileBrowserState::Purpose::SaveMesh, document_.path);
+        panels_.file_browser.then_continue = true;
     } else if (std::holds_alternative<RevertFile>(command)) {
         if (!document_.path.empty()) load(document_.path);
     } else if (auto* texture = std::get_if<LoadTexture>(&command)) {
         load_texture(texture->path);
     } else if (std::holds_alternative<FitView>(command)) {
         fit_view();
+    } else if (std::holds_alternative<ResetView>(command)) {
+        reset_view();
     } else if (std::holds_alternative<Undo>(command) || std::holds_alternative<Redo>(command) ||
                std::holds_alternative<JumpTo>(command)) {
         History& h = document_.history;
@@ -855,21 +950,34 @@ void Viewer::execute(const Command& command) {
 void Viewer::handle_input() {
     const ImGuiIO& io = ImGui::GetIO();
     Camera& camera = view_.camera;
-    camera.set_viewport(io.DisplaySize.x, io.DisplaySize.y);
-
+    const Rect& view = view_rect_;
+    // Mouse input in the view's coordinates; drags count when they began in the view.
+    const bool in_view = ImGui::IsMousePosValid() && io.MousePos.x >= view.x &&
+                         io.MousePos.y >= view.y && io.MousePos.x < view.right() &&
+                         io.MousePos.y < view.bottom();
+    if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) ||
+        ImGui::IsMouseClicked(ImGuiMouseButton_Middle))
+        drag_in_view_ = in_view && !io.WantCaptureMouse;
     if (!io.WantCaptureMouse && ImGui::IsMousePosValid()) {
-        const glm::vec2 pos(io.MousePos.x, io.MousePos.y);
+        const glm::vec2 pos(io.MousePos.x - view.x, io.MousePos.y - view.y);
         const glm::vec2 delta(io.MouseDelta.x, io.MouseDelta.y);
         const bool moved = delta.x != 0.0f || delta.y != 0.0f;
-        if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) {
+        if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && in_view) {
             commands_.push_back(FitView{});
-        } else if (moved && ImGui::IsMouseDown(ImGuiMouseButton_Left) && !io.KeyShift) {
+        } else if (moved && drag_in_view_ && ImGui::IsMouseDown(ImGuiMouseButton_Left) &&
+                   !io.KeyShift) {
             camera.rotate(pos - delta, pos);
-        } else if (moved && (ImGui::IsMouseDown(ImGuiMouseButton_Middle) ||
-                             (ImGui::IsMouseDown(ImGuiMouseButton_Left) && io.KeyShift))) {
+            camera_fitted_ = false;
+        } else if (moved && drag_in_view_ &&
+                   (ImGui::IsMouseDown(ImGuiMouseButton_Middle) ||
+                    (ImGui::IsMouseDown(ImGuiMouseButton_Left) && io.KeyShift))) {
             camera.pan(delta);
+            camera_fitted_ = false;
         }
-        if (io.MouseWheel != 0.0f) camera.zoom(io.MouseWheel);
+        if (io.MouseWheel != 0.0f && in_view) {
+            camera.zoom(io.MouseWheel);
+            camera_fitted_ = false;
+        }
     }
 
     // Files dropped on the window: images become the texture, anything else is opened.
@@ -882,7 +990,7 @@ void Viewer::handle_input() {
     dropped_paths_.clear();
 
     // A right click that did not drag opens the Rendering menu as a popup.
-    if (!io.WantCaptureMouse && ImGui::IsMouseReleased(ImGuiMouseButton_Right) &&
+    if (!io.WantCaptureMouse && in_view && ImGui::IsMouseReleased(ImGuiMouseButton_Right) &&
         ImGui::GetMouseDragDelta(ImGuiMouseButton_Right).x == 0.0f &&
         ImGui::GetMouseDragDelta(ImGuiMouseButton_Right).y == 0.0f)
         panels_.context_menu_requested = true;
@@ -907,8 +1015,9 @@ void Viewer::handle_input() {
                 case GLFW_KEY_HOME:
                     commands_.push_back(FitView{});
                     break;
-                case GLFW_KEY_W:
-                    style.wireframe = !style.wireframe;
+                case GLFW_KEY_W:  // from whatever shows now to the other, explicitly
+                    view_.settings.wireframe =
+                        style.wireframe ? WireframeOverlay::Off : WireframeOverlay::On;
                     break;
                 case GLFW_KEY_B:
                     style.back_face_color = !style.back_face_color;
@@ -954,7 +1063,7 @@ void Viewer::handle_input() {
                     panels_.record.open = !panels_.record.open;
                     break;
                 case GLFW_KEY_SPACE:
-                    if (document_.history.current() > 0) {
+                    if (document_.history.current() > 0 && morph_.moves) {
                         morph_.playing = !morph_.playing;
                         morph_.play_start = glfwGetTime();
                     }
@@ -962,8 +1071,15 @@ void Viewer::handle_input() {
                 case GLFW_KEY_F1:
                     panels_.help_open = !panels_.help_open;
                     break;
-                case GLFW_KEY_ESCAPE:  // back to the state before the preview
-                    if (preview_.requested) commands_.push_back(CancelPreview{});
+                case GLFW_KEY_ESCAPE:  // close a dialog, or back to the state before the preview
+                    if (panels_.help_open)
+                        panels_.help_open = false;
+                    else if (panels_.about_open)
+                        panels_.about_open = false;
+                    else if (panels_.screenshot.open)
+                        panels_.screenshot.open = false;
+                    else if (preview_.requested)
+                        commands_.push_back(CancelPreview{});
                     break;
                 default:
                     break;
@@ -987,46 +1103,132 @@ void Viewer::draw_ui() {
     menu_bar(view_.style, view_.settings, panels_, context, render, commands_);
     context_menu(view_.style, view_.settings, panels_, render, commands_);
     if (checker != view_.settings.use_checkerboard) update_texture();
-    if (color_legend(view_.colors, view_.settings.coloring_options))
-        commands_.push_back(UpdateColoring{});
-    screenshot_dialog(panels_.screenshot, commands_);
-    update_preview_flags();
-    history_window(panels_, document_.history, jobs_.busy(), commands_);
-    tools_window(panels_, jobs_.busy(), commands_);
-    subdivision_window(panels_, morph_, document_.history, jobs_.busy(), glfwGetTime(), commands_);
-    update_stable_step();
-    fairing_window(panels_, morph_, document_.history, document_.closed, jobs_.busy(),
-                   glfwGetTime(), commands_);
-    update_collapsing_edges();
-    decimation_window(panels_, morph_, document_.history, jobs_.busy(), glfwGetTime(),
-                      panels_.decimation.show_collapsing_edges ? collapse_lines_->n_segments() : 0,
-                      commands_);
-    morph_window(panels_, morph_, document_.history, glfwGetTime());
-    frequency_ui();
-    record_window(panels_, document_.history.current() > 0 && !jobs_.busy(), commands_);
+
+    // The fixed regions (layout.h). A region the user resizes this frame changes the ones
+    // drawn after it, so the layout is computed again after each resizable region.
+    const ImGuiIO& io = ImGui::GetIO();
+    LayoutInput in;
+    in.width = io.DisplaySize.x;
+    in.height = io.DisplaySize.y;
+    in.em = ImGui::GetFontSize();
+    in.frame_height = ImGui::GetFrameHeight();
+    in.sidebar = panels_.sidebar_open;
+    in.history = panels_.history_open;
+    in.log = panels_.log_open;
+    in.legend = view_.colors.has_legend;
+    LayoutState& sizes = panels_.layout;
+    Layout layout = compute_layout(in, sizes);
+
     StatusInfo status;
     status.n_vertices = document_.mesh().n_vertices();
     status.n_faces = document_.mesh().n_faces();
     status.file_name = document_.name;
     status.frame_ms = frame_ms();
-    status_bar(status, notice_);
     // A preview's progress shows only when it takes a while.
-    if (jobs_.busy() && !(is_preview_job() && jobs_.elapsed_seconds() < 0.5)) {
-        JobInfo job;
+    JobInfo job;
+    const bool show_job = jobs_.busy() && !(is_preview_job() && jobs_.elapsed_seconds() < 0.5);
+    if (show_job) {
         job.name = jobs_.name();
         job.stage = jobs_.stage();
         job.fraction = jobs_.fraction();
         job.seconds = jobs_.elapsed_seconds();
         job.cancel_requested = jobs_.cancel_requested();
-        job_progress(job, commands_);
     }
+    status_bar(status, notice_, show_job ? &job : nullptr, layout.status, commands_);
+
+    update_preview_flags();
+    update_stable_step();
+    update_collapsing_edges();
+    if (panels_.sidebar_open && begin_sidebar(layout.sidebar, sizes)) {
+        tools_section(panels_, jobs_.busy(), commands_);
+        fairing_section(panels_, morph_, document_.history, document_.closed, jobs_.busy(),
+                        glfwGetTime(), commands_);
+        frequency_ui();
+        subdivision_section(panels_, morph_, document_.history, jobs_.busy(), glfwGetTime(),
+                            commands_);
+        decimation_section(
+            panels_, morph_, document_.history, jobs_.busy(), glfwGetTime(),
+            panels_.decimation.show_collapsing_edges ? collapse_lines_->n_segments() : 0,
+            commands_);
+        morph_section(panels_, morph_, document_.history, glfwGetTime());
+        record_section(panels_, document_.history.current() > 0 && morph_.moves && !jobs_.busy(),
+                       commands_);
+        info_section(panels_, panels_.info_open ? scene_info() : std::vector<std::string>{});
+        ImGui::Spacing();
+        ImGui::PushTextWrapPos(0.0f);
+        ImGui::TextDisabled(
+            "The Tools and Algorithms menus open these sections; H the history, L the log.");
+        ImGui::PopTextWrapPos();
+    }
+    if (panels_.sidebar_open) end_region();
+    layout = compute_layout(in, sizes);
+    history_window(panels_, document_.history, jobs_.busy(), layout.history, commands_);
+    layout = compute_layout(in, sizes);
+    log_window(panels_, log_, layout.log);
+    layout = compute_layout(in, sizes);
+    LegendSlot slot;
+    slot.right = layout.legend.right();
+    slot.bottom = layout.legend.bottom();
+    slot.max_width = layout.legend_max_width;
+    slot.max_height = layout.legend_max_height;
+    if (color_legend(view_.colors, view_.settings.coloring_options, slot))
+        commands_.push_back(UpdateColoring{});
+    if (slot.width > 0) {  // its size this frame places it in the next
+        sizes.legend_width = slot.width;
+        sizes.legend_height = slot.height;
+    }
+    layout = compute_layout(in, sizes);
+    const bool resized = layout.view.w != view_rect_.w || layout.view.h != view_rect_.h;
+    view_rect_ = layout.view;
+    view_.camera.set_viewport(std::max(view_rect_.w, 1.0f), std::max(view_rect_.h, 1.0f));
+    // A model framed by Fit stays framed when the view changes size, until the user moves it.
+    if (resized && camera_fitted_) view_.camera.fit_sphere(fit_center_, fit_radius_);
+
+    // Dialogs float over the view.
+    screenshot_dialog(panels_.screenshot, commands_);
     help_window(panels_);
     about_window(panels_);
-    log_window(panels_, log_);
-    if (panels_.info_open) info_window(panels_, scene_info());
     file_browser(panels_.file_browser, commands_);
     error_popup(notice_);
     unsaved_changes_popup(panels_.unsaved, commands_);
+}
+
+void Viewer::view_viewport(int& x, int& y, int& w, int& h) const {
+    // The backend reads the window and framebuffer sizes once a frame; no X round trip here.
+    const ImGuiIO& io = ImGui::GetIO();
+    const float sx = io.DisplayFramebufferScale.x, sy = io.DisplayFramebufferScale.y;
+    const int fb_h = int(std::lround(io.DisplaySize.y * sy));
+    x = int(std::lround(view_rect_.x * sx));
+    w = std::max(1, int(std::lround(view_rect_.w * sx)));
+    h = std::max(1, int(std::lround(view_rect_.h * sy)));
+    y = fb_h - int(std::lround(view_rect_.y * sy)) - h;  // GL counts rows from the bottom
+}
+
+void Viewer::update_wireframe() {
+    RenderStyle& style = view_.style;
+    // A typical edge of the shown mesh: the side of an equilateral triangle of the mean
+    // triangle area (the current state's area over the shown triangles, so previews,
+    // morphs and levels of detail count their own density). Two multiplications a frame.
+    const std::size_t triangles = renderer_->n_triangles();
+    edge_pixels_ = 0;
+    if (triangles > 0 && surface_area_ > 0) {
+        const double edge = std::sqrt(4.0 * surface_area_ / (std::sqrt(3.0) * double(triangles)));
+        edge_pixels_ = edge * double(view_.camera.pixels_per_unit()) *
+                       double(ImGui::GetIO().DisplayFramebufferScale.y);
+    }
+    const double line = std::max(1.0, double(style.wire_width * ui_scale_));
+    wire_auto_on_ = edge_pixels_ >= (wire_auto_on_ ? kWireOffLineWidths : kWireOnLineWidths) * line;
+    switch (view_.settings.wireframe) {
+        case WireframeOverlay::On:
+            style.wireframe = true;
+            break;
+        case WireframeOverlay::Off:
+            style.wireframe = false;
+            break;
+        case WireframeOverlay::Auto:
+            style.wireframe = wire_auto_on_;
+            break;
+    }
 }
 
 void Viewer::render_scene() {
@@ -1034,7 +1236,10 @@ void Viewer::render_scene() {
     glfwGetFramebufferSize(window_.get(), &fb_w, &fb_h);
     glViewport(0, 0, fb_w, fb_h);
     clear_background(view_.style);
-    if (fb_w <= 0 || fb_h <= 0) return;  // minimized
+    if (fb_w <= 0 || fb_h <= 0 || view_rect_.empty()) return;  // minimized
+    int x = 0, y = 0, w = 0, h = 0;
+    view_viewport(x, y, w, h);
+    glViewport(x, y, w, h);
 
     RenderStyle style = view_.style;
     style.wire_width *= ui_scale_;
@@ -1043,6 +1248,7 @@ void Viewer::render_scene() {
     if (panels_.decimation.show_collapsing_edges)
         collapse_lines_->draw(view_.camera.view(), view_.camera.projection(),
                               glm::vec3(0.95f, 0.25f, 0.20f), 2.0f * ui_scale_);
+    glViewport(0, 0, fb_w, fb_h);  // ImGui draws over the whole window
 }
 
 void Viewer::update_collapsing_edges() {
@@ -1112,8 +1318,79 @@ double Viewer::frame_ms() const {
     return sorted[n / 2];
 }
 
+bool Viewer::entry_moves() const {
+    const History& h = document_.history;
+    const std::size_t entry = h.current();
+    if (h.size() == 0 || entry == 0) return false;
+    const History::EntryInfo info = h.info(entry);
+    // Operations move vertices; a state the viewer made itself (a load, a revert, texture
+    // coordinates) may not: compare its start with its end.
+    if (info.operation.def || info.steps.size() != 1) return true;
+    try {
+        const MorphFrame start = h.morph(entry, 0.0);
+        const HalfedgeMesh& mesh = document_.mesh();
+        if (!start.topology || start.positions.size() != mesh.vertices_size()) return true;
+        for (Vertex v : mesh.vertices())
+            if (start.positions[v.idx()] != mesh.position(v)) return true;
+    } catch (const std::exception&) {
+        return true;
+    }
+    return false;
+}
+
+bool Viewer::script_settled() {
+    if (jobs_.busy() || !commands_.empty() || preview_.pending || !ready_for_script() ||
+        sweep_.active || panels_.record.running)
+        return false;
+    if (!options_.decompose.empty() && scripted_decompose_ != 2) return false;
+    if (!options_.sweep_op.empty() && !sweep_started_) return false;
+    if (morph_.playing) {  // end it: the next frame shows where it ends
+        morph_.t = 1.0;
+        morph_.playing = false;
+        return false;
+    }
+    if (options_.morph_t >= 0 && !morph_t_done_) {
+        morph_t_done_ = true;
+        if (document_.history.current() == 0 || !morph_.moves)
+            log_.warning("--morph-t: the current state has no morph to show");
+        morph_.t = options_.morph_t;
+        morph_.playing = false;
+        return false;
+    }
+    return true;
+}
+
+void Viewer::print_layout() const {
+    int fb_w = 0, fb_h = 0;
+    glfwGetFramebufferSize(window_.get(), &fb_w, &fb_h);
+    const ImGuiIO& io = ImGui::GetIO();
+    const float sx = io.DisplayFramebufferScale.x, sy = io.DisplayFramebufferScale.y;
+    // Whole pixels that contain the rectangle (the test checks the rule on these).
+    auto line = [&](const char* what, float x, float y, float w, float h) {
+        const long x0 = std::lround(std::floor(x * sx)), y0 = std::lround(std::floor(y * sy));
+        const long x1 = std::lround(std::ceil((x + w) * sx));
+        const long y1 = std::lround(std::ceil((y + h) * sy));
+        std::printf("%s %ld %ld %ld %ld\n", what, x0, y0, x1 - x0, y1 - y0);
+    };
+    std::printf("framebuffer %d %d\n", fb_w, fb_h);
+    line("view", view_rect_.x, view_rect_.y, view_rect_.w, view_rect_.h);
+    // Every window ImGui drew in the last frame, except child windows (inside their parent)
+    // and tooltips (they follow the mouse).
+    for (const ImGuiWindow* w : ImGui::GetCurrentContext()->Windows) {
+        if (!w->Active || w->Hidden) continue;
+        if (w->Flags & (ImGuiWindowFlags_ChildWindow | ImGuiWindowFlags_Tooltip)) continue;
+        std::string title = w->Name;
+        for (char& c : title)
+            if (c == '"') c = '\'';
+        const std::string what = "window \"" + title + "\"";
+        line(what.c_str(), w->Pos.x, w->Pos.y, w->Size.x, w->Size.y);
+    }
+    std::fflush(stdout);
+}
+
 int Viewer::run() {
     int frame = 0;
+    int settle_frames = 0;
     active_frames_ = kFramesAfterInput;
     while (!quit_) {
         // The window's close button asks like File -> Quit does.
@@ -1148,6 +1425,11 @@ int Viewer::run() {
         }
         if (jobs_.busy()) active_frames_ = std::max(active_frames_, 1);  // animate the progress
 
+        // Scripted runs: the last frame comes once everything started has ended (jobs,
+        // previews, the morph animation, the scripted actions), so screenshots show results.
+        const bool scripted_end = options_.frames > 0 && frame + 1 >= options_.frames;
+        const bool settled = scripted_end && script_settled();
+
         const double start = glfwGetTime();
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
@@ -1156,6 +1438,7 @@ int Viewer::run() {
         draw_ui();
         ImGui::Render();
 
+        const bool had_commands = !commands_.empty();
         for (const Command& command : commands_) execute(command);
         wait_for_preview();
         // Commands and popups change the UI over the next frames: keep drawing.
@@ -1174,12 +1457,19 @@ int Viewer::run() {
             record_next_frame();
         else
             update_morph();
+        update_wireframe();
         render_scene();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
         ++frame;
         if (frame == options_.close_after) glfwSetWindowShouldClose(window_.get(), GLFW_TRUE);
-        const bool last = options_.frames > 0 && frame >= options_.frames;
+        bool last = settled && !had_commands && !jobs_.busy() && !morph_.playing;
+        if (scripted_end && !last && ++settle_frames > kMaxSettleFrames) {
+            log_.warning("still busy after " + std::to_string(kMaxSettleFrames) +
+                         " extra frames: the last frame may show an unfinished state");
+            last = true;
+        }
+        if (last && options_.print_layout) print_layout();
         if (last && !options_.screenshot.empty()) {
             std::string error = write_screenshot(options_.screenshot);
             if (!error.empty()) {
@@ -1199,6 +1489,21 @@ int Viewer::run() {
         std::snprintf(buf, sizeof(buf), "median frame time %.1f ms over the last %zu frames",
                       frame_ms(), std::min(n_frame_times_, frame_times_ms_.size()));
         log_.info(buf);
+        // What the last frame showed, for scripts and tests.
+        const History& h = document_.history;
+        std::string entries;
+        for (std::size_t i = 0; i < h.size() && i < 20; ++i)
+            entries += (i ? " | " : "") + std::to_string(i) + " " + h.info(i).label;
+        log_.info("history: " + entries);
+        std::snprintf(buf, sizeof(buf), ", morph t = %.3f", morph_.t);
+        log_.info("last frame: " + document_.info[1] + buf);
+        const char* setting = view_.settings.wireframe == WireframeOverlay::Auto ? "automatic"
+                              : view_.settings.wireframe == WireframeOverlay::On ? "on"
+                                                                                 : "off";
+        std::snprintf(buf, sizeof(buf), "wireframe overlay %s (%s; edges %.1f px on the screen)",
+                      view_.style.wireframe ? "on" : "off", setting, edge_pixels_);
+        log_.info(buf);
+        log_.info("status: " + notice_.text);
     }
     log_.info(quit_ ? "quit after " + std::to_string(frame) + " frames" : "frames done");
     return 0;

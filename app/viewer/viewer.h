@@ -33,7 +33,13 @@ struct ViewerOptions {
     int frames = 0;          ///< > 0: render that many frames, then return 0
     int close_after = 0;     ///< > 0: press the window's close button after that many frames
     std::string screenshot;  ///< non-empty: write the last frame (before the swap) as PNG
-    int width = 1280;        ///< window size in screen coordinates
+    /// Print "framebuffer W H", "view X Y W H" and one `window "TITLE" X Y W H` line per
+    /// visible window after the last frame (framebuffer pixels).
+    bool print_layout = false;
+    float ui_scale = 0;     ///< > 0: the UI (font) scale instead of the monitor's
+    std::string wireframe;  ///< "on", "off" or "auto" (default)
+    double morph_t = -1;    ///< in [0, 1]: show the current entry's morph at this time
+    int width = 1280;       ///< window size in screen coordinates
     int height = 800;
     std::string mode;          ///< initial render mode name (render_mode_name()), empty: default
     std::string color;         ///< initial vertex colouring name (coloring_name()), empty: none
@@ -41,6 +47,7 @@ struct ViewerOptions {
     std::string show;          ///< panels to open at start, comma-separated
     int memory_budget_mb = 0;  ///< the history's budget; 0: a quarter of the RAM
     std::string decompose;     ///< "K" or "K:LO:HI": Frequency panel Decompose (and a band)
+    std::string up;            ///< "y" or "z": the up axis for this run; empty: the remembered one
     /// --sweep OP --param NAME --range FROM:TO:COUNT: preview OP with NAME at COUNT evenly
     /// spaced values, print "sweep: previews=N median_ms=X max_ms=Y" and exit.
     std::string sweep_op, sweep_param;
@@ -108,6 +115,17 @@ private:
 
     void handle_input();
     void draw_ui();
+    /// Scripted runs (--frames): whether the last frame may be drawn now (no job, preview,
+    /// morph animation or scripted action still running). Finishes a playing morph.
+    bool script_settled();
+    /// --print-layout: the framebuffer, the view and every visible window.
+    void print_layout() const;
+    /// Decides the wireframe overlay for this frame (view_.settings.wireframe).
+    void update_wireframe();
+    /// Whether the current history entry moves any vertex (for the morph controls).
+    bool entry_moves() const;
+    /// The view region (layout.h) in framebuffer pixels, GL's origin (bottom left).
+    void view_viewport(int& x, int& y, int& w, int& h) const;
     void execute(const Command& command);
     /// Starts a job that reads `path`; the document changes when it succeeds.
     void load(const std::string& path);
@@ -220,6 +238,9 @@ private:
     void take_screenshot(const TakeScreenshot& request);
     void notify_error(const std::string& text);
     void fit_view();
+    /// The default view for the up axis (View > Default view, View > Up axis), fitted; a new
+    /// up axis is remembered, and spherical texture coordinates the viewer projected follow it.
+    void reset_view();
     void render_scene();
     /// Reads the back buffer and writes it as PNG; returns an error message or "".
     std::string write_screenshot(const std::string& path) const;
@@ -239,20 +260,32 @@ private:
     Log log_;
     JobRunner jobs_;
     RecentFiles recent_;
+    Preferences preferences_;  ///< remembered settings (interactive sessions only)
     CommandQueue commands_;
     std::vector<KeyPress> key_presses_;       ///< since the last frame
     std::vector<std::string> dropped_paths_;  ///< files dropped on the window since the last frame
 
-    float ui_scale_ = 1.0f;  ///< content scale of the monitor (HiDPI)
-    int active_frames_ = 0;  ///< frames still to draw after the last event or command
+    float ui_scale_ = 1.0f;      ///< content scale of the monitor (HiDPI)
+    Rect view_rect_;             ///< where the model is drawn (window pixels), from the layout
+    bool camera_fitted_ = true;  ///< no rotate, pan or zoom since the last fit: refit on resize
+    glm::vec3 fit_center_{0.0f};
+    float fit_radius_ = 1.0f;      ///< the sphere of the last fit
+    bool drag_in_view_ = false;    ///< the mouse drag began in the view
+    double surface_area_ = 0;      ///< of the current state (the wireframe decision)
+    bool wire_auto_on_ = false;    ///< the automatic overlay's last decision (hysteresis)
+    double edge_pixels_ = 0;       ///< a typical edge on the screen (framebuffer pixels)
+    bool morph_t_done_ = false;    ///< options_.morph_t has been applied
+    float record_line_scale_ = 1;  ///< line widths of recorded frames relative to the view
+    int active_frames_ = 0;        ///< frames still to draw after the last event or command
     bool quit_ = false;
     bool continue_after_save_ = false;  ///< the unsaved-changes prompt's Save: then go on
     bool coloring_pending_ = false;     ///< a colouring was asked for while a job ran
     MorphState morph_;
     const HalfedgeMesh* morph_topology_ = nullptr;  ///< uploaded for the morph (null: none)
     bool initial_op_done_ = false;                  ///< options_.operation has been queued
-    int scripted_decompose_ = 0;  ///< options_.decompose: 0 to do, 1 started, 2 done
-    Camera record_camera_;        ///< the recording's framing, fixed for the whole sequence
+    bool initial_load_ended_ = true;  ///< options_.mesh_path was read (or failed to be)
+    int scripted_decompose_ = 0;      ///< options_.decompose: 0 to do, 1 started, 2 done
+    Camera record_camera_;            ///< the recording's framing, fixed for the whole sequence
     /// Wall time of the most recent frames (events excluded), for a median that ignores the
     /// slow first frame (shader compilation, font upload).
     std::array<double, 15> frame_times_ms_{};

@@ -56,7 +56,7 @@ void Viewer::frequency_ui() {
 void Viewer::scripted_decomposition(FrequencyActions& act) {
     if (options_.decompose.empty() || scripted_decompose_ == 2 || jobs_.busy()) return;
     // Wait for the initial load (a job) and operation before decomposing.
-    if (!options_.mesh_path.empty() && document_.path.empty()) return;
+    if (!initial_load_ended_) return;
     if (!options_.operation.empty() && !initial_op_done_ && !options_.mesh_path.empty()) return;
     unsigned k = 0, lo = 0, hi = 0;
     const int n = std::sscanf(options_.decompose.c_str(), "%u:%u:%u", &k, &lo, &hi);
@@ -135,7 +135,8 @@ void Viewer::preview_band() {
     const FrequencyPanelState& s = panels_.frequency;
     const SpectralDecomposition& d = *document_.frequency.decomposition;
     // Stop any morph: the view shows the band now.
-    morph_ = MorphState{1.0, false, morph_.duration, morph_.easing, morph_.playback, 0.0};
+    morph_ =
+        MorphState{1.0, false, morph_.duration, morph_.easing, morph_.playback, 0.0, morph_.moves};
     if (morph_topology_) {
         morph_topology_ = nullptr;
         renderer_->upload(document_.mesh());
@@ -157,11 +158,11 @@ void Viewer::push_frequency_state(bool restore) {
     std::string label, parameters;
     Operation band;  // the band as the spectrum operation's typed parameter
     if (restore) {
-        mesh.positions() = d.base_positions;
+        mesh.set_positions(d.base_positions);
         label = kRestoreLabel;
         parameters = "the decomposed shape";
     } else {
-        mesh.positions() = reconstruct_positions(d, std::size_t(s.lo), std::size_t(s.hi));
+        mesh.set_positions(reconstruct_positions(d, std::size_t(s.lo), std::size_t(s.hi)));
         label = kBandLabel;
         band = make_operation("spectrum");
         ParamValue& v = band.value("band");

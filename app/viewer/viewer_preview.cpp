@@ -54,6 +54,7 @@ OperationPanelState* Viewer::panel_of(const Operation& op) {
     if (name == "smooth") return &panels_.fairing;
     if (name == "decimate") return &panels_.decimation;
     if (name == "noise") return &panels_.tools;
+    if (name == "weld") return &panels_.weld;
     return nullptr;
 }
 

@@ -7,6 +7,7 @@
 
 #include "core/errors.h"
 #include "core/io/file_util.h"
+#include "core/orientation.h"
 
 namespace trilab {
 
@@ -32,7 +33,8 @@ namespace {
 }
 }  // namespace
 
-LoadedMesh read_mesh(const std::string& path) {
+namespace {
+LoadedMesh read_by_extension(const std::string& path) {
     const std::string ext = file_extension(path);
     if (ext == "obj") return read_obj(path);
     if (ext == "off") return read_off(path);
@@ -43,6 +45,14 @@ LoadedMesh read_mesh(const std::string& path) {
     std::error_code ec;
     if (std::filesystem::exists(path, ec)) check_regular_file(path);
     unknown_format(path);
+}
+}  // namespace
+
+LoadedMesh read_mesh(const std::string& path) {
+    LoadedMesh loaded = read_by_extension(path);
+    std::string note = inward_orientation_note(loaded.mesh);
+    if (!note.empty()) loaded.report.notes.push_back(std::move(note));
+    return loaded;
 }
 
 void write_mesh(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options) {

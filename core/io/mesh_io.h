@@ -46,7 +46,8 @@ std::vector<std::string> supported_mesh_extensions();
 /// The lower-case extension of `path` without the dot ("" when there is none).
 std::string file_extension(const std::string& path);
 
-/// Reads any supported format (chosen by extension).
+/// Reads any supported format (chosen by extension). A closed mesh with a negative volume
+/// gets a note in its report (core/orientation.h inward_orientation_note()).
 LoadedMesh read_mesh(const std::string& path);
 /// Writes any supported format (chosen by extension).
 void write_mesh(const HalfedgeMesh& mesh, const std::string& path,

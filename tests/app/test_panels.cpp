@@ -1,23 +1,32 @@
 // The operation panels drawn under an ImGui context with no window and no GL (the idea of
 // Polyscope's mock backend): the mouse is moved and pressed through ImGuiIO, the widgets are
 // found through the panels' test hook (set_widget_rect_hook), and the tests assert the typed
-// commands the panels queue.
+// commands the panels queue. The sections are drawn in the real sidebar (layout.h), whose
+// regions are checked here too.
 #include <imgui.h>
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <string>
 #include <variant>
 
 #include "app/viewer/panels.h"
+#include "app/viewer/plots.h"
 #include "core/fairing.h"
+#include "core/generators.h"
 
 using namespace trilab;
 using namespace trilab::viewer;
 
 namespace {
 
-struct Rect {
+struct Box {
     float x0, y0, x1, y1;
 };
 
@@ -29,11 +38,12 @@ public:
         ImGuiIO& io = ImGui::GetIO();
         io.DisplaySize = ImVec2(1280, 800);
         io.IniFilename = nullptr;
+        io.BackendFlags |= ImGuiBackendFlags_HasMouseCursors;  // resizing from window edges
         unsigned char* pixels = nullptr;
         int w = 0, h = 0;
         io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
         set_widget_rect_hook([this](const std::string& id, float x0, float y0, float x1, float y1) {
-            rects_[id] = Rect{x0, y0, x1, y1};
+            rects_[id] = Box{x0, y0, x1, y1};
         });
     }
     ~Ui() {
@@ -63,7 +73,14 @@ public:
         frame(draw, x, y, false);
     }
     bool has(const std::string& id) const { return rects_.count(id) > 0; }
-    Rect rect(const std::string& id) const {
+    /// Every rectangle whose id starts with `prefix`, with its id.
+    std::vector<std::pair<std::string, Box>> with_prefix(const std::string& prefix) const {
+        std::vector<std::pair<std::string, Box>> out;
+        for (const auto& [id, r] : rects_)
+            if (id.rfind(prefix, 0) == 0) out.emplace_back(id, r);
+        return out;
+    }
+    Box rect(const std::string& id) const {
         const auto it = rects_.find(id);
         REQUIRE(it != rects_.end());
         return it->second;
@@ -71,8 +88,44 @@ public:
 
 private:
     ImGuiContext* ctx_ = nullptr;
-    std::map<std::string, Rect> rects_;
+    std::map<std::string, Box> rects_;
 };
+
+bool overlap(const Box& a, const Box& b) {
+    return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+}
+
+/// Asserts that no two of the rectangles overlap.
+void require_disjoint(const std::vector<std::pair<std::string, Box>>& rects) {
+    for (std::size_t i = 0; i < rects.size(); ++i)
+        for (std::size_t j = i + 1; j < rects.size(); ++j) {
+            INFO(rects[i].first << " and " << rects[j].first);
+            REQUIRE_FALSE(overlap(rects[i].second, rects[j].second));
+        }
+}
+
+/// The legend window as the viewer draws it, for `colors`.
+void draw_legend(const VertexColors& colors, ColoringOptions& options) {
+    LegendSlot slot;
+    slot.right = 1280;
+    slot.bottom = 800;
+    slot.max_width = 600;
+    slot.max_height = 400;
+    color_legend(colors, options, slot);
+}
+
+/// Draws `body` in the sidebar of the 1280 x 800 layout, as the viewer does.
+template <class Body>
+void in_sidebar(LayoutState& sizes, Body body) {
+    LayoutInput in;
+    in.width = 1280;
+    in.height = 800;
+    in.em = ImGui::GetFontSize();
+    in.frame_height = ImGui::GetFrameHeight();
+    const Layout layout = compute_layout(in, sizes);
+    if (begin_sidebar(layout.sidebar, sizes)) body();
+    end_region();
+}
 
 template <class T>
 std::vector<const T*> commands_of(const CommandQueue& q) {
@@ -91,12 +144,15 @@ TEST_CASE("the Subdivision panel's Subdivide queues the typed operation it shows
     History history;
     panels.subdivision.open = true;
     CommandQueue commands;
-    const auto draw = [&] { subdivision_window(panels, morph, history, false, 0.0, commands); };
+    const auto draw = [&] {
+        in_sidebar(panels.layout,
+                   [&] { subdivision_section(panels, morph, history, false, 0.0, commands); });
+    };
     ui.frame(draw);
     ui.frame(draw);  // auto-resized windows take their size on the second frame
     REQUIRE(ui.has("scheme"));
     REQUIRE(ui.has("iterations"));
-    const Rect apply = ui.rect("Subdivide");
+    const Box apply = ui.rect("Subdivide");
     commands.clear();
     ui.click(draw, (apply.x0 + apply.x1) / 2, (apply.y0 + apply.y1) / 2);
     const auto applied = commands_of<ApplyOperation>(commands);
@@ -112,10 +168,13 @@ TEST_CASE("dragging a slider previews live with the new typed value", "[panels]"
     History history;
     panels.decimation.open = true;
     CommandQueue commands;
-    const auto draw = [&] { decimation_window(panels, morph, history, false, 0.0, 0, commands); };
+    const auto draw = [&] {
+        in_sidebar(panels.layout,
+                   [&] { decimation_section(panels, morph, history, false, 0.0, 0, commands); });
+    };
     ui.frame(draw);
     ui.frame(draw);
-    const Rect percent = ui.rect("percent");
+    const Box percent = ui.rect("percent");
     commands.clear();
     // Press at the slider's left end: the value jumps to the slider's minimum while held.
     ui.frame(draw, percent.x0 + 1, (percent.y0 + percent.y1) / 2, false);
@@ -136,10 +195,13 @@ TEST_CASE("slow panels preview once, when the drag is released", "[panels]") {
     panels.decimation.open = true;
     panels.decimation.live = false;  // the viewer found the last preview over the budget
     CommandQueue commands;
-    const auto draw = [&] { decimation_window(panels, morph, history, false, 0.0, 0, commands); };
+    const auto draw = [&] {
+        in_sidebar(panels.layout,
+                   [&] { decimation_section(panels, morph, history, false, 0.0, 0, commands); });
+    };
     ui.frame(draw);
     ui.frame(draw);
-    const Rect percent = ui.rect("percent");
+    const Box percent = ui.rect("percent");
     const float y = (percent.y0 + percent.y1) / 2;
     commands.clear();
     ui.frame(draw, percent.x0 + 1, y, false);
@@ -160,7 +222,10 @@ TEST_CASE("the Fairing panel shows only the parameters that apply", "[panels]") 
     History history;
     panels.fairing.open = true;
     CommandQueue commands;
-    const auto draw = [&] { fairing_window(panels, morph, history, true, false, 0.0, commands); };
+    const auto draw = [&] {
+        in_sidebar(panels.layout,
+                   [&] { fairing_section(panels, morph, history, true, false, 0.0, commands); });
+    };
     ui.frame(draw);
     ui.frame(draw);
     CHECK(ui.has("step"));
@@ -174,7 +239,7 @@ TEST_CASE("the Fairing panel shows only the parameters that apply", "[panels]") 
     CHECK(ui.has("lambda"));
     CHECK(ui.has("mu"));
     // A click on "preserve volume" (a closed mesh) previews with the flag set.
-    const Rect volume = ui.rect("preserve-volume");
+    const Box volume = ui.rect("preserve-volume");
     commands.clear();
     ui.click(draw, volume.x0 + 5, (volume.y0 + volume.y1) / 2);
     const auto previews = commands_of<PreviewOperation>(commands);
@@ -188,13 +253,15 @@ TEST_CASE("Cancel shows while a preview is up and queues CancelPreview", "[panel
     PanelState panels;
     panels.tools.open = true;
     CommandQueue commands;
-    const auto draw = [&] { tools_window(panels, false, commands); };
+    const auto draw = [&] {
+        in_sidebar(panels.layout, [&] { tools_section(panels, false, commands); });
+    };
     ui.frame(draw);
     ui.frame(draw);
     CHECK_FALSE(ui.has("Cancel"));
     panels.tools.previewing = true;
     ui.frame(draw);
-    const Rect cancel = ui.rect("Cancel");
+    const Box cancel = ui.rect("Cancel");
     commands.clear();
     ui.click(draw, (cancel.x0 + cancel.x1) / 2, (cancel.y0 + cancel.y1) / 2);
     CHECK(commands_of<CancelPreview>(commands).size() == 1);
@@ -209,7 +276,10 @@ TEST_CASE("the Fairing panel marks a step above the stable limit and offers impl
     panels.fairing.open = true;
     panels.fairing.max_stable_step = 1.35;
     CommandQueue commands;
-    const auto draw = [&] { fairing_window(panels, morph, history, true, false, 0.0, commands); };
+    const auto draw = [&] {
+        in_sidebar(panels.layout,
+                   [&] { fairing_section(panels, morph, history, true, false, 0.0, commands); });
+    };
     ui.frame(draw);
     ui.frame(draw);
     CHECK(ui.has("stable-step"));
@@ -218,7 +288,7 @@ TEST_CASE("the Fairing panel marks a step above the stable limit and offers impl
     ui.frame(draw);
     ui.frame(draw);
     REQUIRE(ui.has("unstable"));
-    const Rect use_implicit = ui.rect("Use implicit integration");
+    const Box use_implicit = ui.rect("Use implicit integration");
     commands.clear();
     ui.click(draw, (use_implicit.x0 + use_implicit.x1) / 2,
              (use_implicit.y0 + use_implicit.y1) / 2);
@@ -228,4 +298,415 @@ TEST_CASE("the Fairing panel marks a step above the stable limit and offers impl
     CHECK(previews.back()->op.value("step").x == 20);
     ui.frame(draw);
     CHECK_FALSE(ui.has("unstable"));  // implicit: any step is stable
+}
+
+// ---- legends and plots (issue 16) ------------------------------------------------------------
+
+TEST_CASE("legend labels never overlap; both ends always show, the centre where it fits",
+          "[panels][legend]") {
+    Ui ui;
+    ColoringOptions options;
+    // The issue's Gaussian curvature range, and ranges with long and short labels.
+    const ValueRange ranges[] = {{-3.568e+05, 3.568e+05},
+                                 {-1.234567e-300, 1.234567e-300},
+                                 {-0.5, 0.5},
+                                 {2.5e-7, 9.875e+12},
+                                 {0.0, 1.0},
+                                 {-123456.7, 9.0}};
+    for (const ValueRange& r : ranges) {
+        for (const ColorMapKind kind : {ColorMapKind::Diverging, ColorMapKind::Sequential}) {
+            INFO("range " << r.min << " .. " << r.max << ", " << color_map_name(kind));
+            VertexColors colors;
+            colors.has_legend = true;
+            colors.kind = kind;
+            colors.label = "Gaussian curvature K";
+            colors.range = r;
+            const auto draw = [&] { draw_legend(colors, options); };
+            ui.frame(draw);
+            ui.frame(draw);
+            const auto labels = ui.with_prefix("legend: label ");
+            require_disjoint(labels);
+            const Box bar = ui.rect("legend: bar");
+            char min_text[32], max_text[32];
+            std::snprintf(min_text, sizeof min_text, "%.4g", r.min);
+            std::snprintf(max_text, sizeof max_text, "%.4g", r.max);
+            const Box lo = ui.rect(std::string("legend: label ") + min_text);
+            const Box hi = ui.rect(std::string("legend: label ") + max_text);
+            CHECK(lo.x0 == Approx(bar.x0));  // the ends sit under the ends of the bar
+            CHECK(hi.x1 == Approx(bar.x1));
+            for (const auto& [id, rect] : labels) {
+                CHECK(rect.x0 >= bar.x0 - 0.01f);
+                CHECK(rect.x1 <= bar.x1 + 0.01f);
+                CHECK(rect.y0 >= bar.y1);  // under the bar, not on it
+            }
+            // The centre of a symmetric range is 0; it shows on these (room enough).
+            if (r.min == -r.max) CHECK(ui.has("legend: label 0"));
+            CHECK(ui.has("legend: percentiles"));  // a continuous map has the range control
+        }
+    }
+}
+
+TEST_CASE("place_labels drops what would overlap, keeping the most important labels",
+          "[panels][legend]") {
+    // Ends (priority 2) at 0 and 100, a centre (1) at 50: wide labels push the centre out.
+    std::vector<LabelSpec> specs = {{0, 45, 0.0f, 2}, {50, 20, 0.5f, 1}, {100, 45, 1.0f, 2}};
+    auto at = place_labels(specs, 0, 100, 4);
+    REQUIRE(at[0]);
+    REQUIRE(at[2]);
+    CHECK_FALSE(at[1]);
+    CHECK(*at[0] == 0);
+    CHECK(*at[2] == 55);
+    // Narrow labels all fit, each at its anchor.
+    specs = {{0, 10, 0.0f, 2}, {50, 10, 0.5f, 1}, {100, 10, 1.0f, 2}};
+    at = place_labels(specs, 0, 100, 4);
+    REQUIRE(at[1]);
+    CHECK(*at[1] == 45);
+    // A label that would stick out is moved inside.
+    at = place_labels({{98, 10, 0.5f, 0}}, 0, 100, 4);
+    REQUIRE(at[0]);
+    CHECK(*at[0] == 90);
+}
+
+TEST_CASE("nice_ticks: 1-2-5 steps inside the range, at most the count asked", "[panels][plots]") {
+    const auto ticks = nice_ticks(0, 49, 6, 1);
+    REQUIRE(ticks.size() >= 2);
+    REQUIRE(ticks.size() <= 6);
+    CHECK(ticks.front() == 0);
+    const double step = ticks[1] - ticks[0];
+    CHECK((step == 10 || step == 20 || step == 50));
+    for (std::size_t i = 1; i < ticks.size(); ++i) CHECK(ticks[i] - ticks[i - 1] == Approx(step));
+    for (const double t : ticks) CHECK((t >= 0 && t <= 49));
+    const auto small = nice_ticks(-0.031, 0.047, 5);
+    REQUIRE(small.size() >= 2);
+    for (const double t : small) CHECK((t >= -0.031 && t <= 0.047));
+    CHECK(nice_ticks(0, 3, 10, 1) == std::vector<double>{0, 1, 2, 3});  // whole steps only
+    CHECK(nice_ticks(2, 2, 5) == std::vector<double>{2});
+    CHECK(nice_ticks(0, NAN, 5).empty());
+    CHECK(tick_text(-0.0) == "0");
+}
+
+TEST_CASE("a categorical legend shows one swatch per value and no range control",
+          "[panels][legend]") {
+    Ui ui;
+    ColoringOptions options;
+    VertexColors colors;
+    colors.has_legend = true;
+    colors.kind = ColorMapKind::Categorical;
+    colors.label = "subdivision level of each vertex";
+    for (int level = 0; level < 4; ++level) {
+        ColorCategory c;
+        c.value = level;
+        c.color = categorical_color(std::size_t(level));
+        c.label = "level " + std::to_string(level);
+        c.count = std::size_t(12) << (2 * level);
+        colors.categories.push_back(c);
+    }
+    colors.range = {0, 3};
+    const auto draw = [&] { draw_legend(colors, options); };
+    ui.frame(draw);
+    ui.frame(draw);
+    const auto swatches = ui.with_prefix("legend: swatch ");
+    REQUIRE(swatches.size() == 4);
+    require_disjoint(swatches);
+    float last_y = -1;
+    for (int level = 0; level < 4; ++level) {  // one row per level, in order
+        const Box r = ui.rect("legend: swatch level " + std::to_string(level));
+        CHECK(r.y0 > last_y);
+        last_y = r.y0;
+    }
+    CHECK_FALSE(ui.has("legend: percentiles"));
+    CHECK_FALSE(ui.has("legend: bar"));
+}
+
+namespace {
+
+/// A decomposition's display data: k eigenvalues and coefficients, the band of a state.
+FrequencyDocument frequency_document(std::size_t k) {
+    FrequencyDocument doc;
+    doc.decomposition = std::make_shared<const SpectralDecomposition>();
+    doc.valid = true;
+    for (std::size_t i = 0; i < k; ++i) {
+        doc.eigenvalues.push_back(float(0.01 * double(i) * double(i)));
+        doc.log_coefficients.push_back(float(-0.1 * double(i)));
+    }
+    doc.log_coefficients[3] = -INFINITY;  // |alpha| = 0: no point, no crash
+    doc.applied = true;
+    doc.applied_lo = 0;
+    doc.applied_hi = 9;
+    return doc;
+}
+
+}  // namespace
+
+TEST_CASE("the frequency plots shade exactly the band's share and mark the visualized frequency",
+          "[panels][plots]") {
+    Ui ui;
+    FrequencyPanelState state;
+    state.open = true;
+    const std::size_t k = 50;
+    const FrequencyDocument doc = frequency_document(k);
+    state.lo = 0;
+    state.hi = 24;
+    state.visualize = 7;
+    const auto draw = [&] { frequency_window(state, doc, false); };
+    ui.frame(draw);
+    ui.frame(draw);
+    for (const char* plot : {"spectrum", "coefficients", "frequency bar"}) {
+        INFO(plot);
+        const std::string p = plot;
+        const Box area = ui.rect(p == "frequency bar" ? p : p + ": area");
+        const Box band = ui.rect(p + ": band");
+        const Box marker = ui.rect(p + ": marker");
+        const float w = area.x1 - area.x0;
+        REQUIRE(w > 100);
+        // Band 0..24 of 50: exactly half the plot area, from its left edge (the issue saw
+        // 58 %: the band was scaled to the plot plus its label).
+        CHECK(band.x0 == Approx(area.x0).margin(0.01));
+        CHECK((band.x1 - band.x0) / w == Approx(25.0 / 50.0).margin(1e-4));
+        // The marker sits at the centre of slot 7.
+        CHECK((marker.x0 + marker.x1) / 2 == Approx(area.x0 + 7.5f / 50.0f * w).margin(0.01));
+        // The bar and the plots share their x range.
+        const Box spectrum = ui.rect("spectrum: area");
+        CHECK(area.x0 == Approx(spectrum.x0));
+        CHECK(area.x1 == Approx(spectrum.x1));
+    }
+    // The applied band (0..9) on the bar: 10 of 50 slots.
+    const Box bar = ui.rect("frequency bar");
+    const Box applied = ui.rect("frequency bar: applied");
+    CHECK((applied.x1 - applied.x0) / (bar.x1 - bar.x0) == Approx(0.2).margin(1e-4));
+    // Axes with tick labels that do not overlap: index ticks starting at 0, value ticks.
+    for (const char* plot : {"spectrum", "coefficients"}) {
+        INFO(plot);
+        const auto x_ticks = ui.with_prefix(std::string(plot) + ": x tick ");
+        const auto y_ticks = ui.with_prefix(std::string(plot) + ": y tick ");
+        CHECK(x_ticks.size() >= 3);
+        CHECK(y_ticks.size() >= 2);
+        CHECK(ui.has(std::string(plot) + ": x tick 0"));
+        auto all = x_ticks;
+        all.insert(all.end(), y_ticks.begin(), y_ticks.end());
+        require_disjoint(all);
+        const Box area = ui.rect(std::string(plot) + ": area");
+        for (const auto& [id, r] : x_ticks) CHECK(r.y0 >= area.y1);  // below the area
+        for (const auto& [id, r] : y_ticks) CHECK(r.x1 <= area.x0);  // left of it
+    }
+    // The spectrum's y ticks span its values (0 .. 24.01).
+    CHECK(ui.has("spectrum: y tick 0"));
+    // A single-frequency band is one slot wide; the marker follows the slider's value.
+    state.lo = state.hi = 49;
+    state.visualize = 0;
+    ui.frame(draw);
+    const Box area = ui.rect("spectrum: area");
+    const Box band = ui.rect("spectrum: band");
+    CHECK(band.x1 == Approx(area.x1).margin(0.01));
+    CHECK((band.x1 - band.x0) == Approx((area.x1 - area.x0) / 50).margin(0.01));
+    const Box marker = ui.rect("spectrum: marker");
+    CHECK((marker.x0 + marker.x1) / 2 == Approx(area.x0 + 0.5f / 50 * (area.x1 - area.x0)));
+}
+
+TEST_CASE("the up axis is remembered in the settings file, other keys kept", "[panels][prefs]") {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("trilab-prefs-" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
+    const std::filesystem::path file = dir / "trilab" / "settings";
+    Preferences p;
+    p.load(file);  // missing: the defaults
+    CHECK(p.up == UpAxis::Y);
+    p.up = UpAxis::Z;
+    p.save();  // creates the folder
+    Preferences q;
+    q.load(file);
+    CHECK(q.up == UpAxis::Z);
+    // Keys of other versions survive a save; a bad value falls back to the default.
+    {
+        std::ofstream out(file);
+        out << "up-axis sideways\nfuture-key 42\n";
+    }
+    q.load(file);
+    CHECK(q.up == UpAxis::Y);
+    q.save();
+    std::ifstream in(file);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    CHECK(text.find("future-key 42") != std::string::npos);
+    CHECK(text.find("up-axis y") != std::string::npos);
+    std::filesystem::remove_all(dir);
+    // Without a file (scripted runs) nothing is written.
+    Preferences none;
+    none.up = UpAxis::Z;
+    none.save();
+    CHECK_FALSE(std::filesystem::exists(dir));
+}
+
+namespace {
+
+/// The layout rule on compute_layout's regions: inside the display, whole pixels, no two
+/// overlapping; the view keeps a third of the width and half of the height between the bars.
+void check_regions(const LayoutInput& in, const Layout& l) {
+    const std::vector<std::pair<const char*, Rect>> regions = {
+        {"menu", l.menu},     {"sidebar", l.sidebar}, {"status", l.status}, {"log", l.log},
+        {"legend", l.legend}, {"history", l.history}, {"view", l.view}};
+    for (const auto& [name, r] : regions) {
+        if (r.empty()) continue;
+        INFO(name << " " << r.x << " " << r.y << " " << r.w << " " << r.h);
+        CHECK(r.x >= 0);
+        CHECK(r.y >= 0);
+        CHECK(r.right() <= in.width);
+        CHECK(r.bottom() <= in.height);
+        CHECK(r.x == std::floor(r.x));
+        CHECK(r.w == std::floor(r.w));
+        CHECK(r.h == std::floor(r.h));
+    }
+    for (std::size_t i = 0; i < regions.size(); ++i)
+        for (std::size_t j = i + 1; j < regions.size(); ++j) {
+            const Rect &a = regions[i].second, &b = regions[j].second;
+            if (a.empty() || b.empty()) continue;
+            INFO(regions[i].first << " and " << regions[j].first);
+            const bool apart =
+                a.right() <= b.x || b.right() <= a.x || a.bottom() <= b.y || b.bottom() <= a.y;
+            CHECK(apart);
+        }
+    CHECK(l.view.w >= in.width / 3);
+    CHECK(l.view.h >= 0.5f * (in.height - l.menu.h - l.status.h) - 1);
+    CHECK(l.legend.w <= l.legend_max_width);
+}
+
+}  // namespace
+
+TEST_CASE("the layout's regions tile the window at every size, scale and panel set", "[layout]") {
+    const float sizes[][2] = {{1280, 720}, {1920, 1080}, {2560, 1440}, {1400, 900}, {800, 600}};
+    const float scales[] = {1.0f, 2.0f};
+    // The user's sizes: the defaults, dragged to nothing, dragged past the window.
+    const float user[] = {0.0f, 1.0f, 1e6f};
+    for (const auto& size : sizes)
+        for (float scale : scales)
+            for (int panels = 0; panels < 16; ++panels)
+                for (float u : user) {
+                    LayoutInput in;
+                    in.width = size[0];
+                    in.height = size[1];
+                    in.em = 13.0f * scale;
+                    in.frame_height = 19.0f * scale;
+                    in.history = panels & 1;
+                    in.log = panels & 2;
+                    in.legend = panels & 4;
+                    in.sidebar = !(panels & 8);
+                    LayoutState state;
+                    state.sidebar_width = state.history_width = state.log_height = u;
+                    state.legend_width = state.legend_height = u;
+                    INFO(size[0] << " x " << size[1] << " scale " << scale << " panels " << panels
+                                 << " user size " << u);
+                    const Layout l = compute_layout(in, state);
+                    check_regions(in, l);
+                    CHECK(l.history.empty() == !in.history);
+                    CHECK(l.log.empty() == !in.log);
+                    CHECK(l.legend.empty() == !in.legend);
+                    CHECK(l.sidebar.empty() == !in.sidebar);
+                    // The clamped sizes are kept: a second pass gives the same regions.
+                    const Layout again = compute_layout(in, state);
+                    CHECK(again.view.x == l.view.x);
+                    CHECK(again.view.w == l.view.w);
+                    CHECK(again.view.h == l.view.h);
+                }
+}
+
+TEST_CASE("dragging the sidebar's edge resizes it and the view follows", "[layout]") {
+    Ui ui;
+    PanelState panels;
+    CommandQueue commands;
+    panels.tools.open = true;
+    const auto draw = [&] {
+        in_sidebar(panels.layout, [&] { tools_section(panels, false, commands); });
+    };
+    ui.frame(draw);
+    ui.frame(draw);
+    const float before = panels.layout.sidebar_width;
+    REQUIRE(before > 0);
+    const float y = 400;
+    ui.frame(draw, before - 1, y, false);  // hover the right edge
+    ui.frame(draw, before - 1, y, true);
+    ui.frame(draw, before + 60, y, true);
+    ui.frame(draw, before + 120, y, true);
+    ui.frame(draw, before + 120, y, false);
+    ui.frame(draw);
+    CHECK(panels.layout.sidebar_width == Approx(before + 121).margin(2));
+    LayoutInput in;
+    in.width = 1280;
+    in.height = 800;
+    in.em = ImGui::GetFontSize();
+    const Layout l = compute_layout(in, panels.layout);
+    CHECK(l.view.x == panels.layout.sidebar_width);
+}
+
+TEST_CASE("a section opened elsewhere shows its body; its header closes it", "[layout]") {
+    Ui ui;
+    PanelState panels;
+    CommandQueue commands;
+    const auto draw = [&] {
+        in_sidebar(panels.layout, [&] { tools_section(panels, false, commands); });
+    };
+    ui.frame(draw);
+    CHECK_FALSE(ui.has("Apply"));  // collapsed: only the header
+    REQUIRE(ui.has("section:Tools: add noise"));
+    panels.tools.open = true;  // the menu item, or --show tools
+    ui.frame(draw);
+    CHECK(ui.has("Apply"));
+    const Box header = ui.rect("section:Tools: add noise");
+    ui.click(draw, (header.x0 + header.x1) / 2, (header.y0 + header.y1) / 2);
+    CHECK_FALSE(panels.tools.open);
+    ui.frame(draw);
+    CHECK_FALSE(ui.has("Apply"));
+}
+
+TEST_CASE("the morph controls offer no animation for a state that moves nothing", "[panels]") {
+    Ui ui;
+    PanelState panels;
+    MorphState morph;
+    History history;
+    HalfedgeMesh a = make_default_model();
+    history.reset(a, "Load a.off");
+    history.push("Load b.off", "", 0.0, {a},
+                 {MorphCorrespondence{MorphCorrespondence::Kind::FromEarlier, a.positions()}});
+    panels.morph_open = true;
+    CommandQueue commands;
+    const auto draw = [&] {
+        in_sidebar(panels.layout, [&] { morph_section(panels, morph, history, 0.0); });
+    };
+    ui.frame(draw);
+    CHECK(ui.has("Animate"));
+    morph.moves = false;  // the viewer's finding for a load
+    ui.frame(draw);
+    CHECK_FALSE(ui.has("Animate"));
+}
+
+TEST_CASE("the unsaved-changes question offers Save as", "[panels]") {
+    Ui ui;
+    UnsavedPrompt prompt;
+    prompt.open_requested = true;
+    prompt.quitting = true;
+    prompt.document_path = "/tmp/original.off";
+    CommandQueue commands;
+    const auto draw = [&] { unsaved_changes_popup(prompt, commands); };
+    ui.frame(draw);
+    ui.frame(draw);
+    const Box save_as = ui.rect("Save as...");
+    commands.clear();
+    ui.click(draw, (save_as.x0 + save_as.x1) / 2, (save_as.y0 + save_as.y1) / 2);
+    CHECK(commands_of<SaveAsAndContinue>(commands).size() == 1);
+    CHECK(commands_of<SaveAndContinue>(commands).empty());
+}
+
+TEST_CASE("Esc closes the key bindings", "[panels]") {
+    Ui ui;
+    PanelState panels;
+    panels.help_open = true;
+    ImGuiIO& io = ImGui::GetIO();
+    io.KeyMap[ImGuiKey_Escape] = 256;  // any free slot of KeysDown
+    const auto draw = [&] { help_window(panels); };
+    ui.frame(draw);
+    ui.frame(draw);
+    REQUIRE(panels.help_open);
+    io.KeysDown[256] = true;
+    ui.frame(draw);
+    io.KeysDown[256] = false;
+    ui.frame(draw);
+    CHECK_FALSE(panels.help_open);
 }

@@ -317,5 +317,45 @@ check "--keep-partial writes the last good state and says stopped_early, still e
 check "the implicit run with the same step stays bounded" bash -c \
     "'$cli' smooth --step 20 --integration implicit '$tmp/d.obj' '$tmp/imp.obj' --json \
      | grep -q '\"stopped_early\": false'"
+# Orientation and the up axis (issue 16).
+check "flip reverses the orientation: the volume changes sign and the inward mesh is noted" bash -c \
+    "'$cli' flip '$tmp/d.obj' '$tmp/in.ply' --json > '$tmp/flip.json' && \
+     grep -q '\"operation\": \"flip\"' '$tmp/flip.json' && grep -q '\"faces\": 2000' '$tmp/flip.json' && \
+     '$cli' info '$tmp/in.ply' --json > '$tmp/in.json' && grep -q '\"volume\": -' '$tmp/in.json' && \
+     grep -q 'volume is negative' '$tmp/in.json' && grep -q 'trilab-cli flip' '$tmp/in.json' && \
+     '$cli' flip '$tmp/in.ply' '$tmp/out.ply' && '$cli' info '$tmp/out.ply' --json > '$tmp/out.json' && \
+     ! grep -q '\"volume\": -' '$tmp/out.json' && ! grep -q 'volume is negative' '$tmp/out.json'"
+check "info prints the inward-orientation note" bash -c \
+    "'$cli' info '$tmp/in.ply' | grep -q 'Flip orientation'"
+if "$cli" render "$tmp/d.obj" --out "$tmp/probe.png" --size 16x16 >/dev/null 2>&1; then
+    check "render --up z is echoed; a bad --up is refused naming it" bash -c \
+        "'$cli' render '$tmp/d.obj' --out '$tmp/up.png' --size 64x48 --up z --json \
+         | grep -q '\"up\": \"z\"' && ! '$cli' render '$tmp/d.obj' --out '$tmp/up2.png' --up x \
+         2> '$tmp/e' && grep -q -- '--up' '$tmp/e' && [ ! -e '$tmp/up2.png' ]"
+    check "the subdivision level has a categorical legend with one category per level" bash -c \
+        "'$cli' record '$tmp/d.obj' --op 'subdivide --iterations 2' --frames 2 --size 64x48 \
+         --color subdivision --out '$tmp/lv' --json > '$tmp/lv.json' && \
+         grep -q '\"map\": \"categorical\"' '$tmp/lv.json' && \
+         [ \$(grep -o '\"count\": ' '$tmp/lv.json' | wc -l) -eq 3 ] && \
+         grep -q 'level 0 (original)' '$tmp/lv.json' && grep -q '\"count\": 12000' '$tmp/lv.json'"
+fi
+# Messy meshes (issue 17, item 8): welding seams, pillows left as they are.
+check "info counts the boundary edges that pair up across a seam" bash -c \
+    "'$cli' info '$data/good/two_patches.obj' --json > '$tmp/tp.json' && \
+     grep -q '\"boundary_edges\": 8, \"paired_boundary_edges\": 2, \"unpaired_boundary_edges\": 6' '$tmp/tp.json'"
+check "weld glues the seam: one vertex pair less twice, one edge pair glued" bash -c \
+    "'$cli' weld --tolerance 0 '$data/good/two_patches.obj' '$tmp/welded.obj' --json > '$tmp/w.json' && \
+     grep -q '\"vertices_joined\": 2' '$tmp/w.json' && grep -q '\"edges_glued\": 1' '$tmp/w.json' && \
+     '$cli' info '$tmp/welded.obj' --json | grep -q '\"vertices\": 6, .*\"paired_boundary_edges\": 0'"
+check "weld explains what it leaves apart (a bow-tie's two fans)" bash -c \
+    "'$cli' weld '$data/good/bowtie.off' '$tmp/bw.obj' | grep -q 'note: 1 coincident vertices left apart'"
+check "weld refuses a negative tolerance with one line naming it" bash -c \
+    "! '$cli' weld --tolerance -1 '$data/good/two_patches.obj' '$tmp/bad.obj' 2> '$tmp/e' && \
+     [ \$(wc -l < '$tmp/e') -eq 1 ] && grep -q -- '--tolerance' '$tmp/e' && [ ! -e '$tmp/bad.obj' ]"
+check "subdivide leaves a pillow as it is and says so, in text and --json" bash -c \
+    "'$cli' subdivide '$data/good/pillow_beside_tetrahedron.off' '$tmp/pl.obj' | \
+     grep -q 'note: 1 component left as it is: two triangles on the same three vertices' && \
+     '$cli' subdivide '$data/good/pillow_beside_tetrahedron.off' '$tmp/pl.obj' --json | \
+     grep -q '\"faces\": 18, .*note: 1 component left as it is'"
 echo "cli: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

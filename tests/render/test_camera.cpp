@@ -166,6 +166,46 @@ TEST_CASE("Camera::set_view_angles looks from the stated direction", "[camera]")
     CHECK(glm::row(camera.view(), 1).y > 0.5f);
 }
 
+TEST_CASE("Camera view angles and the default view follow the up axis", "[camera]") {
+    struct Case {
+        float az, el;
+        glm::vec3 eye_dir, screen_up;
+    };
+    // z-up: azimuth around +z from the front (-y), elevation above the xy plane.
+    const Case cases[] = {
+        {0, 0, {0, -1, 0}, {0, 0, 1}},
+        {90, 0, {1, 0, 0}, {0, 0, 1}},
+        {180, 0, {0, 1, 0}, {0, 0, 1}},
+        {0, 90, {0, 0, 1}, {0, 1, 0}},
+    };
+    for (const Case& c : cases) {
+        Camera camera;
+        camera.set_view_angles(c.az, c.el, UpAxis::Z);
+        INFO("z-up view " << c.az << "," << c.el);
+        const glm::vec3 eye = glm::normalize(camera.eye() - camera.target());
+        CHECK(glm::length(eye - c.eye_dir) < 1e-5f);
+        const glm::vec3 up = glm::vec3(glm::row(camera.view(), 1));
+        CHECK(glm::length(up - c.screen_up) < 1e-5f);
+        require_orthonormal(camera.view());
+    }
+    // The default view: the up axis is the screen's up vector, the front faces the camera.
+    for (const UpAxis axis : {UpAxis::Y, UpAxis::Z}) {
+        INFO("up " << up_axis_name(axis));
+        Camera camera;
+        camera.set_view_angles(30, 20);
+        camera.reset_rotation(axis);
+        const Vector3 u = up_vector(axis), f = front_vector(axis);
+        const glm::vec3 up = glm::vec3(glm::row(camera.view(), 1));
+        CHECK(glm::length(up - glm::vec3(float(u.x()), float(u.y()), float(u.z()))) < 1e-5f);
+        const glm::vec3 eye = glm::normalize(camera.eye() - camera.target());
+        CHECK(glm::length(eye - glm::vec3(float(f.x()), float(f.y()), float(f.z()))) < 1e-5f);
+    }
+    // y-up is the identity rotation, as before.
+    Camera camera;
+    camera.reset_rotation();
+    CHECK(angle_between(camera.rotation(), glm::quat(1, 0, 0, 0)) < 1e-3f);
+}
+
 TEST_CASE("Camera has no gimbal flip at the poles", "[camera]") {
     SECTION("view angles through the pole change the rotation continuously") {
         Camera camera;
@@ -218,4 +258,51 @@ TEST_CASE("Camera zoom is clamped and pan keeps the distance", "[camera]") {
     CHECK(panned.distance() == Approx(d));
     // Dragging right moves the scene right: the old target moves to positive NDC x.
     CHECK(ndc(panned, glm::vec3(0)).x > 0.1f);
+}
+
+TEST_CASE("Camera::reframe_for_viewport keeps what the view shows in the picture", "[camera]") {
+    Camera view;
+    view.set_viewport(900, 600);  // a view 1.5 : 1
+    view.set_view_angles(30, 20);
+    view.fit_sphere(glm::vec3(0.2f, -0.1f, 0.3f), 1.0f);
+    view.pan(glm::vec2(40, -25));
+    // Points on the view's edges: the middle of the left and right edges, of the top and
+    // bottom edges, at the target's depth.
+    const glm::mat4 inverse = glm::inverse(view.projection() * view.view());
+    const glm::vec3 target_ndc = ndc(view, view.target());
+    auto unproject = [&](float x, float y) {
+        const glm::vec4 p = inverse * glm::vec4(x, y, target_ndc.z, 1.0f);
+        return glm::vec3(p) / p.w;
+    };
+    const glm::vec3 left = unproject(-1, 0), right = unproject(1, 0);
+    const glm::vec3 top = unproject(0, 1), bottom = unproject(0, -1);
+    SECTION("a wider picture: the same height, room at the sides") {
+        Camera picture = view;
+        picture.reframe_for_viewport(1920, 1080);
+        CHECK(ndc(picture, top).y == Approx(1.0f).margin(1e-4));
+        CHECK(ndc(picture, bottom).y == Approx(-1.0f).margin(1e-4));
+        CHECK(ndc(picture, right).x == Approx(1.5f / (1920.0f / 1080.0f)).margin(1e-4));
+        CHECK(ndc(picture, left).x == Approx(-1.5f / (1920.0f / 1080.0f)).margin(1e-4));
+        CHECK(picture.pixels_per_unit() == Approx(view.pixels_per_unit() * 1080.0f / 600.0f));
+    }
+    SECTION("a narrower picture: the same width, room at the top and bottom") {
+        Camera picture = view;
+        picture.reframe_for_viewport(800, 800);
+        CHECK(ndc(picture, right).x == Approx(1.0f).margin(1e-4));
+        CHECK(ndc(picture, left).x == Approx(-1.0f).margin(1e-4));
+        CHECK(ndc(picture, top).y == Approx(1.0f / 1.5f).margin(1e-4));
+        CHECK(ndc(picture, bottom).y == Approx(-1.0f / 1.5f).margin(1e-4));
+        CHECK(picture.pixels_per_unit() == Approx(view.pixels_per_unit() * 800.0f / 900.0f));
+    }
+}
+
+TEST_CASE("Camera::pixels_per_unit is a unit segment's length on the screen", "[camera]") {
+    Camera camera;
+    camera.set_viewport(1280, 800);
+    camera.fit_sphere(glm::vec3(0.0f), 2.0f);
+    camera.zoom(3.0f);
+    // A unit segment at the target, across the view direction.
+    const glm::vec3 right = glm::conjugate(camera.rotation()) * glm::vec3(1, 0, 0);
+    const float a = ndc(camera, camera.target()).x, b = ndc(camera, camera.target() + right).x;
+    CHECK(0.5f * (b - a) * 1280.0f == Approx(camera.pixels_per_unit()).epsilon(1e-4));
 }

@@ -1,11 +1,13 @@
 // Offscreen rendering (EGL surfaceless + FBO, Mesa llvmpipe): every check is a statistic of
 // the picture (coverage, centroid, colour averages) that fails when the picture is wrong, not
 // a comparison with golden pixels.
+#include <algorithm>
 #include <cmath>
 
 #include "core/coloring.h"
 #include "core/generators.h"
 #include "core/geometry.h"
+#include "core/mesh_builder.h"
 #include "core/texcoords.h"
 #include "render/mesh_renderer.h"
 #include "render/offscreen.h"
@@ -340,6 +342,44 @@ TEST_CASE("textured mode samples the texture; without coordinates it draws plain
     CHECK(offscreen().render(sphere, o).rgba == offscreen().render(sphere, plain).rgba);
 }
 
+TEST_CASE("a z-up model with --up z looks like its y-up twin, texture projection included",
+          "[render][offscreen][texture]") {
+    // A tall, bent shape standing on +y, and its twin standing on +z: world (x, y, z) of the
+    // z-up frame reads as (x, z, -y) in the y-up frame (core/up_axis.h).
+    HalfedgeMesh y_up = make_icosphere(12);
+    for (Vertex v : y_up.vertices()) {
+        Point& p = y_up.position(v);
+        p.y() *= 2.0;
+        p.x() += 0.3 * p.y() * p.y() + 0.2 * p.z();
+    }
+    HalfedgeMesh z_up = y_up;
+    for (Vertex v : z_up.vertices()) {
+        const Point p = y_up.position(v);
+        z_up.position(v) = Point(p.x(), -p.z(), p.y());
+    }
+    project_texcoords(y_up, TexCoordProjection::Spherical, UpAxis::Y);
+    project_texcoords(z_up, TexCoordProjection::Spherical, UpAxis::Z);
+    for (const auto& [az, el] : {std::pair<float, float>{0, 0}, {40, 25}}) {
+        OffscreenOptions o = small_options();
+        o.style.mode = RenderMode::Textured;
+        o.texture = make_checkerboard();
+        o.azimuth = az;
+        o.elevation = el;
+        const Image a = offscreen().render(y_up, o);
+        o.up = UpAxis::Z;
+        const Image b = offscreen().render(z_up, o);
+        // Seen with +y up, the z-up twin lies on its back: a different picture.
+        o.up = UpAxis::Y;
+        const Image lying = offscreen().render(z_up, o);
+        dump(a, "up_y");
+        dump(b, "up_z");
+        INFO("view " << az << "," << el << ": y-up vs z-up " << mean_difference(a, b)
+                     << ", vs lying " << mean_difference(a, lying));
+        CHECK(mean_difference(a, b) < 0.5);
+        CHECK(mean_difference(a, lying) > 5.0);
+    }
+}
+
 TEST_CASE("per-corner texture coordinates keep seams sharp", "[render][offscreen][texture]") {
     // Every triangle of a cube maps into one checker square, alternating light and dark, so
     // every vertex has corners in both kinds of square: shared vertices would smear them.
@@ -429,6 +469,61 @@ TEST_CASE("back faces are drawn in a distinct colour", "[render][offscreen]") {
     o.style.back_face_color = false;
     const Rgba back_plain = mean_from(180);
     CHECK(back_plain.b > back_plain.r + 0.1);
+}
+
+TEST_CASE("back faces are culled only where none can be seen, with the same image",
+          "[render][offscreen]") {
+    offscreen();
+    MeshRenderer& renderer = offscreen().mesh_renderer();
+    OffscreenOptions o = small_options();
+    Framebuffer fb;
+    fb.create(o.width, o.height);
+    const HalfedgeMesh sphere = make_icosphere(8);
+    Camera camera = offscreen_camera(sphere, o);
+    auto image = [&](bool cull) {
+        RenderStyle style = o.style;
+        style.cull_hidden_back_faces = cull;
+        Image im = draw(renderer, fb, camera, style);
+        Framebuffer::bind_default();
+        return im;
+    };
+
+    // A closed sphere seen from outside: culled, and not one pixel changes.
+    renderer.upload(sphere);
+    CHECK(renderer.culls_back_faces(camera.view(), camera.projection()));
+    CHECK(mean_difference(image(true), image(false)) == 0.0);
+
+    // The camera inside it (the near plane cuts it open): its inside shows, so no culling.
+    Camera inside = camera;
+    inside.zoom(200.0f);
+    CHECK_FALSE(renderer.culls_back_faces(inside.view(), inside.projection()));
+
+    // Inward oriented (every face reversed): the back faces are what is seen.
+    PolygonSoup soup = to_soup(sphere);
+    for (std::size_t f = 0; f < soup.n_faces(); ++f)
+        std::reverse(soup.corners.begin() + std::ptrdiff_t(soup.face_offsets[f]),
+                     soup.corners.begin() + std::ptrdiff_t(soup.face_offsets[f + 1]));
+    LoadReport report;
+    const HalfedgeMesh inverted = build_mesh(soup, report);
+    REQUIRE(volume(inverted) < 0);
+    renderer.upload(inverted);
+    CHECK_FALSE(renderer.culls_back_faces(camera.view(), camera.projection()));
+
+    // Open (one face removed): back faces show through the hole.
+    PolygonSoup open_soup = to_soup(sphere);
+    open_soup.corners.resize(open_soup.corners.size() - 3);
+    open_soup.face_offsets.pop_back();
+    const HalfedgeMesh open = build_mesh(open_soup, report);
+    REQUIRE(open.n_faces() + 1 == sphere.n_faces());
+    renderer.upload(open);
+    CHECK_FALSE(renderer.culls_back_faces(camera.view(), camera.projection()));
+
+    // Positions that turn it inside out are noticed on update.
+    renderer.upload(sphere);
+    HalfedgeMesh mirrored = sphere;
+    for (Vertex v : mirrored.vertices()) mirrored.position(v).x() *= -1;
+    renderer.update_positions(mirrored);
+    CHECK_FALSE(renderer.culls_back_faces(camera.view(), camera.projection()));
 }
 
 TEST_CASE("fog fades the far side towards the background", "[render][offscreen]") {

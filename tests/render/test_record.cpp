@@ -73,6 +73,7 @@ OffscreenOptions reference_options(const RecordOptions& o) {
     r.style.mode = parse_render_mode(o.mode);
     r.azimuth = float(o.azimuth);
     r.elevation = float(o.elevation);
+    r.up = parse_up_axis(o.up);
     return r;
 }
 
@@ -178,9 +179,12 @@ TEST_CASE("record keeps colourings attached to the vertices during the morph", "
     // shape wearing the noisy mesh's curvature colours, the last is the noisy mesh in its own.
     const States states = states_of(o.input, o.operation);
     const VertexColors colors = color_vertices(states.after, VertexColoring::Mean);
-    CHECK(s.legend_label == colors.label);
-    CHECK(s.legend_min == colors.range.min);
-    CHECK(s.legend_max == colors.range.max);
+    CHECK(s.legend.has_legend);
+    CHECK(s.legend.label == colors.label);
+    CHECK(s.legend.range.min == colors.range.min);
+    CHECK(s.legend.range.max == colors.range.max);
+    CHECK(s.legend.kind == ColorMapKind::Diverging);
+    CHECK(s.legend.colors.empty());
     OffscreenOptions ro = reference_options(o);
     HalfedgeMesh before = with_framing_of(states.before, states.after);
     HalfedgeMesh after = with_framing_of(states.after, states.before);

@@ -325,24 +325,62 @@ TEST_CASE("coloring_name and parse_coloring round trip; unknown names list the k
     for (const auto& name : names) REQUIRE(message.find(name) != std::string::npos);
 }
 
-TEST_CASE("subdivision-level colouring: level 0 dark, the newest level bright", "[coloring]") {
+TEST_CASE("subdivision-level colouring is categorical: one distinct colour per level",
+          "[coloring]") {
     HalfedgeMesh m = make_icosphere(2);
     auto level = m.add_vertex_property<int>("v:subdivision_level", 0);
-    level[Vertex(0)] = 2;
-    level[Vertex(1)] = 1;
+    // Like three Loop steps: most vertices on the newest level.
+    std::size_t want[4] = {0, 0, 0, 0};
+    for (Vertex v : m.vertices()) {
+        const int l = v.idx() < 3 ? int(v.idx()) : 3;
+        level[v] = l;
+        ++want[l];
+    }
     const VertexColors c = color_vertices(m, VertexColoring::SubdivisionLevel);
     REQUIRE(c.has_legend);
+    REQUIRE(c.kind == ColorMapKind::Categorical);
+    REQUIRE(std::string(color_map_name(c.kind)) == "categorical");
     REQUIRE(c.range.min == 0.0);
-    REQUIRE(c.range.max == 2.0);
-    const auto lum = [](const Color& x) {
-        return 0.2126f * x.x() + 0.7152f * x.y() + 0.0722f * x.z();
-    };
-    REQUIRE(lum(c.colors[0]) > lum(c.colors[1]));
-    REQUIRE(lum(c.colors[1]) > lum(c.colors[2]));
+    REQUIRE(c.range.max == 3.0);
+    REQUIRE(c.categories.size() == 4);
+    for (std::size_t i = 0; i < 4; ++i) {
+        INFO("level " << i);
+        CHECK(c.categories[i].value == double(i));
+        CHECK(c.categories[i].count == want[i]);
+        CHECK(c.categories[i].label.find("level " + std::to_string(i)) == 0);
+        // Every vertex of the level has its category's colour.
+        for (Vertex v : m.vertices())
+            if (level[v] == int(i)) REQUIRE(c.colors[v.idx()] == c.categories[i].color);
+        // Distinct colours: every pair differs clearly in some channel.
+        for (std::size_t j = 0; j < i; ++j)
+            CHECK((c.categories[i].color - c.categories[j].color).cwiseAbs().maxCoeff() > 0.2f);
+    }
+    CHECK(c.categories[0].label == "level 0 (original)");
+    // The same level has the same colour on any mesh, and map_color agrees.
+    for (std::size_t i = 0; i < 4; ++i) {
+        CHECK(c.categories[i].color == categorical_color(i));
+        CHECK(map_color(double(i), c.range, ColorMapKind::Categorical) == categorical_color(i));
+    }
     REQUIRE(parse_coloring("subdivision") == VertexColoring::SubdivisionLevel);
-    // A mesh never subdivided is all level 0.
+    // A mesh never subdivided is all level 0: one category.
     const VertexColors plain = color_vertices(make_icosahedron(), VertexColoring::SubdivisionLevel);
+    REQUIRE(plain.categories.size() == 1);
+    CHECK(plain.categories[0].count == 12);
     for (const Color& x : plain.colors) REQUIRE(x == plain.colors[0]);
+}
+
+TEST_CASE("categorical_color: ten distinct colours, then darker and lighter rounds", "[coloring]") {
+    std::vector<Color> seen;
+    for (std::size_t i = 0; i < 30; ++i) {
+        const Color c = categorical_color(i);
+        INFO("index " << i);
+        REQUIRE(c.minCoeff() >= 0.0f);
+        REQUIRE(c.maxCoeff() <= 1.0f);
+        for (const Color& s : seen) REQUIRE((c - s).cwiseAbs().maxCoeff() > 0.02f);
+        seen.push_back(c);
+    }
+    CHECK(categorical_color(10).sum() < categorical_color(0).sum());
+    CHECK(categorical_color(21).sum() > categorical_color(1).sum());
 }
 
 TEST_CASE("smoothing distance is the displacement along the normal", "[coloring]") {

@@ -535,31 +535,36 @@ TEST_CASE("a geometry-only step stores its positions and shares the rest", "[his
     h.push("Move x3", "", 0, std::move(chain), same);
     REQUIRE(h.info(2).bytes == 3 * positions);
 
-    // Changed colours are kept beside the positions; the rest is still shared.
+    // Changed colours cost their array; the unchanged positions are shared too.
     Op painted = repaint(h.current_mesh(), rng);
     h.push("Paint", "", 0, {painted.mesh}, {painted.correspondence});
-    REQUIRE(h.info(3).bytes == positions + start.vertices_size() * sizeof(Color));
+    REQUIRE(h.info(3).bytes == start.vertices_size() * sizeof(Color));
 
-    // New connectivity (a flip) with the same vertices: a full mesh.
+    // New connectivity (a flip) with the same vertices: the changed connectivity arrays (at
+    // least h:to, h:next and h:prev), sharing the positions, colours and the rest.
     Op flipped = flip_edge(h.current_mesh(), rng);
     h.push("Flip", "", 0, {flipped.mesh}, {flipped.correspondence});
-    REQUIRE(h.info(4).bytes == full);
+    REQUIRE(h.info(4).bytes >= 3 * 4 * start.halfedges_size());
+    REQUIRE(h.info(4).bytes <= full - positions - start.vertices_size() * sizeof(Color));
     // A move after it shares the flipped mesh.
     Op moved_again = move_vertices(h.current_mesh(), rng, false);
     h.push("Move", "", 0, {moved_again.mesh}, {moved_again.correspondence});
     REQUIRE(h.info(5).bytes == positions);
 
-    // An attribute of a type the history cannot compare: stored whole, to be safe.
+    // An attribute of a type that cannot be compared bit for bit (strings) costs its array;
+    // a step made from a copy still shares it.
     HalfedgeMesh named = h.current_mesh();
     auto tag = named.add_vertex_property<std::string>("v:tag");
     tag[Vertex(0)] = "first";
     h.push("Tag", "", 0, {named}, {MorphCorrespondence{}});
     Op moved_tagged = move_vertices(h.current_mesh(), rng, false);
     h.push("Move", "", 0, {moved_tagged.mesh}, {moved_tagged.correspondence});
-    REQUIRE(h.info(7).bytes > full);
+    REQUIRE(h.info(6).bytes == start.vertices_size() * sizeof(std::string));
+    REQUIRE(h.info(7).bytes == positions);
 
-    REQUIRE(h.bytes() == 2 * full + 6 * positions + start.vertices_size() * sizeof(Color) +
-                             h.info(6).bytes + h.info(7).bytes);
+    REQUIRE(h.bytes() == full + h.info(4).bytes + 5 * positions +
+                             start.vertices_size() * sizeof(Color) + h.info(6).bytes +
+                             h.info(7).bytes);
     // Everything still comes back exactly.
     require_same_mesh(h.mesh(1, 0), moved.mesh);
     for (std::size_t k = 0; k < 3; ++k) require_same_mesh(h.mesh(2, k), chain_copy[k]);
@@ -574,13 +579,14 @@ TEST_CASE("the memory budget drops the oldest entries with a message", "[history
     std::mt19937 rng(41);
 
     SECTION("full meshes") {
+        // Splits add elements to every array, so no entry shares anything with another.
         History h;
         h.reset(make_icosphere(3), "Load", "sphere");
         const std::size_t full = h.info(0).bytes;
-        h.set_budget(full * 7 / 2);  // three full entries fit
+        h.set_budget(full * 4);  // three splits fit (each a full mesh and its start positions)
         std::vector<HalfedgeMesh> states{make_icosphere(3)};
         for (int i = 1; i <= 5; ++i) {
-            Op op = flip_edge(h.current_mesh(), rng);
+            Op op = split(h.current_mesh(), rng, true);
             states.push_back(op.mesh);
             const auto messages =
                 h.push("Flip " + std::to_string(i), "--edge", 0, {op.mesh}, {op.correspondence});
@@ -604,7 +610,7 @@ TEST_CASE("the memory budget drops the oldest entries with a message", "[history
         REQUIRE_FALSE(h.morph(1, 0.5).positions.empty());
     }
 
-    SECTION("a dropped base stays alive for the shared steps after it, and is counted") {
+    SECTION("a dropped entry frees what no later entry shares; the rest counts with the oldest") {
         HalfedgeMesh start = make_torus(40, 20, 1.0, 0.3);
         History h;
         h.reset(start, "Load");
@@ -619,22 +625,23 @@ TEST_CASE("the memory budget drops the oldest entries with a message", "[history
         REQUIRE(h.bytes() == full + 5 * positions);
         h.set_budget(full + 5 * positions / 2);
         const auto messages = h.trim_to_budget();
-        // Dropping "Load" frees nothing (its mesh is the base of every later step); then
-        // each dropped move frees its positions until the rest fits.
-        REQUIRE(messages.size() == 4);
+        // Dropping "Load" frees its positions only (its connectivity is shared by every later
+        // step); then each dropped move frees its positions until the rest fits.
+        REQUIRE(messages.size() == 3);
         REQUIRE(messages[0].find("\"Load\"") != std::string::npos);
-        REQUIRE(messages[0].find("freed 0 bytes") != std::string::npos);
+        REQUIRE(messages[0].find("freed 0 bytes") == std::string::npos);
         REQUIRE(messages[1].find("\"Move 1\"") != std::string::npos);
-        REQUIRE(messages[3].find("\"Move 3\"") != std::string::npos);
-        REQUIRE(h.size() == 2);
-        REQUIRE(h.current() == 1);
+        REQUIRE(messages[2].find("\"Move 2\"") != std::string::npos);
+        REQUIRE(h.size() == 3);
+        REQUIRE(h.current() == 2);
         REQUIRE(h.bytes() == full + 2 * positions);
-        REQUIRE(h.info(0).bytes == full + positions);  // carries the base now
+        REQUIRE(h.info(0).bytes == full);  // carries the shared connectivity now
         REQUIRE(h.info(1).bytes == positions);
-        require_same_mesh(h.mesh(0, 0), states[4]);
-        require_same_mesh(h.mesh(1, 0), states[5]);
+        REQUIRE(h.info(2).bytes == positions);
+        require_same_mesh(h.mesh(1, 0), states[4]);
+        require_same_mesh(h.mesh(2, 0), states[5]);
         require_same_mesh(h.current_mesh(), states[5]);
-        require_frame_is_after(h.morph(1, 1.0), states[5]);
+        require_frame_is_after(h.morph(2, 1.0), states[5]);
         h.undo();
         require_same_mesh(h.current_mesh(), states[4]);
     }

@@ -389,3 +389,98 @@ TEST_CASE("build_mesh handles high-valence vertices (a 500-triangle fan)", "[cor
     REQUIRE(m.n_edges() == 2 * n + 3);  // spokes + rim + the detached triangle's three
     REQUIRE(compute_stats(m).boundary_loops == 2);
 }
+
+namespace {
+
+/// The identity of the values of `name` in `mesh` (see HalfedgeMesh::memory_blocks()).
+std::vector<const void*> block_ids(const trilab::HalfedgeMesh& mesh) {
+    std::vector<const void*> ids;
+    for (const auto& b : mesh.memory_blocks()) ids.push_back(b.id);
+    return ids;
+}
+
+}  // namespace
+
+TEST_CASE("mesh copies share their arrays until one of them writes", "[core][property]") {
+    using namespace trilab;
+    HalfedgeMesh a = make_icosphere(3);
+    auto color = a.add_vertex_property<Color>("v:color", Color(1, 0, 0));
+    const std::vector<const void*> before = block_ids(a);
+
+    HalfedgeMesh b = a;  // shares every array
+    CHECK(block_ids(b) == before);
+    // Reading, through const access, copies nothing.
+    const HalfedgeMesh& cb = b;
+    double sum = 0;
+    for (Vertex v : cb.vertices()) sum += cb.position(v).x();
+    CHECK(cb.get_vertex_property<Color>("v:color")[Vertex(0)] == Color(1, 0, 0));
+    CHECK(block_ids(b) == before);
+    (void)sum;
+
+    // A write copies that array only, and only in the mesh written to.
+    b.position(Vertex(0)) += Point(1, 0, 0);
+    const std::vector<const void*> after = block_ids(b);
+    std::size_t changed = 0;
+    for (std::size_t i = 0; i < after.size(); ++i) changed += after[i] != before[i] ? 1 : 0;
+    CHECK(changed == 1);
+    CHECK(a.position(Vertex(0)) + Point(1, 0, 0) == b.position(Vertex(0)));
+    CHECK(block_ids(a) == before);
+
+    // A view taken before the copy writes to its own mesh only.
+    HalfedgeMesh c = a;
+    color[Vertex(1)] = Color(0, 1, 0);
+    CHECK(a.get_vertex_property<Color>("v:color")[Vertex(1)] == Color(0, 1, 0));
+    CHECK(std::as_const(c).get_vertex_property<Color>("v:color")[Vertex(1)] == Color(1, 0, 0));
+
+    // Topology edits of a copy leave the original as it was.
+    HalfedgeMesh d = a;
+    d.split(Face(0), Point(0, 0, 0));
+    CHECK(d.n_vertices() == a.n_vertices() + 1);
+    REQUIRE_VALID(a);
+    REQUIRE_VALID(d);
+    CHECK(block_ids(a) != block_ids(d));
+
+    // set_positions replaces the values without copying; share_equal_arrays shares them
+    // again where they are equal.
+    HalfedgeMesh e = a;
+    std::vector<Point> moved = a.positions();
+    e.set_positions(moved);
+    CHECK(block_ids(e) != block_ids(a));
+    CHECK(e.share_equal_arrays(a) == before.size());
+    CHECK(block_ids(e) == block_ids(a));
+    CHECK_THROWS_AS(e.set_positions(std::vector<Point>(3)), InvalidArgument);
+}
+
+TEST_CASE("ranges and circulators are standard iterators; halfedges() skips deleted edges",
+          "[core]") {
+    using namespace trilab;
+    using It = ElementRange<Vertex>::iterator;
+    static_assert(std::is_same_v<std::iterator_traits<It>::value_type, Vertex>);
+    static_assert(
+        std::is_same_v<std::iterator_traits<It>::iterator_category, std::input_iterator_tag>);
+    using Around = decltype(std::declval<HalfedgeMesh>().vertices_around(Vertex(0)).begin());
+    static_assert(std::is_same_v<std::iterator_traits<Around>::value_type, Vertex>);
+
+    HalfedgeMesh m = make_icosphere(2);
+    const auto vs = m.vertices();
+    CHECK(std::size_t(std::distance(vs.begin(), vs.end())) == m.n_vertices());
+    const std::vector<Vertex> around(m.vertices_around(Vertex(0)).begin(),
+                                     m.vertices_around(Vertex(0)).end());
+    CHECK(around.size() == m.valence(Vertex(0)));
+    const auto hs = m.halfedges();
+    CHECK(std::size_t(std::distance(hs.begin(), hs.end())) == m.n_halfedges());
+
+    // After a collapse (before garbage collection) the deleted edges' halfedges are skipped.
+    const Halfedge h = m.halfedge(Vertex(0));
+    REQUIRE(m.is_collapse_ok(h));
+    m.collapse(h);
+    REQUIRE(m.has_garbage());
+    std::size_t live = 0;
+    for (Halfedge x : m.halfedges()) {
+        CHECK_FALSE(m.is_deleted(x));
+        ++live;
+    }
+    CHECK(live == m.n_halfedges());
+    CHECK(std::count_if(m.halfedges().begin(), m.halfedges().end(),
+                        [&](Halfedge x) { return m.is_boundary(x); }) == 0);
+}

@@ -100,6 +100,11 @@ const std::map<std::string, Generator>& generators() {
              if (pick(rng, 0, 3) == 0) text += " --independent-set";
              return text;
          }},
+        {"weld",
+         [](Rng& rng, const HalfedgeMesh&) {
+             const std::vector<std::string> tolerances = {"0", "1e-6", "0.01", "0.1"};
+             return "weld --tolerance " + pick_of(rng, tolerances);
+         }},
         {"spectrum",
          [](Rng& rng, const HalfedgeMesh& m) {
              const std::vector<std::string> ops = {"umbrella", "improved-umbrella",
@@ -114,10 +119,12 @@ const std::map<std::string, Generator>& generators() {
                  text +=
                      " --band " + std::to_string(lo) + ":" + std::to_string(pick(rng, lo, k - 1));
              }
-             if (m.n_vertices() <= 3000 && pick(rng, 0, 3) == 0) text += " --full";
+             // A dense solve is cubic: about a minute at 2,500 vertices on a loaded machine.
+             if (m.n_vertices() <= 1200 && pick(rng, 0, 3) == 0) text += " --full";
              if (pick(rng, 0, 3) == 0) text += " --fix-boundary";
              return text;
          }},
+        {"flip", [](Rng&, const HalfedgeMesh&) { return std::string("flip"); }},
     };
     return g;
 }

@@ -528,32 +528,3 @@ TEST_CASE("without levels and morph only the finest level comes back, the same m
         }
     }
 }
-
-TEST_CASE("two faces with the same three vertices are refused, naming them", "[subdivision]") {
-    // A closed two-triangle "pillow" beside an icosahedron: faces 20 and 21 of the soup.
-    PolygonSoup soup = to_soup(make_icosahedron());
-    const Index first = Index(soup.positions.size());
-    soup.positions.emplace_back(3, 0, 0);
-    soup.positions.emplace_back(4, 0, 0);
-    soup.positions.emplace_back(3, 1, 0);
-    soup.add_face({first, first + 1, first + 2});
-    soup.add_face({first, first + 2, first + 1});
-    LoadReport report;
-    const HalfedgeMesh mesh = build_mesh(soup, report);
-    REQUIRE_VALID(mesh);
-    REQUIRE(mesh.n_faces() == 22);
-    for (Scheme s : kAllSchemes) {
-        INFO(scheme_name(s));
-        try {
-            run(mesh, s, 1);
-            FAIL("no error");
-        } catch (const TopologyError& e) {
-            const std::string what = e.what();
-            INFO(what);
-            REQUIRE(what.find("faces 20 and 21") != std::string::npos);
-            REQUIRE(what.find("(12, 13, 14)") != std::string::npos);
-        }
-    }
-    // Without the pillow the icosahedron subdivides.
-    REQUIRE_NOTHROW(run(make_icosahedron(), Scheme::Sqrt3, 2));
-}

@@ -142,6 +142,44 @@ TEST_CASE("spherical texcoords: v grows with y (up), u with longitude", "[texcoo
     }
 }
 
+TEST_CASE("spherical texcoords with +z up: the poles on the z axis, the seam at the back (+y)",
+          "[texcoords]") {
+    // The octahedron has a vertex on each axis: the poles are the vertices on the up axis.
+    for (const UpAxis up : {UpAxis::Y, UpAxis::Z}) {
+        HalfedgeMesh m = make_octahedron();
+        project_texcoords(m, TexCoordProjection::Spherical, up);
+        const auto uv = m.get_vertex_property<TexCoord>("v:texcoord");
+        const Vector3 axis = up_vector(up);
+        for (Vertex v : m.vertices()) {
+            const Point p = m.position(v).normalized();
+            INFO("up " << up_axis_name(up) << ", vertex " << p.transpose());
+            if (p.dot(axis) > 0.99)
+                REQUIRE(uv[v].y() == Approx(1.0).margin(1e-12));  // the north pole
+            else if (p.dot(axis) < -0.99)
+                REQUIRE(uv[v].y() == Approx(0.0).margin(1e-12));
+            else
+                REQUIRE(uv[v].y() == Approx(0.5).margin(1e-12));  // the equator
+        }
+    }
+    // On a sphere: v = latitude above the xy plane, u = longitude from the front (-y).
+    HalfedgeMesh m = make_icosphere(6);
+    project_texcoords(m, TexCoordProjection::Spherical, UpAxis::Z);
+    require_unit_square(m);
+    const auto uv = m.get_vertex_property<TexCoord>("v:texcoord");
+    for (Vertex v : m.vertices()) {
+        const Point& p = m.position(v);
+        REQUIRE(uv[v].y() ==
+                Approx(std::asin(std::clamp(p.z(), -1.0, 1.0)) / kPi + 0.5).margin(1e-9));
+        if (std::hypot(p.x(), p.y()) > 1e-6)
+            REQUIRE(uv[v].x() == Approx(std::atan2(p.x(), -p.y()) / (2 * kPi) + 0.5).margin(1e-9));
+        // The front (-y) is the middle of the texture; the seam (u = 0 or 1) is at +y.
+        if (p.y() < -0.99) REQUIRE(std::abs(uv[v].x() - 0.5) < 0.05);
+    }
+    REQUIRE(parse_up_axis("+z") == UpAxis::Z);
+    REQUIRE(parse_up_axis("y") == UpAxis::Y);
+    REQUIRE_THROWS_WITH(parse_up_axis("x", "--up"), Contains("--up") && Contains("y or z"));
+}
+
 TEST_CASE("isolated vertices get texcoords too", "[texcoords]") {
     HalfedgeMesh m = make_grid(4);
     const Vertex iso = m.add_vertex(Point(2, 0.5, 0));

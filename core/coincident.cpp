@@ -1,0 +1,261 @@
+#include "core/coincident.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <unordered_map>
+#include <utility>
+
+#include "core/errors.h"
+
+namespace trilab {
+
+namespace {
+
+/// The bits of a coordinate with -0 made +0 (so that the two compare and hash alike).
+inline std::uint64_t coordinate_bits(double x) {
+    if (x == 0) x = 0;
+    std::uint64_t b;
+    std::memcpy(&b, &x, sizeof b);
+    return b;
+}
+
+inline std::uint64_t mix(std::uint64_t h) {
+    h ^= h >> 33;
+    h *= 0xff51afd7ed558ccdULL;
+    h ^= h >> 33;
+    h *= 0xc4ceb9fe1a85ec53ULL;
+    h ^= h >> 33;
+    return h;
+}
+
+inline std::uint64_t hash_point(const Point& p) {
+    return mix(coordinate_bits(p.x()) ^ mix(coordinate_bits(p.y()) ^ mix(coordinate_bits(p.z()))));
+}
+
+/// Groups from a representative per point (kInvalidIndex: skipped); the representative of a
+/// group is the same for all its members.
+CoincidentGroups groups_from_representatives(const std::vector<Index>& rep) {
+    const std::size_t n = rep.size();
+    std::vector<Index> count(n, 0);
+    for (std::size_t i = 0; i < n; ++i)
+        if (rep[i] != kInvalidIndex) ++count[rep[i]];
+    // Groups in the order of their smallest member; `slot` numbers them.
+    std::vector<Index> slot(n, kInvalidIndex);
+    CoincidentGroups g;
+    std::vector<Index> group_size;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Index r = rep[i];
+        if (r == kInvalidIndex || count[r] < 2 || slot[r] != kInvalidIndex) continue;
+        slot[r] = Index(group_size.size());
+        group_size.push_back(count[r]);
+    }
+    g.offsets.resize(group_size.size() + 1, 0);
+    for (std::size_t k = 0; k < group_size.size(); ++k)
+        g.offsets[k + 1] = g.offsets[k] + group_size[k];
+    g.members.resize(g.offsets.back());
+    std::vector<std::size_t> fill(g.offsets.begin(), g.offsets.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) {
+        const Index r = rep[i];
+        if (r == kInvalidIndex || count[r] < 2) continue;
+        g.members[fill[slot[r]]++] = Index(i);
+    }
+    return g;
+}
+
+CoincidentGroups exact_groups(const Point* p, std::size_t n, const std::uint8_t* skip) {
+    std::size_t size = 16;
+    while (size < 2 * n) size *= 2;
+    const std::uint64_t mask = size - 1;
+    std::vector<Index> table(size, kInvalidIndex);
+    std::vector<Index> rep(n, kInvalidIndex);
+    for (std::size_t i = 0; i < n; ++i) {
+        if ((skip && skip[i]) || !p[i].allFinite()) continue;
+        std::uint64_t h = hash_point(p[i]) & mask;
+        for (;;) {
+            const Index j = table[h];
+            if (j == kInvalidIndex) {
+                table[h] = Index(i);
+                rep[i] = Index(i);
+                break;
+            }
+            if (p[j] == p[i]) {  // -0 == +0 as numbers
+                rep[i] = j;
+                break;
+            }
+            h = (h + 1) & mask;
+        }
+    }
+    return groups_from_representatives(rep);
+}
+
+Index find_root(std::vector<Index>& parent, Index i) {
+    Index r = i;
+    while (parent[r] != r) r = parent[r];
+    while (parent[i] != r) {
+        const Index next = parent[i];
+        parent[i] = r;
+        i = next;
+    }
+    return r;
+}
+
+CoincidentGroups tolerance_groups(const Point* p, std::size_t n, const std::uint8_t* skip,
+                                  double d) {
+    constexpr double kMaxCell = 1125899906842624.0;  // 2^50
+    struct Cell {
+        std::int64_t x, y, z;
+        bool operator==(const Cell& o) const { return x == o.x && y == o.y && z == o.z; }
+    };
+    struct CellHash {
+        std::size_t operator()(const Cell& c) const {
+            return std::size_t(
+                mix(std::uint64_t(c.x) ^ mix(std::uint64_t(c.y) ^ mix(std::uint64_t(c.z)))));
+        }
+    };
+    std::unordered_map<Cell, std::vector<Index>, CellHash> cells;
+    std::vector<Cell> cell_of(n);
+    std::vector<Index> parent(n, kInvalidIndex);
+    for (std::size_t i = 0; i < n; ++i) {
+        if ((skip && skip[i]) || !p[i].allFinite()) continue;
+        double c[3];
+        for (int k = 0; k < 3; ++k) {
+            c[k] = std::floor(p[i][k] / d);
+            if (!(std::abs(c[k]) < kMaxCell))
+                throw InvalidArgument("coincident vertices: tolerance " + std::to_string(d) +
+                                      " is too small for coordinates of magnitude " +
+                                      std::to_string(std::abs(p[i][k])) +
+                                      " (use a larger tolerance, or 0 for exact positions)");
+        }
+        cell_of[i] = Cell{std::int64_t(c[0]), std::int64_t(c[1]), std::int64_t(c[2])};
+        cells[cell_of[i]].push_back(Index(i));
+        parent[i] = Index(i);
+    }
+    // Refuse a tolerance so large that the comparisons would be quadratic (most vertices
+    // within reach of each other): count them first.
+    std::uint64_t pairs = 0;
+    for (const auto& [cell, points] : cells)
+        for (std::int64_t dx = -1; dx <= 1; ++dx)
+            for (std::int64_t dy = -1; dy <= 1; ++dy)
+                for (std::int64_t dz = -1; dz <= 1; ++dz) {
+                    const auto it = cells.find(Cell{cell.x + dx, cell.y + dy, cell.z + dz});
+                    if (it != cells.end())
+                        pairs += std::uint64_t(points.size()) * it->second.size();
+                }
+    const std::uint64_t limit = 200 * std::uint64_t(n) + 1000000;
+    if (pairs > limit)
+        throw InvalidArgument("coincident vertices: tolerance " + std::to_string(d) +
+                              " is too large for this mesh: about " + std::to_string(pairs / 2) +
+                              " pairs of vertices lie within two cells of each other (use a "
+                              "tolerance well below the edge lengths)");
+    const double d2 = d * d;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (parent[i] == kInvalidIndex) continue;
+        const Cell c = cell_of[i];
+        for (std::int64_t dx = -1; dx <= 1; ++dx)
+            for (std::int64_t dy = -1; dy <= 1; ++dy)
+                for (std::int64_t dz = -1; dz <= 1; ++dz) {
+                    const auto it = cells.find(Cell{c.x + dx, c.y + dy, c.z + dz});
+                    if (it == cells.end()) continue;
+                    for (Index j : it->second) {
+                        if (j >= i || (p[j] - p[i]).squaredNorm() > d2) continue;
+                        const Index a = find_root(parent, Index(i)), b = find_root(parent, j);
+                        if (a != b) parent[std::max(a, b)] = std::min(a, b);
+                    }
+                }
+    }
+    std::vector<Index> rep(n, kInvalidIndex);
+    for (std::size_t i = 0; i < n; ++i)
+        if (parent[i] != kInvalidIndex) rep[i] = find_root(parent, Index(i));
+    return groups_from_representatives(rep);
+}
+
+}  // namespace
+
+std::vector<Index> CoincidentGroups::group_of(std::size_t n) const {
+    std::vector<Index> g(n, kInvalidIndex);
+    for (std::size_t k = 0; k < size(); ++k)
+        for (const Index* m = begin(k); m != end(k); ++m)
+            if (*m < n) g[*m] = Index(k);
+    return g;
+}
+
+CoincidentGroups find_coincident_points(const Point* p, std::size_t n, const std::uint8_t* skip,
+                                        double tolerance) {
+    if (!std::isfinite(tolerance) || tolerance < 0)
+        throw InvalidArgument("coincident vertices: tolerance must be finite and >= 0 (got " +
+                              std::to_string(tolerance) + ")");
+    return tolerance == 0 ? exact_groups(p, n, skip) : tolerance_groups(p, n, skip, tolerance);
+}
+
+CoincidentGroups find_coincident_vertices(const HalfedgeMesh& mesh, double tolerance) {
+    const std::size_t n = mesh.vertices_size();
+    std::vector<std::uint8_t> skip(n, 1);
+    for (Vertex v : mesh.vertices()) skip[v.idx()] = mesh.is_isolated(v) ? 1 : 0;
+    return find_coincident_points(mesh.positions().data(), n, skip.data(), tolerance);
+}
+
+std::size_t unify_groups(const CoincidentGroups& groups, Point* values) {
+    std::size_t changed = 0;
+    std::vector<Point> distinct;
+    const auto less = [](const Point& a, const Point& b) {
+        return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+    };
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+        const Index* b = groups.begin(g);
+        const Index* e = groups.end(g);
+        const Point& first = values[*b];
+        bool same = true;
+        for (const Index* m = b + 1; m != e && same; ++m) same = values[*m] == first;
+        if (same) continue;
+        distinct.clear();
+        for (const Index* m = b; m != e; ++m) distinct.push_back(values[*m]);
+        std::sort(distinct.begin(), distinct.end(), less);
+        distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+        Point sum = Point::Zero();
+        for (const Point& p : distinct) sum += p;
+        const Point mean = sum / double(distinct.size());
+        for (const Index* m = b; m != e; ++m) values[*m] = mean;
+        ++changed;
+    }
+    return changed;
+}
+
+BoundaryPairing pair_boundary_edges(const HalfedgeMesh& mesh) {
+    // Only boundary vertices matter: every boundary halfedge is the outgoing boundary
+    // halfedge (halfedge(v)) of exactly one vertex, so one pass over the vertices finds them.
+    BoundaryPairing r;
+    const std::size_t n = mesh.vertices_size();
+    std::vector<std::uint8_t> skip(n, 1);
+    for (Vertex v : mesh.vertices())
+        if (!mesh.is_isolated(v) && mesh.is_boundary(v)) skip[v.idx()] = 0;
+    const CoincidentGroups groups = find_coincident_points(mesh.positions().data(), n, skip.data());
+    const std::vector<Index> group = groups.group_of(n);
+    // Ids: a group's id is its number, an ungrouped vertex's is n_groups + its index.
+    auto id = [&](Vertex v) {
+        const Index g = group[v.idx()];
+        return g != kInvalidIndex ? std::uint64_t(g) : std::uint64_t(groups.size()) + v.idx();
+    };
+    std::vector<std::pair<std::uint64_t, std::uint64_t>> keys;
+    for (Vertex a : mesh.vertices()) {
+        if (skip[a.idx()]) continue;
+        ++r.boundary_edges;
+        const Vertex b = mesh.to_vertex(mesh.halfedge(a));
+        // A partner needs an end at a grouped vertex (otherwise it would be the same edge).
+        if (group[a.idx()] == kInvalidIndex && group[b.idx()] == kInvalidIndex) continue;
+        const std::uint64_t ia = id(a), ib = id(b);
+        keys.emplace_back(std::min(ia, ib), std::max(ia, ib));
+    }
+    std::sort(keys.begin(), keys.end());
+    for (std::size_t i = 0; i < keys.size();) {
+        std::size_t j = i + 1;
+        while (j < keys.size() && keys[j] == keys[i]) ++j;
+        if (j - i >= 2) r.paired_edges += j - i;
+        i = j;
+    }
+    r.unpaired_edges = r.boundary_edges - r.paired_edges;
+    return r;
+}
+
+}  // namespace trilab

@@ -1,0 +1,41 @@
+#pragma once
+// Face orientation: reversing it, and telling when a closed mesh is oriented inwards.
+//
+// A closed mesh whose faces wind clockwise seen from outside has a negative signed volume
+// (formula 1.15 of the reference report): the viewer then sees only back faces, and every
+// outward normal points in. flip_orientation() reverses every face (the half-edge mesh stays
+// valid: each face keeps its vertices and edges, the halfedges change sides); a file whose
+// closed mesh has a negative volume gets a note in its load report saying so (read_mesh()).
+#include <cstddef>
+#include <optional>
+#include <string>
+
+#include "core/halfedge_mesh.h"
+
+namespace trilab {
+
+/// flip_orientation() has no options (the operation layer's declaration needs a struct).
+struct FlipOptions {};
+
+/// What flip_orientation() did.
+struct FlipReport {
+    std::size_t faces = 0;  ///< faces reversed (every live face)
+    /// The signed volume before and after (empty for an open mesh): after = -before.
+    std::optional<double> volume_before, volume_after;
+    bool normals_negated = false;  ///< a stored "v:normal" was negated
+};
+
+/// Reverses the orientation of every face (HalfedgeMesh::reverse_orientation(): vertex,
+/// edge and face indices are kept; per-corner "h:texcoord" values stay on their corners) and
+/// negates a stored "v:normal", so shading agrees with the new winding. Boundaries, isolated
+/// and deleted elements are handled; the mesh stays valid (validate()). Never throws.
+/// O(vertices + halfedges).
+FlipReport flip_orientation(HalfedgeMesh& mesh);
+
+/// The load-report note for a closed mesh with a negative signed volume (below -1e-9 of its
+/// bounding-box diagonal cubed, so rounding on a flat closed mesh does not count): names the
+/// volume and says how to flip it (the viewer's Tools -> Flip orientation, `trilab-cli flip
+/// IN OUT`). Empty for open meshes and positive volumes. O(faces).
+std::string inward_orientation_note(const HalfedgeMesh& mesh);
+
+}  // namespace trilab

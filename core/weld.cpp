@@ -1,0 +1,280 @@
+#include "core/weld.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <utility>
+
+#include "core/coincident.h"
+#include "core/errors.h"
+#include "core/mesh_builder.h"
+
+namespace trilab {
+
+namespace {
+
+/// An edge with an end in a group, keyed by the (sorted) ids of its ends' groups.
+struct KeyedEdge {
+    std::uint64_t lo, hi;
+    Index edge;
+    bool operator<(const KeyedEdge& o) const {
+        return lo != o.lo ? lo < o.lo : (hi != o.hi ? hi < o.hi : edge < o.edge);
+    }
+};
+
+/// Two boundary halfedges (a -> b and b' -> a') to glue into one edge.
+struct Glue {
+    Halfedge h1, h2;
+    bool active = true;
+};
+
+class UnionFind {
+public:
+    explicit UnionFind(std::size_t n) : parent_(n) { reset(); }
+    void reset() {
+        for (std::size_t i = 0; i < parent_.size(); ++i) parent_[i] = Index(i);
+    }
+    Index find(Index i) {
+        Index r = i;
+        while (parent_[r] != r) r = parent_[r];
+        while (parent_[i] != r) {
+            const Index next = parent_[i];
+            parent_[i] = r;
+            i = next;
+        }
+        return r;
+    }
+    /// The root of a set is its smallest member.
+    void unite(Index a, Index b) {
+        a = find(a);
+        b = find(b);
+        if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+    }
+
+private:
+    std::vector<Index> parent_;
+};
+
+std::string count_line(std::size_t n, const std::string& what) {
+    return std::to_string(n) + " " + what;
+}
+
+}  // namespace
+
+WeldResult weld_coincident_vertices(const HalfedgeMesh& mesh, const WeldOptions& options) {
+    const std::size_t n = mesh.vertices_size();
+    std::vector<std::uint8_t> deleted(n, 1);
+    for (Vertex v : mesh.vertices()) deleted[v.idx()] = 0;
+    const CoincidentGroups groups =
+        find_coincident_points(mesh.positions().data(), n, deleted.data(), options.tolerance);
+    const std::vector<Index> group = groups.group_of(n);
+    WeldResult result;
+    WeldReport& report = result.report;
+    report.groups = groups.size();
+    report.coincident_vertices = groups.members.size();
+    auto key = [&](Vertex v) {
+        const Index g = group[v.idx()];
+        return g != kInvalidIndex ? std::uint64_t(g) : std::uint64_t(groups.size()) + v.idx();
+    };
+
+    // Edges with an end in a group, sorted by their ends' ids: a run of equal ids is a set of
+    // edges that a weld would make one.
+    std::vector<KeyedEdge> keyed;
+    for (Edge e : mesh.edges()) {
+        const Vertex a = mesh.vertex(e, 0), b = mesh.vertex(e, 1);
+        if (group[a.idx()] == kInvalidIndex && group[b.idx()] == kInvalidIndex) continue;
+        const std::uint64_t ka = key(a), kb = key(b);
+        keyed.push_back({std::min(ka, kb), std::max(ka, kb), e.idx()});
+    }
+    std::sort(keyed.begin(), keyed.end());
+    std::vector<Glue> glues;
+    std::size_t open_many_faces = 0, open_orientation = 0;
+    auto boundary_half = [&](Edge e) {
+        const Halfedge h = HalfedgeMesh::halfedge(e, 0);
+        return mesh.is_boundary(h) ? h : HalfedgeMesh::twin(h);
+    };
+    for (std::size_t i = 0; i < keyed.size();) {
+        std::size_t j = i + 1;
+        while (j < keyed.size() && keyed[j].lo == keyed[i].lo && keyed[j].hi == keyed[i].hi) ++j;
+        const std::size_t run = j - i;
+        std::size_t boundary = 0;
+        for (std::size_t k = i; k < j; ++k) boundary += mesh.is_boundary(Edge(keyed[k].edge));
+        if (keyed[i].lo == keyed[i].hi) {
+            // Edges of length zero inside one group: never glued (they would become loops).
+        } else if (run == 2 && boundary == 2) {
+            const Halfedge h1 = boundary_half(Edge(keyed[i].edge));
+            const Halfedge h2 = boundary_half(Edge(keyed[i + 1].edge));
+            const bool opposite = key(mesh.from_vertex(h1)) == key(mesh.to_vertex(h2)) &&
+                                  key(mesh.to_vertex(h1)) == key(mesh.from_vertex(h2));
+            if (opposite && mesh.face(HalfedgeMesh::twin(h1)) != mesh.face(HalfedgeMesh::twin(h2)))
+                glues.push_back({h1, h2, true});
+            else
+                open_orientation += 2;
+        } else if (run >= 2) {
+            open_many_faces += boundary;
+        }
+        i = j;
+    }
+
+    // Join through the glues; undo the glues at vertices where the result would break (a
+    // face with two corners in one vertex, two edges joining the same two vertices).
+    UnionFind sets(n);
+    std::vector<Index> target(groups.size(), kInvalidIndex);  // where isolated members go
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+        target[g] = *groups.begin(g);
+        for (const Index* m = groups.begin(g); m != groups.end(g); ++m)
+            if (!mesh.is_isolated(Vertex(*m))) {
+                target[g] = *m;
+                break;
+            }
+    }
+    std::vector<Index> glue_of_edge(mesh.edges_size(), kInvalidIndex);
+    for (std::size_t g = 0; g < glues.size(); ++g) {
+        glue_of_edge[HalfedgeMesh::edge(glues[g].h1).idx()] = Index(g);
+        glue_of_edge[HalfedgeMesh::edge(glues[g].h2).idx()] = Index(g);
+    }
+    std::size_t undone = 0;
+    std::vector<std::uint8_t> bad(n, 0);
+    std::vector<std::pair<std::pair<Index, Index>, Index>> pairs;  // root pair, edge
+    for (;;) {
+        sets.reset();
+        for (const Glue& gl : glues) {
+            if (!gl.active) continue;
+            sets.unite(mesh.from_vertex(gl.h1).idx(), mesh.to_vertex(gl.h2).idx());
+            sets.unite(mesh.to_vertex(gl.h1).idx(), mesh.from_vertex(gl.h2).idx());
+        }
+        for (std::size_t g = 0; g < groups.size(); ++g)
+            for (const Index* m = groups.begin(g); m != groups.end(g); ++m)
+                if (mesh.is_isolated(Vertex(*m))) sets.unite(*m, target[g]);
+        std::fill(bad.begin(), bad.end(), 0);
+        bool any_bad = false;
+        for (Face f : mesh.faces()) {
+            const auto c = mesh.face_vertices(f);
+            const Index r0 = sets.find(c[0].idx()), r1 = sets.find(c[1].idx()),
+                        r2 = sets.find(c[2].idx());
+            if (r0 == r1 || r1 == r2 || r0 == r2) {
+                bad[r0] = bad[r1] = bad[r2] = 1;
+                any_bad = true;
+            }
+        }
+        pairs.clear();
+        for (const KeyedEdge& k : keyed) {
+            const Edge e(k.edge);
+            const Index a = sets.find(mesh.vertex(e, 0).idx()),
+                        b = sets.find(mesh.vertex(e, 1).idx());
+            pairs.push_back({{std::min(a, b), std::max(a, b)}, k.edge});
+        }
+        std::sort(pairs.begin(), pairs.end());
+        for (std::size_t i = 0; i < pairs.size();) {
+            std::size_t j = i + 1;
+            while (j < pairs.size() && pairs[j].first == pairs[i].first) ++j;
+            if (j - i > 1) {
+                // Allowed only as one glued pair.
+                const Index x = glue_of_edge[pairs[i].second];
+                const bool glued = j - i == 2 && x != kInvalidIndex && glues[x].active &&
+                                   x == glue_of_edge[pairs[i + 1].second];
+                if (!glued) {
+                    bad[pairs[i].first.first] = bad[pairs[i].first.second] = 1;
+                    any_bad = true;
+                }
+            }
+            i = j;
+        }
+        if (!any_bad) break;
+        std::size_t undone_now = 0;
+        for (Glue& gl : glues) {
+            if (!gl.active) continue;
+            const Index r = sets.find(mesh.from_vertex(gl.h1).idx());
+            const Index s = sets.find(mesh.to_vertex(gl.h1).idx());
+            if (bad[r] || bad[s]) {
+                gl.active = false;
+                ++undone_now;
+            }
+        }
+        if (undone_now == 0)  // only isolated vertices were joined: cannot break anything
+            throw Error("weld_coincident_vertices: internal error: a check failed without glues");
+        undone += undone_now;
+    }
+
+    // The welded mesh: one vertex per set, in the order of the sets' smallest members.
+    std::vector<Index> new_index(n, kInvalidIndex);
+    PolygonSoup soup;
+    const auto normals = mesh.get_vertex_property<Vector3>("v:normal");
+    const auto colors = mesh.get_vertex_property<Color>("v:color");
+    const auto vuv = mesh.get_vertex_property<TexCoord>("v:texcoord");
+    const auto huv = mesh.get_halfedge_property<TexCoord>("h:texcoord");
+    std::vector<std::size_t> joined;  // per new vertex: how many vertices it joins
+    for (Vertex v : mesh.vertices()) {
+        const Index r = sets.find(v.idx());
+        if (r != v.idx()) continue;
+        new_index[r] = Index(soup.positions.size());
+        soup.positions.push_back(mesh.position(v));
+        joined.push_back(0);
+        if (normals) soup.normals.push_back(normals[v]);
+        if (colors) soup.colors.push_back(colors[v]);
+        if (vuv) soup.texcoords.push_back(vuv[v]);
+    }
+    result.vertex_map.assign(n, kInvalidIndex);
+    if (options.tolerance > 0)
+        std::fill(soup.positions.begin(), soup.positions.end(), Point::Zero());
+    for (Vertex v : mesh.vertices()) {
+        const Index w = new_index[sets.find(v.idx())];
+        result.vertex_map[v.idx()] = w;
+        ++joined[w];
+        if (options.tolerance > 0) soup.positions[w] += mesh.position(v);
+    }
+    if (options.tolerance > 0)
+        for (std::size_t w = 0; w < soup.positions.size(); ++w)
+            soup.positions[w] /= double(joined[w]);
+    soup.corners.reserve(3 * mesh.n_faces());
+    for (Face f : mesh.faces()) {
+        Halfedge h = mesh.halfedge(f);
+        for (int k = 0; k < 3; ++k, h = mesh.next(h)) {
+            soup.corners.push_back(result.vertex_map[mesh.to_vertex(h).idx()]);
+            if (huv) soup.corner_texcoords.push_back(huv[h]);
+        }
+        soup.face_offsets.push_back(soup.corners.size());
+    }
+    LoadReport built;
+    result.mesh = build_mesh(soup, built);
+    if (built.detached_faces || built.nonmanifold_vertices_split || built.degenerate_faces_dropped)
+        throw Error("weld_coincident_vertices: internal error: the welded faces are not manifold");
+
+    // The report.
+    std::size_t glued = 0;
+    for (const Glue& gl : glues) glued += gl.active;
+    report.edges_glued = glued;
+    report.vertices_joined = mesh.n_vertices() - result.mesh.n_vertices();
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+        std::vector<Index> roots;
+        for (const Index* m = groups.begin(g); m != groups.end(g); ++m)
+            roots.push_back(sets.find(*m));
+        std::sort(roots.begin(), roots.end());
+        report.vertices_left_apart +=
+            std::size_t(std::unique(roots.begin(), roots.end()) - roots.begin()) - 1;
+    }
+    report.edges_left_open = open_many_faces + open_orientation + 2 * undone;
+    if (open_many_faces)
+        report.notes.push_back(
+            count_line(open_many_faces,
+                       "coincident boundary edges left open: three or more faces would "
+                       "meet at the edge"));
+    if (open_orientation)
+        report.notes.push_back(
+            count_line(open_orientation,
+                       "coincident boundary edges left open: the faces on their two sides run "
+                       "the same way along them (inconsistent orientation)"));
+    if (undone)
+        report.notes.push_back(
+            count_line(2 * undone,
+                       "coincident boundary edges left open: gluing them would give "
+                       "a face two corners at one vertex or two edges between the "
+                       "same vertices"));
+    if (report.vertices_left_apart)
+        report.notes.push_back(count_line(
+            report.vertices_left_apart,
+            "coincident vertices left apart: joining them would make a non-manifold vertex "
+            "(surfaces touching at a point, or along edges that cannot be glued)"));
+    return result;
+}
+
+}  // namespace trilab

@@ -1,0 +1,65 @@
+#pragma once
+// Welding coincident vertices: joins pieces of one surface that a file keeps apart (patch
+// seams, the copies build_mesh() makes of a non-manifold vertex), as far as the result stays
+// a valid manifold mesh.
+//
+// Method: vertices are grouped by position (core/coincident.h: exact, or within
+// `tolerance`). A weld glues pairs of boundary edges: two boundary edges whose ends lie in
+// the same two groups, with no other edge between those groups, whose faces run in opposite
+// directions along them (consistent orientation), become one interior edge, and their ends
+// become one vertex. Joining only through glued edges keeps every vertex manifold: each
+// vertex is one fan with two open ends (or none), a glue links two ends, so the fans joined
+// into one vertex form a chain or a closed ring. Coincident vertices of a group that no glue
+// joins stay apart (surfaces touching at a point would make a non-manifold vertex), and so do
+// edges where three or more faces would meet or whose faces run the same way; a glue that
+// would still break the mesh (a face with two corners in one vertex, two edges between the
+// same two vertices) is undone with the glues at its vertices. Isolated vertices in a group
+// join it. Everything left apart is counted and explained in the report.
+//
+// The joined vertex sits at its group's position (with a tolerance: the mean of the vertices
+// joined, in index order) and keeps the per-vertex normal, colour and texture coordinate of
+// its lowest-index vertex; per-corner texture coordinates stay with their faces. Other
+// properties are not carried. Faces keep their order; vertices are renumbered (the map is
+// returned). The input is not modified.
+// Throws InvalidArgument for a negative or non-finite tolerance, or one too small for the
+// coordinates (core/coincident.h). Complexity: O(V + E) expected, plus a few rounds of
+// checks when glues are undone.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "core/halfedge_mesh.h"
+
+namespace trilab {
+
+struct WeldOptions {
+    /// Distance below which vertices count as coincident; 0 (the default): exactly the same
+    /// position, which is what files with seams hold (the teapot's patches share their
+    /// boundary coordinates exactly).
+    double tolerance = 0;
+};
+
+struct WeldReport {
+    std::size_t groups = 0;               ///< groups of coincident vertices found
+    std::size_t coincident_vertices = 0;  ///< vertices in those groups
+    std::size_t vertices_joined = 0;      ///< vertices that disappeared into another
+    std::size_t edges_glued = 0;          ///< boundary edge pairs that became one edge
+    /// Coincident vertices left as separate vertices (one per group counts as kept: a group
+    /// of 3 joined into 2 vertices leaves 1 apart).
+    std::size_t vertices_left_apart = 0;
+    std::size_t edges_left_open = 0;  ///< coincident boundary edges not glued
+    /// One line per reason something was left apart, with its count.
+    std::vector<std::string> notes;
+};
+
+struct WeldResult {
+    HalfedgeMesh mesh;
+    WeldReport report;
+    /// Per input vertex storage index: its vertex in `mesh`, kInvalidIndex for deleted ones.
+    std::vector<Index> vertex_map;
+};
+
+/// Welds a copy of `mesh`; see the file comment. The result passes validate().
+WeldResult weld_coincident_vertices(const HalfedgeMesh& mesh, const WeldOptions& options = {});
+
+}  // namespace trilab

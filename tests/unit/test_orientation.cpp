@@ -1,0 +1,193 @@
+// Face orientation: flip_orientation() reverses every face and keeps a valid mesh with its
+// attributes on the right corners; an inward-oriented closed mesh gets a load-report note.
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "app/ops/operation.h"
+#include "core/generators.h"
+#include "core/geometry.h"
+#include "core/io/mesh_io.h"
+#include "core/orientation.h"
+#include "test_helpers.h"
+
+using namespace trilab;
+using namespace trilab::test;
+
+namespace {
+
+/// The corners of every live face, by face index.
+std::vector<std::array<Vertex, 3>> corners(const HalfedgeMesh& m) {
+    std::vector<std::array<Vertex, 3>> out(m.faces_size());
+    for (Face f : m.faces()) out[f.idx()] = m.face_vertices(f);
+    return out;
+}
+
+/// Whether b is a cyclic rotation of a reversed.
+bool reversed(std::array<Vertex, 3> a, const std::array<Vertex, 3>& b) {
+    std::reverse(a.begin(), a.end());
+    for (int r = 0; r < 3; ++r) {
+        if (a == b) return true;
+        std::rotate(a.begin(), a.begin() + 1, a.end());
+    }
+    return false;
+}
+
+/// Per-corner texture coordinates that name their corner: (vertex index, face index).
+void label_corners(HalfedgeMesh& m) {
+    auto uv = m.halfedge_property<TexCoord>("h:texcoord");
+    for (Halfedge h : m.halfedges())
+        uv[h] = m.is_boundary(h) ? TexCoord(-1, -1)
+                                 : TexCoord(double(m.to_vertex(h).idx()), double(m.face(h).idx()));
+}
+
+void require_corner_labels(const HalfedgeMesh& m) {
+    const auto uv = m.get_halfedge_property<TexCoord>("h:texcoord");
+    REQUIRE(uv);
+    for (Halfedge h : m.halfedges()) {
+        if (m.is_boundary(h)) continue;
+        INFO("halfedge " << h.idx());
+        REQUIRE(uv[h] == TexCoord(double(m.to_vertex(h).idx()), double(m.face(h).idx())));
+    }
+}
+
+}  // namespace
+
+TEST_CASE("flip_orientation reverses every face of a closed mesh and negates its volume",
+          "[orientation]") {
+    HalfedgeMesh m = make_icosphere(3);
+    compute_vertex_normals(m);
+    label_corners(m);
+    const HalfedgeMesh before = m;
+    const double v0 = volume(m);
+    REQUIRE(v0 > 0);
+    const FlipReport r = flip_orientation(m);
+    REQUIRE_VALID(m);
+    CHECK(r.faces == m.n_faces());
+    REQUIRE(r.volume_before);
+    CHECK(*r.volume_before == v0);
+    CHECK(*r.volume_after == Approx(-v0).epsilon(1e-12));
+    CHECK(volume(m) == Approx(-v0).epsilon(1e-12));
+    CHECK(r.normals_negated);
+    const auto c0 = corners(before), c1 = corners(m);
+    const auto n0 = before.get_vertex_property<Vector3>("v:normal");
+    const auto n1 = m.get_vertex_property<Vector3>("v:normal");
+    for (Face f : m.faces()) {
+        INFO("face " << f.idx());
+        REQUIRE(reversed(c0[f.idx()], c1[f.idx()]));
+        REQUIRE((face_normal(m, f) + face_normal(before, f)).norm() < 1e-12);
+    }
+    for (Vertex v : m.vertices()) {
+        REQUIRE(m.position(v) == before.position(v));
+        REQUIRE(n1[v] == -n0[v]);
+        // The recomputed normal agrees with the negated stored one.
+        REQUIRE((vertex_normal(m, v) - n1[v]).norm() < 1e-9);
+    }
+    require_corner_labels(m);
+    // Twice is the identity, to the halfedge.
+    flip_orientation(m);
+    REQUIRE_VALID(m);
+    for (Halfedge h : m.halfedges()) {
+        REQUIRE(m.next(h) == before.next(h));
+        REQUIRE(m.face(h) == before.face(h));
+        REQUIRE(m.to_vertex(h) == before.to_vertex(h));
+    }
+    for (Vertex v : m.vertices()) REQUIRE(m.halfedge(v) == before.halfedge(v));
+    for (Face f : m.faces()) REQUIRE(m.halfedge(f) == before.halfedge(f));
+    require_corner_labels(m);
+}
+
+TEST_CASE("flip_orientation on open meshes, isolated and deleted elements", "[orientation]") {
+    SECTION("a grid: the boundary loop is reversed, boundary vertices keep a boundary halfedge") {
+        HalfedgeMesh m = make_grid(5);
+        label_corners(m);
+        const HalfedgeMesh before = m;
+        const FlipReport r = flip_orientation(m);
+        REQUIRE_VALID(m);
+        CHECK_FALSE(r.volume_before);
+        CHECK_FALSE(r.normals_negated);
+        for (Face f : m.faces()) REQUIRE(face_normal(m, f).z() == Approx(-1.0));
+        for (Vertex v : m.vertices())
+            if (before.is_boundary(v)) REQUIRE(m.is_boundary(m.halfedge(v)));
+        require_corner_labels(m);
+    }
+    SECTION("after a collapse (deleted elements kept) and with an isolated vertex") {
+        HalfedgeMesh m = make_icosphere(2);
+        m.add_vertex(Point(5, 5, 5));
+        const Halfedge h = HalfedgeMesh::halfedge(Edge(7), 0);
+        REQUIRE(m.is_collapse_ok(h));
+        m.collapse(h);
+        REQUIRE(m.has_garbage());
+        label_corners(m);
+        const double v0 = volume(m);
+        flip_orientation(m);
+        REQUIRE_VALID(m);
+        CHECK(volume(m) == Approx(-v0).epsilon(1e-12));
+        require_corner_labels(m);
+        m.garbage_collection();
+        REQUIRE_VALID(m);
+    }
+    SECTION("an empty mesh") {
+        HalfedgeMesh m;
+        const FlipReport r = flip_orientation(m);
+        CHECK(r.faces == 0);
+        REQUIRE_VALID(m);
+    }
+}
+
+TEST_CASE("an inward-oriented closed mesh gets a load-report note naming its volume",
+          "[orientation]") {
+    HalfedgeMesh sphere = make_icosphere(3);
+    CHECK(inward_orientation_note(sphere).empty());
+    CHECK(inward_orientation_note(make_grid(4)).empty());  // open: no volume
+    HalfedgeMesh inward = sphere;
+    flip_orientation(inward);
+    const std::string note = inward_orientation_note(inward);
+    REQUIRE_THAT(note, Catch::Contains("volume is negative") &&
+                           Catch::Contains("Flip orientation") &&
+                           Catch::Contains("trilab-cli flip"));
+    char volume_text[32];
+    std::snprintf(volume_text, sizeof(volume_text), "%.6g", volume(inward));
+    CHECK_THAT(note, Catch::Contains(volume_text));
+
+    // Through a file: read_mesh adds the note; the flip operation removes the cause.
+    TempDir dir;
+    const std::string path = dir.path("inward.ply");
+    write_mesh(inward, path);
+    const LoadedMesh loaded = read_mesh(path);
+    const auto lines = loaded.report.lines();
+    REQUIRE(std::count_if(lines.begin(), lines.end(), [](const std::string& l) {
+                return l.find("volume is negative") != std::string::npos;
+            }) == 1);
+    NullProgress progress;
+    const OperationResult r = run_operation(parse_operation("flip"), loaded.mesh, progress);
+    REQUIRE(r.label == "Flip orientation");
+    REQUIRE(r.steps.size() == 1);
+    REQUIRE_VALID(r.steps[0].mesh);
+    CHECK(volume(r.steps[0].mesh) > 0);
+    CHECK(inward_orientation_note(r.steps[0].mesh).empty());
+    write_mesh(r.steps[0].mesh, dir.path("outward.ply"));
+    for (const std::string& l : read_mesh(dir.path("outward.ply")).report.lines())
+        CHECK(l.find("volume is negative") == std::string::npos);
+}
+
+TEST_CASE("the shared horse is oriented inwards: noted on load, outward after a flip",
+          "[orientation][shared]") {
+    const std::string path = shared_mesh("horse.ply");
+    SKIP_IF_MISSING(path);
+    const LoadedMesh loaded = read_mesh(path);
+    REQUIRE(is_closed(loaded.mesh));
+    const double v = volume(loaded.mesh);
+    CHECK(v == Approx(-0.000263).epsilon(0.01));
+    const auto lines = loaded.report.lines();
+    REQUIRE(std::any_of(lines.begin(), lines.end(), [](const std::string& l) {
+        return l.find("volume is negative (-0.000263") != std::string::npos;
+    }));
+    HalfedgeMesh m = loaded.mesh;
+    const FlipReport r = flip_orientation(m);
+    REQUIRE_VALID(m);
+    CHECK(*r.volume_after == Approx(-v).epsilon(1e-9));
+    CHECK(inward_orientation_note(m).empty());
+}
