@@ -196,6 +196,8 @@ constexpr double kBoundaryWeight = 100.0;
 constexpr double kMaxPlacementDistance = 3.0;
 
 constexpr float kNoCollapse = std::numeric_limits<float>::max();
+// The largest cost an edge that can collapse gets (the float below kNoCollapse).
+const double kLargestCost = double(std::nextafter(kNoCollapse, 0.0f));
 
 // How many edges ahead the loops over edges ask the cache for their vertices' data.
 constexpr std::size_t kPrefetchAhead = 8;
@@ -719,8 +721,11 @@ private:
             if (heap_active_ && heap_.contains(e.idx())) heap_.remove(e.idx());
             return;
         }
-        // +0.0f turns a -0 into +0 (the heap key orders the two apart).
-        const float cost = float(c.cost) + 0.0f;
+        // +0.0f turns a -0 into +0 (the heap key orders the two apart). A cost beyond float's
+        // range (coordinates near 1e30 give quadric errors near 1e60) saturates just below
+        // kNoCollapse: the edge stays a candidate instead of overflowing to infinity, which
+        // compares as kNoCollapse or above and would take it out of the heap.
+        const float cost = float(std::min(c.cost, kLargestCost)) + 0.0f;
         ec.cost = cost;
         if (!heap_active_) return;
         if (heap_.contains(e.idx()))

@@ -552,8 +552,8 @@ double ms_between(std::chrono::steady_clock::time_point a,
     return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
-const char* kLdlt = "SimplicialLDLT";
-const char* kCg = "ConjugateGradient(Jacobi)";
+constexpr const char* kLdlt = "SimplicialLDLT";
+constexpr const char* kCg = "ConjugateGradient(Jacobi)";
 
 /// Taubin's transfer function f(k) = (1 - λk)(1 - μk) over the umbrella's spectrum [0, 2]:
 /// its largest value (the pass-band gain, >= 1) and its value at k = 2.

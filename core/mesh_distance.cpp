@@ -301,12 +301,17 @@ MeshDistance mesh_distance(const HalfedgeMesh& a, const HalfedgeMesh& b,
                                        scaled_copy(b, std::ldexp(1.0, -exponent)), options);
     for (double* x : {&d.hausdorff, &d.rms, &d.a_to_b_max, &d.a_to_b_rms, &d.b_to_a_max,
                       &d.b_to_a_rms, &d.diagonal}) {
-        *x = std::ldexp(*x, exponent);
-        if (!std::isfinite(*x))
+        // Checked before scaling back (*x = f 2^e with 0.5 <= f < 1), so that nothing
+        // overflows on the way.
+        int e = 0;
+        std::frexp(*x, &e);
+        if (!std::isfinite(*x) ||
+            (*x != 0 && e + exponent > std::numeric_limits<double>::max_exponent))
             throw InvalidArgument(
                 "mesh_distance: the distances between these meshes exceed the largest double "
                 "(coordinates up to " +
                 number_text(m) + ")");
+        *x = std::ldexp(*x, exponent);
     }
     return d;
 }

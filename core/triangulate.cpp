@@ -105,8 +105,12 @@ TriangulationMethod PolygonTriangulator::triangulate(const std::vector<Point>& p
     const double scale = 1.0 / half_extent;
     auto scaled = [&](std::size_t i) -> Point { return (0.5 * p[i] - 0.5 * centre) * scale; };
 
-    // The raw corners give the historical normal; the scaled ones one that cannot overflow.
-    Vector3 normal = newell([&](std::size_t i) { return p[i]; });
+    // The raw corners give the historical normal; the scaled ones one that cannot overflow,
+    // taken where the raw products of coordinates could (chosen before computing, so that
+    // nothing overflows on the way).
+    const double largest = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+    Vector3 normal =
+        largest < 0x1p400 ? newell([&](std::size_t i) { return p[i]; }) : newell(scaled);
     if (!normal.allFinite()) normal = newell(scaled);
     if (!(normal.norm() > 0) || !normal.allFinite()) return fan();
     normal.normalize();

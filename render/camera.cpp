@@ -142,6 +142,9 @@ void Camera::pan(const glm::vec2& delta) {
 }
 
 void Camera::zoom(float steps) {
+    // 0.9^±300 spans more than the 1e6 between the limits: more steps change nothing, and the
+    // power cannot overflow.
+    steps = std::clamp(steps, -300.0f, 300.0f);
     distance_ = std::clamp(distance_ * std::pow(0.9f, steps), radius_ * 1e-3f, radius_ * 1e3f);
 }
 

@@ -2,10 +2,14 @@
 # Every test, as CI runs it (.ci/run calls this script; it is README's set-up command 2):
 #  1. installs the Debian packages that are missing (third_party/install-deps.sh);
 #  2. Release build of everything and the whole CTest suite (build/);
-#  3. sanitizer job: RelWithDebInfo build with AddressSanitizer and UndefinedBehaviorSanitizer
-#     (-DTRILAB_SANITIZE=ON) and the whole CTest suite again (build-asan/);
-#  4. fuzz job: the libFuzzer targets built with clang (-DTRILAB_FUZZ=ON, build-fuzz/), each
+#  3. naming check: clang-tidy with .clang-tidy on the C++ files the change touches
+#     (tests/lint/check-naming.sh; TRILAB_TIDY_BASE=all checks every file);
+#  4. sanitizer job: RelWithDebInfo build with AddressSanitizer and UndefinedBehaviorSanitizer
+#     (-DTRILAB_SANITIZE=ON) and floating-point traps in the tests (-DTRILAB_FP_TRAPS=ON), and
+#     the whole CTest suite again (build-asan/);
+#  5. fuzz job: the libFuzzer targets built with clang (-DTRILAB_FUZZ=ON, build-fuzz/), each
 #     run for TRILAB_FUZZ_SECONDS (default 30) on its seed corpus; any failure fails the run.
+# Every build has -DTRILAB_WERROR=ON: a warning in our code fails the run.
 # Stops at the first failing step. See README "Tests" and "Hardening".
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -14,18 +18,22 @@ fuzz_seconds="${TRILAB_FUZZ_SECONDS:-30}"
 ./third_party/install-deps.sh
 
 echo "== Release build and tests"
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DTRILAB_WERROR=ON
 cmake --build build -j2
 ctest --test-dir build --output-on-failure -j2
 
-echo "== Sanitizer job (ASan + UBSan)"
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTRILAB_SANITIZE=ON
+echo "== Naming check (clang-tidy, the changed files)"
+tests/lint/check-naming.sh build
+
+echo "== Sanitizer job (ASan + UBSan, floating-point traps)"
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTRILAB_SANITIZE=ON -DTRILAB_WERROR=ON \
+    -DTRILAB_FP_TRAPS=ON
 cmake --build build-asan -j2
 ctest --test-dir build-asan --output-on-failure -j2
 
 echo "== Fuzz job (${fuzz_seconds} s per reader)"
 cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
     -DCMAKE_CXX_COMPILER=clang++ -DTRILAB_FUZZ=ON -DTRILAB_BUILD_VIEWER=OFF \
-    -DTRILAB_BUILD_TESTS=OFF
+    -DTRILAB_BUILD_TESTS=OFF -DTRILAB_WERROR=ON
 cmake --build build-fuzz -j2 --target trilab_fuzzers
 tests/fuzz/run-fuzzers.sh build-fuzz "$fuzz_seconds"

@@ -668,7 +668,9 @@ void stability_guidance(FairingPanelState& state) {
     const bool taubin = int(state.op.value("operator").x) == int(FairingOperator::Taubin);
     const bool explicit_run =
         taubin || int(state.op.value("integration").x) == int(Integration::Explicit);
-    if (!(limit > 0)) {
+    // NaN until estimated: tested with isnan first, as an ordered comparison with NaN raises
+    // FE_INVALID (the tests run with floating-point traps).
+    if (std::isnan(limit) || limit <= 0) {
         ImGui::TextDisabled("largest stable explicit step: estimating...");
         return;
     }

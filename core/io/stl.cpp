@@ -287,7 +287,13 @@ bool starts_with_solid(std::string_view data) {
 // ---- writing ------------------------------------------------------------------------------
 
 Vector3 face_normal(const Point& a, const Point& b, const Point& c) {
-    Vector3 n = (b - a).cross(c - a);
+    // Coordinates far from 1 are taken in units of the largest one first, so that the cross
+    // product neither overflows (1e300) nor underflows (1e-300); the direction is the same.
+    const double s =
+        std::max({a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff(), c.cwiseAbs().maxCoeff()});
+    if (s == 0 || !std::isfinite(s)) return Vector3::Zero();
+    const bool far = s > 0x1p400 || s < 0x1p-400;
+    const Vector3 n = far ? (b / s - a / s).cross(c / s - a / s) : (b - a).cross(c - a);
     const double len = n.norm();
     if (len > 0 && std::isfinite(len)) return n / len;
     return Vector3::Zero();

@@ -14,6 +14,7 @@
 #include "render/mesh_renderer.h"
 #include "render/offscreen.h"
 #include "test_helpers.h"
+#include "tests/support/fp_traps.h"
 
 namespace trilab::test {
 
@@ -21,7 +22,11 @@ namespace trilab::test {
 /// (LIBGL_ALWAYS_SOFTWARE=1 unless the environment says otherwise), so results do not depend
 /// on a GPU. No X server or DISPLAY is involved. If EGL cannot be initialised the calling
 /// test FAILS with the reason: CI is expected to have Mesa (libegl1, libgl1-mesa-dri).
+/// Mesa's llvmpipe raises floating-point exceptions inside its own code, so from the first GL
+/// use on, this process runs without floating-point traps (tests/support/fp_traps.h). Each
+/// test case is its own process under CTest: only the GL test cases run without them.
 inline OffscreenRenderer& offscreen() {
+    disable_fp_traps();
     static OffscreenRenderer* renderer = nullptr;  // never deleted: lives until exit
     static std::string error;
     static bool tried = false;

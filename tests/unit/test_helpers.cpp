@@ -34,12 +34,7 @@ HalfedgeMesh attributed_sphere() {
 }
 
 std::string read_error(const std::string& path) {
-    try {
-        read_mesh(path);
-    } catch (const IoError& e) {
-        return e.what();
-    }
-    return "";
+    return error_text<IoError>([&] { read_mesh(path); });
 }
 
 TempDir::TempDir() {

@@ -2,17 +2,24 @@
 // Shared helpers for the unit tests: fixture paths, temporary folders, validity checks.
 #include <catch2/catch.hpp>
 
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
 #include "core/halfedge_mesh.h"
 #include "core/validate.h"
+#include "tests/support/cancelling_progress.h"
+#include "tests/support/error_text.h"
+#include "tests/support/fp_traps.h"
+#include "tests/support/skip.h"
 
 namespace trilab::test {
 
-/// ../shared beside the repository (may be absent: tests using it skip with a message).
+/// ../shared beside the repository, or $TRILAB_SHARED_DIR when set (may be absent: tests using
+/// it record a skip, see tests/support/skip.h).
 inline std::string shared_dir() {
-    return TRILAB_SHARED_DIR;
+    const char* env = std::getenv("TRILAB_SHARED_DIR");
+    return env && *env ? env : TRILAB_SHARED_DIR;
 }
 inline std::string shared_mesh(const std::string& name) {
     return shared_dir() + "/meshes/" + name;
@@ -52,13 +59,4 @@ private:
         const auto trilab_vr = trilab::validate(mesh); \
         INFO("validate: " << trilab_vr.message);       \
         REQUIRE(trilab_vr.ok);                         \
-    } while (0)
-
-/// Skips the current test (with a message) when a shared file is absent.
-#define SKIP_IF_MISSING(path)                                                            \
-    do {                                                                                 \
-        if (!trilab::test::exists(path)) {                                               \
-            WARN("skipped: " << (path) << " is absent (../shared not beside the repo)"); \
-            return;                                                                      \
-        }                                                                                \
     } while (0)

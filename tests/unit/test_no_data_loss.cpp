@@ -180,10 +180,9 @@ TEST_CASE("saving into a read-only folder fails and keeps the old file", "[io][n
     }
     ReadOnlyFolder read_only(dir.dir());
     if (!read_only.enforced()) {
-        WARN(
-            "skipped: this process can write into a read-only folder (running as root?); the "
+        SKIP_TEST(
+            "this process can write into a read-only folder (running as root?); the "
             "other no-data-loss tests cover failed saves without permissions");
-        return;
     }
     for (std::size_t i = 0; i < std::size(kMeshFiles); ++i) {
         const std::string path = dir.path(kMeshFiles[i]);
@@ -366,8 +365,7 @@ TEST_CASE("a save whose unnamed temporary file cannot be linked copies it into a
           "[io][no-data-loss]") {
     TempDir dir;
     if (!supports_unnamed_temporaries(dir.dir())) {
-        WARN("skipped: " << dir.dir() << " has no O_TMPFILE");
-        return;
+        SKIP_TEST(dir.dir() << " has no O_TMPFILE");
     }
     const std::string path = dir.path("m.ply");
     write_mesh(make_icosahedron(), path);
@@ -480,8 +478,7 @@ TEST_CASE("a save killed with SIGKILL keeps the old file and leaves no temporary
 
     SECTION("unnamed temporary file (O_TMPFILE): nothing is left at all") {
         if (!supports_unnamed_temporaries(dir.dir())) {
-            WARN("skipped: " << dir.dir() << " has no O_TMPFILE; the named case covers it");
-            return;
+            SKIP_TEST(dir.dir() << " has no O_TMPFILE; the named case covers it");
         }
         for (int kill = 0; kill < 3; ++kill) kill_a_save(path, 8 << 20);
         CHECK(read_file_bytes(path) == "old content");

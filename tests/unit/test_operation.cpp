@@ -19,25 +19,14 @@ bool bit_identical(const std::vector<Point>& a, const std::vector<Point>& b) {
     return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Point)) == 0;
 }
 
-/// A Progress that asks to stop at once.
-class CancelAtOnce final : public Progress {
-public:
-    void report(double, const char*) override {}
-    bool cancel_requested() const override { return true; }
-};
-
 Operation with_value(Operation op, const char* name, double x) {
     op.value(name).x = x;
     return op;
 }
 
+/// The InvalidArgument message of parse_operation(text), "" when it parses.
 std::string parse_error(const std::string& text) {
-    try {
-        parse_operation(text);
-    } catch (const InvalidArgument& e) {
-        return e.what();
-    }
-    return "";
+    return test::error_text<InvalidArgument>([&] { parse_operation(text); });
 }
 
 }  // namespace
@@ -155,7 +144,7 @@ TEST_CASE("bad operation strings are refused, naming the bad part", "[ops]") {
 TEST_CASE("a cancelled operation throws Cancelled and leaves the input alone", "[ops]") {
     const HalfedgeMesh input = make_icosphere(2);
     const HalfedgeMesh copy = input;
-    CancelAtOnce cancel;
+    auto cancel = test::CancellingProgress::at_once();
     REQUIRE_THROWS_AS(run_operation(parse_operation("noise --amount 3"), input, cancel), Cancelled);
     REQUIRE(bit_identical(input.positions(), copy.positions()));
 }
@@ -297,7 +286,7 @@ TEST_CASE("bad subdivide strings are refused, naming the option", "[ops]") {
 TEST_CASE("a cancelled subdivision throws Cancelled and leaves the input alone", "[ops]") {
     const HalfedgeMesh input = make_icosphere(2);
     const HalfedgeMesh copy = input;
-    CancelAtOnce cancel;
+    auto cancel = test::CancellingProgress::at_once();
     REQUIRE_THROWS_AS(run_operation(parse_operation("subdivide --iterations 2"), input, cancel),
                       Cancelled);
     REQUIRE(bit_identical(input.positions(), copy.positions()));

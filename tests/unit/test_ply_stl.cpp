@@ -718,6 +718,7 @@ TEST_CASE("binary PLY refuses float vertex indices that are not whole numbers", 
             CHECK(read_ply_bytes(ply(2.0), "f.ply").mesh.n_faces() == 2);
             CHECK_THROWS_WITH(read_ply_bytes(ply(2.5), "f.ply"),
                               Contains("f.ply: face 1: vertex index 2.5 is not a whole number"));
+            const FpTrapsOff traps_off;  // a NaN index on purpose
             CHECK_THROWS_WITH(read_ply_bytes(ply(std::nan("")), "f.ply"),
                               Contains("face 1: vertex index nan is not a whole number"));
         }
@@ -731,12 +732,14 @@ namespace {
 /// A tetrahedron scaled by `s`, with normals, colours and texture coordinates.
 HalfedgeMesh attributed_tetrahedron(double s = 1) {
     HalfedgeMesh m = make_tetrahedron();
-    for (Point& p : m.positions()) p *= s;
     auto n = m.vertex_property<Vector3>("v:normal");
     auto c = m.vertex_property<Color>("v:color");
     auto uv = m.vertex_property<TexCoord>("v:texcoord");
+    // Unit normals from the unscaled corners (the same directions; at 1e300 their squared
+    // norms would overflow).
+    for (Vertex v : m.vertices()) n[v] = m.position(v).normalized();
+    for (Point& p : m.positions()) p *= s;
     for (Vertex v : m.vertices()) {
-        n[v] = m.position(v).normalized();
         c[v] = Color(0.25f, 0.5f, 1.0f);
         uv[v] = TexCoord(0.1 * v.idx(), 0.5);
     }
@@ -758,6 +761,7 @@ std::string write_refusal(const HalfedgeMesh& mesh, const std::string& name,
 }  // namespace
 
 TEST_CASE("writers refuse non-finite values in what they write", "[ply][stl][io][nonfinite]") {
+    const FpTrapsOff traps_off;  // NaN and infinity on purpose
     const double nan = std::numeric_limits<double>::quiet_NaN();
     const char* const formats[] = {"m.obj", "m.off", "m.ply", "m.stl", "m.om"};
     for (const char* name : formats) {

@@ -2,7 +2,6 @@
 // band by band against one band, S-orthonormality, exact reconstruction, low-pass smoothing,
 // disconnected meshes, boundaries, isolated vertices, option errors and cancellation.
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -107,16 +106,6 @@ HalfedgeMesh collapsed_sphere(unsigned frequency, double jitter) {
     }
     return m;
 }
-
-class CancelAfter final : public Progress {
-public:
-    explicit CancelAfter(int reports) : left_(reports) {}
-    void report(double, const char*) override { --left_; }
-    bool cancel_requested() const override { return left_ <= 0; }
-
-private:
-    int left_;
-};
 
 }  // namespace
 
@@ -284,12 +273,12 @@ TEST_CASE("boundaries: free rows give a zero eigenvalue, fixed rows do not", "[s
     for (LaplacianOperator op : kOperators) {
         INFO("operator " << laplacian_operator_name(op));
         SpectralOptions o = options(op, 5);
-        const SpectralDecomposition free_ = decompose(grid, o);
-        CHECK(free_.rows() == grid.n_vertices());
-        CHECK(std::abs(free_.eigenvalues[0]) < 1e-8 * free_.eigenvalues[4]);
+        const SpectralDecomposition free_rows = decompose(grid, o);
+        CHECK(free_rows.rows() == grid.n_vertices());
+        CHECK(std::abs(free_rows.eigenvalues[0]) < 1e-8 * free_rows.eigenvalues[4]);
         // The zero eigenvector is constant (second order: linear functions of the flat grid
         // are in its null space too).
-        const Eigen::VectorXd e0 = free_.eigenvectors.col(0);
+        const Eigen::VectorXd e0 = free_rows.eigenvectors.col(0);
         if (op != LaplacianOperator::SecondOrder)
             CHECK(e0.maxCoeff() - e0.minCoeff() < 1e-6 * e0.cwiseAbs().maxCoeff());
         o.fix_boundary = true;
@@ -384,9 +373,7 @@ TEST_CASE("a dense decomposition larger than the available memory is refused wit
     const double available = double(available_memory_bytes());
     const double rows = std::sqrt(available / 8.0) + 1;
     if (rows > 4e6) {
-        WARN("skipped: " << available << " bytes available would need a mesh of " << rows
-                         << " vertices");
-        return;
+        SKIP_TEST(available << " bytes available would need a mesh of " << rows << " vertices");
     }
     const unsigned n = unsigned(std::ceil(std::sqrt(rows)));
     const HalfedgeMesh mesh = make_grid(n);  // (n + 1)^2 vertices
@@ -472,21 +459,6 @@ TEST_CASE("spectrum slicing on two threads gives the frequencies of one sweep", 
     }
 }
 
-namespace {
-
-/// Cancels after a number of reports; asked from both slicing threads, so atomic.
-class AtomicCancelAfter final : public Progress {
-public:
-    explicit AtomicCancelAfter(int reports) : left_(reports) {}
-    void report(double, const char*) override { --left_; }
-    bool cancel_requested() const override { return left_.load() <= 0; }
-
-private:
-    std::atomic<int> left_;
-};
-
-}  // namespace
-
 TEST_CASE("a sliced decomposition stops both threads when cancelled", "[spectral]") {
     const HalfedgeMesh mesh = make_icosphere(8);
     SpectralOptions o = options(LaplacianOperator::CurvatureFlow, 90);
@@ -494,14 +466,15 @@ TEST_CASE("a sliced decomposition stops both threads when cancelled", "[spectral
     o.threads = 2;
     for (int reports : {2, 6, 12, 20}) {
         INFO("cancelled after " << reports << " progress reports");
-        AtomicCancelAfter cancel(reports);
+        // Asked from both slicing threads (CancellingProgress is thread-safe).
+        auto cancel = test::CancellingProgress::after_reports(reports);
         CHECK_THROWS_AS(decompose(mesh, o, cancel), Cancelled);
     }
 }
 
 TEST_CASE("a decomposition can be cancelled and is deterministic", "[spectral]") {
     const HalfedgeMesh mesh = make_noisy_sphere(10, 0.02, 2);
-    CancelAfter cancel(3);
+    auto cancel = test::CancellingProgress::after_reports(3);
     CHECK_THROWS_AS(decompose(mesh, options(LaplacianOperator::CurvatureFlow, 30), cancel),
                     Cancelled);
     const SpectralDecomposition a = decompose(mesh, options(LaplacianOperator::CurvatureFlow, 30));

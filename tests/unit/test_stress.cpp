@@ -209,10 +209,7 @@ TEST_CASE("random operation sequences keep every mesh valid and finite", "[stres
     meshes.emplace_back("tetrahedron", make_tetrahedron());
     for (const char* file : {"spot.obj", "fandisk.obj"}) {
         const std::string path = test::shared_mesh(file);
-        if (test::exists(path))
-            meshes.emplace_back(file, read_mesh(path).mesh);
-        else
-            WARN("skipped: " << path << " is absent (../shared not beside the repo)");
+        if (test::present_or_skip(path)) meshes.emplace_back(file, read_mesh(path).mesh);
     }
     std::uint64_t k = 0;
     for (const auto& [name, mesh] : meshes) {

@@ -244,10 +244,7 @@ TEST_CASE("open meshes subdivide into valid meshes with the same boundary loops"
     std::vector<HalfedgeMesh> meshes = {make_grid(4), make_cylinder(10, 3)};
     for (const char* name : {"teapot.obj", "suzanne.obj"}) {
         const std::string path = test::shared_mesh(name);
-        if (!test::exists(path)) {
-            WARN("skipped: " << path << " is absent");
-            continue;
-        }
+        if (!test::present_or_skip(path)) continue;
         HalfedgeMesh m = read_mesh(path).mesh;
         m.garbage_collection();
         meshes.push_back(std::move(m));
@@ -425,26 +422,6 @@ TEST_CASE("texture coordinates are interpolated linearly", "[subdivision]") {
     }
 }
 
-namespace {
-/// Cancels once check_cancelled() has been asked `allowed` times.
-class CancelAfter final : public Progress {
-public:
-    explicit CancelAfter(int allowed) : allowed_(allowed) {}
-    void report(double fraction, const char*) override {
-        REQUIRE(fraction >= last_);
-        REQUIRE(fraction <= 1.0);
-        last_ = fraction;
-    }
-    bool cancel_requested() const override { return asked_++ >= allowed_; }
-    int asked() const { return asked_; }
-
-private:
-    int allowed_;
-    mutable int asked_ = 0;
-    double last_ = 0;
-};
-}  // namespace
-
 TEST_CASE("a cancelled subdivision throws and leaves the input untouched", "[subdivision]") {
     const HalfedgeMesh mesh = make_noisy_sphere(4, 0.05, 5);
     const HalfedgeMesh copy = mesh;
@@ -452,13 +429,15 @@ TEST_CASE("a cancelled subdivision throws and leaves the input untouched", "[sub
         SubdivisionOptions options;
         options.scheme = s;
         options.iterations = 3;
-        CancelAfter counter(1 << 30);
+        auto counter = test::CancellingProgress::after_checks(1 << 30);
         REQUIRE_NOTHROW(subdivide(mesh, options, counter));
-        const int total = counter.asked();
+        REQUIRE(counter.fractions_ok());  // never back, never past 1
+        const int total = counter.checks();
         REQUIRE(total > 3);
         for (int allowed : {0, 1, total / 2, total - 1}) {
-            CancelAfter cancel(allowed);
+            auto cancel = test::CancellingProgress::after_checks(allowed);
             REQUIRE_THROWS_AS(subdivide(mesh, options, cancel), Cancelled);
+            REQUIRE(cancel.fractions_ok());
         }
         REQUIRE(mesh.n_vertices() == copy.n_vertices());
         REQUIRE(mesh.positions() == copy.positions());

@@ -12,6 +12,8 @@ pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
 # zlib: the PNG reader inflates the image data once, bounded, before stb_image decodes it
 # (core/io/image_io.cpp), to refuse data that inflates past the declared size.
 find_package(ZLIB REQUIRED)
+# The core's worker threads (spectral slices), the viewer's job runner and their tests.
+find_package(Threads REQUIRED)
 
 if(TRILAB_BUILD_VIEWER)
     find_package(glfw3 3.3 REQUIRED)
@@ -40,9 +42,9 @@ if(TRILAB_BUILD_TESTS)
     find_package(Catch2 REQUIRED)
 endif()
 
-# OpenMesh (Debian libopenmesh-dev), OPTIONAL and benchmark-only: trilab_subdivision_bench
-# compares against its uniform subdividers when it is installed. The product, the tests and CI
-# never need it, so it is not in packages.txt.
+# OpenMesh (Debian libopenmesh-dev), OPTIONAL and benchmark-only: the subdivision, operation,
+# fairing and decimation benchmarks compare against it when installed. The product, the tests
+# and CI never need it, so it is not in packages.txt.
 if(TRILAB_BUILD_TESTS)
     find_package(OpenMesh CONFIG QUIET)
     if(TARGET OpenMeshTools)
@@ -58,9 +60,9 @@ if(TRILAB_BUILD_TESTS)
         endif()
     endif()
     if(TRILAB_OPENMESH_TARGET)
-        message(STATUS "OpenMesh found: the subdivision benchmark compares against it")
+        message(STATUS "OpenMesh found: the benchmarks compare against it")
     else()
-        message(STATUS "OpenMesh not found (optional, benchmark only): the subdivision benchmark "
-                       "runs without the comparison; apt-get install libopenmesh-dev to add it")
+        message(STATUS "OpenMesh not found (optional, benchmark only): the benchmarks "
+                       "run without the comparison; apt-get install libopenmesh-dev to add it")
     endif()
 endif()
