@@ -420,8 +420,8 @@ public:
     Vertex split(Edge e, const Point& p);
     /// Splits f 1-to-3 at p (a new vertex joined to its three corners). Returns the vertex.
     Vertex split(Face f, const Point& p);
-    /// Reverses the orientation of every face (core/orientation.h flip_orientation() adds the
-    /// attribute semantics): each halfedge moves to the other side of its edge, so face f
+    /// Reverses the orientation of every face (core/algorithms/orientation.h flip_orientation()
+    /// adds the attribute semantics): each halfedge moves to the other side of its edge, so face f
     /// keeps its three vertices in the opposite order; vertex, edge and face indices and all
     /// their attributes are kept. Halfedge attributes follow their corner: the value of the
     /// corner at (vertex v, face f) stays at that corner (per-corner "h:texcoord"). Boundary

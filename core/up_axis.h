@@ -2,7 +2,7 @@
 // Which world axis points up: +y (the OBJ convention, most scanned and game models) or +z
 // (CAD, 3D printing, many PLY scans). The viewer's default view and the CLI's --view angles
 // keep the up axis up on the screen, and the spherical texture projection puts its poles on
-// it (core/texcoords.h).
+// it (core/algorithms/texcoords.h).
 //
 // The z-up frame is the y-up frame turned by -90 degrees about x: world (x, y, z) reads as
 // (x, z, -y) in y-up terms, so +z is up and -y (the front of a z-up model, where a y-up

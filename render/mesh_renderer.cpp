@@ -7,8 +7,8 @@
 #include <limits>
 #include <utility>
 
+#include "core/algorithms/mesh_stats.h"
 #include "core/errors.h"
-#include "core/mesh_stats.h"
 
 namespace trilab {
 namespace {

@@ -14,8 +14,8 @@
 // geometry change, set_vertex_colors() rewrites the colours only, upload() (topology change)
 // rewrites everything and drops the vertex colours.
 //
-// Level of detail (LevelOfDetail, core/decimation.h, for a slider over a progressive mesh):
-// upload_level() puts every vertex of the fine mesh on the GPU once, in the level of
+// Level of detail (LevelOfDetail, core/algorithms/decimation.h, for a slider over a progressive
+// mesh): upload_level() puts every vertex of the fine mesh on the GPU once, in the level of
 // detail's drawing order (positions and the level's area-weighted normals), with the live
 // triangles and vertices; update_level() after LevelOfDetail::set_level() rewrites the index
 // buffers (O(live faces): the software rasterizer wants the drawing order, which a list
@@ -55,7 +55,7 @@
 #include <string>
 #include <vector>
 
-#include "core/decimation.h"
+#include "core/algorithms/decimation.h"
 #include "core/halfedge_mesh.h"
 #include "core/io/image_io.h"
 #include "render/gl_program.h"

@@ -8,9 +8,9 @@
 #include <iostream>
 
 #include "app/cli/json_writer.h"
+#include "core/algorithms/mesh_distance.h"
 #include "core/errors.h"
 #include "core/io/mesh_io.h"
-#include "core/mesh_distance.h"
 
 namespace trilab::cli {
 namespace {

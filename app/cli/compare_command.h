@@ -1,6 +1,6 @@
 #pragma once
 // `trilab-cli compare`: sampled Hausdorff and RMS distance between two meshes
-// (core/mesh_distance.h).
+// (core/algorithms/mesh_distance.h).
 #include <string>
 #include <vector>
 

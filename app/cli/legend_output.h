@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "app/cli/json_writer.h"
-#include "core/coloring.h"
+#include "core/algorithms/coloring.h"
 
 namespace trilab::cli {
 

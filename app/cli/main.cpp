@@ -15,12 +15,12 @@
 #include "app/cli/record_command.h"
 #include "app/cli/render_command.h"
 #include "app/ops/operation.h"
-#include "core/coincident.h"
+#include "app/platform/heap_tuning.h"
+#include "core/algorithms/coincident.h"
+#include "core/algorithms/generators.h"
+#include "core/algorithms/mesh_stats.h"
 #include "core/errors.h"
-#include "core/generators.h"
 #include "core/io/mesh_io.h"
-#include "core/mesh_stats.h"
-#include "core/platform.h"
 #include "core/validate.h"
 
 namespace trilab::cli {

@@ -31,13 +31,13 @@
 #include "app/cli/legend_output.h"
 #include "app/history/history.h"
 #include "app/ops/operation.h"
-#include "core/coloring.h"
+#include "core/algorithms/coloring.h"
+#include "core/algorithms/morph.h"
+#include "core/algorithms/texcoords.h"
 #include "core/errors.h"
 #include "core/io/image_io.h"
 #include "core/io/mesh_io.h"
-#include "core/morph.h"
 #include "core/progress.h"
-#include "core/texcoords.h"
 
 #ifdef TRILAB_HAS_RENDER
 #include "render/camera.h"

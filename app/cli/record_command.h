@@ -19,7 +19,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/coloring.h"
+#include "core/algorithms/coloring.h"
 
 namespace trilab::cli {
 

@@ -12,11 +12,11 @@
 #include "app/cli/arg_reader.h"
 #include "app/cli/json_writer.h"
 #include "app/cli/legend_output.h"
-#include "core/coloring.h"
+#include "core/algorithms/coloring.h"
+#include "core/algorithms/texcoords.h"
 #include "core/errors.h"
 #include "core/io/image_io.h"
 #include "core/io/mesh_io.h"
-#include "core/texcoords.h"
 
 #ifdef TRILAB_HAS_RENDER
 #include "render/offscreen.h"

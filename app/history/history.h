@@ -4,7 +4,7 @@
 //
 // An entry is one operation (load, revert, noise, ...) with its label, parameters, timing and
 // one or more steps (iterations); each step holds the mesh after it and how it morphs from
-// the previous state (core/morph.h). Steps share unchanged data through the mesh's
+// the previous state (core/algorithms/morph.h). Steps share unchanged data through the mesh's
 // copy-on-write arrays (core/property.h): a step made from a copy of the mesh before it
 // shares every array it did not change, and a step that keeps the vertices is also made to
 // share every array whose values equal its predecessor's bit for bit. So a geometry-only step
@@ -25,8 +25,8 @@
 #include <vector>
 
 #include "app/ops/operation.h"
+#include "core/algorithms/morph.h"
 #include "core/halfedge_mesh.h"
-#include "core/morph.h"
 
 namespace trilab {
 

@@ -1,5 +1,5 @@
 // The "decimate" operation: edge collapse with quadric or roundness costs and binary
-// constraints (core/decimation.h). One step per iteration, each with its geomorph.
+// constraints (core/algorithms/decimation.h). One step per iteration, each with its geomorph.
 #include <chrono>
 #include <cstdio>
 #include <optional>
@@ -8,7 +8,7 @@
 
 #include "app/ops/operation_decl.h"
 #include "app/ops/operation_entries.h"
-#include "core/decimation.h"
+#include "core/algorithms/decimation.h"
 
 namespace trilab {
 namespace {

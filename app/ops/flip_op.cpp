@@ -1,4 +1,4 @@
-// The "flip" operation: reverses the orientation of every face (core/orientation.h), for
+// The "flip" operation: reverses the orientation of every face (core/algorithms/orientation.h), for
 // meshes whose faces point inwards (a closed mesh with a negative volume).
 #include <chrono>
 #include <cstdio>
@@ -7,7 +7,7 @@
 
 #include "app/ops/operation_decl.h"
 #include "app/ops/operation_entries.h"
-#include "core/orientation.h"
+#include "core/algorithms/orientation.h"
 
 namespace trilab {
 namespace {

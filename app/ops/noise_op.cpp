@@ -1,4 +1,4 @@
-// The "noise" operation: random displacement along the normals (core/noise.h).
+// The "noise" operation: random displacement along the normals (core/algorithms/noise.h).
 #include <chrono>
 #include <cstdio>
 #include <limits>
@@ -7,7 +7,7 @@
 
 #include "app/ops/operation_decl.h"
 #include "app/ops/operation_entries.h"
-#include "core/noise.h"
+#include "core/algorithms/noise.h"
 
 namespace trilab {
 namespace {

@@ -18,8 +18,8 @@
 #include <vector>
 
 #include "app/ops/parameter.h"
+#include "core/algorithms/morph.h"
 #include "core/halfedge_mesh.h"
-#include "core/morph.h"
 #include "core/progress.h"
 
 namespace trilab {

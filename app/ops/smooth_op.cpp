@@ -1,4 +1,4 @@
-// The "smooth" operation: fairing with the four Laplacians and Taubin (core/fairing.h).
+// The "smooth" operation: fairing with the four Laplacians and Taubin (core/algorithms/fairing.h).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -9,8 +9,8 @@
 
 #include "app/ops/operation_decl.h"
 #include "app/ops/operation_entries.h"
-#include "core/coloring.h"
-#include "core/fairing.h"
+#include "core/algorithms/coloring.h"
+#include "core/algorithms/fairing.h"
 
 namespace trilab {
 namespace {

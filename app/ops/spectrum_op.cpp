@@ -1,5 +1,5 @@
-// The "spectrum" operation: frequency decomposition (core/spectral.h) and the reconstruction
-// of the mesh from a band of the computed frequencies, as one geometry-only step.
+// The "spectrum" operation: frequency decomposition (core/algorithms/spectral.h) and the
+// reconstruction of the mesh from a band of the computed frequencies, as one geometry-only step.
 #include <chrono>
 #include <cstdio>
 #include <limits>
@@ -9,7 +9,7 @@
 
 #include "app/ops/operation_decl.h"
 #include "app/ops/operation_entries.h"
-#include "core/spectral.h"
+#include "core/algorithms/spectral.h"
 
 namespace trilab {
 namespace {

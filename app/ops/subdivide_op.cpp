@@ -1,4 +1,5 @@
-// The "subdivide" operation: Loop, Sqrt3, Butterfly, Modified Butterfly (core/subdivision.h).
+// The "subdivide" operation: Loop, Sqrt3, Butterfly, Modified Butterfly
+// (core/algorithms/subdivision.h).
 #include <chrono>
 #include <cstdio>
 #include <limits>
@@ -7,7 +8,7 @@
 
 #include "app/ops/operation_decl.h"
 #include "app/ops/operation_entries.h"
-#include "core/subdivision.h"
+#include "core/algorithms/subdivision.h"
 
 namespace trilab {
 namespace {

@@ -1,4 +1,5 @@
-// The "weld" operation: joins coincident vertices where the mesh stays manifold (core/weld.h).
+// The "weld" operation: joins coincident vertices where the mesh stays manifold
+// (core/algorithms/weld.h).
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -6,8 +7,8 @@
 
 #include "app/ops/operation_decl.h"
 #include "app/ops/operation_entries.h"
-#include "core/coincident.h"
-#include "core/weld.h"
+#include "core/algorithms/coincident.h"
+#include "core/algorithms/weld.h"
 
 namespace trilab {
 namespace {

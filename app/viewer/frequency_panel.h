@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "app/ops/operation.h"
-#include "core/spectral.h"
+#include "core/algorithms/spectral.h"
 
 namespace trilab::viewer {
 

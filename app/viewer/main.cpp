@@ -8,8 +8,8 @@
 #include <exception>
 #include <string>
 
+#include "app/platform/heap_tuning.h"
 #include "app/viewer/viewer.h"
-#include "core/platform.h"
 
 namespace {
 

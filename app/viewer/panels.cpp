@@ -9,7 +9,7 @@
 #include <iterator>
 
 #include "app/viewer/plots.h"
-#include "core/fairing.h"
+#include "core/algorithms/fairing.h"
 
 namespace trilab::viewer {
 namespace {

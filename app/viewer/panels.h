@@ -14,9 +14,9 @@
 #include "app/viewer/frequency_panel.h"
 #include "app/viewer/layout.h"
 #include "app/viewer/log.h"
-#include "core/coloring.h"
-#include "core/morph.h"
-#include "core/texcoords.h"
+#include "core/algorithms/coloring.h"
+#include "core/algorithms/morph.h"
+#include "core/algorithms/texcoords.h"
 #include "render/mesh_renderer.h"
 
 namespace trilab::viewer {

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "core/coloring.h"
+#include "core/algorithms/coloring.h"
 
 namespace trilab::viewer {
 

@@ -19,15 +19,15 @@
 
 #include "app/ops/operation.h"
 #include "app/ops/operation_entries.h"
-#include "core/decimation.h"
+#include "core/algorithms/decimation.h"
+#include "core/algorithms/fairing.h"
+#include "core/algorithms/generators.h"
+#include "core/algorithms/mesh_stats.h"
+#include "core/algorithms/orientation.h"
+#include "core/algorithms/texcoords.h"
 #include "core/errors.h"
-#include "core/fairing.h"
-#include "core/generators.h"
 #include "core/geometry.h"
 #include "core/io/mesh_io.h"
-#include "core/mesh_stats.h"
-#include "core/orientation.h"
-#include "core/texcoords.h"
 #include "render/offscreen.h"
 
 namespace trilab::viewer {

@@ -20,8 +20,8 @@
 
 #include "app/ops/operation_entries.h"
 #include "app/viewer/viewer.h"
-#include "core/coloring.h"
-#include "core/decimation.h"
+#include "core/algorithms/coloring.h"
+#include "core/algorithms/decimation.h"
 
 namespace trilab::viewer {
 namespace {

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "core/errors.h"
-#include "core/platform.h"
+#include "core/system_memory.h"
 
 namespace trilab {
 

@@ -22,7 +22,7 @@
 #include "core/io/file_util.h"
 #include "core/io/text_scanner.h"
 #include "core/io/x11_colors.h"
-#include "core/platform.h"
+#include "core/system_memory.h"
 
 // Readers:
 //  - PNG and BMP go through stb_image, after our own checks: the signature; the dimensions

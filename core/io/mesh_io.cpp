@@ -5,9 +5,9 @@
 #include <filesystem>
 #include <sstream>
 
+#include "core/algorithms/orientation.h"
 #include "core/errors.h"
 #include "core/io/file_util.h"
-#include "core/orientation.h"
 
 namespace trilab {
 

@@ -47,7 +47,7 @@ std::vector<std::string> supported_mesh_extensions();
 std::string file_extension(const std::string& path);
 
 /// Reads any supported format (chosen by extension). A closed mesh with a negative volume
-/// gets a note in its report (core/orientation.h inward_orientation_note()).
+/// gets a note in its report (core/algorithms/orientation.h inward_orientation_note()).
 LoadedMesh read_mesh(const std::string& path);
 /// Writes any supported format (chosen by extension).
 void write_mesh(const HalfedgeMesh& mesh, const std::string& path,

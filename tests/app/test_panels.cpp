@@ -18,8 +18,8 @@
 
 #include "app/viewer/panels.h"
 #include "app/viewer/plots.h"
-#include "core/fairing.h"
-#include "core/generators.h"
+#include "core/algorithms/fairing.h"
+#include "core/algorithms/generators.h"
 
 using namespace trilab;
 using namespace trilab::viewer;

@@ -1,5 +1,5 @@
-// Fairing benchmark (not a test): times core/fairing.h's smooth() on the shared Stanford bunny
-// (35,947 vertices), on the bunny Loop-subdivided twice (556k vertices, the large
+// Fairing benchmark (not a test): times core/algorithms/fairing.h's smooth() on the shared Stanford
+// bunny (35,947 vertices), on the bunny Loop-subdivided twice (556k vertices, the large
 // mesh) and on a torus of 1,000,000 vertices, and prints medians against the floors:
 //   - one explicit umbrella iteration on 1M vertices under 50 ms;
 //   - one implicit cotangent step on the bunny under 150 ms, factorization included;
@@ -34,12 +34,12 @@
 #include <string>
 #include <vector>
 
-#include "core/fairing.h"
-#include "core/generators.h"
+#include "app/platform/heap_tuning.h"
+#include "core/algorithms/fairing.h"
+#include "core/algorithms/generators.h"
+#include "core/algorithms/subdivision.h"
 #include "core/io/mesh_io.h"
-#include "core/platform.h"
 #include "core/progress.h"
-#include "core/subdivision.h"
 #include "fairing_bench_peers.h"
 
 using namespace trilab;

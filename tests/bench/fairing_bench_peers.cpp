@@ -16,7 +16,7 @@
 #include <functional>
 #include <vector>
 
-#include "core/fairing.h"
+#include "core/algorithms/fairing.h"
 
 #ifdef TRILAB_HAS_OPENMESH
 #if defined(__GNUC__) && !defined(__clang__)

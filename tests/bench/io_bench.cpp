@@ -21,10 +21,10 @@
 #include <string>
 #include <vector>
 
-#include "core/generators.h"
+#include "app/platform/heap_tuning.h"
+#include "core/algorithms/generators.h"
+#include "core/algorithms/mesh_stats.h"
 #include "core/io/mesh_io.h"
-#include "core/mesh_stats.h"
-#include "core/platform.h"
 #include "core/validate.h"
 
 using namespace trilab;

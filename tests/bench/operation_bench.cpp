@@ -31,11 +31,11 @@
 #include <vector>
 
 #include "app/ops/operation.h"
-#include "core/decimation.h"
-#include "core/fairing.h"
+#include "core/algorithms/decimation.h"
+#include "core/algorithms/fairing.h"
+#include "core/algorithms/spectral.h"
+#include "core/algorithms/subdivision.h"
 #include "core/io/mesh_io.h"
-#include "core/spectral.h"
-#include "core/subdivision.h"
 
 #ifdef TRILAB_HAS_OPENMESH
 #if defined(__GNUC__) && !defined(__clang__)

@@ -14,11 +14,11 @@
 #include <functional>
 #include <vector>
 
-#include "core/coloring.h"
-#include "core/generators.h"
+#include "app/platform/heap_tuning.h"
+#include "core/algorithms/coloring.h"
+#include "core/algorithms/generators.h"
 #include "core/geometry.h"
 #include "core/io/mesh_io.h"
-#include "core/platform.h"
 #include "render/camera.h"
 #include "render/mesh_renderer.h"
 #include "render/offscreen.h"

@@ -1,5 +1,5 @@
 // Frequency-decomposition benchmark (not a test): the three cases with
-// core/spectral.h, median wall time and the ratio to each floor.
+// core/algorithms/spectral.h, median wall time and the ratio to each floor.
 //
 //   trilab_spectral_bench [--runs N] [--check] [--operator OP] [--band-size B] [--krylov F]
 //                         [--tol T] [--threads T] [--skip-1000] [--baseline]
@@ -30,11 +30,11 @@
 #include <string>
 #include <vector>
 
+#include "app/platform/heap_tuning.h"
+#include "core/algorithms/spectral.h"
+#include "core/algorithms/subdivision.h"
 #include "core/io/mesh_io.h"
-#include "core/platform.h"
 #include "core/progress.h"
-#include "core/spectral.h"
-#include "core/subdivision.h"
 
 using namespace trilab;
 

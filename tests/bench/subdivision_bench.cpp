@@ -1,6 +1,6 @@
 // Subdivision benchmark (not a test): subdivides the shared Stanford bunny and a mesh of
-// more than 1M faces once with each scheme (core/subdivision.h), printing the median time
-// and million output faces per second of each, then the floors against OpenMesh.
+// more than 1M faces once with each scheme (core/algorithms/subdivision.h), printing the median
+// time and million output faces per second of each, then the floors against OpenMesh.
 //
 //   trilab_subdivision_bench [--runs N] [--check] [--om-float] [--cpu-time]
 //
@@ -39,11 +39,11 @@
 #include <string>
 #include <vector>
 
-#include "core/generators.h"
+#include "app/platform/heap_tuning.h"
+#include "core/algorithms/generators.h"
+#include "core/algorithms/subdivision.h"
 #include "core/io/mesh_io.h"
-#include "core/platform.h"
 #include "core/progress.h"
-#include "core/subdivision.h"
 
 #ifdef TRILAB_HAS_OPENMESH
 #include "openmesh_mesh.h"  // first: the subdividers need the mesh kernel

@@ -10,10 +10,10 @@
 #include <cstdlib>
 #include <string>
 
+#include "core/algorithms/subdivision.h"
 #include "core/errors.h"
 #include "core/mesh_builder.h"
 #include "core/progress.h"
-#include "core/subdivision.h"
 #include "core/validate.h"
 
 namespace {

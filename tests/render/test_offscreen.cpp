@@ -4,11 +4,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/coloring.h"
-#include "core/generators.h"
+#include "core/algorithms/coloring.h"
+#include "core/algorithms/generators.h"
+#include "core/algorithms/texcoords.h"
 #include "core/geometry.h"
 #include "core/mesh_builder.h"
-#include "core/texcoords.h"
 #include "render/mesh_renderer.h"
 #include "render/offscreen.h"
 #include "render_test_util.h"

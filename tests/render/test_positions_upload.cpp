@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "core/generators.h"
+#include "core/algorithms/generators.h"
 #include "render/camera.h"
 #include "render/offscreen.h"
 #include "render_test_util.h"

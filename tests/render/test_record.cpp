@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "app/ops/operation.h"
-#include "core/coloring.h"
+#include "core/algorithms/coloring.h"
+#include "core/algorithms/generators.h"
 #include "core/errors.h"
-#include "core/generators.h"
 #include "core/io/image_io.h"
 #include "core/io/mesh_io.h"
 #include "core/progress.h"

@@ -4,10 +4,10 @@
 #include <string>
 #include <vector>
 
-#include "core/coloring.h"
-#include "core/curvature.h"
+#include "core/algorithms/coloring.h"
+#include "core/algorithms/curvature.h"
+#include "core/algorithms/generators.h"
 #include "core/errors.h"
-#include "core/generators.h"
 #include "core/geometry.h"
 #include "core/mesh_builder.h"
 #include "test_helpers.h"

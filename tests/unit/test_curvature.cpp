@@ -5,8 +5,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/curvature.h"
-#include "core/generators.h"
+#include "core/algorithms/curvature.h"
+#include "core/algorithms/generators.h"
 #include "core/geometry.h"
 #include "core/mesh_builder.h"
 #include "test_helpers.h"

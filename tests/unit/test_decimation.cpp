@@ -9,16 +9,16 @@
 #include <vector>
 
 #include "app/ops/operation.h"
-#include "core/decimation.h"
+#include "core/algorithms/decimation.h"
+#include "core/algorithms/generators.h"
+#include "core/algorithms/mesh_distance.h"
+#include "core/algorithms/mesh_stats.h"
+#include "core/algorithms/morph.h"
+#include "core/algorithms/quadric.h"
 #include "core/errors.h"
-#include "core/generators.h"
 #include "core/geometry.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh_builder.h"
-#include "core/mesh_distance.h"
-#include "core/mesh_stats.h"
-#include "core/morph.h"
-#include "core/quadric.h"
 #include "test_helpers.h"
 
 using namespace trilab;

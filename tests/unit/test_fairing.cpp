@@ -10,15 +10,15 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "core/curvature.h"
+#include "core/algorithms/curvature.h"
+#include "core/algorithms/fairing.h"
+#include "core/algorithms/generators.h"
+#include "core/algorithms/laplacian.h"
+#include "core/algorithms/noise.h"
 #include "core/errors.h"
-#include "core/fairing.h"
-#include "core/generators.h"
 #include "core/geometry.h"
 #include "core/io/mesh_io.h"
-#include "core/laplacian.h"
 #include "core/mesh_builder.h"
-#include "core/noise.h"
 #include "test_helpers.h"
 
 using namespace trilab;

@@ -1,7 +1,7 @@
 // Geometry helpers: normals, areas, bounding box, volume (1.15), edge lengths, cotangents.
 #include <cmath>
 
-#include "core/generators.h"
+#include "core/algorithms/generators.h"
 #include "core/geometry.h"
 #include "core/mesh_builder.h"
 #include "test_helpers.h"

@@ -3,8 +3,8 @@
 #include <atomic>
 #include <random>
 
+#include "core/algorithms/generators.h"
 #include "core/errors.h"
-#include "core/generators.h"
 #include "core/geometry.h"
 #include "core/io/file_util.h"
 #include "core/io/mesh_io.h"

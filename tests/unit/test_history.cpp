@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "app/history/history.h"
+#include "core/algorithms/generators.h"
 #include "core/errors.h"
-#include "core/generators.h"
 #include "core/geometry.h"
 #include "test_helpers.h"
 

@@ -18,15 +18,15 @@
 #include <vector>
 
 #include "app/ops/operation.h"
+#include "core/algorithms/generators.h"
+#include "core/algorithms/mesh_distance.h"
 #include "core/errors.h"
-#include "core/generators.h"
 #include "core/geometry.h"
 #include "core/io/file_util.h"
 #include "core/io/image_io.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh_builder.h"
-#include "core/mesh_distance.h"
-#include "core/platform.h"
+#include "core/system_memory.h"
 #include "test_helpers.h"
 
 using namespace trilab;

@@ -5,8 +5,8 @@
 #include <fstream>
 #include <random>
 
+#include "core/algorithms/generators.h"
 #include "core/errors.h"
-#include "core/generators.h"
 #include "core/io/file_util.h"
 #include "core/io/mesh_io.h"
 #include "test_helpers.h"

@@ -4,13 +4,13 @@
 #include <fstream>
 #include <utility>
 
+#include "core/algorithms/generators.h"
+#include "core/algorithms/mesh_stats.h"
 #include "core/errors.h"
-#include "core/generators.h"
 #include "core/geometry.h"
 #include "core/io/file_util.h"
 #include "core/io/image_io.h"
 #include "core/io/mesh_io.h"
-#include "core/mesh_stats.h"
 #include "test_helpers.h"
 
 using namespace trilab;

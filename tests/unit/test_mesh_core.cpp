@@ -1,11 +1,11 @@
 // Half-edge core: handles, properties, circulators, construction from soups, validate().
 #include <set>
 
+#include "core/algorithms/generators.h"
+#include "core/algorithms/mesh_stats.h"
 #include "core/errors.h"
-#include "core/generators.h"
 #include "core/geometry.h"
 #include "core/mesh_builder.h"
-#include "core/mesh_stats.h"
 #include "test_helpers.h"
 
 using namespace trilab;

@@ -2,9 +2,9 @@
 // translated planes, scaled spheres, symmetry, determinism, bad input.
 #include <cmath>
 
+#include "core/algorithms/generators.h"
+#include "core/algorithms/mesh_distance.h"
 #include "core/errors.h"
-#include "core/generators.h"
-#include "core/mesh_distance.h"
 #include "test_helpers.h"
 
 using namespace trilab;

@@ -6,18 +6,18 @@
 #include <vector>
 
 #include "app/ops/operation.h"
-#include "core/coincident.h"
-#include "core/decimation.h"
+#include "core/algorithms/coincident.h"
+#include "core/algorithms/decimation.h"
+#include "core/algorithms/fairing.h"
+#include "core/algorithms/generators.h"
+#include "core/algorithms/mesh_stats.h"
+#include "core/algorithms/noise.h"
+#include "core/algorithms/pillows.h"
+#include "core/algorithms/subdivision.h"
+#include "core/algorithms/weld.h"
 #include "core/errors.h"
-#include "core/fairing.h"
-#include "core/generators.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh_builder.h"
-#include "core/mesh_stats.h"
-#include "core/noise.h"
-#include "core/pillows.h"
-#include "core/subdivision.h"
-#include "core/weld.h"
 #include "test_helpers.h"
 
 using namespace trilab;

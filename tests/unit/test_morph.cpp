@@ -3,9 +3,9 @@
 #include <cmath>
 #include <limits>
 
+#include "core/algorithms/generators.h"
+#include "core/algorithms/morph.h"
 #include "core/errors.h"
-#include "core/generators.h"
-#include "core/morph.h"
 #include "test_helpers.h"
 
 using namespace trilab;

@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "core/algorithms/generators.h"
 #include "core/errors.h"
-#include "core/generators.h"
 #include "core/io/file_util.h"
 #include "core/io/image_io.h"
 #include "core/io/mesh_io.h"

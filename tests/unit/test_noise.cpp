@@ -4,10 +4,10 @@
 #include <cstring>
 #include <limits>
 
+#include "core/algorithms/generators.h"
+#include "core/algorithms/noise.h"
 #include "core/errors.h"
-#include "core/generators.h"
 #include "core/geometry.h"
-#include "core/noise.h"
 #include "test_helpers.h"
 
 using namespace trilab;

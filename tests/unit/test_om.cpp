@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "core/algorithms/generators.h"
 #include "core/errors.h"
-#include "core/generators.h"
 #include "core/geometry.h"
 #include "core/io/file_util.h"
 #include "core/io/mesh_io.h"

@@ -4,11 +4,11 @@
 #include <cstring>
 
 #include "app/ops/operation.h"
+#include "core/algorithms/generators.h"
+#include "core/algorithms/noise.h"
+#include "core/algorithms/subdivision.h"
 #include "core/errors.h"
-#include "core/generators.h"
 #include "core/geometry.h"
-#include "core/noise.h"
-#include "core/subdivision.h"
 #include "test_helpers.h"
 
 using namespace trilab;

@@ -7,10 +7,10 @@
 #include <vector>
 
 #include "app/ops/operation.h"
-#include "core/generators.h"
+#include "core/algorithms/generators.h"
+#include "core/algorithms/orientation.h"
 #include "core/geometry.h"
 #include "core/io/mesh_io.h"
-#include "core/orientation.h"
 #include "test_helpers.h"
 
 using namespace trilab;

@@ -1,5 +1,5 @@
-// Frequency decomposition (core/spectral.h): the sphere's spectrum, partial against full,
-// band by band against one band, S-orthonormality, exact reconstruction, low-pass smoothing,
+// Frequency decomposition (core/algorithms/spectral.h): the sphere's spectrum, partial against
+// full, band by band against one band, S-orthonormality, exact reconstruction, low-pass smoothing,
 // disconnected meshes, boundaries, isolated vertices, option errors and cancellation.
 #include <algorithm>
 #include <chrono>
@@ -9,15 +9,15 @@
 #include <vector>
 
 #include "app/ops/operation.h"
-#include "core/coloring.h"
+#include "core/algorithms/coloring.h"
+#include "core/algorithms/generators.h"
+#include "core/algorithms/laplacian.h"
+#include "core/algorithms/spectral.h"
 #include "core/errors.h"
-#include "core/generators.h"
 #include "core/geometry.h"
 #include "core/io/mesh_io.h"
-#include "core/laplacian.h"
 #include "core/mesh_builder.h"
-#include "core/platform.h"
-#include "core/spectral.h"
+#include "core/system_memory.h"
 #include "test_helpers.h"
 
 using namespace trilab;

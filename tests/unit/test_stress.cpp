@@ -23,10 +23,10 @@
 
 #include "app/history/history.h"
 #include "app/ops/operation.h"
+#include "core/algorithms/generators.h"
+#include "core/algorithms/mesh_stats.h"
 #include "core/errors.h"
-#include "core/generators.h"
 #include "core/io/mesh_io.h"
-#include "core/mesh_stats.h"
 #include "test_helpers.h"
 
 using namespace trilab;

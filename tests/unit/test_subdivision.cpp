@@ -5,13 +5,13 @@
 #include <cmath>
 #include <vector>
 
+#include "core/algorithms/generators.h"
+#include "core/algorithms/mesh_stats.h"
+#include "core/algorithms/morph.h"
+#include "core/algorithms/subdivision.h"
 #include "core/errors.h"
-#include "core/generators.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh_builder.h"
-#include "core/mesh_stats.h"
-#include "core/morph.h"
-#include "core/subdivision.h"
 #include "test_helpers.h"
 
 using namespace trilab;

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <limits>
 
+#include "core/algorithms/generators.h"
+#include "core/algorithms/texcoords.h"
 #include "core/errors.h"
-#include "core/generators.h"
-#include "core/texcoords.h"
 #include "test_helpers.h"
 
 using namespace trilab;

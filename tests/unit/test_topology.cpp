@@ -2,10 +2,10 @@
 // test checks the counts the operator promises and calls validate() after every step.
 #include <random>
 
+#include "core/algorithms/generators.h"
+#include "core/algorithms/mesh_stats.h"
 #include "core/errors.h"
-#include "core/generators.h"
 #include "core/geometry.h"
-#include "core/mesh_stats.h"
 #include "test_helpers.h"
 
 using namespace trilab;

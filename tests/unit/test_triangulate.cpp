@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "core/algorithms/mesh_stats.h"
 #include "core/geometry.h"
 #include "core/mesh_builder.h"
-#include "core/mesh_stats.h"
 #include "core/triangulate.h"
 #include "test_helpers.h"
 

@@ -2,7 +2,7 @@
 # OpenGL 3.3 core loader with glad 2 at build time. Nothing here is vendored source.
 
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
-# Spectra 1.0 (header-only Lanczos eigen solvers): only core/spectral.cpp includes it.
+# Spectra 1.0 (header-only Lanczos eigen solvers): only core/algorithms/spectral.cpp includes it.
 find_package(Spectra REQUIRED)
 # The installed version string ("2rc10") cannot be compared: never ask for a version.
 find_package(tinyobjloader REQUIRED)

@@ -1,5 +1,5 @@
-// Decimation benchmark (not a test): trilab's quadric decimation (core/decimation.h) against
-// OpenMesh 9 (DecimaterT + ModQuadricT), CGAL 5.5 (edge_collapse, Garland-Heckbert plane
+// Decimation benchmark (not a test): trilab's quadric decimation (core/algorithms/decimation.h)
+// against OpenMesh 9 (DecimaterT + ModQuadricT), CGAL 5.5 (edge_collapse, Garland-Heckbert plane
 // policies) and meshoptimizer (meshopt_simplify), in the same run, on the same meshes.
 //
 //   trilab_decimation_bench [--runs N] [--peer-runs N] [--samples N] [--quick] [--check]
@@ -11,8 +11,8 @@
 // decimation call is timed (trilab: decimate(), which copies the input and compacts the
 // output; peers: their decimate call on their own mesh, built beforehand, untimed).
 // Quality: bunny, horse and fandisk at 10 % and 1 %: sampled two-sided Hausdorff and RMS
-// distance to the input (core/mesh_distance.h, --samples per mesh, default 200000) relative
-// to the bounding-box diagonal. trilab is run at CGAL's actual output vertex count for the
+// distance to the input (core/algorithms/mesh_distance.h, --samples per mesh, default 200000)
+// relative to the bounding-box diagonal. trilab is run at CGAL's actual output vertex count for the
 // ratio. Manifoldness of every output: trilab's passes validate(); peers' soups are checked
 // for edges with more than two faces and duplicate triangles (and what build_mesh repaired).
 //
@@ -35,13 +35,13 @@
 #include <string>
 #include <vector>
 
-#include "core/decimation.h"
-#include "core/generators.h"
+#include "app/platform/heap_tuning.h"
+#include "core/algorithms/decimation.h"
+#include "core/algorithms/generators.h"
+#include "core/algorithms/mesh_distance.h"
+#include "core/algorithms/subdivision.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh_builder.h"
-#include "core/mesh_distance.h"
-#include "core/platform.h"
-#include "core/subdivision.h"
 #include "core/validate.h"
 #include "peers.h"
 

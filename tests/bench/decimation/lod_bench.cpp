@@ -31,11 +31,11 @@
 #include <string>
 #include <vector>
 
-#include "core/decimation.h"
+#include "app/platform/heap_tuning.h"
+#include "core/algorithms/decimation.h"
+#include "core/algorithms/subdivision.h"
 #include "core/geometry.h"
 #include "core/io/mesh_io.h"
-#include "core/platform.h"
-#include "core/subdivision.h"
 #include "render/camera.h"
 #include "render/mesh_renderer.h"
 #include "render/offscreen.h"

@@ -1,7 +1,7 @@
 // Face orientation; see orientation.h. The connectivity part is
 // HalfedgeMesh::reverse_orientation() (core/topology.cpp), which needs the mesh's property
 // containers to move per-halfedge attributes with their corners.
-#include "core/orientation.h"
+#include "core/algorithms/orientation.h"
 
 #include <cmath>
 #include <cstdio>

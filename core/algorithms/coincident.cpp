@@ -1,4 +1,4 @@
-#include "core/coincident.h"
+#include "core/algorithms/coincident.h"
 
 #include <algorithm>
 #include <cmath>

@@ -45,7 +45,7 @@ enum class VertexColoring {
     /// Displacement from a reference state (the state before the last operation), signed
     /// along the current vertex normal: positive where the surface moved outwards.
     SmoothingDistance,
-    Frequency,      ///< an eigenvector's values (core/spectral.h frequency_field); signed
+    Frequency,  ///< an eigenvector's values (core/algorithms/spectral.h frequency_field); signed
     FrequencyMass,  ///< |part of the position carried by a band| (band_magnitude_field)
 };
 

@@ -57,8 +57,8 @@
 // default (a fixed row of L is zero). A free vertex whose normalizer S_i vanishes (all its
 // weights clamped, degenerate fan) is fixed too and counted as stalled.
 //
-// Mass matrix option (used by the spectral decomposition, core/spectral.h): by default S is
-// the row normalizer above. MassMatrix::Barycentric and MassMatrix::Voronoi replace it by a
+// Mass matrix option (used by the spectral decomposition, core/algorithms/spectral.h): by default S
+// is the row normalizer above. MassMatrix::Barycentric and MassMatrix::Voronoi replace it by a
 // lumped mass S_i = 2·A_i with A_i the barycentric (a third of the incident triangle areas)
 // or the mixed Voronoi area (Meyer, Desbrun, Schröder, Barr 2003: Voronoi region of non-obtuse
 // triangles, half / a quarter of an obtuse triangle's area). The factor 2 matches K's full
@@ -130,7 +130,7 @@ struct LaplacianOptions {
     bool clamp_negative_cotangents = true;     ///< CurvatureFlow: w_ij < 0 -> 0 (keeps K PSD)
     MassMatrix mass = MassMatrix::Normalizer;  ///< what S holds
     /// Vertices fixed besides the boundary, per vertex storage index (1 = fixed); empty:
-    /// none. Fairing fixes the coincident copies that cannot be joined (core/fairing.h).
+    /// none. Fairing fixes the coincident copies that cannot be joined (core/algorithms/fairing.h).
     std::vector<std::uint8_t> fixed_vertices;
 };
 

@@ -1,4 +1,4 @@
-#include "core/laplacian.h"
+#include "core/algorithms/laplacian.h"
 
 #include <algorithm>
 #include <cmath>

@@ -13,25 +13,25 @@
 // in SubdivisionOptions. Every vertex records its level (for the "subdivision vertices"
 // colouring).
 // Texture coordinates ("v:texcoord", "h:texcoord") are interpolated linearly.
-// Messy meshes (core/coincident.h): vertices at the same position (a seam between patches,
-// the copies build_mesh() makes of a non-manifold vertex) stay together on every level. The
-// 1-to-4 schemes compute their positions on the mesh welded where that keeps it manifold
-// (core/weld.h), so a seam edge gets the interior stencil with the partner's faces as its
-// other side and the copies of a split vertex the rule of the joined vertex; Sqrt3, whose edge
+// Messy meshes (core/algorithms/coincident.h): vertices at the same position (a seam between
+// patches, the copies build_mesh() makes of a non-manifold vertex) stay together on every level.
+// The 1-to-4 schemes compute their positions on the mesh welded where that keeps it manifold
+// (core/algorithms/weld.h), so a seam edge gets the interior stencil with the partner's faces as
+// its other side and the copies of a split vertex the rule of the joined vertex; Sqrt3, whose edge
 // flips would dissolve a seam, refines each seam as a boundary curve on both sides. Then new
 // vertices whose coarse parents coincide (same start position) and still differ (copies the
 // weld cannot join: surfaces touching at a point or three sheets at an edge) get their mean.
-// Seams stay seams (boundaries): welding is a separate tool. Pillows (core/pillows.h) are set
-// aside, the rest is refined, and they come back unchanged on every level with a note.
+// Seams stay seams (boundaries): welding is a separate tool. Pillows (core/algorithms/pillows.h)
+// are set aside, the rest is refined, and they come back unchanged on every level with a note.
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "core/algorithms/morph.h"
 #include "core/enum_table.h"
 #include "core/halfedge_mesh.h"
-#include "core/morph.h"
 #include "core/progress.h"
 
 namespace trilab {

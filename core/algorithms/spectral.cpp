@@ -1,5 +1,6 @@
-// The only translation unit that includes Spectra (it compiles slowly); see core/spectral.h.
-#include "core/spectral.h"
+// The only translation unit that includes Spectra (it compiles slowly); see
+// core/algorithms/spectral.h.
+#include "core/algorithms/spectral.h"
 
 #include <algorithm>
 #include <atomic>
@@ -24,7 +25,7 @@
 
 #include "core/errors.h"
 #include "core/geometry.h"
-#include "core/platform.h"
+#include "core/system_memory.h"
 
 namespace trilab {
 
@@ -451,7 +452,7 @@ private:
 /// problems and can run at once (spectrum slicing: Campos & Roman 2012, "Strategies for
 /// spectrum slicing based on restarted Lanczos methods"). Every band is verified by an
 /// eigenvalue count and missed eigenvalues (repeated ones, which Lanczos may find only once)
-/// are recovered by a deflated run; see the file comment of core/spectral.h. The slice
+/// are recovered by a deflated run; see the file comment of core/algorithms/spectral.h. The slice
 /// without an upper end runs until k eigenvalues lie below its last cut.
 class Slice {
 public:

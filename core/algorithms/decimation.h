@@ -30,12 +30,12 @@
 // boundary loops, components and genus; a boundary vertex only moves along a boundary edge.
 // With "v:texcoord" the kept vertex's uv is interpolated along the edge; with per-corner
 // "h:texcoord", vertices on a texture seam are never removed and the corners that move keep
-// the seam's side (no seam is torn open). Vertices with a coincident copy (core/coincident.h:
-// the two sides of a patch seam, the copies of a split non-manifold vertex) never move alone,
-// so no crack opens between copies: along a seam (a vertex with exactly one copy, a boundary
-// edge with exactly one coincident partner) both sides collapse together, each into its kept
-// copy, which stays where it is (costed with the quadrics of both sides); every other copy
-// (a corner where seams meet, a non-manifold point) is never removed or moved (neighbours may
+// the seam's side (no seam is torn open). Vertices with a coincident copy
+// (core/algorithms/coincident.h: the two sides of a patch seam, the copies of a split non-manifold
+// vertex) never move alone, so no crack opens between copies: along a seam (a vertex with exactly
+// one copy, a boundary edge with exactly one coincident partner) both sides collapse together, each
+// into its kept copy, which stays where it is (costed with the quadrics of both sides); every other
+// copy (a corner where seams meet, a non-manifold point) is never removed or moved (neighbours may
 // collapse into it).
 // Other attributes ride along with the kept vertex.
 // The input is never modified. Progressive mesh (Hoppe, "Progressive meshes", SIGGRAPH 1996):
@@ -49,9 +49,9 @@
 #include <string>
 #include <vector>
 
+#include "core/algorithms/morph.h"
 #include "core/enum_table.h"
 #include "core/halfedge_mesh.h"
-#include "core/morph.h"
 #include "core/progress.h"
 
 namespace trilab {
@@ -130,7 +130,7 @@ struct DecimationReport {
     std::size_t refused_max_error = 0;
     std::size_t refused_texture_seam = 0;
     /// Vertices of the input with a coincident copy (a seam's two sides, the copies of a split
-    /// non-manifold vertex: core/coincident.h), which never move alone (see above).
+    /// non-manifold vertex: core/algorithms/coincident.h), which never move alone (see above).
     std::size_t coincident_vertices = 0;
     DecimationStop stop = DecimationStop::Done;
     std::string stop_message;  ///< how far it got and why, for the user

@@ -1,4 +1,4 @@
-// Edge-collapse decimation (see core/decimation.h for the method and its guarantees).
+// Edge-collapse decimation (see core/algorithms/decimation.h for the method and its guarantees).
 //
 // The loop, per iteration:
 //   target = V - floor(P/100 V)   (or the requested vertex count)
@@ -18,7 +18,7 @@
 //   give every vertex of the previous mesh its end position (the position of the vertex it
 //   collapsed into) for the geomorph; copy the mesh (the last iteration takes it) and collect
 //   its garbage.
-#include "core/decimation.h"
+#include "core/algorithms/decimation.h"
 
 #include <algorithm>
 #include <chrono>
@@ -26,10 +26,10 @@
 #include <cstring>
 #include <limits>
 
-#include "core/coincident.h"
+#include "core/algorithms/coincident.h"
+#include "core/algorithms/quadric.h"
 #include "core/errors.h"
 #include "core/mesh_builder.h"
-#include "core/quadric.h"
 
 namespace trilab {
 
@@ -530,8 +530,8 @@ private:
         return found;
     }
 
-    // The link condition on the welded surface (core/weld.h: every coincident group as one
-    // vertex) of collapsing h, with h2 the other side of a seam collapse (else invalid): the
+    // The link condition on the welded surface (core/algorithms/weld.h: every coincident group as
+    // one vertex) of collapsing h, with h2 the other side of a seam collapse (else invalid): the
     // only vertices next to both ends are the third corners of the faces at the edge, which
     // differ. So the result can still be welded: no two faces folded onto each other, no edge
     // doubled between two groups.

@@ -1,4 +1,4 @@
-#include "core/generators.h"
+#include "core/algorithms/generators.h"
 
 #include <array>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "core/texcoords.h"
+#include "core/algorithms/texcoords.h"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>

@@ -1,5 +1,5 @@
-// Sampled Hausdorff and RMS distance between two meshes (see core/mesh_distance.h).
-#include "core/mesh_distance.h"
+// Sampled Hausdorff and RMS distance between two meshes (see core/algorithms/mesh_distance.h).
+#include "core/algorithms/mesh_distance.h"
 
 #include <algorithm>
 #include <array>

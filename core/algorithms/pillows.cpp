@@ -1,4 +1,4 @@
-#include "core/pillows.h"
+#include "core/algorithms/pillows.h"
 
 #include <string>
 

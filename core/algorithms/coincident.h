@@ -5,8 +5,8 @@
 // each other (the teapot's patch seams), and the copies build_mesh() makes of a file vertex
 // with several fans (core/mesh_builder.h). Their vertices sit at bit-identical positions. The
 // operations keep such vertices together (subdivision, fairing and decimation: see their
-// headers) and weld_coincident_vertices() (core/weld.h) joins them where the user wants one
-// surface.
+// headers) and weld_coincident_vertices() (core/algorithms/weld.h) joins them where the user wants
+// one surface.
 //
 // Exact coincidence compares coordinates as numbers (-0 equals +0; a non-finite coordinate
 // never coincides). With a tolerance d > 0, two points closer than d (Euclidean) are linked

@@ -1,10 +1,10 @@
-#include "core/weld.h"
+#include "core/algorithms/weld.h"
 
 #include <algorithm>
 #include <cstdint>
 #include <utility>
 
-#include "core/coincident.h"
+#include "core/algorithms/coincident.h"
 #include "core/errors.h"
 #include "core/mesh_builder.h"
 

@@ -19,7 +19,7 @@
 // zero area) get the neutral grey (0.55, 0.55, 0.55). Percentiles are checked before any
 // work (InvalidArgument naming low_percentile / high_percentile). Complexity: linear, plus
 // O(n) expected for the percentiles (nth_element).
-#include "core/coloring.h"
+#include "core/algorithms/coloring.h"
 
 #include <algorithm>
 #include <array>
@@ -27,7 +27,7 @@
 #include <map>
 #include <sstream>
 
-#include "core/curvature.h"
+#include "core/algorithms/curvature.h"
 #include "core/errors.h"
 #include "core/geometry.h"
 

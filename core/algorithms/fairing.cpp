@@ -1,4 +1,4 @@
-#include "core/fairing.h"
+#include "core/algorithms/fairing.h"
 
 #include <algorithm>
 #include <chrono>
@@ -12,10 +12,10 @@
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 
-#include "core/coincident.h"
+#include "core/algorithms/coincident.h"
+#include "core/algorithms/weld.h"
 #include "core/errors.h"
 #include "core/geometry.h"
-#include "core/weld.h"
 
 namespace trilab {
 
@@ -960,9 +960,10 @@ FairingResult smooth(const HalfedgeMesh& mesh, const FairingOptions& options) {
 
 namespace {
 
-/// smooth() of res.mesh, which has coincident vertices: the run is on its weld (core/weld.h),
-/// where a seam is interior and the copies of a split vertex are one vertex, with the copies
-/// that the weld cannot join fixed; every copy then takes its welded vertex's positions.
+/// smooth() of res.mesh, which has coincident vertices: the run is on its weld
+/// (core/algorithms/weld.h), where a seam is interior and the copies of a split vertex are one
+/// vertex, with the copies that the weld cannot join fixed; every copy then takes its welded
+/// vertex's positions.
 void smooth_coincident(FairingResult& res, const FairingOptions& o, Progress& progress) {
     WeldResult weld = weld_coincident_vertices(res.mesh);
     check_options(weld.mesh, o);  // closed when welded: volume preservation applies

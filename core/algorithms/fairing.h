@@ -1,6 +1,6 @@
 #pragma once
 // Fairing (smoothing) by diffusion, dX/dt = L(X) (section 1.2.3 of the reference report), with
-// the operators of core/laplacian.h:
+// the operators of core/algorithms/laplacian.h:
 //  - explicit Euler (1.4/1.6): X <- X + step·L·X;
 //  - implicit Euler (1.13-1.14, Desbrun-Meyer-Schröder-Barr 1999): (I - step·L)·X' = X,
 //    solved in the symmetric form (S + step·K)·X' = S·X - step·K_fb·X_b (fixed vertices on
@@ -46,10 +46,10 @@
 //
 // Boundary vertices stay fixed (or slide along the boundary curve); isolated vertices never
 // move. Connectivity and attributes other than positions are copied unchanged.
-// Coincident vertices (core/coincident.h: a seam between patches, the copies build_mesh()
-// makes of a non-manifold vertex) move as one: the run is on the mesh welded where that keeps
-// it manifold (core/weld.h), so a seam is smoothed as interior surface (its curve is a
-// boundary only where no partner lies on it) and a mesh closed up to its seams counts as
+// Coincident vertices (core/algorithms/coincident.h: a seam between patches, the copies
+// build_mesh() makes of a non-manifold vertex) move as one: the run is on the mesh welded where
+// that keeps it manifold (core/algorithms/weld.h), so a seam is smoothed as interior surface (its
+// curve is a boundary only where no partner lies on it) and a mesh closed up to its seams counts as
 // closed (volume preservation applies); copies that cannot be joined (surfaces touching at a
 // point) stay where they are. Every copy gets its joined vertex's positions, bit for bit.
 // Throws InvalidArgument naming the option (`step`, `iterations`, `taubin_lambda`,
@@ -64,9 +64,9 @@
 #include <string>
 #include <vector>
 
+#include "core/algorithms/laplacian.h"
 #include "core/enum_table.h"
 #include "core/halfedge_mesh.h"
-#include "core/laplacian.h"
 #include "core/progress.h"
 
 namespace trilab {

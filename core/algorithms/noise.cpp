@@ -1,11 +1,11 @@
-// Add noise (core/noise.h): each live vertex moves along its area-weighted normal (core's
-// vertex_normal, taken before anything moves) by r x a, a = amount% x the mean edge length,
+// Add noise (core/algorithms/noise.h): each live vertex moves along its area-weighted normal
+// (core's vertex_normal, taken before anything moves) by r x a, a = amount% x the mean edge length,
 // with r uniform in [-1, 1). r comes from a counter-based generator, splitmix64 (Steele, Lea
 // and Flood 2014) of the seed and the vertex's storage index, so it depends on nothing but
 // those two: the same seed gives bit-identical positions on every platform and standard
 // library. Guarantees: connectivity is untouched; |offset| <= a; isolated vertices and
 // vertices with a zero normal stay put; bad options throw before anything changes.
-#include "core/noise.h"
+#include "core/algorithms/noise.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,10 +1,10 @@
-// Morphing (core/morph.h): straight-line interpolation of vertex positions between two states
-// of a mesh, drawn on the connectivity the correspondence names, plus the easing curves and
+// Morphing (core/algorithms/morph.h): straight-line interpolation of vertex positions between two
+// states of a mesh, drawn on the connectivity the correspondence names, plus the easing curves and
 // playback clocks that animate it. Guarantees: t is clamped to [0, 1] (NaN reads as 0); the
 // endpoints are copied, not computed, so t = 0 reproduces the earlier shape and t = 1 the later
 // one bit for bit; a deleted vertex of the drawn mesh keeps that mesh's stored position;
 // every function is O(vertices) and allocates only the returned positions.
-#include "core/morph.h"
+#include "core/algorithms/morph.h"
 
 #include <cmath>
 

@@ -3,7 +3,7 @@
 // reference report): eigenvectors of a fairing Laplacian ("manifold harmonics"), the
 // coefficients of the positions in that basis, and reconstruction from a band of frequencies.
 //
-// Method. Every operator of core/laplacian.h is L = -S⁻¹K with K symmetric positive
+// Method. Every operator of core/algorithms/laplacian.h is L = -S⁻¹K with K symmetric positive
 // semi-definite and S positive diagonal, so the reference's nonsymmetric eigenproblem
 // -L·x = λ·x is the generalized symmetric problem K·x = λ·S·x: its spectrum is real and
 // non-negative and its eigenvectors are S-orthonormal (Taubin 1995 for the signal-processing
@@ -75,9 +75,9 @@
 
 #include <Eigen/Core>
 
+#include "core/algorithms/laplacian.h"
 #include "core/enum_table.h"
 #include "core/halfedge_mesh.h"
-#include "core/laplacian.h"
 #include "core/progress.h"
 
 namespace trilab {

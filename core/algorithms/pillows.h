@@ -3,7 +3,7 @@
 // triangle twice, once each way round, gives one). Every edge of a pillow joins the same two
 // faces, so a pillow is always a whole component. Subdivision cannot refine one (every scheme
 // would join two new vertices twice); it sets the pillows aside, refines the rest and puts
-// them back unchanged, with a note (core/subdivision.h).
+// them back unchanged, with a note (core/algorithms/subdivision.h).
 #include <cstddef>
 #include <string>
 #include <vector>

@@ -60,10 +60,10 @@
 // Isolated vertices are kept, unmoved. An input with garbage is collected on a copy first
 // (indices then refer to the collected mesh). Two faces with the same three vertices (a closed
 // two-triangle "pillow") would give double edges in every scheme: subdivide() sets them aside
-// and puts them back unchanged (core/pillows.h).
-// Coincident vertices (core/coincident.h): when the input has any, each level's positions
-// are computed on its weld (1-to-4 schemes) and new vertices with the same start position are
-// made to coincide (keep_coincident_together()); see the header.
+// and puts them back unchanged (core/algorithms/pillows.h).
+// Coincident vertices (core/algorithms/coincident.h): when the input has any, each level's
+// positions are computed on its weld (1-to-4 schemes) and new vertices with the same start position
+// are made to coincide (keep_coincident_together()); see the header.
 //
 // Implementation: the 1-to-4 refinement is built directly into the new mesh's arrays (no
 // edge splits, no hash maps): old vertex v keeps index v, the odd vertex of edge e is V + e,
@@ -76,17 +76,17 @@
 // gathered in the same edge pass. The morph correspondence is computed only when asked for,
 // and intermediate levels are released at once when the caller keeps only the finest.
 // Complexity: linear in the mesh size per iteration.
-#include "core/subdivision.h"
+#include "core/algorithms/subdivision.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
 
-#include "core/coincident.h"
+#include "core/algorithms/coincident.h"
+#include "core/algorithms/pillows.h"
+#include "core/algorithms/weld.h"
 #include "core/errors.h"
-#include "core/pillows.h"
-#include "core/weld.h"
 
 namespace trilab {
 
@@ -473,10 +473,10 @@ void positions_1to4(const In& m, SubdivisionScheme scheme, Point* p, const Stage
         butterfly_positions(m, p, scheme == SubdivisionScheme::ModifiedButterfly, stage);
 }
 
-/// The positions of the 1-to-4 split of `mesh` (compact) computed on its weld (core/weld.h):
-/// a seam's two sides and the copies of a split vertex get the stencils of the welded surface
-/// (the partner's faces are the other side of a seam edge), one value for all copies. The
-/// weld keeps the faces in order, so face f's halfedges match the welded face f's.
+/// The positions of the 1-to-4 split of `mesh` (compact) computed on its weld
+/// (core/algorithms/weld.h): a seam's two sides and the copies of a split vertex get the stencils
+/// of the welded surface (the partner's faces are the other side of a seam edge), one value for all
+/// copies. The weld keeps the faces in order, so face f's halfedges match the welded face f's.
 void welded_positions_1to4(const HalfedgeMesh& mesh, SubdivisionScheme scheme, Point* p,
                            const Stage& stage) {
     const WeldResult weld = weld_coincident_vertices(mesh);

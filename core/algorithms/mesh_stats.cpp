@@ -1,4 +1,4 @@
-#include "core/mesh_stats.h"
+#include "core/algorithms/mesh_stats.h"
 
 #include <cstdint>
 #include <utility>

@@ -3,7 +3,7 @@
 // seams, the copies build_mesh() makes of a non-manifold vertex), as far as the result stays
 // a valid manifold mesh.
 //
-// Method: vertices are grouped by position (core/coincident.h: exact, or within
+// Method: vertices are grouped by position (core/algorithms/coincident.h: exact, or within
 // `tolerance`). A weld glues pairs of boundary edges: two boundary edges whose ends lie in
 // the same two groups, with no other edge between those groups, whose faces run in opposite
 // directions along them (consistent orientation), become one interior edge, and their ends
@@ -22,7 +22,7 @@
 // properties are not carried. Faces keep their order; vertices are renumbered (the map is
 // returned). The input is not modified.
 // Throws InvalidArgument for a negative or non-finite tolerance, or one too small for the
-// coordinates (core/coincident.h). Complexity: O(V + E) expected, plus a few rounds of
+// coordinates (core/algorithms/coincident.h). Complexity: O(V + E) expected, plus a few rounds of
 // checks when glues are undone.
 #include <cstddef>
 #include <string>

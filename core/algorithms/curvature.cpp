@@ -40,7 +40,7 @@
 // be finite (non-finite positions, overflow) get valid = 0 and all values 0 (area included).
 //
 // Complexity: O(V + F) time, O(V) scratch memory; no allocation per face.
-#include "core/curvature.h"
+#include "core/algorithms/curvature.h"
 
 #include <algorithm>
 #include <cmath>
