@@ -566,6 +566,22 @@ void MeshRenderer::clear() {
     bbox_min_ = bbox_max_ = glm::vec3(0.0f);
 }
 
+namespace {
+
+/// The lighting and colour uniforms of the programs that shade points and surfaces: the
+/// front and back colours, vertex colours (`colored`), ambient and specular terms.
+void set_shading_uniforms(const GlProgram& program, const RenderStyle& style, bool colored) {
+    program.set("u_back_face_color", style.back_face_color ? 1 : 0);
+    program.set("u_use_vertex_color", colored ? 1 : 0);
+    program.set("u_front_color", style.front_color);
+    program.set("u_back_color", style.back_color);
+    program.set("u_ambient", style.ambient);
+    program.set("u_specular", style.specular ? style.specular_strength : 0.0f);
+    program.set("u_shininess", style.shininess);
+}
+
+}  // namespace
+
 void MeshRenderer::set_common_uniforms(const GlProgram& program, const glm::mat4& view,
                                        const glm::mat4& projection,
                                        const RenderStyle& style) const {
@@ -621,13 +637,7 @@ void MeshRenderer::draw(const glm::mat4& view, const glm::mat4& projection,
         }
         set_common_uniforms(points_program_, view, projection, style);
         points_program_.set("u_point_size", std::max(style.point_size, 1.0f));
-        points_program_.set("u_back_face_color", style.back_face_color ? 1 : 0);
-        points_program_.set("u_use_vertex_color", has_colors_ && style.vertex_colors ? 1 : 0);
-        points_program_.set("u_front_color", style.front_color);
-        points_program_.set("u_back_color", style.back_color);
-        points_program_.set("u_ambient", style.ambient);
-        points_program_.set("u_specular", style.specular ? style.specular_strength : 0.0f);
-        points_program_.set("u_shininess", style.shininess);
+        set_shading_uniforms(points_program_, style, has_colors_ && style.vertex_colors);
         glEnable(GL_PROGRAM_POINT_SIZE);
         glBindVertexArray(point_vao_);
         glDrawElements(GL_POINTS, GLsizei(n_point_indices_), GL_UNSIGNED_INT, nullptr);
@@ -645,13 +655,7 @@ void MeshRenderer::draw(const glm::mat4& view, const glm::mat4& projection,
         set_common_uniforms(program, view, projection, style);
         program.set("u_surface", edges_only ? 2 : hidden_line ? 1 : 0);
         program.set("u_flat", mode == RenderMode::Flat ? 1 : 0);
-        program.set("u_back_face_color", style.back_face_color ? 1 : 0);
-        program.set("u_use_vertex_color", colored ? 1 : 0);
-        program.set("u_front_color", style.front_color);
-        program.set("u_back_color", style.back_color);
-        program.set("u_ambient", style.ambient);
-        program.set("u_specular", style.specular ? style.specular_strength : 0.0f);
-        program.set("u_shininess", style.shininess);
+        set_shading_uniforms(program, style, colored);
         program.set("u_wire_color",
                     edges_only || hidden_line ? style.line_color : style.wire_color);
         program.set("u_wire_width", std::max(style.wire_width, 0.0f));

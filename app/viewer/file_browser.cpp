@@ -93,9 +93,7 @@ void file_browser(FileBrowserState& state, CommandQueue& commands) {
         ImGui::OpenPopup(kTitle);
         state.open_requested = false;
     }
-    place_dialog(40.0f, 28.0f);
-    if (!ImGui::BeginPopupModal(kTitle, nullptr)) return;
-    keep_dialog_inside();
+    if (!begin_modal_dialog(kTitle, 0, 40.0f, 28.0f)) return;
 
     const std::vector<std::string> exts = extensions_for(state.purpose);
     ImGui::TextUnformatted(state.folder.string().c_str());

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <iterator>
 
+#include "app/viewer/key_bindings.h"
 #include "app/viewer/plots.h"
 #include "core/algorithms/fairing.h"
 
@@ -29,35 +30,29 @@ public:
     ScopedStyleVar& operator=(const ScopedStyleVar&) = delete;
 };
 
-struct Binding {
-    const char* keys;
-    const char* action;
-};
-constexpr Binding kBindings[] = {
-    {"Left drag", "rotate (trackball)"},
-    {"Middle drag, Shift + left drag", "pan"},
-    {"Mouse wheel", "zoom"},
-    {"Home, double-click", "fit the model into the view"},
-    {"Right click", "rendering menu"},
-    {"W", "wireframe overlay on / off (Rendering menu: automatic)"},
-    {"B", "toggle the back-face colour"},
-    {"F", "fog on / off"},
-    {"S", "specular highlight on / off"},
-    {"T", "cycle texture modes (off, modulate, replace)"},
-    {"F12", "screenshot (any resolution, without panels)"},
-    {"I", "print model and scene information (and show it)"},
-    {"L", "show the log (along the bottom)"},
-    {"Ctrl+Z, Ctrl+Shift+Z / Ctrl+Y", "undo, redo"},
-    {"H", "the History column"},
-    {"M, R", "the Morph and Record sections of the sidebar"},
-    {"Space", "play or stop the morph animation"},
-    {"Ctrl+O", "open a mesh file"},
-    {"Ctrl+S", "save the mesh as"},
-    {"Ctrl+Q", "quit"},
-    {"F1", "this window (Esc closes it)"},
-    {"Esc", "cancel a preview; close a dialog"},
-    {"Drop a file", "open a mesh, or load an image as texture"},
-};
+/// ImGui::BeginMenu; a closed menu's header is reported to the test hook as "menu:LABEL".
+bool begin_menu(const char* label, bool enabled = true) {
+    const bool open = ImGui::BeginMenu(label, enabled);
+    if (!open) note_widget(std::string("menu:") + label);
+    return open;
+}
+
+/// A menu item that shows the key of `action` (the key bindings table's text). Reported to
+/// the test hook as "shortcut:LABEL=KEYS".
+bool shortcut_item(const char* label, KeyAction action, bool selected = false,
+                   bool enabled = true) {
+    const std::string keys = shortcut_text(action);
+    const bool clicked = ImGui::MenuItem(label, keys.c_str(), selected, enabled);
+    note_widget("shortcut:" + std::string(label) + "=" + keys);
+    return clicked;
+}
+/// The same for an item that toggles `*selected`.
+bool shortcut_item(const char* label, KeyAction action, bool* selected) {
+    const std::string keys = shortcut_text(action);
+    const bool clicked = ImGui::MenuItem(label, keys.c_str(), selected);
+    note_widget("shortcut:" + std::string(label) + "=" + keys);
+    return clicked;
+}
 
 /// Inside a dialog's Begin: Esc closes it while it has the focus (the viewer's key handler
 /// also closes the dialogs, for presses ImGui 1.86 misses).
@@ -65,6 +60,17 @@ void close_on_escape(bool& open) {
     if (ImGui::IsWindowFocused(ImGuiFocusedFlags_RootAndChildWindows) &&
         ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false))
         open = false;
+}
+
+/// Begins a dialog window (help, about, screenshot): centred when it appears, sized to its
+/// content, kept inside the window, closed by Esc while focused. Call ImGui::End() after it
+/// whatever it returns.
+bool begin_dialog(const char* title, bool& open, ImGuiWindowFlags extra_flags = 0) {
+    place_dialog();
+    if (!ImGui::Begin(title, &open, ImGuiWindowFlags_AlwaysAutoResize | extra_flags)) return false;
+    keep_dialog_inside();
+    close_on_escape(open);
+    return true;
 }
 
 ImVec4 notice_color(Notice::Level level) {
@@ -82,19 +88,21 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
     for (RenderMode mode : modes)
         if (ImGui::MenuItem(render_mode_name(mode), nullptr, style.mode == mode)) style.mode = mode;
     ImGui::Separator();
-    if (ImGui::BeginMenu("Wireframe overlay")) {
+    if (begin_menu("Wireframe overlay")) {
         if (ImGui::MenuItem("Automatic", nullptr, settings.wireframe == WireframeOverlay::Auto))
             settings.wireframe = WireframeOverlay::Auto;
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("on while the edges are long enough on the screen to tell apart");
-        if (ImGui::MenuItem("On", "W", settings.wireframe == WireframeOverlay::On))
+        if (shortcut_item("On", KeyAction::ToggleWireframe,
+                          settings.wireframe == WireframeOverlay::On))
             settings.wireframe = WireframeOverlay::On;
-        if (ImGui::MenuItem("Off", "W", settings.wireframe == WireframeOverlay::Off))
+        if (shortcut_item("Off", KeyAction::ToggleWireframe,
+                          settings.wireframe == WireframeOverlay::Off))
             settings.wireframe = WireframeOverlay::Off;
         ImGui::EndMenu();
     }
-    ImGui::MenuItem("Back-face colour", "B", &style.back_face_color);
-    if (ImGui::BeginMenu("Colour by vertex")) {
+    shortcut_item("Back-face colour", KeyAction::ToggleBackFaceColor, &style.back_face_color);
+    if (begin_menu("Colour by vertex")) {
         const VertexColoring colorings[] = {VertexColoring::None,
                                             VertexColoring::Normal,
                                             VertexColoring::K1,
@@ -126,12 +134,16 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
         }
         ImGui::EndMenu();
     }
-    if (ImGui::BeginMenu("Texture")) {
+    if (begin_menu("Texture")) {
         const TextureMode tmodes[] = {TextureMode::Off, TextureMode::Modulate,
                                       TextureMode::Replace};
         for (TextureMode m : tmodes) {
             const bool on = style.mode == RenderMode::Textured && style.texture_mode == m;
-            if (ImGui::MenuItem(texture_mode_name(m), m == TextureMode::Off ? "T" : nullptr, on)) {
+            const bool clicked =
+                m == TextureMode::Off
+                    ? shortcut_item(texture_mode_name(m), KeyAction::CycleTexture, on)
+                    : ImGui::MenuItem(texture_mode_name(m), nullptr, on);
+            if (clicked) {
                 style.texture_mode = m;
                 style.mode = m == TextureMode::Off ? RenderMode::Smooth : RenderMode::Textured;
             }
@@ -160,7 +172,7 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
         }
         ImGui::EndMenu();
     }
-    if (ImGui::BeginMenu("Vectors")) {
+    if (begin_menu("Vectors")) {
         ImGui::MenuItem("Face normals", nullptr, &style.face_normals);
         ImGui::MenuItem("Vertex normals", nullptr, &style.vertex_normals);
         ImGui::MenuItem("Collapsing edges", nullptr, &panels.decimation.show_collapsing_edges);
@@ -171,9 +183,9 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
                            ImGuiSliderFlags_Logarithmic);
         ImGui::EndMenu();
     }
-    if (ImGui::BeginMenu("Lighting and colours")) {
-        ImGui::MenuItem("Specular highlight", "S", &style.specular);
-        ImGui::MenuItem("Fog", "F", &style.fog);
+    if (begin_menu("Lighting and colours")) {
+        shortcut_item("Specular highlight", KeyAction::ToggleSpecular, &style.specular);
+        shortcut_item("Fog", KeyAction::ToggleFog, &style.fog);
         ImGui::SetNextItemWidth(10.0f * ImGui::GetFontSize());
         ImGui::SliderFloat("fog amount", &style.fog_amount, 0.0f, 1.0f);
         ImGui::SetNextItemWidth(10.0f * ImGui::GetFontSize());
@@ -189,54 +201,54 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
         ImGui::EndMenu();
     }
     ImGui::Separator();
-    if (ImGui::MenuItem("Fit view", "Home")) commands.push_back(FitView{});
-    if (ImGui::MenuItem("Screenshot...", "F12")) panels.screenshot.open = true;
+    if (shortcut_item("Fit view", KeyAction::FitView)) commands.push_back(FitView{});
+    if (shortcut_item("Screenshot...", KeyAction::Screenshot)) panels.screenshot.open = true;
 }
 
 void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
               const MenuContext& context, const RenderContext& render, CommandQueue& commands) {
     if (!ImGui::BeginMainMenuBar()) return;
     panels.layout.menu_height = ImGui::GetWindowHeight();
-    if (ImGui::BeginMenu("File")) {
-        if (ImGui::MenuItem("Open...", "Ctrl+O", false, !context.busy))
+    if (begin_menu("File")) {
+        if (shortcut_item("Open...", KeyAction::OpenFile, false, !context.busy))
             panels.file_browser.request(FileBrowserState::Purpose::OpenMesh, context.document_path);
         const bool has_recent = context.recent_files && !context.recent_files->empty();
-        if (ImGui::BeginMenu("Open recent", has_recent && !context.busy)) {
+        if (begin_menu("Open recent", has_recent && !context.busy)) {
             for (const std::string& path : *context.recent_files)
                 if (ImGui::MenuItem(path.c_str())) commands.push_back(LoadFile{path});
             ImGui::EndMenu();
         }
         if (ImGui::MenuItem("Revert", nullptr, false, context.has_file && !context.busy))
             commands.push_back(RevertFile{});
-        if (ImGui::MenuItem("Save as...", "Ctrl+S", false, !context.busy))
+        if (shortcut_item("Save as...", KeyAction::SaveFile, false, !context.busy))
             panels.file_browser.request(FileBrowserState::Purpose::SaveMesh, context.document_path);
         ImGui::Separator();
         if (ImGui::MenuItem("Load texture...", nullptr, false, !context.busy))
             panels.file_browser.request(FileBrowserState::Purpose::LoadTexture, "");
         ImGui::Separator();
-        if (ImGui::MenuItem("Quit", "Ctrl+Q")) commands.push_back(Quit{});
+        if (shortcut_item("Quit", KeyAction::Quit)) commands.push_back(Quit{});
         ImGui::EndMenu();
     }
-    if (ImGui::BeginMenu("Edit")) {
-        if (ImGui::MenuItem("Undo", "Ctrl+Z", false, context.can_undo && !context.busy))
+    if (begin_menu("Edit")) {
+        if (shortcut_item("Undo", KeyAction::Undo, false, context.can_undo && !context.busy))
             commands.push_back(Undo{});
-        if (ImGui::MenuItem("Redo", "Ctrl+Shift+Z", false, context.can_redo && !context.busy))
+        if (shortcut_item("Redo", KeyAction::Redo, false, context.can_redo && !context.busy))
             commands.push_back(Redo{});
         ImGui::Separator();
-        ImGui::MenuItem("History", "H", &panels.history_open);
-        ImGui::MenuItem("Morph", "M", &panels.morph_open);
-        ImGui::MenuItem("Record", "R", &panels.record.open);
+        shortcut_item("History", KeyAction::ToggleHistory, &panels.history_open);
+        shortcut_item("Morph", KeyAction::ToggleMorph, &panels.morph_open);
+        shortcut_item("Record", KeyAction::ToggleRecord, &panels.record.open);
         ImGui::EndMenu();
     }
     view_menu(settings, commands);
-    if (ImGui::BeginMenu("Tools")) {
+    if (begin_menu("Tools")) {
         ImGui::MenuItem("Add noise", nullptr, &panels.tools.open);
         if (ImGui::MenuItem("Flip orientation", nullptr, false, !context.busy))
             commands.push_back(ApplyOperation{make_operation("flip")});
         ImGui::MenuItem("Weld coincident vertices...", nullptr, &panels.weld.open);
         ImGui::EndMenu();
     }
-    if (ImGui::BeginMenu("Algorithms")) {
+    if (begin_menu("Algorithms")) {
         // The operation panels arrive with their issues; listed so the menu shows the plan.
         ImGui::MenuItem("Fairing", nullptr, &panels.fairing.open);
         ImGui::MenuItem("Frequency decomposition", nullptr, &panels.frequency.open);
@@ -244,18 +256,18 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
         ImGui::MenuItem("Decimation", nullptr, &panels.decimation.open);
         ImGui::EndMenu();
     }
-    if (ImGui::BeginMenu("Rendering")) {
+    if (begin_menu("Rendering")) {
         rendering_menu_items(style, settings, panels, render, commands);
         ImGui::EndMenu();
     }
-    if (ImGui::BeginMenu("Window")) {
+    if (begin_menu("Window")) {
         ImGui::MenuItem("Sidebar", nullptr, &panels.sidebar_open);
-        ImGui::MenuItem("Model information", "I", &panels.info_open);
-        ImGui::MenuItem("Log", "L", &panels.log_open);
+        shortcut_item("Model information", KeyAction::PrintInfo, &panels.info_open);
+        shortcut_item("Log", KeyAction::ToggleLog, &panels.log_open);
         ImGui::EndMenu();
     }
-    if (ImGui::BeginMenu("Help")) {
-        ImGui::MenuItem("Key bindings", "F1", &panels.help_open);
+    if (begin_menu("Help")) {
+        shortcut_item("Key bindings", KeyAction::ToggleHelp, &panels.help_open);
         ImGui::MenuItem("About trilab", nullptr, &panels.about_open);
         ImGui::EndMenu();
     }
@@ -263,11 +275,11 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
 }
 
 void view_menu(ViewSettings& settings, CommandQueue& commands) {
-    if (!ImGui::BeginMenu("View")) return;
+    if (!begin_menu("View")) return;
     if (ImGui::MenuItem("Default view")) commands.push_back(ResetView{});
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("look at the model's front with its up axis up, and fit it");
-    if (ImGui::BeginMenu("Up axis")) {
+    if (begin_menu("Up axis")) {
         for (const EnumEntry<UpAxis>& e : kUpAxes) {
             if (ImGui::MenuItem(e.label, nullptr, settings.up == e.value) &&
                 settings.up != e.value) {
@@ -369,6 +381,13 @@ void keep_dialog_inside() {
     if (fixed.x != pos.x || fixed.y != pos.y) ImGui::SetWindowPos(fixed);
 }
 
+bool begin_modal_dialog(const char* title, int flags, float width_em, float height_em) {
+    place_dialog(width_em, height_em);
+    if (!ImGui::BeginPopupModal(title, nullptr, flags)) return false;
+    keep_dialog_inside();
+    return true;
+}
+
 void status_bar(const StatusInfo& info, const Notice& notice, const JobInfo* job,
                 const Rect& region, CommandQueue& commands) {
     const ImGuiStyle& style = ImGui::GetStyle();
@@ -431,19 +450,15 @@ void status_bar(const StatusInfo& info, const Notice& notice, const JobInfo* job
 
 void help_window(PanelState& panels) {
     if (!panels.help_open) return;
-    place_dialog();
-    if (ImGui::Begin("Key bindings", &panels.help_open,
-                     ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse)) {
-        keep_dialog_inside();
-        close_on_escape(panels.help_open);
+    if (begin_dialog("Key bindings", panels.help_open, ImGuiWindowFlags_NoCollapse)) {
         if (ImGui::BeginTable("bindings", 2,
                               ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
-            for (const Binding& b : kBindings) {
+            for (const BindingHelpRow& row : binding_help_rows()) {
                 ImGui::TableNextRow();
                 ImGui::TableNextColumn();
-                ImGui::TextUnformatted(b.keys);
+                ImGui::TextUnformatted(row.keys.c_str());
                 ImGui::TableNextColumn();
-                ImGui::TextUnformatted(b.action);
+                ImGui::TextUnformatted(row.action.c_str());
             }
             ImGui::EndTable();
         }
@@ -885,10 +900,7 @@ void record_section(PanelState& panels, bool can_record, CommandQueue& commands)
 
 void screenshot_dialog(ScreenshotState& state, CommandQueue& commands) {
     if (!state.open) return;
-    place_dialog();
-    if (ImGui::Begin("Screenshot", &state.open, ImGuiWindowFlags_AlwaysAutoResize)) {
-        keep_dialog_inside();
-        close_on_escape(state.open);
+    if (begin_dialog("Screenshot", state.open)) {
         ImGui::TextUnformatted("The scene without the panels, framed as the view, as PNG.");
         ImGui::SetNextItemWidth(20.0f * ImGui::GetFontSize());
         ImGui::InputText("file", &state.path);
@@ -908,10 +920,7 @@ void screenshot_dialog(ScreenshotState& state, CommandQueue& commands) {
 
 void about_window(PanelState& panels) {
     if (!panels.about_open) return;
-    place_dialog();
-    if (ImGui::Begin("About trilab", &panels.about_open, ImGuiWindowFlags_AlwaysAutoResize)) {
-        keep_dialog_inside();
-        close_on_escape(panels.about_open);
+    if (begin_dialog("About trilab", panels.about_open)) {
         ImGui::TextUnformatted("trilab: a laboratory for triangle meshes");
         ImGui::Separator();
         ImGui::TextUnformatted("Half-edge core, OpenGL 3.3 renderer, Dear ImGui " IMGUI_VERSION);
@@ -973,9 +982,7 @@ void unsaved_changes_popup(UnsavedPrompt& prompt, CommandQueue& commands) {
         ImGui::OpenPopup(kTitle);
         prompt.open_requested = false;
     }
-    place_dialog();
-    if (!ImGui::BeginPopupModal(kTitle, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
-    keep_dialog_inside();
+    if (!begin_modal_dialog(kTitle, ImGuiWindowFlags_AlwaysAutoResize)) return;
     ImGui::PushTextWrapPos(
         std::min(36.0f * ImGui::GetFontSize(), 0.8f * ImGui::GetIO().DisplaySize.x));
     ImGui::TextUnformatted(prompt.quitting
@@ -1017,10 +1024,7 @@ void error_popup(Notice& notice) {
         ImGui::OpenPopup(kErrorPopupTitle);
         notice.popup_pending = false;
     }
-    place_dialog();
-    if (!ImGui::BeginPopupModal(kErrorPopupTitle, nullptr, ImGuiWindowFlags_AlwaysAutoResize))
-        return;
-    keep_dialog_inside();
+    if (!begin_modal_dialog(kErrorPopupTitle, ImGuiWindowFlags_AlwaysAutoResize)) return;
     ImGui::PushTextWrapPos(
         std::min(40.0f * ImGui::GetFontSize(), 0.8f * ImGui::GetIO().DisplaySize.x));
     ImGui::TextColored(notice_color(Notice::Level::Error), "%s", notice.text.c_str());

@@ -280,6 +280,9 @@ void place_dialog(float width_em = 0, float height_em = 0);
 /// After a dialog's Begin: moves it back inside the display when it was dragged or the
 /// window shrank.
 void keep_dialog_inside();
+/// A modal popup placed as a dialog (place_dialog(), keep_dialog_inside()): true while it is
+/// open, and then the caller ends it with ImGui::EndPopup().
+bool begin_modal_dialog(const char* title, int flags, float width_em = 0, float height_em = 0);
 /// The screenshot dialog; queues TakeScreenshot.
 void screenshot_dialog(ScreenshotState& state, CommandQueue& commands);
 /// The key and mouse bindings (Esc closes it).

@@ -19,6 +19,8 @@
 
 #include "app/ops/operation.h"
 #include "app/ops/operation_entries.h"
+#include "app/record/recorder.h"
+#include "app/viewer/key_bindings.h"
 #include "core/algorithms/decimation.h"
 #include "core/algorithms/fairing.h"
 #include "core/algorithms/generators.h"
@@ -467,9 +469,9 @@ void Viewer::record_next_frame() {
         renderer_->draw(record_camera_.view(), record_camera_.projection(), style);
         Image image = framebuffer.read_rgba();
         Framebuffer::bind_default();
-        char file[64];
-        std::snprintf(file, sizeof(file), "_%04d.png", r.next);
-        write_png(image, (std::filesystem::path(r.folder) / (r.name + file)).string());
+        write_png(
+            image,
+            (std::filesystem::path(r.folder) / record::frame_file_name(r.name, r.next)).string());
     } catch (const std::exception& e) {
         Framebuffer::bind_default();
         notify_error(std::string("record: ") + e.what());
@@ -998,94 +1000,19 @@ void Viewer::handle_input() {
     std::vector<KeyPress> presses;
     presses.swap(key_presses_);
     if (io.WantCaptureKeyboard) return;  // typing into a text field, or a popup is open
-    RenderStyle& style = view_.style;
-    for (const KeyPress& press : presses) {
-        if (press.mods == (GLFW_MOD_CONTROL | GLFW_MOD_SHIFT) && press.key == GLFW_KEY_Z) {
-            commands_.push_back(Redo{});
-        } else if (press.mods == GLFW_MOD_CONTROL) {
-            if (press.key == GLFW_KEY_Z) commands_.push_back(Undo{});
-            if (press.key == GLFW_KEY_Y) commands_.push_back(Redo{});
-            if (press.key == GLFW_KEY_O && !jobs_.busy())
-                panels_.file_browser.request(FileBrowserState::Purpose::OpenMesh, document_.path);
-            if (press.key == GLFW_KEY_S && !jobs_.busy())
-                panels_.file_browser.request(FileBrowserState::Purpose::SaveMesh, document_.path);
-            if (press.key == GLFW_KEY_Q) commands_.push_back(Quit{});
-        } else if (press.mods == 0) {
-            switch (press.key) {
-                case GLFW_KEY_HOME:
-                    commands_.push_back(FitView{});
-                    break;
-                case GLFW_KEY_W:  // from whatever shows now to the other, explicitly
-                    view_.settings.wireframe =
-                        style.wireframe ? WireframeOverlay::Off : WireframeOverlay::On;
-                    break;
-                case GLFW_KEY_B:
-                    style.back_face_color = !style.back_face_color;
-                    break;
-                case GLFW_KEY_I:
-                    commands_.push_back(PrintInfo{});
-                    break;
-                case GLFW_KEY_F:
-                    style.fog = !style.fog;
-                    break;
-                case GLFW_KEY_S:
-                    style.specular = !style.specular;
-                    break;
-                case GLFW_KEY_T:  // off -> modulate -> replace -> off
-                    if (style.mode != RenderMode::Textured ||
-                        style.texture_mode == TextureMode::Off) {
-                        style.mode = RenderMode::Textured;
-                        style.texture_mode = TextureMode::Modulate;
-                    } else if (style.texture_mode == TextureMode::Modulate) {
-                        style.texture_mode = TextureMode::Replace;
-                    } else {
-                        style.mode = RenderMode::Smooth;
-                        style.texture_mode = TextureMode::Off;
-                    }
-                    if (style.mode == RenderMode::Textured && !renderer_->has_texcoords())
-                        log_.warning(
-                            "textured mode: the model has no texture coordinates "
-                            "(Rendering > Texture > planar or spherical projection)");
-                    break;
-                case GLFW_KEY_F12:
-                    panels_.screenshot.open = true;
-                    break;
-                case GLFW_KEY_L:
-                    panels_.log_open = !panels_.log_open;
-                    break;
-                case GLFW_KEY_H:
-                    panels_.history_open = !panels_.history_open;
-                    break;
-                case GLFW_KEY_M:
-                    panels_.morph_open = !panels_.morph_open;
-                    break;
-                case GLFW_KEY_R:
-                    panels_.record.open = !panels_.record.open;
-                    break;
-                case GLFW_KEY_SPACE:
-                    if (document_.history.current() > 0 && morph_.moves) {
-                        morph_.playing = !morph_.playing;
-                        morph_.play_start = glfwGetTime();
-                    }
-                    break;
-                case GLFW_KEY_F1:
-                    panels_.help_open = !panels_.help_open;
-                    break;
-                case GLFW_KEY_ESCAPE:  // close a dialog, or back to the state before the preview
-                    if (panels_.help_open)
-                        panels_.help_open = false;
-                    else if (panels_.about_open)
-                        panels_.about_open = false;
-                    else if (panels_.screenshot.open)
-                        panels_.screenshot.open = false;
-                    else if (preview_.requested)
-                        commands_.push_back(CancelPreview{});
-                    break;
-                default:
-                    break;
-            }
-        }
-    }
+    KeyActionTargets targets{panels_,
+                             view_.style,
+                             view_.settings,
+                             morph_,
+                             commands_,
+                             log_,
+                             document_.path,
+                             jobs_.busy(),
+                             document_.history.current() > 0,
+                             renderer_->has_texcoords(),
+                             preview_.requested.has_value(),
+                             glfwGetTime()};
+    for (const KeyPress& press : presses) dispatch_key(press.key, press.mods, targets);
 }
 
 void Viewer::draw_ui() {

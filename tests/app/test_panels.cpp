@@ -3,11 +3,14 @@
 // found through the panels' test hook (set_widget_rect_hook), and the tests assert the typed
 // commands the panels queue. The sections are drawn in the real sidebar (layout.h), whose
 // regions are checked here too.
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
 #include <imgui.h>
 #include <catch2/catch.hpp>
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +19,7 @@
 #include <string>
 #include <variant>
 
+#include "app/viewer/key_bindings.h"
 #include "app/viewer/panels.h"
 #include "app/viewer/plots.h"
 #include "core/algorithms/fairing.h"
@@ -709,4 +713,254 @@ TEST_CASE("Esc closes the key bindings", "[panels]") {
     io.KeysDown[256] = false;
     ui.frame(draw);
     CHECK_FALSE(panels.help_open);
+}
+
+namespace {
+
+/// The viewer's state the key actions work on, fresh: a morph that moves, an operation
+/// preview up, no dialog open, no job running, no texture coordinates.
+struct KeyFixture {
+    PanelState panels;
+    RenderStyle style;
+    ViewSettings settings;
+    MorphState morph;
+    CommandQueue commands;
+    Log log{false};
+    KeyActionTargets targets{panels, style, settings, morph, commands, log, "/data/model.obj",
+                             false,  true,  false,    true,  12.5};
+};
+
+/// A click that opens the menu (or submenu) whose closed header is "menu:LABEL", then a frame
+/// over it; returns every "shortcut:" item drawn meanwhile.
+template <class Draw>
+void open_menu(Ui& ui, Draw draw, const std::string& label,
+               std::map<std::string, std::string>& shortcuts) {
+    const Box header = ui.rect("menu:" + label);
+    const float x = (header.x0 + header.x1) / 2, y = (header.y0 + header.y1) / 2;
+    const auto collect = [&] {
+        for (const auto& [id, box] : ui.with_prefix("shortcut:")) {
+            const std::size_t eq = id.find('=');
+            shortcuts[id.substr(9, eq - 9)] = id.substr(eq + 1);
+        }
+    };
+    ui.frame(draw, x, y, false);
+    ui.frame(draw, x, y, true);
+    collect();
+    for (int i = 0; i < 3; ++i) {
+        ui.frame(draw, x, y, false);
+        collect();
+    }
+}
+
+}  // namespace
+
+TEST_CASE("every key binding reaches its action", "[panels][keys]") {
+    for (const KeyBinding& b : kKeyBindings) {
+        const std::string keys = chord_text(b.key, b.mods);
+        INFO(keys);
+        REQUIRE(find_key_binding(b.key, b.mods) == &b);  // no binding shadows another
+        KeyFixture f;
+        const PanelState before = f.panels;
+        const RenderStyle style = f.style;
+        REQUIRE(dispatch_key(b.key, b.mods, f.targets));
+        const auto queued = [&](auto command) {
+            return f.commands.size() == 1 &&
+                   std::holds_alternative<decltype(command)>(f.commands.front());
+        };
+        switch (b.action) {
+            case KeyAction::FitView:
+                CHECK(queued(FitView{}));
+                break;
+            case KeyAction::ToggleWireframe:
+                CHECK(f.settings.wireframe ==
+                      (style.wireframe ? WireframeOverlay::Off : WireframeOverlay::On));
+                break;
+            case KeyAction::ToggleBackFaceColor:
+                CHECK(f.style.back_face_color != style.back_face_color);
+                break;
+            case KeyAction::ToggleFog:
+                CHECK(f.style.fog != style.fog);
+                break;
+            case KeyAction::ToggleSpecular:
+                CHECK(f.style.specular != style.specular);
+                break;
+            case KeyAction::CycleTexture:
+                CHECK(f.style.mode == RenderMode::Textured);
+                CHECK(f.style.texture_mode == TextureMode::Modulate);
+                REQUIRE(f.log.size() == 1);  // no texture coordinates: a warning says so
+                CHECK(f.log.entries()[0].level == LogEntry::Level::Warning);
+                break;
+            case KeyAction::Screenshot:
+                CHECK(f.panels.screenshot.open);
+                break;
+            case KeyAction::PrintInfo:
+                CHECK(queued(PrintInfo{}));
+                break;
+            case KeyAction::ToggleLog:
+                CHECK(f.panels.log_open != before.log_open);
+                break;
+            case KeyAction::Undo:
+                CHECK(queued(Undo{}));
+                break;
+            case KeyAction::Redo:
+                CHECK(queued(Redo{}));
+                break;
+            case KeyAction::ToggleHistory:
+                CHECK(f.panels.history_open != before.history_open);
+                break;
+            case KeyAction::ToggleMorph:
+                CHECK(f.panels.morph_open != before.morph_open);
+                break;
+            case KeyAction::ToggleRecord:
+                CHECK(f.panels.record.open != before.record.open);
+                break;
+            case KeyAction::PlayMorph:
+                CHECK(f.morph.playing);
+                CHECK(f.morph.play_start == 12.5);
+                break;
+            case KeyAction::OpenFile:
+                CHECK(f.panels.file_browser.open_requested);
+                CHECK(f.panels.file_browser.purpose == FileBrowserState::Purpose::OpenMesh);
+                break;
+            case KeyAction::SaveFile:
+                CHECK(f.panels.file_browser.open_requested);
+                CHECK(f.panels.file_browser.purpose == FileBrowserState::Purpose::SaveMesh);
+                break;
+            case KeyAction::Quit:
+                CHECK(queued(Quit{}));
+                break;
+            case KeyAction::ToggleHelp:
+                CHECK(f.panels.help_open);
+                break;
+            case KeyAction::Escape:  // no dialog open: back from the preview
+                CHECK(queued(CancelPreview{}));
+                break;
+        }
+    }
+    // Modifiers must match exactly; unbound keys do nothing.
+    KeyFixture f;
+    CHECK_FALSE(dispatch_key(GLFW_KEY_W, GLFW_MOD_ALT, f.targets));
+    CHECK_FALSE(dispatch_key(GLFW_KEY_Z, GLFW_MOD_CONTROL | GLFW_MOD_ALT, f.targets));
+    CHECK_FALSE(dispatch_key(GLFW_KEY_Q, 0, f.targets));
+    CHECK(f.commands.empty());
+}
+
+TEST_CASE("key actions keep their conditions: busy, no morph, Esc's order, T's cycle",
+          "[panels][keys]") {
+    KeyFixture f;
+    f.targets.busy = true;  // no file dialog while a job runs
+    dispatch_key(GLFW_KEY_O, GLFW_MOD_CONTROL, f.targets);
+    dispatch_key(GLFW_KEY_S, GLFW_MOD_CONTROL, f.targets);
+    CHECK_FALSE(f.panels.file_browser.open_requested);
+    f.morph.moves = false;  // nothing to animate
+    dispatch_key(GLFW_KEY_SPACE, 0, f.targets);
+    CHECK_FALSE(f.morph.playing);
+    f.morph.moves = true;
+    f.targets.has_entry = false;  // the loaded state: no morph
+    dispatch_key(GLFW_KEY_SPACE, 0, f.targets);
+    CHECK_FALSE(f.morph.playing);
+
+    // Esc closes the key bindings, then about, then the screenshot dialog, then the preview.
+    f.panels.help_open = f.panels.about_open = f.panels.screenshot.open = true;
+    dispatch_key(GLFW_KEY_ESCAPE, 0, f.targets);
+    CHECK((!f.panels.help_open && f.panels.about_open && f.panels.screenshot.open));
+    dispatch_key(GLFW_KEY_ESCAPE, 0, f.targets);
+    CHECK((!f.panels.about_open && f.panels.screenshot.open));
+    dispatch_key(GLFW_KEY_ESCAPE, 0, f.targets);
+    CHECK(!f.panels.screenshot.open);
+    CHECK(f.commands.empty());
+    dispatch_key(GLFW_KEY_ESCAPE, 0, f.targets);
+    CHECK(commands_of<CancelPreview>(f.commands).size() == 1);
+
+    // T: off -> modulate -> replace -> off; with texture coordinates no warning.
+    f.targets.has_texcoords = true;
+    const std::pair<RenderMode, TextureMode> cycle[] = {
+        {RenderMode::Textured, TextureMode::Modulate},
+        {RenderMode::Textured, TextureMode::Replace},
+        {RenderMode::Smooth, TextureMode::Off},
+        {RenderMode::Textured, TextureMode::Modulate}};
+    for (const auto& [mode, texture] : cycle) {
+        dispatch_key(GLFW_KEY_T, 0, f.targets);
+        CHECK(f.style.mode == mode);
+        CHECK(f.style.texture_mode == texture);
+    }
+    CHECK(f.log.size() == 0);
+}
+
+TEST_CASE("the menus show the key bindings' shortcut texts; F1 lists every binding",
+          "[panels][keys]") {
+    // The menu items with a key, as the menus spelled their shortcuts by hand before the
+    // table, with the action the item does.
+    struct Expected {
+        const char* label;
+        KeyAction action;
+        const char* keys;
+    };
+    const Expected expected[] = {
+        {"Open...", KeyAction::OpenFile, "Ctrl+O"},
+        {"Save as...", KeyAction::SaveFile, "Ctrl+S"},
+        {"Quit", KeyAction::Quit, "Ctrl+Q"},
+        {"Undo", KeyAction::Undo, "Ctrl+Z"},
+        {"Redo", KeyAction::Redo, "Ctrl+Shift+Z"},
+        {"History", KeyAction::ToggleHistory, "H"},
+        {"Morph", KeyAction::ToggleMorph, "M"},
+        {"Record", KeyAction::ToggleRecord, "R"},
+        {"On", KeyAction::ToggleWireframe, "W"},  // Rendering > Wireframe overlay
+        {"Off", KeyAction::ToggleWireframe, "W"},
+        {"Back-face colour", KeyAction::ToggleBackFaceColor, "B"},
+        {"off", KeyAction::CycleTexture, "T"},  // Rendering > Texture
+        {"Specular highlight", KeyAction::ToggleSpecular, "S"},
+        {"Fog", KeyAction::ToggleFog, "F"},
+        {"Fit view", KeyAction::FitView, "Home"},
+        {"Screenshot...", KeyAction::Screenshot, "F12"},
+        {"Model information", KeyAction::PrintInfo, "I"},
+        {"Log", KeyAction::ToggleLog, "L"},
+        {"Key bindings", KeyAction::ToggleHelp, "F1"},
+    };
+
+    // Open every menu and submenu with a key item; collect the shortcut texts drawn.
+    std::map<std::string, std::string> shortcuts;
+    const std::string top_menus[] = {"File", "Edit", "Rendering", "Window", "Help"};
+    for (const std::string& menu : top_menus) {
+        Ui ui;
+        RenderStyle style;
+        ViewSettings settings;
+        PanelState panels;
+        MenuContext context;
+        RenderContext render;
+        CommandQueue commands;
+        const auto draw = [&] { menu_bar(style, settings, panels, context, render, commands); };
+        ui.frame(draw);
+        open_menu(ui, draw, menu, shortcuts);
+        if (menu == "Rendering")
+            for (const char* sub : {"Wireframe overlay", "Texture", "Lighting and colours"})
+                open_menu(ui, draw, sub, shortcuts);
+    }
+    for (const Expected& e : expected) {
+        INFO(e.label);
+        REQUIRE(shortcuts.count(e.label) == 1);
+        CHECK(shortcuts[e.label] == e.keys);
+        CHECK(shortcut_text(e.action) == e.keys);
+        // The key shown triggers the item's action.
+        const auto bound =
+            std::find_if(kKeyBindings.begin(), kKeyBindings.end(),
+                         [&](const KeyBinding& b) { return chord_text(b.key, b.mods) == e.keys; });
+        REQUIRE(bound != kKeyBindings.end());
+        CHECK(bound->action == e.action);
+    }
+    CHECK(shortcuts.size() == std::size(expected));  // no other item shows a key
+
+    // The key bindings window: every binding's keys in the row of its action's help text.
+    const std::vector<BindingHelpRow> rows = binding_help_rows();
+    for (const KeyBinding& b : kKeyBindings) {
+        const std::string keys = chord_text(b.key, b.mods);
+        INFO(keys);
+        const auto lists = [&](const BindingHelpRow& r) {
+            const std::string all = ", " + r.keys + ", ";
+            return r.action == b.help && all.find(", " + keys + ", ") != std::string::npos;
+        };
+        CHECK(std::count_if(rows.begin(), rows.end(), lists) == 1);
+    }
+    CHECK(chord_text(GLFW_KEY_Z, GLFW_MOD_CONTROL | GLFW_MOD_SHIFT) == "Ctrl+Shift+Z");
+    CHECK(chord_text(GLFW_KEY_ESCAPE, 0) == "Esc");
 }

@@ -1,12 +1,13 @@
-// `trilab-cli record` (app/cli/record_command.h): the frames of an operation's morph, checked
-// against independent offscreen renders of the two states, plus option errors.
-#include "app/cli/record_command.h"
+// The recorder behind `trilab-cli record` (app/record/recorder.h): the frames of an operation's
+// morph, checked against independent offscreen renders of the two states, plus option errors.
+#include "app/record/recorder.h"
 
 #include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "app/cli/record_command.h"
 #include "app/ops/operation.h"
 #include "core/algorithms/coloring.h"
 #include "core/algorithms/generators.h"
@@ -20,9 +21,9 @@
 
 using namespace trilab;
 using namespace trilab::test;
-using trilab::cli::record_morph;
-using trilab::cli::RecordOptions;
-using trilab::cli::RecordSummary;
+using trilab::record::record_morph;
+using trilab::record::RecordOptions;
+using trilab::record::RecordSummary;
 
 namespace {
 
@@ -305,7 +306,7 @@ TEST_CASE("record --mp4 never fails for want of ffmpeg", "[record]") {
         CHECK(files_in(o.out_dir).size() == 2);
     }
     SECTION("with ffmpeg, when there is one: an MP4 beside the frames") {
-        if (trilab::cli::find_on_path("ffmpeg").empty()) {
+        if (trilab::record::find_on_path("ffmpeg").empty()) {
             SKIP_TEST("ffmpeg is not on the PATH: the MP4 encoding is not tested");
         }
         const RecordSummary s = record_morph(o);

@@ -315,12 +315,8 @@ TEST_CASE("coloring_name and parse_coloring round trip; unknown names list the k
     }
     REQUIRE_THROWS_AS(parse_coloring("curvature"), InvalidArgument);
     REQUIRE_THROWS_AS(parse_coloring("Mean"), InvalidArgument);
-    std::string message;
-    try {
-        parse_coloring("curvature");
-    } catch (const InvalidArgument& e) {
-        message = e.what();
-    }
+    const std::string message =
+        test::error_text<InvalidArgument>([] { parse_coloring("curvature"); });
     REQUIRE(message.find("'curvature'") != std::string::npos);
     for (const auto& name : names) REQUIRE(message.find(name) != std::string::npos);
 }
