@@ -121,6 +121,22 @@ std::size_t HalfedgeMesh::share_equal_arrays(const HalfedgeMesh& other) {
            eprops_.share_equal_arrays(other.eprops_) + fprops_.share_equal_arrays(other.fprops_);
 }
 
+std::uint64_t HalfedgeMesh::topology_revision() const {
+    return std::max({vhalfedge_.array()->revision(), vdeleted_.array()->revision(),
+                     hto_.array()->revision(), hnext_.array()->revision(),
+                     hprev_.array()->revision(), hface_.array()->revision(),
+                     edeleted_.array()->revision(), fhalfedge_.array()->revision(),
+                     fdeleted_.array()->revision()});
+}
+
+std::uint64_t HalfedgeMesh::attribute_revision() const {
+    const auto attribute = [](const std::string& name) { return !is_builtin(name); };
+    std::uint64_t r = 0;
+    for (const PropertyContainer* c : {&vprops_, &hprops_, &eprops_, &fprops_})
+        r = std::max({r, c->layout_revision(), c->max_revision(attribute)});
+    return r;
+}
+
 void HalfedgeMesh::clear() {
     HalfedgeMesh fresh;
     vprops_ = std::move(fresh.vprops_);

@@ -271,6 +271,26 @@ public:
     /// Throws InvalidArgument for another count.
     void set_positions(std::vector<Point> positions);
 
+    // ---- revisions (see core/property.h) --------------------------------------------------
+    /// What a cache or a GPU copy of the mesh was made from. Each number changes whenever its
+    /// part may have changed (any write access), and copies share it while they share that
+    /// part, so equal numbers mean equal contents within this process; 0 is never a revision.
+    struct Revision {
+        std::uint64_t topology = 0;    ///< connectivity, including which elements are deleted
+        std::uint64_t geometry = 0;    ///< vertex positions
+        std::uint64_t attributes = 0;  ///< every other property, and which properties exist
+        bool operator==(const Revision& o) const {
+            return topology == o.topology && geometry == o.geometry && attributes == o.attributes;
+        }
+        bool operator!=(const Revision& o) const { return !(*this == o); }
+    };
+    Revision revision() const {
+        return {topology_revision(), geometry_revision(), attribute_revision()};
+    }
+    std::uint64_t topology_revision() const;
+    std::uint64_t geometry_revision() const { return vpoint_.array()->revision(); }
+    std::uint64_t attribute_revision() const;
+
     // ---- sharing (copy-on-write, see core/property.h) -------------------------------------
     /// One block of stored values: its identity (equal for meshes sharing it) and bytes.
     struct MemoryBlock {

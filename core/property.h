@@ -13,8 +13,19 @@
 // (a smoothing step, a history snapshot) share every other array by construction. Reading
 // never copies, so const objects may be read from several threads while the owner of another
 // copy writes to its own.
+//
+// Revisions: every array has a revision, a number that changes whenever its values may have
+// changed (a write access, as above) and that copies share with the values they share. Equal
+// revisions mean equal values; the converse need not hold. Numbers are drawn lazily, when a
+// revision is asked for, from one process-wide increasing counter, so a number drawn later is
+// larger than every number drawn before: the largest revision of a set of arrays therefore
+// identifies the values of the whole set (HalfedgeMesh::revision()). A reference into an
+// array's values, once taken, must not be written through after its revision was read.
 // `bool` is not allowed as T (std::vector<bool> has no references): use std::uint8_t.
+#include <algorithm>
+#include <atomic>
 #include <cassert>
+#include <cstdint>
 #include <cstring>
 #include <memory>
 #include <string>
@@ -57,9 +68,43 @@ constexpr bool is_bitwise_comparable() {
         return is_handle<T>::value;
 }
 
+/// The next number of the process-wide revision counter (never 0, never repeated).
+inline std::uint64_t draw_revision() {
+    static std::atomic<std::uint64_t> counter{0};
+    return counter.fetch_add(1, std::memory_order_relaxed) + 1;
+}
+
+/// A revision drawn lazily: touch() marks a change, get() draws a number for the first request
+/// after it (threads asking at once agree on one number).
+class LazyRevision {
+public:
+    LazyRevision() = default;
+    /// A copy has the same number (drawn first when the original has none yet), so copies of
+    /// the same values agree.
+    LazyRevision(const LazyRevision& other) noexcept : value_(other.get()) {}
+    LazyRevision& operator=(const LazyRevision& other) noexcept {
+        value_.store(other.get(), std::memory_order_relaxed);
+        return *this;
+    }
+    void touch() { value_.store(0, std::memory_order_relaxed); }
+    std::uint64_t get() const {
+        std::uint64_t v = value_.load(std::memory_order_relaxed);
+        if (v == 0) {
+            const std::uint64_t fresh = draw_revision();
+            v = value_.compare_exchange_strong(v, fresh, std::memory_order_relaxed) ? fresh : v;
+        }
+        return v;
+    }
+
+private:
+    mutable std::atomic<std::uint64_t> value_{0};
+};
+
 class BasePropertyArray {
 public:
     explicit BasePropertyArray(std::string name) : name_(std::move(name)) {}
+    BasePropertyArray(const BasePropertyArray&) = default;
+    BasePropertyArray& operator=(const BasePropertyArray&) = delete;
     virtual ~BasePropertyArray() = default;
     const std::string& name() const { return name_; }
     virtual const std::type_info& type() const = 0;
@@ -80,9 +125,15 @@ public:
     /// Shares `other`'s values when it has the same type and equal values bit for bit (only
     /// for is_bitwise_comparable types); returns whether it does now.
     virtual bool share_if_equal(const BasePropertyArray& other) = 0;
+    /// Changes whenever the values may have changed; shared with copies (see the file comment).
+    std::uint64_t revision() const { return revision_.get(); }
+
+protected:
+    void touch() { revision_.touch(); }
 
 private:
     std::string name_;
+    LazyRevision revision_;
 };
 
 template <class T>
@@ -116,6 +167,7 @@ public:
         out->reserve(old_index.size());
         for (Index i : old_index) out->push_back(in[i]);
         values_ = std::move(out);
+        touch();
     }
     void shrink_to_fit() override {
         if (values_.use_count() == 1) values_->shrink_to_fit();  // a shared copy is tight
@@ -145,12 +197,14 @@ public:
     /// The values for writing: copied first when shared with another array.
     std::vector<T>& data() {
         if (values_.use_count() != 1) values_ = std::make_shared<std::vector<T>>(*values_);
+        touch();
         return *values_;
     }
     const std::vector<T>& data() const { return *values_; }
     /// Replaces the values without copying the old ones.
     void assign(std::vector<T> values) {
         values_ = std::make_shared<std::vector<T>>(std::move(values));
+        touch();
     }
     const T& default_value() const { return default_; }
 
@@ -205,6 +259,7 @@ public:
         arrays_.clear();
         for (const auto& a : other.arrays_) arrays_.push_back(a->clone());
         size_ = other.size_;
+        layout_revision_ = other.layout_revision_;
         return *this;
     }
     PropertyContainer(PropertyContainer&&) noexcept = default;
@@ -242,6 +297,7 @@ public:
         for (auto it = arrays_.begin(); it != arrays_.end(); ++it) {
             if ((*it)->name() == name) {
                 arrays_.erase(it);
+                layout_revision_.touch();
                 return true;
             }
         }
@@ -280,8 +336,19 @@ public:
     void clear() {
         arrays_.clear();
         size_ = 0;
+        layout_revision_.touch();
     }
 
+    /// Changes when an array is removed (an added array brings a revision of its own).
+    std::uint64_t layout_revision() const { return layout_revision_.get(); }
+    /// The largest revision of the arrays whose name `include(name)` accepts (0: none).
+    template <class Include>
+    std::uint64_t max_revision(Include&& include) const {
+        std::uint64_t r = 0;
+        for (const auto& a : arrays_)
+            if (include(a->name())) r = std::max(r, a->revision());
+        return r;
+    }
     /// Calls f(name, values_id, bytes) for every array (see BasePropertyArray).
     template <class F>
     void for_each_array(F&& f) const {
@@ -305,6 +372,7 @@ private:
     }
     std::vector<std::unique_ptr<BasePropertyArray>> arrays_;
     std::size_t size_ = 0;
+    LazyRevision layout_revision_;
 };
 
 }  // namespace trilab

@@ -239,7 +239,28 @@ void MeshRenderer::setup_vertex_array(GLuint vao, GLuint element_buffer) const {
     glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
+MeshRenderer::Update MeshRenderer::show(const HalfedgeMesh& mesh) {
+    if (shows(mesh)) return Update::None;
+    if (shows_topology_of(mesh)) {
+        update_positions(mesh);
+        return Update::Positions;
+    }
+    upload(mesh);
+    return Update::Full;
+}
+
+bool MeshRenderer::shows(const HalfedgeMesh& mesh) const {
+    return shows_topology_of(mesh) && shown_.geometry == mesh.geometry_revision();
+}
+
+bool MeshRenderer::shows_topology_of(const HalfedgeMesh& mesh) const {
+    return level_vertices_.empty() && shown_.topology != 0 &&
+           shown_.topology == mesh.topology_revision() &&
+           shown_.attributes == mesh.attribute_revision();
+}
+
 void MeshRenderer::upload(const HalfedgeMesh& mesh) {
+    shown_ = mesh.revision();
     level_vertices_.clear();
     Layout layout = build_layout(mesh);
     gpu_source_ = std::move(layout.source);
@@ -283,11 +304,12 @@ void MeshRenderer::upload(const HalfedgeMesh& mesh) {
 }
 
 void MeshRenderer::update_positions(const HalfedgeMesh& mesh) {
-    if (mesh.vertices_size() != n_vertices_ || !level_vertices_.empty()) {
+    if (!shows_topology_of(mesh)) {
         upload(mesh);
         return;
     }
     write_geometry(mesh);
+    shown_.geometry = mesh.geometry_revision();
 }
 
 void MeshRenderer::update_positions(const HalfedgeMesh& topology,
@@ -297,8 +319,9 @@ void MeshRenderer::update_positions(const HalfedgeMesh& topology,
             "MeshRenderer::update_positions: " + std::to_string(positions.size()) +
             " positions for a mesh with vertex storage size " +
             std::to_string(topology.vertices_size()));
-    if (topology.vertices_size() != n_vertices_ || !level_vertices_.empty()) upload(topology);
+    if (!shows_topology_of(topology)) upload(topology);
     write_geometry(topology, &positions);
+    shown_.geometry = 0;  // not the mesh's own positions
 }
 
 void MeshRenderer::write_level_vertex(const LevelOfDetail& lod, Index v) {
@@ -361,6 +384,7 @@ void MeshRenderer::write_level_indices(const LevelOfDetail& lod) {
 
 void MeshRenderer::upload_level(LevelOfDetail& lod) {
     const std::size_t n = lod.positions().size();
+    shown_ = {};
     gpu_source_.clear();
     component_of_vertex_.clear();
     n_components_ = 0;
@@ -561,6 +585,7 @@ void MeshRenderer::clear() {
     clear_vertex_colors();
     gpu_source_.clear();
     level_vertices_.clear();
+    shown_ = {};
     n_vertices_ = n_gpu_vertices_ = n_triangle_indices_ = n_point_indices_ = 0;
     has_texcoords_ = false;
     bbox_min_ = bbox_max_ = glm::vec3(0.0f);

@@ -157,19 +157,30 @@ public:
     MeshRenderer(const MeshRenderer&) = delete;
     MeshRenderer& operator=(const MeshRenderer&) = delete;
 
+    /// What show() had to do.
+    enum class Update { None, Positions, Full };
+    /// Makes the GPU show `mesh`, doing only what its revisions (HalfedgeMesh::revision())
+    /// say changed since the last upload: nothing, positions and normals (update_positions()),
+    /// or everything (upload(), which drops the vertex colours). The one upload decision the
+    /// viewer uses.
+    Update show(const HalfedgeMesh& mesh);
+    /// Whether the GPU shows exactly `mesh` (same revisions, no level of detail).
+    bool shows(const HalfedgeMesh& mesh) const;
+    /// Whether the GPU holds the faces and attributes of `mesh` (positions may differ).
+    bool shows_topology_of(const HalfedgeMesh& mesh) const;
+
     /// Copies positions, normals, texture coordinates and triangles of `mesh` to the GPU,
     /// replacing what was there, and drops the vertex colours. Vertices are addressed by
     /// storage index, so a mesh with deleted elements (garbage) draws correctly.
     /// O(vertices + faces).
     void upload(const HalfedgeMesh& mesh);
-    /// Rewrites positions and normals only, for a mesh whose faces (and texture coordinates)
-    /// are unchanged since the last upload(). Falls back to upload() when the vertex storage
-    /// size differs. O(vertices + faces).
+    /// Rewrites positions and normals only. Falls back to upload() unless the GPU holds the
+    /// faces and attributes of `mesh` (shows_topology_of()). O(vertices + faces).
     void update_positions(const HalfedgeMesh& mesh);
     /// The same with positions given apart from the mesh (one per vertex storage index of
     /// `topology`), for morph frames: normals are computed from these positions (a stored
-    /// "v:normal" is ignored). Uploads `topology` first when its vertex storage size differs
-    /// from the uploaded mesh's. Throws InvalidArgument on a size mismatch.
+    /// "v:normal" is ignored). Uploads `topology` first unless the GPU holds its faces and
+    /// attributes. Throws InvalidArgument on a size mismatch.
     void update_positions(const HalfedgeMesh& topology, const std::vector<Point>& positions);
     /// Shows the current level of `lod`: uploads positions and normals of every vertex, the
     /// live triangles and vertices, drops texture coordinates and vertex colours, and clears
@@ -233,6 +244,9 @@ private:
 
     /// mesh.vert + mesh.frag, indexed by (vertex colours read) + 2 (texture read): the
     /// variants without an input leave it out (TRILAB_NO_VERTEX_COLOR, TRILAB_NO_TEXTURE).
+    /// The revisions of the mesh on the GPU (all 0: none, a level of detail, or positions
+    /// given apart from the mesh).
+    HalfedgeMesh::Revision shown_;
     std::array<GlProgram, 4> surface_programs_;
     GlProgram wire_program_;           ///< mesh.vert + mesh.geom + mesh.frag [TRILAB_WIREFRAME]
     GlProgram points_program_;         ///< mesh.vert + mesh.frag [TRILAB_POINTS]

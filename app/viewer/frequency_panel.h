@@ -10,6 +10,7 @@
 // decomposition lives in the viewer's FrequencyDocument, and the panel reports what the user did as
 // FrequencyActions for the viewer to execute.
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -32,8 +33,8 @@ struct FrequencyPanelState {
 /// The current decomposition and what the viewer derived from it for display.
 struct FrequencyDocument {
     std::shared_ptr<const SpectralDecomposition> decomposition;
-    std::size_t n_vertices = 0, n_faces = 0;  ///< of the decomposed mesh (to check validity)
-    bool valid = false;                       ///< the current mesh has the decomposed connectivity
+    std::uint64_t topology_revision = 0;  ///< of the decomposed mesh (valid while it stays)
+    bool valid = false;                   ///< the current mesh has the decomposed connectivity
     bool applied = false;
     std::size_t applied_lo = 0, applied_hi = 0;  ///< the band of the current state
     std::vector<float> eigenvalues;              ///< for the spectrum plot

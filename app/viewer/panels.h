@@ -84,8 +84,8 @@ struct FairingPanelState : OperationPanelState {
     FairingPanelState() : OperationPanelState("smooth") {}
     /// The largest stable explicit step of the current mesh and operator (NaN: not known yet).
     double max_stable_step = std::numeric_limits<double>::quiet_NaN();
-    std::size_t stable_step_entry = std::size_t(-1);  ///< the history entry it was estimated on
-    int stable_step_operator = -1;                    ///< and the operator
+    HalfedgeMesh::Revision stable_step_state;  ///< the mesh state it was estimated on
+    int stable_step_operator = -1;             ///< and the operator
 };
 
 /// The Decimation panel: its operation, and the collapsing-edges overlay.

@@ -326,14 +326,15 @@ void Viewer::on_state_changed(bool fit) {
 
     morph_ = MorphState{1.0, false, morph_.duration, morph_.easing, morph_.playback, 0.0};
     morph_.moves = entry_moves();
-    morph_topology_ = nullptr;
+    morph_shown_ = false;
     // The status bar tells where the document is now (a load says more afterwards).
     notice_ = Notice{Notice::Level::Info,
                      "state " + std::to_string(document_.history.current()) + ": " + entry.label +
                          (entry.parameters.empty() ? "" : " " + entry.parameters),
                      {},
                      false};
-    renderer_->upload(mesh);
+    renderer_->show(mesh);  // only what changed: nothing after a repaint, positions after a fairing
+    renderer_->clear_vertex_colors();
     view_.colors = VertexColors{};
     if (view_.settings.coloring != VertexColoring::None) update_coloring();
     if (fit) fit_view();
@@ -359,18 +360,18 @@ void Viewer::update_stable_step() {
     FairingPanelState& f = panels_.fairing;
     if (!f.open) return;
     const int op = int(f.op.value("operator").x);
-    const std::size_t entry = document_.history.current();
+    const HalfedgeMesh::Revision state = document_.mesh().revision();
     // A preview of this state reports it (any size); small meshes get it at once.
-    if (preview_.result && preview_.base_entry == entry && preview_.computed_op.def == f.op.def &&
+    if (preview_.result && preview_.base == state && preview_.computed_op.def == f.op.def &&
         int(preview_.computed_op.value("operator").x) == op) {
         for (const auto& [key, value] : preview_.result->values)
             if (key == "max_stable_step" && std::isfinite(value)) f.max_stable_step = value;
-        f.stable_step_entry = entry;
+        f.stable_step_state = state;
         f.stable_step_operator = op;
         return;
     }
-    if (f.stable_step_entry == entry && f.stable_step_operator == op) return;
-    f.stable_step_entry = entry;
+    if (f.stable_step_state == state && f.stable_step_operator == op) return;
+    f.stable_step_state = state;
     f.stable_step_operator = op;
     f.max_stable_step = std::numeric_limits<double>::quiet_NaN();
     constexpr std::size_t kAtOnceVertices = 100000;  // a few ms to tens of ms
@@ -522,20 +523,20 @@ void Viewer::update_morph() {
     }
     const bool morphing = entry > 0 && (morph_.playing || morph_.t < 1.0);
     if (!morphing) {
-        if (morph_topology_) {  // back to the current state as it is
-            morph_topology_ = nullptr;
-            renderer_->upload(document_.mesh());
-            apply_colors(std::move(view_.colors));
+        if (morph_shown_) {  // back to the current state as it is
+            morph_shown_ = false;
+            show_document();
         }
         return;
     }
     try {
         const MorphFrame frame = document_.history.morph(entry, ease(morph_.easing, morph_.t));
-        if (frame.topology != morph_topology_) {
-            // A new connectivity to show: upload it once; colours are computed on it at its
-            // own (final) shape, so each vertex keeps its colour while it moves.
-            morph_topology_ = frame.topology;
-            renderer_->upload(*frame.topology);
+        if (!morph_shown_ || !renderer_->shows_topology_of(*frame.topology)) {
+            // The morph's first frame, or a new connectivity: upload it once (unless the GPU
+            // holds it already); colours are computed on it at its own (final) shape, so each
+            // vertex keeps its colour while it moves.
+            morph_shown_ = true;
+            if (!renderer_->shows_topology_of(*frame.topology)) renderer_->upload(*frame.topology);
             if (view_.settings.coloring != VertexColoring::None) {
                 const std::vector<Point> reference = reference_positions();
                 VertexColors colors =
@@ -736,6 +737,11 @@ void Viewer::apply_colors(VertexColors colors) {
         renderer_->clear_vertex_colors();
     else
         renderer_->set_vertex_colors(view_.colors.colors);
+}
+
+void Viewer::show_document() {
+    renderer_->show(document_.mesh());
+    apply_colors(std::move(view_.colors));
 }
 
 void Viewer::update_coloring() {
@@ -1182,11 +1188,10 @@ void Viewer::update_collapsing_edges() {
     const DecimationPanelState& d = panels_.decimation;
     if (!d.show_collapsing_edges) return;
     const HalfedgeMesh& mesh = document_.mesh();
-    // The mesh (its address, entry and size) and the options the edges were computed for.
-    char id[96];
-    std::snprintf(id, sizeof(id), "%p %zu %zu %zu ", static_cast<const void*>(&mesh),
-                  document_.history.current(), mesh.n_vertices(), mesh.n_faces());
-    const std::string key = id + d.op.text();
+    // The mesh state (its topology and geometry revisions) and the options the edges were
+    // computed for.
+    const std::string key = std::to_string(mesh.topology_revision()) + " " +
+                            std::to_string(mesh.geometry_revision()) + " " + d.op.text();
     if (key == collapse_key_) return;
     collapse_key_ = key;
     std::vector<glm::vec3> points;
@@ -1408,7 +1413,7 @@ int Viewer::run() {
         glfwSwapBuffers(window_.get());
         frame_times_ms_[n_frame_times_++ % frame_times_ms_.size()] =
             1000.0 * (glfwGetTime() - start);
-        if (sweep_.active) step_sweep(preview_uploaded_ != nullptr || lod_.shown);
+        if (sweep_.active) step_sweep(preview_shown_ || lod_.shown);
         if (last) break;
     }
     if (options_.frames > 0) {

@@ -151,10 +151,10 @@ private:
         std::optional<Operation> requested;  ///< the newest request
         std::optional<Operation> pending;    ///< requested, not started yet
         std::shared_ptr<OperationResult> result;
-        Operation computed_op;       ///< what `result` was computed for
-        Operation shown_op;          ///< what is shown (computed_op or fewer iterations)
-        std::size_t shown_step = 0;  ///< the step of `result` shown
-        std::size_t base_entry = 0;  ///< the history entry `result` applies to
+        Operation computed_op;        ///< what `result` was computed for
+        Operation shown_op;           ///< what is shown (computed_op or fewer iterations)
+        std::size_t shown_step = 0;   ///< the step of `result` shown
+        HalfedgeMesh::Revision base;  ///< the document state `result` applies to
         double requested_at = 0, shown_at = 0;
     };
     struct Sweep {
@@ -187,8 +187,8 @@ private:
     struct LodState {
         std::shared_ptr<const ProgressiveMesh> progressive;
         std::shared_ptr<LevelOfDetail> lod;
-        std::size_t base_entry = 0;  ///< the history entry it was built on
-        bool shown = false;          ///< the renderer shows a level
+        HalfedgeMesh::Revision base;  ///< the document state it was built on
+        bool shown = false;           ///< the renderer shows a level
     };
     void build_level_of_detail(const Operation& op);
     void show_level_of_detail(double percent);
@@ -197,7 +197,7 @@ private:
     void clear_level_of_detail(bool forget);
     LodState lod_;
     PreviewState preview_;
-    const HalfedgeMesh* preview_uploaded_ = nullptr;  ///< the preview mesh on the GPU
+    bool preview_shown_ = false;  ///< the renderer shows a preview step, not the document
     Sweep sweep_;
     bool sweep_started_ = false;
     /// The initial load and --op are done and no job runs: scripted actions may start.
@@ -231,6 +231,9 @@ private:
     bool confirm_discard(bool quitting, const std::string& path);
     void update_coloring();
     void apply_colors(VertexColors colors);
+    /// Makes the renderer show the document's current state (after a preview, a morph, a
+    /// band or a level of detail), uploading only what changed, with the document's colours.
+    void show_document();
     /// Uploads the texture chosen in view_.settings (checkerboard or the loaded image).
     void update_texture();
     void project_texcoords_now();
@@ -281,8 +284,8 @@ private:
     bool continue_after_save_ = false;  ///< the unsaved-changes prompt's Save: then go on
     bool coloring_pending_ = false;     ///< a colouring was asked for while a job ran
     MorphState morph_;
-    const HalfedgeMesh* morph_topology_ = nullptr;  ///< uploaded for the morph (null: none)
-    bool initial_op_done_ = false;                  ///< options_.operation has been queued
+    bool morph_shown_ = false;        ///< the renderer shows a morph frame, not the document
+    bool initial_op_done_ = false;    ///< options_.operation has been queued
     bool initial_load_ended_ = true;  ///< options_.mesh_path was read (or failed to be)
     int scripted_decompose_ = 0;      ///< options_.decompose: 0 to do, 1 started, 2 done
     Camera record_camera_;            ///< the recording's framing, fixed for the whole sequence

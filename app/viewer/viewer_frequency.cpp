@@ -24,7 +24,7 @@ void Viewer::frequency_ui() {
     const HalfedgeMesh& mesh = document_.mesh();
     const auto& d = doc.decomposition;
     doc.valid = d && mesh.vertices_size() == d->base_positions.size() &&
-                mesh.n_vertices() == doc.n_vertices && mesh.n_faces() == doc.n_faces;
+                mesh.topology_revision() == doc.topology_revision;
     // The applied band is the current history entry's, so undo and redo keep it right.
     const History::EntryInfo entry = document_.history.info(document_.history.current());
     std::size_t lo = 0, hi = 0;
@@ -92,15 +92,16 @@ void Viewer::start_decomposition() {
              ? std::string("full")
              : std::to_string(options.k) + " " + spectrum_end_name(options.end)) +
         ")";
-    const bool started = jobs_.start(name, [this, options](Progress& progress) {
+    // The connectivity decomposed: the decomposition stays valid while the document keeps it.
+    const std::uint64_t topology = document_.mesh().topology_revision();
+    const bool started = jobs_.start(name, [this, options, topology](Progress& progress) {
         auto d = std::make_shared<const SpectralDecomposition>(
             decompose(document_.mesh(), options, progress));
-        return JobRunner::Finish([this, d] {
+        return JobRunner::Finish([this, d, topology] {
             FrequencyDocument& doc = document_.frequency;
             doc = FrequencyDocument{};
             doc.decomposition = d;
-            doc.n_vertices = document_.mesh().n_vertices();
-            doc.n_faces = document_.mesh().n_faces();
+            doc.topology_revision = topology;
             doc.valid = true;
             doc.eigenvalues.assign(d->eigenvalues.data(), d->eigenvalues.data() + d->size());
             for (Eigen::Index k = 0; k < d->coefficients.rows(); ++k)
@@ -137,10 +138,9 @@ void Viewer::preview_band() {
     // Stop any morph: the view shows the band now.
     morph_ =
         MorphState{1.0, false, morph_.duration, morph_.easing, morph_.playback, 0.0, morph_.moves};
-    if (morph_topology_) {
-        morph_topology_ = nullptr;
-        renderer_->upload(document_.mesh());
-        apply_colors(std::move(view_.colors));
+    if (morph_shown_) {
+        morph_shown_ = false;
+        show_document();
     }
     try {
         renderer_->update_positions(document_.mesh(),

@@ -68,7 +68,7 @@ void Viewer::request_preview(const Operation& op) {
     preview_.requested_at = glfwGetTime();
     preview_.requested = op;
     // Within the computed iterations: show the computed step at once.
-    if (preview_.result && preview_.base_entry == document_.history.current()) {
+    if (preview_.result && preview_.base == document_.mesh().revision()) {
         if (preview_.computed_op == op) {
             preview_.shown_step = preview_.result->steps.size() - 1;
             preview_.shown_op = op;
@@ -111,18 +111,18 @@ void Viewer::start_pending_preview() {
     if (!preview_.pending || jobs_.busy()) return;
     const Operation op = *preview_.pending;
     preview_.pending.reset();
-    const std::size_t base = document_.history.current();
+    const HalfedgeMesh::Revision base = document_.mesh().revision();
     const std::string name = kPreviewJobPrefix + op.text();
     jobs_.start(name, [this, op, base](Progress& progress) {
         auto result =
             std::make_shared<OperationResult>(run_operation(op, document_.mesh(), progress));
         return JobRunner::Finish([this, op, base, result] {
-            if (base != document_.history.current()) return;  // the state moved on
+            if (base != document_.mesh().revision()) return;  // the state moved on
             preview_.result = result;
             preview_.computed_op = op;
             preview_.shown_op = op;
             preview_.shown_step = result->steps.size() - 1;
-            preview_.base_entry = base;
+            preview_.base = base;
             if (result->stopped_early)
                 notice_ =
                     Notice{Notice::Level::Error,
@@ -135,18 +135,11 @@ void Viewer::start_pending_preview() {
 
 void Viewer::show_preview() {
     const HalfedgeMesh& mesh = preview_.result->steps[preview_.shown_step].mesh;
-    if (&mesh == preview_uploaded_) return;
+    if (preview_shown_ && renderer_->shows(mesh)) return;
     const HalfedgeMesh& current = document_.mesh();
-    // Geometry-only previews (fairing, noise) move the vertices already on the GPU.
-    const HalfedgeMesh& on_gpu = preview_uploaded_ ? *preview_uploaded_ : current;
-    const bool same_topology = preview_.result->steps.front().correspondence.kind ==
-                                   MorphCorrespondence::Kind::SameVertices &&
-                               on_gpu.vertices_size() == mesh.vertices_size() &&
-                               on_gpu.faces_size() == mesh.faces_size();
-    if (same_topology) {
-        renderer_->update_positions(mesh);
-    } else {
-        renderer_->upload(mesh);
+    // Geometry-only previews (fairing, noise) move the vertices already on the GPU: the
+    // renderer compares revisions and uploads only what changed.
+    if (renderer_->show(mesh) == MeshRenderer::Update::Full) {
         if (view_.settings.coloring != VertexColoring::None &&
             !coloring_needs_field(view_.settings.coloring)) {
             std::vector<Point> reference;
@@ -160,17 +153,17 @@ void Viewer::show_preview() {
                 renderer_->set_vertex_colors(colors.colors);
         }
     }
-    preview_uploaded_ = &mesh;
-    morph_topology_ = nullptr;
+    preview_shown_ = true;
+    morph_shown_ = false;
     preview_.shown_at = glfwGetTime();
 }
 
 void Viewer::clear_preview(bool reupload) {
-    const bool was_shown = preview_uploaded_ != nullptr;
+    const bool was_shown = preview_shown_;
     preview_.pending.reset();
     preview_.result.reset();
     preview_.requested.reset();
-    preview_uploaded_ = nullptr;
+    preview_shown_ = false;
     if (is_preview_job()) {
         jobs_.cancel();
         // Wait for it (the operations check for cancellation often), so the document is free
@@ -180,14 +173,11 @@ void Viewer::clear_preview(bool reupload) {
             glfwWaitEventsTimeout(0.001);
         }
     }
-    if (was_shown && reupload) {
-        renderer_->upload(document_.mesh());
-        apply_colors(std::move(view_.colors));
-    }
+    if (was_shown && reupload) show_document();
 }
 
 void Viewer::apply_operation(const Operation& op) {
-    if (preview_.result && preview_.base_entry == document_.history.current() &&
+    if (preview_.result && preview_.base == document_.mesh().revision() &&
         preview_.shown_op == op && preview_.shown_step < preview_.result->steps.size()) {
         // Commit what is shown: the steps up to the shown one.
         OperationResult result = std::move(*preview_.result);
@@ -244,7 +234,7 @@ void Viewer::build_level_of_detail(const Operation& op) {
         notify_error(e.what());
         return;
     }
-    const std::size_t base = document_.history.current();
+    const HalfedgeMesh::Revision base = document_.mesh().revision();
     panels_.decimation.lod_building = true;
     const auto t0 = glfwGetTime();
     jobs_.start("Building levels of detail", [this, options, base, t0](Progress& progress) {
@@ -253,10 +243,10 @@ void Viewer::build_level_of_detail(const Operation& op) {
         auto lod = std::make_shared<LevelOfDetail>(build->progressive);
         return JobRunner::Finish([this, build, lod, base, t0] {
             panels_.decimation.lod_building = false;
-            if (base != document_.history.current()) return;
+            if (base != document_.mesh().revision()) return;
             lod_.progressive = std::shared_ptr<const ProgressiveMesh>(build, &build->progressive);
             lod_.lod = lod;
-            lod_.base_entry = base;
+            lod_.base = base;
             panels_.decimation.lod_ready = true;
             panels_.decimation.lod_percent = 100.0f;
             char buf[200];
@@ -271,7 +261,7 @@ void Viewer::build_level_of_detail(const Operation& op) {
 }
 
 void Viewer::show_level_of_detail(double percent) {
-    if (!lod_.lod || lod_.base_entry != document_.history.current()) return;
+    if (!lod_.lod || lod_.base != document_.mesh().revision()) return;
     clear_preview(false);
     LevelOfDetail& lod = *lod_.lod;
     lod.set_level(lod.level_for_percent(std::clamp(percent, 0.0, 100.0)));
@@ -280,15 +270,14 @@ void Viewer::show_level_of_detail(double percent) {
     else
         renderer_->upload_level(lod);
     lod_.shown = true;
-    morph_topology_ = nullptr;
+    morph_shown_ = false;
     active_frames_ = std::max(active_frames_, 2);
 }
 
 void Viewer::clear_level_of_detail(bool forget) {
     if (lod_.shown) {
         lod_.shown = false;
-        renderer_->upload(document_.mesh());
-        apply_colors(std::move(view_.colors));
+        show_document();
     }
     if (forget) {
         lod_ = LodState{};
@@ -298,7 +287,7 @@ void Viewer::clear_level_of_detail(bool forget) {
 }
 
 void Viewer::apply_level_of_detail() {
-    if (!lod_.lod || lod_.base_entry != document_.history.current()) return;
+    if (!lod_.lod || lod_.base != document_.mesh().revision()) return;
     const LevelOfDetail& lod = *lod_.lod;
     const ProgressiveMesh& pm = *lod_.progressive;
     OperationResult result;

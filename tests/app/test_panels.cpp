@@ -306,7 +306,7 @@ TEST_CASE("the Fairing panel marks a step above the stable limit and offers impl
 
 // ---- legends and plots (issue 16) ------------------------------------------------------------
 
-TEST_CASE("legend labels never overlap; both ends always show, the centre where it fits",
+TEST_CASE("legend labels never overlap, both ends always show, the centre where it fits",
           "[panels][legend]") {
     Ui ui;
     ColoringOptions options;
@@ -640,7 +640,7 @@ TEST_CASE("dragging the sidebar's edge resizes it and the view follows", "[layou
     CHECK(l.view.x == panels.layout.sidebar_width);
 }
 
-TEST_CASE("a section opened elsewhere shows its body; its header closes it", "[layout]") {
+TEST_CASE("a section opened elsewhere shows its body, its header closes it", "[layout]") {
     Ui ui;
     PanelState panels;
     CommandQueue commands;

@@ -297,7 +297,7 @@ TEST_CASE("normal colouring: the right half of a sphere is redder than the left"
     CHECK(right > left + 0.1);  // n.x > 0 on the right: red = (n.x + 1) / 2 > 0.5
 }
 
-TEST_CASE("textured mode samples the texture; without coordinates it draws plain shading",
+TEST_CASE("textured mode samples the texture, without coordinates it draws plain shading",
           "[render][offscreen][texture]") {
     HalfedgeMesh sphere = make_icosphere(16);
     OffscreenOptions o = small_options();
@@ -628,6 +628,59 @@ TEST_CASE("update_positions and set_vertex_colors upload only what changed",
     CHECK_THROWS_AS(renderer.set_vertex_colors(std::vector<Color>(3)), InvalidArgument);
     renderer.upload(sphere);
     CHECK_FALSE(renderer.has_vertex_colors());
+    CHECK(glGetError() == GL_NO_ERROR);
+}
+
+TEST_CASE("show() uploads only what the mesh's revisions say changed", "[render][offscreen]") {
+    offscreen();
+    MeshRenderer& renderer = offscreen().mesh_renderer();
+    using Update = MeshRenderer::Update;
+    HalfedgeMesh sphere = make_icosphere(8);
+    CHECK(renderer.show(sphere) == Update::Full);
+    CHECK(renderer.shows(sphere));
+    CHECK(renderer.show(sphere) == Update::None);
+    // A copy shares the revisions: nothing to upload.
+    const HalfedgeMesh copy = sphere;
+    CHECK(renderer.show(copy) == Update::None);
+    // Colours set on the GPU stay while nothing is uploaded or only positions are.
+    renderer.set_vertex_colors(std::vector<Color>(sphere.vertices_size(), Color(1, 0, 0)));
+    for (Vertex v : sphere.vertices()) sphere.position(v) *= 0.5;
+    CHECK_FALSE(renderer.shows(sphere));
+    CHECK(renderer.shows_topology_of(sphere));
+    CHECK(renderer.show(sphere) == Update::Positions);
+    CHECK(renderer.has_vertex_colors());
+    CHECK(renderer.show(sphere) == Update::None);
+    // New texture coordinates (attributes) and a new connectivity need a full upload, which
+    // drops the colours.
+    project_texcoords(sphere, TexCoordProjection::Planar);
+    CHECK(renderer.show(sphere) == Update::Full);
+    CHECK(renderer.has_texcoords());
+    CHECK_FALSE(renderer.has_vertex_colors());
+    Edge flippable;
+    for (Edge e : sphere.edges())
+        if (sphere.is_flip_ok(e)) {
+            flippable = e;
+            break;
+        }
+    REQUIRE(flippable.is_valid());
+    sphere.flip(flippable);
+    CHECK(renderer.show(sphere) == Update::Full);
+    // Another mesh with the same counts and positions is still another mesh.
+    const HalfedgeMesh twin = make_icosphere(8);
+    CHECK(renderer.show(twin) == Update::Full);
+    // update_positions() of a mesh whose faces the GPU does not hold uploads it whole.
+    renderer.update_positions(copy);
+    CHECK(renderer.shows(copy));
+    CHECK(renderer.n_triangles() == copy.n_faces());
+    // Positions given apart from the mesh: the GPU holds its faces but not its geometry.
+    std::vector<Point> moved = copy.positions();
+    for (Point& p : moved) p *= 2.0;
+    renderer.update_positions(copy, moved);
+    CHECK(renderer.shows_topology_of(copy));
+    CHECK_FALSE(renderer.shows(copy));
+    CHECK(renderer.show(copy) == Update::Positions);
+    renderer.clear();
+    CHECK_FALSE(renderer.shows_topology_of(copy));
     CHECK(glGetError() == GL_NO_ERROR);
 }
 

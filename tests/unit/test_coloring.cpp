@@ -237,7 +237,7 @@ TEST_CASE("color_vertices None and Normal", "[coloring]") {
     REQUIRE(octahedron.colors[1].isApprox(Color(0, 0.5f, 0.5f), 1e-6f));
 }
 
-TEST_CASE("shape index colouring of a sphere is uniform red; of the flipped sphere blue",
+TEST_CASE("shape index colouring of a sphere is uniform red, of the flipped sphere blue",
           "[coloring]") {
     const HalfedgeMesh m = make_icosphere(30);
     const VertexColors c = color_vertices(m, VertexColoring::ShapeIndex);
@@ -304,7 +304,7 @@ TEST_CASE("signed curvature colourings use the symmetric percentile range", "[co
         REQUIRE(c.colors[v.idx()] == map_color(k.mean[v.idx()], expected, ColorMapKind::Diverging));
 }
 
-TEST_CASE("coloring_name and parse_coloring round trip; unknown names list the known ones",
+TEST_CASE("coloring_name and parse_coloring round trip, unknown names list the known ones",
           "[coloring]") {
     const std::vector<std::string> names = {"none", "normal",   "k1",         "k2",
                                             "mean", "gaussian", "shape-index"};

@@ -255,7 +255,7 @@ TEST_CASE("flipping the orientation flips the sign of H, k1, k2 and S but not K"
     for (double x : valid_values(s, s.shape_index)) REQUIRE(x == Approx(-1.0).margin(1e-3));
 }
 
-TEST_CASE("curvatures scale as 1/length and K as 1/length^2; S is scale invariant", "[curvature]") {
+TEST_CASE("curvatures scale as 1/length and K as 1/length^2, S is scale invariant", "[curvature]") {
     HalfedgeMesh m = make_torus(40, 20, 1.0, 0.4);
     const VertexCurvatures a = compute_curvatures(m);
     for (Vertex v : m.vertices()) m.position(v) *= 3.0;

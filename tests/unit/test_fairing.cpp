@@ -247,7 +247,7 @@ TEST_CASE("an implicit step with a tiny step size agrees with the explicit one t
     CHECK(r2 < 0.2 * r1);  // the discrepancy is O(dt²): it shrinks with the step
 }
 
-TEST_CASE("boundary and isolated vertices stay fixed; degenerate input gives no NaN", "[fairing]") {
+TEST_CASE("boundary and isolated vertices stay fixed, degenerate input gives no NaN", "[fairing]") {
     // A noisy grid, plus an isolated vertex and a zero-area (collinear) triangle.
     PolygonSoup soup = to_soup(make_grid(6));
     const Index n0 = Index(soup.positions.size());
@@ -912,7 +912,7 @@ TEST_CASE("Taubin uses lambda and mu (or the pass band), never the step", "[fair
     REQUIRE_VALID(unstable.mesh);
 }
 
-TEST_CASE("steps are positions only; a moved-in mesh gives the same result", "[fairing]") {
+TEST_CASE("steps are positions only, a moved-in mesh gives the same result", "[fairing]") {
     const HalfedgeMesh m = noisy_unit_sphere();
     FairingOptions o = options(FairingOperator::CurvatureFlow, Integration::Explicit, 0.5, 4);
     const FairingResult kept = smooth(m, o);

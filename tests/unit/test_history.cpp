@@ -405,7 +405,7 @@ TEST_CASE("undo, redo and jump over random operations restore identical states",
     }
 }
 
-TEST_CASE("undo and redo do nothing at the ends; jump checks its index", "[history]") {
+TEST_CASE("undo and redo do nothing at the ends, jump checks its index", "[history]") {
     History h;
     REQUIRE(h.size() == 0);
     REQUIRE_FALSE(h.can_undo());

@@ -451,7 +451,7 @@ TEST_CASE("mesh copies share their arrays until one of them writes", "[core][pro
     CHECK_THROWS_AS(e.set_positions(std::vector<Point>(3)), InvalidArgument);
 }
 
-TEST_CASE("ranges and circulators are standard iterators; halfedges() skips deleted edges",
+TEST_CASE("ranges and circulators are standard iterators, halfedges() skips deleted edges",
           "[core]") {
     using namespace trilab;
     using It = ElementRange<Vertex>::iterator;

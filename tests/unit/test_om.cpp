@@ -314,7 +314,7 @@ TEST_CASE("tri_deleted_nogc.om loads as its live part", "[om]") {
     REQUIRE(std::find(lines.begin(), lines.end(), "1 deleted vertices dropped") != lines.end());
 }
 
-TEST_CASE("polygon .om files are triangulated; isolated vertices are kept", "[om]") {
+TEST_CASE("polygon .om files are triangulated, isolated vertices are kept", "[om]") {
     const std::string poly = om_ref("generated-openmesh11/poly_isolated.om");
     SKIP_IF_MISSING(poly);
     const LoadedMesh p = read_om(poly);

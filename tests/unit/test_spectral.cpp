@@ -235,7 +235,7 @@ TEST_CASE("a low-pass reconstruction of a noisy sphere is smooth and close to th
     }
 }
 
-TEST_CASE("disconnected meshes have one zero eigenvalue per piece; isolated vertices stay",
+TEST_CASE("disconnected meshes have one zero eigenvalue per piece, isolated vertices stay",
           "[spectral]") {
     const HalfedgeMesh mesh = two_spheres_and_a_point();
     REQUIRE_VALID(mesh);

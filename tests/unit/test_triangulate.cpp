@@ -243,7 +243,7 @@ TEST_CASE("corners on the same spot and zero-area polygons never crash", "[trian
     }
 }
 
-TEST_CASE("crossing polygons are never a crash; large ones become reported fans", "[triangulate]") {
+TEST_CASE("crossing polygons are never a crash, large ones become reported fans", "[triangulate]") {
     // The star polygon {n/3} (n prime): every edge crosses others. Up to 256 corners ear
     // clipping is tried (it clips corners of a crossing polygon as it always did), above
     // that the polygon becomes a fan, and the load report says so.
