@@ -887,7 +887,7 @@ TEST_CASE("key actions keep their conditions: busy, no morph, Esc's order, T's c
     CHECK(f.log.size() == 0);
 }
 
-TEST_CASE("the menus show the key bindings' shortcut texts; F1 lists every binding",
+TEST_CASE("the menus show the key bindings' shortcut texts, F1 lists every binding",
           "[panels][keys]") {
     // The menu items with a key, as the menus spelled their shortcuts by hand before the
     // table, with the action the item does.
