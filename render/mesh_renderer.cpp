@@ -1,3 +1,49 @@
+// How MeshRenderer (mesh_renderer.h) lays out its GPU data and draws it.
+//
+// The renderer never owns the mesh. upload() copies what it needs into GPU buffers:
+//  - positions and normals (float, interleaved), one entry per GPU vertex;
+//  - optional per-vertex colours (RGBA8), set_vertex_colors();
+//  - optional texture coordinates (float), from "v:texcoord", or from per-corner
+//    "h:texcoord": then every mesh vertex gets one GPU vertex per distinct texture coordinate
+//    of its corners, so seams stay seams (positions, normals and colours are gathered through
+//    that mapping);
+//  - a uint32 index buffer of triangles and one of points (one GPU vertex per live mesh
+//    vertex, isolated ones included).
+// Upload only what changed: show() compares the mesh's revisions with `shown_`;
+// update_positions() rewrites positions and normals for a pure geometry change,
+// set_vertex_colors() rewrites the colours only, upload() (a topology or attribute change)
+// rewrites everything and drops the vertex colours.
+//
+// Level of detail (LevelOfDetail, core/algorithms/decimation.h, for a slider over a progressive
+// mesh): upload_level() puts every vertex of the fine mesh on the GPU once, in the level of
+// detail's drawing order (positions and the level's area-weighted normals), with the live
+// triangles and vertices; update_level() after LevelOfDetail::set_level() rewrites the index
+// buffers (O(live faces): the software rasterizer wants the drawing order, which a list
+// patched in place would lose) and only the vertices the move changed (a few ranges of the
+// vertex buffer), or all of them when the level of detail reports that all changed. This
+// path has no texture coordinates; upload_level() drops vertex colours (set_vertex_colors()
+// takes them per level-of-detail vertex); the bounding box (fog, vector length) stays the one
+// of upload_level().
+//
+// Normals: the mesh's "v:normal" (Vector3) when it has one, otherwise area-weighted vertex
+// normals computed on the fly (the same as core's vertex_normal()). A caller that moves
+// vertices of a mesh carrying "v:normal" must refresh that attribute (compute_vertex_normals)
+// or remove it before update_positions(), or the shading uses the stale normals.
+//
+// Shaders (shaders/*.glsl, compiled at construction into program variants):
+//  - mesh.vert + mesh.frag: Flat, Smooth and Textured without overlay. Lighting is per
+//    fragment: a head light (light at the eye), ambient + Lambert + optional Blinn-Phong
+//    specular. Flat normals come from screen-space derivatives.
+//  - mesh.vert + mesh.geom + mesh.frag [TRILAB_WIREFRAME]: the geometry stage gives every
+//    triangle corner barycentric coordinates, from which the fragment stage draws
+//    anti-aliased edges of any width in pixels (glLineWidth > 1 is not available in core
+//    profiles). Used for the overlay and for the Wireframe and HiddenLine modes. Without
+//    wires no geometry stage runs, which matters on llvmpipe.
+//  - mesh.vert + mesh.frag [TRILAB_POINTS]: round, lit point sprites; mesh.vert + depth.frag
+//    lays down the surface's depth first so that it hides the points behind it.
+//  - vectors.vert + vectors.geom + vectors.frag: face normals (one segment per triangle, from
+//    its centroid) and vertex normals (one per vertex), built on the GPU from the uploaded
+//    positions, so they need no buffers of their own and follow update_positions().
 #include "render/mesh_renderer.h"
 
 #include <algorithm>

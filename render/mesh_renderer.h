@@ -1,49 +1,15 @@
 #pragma once
 // MeshRenderer: the GPU mirror of one HalfedgeMesh and the shaders that draw it.
 //
-// The renderer never owns the mesh. upload() copies what it needs into GPU buffers:
-//  - positions and normals (float, interleaved), one entry per GPU vertex;
-//  - optional per-vertex colours (RGBA8), set_vertex_colors();
-//  - optional texture coordinates (float), from "v:texcoord", or from per-corner
-//    "h:texcoord": then every mesh vertex gets one GPU vertex per distinct texture coordinate
-//    of its corners, so seams stay seams (positions, normals and colours are gathered through
-//    that mapping);
-//  - a uint32 index buffer of triangles and one of points (one GPU vertex per live mesh
-//    vertex, isolated ones included).
-// Upload only what changed: update_positions() rewrites positions and normals for a pure
-// geometry change, set_vertex_colors() rewrites the colours only, upload() (topology change)
-// rewrites everything and drops the vertex colours.
-//
-// Level of detail (LevelOfDetail, core/algorithms/decimation.h, for a slider over a progressive
-// mesh): upload_level() puts every vertex of the fine mesh on the GPU once, in the level of
-// detail's drawing order (positions and the level's area-weighted normals), with the live
-// triangles and vertices; update_level() after LevelOfDetail::set_level() rewrites the index
-// buffers (O(live faces): the software rasterizer wants the drawing order, which a list
-// patched in place would lose) and only the vertices the move changed (a few ranges of the
-// vertex buffer), or all of them when the level of detail reports that all changed. This
-// path has no texture coordinates; upload_level() drops vertex colours (set_vertex_colors()
-// takes them per level-of-detail vertex); the bounding box (fog, vector length) stays the one
-// of upload_level().
-//
-// Normals: the mesh's "v:normal" (Vector3) when it has one, otherwise area-weighted vertex
-// normals computed on the fly (the same as core's vertex_normal()). A caller that moves
-// vertices of a mesh carrying "v:normal" must refresh that attribute (compute_vertex_normals)
-// or remove it before update_positions(), or the shading uses the stale normals.
-//
-// Shaders (shaders/*.glsl, compiled at construction into program variants):
-//  - mesh.vert + mesh.frag: Flat, Smooth and Textured without overlay. Lighting is per
-//    fragment: a head light (light at the eye), ambient + Lambert + optional Blinn-Phong
-//    specular. Flat normals come from screen-space derivatives.
-//  - mesh.vert + mesh.geom + mesh.frag [TRILAB_WIREFRAME]: the geometry stage gives every
-//    triangle corner barycentric coordinates, from which the fragment stage draws
-//    anti-aliased edges of any width in pixels (glLineWidth > 1 is not available in core
-//    profiles). Used for the overlay and for the Wireframe and HiddenLine modes. Without
-//    wires no geometry stage runs, which matters on llvmpipe.
-//  - mesh.vert + mesh.frag [TRILAB_POINTS]: round, lit point sprites; mesh.vert + depth.frag
-//    lays down the surface's depth first so that it hides the points behind it.
-//  - vectors.vert + vectors.geom + vectors.frag: face normals (one segment per triangle, from
-//    its centroid) and vertex normals (one per vertex), built on the GPU from the uploaded
-//    positions, so they need no buffers of their own and follow update_positions().
+// The renderer never owns the mesh; upload() copies positions, normals, optional texture
+// coordinates ("v:texcoord", or per-corner "h:texcoord" with seams kept) and the triangles.
+// Only what changed is uploaded: show() compares the mesh's revisions (HalfedgeMesh::revision())
+// with what the GPU holds and does nothing, update_positions() or upload();
+// set_vertex_colors() rewrites colours only. upload_level() / update_level() show a
+// LevelOfDetail (core/algorithms/decimation.h) with index-buffer rewrites and only the changed
+// vertices. Normals are the mesh's "v:normal" when it has one (the caller keeps it fresh),
+// else area-weighted vertex normals. Draw modes and overlays: RenderStyle; the shader
+// variants, buffer layouts and the level-of-detail path are described in mesh_renderer.cpp.
 //
 // Every member function needs the GL 3.3 core context that was current at construction.
 // render/ never includes ImGui: the viewer edits a RenderStyle and calls draw().
