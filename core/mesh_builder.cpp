@@ -80,6 +80,9 @@ namespace {
 //  3. fans: each vertex's faces split into fans, a copy per fan after the first;
 //  4. detached triangles, with fresh edges and vertex copies where needed;
 //  5. the mesh takes the arrays; attributes follow each vertex's source.
+// Memory: the triangle soup's own corner list is used when every face is a triangle; edges are
+// found by a counting sort of the corner edges (no hash map), and the mesh takes the
+// connectivity arrays without a copy.
 
 /// Stage 1's output: the triangles as three corners each. `tri` points into the soup's own
 /// corner list when every face is a triangle without a repeated corner (no copy), else into
@@ -494,8 +497,8 @@ void add_detached_triangles(const Index* tri, std::size_t n_input_vertices, bool
     }
 }
 
-/// Stage 5a: the mesh takes the connectivity arrays (no copy); positions follow each
-/// vertex's source. Counts the isolated vertices.
+/// Stage 5a: the mesh takes the connectivity arrays (no copy; c keeps copy_source and
+/// face_tri); positions follow each vertex's source. Counts the isolated vertices.
 HalfedgeMesh assemble_mesh(const PolygonSoup& soup, Connectivity& c, LoadReport& report) {
     std::vector<Point> positions;
     positions.reserve(c.vhalfedge.size());
@@ -565,11 +568,8 @@ HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
     std::vector<ExtraFan> extra_fans = find_fans(c);
     copy_extra_fans(extra_fans, n_input_vertices, c, report);
     add_detached_triangles(tris.tri, n_input_vertices, keep_corners, c, report);
-    // The attributes need these after the mesh has taken the connectivity arrays.
-    const std::vector<Index> copy_source = std::move(c.copy_source);
-    const std::vector<Index> face_tri = std::move(c.face_tri);
     HalfedgeMesh mesh = assemble_mesh(soup, c, report);
-    copy_attributes(soup, tris, copy_source, face_tri, mesh);
+    copy_attributes(soup, tris, c.copy_source, c.face_tri, mesh);
     return mesh;
 }
 
