@@ -566,21 +566,24 @@ SubdivisionLevel refine_1to4(const HalfedgeMesh& mesh, SubdivisionScheme scheme,
 /// face(h) is edge E + id(h) with id(h) = 3f + k, and in even steps boundary halfedge number j
 /// adds the edges E + 3F + 4j + {0: p-q, 1: q-b, 2: p-c, 3: q-c} and the faces 3F + 2j + {0,
 /// 1}. Face id(h) is the triangle that interior halfedge h keeps.
-struct Sqrt3Numbering {
-    /// Corner ids of face halfedges (with the id of the next halfedge beside them, so that
-    /// s_out(next(h)) is read where h is) and numbers of boundary halfedges: every halfedge
-    /// is one or the other, so every id is written.
-    struct Ids {
-        Index id, next_id;  // next_id: for face halfedges only
-    };
-    Index nv, ne, nf;
-    Index nb = 0;  ///< boundary halfedges split (even steps only)
-    Index eb;      ///< first edge of the boundary splits
-    std::unique_ptr<Ids[]> ids;
-    /// corner[3f + k] is halfedge k of face f, so that the spoke pass reads them in order.
-    std::unique_ptr<Index[]> corner;
+///
+/// Corner ids of face halfedges (with the id of the next halfedge beside them, so that
+/// s_out(next(h)) is read where h is) and numbers of boundary halfedges: every halfedge is
+/// one or the other, so every id is written.
+struct Sqrt3Ids {
+    Index id, next_id;  // next_id: for face halfedges only
+};
 
-    Sqrt3Numbering(const In& m, bool even_step);
+/// The numbering over arrays filled by number_sqrt3(). Passed by value: the sizes are then
+/// locals of each pass, which the stores to the new mesh's arrays cannot alias.
+struct Sqrt3Numbering {
+    Index nv, ne, nf;
+    Index nb;  ///< boundary halfedges split (even steps only)
+    Index eb;  ///< first edge of the boundary splits
+    const Sqrt3Ids* ids;
+    /// corner[3f + k] is halfedge k of face f, so that the spoke pass reads them in order.
+    const Index* corner;
+
     /// The spokes of halfedge h: a -> c (s_out) and c -> a (s_in).
     Index s_out(Index h) const { return 2 * (ne + ids[h].id); }
     Index s_in(Index h) const { return 2 * (ne + ids[h].id) + 1; }
@@ -591,24 +594,22 @@ struct Sqrt3Numbering {
     Index split_vertex(Index t, Index which) const { return nv + nf + 2 * ids[t].id + which; }
 };
 
-Sqrt3Numbering::Sqrt3Numbering(const In& m, bool even_step)
-    : nv(m.nv),
-      ne(m.ne),
-      nf(m.nf),
-      eb(m.ne + 3 * m.nf),
-      ids(new Ids[2 * std::size_t(m.ne)]),
-      corner(new Index[3 * std::size_t(m.nf)]) {
+/// Fills `ids` (2E entries) and `corner` (3F entries) and returns the numbering over them.
+Sqrt3Numbering number_sqrt3(const In& m, bool even_step, Sqrt3Ids* ids, Index* corner) {
+    const Index ne = m.ne, nf = m.nf;
     for (Index fi = 0; fi < nf; ++fi) {
         Index h[3];
         face_halfedges(m, fi, h);
         ids[h[0]] = {3 * fi, 3 * fi + 1};
         ids[h[1]] = {3 * fi + 1, 3 * fi + 2};
         ids[h[2]] = {3 * fi + 2, 3 * fi};
-        std::copy_n(h, 3, corner.get() + 3 * std::size_t(fi));
+        std::copy_n(h, 3, corner + 3 * std::size_t(fi));
     }
+    Index nb = 0;
     for (Index hi = 0; hi < 2 * ne; ++hi)
         if (m.boundary(hi)) ids[hi].id = nb++;
     if (!even_step) nb = 0;  // boundary edges are not split in odd steps
+    return {m.nv, ne, nf, nb, ne + 3 * nf, ids, corner};
 }
 
 /// The new triangles' halfedges of each old face: the spokes. Corner k of face f is halfedge
@@ -616,12 +617,12 @@ Sqrt3Numbering::Sqrt3Numbering(const In& m, bool even_step)
 /// when t is interior (face g), (a, b, c) on the boundary in odd steps, (a, p, c) in even
 /// steps. The spoke s_in(h) (c -> a) closes triangle id(h); s_out(h) (a -> c) lies in the
 /// triangle of g = twin(prev(h)), or on the boundary next to prev(h).
-void build_sqrt3_spokes(const In& m, const Sqrt3Numbering& n, bool even_step, Out& out,
+void build_sqrt3_spokes(const In& m, const Sqrt3Numbering n, bool even_step, Out& out,
                         const Stage& stage) {
     const Index nv = m.nv, ne = m.ne, nf = m.nf;
     for (Index fi = 0; fi < nf; ++fi) {
         stage.tick(fi);
-        const Index* h = n.corner.get() + 3 * std::size_t(fi);
+        const Index* h = n.corner + 3 * std::size_t(fi);
         const Vertex v[3] = {m.to[h[0]], m.to[h[1]], m.to[h[2]]};
         out.p[nv + fi] = (m.x[v[0].idx()] + m.x[v[1].idx()] + m.x[v[2].idx()]) / 3.0;
         out.vh[nv + fi] = Halfedge(n.s_in(h[0]));
@@ -655,7 +656,7 @@ void build_sqrt3_spokes(const In& m, const Sqrt3Numbering& n, bool even_step, Ou
 /// The old halfedges keep their indices: an interior edge flipped (h from c_g to c), a
 /// boundary one in place (in even steps shortened to its last third). Alongside, each old
 /// vertex's neighbour sum (into its slot of out.p) and valence.
-void build_sqrt3_old_halfedges(const In& m, const Sqrt3Numbering& n, bool even_step, Out& out,
+void build_sqrt3_old_halfedges(const In& m, const Sqrt3Numbering n, bool even_step, Out& out,
                                std::vector<unsigned>& valence, const Stage& stage) {
     const Index nv = m.nv, ne = m.ne;
     const Point* x = m.x;
@@ -695,7 +696,7 @@ void build_sqrt3_old_halfedges(const In& m, const Sqrt3Numbering& n, bool even_s
 
 /// Even steps: the pieces of each boundary edge b -> q -> p -> a and the two new triangles
 /// (p, q, c) and (q, b, c) at it.
-void build_sqrt3_boundary_splits(const In& m, const Sqrt3Numbering& n, Out& out) {
+void build_sqrt3_boundary_splits(const In& m, const Sqrt3Numbering n, Out& out) {
     const Index ne = m.ne, nf = m.nf;
     for (Index t = 0; t < 2 * ne; ++t) {
         if (!m.boundary(t)) continue;
@@ -726,7 +727,7 @@ void build_sqrt3_boundary_splits(const In& m, const Sqrt3Numbering& n, Out& out)
 /// The positions of the old vertices (relaxed; in even steps boundary vertices by the
 /// ternary rule) and of the boundary split vertices; the centroids are set. `start`, when
 /// given, gets the morph start positions of the new vertices (the old ones' are set).
-void sqrt3_positions(const In& m, const Sqrt3Numbering& n, bool even_step,
+void sqrt3_positions(const In& m, const Sqrt3Numbering n, bool even_step,
                      const std::vector<unsigned>& valence, Point* p, Point* start,
                      const Stage& stage) {
     const Index nv = m.nv, ne = m.ne, nf = m.nf;
@@ -769,7 +770,7 @@ void sqrt3_positions(const In& m, const Sqrt3Numbering& n, bool even_step,
 
 /// "v:texcoord" of the Sqrt3 level: kept at the old vertices, the face centroid's at the
 /// new ones, the boundary third points' at the split vertices.
-void carry_vertex_uv_sqrt3(const HalfedgeMesh& mesh, const In& m, const Sqrt3Numbering& n,
+void carry_vertex_uv_sqrt3(const HalfedgeMesh& mesh, const In& m, const Sqrt3Numbering n,
                            bool even_step, HalfedgeMesh& mesh_out) {
     auto vuv = mesh.get_vertex_property<TexCoord>("v:texcoord");
     if (!vuv) return;
@@ -793,7 +794,7 @@ void carry_vertex_uv_sqrt3(const HalfedgeMesh& mesh, const In& m, const Sqrt3Num
 /// "h:texcoord" of the Sqrt3 level. Corner uvs come from the old face each new corner lies
 /// in; a new triangle that straddles a flipped edge takes its old corner's uv from face(h)
 /// and the far centroid's from its own face.
-void carry_corner_uv_sqrt3(const HalfedgeMesh& mesh, const In& m, const Sqrt3Numbering& n,
+void carry_corner_uv_sqrt3(const HalfedgeMesh& mesh, const In& m, const Sqrt3Numbering n,
                            bool even_step, HalfedgeMesh& mesh_out) {
     auto huv = mesh.get_halfedge_property<TexCoord>("h:texcoord");
     if (!huv) return;
@@ -840,7 +841,9 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
                               const Stage& stage) {
     const In m(mesh);
     const Index nv = m.nv, ne = m.ne, nf = m.nf;
-    const Sqrt3Numbering n(m, even_step);
+    std::unique_ptr<Sqrt3Ids[]> ids(new Sqrt3Ids[2 * std::size_t(ne)]);
+    std::unique_ptr<Index[]> corner(new Index[3 * std::size_t(nf)]);
+    const Sqrt3Numbering n = number_sqrt3(m, even_step, ids.get(), corner.get());
     const Index nb = n.nb;
     stage.report(0.1);
 
