@@ -296,16 +296,18 @@ void build_1to4(const In& m, HalfedgeMesh& mesh, const Stage& stage) {
             const Index a = half_a(hi), b = half_b(hi);
             const Halfedge a_prev(half_b(m.prev_i(hi))), b_next(half_a(m.next_i(hi)));
             const Face f = m.face[hi];
+            Index a_next = b, b_prev = a;  // on the boundary A and B follow each other
+            Face a_face, b_face;
             if (f.is_valid()) {
                 const Index k = corner_of(m, hi), k2 = k == 0 ? 2 : k - 1;
                 const Index first = 2 * (2 * ne + 3 * f.idx());
-                out.halfedge(a, Halfedge(first + 2 * k2), a_prev, Face(4 * f.idx() + k2),
-                             Vertex(mid));
-                out.halfedge(b, b_next, Halfedge(first + 2 * k), Face(4 * f.idx() + k), m.to[hi]);
-            } else {
-                out.boundary_halfedge(a, Halfedge(b), a_prev, Vertex(mid));
-                out.boundary_halfedge(b, b_next, Halfedge(a), m.to[hi]);
+                a_next = first + 2 * k2;
+                a_face = Face(4 * f.idx() + k2);
+                b_prev = first + 2 * k;
+                b_face = Face(4 * f.idx() + k);
             }
+            out.halfedge(a, Halfedge(a_next), a_prev, a_face, Vertex(mid));
+            out.halfedge(b, b_next, Halfedge(b_prev), b_face, m.to[hi]);
         }
         // The odd vertex's outgoing halfedge: the boundary one if the edge has one.
         out.vh[mid] = Halfedge(half_b(m.boundary(2 * e + 1) ? 2 * e + 1 : 2 * e));
@@ -631,24 +633,32 @@ void build_sqrt3_spokes(const In& m, const Sqrt3Numbering n, bool even_step, Out
             const Index hk = h[k], hp = h[k2], t = hk ^ 1u, g = hp ^ 1u;
             const Index own = 3 * fi + k;  // id[hk]
             const Index si = 2 * (ne + own) + 1, so = si - 1;
+            // s_in(hk): closes triangle `own`.
+            Index si_next = hk, si_prev;
             if (!m.boundary(t)) {
-                const Index first = n.s_out_next(t);
-                out.halfedge(si, Halfedge(first), Halfedge(hk), Face(own), v[k2]);
-                out.fh[own] = Halfedge(first);
+                si_next = n.s_out_next(t);
+                si_prev = hk;
             } else {
-                const Index before = even_step ? n.split_edge(t, 2) : 2 * (ne + 3 * fi + k1);
-                out.halfedge(si, Halfedge(hk), Halfedge(before), Face(own), v[k2]);
-                out.fh[own] = Halfedge(hk);
+                si_prev = even_step ? n.split_edge(t, 2) : 2 * (ne + 3 * fi + k1);
             }
-            const Vertex centroid(nv + fi);
-            if (!m.boundary(g))
-                out.halfedge(so, Halfedge(g), Halfedge(n.s_in(g)), Face(n.ids[g].id), centroid);
-            else if (!even_step)  // next: s_in(hp)
-                out.halfedge(so, Halfedge(2 * (ne + 3 * fi + k2) + 1), Halfedge(hp),
-                             Face(3 * fi + k2), centroid);
-            else
-                out.halfedge(so, Halfedge(n.split_edge(g, 3) + 1), Halfedge(n.split_edge(g, 1)),
-                             Face(3 * nf + 2 * n.ids[g].id + 1), centroid);
+            out.halfedge(si, Halfedge(si_next), Halfedge(si_prev), Face(own), v[k2]);
+            out.fh[own] = Halfedge(si_next);
+            // s_out(hk): in the triangle of g, or on the boundary next to hp.
+            Index so_next, so_prev, so_face;
+            if (!m.boundary(g)) {
+                so_next = g;
+                so_prev = n.s_in(g);
+                so_face = n.ids[g].id;
+            } else if (!even_step) {
+                so_next = 2 * (ne + 3 * fi + k2) + 1;  // s_in(hp)
+                so_prev = hp;
+                so_face = 3 * fi + k2;
+            } else {
+                so_next = n.split_edge(g, 3) + 1;
+                so_prev = n.split_edge(g, 1);
+                so_face = 3 * nf + 2 * n.ids[g].id + 1;
+            }
+            out.halfedge(so, Halfedge(so_next), Halfedge(so_prev), Face(so_face), Vertex(nv + fi));
         }
     }
 }
@@ -676,15 +686,20 @@ void build_sqrt3_old_halfedges(const In& m, const Sqrt3Numbering n, bool even_st
         const Face f = m.face[hi];
         if (f.is_valid()) {
             const Index own = n.ids[hi].id;
-            const Halfedge closing(2 * (ne + own) + 1);  // s_in of the triangle's old corner
-            if (!m.boundary(t))
-                out.halfedge(hi, closing, Halfedge(n.s_out_next(t)), Face(own),
-                             Vertex(nv + f.idx()));
-            else if (!even_step)
-                out.halfedge(hi, Halfedge(n.s_out_next(hi)), closing, Face(own), m.to[hi]);
-            else
-                out.halfedge(hi, Halfedge(n.split_edge(t, 2)), closing, Face(own),
-                             Vertex(n.split_vertex(t, 1)));
+            const Index closing = 2 * (ne + own) + 1;  // s_in of the triangle's old corner
+            Index h_next = closing, h_prev = closing;
+            Vertex h_to;
+            if (!m.boundary(t)) {
+                h_prev = n.s_out_next(t);
+                h_to = Vertex(nv + f.idx());
+            } else if (!even_step) {
+                h_next = n.s_out_next(hi);
+                h_to = m.to[hi];
+            } else {
+                h_next = n.split_edge(t, 2);
+                h_to = Vertex(n.split_vertex(t, 1));
+            }
+            out.halfedge(hi, Halfedge(h_next), Halfedge(h_prev), Face(own), h_to);
         } else if (!even_step) {
             out.boundary_halfedge(hi, m.next[hi], m.prev[hi], m.to[hi]);
         } else {  // b -> q -> p -> a, then on to the next boundary halfedge's b -> q
