@@ -13,7 +13,8 @@
 // between patches, split non-manifold vertices) never tear open; uvs are interpolated, other
 // attributes ride along with the kept vertex. The input is never modified. Progressive mesh
 // (Hoppe, "Progressive meshes", SIGGRAPH 1996): every collapse is recorded with the vertex
-// split that undoes it.
+// split that undoes it. Throws InvalidArgument naming a bad option; Cancelled from the
+// progress; a run that cannot go on stops and says why (DecimationReport::stop).
 // Complexity: O(E) per batch pass, then O(d² + d log E) per collapse for valence d, no
 // allocation per collapse. Method, placement and the seam rules in detail: decimation.cpp.
 #include <array>
