@@ -71,359 +71,458 @@ void check_soup(const PolygonSoup& soup) {
 
 }  // namespace
 
-HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
-    check_soup(soup);
-    const std::size_t n_input_vertices = soup.positions.size();
-    const bool keep_corners = !soup.corner_texcoords.empty();
+namespace {
 
-    // 1. Triangles as a flat corner list, three per triangle: the soup's own list when every
-    //    face is a triangle without a repeated corner (no copy), else a new one with the
-    //    polygons triangulated and the degenerate faces dropped. `tri_corner` gives the
-    //    soup corner of each triangle corner (identity when the soup's list is used).
-    bool clean_triangles = soup.corners.size() == 3 * soup.n_faces();
-    for (std::size_t f = 0; f < soup.n_faces() && clean_triangles; ++f) {
-        const std::size_t b = soup.face_offsets[f];
-        clean_triangles =
-            soup.face_offsets[f + 1] == b + 3 && soup.corners[b] != soup.corners[b + 1] &&
-            soup.corners[b + 1] != soup.corners[b + 2] && soup.corners[b] != soup.corners[b + 2];
-    }
+// build_mesh() runs in five stages, each a function below:
+//  1. triangles: the soup's faces as a flat corner list, three per triangle;
+//  2. edges: the corner edges grouped by unordered vertex pair, then the triangles accepted
+//     in file order where their three halfedges are free;
+//  3. fans: each vertex's faces split into fans, a copy per fan after the first;
+//  4. detached triangles, with fresh edges and vertex copies where needed;
+//  5. the mesh takes the arrays; attributes follow each vertex's source.
+// Memory: the triangle soup's own corner list is used when every face is a triangle; edges are
+// found by a counting sort of the corner edges (no hash map), and the mesh takes the
+// connectivity arrays without a copy.
+
+/// Stage 1's output: the triangles as three corners each. `tri` points into the soup's own
+/// corner list when every face is a triangle without a repeated corner (no copy), else into
+/// `own_tris`, with the polygons triangulated and the degenerate faces dropped.
+/// `own_tri_corner` gives the soup corner of each triangle corner (identity, and empty, when
+/// the soup's list is used; filled only when corner texture coordinates are kept).
+struct Triangles {
+    bool clean = false;
     std::vector<Index> own_tris, own_tri_corner;
-    if (!clean_triangles) {
-        own_tris.reserve(soup.corners.size());
-        if (keep_corners) own_tri_corner.reserve(soup.corners.size());
-        PolygonTriangulator triangulator;
-        std::vector<Point> poly;
-        std::vector<PolygonTriangle> local;
-        std::vector<Index> sorted;
-        std::size_t fanned = 0;
-        for (std::size_t f = 0; f < soup.n_faces(); ++f) {
-            const std::size_t begin = soup.face_offsets[f], n = soup.face_offsets[f + 1] - begin;
-            const Index* c = soup.corners.data() + begin;
-            bool repeated = n < 3;
-            if (!repeated && n <= 16) {
-                for (std::size_t i = 0; i < n && !repeated; ++i)
-                    for (std::size_t j = i + 1; j < n && !repeated; ++j) repeated = c[i] == c[j];
-            } else if (!repeated) {
-                sorted.assign(c, c + n);
-                std::sort(sorted.begin(), sorted.end());
-                repeated = std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end();
-            }
-            if (repeated) {
-                ++report.degenerate_faces_dropped;
-                continue;
-            }
-            if (n == 3) {
-                own_tris.insert(own_tris.end(), c, c + 3);
-                if (keep_corners)
-                    for (std::size_t k = 0; k < 3; ++k) own_tri_corner.push_back(Index(begin + k));
-                continue;
-            }
-            poly.clear();
-            for (std::size_t i = 0; i < n; ++i) poly.push_back(soup.positions[c[i]]);
-            ++report.polygons_triangulated;
-            local.clear();
-            if (triangulator.triangulate(poly, local) == TriangulationMethod::kFan) ++fanned;
-            for (const PolygonTriangle& t : local) {
-                for (int k = 0; k < 3; ++k) {
-                    own_tris.push_back(c[t[k]]);
-                    if (keep_corners) own_tri_corner.push_back(Index(begin + t[k]));
-                }
-                ++report.triangles_from_polygons;
-            }
-        }
-        if (fanned)
-            report.notes.push_back(std::to_string(fanned) +
-                                   " polygons are not simple in their best-fit plane (they cross "
-                                   "or fold over themselves, or have no area): triangulated as "
-                                   "fans, which may overlap");
+    const Index* tri = nullptr;
+    std::size_t n_corners = 0;
+    std::size_t n_tris() const { return n_corners / 3; }
+};
+
+/// The corner that follows corner c in its triangle.
+inline std::size_t next_corner(std::size_t c) {
+    return c % 3 == 2 ? c - 2 : c + 1;
+}
+
+/// True when every face of the soup is a triangle without a repeated corner.
+bool is_clean_triangle_soup(const PolygonSoup& soup) {
+    bool clean = soup.corners.size() == 3 * soup.n_faces();
+    for (std::size_t f = 0; f < soup.n_faces() && clean; ++f) {
+        const std::size_t b = soup.face_offsets[f];
+        clean = soup.face_offsets[f + 1] == b + 3 && soup.corners[b] != soup.corners[b + 1] &&
+                soup.corners[b + 1] != soup.corners[b + 2] &&
+                soup.corners[b] != soup.corners[b + 2];
     }
-    const Index* tri = clean_triangles ? soup.corners.data() : own_tris.data();
-    const std::size_t n_corners = clean_triangles ? soup.corners.size() : own_tris.size();
-    const std::size_t n_tris = n_corners / 3;
-    if (n_corners >= std::size_t(kInvalidIndex))
-        throw InvalidArgument("build_mesh: " + std::to_string(n_tris) +
+    return clean;
+}
+
+/// True when the n corners at c have fewer than three entries or repeat a vertex (pairwise
+/// up to 16 corners, sorted in `sorted` above).
+bool is_degenerate_face(const Index* c, std::size_t n, std::vector<Index>& sorted) {
+    bool repeated = n < 3;
+    if (!repeated && n <= 16) {
+        for (std::size_t i = 0; i < n && !repeated; ++i)
+            for (std::size_t j = i + 1; j < n && !repeated; ++j) repeated = c[i] == c[j];
+    } else if (!repeated) {
+        sorted.assign(c, c + n);
+        std::sort(sorted.begin(), sorted.end());
+        repeated = std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end();
+    }
+    return repeated;
+}
+
+/// Stage 1 for a soup that is not clean: triangles into out.own_tris (and their soup
+/// corners into out.own_tri_corner when `keep_corners`), polygons triangulated, degenerate
+/// faces dropped and counted.
+void triangulate_faces(const PolygonSoup& soup, bool keep_corners, LoadReport& report,
+                       Triangles& out) {
+    out.own_tris.reserve(soup.corners.size());
+    if (keep_corners) out.own_tri_corner.reserve(soup.corners.size());
+    PolygonTriangulator triangulator;
+    std::vector<Point> poly;
+    std::vector<PolygonTriangle> local;
+    std::vector<Index> sorted;
+    std::size_t fanned = 0;
+    for (std::size_t f = 0; f < soup.n_faces(); ++f) {
+        const std::size_t begin = soup.face_offsets[f], n = soup.face_offsets[f + 1] - begin;
+        const Index* c = soup.corners.data() + begin;
+        if (is_degenerate_face(c, n, sorted)) {
+            ++report.degenerate_faces_dropped;
+            continue;
+        }
+        if (n == 3) {
+            out.own_tris.insert(out.own_tris.end(), c, c + 3);
+            if (keep_corners)
+                for (std::size_t k = 0; k < 3; ++k) out.own_tri_corner.push_back(Index(begin + k));
+            continue;
+        }
+        poly.clear();
+        for (std::size_t i = 0; i < n; ++i) poly.push_back(soup.positions[c[i]]);
+        ++report.polygons_triangulated;
+        local.clear();
+        if (triangulator.triangulate(poly, local) == TriangulationMethod::kFan) ++fanned;
+        for (const PolygonTriangle& t : local) {
+            for (int k = 0; k < 3; ++k) {
+                out.own_tris.push_back(c[t[k]]);
+                if (keep_corners) out.own_tri_corner.push_back(Index(begin + t[k]));
+            }
+            ++report.triangles_from_polygons;
+        }
+    }
+    if (fanned)
+        report.notes.push_back(std::to_string(fanned) +
+                               " polygons are not simple in their best-fit plane (they cross "
+                               "or fold over themselves, or have no area): triangulated as "
+                               "fans, which may overlap");
+}
+
+/// Stage 1: the soup's triangles (see Triangles); throws when there are more than 32-bit
+/// indices can number.
+void make_triangles(const PolygonSoup& soup, bool keep_corners, LoadReport& report,
+                    Triangles& out) {
+    out.clean = is_clean_triangle_soup(soup);
+    if (!out.clean) triangulate_faces(soup, keep_corners, report, out);
+    out.tri = out.clean ? soup.corners.data() : out.own_tris.data();
+    out.n_corners = out.clean ? soup.corners.size() : out.own_tris.size();
+    if (out.n_corners >= std::size_t(kInvalidIndex))
+        throw InvalidArgument("build_mesh: " + std::to_string(out.n_tris()) +
                               " triangles are more than the " + std::to_string(kInvalidIndex / 3) +
                               " that 32-bit indices hold");
-    // The corner that follows corner c in its triangle.
-    auto next_corner = [](std::size_t c) { return c % 3 == 2 ? c - 2 : c + 1; };
+}
 
-    // 2. Edges. The 3T corner edges are grouped by their unordered vertex pair: a counting
-    //    sort on the smaller vertex, then the larger one within each bucket (a short bucket
-    //    is scanned, a long one sorted). The first entry of a group holds its state (the
-    //    edge, once made, and which of its two halfedges are taken), the others point to it.
-    //    Triangles are then accepted in file order when each of their three directed
-    //    halfedges is still free; halfedge 2e runs from the smaller to the larger vertex of
-    //    edge e, and edges are numbered in the order they are first used. Both passes visit
-    //    the corners in the same order, so a running position per bucket finds each corner's
-    //    entry again without storing it.
-    constexpr std::uint64_t kHead = std::uint64_t(1) << 32;   // the group's first entry
-    constexpr std::uint64_t kTaken = std::uint64_t(1) << 33;  // << 0: lo -> hi, << 1: hi -> lo
-    std::vector<Index> position(n_input_vertices + 1, 0);
+// Stage 2. The 3T corner edges are grouped by their unordered vertex pair: a counting sort on
+// the smaller vertex, then the larger one within each bucket (a short bucket is scanned, a
+// long one sorted). The first entry of a group holds its state (the edge, once made, and which
+// of its two halfedges are taken), the others point to it. Triangles are then accepted in file
+// order when each of their three directed halfedges is still free; halfedge 2e runs from the
+// smaller to the larger vertex of edge e, and edges are numbered in the order they are first
+// used. Both passes visit the corners in the same order, so a running position per bucket
+// finds each corner's entry again without storing it.
+constexpr std::uint64_t kHead = std::uint64_t(1) << 32;   // the group's first entry
+constexpr std::uint64_t kTaken = std::uint64_t(1) << 33;  // << 0: lo -> hi, << 1: hi -> lo
+
+/// The corner edges' grouping (stage 2).
+struct EdgeGroups {
+    std::vector<Index> position;  ///< per vertex: its bucket's start (then running position)
+    std::unique_ptr<std::uint64_t[]> entry;  ///< per corner edge, in bucket order
+    std::size_t n_groups = 0;
+};
+
+/// The connectivity arrays being built (stages 2 to 4).
+struct Connectivity {
+    std::vector<Vertex> hto;  ///< per halfedge: the vertex it points to
+    std::vector<Halfedge> hnext, hprev;
+    std::vector<Face> hface;
+    std::vector<Halfedge> face_halfedge;  ///< per face: its halfedge ending at corner 0
+    std::vector<Index> face_tri;          ///< per face: its triangle (for corner texcoords)
+    std::vector<Index> detached;          ///< triangles added detached
+    std::vector<Halfedge> vhalfedge;      ///< per vertex: its outgoing halfedge
+    std::vector<Index> copy_source;       ///< vertex n_input_vertices + i copies copy_source[i]
+    std::size_t n_h = 0;
+};
+
+/// Stage 2a: the counting sort of the corner edges into one bucket per smaller vertex; each
+/// entry holds the larger vertex of its corner edge.
+void bucket_corner_edges(const Index* tri, std::size_t n_corners, std::size_t n_vertices,
+                         EdgeGroups& g) {
+    std::vector<Index>& position = g.position;
+    position.assign(n_vertices + 1, 0);
     for (std::size_t c = 0; c < n_corners; ++c)
         ++position[std::min(tri[c], tri[next_corner(c)]) + 1];
-    for (std::size_t v = 0; v < n_input_vertices; ++v) position[v + 1] += position[v];
-    // First the larger vertex of each corner edge in bucket order, then the group links.
+    for (std::size_t v = 0; v < n_vertices; ++v) position[v + 1] += position[v];
     // Every entry is written by the sort below: no zero fill first.
-    std::unique_ptr<std::uint64_t[]> entry(new std::uint64_t[n_corners]);
-    {
-        std::vector<Index> fill(position.begin(), position.end() - 1);
-        for (std::size_t c = 0; c < n_corners; ++c) {
-            const Index a = tri[c], b = tri[next_corner(c)];
-            entry[fill[std::min(a, b)]++] = std::max(a, b);
-        }
+    g.entry.reset(new std::uint64_t[n_corners]);
+    std::vector<Index> fill(position.begin(), position.end() - 1);
+    for (std::size_t c = 0; c < n_corners; ++c) {
+        const Index a = tri[c], b = tri[next_corner(c)];
+        g.entry[fill[std::min(a, b)]++] = std::max(a, b);
     }
-    std::size_t n_groups = 0;
-    {
-        constexpr Index kScan = 16;
-        Index partner[kScan];
-        std::vector<std::pair<Index, Index>> sorted;  // (larger vertex, position)
-        for (std::size_t v = 0; v < n_input_vertices; ++v) {
-            const Index begin = position[v], end = position[v + 1], m = end - begin;
-            if (m <= kScan) {
-                for (Index i = 0; i < m; ++i) partner[i] = Index(entry[begin + i]);
-                for (Index i = 0; i < m; ++i) {
-                    Index j = 0;
-                    while (j < i && partner[j] != partner[i]) ++j;
-                    if (j < i) {
-                        entry[begin + i] = begin + j;
-                    } else {
-                        entry[begin + i] = kHead | kInvalidIndex;
-                        ++n_groups;
-                    }
+}
+
+/// Stage 2b: within each bucket, the entries with the same larger vertex form a group; the
+/// first becomes its head (no edge yet), the others point to it. Counts the groups.
+void link_groups(std::size_t n_vertices, EdgeGroups& g) {
+    constexpr Index kScan = 16;
+    Index partner[kScan];
+    std::vector<std::pair<Index, Index>> sorted;  // (larger vertex, position)
+    std::uint64_t* entry = g.entry.get();
+    for (std::size_t v = 0; v < n_vertices; ++v) {
+        const Index begin = g.position[v], end = g.position[v + 1], m = end - begin;
+        if (m <= kScan) {
+            for (Index i = 0; i < m; ++i) partner[i] = Index(entry[begin + i]);
+            for (Index i = 0; i < m; ++i) {
+                Index j = 0;
+                while (j < i && partner[j] != partner[i]) ++j;
+                if (j < i) {
+                    entry[begin + i] = begin + j;
+                } else {
+                    entry[begin + i] = kHead | kInvalidIndex;
+                    ++g.n_groups;
                 }
-            } else {
-                sorted.clear();
-                for (Index i = begin; i < end; ++i) sorted.push_back({Index(entry[i]), i});
-                std::sort(sorted.begin(), sorted.end());
-                Index head = 0;
-                for (std::size_t i = 0; i < sorted.size(); ++i) {
-                    if (i == 0 || sorted[i].first != sorted[i - 1].first) {
-                        head = sorted[i].second;
-                        entry[head] = kHead | kInvalidIndex;
-                        ++n_groups;
-                    } else {
-                        entry[sorted[i].second] = head;
-                    }
+            }
+        } else {
+            sorted.clear();
+            for (Index i = begin; i < end; ++i) sorted.push_back({Index(entry[i]), i});
+            std::sort(sorted.begin(), sorted.end());
+            Index head = 0;
+            for (std::size_t i = 0; i < sorted.size(); ++i) {
+                if (i == 0 || sorted[i].first != sorted[i - 1].first) {
+                    head = sorted[i].second;
+                    entry[head] = kHead | kInvalidIndex;
+                    ++g.n_groups;
+                } else {
+                    entry[sorted[i].second] = head;
                 }
             }
         }
     }
-    std::vector<Vertex> hto;  // per halfedge: the vertex it points to
-    std::vector<Halfedge> hnext, hprev;
-    std::vector<Face> hface;
-    std::vector<Halfedge> face_halfedge;  // per face: its halfedge ending at corner 0
-    std::vector<Index> face_tri;          // per face: its triangle (for corner texcoords)
-    std::vector<Index> detached;          // triangles added detached
+}
+
+/// The entry positions of triangle t's three corner edges (advancing the running
+/// positions), prefetching the entries.
+inline void look_up_entries(const Index* tri, std::size_t t, EdgeGroups& g,
+                            std::array<Index, 3>& pos3) {
+    for (std::size_t k = 0; k < 3; ++k) {
+        const std::size_t c = 3 * t + k;
+        const Index pos = g.position[std::min(tri[c], tri[next_corner(c)])]++;
+        pos3[k] = pos;
+        prefetch(&g.entry[pos]);
+    }
+}
+
+/// Makes triangle t face f: takes its three halfedges (making an edge where its group has
+/// none yet) and links them in a loop. `head` and `dir` are each corner edge's group state
+/// and direction.
+inline void add_triangle(const Index* tri, std::size_t t, const std::array<std::uint64_t*, 3>& head,
+                         const std::array<Index, 3>& dir, bool keep_corners, Connectivity& c) {
+    std::array<Halfedge, 3> he;
+    for (std::size_t k = 0; k < 3; ++k) {
+        std::uint64_t& state = *head[k];
+        state |= kTaken << dir[k];
+        if (Index(state) == kInvalidIndex) {
+            const std::size_t corner = 3 * t + k;
+            const Index a = tri[corner], b = tri[next_corner(corner)];
+            state = (state & ~std::uint64_t(kInvalidIndex)) | Index(c.n_h / 2);
+            c.hto[c.n_h++] = Vertex(std::max(a, b));
+            c.hto[c.n_h++] = Vertex(std::min(a, b));
+        }
+        he[k] = Halfedge(2 * Index(state) + dir[k]);
+    }
+    const Face f(Index(c.face_halfedge.size()));
+    for (std::size_t k = 0; k < 3; ++k) {
+        const Halfedge h = he[k], n = he[(k + 1) % 3];
+        c.hface[h.idx()] = f;
+        c.hnext[h.idx()] = n;
+        c.hprev[n.idx()] = h;
+    }
+    c.face_halfedge.push_back(he[2]);  // ends at corner 0, as OpenMesh's add_face does
+    if (keep_corners) c.face_tri.push_back(Index(t));
+}
+
+/// Stage 2c: the triangles accepted in file order where their three halfedges are free, the
+/// others listed in c.detached. Releases the grouping at the end.
+void accept_triangles(const Triangles& tris, bool keep_corners, EdgeGroups& g, Connectivity& c) {
+    const Index* tri = tris.tri;
+    const std::size_t n_tris = tris.n_tris();
     // Sized for every group becoming an edge (the usual case); trimmed after.
-    hto.resize(2 * n_groups);
-    hnext.resize(2 * n_groups);
-    hprev.resize(2 * n_groups);
-    hface.resize(2 * n_groups);
-    std::size_t n_h = 0;
-    face_halfedge.reserve(n_tris);
-    if (keep_corners) face_tri.reserve(n_tris);
+    c.hto.resize(2 * g.n_groups);
+    c.hnext.resize(2 * g.n_groups);
+    c.hprev.resize(2 * g.n_groups);
+    c.hface.resize(2 * g.n_groups);
+    c.face_halfedge.reserve(n_tris);
+    if (keep_corners) c.face_tri.reserve(n_tris);
     // The entries are looked up kAhead triangles early and prefetched (the loop waits on
     // memory, not on arithmetic); the running positions still advance in corner order.
     constexpr std::size_t kAhead = 16;
     std::array<std::array<Index, 3>, kAhead> ahead{};
-    auto look_up = [&](std::size_t t) {
-        for (std::size_t k = 0; k < 3; ++k) {
-            const std::size_t c = 3 * t + k;
-            const Index pos = position[std::min(tri[c], tri[next_corner(c)])]++;
-            ahead[t % kAhead][k] = pos;
-            prefetch(&entry[pos]);
-        }
-    };
-    for (std::size_t t = 0; t < std::min(kAhead, n_tris); ++t) look_up(t);
+    for (std::size_t t = 0; t < std::min(kAhead, n_tris); ++t)
+        look_up_entries(tri, t, g, ahead[t % kAhead]);
     for (std::size_t t = 0; t < n_tris; ++t) {
         const std::array<Index, 3> pos3 = ahead[t % kAhead];
-        if (t + kAhead < n_tris) look_up(t + kAhead);
+        if (t + kAhead < n_tris) look_up_entries(tri, t + kAhead, g, ahead[(t + kAhead) % kAhead]);
         if (t + 2 * kAhead < n_tris)
             for (std::size_t k = 0; k < 3; ++k) {
-                const std::size_t c = 3 * (t + 2 * kAhead) + k;
-                prefetch(&position[std::min(tri[c], tri[next_corner(c)])]);
+                const std::size_t corner = 3 * (t + 2 * kAhead) + k;
+                prefetch(&g.position[std::min(tri[corner], tri[next_corner(corner)])]);
             }
         std::array<std::uint64_t*, 3> head;
         std::array<Index, 3> dir;
         bool free = true;
         for (std::size_t k = 0; k < 3; ++k) {
-            const std::size_t c = 3 * t + k;
-            const Index a = tri[c], b = tri[next_corner(c)];
+            const std::size_t corner = 3 * t + k;
+            const Index a = tri[corner], b = tri[next_corner(corner)];
             const Index pos = pos3[k];
-            const std::uint64_t x = entry[pos];
-            head[k] = &entry[(x & kHead) ? pos : Index(x)];
+            const std::uint64_t x = g.entry[pos];
+            head[k] = &g.entry[(x & kHead) ? pos : Index(x)];
             dir[k] = a < b ? 0 : 1;
             free = free && !(*head[k] & (kTaken << dir[k]));
         }
-        if (!free) {
-            detached.push_back(Index(t));
-            continue;
-        }
-        std::array<Halfedge, 3> he;
-        for (std::size_t k = 0; k < 3; ++k) {
-            std::uint64_t& state = *head[k];
-            state |= kTaken << dir[k];
-            if (Index(state) == kInvalidIndex) {
-                const std::size_t c = 3 * t + k;
-                const Index a = tri[c], b = tri[next_corner(c)];
-                state = (state & ~std::uint64_t(kInvalidIndex)) | Index(n_h / 2);
-                hto[n_h++] = Vertex(std::max(a, b));
-                hto[n_h++] = Vertex(std::min(a, b));
-            }
-            he[k] = Halfedge(2 * Index(state) + dir[k]);
-        }
-        const Face f(Index(face_halfedge.size()));
-        for (std::size_t k = 0; k < 3; ++k) {
-            const Halfedge h = he[k], n = he[(k + 1) % 3];
-            hface[h.idx()] = f;
-            hnext[h.idx()] = n;
-            hprev[n.idx()] = h;
-        }
-        face_halfedge.push_back(he[2]);  // ends at corner 0, as OpenMesh's add_face does
-        if (keep_corners) face_tri.push_back(Index(t));
+        if (free)
+            add_triangle(tri, t, head, dir, keep_corners, c);
+        else
+            c.detached.push_back(Index(t));
     }
     // Release the grouping before the vertices are built.
-    entry.reset();
-    std::vector<Index>().swap(position);
-    hto.resize(n_h);
-    hnext.resize(n_h);
-    hprev.resize(n_h);
-    hface.resize(n_h);
+    g.entry.reset();
+    std::vector<Index>().swap(g.position);
+    c.hto.resize(c.n_h);
+    c.hnext.resize(c.n_h);
+    c.hprev.resize(c.n_h);
+    c.hface.resize(c.n_h);
+}
 
-    // 3. Fans: the faces around each vertex split into fans (walked from each face halfedge
-    //    in index order, so a vertex's first fan is the one holding its lowest halfedge);
-    //    the first fan keeps the vertex, every further one gets a copy. Boundary halfedges
-    //    are linked where a fan ends.
-    std::vector<Halfedge> vhalfedge(n_input_vertices);
-    std::vector<Index> copy_source;  // vertex n_input_vertices + i copies copy_source[i]
-    struct ExtraFan {
-        Index vertex, start;
-        Halfedge first;
-    };
+/// A fan of a vertex after its first: it gets a copy of the vertex (stage 3).
+struct ExtraFan {
+    Index vertex, start;
+    Halfedge first;
+};
+
+/// Stage 3a: the fans around each vertex (walked from each face halfedge in index order, so
+/// a vertex's first fan is the one holding its lowest halfedge). The first fan sets the
+/// vertex's halfedge; the further ones are returned. Boundary halfedges are linked where a
+/// fan ends.
+std::vector<ExtraFan> find_fans(Connectivity& c) {
     std::vector<ExtraFan> extra_fans;
-    {
-        std::vector<std::uint8_t> visited(n_h, 0);
-        for (Index h = 0; h < n_h; ++h) {
-            if (visited[h] || !hface[h].is_valid()) continue;
-            // Walk counter-clockwise (x -> twin(prev(x))) from h. A closed fan comes back
-            // to h and starts at ccw(h) (so that clockwise from there comes back first to
-            // h); an open one ends at a boundary halfedge, and its start is then found
-            // walking clockwise (x -> next(twin(x))) from h.
-            Halfedge boundary_out;
-            Index start = hprev[h].idx() ^ 1;
-            for (Index cur = h;;) {
-                visited[cur] = 1;
-                const Index nxt = hprev[cur].idx() ^ 1;
-                if (!hface[nxt].is_valid()) {
-                    boundary_out = Halfedge(nxt);
-                    visited[nxt] = 1;
-                    break;
-                }
-                if (nxt == h) break;
-                cur = nxt;
+    std::vector<std::uint8_t> visited(c.n_h, 0);
+    for (Index h = 0; h < c.n_h; ++h) {
+        if (visited[h] || !c.hface[h].is_valid()) continue;
+        // Walk counter-clockwise (x -> twin(prev(x))) from h. A closed fan comes back to h
+        // and starts at ccw(h) (so that clockwise from there comes back first to h); an open
+        // one ends at a boundary halfedge, and its start is then found walking clockwise
+        // (x -> next(twin(x))) from h.
+        Halfedge boundary_out;
+        Index start = c.hprev[h].idx() ^ 1;
+        for (Index cur = h;;) {
+            visited[cur] = 1;
+            const Index nxt = c.hprev[cur].idx() ^ 1;
+            if (!c.hface[nxt].is_valid()) {
+                boundary_out = Halfedge(nxt);
+                visited[nxt] = 1;
+                break;
             }
-            if (boundary_out.is_valid()) {
-                start = h;
-                for (;;) {
-                    const Index t = start ^ 1;
-                    if (!hface[t].is_valid()) break;
-                    start = hnext[t].idx();
-                    visited[start] = 1;
-                }
-                const Halfedge boundary_in(start ^ 1);
-                hnext[boundary_in.idx()] = boundary_out;
-                hprev[boundary_out.idx()] = boundary_in;
-            }
-            const Halfedge first = boundary_out.is_valid() ? boundary_out : Halfedge(start);
-            const Index v = hto[h ^ 1].idx();
-            if (!vhalfedge[v].is_valid())
-                vhalfedge[v] = first;
-            else
-                extra_fans.push_back({v, start, first});
+            if (nxt == h) break;
+            cur = nxt;
         }
+        if (boundary_out.is_valid()) {
+            start = h;
+            for (;;) {
+                const Index t = start ^ 1;
+                if (!c.hface[t].is_valid()) break;
+                start = c.hnext[t].idx();
+                visited[start] = 1;
+            }
+            const Halfedge boundary_in(start ^ 1);
+            c.hnext[boundary_in.idx()] = boundary_out;
+            c.hprev[boundary_out.idx()] = boundary_in;
+        }
+        const Halfedge first = boundary_out.is_valid() ? boundary_out : Halfedge(start);
+        const Index v = c.hto[h ^ 1].idx();
+        if (!c.vhalfedge[v].is_valid())
+            c.vhalfedge[v] = first;
+        else
+            extra_fans.push_back({v, start, first});
     }
-    // Copies in vertex order, each vertex's fans in the order found.
+    return extra_fans;
+}
+
+/// Stage 3b: a vertex copy for every further fan, in vertex order, each vertex's fans in the
+/// order found; the fan's halfedges are pointed at the copy.
+void copy_extra_fans(std::vector<ExtraFan>& extra_fans, std::size_t n_input_vertices,
+                     Connectivity& c, LoadReport& report) {
     std::stable_sort(extra_fans.begin(), extra_fans.end(),
                      [](const ExtraFan& a, const ExtraFan& b) { return a.vertex < b.vertex; });
     for (std::size_t i = 0; i < extra_fans.size(); ++i) {
         const ExtraFan& fan = extra_fans[i];
         if (i == 0 || extra_fans[i - 1].vertex != fan.vertex) ++report.nonmanifold_vertices_split;
-        const Vertex copy(Index(n_input_vertices + copy_source.size()));
-        copy_source.push_back(fan.vertex);
-        vhalfedge.push_back(fan.first);
+        const Vertex copy(Index(n_input_vertices + c.copy_source.size()));
+        c.copy_source.push_back(fan.vertex);
+        c.vhalfedge.push_back(fan.first);
         ++report.vertex_copies_added;
         for (Index cur = fan.start;;) {
-            hto[cur ^ 1] = copy;
-            const Index nxt = hprev[cur].idx() ^ 1;
-            if (!hface[nxt].is_valid()) {
-                hto[nxt ^ 1] = copy;
+            c.hto[cur ^ 1] = copy;
+            const Index nxt = c.hprev[cur].idx() ^ 1;
+            if (!c.hface[nxt].is_valid()) {
+                c.hto[nxt ^ 1] = copy;
                 break;
             }
             if (nxt == fan.start) break;
             cur = nxt;
         }
     }
+}
 
-    // 4. Detached triangles: fresh edges; corners reuse a vertex only if nothing uses it yet.
-    hto.reserve(n_h + 6 * detached.size());
-    hnext.reserve(n_h + 6 * detached.size());
-    hprev.reserve(n_h + 6 * detached.size());
-    hface.reserve(n_h + 6 * detached.size());
-    for (Index t : detached) {
+/// Stage 4: the detached triangles get fresh edges; a corner reuses its vertex only if
+/// nothing uses it yet, else a copy.
+void add_detached_triangles(const Index* tri, std::size_t n_input_vertices, bool keep_corners,
+                            Connectivity& c, LoadReport& report) {
+    const std::size_t n_h = c.hto.size();
+    c.hto.reserve(n_h + 6 * c.detached.size());
+    c.hnext.reserve(n_h + 6 * c.detached.size());
+    c.hprev.reserve(n_h + 6 * c.detached.size());
+    c.hface.reserve(n_h + 6 * c.detached.size());
+    for (Index t : c.detached) {
         std::array<Vertex, 3> vs;
         for (std::size_t k = 0; k < 3; ++k) {
             const Index v = tri[3 * std::size_t(t) + k];
-            if (!vhalfedge[v].is_valid()) {
+            if (!c.vhalfedge[v].is_valid()) {
                 vs[k] = Vertex(v);
             } else {
-                vs[k] = Vertex(Index(n_input_vertices + copy_source.size()));
-                copy_source.push_back(v);
-                vhalfedge.push_back(Halfedge());
+                vs[k] = Vertex(Index(n_input_vertices + c.copy_source.size()));
+                c.copy_source.push_back(v);
+                c.vhalfedge.push_back(Halfedge());
                 ++report.vertex_copies_added;
             }
         }
-        const Face f(Index(face_halfedge.size()));
-        const Index h0 = Index(hto.size());
+        const Face f(Index(c.face_halfedge.size()));
+        const Index h0 = Index(c.hto.size());
         for (std::size_t k = 0; k < 3; ++k) {
-            hto.push_back(vs[(k + 1) % 3]);
-            hto.push_back(vs[k]);
-            hface.push_back(f);
-            hface.push_back(Face());
+            c.hto.push_back(vs[(k + 1) % 3]);
+            c.hto.push_back(vs[k]);
+            c.hface.push_back(f);
+            c.hface.push_back(Face());
         }
-        hnext.resize(hto.size());
-        hprev.resize(hto.size());
+        c.hnext.resize(c.hto.size());
+        c.hprev.resize(c.hto.size());
         for (Index k = 0; k < 3; ++k) {
             const Index inner = h0 + 2 * k, inner_next = h0 + 2 * ((k + 1) % 3);
-            hnext[inner] = Halfedge(inner_next);
-            hprev[inner_next] = Halfedge(inner);
+            c.hnext[inner] = Halfedge(inner_next);
+            c.hprev[inner_next] = Halfedge(inner);
             // The boundary loop runs the other way round.
             const Index outer = inner + 1, outer_next = h0 + 2 * ((k + 2) % 3) + 1;
-            hnext[outer] = Halfedge(outer_next);
-            hprev[outer_next] = Halfedge(outer);
-            vhalfedge[vs[k].idx()] = Halfedge(h0 + 2 * ((k + 2) % 3) + 1);  // boundary, out
+            c.hnext[outer] = Halfedge(outer_next);
+            c.hprev[outer_next] = Halfedge(outer);
+            c.vhalfedge[vs[k].idx()] = Halfedge(h0 + 2 * ((k + 2) % 3) + 1);  // boundary, out
         }
-        face_halfedge.push_back(Halfedge(h0 + 4));  // vs[2] -> vs[0]: ends at corner 0
-        if (keep_corners) face_tri.push_back(t);
+        c.face_halfedge.push_back(Halfedge(h0 + 4));  // vs[2] -> vs[0]: ends at corner 0
+        if (keep_corners) c.face_tri.push_back(t);
         ++report.detached_faces;
     }
+}
 
-    // 5. The mesh takes the arrays (no copy); attributes follow each vertex's source.
-    const std::size_t n_v = vhalfedge.size();
+/// Stage 5a: the mesh takes the connectivity arrays (no copy; c keeps copy_source and
+/// face_tri); positions follow each vertex's source. Counts the isolated vertices.
+HalfedgeMesh assemble_mesh(const PolygonSoup& soup, Connectivity& c, LoadReport& report) {
+    std::vector<Point> positions;
+    positions.reserve(c.vhalfedge.size());
+    positions.assign(soup.positions.begin(), soup.positions.end());
+    for (Index s : c.copy_source) positions.push_back(soup.positions[s]);
+    for (const Halfedge& h : c.vhalfedge)
+        if (!h.is_valid()) ++report.isolated_vertices;
+    HalfedgeMesh mesh;
+    mesh.assign_connectivity(std::move(positions), std::move(c.vhalfedge), std::move(c.hto),
+                             std::move(c.hnext), std::move(c.hprev), std::move(c.hface),
+                             std::move(c.face_halfedge));
+    return mesh;
+}
+
+/// Stage 5b: the soup's attributes onto the mesh: per vertex from each vertex's source
+/// (copy_source for the copies), per corner from each face's triangle.
+void copy_attributes(const PolygonSoup& soup, const Triangles& tris,
+                     const std::vector<Index>& copy_source, const std::vector<Index>& face_tri,
+                     HalfedgeMesh& mesh) {
+    const std::size_t n_input_vertices = soup.positions.size();
+    const std::size_t n_v = mesh.vertices_size();
     auto source = [&](std::size_t v) {
         return v < n_input_vertices ? v : std::size_t(copy_source[v - n_input_vertices]);
     };
-    std::vector<Point> positions;
-    positions.reserve(n_v);
-    positions.assign(soup.positions.begin(), soup.positions.end());
-    for (Index s : copy_source) positions.push_back(soup.positions[s]);
-    for (const Halfedge& h : vhalfedge)
-        if (!h.is_valid()) ++report.isolated_vertices;
-    const std::size_t n_f = face_halfedge.size();
-    HalfedgeMesh mesh;
-    mesh.assign_connectivity(std::move(positions), std::move(vhalfedge), std::move(hto),
-                             std::move(hnext), std::move(hprev), std::move(hface),
-                             std::move(face_halfedge));
-
     if (!soup.normals.empty()) {
         auto p = mesh.vertex_property<Vector3>("v:normal");
         for (std::size_t v = 0; v < n_v; ++v) p[Vertex(Index(v))] = soup.normals[source(v)];
@@ -436,9 +535,10 @@ HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
         auto p = mesh.vertex_property<TexCoord>("v:texcoord");
         for (std::size_t v = 0; v < n_v; ++v) p[Vertex(Index(v))] = soup.texcoords[source(v)];
     }
-    if (keep_corners) {
-        const Index* tri_corner = clean_triangles ? nullptr : own_tri_corner.data();
+    if (!soup.corner_texcoords.empty()) {
+        const Index* tri_corner = tris.clean ? nullptr : tris.own_tri_corner.data();
         auto p = mesh.halfedge_property<TexCoord>("h:texcoord", TexCoord::Zero());
+        const Index n_f = Index(mesh.faces_size());
         for (Index f = 0; f < n_f; ++f) {
             // The face's halfedge ends at corner 0; its next ends at corner 1, and so on.
             Halfedge h = mesh.halfedge(Face(f));
@@ -447,6 +547,29 @@ HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
                 p[h] = soup.corner_texcoords[tri_corner ? tri_corner[c0 + k] : c0 + k];
         }
     }
+}
+
+}  // namespace
+
+HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
+    check_soup(soup);
+    const std::size_t n_input_vertices = soup.positions.size();
+    const bool keep_corners = !soup.corner_texcoords.empty();
+    Triangles tris;
+    make_triangles(soup, keep_corners, report, tris);
+    Connectivity c;
+    {
+        EdgeGroups groups;
+        bucket_corner_edges(tris.tri, tris.n_corners, n_input_vertices, groups);
+        link_groups(n_input_vertices, groups);
+        accept_triangles(tris, keep_corners, groups, c);
+    }
+    c.vhalfedge.resize(n_input_vertices);
+    std::vector<ExtraFan> extra_fans = find_fans(c);
+    copy_extra_fans(extra_fans, n_input_vertices, c, report);
+    add_detached_triangles(tris.tri, n_input_vertices, keep_corners, c, report);
+    HalfedgeMesh mesh = assemble_mesh(soup, c, report);
+    copy_attributes(soup, tris, c.copy_source, c.face_tri, mesh);
     return mesh;
 }
 

@@ -14,9 +14,8 @@
 //  - a vertex whose faces form several fans is split into one copy per fan;
 //  - vertices that no face uses are kept (isolated) and counted.
 // Everything done is counted in the LoadReport. Complexity: linear in the soup size (plus
-// O(n log n) per polygon of n > 16 corners). Memory: the triangle soup's own corner list is
-// used when every face is a triangle; edges are found by a counting sort of the corner
-// edges (no hash map), and the mesh takes the connectivity arrays without a copy.
+// O(n log n) per polygon of n > 16 corners), with no copy of a triangle soup's corners
+// (mesh_builder.cpp).
 #include <string>
 #include <vector>
 

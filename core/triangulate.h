@@ -1,25 +1,12 @@
 #pragma once
-// Triangulation of one polygon (a face of a polygon soup) in its best-fit plane.
-//
-// The corners are projected onto the plane through their centroid normal to the Newell
-// normal (Newell's method; Tampieri, "Newell's method for computing the plane equation of a
-// polygon", Graphics Gems III, 1992), in which the polygon runs counter-clockwise, and every
-// triangle keeps the corner order's orientation.
-//  - Up to kEarClippingCorners corners: ear clipping (Meisters 1975), O(n^3) at worst and
-//    tiny for such n: a corner is clipped when it is convex and no other corner lies in its
-//    triangle (on its edges included).
-//  - More corners: a partition into y-monotone pieces by a plane sweep, and each piece
-//    triangulated along its two chains with a stack (Garey, Johnson, Preparata and Tarjan,
-//    "Triangulating a simple polygon", IPL 7(4), 1978; de Berg et al., Computational
-//    Geometry, 3rd ed., chapter 3). Ties in the sweep order (equal y, then equal x) are
-//    broken by corner index, so collinear runs, horizontal edges and repeated positions
-//    need no special case. O(n log n) time, O(n) space.
-// The monotone result is checked: n - 2 triangles, no repeated corner, none inverted in the
-// plane (beyond a rounding tolerance relative to the polygon's extent), and their areas sum
-// to the polygon's. A polygon that fails the check (it crosses or folds over itself in the
-// plane, or is degenerate) is ear clipped if it has at most kFallbackEarClippingCorners
-// corners; otherwise, or when ear clipping finds no ear, it becomes a fan from corner 0
-// (the historical fallback), which is reported. Never throws on any finite input.
+// Triangulation of one polygon (a face of a polygon soup) in its best-fit plane (the Newell
+// normal; Tampieri, Graphics Gems III, 1992); every triangle keeps the corner order's
+// orientation. Up to kEarClippingCorners corners: ear clipping (Meisters 1975); more: a
+// monotone partition by a plane sweep (Garey, Johnson, Preparata, Tarjan, IPL 7(4), 1978),
+// O(n log n) time, O(n) space, its result checked (n - 2 triangles, none inverted, areas
+// summing to the polygon's). A polygon that fails the check (it crosses or folds over itself,
+// or is degenerate) is ear clipped when small enough, else becomes a fan from corner 0, which
+// is reported. Never throws on any finite input. The method in detail: triangulate.cpp.
 #include <array>
 #include <cstddef>
 #include <cstdint>

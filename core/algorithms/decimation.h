@@ -1,49 +1,22 @@
 #pragma once
-// Mesh decimation by edge collapse (section 1.4 of the reference report).
-//
-// Method: every edge gets a cost and the cheapest collapse goes first, from a binary heap of
-// (cost, edge) entries with lazy invalidation (an entry whose cost is no longer its edge's is
-// skipped), so the queue stays exact while costs change; after a collapse only the edges at
-// the kept vertex are re-priced. Meshes of more than 50,000 vertices are first reduced in
-// batches down to max(50,000, 4 x target): each pass selects the cheapest edges, up to half
-// the vertex count (nth_element), and collapses them in memory order (for the cache),
-// skipping edges re-priced during the pass; the exact heap then does the last collapses, the
-// ones that shape the result. Costs:
-//  - Quadric (Garland, Heckbert, "Surface simplification using quadric error metrics",
-//    SIGGRAPH 1997): per-vertex quadrics of the incident face planes, summed on collapse; the
-//    kept vertex moves to the minimizer of Q0 + Q1 (the 3x3 system), or, where that is
-//    ill-conditioned or lands far from the edge, to the best of the two ends and the
-//    midpoint. Each boundary edge adds a heavily weighted plane through it, perpendicular to
-//    its face, to both its ends, so boundaries keep their shape.
-//  - Roundness (1.4.2): R = circumradius / shortest edge, normalized as sqrt(1/3) / R (1 for
-//    an equilateral triangle, towards 0 for a sliver); a halfedge collapse (the kept vertex
-//    stays) is weighted by the smallest normalized roundness among the triangles it changes,
-//    and the collapse with the largest such minimum goes first.
-// Binary constraints (1.4.3), each switchable: a roundness threshold, normal flipping (no
-// changed face normal turns by more than an angle; degenerate results are refused too),
-// an independent set (after a collapse the one-ring of the kept vertex is locked until the
-// next iteration), and a maximum quadric error (a distance: the collapse is refused when the
-// quadric error exceeds its square).
-//
-// Guarantees: the topology is always protected by the link condition
-// (HalfedgeMesh::is_collapse_ok), so every output is a valid manifold mesh with the input's
-// boundary loops, components and genus; a boundary vertex only moves along a boundary edge.
-// With "v:texcoord" the kept vertex's uv is interpolated along the edge; with per-corner
-// "h:texcoord", vertices on a texture seam are never removed and the corners that move keep
-// the seam's side (no seam is torn open). Vertices with a coincident copy
-// (core/algorithms/coincident.h: the two sides of a patch seam, the copies of a split non-manifold
-// vertex) never move alone, so no crack opens between copies: along a seam (a vertex with exactly
-// one copy, a boundary edge with exactly one coincident partner) both sides collapse together, each
-// into its kept copy, which stays where it is (costed with the quadrics of both sides); every other
-// copy (a corner where seams meet, a non-manifold point) is never removed or moved (neighbours may
-// collapse into it).
-// Other attributes ride along with the kept vertex.
-// The input is never modified. Progressive mesh (Hoppe, "Progressive meshes", SIGGRAPH 1996):
-// every collapse is recorded with the vertex split that undoes it.
-//
-// Complexity: O(E) per batch pass (a few dozen passes: the mesh shrinks geometrically), O(E)
-// to fill the heap (make_heap), then O(d^2 + d log E) per collapse for valence d; no
-// allocation per collapse (amortized); garbage collection once per iteration.
+// Mesh decimation by edge collapse (section 1.4 of the reference report): the cheapest
+// collapse first (an exact priority queue; meshes above 50,000 vertices are first reduced in
+// batches), until a target vertex count.
+//  - Costs: Quadric (Garland, Heckbert, "Surface simplification using quadric error metrics",
+//    SIGGRAPH 1997; boundaries keep their shape) or Roundness (1.4.2: the smallest normalized
+//    roundness sqrt(1/3)/R of the changed triangles, R = circumradius / shortest edge).
+//  - Binary constraints (1.4.3), each switchable: roundness threshold, normal flipping, an
+//    independent set per iteration, a maximum quadric error.
+// Guarantees: the link condition (HalfedgeMesh::is_collapse_ok) keeps every output a valid
+// manifold mesh with the input's boundary loops, components and genus; a boundary vertex only
+// moves along a boundary edge; texture seams ("h:texcoord") and coincident copies (seams
+// between patches, split non-manifold vertices) never tear open; uvs are interpolated, other
+// attributes ride along with the kept vertex. The input is never modified. Progressive mesh
+// (Hoppe, "Progressive meshes", SIGGRAPH 1996): every collapse is recorded with the vertex
+// split that undoes it. Throws InvalidArgument naming a bad option; Cancelled from the
+// progress; a run that cannot go on stops and says why (DecimationReport::stop).
+// Complexity: O(E) per batch pass, then O(d² + d log E) per collapse for valence d, no
+// allocation per collapse. Method, placement and the seam rules in detail: decimation.cpp.
 #include <array>
 #include <cstdint>
 #include <string>

@@ -1,3 +1,65 @@
+// Fairing (core/algorithms/fairing.h): the methods, what `step` means, the health checks.
+//
+// Fairing (smoothing) by diffusion, dX/dt = L(X) (section 1.2.3 of the reference report), with
+// the operators of core/algorithms/laplacian.h:
+//  - explicit Euler (1.4/1.6): X <- X + step·L·X;
+//  - implicit Euler (1.13-1.14, Desbrun-Meyer-Schröder-Barr 1999): (I - step·L)·X' = X,
+//    solved in the symmetric form (S + step·K)·X' = S·X - step·K_fb·X_b (fixed vertices on
+//    the right) with Eigen::SimplicialLDLT (reused across iterations when the weights do not
+//    depend on the geometry) or Jacobi-preconditioned conjugate gradients warm-started from
+//    the current positions, chosen by the system's condition bound and size;
+//  - Taubin λ|μ (Taubin 1995): explicit umbrella steps X <- X + λ·L·X then X <- X + μ·L·X
+//    per iteration (0 < λ <= 1, -1 <= μ < -λ, pass band k_PB = 1/λ + 1/μ below 1), or μ
+//    from k_PB. Taubin uses λ and μ, never `step`;
+//  - volume preservation (1.15): after every step the mesh is scaled about the centroid of
+//    its vertices by (V0/Vn)^(1/3). Closed meshes only.
+//
+// What `step` means (every operator is scale-free, so it means the same on any mesh size):
+//  - Umbrella, CurvatureFlow: the fraction of the way to the neighbours' (weighted) average
+//    each vertex moves; every explicit step <= 1 is stable, the limit is about 1.3 (umbrella)
+//    and 1.0-1.3 (curvature flow) on typical meshes.
+//  - ImprovedUmbrella: twice that on a mesh of equal edges (lengths in units of the mean edge
+//    length); the explicit limit is about 0.4-0.5, and it falls during a run when short edges
+//    shorten further (the reference's "numerical instability"): prefer implicit.
+//  - SecondOrder: step 1 is the relaxation (1.12), damped per vertex (about 2/3) so that the
+//    simultaneous update is stable; every explicit step <= 1 is stable (the limit is about
+//    1.2-1.3).
+//  - implicit: any step > 0 is stable; step t smooths about like t explicit steps of 1.
+// max_stable_explicit_step() estimates the limit for the actual mesh (explicit Euler is stable
+// while step < 2/ρ(S⁻¹K)).
+//
+// Health checks (never a silent failure): an implicit solve whose relative residual is above
+// max_relative_residual (1e-8) is retried with the sparse Cholesky factorization; if that
+// fails too the run stops. An explicit iteration stops the run when a coordinate is not
+// finite, the bounding box grows by more than 10 % in one iteration, the fairing energy xᵀKx
+// of the step's own operator grows (explicit Euler below the stable limit never lets it grow;
+// Taubin: more than its pass-band gain allows), the surface area falls below 10 % of the
+// previous iteration's, or the volume of a closed mesh changes sign (implicit runs check the
+// residual, finiteness and the volume's sign). The energy check runs where the step is not
+// provably stable (step·G > 2, G Gershgorin's bound on S⁻¹K: 2 for umbrella, curvature flow
+// and second order, about 4 for the improved umbrella); the area check with it and for the
+// geometry-dependent operators; the volume's sign on every iteration of a closed mesh (even a
+// stable step turns a tetrahedron inside out). So a provably stable umbrella or Taubin iteration
+// costs one pass over the edges and one over the vertices (and one over the faces on a closed
+// mesh). A stopped run keeps the iterations before the failing one: result.mesh is the last good
+// state, stopped_early is set and stop_reason names the iteration and the reason (for an explicit
+// instability with the stable limit at the last good state).
+//
+// Boundary vertices stay fixed (or slide along the boundary curve); isolated vertices never
+// move. Connectivity and attributes other than positions are copied unchanged.
+// Coincident vertices (core/algorithms/coincident.h: a seam between patches, the copies
+// build_mesh() makes of a non-manifold vertex) move as one: the run is on the mesh welded where
+// that keeps it manifold (core/algorithms/weld.h), so a seam is smoothed as interior surface (its
+// curve is a boundary only where no partner lies on it) and a mesh closed up to its seams counts as
+// closed (volume preservation applies); copies that cannot be joined (surfaces touching at a
+// point) stay where they are. Every copy gets its joined vertex's positions, bit for bit.
+// Throws InvalidArgument naming the option (`step`, `iterations`, `taubin_lambda`,
+// `taubin_mu`, `taubin_pass_band`, `integration`, `preserve_volume`, `cg_tolerance`,
+// `max_relative_residual`, `cg_max_iterations`) before doing anything; Cancelled from the
+// progress. The input mesh is never modified.
+// Complexity: explicit O(iterations · (V + F)) with one position-sized buffer beyond the
+// result (two for Taubin; umbrella and Taubin build no matrix); implicit one factorization per
+// iteration (one in all for umbrella) plus a solve per iteration.
 #include "core/algorithms/fairing.h"
 
 #include <algorithm>
@@ -570,361 +632,473 @@ TaubinGain taubin_gain(double lambda, double mu) {
     return g;
 }
 
-/// One smooth() run on res.mesh (the caller's copy or moved-in mesh).
-void run_fairing(const FairingOptions& o, Progress& progress, FairingResult& res,
-                 const Pinned& pinned) {
-    HalfedgeMesh& mesh = res.mesh;
-    res.solver = "none";
-    const bool taubin = o.op == FairingOperator::Taubin;
-    const double mu = taubin_mu(o);
-    const LaplacianOperator lop = taubin ? LaplacianOperator::Umbrella
-                                         : static_cast<LaplacianOperator>(static_cast<int>(o.op));
-    const bool weights_fixed = lop == LaplacianOperator::Umbrella;
-    const bool implicit = o.integration == Integration::Implicit && !taubin;
-    const bool fast = weights_fixed && !implicit;  // vertex-space umbrella, no matrix
-    {
-        std::ostringstream s;
-        s << "operator " << fairing_operator_name(o.op) << ", " << integration_name(o.integration);
-        if (taubin)
-            s << ", lambda " << o.taubin_lambda << ", mu " << mu
-              << (o.taubin_pass_band > 0 ? " (from the pass band k_PB " : "")
-              << (o.taubin_pass_band > 0 ? format_number(o.taubin_pass_band) + ")" : "");
-        else
-            s << ", step " << o.step;
-        s << ", " << o.iterations << " iteration(s)";
-        if (o.preserve_volume) s << ", volume preserved";
-        res.report.push_back(s.str());
+/// The health figures of one iteration's candidate positions, checked by check_step().
+struct StepFigures {
+    Box box_before, box_after;
+    bool finite = true;
+    bool check_energy = false;  ///< the step is not provably stable
+    double energy_gain = 1;     ///< the largest energy factor a stable step allows
+};
+
+/// One smooth() run on res.mesh (the caller's copy or moved-in mesh): the settings derived
+/// from the options, and the state one iteration hands to the next.
+class FairingRun {
+public:
+    FairingRun(const FairingOptions& o, Progress& progress, FairingResult& res,
+               const Pinned& pinned);
+    /// The iterations (until one stops the run), then the summary lines of the report.
+    void run();
+
+private:
+    void report_settings();
+    void set_up(const Pinned& pinned);
+    void update_laplacian(int it);
+    StepFigures candidate_step(const Positions& P);
+    bool implicit_step(int iteration, const Positions& P, StepFigures& s);
+    bool solve(int iteration, const Eigen::MatrixXd& rhs, const Eigen::MatrixXd& xf,
+               Eigen::MatrixXd& y);
+    double solve_once(double rn, bool direct, const Eigen::MatrixXd& rhs, const Eigen::MatrixXd& xf,
+                      Eigen::MatrixXd& y, std::ostringstream& line);
+    bool check_step(int iteration, const Positions& P, const StepFigures& s);
+    void slide_boundary();
+    bool check_area_and_volume(int iteration, const Positions& P, bool check_energy);
+    bool restore_volume(int iteration);
+    void report_summary();
+    std::string instability_hint();
+    void stop(int iteration, const std::string& why);
+
+    const FairingOptions& o_;
+    Progress& progress_;
+    FairingResult& res_;
+    HalfedgeMesh& mesh_;
+    const bool taubin_;
+    const double mu_;
+    const LaplacianOperator lop_;
+    const bool weights_fixed_;
+    const bool implicit_;
+    const bool fast_;  ///< vertex-space umbrella, no matrix
+    bool closed_ = false;
+    AreaVolume last_;  ///< of the last good positions, where known (area: NaN when not)
+    bool last_known_ = false;
+    double v0_ = 0;
+    bool check_volume_sign_ = false;
+    LaplacianOptions lap_options_;
+    std::optional<UmbrellaOperator> umbrella_;
+    Laplacian lap_;
+    bool have_lap_ = false;
+    ImplicitSystem sys_;
+    std::optional<BoundarySlider> slider_;
+    bool slide_explicit_fallback_ = false;
+    bool use_direct_;
+    bool used_ldlt_ = false, used_cg_ = false;
+    TaubinGain gain_;
+    Positions cand_, tmp_;
+    /// The energy of the current positions under a fixed operator (reused by the next check).
+    std::pair<double, double> energy_now_{0, 0};
+    bool energy_known_ = false;
+};
+
+FairingRun::FairingRun(const FairingOptions& o, Progress& progress, FairingResult& res,
+                       const Pinned& pinned)
+    : o_(o),
+      progress_(progress),
+      res_(res),
+      mesh_(res.mesh),
+      taubin_(o.op == FairingOperator::Taubin),
+      mu_(taubin_mu(o)),
+      lop_(taubin_ ? LaplacianOperator::Umbrella
+                   : static_cast<LaplacianOperator>(static_cast<int>(o.op))),
+      weights_fixed_(lop_ == LaplacianOperator::Umbrella),
+      implicit_(o.integration == Integration::Implicit && !taubin_),
+      fast_(weights_fixed_ && !implicit_),
+      use_direct_(o.solver == ImplicitSolver::Direct),
+      gain_(taubin_ ? taubin_gain(o.taubin_lambda, mu_) : TaubinGain{}) {
+    res_.solver = "none";
+    report_settings();
+    set_up(pinned);
+}
+
+/// The report's first line: the operator, integration, step and iterations.
+void FairingRun::report_settings() {
+    std::ostringstream s;
+    s << "operator " << fairing_operator_name(o_.op) << ", " << integration_name(o_.integration);
+    if (taubin_)
+        s << ", lambda " << o_.taubin_lambda << ", mu " << mu_
+          << (o_.taubin_pass_band > 0 ? " (from the pass band k_PB " : "")
+          << (o_.taubin_pass_band > 0 ? format_number(o_.taubin_pass_band) + ")" : "");
+    else
+        s << ", step " << o_.step;
+    s << ", " << o_.iterations << " iteration(s)";
+    if (o_.preserve_volume) s << ", volume preserved";
+    res_.report.push_back(s.str());
+}
+
+/// The input's volume (closed meshes), the umbrella operator or boundary slider where used,
+/// and the stable step estimate of the fast path.
+void FairingRun::set_up(const Pinned& pinned) {
+    closed_ = is_closed(mesh_);
+    if (closed_) {
+        last_ = area_volume(mesh_, mesh_.positions(), true);
+        last_known_ = true;
+        res_.initial_volume = last_.volume;
     }
-    const bool closed = is_closed(mesh);
-    AreaVolume last;  // of the last good positions, where known (area: NaN when not)
-    bool last_known = false;
-    if (closed) {
-        last = area_volume(mesh, mesh.positions(), true);
-        last_known = true;
-        res.initial_volume = last.volume;
-    }
-    const double v0 = res.initial_volume;
+    v0_ = res_.initial_volume;
     // The volume's sign is checked where it is well defined: a closed mesh whose volume is
     // not negligible against its bounding box.
-    const double diag0 = closed ? bounding_box(mesh).diagonal() : 0.0;
-    const bool check_volume_sign = closed && std::abs(v0) > 1e-9 * diag0 * diag0 * diag0;
-
-    LaplacianOptions lap_options;
-    lap_options.fixed_vertices = pinned;
-    std::optional<UmbrellaOperator> umbrella;
-    if (fast) umbrella.emplace(mesh, pinned.empty() ? nullptr : &pinned);
-    Laplacian lap;
-    bool have_lap = false;
-    ImplicitSystem sys;
-    const bool slide = o.boundary == BoundaryMode::Slide && !closed;
-    std::optional<BoundarySlider> slider;
-    if (slide) {
-        slider.emplace(mesh, pinned);
-        res.report.push_back("boundary: " + std::to_string(slider->loops()) +
-                             " loop(s) sliding along the input's boundary curves");
+    const double diag0 = closed_ ? bounding_box(mesh_).diagonal() : 0.0;
+    check_volume_sign_ = closed_ && std::abs(v0_) > 1e-9 * diag0 * diag0 * diag0;
+    lap_options_.fixed_vertices = pinned;
+    if (fast_) umbrella_.emplace(mesh_, pinned.empty() ? nullptr : &pinned);
+    if (o_.boundary == BoundaryMode::Slide && !closed_) {
+        slider_.emplace(mesh_, pinned);
+        res_.report.push_back("boundary: " + std::to_string(slider_->loops()) +
+                              " loop(s) sliding along the input's boundary curves");
     }
-    bool slide_explicit_fallback = false;
-    bool use_direct = o.solver == ImplicitSolver::Direct;
-    bool used_ldlt = false, used_cg = false;
-    const TaubinGain gain = taubin ? taubin_gain(o.taubin_lambda, mu) : TaubinGain{};
-    if (fast && o.estimate_max_stable_step)
-        res.max_stable_step = umbrella->max_stable_step(kLanczosSteps);
-    if (o.keep_steps) res.step_positions.reserve(std::size_t(o.iterations));
+    if (fast_ && o_.estimate_max_stable_step)
+        res_.max_stable_step = umbrella_->max_stable_step(kLanczosSteps);
+    if (o_.keep_steps) res_.step_positions.reserve(std::size_t(o_.iterations));
+}
 
-    Positions cand, tmp;
-    // The energy of the current positions under a fixed operator (reused by the next check).
-    std::pair<double, double> energy_now{0, 0};
-    bool energy_known = false;
+void FairingRun::stop(int iteration, const std::string& why) {
+    res_.stopped_early = true;
+    res_.stopped_at_iteration = iteration;
+    res_.stop_reason = "iteration " + std::to_string(iteration) + ": " + why;
+    res_.report.push_back("stopped: " + res_.stop_reason);
+}
 
-    auto stop = [&](int iteration, const std::string& why) {
-        res.stopped_early = true;
-        res.stopped_at_iteration = iteration;
-        res.stop_reason = "iteration " + std::to_string(iteration) + ": " + why;
-        res.report.push_back("stopped: " + res.stop_reason);
-    };
-    // The hint for an explicit instability, with the stable limit at the last good state.
-    auto instability_hint = [&]() {
-        const double limit = fast ? umbrella->max_stable_step(kLanczosSteps)
-                                  : max_stable_step_laplacian(lap, kLanczosSteps);
-        if (taubin)
-            return " (lambda " + format_number(o.taubin_lambda) + " and mu " + format_number(mu) +
-                   " are unstable on this mesh: the umbrella's stable step here is about " +
-                   format_number(limit) + "; keep lambda and |mu| below it)";
-        if (o.step > limit)
-            return " (step " + format_number(o.step) + " is above the stable limit " +
-                   format_number(limit) +
-                   " of this mesh; use a smaller step or implicit integration)";
-        return " (step " + format_number(o.step) + ", stable limit about " + format_number(limit) +
-               " on this mesh; use a smaller step or implicit integration)";
-    };
+/// The hint for an explicit instability, with the stable limit at the last good state.
+std::string FairingRun::instability_hint() {
+    const double limit = fast_ ? umbrella_->max_stable_step(kLanczosSteps)
+                               : max_stable_step_laplacian(lap_, kLanczosSteps);
+    if (taubin_)
+        return " (lambda " + format_number(o_.taubin_lambda) + " and mu " + format_number(mu_) +
+               " are unstable on this mesh: the umbrella's stable step here is about " +
+               format_number(limit) + "; keep lambda and |mu| below it)";
+    if (o_.step > limit)
+        return " (step " + format_number(o_.step) + " is above the stable limit " +
+               format_number(limit) + " of this mesh; use a smaller step or implicit integration)";
+    return " (step " + format_number(o_.step) + ", stable limit about " + format_number(limit) +
+           " on this mesh; use a smaller step or implicit integration)";
+}
 
-    for (int it = 0; it < o.iterations; ++it) {
+void FairingRun::run() {
+    for (int it = 0; it < o_.iterations; ++it) {
         const int iteration = it + 1;
-        progress.check_cancelled();
-        progress.report(double(it) / o.iterations, "smoothing");
-        const Positions& P = mesh.positions();
-        if (!fast && (!have_lap || !weights_fixed)) {
-            if (have_lap)
-                refresh_laplacian(mesh, lap);
-            else
-                lap = build_laplacian(mesh, lop, lap_options);
-            auto& d = res.diagnostics;
-            const auto& n = lap.diagnostics;
-            d.negative_weights_clamped += n.negative_weights_clamped;
-            d.degenerate_corners += n.degenerate_corners;
-            d.cotangents_clamped += n.cotangents_clamped;
-            d.short_edges += n.short_edges;
-            d.stalled_vertices = std::max(d.stalled_vertices, n.stalled_vertices);
-            if (!have_lap && o.estimate_max_stable_step)
-                res.max_stable_step = max_stable_step_laplacian(lap, kLanczosSteps);
-            have_lap = true;
-            energy_known = false;
-            if (implicit) {
-                sys.build(lap, o.step);
-                if (it == 0 && o.solver == ImplicitSolver::Auto) {
-                    const double cond = 1.0 + o.step * gershgorin_bound(lap);
-                    use_direct = cond > kCgConditionLimit ||
-                                 (weights_fixed && o.iterations >= kDirectReuseIterations &&
-                                  lap.map.rows() <= kDirectRowsLimit);
-                    std::ostringstream s;
-                    s << "solver choice: condition bound " << cond << ", " << lap.map.rows()
-                      << " rows -> " << (use_direct ? kLdlt : kCg);
-                    res.report.push_back(s.str());
-                }
-            }
-        }
-
-        // The candidate positions of this iteration.
-        Box box_before, box_after;
-        bool finite = true;
-        bool check_energy = false;  // the step is not provably stable
-        double energy_gain = 1;     // the largest energy factor a stable step allows
-        if (fast && taubin) {
-            Box unused;
-            finite = umbrella->step(P, o.taubin_lambda, tmp, box_before, unused);
-            finite = umbrella->step(tmp, mu, cand, unused, box_after) && finite;
-            energy_gain = gain.gain * gain.gain;
-            check_energy = gain.at_two < -gain.gain;
-        } else if (fast) {
-            finite = umbrella->step(P, o.step, cand, box_before, box_after);
-            check_energy = o.step > 1.0;  // Gershgorin: the umbrella's spectrum is in [0, 2]
-        } else if (!implicit) {
-            double g = 0;
-            finite = laplacian_step(lap, P, o.step, cand, tmp, box_before, box_after, g);
-            check_energy = o.step * g > 2.0;
-        } else {
-            cand = P;
-            const auto nf = Eigen::Index(sys.free_rows.size());
-            if (nf > 0) {
-                const auto n = Eigen::Index(lap.map.rows());
-                Eigen::MatrixXd x(n, 3), xf(nf, 3);
-                for (Eigen::Index r = 0; r < n; ++r)
-                    x.row(r) = P[lap.map.vertex_of[std::size_t(r)].idx()].transpose();
-                for (Eigen::Index f = 0; f < nf; ++f)
-                    xf.row(f) = x.row(sys.free_rows[std::size_t(f)]);
-                Eigen::MatrixXd rhs = sys.S.asDiagonal() * xf;
-                if (sys.Kfb.nonZeros() > 0) rhs -= o.step * (sys.Kfb * x);
-                const double rn = rhs.norm();
-                const bool direct_first = use_direct;
-                Eigen::MatrixXd y;
-                bool accepted = false;
-                std::string failures;
-                for (int attempt = 0; attempt < 2 && !accepted; ++attempt) {
-                    const bool direct = (attempt == 0) == direct_first;
-                    double residual = std::numeric_limits<double>::infinity();
-                    std::ostringstream line;
-                    line << "iteration " << iteration << ": " << (direct ? kLdlt : kCg);
-                    if (direct) {
-                        if (!sys.factored) {
-                            const auto t0 = std::chrono::steady_clock::now();
-                            sys.ldlt.compute(sys.A);
-                            res.factorization_ms +=
-                                ms_between(t0, std::chrono::steady_clock::now());
-                            sys.factored = true;
-                            sys.factor_ok = sys.ldlt.info() == Eigen::Success;
-                            ++res.factorizations;
-                        }
-                        if (sys.factor_ok) {
-                            const auto t0 = std::chrono::steady_clock::now();
-                            y = sys.ldlt.solve(rhs);
-                            res.solve_ms += ms_between(t0, std::chrono::steady_clock::now());
-                            if (sys.ldlt.info() != Eigen::Success) y.resize(0, 0);
-                        } else {
-                            y.resize(0, 0);
-                            line << " (the factorization failed)";
-                        }
-                    } else {
-                        const auto t0 = std::chrono::steady_clock::now();
-                        Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper,
-                                                 Eigen::DiagonalPreconditioner<double>>
-                            cg;
-                        cg.setTolerance(o.cg_tolerance);
-                        cg.setMaxIterations(o.cg_max_iterations > 0
-                                                ? Eigen::Index(o.cg_max_iterations)
-                                                : std::max<Eigen::Index>(1000, 4 * nf));
-                        cg.compute(sys.A);
-                        y = cg.solveWithGuess(rhs, xf);
-                        res.cg_iterations += std::size_t(cg.iterations());
-                        res.solve_ms += ms_between(t0, std::chrono::steady_clock::now());
-                        line << " (" << cg.iterations() << " iteration(s))";
-                    }
-                    if (y.rows() == nf && y.allFinite())
-                        residual = rn > 0 ? (sys.A * y - rhs).norm() / rn : (sys.A * y).norm();
-                    if (!std::isfinite(residual))
-                        residual = std::numeric_limits<double>::infinity();
-                    line << ", relative residual " << residual;
-                    accepted = residual <= o.max_relative_residual;
-                    if (!accepted) {
-                        line << " above " << o.max_relative_residual;
-                        if (attempt == 0) line << "; retrying with " << (direct ? kCg : kLdlt);
-                        failures += std::string(failures.empty() ? "" : ", ") +
-                                    (direct ? kLdlt : kCg) + " relative residual " +
-                                    format_number(residual);
-                    } else {
-                        (direct ? used_ldlt : used_cg) = true;
-                        res.max_residual = std::max(res.max_residual, residual);
-                    }
-                    res.report.push_back(line.str());
-                }
-                if (!accepted) {
-                    stop(iteration, "the implicit solve failed (" + failures + "; required " +
-                                        format_number(o.max_relative_residual) + ")");
-                    break;
-                }
-                for (Eigen::Index f = 0; f < nf; ++f) {
-                    const Index v =
-                        lap.map.vertex_of[std::size_t(sys.free_rows[std::size_t(f)])].idx();
-                    cand[v] = y.row(f).transpose();
-                    finite = finite && finite_and_bounded(cand[v]);
-                }
-            }
-        }
-
-        // Health checks of the step itself (before the boundary slides and the volume is
-        // restored, which are not part of the operator).
-        if (!finite) {
-            stop(iteration, std::string("a coordinate is not finite or above 1e100") +
-                                (implicit ? "" : instability_hint()));
+        progress_.check_cancelled();
+        progress_.report(double(it) / o_.iterations, "smoothing");
+        const Positions& P = mesh_.positions();
+        if (!fast_ && (!have_lap_ || !weights_fixed_)) update_laplacian(it);
+        StepFigures s;
+        if (!implicit_)
+            s = candidate_step(P);
+        else if (!implicit_step(iteration, P, s))
             break;
-        }
-        if (!implicit) {
-            const double d0 = box_before.diagonal(), d1 = box_after.diagonal();
-            if (d0 > 0 && d1 > (1 + kBoxGrowth) * d0) {
-                stop(iteration, "the bounding box grew by " + format_percent(d1 / d0 - 1) +
-                                    " in one iteration" + instability_hint());
-                break;
-            }
-            if (check_energy) {
-                if (!energy_known)
-                    energy_now = fast ? umbrella->energy(P) : laplacian_energy(lap, P);
-                const auto next = fast ? umbrella->energy(cand) : laplacian_energy(lap, cand);
-                const double e0 = energy_now.first, limit = energy_gain * e0;
-                if (!(next.first <= limit + kEnergyRelativeSlack * limit +
-                                        kEnergyRoundingSlack * energy_now.second)) {
-                    stop(iteration,
-                         "the fairing energy grew by " +
-                             (e0 > 0 ? format_percent(next.first / e0 - 1) : std::string("?")) +
-                             instability_hint());
-                    break;
-                }
-                energy_now = next;  // valid for the next iteration only with fixed weights
-                energy_known = weights_fixed;
-            }
-        }
-        if (slider) {
-            const double t = taubin ? o.taubin_lambda : o.step;
-            const bool implicit_curve = implicit || t > 1.0;
-            slide_explicit_fallback = slide_explicit_fallback || (!implicit && t > 1.0);
-            slider->step(t, implicit_curve, cand);
-            energy_known = false;
-        }
-        // The area collapse check runs with the energy check and for the geometry-dependent
-        // operators; the volume's sign is checked on every iteration of a closed mesh (a
-        // provably stable step can still turn a very coarse mesh inside out: umbrella step 1
-        // maps a tetrahedron to its reflection scaled by 1/3).
-        const bool area_check = !implicit && (!weights_fixed || check_energy);
-        if (area_check || check_volume_sign || o.preserve_volume) {
-            if (area_check && !(last_known && last.area >= 0))
-                last = area_volume(mesh, P, true);  // the last good state's area, once
-            const AreaVolume g = area_volume(mesh, cand, area_check);
-            if (area_check && last.area > 0 && g.area < kAreaCollapse * last.area) {
-                stop(iteration, "the surface area fell to " + format_percent(g.area / last.area) +
-                                    " of the previous iteration's" + instability_hint());
-                break;
-            }
-            if (check_volume_sign && !(g.volume * v0 > 0)) {
-                stop(iteration, "the volume changed sign (from " + format_number(v0) + " to " +
-                                    format_number(g.volume) + ")" +
-                                    (implicit ? "" : instability_hint()));
-                break;
-            }
-            last = g;
-            last_known = true;
-        } else {
-            last_known = false;
-        }
-        if (o.preserve_volume) {
-            // Scale about the centroid of the vertices with edges by (V0/Vn)^(1/3).
-            const double beta = std::cbrt(v0 / last.volume);
-            Point c = Point::Zero();
-            std::size_t count = 0;
-            for (Vertex v : mesh.vertices())
-                if (!mesh.is_isolated(v)) {
-                    c += cand[v.idx()];
-                    ++count;
-                }
-            if (count > 0) c /= double(count);
-            bool ok = std::isfinite(beta) && beta > 0;
-            for (Vertex v : mesh.vertices()) {
-                if (!ok || mesh.is_isolated(v)) continue;
-                Point& p = cand[v.idx()];
-                p = c + beta * (p - c);
-                ok = finite_and_bounded(p);
-            }
-            if (!ok) {
-                stop(iteration, "the volume could not be restored (volume " +
-                                    format_number(last.volume) + ")");
-                break;
-            }
-            last.area *= beta * beta;
-            last.volume = v0;
-            energy_known = false;
-        }
+        if (!check_step(iteration, P, s)) break;
+        if (slider_) slide_boundary();
+        if (!check_area_and_volume(iteration, P, s.check_energy)) break;
+        if (o_.preserve_volume && !restore_volume(iteration)) break;
         // Commit: the candidate becomes the mesh's positions (a swap, no copy).
-        std::swap(mesh.positions(), cand);
-        ++res.iterations_done;
-        if (o.keep_steps) res.step_positions.push_back(mesh.positions());
+        std::swap(mesh_.positions(), cand_);
+        ++res_.iterations_done;
+        if (o_.keep_steps) res_.step_positions.push_back(mesh_.positions());
     }
-    if (slide_explicit_fallback)
-        res.report.push_back(
+    report_summary();
+}
+
+/// Builds the Laplacian (first iteration) or refreshes its weights (geometry-dependent
+/// operators), accumulates its diagnostics, and (implicit) rebuilds the system and, on the
+/// first iteration, makes the automatic solver choice.
+void FairingRun::update_laplacian(int it) {
+    if (have_lap_)
+        refresh_laplacian(mesh_, lap_);
+    else
+        lap_ = build_laplacian(mesh_, lop_, lap_options_);
+    auto& d = res_.diagnostics;
+    const auto& n = lap_.diagnostics;
+    d.negative_weights_clamped += n.negative_weights_clamped;
+    d.degenerate_corners += n.degenerate_corners;
+    d.cotangents_clamped += n.cotangents_clamped;
+    d.short_edges += n.short_edges;
+    d.stalled_vertices = std::max(d.stalled_vertices, n.stalled_vertices);
+    if (!have_lap_ && o_.estimate_max_stable_step)
+        res_.max_stable_step = max_stable_step_laplacian(lap_, kLanczosSteps);
+    have_lap_ = true;
+    energy_known_ = false;
+    if (!implicit_) return;
+    sys_.build(lap_, o_.step);
+    if (it == 0 && o_.solver == ImplicitSolver::Auto) {
+        const double cond = 1.0 + o_.step * gershgorin_bound(lap_);
+        use_direct_ = cond > kCgConditionLimit ||
+                      (weights_fixed_ && o_.iterations >= kDirectReuseIterations &&
+                       lap_.map.rows() <= kDirectRowsLimit);
+        std::ostringstream s;
+        s << "solver choice: condition bound " << cond << ", " << lap_.map.rows() << " rows -> "
+          << (use_direct_ ? kLdlt : kCg);
+        res_.report.push_back(s.str());
+    }
+}
+
+/// The explicit candidate positions of this iteration (Taubin's pair of umbrella steps, one
+/// umbrella step, or one step of the Laplacian) and their health figures.
+StepFigures FairingRun::candidate_step(const Positions& P) {
+    StepFigures s;
+    if (fast_ && taubin_) {
+        Box unused;
+        s.finite = umbrella_->step(P, o_.taubin_lambda, tmp_, s.box_before, unused);
+        s.finite = umbrella_->step(tmp_, mu_, cand_, unused, s.box_after) && s.finite;
+        s.energy_gain = gain_.gain * gain_.gain;
+        s.check_energy = gain_.at_two < -gain_.gain;
+    } else if (fast_) {
+        s.finite = umbrella_->step(P, o_.step, cand_, s.box_before, s.box_after);
+        s.check_energy = o_.step > 1.0;  // Gershgorin: the umbrella's spectrum is in [0, 2]
+    } else {
+        double g = 0;
+        s.finite = laplacian_step(lap_, P, o_.step, cand_, tmp_, s.box_before, s.box_after, g);
+        s.check_energy = o_.step * g > 2.0;
+    }
+    return s;
+}
+
+/// The implicit candidate positions: (S_ff + step K_ff) x_f = S_ff x_f - step K_fb x_b over
+/// the free rows. False when the solve failed (the run is stopped).
+bool FairingRun::implicit_step(int iteration, const Positions& P, StepFigures& s) {
+    cand_ = P;
+    const auto nf = Eigen::Index(sys_.free_rows.size());
+    if (nf == 0) return true;
+    const auto n = Eigen::Index(lap_.map.rows());
+    Eigen::MatrixXd x(n, 3), xf(nf, 3);
+    for (Eigen::Index r = 0; r < n; ++r)
+        x.row(r) = P[lap_.map.vertex_of[std::size_t(r)].idx()].transpose();
+    for (Eigen::Index f = 0; f < nf; ++f) xf.row(f) = x.row(sys_.free_rows[std::size_t(f)]);
+    Eigen::MatrixXd rhs = sys_.S.asDiagonal() * xf;
+    if (sys_.Kfb.nonZeros() > 0) rhs -= o_.step * (sys_.Kfb * x);
+    Eigen::MatrixXd y;
+    if (!solve(iteration, rhs, xf, y)) return false;
+    for (Eigen::Index f = 0; f < nf; ++f) {
+        const Index v = lap_.map.vertex_of[std::size_t(sys_.free_rows[std::size_t(f)])].idx();
+        cand_[v] = y.row(f).transpose();
+        s.finite = s.finite && finite_and_bounded(cand_[v]);
+    }
+    return true;
+}
+
+/// Solves the implicit system with the chosen solver, and with the other one when the first
+/// misses the residual bound; one report line per attempt. False (the run stopped) when
+/// neither meets it.
+bool FairingRun::solve(int iteration, const Eigen::MatrixXd& rhs, const Eigen::MatrixXd& xf,
+                       Eigen::MatrixXd& y) {
+    const double rn = rhs.norm();
+    const bool direct_first = use_direct_;
+    bool accepted = false;
+    std::string failures;
+    for (int attempt = 0; attempt < 2 && !accepted; ++attempt) {
+        const bool direct = (attempt == 0) == direct_first;
+        std::ostringstream line;
+        line << "iteration " << iteration << ": " << (direct ? kLdlt : kCg);
+        const double residual = solve_once(rn, direct, rhs, xf, y, line);
+        line << ", relative residual " << residual;
+        accepted = residual <= o_.max_relative_residual;
+        if (!accepted) {
+            line << " above " << o_.max_relative_residual;
+            if (attempt == 0) line << "; retrying with " << (direct ? kCg : kLdlt);
+            failures += std::string(failures.empty() ? "" : ", ") + (direct ? kLdlt : kCg) +
+                        " relative residual " + format_number(residual);
+        } else {
+            (direct ? used_ldlt_ : used_cg_) = true;
+            res_.max_residual = std::max(res_.max_residual, residual);
+        }
+        res_.report.push_back(line.str());
+    }
+    if (!accepted)
+        stop(iteration, "the implicit solve failed (" + failures + "; required " +
+                            format_number(o_.max_relative_residual) + ")");
+    return accepted;
+}
+
+/// One solve, direct (factoring once per system) or by Jacobi-preconditioned CG started at
+/// xf; returns the residual relative to rn = |rhs| (infinite when there is no finite solution).
+double FairingRun::solve_once(double rn, bool direct, const Eigen::MatrixXd& rhs,
+                              const Eigen::MatrixXd& xf, Eigen::MatrixXd& y,
+                              std::ostringstream& line) {
+    const auto nf = Eigen::Index(sys_.free_rows.size());
+    if (direct) {
+        if (!sys_.factored) {
+            const auto t0 = std::chrono::steady_clock::now();
+            sys_.ldlt.compute(sys_.A);
+            res_.factorization_ms += ms_between(t0, std::chrono::steady_clock::now());
+            sys_.factored = true;
+            sys_.factor_ok = sys_.ldlt.info() == Eigen::Success;
+            ++res_.factorizations;
+        }
+        if (sys_.factor_ok) {
+            const auto t0 = std::chrono::steady_clock::now();
+            y = sys_.ldlt.solve(rhs);
+            res_.solve_ms += ms_between(t0, std::chrono::steady_clock::now());
+            if (sys_.ldlt.info() != Eigen::Success) y.resize(0, 0);
+        } else {
+            y.resize(0, 0);
+            line << " (the factorization failed)";
+        }
+    } else {
+        const auto t0 = std::chrono::steady_clock::now();
+        Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper,
+                                 Eigen::DiagonalPreconditioner<double>>
+            cg;
+        cg.setTolerance(o_.cg_tolerance);
+        cg.setMaxIterations(o_.cg_max_iterations > 0 ? Eigen::Index(o_.cg_max_iterations)
+                                                     : std::max<Eigen::Index>(1000, 4 * nf));
+        cg.compute(sys_.A);
+        y = cg.solveWithGuess(rhs, xf);
+        res_.cg_iterations += std::size_t(cg.iterations());
+        res_.solve_ms += ms_between(t0, std::chrono::steady_clock::now());
+        line << " (" << cg.iterations() << " iteration(s))";
+    }
+    double residual = std::numeric_limits<double>::infinity();
+    if (y.rows() == nf && y.allFinite())
+        residual = rn > 0 ? (sys_.A * y - rhs).norm() / rn : (sys_.A * y).norm();
+    if (!std::isfinite(residual)) residual = std::numeric_limits<double>::infinity();
+    return residual;
+}
+
+/// Health checks of the step itself (before the boundary slides and the volume is restored,
+/// which are not part of the operator): finite coordinates, and for explicit steps the
+/// bounding box's growth and (where the step is not provably stable) the fairing energy.
+/// False when the run is stopped.
+bool FairingRun::check_step(int iteration, const Positions& P, const StepFigures& s) {
+    if (!s.finite) {
+        stop(iteration, std::string("a coordinate is not finite or above 1e100") +
+                            (implicit_ ? "" : instability_hint()));
+        return false;
+    }
+    if (implicit_) return true;
+    const double d0 = s.box_before.diagonal(), d1 = s.box_after.diagonal();
+    if (d0 > 0 && d1 > (1 + kBoxGrowth) * d0) {
+        stop(iteration, "the bounding box grew by " + format_percent(d1 / d0 - 1) +
+                            " in one iteration" + instability_hint());
+        return false;
+    }
+    if (!s.check_energy) return true;
+    if (!energy_known_) energy_now_ = fast_ ? umbrella_->energy(P) : laplacian_energy(lap_, P);
+    const auto next = fast_ ? umbrella_->energy(cand_) : laplacian_energy(lap_, cand_);
+    const double e0 = energy_now_.first, limit = s.energy_gain * e0;
+    if (!(next.first <=
+          limit + kEnergyRelativeSlack * limit + kEnergyRoundingSlack * energy_now_.second)) {
+        stop(iteration, "the fairing energy grew by " +
+                            (e0 > 0 ? format_percent(next.first / e0 - 1) : std::string("?")) +
+                            instability_hint());
+        return false;
+    }
+    energy_now_ = next;  // valid for the next iteration only with fixed weights
+    energy_known_ = weights_fixed_;
+    return true;
+}
+
+/// Moves the boundary vertices of the candidate along the input's boundary curves.
+void FairingRun::slide_boundary() {
+    const double t = taubin_ ? o_.taubin_lambda : o_.step;
+    const bool implicit_curve = implicit_ || t > 1.0;
+    slide_explicit_fallback_ = slide_explicit_fallback_ || (!implicit_ && t > 1.0);
+    slider_->step(t, implicit_curve, cand_);
+    energy_known_ = false;
+}
+
+/// The area collapse check runs with the energy check and for the geometry-dependent
+/// operators; the volume's sign is checked on every iteration of a closed mesh (a provably
+/// stable step can still turn a very coarse mesh inside out: umbrella step 1 maps a
+/// tetrahedron to its reflection scaled by 1/3). False when the run is stopped.
+bool FairingRun::check_area_and_volume(int iteration, const Positions& P, bool check_energy) {
+    const bool area_check = !implicit_ && (!weights_fixed_ || check_energy);
+    if (!(area_check || check_volume_sign_ || o_.preserve_volume)) {
+        last_known_ = false;
+        return true;
+    }
+    if (area_check && !(last_known_ && last_.area >= 0))
+        last_ = area_volume(mesh_, P, true);  // the last good state's area, once
+    const AreaVolume g = area_volume(mesh_, cand_, area_check);
+    if (area_check && last_.area > 0 && g.area < kAreaCollapse * last_.area) {
+        stop(iteration, "the surface area fell to " + format_percent(g.area / last_.area) +
+                            " of the previous iteration's" + instability_hint());
+        return false;
+    }
+    if (check_volume_sign_ && !(g.volume * v0_ > 0)) {
+        stop(iteration, "the volume changed sign (from " + format_number(v0_) + " to " +
+                            format_number(g.volume) + ")" + (implicit_ ? "" : instability_hint()));
+        return false;
+    }
+    last_ = g;
+    last_known_ = true;
+    return true;
+}
+
+/// Volume preservation: scales the candidate about the centroid of the vertices with edges
+/// by (V0/Vn)^(1/3). False when the run is stopped.
+bool FairingRun::restore_volume(int iteration) {
+    const double beta = std::cbrt(v0_ / last_.volume);
+    Point c = Point::Zero();
+    std::size_t count = 0;
+    for (Vertex v : mesh_.vertices())
+        if (!mesh_.is_isolated(v)) {
+            c += cand_[v.idx()];
+            ++count;
+        }
+    if (count > 0) c /= double(count);
+    bool ok = std::isfinite(beta) && beta > 0;
+    for (Vertex v : mesh_.vertices()) {
+        if (!ok || mesh_.is_isolated(v)) continue;
+        Point& p = cand_[v.idx()];
+        p = c + beta * (p - c);
+        ok = finite_and_bounded(p);
+    }
+    if (!ok) {
+        stop(iteration,
+             "the volume could not be restored (volume " + format_number(last_.volume) + ")");
+        return false;
+    }
+    last_.area *= beta * beta;
+    last_.volume = v0_;
+    energy_known_ = false;
+    return true;
+}
+
+/// The closing lines of the report: the boundary's implicit fallback, the final volume, the
+/// stable step estimate, the clamping diagnostics and the solvers used.
+void FairingRun::report_summary() {
+    if (slide_explicit_fallback_)
+        res_.report.push_back(
             "boundary: steps above 1 move along the curve implicitly (an "
             "explicit 1-D step above 1 is unstable)");
-    progress.report(1.0, "smoothing");
-    if (closed) res.final_volume = last_known ? last.volume : volume(mesh);
-    if (!std::isnan(res.max_stable_step))
-        res.report.push_back("largest stable explicit step at the input: about " +
-                             format_number(res.max_stable_step) +
-                             (taubin ? " (the umbrella's, which bounds lambda)" : ""));
-    const auto& d = res.diagnostics;
+    progress_.report(1.0, "smoothing");
+    if (closed_) res_.final_volume = last_known_ ? last_.volume : volume(mesh_);
+    if (!std::isnan(res_.max_stable_step))
+        res_.report.push_back("largest stable explicit step at the input: about " +
+                              format_number(res_.max_stable_step) +
+                              (taubin_ ? " (the umbrella's, which bounds lambda)" : ""));
+    const auto& d = res_.diagnostics;
     if (d.total() > 0) {
         std::ostringstream s;
         s << "clamped: " << d.negative_weights_clamped << " negative cotangent weight(s), "
           << d.degenerate_corners << " degenerate corner(s), " << d.cotangents_clamped
           << " large cotangent(s), " << d.short_edges << " short edge(s), " << d.stalled_vertices
           << " vertex(es) fixed for lack of weight";
-        res.report.push_back(s.str());
+        res_.report.push_back(s.str());
     }
-    if (implicit) {
-        res.solver = used_ldlt && used_cg ? std::string(kLdlt) + " + " + kCg
-                     : used_ldlt          ? kLdlt
-                     : used_cg            ? kCg
-                                          : "none";
+    if (implicit_) {
+        res_.solver = used_ldlt_ && used_cg_ ? std::string(kLdlt) + " + " + kCg
+                      : used_ldlt_           ? kLdlt
+                      : used_cg_             ? kCg
+                                             : "none";
         std::ostringstream s;
-        s << "solver " << res.solver << ", " << res.factorizations << " factorization(s), "
-          << res.cg_iterations << " CG iteration(s), max relative "
-          << "residual " << res.max_residual;
-        res.report.push_back(s.str());
+        s << "solver " << res_.solver << ", " << res_.factorizations << " factorization(s), "
+          << res_.cg_iterations << " CG iteration(s), max relative "
+          << "residual " << res_.max_residual;
+        res_.report.push_back(s.str());
     }
+}
+
+/// One smooth() run on res.mesh (the caller's copy or moved-in mesh).
+void run_fairing(const FairingOptions& o, Progress& progress, FairingResult& res,
+                 const Pinned& pinned) {
+    FairingRun(o, progress, res, pinned).run();
 }
 
 }  // namespace

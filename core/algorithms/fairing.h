@@ -1,64 +1,24 @@
 #pragma once
 // Fairing (smoothing) by diffusion, dX/dt = L(X) (section 1.2.3 of the reference report), with
-// the operators of core/algorithms/laplacian.h:
-//  - explicit Euler (1.4/1.6): X <- X + step·L·X;
-//  - implicit Euler (1.13-1.14, Desbrun-Meyer-Schröder-Barr 1999): (I - step·L)·X' = X,
-//    solved in the symmetric form (S + step·K)·X' = S·X - step·K_fb·X_b (fixed vertices on
-//    the right) with Eigen::SimplicialLDLT (reused across iterations when the weights do not
-//    depend on the geometry) or Jacobi-preconditioned conjugate gradients warm-started from
-//    the current positions, chosen by the system's condition bound and size;
-//  - Taubin λ|μ (Taubin 1995): explicit umbrella steps X <- X + λ·L·X then X <- X + μ·L·X
-//    per iteration (0 < λ <= 1, -1 <= μ < -λ, pass band k_PB = 1/λ + 1/μ below 1), or μ
-//    from k_PB. Taubin uses λ and μ, never `step`;
-//  - volume preservation (1.15): after every step the mesh is scaled about the centroid of
-//    its vertices by (V0/Vn)^(1/3). Closed meshes only.
-//
-// What `step` means (every operator is scale-free, so it means the same on any mesh size):
-//  - Umbrella, CurvatureFlow: the fraction of the way to the neighbours' (weighted) average
-//    each vertex moves; every explicit step <= 1 is stable, the limit is about 1.3 (umbrella)
-//    and 1.0-1.3 (curvature flow) on typical meshes.
-//  - ImprovedUmbrella: twice that on a mesh of equal edges (lengths in units of the mean edge
-//    length); the explicit limit is about 0.4-0.5, and it falls during a run when short edges
-//    shorten further (the reference's "numerical instability"): prefer implicit.
-//  - SecondOrder: step 1 is the relaxation (1.12), damped per vertex (about 2/3) so that the
-//    simultaneous update is stable; every explicit step <= 1 is stable (the limit is about
-//    1.2-1.3).
-//  - implicit: any step > 0 is stable; step t smooths about like t explicit steps of 1.
-// max_stable_explicit_step() estimates the limit for the actual mesh (explicit Euler is stable
-// while step < 2/ρ(S⁻¹K)).
-//
-// Health checks (never a silent failure): an implicit solve whose relative residual is above
-// max_relative_residual (1e-8) is retried with the sparse Cholesky factorization; if that
-// fails too the run stops. An explicit iteration stops the run when a coordinate is not
-// finite, the bounding box grows by more than 10 % in one iteration, the fairing energy xᵀKx
-// of the step's own operator grows (explicit Euler below the stable limit never lets it grow;
-// Taubin: more than its pass-band gain allows), the surface area falls below 10 % of the
-// previous iteration's, or the volume of a closed mesh changes sign (implicit runs check the
-// residual, finiteness and the volume's sign). The energy check runs where the step is not
-// provably stable (step·G > 2, G Gershgorin's bound on S⁻¹K: 2 for umbrella, curvature flow
-// and second order, about 4 for the improved umbrella); the area check with it and for the
-// geometry-dependent operators; the volume's sign on every iteration of a closed mesh (even a
-// stable step turns a tetrahedron inside out). So a provably stable umbrella or Taubin iteration
-// costs one pass over the edges and one over the vertices (and one over the faces on a closed
-// mesh). A stopped run keeps the iterations before the failing one: result.mesh is the last good
-// state, stopped_early is set and stop_reason names the iteration and the reason (for an explicit
-// instability with the stable limit at the last good state).
-//
-// Boundary vertices stay fixed (or slide along the boundary curve); isolated vertices never
-// move. Connectivity and attributes other than positions are copied unchanged.
-// Coincident vertices (core/algorithms/coincident.h: a seam between patches, the copies
-// build_mesh() makes of a non-manifold vertex) move as one: the run is on the mesh welded where
-// that keeps it manifold (core/algorithms/weld.h), so a seam is smoothed as interior surface (its
-// curve is a boundary only where no partner lies on it) and a mesh closed up to its seams counts as
-// closed (volume preservation applies); copies that cannot be joined (surfaces touching at a
-// point) stay where they are. Every copy gets its joined vertex's positions, bit for bit.
-// Throws InvalidArgument naming the option (`step`, `iterations`, `taubin_lambda`,
-// `taubin_mu`, `taubin_pass_band`, `integration`, `preserve_volume`, `cg_tolerance`,
-// `max_relative_residual`, `cg_max_iterations`) before doing anything; Cancelled from the
-// progress. The input mesh is never modified.
-// Complexity: explicit O(iterations · (V + F)) with one position-sized buffer beyond the
-// result (two for Taubin; umbrella and Taubin build no matrix); implicit one factorization per
-// iteration (one in all for umbrella) plus a solve per iteration.
+// the operators of core/algorithms/laplacian.h: explicit Euler (1.4/1.6), implicit Euler
+// (1.13-1.14, Desbrun, Meyer, Schröder, Barr 1999; sparse Cholesky or preconditioned CG,
+// chosen automatically), Taubin's λ|μ steps (Taubin 1995) and volume preservation (1.15, closed
+// meshes). `step` means the same on any mesh size (the operators are scale-free); every
+// explicit step <= 1 is stable except for the improved umbrella, any implicit step is stable;
+// max_stable_explicit_step() estimates the limit for the actual mesh.
+// Never a silent failure: a run stops at the first iteration whose result is not finite, whose
+// implicit solve misses max_relative_residual (after retrying with the other solver), or that
+// is unstable (bounding box, fairing energy, surface area, sign of a closed mesh's volume);
+// result.mesh is then the last good state, with stopped_early and a stop_reason naming the
+// iteration and the cause.
+// Boundary vertices stay fixed (or slide along their boundary curve); isolated vertices never
+// move; coincident vertices (seams, copies of split vertices) move as one (the run is on the
+// weld, core/algorithms/weld.h). Only positions change.
+// Throws InvalidArgument naming the option before doing anything; Cancelled from the progress.
+// The input mesh is never modified.
+// Complexity: explicit O(iterations · (V + F)); implicit one factorization per iteration (one
+// in all for umbrella) plus a solve per iteration. The details (what `step` means per
+// operator, the health checks and their thresholds, the solver choice): fairing.cpp.
 #include <cstddef>
 #include <limits>
 #include <string>

@@ -1,74 +1,23 @@
 #pragma once
 // Discrete Laplacians of a triangle mesh as Eigen sparse matrices (sections 1.2.4-1.2.7 of the
-// reference report), shared by explicit and implicit fairing.
-//
-// Sign convention (one for every operator): L·x approximates the Laplacian of x, so that
-// x + dt·L·x smooths (explicit Euler, 1.4/1.6) and L·(constant) = 0. Every operator is
-// written as L = -S⁻¹·K with
-//  - K symmetric positive semi-definite ("stiffness"), K·1 = 0;
-//  - S diagonal and positive on free rows (the row normalizer).
-// Implicit Euler (1.13-1.14), (I - dt·L)·X' = X, is solved in the symmetric form
-// (S + dt·K)·X' = S·X, which is SPD whenever K is PSD and S > 0.
-//
-// Operators (w_ij: symmetric edge weight; K = D - W with D_ii = sum_j w_ij). Every operator is
-// scale-free: L·x scales like x, so a mesh and the same mesh scaled by any factor smooth alike.
-//  - Umbrella (1.5): w_ij = 1, S_i = valence. L_i = 1/m sum (x_j - x_i).
-//  - ImprovedUmbrella (1.7) with every length measured in units of the mean edge length h
-//    (of the positions it is built on): w_ij = h/|e_ij|, S_i = E_i/(2h) with E_i = sum_j
-//    |e_ij|, so L_i = 2h²/E sum (x_j - x_i)/|e_ij|, i.e. h² x (1.7). On a mesh of equal edges
-//    it is twice the umbrella. Lengths are frozen for one build (one step).
-//  - CurvatureFlow (1.9, Desbrun-Meyer-Schröder-Barr 1999): w_ij = cot a_ij + cot b_ij,
-//    S_i = sum_j w_ij (normalized cotangent weights). Negative weights (obtuse pairs) are
-//    clamped to 0 by default and counted; then K stays PSD. Linear precision holds where
-//    nothing was clamped (e.g. a flat grid).
-//  - SecondOrder (1.10-1.12, Guskov-Sweldens-Schröder 1999): K = Cᵀ·C, where C has one row
-//    per interior edge e holding the hinge coefficients c_{e,·}. (K·x)_i / K_ii is the
-//    relaxation update (1.12): x_i <- -(sum_e c_{e,i} a_e) / sum_e c_{e,i}² with a_e =
-//    sum_{j != i} c_{e,j} x_j. Applied to every vertex at once (Jacobi) that update is not
-//    stable: K is a discrete bi-Laplacian, whose highest frequency has K's Rayleigh quotient
-//    above 2 K_ii (16/6 K_ii for the 1-D stencil 1 -4 6 -4 1; about 2.3 K_ii on a noisy
-//    sphere), so x <- x - D⁻¹K·x amplifies it (a regular pattern of spikes). So S_i = ½ sum_j
-//    |K_ij| (half K's absolute row sum): by Gershgorin every eigenvalue of S⁻¹K lies in
-//    [0, 2], as for the umbrella, every explicit step <= 1 is stable, and step 1 is the
-//    relaxation (1.12) damped per vertex by 2 K_ii / sum_j |K_ij| <= 1 (about 2/3; exactly
-//    1 where the row's off-diagonal entries are all <= 0).
-// Fixed-weight operators (Umbrella) do not depend on the positions; the others are rebuilt
-// from the current positions for every step.
-//
-// Derivation of the hinge coefficients. Edge e = (v1, v2), length l, unit direction t,
-// triangles T1 = (v1, v2, v3) and T2 = (v2, v1, v4) unfolded into the plane, n the in-plane
-// unit normal of e pointing into T1. D(e) is the jump, across e, of the derivative along n
-// of the piecewise-linear function f with values f_i at the corners (the tangential
-// derivative is continuous). Place v1 at (0,0), v2 at (l,0), v3 at (a,h3), v4 at (b,-h4).
-// The hat functions' y-derivatives are, in T1: φ3: 1/h3, φ1: -(l-a)/(l·h3), φ2: -a/(l·h3);
-// in T2: φ4: -1/h4, φ1: (l-b)/(l·h4), φ2: b/(l·h4). Hence D = sum c_i f_i with
-//   c3 = 1/h3, c4 = 1/h4, c1 = -(l-a)/(l·h3) - (l-b)/(l·h4), c2 = -a/(l·h3) - b/(l·h4).
-// With h3 = 2·A1/l, l - a = (v2 - v3)·t, a = (v3 - v1)·t (signed areas and the edge length,
-// invariant under the unfolding) and cot θ = dot/|cross| at each corner, multiplying by l
-// (to make D dimensionless, like a dihedral angle) gives
-//   c3 = cot θ1(T1) + cot θ2(T1),  c4 = cot θ1(T2) + cot θ2(T2),
-//   c1 = -(cot θ2(T1) + cot θ2(T2)),  c2 = -(cot θ1(T1) + cot θ1(T2)),
-// θk(T) the angle of T at vk. They sum to 0 (constants) and annihilate f = x and f = y in the
-// unfolded plane (linear functions): c2·l + c3·a - c4·b = -a/h3 - b/h4 + a/h3 + b/h4 = 0 (times
-// l) and c3·h3 - c4·h4 = 0.
-//
-// Vertex index map: rows/columns are the live, non-isolated vertices in storage order.
-// Isolated and deleted vertices have no row and never move. Boundary vertices are fixed by
-// default (a fixed row of L is zero). A free vertex whose normalizer S_i vanishes (all its
-// weights clamped, degenerate fan) is fixed too and counted as stalled.
-//
-// Mass matrix option (used by the spectral decomposition, core/algorithms/spectral.h): by default S
-// is the row normalizer above. MassMatrix::Barycentric and MassMatrix::Voronoi replace it by a
-// lumped mass S_i = 2·A_i with A_i the barycentric (a third of the incident triangle areas)
-// or the mixed Voronoi area (Meyer, Desbrun, Schröder, Barr 2003: Voronoi region of non-obtuse
-// triangles, half / a quarter of an obtuse triangle's area). The factor 2 matches K's full
-// cotangent weights (cot a + cot b = 2 x the FEM stiffness), so for CurvatureFlow K·x = λ·S·x
-// approximates the Laplace-Beltrami eigenproblem (on a sphere of radius r: l(l+1)/r²).
-//
-// Degenerate geometry never produces NaN: corners of zero-area triangles get cotangent 0,
-// cotangents are clamped to ±kMaxCotangent, edge lengths below 1e-6 x the mean edge length are
-// raised to it; every such event is counted in LaplacianDiagnostics.
-// Complexity: O(vertices + faces) to build (the pattern once, then values in place).
+// reference report), shared by explicit and implicit fairing and the spectral decomposition.
+// Every operator is L = -S⁻¹·K with K symmetric positive semi-definite, K·1 = 0, and S
+// diagonal, positive on free rows; L·x approximates the Laplacian of x (x + dt·L·x smooths)
+// and scales like x. Implicit Euler is solved as (S + dt·K)·X' = S·X, which is SPD.
+//  - Umbrella (1.5): w_ij = 1, S_i = valence.
+//  - ImprovedUmbrella (1.7): w_ij = h/|e_ij|, S_i = E_i/(2h), h the mean edge length.
+//  - CurvatureFlow (1.9, Desbrun, Meyer, Schröder, Barr 1999): cotangent weights, negative
+//    ones clamped to 0 by default (K stays PSD).
+//  - SecondOrder (1.10-1.12, Guskov, Sweldens, Schröder 1999): K = Cᵀ·C over the interior
+//    edges' hinge coefficients, S_i = ½ Σ_j |K_ij|, so every explicit step <= 1 is stable.
+// Umbrella does not depend on the positions; the others are rebuilt for every step.
+// Rows are the live, non-isolated vertices in storage order. Fixed rows of L are zero:
+// boundary vertices by default, LaplacianOptions::fixed_vertices, and a free vertex whose S_i
+// vanishes (counted as stalled). MassMatrix Barycentric / Voronoi (Meyer et al.
+// 2003) replace S by a lumped area mass for the spectral decomposition.
+// Never NaN: degenerate geometry is clamped and counted in LaplacianDiagnostics.
+// Complexity: O(vertices + faces) to build. The weights' derivations (the hinge
+// coefficients, SecondOrder's normalizer) are in laplacian.cpp.
 #include <cstddef>
 #include <cstdint>
 #include <string>

@@ -1,74 +1,25 @@
 #pragma once
-// Frequency decomposition of a mesh's geometry (sections 1.2.2, 1.2.11 and 1.2.12 of the
-// reference report): eigenvectors of a fairing Laplacian ("manifold harmonics"), the
-// coefficients of the positions in that basis, and reconstruction from a band of frequencies.
-//
-// Method. Every operator of core/algorithms/laplacian.h is L = -S⁻¹K with K symmetric positive
-// semi-definite and S positive diagonal, so the reference's nonsymmetric eigenproblem
-// -L·x = λ·x is the generalized symmetric problem K·x = λ·S·x: its spectrum is real and
-// non-negative and its eigenvectors are S-orthonormal (Taubin 1995 for the signal-processing
-// view; Vallet & Lévy 2008, "Spectral geometry processing with manifold harmonics"). With
-// y = S^½·x it is the standard problem A·y = λ·y, A = S^-½·K·S^-½ (exact: S is diagonal).
-//  - Partial, smallest k: shift-invert Lanczos (Lehoucq, Sorensen, Yang: ARPACK's implicitly
-//    restarted Lanczos, in Spectra 1.0 SymEigsShiftSolver) on (A - σI)⁻¹ with one sparse LDLᵀ
-//    of A - σI per shift (Eigen SimplicialLDLT; the rows are numbered once in the approximate
-//    minimum degree order of K, so the factors need no permutation, and the solves run
-//    straight over the factor's arrays). A - σI = S^-½ (K - σS) S^-½ is congruent to K - σS.
-//    σ is first strictly negative (-1e-8 x the largest diagonal of A), so A - σI is SPD even
-//    with several zero eigenvalues (disconnected meshes). More than `band_size` frequencies
-//    are computed band by band (Vallet & Lévy 2008): each band is the band_size eigenvalues
-//    nearest a shift (both sides); the next shift lies 35% of the band's width above a cut in
-//    the widest gap of the band's top fifth, so consecutive bands overlap (and it moves past
-//    a band that is one cluster of repeated eigenvalues); eigenvectors found twice are
-//    de-duplicated by S-orthogonal projection against accepted ones of the same eigenvalue.
-//    Verification: Lanczos can miss copies of a repeated eigenvalue (symmetric meshes: a
-//    sphere's l(l+1) has multiplicity 2l+1), and bands could leave a gap. The number of
-//    eigenvalues below a shift τ is exact by Sylvester's law of inertia: the negative pivots
-//    of LDLᵀ(A - τI). Each band is checked at its own shift (its factorization gives the count
-//    for free), the last band at a cut above the k-th eigenvalue (one more factorization);
-//    missing ones are found by Lanczos runs with the accepted eigenvectors deflated, and a
-//    count that still differs throws. Each band's vectors are orthonormalized (Cholesky QR),
-//    and all k once at the end (O(rows · k²)).
-//    Spectrum slicing (Campos & Roman 2012): because the counts are exact, [0, λ_k] splits
-//    into slices that are independent problems. After the first band, Weyl's law (λ_i grows
-//    linearly in i on a surface) extrapolated from it places a split τ near the middle of the
-//    remaining eigenvalues, one factorization counts the eigenvalues below τ, and the two
-//    slices are swept band by band on two threads at once (`threads`; 0: two when the
-//    machine has two cores). Each slice is verified at its ends; should either fail (a split
-//    among close eigenvalues, a repair that needed the other slice's vectors), the whole
-//    range is swept once on one thread. The results do not depend on thread timing.
-//  - Partial, largest k: Lanczos on A itself (sparse products only), checked the same way.
-//  - Full: Eigen's dense SelfAdjointEigenSolver on A, refused above max_full_rows (default
-//    5,000) rows: O(n²) memory and O(n³) time. Also refused (InvalidArgument, with the
-//    numbers) when its peak, two n x n matrices of doubles (16·n² bytes), exceeds the memory
-//    available now (available_memory_bytes(), core/platform.h).
-// The start vector is deterministic, so the same input gives the same output. A run that
-// does not converge is retried once with a larger Krylov space, then throws an Error that
-// says what to change.
-//
-// Rows and boundaries. The eigenproblem's rows are the Laplacian's free rows: every live,
-// non-isolated vertex with the default free (Neumann) boundary, which is the natural choice
-// for a shape's spectrum (boundary vertices move with their band); fix_boundary = true gives
-// the Dirichlet problem on the interior (boundary vertices keep their positions, like
-// fairing). Isolated vertices (the shared bunny has 1,113) and fixed rows are not in the
-// problem and keep their positions in every reconstruction.
-//
-// Coefficients α_k = ⟨X, e_k⟩_S = e_kᵀ·S·X (k x 3); the reconstruction from a band
-// [lo, hi] of the computed frequencies is Σ_{lo<=k<=hi} e_k·α_kᵀ. With every frequency of a
-// full decomposition it returns the mesh (to rounding: ~1e-12 relative).
-//
-// Errors: InvalidArgument naming the option (k, band, max_full_rows, ...) before any work;
-// Error when the solver fails (with what to change); Cancelled from the progress. The input
-// mesh is never modified. A degenerate mesh is refused up front (InvalidArgument "the mesh is
-// degenerate: ..."): surface area below 1e-12 of the bounding-box diagonal squared (except for
-// the purely combinatorial umbrella operator with its valence mass), a vertex mass below 1e-12
-// of the largest, or a zero K. Every loop is bounded (bands, restarts, repairs): a spectrum
-// the bands cannot resolve ends in an Error, never in an endless iteration.
-// Complexity: building the operator O(V + F); per shift one sparse factorization (for
-// surfaces about O(V^1.5)) and one pair of triangular solves per Lanczos step; the Lanczos
-// basis costs O(V·ncv²) per restart with ncv ≈ 2·band + 1, so O(V·k·band) in all; the final
-// orthonormalization O(V·k²). Memory O(V·k) (two slices: two factors and two Lanczos bases at
-// once). Figures: README.md, Benchmarks.
+// Frequency decomposition of a mesh's geometry, "manifold harmonics" (sections 1.2.2, 1.2.11
+// and 1.2.12 of the reference report; Vallet & Lévy 2008, "Spectral geometry processing with
+// manifold harmonics"; Taubin 1995): the eigenpairs of K·x = λ·S·x for an operator
+// L = -S⁻¹K of core/algorithms/laplacian.h (real, λ >= 0, S-orthonormal eigenvectors), the
+// positions' coefficients α_k = e_kᵀ·S·X, and reconstruction Σ_{lo<=k<=hi} e_k·α_kᵀ from a
+// band. With every frequency of a full decomposition it returns the mesh (~1e-12 relative).
+//  - Partial: the smallest k by shift-invert Lanczos band by band (ARPACK's method in Spectra;
+//    two spectrum slices on two threads, Campos & Roman 2012), the largest k by Lanczos. The
+//    number of eigenvalues found is verified exactly (Sylvester's law of inertia): none is
+//    missed, even of high multiplicity. Deterministic, whatever the threads' timing.
+//  - Full: dense, refused above max_full_rows (default 5,000) rows or the memory available.
+//  - Rows: the Laplacian's free rows (free, Neumann boundary by default; fix_boundary: the
+//    Dirichlet problem). Isolated and fixed vertices keep their positions in reconstructions.
+// Errors: InvalidArgument naming the option before any work, or "the mesh is degenerate: ..."
+// (tiny area, vertex mass or a zero K); Error when the solver fails (after one retry with a
+// larger Krylov space), saying what to change; Cancelled from the progress. The input mesh is
+// never modified; every loop is bounded.
+// Complexity: one sparse factorization per shift (about O(V^1.5) on surfaces), O(V·k·band)
+// for the Lanczos bases, O(V·k²) for the final orthonormalization; memory O(V·k).
+// The method, its verification and its heuristics (band sizes, where the next shift lies,
+// where the slices split) are explained in spectral.cpp.
 #include <cstddef>
 #include <string>
 #include <vector>

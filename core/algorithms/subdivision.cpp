@@ -63,7 +63,32 @@
 // and puts them back unchanged (core/algorithms/pillows.h).
 // Coincident vertices (core/algorithms/coincident.h): when the input has any, each level's
 // positions are computed on its weld (1-to-4 schemes) and new vertices with the same start position
-// are made to coincide (keep_coincident_together()); see the header.
+// are made to coincide (keep_coincident_together()), as follows.
+//
+// In brief (section 1.3 of the reference):
+//  - Loop (Loop 1987; approximating, 1-to-4): beta_n = (1/n)(5/8 - (3/8 + cos(2 pi/n)/4)^2);
+//    boundary curves use the cubic B-spline rules (odd 1/2, 1/2; even 1/8, 3/4, 1/8).
+//  - Sqrt3 (Kobbelt 2000; approximating): a vertex at every face centroid, every old interior
+//    edge flipped, even vertices relaxed with alpha_n = (4 - 2 cos(2 pi/n)) / 9; boundary
+//    edges are split in every second step so that two steps make a tri-adic boundary split.
+//  - Butterfly (Dyn, Levin, Gregory 1990; interpolating): the 8-point stencil, w = 1/16.
+//  - Modified Butterfly (Zorin, Schröder, Sweldens 1996; interpolating): the 10-point regular
+//    stencil, extraordinary-vertex rules, the 4-point boundary rule.
+// By default every iteration's level is returned and each new vertex records where it starts
+// on the coarser surface (for the morph); callers that need neither (the CLI) switch both off
+// in SubdivisionOptions. Every vertex records its level (for the "subdivision vertices"
+// colouring).
+// Texture coordinates ("v:texcoord", "h:texcoord") are interpolated linearly.
+// Messy meshes (core/algorithms/coincident.h): vertices at the same position (a seam between
+// patches, the copies build_mesh() makes of a non-manifold vertex) stay together on every level.
+// The 1-to-4 schemes compute their positions on the mesh welded where that keeps it manifold
+// (core/algorithms/weld.h), so a seam edge gets the interior stencil with the partner's faces as
+// its other side and the copies of a split vertex the rule of the joined vertex; Sqrt3, whose edge
+// flips would dissolve a seam, refines each seam as a boundary curve on both sides. Then new
+// vertices whose coarse parents coincide (same start position) and still differ (copies the
+// weld cannot join: surfaces touching at a point or three sheets at an edge) get their mean.
+// Seams stay seams (boundaries): welding is a separate tool. Pillows (core/algorithms/pillows.h)
+// are set aside, the rest is refined, and they come back unchanged on every level with a note.
 //
 // Implementation: the 1-to-4 refinement is built directly into the new mesh's arrays (no
 // edge splits, no hash maps): old vertex v keeps index v, the odd vertex of edge e is V + e,
@@ -148,6 +173,19 @@ struct Out {
         next[h] = Halfedge(n);
         prev[n] = Halfedge(h);
     }
+    /// Halfedge h of face f, between halfedges hp and hn, ending at v.
+    void halfedge(Index h, Halfedge hn, Halfedge hp, Face f, Vertex v) {
+        next[h] = hn;
+        prev[h] = hp;
+        face[h] = f;
+        to[h] = v;
+    }
+    /// Boundary halfedge h (its face stays invalid), between halfedges hp and hn, ending at v.
+    void boundary_halfedge(Index h, Halfedge hn, Halfedge hp, Vertex v) {
+        next[h] = hn;
+        prev[h] = hp;
+        to[h] = v;
+    }
     /// Face f is the loop h0 -> h1 -> h2, the halfedges ending at v0, v1, v2.
     void triangle(Index f, Index h0, Index v0, Index h1, Index v1, Index h2, Index v2) {
         link(h0, h1);
@@ -160,6 +198,22 @@ struct Out {
         fh[f] = Halfedge(h0);
     }
 };
+
+/// The three halfedges of face f: h[0] = halfedge(f), h[1] = next(h[0]), h[2] = next(h[1]).
+inline void face_halfedges(const In& m, Index f, Index h[3]) {
+    h[0] = m.fh[f].idx();
+    h[1] = m.next_i(h[0]);
+    h[2] = m.next_i(h[1]);
+}
+
+/// The outgoing halfedge of every old vertex with one: map(its old outgoing halfedge).
+template <typename Map>
+void set_old_vertex_halfedges(const In& m, Out& out, const Map& map) {
+    for (Index vi = 0; vi < m.nv; ++vi) {
+        const Halfedge h = m.vh[vi];
+        if (h.is_valid()) out.vh[vi] = Halfedge(map(h.idx()));
+    }
+}
 
 /// Progress within one iteration, mapped onto the whole run.
 struct Stage {
@@ -218,21 +272,15 @@ void build_1to4(const In& m, HalfedgeMesh& mesh, const Stage& stage) {
     for (Index fi = 0; fi < nf; ++fi) {
         stage.tick(fi);
         Index h[3];
-        h[0] = m.fh[fi].idx();
-        h[1] = m.next_i(h[0]);
-        h[2] = m.next_i(h[1]);
+        face_halfedges(m, fi, h);
         const Index first = 2 * (2 * ne + 3 * fi);  // halfedge `in` of interior edge k: +2k
         for (Index k = 0; k < 3; ++k) {
             const Index k1 = k == 2 ? 0 : k + 1, k2 = k == 0 ? 2 : k - 1;
             const Index in = first + 2 * k, cin = in + 1;
-            out.next[in] = Halfedge(half_b(h[k]));
-            out.prev[in] = Halfedge(half_a(h[k1]));
-            out.face[in] = Face(4 * fi + k);
-            out.to[in] = Vertex(nv + (h[k] >> 1));
-            out.next[cin] = Halfedge(first + 2 * k1 + 1);
-            out.prev[cin] = Halfedge(first + 2 * k2 + 1);
-            out.face[cin] = Face(4 * fi + 3);
-            out.to[cin] = Vertex(nv + (h[k1] >> 1));
+            out.halfedge(in, Halfedge(half_b(h[k])), Halfedge(half_a(h[k1])), Face(4 * fi + k),
+                         Vertex(nv + (h[k] >> 1)));
+            out.halfedge(cin, Halfedge(first + 2 * k1 + 1), Halfedge(first + 2 * k2 + 1),
+                         Face(4 * fi + 3), Vertex(nv + (h[k1] >> 1)));
             out.fh[4 * fi + k] = Halfedge(half_b(h[k]));
         }
         out.fh[4 * fi + 3] = Halfedge(first + 1);
@@ -246,31 +294,25 @@ void build_1to4(const In& m, HalfedgeMesh& mesh, const Stage& stage) {
         const Index mid = nv + e;
         for (Index hi = 2 * e; hi <= 2 * e + 1; ++hi) {
             const Index a = half_a(hi), b = half_b(hi);
-            const Index hn = m.next_i(hi), hp = m.prev_i(hi);
-            out.prev[a] = Halfedge(half_b(hp));
-            out.to[a] = Vertex(mid);
-            out.next[b] = Halfedge(half_a(hn));
-            out.to[b] = m.to[hi];
+            const Halfedge a_prev(half_b(m.prev_i(hi))), b_next(half_a(m.next_i(hi)));
             const Face f = m.face[hi];
+            Index a_next = b, b_prev = a;  // on the boundary A and B follow each other
+            Face a_face, b_face;
             if (f.is_valid()) {
                 const Index k = corner_of(m, hi), k2 = k == 0 ? 2 : k - 1;
                 const Index first = 2 * (2 * ne + 3 * f.idx());
-                out.next[a] = Halfedge(first + 2 * k2);
-                out.face[a] = Face(4 * f.idx() + k2);
-                out.prev[b] = Halfedge(first + 2 * k);
-                out.face[b] = Face(4 * f.idx() + k);
-            } else {
-                out.next[a] = Halfedge(b);
-                out.prev[b] = Halfedge(a);
+                a_next = first + 2 * k2;
+                a_face = Face(4 * f.idx() + k2);
+                b_prev = first + 2 * k;
+                b_face = Face(4 * f.idx() + k);
             }
+            out.halfedge(a, Halfedge(a_next), a_prev, a_face, Vertex(mid));
+            out.halfedge(b, b_next, Halfedge(b_prev), b_face, m.to[hi]);
         }
         // The odd vertex's outgoing halfedge: the boundary one if the edge has one.
         out.vh[mid] = Halfedge(half_b(m.boundary(2 * e + 1) ? 2 * e + 1 : 2 * e));
     }
-    for (Index vi = 0; vi < nv; ++vi) {
-        const Halfedge h = m.vh[vi];
-        if (h.is_valid()) out.vh[vi] = Halfedge(half_a(h.idx()));
-    }
+    set_old_vertex_halfedges(m, out, half_a);
 }
 
 /// Texture coordinates of the 1-to-4 split.
@@ -291,9 +333,7 @@ void carry_uv_1to4(const HalfedgeMesh& mesh, HalfedgeMesh& out) {
             out.add_halfedge_property<TexCoord>("h:texcoord", TexCoord::Zero()).vector().data();
         for (Index fi = 0; fi < nf; ++fi) {
             Index h[3];
-            h[0] = m.fh[fi].idx();
-            h[1] = m.next_i(h[0]);
-            h[2] = m.next_i(h[1]);
+            face_halfedges(m, fi, h);
             TexCoord c[3], md[3];
             for (int k = 0; k < 3; ++k) c[k] = in[h[k]];
             // h_k runs from corner k-1 to corner k.
@@ -528,102 +568,110 @@ SubdivisionLevel refine_1to4(const HalfedgeMesh& mesh, SubdivisionScheme scheme,
 /// face(h) is edge E + id(h) with id(h) = 3f + k, and in even steps boundary halfedge number j
 /// adds the edges E + 3F + 4j + {0: p-q, 1: q-b, 2: p-c, 3: q-c} and the faces 3F + 2j + {0,
 /// 1}. Face id(h) is the triangle that interior halfedge h keeps.
-SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int level, bool morph,
-                              const Stage& stage) {
-    const In m(mesh);
-    const Index nv = m.nv, ne = m.ne, nf = m.nf;
-    const Point* x = m.x;
-    // Corner ids of face halfedges (with the id of the next halfedge beside them, so that
-    // s_out(next(h)) is read where h is) and numbers of boundary halfedges: every halfedge is
-    // one or the other, so every id is written. corner[3f + k] is halfedge k of face f, so
-    // that the spoke pass reads them in order.
-    struct Ids {
-        Index id, next_id;  // next_id: for face halfedges only
-    };
-    std::unique_ptr<Ids[]> ids_storage(new Ids[2 * std::size_t(ne)]);
-    std::unique_ptr<Index[]> corner_storage(new Index[3 * std::size_t(nf)]);
-    Ids* ids = ids_storage.get();
-    Index* corner = corner_storage.get();
-    Index nb = 0;
+///
+/// Corner ids of face halfedges (with the id of the next halfedge beside them, so that
+/// s_out(next(h)) is read where h is) and numbers of boundary halfedges: every halfedge is
+/// one or the other, so every id is written.
+struct Sqrt3Ids {
+    Index id, next_id;  // next_id: for face halfedges only
+};
+
+/// The numbering over arrays filled by number_sqrt3(). Passed by value: the sizes are then
+/// locals of each pass, which the stores to the new mesh's arrays cannot alias.
+struct Sqrt3Numbering {
+    Index nv, ne, nf;
+    Index nb;  ///< boundary halfedges split (even steps only)
+    Index eb;  ///< first edge of the boundary splits
+    const Sqrt3Ids* ids;
+    /// corner[3f + k] is halfedge k of face f, so that the spoke pass reads them in order.
+    const Index* corner;
+
+    /// The spokes of halfedge h: a -> c (s_out) and c -> a (s_in).
+    Index s_out(Index h) const { return 2 * (ne + ids[h].id); }
+    Index s_in(Index h) const { return 2 * (ne + ids[h].id) + 1; }
+    Index s_out_next(Index h) const { return 2 * (ne + ids[h].next_id); }  // s_out(next(h))
+    /// The new edges at boundary halfedge b: 0: p-q, 1: q-b, 2: p-c, 3: q-c.
+    Index split_edge(Index b, Index which) const { return 2 * (eb + 4 * ids[b].id + which); }
+    /// Boundary split vertices of boundary halfedge t (b -> a): P0 near b, P1 near a.
+    Index split_vertex(Index t, Index which) const { return nv + nf + 2 * ids[t].id + which; }
+};
+
+/// Fills `ids` (2E entries) and `corner` (3F entries) and returns the numbering over them.
+Sqrt3Numbering number_sqrt3(const In& m, bool even_step, Sqrt3Ids* ids, Index* corner) {
+    const Index ne = m.ne, nf = m.nf;
     for (Index fi = 0; fi < nf; ++fi) {
-        const Index h0 = m.fh[fi].idx(), h1 = m.next_i(h0), h2 = m.next_i(h1);
-        ids[h0] = {3 * fi, 3 * fi + 1};
-        ids[h1] = {3 * fi + 1, 3 * fi + 2};
-        ids[h2] = {3 * fi + 2, 3 * fi};
-        corner[3 * std::size_t(fi)] = h0;
-        corner[3 * std::size_t(fi) + 1] = h1;
-        corner[3 * std::size_t(fi) + 2] = h2;
+        Index h[3];
+        face_halfedges(m, fi, h);
+        ids[h[0]] = {3 * fi, 3 * fi + 1};
+        ids[h[1]] = {3 * fi + 1, 3 * fi + 2};
+        ids[h[2]] = {3 * fi + 2, 3 * fi};
+        std::copy_n(h, 3, corner + 3 * std::size_t(fi));
     }
+    Index nb = 0;
     for (Index hi = 0; hi < 2 * ne; ++hi)
         if (m.boundary(hi)) ids[hi].id = nb++;
     if (!even_step) nb = 0;  // boundary edges are not split in odd steps
-    stage.report(0.1);
+    return {m.nv, ne, nf, nb, ne + 3 * nf, ids, corner};
+}
 
-    SubdivisionLevel result;
-    HalfedgeMesh& mesh_out = result.mesh;
-    mesh_out.resize_elements(std::size_t(nv) + nf + 2 * std::size_t(nb),
-                             std::size_t(ne) + 3 * std::size_t(nf) + 4 * std::size_t(nb),
-                             3 * std::size_t(nf) + 2 * std::size_t(nb));
-    Out out(mesh_out);
-    Point* p = out.p;
-    const Index eb = ne + 3 * nf;  // first edge of the boundary splits
-    auto s_out = [&](Index h) { return 2 * (ne + ids[h].id); };
-    auto s_in = [&](Index h) { return 2 * (ne + ids[h].id) + 1; };
-    auto s_out_next = [&](Index h) { return 2 * (ne + ids[h].next_id); };  // s_out(next(h))
-    auto split_edge = [&](Index boundary, Index which) {  // 0: p-q, 1: q-b, 2: p-c, 3: q-c
-        return 2 * (eb + 4 * ids[boundary].id + which);
-    };
-    // Boundary split vertices of boundary halfedge t (b -> a): P0 near b, P1 near a.
-    auto split_vertex = [&](Index t, Index which) { return nv + nf + 2 * ids[t].id + which; };
-    // Every new halfedge is written once. Corner k of face f is halfedge h (a -> b) with
-    // twin t; c is f's centroid. Triangle id(h) is (a, c_g, c) when t is interior (face g),
-    // (a, b, c) on the boundary in odd steps, (a, p, c) in even steps. The spoke s_in(h)
-    // (c -> a) closes triangle id(h); s_out(h) (a -> c) lies in the triangle of
-    // g = twin(prev(h)), or on the boundary next to prev(h).
+/// The new triangles' halfedges of each old face: the spokes. Corner k of face f is halfedge
+/// h (a -> b) with twin t; c is f's centroid (set here too). Triangle id(h) is (a, c_g, c)
+/// when t is interior (face g), (a, b, c) on the boundary in odd steps, (a, p, c) in even
+/// steps. The spoke s_in(h) (c -> a) closes triangle id(h); s_out(h) (a -> c) lies in the
+/// triangle of g = twin(prev(h)), or on the boundary next to prev(h).
+void build_sqrt3_spokes(const In& m, const Sqrt3Numbering n, bool even_step, Out& out,
+                        const Stage& stage) {
+    const Index nv = m.nv, ne = m.ne, nf = m.nf;
     for (Index fi = 0; fi < nf; ++fi) {
         stage.tick(fi);
-        const Index* h = corner + 3 * std::size_t(fi);
+        const Index* h = n.corner + 3 * std::size_t(fi);
         const Vertex v[3] = {m.to[h[0]], m.to[h[1]], m.to[h[2]]};
-        p[nv + fi] = (x[v[0].idx()] + x[v[1].idx()] + x[v[2].idx()]) / 3.0;  // the centroid
-        out.vh[nv + fi] = Halfedge(s_in(h[0]));
+        out.p[nv + fi] = (m.x[v[0].idx()] + m.x[v[1].idx()] + m.x[v[2].idx()]) / 3.0;
+        out.vh[nv + fi] = Halfedge(n.s_in(h[0]));
         for (Index k = 0; k < 3; ++k) {
             const Index k1 = k == 2 ? 0 : k + 1, k2 = k == 0 ? 2 : k - 1;
             const Index hk = h[k], hp = h[k2], t = hk ^ 1u, g = hp ^ 1u;
             const Index own = 3 * fi + k;  // id[hk]
             const Index si = 2 * (ne + own) + 1, so = si - 1;
-            out.to[si] = v[k2];
-            out.face[si] = Face(own);
+            // s_in(hk): closes triangle `own`.
+            Index si_next = hk, si_prev;
             if (!m.boundary(t)) {
-                const Index first = s_out_next(t);
-                out.next[si] = Halfedge(first);
-                out.prev[si] = Halfedge(hk);
-                out.fh[own] = Halfedge(first);
+                si_next = n.s_out_next(t);
+                si_prev = hk;
             } else {
-                out.next[si] = Halfedge(hk);
-                out.prev[si] = Halfedge(even_step ? split_edge(t, 2) : 2 * (ne + 3 * fi + k1));
-                out.fh[own] = Halfedge(hk);
+                si_prev = even_step ? n.split_edge(t, 2) : 2 * (ne + 3 * fi + k1);
             }
-            out.to[so] = Vertex(nv + fi);
+            out.halfedge(si, Halfedge(si_next), Halfedge(si_prev), Face(own), v[k2]);
+            out.fh[own] = Halfedge(si_next);
+            // s_out(hk): in the triangle of g, or on the boundary next to hp.
+            Index so_next, so_prev, so_face;
             if (!m.boundary(g)) {
-                out.next[so] = Halfedge(g);
-                out.prev[so] = Halfedge(s_in(g));
-                out.face[so] = Face(ids[g].id);
+                so_next = g;
+                so_prev = n.s_in(g);
+                so_face = n.ids[g].id;
             } else if (!even_step) {
-                out.next[so] = Halfedge(2 * (ne + 3 * fi + k2) + 1);  // s_in(hp)
-                out.prev[so] = Halfedge(hp);
-                out.face[so] = Face(3 * fi + k2);
+                so_next = 2 * (ne + 3 * fi + k2) + 1;  // s_in(hp)
+                so_prev = hp;
+                so_face = 3 * fi + k2;
             } else {
-                out.next[so] = Halfedge(split_edge(g, 3) + 1);
-                out.prev[so] = Halfedge(split_edge(g, 1));
-                out.face[so] = Face(3 * nf + 2 * ids[g].id + 1);
+                so_next = n.split_edge(g, 3) + 1;
+                so_prev = n.split_edge(g, 1);
+                so_face = 3 * nf + 2 * n.ids[g].id + 1;
             }
+            out.halfedge(so, Halfedge(so_next), Halfedge(so_prev), Face(so_face), Vertex(nv + fi));
         }
     }
-    stage.report(0.3);
-    // The old halfedges keep their indices: an interior edge flipped (h from c_g to c), a
-    // boundary one in place (in even steps shortened to its last third).
-    // Alongside, each old vertex's neighbour sum (in its slot of p) and valence.
-    std::vector<unsigned> valence(nv, 0);
+}
+
+/// The old halfedges keep their indices: an interior edge flipped (h from c_g to c), a
+/// boundary one in place (in even steps shortened to its last third). Alongside, each old
+/// vertex's neighbour sum (into its slot of out.p) and valence.
+void build_sqrt3_old_halfedges(const In& m, const Sqrt3Numbering n, bool even_step, Out& out,
+                               std::vector<unsigned>& valence, const Stage& stage) {
+    const Index nv = m.nv, ne = m.ne;
+    const Point* x = m.x;
+    Point* p = out.p;
+    valence.assign(nv, 0);
     std::fill_n(p, nv, Point::Zero());
     for (Index hi = 0; hi < 2 * ne; ++hi) {
         stage.tick(hi);
@@ -637,90 +685,68 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
         }
         const Face f = m.face[hi];
         if (f.is_valid()) {
-            const Index own = ids[hi].id;
-            out.face[hi] = Face(own);
+            const Index own = n.ids[hi].id;
+            const Index closing = 2 * (ne + own) + 1;  // s_in of the triangle's old corner
+            Index h_next = closing, h_prev = closing;
+            Vertex h_to;
             if (!m.boundary(t)) {
-                out.to[hi] = Vertex(nv + f.idx());
-                out.next[hi] = Halfedge(2 * (ne + own) + 1);
-                out.prev[hi] = Halfedge(s_out_next(t));
+                h_prev = n.s_out_next(t);
+                h_to = Vertex(nv + f.idx());
             } else if (!even_step) {
-                out.to[hi] = m.to[hi];
-                out.next[hi] = Halfedge(s_out_next(hi));
-                out.prev[hi] = Halfedge(2 * (ne + own) + 1);
+                h_next = n.s_out_next(hi);
+                h_to = m.to[hi];
             } else {
-                out.to[hi] = Vertex(split_vertex(t, 1));
-                out.next[hi] = Halfedge(split_edge(t, 2));
-                out.prev[hi] = Halfedge(2 * (ne + own) + 1);
+                h_next = n.split_edge(t, 2);
+                h_to = Vertex(n.split_vertex(t, 1));
             }
-        } else {
-            out.to[hi] = m.to[hi];
-            if (!even_step) {
-                out.next[hi] = m.next[hi];
-                out.prev[hi] = m.prev[hi];
-            } else {  // b -> q -> p -> a, then on to the next boundary halfedge's b -> q
-                out.next[hi] = Halfedge(split_edge(m.next_i(hi), 1) + 1);
-                out.prev[hi] = Halfedge(split_edge(hi, 0) + 1);
-            }
+            out.halfedge(hi, Halfedge(h_next), Halfedge(h_prev), Face(own), h_to);
+        } else if (!even_step) {
+            out.boundary_halfedge(hi, m.next[hi], m.prev[hi], m.to[hi]);
+        } else {  // b -> q -> p -> a, then on to the next boundary halfedge's b -> q
+            out.boundary_halfedge(hi, Halfedge(n.split_edge(m.next_i(hi), 1) + 1),
+                                  Halfedge(n.split_edge(hi, 0) + 1), m.to[hi]);
         }
     }
-    // Even steps: the pieces of each boundary edge b -> q -> p -> a and the two new
-    // triangles (p, q, c) and (q, b, c) at it.
-    for (Index t = 0; even_step && t < 2 * ne; ++t) {
+}
+
+/// Even steps: the pieces of each boundary edge b -> q -> p -> a and the two new triangles
+/// (p, q, c) and (q, b, c) at it.
+void build_sqrt3_boundary_splits(const In& m, const Sqrt3Numbering n, Out& out) {
+    const Index ne = m.ne, nf = m.nf;
+    for (Index t = 0; t < 2 * ne; ++t) {
         if (!m.boundary(t)) continue;
-        const Index h = t ^ 1u, own = ids[h].id, j = ids[t].id;
-        const Index c = nv + m.face[h].idx(), vp = split_vertex(t, 1), vq = split_vertex(t, 0);
-        const Index pq = split_edge(t, 0), qb = split_edge(t, 1), pc = split_edge(t, 2),
-                    qc = split_edge(t, 3);
+        const Index h = t ^ 1u, own = n.ids[h].id, j = n.ids[t].id;
+        const Index c = m.nv + m.face[h].idx(), vp = n.split_vertex(t, 1),
+                    vq = n.split_vertex(t, 0);
+        const Index pq = n.split_edge(t, 0), qb = n.split_edge(t, 1), pc = n.split_edge(t, 2),
+                    qc = n.split_edge(t, 3);
         const Index bq = qb + 1, qp = pq + 1, cp = pc + 1, cq = qc + 1;
         const Index f2 = 3 * nf + 2 * j, f3 = f2 + 1;
-        const Index so_next = s_out_next(h);
+        const Index so_next = n.s_out_next(h);
         // In triangle id(h) = (a, p, c): p -> c.
-        out.next[pc] = Halfedge(2 * (ne + own) + 1);
-        out.prev[pc] = Halfedge(h);
-        out.face[pc] = Face(own);
-        out.to[pc] = Vertex(c);
+        out.halfedge(pc, Halfedge(2 * (ne + own) + 1), Halfedge(h), Face(own), Vertex(c));
         // Triangle f2 = (p, q, c): p -> q -> c -> p.
         out.triangle(f2, pq, vq, qc, c, cp, vp);
         // Triangle f3 = (q, b, c): q -> b, b -> c (s_out(next(h))), c -> q.
-        out.next[qb] = Halfedge(so_next);
-        out.prev[qb] = Halfedge(cq);
-        out.face[qb] = Face(f3);
-        out.to[qb] = Vertex(m.from_i(t));
-        out.next[cq] = Halfedge(qb);
-        out.prev[cq] = Halfedge(so_next);
-        out.face[cq] = Face(f3);
-        out.to[cq] = Vertex(vq);
+        out.halfedge(qb, Halfedge(so_next), Halfedge(cq), Face(f3), Vertex(m.from_i(t)));
+        out.halfedge(cq, Halfedge(qb), Halfedge(so_next), Face(f3), Vertex(vq));
         out.fh[f3] = Halfedge(qb);
         // The boundary pieces b -> q and q -> p.
-        out.next[bq] = Halfedge(qp);
-        out.prev[bq] = m.prev[t];
-        out.to[bq] = Vertex(vq);
-        out.next[qp] = Halfedge(t);
-        out.prev[qp] = Halfedge(bq);
-        out.to[qp] = Vertex(vp);
+        out.boundary_halfedge(bq, Halfedge(qp), m.prev[t], Vertex(vq));
+        out.boundary_halfedge(qp, Halfedge(t), Halfedge(bq), Vertex(vp));
         out.vh[vq] = Halfedge(qp);
         out.vh[vp] = Halfedge(t);
     }
-    for (Index vi = 0; vi < nv; ++vi) {
-        const Halfedge hv = m.vh[vi];
-        if (!hv.is_valid()) continue;
-        const Index h = hv.idx();
-        if (!m.boundary(h))
-            out.vh[vi] = Halfedge(s_out(h));
-        else
-            out.vh[vi] = Halfedge(even_step ? split_edge(h, 1) + 1 : h);
-    }
-    stage.progress.check_cancelled();
-    stage.report(0.5);
+}
 
-    // Positions (the centroids are set) and morph start positions.
-    Point* start = nullptr;
-    result.correspondence.kind = MorphCorrespondence::Kind::FromEarlier;
-    if (morph) {
-        result.correspondence.positions.resize(mesh_out.vertices_size());
-        start = result.correspondence.positions.data();
-        std::copy_n(x, nv, start);
-    }
+/// The positions of the old vertices (relaxed; in even steps boundary vertices by the
+/// ternary rule) and of the boundary split vertices; the centroids are set. `start`, when
+/// given, gets the morph start positions of the new vertices (the old ones' are set).
+void sqrt3_positions(const In& m, const Sqrt3Numbering n, bool even_step,
+                     const std::vector<unsigned>& valence, Point* p, Point* start,
+                     const Stage& stage) {
+    const Index nv = m.nv, ne = m.ne, nf = m.nf;
+    const Point* x = m.x;
     std::vector<double> alpha;
     for (Index vi = 0; vi < nv; ++vi) {
         stage.tick(vi);
@@ -733,91 +759,141 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
                                       27.0)
                               : x[vi];
         } else {
-            const unsigned n = valence[vi];
-            if (n >= alpha.size()) alpha.resize(n + 1, -1.0);
-            if (alpha[n] < 0) alpha[n] = (4.0 - 2.0 * std::cos(2 * kPi / n)) / 9.0;
-            p[vi] = (1.0 - alpha[n]) * x[vi] + (alpha[n] / n) * p[vi];
+            const unsigned k = valence[vi];
+            if (k >= alpha.size()) alpha.resize(k + 1, -1.0);
+            if (alpha[k] < 0) alpha[k] = (4.0 - 2.0 * std::cos(2 * kPi / k)) / 9.0;
+            p[vi] = (1.0 - alpha[k]) * x[vi] + (alpha[k] / k) * p[vi];
         }
     }
     if (start) std::copy_n(p + nv, nf, start + nv);
-    if (even_step) {
-        for (Index t = 0; t < 2 * ne; ++t) {
-            if (!m.boundary(t)) continue;
-            // Along t: p0 = from(prev t), p1 = from(t), p2 = to(t), p3 = to(next t).
-            const Point& p0 = x[m.from_i(m.prev_i(t))];
-            const Point& p1 = x[m.from_i(t)];
-            const Point& p2 = x[m.to_i(t)];
-            const Point& p3 = x[m.to_i(m.next_i(t))];
-            const Index i0 = split_vertex(t, 0), i1 = split_vertex(t, 1);
-            p[i0] = (p0 + 16.0 * p1 + 10.0 * p2) / 27.0;
-            p[i1] = (10.0 * p1 + 16.0 * p2 + p3) / 27.0;
-            if (start) {
-                start[i0] = (2.0 * p1 + p2) / 3.0;
-                start[i1] = (p1 + 2.0 * p2) / 3.0;
+    for (Index t = 0; even_step && t < 2 * ne; ++t) {
+        if (!m.boundary(t)) continue;
+        // Along t: p0 = from(prev t), p1 = from(t), p2 = to(t), p3 = to(next t).
+        const Point& p0 = x[m.from_i(m.prev_i(t))];
+        const Point& p1 = x[m.from_i(t)];
+        const Point& p2 = x[m.to_i(t)];
+        const Point& p3 = x[m.to_i(m.next_i(t))];
+        const Index i0 = n.split_vertex(t, 0), i1 = n.split_vertex(t, 1);
+        p[i0] = (p0 + 16.0 * p1 + 10.0 * p2) / 27.0;
+        p[i1] = (10.0 * p1 + 16.0 * p2 + p3) / 27.0;
+        if (start) {
+            start[i0] = (2.0 * p1 + p2) / 3.0;
+            start[i1] = (p1 + 2.0 * p2) / 3.0;
+        }
+    }
+}
+
+/// "v:texcoord" of the Sqrt3 level: kept at the old vertices, the face centroid's at the
+/// new ones, the boundary third points' at the split vertices.
+void carry_vertex_uv_sqrt3(const HalfedgeMesh& mesh, const In& m, const Sqrt3Numbering n,
+                           bool even_step, HalfedgeMesh& mesh_out) {
+    auto vuv = mesh.get_vertex_property<TexCoord>("v:texcoord");
+    if (!vuv) return;
+    const Index nv = m.nv, ne = m.ne, nf = m.nf;
+    const TexCoord* in = vuv.vector().data();
+    TexCoord* uv =
+        mesh_out.add_vertex_property<TexCoord>("v:texcoord", TexCoord::Zero()).vector().data();
+    std::copy_n(in, nv, uv);
+    for (Index fi = 0; fi < nf; ++fi) {
+        const Index h = m.fh[fi].idx(), hn = m.next_i(h);
+        uv[nv + fi] = (in[m.to_i(h)] + in[m.to_i(hn)] + in[m.to_i(m.next_i(hn))]) / 3.0;
+    }
+    for (Index t = 0; even_step && t < 2 * ne; ++t) {
+        if (!m.boundary(t)) continue;
+        const TexCoord &u1 = in[m.from_i(t)], &u2 = in[m.to_i(t)];
+        uv[n.split_vertex(t, 0)] = (2.0 * u1 + u2) / 3.0;
+        uv[n.split_vertex(t, 1)] = (u1 + 2.0 * u2) / 3.0;
+    }
+}
+
+/// "h:texcoord" of the Sqrt3 level. Corner uvs come from the old face each new corner lies
+/// in; a new triangle that straddles a flipped edge takes its old corner's uv from face(h)
+/// and the far centroid's from its own face.
+void carry_corner_uv_sqrt3(const HalfedgeMesh& mesh, const In& m, const Sqrt3Numbering n,
+                           bool even_step, HalfedgeMesh& mesh_out) {
+    auto huv = mesh.get_halfedge_property<TexCoord>("h:texcoord");
+    if (!huv) return;
+    const Index nf = m.nf;
+    const TexCoord* in = huv.vector().data();
+    TexCoord* uv =
+        mesh_out.add_halfedge_property<TexCoord>("h:texcoord", TexCoord::Zero()).vector().data();
+    std::vector<TexCoord> centre(nf);
+    for (Index fi = 0; fi < nf; ++fi) {
+        const Index h = m.fh[fi].idx();
+        centre[fi] = (in[h] + in[m.next_i(h)] + in[m.prev_i(h)]) / 3.0;
+    }
+    for (Index fi = 0; fi < nf; ++fi) {
+        Index h = m.fh[fi].idx();
+        for (int k = 0; k < 3; ++k, h = m.next_i(h)) {
+            const Index t = h ^ 1u;
+            const TexCoord& ua = in[m.prev_i(h)];
+            const TexCoord& ub = in[h];
+            uv[n.s_in(h)] = ua;
+            if (!m.boundary(t)) {
+                uv[h] = centre[fi];
+                uv[n.s_out_next(t)] = centre[m.face[t].idx()];
+            } else if (!even_step) {
+                uv[h] = ub;
+                uv[n.s_out_next(h)] = centre[fi];
+            } else {
+                const TexCoord up = (2.0 * ua + ub) / 3.0, uq = (ua + 2.0 * ub) / 3.0;
+                uv[h] = up;
+                uv[n.split_edge(t, 2)] = centre[fi];
+                uv[n.split_edge(t, 0)] = uq;
+                uv[n.split_edge(t, 3)] = centre[fi];
+                uv[n.split_edge(t, 2) + 1] = up;
+                uv[n.split_edge(t, 1)] = ub;
+                uv[n.s_out_next(h)] = centre[fi];
+                uv[n.split_edge(t, 3) + 1] = uq;
             }
         }
     }
+}
+
+/// One Sqrt3 iteration (see Sqrt3Numbering): the connectivity, written once per halfedge,
+/// then the positions (and morph start positions), the levels and the texture coordinates.
+SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int level, bool morph,
+                              const Stage& stage) {
+    const In m(mesh);
+    const Index nv = m.nv, ne = m.ne, nf = m.nf;
+    std::unique_ptr<Sqrt3Ids[]> ids(new Sqrt3Ids[2 * std::size_t(ne)]);
+    std::unique_ptr<Index[]> corner(new Index[3 * std::size_t(nf)]);
+    const Sqrt3Numbering n = number_sqrt3(m, even_step, ids.get(), corner.get());
+    const Index nb = n.nb;
+    stage.report(0.1);
+
+    SubdivisionLevel result;
+    HalfedgeMesh& mesh_out = result.mesh;
+    mesh_out.resize_elements(std::size_t(nv) + nf + 2 * std::size_t(nb),
+                             std::size_t(ne) + 3 * std::size_t(nf) + 4 * std::size_t(nb),
+                             3 * std::size_t(nf) + 2 * std::size_t(nb));
+    Out out(mesh_out);
+    build_sqrt3_spokes(m, n, even_step, out, stage);
+    stage.report(0.3);
+    std::vector<unsigned> valence;
+    build_sqrt3_old_halfedges(m, n, even_step, out, valence, stage);
+    if (even_step) build_sqrt3_boundary_splits(m, n, out);
+    set_old_vertex_halfedges(m, out, [&](Index h) {
+        return m.boundary(h) ? (even_step ? n.split_edge(h, 1) + 1 : h) : n.s_out(h);
+    });
+    stage.progress.check_cancelled();
+    stage.report(0.5);
+
+    // Positions (the centroids are set) and morph start positions.
+    Point* start = nullptr;
+    result.correspondence.kind = MorphCorrespondence::Kind::FromEarlier;
+    if (morph) {
+        result.correspondence.positions.resize(mesh_out.vertices_size());
+        start = result.correspondence.positions.data();
+        std::copy_n(m.x, nv, start);
+    }
+    sqrt3_positions(m, n, even_step, valence, out.p, start, stage);
     stage.progress.check_cancelled();
     stage.report(0.8);
 
-    // Levels and texture coordinates.
     add_levels(mesh, mesh_out, level);
-    if (auto vuv = mesh.get_vertex_property<TexCoord>("v:texcoord")) {
-        const TexCoord* in = vuv.vector().data();
-        TexCoord* uv =
-            mesh_out.add_vertex_property<TexCoord>("v:texcoord", TexCoord::Zero()).vector().data();
-        std::copy_n(in, nv, uv);
-        for (Index fi = 0; fi < nf; ++fi) {
-            const Index h = m.fh[fi].idx(), hn = m.next_i(h);
-            uv[nv + fi] = (in[m.to_i(h)] + in[m.to_i(hn)] + in[m.to_i(m.next_i(hn))]) / 3.0;
-        }
-        for (Index t = 0; even_step && t < 2 * ne; ++t) {
-            if (!m.boundary(t)) continue;
-            const TexCoord &u1 = in[m.from_i(t)], &u2 = in[m.to_i(t)];
-            uv[split_vertex(t, 0)] = (2.0 * u1 + u2) / 3.0;
-            uv[split_vertex(t, 1)] = (u1 + 2.0 * u2) / 3.0;
-        }
-    }
-    if (auto huv = mesh.get_halfedge_property<TexCoord>("h:texcoord")) {
-        // Corner uvs come from the old face each new corner lies in; a new triangle that
-        // straddles a flipped edge takes its old corner's uv from face(h) and the far
-        // centroid's from its own face.
-        const TexCoord* in = huv.vector().data();
-        TexCoord* uv = mesh_out.add_halfedge_property<TexCoord>("h:texcoord", TexCoord::Zero())
-                           .vector()
-                           .data();
-        std::vector<TexCoord> centre(nf);
-        for (Index fi = 0; fi < nf; ++fi) {
-            const Index h = m.fh[fi].idx();
-            centre[fi] = (in[h] + in[m.next_i(h)] + in[m.prev_i(h)]) / 3.0;
-        }
-        for (Index fi = 0; fi < nf; ++fi) {
-            Index h = m.fh[fi].idx();
-            for (int k = 0; k < 3; ++k, h = m.next_i(h)) {
-                const Index t = h ^ 1u;
-                const TexCoord& ua = in[m.prev_i(h)];
-                const TexCoord& ub = in[h];
-                uv[s_in(h)] = ua;
-                if (!m.boundary(t)) {
-                    uv[h] = centre[fi];
-                    uv[s_out_next(t)] = centre[m.face[t].idx()];
-                } else if (!even_step) {
-                    uv[h] = ub;
-                    uv[s_out_next(h)] = centre[fi];
-                } else {
-                    const TexCoord up = (2.0 * ua + ub) / 3.0, uq = (ua + 2.0 * ub) / 3.0;
-                    uv[h] = up;
-                    uv[split_edge(t, 2)] = centre[fi];
-                    uv[split_edge(t, 0)] = uq;
-                    uv[split_edge(t, 3)] = centre[fi];
-                    uv[split_edge(t, 2) + 1] = up;
-                    uv[split_edge(t, 1)] = ub;
-                    uv[s_out_next(h)] = centre[fi];
-                    uv[split_edge(t, 3) + 1] = uq;
-                }
-            }
-        }
-    }
+    carry_vertex_uv_sqrt3(mesh, m, n, even_step, mesh_out);
+    carry_corner_uv_sqrt3(mesh, m, n, even_step, mesh_out);
     stage.report(1.0);
     return result;
 }

@@ -1,28 +1,18 @@
 #pragma once
 // Uniform subdivision of triangle meshes, with boundaries (section 1.3 of the reference):
-//  - Loop (Loop 1987; approximating, 1-to-4): beta_n = (1/n)(5/8 - (3/8 + cos(2 pi/n)/4)^2);
-//    boundary curves use the cubic B-spline rules (odd 1/2, 1/2; even 1/8, 3/4, 1/8).
-//  - Sqrt3 (Kobbelt 2000; approximating): a vertex at every face centroid, every old interior
-//    edge flipped, even vertices relaxed with alpha_n = (4 - 2 cos(2 pi/n)) / 9; boundary
-//    edges are split in every second step so that two steps make a tri-adic boundary split.
-//  - Butterfly (Dyn, Levin, Gregory 1990; interpolating): the 8-point stencil, w = 1/16.
-//  - Modified Butterfly (Zorin, Schröder, Sweldens 1996; interpolating): the 10-point regular
-//    stencil, extraordinary-vertex rules, the 4-point boundary rule.
-// By default every iteration's level is returned and each new vertex records where it starts
-// on the coarser surface (for the morph); callers that need neither (the CLI) switch both off
-// in SubdivisionOptions. Every vertex records its level (for the "subdivision vertices"
-// colouring).
-// Texture coordinates ("v:texcoord", "h:texcoord") are interpolated linearly.
-// Messy meshes (core/algorithms/coincident.h): vertices at the same position (a seam between
-// patches, the copies build_mesh() makes of a non-manifold vertex) stay together on every level.
-// The 1-to-4 schemes compute their positions on the mesh welded where that keeps it manifold
-// (core/algorithms/weld.h), so a seam edge gets the interior stencil with the partner's faces as
-// its other side and the copies of a split vertex the rule of the joined vertex; Sqrt3, whose edge
-// flips would dissolve a seam, refines each seam as a boundary curve on both sides. Then new
-// vertices whose coarse parents coincide (same start position) and still differ (copies the
-// weld cannot join: surfaces touching at a point or three sheets at an edge) get their mean.
-// Seams stay seams (boundaries): welding is a separate tool. Pillows (core/algorithms/pillows.h)
-// are set aside, the rest is refined, and they come back unchanged on every level with a note.
+//  - Loop (Loop 1987; approximating, 1-to-4);
+//  - Sqrt3 (Kobbelt 2000; approximating; two steps split a boundary edge in three);
+//  - Butterfly (Dyn, Levin, Gregory 1990; interpolating, w = 1/16);
+//  - Modified Butterfly (Zorin, Schröder, Sweldens 1996; interpolating).
+// Every iteration's level is returned by default, each new vertex with where it starts on the
+// coarser surface (for the morph) and every vertex with its level; SubdivisionOptions switches
+// the levels and the morph off. Texture coordinates are interpolated linearly; other
+// attributes are dropped. Coincident vertices (seams, copies of split vertices) stay together
+// on every level; pillows (core/algorithms/pillows.h) come back unchanged with a note.
+// Throws InvalidArgument for iterations outside 1 to 10, above 50 million faces, or a level
+// that overflows to non-finite values; Cancelled from the progress. The input is not modified.
+// Complexity: linear in the mesh size per iteration. The rules (stencils, boundaries,
+// fallbacks) and the handling of seams: subdivision.cpp.
 #include <array>
 #include <cstddef>
 #include <cstdint>

@@ -1,3 +1,30 @@
+// Welding coincident vertices (core/algorithms/weld.h): the method in full.
+//
+// Welding coincident vertices: joins pieces of one surface that a file keeps apart (patch
+// seams, the copies build_mesh() makes of a non-manifold vertex), as far as the result stays
+// a valid manifold mesh.
+//
+// Method: vertices are grouped by position (core/algorithms/coincident.h: exact, or within
+// `tolerance`). A weld glues pairs of boundary edges: two boundary edges whose ends lie in
+// the same two groups, with no other edge between those groups, whose faces run in opposite
+// directions along them (consistent orientation), become one interior edge, and their ends
+// become one vertex. Joining only through glued edges keeps every vertex manifold: each
+// vertex is one fan with two open ends (or none), a glue links two ends, so the fans joined
+// into one vertex form a chain or a closed ring. Coincident vertices of a group that no glue
+// joins stay apart (surfaces touching at a point would make a non-manifold vertex), and so do
+// edges where three or more faces would meet or whose faces run the same way; a glue that
+// would still break the mesh (a face with two corners in one vertex, two edges between the
+// same two vertices) is undone with the glues at its vertices. Isolated vertices in a group
+// join it. Everything left apart is counted and explained in the report.
+//
+// The joined vertex sits at its group's position (with a tolerance: the mean of the vertices
+// joined, in index order) and keeps the per-vertex normal, colour and texture coordinate of
+// its lowest-index vertex; per-corner texture coordinates stay with their faces. Other
+// properties are not carried. Faces keep their order; vertices are renumbered (the map is
+// returned). The input is not modified.
+// Throws InvalidArgument for a negative or non-finite tolerance, or one too small for the
+// coordinates (core/algorithms/coincident.h). Complexity: O(V + E) expected, plus a few rounds of
+// checks when glues are undone.
 #include "core/algorithms/weld.h"
 
 #include <algorithm>

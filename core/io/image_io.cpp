@@ -36,8 +36,8 @@
 //  - RLE-compressed BMP (RLE8, RLE4: stb has no RLE) is our own reader.
 //  - PNM (P1-P6) is our own reader: stb reads only binary P5/P6, and we want line numbers in
 //    the errors of the ASCII variants.
-//  - XBM and XPM are our own readers over a tiny C tokenizer (comments, identifiers, numbers,
-//    string literals, punctuation), so errors name the line.
+//  - XBM and XPM are our own readers over TextScanner's C mode (core/io/text_scanner.h:
+//    comments, identifiers, numbers, string literals, punctuation), so errors name the line.
 // Every reader checks the declared size against the limits and against what the file can
 // hold before it allocates the pixels.
 
@@ -579,151 +579,7 @@ Image read_pnm(const std::string& bytes, const std::string& path) {
     return image;
 }
 
-// ---- a tiny C tokenizer for XBM and XPM -----------------------------------------------------
-
-struct CToken {
-    enum Kind { End, Identifier, Number, String, Punct } kind = End;
-    std::string_view text;  ///< source text (for strings: with the quotes)
-    std::string value;      ///< the unescaped contents of a string literal
-    std::size_t line = 0;
-};
-
-class CLexer {
-public:
-    CLexer(std::string_view text, const std::string& path) : text_(text), path_(path) {}
-
-    CToken next() {
-        skip_space_and_comments();
-        CToken t;
-        t.line = line_;
-        if (pos_ >= text_.size()) return t;
-        const std::size_t begin = pos_;
-        const char c = text_[pos_];
-        if (is_ident_start(c) || is_digit(c)) {
-            while (pos_ < text_.size() && (is_ident_start(text_[pos_]) || is_digit(text_[pos_])))
-                ++pos_;
-            t.kind = is_digit(c) ? CToken::Number : CToken::Identifier;
-        } else if (c == '"') {
-            t.kind = CToken::String;
-            read_string(t.value);
-        } else {
-            t.kind = CToken::Punct;
-            ++pos_;
-        }
-        t.text = text_.substr(begin, pos_ - begin);
-        return t;
-    }
-
-    std::size_t line() const { return line_; }
-    [[noreturn]] void fail(std::size_t line, const std::string& reason) const {
-        throw IoError(path_, line, reason);
-    }
-
-private:
-    static bool is_digit(char c) { return c >= '0' && c <= '9'; }
-    static bool is_ident_start(char c) {
-        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
-    }
-
-    void skip_space_and_comments() {
-        while (pos_ < text_.size()) {
-            const char c = text_[pos_];
-            if (c == '\n') {
-                ++line_;
-                ++pos_;
-            } else if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') {
-                ++pos_;
-            } else if (text_.compare(pos_, 2, "/*") == 0) {
-                const std::size_t start_line = line_;
-                pos_ += 2;
-                for (;;) {
-                    if (pos_ >= text_.size()) fail(start_line, "unterminated comment");
-                    if (text_.compare(pos_, 2, "*/") == 0) {
-                        pos_ += 2;
-                        break;
-                    }
-                    if (text_[pos_] == '\n') ++line_;
-                    ++pos_;
-                }
-            } else if (text_.compare(pos_, 2, "//") == 0) {
-                while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
-            } else {
-                break;
-            }
-        }
-    }
-
-    static int hex_value(char c) {
-        if (c >= '0' && c <= '9') return c - '0';
-        if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-        if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-        return -1;
-    }
-
-    void read_string(std::string& out) {
-        ++pos_;  // opening quote
-        for (;;) {
-            if (pos_ >= text_.size() || text_[pos_] == '\n')
-                fail(line_, "unterminated string literal");
-            const char c = text_[pos_++];
-            if (c == '"') return;
-            if (c != '\\') {
-                out += c;
-                continue;
-            }
-            if (pos_ >= text_.size()) fail(line_, "unterminated string literal");
-            const char e = text_[pos_++];
-            switch (e) {
-                case 'n':
-                    out += '\n';
-                    break;
-                case 't':
-                    out += '\t';
-                    break;
-                case 'r':
-                    out += '\r';
-                    break;
-                case '0':
-                case '1':
-                case '2':
-                case '3':
-                case '4':
-                case '5':
-                case '6':
-                case '7': {
-                    int v = e - '0';
-                    for (int k = 0;
-                         k < 2 && pos_ < text_.size() && text_[pos_] >= '0' && text_[pos_] <= '7';
-                         ++k)
-                        v = v * 8 + (text_[pos_++] - '0');
-                    out += char(v & 0xff);
-                    break;
-                }
-                case 'x': {
-                    int v = 0, digits = 0;
-                    while (pos_ < text_.size() && hex_value(text_[pos_]) >= 0 && digits < 2) {
-                        v = v * 16 + hex_value(text_[pos_++]);
-                        ++digits;
-                    }
-                    if (digits == 0) fail(line_, "invalid \\x escape in a string literal");
-                    out += char(v);
-                    break;
-                }
-                case '\n':  // line continuation
-                    ++line_;
-                    break;
-                default:
-                    out += e;
-                    break;  // \" \\ \' \? and the rest stand for themselves
-            }
-        }
-    }
-
-    std::string_view text_;
-    const std::string& path_;
-    std::size_t pos_ = 0;
-    std::size_t line_ = 1;
-};
+// ---- C tokens for XBM and XPM (TextScanner's C mode) -----------------------------------------
 
 std::string describe(const CToken& t) {
     if (t.kind == CToken::End) return "the end of the file";
@@ -753,24 +609,24 @@ bool ends_with(std::string_view s, std::string_view suffix) {
 // ---- XBM ------------------------------------------------------------------------------------
 
 Image read_xbm(const std::string& text, const std::string& path) {
-    CLexer lex(text, path);
+    TextScanner lex = TextScanner::c_source(text, path);
     long long width = -1, height = -1;
     std::size_t size_line = 1;
-    CToken t = lex.next();
+    CToken t = lex.next_c_token();
     if (t.kind == CToken::End) throw IoError(path, 0, "the file is empty");
     // #define name_width W / name_height H / name_x_hot X / name_y_hot Y
     while (t.kind == CToken::Punct && t.text == "#") {
-        const CToken directive = lex.next();
+        const CToken directive = lex.next_c_token();
         if (directive.kind != CToken::Identifier || directive.text != "define")
-            lex.fail(directive.line, "expected #define, found " + describe(directive));
-        const CToken name = lex.next();
+            lex.fail_at(directive.line, "expected #define, found " + describe(directive));
+        const CToken name = lex.next_c_token();
         if (name.kind != CToken::Identifier)
-            lex.fail(name.line, "expected a name after #define, found " + describe(name));
-        const CToken value = lex.next();
+            lex.fail_at(name.line, "expected a name after #define, found " + describe(name));
+        const CToken value = lex.next_c_token();
         const long long v = value.kind == CToken::Number ? parse_c_integer(value.text) : -1;
         if (v < 0)
-            lex.fail(value.line, "expected a non-negative number for " + printable(name.text) +
-                                     ", found " + describe(value));
+            lex.fail_at(value.line, "expected a non-negative number for " + printable(name.text) +
+                                        ", found " + describe(value));
         if (ends_with(name.text, "_width")) {
             width = v;
             size_line = name.line;
@@ -778,10 +634,10 @@ Image read_xbm(const std::string& text, const std::string& path) {
             height = v;
             size_line = name.line;
         }  // the hot spot and any other define are not needed
-        t = lex.next();
+        t = lex.next_c_token();
     }
-    if (width < 0) lex.fail(t.line, "missing '#define <name>_width' before the bits");
-    if (height < 0) lex.fail(t.line, "missing '#define <name>_height' before the bits");
+    if (width < 0) lex.fail_at(t.line, "missing '#define <name>_width' before the bits");
+    if (height < 0) lex.fail_at(t.line, "missing '#define <name>_height' before the bits");
     check_dimensions(width, height, path, size_line);
 
     // static [const] [unsigned] char|short name_bits[] = {
@@ -790,22 +646,22 @@ Image read_xbm(const std::string& text, const std::string& path) {
     while (t.kind == CToken::Identifier) {
         if (t.text == "short") is_short = true;
         if (t.text == "char") is_char = true;
-        t = lex.next();
+        t = lex.next_c_token();
     }
     if (!(t.kind == CToken::Punct && t.text == "["))
-        lex.fail(t.line,
-                 "expected the declaration 'static char <name>_bits[] = {', found " + describe(t));
-    if (is_short == is_char) lex.fail(decl_line, "the bits array must be of type char or short");
-    t = lex.next();
-    if (t.kind == CToken::Number) t = lex.next();
+        lex.fail_at(t.line, "expected the declaration 'static char <name>_bits[] = {', found " +
+                                describe(t));
+    if (is_short == is_char) lex.fail_at(decl_line, "the bits array must be of type char or short");
+    t = lex.next_c_token();
+    if (t.kind == CToken::Number) t = lex.next_c_token();
     if (!(t.kind == CToken::Punct && t.text == "]"))
-        lex.fail(t.line, "expected ']', found " + describe(t));
-    t = lex.next();
+        lex.fail_at(t.line, "expected ']', found " + describe(t));
+    t = lex.next_c_token();
     if (!(t.kind == CToken::Punct && t.text == "="))
-        lex.fail(t.line, "expected '=', found " + describe(t));
-    t = lex.next();
+        lex.fail_at(t.line, "expected '=', found " + describe(t));
+    t = lex.next_c_token();
     if (!(t.kind == CToken::Punct && t.text == "{"))
-        lex.fail(t.line, "expected '{', found " + describe(t));
+        lex.fail_at(t.line, "expected '{', found " + describe(t));
 
     // X11 XBM: bytes; X10 XBM: 16-bit words. Bits LSB first, rows padded to whole units.
     const int unit_bits = is_short ? 16 : 8;
@@ -817,18 +673,18 @@ Image read_xbm(const std::string& text, const std::string& path) {
     Image image = make_image(width, height);
     std::size_t count = 0;
     for (;;) {
-        t = lex.next();
+        t = lex.next_c_token();
         if (t.kind == CToken::Punct && t.text == "}") break;
         if (t.kind != CToken::Number)
-            lex.fail(t.line, "expected a number or '}', found " + describe(t));
+            lex.fail_at(t.line, "expected a number or '}', found " + describe(t));
         const long long v = parse_c_integer(t.text);
         if (v < 0 || v > max_value)
-            lex.fail(t.line, "'" + printable(t.text) + "' is not a " +
-                                 (is_short ? "16-bit" : "byte") + " value");
+            lex.fail_at(t.line, "'" + printable(t.text) + "' is not a " +
+                                    (is_short ? "16-bit" : "byte") + " value");
         if (count == n_units)
-            lex.fail(t.line, "more than the " + std::to_string(n_units) + " values that " +
-                                 std::to_string(width) + " x " + std::to_string(height) +
-                                 " pixels need");
+            lex.fail_at(t.line, "more than the " + std::to_string(n_units) + " values that " +
+                                    std::to_string(width) + " x " + std::to_string(height) +
+                                    " pixels need");
         const std::size_t y = count / units_per_row;
         const std::size_t x0 = (count % units_per_row) * std::size_t(unit_bits);
         for (int bit = 0; bit < unit_bits && x0 + std::size_t(bit) < std::size_t(width); ++bit) {
@@ -836,19 +692,19 @@ Image read_xbm(const std::string& text, const std::string& path) {
             put(image, y * std::size_t(width) + x0 + std::size_t(bit), c, c, c);
         }
         ++count;
-        t = lex.next();
+        t = lex.next_c_token();
         if (t.kind == CToken::Punct && t.text == "}") break;
         if (!(t.kind == CToken::Punct && t.text == ","))
-            lex.fail(t.line, "expected ',' or '}', found " + describe(t));
+            lex.fail_at(t.line, "expected ',' or '}', found " + describe(t));
     }
     if (count != n_units)
-        lex.fail(t.line, "found " + std::to_string(count) + " values, but " +
-                             std::to_string(width) + " x " + std::to_string(height) +
-                             " pixels need " + std::to_string(n_units));
-    t = lex.next();
-    if (t.kind == CToken::Punct && t.text == ";") t = lex.next();
+        lex.fail_at(t.line, "found " + std::to_string(count) + " values, but " +
+                                std::to_string(width) + " x " + std::to_string(height) +
+                                " pixels need " + std::to_string(n_units));
+    t = lex.next_c_token();
+    if (t.kind == CToken::Punct && t.text == ";") t = lex.next_c_token();
     if (t.kind != CToken::End)
-        lex.fail(t.line, "unexpected " + describe(t) + " after the bits array");
+        lex.fail_at(t.line, "unexpected " + describe(t) + " after the bits array");
     return image;
 }
 
@@ -925,175 +781,223 @@ std::uint64_t pixel_code(std::string_view chars) {
     return code;
 }
 
-Image read_xpm(const std::string& text, const std::string& path) {
-    if (text.empty()) throw IoError(path, 0, "the file is empty");
-    {
-        // XPM3 files start with the comment /* XPM */.
-        std::size_t i = 0, line = 1;
-        while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i])))
-            line += text[i++] == '\n';
-        const std::size_t end =
-            text.compare(i, 2, "/*") == 0 ? text.find("*/", i + 2) : std::string::npos;
-        if (end == std::string::npos ||
-            std::string_view(text).substr(i, end - i).find("XPM") == std::string_view::npos)
-            throw IoError(path, line, "not an XPM file (it must start with /* XPM */)");
-    }
-    CLexer lex(text, path);
-    // static [const] char *name[] = {
-    CToken t = lex.next();
+/// Refuses a text that does not start with the XPM3 comment /* XPM */ (after space).
+void check_xpm_marker(const std::string& text, const std::string& path) {
+    std::size_t i = 0, line = 1;
+    while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i])))
+        line += text[i++] == '\n';
+    const std::size_t end =
+        text.compare(i, 2, "/*") == 0 ? text.find("*/", i + 2) : std::string::npos;
+    if (end == std::string::npos ||
+        std::string_view(text).substr(i, end - i).find("XPM") == std::string_view::npos)
+        throw IoError(path, line, "not an XPM file (it must start with /* XPM */)");
+}
+
+/// The C declaration `static [const] char *name[] = { "...", ... };`: its strings, adjacent
+/// literals concatenated as in C, each with the line it starts on.
+std::vector<XpmString> read_xpm_strings(TextScanner& lex) {
+    CToken t = lex.next_c_token();
     while (!(t.kind == CToken::Punct && t.text == "{")) {
         const bool declaration_part = t.kind == CToken::Identifier || t.kind == CToken::Number ||
                                       (t.kind == CToken::Punct && (t.text == "*" || t.text == "[" ||
                                                                    t.text == "]" || t.text == "="));
         if (!declaration_part)
-            lex.fail(t.line,
-                     "expected the declaration 'static char* <name>[] = {', found " + describe(t));
-        t = lex.next();
+            lex.fail_at(t.line, "expected the declaration 'static char* <name>[] = {', found " +
+                                    describe(t));
+        t = lex.next_c_token();
     }
-    // The array of strings; adjacent literals concatenate as in C.
     std::vector<XpmString> strings;
-    t = lex.next();
+    t = lex.next_c_token();
     while (!(t.kind == CToken::Punct && t.text == "}")) {
         if (t.kind != CToken::String)
-            lex.fail(t.line, "expected a string or '}', found " + describe(t));
+            lex.fail_at(t.line, "expected a string or '}', found " + describe(t));
         XpmString s{std::move(t.value), t.line};
-        t = lex.next();
+        t = lex.next_c_token();
         while (t.kind == CToken::String) {
             s.text += t.value;
-            t = lex.next();
+            t = lex.next_c_token();
         }
         strings.push_back(std::move(s));
         if (t.kind == CToken::Punct && t.text == ",") {
-            t = lex.next();
+            t = lex.next_c_token();
         } else if (!(t.kind == CToken::Punct && t.text == "}")) {
-            lex.fail(t.line, "expected ',' or '}', found " + describe(t));
+            lex.fail_at(t.line, "expected ',' or '}', found " + describe(t));
         }
     }
     const std::size_t close_line = t.line;
-    t = lex.next();
-    if (t.kind == CToken::Punct && t.text == ";") t = lex.next();
+    t = lex.next_c_token();
+    if (t.kind == CToken::Punct && t.text == ";") t = lex.next_c_token();
     if (t.kind != CToken::End)
-        lex.fail(t.line, "unexpected " + describe(t) + " after the string array");
-    if (strings.empty()) lex.fail(close_line, "the string array is empty");
+        lex.fail_at(t.line, "unexpected " + describe(t) + " after the string array");
+    if (strings.empty()) lex.fail_at(close_line, "the string array is empty");
+    return strings;
+}
 
-    // "width height ncolors chars_per_pixel [x_hot y_hot] [XPMEXT]"
+/// The XPM values line, checked against the limits and against the strings there are.
+struct XpmValues {
+    long long width = 0, height = 0, n_colors = 0, cpp = 0;
+    bool extensions = false;  ///< XPMEXT: extension data may follow the rows
+};
+
+/// Refuses too few strings for the declared colours and rows, and strings after the rows
+/// other than extension data ("XPMEXT name ...", free lines, "XPMENDEXT"), which is skipped.
+void check_xpm_string_count(const std::vector<XpmString>& strings, const XpmValues& x,
+                            const TextScanner& lex) {
+    const std::size_t n_rows = std::size_t(x.height);
+    if (std::size_t(x.n_colors) > strings.size() ||
+        1 + std::size_t(x.n_colors) + n_rows > strings.size())
+        lex.fail_at(strings.back().line,
+                    "the values line declares " + std::to_string(x.n_colors) + " colours and " +
+                        std::to_string(x.height) + " rows, but the file holds only " +
+                        std::to_string(strings.size() - 1) + " strings after it");
+    const std::size_t end_rows = 1 + std::size_t(x.n_colors) + n_rows;
+    if (end_rows < strings.size() &&
+        (!x.extensions || strings[end_rows].text.rfind("XPMEXT", 0) != 0))
+        lex.fail_at(strings[end_rows].line, "more strings than the " + std::to_string(x.n_colors) +
+                                                " colours and " + std::to_string(x.height) +
+                                                " rows that the values line declares");
+}
+
+/// Parses "width height ncolors chars_per_pixel [x_hot y_hot] [XPMEXT]" (strings[0]) and
+/// checks it against the limits and the number of strings.
+XpmValues parse_xpm_values(const std::vector<XpmString>& strings, const TextScanner& lex,
+                           const std::string& path) {
     const XpmString& header = strings[0];
     const auto values = split_words(header.text);
     auto header_number = [&](std::size_t i, const char* what) {
         if (i >= values.size())
-            lex.fail(header.line, std::string("the values line lacks the ") + what);
+            lex.fail_at(header.line, std::string("the values line lacks the ") + what);
         long long v = 0;
         auto [ptr, ec] = std::from_chars(values[i].data(), values[i].data() + values[i].size(), v);
         if (ec != std::errc() || ptr != values[i].data() + values[i].size())
-            lex.fail(header.line,
-                     "'" + printable(values[i]) + "' is not an integer (" + what + ")");
+            lex.fail_at(header.line,
+                        "'" + printable(values[i]) + "' is not an integer (" + what + ")");
         return v;
     };
-    const long long width = header_number(0, "width");
-    const long long height = header_number(1, "height");
-    const long long n_colors = header_number(2, "number of colours");
-    const long long cpp = header_number(3, "characters per pixel");
+    XpmValues x;
+    x.width = header_number(0, "width");
+    x.height = header_number(1, "height");
+    x.n_colors = header_number(2, "number of colours");
+    x.cpp = header_number(3, "characters per pixel");
     std::size_t next_value = 4;
     if (values.size() > 4 && values[4] != "XPMEXT") {
         header_number(4, "hot spot x");
         header_number(5, "hot spot y");
         next_value = 6;
     }
-    const bool extensions = next_value < values.size() && values[next_value] == "XPMEXT";
-    if (extensions) ++next_value;
+    x.extensions = next_value < values.size() && values[next_value] == "XPMEXT";
+    if (x.extensions) ++next_value;
     if (next_value < values.size())
-        lex.fail(header.line,
-                 "unexpected '" + printable(values[next_value]) + "' in the values line");
-    check_dimensions(width, height, path, header.line);
-    if (cpp < 1 || cpp > 8)
-        lex.fail(header.line, "characters per pixel " + std::to_string(cpp) + " is outside 1 to 8");
-    if (n_colors < 1) lex.fail(header.line, "the number of colours must be at least 1");
-    const std::size_t n_rows = std::size_t(height);
-    if (std::size_t(n_colors) > strings.size() ||
-        1 + std::size_t(n_colors) + n_rows > strings.size())
-        lex.fail(strings.back().line, "the values line declares " + std::to_string(n_colors) +
-                                          " colours and " + std::to_string(height) +
-                                          " rows, but the file holds only " +
-                                          std::to_string(strings.size() - 1) + " strings after it");
-    const std::size_t first_row = 1 + std::size_t(n_colors);
-    const std::size_t end_rows = first_row + n_rows;
-    // Extension data ("XPMEXT name ...", free lines, "XPMENDEXT") follows the rows; it is
-    // skipped. Anything else there is an error.
-    if (end_rows < strings.size() &&
-        (!extensions || strings[end_rows].text.rfind("XPMEXT", 0) != 0))
-        lex.fail(strings[end_rows].line, "more strings than the " + std::to_string(n_colors) +
-                                             " colours and " + std::to_string(height) +
-                                             " rows that the values line declares");
+        lex.fail_at(header.line,
+                    "unexpected '" + printable(values[next_value]) + "' in the values line");
+    check_dimensions(x.width, x.height, path, header.line);
+    if (x.cpp < 1 || x.cpp > 8)
+        lex.fail_at(header.line,
+                    "characters per pixel " + std::to_string(x.cpp) + " is outside 1 to 8");
+    if (x.n_colors < 1) lex.fail_at(header.line, "the number of colours must be at least 1");
+    check_xpm_string_count(strings, x, lex);
+    return x;
+}
 
-    // Colours: "<chars> <key> <colour> [<key> <colour>]..."; keys c, m, s, g4, g. The
-    // colour key c is used, else g, g4, m; symbolic names (s) are ignored.
-    const std::size_t chars = std::size_t(cpp);
+/// One colour line: "<chars> <key> <colour> [<key> <colour>]..."; keys c, m, s, g4, g. The
+/// colour key c is used, else g, g4, m; symbolic names (s) are ignored.
+Rgba parse_xpm_color_line(const XpmString& s, std::size_t chars, const TextScanner& lex) {
+    const std::string_view code = std::string_view(s.text).substr(0, chars);
+    const auto words = split_words(std::string_view(s.text).substr(chars));
+    auto is_key = [](std::string_view w) {
+        return w == "c" || w == "m" || w == "s" || w == "g" || w == "g4";
+    };
+    std::string by_key[4];  // c, g, g4, m
+    for (std::size_t w = 0; w < words.size();) {
+        const std::string_view key = words[w++];
+        if (!is_key(key))
+            lex.fail_at(s.line,
+                        "expected a colour key (c, m, s, g or g4), found '" + printable(key) + "'");
+        std::string value;
+        while (w < words.size() && !is_key(words[w])) {
+            if (!value.empty()) value += ' ';
+            value += words[w++];
+        }
+        if (value.empty()) lex.fail_at(s.line, "the key '" + std::string(key) + "' has no colour");
+        if (key == "c") by_key[0] = value;
+        if (key == "g") by_key[1] = value;
+        if (key == "g4") by_key[2] = value;
+        if (key == "m") by_key[3] = value;
+    }
+    const std::string* spec = nullptr;
+    for (const std::string& v : by_key)
+        if (!spec && !v.empty()) spec = &v;
+    if (!spec)
+        lex.fail_at(s.line,
+                    "no colour (key c, g, g4 or m) for the pixel code '" + printable(code) + "'");
+    Rgba rgba;
+    if (!parse_xpm_color(*spec, rgba))
+        lex.fail_at(s.line, "unknown colour '" + printable(*spec) +
+                                "' (neither None, #hex, nor one of the " +
+                                std::to_string(kX11ColorCount) + " X11 colour names)");
+    return rgba;
+}
+
+/// The colour table: pixel code -> colour, from strings 1 to n_colors.
+std::unordered_map<std::uint64_t, Rgba> read_xpm_colors(const std::vector<XpmString>& strings,
+                                                        const XpmValues& x,
+                                                        const TextScanner& lex) {
+    const std::size_t chars = std::size_t(x.cpp);
     std::unordered_map<std::uint64_t, Rgba> table;
-    for (std::size_t i = 1; i < first_row; ++i) {
+    for (std::size_t i = 1; i < 1 + std::size_t(x.n_colors); ++i) {
         const XpmString& s = strings[i];
         if (s.text.size() < chars)
-            lex.fail(s.line, "the colour line is shorter than the " + std::to_string(chars) +
-                                 " characters of a pixel");
+            lex.fail_at(s.line, "the colour line is shorter than the " + std::to_string(chars) +
+                                    " characters of a pixel");
         const std::string_view code = std::string_view(s.text).substr(0, chars);
-        const auto words = split_words(std::string_view(s.text).substr(chars));
-        auto is_key = [](std::string_view w) {
-            return w == "c" || w == "m" || w == "s" || w == "g" || w == "g4";
-        };
-        std::string by_key[4];  // c, g, g4, m
-        for (std::size_t w = 0; w < words.size();) {
-            const std::string_view key = words[w++];
-            if (!is_key(key))
-                lex.fail(s.line, "expected a colour key (c, m, s, g or g4), found '" +
-                                     printable(key) + "'");
-            std::string value;
-            while (w < words.size() && !is_key(words[w])) {
-                if (!value.empty()) value += ' ';
-                value += words[w++];
-            }
-            if (value.empty()) lex.fail(s.line, "the key '" + std::string(key) + "' has no colour");
-            if (key == "c") by_key[0] = value;
-            if (key == "g") by_key[1] = value;
-            if (key == "g4") by_key[2] = value;
-            if (key == "m") by_key[3] = value;
-        }
-        const std::string* spec = nullptr;
-        for (const std::string& v : by_key)
-            if (!spec && !v.empty()) spec = &v;
-        if (!spec)
-            lex.fail(s.line,
-                     "no colour (key c, g, g4 or m) for the pixel code '" + printable(code) + "'");
-        Rgba rgba;
-        if (!parse_xpm_color(*spec, rgba))
-            lex.fail(s.line, "unknown colour '" + printable(*spec) +
-                                 "' (neither None, #hex, nor one of the " +
-                                 std::to_string(kX11ColorCount) + " X11 colour names)");
+        const Rgba rgba = parse_xpm_color_line(s, chars, lex);
         if (!table.emplace(pixel_code(code), rgba).second)
-            lex.fail(s.line, "the pixel code '" + printable(code) + "' is defined twice");
+            lex.fail_at(s.line, "the pixel code '" + printable(code) + "' is defined twice");
     }
+    return table;
+}
 
-    const std::size_t row_length = std::size_t(width) * chars;
+/// The pixel rows (strings after the colours): every row's length is checked before the
+/// image is allocated; each pixel code is looked up in `table`.
+Image decode_xpm_rows(const std::vector<XpmString>& strings, const XpmValues& x,
+                      const std::unordered_map<std::uint64_t, Rgba>& table,
+                      const TextScanner& lex) {
+    const std::size_t chars = std::size_t(x.cpp), n_rows = std::size_t(x.height);
+    const std::size_t first_row = 1 + std::size_t(x.n_colors);
+    const std::size_t width = std::size_t(x.width), row_length = width * chars;
     for (std::size_t y = 0; y < n_rows; ++y) {
         const XpmString& s = strings[first_row + y];
         if (s.text.size() != row_length)
-            lex.fail(s.line, "the pixel row has " + std::to_string(s.text.size()) +
-                                 " characters, expected " + std::to_string(row_length) + " (" +
-                                 std::to_string(width) + " pixels of " + std::to_string(chars) +
-                                 ")");
+            lex.fail_at(s.line, "the pixel row has " + std::to_string(s.text.size()) +
+                                    " characters, expected " + std::to_string(row_length) + " (" +
+                                    std::to_string(x.width) + " pixels of " +
+                                    std::to_string(chars) + ")");
     }
-    Image image = make_image(width, height);
+    Image image = make_image(x.width, x.height);
     for (std::size_t y = 0; y < n_rows; ++y) {
         const XpmString& s = strings[first_row + y];
-        for (std::size_t x = 0; x < std::size_t(width); ++x) {
-            const std::string_view code = std::string_view(s.text).substr(x * chars, chars);
+        for (std::size_t col = 0; col < width; ++col) {
+            const std::string_view code = std::string_view(s.text).substr(col * chars, chars);
             const auto it = table.find(pixel_code(code));
             if (it == table.end())
-                lex.fail(s.line, "unknown pixel code '" + printable(code) + "' in column " +
-                                     std::to_string(x + 1));
+                lex.fail_at(s.line, "unknown pixel code '" + printable(code) + "' in column " +
+                                        std::to_string(col + 1));
             const Rgba& c = it->second;
-            put(image, y * std::size_t(width) + x, c.r, c.g, c.b, c.a);
+            put(image, y * width + col, c.r, c.g, c.b, c.a);
         }
     }
     return image;
+}
+
+/// An XPM3 image: the marker, the string array, the values line, the colours, the rows.
+Image read_xpm(const std::string& text, const std::string& path) {
+    if (text.empty()) throw IoError(path, 0, "the file is empty");
+    check_xpm_marker(text, path);
+    TextScanner lex = TextScanner::c_source(text, path);
+    const std::vector<XpmString> strings = read_xpm_strings(lex);
+    const XpmValues values = parse_xpm_values(strings, lex, path);
+    const auto table = read_xpm_colors(strings, values, lex);
+    return decode_xpm_rows(strings, values, table, lex);
 }
 
 }  // namespace
