@@ -1,6 +1,9 @@
 #include "core/geometry.h"
 
 #include <cmath>
+#include <vector>
+
+#include "core/prefetch.h"
 
 namespace trilab {
 
@@ -70,9 +73,30 @@ double surface_area(const HalfedgeMesh& mesh) {
 }
 
 double volume(const HalfedgeMesh& mesh) {
-    double v = 0;
-    for (Face f : mesh.faces()) v += face_centroid(mesh, f).dot(face_area_vector(mesh, f));
-    return v / 6.0;
+    // face_centroid() . face_area_vector() summed in face order, in one pass over the
+    // connectivity arrays with the halfedges of a few faces ahead prefetched (every load runs
+    // this for its orientation note).
+    const std::vector<Vertex>& to = mesh.get_halfedge_property<Vertex>("h:to").vector();
+    const std::vector<Halfedge>& next = mesh.get_halfedge_property<Halfedge>("h:next").vector();
+    const std::vector<Halfedge>& fh = mesh.get_face_property<Halfedge>("f:halfedge").vector();
+    const std::vector<Point>& x = mesh.positions();
+    constexpr std::size_t kAhead = 8;
+    double volume6 = 0;
+    for (Face f : mesh.faces()) {
+        if (f.idx() + kAhead < fh.size()) {
+            const Index a = fh[f.idx() + kAhead].idx();
+            if (a < next.size()) {
+                prefetch(&next[a]);
+                prefetch(&to[a]);
+            }
+        }
+        const Halfedge h0 = fh[f.idx()], h1 = next[h0.idx()], h2 = next[h1.idx()];
+        const Point& x0 = x[to[h0.idx()].idx()];
+        const Point& x1 = x[to[h1.idx()].idx()];
+        const Point& x2 = x[to[h2.idx()].idx()];
+        volume6 += ((x0 + x1 + x2) / 3.0).dot((x1 - x0).cross(x2 - x0));
+    }
+    return volume6 / 6.0;
 }
 
 bool is_closed(const HalfedgeMesh& mesh) {

@@ -286,23 +286,30 @@ void MeshRenderer::setup_vertex_array(GLuint vao, GLuint element_buffer) const {
 }
 
 MeshRenderer::Update MeshRenderer::show(const HalfedgeMesh& mesh) {
-    if (shows(mesh)) return Update::None;
-    if (shows_topology_of(mesh)) {
-        update_positions(mesh);
-        return Update::Positions;
+    const HalfedgeMesh::Revision r = mesh.revision();
+    if (!holds_topology(r)) {
+        upload(mesh);
+        return Update::Full;
     }
-    upload(mesh);
-    return Update::Full;
+    if (shown_.geometry == r.geometry) return Update::None;
+    write_geometry(mesh);
+    shown_.geometry = r.geometry;
+    return Update::Positions;
 }
 
 bool MeshRenderer::shows(const HalfedgeMesh& mesh) const {
-    return shows_topology_of(mesh) && shown_.geometry == mesh.geometry_revision();
+    const HalfedgeMesh::Revision r = mesh.revision();
+    return holds_topology(r) && shown_.geometry == r.geometry;
 }
 
 bool MeshRenderer::shows_topology_of(const HalfedgeMesh& mesh) const {
-    return level_vertices_.empty() && shown_.topology != 0 &&
-           shown_.topology == mesh.topology_revision() &&
-           shown_.attributes == mesh.attribute_revision();
+    return holds_topology({mesh.topology_revision(), 0, mesh.attribute_revision()});
+}
+
+bool MeshRenderer::holds_topology(const HalfedgeMesh::Revision& r) const {
+    // Revisions are never 0, so nothing uploaded (all 0) never matches.
+    return level_vertices_.empty() && shown_.topology == r.topology &&
+           shown_.attributes == r.attributes;
 }
 
 void MeshRenderer::upload(const HalfedgeMesh& mesh) {

@@ -200,6 +200,8 @@ public:
     glm::vec3 bbox_max() const { return bbox_max_; }
 
 private:
+    /// The GPU holds faces and attributes of these revisions (positions may differ).
+    bool holds_topology(const HalfedgeMesh::Revision& r) const;
     void write_geometry(const HalfedgeMesh& mesh,
                         const std::vector<Point>* moved_positions = nullptr);
     void write_level_vertex(const LevelOfDetail& lod, Index v);

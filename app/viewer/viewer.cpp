@@ -531,12 +531,13 @@ void Viewer::update_morph() {
     }
     try {
         const MorphFrame frame = document_.history.morph(entry, ease(morph_.easing, morph_.t));
-        if (!morph_shown_ || !renderer_->shows_topology_of(*frame.topology)) {
+        const bool held = renderer_->shows_topology_of(*frame.topology);
+        if (!morph_shown_ || !held) {
             // The morph's first frame, or a new connectivity: upload it once (unless the GPU
             // holds it already); colours are computed on it at its own (final) shape, so each
             // vertex keeps its colour while it moves.
             morph_shown_ = true;
-            if (!renderer_->shows_topology_of(*frame.topology)) renderer_->upload(*frame.topology);
+            if (!held) renderer_->upload(*frame.topology);
             if (view_.settings.coloring != VertexColoring::None) {
                 const std::vector<Point> reference = reference_positions();
                 VertexColors colors =

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/errors.h"
+#include "core/hash.h"
 
 namespace trilab {
 
@@ -21,17 +22,9 @@ inline std::uint64_t coordinate_bits(double x) {
     return b;
 }
 
-inline std::uint64_t mix(std::uint64_t h) {
-    h ^= h >> 33;
-    h *= 0xff51afd7ed558ccdULL;
-    h ^= h >> 33;
-    h *= 0xc4ceb9fe1a85ec53ULL;
-    h ^= h >> 33;
-    return h;
-}
-
 inline std::uint64_t hash_point(const Point& p) {
-    return mix(coordinate_bits(p.x()) ^ mix(coordinate_bits(p.y()) ^ mix(coordinate_bits(p.z()))));
+    return mix_bits(coordinate_bits(p.x()) ^
+                    mix_bits(coordinate_bits(p.y()) ^ mix_bits(coordinate_bits(p.z()))));
 }
 
 /// Groups from a representative per point (kInvalidIndex: skipped); the representative of a
@@ -110,8 +103,8 @@ CoincidentGroups tolerance_groups(const Point* p, std::size_t n, const std::uint
     };
     struct CellHash {
         std::size_t operator()(const Cell& c) const {
-            return std::size_t(
-                mix(std::uint64_t(c.x) ^ mix(std::uint64_t(c.y) ^ mix(std::uint64_t(c.z)))));
+            return std::size_t(mix_bits(
+                std::uint64_t(c.x) ^ mix_bits(std::uint64_t(c.y) ^ mix_bits(std::uint64_t(c.z)))));
         }
     };
     std::unordered_map<Cell, std::vector<Index>, CellHash> cells;

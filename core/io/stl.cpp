@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/hash.h"
 #include "core/io/byte_io.h"
 #include "core/io/file_util.h"
 #include "core/io/mesh_io.h"
@@ -56,15 +57,6 @@ float load_f32_le(const unsigned char* p, bool host_le) {
         std::memcpy(&f, &u, 4);
     }
     return f;
-}
-
-std::uint64_t mix(std::uint64_t h) {
-    h ^= h >> 31;
-    h *= 0x7fb5d329728ea185ULL;
-    h ^= h >> 27;
-    h *= 0x81dadef4bc2dd44dULL;
-    h ^= h >> 33;
-    return h;
 }
 
 /// Maps the bit pattern of a position (Word = u32 for float, u64 for double coordinates) to
@@ -105,8 +97,8 @@ private:
     static constexpr Index kEmpty = kInvalidIndex;
     static std::size_t hash(const Key& k) {
         std::uint64_t h = std::uint64_t(k[0]) * 0x9E3779B97F4A7C15ULL;
-        h = mix(h ^ std::uint64_t(k[1]));
-        h = mix(h ^ std::uint64_t(k[2]) * 0xC2B2AE3D27D4EB4FULL);
+        h = mix_bits(h ^ std::uint64_t(k[1]));
+        h = mix_bits(h ^ std::uint64_t(k[2]) * 0xC2B2AE3D27D4EB4FULL);
         return std::size_t(h);
     }
     void grow() {

@@ -656,12 +656,7 @@ TEST_CASE("show() uploads only what the mesh's revisions say changed", "[render]
     CHECK(renderer.show(sphere) == Update::Full);
     CHECK(renderer.has_texcoords());
     CHECK_FALSE(renderer.has_vertex_colors());
-    Edge flippable;
-    for (Edge e : sphere.edges())
-        if (sphere.is_flip_ok(e)) {
-            flippable = e;
-            break;
-        }
+    const Edge flippable = first_flippable_edge(sphere);
     REQUIRE(flippable.is_valid());
     sphere.flip(flippable);
     CHECK(renderer.show(sphere) == Update::Full);

@@ -34,6 +34,13 @@ inline bool exists(const std::string& path) {
 /// A sphere with normals, colours and texture coordinates on its vertices.
 HalfedgeMesh attributed_sphere();
 
+/// The first edge of `mesh` that can be flipped (HalfedgeMesh::is_flip_ok), or an invalid one.
+inline Edge first_flippable_edge(const HalfedgeMesh& mesh) {
+    for (Edge e : mesh.edges())
+        if (mesh.is_flip_ok(e)) return e;
+    return Edge();
+}
+
 /// The message of the IoError that reading `path` throws ("" when none is thrown).
 std::string read_error(const std::string& path);
 

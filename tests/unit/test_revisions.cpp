@@ -42,12 +42,7 @@ TEST_CASE("a write changes the revision of what it may have changed, and only th
 
     // An edge flip: topology only.
     const HalfedgeMesh::Revision r2 = a.revision();
-    Edge flippable;
-    for (Edge e : a.edges())
-        if (a.is_flip_ok(e)) {
-            flippable = e;
-            break;
-        }
+    const Edge flippable = test::first_flippable_edge(a);
     REQUIRE(flippable.is_valid());
     a.flip(flippable);
     REQUIRE_VALID(a);
