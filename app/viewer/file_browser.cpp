@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "app/viewer/panels.h"
+#include "app/viewer/widgets.h"
 #include "core/io/image_io.h"
 #include "core/io/mesh_io.h"
 
@@ -97,7 +98,7 @@ void file_browser(FileBrowserState& state, CommandQueue& commands) {
 
     const std::vector<std::string> exts = extensions_for(state.purpose);
     ImGui::TextUnformatted(state.folder.string().c_str());
-    if (ImGui::Button("Up")) state.folder = state.folder.parent_path();
+    if (button("Up")) state.folder = state.folder.parent_path();
     ImGui::SameLine();
     ImGui::Checkbox("Show all files", &state.show_all_files);
 
@@ -133,10 +134,10 @@ void file_browser(FileBrowserState& state, CommandQueue& commands) {
     for (const std::string& e : exts) ext_list += (ext_list.empty() ? "." : " .") + e;
     ImGui::TextDisabled("%s", ext_list.c_str());
 
-    if (ImGui::Button(verb(state.purpose))) accept = true;
+    if (button(verb(state.purpose))) accept = true;
     ImGui::SameLine();
     const bool cancel =
-        ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape));
+        button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape));
     if (!state.error.empty()) {
         ImGui::SameLine();
         ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", state.error.c_str());

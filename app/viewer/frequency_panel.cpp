@@ -3,6 +3,7 @@
 
 #include "app/viewer/panels.h"
 #include "app/viewer/plots.h"
+#include "app/viewer/widgets.h"
 
 #include <imgui.h>
 
@@ -65,17 +66,18 @@ void frequency_bar(const FrequencyDocument& doc, int lo, int hi, int marker, flo
 
 FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocument& doc, bool busy) {
     FrequencyActions act;
-    if (!section_header("Frequency decomposition", s.open)) return act;
+    SidebarSection section("Frequency decomposition", s.open);
+    if (!section) return act;
     const float em = ImGui::GetFontSize();
     // The decomposition's parameters, drawn from the operation's declaration (the band is
     // the sliders below; threads and the size limit keep their defaults here).
     operation_widgets(s.op, {"band", "threads", "max-full"});
     if (busy) ImGui::BeginDisabled();
-    act.decompose = ImGui::Button("Decompose");
+    act.decompose = button("Decompose");
     ImGui::SameLine();
     const bool have = doc.decomposition && doc.valid && !doc.eigenvalues.empty();
     if (!have) ImGui::BeginDisabled();
-    act.restore = ImGui::Button("Restore");
+    act.restore = button("Restore");
     if (!have) ImGui::EndDisabled();
     if (busy) ImGui::EndDisabled();
     if (doc.decomposition && !doc.valid)

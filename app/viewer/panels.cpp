@@ -1,22 +1,24 @@
 #include "app/viewer/panels.h"
 
 #include <imgui.h>
+#include <imgui_internal.h>
 #include <imgui_stdlib.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iterator>
+#include <optional>
 
 #include "app/viewer/key_bindings.h"
 #include "app/viewer/plots.h"
+#include "app/viewer/widgets.h"
 #include "core/algorithms/fairing.h"
 
 namespace trilab::viewer {
 namespace {
 
 void morph_controls(MorphState& morph, const History& history, double now);
-void note_widget(const std::string& id);
 
 constexpr const char* kErrorPopupTitle = "Error";
 
@@ -30,26 +32,19 @@ public:
     ScopedStyleVar& operator=(const ScopedStyleVar&) = delete;
 };
 
-/// ImGui::BeginMenu; a closed menu's header is reported to the test hook as "menu:LABEL".
-bool begin_menu(const char* label, bool enabled = true) {
-    const bool open = ImGui::BeginMenu(label, enabled);
-    if (!open) note_widget(std::string("menu:") + label);
-    return open;
-}
-
 /// A menu item that shows the key of `action` (the key bindings table's text). Reported to
 /// the test hook as "shortcut:LABEL=KEYS".
 bool shortcut_item(const char* label, KeyAction action, bool selected = false,
                    bool enabled = true) {
     const std::string keys = shortcut_text(action);
-    const bool clicked = ImGui::MenuItem(label, keys.c_str(), selected, enabled);
+    const bool clicked = menu_item(label, keys.c_str(), selected, enabled);
     note_widget("shortcut:" + std::string(label) + "=" + keys);
     return clicked;
 }
 /// The same for an item that toggles `*selected`.
 bool shortcut_item(const char* label, KeyAction action, bool* selected) {
     const std::string keys = shortcut_text(action);
-    const bool clicked = ImGui::MenuItem(label, keys.c_str(), selected);
+    const bool clicked = menu_item(label, keys.c_str(), selected);
     note_widget("shortcut:" + std::string(label) + "=" + keys);
     return clicked;
 }
@@ -86,10 +81,10 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
                                 RenderMode::Flat,      RenderMode::Smooth,
                                 RenderMode::Points,    RenderMode::Textured};
     for (RenderMode mode : modes)
-        if (ImGui::MenuItem(render_mode_name(mode), nullptr, style.mode == mode)) style.mode = mode;
+        if (menu_item(render_mode_name(mode), nullptr, style.mode == mode)) style.mode = mode;
     ImGui::Separator();
     if (begin_menu("Wireframe overlay")) {
-        if (ImGui::MenuItem("Automatic", nullptr, settings.wireframe == WireframeOverlay::Auto))
+        if (menu_item("Automatic", nullptr, settings.wireframe == WireframeOverlay::Auto))
             settings.wireframe = WireframeOverlay::Auto;
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("on while the edges are long enough on the screen to tell apart");
@@ -99,7 +94,7 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
         if (shortcut_item("Off", KeyAction::ToggleWireframe,
                           settings.wireframe == WireframeOverlay::Off))
             settings.wireframe = WireframeOverlay::Off;
-        ImGui::EndMenu();
+        end_menu();
     }
     shortcut_item("Back-face colour", KeyAction::ToggleBackFaceColor, &style.back_face_color);
     if (begin_menu("Colour by vertex")) {
@@ -126,13 +121,13 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
                                 "Frequency (the visualized eigenvector)",
                                 "Frequency mass (geometry in the band)"};
         for (std::size_t i = 0; i < std::size(colorings); ++i) {
-            if (ImGui::MenuItem(labels[i], nullptr, settings.coloring == colorings[i]) &&
+            if (menu_item(labels[i], nullptr, settings.coloring == colorings[i]) &&
                 settings.coloring != colorings[i]) {
                 settings.coloring = colorings[i];
                 commands.push_back(UpdateColoring{});
             }
         }
-        ImGui::EndMenu();
+        end_menu();
     }
     if (begin_menu("Texture")) {
         const TextureMode tmodes[] = {TextureMode::Off, TextureMode::Modulate,
@@ -142,46 +137,46 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
             const bool clicked =
                 m == TextureMode::Off
                     ? shortcut_item(texture_mode_name(m), KeyAction::CycleTexture, on)
-                    : ImGui::MenuItem(texture_mode_name(m), nullptr, on);
+                    : menu_item(texture_mode_name(m), nullptr, on);
             if (clicked) {
                 style.texture_mode = m;
                 style.mode = m == TextureMode::Off ? RenderMode::Smooth : RenderMode::Textured;
             }
         }
         ImGui::Separator();
-        if (ImGui::MenuItem("Checkerboard", nullptr, settings.use_checkerboard))
+        if (menu_item("Checkerboard", nullptr, settings.use_checkerboard))
             settings.use_checkerboard = true;
-        if (ImGui::MenuItem("Loaded image", nullptr, !settings.use_checkerboard,
-                            render.has_loaded_texture))
+        if (menu_item("Loaded image", nullptr, !settings.use_checkerboard,
+                      render.has_loaded_texture))
             settings.use_checkerboard = false;
-        if (ImGui::MenuItem("Load image..."))
+        if (menu_item("Load image..."))
             panels.file_browser.request(FileBrowserState::Purpose::LoadTexture, "");
         ImGui::Separator();
         if (render.has_texcoords) {
             ImGui::TextDisabled("the model has texture coordinates");
         } else {
             ImGui::TextDisabled("no texture coordinates: project them");
-            if (ImGui::MenuItem("Planar projection")) {
+            if (menu_item("Planar projection")) {
                 settings.projection = TexCoordProjection::Planar;
                 commands.push_back(ProjectTexCoords{});
             }
-            if (ImGui::MenuItem("Spherical projection")) {
+            if (menu_item("Spherical projection")) {
                 settings.projection = TexCoordProjection::Spherical;
                 commands.push_back(ProjectTexCoords{});
             }
         }
-        ImGui::EndMenu();
+        end_menu();
     }
     if (begin_menu("Vectors")) {
-        ImGui::MenuItem("Face normals", nullptr, &style.face_normals);
-        ImGui::MenuItem("Vertex normals", nullptr, &style.vertex_normals);
-        ImGui::MenuItem("Collapsing edges", nullptr, &panels.decimation.show_collapsing_edges);
+        menu_item("Face normals", nullptr, &style.face_normals);
+        menu_item("Vertex normals", nullptr, &style.vertex_normals);
+        menu_item("Collapsing edges", nullptr, &panels.decimation.show_collapsing_edges);
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("The edges the Decimation panel's next iteration collapses");
         ImGui::SetNextItemWidth(10.0f * ImGui::GetFontSize());
         ImGui::SliderFloat("length", &style.vector_length, 0.002f, 0.2f, "%.3f",
                            ImGuiSliderFlags_Logarithmic);
-        ImGui::EndMenu();
+        end_menu();
     }
     if (begin_menu("Lighting and colours")) {
         shortcut_item("Specular highlight", KeyAction::ToggleSpecular, &style.specular);
@@ -198,7 +193,7 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
         ImGui::SliderFloat("line width", &style.wire_width, 0.5f, 4.0f, "%.1f px");
         ImGui::SetNextItemWidth(10.0f * ImGui::GetFontSize());
         ImGui::SliderFloat("point size", &style.point_size, 1.0f, 12.0f, "%.1f px");
-        ImGui::EndMenu();
+        end_menu();
     }
     ImGui::Separator();
     if (shortcut_item("Fit view", KeyAction::FitView)) commands.push_back(FitView{});
@@ -215,19 +210,19 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
         const bool has_recent = context.recent_files && !context.recent_files->empty();
         if (begin_menu("Open recent", has_recent && !context.busy)) {
             for (const std::string& path : *context.recent_files)
-                if (ImGui::MenuItem(path.c_str())) commands.push_back(LoadFile{path});
-            ImGui::EndMenu();
+                if (menu_item(path.c_str())) commands.push_back(LoadFile{path});
+            end_menu();
         }
-        if (ImGui::MenuItem("Revert", nullptr, false, context.has_file && !context.busy))
+        if (menu_item("Revert", nullptr, false, context.has_file && !context.busy))
             commands.push_back(RevertFile{});
         if (shortcut_item("Save as...", KeyAction::SaveFile, false, !context.busy))
             panels.file_browser.request(FileBrowserState::Purpose::SaveMesh, context.document_path);
         ImGui::Separator();
-        if (ImGui::MenuItem("Load texture...", nullptr, false, !context.busy))
+        if (menu_item("Load texture...", nullptr, false, !context.busy))
             panels.file_browser.request(FileBrowserState::Purpose::LoadTexture, "");
         ImGui::Separator();
         if (shortcut_item("Quit", KeyAction::Quit)) commands.push_back(Quit{});
-        ImGui::EndMenu();
+        end_menu();
     }
     if (begin_menu("Edit")) {
         if (shortcut_item("Undo", KeyAction::Undo, false, context.can_undo && !context.busy))
@@ -238,51 +233,50 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
         shortcut_item("History", KeyAction::ToggleHistory, &panels.history_open);
         shortcut_item("Morph", KeyAction::ToggleMorph, &panels.morph_open);
         shortcut_item("Record", KeyAction::ToggleRecord, &panels.record.open);
-        ImGui::EndMenu();
+        end_menu();
     }
     view_menu(settings, commands);
     if (begin_menu("Tools")) {
-        ImGui::MenuItem("Add noise", nullptr, &panels.tools.open);
-        if (ImGui::MenuItem("Flip orientation", nullptr, false, !context.busy))
+        menu_item("Add noise", nullptr, &panels.tools.open);
+        if (menu_item("Flip orientation", nullptr, false, !context.busy))
             commands.push_back(ApplyOperation{make_operation("flip")});
-        ImGui::MenuItem("Weld coincident vertices...", nullptr, &panels.weld.open);
-        ImGui::EndMenu();
+        menu_item("Weld coincident vertices...", nullptr, &panels.weld.open);
+        end_menu();
     }
     if (begin_menu("Algorithms")) {
         // The operation panels arrive with their issues; listed so the menu shows the plan.
-        ImGui::MenuItem("Fairing", nullptr, &panels.fairing.open);
-        ImGui::MenuItem("Frequency decomposition", nullptr, &panels.frequency.open);
-        ImGui::MenuItem("Subdivision", nullptr, &panels.subdivision.open);
-        ImGui::MenuItem("Decimation", nullptr, &panels.decimation.open);
-        ImGui::EndMenu();
+        menu_item("Fairing", nullptr, &panels.fairing.open);
+        menu_item("Frequency decomposition", nullptr, &panels.frequency.open);
+        menu_item("Subdivision", nullptr, &panels.subdivision.open);
+        menu_item("Decimation", nullptr, &panels.decimation.open);
+        end_menu();
     }
     if (begin_menu("Rendering")) {
         rendering_menu_items(style, settings, panels, render, commands);
-        ImGui::EndMenu();
+        end_menu();
     }
     if (begin_menu("Window")) {
-        ImGui::MenuItem("Sidebar", nullptr, &panels.sidebar_open);
+        menu_item("Sidebar", nullptr, &panels.sidebar_open);
         shortcut_item("Model information", KeyAction::PrintInfo, &panels.info_open);
         shortcut_item("Log", KeyAction::ToggleLog, &panels.log_open);
-        ImGui::EndMenu();
+        end_menu();
     }
     if (begin_menu("Help")) {
         shortcut_item("Key bindings", KeyAction::ToggleHelp, &panels.help_open);
-        ImGui::MenuItem("About trilab", nullptr, &panels.about_open);
-        ImGui::EndMenu();
+        menu_item("About trilab", nullptr, &panels.about_open);
+        end_menu();
     }
     ImGui::EndMainMenuBar();
 }
 
 void view_menu(ViewSettings& settings, CommandQueue& commands) {
     if (!begin_menu("View")) return;
-    if (ImGui::MenuItem("Default view")) commands.push_back(ResetView{});
+    if (menu_item("Default view")) commands.push_back(ResetView{});
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("look at the model's front with its up axis up, and fit it");
     if (begin_menu("Up axis")) {
         for (const EnumEntry<UpAxis>& e : kUpAxes) {
-            if (ImGui::MenuItem(e.label, nullptr, settings.up == e.value) &&
-                settings.up != e.value) {
+            if (menu_item(e.label, nullptr, settings.up == e.value) && settings.up != e.value) {
                 settings.up = e.value;
                 commands.push_back(ResetView{});
             }
@@ -291,9 +285,9 @@ void view_menu(ViewSettings& settings, CommandQueue& commands) {
                     "the model's up axis (remembered): the default view keeps it up, and the "
                     "spherical texture projection puts its poles on it");
         }
-        ImGui::EndMenu();
+        end_menu();
     }
-    ImGui::EndMenu();
+    end_menu();
 }
 
 void context_menu(RenderStyle& style, ViewSettings& settings, PanelState& panels,
@@ -342,6 +336,10 @@ bool begin_sidebar(const Rect& r, LayoutState& layout) {
                         ImGuiWindowFlags_NoTitleBar);
 }
 
+SidebarSection::SidebarSection(const char* label, bool& open) : open_(section_header(label, open)) {
+    if (open_) scope_.emplace(label, true);
+}
+
 bool section_header(const char* label, bool& open) {
     // Remember whether the section was open last frame, in the window's storage: a section
     // opened from a menu or a key (not by its header) is scrolled into view.
@@ -350,7 +348,7 @@ bool section_header(const char* label, bool& open) {
     const int was = storage->GetInt(id, -1);
     ImGui::SetNextItemOpen(open, ImGuiCond_Always);
     const bool clicked_open = ImGui::CollapsingHeader(label);
-    note_widget(std::string("section:") + label);
+    note_widget(std::string("section:") + label, WidgetNote::Kind::Header, label);
     const bool by_click = clicked_open != open;
     open = clicked_open;
     if (open && was == 0 && !by_click) ImGui::SetScrollHereY(0.0f);
@@ -441,7 +439,7 @@ void status_bar(const StatusInfo& info, const Notice& notice, const JobInfo* job
             ImGui::SameLine();
             if (job->cancel_requested)
                 ImGui::TextDisabled("cancelling");
-            else if (ImGui::Button("Cancel##job"))
+            else if (button("Cancel##job"))
                 commands.push_back(CancelJob{});
         }
     }
@@ -503,13 +501,16 @@ void history_window(PanelState& panels, const History& history, bool busy, const
 }
 
 namespace {
-WidgetRectHook widget_rect_hook;  // tests only; see set_widget_rect_hook()
-
-/// Reports the last item's rectangle to the test hook, when one is set.
-void note_widget(const std::string& id) {
-    if (!widget_rect_hook) return;
-    const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
-    widget_rect_hook(id, a.x, a.y, b.x, b.y);
+/// A typed value outside the declared range was replaced by `kept`: the text field lets go
+/// (so it shows `kept` at once, like the slider), and the reason goes to `notes`.
+void keep_typed_value(const ParamSpec& p, double typed, double kept,
+                      std::vector<std::string>* notes) {
+    ImGui::ClearActiveID();
+    if (!notes) return;
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "%s: %g is outside %g .. %g; using %g", p.label.c_str(), typed,
+                  p.min, p.max, kept);
+    notes->push_back(buf);
 }
 
 /// The width of a widget with its label at the right: `wanted_em`, less in a narrow sidebar
@@ -521,15 +522,17 @@ float widget_width(float wanted_em = 12.0f, float label_share = 0.4f) {
 }
 }  // namespace
 
-void set_widget_rect_hook(WidgetRectHook hook) {
-    widget_rect_hook = std::move(hook);
+double clamp_to_declared(const ParamSpec& p, double x) {
+    double kept = std::clamp(x, p.min, p.max);
+    if (p.min_exclusive && kept <= p.min) {  // the smallest value above min the panel offers
+        const double ui_low = p.ui_min != 0 || p.ui_max != 0 ? p.ui_min : p.min;
+        kept = ui_low > p.min ? ui_low : std::nextafter(p.min, p.max);
+    }
+    return kept;
 }
 
-void note_widget_rect(const std::string& id, float x0, float y0, float x1, float y1) {
-    if (widget_rect_hook) widget_rect_hook(id, x0, y0, x1, y1);
-}
-
-bool operation_widgets(Operation& op, const std::vector<std::string>& skip) {
+bool operation_widgets(Operation& op, const std::vector<std::string>& skip,
+                       std::vector<std::string>* notes) {
     bool changed = false;
     const OperationDef& def = *op.def;
     const float w = widget_width();
@@ -566,62 +569,79 @@ bool operation_widgets(Operation& op, const std::vector<std::string>& skip) {
             }
             case ParamKind::Flag: {
                 bool on = v.x != 0;
-                if (ImGui::Checkbox(p.label.c_str(), &on)) v.x = on ? 1 : 0;
+                if (checkbox(p.label.c_str(), &on)) v.x = on ? 1 : 0;
                 break;
             }
             case ParamKind::Integer: {
+                // An optional number's check box carries its label: set, or the default.
+                const std::string label = p.optional ? "##" + p.name : p.label;
                 if (p.optional) {
-                    if (ImGui::Checkbox("##set", &v.on) && v.on)
+                    if (checkbox(p.label.c_str(), &v.on, (p.name + ":on").c_str()) && v.on)
                         v.x = std::clamp(v.x, p.min, p.max);  // from "unset" to a value
-                    note_widget(p.name + ":on");
                     ImGui::SameLine();
                 }
                 if (!v.on) {  // unset: the run's default, said in words
+                    ImGui::PushTextWrapPos(0.0f);
                     ImGui::TextDisabled(
-                        "%s: %s", p.label.c_str(),
-                        p.default_note.empty() ? "default" : p.default_note.c_str());
+                        "%s", p.default_note.empty() ? "default" : p.default_note.c_str());
+                    ImGui::PopTextWrapPos();
                     break;
                 }
                 ImGui::SetNextItemWidth(w);
                 if (hi - lo <= 1000) {
                     int x = int(std::clamp(v.x, lo, hi));
-                    if (ImGui::SliderInt(p.label.c_str(), &x, int(lo), int(hi), "%d",
+                    if (ImGui::SliderInt(label.c_str(), &x, int(lo), int(hi), "%d",
                                          ImGuiSliderFlags_AlwaysClamp))
                         v.x = x;
                 } else {  // wide ranges (vertex counts): type the number
                     long long x = std::llround(v.x);
-                    if (ImGui::InputScalar(p.label.c_str(), ImGuiDataType_S64, &x))
+                    if (ImGui::InputScalar(label.c_str(), ImGuiDataType_S64, &x)) {
                         v.x = std::clamp(double(x), p.min, p.max);
+                        if (v.x != double(x)) keep_typed_value(p, double(x), v.x, notes);
+                    }
                 }
                 break;
             }
             case ParamKind::Switchable:
             case ParamKind::Number: {
-                if (p.kind == ParamKind::Switchable) {
-                    ImGui::Checkbox("##on", &v.on);
-                    note_widget(p.name + ":on");
+                const bool switchable = p.kind == ParamKind::Switchable;
+                if (switchable) {  // the check box carries the label
+                    checkbox(p.label.c_str(), &v.on, (p.name + ":on").c_str());
                     ImGui::SameLine();
                     if (!v.on) ImGui::BeginDisabled();
                 }
-                // Type any value ("2e-2" works) or drag the slider.
+                // Type any value ("2e-2" works) or drag the slider. A typed value outside the
+                // declared range is clamped at once: the field lets go of it and shows the
+                // value used, as do the slider and every message (keep_typed_value()).
                 ImGui::SetNextItemWidth(w * 0.45f);
                 double x = v.x;
-                if (ImGui::InputDouble("##value", &x, 0.0, 0.0, "%g") && std::isfinite(x)) v.x = x;
+                const bool typed = ImGui::InputDouble("##value", &x, 0.0, 0.0, "%g");
+                note_widget(p.name + ":value");
+                if (typed && std::isfinite(x)) {
+                    v.x = clamp_to_declared(p, x);
+                    // "0" on the way to "0.05" above an exclusive 0 is not a typing mistake.
+                    const bool on_the_way = p.min_exclusive && x == p.min;
+                    if (v.x != x && !on_the_way) keep_typed_value(p, x, v.x, notes);
+                }
                 // A slider where its span fits a float's (max-error has none: scale-dependent).
                 if (std::abs(lo) < 1e30 && std::abs(hi) < 1e30) {
                     ImGui::SameLine();
                     float f = float(std::clamp(v.x, lo, hi));
+                    // Beyond the slider's span the slider shows the value itself, not its end.
+                    char beyond[64];
+                    std::snprintf(beyond, sizeof beyond, "%.4g", v.x);
+                    const bool outside = v.x < lo || v.x > hi;
                     ImGui::SetNextItemWidth(w * 0.55f);
-                    if (ImGui::SliderFloat(p.label.c_str(), &f, float(lo), float(hi), "%.4g",
-                                           flags))
+                    const std::string label = switchable ? "##" + p.name : p.label;
+                    if (ImGui::SliderFloat(label.c_str(), &f, float(lo), float(hi),
+                                           outside ? beyond : "%.4g", flags))
                         v.x = f;
-                } else {
+                } else if (!switchable) {
                     ImGui::SameLine();
                     ImGui::TextUnformatted(p.label.c_str());
                 }
-                v.x = std::clamp(v.x, p.min, p.max);
-                if (p.min_exclusive && v.x <= p.min) v.x = std::max(lo, p.min + 1e-9);
-                if (p.kind == ParamKind::Switchable && !v.on) ImGui::EndDisabled();
+                v.x = clamp_to_declared(p, v.x);
+                if (switchable && !v.on) ImGui::EndDisabled();
                 break;
             }
             case ParamKind::Range: {
@@ -646,11 +666,35 @@ bool operation_widgets(Operation& op, const std::vector<std::string>& skip) {
 }
 
 namespace {
-/// The parameters of an operation panel, its Apply button, and the morph of the current
-/// entry.
+
+const ImVec4 kErrorColor(1.0f, 0.45f, 0.40f, 1.0f);
+
+/// Greyed text that wraps at the sidebar's edge.
+template <class... Args>
+void wrapped_disabled(const char* format, Args... args) {
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextDisabled(format, args...);
+    ImGui::PopTextWrapPos();
+}
+
+/// Coloured text that wraps at the sidebar's edge.
+template <class... Args>
+void wrapped_colored(const ImVec4& color, const char* format, Args... args) {
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextColored(color, format, args...);
+    ImGui::PopTextWrapPos();
+}
+
+/// The parameters of an operation panel, its Apply button, and the preview's note.
 void operation_panel_body(OperationPanelState& state, const char* apply, bool busy,
                           CommandQueue& commands) {
-    if (operation_widgets(state.op)) state.dirty = true;
+    std::vector<std::string> notes;
+    if (operation_widgets(state.op, {}, &notes)) {
+        state.dirty = true;
+        state.input_note.clear();
+    }
+    if (!notes.empty()) state.input_note = notes.back();
+    if (!state.input_note.empty()) wrapped_disabled("%s", state.input_note.c_str());
     std::string error;
     try {
         check_operation(state.op);
@@ -662,22 +706,21 @@ void operation_panel_body(OperationPanelState& state, const char* apply, bool bu
         commands.push_back(PreviewOperation{state.op});
         state.dirty = false;
     }
-    if (!error.empty()) ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.40f, 1.0f), "%s", error.c_str());
+    if (!error.empty()) wrapped_colored(kErrorColor, "%s", error.c_str());
     if ((busy && !state.previewing) || !error.empty()) ImGui::BeginDisabled();
-    if (ImGui::Button(apply)) commands.push_back(ApplyOperation{state.op});
-    note_widget(apply);
+    if (button(apply)) commands.push_back(ApplyOperation{state.op});
     if ((busy && !state.previewing) || !error.empty()) ImGui::EndDisabled();
     if (state.previewing) {
         ImGui::SameLine();
-        if (ImGui::Button("Cancel")) commands.push_back(CancelPreview{});
-        note_widget("Cancel");
+        if (button("Cancel")) commands.push_back(CancelPreview{});
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("back to the state before (Esc)");
     }
-    if (!state.preview_note.empty()) ImGui::TextDisabled("%s", state.preview_note.c_str());
+    if (!state.preview_note.empty()) wrapped_disabled("%s", state.preview_note.c_str());
 }
 
 /// The largest stable explicit step of the mesh and operator; a larger explicit step in red
-/// with the reason, and a button that switches to implicit integration.
+/// with the reason, and a button that switches to implicit integration. The warning's lines
+/// are kept free while it is not shown, so that nothing below moves when it comes or goes.
 void stability_guidance(FairingPanelState& state) {
     const double limit = state.max_stable_step;
     const bool taubin = int(state.op.value("operator").x) == int(FairingOperator::Taubin);
@@ -685,109 +728,154 @@ void stability_guidance(FairingPanelState& state) {
         taubin || int(state.op.value("integration").x) == int(Integration::Explicit);
     // NaN until estimated: tested with isnan first, as an ordered comparison with NaN raises
     // FE_INVALID (the tests run with floating-point traps).
-    if (std::isnan(limit) || limit <= 0) {
-        ImGui::TextDisabled("largest stable explicit step: estimating...");
+    const bool known = !std::isnan(limit) && limit > 0;
+    const double step = taubin ? state.op.value("lambda").x : state.op.value("step").x;
+    const char* what = taubin ? "lambda" : "step";
+    if (known)
+        wrapped_disabled("largest stable explicit %s: %.3g", what, limit);
+    else
+        wrapped_disabled("largest stable explicit %s: estimating...", what);
+    note_widget("stable-step");
+    char warning[160];
+    std::snprintf(warning, sizeof warning, "%s %.3g is above it: the run would diverge and stop",
+                  what, step);
+    const float wrap = ImGui::GetContentRegionAvail().x;
+    const ImVec2 text = ImGui::CalcTextSize(warning, nullptr, false, wrap);
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const float reserved = text.y + (taubin ? 0.0f : style.ItemSpacing.y + ImGui::GetFrameHeight());
+    if (!(known && explicit_run && step > limit)) {
+        ImGui::Dummy(ImVec2(1.0f, reserved));
         return;
     }
-    const double step = taubin ? state.op.value("lambda").x : state.op.value("step").x;
-    ImGui::TextDisabled("largest stable explicit %s: %.3g", taubin ? "lambda" : "step", limit);
-    note_widget("stable-step");
-    if (explicit_run && step > limit) {
-        ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.40f, 1.0f),
-                           "%s %.3g is above it: the run would diverge and stop",
-                           taubin ? "lambda" : "step", step);
-        note_widget("unstable");
-        if (!taubin) {
-            if (ImGui::Button("Use implicit integration")) {
-                ParamValue& integration = state.op.value("integration");
-                integration.x = int(Integration::Implicit);
-                integration.given = true;
-                state.dirty = true;
-            }
-            note_widget("Use implicit integration");
-        }
+    const float top = ImGui::GetCursorPosY();
+    wrapped_colored(kErrorColor, "%s", warning);
+    note_widget("unstable");
+    if (!taubin && button("Use implicit integration")) {
+        ParamValue& integration = state.op.value("integration");
+        integration.x = int(Integration::Implicit);
+        integration.given = true;
+        state.dirty = true;
     }
+    // Whatever the text's last line did, the rows below start where they always do.
+    const float used = ImGui::GetCursorPosY() - top - style.ItemSpacing.y;
+    if (used < reserved) ImGui::Dummy(ImVec2(1.0f, reserved - used - style.ItemSpacing.y));
+}
+
+/// Where the morph of a result is: one place, the Morph section.
+void morph_hint() {
+    wrapped_disabled("the morph of each result: the Morph section (M)");
 }
 
 }  // namespace
 
-void subdivision_section(PanelState& panels, MorphState& morph, const History& history, bool busy,
-                         double now, CommandQueue& commands) {
+void subdivision_section(PanelState& panels, const SidebarContext& context,
+                         CommandQueue& commands) {
     OperationPanelState& state = panels.subdivision;
-    if (!section_header("Subdivision", state.open)) return;
-    operation_panel_body(state, "Subdivide", busy, commands);
+    SidebarSection section("Subdivision", state.open);
+    if (!section) return;
+    operation_panel_body(state, "Subdivide", context.busy, commands);
+    if (context.open_seams) {
+        // Sqrt3 flips the old edges: along an unwelded seam the two sides stay apart, and
+        // the surface creases there (README "Subdivision").
+        wrapped_colored(ImVec4(1.0f, 0.80f, 0.35f, 1.0f),
+                        "The mesh has coincident boundary edges (unwelded seams): Sqrt3 leaves "
+                        "creases along them. Weld them first:");
+        if (context.busy) ImGui::BeginDisabled();
+        if (button("Weld coincident vertices"))
+            commands.push_back(ApplyOperation{make_operation("weld")});
+        if (context.busy) ImGui::EndDisabled();
+    }
     ImGui::Separator();
-    morph_controls(morph, history, now);
-    ImGui::TextDisabled("colour: Rendering > Colour by vertex > Subdivision vertices");
+    wrapped_disabled("colour: Rendering > Colour by vertex > Subdivision vertices");
+    morph_hint();
 }
 
-void fairing_section(PanelState& panels, MorphState& morph, const History& history, bool closed,
-                     bool busy, double now, CommandQueue& commands) {
+void fairing_section(PanelState& panels, const SidebarContext& context, CommandQueue& commands) {
     FairingPanelState& state = panels.fairing;
-    if (!section_header("Fairing", state.open)) return;
+    SidebarSection section("Fairing", state.open);
+    if (!section) return;
     stability_guidance(state);
     // What the mesh cannot do is switched off with the reason, never ignored.
     ParamValue& volume = state.op.value("preserve-volume");
     ParamValue& boundary = state.op.value("boundary");
-    if (!closed) volume.x = 0;
-    if (closed) boundary.x = int(BoundaryMode::Fixed);
-    operation_panel_body(state, "Smooth", busy, commands);
-    if (!closed) ImGui::TextDisabled("open mesh: no volume to preserve");
+    if (!context.closed) volume.x = 0;
+    if (context.closed) boundary.x = int(BoundaryMode::Fixed);
+    operation_panel_body(state, "Smooth", context.busy, commands);
+    if (!context.closed) wrapped_disabled("open mesh: no volume to preserve");
     ImGui::Separator();
-    morph_controls(morph, history, now);
+    morph_hint();
 }
 
-void decimation_section(PanelState& panels, MorphState& morph, const History& history, bool busy,
-                        double now, std::size_t collapsing_edges, CommandQueue& commands) {
+void decimation_section(PanelState& panels, const SidebarContext& context, CommandQueue& commands) {
     DecimationPanelState& d = panels.decimation;
-    if (!section_header("Decimation", d.open)) return;
-    {
-        operation_panel_body(d, "Decimate", busy, commands);
-        // Level of detail: a slider over the progressive mesh of the current state.
-        if (ImGui::CollapsingHeader("Level of detail")) {
-            if (!d.lod_ready) {
-                if (busy || d.lod_building) ImGui::BeginDisabled();
-                if (ImGui::Button("Build levels")) commands.push_back(BuildLevelOfDetail{d.op});
-                note_widget("Build levels");
-                if (busy || d.lod_building) ImGui::EndDisabled();
-                if (ImGui::IsItemHovered())
-                    ImGui::SetTooltip(
-                        "decimate down to 1 %% with this cost and these "
-                        "constraints, recording every collapse");
-            } else {
-                ImGui::SetNextItemWidth(widget_width());
-                if (ImGui::SliderFloat("lod (% of vertices)", &d.lod_percent, 100.0f, 1.0f,
-                                       "%.1f %%", ImGuiSliderFlags_AlwaysClamp))
-                    commands.push_back(ShowLevelOfDetail{double(d.lod_percent)});
-                note_widget("lod");
-                if (ImGui::Button("Apply level")) commands.push_back(ApplyLevelOfDetail{});
-                note_widget("Apply level");
-                ImGui::SameLine();
-                if (ImGui::Button("Cancel##lod")) commands.push_back(CancelPreview{});
-            }
-            if (!d.lod_note.empty()) ImGui::TextDisabled("%s", d.lod_note.c_str());
-        }
-        ImGui::Checkbox("show collapsing edges", &d.show_collapsing_edges);
-        if (d.show_collapsing_edges) {
+    SidebarSection section("Decimation", d.open);
+    if (!section) return;
+    const bool busy = context.busy;
+    operation_panel_body(d, "Decimate", busy, commands);
+    // Level of detail: a slider over the progressive mesh of the current state.
+    ImGui::SetNextItemOpen(d.lod_open, ImGuiCond_Always);
+    d.lod_open = ImGui::CollapsingHeader("Level of detail");
+    note_widget("section:Level of detail", WidgetNote::Kind::Header, "Level of detail");
+    if (d.lod_open) {
+        WidgetSection lod_section("Level of detail", false);
+        if (!d.lod_ready) {
+            if (busy || d.lod_building) ImGui::BeginDisabled();
+            if (button("Build levels")) commands.push_back(BuildLevelOfDetail{d.op});
+            if (busy || d.lod_building) ImGui::EndDisabled();
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip(
+                    "decimate down to 1 %% with this cost and these "
+                    "constraints, recording every collapse");
+        } else {
+            ImGui::SetNextItemWidth(widget_width());
+            if (ImGui::SliderFloat("lod (% of vertices)", &d.lod_percent, 100.0f, 1.0f, "%.1f %%",
+                                   ImGuiSliderFlags_AlwaysClamp))
+                commands.push_back(ShowLevelOfDetail{double(d.lod_percent)});
+            note_widget("lod");
+            if (button("Apply level")) commands.push_back(ApplyLevelOfDetail{});
             ImGui::SameLine();
-            ImGui::TextDisabled("(%zu)", collapsing_edges);
+            if (button("Cancel##lod")) commands.push_back(CancelPreview{});
         }
-        ImGui::Separator();
-        morph_controls(morph, history, now);
+        if (!d.lod_note.empty()) wrapped_disabled("%s", d.lod_note.c_str());
     }
+    checkbox("show collapsing edges", &d.show_collapsing_edges);
+    if (d.show_collapsing_edges) {
+        ImGui::SameLine();
+        ImGui::TextDisabled("(%zu)", context.collapsing_edges);
+    }
+    ImGui::Separator();
+    morph_hint();
 }
 
 void tools_section(PanelState& panels, bool busy, CommandQueue& commands) {
-    if (section_header("Tools: add noise", panels.tools.open)) {
+    if (SidebarSection noise("Tools: add noise", panels.tools.open); noise) {
         ImGui::TextWrapped("Moves the vertices along their normals.");
         operation_panel_body(panels.tools, "Apply", busy, commands);
     }
-    if (section_header("Tools: weld coincident vertices", panels.weld.open)) {
+    if (SidebarSection weld("Tools: weld coincident vertices", panels.weld.open); weld) {
         ImGui::TextWrapped(
             "Joins coincident vertices where the mesh stays manifold (tolerance 0: exactly the "
             "same position); the log says what stays apart.");
         operation_panel_body(panels.weld, "Weld", busy, commands);
     }
+}
+
+FrequencyActions sidebar_sections(PanelState& panels, MorphState& morph,
+                                  const SidebarContext& context, CommandQueue& commands) {
+    const FrequencyDocument no_decomposition;
+    tools_section(panels, context.busy, commands);
+    fairing_section(panels, context, commands);
+    const FrequencyActions frequency = frequency_window(
+        panels.frequency, context.frequency ? *context.frequency : no_decomposition, context.busy);
+    subdivision_section(panels, context, commands);
+    decimation_section(panels, context, commands);
+    if (context.history) morph_section(panels, morph, *context.history, context.now);
+    record_section(panels, context.can_record, commands);
+    info_section(panels, context.info ? *context.info : std::vector<std::string>{});
+    ImGui::Spacing();
+    wrapped_disabled(
+        "The Tools and Algorithms menus open these sections; H the history, L the log.");
+    return frequency;
 }
 
 namespace {
@@ -815,21 +903,20 @@ void morph_controls(MorphState& morph, const History& history, double now) {
         morph.playing = false;
     }
     if (!morph.playing) {
-        if (ImGui::Button("Animate")) {
+        if (button("Animate")) {
             morph.playing = true;
             morph.play_start = now;
         }
-        note_widget("Animate");
-    } else if (ImGui::Button("Stop")) {
+    } else if (button("Stop")) {
         morph.playing = false;
     }
     ImGui::SameLine();
-    if (ImGui::Button("Before")) {
+    if (button("Before")) {
         morph.t = 0.0;
         morph.playing = false;
     }
     ImGui::SameLine();
-    if (ImGui::Button("After")) {
+    if (button("After")) {
         morph.t = 1.0;
         morph.playing = false;
     }
@@ -851,14 +938,16 @@ void morph_controls(MorphState& morph, const History& history, double now) {
 }  // namespace
 
 void morph_section(PanelState& panels, MorphState& morph, const History& history, double now) {
-    if (!section_header("Morph", panels.morph_open)) return;
+    SidebarSection section("Morph", panels.morph_open);
+    if (!section) return;
     morph_controls(morph, history, now);
 }
 
 void record_section(PanelState& panels, bool can_record, CommandQueue& commands) {
     RecordState& r = panels.record;
     if (r.running) r.open = true;  // the progress and Cancel stay visible
-    if (!section_header("Record", r.open)) return;
+    SidebarSection section("Record", r.open);
+    if (!section) return;
     ImGui::TextWrapped("Writes the morph of the current entry as PNG frames, framed as the view.");
     const float w = widget_width(10.0f);
     if (r.running) ImGui::BeginDisabled();
@@ -880,16 +969,16 @@ void record_section(PanelState& panels, bool can_record, CommandQueue& commands)
     ImGui::PushTextWrapPos(0.0f);
     ImGui::TextDisabled("%s/%s_0000.png ...", r.folder.c_str(), r.name.c_str());
     ImGui::PopTextWrapPos();
-    ImGui::Checkbox("also an MP4", &r.mp4);
+    checkbox("also an MP4", &r.mp4);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("needs ffmpeg on the PATH");
     if (r.running) ImGui::EndDisabled();
     if (r.running) {
         ImGui::ProgressBar(float(r.next) / float(r.frames), ImVec2(w, 0.0f));
         ImGui::SameLine();
-        if (ImGui::Button("Cancel##record")) commands.push_back(CancelRecording{});
+        if (button("Cancel##record")) commands.push_back(CancelRecording{});
     } else {
         if (!can_record) ImGui::BeginDisabled();
-        if (ImGui::Button("Record")) commands.push_back(StartRecording{});
+        if (button("Record")) commands.push_back(StartRecording{});
         if (!can_record) {
             ImGui::EndDisabled();
             ImGui::SameLine();
@@ -910,8 +999,8 @@ void screenshot_dialog(ScreenshotState& state, CommandQueue& commands) {
             state.width = std::clamp(size[0], 1, 16384);
             state.height = std::clamp(size[1], 1, 16384);
         }
-        ImGui::Checkbox("transparent background", &state.transparent);
-        if (ImGui::Button("Save") && !state.path.empty())
+        checkbox("transparent background", &state.transparent);
+        if (button("Save") && !state.path.empty())
             commands.push_back(
                 TakeScreenshot{state.path, state.width, state.height, state.transparent});
     }
@@ -950,7 +1039,8 @@ void log_window(PanelState& panels, const Log& log, const Rect& region) {
 }
 
 void info_section(PanelState& panels, const std::vector<std::string>& lines) {
-    if (!section_header("Model information", panels.info_open)) return;
+    SidebarSection section("Model information", panels.info_open);
+    if (!section) return;
     ImGui::PushTextWrapPos(0.0f);
     for (const std::string& line : lines) ImGui::TextUnformatted(line.c_str());
     ImGui::PopTextWrapPos();
@@ -992,7 +1082,7 @@ void unsaved_changes_popup(UnsavedPrompt& prompt, CommandQueue& commands) {
                                  "Undo brings them back.)");
     ImGui::PopTextWrapPos();
     if (!prompt.document_path.empty()) {
-        if (ImGui::Button("Save (overwrite)")) {
+        if (button("Save (overwrite)")) {
             commands.push_back(SaveAndContinue{});
             ImGui::CloseCurrentPopup();
         }
@@ -1000,13 +1090,12 @@ void unsaved_changes_popup(UnsavedPrompt& prompt, CommandQueue& commands) {
             ImGui::SetTooltip("replace %s with the current mesh", prompt.document_path.c_str());
         ImGui::SameLine();
     }
-    if (ImGui::Button("Save as...")) {
+    if (button("Save as...")) {
         commands.push_back(SaveAsAndContinue{});
         ImGui::CloseCurrentPopup();
     }
-    note_widget("Save as...");
     ImGui::SameLine();
-    if (ImGui::Button(prompt.quitting ? "Discard and quit" : "Discard and open")) {
+    if (button(prompt.quitting ? "Discard and quit" : "Discard and open")) {
         if (prompt.quitting)
             commands.push_back(Quit{true});
         else
@@ -1014,7 +1103,7 @@ void unsaved_changes_popup(UnsavedPrompt& prompt, CommandQueue& commands) {
         ImGui::CloseCurrentPopup();
     }
     ImGui::SameLine();
-    if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)))
+    if (button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)))
         ImGui::CloseCurrentPopup();
     ImGui::EndPopup();
 }
@@ -1029,7 +1118,7 @@ void error_popup(Notice& notice) {
         std::min(40.0f * ImGui::GetFontSize(), 0.8f * ImGui::GetIO().DisplaySize.x));
     ImGui::TextColored(notice_color(Notice::Level::Error), "%s", notice.text.c_str());
     ImGui::PopTextWrapPos();
-    if (ImGui::Button("OK") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter)) ||
+    if (button("OK") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter)) ||
         ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)))
         ImGui::CloseCurrentPopup();
     ImGui::EndPopup();

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "app/viewer/frequency_panel.h"
 #include "app/viewer/layout.h"
 #include "app/viewer/log.h"
+#include "app/viewer/widgets.h"
 #include "core/algorithms/coloring.h"
 #include "core/algorithms/morph.h"
 #include "core/algorithms/texcoords.h"
@@ -77,6 +79,7 @@ struct OperationPanelState {
     bool dirty = false;        ///< changed since the last preview request
     bool previewing = false;   ///< a preview of this panel is computing or shown
     std::string preview_note;  ///< e.g. "preview 38 ms" or why it waits for the release
+    std::string input_note;    ///< a typed value that was clamped, and to what
 };
 
 /// The Fairing panel: its operation, and the stability guidance the viewer keeps up to date.
@@ -95,6 +98,7 @@ struct DecimationPanelState : OperationPanelState {
     bool show_collapsing_edges = false;
     /// The level-of-detail slider over the progressive mesh (percent of the vertices kept).
     float lod_percent = 100.0f;
+    bool lod_open = false;   ///< the "Level of detail" part of the section is expanded
     bool lod_ready = false;  ///< the viewer has a progressive mesh of the current state
     bool lod_building = false;
     std::string lod_note;  ///< what the progressive mesh reaches, or the last move's time
@@ -104,17 +108,12 @@ struct DecimationPanelState : OperationPanelState {
 /// operation's declaration (combo boxes for choices, sliders for numbers, check boxes for
 /// flags and switchable numbers, two fields for a range). Returns true when a value changed;
 /// changed values are marked `given`. Parameters named in `skip` are left to the caller.
-bool operation_widgets(Operation& op, const std::vector<std::string>& skip = {});
-
-/// Tests only: called after each widget of the operation panels is drawn, with its id (the
-/// parameter's name, or the button's label) and its screen rectangle, so panel tests can click
-/// widgets under an ImGui context that has no window (tests/app/test_panels.cpp).
-using WidgetRectHook =
-    std::function<void(const std::string& id, float x0, float y0, float x1, float y1)>;
-void set_widget_rect_hook(WidgetRectHook hook);
-/// Reports a rectangle to the test hook (nothing without one): plots and legends name the
-/// parts they draw (plots.h).
-void note_widget_rect(const std::string& id, float x0, float y0, float x1, float y1);
+/// A typed value outside the declared range is clamped at once, and why goes to `notes`.
+bool operation_widgets(Operation& op, const std::vector<std::string>& skip = {},
+                       std::vector<std::string>* notes = nullptr);
+/// `x` inside the declared range of `p` (above min where min is exclusive: the slider's lower
+/// end, or the next representable number).
+double clamp_to_declared(const ParamSpec& p, double x);
 
 /// The wireframe overlay: on, off, or automatic (on while the edges are long enough on the
 /// screen to tell apart; decided again on zoom and when the shown mesh changes).
@@ -228,27 +227,58 @@ bool begin_sidebar(const Rect& r, LayoutState& layout);
 /// sets it expands the section and scrolls the sidebar to it). Returns `open`.
 bool section_header(const char* label, bool& open);
 
+/// A sidebar section: its header (section_header()) and, while it is open, its body in an ID
+/// scope and a widget section named after it, so that two sections never share a widget.
+class SidebarSection {
+public:
+    SidebarSection(const char* label, bool& open);
+    explicit operator bool() const { return open_; }
+
+private:
+    bool open_;
+    std::optional<WidgetSection> scope_;
+};
+
 /// The History column: every entry with its steps, timing and memory; a click jumps there.
 void history_window(PanelState& panels, const History& history, bool busy, const Rect& region,
                     CommandQueue& commands);
+/// What the sidebar's sections show besides the panels' own state.
+struct SidebarContext {
+    const History* history = nullptr;
+    bool busy = false;        ///< a job runs: the Apply buttons wait
+    bool closed = false;      ///< the mesh has no boundary (volume preservation applies)
+    double now = 0.0;         ///< glfw time, where a morph playback starts
+    bool can_record = false;  ///< the current entry has a morph to record
+    /// The mesh has coincident boundary edges (unwelded seams): Sqrt3 would leave creases
+    /// along them, and the Subdivision section offers the weld.
+    bool open_seams = false;
+    std::size_t collapsing_edges = 0;                ///< edges the overlay shows (0: none)
+    const FrequencyDocument* frequency = nullptr;    ///< the decomposition (Frequency section)
+    const std::vector<std::string>* info = nullptr;  ///< model information lines
+};
+
+/// Every tool section of the sidebar in order (Tools, Fairing, Frequency decomposition,
+/// Subdivision, Decimation, Morph, Record, Model information), each with its header and,
+/// when open, its body in an ID scope of its own. Returns what the user did in the
+/// Frequency section (the viewer carries it out).
+FrequencyActions sidebar_sections(PanelState& panels, MorphState& morph,
+                                  const SidebarContext& context, CommandQueue& commands);
+
 /// The tool sections of the sidebar (each draws its header and, when open, its body).
-/// Subdivision: scheme, iterations, Subdivide, and the morph slider and Animate of the current
-/// entry; queues RunOperation.
-void subdivision_section(PanelState& panels, MorphState& morph, const History& history, bool busy,
-                         double now, CommandQueue& commands);
-/// Fairing (operator, integration, step, iterations, volume preservation, Smooth, and the
-/// morph of the current entry). `closed` says whether the mesh has a volume (volume
-/// preservation is disabled otherwise, with a tooltip saying why).
-void fairing_section(PanelState& panels, MorphState& morph, const History& history, bool closed,
-                     bool busy, double now, CommandQueue& commands);
+/// Subdivision: scheme, iterations, Subdivide; queues PreviewOperation and ApplyOperation;
+/// with `context.open_seams` a note about Sqrt3 and a Weld button.
+void subdivision_section(PanelState& panels, const SidebarContext& context, CommandQueue& commands);
+/// Fairing (operator, integration, step, iterations, volume preservation, Smooth).
+/// `context.closed` says whether the mesh has a volume (volume preservation is disabled
+/// otherwise, with a note saying why).
+void fairing_section(PanelState& panels, const SidebarContext& context, CommandQueue& commands);
 /// Decimation (cost, the three constraints with their thresholds, percentage per iteration,
-/// iterations, Decimate, the level-of-detail slider, the morph of the current entry).
-/// `collapsing_edges` is how many edges the overlay shows (0: none).
-void decimation_section(PanelState& panels, MorphState& morph, const History& history, bool busy,
-                        double now, std::size_t collapsing_edges, CommandQueue& commands);
+/// iterations, Decimate, the level-of-detail slider, the collapsing-edges overlay).
+void decimation_section(PanelState& panels, const SidebarContext& context, CommandQueue& commands);
 /// Tools: Add noise; Weld coincident vertices.
 void tools_section(PanelState& panels, bool busy, CommandQueue& commands);
-/// The morph slider and the animation controls for the current history entry.
+/// The morph slider and the animation controls for the current history entry: the one place
+/// they are drawn.
 void morph_section(PanelState& panels, MorphState& morph, const History& history, double now);
 /// Record; queues StartRecording / CancelRecording.
 void record_section(PanelState& panels, bool can_record, CommandQueue& commands);

@@ -21,6 +21,7 @@
 #include "app/ops/operation_entries.h"
 #include "app/record/recorder.h"
 #include "app/viewer/key_bindings.h"
+#include "core/algorithms/coincident.h"
 #include "core/algorithms/decimation.h"
 #include "core/algorithms/fairing.h"
 #include "core/algorithms/generators.h"
@@ -298,6 +299,7 @@ void Viewer::on_state_changed(bool fit) {
         mesh.has_vertex_property("v:texcoord") && document_.texcoords_projected;
     const MeshStats s = compute_stats(mesh);
     document_.closed = s.volume.has_value();
+    document_.open_seams = s.boundary_loops > 0 && pair_boundary_edges(mesh).paired_edges > 0;
     surface_area_ = s.area;
     char buf[256];
     std::vector<std::string>& info = document_.info;
@@ -1073,28 +1075,26 @@ void Viewer::draw_ui() {
     update_preview_flags();
     update_stable_step();
     update_collapsing_edges();
+    update_frequency_document();
+    FrequencyActions frequency;
     if (panels_.sidebar_open && begin_sidebar(layout.sidebar, sizes)) {
-        tools_section(panels_, jobs_.busy(), commands_);
-        fairing_section(panels_, morph_, document_.history, document_.closed, jobs_.busy(),
-                        glfwGetTime(), commands_);
-        frequency_ui();
-        subdivision_section(panels_, morph_, document_.history, jobs_.busy(), glfwGetTime(),
-                            commands_);
-        decimation_section(
-            panels_, morph_, document_.history, jobs_.busy(), glfwGetTime(),
-            panels_.decimation.show_collapsing_edges ? collapse_lines_->n_segments() : 0,
-            commands_);
-        morph_section(panels_, morph_, document_.history, glfwGetTime());
-        record_section(panels_, document_.history.current() > 0 && morph_.moves && !jobs_.busy(),
-                       commands_);
-        info_section(panels_, panels_.info_open ? scene_info() : std::vector<std::string>{});
-        ImGui::Spacing();
-        ImGui::PushTextWrapPos(0.0f);
-        ImGui::TextDisabled(
-            "The Tools and Algorithms menus open these sections; H the history, L the log.");
-        ImGui::PopTextWrapPos();
+        const std::vector<std::string> info =
+            panels_.info_open ? scene_info() : std::vector<std::string>{};
+        SidebarContext sidebar;
+        sidebar.history = &document_.history;
+        sidebar.busy = jobs_.busy();
+        sidebar.closed = document_.closed;
+        sidebar.now = glfwGetTime();
+        sidebar.can_record = document_.history.current() > 0 && morph_.moves && !jobs_.busy();
+        sidebar.open_seams = document_.open_seams;
+        sidebar.collapsing_edges =
+            panels_.decimation.show_collapsing_edges ? collapse_lines_->n_segments() : 0;
+        sidebar.frequency = &document_.frequency;
+        sidebar.info = &info;
+        frequency = sidebar_sections(panels_, morph_, sidebar, commands_);
     }
     if (panels_.sidebar_open) end_region();
+    frequency_actions(frequency);
     layout = compute_layout(in, sizes);
     history_window(panels_, document_.history, jobs_.busy(), layout.history, commands_);
     layout = compute_layout(in, sizes);

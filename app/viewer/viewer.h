@@ -59,11 +59,12 @@ struct ViewerOptions {
 struct Document {
     History history;
     const HalfedgeMesh& mesh() const { return history.current_mesh(); }
-    std::string name;                  ///< file name, or "default model"
-    std::string path;                  ///< file path; empty for the default model
-    LoadReport report;                 ///< what loading it did (empty for built-in models)
-    std::vector<std::string> info;     ///< model information lines, computed once per document
-    bool closed = false;               ///< the current state has no boundary (volume is defined)
+    std::string name;               ///< file name, or "default model"
+    std::string path;               ///< file path; empty for the default model
+    LoadReport report;              ///< what loading it did (empty for built-in models)
+    std::vector<std::string> info;  ///< model information lines, computed once per document
+    bool closed = false;            ///< the current state has no boundary (volume is defined)
+    bool open_seams = false;  ///< coincident boundary edges: unwelded seams (Subdivision's note)
     bool texcoords_projected = false;  ///< texture coordinates were computed by projection
     /// The current state differs from the file it came from or was last saved to (any
     /// operation, undo, redo or jump since; conservative: undoing back still counts).
@@ -208,8 +209,9 @@ private:
     void start_recording();
     void record_next_frame();
     void finish_recording(bool cancelled);
-    /// The Frequency panel and its actions (viewer_frequency.cpp).
-    void frequency_ui();
+    /// The Frequency panel's document for this frame, and its actions (viewer_frequency.cpp).
+    void update_frequency_document();
+    void frequency_actions(FrequencyActions act);
     void start_decomposition();
     /// options_.decompose: Decompose once the model is there, then apply the band.
     void scripted_decomposition(FrequencyActions& act);

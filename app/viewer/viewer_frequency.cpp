@@ -19,7 +19,7 @@ constexpr const char* kBandLabel = "Frequency band";
 constexpr const char* kRestoreLabel = "Frequency restore";
 }  // namespace
 
-void Viewer::frequency_ui() {
+void Viewer::update_frequency_document() {
     FrequencyDocument& doc = document_.frequency;
     const HalfedgeMesh& mesh = document_.mesh();
     const auto& d = doc.decomposition;
@@ -37,8 +37,10 @@ void Viewer::frequency_ui() {
                   hi < doc.eigenvalues.size();
     doc.applied_lo = lo;
     doc.applied_hi = hi;
+}
 
-    FrequencyActions act = frequency_window(panels_.frequency, doc, jobs_.busy());
+void Viewer::frequency_actions(FrequencyActions act) {
+    FrequencyDocument& doc = document_.frequency;
     scripted_decomposition(act);
     if (act.decompose) start_decomposition();
     if (!doc.valid || jobs_.busy()) return;

@@ -1,6 +1,6 @@
 // The operation panels drawn under an ImGui context with no window and no GL (the idea of
 // Polyscope's mock backend): the mouse is moved and pressed through ImGuiIO, the widgets are
-// found through the panels' test hook (set_widget_rect_hook), and the tests assert the typed
+// found through the widget hook (app/viewer/widgets.h), and the tests assert the typed
 // commands the panels queue. The sections are drawn in the real sidebar (layout.h), whose
 // regions are checked here too.
 #define GLFW_INCLUDE_NONE
@@ -24,122 +24,12 @@
 #include "app/viewer/plots.h"
 #include "core/algorithms/fairing.h"
 #include "core/algorithms/generators.h"
+#include "tests/app/panel_ui.h"
 
 using namespace trilab;
 using namespace trilab::viewer;
 
-namespace {
-
-struct Box {
-    float x0, y0, x1, y1;
-};
-
-/// An ImGui context of its own, 1280 x 800, fonts built (no texture upload is needed).
-class Ui {
-public:
-    Ui() {
-        ctx_ = ImGui::CreateContext();
-        ImGuiIO& io = ImGui::GetIO();
-        io.DisplaySize = ImVec2(1280, 800);
-        io.IniFilename = nullptr;
-        io.BackendFlags |= ImGuiBackendFlags_HasMouseCursors;  // resizing from window edges
-        unsigned char* pixels = nullptr;
-        int w = 0, h = 0;
-        io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
-        set_widget_rect_hook([this](const std::string& id, float x0, float y0, float x1, float y1) {
-            rects_[id] = Box{x0, y0, x1, y1};
-        });
-    }
-    ~Ui() {
-        set_widget_rect_hook(nullptr);
-        ImGui::DestroyContext(ctx_);
-    }
-    Ui(const Ui&) = delete;
-    Ui& operator=(const Ui&) = delete;
-
-    /// One frame: the mouse at (x, y), the left button down or not; `draw` draws the panels.
-    template <class Draw>
-    void frame(Draw draw, float x = -1, float y = -1, bool down = false) {
-        ImGuiIO& io = ImGui::GetIO();
-        io.DeltaTime = 1.0f / 60.0f;
-        io.MousePos = ImVec2(x, y);
-        io.MouseDown[0] = down;
-        rects_.clear();
-        ImGui::NewFrame();
-        draw();
-        ImGui::Render();
-    }
-    /// Presses and releases the left button at (x, y) over three frames.
-    template <class Draw>
-    void click(Draw draw, float x, float y) {
-        frame(draw, x, y, false);
-        frame(draw, x, y, true);
-        frame(draw, x, y, false);
-    }
-    bool has(const std::string& id) const { return rects_.count(id) > 0; }
-    /// Every rectangle whose id starts with `prefix`, with its id.
-    std::vector<std::pair<std::string, Box>> with_prefix(const std::string& prefix) const {
-        std::vector<std::pair<std::string, Box>> out;
-        for (const auto& [id, r] : rects_)
-            if (id.rfind(prefix, 0) == 0) out.emplace_back(id, r);
-        return out;
-    }
-    Box rect(const std::string& id) const {
-        const auto it = rects_.find(id);
-        REQUIRE(it != rects_.end());
-        return it->second;
-    }
-
-private:
-    ImGuiContext* ctx_ = nullptr;
-    std::map<std::string, Box> rects_;
-};
-
-bool overlap(const Box& a, const Box& b) {
-    return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
-}
-
-/// Asserts that no two of the rectangles overlap.
-void require_disjoint(const std::vector<std::pair<std::string, Box>>& rects) {
-    for (std::size_t i = 0; i < rects.size(); ++i)
-        for (std::size_t j = i + 1; j < rects.size(); ++j) {
-            INFO(rects[i].first << " and " << rects[j].first);
-            REQUIRE_FALSE(overlap(rects[i].second, rects[j].second));
-        }
-}
-
-/// The legend window as the viewer draws it, for `colors`.
-void draw_legend(const VertexColors& colors, ColoringOptions& options) {
-    LegendSlot slot;
-    slot.right = 1280;
-    slot.bottom = 800;
-    slot.max_width = 600;
-    slot.max_height = 400;
-    color_legend(colors, options, slot);
-}
-
-/// Draws `body` in the sidebar of the 1280 x 800 layout, as the viewer does.
-template <class Body>
-void in_sidebar(LayoutState& sizes, Body body) {
-    LayoutInput in;
-    in.width = 1280;
-    in.height = 800;
-    in.em = ImGui::GetFontSize();
-    in.frame_height = ImGui::GetFrameHeight();
-    const Layout layout = compute_layout(in, sizes);
-    if (begin_sidebar(layout.sidebar, sizes)) body();
-    end_region();
-}
-
-template <class T>
-std::vector<const T*> commands_of(const CommandQueue& q) {
-    std::vector<const T*> out;
-    for (const Command& c : q)
-        if (const T* t = std::get_if<T>(&c)) out.push_back(t);
-    return out;
-}
-
-}  // namespace
+using namespace trilab::viewer::testing;
 
 TEST_CASE("the Subdivision panel's Subdivide queues the typed operation it shows", "[panels]") {
     Ui ui;
@@ -149,8 +39,7 @@ TEST_CASE("the Subdivision panel's Subdivide queues the typed operation it shows
     panels.subdivision.open = true;
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout,
-                   [&] { subdivision_section(panels, morph, history, false, 0.0, commands); });
+        in_sidebar(panels.layout, [&] { subdivision_section(panels, SidebarContext{}, commands); });
     };
     ui.frame(draw);
     ui.frame(draw);  // auto-resized windows take their size on the second frame
@@ -173,8 +62,7 @@ TEST_CASE("dragging a slider previews live with the new typed value", "[panels]"
     panels.decimation.open = true;
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout,
-                   [&] { decimation_section(panels, morph, history, false, 0.0, 0, commands); });
+        in_sidebar(panels.layout, [&] { decimation_section(panels, SidebarContext{}, commands); });
     };
     ui.frame(draw);
     ui.frame(draw);
@@ -200,8 +88,7 @@ TEST_CASE("slow panels preview once, when the drag is released", "[panels]") {
     panels.decimation.live = false;  // the viewer found the last preview over the budget
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout,
-                   [&] { decimation_section(panels, morph, history, false, 0.0, 0, commands); });
+        in_sidebar(panels.layout, [&] { decimation_section(panels, SidebarContext{}, commands); });
     };
     ui.frame(draw);
     ui.frame(draw);
@@ -227,8 +114,7 @@ TEST_CASE("the Fairing panel shows only the parameters that apply", "[panels]") 
     panels.fairing.open = true;
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout,
-                   [&] { fairing_section(panels, morph, history, true, false, 0.0, commands); });
+        in_sidebar(panels.layout, [&] { fairing_section(panels, closed_mesh(), commands); });
     };
     ui.frame(draw);
     ui.frame(draw);
@@ -281,8 +167,7 @@ TEST_CASE("the Fairing panel marks a step above the stable limit and offers impl
     panels.fairing.max_stable_step = 1.35;
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout,
-                   [&] { fairing_section(panels, morph, history, true, false, 0.0, commands); });
+        in_sidebar(panels.layout, [&] { fairing_section(panels, closed_mesh(), commands); });
     };
     ui.frame(draw);
     ui.frame(draw);

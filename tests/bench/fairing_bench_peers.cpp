@@ -52,8 +52,8 @@ double ms_since(Clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-double trilab_ms(const HalfedgeMesh& mesh, FairingOperator op, Integration integration, double step,
-                 int iterations, int runs) {
+[[maybe_unused]] double trilab_ms(const HalfedgeMesh& mesh, FairingOperator op,
+                                  Integration integration, double step, int iterations, int runs) {
     FairingOptions o;
     o.op = op;
     o.integration = integration;
@@ -68,7 +68,7 @@ double trilab_ms(const HalfedgeMesh& mesh, FairingOperator op, Integration integ
     });
 }
 
-void print_ratio(const char* what, double peer_ms, double ours_ms, double aim) {
+[[maybe_unused]] void print_ratio(const char* what, double peer_ms, double ours_ms, double aim) {
     std::printf("  %-46s peer %9.1f ms  trilab %8.1f ms  speed-up %5.2fx (aim %.0fx) %s\n", what,
                 peer_ms, ours_ms, peer_ms / ours_ms, aim,
                 peer_ms / ours_ms >= aim ? "met" : "below aim");
@@ -116,7 +116,8 @@ CgalMesh to_cgal(const HalfedgeMesh& m) {
 
 }  // namespace
 
-void run_peers(const HalfedgeMesh* bunny, const HalfedgeMesh& large, int runs) {
+void run_peers([[maybe_unused]] const HalfedgeMesh* bunny,
+               [[maybe_unused]] const HalfedgeMesh& large, [[maybe_unused]] int runs) {
     std::printf("\npeers (same run):\n");
 #ifdef TRILAB_HAS_OPENMESH
     {

@@ -66,7 +66,7 @@ double median(std::vector<double> v) {
 }
 
 /// Median of `runs` timings of `work` (which returns its own milliseconds).
-double median_ms(int runs, const std::function<double()>& work) {
+[[maybe_unused]] double median_ms(int runs, const std::function<double()>& work) {
     std::vector<double> t;
     for (int i = 0; i < runs; ++i) t.push_back(work());
     return median(t);

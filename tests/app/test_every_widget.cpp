@@ -1,0 +1,471 @@
+// Every widget of the sidebar, pressed (issue 23): no ImGui ID is used twice in a frame, in
+// any combination of open sections; every button queues the command it names; the sections
+// keep their parameters apart; a typed value outside its range is clamped at once; the
+// stability warning moves nothing below it.
+//
+// Duplicate IDs are found where ImGui registers every item: ImGui::ItemAdd. This test binary
+// is linked with -Wl,--wrap for that symbol (tests/CMakeLists.txt), so that every call from
+// ImGui's widgets (imgui_widgets.cpp calls it across object files) passes through the
+// recorder below first.
+#include <imgui.h>
+#include <imgui_internal.h>
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <functional>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "app/viewer/panels.h"
+#include "core/algorithms/fairing.h"
+#include "core/algorithms/generators.h"
+#include "tests/app/panel_ui.h"
+
+using namespace trilab;
+using namespace trilab::viewer;
+using namespace trilab::viewer::testing;
+
+namespace {
+
+/// One item ImGui registered in the current frame.
+struct ItemSeen {
+    ImGuiID id;
+    std::string window;
+    float x0, y0;
+};
+bool recording_items = false;
+std::vector<ItemSeen> items_seen;
+
+}  // namespace
+
+// NOLINTBEGIN(readability-identifier-naming,bugprone-reserved-identifier): the linker's names
+extern "C" bool __real__ZN5ImGui7ItemAddERK6ImRectjPS1_i(const ImRect& bb, ImGuiID id,
+                                                         const ImRect* nav_bb, int flags);
+extern "C" bool __wrap__ZN5ImGui7ItemAddERK6ImRectjPS1_i(const ImRect& bb, ImGuiID id,
+                                                         const ImRect* nav_bb, int flags) {
+    if (recording_items && id != 0) {
+        const ImGuiWindow* window = ImGui::GetCurrentWindow();
+        items_seen.push_back({id, window ? window->Name : "", bb.Min.x, bb.Min.y});
+    }
+    return __real__ZN5ImGui7ItemAddERK6ImRectjPS1_i(bb, id, nav_bb, flags);
+}
+// NOLINTEND(readability-identifier-naming,bugprone-reserved-identifier)
+
+namespace {
+
+/// Everything the sidebar shows, in one place that does not move (the context points into it).
+struct Sidebar {
+    PanelState panels;
+    MorphState morph;
+    History history;
+    FrequencyDocument frequency;
+    std::vector<std::string> info{"model: test", "vertices 12"};
+    SidebarContext context;
+    CommandQueue commands;
+    FrequencyActions actions;
+
+    Sidebar() {
+        const HalfedgeMesh a = make_default_model();
+        HalfedgeMesh b = a;
+        std::vector<Point> moved = b.positions();
+        for (Point& p : moved) p *= 1.1;
+        b.set_positions(moved);
+        history.reset(a, "Load a.off");
+        history.push("Smooth", "--step 0.5", 1.0, {b}, {MorphCorrespondence{}});
+        // A decomposition to show the band sliders and plots (the panel reads only these).
+        frequency.decomposition = std::make_shared<const SpectralDecomposition>();
+        frequency.valid = true;
+        frequency.eigenvalues = {0.0f, 0.5f, 1.0f, 2.0f};
+        frequency.log_coefficients = {1.0f, 0.0f, -1.0f, -2.0f};
+        context.history = &history;
+        context.closed = true;
+        context.can_record = true;
+        context.open_seams = true;
+        context.frequency = &frequency;
+        context.info = &info;
+        // The stability warning and its button show (a step above the limit).
+        panels.fairing.max_stable_step = 1.0;
+        panels.fairing.op.value("step").x = 50.0;
+    }
+    Sidebar(const Sidebar&) = delete;
+    Sidebar& operator=(const Sidebar&) = delete;
+
+    void open_all() {
+        panels.tools.open = panels.weld.open = panels.fairing.open = true;
+        panels.frequency.open = panels.subdivision.open = panels.decimation.open = true;
+        panels.morph_open = panels.record.open = panels.info_open = true;
+        panels.decimation.lod_open = true;
+    }
+    void draw() {
+        in_sidebar(panels.layout,
+                   [&] { actions = sidebar_sections(panels, morph, context, commands); });
+    }
+};
+
+/// The IDs registered more than once in the frame `draw` draws, with where they were.
+template <class Draw>
+std::vector<std::string> duplicate_ids(Ui& ui, Draw draw) {
+    items_seen.clear();
+    recording_items = true;
+    ui.frame(draw);
+    recording_items = false;
+    std::map<ImGuiID, std::vector<const ItemSeen*>> by_id;
+    for (const ItemSeen& item : items_seen) by_id[item.id].push_back(&item);
+    std::vector<std::string> out;
+    for (const auto& [id, seen] : by_id) {
+        if (seen.size() < 2) continue;
+        std::string what = "ID " + std::to_string(id) + " in " + seen[0]->window + " at";
+        for (const ItemSeen* s : seen)
+            what += " (" + std::to_string(int(s->x0)) + ", " + std::to_string(int(s->y0)) + ")";
+        for (const WidgetNote& n : ui.notes())
+            if (n.imgui_id == id) what += " '" + n.path() + "'";
+        out.push_back(what);
+    }
+    return out;
+}
+
+/// The pressable widget at `path` in the last frame (exactly one).
+WidgetNote find_widget(const Ui& ui, const std::string& path, WidgetNote::Kind kind) {
+    std::vector<WidgetNote> found;
+    for (const WidgetNote& n : ui.notes())
+        if (n.kind == kind && n.path() == path) found.push_back(n);
+    INFO(path);
+    REQUIRE(found.size() == 1);
+    return found[0];
+}
+
+template <class Draw>
+void press(Ui& ui, Draw draw, const WidgetNote& n) {
+    ui.click(draw, 0.5f * (n.x0 + n.x1), 0.5f * (n.y0 + n.y1));
+}
+
+}  // namespace
+
+TEST_CASE("no widget ID is used twice in a frame, in any combination of open sections",
+          "[panels][ids]") {
+    Ui ui(1280, 4000);  // tall: every widget is on the screen
+    Sidebar s;
+    s.open_all();
+    const auto draw = [&] { s.draw(); };
+    ui.frame(draw);
+    // The recorder sees what ImGui registers: with every section open, hundreds of items.
+    items_seen.clear();
+    recording_items = true;
+    ui.frame(draw);
+    recording_items = false;
+    CHECK(items_seen.size() > 60);
+
+    bool* flags[] = {
+        &s.panels.tools.open,     &s.panels.weld.open,        &s.panels.fairing.open,
+        &s.panels.frequency.open, &s.panels.subdivision.open, &s.panels.decimation.open,
+        &s.panels.morph_open,     &s.panels.record.open,      &s.panels.info_open};
+    const unsigned n = unsigned(std::size(flags));
+    for (unsigned mask = 0; mask < (1u << n); ++mask) {
+        for (unsigned i = 0; i < n; ++i) *flags[i] = (mask >> i) & 1u;
+        s.panels.decimation.lod_open = (mask & 1u) != 0;
+        s.panels.decimation.lod_ready = (mask & 2u) != 0;
+        s.panels.record.running = (mask & 4u) != 0;
+        s.panels.fairing.previewing = s.panels.subdivision.previewing = (mask & 8u) != 0;
+        s.panels.decimation.previewing = s.panels.tools.previewing = (mask & 8u) != 0;
+        s.morph.playing = (mask & 16u) != 0;
+        ui.frame(draw);  // the sections take their new state
+        const std::vector<std::string> duplicates = duplicate_ids(ui, draw);
+        INFO("open sections mask " << mask);
+        for (const std::string& d : duplicates) INFO(d);
+        CHECK(duplicates.empty());
+        if (!duplicates.empty()) break;
+    }
+}
+
+TEST_CASE("the menus and dialogs use no widget ID twice", "[panels][ids]") {
+    Ui ui;
+    RenderStyle style;
+    ViewSettings settings;
+    PanelState panels;
+    CommandQueue commands;
+    MenuContext menu;
+    RenderContext render;
+    const auto draw = [&] {
+        menu_bar(style, settings, panels, menu, render, commands);
+        screenshot_dialog(panels.screenshot, commands);
+    };
+    panels.screenshot.open = true;
+    ui.frame(draw);
+    ui.frame(draw);
+    // Open each menu of the bar in turn and look at the frame that shows it.
+    std::vector<WidgetNote> menus;
+    for (const WidgetNote& n : ui.notes())
+        if (n.kind == WidgetNote::Kind::Menu && n.section.empty()) menus.push_back(n);
+    REQUIRE(menus.size() >= 7);
+    for (const WidgetNote& m : menus) {
+        press(ui, draw, m);
+        const std::vector<std::string> duplicates = duplicate_ids(ui, draw);
+        INFO("menu " << m.label);
+        for (const std::string& d : duplicates) INFO(d);
+        CHECK(duplicates.empty());
+        ui.click(draw, 1200, 700);  // close it
+    }
+}
+
+TEST_CASE("every button of every section queues what it says", "[panels][buttons]") {
+    // What pressing each button does, by its path: a command queued or a state changed.
+    using Check = std::function<void(const Sidebar&)>;
+    const auto applies = [](const char* name) {
+        return Check([name](const Sidebar& s) {
+            const auto applied = commands_of<ApplyOperation>(s.commands);
+            REQUIRE(applied.size() == 1);
+            CHECK(applied[0]->op.name() == name);
+        });
+    };
+    const auto queues_one = [](auto tag) {
+        using T = decltype(tag);
+        return Check([](const Sidebar& s) {
+            CHECK(commands_of<T>(s.commands).size() == 1);
+            CHECK(commands_of<ApplyOperation>(s.commands).empty());
+        });
+    };
+    const std::map<std::string, Check> expected = {
+        {"Tools: add noise/Apply", applies("noise")},
+        {"Tools: add noise/Cancel", queues_one(CancelPreview{})},
+        {"Tools: weld coincident vertices/Weld", applies("weld")},
+        {"Tools: weld coincident vertices/Cancel", queues_one(CancelPreview{})},
+        {"Fairing/Smooth", applies("smooth")},
+        {"Fairing/Cancel", queues_one(CancelPreview{})},
+        {"Fairing/Use implicit integration",
+         [](const Sidebar& s) {
+             const auto previews = commands_of<PreviewOperation>(s.commands);
+             REQUIRE_FALSE(previews.empty());
+             CHECK(int(previews.back()->op.value("integration").x) == int(Integration::Implicit));
+         }},
+        {"Frequency decomposition/Decompose",
+         [](const Sidebar& s) {
+             CHECK(s.actions.decompose);
+             CHECK(s.commands.empty());
+         }},
+        {"Frequency decomposition/Restore", [](const Sidebar& s) { CHECK(s.actions.restore); }},
+        {"Subdivision/Subdivide", applies("subdivide")},
+        {"Subdivision/Cancel", queues_one(CancelPreview{})},
+        {"Subdivision/Weld coincident vertices", applies("weld")},
+        {"Decimation/Decimate", applies("decimate")},
+        {"Decimation/Cancel", queues_one(CancelPreview{})},
+        {"Decimation/Level of detail/Build levels", queues_one(BuildLevelOfDetail{})},
+        {"Decimation/Level of detail/Apply level", queues_one(ApplyLevelOfDetail{})},
+        {"Decimation/Level of detail/Cancel", queues_one(CancelPreview{})},
+        {"Morph/Animate", [](const Sidebar& s) { CHECK(s.morph.playing); }},
+        {"Morph/Stop", [](const Sidebar& s) { CHECK_FALSE(s.morph.playing); }},
+        {"Morph/Before",
+         [](const Sidebar& s) {
+             CHECK(s.morph.t == 0.0);
+             CHECK_FALSE(s.morph.playing);
+         }},
+        {"Morph/After", [](const Sidebar& s) { CHECK(s.morph.t == 1.0); }},
+        {"Record/Record", queues_one(StartRecording{})},
+        {"Record/Cancel", queues_one(CancelRecording{})},
+    };
+    // The states that show every button: idle; previews up, levels built, recording, playing.
+    const std::vector<std::function<void(Sidebar&)>> scenes = {
+        [](Sidebar& s) { s.morph.t = 0.5; },
+        [](Sidebar& s) {
+            s.panels.fairing.previewing = s.panels.subdivision.previewing = true;
+            s.panels.decimation.previewing = s.panels.tools.previewing = true;
+            s.panels.weld.previewing = true;
+            s.panels.decimation.lod_ready = true;
+            s.panels.record.running = true;
+            s.morph.playing = true;
+        },
+    };
+    std::set<std::string> pressed;
+    for (const auto& scene : scenes) {
+        std::vector<WidgetNote> buttons;
+        {
+            Ui ui(1280, 4000);
+            Sidebar s;
+            s.open_all();
+            scene(s);
+            const auto draw = [&] { s.draw(); };
+            ui.frame(draw);
+            ui.frame(draw);
+            for (const WidgetNote& n : ui.notes())
+                if (n.kind == WidgetNote::Kind::Button && n.enabled) buttons.push_back(n);
+        }
+        REQUIRE_FALSE(buttons.empty());
+        for (const WidgetNote& b : buttons) {
+            INFO("button " << b.path());
+            const auto it = expected.find(b.path());
+            REQUIRE(it != expected.end());  // a new button needs its expectation here
+            Ui ui(1280, 4000);
+            Sidebar s;
+            s.open_all();
+            scene(s);
+            const auto draw = [&] { s.draw(); };
+            ui.frame(draw);
+            ui.frame(draw);
+            s.commands.clear();
+            // The press: hover, down, up; the actions of the frame of the release count.
+            const float x = 0.5f * (b.x0 + b.x1), y = 0.5f * (b.y0 + b.y1);
+            ui.frame(draw, x, y, false);
+            ui.frame(draw, x, y, true);
+            s.commands.clear();
+            ui.frame(draw, x, y, false);
+            it->second(s);
+            pressed.insert(b.path());
+        }
+    }
+    for (const auto& [path, check] : expected) {
+        INFO("never shown: " << path);
+        CHECK(pressed.count(path) == 1);
+    }
+}
+
+TEST_CASE("Record's button records: it does not share the section header's ID",
+          "[panels][buttons]") {
+    Ui ui;
+    Sidebar s;
+    s.panels.record.open = true;
+    const auto draw = [&] { s.draw(); };
+    ui.frame(draw);
+    ui.frame(draw);
+    const WidgetNote record = find_widget(ui, "Record/Record", WidgetNote::Kind::Button);
+    const WidgetNote header = find_widget(ui, "Record", WidgetNote::Kind::Header);
+    CHECK(record.imgui_id != header.imgui_id);
+    s.commands.clear();
+    press(ui, draw, record);
+    CHECK(commands_of<StartRecording>(s.commands).size() == 1);
+    CHECK(s.panels.record.open);  // the section stayed open
+}
+
+TEST_CASE("sections keep their parameters apart: a slider moves only its own", "[panels][ids]") {
+    Ui ui(1280, 4000);
+    Sidebar s;
+    s.panels.fairing.open = s.panels.subdivision.open = s.panels.decimation.open = true;
+    s.panels.fairing.op.value("step").x = 0.5;  // no warning
+    const auto draw = [&] { s.draw(); };
+    ui.frame(draw);
+    ui.frame(draw);
+    const double fairing_before = s.panels.fairing.op.value("iterations").x;
+    const double decimation_before = s.panels.decimation.op.value("iterations").x;
+    std::vector<WidgetNote> iterations;
+    for (const WidgetNote& n : ui.notes())
+        if (n.id == "iterations" && n.section == "Subdivision") iterations.push_back(n);
+    REQUIRE(iterations.size() == 1);
+    const WidgetNote& slider = iterations[0];
+    const float y = 0.5f * (slider.y0 + slider.y1);
+    s.commands.clear();
+    // The item's rectangle includes its label on the right: press inside the frame, well
+    // right of its left end (the smallest value, 1).
+    ui.frame(draw, slider.x0 + 40, y, false);
+    ui.frame(draw, slider.x0 + 40, y, true);
+    ui.frame(draw, slider.x0 + 40, y, false);
+    CHECK(s.panels.subdivision.op.value("iterations").x > 1);
+    CHECK(s.panels.fairing.op.value("iterations").x == fairing_before);
+    CHECK(s.panels.decimation.op.value("iterations").x == decimation_before);
+    const auto previews = commands_of<PreviewOperation>(s.commands);
+    REQUIRE(previews.size() == 1);
+    CHECK(previews[0]->op.name() == "subdivide");
+}
+
+TEST_CASE("the morph controls are drawn once, in the Morph section, and respond there",
+          "[panels]") {
+    Ui ui(1280, 4000);
+    Sidebar s;
+    s.open_all();
+    s.morph.t = 0.5;
+    const auto draw = [&] { s.draw(); };
+    ui.frame(draw);
+    ui.frame(draw);
+    int animate = 0;
+    for (const WidgetNote& n : ui.notes())
+        if (n.kind == WidgetNote::Kind::Button && n.label == "Animate") ++animate;
+    CHECK(animate == 1);
+    press(ui, draw, find_widget(ui, "Morph/Animate", WidgetNote::Kind::Button));
+    CHECK(s.morph.playing);
+}
+
+TEST_CASE("a typed value outside its range is clamped at once, and every widget shows it",
+          "[panels][input]") {
+    Ui ui;
+    Sidebar s;
+    s.panels.fairing.open = true;
+    s.panels.fairing.max_stable_step = 1e9;  // no warning: the rows stay where they are
+    const auto draw = [&] { s.draw(); };
+    ui.frame(draw);
+    ui.frame(draw);
+    const auto type_into_step = [&](const char* text) {
+        Box field = ui.rect("step:value");
+        const float x = 0.5f * (field.x0 + field.x1), y = 0.5f * (field.y0 + field.y1);
+        ui.click(draw, x, y);
+        ImGuiIO& io = ImGui::GetIO();
+        // Select what is there and replace it.
+        io.KeyCtrl = true;
+        io.KeysDown[io.KeyMap[ImGuiKey_A]] = true;
+        ui.frame(draw, x, y);
+        io.KeysDown[io.KeyMap[ImGuiKey_A]] = false;
+        io.KeyCtrl = false;
+        ui.frame(draw, x, y);
+        for (const char* c = text; *c; ++c) {
+            io.AddInputCharacter(unsigned(*c));
+            ui.frame(draw, x, y);
+        }
+    };
+    SECTION("above the largest value") {
+        type_into_step("1e9");
+        const double step = s.panels.fairing.op.value("step").x;
+        CHECK(step == 1e6);                // the declared maximum, at once
+        CHECK(ImGui::GetActiveID() == 0);  // the field let go: it shows 1e+06 now
+        CHECK(s.panels.fairing.input_note.find("1e+09") != std::string::npos);
+        CHECK(s.panels.fairing.input_note.find("using 1e+06") != std::string::npos);
+        const auto previews = commands_of<PreviewOperation>(s.commands);
+        REQUIRE_FALSE(previews.empty());
+        CHECK(previews.back()->op.value("step").x == 1e6);
+    }
+    SECTION("below the smallest value") {
+        type_into_step("-5");
+        CHECK(s.panels.fairing.op.value("step").x == 0.0);
+        CHECK(ImGui::GetActiveID() == 0);
+    }
+    SECTION("a value in range stays as typed, the field keeps the focus") {
+        type_into_step("0.25");
+        CHECK(s.panels.fairing.op.value("step").x == 0.25);
+        CHECK(ImGui::GetActiveID() != 0);
+        CHECK(s.panels.fairing.input_note.empty());
+    }
+}
+
+TEST_CASE("the stability warning and its button move nothing below them", "[panels]") {
+    Ui ui;
+    Sidebar s;
+    s.panels.fairing.open = s.panels.subdivision.open = true;
+    const auto draw = [&] { s.draw(); };
+    s.panels.fairing.op.value("step").x = 0.5;  // below the limit 1.0: no warning
+    ui.frame(draw);
+    ui.frame(draw);
+    CHECK_FALSE(ui.has("unstable"));
+    const Box smooth_stable = ui.rect("Smooth");
+    const Box subdivide_stable = ui.rect("Subdivide");
+    s.panels.fairing.op.value("step").x = 50;  // above: the warning and its button show
+    ui.frame(draw);
+    ui.frame(draw);
+    REQUIRE(ui.has("unstable"));
+    REQUIRE(ui.has("Use implicit integration"));
+    CHECK(ui.rect("Smooth").y0 == smooth_stable.y0);
+    CHECK(ui.rect("Subdivide").y0 == subdivide_stable.y0);
+    // And implicit integration, which needs no warning, keeps the rows too.
+    s.panels.fairing.op.value("integration").x = int(Integration::Implicit);
+    ui.frame(draw);
+    CHECK_FALSE(ui.has("unstable"));
+    CHECK(ui.rect("Smooth").y0 == smooth_stable.y0);
+}
+
+TEST_CASE("an optional number's check box carries the parameter's label", "[panels]") {
+    Ui ui;
+    Sidebar s;
+    s.panels.frequency.open = true;
+    const auto draw = [&] { s.draw(); };
+    ui.frame(draw);
+    ui.frame(draw);
+    const WidgetNote k = find_widget(ui, "Frequency decomposition/k", WidgetNote::Kind::Checkbox);
+    CHECK(k.id == "k:on");
+}
