@@ -76,7 +76,7 @@ const std::vector<KeyBinding> kKeyBindings = {
     {GLFW_KEY_SPACE, 0, KeyAction::PlayMorph, "play or stop the morph animation"},
     {GLFW_KEY_O, kCtrl, KeyAction::OpenFile, "open a mesh file"},
     {GLFW_KEY_S, kCtrl, KeyAction::SaveFile, "save the mesh as"},
-    {GLFW_KEY_Q, kCtrl, KeyAction::Quit, "quit"},
+    {GLFW_KEY_Q, kCtrl, KeyAction::Quit, "quit", true},
     {GLFW_KEY_F1, 0, KeyAction::ToggleHelp, "this window (Esc closes it)"},
     {GLFW_KEY_ESCAPE, 0, KeyAction::Escape, "cancel a preview; close a dialog"},
 };
@@ -204,9 +204,10 @@ void run_key_action(KeyAction action, KeyActionTargets& t) {
     }
 }
 
-bool dispatch_key(int key, int mods, KeyActionTargets& targets) {
+bool dispatch_key(int key, int mods, KeyActionTargets& targets, KeyboardFocus focus) {
     const KeyBinding* binding = find_key_binding(key, mods);
     if (!binding) return false;
+    if (!binding->always && focus != KeyboardFocus::Bindings) return false;
     run_key_action(binding->action, targets);
     return true;
 }

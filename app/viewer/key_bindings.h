@@ -45,7 +45,14 @@ struct KeyBinding {
     int mods;
     KeyAction action;
     const char* help;  ///< what it does, in the key bindings window
+    /// An application shortcut (quit): it works whatever has the keyboard, so that it is never
+    /// lost while a text field or a slider holds it.
+    bool always = false;
 };
+
+/// Who has the keyboard: the bindings, or a widget (a text field being typed into, a slider
+/// held, a popup): then only the `always` bindings act.
+enum class KeyboardFocus { Bindings, Widget };
 
 /// Every key binding, in the order the key bindings window lists them. An action may have
 /// several keys (redo: Ctrl+Shift+Z and Ctrl+Y); the first is the one the menus show.
@@ -84,7 +91,9 @@ struct KeyActionTargets {
 
 /// Carries out `action` on the targets (a command queued, a panel or style setting changed).
 void run_key_action(KeyAction action, KeyActionTargets& targets);
-/// Runs the action `key` with `mods` is bound to; false when it is bound to none.
-bool dispatch_key(int key, int mods, KeyActionTargets& targets);
+/// Runs the action `key` with `mods` is bound to; false when it is bound to none, or when a
+/// widget has the keyboard and the binding is not an `always` one (the key is the widget's).
+bool dispatch_key(int key, int mods, KeyActionTargets& targets,
+                  KeyboardFocus focus = KeyboardFocus::Bindings);
 
 }  // namespace trilab::viewer

@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -48,6 +49,20 @@ constexpr int kMaxSettleFrames = 1000;
 
 void glfw_error(int code, const char* description) {
     std::fprintf(stderr, "trilab: GLFW error %d: %s\n", code, description);
+}
+
+/// Whether every step of `result` is `mesh` itself: the same connectivity and positions, bit
+/// for bit (what the history would store and the morph would show).
+bool leaves_unchanged(const HalfedgeMesh& mesh, const OperationResult& result) {
+    for (const OperationStep& step : result.steps) {
+        const HalfedgeMesh& m = step.mesh;
+        if (m.revision() == mesh.revision()) continue;
+        if (m.topology_revision() != mesh.topology_revision() ||
+            m.vertices_size() != mesh.vertices_size())
+            return false;
+        if (m.positions() != mesh.positions()) return false;
+    }
+    return true;
 }
 
 glm::vec3 to_glm(const Point& p) {
@@ -269,7 +284,8 @@ void Viewer::push_loaded(HalfedgeMesh mesh, std::string label, std::string name,
                          LoadReport report) {
     // A load shows no motion: every vertex "starts" where it is.
     MorphCorrespondence none{MorphCorrespondence::Kind::FromEarlier, mesh.positions()};
-    const std::string parameters = path;
+    // "Load bunny.obj ../meshes/bunny.obj"; the path alone where it is the name.
+    const std::string parameters = path == name ? "" : path;
     // The first file replaces the built-in model while nothing was done to it.
     const bool untouched_default =
         document_.history.size() == 1 && document_.path.empty() && !document_.unsaved;
@@ -402,6 +418,15 @@ void Viewer::commit_result(const Operation& op, OperationResult result_value) {
     if (!result->changed) {  // stopped before its first good iteration: nothing to keep
         for (const std::string& line : result->report) log_.info("  " + line);
         notify_error(result->label + " stopped early, nothing changed: " + result->stop_reason);
+        return;
+    }
+    // A run that changed nothing (a step of 0, no edge to weld) adds no entry, and says so.
+    if (leaves_unchanged(document_.mesh(), *result)) {
+        for (const std::string& line : result->report) log_.info("  " + line);
+        const std::string text =
+            result->label + " " + result->parameters + " changed nothing: no history entry";
+        log_.info(text);
+        notice_ = Notice{Notice::Level::Info, text, {}, false};
         return;
     }
     std::vector<HalfedgeMesh> meshes;
@@ -659,6 +684,7 @@ void Viewer::poll_jobs() {
     active_frames_ = kFramesAfterInput;
     if (outcome.name.rfind("Loading ", 0) == 0) initial_load_ended_ = true;  // or failed
     const bool preview = outcome.name.rfind("Preview: ", 0) == 0;
+    if (preview && outcome.kind == Kind::Failed) preview_.failure = outcome.message;
     if (preview && outcome.kind != Kind::Failed) {
         if (outcome.kind == Kind::Succeeded && preview_.requested &&
             preview_.computed_op == *preview_.requested && !sweep_.active)
@@ -1008,7 +1034,11 @@ void Viewer::handle_input() {
 
     std::vector<KeyPress> presses;
     presses.swap(key_presses_);
-    if (io.WantCaptureKeyboard) return;  // typing into a text field, or a popup is open
+    // Typing into a text field, a slider held, a popup: the keys are the widget's, except
+    // the application shortcuts (quit), which are never lost.
+    const KeyboardFocus focus = io.WantCaptureKeyboard || io.WantTextInput
+                                    ? KeyboardFocus::Widget
+                                    : KeyboardFocus::Bindings;
     KeyActionTargets targets{panels_,
                              view_.style,
                              view_.settings,
@@ -1021,7 +1051,7 @@ void Viewer::handle_input() {
                              renderer_->has_texcoords(),
                              preview_.requested.has_value(),
                              glfwGetTime()};
-    for (const KeyPress& press : presses) dispatch_key(press.key, press.mods, targets);
+    for (const KeyPress& press : presses) dispatch_key(press.key, press.mods, targets, focus);
 }
 
 void Viewer::draw_ui() {
@@ -1056,8 +1086,8 @@ void Viewer::draw_ui() {
     Layout layout = compute_layout(in, sizes);
 
     StatusInfo status;
-    status.n_vertices = document_.mesh().n_vertices();
-    status.n_faces = document_.mesh().n_faces();
+    // What is on the screen: a preview, a level of detail or a morph frame has its own counts.
+    std::tie(status.n_vertices, status.n_faces) = shown_counts();
     status.file_name = document_.name;
     status.frame_ms = frame_ms();
     // A preview's progress shows only when it takes a while.
@@ -1251,6 +1281,14 @@ double Viewer::frame_ms() const {
     return sorted[n / 2];
 }
 
+std::pair<std::size_t, std::size_t> Viewer::shown_counts() const {
+    if (lod_.shown && lod_.lod) return {lod_.lod->vertices(), renderer_->n_triangles()};
+    const HalfedgeMesh& shown = preview_shown_ && preview_.result
+                                    ? preview_.result->steps[preview_.shown_step].mesh
+                                    : document_.mesh();
+    return {shown.n_vertices(), shown.n_faces()};
+}
+
 bool Viewer::entry_moves() const {
     const History& h = document_.history;
     const std::size_t entry = h.current();
@@ -1324,6 +1362,8 @@ void Viewer::print_layout() const {
 int Viewer::run() {
     int frame = 0;
     int settle_frames = 0;
+    double last_frame_end = -1.0;  // glfw time at the end of the last frame drawn
+    bool waited = false;           // the loop slept since then (no frame to time)
     active_frames_ = kFramesAfterInput;
     while (!quit_) {
         // The window's close button asks like File -> Quit does.
@@ -1337,6 +1377,7 @@ int Viewer::run() {
             glfwPollEvents();
         } else {
             glfwWaitEventsTimeout(ImGui::GetIO().WantTextInput ? 0.5 : 10.0);
+            waited = true;
             if (active_frames_ == 0 && !ImGui::GetIO().WantTextInput) continue;
         }
         if (active_frames_ > 0) --active_frames_;
@@ -1345,6 +1386,7 @@ int Viewer::run() {
         while (options_.frames > 0 && jobs_.busy() && !is_preview_job()) {
             poll_jobs();
             if (jobs_.busy()) glfwWaitEventsTimeout(0.002);
+            waited = true;
         }
         poll_jobs();
         start_pending_preview();
@@ -1412,8 +1454,15 @@ int Viewer::run() {
         }
         if (sweep_.active) glFinish();  // the frame is on the screen when we time it
         glfwSwapBuffers(window_.get());
-        frame_times_ms_[n_frame_times_++ % frame_times_ms_.size()] =
-            1000.0 * (glfwGetTime() - start);
+        // The frame time is the time from one frame's end to the next's: the GL driver may
+        // finish a frame's work in the next frame's first calls (a software renderer does), so
+        // the time inside one loop pass can be a fraction of it. After a sleep (no events)
+        // the pass alone counts.
+        const double end = glfwGetTime();
+        const double since = waited || last_frame_end < 0 ? end - start : end - last_frame_end;
+        frame_times_ms_[n_frame_times_++ % frame_times_ms_.size()] = 1000.0 * since;
+        last_frame_end = end;
+        waited = false;
         if (sweep_.active) step_sweep(preview_shown_ || lod_.shown);
         if (last) break;
     }
@@ -1439,7 +1488,7 @@ int Viewer::run() {
         log_.info("status: " + notice_.text);
     }
     log_.info(quit_ ? "quit after " + std::to_string(frame) + " frames" : "frames done");
-    return 0;
+    return exit_status_;
 }
 
 }  // namespace trilab::viewer

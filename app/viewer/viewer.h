@@ -157,6 +157,7 @@ private:
         std::size_t shown_step = 0;   ///< the step of `result` shown
         HalfedgeMesh::Revision base;  ///< the document state `result` applies to
         double requested_at = 0, shown_at = 0;
+        std::string failure;  ///< the last preview job's error (a sweep ends on it)
     };
     struct Sweep {
         bool active = false, waiting = false;
@@ -283,6 +284,7 @@ private:
     float record_line_scale_ = 1;  ///< line widths of recorded frames relative to the view
     int active_frames_ = 0;        ///< frames still to draw after the last event or command
     bool quit_ = false;
+    int exit_status_ = 0;               ///< run()'s result: 1 after a scripted action failed
     bool continue_after_save_ = false;  ///< the unsaved-changes prompt's Save: then go on
     bool coloring_pending_ = false;     ///< a colouring was asked for while a job ran
     MorphState morph_;
@@ -296,6 +298,8 @@ private:
     std::array<double, 15> frame_times_ms_{};
     std::size_t n_frame_times_ = 0;
     double frame_ms() const;
+    /// The vertex and face counts of what is on the screen (a preview, a level of detail).
+    std::pair<std::size_t, std::size_t> shown_counts() const;
 
     /// Rendering > Vectors > Collapsing edges: the next decimation iteration's edges,
     /// recomputed when the mesh or the Decimation panel's options change.

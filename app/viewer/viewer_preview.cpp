@@ -65,6 +65,7 @@ void Viewer::request_preview(const Operation& op) {
         return;  // the panel shows the error next to its widgets
     }
     clear_level_of_detail(false);
+    preview_.failure.clear();
     preview_.requested_at = glfwGetTime();
     preview_.requested = op;
     // Within the computed iterations: show the computed step at once.
@@ -123,12 +124,18 @@ void Viewer::start_pending_preview() {
             preview_.shown_op = op;
             preview_.shown_step = result->steps.size() - 1;
             preview_.base = base;
+            // The status bar tells about this preview: an older error is no longer news.
             if (result->stopped_early)
                 notice_ =
                     Notice{Notice::Level::Error,
                            "preview: " + result->label + " stopped early: " + result->stop_reason,
                            {},
                            false};
+            else
+                notice_ = Notice{Notice::Level::Info,
+                                 "preview: " + result->label + " " + result->parameters,
+                                 {},
+                                 false};
         });
     });
 }
@@ -348,6 +355,7 @@ void Viewer::step_sweep(bool frame_shown) {
             std::fprintf(stderr, "trilab: --sweep: no levels of detail could be built\n");
             s.active = false;
             quit_ = true;
+            exit_status_ = 1;
         }
         return;
     }
@@ -356,6 +364,14 @@ void Viewer::step_sweep(bool frame_shown) {
         s.ms.push_back(1000.0 * (glfwGetTime() - s.t0));
         s.waiting = false;
         ++s.next;
+    }
+    if (s.waiting && !preview_.failure.empty()) {  // refused: the sweep ends, and says why
+        std::fprintf(stderr, "trilab: --sweep: the preview of %s failed: %s\n",
+                     s.current.text().c_str(), preview_.failure.c_str());
+        s.active = false;
+        quit_ = true;
+        exit_status_ = 1;
+        return;
     }
     if (s.waiting) {
         // Done when the frame just drawn showed the preview asked for.
@@ -384,6 +400,7 @@ void Viewer::step_sweep(bool frame_shown) {
             std::fprintf(stderr, "trilab: --sweep: lod takes percentages from 0 to 100\n");
             s.active = false;
             quit_ = true;
+            exit_status_ = 1;
             return;
         }
         panels_.decimation.lod_percent = float(value);
@@ -406,6 +423,7 @@ void Viewer::step_sweep(bool frame_shown) {
         std::fprintf(stderr, "trilab: --sweep: %s is refused\n", s.current.text().c_str());
         s.active = false;
         quit_ = true;
+        exit_status_ = 1;
     }
 }
 

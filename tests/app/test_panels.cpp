@@ -730,6 +730,22 @@ TEST_CASE("every key binding reaches its action", "[panels][keys]") {
     CHECK(f.commands.empty());
 }
 
+TEST_CASE("keys typed into a widget stay there; quit is never lost", "[panels][keys]") {
+    KeyFixture f;
+    const RenderStyle before = f.style;
+    // A text field has the keyboard: F, I, W and Ctrl+Z are the field's, not the bindings'.
+    CHECK_FALSE(dispatch_key(GLFW_KEY_F, 0, f.targets, KeyboardFocus::Widget));
+    CHECK_FALSE(dispatch_key(GLFW_KEY_I, 0, f.targets, KeyboardFocus::Widget));
+    CHECK_FALSE(dispatch_key(GLFW_KEY_W, 0, f.targets, KeyboardFocus::Widget));
+    CHECK_FALSE(dispatch_key(GLFW_KEY_Z, GLFW_MOD_CONTROL, f.targets, KeyboardFocus::Widget));
+    CHECK(f.style.fog == before.fog);
+    CHECK(f.commands.empty());
+    // Ctrl+Q is an application shortcut: it quits whatever holds the keyboard.
+    CHECK(dispatch_key(GLFW_KEY_Q, GLFW_MOD_CONTROL, f.targets, KeyboardFocus::Widget));
+    REQUIRE(f.commands.size() == 1);
+    CHECK(std::holds_alternative<Quit>(f.commands[0]));
+}
+
 TEST_CASE("key actions keep their conditions: busy, no morph, Esc's order, T's cycle",
           "[panels][keys]") {
     KeyFixture f;
