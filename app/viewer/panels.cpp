@@ -75,6 +75,16 @@ ImVec4 notice_color(Notice::Level level) {
 
 }  // namespace
 
+void apply_panel_style(ImGuiStyle& style) {
+    ImGui::StyleColorsDark(&style);
+    style.WindowRounding = 4.0f;
+    style.FrameRounding = 3.0f;
+    // A slider's grab is a thin, half-transparent bar: the value text on it stays legible.
+    style.GrabMinSize = 4.0f;
+    style.Colors[ImGuiCol_SliderGrab].w = 0.45f;
+    style.Colors[ImGuiCol_SliderGrabActive].w = 0.6f;
+}
+
 void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState& panels,
                           const RenderContext& render, CommandQueue& commands) {
     const RenderMode modes[] = {RenderMode::Wireframe, RenderMode::HiddenLine,
@@ -522,6 +532,21 @@ float widget_width(float wanted_em = 12.0f, float label_share = 0.4f) {
 }
 }  // namespace
 
+std::string default_note_text(const ParamSpec& p) {
+    if (p.default_note.empty()) return "default";
+    // The declaration speaks of the command line ("none (--percent and --iterations)"); the
+    // panel names the same parameters by their labels.
+    std::string text;
+    for (std::size_t i = 0; i < p.default_note.size(); ++i) {
+        if (p.default_note.compare(i, 2, "--") == 0) {
+            ++i;
+            continue;
+        }
+        text += p.default_note[i];
+    }
+    return text;
+}
+
 double clamp_to_declared(const ParamSpec& p, double x) {
     double kept = std::clamp(x, p.min, p.max);
     if (p.min_exclusive && kept <= p.min) {  // the smallest value above min the panel offers
@@ -582,8 +607,7 @@ bool operation_widgets(Operation& op, const std::vector<std::string>& skip,
                 }
                 if (!v.on) {  // unset: the run's default, said in words
                     ImGui::PushTextWrapPos(0.0f);
-                    ImGui::TextDisabled(
-                        "%s", p.default_note.empty() ? "default" : p.default_note.c_str());
+                    ImGui::TextDisabled("%s", default_note_text(p).c_str());
                     ImGui::PopTextWrapPos();
                     break;
                 }

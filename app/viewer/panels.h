@@ -21,6 +21,8 @@
 #include "core/algorithms/texcoords.h"
 #include "render/mesh_renderer.h"
 
+struct ImGuiStyle;
+
 namespace trilab::viewer {
 
 /// The last thing the viewer has to tell the user. Errors also open a modal popup once.
@@ -111,6 +113,9 @@ struct DecimationPanelState : OperationPanelState {
 /// A typed value outside the declared range is clamped at once, and why goes to `notes`.
 bool operation_widgets(Operation& op, const std::vector<std::string>& skip = {},
                        std::vector<std::string>* notes = nullptr);
+/// What an unset optional parameter does, in the panel's words (its declaration's default
+/// note without the command line's dashes).
+std::string default_note_text(const ParamSpec& p);
 /// `x` inside the declared range of `p` (above min where min is exclusive: the slider's lower
 /// end, or the next representable number).
 double clamp_to_declared(const ParamSpec& p, double x);
@@ -198,6 +203,10 @@ struct RenderContext {
     bool has_texcoords = false;
     bool has_loaded_texture = false;
 };
+
+/// The viewer's ImGui style: dark, slightly rounded, slider grabs that leave their value
+/// text legible.
+void apply_panel_style(ImGuiStyle& style);
 
 /// File, Algorithms, Rendering, Window and Help menus.
 void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,

@@ -94,10 +94,8 @@ struct Viewer::ImGuiLayer {
         ImGui::CreateContext();
         ImGuiIO& io = ImGui::GetIO();
         io.IniFilename = nullptr;
-        ImGui::StyleColorsDark();
         ImGuiStyle& style = ImGui::GetStyle();
-        style.WindowRounding = 4.0f;
-        style.FrameRounding = 3.0f;
+        apply_panel_style(style);
         if (scale > 1.0f) {
             // Re-rasterize the font at the scaled size instead of stretching it.
             ImFontConfig font;

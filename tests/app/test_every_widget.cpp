@@ -469,3 +469,28 @@ TEST_CASE("an optional number's check box carries the parameter's label", "[pane
     const WidgetNote k = find_widget(ui, "Frequency decomposition/k", WidgetNote::Kind::Checkbox);
     CHECK(k.id == "k:on");
 }
+
+TEST_CASE("slider grabs leave the value text legible", "[panels]") {
+    ImGuiStyle style;
+    apply_panel_style(style);
+    CHECK(style.GrabMinSize <= 6.0f);  // a thin bar, not a block over the digits
+    CHECK(style.Colors[ImGuiCol_SliderGrab].w <= 0.5f);
+    CHECK(style.Colors[ImGuiCol_SliderGrabActive].w <= 0.7f);
+}
+
+TEST_CASE("sidebar notes are the GUI's words: no command-line options in labels",
+          "[panels]") {
+    Ui ui(1280, 4000);
+    Sidebar s;
+    s.open_all();
+    s.panels.decimation.op.value("target-vertices").on = false;
+    const auto draw = [&] { s.draw(); };
+    ui.frame(draw);
+    ui.frame(draw);
+    const WidgetNote target =
+        find_widget(ui, "Decimation/target vertices", WidgetNote::Kind::Checkbox);
+    CHECK(target.id == "target-vertices:on");
+    CHECK(default_note_text(s.panels.decimation.op.def->params[s.panels.decimation.op.def->index(
+                                "target-vertices")])
+              .find("--") == std::string::npos);
+}
