@@ -48,6 +48,30 @@ if(TARGET trilab)
                      --wireframe on --frames 2)
     set_tests_properties(viewer_wireframe_forced PROPERTIES PASS_REGULAR_EXPRESSION
                          "wireframe overlay on \\(on;")
+    # --click presses what a user presses (issue 23): the Record button records (it shared
+    # its section header's ID once), a menu item through its menu, a section opened on the
+    # way; a widget that is not there fails the run with what is there.
+    file(MAKE_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/viewer_click)
+    add_test(NAME viewer_click_record
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --op "noise --amount 30"
+                     --click "Record/Record" --click "Morph/Before" --click "File/Save as"
+                     --frames 3
+             WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/viewer_click)
+    set_tests_properties(viewer_click_record PROPERTIES PASS_REGULAR_EXPRESSION
+                         "click Record/Record: queued StartRecording\n.*click Morph/Before: pressed.*click File/Save as: pressed.*recorded 60 frames in trilab-frames")
+    add_test(NAME viewer_click_missing
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --click "Fairing/Nope" --frames 2)
+    set_tests_properties(viewer_click_missing PROPERTIES WILL_FAIL TRUE)
+    add_test(NAME viewer_click_missing_says_what_is_there
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --click "Fairing/Nope" --frames 2)
+    set_tests_properties(viewer_click_missing_says_what_is_there PROPERTIES
+                         PASS_REGULAR_EXPRESSION "--click \"Fairing/Nope\": no such widget [(]there: [^)]*Smooth")
+    # A sweep whose preview is refused ends with the error and a non-zero exit (it waited
+    # forever once): Loop x8 of the default model would pass the 50-million-face limit.
+    add_test(NAME viewer_sweep_refused
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --sweep "subdivide --scheme loop"
+                     --param iterations --range 1:8:2)
+    set_tests_properties(viewer_sweep_refused PROPERTIES WILL_FAIL TRUE TIMEOUT 60)
     add_test(NAME viewer_bad_wireframe COMMAND $<TARGET_FILE:trilab> --wireframe sometimes --frames 1)
     set_tests_properties(viewer_bad_wireframe PROPERTIES WILL_FAIL TRUE)
     # The layout rule (viewer_layout_check.cmake) with every panel open, a colour legend and a

@@ -2,6 +2,7 @@
 // What panels ask the viewer to do. Panels never touch the document, the window or the GPU:
 // they queue commands, and the viewer executes them in one place after the UI is drawn.
 #include <cstddef>
+#include <iterator>
 #include <string>
 #include <variant>
 #include <vector>
@@ -86,5 +87,37 @@ using Command =
                  ProjectTexCoords, TakeScreenshot, PrintInfo, StartRecording, CancelRecording,
                  CancelJob, Quit, SaveAndContinue, SaveAsAndContinue>;
 using CommandQueue = std::vector<Command>;
+
+/// The command's type name ("StartRecording"), for logs and scripted clicks.
+inline const char* command_name(const Command& command) {
+    static constexpr const char* kNames[] = {"LoadFile",
+                                             "SaveFile",
+                                             "RevertFile",
+                                             "LoadTexture",
+                                             "FitView",
+                                             "ResetView",
+                                             "Undo",
+                                             "Redo",
+                                             "JumpTo",
+                                             "RunOperation",
+                                             "PreviewOperation",
+                                             "ApplyOperation",
+                                             "CancelPreview",
+                                             "BuildLevelOfDetail",
+                                             "ShowLevelOfDetail",
+                                             "ApplyLevelOfDetail",
+                                             "UpdateColoring",
+                                             "ProjectTexCoords",
+                                             "TakeScreenshot",
+                                             "PrintInfo",
+                                             "StartRecording",
+                                             "CancelRecording",
+                                             "CancelJob",
+                                             "Quit",
+                                             "SaveAndContinue",
+                                             "SaveAsAndContinue"};
+    static_assert(std::size(kNames) == std::variant_size_v<Command>, "a name per command");
+    return kNames[command.index()];
+}
 
 }  // namespace trilab::viewer

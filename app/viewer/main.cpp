@@ -36,6 +36,9 @@ options:
   --up y|z           the model's up axis for this run (default: the one chosen in
                      View > Up axis, remembered; +y at first)
   --op "OPERATION"   apply an operation after loading, e.g. --op "noise --amount 2"
+  --click "SECTION/LABEL"  press the widget with that visible label in that sidebar section
+                     (or menu path, e.g. "File/Save as"), after --op; repeatable, in order;
+                     fails when there is no such widget or more than one
   --memory-budget MB the history's memory budget (default: a quarter of the RAM)
   --decompose K[:LO:HI]  decompose the model into K frequencies (the Frequency panel's
                      settings) and apply the band LO..HI, for scripts and tests
@@ -117,6 +120,10 @@ std::string parse_args(int argc, char** argv, trilab::viewer::ViewerOptions& opt
                 return "--memory-budget needs a positive number of megabytes";
         } else if (arg == "--show") {
             if (!value(options.show)) return "--show needs panel names, e.g. history,morph";
+        } else if (arg == "--click") {
+            if (!value(v) || v.empty())
+                return "--click needs a widget, e.g. \"Record/Record\" or \"File/Save as\"";
+            options.clicks.push_back(v);
         } else if (arg == "--op") {
             if (!value(options.operation))
                 return "--op needs an operation, e.g. \"noise --amount 2\"";

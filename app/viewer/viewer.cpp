@@ -174,6 +174,9 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
     if (gladLoadGL(glfwGetProcAddress) == 0)
         throw Error("cannot load the OpenGL 3.3 core functions");
     glfwSwapInterval(options_.frames > 0 ? 0 : 1);
+    // --click finds its widgets through the hook (viewer_clicks.cpp).
+    if (!options_.clicks.empty())
+        set_widget_hook([this](const WidgetNote& note) { clicks_.drawing.push_back(note); });
 
     // HiDPI: fonts and line widths follow the monitor's content scale; input stays in window
     // coordinates and the GL viewport in framebuffer pixels.
@@ -274,7 +277,9 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
         commands_.push_back(RunOperation{parse_operation(options_.operation)});
 }
 
-Viewer::~Viewer() = default;
+Viewer::~Viewer() {
+    if (!options_.clicks.empty()) set_widget_hook(nullptr);
+}
 
 // ---- documents and commands -----------------------------------------------------------------
 
@@ -1312,6 +1317,7 @@ bool Viewer::script_settled() {
         sweep_.active || panels_.record.running)
         return false;
     if (!options_.decompose.empty() && scripted_decompose_ != 2) return false;
+    if (clicks_pending()) return false;
     if (!options_.sweep_op.empty() && !sweep_started_) return false;
     if (morph_.playing) {  // end it: the next frame shows where it ends
         morph_.t = 1.0;
@@ -1406,9 +1412,11 @@ int Viewer::run() {
         const double start = glfwGetTime();
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
+        drive_clicks();
         ImGui::NewFrame();
         handle_input();
         draw_ui();
+        note_click_commands();
         ImGui::Render();
 
         const bool had_commands = !commands_.empty();

@@ -51,6 +51,8 @@ struct ViewerOptions {
     /// --sweep OP --param NAME --range FROM:TO:COUNT: preview OP with NAME at COUNT evenly
     /// spaced values, print "sweep: previews=N median_ms=X max_ms=Y" and exit.
     std::string sweep_op, sweep_param;
+    /// --click "SECTION/LABEL" (repeatable): widgets to press, in order, after --op.
+    std::vector<std::string> clicks;
     double sweep_from = 0, sweep_to = 0;
     int sweep_count = 0;
 };
@@ -250,6 +252,25 @@ private:
     void render_scene();
     /// Reads the back buffer and writes it as PNG; returns an error message or "".
     std::string write_screenshot(const std::string& path) const;
+
+    // --click (viewer_clicks.cpp): presses widgets through the widget hook (widgets.h).
+    struct ScriptedClicks {
+        std::size_t next = 0;  ///< the click in progress
+        int phase = 0;         ///< 0 find the widget, 1 hover, 2 press, 3 release, 4 report
+        std::string target;    ///< what this press is for: the click's path or an opener
+        bool opening = false;  ///< the press opens a section or menu on the way
+        int openings = 0;      ///< for this click (bounded)
+        float x = 0, y = 0;
+        std::vector<WidgetNote> shown, drawing;  ///< last frame's widgets, this frame's
+        std::vector<std::string> queued;         ///< commands the press queued
+    };
+    /// Before NewFrame: moves and presses the mouse for the click in progress.
+    void drive_clicks();
+    /// After the UI is drawn: the commands this frame's press queued.
+    void note_click_commands();
+    void fail_click(const std::string& why);
+    bool clicks_pending() const { return clicks_.next < options_.clicks.size(); }
+    ScriptedClicks clicks_;
 
     ViewerOptions options_;
     std::unique_ptr<GlfwLibrary> glfw_;
