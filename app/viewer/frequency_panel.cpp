@@ -100,6 +100,21 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
         const float margin =
             std::max(index_plot_margin(spectrum_axis), index_plot_margin(coefficient_axis));
         frequency_bar(doc, s.lo, s.hi, s.visualize, width, margin);
+        // What the mesh shows, so that the sliders never seem to describe it when they do not:
+        // right after Decompose it is its own shape (every frequency, computed or not), and a
+        // band shows once a slider moves.
+        char shown[160];
+        if (doc.applied)
+            std::snprintf(shown, sizeof shown, "the mesh shows the band %zu .. %zu",
+                          doc.applied_lo, doc.applied_hi);
+        else
+            std::snprintf(shown, sizeof shown,
+                          "the mesh shows its own shape, not a band: move a slider to show the "
+                          "band it sets");
+        ImGui::PushTextWrapPos(0.0f);
+        ImGui::TextDisabled("%s", shown);
+        ImGui::PopTextWrapPos();
+        note_widget("band-state", WidgetNote::Kind::Other, shown);
         if (busy) ImGui::BeginDisabled();
         ImGui::SetNextItemWidth(std::max(4.0f * em, width - 6.0f * em));
         const int old_lo = s.lo, old_hi = s.hi;

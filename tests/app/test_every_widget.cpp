@@ -494,3 +494,24 @@ TEST_CASE("sidebar notes are the GUI's words: no command-line options in labels"
                                 "target-vertices")])
               .find("--") == std::string::npos);
 }
+
+TEST_CASE("the Frequency section says whether the mesh shows a band", "[panels][frequency]") {
+    Ui ui;
+    Sidebar s;
+    s.panels.frequency.open = true;
+    s.panels.frequency.hi = 3;  // the sliders read 0..3 right after Decompose
+    const auto draw = [&] { s.draw(); };
+    ui.frame(draw);
+    ui.frame(draw);
+    const auto state = [&] {
+        for (const WidgetNote& n : ui.notes())
+            if (n.id == "band-state") return n.label;
+        return std::string();
+    };
+    CHECK(state().find("its own shape, not a band") != std::string::npos);
+    s.frequency.applied = true;
+    s.frequency.applied_lo = 0;
+    s.frequency.applied_hi = 2;
+    ui.frame(draw);
+    CHECK(state() == "the mesh shows the band 0 .. 2");
+}
