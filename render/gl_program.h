@@ -57,6 +57,7 @@ public:
     // as unused has no location and is ignored, so optional uniforms need no special case.
     void set(const char* name, int value) const;
     void set(const char* name, float value) const;
+    void set(const char* name, const glm::vec2& value) const;
     void set(const char* name, const glm::vec3& value) const;
     void set(const char* name, const glm::vec4& value) const;
     void set(const char* name, const glm::mat3& value) const;

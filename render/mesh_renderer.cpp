@@ -39,6 +39,11 @@
 //    anti-aliased edges of any width in pixels (glLineWidth > 1 is not available in core
 //    profiles). Used for the overlay and for the Wireframe and HiddenLine modes. Without
 //    wires no geometry stage runs, which matters on llvmpipe.
+//  - mesh.vert + mesh.geom + mesh.frag [TRILAB_NEAREST_CORNER] (and [TRILAB_WIREFRAME]):
+//    categorical vertex colours (ColorBlend::NearestCorner): the geometry stage hands every
+//    fragment its triangle's three corner colours unblended, and the fragment takes the one of
+//    the corner with the largest barycentric coordinate, so no blend of two categories (a
+//    colour in no legend) appears. Points need nothing: a point has one vertex's colour.
 //  - mesh.vert + mesh.frag [TRILAB_POINTS]: round, lit point sprites; mesh.vert + depth.frag
 //    lays down the surface's depth first so that it hides the points behind it.
 //  - vectors.vert + vectors.geom + vectors.frag: face normals (one segment per triangle, from
@@ -217,6 +222,16 @@ GlProgram surface_variant(bool vertex_colors, bool texture) {
                       with_defines(embedded_shader("mesh.frag.glsl"), defines)});
 }
 
+/// The programs with the geometry stage: edges (`wires`) and/or nearest-corner colours.
+GlProgram geometry_stage_variant(bool wires, bool nearest_corner) {
+    std::vector<std::string> defines;
+    if (wires) defines.push_back("TRILAB_WIREFRAME");
+    if (nearest_corner) defines.push_back("TRILAB_NEAREST_CORNER");
+    return GlProgram({embedded_shader("mesh.vert.glsl"),
+                      with_defines(embedded_shader("mesh.geom.glsl"), defines),
+                      with_defines(embedded_shader("mesh.frag.glsl"), defines)});
+}
+
 // Whether every corner of the box [lo, hi] lies strictly in front of the near plane of
 // `clip` (projection * view): no part of the mesh is cut open by it.
 bool in_front_of_near_plane(const glm::mat4& clip, const glm::vec3& lo, const glm::vec3& hi) {
@@ -233,8 +248,7 @@ bool in_front_of_near_plane(const glm::mat4& clip, const glm::vec3& lo, const gl
 MeshRenderer::MeshRenderer()
     : surface_programs_{surface_variant(false, false), surface_variant(true, false),
                         surface_variant(false, true), surface_variant(true, true)},
-      wire_program_({embedded_shader("mesh.vert.glsl"), embedded_shader("mesh.geom.glsl"),
-                     with_defines(embedded_shader("mesh.frag.glsl"), {"TRILAB_WIREFRAME"})}),
+      wire_program_(geometry_stage_variant(true, false)),
       points_program_({embedded_shader("mesh.vert.glsl"),
                        with_defines(embedded_shader("mesh.frag.glsl"), {"TRILAB_POINTS"})}),
       depth_program_({embedded_shader("mesh.vert.glsl"), embedded_shader("depth.frag.glsl")}),
@@ -550,11 +564,19 @@ void MeshRenderer::write_geometry(const HalfedgeMesh& mesh,
     glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
-void MeshRenderer::set_vertex_colors(const std::vector<Color>& colors) {
+ColorBlend color_blend(ColorMapKind kind) {
+    return kind == ColorMapKind::Categorical ? ColorBlend::NearestCorner : ColorBlend::Interpolate;
+}
+
+void MeshRenderer::set_vertex_colors(const std::vector<Color>& colors, ColorBlend blend) {
     if (colors.size() != n_vertices_)
         throw InvalidArgument("MeshRenderer::set_vertex_colors: " + std::to_string(colors.size()) +
                               " colours for a mesh with vertex storage size " +
                               std::to_string(n_vertices_));
+    // Before anything changes, so that a shader that does not build leaves all as it was.
+    if (blend == ColorBlend::NearestCorner && !corner_programs_[0].is_valid())
+        corner_programs_ = {geometry_stage_variant(false, true),
+                            geometry_stage_variant(true, true)};
     auto byte = [](float c) {
         return std::uint8_t(
             std::lround(255.0f * std::clamp(std::isfinite(c) ? c : 0.0f, 0.0f, 1.0f)));
@@ -576,6 +598,7 @@ void MeshRenderer::set_vertex_colors(const std::vector<Color>& colors) {
     }
     glBindVertexArray(0);
     has_colors_ = true;
+    color_blend_ = blend;
 }
 
 void MeshRenderer::clear_vertex_colors() {
@@ -588,6 +611,7 @@ void MeshRenderer::clear_vertex_colors() {
     glBufferData(GL_ARRAY_BUFFER, 0, nullptr, GL_DYNAMIC_DRAW);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     has_colors_ = false;
+    color_blend_ = ColorBlend::Interpolate;
 }
 
 void MeshRenderer::set_texture(const Image& image) {
@@ -728,8 +752,13 @@ void MeshRenderer::draw(const glm::mat4& view, const glm::mat4& projection,
                               style.texture_mode != TextureMode::Off && has_texture_ &&
                               has_texcoords_;
         const bool colored = has_colors_ && style.vertex_colors;
-        const GlProgram& program =
-            wires ? wire_program_ : surface_programs_[(colored ? 1 : 0) + (textured ? 2 : 0)];
+        // Categorical colours on a shaded surface: the nearest corner's colour, never a blend.
+        const bool nearest_corner =
+            colored && !edges_only && !hidden_line && color_blend_ == ColorBlend::NearestCorner;
+        const GlProgram& program = nearest_corner ? corner_programs_[wires ? 1 : 0]
+                                   : wires
+                                       ? wire_program_
+                                       : surface_programs_[(colored ? 1 : 0) + (textured ? 2 : 0)];
         set_common_uniforms(program, view, projection, style);
         program.set("u_surface", edges_only ? 2 : hidden_line ? 1 : 0);
         program.set("u_flat", mode == RenderMode::Flat ? 1 : 0);

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "core/algorithms/coloring.h"
 #include "core/algorithms/decimation.h"
 #include "core/halfedge_mesh.h"
 #include "core/io/image_io.h"
@@ -102,6 +103,18 @@ struct RenderStyle {
     glm::vec3 vertex_normal_color{0.30f, 0.85f, 0.45f};
 };
 
+/// How vertex colours fill a triangle between its corners.
+enum class ColorBlend {
+    Interpolate,  ///< blended across the triangle (values: curvature, distance, ...)
+    /// Every point takes the colour of its nearest corner (largest barycentric coordinate):
+    /// for categories (the subdivision level), whose blends would show colours that are in
+    /// no legend.
+    NearestCorner,
+};
+/// The blend that shows colours of map `kind` truthfully: NearestCorner for Categorical,
+/// Interpolate otherwise.
+ColorBlend color_blend(ColorMapKind kind);
+
 /// "wireframe", "hidden-line", "flat", "gouraud", "points", "textured".
 const char* render_mode_name(RenderMode mode);
 /// Parses render_mode_name() strings ("smooth" is accepted for "gouraud"). Throws
@@ -162,11 +175,15 @@ public:
     void clear();
 
     /// Per-vertex colours indexed by vertex storage index (size == n_vertices(), the storage
-    /// size at the last upload()); they replace front_color while style.vertex_colors is on.
-    /// Uploads the colours only. Throws InvalidArgument on a size mismatch.
-    void set_vertex_colors(const std::vector<Color>& colors);
+    /// size at the last upload()); they replace front_color while style.vertex_colors is on,
+    /// filling triangles as `blend` says (pass color_blend(colors.kind) for a VertexColors).
+    /// Uploads the colours only (the first NearestCorner call also builds its shaders).
+    /// Throws InvalidArgument on a size mismatch, GlError when a shader does not build.
+    void set_vertex_colors(const std::vector<Color>& colors,
+                           ColorBlend blend = ColorBlend::Interpolate);
     void clear_vertex_colors();
     bool has_vertex_colors() const { return has_colors_; }
+    ColorBlend vertex_color_blend() const { return color_blend_; }
 
     /// Uploads `image` (RGBA8, rows top-down) as the texture of Textured mode, with mipmaps
     /// and repeat wrapping; texture coordinate (0, 0) is the image's bottom-left corner (the
@@ -216,7 +233,11 @@ private:
     /// given apart from the mesh).
     HalfedgeMesh::Revision shown_;
     std::array<GlProgram, 4> surface_programs_;
-    GlProgram wire_program_;           ///< mesh.vert + mesh.geom + mesh.frag [TRILAB_WIREFRAME]
+    GlProgram wire_program_;  ///< mesh.vert + mesh.geom + mesh.frag [TRILAB_WIREFRAME]
+    /// ColorBlend::NearestCorner: mesh.vert + mesh.geom + mesh.frag [TRILAB_NEAREST_CORNER],
+    /// without and with TRILAB_WIREFRAME; built by the first set_vertex_colors() that needs
+    /// them (few sessions do; each program costs about 20 ms to build on llvmpipe).
+    std::array<GlProgram, 2> corner_programs_;
     GlProgram points_program_;         ///< mesh.vert + mesh.frag [TRILAB_POINTS]
     GlProgram depth_program_;          ///< mesh.vert + depth.frag
     GlProgram face_vector_program_;    ///< vectors.* [TRILAB_FACE_VECTORS]: triangles in
@@ -232,6 +253,7 @@ private:
     std::size_t n_vertices_ = 0, n_gpu_vertices_ = 0;
     std::size_t n_triangle_indices_ = 0, n_point_indices_ = 0;
     bool has_colors_ = false, has_texcoords_ = false, has_texture_ = false;
+    ColorBlend color_blend_ = ColorBlend::Interpolate;
     /// The level-of-detail path: a copy of the vertex buffer (6 floats a vertex, position
     /// and normal) to patch changed vertices in; empty when the last upload was a mesh.
     std::vector<float> level_vertices_;

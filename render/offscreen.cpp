@@ -322,7 +322,8 @@ Image OffscreenRenderer::render(const HalfedgeMesh& mesh, const OffscreenOptions
         framebuffer_.create(options.width, options.height, options.samples);
 
     renderer_.upload(mesh);
-    if (!options.vertex_colors.empty()) renderer_.set_vertex_colors(options.vertex_colors);
+    if (!options.vertex_colors.empty())
+        renderer_.set_vertex_colors(options.vertex_colors, options.vertex_color_blend);
     if (options.texture.empty())
         renderer_.clear_texture();
     else

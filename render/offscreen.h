@@ -106,6 +106,8 @@ struct OffscreenOptions {
     /// Per-vertex colours by vertex storage index (MeshRenderer::set_vertex_colors()); empty:
     /// none.
     std::vector<Color> vertex_colors;
+    /// How vertex_colors fill the triangles: color_blend(colors.kind) for a VertexColors.
+    ColorBlend vertex_color_blend = ColorBlend::Interpolate;
     Image texture;  ///< the texture of Textured mode; empty: none
 };
 

@@ -1,5 +1,6 @@
 #version 330 core
-// Overlay segments: one flat colour.
+// Overlay segments, stage 3: one flat colour (LineRenderer draws the wider outline rectangles
+// first, then the narrower coloured ones over them).
 
 uniform vec3 u_color;
 

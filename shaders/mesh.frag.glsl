@@ -1,9 +1,13 @@
 #version 330 core
-// Mesh fragment stage. One file, three variants:
+// Mesh fragment stage. One file, variants by defines:
 //  - default: shaded surface (Flat, Smooth, Textured);
 //  - TRILAB_WIREFRAME (after mesh.geom): the same plus anti-aliased edges of constant width
 //    in pixels from barycentric coordinates; u_surface also selects the HiddenLine surface
 //    (background colour) and the Wireframe mode (edges only, blended);
+//  - TRILAB_NEAREST_CORNER (after mesh.geom, alone or with TRILAB_WIREFRAME): vertex colours
+//    are categories, not values: every fragment takes the colour of its triangle's corner
+//    with the largest barycentric coordinate instead of a blend, so only the legend's
+//    colours appear;
 //  - TRILAB_POINTS: round point sprites lit by the vertex normal.
 // The default variant also compiles with TRILAB_NO_VERTEX_COLOR and/or TRILAB_NO_TEXTURE:
 // inputs a variant does not read are dropped by the linker, and on a software rasterizer
@@ -12,13 +16,18 @@
 // ambient + Lambert + optional Blinn-Phong specular. Fog blends towards the background by
 // view depth.
 
-#ifdef TRILAB_WIREFRAME
+#if defined(TRILAB_WIREFRAME) || defined(TRILAB_NEAREST_CORNER)
 in MeshFragment {
     vec3 position;
     vec3 normal;
     vec3 color;
     vec2 texcoord;
     vec3 barycentric;
+#ifdef TRILAB_NEAREST_CORNER
+    flat vec3 corner_color0;
+    flat vec3 corner_color1;
+    flat vec3 corner_color2;
+#endif
 } fs_in;
 #else
 in MeshVertex {
@@ -64,11 +73,22 @@ vec3 lit(vec3 base, vec3 n) {
     return base * (u_ambient + (1.0 - u_ambient) * diffuse) + vec3(u_specular * spec);
 }
 
+// The vertex colour here: interpolated, or with TRILAB_NEAREST_CORNER the nearest corner's.
+vec3 vertex_color() {
+#ifdef TRILAB_NEAREST_CORNER
+    vec3 b = fs_in.barycentric;
+    if (b.x >= b.y && b.x >= b.z) return fs_in.corner_color0;
+    return b.y >= b.z ? fs_in.corner_color1 : fs_in.corner_color2;
+#else
+    return fs_in.color;
+#endif
+}
+
 vec3 front_base() {
 #ifdef TRILAB_NO_VERTEX_COLOR
     return u_front_color;
 #else
-    return u_use_vertex_color ? fs_in.color : u_front_color;
+    return u_use_vertex_color ? vertex_color() : u_front_color;
 #endif
 }
 
@@ -111,7 +131,7 @@ void main() {
 #ifdef TRILAB_NO_VERTEX_COLOR
             vec3 tint = vec3(1.0);
 #else
-            vec3 tint = u_use_vertex_color ? fs_in.color : vec3(1.0);
+            vec3 tint = u_use_vertex_color ? vertex_color() : vec3(1.0);
 #endif
             color = lit(texture(u_texture, fs_in.texcoord).rgb * tint, n);
 #endif

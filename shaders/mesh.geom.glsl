@@ -1,7 +1,9 @@
 #version 330 core
-// Mesh geometry stage, used only when edges are drawn (overlay, Wireframe, HiddenLine):
-// passes each triangle through and adds barycentric coordinates, which shared vertices cannot
-// carry, so the fragment stage can draw the edges in the same pass.
+// Mesh geometry stage, used when edges are drawn (overlay, Wireframe, HiddenLine) and for
+// categorical vertex colours: passes each triangle through and adds barycentric coordinates,
+// which shared vertices cannot carry, so the fragment stage can draw the edges in the same
+// pass. With TRILAB_NEAREST_CORNER it also hands every fragment the three corners' colours
+// unblended (flat), so that the fragment stage can take its nearest corner's colour.
 
 layout(triangles) in;
 layout(triangle_strip, max_vertices = 3) out;
@@ -19,6 +21,11 @@ out MeshFragment {
     vec3 color;
     vec2 texcoord;
     vec3 barycentric;
+#ifdef TRILAB_NEAREST_CORNER
+    flat vec3 corner_color0;
+    flat vec3 corner_color1;
+    flat vec3 corner_color2;
+#endif
 } gs_out;
 
 void main() {
@@ -29,6 +36,11 @@ void main() {
         gs_out.color = gs_in[i].color;
         gs_out.texcoord = gs_in[i].texcoord;
         gs_out.barycentric = vec3(i == 0, i == 1, i == 2);
+#ifdef TRILAB_NEAREST_CORNER
+        gs_out.corner_color0 = gs_in[0].color;
+        gs_out.corner_color1 = gs_in[1].color;
+        gs_out.corner_color2 = gs_in[2].color;
+#endif
         EmitVertex();
     }
     EndPrimitive();
