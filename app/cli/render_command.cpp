@@ -88,31 +88,29 @@ struct RenderArgs {
 
 RenderArgs parse_args(const std::vector<std::string>& args) {
     RenderArgs r;
-    ArgReader reader(args);
+    ArgReader reader(args, "render");
     while (reader.next()) {
-        const std::string& a = reader.arg();
-        auto value = [&] { return reader.value(); };
-        if (a == "--help" || a == "-h") {
+        if (reader.is_help()) {
             r.help = true;
-        } else if (a == "--json") {
-            r.json = true;
-        } else if (a == "--transparent") {
-            r.transparent = true;
-        } else if (a == "--out") {
-            r.out = value();
-        } else if (a == "--reference") {
-            r.reference = value();
-        } else if (a == "--texture") {
-            r.texture = value();
-        } else if (a == "--mode") {
-            r.mode = value();
+        } else if (reader.is("--json")) {
+            r.json = reader.flag();
+        } else if (reader.is("--transparent")) {
+            r.transparent = reader.flag();
+        } else if (reader.is("--out")) {
+            r.out = reader.value();
+        } else if (reader.is("--reference")) {
+            r.reference = reader.value();
+        } else if (reader.is("--texture")) {
+            r.texture = reader.value();
+        } else if (reader.is("--mode")) {
+            r.mode = reader.value();
             r.mode_given = true;
-        } else if (a == "--color") {
-            r.color = value();
-        } else if (a == "--up") {
-            r.up = value();
-        } else if (a == "--size") {
-            const std::string& v = value();
+        } else if (reader.is("--color")) {
+            r.color = reader.value();
+        } else if (reader.is("--up")) {
+            r.up = reader.value();
+        } else if (reader.is("--size")) {
+            const std::string v = reader.value();
             const std::size_t x = v.find_first_of("xX");
             if (x == std::string::npos || !parse_int(v.substr(0, x), r.width) ||
                 !parse_int(v.substr(x + 1), r.height) || r.width < 1 || r.height < 1 ||
@@ -121,8 +119,8 @@ RenderArgs parse_args(const std::vector<std::string>& args) {
                     "--size: expected WxH with whole numbers from 1 to 16384, "
                     "got '" +
                     v + "'");
-        } else if (a == "--view") {
-            const std::string& v = value();
+        } else if (reader.is("--view")) {
+            const std::string v = reader.value();
             const std::size_t comma = v.find(',');
             if (comma == std::string::npos || !parse_double(v.substr(0, comma), r.azimuth) ||
                 !parse_double(v.substr(comma + 1), r.elevation))
@@ -130,14 +128,14 @@ RenderArgs parse_args(const std::vector<std::string>& args) {
                     "--view: expected AZIMUTH,ELEVATION in degrees (e.g. "
                     "30,20), got '" +
                     v + "'");
-        } else if (a.rfind("--", 0) == 0) {
-            throw InvalidArgument("unknown option '" + a + "' (see `trilab-cli render --help`)");
+        } else if (reader.is_option()) {
+            reader.refuse_unknown();
         } else if (r.mesh.empty()) {
-            r.mesh = a;
+            r.mesh = reader.arg();
         } else {
-            throw InvalidArgument("unexpected argument '" + a + "': expected one MESH file");
+            throw InvalidArgument("unexpected argument '" + reader.arg() +
+                                  "': expected one MESH file");
         }
-        if (reader.has_unused_value()) throw InvalidArgument(a + " takes no value");
     }
     return r;
 }
