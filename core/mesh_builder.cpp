@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "core/number_text.h"
 #include "core/prefetch.h"
 #include "core/triangulate.h"
 
@@ -20,17 +21,19 @@ void PolygonSoup::add_face(const std::vector<Index>& face, const std::vector<Tex
 
 std::vector<std::string> LoadReport::lines() const {
     std::vector<std::string> out;
-    auto add = [&](std::size_t n, const char* what) {
-        if (n) out.push_back(std::to_string(n) + " " + what);
+    auto add = [&](std::size_t n, const char* one, const char* many, const char* what) {
+        if (n) out.push_back(count_text(n, one, many) + " " + what);
     };
-    add(polygons_triangulated, "polygons triangulated");
-    add(triangles_from_polygons, "triangles made from polygons");
-    add(degenerate_faces_dropped, "degenerate faces dropped (repeated vertex or < 3 corners)");
-    add(detached_faces, "faces detached (non-manifold edge, flipped or duplicated face)");
-    add(nonmanifold_vertices_split, "non-manifold vertices split");
-    add(vertex_copies_added, "vertex copies added");
-    add(isolated_vertices, "isolated vertices kept");
-    add(merged_vertices, "duplicate vertices merged");
+    add(polygons_triangulated, "polygon", "polygons", "triangulated");
+    add(triangles_from_polygons, "triangle", "triangles", "made from polygons");
+    add(degenerate_faces_dropped, "degenerate face", "degenerate faces",
+        "dropped (repeated vertex or < 3 corners)");
+    add(detached_faces, "face", "faces",
+        "detached (non-manifold edge, flipped or duplicated face)");
+    add(nonmanifold_vertices_split, "non-manifold vertex", "non-manifold vertices", "split");
+    add(vertex_copies_added, "vertex copy", "vertex copies", "added");
+    add(isolated_vertices, "isolated vertex", "isolated vertices", "kept");
+    add(merged_vertices, "duplicate vertex", "duplicate vertices", "merged");
     for (const std::string& n : notes) out.push_back(n);
     return out;
 }
@@ -168,10 +171,10 @@ void triangulate_faces(const PolygonSoup& soup, bool keep_corners, LoadReport& r
         }
     }
     if (fanned)
-        report.notes.push_back(std::to_string(fanned) +
-                               " polygons are not simple in their best-fit plane (they cross "
-                               "or fold over themselves, or have no area): triangulated as "
-                               "fans, which may overlap");
+        report.notes.push_back(count_text(fanned, "polygon is", "polygons are") +
+                               " not simple in the best-fit plane (crossing or folding over "
+                               "itself, or without area): triangulated as a fan, which may "
+                               "overlap");
 }
 
 /// Stage 1: the soup's triangles (see Triangles); throws when there are more than 32-bit

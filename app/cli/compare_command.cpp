@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "app/cli/arg_reader.h"
 #include "app/cli/json_writer.h"
 #include "core/algorithms/mesh_distance.h"
 #include "core/errors.h"
@@ -32,17 +33,16 @@ options:
 
 int run_compare_command(const std::vector<std::string>& args) {
     std::vector<std::string> files;
-    bool json = false;
+    bool json = false, help = false;
     MeshDistanceOptions options;
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        const std::string& s = args[i];
-        if (s == "--help" || s == "-h") {
-            std::fputs(kCompareUsage, stdout);
-            return 0;
-        } else if (s == "--json") {
-            json = true;
-        } else if (s == "--samples") {
-            const std::string text = i + 1 < args.size() ? args[++i] : std::string();
+    ArgReader reader(args, "compare");
+    while (reader.next()) {
+        if (reader.is_help()) {
+            help = true;
+        } else if (reader.is("--json")) {
+            json = reader.flag();
+        } else if (reader.is("--samples")) {
+            const std::string text = reader.has_value() ? reader.value() : std::string();
             unsigned long long n = 0;
             const char* end = text.data() + text.size();
             const auto [ptr, ec] = std::from_chars(text.data(), end, n);
@@ -52,11 +52,15 @@ int run_compare_command(const std::vector<std::string>& args) {
                     "got '" +
                     text + "'");
             options.samples = std::size_t(n);
-        } else if (s.rfind("--", 0) == 0) {
-            throw InvalidArgument("unknown option '" + s + "' (see `trilab-cli compare --help`)");
+        } else if (reader.is_option()) {
+            reader.refuse_unknown();
         } else {
-            files.push_back(s);
+            files.push_back(reader.arg());
         }
+    }
+    if (help) {
+        std::fputs(kCompareUsage, stdout);
+        return 0;
     }
     if (files.size() != 2)
         throw InvalidArgument("expected two mesh files A and B (see `trilab-cli compare --help`)");

@@ -6,6 +6,8 @@
 #include <iostream>
 #include <map>
 
+#include "app/cli/arg_reader.h"
+#include "app/cli/write_options.h"
 #include "core/errors.h"
 #include "core/io/mesh_io.h"
 #include "core/progress.h"
@@ -21,28 +23,6 @@ struct OperationArgs {
     WriteOptions write;
 };
 
-/// The command's own option args[i] (with "=VALUE" or the next argument) when it is one of
-/// `names`: stores its value in `own` and returns true.
-bool take_own_option(const std::vector<std::string>& names, const std::vector<std::string>& args,
-                     std::size_t& i, std::map<std::string, std::string>& own) {
-    const std::string& s = args[i];
-    for (const std::string& name : names) {
-        std::string value;
-        if (s == name) {
-            if (i + 1 >= args.size()) throw InvalidArgument(name + ": missing FILE");
-            value = args[++i];
-        } else if (s.rfind(name + "=", 0) == 0) {
-            value = s.substr(name.size() + 1);
-        } else {
-            continue;
-        }
-        if (value.empty()) throw InvalidArgument(name + ": missing FILE");
-        own[name] = value;
-        return true;
-    }
-    return false;
-}
-
 /// Whether "--name" is a flag of the operation (takes no value).
 bool is_flag(const OperationDef& def, const std::string& option) {
     const std::string name = option.substr(2);
@@ -51,27 +31,41 @@ bool is_flag(const OperationDef& def, const std::string& option) {
     return false;
 }
 
+/// Whether `option` is one of the command's own value options.
+bool is_own_option(const CommandExtras& extras, const std::string& option) {
+    for (const std::string& name : extras.value_options)
+        if (option == name) return true;
+    return false;
+}
+
 OperationArgs parse_args(const OperationDef& def, const std::vector<std::string>& args,
                          const CommandExtras& extras) {
     OperationArgs a;
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        const std::string& s = args[i];
-        if (take_own_option(extras.value_options, args, i, a.own)) continue;
-        if (s == "--help" || s == "-h") {
+    ArgReader reader(args, def.name);
+    while (reader.next()) {
+        const std::string& s = reader.arg();
+        if (reader.is_help()) {
             a.help = true;
-        } else if (s == "--json") {
-            a.json = true;
-        } else if (s == "--ascii") {
-            a.write.ascii = true;
-        } else if (s == "--big-endian") {
-            a.write.big_endian = true;
-        } else if (s == "--keep-partial") {
-            a.keep_partial = true;
-        } else if (s.rfind("--", 0) == 0) {
+        } else if (reader.is("--json")) {
+            a.json = reader.flag();
+        } else if (take_write_option(reader, a.write)) {
+            continue;
+        } else if (reader.is("--keep-partial")) {
+            if (!def.may_stop_early)
+                throw InvalidArgument("--keep-partial: does not apply to " + def.name +
+                                      " (it never stops early)");
+            a.keep_partial = reader.flag();
+        } else if (is_own_option(extras, s)) {
+            const std::string value = reader.value();
+            if (value.empty()) throw InvalidArgument(s + ": missing FILE");
+            a.own[s] = value;
+        } else if (reader.is_option()) {
             // An operation option: it and its value go to the operation, which checks both.
             a.op_args.push_back(s);
-            if (!is_flag(def, s) && s.find('=') == std::string::npos && i + 1 < args.size())
-                a.op_args.push_back(args[++i]);
+            if (is_flag(def, s))
+                reader.flag();
+            else if (reader.has_value())
+                a.op_args.push_back(reader.value());
         } else {
             a.files.push_back(s);
         }
@@ -125,7 +119,9 @@ void add_parameter_echo(JsonObject& json, const Operation& op, const OperationRe
 void add_values(JsonObject& json, const OperationResult& result) {
     for (const auto& [key, value] : result.values) {
         if (key == "vertices" || key == "faces") continue;
-        if (value == std::floor(value) && std::abs(value) < 9e15)
+        if (std::isnan(value))
+            json.add_null(key);  // not defined for this mesh (an open mesh's volume)
+        else if (value == std::floor(value) && std::abs(value) < 9e15)
             json.add(key, static_cast<long long>(value));
         else
             json.add(key, value);
@@ -138,7 +134,7 @@ std::string operation_command_help(const std::string& name) {
     const OperationDef& def = operation_def(name);
     const CommandExtras extras = command_extras(name);
     std::string s = "usage: trilab-cli " + name + " [options] IN OUT [--json] [--ascii] " +
-                    "[--big-endian] [--keep-partial]\n\n";
+                    "[--big-endian]" + (def.may_stop_early ? " [--keep-partial]" : "") + "\n\n";
     // The summary, wrapped at 95 columns.
     std::string line, word, text;
     for (char c : def.summary + " ") {
@@ -156,7 +152,9 @@ std::string operation_command_help(const std::string& name) {
     text += line;
     s += text + "\n\noptions:\n" + def.help() + extras.help;
     s += "  --ascii, --big-endian (how to write .ply and .stl, as for `trilab-cli convert`)\n";
-    s += "  --keep-partial (a run that stops early writes its last good state, still exit 4)\n";
+    if (def.may_stop_early)
+        s += "  --keep-partial (a run that stops early writes its last good state, still exit "
+             "4)\n";
     s += "  --json (one JSON object: the parameters, the result's figures, \"ms\" the operation "
          "itself)\n";
     return s;

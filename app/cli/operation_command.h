@@ -2,7 +2,7 @@
 // The one shape of every mesh-operation command of trilab-cli (noise, subdivide, smooth,
 // spectrum, decimate, and any operation registered later):
 //   trilab-cli NAME [operation options] IN OUT [--json] [--ascii] [--big-endian]
-//                   [--keep-partial]
+//                   [--keep-partial]  (only where the declaration says it may stop early)
 // The operation's options, their --help lines, their errors and their JSON echo all come
 // from the operation's declaration (app/ops/operation_decl.h): nothing here knows an
 // operation's parameters. The options are checked before any file is read; the output is

@@ -13,6 +13,7 @@
 #include "app/cli/json_writer.h"
 #include "app/cli/legend_output.h"
 #include "app/record/recorder.h"
+#include "core/algorithms/coloring.h"
 #include "core/errors.h"
 
 namespace trilab::cli {
@@ -26,6 +27,7 @@ using record::record_morph;
 using record::RecordOptions;
 using record::RecordSummary;
 
+/// The --help text; record_usage() puts the colourings from the table in place of {colorings}.
 constexpr const char* kRecordUsage =
     R"(usage: trilab-cli record MESH --op "OPERATION" --out DIR [options]
 
@@ -37,15 +39,15 @@ picture. Colourings are computed once on the shape the morph ends in, so colours
 their vertices while they move.
 
 options:
-  --op "OPERATION"      the operation and its parameters (required)
+  --op "OPERATION"      the operation and its parameters (required; one operation: a
+                        second --op is refused)
   --out DIR             the folder for the frames (required; created when missing)
   --frames N            number of frames, 2 to 100000 (default 60); frame i shows the morph
                         at t = ease(i / (N - 1)), from the mesh before (first frame) to the
                         mesh after (last frame)
   --size WxH            frame size in pixels (default 1280x720)
   --mode MODE           gouraud (default), flat, wireframe, hidden-line, points, textured
-  --color QUANTITY      colour the vertices: none (default), normal, k1, k2, mean,
-                        gaussian, shape-index
+  --color QUANTITY      colour the vertices: {colorings}
   --view AZ,EL          view direction in degrees: azimuth around the up axis from the
                         front, elevation above the horizontal plane (default 0,0)
   --up y|z              the model's up axis (default y): +y up with the front at +z, or
@@ -59,6 +61,52 @@ options:
   --json                print one JSON object ("ms": operation and rendering, file reading
                         and writing excluded) and no progress
 )";
+
+/// The colourings record accepts (those that need no spectral decomposition), from the
+/// colouring table, "none (default)" first, wrapped under the option's help column.
+std::string coloring_list() {
+    constexpr std::size_t kIndent = 24, kWidth = 92;
+    std::string text, line;
+    std::size_t column = kIndent + std::string("colour the vertices: ").size();
+    for (const VertexColoring c : vertex_colorings()) {
+        if (coloring_needs_field(c)) continue;
+        std::string item = coloring_name(c);
+        if (c == VertexColoring::None) item += " (default)";
+        const bool first = text.empty() && line.empty();
+        if (!first && column + item.size() + 2 > kWidth) {
+            text += line + ",\n" + std::string(kIndent, ' ');
+            line.clear();
+            column = kIndent;
+        } else if (!first) {
+            line += ", ";
+            column += 2;
+        }
+        line += item;
+        column += item.size();
+    }
+    return text + line;
+}
+
+/// The --help text.
+std::string record_usage() {
+    std::string s = kRecordUsage;
+    const std::string placeholder = "{colorings}";
+    return s.replace(s.find(placeholder), placeholder.size(), coloring_list());
+}
+
+/// Refuses a colouring that is unknown or needs a spectral decomposition, before any file
+/// is read.
+void check_coloring(const std::string& name) {
+    VertexColoring coloring = VertexColoring::None;
+    try {
+        coloring = parse_coloring(name);
+    } catch (const InvalidArgument& e) {
+        throw InvalidArgument(std::string("--color: ") + e.what());
+    }
+    if (coloring_needs_field(coloring))
+        throw InvalidArgument("--color: '" + name +
+                              "' needs a spectral decomposition (the viewer's Frequency panel)");
+}
 
 /// A whole string as a finite number; false on garbage or trailing characters.
 bool to_double(const std::string& s, double& out) {
@@ -85,63 +133,61 @@ struct CommandLine {
 CommandLine parse_args(const std::vector<std::string>& args) {
     CommandLine c;
     RecordOptions& o = c.options;
-    ArgReader reader(args);
+    ArgReader reader(args, "record");
     while (reader.next()) {
-        const std::string& a = reader.arg();
-        auto value = [&] { return reader.value(); };
-        if (a == "--help" || a == "-h") {
+        if (reader.is_help()) {
             c.help = true;
-        } else if (a == "--json") {
-            c.json = true;
-        } else if (a == "--mp4") {
-            o.mp4 = true;
-        } else if (a == "--op") {
-            o.operation = value();
-        } else if (a == "--out") {
-            o.out_dir = value();
-        } else if (a == "--mode") {
-            o.mode = value();
-        } else if (a == "--color") {
-            o.color = value();
-        } else if (a == "--easing") {
-            o.easing = value();
-        } else if (a == "--up") {
-            o.up = value();
-        } else if (a == "--name") {
-            o.name = value();
-        } else if (a == "--frames") {
-            const std::string v = value();
+        } else if (reader.is("--json")) {
+            c.json = reader.flag();
+        } else if (reader.is("--mp4")) {
+            o.mp4 = reader.flag();
+        } else if (reader.is("--op")) {
+            o.operation = reader.value();
+        } else if (reader.is("--out")) {
+            o.out_dir = reader.value();
+        } else if (reader.is("--mode")) {
+            o.mode = reader.value();
+        } else if (reader.is("--color")) {
+            o.color = reader.value();
+        } else if (reader.is("--easing")) {
+            o.easing = reader.value();
+        } else if (reader.is("--up")) {
+            o.up = reader.value();
+        } else if (reader.is("--name")) {
+            o.name = reader.value();
+        } else if (reader.is("--frames")) {
+            const std::string v = reader.value();
             if (!to_int(v, kMinFrames, kMaxFrames, o.frames))
                 throw InvalidArgument("--frames: expected a whole number from " +
                                       std::to_string(kMinFrames) + " to " +
                                       std::to_string(kMaxFrames) + ", got '" + v + "'");
-        } else if (a == "--fps") {
-            const std::string v = value();
+        } else if (reader.is("--fps")) {
+            const std::string v = reader.value();
             if (!to_int(v, 1, kMaxFps, o.fps))
                 throw InvalidArgument("--fps: expected a whole number from 1 to " +
                                       std::to_string(kMaxFps) + ", got '" + v + "'");
-        } else if (a == "--size") {
-            const std::string v = value();
+        } else if (reader.is("--size")) {
+            const std::string v = reader.value();
             const std::size_t x = v.find_first_of("xX");
             if (x == std::string::npos || !to_int(v.substr(0, x), 1, kMaxSide, o.width) ||
                 !to_int(v.substr(x + 1), 1, kMaxSide, o.height))
                 throw InvalidArgument("--size: expected WxH with whole numbers from 1 to " +
                                       std::to_string(kMaxSide) + ", got '" + v + "'");
-        } else if (a == "--view") {
-            const std::string v = value();
+        } else if (reader.is("--view")) {
+            const std::string v = reader.value();
             const std::size_t comma = v.find(',');
             if (comma == std::string::npos || !to_double(v.substr(0, comma), o.azimuth) ||
                 !to_double(v.substr(comma + 1), o.elevation))
                 throw InvalidArgument(
                     "--view: expected AZIMUTH,ELEVATION in degrees (e.g. 30,20), got '" + v + "'");
-        } else if (a.rfind("--", 0) == 0) {
-            throw InvalidArgument("unknown option '" + a + "' (see `trilab-cli record --help`)");
+        } else if (reader.is_option()) {
+            reader.refuse_unknown();
         } else if (o.input.empty()) {
-            o.input = a;
+            o.input = reader.arg();
         } else {
-            throw InvalidArgument("unexpected argument '" + a + "': expected one MESH file");
+            throw InvalidArgument("unexpected argument '" + reader.arg() +
+                                  "': expected one MESH file");
         }
-        if (reader.has_unused_value()) throw InvalidArgument(a + " takes no value");
     }
     return c;
 }
@@ -151,9 +197,10 @@ CommandLine parse_args(const std::vector<std::string>& args) {
 int run_record_command(const std::vector<std::string>& args) {
     CommandLine c = parse_args(args);
     if (c.help) {
-        std::fputs(kRecordUsage, stdout);
+        std::fputs(record_usage().c_str(), stdout);
         return 0;
     }
+    check_coloring(c.options.color);
     c.options.progress = !c.json;
     const RecordSummary s = record_morph(c.options);
     if (c.json) {

@@ -12,6 +12,7 @@
 #include "app/cli/arg_reader.h"
 #include "app/cli/json_writer.h"
 #include "app/cli/legend_output.h"
+#include "app/cli/stopwatch.h"
 #include "core/algorithms/coloring.h"
 #include "core/algorithms/texcoords.h"
 #include "core/errors.h"
@@ -56,10 +57,6 @@ options:
                         reading and writing excluded)
 )";
 
-[[maybe_unused]] double ms_since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
 /// Parses a whole string as a number; false on garbage or trailing characters.
 bool parse_double(const std::string& s, double& out) {
     if (s.empty()) return false;
@@ -88,31 +85,29 @@ struct RenderArgs {
 
 RenderArgs parse_args(const std::vector<std::string>& args) {
     RenderArgs r;
-    ArgReader reader(args);
+    ArgReader reader(args, "render");
     while (reader.next()) {
-        const std::string& a = reader.arg();
-        auto value = [&] { return reader.value(); };
-        if (a == "--help" || a == "-h") {
+        if (reader.is_help()) {
             r.help = true;
-        } else if (a == "--json") {
-            r.json = true;
-        } else if (a == "--transparent") {
-            r.transparent = true;
-        } else if (a == "--out") {
-            r.out = value();
-        } else if (a == "--reference") {
-            r.reference = value();
-        } else if (a == "--texture") {
-            r.texture = value();
-        } else if (a == "--mode") {
-            r.mode = value();
+        } else if (reader.is("--json")) {
+            r.json = reader.flag();
+        } else if (reader.is("--transparent")) {
+            r.transparent = reader.flag();
+        } else if (reader.is("--out")) {
+            r.out = reader.value();
+        } else if (reader.is("--reference")) {
+            r.reference = reader.value();
+        } else if (reader.is("--texture")) {
+            r.texture = reader.value();
+        } else if (reader.is("--mode")) {
+            r.mode = reader.value();
             r.mode_given = true;
-        } else if (a == "--color") {
-            r.color = value();
-        } else if (a == "--up") {
-            r.up = value();
-        } else if (a == "--size") {
-            const std::string& v = value();
+        } else if (reader.is("--color")) {
+            r.color = reader.value();
+        } else if (reader.is("--up")) {
+            r.up = reader.value();
+        } else if (reader.is("--size")) {
+            const std::string v = reader.value();
             const std::size_t x = v.find_first_of("xX");
             if (x == std::string::npos || !parse_int(v.substr(0, x), r.width) ||
                 !parse_int(v.substr(x + 1), r.height) || r.width < 1 || r.height < 1 ||
@@ -121,8 +116,8 @@ RenderArgs parse_args(const std::vector<std::string>& args) {
                     "--size: expected WxH with whole numbers from 1 to 16384, "
                     "got '" +
                     v + "'");
-        } else if (a == "--view") {
-            const std::string& v = value();
+        } else if (reader.is("--view")) {
+            const std::string v = reader.value();
             const std::size_t comma = v.find(',');
             if (comma == std::string::npos || !parse_double(v.substr(0, comma), r.azimuth) ||
                 !parse_double(v.substr(comma + 1), r.elevation))
@@ -130,26 +125,20 @@ RenderArgs parse_args(const std::vector<std::string>& args) {
                     "--view: expected AZIMUTH,ELEVATION in degrees (e.g. "
                     "30,20), got '" +
                     v + "'");
-        } else if (a.rfind("--", 0) == 0) {
-            throw InvalidArgument("unknown option '" + a + "' (see `trilab-cli render --help`)");
+        } else if (reader.is_option()) {
+            reader.refuse_unknown();
         } else if (r.mesh.empty()) {
-            r.mesh = a;
+            r.mesh = reader.arg();
         } else {
-            throw InvalidArgument("unexpected argument '" + a + "': expected one MESH file");
+            throw InvalidArgument("unexpected argument '" + reader.arg() +
+                                  "': expected one MESH file");
         }
-        if (reader.has_unused_value()) throw InvalidArgument(a + " takes no value");
     }
     return r;
 }
 
-}  // namespace
-
-int run_render_command(const std::vector<std::string>& args) {
-    const RenderArgs a = parse_args(args);
-    if (a.help) {
-        std::fputs(kRenderUsage, stdout);
-        return 0;
-    }
+/// Refuses a missing MESH or --out, and an --out that is not a .png in an existing folder.
+void check_files(const RenderArgs& a) {
     if (a.mesh.empty())
         throw InvalidArgument("expected a MESH file (see `trilab-cli render --help`)");
     if (a.out.empty()) throw InvalidArgument("--out FILE.png is required");
@@ -159,12 +148,22 @@ int run_render_command(const std::vector<std::string>& args) {
     const std::filesystem::path out_dir = std::filesystem::path(a.out).parent_path();
     if (!out_dir.empty() && !std::filesystem::is_directory(out_dir))
         throw InvalidArgument("--out: the folder '" + out_dir.string() + "' does not exist");
+}
 
-#ifndef TRILAB_HAS_RENDER
-    throw Error("this trilab-cli was built without the renderer (TRILAB_BUILD_VIEWER=OFF)");
-#else
-    // Options first, so that a bad one fails before any file is read.
+#ifdef TRILAB_HAS_RENDER
+
+/// The checked options of one image: what the renderer is given, and the colouring.
+struct RenderSetup {
     OffscreenOptions options;
+    VertexColoring coloring = VertexColoring::None;
+    bool textured() const { return options.style.mode == RenderMode::Textured; }
+};
+
+/// Checks the options that need no file and turns them into the renderer's (so that a bad
+/// one fails before any file is read).
+RenderSetup make_setup(const RenderArgs& a) {
+    RenderSetup setup;
+    OffscreenOptions& options = setup.options;
     options.width = a.width;
     options.height = a.height;
     options.azimuth = float(a.azimuth);
@@ -183,75 +182,81 @@ int run_render_command(const std::vector<std::string>& args) {
             throw InvalidArgument("--texture: only --mode textured uses a texture (got --mode " +
                                   a.mode + ")");
     }
-    VertexColoring coloring = VertexColoring::None;
     try {
-        coloring = parse_coloring(a.color);
+        setup.coloring = parse_coloring(a.color);
     } catch (const InvalidArgument& e) {
         throw InvalidArgument(std::string("--color: ") + e.what());
     }
-    if (!a.reference.empty() && coloring != VertexColoring::SmoothingDistance)
+    if (!a.reference.empty() && setup.coloring != VertexColoring::SmoothingDistance)
         throw InvalidArgument(
             "--reference: only --color smoothing-distance uses a reference "
             "mesh (got --color " +
             a.color + ")");
-    if (coloring_needs_field(coloring))
+    if (coloring_needs_field(setup.coloring))
         throw InvalidArgument("--color: '" + a.color +
                               "' needs a spectral decomposition (the viewer's Frequency panel)");
-    const bool textured = options.style.mode == RenderMode::Textured;
+    return setup;
+}
 
-    // File input (not timed).
-    LoadedMesh loaded = read_mesh(a.mesh);
-    HalfedgeMesh& mesh = loaded.mesh;
-    std::string texture_source = "none";
-    if (textured) {
-        if (!a.texture.empty()) {
-            options.texture = read_image(a.texture);
-            texture_source = a.texture;
-        } else {
-            options.texture = make_checkerboard();
-            texture_source = "checkerboard";
-        }
+/// The texture of textured mode (--texture IMG or the built-in checkerboard) into `setup`;
+/// returns where it came from ("none" when the mode is not textured).
+std::string load_texture(const RenderArgs& a, RenderSetup& setup) {
+    if (!setup.textured()) return "none";
+    if (a.texture.empty()) {
+        setup.options.texture = make_checkerboard();
+        return "checkerboard";
     }
+    setup.options.texture = read_image(a.texture);
+    return a.texture;
+}
 
-    const auto t0 = std::chrono::steady_clock::now();
+/// What the mesh got before rendering: texture coordinates, colours, and notes about them.
+struct Prepared {
+    std::string texcoords;  ///< "mesh", "spherical projection" or "none"
+    VertexColors colors;
     std::vector<std::string> notes;
-    std::string texcoords = has_texcoords(mesh) ? "mesh" : "none";
-    if (textured && !has_texcoords(mesh)) {
-        project_texcoords(mesh, TexCoordProjection::Spherical, options.up);
-        texcoords = "spherical projection";
-        notes.push_back(
+};
+
+/// Projects texture coordinates where textured mode needs them and computes the colouring
+/// (against --reference for the smoothing distance) into `setup`.
+Prepared prepare_mesh(const RenderArgs& a, HalfedgeMesh& mesh, RenderSetup& setup) {
+    Prepared p;
+    p.texcoords = has_texcoords(mesh) ? "mesh" : "none";
+    if (setup.textured() && !has_texcoords(mesh)) {
+        project_texcoords(mesh, TexCoordProjection::Spherical, setup.options.up);
+        p.texcoords = "spherical projection";
+        p.notes.push_back(
             "the mesh has no texture coordinates: textured mode uses a spherical "
             "projection around the centroid (the poles on the up axis, +" +
-            std::string(up_axis_name(options.up)) + ")");
+            std::string(up_axis_name(setup.options.up)) + ")");
     }
-    VertexColors colors;
-    if (coloring != VertexColoring::None) {
-        std::vector<Point> reference;
-        if (!a.reference.empty()) {
-            const LoadedMesh before = read_mesh(a.reference);
-            if (before.mesh.vertices_size() != mesh.vertices_size())
-                throw InvalidArgument("--reference: " + a.reference + " has " +
-                                      std::to_string(before.mesh.vertices_size()) + " vertices, " +
-                                      a.mesh + " has " + std::to_string(mesh.vertices_size()) +
-                                      " (it must be the same mesh before smoothing)");
-            reference = before.mesh.positions();
-        }
-        colors = color_vertices(mesh, coloring, ColoringOptions{},
-                                a.reference.empty() ? nullptr : &reference);
-        options.vertex_colors = colors.colors;
+    if (setup.coloring == VertexColoring::None) return p;
+    std::vector<Point> reference;
+    if (!a.reference.empty()) {
+        const LoadedMesh before = read_mesh(a.reference);
+        if (before.mesh.vertices_size() != mesh.vertices_size())
+            throw InvalidArgument("--reference: " + a.reference + " has " +
+                                  std::to_string(before.mesh.vertices_size()) + " vertices, " +
+                                  a.mesh + " has " + std::to_string(mesh.vertices_size()) +
+                                  " (it must be the same mesh before smoothing)");
+        reference = before.mesh.positions();
     }
-    const double prepare_ms = ms_since(t0);
+    p.colors = color_vertices(mesh, setup.coloring, ColoringOptions{},
+                              a.reference.empty() ? nullptr : &reference);
+    setup.options.vertex_colors = p.colors.colors;
+    return p;
+}
 
-    const auto t1 = std::chrono::steady_clock::now();
-    OffscreenRenderer renderer;
-    const double context_ms = ms_since(t1);
-    const auto t2 = std::chrono::steady_clock::now();
-    const Image image = renderer.render(mesh, options);
-    const double render_ms = ms_since(t2);
-    const double ms = ms_since(t0);
+/// The times of one render, in milliseconds.
+struct RenderTimes {
+    double prepare = 0, context = 0, render = 0, total = 0;
+};
 
-    write_png(image, a.out);  // file output (not timed)
-
+/// What the command prints: one JSON object, or one line and the notes.
+void print_result(const RenderArgs& a, const RenderSetup& setup, const HalfedgeMesh& mesh,
+                  const std::string& texture_source, const Prepared& p, const std::string& renderer,
+                  const RenderTimes& t) {
+    const OffscreenOptions& options = setup.options;
     if (a.json) {
         JsonObject j;
         j.add("input", a.mesh)
@@ -259,32 +264,67 @@ int run_render_command(const std::vector<std::string>& args) {
             .add("width", a.width)
             .add("height", a.height)
             .add("mode", render_mode_name(options.style.mode))
-            .add("color", coloring_name(coloring));
-        add_legend(j, colors);
+            .add("color", coloring_name(setup.coloring));
+        add_legend(j, p.colors);
         j.add("view", std::vector<double>{a.azimuth, a.elevation})
             .add("up", up_axis_name(options.up))
             .add("transparent", a.transparent)
             .add("texture", texture_source)
-            .add("texcoords", texcoords)
+            .add("texcoords", p.texcoords)
             .add("vertices", mesh.n_vertices())
             .add("faces", mesh.n_faces())
-            .add("renderer", renderer.context().description())
-            .add("notes", notes)
-            .add("prepare_ms", prepare_ms)
-            .add("context_ms", context_ms)
-            .add("render_ms", render_ms)
-            .add("ms", ms);
+            .add("renderer", renderer)
+            .add("notes", p.notes)
+            .add("prepare_ms", t.prepare)
+            .add("context_ms", t.context)
+            .add("render_ms", t.render)
+            .add("ms", t.total);
         std::cout << j.str() << "\n";
-    } else {
-        std::printf("wrote %s: %dx%d, %s", a.out.c_str(), a.width, a.height,
-                    render_mode_name(options.style.mode));
-        if (colors.has_legend)
-            std::printf(", %s", legend_text(colors).c_str());
-        else if (coloring != VertexColoring::None)
-            std::printf(", %s colouring", coloring_name(coloring));
-        std::printf(" (%.1f ms; %s)\n", ms, renderer.context().description().c_str());
-        for (const std::string& n : notes) std::printf("note: %s\n", n.c_str());
+        return;
     }
+    std::printf("wrote %s: %dx%d, %s", a.out.c_str(), a.width, a.height,
+                render_mode_name(options.style.mode));
+    if (p.colors.has_legend)
+        std::printf(", %s", legend_text(p.colors).c_str());
+    else if (setup.coloring != VertexColoring::None)
+        std::printf(", %s colouring", coloring_name(setup.coloring));
+    std::printf(" (%.1f ms; %s)\n", t.total, renderer.c_str());
+    for (const std::string& n : p.notes) std::printf("note: %s\n", n.c_str());
+}
+
+#endif  // TRILAB_HAS_RENDER
+
+}  // namespace
+
+int run_render_command(const std::vector<std::string>& args) {
+    const RenderArgs a = parse_args(args);
+    if (a.help) {
+        std::fputs(kRenderUsage, stdout);
+        return 0;
+    }
+    check_files(a);
+#ifndef TRILAB_HAS_RENDER
+    throw Error("this trilab-cli was built without the renderer (TRILAB_BUILD_VIEWER=OFF)");
+#else
+    RenderSetup setup = make_setup(a);      // options first: a bad one fails before any file
+    LoadedMesh loaded = read_mesh(a.mesh);  // file input (not timed)
+    HalfedgeMesh& mesh = loaded.mesh;
+    const std::string texture_source = load_texture(a, setup);
+
+    RenderTimes t;
+    const auto t0 = std::chrono::steady_clock::now();
+    const Prepared prepared = prepare_mesh(a, mesh, setup);
+    t.prepare = ms_since(t0);
+    const auto t1 = std::chrono::steady_clock::now();
+    OffscreenRenderer renderer;
+    t.context = ms_since(t1);
+    const auto t2 = std::chrono::steady_clock::now();
+    const Image image = renderer.render(mesh, setup.options);
+    t.render = ms_since(t2);
+    t.total = ms_since(t0);
+
+    write_png(image, a.out);  // file output (not timed)
+    print_result(a, setup, mesh, texture_source, prepared, renderer.context().description(), t);
     return 0;
 #endif
 }

@@ -9,6 +9,7 @@
 #include "app/ops/operation_decl.h"
 #include "app/ops/operation_entries.h"
 #include "core/algorithms/decimation.h"
+#include "core/number_text.h"
 
 namespace trilab {
 namespace {
@@ -35,14 +36,16 @@ OperationResult run_decimate(const DecimateOptions& d_options, const HalfedgeMes
     char line[200];
     for (std::size_t i = 0; i < d.levels.size(); ++i) {
         const HalfedgeMesh& m = d.levels[i].mesh;
-        std::snprintf(line, sizeof(line), "iteration %zu: %zu vertices (aimed at %zu), %zu faces",
-                      i + 1, m.n_vertices(), d.levels[i].target_vertices, m.n_faces());
-        result.report.emplace_back(line);
+        result.report.push_back("iteration " + std::to_string(i + 1) + ": " +
+                                count_text(m.n_vertices(), "vertex", "vertices") + " (aimed at " +
+                                std::to_string(d.levels[i].target_vertices) + "), " +
+                                count_text(m.n_faces(), "face", "faces"));
     }
-    std::snprintf(line, sizeof(line), "%s: %zu -> %zu vertices, %zu collapses in %.1f ms",
-                  decimation_cost_name(o.cost), rep.input_vertices, rep.output_vertices,
-                  rep.collapses, rep.ms);
-    result.report.emplace_back(line);
+    std::snprintf(line, sizeof(line), " in %.1f ms", rep.ms);
+    result.report.push_back(std::string(decimation_cost_name(o.cost)) + ": " +
+                            std::to_string(rep.input_vertices) + " -> " +
+                            count_text(rep.output_vertices, "vertex", "vertices") + ", " +
+                            count_text(rep.collapses, "collapse", "collapses") + line);
     std::snprintf(line, sizeof(line),
                   "refused: link condition %zu, normal flip %zu, roundness %zu, independent set "
                   "%zu, max error %zu, texture seam %zu",
@@ -50,11 +53,10 @@ OperationResult run_decimate(const DecimateOptions& d_options, const HalfedgeMes
                   rep.refused_independent_set, rep.refused_max_error, rep.refused_texture_seam);
     result.report.emplace_back(line);
     if (rep.coincident_vertices > 0) {
-        std::snprintf(line, sizeof(line),
-                      "%zu vertices with a coincident copy (seams, split non-manifold vertices): "
-                      "collapsed only together with it",
-                      rep.coincident_vertices);
-        result.report.emplace_back(line);
+        result.report.push_back(
+            count_text(rep.coincident_vertices, "vertex", "vertices") +
+            " with a coincident copy (seams, split non-manifold vertices): collapsed only "
+            "together with it");
     }
     if (rep.stop != DecimationStop::Done) result.report.push_back(rep.stop_message);
     for (DecimationLevel& level : d.levels)

@@ -8,6 +8,7 @@
 #include "app/ops/operation_decl.h"
 #include "app/ops/operation_entries.h"
 #include "core/algorithms/orientation.h"
+#include "core/number_text.h"
 
 namespace trilab {
 namespace {
@@ -27,7 +28,7 @@ OperationResult run_flip(const FlipOptions&, const HalfedgeMesh& mesh, Progress&
     result.ms = ms_since(t0);
     progress.report(1, "flipping the orientation");
     result.steps.push_back(std::move(step));
-    result.report.push_back("reversed " + std::to_string(report.faces) + " faces");
+    result.report.push_back("reversed " + count_text(report.faces, "face", "faces"));
     char line[160];
     if (report.volume_before) {
         std::snprintf(line, sizeof(line), "volume %.6g -> %.6g", *report.volume_before,

@@ -8,6 +8,7 @@
 #include "app/ops/operation_decl.h"
 #include "app/ops/operation_entries.h"
 #include "core/algorithms/noise.h"
+#include "core/number_text.h"
 
 namespace trilab {
 namespace {
@@ -30,9 +31,8 @@ OperationResult run_noise(const NoiseOptions& o, const HalfedgeMesh& mesh, Progr
     std::snprintf(line, sizeof(line), "largest displacement %.6g (bound %.6g)",
                   report.max_displacement, o.amount_percent / 100.0 * report.mean_edge_length);
     result.report.emplace_back(line);
-    std::snprintf(line, sizeof(line), "moved %zu of %zu vertices", report.moved_vertices,
-                  mesh.n_vertices());
-    result.report.emplace_back(line);
+    result.report.push_back("moved " + std::to_string(report.moved_vertices) + " of " +
+                            count_text(mesh.n_vertices(), "vertex", "vertices"));
     result.values = {{"amount", o.amount_percent},
                      {"seed", double(o.seed)},
                      {"mean_edge_length", report.mean_edge_length},
@@ -49,7 +49,7 @@ std::unique_ptr<OperationDef> noise_operation() {
                                   "of up to a percentage of the mean edge length, reproducible "
                                   "from the seed.");
     d.number("amount", &NoiseOptions::amount_percent, 0, kMaxNoiseAmountPercent,
-             "percent of the mean edge length", " (percent of the mean edge length)")
+             "how far a vertex may move", " (percent of the mean edge length)")
         .label("amount (% of mean edge)")
         .slider(0.01, 100, true);
     d.integer("seed", &NoiseOptions::seed, 0, std::numeric_limits<std::uint32_t>::max(),

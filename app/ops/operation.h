@@ -37,7 +37,8 @@ struct OperationResult {
     std::vector<std::string> report;   ///< lines for the log
     double ms = 0;                     ///< time of the operation itself
     /// Named numbers for machine-readable output (the CLI's --json), in a fixed order, e.g.
-    /// {"max_displacement", 0.013}.
+    /// {"max_displacement", 0.013}. NaN: not defined for this mesh (the volume of an open
+    /// mesh); --json writes null.
     std::vector<std::pair<std::string, double>> values;
     /// Named texts for --json (e.g. the solver that ran).
     std::vector<std::pair<std::string, std::string>> texts;
@@ -91,6 +92,8 @@ public:
     std::string summary;  ///< a paragraph for --help
     std::vector<ParamSpec> params;
     ParamValues defaults;  ///< from the options struct's own defaults
+    /// Its run may stop before the last iteration and say why (OperationResult::stopped_early).
+    bool may_stop_early = false;
 
     /// Index of the parameter `name` (without dashes); throws InvalidArgument naming the
     /// operation and its options when there is none.

@@ -221,6 +221,12 @@ public:
         runner_ = std::move(runner);
         return *this;
     }
+    /// The run may stop before its last iteration (OperationResult::stopped_early): the CLI
+    /// offers --keep-partial for it.
+    OperationDecl& may_stop_early() {
+        def_.may_stop_early = true;
+        return *this;
+    }
 
     /// The declaration as the registry holds it.
     std::unique_ptr<OperationDef> build() const {

@@ -11,6 +11,7 @@
 #include "app/ops/operation_entries.h"
 #include "core/algorithms/coloring.h"
 #include "core/algorithms/fairing.h"
+#include "core/geometry.h"
 
 namespace trilab {
 namespace {
@@ -26,6 +27,11 @@ OperationResult run_smooth(const FairingOptions& options, const HalfedgeMesh& me
     o.estimate_max_stable_step = estimate;
     // The input's positions, for the smoothing distance, before the input may be consumed.
     const std::size_t n_vertices = mesh.n_vertices();
+    // The volume is defined for closed meshes only: NaN otherwise (--json writes null).
+    const bool closed = is_closed(mesh);
+    const auto volume_value = [closed](double v) {
+        return closed ? v : std::numeric_limits<double>::quiet_NaN();
+    };
     const bool consume = settings.consumable == &mesh;
     std::vector<Point> input_positions;
     if (consume) input_positions = mesh.positions();
@@ -70,8 +76,8 @@ OperationResult run_smooth(const FairingOptions& options, const HalfedgeMesh& me
     result.values = {{"iterations_done", double(fairing.iterations_done)},
                      {"max_stable_step", fairing.max_stable_step},
                      {"max_residual", fairing.max_residual},
-                     {"initial_volume", fairing.initial_volume},
-                     {"final_volume", fairing.final_volume},
+                     {"initial_volume", volume_value(fairing.initial_volume)},
+                     {"final_volume", volume_value(fairing.final_volume)},
                      {"factorizations", double(fairing.factorizations)},
                      {"cg_iterations", double(fairing.cg_iterations)},
                      {"max_smoothing_distance", max_distance},
@@ -142,7 +148,7 @@ std::unique_ptr<OperationDef> smooth_operation() {
                 "--mu: expected a value below -lambda = " + format_number(-o.taubin_lambda) +
                 ", got " + format_number(o.taubin_mu));
     });
-    d.run(run_smooth);
+    d.run(run_smooth).may_stop_early();
     return d.build();
 }
 

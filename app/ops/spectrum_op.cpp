@@ -10,6 +10,7 @@
 #include "app/ops/operation_decl.h"
 #include "app/ops/operation_entries.h"
 #include "core/algorithms/spectral.h"
+#include "core/number_text.h"
 
 namespace trilab {
 namespace {
@@ -67,19 +68,26 @@ OperationResult run_spectrum(const SpectrumOptions& o, const HalfedgeMesh& mesh,
     result.label = "Spectrum";
     const SpectralReport& rep = d.report;
     char line[256];
-    std::snprintf(line, sizeof line,
-                  "%zu frequencies (%s, %s) of %zu vertices, band %zu:%zu, %.0f ms: %s, %zu "
-                  "band(s) in %zu slice(s), %zu factorization(s), %zu operator applications, "
-                  "max residual %.1e",
-                  k, spectral_method_name(d.method), spectrum_end_name(d.end), d.rows(), lo, hi,
-                  rep.ms, rep.solver.c_str(), rep.bands, rep.slices, rep.factorizations,
-                  rep.operations, rep.max_residual);
-    result.report.push_back(line);
+    std::snprintf(line, sizeof line, " (%s, %s) of ", spectral_method_name(d.method),
+                  spectrum_end_name(d.end));
+    std::string text = count_text(k, "frequency", "frequencies") + line +
+                       count_text(d.rows(), "vertex", "vertices") + ", band " + std::to_string(lo) +
+                       ":" + std::to_string(hi);
+    std::snprintf(line, sizeof line, ", %.0f ms: ", rep.ms);
+    text += line + rep.solver + ", " + count_text(rep.bands, "band", "bands") + " in " +
+            count_text(rep.slices, "slice", "slices") + ", " +
+            count_text(rep.factorizations, "factorization", "factorizations") + ", " +
+            count_text(rep.operations, "operator application", "operator applications");
+    std::snprintf(line, sizeof line, ", max residual %.1e", rep.max_residual);
+    result.report.push_back(text + line);
     if (rep.diagnostics.total() > 0)
-        result.report.push_back(
-            "operator: " + std::to_string(rep.diagnostics.negative_weights_clamped) +
-            " negative cotangent weights clamped, " +
-            std::to_string(rep.diagnostics.degenerate_corners) + " degenerate corners");
+        result.report.push_back("operator: " +
+                                count_text(rep.diagnostics.negative_weights_clamped,
+                                           "negative cotangent weight",
+                                           "negative cotangent weights") +
+                                " clamped, " +
+                                count_text(rep.diagnostics.degenerate_corners, "degenerate corner",
+                                           "degenerate corners"));
     result.steps.push_back(OperationStep{std::move(out), MorphCorrespondence{}});
     result.values = {{"k", double(k)},
                      {"lo", double(lo)},

@@ -9,6 +9,7 @@
 #include "app/ops/operation_decl.h"
 #include "app/ops/operation_entries.h"
 #include "core/algorithms/subdivision.h"
+#include "core/number_text.h"
 
 namespace trilab {
 namespace {
@@ -25,14 +26,16 @@ OperationResult run_subdivide(const SubdivisionOptions& options, const HalfedgeM
     result.ms = sub.ms;
     char line[160];
     for (std::size_t i = 0; i < sub.level_counts.size(); ++i) {
-        std::snprintf(line, sizeof(line), "level %zu: %zu vertices, %zu faces", i + 1,
-                      sub.level_counts[i][0], sub.level_counts[i][1]);
-        result.report.emplace_back(line);
+        result.report.push_back("level " + std::to_string(i + 1) + ": " +
+                                count_text(sub.level_counts[i][0], "vertex", "vertices") + ", " +
+                                count_text(sub.level_counts[i][1], "face", "faces"));
     }
-    std::snprintf(line, sizeof(line), "%s, %d iteration%s: %zu -> %zu faces in %.1f ms",
-                  scheme_name(o.scheme), o.iterations, o.iterations == 1 ? "" : "s", mesh.n_faces(),
-                  sub.levels.empty() ? 0 : sub.levels.back().mesh.n_faces(), sub.ms);
-    result.report.emplace_back(line);
+    const std::size_t faces_after = sub.levels.empty() ? 0 : sub.levels.back().mesh.n_faces();
+    std::snprintf(line, sizeof(line), " in %.1f ms", sub.ms);
+    result.report.push_back(std::string(scheme_name(o.scheme)) + ", " +
+                            count_text(std::size_t(o.iterations), "iteration", "iterations") +
+                            ": " + std::to_string(mesh.n_faces()) + " -> " +
+                            count_text(faces_after, "face", "faces") + line);
     for (const std::string& note : sub.notes) result.report.push_back("note: " + note);
     std::vector<double> level_vertices, level_faces;
     for (const auto& counts : sub.level_counts) {

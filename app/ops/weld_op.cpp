@@ -9,6 +9,7 @@
 #include "app/ops/operation_entries.h"
 #include "core/algorithms/coincident.h"
 #include "core/algorithms/weld.h"
+#include "core/number_text.h"
 
 namespace trilab {
 namespace {
@@ -38,11 +39,11 @@ OperationResult run_weld(const WeldOptions& o, const HalfedgeMesh& mesh, Progres
     step.mesh = std::move(weld.mesh);
     const BoundaryPairing after = pair_boundary_edges(step.mesh);
     char line[200];
-    std::snprintf(line, sizeof(line),
-                  "%zu coincident vertices in %zu groups; %zu vertices joined, %zu boundary edge "
-                  "pairs glued",
-                  r.coincident_vertices, r.groups, r.vertices_joined, r.edges_glued);
-    result.report.emplace_back(line);
+    result.report.push_back(
+        count_text(r.coincident_vertices, "coincident vertex", "coincident vertices") + " in " +
+        count_text(r.groups, "group", "groups") + "; " +
+        count_text(r.vertices_joined, "vertex", "vertices") + " joined, " +
+        count_text(r.edges_glued, "boundary edge pair", "boundary edge pairs") + " glued");
     std::snprintf(line, sizeof(line), "boundary edges %zu -> %zu (%zu -> %zu on seams)",
                   before.boundary_edges, after.boundary_edges, before.paired_edges,
                   after.paired_edges);

@@ -9,6 +9,7 @@
 
 #include "core/errors.h"
 #include "core/hash.h"
+#include "core/number_text.h"
 
 namespace trilab {
 
@@ -116,9 +117,9 @@ CoincidentGroups tolerance_groups(const Point* p, std::size_t n, const std::uint
         for (int k = 0; k < 3; ++k) {
             c[k] = std::floor(p[i][k] / d);
             if (!(std::abs(c[k]) < kMaxCell))
-                throw InvalidArgument("coincident vertices: tolerance " + std::to_string(d) +
+                throw InvalidArgument("coincident vertices: tolerance " + number_text(d) +
                                       " is too small for coordinates of magnitude " +
-                                      std::to_string(std::abs(p[i][k])) +
+                                      number_text(std::abs(p[i][k])) +
                                       " (use a larger tolerance, or 0 for exact positions)");
         }
         cell_of[i] = Cell{std::int64_t(c[0]), std::int64_t(c[1]), std::int64_t(c[2])};
@@ -138,7 +139,7 @@ CoincidentGroups tolerance_groups(const Point* p, std::size_t n, const std::uint
                 }
     const std::uint64_t limit = 200 * std::uint64_t(n) + 1000000;
     if (pairs > limit)
-        throw InvalidArgument("coincident vertices: tolerance " + std::to_string(d) +
+        throw InvalidArgument("coincident vertices: tolerance " + number_text(d) +
                               " is too large for this mesh: about " + std::to_string(pairs / 2) +
                               " pairs of vertices lie within two cells of each other (use a "
                               "tolerance well below the edge lengths)");
@@ -178,7 +179,7 @@ CoincidentGroups find_coincident_points(const Point* p, std::size_t n, const std
                                         double tolerance) {
     if (!std::isfinite(tolerance) || tolerance < 0)
         throw InvalidArgument("coincident vertices: tolerance must be finite and >= 0 (got " +
-                              std::to_string(tolerance) + ")");
+                              number_text(tolerance) + ")");
     return tolerance == 0 ? exact_groups(p, n, skip) : tolerance_groups(p, n, skip, tolerance);
 }
 

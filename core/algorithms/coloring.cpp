@@ -366,4 +366,10 @@ VertexColoring parse_coloring(const std::string& name) {
                           ")");
 }
 
+std::vector<VertexColoring> vertex_colorings() {
+    std::vector<VertexColoring> all;
+    for (const auto& e : kColorings) all.push_back(e.coloring);
+    return all;
+}
+
 }  // namespace trilab

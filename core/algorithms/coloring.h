@@ -106,5 +106,8 @@ VertexColors color_field(const HalfedgeMesh& mesh, const std::vector<double>& va
 const char* coloring_name(VertexColoring coloring);
 /// Parses coloring_name() strings; throws InvalidArgument listing the names otherwise.
 VertexColoring parse_coloring(const std::string& name);
+/// Every colouring, in the order of the table behind coloring_name() (for menus and help texts
+/// that list them).
+std::vector<VertexColoring> vertex_colorings();
 
 }  // namespace trilab

@@ -34,6 +34,7 @@
 #include "core/algorithms/coincident.h"
 #include "core/errors.h"
 #include "core/mesh_builder.h"
+#include "core/number_text.h"
 
 namespace trilab {
 
@@ -80,10 +81,6 @@ public:
 private:
     std::vector<Index> parent_;
 };
-
-std::string count_line(std::size_t n, const std::string& what) {
-    return std::to_string(n) + " " + what;
-}
 
 }  // namespace
 
@@ -282,25 +279,23 @@ WeldResult weld_coincident_vertices(const HalfedgeMesh& mesh, const WeldOptions&
     report.edges_left_open = open_many_faces + open_orientation + 2 * undone;
     if (open_many_faces)
         report.notes.push_back(
-            count_line(open_many_faces,
-                       "coincident boundary edges left open: three or more faces would "
-                       "meet at the edge"));
+            count_text(open_many_faces, "coincident boundary edge", "coincident boundary edges") +
+            " left open: three or more faces would meet at the edge");
     if (open_orientation)
         report.notes.push_back(
-            count_line(open_orientation,
-                       "coincident boundary edges left open: the faces on their two sides run "
-                       "the same way along them (inconsistent orientation)"));
+            count_text(open_orientation, "coincident boundary edge", "coincident boundary edges") +
+            " left open: the faces on the two sides run the same way along the edge (inconsistent "
+            "orientation)");
     if (undone)
         report.notes.push_back(
-            count_line(2 * undone,
-                       "coincident boundary edges left open: gluing them would give "
-                       "a face two corners at one vertex or two edges between the "
-                       "same vertices"));
+            count_text(2 * undone, "coincident boundary edge", "coincident boundary edges") +
+            " left open: gluing would give a face two corners at one vertex or two edges "
+            "between the same vertices");
     if (report.vertices_left_apart)
-        report.notes.push_back(count_line(
-            report.vertices_left_apart,
-            "coincident vertices left apart: joining them would make a non-manifold vertex "
-            "(surfaces touching at a point, or along edges that cannot be glued)"));
+        report.notes.push_back(
+            count_text(report.vertices_left_apart, "coincident vertex", "coincident vertices") +
+            " left apart: joining would make a non-manifold vertex (surfaces touching at a "
+            "point, or along edges that cannot be glued)");
     return result;
 }
 

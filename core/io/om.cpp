@@ -41,6 +41,7 @@
 #include "core/io/byte_io.h"
 #include "core/io/file_util.h"
 #include "core/io/mesh_io.h"
+#include "core/number_text.h"
 
 namespace trilab {
 
@@ -833,18 +834,20 @@ LoadedMesh read_om_bytes(const std::string& bytes, const std::string& path) {
         out.mesh = build_mesh_for_file(a.soup, report, path);
     }
 
-    auto note = [&](std::size_t n, const std::string& what) {
-        if (n) report.notes.push_back(std::to_string(n) + " " + what);
+    auto note = [&](std::size_t n, const char* one, const char* many) {
+        if (n) report.notes.push_back(count_text(n, one, many) + " dropped");
     };
-    note(a.deleted_faces, "deleted faces dropped");
-    note(a.deleted_vertices, "deleted vertices dropped");
-    note(a.faceless_edges, "edges without faces dropped");
+    note(a.deleted_faces, "deleted face", "deleted faces");
+    note(a.deleted_vertices, "deleted vertex", "deleted vertices");
+    note(a.faceless_edges, "edge without faces", "edges without faces");
     if (!c.custom_names.empty()) {
         std::string names;
         for (std::size_t i = 0; i < c.custom_names.size() && i < 5; ++i)
             names += (i ? ", '" : "'") + c.custom_names[i] + "'";
         if (c.custom_names.size() > 5) names += ", ...";
-        note(c.custom_names.size(), "custom properties skipped (" + names + ")");
+        report.notes.push_back(
+            count_text(c.custom_names.size(), "custom property", "custom properties") +
+            " skipped (" + names + ")");
     }
     if (c.face_normals) report.notes.push_back("face normals ignored");
     if (c.face_colors) report.notes.push_back("face colors ignored");

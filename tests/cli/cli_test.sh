@@ -348,7 +348,7 @@ check "weld glues the seam: one vertex pair less twice, one edge pair glued" bas
      grep -q '\"vertices_joined\": 2' '$tmp/w.json' && grep -q '\"edges_glued\": 1' '$tmp/w.json' && \
      '$cli' info '$tmp/welded.obj' --json | grep -q '\"vertices\": 6, .*\"paired_boundary_edges\": 0'"
 check "weld explains what it leaves apart (a bow-tie's two fans)" bash -c \
-    "'$cli' weld '$data/good/bowtie.off' '$tmp/bw.obj' | grep -q 'note: 1 coincident vertices left apart'"
+    "'$cli' weld '$data/good/bowtie.off' '$tmp/bw.obj' | grep -q 'note: 1 coincident vertex left apart'"
 check "weld refuses a negative tolerance with one line naming it" bash -c \
     "! '$cli' weld --tolerance -1 '$data/good/two_patches.obj' '$tmp/bad.obj' 2> '$tmp/e' && \
      [ \$(wc -l < '$tmp/e') -eq 1 ] && grep -q -- '--tolerance' '$tmp/e' && [ ! -e '$tmp/bad.obj' ]"
@@ -357,5 +357,83 @@ check "subdivide leaves a pillow as it is and says so, in text and --json" bash 
      grep -q 'note: 1 component left as it is: two triangles on the same three vertices' && \
      '$cli' subdivide '$data/good/pillow_beside_tetrahedron.off' '$tmp/pl.obj' --json | \
      grep -q '\"faces\": 18, .*note: 1 component left as it is'"
+# Scripts and the command line (issue 23, item 12).
+check "a repeated option is refused naming it, never dropped, and nothing is written" bash -c \
+    "! '$cli' record '$tmp/d.obj' --op 'noise --amount 2' --op 'subdivide' --out '$tmp/twice' \
+     --frames 2 --size 16x16 2> '$tmp/e' && [ \$(wc -l < '$tmp/e') -eq 1 ] && \
+     grep -q -- '--op: given more than once' '$tmp/e' && [ ! -e '$tmp/twice' ] && \
+     ! '$cli' noise --amount 2 --amount 3 '$tmp/d.obj' '$tmp/tw.obj' 2> '$tmp/e' && \
+     grep -q -- '--amount: given more than once' '$tmp/e' && [ ! -e '$tmp/tw.obj' ] && \
+     ! '$cli' render '$tmp/d.obj' --out '$tmp/tw.png' --size 8x8 --size=9x9 2> '$tmp/e' && \
+     grep -q -- '--size: given more than once' '$tmp/e' && [ ! -e '$tmp/tw.png' ] && \
+     ! '$cli' compare '$tmp/d.obj' '$tmp/d.obj' --samples 10 --samples 20 2> '$tmp/e' && \
+     grep -q -- '--samples: given more than once' '$tmp/e' && \
+     ! '$cli' spectrum --k 5 '$tmp/d.obj' '$tmp/tw.obj' --eigenvalues '$tmp/a.txt' \
+     --eigenvalues '$tmp/b.txt' 2> '$tmp/e' && grep -q -- '--eigenvalues: given more than once' \
+     '$tmp/e' && [ ! -e '$tmp/tw.obj' ] && \
+     ! '$cli' convert '$tmp/d.obj' '$tmp/tw.ply' --ascii --ascii 2> '$tmp/e' && \
+     grep -q -- '--ascii: given more than once' '$tmp/e' && [ ! -e '$tmp/tw.ply' ]"
+check "with --json a failure prints one JSON object with the error and the exit status" bash -c \
+    "'$cli' info '$tmp/nothing.obj' --json > '$tmp/f.json' 2>/dev/null; [ \$? -eq 1 ] && \
+     [ \$(wc -l < '$tmp/f.json') -eq 1 ] && grep -q '^{\"command\": \"info\", \"error\": \".*nothing.obj: .*\", \"exit\": 1}\$' '$tmp/f.json' && \
+     '$cli' smooth --step 20 '$tmp/d.obj' '$tmp/fdiv.obj' --json > '$tmp/f.json' 2>/dev/null; \
+     [ \$? -eq 4 ] && [ \$(wc -l < '$tmp/f.json') -eq 1 ] && grep -q 'stopped early: iteration 1' '$tmp/f.json' && \
+     grep -q '\"exit\": 4}\$' '$tmp/f.json' && \
+     '$cli' frobnicate --json > '$tmp/f.json' 2>/dev/null; [ \$? -eq 2 ] && \
+     grep -q '\"error\": \"unknown command .frobnicate.*\"exit\": 2}\$' '$tmp/f.json' && \
+     '$cli' noise --amount 2000 '$tmp/d.obj' '$tmp/fx.obj' --json > '$tmp/f.json' 2>/dev/null; \
+     [ \$? -eq 1 ] && grep -q '\"error\": \"--amount: expected' '$tmp/f.json'"
+check "messages name the command once" bash -c \
+    "! '$cli' subdivide -- '$tmp/d.obj' '$tmp/x.obj' 2> '$tmp/e' && \
+     grep -q '^trilab-cli subdivide: unexpected argument' '$tmp/e' && \
+     ! '$cli' generate nope '$tmp/x.obj' 2> '$tmp/e' && \
+     grep -q '^trilab-cli generate: unknown model' '$tmp/e' && \
+     ! '$cli' info 2> '$tmp/e' && ! grep -q 'info: info:' '$tmp/e'"
+check "weld's refusals write the tolerance as people write it" bash -c \
+    "'$cli' subdivide '$tmp/d.obj' '$tmp/many.obj' > /dev/null && \
+     ! '$cli' weld --tolerance 1e9 '$tmp/many.obj' '$tmp/x.obj' 2> '$tmp/e' && \
+     grep -q 'tolerance 1e+09 is too large' '$tmp/e' && \
+     ! '$cli' weld --tolerance 1e-300 '$tmp/many.obj' '$tmp/x.obj' 2> '$tmp/e' && \
+     grep -q 'tolerance 1e-300 is too small' '$tmp/e' && ! grep -q '000000' '$tmp/e'"
+check "the volumes of an open mesh are null, of a closed one numbers" bash -c \
+    "'$cli' smooth --iterations 2 '$tmp/grid0.obj' '$tmp/gv.obj' --json > '$tmp/gv.json' && \
+     grep -q '\"initial_volume\": null' '$tmp/gv.json' && grep -q '\"final_volume\": null' '$tmp/gv.json' && \
+     '$cli' smooth --iterations 2 '$tmp/d.obj' '$tmp/dv.obj' --json > '$tmp/dv.json' && \
+     grep -q '\"initial_volume\": [0-9]' '$tmp/dv.json' && grep -q '\"final_volume\": [0-9]' '$tmp/dv.json'"
+check "noise offers and takes no --keep-partial" bash -c \
+    "'$cli' noise --help > '$tmp/h' && ! grep -q -- '--keep-partial' '$tmp/h' && \
+     ! '$cli' noise --keep-partial '$tmp/d.obj' '$tmp/kp.obj' 2> '$tmp/e' && \
+     grep -q -- '--keep-partial: does not apply to noise' '$tmp/e' && [ ! -e '$tmp/kp.obj' ]"
+# Every option a command's --help lists (at the start of its lines) is one it takes: none is
+# refused as unknown or as not applying to the command.
+help_options_accepted() {  # help_options_accepted CLI COMMAND
+    local cli="$1" cmd="$2" opt bad=0
+    for opt in $("$cli" "$cmd" --help | grep -E '^  --' | sed -E 's/(  [^-]| \().*//' | \
+                 grep -o -- '--[a-z][a-z0-9-]*' | sort -u); do
+        if "$cli" "$cmd" "$opt" 1 2>&1 >/dev/null | grep -q -- "unknown option '$opt'\|$opt: does not apply to $cmd (it never"; then
+            echo "$cmd --help names $opt, which it refuses"
+            bad=1
+        fi
+    done
+    return $bad
+}
+for cmd in info convert generate render record compare noise subdivide smooth spectrum decimate flip weld; do
+    check "$cmd --help names only options $cmd takes" bash -c \
+        "$(declare -f help_options_accepted); help_options_accepted '$cli' $cmd"
+done
+check "record --help lists every colouring record takes" bash -c \
+    "'$cli' record --help > '$tmp/h' && \
+     for c in \$('$cli' render '$tmp/d.obj' --out '$tmp/x.png' --color nope 2>&1 | \
+                 sed -n 's/.*known: \\(.*\\)).*/\\1/p' | tr -d ,); do \
+       if ! '$cli' record '$tmp/nothing.obj' --op noise --out '$tmp/cl' --color \$c 2>&1 | \
+            grep -q -- '--color'; then grep -q -- \"\\b\$c\\b\" '$tmp/h' || { echo \"\$c not listed\"; exit 1; }; fi; \
+     done && grep -q 'subdivision' '$tmp/h'"
+check "record refuses a colouring that needs a decomposition, writing nothing" bash -c \
+    "! '$cli' record '$tmp/d.obj' --op noise --out '$tmp/rfreq' --color frequency 2> '$tmp/e' && \
+     grep -q -- '--color: .frequency. needs a spectral decomposition' '$tmp/e' && [ ! -e '$tmp/rfreq' ]"
+check "counts say 1 vertex, 1 group" bash -c \
+    "'$cli' weld '$data/good/bowtie.off' '$tmp/bw1.obj' > '$tmp/o' && \
+     grep -q 'in 1 group;' '$tmp/o' && grep -q '1 coincident vertex left apart' '$tmp/o' && \
+     '$cli' info '$data/good/bowtie.off' | grep -q '1 non-manifold vertex split'"
 echo "cli: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

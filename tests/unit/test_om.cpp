@@ -310,8 +310,8 @@ TEST_CASE("tri_deleted_nogc.om loads as its live part", "[om]") {
     REQUIRE(l.report.file_vertices == 4);
     REQUIRE(l.report.file_faces == 2);
     const auto lines = l.report.lines();
-    REQUIRE(std::find(lines.begin(), lines.end(), "1 deleted faces dropped") != lines.end());
-    REQUIRE(std::find(lines.begin(), lines.end(), "1 deleted vertices dropped") != lines.end());
+    REQUIRE(std::find(lines.begin(), lines.end(), "1 deleted face dropped") != lines.end());
+    REQUIRE(std::find(lines.begin(), lines.end(), "1 deleted vertex dropped") != lines.end());
 }
 
 TEST_CASE("polygon .om files are triangulated, isolated vertices are kept", "[om]") {

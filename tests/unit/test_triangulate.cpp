@@ -273,7 +273,7 @@ TEST_CASE("crossing polygons are never a crash, large ones become reported fans"
         CHECK(report.triangles_from_polygons == n - 2);
         if (method == TriangulationMethod::kFan) {
             REQUIRE(report.notes.size() == 1);
-            CHECK_THAT(report.notes[0], Contains("1 polygons are not simple") && Contains("fans"));
+            CHECK_THAT(report.notes[0], Contains("1 polygon is not simple") && Contains("fan"));
         }
     }
 }

@@ -1,0 +1,170 @@
+// `trilab-cli info`: see info_command.h.
+#include "app/cli/info_command.h"
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "app/cli/arg_reader.h"
+#include "app/cli/json_writer.h"
+#include "app/cli/stopwatch.h"
+#include "core/algorithms/coincident.h"
+#include "core/algorithms/mesh_stats.h"
+#include "core/errors.h"
+#include "core/io/mesh_io.h"
+#include "core/validate.h"
+
+namespace trilab::cli {
+namespace {
+
+constexpr const char* kInfoUsage =
+    R"(usage: trilab-cli info MESH [--json]
+
+Reads MESH and prints its counts (vertices, edges, faces, boundary loops and edges, the
+boundary edges on seams, components, isolated vertices), its Euler characteristic and genus,
+bounding box, area and volume (closed meshes only: "not defined" and JSON null for an open
+mesh), whether it is valid, and what the loader repaired.
+
+options:
+  --json                one JSON object ("ms": the statistics, file reading excluded)
+)";
+
+struct InfoArgs {
+    std::string mesh;
+    bool json = false, help = false;
+};
+
+InfoArgs parse_args(const std::vector<std::string>& args) {
+    InfoArgs a;
+    ArgReader reader(args, "info");
+    while (reader.next()) {
+        if (reader.is_help())
+            a.help = true;
+        else if (reader.is("--json"))
+            a.json = reader.flag();
+        else if (reader.is_option())
+            reader.refuse_unknown();
+        else if (a.mesh.empty())
+            a.mesh = reader.arg();
+        else
+            throw InvalidArgument("unexpected argument '" + reader.arg() +
+                                  "': expected one MESH file");
+    }
+    return a;
+}
+
+JsonObject report_json(const LoadReport& r) {
+    JsonObject j;
+    j.add("format", r.format)
+        .add("file_vertices", r.file_vertices)
+        .add("file_faces", r.file_faces)
+        .add("polygons_triangulated", r.polygons_triangulated)
+        .add("triangles_from_polygons", r.triangles_from_polygons)
+        .add("degenerate_faces_dropped", r.degenerate_faces_dropped)
+        .add("detached_faces", r.detached_faces)
+        .add("nonmanifold_vertices_split", r.nonmanifold_vertices_split)
+        .add("vertex_copies_added", r.vertex_copies_added)
+        .add("isolated_vertices", r.isolated_vertices)
+        .add("merged_vertices", r.merged_vertices)
+        .add("notes", r.notes);
+    return j;
+}
+
+std::vector<double> vec(const Point& p) {
+    return {p.x(), p.y(), p.z()};
+}
+
+/// What info reports, measured once.
+struct MeshInfo {
+    MeshStats stats;
+    ValidationResult valid;
+    BoundaryPairing pairing;
+    bool manifold = false;
+    double ms = 0;
+};
+
+void print_json(const std::string& file, const MeshInfo& info, const LoadReport& r) {
+    const MeshStats& s = info.stats;
+    JsonObject j;
+    j.add("file", file)
+        .add("vertices", s.vertices)
+        .add("edges", s.edges)
+        .add("faces", s.faces)
+        .add("boundary_loops", s.boundary_loops)
+        .add("boundary_edges", info.pairing.boundary_edges)
+        .add("paired_boundary_edges", info.pairing.paired_edges)
+        .add("unpaired_boundary_edges", info.pairing.unpaired_edges)
+        .add("components", s.components)
+        .add("isolated_vertices", s.isolated_vertices)
+        .add("euler", s.euler)
+        .add("genus", s.genus)
+        .add("manifold", info.manifold)
+        .add("bbox_min", vec(s.bbox.min))
+        .add("bbox_max", vec(s.bbox.max))
+        .add("area", s.area);
+    if (s.volume)
+        j.add("volume", *s.volume);
+    else
+        j.add_null("volume");  // an open mesh has no volume
+    j.add("valid", info.valid.ok).add("load_report", report_json(r)).add("ms", info.ms);
+    std::cout << j.str() << "\n";
+}
+
+void print_text(const std::string& file, const MeshInfo& info, const LoadReport& r) {
+    const MeshStats& s = info.stats;
+    std::printf("file:            %s (%s)\n", file.c_str(), r.format.c_str());
+    std::printf("vertices:        %zu (%zu isolated)\n", s.vertices, s.isolated_vertices);
+    std::printf("edges:           %zu\n", s.edges);
+    std::printf("faces:           %zu\n", s.faces);
+    std::printf("boundary loops:  %zu\n", s.boundary_loops);
+    std::printf(
+        "boundary edges:  %zu (%zu on seams: another boundary edge coincides; %zu "
+        "unpaired)\n",
+        info.pairing.boundary_edges, info.pairing.paired_edges, info.pairing.unpaired_edges);
+    std::printf("components:      %zu\n", s.components);
+    std::printf("euler:           %lld\n", s.euler);
+    std::printf("genus:           %lld\n", s.genus);
+    std::printf("manifold input:  %s\n", info.manifold ? "yes" : "no");
+    std::printf("bbox:            [%g %g %g] - [%g %g %g]\n", s.bbox.min.x(), s.bbox.min.y(),
+                s.bbox.min.z(), s.bbox.max.x(), s.bbox.max.y(), s.bbox.max.z());
+    std::printf("area:            %.9g\n", s.area);
+    if (s.volume)
+        std::printf("volume:          %.9g\n", *s.volume);
+    else
+        std::printf("volume:          (open mesh: not defined)\n");
+    std::printf("valid:           %s\n", info.valid.ok ? "yes" : info.valid.message.c_str());
+    std::printf("load report:\n");
+    const auto lines = r.lines();
+    if (lines.empty()) std::printf("  clean (nothing repaired)\n");
+    for (const auto& l : lines) std::printf("  %s\n", l.c_str());
+}
+
+}  // namespace
+
+int run_info_command(const std::vector<std::string>& args) {
+    const InfoArgs a = parse_args(args);
+    if (a.help) {
+        std::fputs(kInfoUsage, stdout);
+        return 0;
+    }
+    if (a.mesh.empty())
+        throw InvalidArgument("expected one MESH file (see `trilab-cli info --help`)");
+    const LoadedMesh loaded = read_mesh(a.mesh);
+    const auto t0 = std::chrono::steady_clock::now();
+    MeshInfo info;
+    info.stats = compute_stats(loaded.mesh);
+    info.valid = validate(loaded.mesh);
+    info.pairing = pair_boundary_edges(loaded.mesh);
+    info.ms = ms_since(t0);
+    const LoadReport& r = loaded.report;
+    info.manifold = r.detached_faces == 0 && r.nonmanifold_vertices_split == 0;
+    if (a.json)
+        print_json(a.mesh, info, r);
+    else
+        print_text(a.mesh, info, r);
+    return 0;
+}
+
+}  // namespace trilab::cli
