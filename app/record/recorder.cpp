@@ -321,7 +321,7 @@ void show_topology(MeshRenderer& renderer, const History& history, const Halfedg
     shape.set_positions(last_shape(history, &shown, t));
     if (shape.has_vertex_property("v:normal")) shape.remove_vertex_property("v:normal");
     const VertexColors colors = color_vertices(shape, coloring);
-    renderer.set_vertex_colors(colors.colors);
+    renderer.set_vertex_colors(colors.colors, color_blend(colors.kind));
     ++s.colorings;
     s.legend = colors;
     s.legend.colors.clear();  // the legend, not the colours

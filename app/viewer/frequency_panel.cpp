@@ -105,8 +105,8 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
         // band shows once a slider moves.
         char shown[160];
         if (doc.applied)
-            std::snprintf(shown, sizeof shown, "the mesh shows the band %zu .. %zu",
-                          doc.applied_lo, doc.applied_hi);
+            std::snprintf(shown, sizeof shown, "the mesh shows the band %zu .. %zu", doc.applied_lo,
+                          doc.applied_hi);
         else
             std::snprintf(shown, sizeof shown,
                           "the mesh shows its own shape, not a band: move a slider to show the "

@@ -14,6 +14,7 @@
 #include "app/viewer/plots.h"
 #include "app/viewer/widgets.h"
 #include "core/algorithms/fairing.h"
+#include "core/number_text.h"
 
 namespace trilab::viewer {
 namespace {
@@ -480,7 +481,8 @@ void history_window(PanelState& panels, const History& history, bool busy, const
     float height = region.h;
     if (begin_region("History", region, &panels.history_open, 'l', panels.layout.history_width,
                      height)) {
-        ImGui::TextWrapped("%zu entries, %.1f MB of the %.0f MB budget", history.size(),
+        ImGui::TextWrapped("%s, %.1f MB of the %.0f MB budget",
+                           count_text(history.size(), "entry", "entries").c_str(),
                            history.bytes() / 1e6, history.budget() / 1e6);
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip(

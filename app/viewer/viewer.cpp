@@ -578,7 +578,7 @@ void Viewer::update_morph() {
                 if (colors.colors.empty())
                     renderer_->clear_vertex_colors();
                 else
-                    renderer_->set_vertex_colors(colors.colors);
+                    renderer_->set_vertex_colors(colors.colors, color_blend(colors.kind));
             }
         }
         renderer_->update_positions(*frame.topology, frame.positions);
@@ -768,7 +768,7 @@ void Viewer::apply_colors(VertexColors colors) {
     if (view_.settings.coloring == VertexColoring::None || view_.colors.colors.empty())
         renderer_->clear_vertex_colors();
     else
-        renderer_->set_vertex_colors(view_.colors.colors);
+        renderer_->set_vertex_colors(view_.colors.colors, color_blend(view_.colors.kind));
 }
 
 void Viewer::show_document() {

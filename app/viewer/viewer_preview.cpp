@@ -157,7 +157,7 @@ void Viewer::show_preview() {
             if (colors.colors.empty())
                 renderer_->clear_vertex_colors();
             else
-                renderer_->set_vertex_colors(colors.colors);
+                renderer_->set_vertex_colors(colors.colors, color_blend(colors.kind));
         }
     }
     preview_shown_ = true;
