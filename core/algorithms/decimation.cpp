@@ -77,6 +77,7 @@
 #include "core/algorithms/quadric.h"
 #include "core/errors.h"
 #include "core/mesh_builder.h"
+#include "core/number_text.h"
 
 namespace trilab {
 
@@ -1043,19 +1044,18 @@ private:
 void check_options(const DecimationOptions& o) {
     if (!(o.percent > 0 && o.percent <= 100))
         throw InvalidArgument("decimate: percent must be in (0, 100], got " +
-                              std::to_string(o.percent));
+                              number_text(o.percent));
     if (o.iterations < 1 || o.iterations > 1000)
         throw InvalidArgument("decimate: iterations must be from 1 to 1000, got " +
                               std::to_string(o.iterations));
     if (!(o.max_normal_angle > 0 && o.max_normal_angle <= 180))
         throw InvalidArgument("decimate: max_normal_angle must be in (0, 180] degrees, got " +
-                              std::to_string(o.max_normal_angle));
+                              number_text(o.max_normal_angle));
     if (!(o.min_roundness > 0 && o.min_roundness <= 1))
         throw InvalidArgument("decimate: min_roundness must be in (0, 1], got " +
-                              std::to_string(o.min_roundness));
+                              number_text(o.min_roundness));
     if (!(o.max_error >= 0) || !std::isfinite(o.max_error))
-        throw InvalidArgument("decimate: max_error must be >= 0, got " +
-                              std::to_string(o.max_error));
+        throw InvalidArgument("decimate: max_error must be >= 0, got " + number_text(o.max_error));
 }
 
 std::string stop_text(DecimationStop stop, const DecimationReport& r, std::size_t target) {
@@ -1224,7 +1224,7 @@ ProgressiveBuild build_progressive_mesh(const HalfedgeMesh& mesh, const Decimati
                                         double min_percent, Progress& progress) {
     if (!(min_percent > 0 && min_percent <= 100))
         throw InvalidArgument("build_progressive_mesh: min_percent must be in (0, 100], got " +
-                              std::to_string(min_percent));
+                              number_text(min_percent));
     std::size_t surface = 0;
     for (Vertex v : mesh.vertices())
         if (!mesh.is_isolated(v)) ++surface;
@@ -1614,7 +1614,7 @@ void LevelOfDetail::clear_changes() {
 std::size_t LevelOfDetail::level_for_percent(double percent) const {
     if (!(percent >= 0 && percent <= 100))
         throw InvalidArgument("level of detail: percent must be from 0 to 100, got " +
-                              std::to_string(percent));
+                              number_text(percent));
     const std::size_t keep = kept_vertices(percent, fine_vertices_);
     return std::min(fine_vertices_ - keep, max_level());
 }

@@ -78,6 +78,7 @@
 #include "core/algorithms/weld.h"
 #include "core/errors.h"
 #include "core/geometry.h"
+#include "core/number_text.h"
 
 namespace trilab {
 
@@ -123,7 +124,7 @@ double taubin_mu(const FairingOptions& o) {
 void check_options(const HalfedgeMesh& mesh, const FairingOptions& o) {
     auto fail = [](const std::string& what) { throw InvalidArgument("smooth: " + what); };
     if (!std::isfinite(o.step) || o.step < 0)
-        fail("step must be finite and >= 0 (got " + std::to_string(o.step) + ")");
+        fail("step must be finite and >= 0 (got " + number_text(o.step) + ")");
     if (o.iterations < 1 || o.iterations > kMaxFairingIterations)
         fail("iterations must be in [1, " + std::to_string(kMaxFairingIterations) + "] (got " +
              std::to_string(o.iterations) + ")");

@@ -92,6 +92,7 @@
 
 #include "core/errors.h"
 #include "core/geometry.h"
+#include "core/number_text.h"
 #include "core/system_memory.h"
 
 namespace trilab {
@@ -234,10 +235,10 @@ public:
         if (ldlt_.info() != Eigen::Success)
             throw Error(
                 "spectrum: the sparse LDLT factorization of K - sigma*S failed at sigma = " +
-                std::to_string(sigma));
+                number_text(sigma));
         const Eigen::VectorXd& dd = ldlt_.vectorD();
         if (!dd.allFinite() || (dd.array() == 0.0).any())
-            throw Error("spectrum: K - sigma*S is singular at sigma = " + std::to_string(sigma));
+            throw Error("spectrum: K - sigma*S is singular at sigma = " + number_text(sigma));
     }
     void perform_op(const double* x_in, double* y_out) const {
         progress_.check_cancelled();
@@ -332,7 +333,7 @@ Band shift_invert_band(const Problem& p, Ldlt& ldlt, double sigma, Eigen::Index 
         }
         if (attempt == 1)
             throw Error(not_converged(std::size_t(eigs.eigenvalues().size()), std::size_t(m),
-                                      ("around sigma = " + std::to_string(sigma)).c_str()));
+                                      ("around sigma = " + number_text(sigma)).c_str()));
         ncv = std::min(n, 2 * ncv);
         max_it *= 2;
     }
@@ -685,7 +686,7 @@ bool Slice::step() {
     next = std::min(std::max(next, sigma_ + 0.25 * typical), upper_);
     if (!std::isfinite(next) || !(next > sigma_))
         throw Error("spectrum: the shift of the next band does not move above sigma = " +
-                    std::to_string(sigma_) +
+                    number_text(sigma_) +
                     " (badly scaled or degenerate operator); use the full method (meshes up "
                     "to max_full_rows vertices)");
     sigma_ = next;
