@@ -244,6 +244,7 @@ Prepared prepare_mesh(const RenderArgs& a, HalfedgeMesh& mesh, RenderSetup& setu
     p.colors = color_vertices(mesh, setup.coloring, ColoringOptions{},
                               a.reference.empty() ? nullptr : &reference);
     setup.options.vertex_colors = p.colors.colors;
+    setup.options.vertex_color_blend = color_blend(p.colors.kind);
     return p;
 }
 

@@ -1213,8 +1213,8 @@ void Viewer::render_scene() {
     style.point_size *= ui_scale_;
     renderer_->draw(view_.camera.view(), view_.camera.projection(), style);
     if (panels_.decimation.show_collapsing_edges)
-        collapse_lines_->draw(view_.camera.view(), view_.camera.projection(),
-                              glm::vec3(0.95f, 0.25f, 0.20f), 2.0f * ui_scale_);
+        collapse_lines_->draw(view_.camera.view(), view_.camera.projection(), LineStyle{},
+                              ui_scale_);
     glViewport(0, 0, fb_w, fb_h);  // ImGui draws over the whole window
 }
 

@@ -730,7 +730,7 @@ TEST_CASE("every key binding reaches its action", "[panels][keys]") {
     CHECK(f.commands.empty());
 }
 
-TEST_CASE("keys typed into a widget stay there; quit is never lost", "[panels][keys]") {
+TEST_CASE("keys typed into a widget stay there, quit is never lost", "[panels][keys]") {
     KeyFixture f;
     const RenderStyle before = f.style;
     // A text field has the keyboard: F, I, W and Ctrl+Z are the field's, not the bindings'.
