@@ -478,8 +478,7 @@ TEST_CASE("slider grabs leave the value text legible", "[panels]") {
     CHECK(style.Colors[ImGuiCol_SliderGrabActive].w <= 0.7f);
 }
 
-TEST_CASE("sidebar notes are the GUI's words: no command-line options in labels",
-          "[panels]") {
+TEST_CASE("sidebar notes are the GUI's words: no command-line options in labels", "[panels]") {
     Ui ui(1280, 4000);
     Sidebar s;
     s.open_all();
@@ -490,8 +489,8 @@ TEST_CASE("sidebar notes are the GUI's words: no command-line options in labels"
     const WidgetNote target =
         find_widget(ui, "Decimation/target vertices", WidgetNote::Kind::Checkbox);
     CHECK(target.id == "target-vertices:on");
-    CHECK(default_note_text(s.panels.decimation.op.def->params[s.panels.decimation.op.def->index(
-                                "target-vertices")])
+    CHECK(default_note_text(s.panels.decimation.op.def
+                                ->params[s.panels.decimation.op.def->index("target-vertices")])
               .find("--") == std::string::npos);
 }
 
