@@ -1252,9 +1252,21 @@ bool has_corner(const std::array<Vertex, 3>& c, Vertex v) {
                           std::to_string(collapse) + ": " + what);
 }
 
-}  // namespace
+// The constructor in four stages: the fine mesh checked (valences), a dry run of every
+// collapse (checks, corners, prefix sums, the fixed-point scale), the drawing order, and the
+// copy of everything into that order.
 
-LevelOfDetail::LevelOfDetail(const ProgressiveMesh& pm) {
+/// The fine mesh's counts: valence per vertex, faces, vertices with faces, live vertices,
+/// the largest valence (at least 1).
+struct FineMesh {
+    std::vector<std::uint32_t> valence;
+    std::size_t faces = 0, vertices = 0, live_vertices = 0;
+    std::uint64_t max_valence = 1;
+};
+
+/// Checks the progressive mesh's sizes and its fine mesh: corners of live faces are distinct
+/// live vertices.
+FineMesh check_fine_mesh(const ProgressiveMesh& pm) {
     const std::size_t nv = pm.positions.size(), nf = pm.faces.size();
     if (pm.vertex_alive.size() != nv || pm.face_alive.size() != nf)
         throw InvalidArgument("LevelOfDetail: the progressive mesh's sizes disagree (" +
@@ -1264,8 +1276,8 @@ LevelOfDetail::LevelOfDetail(const ProgressiveMesh& pm) {
                               std::to_string(pm.face_alive.size()) + " face flags)");
     if (nv >= kInvalidIndex || nf >= (std::size_t(1) << 30))
         throw InvalidArgument("LevelOfDetail: too many vertices or faces");
-    // The fine mesh: corners of live faces are distinct live vertices; valences.
-    std::vector<std::uint32_t> valence(nv, 0);
+    FineMesh fine;
+    fine.valence.assign(nv, 0);
     for (std::size_t f = 0; f < nf; ++f) {
         if (!pm.face_alive[f]) continue;
         const auto& c = pm.faces[f];
@@ -1275,171 +1287,250 @@ LevelOfDetail::LevelOfDetail(const ProgressiveMesh& pm) {
                                       " has a corner that is not a live vertex");
         if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2])
             throw InvalidArgument("LevelOfDetail: face " + std::to_string(f) + " repeats a corner");
-        for (Vertex v : c) ++valence[v.idx()];
-        ++fine_faces_;
+        for (Vertex v : c) ++fine.valence[v.idx()];
+        ++fine.faces;
     }
-    std::uint64_t max_valence = 1;
     for (std::size_t v = 0; v < nv; ++v) {
-        if (valence[v] > 0) ++fine_vertices_;
-        if (pm.vertex_alive[v]) ++live_at_fine_;
-        max_valence = std::max<std::uint64_t>(max_valence, valence[v]);
+        if (fine.valence[v] > 0) ++fine.vertices;
+        if (pm.vertex_alive[v]) ++fine.live_vertices;
+        fine.max_valence = std::max<std::uint64_t>(fine.max_valence, fine.valence[v]);
     }
+    return fine;
+}
 
-    // A dry run of every collapse (so that set_level() can trust the record): its vertices
-    // are live and where it says, the faces it names are live and at its vertices, its ring
-    // lists every face at the kept vertex once, and the removed vertex has no face left. Records
-    // where each moved face has the removed vertex (its corner), the bounds for fixed-point normals
-    // and prefix sums.
-    const std::size_t nc = pm.collapses.size();
-    if (nc > fine_vertices_) bad_progressive(nc, "more collapses than vertices with faces");
-    const std::size_t nr = pm.ring_faces.size();
-    std::vector<std::uint8_t> ring_corner(nr, 0);
-    ring_prefix_.assign(nc + 1, 0);
-    removed_prefix_.assign(nc + 1, 0);
-    {
-        std::vector<std::array<Vertex, 3>> corners = pm.faces;
-        std::vector<std::uint8_t> face_on = pm.face_alive, vertex_on = pm.vertex_alive;
-        std::vector<Point> at = pm.positions;
-        Point lo = Point::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-        const auto extend = [&](const Point& p) {
-            if (!p.allFinite())
-                throw InvalidArgument(
-                    "LevelOfDetail: the progressive mesh has a non-finite position");
-            lo = lo.cwiseMin(p);
-            hi = hi.cwiseMax(p);
-        };
-        for (std::size_t v = 0; v < nv; ++v)
-            if (valence[v] > 0) extend(pm.positions[v]);
+/// What the dry run of the collapses gives the level of detail: per ring entry the corner of
+/// the moved face that held the removed vertex; prefix sums over the steps of ring faces and
+/// of faces removed; fixed-point units per unit of face normal.
+struct CollapseRecord {
+    std::vector<std::uint8_t> ring_corner;
+    std::vector<std::uint64_t> ring_prefix, removed_prefix;
+    double normal_scale = 1;
+};
+
+/// A dry run of every collapse (so that set_level() can trust the record): its vertices are
+/// live and where it says, the faces it names are live and at its vertices, its ring lists
+/// every face at the kept vertex once, and the removed vertex has no face left.
+class CollapseDryRun {
+public:
+    CollapseDryRun(const ProgressiveMesh& pm, FineMesh& fine)
+        : pm_(pm),
+          fine_(fine),
+          corners_(pm.faces),
+          face_on_(pm.face_alive),
+          vertex_on_(pm.vertex_alive),
+          at_(pm.positions) {}
+
+    CollapseRecord run() {
+        const std::size_t nc = pm_.collapses.size();
+        if (nc > fine_.vertices) bad_progressive(nc, "more collapses than vertices with faces");
+        CollapseRecord r;
+        r.ring_corner.assign(pm_.ring_faces.size(), 0);
+        r.ring_prefix.assign(nc + 1, 0);
+        r.removed_prefix.assign(nc + 1, 0);
+        for (std::size_t v = 0; v < pm_.positions.size(); ++v)
+            if (fine_.valence[v] > 0) extend(pm_.positions[v]);
         for (std::size_t k = 0; k < nc; ++k) {
-            const VertexSplit& s = pm.collapses[k];
-            const Vertex r = s.removed, q = s.kept;
-            if (!r.is_valid() || !q.is_valid() || r.idx() >= nv || q.idx() >= nv || r == q ||
-                !vertex_on[r.idx()] || !vertex_on[q.idx()])
-                bad_progressive(k, "its vertices are not two live vertices");
-            if (!(s.moved_begin <= s.moved_end && s.moved_end <= s.ring_end && s.ring_end <= nr))
-                bad_progressive(k, "its ring range is out of order or out of range");
-            if (at[r.idx()] != s.removed_position || at[q.idx()] != s.kept_before)
-                bad_progressive(k, "its positions before the collapse are not the vertices'");
-            at[q.idx()] = s.kept_after;
-            std::uint32_t removed_faces = 0;
-            for (Face f : s.faces) {
-                if (!f.is_valid()) continue;
-                if (f.idx() >= nf || !face_on[f.idx()] || !has_corner(corners[f.idx()], r) ||
-                    !has_corner(corners[f.idx()], q))
-                    bad_progressive(k, "a face it removes is not a live face at its edge");
-                face_on[f.idx()] = 0;
-                for (Vertex v : corners[f.idx()]) --valence[v.idx()];
-                ++removed_faces;
-            }
-            if (removed_faces == 0) bad_progressive(k, "it removes no face");
-            for (std::uint32_t i = s.moved_begin; i < s.ring_end; ++i) {
-                const Face f = pm.ring_faces[i];
-                const bool moved = i < s.moved_end;
-                if (!f.is_valid() || f.idx() >= nf || !face_on[f.idx()])
-                    bad_progressive(k, "a face of its ring is not live");
-                auto& c = corners[f.idx()];
-                if (!has_corner(c, moved ? r : q) || has_corner(c, moved ? q : r))
-                    bad_progressive(k, "a face of its ring is not at the vertex it names");
-                if (moved) {
-                    const int j = c[0] == r ? 0 : c[1] == r ? 1 : 2;
-                    ring_corner[i] = std::uint8_t(j);
-                    c[j] = q;
-                    --valence[r.idx()];
-                    ++valence[q.idx()];
-                }
-            }
-            if (valence[r.idx()] != 0 || valence[q.idx()] != s.ring_end - s.moved_begin)
-                bad_progressive(k, "its ring does not list the faces at its vertices");
-            vertex_on[r.idx()] = 0;
-            extend(s.kept_after);
-            extend(s.kept_before);
-            max_valence = std::max<std::uint64_t>(max_valence, s.ring_end - s.moved_begin);
-            ring_prefix_[k + 1] = ring_prefix_[k] + (s.ring_end - s.moved_begin);
-            removed_prefix_[k + 1] = removed_prefix_[k] + removed_faces;
+            const VertexSplit& s = pm_.collapses[k];
+            const std::uint32_t removed_faces = collapse(k, r.ring_corner);
+            fine_.max_valence =
+                std::max<std::uint64_t>(fine_.max_valence, s.ring_end - s.moved_begin);
+            r.ring_prefix[k + 1] = r.ring_prefix[k] + (s.ring_end - s.moved_begin);
+            r.removed_prefix[k + 1] = r.removed_prefix[k] + removed_faces;
         }
         // Fixed point: a component of a face normal is at most diagonal^2 in size and a vertex
         // has at most max_valence faces at any level, so the sums stay below 2^61.
-        const double diagonal2 = fine_faces_ > 0 ? (hi - lo).squaredNorm() : 0.0;
-        normal_scale_ =
-            diagonal2 > 0 ? std::ldexp(1.0, 61) / (double(max_valence) * diagonal2) : 1.0;
+        const double diagonal2 = fine_.faces > 0 ? (hi_ - lo_).squaredNorm() : 0.0;
+        r.normal_scale =
+            diagonal2 > 0 ? std::ldexp(1.0, 61) / (double(fine_.max_valence) * diagonal2) : 1.0;
+        return r;
     }
 
-    // Drawing order: faces along a Hilbert curve through their centroids (10 bits an axis,
-    // ties in index order), vertices in the order the faces first use them, then isolated
-    // vertices, then vertices deleted in the input (never live).
-    {
-        Point lo = Point::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-        for (std::size_t f = 0; f < nf; ++f)
-            if (pm.face_alive[f])
-                for (Vertex v : pm.faces[f]) {
-                    lo = lo.cwiseMin(pm.positions[v.idx()]);
-                    hi = hi.cwiseMax(pm.positions[v.idx()]);
-                }
-        const Vector3 extent = (hi - lo).cwiseMax(Vector3::Constant(1e-300));
-        const auto spread = [](std::uint32_t x) {  // 10 bits to every third bit of 30
-            std::uint32_t r = 0;
-            for (int i = 0; i < 10; ++i) r |= ((x >> i) & 1u) << (3 * i);
-            return r;
-        };
-        std::vector<std::uint64_t> keys;
-        keys.reserve(fine_faces_);
-        for (std::size_t f = 0; f < nf; ++f) {
-            if (!pm.face_alive[f]) continue;
-            const auto& c = pm.faces[f];
-            const Point centre =
-                (pm.positions[c[0].idx()] + pm.positions[c[1].idx()] + pm.positions[c[2].idx()]) /
-                3.0;
-            std::uint32_t x[3];
-            for (int axis = 0; axis < 3; ++axis) {
-                const double t = (centre[axis] - lo[axis]) / extent[axis];
-                x[axis] = std::uint32_t(std::min(1023.0, std::max(0.0, t * 1024.0)));
-            }
-            // The Hilbert index of the cell (Skilling, "Programming the Hilbert curve", AIP
-            // Conf. Proc. 707, 2004: axes to the transposed index, whose bits interleave).
-            for (std::uint32_t q = 1u << 9; q > 1; q >>= 1) {
-                const std::uint32_t p = q - 1;
-                for (int i = 0; i < 3; ++i) {
-                    if (x[i] & q) {
-                        x[0] ^= p;
-                    } else {
-                        const std::uint32_t t = (x[0] ^ x[i]) & p;
-                        x[0] ^= t;
-                        x[i] ^= t;
-                    }
-                }
-            }
-            x[1] ^= x[0];
-            x[2] ^= x[1];
-            std::uint32_t t = 0;
-            for (std::uint32_t q = 1u << 9; q > 1; q >>= 1)
-                if (x[2] & q) t ^= q - 1;
-            for (auto& xi : x) xi ^= t;
-            std::uint32_t code = 0;
-            for (int axis = 0; axis < 3; ++axis) code |= spread(x[axis]) << (2 - axis);
-            keys.push_back(std::uint64_t(code) << 32 | f);
-        }
-        std::sort(keys.begin(), keys.end());
-        face_of_.assign(nf, kInvalidIndex);
-        fine_face_.resize(fine_faces_);
-        vertex_of_.assign(nv, kInvalidIndex);
-        fine_vertex_.reserve(nv);
-        const auto add_vertex = [&](Index v) {
-            vertex_of_[v] = Index(fine_vertex_.size());
-            fine_vertex_.push_back(v);
-        };
-        for (std::size_t i = 0; i < keys.size(); ++i) {
-            const Index f = Index(keys[i] & 0xffffffffu);
-            face_of_[f] = Index(i);
-            fine_face_[i] = f;
-            for (Vertex v : pm.faces[f])
-                if (vertex_of_[v.idx()] == kInvalidIndex) add_vertex(v.idx());
-        }
-        for (Index v = 0; v < nv; ++v)
-            if (pm.vertex_alive[v] && vertex_of_[v] == kInvalidIndex) add_vertex(v);
-        for (Index v = 0; v < nv; ++v)
-            if (!pm.vertex_alive[v]) add_vertex(v);
+private:
+    void extend(const Point& p) {
+        if (!p.allFinite())
+            throw InvalidArgument("LevelOfDetail: the progressive mesh has a non-finite position");
+        lo_ = lo_.cwiseMin(p);
+        hi_ = hi_.cwiseMax(p);
     }
 
+    /// Checks and applies collapse k; records the corners of its moved faces. Returns the
+    /// number of faces it removes.
+    std::uint32_t collapse(std::size_t k, std::vector<std::uint8_t>& ring_corner) {
+        const std::size_t nv = pm_.positions.size(), nf = pm_.faces.size();
+        const std::size_t nr = pm_.ring_faces.size();
+        std::vector<std::uint32_t>& valence = fine_.valence;
+        const VertexSplit& s = pm_.collapses[k];
+        const Vertex r = s.removed, q = s.kept;
+        if (!r.is_valid() || !q.is_valid() || r.idx() >= nv || q.idx() >= nv || r == q ||
+            !vertex_on_[r.idx()] || !vertex_on_[q.idx()])
+            bad_progressive(k, "its vertices are not two live vertices");
+        if (!(s.moved_begin <= s.moved_end && s.moved_end <= s.ring_end && s.ring_end <= nr))
+            bad_progressive(k, "its ring range is out of order or out of range");
+        if (at_[r.idx()] != s.removed_position || at_[q.idx()] != s.kept_before)
+            bad_progressive(k, "its positions before the collapse are not the vertices'");
+        at_[q.idx()] = s.kept_after;
+        std::uint32_t removed_faces = 0;
+        for (Face f : s.faces) {
+            if (!f.is_valid()) continue;
+            if (f.idx() >= nf || !face_on_[f.idx()] || !has_corner(corners_[f.idx()], r) ||
+                !has_corner(corners_[f.idx()], q))
+                bad_progressive(k, "a face it removes is not a live face at its edge");
+            face_on_[f.idx()] = 0;
+            for (Vertex v : corners_[f.idx()]) --valence[v.idx()];
+            ++removed_faces;
+        }
+        if (removed_faces == 0) bad_progressive(k, "it removes no face");
+        for (std::uint32_t i = s.moved_begin; i < s.ring_end; ++i) {
+            const Face f = pm_.ring_faces[i];
+            const bool moved = i < s.moved_end;
+            if (!f.is_valid() || f.idx() >= nf || !face_on_[f.idx()])
+                bad_progressive(k, "a face of its ring is not live");
+            auto& c = corners_[f.idx()];
+            if (!has_corner(c, moved ? r : q) || has_corner(c, moved ? q : r))
+                bad_progressive(k, "a face of its ring is not at the vertex it names");
+            if (moved) {
+                const int j = c[0] == r ? 0 : c[1] == r ? 1 : 2;
+                ring_corner[i] = std::uint8_t(j);
+                c[j] = q;
+                --valence[r.idx()];
+                ++valence[q.idx()];
+            }
+        }
+        if (valence[r.idx()] != 0 || valence[q.idx()] != s.ring_end - s.moved_begin)
+            bad_progressive(k, "its ring does not list the faces at its vertices");
+        vertex_on_[r.idx()] = 0;
+        extend(s.kept_after);
+        extend(s.kept_before);
+        return removed_faces;
+    }
+
+    const ProgressiveMesh& pm_;
+    FineMesh& fine_;
+    std::vector<std::array<Vertex, 3>> corners_;
+    std::vector<std::uint8_t> face_on_, vertex_on_;
+    std::vector<Point> at_;
+    Point lo_ = Point::Constant(std::numeric_limits<double>::infinity()), hi_ = -lo_;
+};
+
+/// 10 bits to every third bit of 30.
+std::uint32_t spread_bits(std::uint32_t x) {
+    std::uint32_t r = 0;
+    for (int i = 0; i < 10; ++i) r |= ((x >> i) & 1u) << (3 * i);
+    return r;
+}
+
+/// The Hilbert index of the cell x (10 bits an axis) (Skilling, "Programming the Hilbert
+/// curve", AIP Conf. Proc. 707, 2004: axes to the transposed index, whose bits interleave).
+std::uint32_t hilbert_code(std::uint32_t x[3]) {
+    for (std::uint32_t q = 1u << 9; q > 1; q >>= 1) {
+        const std::uint32_t p = q - 1;
+        for (int i = 0; i < 3; ++i) {
+            if (x[i] & q) {
+                x[0] ^= p;
+            } else {
+                const std::uint32_t t = (x[0] ^ x[i]) & p;
+                x[0] ^= t;
+                x[i] ^= t;
+            }
+        }
+    }
+    x[1] ^= x[0];
+    x[2] ^= x[1];
+    std::uint32_t t = 0;
+    for (std::uint32_t q = 1u << 9; q > 1; q >>= 1)
+        if (x[2] & q) t ^= q - 1;
+    for (int axis = 0; axis < 3; ++axis) x[axis] ^= t;
+    std::uint32_t code = 0;
+    for (int axis = 0; axis < 3; ++axis) code |= spread_bits(x[axis]) << (2 - axis);
+    return code;
+}
+
+/// The level of detail's numbering and the fine mesh's, both ways (see LevelOfDetail).
+struct DrawingOrder {
+    std::vector<Index> face_of, fine_face, vertex_of, fine_vertex;
+};
+
+/// Drawing order: faces along a Hilbert curve through their centroids (10 bits an axis,
+/// ties in index order), vertices in the order the faces first use them, then isolated
+/// vertices, then vertices deleted in the input (never live).
+DrawingOrder drawing_order(const ProgressiveMesh& pm, std::size_t fine_faces) {
+    const std::size_t nv = pm.positions.size(), nf = pm.faces.size();
+    Point lo = Point::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (std::size_t f = 0; f < nf; ++f)
+        if (pm.face_alive[f])
+            for (Vertex v : pm.faces[f]) {
+                lo = lo.cwiseMin(pm.positions[v.idx()]);
+                hi = hi.cwiseMax(pm.positions[v.idx()]);
+            }
+    const Vector3 extent = (hi - lo).cwiseMax(Vector3::Constant(1e-300));
+    std::vector<std::uint64_t> keys;
+    keys.reserve(fine_faces);
+    for (std::size_t f = 0; f < nf; ++f) {
+        if (!pm.face_alive[f]) continue;
+        const auto& c = pm.faces[f];
+        const Point centre =
+            (pm.positions[c[0].idx()] + pm.positions[c[1].idx()] + pm.positions[c[2].idx()]) / 3.0;
+        std::uint32_t x[3];
+        for (int axis = 0; axis < 3; ++axis) {
+            const double t = (centre[axis] - lo[axis]) / extent[axis];
+            x[axis] = std::uint32_t(std::min(1023.0, std::max(0.0, t * 1024.0)));
+        }
+        keys.push_back(std::uint64_t(hilbert_code(x)) << 32 | f);
+    }
+    std::sort(keys.begin(), keys.end());
+    DrawingOrder o;
+    o.face_of.assign(nf, kInvalidIndex);
+    o.fine_face.resize(fine_faces);
+    o.vertex_of.assign(nv, kInvalidIndex);
+    o.fine_vertex.reserve(nv);
+    const auto add_vertex = [&](Index v) {
+        o.vertex_of[v] = Index(o.fine_vertex.size());
+        o.fine_vertex.push_back(v);
+    };
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        const Index f = Index(keys[i] & 0xffffffffu);
+        o.face_of[f] = Index(i);
+        o.fine_face[i] = f;
+        for (Vertex v : pm.faces[f])
+            if (o.vertex_of[v.idx()] == kInvalidIndex) add_vertex(v.idx());
+    }
+    for (Index v = 0; v < nv; ++v)
+        if (pm.vertex_alive[v] && o.vertex_of[v] == kInvalidIndex) add_vertex(v);
+    for (Index v = 0; v < nv; ++v)
+        if (!pm.vertex_alive[v]) add_vertex(v);
+    return o;
+}
+
+}  // namespace
+
+LevelOfDetail::LevelOfDetail(const ProgressiveMesh& pm) {
+    FineMesh fine = check_fine_mesh(pm);
+    fine_faces_ = fine.faces;
+    fine_vertices_ = fine.vertices;
+    live_at_fine_ = fine.live_vertices;
+    CollapseRecord record = CollapseDryRun(pm, fine).run();
+    ring_prefix_ = std::move(record.ring_prefix);
+    removed_prefix_ = std::move(record.removed_prefix);
+    normal_scale_ = record.normal_scale;
+    DrawingOrder order = drawing_order(pm, fine_faces_);
+    face_of_ = std::move(order.face_of);
+    fine_face_ = std::move(order.fine_face);
+    vertex_of_ = std::move(order.vertex_of);
+    fine_vertex_ = std::move(order.fine_vertex);
+    take_in_drawing_order(pm, record.ring_corner);
+    normal_sum_.assign(pm.positions.size(), NormalSum{0, 0, 0});
+    vertex_changed_.assign(pm.positions.size(), 0);
+    recompute_normals();
+    all_changed_ = true;
+    fine_faces_state_ = faces_;
+    fine_positions_state_ = positions_;
+    fine_normals_state_ = normal_sum_;
+    fine_vertex_alive_state_ = vertex_alive_;
+}
+
+void LevelOfDetail::take_in_drawing_order(const ProgressiveMesh& pm,
+                                          const std::vector<std::uint8_t>& ring_corner) {
+    const std::size_t nv = pm.positions.size(), nc = pm.collapses.size();
     positions_.resize(nv);
     vertex_alive_.resize(nv);
     for (Index v = 0; v < nv; ++v) {
@@ -1453,7 +1544,7 @@ LevelOfDetail::LevelOfDetail(const ProgressiveMesh& pm) {
         faces_[f] = {vertex_of_[c[0].idx()], vertex_of_[c[1].idx()], vertex_of_[c[2].idx()]};
     }
     steps_.resize(nc);
-    ring_.resize(nr);
+    ring_.resize(pm.ring_faces.size());
     for (std::size_t k = 0; k < nc; ++k) {
         const VertexSplit& s = pm.collapses[k];
         Step& step = steps_[k];
@@ -1469,14 +1560,6 @@ LevelOfDetail::LevelOfDetail(const ProgressiveMesh& pm) {
         for (std::uint32_t i = s.moved_begin; i < s.ring_end; ++i)
             ring_[i] = (face_of_[pm.ring_faces[i].idx()] << 2) | ring_corner[i];
     }
-    normal_sum_.assign(nv, NormalSum{0, 0, 0});
-    vertex_changed_.assign(nv, 0);
-    recompute_normals();
-    all_changed_ = true;
-    fine_faces_state_ = faces_;
-    fine_positions_state_ = positions_;
-    fine_normals_state_ = normal_sum_;
-    fine_vertex_alive_state_ = vertex_alive_;
 }
 
 void LevelOfDetail::face_normal(Index f, int sign) {

@@ -272,6 +272,9 @@ private:
         std::uint32_t ring_begin, moved_end, ring_end;  ///< into ring_
         Point kept_before, kept_after;
     };
+    /// The constructor's last stage: positions, faces and steps in the drawing order.
+    void take_in_drawing_order(const ProgressiveMesh& pm,
+                               const std::vector<std::uint8_t>& ring_corner);
     void collapse_step(const Step& s, bool normals, bool track);
     void split_step(const Step& s, bool normals, bool track);
     void face_normal(Index f, int sign);
