@@ -76,9 +76,9 @@ double volume(const HalfedgeMesh& mesh) {
     // face_centroid() . face_area_vector() summed in face order, in one pass over the
     // connectivity arrays with the halfedges of a few faces ahead prefetched (every load runs
     // this for its orientation note).
-    const std::vector<Vertex>& to = mesh.get_halfedge_property<Vertex>("h:to").vector();
-    const std::vector<Halfedge>& next = mesh.get_halfedge_property<Halfedge>("h:next").vector();
-    const std::vector<Halfedge>& fh = mesh.get_face_property<Halfedge>("f:halfedge").vector();
+    const std::vector<Vertex>& to = mesh.halfedge_to_array();
+    const std::vector<Halfedge>& next = mesh.halfedge_next_array();
+    const std::vector<Halfedge>& fh = mesh.face_halfedge_array();
     const std::vector<Point>& x = mesh.positions();
     constexpr std::size_t kAhead = 8;
     double volume6 = 0;

@@ -35,11 +35,11 @@ public:
           nh_(m.halfedges_size()),
           nf_(m.faces_size()),
           // The built-in arrays, read directly.
-          to_(m.get_halfedge_property<Vertex>("h:to").vector()),
-          next_(m.get_halfedge_property<Halfedge>("h:next").vector()),
-          prev_(m.get_halfedge_property<Halfedge>("h:prev").vector()),
-          face_(m.get_halfedge_property<Face>("h:face").vector()),
-          fhalfedge_(m.get_face_property<Halfedge>("f:halfedge").vector()),
+          to_(m.halfedge_to_array()),
+          next_(m.halfedge_next_array()),
+          prev_(m.halfedge_prev_array()),
+          face_(m.halfedge_face_array()),
+          fhalfedge_(m.face_halfedge_array()),
           garbage_(m.has_garbage()) {}
 
     std::string check_halfedges() const;

@@ -87,9 +87,9 @@ MeshStats compute_stats(const HalfedgeMesh& mesh) {
     // Area and volume in one pass over the faces, summed in face order with the formulas of
     // surface_area() and volume() (so the results are the same to the bit).
     const bool closed = is_closed(mesh);
-    const std::vector<Vertex>& to = mesh.get_halfedge_property<Vertex>("h:to").vector();
-    const std::vector<Halfedge>& next = mesh.get_halfedge_property<Halfedge>("h:next").vector();
-    const std::vector<Halfedge>& fh = mesh.get_face_property<Halfedge>("f:halfedge").vector();
+    const std::vector<Vertex>& to = mesh.halfedge_to_array();
+    const std::vector<Halfedge>& next = mesh.halfedge_next_array();
+    const std::vector<Halfedge>& fh = mesh.face_halfedge_array();
     const std::vector<Point>& x = mesh.positions();
     constexpr std::size_t kAhead = 8;
     double area = 0, volume6 = 0;
