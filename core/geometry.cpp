@@ -72,7 +72,7 @@ namespace {
 /// (face_area()), the volume centroid . n / 6 (formula (1.15)), in face order, over the
 /// connectivity arrays with the halfedges of a few faces ahead prefetched (every load runs
 /// the volume for its orientation note; `info` both).
-template <bool kArea, bool kVolume>
+template <bool WithArea, bool WithVolume>
 AreaVolume sum_area_volume(const HalfedgeMesh& mesh) {
     const std::vector<Vertex>& to = mesh.halfedge_to_array();
     const std::vector<Halfedge>& next = mesh.halfedge_next_array();
@@ -93,12 +93,12 @@ AreaVolume sum_area_volume(const HalfedgeMesh& mesh) {
         const Point& x1 = x[to[h1.idx()].idx()];
         const Point& x2 = x[to[h2.idx()].idx()];
         const Vector3 n = (x1 - x0).cross(x2 - x0);
-        if (kArea) area += 0.5 * n.norm();
-        if (kVolume) volume6 += ((x0 + x1 + x2) / 3.0).dot(n);
+        if (WithArea) area += 0.5 * n.norm();
+        if (WithVolume) volume6 += ((x0 + x1 + x2) / 3.0).dot(n);
     }
     AreaVolume r;
-    if (kArea) r.area = area;
-    if (kVolume) r.volume = volume6 / 6.0;
+    if (WithArea) r.area = area;
+    if (WithVolume) r.volume = volume6 / 6.0;
     return r;
 }
 
