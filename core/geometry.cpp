@@ -66,22 +66,20 @@ BoundingBox bounding_box(const HalfedgeMesh& mesh) {
     return box;
 }
 
-double surface_area(const HalfedgeMesh& mesh) {
-    double a = 0;
-    for (Face f : mesh.faces()) a += face_area(mesh, f);
-    return a;
-}
+namespace {
 
-double volume(const HalfedgeMesh& mesh) {
-    // face_centroid() . face_area_vector() summed in face order, in one pass over the
-    // connectivity arrays with the halfedges of a few faces ahead prefetched (every load runs
-    // this for its orientation note).
-    const std::vector<Vertex>& to = mesh.get_halfedge_property<Vertex>("h:to").vector();
-    const std::vector<Halfedge>& next = mesh.get_halfedge_property<Halfedge>("h:next").vector();
-    const std::vector<Halfedge>& fh = mesh.get_face_property<Halfedge>("f:halfedge").vector();
+/// The one area and volume pass: per face, n = (x1 - x0) x (x2 - x0); the area sums |n| / 2
+/// (face_area()), the volume centroid . n / 6 (formula (1.15)), in face order, over the
+/// connectivity arrays with the halfedges of a few faces ahead prefetched (every load runs
+/// the volume for its orientation note; `info` both).
+template <bool WithArea, bool WithVolume>
+AreaVolume sum_area_volume(const HalfedgeMesh& mesh) {
+    const std::vector<Vertex>& to = mesh.halfedge_to_array();
+    const std::vector<Halfedge>& next = mesh.halfedge_next_array();
+    const std::vector<Halfedge>& fh = mesh.face_halfedge_array();
     const std::vector<Point>& x = mesh.positions();
     constexpr std::size_t kAhead = 8;
-    double volume6 = 0;
+    double area = 0, volume6 = 0;
     for (Face f : mesh.faces()) {
         if (f.idx() + kAhead < fh.size()) {
             const Index a = fh[f.idx() + kAhead].idx();
@@ -94,9 +92,31 @@ double volume(const HalfedgeMesh& mesh) {
         const Point& x0 = x[to[h0.idx()].idx()];
         const Point& x1 = x[to[h1.idx()].idx()];
         const Point& x2 = x[to[h2.idx()].idx()];
-        volume6 += ((x0 + x1 + x2) / 3.0).dot((x1 - x0).cross(x2 - x0));
+        const Vector3 n = (x1 - x0).cross(x2 - x0);
+        if (WithArea) area += 0.5 * n.norm();
+        if (WithVolume) volume6 += ((x0 + x1 + x2) / 3.0).dot(n);
     }
-    return volume6 / 6.0;
+    AreaVolume r;
+    if (WithArea) r.area = area;
+    if (WithVolume) r.volume = volume6 / 6.0;
+    return r;
+}
+
+}  // namespace
+
+AreaVolume area_and_volume(const HalfedgeMesh& mesh, bool with_area, bool with_volume) {
+    if (with_area && with_volume) return sum_area_volume<true, true>(mesh);
+    if (with_area) return sum_area_volume<true, false>(mesh);
+    if (with_volume) return sum_area_volume<false, true>(mesh);
+    return {};
+}
+
+double surface_area(const HalfedgeMesh& mesh) {
+    return area_and_volume(mesh, true, false).area;
+}
+
+double volume(const HalfedgeMesh& mesh) {
+    return area_and_volume(mesh, false, true).volume;
 }
 
 bool is_closed(const HalfedgeMesh& mesh) {

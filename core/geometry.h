@@ -36,6 +36,12 @@ double surface_area(const HalfedgeMesh& mesh);
 /// V = 1/6 sum_k g_k . N_k with g_k the centroid and N_k the area vector of triangle k.
 /// Only meaningful for closed meshes (see is_closed()).
 double volume(const HalfedgeMesh& mesh);
+/// surface_area() and volume() (the same to the bit) in one pass over the faces; only the
+/// sums asked for are made (the other stays 0). O(faces).
+struct AreaVolume {
+    double area = 0, volume = 0;
+};
+AreaVolume area_and_volume(const HalfedgeMesh& mesh, bool with_area, bool with_volume);
 /// Whether the mesh has faces and no boundary edges.
 bool is_closed(const HalfedgeMesh& mesh);
 /// Cotangent of the corner opposite to h in face(h) (0 for boundary h or a degenerate face).

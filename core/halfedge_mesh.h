@@ -271,6 +271,24 @@ public:
     /// Throws InvalidArgument for another count.
     void set_positions(std::vector<Point> positions);
 
+    // ---- connectivity arrays -------------------------------------------------------------
+    // The built-in arrays behind navigation, indexed by element index, for passes over every
+    // element (to_vertex(h) is halfedge_to_array()[h.idx()], and so on). The const overloads
+    // read; the mutable ones are write accesses (a shared array is copied first, see
+    // core/property.h) for bulk construction, whose callers keep the invariants.
+    const std::vector<Vertex>& halfedge_to_array() const { return hto_.vector(); }
+    const std::vector<Halfedge>& halfedge_next_array() const { return hnext_.vector(); }
+    const std::vector<Halfedge>& halfedge_prev_array() const { return hprev_.vector(); }
+    const std::vector<Face>& halfedge_face_array() const { return hface_.vector(); }
+    const std::vector<Halfedge>& vertex_halfedge_array() const { return vhalfedge_.vector(); }
+    const std::vector<Halfedge>& face_halfedge_array() const { return fhalfedge_.vector(); }
+    std::vector<Vertex>& halfedge_to_array() { return hto_.vector(); }
+    std::vector<Halfedge>& halfedge_next_array() { return hnext_.vector(); }
+    std::vector<Halfedge>& halfedge_prev_array() { return hprev_.vector(); }
+    std::vector<Face>& halfedge_face_array() { return hface_.vector(); }
+    std::vector<Halfedge>& vertex_halfedge_array() { return vhalfedge_.vector(); }
+    std::vector<Halfedge>& face_halfedge_array() { return fhalfedge_.vector(); }
+
     // ---- revisions (see core/property.h) --------------------------------------------------
     /// What a cache or a GPU copy of the mesh was made from. Each number changes whenever its
     /// part may have changed (any write access), and copies share it while they share that

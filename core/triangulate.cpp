@@ -230,15 +230,30 @@ void PolygonTriangulator::sort_sweep() {
     }
 }
 
+namespace {
+/// The corners before and after corner v of a polygon of n corners.
+inline Index corner_before(Index v, Index n) {
+    return v == 0 ? n - 1 : v - 1;
+}
+inline Index corner_after(Index v, Index n) {
+    return v + 1 == n ? 0 : v + 1;
+}
+}  // namespace
+
 bool PolygonTriangulator::monotone(std::vector<PolygonTriangle>& out) {
+    const std::size_t before = out.size();
+    sort_corners_for_sweep();
+    if (!find_monotone_diagonals()) return false;
+    if (!link_pieces()) return false;
+    if (!triangulate_pieces(out)) return false;
+    return is_valid_triangulation(out, before);
+}
+
+// 1. The sweep order, top to bottom: larger y first, then smaller x, then lower index
+//    (a symbolic rotation of the sweep line that leaves no two corners level).
+void PolygonTriangulator::sort_corners_for_sweep() {
     const Index n = Index(xy_.size() / 2);
     const double* xy = xy_.data();
-    const std::size_t before = out.size();
-    auto prev = [n](Index v) { return v == 0 ? n - 1 : v - 1; };
-    auto next = [n](Index v) { return v + 1 == n ? 0 : v + 1; };
-
-    // 1. The sweep order, top to bottom: larger y first, then smaller x, then lower index
-    //    (a symbolic rotation of the sweep line that leaves no two corners level).
     sweep_.resize(n);
     for (Index i = 0; i < n; ++i) sweep_[i] = {~order_key(xy[2 * i + 1]), order_key(xy[2 * i]), i};
     sort_sweep();
@@ -248,8 +263,12 @@ bool PolygonTriangulator::monotone(std::vector<PolygonTriangle>& out) {
         order_[i] = sweep_[i].corner;
         rank_[order_[i]] = i;
     }
+}
 
-    // 2. Diagonals that split the polygon into y-monotone pieces (de Berg et al., 3.2).
+// 2. Diagonals that split the polygon into y-monotone pieces (de Berg et al., 3.2).
+bool PolygonTriangulator::find_monotone_diagonals() {
+    const Index n = Index(xy_.size() / 2);
+    const double* xy = xy_.data();
     helper_.assign(n, kInvalidIndex);
     is_merge_.assign(n, 0);
     diagonals_.clear();
@@ -257,7 +276,7 @@ bool PolygonTriangulator::monotone(std::vector<PolygonTriangle>& out) {
     Tree tree;
     std::vector<Tree::iterator> where(n, tree.end());
     auto insert = [&](Index e, Index helper) {
-        const Index l = next(e);
+        const Index l = corner_after(e, n);
         const StatusEdge key{xy[2 * e], xy[2 * e + 1], xy[2 * l], xy[2 * l + 1], rank_[e], e};
         const auto [it, inserted] = tree.insert(key);
         if (!inserted) return false;
@@ -279,7 +298,7 @@ bool PolygonTriangulator::monotone(std::vector<PolygonTriangle>& out) {
         if (is_merge_[helper_[e]]) diagonals_.push_back({v, helper_[e]});
     };
     for (Index v : order_) {
-        const Index p = prev(v), q = next(v);
+        const Index p = corner_before(v, n), q = corner_after(v, n);
         const bool p_below = rank_[p] > rank_[v], q_below = rank_[q] > rank_[v];
         const bool convex = orient(p, v, q) > 0;
         if (p_below && q_below) {
@@ -313,16 +332,21 @@ bool PolygonTriangulator::monotone(std::vector<PolygonTriangle>& out) {
             helper_[e] = v;
         }
     }
+    return true;
+}
 
-    // 3. The pieces: halfedge h < n runs along the polygon from corner h; diagonal d gives
-    //    n + 2d (from its first corner) and n + 2d + 1. Around each corner, the halfedges
-    //    leaving it sorted counter-clockwise from the polygon edge give the next halfedge
-    //    of each piece (the one clockwise after the way back).
+// 3a. The pieces: halfedge h < n runs along the polygon from corner h; diagonal d gives
+//     n + 2d (from its first corner) and n + 2d + 1. Around each corner, the halfedges
+//     leaving it sorted counter-clockwise from the polygon edge give the next halfedge
+//     of each piece (the one clockwise after the way back).
+bool PolygonTriangulator::link_pieces() {
+    const Index n = Index(xy_.size() / 2);
+    const double* xy = xy_.data();
     const Index n_diag = Index(diagonals_.size());
     const Index n_half = n + 2 * n_diag;
     auto origin = [&](Index h) { return h < n ? h : diagonals_[(h - n) / 2][(h - n) & 1]; };
     auto target = [&](Index h) {
-        return h < n ? next(h) : diagonals_[(h - n) / 2][1 - ((h - n) & 1)];
+        return h < n ? corner_after(h, n) : diagonals_[(h - n) / 2][1 - ((h - n) & 1)];
     };
     out_begin_.assign(n + 1, 0);
     for (const auto& d : diagonals_) {
@@ -342,10 +366,11 @@ bool PolygonTriangulator::monotone(std::vector<PolygonTriangle>& out) {
         const auto first = out_list_.begin() + out_begin_[v];
         const auto last = out_list_.begin() + out_begin_[v + 1];
         if (first == last) {
-            half_next_[prev(v)] = v;
+            half_next_[corner_before(v, n)] = v;
             continue;
         }
-        const double rx = xy[2 * next(v)] - xy[2 * v], ry = xy[2 * next(v) + 1] - xy[2 * v + 1];
+        const Index w = corner_after(v, n);
+        const double rx = xy[2 * w] - xy[2 * v], ry = xy[2 * w + 1] - xy[2 * v + 1];
         auto half = [&](double dx, double dy) {
             const double c = rx * dy - ry * dx;
             return (c > 0 || (c == 0 && rx * dx + ry * dy > 0)) ? 0 : 1;
@@ -361,12 +386,22 @@ bool PolygonTriangulator::monotone(std::vector<PolygonTriangle>& out) {
             if (c != 0) return c > 0;
             return a < b;
         });
-        half_next_[prev(v)] = *(last - 1);
+        half_next_[corner_before(v, n)] = *(last - 1);
         for (auto it = first; it != last; ++it) {
             const Index back = n + ((*it - n) ^ 1);  // the diagonal's other half, into v
             half_next_[back] = it == first ? v : *(it - 1);
         }
     }
+    return true;
+}
+
+// 3b. Each piece walked along half_next_ and triangulated; false unless the diagonals cut
+//     the polygon into exactly n_diag + 1 pieces (a plane map).
+bool PolygonTriangulator::triangulate_pieces(std::vector<PolygonTriangle>& out) {
+    const Index n = Index(xy_.size() / 2);
+    const Index n_diag = Index(diagonals_.size());
+    const Index n_half = n + 2 * n_diag;
+    auto origin = [&](Index h) { return h < n ? h : diagonals_[(h - n) / 2][(h - n) & 1]; };
     visited_.assign(n_half, 0);
     Index n_pieces = 0;
     for (Index h0 = 0; h0 < n_half; ++h0) {
@@ -382,13 +417,18 @@ bool PolygonTriangulator::monotone(std::vector<PolygonTriangle>& out) {
         ++n_pieces;
         if (!triangulate_piece(out)) return false;
     }
-    if (n_pieces != n_diag + 1) return false;  // the diagonals do not cut a plane map
+    return n_pieces == n_diag + 1;
+}
 
-    // 4. The check: n - 2 triangles, no repeated corner, none inverted, the polygon's area.
+// 4. The check: n - 2 triangles, no repeated corner, none inverted, the polygon's area.
+bool PolygonTriangulator::is_valid_triangulation(const std::vector<PolygonTriangle>& out,
+                                                 std::size_t before) const {
+    const Index n = Index(xy_.size() / 2);
+    const double* xy = xy_.data();
     if (out.size() - before != std::size_t(n) - 2) return false;
     double area2 = 0, sum = 0, sum_abs = 0;
     for (Index i = 0; i < n; ++i) {
-        const Index j = next(i);
+        const Index j = corner_after(i, n);
         area2 += xy[2 * i] * xy[2 * j + 1] - xy[2 * j] * xy[2 * i + 1];
     }
     constexpr double kInvertedTolerance = 1e-14;  // coordinates are scaled to about [-1, 1]

@@ -38,7 +38,14 @@ public:
                                     std::vector<PolygonTriangle>& out);
 
 private:
+    // monotone() in four stages (triangulate.cpp): the sweep order, the diagonals of the
+    // monotone partition, the pieces the diagonals cut (each triangulated), the check.
     bool monotone(std::vector<PolygonTriangle>& out);
+    void sort_corners_for_sweep();
+    bool find_monotone_diagonals();
+    bool link_pieces();
+    bool triangulate_pieces(std::vector<PolygonTriangle>& out);
+    bool is_valid_triangulation(const std::vector<PolygonTriangle>& out, std::size_t before) const;
     bool triangulate_piece(std::vector<PolygonTriangle>& out);
     bool ear_clip(const std::vector<Point>& p, const Vector3& normal,
                   std::vector<PolygonTriangle>& out);

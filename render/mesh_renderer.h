@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "core/algorithms/coloring.h"
-#include "core/algorithms/decimation.h"
+#include "core/algorithms/level_of_detail.h"
 #include "core/halfedge_mesh.h"
 #include "core/io/image_io.h"
 #include "render/gl_program.h"

@@ -15,7 +15,7 @@
 #include "app/viewer/job_runner.h"
 #include "app/viewer/log.h"
 #include "app/viewer/panels.h"
-#include "core/algorithms/decimation.h"
+#include "core/algorithms/level_of_detail.h"
 #include "core/halfedge_mesh.h"
 #include "core/io/image_io.h"
 #include "core/mesh_builder.h"

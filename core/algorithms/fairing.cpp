@@ -190,15 +190,15 @@ bool finite_and_bounded(const Point& p) {
            p.cwiseAbs().maxCoeff() <= kDivergenceBound;
 }
 
-struct AreaVolume {
+struct CandidateSums {
     double area = std::numeric_limits<double>::quiet_NaN();  ///< NaN: not computed
     double volume = 0;
 };
 
 /// Signed volume (as geometry.h's volume()) over positions P and, with `with_area`, the
 /// surface area (the square roots are most of the pass's cost).
-AreaVolume area_volume(const HalfedgeMesh& mesh, const Positions& P, bool with_area) {
-    AreaVolume r;
+CandidateSums area_volume(const HalfedgeMesh& mesh, const Positions& P, bool with_area) {
+    CandidateSums r;
     double area = 0, volume = 0;
     for (Face f : mesh.faces()) {
         const auto v = mesh.face_vertices(f);
@@ -679,7 +679,7 @@ private:
     const bool implicit_;
     const bool fast_;  ///< vertex-space umbrella, no matrix
     bool closed_ = false;
-    AreaVolume last_;  ///< of the last good positions, where known (area: NaN when not)
+    CandidateSums last_;  ///< of the last good positions, where known (area: NaN when not)
     bool last_known_ = false;
     double v0_ = 0;
     bool check_volume_sign_ = false;
@@ -1015,7 +1015,7 @@ bool FairingRun::check_area_and_volume(int iteration, const Positions& P, bool c
     }
     if (area_check && !(last_known_ && last_.area >= 0))
         last_ = area_volume(mesh_, P, true);  // the last good state's area, once
-    const AreaVolume g = area_volume(mesh_, cand_, area_check);
+    const CandidateSums g = area_volume(mesh_, cand_, area_check);
     if (area_check && last_.area > 0 && g.area < kAreaCollapse * last_.area) {
         stop(iteration, "the surface area fell to " + format_percent(g.area / last_.area) +
                             " of the previous iteration's" + instability_hint());

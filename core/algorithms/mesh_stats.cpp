@@ -4,8 +4,6 @@
 #include <utility>
 #include <vector>
 
-#include "core/prefetch.h"
-
 namespace trilab {
 
 namespace {
@@ -84,33 +82,11 @@ MeshStats compute_stats(const HalfedgeMesh& mesh) {
             s.bbox.max = s.bbox.max.cwiseMax(p);
         }
     }
-    // Area and volume in one pass over the faces, summed in face order with the formulas of
-    // surface_area() and volume() (so the results are the same to the bit).
+    // Area and volume in one pass over the faces (the volume only for a closed mesh).
     const bool closed = is_closed(mesh);
-    const std::vector<Vertex>& to = mesh.get_halfedge_property<Vertex>("h:to").vector();
-    const std::vector<Halfedge>& next = mesh.get_halfedge_property<Halfedge>("h:next").vector();
-    const std::vector<Halfedge>& fh = mesh.get_face_property<Halfedge>("f:halfedge").vector();
-    const std::vector<Point>& x = mesh.positions();
-    constexpr std::size_t kAhead = 8;
-    double area = 0, volume6 = 0;
-    for (Face f : mesh.faces()) {
-        if (f.idx() + kAhead < fh.size()) {
-            const Index a = fh[f.idx() + kAhead].idx();
-            if (a < next.size()) {
-                prefetch(&next[a]);
-                prefetch(&to[a]);
-            }
-        }
-        const Halfedge h0 = fh[f.idx()], h1 = next[h0.idx()], h2 = next[h1.idx()];
-        const Point& x0 = x[to[h0.idx()].idx()];
-        const Point& x1 = x[to[h1.idx()].idx()];
-        const Point& x2 = x[to[h2.idx()].idx()];
-        const Vector3 n = (x1 - x0).cross(x2 - x0);
-        area += 0.5 * n.norm();
-        if (closed) volume6 += ((x0 + x1 + x2) / 3.0).dot(n);
-    }
-    s.area = area;
-    if (closed) s.volume = volume6 / 6.0;
+    const AreaVolume sums = area_and_volume(mesh, true, closed);
+    s.area = sums.area;
+    if (closed) s.volume = sums.volume;
     return s;
 }
 

@@ -139,12 +139,12 @@ struct In {
         : nv(Index(m.vertices_size())),
           ne(Index(m.edges_size())),
           nf(Index(m.faces_size())),
-          to(m.get_halfedge_property<Vertex>("h:to").vector().data()),
-          next(m.get_halfedge_property<Halfedge>("h:next").vector().data()),
-          prev(m.get_halfedge_property<Halfedge>("h:prev").vector().data()),
-          face(m.get_halfedge_property<Face>("h:face").vector().data()),
-          vh(m.get_vertex_property<Halfedge>("v:halfedge").vector().data()),
-          fh(m.get_face_property<Halfedge>("f:halfedge").vector().data()),
+          to(m.halfedge_to_array().data()),
+          next(m.halfedge_next_array().data()),
+          prev(m.halfedge_prev_array().data()),
+          face(m.halfedge_face_array().data()),
+          vh(m.vertex_halfedge_array().data()),
+          fh(m.face_halfedge_array().data()),
           x(m.positions().data()) {}
     Index to_i(Index h) const { return to[h].idx(); }
     Index from_i(Index h) const { return to[h ^ 1u].idx(); }
@@ -162,12 +162,12 @@ struct Out {
     Halfedge* fh;
     Point* p;
     explicit Out(HalfedgeMesh& m)
-        : to(m.get_halfedge_property<Vertex>("h:to").vector().data()),
-          next(m.get_halfedge_property<Halfedge>("h:next").vector().data()),
-          prev(m.get_halfedge_property<Halfedge>("h:prev").vector().data()),
-          face(m.get_halfedge_property<Face>("h:face").vector().data()),
-          vh(m.get_vertex_property<Halfedge>("v:halfedge").vector().data()),
-          fh(m.get_face_property<Halfedge>("f:halfedge").vector().data()),
+        : to(m.halfedge_to_array().data()),
+          next(m.halfedge_next_array().data()),
+          prev(m.halfedge_prev_array().data()),
+          face(m.halfedge_face_array().data()),
+          vh(m.vertex_halfedge_array().data()),
+          fh(m.face_halfedge_array().data()),
           p(m.positions().data()) {}
     void link(Index h, Index n) {
         next[h] = Halfedge(n);

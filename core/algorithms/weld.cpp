@@ -33,8 +33,8 @@
 
 #include "core/algorithms/coincident.h"
 #include "core/errors.h"
-#include "core/mesh_builder.h"
 #include "core/number_text.h"
+#include "core/mesh_builder.h"
 
 namespace trilab {
 
@@ -82,40 +82,71 @@ private:
     std::vector<Index> parent_;
 };
 
-}  // namespace
+// weld_coincident_vertices() in four stages, one method each: the glues (pairs of coincident
+// boundary edges), the vertex sets joined through them (undoing glues that would break the
+// mesh), the welded mesh, the report.
+class Welder {
+public:
+    Welder(const HalfedgeMesh& mesh, const WeldOptions& options)
+        : mesh_(mesh),
+          options_(options),
+          n_(mesh.vertices_size()),
+          groups_(coincident_groups(mesh, options)),
+          group_(groups_.group_of(n_)),
+          sets_(n_) {}
 
-WeldResult weld_coincident_vertices(const HalfedgeMesh& mesh, const WeldOptions& options) {
-    const std::size_t n = mesh.vertices_size();
-    std::vector<std::uint8_t> deleted(n, 1);
-    for (Vertex v : mesh.vertices()) deleted[v.idx()] = 0;
-    const CoincidentGroups groups =
-        find_coincident_points(mesh.positions().data(), n, deleted.data(), options.tolerance);
-    const std::vector<Index> group = groups.group_of(n);
-    WeldResult result;
-    WeldReport& report = result.report;
-    report.groups = groups.size();
-    report.coincident_vertices = groups.members.size();
-    auto key = [&](Vertex v) {
-        const Index g = group[v.idx()];
-        return g != kInvalidIndex ? std::uint64_t(g) : std::uint64_t(groups.size()) + v.idx();
-    };
+    void find_glues();
+    void join_vertices();
+    void build_mesh_into(WeldResult& result);
+    void fill_report(WeldResult& result);
 
-    // Edges with an end in a group, sorted by their ends' ids: a run of equal ids is a set of
-    // edges that a weld would make one.
-    std::vector<KeyedEdge> keyed;
+private:
+    static CoincidentGroups coincident_groups(const HalfedgeMesh& mesh,
+                                              const WeldOptions& options) {
+        const std::size_t n = mesh.vertices_size();
+        std::vector<std::uint8_t> deleted(n, 1);
+        for (Vertex v : mesh.vertices()) deleted[v.idx()] = 0;
+        return find_coincident_points(mesh.positions().data(), n, deleted.data(),
+                                      options.tolerance);
+    }
+    /// The id of v's group, or a unique id above the groups' for a vertex in none.
+    std::uint64_t key(Vertex v) const {
+        const Index g = group_[v.idx()];
+        return g != kInvalidIndex ? std::uint64_t(g) : std::uint64_t(groups_.size()) + v.idx();
+    }
+    Halfedge boundary_half(Edge e) const {
+        const Halfedge h = HalfedgeMesh::halfedge(e, 0);
+        return mesh_.is_boundary(h) ? h : HalfedgeMesh::twin(h);
+    }
+    void unite_through_glues(const std::vector<Index>& target);
+    bool mark_broken_vertices(std::vector<std::uint8_t>& bad,
+                              const std::vector<Index>& glue_of_edge);
+
+    const HalfedgeMesh& mesh_;
+    const WeldOptions& options_;
+    const std::size_t n_;
+    const CoincidentGroups groups_;
+    const std::vector<Index> group_;
+    std::vector<KeyedEdge> keyed_;
+    std::vector<Glue> glues_;
+    std::size_t open_many_faces_ = 0, open_orientation_ = 0, undone_ = 0;
+    UnionFind sets_;
+    std::vector<std::pair<std::pair<Index, Index>, Index>> pairs_;  // root pair, edge
+};
+
+// Edges with an end in a group, sorted by their ends' ids: a run of equal ids is a set of
+// edges that a weld would make one; a run of two boundary edges running in opposite
+// directions is a glue.
+void Welder::find_glues() {
+    const HalfedgeMesh& mesh = mesh_;
     for (Edge e : mesh.edges()) {
         const Vertex a = mesh.vertex(e, 0), b = mesh.vertex(e, 1);
-        if (group[a.idx()] == kInvalidIndex && group[b.idx()] == kInvalidIndex) continue;
+        if (group_[a.idx()] == kInvalidIndex && group_[b.idx()] == kInvalidIndex) continue;
         const std::uint64_t ka = key(a), kb = key(b);
-        keyed.push_back({std::min(ka, kb), std::max(ka, kb), e.idx()});
+        keyed_.push_back({std::min(ka, kb), std::max(ka, kb), e.idx()});
     }
-    std::sort(keyed.begin(), keyed.end());
-    std::vector<Glue> glues;
-    std::size_t open_many_faces = 0, open_orientation = 0;
-    auto boundary_half = [&](Edge e) {
-        const Halfedge h = HalfedgeMesh::halfedge(e, 0);
-        return mesh.is_boundary(h) ? h : HalfedgeMesh::twin(h);
-    };
+    std::sort(keyed_.begin(), keyed_.end());
+    const std::vector<KeyedEdge>& keyed = keyed_;
     for (std::size_t i = 0; i < keyed.size();) {
         std::size_t j = i + 1;
         while (j < keyed.size() && keyed[j].lo == keyed[i].lo && keyed[j].hi == keyed[i].hi) ++j;
@@ -130,85 +161,100 @@ WeldResult weld_coincident_vertices(const HalfedgeMesh& mesh, const WeldOptions&
             const bool opposite = key(mesh.from_vertex(h1)) == key(mesh.to_vertex(h2)) &&
                                   key(mesh.to_vertex(h1)) == key(mesh.from_vertex(h2));
             if (opposite && mesh.face(HalfedgeMesh::twin(h1)) != mesh.face(HalfedgeMesh::twin(h2)))
-                glues.push_back({h1, h2, true});
+                glues_.push_back({h1, h2, true});
             else
-                open_orientation += 2;
+                open_orientation_ += 2;
         } else if (run >= 2) {
-            open_many_faces += boundary;
+            open_many_faces_ += boundary;
         }
         i = j;
     }
+}
 
-    // Join through the glues; undo the glues at vertices where the result would break (a
-    // face with two corners in one vertex, two edges joining the same two vertices).
-    UnionFind sets(n);
-    std::vector<Index> target(groups.size(), kInvalidIndex);  // where isolated members go
-    for (std::size_t g = 0; g < groups.size(); ++g) {
-        target[g] = *groups.begin(g);
-        for (const Index* m = groups.begin(g); m != groups.end(g); ++m)
-            if (!mesh.is_isolated(Vertex(*m))) {
+// The sets of the active glues' ends, with each isolated member of a group joined to
+// `target` of its group.
+void Welder::unite_through_glues(const std::vector<Index>& target) {
+    sets_.reset();
+    for (const Glue& gl : glues_) {
+        if (!gl.active) continue;
+        sets_.unite(mesh_.from_vertex(gl.h1).idx(), mesh_.to_vertex(gl.h2).idx());
+        sets_.unite(mesh_.to_vertex(gl.h1).idx(), mesh_.from_vertex(gl.h2).idx());
+    }
+    for (std::size_t g = 0; g < groups_.size(); ++g)
+        for (const Index* m = groups_.begin(g); m != groups_.end(g); ++m)
+            if (mesh_.is_isolated(Vertex(*m))) sets_.unite(*m, target[g]);
+}
+
+// Marks (in `bad`, by set root) the vertices where the joined mesh would break: a face with
+// two corners in one vertex, two edges joining the same two vertices that are not one glued
+// pair. True when there is one.
+bool Welder::mark_broken_vertices(std::vector<std::uint8_t>& bad,
+                                  const std::vector<Index>& glue_of_edge) {
+    const HalfedgeMesh& mesh = mesh_;
+    std::fill(bad.begin(), bad.end(), 0);
+    bool any_bad = false;
+    for (Face f : mesh.faces()) {
+        const auto c = mesh.face_vertices(f);
+        const Index r0 = sets_.find(c[0].idx()), r1 = sets_.find(c[1].idx()),
+                    r2 = sets_.find(c[2].idx());
+        if (r0 == r1 || r1 == r2 || r0 == r2) {
+            bad[r0] = bad[r1] = bad[r2] = 1;
+            any_bad = true;
+        }
+    }
+    auto& pairs = pairs_;
+    pairs.clear();
+    for (const KeyedEdge& k : keyed_) {
+        const Edge e(k.edge);
+        const Index a = sets_.find(mesh.vertex(e, 0).idx()),
+                    b = sets_.find(mesh.vertex(e, 1).idx());
+        pairs.push_back({{std::min(a, b), std::max(a, b)}, k.edge});
+    }
+    std::sort(pairs.begin(), pairs.end());
+    for (std::size_t i = 0; i < pairs.size();) {
+        std::size_t j = i + 1;
+        while (j < pairs.size() && pairs[j].first == pairs[i].first) ++j;
+        if (j - i > 1) {
+            // Allowed only as one glued pair.
+            const Index x = glue_of_edge[pairs[i].second];
+            const bool glued = j - i == 2 && x != kInvalidIndex && glues_[x].active &&
+                               x == glue_of_edge[pairs[i + 1].second];
+            if (!glued) {
+                bad[pairs[i].first.first] = bad[pairs[i].first.second] = 1;
+                any_bad = true;
+            }
+        }
+        i = j;
+    }
+    return any_bad;
+}
+
+// Join through the glues; undo the glues at vertices where the result would break (a
+// face with two corners in one vertex, two edges joining the same two vertices).
+void Welder::join_vertices() {
+    std::vector<Index> target(groups_.size(), kInvalidIndex);  // where isolated members go
+    for (std::size_t g = 0; g < groups_.size(); ++g) {
+        target[g] = *groups_.begin(g);
+        for (const Index* m = groups_.begin(g); m != groups_.end(g); ++m)
+            if (!mesh_.is_isolated(Vertex(*m))) {
                 target[g] = *m;
                 break;
             }
     }
-    std::vector<Index> glue_of_edge(mesh.edges_size(), kInvalidIndex);
-    for (std::size_t g = 0; g < glues.size(); ++g) {
-        glue_of_edge[HalfedgeMesh::edge(glues[g].h1).idx()] = Index(g);
-        glue_of_edge[HalfedgeMesh::edge(glues[g].h2).idx()] = Index(g);
+    std::vector<Index> glue_of_edge(mesh_.edges_size(), kInvalidIndex);
+    for (std::size_t g = 0; g < glues_.size(); ++g) {
+        glue_of_edge[HalfedgeMesh::edge(glues_[g].h1).idx()] = Index(g);
+        glue_of_edge[HalfedgeMesh::edge(glues_[g].h2).idx()] = Index(g);
     }
-    std::size_t undone = 0;
-    std::vector<std::uint8_t> bad(n, 0);
-    std::vector<std::pair<std::pair<Index, Index>, Index>> pairs;  // root pair, edge
+    std::vector<std::uint8_t> bad(n_, 0);
     for (;;) {
-        sets.reset();
-        for (const Glue& gl : glues) {
-            if (!gl.active) continue;
-            sets.unite(mesh.from_vertex(gl.h1).idx(), mesh.to_vertex(gl.h2).idx());
-            sets.unite(mesh.to_vertex(gl.h1).idx(), mesh.from_vertex(gl.h2).idx());
-        }
-        for (std::size_t g = 0; g < groups.size(); ++g)
-            for (const Index* m = groups.begin(g); m != groups.end(g); ++m)
-                if (mesh.is_isolated(Vertex(*m))) sets.unite(*m, target[g]);
-        std::fill(bad.begin(), bad.end(), 0);
-        bool any_bad = false;
-        for (Face f : mesh.faces()) {
-            const auto c = mesh.face_vertices(f);
-            const Index r0 = sets.find(c[0].idx()), r1 = sets.find(c[1].idx()),
-                        r2 = sets.find(c[2].idx());
-            if (r0 == r1 || r1 == r2 || r0 == r2) {
-                bad[r0] = bad[r1] = bad[r2] = 1;
-                any_bad = true;
-            }
-        }
-        pairs.clear();
-        for (const KeyedEdge& k : keyed) {
-            const Edge e(k.edge);
-            const Index a = sets.find(mesh.vertex(e, 0).idx()),
-                        b = sets.find(mesh.vertex(e, 1).idx());
-            pairs.push_back({{std::min(a, b), std::max(a, b)}, k.edge});
-        }
-        std::sort(pairs.begin(), pairs.end());
-        for (std::size_t i = 0; i < pairs.size();) {
-            std::size_t j = i + 1;
-            while (j < pairs.size() && pairs[j].first == pairs[i].first) ++j;
-            if (j - i > 1) {
-                // Allowed only as one glued pair.
-                const Index x = glue_of_edge[pairs[i].second];
-                const bool glued = j - i == 2 && x != kInvalidIndex && glues[x].active &&
-                                   x == glue_of_edge[pairs[i + 1].second];
-                if (!glued) {
-                    bad[pairs[i].first.first] = bad[pairs[i].first.second] = 1;
-                    any_bad = true;
-                }
-            }
-            i = j;
-        }
-        if (!any_bad) break;
+        unite_through_glues(target);
+        if (!mark_broken_vertices(bad, glue_of_edge)) break;
         std::size_t undone_now = 0;
-        for (Glue& gl : glues) {
+        for (Glue& gl : glues_) {
             if (!gl.active) continue;
-            const Index r = sets.find(mesh.from_vertex(gl.h1).idx());
-            const Index s = sets.find(mesh.to_vertex(gl.h1).idx());
+            const Index r = sets_.find(mesh_.from_vertex(gl.h1).idx());
+            const Index s = sets_.find(mesh_.to_vertex(gl.h1).idx());
             if (bad[r] || bad[s]) {
                 gl.active = false;
                 ++undone_now;
@@ -216,11 +262,14 @@ WeldResult weld_coincident_vertices(const HalfedgeMesh& mesh, const WeldOptions&
         }
         if (undone_now == 0)  // only isolated vertices were joined: cannot break anything
             throw Error("weld_coincident_vertices: internal error: a check failed without glues");
-        undone += undone_now;
+        undone_ += undone_now;
     }
+}
 
-    // The welded mesh: one vertex per set, in the order of the sets' smallest members.
-    std::vector<Index> new_index(n, kInvalidIndex);
+// The welded mesh: one vertex per set, in the order of the sets' smallest members.
+void Welder::build_mesh_into(WeldResult& result) {
+    const HalfedgeMesh& mesh = mesh_;
+    std::vector<Index> new_index(n_, kInvalidIndex);
     PolygonSoup soup;
     const auto normals = mesh.get_vertex_property<Vector3>("v:normal");
     const auto colors = mesh.get_vertex_property<Color>("v:color");
@@ -228,7 +277,7 @@ WeldResult weld_coincident_vertices(const HalfedgeMesh& mesh, const WeldOptions&
     const auto huv = mesh.get_halfedge_property<TexCoord>("h:texcoord");
     std::vector<std::size_t> joined;  // per new vertex: how many vertices it joins
     for (Vertex v : mesh.vertices()) {
-        const Index r = sets.find(v.idx());
+        const Index r = sets_.find(v.idx());
         if (r != v.idx()) continue;
         new_index[r] = Index(soup.positions.size());
         soup.positions.push_back(mesh.position(v));
@@ -237,16 +286,16 @@ WeldResult weld_coincident_vertices(const HalfedgeMesh& mesh, const WeldOptions&
         if (colors) soup.colors.push_back(colors[v]);
         if (vuv) soup.texcoords.push_back(vuv[v]);
     }
-    result.vertex_map.assign(n, kInvalidIndex);
-    if (options.tolerance > 0)
+    result.vertex_map.assign(n_, kInvalidIndex);
+    if (options_.tolerance > 0)
         std::fill(soup.positions.begin(), soup.positions.end(), Point::Zero());
     for (Vertex v : mesh.vertices()) {
-        const Index w = new_index[sets.find(v.idx())];
+        const Index w = new_index[sets_.find(v.idx())];
         result.vertex_map[v.idx()] = w;
         ++joined[w];
-        if (options.tolerance > 0) soup.positions[w] += mesh.position(v);
+        if (options_.tolerance > 0) soup.positions[w] += mesh.position(v);
     }
-    if (options.tolerance > 0)
+    if (options_.tolerance > 0)
         for (std::size_t w = 0; w < soup.positions.size(); ++w)
             soup.positions[w] /= double(joined[w]);
     soup.corners.reserve(3 * mesh.n_faces());
@@ -262,33 +311,38 @@ WeldResult weld_coincident_vertices(const HalfedgeMesh& mesh, const WeldOptions&
     result.mesh = build_mesh(soup, built);
     if (built.detached_faces || built.nonmanifold_vertices_split || built.degenerate_faces_dropped)
         throw Error("weld_coincident_vertices: internal error: the welded faces are not manifold");
+}
 
-    // The report.
+// The report: counts, and a note for each reason something was left apart.
+void Welder::fill_report(WeldResult& result) {
+    WeldReport& report = result.report;
+    report.groups = groups_.size();
+    report.coincident_vertices = groups_.members.size();
     std::size_t glued = 0;
-    for (const Glue& gl : glues) glued += gl.active;
+    for (const Glue& gl : glues_) glued += gl.active;
     report.edges_glued = glued;
-    report.vertices_joined = mesh.n_vertices() - result.mesh.n_vertices();
-    for (std::size_t g = 0; g < groups.size(); ++g) {
+    report.vertices_joined = mesh_.n_vertices() - result.mesh.n_vertices();
+    for (std::size_t g = 0; g < groups_.size(); ++g) {
         std::vector<Index> roots;
-        for (const Index* m = groups.begin(g); m != groups.end(g); ++m)
-            roots.push_back(sets.find(*m));
+        for (const Index* m = groups_.begin(g); m != groups_.end(g); ++m)
+            roots.push_back(sets_.find(*m));
         std::sort(roots.begin(), roots.end());
         report.vertices_left_apart +=
             std::size_t(std::unique(roots.begin(), roots.end()) - roots.begin()) - 1;
     }
-    report.edges_left_open = open_many_faces + open_orientation + 2 * undone;
-    if (open_many_faces)
+    report.edges_left_open = open_many_faces_ + open_orientation_ + 2 * undone_;
+    if (open_many_faces_)
         report.notes.push_back(
-            count_text(open_many_faces, "coincident boundary edge", "coincident boundary edges") +
+            count_text(open_many_faces_, "coincident boundary edge", "coincident boundary edges") +
             " left open: three or more faces would meet at the edge");
-    if (open_orientation)
+    if (open_orientation_)
         report.notes.push_back(
-            count_text(open_orientation, "coincident boundary edge", "coincident boundary edges") +
+            count_text(open_orientation_, "coincident boundary edge", "coincident boundary edges") +
             " left open: the faces on the two sides run the same way along the edge (inconsistent "
             "orientation)");
-    if (undone)
+    if (undone_)
         report.notes.push_back(
-            count_text(2 * undone, "coincident boundary edge", "coincident boundary edges") +
+            count_text(2 * undone_, "coincident boundary edge", "coincident boundary edges") +
             " left open: gluing would give a face two corners at one vertex or two edges "
             "between the same vertices");
     if (report.vertices_left_apart)
@@ -296,6 +350,17 @@ WeldResult weld_coincident_vertices(const HalfedgeMesh& mesh, const WeldOptions&
             count_text(report.vertices_left_apart, "coincident vertex", "coincident vertices") +
             " left apart: joining would make a non-manifold vertex (surfaces touching at a "
             "point, or along edges that cannot be glued)");
+}
+
+}  // namespace
+
+WeldResult weld_coincident_vertices(const HalfedgeMesh& mesh, const WeldOptions& options) {
+    Welder welder(mesh, options);
+    welder.find_glues();
+    welder.join_vertices();
+    WeldResult result;
+    welder.build_mesh_into(result);
+    welder.fill_report(result);
     return result;
 }
 

@@ -379,124 +379,154 @@ std::string temporary_file_prefix(const std::string& file_name) {
 }
 }  // namespace detail
 
+namespace {
+
+// write_file_atomically() in stages, each a function below: the target checked, a temporary
+// file opened beside it, the content written (owner and mode kept), then either an in-place
+// copy (hard links) or the temporary file named and renamed over the target.
+
+/// Refuses a target that is not a regular file, is read-only or not writable by this user.
+void check_replaceable(const std::string& path, const std::string& target, const struct stat& st) {
+    const std::string shown =
+        target == path ? std::string() : " (the link's target " + target + ")";
+    if (!S_ISREG(st.st_mode))
+        throw IoError(path, 0,
+                      "cannot replace it" + shown + ": it is " + file_type_name(st.st_mode) +
+                          ", not a regular file");
+    if ((st.st_mode & 0222) == 0)
+        throw IoError(path, 0,
+                      "it is read-only" + shown + " (mode " + octal_mode(st.st_mode) +
+                          "): not replaced; make it writable first");
+    if (::access(target.c_str(), W_OK) != 0 && errno == EACCES)
+        throw IoError(path, 0,
+                      "it is not writable by this user" + shown + " (mode " +
+                          octal_mode(st.st_mode) + "): not replaced");
+}
+
+/// Opens a new named temporary file `temp_name` + random suffix into `fd` (up to 8
+/// attempts; `named` is its name, or what the last attempt tried when none opened).
+void open_named_temporary(const std::string& temp_name, FileDescriptor& fd, std::string& named) {
+    for (int attempt = 0; attempt < 8 && fd.get() < 0; ++attempt) {
+        named = temp_name + random_suffix();
+        fd.reset(::open(named.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0666));
+        if (fd.get() < 0 && errno != EEXIST) break;
+    }
+}
+
+/// The temporary file in `folder`: unnamed (O_TMPFILE) where possible (`named` stays
+/// empty), else named.
+void open_temporary(const std::string& folder, const std::string& temp_name,
+                    const std::string& path, FileDescriptor& fd, std::string& named) {
+#ifdef O_TMPFILE
+    if (!g_force_named) fd.reset(::open(folder.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0666));
+#else
+    (void)folder;
+#endif
+    if (fd.get() < 0) {
+        open_named_temporary(temp_name, fd, named);
+        if (fd.get() < 0)
+            throw IoError(path, 0,
+                          "cannot create a temporary file beside it: " + errno_text(errno));
+    }
+}
+
+/// Runs `write` into the temporary file; keeps the owner, group and permissions of the file
+/// replaced (when it exists); syncs when asked.
+void write_temporary(int fd, const std::function<void(std::ostream&)>& write,
+                     const std::string& path, bool exists, const struct stat& st) {
+    FdOutBuf buf(fd);
+    {
+        std::ostream out(&buf);
+        write(out);
+        out.flush();
+        if (out.fail() || buf.error())
+            throw IoError(path, 0,
+                          "write error" +
+                              (buf.error() ? ": " + errno_text(buf.error()) : std::string()) +
+                              " (disk full?)");
+    }
+    if (exists) {
+        // Keep the owner, the group and the permissions of the file replaced (chown
+        // first: it clears set-user-ID bits). Only root may give a file away: failures
+        // of chown are ignored, the permissions are kept in any case.
+        if (st.st_uid != ::geteuid() || st.st_gid != ::getegid())
+            if (::fchown(fd, st.st_uid, st.st_gid) != 0) {
+            }
+        ::fchmod(fd, st.st_mode & 07777);
+    }
+    if (g_sync && ::fsync(fd) != 0)
+        throw IoError(path, 0, "write error: " + errno_text(errno) + " (disk full?)");
+}
+
+/// No way to name the unnamed temporary file `fd` (no /proc, no privilege, link error `err`):
+/// copies it into a named temporary file, which the next save removes should this one be
+/// killed.
+void copy_to_named_temporary(int fd, const std::string& temp_name, const std::string& path, int err,
+                             std::string& named) {
+    FileDescriptor copy;
+    open_named_temporary(temp_name, copy, named);
+    if (copy.get() < 0) {
+        named.clear();
+        throw IoError(path, 0, "cannot give the temporary file a name: " + errno_text(err));
+    }
+    const off_t size = ::lseek(fd, 0, SEEK_END);
+    if (size < 0) throw IoError(path, 0, "cannot read the temporary file: " + errno_text(errno));
+    copy_all(fd, copy.get(), size, path, "");
+    struct stat mode;
+    if (::fstat(fd, &mode) == 0) {
+        if (::fchown(copy.get(), mode.st_uid, mode.st_gid) != 0) {
+        }  // as above: only root may give a file away
+        ::fchmod(copy.get(), mode.st_mode & 07777);
+    }
+    if ((g_sync && ::fsync(copy.get()) != 0) || copy.close_checked() != 0)
+        throw IoError(path, 0, "write error: " + errno_text(errno) + " (disk full?)");
+}
+
+/// Gives the complete unnamed temporary file `fd` a name beside the target (in `named`).
+void name_unnamed_temporary(int fd, const std::string& temp_name, const std::string& path,
+                            std::string& named) {
+    const std::string proc = "/proc/self/fd/" + std::to_string(fd);
+    int err = EEXIST;
+    for (int attempt = 0; attempt < 8 && err == EEXIST; ++attempt) {
+        const std::string candidate = temp_name + random_suffix();
+        int rc = g_no_link ? (errno = ENOENT, -1)
+                           : ::linkat(AT_FDCWD, proc.c_str(), AT_FDCWD, candidate.c_str(),
+                                      AT_SYMLINK_FOLLOW);
+        if (rc != 0 && errno != EEXIST && !g_no_link)  // no /proc: privileged way
+            rc = ::linkat(fd, "", AT_FDCWD, candidate.c_str(), AT_EMPTY_PATH);
+        err = rc == 0 ? 0 : errno;
+        if (rc == 0) named = candidate;
+    }
+    if (err != 0) copy_to_named_temporary(fd, temp_name, path, err, named);
+}
+
+}  // namespace
+
 void write_file_atomically(const std::string& path,
                            const std::function<void(std::ostream&)>& write) {
     if (path.empty()) throw IoError(path, 0, "empty file name");
     struct stat st;
     bool exists = false;
     const std::string target = resolve_target(path, st, exists);
-    const std::string shown =
-        target == path ? std::string() : " (the link's target " + target + ")";
-    if (exists) {
-        if (!S_ISREG(st.st_mode))
-            throw IoError(path, 0,
-                          "cannot replace it" + shown + ": it is " + file_type_name(st.st_mode) +
-                              ", not a regular file");
-        if ((st.st_mode & 0222) == 0)
-            throw IoError(path, 0,
-                          "it is read-only" + shown + " (mode " + octal_mode(st.st_mode) +
-                              "): not replaced; make it writable first");
-        if (::access(target.c_str(), W_OK) != 0 && errno == EACCES)
-            throw IoError(path, 0,
-                          "it is not writable by this user" + shown + " (mode " +
-                              octal_mode(st.st_mode) + "): not replaced");
-    }
+    if (exists) check_replaceable(path, target, st);
     const std::string folder = folder_of(target);
     const std::string name = name_of(target);
     remove_stale_temporaries(folder, name);
 
-    // The temporary file: unnamed (O_TMPFILE) where possible, else named.
     std::string named;  // the named temporary file, while it exists
     FileDescriptor fd;
-#ifdef O_TMPFILE
-    if (!g_force_named) fd.reset(::open(folder.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0666));
-#endif
     const std::string temp_name =
         folder + "/" + detail::temporary_file_prefix(name) + std::to_string(::getpid()) + "-";
-    if (fd.get() < 0) {
-        for (int attempt = 0; attempt < 8 && fd.get() < 0; ++attempt) {
-            named = temp_name + random_suffix();
-            fd.reset(::open(named.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0666));
-            if (fd.get() < 0 && errno != EEXIST) break;
-        }
-        if (fd.get() < 0)
-            throw IoError(path, 0,
-                          "cannot create a temporary file beside it: " + errno_text(errno));
-    }
+    open_temporary(folder, temp_name, path, fd, named);
     const bool unnamed = named.empty();
     try {
-        FdOutBuf buf(fd.get());
-        {
-            std::ostream out(&buf);
-            write(out);
-            out.flush();
-            if (out.fail() || buf.error())
-                throw IoError(path, 0,
-                              "write error" +
-                                  (buf.error() ? ": " + errno_text(buf.error()) : std::string()) +
-                                  " (disk full?)");
-        }
-        if (exists) {
-            // Keep the owner, the group and the permissions of the file replaced (chown
-            // first: it clears set-user-ID bits). Only root may give a file away: failures
-            // of chown are ignored, the permissions are kept in any case.
-            if (st.st_uid != ::geteuid() || st.st_gid != ::getegid())
-                if (::fchown(fd.get(), st.st_uid, st.st_gid) != 0) {
-                }
-            ::fchmod(fd.get(), st.st_mode & 07777);
-        }
-        if (g_sync && ::fsync(fd.get()) != 0)
-            throw IoError(path, 0, "write error: " + errno_text(errno) + " (disk full?)");
-
+        write_temporary(fd.get(), write, path, exists, st);
         if (exists && st.st_nlink > 1) {
             // Hard links: rewrite the target in place, from the complete temporary file.
             copy_in_place(fd.get(), target, st, path);
         } else {
-            if (unnamed) {
-                // Give the complete file a name, then rename it over the target.
-                const std::string proc = "/proc/self/fd/" + std::to_string(fd.get());
-                int err = EEXIST;
-                for (int attempt = 0; attempt < 8 && err == EEXIST; ++attempt) {
-                    const std::string candidate = temp_name + random_suffix();
-                    int rc = g_no_link ? (errno = ENOENT, -1)
-                                       : ::linkat(AT_FDCWD, proc.c_str(), AT_FDCWD,
-                                                  candidate.c_str(), AT_SYMLINK_FOLLOW);
-                    if (rc != 0 && errno != EEXIST && !g_no_link)  // no /proc: privileged way
-                        rc = ::linkat(fd.get(), "", AT_FDCWD, candidate.c_str(), AT_EMPTY_PATH);
-                    err = rc == 0 ? 0 : errno;
-                    if (rc == 0) named = candidate;
-                }
-                if (err != 0) {
-                    // No way to name it (no /proc, no privilege): copy it into a named
-                    // temporary file, which the next save removes should this one be killed.
-                    FileDescriptor copy;
-                    for (int attempt = 0; attempt < 8 && copy.get() < 0; ++attempt) {
-                        named = temp_name + random_suffix();
-                        copy.reset(
-                            ::open(named.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0666));
-                        if (copy.get() < 0 && errno != EEXIST) break;
-                    }
-                    if (copy.get() < 0) {
-                        named.clear();
-                        throw IoError(path, 0,
-                                      "cannot give the temporary file a name: " + errno_text(err));
-                    }
-                    const off_t size = ::lseek(fd.get(), 0, SEEK_END);
-                    if (size < 0)
-                        throw IoError(path, 0,
-                                      "cannot read the temporary file: " + errno_text(errno));
-                    copy_all(fd.get(), copy.get(), size, path, "");
-                    struct stat mode;
-                    if (::fstat(fd.get(), &mode) == 0) {
-                        if (::fchown(copy.get(), mode.st_uid, mode.st_gid) != 0) {
-                        }  // as above: only root may give a file away
-                        ::fchmod(copy.get(), mode.st_mode & 07777);
-                    }
-                    if ((g_sync && ::fsync(copy.get()) != 0) || copy.close_checked() != 0)
-                        throw IoError(path, 0,
-                                      "write error: " + errno_text(errno) + " (disk full?)");
-                }
-            }
+            // Give the complete file a name, then rename it over the target.
+            if (unnamed) name_unnamed_temporary(fd.get(), temp_name, path, named);
             if (fd.close_checked() != 0)
                 throw IoError(path, 0, "write error: " + errno_text(errno) + " (disk full?)");
             if (::rename(named.c_str(), target.c_str()) != 0)

@@ -11,8 +11,59 @@
 
 namespace trilab {
 
+namespace {
+
+/// A format: what it is and carries, and its reader and writers.
+struct MeshFormat {
+    MeshFormatInfo info;
+    LoadedMesh (*read)(const std::string& path);
+    void (*write)(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options);
+    void (*write_to)(const HalfedgeMesh& mesh, std::ostream& out, const std::string& name,
+                     const WriteOptions& options);
+};
+
+/// The one table of mesh formats: read and write dispatch, the lists and the messages.
+/// info: extension, name, normals, colors, texcoords, ascii choice, big-endian choice.
+const MeshFormat kMeshFormats[] = {
+    {{"obj", "Wavefront OBJ", true, false, true, false, false}, read_obj, write_obj, write_obj_to},
+    {{"off", "OFF", true, true, true, false, false}, read_off, write_off, write_off_to},
+    {{"ply", "Stanford PLY", true, true, true, true, true}, read_ply, write_ply, write_ply_to},
+    {{"stl", "STL", false, false, false, true, false}, read_stl, write_stl, write_stl_to},
+    {{"om", "OpenMesh binary", true, true, true, false, false}, read_om, write_om, write_om_to},
+};
+
+/// The format of `path`'s extension, or null.
+const MeshFormat* format_of(const std::string& path) {
+    const std::string ext = file_extension(path);
+    for (const MeshFormat& f : kMeshFormats)
+        if (ext == f.info.extension) return &f;
+    return nullptr;
+}
+
+[[noreturn]] void unknown_format(const std::string& path) {
+    std::string supported;
+    for (const MeshFormat& f : kMeshFormats)
+        supported += (supported.empty() ? "." : ", .") + std::string(f.info.extension);
+    throw IoError(
+        path, 0,
+        "unknown mesh format '." + file_extension(path) + "' (supported: " + supported + ")");
+}
+
+}  // namespace
+
+const std::vector<MeshFormatInfo>& mesh_formats() {
+    static const std::vector<MeshFormatInfo> formats = [] {
+        std::vector<MeshFormatInfo> out;
+        for (const MeshFormat& f : kMeshFormats) out.push_back(f.info);
+        return out;
+    }();
+    return formats;
+}
+
 std::vector<std::string> supported_mesh_extensions() {
-    return {"obj", "off", "ply", "stl", "om"};
+    std::vector<std::string> out;
+    for (const MeshFormat& f : kMeshFormats) out.push_back(f.info.extension);
+    return out;
 }
 
 std::string file_extension(const std::string& path) {
@@ -25,55 +76,32 @@ std::string file_extension(const std::string& path) {
     return ext;
 }
 
-namespace {
-[[noreturn]] void unknown_format(const std::string& path) {
-    throw IoError(path, 0,
-                  "unknown mesh format '." + file_extension(path) +
-                      "' (supported: .obj, .off, .ply, .stl, .om)");
-}
-}  // namespace
-
-namespace {
-LoadedMesh read_by_extension(const std::string& path) {
-    const std::string ext = file_extension(path);
-    if (ext == "obj") return read_obj(path);
-    if (ext == "off") return read_off(path);
-    if (ext == "ply") return read_ply(path);
-    if (ext == "stl") return read_stl(path);
-    if (ext == "om") return read_om(path);
-    // "/dev/zero: not a regular file: it is a character device" says more than its extension.
-    std::error_code ec;
-    if (std::filesystem::exists(path, ec)) check_regular_file(path);
-    unknown_format(path);
-}
-}  // namespace
-
 LoadedMesh read_mesh(const std::string& path) {
-    LoadedMesh loaded = read_by_extension(path);
+    const MeshFormat* format = format_of(path);
+    if (!format) {
+        // "/dev/zero: not a regular file: it is a character device" says more than its
+        // extension.
+        std::error_code ec;
+        if (std::filesystem::exists(path, ec)) check_regular_file(path);
+        unknown_format(path);
+    }
+    LoadedMesh loaded = format->read(path);
     std::string note = inward_orientation_note(loaded.mesh);
     if (!note.empty()) loaded.report.notes.push_back(std::move(note));
     return loaded;
 }
 
 void write_mesh(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options) {
-    const std::string ext = file_extension(path);
-    if (ext == "obj") return write_obj(mesh, path, options);
-    if (ext == "off") return write_off(mesh, path, options);
-    if (ext == "ply") return write_ply(mesh, path, options);
-    if (ext == "stl") return write_stl(mesh, path, options);
-    if (ext == "om") return write_om(mesh, path, options);
-    unknown_format(path);
+    const MeshFormat* format = format_of(path);
+    if (!format) unknown_format(path);
+    format->write(mesh, path, options);
 }
 
 void write_mesh_to(const HalfedgeMesh& mesh, std::ostream& out, const std::string& name,
                    const WriteOptions& options) {
-    const std::string ext = file_extension(name);
-    if (ext == "obj") return write_obj_to(mesh, out, name, options);
-    if (ext == "off") return write_off_to(mesh, out, name, options);
-    if (ext == "ply") return write_ply_to(mesh, out, name, options);
-    if (ext == "stl") return write_stl_to(mesh, out, name, options);
-    if (ext == "om") return write_om_to(mesh, out, name, options);
-    unknown_format(name);
+    const MeshFormat* format = format_of(name);
+    if (!format) unknown_format(name);
+    format->write_to(mesh, out, name, options);
 }
 
 std::string write_mesh_bytes(const HalfedgeMesh& mesh, const std::string& name,

@@ -41,6 +41,19 @@ struct WriteOptions {
     bool write_texcoords = true;  ///< write "v:texcoord" / "h:texcoord" where possible
 };
 
+/// What a mesh format is and what its writer can carry (the table in mesh_io.cpp, which also
+/// dispatches reading and writing).
+struct MeshFormatInfo {
+    const char* extension;   ///< lower case, without the dot
+    const char* name;        ///< e.g. "Stanford PLY"
+    bool normals;            ///< writes "v:normal" (WriteOptions::write_normals)
+    bool colors;             ///< writes "v:color" (WriteOptions::write_colors)
+    bool texcoords;          ///< writes texture coordinates (WriteOptions::write_texcoords)
+    bool ascii_choice;       ///< WriteOptions::ascii applies (binary otherwise)
+    bool big_endian_choice;  ///< WriteOptions::big_endian applies
+};
+/// Every supported format, in the order of supported_mesh_extensions().
+const std::vector<MeshFormatInfo>& mesh_formats();
 /// Formats by lower-case extension without the dot: "obj", "off", "ply", "stl", "om".
 std::vector<std::string> supported_mesh_extensions();
 /// The lower-case extension of `path` without the dot ("" when there is none).

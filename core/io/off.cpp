@@ -48,23 +48,32 @@ LoadedMesh read_off(const std::string& path) {
     return read_off_bytes(read_file_bytes(path), path);
 }
 
-LoadedMesh read_off_bytes(const std::string& bytes, const std::string& path) {
-    const std::string_view text = strip_utf8_bom(bytes, path);
-    TextScanner in(text, path);
+namespace {
+
+// read_off_bytes() in three stages: the header (keyword and counts), the vertex lines, the
+// face lines; then the report.
+
+/// What the header announces: the keyword's letters and the counts.
+struct OffHeader {
+    bool st = false, color = false, normal = false;
+    std::size_t nv = 0, nf = 0;
+};
+
+OffHeader read_off_header(TextScanner& in, std::string_view text, const std::string& path) {
+    OffHeader h;
     std::string_view keyword = in.next_token();
     if (keyword.empty()) in.fail("empty file, expected the OFF header");
     const std::string_view full = keyword;
-    bool st = false, color = false, normal = false;
     if (keyword.substr(0, 2) == "ST") {
-        st = true;
+        h.st = true;
         keyword.remove_prefix(2);
     }
     if (!keyword.empty() && keyword[0] == 'C') {
-        color = true;
+        h.color = true;
         keyword.remove_prefix(1);
     }
     if (!keyword.empty() && keyword[0] == 'N') {
-        normal = true;
+        h.normal = true;
         keyword.remove_prefix(1);
     }
     if (!keyword.empty() && (keyword[0] == '4' || keyword[0] == 'n'))
@@ -86,14 +95,21 @@ LoadedMesh read_off_bytes(const std::string& bytes, const std::string& path) {
     };
     if (first.empty()) in.fail("unexpected end of file, expected the vertex count");
     const std::size_t header_line = in.line();
-    const std::size_t nv = to_count(first, "vertex count");
-    const std::size_t nf = to_count(in.expect_token("face count"), "face count");
+    h.nv = to_count(first, "vertex count");
+    h.nf = to_count(in.expect_token("face count"), "face count");
     in.rest_of_line();
     const std::size_t remaining = text.size() - in.offset();
-    check_declared_count(nv, 6, remaining, "vertices", path, header_line);
-    check_declared_count(nf, 2, remaining, "faces", path, header_line);
+    check_declared_count(h.nv, 6, remaining, "vertices", path, header_line);
+    check_declared_count(h.nf, 2, remaining, "faces", path, header_line);
+    return h;
+}
 
-    PolygonSoup soup;
+/// Reads the vertex lines into `soup` (colours scaled to 0..1); returns how many lines had
+/// values the header does not announce.
+std::size_t read_off_vertices(TextScanner& in, const OffHeader& h, const std::string& path,
+                              PolygonSoup& soup) {
+    const bool st = h.st, color = h.color, normal = h.normal;
+    const std::size_t nv = h.nv;
     soup.positions.resize(nv);
     if (normal) soup.normals.resize(nv);
     if (color) soup.colors.resize(nv);
@@ -143,9 +159,15 @@ LoadedMesh read_off_bytes(const std::string& bytes, const std::string& path) {
     }
     if (colors_are_bytes)
         for (Color& c : soup.colors) c /= 255.0f;
+    return ignored_extra;
+}
 
+/// Reads the face lines "n i0 .. in-1 [colour]" into `soup`.
+void read_off_faces(TextScanner& in, std::string_view text, const OffHeader& h,
+                    const std::string& path, PolygonSoup& soup) {
+    const std::size_t nv = h.nv;
     const std::size_t corner_budget = text.size() - in.offset();
-    for (std::size_t f = 0; f < nf; ++f) {
+    for (std::size_t f = 0; f < h.nf; ++f) {
         const long long n = in.next_integer("face corner count");
         const std::size_t line = in.line();
         if (n < 0 || std::size_t(n) > corner_budget)
@@ -164,12 +186,23 @@ LoadedMesh read_off_bytes(const std::string& bytes, const std::string& path) {
         soup.face_offsets.push_back(soup.corners.size());
         if (in.line() == line) in.rest_of_line();  // face colour, if any
     }
+}
+
+}  // namespace
+
+LoadedMesh read_off_bytes(const std::string& bytes, const std::string& path) {
+    const std::string_view text = strip_utf8_bom(bytes, path);
+    TextScanner in(text, path);
+    const OffHeader header = read_off_header(in, text, path);
+    PolygonSoup soup;
+    const std::size_t ignored_extra = read_off_vertices(in, header, path, soup);
+    read_off_faces(in, text, header, path, soup);
 
     LoadReport report;
     report.file = path;
     report.format = "off";
-    report.file_vertices = nv;
-    report.file_faces = nf;
+    report.file_vertices = header.nv;
+    report.file_faces = header.nf;
     if (ignored_extra)
         report.notes.push_back(
             std::to_string(ignored_extra) +

@@ -858,6 +858,151 @@ LoadedMesh read_om_bytes(const std::string& bytes, const std::string& path) {
     return out;
 }
 
+namespace {
+
+// write_om_to() in stages: the plan (sizes, index width, which attributes, the checks), then
+// the chunks into one buffer of the planned size: the vertex attributes, the connectivity.
+
+/// What write_om_to() writes: element counts, the index width, the attributes written, the
+/// file size.
+struct OmWritePlan {
+    std::uint64_t n_v = 0, n_e = 0, n_f = 0, n_h = 0;
+    unsigned bits = 0;      ///< index width code: 0, 1, 2 for 1, 2, 4 bytes
+    std::size_t width = 1;  ///< index width in bytes
+    VertexProperty<const Vector3> normals;
+    VertexProperty<const Color> colors;
+    VertexProperty<const TexCoord> texcoords;
+    HalfedgeProperty<const TexCoord> corner_uv;
+    bool write_corner_uv = false;
+    std::uint64_t total = 0;  ///< bytes
+};
+
+/// The plan for `mesh` (no garbage); throws IoError for a mesh .om cannot hold.
+OmWritePlan plan_om_write(const HalfedgeMesh& mesh, const std::string& path,
+                          const WriteOptions& options) {
+    OmWritePlan w;
+    w.n_v = mesh.vertices_size();
+    w.n_e = mesh.edges_size();
+    w.n_f = mesh.faces_size();
+    w.n_h = 2 * w.n_e;
+    const std::uint64_t n_v = w.n_v, n_f = w.n_f, n_h = w.n_h;
+    constexpr std::uint64_t kMaxIndex = std::uint64_t(std::numeric_limits<std::int32_t>::max());
+    if (n_v > kMaxIndex || n_f > kMaxIndex || n_h > kMaxIndex + 1)
+        throw IoError(path, 0, "the mesh is too large for .om's 32-bit indices");
+    // Smallest width W in {1, 2, 4} whose signed range holds every index (om-format.md §6.1).
+    const std::uint64_t max_index =
+        std::max({n_h ? n_h - 1 : 0, n_v ? n_v - 1 : 0, n_f ? n_f - 1 : 0});
+    w.bits = max_index <= 127 ? 0 : max_index <= 32767 ? 1 : 2;
+    w.width = std::size_t(1) << w.bits;
+
+    w.normals = options.write_normals ? mesh.get_vertex_property<Vector3>("v:normal")
+                                      : VertexProperty<const Vector3>();
+    w.colors = options.write_colors ? mesh.get_vertex_property<Color>("v:color")
+                                    : VertexProperty<const Color>();
+    w.texcoords = options.write_texcoords ? mesh.get_vertex_property<TexCoord>("v:texcoord")
+                                          : VertexProperty<const TexCoord>();
+    w.corner_uv = options.write_texcoords ? mesh.get_halfedge_property<TexCoord>("h:texcoord")
+                                          : HalfedgeProperty<const TexCoord>();
+    w.write_corner_uv = w.corner_uv && w.n_e > 0;
+    check_finite_for_writing(mesh, path, bool(w.normals), bool(w.colors),
+                             bool(w.texcoords) || w.write_corner_uv);
+    // Texture coordinates are float32 in .om (the format has no other width): values beyond
+    // its range are refused (tiny ones only lose precision that texture lookups never see).
+    constexpr double kFloatMax = double(std::numeric_limits<float>::max());
+    if ((w.texcoords && max_abs_component(w.texcoords.vector()) > kFloatMax) ||
+        (w.write_corner_uv && max_abs_component(w.corner_uv.vector()) > kFloatMax))
+        throw IoError(path, 0,
+                      ".om stores texture coordinates as float32, which cannot hold these "
+                      "(beyond 3.4e38); not written: use OBJ, OFF or PLY");
+
+    w.total = 16 + (2 + 24 * n_v) + 2;  // header, positions, sentinel
+    if (w.normals) w.total += 2 + 24 * n_v;
+    if (w.colors) w.total += 2 + 3 * n_v;
+    if (w.texcoords) w.total += 2 + 8 * n_v;
+    if (w.n_e > 0) w.total += 2 + 3 * w.width * n_h;
+    if (w.write_corner_uv) w.total += 2 + 8 * n_h;
+    if (n_v > 0) w.total += 2 + w.width * n_v;
+    w.total += 2 + w.width * n_f;
+    return w;
+}
+
+void put_vec3d(unsigned char*& p, const Vector3& v) {
+    store_le<double>(p, v.x());
+    store_le<double>(p, v.y());
+    store_le<double>(p, v.z());
+}
+
+void put_uv(unsigned char*& p, const TexCoord& x) {
+    store_le<float>(p, float(x.x()));
+    store_le<float>(p, float(x.y()));
+}
+
+/// The header, the positions and the planned vertex attributes.
+void put_om_vertices(unsigned char*& p, const HalfedgeMesh& mesh, const OmWritePlan& w) {
+    const unsigned char magic[4] = {'O', 'M', 'T', 0x42};  // triangle mesh, version 2.2
+    std::memcpy(p, magic, 4);
+    p += 4;
+    store_le<std::uint32_t>(p, std::uint32_t(w.n_v));
+    store_le<std::uint32_t>(p, std::uint32_t(w.n_f));
+    store_le<std::uint32_t>(p, std::uint32_t(w.n_e));
+    store_le<std::uint16_t>(p, encode_header(kVertex, kPosition, true, true, 3, 1));  // 0x5600
+    for (const Point& x : mesh.positions()) put_vec3d(p, x);
+    if (w.normals) {
+        store_le<std::uint16_t>(p, encode_header(kVertex, kNormal, true, true, 3, 1));  // 0x5620
+        for (const Vector3& x : w.normals.vector()) put_vec3d(p, x);
+    }
+    if (w.colors) {
+        store_le<std::uint16_t>(p, encode_header(kVertex, kColor, false, false, 3, 0));  // 0x1080
+        for (const Color& x : w.colors.vector()) {
+            *p++ = to_u8(x.x());
+            *p++ = to_u8(x.y());
+            *p++ = to_u8(x.z());
+        }
+    }
+    if (w.texcoords) {
+        store_le<std::uint16_t>(p, encode_header(kVertex, kTexcoord, true, true, 2, 0));  // 0x0E40
+        for (const TexCoord& x : w.texcoords.vector()) put_uv(p, x);
+    }
+}
+
+/// The connectivity chunks (halfedges with their corner texture coordinates, vertices,
+/// faces) and the sentinel.
+void put_om_connectivity(unsigned char*& p, const HalfedgeMesh& mesh, const OmWritePlan& w) {
+    const std::uint64_t n_v = w.n_v, n_f = w.n_f, n_h = w.n_h;
+    const unsigned bits = w.bits;
+    // Topology chunks carry float = 1, as OpenMesh writes them (om-format.md §3).
+    if (w.n_e > 0) {
+        store_le<std::uint16_t>(p, encode_header(kHalf, kTopology, true, true, 3, bits));
+        with_index_type(w.width, [&](auto s) {
+            for (std::size_t h = 0; h < n_h; ++h) {
+                const Halfedge he(static_cast<Index>(h));
+                put_index<decltype(s)>(p, mesh.next(he).idx());
+                put_index<decltype(s)>(p, mesh.to_vertex(he).idx());
+                put_index<decltype(s)>(p, mesh.face(he).idx());
+            }
+        });
+    }
+    if (w.write_corner_uv) {
+        store_le<std::uint16_t>(p, encode_header(kHalf, kTexcoord, true, true, 2, 0));  // 0x0E58
+        for (const TexCoord& x : w.corner_uv.vector()) put_uv(p, x);
+    }
+    if (n_v > 0) {
+        store_le<std::uint16_t>(p, encode_header(kVertex, kTopology, true, true, 1, bits));
+        with_index_type(w.width, [&](auto s) {
+            for (std::size_t v = 0; v < n_v; ++v)
+                put_index<decltype(s)>(p, mesh.halfedge(Vertex(Index(v))).idx());
+        });
+    }
+    store_le<std::uint16_t>(p, encode_header(kFace, kTopology, true, true, 1, bits));
+    with_index_type(w.width, [&](auto s) {
+        for (std::size_t f = 0; f < n_f; ++f)
+            put_index<decltype(s)>(p, mesh.halfedge(Face(Index(f))).idx());
+    });
+    store_le<std::uint16_t>(p, encode_header(kSentinel, 0, false, false, 1, 0));  // 0x001C
+}
+
+}  // namespace
+
 void write_om_to(const HalfedgeMesh& input, std::ostream& os, const std::string& path,
                  const WriteOptions& options) {
     HalfedgeMesh compacted;
@@ -868,116 +1013,13 @@ void write_om_to(const HalfedgeMesh& input, std::ostream& os, const std::string&
         source = &compacted;
     }
     const HalfedgeMesh& mesh = *source;
-    const std::uint64_t n_v = mesh.vertices_size(), n_e = mesh.edges_size(),
-                        n_f = mesh.faces_size(), n_h = 2 * n_e;
-    constexpr std::uint64_t kMaxIndex = std::uint64_t(std::numeric_limits<std::int32_t>::max());
-    if (n_v > kMaxIndex || n_f > kMaxIndex || n_h > kMaxIndex + 1)
-        throw IoError(path, 0, "the mesh is too large for .om's 32-bit indices");
-    // Smallest width W in {1, 2, 4} whose signed range holds every index (om-format.md §6.1).
-    const std::uint64_t max_index =
-        std::max({n_h ? n_h - 1 : 0, n_v ? n_v - 1 : 0, n_f ? n_f - 1 : 0});
-    const unsigned bits = max_index <= 127 ? 0 : max_index <= 32767 ? 1 : 2;
-    const std::size_t width = std::size_t(1) << bits;
-
-    const auto normals = options.write_normals ? mesh.get_vertex_property<Vector3>("v:normal")
-                                               : VertexProperty<Vector3>();
-    const auto colors =
-        options.write_colors ? mesh.get_vertex_property<Color>("v:color") : VertexProperty<Color>();
-    const auto texcoords = options.write_texcoords
-                               ? mesh.get_vertex_property<TexCoord>("v:texcoord")
-                               : VertexProperty<TexCoord>();
-    const auto corner_uv = options.write_texcoords
-                               ? mesh.get_halfedge_property<TexCoord>("h:texcoord")
-                               : HalfedgeProperty<TexCoord>();
-    const bool write_corner_uv = corner_uv && n_e > 0;
-    check_finite_for_writing(mesh, path, bool(normals), bool(colors),
-                             bool(texcoords) || write_corner_uv);
-    // Texture coordinates are float32 in .om (the format has no other width): values beyond
-    // its range are refused (tiny ones only lose precision that texture lookups never see).
-    constexpr double kFloatMax = double(std::numeric_limits<float>::max());
-    if ((texcoords && max_abs_component(texcoords.vector()) > kFloatMax) ||
-        (write_corner_uv && max_abs_component(corner_uv.vector()) > kFloatMax))
-        throw IoError(path, 0,
-                      ".om stores texture coordinates as float32, which cannot hold these "
-                      "(beyond 3.4e38); not written: use OBJ, OFF or PLY");
-
-    std::uint64_t total = 16 + (2 + 24 * n_v) + 2;  // header, positions, sentinel
-    if (normals) total += 2 + 24 * n_v;
-    if (colors) total += 2 + 3 * n_v;
-    if (texcoords) total += 2 + 8 * n_v;
-    if (n_e > 0) total += 2 + 3 * width * n_h;
-    if (write_corner_uv) total += 2 + 8 * n_h;
-    if (n_v > 0) total += 2 + width * n_v;
-    total += 2 + width * n_f;
-
-    std::vector<unsigned char> buffer(static_cast<std::size_t>(total));
+    const OmWritePlan plan = plan_om_write(mesh, path, options);
+    std::vector<unsigned char> buffer(static_cast<std::size_t>(plan.total));
     unsigned char* p = buffer.data();
-    const unsigned char magic[4] = {'O', 'M', 'T', 0x42};  // triangle mesh, version 2.2
-    std::memcpy(p, magic, 4);
-    p += 4;
-    store_le<std::uint32_t>(p, std::uint32_t(n_v));
-    store_le<std::uint32_t>(p, std::uint32_t(n_f));
-    store_le<std::uint32_t>(p, std::uint32_t(n_e));
-
-    auto put_vec3d = [&](const Vector3& v) {
-        store_le<double>(p, v.x());
-        store_le<double>(p, v.y());
-        store_le<double>(p, v.z());
-    };
-    auto put_uv = [&](const TexCoord& x) {
-        store_le<float>(p, float(x.x()));
-        store_le<float>(p, float(x.y()));
-    };
-    store_le<std::uint16_t>(p, encode_header(kVertex, kPosition, true, true, 3, 1));  // 0x5600
-    for (const Point& x : mesh.positions()) put_vec3d(x);
-    if (normals) {
-        store_le<std::uint16_t>(p, encode_header(kVertex, kNormal, true, true, 3, 1));  // 0x5620
-        for (const Vector3& x : normals.vector()) put_vec3d(x);
-    }
-    if (colors) {
-        store_le<std::uint16_t>(p, encode_header(kVertex, kColor, false, false, 3, 0));  // 0x1080
-        for (const Color& x : colors.vector()) {
-            *p++ = to_u8(x.x());
-            *p++ = to_u8(x.y());
-            *p++ = to_u8(x.z());
-        }
-    }
-    if (texcoords) {
-        store_le<std::uint16_t>(p, encode_header(kVertex, kTexcoord, true, true, 2, 0));  // 0x0E40
-        for (const TexCoord& x : texcoords.vector()) put_uv(x);
-    }
-    // Topology chunks carry float = 1, as OpenMesh writes them (om-format.md §3).
-    if (n_e > 0) {
-        store_le<std::uint16_t>(p, encode_header(kHalf, kTopology, true, true, 3, bits));
-        with_index_type(width, [&](auto s) {
-            for (std::size_t h = 0; h < n_h; ++h) {
-                const Halfedge he(static_cast<Index>(h));
-                put_index<decltype(s)>(p, mesh.next(he).idx());
-                put_index<decltype(s)>(p, mesh.to_vertex(he).idx());
-                put_index<decltype(s)>(p, mesh.face(he).idx());
-            }
-        });
-    }
-    if (write_corner_uv) {
-        store_le<std::uint16_t>(p, encode_header(kHalf, kTexcoord, true, true, 2, 0));  // 0x0E58
-        for (const TexCoord& x : corner_uv.vector()) put_uv(x);
-    }
-    if (n_v > 0) {
-        store_le<std::uint16_t>(p, encode_header(kVertex, kTopology, true, true, 1, bits));
-        with_index_type(width, [&](auto s) {
-            for (std::size_t v = 0; v < n_v; ++v)
-                put_index<decltype(s)>(p, mesh.halfedge(Vertex(Index(v))).idx());
-        });
-    }
-    store_le<std::uint16_t>(p, encode_header(kFace, kTopology, true, true, 1, bits));
-    with_index_type(width, [&](auto s) {
-        for (std::size_t f = 0; f < n_f; ++f)
-            put_index<decltype(s)>(p, mesh.halfedge(Face(Index(f))).idx());
-    });
-    store_le<std::uint16_t>(p, encode_header(kSentinel, 0, false, false, 1, 0));  // 0x001C
-    if (std::uint64_t(p - buffer.data()) != total)
+    put_om_vertices(p, mesh, plan);
+    put_om_connectivity(p, mesh, plan);
+    if (std::uint64_t(p - buffer.data()) != plan.total)
         throw IoError(path, 0, "internal error: .om size mismatch");
-
     os.write(reinterpret_cast<const char*>(buffer.data()), std::streamsize(buffer.size()));
 }
 

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstdint>
 
-#include "core/algorithms/decimation.h"
 #include "core/algorithms/generators.h"
+#include "core/algorithms/level_of_detail.h"
 #include "render/camera.h"
 #include "render/offscreen.h"
 #include "render_test_util.h"

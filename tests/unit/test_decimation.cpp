@@ -11,6 +11,7 @@
 #include "app/ops/operation.h"
 #include "core/algorithms/decimation.h"
 #include "core/algorithms/generators.h"
+#include "core/algorithms/level_of_detail.h"
 #include "core/algorithms/mesh_distance.h"
 #include "core/algorithms/mesh_stats.h"
 #include "core/algorithms/morph.h"

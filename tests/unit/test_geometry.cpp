@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "core/algorithms/generators.h"
+#include "core/algorithms/mesh_stats.h"
 #include "core/geometry.h"
 #include "core/mesh_builder.h"
 #include "test_helpers.h"
@@ -86,4 +87,28 @@ TEST_CASE("degenerate triangles give zero normals and cotangents, never NaN", "[
 
 TEST_CASE("mean edge length", "[geometry]") {
     REQUIRE(mean_edge_length(make_grid(1)) == Approx((4 + std::sqrt(2.0)) / 5));
+}
+
+TEST_CASE("area_and_volume is the face-by-face sums of face_area and centroid . area vector",
+          "[geometry]") {
+    HalfedgeMesh mesh = GENERATE(make_icosphere(3), make_torus(24, 12, 1.0, 0.3), make_grid(5),
+                                 make_noisy_sphere(4, 0.05, 7));
+    double area = 0, volume6 = 0;
+    for (Face f : mesh.faces()) {
+        area += face_area(mesh, f);
+        volume6 += face_centroid(mesh, f).dot(face_area_vector(mesh, f));
+    }
+    // The same sums in the same order: equal to the bit, whichever sums are asked for.
+    const AreaVolume both = area_and_volume(mesh, true, true);
+    CHECK(both.area == area);
+    CHECK(both.volume == volume6 / 6.0);
+    CHECK(area_and_volume(mesh, true, false).area == area);
+    CHECK(area_and_volume(mesh, true, false).volume == 0);
+    CHECK(area_and_volume(mesh, false, true).volume == volume6 / 6.0);
+    CHECK(surface_area(mesh) == area);
+    CHECK(volume(mesh) == volume6 / 6.0);
+    // compute_stats() reports the same figures (the volume only for a closed mesh).
+    const MeshStats stats = compute_stats(mesh);
+    CHECK(stats.area == area);
+    if (is_closed(mesh)) CHECK(*stats.volume == volume6 / 6.0);
 }

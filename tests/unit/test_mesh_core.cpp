@@ -1,5 +1,6 @@
 // Half-edge core: handles, properties, circulators, construction from soups, validate().
 #include <set>
+#include <utility>
 
 #include "core/algorithms/generators.h"
 #include "core/algorithms/mesh_stats.h"
@@ -483,4 +484,35 @@ TEST_CASE("ranges and circulators are standard iterators, halfedges() skips dele
     CHECK(live == m.n_halfedges());
     CHECK(std::count_if(m.halfedges().begin(), m.halfedges().end(),
                         [&](Halfedge x) { return m.is_boundary(x); }) == 0);
+}
+
+TEST_CASE("the connectivity arrays are what navigation reads, and writing copies a shared one",
+          "[core]") {
+    HalfedgeMesh m = make_grid(3);
+    const HalfedgeMesh& cm = m;
+    REQUIRE(cm.halfedge_to_array().size() == m.halfedges_size());
+    REQUIRE(cm.vertex_halfedge_array().size() == m.vertices_size());
+    REQUIRE(cm.face_halfedge_array().size() == m.faces_size());
+    for (Halfedge h : m.halfedges()) {
+        CHECK(cm.halfedge_to_array()[h.idx()] == m.to_vertex(h));
+        CHECK(cm.halfedge_next_array()[h.idx()] == m.next(h));
+        CHECK(cm.halfedge_prev_array()[h.idx()] == m.prev(h));
+        CHECK(cm.halfedge_face_array()[h.idx()] == m.face(h));
+    }
+    for (Vertex v : m.vertices()) CHECK(cm.vertex_halfedge_array()[v.idx()] == m.halfedge(v));
+    for (Face f : m.faces()) CHECK(cm.face_halfedge_array()[f.idx()] == m.halfedge(f));
+
+    // A copy shares the arrays until one side writes; a write through the mutable accessor
+    // reaches only its own mesh and changes its topology revision.
+    HalfedgeMesh copy = m;
+    REQUIRE(&std::as_const(copy).halfedge_next_array() == &cm.halfedge_next_array());
+    const auto before = copy.topology_revision();
+    const Halfedge h0(0);
+    const Halfedge original = m.next(h0);
+    copy.halfedge_next_array()[0] = copy.prev(h0);
+    CHECK(&std::as_const(copy).halfedge_next_array() != &cm.halfedge_next_array());
+    CHECK(m.next(h0) == original);
+    CHECK(copy.next(h0) == copy.prev(h0));
+    CHECK(copy.topology_revision() != before);
+    CHECK(validate(m));
 }

@@ -32,7 +32,7 @@
 #include <vector>
 
 #include "app/platform/heap_tuning.h"
-#include "core/algorithms/decimation.h"
+#include "core/algorithms/level_of_detail.h"
 #include "core/algorithms/subdivision.h"
 #include "core/geometry.h"
 #include "core/io/mesh_io.h"
