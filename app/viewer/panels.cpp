@@ -86,28 +86,10 @@ void apply_panel_style(ImGuiStyle& style) {
     style.Colors[ImGuiCol_SliderGrabActive].w = 0.6f;
 }
 
-void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState& panels,
-                          const RenderContext& render, CommandQueue& commands) {
-    const RenderMode modes[] = {RenderMode::Wireframe, RenderMode::HiddenLine,
-                                RenderMode::Flat,      RenderMode::Smooth,
-                                RenderMode::Points,    RenderMode::Textured};
-    for (RenderMode mode : modes)
-        if (menu_item(render_mode_name(mode), nullptr, style.mode == mode)) style.mode = mode;
-    ImGui::Separator();
-    if (begin_menu("Wireframe overlay")) {
-        if (menu_item("Automatic", nullptr, settings.wireframe == WireframeOverlay::Auto))
-            settings.wireframe = WireframeOverlay::Auto;
-        if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("on while the edges are long enough on the screen to tell apart");
-        if (shortcut_item("On", KeyAction::ToggleWireframe,
-                          settings.wireframe == WireframeOverlay::On))
-            settings.wireframe = WireframeOverlay::On;
-        if (shortcut_item("Off", KeyAction::ToggleWireframe,
-                          settings.wireframe == WireframeOverlay::Off))
-            settings.wireframe = WireframeOverlay::Off;
-        end_menu();
-    }
-    shortcut_item("Back-face colour", KeyAction::ToggleBackFaceColor, &style.back_face_color);
+namespace {
+
+/// Rendering > Colour by vertex: every colouring; a change queues UpdateColoring.
+void coloring_menu(ViewSettings& settings, CommandQueue& commands) {
     if (begin_menu("Colour by vertex")) {
         const VertexColoring colorings[] = {VertexColoring::None,
                                             VertexColoring::Normal,
@@ -140,6 +122,12 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
         }
         end_menu();
     }
+}
+
+/// Rendering > Texture: the texture mode, the image, and projections for a model without
+/// texture coordinates.
+void texture_menu(RenderStyle& style, ViewSettings& settings, PanelState& panels,
+                  const RenderContext& render, CommandQueue& commands) {
     if (begin_menu("Texture")) {
         const TextureMode tmodes[] = {TextureMode::Off, TextureMode::Modulate,
                                       TextureMode::Replace};
@@ -178,6 +166,34 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
         }
         end_menu();
     }
+}
+
+}  // namespace
+
+void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState& panels,
+                          const RenderContext& render, CommandQueue& commands) {
+    const RenderMode modes[] = {RenderMode::Wireframe, RenderMode::HiddenLine,
+                                RenderMode::Flat,      RenderMode::Smooth,
+                                RenderMode::Points,    RenderMode::Textured};
+    for (RenderMode mode : modes)
+        if (menu_item(render_mode_name(mode), nullptr, style.mode == mode)) style.mode = mode;
+    ImGui::Separator();
+    if (begin_menu("Wireframe overlay")) {
+        if (menu_item("Automatic", nullptr, settings.wireframe == WireframeOverlay::Auto))
+            settings.wireframe = WireframeOverlay::Auto;
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("on while the edges are long enough on the screen to tell apart");
+        if (shortcut_item("On", KeyAction::ToggleWireframe,
+                          settings.wireframe == WireframeOverlay::On))
+            settings.wireframe = WireframeOverlay::On;
+        if (shortcut_item("Off", KeyAction::ToggleWireframe,
+                          settings.wireframe == WireframeOverlay::Off))
+            settings.wireframe = WireframeOverlay::Off;
+        end_menu();
+    }
+    shortcut_item("Back-face colour", KeyAction::ToggleBackFaceColor, &style.back_face_color);
+    coloring_menu(settings, commands);
+    texture_menu(style, settings, panels, render, commands);
     if (begin_menu("Vectors")) {
         menu_item("Face normals", nullptr, &style.face_normals);
         menu_item("Vertex normals", nullptr, &style.vertex_normals);
@@ -558,6 +574,135 @@ double clamp_to_declared(const ParamSpec& p, double x) {
     return kept;
 }
 
+namespace {
+
+/// One parameter's widgets: what they edit and how.
+struct ParamWidget {
+    const ParamSpec& p;
+    ParamValue& v;
+    double lo, hi;  ///< the slider's span
+    float w;        ///< the widget width
+    ImGuiSliderFlags flags;
+    std::vector<std::string>* notes;
+};
+
+/// A combo box, as wide as its longest choice where it can be.
+void choice_widget(const ParamWidget& pw) {
+    const ParamSpec& p = pw.p;
+    ParamValue& v = pw.v;
+    const float w = pw.w;
+    int current = 0;
+    float widest = 0;  // the combo shows its longest choice whole where it can
+    for (std::size_t c = 0; c < p.choices.size(); ++c) {
+        if (p.choices[c].value == int(v.x)) current = int(c);
+        widest = std::max(widest, ImGui::CalcTextSize(p.choices[c].label.c_str()).x);
+    }
+    const float fit = widest + ImGui::GetFrameHeight() + 2.0f * ImGui::GetStyle().FramePadding.x;
+    ImGui::SetNextItemWidth(
+        std::max(w, std::min(fit, widget_width(fit / ImGui::GetFontSize(), 0.3f))));
+    if (ImGui::BeginCombo(p.label.c_str(), p.choices[current].label.c_str())) {
+        for (std::size_t c = 0; c < p.choices.size(); ++c)
+            if (ImGui::Selectable(p.choices[c].label.c_str(), int(c) == current))
+                v.x = p.choices[c].value;
+        ImGui::EndCombo();
+    }
+}
+
+/// A slider (or, over wide ranges, a typed field); an optional one with its check box.
+void integer_widget(const ParamWidget& pw) {
+    const ParamSpec& p = pw.p;
+    ParamValue& v = pw.v;
+    const double lo = pw.lo, hi = pw.hi;
+    std::vector<std::string>* notes = pw.notes;
+    // An optional number's check box carries its label: set, or the default.
+    const std::string label = p.optional ? "##" + p.name : p.label;
+    if (p.optional) {
+        if (checkbox(p.label.c_str(), &v.on, (p.name + ":on").c_str()) && v.on)
+            v.x = std::clamp(v.x, p.min, p.max);  // from "unset" to a value
+        ImGui::SameLine();
+    }
+    if (!v.on) {  // unset: the run's default, said in words
+        ImGui::PushTextWrapPos(0.0f);
+        ImGui::TextDisabled("%s", default_note_text(p).c_str());
+        ImGui::PopTextWrapPos();
+        return;
+    }
+    ImGui::SetNextItemWidth(pw.w);
+    if (hi - lo <= 1000) {
+        int x = int(std::clamp(v.x, lo, hi));
+        if (ImGui::SliderInt(label.c_str(), &x, int(lo), int(hi), "%d",
+                             ImGuiSliderFlags_AlwaysClamp))
+            v.x = x;
+    } else {  // wide ranges (vertex counts): type the number
+        long long x = std::llround(v.x);
+        if (ImGui::InputScalar(label.c_str(), ImGuiDataType_S64, &x)) {
+            v.x = std::clamp(double(x), p.min, p.max);
+            if (v.x != double(x)) keep_typed_value(p, double(x), v.x, notes);
+        }
+    }
+}
+
+/// A typed field and a slider; a switchable one with its check box.
+void number_widget(const ParamWidget& pw) {
+    const ParamSpec& p = pw.p;
+    ParamValue& v = pw.v;
+    const double lo = pw.lo, hi = pw.hi;
+    const float w = pw.w;
+    std::vector<std::string>* notes = pw.notes;
+    const bool switchable = p.kind == ParamKind::Switchable;
+    if (switchable) {  // the check box carries the label
+        checkbox(p.label.c_str(), &v.on, (p.name + ":on").c_str());
+        ImGui::SameLine();
+        if (!v.on) ImGui::BeginDisabled();
+    }
+    // Type any value ("2e-2" works) or drag the slider. A typed value outside the
+    // declared range is clamped at once: the field lets go of it and shows the
+    // value used, as do the slider and every message (keep_typed_value()).
+    ImGui::SetNextItemWidth(w * 0.45f);
+    double x = v.x;
+    const bool typed = ImGui::InputDouble("##value", &x, 0.0, 0.0, "%g");
+    note_widget(p.name + ":value");
+    if (typed && std::isfinite(x)) {
+        v.x = clamp_to_declared(p, x);
+        // "0" on the way to "0.05" above an exclusive 0 is not a typing mistake.
+        const bool on_the_way = p.min_exclusive && x == p.min;
+        if (v.x != x && !on_the_way) keep_typed_value(p, x, v.x, notes);
+    }
+    // A slider where its span fits a float's (max-error has none: scale-dependent).
+    if (std::abs(lo) < 1e30 && std::abs(hi) < 1e30) {
+        ImGui::SameLine();
+        float f = float(std::clamp(v.x, lo, hi));
+        // Beyond the slider's span the slider shows the value itself, not its end.
+        char beyond[64];
+        std::snprintf(beyond, sizeof beyond, "%.4g", v.x);
+        const bool outside = v.x < lo || v.x > hi;
+        ImGui::SetNextItemWidth(w * 0.55f);
+        const std::string label = switchable ? "##" + p.name : p.label;
+        if (ImGui::SliderFloat(label.c_str(), &f, float(lo), float(hi), outside ? beyond : "%.4g",
+                               pw.flags))
+            v.x = f;
+    } else if (!switchable) {
+        ImGui::SameLine();
+        ImGui::TextUnformatted(p.label.c_str());
+    }
+    v.x = clamp_to_declared(p, v.x);
+    if (switchable && !v.on) ImGui::EndDisabled();
+}
+
+/// Two typed integers, the second not below the first.
+void range_widget(const ParamWidget& pw) {
+    const ParamSpec& p = pw.p;
+    ParamValue& v = pw.v;
+    int range[2] = {int(v.x), int(v.y)};
+    ImGui::SetNextItemWidth(pw.w);
+    if (ImGui::InputInt2(p.label.c_str(), range)) {
+        v.x = std::clamp(double(range[0]), p.min, p.max);
+        v.y = std::clamp(double(range[1]), v.x, p.max);
+    }
+}
+
+}  // namespace
+
 bool operation_widgets(Operation& op, const std::vector<std::string>& skip,
                        std::vector<std::string>* notes) {
     bool changed = false;
@@ -574,111 +719,26 @@ bool operation_widgets(Operation& op, const std::vector<std::string>& skip,
         const double hi = p.ui_min != 0 || p.ui_max != 0 ? p.ui_max : p.max;
         const ImGuiSliderFlags flags =
             p.logarithmic ? ImGuiSliderFlags_Logarithmic : ImGuiSliderFlags_None;
+        const ParamWidget pw{p, v, lo, hi, w, flags, notes};
         switch (p.kind) {
-            case ParamKind::Choice: {
-                int current = 0;
-                float widest = 0;  // the combo shows its longest choice whole where it can
-                for (std::size_t c = 0; c < p.choices.size(); ++c) {
-                    if (p.choices[c].value == int(v.x)) current = int(c);
-                    widest = std::max(widest, ImGui::CalcTextSize(p.choices[c].label.c_str()).x);
-                }
-                const float fit =
-                    widest + ImGui::GetFrameHeight() + 2.0f * ImGui::GetStyle().FramePadding.x;
-                ImGui::SetNextItemWidth(
-                    std::max(w, std::min(fit, widget_width(fit / ImGui::GetFontSize(), 0.3f))));
-                if (ImGui::BeginCombo(p.label.c_str(), p.choices[current].label.c_str())) {
-                    for (std::size_t c = 0; c < p.choices.size(); ++c)
-                        if (ImGui::Selectable(p.choices[c].label.c_str(), int(c) == current))
-                            v.x = p.choices[c].value;
-                    ImGui::EndCombo();
-                }
+            case ParamKind::Choice:
+                choice_widget(pw);
                 break;
-            }
             case ParamKind::Flag: {
                 bool on = v.x != 0;
                 if (checkbox(p.label.c_str(), &on)) v.x = on ? 1 : 0;
                 break;
             }
-            case ParamKind::Integer: {
-                // An optional number's check box carries its label: set, or the default.
-                const std::string label = p.optional ? "##" + p.name : p.label;
-                if (p.optional) {
-                    if (checkbox(p.label.c_str(), &v.on, (p.name + ":on").c_str()) && v.on)
-                        v.x = std::clamp(v.x, p.min, p.max);  // from "unset" to a value
-                    ImGui::SameLine();
-                }
-                if (!v.on) {  // unset: the run's default, said in words
-                    ImGui::PushTextWrapPos(0.0f);
-                    ImGui::TextDisabled("%s", default_note_text(p).c_str());
-                    ImGui::PopTextWrapPos();
-                    break;
-                }
-                ImGui::SetNextItemWidth(w);
-                if (hi - lo <= 1000) {
-                    int x = int(std::clamp(v.x, lo, hi));
-                    if (ImGui::SliderInt(label.c_str(), &x, int(lo), int(hi), "%d",
-                                         ImGuiSliderFlags_AlwaysClamp))
-                        v.x = x;
-                } else {  // wide ranges (vertex counts): type the number
-                    long long x = std::llround(v.x);
-                    if (ImGui::InputScalar(label.c_str(), ImGuiDataType_S64, &x)) {
-                        v.x = std::clamp(double(x), p.min, p.max);
-                        if (v.x != double(x)) keep_typed_value(p, double(x), v.x, notes);
-                    }
-                }
+            case ParamKind::Integer:
+                integer_widget(pw);
                 break;
-            }
             case ParamKind::Switchable:
-            case ParamKind::Number: {
-                const bool switchable = p.kind == ParamKind::Switchable;
-                if (switchable) {  // the check box carries the label
-                    checkbox(p.label.c_str(), &v.on, (p.name + ":on").c_str());
-                    ImGui::SameLine();
-                    if (!v.on) ImGui::BeginDisabled();
-                }
-                // Type any value ("2e-2" works) or drag the slider. A typed value outside the
-                // declared range is clamped at once: the field lets go of it and shows the
-                // value used, as do the slider and every message (keep_typed_value()).
-                ImGui::SetNextItemWidth(w * 0.45f);
-                double x = v.x;
-                const bool typed = ImGui::InputDouble("##value", &x, 0.0, 0.0, "%g");
-                note_widget(p.name + ":value");
-                if (typed && std::isfinite(x)) {
-                    v.x = clamp_to_declared(p, x);
-                    // "0" on the way to "0.05" above an exclusive 0 is not a typing mistake.
-                    const bool on_the_way = p.min_exclusive && x == p.min;
-                    if (v.x != x && !on_the_way) keep_typed_value(p, x, v.x, notes);
-                }
-                // A slider where its span fits a float's (max-error has none: scale-dependent).
-                if (std::abs(lo) < 1e30 && std::abs(hi) < 1e30) {
-                    ImGui::SameLine();
-                    float f = float(std::clamp(v.x, lo, hi));
-                    // Beyond the slider's span the slider shows the value itself, not its end.
-                    char beyond[64];
-                    std::snprintf(beyond, sizeof beyond, "%.4g", v.x);
-                    const bool outside = v.x < lo || v.x > hi;
-                    ImGui::SetNextItemWidth(w * 0.55f);
-                    const std::string label = switchable ? "##" + p.name : p.label;
-                    if (ImGui::SliderFloat(label.c_str(), &f, float(lo), float(hi),
-                                           outside ? beyond : "%.4g", flags))
-                        v.x = f;
-                } else if (!switchable) {
-                    ImGui::SameLine();
-                    ImGui::TextUnformatted(p.label.c_str());
-                }
-                v.x = clamp_to_declared(p, v.x);
-                if (switchable && !v.on) ImGui::EndDisabled();
+            case ParamKind::Number:
+                number_widget(pw);
                 break;
-            }
-            case ParamKind::Range: {
-                int range[2] = {int(v.x), int(v.y)};
-                ImGui::SetNextItemWidth(w);
-                if (ImGui::InputInt2(p.label.c_str(), range)) {
-                    v.x = std::clamp(double(range[0]), p.min, p.max);
-                    v.y = std::clamp(double(range[1]), v.x, p.max);
-                }
+            case ParamKind::Range:
+                range_widget(pw);
                 break;
-            }
         }
         note_widget(p.name);
         if (ImGui::IsItemHovered() && !p.help.empty()) ImGui::SetTooltip("%s", p.help.c_str());

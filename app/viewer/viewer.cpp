@@ -1363,6 +1363,28 @@ void Viewer::print_layout() const {
     std::fflush(stdout);
 }
 
+void Viewer::log_last_frame() {
+    char buf[96];
+    std::snprintf(buf, sizeof(buf), "median frame time %.1f ms over the last %zu frames",
+                  frame_ms(), std::min(n_frame_times_, frame_times_ms_.size()));
+    log_.info(buf);
+    // What the last frame showed, for scripts and tests.
+    const History& h = document_.history;
+    std::string entries;
+    for (std::size_t i = 0; i < h.size() && i < 20; ++i)
+        entries += (i ? " | " : "") + std::to_string(i) + " " + h.info(i).label;
+    log_.info("history: " + entries);
+    std::snprintf(buf, sizeof(buf), ", morph t = %.3f", morph_.t);
+    log_.info("last frame: " + document_.info[1] + buf);
+    const char* setting = view_.settings.wireframe == WireframeOverlay::Auto ? "automatic"
+                          : view_.settings.wireframe == WireframeOverlay::On ? "on"
+                                                                             : "off";
+    std::snprintf(buf, sizeof(buf), "wireframe overlay %s (%s; edges %.1f px on the screen)",
+                  view_.style.wireframe ? "on" : "off", setting, edge_pixels_);
+    log_.info(buf);
+    log_.info("status: " + notice_.text);
+}
+
 int Viewer::run() {
     int frame = 0;
     int settle_frames = 0;
@@ -1472,27 +1494,7 @@ int Viewer::run() {
         if (sweep_.active) step_sweep(preview_shown_ || lod_.shown);
         if (last) break;
     }
-    if (options_.frames > 0) {
-        char buf[96];
-        std::snprintf(buf, sizeof(buf), "median frame time %.1f ms over the last %zu frames",
-                      frame_ms(), std::min(n_frame_times_, frame_times_ms_.size()));
-        log_.info(buf);
-        // What the last frame showed, for scripts and tests.
-        const History& h = document_.history;
-        std::string entries;
-        for (std::size_t i = 0; i < h.size() && i < 20; ++i)
-            entries += (i ? " | " : "") + std::to_string(i) + " " + h.info(i).label;
-        log_.info("history: " + entries);
-        std::snprintf(buf, sizeof(buf), ", morph t = %.3f", morph_.t);
-        log_.info("last frame: " + document_.info[1] + buf);
-        const char* setting = view_.settings.wireframe == WireframeOverlay::Auto ? "automatic"
-                              : view_.settings.wireframe == WireframeOverlay::On ? "on"
-                                                                                 : "off";
-        std::snprintf(buf, sizeof(buf), "wireframe overlay %s (%s; edges %.1f px on the screen)",
-                      view_.style.wireframe ? "on" : "off", setting, edge_pixels_);
-        log_.info(buf);
-        log_.info("status: " + notice_.text);
-    }
+    if (options_.frames > 0) log_last_frame();
     log_.info(quit_ ? "quit after " + std::to_string(frame) + " frames" : "frames done");
     return exit_status_;
 }

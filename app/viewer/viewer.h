@@ -121,6 +121,9 @@ private:
     /// Scripted runs (--frames): whether the last frame may be drawn now (no job, preview,
     /// morph animation or scripted action still running). Finishes a playing morph.
     bool script_settled();
+    /// Scripted runs: what the last frame showed (history, state, wireframe, status) and the
+    /// median frame time, for scripts and tests.
+    void log_last_frame();
     /// --print-layout: the framebuffer, the view and every visible window.
     void print_layout() const;
     /// Decides the wireframe overlay for this frame (view_.settings.wireframe).
