@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "app/viewer/commands.h"
+#include "app/session/commands.h"
 #include "core/up_axis.h"
 
 namespace trilab::viewer {

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "app/ops/operation.h"
+#include "app/session/session.h"
 #include "core/algorithms/spectral.h"
 
 namespace trilab::viewer {
@@ -28,18 +29,6 @@ struct FrequencyPanelState {
     Operation op = make_operation("spectrum");
     int lo = 0, hi = 0;  ///< the band used for the reconstruction
     int visualize = 1;   ///< the frequency the "Frequency" colouring shows
-};
-
-/// The current decomposition and what the viewer derived from it for display.
-struct FrequencyDocument {
-    std::shared_ptr<const SpectralDecomposition> decomposition;
-    std::uint64_t topology_revision = 0;  ///< of the decomposed mesh (valid while it stays)
-    bool valid = false;                   ///< the current mesh has the decomposed connectivity
-    bool applied = false;
-    std::size_t applied_lo = 0, applied_hi = 0;  ///< the band of the current state
-    std::vector<float> eigenvalues;              ///< for the spectrum plot
-    std::vector<float> log_coefficients;         ///< log10 |alpha_k|, for the coefficient plot
-    std::string summary;                         ///< one line: count, time, solver
 };
 
 /// What the user did in the panel this frame.

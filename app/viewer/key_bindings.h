@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "app/viewer/commands.h"
-#include "app/viewer/log.h"
+#include "app/session/commands.h"
+#include "app/session/log.h"
 #include "app/viewer/panels.h"
 #include "render/mesh_renderer.h"
 

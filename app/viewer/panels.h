@@ -10,11 +10,12 @@
 #include <vector>
 
 #include "app/history/history.h"
-#include "app/viewer/commands.h"
+#include "app/session/commands.h"
+#include "app/session/log.h"
+#include "app/session/session.h"
 #include "app/viewer/file_browser.h"
 #include "app/viewer/frequency_panel.h"
 #include "app/viewer/layout.h"
-#include "app/viewer/log.h"
 #include "app/viewer/widgets.h"
 #include "core/algorithms/coloring.h"
 #include "core/algorithms/morph.h"
@@ -25,34 +26,12 @@ struct ImGuiStyle;
 
 namespace trilab::viewer {
 
-/// The last thing the viewer has to tell the user. Errors also open a modal popup once.
-struct Notice {
-    enum class Level { None, Info, Error };
-    Level level = Level::None;
-    std::string text;                  ///< one line, shown in the status bar
-    std::vector<std::string> details;  ///< extra lines for the tooltip (e.g. a load report)
-    bool popup_pending = false;        ///< an error the popup has not shown yet
-};
-
 /// The screenshot dialog: a PNG of the scene without the panels, at any resolution.
 struct ScreenshotState {
     bool open = false;
     std::string path = "trilab-screenshot.png";
     int width = 1920, height = 1080;
     bool transparent = false;
-};
-
-/// The morph of the current history entry: the slider and the animation.
-struct MorphState {
-    double t = 1.0;  ///< 0: the state before the entry, 1: after it
-    bool playing = false;
-    double duration = 2.0;  ///< seconds for one pass
-    Easing easing = Easing::SmoothStep;
-    Playback playback = Playback::PingPong;
-    double play_start = 0.0;  ///< glfw time when playback started
-    /// The entry moves vertices (false for loads, reverts, texture coordinates: nothing to
-    /// animate, so the morph controls say so instead).
-    bool moves = true;
 };
 
 /// The Record panel: writes the current entry's morph as PNG frames (and an MP4 when ffmpeg
@@ -82,6 +61,7 @@ struct OperationPanelState {
     bool previewing = false;   ///< a preview of this panel is computing or shown
     std::string preview_note;  ///< e.g. "preview 38 ms" or why it waits for the release
     std::string input_note;    ///< a typed value that was clamped, and to what
+    double latency_ms = -1;    ///< of the last preview the note tells about
 };
 
 /// The Fairing panel: its operation, and the stability guidance the viewer keeps up to date.

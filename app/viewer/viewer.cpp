@@ -51,20 +51,6 @@ void glfw_error(int code, const char* description) {
     std::fprintf(stderr, "trilab: GLFW error %d: %s\n", code, description);
 }
 
-/// Whether every step of `result` is `mesh` itself: the same connectivity and positions, bit
-/// for bit (what the history would store and the morph would show).
-bool leaves_unchanged(const HalfedgeMesh& mesh, const OperationResult& result) {
-    for (const OperationStep& step : result.steps) {
-        const HalfedgeMesh& m = step.mesh;
-        if (m.revision() == mesh.revision()) continue;
-        if (m.topology_revision() != mesh.topology_revision() ||
-            m.vertices_size() != mesh.vertices_size())
-            return false;
-        if (m.positions() != mesh.positions()) return false;
-    }
-    return true;
-}
-
 glm::vec3 to_glm(const Point& p) {
     return glm::vec3(float(p.x()), float(p.y()), float(p.z()));
 }
@@ -203,10 +189,13 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
     view_.settings.up = options_.up.empty() ? preferences_.up : parse_up_axis(options_.up, "--up");
     view_.camera.reset_rotation(view_.settings.up);
     if (options_.memory_budget_mb > 0)
-        document_.history.set_budget(std::size_t(options_.memory_budget_mb) << 20);
-    push_loaded(make_default_model(), "Default model", "default model", "", LoadReport{});
-    log_.info("OpenGL " + std::string(reinterpret_cast<const char*>(glGetString(GL_VERSION))) +
-              " on " + reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
+        session_.set_history_budget(std::size_t(options_.memory_budget_mb) << 20);
+    // The panels follow what the session did (viewer_frequency.cpp, follow_session()).
+    session_.on_decomposed = [this](std::size_t lo, std::size_t hi) { on_decomposed(lo, hi); };
+    follow_session();  // the built-in model: upload it, fit the view
+    session_.log().info("OpenGL " +
+                        std::string(reinterpret_cast<const char*>(glGetString(GL_VERSION))) +
+                        " on " + reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
     // Initial rendering options; bad names throw InvalidArgument before any window work.
     if (!options_.mode.empty()) view_.style.mode = parse_render_mode(options_.mode);
     if (options_.wireframe == "on")
@@ -222,7 +211,8 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
     }
     if (!options_.operation.empty()) {  // refuse bad ones now; the panel shows its values
         const Operation op = parse_operation(options_.operation);
-        if (OperationPanelState* panel = panel_of(op)) panel->op = op;
+        for (OperationPanelState* panel : operation_panels())
+            if (panel->op.def == op.def) panel->op = op;
     }
     for (std::size_t pos = 0; pos < options_.show.size();) {
         std::size_t comma = options_.show.find(',', pos);
@@ -272,9 +262,7 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
                 "decimation, collapsing-edges, record, log, info, help, about, screenshot)");
     }
     initial_load_ended_ = options_.mesh_path.empty();
-    if (!options_.mesh_path.empty()) load(options_.mesh_path);
-    if (!options_.operation.empty() && options_.mesh_path.empty())
-        commands_.push_back(RunOperation{parse_operation(options_.operation)});
+    if (!options_.mesh_path.empty()) session_.execute(LoadFile{options_.mesh_path, true});
 }
 
 Viewer::~Viewer() {
@@ -283,109 +271,170 @@ Viewer::~Viewer() {
 
 // ---- documents and commands -----------------------------------------------------------------
 
-void Viewer::push_loaded(HalfedgeMesh mesh, std::string label, std::string name, std::string path,
-                         LoadReport report) {
-    // A load shows no motion: every vertex "starts" where it is.
-    MorphCorrespondence none{MorphCorrespondence::Kind::FromEarlier, mesh.positions()};
-    // "Load bunny.obj ../meshes/bunny.obj"; the path alone where it is the name.
-    const std::string parameters = path == name ? "" : path;
-    // The first file replaces the built-in model while nothing was done to it.
-    const bool untouched_default =
-        document_.history.size() == 1 && document_.path.empty() && !document_.unsaved;
-    if (document_.history.size() == 0 || untouched_default)
-        document_.history.reset(std::move(mesh), std::move(label), parameters);
-    else
-        log_history_messages(document_.history.push(std::move(label), parameters, 0.0,
-                                                    {std::move(mesh)}, {std::move(none)}));
-    document_.name = std::move(name);
-    document_.path = std::move(path);
-    document_.report = std::move(report);
-    view_.camera.reset_rotation(view_.settings.up);  // a new model: the default view
-    on_state_changed(true);
-    document_.unsaved = false;
-    glfwSetWindowTitle(window_.get(), (document_.name + " - " + kTitle).c_str());
+std::vector<OperationPanelState*> Viewer::operation_panels() {
+    return {&panels_.subdivision, &panels_.fairing, &panels_.decimation, &panels_.tools,
+            &panels_.weld};
 }
 
-void Viewer::log_history_messages(const std::vector<std::string>& messages) {
-    for (const std::string& m : messages) log_.warning(m);
-}
-
-void Viewer::on_state_changed(bool fit) {
-    clear_level_of_detail(true);  // a level of detail belongs to the state it was built on
-    document_.unsaved = true;
-    const HalfedgeMesh& mesh = document_.mesh();
-    document_.texcoords_projected =
-        mesh.has_vertex_property("v:texcoord") && document_.texcoords_projected;
-    const MeshStats s = compute_stats(mesh);
-    document_.closed = s.volume.has_value();
-    document_.open_seams = s.boundary_loops > 0 && pair_boundary_edges(mesh).paired_edges > 0;
-    surface_area_ = s.area;
-    char buf[256];
-    std::vector<std::string>& info = document_.info;
-    info.clear();
-    info.push_back("model: " + document_.name +
-                   (document_.path.empty() ? "" : " (" + document_.path + ")"));
-    const History::EntryInfo entry = document_.history.info(document_.history.current());
-    info.push_back("state " + std::to_string(document_.history.current()) + " of " +
-                   std::to_string(document_.history.size()) + ": " + entry.label +
-                   (entry.parameters.empty() ? "" : " " + entry.parameters));
-    std::snprintf(buf, sizeof(buf), "vertices %zu (%zu isolated), edges %zu, faces %zu", s.vertices,
-                  s.isolated_vertices, s.edges, s.faces);
-    info.push_back(buf);
-    std::snprintf(buf, sizeof(buf), "components %zu, boundary loops %zu, Euler %lld, genus %lld",
-                  s.components, s.boundary_loops, s.euler, s.genus);
-    info.push_back(buf);
-    std::snprintf(buf, sizeof(buf), "bounding box [%g %g %g] - [%g %g %g]", s.bbox.min.x(),
-                  s.bbox.min.y(), s.bbox.min.z(), s.bbox.max.x(), s.bbox.max.y(), s.bbox.max.z());
-    info.push_back(buf);
-    if (s.volume)
-        std::snprintf(buf, sizeof(buf), "area %.6g, volume %.6g", s.area, *s.volume);
-    else
-        std::snprintf(buf, sizeof(buf), "area %.6g, volume undefined (open mesh)", s.area);
-    info.push_back(buf);
-    for (const std::string& line : document_.report.lines()) info.push_back("load: " + line);
-
-    morph_ = MorphState{1.0, false, morph_.duration, morph_.easing, morph_.playback, 0.0};
-    morph_.moves = entry_moves();
-    morph_shown_ = false;
-    // The status bar tells where the document is now (a load says more afterwards).
-    notice_ = Notice{Notice::Level::Info,
-                     "state " + std::to_string(document_.history.current()) + ": " + entry.label +
-                         (entry.parameters.empty() ? "" : " " + entry.parameters),
-                     {},
-                     false};
-    renderer_->show(mesh);  // only what changed: nothing after a repaint, positions after a fairing
-    renderer_->clear_vertex_colors();
-    view_.colors = VertexColors{};
-    if (view_.settings.coloring != VertexColoring::None) update_coloring();
-    if (fit) fit_view();
-}
-
-void Viewer::run_operation_job(const Operation& op) {
-    try {
-        check_operation(op);
-    } catch (const std::exception& e) {
-        notify_error(e.what());
-        return;
+void Viewer::follow_session() {
+    SessionEvents e = session_.take_events();
+    for (const std::string& path : e.recent) recent_.add(path);
+    if (e.state_changed) {
+        const Document& doc = session_.document();
+        surface_area_ = doc.area;
+        shown_version_ = 0;  // upload what is shown again, with the new colours
+        view_.colors = VertexColors{};
+        renderer_->show(session_.mesh());
+        renderer_->clear_vertex_colors();
+        if (view_.settings.coloring != VertexColoring::None) update_coloring();
+        glfwSetWindowTitle(window_.get(), (doc.name + " - " + kTitle).c_str());
+        if (e.fit) {
+            view_.camera.reset_rotation(view_.settings.up);  // a new model: the default view
+            fit_view();
+        }
     }
-    const std::string op_text = op.text();
-    const bool started = jobs_.start(op_text, [this, op](Progress& progress) {
-        auto result =
-            std::make_shared<OperationResult>(run_operation(op, document_.mesh(), progress));
-        return JobRunner::Finish([this, result, op] { commit_result(op, std::move(*result)); });
-    });
-    if (!started) notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
+    if (e.texture) {
+        texture_ = std::move(*e.texture);
+        view_.settings.use_checkerboard = false;
+        update_texture();
+        // A texture was asked for: show it.
+        view_.style.mode = RenderMode::Textured;
+        if (view_.style.texture_mode == TextureMode::Off)
+            view_.style.texture_mode = TextureMode::Modulate;
+    }
+    if (e.saved && continue_after_save_) {  // a prompt's "Save and go on": now go on
+        continue_after_save_ = false;
+        if (panels_.unsaved.quitting)
+            commands_.push_back(Quit{true});
+        else
+            commands_.push_back(LoadFile{panels_.unsaved.path, true});
+    }
+}
+
+void Viewer::advance_script() {
+    // The initial load has ended (or failed): --op runs on what it loaded.
+    if (!initial_load_ended_ && !session_.busy()) initial_load_ended_ = true;
+    if (initial_load_ended_ && !initial_op_done_) {
+        initial_op_done_ = true;
+        const bool loaded =
+            options_.mesh_path.empty() || session_.document().path == options_.mesh_path;
+        if (!options_.operation.empty() && loaded)
+            commands_.push_back(RunOperation{parse_operation(options_.operation)});
+    }
+}
+
+void Viewer::sync_renderer() {
+    const Shown& shown = session_.shown();
+    if (shown.version == shown_version_) return;
+    const Shown::Kind before = shown_kind_;
+    shown_version_ = shown.version;
+    shown_kind_ = shown.kind;
+    active_frames_ = std::max(active_frames_, 2);
+    try {
+        switch (shown.kind) {
+            case Shown::Kind::Document:
+                renderer_->show(*shown.mesh);
+                apply_colors(std::move(view_.colors));
+                break;
+            case Shown::Kind::Preview:
+                // Geometry-only previews (fairing, noise) move the vertices already on the GPU:
+                // the renderer compares revisions and uploads only what changed.
+                if (renderer_->show(*shown.mesh) == MeshRenderer::Update::Full) {
+                    const std::vector<Point> reference =
+                        session_.mesh().vertices_size() == shown.mesh->vertices_size()
+                            ? session_.mesh().positions()
+                            : std::vector<Point>{};
+                    show_colors_of(*shown.mesh, reference);
+                }
+                break;
+            case Shown::Kind::Morph:
+                // The morph's first frame, or a new connectivity: upload it once (unless the GPU
+                // holds it already); colours are computed on it at its own (final) shape, so
+                // each vertex keeps its colour while it moves.
+                if (before != Shown::Kind::Morph || !renderer_->shows_topology_of(*shown.mesh)) {
+                    if (!renderer_->shows_topology_of(*shown.mesh)) renderer_->upload(*shown.mesh);
+                    show_colors_of(*shown.mesh, session_.reference_positions());
+                }
+                renderer_->update_positions(*shown.mesh, shown.positions);
+                break;
+            case Shown::Kind::Level:
+                if (before == Shown::Kind::Level)
+                    renderer_->update_level(*shown.level);
+                else
+                    renderer_->upload_level(*shown.level);
+                break;
+            case Shown::Kind::Band:
+                renderer_->show(*shown.mesh);
+                renderer_->update_positions(*shown.mesh, shown.positions);
+                break;
+        }
+    } catch (const std::exception& e) {
+        session_.notify_error(std::string("view: ") + e.what());
+    }
+}
+
+void Viewer::show_colors_of(const HalfedgeMesh& mesh, const std::vector<Point>& reference) {
+    if (view_.settings.coloring == VertexColoring::None) return;
+    const VertexColors colors =
+        coloring_needs_field(view_.settings.coloring)
+            ? frequency_colors(mesh)
+            : color_vertices(mesh, view_.settings.coloring, view_.settings.coloring_options,
+                             reference.empty() ? nullptr : &reference);
+    if (colors.colors.empty())
+        renderer_->clear_vertex_colors();
+    else
+        renderer_->set_vertex_colors(colors.colors, color_blend(colors.kind));
+}
+
+bool Viewer::ready_for_script() const {
+    // The initial load and --op are done (queued) and no job runs.
+    return !session_.jobs().busy() && initial_load_ended_ && initial_op_done_ && commands_.empty();
+}
+
+void Viewer::update_panels() {
+    // The operation panels: their previews (Cancel shows), and whether they stay live.
+    const std::optional<Operation>& requested = session_.preview_requested();
+    for (OperationPanelState* panel : operation_panels()) {
+        panel->previewing = session_.previewing(panel->op);
+        if (!requested || requested->def != panel->op.def) continue;
+        const double ms = session_.last_preview_ms();
+        if (ms < 0 || ms == panel->latency_ms || sweep_.active) continue;
+        panel->latency_ms = ms;
+        note_preview_latency(*panel, ms);
+    }
+    update_stable_step();
+    // Decimation's level of detail.
+    DecimationPanelState& d = panels_.decimation;
+    d.lod_ready = session_.has_level_of_detail();
+    d.lod_building = session_.level_building();
+    d.lod_note = session_.level_note();
+    if (!d.lod_ready) d.lod_percent = 100.0f;
+}
+
+void Viewer::note_preview_latency(OperationPanelState& panel, double ms) {
+    constexpr double kLiveBudgetMs = 150.0;  ///< previews slower than this wait for the release
+    char buf[160];
+    panel.live = ms <= kLiveBudgetMs;
+    if (panel.live)
+        std::snprintf(buf, sizeof buf, "preview %.0f ms", ms);
+    else
+        std::snprintf(buf, sizeof buf,
+                      "preview %.0f ms: over the %.0f ms budget, previews when a drag ends", ms,
+                      kLiveBudgetMs);
+    panel.preview_note = buf;
 }
 
 void Viewer::update_stable_step() {
     FairingPanelState& f = panels_.fairing;
     if (!f.open) return;
     const int op = int(f.op.value("operator").x);
-    const HalfedgeMesh::Revision state = document_.mesh().revision();
+    const HalfedgeMesh::Revision state = session_.mesh().revision();
     // A preview of this state reports it (any size); small meshes get it at once.
-    if (preview_.result && preview_.base == state && preview_.computed_op.def == f.op.def &&
-        int(preview_.computed_op.value("operator").x) == op) {
-        for (const auto& [key, value] : preview_.result->values)
+    const OperationResult* preview = session_.preview_result();
+    const std::optional<Operation>& requested = session_.preview_requested();
+    if (preview && requested && requested->def == f.op.def &&
+        int(requested->value("operator").x) == op) {
+        for (const auto& [key, value] : preview->values)
             if (key == "max_stable_step" && std::isfinite(value)) f.max_stable_step = value;
         f.stable_step_state = state;
         f.stable_step_operator = op;
@@ -396,77 +445,26 @@ void Viewer::update_stable_step() {
     f.stable_step_operator = op;
     f.max_stable_step = std::numeric_limits<double>::quiet_NaN();
     constexpr std::size_t kAtOnceVertices = 100000;  // a few ms to tens of ms
-    if (document_.mesh().n_vertices() <= kAtOnceVertices) {
+    if (session_.mesh().n_vertices() <= kAtOnceVertices) {
         try {
             const FairingOperator fo = op == int(FairingOperator::Taubin)
                                            ? FairingOperator::Umbrella
                                            : FairingOperator(op);
-            f.max_stable_step = max_stable_explicit_step(document_.mesh(), fo);
+            f.max_stable_step = max_stable_explicit_step(session_.mesh(), fo);
         } catch (const std::exception& e) {
-            log_.warning(std::string("stable step: ") + e.what());
+            session_.log().warning(std::string("stable step: ") + e.what());
         }
     }
 }
 
-bool Viewer::ready_for_script() const {
-    if (jobs_.busy()) return false;
-    if (!initial_load_ended_) return false;  // still loading
-    if (!options_.operation.empty() && !initial_op_done_ && !options_.mesh_path.empty())
-        return false;
-    return true;
-}
-
-void Viewer::commit_result(const Operation& op, OperationResult result_value) {
-    OperationResult* result = &result_value;
-    if (!result->changed) {  // stopped before its first good iteration: nothing to keep
-        for (const std::string& line : result->report) log_.info("  " + line);
-        notify_error(result->label + " stopped early, nothing changed: " + result->stop_reason);
-        return;
-    }
-    // A run that changed nothing (a step of 0, no edge to weld) adds no entry, and says so.
-    if (leaves_unchanged(document_.mesh(), *result)) {
-        for (const std::string& line : result->report) log_.info("  " + line);
-        const std::string text =
-            result->label + " " + result->parameters + " changed nothing: no history entry";
-        log_.info(text);
-        notice_ = Notice{Notice::Level::Info, text, {}, false};
-        return;
-    }
-    std::vector<HalfedgeMesh> meshes;
-    std::vector<MorphCorrespondence> correspondences;
-    for (OperationStep& step : result->steps) {
-        meshes.push_back(std::move(step.mesh));
-        correspondences.push_back(std::move(step.correspondence));
-    }
-    log_history_messages(document_.history.push(result->label, result->parameters, result->ms,
-                                                std::move(meshes), std::move(correspondences), op));
-    log_.info(result->label + " " + result->parameters);
-    for (const std::string& line : result->report) log_.info("  " + line);
-    if (op.def && op.name() == "flip") {  // replaces a load's "its faces point inwards"
-        std::string text = result->label;
-        for (std::size_t i = 0; i < result->report.size(); ++i)
-            text += (i ? "; " : ": ") + result->report[i];
-        notice_ = Notice{Notice::Level::Info, text, {}, false};
-    }
-    on_state_changed(false);
-    // A run that stopped early keeps its good steps and says why, never silently.
-    if (result->stopped_early)
-        notify_error(result->label + " stopped early: " + result->stop_reason);
-    // Show the change: play the morph once from before to after.
-    morph_.t = 0.0;
-    morph_.playing = true;
-    morph_.playback = Playback::Once;
-    morph_.play_start = glfwGetTime();
-}
-
 void Viewer::start_recording() {
     RecordState& r = panels_.record;
-    const History& h = document_.history;
+    const History& h = session_.history();
     if (h.current() == 0 || r.running) return;
     std::error_code ec;
     std::filesystem::create_directories(r.folder, ec);
     if (ec || !std::filesystem::is_directory(r.folder)) {
-        notify_error("record: cannot create the folder " + r.folder);
+        session_.notify_error("record: cannot create the folder " + r.folder);
         return;
     }
     // Framed as the view, fixed for all frames.
@@ -476,10 +474,10 @@ void Viewer::start_recording() {
     view_viewport(x, y, view_w, view_h);
     record_line_scale_ =
         ui_scale_ * std::min(float(r.width) / float(view_w), float(r.height) / float(view_h));
-    morph_.playing = false;
+    session_.morph().playing = false;
     r.running = true;
     r.next = 0;
-    log_.info("recording " + std::to_string(r.frames) + " frames to " + r.folder);
+    session_.log().info("recording " + std::to_string(r.frames) + " frames to " + r.folder);
 }
 
 void Viewer::record_next_frame() {
@@ -488,8 +486,9 @@ void Viewer::record_next_frame() {
     active_frames_ = std::max(active_frames_, 1);
     try {
         // Show frame `next` of the morph (this also updates the window).
-        morph_.t = r.frames > 1 ? double(r.next) / double(r.frames - 1) : 1.0;
-        update_morph();
+        session_.morph().t = r.frames > 1 ? double(r.next) / double(r.frames - 1) : 1.0;
+        session_.update();
+        sync_renderer();
         Framebuffer framebuffer;
         framebuffer.create(r.width, r.height, 4);
         framebuffer.bind();
@@ -505,7 +504,7 @@ void Viewer::record_next_frame() {
             (std::filesystem::path(r.folder) / record::frame_file_name(r.name, r.next)).string());
     } catch (const std::exception& e) {
         Framebuffer::bind_default();
-        notify_error(std::string("record: ") + e.what());
+        session_.notify_error(std::string("record: ") + e.what());
         finish_recording(true);
         return;
     }
@@ -516,13 +515,13 @@ void Viewer::finish_recording(bool cancelled) {
     RecordState& r = panels_.record;
     r.running = false;
     if (cancelled) {
-        log_.warning("recording stopped after " + std::to_string(r.next) + " frames");
+        session_.log().warning("recording stopped after " + std::to_string(r.next) + " frames");
         return;
     }
-    log_.info("recorded " + std::to_string(r.frames) + " frames in " + r.folder);
+    session_.log().info("recorded " + std::to_string(r.frames) + " frames in " + r.folder);
     if (!r.mp4) return;
     if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0) {
-        log_.warning("no ffmpeg on the PATH: the PNG frames are written, no MP4");
+        session_.log().warning("no ffmpeg on the PATH: the PNG frames are written, no MP4");
         return;
     }
     const std::string pattern = (std::filesystem::path(r.folder) / (r.name + "_%04d.png")).string();
@@ -533,181 +532,13 @@ void Viewer::finish_recording(bool cancelled) {
                                 "yuv420p '" +
                                 mp4 + "'";
     if (std::system(command.c_str()) == 0)
-        log_.info("wrote " + mp4);
+        session_.log().info("wrote " + mp4);
     else
-        log_.warning("ffmpeg failed; the PNG frames are in " + r.folder);
-}
-
-void Viewer::update_morph() {
-    if (lod_.shown) return;  // the level-of-detail slider owns the view
-    if (preview_.result) {
-        show_preview();
-        return;
-    }
-    const std::size_t entry = document_.history.current();
-    if (morph_.playing) {
-        morph_.t =
-            playback_time(morph_.playback, glfwGetTime() - morph_.play_start, morph_.duration);
-        if (morph_.playback == Playback::Once && morph_.t >= 1.0) morph_.playing = false;
-        active_frames_ = std::max(active_frames_, 1);
-    }
-    const bool morphing = entry > 0 && (morph_.playing || morph_.t < 1.0);
-    if (!morphing) {
-        if (morph_shown_) {  // back to the current state as it is
-            morph_shown_ = false;
-            show_document();
-        }
-        return;
-    }
-    try {
-        const MorphFrame frame = document_.history.morph(entry, ease(morph_.easing, morph_.t));
-        const bool held = renderer_->shows_topology_of(*frame.topology);
-        if (!morph_shown_ || !held) {
-            // The morph's first frame, or a new connectivity: upload it once (unless the GPU
-            // holds it already); colours are computed on it at its own (final) shape, so each
-            // vertex keeps its colour while it moves.
-            morph_shown_ = true;
-            if (!held) renderer_->upload(*frame.topology);
-            if (view_.settings.coloring != VertexColoring::None) {
-                const std::vector<Point> reference = reference_positions();
-                VertexColors colors =
-                    coloring_needs_field(view_.settings.coloring)
-                        ? frequency_colors(*frame.topology)
-                        : color_vertices(*frame.topology, view_.settings.coloring,
-                                         view_.settings.coloring_options, &reference);
-                if (colors.colors.empty())
-                    renderer_->clear_vertex_colors();
-                else
-                    renderer_->set_vertex_colors(colors.colors, color_blend(colors.kind));
-            }
-        }
-        renderer_->update_positions(*frame.topology, frame.positions);
-    } catch (const std::exception& e) {
-        morph_ = MorphState{1.0, false,       morph_.duration, morph_.easing, morph_.playback,
-                            0.0, morph_.moves};
-        notify_error(std::string("morph: ") + e.what());
-    }
-}
-
-void Viewer::notify_error(const std::string& text) {
-    log_.error(text);
-    notice_ = Notice{Notice::Level::Error, text, {}, true};
-}
-
-void Viewer::load(const std::string& path) {
-    const std::string name = std::filesystem::path(path).filename().string();
-    const bool started = jobs_.start("Loading " + name, [this, path, name](Progress& progress) {
-        progress.report(-1.0, "reading and building the half-edge mesh");
-        auto loaded = std::make_shared<LoadedMesh>(read_mesh(path));
-        // Runs on the render thread when the job succeeded and was not cancelled.
-        // A closed mesh turned inside out (read_mesh notes it): said where it shows.
-        auto inward = std::make_shared<std::string>(inward_orientation_note(loaded->mesh));
-        return JobRunner::Finish([this, loaded, path, name, inward] {
-            log_.info("loaded " + path);
-            for (const std::string& line : loaded->report.lines()) {
-                if (line == *inward)
-                    log_.warning("  " + line);
-                else
-                    log_.info("  " + line);
-            }
-            if (!loaded->texture_path.empty()) log_.info("  texture: " + loaded->texture_path);
-            const bool revert = path == document_.path;
-            std::vector<std::string> report_lines = loaded->report.lines();
-            push_loaded(std::move(loaded->mesh), revert ? "Revert" : "Load " + name, name, path,
-                        std::move(loaded->report));
-            notice_ = Notice{Notice::Level::Info, (revert ? "Reverted to " : "Loaded ") + name,
-                             std::move(report_lines), false};
-            if (!inward->empty())
-                notice_.text +=
-                    ": its faces point inwards (negative volume); Tools > Flip "
-                    "orientation turns them outwards";
-            if (!options_.operation.empty() && path == options_.mesh_path && !initial_op_done_) {
-                initial_op_done_ = true;
-                commands_.push_back(RunOperation{parse_operation(options_.operation)});
-            }
-            recent_.add(path);
-        });
-    });
-    if (!started) notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
-}
-
-void Viewer::save(const std::string& path) {
-    auto copy = std::make_shared<HalfedgeMesh>(document_.mesh());
-    const std::string name = std::filesystem::path(path).filename().string();
-    const bool started =
-        jobs_.start("Saving " + name, [this, copy, path, name](Progress& progress) {
-            progress.report(-1.0, "writing");
-            write_mesh(*copy, path);
-            return JobRunner::Finish([this, path, name] {
-                notice_ = Notice{Notice::Level::Info, "Saved " + name, {}, false};
-                log_.info("saved " + path);
-                recent_.add(path);
-                document_.unsaved = false;
-                // A prompt's "Save and go on": now go on.
-                if (continue_after_save_) {
-                    continue_after_save_ = false;
-                    if (panels_.unsaved.quitting)
-                        commands_.push_back(Quit{true});
-                    else
-                        commands_.push_back(LoadFile{panels_.unsaved.path, true});
-                }
-            });
-        });
-    if (!started) notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
-}
-
-void Viewer::load_texture(const std::string& path) {
-    const std::string name = std::filesystem::path(path).filename().string();
-    const bool started = jobs_.start("Loading texture " + name, [this, path, name](Progress&) {
-        auto image = std::make_shared<Image>(read_image(path));
-        return JobRunner::Finish([this, image, path, name] {
-            texture_ = std::move(*image);
-            view_.settings.use_checkerboard = false;
-            update_texture();
-            // A texture was asked for: show it.
-            view_.style.mode = RenderMode::Textured;
-            if (view_.style.texture_mode == TextureMode::Off)
-                view_.style.texture_mode = TextureMode::Modulate;
-            log_.info("texture " + path + ": " + std::to_string(texture_.width) + " x " +
-                      std::to_string(texture_.height));
-            notice_ = Notice{Notice::Level::Info, "Texture " + name, {}, false};
-        });
-    });
-    if (!started) notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
-}
-
-void Viewer::poll_jobs() {
-    const JobRunner::Outcome outcome = jobs_.poll();
-    using Kind = JobRunner::Outcome::Kind;
-    if (outcome.kind == Kind::None) return;
-    if (coloring_pending_) {
-        coloring_pending_ = false;
-        commands_.push_back(UpdateColoring{});
-    }
-    active_frames_ = kFramesAfterInput;
-    if (outcome.name.rfind("Loading ", 0) == 0) initial_load_ended_ = true;  // or failed
-    const bool preview = outcome.name.rfind("Preview: ", 0) == 0;
-    if (preview && outcome.kind == Kind::Failed) preview_.failure = outcome.message;
-    if (preview && outcome.kind != Kind::Failed) {
-        if (outcome.kind == Kind::Succeeded && preview_.requested &&
-            preview_.computed_op == *preview_.requested && !sweep_.active)
-            note_preview_latency(1000.0 * (glfwGetTime() - preview_.requested_at));
-        return;
-    }
-    if (outcome.kind == Kind::Failed) {
-        notify_error(outcome.message);
-    } else if (outcome.kind == Kind::Cancelled) {
-        log_.warning(outcome.name + ": cancelled, nothing changed");
-        notice_ = Notice{Notice::Level::Info, outcome.name + ": cancelled", {}, false};
-    } else {
-        char buf[64];
-        std::snprintf(buf, sizeof(buf), " (%.0f ms)", outcome.seconds * 1000.0);
-        log_.info(outcome.name + " done" + buf);
-    }
+        session_.log().warning("ffmpeg failed; the PNG frames are in " + r.folder);
 }
 
 std::vector<std::string> Viewer::scene_info() const {
-    std::vector<std::string> lines = document_.info;
+    std::vector<std::string> lines = session_.document().info;
     const glm::vec3 eye = glm::vec3(glm::inverse(view_.camera.view())[3]);
     char buf[200];
     std::snprintf(buf, sizeof(buf), "camera at (%.3g, %.3g, %.3g), frame %.1f ms", eye.x, eye.y,
@@ -734,17 +565,17 @@ void Viewer::reset_view() {
     if (preferences_.up != up) {
         preferences_.up = up;
         preferences_.save();
-        log_.info(std::string("up axis: +") + up_axis_name(up) +
-                  " (the default view and the spherical texture projection)");
+        session_.log().info(std::string("up axis: +") + up_axis_name(up) +
+                            " (the default view and the spherical texture projection)");
         // Coordinates the viewer projected around the other axis follow (a history entry).
-        if (document_.texcoords_projected &&
+        if (session_.document().texcoords_projected &&
             view_.settings.projection == TexCoordProjection::Spherical)
-            project_texcoords_now();
+            session_.project_texcoords(view_.settings.projection, view_.settings.up);
     }
 }
 
 void Viewer::fit_view() {
-    const HalfedgeMesh& mesh = document_.mesh();
+    const HalfedgeMesh& mesh = session_.mesh();
     BoundingBox box = bounding_box(mesh);
     fit_center_ = glm::vec3(0.0f);
     fit_radius_ = 1.0f;
@@ -771,11 +602,6 @@ void Viewer::apply_colors(VertexColors colors) {
         renderer_->set_vertex_colors(view_.colors.colors, color_blend(view_.colors.kind));
 }
 
-void Viewer::show_document() {
-    renderer_->show(document_.mesh());
-    apply_colors(std::move(view_.colors));
-}
-
 void Viewer::update_coloring() {
     const VertexColoring coloring = view_.settings.coloring;
     const ColoringOptions options = view_.settings.coloring_options;
@@ -784,67 +610,57 @@ void Viewer::update_coloring() {
         return;
     }
     if (coloring_needs_field(coloring)) {  // from the decomposition: cheap, on this thread
-        VertexColors colors = frequency_colors(document_.mesh());
+        VertexColors colors = frequency_colors(session_.mesh());
         if (colors.colors.empty())
-            notice_ = Notice{Notice::Level::Info,
-                             "the frequency colourings need a decomposition (Algorithms > "
-                             "Frequency decomposition)",
-                             {},
-                             false};
+            session_.notice() =
+                Notice{Notice::Level::Info,
+                       "the frequency colourings need a decomposition (Algorithms > "
+                       "Frequency decomposition)",
+                       {},
+                       false};
         apply_colors(std::move(colors));
         return;
     }
     auto reference = std::make_shared<const std::vector<Point>>(
-        coloring == VertexColoring::SmoothingDistance ? reference_positions()
+        coloring == VertexColoring::SmoothingDistance ? session_.reference_positions()
                                                       : std::vector<Point>{});
-    if (document_.mesh().n_faces() < kColoringJobFaces) {
-        apply_colors(color_vertices(document_.mesh(), coloring, options, reference.get()));
+    if (session_.mesh().n_faces() < kColoringJobFaces) {
+        apply_colors(color_vertices(session_.mesh(), coloring, options, reference.get()));
         return;
     }
     // Large meshes: compute on the worker; the document cannot change while a job runs.
-    if (jobs_.busy()) {  // e.g. dragging the legend's range: colour again when it is done
+    if (session_.jobs().busy()) {  // e.g. dragging the legend's range: colour again when it is done
         coloring_pending_ = true;
         return;
     }
+    const HalfedgeMesh snapshot = session_.mesh();  // copy-on-write: the job's own
     const bool started =
-        jobs_.start(std::string("Colouring by ") + coloring_name(coloring),
-                    [this, coloring, options, reference](Progress&) {
-                        auto colors = std::make_shared<VertexColors>(
-                            color_vertices(document_.mesh(), coloring, options, reference.get()));
-                        return JobRunner::Finish([this, colors, coloring] {
-                            // Ignore a result the user has already replaced.
-                            if (view_.settings.coloring == coloring)
-                                apply_colors(std::move(*colors));
-                        });
-                    });
-    if (!started) notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
-}
-
-std::vector<Point> Viewer::reference_positions() const {
-    // The state before the current entry, on the current connectivity: the morph's start.
-    const History& history = document_.history;
-    if (history.size() == 0 || history.current() == 0) return {};
-    try {
-        MorphFrame start = history.morph(history.current(), 0.0);
-        if (start.topology && start.positions.size() == document_.mesh().vertices_size())
-            return std::move(start.positions);
-    } catch (const std::exception&) {
-        // No usable earlier state: the colouring says so.
-    }
-    return {};
+        session_.jobs().start(std::string("Colouring by ") + coloring_name(coloring),
+                              [this, coloring, options, reference, snapshot](Progress&) {
+                                  auto colors = std::make_shared<VertexColors>(
+                                      color_vertices(snapshot, coloring, options, reference.get()));
+                                  return JobRunner::Finish([this, colors, coloring] {
+                                      // Ignore a result the user has already replaced.
+                                      if (view_.settings.coloring == coloring)
+                                          apply_colors(std::move(*colors));
+                                  });
+                              });
+    if (!started)
+        session_.notify_error("busy: wait for \"" + session_.jobs().name() + "\" or cancel it");
 }
 
 bool Viewer::confirm_discard(bool quitting, const std::string& path) {
     // Unchanged documents never ask; scripted runs (--frames) only when they test the
     // close button (--close-after).
-    if (!document_.unsaved || (options_.frames > 0 && options_.close_after == 0)) return true;
-    log_.info(quitting ? "unsaved changes: asking before quitting"
-                       : "unsaved changes: asking before opening " + path);
+    if (!session_.document().unsaved || (options_.frames > 0 && options_.close_after == 0))
+        return true;
+    session_.log().info(quitting ? "unsaved changes: asking before quitting"
+                                 : "unsaved changes: asking before opening " + path);
     UnsavedPrompt& prompt = panels_.unsaved;
     prompt.open_requested = true;
     prompt.quitting = quitting;
     prompt.path = path;
-    prompt.document_path = document_.path;
+    prompt.document_path = session_.document().path;
     active_frames_ = std::max(active_frames_, kFramesAfterInput);
     return false;
 }
@@ -855,26 +671,8 @@ void Viewer::update_texture() {
     try {
         renderer_->set_texture(image);
     } catch (const std::exception& e) {
-        notify_error(std::string("texture: ") + e.what());
+        session_.notify_error(std::string("texture: ") + e.what());
     }
-}
-
-void Viewer::project_texcoords_now() {
-    if (jobs_.busy()) {
-        notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
-        return;
-    }
-    HalfedgeMesh textured = document_.mesh();
-    project_texcoords(textured, view_.settings.projection, view_.settings.up);
-    const bool planar = view_.settings.projection == TexCoordProjection::Planar;
-    const std::string kind =
-        planar ? "planar" : std::string("spherical, +") + up_axis_name(view_.settings.up) + " up";
-    // An entry of its own, so it can be undone; the shape does not move.
-    log_history_messages(document_.history.push("Texture coordinates", kind, 0.0,
-                                                {std::move(textured)}, {MorphCorrespondence{}}));
-    document_.texcoords_projected = true;
-    on_state_changed(false);
-    log_.info(kind + " texture coordinates computed on the current shape");
 }
 
 void Viewer::take_screenshot(const TakeScreenshot& request) {
@@ -898,90 +696,51 @@ void Viewer::take_screenshot(const TakeScreenshot& request) {
         Framebuffer::bind_default();
         if (request.transparent) unpremultiply_alpha(image);
         write_png(image, request.path);
-        log_.info("screenshot " + request.path + " (" + std::to_string(request.width) + " x " +
-                  std::to_string(request.height) + ")");
-        notice_ = Notice{Notice::Level::Info, "Saved " + request.path, {}, false};
+        session_.log().info("screenshot " + request.path + " (" + std::to_string(request.width) +
+                            " x " + std::to_string(request.height) + ")");
+        session_.notice() = Notice{Notice::Level::Info, "Saved " + request.path, {}, false};
     } catch (const std::exception& e) {
         Framebuffer::bind_default();
-        notify_error(std::string("screenshot: ") + e.what());
+        session_.notify_error(std::string("screenshot: ") + e.what());
     }
 }
 
 void Viewer::execute(const Command& command) {
     if (auto* c = std::get_if<LoadFile>(&command)) {
-        clear_preview(true);
-        if (c->discard_changes || confirm_discard(false, c->path)) load(c->path);
+        if (c->discard_changes || confirm_discard(false, c->path)) session_.execute(command);
     } else if (auto* save_file = std::get_if<SaveFile>(&command)) {
         continue_after_save_ = save_file->then_continue;
-        save(save_file->path);
+        session_.execute(command);
     } else if (std::holds_alternative<SaveAsAndContinue>(command)) {
-        panels_.file_browser.request(FileBrowserState::Purpose::SaveMesh, document_.path);
+        panels_.file_browser.request(FileBrowserState::Purpose::SaveMesh, session_.document().path);
         panels_.file_browser.then_continue = true;
-    } else if (std::holds_alternative<RevertFile>(command)) {
-        if (!document_.path.empty()) load(document_.path);
-    } else if (auto* texture = std::get_if<LoadTexture>(&command)) {
-        load_texture(texture->path);
     } else if (std::holds_alternative<FitView>(command)) {
         fit_view();
     } else if (std::holds_alternative<ResetView>(command)) {
         reset_view();
-    } else if (std::holds_alternative<Undo>(command) || std::holds_alternative<Redo>(command) ||
-               std::holds_alternative<JumpTo>(command)) {
-        History& h = document_.history;
-        clear_preview(true);  // a preview belongs to the state it was computed on
-        clear_level_of_detail(true);
-        if (jobs_.busy()) {
-            notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
-            return;
-        }
-        if (std::holds_alternative<Undo>(command) && h.can_undo())
-            h.undo();
-        else if (std::holds_alternative<Redo>(command) && h.can_redo())
-            h.redo();
-        else if (auto* jump = std::get_if<JumpTo>(&command); jump && jump->entry < h.size())
-            h.jump(jump->entry);
-        else
-            return;
-        log_.info("now at state " + std::to_string(h.current()) + ": " + h.info(h.current()).label);
-        on_state_changed(false);
     } else if (std::holds_alternative<StartRecording>(command)) {
         start_recording();
     } else if (std::holds_alternative<CancelRecording>(command)) {
         finish_recording(true);
-    } else if (auto* op = std::get_if<RunOperation>(&command)) {
-        clear_preview(true);
-        run_operation_job(op->op);
-    } else if (auto* preview = std::get_if<PreviewOperation>(&command)) {
-        request_preview(preview->op);
-    } else if (auto* apply = std::get_if<ApplyOperation>(&command)) {
-        apply_operation(apply->op);
-    } else if (std::holds_alternative<CancelPreview>(command)) {
-        clear_preview(true);
-        clear_level_of_detail(false);
-    } else if (auto* build = std::get_if<BuildLevelOfDetail>(&command)) {
-        build_level_of_detail(build->op);
-    } else if (auto* show = std::get_if<ShowLevelOfDetail>(&command)) {
-        show_level_of_detail(show->percent);
-    } else if (std::holds_alternative<ApplyLevelOfDetail>(command)) {
-        apply_level_of_detail();
     } else if (std::holds_alternative<UpdateColoring>(command)) {
         update_coloring();
+        shown_version_ = 0;  // previews and morphs take the new colours too
     } else if (std::holds_alternative<ProjectTexCoords>(command)) {
-        project_texcoords_now();
+        session_.project_texcoords(view_.settings.projection, view_.settings.up);
     } else if (auto* shot = std::get_if<TakeScreenshot>(&command)) {
         take_screenshot(*shot);
     } else if (std::holds_alternative<PrintInfo>(command)) {
-        for (const std::string& line : scene_info()) log_.info(line);
+        for (const std::string& line : scene_info()) session_.log().info(line);
         panels_.info_open = true;
-    } else if (std::holds_alternative<CancelJob>(command)) {
-        jobs_.cancel();
     } else if (auto* quit = std::get_if<Quit>(&command)) {
         if (quit->discard_changes || confirm_discard(true, "")) quit_ = true;
     } else if (std::holds_alternative<SaveAndContinue>(command)) {
-        if (!document_.path.empty()) {
+        if (!session_.document().path.empty()) {
             continue_after_save_ = true;
-            save(document_.path);
+            session_.execute(SaveFile{session_.document().path});
         }
+    } else {  // the document's commands
+        session_.execute(command);
     }
 }
 
@@ -1045,25 +804,25 @@ void Viewer::handle_input() {
     KeyActionTargets targets{panels_,
                              view_.style,
                              view_.settings,
-                             morph_,
+                             session_.morph(),
                              commands_,
-                             log_,
-                             document_.path,
-                             jobs_.busy(),
-                             document_.history.current() > 0,
+                             session_.log(),
+                             session_.document().path,
+                             session_.jobs().busy(),
+                             session_.history().current() > 0,
                              renderer_->has_texcoords(),
-                             preview_.requested.has_value(),
+                             session_.preview_requested().has_value(),
                              glfwGetTime()};
     for (const KeyPress& press : presses) dispatch_key(press.key, press.mods, targets, focus);
 }
 
 void Viewer::draw_ui() {
     MenuContext context;
-    context.has_file = !document_.path.empty();
-    context.busy = jobs_.busy();
-    context.can_undo = document_.history.can_undo();
-    context.can_redo = document_.history.can_redo();
-    context.document_path = document_.path;
+    context.has_file = !session_.document().path.empty();
+    context.busy = session_.jobs().busy();
+    context.can_undo = session_.history().can_undo();
+    context.can_redo = session_.history().can_redo();
+    context.document_path = session_.document().path;
     context.recent_files = &recent_.paths();
     RenderContext render;
     render.has_texcoords = renderer_->has_texcoords();
@@ -1091,47 +850,47 @@ void Viewer::draw_ui() {
     StatusInfo status;
     // What is on the screen: a preview, a level of detail or a morph frame has its own counts.
     std::tie(status.n_vertices, status.n_faces) = shown_counts();
-    status.file_name = document_.name;
+    status.file_name = session_.document().name;
     status.frame_ms = frame_ms();
     // A preview's progress shows only when it takes a while.
     JobInfo job;
-    const bool show_job = jobs_.busy() && !(is_preview_job() && jobs_.elapsed_seconds() < 0.5);
+    const bool show_job = session_.jobs().busy() &&
+                          !(session_.preview_running() && session_.jobs().elapsed_seconds() < 0.5);
     if (show_job) {
-        job.name = jobs_.name();
-        job.stage = jobs_.stage();
-        job.fraction = jobs_.fraction();
-        job.seconds = jobs_.elapsed_seconds();
-        job.cancel_requested = jobs_.cancel_requested();
+        job.name = session_.jobs().name();
+        job.stage = session_.jobs().stage();
+        job.fraction = session_.jobs().fraction();
+        job.seconds = session_.jobs().elapsed_seconds();
+        job.cancel_requested = session_.jobs().cancel_requested();
     }
-    status_bar(status, notice_, show_job ? &job : nullptr, layout.status, commands_);
+    status_bar(status, session_.notice(), show_job ? &job : nullptr, layout.status, commands_);
 
-    update_preview_flags();
-    update_stable_step();
+    update_panels();
     update_collapsing_edges();
-    update_frequency_document();
     FrequencyActions frequency;
     if (panels_.sidebar_open && begin_sidebar(layout.sidebar, sizes)) {
         const std::vector<std::string> info =
             panels_.info_open ? scene_info() : std::vector<std::string>{};
         SidebarContext sidebar;
-        sidebar.history = &document_.history;
-        sidebar.busy = jobs_.busy();
-        sidebar.closed = document_.closed;
+        sidebar.history = &session_.history();
+        sidebar.busy = session_.jobs().busy();
+        sidebar.closed = session_.document().closed;
         sidebar.now = glfwGetTime();
-        sidebar.can_record = document_.history.current() > 0 && morph_.moves && !jobs_.busy();
-        sidebar.open_seams = document_.open_seams;
+        sidebar.can_record =
+            session_.history().current() > 0 && session_.morph().moves && !session_.jobs().busy();
+        sidebar.open_seams = session_.document().open_seams;
         sidebar.collapsing_edges =
             panels_.decimation.show_collapsing_edges ? collapse_lines_->n_segments() : 0;
-        sidebar.frequency = &document_.frequency;
+        sidebar.frequency = &session_.document().frequency;
         sidebar.info = &info;
-        frequency = sidebar_sections(panels_, morph_, sidebar, commands_);
+        frequency = sidebar_sections(panels_, session_.morph(), sidebar, commands_);
     }
     if (panels_.sidebar_open) end_region();
     frequency_actions(frequency);
     layout = compute_layout(in, sizes);
-    history_window(panels_, document_.history, jobs_.busy(), layout.history, commands_);
+    history_window(panels_, session_.history(), session_.jobs().busy(), layout.history, commands_);
     layout = compute_layout(in, sizes);
-    log_window(panels_, log_, layout.log);
+    log_window(panels_, session_.log(), layout.log);
     layout = compute_layout(in, sizes);
     LegendSlot slot;
     slot.right = layout.legend.right();
@@ -1156,7 +915,7 @@ void Viewer::draw_ui() {
     help_window(panels_);
     about_window(panels_);
     file_browser(panels_.file_browser, commands_);
-    error_popup(notice_);
+    error_popup(session_.notice());
     unsaved_changes_popup(panels_.unsaved, commands_);
 }
 
@@ -1221,7 +980,7 @@ void Viewer::render_scene() {
 void Viewer::update_collapsing_edges() {
     const DecimationPanelState& d = panels_.decimation;
     if (!d.show_collapsing_edges) return;
-    const HalfedgeMesh& mesh = document_.mesh();
+    const HalfedgeMesh& mesh = session_.mesh();
     // The mesh state (its topology and geometry revisions) and the options the edges were
     // computed for.
     const std::string key = std::to_string(mesh.topology_revision()) + " " +
@@ -1233,7 +992,7 @@ void Viewer::update_collapsing_edges() {
     // up to a few hundred thousand vertices; bigger meshes skip the overlay.
     constexpr std::size_t kMaxOverlayVertices = 300000;
     if (mesh.n_vertices() > kMaxOverlayVertices) {
-        log_.warning("Collapsing edges: shown for meshes of up to 300,000 vertices only");
+        session_.log().warning("Collapsing edges: shown for meshes of up to 300,000 vertices only");
         collapse_lines_->set_segments(points);
         return;
     }
@@ -1246,7 +1005,7 @@ void Viewer::update_collapsing_edges() {
             points.emplace_back(float(b.x()), float(b.y()), float(b.z()));
         }
     } catch (const Error& e) {
-        notify_error(std::string("Collapsing edges: ") + e.what());
+        session_.notify_error(std::string("Collapsing edges: ") + e.what());
     }
     collapse_lines_->set_segments(points);
 }
@@ -1285,51 +1044,30 @@ double Viewer::frame_ms() const {
 }
 
 std::pair<std::size_t, std::size_t> Viewer::shown_counts() const {
-    if (lod_.shown && lod_.lod) return {lod_.lod->vertices(), renderer_->n_triangles()};
-    const HalfedgeMesh& shown = preview_shown_ && preview_.result
-                                    ? preview_.result->steps[preview_.shown_step].mesh
-                                    : document_.mesh();
-    return {shown.n_vertices(), shown.n_faces()};
-}
-
-bool Viewer::entry_moves() const {
-    const History& h = document_.history;
-    const std::size_t entry = h.current();
-    if (h.size() == 0 || entry == 0) return false;
-    const History::EntryInfo info = h.info(entry);
-    // Operations move vertices; a state the viewer made itself (a load, a revert, texture
-    // coordinates) may not: compare its start with its end.
-    if (info.operation.def || info.steps.size() != 1) return true;
-    try {
-        const MorphFrame start = h.morph(entry, 0.0);
-        const HalfedgeMesh& mesh = document_.mesh();
-        if (!start.topology || start.positions.size() != mesh.vertices_size()) return true;
-        for (Vertex v : mesh.vertices())
-            if (start.positions[v.idx()] != mesh.position(v)) return true;
-    } catch (const std::exception&) {
-        return true;
-    }
-    return false;
+    const Shown& shown = session_.shown();
+    if (shown.kind == Shown::Kind::Level)
+        return {shown.level->vertices(), renderer_->n_triangles()};
+    return {shown.mesh->n_vertices(), shown.mesh->n_faces()};
 }
 
 bool Viewer::script_settled() {
-    if (jobs_.busy() || !commands_.empty() || preview_.pending || !ready_for_script() ||
-        sweep_.active || panels_.record.running)
+    if (session_.jobs().busy() || !commands_.empty() || session_.preview_pending() ||
+        !ready_for_script() || sweep_.active || panels_.record.running)
         return false;
     if (!options_.decompose.empty() && scripted_decompose_ != 2) return false;
     if (clicks_pending()) return false;
     if (!options_.sweep_op.empty() && !sweep_started_) return false;
-    if (morph_.playing) {  // end it: the next frame shows where it ends
-        morph_.t = 1.0;
-        morph_.playing = false;
+    if (session_.morph().playing) {  // end it: the next frame shows where it ends
+        session_.morph().t = 1.0;
+        session_.morph().playing = false;
         return false;
     }
     if (options_.morph_t >= 0 && !morph_t_done_) {
         morph_t_done_ = true;
-        if (document_.history.current() == 0 || !morph_.moves)
-            log_.warning("--morph-t: the current state has no morph to show");
-        morph_.t = options_.morph_t;
-        morph_.playing = false;
+        if (session_.history().current() == 0 || !session_.morph().moves)
+            session_.log().warning("--morph-t: the current state has no morph to show");
+        session_.morph().t = options_.morph_t;
+        session_.morph().playing = false;
         return false;
     }
     return true;
@@ -1367,22 +1105,22 @@ void Viewer::log_last_frame() {
     char buf[96];
     std::snprintf(buf, sizeof(buf), "median frame time %.1f ms over the last %zu frames",
                   frame_ms(), std::min(n_frame_times_, frame_times_ms_.size()));
-    log_.info(buf);
+    session_.log().info(buf);
     // What the last frame showed, for scripts and tests.
-    const History& h = document_.history;
+    const History& h = session_.history();
     std::string entries;
     for (std::size_t i = 0; i < h.size() && i < 20; ++i)
         entries += (i ? " | " : "") + std::to_string(i) + " " + h.info(i).label;
-    log_.info("history: " + entries);
-    std::snprintf(buf, sizeof(buf), ", morph t = %.3f", morph_.t);
-    log_.info("last frame: " + document_.info[1] + buf);
+    session_.log().info("history: " + entries);
+    std::snprintf(buf, sizeof(buf), ", morph t = %.3f", session_.morph().t);
+    session_.log().info("last frame: " + session_.document().info[1] + buf);
     const char* setting = view_.settings.wireframe == WireframeOverlay::Auto ? "automatic"
                           : view_.settings.wireframe == WireframeOverlay::On ? "on"
                                                                              : "off";
     std::snprintf(buf, sizeof(buf), "wireframe overlay %s (%s; edges %.1f px on the screen)",
                   view_.style.wireframe ? "on" : "off", setting, edge_pixels_);
-    log_.info(buf);
-    log_.info("status: " + notice_.text);
+    session_.log().info(buf);
+    session_.log().info("status: " + session_.notice().text);
 }
 
 int Viewer::run() {
@@ -1409,13 +1147,21 @@ int Viewer::run() {
         if (active_frames_ > 0) --active_frames_;
 
         // Scripted runs (--frames) show the result of the initial load, not the progress.
-        while (options_.frames > 0 && jobs_.busy() && !is_preview_job()) {
-            poll_jobs();
-            if (jobs_.busy()) glfwWaitEventsTimeout(0.002);
+        while (options_.frames > 0 && session_.jobs().busy() && !session_.preview_running()) {
+            session_.poll();
+            if (session_.jobs().busy()) glfwWaitEventsTimeout(0.002);
             waited = true;
         }
-        poll_jobs();
-        start_pending_preview();
+        if (session_.poll()) {
+            active_frames_ = kFramesAfterInput;
+            if (coloring_pending_) {  // asked for while a job ran
+                coloring_pending_ = false;
+                commands_.push_back(UpdateColoring{});
+            }
+        }
+        follow_session();
+        advance_script();
+        update_panels();
         if (sweep_.active ||
             (!options_.sweep_op.empty() && !sweep_started_ && ready_for_script())) {
             if (!sweep_started_) {
@@ -1424,7 +1170,8 @@ int Viewer::run() {
             }
             active_frames_ = std::max(active_frames_, 1);
         }
-        if (jobs_.busy()) active_frames_ = std::max(active_frames_, 1);  // animate the progress
+        if (session_.jobs().busy())
+            active_frames_ = std::max(active_frames_, 1);  // animate the progress
 
         // Scripted runs: the last frame comes once everything started has ended (jobs,
         // previews, the morph animation, the scripted actions), so screenshots show results.
@@ -1443,33 +1190,37 @@ int Viewer::run() {
 
         const bool had_commands = !commands_.empty();
         for (const Command& command : commands_) execute(command);
-        wait_for_preview();
+        session_.wait_for_preview(0.1);
+        follow_session();
         // Commands and popups change the UI over the next frames: keep drawing.
-        if (!commands_.empty() || notice_.popup_pending || panels_.file_browser.open_requested ||
-            panels_.context_menu_requested)
+        if (!commands_.empty() || session_.notice().popup_pending ||
+            panels_.file_browser.open_requested || panels_.context_menu_requested)
             active_frames_ = kFramesAfterInput;
         commands_.clear();
 
         // Textured mode on a model without texture coordinates: project them once, on the
         // shape as it is now, so that later vertex drift shows in the texture.
         if (view_.style.mode == RenderMode::Textured && !renderer_->has_texcoords() &&
-            !document_.texcoords_projected && !jobs_.busy())
-            project_texcoords_now();
+            !session_.document().texcoords_projected && !session_.jobs().busy())
+            session_.project_texcoords(view_.settings.projection, view_.settings.up);
 
-        if (panels_.record.running)
+        if (panels_.record.running) {
             record_next_frame();
-        else
-            update_morph();
+        } else {
+            session_.update();
+            sync_renderer();
+        }
         update_wireframe();
         render_scene();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
         ++frame;
         if (frame == options_.close_after) glfwSetWindowShouldClose(window_.get(), GLFW_TRUE);
-        bool last = settled && !had_commands && !jobs_.busy() && !morph_.playing;
+        bool last =
+            settled && !had_commands && !session_.jobs().busy() && !session_.morph().playing;
         if (scripted_end && !last && ++settle_frames > kMaxSettleFrames) {
-            log_.warning("still busy after " + std::to_string(kMaxSettleFrames) +
-                         " extra frames: the last frame may show an unfinished state");
+            session_.log().warning("still busy after " + std::to_string(kMaxSettleFrames) +
+                                   " extra frames: the last frame may show an unfinished state");
             last = true;
         }
         if (last && options_.print_layout) print_layout();
@@ -1491,11 +1242,13 @@ int Viewer::run() {
         frame_times_ms_[n_frame_times_++ % frame_times_ms_.size()] = 1000.0 * since;
         last_frame_end = end;
         waited = false;
-        if (sweep_.active) step_sweep(preview_shown_ || lod_.shown);
+        if (sweep_.active)
+            step_sweep(session_.shown().kind == Shown::Kind::Preview ||
+                       session_.shown().kind == Shown::Kind::Level);
         if (last) break;
     }
     if (options_.frames > 0) log_last_frame();
-    log_.info(quit_ ? "quit after " + std::to_string(frame) + " frames" : "frames done");
+    session_.log().info(quit_ ? "quit after " + std::to_string(frame) + " frames" : "frames done");
     return exit_status_;
 }
 

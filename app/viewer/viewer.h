@@ -10,10 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "app/history/history.h"
+#include "app/session/session.h"
 #include "app/viewer/frequency_panel.h"
-#include "app/viewer/job_runner.h"
-#include "app/viewer/log.h"
 #include "app/viewer/panels.h"
 #include "core/algorithms/level_of_detail.h"
 #include "core/halfedge_mesh.h"
@@ -55,23 +53,6 @@ struct ViewerOptions {
     std::vector<std::string> clicks;
     double sweep_from = 0, sweep_to = 0;
     int sweep_count = 0;
-};
-
-/// The model: its history of states (the current one is shown) and where it came from.
-struct Document {
-    History history;
-    const HalfedgeMesh& mesh() const { return history.current_mesh(); }
-    std::string name;               ///< file name, or "default model"
-    std::string path;               ///< file path; empty for the default model
-    LoadReport report;              ///< what loading it did (empty for built-in models)
-    std::vector<std::string> info;  ///< model information lines, computed once per document
-    bool closed = false;            ///< the current state has no boundary (volume is defined)
-    bool open_seams = false;  ///< coincident boundary edges: unwelded seams (Subdivision's note)
-    bool texcoords_projected = false;  ///< texture coordinates were computed by projection
-    /// The current state differs from the file it came from or was last saved to (any
-    /// operation, undo, redo or jump since; conservative: undoing back still counts).
-    bool unsaved = false;
-    FrequencyDocument frequency;  ///< the last frequency decomposition (Frequency panel)
 };
 
 /// How the document is looked at.
@@ -128,42 +109,29 @@ private:
     void print_layout() const;
     /// Decides the wireframe overlay for this frame (view_.settings.wireframe).
     void update_wireframe();
-    /// Whether the current history entry moves any vertex (for the morph controls).
-    bool entry_moves() const;
     /// The view region (layout.h) in framebuffer pixels, GL's origin (bottom left).
     void view_viewport(int& x, int& y, int& w, int& h) const;
+    /// Carries out a command: the window's own here, the document's in the session.
     void execute(const Command& command);
-    /// Starts a job that reads `path`; the document changes when it succeeds.
-    void load(const std::string& path);
-    /// Starts a job that writes a copy of the document to `path`.
-    void save(const std::string& path);
-    void load_texture(const std::string& path);
-    /// Applies a finished job (or its failure) on the render thread.
-    void poll_jobs();
-    /// Pushes `mesh` as a new state (a load or revert): no morph, the view is fitted.
-    void push_loaded(HalfedgeMesh mesh, std::string label, std::string name, std::string path,
-                     LoadReport report);
-    /// After the current state changed (push, undo, redo, jump): uploads it, refreshes the
-    /// information and colours; fits the view when asked.
-    void on_state_changed(bool fit);
-    void log_history_messages(const std::vector<std::string>& messages);
-    /// Runs an operation as a job; its result becomes a history entry.
-    void run_operation_job(const Operation& op);
-    /// Pushes an operation's result as one history entry and plays its morph.
-    void commit_result(const Operation& op, OperationResult result);
+    /// Follows what the session did: recolour, fit, title, recent files, texture, the
+    /// unsaved-changes question's next step.
+    void follow_session();
+    /// Scripted runs: --op once the initial load has ended.
+    void advance_script();
+    /// Makes the renderer show session_.shown(), uploading only what changed.
+    void sync_renderer();
+    /// Colours `mesh` by the current colouring (`reference`: the smoothing distance's).
+    void show_colors_of(const HalfedgeMesh& mesh, const std::vector<Point>& reference);
+    /// The operation panels (each holds its operation).
+    std::vector<OperationPanelState*> operation_panels();
+    /// The panels' view of the session: previews, preview times, the stable step, the level
+    /// of detail.
+    void update_panels();
+    void note_preview_latency(OperationPanelState& panel, double ms);
+    /// Keeps the Fairing panel's largest stable explicit step for the current state.
+    void update_stable_step();
 
-    // Live previews (viewer_preview.cpp; the rule is in that file's comment).
-    struct PreviewState {
-        std::optional<Operation> requested;  ///< the newest request
-        std::optional<Operation> pending;    ///< requested, not started yet
-        std::shared_ptr<OperationResult> result;
-        Operation computed_op;        ///< what `result` was computed for
-        Operation shown_op;           ///< what is shown (computed_op or fewer iterations)
-        std::size_t shown_step = 0;   ///< the step of `result` shown
-        HalfedgeMesh::Revision base;  ///< the document state `result` applies to
-        double requested_at = 0, shown_at = 0;
-        std::string failure;  ///< the last preview job's error (a sweep ends on it)
-    };
+    // Scripted sweeps (viewer_sweep.cpp).
     struct Sweep {
         bool active = false, waiting = false;
         bool lod = false;  ///< the level-of-detail slider ("decimate" with --param lod)
@@ -173,81 +141,37 @@ private:
         double t0 = 0;
         std::vector<double> ms;
     };
-    bool is_preview_job() const;
-    OperationPanelState* panel_of(const Operation& op);
-    void request_preview(const Operation& op);
-    void start_pending_preview();
-    /// Waits a bounded time for a running preview, so that it shows in the coming frame.
-    void wait_for_preview();
-    void show_preview();
-    /// Drops the preview (cancelling its job); `reupload`: show the current state again.
-    void clear_preview(bool reupload);
-    void apply_operation(const Operation& op);
-    void update_preview_flags();
-    /// Keeps the Fairing panel's largest stable explicit step for the current state.
-    void update_stable_step();
-    void note_preview_latency(double ms);
     void start_sweep();
     /// After each frame: `frame_shown` says whether the frame showed the preview.
     void step_sweep(bool frame_shown);
-    // Decimation's level-of-detail slider (viewer_preview.cpp).
-    struct LodState {
-        std::shared_ptr<const ProgressiveMesh> progressive;
-        std::shared_ptr<LevelOfDetail> lod;
-        HalfedgeMesh::Revision base;  ///< the document state it was built on
-        bool shown = false;           ///< the renderer shows a level
-    };
-    void build_level_of_detail(const Operation& op);
-    void show_level_of_detail(double percent);
-    void apply_level_of_detail();
-    /// Drops the level shown (and, with `forget`, the progressive mesh).
-    void clear_level_of_detail(bool forget);
-    LodState lod_;
-    PreviewState preview_;
-    bool preview_shown_ = false;  ///< the renderer shows a preview step, not the document
     Sweep sweep_;
     bool sweep_started_ = false;
     /// The initial load and --op are done and no job runs: scripted actions may start.
     bool ready_for_script() const;
-    /// Advances playback and shows the morph of the current entry, or the current state.
-    void update_morph();
     /// Recording: starts, writes the next frame (once per UI frame), finishes.
     void start_recording();
     void record_next_frame();
     void finish_recording(bool cancelled);
-    /// The Frequency panel's document for this frame, and its actions (viewer_frequency.cpp).
-    void update_frequency_document();
+    /// The Frequency panel's actions, and its sliders after a decomposition (viewer_frequency.cpp).
     void frequency_actions(FrequencyActions act);
-    void start_decomposition();
+    void on_decomposed(std::size_t lo, std::size_t hi);
     /// options_.decompose: Decompose once the model is there, then apply the band.
     void scripted_decomposition(FrequencyActions& act);
-    /// Shows the panel's band live (positions only).
-    void preview_band();
-    /// Pushes the panel's band (or, with `restore`, the decomposed shape) as a history entry.
-    void push_frequency_state(bool restore);
     /// The Frequency / Frequency mass colours of `mesh` (empty without a fitting decomposition).
     VertexColors frequency_colors(const HalfedgeMesh& mesh) const;
     /// Model and scene information, for the Info panel and the `I` key.
     std::vector<std::string> scene_info() const;
-    /// Computes the vertex colouring of view_.settings (as a job for large meshes) and
-    /// uploads it.
-    /// Positions of the state before the current history entry, one per vertex of the
-    /// current mesh (empty when there is none or the connectivity differs).
-    std::vector<Point> reference_positions() const;
     /// Whether `action` (a Quit or a LoadFile) may go ahead now; when changes are unsaved it
     /// opens the prompt instead and returns false.
     bool confirm_discard(bool quitting, const std::string& path);
+    /// Computes the vertex colouring of view_.settings (as a job for large meshes) and
+    /// uploads it.
     void update_coloring();
     void apply_colors(VertexColors colors);
-    /// Makes the renderer show the document's current state (after a preview, a morph, a
-    /// band or a level of detail), uploading only what changed, with the document's colours.
-    void show_document();
     /// Uploads the texture chosen in view_.settings (checkerboard or the loaded image).
     void update_texture();
-    void project_texcoords_now();
     /// Renders the scene without the panels into an offscreen framebuffer and writes a PNG.
     void take_screenshot(const TakeScreenshot& request);
-    void notify_error(const std::string& text);
     void fit_view();
     /// The default view for the up axis (View > Default view, View > Up axis), fitted; a new
     /// up axis is remembered, and spherical texture coordinates the viewer projected follow it.
@@ -281,14 +205,11 @@ private:
     std::unique_ptr<ImGuiLayer> imgui_;
     std::unique_ptr<MeshRenderer> renderer_;
 
-    Document document_;
+    Session session_;  ///< the document, its history, jobs and operations (no GL)
     ViewState view_;
     Image texture_;       ///< the loaded texture image (empty: none)
     Image checkerboard_;  ///< the built-in texture
     PanelState panels_;
-    Notice notice_;
-    Log log_;
-    JobRunner jobs_;
     RecentFiles recent_;
     Preferences preferences_;  ///< remembered settings (interactive sessions only)
     CommandQueue commands_;
@@ -311,8 +232,8 @@ private:
     int exit_status_ = 0;               ///< run()'s result: 1 after a scripted action failed
     bool continue_after_save_ = false;  ///< the unsaved-changes prompt's Save: then go on
     bool coloring_pending_ = false;     ///< a colouring was asked for while a job ran
-    MorphState morph_;
-    bool morph_shown_ = false;        ///< the renderer shows a morph frame, not the document
+    std::uint64_t shown_version_ = 0;   ///< of session_.shown() on the GPU
+    Shown::Kind shown_kind_ = Shown::Kind::Document;
     bool initial_op_done_ = false;    ///< options_.operation has been queued
     bool initial_load_ended_ = true;  ///< options_.mesh_path was read (or failed to be)
     int scripted_decompose_ = 0;      ///< options_.decompose: 0 to do, 1 started, 2 done

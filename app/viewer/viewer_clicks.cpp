@@ -65,7 +65,7 @@ const WidgetNote* opener_for(const std::vector<WidgetNote>& notes, const std::st
 void Viewer::fail_click(const std::string& why) {
     const std::string text = "--click \"" + options_.clicks[clicks_.next] + "\": " + why;
     std::fprintf(stderr, "trilab: %s\n", text.c_str());
-    notify_error(text);
+    session_.notify_error(text);
     exit_status_ = 1;
     quit_ = true;
     clicks_.next = options_.clicks.size();  // no further clicks
@@ -75,7 +75,7 @@ void Viewer::drive_clicks() {
     ScriptedClicks& c = clicks_;
     c.shown.swap(c.drawing);
     c.drawing.clear();
-    if (!clicks_pending() || !ready_for_script() || jobs_.busy() || c.shown.empty()) return;
+    if (!clicks_pending() || !ready_for_script() || session_.busy() || c.shown.empty()) return;
     ImGuiIO& io = ImGui::GetIO();
     const std::string& path = options_.clicks[c.next];
     switch (c.phase) {
@@ -134,9 +134,9 @@ void Viewer::drive_clicks() {
             if (c.opening) break;  // look for the widget again, now that more is drawn
             std::string did;
             for (const std::string& q : c.queued) did += (did.empty() ? "" : ", ") + q;
-            log_.info("click " + path + ": " +
-                      (did.empty() ? std::string("pressed (no command; a panel setting)")
-                                   : "queued " + did));
+            session_.log().info("click " + path + ": " +
+                                (did.empty() ? std::string("pressed (no command; a panel setting)")
+                                             : "queued " + did));
             ++c.next;
             c.openings = 0;
             break;

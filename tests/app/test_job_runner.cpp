@@ -5,8 +5,8 @@
 #include <chrono>
 #include <thread>
 
-#include "app/viewer/job_runner.h"
-#include "app/viewer/log.h"
+#include "app/session/job_runner.h"
+#include "app/session/log.h"
 #include "core/errors.h"
 
 using namespace trilab;

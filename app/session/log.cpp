@@ -1,4 +1,4 @@
-#include "app/viewer/log.h"
+#include "app/session/log.h"
 
 #include <cstdio>
 

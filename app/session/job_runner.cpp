@@ -1,4 +1,4 @@
-#include "app/viewer/job_runner.h"
+#include "app/session/job_runner.h"
 
 #include <chrono>
 #include <exception>

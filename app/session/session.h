@@ -1,0 +1,258 @@
+#pragma once
+// Session: the document, its history, the job runner and the operations, with no window, no
+// GL and no ImGui. The viewer (and the headless tests) drive it with the same typed commands
+// the panels queue (commands.h) and read back one value, shown(): what the view shows now
+// (the document, a preview step, a morph frame, a level of detail or a frequency band).
+//
+// Threads: every method runs on the caller's (the render) thread. A job is handed what it
+// reads (a copy-on-write snapshot of the mesh, taken here) and returns a finish function
+// that poll() runs back on this thread; no job reaches into the session from its worker.
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/history/history.h"
+#include "app/ops/operation.h"
+#include "app/session/commands.h"
+#include "app/session/job_runner.h"
+#include "app/session/log.h"
+#include "core/algorithms/level_of_detail.h"
+#include "core/algorithms/morph.h"
+#include "core/algorithms/spectral.h"
+#include "core/algorithms/texcoords.h"
+#include "core/halfedge_mesh.h"
+#include "core/io/image_io.h"
+#include "core/mesh_builder.h"
+#include "core/up_axis.h"
+
+namespace trilab::viewer {
+
+/// The last thing the session has to tell the user. Errors also open a modal popup once.
+struct Notice {
+    enum class Level { None, Info, Error };
+    Level level = Level::None;
+    std::string text;                  ///< one line, shown in the status bar
+    std::vector<std::string> details;  ///< extra lines for the tooltip (e.g. a load report)
+    bool popup_pending = false;        ///< an error the popup has not shown yet
+};
+
+/// The morph of the current history entry: the slider and the animation.
+struct MorphState {
+    double t = 1.0;  ///< 0: the state before the entry, 1: after it
+    bool playing = false;
+    double duration = 2.0;  ///< seconds for one pass
+    Easing easing = Easing::SmoothStep;
+    Playback playback = Playback::PingPong;
+    double play_start = 0.0;  ///< Session::now() when playback started
+    /// The entry moves vertices (false for loads, reverts, texture coordinates: nothing to
+    /// animate, so the morph controls say so instead).
+    bool moves = true;
+};
+
+/// The current decomposition and what was derived from it for display (Frequency panel).
+struct FrequencyDocument {
+    std::shared_ptr<const SpectralDecomposition> decomposition;
+    std::uint64_t topology_revision = 0;  ///< of the decomposed mesh (valid while it stays)
+    bool valid = false;                   ///< the current mesh has the decomposed connectivity
+    bool applied = false;
+    std::size_t applied_lo = 0, applied_hi = 0;  ///< the band of the current state
+    std::vector<float> eigenvalues;              ///< for the spectrum plot
+    std::vector<float> log_coefficients;         ///< log10 |alpha_k|, for the coefficient plot
+    std::string summary;                         ///< one line: count, time, solver
+};
+
+/// The model: its history of states (the current one is shown) and where it came from.
+struct Document {
+    History history;
+    const HalfedgeMesh& mesh() const { return history.current_mesh(); }
+    std::string name;               ///< file name, or "default model"
+    std::string path;               ///< file path; empty for the default model
+    LoadReport report;              ///< what loading it did (empty for built-in models)
+    std::vector<std::string> info;  ///< model information lines, computed once per state
+    bool closed = false;            ///< the current state has no boundary (volume is defined)
+    bool open_seams = false;  ///< coincident boundary edges: unwelded seams (Subdivision's note)
+    double area = 0;          ///< of the current state
+    bool texcoords_projected = false;  ///< texture coordinates were computed by projection
+    /// The current state differs from the file it came from or was last saved to.
+    bool unsaved = false;
+    FrequencyDocument frequency;  ///< the last frequency decomposition (Frequency panel)
+};
+
+/// What the view shows: one value.
+struct Shown {
+    enum class Kind { Document, Preview, Morph, Level, Band };
+    Kind kind = Kind::Document;
+    /// Document and Preview: the mesh; Morph: the frame's connectivity; Band: the document.
+    const HalfedgeMesh* mesh = nullptr;
+    std::vector<Point> positions;    ///< Morph and Band: every vertex's position (storage index)
+    LevelOfDetail* level = nullptr;  ///< Level (the renderer reads its changes)
+    std::uint64_t version = 0;       ///< changes whenever anything above changes
+};
+
+/// What happened in the session that the window has to follow (taken once per frame).
+struct SessionEvents {
+    bool state_changed = false;       ///< the current state is another one: recolour, re-title
+    bool fit = false;                 ///< a new model: fit the view to it
+    std::vector<std::string> recent;  ///< files loaded or saved (recent files)
+    std::shared_ptr<Image> texture;   ///< a texture image was loaded
+    std::string texture_path;
+    bool saved = false;  ///< a save finished (a pending question goes on)
+};
+
+/// The preview of an operation panel, as the panel shows it.
+struct PreviewStatus {
+    bool previewing = false;  ///< a preview of this operation is computing or shown
+};
+
+class Session {
+public:
+    /// A session on the built-in default model.
+    Session();
+    ~Session();
+    Session(const Session&) = delete;
+    Session& operator=(const Session&) = delete;
+
+    /// Carries out a document command (a load, an operation, a preview, undo...); commands that
+    /// are the window's business (FitView, TakeScreenshot, Quit, ...) are ignored.
+    void execute(const Command& command);
+    /// Applies a finished job; returns true when one ended (the window redraws).
+    bool poll();
+    /// Runs jobs to their end (tests and scripted runs): poll() until no job runs.
+    void finish_jobs();
+    /// Advances the morph playback (time from now()) and updates shown().
+    void update();
+    SessionEvents take_events();
+
+    // ---- what the window reads ---------------------------------------------------------------
+    const Document& document() const { return document_; }
+    const HalfedgeMesh& mesh() const { return document_.mesh(); }
+    const History& history() const { return document_.history; }
+    const Shown& shown() const { return shown_; }
+    Log& log() { return log_; }
+    const Log& log() const { return log_; }
+    Notice& notice() { return notice_; }
+    const JobRunner& jobs() const { return jobs_; }
+    JobRunner& jobs() { return jobs_; }
+    MorphState& morph() { return morph_; }
+    const MorphState& morph() const { return morph_; }
+    FrequencyDocument& frequency() { return document_.frequency; }
+    bool busy() const { return jobs_.busy(); }
+    /// A preview job runs (its progress shows only after a while).
+    bool preview_running() const;
+    /// Seconds on the session's clock (the morph's, and the panels' playback start).
+    double now() const;
+
+    // ---- operations and previews -------------------------------------------------------------
+    /// The preview shown or computing for `op`'s operation (its panel's Cancel shows).
+    bool previewing(const Operation& op) const;
+    /// The operation a preview was last asked for, if any.
+    const std::optional<Operation>& preview_requested() const { return preview_.requested; }
+    /// The result of the shown preview, if any (the panels read reports from it).
+    const OperationResult* preview_result() const { return preview_.result.get(); }
+    /// The error of the last preview job ("" when it succeeded).
+    const std::string& preview_failure() const { return preview_.failure; }
+    /// A preview is asked for and not started yet (the runner was busy).
+    bool preview_pending() const { return preview_.pending.has_value(); }
+    /// Whether the preview asked for last is computed and shown.
+    bool preview_shown(const Operation& op) const;
+    /// Milliseconds from the request to the result of the last preview (negative: none).
+    double last_preview_ms() const { return preview_.latency_ms; }
+    /// Waits up to `seconds` for a running preview, so that it shows in the coming frame.
+    void wait_for_preview(double seconds);
+    /// A level of detail is ready for the current state.
+    bool has_level_of_detail() const;
+    /// The level-of-detail note (what the progressive mesh reaches) and its build state.
+    const std::string& level_note() const { return lod_.note; }
+    bool level_building() const { return lod_.building; }
+
+    // ---- frequency decomposition -------------------------------------------------------------
+    void decompose(const SpectralOptions& options);
+    /// Shows the band [lo, hi] live (positions only, no history entry).
+    void preview_band(std::size_t lo, std::size_t hi);
+    /// Pushes the band (or, with `restore`, the decomposed shape) as a history entry.
+    void push_band(std::size_t lo, std::size_t hi, bool restore);
+    /// Called after a decomposition finishes with its band (the panel's sliders).
+    std::function<void(std::size_t lo, std::size_t hi)> on_decomposed;
+
+    // ---- documents ---------------------------------------------------------------------------
+    /// Computes texture coordinates by `projection` on the current shape (a history entry).
+    void project_texcoords(TexCoordProjection projection, UpAxis up);
+    /// The state before the current entry, on the current connectivity (the morph's start;
+    /// the smoothing distance's reference); empty when there is none.
+    std::vector<Point> reference_positions() const;
+    /// Whether the current history entry moves any vertex (for the morph controls).
+    bool entry_moves() const;
+    void notify_error(const std::string& text);
+    /// The history's memory budget in bytes (History::set_budget).
+    void set_history_budget(std::size_t bytes) { document_.history.set_budget(bytes); }
+
+private:
+    void load(const std::string& path);
+    void save(const std::string& path);
+    void load_texture(const std::string& path);
+    void push_loaded(HalfedgeMesh mesh, std::string label, std::string name, std::string path,
+                     LoadReport report);
+    void on_state_changed(bool fit);
+    void log_history_messages(const std::vector<std::string>& messages);
+    void run_operation_job(const Operation& op);
+    void commit_result(const Operation& op, OperationResult result);
+    void busy_error();
+    void show_document();
+    void bump() { ++shown_.version; }
+
+    // Previews (session_preview.cpp).
+    struct PreviewState {
+        std::optional<Operation> requested;  ///< the newest request
+        std::optional<Operation> pending;    ///< requested, not started yet
+        std::shared_ptr<OperationResult> result;
+        Operation computed_op;        ///< what `result` was computed for
+        Operation shown_op;           ///< what is shown (computed_op or fewer iterations)
+        std::size_t shown_step = 0;   ///< the step of `result` shown
+        HalfedgeMesh::Revision base;  ///< the document state `result` applies to
+        double requested_at = 0;
+        double latency_ms = -1;
+        std::string failure;  ///< the last preview job's error (a sweep ends on it)
+    };
+    bool is_preview_job() const;
+    void request_preview(const Operation& op);
+    void start_pending_preview();
+    void show_preview();
+    /// Drops the preview (cancelling its job); the view shows the document again.
+    void clear_preview();
+    void apply_operation(const Operation& op);
+
+    // The level-of-detail slider (session_preview.cpp).
+    struct LodState {
+        std::shared_ptr<const ProgressiveMesh> progressive;
+        std::shared_ptr<LevelOfDetail> lod;
+        HalfedgeMesh::Revision base;  ///< the document state it was built on
+        Operation op;                 ///< the decimation it was built with
+        bool building = false;
+        std::string note;
+    };
+    void build_level_of_detail(const Operation& op);
+    void show_level_of_detail(double percent);
+    void apply_level_of_detail();
+    void clear_level_of_detail(bool forget);
+
+    void update_morph();
+    /// The frequency document's validity and applied band for the current state.
+    void update_frequency_document();
+
+    Document document_;
+    JobRunner jobs_;
+    Log log_;
+    Notice notice_;
+    MorphState morph_;
+    PreviewState preview_;
+    LodState lod_;
+    Shown shown_;
+    SessionEvents events_;
+    HalfedgeMesh::Revision morph_topology_;  ///< the connectivity of the morph frame shown
+};
+
+}  // namespace trilab::viewer

@@ -1,0 +1,285 @@
+// Live previews of the operation panels, and Decimation's level-of-detail slider.
+//
+// The rule, the same for every panel: changing a parameter shows the operation applied to
+// the current state (the state before it) without touching the history; a newer change
+// cancels a preview that is still computing; Apply commits the shown preview as one history
+// entry (or runs the operation when nothing matching is shown); Cancel or Esc shows the
+// current state again. Moving the iterations slider within the iterations already computed
+// shows the computed step at once (the subdivision level slider, fairing and decimation
+// iterations).
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <thread>
+#include <utility>
+
+#include "app/ops/operation_entries.h"
+#include "app/session/session.h"
+#include "core/algorithms/decimation.h"
+
+namespace trilab::viewer {
+namespace {
+
+constexpr const char* kPreviewJobPrefix = "Preview: ";
+
+/// The index of "iterations" when `a` and `b` differ in it alone (npos otherwise).
+std::size_t only_iterations_differ(const Operation& a, const Operation& b) {
+    if (!a.def || a.def != b.def) return std::string::npos;
+    std::size_t differing = std::string::npos;
+    for (std::size_t i = 0; i < a.values.size(); ++i) {
+        if (a.values[i] == b.values[i]) continue;
+        if (a.def->params[i].name != "iterations" || differing != std::string::npos)
+            return std::string::npos;
+        differing = i;
+    }
+    return differing;
+}
+
+}  // namespace
+
+bool Session::is_preview_job() const {
+    return jobs_.busy() && jobs_.name().rfind(kPreviewJobPrefix, 0) == 0;
+}
+
+bool Session::preview_running() const {
+    return is_preview_job();
+}
+
+bool Session::previewing(const Operation& op) const {
+    return preview_.requested && preview_.requested->def == op.def &&
+           (preview_.result || preview_.pending || is_preview_job());
+}
+
+bool Session::preview_shown(const Operation& op) const {
+    return preview_.result && shown_.kind == Shown::Kind::Preview && preview_.shown_op == op;
+}
+
+void Session::request_preview(const Operation& op) {
+    try {
+        check_operation(op);
+    } catch (const std::exception&) {
+        return;  // the panel shows the error next to its widgets
+    }
+    clear_level_of_detail(false);
+    preview_.failure.clear();
+    preview_.requested_at = now();
+    preview_.requested = op;
+    // Within the computed iterations: show the computed step at once.
+    if (preview_.result && preview_.base == document_.mesh().revision()) {
+        std::size_t step = std::string::npos;
+        if (preview_.computed_op == op) {
+            step = preview_.result->steps.size() - 1;
+        } else if (const std::size_t i = only_iterations_differ(preview_.computed_op, op);
+                   i != std::string::npos) {
+            const std::size_t n = std::size_t(op.values[i].x);
+            if (n >= 1 && n <= preview_.result->steps.size()) step = n - 1;
+        }
+        if (step != std::string::npos) {
+            preview_.shown_step = step;
+            preview_.shown_op = op;
+            preview_.pending.reset();
+            if (is_preview_job()) jobs_.cancel();
+            show_preview();
+            return;
+        }
+    }
+    preview_.pending = op;
+    if (is_preview_job()) jobs_.cancel();  // outdated: its result would be discarded
+    start_pending_preview();               // at once when the runner is free
+}
+
+void Session::wait_for_preview(double seconds) {
+    // A preview that is about to finish shows in this frame rather than the next: wait for it
+    // a bounded time (a frame's hiccup, never a freeze).
+    start_pending_preview();
+    const double until = now() + seconds;
+    while (is_preview_job() && jobs_.elapsed_seconds() < seconds && now() < until) {
+        poll();
+        if (is_preview_job()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+}
+
+void Session::start_pending_preview() {
+    if (!preview_.pending || jobs_.busy()) return;
+    const Operation op = *preview_.pending;
+    preview_.pending.reset();
+    const HalfedgeMesh snapshot = document_.mesh();  // copy-on-write: the job's own
+    const HalfedgeMesh::Revision base = snapshot.revision();
+    jobs_.start(kPreviewJobPrefix + op.text(), [this, op, base, snapshot](Progress& progress) {
+        auto result = std::make_shared<OperationResult>(run_operation(op, snapshot, progress));
+        return JobRunner::Finish([this, op, base, result] {
+            if (base != document_.mesh().revision()) return;  // the state moved on
+            preview_.result = result;
+            preview_.computed_op = op;
+            preview_.shown_op = op;
+            preview_.shown_step = result->steps.size() - 1;
+            preview_.base = base;
+            // The status bar tells about this preview: an older error is no longer news.
+            if (result->stopped_early)
+                notice_ =
+                    Notice{Notice::Level::Error,
+                           "preview: " + result->label + " stopped early: " + result->stop_reason,
+                           {},
+                           false};
+            else
+                notice_ = Notice{Notice::Level::Info,
+                                 "preview: " + result->label + " " + result->parameters,
+                                 {},
+                                 false};
+            show_preview();
+        });
+    });
+}
+
+void Session::show_preview() {
+    const HalfedgeMesh* mesh = &preview_.result->steps[preview_.shown_step].mesh;
+    if (shown_.kind == Shown::Kind::Preview && shown_.mesh == mesh) return;
+    shown_.kind = Shown::Kind::Preview;
+    shown_.mesh = mesh;
+    shown_.positions.clear();
+    shown_.level = nullptr;
+    bump();
+}
+
+void Session::clear_preview() {
+    const bool was_shown = shown_.kind == Shown::Kind::Preview;
+    preview_.pending.reset();
+    preview_.result.reset();
+    preview_.requested.reset();
+    if (is_preview_job()) {
+        jobs_.cancel();
+        // Wait for it (the operations check for cancellation often), so the document is free
+        // for what comes next.
+        while (jobs_.busy()) {
+            jobs_.poll();
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+    }
+    // The preview's mesh goes with it: the view shows the document again.
+    if (was_shown) show_document();
+}
+
+void Session::apply_operation(const Operation& op) {
+    if (preview_.result && preview_.base == document_.mesh().revision() &&
+        preview_.shown_op == op && preview_.shown_step < preview_.result->steps.size()) {
+        // Commit what is shown: the steps up to the shown one.
+        OperationResult result = std::move(*preview_.result);
+        const std::size_t keep = preview_.shown_step + 1;
+        if (keep < result.steps.size()) {
+            result.report.push_back("applied " + std::to_string(keep) + " of the " +
+                                    std::to_string(result.steps.size()) +
+                                    " iterations the preview computed");
+            result.steps.resize(keep);
+        }
+        result.parameters = op.parameters();
+        clear_preview();
+        commit_result(op, std::move(result));
+        return;
+    }
+    clear_preview();
+    run_operation_job(op);
+}
+
+// ---- the level-of-detail slider ------------------------------------------------------------
+
+bool Session::has_level_of_detail() const {
+    return lod_.lod && lod_.base == document_.mesh().revision();
+}
+
+void Session::build_level_of_detail(const Operation& op) {
+    clear_preview();
+    clear_level_of_detail(true);
+    DecimationOptions options;
+    try {
+        options = decimation_options(op);
+    } catch (const std::exception& e) {
+        notify_error(e.what());
+        return;
+    }
+    const HalfedgeMesh snapshot = document_.mesh();  // copy-on-write: the job's own
+    const HalfedgeMesh::Revision base = snapshot.revision();
+    lod_.building = true;
+    lod_.op = op;
+    const double t0 = now();
+    const bool started = jobs_.start("Building levels of detail", [this, options, base, t0,
+                                                                   snapshot](Progress& progress) {
+        auto build = std::make_shared<ProgressiveBuild>(
+            build_progressive_mesh(snapshot, options, 1.0, progress));
+        auto lod = std::make_shared<LevelOfDetail>(build->progressive);
+        return JobRunner::Finish([this, build, lod, base, t0] {
+            lod_.building = false;
+            if (base != document_.mesh().revision()) return;
+            lod_.progressive = std::shared_ptr<const ProgressiveMesh>(build, &build->progressive);
+            lod_.lod = lod;
+            lod_.base = base;
+            char buf[200];
+            std::snprintf(buf, sizeof buf, "%zu levels, down to %.1f %% of the vertices (%.0f ms)",
+                          lod->max_level(), lod->percent_at_level(lod->max_level()),
+                          1000.0 * (now() - t0));
+            lod_.note = buf;
+            if (build->report.stop != DecimationStop::Done)
+                lod_.note += ": " + build->report.stop_message;
+        });
+    });
+    if (!started) {
+        lod_.building = false;
+        busy_error();
+    }
+}
+
+void Session::show_level_of_detail(double percent) {
+    if (!has_level_of_detail()) return;
+    clear_preview();
+    LevelOfDetail& lod = *lod_.lod;
+    lod.set_level(lod.level_for_percent(std::clamp(percent, 0.0, 100.0)));
+    shown_.kind = Shown::Kind::Level;
+    shown_.mesh = &document_.mesh();
+    shown_.positions.clear();
+    shown_.level = &lod;
+    bump();
+}
+
+void Session::clear_level_of_detail(bool forget) {
+    if (shown_.kind == Shown::Kind::Level) show_document();
+    if (forget) {
+        const std::string note = lod_.building ? lod_.note : std::string();
+        const bool building = lod_.building;
+        lod_ = LodState{};
+        lod_.building = building;  // a build in flight finds the state moved on, and ends
+        lod_.note = note;
+    }
+}
+
+void Session::apply_level_of_detail() {
+    if (!has_level_of_detail()) return;
+    const LevelOfDetail& lod = *lod_.lod;
+    const ProgressiveMesh& pm = *lod_.progressive;
+    OperationResult result;
+    result.label = "Decimate";
+    HalfedgeMesh mesh = lod.mesh();
+    // Each kept vertex starts where it was on the finer mesh (the level's vertices are the
+    // live fine vertices, in the fine order).
+    std::vector<Point> start;
+    for (Index i = 0; i < Index(pm.positions.size()); ++i) {
+        if (!pm.vertex_alive[i]) continue;
+        const Index v = lod.vertex_of(i);
+        if (v != kInvalidIndex && lod.vertex_alive()[v]) start.push_back(pm.positions[i]);
+    }
+    if (start.size() != mesh.vertices_size()) start = mesh.positions();  // no motion then
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "level of detail: %zu of %zu vertices (%.1f %%)", lod.vertices(),
+                  lod.fine_vertices(), lod.percent_at_level(lod.level()));
+    result.report.push_back(buf);
+    result.steps.push_back(OperationStep{
+        std::move(mesh), MorphCorrespondence{MorphCorrespondence::Kind::FromEarlier, start}});
+    Operation op = lod_.op;
+    ParamValue& target = op.value("target-vertices");
+    target.x = double(lod.vertices());
+    target.on = target.given = true;
+    result.parameters = op.parameters();
+    clear_level_of_detail(true);
+    commit_result(op, std::move(result));
+}
+
+}  // namespace trilab::viewer

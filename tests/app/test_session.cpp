@@ -1,0 +1,236 @@
+// The session without a window (app/session/session.h): typed commands in, jobs run to their
+// end, and the history, the shown value and the notices asserted. Runs under ThreadSanitizer
+// in CI (the jobs read snapshots, never the session).
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <string>
+
+#include "app/ops/operation.h"
+#include "app/session/session.h"
+#include "core/algorithms/generators.h"
+#include "core/io/mesh_io.h"
+#include "core/validate.h"
+#include "tests/unit/test_helpers.h"
+
+using namespace trilab;
+using namespace trilab::viewer;
+using trilab::test::data_file;
+
+namespace {
+
+/// The session's shown mesh is a valid mesh (every operation leaves one).
+void require_valid(const Session& s) {
+    const ValidationResult v = validate(s.mesh());
+    INFO(v.message);
+    REQUIRE(v.ok);
+}
+
+/// A session whose current state is a closed sphere of about 2,500 vertices.
+void load_sphere(Session& s) {
+    s.execute(RunOperation{parse_operation("subdivide --scheme loop --iterations 1")});
+    s.finish_jobs();
+    s.morph().t = 1.0;
+    s.morph().playing = false;
+}
+
+}  // namespace
+
+TEST_CASE("a session starts on the default model and shows it", "[session]") {
+    Session s;
+    CHECK(s.history().size() == 1);
+    CHECK(s.shown().kind == Shown::Kind::Document);
+    CHECK(s.shown().mesh == &s.mesh());
+    CHECK(s.mesh().n_vertices() == 1002);
+    const SessionEvents e = s.take_events();
+    CHECK(e.state_changed);
+    CHECK(e.fit);
+    CHECK_FALSE(s.document().unsaved);
+    require_valid(s);
+}
+
+TEST_CASE("a load is a job: the document changes when it succeeds, and not when it fails",
+          "[session]") {
+    Session s;
+    s.take_events();
+    s.execute(LoadFile{data_file("good/header_variants.off"), true});
+    CHECK(s.busy());
+    s.finish_jobs();
+    CHECK(s.history().size() == 1);  // it replaced the untouched default model
+    CHECK(s.history().info(0).label == "Load header_variants.off");
+    CHECK(s.document().name == "header_variants.off");
+    SessionEvents e = s.take_events();
+    CHECK(e.state_changed);
+    CHECK(e.fit);
+    REQUIRE(e.recent.size() == 1);
+    require_valid(s);
+
+    const std::size_t vertices = s.mesh().n_vertices();
+    s.execute(LoadFile{data_file("bad/off_nan.off"), true});
+    s.finish_jobs();
+    CHECK(s.notice().level == Notice::Level::Error);
+    CHECK(s.notice().text.find("off_nan.off:4") != std::string::npos);
+    CHECK(s.history().size() == 1);
+    CHECK(s.mesh().n_vertices() == vertices);
+    CHECK_FALSE(s.take_events().state_changed);
+}
+
+TEST_CASE("an operation becomes one history entry and plays its morph", "[session]") {
+    Session s;
+    s.execute(RunOperation{parse_operation("noise --amount 30 --seed 4")});
+    CHECK(s.busy());
+    s.finish_jobs();
+    REQUIRE(s.history().size() == 2);
+    CHECK(s.history().current() == 1);
+    CHECK(s.history().info(1).label == "Add noise");
+    CHECK(s.document().unsaved);
+    require_valid(s);
+    // The morph plays from before to after: the view shows a morph frame until it ends.
+    CHECK(s.morph().playing);
+    s.update();
+    CHECK(s.shown().kind == Shown::Kind::Morph);
+    CHECK(s.shown().positions.size() == s.mesh().vertices_size());
+    s.morph().playing = false;
+    s.morph().t = 1.0;
+    s.update();
+    CHECK(s.shown().kind == Shown::Kind::Document);
+    // Undo, redo, jump: the history moves, the view shows the state.
+    s.execute(Undo{});
+    CHECK(s.history().current() == 0);
+    CHECK(s.shown().kind == Shown::Kind::Document);
+    s.execute(Redo{});
+    CHECK(s.history().current() == 1);
+    s.execute(JumpTo{0});
+    CHECK(s.history().current() == 0);
+    require_valid(s);
+}
+
+TEST_CASE("a preview shows without an entry; Apply commits what is shown; Cancel drops it",
+          "[session]") {
+    Session s;
+    const Operation loop = parse_operation("subdivide --scheme loop --iterations 2");
+    s.execute(PreviewOperation{loop});
+    s.finish_jobs();
+    s.update();
+    CHECK(s.history().size() == 1);
+    REQUIRE(s.shown().kind == Shown::Kind::Preview);
+    CHECK(s.shown().mesh->n_faces() == 16 * s.mesh().n_faces());
+    CHECK(s.previewing(loop));
+    CHECK(s.preview_shown(loop));
+    // One iteration fewer is shown at once from what was computed.
+    const Operation one = parse_operation("subdivide --scheme loop --iterations 1");
+    s.execute(PreviewOperation{one});
+    CHECK_FALSE(s.busy());
+    CHECK(s.shown().mesh->n_faces() == 4 * s.mesh().n_faces());
+    s.execute(ApplyOperation{one});
+    s.finish_jobs();
+    REQUIRE(s.history().size() == 2);
+    CHECK(s.mesh().n_faces() == 4 * s.history().mesh(0, 0).n_faces());
+    require_valid(s);
+
+    s.execute(PreviewOperation{parse_operation("noise --amount 10")});
+    s.finish_jobs();
+    s.update();
+    CHECK(s.shown().kind == Shown::Kind::Preview);
+    s.execute(CancelPreview{});
+    CHECK(s.shown().kind == Shown::Kind::Document);
+    CHECK(s.history().size() == 2);
+}
+
+TEST_CASE("an operation that changes nothing adds no entry and says so", "[session]") {
+    Session s;
+    s.execute(RunOperation{parse_operation("smooth --step 0 --iterations 1")});
+    s.finish_jobs();
+    CHECK(s.history().size() == 1);
+    CHECK(s.notice().text.find("changed nothing: no history entry") != std::string::npos);
+}
+
+TEST_CASE("a refused operation is said, and the document stays", "[session]") {
+    Session s;
+    s.execute(RunOperation{parse_operation("subdivide --scheme loop --iterations 8")});
+    s.finish_jobs();
+    CHECK(s.history().size() == 1);
+    CHECK(s.notice().level == Notice::Level::Error);
+    CHECK(s.notice().text.find("at most 50 million") != std::string::npos);
+    // A refused preview is kept as the preview's failure (a sweep ends on it).
+    s.execute(PreviewOperation{parse_operation("subdivide --scheme loop --iterations 8")});
+    s.finish_jobs();
+    CHECK_FALSE(s.preview_failure().empty());
+    CHECK(s.shown().kind == Shown::Kind::Document);
+}
+
+TEST_CASE("a job works on its own snapshot while the session goes on", "[session]") {
+    Session s;
+    load_sphere(s);
+    const std::size_t entries = s.history().size();
+    const HalfedgeMesh before = s.mesh();
+    s.execute(RunOperation{parse_operation("decimate --percent 50")});
+    REQUIRE(s.busy());
+    // While it runs: the document is read on this thread, undo is refused (one job at a time).
+    CHECK(s.mesh().n_vertices() == before.n_vertices());
+    s.execute(Undo{});
+    CHECK(s.history().size() == entries);
+    s.finish_jobs();
+    CHECK(s.history().size() == entries + 1);
+    CHECK(s.mesh().n_vertices() < before.n_vertices());
+    require_valid(s);
+}
+
+TEST_CASE("the level-of-detail slider shows levels and commits one as an entry", "[session]") {
+    Session s;
+    load_sphere(s);
+    const std::size_t entries = s.history().size();
+    s.execute(BuildLevelOfDetail{parse_operation("decimate")});
+    s.finish_jobs();
+    REQUIRE(s.has_level_of_detail());
+    CHECK_FALSE(s.level_note().empty());
+    s.execute(ShowLevelOfDetail{25.0});
+    REQUIRE(s.shown().kind == Shown::Kind::Level);
+    const std::size_t kept = s.shown().level->vertices();
+    CHECK(kept < s.mesh().n_vertices() / 2);
+    s.execute(ApplyLevelOfDetail{});
+    REQUIRE(s.history().size() == entries + 1);
+    CHECK(s.mesh().n_vertices() == kept);
+    CHECK_FALSE(s.has_level_of_detail());  // it belonged to the state before
+    require_valid(s);
+}
+
+TEST_CASE("a frequency band shows live and is committed as a geometry-only entry", "[session]") {
+    Session s;
+    SpectralOptions options;
+    options.k = 20;
+    std::size_t decomposed_hi = 0;
+    s.on_decomposed = [&](std::size_t, std::size_t hi) { decomposed_hi = hi; };
+    s.decompose(options);
+    s.finish_jobs();
+    REQUIRE(s.document().frequency.valid);
+    CHECK(decomposed_hi == 19);
+    s.preview_band(0, 5);
+    REQUIRE(s.shown().kind == Shown::Kind::Band);
+    CHECK(s.shown().positions.size() == s.mesh().vertices_size());
+    CHECK(s.history().size() == 1);
+    s.push_band(0, 5, false);
+    REQUIRE(s.history().size() == 2);
+    CHECK(s.document().frequency.applied);
+    CHECK(s.document().frequency.applied_hi == 5);
+    CHECK(s.mesh().topology_revision() == s.history().mesh(0, 0).topology_revision());
+    require_valid(s);
+}
+
+TEST_CASE("saving writes the current state and marks the document saved", "[session]") {
+    Session s;
+    s.execute(RunOperation{parse_operation("noise --amount 5")});
+    s.finish_jobs();
+    REQUIRE(s.document().unsaved);
+    const std::string path =
+        (std::filesystem::temp_directory_path() / "trilab_session_test_save.off").string();
+    s.take_events();
+    s.execute(SaveFile{path});
+    s.finish_jobs();
+    CHECK_FALSE(s.document().unsaved);
+    const SessionEvents e = s.take_events();
+    CHECK(e.saved);
+    const LoadedMesh back = read_mesh(path);
+    CHECK(back.mesh.n_vertices() == s.mesh().n_vertices());
+    std::filesystem::remove(path);
+}
