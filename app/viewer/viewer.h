@@ -97,6 +97,12 @@ private:
     static Viewer* from(GLFWwindow* window);
     static void wake(GLFWwindow* window);
 
+    /// Before a frame: finished jobs, what the session did, the scripted actions; returns
+    /// whether it waited for a job (a scripted run's initial load).
+    bool prepare_frame();
+    /// One frame's UI, its commands and the scene (not swapped yet); returns whether
+    /// commands ran.
+    bool draw_frame();
     void handle_input();
     void draw_ui();
     /// Scripted runs (--frames): whether the last frame may be drawn now (no job, preview,

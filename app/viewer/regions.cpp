@@ -1,0 +1,220 @@
+// The fixed regions of the layout: the sidebar and its section headers, the History column,
+// the log, the status bar and the colour legend; see panels.h.
+
+#include <imgui.h>
+#include <imgui_internal.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iterator>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/viewer/key_bindings.h"
+#include "app/viewer/panel_helpers.h"
+#include "app/viewer/panels.h"
+#include "app/viewer/plots.h"
+#include "app/viewer/widgets.h"
+#include "core/algorithms/fairing.h"
+#include "core/number_text.h"
+
+namespace trilab::viewer {
+
+using namespace ui;
+
+bool begin_region(const char* title, const Rect& r, bool* open, char resizable, float& width,
+                  float& height, int extra_flags) {
+    ImGui::SetNextWindowPos(ImVec2(r.x, r.y), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(r.w, r.h), ImGuiCond_Always);
+    // Only the inner edge moves: the other dimension is held by the constraint.
+    const ImGuiIO& io = ImGui::GetIO();
+    const bool horizontal = resizable == 'l' || resizable == 'r';
+    ImGui::SetNextWindowSizeConstraints(
+        horizontal ? ImVec2(0.0f, r.h) : ImVec2(r.w, 0.0f),
+        horizontal ? ImVec2(io.DisplaySize.x, r.h) : ImVec2(r.w, io.DisplaySize.y));
+    ImGuiWindowFlags flags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
+                             ImGuiWindowFlags_NoSavedSettings |
+                             ImGuiWindowFlags_NoBringToFrontOnFocus | extra_flags;
+    if (resizable == 0) flags |= ImGuiWindowFlags_NoResize;
+    ScopedStyleVar rounding(ImGuiStyleVar_WindowRounding, 0.0f);
+    const bool visible = ImGui::Begin(title, open, flags);
+    // A drag of an edge has resized the window: keep the new size (the layout clamps it).
+    // A drag of the outer edge moved it; it snaps back next frame.
+    const ImVec2 size = ImGui::GetWindowSize();
+    if (horizontal && size.x != r.w) width = size.x;
+    if (resizable == 't' && size.y != r.h) height = size.y;
+    return visible;
+}
+
+void end_region() {
+    ImGui::End();
+}
+
+bool begin_sidebar(const Rect& r, LayoutState& layout) {
+    float height = r.h;
+    return begin_region("Sidebar", r, nullptr, 'r', layout.sidebar_width, height,
+                        ImGuiWindowFlags_NoTitleBar);
+}
+
+SidebarSection::SidebarSection(const char* label, bool& open) : open_(section_header(label, open)) {
+    if (open_) scope_.emplace(label, true);
+}
+
+bool section_header(const char* label, bool& open) {
+    // Remember whether the section was open last frame, in the window's storage: a section
+    // opened from a menu or a key (not by its header) is scrolled into view.
+    ImGuiStorage* storage = ImGui::GetStateStorage();
+    const ImGuiID id = ImGui::GetID((std::string(label) + "##was-open").c_str());
+    const int was = storage->GetInt(id, -1);
+    ImGui::SetNextItemOpen(open, ImGuiCond_Always);
+    const bool clicked_open = ImGui::CollapsingHeader(label);
+    note_widget(std::string("section:") + label, WidgetNote::Kind::Header, label);
+    const bool by_click = clicked_open != open;
+    open = clicked_open;
+    if (open && was == 0 && !by_click) ImGui::SetScrollHereY(0.0f);
+    storage->SetInt(id, open ? 1 : 0);
+    if (open) ImGui::Spacing();
+    return open;
+}
+
+void status_bar(const StatusInfo& info, const Notice& notice, const JobInfo* job,
+                const Rect& region, CommandQueue& commands) {
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const float em = ImGui::GetFontSize();
+    ImGui::SetNextWindowPos(ImVec2(region.x, region.y));
+    ImGui::SetNextWindowSize(ImVec2(region.w, region.h));
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+                                   ImGuiWindowFlags_NoSavedSettings |
+                                   ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav |
+                                   ImGuiWindowFlags_NoBringToFrontOnFocus;
+    const float pad_y = std::max(0.0f, 0.5f * (region.h - ImGui::GetFrameHeight()));
+    ScopedStyleVar padding(ImGuiStyleVar_WindowPadding, ImVec2(style.FramePadding.x * 2.0f, pad_y));
+    ScopedStyleVar rounding(ImGuiStyleVar_WindowRounding, 0.0f);
+    ScopedStyleVar border(ImGuiStyleVar_WindowBorderSize, 0.0f);
+    ScopedStyleVar min_size(ImGuiStyleVar_WindowMinSize, ImVec2(1.0f, 1.0f));  // not 32 px
+    if (ImGui::Begin("Status", nullptr, flags)) {
+        // The running job takes the right end: name, time, progress, Cancel.
+        const float job_w = job ? std::min(30.0f * em, 0.55f * region.w) : 0.0f;
+        const float text_right = region.w - job_w - 2.0f * style.FramePadding.x;
+        ImGui::AlignTextToFramePadding();
+        ImGui::Text("%zu vertices   %zu faces   %s   %.1f ms", info.n_vertices, info.n_faces,
+                    info.file_name.c_str(), info.frame_ms);
+        if (notice.level != Notice::Level::None &&
+            ImGui::GetItemRectMax().x + 3.0f * style.ItemSpacing.x < text_right) {
+            ImGui::SameLine(0.0f, 3.0f * style.ItemSpacing.x);
+            ImGui::PushClipRect(
+                ImGui::GetCursorScreenPos(),
+                ImVec2(ImGui::GetWindowPos().x + text_right, ImGui::GetWindowPos().y + region.h),
+                true);
+            ImGui::TextColored(notice_color(notice.level), "%s", notice.text.c_str());
+            ImGui::PopClipRect();
+            if (ImGui::IsItemHovered()) {  // the whole text (the bar may clip it) and details
+                ImGui::BeginTooltip();
+                ImGui::TextUnformatted(notice.text.c_str());
+                for (const std::string& line : notice.details) ImGui::TextUnformatted(line.c_str());
+                ImGui::EndTooltip();
+            }
+        }
+        if (job) {
+            ImGui::SameLine(region.w - job_w);
+            const float cancel_w = ImGui::CalcTextSize("cancelling").x + 2 * style.FramePadding.x;
+            char label[256];
+            std::snprintf(label, sizeof label, "%s%s%s (%.1f s)", job->name.c_str(),
+                          job->stage.empty() ? "" : ": ", job->stage.c_str(), job->seconds);
+            // Unknown progress: a bar that sweeps, so the user sees the program is alive.
+            const float f = job->fraction >= 0.0 ? float(job->fraction)
+                                                 : float(0.5 + 0.5 * std::sin(3.0 * job->seconds));
+            ImGui::ProgressBar(f, ImVec2(job_w - cancel_w - 2.0f * style.ItemSpacing.x, 0.0f),
+                               label);
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", label);
+            ImGui::SameLine();
+            if (job->cancel_requested)
+                ImGui::TextDisabled("cancelling");
+            else if (button("Cancel##job"))
+                commands.push_back(CancelJob{});
+        }
+    }
+    ImGui::End();
+}
+
+void history_window(PanelState& panels, const History& history, bool busy, const Rect& region,
+                    CommandQueue& commands) {
+    if (!panels.history_open) return;
+    float height = region.h;
+    if (begin_region("History", region, &panels.history_open, 'l', panels.layout.history_width,
+                     height)) {
+        ImGui::TextWrapped("%s, %.1f MB of the %.0f MB budget",
+                           count_text(history.size(), "entry", "entries").c_str(),
+                           history.bytes() / 1e6, history.budget() / 1e6);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip(
+                "When the history grows past its budget the oldest entries are "
+                "dropped (with a message in the log).");
+        ImGui::Separator();
+        for (std::size_t i = 0; i < history.size(); ++i) {
+            const History::EntryInfo e = history.info(i);
+            char label[512];
+            std::snprintf(label, sizeof(label), "%zu  %s %s%s##entry%zu", i, e.label.c_str(),
+                          e.parameters.c_str(), i > history.current() ? " (redo)" : "", i);
+            const bool current = i == history.current();
+            if (ImGui::Selectable(label, current) && !current && !busy)
+                commands.push_back(JumpTo{i});
+            if (ImGui::IsItemHovered()) {
+                ImGui::BeginTooltip();
+                ImGui::Text("%zu  %s %s", i, e.label.c_str(), e.parameters.c_str());
+                ImGui::Text("%zu step%s, %.1f ms, %.2f MB", e.steps.size(),
+                            e.steps.size() == 1 ? "" : "s", e.ms, e.bytes / 1e6);
+                if (!e.steps.empty())
+                    ImGui::Text("%zu vertices, %zu faces", e.steps.back().vertices,
+                                e.steps.back().faces);
+                ImGui::EndTooltip();
+            }
+        }
+    }
+    end_region();
+}
+
+void log_window(PanelState& panels, const Log& log, const Rect& region) {
+    if (!panels.log_open) return;
+    float width = region.w;
+    if (begin_region("Log", region, &panels.log_open, 't', width, panels.layout.log_height)) {
+        const std::vector<LogEntry> entries = log.entries();
+        ImGui::PushTextWrapPos(0.0f);
+        for (const LogEntry& e : entries) {
+            if (e.level == LogEntry::Level::Error)
+                ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.40f, 1.0f), "%s", e.text.c_str());
+            else if (e.level == LogEntry::Level::Warning)
+                ImGui::TextColored(ImVec4(1.0f, 0.80f, 0.35f, 1.0f), "%s", e.text.c_str());
+            else
+                ImGui::TextUnformatted(e.text.c_str());
+        }
+        ImGui::PopTextWrapPos();
+        if (ImGui::GetScrollY() >= ImGui::GetScrollMaxY()) ImGui::SetScrollHereY(1.0f);
+    }
+    end_region();
+}
+
+bool color_legend(const VertexColors& colors, ColoringOptions& options, LegendSlot& slot) {
+    slot.width = slot.height = 0;
+    if (!colors.has_legend) return false;
+    // In its fixed region (layout.h): the bottom right of the view, at most the slot's size.
+    ImGui::SetNextWindowPos(ImVec2(slot.right, slot.bottom), ImGuiCond_Always, ImVec2(1.0f, 1.0f));
+    ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(slot.max_width, slot.max_height));
+    bool changed = false;
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration |
+                                   ImGuiWindowFlags_AlwaysAutoResize |
+                                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoMove;
+    if (ImGui::Begin("##legend", nullptr, flags)) {
+        const float padding = 2.0f * ImGui::GetStyle().WindowPadding.x;
+        changed = legend_contents(colors, options, slot.max_width - padding);
+        slot.width = ImGui::GetWindowWidth();
+        slot.height = ImGui::GetWindowHeight();
+    }
+    ImGui::End();
+    return changed;
+}
+
+}  // namespace trilab::viewer

@@ -1,0 +1,345 @@
+// The sidebar's tool sections: Tools, Fairing, Subdivision, Decimation, Morph, Record and
+// Model information, each an ID scope of its own, and sidebar_sections() in order; see
+// panels.h.
+
+#include <imgui.h>
+#include <imgui_internal.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iterator>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/viewer/key_bindings.h"
+#include "app/viewer/panel_helpers.h"
+#include "app/viewer/panels.h"
+#include "app/viewer/plots.h"
+#include "app/viewer/widgets.h"
+#include "core/algorithms/fairing.h"
+#include "core/number_text.h"
+
+namespace trilab::viewer {
+
+using namespace ui;
+
+namespace {
+void morph_controls(MorphState& morph, const History& history, double now);
+}  // namespace
+
+namespace {
+
+/// The parameters of an operation panel, its Apply button, and the preview's note.
+void operation_panel_body(OperationPanelState& state, const char* apply, bool busy,
+                          CommandQueue& commands) {
+    std::vector<std::string> notes;
+    if (operation_widgets(state.op, {}, &notes)) {
+        state.dirty = true;
+        state.input_note.clear();
+    }
+    if (!notes.empty()) state.input_note = notes.back();
+    if (!state.input_note.empty()) wrapped_disabled("%s", state.input_note.c_str());
+    std::string error;
+    try {
+        check_operation(state.op);
+    } catch (const Error& e) {
+        error = e.what();
+    }
+    // Live: every change previews at once; slow inputs preview when the drag is released.
+    if (state.dirty && error.empty() && (state.live || !ImGui::IsAnyItemActive())) {
+        commands.push_back(PreviewOperation{state.op});
+        state.dirty = false;
+    }
+    if (!error.empty()) wrapped_colored(kErrorColor, "%s", error.c_str());
+    if ((busy && !state.previewing) || !error.empty()) ImGui::BeginDisabled();
+    if (button(apply)) commands.push_back(ApplyOperation{state.op});
+    if ((busy && !state.previewing) || !error.empty()) ImGui::EndDisabled();
+    if (state.previewing) {
+        ImGui::SameLine();
+        if (button("Cancel")) commands.push_back(CancelPreview{});
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("back to the state before (Esc)");
+    }
+    if (!state.preview_note.empty()) wrapped_disabled("%s", state.preview_note.c_str());
+}
+
+/// The largest stable explicit step of the mesh and operator; a larger explicit step in red
+/// with the reason, and a button that switches to implicit integration. The warning's lines
+/// are kept free while it is not shown, so that nothing below moves when it comes or goes.
+void stability_guidance(FairingPanelState& state) {
+    const double limit = state.max_stable_step;
+    const bool taubin = int(state.op.value("operator").x) == int(FairingOperator::Taubin);
+    const bool explicit_run =
+        taubin || int(state.op.value("integration").x) == int(Integration::Explicit);
+    // NaN until estimated: tested with isnan first, as an ordered comparison with NaN raises
+    // FE_INVALID (the tests run with floating-point traps).
+    const bool known = !std::isnan(limit) && limit > 0;
+    const double step = taubin ? state.op.value("lambda").x : state.op.value("step").x;
+    const char* what = taubin ? "lambda" : "step";
+    if (known)
+        wrapped_disabled("largest stable explicit %s: %.3g", what, limit);
+    else
+        wrapped_disabled("largest stable explicit %s: estimating...", what);
+    note_widget("stable-step");
+    char warning[160];
+    std::snprintf(warning, sizeof warning, "%s %.3g is above it: the run would diverge and stop",
+                  what, step);
+    const float wrap = ImGui::GetContentRegionAvail().x;
+    const ImVec2 text = ImGui::CalcTextSize(warning, nullptr, false, wrap);
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const float reserved = text.y + (taubin ? 0.0f : style.ItemSpacing.y + ImGui::GetFrameHeight());
+    if (!(known && explicit_run && step > limit)) {
+        ImGui::Dummy(ImVec2(1.0f, reserved));
+        return;
+    }
+    const float top = ImGui::GetCursorPosY();
+    wrapped_colored(kErrorColor, "%s", warning);
+    note_widget("unstable");
+    if (!taubin && button("Use implicit integration")) {
+        ParamValue& integration = state.op.value("integration");
+        integration.x = int(Integration::Implicit);
+        integration.given = true;
+        state.dirty = true;
+    }
+    // Whatever the text's last line did, the rows below start where they always do.
+    const float used = ImGui::GetCursorPosY() - top - style.ItemSpacing.y;
+    if (used < reserved) ImGui::Dummy(ImVec2(1.0f, reserved - used - style.ItemSpacing.y));
+}
+
+/// Where the morph of a result is: one place, the Morph section.
+void morph_hint() {
+    wrapped_disabled("the morph of each result: the Morph section (M)");
+}
+
+}  // namespace
+
+void subdivision_section(PanelState& panels, const SidebarContext& context,
+                         CommandQueue& commands) {
+    OperationPanelState& state = panels.subdivision;
+    SidebarSection section("Subdivision", state.open);
+    if (!section) return;
+    operation_panel_body(state, "Subdivide", context.busy, commands);
+    if (context.open_seams) {
+        // Sqrt3 flips the old edges: along an unwelded seam the two sides stay apart, and
+        // the surface creases there (README "Subdivision").
+        wrapped_colored(ImVec4(1.0f, 0.80f, 0.35f, 1.0f),
+                        "The mesh has coincident boundary edges (unwelded seams): Sqrt3 leaves "
+                        "creases along them. Weld them first:");
+        if (context.busy) ImGui::BeginDisabled();
+        if (button("Weld coincident vertices"))
+            commands.push_back(ApplyOperation{make_operation("weld")});
+        if (context.busy) ImGui::EndDisabled();
+    }
+    ImGui::Separator();
+    wrapped_disabled("colour: Rendering > Colour by vertex > Subdivision vertices");
+    morph_hint();
+}
+
+void fairing_section(PanelState& panels, const SidebarContext& context, CommandQueue& commands) {
+    FairingPanelState& state = panels.fairing;
+    SidebarSection section("Fairing", state.open);
+    if (!section) return;
+    stability_guidance(state);
+    // What the mesh cannot do is switched off with the reason, never ignored.
+    ParamValue& volume = state.op.value("preserve-volume");
+    ParamValue& boundary = state.op.value("boundary");
+    if (!context.closed) volume.x = 0;
+    if (context.closed) boundary.x = int(BoundaryMode::Fixed);
+    operation_panel_body(state, "Smooth", context.busy, commands);
+    if (!context.closed) wrapped_disabled("open mesh: no volume to preserve");
+    ImGui::Separator();
+    morph_hint();
+}
+
+void decimation_section(PanelState& panels, const SidebarContext& context, CommandQueue& commands) {
+    DecimationPanelState& d = panels.decimation;
+    SidebarSection section("Decimation", d.open);
+    if (!section) return;
+    const bool busy = context.busy;
+    operation_panel_body(d, "Decimate", busy, commands);
+    // Level of detail: a slider over the progressive mesh of the current state.
+    ImGui::SetNextItemOpen(d.lod_open, ImGuiCond_Always);
+    d.lod_open = ImGui::CollapsingHeader("Level of detail");
+    note_widget("section:Level of detail", WidgetNote::Kind::Header, "Level of detail");
+    if (d.lod_open) {
+        WidgetSection lod_section("Level of detail", false);
+        if (!d.lod_ready) {
+            if (busy || d.lod_building) ImGui::BeginDisabled();
+            if (button("Build levels")) commands.push_back(BuildLevelOfDetail{d.op});
+            if (busy || d.lod_building) ImGui::EndDisabled();
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip(
+                    "decimate down to 1 %% with this cost and these "
+                    "constraints, recording every collapse");
+        } else {
+            ImGui::SetNextItemWidth(widget_width());
+            if (ImGui::SliderFloat("lod (% of vertices)", &d.lod_percent, 100.0f, 1.0f, "%.1f %%",
+                                   ImGuiSliderFlags_AlwaysClamp))
+                commands.push_back(ShowLevelOfDetail{double(d.lod_percent)});
+            note_widget("lod");
+            if (button("Apply level")) commands.push_back(ApplyLevelOfDetail{});
+            ImGui::SameLine();
+            if (button("Cancel##lod")) commands.push_back(CancelPreview{});
+        }
+        if (!d.lod_note.empty()) wrapped_disabled("%s", d.lod_note.c_str());
+    }
+    checkbox("show collapsing edges", &d.show_collapsing_edges);
+    if (d.show_collapsing_edges) {
+        ImGui::SameLine();
+        ImGui::TextDisabled("(%zu)", context.collapsing_edges);
+    }
+    ImGui::Separator();
+    morph_hint();
+}
+
+void tools_section(PanelState& panels, bool busy, CommandQueue& commands) {
+    if (SidebarSection noise("Tools: add noise", panels.tools.open); noise) {
+        ImGui::TextWrapped("Moves the vertices along their normals.");
+        operation_panel_body(panels.tools, "Apply", busy, commands);
+    }
+    if (SidebarSection weld("Tools: weld coincident vertices", panels.weld.open); weld) {
+        ImGui::TextWrapped(
+            "Joins coincident vertices where the mesh stays manifold (tolerance 0: exactly the "
+            "same position); the log says what stays apart.");
+        operation_panel_body(panels.weld, "Weld", busy, commands);
+    }
+}
+
+FrequencyActions sidebar_sections(PanelState& panels, MorphState& morph,
+                                  const SidebarContext& context, CommandQueue& commands) {
+    const FrequencyDocument no_decomposition;
+    tools_section(panels, context.busy, commands);
+    fairing_section(panels, context, commands);
+    const FrequencyActions frequency = frequency_window(
+        panels.frequency, context.frequency ? *context.frequency : no_decomposition, context.busy);
+    subdivision_section(panels, context, commands);
+    decimation_section(panels, context, commands);
+    if (context.history) morph_section(panels, morph, *context.history, context.now);
+    record_section(panels, context.can_record, commands);
+    info_section(panels, context.info ? *context.info : std::vector<std::string>{});
+    ImGui::Spacing();
+    wrapped_disabled(
+        "The Tools and Algorithms menus open these sections; H the history, L the log.");
+    return frequency;
+}
+
+namespace {
+/// The morph slider and animation controls for the current history entry.
+void morph_controls(MorphState& morph, const History& history, double now) {
+    const std::size_t entry = history.current();
+    if (entry == 0) {
+        ImGui::TextDisabled("morph: the first state has nothing before it");
+        return;
+    }
+    const History::EntryInfo info = history.info(entry);
+    if (!morph.moves) {  // a load, a revert, texture coordinates: no vertex moves
+        ImGui::PushTextWrapPos(0.0f);
+        ImGui::TextDisabled("morph: %s moves no vertex", info.label.c_str());
+        ImGui::PopTextWrapPos();
+        return;
+    }
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::Text("%s %s: before -> after", info.label.c_str(), info.parameters.c_str());
+    ImGui::PopTextWrapPos();
+    float t = float(morph.t);
+    ImGui::SetNextItemWidth(widget_width(16.0f, 0.0f));
+    if (ImGui::SliderFloat("##t", &t, 0.0f, 1.0f, "t = %.3f")) {
+        morph.t = t;
+        morph.playing = false;
+    }
+    if (!morph.playing) {
+        if (button("Animate")) {
+            morph.playing = true;
+            morph.play_start = now;
+        }
+    } else if (button("Stop")) {
+        morph.playing = false;
+    }
+    ImGui::SameLine();
+    if (button("Before")) {
+        morph.t = 0.0;
+        morph.playing = false;
+    }
+    ImGui::SameLine();
+    if (button("After")) {
+        morph.t = 1.0;
+        morph.playing = false;
+    }
+    float duration = float(morph.duration);
+    ImGui::SetNextItemWidth(widget_width(8.0f));
+    if (ImGui::SliderFloat("duration", &duration, 0.2f, 20.0f, "%.1f s",
+                           ImGuiSliderFlags_Logarithmic))
+        morph.duration = duration;
+    const char* easings[] = {"linear", "smooth step", "ease in-out (cubic)"};
+    int e = int(morph.easing);
+    ImGui::SetNextItemWidth(widget_width(8.0f));
+    if (ImGui::Combo("easing", &e, easings, 3)) morph.easing = Easing(e);
+    const char* modes[] = {"once", "loop", "ping-pong"};
+    int m = int(morph.playback);
+    ImGui::SetNextItemWidth(widget_width(8.0f));
+    if (ImGui::Combo("playback", &m, modes, 3)) morph.playback = Playback(m);
+    if (info.steps.size() > 1) ImGui::TextDisabled("%zu steps, chained", info.steps.size());
+}
+}  // namespace
+
+void morph_section(PanelState& panels, MorphState& morph, const History& history, double now) {
+    SidebarSection section("Morph", panels.morph_open);
+    if (!section) return;
+    morph_controls(morph, history, now);
+}
+
+void record_section(PanelState& panels, bool can_record, CommandQueue& commands) {
+    RecordState& r = panels.record;
+    if (r.running) r.open = true;  // the progress and Cancel stay visible
+    SidebarSection section("Record", r.open);
+    if (!section) return;
+    ImGui::TextWrapped("Writes the morph of the current entry as PNG frames, framed as the view.");
+    const float w = widget_width(10.0f);
+    if (r.running) ImGui::BeginDisabled();
+    ImGui::SetNextItemWidth(w);
+    if (ImGui::InputInt("frames", &r.frames)) r.frames = std::clamp(r.frames, 2, 100000);
+    ImGui::SetNextItemWidth(w);
+    if (ImGui::InputInt("per second", &r.fps)) r.fps = std::clamp(r.fps, 1, 240);
+    ImGui::Text("duration %.2f s", double(r.frames) / r.fps);
+    int size[2] = {r.width, r.height};
+    ImGui::SetNextItemWidth(w);
+    if (ImGui::InputInt2("width, height", size)) {
+        r.width = std::clamp(size[0], 16, 8192);
+        r.height = std::clamp(size[1], 16, 8192);
+    }
+    ImGui::SetNextItemWidth(w);
+    ImGui::InputText("folder", &r.folder);
+    ImGui::SetNextItemWidth(w);
+    ImGui::InputText("name", &r.name);
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextDisabled("%s/%s_0000.png ...", r.folder.c_str(), r.name.c_str());
+    ImGui::PopTextWrapPos();
+    checkbox("also an MP4", &r.mp4);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("needs ffmpeg on the PATH");
+    if (r.running) ImGui::EndDisabled();
+    if (r.running) {
+        ImGui::ProgressBar(float(r.next) / float(r.frames), ImVec2(w, 0.0f));
+        ImGui::SameLine();
+        if (button("Cancel##record")) commands.push_back(CancelRecording{});
+    } else {
+        if (!can_record) ImGui::BeginDisabled();
+        if (button("Record")) commands.push_back(StartRecording{});
+        if (!can_record) {
+            ImGui::EndDisabled();
+            ImGui::SameLine();
+            ImGui::TextDisabled("(apply an operation first)");
+        }
+    }
+}
+
+void info_section(PanelState& panels, const std::vector<std::string>& lines) {
+    SidebarSection section("Model information", panels.info_open);
+    if (!section) return;
+    ImGui::PushTextWrapPos(0.0f);
+    for (const std::string& line : lines) ImGui::TextUnformatted(line.c_str());
+    ImGui::PopTextWrapPos();
+}
+
+}  // namespace trilab::viewer
