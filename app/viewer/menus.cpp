@@ -236,10 +236,16 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
     }
     view_menu(settings, commands);
     if (begin_menu("Tools")) {
-        menu_item("Add noise", nullptr, &panels.tools.open);
-        if (menu_item("Flip orientation", nullptr, false, !context.busy))
-            commands.push_back(ApplyOperation{make_operation("flip")});
-        menu_item("Weld coincident vertices...", nullptr, &panels.weld.open);
+        // Every tool from the registry: an action, or its section (PanelState::tools).
+        for (OperationPanelState& tool : panels.tools) {
+            const OperationDef& def = *tool.op.def;
+            if (def.params.empty()) {
+                if (menu_item(def.label.c_str(), nullptr, false, !context.busy))
+                    commands.push_back(ApplyOperation{tool.op});
+            } else {
+                menu_item((def.label + "...").c_str(), nullptr, &tool.open);
+            }
+        }
         end_menu();
     }
     if (begin_menu("Algorithms")) {

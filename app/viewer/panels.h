@@ -52,7 +52,7 @@ struct RecordState {
 /// An operation panel's state: open or not, and the operation with the values its widgets
 /// edit (the declaration's defaults at first).
 struct OperationPanelState {
-    explicit OperationPanelState(const char* name) : op(make_operation(name)) {}
+    explicit OperationPanelState(const std::string& name) : op(make_operation(name)) {}
     bool open = false;
     Operation op;
     // Live preview (the viewer sets these each frame; see README "Live panels").
@@ -125,6 +125,12 @@ struct UnsavedPrompt {
     std::string document_path;  ///< where "Save" writes (empty: only Save as)
 };
 
+/// A generic panel for each registered operation not in `owned` (the operations that have
+/// panels of their own).
+std::vector<OperationPanelState> tool_panels(const std::vector<const OperationDef*>& owned);
+/// "Tools: add noise": a tool's section title, from its operation's label.
+std::string tool_section_title(const OperationDef& def);
+
 struct PanelState {
     UnsavedPrompt unsaved;
     ScreenshotState screenshot;
@@ -133,8 +139,14 @@ struct PanelState {
     FrequencyPanelState frequency;
     DecimationPanelState decimation;
     RecordState record;
-    OperationPanelState tools{"noise"};
-    OperationPanelState weld{"weld"};  ///< Tools > Weld coincident vertices
+    /// The small tools: one generic panel for every registered operation that none of the
+    /// panels above holds (Add noise, Weld coincident vertices, Flip orientation, and any
+    /// operation registered later), in the registry's order. One without parameters is a menu
+    /// action (Tools > Flip orientation); the others are sidebar sections "Tools: ...".
+    std::vector<OperationPanelState> tools =
+        tool_panels({subdivision.op.def, fairing.op.def, frequency.op.def, decimation.op.def});
+    /// The tool panel of the operation `name` (nullptr: none).
+    OperationPanelState* tool(const std::string& name);
     bool history_open = false;
     bool morph_open = false;
     FileBrowserState file_browser;
@@ -264,7 +276,13 @@ void fairing_section(PanelState& panels, const SidebarContext& context, CommandQ
 /// Decimation (cost, the three constraints with their thresholds, percentage per iteration,
 /// iterations, Decimate, the level-of-detail slider, the collapsing-edges overlay).
 void decimation_section(PanelState& panels, const SidebarContext& context, CommandQueue& commands);
-/// Tools: Add noise; Weld coincident vertices.
+/// Opens the panels named in `list`, comma-separated: all, tools (every tool), history, morph,
+/// fairing, subdivision, frequency, decimation, collapsing-edges, record, log, info, the
+/// dialogs help, about, screenshot, and any tool by its operation's name (noise, weld).
+/// Throws InvalidArgument naming an unknown one and listing the known.
+void open_panels(PanelState& panels, const std::string& list);
+/// The tools' sections (PanelState::tools with parameters), each "Tools: LABEL" with the
+/// operation's summary, its parameters, Apply and the preview's Cancel.
 void tools_section(PanelState& panels, bool busy, CommandQueue& commands);
 /// The morph slider and the animation controls for the current history entry: the one place
 /// they are drawn.

@@ -20,6 +20,7 @@
 #include "app/viewer/plots.h"
 #include "app/viewer/widgets.h"
 #include "core/algorithms/fairing.h"
+#include "core/errors.h"
 #include "core/number_text.h"
 
 namespace trilab::viewer {
@@ -194,16 +195,80 @@ void decimation_section(PanelState& panels, const SidebarContext& context, Comma
     morph_hint();
 }
 
-void tools_section(PanelState& panels, bool busy, CommandQueue& commands) {
-    if (SidebarSection noise("Tools: add noise", panels.tools.open); noise) {
-        ImGui::TextWrapped("Moves the vertices along their normals.");
-        operation_panel_body(panels.tools, "Apply", busy, commands);
+std::vector<OperationPanelState> tool_panels(const std::vector<const OperationDef*>& owned) {
+    std::vector<OperationPanelState> tools;
+    for (const OperationDef* def : operation_defs())
+        if (std::find(owned.begin(), owned.end(), def) == owned.end())
+            tools.emplace_back(def->name);
+    return tools;
+}
+
+std::string tool_section_title(const OperationDef& def) {
+    std::string label = def.label;
+    if (!label.empty() && label[0] >= 'A' && label[0] <= 'Z') label[0] = char(label[0] - 'A' + 'a');
+    return "Tools: " + label;
+}
+
+OperationPanelState* PanelState::tool(const std::string& name) {
+    for (OperationPanelState& t : tools)
+        if (t.op.name() == name) return &t;
+    return nullptr;
+}
+
+void open_panels(PanelState& panels, const std::string& list) {
+    for (std::size_t pos = 0; pos < list.size();) {
+        std::size_t comma = list.find(',', pos);
+        if (comma == std::string::npos) comma = list.size();
+        const std::string panel = list.substr(pos, comma - pos);
+        pos = comma + 1;
+        bool* flag = nullptr;
+        if (panel == "all") {  // every panel (not the dialogs)
+            panels.history_open = panels.morph_open = panels.log_open = true;
+            panels.info_open = panels.fairing.open = panels.subdivision.open = true;
+            panels.frequency.open = panels.decimation.open = panels.record.open = true;
+            for (OperationPanelState& tool : panels.tools) tool.open = true;
+            continue;
+        }
+        if (panel == "tools") {  // every tool's section
+            for (OperationPanelState& tool : panels.tools) tool.open = true;
+            continue;
+        }
+        const std::pair<const char*, bool*> names[] = {
+            {"help", &panels.help_open},
+            {"about", &panels.about_open},
+            {"screenshot", &panels.screenshot.open},
+            {"history", &panels.history_open},
+            {"morph", &panels.morph_open},
+            {"fairing", &panels.fairing.open},
+            {"subdivision", &panels.subdivision.open},
+            {"frequency", &panels.frequency.open},
+            {"decimation", &panels.decimation.open},
+            {"collapsing-edges", &panels.decimation.show_collapsing_edges},
+            {"record", &panels.record.open},
+            {"log", &panels.log_open},
+            {"info", &panels.info_open}};
+        for (const auto& [name, open] : names)
+            if (panel == name) flag = open;
+        if (OperationPanelState* tool = panels.tool(panel)) flag = &tool->open;
+        if (!flag) {
+            std::string known = "all, tools";
+            for (const auto& [name, open] : names) known += std::string(", ") + name;
+            for (const OperationPanelState& tool : panels.tools)
+                if (!tool.op.def->params.empty()) known += ", " + tool.op.name();
+            throw InvalidArgument("--show: unknown panel '" + panel + "' (" + known + ")");
+        }
+        *flag = true;
     }
-    if (SidebarSection weld("Tools: weld coincident vertices", panels.weld.open); weld) {
-        ImGui::TextWrapped(
-            "Joins coincident vertices where the mesh stays manifold (tolerance 0: exactly the "
-            "same position); the log says what stays apart.");
-        operation_panel_body(panels.weld, "Weld", busy, commands);
+}
+
+void tools_section(PanelState& panels, bool busy, CommandQueue& commands) {
+    for (OperationPanelState& tool : panels.tools) {
+        if (tool.op.def->params.empty()) continue;  // a menu action (Tools > Flip orientation)
+        const std::string title = tool_section_title(*tool.op.def);
+        if (SidebarSection section(title.c_str(), tool.open); section) {
+            ImGui::TextWrapped("%s", tool.op.def->summary.c_str());
+            operation_panel_body(tool, "Apply", busy, commands);
+        }
     }
 }
 

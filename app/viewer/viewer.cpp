@@ -203,53 +203,7 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
         for (OperationPanelState* panel : operation_panels())
             if (panel->op.def == op.def) panel->op = op;
     }
-    for (std::size_t pos = 0; pos < options_.show.size();) {
-        std::size_t comma = options_.show.find(',', pos);
-        if (comma == std::string::npos) comma = options_.show.size();
-        const std::string panel = options_.show.substr(pos, comma - pos);
-        pos = comma + 1;
-        if (panel == "all") {  // every panel (not the dialogs)
-            panels_.history_open = panels_.morph_open = panels_.log_open = true;
-            panels_.info_open = panels_.tools.open = panels_.weld.open = panels_.fairing.open =
-                true;
-            panels_.subdivision.open = panels_.frequency.open = true;
-            panels_.decimation.open = panels_.record.open = true;
-        } else if (panel == "help")
-            panels_.help_open = true;
-        else if (panel == "about")
-            panels_.about_open = true;
-        else if (panel == "screenshot")
-            panels_.screenshot.open = true;
-        else if (panel == "history")
-            panels_.history_open = true;
-        else if (panel == "morph")
-            panels_.morph_open = true;
-        else if (panel == "tools")
-            panels_.tools.open = true;
-        else if (panel == "weld")
-            panels_.weld.open = true;
-        else if (panel == "fairing")
-            panels_.fairing.open = true;
-        else if (panel == "subdivision")
-            panels_.subdivision.open = true;
-        else if (panel == "frequency")
-            panels_.frequency.open = true;
-        else if (panel == "decimation")
-            panels_.decimation.open = true;
-        else if (panel == "collapsing-edges")
-            panels_.decimation.show_collapsing_edges = true;
-        else if (panel == "record")
-            panels_.record.open = true;
-        else if (panel == "log")
-            panels_.log_open = true;
-        else if (panel == "info")
-            panels_.info_open = true;
-        else
-            throw InvalidArgument(
-                "--show: unknown panel '" + panel +
-                "' (all, history, morph, tools, weld, subdivision, fairing, frequency, "
-                "decimation, collapsing-edges, record, log, info, help, about, screenshot)");
-    }
+    open_panels(panels_, options_.show);
     initial_load_ended_ = options_.mesh_path.empty();
     if (!options_.mesh_path.empty()) session_.execute(LoadFile{options_.mesh_path, true});
 }

@@ -308,8 +308,10 @@ std::pair<std::size_t, std::size_t> Viewer::shown_counts() const {
 }
 
 std::vector<OperationPanelState*> Viewer::operation_panels() {
-    return {&panels_.subdivision, &panels_.fairing, &panels_.decimation, &panels_.tools,
-            &panels_.weld};
+    std::vector<OperationPanelState*> panels = {&panels_.subdivision, &panels_.fairing,
+                                                &panels_.decimation};
+    for (OperationPanelState& tool : panels_.tools) panels.push_back(&tool);
+    return panels;
 }
 
 bool Viewer::confirm_discard(bool quitting, const std::string& path) {

@@ -94,7 +94,8 @@ struct Sidebar {
     Sidebar& operator=(const Sidebar&) = delete;
 
     void open_all() {
-        panels.tools.open = panels.weld.open = panels.fairing.open = true;
+        for (OperationPanelState& tool : panels.tools) tool.open = true;
+        panels.fairing.open = true;
         panels.frequency.open = panels.subdivision.open = panels.decimation.open = true;
         panels.morph_open = panels.record.open = panels.info_open = true;
         panels.decimation.lod_open = true;
@@ -159,9 +160,9 @@ TEST_CASE("no widget ID is used twice in a frame, in any combination of open sec
     CHECK(items_seen.size() > 60);
 
     bool* flags[] = {
-        &s.panels.tools.open,     &s.panels.weld.open,        &s.panels.fairing.open,
-        &s.panels.frequency.open, &s.panels.subdivision.open, &s.panels.decimation.open,
-        &s.panels.morph_open,     &s.panels.record.open,      &s.panels.info_open};
+        &s.panels.tool("noise")->open, &s.panels.tool("weld")->open, &s.panels.fairing.open,
+        &s.panels.frequency.open,      &s.panels.subdivision.open,   &s.panels.decimation.open,
+        &s.panels.morph_open,          &s.panels.record.open,        &s.panels.info_open};
     const unsigned n = unsigned(std::size(flags));
     for (unsigned mask = 0; mask < (1u << n); ++mask) {
         for (unsigned i = 0; i < n; ++i) *flags[i] = (mask >> i) & 1u;
@@ -169,7 +170,7 @@ TEST_CASE("no widget ID is used twice in a frame, in any combination of open sec
         s.panels.decimation.lod_ready = (mask & 2u) != 0;
         s.panels.record.running = (mask & 4u) != 0;
         s.panels.fairing.previewing = s.panels.subdivision.previewing = (mask & 8u) != 0;
-        s.panels.decimation.previewing = s.panels.tools.previewing = (mask & 8u) != 0;
+        s.panels.decimation.previewing = s.panels.tool("noise")->previewing = (mask & 8u) != 0;
         s.morph.playing = (mask & 16u) != 0;
         ui.frame(draw);  // the sections take their new state
         const std::vector<std::string> duplicates = duplicate_ids(ui, draw);
@@ -230,7 +231,7 @@ TEST_CASE("every button of every section queues what it says", "[panels][buttons
     const std::map<std::string, Check> expected = {
         {"Tools: add noise/Apply", applies("noise")},
         {"Tools: add noise/Cancel", queues_one(CancelPreview{})},
-        {"Tools: weld coincident vertices/Weld", applies("weld")},
+        {"Tools: weld coincident vertices/Apply", applies("weld")},
         {"Tools: weld coincident vertices/Cancel", queues_one(CancelPreview{})},
         {"Fairing/Smooth", applies("smooth")},
         {"Fairing/Cancel", queues_one(CancelPreview{})},
@@ -270,8 +271,8 @@ TEST_CASE("every button of every section queues what it says", "[panels][buttons
         [](Sidebar& s) { s.morph.t = 0.5; },
         [](Sidebar& s) {
             s.panels.fairing.previewing = s.panels.subdivision.previewing = true;
-            s.panels.decimation.previewing = s.panels.tools.previewing = true;
-            s.panels.weld.previewing = true;
+            s.panels.decimation.previewing = true;
+            for (OperationPanelState& tool : s.panels.tools) tool.previewing = true;
             s.panels.decimation.lod_ready = true;
             s.panels.record.running = true;
             s.morph.playing = true;
@@ -513,4 +514,53 @@ TEST_CASE("the Frequency section says whether the mesh shows a band", "[panels][
     s.frequency.applied_hi = 2;
     ui.frame(draw);
     CHECK(state() == "the mesh shows the band 0 .. 2");
+}
+
+TEST_CASE("every registered operation has a panel: its own, or a tool's from the registry",
+          "[panels][tools]") {
+    PanelState panels;
+    const std::vector<const OperationDef*> owned = {panels.subdivision.op.def,
+                                                    panels.fairing.op.def, panels.frequency.op.def,
+                                                    panels.decimation.op.def};
+    for (const OperationDef* def : operation_defs()) {
+        INFO(def->name);
+        const bool own = std::find(owned.begin(), owned.end(), def) != owned.end();
+        CHECK(own != (panels.tool(def->name) != nullptr));
+    }
+    // A tool with parameters is a sidebar section named after its label; Apply applies it.
+    Ui ui(1280, 4000);
+    CommandQueue commands;
+    for (OperationPanelState& tool : panels.tools) tool.open = true;
+    const auto draw = [&] {
+        in_sidebar(panels.layout, [&] { tools_section(panels, false, commands); });
+    };
+    ui.frame(draw);
+    ui.frame(draw);
+    for (OperationPanelState& tool : panels.tools) {
+        const std::string title = tool_section_title(*tool.op.def);
+        INFO(title);
+        if (tool.op.def->params.empty()) {
+            CHECK_FALSE(ui.has("section:" + title));  // a menu action instead
+            continue;
+        }
+        const WidgetNote apply = find_widget(ui, title + "/Apply", WidgetNote::Kind::Button);
+        commands.clear();
+        press(ui, draw, apply);
+        const auto applied = commands_of<ApplyOperation>(commands);
+        REQUIRE(applied.size() == 1);
+        CHECK(applied[0]->op.def == tool.op.def);
+    }
+}
+
+TEST_CASE("--show opens panels by name, tools by their operation's name", "[panels][tools]") {
+    PanelState panels;
+    open_panels(panels, "history,weld,collapsing-edges");
+    CHECK(panels.history_open);
+    CHECK(panels.tool("weld")->open);
+    CHECK_FALSE(panels.tool("noise")->open);
+    CHECK(panels.decimation.show_collapsing_edges);
+    open_panels(panels, "tools");
+    CHECK(panels.tool("noise")->open);
+    CHECK_THROWS_WITH(open_panels(panels, "history,nope"),
+                      Catch::Contains("unknown panel 'nope'") && Catch::Contains("weld"));
 }

@@ -141,7 +141,7 @@ TEST_CASE("the Fairing panel shows only the parameters that apply", "[panels]") 
 TEST_CASE("Cancel shows while a preview is up and queues CancelPreview", "[panels]") {
     Ui ui;
     PanelState panels;
-    panels.tools.open = true;
+    panels.tool("noise")->open = true;
     CommandQueue commands;
     const auto draw = [&] {
         in_sidebar(panels.layout, [&] { tools_section(panels, false, commands); });
@@ -149,7 +149,7 @@ TEST_CASE("Cancel shows while a preview is up and queues CancelPreview", "[panel
     ui.frame(draw);
     ui.frame(draw);
     CHECK_FALSE(ui.has("Cancel"));
-    panels.tools.previewing = true;
+    panels.tool("noise")->previewing = true;
     ui.frame(draw);
     const Box cancel = ui.rect("Cancel");
     commands.clear();
@@ -501,7 +501,7 @@ TEST_CASE("dragging the sidebar's edge resizes it and the view follows", "[layou
     Ui ui;
     PanelState panels;
     CommandQueue commands;
-    panels.tools.open = true;
+    panels.tool("noise")->open = true;
     const auto draw = [&] {
         in_sidebar(panels.layout, [&] { tools_section(panels, false, commands); });
     };
@@ -535,12 +535,12 @@ TEST_CASE("a section opened elsewhere shows its body, its header closes it", "[l
     ui.frame(draw);
     CHECK_FALSE(ui.has("Apply"));  // collapsed: only the header
     REQUIRE(ui.has("section:Tools: add noise"));
-    panels.tools.open = true;  // the menu item, or --show tools
+    panels.tool("noise")->open = true;  // the menu item, or --show tools
     ui.frame(draw);
     CHECK(ui.has("Apply"));
     const Box header = ui.rect("section:Tools: add noise");
     ui.click(draw, (header.x0 + header.x1) / 2, (header.y0 + header.y1) / 2);
-    CHECK_FALSE(panels.tools.open);
+    CHECK_FALSE(panels.tool("noise")->open);
     ui.frame(draw);
     CHECK_FALSE(ui.has("Apply"));
 }

@@ -105,7 +105,7 @@ TEST_CASE("an operation becomes one history entry and plays its morph", "[sessio
     require_valid(s);
 }
 
-TEST_CASE("a preview shows without an entry; Apply commits what is shown; Cancel drops it",
+TEST_CASE("a preview shows without an entry, Apply commits what is shown, Cancel drops it",
           "[session]") {
     Session s;
     const Operation loop = parse_operation("subdivide --scheme loop --iterations 2");
