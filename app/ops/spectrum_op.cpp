@@ -22,6 +22,7 @@ struct SpectrumOptions {
     bool full = false;
     std::optional<std::pair<std::size_t, std::size_t>> band;  ///< unset: all
     std::optional<std::size_t> threads;                       ///< unset: the machine's
+    bool with_rest = false;  ///< the band takes in the rest when it reaches the open end
 };
 
 constexpr double kMaxK = 10000000;
@@ -62,7 +63,9 @@ OperationResult run_spectrum(const SpectrumOptions& o, const HalfedgeMesh& mesh,
         throw InvalidArgument(
             "--band: expected LO:HI with 0 <= LO <= HI < K = " + std::to_string(k) + ", got '" +
             std::to_string(lo) + ":" + std::to_string(hi) + "'");
-    HalfedgeMesh out = reconstruct(mesh, d, lo, hi);
+    const BandRest rest = o.with_rest ? BandRest::Include : BandRest::Exclude;
+    const bool rest_included = o.with_rest && band_reaches_rest(d, lo, hi);
+    HalfedgeMesh out = reconstruct(mesh, d, lo, hi, rest);
     OperationResult result;
     result.ms = ms_since(t0);
     result.label = "Spectrum";
@@ -73,6 +76,9 @@ OperationResult run_spectrum(const SpectrumOptions& o, const HalfedgeMesh& mesh,
     std::string text = count_text(k, "frequency", "frequencies") + line +
                        count_text(d.rows(), "vertex", "vertices") + ", band " + std::to_string(lo) +
                        ":" + std::to_string(hi);
+    if (rest_included)
+        text += d.end == SpectrumEnd::Smallest ? " and the rest (the higher frequencies)"
+                                               : " and the rest (the lower frequencies)";
     std::snprintf(line, sizeof line, ", %.0f ms: ", rep.ms);
     text += line + rep.solver + ", " + count_text(rep.bands, "band", "bands") + " in " +
             count_text(rep.slices, "slice", "slices") + ", " +
@@ -122,7 +128,8 @@ std::unique_ptr<OperationDef> spectrum_operation() {
         "spectrum", "Spectrum",
         "Decomposes the geometry into the eigenvectors of a fairing Laplacian, K x = lambda S x "
         "(sections 1.2.2, 1.2.11, 1.2.12 of the reference; Taubin 1995; Vallet, Levy 2008), "
-        "and reconstructs the mesh from the band LO..HI of the computed frequencies.");
+        "and reconstructs the mesh from the band LO..HI of the computed frequencies (with "
+        "--with-rest, and the part of the geometry they do not carry).");
     d.choice(
         "operator", [](SpectrumOptions & o) -> auto& { return o.spectral.op; },
         EnumTableView(kLaplacianOperators), "the Laplacian");
@@ -134,6 +141,9 @@ std::unique_ptr<OperationDef> spectrum_operation() {
     d.range("band", &SpectrumOptions::band, 0, kMaxK,
             "the frequencies of the reconstruction, 0-based, ascending")
         .default_note("all");
+    d.flag("with-rest", &SpectrumOptions::with_rest,
+           "a band that reaches the open end of the computed frequencies also takes in the "
+           "part of the geometry they do not carry (all K then give the mesh)");
     d.flag("full", &SpectrumOptions::full, "every frequency, dense (up to --max-full vertices)");
     d.integer(
          "max-full", [](SpectrumOptions & o) -> auto& { return o.spectral.max_full_rows; }, 2,

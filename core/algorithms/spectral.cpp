@@ -1025,6 +1025,30 @@ void check_band(const SpectralDecomposition& d, std::size_t lo, std::size_t hi) 
                               std::to_string(hi));
 }
 
+/// The rows' base positions X (rows x 3), in the order of the eigenproblem.
+Eigen::MatrixXd row_positions(const SpectralDecomposition& d) {
+    Eigen::MatrixXd x(Eigen::Index(d.rows()), 3);
+    for (std::size_t r = 0; r < d.rows(); ++r)
+        x.row(Eigen::Index(r)) = d.base_positions[d.map.vertex_of[r].idx()].transpose();
+    return x;
+}
+
+/// The computed frequencies [first, first + count) outside a band that reaches the open end:
+/// below it for the smallest end, above it for the largest.
+struct OutsideBand {
+    Eigen::Index first = 0, count = 0;
+};
+
+OutsideBand outside_band(const SpectralDecomposition& d, std::size_t lo, std::size_t hi) {
+    if (d.end == SpectrumEnd::Smallest) return {0, Eigen::Index(lo)};
+    return {Eigen::Index(hi + 1), Eigen::Index(d.size() - hi - 1)};
+}
+
+/// Whether the band [lo, hi] (checked) takes in the rest.
+bool with_rest(const SpectralDecomposition& d, std::size_t lo, std::size_t hi, BandRest rest) {
+    return rest == BandRest::Include && band_reaches_rest(d, lo, hi);
+}
+
 }  // namespace
 
 const char* spectral_method_name(SpectralMethod method) {
@@ -1154,15 +1178,37 @@ SpectralDecomposition decompose(const HalfedgeMesh& mesh, const SpectralOptions&
     return d;
 }
 
-Eigen::MatrixXd band_positions(const SpectralDecomposition& d, std::size_t lo, std::size_t hi) {
+bool band_reaches_rest(const SpectralDecomposition& d, std::size_t lo, std::size_t hi) {
     check_band(d, lo, hi);
+    return d.end == SpectrumEnd::Smallest ? hi + 1 == d.size() : lo == 0;
+}
+
+Eigen::MatrixXd rest_positions(const SpectralDecomposition& d) {
+    Eigen::MatrixXd x = row_positions(d);
+    x.noalias() -= d.eigenvectors * d.coefficients;
+    return x;
+}
+
+Eigen::MatrixXd band_positions(const SpectralDecomposition& d, std::size_t lo, std::size_t hi,
+                               BandRest rest) {
+    check_band(d, lo, hi);
+    if (with_rest(d, lo, hi, rest)) {
+        // The band and the rest: X less the computed frequencies outside the band (exactly X
+        // for the whole computed band, whatever the accuracy of the eigenvectors).
+        const OutsideBand o = outside_band(d, lo, hi);
+        Eigen::MatrixXd x = row_positions(d);
+        if (o.count > 0)
+            x.noalias() -= d.eigenvectors.middleCols(o.first, o.count) *
+                           d.coefficients.middleRows(o.first, o.count);
+        return x;
+    }
     const Eigen::Index a = Eigen::Index(lo), count = Eigen::Index(hi - lo + 1);
     return d.eigenvectors.middleCols(a, count) * d.coefficients.middleRows(a, count);
 }
 
 std::vector<Point> reconstruct_positions(const SpectralDecomposition& d, std::size_t lo,
-                                         std::size_t hi) {
-    const Eigen::MatrixXd x = band_positions(d, lo, hi);
+                                         std::size_t hi, BandRest rest) {
+    const Eigen::MatrixXd x = band_positions(d, lo, hi, rest);
     std::vector<Point> out = d.base_positions;
     for (std::size_t r = 0; r < d.map.rows(); ++r)
         out[d.map.vertex_of[r].idx()] = x.row(Eigen::Index(r)).transpose();
@@ -1170,12 +1216,12 @@ std::vector<Point> reconstruct_positions(const SpectralDecomposition& d, std::si
 }
 
 HalfedgeMesh reconstruct(const HalfedgeMesh& mesh, const SpectralDecomposition& d, std::size_t lo,
-                         std::size_t hi) {
+                         std::size_t hi, BandRest rest) {
     if (mesh.vertices_size() != d.base_positions.size())
         throw InvalidArgument("reconstruct: the mesh has " + std::to_string(mesh.vertices_size()) +
                               " vertices but the decomposition was made for " +
                               std::to_string(d.base_positions.size()));
-    std::vector<Point> positions = reconstruct_positions(d, lo, hi);
+    std::vector<Point> positions = reconstruct_positions(d, lo, hi, rest);
     HalfedgeMesh out = mesh;
     out.set_positions(std::move(positions));
     return out;
@@ -1192,7 +1238,7 @@ std::vector<double> frequency_field(const SpectralDecomposition& d, std::size_t 
 }
 
 std::vector<double> band_magnitude_field(const SpectralDecomposition& d, std::size_t lo,
-                                         std::size_t hi) {
+                                         std::size_t hi, BandRest rest) {
     check_band(d, lo, hi);
     std::vector<double> out(d.base_positions.size(), std::numeric_limits<double>::quiet_NaN());
     if (d.rows() == 0) return out;
@@ -1207,11 +1253,16 @@ std::vector<double> band_magnitude_field(const SpectralDecomposition& d, std::si
         mass += s;
     }
     c /= mass;
-    const Eigen::Index a = Eigen::Index(lo), count = Eigen::Index(hi - lo + 1);
+    const bool include = with_rest(d, lo, hi, rest);
+    // With the rest: X - 1·cᵀ less the centred parts of the computed frequencies outside.
+    const OutsideBand o = include ? outside_band(d, lo, hi) : OutsideBand{};
+    const Eigen::Index a = include ? o.first : Eigen::Index(lo),
+                       count = include ? o.count : Eigen::Index(hi - lo + 1);
     const auto e = d.eigenvectors.middleCols(a, count);
     const Eigen::VectorXd w = e.transpose() * d.S;  // e_kᵀ·S·1
     const Eigen::MatrixXd alpha = d.coefficients.middleRows(a, count) - w * c;
-    const Eigen::MatrixXd x = e * alpha;
+    Eigen::MatrixXd x = e * alpha;
+    if (include) x = (row_positions(d).rowwise() - c) - x;
     for (std::size_t r = 0; r < d.rows(); ++r)
         out[d.map.vertex_of[r].idx()] = x.row(Eigen::Index(r)).norm();
     return out;

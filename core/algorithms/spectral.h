@@ -4,7 +4,8 @@
 // manifold harmonics"; Taubin 1995): the eigenpairs of K·x = λ·S·x for an operator
 // L = -S⁻¹K of core/algorithms/laplacian.h (real, λ >= 0, S-orthonormal eigenvectors), the
 // positions' coefficients α_k = e_kᵀ·S·X, and reconstruction Σ_{lo<=k<=hi} e_k·α_kᵀ from a
-// band. With every frequency of a full decomposition it returns the mesh (~1e-12 relative).
+// band. With every frequency of a full decomposition it returns the mesh (~1e-12 relative);
+// of a partial one, with the rest (BandRest: the part the computed frequencies miss) too.
 //  - Partial: the smallest k by shift-invert Lanczos band by band (ARPACK's method in Spectra;
 //    two spectrum slices on two threads, Campos & Roman 2012), the largest k by Lanczos. The
 //    number of eigenvalues found is verified exactly (Sylvester's law of inertia): none is
@@ -116,19 +117,43 @@ SpectralDecomposition decompose(const HalfedgeMesh& mesh, const SpectralOptions&
                                 Progress& progress);
 SpectralDecomposition decompose(const HalfedgeMesh& mesh, const SpectralOptions& options);
 
-/// Positions (rows x 3) of the band [lo, hi] (0-based indices into the computed, ascending
-/// frequencies). Throws InvalidArgument unless lo <= hi < size(). O(rows · (hi - lo + 1)).
-Eigen::MatrixXd band_positions(const SpectralDecomposition& d, std::size_t lo, std::size_t hi);
+/// Whether a band takes in the rest: the part of the rows' geometry X that the computed
+/// frequencies do not carry, R = X - Σ_{k<size()} e_k·α_kᵀ (the S-orthogonal projection of X
+/// onto the uncomputed eigenvectors, so R = Σ e_k·α_kᵀ over the frequencies not computed).
+/// Include adds R to a band that reaches the open end of the computed spectrum (see
+/// band_reaches_rest()): the band then runs on through the uncomputed frequencies, so
+/// [0, size() - 1] with the rest is the decomposed mesh and a band stays contiguous in the
+/// whole spectrum. A band short of the open end is the same with Include as with Exclude.
+enum class BandRest { Exclude, Include };
 
-/// Every vertex's position (storage index) after reconstruction from [lo, hi]: rows get
-/// their band positions, other vertices their base position.
+/// Whether [lo, hi] reaches the open end of the computed spectrum, beyond which the rest
+/// lies: hi == size() - 1 when the smallest frequencies were computed (the rest: the higher
+/// ones), lo == 0 when the largest were (the rest: the lower ones, the constant among them).
+/// For a full decomposition of all rows the rest is zero up to rounding. Throws
+/// InvalidArgument unless lo <= hi < size().
+bool band_reaches_rest(const SpectralDecomposition& d, std::size_t lo, std::size_t hi);
+
+/// The rest R = X - E·A (rows x 3; see BandRest). O(rows · size()).
+Eigen::MatrixXd rest_positions(const SpectralDecomposition& d);
+
+/// Positions (rows x 3) of the band [lo, hi] (0-based indices into the computed, ascending
+/// frequencies), plus the rest with BandRest::Include when the band reaches the open end:
+/// then computed as X minus the computed frequencies outside the band, so [0, size() - 1]
+/// with the rest is X exactly. Exclude: Σ_{lo<=k<=hi} e_k·α_kᵀ. Throws InvalidArgument
+/// unless lo <= hi < size(). O(rows · (hi - lo + 1)), with the rest O(rows · (size() - (hi -
+/// lo + 1))).
+Eigen::MatrixXd band_positions(const SpectralDecomposition& d, std::size_t lo, std::size_t hi,
+                               BandRest rest = BandRest::Exclude);
+
+/// Every vertex's position (storage index) after reconstruction from [lo, hi] (and the rest,
+/// as band_positions()): rows get their band positions, other vertices their base position.
 std::vector<Point> reconstruct_positions(const SpectralDecomposition& d, std::size_t lo,
-                                         std::size_t hi);
+                                         std::size_t hi, BandRest rest = BandRest::Exclude);
 
 /// A copy of `mesh` with reconstruct_positions(). Throws InvalidArgument when `mesh` does
 /// not have the decomposed mesh's vertices (vertices_size differs).
 HalfedgeMesh reconstruct(const HalfedgeMesh& mesh, const SpectralDecomposition& d, std::size_t lo,
-                         std::size_t hi);
+                         std::size_t hi, BandRest rest = BandRest::Exclude);
 
 /// Per vertex (storage index) the value of eigenvector `index`; NaN for vertices outside the
 /// eigenproblem. For the "Frequency" colouring (signed: a diverging map).
@@ -141,9 +166,11 @@ std::vector<double> frequency_field(const SpectralDecomposition& d, std::size_t 
 /// the centring, the constant frequency (λ = 0 on a connected mesh with a free boundary)
 /// carries the centroid, and every band that holds it would show the distance from the world
 /// origin; with it, that frequency carries nothing. Throws InvalidArgument unless
-/// lo <= hi < size(). O(rows · (hi - lo + 1)).
+/// lo <= hi < size(). O(rows · (hi - lo + 1)). With BandRest::Include the band carries the
+/// rest as in band_positions() ([0, size() - 1] with the rest: |X - c| exactly), so the
+/// colouring agrees with the shape of the same band.
 std::vector<double> band_magnitude_field(const SpectralDecomposition& d, std::size_t lo,
-                                         std::size_t hi);
+                                         std::size_t hi, BandRest rest = BandRest::Exclude);
 
 /// max |EᵀSE - I| over the computed eigenvectors (O(rows · k²): for tests and reports).
 double s_orthonormality_error(const SpectralDecomposition& d);

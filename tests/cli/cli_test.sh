@@ -164,6 +164,17 @@ check "spectrum --full with all frequencies returns the mesh" bash -c \
      grep -o '\"area\": [^,]*' | cut -d' ' -f2) && a0=\$('$cli' info '$tmp/d.obj' --json | \
      grep -o '\"area\": [^,]*' | cut -d' ' -f2) && \
      awk -v a=\"\$a1\" -v b=\"\$a0\" 'BEGIN {d = a - b; if (d < 0) d = -d; exit !(d < 1e-9 * b)}'"
+check "spectrum --with-rest: all K frequencies and the rest give the mesh; the flag round-trips" \
+    bash -c "'$cli' spectrum --operator curvature-flow --k 20 --with-rest '$tmp/d.obj' \
+     '$tmp/swr.obj' --json > '$tmp/swr.json' && grep -q '\"with_rest\": true' '$tmp/swr.json' && \
+     '$cli' compare '$tmp/d.obj' '$tmp/swr.obj' --json | grep -o '\"hausdorff_relative\": [^,]*' | \
+     awk '{exit !(\$2 < 1e-9)}' && \
+     params=\$(grep -o '\"parameters\": \"[^\"]*\"' '$tmp/swr.json' | cut -d'\"' -f4) && \
+     case \"\$params\" in *--with-rest*) ;; *) exit 1;; esac && \
+     '$cli' spectrum \$params '$tmp/d.obj' '$tmp/swr2.obj' && cmp '$tmp/swr.obj' '$tmp/swr2.obj' && \
+     '$cli' spectrum --operator curvature-flow --k 20 '$tmp/d.obj' '$tmp/swn.obj' --json | \
+     grep -q '\"with_rest\": false' && '$cli' compare '$tmp/d.obj' '$tmp/swn.obj' --json | \
+     grep -o '\"hausdorff_relative\": [^,]*' | awk '{exit !(\$2 > 1e-4)}'"
 check "spectrum --which largest" bash -c \
     "'$cli' spectrum --operator umbrella --k 10 --which largest '$tmp/d.obj' '$tmp/spl.obj' \
      --eigenvalues '$tmp/evl.txt' && [ \$(wc -l < '$tmp/evl.txt') -eq 10 ]"

@@ -551,6 +551,16 @@ TEST_CASE("the shared bunny: isolated vertices are left out and keep their posit
     for (Vertex v : bunny.vertices())
         if (bunny.is_isolated(v)) CHECK(low.position(v) == bunny.position(v));
     CHECK(roughness(low) < roughness(bunny));
+    // With the rest (the frequencies above 19), the whole band is the bunny (the largest end:
+    // test_spectral_rest.cpp).
+    const HalfedgeMesh whole = reconstruct(bunny, d, 0, 19, BandRest::Include);
+    REQUIRE_VALID(whole);
+    double difference = 0;
+    for (Vertex v : bunny.vertices())
+        difference =
+            std::max(difference, (whole.position(v) - bunny.position(v)).cwiseAbs().maxCoeff());
+    CHECK(difference <= 1e-9 * bounding_box(bunny).diagonal());
+    CHECK(relative_distance(low, bunny) > 1e-3);
 }
 
 TEST_CASE("the spectrum operation of the registry", "[spectral][operation]") {
