@@ -88,7 +88,10 @@ void Session::preview_band(std::size_t lo, std::size_t hi) {
     morph_ =
         MorphState{1.0, false, morph_.duration, morph_.easing, morph_.playback, 0.0, morph_.moves};
     try {
-        shown_.positions = reconstruct_positions(*doc.decomposition, lo, hi);
+        // A band that reaches the end of the computed spectrum takes in the rest (the geometry
+        // the computed frequencies do not carry): right after Decompose, the full band is the
+        // mesh itself, so the first touch of a slider never makes the shape jump.
+        shown_.positions = reconstruct_positions(*doc.decomposition, lo, hi, BandRest::Include);
         shown_.kind = Shown::Kind::Band;
         shown_.mesh = &document_.mesh();
         shown_.level = nullptr;
@@ -111,13 +114,16 @@ void Session::push_band(std::size_t lo, std::size_t hi, bool restore) {
             label = kRestoreLabel;
             parameters = "the decomposed shape";
         } else {
-            mesh.set_positions(reconstruct_positions(d, lo, hi));
+            mesh.set_positions(reconstruct_positions(d, lo, hi, BandRest::Include));
             label = kBandLabel;
             band = make_operation("spectrum");
             ParamValue& v = band.value("band");
             v.x = double(lo);
             v.y = double(hi);
             v.on = v.given = true;
+            ParamValue& rest = band.value("with-rest");  // replays to the same positions
+            rest.x = 1;
+            rest.on = rest.given = true;
             parameters = std::to_string(lo) + ":" + std::to_string(hi) + " of " +
                          std::to_string(d.size()) + " (" + laplacian_operator_name(d.op) + ")";
         }

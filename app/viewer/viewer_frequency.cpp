@@ -78,7 +78,8 @@ VertexColors Viewer::frequency_colors(const HalfedgeMesh& mesh) const {
         view_.settings.coloring == VertexColoring::Frequency
             ? frequency_field(*d, std::min(std::size_t(std::max(s.visualize, 0)), last))
             : band_magnitude_field(*d, std::min(std::size_t(std::max(s.lo, 0)), last),
-                                   std::min(std::size_t(std::max(s.hi, 0)), last));
+                                   std::min(std::size_t(std::max(s.hi, 0)), last),
+                                   BandRest::Include);
     return color_field(mesh, values, view_.settings.coloring, view_.settings.coloring_options);
 }
 

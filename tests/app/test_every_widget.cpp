@@ -508,12 +508,12 @@ TEST_CASE("the Frequency section says whether the mesh shows a band", "[panels][
             if (n.id == "band-state") return n.label;
         return std::string();
     };
-    CHECK(state().find("its own shape, not a band") != std::string::npos);
+    CHECK(state().find("its own shape") != std::string::npos);
     s.frequency.applied = true;
     s.frequency.applied_lo = 0;
     s.frequency.applied_hi = 2;
     ui.frame(draw);
-    CHECK(state() == "the mesh shows the band 0 .. 2");
+    CHECK(state().rfind("the mesh shows the band 0 .. 2", 0) == 0);
 }
 
 TEST_CASE("every registered operation has a panel: its own, or a tool's from the registry",

@@ -234,3 +234,31 @@ TEST_CASE("saving writes the current state and marks the document saved", "[sess
     CHECK(back.mesh.n_vertices() == s.mesh().n_vertices());
     std::filesystem::remove(path);
 }
+
+TEST_CASE("right after Decompose the full band is the mesh: no jump at the first touch",
+          "[session]") {
+    Session s;
+    SpectralOptions options;
+    options.k = 12;  // far fewer than the 1,002 vertices: most of the shape is in the rest
+    s.decompose(options);
+    s.finish_jobs();
+    REQUIRE(s.document().frequency.valid);
+    // The sliders read 0 .. 11: that band, with the rest, is the mesh as it is.
+    s.preview_band(0, 11);
+    REQUIRE(s.shown().kind == Shown::Kind::Band);
+    double worst = 0;
+    for (Vertex v : s.mesh().vertices())
+        worst = std::max(worst, (s.shown().positions[v.idx()] - s.mesh().position(v)).norm());
+    CHECK(worst < 1e-9);
+    // One frequency fewer drops the rest with it: a real change, the user's.
+    s.preview_band(0, 10);
+    double moved = 0;
+    for (Vertex v : s.mesh().vertices())
+        moved = std::max(moved, (s.shown().positions[v.idx()] - s.mesh().position(v)).norm());
+    CHECK(moved > 1e-3);
+    // The entry records the rest, so that replaying it gives the same positions.
+    s.push_band(0, 11, false);
+    REQUIRE(s.history().size() == 2);
+    const History::EntryInfo info = s.history().info(1);
+    CHECK(info.operation.text().find("--with-rest") != std::string::npos);
+}
