@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "app/ops/decimate_op.h"
 #include "app/ops/operation_decl.h"
 #include "app/ops/operation_entries.h"
 #include "core/algorithms/decimation.h"
@@ -14,17 +15,10 @@
 namespace trilab {
 namespace {
 
-/// The operation's options: the core's, with the vertex target optional.
-struct DecimateOptions {
-    DecimationOptions core;
-    std::optional<std::size_t> target_vertices;
-};
-
 OperationResult run_decimate(const DecimateOptions& d_options, const HalfedgeMesh& mesh,
                              Progress& progress, const RunSettings& settings) {
     const DecimationOptions& o = d_options.core;
-    DecimationOptions options = o;
-    options.target_vertices = d_options.target_vertices.value_or(0);
+    DecimationOptions options = decimation_options(d_options);
     options.record_progressive = false;  // the steps carry the geomorphs
     options.levels = settings.keep_steps ? DecimationLevels::All : DecimationLevels::Last;
     options.record_geomorph = settings.morph;
@@ -82,16 +76,20 @@ OperationResult run_decimate(const DecimateOptions& d_options, const HalfedgeMes
     result.texts = {{"cost", decimation_cost_name(o.cost)},
                     {"stop_reason", decimation_stop_name(rep.stop)},
                     {"stop_message", rep.stop_message}};
+    result.typed_report = rep;
     return result;
 }
 
 }  // namespace
 
-DecimationOptions decimation_options(const Operation& op) {
-    const auto o = std::any_cast<DecimateOptions>(operation_def("decimate").options(op.values));
+DecimationOptions decimation_options(const DecimateOptions& o) {
     DecimationOptions core = o.core;
     core.target_vertices = o.target_vertices.value_or(0);
     return core;
+}
+
+DecimationOptions decimation_options(const Operation& op) {
+    return decimation_options(options_of<DecimateOptions>(op));
 }
 
 std::unique_ptr<OperationDef> decimate_operation() {
@@ -118,6 +116,7 @@ std::unique_ptr<OperationDef> decimate_operation() {
          "iterations", [](DecimateOptions & o) -> auto& { return o.core.iterations; }, 1, 1000,
          "iterations, each a step")
         .slider(1, 20)
+        .counts_steps()
         .only_if(without_target);
     d.integer("target-vertices", &DecimateOptions::target_vertices, 1, 4e9,
               "one iteration down to K vertices")

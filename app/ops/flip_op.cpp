@@ -42,6 +42,7 @@ OperationResult run_flip(const FlipOptions&, const HalfedgeMesh& mesh, Progress&
     if (report.volume_before)
         result.values.insert(result.values.end(), {{"volume_before", *report.volume_before},
                                                    {"volume_after", *report.volume_after}});
+    result.typed_report = report;
     return result;
 }
 

@@ -38,6 +38,7 @@ OperationResult run_noise(const NoiseOptions& o, const HalfedgeMesh& mesh, Progr
                      {"mean_edge_length", report.mean_edge_length},
                      {"max_displacement", report.max_displacement},
                      {"moved_vertices", double(report.moved_vertices)}};
+    result.typed_report = report;
     return result;
 }
 

@@ -331,6 +331,35 @@ const OperationDef& operation_def(const std::string& name) {
     throw InvalidArgument("unknown operation '" + name + "' (known: " + known_names() + ")");
 }
 
+const OperationDef& operation_def_of(const std::type_info& options) {
+    for (const OperationDef* d : operation_defs())
+        if (d->options_type && *d->options_type == options) return *d;
+    throw InvalidArgument("no registered operation takes the options struct asked for (known: " +
+                          known_names() + ")");
+}
+
+void require_options_type(const Operation& op, const std::type_info& options, const char* caller) {
+    if (op.def && op.def->options_type && *op.def->options_type == options) return;
+    std::string wanted = "an operation of the options asked for";
+    for (const OperationDef* d : operation_defs())
+        if (d->options_type && *d->options_type == options) wanted = "'" + d->name + "'";
+    throw InvalidArgument(std::string(caller) + ": expected " + wanted + ", got " +
+                          (op.def ? "'" + op.def->name + "'" : std::string("an empty operation")));
+}
+
+void store_changed_values(Operation& op, const ParamValues& values) {
+    if (!op.def) throw InvalidArgument("empty operation (known: " + known_names() + ")");
+    if (values.size() != op.values.size())
+        throw InvalidArgument(op.def->name + ": expected " + std::to_string(op.values.size()) +
+                              " parameter values, got " + std::to_string(values.size()));
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        if (values[i] == op.values[i]) continue;  // the same meaning: left as it was
+        const bool unset = op.def->params[i].optional && !values[i].on;
+        op.values[i] = values[i];
+        op.values[i].given = !unset;
+    }
+}
+
 std::vector<std::string> operation_names() {
     std::vector<std::string> names;
     for (const OperationDef* d : operation_defs()) names.push_back(d->name);

@@ -8,12 +8,26 @@
 //
 // Text form (the CLI's options, `--op` strings, the history's label): the name, then
 // "--option value" pairs (or "--option=value"), split on whitespace; flags take no value.
+// Typed access (below): options_of<Options>(op) gives an operation's values as its options
+// struct, set_options(op, options) writes one back, operation_of(options) makes one, and
+// report_of<Report>(result) gives a run's typed report; is_operation<Options>(op) says which
+// operation op is. Outside app/ops nothing needs a parameter's or a result's name.
+//   operation  options struct                        typed report
+//   noise      NoiseOptions (core/algorithms/noise.h)  NoiseReport
+//   subdivide  SubdivisionOptions                    SubdivisionResult (levels empty: the steps)
+//   smooth     FairingOptions                        SmoothReport (app/ops/smooth_op.h)
+//   spectrum   SpectrumOptions (spectrum_op.h)       SpectrumReport (app/ops/spectrum_op.h)
+//   decimate   DecimateOptions (decimate_op.h)       DecimationReport
+//   flip       FlipOptions                           FlipReport
+//   weld       WeldOptions                           WeldReport
+//
 // Errors are InvalidArgument messages that name the operation or the option
 // ("--amount: expected a number from 0 to 1000 ..., got 'abc'"); an option that does not
 // apply to the other values ("--step" with "--operator taubin") is refused, never ignored.
 #include <any>
 #include <functional>
 #include <string>
+#include <typeinfo>
 #include <utility>
 #include <vector>
 
@@ -40,6 +54,9 @@ struct OperationResult {
     /// {"max_displacement", 0.013}. NaN: not defined for this mesh (the volume of an open
     /// mesh); --json writes null.
     std::vector<std::pair<std::string, double>> values;
+    /// The run's report as a struct of its own (report_of<Report>()): the core's report
+    /// (NoiseReport, DecimationReport, ...) or the operation's (SmoothReport, SpectrumReport).
+    std::any typed_report;
     /// Named texts for --json (e.g. the solver that ran).
     std::vector<std::pair<std::string, std::string>> texts;
     /// Named lists of numbers (e.g. the eigenvalues of "spectrum").
@@ -94,6 +111,8 @@ public:
     ParamValues defaults;  ///< from the options struct's own defaults
     /// Its run may stop before the last iteration and say why (OperationResult::stopped_early).
     bool may_stop_early = false;
+    /// The type of its options struct (FairingOptions for "smooth"); one per operation.
+    const std::type_info* options_type = nullptr;
 
     /// Index of the parameter `name` (without dashes); throws InvalidArgument naming the
     /// operation and its options when there is none.
@@ -107,6 +126,10 @@ public:
     /// The operation's options struct for `values`, as its declaration binds them (for
     /// callers that call the core themselves, e.g. the collapsing-edges overlay).
     std::function<std::any(const ParamValues& values)> options;
+    /// The inverse of `options`: the values of an options struct (held in the std::any, of
+    /// type *options_type) as the declaration binds them, none marked given. Fields no
+    /// parameter binds are not read.
+    std::function<ParamValues(const std::any& options)> from_options;
     /// Runs on a copy of `mesh` (never modified). Throws InvalidArgument, Cancelled.
     std::function<OperationResult(const ParamValues& values, const HalfedgeMesh& mesh,
                                   Progress& progress, const RunSettings& settings)>
@@ -140,5 +163,66 @@ void check_operation(const Operation& op);
 /// `progress` asks to stop; `mesh` is never changed.
 OperationResult run_operation(const Operation& op, const HalfedgeMesh& mesh, Progress& progress,
                               const RunSettings& settings = {});
+
+// ---- typed access ---------------------------------------------------------------------------
+
+/// The registered operation whose options struct is `options` (typeid(FairingOptions):
+/// "smooth"); throws InvalidArgument when none is.
+const OperationDef& operation_def_of(const std::type_info& options);
+/// Throws InvalidArgument naming `caller` and both operations unless `op` is the operation of
+/// `options` (used by the templates below).
+void require_options_type(const Operation& op, const std::type_info& options, const char* caller);
+/// Writes `values` (OperationDef::from_options) into `op`: exactly the values whose meaning
+/// changed are replaced and marked given (unset optional values aside, which a user cannot
+/// type), so op.text() is what a user typing those options would write.
+void store_changed_values(Operation& op, const ParamValues& values);
+
+/// The registered operation whose options struct is `Options`.
+template <class Options>
+const OperationDef& definition_of() {
+    return operation_def_of(typeid(Options));
+}
+
+/// Whether `op` is the operation whose options struct is `Options`:
+/// is_operation<FlipOptions>(op) instead of op.name() == "flip".
+template <class Options>
+bool is_operation(const Operation& op) {
+    return op.def && op.def->options_type && *op.def->options_type == typeid(Options);
+}
+
+/// The options struct of `op`'s current values, through its declaration's bindings (fields no
+/// parameter binds keep their defaults). Throws InvalidArgument when `op` is another
+/// operation (or none).
+template <class Options>
+Options options_of(const Operation& op) {
+    require_options_type(op, typeid(Options), "options_of");
+    return std::any_cast<Options>(op.def->options(op.values));
+}
+
+/// Writes every bound field of `options` into `op`'s values; the values that changed are
+/// marked given (see store_changed_values), the others left as they were, so
+/// set_options(op, options_of<Options>(op)) changes nothing. Nothing is checked here
+/// (check_operation() does). Throws InvalidArgument when `op` is another operation.
+template <class Options>
+void set_options(Operation& op, const Options& options) {
+    require_options_type(op, typeid(Options), "set_options");
+    store_changed_values(op, op.def->from_options(std::any(options)));
+}
+
+/// The operation of `options`: its defaults, with the values `options` changes marked given.
+template <class Options>
+Operation operation_of(const Options& options) {
+    const OperationDef& def = definition_of<Options>();
+    Operation op{&def, def.defaults};
+    set_options(op, options);
+    return op;
+}
+
+/// The typed report of a run (OperationResult::typed_report); nullptr when the run holds
+/// another type (or none). E.g. report_of<SmoothReport>(result)->max_stable_step.
+template <class Report>
+const Report* report_of(const OperationResult& result) {
+    return std::any_cast<Report>(&result.typed_report);
+}
 
 }  // namespace trilab

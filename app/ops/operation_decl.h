@@ -11,10 +11,16 @@
 //                           //                  Progress&, const RunSettings&)
 //   return d.build();       // the OperationDef the registry holds
 //
+// The bindings run both ways: OperationDef::options gives the struct of a set of values,
+// OperationDef::from_options the values of a struct (options_of / set_options in
+// app/ops/operation.h). Each operation has an options type of its own (a wrapper struct where
+// the core's is shared or needs optional fields), so the type names the operation.
+//
 // A field of a nested struct binds through a lambda: [](SpectrumOptions& o) -> auto& { return
 // o.spectral.k; }. `only_if` attaches to the last parameter the condition under which it
 // applies (it is hidden in the panel and refused on the command line otherwise); `check`
 // adds a test over the whole options struct.
+#include <any>
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -22,6 +28,7 @@
 #include <optional>
 #include <string>
 #include <type_traits>
+#include <typeinfo>
 #include <utility>
 #include <vector>
 
@@ -200,6 +207,12 @@ public:
         last().hide_default = true;
         return *this;
     }
+    /// Its value is the number of steps a run gives, one per iteration (the viewer shows a
+    /// computed preview's earlier steps when only this value changes).
+    OperationDecl& counts_steps() {
+        last().counts_steps = true;
+        return *this;
+    }
     /// --help's default where it is not one value.
     OperationDecl& default_note(std::string text) {
         last().default_note = std::move(text);
@@ -231,13 +244,17 @@ public:
     /// The declaration as the registry holds it.
     std::unique_ptr<OperationDef> build() const {
         auto def = std::make_unique<OperationDef>(def_);
-        const Options defaults{};
-        for (const Binding& b : bindings_) {
-            ParamValue v;
-            b.load(defaults, v);
-            def->defaults.push_back(v);
-        }
+        def->options_type = &typeid(Options);
         auto bindings = bindings_;
+        const auto from_options = [bindings](const Options& o) {
+            ParamValues values(bindings.size());
+            for (std::size_t i = 0; i < bindings.size(); ++i) bindings[i].load(o, values[i]);
+            return values;
+        };
+        def->defaults = from_options(Options{});
+        def->from_options = [from_options](const std::any& options) {
+            return from_options(std::any_cast<const Options&>(options));
+        };
         auto to_options = [bindings](const ParamValues& values) {
             Options o{};
             for (std::size_t i = 0; i < bindings.size() && i < values.size(); ++i)

@@ -1,7 +1,9 @@
 #pragma once
 // The registered operations, one function per file app/ops/<name>_op.cpp, each returning
 // its declaration (app/ops/operation_decl.h). Adding an operation: write its file, declare
-// its function here and add one line to operation_defs() in app/ops/operation.cpp.
+// its function here and add one line to operation_defs() in app/ops/operation.cpp. An
+// operation whose options or report are its own structs declares them in app/ops/<name>_op.h
+// (decimate_op.h, smooth_op.h, spectrum_op.h) for the callers that read them.
 #include <memory>
 
 #include "app/ops/operation.h"

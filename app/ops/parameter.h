@@ -38,6 +38,7 @@ struct ParamSpec {
     bool logarithmic = false;       ///< the panel's slider is logarithmic
     bool optional = false;          ///< may be left unset (`on` false): the run picks a default
     bool hide_default = false;      ///< left out of the canonical text at its default
+    bool counts_steps = false;      ///< its value is the number of steps a run gives
     std::string unit;               ///< appended to the range in messages: " (degrees)"
     std::string help;               ///< one line for --help and the panel's tooltip
     std::string default_note;       ///< --help's default where it is not a single value
@@ -50,7 +51,11 @@ struct ParamValue {
     double y = 0;        ///< HI of a range
     bool on = true;      ///< Switchable: on; optional: set
     bool given = false;  ///< named explicitly (on the command line, or changed in a panel)
-    bool operator==(const ParamValue& o) const { return x == o.x && y == o.y && on == o.on; }
+    /// The same meaning: `given` aside, and `x`, `y` aside while off (a switchable number
+    /// switched off, an optional one unset), where the run does not read them.
+    bool operator==(const ParamValue& o) const {
+        return on == o.on && (!on || (x == o.x && y == o.y));
+    }
     bool operator!=(const ParamValue& o) const { return !(*this == o); }
 };
 

@@ -9,12 +9,32 @@
 
 #include "app/ops/operation_decl.h"
 #include "app/ops/operation_entries.h"
+#include "app/ops/smooth_op.h"
 #include "core/algorithms/coloring.h"
 #include "core/algorithms/fairing.h"
 #include "core/geometry.h"
 
 namespace trilab {
 namespace {
+
+/// The report's named values and texts for --json, in their fixed order.
+void add_json_values(const SmoothReport& rep, OperationResult& result) {
+    result.values = {{"iterations_done", double(rep.iterations_done)},
+                     {"max_stable_step", rep.max_stable_step},
+                     {"max_residual", rep.max_residual},
+                     {"initial_volume", rep.initial_volume},
+                     {"final_volume", rep.final_volume},
+                     {"factorizations", double(rep.factorizations)},
+                     {"cg_iterations", double(rep.cg_iterations)},
+                     {"max_smoothing_distance", rep.max_smoothing_distance},
+                     {"mean_smoothing_distance", rep.mean_smoothing_distance}};
+    result.texts = {{"solver", rep.solver}};
+    if (!rep.max_stable_step_estimated && !std::isfinite(rep.max_stable_step))
+        result.texts.push_back(
+            {"max_stable_step_note",
+             "not estimated above 2,000,000 vertices (explicit umbrella steps up to 1 are always "
+             "stable: Gershgorin)"});
+}
 
 OperationResult run_smooth(const FairingOptions& options, const HalfedgeMesh& mesh,
                            Progress& progress, const RunSettings& settings) {
@@ -73,21 +93,20 @@ OperationResult run_smooth(const FairingOptions& options, const HalfedgeMesh& me
                   "smoothing distance along the normal: largest %.6g, mean %.6g", max_distance,
                   mean_distance);
     result.report.emplace_back(line);
-    result.values = {{"iterations_done", double(fairing.iterations_done)},
-                     {"max_stable_step", fairing.max_stable_step},
-                     {"max_residual", fairing.max_residual},
-                     {"initial_volume", volume_value(fairing.initial_volume)},
-                     {"final_volume", volume_value(fairing.final_volume)},
-                     {"factorizations", double(fairing.factorizations)},
-                     {"cg_iterations", double(fairing.cg_iterations)},
-                     {"max_smoothing_distance", max_distance},
-                     {"mean_smoothing_distance", mean_distance}};
-    result.texts = {{"solver", fairing.solver}};
-    if (!estimate && !std::isfinite(fairing.max_stable_step))
-        result.texts.push_back(
-            {"max_stable_step_note",
-             "not estimated above 2,000,000 vertices (explicit umbrella steps up to 1 are always "
-             "stable: Gershgorin)"});
+    SmoothReport rep;
+    rep.iterations_done = fairing.iterations_done;
+    rep.max_stable_step = fairing.max_stable_step;
+    rep.max_stable_step_estimated = estimate;
+    rep.max_residual = fairing.max_residual;
+    rep.initial_volume = volume_value(fairing.initial_volume);
+    rep.final_volume = volume_value(fairing.final_volume);
+    rep.factorizations = fairing.factorizations;
+    rep.cg_iterations = fairing.cg_iterations;
+    rep.max_smoothing_distance = max_distance;
+    rep.mean_smoothing_distance = mean_distance;
+    rep.solver = fairing.solver;
+    add_json_values(rep, result);
+    result.typed_report = std::move(rep);
     return result;
 }
 
@@ -118,7 +137,8 @@ std::unique_ptr<OperationDef> smooth_operation() {
         .only_if(not_taubin);
     d.integer("iterations", &FairingOptions::iterations, 1, kMaxFairingIterations,
               "steps, each kept in the history")
-        .slider(1, 200);
+        .slider(1, 200)
+        .counts_steps();
     d.number("lambda", &FairingOptions::taubin_lambda, 0, 1, "Taubin's shrinking factor")
         .above_min()
         .slider(0.01, 1)

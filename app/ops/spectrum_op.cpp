@@ -9,21 +9,12 @@
 
 #include "app/ops/operation_decl.h"
 #include "app/ops/operation_entries.h"
+#include "app/ops/spectrum_op.h"
 #include "core/algorithms/spectral.h"
 #include "core/number_text.h"
 
 namespace trilab {
 namespace {
-
-/// The operation's options: the core's, with the count and the band optional.
-struct SpectrumOptions {
-    SpectralOptions spectral;
-    std::optional<std::size_t> k;  ///< unset: 50, or every frequency with --full
-    bool full = false;
-    std::optional<std::pair<std::size_t, std::size_t>> band;  ///< unset: all
-    std::optional<std::size_t> threads;                       ///< unset: the machine's
-    bool with_rest = false;  ///< the band takes in the rest when it reaches the open end
-};
 
 constexpr double kMaxK = 10000000;
 
@@ -35,22 +26,32 @@ constexpr double kMaxK = 10000000;
     throw e;
 }
 
-/// The core's options: the method from --full, the count and threads from their defaults.
-SpectralOptions core_options(const SpectrumOptions& o) {
-    SpectralOptions spectral = o.spectral;
-    spectral.method = o.full ? SpectralMethod::Full : SpectralMethod::Partial;
-    if (o.k)
-        spectral.k = *o.k;
-    else if (o.full)
-        spectral.k = 0;
-    spectral.threads = o.threads.value_or(0);
-    return spectral;
+/// The report's named values, texts and series for --json, in their fixed order.
+void add_json_values(const SpectrumReport& r, OperationResult& result) {
+    const SpectralReport& rep = r.decomposition;
+    result.values = {{"k", double(r.k)},
+                     {"lo", double(r.lo)},
+                     {"hi", double(r.hi)},
+                     {"rows", double(r.rows)},
+                     {"bands", double(rep.bands)},
+                     {"slices", double(rep.slices)},
+                     {"factorizations", double(rep.factorizations)},
+                     {"operations", double(rep.operations)},
+                     {"max_residual", rep.max_residual},
+                     {"lambda_min", r.eigenvalues.front()},
+                     {"lambda_max", r.eigenvalues.back()},
+                     {"decompose_ms", rep.ms}};
+    result.texts = {{"operator", laplacian_operator_name(r.op)},
+                    {"method", spectral_method_name(r.method)},
+                    {"which", spectrum_end_name(r.end)},
+                    {"solver", rep.solver}};
+    result.series = {{"eigenvalues", r.eigenvalues}};
 }
 
 OperationResult run_spectrum(const SpectrumOptions& o, const HalfedgeMesh& mesh, Progress& progress,
                              const RunSettings&) {
     const auto t0 = std::chrono::steady_clock::now();
-    const SpectralOptions spectral = core_options(o);
+    const SpectralOptions spectral = spectral_options(o);
     SpectralDecomposition d;
     try {
         d = decompose(mesh, spectral, progress);
@@ -95,32 +96,36 @@ OperationResult run_spectrum(const SpectrumOptions& o, const HalfedgeMesh& mesh,
                                 count_text(rep.diagnostics.degenerate_corners, "degenerate corner",
                                            "degenerate corners"));
     result.steps.push_back(OperationStep{std::move(out), MorphCorrespondence{}});
-    result.values = {{"k", double(k)},
-                     {"lo", double(lo)},
-                     {"hi", double(hi)},
-                     {"rows", double(d.rows())},
-                     {"bands", double(rep.bands)},
-                     {"slices", double(rep.slices)},
-                     {"factorizations", double(rep.factorizations)},
-                     {"operations", double(rep.operations)},
-                     {"max_residual", rep.max_residual},
-                     {"lambda_min", d.eigenvalues[0]},
-                     {"lambda_max", d.eigenvalues[Eigen::Index(k - 1)]},
-                     {"decompose_ms", rep.ms}};
-    result.texts = {{"operator", laplacian_operator_name(d.op)},
-                    {"method", spectral_method_name(d.method)},
-                    {"which", spectrum_end_name(d.end)},
-                    {"solver", rep.solver}};
-    result.series = {
-        {"eigenvalues", std::vector<double>(d.eigenvalues.data(), d.eigenvalues.data() + k)}};
+    SpectrumReport typed;
+    typed.k = k;
+    typed.rows = d.rows();
+    typed.lo = lo;
+    typed.hi = hi;
+    typed.op = d.op;
+    typed.method = d.method;
+    typed.end = d.end;
+    typed.eigenvalues.assign(d.eigenvalues.data(), d.eigenvalues.data() + k);
+    typed.decomposition = rep;
+    add_json_values(typed, result);
+    result.typed_report = std::move(typed);
     return result;
 }
 
 }  // namespace
 
+SpectralOptions spectral_options(const SpectrumOptions& o) {
+    SpectralOptions spectral = o.spectral;
+    spectral.method = o.full ? SpectralMethod::Full : SpectralMethod::Partial;
+    if (o.k)
+        spectral.k = *o.k;
+    else if (o.full)
+        spectral.k = 0;
+    spectral.threads = o.threads.value_or(0);
+    return spectral;
+}
+
 SpectralOptions spectral_options(const Operation& op) {
-    return core_options(
-        std::any_cast<SpectrumOptions>(operation_def("spectrum").options(op.values)));
+    return spectral_options(options_of<SpectrumOptions>(op));
 }
 
 std::unique_ptr<OperationDef> spectrum_operation() {

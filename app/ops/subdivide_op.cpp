@@ -48,6 +48,8 @@ OperationResult run_subdivide(const SubdivisionOptions& options, const HalfedgeM
             OperationStep{std::move(level.mesh), std::move(level.correspondence)});
     const HalfedgeMesh& last = result.steps.back().mesh;
     result.values = {{"vertices", double(last.n_vertices())}, {"faces", double(last.n_faces())}};
+    sub.levels.clear();  // moved into the steps: the report is the counts, notes and time
+    result.typed_report = std::move(sub);
     return result;
 }
 
@@ -62,7 +64,8 @@ std::unique_ptr<OperationDef> subdivide_operation() {
     d.choice("scheme", &SubdivisionOptions::scheme, EnumTableView(kSubdivisionSchemes),
              "loop and sqrt3 approximate, the butterflies interpolate");
     d.integer("iterations", &SubdivisionOptions::iterations, 1, 10, "refinement steps")
-        .slider(1, 6);
+        .slider(1, 6)
+        .counts_steps();
     d.run(run_subdivide);
     return d.build();
 }

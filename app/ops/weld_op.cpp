@@ -61,6 +61,7 @@ OperationResult run_weld(const WeldOptions& o, const HalfedgeMesh& mesh, Progres
                      {"edges_left_open", double(r.edges_left_open)},
                      {"boundary_edges_before", double(before.boundary_edges)},
                      {"boundary_edges_after", double(after.boundary_edges)}};
+    result.typed_report = r;
     return result;
 }
 
