@@ -552,7 +552,8 @@ TEST_CASE("every registered operation has a panel: its own, or a tool's from the
     }
 }
 
-TEST_CASE("--show opens panels by name, tools by their operation's name", "[panels][tools]") {
+TEST_CASE("open_panels (--show) opens panels by name, tools by their operation name",
+          "[panels][tools]") {
     PanelState panels;
     open_panels(panels, "history,weld,collapsing-edges");
     CHECK(panels.history_open);
