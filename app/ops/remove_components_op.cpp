@@ -38,8 +38,9 @@ std::vector<std::string> report_lines(const RemoveComponentsReport& r, const Hal
         count_text(r.faces_removed, "face", "faces") + "), " +
         count_text(r.isolated_vertices_removed, "isolated vertex", "isolated vertices") + "; " +
         count_text(r.vertices_removed, "vertex", "vertices") + " removed in all");
-    lines.push_back("kept " + count_text(r.components_after, "component", "components") +
-                    "; the largest has " + count_text(r.largest_faces, "face", "faces"));
+    if (r.components_before > 0)
+        lines.push_back("kept " + count_text(r.components_after, "component", "components") +
+                        "; the largest has " + count_text(r.largest_faces, "face", "faces"));
     if (r.min_diagonal > 0)
         lines.push_back("size threshold: a bounding-box diagonal of " +
                         number_text(r.min_diagonal) + " (the mesh's is " +

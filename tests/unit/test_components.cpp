@@ -255,6 +255,12 @@ TEST_CASE("remove_small_components refuses bad options and leaves faceless meshe
     REQUIRE(r.mesh.n_vertices() == 2);  // removing them would leave nothing
     REQUIRE(r.report.components_before == 0);
     REQUIRE(r.report.vertices_removed == 0);
+    NullProgress progress;
+    const OperationResult op =
+        run_operation(parse_operation("remove-components --min-faces 10"), cloud, progress);
+    REQUIRE(op.report.size() == 2);
+    REQUIRE(op.report.back() ==
+            "no faces: the mesh is unchanged (removing its vertices would leave nothing)");
 }
 
 TEST_CASE("the remove-components operation parses, runs, reports and morphs",
