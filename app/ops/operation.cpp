@@ -314,6 +314,7 @@ const std::vector<const OperationDef*>& operation_defs() {
         v.push_back(decimate_operation());
         v.push_back(flip_operation());
         v.push_back(weld_operation());
+        v.push_back(remove_components_operation());
         return v;
     }();
     static const std::vector<const OperationDef*> defs = [] {

@@ -368,6 +368,33 @@ check "subdivide leaves a pillow as it is and says so, in text and --json" bash 
      grep -q 'note: 1 component left as it is: two triangles on the same three vertices' && \
      '$cli' subdivide '$data/good/pillow_beside_tetrahedron.off' '$tmp/pl.obj' --json | \
      grep -q '\"faces\": 18, .*note: 1 component left as it is'"
+# Removing small components (issue 24): the loose pieces of a scan.
+pbt="$data/good/pillow_beside_tetrahedron.off"
+check "remove-components drops the pillow beside the tetrahedron, with its --json keys" bash -c \
+    "'$cli' remove-components '$pbt' '$tmp/rc.obj' --min-faces 3 --json > '$tmp/rc.json' && \
+     $(declare -f json_has); json_has '$tmp/rc.json' min_faces components_before \
+     components_after components_removed faces_removed vertices_removed \
+     isolated_vertices_removed largest_faces largest_kept_anyway mesh_diagonal min_diagonal && \
+     grep -q '\"vertices\": 4, \"faces\": 4' '$tmp/rc.json' && \
+     grep -q '\"components_removed\": 1' '$tmp/rc.json' && grep -q '\"min_diagonal\": null' '$tmp/rc.json' && \
+     '$cli' info '$tmp/rc.obj' --json | grep -q '\"components\": 1'"
+check "remove-components by size: --min-diameter as a fraction of the diagonal" bash -c \
+    "'$cli' remove-components '$pbt' '$tmp/rd.obj' --min-diameter 0.35 | \
+     grep -q 'removed 1 of 2 components (2 faces)' && \
+     '$cli' remove-components '$pbt' '$tmp/rd.obj' --min-diameter 0.3 | \
+     grep -q 'removed 0 of 2 components'"
+check "remove-components keeps the largest component even below the thresholds" bash -c \
+    "'$cli' remove-components '$pbt' '$tmp/rl.obj' --min-faces 100 | grep -q 'kept anyway' && \
+     '$cli' info '$tmp/rl.obj' --json | grep -q '\"vertices\": 4, \"edges\": 6, \"faces\": 4'"
+check "remove-components removes isolated vertices" bash -c \
+    "'$cli' remove-components '$data/good/degenerate_and_isolated.off' '$tmp/ri.obj' --min-faces 1 | \
+     grep -q '1 isolated vertex' && '$cli' info '$tmp/ri.obj' --json | grep -q '\"vertices\": 4,'"
+check "remove-components refuses no threshold with one line naming both, writing nothing" bash -c \
+    "! '$cli' remove-components '$pbt' '$tmp/rn.obj' 2> '$tmp/e' && [ \$(wc -l < '$tmp/e') -eq 1 ] && \
+     grep -q -- '--min-faces N and/or --min-diameter F' '$tmp/e' && [ ! -e '$tmp/rn.obj' ]"
+check "remove-components refuses a fraction above 1 naming it" bash -c \
+    "! '$cli' remove-components '$pbt' '$tmp/rn.obj' --min-diameter 2 2> '$tmp/e' && \
+     grep -q -- '--min-diameter' '$tmp/e' && [ ! -e '$tmp/rn.obj' ]"
 # Scripts and the command line (issue 23, item 12).
 check "a repeated option is refused naming it, never dropped, and nothing is written" bash -c \
     "! '$cli' record '$tmp/d.obj' --op 'noise --amount 2' --op 'subdivide' --out '$tmp/twice' \
@@ -428,7 +455,8 @@ help_options_accepted() {  # help_options_accepted CLI COMMAND
     done
     return $bad
 }
-for cmd in info convert generate render record compare noise subdivide smooth spectrum decimate flip weld; do
+for cmd in info convert generate render record compare noise subdivide smooth spectrum decimate flip weld \
+    remove-components; do
     check "$cmd --help names only options $cmd takes" bash -c \
         "$(declare -f help_options_accepted); help_options_accepted '$cli' $cmd"
 done

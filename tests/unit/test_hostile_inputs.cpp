@@ -137,6 +137,7 @@ std::vector<std::string> parameter_sets(const std::string& op) {
           "--operator curvature-flow --iterations 3", "--operator second-order --step 0.1",
           "--operator taubin --preserve-volume",
           "--operator curvature-flow --integration implicit --preserve-volume"}},
+        {"remove-components", {"--min-faces 10", "--min-diameter 1", "--min-faces 0"}},
     };
     const auto it = sets.find(op);
     return it == sets.end() ? std::vector<std::string>{""} : it->second;

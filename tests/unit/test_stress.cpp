@@ -125,6 +125,15 @@ const std::map<std::string, Generator>& generators() {
              return text;
          }},
         {"flip", [](Rng&, const HalfedgeMesh&) { return std::string("flip"); }},
+        {"remove-components",
+         [](Rng& rng, const HalfedgeMesh&) {
+             const std::vector<std::string> fractions = {"0", "0.01", "0.3", "1"};
+             const int rule = pick(rng, 0, 2);  // faces, size, or both
+             std::string text = "remove-components";
+             if (rule != 1) text += " --min-faces " + std::to_string(pick(rng, 0, 500));
+             if (rule != 0) text += " --min-diameter " + pick_of(rng, fractions);
+             return text;
+         }},
     };
     return g;
 }
