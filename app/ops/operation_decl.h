@@ -214,6 +214,11 @@ public:
         return *this;
     }
     /// --help's default where it is not one value.
+    /// Keeps the last parameter out of the generic panel widgets (ParamSpec::cli_only).
+    OperationDecl& cli_only() {
+        last().cli_only = true;
+        return *this;
+    }
     OperationDecl& default_note(std::string text) {
         last().default_note = std::move(text);
         return *this;

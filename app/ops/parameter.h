@@ -41,7 +41,10 @@ struct ParamSpec {
     bool counts_steps = false;      ///< its value is the number of steps a run gives
     std::string unit;               ///< appended to the range in messages: " (degrees)"
     std::string help;               ///< one line for --help and the panel's tooltip
-    std::string default_note;       ///< --help's default where it is not a single value
+    /// Not a panel widget: a command-line knob (threads, size limits) or a value a panel
+    /// sets with widgets of its own (the Frequency panel's band sliders).
+    bool cli_only = false;
+    std::string default_note;  ///< --help's default where it is not a single value
     std::vector<ChoiceItem> choices;
     std::string off_word;  ///< Switchable: the word that turns it off ("off")
 };

@@ -145,15 +145,18 @@ std::unique_ptr<OperationDef> spectrum_operation() {
         EnumTableView(kSpectrumEnds), "which end of the spectrum");
     d.range("band", &SpectrumOptions::band, 0, kMaxK,
             "the frequencies of the reconstruction, 0-based, ascending")
-        .default_note("all");
+        .default_note("all")
+        .cli_only();
     d.flag("with-rest", &SpectrumOptions::with_rest,
            "a band that reaches the open end of the computed frequencies also takes in the "
-           "part of the geometry they do not carry (all K then give the mesh)");
+           "part of the geometry they do not carry (all K then give the mesh)")
+        .cli_only();
     d.flag("full", &SpectrumOptions::full, "every frequency, dense (up to --max-full vertices)");
     d.integer(
          "max-full", [](SpectrumOptions & o) -> auto& { return o.spectral.max_full_rows; }, 2,
          100000, "largest mesh for --full, in vertices")
-        .hide_default();
+        .hide_default()
+        .cli_only();
     d.choice(
          "mass", [](SpectrumOptions & o) -> auto& { return o.spectral.mass; },
          EnumTableView(kMassMatrices), "S: the operator's normalizer or a lumped area")
@@ -162,7 +165,8 @@ std::unique_ptr<OperationDef> spectrum_operation() {
         "fix-boundary", [](SpectrumOptions & o) -> auto& { return o.spectral.fix_boundary; },
         "fixed (Dirichlet) boundary; default free");
     d.integer("threads", &SpectrumOptions::threads, 1, 2, "spectrum slicing threads (smallest end)")
-        .default_note("2 when the machine has them");
+        .default_note("2 when the machine has them")
+        .cli_only();
     d.check([](const SpectrumOptions& o, const auto&) {
         const bool k_known = o.k.has_value() || !o.full;
         const std::size_t k = o.k.value_or(o.spectral.k);

@@ -339,7 +339,7 @@ void Session::commit_result(const Operation& op, OperationResult result_value) {
     log_.info(result->label + " " + result->parameters);
     for (const std::string& line : result->report) log_.info("  " + line);
     on_state_changed(false);
-    if (op.def && op.name() == "flip") {  // replaces a load's "its faces point inwards"
+    if (is_operation<FlipOptions>(op)) {  // replaces a load's "its faces point inwards"
         std::string text = result->label;
         for (std::size_t i = 0; i < result->report.size(); ++i)
             text += (i ? "; " : ": ") + result->report[i];

@@ -7,6 +7,7 @@
 #include <memory>
 #include <utility>
 
+#include "app/ops/spectrum_op.h"
 #include "app/session/session.h"
 #include "core/errors.h"
 
@@ -25,13 +26,15 @@ void Session::update_frequency_document() {
     // The applied band is the current history entry's, so undo and redo keep it right.
     const History::EntryInfo entry = document_.history.info(document_.history.current());
     std::size_t lo = 0, hi = 0;
-    if (entry.label == kBandLabel && entry.operation.def) {
-        const ParamValue& band = entry.operation.value("band");
-        lo = std::size_t(band.x);
-        hi = std::size_t(band.y);
+    bool band = false;
+    if (entry.label == kBandLabel && is_operation<SpectrumOptions>(entry.operation)) {
+        if (const auto b = options_of<SpectrumOptions>(entry.operation).band) {
+            band = true;
+            lo = b->first;
+            hi = b->second;
+        }
     }
-    doc.applied = doc.valid && entry.label == kBandLabel && entry.operation.def &&
-                  hi < doc.eigenvalues.size();
+    doc.applied = doc.valid && band && hi < doc.eigenvalues.size();
     doc.applied_lo = lo;
     doc.applied_hi = hi;
 }
@@ -116,14 +119,10 @@ void Session::push_band(std::size_t lo, std::size_t hi, bool restore) {
         } else {
             mesh.set_positions(reconstruct_positions(d, lo, hi, BandRest::Include));
             label = kBandLabel;
-            band = make_operation("spectrum");
-            ParamValue& v = band.value("band");
-            v.x = double(lo);
-            v.y = double(hi);
-            v.on = v.given = true;
-            ParamValue& rest = band.value("with-rest");  // replays to the same positions
-            rest.x = 1;
-            rest.on = rest.given = true;
+            SpectrumOptions o;
+            o.band = std::pair<std::size_t, std::size_t>(lo, hi);
+            o.with_rest = true;  // replays to the same positions
+            band = operation_of(o);
             parameters = std::to_string(lo) + ":" + std::to_string(hi) + " of " +
                          std::to_string(d.size()) + " (" + laplacian_operator_name(d.op) + ")";
         }

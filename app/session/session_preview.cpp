@@ -14,6 +14,7 @@
 #include <thread>
 #include <utility>
 
+#include "app/ops/decimate_op.h"
 #include "app/ops/operation_entries.h"
 #include "app/session/session.h"
 #include "core/algorithms/decimation.h"
@@ -23,13 +24,14 @@ namespace {
 
 constexpr const char* kPreviewJobPrefix = "Preview: ";
 
-/// The index of "iterations" when `a` and `b` differ in it alone (npos otherwise).
+/// The index of the parameter that counts the steps (iterations) when `a` and `b` differ in
+/// it alone (npos otherwise).
 std::size_t only_iterations_differ(const Operation& a, const Operation& b) {
     if (!a.def || a.def != b.def) return std::string::npos;
     std::size_t differing = std::string::npos;
     for (std::size_t i = 0; i < a.values.size(); ++i) {
         if (a.values[i] == b.values[i]) continue;
-        if (a.def->params[i].name != "iterations" || differing != std::string::npos)
+        if (!a.def->params[i].counts_steps || differing != std::string::npos)
             return std::string::npos;
         differing = i;
     }
@@ -274,9 +276,9 @@ void Session::apply_level_of_detail() {
     result.steps.push_back(OperationStep{
         std::move(mesh), MorphCorrespondence{MorphCorrespondence::Kind::FromEarlier, start}});
     Operation op = lod_.op;
-    ParamValue& target = op.value("target-vertices");
-    target.x = double(lod.vertices());
-    target.on = target.given = true;
+    DecimateOptions typed = options_of<DecimateOptions>(op);
+    typed.target_vertices = lod.vertices();
+    set_options(op, typed);
     result.parameters = op.parameters();
     clear_level_of_detail(true);
     commit_result(op, std::move(result));

@@ -71,7 +71,7 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
     const float em = ImGui::GetFontSize();
     // The decomposition's parameters, drawn from the operation's declaration (the band is
     // the sliders below; threads and the size limit keep their defaults here).
-    operation_widgets(s.op, {"band", "threads", "max-full"});
+    operation_widgets(s.op);
     if (busy) ImGui::BeginDisabled();
     act.decompose = button("Decompose");
     ImGui::SameLine();

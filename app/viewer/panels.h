@@ -89,10 +89,9 @@ struct DecimationPanelState : OperationPanelState {
 /// Draws one widget per parameter of `op` that applies to its current values, from the
 /// operation's declaration (combo boxes for choices, sliders for numbers, check boxes for
 /// flags and switchable numbers, two fields for a range). Returns true when a value changed;
-/// changed values are marked `given`. Parameters named in `skip` are left to the caller.
+/// changed values are marked `given`. Parameters declared cli_only() are not drawn.
 /// A typed value outside the declared range is clamped at once, and why goes to `notes`.
-bool operation_widgets(Operation& op, const std::vector<std::string>& skip = {},
-                       std::vector<std::string>* notes = nullptr);
+bool operation_widgets(Operation& op, std::vector<std::string>* notes = nullptr);
 /// What an unset optional parameter does, in the panel's words (its declaration's default
 /// note without the command line's dashes).
 std::string default_note_text(const ParamSpec& p);

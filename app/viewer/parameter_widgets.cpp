@@ -193,15 +193,14 @@ void range_widget(const ParamWidget& pw) {
 
 }  // namespace
 
-bool operation_widgets(Operation& op, const std::vector<std::string>& skip,
-                       std::vector<std::string>* notes) {
+bool operation_widgets(Operation& op, std::vector<std::string>* notes) {
     bool changed = false;
     const OperationDef& def = *op.def;
     const float w = widget_width();
     for (std::size_t i = 0; i < def.params.size(); ++i) {
         if (def.why_not(op.values, i)) continue;  // hidden: it does not apply
         const ParamSpec& p = def.params[i];
-        if (std::find(skip.begin(), skip.end(), p.name) != skip.end()) continue;
+        if (p.cli_only) continue;  // a knob of the command line, or the panel's own widgets
         ParamValue& v = op.values[i];
         const ParamValue before = v;
         ImGui::PushID(p.name.c_str());

@@ -20,6 +20,7 @@
 #include "app/viewer/plots.h"
 #include "app/viewer/widgets.h"
 #include "core/algorithms/fairing.h"
+#include "core/algorithms/weld.h"
 #include "core/errors.h"
 #include "core/number_text.h"
 
@@ -37,7 +38,7 @@ namespace {
 void operation_panel_body(OperationPanelState& state, const char* apply, bool busy,
                           CommandQueue& commands) {
     std::vector<std::string> notes;
-    if (operation_widgets(state.op, {}, &notes)) {
+    if (operation_widgets(state.op, &notes)) {
         state.dirty = true;
         state.input_note.clear();
     }
@@ -71,13 +72,13 @@ void operation_panel_body(OperationPanelState& state, const char* apply, bool bu
 /// are kept free while it is not shown, so that nothing below moves when it comes or goes.
 void stability_guidance(FairingPanelState& state) {
     const double limit = state.max_stable_step;
-    const bool taubin = int(state.op.value("operator").x) == int(FairingOperator::Taubin);
-    const bool explicit_run =
-        taubin || int(state.op.value("integration").x) == int(Integration::Explicit);
+    const FairingOptions o = options_of<FairingOptions>(state.op);
+    const bool taubin = o.op == FairingOperator::Taubin;
+    const bool explicit_run = taubin || o.integration == Integration::Explicit;
     // NaN until estimated: tested with isnan first, as an ordered comparison with NaN raises
     // FE_INVALID (the tests run with floating-point traps).
     const bool known = !std::isnan(limit) && limit > 0;
-    const double step = taubin ? state.op.value("lambda").x : state.op.value("step").x;
+    const double step = taubin ? o.taubin_lambda : o.step;
     const char* what = taubin ? "lambda" : "step";
     if (known)
         wrapped_disabled("largest stable explicit %s: %.3g", what, limit);
@@ -99,9 +100,9 @@ void stability_guidance(FairingPanelState& state) {
     wrapped_colored(kErrorColor, "%s", warning);
     note_widget("unstable");
     if (!taubin && button("Use implicit integration")) {
-        ParamValue& integration = state.op.value("integration");
-        integration.x = int(Integration::Implicit);
-        integration.given = true;
+        FairingOptions implicit = options_of<FairingOptions>(state.op);
+        implicit.integration = Integration::Implicit;
+        set_options(state.op, implicit);
         state.dirty = true;
     }
     // Whatever the text's last line did, the rows below start where they always do.
@@ -130,7 +131,7 @@ void subdivision_section(PanelState& panels, const SidebarContext& context,
                         "creases along them. Weld them first:");
         if (context.busy) ImGui::BeginDisabled();
         if (button("Weld coincident vertices"))
-            commands.push_back(ApplyOperation{make_operation("weld")});
+            commands.push_back(ApplyOperation{operation_of(WeldOptions{})});
         if (context.busy) ImGui::EndDisabled();
     }
     ImGui::Separator();
@@ -144,10 +145,10 @@ void fairing_section(PanelState& panels, const SidebarContext& context, CommandQ
     if (!section) return;
     stability_guidance(state);
     // What the mesh cannot do is switched off with the reason, never ignored.
-    ParamValue& volume = state.op.value("preserve-volume");
-    ParamValue& boundary = state.op.value("boundary");
-    if (!context.closed) volume.x = 0;
-    if (context.closed) boundary.x = int(BoundaryMode::Fixed);
+    FairingOptions o = options_of<FairingOptions>(state.op);
+    if (!context.closed) o.preserve_volume = false;
+    if (context.closed) o.boundary = BoundaryMode::Fixed;
+    set_options(state.op, o);
     operation_panel_body(state, "Smooth", context.busy, commands);
     if (!context.closed) wrapped_disabled("open mesh: no volume to preserve");
     ImGui::Separator();

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "app/ops/operation_entries.h"
+#include "app/ops/spectrum_op.h"
 #include "app/viewer/viewer.h"
 #include "core/errors.h"
 
@@ -52,9 +53,9 @@ void Viewer::scripted_decomposition(FrequencyActions& act) {
                                   "'");
             return;
         }
-        ParamValue& count = s.op.value("k");
-        count.x = double(k);
-        count.on = count.given = true;
+        SpectrumOptions o = options_of<SpectrumOptions>(s.op);
+        o.k = k;
+        set_options(s.op, o);
         act.decompose = true;
     } else if (session_.document().frequency.valid) {
         scripted_decompose_ = 2;

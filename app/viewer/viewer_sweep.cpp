@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "app/ops/decimate_op.h"
 #include "app/viewer/viewer.h"
 
 namespace trilab::viewer {
@@ -19,7 +20,7 @@ void Viewer::start_sweep() {
     Sweep& s = sweep_;
     s.op = parse_operation(options_.sweep_op);
     // Decimation's level-of-detail slider is "lod" (percent of the vertices kept).
-    s.lod = s.op.name() == "decimate" && options_.sweep_param == "lod";
+    s.lod = is_operation<DecimateOptions>(s.op) && options_.sweep_param == "lod";
     if (s.lod) {
         panels_.decimation.open = true;
         panels_.decimation.op = s.op;

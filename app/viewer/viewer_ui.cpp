@@ -1,5 +1,6 @@
 // One frame's UI: mouse and keys, the menus, the fixed regions and the sidebar, and the
 // panels' view of the session (previews, the stable step, the level of detail).
+#include "app/ops/smooth_op.h"
 #include "app/viewer/viewer.h"
 
 // glad before GLFW: GLFW must not include the system GL header.
@@ -249,15 +250,16 @@ void Viewer::note_preview_latency(OperationPanelState& panel, double ms) {
 void Viewer::update_stable_step() {
     FairingPanelState& f = panels_.fairing;
     if (!f.open) return;
-    const int op = int(f.op.value("operator").x);
+    const int op = int(options_of<FairingOptions>(f.op).op);
     const HalfedgeMesh::Revision state = session_.mesh().revision();
     // A preview of this state reports it (any size); small meshes get it at once.
     const OperationResult* preview = session_.preview_result();
     const std::optional<Operation>& requested = session_.preview_requested();
-    if (preview && requested && requested->def == f.op.def &&
-        int(requested->value("operator").x) == op) {
-        for (const auto& [key, value] : preview->values)
-            if (key == "max_stable_step" && std::isfinite(value)) f.max_stable_step = value;
+    if (preview && requested && is_operation<FairingOptions>(*requested) &&
+        int(options_of<FairingOptions>(*requested).op) == op) {
+        if (const SmoothReport* r = report_of<SmoothReport>(*preview);
+            r && std::isfinite(r->max_stable_step))
+            f.max_stable_step = r->max_stable_step;
         f.stable_step_state = state;
         f.stable_step_operator = op;
         return;
