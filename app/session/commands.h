@@ -58,6 +58,22 @@ struct ShowLevelOfDetail {
     double percent = 100;
 };
 struct ApplyLevelOfDetail {};
+/// The Frequency panel: decompose the current state with `op` (a "spectrum" operation's
+/// options: operator, method, count, end), a job.
+struct Decompose {
+    Operation op;
+};
+/// Show the band [lo, hi] of the decomposition live (with the rest where it reaches the end
+/// of the computed spectrum); no history entry.
+struct PreviewBand {
+    std::size_t lo = 0, hi = 0;
+};
+/// Push the band [lo, hi] as one geometry-only history entry.
+struct CommitBand {
+    std::size_t lo = 0, hi = 0;
+};
+/// Back to the decomposed shape, as a history entry.
+struct RestoreDecomposed {};
 /// Recompute the vertex colouring (its kind or options changed).
 struct UpdateColoring {};
 /// Compute texture coordinates by the chosen projection (the mesh has none).
@@ -83,9 +99,10 @@ struct SaveAsAndContinue {};
 using Command =
     std::variant<LoadFile, SaveFile, RevertFile, LoadTexture, FitView, ResetView, Undo, Redo,
                  JumpTo, RunOperation, PreviewOperation, ApplyOperation, CancelPreview,
-                 BuildLevelOfDetail, ShowLevelOfDetail, ApplyLevelOfDetail, UpdateColoring,
-                 ProjectTexCoords, TakeScreenshot, PrintInfo, StartRecording, CancelRecording,
-                 CancelJob, Quit, SaveAndContinue, SaveAsAndContinue>;
+                 BuildLevelOfDetail, ShowLevelOfDetail, ApplyLevelOfDetail, Decompose, PreviewBand,
+                 CommitBand, RestoreDecomposed, UpdateColoring, ProjectTexCoords, TakeScreenshot,
+                 PrintInfo, StartRecording, CancelRecording, CancelJob, Quit, SaveAndContinue,
+                 SaveAsAndContinue>;
 using CommandQueue = std::vector<Command>;
 
 /// The command's type name ("StartRecording"), for logs and scripted clicks.
@@ -106,6 +123,10 @@ inline const char* command_name(const Command& command) {
                                              "BuildLevelOfDetail",
                                              "ShowLevelOfDetail",
                                              "ApplyLevelOfDetail",
+                                             "Decompose",
+                                             "PreviewBand",
+                                             "CommitBand",
+                                             "RestoreDecomposed",
                                              "UpdateColoring",
                                              "ProjectTexCoords",
                                              "TakeScreenshot",

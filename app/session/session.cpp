@@ -2,6 +2,8 @@
 // detail are in session_preview.cpp, the frequency band in session_frequency.cpp.
 #include "app/session/session.h"
 
+#include "app/ops/operation_entries.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -192,6 +194,14 @@ void Session::execute(const Command& command) {
         show_level_of_detail(show->percent);
     } else if (std::holds_alternative<ApplyLevelOfDetail>(command)) {
         apply_level_of_detail();
+    } else if (auto* d = std::get_if<Decompose>(&command)) {
+        decompose(spectral_options(d->op));
+    } else if (auto* band = std::get_if<PreviewBand>(&command)) {
+        preview_band(band->lo, band->hi);
+    } else if (auto* commit = std::get_if<CommitBand>(&command)) {
+        push_band(commit->lo, commit->hi, false);
+    } else if (std::holds_alternative<RestoreDecomposed>(command)) {
+        push_band(0, 0, true);
     } else if (std::holds_alternative<CancelJob>(command)) {
         jobs_.cancel();
     }

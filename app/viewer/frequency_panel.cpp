@@ -64,20 +64,20 @@ void frequency_bar(const FrequencyDocument& doc, int lo, int hi, int marker, flo
 
 }  // namespace
 
-FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocument& doc, bool busy) {
-    FrequencyActions act;
+void frequency_window(FrequencyPanelState& s, const FrequencyDocument& doc, bool busy,
+                      CommandQueue& commands) {
     SidebarSection section("Frequency decomposition", s.open);
-    if (!section) return act;
+    if (!section) return;
     const float em = ImGui::GetFontSize();
     // The decomposition's parameters, drawn from the operation's declaration (the band is
     // the sliders below; threads and the size limit keep their defaults here).
     operation_widgets(s.op);
     if (busy) ImGui::BeginDisabled();
-    act.decompose = button("Decompose");
+    if (button("Decompose")) commands.push_back(Decompose{s.op});
     ImGui::SameLine();
     const bool have = doc.decomposition && doc.valid && !doc.eigenvalues.empty();
     if (!have) ImGui::BeginDisabled();
-    act.restore = button("Restore");
+    if (button("Restore")) commands.push_back(RestoreDecomposed{});
     if (!have) ImGui::EndDisabled();
     if (busy) ImGui::EndDisabled();
     if (doc.decomposition && !doc.valid)
@@ -103,14 +103,18 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
         // What the mesh shows, so that the sliders never seem to describe it when they do not:
         // right after Decompose it is its own shape (every frequency, computed or not), and a
         // band shows once a slider moves.
-        char shown[160];
+        // A band that reaches the end of the computed spectrum takes in the rest (the
+        // frequencies not computed): the full band is the mesh itself.
+        const bool rest =
+            doc.decomposition && std::size_t(s.hi) < doc.decomposition->size() &&
+            band_reaches_rest(*doc.decomposition, std::size_t(s.lo), std::size_t(s.hi));
+        char shown[200];
         if (doc.applied)
-            std::snprintf(shown, sizeof shown, "the mesh shows the band %zu .. %zu", doc.applied_lo,
-                          doc.applied_hi);
+            std::snprintf(shown, sizeof shown, "the mesh shows the band %zu .. %zu%s",
+                          doc.applied_lo, doc.applied_hi, rest ? " and the rest" : "");
         else
-            std::snprintf(shown, sizeof shown,
-                          "the mesh shows its own shape, not a band: move a slider to show the "
-                          "band it sets");
+            std::snprintf(shown, sizeof shown, "the mesh shows its own shape: the band %d .. %d%s",
+                          s.lo, s.hi, rest ? " and the rest (every frequency not computed)" : "");
         ImGui::PushTextWrapPos(0.0f);
         ImGui::TextDisabled("%s", shown);
         ImGui::PopTextWrapPos();
@@ -131,13 +135,15 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
             else
                 s.lo = s.hi;
         }
-        act.preview = s.lo != old_lo || s.hi != old_hi;
-        act.commit = lo_done || hi_done;
+        if (s.lo != old_lo || s.hi != old_hi)
+            commands.push_back(PreviewBand{std::size_t(s.lo), std::size_t(s.hi)});
+        if (lo_done || hi_done)
+            commands.push_back(CommitBand{std::size_t(s.lo), std::size_t(s.hi)});
         ImGui::SetNextItemWidth(std::max(4.0f * em, width - 6.0f * em));
         const int old_vis = s.visualize;
         ImGui::SliderInt("visualize", &s.visualize, 0, last);
         s.visualize = std::clamp(s.visualize, 0, last);
-        act.visualize_changed = s.visualize != old_vis;
+        if (s.visualize != old_vis) commands.push_back(UpdateColoring{});
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("the frequency that Rendering > Colour by vertex > Frequency shows");
         if (busy) ImGui::EndDisabled();
@@ -155,7 +161,6 @@ FrequencyActions frequency_window(FrequencyPanelState& s, const FrequencyDocumen
         index_plot(spectrum, width, kPlotHeightEm * em, margin);
         index_plot(coefficients, width, kPlotHeightEm * em, margin);
     }
-    return act;
 }
 
 }  // namespace trilab::viewer

@@ -8,7 +8,7 @@
 // and the plots share one x range: the band's shading covers exactly its share of it, and
 // a red marker shows the visualized frequency in all three. The panel owns only its controls; the
 // decomposition lives in the viewer's FrequencyDocument, and the panel reports what the user did as
-// FrequencyActions for the viewer to execute.
+// commands, as every panel does.
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -31,18 +31,11 @@ struct FrequencyPanelState {
     int visualize = 1;   ///< the frequency the "Frequency" colouring shows
 };
 
-/// What the user did in the panel this frame.
-struct FrequencyActions {
-    bool decompose = false;          ///< start a decomposition job with frequency_options()
-    bool restore = false;            ///< back to the decomposed shape (a history entry)
-    bool preview = false;            ///< a band slider moved: show [lo, hi] live
-    bool commit = false;             ///< a band slider was released: push [lo, hi]
-    bool visualize_changed = false;  ///< the frequency to visualize changed: recolour
-};
-
 /// The "Frequency decomposition" section of the sidebar (its header, and its body when open);
-/// `busy`: a job runs (Decompose and the sliders disabled).
-FrequencyActions frequency_window(FrequencyPanelState& state, const FrequencyDocument& doc,
-                                  bool busy);
+/// `busy`: a job runs (Decompose and the sliders disabled). Queues Decompose, PreviewBand
+/// (a slider moves), CommitBand (a slider is released), RestoreDecomposed, and UpdateColoring
+/// (the frequency to visualize changed), like every panel.
+void frequency_window(FrequencyPanelState& state, const FrequencyDocument& doc, bool busy,
+                      CommandQueue& commands);
 
 }  // namespace trilab::viewer

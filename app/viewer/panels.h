@@ -259,10 +259,9 @@ struct SidebarContext {
 
 /// Every tool section of the sidebar in order (Tools, Fairing, Frequency decomposition,
 /// Subdivision, Decimation, Morph, Record, Model information), each with its header and,
-/// when open, its body in an ID scope of its own. Returns what the user did in the
-/// Frequency section (the viewer carries it out).
-FrequencyActions sidebar_sections(PanelState& panels, MorphState& morph,
-                                  const SidebarContext& context, CommandQueue& commands);
+/// when open, its body in an ID scope of its own; every section queues commands.
+void sidebar_sections(PanelState& panels, MorphState& morph, const SidebarContext& context,
+                      CommandQueue& commands);
 
 /// The tool sections of the sidebar (each draws its header and, when open, its body).
 /// Subdivision: scheme, iterations, Subdivide; queues PreviewOperation and ApplyOperation;

@@ -273,13 +273,13 @@ void tools_section(PanelState& panels, bool busy, CommandQueue& commands) {
     }
 }
 
-FrequencyActions sidebar_sections(PanelState& panels, MorphState& morph,
-                                  const SidebarContext& context, CommandQueue& commands) {
+void sidebar_sections(PanelState& panels, MorphState& morph, const SidebarContext& context,
+                      CommandQueue& commands) {
     const FrequencyDocument no_decomposition;
     tools_section(panels, context.busy, commands);
     fairing_section(panels, context, commands);
-    const FrequencyActions frequency = frequency_window(
-        panels.frequency, context.frequency ? *context.frequency : no_decomposition, context.busy);
+    frequency_window(panels.frequency, context.frequency ? *context.frequency : no_decomposition,
+                     context.busy, commands);
     subdivision_section(panels, context, commands);
     decimation_section(panels, context, commands);
     if (context.history) morph_section(panels, morph, *context.history, context.now);
@@ -288,7 +288,6 @@ FrequencyActions sidebar_sections(PanelState& panels, MorphState& morph,
     ImGui::Spacing();
     wrapped_disabled(
         "The Tools and Algorithms menus open these sections; H the history, L the log.");
-    return frequency;
 }
 
 namespace {

@@ -315,6 +315,7 @@ bool Viewer::prepare_frame() {
     }
     follow_session();
     advance_script();
+    scripted_decomposition();
     update_panels();
     if (sweep_.active || (!options_.sweep_op.empty() && !sweep_started_ && ready_for_script())) {
         if (!sweep_started_) {

@@ -158,11 +158,10 @@ private:
     void start_recording();
     void record_next_frame();
     void finish_recording(bool cancelled);
-    /// The Frequency panel's actions, and its sliders after a decomposition (viewer_frequency.cpp).
-    void frequency_actions(FrequencyActions act);
+    /// The Frequency panel's sliders after a decomposition (viewer_frequency.cpp).
     void on_decomposed(std::size_t lo, std::size_t hi);
-    /// options_.decompose: Decompose once the model is there, then apply the band.
-    void scripted_decomposition(FrequencyActions& act);
+    /// options_.decompose: queues Decompose once the model is there, then the band.
+    void scripted_decomposition();
     /// The Frequency / Frequency mass colours of `mesh` (empty without a fitting decomposition).
     VertexColors frequency_colors(const HalfedgeMesh& mesh) const;
     /// Model and scene information, for the Info panel and the `I` key.

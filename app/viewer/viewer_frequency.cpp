@@ -1,6 +1,7 @@
-// The viewer's side of the Frequency panel (frequency_panel.h): what the panel asked for goes
-// to the session (app/session/session_frequency.cpp: the decomposition job, the live band, the
-// history entries); the viewer keeps the panel's sliders and the two frequency colourings.
+// The viewer's side of the Frequency panel (frequency_panel.h): the panel queues its commands
+// for the session (app/session/session_frequency.cpp: the decomposition job, the live band,
+// the history entries); the viewer sets the sliders after a decomposition, runs --decompose
+// by queueing the same commands, and computes the two frequency colourings.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,22 +15,6 @@
 
 namespace trilab::viewer {
 
-void Viewer::frequency_actions(FrequencyActions act) {
-    const FrequencyDocument& doc = session_.document().frequency;
-    scripted_decomposition(act);
-    if (act.decompose) session_.decompose(spectral_options(panels_.frequency.op));
-    if (!doc.valid || session_.busy()) return;
-    FrequencyPanelState& s = panels_.frequency;
-    const int last = int(doc.eigenvalues.size()) - 1;
-    s.lo = std::clamp(s.lo, 0, last);
-    s.hi = std::clamp(s.hi, s.lo, last);
-    if (act.restore) session_.push_band(0, 0, true);
-    if (act.preview) session_.preview_band(std::size_t(s.lo), std::size_t(s.hi));
-    if (act.commit) session_.push_band(std::size_t(s.lo), std::size_t(s.hi), false);
-    if (act.visualize_changed && view_.settings.coloring == VertexColoring::Frequency)
-        update_coloring();
-}
-
 void Viewer::on_decomposed(std::size_t /*lo*/, std::size_t hi) {
     FrequencyPanelState& s = panels_.frequency;
     s.lo = 0;
@@ -38,7 +23,7 @@ void Viewer::on_decomposed(std::size_t /*lo*/, std::size_t hi) {
     if (coloring_needs_field(view_.settings.coloring)) update_coloring();
 }
 
-void Viewer::scripted_decomposition(FrequencyActions& act) {
+void Viewer::scripted_decomposition() {
     if (options_.decompose.empty() || scripted_decompose_ == 2) return;
     // Wait for the initial load (a job) and operation before decomposing.
     if (!ready_for_script()) return;
@@ -56,13 +41,14 @@ void Viewer::scripted_decomposition(FrequencyActions& act) {
         SpectrumOptions o = options_of<SpectrumOptions>(s.op);
         o.k = k;
         set_options(s.op, o);
-        act.decompose = true;
+        commands_.push_back(Decompose{s.op});
     } else if (session_.document().frequency.valid) {
         scripted_decompose_ = 2;
         if (n == 3) {
             s.lo = int(lo);
             s.hi = int(hi);
-            act.preview = act.commit = true;
+            commands_.push_back(PreviewBand{lo, hi});
+            commands_.push_back(CommitBand{lo, hi});
         }
     } else {
         scripted_decompose_ = 2;  // the decomposition failed (its error is shown)

@@ -162,7 +162,6 @@ void Viewer::draw_ui() {
 
     update_panels();
     update_collapsing_edges();
-    FrequencyActions frequency;
     if (panels_.sidebar_open && begin_sidebar(layout.sidebar, sizes)) {
         const std::vector<std::string> info =
             panels_.info_open ? scene_info() : std::vector<std::string>{};
@@ -178,10 +177,9 @@ void Viewer::draw_ui() {
             panels_.decimation.show_collapsing_edges ? collapse_lines_->n_segments() : 0;
         sidebar.frequency = &session_.document().frequency;
         sidebar.info = &info;
-        frequency = sidebar_sections(panels_, session_.morph(), sidebar, commands_);
+        sidebar_sections(panels_, session_.morph(), sidebar, commands_);
     }
     if (panels_.sidebar_open) end_region();
-    frequency_actions(frequency);
     layout = compute_layout(in, sizes);
     history_window(panels_, session_.history(), session_.jobs().busy(), layout.history, commands_);
     layout = compute_layout(in, sizes);

@@ -337,7 +337,8 @@ TEST_CASE("the frequency plots shade exactly the band's share and mark the visua
     state.lo = 0;
     state.hi = 24;
     state.visualize = 7;
-    const auto draw = [&] { frequency_window(state, doc, false); };
+    CommandQueue commands;
+    const auto draw = [&] { frequency_window(state, doc, false, commands); };
     ui.frame(draw);
     ui.frame(draw);
     for (const char* plot : {"spectrum", "coefficients", "frequency bar"}) {
