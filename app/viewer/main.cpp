@@ -46,9 +46,10 @@ options:
                      open OPERATION's panel, set NAME to COUNT evenly spaced values, wait
                      for each live preview to show, then print
                      "sweep: previews=N median_ms=X max_ms=Y" and exit
-  --show PANELS      open panels at start: comma-separated all, history, morph, tools,
-                     weld, subdivision, fairing, frequency, decimation, collapsing-edges,
-                     record, log, info, and the dialogs help, about, screenshot
+  --show PANELS      open panels at start: comma-separated all, tools (every tool), history,
+                     morph, subdivision, fairing, frequency, decimation, collapsing-edges,
+                     record, log, info, a tool by its operation's name (noise, weld,
+                     remove-components), and the dialogs help, about, screenshot
   --help             this text
 )";
 
