@@ -290,6 +290,11 @@ void record_section(PanelState& panels, bool can_record, CommandQueue& commands)
 /// Model and scene information (the `I` key prints the same lines to the console).
 void info_section(PanelState& panels, const std::vector<std::string>& lines);
 
+/// The running job's text for a progress bar `width` wide: the name, the stage and the time,
+/// or as much as fits by dropping whole parts from the end (the tooltip shows it all), never
+/// a text cut at the edge. `text_width` measures a text (ImGui's CalcTextSize in the viewer).
+std::string job_label(const JobInfo& job, float width,
+                      const std::function<float(const std::string&)>& text_width);
 /// The status bar along the bottom edge: counts, file, frame time, the last notice, and the
 /// running job (name, progress, Cancel) when `job` is set.
 void status_bar(const StatusInfo& info, const Notice& notice, const JobInfo* job,

@@ -4,6 +4,7 @@
 #include <imgui.h>
 #include <imgui_internal.h>
 #include <imgui_stdlib.h>
+#include <functional>
 
 #include <algorithm>
 #include <cmath>
@@ -121,15 +122,21 @@ void status_bar(const StatusInfo& info, const Notice& notice, const JobInfo* job
         if (job) {
             ImGui::SameLine(region.w - job_w);
             const float cancel_w = ImGui::CalcTextSize("cancelling").x + 2 * style.FramePadding.x;
-            char label[256];
-            std::snprintf(label, sizeof label, "%s%s%s (%.1f s)", job->name.c_str(),
-                          job->stage.empty() ? "" : ": ", job->stage.c_str(), job->seconds);
+            const float bar_w = job_w - cancel_w - 2.0f * style.ItemSpacing.x;
+            const std::string label =
+                job_label(*job, bar_w - 2.0f * style.FramePadding.x,
+                          [](const std::string& t) { return ImGui::CalcTextSize(t.c_str()).x; });
             // Unknown progress: a bar that sweeps, so the user sees the program is alive.
             const float f = job->fraction >= 0.0 ? float(job->fraction)
                                                  : float(0.5 + 0.5 * std::sin(3.0 * job->seconds));
-            ImGui::ProgressBar(f, ImVec2(job_w - cancel_w - 2.0f * style.ItemSpacing.x, 0.0f),
-                               label);
-            if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", label);
+            ImGui::ProgressBar(f, ImVec2(bar_w, 0.0f), label.c_str());
+            note_widget("job-progress", WidgetNote::Kind::Other, label.c_str());
+            if (ImGui::IsItemHovered()) {  // the whole text, whatever the bar shows
+                ImGui::BeginTooltip();
+                ImGui::TextUnformatted(
+                    job_label(*job, 1e9f, [](const std::string&) { return 0.0f; }).c_str());
+                ImGui::EndTooltip();
+            }
             ImGui::SameLine();
             if (job->cancel_requested)
                 ImGui::TextDisabled("cancelling");
@@ -138,6 +145,26 @@ void status_bar(const StatusInfo& info, const Notice& notice, const JobInfo* job
         }
     }
     ImGui::End();
+}
+
+std::string job_label(const JobInfo& job, float width,
+                      const std::function<float(const std::string&)>& text_width) {
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, " (%.1f s)", job.seconds);
+    // The most that fits, dropping whole parts from the end (they stay in the tooltip): never
+    // a text cut at the bar's edge.
+    const std::string candidates[] = {
+        job.stage.empty() ? job.name + seconds : job.name + ": " + job.stage + seconds,
+        job.name + seconds, job.name, job.stage.empty() ? job.name : job.stage};
+    for (const std::string& c : candidates)
+        if (text_width(c) <= width) return c;
+    // Not even the name: its first words that fit, marked as shortened.
+    std::string words = job.name;
+    while (!words.empty() && text_width(words + "...") > width) {
+        const std::size_t space = words.find_last_of(' ');
+        words = space == std::string::npos ? std::string() : words.substr(0, space);
+    }
+    return words.empty() ? std::string() : words + "...";
 }
 
 void history_window(PanelState& panels, const History& history, bool busy, const Rect& region,

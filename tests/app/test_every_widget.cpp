@@ -578,3 +578,36 @@ TEST_CASE("open_panels (--show) opens panels by name, tools by their operation n
     CHECK_THROWS_WITH(open_panels(panels, "history,nope"),
                       Catch::Contains("unknown panel 'nope'") && Catch::Contains("weld"));
 }
+
+TEST_CASE("the job's progress text drops whole parts instead of being cut", "[panels][status]") {
+    JobInfo job;
+    job.name = "Loading stanford-bunny-loop4.ply";
+    job.stage = "reading and building the half-edge mesh";
+    job.seconds = 3.25;
+    const auto chars = [](const std::string& t) { return float(t.size()); };
+    const std::string full = job_label(job, 1000.0f, chars);
+    CHECK(full ==
+          "Loading stanford-bunny-loop4.ply: reading and building the half-edge mesh (3.2 s)");
+    CHECK(job_label(job, 45.0f, chars) == "Loading stanford-bunny-loop4.ply (3.2 s)");
+    CHECK(job_label(job, 33.0f, chars) == "Loading stanford-bunny-loop4.ply");
+    CHECK(job_label(job, 20.0f, chars) == "Loading...");
+    for (float width : {0.0f, 5.0f, 12.0f, 40.0f, 60.0f, 90.0f}) {
+        const std::string label = job_label(job, width, chars);
+        INFO(width << ": '" << label << "'");
+        CHECK(chars(label) <= width);
+    }
+    // In the status bar at 1280 px: the text the bar shows fits the bar.
+    Ui ui;
+    StatusInfo info;
+    Notice notice;
+    CommandQueue commands;
+    const Rect region{0, 770, 1280, 30};
+    const auto draw = [&] { status_bar(info, notice, &job, region, commands); };
+    ui.frame(draw);
+    ui.frame(draw);
+    for (const WidgetNote& n : ui.notes()) {
+        if (n.id != "job-progress") continue;
+        CHECK(ImGui::CalcTextSize(n.label.c_str()).x <= n.x1 - n.x0);
+        CHECK_FALSE(n.label.empty());
+    }
+}
