@@ -7,7 +7,10 @@
 #  4. sanitizer job: RelWithDebInfo build with AddressSanitizer and UndefinedBehaviorSanitizer
 #     (-DTRILAB_SANITIZE=ON) and floating-point traps in the tests (-DTRILAB_FP_TRAPS=ON), and
 #     the whole CTest suite again (build-asan/);
-#  5. fuzz job: the libFuzzer targets built with clang (-DTRILAB_FUZZ=ON, build-fuzz/), each
+#  5. ThreadSanitizer job: RelWithDebInfo build with -DTRILAB_TSAN=ON of the tests labelled
+#     `tsan` only (the job runner, the log, the panels, the headless session: target
+#     trilab_tsan_tests), run with `ctest -L tsan`; any race report fails the run (build-tsan/);
+#  6. fuzz job: the libFuzzer targets built with clang (-DTRILAB_FUZZ=ON, build-fuzz/), each
 #     run for TRILAB_FUZZ_SECONDS (default 30) on its seed corpus; any failure fails the run.
 # Every build has -DTRILAB_WERROR=ON: a warning in our code fails the run.
 # Stops at the first failing step. See README "Tests" and "Hardening".
@@ -30,6 +33,13 @@ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTRILAB_SANITIZE=ON 
     -DTRILAB_FP_TRAPS=ON
 cmake --build build-asan -j2
 ctest --test-dir build-asan --output-on-failure -j2
+
+echo "== ThreadSanitizer job (the app's threads: job runner, log, panels, session)"
+cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTRILAB_TSAN=ON -DTRILAB_WERROR=ON
+cmake --build build-tsan -j2 --target trilab_tsan_tests
+# halt_on_error: the first report ends the test with a failure (exit status 66).
+TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" \
+    ctest --test-dir build-tsan -L tsan --no-tests=error --output-on-failure -j2
 
 echo "== Fuzz job (${fuzz_seconds} s per reader)"
 cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
