@@ -315,9 +315,18 @@ void Session::run_operation_job(const Operation& op) {
         return;
     }
     const HalfedgeMesh snapshot = document_.mesh();  // copy-on-write: the job's own
-    const bool started = jobs_.start(op.text(), [this, op, snapshot](Progress& progress) {
+    const HalfedgeMesh::Revision base = snapshot.revision();
+    const bool started = jobs_.start(op.text(), [this, op, snapshot, base](Progress& progress) {
         auto result = std::make_shared<OperationResult>(run_operation(op, snapshot, progress));
-        return JobRunner::Finish([this, result, op] { commit_result(op, std::move(*result)); });
+        return JobRunner::Finish([this, result, op, base] {
+            // The result belongs to the state it was computed on: never stacked on another.
+            if (document_.mesh().revision() != base) {
+                notify_error(result->label +
+                             ": the document changed while it ran; its result is not applied");
+                return;
+            }
+            commit_result(op, std::move(*result));
+        });
     });
     if (!started) busy_error();
 }

@@ -124,15 +124,22 @@ void Viewer::update_coloring() {
         return;
     }
     const HalfedgeMesh snapshot = session_.mesh();  // copy-on-write: the job's own
+    const HalfedgeMesh::Revision state = snapshot.revision();
     const bool started =
         session_.jobs().start(std::string("Colouring by ") + coloring_name(coloring),
-                              [this, coloring, options, reference, snapshot](Progress&) {
+                              [this, coloring, options, reference, snapshot, state](Progress&) {
                                   auto colors = std::make_shared<VertexColors>(
                                       color_vertices(snapshot, coloring, options, reference.get()));
-                                  return JobRunner::Finish([this, colors, coloring] {
-                                      // Ignore a result the user has already replaced.
-                                      if (view_.settings.coloring == coloring)
-                                          apply_colors(std::move(*colors));
+                                  return JobRunner::Finish([this, colors, coloring, state] {
+                                      // Ignore a result the user has already replaced, or one of
+                                      // another state (an entry applied meanwhile): colour that
+                                      // state again.
+                                      if (view_.settings.coloring != coloring) return;
+                                      if (session_.mesh().revision() != state) {
+                                          coloring_pending_ = true;
+                                          return;
+                                      }
+                                      apply_colors(std::move(*colors));
                                   });
                               });
     if (!started)

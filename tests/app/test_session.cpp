@@ -262,3 +262,27 @@ TEST_CASE("right after Decompose the full band is the mesh: no jump at the first
     const History::EntryInfo info = s.history().info(1);
     CHECK(info.operation.text().find("--with-rest") != std::string::npos);
 }
+
+TEST_CASE("the document may change while a job reads its snapshot; the stale result is dropped",
+          "[session]") {
+    Session s;
+    load_sphere(s);
+    s.execute(BuildLevelOfDetail{parse_operation("decimate")});
+    s.finish_jobs();
+    REQUIRE(s.has_level_of_detail());
+    s.execute(ShowLevelOfDetail{50.0});
+    // A job reads its snapshot on the worker while this thread pushes an entry (ThreadSanitizer
+    // watches this in CI): the arrays they share are copy-on-write.
+    s.execute(RunOperation{parse_operation("smooth --iterations 20")});
+    REQUIRE(s.busy());
+    const std::size_t entries = s.history().size();
+    s.execute(ApplyLevelOfDetail{});
+    REQUIRE(s.history().size() == entries + 1);
+    const std::size_t vertices = s.mesh().n_vertices();
+    s.finish_jobs();
+    // The smoothing was computed on the state before: it is not stacked on the new one.
+    CHECK(s.history().size() == entries + 1);
+    CHECK(s.mesh().n_vertices() == vertices);
+    CHECK(s.notice().text.find("changed while it ran") != std::string::npos);
+    require_valid(s);
+}
