@@ -92,6 +92,9 @@ struct DecimationPanelState : OperationPanelState {
 /// changed values are marked `given`. Parameters declared cli_only() are not drawn.
 /// A typed value outside the declared range is clamped at once, and why goes to `notes`.
 bool operation_widgets(Operation& op, std::vector<std::string>* notes = nullptr);
+/// A declaration's or an error's text in the panel's words: "--min-faces N" becomes
+/// "min faces N" (an option is named by its label in the panels).
+std::string panel_words(const std::string& cli_text);
 /// What an unset optional parameter does, in the panel's words (its declaration's default
 /// note without the command line's dashes).
 std::string default_note_text(const ParamSpec& p);

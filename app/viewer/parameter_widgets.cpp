@@ -6,6 +6,7 @@
 #include <imgui_stdlib.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <iterator>
@@ -40,19 +41,33 @@ void keep_typed_value(const ParamSpec& p, double typed, double kept,
 
 }  // namespace
 
-std::string default_note_text(const ParamSpec& p) {
-    if (p.default_note.empty()) return "default";
-    // The declaration speaks of the command line ("none (--percent and --iterations)"); the
-    // panel names the same parameters by their labels.
+std::string panel_words(const std::string& cli_text) {
+    // Declarations and their messages speak of the command line ("--min-faces N"); the panel
+    // names the same parameters by their labels ("min faces N").
     std::string text;
-    for (std::size_t i = 0; i < p.default_note.size(); ++i) {
-        if (p.default_note.compare(i, 2, "--") == 0) {
+    for (std::size_t i = 0; i < cli_text.size(); ++i) {
+        const bool option =
+            cli_text.compare(i, 2, "--") == 0 && i + 2 < cli_text.size() &&
+            std::isalpha(static_cast<unsigned char>(cli_text[i + 2])) &&
+            (i == 0 || cli_text[i - 1] == ' ' || cli_text[i - 1] == '(' || cli_text[i - 1] == '/');
+        if (option) {
             ++i;
+            // The option's dashes become spaces, as in its label.
+            for (std::size_t j = i + 1; j < cli_text.size() && cli_text[j] != ' ' &&
+                                        cli_text[j] != ')' && cli_text[j] != ',';
+                 ++j) {
+                text += cli_text[j] == '-' ? ' ' : cli_text[j];
+                i = j;
+            }
             continue;
         }
-        text += p.default_note[i];
+        text += cli_text[i];
     }
     return text;
+}
+
+std::string default_note_text(const ParamSpec& p) {
+    return p.default_note.empty() ? "default" : panel_words(p.default_note);
 }
 
 double clamp_to_declared(const ParamSpec& p, double x) {
@@ -139,9 +154,11 @@ void number_widget(const ParamWidget& pw) {
     const double lo = pw.lo, hi = pw.hi;
     const float w = pw.w;
     std::vector<std::string>* notes = pw.notes;
-    const bool switchable = p.kind == ParamKind::Switchable;
-    if (switchable) {  // the check box carries the label
-        checkbox(p.label.c_str(), &v.on, (p.name + ":on").c_str());
+    // A switchable or optional number: the check box carries the label, and sets it.
+    const bool switchable = p.kind == ParamKind::Switchable || p.optional;
+    if (switchable) {
+        if (checkbox(p.label.c_str(), &v.on, (p.name + ":on").c_str()) && v.on)
+            v.x = clamp_to_declared(p, v.x);  // from "unset" to a value
         ImGui::SameLine();
         if (!v.on) ImGui::BeginDisabled();
     }

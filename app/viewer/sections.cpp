@@ -55,7 +55,7 @@ void operation_panel_body(OperationPanelState& state, const char* apply, bool bu
         commands.push_back(PreviewOperation{state.op});
         state.dirty = false;
     }
-    if (!error.empty()) wrapped_colored(kErrorColor, "%s", error.c_str());
+    if (!error.empty()) wrapped_colored(kErrorColor, "%s", panel_words(error).c_str());
     if ((busy && !state.previewing) || !error.empty()) ImGui::BeginDisabled();
     if (button(apply)) commands.push_back(ApplyOperation{state.op});
     if ((busy && !state.previewing) || !error.empty()) ImGui::EndDisabled();
@@ -267,7 +267,7 @@ void tools_section(PanelState& panels, bool busy, CommandQueue& commands) {
         if (tool.op.def->params.empty()) continue;  // a menu action (Tools > Flip orientation)
         const std::string title = tool_section_title(*tool.op.def);
         if (SidebarSection section(title.c_str(), tool.open); section) {
-            ImGui::TextWrapped("%s", tool.op.def->summary.c_str());
+            ImGui::TextWrapped("%s", panel_words(tool.op.def->summary).c_str());
             operation_panel_body(tool, "Apply", busy, commands);
         }
     }

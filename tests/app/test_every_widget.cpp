@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "app/viewer/panels.h"
+#include "core/algorithms/components.h"
 #include "core/algorithms/fairing.h"
 #include "core/algorithms/generators.h"
 #include "core/errors.h"
@@ -610,4 +611,30 @@ TEST_CASE("the job's progress text drops whole parts instead of being cut", "[pa
         CHECK(ImGui::CalcTextSize(n.label.c_str()).x <= n.x1 - n.x0);
         CHECK_FALSE(n.label.empty());
     }
+}
+
+TEST_CASE("panels name options by their labels, not the command line's", "[panels]") {
+    CHECK(panel_words("give --min-faces N and/or --min-diameter F") ==
+          "give min faces N and/or min diameter F");
+    CHECK(panel_words("none (--percent and --iterations)") == "none (percent and iterations)");
+    CHECK(panel_words("a - b -- c") == "a - b -- c");  // dashes that name no option stay
+    CHECK(panel_words("x--y") == "x--y");
+}
+
+TEST_CASE("an optional number has a check box that sets it", "[panels]") {
+    Ui ui(1280, 4000);
+    Sidebar s;
+    OperationPanelState& tool = *s.panels.tool("remove-components");
+    tool.open = true;
+    const auto draw = [&] { s.draw(); };
+    ui.frame(draw);
+    ui.frame(draw);
+    const std::string title = tool_section_title(*tool.op.def);
+    const WidgetNote diameter =
+        find_widget(ui, title + "/min diameter", WidgetNote::Kind::Checkbox);
+    CHECK_FALSE(find_widget(ui, title + "/Apply", WidgetNote::Kind::Button).enabled);
+    press(ui, draw, diameter);
+    ui.frame(draw);
+    CHECK(options_of<RemoveComponentsOptions>(tool.op).min_diameter.has_value());
+    CHECK(find_widget(ui, title + "/Apply", WidgetNote::Kind::Button).enabled);
 }
