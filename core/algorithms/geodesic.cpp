@@ -253,18 +253,44 @@ std::vector<double> edge_graph_distances(const HalfedgeMesh& mesh,
 
 namespace {
 
-/// The path tracer's state: at a vertex, or on halfedge h at (1 - t)·from + t·to about to
-/// enter face(h).
+constexpr double kSnap = 1e-9;  ///< edge parameters this close to 0 or 1 snap to the vertex
+
+/// Steepest descent of the piecewise-linear distance field d. The state: at vertex v, or on
+/// halfedge h at (1 - t)·from + t·to about to enter face(h); `value` is d there.
 struct Tracer {
     const HalfedgeMesh& m;
     const std::vector<double>& d;
+    std::vector<SurfacePoint> path;
+    Vertex v;
+    Halfedge h;
+    double t = 0, value = 0;
+    bool at_vertex = true;
 
-    Point at(Halfedge h, double t) const {
-        return (1 - t) * m.position(m.from_vertex(h)) + t * m.position(m.to_vertex(h));
+    void go_to_vertex(Vertex w) {
+        v = w;
+        value = d[w.idx()];
+        at_vertex = true;
+        path.push_back({w, Vertex(), 0.0, m.position(w)});
     }
-    /// The 3D gradient of the distance over face(h), h's corners a = from, b = to, c.
-    bool gradient(Halfedge h, Vector3& g) const {
-        const Vertex va = m.from_vertex(h), vb = m.to_vertex(h), vc = m.to_vertex(m.next(h));
+    /// Onto edge `exit` at parameter s (from its start), then into the face across it.
+    void go_to_edge(Halfedge exit, double s, double new_value) {
+        if (s < kSnap || s > 1 - kSnap) {
+            go_to_vertex(s < kSnap ? m.from_vertex(exit) : m.to_vertex(exit));
+            return;
+        }
+        h = HalfedgeMesh::twin(exit);
+        t = 1 - s;
+        value = new_value;
+        at_vertex = false;
+        const Vertex a = m.from_vertex(h), b = m.to_vertex(h);
+        path.push_back({a, b, t, (1 - t) * m.position(a) + t * m.position(b)});
+    }
+    double edge_value(Halfedge e, double s) const {
+        return (1 - s) * d[m.from_vertex(e).idx()] + s * d[m.to_vertex(e).idx()];
+    }
+    /// The 3D gradient of the distance over face(f), f's corners a = from, b = to, c.
+    bool gradient(Halfedge f, Vector3& g) const {
+        const Vertex va = m.from_vertex(f), vb = m.to_vertex(f), vc = m.to_vertex(m.next(f));
         const Point &a = m.position(va), &b = m.position(vb), &c = m.position(vc);
         const Vector3 n = (b - a).cross(c - a);
         const double n2 = n.squaredNorm();
@@ -274,16 +300,94 @@ struct Tracer {
             n2;
         return std::isfinite(g.squaredNorm()) && g.squaredNorm() > 0;
     }
-    /// dir = alpha·(b - a) + beta·(c - a) in the plane of face(h) (least squares).
-    static bool decompose(const Vector3& e1, const Vector3& e2, const Vector3& dir, double& alpha,
-                          double& beta) {
+    /// -∇d over face(f) = alpha·(b - a) + beta·(c - a) (least squares in the face's plane).
+    bool descent(Halfedge f, double& alpha, double& beta, double& rate) const {
+        Vector3 g;
+        if (m.is_boundary(f) || !gradient(f, g)) return false;
+        const Point& a = m.position(m.from_vertex(f));
+        const Vector3 e1 = m.position(m.to_vertex(f)) - a;
+        const Vector3 e2 = m.position(m.to_vertex(m.next(f))) - a;
         const double a11 = e1.dot(e1), a12 = e1.dot(e2), a22 = e2.dot(e2);
         const double det = a11 * a22 - a12 * a12;
         if (!(det > 0)) return false;
-        const double r1 = e1.dot(dir), r2 = e2.dot(dir);
+        const double r1 = -e1.dot(g), r2 = -e2.dot(g);
         alpha = (a22 * r1 - a12 * r2) / det;
         beta = (a11 * r2 - a12 * r1) / det;
+        rate = g.norm();
         return std::isfinite(alpha) && std::isfinite(beta);
+    }
+
+    /// One step from vertex v; false when the path ends.
+    bool vertex_step() {
+        if (d[v.idx()] <= 0 || m.is_isolated(v)) return false;
+        // The steepest incident face whose descent enters its interior.
+        double best_rate = 0, best_s = 0;
+        Halfedge best;
+        const Halfedge first = m.halfedge(v);
+        Halfedge o = first;
+        do {
+            double alpha, beta, rate;
+            if (descent(o, alpha, beta, rate) && alpha >= 0 && beta >= 0 && alpha + beta > 0 &&
+                rate > best_rate) {
+                best_rate = rate;
+                best = o;
+                best_s = beta / (alpha + beta);  // where the ray meets the opposite edge
+            }
+            o = m.cw_rotated(o);
+        } while (o != first);
+        if (best.is_valid()) {
+            const Halfedge bc = m.next(best);
+            const double s = std::clamp(best_s, 0.0, 1.0);
+            const double nv = edge_value(bc, s);
+            if (nv < value) {
+                go_to_edge(bc, s, nv);
+                return true;
+            }
+        }
+        // No face descends: the lowest lower neighbour, if any.
+        Vertex lowest;
+        double low = value;
+        o = first;
+        do {
+            const Vertex w = m.to_vertex(o);
+            if (d[w.idx()] < low) {
+                low = d[w.idx()];
+                lowest = w;
+            }
+            o = m.cw_rotated(o);
+        } while (o != first);
+        if (!lowest.is_valid()) return false;
+        go_to_vertex(lowest);
+        return true;
+    }
+
+    /// One step from edge h at t into face(h).
+    void edge_step() {
+        const Vertex a = m.from_vertex(h), b = m.to_vertex(h);
+        const Vertex lower_end = d[a.idx()] <= d[b.idx()] ? a : b;
+        double alpha, beta, rate;
+        if (!descent(h, alpha, beta, rate) || !(beta > 0)) {
+            go_to_vertex(lower_end);  // the descent does not enter the face: along the edge
+            return;
+        }
+        // Barycentric (1 - t, t, 0) moves by (-alpha - beta, alpha, beta) per unit.
+        double lambda_a = kInfinity, lambda_b = kInfinity;
+        if (alpha + beta > 0) lambda_a = (1 - t) / (alpha + beta);
+        if (alpha < 0) lambda_b = t / -alpha;
+        Halfedge exit;
+        double s;  // parameter on `exit` (from its start)
+        if (lambda_a <= lambda_b) {
+            exit = m.next(h);  // b -> c; a's coordinate reaches 0: s is c's coordinate
+            s = std::clamp(beta * lambda_a, 0.0, 1.0);
+        } else {
+            exit = m.next(m.next(h));  // c -> a; b's coordinate reaches 0: s is a's coordinate
+            s = std::clamp(1 - t - (alpha + beta) * lambda_b, 0.0, 1.0);
+        }
+        const double nv = edge_value(exit, s);
+        if (!(nv < value))
+            go_to_vertex(lower_end);
+        else
+            go_to_edge(exit, s, nv);
     }
 };
 
@@ -303,136 +407,19 @@ std::vector<SurfacePoint> geodesic_path(const HalfedgeMesh& mesh,
     if (!std::isfinite(distances[target.idx()]))
         throw InvalidArgument("geodesic_path: target vertex " + std::to_string(target.idx()) +
                               " is not reached by the sources (distance not finite)");
-    const Tracer tr{mesh, distances};
-    const auto& d = distances;
-    std::vector<SurfacePoint> path;
-    auto push_vertex = [&](Vertex v) { path.push_back({v, Vertex(), 0.0, mesh.position(v)}); };
-    auto push_edge = [&](Halfedge h, double t) {
-        path.push_back({mesh.from_vertex(h), mesh.to_vertex(h), t, tr.at(h, t)});
-    };
-    constexpr double kSnap = 1e-9;
-    Vertex v = target;
-    Halfedge h;
-    double t = 0, value = d[v.idx()];
-    bool at_vertex = true;
-    push_vertex(v);
+    Tracer tracer{mesh, distances, {}, Vertex(), Halfedge(), 0.0, 0.0, true};
+    tracer.go_to_vertex(target);
+    // The value strictly decreases at every step that does not end the path; the bound only
+    // guards against a cycle of rounding.
     const std::size_t max_steps = 4 * (mesh.n_faces() + mesh.n_vertices()) + 16;
     for (std::size_t step = 0; step < max_steps; ++step) {
-        if (at_vertex) {
-            if (d[v.idx()] <= 0 || mesh.is_isolated(v)) break;
-            // The steepest face descending into its interior.
-            double best_rate = 0, best_s = 0;
-            Halfedge best;
-            const Halfedge first = mesh.halfedge(v);
-            Halfedge o = first;
-            do {
-                Vector3 g;
-                if (!mesh.is_boundary(o) && tr.gradient(o, g)) {
-                    const Point& a = mesh.position(v);
-                    const Point& b = mesh.position(mesh.to_vertex(o));
-                    const Point& c = mesh.position(mesh.to_vertex(mesh.next(o)));
-                    double alpha, beta;
-                    if (Tracer::decompose(b - a, c - a, -g, alpha, beta) && alpha >= 0 &&
-                        beta >= 0 && alpha + beta > 0 && g.norm() > best_rate) {
-                        best_rate = g.norm();
-                        best = o;
-                        best_s = beta / (alpha + beta);
-                    }
-                }
-                o = mesh.cw_rotated(o);
-            } while (o != first);
-            if (best.is_valid()) {
-                const Halfedge bc = mesh.next(best);  // b -> c
-                const double s = std::clamp(best_s, 0.0, 1.0);
-                const double nv =
-                    (1 - s) * d[mesh.from_vertex(bc).idx()] + s * d[mesh.to_vertex(bc).idx()];
-                if (nv < value) {
-                    if (s < kSnap || s > 1 - kSnap) {
-                        v = s < kSnap ? mesh.from_vertex(bc) : mesh.to_vertex(bc);
-                        value = d[v.idx()];
-                        push_vertex(v);
-                    } else {
-                        h = HalfedgeMesh::twin(bc);
-                        t = 1 - s;
-                        value = nv;
-                        at_vertex = false;
-                        push_edge(h, t);
-                    }
-                    continue;
-                }
-            }
-            // No face descends: the lowest lower neighbour, if any.
-            Vertex lowest;
-            double low = value;
-            o = first;
-            do {
-                const Vertex w = mesh.to_vertex(o);
-                if (d[w.idx()] < low) {
-                    low = d[w.idx()];
-                    lowest = w;
-                }
-                o = mesh.cw_rotated(o);
-            } while (o != first);
-            if (!lowest.is_valid()) break;
-            v = lowest;
-            value = low;
-            push_vertex(v);
-            continue;
-        }
-        // On edge h at t, entering face(h).
-        auto to_lower_end = [&] {
-            const Vertex a = mesh.from_vertex(h), b = mesh.to_vertex(h);
-            v = d[a.idx()] <= d[b.idx()] ? a : b;
-            value = d[v.idx()];
-            at_vertex = true;
-            push_vertex(v);
-        };
-        Vector3 g;
-        if (mesh.is_boundary(h) || !tr.gradient(h, g)) {
-            to_lower_end();
-            continue;
-        }
-        const Vertex va = mesh.from_vertex(h), vb = mesh.to_vertex(h);
-        const Vertex vc = mesh.to_vertex(mesh.next(h));
-        const Point &a = mesh.position(va), &b = mesh.position(vb), &c = mesh.position(vc);
-        double alpha, beta;
-        if (!Tracer::decompose(b - a, c - a, -g, alpha, beta) || !(beta > 0)) {
-            to_lower_end();
-            continue;
-        }
-        // Barycentric (1 - t, t, 0) moves by (-alpha - beta, alpha, beta) per unit.
-        double lambda_a = kInfinity, lambda_b = kInfinity;
-        if (alpha + beta > 0) lambda_a = (1 - t) / (alpha + beta);
-        if (alpha < 0) lambda_b = t / -alpha;
-        Halfedge exit;
-        double s;  // parameter on `exit` (from its start)
-        if (lambda_a <= lambda_b) {
-            exit = mesh.next(h);  // b -> c; a's coordinate reaches 0
-            s = std::clamp(beta * lambda_a, 0.0, 1.0);
+        if (tracer.at_vertex) {
+            if (!tracer.vertex_step()) break;
         } else {
-            exit = mesh.next(mesh.next(h));  // c -> a; b's coordinate reaches 0
-            // From c towards a: the parameter is a's coordinate.
-            s = std::clamp(1 - t - (alpha + beta) * lambda_b, 0.0, 1.0);
+            tracer.edge_step();
         }
-        const double nv =
-            (1 - s) * d[mesh.from_vertex(exit).idx()] + s * d[mesh.to_vertex(exit).idx()];
-        if (!(nv < value)) {
-            to_lower_end();
-            continue;
-        }
-        if (s < kSnap || s > 1 - kSnap) {
-            v = s < kSnap ? mesh.from_vertex(exit) : mesh.to_vertex(exit);
-            value = d[v.idx()];
-            at_vertex = true;
-            push_vertex(v);
-            continue;
-        }
-        h = HalfedgeMesh::twin(exit);
-        t = 1 - s;
-        value = nv;
-        push_edge(h, t);
     }
-    return path;
+    return std::move(tracer.path);
 }
 
 double path_length(const std::vector<SurfacePoint>& path) {
