@@ -24,8 +24,8 @@ constexpr const char* kGeodesicUsage =
 
 Geodesic distances on the surface by the heat method (Crane, Weischedel, Wardetzky 2013) from
 the nearest of the source vertices N, written to OUT as the per-vertex property `distance`
-(PLY; other formats drop it). Vertices no source reaches (another connected component) are
-written with distance -1.
+(PLY; other formats drop it). Vertices no source reaches (another connected component, an
+isolated vertex) are written with distance -1.
 
 options:
   --from N[,N...]       source vertex indices (required)
