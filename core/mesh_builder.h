@@ -34,6 +34,9 @@ struct PolygonSoup {
     std::vector<Vector3> normals;
     std::vector<Color> colors;
     std::vector<TexCoord> texcoords;
+    /// Per-vertex scalar "v:distance" (double; PLY property `distance`, e.g. a geodesic
+    /// distance, core/algorithms/geodesic.h).
+    std::vector<double> distances;
     /// Optional per-corner texture coordinates: empty, or one per entry of `corners`.
     std::vector<TexCoord> corner_texcoords;
 

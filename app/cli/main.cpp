@@ -14,6 +14,7 @@
 #include "app/cli/compare_command.h"
 #include "app/cli/convert_command.h"
 #include "app/cli/generate_command.h"
+#include "app/cli/geodesic_command.h"
 #include "app/cli/info_command.h"
 #include "app/cli/json_writer.h"
 #include "app/cli/operation_command.h"
@@ -40,6 +41,8 @@ commands:
                                   render an operation's morph to PNG frames (`record --help`)
   compare A B [--samples N] [--json]
                                   sampled Hausdorff and RMS distance between two meshes
+  geodesic IN OUT --from N[,N...] [--to M] [--json]
+                                  heat-method geodesic distances as the PLY vertex `distance`
   help                            this text
 
 operations (options: `trilab-cli NAME --help`):
@@ -68,6 +71,7 @@ std::optional<int> run_command(const std::string& cmd, const std::vector<std::st
     if (cmd == "render") return run_render_command(args);
     if (cmd == "record") return run_record_command(args);
     if (cmd == "compare") return run_compare_command(args);
+    if (cmd == "geodesic") return run_geodesic_command(args);
     for (const std::string& name : trilab::operation_names())
         if (cmd == name) return run_operation_command(name, args);
     return std::nullopt;

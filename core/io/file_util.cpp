@@ -627,6 +627,9 @@ void check_finite_soup(const PolygonSoup& soup, const std::string& path) {
     check_finite_values(soup.colors, "vertex", "colour", path);
     check_finite_values(soup.texcoords, "vertex", "texture coordinate", path);
     check_finite_values(soup.corner_texcoords, "face corner", "texture coordinate", path);
+    for (std::size_t i = 0; i < soup.distances.size(); ++i)
+        if (!std::isfinite(soup.distances[i]))
+            throw IoError(path, 0, "vertex " + std::to_string(i) + ": non-finite distance");
 }
 
 HalfedgeMesh build_mesh_for_file(const PolygonSoup& soup, LoadReport& report,

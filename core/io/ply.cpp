@@ -3,13 +3,13 @@
 // Reading: the header (comments and obj_info allowed) is tokenized with TextScanner; the body
 // may be ascii, binary_little_endian or binary_big_endian, with elements in any order. The
 // elements "vertex" (x, y, z; nx, ny, nz; red, green, blue; u/v, s/t, texture_u/texture_v or
-// texture_s/texture_t), "face" (a vertex_indices or vertex_index list, polygons allowed, and an
-// optional per-face "texcoord" list of two floats per corner) and "tristrips" (a vertex_indices
-// list where -1 restarts the strip) are used; every other element and property is skipped,
-// list properties included. All PLY scalar types are accepted under both spellings. Binary
-// rows of fixed size are decoded with memcpy at precomputed offsets (with a dedicated loop
-// for float x, y, z and for uchar/int triangle lists); every declared count is checked
-// against the bytes left before anything is reserved, and every read is bounds-checked.
+// texture_s/texture_t; distance: the per-vertex scalar "v:distance"), "face" (a vertex_indices or
+// vertex_index list, polygons allowed, and an optional per-face "texcoord" list of two floats per
+// corner) and "tristrips" (a vertex_indices list where -1 restarts the strip) are used; every other
+// element and property is skipped, list properties included. All PLY scalar types are accepted
+// under both spellings. Binary rows of fixed size are decoded with memcpy at precomputed offsets
+// (with a dedicated loop for float x, y, z and for uchar/int triangle lists); every declared count
+// is checked against the bytes left before anything is reserved, and every read is bounds-checked.
 // Errors name the file and the line (ascii) or the element number (binary). A UTF-8
 // byte-order mark before "ply" is skipped, UTF-16 refused. ASCII values must fit their
 // declared type (uchar 0..255, whole numbers for integer types, float within float's range;
@@ -20,7 +20,8 @@
 // Writing: binary little-endian by default, ascii or big-endian on request. Positions,
 // normals and texture coordinates are float32 (a round trip is exact to float precision,
 // ~6e-8 relative), or double for a group whose values float32 cannot hold with full
-// precision (float_range_suffices); colours uchar; faces are
+// precision (float_range_suffices); colours uchar; a "v:distance" scalar as double
+// `distance`; faces are
 // "property list uchar int vertex_indices". Non-finite values are refused.
 #include <algorithm>
 #include <charconv>
@@ -180,6 +181,7 @@ enum Role : std::uint8_t {
     kBlue,
     kU,
     kV,
+    kDistance,  // the per-vertex scalar "v:distance"
     kIndices,   // face / tristrips vertex index list
     kTexcoord,  // per-face corner texture coordinate list
     kRoleCount
@@ -368,6 +370,8 @@ private:
                         r = kU;
                     else if (n == "v" || n == "t" || n == "texture_v" || n == "texture_t")
                         r = kV;
+                    else if (n == "distance")
+                        r = kDistance;
                     if (r != kNone && !e.has_role(r)) p.role = r;
                     if (r == kRed || r == kGreen || r == kBlue) color_type_ = p.type;
                 }
@@ -376,6 +380,7 @@ private:
                 has_normals_ = e.has_role(kNx) && e.has_role(kNy) && e.has_role(kNz);
                 has_colors_ = e.has_role(kRed) && e.has_role(kGreen) && e.has_role(kBlue);
                 has_uv_ = e.has_role(kU) && e.has_role(kV);
+                has_distance_ = e.has_role(kDistance);
             } else if (e.name == "face" || e.name == "tristrips") {
                 e.kind = e.name == "face" ? ElementKind::kFace : ElementKind::kTristrips;
                 for (PlyProperty& p : e.props) {
@@ -404,6 +409,7 @@ private:
         if (has_normals_) soup_.normals.resize(n);
         if (has_colors_) soup_.colors.resize(n);
         if (has_uv_) soup_.texcoords.resize(n);
+        if (has_distance_) soup_.distances.resize(n);
     }
 
     float color_channel(double c) const {
@@ -422,6 +428,7 @@ private:
             soup_.colors[i] =
                 Color(color_channel(v[kRed]), color_channel(v[kGreen]), color_channel(v[kBlue]));
         if (has_uv_) soup_.texcoords[i] = TexCoord(v[kU], v[kV]);
+        if (has_distance_) soup_.distances[i] = v[kDistance];
     }
 
     /// Checks one index of face / strip `row` of element e (-1 allowed in strips).
@@ -771,7 +778,7 @@ private:
     std::vector<PlyElement> elements_;
     std::size_t data_offset_ = 0;
     std::uint64_t n_vertices_declared_ = 0;
-    bool has_normals_ = false, has_colors_ = false, has_uv_ = false;
+    bool has_normals_ = false, has_colors_ = false, has_uv_ = false, has_distance_ = false;
     ScalarType color_type_ = ScalarType::kUint8;
     PolygonSoup soup_;
     std::size_t file_faces_ = 0;
@@ -809,6 +816,11 @@ void write_ply_to(const HalfedgeMesh& mesh, std::ostream& os, const std::string&
     const bool uv = options.write_texcoords && !soup.texcoords.empty();
     // Texture seams (per-corner coordinates only): the per-face `texcoord` list MeshLab uses.
     const bool corner_uv = options.write_texcoords && !uv && !soup.corner_texcoords.empty();
+    const bool distance = !soup.distances.empty();
+    for (std::size_t i = 0; i < soup.distances.size(); ++i)
+        if (!std::isfinite(soup.distances[i]))
+            throw IoError(path, 0,
+                          "vertex " + std::to_string(i) + ": non-finite distance (not written)");
     check_finite_for_writing(soup, path, normals, colors, uv || corner_uv);
     const bool ascii = options.ascii;
     const bool big = options.big_endian;
@@ -832,6 +844,7 @@ void write_ply_to(const HalfedgeMesh& mesh, std::ostream& os, const std::string&
     if (uv)
         for (const char* n : {"u", "v"})
             header += std::string("property ") + type(uv_d) + " " + n + "\n";
+    if (distance) header += "property double distance\n";
     header += "element face " + std::to_string(soup.n_faces()) + "\n";
     header += "property list uchar int vertex_indices\n";
     if (corner_uv) header += std::string("property list uchar ") + type(cuv_d) + " texcoord\n";
@@ -871,6 +884,7 @@ void write_ply_to(const HalfedgeMesh& mesh, std::ostream& os, const std::string&
             }
         if (uv)
             for (int k = 0; k < 2; ++k) put(soup.texcoords[i][k], uv_d, false);
+        if (distance) put(soup.distances[i], true, false);
         if (ascii) out.text("\n");
         out.maybe_flush();
     }

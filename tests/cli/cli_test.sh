@@ -224,6 +224,19 @@ check "compare of a mesh with itself is zero (up to rounding)" bash -c \
      grep -E -q '\"hausdorff\": (0|[0-9.]+e-(1[2-9]|[2-9][0-9])),'"
 check "compare refuses a bad sample count naming the option" bash -c \
     "! '$cli' compare '$tmp/d.obj' '$tmp/d.obj' --samples abc 2> '$tmp/e' && grep -q -- '--samples' '$tmp/e'"
+check "geodesic --json reports the distances and the path, and writes property distance" bash -c \
+    "'$cli' geodesic '$tmp/d.obj' '$tmp/geo.ply' --from 0,10 --to 500 --json > '$tmp/geo.json' && \
+     $(declare -f json_has); json_has '$tmp/geo.json' ms max_distance distance_to path_points && \
+     ! grep -q '\"max_distance\": 0,' '$tmp/geo.json' && \
+     '$cli' convert '$tmp/geo.ply' '$tmp/geo2.ply' --ascii >/dev/null && \
+     grep -q '^property double distance' '$tmp/geo2.ply'"
+check "geodesic refuses a source out of range naming --from" bash -c \
+    "! '$cli' geodesic '$tmp/d.obj' '$tmp/bad.ply' --from 5000 2> '$tmp/e' && \
+     grep -q -- '--from: vertex 5000 is out of range' '$tmp/e' && [ ! -e '$tmp/bad.ply' ]"
+check "geodesic refuses a missing --from and a bad --to" bash -c \
+    "! '$cli' geodesic '$tmp/d.obj' '$tmp/bad.ply' 2> '$tmp/e' && grep -q -- '--from' '$tmp/e' && \
+     ! '$cli' geodesic '$tmp/d.obj' '$tmp/bad.ply' --from 0 --to x 2> '$tmp/e' && \
+     grep -q -- '--to' '$tmp/e'"
 if "$cli" render "$tmp/d.obj" --out "$tmp/probe.png" --size 16x16 >/dev/null 2>&1; then
     check "render colours the smoothing distance against a reference" bash -c \
         "'$cli' render '$tmp/sm2.obj' --reference '$tmp/d.obj' --color smoothing-distance \
