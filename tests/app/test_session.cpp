@@ -263,7 +263,7 @@ TEST_CASE("right after Decompose the full band is the mesh: no jump at the first
     CHECK(info.operation.text().find("--with-rest") != std::string::npos);
 }
 
-TEST_CASE("the document may change while a job reads its snapshot; the stale result is dropped",
+TEST_CASE("the document may change while a job reads its snapshot, and the stale result is dropped",
           "[session]") {
     Session s;
     load_sphere(s);
