@@ -56,7 +56,11 @@ void check_options(const RemoveComponentsOptions& options) {
         throw InvalidArgument(
             "remove_small_components: give min_faces and/or min_diameter (neither is set, so "
             "nothing would be removed)");
-    if (options.min_diameter && !(*options.min_diameter >= 0 && *options.min_diameter <= 1))
+    // NaN is tested first: an ordered comparison with NaN raises FE_INVALID (the tests run
+    // with floating-point traps).
+    if (options.min_diameter &&
+        (std::isnan(*options.min_diameter) || *options.min_diameter < 0 ||
+         *options.min_diameter > 1))
         throw InvalidArgument(
             "remove_small_components: min_diameter: expected a fraction of the bounding-box "
             "diagonal in [0, 1], got " +

@@ -405,7 +405,8 @@ TEST_CASE("a typed value outside its range is clamped at once, and every widget 
         const float x = 0.5f * (field.x0 + field.x1), y = 0.5f * (field.y0 + field.y1);
         ui.click(draw, x, y);
         ImGuiIO& io = ImGui::GetIO();
-        // Select what is there and replace it.
+        // Select what is there and replace it (Ctrl+A: the key map has no backend here).
+        io.KeyMap[ImGuiKey_A] = 'A';
         io.KeyCtrl = true;
         io.KeysDown[io.KeyMap[ImGuiKey_A]] = true;
         ui.frame(draw, x, y);
