@@ -32,12 +32,7 @@ echo "== Sanitizer job (ASan + UBSan, floating-point traps)"
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTRILAB_SANITIZE=ON -DTRILAB_WERROR=ON \
     -DTRILAB_FP_TRAPS=ON
 cmake --build build-asan -j2
-# use_registers=0: LeakSanitizer's tracer crashed (signal 11, "LeakSanitizer has encountered
-# a fatal error") reading the registers of Mesa's llvmpipe threads in an offscreen render test
-# (render: Gaussian curvature colouring of a torus, every run here). Without registers as
-# roots, leak checking only gets stricter: a pointer held in a register alone would be
-# reported, never hidden.
-LSAN_OPTIONS=use_registers=0 ctest --test-dir build-asan --output-on-failure -j2
+ctest --test-dir build-asan --output-on-failure -j2
 
 echo "== ThreadSanitizer job (the app's threads: job runner, log, panels, session)"
 cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTRILAB_TSAN=ON -DTRILAB_WERROR=ON
