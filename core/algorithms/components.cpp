@@ -58,9 +58,8 @@ void check_options(const RemoveComponentsOptions& options) {
             "nothing would be removed)");
     // NaN is tested first: an ordered comparison with NaN raises FE_INVALID (the tests run
     // with floating-point traps).
-    if (options.min_diameter &&
-        (std::isnan(*options.min_diameter) || *options.min_diameter < 0 ||
-         *options.min_diameter > 1))
+    if (options.min_diameter && (std::isnan(*options.min_diameter) || *options.min_diameter < 0 ||
+                                 *options.min_diameter > 1))
         throw InvalidArgument(
             "remove_small_components: min_diameter: expected a fraction of the bounding-box "
             "diagonal in [0, 1], got " +
