@@ -76,8 +76,8 @@
 #include "core/algorithms/coincident.h"
 #include "core/algorithms/quadric.h"
 #include "core/errors.h"
-#include "core/number_text.h"
 #include "core/mesh_builder.h"
+#include "core/number_text.h"
 
 namespace trilab {
 
@@ -1055,8 +1055,7 @@ void check_options(const DecimationOptions& o) {
         throw InvalidArgument("decimate: min_roundness must be in (0, 1], got " +
                               number_text(o.min_roundness));
     if (!(o.max_error >= 0) || !std::isfinite(o.max_error))
-        throw InvalidArgument("decimate: max_error must be >= 0, got " +
-                              number_text(o.max_error));
+        throw InvalidArgument("decimate: max_error must be >= 0, got " + number_text(o.max_error));
 }
 
 std::string stop_text(DecimationStop stop, const DecimationReport& r, std::size_t target) {

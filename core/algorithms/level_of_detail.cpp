@@ -8,8 +8,8 @@
 #include <string>
 
 #include "core/errors.h"
-#include "core/number_text.h"
 #include "core/mesh_builder.h"
+#include "core/number_text.h"
 
 namespace trilab {
 

@@ -33,8 +33,8 @@
 
 #include "core/algorithms/coincident.h"
 #include "core/errors.h"
-#include "core/number_text.h"
 #include "core/mesh_builder.h"
+#include "core/number_text.h"
 
 namespace trilab {
 
