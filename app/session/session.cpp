@@ -277,7 +277,7 @@ bool Session::poll() {
     const JobRunner::Outcome outcome = jobs_.poll();
     using Kind = JobRunner::Outcome::Kind;
     if (outcome.kind == Kind::None) return false;
-    const bool preview = is_preview_job() || outcome.name.rfind("Preview: ", 0) == 0;
+    const bool preview = outcome.name.rfind("Preview: ", 0) == 0;
     if (preview && outcome.kind == Kind::Failed) preview_.failure = outcome.message;
     if (preview && outcome.kind != Kind::Failed) {
         if (outcome.kind == Kind::Succeeded && preview_.requested &&
@@ -424,7 +424,6 @@ bool Session::entry_moves() const {
 }
 
 void Session::update() {
-    update_frequency_document();
     start_pending_preview();
     if (shown_.kind == Shown::Kind::Level || shown_.kind == Shown::Kind::Band) return;
     if (preview_.result) {

@@ -240,7 +240,8 @@ private:
     void clear_level_of_detail(bool forget);
 
     void update_morph();
-    /// The frequency document's validity and applied band for the current state.
+    /// The frequency document's validity and applied band for the current state (it changes
+    /// only with the state or the decomposition: called there, not every frame).
     void update_frequency_document();
 
     Document document_;
