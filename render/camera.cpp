@@ -154,11 +154,32 @@ glm::mat4 Camera::view() const {
     return glm::translate(m, -target_);
 }
 
+float Camera::far_plane() const {
+    return distance_ + 2.0f * radius_;
+}
+
+float Camera::near_plane() const {
+    const float near = std::max(distance_ - 2.0f * radius_, 0.01f * radius_);
+    return std::min(near, 0.5f * far_plane());
+}
+
 glm::mat4 Camera::projection() const {
-    float far_plane = distance_ + 2.0f * radius_;
-    float near_plane = std::max(distance_ - 2.0f * radius_, 0.01f * radius_);
-    near_plane = std::min(near_plane, 0.5f * far_plane);
-    return glm::perspective(fov_y_, viewport_.x / viewport_.y, near_plane, far_plane);
+    return glm::perspective(fov_y_, viewport_.x / viewport_.y, near_plane(), far_plane());
+}
+
+void Camera::ray_through(const glm::vec2& window, glm::dvec3& origin, glm::dvec3& direction) const {
+    const double ndc_x = 2.0 * double(window.x) / double(viewport_.x) - 1.0;
+    const double ndc_y = 1.0 - 2.0 * double(window.y) / double(viewport_.y);
+    const double tan_half = std::tan(0.5 * double(fov_y_));
+    const double aspect = double(viewport_.x) / double(viewport_.y);
+    const glm::dvec3 camera_dir(ndc_x * tan_half * aspect, ndc_y * tan_half, -1.0);
+    const glm::dquat to_world = glm::conjugate(glm::dquat(rotation_));
+    direction = to_world * camera_dir;
+    origin = glm::dvec3(target_) + to_world * glm::dvec3(0.0, 0.0, double(distance_));
+}
+
+void Camera::set_target(const glm::vec3& point) {
+    target_ = point;
 }
 
 glm::vec3 Camera::eye() const {

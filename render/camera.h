@@ -68,6 +68,17 @@ public:
     /// clamped to [radius / 1000, radius * 1000] of the fitted sphere.
     void zoom(float steps);
 
+    /// The ray from the eye through the window point `window` (pixels over the viewport,
+    /// origin at the top left; pass a pixel's centre, x + 0.5): `origin` the eye, `direction`
+    /// scaled to depth 1 along the view axis, so that a ray parameter t is the depth (compare
+    /// it with near_plane()). In double precision, for picking.
+    void ray_through(const glm::vec2& window, glm::dvec3& origin, glm::dvec3& direction) const;
+    /// The projection's near and far planes (depths in front of the eye).
+    float near_plane() const;
+    float far_plane() const;
+    /// Makes `point` the centre of rotation, keeping the rotation and the distance: the view
+    /// moves so that the point is at its centre.
+    void set_target(const glm::vec3& point);
     glm::mat4 view() const;
     /// Perspective projection for the viewport's aspect ratio; near and far planes enclose
     /// the fitted sphere.

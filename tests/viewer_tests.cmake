@@ -158,4 +158,16 @@ if(TARGET trilab)
     # A bad option is refused.
     add_test(NAME viewer_bad_option COMMAND $<TARGET_FILE:trilab> --mode bogus --frames 1)
     set_tests_properties(viewer_bad_option PROPERTIES WILL_FAIL TRUE)
+    # --pick: the model's centre is hit (the view's centre, right of the sidebar); two picks
+    # measure. A pick in the window's corner is the background.
+    add_test(NAME viewer_pick
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --pick 810,400 --pick 900,300 --frames 2)
+    set_tests_properties(viewer_pick PROPERTIES PASS_REGULAR_EXPRESSION
+                         "(^|\n)pick: vertex [0-9]+ edge [0-9]+ face [0-9]+ position [-0-9.e]+ [-0-9.e]+ [-0-9.e]+ ms [0-9.]+\n.*measure: straight [0-9.]+ geodesic [0-9.]+ path points [0-9]+")
+    add_test(NAME viewer_pick_background
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --pick 1270,790 --frames 2)
+    set_tests_properties(viewer_pick_background PROPERTIES PASS_REGULAR_EXPRESSION
+                         "pick: nothing at 1270,790 \\(the background\\)")
+    add_test(NAME viewer_pick_bad COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --pick 12x --frames 2)
+    set_tests_properties(viewer_pick_bad PROPERTIES WILL_FAIL TRUE)
 endif()

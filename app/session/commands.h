@@ -96,13 +96,18 @@ struct SaveAndContinue {};
 /// Ask for a file name (the file browser), save there, then carry out the pending action.
 struct SaveAsAndContinue {};
 
+/// Inspector: forget the picks (and the measurement).
+struct ClearPicks {};
+/// Inspector: make the first pick's point the centre of rotation.
+struct CentreOnPick {};
+
 using Command =
     std::variant<LoadFile, SaveFile, RevertFile, LoadTexture, FitView, ResetView, Undo, Redo,
                  JumpTo, RunOperation, PreviewOperation, ApplyOperation, CancelPreview,
                  BuildLevelOfDetail, ShowLevelOfDetail, ApplyLevelOfDetail, Decompose, PreviewBand,
                  CommitBand, RestoreDecomposed, UpdateColoring, ProjectTexCoords, TakeScreenshot,
                  PrintInfo, StartRecording, CancelRecording, CancelJob, Quit, SaveAndContinue,
-                 SaveAsAndContinue>;
+                 SaveAsAndContinue, ClearPicks, CentreOnPick>;
 using CommandQueue = std::vector<Command>;
 
 /// The command's type name ("StartRecording"), for logs and scripted clicks.
@@ -136,7 +141,9 @@ inline const char* command_name(const Command& command) {
                                              "CancelJob",
                                              "Quit",
                                              "SaveAndContinue",
-                                             "SaveAsAndContinue"};
+                                             "SaveAsAndContinue",
+                                             "ClearPicks",
+                                             "CentreOnPick"};
     static_assert(std::size(kNames) == std::variant_size_v<Command>, "a name per command");
     return kNames[command.index()];
 }

@@ -150,6 +150,7 @@ void Session::show_document() {
     shown_.positions.clear();
     shown_.level = nullptr;
     bump();
+    follow_picks();
 }
 
 void Session::execute(const Command& command) {
@@ -274,6 +275,7 @@ void Session::load_texture(const std::string& path) {
 }
 
 bool Session::poll() {
+    start_pick_job();
     const JobRunner::Outcome outcome = jobs_.poll();
     using Kind = JobRunner::Outcome::Kind;
     if (outcome.kind == Kind::None) return false;

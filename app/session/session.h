@@ -20,6 +20,7 @@
 #include "app/session/commands.h"
 #include "app/session/job_runner.h"
 #include "app/session/log.h"
+#include "app/session/picking.h"
 #include "core/algorithms/level_of_detail.h"
 #include "core/algorithms/morph.h"
 #include "core/algorithms/spectral.h"
@@ -178,6 +179,18 @@ public:
     /// Called after a decomposition finishes with its band (the panel's sliders).
     std::function<void(std::size_t lo, std::size_t hi)> on_decomposed;
 
+    // ---- picking and measuring (session_picking.cpp) -----------------------------------------
+    /// Casts `ray` (from depth t_min) at the shown surface. A hit replaces the picks, or with
+    /// `second` sets the second pick (a measurement from the first; without a first pick it
+    /// is the first). A miss clears the picks. Geometry-only history steps keep the picks
+    /// (they follow the surface); steps that renumber drop them with a note. Two picks start
+    /// the geodesic measurement as a job (the factorization is kept for the state).
+    std::optional<Pick> pick(const Ray& ray, double t_min, bool second);
+    void clear_picks();
+    const PickSet& picks() const { return picks_; }
+    /// Keep the geodesic distance from the picked vertices up to date (the colouring).
+    void want_pick_distances(bool want);
+
     // ---- documents ---------------------------------------------------------------------------
     /// Computes texture coordinates by `projection` on the current shape (a history entry).
     void project_texcoords(TexCoordProjection projection, UpAxis up);
@@ -240,6 +253,10 @@ private:
     void clear_level_of_detail(bool forget);
 
     void update_morph();
+    /// After the document changed: the picks follow a geometry-only step or are dropped.
+    void follow_picks();
+    /// Starts the pending geodesic job when the runner is free.
+    void start_pick_job();
     /// The frequency document's validity and applied band for the current state (it changes
     /// only with the state or the decomposition: called there, not every frame).
     void update_frequency_document();
@@ -252,6 +269,10 @@ private:
     PreviewState preview_;
     LodState lod_;
     Shown shown_;
+    PickSet picks_;
+    bool pick_job_pending_ = false;
+    bool want_pick_distances_ = false;
+    std::uint64_t pick_request_ = 0;  ///< changes with every request (stale job results)
     SessionEvents events_;
     HalfedgeMesh::Revision morph_topology_;  ///< the connectivity of the morph frame shown
 };

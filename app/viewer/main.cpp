@@ -39,6 +39,9 @@ options:
   --click "SECTION/LABEL"  press the widget with that visible label in that sidebar section
                      (or menu path, e.g. "File/Save as"), after --op; repeatable, in order;
                      fails when there is no such widget or more than one
+  --pick X,Y         pick the model at window pixel X,Y once it is shown (repeatable: the
+                     second pick measures from the first); prints "pick: vertex V edge E
+                     face F position X Y Z ms T" and opens the Inspector
   --memory-budget MB the history's memory budget (default: a quarter of the RAM)
   --decompose K[:LO:HI]  decompose the model into K frequencies (the Frequency panel's
                      settings) and apply the band LO..HI, for scripts and tests
@@ -125,6 +128,9 @@ std::string parse_args(int argc, char** argv, trilab::viewer::ViewerOptions& opt
             if (!value(v) || v.empty())
                 return "--click needs a widget, e.g. \"Record/Record\" or \"File/Save as\"";
             options.clicks.push_back(v);
+        } else if (arg == "--pick") {
+            if (!value(v) || v.empty()) return "--pick needs window pixels X,Y, e.g. 640,400";
+            options.picks.push_back(v);
         } else if (arg == "--op") {
             if (!value(options.operation))
                 return "--op needs an operation, e.g. \"noise --amount 2\"";

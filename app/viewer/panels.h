@@ -156,6 +156,7 @@ struct PanelState {
     bool about_open = false;
     bool log_open = false;
     bool info_open = false;
+    bool inspector_open = false;
     bool context_menu_requested = false;  ///< right click in the view: open the Rendering popup
     LayoutState layout;                   ///< the regions' sizes (layout.h)
     bool sidebar_open = true;             ///< Window > Sidebar
@@ -245,6 +246,25 @@ private:
 /// The History column: every entry with its steps, timing and memory; a click jumps there.
 void history_window(PanelState& panels, const History& history, bool busy, const Rect& region,
                     CommandQueue& commands);
+/// What the Inspector section shows: rows the viewer prepares from the picks (the panel holds
+/// no mesh and computes nothing).
+struct InspectorView {
+    struct Row {
+        std::string label, text;
+    };
+    struct Group {
+        std::string title;  ///< "Vertex 12", "Edge 40", "Face 7", "Measure"
+        std::vector<Row> rows;
+    };
+    std::vector<Group> groups;
+    /// Provenance: how far each history entry moved the picked vertex (one value per entry,
+    /// NaN where the vertex did not exist), and the current entry.
+    std::vector<float> moved_by_entry;
+    std::size_t current_entry = 0;
+    std::string note;  ///< e.g. "computing the geodesic distance"
+    bool has_picks = false;
+};
+
 /// What the sidebar's sections show besides the panels' own state.
 struct SidebarContext {
     const History* history = nullptr;
@@ -258,6 +278,7 @@ struct SidebarContext {
     std::size_t collapsing_edges = 0;                ///< edges the overlay shows (0: none)
     const FrequencyDocument* frequency = nullptr;    ///< the decomposition (Frequency section)
     const std::vector<std::string>* info = nullptr;  ///< model information lines
+    const InspectorView* inspector = nullptr;        ///< the picks (Inspector section)
 };
 
 /// Every tool section of the sidebar in order (Tools, Fairing, Frequency decomposition,
@@ -290,6 +311,9 @@ void tools_section(PanelState& panels, bool busy, CommandQueue& commands);
 void morph_section(PanelState& panels, MorphState& morph, const History& history, double now);
 /// Record; queues StartRecording / CancelRecording.
 void record_section(PanelState& panels, bool can_record, CommandQueue& commands);
+/// The Inspector: what the picks are and why (InspectorView), the measurement, the
+/// provenance plot; Clear picks (ClearPicks) and Centre view here (CentreOnPick).
+void inspector_section(PanelState& panels, const InspectorView& view, CommandQueue& commands);
 /// Model and scene information (the `I` key prints the same lines to the console).
 void info_section(PanelState& panels, const std::vector<std::string>& lines);
 

@@ -7,6 +7,7 @@
 #include <imgui_stdlib.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <iterator>
@@ -285,6 +286,7 @@ void sidebar_sections(PanelState& panels, MorphState& morph, const SidebarContex
     if (context.history) morph_section(panels, morph, *context.history, context.now);
     record_section(panels, context.can_record, commands);
     info_section(panels, context.info ? *context.info : std::vector<std::string>{});
+    inspector_section(panels, context.inspector ? *context.inspector : InspectorView{}, commands);
     ImGui::Spacing();
     wrapped_disabled(
         "The Tools and Algorithms menus open these sections; H the history, L the log.");
@@ -405,6 +407,53 @@ void info_section(PanelState& panels, const std::vector<std::string>& lines) {
     ImGui::PushTextWrapPos(0.0f);
     for (const std::string& line : lines) ImGui::TextUnformatted(line.c_str());
     ImGui::PopTextWrapPos();
+}
+
+void inspector_section(PanelState& panels, const InspectorView& view, CommandQueue& commands) {
+    SidebarSection section("Inspector", panels.inspector_open);
+    if (!section) return;
+    if (!view.has_picks) {
+        wrapped_disabled(
+            "Click the model to pick the vertex, edge and face under the cursor; Ctrl+click a "
+            "second point to measure the distance to it; double click to turn around that "
+            "point.");
+        return;
+    }
+    if (button("Clear picks")) commands.push_back(ClearPicks{});
+    ImGui::SameLine();
+    if (button("Centre view here")) commands.push_back(CentreOnPick{});
+    if (!view.note.empty()) wrapped_disabled(view.note.c_str());
+    for (std::size_t g = 0; g < view.groups.size(); ++g) {
+        const InspectorView::Group& group = view.groups[g];
+        ImGui::PushID(int(g));
+        ImGui::Separator();
+        ImGui::TextUnformatted(group.title.c_str());
+        if (ImGui::BeginTable("##rows", 2, ImGuiTableFlags_SizingStretchProp)) {
+            ImGui::TableSetupColumn("##label", ImGuiTableColumnFlags_WidthFixed,
+                                    8.0f * ImGui::GetFontSize());
+            ImGui::TableSetupColumn("##value", ImGuiTableColumnFlags_WidthStretch);
+            for (const InspectorView::Row& row : group.rows) {
+                ImGui::TableNextRow();
+                ImGui::TableNextColumn();
+                ImGui::TextDisabled("%s", row.label.c_str());
+                ImGui::TableNextColumn();
+                ImGui::PushTextWrapPos(0.0f);
+                ImGui::TextUnformatted(row.text.c_str());
+                ImGui::PopTextWrapPos();
+            }
+            ImGui::EndTable();
+        }
+        ImGui::PopID();
+    }
+    if (view.moved_by_entry.size() > 1) {
+        ImGui::Separator();
+        ImGui::TextUnformatted("Moved by each entry");
+        ImGui::PlotHistogram("##provenance", view.moved_by_entry.data(),
+                             int(view.moved_by_entry.size()), 0, nullptr, 0.0f, FLT_MAX,
+                             ImVec2(widget_width(16.0f, 0.0f), 3.0f * ImGui::GetFrameHeight()));
+        ImGui::TextDisabled("entries 0..%zu, the current one is %zu",
+                            view.moved_by_entry.size() - 1, view.current_entry);
+    }
 }
 
 }  // namespace trilab::viewer

@@ -260,6 +260,14 @@ void Viewer::execute(const Command& command) {
         panels_.file_browser.then_continue = true;
     } else if (std::holds_alternative<FitView>(command)) {
         fit_view();
+    } else if (std::holds_alternative<ClearPicks>(command)) {
+        session_.clear_picks();
+    } else if (std::holds_alternative<CentreOnPick>(command)) {
+        if (!session_.picks().picks.empty()) {
+            const Point& p = session_.picks().picks.front().position;
+            view_.camera.set_target(glm::vec3(float(p.x()), float(p.y()), float(p.z())));
+            camera_fitted_ = false;
+        }
     } else if (std::holds_alternative<ResetView>(command)) {
         reset_view();
     } else if (std::holds_alternative<StartRecording>(command)) {
@@ -316,7 +324,9 @@ bool Viewer::prepare_frame() {
     follow_session();
     advance_script();
     scripted_decomposition();
+    scripted_picks();
     update_panels();
+    update_inspector();
     if (sweep_.active || (!options_.sweep_op.empty() && !sweep_started_ && ready_for_script())) {
         if (!sweep_started_) {
             sweep_started_ = true;

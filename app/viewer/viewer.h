@@ -51,6 +51,9 @@ struct ViewerOptions {
     std::string sweep_op, sweep_param;
     /// --click "SECTION/LABEL" (repeatable): widgets to press, in order, after --op.
     std::vector<std::string> clicks;
+    /// --pick X,Y (repeatable): window pixels to pick once the model is shown; the second
+    /// measures from the first.
+    std::vector<std::string> picks;
     double sweep_from = 0, sweep_to = 0;
     int sweep_count = 0;
 };
@@ -203,6 +206,27 @@ private:
     void fail_click(const std::string& why);
     bool clicks_pending() const { return clicks_.next < options_.clicks.size(); }
     ScriptedClicks clicks_;
+
+    // Picking and the Inspector (viewer_picking.cpp).
+    /// Picks at `view_pos` (pixels relative to the view's top left); opens the Inspector.
+    std::optional<Pick> pick_at(const glm::vec2& view_pos, bool second);
+    /// Rebuilds the highlight of the picks and the geodesic path when they or the shown
+    /// surface changed.
+    void update_pick_overlay();
+    void draw_pick_overlay() const;
+    /// The Inspector's rows for the current picks (when they or the state changed).
+    void update_inspector();
+    /// --pick: the next scripted pick, once the model is shown and no job runs.
+    void scripted_picks();
+    bool scripted_picks_pending() const;
+    std::unique_ptr<LineRenderer> pick_face_lines_, pick_edge_lines_, pick_vertex_lines_,
+        pick_path_lines_;
+    std::string pick_overlay_key_;
+    std::string inspector_key_;
+    InspectorView inspector_;
+    std::size_t next_scripted_pick_ = 0;
+    glm::vec2 press_pos_{0.0f};  ///< where the left button went down (a click picks)
+    bool turning_ = false;       ///< the left drag has moved past the click's slop
 
     ViewerOptions options_;
     std::unique_ptr<GlfwLibrary> glfw_;

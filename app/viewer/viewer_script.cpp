@@ -62,7 +62,7 @@ bool Viewer::script_settled() {
         !ready_for_script() || sweep_.active || panels_.record.running)
         return false;
     if (!options_.decompose.empty() && scripted_decompose_ != 2) return false;
-    if (clicks_pending()) return false;
+    if (clicks_pending() || scripted_picks_pending()) return false;
     if (!options_.sweep_op.empty() && !sweep_started_) return false;
     if (session_.morph().playing) {  // end it: the next frame shows where it ends
         session_.morph().t = 1.0;

@@ -56,12 +56,29 @@ void Viewer::handle_input() {
         const glm::vec2 pos(io.MousePos.x - view.x, io.MousePos.y - view.y);
         const glm::vec2 delta(io.MouseDelta.x, io.MouseDelta.y);
         const bool moved = delta.x != 0.0f || delta.y != 0.0f;
-        if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && in_view) {
-            commands_.push_back(FitView{});
+        // A left click that does not drag picks (Ctrl: the second pick, measuring); the view
+        // turns once the cursor has moved past the click's slop (from where it was pressed),
+        // so a click never turns it. A double click makes the picked point the centre of
+        // rotation (Home fits the view).
+        if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && drag_in_view_) {
+            press_pos_ = pos;
+            turning_ = false;
+        }
+        if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && drag_in_view_ && in_view &&
+            !io.KeyShift && !turning_ && !ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left))
+            pick_at(pos, io.KeyCtrl);
+        if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && in_view && drag_in_view_) {
+            if (pick_at(pos, false)) commands_.push_back(CentreOnPick{});
         } else if (moved && drag_in_view_ && ImGui::IsMouseDown(ImGuiMouseButton_Left) &&
                    !io.KeyShift) {
-            camera.rotate(pos - delta, pos);
-            camera_fitted_ = false;
+            if (turning_) {
+                camera.rotate(pos - delta, pos);
+                camera_fitted_ = false;
+            } else if (glm::length(pos - press_pos_) > kClickSlopPixels) {
+                turning_ = true;
+                camera.rotate(press_pos_, pos);
+                camera_fitted_ = false;
+            }
         } else if (moved && drag_in_view_ &&
                    (ImGui::IsMouseDown(ImGuiMouseButton_Middle) ||
                     (ImGui::IsMouseDown(ImGuiMouseButton_Left) && io.KeyShift))) {
@@ -177,6 +194,7 @@ void Viewer::draw_ui() {
             panels_.decimation.show_collapsing_edges ? collapse_lines_->n_segments() : 0;
         sidebar.frequency = &session_.document().frequency;
         sidebar.info = &info;
+        sidebar.inspector = &inspector_;
         sidebar_sections(panels_, session_.morph(), sidebar, commands_);
     }
     if (panels_.sidebar_open) end_region();

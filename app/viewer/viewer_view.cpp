@@ -224,6 +224,8 @@ void Viewer::render_scene() {
     if (panels_.decimation.show_collapsing_edges)
         collapse_lines_->draw(view_.camera.view(), view_.camera.projection(), LineStyle{},
                               ui_scale_);
+    update_pick_overlay();
+    draw_pick_overlay();
     glViewport(0, 0, fb_w, fb_h);  // ImGui draws over the whole window
 }
 

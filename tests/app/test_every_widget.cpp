@@ -65,6 +65,7 @@ struct Sidebar {
     History history;
     FrequencyDocument frequency;
     std::vector<std::string> info{"model: test", "vertices 12"};
+    InspectorView inspector;
     SidebarContext context;
     CommandQueue commands;
 
@@ -87,6 +88,16 @@ struct Sidebar {
         context.open_seams = true;
         context.frequency = &frequency;
         context.info = &info;
+        // Two picks with their rows, a measurement and the provenance plot.
+        inspector.has_picks = true;
+        inspector.note = "computing the geodesic distance";
+        inspector.groups = {{"Vertex 3", {{"position", "0 1 2"}, {"valence", "6"}}},
+                            {"Edge 7", {{"length", "0.5"}}},
+                            {"Face 2", {{"area", "0.1"}}},
+                            {"Measure: vertex 3 to 9", {{"straight", "1"}, {"geodesic", "1.2"}}}};
+        inspector.moved_by_entry = {0.0f, 0.25f, 0.5f};
+        inspector.current_entry = 2;
+        context.inspector = &inspector;
         // The stability warning and its button show (a step above the limit).
         panels.fairing.max_stable_step = 1.0;
         panels.fairing.op.value("step").x = 50.0;
@@ -99,6 +110,7 @@ struct Sidebar {
         panels.fairing.open = true;
         panels.frequency.open = panels.subdivision.open = panels.decimation.open = true;
         panels.morph_open = panels.record.open = panels.info_open = true;
+        panels.inspector_open = true;
         panels.decimation.lod_open = true;
     }
     void draw() {
@@ -172,6 +184,7 @@ TEST_CASE("no widget ID is used twice in a frame, in any combination of open sec
         s.panels.fairing.previewing = s.panels.subdivision.previewing = (mask & 8u) != 0;
         s.panels.decimation.previewing = s.panels.tool("noise")->previewing = (mask & 8u) != 0;
         s.morph.playing = (mask & 16u) != 0;
+        s.panels.inspector_open = (mask & 32u) != 0;
         ui.frame(draw);  // the sections take their new state
         const std::vector<std::string> duplicates = duplicate_ids(ui, draw);
         INFO("open sections mask " << mask);
@@ -256,6 +269,8 @@ TEST_CASE("every button of every section queues what it says", "[panels][buttons
          }},
         {"Morph/After", [](const Sidebar& s) { CHECK(s.morph.t == 1.0); }},
         {"Record/Record", queues_one(StartRecording{})},
+        {"Inspector/Clear picks", queues_one(ClearPicks{})},
+        {"Inspector/Centre view here", queues_one(CentreOnPick{})},
         {"Record/Cancel", queues_one(CancelRecording{})},
     };
     // Every tool from the registry: Apply (where its defaults make a valid run; otherwise it

@@ -286,3 +286,144 @@ TEST_CASE("the document may change while a job reads its snapshot, and the stale
     CHECK(s.notice().text.find("changed while it ran") != std::string::npos);
     require_valid(s);
 }
+
+namespace {
+
+/// A ray from far out on +z straight down at (x, y).
+Ray ray_down(double x, double y) {
+    Ray r;
+    r.origin = Point(x, y, 10);
+    r.direction = Vector3(0, 0, -1);
+    return r;
+}
+
+/// The pick's elements belong together: the vertex and the edge are the face's.
+void require_consistent(const Pick& p, const HalfedgeMesh& mesh) {
+    REQUIRE(mesh.is_valid(p.face));
+    const std::array<Vertex, 3> c = mesh.face_vertices(p.face);
+    CHECK(std::find(c.begin(), c.end(), p.vertex) != c.end());
+    REQUIRE(p.edge.is_valid());
+    const Vertex a = mesh.vertex(p.edge, 0), b = mesh.vertex(p.edge, 1);
+    CHECK(std::find(c.begin(), c.end(), a) != c.end());
+    CHECK(std::find(c.begin(), c.end(), b) != c.end());
+    // The vertex is the corner nearest to the hit point.
+    for (Vertex v : c)
+        CHECK((mesh.position(p.vertex) - p.position).norm() <=
+              (mesh.position(v) - p.position).norm() + 1e-12);
+}
+
+}  // namespace
+
+TEST_CASE("a pick names the front face under the ray, its nearest corner and edge",
+          "[session][pick]") {
+    Session s;
+    const std::optional<Pick> hit = s.pick(ray_down(0.1, 0.05), 0.0, false);
+    REQUIRE(hit);
+    CHECK(hit->position.z() > 0.5);  // the front of the sphere, not its back
+    CHECK_FALSE(hit->back_face);
+    require_consistent(*hit, s.mesh());
+    REQUIRE(s.picks().picks.size() == 1);
+    // The background: the picks are cleared.
+    CHECK_FALSE(s.pick(ray_down(5, 5), 0.0, false).has_value());
+    CHECK(s.picks().picks.empty());
+}
+
+TEST_CASE("two picks measure: straight, geodesic and a path on the surface", "[session][pick]") {
+    Session s;
+    REQUIRE(s.pick(ray_down(0.3, 0.0), 0.0, false));
+    REQUIRE(s.pick(ray_down(-0.3, 0.2), 0.0, true));
+    REQUIRE(s.picks().picks.size() == 2);
+    CHECK(s.picks().measurement.computing);
+    s.finish_jobs();
+    const Measurement& m = s.picks().measurement;
+    CHECK_FALSE(m.computing);
+    CHECK(m.failure.empty());
+    const Pick& a = s.picks().picks[0];
+    const Pick& b = s.picks().picks[1];
+    CHECK(m.straight == Approx((s.mesh().position(a.vertex) - s.mesh().position(b.vertex)).norm()));
+    REQUIRE(std::isfinite(m.geodesic));
+    // On a sphere of radius about 1 the surface distance is a little more than the chord;
+    // the heat method is within a few edge lengths of the traced path.
+    CHECK(m.geodesic > 0.9 * m.straight);
+    CHECK(m.path_length >= m.straight - 1e-12);
+    CHECK(std::abs(m.path_length - m.geodesic) < 0.1 * m.geodesic);
+    REQUIRE(m.path.size() >= 2);
+    CHECK((m.path.front() - s.mesh().position(b.vertex)).norm() < 1e-12);
+    CHECK((m.path.back() - s.mesh().position(a.vertex)).norm() < 1e-12);
+    // The factorization is kept for the state: a new second pick reuses it.
+    const auto solver = s.picks().solver;
+    REQUIRE(solver);
+    REQUIRE(s.pick(ray_down(-0.2, -0.3), 0.0, true));
+    s.finish_jobs();
+    CHECK(s.picks().solver == solver);
+    // The colouring's distances from both picked vertices.
+    s.want_pick_distances(true);
+    s.finish_jobs();
+    REQUIRE(s.picks().distances.size() == s.mesh().vertices_size());
+    CHECK(s.picks().distances[s.picks().picks[0].vertex.idx()] == 0.0);
+    CHECK(s.picks().distances[s.picks().picks[1].vertex.idx()] == 0.0);
+}
+
+TEST_CASE("picks follow geometry-only steps and are dropped by steps that renumber",
+          "[session][pick]") {
+    Session s;
+    const std::optional<Pick> hit = s.pick(ray_down(0.1, 0.1), 0.0, false);
+    REQUIRE(hit);
+    s.execute(RunOperation{parse_operation("noise --amount 20 --seed 2")});
+    s.finish_jobs();
+    REQUIRE(s.picks().picks.size() == 1);
+    const Pick& kept = s.picks().picks[0];
+    CHECK(kept.vertex == hit->vertex);
+    CHECK(kept.face == hit->face);
+    // The hit point moved with its face.
+    Point expected = Point::Zero();
+    for (int k = 0; k < 3; ++k)
+        expected += hit->barycentric[k] * s.mesh().position(hit->corners[k]);
+    CHECK((kept.position - expected).norm() < 1e-12);
+    CHECK((kept.position - hit->position).norm() > 0);
+    // Undo: the same connectivity, the picks stay.
+    s.execute(Undo{});
+    CHECK(s.picks().picks.size() == 1);
+    s.execute(RunOperation{parse_operation("subdivide --scheme loop --iterations 1")});
+    s.finish_jobs();
+    CHECK(s.picks().picks.empty());
+    CHECK(s.notice().text.find("picks dropped") != std::string::npos);
+}
+
+TEST_CASE("a pick on a morph frame or a level of detail hits what is shown", "[session][pick]") {
+    Session s;
+    load_sphere(s);
+    s.execute(RunOperation{parse_operation("smooth --iterations 10 --step 0.9")});
+    s.finish_jobs();
+    s.morph().t = 0.0;  // the frame shows the state before the smoothing
+    s.morph().playing = false;
+    s.update();
+    REQUIRE(s.shown().kind == Shown::Kind::Morph);
+    const Ray ray = ray_down(0.37, 0.21);
+    std::optional<Pick> on_frame = s.pick(ray, 0.0, false);
+    REQUIRE(on_frame);
+    const auto direct = pick_face(*s.shown().mesh, s.shown().positions, ray);
+    REQUIRE(direct);
+    CHECK(on_frame->face.idx() == direct->triangle);
+    CHECK((on_frame->position - direct->position).norm() < 1e-12);
+
+    s.morph().t = 1.0;
+    s.update();
+    s.execute(BuildLevelOfDetail{parse_operation("decimate")});
+    s.finish_jobs();
+    REQUIRE(s.has_level_of_detail());
+    s.execute(ShowLevelOfDetail{20.0});
+    REQUIRE(s.shown().kind == Shown::Kind::Level);
+    const LevelOfDetail& lod = *s.shown().level;
+    const std::optional<Pick> on_level = s.pick(ray, 0.0, false);
+    REQUIRE(on_level);
+    CHECK(on_level->on_level);
+    const auto lod_hit = pick_triangle(lod.faces(), lod.face_alive(), lod.positions(), ray);
+    REQUIRE(lod_hit);
+    CHECK((on_level->position - lod_hit->position).norm() < 1e-12);
+    // Indices are the document's: the picked vertex is live on the level.
+    REQUIRE(s.mesh().is_valid(on_level->vertex));
+    CHECK(lod.vertex_alive()[lod.vertex_of(on_level->vertex.idx())] != 0);
+    REQUIRE(on_level->face.is_valid());
+    CHECK(lod.face_of(on_level->face.idx()) == lod_hit->triangle);
+}

@@ -306,3 +306,44 @@ TEST_CASE("Camera::pixels_per_unit is a unit segment's length on the screen", "[
     const float a = ndc(camera, camera.target()).x, b = ndc(camera, camera.target() + right).x;
     CHECK(0.5f * (b - a) * 1280.0f == Approx(camera.pixels_per_unit()).epsilon(1e-4));
 }
+
+TEST_CASE("Camera::ray_through meets the world point drawn at that pixel", "[camera][pick]") {
+    Camera camera;
+    camera.set_viewport(800, 500);
+    camera.fit_box(glm::vec3(-1), glm::vec3(1));
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> angle(-180.0f, 180.0f), unit(-1.0f, 1.0f);
+    for (int trial = 0; trial < 20; ++trial) {
+        camera.set_view_angles(angle(rng), angle(rng) / 2.0f);
+        const glm::vec3 p(unit(rng), unit(rng), unit(rng));
+        const glm::vec3 q = ndc(camera, p);
+        const glm::vec2 window((q.x + 1.0f) * 0.5f * 800.0f, (1.0f - q.y) * 0.5f * 500.0f);
+        glm::dvec3 origin, direction;
+        camera.ray_through(window, origin, direction);
+        // The ray passes through p: p - origin is parallel to the direction.
+        const glm::dvec3 to_p = glm::dvec3(p) - origin;
+        const double along = glm::dot(to_p, glm::normalize(direction));
+        CHECK(glm::length(to_p - along * glm::normalize(direction)) < 1e-4);
+        CHECK(along > 0.0);
+        // t is the depth along the view axis: between the near and far planes.
+        const double t = along / glm::length(direction);
+        CHECK(t > camera.near_plane());
+        CHECK(t < camera.far_plane());
+    }
+}
+
+TEST_CASE("Camera::set_target brings the point to the centre and keeps the rotation", "[camera]") {
+    Camera camera;
+    camera.set_viewport(640, 480);
+    camera.fit_box(glm::vec3(-1), glm::vec3(1));
+    camera.set_view_angles(30.0f, 20.0f);
+    const glm::quat rotation = camera.rotation();
+    const float distance = camera.distance();
+    const glm::vec3 point(0.5f, -0.25f, 0.75f);
+    camera.set_target(point);
+    const glm::vec3 q = ndc(camera, point);
+    CHECK(std::abs(q.x) < 1e-5f);
+    CHECK(std::abs(q.y) < 1e-5f);
+    CHECK(camera.distance() == distance);
+    CHECK(camera.rotation() == rotation);
+}

@@ -1,0 +1,205 @@
+// The session's picks and measurements (app/session/picking.h): picking the shown surface,
+// following the document, and the geodesic job.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <utility>
+
+#include "app/session/session.h"
+#include "core/algorithms/geodesic.h"
+#include "core/errors.h"
+
+namespace trilab::viewer {
+namespace {
+
+std::string format_distance(double d) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "%.6g", d);
+    return buf;
+}
+
+}  // namespace
+
+std::optional<Pick> Session::pick(const Ray& ray, double t_min, bool second) {
+    std::optional<Pick> hit;
+    try {
+        hit = pick_shown(shown_, document_.mesh(), ray, t_min);
+    } catch (const std::exception& e) {
+        notify_error(std::string("pick: ") + e.what());
+        return std::nullopt;
+    }
+    if (!hit) {
+        clear_picks();
+        return std::nullopt;
+    }
+    // The mesh the indices refer to: the shown mesh (a morph frame with its positions), or
+    // the document on a level of detail.
+    HalfedgeMesh mesh = hit->on_level || !shown_.mesh ? document_.mesh() : *shown_.mesh;
+    if (!hit->on_level && shown_.positions.size() == mesh.vertices_size() &&
+        shown_.kind == Shown::Kind::Morph)
+        mesh.set_positions(shown_.positions);
+    const bool same_state = !picks_.picks.empty() &&
+                            picks_.mesh.topology_revision() == mesh.topology_revision() &&
+                            picks_.mesh.geometry_revision() == mesh.geometry_revision();
+    if (second && same_state) {
+        picks_.picks.resize(1);
+        picks_.picks.push_back(*hit);
+    } else {
+        picks_.picks = {*hit};
+        if (!same_state) {
+            picks_.mesh = std::move(mesh);
+            picks_.distances.clear();
+        }
+    }
+    picks_.measurement = Measurement{};
+    if (picks_.picks.size() == 2) {
+        const Pick& a = picks_.picks[0];
+        const Pick& b = picks_.picks[1];
+        picks_.measurement.straight = (std::as_const(picks_.mesh).position(a.vertex) -
+                                       std::as_const(picks_.mesh).position(b.vertex))
+                                          .norm();
+        picks_.measurement.computing = true;
+    }
+    picks_.distances.clear();
+    pick_job_pending_ = picks_.picks.size() == 2 || want_pick_distances_;
+    ++pick_request_;
+    ++picks_.version;
+    log_.info("picked " + pick_line(*hit));
+    start_pick_job();
+    return hit;
+}
+
+void Session::clear_picks() {
+    if (picks_.picks.empty()) return;
+    picks_.picks.clear();
+    picks_.measurement = Measurement{};
+    picks_.distances.clear();
+    pick_job_pending_ = false;
+    ++pick_request_;
+    ++picks_.version;
+}
+
+void Session::want_pick_distances(bool want) {
+    if (want == want_pick_distances_) return;
+    want_pick_distances_ = want;
+    if (want && !picks_.picks.empty() && picks_.distances.empty()) {
+        pick_job_pending_ = true;
+        ++pick_request_;
+        start_pick_job();
+    }
+}
+
+void Session::follow_picks() {
+    if (picks_.picks.empty()) return;
+    const HalfedgeMesh& doc = document_.mesh();
+    if (doc.topology_revision() == picks_.mesh.topology_revision() &&
+        doc.geometry_revision() == picks_.mesh.geometry_revision())
+        return;  // the same shape (attributes aside)
+    if (doc.topology_revision() != picks_.mesh.topology_revision() ||
+        doc.vertices_size() != picks_.mesh.vertices_size()) {
+        picks_.picks.clear();
+        picks_.measurement = Measurement{};
+        picks_.distances.clear();
+        picks_.mesh = HalfedgeMesh();
+        pick_job_pending_ = false;
+        ++pick_request_;
+        ++picks_.version;
+        log_.info("picks dropped: this state has other vertices and faces (renumbered)");
+        notice_ = Notice{Notice::Level::Info,
+                         "picks dropped: this state's vertices and faces are numbered anew",
+                         {},
+                         false};
+        return;
+    }
+    // A geometry-only step: the same elements, moved. Hits follow their faces.
+    picks_.mesh = doc;
+    for (Pick& p : picks_.picks) {
+        p.position = Point::Zero();
+        for (int k = 0; k < 3; ++k) p.position += p.barycentric[k] * doc.position(p.corners[k]);
+    }
+    picks_.measurement = Measurement{};
+    if (picks_.picks.size() == 2) {
+        picks_.measurement.straight =
+            (doc.position(picks_.picks[0].vertex) - doc.position(picks_.picks[1].vertex)).norm();
+        picks_.measurement.computing = true;
+    }
+    picks_.distances.clear();
+    pick_job_pending_ = picks_.picks.size() == 2 || want_pick_distances_;
+    ++pick_request_;
+    ++picks_.version;
+    start_pick_job();
+}
+
+void Session::start_pick_job() {
+    if (!pick_job_pending_ || jobs_.busy() || picks_.picks.empty()) return;
+    pick_job_pending_ = false;
+    struct Result {
+        std::shared_ptr<const GeodesicSolver> solver;
+        Measurement measurement;
+        std::vector<double> distances;
+        std::string failure;
+    };
+    const HalfedgeMesh snapshot = picks_.mesh;  // copy-on-write: the job's own
+    const HalfedgeMesh::Revision state = snapshot.revision();
+    std::shared_ptr<const GeodesicSolver> cached =
+        picks_.solver && picks_.solver_state == state ? picks_.solver : nullptr;
+    const std::vector<Pick> picks = picks_.picks;
+    const bool want_distances = want_pick_distances_;
+    const Measurement start = picks_.measurement;
+    const std::uint64_t request = pick_request_;
+    const bool started = jobs_.start("Geodesic distance", [=](Progress&) {
+        auto result = std::make_shared<Result>();
+        result->measurement = start;
+        const auto t0 = std::chrono::steady_clock::now();
+        try {
+            result->solver = cached ? cached : std::make_shared<const GeodesicSolver>(snapshot);
+            if (picks.size() == 2) {
+                const std::vector<double> from_a = result->solver->distances({picks[0].vertex});
+                const double d = from_a[picks[1].vertex.idx()];
+                result->measurement.geodesic = d;
+                if (std::isfinite(d)) {
+                    const std::vector<SurfacePoint> path =
+                        geodesic_path(snapshot, from_a, picks[1].vertex);
+                    result->measurement.path_length = path_length(path);
+                    for (const SurfacePoint& p : path)
+                        result->measurement.path.push_back(p.position);
+                } else {
+                    result->measurement.failure =
+                        "the two picks are on separate components: no path on the surface";
+                }
+            }
+            if (want_distances) {
+                std::vector<Vertex> sources;
+                for (const Pick& p : picks) sources.push_back(p.vertex);
+                result->distances = result->solver->distances(sources);
+            }
+        } catch (const std::exception& e) {
+            result->failure = e.what();
+            result->measurement.failure = e.what();
+        }
+        result->measurement.computing = false;
+        result->measurement.ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                .count();
+        return JobRunner::Finish([this, result, state, request] {
+            if (request != pick_request_) return;  // picks changed meanwhile: stale
+            if (result->solver) {
+                picks_.solver = result->solver;
+                picks_.solver_state = state;
+            }
+            picks_.measurement = result->measurement;
+            picks_.distances = std::move(result->distances);
+            ++picks_.version;
+            if (!result->failure.empty()) {
+                log_.warning("geodesic distance: " + result->failure);
+            } else if (picks_.picks.size() == 2) {
+                log_.info("measure: straight " + format_distance(picks_.measurement.straight) +
+                          " geodesic " + format_distance(picks_.measurement.geodesic) +
+                          " path points " + std::to_string(picks_.measurement.path.size()));
+            }
+        });
+    });
+    if (!started) pick_job_pending_ = true;  // the runner is busy: start when it is free
+}
+
+}  // namespace trilab::viewer
