@@ -86,6 +86,27 @@ Candidate scan_all(std::size_t n, Scan scan) {
     return result;
 }
 
+/// Which side of two planes through the ray each point lies on (bits: +u, -u, +w, -w): a
+/// triangle whose corners share a bit lies wholly on one side of a plane that holds the
+/// ray and cannot meet it. One sequential pass over the points; the faces then read one byte
+/// per corner instead of a position, and test only the triangles the ray may cross.
+std::vector<std::uint8_t> side_codes(const std::vector<Point>& positions, const Ray& ray) {
+    const Vector3 d = ray.direction.normalized();
+    const Vector3 helper = std::abs(d.x()) < 0.6 ? Vector3::UnitX() : Vector3::UnitY();
+    const Vector3 u = d.cross(helper).normalized();
+    const Vector3 w = d.cross(u);
+    std::vector<std::uint8_t> codes(positions.size());
+    scan_all(positions.size(), [&](std::size_t begin, std::size_t end, Candidate&) {
+        for (std::size_t i = begin; i < end; ++i) {
+            const Vector3 q = positions[i] - ray.origin;
+            const double a = q.dot(u), b = q.dot(w);
+            codes[i] =
+                std::uint8_t((a > 0 ? 1 : 0) | (a < 0 ? 2 : 0) | (b > 0 ? 4 : 0) | (b < 0 ? 8 : 0));
+        }
+    });
+    return codes;
+}
+
 std::optional<RayHit> to_hit(const Candidate& c, const Ray& ray,
                              const std::vector<Point>& positions) {
     if (c.triangle == kInvalidIndex) return std::nullopt;
@@ -146,6 +167,7 @@ std::optional<RayHit> pick_face(const HalfedgeMesh& mesh, const std::vector<Poin
     const auto& hnext = mesh.halfedge_next_array();
     const Point origin = ray.origin;
     const Vector3 dir = ray.direction;
+    const std::vector<std::uint8_t> codes = side_codes(positions, ray);
     const Candidate best =
         scan_all(mesh.faces_size(), [&](std::size_t begin, std::size_t end, Candidate& out) {
             for (std::size_t f = begin; f < end; ++f) {
@@ -159,6 +181,11 @@ std::optional<RayHit> pick_face(const HalfedgeMesh& mesh, const std::vector<Poin
                 // A fan from corner 0 over the face's sides (one triangle for a triangle).
                 for (std::size_t guard = 0; h != h0 && guard < 1024; ++guard) {
                     const Vertex c = hto[h.idx()];
+                    if ((codes[a.idx()] & codes[b.idx()] & codes[c.idx()]) != 0) {
+                        b = c;
+                        h = hnext[h.idx()];
+                        continue;
+                    }
                     test_triangle(origin, dir, t_min, positions[a.idx()], positions[b.idx()],
                                   positions[c.idx()], Index(f), {a.idx(), b.idx(), c.idx()}, out);
                     b = c;
@@ -182,6 +209,7 @@ std::optional<RayHit> pick_triangle(const std::vector<std::array<Index, 3>>& tri
     const Point origin = ray.origin;
     const Vector3 dir = ray.direction;
     std::atomic<bool> out_of_range{false};
+    const std::vector<std::uint8_t> codes = side_codes(positions, ray);
     const Candidate best =
         scan_all(triangles.size(), [&](std::size_t begin, std::size_t end, Candidate& out) {
             for (std::size_t i = begin; i < end; ++i) {
@@ -191,6 +219,7 @@ std::optional<RayHit> pick_triangle(const std::vector<std::array<Index, 3>>& tri
                     out_of_range.store(true, std::memory_order_relaxed);
                     continue;
                 }
+                if ((codes[t[0]] & codes[t[1]] & codes[t[2]]) != 0) continue;
                 test_triangle(origin, dir, t_min, positions[t[0]], positions[t[1]], positions[t[2]],
                               Index(i), t, out);
             }

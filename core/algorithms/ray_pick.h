@@ -7,9 +7,12 @@
 // hit as it is drawn; the nearest hit with t > t_min wins, ties going to the lower triangle
 // index (deterministic). Degenerate triangles (zero area) are never hit. No acceleration
 // structure: nothing to build or keep in step with the positions, so a pick is right on any
-// state the moment it is shown (a morph frame, a preview, a level of detail); the faces are
-// split over the hardware threads above 200,000 triangles.
-// Complexity: O(F) per pick, F / threads per thread.
+// state the moment it is shown (a morph frame, a preview, a level of detail). A first pass
+// over the points files each by the side of two planes through the ray; a triangle whose
+// corners lie on one side of either plane is skipped without touching its positions (a
+// conservative test: it never skips a triangle the ray meets). Both passes are split over
+// the hardware threads above 200,000 elements.
+// Complexity: O(V + F) per pick, divided by the threads.
 #include <array>
 #include <cstdint>
 #include <optional>
