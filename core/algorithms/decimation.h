@@ -117,6 +117,10 @@ struct DecimationReport {
 /// vertex it collapsed into ends; kept vertices end at their new position). With
 /// DecimationLevels::Last the previous mesh is the input; without record_geomorph the
 /// correspondence is empty.
+/// "v:decimation_source" (Index), on every DecimationLevel's mesh: each vertex's index in the
+/// mesh given to decimate(), so a vertex can be followed back through the decimation.
+inline constexpr const char* kDecimationSourceName = "v:decimation_source";
+
 struct DecimationLevel {
     HalfedgeMesh mesh;
     MorphCorrespondence correspondence;

@@ -56,8 +56,8 @@ struct InspectionInputs {
 struct SubdivisionOrigin {
     int level = 0;  ///< "v:subdivision_level": the iteration that created the vertex
     SubdivisionStencil stencil = SubdivisionStencil::Unknown;
-    bool even = false;            ///< an old vertex of the coarser mesh
-    std::vector<Index> parents;   ///< vertex indices in the coarser mesh
+    bool even = false;           ///< an old vertex of the coarser mesh
+    std::vector<Index> parents;  ///< vertex indices in the coarser mesh
 };
 
 struct VertexInspection {
@@ -67,8 +67,8 @@ struct VertexInspection {
     unsigned valence = 0;
     bool isolated = false;
     bool boundary = false;
-    bool texture_seam = false;            ///< its corners carry different "h:texcoord"
-    std::size_t coincident_copies = 0;    ///< other vertices at exactly its position
+    bool texture_seam = false;          ///< its corners carry different "h:texcoord"
+    std::size_t coincident_copies = 0;  ///< other vertices at exactly its position
     // Curvatures (compute_curvatures(); 0 and curvature_valid false at boundary vertices).
     bool curvature_valid = false;
     double k1 = 0, k2 = 0, mean = 0, gaussian = 0, shape_index = 0;
@@ -118,8 +118,11 @@ struct FaceInspection {
     std::size_t components = 0;       ///< how many the mesh has
 };
 
-/// Inspects a live vertex. Global fields (curvatures, Laplacians) are computed over the
-/// whole mesh with the same functions as the colourings: O(V + F).
+/// Inspects a live vertex. The curvatures and Laplacian lengths come from compute_curvatures()
+/// and build_laplacian() run on the faces around the vertex and its neighbours (all they
+/// depend on; the improved umbrella rescaled to the whole mesh's mean edge length), so they
+/// equal the colourings' and the fairing's values: O(ring) plus O(V + E) for the coincident
+/// copies and the mean edge length.
 VertexInspection inspect_vertex(const HalfedgeMesh& mesh, Vertex v,
                                 const InspectionInputs& inputs = {});
 
