@@ -16,6 +16,7 @@
 #include "app/cli/generate_command.h"
 #include "app/cli/geodesic_command.h"
 #include "app/cli/info_command.h"
+#include "app/cli/inspect_command.h"
 #include "app/cli/json_writer.h"
 #include "app/cli/operation_command.h"
 #include "app/cli/record_command.h"
@@ -43,6 +44,8 @@ commands:
                                   sampled Hausdorff and RMS distance between two meshes
   geodesic IN OUT --from N[,N...] [--to M] [--json]
                                   heat-method geodesic distances as the PLY vertex `distance`
+  inspect IN (--vertex N | --edge N | --face N | --point X,Y,Z) [--json]
+                                  what the viewer's inspector shows for one element
   help                            this text
 
 operations (options: `trilab-cli NAME --help`):
@@ -72,6 +75,7 @@ std::optional<int> run_command(const std::string& cmd, const std::vector<std::st
     if (cmd == "record") return run_record_command(args);
     if (cmd == "compare") return run_compare_command(args);
     if (cmd == "geodesic") return run_geodesic_command(args);
+    if (cmd == "inspect") return run_inspect_command(args);
     for (const std::string& name : trilab::operation_names())
         if (cmd == name) return run_operation_command(name, args);
     return std::nullopt;

@@ -93,6 +93,28 @@ const char* decimation_stop_name(DecimationStop stop) {
     return enum_id<DecimationStop>(kDecimationStops, stop);
 }
 
+const char* collapse_refusal_name(CollapseRefusal refusal) {
+    switch (refusal) {
+        case CollapseRefusal::None:
+            return "none";
+        case CollapseRefusal::NoDirection:
+            return "no-direction";
+        case CollapseRefusal::MaxError:
+            return "max-error";
+        case CollapseRefusal::IndependentSet:
+            return "independent-set";
+        case CollapseRefusal::Topology:
+            return "topology";
+        case CollapseRefusal::TextureSeam:
+            return "texture-seam";
+        case CollapseRefusal::NormalFlip:
+            return "normal-flip";
+        case CollapseRefusal::Roundness:
+            return "roundness";
+    }
+    return "?";
+}
+
 double normalized_roundness(const Point& a, const Point& b, const Point& c) {
     // R = circumradius / shortest edge = (la lb lc / (4 area)) / lmin; normalized sqrt(1/3)/R.
     const double la = (b - c).norm(), lb = (c - a).norm(), lc = (a - b).norm();
@@ -266,10 +288,18 @@ struct EdgeCost {
 
 enum class Refusal { None, Topology, NormalFlip, Roundness, IndependentSet, MaxError, Seam };
 
+// The normal change measured for an explanation (Decimater::normals_ok()).
+struct NormalChange {
+    double smallest_cos = 1;  ///< of the angle between a face's normals before and after
+    bool degenerate = false;  ///< a face would have no area
+    bool refused = false;     ///< a face turns past the angle
+};
+
 class Decimater {
 public:
+    /// Sets the decimator up on `mesh`; with price_edges false (explain()) no edge is priced.
     Decimater(HalfedgeMesh& mesh, const DecimationOptions& options, ProgressiveMesh* pm,
-              DecimationReport& report)
+              DecimationReport& report, bool price_edges = true)
         : m_(mesh), o_(options), pm_(pm), report_(report) {
         cos_max_angle_ = std::cos(o_.max_normal_angle * M_PI / 180.0);
         max_error2_ = o_.max_error > 0 ? o_.max_error * o_.max_error
@@ -300,6 +330,7 @@ public:
         }
         report_.coincident_vertices = groups.members.size();
         init_quadrics();
+        if (!price_edges) return;
         const Index n_edges = Index(m_.edges_size());
         for (Index i = 0; i < n_edges; ++i) {
             if (i + kPrefetchAhead < n_edges) prefetch(Edge(i + kPrefetchAhead));
@@ -345,7 +376,7 @@ public:
                 if (!evaluate(e, choice)) continue;
                 const Halfedge h = HalfedgeMesh::halfedge(e, choice.dir);
                 const Point p = choice.target;
-                if (o_.cost == DecimationCost::Quadric && choice.cost > max_error2_) {
+                if (above_max_error(choice)) {
                     ++report_.refused_max_error;
                     hit_max_error = true;
                     break;
@@ -386,6 +417,35 @@ public:
             v = next;
         }
         return r;
+    }
+
+    /// What the decimator would decide about e as the first collapse of an iteration: the
+    /// same evaluate(), max-error test and check() as a run, every constraint answered.
+    CollapseExplanation explain(Edge e) {
+        ++iteration_;  // as iterate(): nothing is locked at the start of an iteration
+        target_ = 0;
+        CollapseExplanation x;
+        x.normal_flip_on = o_.normal_flip;
+        x.max_normal_angle = o_.max_normal_angle;
+        x.roundness_on = o_.roundness;
+        x.min_roundness = o_.min_roundness;
+        x.independent_set_on = o_.independent_set;
+        x.max_error_on = o_.max_error > 0;
+        x.max_error = o_.max_error;
+        EdgeChoice choice;
+        if (!evaluate(e, choice)) return x;  // refusal NoDirection
+        const Halfedge h = HalfedgeMesh::halfedge(e, choice.dir);
+        x.possible = true;
+        x.removed = m_.from_vertex(h);
+        x.kept = m_.to_vertex(h);
+        x.target = choice.target;
+        x.cost = choice.cost;
+        x.topology_ok = true;
+        x.max_error_refuses = above_max_error(choice);
+        if (o_.cost == DecimationCost::Quadric) x.error = std::sqrt(std::max(0.0, choice.cost));
+        const Refusal r = check(h, choice.target, &x);
+        x.refusal = x.max_error_refuses ? CollapseRefusal::MaxError : public_refusal(r);
+        return x;
     }
 
 private:
@@ -482,7 +542,7 @@ private:
             if (!evaluate(e, choice)) continue;
             const Halfedge h = HalfedgeMesh::halfedge(e, choice.dir);
             const Point p = choice.target;
-            if (o_.cost == DecimationCost::Quadric && choice.cost > max_error2_) {
+            if (above_max_error(choice)) {
                 hit_max_error = true;
                 ++report_.refused_max_error;
                 break;
@@ -785,9 +845,13 @@ private:
     // ---- legality ---------------------------------------------------------------------------
     // Whether every face at v (other than f0, f1) keeps its normal within the angle when v
     // moves to p, and does not degenerate.
-    bool normals_ok(Vertex v, const Point& p, Face f0, Face f1) const {
+    // With `turn` (explain()), every face is measured instead of stopping at the first
+    // refusal: the smallest cosine of a normal change, and whether a face degenerates.
+    bool normals_ok(Vertex v, const Point& p, Face f0, Face f1,
+                    NormalChange* turn = nullptr) const {
         const Point& x = m_.position(v);
         const Halfedge start = m_.halfedge(v);
+        bool ok = true;
         Halfedge g = start;
         do {
             const Face f = m_.face(g);
@@ -797,52 +861,138 @@ private:
                 const Vector3 before = (a - x).cross(b - x);
                 const Vector3 after = (a - p).cross(b - p);
                 const double nb = before.norm(), na = after.norm();
-                if (!(na > 1e-14 * (a - b).squaredNorm())) return false;  // degenerate
-                if (nb > 0 && before.dot(after) < cos_max_angle_ * nb * na) return false;
+                const bool degenerate = !(na > 1e-14 * (a - b).squaredNorm());
+                const bool turned = nb > 0 && before.dot(after) < cos_max_angle_ * nb * na;
+                if (turn) {
+                    turn->degenerate |= degenerate;
+                    turn->refused |= turned;
+                    if (nb > 0 && na > 0)
+                        turn->smallest_cos =
+                            std::min(turn->smallest_cos, before.dot(after) / (nb * na));
+                }
+                if (degenerate || turned) {
+                    if (!turn) return false;
+                    ok = false;
+                }
             }
             g = m_.ccw_rotated(g);
         } while (g != start);
-        return true;
+        return ok;
     }
 
-    Refusal check(Halfedge h, const Point& p) const {
+    // Whether the collapse chosen for an edge is above max_error (Quadric: its cost is the
+    // error; Roundness checks the error in check()).
+    bool above_max_error(const EdgeChoice& c) const {
+        return o_.cost == DecimationCost::Quadric && c.cost > max_error2_;
+    }
+
+    // The binary constraints and the link condition for collapsing h to p, in this order;
+    // returns the first refusal. With `why` every constraint is evaluated (none stops the
+    // others) and its answer and numbers are written there (explain()); without, the first
+    // refusal returns at once (the run).
+    Refusal check(Halfedge h, const Point& p, CollapseExplanation* why = nullptr) const {
+        Refusal first = Refusal::None;
+        // Records a refusal; true: return now.
+        const auto refuse = [&](Refusal r) {
+            if (first == Refusal::None) first = r;
+            return why == nullptr;
+        };
         const Vertex v0 = m_.from_vertex(h), v1 = m_.to_vertex(h);
         if (o_.independent_set &&
-            (locked_[v0.idx()] == iteration_ || locked_[v1.idx()] == iteration_))
-            return Refusal::IndependentSet;
-        if (o_.cost == DecimationCost::Roundness && o_.max_error > 0 &&
-            (quadric_[v0.idx()] + quadric_[v1.idx()])(p) > max_error2_)
-            return Refusal::MaxError;
-        if (!m_.is_collapse_ok(h)) return Refusal::Topology;
-        if (huv_ && on_seam(v0)) return Refusal::Seam;
+            (locked_[v0.idx()] == iteration_ || locked_[v1.idx()] == iteration_)) {
+            if (why) why->independent_set_refuses = true;
+            if (refuse(Refusal::IndependentSet)) return first;
+        }
+        if (o_.cost == DecimationCost::Roundness && (o_.max_error > 0 || why)) {
+            const double err2 = (quadric_[v0.idx()] + quadric_[v1.idx()])(p);
+            if (why) why->error = std::sqrt(std::max(0.0, err2));
+            if (o_.max_error > 0 && err2 > max_error2_) {
+                if (why) why->max_error_refuses = true;
+                if (refuse(Refusal::MaxError)) return first;
+            }
+        }
+        if (!m_.is_collapse_ok(h)) {
+            if (why) why->topology_ok = false;
+            if (refuse(Refusal::Topology)) return first;
+        }
+        if (huv_ && on_seam(v0)) {
+            if (why) why->texture_seam = true;
+            if (refuse(Refusal::Seam)) return first;
+        }
+        NormalChange turn;  // the largest normal change (explain() only)
+        double roundness = 1;
+        NormalChange* const turn_out = why ? &turn : nullptr;
         if (coincident_[v0.idx()]) {
             // A seam collapse: the other side must be legal at the same time, and the pair
             // may not overshoot the target.
             const Halfedge h2 = seam_partner(h);
             if (!h2.is_valid() || m_.n_vertices() < target_ + 2 || !m_.is_collapse_ok(h2) ||
-                !rings_apart(v0, m_.from_vertex(h2)) || !welded_link_ok(h, h2))
-                return Refusal::Topology;
+                !rings_apart(v0, m_.from_vertex(h2)) || !welded_link_ok(h, h2)) {
+                if (why) why->topology_ok = false;
+                if (refuse(Refusal::Topology) || !h2.is_valid()) return first;
+            }
             const Vertex w0 = m_.from_vertex(h2), w1 = m_.to_vertex(h2);
             if (o_.independent_set &&
-                (locked_[w0.idx()] == iteration_ || locked_[w1.idx()] == iteration_))
-                return Refusal::IndependentSet;
+                (locked_[w0.idx()] == iteration_ || locked_[w1.idx()] == iteration_)) {
+                if (why) why->independent_set_refuses = true;
+                if (refuse(Refusal::IndependentSet)) return first;
+            }
             const Point& p2 = m_.position(w1);
             const Face g0 = m_.face(h2), g1 = m_.face(HalfedgeMesh::twin(h2));
-            if (o_.normal_flip && (!normals_ok(w0, p2, g0, g1) || !normals_ok(w1, p2, g0, g1)))
-                return Refusal::NormalFlip;
-            if (o_.roundness && std::min(min_roundness_at(w0, p2, g0, g1),
-                                         min_roundness_at(w1, p2, g0, g1)) < o_.min_roundness)
-                return Refusal::Roundness;
+            if ((o_.normal_flip || why) &&
+                (!normals_ok(w0, p2, g0, g1, turn_out) || !normals_ok(w1, p2, g0, g1, turn_out))) {
+                if (o_.normal_flip && refuse(Refusal::NormalFlip)) return first;
+            }
+            if (o_.roundness || why) {
+                roundness =
+                    std::min(min_roundness_at(w0, p2, g0, g1), min_roundness_at(w1, p2, g0, g1));
+                if (o_.roundness && roundness < o_.min_roundness && refuse(Refusal::Roundness))
+                    return first;
+            }
         } else if (!groups_.empty() && !welded_link_ok(h, Halfedge())) {
-            return Refusal::Topology;
+            if (why) why->topology_ok = false;
+            if (refuse(Refusal::Topology)) return first;
         }
         const Face f0 = m_.face(h), f1 = m_.face(HalfedgeMesh::twin(h));
-        if (o_.normal_flip && (!normals_ok(v0, p, f0, f1) || !normals_ok(v1, p, f0, f1)))
-            return Refusal::NormalFlip;
-        if (o_.roundness && std::min(min_roundness_at(v0, p, f0, f1),
-                                     min_roundness_at(v1, p, f0, f1)) < o_.min_roundness)
-            return Refusal::Roundness;
-        return Refusal::None;
+        if ((o_.normal_flip || why) &&
+            (!normals_ok(v0, p, f0, f1, turn_out) || !normals_ok(v1, p, f0, f1, turn_out))) {
+            if (o_.normal_flip && refuse(Refusal::NormalFlip)) return first;
+        }
+        if (o_.roundness || why) {
+            roundness = std::min(roundness, std::min(min_roundness_at(v0, p, f0, f1),
+                                                     min_roundness_at(v1, p, f0, f1)));
+            if (o_.roundness && roundness < o_.min_roundness && refuse(Refusal::Roundness))
+                return first;
+        }
+        if (why) {
+            why->largest_normal_change =
+                std::acos(std::min(1.0, std::max(-1.0, turn.smallest_cos))) * 180.0 / M_PI;
+            why->degenerate_face = turn.degenerate;
+            why->normal_flip_refuses = o_.normal_flip && (turn.refused || turn.degenerate);
+            why->roundness = roundness;
+            why->roundness_refuses = o_.roundness && roundness < o_.min_roundness;
+        }
+        return first;
+    }
+
+    static CollapseRefusal public_refusal(Refusal r) {
+        switch (r) {
+            case Refusal::None:
+                return CollapseRefusal::None;
+            case Refusal::Topology:
+                return CollapseRefusal::Topology;
+            case Refusal::NormalFlip:
+                return CollapseRefusal::NormalFlip;
+            case Refusal::Roundness:
+                return CollapseRefusal::Roundness;
+            case Refusal::IndependentSet:
+                return CollapseRefusal::IndependentSet;
+            case Refusal::MaxError:
+                return CollapseRefusal::MaxError;
+            case Refusal::Seam:
+                return CollapseRefusal::TextureSeam;
+        }
+        return CollapseRefusal::None;
     }
 
     void count(Refusal r) {
@@ -1090,6 +1240,12 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
     DecimationReport& report = result.report;
 
     HalfedgeMesh work = mesh;
+    // Every vertex's index in the input, carried through the collapses and compactions.
+    {
+        auto source = work.vertex_property<Index>(kDecimationSourceName);
+        std::vector<Index>& s = source.vector();
+        for (Index i = 0; i < s.size(); ++i) s[i] = i;
+    }
     ProgressiveMesh* pm = options.record_progressive ? &result.progressive : nullptr;
     if (pm) {
         pm->positions = work.positions();
@@ -1195,6 +1351,19 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
 DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& options) {
     NullProgress progress;
     return decimate(mesh, options, progress);
+}
+
+CollapseExplanation explain_collapse(const HalfedgeMesh& mesh, Edge e,
+                                     const DecimationOptions& options) {
+    check_options(options);
+    if (!mesh.is_valid(e) || mesh.is_deleted(e))
+        throw InvalidArgument("explain_collapse: edge " + std::to_string(e.idx()) +
+                              " is not an edge of the mesh (" +
+                              count_text(mesh.n_edges(), "edge", "edges") + ")");
+    HalfedgeMesh work = mesh;  // shares the arrays (copy on write): nothing of `mesh` changes
+    DecimationReport report;
+    Decimater decimater(work, options, nullptr, report, false);
+    return decimater.explain(e);
 }
 
 std::vector<std::array<Vertex, 2>> next_collapses(const HalfedgeMesh& mesh,

@@ -117,6 +117,10 @@ struct DecimationReport {
 /// vertex it collapsed into ends; kept vertices end at their new position). With
 /// DecimationLevels::Last the previous mesh is the input; without record_geomorph the
 /// correspondence is empty.
+/// "v:decimation_source" (Index), on every DecimationLevel's mesh: each vertex's index in the
+/// mesh given to decimate(), so a vertex can be followed back through the decimation.
+inline constexpr const char* kDecimationSourceName = "v:decimation_source";
+
 struct DecimationLevel {
     HalfedgeMesh mesh;
     MorphCorrespondence correspondence;
@@ -142,6 +146,55 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
 /// indices, for drawing. Runs the decimation on a copy.
 std::vector<std::array<Vertex, 2>> next_collapses(const HalfedgeMesh& mesh,
                                                   const DecimationOptions& options);
+
+/// Why the decimator refuses a collapse, in the order it checks (CollapseExplanation).
+enum class CollapseRefusal {
+    None,            ///< it would collapse
+    NoDirection,     ///< neither end may move (boundary, texture seam or coincident rules)
+    MaxError,        ///< the quadric error exceeds max_error
+    IndependentSet,  ///< an end is locked by an earlier collapse of the iteration
+    Topology,        ///< the link condition (also on the welded surface of a seam)
+    TextureSeam,     ///< the removed vertex is on a texture seam
+    NormalFlip,      ///< a changed face turns by more than max_normal_angle or degenerates
+    Roundness,       ///< a changed face is less round than min_roundness
+};
+/// "none", "no-direction", "max-error", "independent-set", "topology", "texture-seam",
+/// "normal-flip", "roundness".
+const char* collapse_refusal_name(CollapseRefusal refusal);
+
+/// What the decimator would decide about collapsing one edge now, as the first collapse of a
+/// run with the given options, and the numbers that decide it. Every answer comes from the
+/// decimator's own checks (decimation.cpp), each constraint evaluated on its own (a run stops
+/// at the first refusal, `refusal`).
+struct CollapseExplanation {
+    bool possible = false;  ///< some direction is allowed; the rest is unset when false
+    Vertex removed, kept;   ///< the direction the decimator chooses (removed moves into kept)
+    Point target = Point::Zero();  ///< where the kept vertex goes
+    /// The priority: the quadric error (squared distance) for Quadric, minus the smallest
+    /// normalized roundness of the changed faces for Roundness (smaller goes first).
+    double cost = 0;
+    CollapseRefusal refusal = CollapseRefusal::NoDirection;  ///< the first refusal, or None
+    bool topology_ok = false;   ///< the link condition (with a seam's other side)
+    bool texture_seam = false;  ///< refused: the removed vertex is on a texture seam
+    // Each binary constraint: whether it is switched on, whether it refuses, and its numbers.
+    bool normal_flip_on = false, normal_flip_refuses = false;
+    double largest_normal_change = 0;  ///< degrees, over the changed faces
+    bool degenerate_face = false;      ///< a changed face would have no area (refused)
+    double max_normal_angle = 0;       ///< the limit, degrees
+    bool roundness_on = false, roundness_refuses = false;
+    double roundness = 0;      ///< smallest normalized roundness of the changed faces
+    double min_roundness = 0;  ///< the limit
+    bool independent_set_on = false, independent_set_refuses = false;  ///< never at a start
+    bool max_error_on = false, max_error_refuses = false;
+    double error = 0;      ///< the quadric error as a distance (sqrt of the quadric cost)
+    double max_error = 0;  ///< the limit
+};
+
+/// Explains the collapse of live edge `e` of `mesh` under `options` (see CollapseExplanation).
+/// Sets up the decimator on `mesh` without copying it (quadrics, boundary flags, coincident
+/// vertices: O(V + F)); throws InvalidArgument for bad options or a bad edge.
+CollapseExplanation explain_collapse(const HalfedgeMesh& mesh, Edge e,
+                                     const DecimationOptions& options);
 
 /// Normalized roundness of the triangle (a, b, c): sqrt(1/3) * shortest edge / circumradius,
 /// in [0, 1], 1 for an equilateral triangle, 0 for a degenerate one.

@@ -56,7 +56,9 @@
 // flipped edges cross old edges: a new triangle takes its old corner's uv from the old face
 // of the halfedge it replaces and each centroid's uv from that centroid's face, so a seam on
 // an old interior edge is not kept by Sqrt3 (vertex uvs are exact). Every other attribute
-// (normals, colours, ...) is dropped; "v:subdivision_level" is added (input vertices 0).
+// (normals, colours, ...) is dropped; "v:subdivision_level" is added (input vertices 0), and
+// the step's provenance: "v:subdivision_stencil" (the rule that placed each vertex) and
+// "v:subdivision_parents" (the coarser vertices it started from; subdivision.h).
 // Isolated vertices are kept, unmoved. An input with garbage is collected on a copy first
 // (indices then refer to the collected mesh). Two faces with the same three vertices (a closed
 // two-triangle "pillow") would give double edges in every scheme: subdivide() sets them aside
@@ -122,6 +124,8 @@ constexpr std::size_t kMaxFaces = 50'000'000;
 constexpr std::size_t kCheckMask = 0xFFFF;  // check for cancellation every 64k elements
 
 const char* const kLevelName = "v:subdivision_level";
+const char* const kStencilName = "v:subdivision_stencil";
+const char* const kParentsName = "v:subdivision_parents";
 
 /// Plain pointers into a mesh's connectivity and position arrays (its built-in properties),
 /// fetched once so that the inner loops index arrays instead of going through the property
@@ -240,9 +244,72 @@ void add_levels(const HalfedgeMesh& m, HalfedgeMesh& out, int level) {
     std::fill_n(levels.begin(), nv, 0);
 }
 
+/// Provenance arrays of a new level ("v:subdivision_stencil", "v:subdivision_parents"), all
+/// entries Unknown and without parents.
+struct Provenance {
+    int* stencil;
+    SubdivisionParents* parents;
+    explicit Provenance(HalfedgeMesh& out)
+        : stencil(out.add_vertex_property<int>(kStencilName, 0).vector().data()),
+          parents(out.add_vertex_property<SubdivisionParents>(
+                         kParentsName, SubdivisionParents::Constant(kInvalidIndex))
+                      .vector()
+                      .data()) {}
+    void set(Index v, SubdivisionStencil st, Index a, Index b = kInvalidIndex,
+             Index c = kInvalidIndex) {
+        stencil[v] = int(st);
+        parents[v] = SubdivisionParents(a, b, c);
+    }
+};
+
 // ---------------------------------------------------------------------------------------
 // 1-to-4 refinement (Loop, Butterfly, Modified Butterfly)
 // ---------------------------------------------------------------------------------------
+
+/// The stencils and parents of a 1-to-4 level (old vertex v keeps index v, edge e's vertex is
+/// nv + e), classified on `m` itself (coincident copies are marked later, mark_creases()).
+void provenance_1to4(const In& m, SubdivisionScheme scheme, HalfedgeMesh& out) {
+    const Index nv = m.nv, ne = m.ne;
+    Provenance pr(out);
+    std::vector<unsigned> valence(nv, 0);
+    for (Index hi = 0; hi < 2 * ne; ++hi) ++valence[m.to_i(hi)];
+    const bool loop = scheme == SubdivisionScheme::Loop;
+    const auto interior = [&](Index v) {
+        const Halfedge h = m.vh[v];
+        return h.is_valid() && !m.boundary(h.idx());
+    };
+    for (Index v = 0; v < nv; ++v) {
+        SubdivisionStencil st = SubdivisionStencil::EvenKept;
+        if (loop && m.vh[v].is_valid())
+            st = !interior(v)      ? SubdivisionStencil::EvenBoundary
+                 : valence[v] == 6 ? SubdivisionStencil::EvenRegular
+                                   : SubdivisionStencil::EvenExtraordinary;
+        pr.set(v, st, v);
+    }
+    const bool modified = scheme == SubdivisionScheme::ModifiedButterfly;
+    for (Index e = 0; e < ne; ++e) {
+        const Index a = m.to_i(2 * e + 1), b = m.to_i(2 * e);
+        SubdivisionStencil st = SubdivisionStencil::OddRegular;
+        if (m.boundary(2 * e) || m.boundary(2 * e + 1))
+            st = SubdivisionStencil::OddBoundary;
+        else if (modified && ((interior(a) && valence[a] != 6) || (interior(b) && valence[b] != 6)))
+            st = SubdivisionStencil::OddExtraordinary;
+        pr.set(nv + e, st, a, b);
+    }
+}
+
+/// Marks the vertices of a new level that have coincident copies (a seam's two sides, the
+/// copies of a split vertex; `groups` by start position) as creases: their rule was the
+/// welded surface's (1-to-4) or the boundary rule on both sides, averaged (Sqrt3).
+void mark_creases(const CoincidentGroups& groups, HalfedgeMesh& level) {
+    auto stencil = level.get_vertex_property<int>(kStencilName);
+    if (!stencil) return;
+    for (Index v : groups.members) {
+        const auto st = SubdivisionStencil(stencil[Vertex(v)]);
+        stencil[Vertex(v)] = int(is_even_stencil(st) ? SubdivisionStencil::EvenCrease
+                                                     : SubdivisionStencil::OddCrease);
+    }
+}
 
 inline Index half_a(Index h) {
     return 4 * (h >> 1) + 2 * (h & 1u);
@@ -547,6 +614,7 @@ SubdivisionLevel refine_1to4(const HalfedgeMesh& mesh, SubdivisionScheme scheme,
         positions_1to4(m, scheme, p, stage);
     stage.progress.check_cancelled();
     add_levels(mesh, out.mesh, level);
+    provenance_1to4(m, scheme, out.mesh);
     carry_uv_1to4(mesh, out.mesh);
     if (morph) {
         // Even vertices start where they were, odd ones at their edge's midpoint.
@@ -850,6 +918,32 @@ void carry_corner_uv_sqrt3(const HalfedgeMesh& mesh, const In& m, const Sqrt3Num
     }
 }
 
+/// The stencils and parents of a Sqrt3 level: old vertices keep their index, face f's
+/// centroid is nv + f, the boundary split vertices follow (even steps).
+void provenance_sqrt3(const In& m, const Sqrt3Numbering n, bool even_step, HalfedgeMesh& out) {
+    const Index nv = m.nv, ne = m.ne, nf = m.nf;
+    Provenance pr(out);
+    for (Index v = 0; v < nv; ++v) {
+        const Halfedge h = m.vh[v];
+        SubdivisionStencil st = SubdivisionStencil::EvenRelaxed;
+        if (!h.is_valid())
+            st = SubdivisionStencil::EvenKept;
+        else if (m.boundary(h.idx()))
+            st = even_step ? SubdivisionStencil::EvenBoundary : SubdivisionStencil::EvenKept;
+        pr.set(v, st, v);
+    }
+    for (Index f = 0; f < nf; ++f) {
+        const Index h = m.fh[f].idx(), hn = m.next_i(h);
+        pr.set(nv + f, SubdivisionStencil::OddFace, m.to_i(h), m.to_i(hn), m.to_i(m.next_i(hn)));
+    }
+    for (Index t = 0; even_step && t < 2 * ne; ++t) {
+        if (!m.boundary(t)) continue;
+        for (Index which = 0; which < 2; ++which)
+            pr.set(n.split_vertex(t, which), SubdivisionStencil::OddBoundarySplit, m.from_i(t),
+                   m.to_i(t));
+    }
+}
+
 /// One Sqrt3 iteration (see Sqrt3Numbering): the connectivity, written once per halfedge,
 /// then the positions (and morph start positions), the levels and the texture coordinates.
 SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int level, bool morph,
@@ -892,6 +986,7 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
     stage.report(0.8);
 
     add_levels(mesh, mesh_out, level);
+    provenance_sqrt3(m, n, even_step, mesh_out);
     carry_vertex_uv_sqrt3(mesh, m, n, even_step, mesh_out);
     carry_corner_uv_sqrt3(mesh, m, n, even_step, mesh_out);
     stage.report(1.0);
@@ -899,6 +994,52 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
 }
 
 }  // namespace
+
+const char* subdivision_stencil_label(SubdivisionStencil stencil) {
+    switch (stencil) {
+        case SubdivisionStencil::Unknown:
+            return "not made by this step";
+        case SubdivisionStencil::EvenRegular:
+            return "even, regular (valence 6)";
+        case SubdivisionStencil::EvenExtraordinary:
+            return "even, extraordinary (valence other than 6)";
+        case SubdivisionStencil::EvenBoundary:
+            return "even, boundary rule";
+        case SubdivisionStencil::EvenCrease:
+            return "even, crease of a seam (kept with its coincident copies)";
+        case SubdivisionStencil::EvenKept:
+            return "even, kept in place";
+        case SubdivisionStencil::EvenRelaxed:
+            return "even, relaxed with its ring (Sqrt3)";
+        case SubdivisionStencil::OddRegular:
+            return "odd, edge point, regular stencil";
+        case SubdivisionStencil::OddExtraordinary:
+            return "odd, edge point, extraordinary stencil";
+        case SubdivisionStencil::OddBoundary:
+            return "odd, edge point, boundary rule";
+        case SubdivisionStencil::OddCrease:
+            return "odd, crease of a seam (kept with its coincident copies)";
+        case SubdivisionStencil::OddFace:
+            return "odd, face centroid (Sqrt3)";
+        case SubdivisionStencil::OddBoundarySplit:
+            return "odd, boundary edge split in three (Sqrt3)";
+    }
+    return "unknown";
+}
+
+bool is_even_stencil(SubdivisionStencil stencil) {
+    switch (stencil) {
+        case SubdivisionStencil::EvenRegular:
+        case SubdivisionStencil::EvenExtraordinary:
+        case SubdivisionStencil::EvenBoundary:
+        case SubdivisionStencil::EvenCrease:
+        case SubdivisionStencil::EvenKept:
+        case SubdivisionStencil::EvenRelaxed:
+            return true;
+        default:
+            return false;
+    }
+}
 
 const char* scheme_name(SubdivisionScheme scheme) {
     return enum_id<SubdivisionScheme>(kSubdivisionSchemes, scheme);
@@ -959,6 +1100,7 @@ void check_finite_level(const HalfedgeMesh& m, SubdivisionScheme scheme, int ite
 /// where the level's rule gave them different positions (copies that the weld could not
 /// join, a non-manifold point or edge; Sqrt3, whose flips would dissolve a seam, treats one
 /// as a boundary curve on both sides) they get their mean, bit for bit the same.
+/// Their stencils are marked as creases (mark_creases()).
 void keep_coincident_together(SubdivisionLevel& level) {
     const std::vector<Point>& start = level.correspondence.positions;
     HalfedgeMesh& m = level.mesh;
@@ -966,6 +1108,7 @@ void keep_coincident_together(SubdivisionLevel& level) {
     for (Vertex v : m.vertices()) skip[v.idx()] = m.is_isolated(v) ? 1 : 0;
     const CoincidentGroups groups = find_coincident_points(start.data(), start.size(), skip.data());
     unify_groups(groups, m.positions().data());
+    mark_creases(groups, m);
 }
 
 /// Appends the pillows set aside to a level (subdivision level 0, starting where they are).
@@ -974,6 +1117,13 @@ void put_back(const HalfedgeMesh& pillows, SubdivisionLevel& level) {
     if (auto levels = level.mesh.get_vertex_property<int>(kLevelName))
         for (std::size_t v = first; v < level.mesh.vertices_size(); ++v)
             levels[Vertex(Index(v))] = 0;
+    // Not made by the step: no stencil, no parents.
+    if (auto stencil = level.mesh.get_vertex_property<int>(kStencilName))
+        for (std::size_t v = first; v < level.mesh.vertices_size(); ++v)
+            stencil[Vertex(Index(v))] = int(SubdivisionStencil::Unknown);
+    if (auto parents = level.mesh.get_vertex_property<SubdivisionParents>(kParentsName))
+        for (std::size_t v = first; v < level.mesh.vertices_size(); ++v)
+            parents[Vertex(Index(v))] = SubdivisionParents::Constant(kInvalidIndex);
     auto& start = level.correspondence.positions;
     if (!start.empty())
         for (Vertex v : pillows.vertices()) start.push_back(pillows.position(v));

@@ -51,11 +51,42 @@ struct SubdivisionOptions {
     bool morph = true;
 };
 
+/// The rule that placed a vertex in one subdivision step ("v:subdivision_stencil").
+/// Even vertices are the coarser mesh's vertices, odd ones are new.
+enum class SubdivisionStencil : int {
+    Unknown = 0,
+    EvenRegular,        ///< Loop: interior vertex of valence 6
+    EvenExtraordinary,  ///< Loop: interior vertex of another valence
+    EvenBoundary,       ///< Loop, Sqrt3: boundary rule (1/8, 3/4, 1/8 or its Sqrt3 analogue)
+    EvenCrease,         ///< on a seam of coincident copies: the boundary rule, welded
+    EvenKept,           ///< interpolating schemes: the old vertex stays where it is
+    EvenRelaxed,        ///< Sqrt3: interior vertex relaxed with its ring
+    OddRegular,         ///< edge vertex, both ends regular (Loop 3/8-1/8, the 8/10-point butterfly)
+    OddExtraordinary,   ///< Butterfly family: an end is extraordinary (Zorin's or a fallback)
+    OddBoundary,        ///< edge vertex on a boundary edge
+    OddCrease,          ///< edge vertex on a seam of coincident copies
+    OddFace,            ///< Sqrt3: the centroid of a face
+    OddBoundarySplit,   ///< Sqrt3: one of the two vertices splitting a boundary edge in three
+};
+/// Words for a stencil ("even, regular (valence 6)", "odd, face centroid").
+const char* subdivision_stencil_label(SubdivisionStencil stencil);
+/// Whether the stencil places an old (even) vertex.
+bool is_even_stencil(SubdivisionStencil stencil);
+/// Parents of a vertex in the previous level ("v:subdivision_parents").
+using SubdivisionParents = Eigen::Matrix<Index, 3, 1>;
+
 /// One subdivision level: the refined mesh and how it morphs from the previous level
 /// (MorphCorrespondence::Kind::FromEarlier: every vertex's start position on the coarser
 /// surface; even vertices start at their old position, odd ones at their parent edge's
-/// midpoint or parent face's centroid). The mesh carries "v:subdivision_level" (int: the
-/// iteration that created the vertex, 0 for the original vertices).
+/// midpoint or parent face's centroid). The mesh carries, per vertex:
+///  - "v:subdivision_level" (int): the iteration that created the vertex, 0 for the original
+///    vertices;
+///  - "v:subdivision_stencil" (int, a SubdivisionStencil): the rule of this level's step that
+///    placed the vertex;
+///  - "v:subdivision_parents" (SubdivisionParents): the vertices of the previous level (indices
+///    into the previous level's mesh) the rule started from: an even vertex's old self, an
+///    edge vertex's two ends, a Sqrt3 face vertex's three corners; unused entries
+///    kInvalidIndex.
 struct SubdivisionLevel {
     HalfedgeMesh mesh;
     MorphCorrespondence correspondence;

@@ -97,6 +97,21 @@ check "subdivide refuses bad iterations with one line naming the option" bash -c
      [ \$(wc -l < '$tmp/e') -eq 1 ] && grep -q -- '--iterations' '$tmp/e' && [ ! -e '$tmp/bad.obj' ]"
 check "subdivide refuses a missing OUT" bash -c \
     "! '$cli' subdivide '$tmp/d.obj' 2> '$tmp/e' && [ \$(wc -l < '$tmp/e') -eq 1 ]"
+check "inspect prints a vertex's curvatures and Laplacian lengths" bash -c \
+    "'$cli' inspect '$tmp/d.obj' --vertex 10 > '$tmp/iv.txt' && grep -q 'Mean curvature' '$tmp/iv.txt' && \
+     grep -q 'Laplacian|, Second-order' '$tmp/iv.txt'"
+check "inspect --edge --json holds the costs and the constraints' numbers" bash -c \
+    "'$cli' inspect '$tmp/d.obj' --edge 5 --roundness 0.99 --json > '$tmp/ie.json' && \
+     $(declare -f json_has); json_has '$tmp/ie.json' ms length dihedral_angle cotangent_weight \
+     quadric_cost roundness_cost collapse refusal normal_flip roundness max_error"
+check "inspect --point picks the nearest face and names its corner and side" bash -c \
+    "'$cli' inspect '$tmp/d.obj' --point 0,0,0 --json > '$tmp/ip.json' && \
+     $(declare -f json_has); json_has '$tmp/ip.json' face area angles aspect_ratio component \
+     nearest_vertex nearest_edge"
+check "inspect refuses a bad index naming the option" bash -c \
+    "! '$cli' inspect '$tmp/d.obj' --face 99999999 2> '$tmp/e' && grep -q -- '--face: face 99999999' '$tmp/e' && \
+     ! '$cli' inspect '$tmp/d.obj' --vertex x 2> '$tmp/e' && grep -q -- '--vertex' '$tmp/e' && \
+     ! '$cli' inspect '$tmp/d.obj' --point 1,2 2> '$tmp/e' && grep -q -- '--point' '$tmp/e'"
 if "$cli" render "$tmp/d.obj" --out "$tmp/probe.png" --size 16x16 >/dev/null 2>&1; then
     check "render writes a PNG of the requested size" bash -c \
         "'$cli' render '$tmp/d.obj' --out '$tmp/r.png' --size 320x200 --json > '$tmp/r.json' && \
