@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/algorithms/inspect.h"
 #include "core/algorithms/ray_pick.h"
 #include "core/halfedge_mesh.h"
 
@@ -60,6 +61,16 @@ struct Measurement {
     double ms = 0;        ///< the job's time (a factorization on a new state)
 };
 
+/// What the inspector says about the first pick (core/algorithms/inspect.h), computed off the
+/// render thread on the picks' state.
+struct PickInspection {
+    std::optional<VertexInspection> vertex;
+    std::optional<EdgeInspection> edge;
+    std::optional<FaceInspection> face;
+    std::string failure;
+    double ms = 0;
+};
+
 /// The picks and what was measured with them; part of the session, not of the history.
 struct PickSet {
     /// At most two: the second is where a measurement ends.
@@ -70,6 +81,8 @@ struct PickSet {
     /// Geodesic distance from every picked vertex, per vertex of `mesh` (the "geodesic
     /// distance" colouring); empty until computed.
     std::vector<double> distances;
+    /// The first pick's inspection; null while it is computed.
+    std::shared_ptr<const PickInspection> inspection;
     /// Changes whenever anything above changes (the view redraws its highlight).
     std::uint64_t version = 0;
     /// The heat method's factorization, for `mesh`'s state (kept for later sources).

@@ -276,6 +276,7 @@ void Session::load_texture(const std::string& path) {
 
 bool Session::poll() {
     start_pick_job();
+    take_inspection();
     const JobRunner::Outcome outcome = jobs_.poll();
     using Kind = JobRunner::Outcome::Kind;
     if (outcome.kind == Kind::None) return false;

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <future>
 #include <memory>
 #include <optional>
 #include <string>
@@ -21,6 +22,7 @@
 #include "app/session/job_runner.h"
 #include "app/session/log.h"
 #include "app/session/picking.h"
+#include "core/algorithms/decimation.h"
 #include "core/algorithms/level_of_detail.h"
 #include "core/algorithms/morph.h"
 #include "core/algorithms/spectral.h"
@@ -190,6 +192,11 @@ public:
     const PickSet& picks() const { return picks_; }
     /// Keep the geodesic distance from the picked vertices up to date (the colouring).
     void want_pick_distances(bool want);
+    /// The decimation options the Inspector explains an edge's collapse with (the Decimation
+    /// panel's); a change inspects the picks again.
+    void set_inspection_options(const DecimationOptions& options);
+    /// Waits for the inspection of the picks (tests and scripted runs).
+    void finish_inspection();
 
     // ---- documents ---------------------------------------------------------------------------
     /// Computes texture coordinates by `projection` on the current shape (a history entry).
@@ -257,6 +264,9 @@ private:
     void follow_picks();
     /// Starts the pending geodesic job when the runner is free.
     void start_pick_job();
+    /// Inspects the first pick on a worker thread (core/algorithms/inspect.h); takes its result.
+    void start_inspection();
+    void take_inspection();
     /// The frequency document's validity and applied band for the current state (it changes
     /// only with the state or the decomposition: called there, not every frame).
     void update_frequency_document();
@@ -273,6 +283,9 @@ private:
     bool pick_job_pending_ = false;
     bool want_pick_distances_ = false;
     std::uint64_t pick_request_ = 0;  ///< changes with every request (stale job results)
+    DecimationOptions inspection_options_;
+    std::future<std::shared_ptr<const PickInspection>> inspection_future_;
+    std::uint64_t inspection_request_ = 0;  ///< the pick request the future inspects
     SessionEvents events_;
     HalfedgeMesh::Revision morph_topology_;  ///< the connectivity of the morph frame shown
 };

@@ -66,6 +66,7 @@ std::optional<Pick> Session::pick(const Ray& ray, double t_min, bool second) {
     ++picks_.version;
     log_.info("picked " + pick_line(*hit));
     start_pick_job();
+    start_inspection();
     return hit;
 }
 
@@ -128,6 +129,66 @@ void Session::follow_picks() {
     ++pick_request_;
     ++picks_.version;
     start_pick_job();
+    start_inspection();
+}
+
+void Session::set_inspection_options(const DecimationOptions& options) {
+    const DecimationOptions& o = inspection_options_;
+    if (o.cost == options.cost && o.min_roundness == options.min_roundness &&
+        o.max_normal_angle == options.max_normal_angle && o.max_error == options.max_error &&
+        o.independent_set == options.independent_set && o.roundness == options.roundness &&
+        o.normal_flip == options.normal_flip)
+        return;
+    inspection_options_ = options;
+    if (!picks_.picks.empty()) start_inspection();
+}
+
+void Session::start_inspection() {
+    picks_.inspection.reset();
+    if (picks_.picks.empty()) return;
+    const HalfedgeMesh snapshot = picks_.mesh;  // copy-on-write: the worker's own
+    const Pick pick = picks_.picks.front();
+    const DecimationOptions options = inspection_options_;
+    auto reference = std::make_shared<const std::vector<Point>>(reference_positions());
+    inspection_request_ = pick_request_;
+    // A running inspection finishes on its own (its result is then stale and dropped).
+    inspection_future_ = std::async(std::launch::async, [snapshot, pick, options, reference] {
+        auto out = std::make_shared<PickInspection>();
+        const auto t0 = std::chrono::steady_clock::now();
+        try {
+            InspectionInputs inputs;
+            if (reference->size() == snapshot.vertices_size()) inputs.reference = reference.get();
+            if (snapshot.is_valid(pick.vertex) && !snapshot.is_deleted(pick.vertex))
+                out->vertex = inspect_vertex(snapshot, pick.vertex, inputs);
+            if (pick.edge.is_valid() && snapshot.is_valid(pick.edge) &&
+                !snapshot.is_deleted(pick.edge))
+                out->edge = inspect_edge(snapshot, pick.edge, options);
+            if (pick.face.is_valid() && snapshot.is_valid(pick.face) &&
+                !snapshot.is_deleted(pick.face))
+                out->face = inspect_face(snapshot, pick.face);
+        } catch (const std::exception& e) {
+            out->failure = e.what();
+        }
+        out->ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                      .count();
+        return std::shared_ptr<const PickInspection>(out);
+    });
+}
+
+void Session::take_inspection() {
+    if (!inspection_future_.valid() ||
+        inspection_future_.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+        return;
+    std::shared_ptr<const PickInspection> result = inspection_future_.get();
+    if (inspection_request_ != pick_request_ || picks_.picks.empty()) return;  // stale
+    if (!result->failure.empty()) log_.warning("inspector: " + result->failure);
+    picks_.inspection = std::move(result);
+    ++picks_.version;
+}
+
+void Session::finish_inspection() {
+    if (inspection_future_.valid()) inspection_future_.wait();
+    take_inspection();
 }
 
 void Session::start_pick_job() {

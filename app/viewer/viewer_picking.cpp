@@ -4,11 +4,15 @@
 
 #include <glad/gl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <string>
 
+#include "app/ops/decimate_op.h"
+#include "app/session/provenance.h"
+#include "core/algorithms/inspect.h"
 #include "core/errors.h"
 #include "core/geometry.h"
 #include "core/number_text.h"
@@ -122,11 +126,21 @@ void Viewer::draw_pick_overlay() const {
 }
 
 void Viewer::update_inspector() {
+    try {
+        session_.set_inspection_options(decimation_options(panels_.decimation.op));
+    } catch (const std::exception&) {
+        // The panel shows its own error; the inspector keeps the last valid options.
+    }
     const PickSet& set = session_.picks();
+    const FrequencyDocument& frequency = session_.document().frequency;
     const std::string key = std::to_string(set.version) + " " +
                             std::to_string(session_.history().current()) + " " +
+                            std::to_string(session_.shown().version) + " " +
                             std::to_string(int(view_.settings.coloring)) + " " +
-                            std::to_string(view_.colors.colors.size());
+                            std::to_string(view_.colors.colors.size()) + " " +
+                            std::to_string(frequency.valid) + " " +
+                            std::to_string(panels_.frequency.lo) + " " +
+                            std::to_string(panels_.frequency.hi);
     if (key == inspector_key_) return;
     inspector_key_ = key;
     InspectorView& view = inspector_;
@@ -135,49 +149,86 @@ void Viewer::update_inspector() {
     if (!view.has_picks) return;
     const HalfedgeMesh& mesh = set.mesh;
     const Pick& p = set.picks.front();
-    if (p.on_level) view.note = "picked on the level of detail: the document's elements are shown";
-    if (mesh.is_valid(p.vertex)) {
-        InspectorView::Group g{"Vertex " + std::to_string(p.vertex.idx()), {}};
-        g.rows.push_back({"position", vec_text(mesh.position(p.vertex))});
-        if (!mesh.is_isolated(p.vertex)) {
-            g.rows.push_back({"normal", vec_text(vertex_normal(mesh, p.vertex))});
-            std::size_t valence = 0;
-            for (Vertex n : mesh.vertices_around(p.vertex)) {
-                (void)n;
-                ++valence;
+    if (p.on_level)
+        view.note = "picked on the level of detail: the document's elements are shown";
+    const auto add_fields = [&](std::string title, const std::vector<InspectionField>& fields) {
+        InspectorView::Group g{std::move(title), {}};
+        for (const InspectionField& f : fields) g.rows.push_back({f.label, f.text});
+        view.groups.push_back(std::move(g));
+    };
+    const PickInspection* inspection = set.inspection.get();
+    if (!inspection) {
+        view.note += (view.note.empty() ? "" : "; ") + std::string("inspecting...");
+    } else {
+        if (inspection->vertex) {
+            std::vector<InspectionField> fields = inspection_fields(*inspection->vertex);
+            const Index v = p.vertex.idx();
+            // What the view shows at this vertex: the colouring's value, the eigenvectors of
+            // the band, the band's displacement.
+            if (v < view_.colors.values.size() && !std::isnan(view_.colors.values[v]))
+                fields.push_back({"coloring", "Colouring (" + view_.colors.label + ")",
+                                  number(view_.colors.values[v]),
+                                  {view_.colors.values[v]}});
+            const SpectralDecomposition* d = frequency.decomposition.get();
+            if (frequency.valid && d && v < d->map.row_of.size() &&
+                d->map.row_of[v] != kInvalidIndex && mesh.vertices_size() == d->map.row_of.size()) {
+                const Eigen::Index row = Eigen::Index(d->map.row_of[v]);
+                const std::size_t lo =
+                    std::min(std::size_t(std::max(0, panels_.frequency.lo)), d->size() - 1);
+                const std::size_t hi =
+                    std::min(std::size_t(std::max(0, panels_.frequency.hi)), d->size() - 1);
+                constexpr std::size_t kMaxShown = 8;
+                for (std::size_t k = lo; k <= hi && k < lo + kMaxShown; ++k) {
+                    const double e = d->eigenvectors(row, Eigen::Index(k));
+                    fields.push_back({"eigenvector", "Frequency " + std::to_string(k), number(e), {e}});
+                }
+                if (hi >= lo + kMaxShown)
+                    fields.push_back({"eigenvector", "Frequencies",
+                                      "the first 8 of the band " + std::to_string(lo) + ".." +
+                                          std::to_string(hi) + " are listed",
+                                      {}});
             }
-            g.rows.push_back({"valence", std::to_string(valence)});
-            g.rows.push_back({"boundary", mesh.is_boundary(p.vertex) ? "yes" : "no"});
+            const Shown& shown = session_.shown();
+            if (shown.kind == Shown::Kind::Band && v < shown.positions.size() &&
+                v < mesh.vertices_size()) {
+                const Vector3 moved = shown.positions[v] - mesh.position(p.vertex);
+                fields.push_back({"band_displacement", "Band displacement",
+                                  vec_text(moved) + " (|d| " + number(moved.norm()) + ")",
+                                  {moved.x(), moved.y(), moved.z()}});
+            }
+            add_fields("Vertex " + std::to_string(v), fields);
         }
-        view.groups.push_back(std::move(g));
-    }
-    if (p.edge.is_valid() && mesh.is_valid(p.edge)) {
-        InspectorView::Group g{"Edge " + std::to_string(p.edge.idx()), {}};
-        g.rows.push_back({"ends", std::to_string(mesh.vertex(p.edge, 0).idx()) + " - " +
-                                      std::to_string(mesh.vertex(p.edge, 1).idx())});
-        g.rows.push_back({"length", number(edge_length(mesh, p.edge))});
-        view.groups.push_back(std::move(g));
-    }
-    if (p.face.is_valid() && mesh.is_valid(p.face)) {
-        InspectorView::Group g{"Face " + std::to_string(p.face.idx()), {}};
-        g.rows.push_back({"area", number(face_area(mesh, p.face))});
-        g.rows.push_back({"normal", vec_text(face_normal(mesh, p.face))});
-        g.rows.push_back({"hit", vec_text(p.position) + (p.back_face ? " (back face)" : "")});
-        view.groups.push_back(std::move(g));
+        if (inspection->edge)
+            add_fields("Edge " + std::to_string(p.edge.idx()), inspection_fields(*inspection->edge));
+        if (inspection->face)
+            add_fields("Face " + std::to_string(p.face.idx()), inspection_fields(*inspection->face));
+        if (!inspection->failure.empty()) view.note = inspection->failure;
     }
     if (set.picks.size() == 2) {
         const Measurement& m = set.measurement;
         InspectorView::Group g{"Measure: vertex " + std::to_string(p.vertex.idx()) + " to " +
                                    std::to_string(set.picks[1].vertex.idx()),
                                {}};
-        g.rows.push_back({"straight", number(m.straight)});
-        g.rows.push_back({"geodesic", m.computing ? "computing..." : number(m.geodesic)});
+        g.rows.push_back({"Straight distance", number(m.straight)});
+        g.rows.push_back({"Geodesic distance (heat method)",
+                          m.computing ? "computing..." : number(m.geodesic)});
         if (!m.path.empty()) {
-            g.rows.push_back({"path length", number(m.path_length)});
-            g.rows.push_back({"path points", std::to_string(m.path.size())});
+            g.rows.push_back({"Path length on the surface", number(m.path_length)});
+            g.rows.push_back({"Path points", std::to_string(m.path.size())});
         }
-        if (!m.failure.empty()) g.rows.push_back({"note", m.failure});
+        if (!m.failure.empty()) g.rows.push_back({"Note", m.failure});
         view.groups.push_back(std::move(g));
+    }
+    // Provenance: how far each entry moved the picked vertex (when it is the document's).
+    if (!p.on_level && mesh.topology_revision() == session_.mesh().topology_revision()) {
+        const std::vector<double> moves = vertex_moves(session_.history(), p.vertex);
+        bool any = false;
+        for (double d : moves) {
+            view.moved_by_entry.push_back(std::isnan(d) ? 0.0f : float(d));
+            any = any || (!std::isnan(d) && d > 0);
+        }
+        if (!any) view.moved_by_entry.clear();
+        view.current_entry = session_.history().current();
     }
 }
 
