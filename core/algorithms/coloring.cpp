@@ -140,6 +140,20 @@ constexpr std::array<std::array<float, 3>, 10> kCategorical = {{
     {0.40f, 0.84f, 0.80f},  // teal
 }};
 
+/// The GeodesicDistance colouring of the mesh's "v:distance" (color_field()); negative
+/// distances mark vertices no source reached (trilab-cli geodesic writes -1): no value.
+VertexColors stored_distance_colors(const HalfedgeMesh& mesh, const ColoringOptions& options) {
+    const auto distance = mesh.get_vertex_property<double>("v:distance");
+    if (!distance)
+        throw InvalidArgument(
+            "color_vertices: the 'geodesic-distance' colouring needs distances: a per-vertex "
+            "'distance' property (written by trilab-cli geodesic) or picked sources");
+    std::vector<double> values(mesh.vertices_size(), std::numeric_limits<double>::quiet_NaN());
+    for (Vertex v : mesh.vertices())
+        if (std::isfinite(distance[v]) && distance[v] >= 0) values[v.idx()] = distance[v];
+    return color_field(mesh, values, VertexColoring::GeodesicDistance, options);
+}
+
 }  // namespace
 
 const char* color_map_name(ColorMapKind kind) {
@@ -300,18 +314,7 @@ VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
         return out;
     }
 
-    if (coloring == VertexColoring::GeodesicDistance) {
-        if (auto distance = mesh.get_vertex_property<double>("v:distance")) {
-            // Negative distances mark vertices no source reached (trilab-cli geodesic).
-            std::vector<double> values(n, std::numeric_limits<double>::quiet_NaN());
-            for (Vertex v : mesh.vertices())
-                if (std::isfinite(distance[v]) && distance[v] >= 0) values[v.idx()] = distance[v];
-            return color_field(mesh, values, coloring, options);
-        }
-        throw InvalidArgument(
-            "color_vertices: the 'geodesic-distance' colouring needs distances: a per-vertex "
-            "'distance' property (written by trilab-cli geodesic) or picked sources");
-    }
+    if (coloring == VertexColoring::GeodesicDistance) return stored_distance_colors(mesh, options);
 
     if (coloring_needs_field(coloring))
         throw InvalidArgument(std::string("color_vertices: the '") + e.name +
