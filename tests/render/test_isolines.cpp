@@ -241,7 +241,7 @@ TEST_CASE("bands show exactly N colours, the map's colours at the steps' centres
     CHECK(glGetError() == GL_NO_ERROR);
 }
 
-TEST_CASE("Smooth draws exactly what it drew without scalars; categorical colours get none",
+TEST_CASE("Smooth draws exactly what it drew without scalars, and categorical colours get none",
           "[render][offscreen][isolines]") {
     OffscreenRenderer& r = offscreen();
     const HalfedgeMesh mesh = make_torus(48, 24, 1.0, 0.35);
