@@ -168,6 +168,11 @@ void GlProgram::set(const char* name, const glm::vec2& value) const {
 void GlProgram::set(const char* name, const glm::vec3& value) const {
     glUniform3fv(glGetUniformLocation(id_, name), 1, glm::value_ptr(value));
 }
+void GlProgram::set(const char* name, const std::vector<glm::vec3>& values) const {
+    if (values.empty()) return;
+    glUniform3fv(glGetUniformLocation(id_, name), GLsizei(values.size()),
+                 glm::value_ptr(values.front()));
+}
 void GlProgram::set(const char* name, const glm::vec4& value) const {
     glUniform4fv(glGetUniformLocation(id_, name), 1, glm::value_ptr(value));
 }

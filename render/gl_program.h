@@ -62,6 +62,8 @@ public:
     void set(const char* name, const glm::vec4& value) const;
     void set(const char* name, const glm::mat3& value) const;
     void set(const char* name, const glm::mat4& value) const;
+    /// A vec3 array uniform (`name` without "[0]"): its first values.size() entries.
+    void set(const char* name, const std::vector<glm::vec3>& values) const;
 
 private:
     void release();

@@ -3,6 +3,8 @@
 // The renderer never owns the mesh. upload() copies what it needs into GPU buffers:
 //  - positions and normals (float, interleaved), one entry per GPU vertex;
 //  - optional per-vertex colours (RGBA8), set_vertex_colors();
+//  - optional per-vertex scalars (2 floats: t w and w, t the value normalized to the legend
+//    range, w = 1 where there is a value), set_vertex_scalars(), for bands and isolines;
 //  - optional texture coordinates (float), from "v:texcoord", or from per-corner
 //    "h:texcoord": then every mesh vertex gets one GPU vertex per distinct texture coordinate
 //    of its corners, so seams stay seams (positions, normals and colours are gathered through
@@ -11,8 +13,8 @@
 //    vertex, isolated ones included).
 // Upload only what changed: show() compares the mesh's revisions with `shown_`;
 // update_positions() rewrites positions and normals for a pure geometry change,
-// set_vertex_colors() rewrites the colours only, upload() (a topology or attribute change)
-// rewrites everything and drops the vertex colours.
+// set_vertex_colors() rewrites the colours (and scalars) only, upload() (a topology or
+// attribute change) rewrites everything and drops the vertex colours and scalars.
 //
 // Level of detail (LevelOfDetail, core/algorithms/decimation.h, for a slider over a progressive
 // mesh): upload_level() puts every vertex of the fine mesh on the GPU once, in the level of
@@ -21,8 +23,9 @@
 // buffers (O(live faces): the software rasterizer wants the drawing order, which a list
 // patched in place would lose) and only the vertices the move changed (a few ranges of the
 // vertex buffer), or all of them when the level of detail reports that all changed. This
-// path has no texture coordinates; upload_level() drops vertex colours (set_vertex_colors()
-// takes them per level-of-detail vertex); the bounding box (fog, vector length) stays the one
+// path has no texture coordinates; upload_level() drops vertex colours and scalars
+// (set_vertex_colors() and set_vertex_scalars() take them per level-of-detail vertex, and
+// update_level() keeps them); the bounding box (fog, vector length) stays the one
 // of upload_level().
 //
 // Normals: the mesh's "v:normal" (Vector3) when it has one, otherwise area-weighted vertex
@@ -44,6 +47,10 @@
 //    fragment its triangle's three corner colours unblended, and the fragment takes the one of
 //    the corner with the largest barycentric coordinate, so no blend of two categories (a
 //    colour in no legend) appears. Points need nothing: a point has one vertex's colour.
+//  - mesh.vert + mesh.frag [TRILAB_SCALAR] and mesh.vert + mesh.geom + mesh.frag
+//    [TRILAB_SCALAR, TRILAB_WIREFRAME]: bands and isolines of the vertex scalars
+//    (RenderStyle::scalar_display), used only when that is not Smooth, so the Smooth picture
+//    comes from the same programs as without scalars; built by the first set_vertex_scalars().
 //  - mesh.vert + mesh.frag [TRILAB_POINTS]: round, lit point sprites; mesh.vert + depth.frag
 //    lays down the surface's depth first so that it hides the points behind it.
 //  - vectors.vert + vectors.geom + vectors.frag: face normals (one segment per triangle, from
@@ -71,7 +78,7 @@ struct GpuVertex {
 };
 static_assert(sizeof(GpuVertex) == 6 * sizeof(float), "GpuVertex must be tightly packed");
 
-constexpr GLuint kPosition = 0, kNormal = 1, kColor = 2, kTexcoord = 3;
+constexpr GLuint kPosition = 0, kNormal = 1, kColor = 2, kTexcoord = 3, kScalar = 4;
 
 /// What upload() derives from the connectivity: the GPU vertices and the index buffers.
 struct Layout {
@@ -189,6 +196,28 @@ RenderMode parse_render_mode(const std::string& name) {
                           "' (expected gouraud, flat, wireframe, hidden-line, points or textured)");
 }
 
+const char* scalar_display_name(ScalarDisplay display) {
+    switch (display) {
+        case ScalarDisplay::Smooth:
+            return "smooth";
+        case ScalarDisplay::Bands:
+            return "bands";
+        case ScalarDisplay::Isolines:
+            return "isolines";
+        case ScalarDisplay::BandsAndIsolines:
+            return "bands-isolines";
+    }
+    return "?";
+}
+
+ScalarDisplay parse_scalar_display(const std::string& name) {
+    for (ScalarDisplay d : {ScalarDisplay::Smooth, ScalarDisplay::Bands, ScalarDisplay::Isolines,
+                            ScalarDisplay::BandsAndIsolines})
+        if (name == scalar_display_name(d)) return d;
+    throw InvalidArgument("unknown scalar display '" + name +
+                          "' (expected smooth, bands, isolines or bands-isolines)");
+}
+
 const char* texture_mode_name(TextureMode mode) {
     switch (mode) {
         case TextureMode::Off:
@@ -219,6 +248,18 @@ GlProgram surface_variant(bool vertex_colors, bool texture) {
     if (!vertex_colors) defines.push_back("TRILAB_NO_VERTEX_COLOR");
     if (!texture) defines.push_back("TRILAB_NO_TEXTURE");
     return GlProgram({embedded_shader("mesh.vert.glsl"),
+                      with_defines(embedded_shader("mesh.frag.glsl"), defines)});
+}
+
+/// Bands and isolines: every input, and the geometry stage for edges (`wires`).
+GlProgram scalar_variant(bool wires) {
+    std::vector<std::string> defines{"TRILAB_SCALAR"};
+    if (!wires)
+        return GlProgram({with_defines(embedded_shader("mesh.vert.glsl"), defines),
+                          with_defines(embedded_shader("mesh.frag.glsl"), defines)});
+    defines.push_back("TRILAB_WIREFRAME");
+    return GlProgram({with_defines(embedded_shader("mesh.vert.glsl"), defines),
+                      with_defines(embedded_shader("mesh.geom.glsl"), defines),
                       with_defines(embedded_shader("mesh.frag.glsl"), defines)});
 }
 
@@ -261,21 +302,22 @@ MeshRenderer::MeshRenderer()
                               embedded_shader("vectors.frag.glsl")}) {
     glGenVertexArrays(1, &triangle_vao_);
     glGenVertexArrays(1, &point_vao_);
-    GLuint buffers[5];
-    glGenBuffers(5, buffers);
+    GLuint buffers[6];
+    glGenBuffers(6, buffers);
     geometry_buffer_ = buffers[0];
     color_buffer_ = buffers[1];
     texcoord_buffer_ = buffers[2];
     triangle_buffer_ = buffers[3];
     point_buffer_ = buffers[4];
+    scalar_buffer_ = buffers[5];
     setup_vertex_array(triangle_vao_, triangle_buffer_);
     setup_vertex_array(point_vao_, point_buffer_);
 }
 
 MeshRenderer::~MeshRenderer() {
-    const GLuint buffers[5] = {geometry_buffer_, color_buffer_, texcoord_buffer_, triangle_buffer_,
-                               point_buffer_};
-    glDeleteBuffers(5, buffers);
+    const GLuint buffers[6] = {geometry_buffer_, color_buffer_, texcoord_buffer_,
+                               triangle_buffer_, point_buffer_, scalar_buffer_};
+    glDeleteBuffers(6, buffers);
     glDeleteVertexArrays(1, &point_vao_);
     glDeleteVertexArrays(1, &triangle_vao_);
     if (texture_ != 0) glDeleteTextures(1, &texture_);
@@ -294,6 +336,8 @@ void MeshRenderer::setup_vertex_array(GLuint vao, GLuint element_buffer) const {
     glVertexAttribPointer(kColor, 4, GL_UNSIGNED_BYTE, GL_TRUE, 4, nullptr);
     glBindBuffer(GL_ARRAY_BUFFER, texcoord_buffer_);
     glVertexAttribPointer(kTexcoord, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
+    glBindBuffer(GL_ARRAY_BUFFER, scalar_buffer_);
+    glVertexAttribPointer(kScalar, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, element_buffer);  // recorded in the VAO
     glBindVertexArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
@@ -599,6 +643,68 @@ void MeshRenderer::set_vertex_colors(const std::vector<Color>& colors, ColorBlen
     glBindVertexArray(0);
     has_colors_ = true;
     color_blend_ = blend;
+    clear_vertex_scalars();
+}
+
+void MeshRenderer::set_vertex_colors(const VertexColors& colors) {
+    const bool scalars = colors.kind != ColorMapKind::Categorical && !colors.values.empty();
+    if (scalars && colors.values.size() != colors.colors.size())
+        throw InvalidArgument(
+            "MeshRenderer::set_vertex_colors: " + std::to_string(colors.values.size()) +
+            " values for " + std::to_string(colors.colors.size()) + " colours");
+    set_vertex_colors(colors.colors, color_blend(colors.kind));
+    if (scalars) set_vertex_scalars(colors.values, colors.range, colors.kind);
+}
+
+void MeshRenderer::set_vertex_scalars(const std::vector<double>& values, const ValueRange& range,
+                                      ColorMapKind map) {
+    if (values.size() != n_vertices_)
+        throw InvalidArgument("MeshRenderer::set_vertex_scalars: " + std::to_string(values.size()) +
+                              " values for a mesh with vertex storage size " +
+                              std::to_string(n_vertices_));
+    if (map == ColorMapKind::Categorical)
+        throw InvalidArgument(
+            "MeshRenderer::set_vertex_scalars: a categorical map has no bands or isolines");
+    const double width = range.max - range.min;
+    if (!(std::isfinite(range.min) && std::isfinite(range.max) && width > 0 &&
+          std::isfinite(width)))
+        throw InvalidArgument("MeshRenderer::set_vertex_scalars: the range [" +
+                              std::to_string(range.min) + ", " + std::to_string(range.max) +
+                              "] must be finite with min < max");
+    // Before anything changes, so that a shader that does not build leaves all as it was.
+    if (!scalar_programs_[0].is_valid())
+        scalar_programs_ = {scalar_variant(false), scalar_variant(true)};
+    std::vector<float> data(2 * n_gpu_vertices_, 0.0f);
+    for (std::size_t i = 0; i < n_gpu_vertices_; ++i) {
+        const double value = values[gpu_source_.empty() ? i : gpu_source_[i]];
+        if (!std::isfinite(value)) continue;  // (0, 0): no value
+        // Far outside the range the value is only ever beyond the last isoline: keep the float
+        // finite and its precision where the lines are.
+        data[2 * i] = float(std::clamp((value - range.min) / width, -1e4, 1e4));
+        data[2 * i + 1] = 1.0f;
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, scalar_buffer_);
+    glBufferData(GL_ARRAY_BUFFER, bytes(data.size(), sizeof(float)), data.data(), GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    for (GLuint vao : {triangle_vao_, point_vao_}) {
+        glBindVertexArray(vao);
+        glEnableVertexAttribArray(kScalar);
+    }
+    glBindVertexArray(0);
+    has_scalars_ = true;
+    scalar_map_ = map;
+}
+
+void MeshRenderer::clear_vertex_scalars() {
+    for (GLuint vao : {triangle_vao_, point_vao_}) {
+        glBindVertexArray(vao);
+        glDisableVertexAttribArray(kScalar);
+    }
+    glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, scalar_buffer_);
+    glBufferData(GL_ARRAY_BUFFER, 0, nullptr, GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    has_scalars_ = false;
 }
 
 void MeshRenderer::clear_vertex_colors() {
@@ -612,6 +718,7 @@ void MeshRenderer::clear_vertex_colors() {
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     has_colors_ = false;
     color_blend_ = ColorBlend::Interpolate;
+    clear_vertex_scalars();
 }
 
 void MeshRenderer::set_texture(const Image& image) {
@@ -684,6 +791,23 @@ void set_shading_uniforms(const GlProgram& program, const RenderStyle& style, bo
 
 }  // namespace
 
+void MeshRenderer::set_scalar_uniforms(const GlProgram& program, const RenderStyle& style) const {
+    const int steps = std::clamp(style.scalar_steps, kMinScalarSteps, kMaxScalarSteps);
+    const ScalarDisplay d = style.scalar_display;
+    const bool bands = d == ScalarDisplay::Bands || d == ScalarDisplay::BandsAndIsolines;
+    const bool lines = d == ScalarDisplay::Isolines || d == ScalarDisplay::BandsAndIsolines;
+    program.set("u_scalar_display", (bands ? 1 : 0) | (lines ? 2 : 0));
+    program.set("u_scalar_steps", steps);
+    program.set("u_isoline_width", std::max(style.isoline_width, 0.0f));
+    // Step k shows the map's colour at its centre, (k + 1/2) / N of the range.
+    std::vector<glm::vec3> colors(static_cast<std::size_t>(steps));
+    for (int k = 0; k < steps; ++k) {
+        const Color c = map_color((k + 0.5) / steps, ValueRange{0.0, 1.0}, scalar_map_);
+        colors[std::size_t(k)] = glm::vec3(c.x(), c.y(), c.z());
+    }
+    program.set("u_band_colors", colors);
+}
+
 void MeshRenderer::set_common_uniforms(const GlProgram& program, const glm::mat4& view,
                                        const glm::mat4& projection,
                                        const RenderStyle& style) const {
@@ -755,11 +879,16 @@ void MeshRenderer::draw(const glm::mat4& view, const glm::mat4& projection,
         // Categorical colours on a shaded surface: the nearest corner's colour, never a blend.
         const bool nearest_corner =
             colored && !edges_only && !hidden_line && color_blend_ == ColorBlend::NearestCorner;
+        // Bands and isolines on a shaded surface; Smooth keeps the programs without scalars.
+        const bool scalars = has_scalars_ && !edges_only && !hidden_line && !nearest_corner &&
+                             style.scalar_display != ScalarDisplay::Smooth;
         const GlProgram& program = nearest_corner ? corner_programs_[wires ? 1 : 0]
+                                   : scalars      ? scalar_programs_[wires ? 1 : 0]
                                    : wires
                                        ? wire_program_
                                        : surface_programs_[(colored ? 1 : 0) + (textured ? 2 : 0)];
         set_common_uniforms(program, view, projection, style);
+        if (scalars) set_scalar_uniforms(program, style);
         program.set("u_surface", edges_only ? 2 : hidden_line ? 1 : 0);
         program.set("u_flat", mode == RenderMode::Flat ? 1 : 0);
         set_shading_uniforms(program, style, colored);

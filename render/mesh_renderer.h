@@ -49,6 +49,21 @@ enum class TextureMode {
     Replace,   ///< the texture colour as it is, unlit
 };
 
+/// How a scalar colouring (MeshRenderer::set_vertex_scalars()) is shown. N is
+/// RenderStyle::scalar_steps: the legend range cut into N equal steps.
+enum class ScalarDisplay {
+    Smooth,            ///< the vertex colours as they are (a continuous map)
+    Bands,             ///< each step one colour: the map's colour at the step's centre
+    Isolines,          ///< the vertex colours with a line at each of the N - 1 step boundaries
+    BandsAndIsolines,  ///< both: lines between the bands
+};
+/// "smooth", "bands", "isolines", "bands-isolines".
+const char* scalar_display_name(ScalarDisplay display);
+/// Parses scalar_display_name() strings; throws InvalidArgument listing them otherwise.
+ScalarDisplay parse_scalar_display(const std::string& name);
+/// The fewest and most steps of a scalar display (RenderStyle::scalar_steps).
+constexpr int kMinScalarSteps = 2, kMaxScalarSteps = 64;
+
 /// Every switch of draw(). A plain struct: copy it, edit it, pass it. Colours are linear RGB
 /// in [0, 1]; widths and sizes are in framebuffer pixels (multiply by the HiDPI scale).
 struct RenderStyle {
@@ -73,6 +88,14 @@ struct RenderStyle {
     /// Vertex colours (MeshRenderer::set_vertex_colors()) replace front_color when set. This
     /// switch hides them without discarding the uploaded buffer.
     bool vertex_colors = true;
+
+    /// Scalar colourings (uploaded with set_vertex_scalars()) as bands and/or isolines, in
+    /// the shaded modes (Flat, Smooth, Textured); Points, Wireframe and HiddenLine ignore it.
+    /// Bands replace the vertex colours, so they show only while vertex_colors is on;
+    /// isolines also draw over the plain shading. Smooth draws exactly as without scalars.
+    ScalarDisplay scalar_display = ScalarDisplay::Smooth;
+    int scalar_steps = 10;        ///< N, clamped to [kMinScalarSteps, kMaxScalarSteps]
+    float isoline_width = 1.25f;  ///< total isoline width in pixels (anti-aliased)
 
     float point_size = 4.0f;  ///< diameter of a point in Points mode, pixels
     /// Points mode: an invisible surface (depth only) hides the points behind it, as
@@ -177,13 +200,34 @@ public:
     /// Per-vertex colours indexed by vertex storage index (size == n_vertices(), the storage
     /// size at the last upload()); they replace front_color while style.vertex_colors is on,
     /// filling triangles as `blend` says (pass color_blend(colors.kind) for a VertexColors).
-    /// Uploads the colours only (the first NearestCorner call also builds its shaders).
-    /// Throws InvalidArgument on a size mismatch, GlError when a shader does not build.
+    /// Uploads the colours only (the first NearestCorner call also builds its shaders) and
+    /// drops the vertex scalars (colours given alone have none). Throws InvalidArgument on a
+    /// size mismatch, GlError when a shader does not build.
     void set_vertex_colors(const std::vector<Color>& colors,
                            ColorBlend blend = ColorBlend::Interpolate);
+    /// A colouring as a whole: its colours (blend color_blend(colors.kind)) and, for a
+    /// sequential or diverging one with values, its values as vertex scalars over its
+    /// legend range (set_vertex_scalars()), so that style.scalar_display can show bands and
+    /// isolines; categorical and value-less colourings (Normal) get no scalars.
+    void set_vertex_colors(const VertexColors& colors);
+    /// Drops the vertex colours and the vertex scalars.
     void clear_vertex_colors();
     bool has_vertex_colors() const { return has_colors_; }
     ColorBlend vertex_color_blend() const { return color_blend_; }
+
+    /// Per-vertex scalars (storage index, size == n_vertices(); NaN: no value) for
+    /// style.scalar_display: each is uploaded as t = (value - range.min) / (range.max -
+    /// range.min), so that step k of N is t in [k/N, (k+1)/N); `map` colours the bands
+    /// (Sequential or Diverging). Without vertex colours isolines still draw over the plain
+    /// shading. Kept by update_positions() and update_level(); upload(), upload_level() and
+    /// the colour calls drop them (call this after set_vertex_colors(vector)). The first
+    /// call builds the scalar shaders. Throws InvalidArgument on a size mismatch, a
+    /// categorical map or a range that is not finite with min < max; GlError when a shader
+    /// does not build.
+    void set_vertex_scalars(const std::vector<double>& values, const ValueRange& range,
+                            ColorMapKind map);
+    void clear_vertex_scalars();
+    bool has_vertex_scalars() const { return has_scalars_; }
 
     /// Uploads `image` (RGBA8, rows top-down) as the texture of Textured mode, with mipmaps
     /// and repeat wrapping; texture coordinate (0, 0) is the image's bottom-left corner (the
@@ -226,13 +270,20 @@ private:
     void setup_vertex_array(GLuint vao, GLuint element_buffer) const;
     void set_common_uniforms(const GlProgram& program, const glm::mat4& view,
                              const glm::mat4& projection, const RenderStyle& style) const;
+    /// The bands' and isolines' uniforms (the program in use has TRILAB_SCALAR).
+    void set_scalar_uniforms(const GlProgram& program, const RenderStyle& style) const;
 
-    /// mesh.vert + mesh.frag, indexed by (vertex colours read) + 2 (texture read): the
-    /// variants without an input leave it out (TRILAB_NO_VERTEX_COLOR, TRILAB_NO_TEXTURE).
     /// The revisions of the mesh on the GPU (all 0: none, a level of detail, or positions
     /// given apart from the mesh).
     HalfedgeMesh::Revision shown_;
+    /// mesh.vert + mesh.frag, indexed by (vertex colours read) + 2 (texture read): the
+    /// variants without an input leave it out (TRILAB_NO_VERTEX_COLOR, TRILAB_NO_TEXTURE).
     std::array<GlProgram, 4> surface_programs_;
+    /// Bands and isolines (RenderStyle::scalar_display other than Smooth, with scalars):
+    /// mesh.vert + mesh.frag [TRILAB_SCALAR] with every input, and mesh.vert + mesh.geom +
+    /// mesh.frag [TRILAB_SCALAR, TRILAB_WIREFRAME] for the edge overlay; built by the first
+    /// set_vertex_scalars().
+    std::array<GlProgram, 2> scalar_programs_;
     GlProgram wire_program_;  ///< mesh.vert + mesh.geom + mesh.frag [TRILAB_WIREFRAME]
     /// ColorBlend::NearestCorner: mesh.vert + mesh.geom + mesh.frag [TRILAB_NEAREST_CORNER],
     /// without and with TRILAB_WIREFRAME; built by the first set_vertex_colors() that needs
@@ -244,7 +295,7 @@ private:
     GlProgram vertex_vector_program_;  ///< vectors.*: points in
 
     GLuint triangle_vao_ = 0, point_vao_ = 0;
-    GLuint geometry_buffer_ = 0, color_buffer_ = 0, texcoord_buffer_ = 0;
+    GLuint geometry_buffer_ = 0, color_buffer_ = 0, texcoord_buffer_ = 0, scalar_buffer_ = 0;
     GLuint triangle_buffer_ = 0, point_buffer_ = 0;
     GLuint texture_ = 0;
 
@@ -253,6 +304,8 @@ private:
     std::size_t n_vertices_ = 0, n_gpu_vertices_ = 0;
     std::size_t n_triangle_indices_ = 0, n_point_indices_ = 0;
     bool has_colors_ = false, has_texcoords_ = false, has_texture_ = false;
+    bool has_scalars_ = false;
+    ColorMapKind scalar_map_ = ColorMapKind::Sequential;  ///< the bands' map
     ColorBlend color_blend_ = ColorBlend::Interpolate;
     /// The level-of-detail path: a copy of the vertex buffer (6 floats a vertex, position
     /// and normal) to patch changed vertices in; empty when the last upload was a mesh.

@@ -316,6 +316,10 @@ Image OffscreenRenderer::render(const HalfedgeMesh& mesh, const OffscreenOptions
         throw InvalidArgument("render_offscreen: " + std::to_string(options.vertex_colors.size()) +
                               " vertex colours for a mesh with vertex storage size " +
                               std::to_string(mesh.vertices_size()));
+    if (!options.vertex_scalars.empty() && options.vertex_scalars.size() != mesh.vertices_size())
+        throw InvalidArgument("render_offscreen: " + std::to_string(options.vertex_scalars.size()) +
+                              " vertex scalars for a mesh with vertex storage size " +
+                              std::to_string(mesh.vertices_size()));
     context_.make_current();
     if (!framebuffer_.is_valid() || framebuffer_.width() != options.width ||
         framebuffer_.height() != options.height || framebuffer_.samples() != options.samples)
@@ -324,6 +328,9 @@ Image OffscreenRenderer::render(const HalfedgeMesh& mesh, const OffscreenOptions
     renderer_.upload(mesh);
     if (!options.vertex_colors.empty())
         renderer_.set_vertex_colors(options.vertex_colors, options.vertex_color_blend);
+    if (!options.vertex_scalars.empty())
+        renderer_.set_vertex_scalars(options.vertex_scalars, options.scalar_range,
+                                     options.scalar_map);
     if (options.texture.empty())
         renderer_.clear_texture();
     else

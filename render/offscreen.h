@@ -108,6 +108,12 @@ struct OffscreenOptions {
     std::vector<Color> vertex_colors;
     /// How vertex_colors fill the triangles: color_blend(colors.kind) for a VertexColors.
     ColorBlend vertex_color_blend = ColorBlend::Interpolate;
+    /// Per-vertex scalars for style.scalar_display (MeshRenderer::set_vertex_scalars(): NaN
+    /// for none; empty: none) over `scalar_range`, bands coloured by `scalar_map`. For a
+    /// VertexColors: its values, range and kind (not for a categorical one).
+    std::vector<double> vertex_scalars;
+    ValueRange scalar_range;
+    ColorMapKind scalar_map = ColorMapKind::Sequential;
     Image texture;  ///< the texture of Textured mode; empty: none
 };
 

@@ -8,7 +8,17 @@
 //    are categories, not values: every fragment takes the colour of its triangle's corner
 //    with the largest barycentric coordinate instead of a blend, so only the legend's
 //    colours appear;
-//  - TRILAB_POINTS: round point sprites lit by the vertex normal.
+//  - TRILAB_POINTS: round point sprites lit by the vertex normal;
+//  - TRILAB_SCALAR (default or TRILAB_WIREFRAME variant): a per-vertex scalar, the value
+//    normalized to the legend range, t = (value - min) / (max - min), carried as (t w, w)
+//    with w = 1 where the vertex has a value and 0 where not, so the interpolated t is the
+//    weighted mean of the corners that have one and the part without (w < 1/2) shows none.
+//    u_scalar_display bit 1: bands: t cut into N = u_scalar_steps equal steps, step k
+//    (t in [k/N, (k+1)/N)) painted u_band_colors[k] (the map's colour at the step's centre)
+//    instead of the vertex colour; bit 2: isolines at the N - 1 inner step boundaries t = k/N,
+//    k = 1..N-1, anti-aliased with fwidth, u_isoline_width pixels wide, over the lit colour:
+//    dark over light colours and light over dark ones, so they read on every part of a map;
+//    they fade out where they would be under 2 pixels apart.
 // The default variant also compiles with TRILAB_NO_VERTEX_COLOR and/or TRILAB_NO_TEXTURE:
 // inputs a variant does not read are dropped by the linker, and on a software rasterizer
 // every interpolated input costs per-triangle setup work.
@@ -28,6 +38,9 @@ in MeshFragment {
     flat vec3 corner_color1;
     flat vec3 corner_color2;
 #endif
+#ifdef TRILAB_SCALAR
+    vec2 scalar;
+#endif
 } fs_in;
 #else
 in MeshVertex {
@@ -35,6 +48,9 @@ in MeshVertex {
     vec3 normal;
     vec3 color;
     vec2 texcoord;
+#ifdef TRILAB_SCALAR
+    vec2 scalar;
+#endif
 } fs_in;
 #endif
 
@@ -56,6 +72,12 @@ uniform float u_fog_amount;
 uniform vec3 u_background;
 uniform vec3 u_wire_color;
 uniform float u_wire_width;  // total line width in framebuffer pixels
+#ifdef TRILAB_SCALAR
+uniform int u_scalar_display;  // bit 1: bands, bit 2: isolines
+uniform int u_scalar_steps;    // N, 2 to 64
+uniform vec3 u_band_colors[64];
+uniform float u_isoline_width;  // total line width in framebuffer pixels
+#endif
 
 out vec4 frag_color;
 
@@ -73,16 +95,45 @@ vec3 lit(vec3 base, vec3 n) {
     return base * (u_ambient + (1.0 - u_ambient) * diffuse) + vec3(u_specular * spec);
 }
 
-// The vertex colour here: interpolated, or with TRILAB_NEAREST_CORNER the nearest corner's.
+// The vertex colour here: interpolated, or with TRILAB_NEAREST_CORNER the nearest corner's,
+// or with bands the colour of the step the scalar falls in.
 vec3 vertex_color() {
 #ifdef TRILAB_NEAREST_CORNER
     vec3 b = fs_in.barycentric;
     if (b.x >= b.y && b.x >= b.z) return fs_in.corner_color0;
     return b.y >= b.z ? fs_in.corner_color1 : fs_in.corner_color2;
 #else
+#ifdef TRILAB_SCALAR
+    if ((u_scalar_display & 1) != 0 && fs_in.scalar.y >= 0.5) {
+        float t = fs_in.scalar.x / fs_in.scalar.y;
+        int k = clamp(int(floor(t * float(u_scalar_steps))), 0, u_scalar_steps - 1);
+        return u_band_colors[k];
+    }
+#endif
     return fs_in.color;
 #endif
 }
+
+#ifdef TRILAB_SCALAR
+// How much of this fragment an isoline covers (0 to 1). Derivatives first, in uniform flow.
+float isoline_coverage() {
+    float level = fs_in.scalar.x / max(fs_in.scalar.y, 1e-6) * float(u_scalar_steps);
+    float slope = fwidth(level);  // levels per pixel
+    if ((u_scalar_display & 2) == 0 || fs_in.scalar.y < 0.5) return 0.0;
+    float k = floor(level + 0.5);
+    if (k < 1.0 || k > float(u_scalar_steps - 1)) return 0.0;
+    float pixels = abs(level - k) / max(slope, 1e-6);
+    float half_width = 0.5 * u_isoline_width;
+    float line = 1.0 - smoothstep(half_width - 0.5, half_width + 0.5, pixels);
+    return line * (1.0 - smoothstep(0.25, 0.5, slope));
+}
+
+// The isoline's colour over `under`: dark over light colours, light over dark ones.
+vec3 isoline_color(vec3 under) {
+    float luminance = dot(under, vec3(0.2126, 0.7152, 0.0722));
+    return luminance > 0.3 ? under * 0.15 : mix(under, vec3(1.0), 0.75);
+}
+#endif
 
 vec3 front_base() {
 #ifdef TRILAB_NO_VERTEX_COLOR
@@ -138,6 +189,10 @@ void main() {
         } else {
             color = lit(front_base(), n);
         }
+#ifdef TRILAB_SCALAR
+        float iso = isoline_coverage();
+        color = mix(color, isoline_color(color), iso);
+#endif
         color = apply_fog(color);
     } else if (u_surface == 1) {
         color = back ? mix(u_background, u_back_color, 0.3) : u_background;

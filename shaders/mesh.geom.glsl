@@ -3,7 +3,8 @@
 // categorical vertex colours: passes each triangle through and adds barycentric coordinates,
 // which shared vertices cannot carry, so the fragment stage can draw the edges in the same
 // pass. With TRILAB_NEAREST_CORNER it also hands every fragment the three corners' colours
-// unblended (flat), so that the fragment stage can take its nearest corner's colour.
+// unblended (flat), so that the fragment stage can take its nearest corner's colour. With
+// TRILAB_SCALAR the scalar of isolines and bands passes through too.
 
 layout(triangles) in;
 layout(triangle_strip, max_vertices = 3) out;
@@ -13,6 +14,9 @@ in MeshVertex {
     vec3 normal;
     vec3 color;
     vec2 texcoord;
+#ifdef TRILAB_SCALAR
+    vec2 scalar;
+#endif
 } gs_in[];
 
 out MeshFragment {
@@ -26,6 +30,9 @@ out MeshFragment {
     flat vec3 corner_color1;
     flat vec3 corner_color2;
 #endif
+#ifdef TRILAB_SCALAR
+    vec2 scalar;
+#endif
 } gs_out;
 
 void main() {
@@ -35,6 +42,9 @@ void main() {
         gs_out.normal = gs_in[i].normal;
         gs_out.color = gs_in[i].color;
         gs_out.texcoord = gs_in[i].texcoord;
+#ifdef TRILAB_SCALAR
+        gs_out.scalar = gs_in[i].scalar;
+#endif
         gs_out.barycentric = vec3(i == 0, i == 1, i == 2);
 #ifdef TRILAB_NEAREST_CORNER
         gs_out.corner_color0 = gs_in[0].color;

@@ -103,6 +103,10 @@ void check_coloring(const std::string& name) {
     } catch (const InvalidArgument& e) {
         throw InvalidArgument(std::string("--color: ") + e.what());
     }
+    if (coloring == VertexColoring::GeodesicDistance)
+        throw InvalidArgument(
+            "--color: 'geodesic-distance' needs distances from sources (trilab-cli render "
+            "--color geodesic-distance colours the output of trilab-cli geodesic)");
     if (coloring_needs_field(coloring))
         throw InvalidArgument("--color: '" + name +
                               "' needs a spectral decomposition (the viewer's Frequency panel)");

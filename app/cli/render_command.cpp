@@ -38,7 +38,13 @@ options:
   --mode MODE           gouraud (default), flat, wireframe, hidden-line, points, textured
   --color QUANTITY      colour the vertices: none (default), normal, k1, k2, mean,
                         gaussian, shape-index, subdivision (categorical: one colour per
-                        level), smoothing-distance
+                        level), smoothing-distance, geodesic-distance (the per-vertex
+                        `distance` that trilab-cli geodesic writes to PLY)
+  --bands N             a banded map: the legend range cut into N equal steps (2 to 64),
+                        each one colour (the map's colour at the step's centre)
+  --isolines N          isolines between the same N steps: N - 1 lines at min + k (max -
+                        min) / N, over the shading; with --bands, N must be the same. Both
+                        need a scalar --color (not none, normal or subdivision)
   --reference MESH      the state before smoothing, for --color smoothing-distance: each
                         vertex's displacement from it, signed along the normal (MESH must
                         have the same vertices, e.g. the input of trilab-cli smooth)
@@ -72,12 +78,27 @@ bool parse_int(const std::string& s, int& out) {
     return true;
 }
 
+// The step counts of --bands and --isolines (RenderStyle::scalar_steps; the renderer's
+// kMinScalarSteps / kMaxScalarSteps, repeated here for builds without the renderer).
+constexpr int kMinSteps = 2, kMaxSteps = 64;
+
+/// The N of --bands / --isolines: a whole number from 2 to 64.
+int parse_steps(const std::string& text, const char* option) {
+    int n = 0;
+    if (!parse_int(text, n) || n < kMinSteps || n > kMaxSteps)
+        throw InvalidArgument(std::string(option) + ": expected a whole number of steps from " +
+                              std::to_string(kMinSteps) + " to " + std::to_string(kMaxSteps) +
+                              ", got '" + text + "'");
+    return n;
+}
+
 struct RenderArgs {
     std::string mesh, out, texture, reference;
     int width = 1280, height = 800;
     std::string mode = "gouraud";
     bool mode_given = false;
     std::string color = "none";
+    int bands = 0, isolines = 0;  ///< 0: not given
     std::string up = "y";
     double azimuth = 0, elevation = 0;
     bool transparent = false, json = false, help = false;
@@ -104,6 +125,10 @@ RenderArgs parse_args(const std::vector<std::string>& args) {
             r.mode_given = true;
         } else if (reader.is("--color")) {
             r.color = reader.value();
+        } else if (reader.is("--bands")) {
+            r.bands = parse_steps(reader.value(), "--bands");
+        } else if (reader.is("--isolines")) {
+            r.isolines = parse_steps(reader.value(), "--isolines");
         } else if (reader.is("--up")) {
             r.up = reader.value();
         } else if (reader.is("--size")) {
@@ -159,6 +184,28 @@ struct RenderSetup {
     bool textured() const { return options.style.mode == RenderMode::Textured; }
 };
 
+/// --bands / --isolines into the style; refuses them without a scalar colouring and with
+/// two different counts.
+void set_steps(const RenderArgs& a, RenderSetup& setup) {
+    if (a.bands == 0 && a.isolines == 0) return;
+    const char* option = a.bands ? "--bands" : "--isolines";
+    const VertexColoring c = setup.coloring;
+    if (c == VertexColoring::None || c == VertexColoring::Normal ||
+        c == VertexColoring::SubdivisionLevel)
+        throw InvalidArgument(std::string(option) + ": needs a scalar --color (k1, k2, mean, " +
+                              "gaussian, shape-index, smoothing-distance, geodesic-distance), " +
+                              "got --color " + a.color);
+    if (a.bands && a.isolines && a.bands != a.isolines)
+        throw InvalidArgument("--bands " + std::to_string(a.bands) + " and --isolines " +
+                              std::to_string(a.isolines) +
+                              ": the isolines lie between the bands, so N must be the same");
+    RenderStyle& style = setup.options.style;
+    style.scalar_steps = a.bands ? a.bands : a.isolines;
+    style.scalar_display = a.bands && a.isolines ? ScalarDisplay::BandsAndIsolines
+                           : a.bands             ? ScalarDisplay::Bands
+                                                 : ScalarDisplay::Isolines;
+}
+
 /// Checks the options that need no file and turns them into the renderer's (so that a bad
 /// one fails before any file is read).
 RenderSetup make_setup(const RenderArgs& a) {
@@ -192,9 +239,10 @@ RenderSetup make_setup(const RenderArgs& a) {
             "--reference: only --color smoothing-distance uses a reference "
             "mesh (got --color " +
             a.color + ")");
-    if (coloring_needs_field(setup.coloring))
+    if (coloring_needs_field(setup.coloring) && setup.coloring != VertexColoring::GeodesicDistance)
         throw InvalidArgument("--color: '" + a.color +
                               "' needs a spectral decomposition (the viewer's Frequency panel)");
+    set_steps(a, setup);
     return setup;
 }
 
@@ -241,10 +289,20 @@ Prepared prepare_mesh(const RenderArgs& a, HalfedgeMesh& mesh, RenderSetup& setu
                                   " (it must be the same mesh before smoothing)");
         reference = before.mesh.positions();
     }
+    if (setup.coloring == VertexColoring::GeodesicDistance &&
+        !mesh.get_vertex_property<double>("v:distance"))
+        throw InvalidArgument("--color geodesic-distance: " + a.mesh +
+                              " has no per-vertex distance (write one with `trilab-cli geodesic " +
+                              "IN OUT.ply --from N`)");
     p.colors = color_vertices(mesh, setup.coloring, ColoringOptions{},
                               a.reference.empty() ? nullptr : &reference);
     setup.options.vertex_colors = p.colors.colors;
     setup.options.vertex_color_blend = color_blend(p.colors.kind);
+    if (setup.options.style.scalar_display != ScalarDisplay::Smooth) {
+        setup.options.vertex_scalars = p.colors.values;
+        setup.options.scalar_range = p.colors.range;
+        setup.options.scalar_map = p.colors.kind;
+    }
     return p;
 }
 
@@ -252,6 +310,12 @@ Prepared prepare_mesh(const RenderArgs& a, HalfedgeMesh& mesh, RenderSetup& setu
 struct RenderTimes {
     double prepare = 0, context = 0, render = 0, total = 0;
 };
+
+/// The legend's steps as the style shows them.
+LegendSteps legend_steps(const RenderStyle& style) {
+    if (style.scalar_display == ScalarDisplay::Smooth) return {};
+    return {scalar_display_name(style.scalar_display), style.scalar_steps};
+}
 
 /// What the command prints: one JSON object, or one line and the notes.
 void print_result(const RenderArgs& a, const RenderSetup& setup, const HalfedgeMesh& mesh,
@@ -266,7 +330,7 @@ void print_result(const RenderArgs& a, const RenderSetup& setup, const HalfedgeM
             .add("height", a.height)
             .add("mode", render_mode_name(options.style.mode))
             .add("color", coloring_name(setup.coloring));
-        add_legend(j, p.colors);
+        add_legend(j, p.colors, legend_steps(options.style));
         j.add("view", std::vector<double>{a.azimuth, a.elevation})
             .add("up", up_axis_name(options.up))
             .add("transparent", a.transparent)
@@ -286,7 +350,7 @@ void print_result(const RenderArgs& a, const RenderSetup& setup, const HalfedgeM
     std::printf("wrote %s: %dx%d, %s", a.out.c_str(), a.width, a.height,
                 render_mode_name(options.style.mode));
     if (p.colors.has_legend)
-        std::printf(", %s", legend_text(p.colors).c_str());
+        std::printf(", %s", legend_text(p.colors, legend_steps(options.style)).c_str());
     else if (setup.coloring != VertexColoring::None)
         std::printf(", %s colouring", coloring_name(setup.coloring));
     std::printf(" (%.1f ms; %s)\n", t.total, renderer.c_str());

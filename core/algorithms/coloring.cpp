@@ -16,7 +16,9 @@
 // K1, K2, Mean and Gaussian over symmetric_range(percentile_range(...)) of the valid values,
 // ShapeIndex over the fixed range [-1, 1]; SubdivisionLevel on the categorical map, with one
 // category per level present. Vertices without a valid value (boundary, isolated,
-// zero area) get the neutral grey (0.55, 0.55, 0.55). Percentiles are checked before any
+// zero area) get the neutral grey (0.55, 0.55, 0.55). GeodesicDistance reads "v:distance"
+// and colours it as color_field() does. Every colouring but None and Normal also returns the
+// values it coloured (NaN for the grey vertices). Percentiles are checked before any
 // work (InvalidArgument naming low_percentile / high_percentile). Complexity: linear, plus
 // O(n) expected for the percentiles (nth_element).
 #include "core/algorithms/coloring.h"
@@ -24,6 +26,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -79,7 +82,7 @@ struct ColoringEntry {
     const char* label;
 };
 
-constexpr std::array<ColoringEntry, 11> kColorings = {{
+constexpr std::array<ColoringEntry, 12> kColorings = {{
     {VertexColoring::None, "none", ""},
     {VertexColoring::Normal, "normal", "vertex normal"},
     {VertexColoring::K1, "k1", "first principal curvature k1"},
@@ -92,6 +95,7 @@ constexpr std::array<ColoringEntry, 11> kColorings = {{
      "smoothing distance (along the normal)"},
     {VertexColoring::Frequency, "frequency", "frequency (eigenvector values)"},
     {VertexColoring::FrequencyMass, "frequency-mass", "geometry carried by the band"},
+    {VertexColoring::GeodesicDistance, "geodesic-distance", "geodesic distance"},
 }};
 
 const ColoringEntry& entry(VertexColoring coloring) {
@@ -135,6 +139,20 @@ constexpr std::array<std::array<float, 3>, 10> kCategorical = {{
     {0.96f, 0.56f, 0.76f},  // pink
     {0.40f, 0.84f, 0.80f},  // teal
 }};
+
+/// The GeodesicDistance colouring of the mesh's "v:distance" (color_field()); negative
+/// distances mark vertices no source reached (trilab-cli geodesic writes -1): no value.
+VertexColors stored_distance_colors(const HalfedgeMesh& mesh, const ColoringOptions& options) {
+    const auto distance = mesh.get_vertex_property<double>("v:distance");
+    if (!distance)
+        throw InvalidArgument(
+            "color_vertices: the 'geodesic-distance' colouring needs distances: a per-vertex "
+            "'distance' property (written by trilab-cli geodesic) or picked sources");
+    std::vector<double> values(mesh.vertices_size(), std::numeric_limits<double>::quiet_NaN());
+    for (Vertex v : mesh.vertices())
+        if (std::isfinite(distance[v]) && distance[v] >= 0) values[v.idx()] = distance[v];
+    return color_field(mesh, values, VertexColoring::GeodesicDistance, options);
+}
 
 }  // namespace
 
@@ -264,8 +282,10 @@ VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
         }
         if (!out.categories.empty())
             out.range = {out.categories.front().value, out.categories.back().value};
+        out.values.assign(n, std::numeric_limits<double>::quiet_NaN());
         for (Vertex v : mesh.vertices()) {
             const int value = level ? level[v] : 0;
+            out.values[v.idx()] = value;
             out.colors[v.idx()] =
                 value >= 0 ? categorical_color(std::size_t(value)) : kInvalidColor;
         }
@@ -285,10 +305,16 @@ VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
             percentile_range(d, valid, options.low_percentile, options.high_percentile));
         if (!(out.range.max > 0)) out.range = {-1e-12, 1e-12};
         out.colors.assign(n, kInvalidColor);
+        out.values.assign(n, std::numeric_limits<double>::quiet_NaN());
         for (Vertex v : mesh.vertices())
-            if (valid[v.idx()]) out.colors[v.idx()] = map_color(d[v.idx()], out.range, out.kind);
+            if (valid[v.idx()]) {
+                out.colors[v.idx()] = map_color(d[v.idx()], out.range, out.kind);
+                out.values[v.idx()] = d[v.idx()];
+            }
         return out;
     }
+
+    if (coloring == VertexColoring::GeodesicDistance) return stored_distance_colors(mesh, options);
 
     if (coloring_needs_field(coloring))
         throw InvalidArgument(std::string("color_vertices: the '") + e.name +
@@ -320,14 +346,18 @@ VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
                     : symmetric_range(percentile_range(*field, c.valid, options.low_percentile,
                                                        options.high_percentile));
     out.colors.assign(n, kInvalidColor);
+    out.values.assign(n, std::numeric_limits<double>::quiet_NaN());
     for (Vertex v : mesh.vertices())
-        if (c.valid[v.idx()])
+        if (c.valid[v.idx()]) {
             out.colors[v.idx()] = map_color((*field)[v.idx()], out.range, out.kind);
+            out.values[v.idx()] = (*field)[v.idx()];
+        }
     return out;
 }
 
 bool coloring_needs_field(VertexColoring coloring) {
-    return coloring == VertexColoring::Frequency || coloring == VertexColoring::FrequencyMass;
+    return coloring == VertexColoring::Frequency || coloring == VertexColoring::FrequencyMass ||
+           coloring == VertexColoring::GeodesicDistance;
 }
 
 VertexColors color_field(const HalfedgeMesh& mesh, const std::vector<double>& values,
@@ -345,10 +375,18 @@ VertexColors color_field(const HalfedgeMesh& mesh, const std::vector<double>& va
         coloring == VertexColoring::Frequency ? ColorMapKind::Diverging : ColorMapKind::Sequential;
     out.range = percentile_range(values, {}, options.low_percentile, options.high_percentile);
     if (out.kind == ColorMapKind::Diverging) out.range = symmetric_range(out.range);
+    if (coloring == VertexColoring::GeodesicDistance) {
+        // Distances start at the source: [0, high percentile].
+        const double high = percentile_range(values, {}, 0.0, options.high_percentile).max;
+        out.range = {0.0, high > 0 ? high : 1e-12};
+    }
     out.colors.assign(values.size(), kInvalidColor);
+    out.values.assign(values.size(), std::numeric_limits<double>::quiet_NaN());
     for (Vertex v : mesh.vertices())
-        if (std::isfinite(values[v.idx()]))
+        if (std::isfinite(values[v.idx()])) {
             out.colors[v.idx()] = map_color(values[v.idx()], out.range, out.kind);
+            out.values[v.idx()] = values[v.idx()];
+        }
     return out;
 }
 

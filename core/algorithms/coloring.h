@@ -47,6 +47,11 @@ enum class VertexColoring {
     SmoothingDistance,
     Frequency,  ///< an eigenvector's values (core/algorithms/spectral.h frequency_field); signed
     FrequencyMass,  ///< |part of the position carried by a band| (band_magnitude_field)
+    /// Geodesic distance from source vertices (core/algorithms/geodesic.h): sequential, over
+    /// [0, high percentile]. A field from outside (coloring_needs_field()); color_vertices()
+    /// takes it from the mesh's "v:distance" property (written by `trilab-cli geodesic`,
+    /// negative values: not reached) when there is one.
+    GeodesicDistance,
 };
 
 struct ColoringOptions {
@@ -57,6 +62,10 @@ struct ColoringOptions {
 /// Colours for every vertex (indexed by storage index) and what the legend shows.
 struct VertexColors {
     std::vector<Color> colors;
+    /// The value each vertex was coloured by (storage index; NaN where it has none and is
+    /// grey), for isolines, bands and inspectors; empty for None and Normal, which colour
+    /// by no scalar. Categorical: the category's value.
+    std::vector<double> values;
     ValueRange range;  ///< the values that map to the ends of the colour bar
     ColorMapKind kind = ColorMapKind::Sequential;
     std::string label;        ///< e.g. "mean curvature"
@@ -82,8 +91,10 @@ ValueRange percentile_range(const std::vector<double>& values,
 ValueRange symmetric_range(const ValueRange& range);
 /// Computes the quantity and its colours. `reference` (SmoothingDistance only): one earlier
 /// position per vertex storage index of `mesh`; without it, or when its size differs, every
-/// distance is zero and the label says there is no earlier state. Throws InvalidArgument for
-/// the colourings that need a field (coloring_needs_field()).
+/// distance is zero and the label says there is no earlier state. GeodesicDistance colours
+/// the mesh's "v:distance" property (negative or non-finite: no value) as color_field() does.
+/// Throws InvalidArgument for the colourings that need a field (coloring_needs_field()),
+/// GeodesicDistance included when the mesh has no "v:distance".
 VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
                             const ColoringOptions& options = {},
                             const std::vector<Point>* reference = nullptr);
@@ -93,16 +104,19 @@ VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
 std::vector<double> smoothing_distance(const HalfedgeMesh& mesh,
                                        const std::vector<Point>& reference);
 /// Whether the colouring needs a per-vertex field from outside the mesh (Frequency,
-/// FrequencyMass: a spectral decomposition); color_vertices() refuses those.
+/// FrequencyMass: a spectral decomposition; GeodesicDistance: distances from sources);
+/// color_vertices() refuses those (GeodesicDistance only without "v:distance").
 bool coloring_needs_field(VertexColoring coloring);
 /// Colours a given per-vertex field (indexed by storage index; NaN: no value, grey) as
 /// `coloring` shows it: Frequency on the diverging map over a symmetric percentile range,
-/// FrequencyMass (and any other) on the sequential map over the percentile range. Throws
+/// GeodesicDistance on the sequential map over [0, high percentile] (distances start at the
+/// source; low_percentile is unused), FrequencyMass (and any other) on the sequential map
+/// over the percentile range. Throws
 /// InvalidArgument when values.size() != mesh.vertices_size() or for bad percentiles.
 VertexColors color_field(const HalfedgeMesh& mesh, const std::vector<double>& values,
                          VertexColoring coloring, const ColoringOptions& options = {});
 /// Names for menus and the CLI: "none", "normal", "k1", "k2", "mean", "gaussian", "shape-index",
-/// "subdivision", "smoothing-distance", "frequency", "frequency-mass".
+/// "subdivision", "smoothing-distance", "frequency", "frequency-mass", "geodesic-distance".
 const char* coloring_name(VertexColoring coloring);
 /// Parses coloring_name() strings; throws InvalidArgument listing the names otherwise.
 VertexColoring parse_coloring(const std::string& name);

@@ -259,6 +259,38 @@ if "$cli" render "$tmp/d.obj" --out "$tmp/probe.png" --size 16x16 >/dev/null 2>&
     check "render refuses a reference with other vertices" bash -c \
         "! '$cli' render '$tmp/sm2.obj' --reference '$tmp/grid0.obj' --color smoothing-distance \
          --out '$tmp/sd2.png' --size 64x48 2> '$tmp/e' && grep -q -- '--reference' '$tmp/e'"
+    check "render --color geodesic-distance --isolines colours the output of geodesic" bash -c \
+        "'$cli' render '$tmp/geo.ply' --color geodesic-distance --isolines 12 --out '$tmp/gi.png' \
+         --size 96x64 --json > '$tmp/gi.json' && grep -q '\"label\": \"geodesic distance\"' '$tmp/gi.json' && \
+         grep -q '\"min\": 0,' '$tmp/gi.json' && grep -q '\"display\": \"isolines\"' '$tmp/gi.json' && \
+         grep -q '\"steps\": 12' '$tmp/gi.json' && \
+         [ \$(grep -o '\"isolines\": \\[[^]]*\\]' '$tmp/gi.json' | tr ',' '\n' | wc -l) -eq 11 ] && \
+         '$cli' render '$tmp/geo.ply' --color geodesic-distance --out '$tmp/gs.png' --size 96x64 \
+         > /dev/null && ! cmp -s '$tmp/gi.png' '$tmp/gs.png'"
+    check "render --bands prints the bands in the legend line, with --isolines both" bash -c \
+        "'$cli' render '$tmp/d.obj' --color mean --bands 8 --out '$tmp/b.png' --size 64x48 | \
+         grep -q 'mean curvature H in .*, 8 bands of ' && \
+         '$cli' render '$tmp/d.obj' --color mean --bands 8 --isolines 8 --out '$tmp/b2.png' \
+         --size 64x48 --json | grep -q '\"display\": \"bands-isolines\"' && \
+         '$cli' render '$tmp/d.obj' --color shape-index --isolines 4 --out '$tmp/b3.png' \
+         --size 64x48 | grep -q ', 3 isolines 0.5 apart'"
+    check "render refuses a bad --isolines or --bands count naming the option, writing nothing" bash -c \
+        "for bad in 1 65 abc 2.5; do \
+           ! '$cli' render '$tmp/d.obj' --color mean --isolines \$bad --out '$tmp/bi.png' 2> '$tmp/e' && \
+           grep -q -- \"--isolines: expected a whole number of steps from 2 to 64, got '\$bad'\" '$tmp/e' && \
+           ! '$cli' render '$tmp/d.obj' --color mean --bands \$bad --out '$tmp/bi.png' 2> '$tmp/e' && \
+           grep -q -- '--bands: expected a whole number' '$tmp/e' || exit 1; \
+         done; [ ! -e '$tmp/bi.png' ] && \
+         ! '$cli' render '$tmp/d.obj' --color mean --bands 4 --isolines 5 --out '$tmp/bi.png' \
+           2> '$tmp/e' && grep -q -- '--bands 4 and --isolines 5' '$tmp/e'"
+    check "render refuses --isolines without a scalar colouring, naming it" bash -c \
+        "for c in none normal subdivision; do \
+           ! '$cli' render '$tmp/d.obj' --color \$c --isolines 5 --out '$tmp/bn.png' 2> '$tmp/e' && \
+           grep -q -- '--isolines: needs a scalar --color' '$tmp/e' || exit 1; done; [ ! -e '$tmp/bn.png' ]"
+    check "render refuses geodesic-distance on a mesh without distances" bash -c \
+        "! '$cli' render '$tmp/d.obj' --color geodesic-distance --out '$tmp/gn.png' 2> '$tmp/e' && \
+         grep -q -- '--color geodesic-distance: .* has no per-vertex distance' '$tmp/e' && \
+         [ ! -e '$tmp/gn.png' ]"
     check "record --op subdivide writes the refinement morph" bash -c \
         "'$cli' record '$tmp/d.obj' --op 'subdivide --scheme sqrt3 --iterations 2' --frames 3 \
          --size 64x48 --out '$tmp/subrec' --color subdivision >/dev/null 2>&1 && \
