@@ -73,7 +73,8 @@ void coloring_menu(ViewSettings& settings, CommandQueue& commands) {
                                             VertexColoring::SubdivisionLevel,
                                             VertexColoring::SmoothingDistance,
                                             VertexColoring::Frequency,
-                                            VertexColoring::FrequencyMass};
+                                            VertexColoring::FrequencyMass,
+                                            VertexColoring::GeodesicDistance};
         const char* labels[] = {"None",
                                 "Normal direction",
                                 "First principal curvature",
@@ -84,7 +85,8 @@ void coloring_menu(ViewSettings& settings, CommandQueue& commands) {
                                 "Subdivision vertices",
                                 "Smoothing distance",
                                 "Frequency (the visualized eigenvector)",
-                                "Frequency mass (geometry in the band)"};
+                                "Frequency mass (geometry in the band)",
+                                "Geodesic distance (from the picks)"};
         for (std::size_t i = 0; i < std::size(colorings); ++i) {
             if (menu_item(labels[i], nullptr, settings.coloring == colorings[i]) &&
                 settings.coloring != colorings[i]) {

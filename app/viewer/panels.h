@@ -337,7 +337,10 @@ struct LegendSlot {
 };
 /// The colour bar of a vertex colouring with its value range, and the percentile sliders
 /// that choose the range. Returns true when the user changed the options.
-bool color_legend(const VertexColors& colors, ColoringOptions& options, LegendSlot& slot);
+/// Under a scalar colouring's bar: the display (smooth, bands, isolines, both) and its count
+/// N, in `style`.
+bool color_legend(const VertexColors& colors, ColoringOptions& options, RenderStyle& style,
+                  LegendSlot& slot);
 
 // ---- dialogs: floating, kept inside the window ----------------------------------------------
 

@@ -224,7 +224,39 @@ void log_window(PanelState& panels, const Log& log, const Rect& region) {
     end_region();
 }
 
-bool color_legend(const VertexColors& colors, ColoringOptions& options, LegendSlot& slot) {
+namespace {
+
+/// Under the colour bar of a scalar colouring: smooth colours, bands, isolines or both, and
+/// their count. Edits the render style only (no recolouring).
+void scalar_display_controls(RenderStyle& style) {
+    const ScalarDisplay displays[] = {ScalarDisplay::Smooth, ScalarDisplay::Bands,
+                                      ScalarDisplay::Isolines, ScalarDisplay::BandsAndIsolines};
+    const char* labels[] = {"smooth", "bands", "isolines", "bands + isolines"};
+    int current = 0;
+    for (int i = 0; i < 4; ++i)
+        if (style.scalar_display == displays[i]) current = i;
+    ImGui::SetNextItemWidth(8.0f * ImGui::GetFontSize());
+    if (ImGui::BeginCombo("##display", labels[current])) {
+        for (int i = 0; i < 4; ++i)
+            if (ImGui::Selectable(labels[i], i == current)) style.scalar_display = displays[i];
+        ImGui::EndCombo();
+    }
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "Bands cut the range into N equal steps; isolines are drawn at the N - 1 "
+            "values between them, over the shading");
+    if (style.scalar_display != ScalarDisplay::Smooth) {
+        ImGui::SameLine();
+        ImGui::SetNextItemWidth(6.0f * ImGui::GetFontSize());
+        ImGui::SliderInt("##steps", &style.scalar_steps, kMinScalarSteps, kMaxScalarSteps, "N = %d",
+                         ImGuiSliderFlags_AlwaysClamp);
+    }
+}
+
+}  // namespace
+
+bool color_legend(const VertexColors& colors, ColoringOptions& options, RenderStyle& style,
+                  LegendSlot& slot) {
     slot.width = slot.height = 0;
     if (!colors.has_legend) return false;
     // In its fixed region (layout.h): the bottom right of the view, at most the slot's size.
@@ -237,6 +269,8 @@ bool color_legend(const VertexColors& colors, ColoringOptions& options, LegendSl
     if (ImGui::Begin("##legend", nullptr, flags)) {
         const float padding = 2.0f * ImGui::GetStyle().WindowPadding.x;
         changed = legend_contents(colors, options, slot.max_width - padding);
+        if (colors.kind != ColorMapKind::Categorical && !colors.values.empty())
+            scalar_display_controls(style);
         slot.width = ImGui::GetWindowWidth();
         slot.height = ImGui::GetWindowHeight();
     }

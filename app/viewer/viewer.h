@@ -225,6 +225,7 @@ private:
     std::string inspector_key_;
     InspectorView inspector_;
     std::size_t next_scripted_pick_ = 0;
+    std::uint64_t geodesic_colored_version_ = 0;  ///< the picks the geodesic colours show
     glm::vec2 press_pos_{0.0f};  ///< where the left button went down (a click picks)
     bool turning_ = false;       ///< the left drag has moved past the click's slop
 

@@ -56,6 +56,19 @@ void Viewer::scripted_decomposition() {
 }
 
 VertexColors Viewer::frequency_colors(const HalfedgeMesh& mesh) const {
+    if (view_.settings.coloring == VertexColoring::GeodesicDistance) {
+        // A mesh that carries its distances ("v:distance", written by trilab-cli geodesic)
+        // shows them; otherwise the distance from the picks, once measured on this state.
+        if (mesh.has_vertex_property("v:distance"))
+            return color_vertices(mesh, VertexColoring::GeodesicDistance,
+                                  view_.settings.coloring_options);
+        const PickSet& picks = session_.picks();
+        if (picks.distances.size() != mesh.vertices_size() ||
+            picks.mesh.topology_revision() != mesh.topology_revision())
+            return {};
+        return color_field(mesh, picks.distances, VertexColoring::GeodesicDistance,
+                           view_.settings.coloring_options);
+    }
     const FrequencyDocument& doc = session_.document().frequency;
     const auto& d = doc.decomposition;
     if (!d || mesh.vertices_size() != d->base_positions.size() || d->empty()) return {};

@@ -10,7 +10,7 @@
 #include <limits>
 #include <string>
 
-#include "app/ops/decimate_op.h"
+#include "app/ops/operation_entries.h"
 #include "app/session/provenance.h"
 #include "core/algorithms/inspect.h"
 #include "core/errors.h"
@@ -126,6 +126,10 @@ void Viewer::draw_pick_overlay() const {
 }
 
 void Viewer::update_inspector() {
+    // The geodesic colouring follows the picks' distances as they arrive.
+    if (view_.settings.coloring == VertexColoring::GeodesicDistance &&
+        session_.picks().version != geodesic_colored_version_)
+        commands_.push_back(UpdateColoring{});
     try {
         session_.set_inspection_options(decimation_options(panels_.decimation.op));
     } catch (const std::exception&) {
@@ -133,14 +137,12 @@ void Viewer::update_inspector() {
     }
     const PickSet& set = session_.picks();
     const FrequencyDocument& frequency = session_.document().frequency;
-    const std::string key = std::to_string(set.version) + " " +
-                            std::to_string(session_.history().current()) + " " +
-                            std::to_string(session_.shown().version) + " " +
-                            std::to_string(int(view_.settings.coloring)) + " " +
-                            std::to_string(view_.colors.colors.size()) + " " +
-                            std::to_string(frequency.valid) + " " +
-                            std::to_string(panels_.frequency.lo) + " " +
-                            std::to_string(panels_.frequency.hi);
+    const std::string key =
+        std::to_string(set.version) + " " + std::to_string(session_.history().current()) + " " +
+        std::to_string(session_.shown().version) + " " +
+        std::to_string(int(view_.settings.coloring)) + " " +
+        std::to_string(view_.colors.colors.size()) + " " + std::to_string(frequency.valid) + " " +
+        std::to_string(panels_.frequency.lo) + " " + std::to_string(panels_.frequency.hi);
     if (key == inspector_key_) return;
     inspector_key_ = key;
     InspectorView& view = inspector_;
@@ -149,8 +151,7 @@ void Viewer::update_inspector() {
     if (!view.has_picks) return;
     const HalfedgeMesh& mesh = set.mesh;
     const Pick& p = set.picks.front();
-    if (p.on_level)
-        view.note = "picked on the level of detail: the document's elements are shown";
+    if (p.on_level) view.note = "picked on the level of detail: the document's elements are shown";
     const auto add_fields = [&](std::string title, const std::vector<InspectionField>& fields) {
         InspectorView::Group g{std::move(title), {}};
         for (const InspectionField& f : fields) g.rows.push_back({f.label, f.text});
@@ -166,7 +167,8 @@ void Viewer::update_inspector() {
             // What the view shows at this vertex: the colouring's value, the eigenvectors of
             // the band, the band's displacement.
             if (v < view_.colors.values.size() && !std::isnan(view_.colors.values[v]))
-                fields.push_back({"coloring", "Colouring (" + view_.colors.label + ")",
+                fields.push_back({"coloring",
+                                  "Colouring (" + view_.colors.label + ")",
                                   number(view_.colors.values[v]),
                                   {view_.colors.values[v]}});
             const SpectralDecomposition* d = frequency.decomposition.get();
@@ -180,10 +182,12 @@ void Viewer::update_inspector() {
                 constexpr std::size_t kMaxShown = 8;
                 for (std::size_t k = lo; k <= hi && k < lo + kMaxShown; ++k) {
                     const double e = d->eigenvectors(row, Eigen::Index(k));
-                    fields.push_back({"eigenvector", "Frequency " + std::to_string(k), number(e), {e}});
+                    fields.push_back(
+                        {"eigenvector", "Frequency " + std::to_string(k), number(e), {e}});
                 }
                 if (hi >= lo + kMaxShown)
-                    fields.push_back({"eigenvector", "Frequencies",
+                    fields.push_back({"eigenvector",
+                                      "Frequencies",
                                       "the first 8 of the band " + std::to_string(lo) + ".." +
                                           std::to_string(hi) + " are listed",
                                       {}});
@@ -192,16 +196,19 @@ void Viewer::update_inspector() {
             if (shown.kind == Shown::Kind::Band && v < shown.positions.size() &&
                 v < mesh.vertices_size()) {
                 const Vector3 moved = shown.positions[v] - mesh.position(p.vertex);
-                fields.push_back({"band_displacement", "Band displacement",
+                fields.push_back({"band_displacement",
+                                  "Band displacement",
                                   vec_text(moved) + " (|d| " + number(moved.norm()) + ")",
                                   {moved.x(), moved.y(), moved.z()}});
             }
             add_fields("Vertex " + std::to_string(v), fields);
         }
         if (inspection->edge)
-            add_fields("Edge " + std::to_string(p.edge.idx()), inspection_fields(*inspection->edge));
+            add_fields("Edge " + std::to_string(p.edge.idx()),
+                       inspection_fields(*inspection->edge));
         if (inspection->face)
-            add_fields("Face " + std::to_string(p.face.idx()), inspection_fields(*inspection->face));
+            add_fields("Face " + std::to_string(p.face.idx()),
+                       inspection_fields(*inspection->face));
         if (!inspection->failure.empty()) view.note = inspection->failure;
     }
     if (set.picks.size() == 2) {
@@ -210,8 +217,8 @@ void Viewer::update_inspector() {
                                    std::to_string(set.picks[1].vertex.idx()),
                                {}};
         g.rows.push_back({"Straight distance", number(m.straight)});
-        g.rows.push_back({"Geodesic distance (heat method)",
-                          m.computing ? "computing..." : number(m.geodesic)});
+        g.rows.push_back(
+            {"Geodesic distance (heat method)", m.computing ? "computing..." : number(m.geodesic)});
         if (!m.path.empty()) {
             g.rows.push_back({"Path length on the surface", number(m.path_length)});
             g.rows.push_back({"Path points", std::to_string(m.path.size())});

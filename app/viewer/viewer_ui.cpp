@@ -208,7 +208,7 @@ void Viewer::draw_ui() {
     slot.bottom = layout.legend.bottom();
     slot.max_width = layout.legend_max_width;
     slot.max_height = layout.legend_max_height;
-    if (color_legend(view_.colors, view_.settings.coloring_options, slot))
+    if (color_legend(view_.colors, view_.settings.coloring_options, view_.style, slot))
         commands_.push_back(UpdateColoring{});
     if (slot.width > 0) {  // its size this frame places it in the next
         sizes.legend_width = slot.width;

@@ -89,19 +89,31 @@ void Viewer::apply_colors(VertexColors colors) {
     if (view_.settings.coloring == VertexColoring::None || view_.colors.colors.empty())
         renderer_->clear_vertex_colors();
     else
-        renderer_->set_vertex_colors(view_.colors.colors, color_blend(view_.colors.kind));
+        renderer_->set_vertex_colors(view_.colors);
 }
 
 void Viewer::update_coloring() {
     const VertexColoring coloring = view_.settings.coloring;
     const ColoringOptions options = view_.settings.coloring_options;
+    if (coloring != VertexColoring::GeodesicDistance) session_.want_pick_distances(false);
     if (coloring == VertexColoring::None) {
         apply_colors(VertexColors{});
         return;
     }
     if (coloring_needs_field(coloring)) {  // from the decomposition: cheap, on this thread
+        const bool geodesic = coloring == VertexColoring::GeodesicDistance;
+        session_.want_pick_distances(geodesic);
+        geodesic_colored_version_ = session_.picks().version;
         VertexColors colors = frequency_colors(session_.mesh());
-        if (colors.colors.empty())
+        if (colors.colors.empty() && geodesic)
+            session_.notice() =
+                Notice{Notice::Level::Info,
+                       session_.picks().picks.empty()
+                           ? "geodesic distance: click the model to pick where it is measured from"
+                           : "geodesic distance: measuring from the picks...",
+                       {},
+                       false};
+        else if (colors.colors.empty())
             session_.notice() =
                 Notice{Notice::Level::Info,
                        "the frequency colourings need a decomposition (Algorithms > "
@@ -156,7 +168,7 @@ void Viewer::show_colors_of(const HalfedgeMesh& mesh, const std::vector<Point>& 
     if (colors.colors.empty())
         renderer_->clear_vertex_colors();
     else
-        renderer_->set_vertex_colors(colors.colors, color_blend(colors.kind));
+        renderer_->set_vertex_colors(colors);
 }
 
 void Viewer::update_texture() {
@@ -219,6 +231,7 @@ void Viewer::render_scene() {
 
     RenderStyle style = view_.style;
     style.wire_width *= ui_scale_;
+    style.isoline_width *= ui_scale_;
     style.point_size *= ui_scale_;
     renderer_->draw(view_.camera.view(), view_.camera.projection(), style);
     if (panels_.decimation.show_collapsing_edges)

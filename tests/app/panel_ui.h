@@ -108,7 +108,8 @@ inline void draw_legend(const VertexColors& colors, ColoringOptions& options) {
     slot.bottom = 800;
     slot.max_width = 600;
     slot.max_height = 400;
-    color_legend(colors, options, slot);
+    RenderStyle style;
+    color_legend(colors, options, style, slot);
 }
 
 /// Draws `body` in the sidebar of the display's layout, as the viewer does.
