@@ -83,6 +83,34 @@ void check_index(Index i, std::size_t size, std::size_t live, bool deleted, cons
                               " is deleted");
 }
 
+enum class Kind { None, Vertex, Edge, Face, Point };
+
+/// Refuses an element that the mesh does not have, naming its option.
+void check_request(const HalfedgeMesh& mesh, Kind kind, Index index) {
+    switch (kind) {
+        case Kind::Vertex:
+            check_index(index, mesh.vertices_size(), mesh.n_vertices(),
+                        index < mesh.vertices_size() && mesh.is_deleted(Vertex(index)), "--vertex",
+                        "vertex", "vertices");
+            break;
+        case Kind::Edge:
+            check_index(index, mesh.edges_size(), mesh.n_edges(),
+                        index < mesh.edges_size() && mesh.is_deleted(Edge(index)), "--edge", "edge",
+                        "edges");
+            break;
+        case Kind::Face:
+            check_index(index, mesh.faces_size(), mesh.n_faces(),
+                        index < mesh.faces_size() && mesh.is_deleted(Face(index)), "--face", "face",
+                        "faces");
+            break;
+        case Kind::Point:
+            if (mesh.n_faces() == 0) throw InvalidArgument("--point: the mesh has no faces");
+            break;
+        case Kind::None:
+            break;
+    }
+}
+
 void print_fields(const char* title, const std::vector<InspectionField>& fields) {
     std::printf("%s\n", title);
     std::size_t width = 0;
@@ -106,7 +134,7 @@ void add_fields(JsonObject& j, const std::vector<InspectionField>& fields) {
 
 int run_inspect_command(const std::vector<std::string>& args) {
     std::vector<std::string> files;
-    enum class Kind { None, Vertex, Edge, Face, Point } kind = Kind::None;
+    Kind kind = Kind::None;
     const char* kind_option = "";
     Index index = 0;
     Point point = Point::Zero();
@@ -169,28 +197,7 @@ int run_inspect_command(const std::vector<std::string>& args) {
             "inspect --help`)");
     LoadedMesh in = read_mesh(files[0]);
     const HalfedgeMesh& mesh = in.mesh;
-    switch (kind) {
-        case Kind::Vertex:
-            check_index(index, mesh.vertices_size(), mesh.n_vertices(),
-                        index < mesh.vertices_size() && mesh.is_deleted(Vertex(index)), "--vertex",
-                        "vertex", "vertices");
-            break;
-        case Kind::Edge:
-            check_index(index, mesh.edges_size(), mesh.n_edges(),
-                        index < mesh.edges_size() && mesh.is_deleted(Edge(index)), "--edge", "edge",
-                        "edges");
-            break;
-        case Kind::Face:
-            check_index(index, mesh.faces_size(), mesh.n_faces(),
-                        index < mesh.faces_size() && mesh.is_deleted(Face(index)), "--face", "face",
-                        "faces");
-            break;
-        case Kind::Point:
-            if (mesh.n_faces() == 0) throw InvalidArgument("--point: the mesh has no faces");
-            break;
-        case Kind::None:
-            break;
-    }
+    check_request(mesh, kind, index);
 
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<InspectionField> fields;
