@@ -19,6 +19,7 @@
 #include "app/cli/json_writer.h"
 #include "app/cli/operation_command.h"
 #include "app/cli/record_command.h"
+#include "app/cli/region_option.h"
 #include "app/cli/render_command.h"
 #include "app/ops/operation.h"
 #include "app/platform/heap_tuning.h"
@@ -43,6 +44,8 @@ commands:
                                   sampled Hausdorff and RMS distance between two meshes
   geodesic IN OUT --from N[,N...] [--to M] [--json]
                                   heat-method geodesic distances as the PLY vertex `distance`
+  select IN OUT --region SPEC [--grow K] [--shrink K] [--invert] [--json]
+                                  store a selection as the vertex weight `selection`
   help                            this text
 
 operations (options: `trilab-cli NAME --help`):
@@ -72,6 +75,7 @@ std::optional<int> run_command(const std::string& cmd, const std::vector<std::st
     if (cmd == "record") return run_record_command(args);
     if (cmd == "compare") return run_compare_command(args);
     if (cmd == "geodesic") return run_geodesic_command(args);
+    if (cmd == "select") return run_select_command(args);
     for (const std::string& name : trilab::operation_names())
         if (cmd == name) return run_operation_command(name, args);
     return std::nullopt;
