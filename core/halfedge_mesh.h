@@ -466,6 +466,11 @@ public:
     /// loops are reversed too; halfedge(v) stays a boundary halfedge at boundary vertices.
     /// O(vertices + halfedges); keeps every invariant.
     void reverse_orientation();
+    /// The same for the edges with edge_mask[e] != 0 only (one per edge storage index), which
+    /// must be whole connected components (every edge of a face or boundary loop that one of
+    /// them borders): the rest of the mesh is untouched. Throws InvalidArgument for a mask of
+    /// the wrong size.
+    void reverse_orientation(const std::vector<std::uint8_t>& edge_mask);
     /// Compacts storage, removing deleted elements. Returns the index remapping.
     IndexRemap garbage_collection();
 

@@ -70,6 +70,7 @@ void check_soup(const PolygonSoup& soup) {
     check_size(soup.colors.size(), nv, "colors");
     check_size(soup.texcoords.size(), nv, "texcoords");
     check_size(soup.distances.size(), nv, "distances");
+    check_size(soup.selections.size(), nv, "selections");
     check_size(soup.corner_texcoords.size(), soup.corners.size(), "corner_texcoords");
 }
 
@@ -539,6 +540,10 @@ void copy_attributes(const PolygonSoup& soup, const Triangles& tris,
         auto p = mesh.vertex_property<double>("v:distance");
         for (std::size_t v = 0; v < n_v; ++v) p[Vertex(Index(v))] = soup.distances[source(v)];
     }
+    if (!soup.selections.empty()) {
+        auto p = mesh.vertex_property<float>("v:selection");
+        for (std::size_t v = 0; v < n_v; ++v) p[Vertex(Index(v))] = soup.selections[source(v)];
+    }
     if (!soup.texcoords.empty()) {
         auto p = mesh.vertex_property<TexCoord>("v:texcoord");
         for (std::size_t v = 0; v < n_v; ++v) p[Vertex(Index(v))] = soup.texcoords[source(v)];
@@ -592,12 +597,14 @@ PolygonSoup to_soup(const HalfedgeMesh& mesh) {
     auto colors = mesh.get_vertex_property<Color>("v:color");
     auto texcoords = mesh.get_vertex_property<TexCoord>("v:texcoord");
     auto distances = mesh.get_vertex_property<double>("v:distance");
+    auto selections = mesh.get_vertex_property<float>("v:selection");
     auto corner_uv = mesh.get_halfedge_property<TexCoord>("h:texcoord");
     for (Vertex v : mesh.vertices()) {
         if (normals) soup.normals.push_back(normals[v]);
         if (colors) soup.colors.push_back(colors[v]);
         if (texcoords) soup.texcoords.push_back(texcoords[v]);
         if (distances) soup.distances.push_back(distances[v]);
+        if (selections) soup.selections.push_back(selections[v]);
     }
     soup.corners.reserve(3 * mesh.n_faces());
     soup.face_offsets.reserve(mesh.n_faces() + 1);

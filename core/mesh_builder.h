@@ -37,6 +37,9 @@ struct PolygonSoup {
     /// Per-vertex scalar "v:distance" (double; PLY property `distance`, e.g. a geodesic
     /// distance, core/algorithms/geodesic.h).
     std::vector<double> distances;
+    /// Per-vertex selection weight "v:selection" (float in [0, 1]; PLY property `selection`,
+    /// core/algorithms/selection.h).
+    std::vector<float> selections;
     /// Optional per-corner texture coordinates: empty, or one per entry of `corners`.
     std::vector<TexCoord> corner_texcoords;
 

@@ -263,6 +263,15 @@ Vertex HalfedgeMesh::split(Face f, const Point& p) {
 }
 
 void HalfedgeMesh::reverse_orientation() {
+    reverse_orientation(std::vector<std::uint8_t>(edges_size(), 1));
+}
+
+void HalfedgeMesh::reverse_orientation(const std::vector<std::uint8_t>& edge_mask) {
+    if (edge_mask.size() != edges_size())
+        throw InvalidArgument("reverse_orientation: expected one mask entry per edge (" +
+                              std::to_string(edges_size()) + "), got " +
+                              std::to_string(edge_mask.size()));
+    const auto masked = [&](Halfedge h) { return edge_mask[edge(h).idx()] != 0; };
     // Halfedge h keeps its direction (to_vertex) and moves to the other side of its edge:
     //   face'(h) = face(twin(h)),  next'(h) = twin(prev(twin(h))),  prev'(h) = twin(next(twin(h))).
     // Face f then consists of the twins of its old halfedges, in reverse order; a boundary loop
@@ -276,7 +285,7 @@ void HalfedgeMesh::reverse_orientation() {
     for (std::size_t i = 0; i < nh; ++i) {
         const Halfedge h(static_cast<Index>(i));
         source[i] = static_cast<Index>(i);
-        if (is_deleted(h)) continue;
+        if (is_deleted(h) || !masked(h)) continue;
         const Halfedge t = twin(h);
         face2[i] = face(t);
         next2[i] = twin(prev(t));
@@ -285,8 +294,10 @@ void HalfedgeMesh::reverse_orientation() {
     }
     std::vector<Halfedge> vertex_halfedge(vhalfedge_.vector());
     for (Vertex v : vertices())
-        if (!is_isolated(v)) vertex_halfedge[v.idx()] = twin(prev(halfedge(v)));
-    for (Face f : faces()) fhalfedge_[f] = twin(halfedge(f));
+        if (!is_isolated(v) && masked(halfedge(v)))
+            vertex_halfedge[v.idx()] = twin(prev(halfedge(v)));
+    for (Face f : faces())
+        if (masked(halfedge(f))) fhalfedge_[f] = twin(halfedge(f));
     hprops_.gather(source);  // every halfedge attribute follows its corner ...
     hto_.vector() = to;      // ... then the connectivity is set
     hnext_.vector() = std::move(next2);

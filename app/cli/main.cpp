@@ -20,6 +20,7 @@
 #include "app/cli/json_writer.h"
 #include "app/cli/operation_command.h"
 #include "app/cli/record_command.h"
+#include "app/cli/region_option.h"
 #include "app/cli/render_command.h"
 #include "app/ops/operation.h"
 #include "app/platform/heap_tuning.h"
@@ -46,6 +47,8 @@ commands:
                                   heat-method geodesic distances as the PLY vertex `distance`
   inspect IN (--vertex N | --edge N | --face N | --point X,Y,Z) [--json]
                                   what the viewer's inspector shows for one element
+  select IN OUT --region SPEC [--grow K] [--shrink K] [--invert] [--json]
+                                  store a selection as the vertex weight `selection`
   help                            this text
 
 operations (options: `trilab-cli NAME --help`):
@@ -76,6 +79,7 @@ std::optional<int> run_command(const std::string& cmd, const std::vector<std::st
     if (cmd == "compare") return run_compare_command(args);
     if (cmd == "geodesic") return run_geodesic_command(args);
     if (cmd == "inspect") return run_inspect_command(args);
+    if (cmd == "select") return run_select_command(args);
     for (const std::string& name : trilab::operation_names())
         if (cmd == name) return run_operation_command(name, args);
     return std::nullopt;

@@ -5,8 +5,10 @@
 #include <cstdio>
 #include <iostream>
 #include <map>
+#include <optional>
 
 #include "app/cli/arg_reader.h"
+#include "app/cli/region_option.h"
 #include "app/cli/write_options.h"
 #include "core/errors.h"
 #include "core/io/mesh_io.h"
@@ -20,6 +22,7 @@ struct OperationArgs {
     std::vector<std::string> files;
     std::map<std::string, std::string> own;  ///< the command's own value options
     bool json = false, help = false, keep_partial = false;
+    std::optional<RegionSpec> region;
     WriteOptions write;
 };
 
@@ -50,6 +53,8 @@ OperationArgs parse_args(const OperationDef& def, const std::vector<std::string>
             a.json = reader.flag();
         } else if (take_write_option(reader, a.write)) {
             continue;
+        } else if (reader.is("--region")) {
+            a.region = parse_region_spec(reader.value());
         } else if (reader.is("--keep-partial")) {
             if (!def.may_stop_early)
                 throw InvalidArgument("--keep-partial: does not apply to " + def.name +
@@ -151,6 +156,8 @@ std::string operation_command_help(const std::string& name) {
     }
     text += line;
     s += text + "\n\noptions:\n" + def.help() + extras.help;
+    if (def.takes_region)
+        s += std::string(kRegionHelp) + "      on " + def.name + ": " + def.region_help + "\n";
     s += "  --ascii, --big-endian (how to write .ply and .stl, as for `trilab-cli convert`)\n";
     if (def.may_stop_early)
         s += "  --keep-partial (a run that stops early writes its last good state, still exit "
@@ -169,6 +176,9 @@ int run_operation_command(const std::string& name, const std::vector<std::string
         return 0;
     }
     const Operation op = parse_operation(name, a.op_args);  // bad options fail before any file
+    if (a.region && !def.takes_region)
+        throw InvalidArgument("--region: " + name +
+                              " does not work on a region yet (it acts on the whole mesh)");
     if (a.files.size() != 2)
         throw InvalidArgument("expected IN and OUT files (see `trilab-cli " + name + " --help`)");
 
@@ -178,6 +188,11 @@ int run_operation_command(const std::string& name, const std::vector<std::string
     settings.keep_steps = false;  // only the last state is written
     settings.morph = false;
     settings.consumable = &loaded.mesh;  // the input is not needed after the run
+    Selection region;                    // not timed, like the reading
+    if (a.region) {
+        region = make_region(loaded.mesh, *a.region);
+        settings.region = &region;
+    }
     const OperationResult result = run_operation(op, loaded.mesh, progress, settings);
     if (result.stopped_early && !a.keep_partial)
         throw RunStopped(result.stop_reason +

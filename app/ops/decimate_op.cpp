@@ -22,6 +22,7 @@ OperationResult run_decimate(const DecimateOptions& d_options, const HalfedgeMes
     options.record_progressive = false;  // the steps carry the geomorphs
     options.levels = settings.keep_steps ? DecimationLevels::All : DecimationLevels::Last;
     options.record_geomorph = settings.morph;
+    options.region = settings.region;
     DecimationResult d = decimate(mesh, options, progress);
     const DecimationReport& rep = d.report;
     OperationResult result;
@@ -140,7 +141,10 @@ std::unique_ptr<OperationDef> decimate_operation() {
          "max-error", [](DecimateOptions & o) -> auto& { return o.core.max_error; }, 0, 1e300,
          "largest quadric error as a distance (0: no limit)")
         .hide_default();
-    d.run(run_decimate);
+    d.run(run_decimate)
+        .acts_on_region(
+            "only edges with both ends of positive weight collapse; --percent counts the region's "
+            "vertices");
     return d.build();
 }
 

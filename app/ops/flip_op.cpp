@@ -24,11 +24,17 @@ OperationResult run_flip(const FlipOptions&, const HalfedgeMesh& mesh, Progress&
     OperationStep step{consume ? std::move(*settings.consumable) : mesh,
                        MorphCorrespondence{MorphCorrespondence::Kind::SameVertices, {}}};
     const auto t0 = std::chrono::steady_clock::now();
-    const FlipReport report = flip_orientation(step.mesh);
+    FlipOptions options;
+    options.region = settings.region;
+    const FlipReport report = flip_orientation(step.mesh, options);
     result.ms = ms_since(t0);
     progress.report(1, "flipping the orientation");
     result.steps.push_back(std::move(step));
     result.report.push_back("reversed " + count_text(report.faces, "face", "faces"));
+    if (settings.region)
+        result.report.push_back("the region touches " +
+                                count_text(report.components, "component", "components") +
+                                ", flipped whole");
     char line[160];
     if (report.volume_before) {
         std::snprintf(line, sizeof(line), "volume %.6g -> %.6g", *report.volume_before,
@@ -54,7 +60,8 @@ std::unique_ptr<OperationDef> flip_operation() {
         "Reverses the orientation of every face, so a closed mesh whose faces point inwards "
         "(a negative volume; the viewer shows its back faces) faces outwards. Vertices, "
         "edges, faces and their attributes are kept; stored vertex normals are negated.");
-    d.run(run_flip);
+    d.run(run_flip).acts_on_region(
+        "every connected component with a vertex of positive weight is flipped whole");
     return d.build();
 }
 

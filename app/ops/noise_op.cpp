@@ -13,8 +13,10 @@
 namespace trilab {
 namespace {
 
-OperationResult run_noise(const NoiseOptions& o, const HalfedgeMesh& mesh, Progress& progress,
-                          const RunSettings&) {
+OperationResult run_noise(const NoiseOptions& options, const HalfedgeMesh& mesh, Progress& progress,
+                          const RunSettings& settings) {
+    NoiseOptions o = options;
+    o.region = settings.region;
     progress.check_cancelled();
     progress.report(0, "adding noise");
     OperationResult result;
@@ -55,7 +57,7 @@ std::unique_ptr<OperationDef> noise_operation() {
         .slider(0.01, 100, true);
     d.integer("seed", &NoiseOptions::seed, 0, std::numeric_limits<std::uint32_t>::max(),
               "random seed");
-    d.run(run_noise);
+    d.run(run_noise).acts_on_region("each vertex's offset is scaled by its weight");
     return d.build();
 }
 

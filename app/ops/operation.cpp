@@ -17,6 +17,7 @@
 
 #include "app/ops/operation_decl.h"
 #include "app/ops/operation_entries.h"
+#include "core/algorithms/selection.h"
 #include "core/errors.h"
 
 namespace trilab {
@@ -426,8 +427,22 @@ void check_operation(const Operation& op) {
 OperationResult run_operation(const Operation& op, const HalfedgeMesh& mesh, Progress& progress,
                               const RunSettings& settings) {
     check_operation(op);
+    if (settings.region) {
+        if (!op.def->takes_region)
+            throw InvalidArgument("--region: " + op.def->name +
+                                  " does not work on a region yet (it acts on the whole mesh)");
+        check_selection(mesh, *settings.region, "--region");
+    }
+    const std::size_t n_vertices = mesh.n_vertices();  // before the run may consume `mesh`
     OperationResult result = op.def->run(op.values, mesh, progress, settings);
     if (result.label.empty()) result.label = op.def->label;
+    if (settings.region) {
+        const std::size_t n = count_selected(*settings.region);
+        result.values.emplace_back("region_vertices", double(n));
+        result.report.insert(result.report.begin(), "region: " + std::to_string(n) + " of " +
+                                                        std::to_string(n_vertices) +
+                                                        " vertices (weight > 0)");
+    }
     result.parameters = op.parameters();
     return result;
 }

@@ -79,6 +79,14 @@ struct RunSettings {
     /// an operation may move it into its result instead of copying it (the CLI, whose input
     /// is not needed after the run). It is left valid but unspecified.
     HalfedgeMesh* consumable = nullptr;
+    /// The region the run acts on (core/algorithms/selection.h: one weight in [0, 1] per vertex
+    /// storage index of the input), or nullptr for the whole mesh. Part of the run's input, not
+    /// of its parameters: the viewer passes the document's selection, the CLI its --region;
+    /// the operation's text and history label do not hold it. Vertices of weight 0 stay bit
+    /// for bit; an all-ones region gives exactly the unselected result. run_operation() checks
+    /// it against the mesh and refuses it for an operation that does not take one
+    /// (OperationDef::takes_region). Not owned; must outlive the run.
+    const std::vector<float>* region = nullptr;
 };
 
 class OperationDef;
@@ -111,6 +119,11 @@ public:
     ParamValues defaults;  ///< from the options struct's own defaults
     /// Its run may stop before the last iteration and say why (OperationResult::stopped_early).
     bool may_stop_early = false;
+    /// It honours RunSettings::region (OperationDecl::acts_on_region()); false: a region is
+    /// refused with a message naming the operation.
+    bool takes_region = false;
+    /// How it uses a region, one line for --help (empty when it takes none).
+    std::string region_help;
     /// The type of its options struct (FairingOptions for "smooth"); one per operation.
     const std::type_info* options_type = nullptr;
 
@@ -159,8 +172,9 @@ Operation parse_operation(const std::string& text);
 /// Checks values set programmatically (a panel, a sweep): ranges and combinations (values of
 /// parameters that do not apply are not used). Throws InvalidArgument naming the option.
 void check_operation(const Operation& op);
-/// Runs `op` on a copy of `mesh`. Throws InvalidArgument for bad parameters, Cancelled when
-/// `progress` asks to stop; `mesh` is never changed.
+/// Runs `op` on a copy of `mesh` (on settings.region of it, where given). Throws
+/// InvalidArgument for bad parameters or a region that does not fit `mesh` or the operation,
+/// Cancelled when `progress` asks to stop; `mesh` is never changed.
 OperationResult run_operation(const Operation& op, const HalfedgeMesh& mesh, Progress& progress,
                               const RunSettings& settings = {});
 

@@ -239,6 +239,12 @@ public:
         runner_ = std::move(runner);
         return *this;
     }
+    /// The run honours RunSettings::region; `help` says how (one line for --help).
+    OperationDecl& acts_on_region(std::string help) {
+        def_.takes_region = true;
+        def_.region_help = std::move(help);
+        return *this;
+    }
     /// The run may stop before its last iteration (OperationResult::stopped_early): the CLI
     /// offers --keep-partial for it.
     OperationDecl& may_stop_early() {

@@ -40,6 +40,7 @@ OperationResult run_smooth(const FairingOptions& options, const HalfedgeMesh& me
                            Progress& progress, const RunSettings& settings) {
     FairingOptions o = options;
     o.keep_steps = settings.keep_steps;
+    o.region = settings.region;
     // The stable-step estimate is ~20 passes over the mesh: above this size it would cost
     // more than the smoothing, so it is left out (a run that diverges still estimates it).
     constexpr std::size_t kEstimateVertices = 2000000;
@@ -168,7 +169,10 @@ std::unique_ptr<OperationDef> smooth_operation() {
                 "--mu: expected a value below -lambda = " + format_number(-o.taubin_lambda) +
                 ", got " + format_number(o.taubin_mu));
     });
-    d.run(run_smooth).may_stop_early();
+    d.run(run_smooth)
+        .may_stop_early()
+        .acts_on_region(
+            "vertices of weight 0 stay fixed; the others move by their weight times the step");
     return d.build();
 }
 

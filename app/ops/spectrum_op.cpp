@@ -49,7 +49,7 @@ void add_json_values(const SpectrumReport& r, OperationResult& result) {
 }
 
 OperationResult run_spectrum(const SpectrumOptions& o, const HalfedgeMesh& mesh, Progress& progress,
-                             const RunSettings&) {
+                             const RunSettings& settings) {
     const auto t0 = std::chrono::steady_clock::now();
     const SpectralOptions spectral = spectral_options(o);
     SpectralDecomposition d;
@@ -66,7 +66,7 @@ OperationResult run_spectrum(const SpectrumOptions& o, const HalfedgeMesh& mesh,
             std::to_string(lo) + ":" + std::to_string(hi) + "'");
     const BandRest rest = o.with_rest ? BandRest::Include : BandRest::Exclude;
     const bool rest_included = o.with_rest && band_reaches_rest(d, lo, hi);
-    HalfedgeMesh out = reconstruct(mesh, d, lo, hi, rest);
+    HalfedgeMesh out = reconstruct(mesh, d, lo, hi, rest, settings.region);
     OperationResult result;
     result.ms = ms_since(t0);
     result.label = "Spectrum";
@@ -175,7 +175,11 @@ std::unique_ptr<OperationDef> spectrum_operation() {
                 "--band: expected LO:HI with 0 <= LO <= HI < K = " + std::to_string(k) + ", got '" +
                 std::to_string(o.band->first) + ":" + std::to_string(o.band->second) + "'");
     });
-    d.run(run_spectrum);
+    d.run(run_spectrum)
+        .acts_on_region(
+            "the band's displacement of each vertex is scaled by its weight (the decomposition is "
+            "the "
+            "whole mesh's)");
     return d.build();
 }
 

@@ -14,8 +14,10 @@
 namespace trilab {
 namespace {
 
-OperationResult run_weld(const WeldOptions& o, const HalfedgeMesh& mesh, Progress& progress,
-                         const RunSettings&) {
+OperationResult run_weld(const WeldOptions& options, const HalfedgeMesh& mesh, Progress& progress,
+                         const RunSettings& settings) {
+    WeldOptions o = options;
+    o.region = settings.region;
     progress.check_cancelled();
     progress.report(0, "welding coincident vertices");
     OperationResult result;
@@ -79,7 +81,7 @@ std::unique_ptr<OperationDef> weld_operation() {
              "distance below which vertices coincide; 0: exactly the same position")
         .slider(0, 0.01)
         .default_note("0 (exact)");
-    d.run(run_weld);
+    d.run(run_weld).acts_on_region("only vertices of positive weight are welded");
     return d.build();
 }
 

@@ -75,6 +75,7 @@
 
 #include "core/algorithms/coincident.h"
 #include "core/algorithms/quadric.h"
+#include "core/algorithms/selection.h"
 #include "core/errors.h"
 #include "core/mesh_builder.h"
 #include "core/number_text.h"
@@ -824,7 +825,7 @@ private:
     void price(Edge e) {
         EdgeChoice c;
         EdgeCost& ec = edge_[e.idx()];
-        if (!evaluate(e, c)) {
+        if (outside_region(e) || !evaluate(e, c)) {
             ec.cost = kNoCollapse;
             if (heap_active_ && heap_.contains(e.idx())) heap_.remove(e.idx());
             return;
@@ -840,6 +841,14 @@ private:
             heap_.update(edge_key(cost, e.idx()));
         else
             heap_.push(edge_key(cost, e.idx()));
+    }
+
+    // Whether e has an end of weight 0 (outside the region): it never collapses.
+    bool outside_region(Edge e) const {
+        if (!o_.region) return false;
+        const Halfedge h = HalfedgeMesh::halfedge(e, 0);
+        const std::vector<float>& w = *o_.region;
+        return !(w[m_.from_vertex(h).idx()] > 0.0f && w[m_.to_vertex(h).idx()] > 0.0f);
     }
 
     // ---- legality ---------------------------------------------------------------------------
@@ -926,7 +935,8 @@ private:
             // A seam collapse: the other side must be legal at the same time, and the pair
             // may not overshoot the target.
             const Halfedge h2 = seam_partner(h);
-            if (!h2.is_valid() || m_.n_vertices() < target_ + 2 || !m_.is_collapse_ok(h2) ||
+            if (!h2.is_valid() || outside_region(HalfedgeMesh::edge(h2)) ||
+                m_.n_vertices() < target_ + 2 || !m_.is_collapse_ok(h2) ||
                 !rings_apart(v0, m_.from_vertex(h2)) || !welded_link_ok(h, h2)) {
                 if (why) why->topology_ok = false;
                 if (refuse(Refusal::Topology) || !h2.is_valid()) return first;
@@ -1235,6 +1245,7 @@ std::string stop_text(DecimationStop stop, const DecimationReport& r, std::size_
 DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& options,
                           Progress& progress) {
     check_options(options);
+    if (options.region) check_selection(mesh, *options.region, "decimate: region");
     const auto t0 = std::chrono::steady_clock::now();
     DecimationResult result;
     DecimationReport& report = result.report;
@@ -1306,10 +1317,17 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
     for (int it = 0; it < iterations; ++it) {
         progress.check_cancelled();
         const std::size_t v = work.n_vertices() - isolated;
+        // The vertices a percentage counts: the region's (with faces), or all.
+        std::size_t counted = v;
+        if (options.region && options.target_vertices == 0) {
+            counted = 0;
+            for (Vertex u : work.vertices())
+                if ((*options.region)[u.idx()] > 0.0f && !work.is_isolated(u)) ++counted;
+        }
         const std::size_t target =
             options.target_vertices > 0
                 ? options.target_vertices
-                : v - std::size_t(std::floor(options.percent / 100.0 * double(v)));
+                : v - std::size_t(std::floor(options.percent / 100.0 * double(counted)));
         last_target = target;
         if (target >= v) break;  // nothing to remove (already small enough)
         const std::size_t collapses_before = report.collapses;

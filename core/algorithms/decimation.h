@@ -73,6 +73,13 @@ struct DecimationOptions {
     DecimationLevels levels = DecimationLevels::All;
     bool record_geomorph = true;      ///< fill each level's correspondence (O(V) per level)
     bool record_progressive = false;  ///< fill DecimationResult::progressive (about 10 % more)
+    /// The region (core/algorithms/selection.h): one weight per vertex storage index, or
+    /// nullptr for the whole mesh. Only edges whose two ends both have a positive weight may
+    /// collapse (a kept vertex is then selected too), so vertices of weight 0 keep their
+    /// positions bit for bit and the border between stays conforming under the same
+    /// constraints; `percent` counts the region's vertices (with faces) instead of the mesh's,
+    /// while target_vertices stays a vertex count of the whole mesh. Not owned.
+    const std::vector<float>* region = nullptr;
 };
 
 /// Why a decimation ended.

@@ -75,6 +75,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "core/algorithms/coincident.h"
+#include "core/algorithms/selection.h"
 #include "core/algorithms/weld.h"
 #include "core/errors.h"
 #include "core/geometry.h"
@@ -646,7 +647,7 @@ struct StepFigures {
 class FairingRun {
 public:
     FairingRun(const FairingOptions& o, Progress& progress, FairingResult& res,
-               const Pinned& pinned);
+               const Pinned& pinned, const Selection* weights);
     /// The iterations (until one stops the run), then the summary lines of the report.
     void run();
 
@@ -667,8 +668,10 @@ private:
     void report_summary();
     std::string instability_hint();
     void stop(int iteration, const std::string& why);
+    void blend_by_region(const Positions& P);
 
     const FairingOptions& o_;
+    const Selection* weights_;  ///< the region's weights on res.mesh; nullptr: everything
     Progress& progress_;
     FairingResult& res_;
     HalfedgeMesh& mesh_;
@@ -700,8 +703,9 @@ private:
 };
 
 FairingRun::FairingRun(const FairingOptions& o, Progress& progress, FairingResult& res,
-                       const Pinned& pinned)
+                       const Pinned& pinned, const Selection* weights)
     : o_(o),
+      weights_(weights),
       progress_(progress),
       res_(res),
       mesh_(res.mesh),
@@ -798,12 +802,23 @@ void FairingRun::run() {
         if (slider_) slide_boundary();
         if (!check_area_and_volume(iteration, P, s.check_energy)) break;
         if (o_.preserve_volume && !restore_volume(iteration)) break;
+        if (weights_) blend_by_region(P);
         // Commit: the candidate becomes the mesh's positions (a swap, no copy).
         std::swap(mesh_.positions(), cand_);
         ++res_.iterations_done;
         if (o_.keep_steps) res_.step_positions.push_back(mesh_.positions());
     }
     report_summary();
+}
+
+/// The region: every candidate position blended with the last by its vertex's weight (weight
+/// 1 keeps the candidate, weight 0 the old position, bit for bit). The area, volume and energy
+/// of the blended positions are not those measured on the candidate: measured again.
+void FairingRun::blend_by_region(const Positions& P) {
+    const Selection& w = *weights_;
+    for (std::size_t v = 0; v < cand_.size(); ++v) cand_[v] = blend_by_weight(P[v], cand_[v], w[v]);
+    last_known_ = false;
+    energy_known_ = false;
 }
 
 /// Builds the Laplacian (first iteration) or refreshes its weights (geometry-dependent
@@ -1098,8 +1113,17 @@ void FairingRun::report_summary() {
 
 /// One smooth() run on res.mesh (the caller's copy or moved-in mesh).
 void run_fairing(const FairingOptions& o, Progress& progress, FairingResult& res,
-                 const Pinned& pinned) {
-    FairingRun(o, progress, res, pinned).run();
+                 const Pinned& pinned, const Selection* weights = nullptr) {
+    FairingRun(o, progress, res, pinned, weights).run();
+}
+
+/// Pins the live vertices of weight 0 (in `pinned`, sized on demand).
+void pin_unselected(const HalfedgeMesh& mesh, const Selection& weights, Pinned& pinned) {
+    for (Vertex v : mesh.vertices())
+        if (!(weights[v.idx()] > 0.0f)) {
+            if (pinned.empty()) pinned.assign(weights.size(), 0);
+            pinned[v.idx()] = 1;
+        }
 }
 
 }  // namespace
@@ -1145,9 +1169,20 @@ void smooth_coincident(FairingResult& res, const FairingOptions& o, Progress& pr
     Pinned pinned(weld.mesh.vertices_size(), 0);
     const CoincidentGroups apart = find_coincident_vertices(weld.mesh);
     for (Index v : apart.members) pinned[v] = 1;
+    // The region on the weld: a welded vertex weighs the least of its copies (so a copy of
+    // weight 0 keeps all of them where they are).
+    std::optional<Selection> welded_weights;
+    if (o.region) {
+        welded_weights.emplace(weld.mesh.vertices_size(), 1.0f);
+        for (Vertex v : res.mesh.vertices()) {
+            const Index w = weld.vertex_map[v.idx()];
+            (*welded_weights)[w] = std::min((*welded_weights)[w], (*o.region)[v.idx()]);
+        }
+        pin_unselected(weld.mesh, *welded_weights, pinned);
+    }
     FairingResult welded;
     welded.mesh = std::move(weld.mesh);
-    run_fairing(o, progress, welded, pinned);
+    run_fairing(o, progress, welded, pinned, welded_weights ? &*welded_weights : nullptr);
     HalfedgeMesh mesh = std::move(res.mesh);
     auto unweld = [&](const Positions& pw) {
         Positions p = mesh.positions();
@@ -1170,9 +1205,12 @@ void smooth_coincident(FairingResult& res, const FairingOptions& o, Progress& pr
 }
 
 FairingResult smooth_mesh(FairingResult res, const FairingOptions& options, Progress& progress) {
+    if (options.region) check_selection(res.mesh, *options.region, "smooth: region");
     if (find_coincident_vertices(res.mesh).empty()) {
         check_options(res.mesh, options);
-        run_fairing(options, progress, res, Pinned());
+        Pinned pinned;
+        if (options.region) pin_unselected(res.mesh, *options.region, pinned);
+        run_fairing(options, progress, res, pinned, options.region);
     } else {
         smooth_coincident(res, options, progress);
     }

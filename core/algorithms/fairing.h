@@ -13,7 +13,8 @@
 // iteration and the cause.
 // Boundary vertices stay fixed (or slide along their boundary curve); isolated vertices never
 // move; coincident vertices (seams, copies of split vertices) move as one (the run is on the
-// weld, core/algorithms/weld.h). Only positions change.
+// weld, core/algorithms/weld.h). Only positions change. A region (FairingOptions::region)
+// limits the smoothing to the selected vertices, blended by their weights.
 // Throws InvalidArgument naming the option before doing anything; Cancelled from the progress.
 // The input mesh is never modified.
 // Complexity: explicit O(iterations · (V + F)); implicit one factorization per iteration (one
@@ -95,6 +96,13 @@ struct FairingOptions {
     /// at the input positions: a few ms on the 36k-vertex bunny). An explicit run that stops
     /// for instability estimates it at the last good state regardless.
     bool estimate_max_stable_step = true;
+    /// The region to smooth (core/algorithms/selection.h): one weight in [0, 1] per vertex
+    /// storage index, or nullptr for the whole mesh. Weight-0 vertices are fixed rows (they
+    /// stay bit for bit); every other vertex's new position is blended with its old one by its
+    /// weight after each iteration (weight 1: exactly the operator's result). With a region,
+    /// --preserve-volume rescales before the blend, so the volume is kept approximately.
+    /// Not owned; must outlive the call.
+    const std::vector<float>* region = nullptr;
 };
 
 struct FairingResult {

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/algorithms/selection.h"
 #include "core/errors.h"
 #include "core/geometry.h"
 
@@ -49,6 +50,9 @@ NoiseReport add_noise(HalfedgeMesh& mesh, const NoiseOptions& options) {
         throw InvalidArgument("add_noise: amount_percent must be a number from 0 to " +
                               number_text(kMaxNoiseAmountPercent) + ", got " + number_text(pct));
 
+    const Selection* region = options.region;
+    if (region) check_selection(mesh, *region, "add_noise: region");
+
     NoiseReport report;
     report.mean_edge_length = mean_edge_length(mesh);
     const double amplitude = pct / 100.0 * report.mean_edge_length;
@@ -58,16 +62,18 @@ NoiseReport add_noise(HalfedgeMesh& mesh, const NoiseOptions& options) {
     const std::size_t n = mesh.vertices_size();
     std::vector<Vector3> offsets(n, Vector3::Zero());
     for (Vertex v : mesh.vertices()) {
-        if (mesh.is_isolated(v)) continue;
+        if (mesh.is_isolated(v) || !(region_weight(region, v.idx()) > 0.0f)) continue;
         const Vector3 normal = vertex_normal(mesh, v);
         if (normal.isZero(0.0)) continue;
-        const double r = signed_unit(options.seed, v.idx()) * amplitude;
+        double r = signed_unit(options.seed, v.idx()) * amplitude;
+        if (region) r *= double((*region)[v.idx()]);  // exact for weight 1
         if (r == 0) continue;
         offsets[v.idx()] = r * normal;
         report.max_displacement = std::max(report.max_displacement, std::abs(r));
         ++report.moved_vertices;
     }
-    for (Vertex v : mesh.vertices()) mesh.position(v) += offsets[v.idx()];
+    for (Vertex v : mesh.vertices())
+        if (region_weight(region, v.idx()) > 0.0f) mesh.position(v) += offsets[v.idx()];
     if (mesh.get_vertex_property<Vector3>("v:normal")) compute_vertex_normals(mesh);
     return report;
 }

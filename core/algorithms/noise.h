@@ -7,6 +7,7 @@
 // "v:normal" gets it recomputed afterwards, so the renderer does not shade with stale normals.
 // Complexity: O(vertices + faces).
 #include <cstdint>
+#include <vector>
 
 #include "core/halfedge_mesh.h"
 
@@ -18,6 +19,11 @@ inline constexpr double kMaxNoiseAmountPercent = 1000.0;
 struct NoiseOptions {
     double amount_percent = 1.0;  ///< in [0, 1000]
     std::uint32_t seed = 1;
+    /// The region (core/algorithms/selection.h): one weight in [0, 1] per vertex storage index,
+    /// or nullptr for the whole mesh. A vertex's offset is scaled by its weight (the random
+    /// amounts and the mean edge length are the whole mesh's, so weight 1 moves a vertex exactly
+    /// as without a region); weight-0 vertices are not touched. Not owned.
+    const std::vector<float>* region = nullptr;
 };
 
 struct NoiseReport {
@@ -27,7 +33,8 @@ struct NoiseReport {
 };
 
 /// Moves the vertices of `mesh` (connectivity unchanged). Throws InvalidArgument naming
-/// `amount_percent` when it is negative, above 1000 or not finite; the mesh is unchanged then.
+/// `amount_percent` when it is negative, above 1000 or not finite, or naming the region when
+/// it does not fit the mesh (check_selection()); the mesh is unchanged then.
 NoiseReport add_noise(HalfedgeMesh& mesh, const NoiseOptions& options);
 
 }  // namespace trilab

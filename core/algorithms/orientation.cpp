@@ -6,19 +6,54 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/algorithms/components.h"
+#include "core/algorithms/selection.h"
 #include "core/geometry.h"
 
 namespace trilab {
 
-FlipReport flip_orientation(HalfedgeMesh& mesh) {
+FlipReport flip_orientation(HalfedgeMesh& mesh, const FlipOptions& options) {
     FlipReport report;
-    report.faces = mesh.n_faces();
+    const std::vector<float>* region = options.region;
+    if (region) check_selection(mesh, *region, "flip: region");
     const bool closed = is_closed(mesh);
     if (closed) report.volume_before = volume(mesh);
-    mesh.reverse_orientation();
-    if (auto normals = mesh.get_vertex_property<Vector3>("v:normal")) {
-        for (Vertex v : mesh.vertices()) normals[v] = -normals[v];
-        report.normals_negated = true;
+    if (!region) {
+        report.faces = mesh.n_faces();
+        mesh.reverse_orientation();
+        if (auto normals = mesh.get_vertex_property<Vector3>("v:normal")) {
+            for (Vertex v : mesh.vertices()) normals[v] = -normals[v];
+            report.normals_negated = true;
+        }
+    } else {
+        // The components the region touches, flipped whole.
+        const ComponentLabels labels = label_face_components(mesh);
+        std::vector<std::uint8_t> flip(labels.components.size(), 0);
+        for (Vertex v : mesh.vertices()) {
+            const Index c = labels.of_vertex[v.idx()];
+            if (c != kInvalidIndex && (*region)[v.idx()] > 0.0f) flip[c] = 1;
+        }
+        for (std::size_t c = 0; c < flip.size(); ++c)
+            if (flip[c]) {
+                ++report.components;
+                report.faces += labels.components[c].faces;
+            }
+        const auto flipped = [&](Vertex v) {
+            const Index c = labels.of_vertex[v.idx()];
+            return c != kInvalidIndex && flip[c] != 0;
+        };
+        std::vector<std::uint8_t> edge_mask(mesh.edges_size(), 0);
+        for (Edge e : mesh.edges())
+            edge_mask[e.idx()] = flipped(mesh.to_vertex(HalfedgeMesh::halfedge(e, 0))) ? 1 : 0;
+        mesh.reverse_orientation(edge_mask);
+        if (auto normals = mesh.get_vertex_property<Vector3>("v:normal")) {
+            // An isolated vertex has no component: its normal follows its own weight.
+            for (Vertex v : mesh.vertices())
+                if (flipped(v) || (mesh.is_isolated(v) && (*region)[v.idx()] > 0.0f)) {
+                    normals[v] = -normals[v];
+                    report.normals_negated = true;
+                }
+        }
     }
     if (closed) report.volume_after = volume(mesh);
     return report;

@@ -9,13 +9,21 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/halfedge_mesh.h"
 
 namespace trilab {
 
-/// flip_orientation() has no options (the operation layer's declaration needs a struct).
-struct FlipOptions {};
+/// flip_orientation()'s only option is its region.
+struct FlipOptions {
+    /// The region (core/algorithms/selection.h): one weight per vertex storage index, or
+    /// nullptr for the whole mesh. Orientation belongs to a connected component (flipping part
+    /// of one would leave an edge whose faces disagree, which no half-edge mesh can hold), so
+    /// every component with a vertex of positive weight is flipped whole and the others are
+    /// left untouched, bit for bit. Not owned.
+    const std::vector<float>* region = nullptr;
+};
 
 /// What flip_orientation() did.
 struct FlipReport {
@@ -23,14 +31,17 @@ struct FlipReport {
     /// The signed volume before and after (empty for an open mesh): after = -before.
     std::optional<double> volume_before, volume_after;
     bool normals_negated = false;  ///< a stored "v:normal" was negated
+    std::size_t components = 0;    ///< with a region: the components flipped (0 without)
 };
 
 /// Reverses the orientation of every face (HalfedgeMesh::reverse_orientation(): vertex,
 /// edge and face indices are kept; per-corner "h:texcoord" values stay on their corners) and
 /// negates a stored "v:normal", so shading agrees with the new winding. Boundaries, isolated
-/// and deleted elements are handled; the mesh stays valid (validate()). Never throws.
+/// and deleted elements are handled; the mesh stays valid (validate()). With a region only the
+/// components it touches are flipped (FlipOptions::region; the volumes are then the whole
+/// mesh's). Throws InvalidArgument only for a region that does not fit (check_selection()).
 /// O(vertices + halfedges).
-FlipReport flip_orientation(HalfedgeMesh& mesh);
+FlipReport flip_orientation(HalfedgeMesh& mesh, const FlipOptions& options = {});
 
 /// The load-report note for a closed mesh with a negative signed volume (below -1e-9 of its
 /// bounding-box diagonal cubed, so rounding on a flat closed mesh does not count): names the

@@ -90,6 +90,7 @@
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
 
+#include "core/algorithms/selection.h"
 #include "core/errors.h"
 #include "core/geometry.h"
 #include "core/number_text.h"
@@ -1207,21 +1208,30 @@ Eigen::MatrixXd band_positions(const SpectralDecomposition& d, std::size_t lo, s
 }
 
 std::vector<Point> reconstruct_positions(const SpectralDecomposition& d, std::size_t lo,
-                                         std::size_t hi, BandRest rest) {
+                                         std::size_t hi, BandRest rest,
+                                         const std::vector<float>* region) {
+    if (region && region->size() != d.base_positions.size())
+        throw InvalidArgument("reconstruct: region: expected one weight per vertex (" +
+                              std::to_string(d.base_positions.size()) + "), got " +
+                              std::to_string(region->size()));
     const Eigen::MatrixXd x = band_positions(d, lo, hi, rest);
     std::vector<Point> out = d.base_positions;
-    for (std::size_t r = 0; r < d.map.rows(); ++r)
-        out[d.map.vertex_of[r].idx()] = x.row(Eigen::Index(r)).transpose();
+    for (std::size_t r = 0; r < d.map.rows(); ++r) {
+        const Index v = d.map.vertex_of[r].idx();
+        const Point band = x.row(Eigen::Index(r)).transpose();
+        out[v] = region ? blend_by_weight(out[v], band, (*region)[v]) : band;
+    }
     return out;
 }
 
 HalfedgeMesh reconstruct(const HalfedgeMesh& mesh, const SpectralDecomposition& d, std::size_t lo,
-                         std::size_t hi, BandRest rest) {
+                         std::size_t hi, BandRest rest, const std::vector<float>* region) {
     if (mesh.vertices_size() != d.base_positions.size())
         throw InvalidArgument("reconstruct: the mesh has " + std::to_string(mesh.vertices_size()) +
                               " vertices but the decomposition was made for " +
                               std::to_string(d.base_positions.size()));
-    std::vector<Point> positions = reconstruct_positions(d, lo, hi, rest);
+    if (region) check_selection(mesh, *region, "reconstruct: region");
+    std::vector<Point> positions = reconstruct_positions(d, lo, hi, rest, region);
     HalfedgeMesh out = mesh;
     out.set_positions(std::move(positions));
     return out;

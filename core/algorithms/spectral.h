@@ -147,13 +147,19 @@ Eigen::MatrixXd band_positions(const SpectralDecomposition& d, std::size_t lo, s
 
 /// Every vertex's position (storage index) after reconstruction from [lo, hi] (and the rest,
 /// as band_positions()): rows get their band positions, other vertices their base position.
+/// With a `region` (core/algorithms/selection.h: one weight in [0, 1] per vertex storage
+/// index) each vertex's displacement from its base position is scaled by its weight: weight 1
+/// gives the band position exactly, weight 0 the base position bit for bit. Throws
+/// InvalidArgument naming the region when it does not fit (check_selection()).
 std::vector<Point> reconstruct_positions(const SpectralDecomposition& d, std::size_t lo,
-                                         std::size_t hi, BandRest rest = BandRest::Exclude);
+                                         std::size_t hi, BandRest rest = BandRest::Exclude,
+                                         const std::vector<float>* region = nullptr);
 
-/// A copy of `mesh` with reconstruct_positions(). Throws InvalidArgument when `mesh` does
-/// not have the decomposed mesh's vertices (vertices_size differs).
+/// A copy of `mesh` with reconstruct_positions() (and its region). Throws InvalidArgument
+/// when `mesh` does not have the decomposed mesh's vertices (vertices_size differs).
 HalfedgeMesh reconstruct(const HalfedgeMesh& mesh, const SpectralDecomposition& d, std::size_t lo,
-                         std::size_t hi, BandRest rest = BandRest::Exclude);
+                         std::size_t hi, BandRest rest = BandRest::Exclude,
+                         const std::vector<float>* region = nullptr);
 
 /// Per vertex (storage index) the value of eigenvector `index`; NaN for vertices outside the
 /// eigenproblem. For the "Frequency" colouring (signed: a diverging map).

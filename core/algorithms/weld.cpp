@@ -32,6 +32,7 @@
 #include <utility>
 
 #include "core/algorithms/coincident.h"
+#include "core/algorithms/selection.h"
 #include "core/errors.h"
 #include "core/mesh_builder.h"
 #include "core/number_text.h"
@@ -105,7 +106,8 @@ private:
                                               const WeldOptions& options) {
         const std::size_t n = mesh.vertices_size();
         std::vector<std::uint8_t> deleted(n, 1);
-        for (Vertex v : mesh.vertices()) deleted[v.idx()] = 0;
+        for (Vertex v : mesh.vertices())  // outside the region: left out like a deleted one
+            if (!options.region || (*options.region)[v.idx()] > 0.0f) deleted[v.idx()] = 0;
         return find_coincident_points(mesh.positions().data(), n, deleted.data(),
                                       options.tolerance);
     }
@@ -355,6 +357,7 @@ void Welder::fill_report(WeldResult& result) {
 }  // namespace
 
 WeldResult weld_coincident_vertices(const HalfedgeMesh& mesh, const WeldOptions& options) {
+    if (options.region) check_selection(mesh, *options.region, "weld: region");
     Welder welder(mesh, options);
     welder.find_glues();
     welder.join_vertices();

@@ -26,6 +26,11 @@ struct WeldOptions {
     /// position, which is what files with seams hold (the teapot's patches share their
     /// boundary coordinates exactly).
     double tolerance = 0;
+    /// The region (core/algorithms/selection.h): one weight per vertex storage index, or
+    /// nullptr for the whole mesh. Only vertices of positive weight are welded; the others are
+    /// never joined and keep their positions bit for bit (they are renumbered like every vertex).
+    /// Not owned.
+    const std::vector<float>* region = nullptr;
 };
 
 struct WeldReport {
@@ -48,7 +53,8 @@ struct WeldResult {
     std::vector<Index> vertex_map;
 };
 
-/// Welds a copy of `mesh`; see the file comment. The result passes validate().
+/// Welds a copy of `mesh`; see the file comment. The result passes validate(). Throws
+/// InvalidArgument naming the region when it does not fit the mesh (check_selection()).
 WeldResult weld_coincident_vertices(const HalfedgeMesh& mesh, const WeldOptions& options = {});
 
 }  // namespace trilab

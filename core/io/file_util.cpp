@@ -630,6 +630,11 @@ void check_finite_soup(const PolygonSoup& soup, const std::string& path) {
     for (std::size_t i = 0; i < soup.distances.size(); ++i)
         if (!std::isfinite(soup.distances[i]))
             throw IoError(path, 0, "vertex " + std::to_string(i) + ": non-finite distance");
+    for (std::size_t i = 0; i < soup.selections.size(); ++i)
+        if (!(soup.selections[i] >= 0.0f && soup.selections[i] <= 1.0f))
+            throw IoError(path, 0,
+                          "vertex " + std::to_string(i) + ": selection weight " +
+                              std::to_string(soup.selections[i]) + " is not in [0, 1]");
 }
 
 HalfedgeMesh build_mesh_for_file(const PolygonSoup& soup, LoadReport& report,

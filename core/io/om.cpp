@@ -19,15 +19,18 @@
 // dropped. When the file is already a valid triangle mesh in our sense (triangles only,
 // manifold vertices, no deleted elements) its arrays are adopted directly, keeping the
 // file's element numbering; otherwise face loops become polygons of a PolygonSoup and
-// build_mesh repairs and triangulates. Face normals, face colours and custom properties are
-// skipped (by their computed size or their byte count) and reported.
+// build_mesh repairs and triangulates. Face normals, face colours and custom properties
+// (except a float vertex property "selection", read as "v:selection") are skipped (by their
+// computed size or their byte count) and reported.
 //
 // Writer: format 2.2, kind 'T', chunks in OpenMesh 11's order (§10). Positions and normals
 // are written as f64 (0x5600 / 0x5620, allowed since 2.1) so that our doubles round-trip
 // exactly; colours are u8, texture coordinates f32 (the only widths the format has for
 // them). The index width is the smallest of 1, 2, 4 bytes that holds every index. Custom
-// attributes are not written. Non-finite values, and texture coordinates beyond float32's
-// range, are refused; the reader refuses NaN and infinity in every attribute.
+// attributes are not written, except the selection "v:selection": a custom vertex property
+// "selection" of type float (read back by this reader, and by OpenMesh as a float property).
+// Non-finite values, and texture coordinates beyond float32's range, are refused; the reader
+// refuses NaN and infinity in every attribute.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -107,6 +110,12 @@ constexpr std::uint16_t encode_header(unsigned entity, unsigned type, bool is_si
     return std::uint16_t((entity << 2) | (type << 5) | (unsigned(is_signed) << 9) |
                          (unsigned(is_float) << 10) | ((dim - 1) << 11) | (bits << 14));
 }
+
+/// The name of the custom vertex property that holds "v:selection" (OpenMesh skips names
+/// whose second character is ':', so the "v:" prefix is left out), and the bytes its chunk
+/// takes before the data: header, name, type name "float", byte count.
+constexpr const char* kOmSelectionName = "selection";
+constexpr std::uint64_t kOmSelectionChunkHead = 2 + (1 + 9) + (1 + 5) + 4;
 
 std::string hex16(std::uint16_t v) {
     static const char digits[] = "0123456789ABCDEF";
@@ -231,6 +240,9 @@ struct OmContents {
     std::vector<std::uint8_t> vdeleted, edeleted, hdeleted, fdeleted;
 
     std::vector<std::string> custom_names;
+    /// The custom vertex property "selection" of type float (n_v weights in [0, 1]), read as
+    /// "v:selection"; null when absent.
+    Span selection;
     bool custom_on_faces_or_halfedges = false;
     bool face_normals = false, face_colors = false, ignored_1x_halfedge_texcoords = false;
 
@@ -338,12 +350,25 @@ void read_faces_1x(Cursor& in, const ChunkHeader& h, OmContents& c) {
     c.faces_1x = true;
 }
 
-/// Custom chunk (§6.4): [type name, format > 2.1], u32 byte count, data; skipped.
+/// Custom chunk (§6.4): [type name, format > 2.1], u32 byte count, data; skipped, except the
+/// vertex selection (kOmSelectionName, float, one per vertex), which is checked and kept.
 void skip_custom(Cursor& in, const ChunkHeader& h, const std::string& name, OmContents& c) {
-    if (c.version > 0x41) in.read_string("type name of custom property '" + name + "'");
+    std::string type;
+    if (c.version > 0x41) type = in.read_string("type name of custom property '" + name + "'");
     const std::uint32_t bytes =
         in.read<std::uint32_t>("byte count of custom property '" + name + "'");
-    in.take(bytes, "data of custom property '" + name + "'");
+    const unsigned char* data = in.take(bytes, "data of custom property '" + name + "'");
+    if (h.entity == kVertex && name == kOmSelectionName && type == "float" &&
+        std::uint64_t(bytes) == 4 * std::uint64_t(c.n_v)) {
+        for (std::size_t v = 0; v < c.n_v; ++v) {
+            const float w = load_le<float>(data + 4 * v);
+            if (!(w >= 0.0f && w <= 1.0f))
+                in.fail("custom property 'selection': vertex " + std::to_string(v) + ": weight " +
+                        number_text(w) + " is not in [0, 1]");
+        }
+        c.selection = Span{data};
+        return;
+    }
     c.custom_names.push_back(name);
     if (h.entity == kFace || h.entity == kHalf) c.custom_on_faces_or_halfedges = true;
 }
@@ -494,6 +519,7 @@ void soup_vertices(const OmContents& c, Assembly& a) {
         if (c.normals) s.normals.push_back(vec3_at(c.normals, v));
         if (c.colors) s.colors.push_back(color_at(c.colors, v));
         if (c.texcoords) s.texcoords.push_back(texcoord_at(c.texcoords, v));
+        if (c.selection) s.selections.push_back(load_le<float>(c.selection.p + 4 * v));
     }
 }
 
@@ -721,6 +747,10 @@ bool adopt_2x(const Topology2& t, Assembly& a) {
         auto p = m.vertex_property<TexCoord>("v:texcoord");
         for (std::size_t v = 0; v < n_v; ++v) p.vector()[v] = texcoord_at(c.texcoords, v);
     }
+    if (c.selection) {
+        auto p = m.vertex_property<float>("v:selection");
+        for (std::size_t v = 0; v < n_v; ++v) p.vector()[v] = load_le<float>(c.selection.p + 4 * v);
+    }
     if (c.halfedge_texcoords) {
         // Boundary halfedges carry no corner; they get zero, as build_mesh gives them.
         auto p = m.halfedge_property<TexCoord>("h:texcoord", TexCoord::Zero());
@@ -873,6 +903,7 @@ struct OmWritePlan {
     VertexProperty<const Color> colors;
     VertexProperty<const TexCoord> texcoords;
     HalfedgeProperty<const TexCoord> corner_uv;
+    VertexProperty<const float> selection;  ///< "v:selection", a custom chunk
     bool write_corner_uv = false;
     std::uint64_t total = 0;  ///< bytes
 };
@@ -904,6 +935,13 @@ OmWritePlan plan_om_write(const HalfedgeMesh& mesh, const std::string& path,
     w.corner_uv = options.write_texcoords ? mesh.get_halfedge_property<TexCoord>("h:texcoord")
                                           : HalfedgeProperty<const TexCoord>();
     w.write_corner_uv = w.corner_uv && w.n_e > 0;
+    w.selection = mesh.get_vertex_property<float>("v:selection");
+    if (w.selection)
+        for (std::size_t v = 0; v < n_v; ++v)
+            if (!(w.selection.vector()[v] >= 0.0f && w.selection.vector()[v] <= 1.0f))
+                throw IoError(path, 0,
+                              "vertex " + std::to_string(v) +
+                                  ": selection weight not in [0, 1] (not written)");
     check_finite_for_writing(mesh, path, bool(w.normals), bool(w.colors),
                              bool(w.texcoords) || w.write_corner_uv);
     // Texture coordinates are float32 in .om (the format has no other width): values beyond
@@ -923,6 +961,7 @@ OmWritePlan plan_om_write(const HalfedgeMesh& mesh, const std::string& path,
     if (w.write_corner_uv) w.total += 2 + 8 * n_h;
     if (n_v > 0) w.total += 2 + w.width * n_v;
     w.total += 2 + w.width * n_f;
+    if (w.selection) w.total += kOmSelectionChunkHead + 4 * n_v;
     return w;
 }
 
@@ -998,6 +1037,19 @@ void put_om_connectivity(unsigned char*& p, const HalfedgeMesh& mesh, const OmWr
         for (std::size_t f = 0; f < n_f; ++f)
             put_index<decltype(s)>(p, mesh.halfedge(Face(Index(f))).idx());
     });
+    if (w.selection) {
+        // A custom vertex chunk (§6.4) as OpenMesh writes a float property: header 0x00C2 (the
+        // name bit set; the size field is 4 mod 4 = 0), name, type name, byte count, data.
+        store_le<std::uint16_t>(
+            p, std::uint16_t(encode_header(kVertex, kCustom, false, false, 1, 0) | 2u));
+        for (const std::string& text : {std::string(kOmSelectionName), std::string("float")}) {
+            *p++ = static_cast<unsigned char>(text.size());
+            std::memcpy(p, text.data(), text.size());
+            p += text.size();
+        }
+        store_le<std::uint32_t>(p, std::uint32_t(4 * n_v));
+        for (const float x : w.selection.vector()) store_le<float>(p, x);
+    }
     store_le<std::uint16_t>(p, encode_header(kSentinel, 0, false, false, 1, 0));  // 0x001C
 }
 

@@ -3,25 +3,25 @@
 // Reading: the header (comments and obj_info allowed) is tokenized with TextScanner; the body
 // may be ascii, binary_little_endian or binary_big_endian, with elements in any order. The
 // elements "vertex" (x, y, z; nx, ny, nz; red, green, blue; u/v, s/t, texture_u/texture_v or
-// texture_s/texture_t; distance: the per-vertex scalar "v:distance"), "face" (a vertex_indices or
-// vertex_index list, polygons allowed, and an optional per-face "texcoord" list of two floats per
-// corner) and "tristrips" (a vertex_indices list where -1 restarts the strip) are used; every other
-// element and property is skipped, list properties included. All PLY scalar types are accepted
-// under both spellings. Binary rows of fixed size are decoded with memcpy at precomputed offsets
-// (with a dedicated loop for float x, y, z and for uchar/int triangle lists); every declared count
-// is checked against the bytes left before anything is reserved, and every read is bounds-checked.
-// Errors name the file and the line (ascii) or the element number (binary). A UTF-8
-// byte-order mark before "ply" is skipped, UTF-16 refused. ASCII values must fit their
-// declared type (uchar 0..255, whole numbers for integer types, float within float's range;
-// a float value is rounded to float, as a binary file stores it); float-typed list lengths
-// and indices must be whole numbers. NaN and infinity in any used property are refused
+// texture_s/texture_t; distance: the per-vertex scalar "v:distance"; selection: the weight
+// "v:selection"), "face" (a vertex_indices or vertex_index list, polygons allowed, and an
+// optional per-face "texcoord" list of two floats per corner) and "tristrips" (a vertex_indices
+// list where -1 restarts the strip) are used; every other element and property is skipped, list
+// properties included. All PLY scalar types are accepted under both spellings. Binary rows of fixed
+// size are decoded with memcpy at precomputed offsets (with a dedicated loop for float x, y, z and
+// for uchar/int triangle lists); every declared count is checked against the bytes left before
+// anything is reserved, and every read is bounds-checked. Errors name the file and the line (ascii)
+// or the element number (binary). A UTF-8 byte-order mark before "ply" is skipped, UTF-16 refused.
+// ASCII values must fit their declared type (uchar 0..255, whole numbers for integer types, float
+// within float's range; a float value is rounded to float, as a binary file stores it); float-typed
+// list lengths and indices must be whole numbers. NaN and infinity in any used property are refused
 // (build_mesh_for_file checks the soup, naming the vertex and the attribute).
 //
 // Writing: binary little-endian by default, ascii or big-endian on request. Positions,
 // normals and texture coordinates are float32 (a round trip is exact to float precision,
 // ~6e-8 relative), or double for a group whose values float32 cannot hold with full
 // precision (float_range_suffices); colours uchar; a "v:distance" scalar as double
-// `distance`; faces are
+// `distance`; a "v:selection" weight as float `selection`; faces are
 // "property list uchar int vertex_indices". Non-finite values are refused.
 #include <algorithm>
 #include <charconv>
@@ -181,9 +181,10 @@ enum Role : std::uint8_t {
     kBlue,
     kU,
     kV,
-    kDistance,  // the per-vertex scalar "v:distance"
-    kIndices,   // face / tristrips vertex index list
-    kTexcoord,  // per-face corner texture coordinate list
+    kDistance,   // the per-vertex scalar "v:distance"
+    kSelection,  // the per-vertex selection weight "v:selection"
+    kIndices,    // face / tristrips vertex index list
+    kTexcoord,   // per-face corner texture coordinate list
     kRoleCount
 };
 
@@ -372,6 +373,8 @@ private:
                         r = kV;
                     else if (n == "distance")
                         r = kDistance;
+                    else if (n == "selection")
+                        r = kSelection;
                     if (r != kNone && !e.has_role(r)) p.role = r;
                     if (r == kRed || r == kGreen || r == kBlue) color_type_ = p.type;
                 }
@@ -381,6 +384,7 @@ private:
                 has_colors_ = e.has_role(kRed) && e.has_role(kGreen) && e.has_role(kBlue);
                 has_uv_ = e.has_role(kU) && e.has_role(kV);
                 has_distance_ = e.has_role(kDistance);
+                has_selection_ = e.has_role(kSelection);
             } else if (e.name == "face" || e.name == "tristrips") {
                 e.kind = e.name == "face" ? ElementKind::kFace : ElementKind::kTristrips;
                 for (PlyProperty& p : e.props) {
@@ -410,6 +414,7 @@ private:
         if (has_colors_) soup_.colors.resize(n);
         if (has_uv_) soup_.texcoords.resize(n);
         if (has_distance_) soup_.distances.resize(n);
+        if (has_selection_) soup_.selections.resize(n);
     }
 
     float color_channel(double c) const {
@@ -429,6 +434,7 @@ private:
                 Color(color_channel(v[kRed]), color_channel(v[kGreen]), color_channel(v[kBlue]));
         if (has_uv_) soup_.texcoords[i] = TexCoord(v[kU], v[kV]);
         if (has_distance_) soup_.distances[i] = v[kDistance];
+        if (has_selection_) soup_.selections[i] = float(v[kSelection]);
     }
 
     /// Checks one index of face / strip `row` of element e (-1 allowed in strips).
@@ -779,6 +785,7 @@ private:
     std::size_t data_offset_ = 0;
     std::uint64_t n_vertices_declared_ = 0;
     bool has_normals_ = false, has_colors_ = false, has_uv_ = false, has_distance_ = false;
+    bool has_selection_ = false;
     ScalarType color_type_ = ScalarType::kUint8;
     PolygonSoup soup_;
     std::size_t file_faces_ = 0;
@@ -817,6 +824,12 @@ void write_ply_to(const HalfedgeMesh& mesh, std::ostream& os, const std::string&
     // Texture seams (per-corner coordinates only): the per-face `texcoord` list MeshLab uses.
     const bool corner_uv = options.write_texcoords && !uv && !soup.corner_texcoords.empty();
     const bool distance = !soup.distances.empty();
+    const bool selection = !soup.selections.empty();
+    for (std::size_t i = 0; i < soup.selections.size(); ++i)
+        if (!(soup.selections[i] >= 0.0f && soup.selections[i] <= 1.0f))
+            throw IoError(
+                path, 0,
+                "vertex " + std::to_string(i) + ": selection weight not in [0, 1] (not written)");
     for (std::size_t i = 0; i < soup.distances.size(); ++i)
         if (!std::isfinite(soup.distances[i]))
             throw IoError(path, 0,
@@ -845,6 +858,7 @@ void write_ply_to(const HalfedgeMesh& mesh, std::ostream& os, const std::string&
         for (const char* n : {"u", "v"})
             header += std::string("property ") + type(uv_d) + " " + n + "\n";
     if (distance) header += "property double distance\n";
+    if (selection) header += "property float selection\n";
     header += "element face " + std::to_string(soup.n_faces()) + "\n";
     header += "property list uchar int vertex_indices\n";
     if (corner_uv) header += std::string("property list uchar ") + type(cuv_d) + " texcoord\n";
@@ -885,6 +899,7 @@ void write_ply_to(const HalfedgeMesh& mesh, std::ostream& os, const std::string&
         if (uv)
             for (int k = 0; k < 2; ++k) put(soup.texcoords[i][k], uv_d, false);
         if (distance) put(soup.distances[i], true, false);
+        if (selection) put(soup.selections[i], false, false);
         if (ascii) out.text("\n");
         out.maybe_flush();
     }

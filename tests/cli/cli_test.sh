@@ -534,5 +534,45 @@ check "counts say 1 vertex, 1 group" bash -c \
     "'$cli' weld '$data/good/bowtie.off' '$tmp/bw1.obj' > '$tmp/o' && \
      grep -q 'in 1 group;' '$tmp/o' && grep -q '1 coincident vertex left apart' '$tmp/o' && \
      '$cli' info '$data/good/bowtie.off' | grep -q '1 non-manifold vertex split'"
+check "select stores the region as property selection and reports region_vertices" bash -c \
+    "'$cli' select '$tmp/d.obj' '$tmp/sel.ply' --region component:0 --json > '$tmp/sel.json' && \
+     $(declare -f json_has); json_has '$tmp/sel.json' region_vertices ms && \
+     grep -q '\"region_vertices\": 1002' '$tmp/sel.json' && \
+     '$cli' convert '$tmp/sel.ply' '$tmp/sel2.ply' --ascii >/dev/null && \
+     grep -q '^property float selection' '$tmp/sel2.ply' && \
+     '$cli' select '$tmp/d.obj' '$tmp/sel.om' --region geodesic:0,0.5,0.2 --grow 1 --json | \
+     grep -q '\"region_vertices\": '"
+check "an empty region leaves the mesh bit for bit, an all-ones one gives the unselected result" bash -c \
+    "'$cli' smooth '$tmp/d.obj' '$tmp/r0.ply' --ascii --iterations 3 --region sphere:100,100,100,0 \
+       --json > '$tmp/r0.json' && grep -q '\"region_vertices\": 0' '$tmp/r0.json' && \
+     '$cli' convert '$tmp/d.obj' '$tmp/d0.ply' --ascii >/dev/null && cmp -s '$tmp/r0.ply' '$tmp/d0.ply' && \
+     for i in \$(seq 1002); do echo 1; done > '$tmp/ones.txt' && \
+     for op in 'smooth --iterations 3' 'noise --amount 5' 'decimate --percent 30' 'flip' \
+               'spectrum --k 20 --band 0:9'; do \
+       '$cli' \$op '$tmp/d.obj' '$tmp/a.ply' --ascii >/dev/null && \
+       '$cli' \$op '$tmp/d.obj' '$tmp/b.ply' --ascii --region file:'$tmp/ones.txt' >/dev/null && \
+       cmp -s '$tmp/a.ply' '$tmp/b.ply' || { echo \"\$op differs\"; exit 1; }; done"
+check "a region file that is a PLY with a selection property works for every operation" bash -c \
+    "for op in smooth noise decimate flip weld 'spectrum --k 10'; do \
+       '$cli' \$op '$tmp/d.obj' '$tmp/x.ply' --region file:'$tmp/sel.ply' --json | \
+       grep -q '\"region_vertices\": 1002' || { echo \"\$op\"; exit 1; }; done"
+check "bad --region specs are refused naming the option and the part" bash -c \
+    "! '$cli' smooth '$tmp/d.obj' '$tmp/bad.ply' --region cube:1 2> '$tmp/e' && \
+     grep -q -- \"--region: unknown kind 'cube'\" '$tmp/e' && \
+     ! '$cli' smooth '$tmp/d.obj' '$tmp/bad.ply' --region sphere:0,0,1 2> '$tmp/e' && \
+     grep -q -- '--region sphere:0,0,1: expected sphere:X,Y,Z,R' '$tmp/e' && \
+     ! '$cli' smooth '$tmp/d.obj' '$tmp/bad.ply' --region sphere:0,0,x,1 2> '$tmp/e' && \
+     grep -q -- \"expected a number, got 'x'\" '$tmp/e' && \
+     ! '$cli' smooth '$tmp/d.obj' '$tmp/bad.ply' --region geodesic:0,-1 2> '$tmp/e' && \
+     grep -q -- 'R: expected a number >= 0' '$tmp/e' && \
+     ! '$cli' smooth '$tmp/d.obj' '$tmp/bad.ply' --region component:5000 2> '$tmp/e' && \
+     grep -q -- 'vertex 5000 is out of range' '$tmp/e' && \
+     printf '1\n0.5\nabc\n' > '$tmp/w.txt' && \
+     ! '$cli' smooth '$tmp/d.obj' '$tmp/bad.ply' --region file:'$tmp/w.txt' 2> '$tmp/e' && \
+     grep -q -- \"w.txt:3: expected a weight from 0 to 1, got 'abc'\" '$tmp/e' && \
+     ! '$cli' subdivide '$tmp/d.obj' '$tmp/bad.ply' --region component:0 2> '$tmp/e' && \
+     grep -q -- '--region: subdivide does not work on a region yet' '$tmp/e' && \
+     ! '$cli' select '$tmp/d.obj' '$tmp/bad.ply' 2> '$tmp/e' && grep -q -- '--region' '$tmp/e' && \
+     [ ! -e '$tmp/bad.ply' ] && '$cli' smooth --help | grep -q -- '--region SPEC'"
 echo "cli: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]
