@@ -20,6 +20,7 @@
 #include "app/cli/operation_command.h"
 #include "app/cli/record_command.h"
 #include "app/cli/render_command.h"
+#include "app/cli/session_command.h"
 #include "app/ops/operation.h"
 #include "app/platform/heap_tuning.h"
 #include "core/errors.h"
@@ -43,6 +44,10 @@ commands:
                                   sampled Hausdorff and RMS distance between two meshes
   geodesic IN OUT --from N[,N...] [--to M] [--json]
                                   heat-method geodesic distances as the PLY vertex `distance`
+  session info|export|recipe|make ...
+                                  session files and crash journals (`session --help`)
+  replay RECIPE.json IN OUT [--check SESSION] [--json]
+                                  run a session's recipe headless; --check compares bit for bit
   help                            this text
 
 operations (options: `trilab-cli NAME --help`):
@@ -72,6 +77,8 @@ std::optional<int> run_command(const std::string& cmd, const std::vector<std::st
     if (cmd == "record") return run_record_command(args);
     if (cmd == "compare") return run_compare_command(args);
     if (cmd == "geodesic") return run_geodesic_command(args);
+    if (cmd == "session") return run_session_command(args);
+    if (cmd == "replay") return run_replay_command(args);
     for (const std::string& name : trilab::operation_names())
         if (cmd == name) return run_operation_command(name, args);
     return std::nullopt;
