@@ -134,8 +134,8 @@ inline void require_same_history(const History& a, const History& b, bool times 
             const auto& p = x.steps[k].correspondence->positions;
             const auto& q = y.steps[k].correspondence->positions;
             REQUIRE(p.size() == q.size());
-            REQUIRE((p.empty() ||
-                     std::memcmp(p.data()->data(), q.data()->data(), p.size() * sizeof(Point)) == 0));
+            REQUIRE((p.empty() || std::memcmp(p.data()->data(), q.data()->data(),
+                                              p.size() * sizeof(Point)) == 0));
         }
     }
 }

@@ -212,10 +212,11 @@ TEST_CASE("the committed session of this format version reads and replays bit fo
             meshes.push_back(std::move(st.mesh));
             corr.push_back(std::move(st.correspondence));
         }
-        again.push(step.result.label, step.result.parameters, 0, std::move(meshes),
-                   std::move(corr), op);
+        again.push(step.result.label, step.result.parameters, 0, std::move(meshes), std::move(corr),
+                   op);
         INFO("entry " << i);
-        CHECK(first_difference(again.current_mesh(), s.history.mesh(i, s.history.info(i).steps.size() - 1)) == "");
+        CHECK(first_difference(again.current_mesh(),
+                               s.history.mesh(i, s.history.info(i).steps.size() - 1)) == "");
     }
 }
 
@@ -240,15 +241,17 @@ TEST_CASE("a bad recipe is refused naming the file and the operation", "[session
     CHECK_THROWS_WITH(parse_recipe("{\"format\": \"x\"}", "r.json"),
                       Catch::Contains("not a trilab recipe"));
     const std::string head = "{\"format\": \"trilab-recipe\", \"version\": 1, \"operations\": [";
-    CHECK_THROWS_WITH(parse_recipe(head + "{\"operation\": \"nope\", \"parameters\": {}}]}", "r.json"),
-                      Catch::Contains("operation 0") && Catch::Contains("unknown operation"));
+    CHECK_THROWS_WITH(
+        parse_recipe(head + "{\"operation\": \"nope\", \"parameters\": {}}]}", "r.json"),
+        Catch::Contains("operation 0") && Catch::Contains("unknown operation"));
     CHECK_THROWS_WITH(
         parse_recipe(head + "{\"operation\": \"smooth\", \"parameters\": {\"iterations\": -2}}]}",
                      "r.json"),
         Catch::Contains("--iterations"));
     CHECK_THROWS_WITH(
-        parse_recipe(head + "{\"operation\": \"smooth\", \"parameters\": {\"iterations\": \"x\"}}]}",
-                     "r.json"),
+        parse_recipe(
+            head + "{\"operation\": \"smooth\", \"parameters\": {\"iterations\": \"x\"}}]}",
+            "r.json"),
         Catch::Contains("expected a number"));
 }
 
@@ -266,7 +269,9 @@ TEST_CASE("operations give the same bits on every run (recipes rely on it)", "[s
         CHECK(first_difference(a, b) == "");
     }
     // The spectrum's slices on one or two threads agree.
-    const HalfedgeMesh one = replay(Recipe{"", {parse_operation("spectrum --k 20 --band 0:5 --threads 1")}}, mesh);
-    const HalfedgeMesh two = replay(Recipe{"", {parse_operation("spectrum --k 20 --band 0:5 --threads 2")}}, mesh);
+    const HalfedgeMesh one =
+        replay(Recipe{"", {parse_operation("spectrum --k 20 --band 0:5 --threads 1")}}, mesh);
+    const HalfedgeMesh two =
+        replay(Recipe{"", {parse_operation("spectrum --k 20 --band 0:5 --threads 2")}}, mesh);
     CHECK(first_difference(one, two) == "");
 }
