@@ -22,6 +22,7 @@
 #include "app/cli/record_command.h"
 #include "app/cli/region_option.h"
 #include "app/cli/render_command.h"
+#include "app/cli/session_command.h"
 #include "app/ops/operation.h"
 #include "app/platform/heap_tuning.h"
 #include "core/errors.h"
@@ -49,6 +50,10 @@ commands:
                                   what the viewer's inspector shows for one element
   select IN OUT --region SPEC [--grow K] [--shrink K] [--invert] [--json]
                                   store a selection as the vertex weight `selection`
+  session info|export|recipe|make ...
+                                  session files and crash journals (`session --help`)
+  replay RECIPE.json IN OUT [--check SESSION] [--json]
+                                  run a session's recipe headless; --check compares bit for bit
   help                            this text
 
 operations (options: `trilab-cli NAME --help`):
@@ -80,6 +85,8 @@ std::optional<int> run_command(const std::string& cmd, const std::vector<std::st
     if (cmd == "geodesic") return run_geodesic_command(args);
     if (cmd == "inspect") return run_inspect_command(args);
     if (cmd == "select") return run_select_command(args);
+    if (cmd == "session") return run_session_command(args);
+    if (cmd == "replay") return run_replay_command(args);
     for (const std::string& name : trilab::operation_names())
         if (cmd == name) return run_operation_command(name, args);
     return std::nullopt;

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <cstdio>
 #include <unordered_set>
@@ -31,26 +32,37 @@ std::string format_bytes(std::size_t bytes) {
 }
 
 using MeshPtr = std::shared_ptr<const HalfedgeMesh>;
+using Step = History::StepRecord;
+using Record = History::EntryRecord;
 
-struct Step {
-    std::uint64_t id = 0;  ///< unique in the history's lifetime
-    /// The mesh after the step. Its arrays are shared (copy-on-write, core/property.h) with
-    /// the step before wherever they hold the same values.
-    MeshPtr mesh;
-    MorphCorrespondence correspondence;
-};
-
+/// An entry: its immutable record (shared with snapshots) and the memory it holds alone.
 struct Entry {
-    std::string label, parameters;
-    Operation operation;  ///< the typed operation (none for loads and viewer-made states)
-    double ms = 0;
-    std::vector<Step> steps;
+    std::shared_ptr<const Record> record;
     std::size_t bytes = 0;
 };
 
+/// A step id unique in this process (the journal tells states apart by it).
+std::uint64_t draw_step_id() {
+    static std::atomic<std::uint64_t> next{1};
+    return next.fetch_add(1, std::memory_order_relaxed);
+}
+
+/// A step of `mesh`: one that keeps the vertices shares every array `predecessor` (if any)
+/// holds the same values in (most are shared already when the step was made from a copy).
+Step make_step(HalfedgeMesh mesh, MorphCorrespondence correspondence,
+               const HalfedgeMesh* predecessor) {
+    Step s;
+    s.id = draw_step_id();
+    if (predecessor && correspondence.kind == MorphCorrespondence::Kind::SameVertices)
+        mesh.share_equal_arrays(*predecessor);
+    s.mesh = std::make_shared<const HalfedgeMesh>(std::move(mesh));
+    s.correspondence = std::make_shared<const MorphCorrespondence>(std::move(correspondence));
+    return s;
+}
+
 std::string entry_name(const Entry& e) {
-    std::string s = "\"" + e.label + "\"";
-    if (!e.parameters.empty()) s += " (" + e.parameters + ")";
+    std::string s = "\"" + e.record->label + "\"";
+    if (!e.record->parameters.empty()) s += " (" + e.record->parameters + ")";
     return s;
 }
 
@@ -64,7 +76,6 @@ struct History::Impl {
     std::size_t budget;
     std::vector<Entry> entries;
     std::size_t current = 0;
-    std::uint64_t next_id = 1;
     std::size_t total_bytes = 0;
     HalfedgeMesh empty;  ///< current_mesh() of an empty history
 
@@ -78,11 +89,9 @@ struct History::Impl {
         return entries[index];
     }
 
-    const Step& current_step() const { return entries[current].steps.back(); }
-
     void set_current(std::size_t index) {
         current = index;
-        current_state = entries[index].steps.back().mesh;
+        current_state = entries[index].record->steps.back().mesh;
     }
 
     const HalfedgeMesh& current_mesh() const { return current_state ? *current_state : empty; }
@@ -94,8 +103,8 @@ struct History::Impl {
         total_bytes = 0;
         for (Entry& e : entries) {
             e.bytes = 0;
-            for (const Step& s : e.steps) {
-                e.bytes += s.correspondence.positions.size() * sizeof(Point);
+            for (const Step& s : e.record->steps) {
+                e.bytes += s.correspondence->positions.size() * sizeof(Point);
                 for (const HalfedgeMesh::MemoryBlock& b : s.mesh->memory_blocks())
                     if (counted.insert(b.id).second) e.bytes += b.bytes;
             }
@@ -133,18 +142,19 @@ std::size_t History::default_budget() {
 History::History(std::size_t budget_bytes) : impl_(std::make_shared<Impl>(budget_bytes)) {}
 
 void History::reset(HalfedgeMesh mesh, std::string label, std::string parameters, double ms) {
-    Entry e;
-    e.label = std::move(label);
-    e.parameters = std::move(parameters);
-    e.ms = ms;
+    auto e = std::make_shared<Record>();
+    e->label = std::move(label);
+    e->parameters = std::move(parameters);
+    e->ms = ms;
     Step s;
-    s.id = impl_->next_id++;
+    s.id = draw_step_id();
     s.mesh = std::make_shared<const HalfedgeMesh>(std::move(mesh));
-    e.steps.push_back(std::move(s));
+    s.correspondence = std::make_shared<const MorphCorrespondence>();
+    e->steps.push_back(std::move(s));
 
     Impl& im = *impl_;
     im.entries.clear();
-    im.entries.push_back(std::move(e));
+    im.entries.push_back(Entry{std::move(e), 0});
     im.set_current(0);
     im.recount();
 }
@@ -171,30 +181,72 @@ std::vector<std::string> History::push(std::string label, std::string parameters
     }
 
     // Build the entry aside; the history changes only once it is complete.
-    Entry e;
-    e.label = std::move(label);
-    e.parameters = std::move(parameters);
-    e.operation = std::move(operation);
-    e.ms = ms;
+    auto e = std::make_shared<Record>();
+    e->label = std::move(label);
+    e->parameters = std::move(parameters);
+    e->operation = std::move(operation);
+    e->ms = ms;
     const HalfedgeMesh* predecessor = &im.current_mesh();
     for (std::size_t k = 0; k < step_meshes.size(); ++k) {
-        HalfedgeMesh& mesh = step_meshes[k];
-        Step s;
-        s.id = im.next_id++;
-        s.correspondence = std::move(correspondences[k]);
-        // Steps that keep the vertices share every array their predecessor holds the same
-        // values in (most are shared already when the step was made from a copy).
-        if (s.correspondence.kind == MorphCorrespondence::Kind::SameVertices)
-            mesh.share_equal_arrays(*predecessor);
-        s.mesh = std::make_shared<const HalfedgeMesh>(std::move(mesh));
-        predecessor = s.mesh.get();
-        e.steps.push_back(std::move(s));
+        e->steps.push_back(
+            make_step(std::move(step_meshes[k]), std::move(correspondences[k]), predecessor));
+        predecessor = e->steps.back().mesh.get();
     }
 
     im.entries.reserve(im.current + 2);  // so that push_back cannot throw after the erase
     im.entries.erase(im.entries.begin() + std::ptrdiff_t(im.current) + 1, im.entries.end());
-    im.entries.push_back(std::move(e));
+    im.entries.push_back(Entry{std::move(e), 0});
     im.set_current(im.entries.size() - 1);
+    im.recount();
+    return im.trim();
+}
+
+History::Snapshot History::snapshot() const {
+    Snapshot s;
+    s.entries.reserve(impl_->entries.size());
+    for (const Entry& e : impl_->entries) s.entries.push_back(e.record);
+    s.current = impl_->current;
+    return s;
+}
+
+std::vector<std::string> History::restore(std::vector<EntryRecord> entries, std::size_t current) {
+    if (entries.empty()) throw InvalidArgument("History::restore: no entries");
+    if (current >= entries.size())
+        throw InvalidArgument("History::restore: current entry " + std::to_string(current) +
+                              " does not exist (" + std::to_string(entries.size()) + " entries)");
+    std::vector<Entry> built;
+    built.reserve(entries.size());
+    const HalfedgeMesh* predecessor = nullptr;
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+        EntryRecord& in = entries[i];
+        const std::string where =
+            "History::restore: entry " + std::to_string(i) + " \"" + in.label + "\"";
+        if (in.steps.empty()) throw InvalidArgument(where + " has no steps");
+        auto e = std::make_shared<Record>();
+        e->label = std::move(in.label);
+        e->parameters = std::move(in.parameters);
+        e->operation = std::move(in.operation);
+        e->ms = in.ms;
+        for (std::size_t k = 0; k < in.steps.size(); ++k) {
+            StepRecord& s = in.steps[k];
+            if (!s.mesh || !s.correspondence)
+                throw InvalidArgument(where + ": step " + std::to_string(k) + " is empty");
+            if (predecessor) {
+                try {
+                    check_correspondence(*predecessor, *s.mesh, *s.correspondence);
+                } catch (const InvalidArgument& error) {
+                    throw InvalidArgument(where + ": step " + std::to_string(k) + ": " +
+                                          error.what());
+                }
+            }
+            e->steps.push_back(make_step(HalfedgeMesh(*s.mesh), *s.correspondence, predecessor));
+            predecessor = e->steps.back().mesh.get();
+        }
+        built.push_back(Entry{std::move(e), 0});
+    }
+    Impl& im = *impl_;
+    im.entries = std::move(built);
+    im.set_current(current);
     im.recount();
     return im.trim();
 }
@@ -234,15 +286,16 @@ std::size_t History::current() const {
 }
 
 History::EntryInfo History::info(std::size_t index) const {
-    const Entry& e = impl_->entry(index, "info");
+    const Entry& entry = impl_->entry(index, "info");
+    const Record& e = *entry.record;
     EntryInfo out;
     out.label = e.label;
     out.parameters = e.parameters;
     out.operation = e.operation;
     out.ms = e.ms;
-    out.bytes = e.bytes;
+    out.bytes = entry.bytes;
     for (const Step& s : e.steps)
-        out.steps.push_back({s.mesh->n_vertices(), s.mesh->n_faces(), s.correspondence.kind});
+        out.steps.push_back({s.mesh->n_vertices(), s.mesh->n_faces(), s.correspondence->kind});
     return out;
 }
 
@@ -251,7 +304,7 @@ const HalfedgeMesh& History::current_mesh() const {
 }
 
 HalfedgeMesh History::mesh(std::size_t index, std::size_t step) const {
-    const Entry& e = impl_->entry(index, "mesh");
+    const Record& e = *impl_->entry(index, "mesh").record;
     if (step >= e.steps.size())
         throw InvalidArgument("History::mesh: entry " + std::to_string(index) + " has " +
                               std::to_string(e.steps.size()) + " steps, not step " +
@@ -261,7 +314,7 @@ HalfedgeMesh History::mesh(std::size_t index, std::size_t step) const {
 
 MorphFrame History::morph(std::size_t index, double t) const {
     const Impl& im = *impl_;
-    const Entry& e = im.entry(index, "morph");
+    const Record& e = *im.entry(index, "morph").record;
     if (index == 0)
         throw InvalidArgument("History::morph: entry 0 has no earlier state to morph from");
     if (!(t >= 0.0)) t = 0.0;  // NaN too
@@ -271,10 +324,10 @@ MorphFrame History::morph(std::size_t index, double t) const {
     const std::size_t k = std::min(std::size_t(scaled), n - 1);
     const double local = std::min(1.0, scaled - double(k));
 
-    const Step& before = k == 0 ? im.entries[index - 1].steps.back() : e.steps[k - 1];
+    const Step& before = k == 0 ? im.entries[index - 1].record->steps.back() : e.steps[k - 1];
     const Step& after = e.steps[k];
     // Both states live in their entries until the next change, so the frame's topology does.
-    return morph_frame(*before.mesh, *after.mesh, after.correspondence, local);
+    return morph_frame(*before.mesh, *after.mesh, *after.correspondence, local);
 }
 
 std::size_t History::bytes() const {

@@ -20,6 +20,7 @@
 // thread calls morph(); the non-const functions need exclusive access.
 // Copies of a History share one stack.
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -46,6 +47,27 @@ public:
         std::size_t bytes = 0;  ///< memory this entry holds on its own
     };
 
+    /// One state as the history holds it: immutable, shared (a snapshot, a journal and the
+    /// history itself may hold the same state).
+    struct StepRecord {
+        std::uint64_t id = 0;  ///< unique among the steps of this process's histories
+        std::shared_ptr<const HalfedgeMesh> mesh;
+        std::shared_ptr<const MorphCorrespondence> correspondence;
+    };
+    /// One entry as the history holds it: immutable once pushed.
+    struct EntryRecord {
+        std::string label, parameters;
+        Operation operation;  ///< empty `def` for loads and viewer-made states
+        double ms = 0;
+        std::vector<StepRecord> steps;
+    };
+    /// The whole history at one moment, sharing every entry with it (copying one costs a
+    /// pointer per entry): what a session writer or the crash journal reads, on any thread.
+    struct Snapshot {
+        std::vector<std::shared_ptr<const EntryRecord>> entries;
+        std::size_t current = 0;
+    };
+
     explicit History(std::size_t budget_bytes = default_budget());
     static std::size_t default_budget();  ///< a quarter of the physical memory
 
@@ -62,6 +84,16 @@ public:
                                   std::vector<HalfedgeMesh> step_meshes,
                                   std::vector<MorphCorrespondence> correspondences,
                                   Operation operation = {});
+
+    /// The history as it is now (see Snapshot); O(entries).
+    Snapshot snapshot() const;
+    /// Replaces the whole history with `entries` (a session file, a journal) and makes entry
+    /// `current` the current one. Each step's mesh and correspondence are taken as they are
+    /// (ids are drawn anew); the correspondences are checked as push() checks them (entry 0's
+    /// first step has no predecessor). Throws InvalidArgument naming the entry and step, with
+    /// the history unchanged, for no entries, an entry without steps, a bad correspondence or
+    /// `current` out of range. Then trims to the budget as push() does (messages returned).
+    std::vector<std::string> restore(std::vector<EntryRecord> entries, std::size_t current);
 
     bool can_undo() const;
     bool can_redo() const;

@@ -984,18 +984,14 @@ Band largest(const Problem& p, std::size_t k, const SpectralOptions& o, Progress
 void check_dense_memory(std::size_t n) {
     const double rows = double(n);
     const double need = 8.0 * 2.0 * rows * rows;
-    const double available = double(available_memory_bytes());
-    if (need <= available) return;
-    auto gib = [](double bytes) {
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "%.1f GiB", bytes / double(1u << 30));
-        return std::string(buf);
-    };
-    throw InvalidArgument("full: the dense decomposition of " + std::to_string(n) +
-                          " rows needs about " + gib(need) + " (two " + std::to_string(n) + " x " +
-                          std::to_string(n) + " matrices of doubles), more than the " +
-                          gib(available) +
-                          " of memory available now; use the partial method with k frequencies");
+    const AvailableMemory available = available_memory();
+    if (need <= double(available.bytes)) return;
+    throw InvalidArgument(
+        "full: the dense decomposition of " + std::to_string(n) + " rows needs about " +
+        format_memory_size(need) + " (two " + std::to_string(n) + " x " + std::to_string(n) +
+        " matrices of doubles), more than the " + format_memory_size(double(available.bytes)) +
+        " this process may still allocate (" + available.limit +
+        "); use the partial method with k frequencies");
 }
 
 Band full(const Problem& p, std::size_t k, SpectrumEnd end, Progress& progress,

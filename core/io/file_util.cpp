@@ -110,9 +110,10 @@ std::uint64_t max_readable_file_bytes() {
 }
 
 std::string read_file_bytes(const std::string& path) {
-    return read_bytes(path, max_readable_file_bytes(),
-                      " (half the memory available now; the rest is needed for what is built "
-                      "from the file)");
+    return read_bytes(
+        path, max_readable_file_bytes(),
+        " (half the memory this process may still allocate; the rest is needed for what is built "
+        "from the file)");
 }
 
 void check_regular_file(const std::string& path) {

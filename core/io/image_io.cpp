@@ -87,12 +87,13 @@ void check_dimensions(long long width, long long height, const std::string& path
                           " pixels) exceeds the limit of " + std::to_string(kMaxPixels) +
                           " pixels (64 Mpixel)");
     const double need = 2.0 * 4.0 * double(width) * double(height) + extra_bytes;
-    const double available = double(available_memory_bytes());
+    const AvailableMemory memory = available_memory();
+    const double available = double(memory.bytes);
     if (need > available / 2)
         throw IoError(path, line,
                       "decoding the " + size + " image needs about " + mebibytes(need) +
                           ", more than half of the " + mebibytes(available) +
-                          " of memory available now");
+                          " this process may still allocate (" + memory.limit + ")");
 }
 
 Image make_image(long long width, long long height) {

@@ -574,5 +574,46 @@ check "bad --region specs are refused naming the option and the part" bash -c \
      grep -q -- '--region: subdivide does not work on a region yet' '$tmp/e' && \
      ! '$cli' select '$tmp/d.obj' '$tmp/bad.ply' 2> '$tmp/e' && grep -q -- '--region' '$tmp/e' && \
      [ ! -e '$tmp/bad.ply' ] && '$cli' smooth --help | grep -q -- '--region SPEC'"
+# Sessions, recipes and replay (issue 27).
+check "session make, info, recipe and replay --check agree bit for bit" bash -c \
+    "'$cli' generate icosahedron '$tmp/ico.off' && \
+     '$cli' session make '$tmp/ico.off' '$tmp/s.trilab' --op 'subdivide --iterations 1' \
+       --op 'smooth --iterations 2' --op 'decimate --target-vertices 30' > /dev/null && \
+     '$cli' session info '$tmp/s.trilab' | grep -q '4 entries, current 3' && \
+     '$cli' session info '$tmp/s.trilab' --json > '$tmp/si.json' && \
+     $(declare -f json_has); json_has '$tmp/si.json' entries label typed_parameters vertices \
+       faces bytes complete entries_recovered bytes_discarded && \
+     '$cli' session recipe '$tmp/s.trilab' '$tmp/r.json' > /dev/null && \
+     '$cli' replay '$tmp/r.json' '$tmp/ico.off' '$tmp/r.off' --check '$tmp/s.trilab' | \
+       grep -q 'identical to the current state'"
+check "replay --check exits 5 naming the difference" bash -c \
+    "'$cli' generate icosahedron '$tmp/ico.off' && \
+     '$cli' session make '$tmp/ico.off' '$tmp/s2.trilab' --op 'noise --amount 2 --seed 1' > /dev/null && \
+     '$cli' session make '$tmp/ico.off' '$tmp/s3.trilab' --op 'noise --amount 2 --seed 2' > /dev/null && \
+     '$cli' session recipe '$tmp/s2.trilab' '$tmp/r2.json' > /dev/null; \
+     '$cli' replay '$tmp/r2.json' '$tmp/ico.off' '$tmp/r2.off' --check '$tmp/s3.trilab' 2> '$tmp/e'; \
+     [ \$? -eq 5 ] && grep -q 'differs from .*s3.trilab.*positions differ at index' '$tmp/e'"
+check "session export writes an entry as a mesh" bash -c \
+    "'$cli' session export '$data/session/icosahedron-history.trilab' --entry 1 '$tmp/e1.off' && \
+     '$cli' info '$tmp/e1.off' --json | grep -q '\"vertices\": 42'"
+check "session export refuses an entry that does not exist" bash -c \
+    "! '$cli' session export '$data/session/icosahedron-history.trilab' --entry 9 '$tmp/e9.off' \
+       2> '$tmp/e' && grep -q -- '--entry: .* has entries 0 to 4, not 9' '$tmp/e'"
+check "a cut session is refused naming the file and the chunk" bash -c \
+    "head -c 5000 '$data/session/icosahedron-history.trilab' > '$tmp/cut.trilab' && \
+     ! '$cli' session info '$tmp/cut.trilab' 2> '$tmp/e' && \
+     grep -q 'cut.trilab: chunk [0-9]* (.*at byte [0-9]*): truncated chunk' '$tmp/e'"
+check "a bad --op names itself" bash -c \
+    "! '$cli' session make '$tmp/ico.off' '$tmp/x.trilab' --op 'smooth --bogus 1' 2> '$tmp/e' && \
+     grep -q -- \"--op 'smooth --bogus 1': unknown option '--bogus'\" '$tmp/e' && [ ! -e '$tmp/x.trilab' ]"
+bunny="$data/../../../shared/meshes/stanford-bunny.obj"
+if [ -f "$bunny" ]; then
+    check "a dense spectrum under ulimit -v is refused with the figures, no bad_alloc" bash -c \
+        "(ulimit -v 1048576; '$cli' spectrum --full --max-full 100000 --k 10 '$bunny' '$tmp/sp.obj') \
+           2> '$tmp/e'; rc=\$?; [ \$rc -eq 1 ] && ! grep -q bad_alloc '$tmp/e' && \
+         grep -q 'this process may still allocate (the address-space limit (ulimit -v) of 1.0 GiB' '$tmp/e'"
+else
+    echo "skipped: the ulimit -v spectrum check ($bunny is absent)"
+fi
 echo "cli: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -12,13 +12,14 @@ build="${1:?usage: run-fuzzers.sh BUILD_DIR SECONDS [READER...]}"
 seconds="${2:?usage: run-fuzzers.sh BUILD_DIR SECONDS [READER...]}"
 shift 2
 readers=("$@")
-[ ${#readers[@]} -gt 0 ] || readers=(obj off ply stl om xbm xpm pnm bmp png builder)
+[ ${#readers[@]} -gt 0 ] || readers=(obj off ply stl om xbm xpm pnm bmp png builder session)
 failed=()
 for r in "${readers[@]}"; do
     exe="$build/tests/fuzz/fuzz_$r"
     [ -x "$exe" ] || { echo "run-fuzzers: $exe is not built" >&2; failed+=("$r"); continue; }
     case "$r" in
         ply | stl | om) max_len=8192 ;;
+        session) max_len=32768 ;;
         *) max_len=4096 ;;
     esac
     mkdir -p "$build/fuzz-work/$r" "$build/fuzz-artifacts/$r" "$build/fuzz-logs"

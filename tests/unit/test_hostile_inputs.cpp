@@ -325,7 +325,7 @@ TEST_CASE("reading stops at the size limit, naming the file's size and the limit
     CHECK(e.reason().find("1099511627776 bytes (1.0 TiB)") != std::string::npos);
     CHECK(e.reason().find("more than the limit of " + std::to_string(limit / 1024 / 1024)) ==
           std::string::npos);  // the limit is printed in bytes first
-    CHECK(e.reason().find("half the memory available") != std::string::npos);
+    CHECK(e.reason().find("half the memory this process may still allocate") != std::string::npos);
 
     // An explicit limit.
     const std::string small = dir.path("small.txt");
