@@ -20,6 +20,7 @@
 #include "app/cli/operation_command.h"
 #include "app/cli/record_command.h"
 #include "app/cli/render_command.h"
+#include "app/cli/spectrum_filter_command.h"
 #include "app/ops/operation.h"
 #include "app/platform/heap_tuning.h"
 #include "core/errors.h"
@@ -72,6 +73,7 @@ std::optional<int> run_command(const std::string& cmd, const std::vector<std::st
     if (cmd == "record") return run_record_command(args);
     if (cmd == "compare") return run_compare_command(args);
     if (cmd == "geodesic") return run_geodesic_command(args);
+    if (cmd == "spectrum" && wants_spectrum_filter(args)) return run_spectrum_filter_command(args);
     for (const std::string& name : trilab::operation_names())
         if (cmd == name) return run_operation_command(name, args);
     return std::nullopt;

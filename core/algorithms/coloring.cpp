@@ -79,7 +79,7 @@ struct ColoringEntry {
     const char* label;
 };
 
-constexpr std::array<ColoringEntry, 11> kColorings = {{
+constexpr std::array<ColoringEntry, 13> kColorings = {{
     {VertexColoring::None, "none", ""},
     {VertexColoring::Normal, "normal", "vertex normal"},
     {VertexColoring::K1, "k1", "first principal curvature k1"},
@@ -92,6 +92,8 @@ constexpr std::array<ColoringEntry, 11> kColorings = {{
      "smoothing distance (along the normal)"},
     {VertexColoring::Frequency, "frequency", "frequency (eigenvector values)"},
     {VertexColoring::FrequencyMass, "frequency-mass", "geometry carried by the band"},
+    {VertexColoring::RemovedBelow, "removed-below", "change in the frequencies below the split"},
+    {VertexColoring::RemovedAbove, "removed-above", "change in the frequencies above the split"},
 }};
 
 const ColoringEntry& entry(VertexColoring coloring) {
@@ -327,7 +329,8 @@ VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
 }
 
 bool coloring_needs_field(VertexColoring coloring) {
-    return coloring == VertexColoring::Frequency || coloring == VertexColoring::FrequencyMass;
+    return coloring == VertexColoring::Frequency || coloring == VertexColoring::FrequencyMass ||
+           coloring == VertexColoring::RemovedBelow || coloring == VertexColoring::RemovedAbove;
 }
 
 VertexColors color_field(const HalfedgeMesh& mesh, const std::vector<double>& values,
