@@ -12,6 +12,7 @@
 #include "app/ops/smooth_op.h"
 #include "core/algorithms/coloring.h"
 #include "core/algorithms/fairing.h"
+#include "core/algorithms/transfer_function.h"
 #include "core/geometry.h"
 
 namespace trilab {
@@ -106,6 +107,12 @@ OperationResult run_smooth(const FairingOptions& options, const HalfedgeMesh& me
     rep.mean_smoothing_distance = mean_distance;
     rep.solver = fairing.solver;
     add_json_values(rep, result);
+    if (o.op == FairingOperator::Taubin) {
+        // The μ and pass band the run used (μ may follow λ): --json reports them in place of
+        // the parameters' echo.
+        result.values.push_back({"mu", taubin_mu_of(o)});
+        result.values.push_back({"pass_band", taubin_pass_band_of(o)});
+    }
     result.typed_report = std::move(rep);
     return result;
 }

@@ -229,6 +229,8 @@ check "smooth --operator taubin --lambda 0.9 alone: mu follows lambda through th
     bash -c "'$cli' smooth --operator taubin --lambda 0.9 '$tmp/d.obj' '$tmp/t9.obj' && \
      '$cli' smooth --operator taubin --lambda 0.9 '$tmp/d.obj' '$tmp/t9.obj' | \
      grep -q 'following lambda through the pass band' && \
+     '$cli' smooth --operator taubin --lambda 0.9 '$tmp/d.obj' '$tmp/t9.obj' --json | \
+     grep -q '\"mu\": -1' && \
      ! '$cli' smooth --operator taubin --lambda 1 '$tmp/d.obj' '$tmp/x.obj' 2> '$tmp/e' && \
      grep -q -- '--mu: expected a value below -lambda' '$tmp/e'"
 check "smooth --help states each step's unit" bash -c \

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/algorithms/coloring.h"
 #include "core/algorithms/fairing.h"
 #include "core/algorithms/generators.h"
 #include "core/algorithms/spectral.h"
@@ -332,4 +333,11 @@ TEST_CASE("change_by_frequency splits a displacement into the band below and the
     CHECK(c.above_norm > c.below_norm);
     CHECK_THROWS_WITH(change_by_frequency(d, mesh.positions(), low, d.size() + 1),
                       Catch::Contains("split"));
+    // The two fields are colourings of their own.
+    REQUIRE(parse_coloring("removed-below") == VertexColoring::RemovedBelow);
+    REQUIRE(coloring_needs_field(VertexColoring::RemovedAbove));
+    const VertexColors colors = color_field(mesh, c.above, VertexColoring::RemovedAbove);
+    CHECK(colors.has_legend);
+    CHECK(colors.kind == ColorMapKind::Sequential);
+    CHECK_THAT(colors.label, Catch::Contains("above"));
 }
