@@ -11,7 +11,9 @@
 
 #include "app/cli/json_writer.h"
 #include "app/cli/operation_command.h"
+#include "app/cli/spectrum_filter_command.h"
 #include "app/ops/operation.h"
+#include "app/ops/spectrum_op.h"
 #include "core/io/file_util.h"
 
 namespace trilab::cli {
@@ -39,6 +41,19 @@ void finish_spectrum(const OperationResult& result,
     if (json) {
         if (file != values.end()) json->add("eigenvalues_file", file->second);
         json->add("eigenvalues", eigenvalues);
+        // A band edge inside a set of equal eigenvalues (band_warning holds the text).
+        if (const SpectrumReport* r = report_of<SpectrumReport>(result)) {
+            const MultipletSplit& split = r->band_split;
+            json->add("band_splits_multiplet", split.splits);
+            if (split.splits) {
+                const auto band = [](const MultipletSplit::Band& b) {
+                    return "[" + std::to_string(b.first) + ", " + std::to_string(b.second) + "]";
+                };
+                json->raw("suggested_bands",
+                          "[" + (split.narrower ? band(*split.narrower) + ", " : std::string()) +
+                              band(*split.wider) + "]");
+            }
+        }
     } else if (file != values.end()) {
         std::printf("wrote %s: %zu eigenvalues\n", file->second.c_str(), eigenvalues.size());
     }
@@ -64,8 +79,9 @@ CommandExtras command_extras(const std::string& name) {
     if (name == "spectrum")
         return CommandExtras{
             {"--eigenvalues"},
-            "  --eigenvalues FILE (write the K eigenvalues, one per line, ascending, "
-            "non-negative)\n",
+            std::string("  --eigenvalues FILE (write the K eigenvalues, one per line, ascending, "
+                        "non-negative)\n") +
+                kSpectrumFilterHelp,
             finish_spectrum};
     if (name == "subdivide") return CommandExtras{{}, "", finish_subdivide};
     return {};

@@ -23,6 +23,7 @@
 #include "app/cli/region_option.h"
 #include "app/cli/render_command.h"
 #include "app/cli/session_command.h"
+#include "app/cli/spectrum_filter_command.h"
 #include "app/ops/operation.h"
 #include "app/platform/heap_tuning.h"
 #include "core/errors.h"
@@ -83,6 +84,7 @@ std::optional<int> run_command(const std::string& cmd, const std::vector<std::st
     if (cmd == "record") return run_record_command(args);
     if (cmd == "compare") return run_compare_command(args);
     if (cmd == "geodesic") return run_geodesic_command(args);
+    if (cmd == "spectrum" && wants_spectrum_filter(args)) return run_spectrum_filter_command(args);
     if (cmd == "inspect") return run_inspect_command(args);
     if (cmd == "select") return run_select_command(args);
     if (cmd == "session") return run_session_command(args);

@@ -12,6 +12,7 @@
 #include "app/ops/smooth_op.h"
 #include "core/algorithms/coloring.h"
 #include "core/algorithms/fairing.h"
+#include "core/algorithms/transfer_function.h"
 #include "core/geometry.h"
 
 namespace trilab {
@@ -107,6 +108,12 @@ OperationResult run_smooth(const FairingOptions& options, const HalfedgeMesh& me
     rep.mean_smoothing_distance = mean_distance;
     rep.solver = fairing.solver;
     add_json_values(rep, result);
+    if (o.op == FairingOperator::Taubin) {
+        // The μ and pass band the run used (μ may follow λ): --json reports them in place of
+        // the parameters' echo.
+        result.values.push_back({"mu", taubin_mu_of(o)});
+        result.values.push_back({"pass_band", taubin_pass_band_of(o)});
+    }
     result.typed_report = std::move(rep);
     return result;
 }
@@ -133,27 +140,37 @@ std::unique_ptr<OperationDef> smooth_operation() {
     d.choice("integration", &FairingOptions::integration, EnumTableView(kIntegrations),
              "explicit Euler, or implicit (backward Euler: stable for any step)")
         .only_if(not_taubin);
-    d.number("step", &FairingOptions::step, 0, 1e6, "lambda * dt")
+    d.number("step", &FairingOptions::step, 0, 1e6,
+             "lambda * dt per iteration, scale-free: umbrella and curvature flow move each vertex "
+             "this fraction of the way to its neighbours' average (explicit: stable up to about "
+             "1.3); improved umbrella twice that on equal edges; second order 1 = the relaxation; "
+             "implicit t smooths about like t explicit steps of 1")
         .slider(1e-4, 100, true)
         .only_if(not_taubin);
     d.integer("iterations", &FairingOptions::iterations, 1, kMaxFairingIterations,
               "steps, each kept in the history")
         .slider(1, 200)
         .counts_steps();
-    d.number("lambda", &FairingOptions::taubin_lambda, 0, 1, "Taubin's shrinking factor")
+    d.number("lambda", &FairingOptions::taubin_lambda, 0, 1,
+             "Taubin's shrinking step: the fraction of the way to the neighbours' average "
+             "(umbrella units)")
         .above_min()
         .slider(0.01, 1)
         .only_if(taubin_only);
     d.number("mu", &FairingOptions::taubin_mu, -1, 0,
-             "Taubin's inflating factor, below -lambda (or give --pass-band)")
+             "Taubin's inflating step in umbrella units, in [-1, -lambda) (or give --pass-band); "
+             "0: follows lambda through the pass band 0.1132 of lambda 0.5, mu -0.53, at least "
+             "-1")
         .slider(-1, -0.01)
+        .hide_default()
         .only_if([](const FairingOptions& o) -> const char* {
             if (o.op != FairingOperator::Taubin) return "applies to --operator taubin only";
             return o.taubin_pass_band > 0 ? "does not apply with --pass-band (it sets mu)"
                                           : nullptr;
         });
     d.number("pass-band", &FairingOptions::taubin_pass_band, 0, 1,
-             "Taubin's pass-band frequency k_PB, 1/lambda + 1/mu = k_PB (0: use --mu)")
+             "Taubin's pass-band frequency k_PB = 1/lambda + 1/mu, an eigenvalue of the umbrella "
+             "(frequencies below it keep their size; 0: use --mu)")
         .slider(0, 0.2)
         .hide_default()
         .only_if(taubin_only);
@@ -163,11 +180,16 @@ std::unique_ptr<OperationDef> smooth_operation() {
              "boundary vertices stay fixed, or slide along the input's boundary curve")
         .hide_default();
     d.check([](const FairingOptions& o, const auto&) {
-        if (o.op == FairingOperator::Taubin && o.taubin_pass_band == 0 &&
-            !(o.taubin_mu < -o.taubin_lambda))
+        if (o.op != FairingOperator::Taubin || o.taubin_pass_band != 0) return;
+        const double mu = taubin_mu_of(o);  // --mu, or following --lambda through the pass band
+        if (!(mu < -o.taubin_lambda))
             throw InvalidArgument(
                 "--mu: expected a value below -lambda = " + format_number(-o.taubin_lambda) +
-                ", got " + format_number(o.taubin_mu));
+                ", got " + format_number(mu) +
+                (o.taubin_mu == 0 ? " (following --lambda through the pass band " +
+                                        format_number(kDefaultTaubinPassBand) +
+                                        ", at least -1: give a --lambda below 1, or --mu)"
+                                  : std::string()));
     });
     d.run(run_smooth)
         .may_stop_early()

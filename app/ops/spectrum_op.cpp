@@ -87,6 +87,10 @@ OperationResult run_spectrum(const SpectrumOptions& o, const HalfedgeMesh& mesh,
             count_text(rep.operations, "operator application", "operator applications");
     std::snprintf(line, sizeof line, ", max residual %.1e", rep.max_residual);
     result.report.push_back(text + line);
+    const MultipletSplit split = band_splits_multiplet(d.eigenvalues, lo, hi);
+    if (split.splits) {
+        result.report.push_back("warning: " + multiplet_split_text(split, lo, hi));
+    }
     if (rep.diagnostics.total() > 0)
         result.report.push_back("operator: " +
                                 count_text(rep.diagnostics.negative_weights_clamped,
@@ -106,7 +110,9 @@ OperationResult run_spectrum(const SpectrumOptions& o, const HalfedgeMesh& mesh,
     typed.end = d.end;
     typed.eigenvalues.assign(d.eigenvalues.data(), d.eigenvalues.data() + k);
     typed.decomposition = rep;
+    typed.band_split = split;
     add_json_values(typed, result);
+    if (split.splits) result.texts.push_back({"band_warning", multiplet_split_text(split, lo, hi)});
     result.typed_report = std::move(typed);
     return result;
 }

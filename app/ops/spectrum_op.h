@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/algorithms/spectral.h"
+#include "core/algorithms/transfer_function.h"
 
 namespace trilab {
 
@@ -31,7 +32,10 @@ struct SpectrumReport {
     SpectralMethod method = SpectralMethod::Partial;
     SpectrumEnd end = SpectrumEnd::Smallest;
     std::vector<double> eigenvalues;  ///< ascending, k of them
-    SpectralReport decomposition;     ///< solver, slices, residual, time
+    /// Whether the band's edges split a multiplet (equal eigenvalues within
+    /// kMultipletTolerance, core/algorithms/transfer_function.h) and the nearest whole bands.
+    MultipletSplit band_split;
+    SpectralReport decomposition;  ///< solver, slices, residual, time
 };
 
 /// The core's options of `o`: the method from `full`, the count and threads from their

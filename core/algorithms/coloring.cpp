@@ -82,7 +82,7 @@ struct ColoringEntry {
     const char* label;
 };
 
-constexpr std::array<ColoringEntry, 12> kColorings = {{
+constexpr std::array<ColoringEntry, 14> kColorings = {{
     {VertexColoring::None, "none", ""},
     {VertexColoring::Normal, "normal", "vertex normal"},
     {VertexColoring::K1, "k1", "first principal curvature k1"},
@@ -96,6 +96,8 @@ constexpr std::array<ColoringEntry, 12> kColorings = {{
     {VertexColoring::Frequency, "frequency", "frequency (eigenvector values)"},
     {VertexColoring::FrequencyMass, "frequency-mass", "geometry carried by the band"},
     {VertexColoring::GeodesicDistance, "geodesic-distance", "geodesic distance"},
+    {VertexColoring::RemovedBelow, "removed-below", "change in the frequencies below the split"},
+    {VertexColoring::RemovedAbove, "removed-above", "change in the frequencies above the split"},
 }};
 
 const ColoringEntry& entry(VertexColoring coloring) {
@@ -357,7 +359,8 @@ VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
 
 bool coloring_needs_field(VertexColoring coloring) {
     return coloring == VertexColoring::Frequency || coloring == VertexColoring::FrequencyMass ||
-           coloring == VertexColoring::GeodesicDistance;
+           coloring == VertexColoring::GeodesicDistance ||
+           coloring == VertexColoring::RemovedBelow || coloring == VertexColoring::RemovedAbove;
 }
 
 VertexColors color_field(const HalfedgeMesh& mesh, const std::vector<double>& values,

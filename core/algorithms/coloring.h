@@ -52,6 +52,10 @@ enum class VertexColoring {
     /// takes it from the mesh's "v:distance" property (written by `trilab-cli geodesic`,
     /// negative values: not reached) when there is one.
     GeodesicDistance,
+    /// |what an operation moved each vertex by| in the frequencies below / above a split
+    /// (core/algorithms/transfer_function.h change_by_frequency()): noise or shape removed.
+    RemovedBelow,
+    RemovedAbove,
 };
 
 struct ColoringOptions {
@@ -104,8 +108,9 @@ VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
 std::vector<double> smoothing_distance(const HalfedgeMesh& mesh,
                                        const std::vector<Point>& reference);
 /// Whether the colouring needs a per-vertex field from outside the mesh (Frequency,
-/// FrequencyMass: a spectral decomposition; GeodesicDistance: distances from sources);
-/// color_vertices() refuses those (GeodesicDistance only without "v:distance").
+/// FrequencyMass, RemovedBelow, RemovedAbove: a spectral decomposition; GeodesicDistance:
+/// distances from sources); color_vertices() refuses those (GeodesicDistance only without
+/// "v:distance").
 bool coloring_needs_field(VertexColoring coloring);
 /// Colours a given per-vertex field (indexed by storage index; NaN: no value, grey) as
 /// `coloring` shows it: Frequency on the diverging map over a symmetric percentile range,
@@ -116,7 +121,8 @@ bool coloring_needs_field(VertexColoring coloring);
 VertexColors color_field(const HalfedgeMesh& mesh, const std::vector<double>& values,
                          VertexColoring coloring, const ColoringOptions& options = {});
 /// Names for menus and the CLI: "none", "normal", "k1", "k2", "mean", "gaussian", "shape-index",
-/// "subdivision", "smoothing-distance", "frequency", "frequency-mass", "geodesic-distance".
+/// "subdivision", "smoothing-distance", "frequency", "frequency-mass", "geodesic-distance",
+/// "removed-below", "removed-above".
 const char* coloring_name(VertexColoring coloring);
 /// Parses coloring_name() strings; throws InvalidArgument listing the names otherwise.
 VertexColoring parse_coloring(const std::string& name);

@@ -118,8 +118,7 @@ std::string format_percent(double ratio) {
 }
 
 double taubin_mu(const FairingOptions& o) {
-    return o.taubin_pass_band > 0 ? 1.0 / (o.taubin_pass_band - 1.0 / o.taubin_lambda)
-                                  : o.taubin_mu;
+    return taubin_mu_of(o);
 }
 
 void check_options(const HalfedgeMesh& mesh, const FairingOptions& o) {
@@ -143,16 +142,19 @@ void check_options(const HalfedgeMesh& mesh, const FairingOptions& o) {
                     "mu = 1/(k_PB - 1/lambda) is in [-1, -lambda) (got k_PB " +
                     format_number(o.taubin_pass_band) + ", lambda " +
                     format_number(o.taubin_lambda) + ")");
-        } else if (!std::isfinite(o.taubin_mu) || !(o.taubin_mu < -o.taubin_lambda) ||
-                   o.taubin_mu < -1.0) {
-            fail("taubin_mu must be in [-1, -taubin_lambda) (got " + format_number(o.taubin_mu) +
+        } else if (const double mu = taubin_mu(o);
+                   !std::isfinite(mu) || !(mu < -o.taubin_lambda) || mu < -1.0) {
+            fail("taubin_mu must be in [-1, -taubin_lambda) (got " + format_number(mu) +
+                 (o.taubin_mu == 0 ? " following lambda through the pass band " +
+                                         format_number(kDefaultTaubinPassBand)
+                                   : std::string()) +
                  ", lambda " + format_number(o.taubin_lambda) + ")");
-        } else if (!(1.0 / o.taubin_lambda + 1.0 / o.taubin_mu < 1.0)) {
+        } else if (!(1.0 / o.taubin_lambda + 1.0 / mu < 1.0)) {
             // Beyond 1 the pass band covers most of the umbrella's spectrum [0, 2]: the mesh
             // grows instead of being smoothed.
             fail("taubin_mu must put the pass band 1/lambda + 1/mu below 1 (got " +
-                 format_number(1.0 / o.taubin_lambda + 1.0 / o.taubin_mu) + " for lambda " +
-                 format_number(o.taubin_lambda) + ", mu " + format_number(o.taubin_mu) +
+                 format_number(1.0 / o.taubin_lambda + 1.0 / mu) + " for lambda " +
+                 format_number(o.taubin_lambda) + ", mu " + format_number(mu) +
                  "; Taubin suggests 0.01 to 0.1)");
         }
         if (o.integration != Integration::Explicit)
@@ -727,11 +729,17 @@ FairingRun::FairingRun(const FairingOptions& o, Progress& progress, FairingResul
 void FairingRun::report_settings() {
     std::ostringstream s;
     s << "operator " << fairing_operator_name(o_.op) << ", " << integration_name(o_.integration);
-    if (taubin_)
-        s << ", lambda " << o_.taubin_lambda << ", mu " << mu_
-          << (o_.taubin_pass_band > 0 ? " (from the pass band k_PB " : "")
-          << (o_.taubin_pass_band > 0 ? format_number(o_.taubin_pass_band) + ")" : "");
-    else
+    if (taubin_) {
+        s << ", lambda " << o_.taubin_lambda << ", mu " << mu_;
+        if (o_.taubin_pass_band > 0)
+            s << " (from the pass band k_PB " << format_number(o_.taubin_pass_band) << ")";
+        else if (o_.taubin_mu == 0)
+            s << " (following lambda through the pass band k_PB "
+              << format_number(kDefaultTaubinPassBand)
+              << (mu_ == -1.0
+                      ? ", raised to -1: k_PB " + format_number(1.0 / o_.taubin_lambda - 1.0) + ")"
+                      : std::string(")"));
+    } else
         s << ", step " << o_.step;
     s << ", " << o_.iterations << " iteration(s)";
     if (o_.preserve_volume) s << ", volume preserved";
@@ -1127,6 +1135,12 @@ void pin_unselected(const HalfedgeMesh& mesh, const Selection& weights, Pinned& 
 }
 
 }  // namespace
+
+double taubin_mu_of(const FairingOptions& o) {
+    if (o.taubin_pass_band > 0) return 1.0 / (o.taubin_pass_band - 1.0 / o.taubin_lambda);
+    if (o.taubin_mu != 0) return o.taubin_mu;
+    return std::max(-1.0, 1.0 / (kDefaultTaubinPassBand - 1.0 / o.taubin_lambda));
+}
 
 const char* fairing_operator_name(FairingOperator op) {
     return enum_id<FairingOperator>(kFairingOperators, op);

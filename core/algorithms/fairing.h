@@ -66,6 +66,10 @@ FairingOperator parse_fairing_operator(const std::string& name);
 const char* integration_name(Integration integration);  ///< "explicit", "implicit"
 Integration parse_integration(const std::string& name);
 
+/// Taubin's pass band k_PB = 1/λ + 1/μ of his suggested λ 0.5, μ -0.53 (about 0.1132): the one
+/// μ follows when only λ is given (FairingOptions::taubin_mu 0).
+inline constexpr double kDefaultTaubinPassBand = 1.0 / 0.5 + 1.0 / -0.53;
+
 /// The largest accepted FairingOptions::iterations.
 inline constexpr int kMaxFairingIterations = 10000;
 
@@ -76,8 +80,9 @@ struct FairingOptions {
     int iterations = 1;            ///< in [1, 10000]
     bool preserve_volume = false;  ///< closed meshes only
     double taubin_lambda = 0.5;    ///< Taubin only: in (0, 1]
-    /// Taubin only: in [-1, -taubin_lambda), with the pass band 1/λ + 1/μ below 1.
-    double taubin_mu = -0.53;
+    /// Taubin only: in [-1, -taubin_lambda), with the pass band 1/λ + 1/μ below 1; 0 (the
+    /// default): μ follows λ through the pass band kDefaultTaubinPassBand (taubin_mu_of()).
+    double taubin_mu = 0;
     /// Taubin only: 0 = use taubin_mu; in (0, 1) = the pass-band frequency k_PB, and μ =
     /// 1/(k_PB - 1/λ) (Taubin 1995 suggests 0.01 to 0.1), which must be >= -1.
     double taubin_pass_band = 0;
@@ -133,6 +138,12 @@ struct FairingResult {
     LaplacianDiagnostics diagnostics;  ///< summed over all builds (stalled: largest per build)
     double initial_volume = 0, final_volume = 0;  ///< closed meshes (0 otherwise)
 };
+
+/// Taubin's μ as smooth() uses it: 1/(k_PB - 1/λ) from taubin_pass_band when that is > 0;
+/// else taubin_mu when non-zero; else (μ follows λ) 1/(kDefaultTaubinPassBand - 1/λ), raised
+/// to -1 where it would be below (then the pass band is 1/λ - 1, a little narrower). The
+/// result is not checked (smooth() checks it).
+double taubin_mu_of(const FairingOptions& options);
 
 /// Smooths `mesh`; see the file comment.
 FairingResult smooth(const HalfedgeMesh& mesh, const FairingOptions& options, Progress& progress);

@@ -202,6 +202,55 @@ check "spectrum --band refuses HI >= K naming the option" bash -c \
     "! '$cli' spectrum --k 10 --band 3:10 '$tmp/d.obj' '$tmp/x.obj' 2> '$tmp/e' && \
      grep -q -- '--band: expected LO:HI with 0 <= LO <= HI < K' '$tmp/e' && \
      ! '$cli' spectrum --band 5:2 '$tmp/d.obj' '$tmp/x.obj' 2>/dev/null && [ ! -e '$tmp/x.obj' ]"
+check "spectrum --filter: predicted and measured gains agree for the umbrella, with the files" \
+    bash -c "'$cli' spectrum --k 20 --filter 'smooth --step 0.5 --iterations 4' '$tmp/d.obj' \
+     '$tmp/lens.obj' --gains '$tmp/gains.txt' --eigenvalues '$tmp/ev.txt' --json > '$tmp/lens.json' && \
+     python3 -c \"import json; j = json.load(open('$tmp/lens.json')); \
+assert len(j['eigenvalues']) == len(j['predicted_gain']) == len(j['measured_gain']) == 20; \
+assert j['max_difference'] < 1e-6, j['max_difference']; assert j['linear']\" && \
+     [ \$(grep -vc '^#' '$tmp/gains.txt') = 20 ] && [ \$(wc -l < '$tmp/ev.txt') = 20 ] && \
+     [ -s '$tmp/lens.obj' ]"
+check "spectrum --filter --json has the lens's keys" json_has "$tmp/lens.json" eigenvalues \
+    predicted_gain measured_gain max_difference instability_limit band_splits_multiplet
+check "spectrum --filter: curvature flow's difference is reported as the nonlinearity" bash -c \
+    "'$cli' spectrum --k 20 --filter 'smooth --operator curvature-flow --step 1 --iterations 10' \
+     '$tmp/d.obj' '$tmp/lens.obj' --json > '$tmp/lens.json' && \
+     python3 -c \"import json; j = json.load(open('$tmp/lens.json')); \
+assert j['operator'] == 'curvature-flow' and not j['linear']; assert j['max_difference'] > 1e-6; \
+assert 'nonlinearity' in j['difference_note']\""
+check "spectrum --filter: a diverging explicit step writes the curve, no OUT, and exits 4" bash -c \
+    "'$cli' spectrum --k 10 --filter 'smooth --step 20' '$tmp/d.obj' '$tmp/div.obj' \
+     --gains '$tmp/div.txt' 2> '$tmp/e'; [ \$? = 4 ] && [ ! -e '$tmp/div.obj' ] && \
+     grep -q 'stopped early' '$tmp/e' && grep -q ' nan\$' '$tmp/div.txt'"
+check "spectrum flags a band that splits the sphere's three-fold lambda_1, with whole bands" \
+    bash -c "'$cli' spectrum --k 10 --band 0:2 '$tmp/d.obj' '$tmp/b02.obj' --json > '$tmp/b.json' && \
+     grep -q '\"band_splits_multiplet\": true' '$tmp/b.json' && \
+     grep -q '\"suggested_bands\": \[\[0, 0\], \[0, 3\]\]' '$tmp/b.json' && \
+     '$cli' spectrum --k 10 --band 0:2 '$tmp/d.obj' '$tmp/b02.obj' | grep -q 'use 0:0 or 0:3' && \
+     '$cli' spectrum --k 10 --band 0:3 '$tmp/d.obj' '$tmp/b03.obj' --json | \
+     grep -q '\"band_splits_multiplet\": false'"
+check "spectrum --filter --split --removed writes two fields per vertex" bash -c \
+    "'$cli' spectrum --k 20 --filter 'smooth --iterations 3' --split 4 --removed '$tmp/rm.txt' \
+     '$tmp/d.obj' '$tmp/lens.obj' --json > '$tmp/rm.json' && \
+     grep -q '\"removed_below_norm\": ' '$tmp/rm.json' && [ \$(grep -vc '^#' '$tmp/rm.txt') = 1002 ]"
+check "spectrum --filter refuses what is not a smoothing, another operator, a lone --gains" bash -c \
+    "! '$cli' spectrum --filter 'noise --amount 1' '$tmp/d.obj' '$tmp/x.obj' 2> '$tmp/e' && \
+     grep -q -- '--filter: expected a smoothing operation' '$tmp/e' && \
+     ! '$cli' spectrum --operator curvature-flow --filter 'smooth' '$tmp/d.obj' '$tmp/x.obj' \
+       2> '$tmp/e' && grep -q -- '--operator: the filter smooths with the umbrella' '$tmp/e' && \
+     ! '$cli' spectrum --gains '$tmp/g.txt' '$tmp/d.obj' '$tmp/x.obj' 2> '$tmp/e' && \
+     grep -q -- '--gains: needs --filter' '$tmp/e' && [ ! -e '$tmp/x.obj' ]"
+check "smooth --operator taubin --lambda 0.9 alone: mu follows lambda through the pass band" \
+    bash -c "'$cli' smooth --operator taubin --lambda 0.9 '$tmp/d.obj' '$tmp/t9.obj' && \
+     '$cli' smooth --operator taubin --lambda 0.9 '$tmp/d.obj' '$tmp/t9.obj' | \
+     grep -q 'following lambda through the pass band' && \
+     '$cli' smooth --operator taubin --lambda 0.9 '$tmp/d.obj' '$tmp/t9.obj' --json | \
+     grep -q '\"mu\": -1' && \
+     ! '$cli' smooth --operator taubin --lambda 1 '$tmp/d.obj' '$tmp/x.obj' 2> '$tmp/e' && \
+     grep -q -- '--mu: expected a value below -lambda' '$tmp/e'"
+check "smooth --help states each step's unit" bash -c \
+    "'$cli' smooth --help | grep -q 'fraction of the way to its neighbours' && \
+     '$cli' smooth --help | grep -q 'umbrella units'"
 check "spectrum --full is refused above the size limit naming it" bash -c \
     "! '$cli' spectrum --full --max-full 500 '$tmp/d.obj' '$tmp/x.obj' 2> '$tmp/e' && \
      grep -q -- '--full: the dense decomposition is limited to 500' '$tmp/e' && [ ! -e '$tmp/x.obj' ]"
