@@ -74,11 +74,14 @@ bool visit(std::uint32_t code, F&& f) {
         case 18:
             f(Tag<std::string>{});
             return true;
+        case 19:  // three vertex indices (a subdivision vertex's parents)
+            f(Tag<Eigen::Matrix<std::uint32_t, 3, 1>>{});
+            return true;
         default:
             return false;
     }
 }
-inline constexpr std::uint32_t kFirstCode = 1, kLastCode = 18;
+inline constexpr std::uint32_t kFirstCode = 1, kLastCode = 19;
 inline constexpr std::uint32_t kPointCode = 1;
 
 /// The containers of a mesh: vertices, halfedges, edges, faces.

@@ -1240,6 +1240,29 @@ std::string stop_text(DecimationStop stop, const DecimationReport& r, std::size_
     return "reached " + std::to_string(r.output_vertices) + " vertices";
 }
 
+/// The fine state of the progressive record: positions, faces and liveness of `work`.
+void start_progressive_mesh(const HalfedgeMesh& work, ProgressiveMesh& pm) {
+    pm.positions = work.positions();
+    pm.faces.assign(work.faces_size(), {Vertex(), Vertex(), Vertex()});
+    pm.face_alive.assign(work.faces_size(), 0);
+    pm.vertex_alive.assign(work.vertices_size(), 0);
+    for (Face f : work.faces()) {
+        pm.faces[f.idx()] = work.face_vertices(f);
+        pm.face_alive[f.idx()] = 1;
+    }
+    for (Vertex v : work.vertices()) pm.vertex_alive[v.idx()] = 1;
+}
+
+/// The vertices a percentage counts: the region's (with faces), or all `with_faces`.
+std::size_t percent_base(const HalfedgeMesh& work, const DecimationOptions& options,
+                         std::size_t with_faces) {
+    if (!options.region || options.target_vertices > 0) return with_faces;
+    std::size_t counted = 0;
+    for (Vertex u : work.vertices())
+        if ((*options.region)[u.idx()] > 0.0f && !work.is_isolated(u)) ++counted;
+    return counted;
+}
+
 }  // namespace
 
 DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& options,
@@ -1258,17 +1281,7 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
         for (Index i = 0; i < s.size(); ++i) s[i] = i;
     }
     ProgressiveMesh* pm = options.record_progressive ? &result.progressive : nullptr;
-    if (pm) {
-        pm->positions = work.positions();
-        pm->faces.assign(work.faces_size(), {Vertex(), Vertex(), Vertex()});
-        pm->face_alive.assign(work.faces_size(), 0);
-        pm->vertex_alive.assign(work.vertices_size(), 0);
-        for (Face f : work.faces()) {
-            pm->faces[f.idx()] = work.face_vertices(f);
-            pm->face_alive[f.idx()] = 1;
-        }
-        for (Vertex v : work.vertices()) pm->vertex_alive[v.idx()] = 1;
-    }
+    if (pm) start_progressive_mesh(work, *pm);
     Decimater decimater(work, options, pm, report);
 
     // before_to_work[i]: the working index of vertex i of the mesh before the iteration.
@@ -1317,13 +1330,7 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
     for (int it = 0; it < iterations; ++it) {
         progress.check_cancelled();
         const std::size_t v = work.n_vertices() - isolated;
-        // The vertices a percentage counts: the region's (with faces), or all.
-        std::size_t counted = v;
-        if (options.region && options.target_vertices == 0) {
-            counted = 0;
-            for (Vertex u : work.vertices())
-                if ((*options.region)[u.idx()] > 0.0f && !work.is_isolated(u)) ++counted;
-        }
+        const std::size_t counted = percent_base(work, options, v);
         const std::size_t target =
             options.target_vertices > 0
                 ? options.target_vertices
