@@ -197,6 +197,10 @@ public:
     void set_inspection_options(const DecimationOptions& options);
     /// Waits for the inspection of the picks (tests and scripted runs).
     void finish_inspection();
+    /// The picks' inspection or measurement is still being computed.
+    bool picks_pending() const {
+        return inspection_future_.valid() || picks_.measurement.computing;
+    }
 
     // ---- documents ---------------------------------------------------------------------------
     /// Computes texture coordinates by `projection` on the current shape (a history entry).

@@ -74,7 +74,9 @@ void coloring_menu(ViewSettings& settings, CommandQueue& commands) {
                                             VertexColoring::SmoothingDistance,
                                             VertexColoring::Frequency,
                                             VertexColoring::FrequencyMass,
-                                            VertexColoring::GeodesicDistance};
+                                            VertexColoring::GeodesicDistance,
+                                            VertexColoring::RemovedBelow,
+                                            VertexColoring::RemovedAbove};
         const char* labels[] = {"None",
                                 "Normal direction",
                                 "First principal curvature",
@@ -86,7 +88,9 @@ void coloring_menu(ViewSettings& settings, CommandQueue& commands) {
                                 "Smoothing distance",
                                 "Frequency (the visualized eigenvector)",
                                 "Frequency mass (geometry in the band)",
-                                "Geodesic distance (from the picks)"};
+                                "Geodesic distance (from the picks)",
+                                "Removed below the band's top (shape)",
+                                "Removed above the band's top (detail, noise)"};
         for (std::size_t i = 0; i < std::size(colorings); ++i) {
             if (menu_item(labels[i], nullptr, settings.coloring == colorings[i]) &&
                 settings.coloring != colorings[i]) {

@@ -430,12 +430,18 @@ void inspector_section(PanelState& panels, const InspectorView& view, CommandQue
         ImGui::TextUnformatted(group.title.c_str());
         if (ImGui::BeginTable("##rows", 2, ImGuiTableFlags_SizingStretchProp)) {
             ImGui::TableSetupColumn("##label", ImGuiTableColumnFlags_WidthFixed,
-                                    8.0f * ImGui::GetFontSize());
+                                    10.0f * ImGui::GetFontSize());
             ImGui::TableSetupColumn("##value", ImGuiTableColumnFlags_WidthStretch);
             for (const InspectorView::Row& row : group.rows) {
                 ImGui::TableNextRow();
                 ImGui::TableNextColumn();
-                ImGui::TextDisabled("%s", row.label.c_str());
+                // Labels wrap in their column, never cut at its edge.
+                ImGui::PushStyleColor(ImGuiCol_Text,
+                                      ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+                ImGui::PushTextWrapPos(0.0f);
+                ImGui::TextUnformatted(row.label.c_str());
+                ImGui::PopTextWrapPos();
+                ImGui::PopStyleColor();
                 ImGui::TableNextColumn();
                 ImGui::PushTextWrapPos(0.0f);
                 ImGui::TextUnformatted(row.text.c_str());

@@ -11,6 +11,8 @@
 #include "app/ops/operation_entries.h"
 #include "app/ops/spectrum_op.h"
 #include "app/viewer/viewer.h"
+
+#include "core/algorithms/transfer_function.h"
 #include "core/errors.h"
 
 namespace trilab::viewer {
@@ -74,6 +76,23 @@ VertexColors Viewer::frequency_colors(const HalfedgeMesh& mesh) const {
     if (!d || mesh.vertices_size() != d->base_positions.size() || d->empty()) return {};
     const FrequencyPanelState& s = panels_.frequency;
     const std::size_t last = d->size() - 1;
+    const VertexColoring coloring = view_.settings.coloring;
+    if (coloring == VertexColoring::RemovedBelow || coloring == VertexColoring::RemovedAbove) {
+        // What the current entry changed, split at the top of the band: below it is shape,
+        // above it detail and noise (core/algorithms/transfer_function.h).
+        const std::vector<Point> before = session_.reference_positions();
+        if (before.size() != mesh.vertices_size()) return {};
+        const std::size_t split = std::min(std::size_t(std::max(s.hi, 0)) + 1, d->size());
+        try {
+            const ChangeByFrequency change =
+                change_by_frequency(*d, before, mesh.positions(), split);
+            return color_field(
+                mesh, coloring == VertexColoring::RemovedBelow ? change.below : change.above,
+                coloring, view_.settings.coloring_options);
+        } catch (const std::exception&) {
+            return {};  // e.g. a decomposition of the largest end: the notice says what is needed
+        }
+    }
     const std::vector<double> values =
         view_.settings.coloring == VertexColoring::Frequency
             ? frequency_field(*d, std::min(std::size_t(std::max(s.visualize, 0)), last))

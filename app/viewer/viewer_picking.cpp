@@ -263,7 +263,9 @@ void Viewer::scripted_picks() {
 }
 
 bool Viewer::scripted_picks_pending() const {
-    return next_scripted_pick_ < options_.picks.size();
+    // The last frame of a scripted run shows the Inspector filled in.
+    return next_scripted_pick_ < options_.picks.size() ||
+           (!options_.picks.empty() && session_.picks_pending());
 }
 
 }  // namespace trilab::viewer
