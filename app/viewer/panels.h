@@ -16,6 +16,7 @@
 #include "app/viewer/file_browser.h"
 #include "app/viewer/frequency_panel.h"
 #include "app/viewer/layout.h"
+#include "app/viewer/transfer_plot.h"
 #include "app/viewer/widgets.h"
 #include "core/algorithms/coloring.h"
 #include "core/algorithms/morph.h"
@@ -71,6 +72,8 @@ struct FairingPanelState : OperationPanelState {
     double max_stable_step = std::numeric_limits<double>::quiet_NaN();
     HalfedgeMesh::Revision stable_step_state;  ///< the mesh state it was estimated on
     int stable_step_operator = -1;             ///< and the operator
+    /// The spectral lens: what the transfer curve is drawn over (the viewer fills it).
+    TransferView lens;
 };
 
 /// The Decimation panel: its operation, and the collapsing-edges overlay.

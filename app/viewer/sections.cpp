@@ -21,6 +21,7 @@
 #include "app/viewer/plots.h"
 #include "app/viewer/widgets.h"
 #include "core/algorithms/fairing.h"
+#include "core/algorithms/transfer_function.h"
 #include "core/algorithms/weld.h"
 #include "core/errors.h"
 #include "core/number_text.h"
@@ -152,6 +153,15 @@ void fairing_section(PanelState& panels, const SidebarContext& context, CommandQ
     set_options(state.op, o);
     operation_panel_body(state, "Smooth", context.busy, commands);
     if (!context.closed) wrapped_disabled("open mesh: no volume to preserve");
+    // The spectral lens: the filter these settings are on this mesh's frequencies.
+    ImGui::Separator();
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextUnformatted("Transfer curve: what each frequency is multiplied by");
+    ImGui::PopTextWrapPos();
+    if (transfer_plot(options_of<FairingOptions>(state.op), state.lens) && !context.busy)
+        commands.push_back(Decompose{parse_operation(
+            std::string("spectrum --k 100 --operator ") +
+            laplacian_operator_name(laplacian_of(options_of<FairingOptions>(state.op).op)))});
     ImGui::Separator();
     morph_hint();
 }

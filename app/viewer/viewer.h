@@ -226,6 +226,9 @@ private:
     InspectorView inspector_;
     std::size_t next_scripted_pick_ = 0;
     std::uint64_t geodesic_colored_version_ = 0;  ///< the picks the geodesic colours show
+    /// The Fairing section's transfer curve data (viewer_lens.cpp).
+    void update_lens();
+    std::string lens_key_;
     glm::vec2 press_pos_{0.0f};  ///< where the left button went down (a click picks)
     bool turning_ = false;       ///< the left drag has moved past the click's slop
 

@@ -242,6 +242,7 @@ void Viewer::update_panels() {
         note_preview_latency(*panel, ms);
     }
     update_stable_step();
+    update_lens();
     // Decimation's level of detail.
     DecimationPanelState& d = panels_.decimation;
     d.lod_ready = session_.has_level_of_detail();

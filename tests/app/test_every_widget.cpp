@@ -100,6 +100,7 @@ struct Sidebar {
         context.inspector = &inspector;
         // The stability warning and its button show (a step above the limit).
         panels.fairing.max_stable_step = 1.0;
+        panels.fairing.lens.lambda_max = 2.0;  // the transfer curve over the analytic range
         panels.fairing.op.value("step").x = 50.0;
     }
     Sidebar(const Sidebar&) = delete;
@@ -270,6 +271,7 @@ TEST_CASE("every button of every section queues what it says", "[panels][buttons
         {"Morph/After", [](const Sidebar& s) { CHECK(s.morph.t == 1.0); }},
         {"Record/Record", queues_one(StartRecording{})},
         {"Inspector/Clear picks", queues_one(ClearPicks{})},
+        {"Fairing/Decompose for this operator", queues_one(Decompose{})},
         {"Inspector/Centre view here", queues_one(CentreOnPick{})},
         {"Record/Cancel", queues_one(CancelRecording{})},
     };

@@ -189,6 +189,70 @@ TEST_CASE("the Fairing panel marks a step above the stable limit and offers impl
     CHECK_FALSE(ui.has("unstable"));  // implicit: any step is stable
 }
 
+TEST_CASE("the Fairing panel's transfer curve marks instability, the pass band and measurements",
+          "[panels][lens]") {
+    Ui ui(1280, 2000);
+    PanelState panels;
+    panels.fairing.open = true;
+    panels.fairing.max_stable_step = 0.5;  // lambda_max = 4 from the stability estimate
+    panels.fairing.lens.lambda_max = 4.0;
+    CommandQueue commands;
+    const auto draw = [&] {
+        in_sidebar(panels.layout, [&] { fairing_section(panels, closed_mesh(), commands); });
+    };
+    FairingOptions o = options_of<FairingOptions>(panels.fairing.op);
+    o.op = FairingOperator::Umbrella;
+    o.integration = Integration::Explicit;
+    o.step = 0.4;  // unstable above 2 / 0.4 = 5: beyond this spectrum's 4
+    set_options(panels.fairing.op, o);
+    ui.frame(draw);
+    ui.frame(draw);
+    REQUIRE(ui.has("lens: area"));
+    CHECK_FALSE(ui.has("lens: grows"));
+    const Box area = ui.rect("lens: area");
+    // A larger step: unstable above lambda = 2 / 0.8 = 2.5, inside the range: marked there.
+    o.step = 0.8;
+    set_options(panels.fairing.op, o);
+    ui.frame(draw);
+    REQUIRE(ui.has("lens: unstable"));
+    CHECK(ui.has("lens: grows"));
+    const Box mark = ui.rect("lens: unstable");
+    const double lo = std::log10(4.0 * 1e-4), hi = std::log10(4.0);
+    const double expected_x = area.x0 + (std::log10(2.5) - lo) / (hi - lo) * (area.x1 - area.x0);
+    CHECK(std::abs(0.5 * (mark.x0 + mark.x1) - expected_x) < 2.0);
+    // The curve follows the options within the frame: implicit is stable everywhere.
+    o.integration = Integration::Implicit;
+    set_options(panels.fairing.op, o);
+    ui.frame(draw);
+    CHECK_FALSE(ui.has("lens: unstable"));
+    CHECK_FALSE(ui.has("lens: grows"));
+    // Taubin: the pass band is marked.
+    o.op = FairingOperator::Taubin;
+    o.integration = Integration::Explicit;
+    set_options(panels.fairing.op, o);
+    ui.frame(draw);
+    CHECK(ui.has("lens: pass band"));
+    // Measured gains over a spectrum: dots.
+    o.op = FairingOperator::Umbrella;
+    o.step = 0.3;
+    set_options(panels.fairing.op, o);
+    panels.fairing.lens.eigenvalues = {0.0, 0.5, 1.0, 2.0, 4.0};
+    panels.fairing.lens.measured = {std::nan(""), 0.85, 0.7, 0.4, -0.2};
+    ui.frame(draw);
+    CHECK(ui.has("lens: measured"));
+    CHECK_FALSE(ui.has("Decompose for this operator"));
+    // Without a decomposition of this operator: the button that computes one.
+    panels.fairing.lens.eigenvalues.clear();
+    panels.fairing.lens.measured.clear();
+    ui.frame(draw);
+    const Box decompose = ui.rect("Decompose for this operator");
+    commands.clear();
+    ui.click(draw, (decompose.x0 + decompose.x1) / 2, (decompose.y0 + decompose.y1) / 2);
+    const auto asked = commands_of<Decompose>(commands);
+    REQUIRE(asked.size() == 1);
+    CHECK(asked[0]->op.name() == "spectrum");
+}
+
 // ---- legends and plots (issue 16) ------------------------------------------------------------
 
 TEST_CASE("legend labels never overlap, both ends always show, the centre where it fits",

@@ -1,0 +1,81 @@
+// The spectral lens's data for the Fairing section (app/viewer/transfer_plot.h): the spectrum
+// of the panel's operator when the decomposition is of it, the analytic range otherwise, and
+// the measured gain of the fairing preview shown or of the current entry when it is a
+// smoothing with the panel's settings.
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "app/ops/operation_entries.h"
+#include "app/viewer/viewer.h"
+#include "core/algorithms/transfer_function.h"
+
+namespace trilab::viewer {
+
+void Viewer::update_lens() {
+    FairingPanelState& panel = panels_.fairing;
+    if (!panel.open) return;  // drawn only when the section is open
+    const FairingOptions o = options_of<FairingOptions>(panel.op);
+    const FrequencyDocument& doc = session_.document().frequency;
+    const SpectralDecomposition* d = doc.valid ? doc.decomposition.get() : nullptr;
+    const bool same_operator = d && !d->empty() && d->op == laplacian_of(o.op) &&
+                               d->mass == MassMatrix::Normalizer && d->end == SpectrumEnd::Smallest;
+    // What was run with these settings: the preview on the screen, or the current entry.
+    const HalfedgeMesh* result = nullptr;
+    std::vector<Point> input;
+    const Shown& shown = session_.shown();
+    if (shown.kind == Shown::Kind::Preview && session_.previewing(panel.op) && shown.mesh &&
+        shown.mesh->vertices_size() == session_.mesh().vertices_size()) {
+        result = shown.mesh;
+        input = session_.mesh().positions();
+    } else if (session_.history().current() > 0 &&
+               session_.history().info(session_.history().current()).operation.text() ==
+                   panel.op.text()) {
+        result = &session_.mesh();
+        input = session_.reference_positions();
+    }
+    const std::string key = panel.op.text() + " " + std::to_string(d ? std::uintptr_t(d) : 0) +
+                            " " + std::to_string(shown.version) + " " +
+                            std::to_string(session_.history().current()) + " " +
+                            std::to_string(panel.max_stable_step);
+    if (key == lens_key_) return;
+    lens_key_ = key;
+    TransferView& view = panel.lens;
+    view = TransferView{};
+    view.decomposition_of_other_operator = d && !same_operator;
+    if (std::isfinite(panel.max_stable_step) && panel.max_stable_step > 0)
+        view.lambda_max = 2.0 / panel.max_stable_step;
+    if (same_operator) {
+        view.eigenvalues.assign(d->eigenvalues.data(), d->eigenvalues.data() + d->size());
+        if (!(view.lambda_max >= view.eigenvalues.back()))
+            view.lambda_max = view.eigenvalues.back();
+    }
+    if (!same_operator || !result || input.size() != result->vertices_size() ||
+        input.size() != d->base_positions.size())
+        return;
+    try {
+        const MeasuredGain measured = measured_gain(*d, input, result->positions());
+        view.measured = measured.gain;
+        double worst = 0;
+        const std::vector<double> predicted = fairing_gains(o, d->eigenvalues);
+        for (std::size_t k = 0; k < view.measured.size(); ++k)
+            if (std::isfinite(view.measured[k]))
+                worst = std::max(worst, std::abs(view.measured[k] - predicted[k]));
+        char buf[200];
+        if (fairing_is_linear(o.op))
+            std::snprintf(buf, sizeof buf,
+                          "measured (dots): within %.2g of the curve (exact on a closed mesh; "
+                          "fixed boundary vertices make the difference on an open one)",
+                          worst);
+        else
+            std::snprintf(buf, sizeof buf,
+                          "measured (dots): up to %.2g from the curve, the nonlinearity of this "
+                          "operator (its weights follow the positions)",
+                          worst);
+        view.measured_note = buf;
+    } catch (const std::exception& e) {
+        view.measured_note = std::string("measured gain: ") + e.what();
+    }
+}
+
+}  // namespace trilab::viewer
