@@ -42,9 +42,10 @@ options:
                         `distance` that trilab-cli geodesic writes to PLY)
   --bands N             a banded map: the legend range cut into N equal steps (2 to 64),
                         each one colour (the map's colour at the step's centre)
-  --isolines N          isolines between the same N steps: N - 1 lines at min + k (max -
-                        min) / N, over the shading; with --bands, N must be the same. Both
-                        need a scalar --color (not none, normal or subdivision)
+  --isolines N          N isolines (1 to 63), evenly spaced inside the legend range: at
+                        min + k (max - min) / (N + 1), over the shading; with --bands B they
+                        are the bands' edges, so N must be B - 1. Both need a scalar
+                        --color (not none, normal or subdivision)
   --reference MESH      the state before smoothing, for --color smoothing-distance: each
                         vertex's displacement from it, signed along the normal (MESH must
                         have the same vertices, e.g. the input of trilab-cli smooth)
@@ -82,13 +83,14 @@ bool parse_int(const std::string& s, int& out) {
 // kMinScalarSteps / kMaxScalarSteps, repeated here for builds without the renderer).
 constexpr int kMinSteps = 2, kMaxSteps = 64;
 
-/// The N of --bands / --isolines: a whole number from 2 to 64.
-int parse_steps(const std::string& text, const char* option) {
+/// The N of --bands (steps, 2 to 64) or --isolines (lines, 1 to 63: `lines_less` 1).
+int parse_steps(const std::string& text, const char* option, int lines_less = 0) {
     int n = 0;
-    if (!parse_int(text, n) || n < kMinSteps || n > kMaxSteps)
-        throw InvalidArgument(std::string(option) + ": expected a whole number of steps from " +
-                              std::to_string(kMinSteps) + " to " + std::to_string(kMaxSteps) +
-                              ", got '" + text + "'");
+    const int lo = kMinSteps - lines_less, hi = kMaxSteps - lines_less;
+    if (!parse_int(text, n) || n < lo || n > hi)
+        throw InvalidArgument(std::string(option) + ": expected a whole number of " +
+                              (lines_less ? "lines" : "steps") + " from " + std::to_string(lo) +
+                              " to " + std::to_string(hi) + ", got '" + text + "'");
     return n;
 }
 
@@ -128,7 +130,7 @@ RenderArgs parse_args(const std::vector<std::string>& args) {
         } else if (reader.is("--bands")) {
             r.bands = parse_steps(reader.value(), "--bands");
         } else if (reader.is("--isolines")) {
-            r.isolines = parse_steps(reader.value(), "--isolines");
+            r.isolines = parse_steps(reader.value(), "--isolines", 1) + 1;  // as steps
         } else if (reader.is("--up")) {
             r.up = reader.value();
         } else if (reader.is("--size")) {
@@ -197,8 +199,9 @@ void set_steps(const RenderArgs& a, RenderSetup& setup) {
                               "got --color " + a.color);
     if (a.bands && a.isolines && a.bands != a.isolines)
         throw InvalidArgument("--bands " + std::to_string(a.bands) + " and --isolines " +
-                              std::to_string(a.isolines) +
-                              ": the isolines lie between the bands, so N must be the same");
+                              std::to_string(a.isolines - 1) +
+                              ": the isolines are the bands' edges, so --isolines must be " +
+                              std::to_string(a.bands - 1));
     RenderStyle& style = setup.options.style;
     style.scalar_steps = a.bands ? a.bands : a.isolines;
     style.scalar_display = a.bands && a.isolines ? ScalarDisplay::BandsAndIsolines

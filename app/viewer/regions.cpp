@@ -248,8 +248,15 @@ void scalar_display_controls(RenderStyle& style) {
     if (style.scalar_display != ScalarDisplay::Smooth) {
         ImGui::SameLine();
         ImGui::SetNextItemWidth(6.0f * ImGui::GetFontSize());
-        ImGui::SliderInt("##steps", &style.scalar_steps, kMinScalarSteps, kMaxScalarSteps, "N = %d",
-                         ImGuiSliderFlags_AlwaysClamp);
+        if (style.scalar_display == ScalarDisplay::Isolines) {  // counted as lines
+            int lines = style.scalar_steps - 1;
+            if (ImGui::SliderInt("##lines", &lines, kMinScalarSteps - 1, kMaxScalarSteps - 1,
+                                 "%d lines", ImGuiSliderFlags_AlwaysClamp))
+                style.scalar_steps = lines + 1;
+        } else {
+            ImGui::SliderInt("##steps", &style.scalar_steps, kMinScalarSteps, kMaxScalarSteps,
+                             "%d bands", ImGuiSliderFlags_AlwaysClamp);
+        }
     }
 }
 

@@ -312,26 +312,27 @@ if "$cli" render "$tmp/d.obj" --out "$tmp/probe.png" --size 16x16 >/dev/null 2>&
         "'$cli' render '$tmp/geo.ply' --color geodesic-distance --isolines 12 --out '$tmp/gi.png' \
          --size 96x64 --json > '$tmp/gi.json' && grep -q '\"label\": \"geodesic distance\"' '$tmp/gi.json' && \
          grep -q '\"min\": 0,' '$tmp/gi.json' && grep -q '\"display\": \"isolines\"' '$tmp/gi.json' && \
-         grep -q '\"steps\": 12' '$tmp/gi.json' && \
-         [ \$(grep -o '\"isolines\": \\[[^]]*\\]' '$tmp/gi.json' | tr ',' '\n' | wc -l) -eq 11 ] && \
+         grep -q '\"steps\": 13' '$tmp/gi.json' && \
+         [ \$(grep -o '\"isolines\": \\[[^]]*\\]' '$tmp/gi.json' | tr ',' '\n' | wc -l) -eq 12 ] && \
          '$cli' render '$tmp/geo.ply' --color geodesic-distance --out '$tmp/gs.png' --size 96x64 \
          > /dev/null && ! cmp -s '$tmp/gi.png' '$tmp/gs.png'"
     check "render --bands prints the bands in the legend line, with --isolines both" bash -c \
         "'$cli' render '$tmp/d.obj' --color mean --bands 8 --out '$tmp/b.png' --size 64x48 | \
          grep -q 'mean curvature H in .*, 8 bands of ' && \
-         '$cli' render '$tmp/d.obj' --color mean --bands 8 --isolines 8 --out '$tmp/b2.png' \
+         '$cli' render '$tmp/d.obj' --color mean --bands 8 --isolines 7 --out '$tmp/b2.png' \
          --size 64x48 --json | grep -q '\"display\": \"bands-isolines\"' && \
          '$cli' render '$tmp/d.obj' --color shape-index --isolines 4 --out '$tmp/b3.png' \
-         --size 64x48 | grep -q ', 3 isolines 0.5 apart'"
+         --size 64x48 | grep -q ', 4 isolines 0.4 apart'"
     check "render refuses a bad --isolines or --bands count naming the option, writing nothing" bash -c \
-        "for bad in 1 65 abc 2.5; do \
+        "for bad in 0 64 abc 2.5; do \
            ! '$cli' render '$tmp/d.obj' --color mean --isolines \$bad --out '$tmp/bi.png' 2> '$tmp/e' && \
-           grep -q -- \"--isolines: expected a whole number of steps from 2 to 64, got '\$bad'\" '$tmp/e' && \
+           grep -q -- \"--isolines: expected a whole number of lines from 1 to 63, got '\$bad'\" '$tmp/e' || exit 1; done; \
+         for bad in 1 65 abc 2.5; do \
            ! '$cli' render '$tmp/d.obj' --color mean --bands \$bad --out '$tmp/bi.png' 2> '$tmp/e' && \
            grep -q -- '--bands: expected a whole number' '$tmp/e' || exit 1; \
          done; [ ! -e '$tmp/bi.png' ] && \
          ! '$cli' render '$tmp/d.obj' --color mean --bands 4 --isolines 5 --out '$tmp/bi.png' \
-           2> '$tmp/e' && grep -q -- '--bands 4 and --isolines 5' '$tmp/e'"
+           2> '$tmp/e' && grep -q -- '--bands 4 and --isolines 5: the isolines are the bands' \"'\"' edges, so --isolines must be 3' '$tmp/e'"
     check "render refuses --isolines without a scalar colouring, naming it" bash -c \
         "for c in none normal subdivision; do \
            ! '$cli' render '$tmp/d.obj' --color \$c --isolines 5 --out '$tmp/bn.png' 2> '$tmp/e' && \
