@@ -113,6 +113,8 @@ void Viewer::update_coloring() {
                            : "geodesic distance: measuring from the picks...",
                        {},
                        false};
+        else if (geodesic && session_.notice().text.rfind("geodesic distance:", 0) == 0)
+            session_.notice() = Notice{};  // the distances arrived
         else if (colors.colors.empty())
             session_.notice() =
                 Notice{Notice::Level::Info,
