@@ -429,6 +429,7 @@ bool Session::entry_moves() const {
 void Session::update() {
     start_pending_preview();
     if (shown_.kind == Shown::Kind::Level || shown_.kind == Shown::Kind::Band) return;
+    if (prediction_shown()) return;  // the newest request's prediction, until its exact result
     if (preview_.result) {
         show_preview();
         return;

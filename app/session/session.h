@@ -160,8 +160,11 @@ public:
     const std::string& preview_failure() const { return preview_.failure; }
     /// A preview is asked for and not started yet (the runner was busy).
     bool preview_pending() const { return preview_.pending.has_value(); }
-    /// Whether the preview asked for last is computed and shown.
+    /// Whether the preview asked for last is computed and shown (or its spectral prediction,
+    /// which shows first when there is a decomposition of the fairing's operator).
     bool preview_shown(const Operation& op) const;
+    /// The preview on the screen is the spectral prediction, not the exact result yet.
+    bool prediction_shown() const;
     /// Milliseconds from the request to the result of the last preview (negative: none).
     double last_preview_ms() const { return preview_.latency_ms; }
     /// Waits up to `seconds` for a running preview, so that it shows in the coming frame.
@@ -240,7 +243,14 @@ private:
         double requested_at = 0;
         double latency_ms = -1;
         std::string failure;  ///< the last preview job's error (a sweep ends on it)
+        /// The spectral prediction of a fairing preview (issue 28), shown until the exact
+        /// result arrives: the document's connectivity with the predicted positions.
+        std::optional<Operation> predicted_op;
+        HalfedgeMesh prediction;
     };
+    /// Shows the spectral prediction of fairing `op` when the decomposition is of its operator
+    /// (core/algorithms/transfer_function.h predict_fairing); false when there is none.
+    bool show_prediction(const Operation& op);
     bool is_preview_job() const;
     void request_preview(const Operation& op);
     void start_pending_preview();

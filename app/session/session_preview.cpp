@@ -18,6 +18,7 @@
 #include "app/ops/operation_entries.h"
 #include "app/session/session.h"
 #include "core/algorithms/decimation.h"
+#include "core/algorithms/transfer_function.h"
 
 namespace trilab::viewer {
 namespace {
@@ -54,7 +55,47 @@ bool Session::previewing(const Operation& op) const {
 }
 
 bool Session::preview_shown(const Operation& op) const {
+    if (prediction_shown() && preview_.predicted_op == op) return true;
     return preview_.result && shown_.kind == Shown::Kind::Preview && preview_.shown_op == op;
+}
+
+bool Session::prediction_shown() const {
+    return preview_.predicted_op && shown_.kind == Shown::Kind::Preview &&
+           shown_.mesh == &preview_.prediction;
+}
+
+bool Session::show_prediction(const Operation& op) {
+    if (op.name() != "smooth") return false;
+    const FrequencyDocument& doc = document_.frequency;
+    const SpectralDecomposition* d = doc.valid ? doc.decomposition.get() : nullptr;
+    if (!d || d->empty()) return false;
+    try {
+        const FairingOptions o = options_of<FairingOptions>(op);
+        if (d->op != laplacian_of(o.op) || d->mass != MassMatrix::Normalizer ||
+            d->end != SpectrumEnd::Smallest || o.preserve_volume)
+            return false;
+        const HalfedgeMesh& mesh = document_.mesh();
+        if (d->base_positions.size() != mesh.vertices_size()) return false;
+        std::vector<Point> predicted = predict_fairing(*d, o, mesh.positions());
+        for (const Point& p : predicted)
+            if (!p.allFinite()) return false;  // a diverging step: wait for the exact run
+        preview_.prediction = mesh;
+        preview_.prediction.set_positions(std::move(predicted));
+        preview_.predicted_op = op;
+        notice_ = Notice{Notice::Level::Info,
+                         "preview: the spectral prediction of " + op.text() +
+                             " (from the decomposition; the exact result follows)",
+                         {},
+                         false};
+        shown_.kind = Shown::Kind::Preview;
+        shown_.mesh = &preview_.prediction;
+        shown_.positions.clear();
+        shown_.level = nullptr;
+        bump();
+        return true;
+    } catch (const std::exception&) {
+        return false;  // the exact preview says what is wrong
+    }
 }
 
 void Session::request_preview(const Operation& op) {
@@ -88,7 +129,10 @@ void Session::request_preview(const Operation& op) {
     }
     preview_.pending = op;
     if (is_preview_job()) jobs_.cancel();  // outdated: its result would be discarded
-    start_pending_preview();               // at once when the runner is free
+    // With a decomposition of the fairing's operator, the spectral prediction shows in this
+    // frame; the exact result replaces it when its job ends.
+    if (!show_prediction(op)) preview_.predicted_op.reset();
+    start_pending_preview();  // at once when the runner is free
 }
 
 void Session::wait_for_preview(double seconds) {
@@ -117,6 +161,7 @@ void Session::start_pending_preview() {
             preview_.shown_op = op;
             preview_.shown_step = result->steps.size() - 1;
             preview_.base = base;
+            preview_.predicted_op.reset();  // the exact result replaces the prediction
             // The status bar tells about this preview: an older error is no longer news.
             if (result->stopped_early)
                 notice_ =
@@ -149,6 +194,7 @@ void Session::clear_preview() {
     preview_.pending.reset();
     preview_.result.reset();
     preview_.requested.reset();
+    preview_.predicted_op.reset();
     if (is_preview_job()) {
         jobs_.cancel();
         // Wait for it (the operations check for cancellation often), so the document is free

@@ -14,6 +14,8 @@ namespace trilab::viewer {
 
 void Viewer::update_lens() {
     FairingPanelState& panel = panels_.fairing;
+    if (session_.prediction_shown())
+        panel.preview_note = "showing the spectral prediction; the exact result follows";
     if (!panel.open) return;  // drawn only when the section is open
     const FairingOptions o = options_of<FairingOptions>(panel.op);
     const FrequencyDocument& doc = session_.document().frequency;

@@ -427,3 +427,39 @@ TEST_CASE("a pick on a morph frame or a level of detail hits what is shown", "[s
     REQUIRE(on_level->face.is_valid());
     CHECK(lod.face_of(on_level->face.idx()) == lod_hit->triangle);
 }
+
+TEST_CASE(
+    "with a decomposition of its operator a fairing preview shows the spectral prediction "
+    "at once, then the exact result",
+    "[session][lens]") {
+    Session s;
+    s.execute(Decompose{parse_operation("spectrum --full")});
+    s.finish_jobs();
+    REQUIRE(s.document().frequency.valid);
+    const Operation op = parse_operation("smooth --integration implicit --step 2 --iterations 2");
+    s.execute(PreviewOperation{op});
+    // In the same frame: the prediction, marked as one.
+    REQUIRE(s.prediction_shown());
+    CHECK(s.preview_shown(op));
+    REQUIRE(s.shown().kind == Shown::Kind::Preview);
+    const std::vector<Point> predicted = s.shown().mesh->positions();
+    CHECK(predicted != s.mesh().positions());
+    s.finish_jobs();
+    s.update();
+    CHECK_FALSE(s.prediction_shown());
+    REQUIRE(s.preview_shown(op));
+    const std::vector<Point>& exact = s.shown().mesh->positions();
+    // A closed mesh, a linear operator, every frequency: the prediction is the result.
+    double worst = 0;
+    for (std::size_t i = 0; i < exact.size(); ++i)
+        worst = std::max(worst, (exact[i] - predicted[i]).norm());
+    CHECK(worst < 1e-6);
+    // Another operator than the decomposition's: no prediction, the exact preview only.
+    const Operation flow = parse_operation("smooth --operator curvature-flow --step 0.5");
+    s.execute(PreviewOperation{flow});
+    CHECK_FALSE(s.prediction_shown());
+    s.finish_jobs();
+    s.update();
+    CHECK(s.preview_shown(flow));
+    require_valid(s);
+}
