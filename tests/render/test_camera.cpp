@@ -1,8 +1,12 @@
-// Camera math: fitting, orthonormal rotations, view angles, no flips at the poles.
+// Camera math: fitting, orthonormal rotations, view angles, no flips at the poles, and the
+// ray through a pixel that picking casts.
 #include <cmath>
 #include <glm/gtc/matrix_access.hpp>
 #include <random>
 
+#include "core/algorithms/generators.h"
+#include "core/algorithms/ray_pick.h"
+#include "core/mesh_builder.h"
 #include "render/camera.h"
 #include "test_helpers.h"
 
@@ -346,4 +350,60 @@ TEST_CASE("Camera::set_target brings the point to the centre and keeps the rotat
     CHECK(std::abs(q.y) < 1e-5f);
     CHECK(camera.distance() == distance);
     CHECK(camera.rotation() == rotation);
+}
+
+TEST_CASE(
+    "picking through the camera: the face under a pixel, back faces, the silhouette, the "
+    "background",
+    "[camera][pick]") {
+    // A unit sphere filling the view from +z, and a single triangle facing away.
+    const HalfedgeMesh sphere = make_icosphere(20);
+    Camera camera;
+    camera.set_viewport(400, 400);
+    camera.fit_box(glm::vec3(-1), glm::vec3(1));
+    const auto ray_at = [&](float x, float y) {
+        glm::dvec3 o, d;
+        camera.ray_through(glm::vec2(x, y), o, d);
+        Ray ray;
+        ray.origin = Point(o.x, o.y, o.z);
+        ray.direction = Vector3(d.x, d.y, d.z);
+        return ray;
+    };
+    // The centre pixel: the front of the sphere, facing the camera.
+    auto hit = pick_face(sphere, sphere.positions(), ray_at(200.5f, 200.5f), camera.near_plane());
+    REQUIRE(hit);
+    CHECK(hit->position.z() > 0.99);
+    CHECK_FALSE(hit->back_face);
+    // The hit point projects back onto that pixel.
+    const glm::vec3 q = ndc(camera, glm::vec3(float(hit->position.x()), float(hit->position.y()),
+                                              float(hit->position.z())));
+    CHECK(std::abs((q.x + 1.0f) * 200.0f - 200.5f) < 0.01f);
+    CHECK(std::abs((1.0f - q.y) * 200.0f - 200.5f) < 0.01f);
+    // The silhouette along the row through the centre: the last pixel that hits and the first
+    // that misses straddle the sphere's outline (its projected radius, from the hit points).
+    int last_hit = -1;
+    for (int x = 200; x < 400; ++x)
+        if (pick_face(sphere, sphere.positions(), ray_at(x + 0.5f, 200.5f)))
+            last_hit = x;
+        else
+            break;
+    REQUIRE(last_hit > 200);
+    REQUIRE(last_hit < 399);  // the background is reached before the edge of the view
+    const auto edge_hit = pick_face(sphere, sphere.positions(), ray_at(last_hit + 0.5f, 200.5f));
+    REQUIRE(edge_hit);
+    CHECK(std::abs(edge_hit->position.z()) < 0.35);  // grazing: near the outline
+    for (int x = last_hit + 1; x < 400; x += 7)
+        CHECK_FALSE(pick_face(sphere, sphere.positions(), ray_at(x + 0.5f, 200.5f)));
+    // The corner of the view: the background.
+    CHECK_FALSE(pick_face(sphere, sphere.positions(), ray_at(2.5f, 2.5f)));
+    // A triangle whose front faces away from the camera: hit, and said to be a back face.
+    PolygonSoup soup;
+    soup.positions = {Point(-1, -1, 0), Point(0, 1, 0), Point(1, -1, 0)};  // clockwise from +z
+    soup.add_face({0, 1, 2});
+    LoadReport report;
+    const HalfedgeMesh away = build_mesh(soup, report);
+    hit = pick_face(away, away.positions(), ray_at(200.5f, 200.5f), camera.near_plane());
+    REQUIRE(hit);
+    CHECK(hit->back_face);
+    CHECK(std::abs(hit->position.z()) < 1e-9);
 }
