@@ -2,6 +2,8 @@
 // detail are in session_preview.cpp, the frequency band in session_frequency.cpp.
 #include "app/session/session.h"
 
+#include "core/algorithms/selection.h"
+
 #include "app/ops/operation_entries.h"
 
 #include <algorithm>
@@ -274,6 +276,14 @@ void Session::load_texture(const std::string& path) {
     if (!started) busy_error();
 }
 
+std::shared_ptr<const std::vector<float>> Session::region_for(const Operation& op,
+                                                              const HalfedgeMesh& mesh) const {
+    if (!op.def || !op.def->takes_region) return nullptr;
+    std::optional<Selection> selection = stored_selection(mesh);
+    if (!selection || selects_everything(mesh, *selection)) return nullptr;
+    return std::make_shared<const std::vector<float>>(std::move(*selection));
+}
+
 bool Session::poll() {
     start_pick_job();
     take_inspection();
@@ -319,18 +329,23 @@ void Session::run_operation_job(const Operation& op) {
     }
     const HalfedgeMesh snapshot = document_.mesh();  // copy-on-write: the job's own
     const HalfedgeMesh::Revision base = snapshot.revision();
-    const bool started = jobs_.start(op.text(), [this, op, snapshot, base](Progress& progress) {
-        auto result = std::make_shared<OperationResult>(run_operation(op, snapshot, progress));
-        return JobRunner::Finish([this, result, op, base] {
-            // The result belongs to the state it was computed on: never stacked on another.
-            if (document_.mesh().revision() != base) {
-                notify_error(result->label +
-                             ": the document changed while it ran; its result is not applied");
-                return;
-            }
-            commit_result(op, std::move(*result));
+    const auto region = region_for(op, snapshot);
+    const bool started =
+        jobs_.start(op.text(), [this, op, snapshot, base, region](Progress& progress) {
+            RunSettings settings;
+            settings.region = region.get();
+            auto result =
+                std::make_shared<OperationResult>(run_operation(op, snapshot, progress, settings));
+            return JobRunner::Finish([this, result, op, base] {
+                // The result belongs to the state it was computed on: never stacked on another.
+                if (document_.mesh().revision() != base) {
+                    notify_error(result->label +
+                                 ": the document changed while it ran; its result is not applied");
+                    return;
+                }
+                commit_result(op, std::move(*result));
+            });
         });
-    });
     if (!started) busy_error();
 }
 

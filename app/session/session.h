@@ -274,6 +274,10 @@ private:
     void clear_level_of_detail(bool forget);
 
     void update_morph();
+    /// The document's selection ("v:selection", core/algorithms/selection.h) as the region of
+    /// `op`: null when the mesh has none, it selects everything, or `op` takes no region.
+    std::shared_ptr<const std::vector<float>> region_for(const Operation& op,
+                                                         const HalfedgeMesh& mesh) const;
     /// After the document changed: the picks follow a geometry-only step or are dropped.
     void follow_picks();
     /// Starts the pending geodesic job when the runner is free.

@@ -65,7 +65,7 @@ bool Session::prediction_shown() const {
 }
 
 bool Session::show_prediction(const Operation& op) {
-    if (op.name() != "smooth") return false;
+    if (op.name() != "smooth" || region_for(op, document_.mesh())) return false;
     const FrequencyDocument& doc = document_.frequency;
     const SpectralDecomposition* d = doc.valid ? doc.decomposition.get() : nullptr;
     if (!d || d->empty()) return false;
@@ -152,31 +152,36 @@ void Session::start_pending_preview() {
     preview_.pending.reset();
     const HalfedgeMesh snapshot = document_.mesh();  // copy-on-write: the job's own
     const HalfedgeMesh::Revision base = snapshot.revision();
-    jobs_.start(kPreviewJobPrefix + op.text(), [this, op, base, snapshot](Progress& progress) {
-        auto result = std::make_shared<OperationResult>(run_operation(op, snapshot, progress));
-        return JobRunner::Finish([this, op, base, result] {
-            if (base != document_.mesh().revision()) return;  // the state moved on
-            preview_.result = result;
-            preview_.computed_op = op;
-            preview_.shown_op = op;
-            preview_.shown_step = result->steps.size() - 1;
-            preview_.base = base;
-            preview_.predicted_op.reset();  // the exact result replaces the prediction
-            // The status bar tells about this preview: an older error is no longer news.
-            if (result->stopped_early)
-                notice_ =
-                    Notice{Notice::Level::Error,
-                           "preview: " + result->label + " stopped early: " + result->stop_reason,
-                           {},
-                           false};
-            else
-                notice_ = Notice{Notice::Level::Info,
-                                 "preview: " + result->label + " " + result->parameters,
-                                 {},
-                                 false};
-            show_preview();
+    const auto region = region_for(op, snapshot);
+    jobs_.start(
+        kPreviewJobPrefix + op.text(), [this, op, base, snapshot, region](Progress& progress) {
+            RunSettings settings;
+            settings.region = region.get();
+            auto result =
+                std::make_shared<OperationResult>(run_operation(op, snapshot, progress, settings));
+            return JobRunner::Finish([this, op, base, result] {
+                if (base != document_.mesh().revision()) return;  // the state moved on
+                preview_.result = result;
+                preview_.computed_op = op;
+                preview_.shown_op = op;
+                preview_.shown_step = result->steps.size() - 1;
+                preview_.base = base;
+                preview_.predicted_op.reset();  // the exact result replaces the prediction
+                // The status bar tells about this preview: an older error is no longer news.
+                if (result->stopped_early)
+                    notice_ = Notice{
+                        Notice::Level::Error,
+                        "preview: " + result->label + " stopped early: " + result->stop_reason,
+                        {},
+                        false};
+                else
+                    notice_ = Notice{Notice::Level::Info,
+                                     "preview: " + result->label + " " + result->parameters,
+                                     {},
+                                     false};
+                show_preview();
+            });
         });
-    });
 }
 
 void Session::show_preview() {

@@ -62,7 +62,10 @@ struct OperationPanelState {
     bool previewing = false;   ///< a preview of this panel is computing or shown
     std::string preview_note;  ///< e.g. "preview 38 ms" or why it waits for the release
     std::string input_note;    ///< a typed value that was clamped, and to what
-    double latency_ms = -1;    ///< of the last preview the note tells about
+    /// "acts on the selection: N of M vertices" when the document has a selection (or that
+    /// this operation acts on the whole mesh anyway); empty without one.
+    std::string region_note;
+    double latency_ms = -1;  ///< of the last preview the note tells about
 };
 
 /// The Fairing panel: its operation, and the stability guidance the viewer keeps up to date.

@@ -39,6 +39,7 @@ namespace {
 /// The parameters of an operation panel, its Apply button, and the preview's note.
 void operation_panel_body(OperationPanelState& state, const char* apply, bool busy,
                           CommandQueue& commands) {
+    if (!state.region_note.empty()) wrapped_disabled("%s", state.region_note.c_str());
     std::vector<std::string> notes;
     if (operation_widgets(state.op, &notes)) {
         state.dirty = true;

@@ -228,6 +228,9 @@ private:
     std::uint64_t geodesic_colored_version_ = 0;  ///< the picks the geodesic colours show
     /// The Fairing section's transfer curve data (viewer_lens.cpp).
     void update_lens();
+    /// The operation panels' note when the document has a selection (viewer_lens.cpp).
+    void update_region_notes();
+    std::uint64_t region_notes_state_ = 0;
     std::string lens_key_;
     glm::vec2 press_pos_{0.0f};  ///< where the left button went down (a click picks)
     bool turning_ = false;       ///< the left drag has moved past the click's slop

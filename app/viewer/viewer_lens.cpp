@@ -8,6 +8,7 @@
 
 #include "app/ops/operation_entries.h"
 #include "app/viewer/viewer.h"
+#include "core/algorithms/selection.h"
 #include "core/algorithms/transfer_function.h"
 
 namespace trilab::viewer {
@@ -78,6 +79,24 @@ void Viewer::update_lens() {
     } catch (const std::exception& e) {
         view.measured_note = std::string("measured gain: ") + e.what();
     }
+}
+
+void Viewer::update_region_notes() {
+    const HalfedgeMesh& mesh = session_.mesh();
+    const std::uint64_t state = mesh.attribute_revision() ^ (mesh.topology_revision() << 20);
+    if (state == region_notes_state_) return;
+    region_notes_state_ = state;
+    std::string selected, whole;
+    if (const std::optional<Selection> s = stored_selection(mesh);
+        s && !selects_everything(mesh, *s)) {
+        selected = "acts on the selection: " + std::to_string(count_selected(*s)) + " of " +
+                   std::to_string(mesh.n_vertices()) + " vertices (weight > 0)";
+        whole = "the document has a selection, but this operation acts on the whole mesh";
+    }
+    for (OperationPanelState* panel : operation_panels())
+        panel->region_note = selected.empty()                               ? std::string()
+                             : panel->op.def && panel->op.def->takes_region ? selected
+                                                                            : whole;
 }
 
 }  // namespace trilab::viewer

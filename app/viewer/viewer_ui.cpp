@@ -243,6 +243,7 @@ void Viewer::update_panels() {
     }
     update_stable_step();
     update_lens();
+    update_region_notes();
     // Decimation's level of detail.
     DecimationPanelState& d = panels_.decimation;
     d.lod_ready = session_.has_level_of_detail();
