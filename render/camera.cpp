@@ -186,4 +186,20 @@ glm::vec3 Camera::eye() const {
     return target_ + glm::conjugate(rotation_) * glm::vec3(0, 0, distance_);
 }
 
+bool Camera::set_state(const glm::quat& rotation, const glm::vec3& target, float distance,
+                       float radius, float fov_y) {
+    const auto finite = [](float x) { return std::isfinite(x); };
+    if (!finite(rotation.w) || !finite(rotation.x) || !finite(rotation.y) || !finite(rotation.z) ||
+        !finite(target.x) || !finite(target.y) || !finite(target.z) || !(distance > 0.0f) ||
+        !finite(distance) || !(radius > 0.0f) || !finite(radius) ||
+        !(fov_y > 0.0f && fov_y < 3.14f))
+        return false;
+    rotation_ = rotation;
+    target_ = target;
+    distance_ = distance;
+    radius_ = radius;
+    fov_y_ = fov_y;
+    return true;
+}
+
 }  // namespace trilab

@@ -88,6 +88,12 @@ public:
     const glm::vec3& target() const { return target_; }
     float distance() const { return distance_; }
     float fov_y() const { return fov_y_; }
+    /// The radius of the last fitted sphere (zoom limits and clipping planes follow it).
+    float radius() const { return radius_; }
+    /// Sets everything but the viewport exactly (a saved session's camera); non-finite or
+    /// non-positive sizes are refused with false and leave the camera unchanged.
+    bool set_state(const glm::quat& rotation, const glm::vec3& target, float distance, float radius,
+                   float fov_y);
     /// The camera position in world coordinates.
     glm::vec3 eye() const;
 

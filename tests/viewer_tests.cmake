@@ -170,4 +170,18 @@ if(TARGET trilab)
                          "pick: nothing at 1270,790 \\(the background\\)")
     add_test(NAME viewer_pick_bad COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --pick 12x --frames 2)
     set_tests_properties(viewer_pick_bad PROPERTIES WILL_FAIL TRUE)
+    # Sessions (issue 27): two --op saved with --save-session, listed by trilab-cli, opened
+    # again (the same states, bit for bit, and settings); a killed viewer's journal restored
+    # by --restore; --no-recovery writes none.
+    add_test(NAME viewer_session
+             COMMAND ${TRILAB_XVFB} bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer/session_test.sh
+                     $<TARGET_FILE:trilab> $<TARGET_FILE:trilab-cli>)
+    set_tests_properties(viewer_session PROPERTIES PASS_REGULAR_EXPRESSION "session_test: save")
+    # SIGKILL at 30 random moments of a scripted run: each journal restores a prefix of the
+    # history bit for bit (tests/viewer/kill_test.sh).
+    add_test(NAME viewer_kill_journal
+             COMMAND ${TRILAB_XVFB} bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer/kill_test.sh
+                     $<TARGET_FILE:trilab> $<TARGET_FILE:trilab-cli> 30)
+    set_tests_properties(viewer_kill_journal PROPERTIES TIMEOUT 120 PASS_REGULAR_EXPRESSION
+                         "kill_test: every journal restored a prefix")
 endif()

@@ -2,10 +2,7 @@
 // asked for and available). See recorder.h.
 #include "app/record/recorder.h"
 
-#include <fcntl.h>
-#include <spawn.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -27,6 +24,7 @@
 
 #include "app/history/history.h"
 #include "app/ops/operation.h"
+#include "app/record/mp4_encoder.h"
 #include "core/algorithms/coloring.h"
 #include "core/algorithms/morph.h"
 #include "core/algorithms/texcoords.h"
@@ -40,8 +38,6 @@
 #include "render/mesh_renderer.h"
 #include "render/offscreen.h"
 #endif
-
-extern char** environ;
 
 namespace trilab::record {
 namespace {
@@ -69,113 +65,15 @@ int frame_digits(int frames) {
     return std::max(4, int(std::to_string(frames - 1).size()));
 }
 
-/// The last non-empty line of a text file (at most 300 characters), or "".
-std::string last_line(const std::string& path) {
-    std::ifstream in(path);
-    std::string line, last;
-    while (std::getline(in, line))
-        if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
-    if (last.size() > 300) last = last.substr(0, 300) + "...";
-    return last;
-}
-
-/// Runs `argv` (argv[0] a path) with stdin from /dev/null and stdout and stderr into
-/// `log`. Returns the exit status, or -1 with `error` set when it did not run or exit.
-int run_program(const std::vector<std::string>& argv, const std::string& log, std::string& error) {
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&actions, 1, 2);
-    std::vector<char*> args;
-    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    pid_t pid = 0;
-    const int rc = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    if (rc != 0) {
-        error = std::string("cannot start ") + argv[0] + ": " + std::strerror(rc);
-        return -1;
-    }
-    int status = 0;
-    while (::waitpid(pid, &status, 0) < 0) {
-        if (errno != EINTR) {
-            error = std::string("waiting for ") + argv[0] + ": " + std::strerror(errno);
-            return -1;
-        }
-    }
-    if (WIFEXITED(status)) return WEXITSTATUS(status);
-    error = argv[0] + std::string(" was stopped by signal ") +
-            std::to_string(WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-    return -1;
-}
-
-/// Encodes the frames into out_dir/name.mp4 with ffmpeg. Returns the MP4's path, or "" with
-/// a note saying why there is none.
+/// Encodes the frames into out_dir/name.mp4 with ffmpeg (mp4_encoder.h). Returns the MP4's
+/// path, or "" with a note saying why there is none.
 std::string encode_mp4(const RecordOptions& o, int digits, std::vector<std::string>& notes) {
-    const std::string ffmpeg = find_on_path("ffmpeg");
-    if (ffmpeg.empty()) {
-        notes.push_back(
-            "--mp4: ffmpeg is not on the PATH, so no MP4 was written (the PNG "
-            "frames are complete)");
-        return "";
-    }
-    if (o.progress) std::fprintf(stderr, "record: encoding the MP4 with %s\n", ffmpeg.c_str());
-    // ffmpeg's image2 pattern: a literal '%' in the name is written "%%".
-    std::string escaped;
-    for (char ch : o.name) escaped += ch == '%' ? std::string("%%") : std::string(1, ch);
-    const fs::path dir(o.out_dir);
-    const std::string pattern =
-        (dir / (escaped + "_%0" + std::to_string(digits) + "d.png")).string();
-    const std::string target = (dir / (o.name + ".mp4")).string();
-    const std::string partial = (dir / ("." + o.name + ".mp4.part")).string();
-    const std::string log = (fs::temp_directory_path() /
-                             ("trilab-record-ffmpeg-" + std::to_string(::getpid()) + ".log"))
-                                .string();
-    const std::vector<std::string> argv = {ffmpeg,
-                                           "-nostdin",
-                                           "-hide_banner",
-                                           "-loglevel",
-                                           "error",
-                                           "-y",
-                                           "-framerate",
-                                           std::to_string(o.fps),
-                                           "-start_number",
-                                           "0",
-                                           "-i",
-                                           pattern,
-                                           "-frames:v",
-                                           std::to_string(o.frames),
-                                           "-vf",
-                                           "pad=ceil(iw/2)*2:ceil(ih/2)*2",
-                                           "-c:v",
-                                           "libx264",
-                                           "-pix_fmt",
-                                           "yuv420p",
-                                           "-movflags",
-                                           "+faststart",
-                                           "-f",
-                                           "mp4",
-                                           partial};
-    std::string error;
-    const int status = run_program(argv, log, error);
-    std::error_code ec;
-    if (status == 0) {
-        fs::rename(partial, target, ec);
-        if (!ec) {
-            fs::remove(log, ec);
-            return target;
-        }
-        error = "cannot rename " + partial + " to " + target + ": " + ec.message();
-    } else if (status > 0) {
-        error = "ffmpeg failed (exit status " + std::to_string(status) + ")";
-        const std::string why = last_line(log);
-        if (!why.empty()) error += ": " + why;
-    }
-    fs::remove(partial, ec);
-    fs::remove(log, ec);
-    notes.push_back("--mp4: " + error + "; no MP4 was written (the PNG frames are complete)");
-    return "";
+    if (o.progress) std::fprintf(stderr, "record: encoding the MP4 with ffmpeg\n");
+    std::string note;
+    const std::string mp4 =
+        record::encode_mp4(Mp4Request{o.out_dir, o.name, o.frames, o.fps, digits}, note);
+    if (mp4.empty()) notes.push_back("--mp4: " + note);
+    return mp4;
 }
 
 // ---- the stages of record_morph(), in the order it runs them ---------------------------------

@@ -20,6 +20,22 @@ struct SaveFile {
     bool then_continue = false;  ///< then carry out the unsaved-changes question's action
 };
 struct RevertFile {};
+/// Write the whole session (every history state, the view, the panels, the texture) to a
+/// .trilab file (app/history/session_file.h), as a job.
+struct SaveSession {
+    std::string path;
+};
+/// Replace the document with a session file or a crash journal (read as a job).
+struct OpenSession {
+    std::string path;
+    bool discard_changes = false;  ///< true: do not ask about unsaved changes
+};
+/// The crash-recovery question's answer about the journal at `path` (a viewer that did not
+/// exit cleanly): restore it (then it is removed) or discard it (removed now).
+struct RecoverJournal {
+    std::string path;
+    bool restore = true;
+};
 struct LoadTexture {
     std::string path;
 };
@@ -101,13 +117,12 @@ struct ClearPicks {};
 /// Inspector: make the first pick's point the centre of rotation.
 struct CentreOnPick {};
 
-using Command =
-    std::variant<LoadFile, SaveFile, RevertFile, LoadTexture, FitView, ResetView, Undo, Redo,
-                 JumpTo, RunOperation, PreviewOperation, ApplyOperation, CancelPreview,
-                 BuildLevelOfDetail, ShowLevelOfDetail, ApplyLevelOfDetail, Decompose, PreviewBand,
-                 CommitBand, RestoreDecomposed, UpdateColoring, ProjectTexCoords, TakeScreenshot,
-                 PrintInfo, StartRecording, CancelRecording, CancelJob, Quit, SaveAndContinue,
-                 SaveAsAndContinue, ClearPicks, CentreOnPick>;
+using Command = std::variant<
+    LoadFile, SaveFile, RevertFile, SaveSession, OpenSession, RecoverJournal, LoadTexture, FitView,
+    ResetView, Undo, Redo, JumpTo, RunOperation, PreviewOperation, ApplyOperation, CancelPreview,
+    BuildLevelOfDetail, ShowLevelOfDetail, ApplyLevelOfDetail, Decompose, PreviewBand, CommitBand,
+    RestoreDecomposed, UpdateColoring, ProjectTexCoords, TakeScreenshot, PrintInfo, StartRecording,
+    CancelRecording, CancelJob, Quit, SaveAndContinue, SaveAsAndContinue, ClearPicks, CentreOnPick>;
 using CommandQueue = std::vector<Command>;
 
 /// The command's type name ("StartRecording"), for logs and scripted clicks.
@@ -115,6 +130,9 @@ inline const char* command_name(const Command& command) {
     static constexpr const char* kNames[] = {"LoadFile",
                                              "SaveFile",
                                              "RevertFile",
+                                             "SaveSession",
+                                             "OpenSession",
+                                             "RecoverJournal",
                                              "LoadTexture",
                                              "FitView",
                                              "ResetView",

@@ -142,6 +142,7 @@ void Session::on_state_changed(bool fit) {
                      false};
     update_frequency_document();
     show_document();
+    if (journal_) journal_->record(document_.history.snapshot());  // queues only
     events_.state_changed = true;
     events_.fit = events_.fit || fit;
 }
@@ -158,11 +159,25 @@ void Session::show_document() {
 void Session::execute(const Command& command) {
     if (auto* c = std::get_if<LoadFile>(&command)) {
         clear_preview();
-        load(c->path);
+        if (is_session_path(c->path))
+            open_session(c->path);
+        else
+            load(c->path);
     } else if (auto* save_file = std::get_if<SaveFile>(&command)) {
-        save(save_file->path);
+        if (is_session_path(save_file->path))
+            save_session(save_file->path, {});
+        else
+            save(save_file->path);
+    } else if (auto* save_session_command = std::get_if<SaveSession>(&command)) {
+        save_session(save_session_command->path, {});
+    } else if (auto* open = std::get_if<OpenSession>(&command)) {
+        clear_preview();
+        open_session(open->path);
     } else if (std::holds_alternative<RevertFile>(command)) {
-        if (!document_.path.empty()) load(document_.path);
+        if (is_session_path(document_.path))
+            open_session(document_.path);
+        else if (!document_.path.empty())
+            load(document_.path);
     } else if (auto* texture = std::get_if<LoadTexture>(&command)) {
         load_texture(texture->path);
     } else if (std::holds_alternative<Undo>(command) || std::holds_alternative<Redo>(command) ||

@@ -17,6 +17,8 @@
 #include <vector>
 
 #include "app/history/history.h"
+#include "app/history/journal.h"
+#include "app/history/session_file.h"
 #include "app/ops/operation.h"
 #include "app/session/commands.h"
 #include "app/session/job_runner.h"
@@ -104,7 +106,13 @@ struct SessionEvents {
     std::shared_ptr<Image> texture;   ///< a texture image was loaded
     std::string texture_path;
     bool saved = false;  ///< a save finished (a pending question goes on)
+    /// A session was opened: its view, panel and texture settings for the window to apply.
+    std::shared_ptr<const SessionExtras> session_extras;
 };
+
+/// Whether `path` names a session file or a crash journal (.trilab, .journal): opening it
+/// restores a session instead of reading a mesh.
+bool is_session_path(const std::string& path);
 
 /// The preview of an operation panel, as the panel shows it.
 struct PreviewStatus {
@@ -217,6 +225,24 @@ public:
     /// The history's memory budget in bytes (History::set_budget).
     void set_history_budget(std::size_t bytes) { document_.history.set_budget(bytes); }
 
+    // ---- session files and the crash journal (session_files.cpp) -----------------------------
+    /// Writes the whole history with `extras` to `path` (a .trilab file) as a job; the
+    /// texture's bytes are read there when only its path is given.
+    void save_session(const std::string& path, SessionExtras extras);
+    /// Replaces the document with the session file or journal at `path`, read as a job; the
+    /// extras come back through take_events(). With `remove_after` the file is removed once
+    /// restored (a recovered crash journal).
+    void open_session(const std::string& path, bool remove_after = false);
+    /// Replaces the document with `contents` now (the job's end; tests).
+    void restore_session(SessionContents contents, const std::string& path);
+    /// Journals every history change from now on (app/history/journal.h), starting with the
+    /// history as it is.
+    void start_journal(JournalOptions options);
+    /// The journal, or nullptr when none runs (--no-recovery).
+    Journal* journal() { return journal_.get(); }
+    /// A clean end: writes what is queued and removes the journal's file.
+    void close_journal();
+
 private:
     void load(const std::string& path);
     void save(const std::string& path);
@@ -306,6 +332,7 @@ private:
     std::uint64_t inspection_request_ = 0;  ///< the pick request the future inspects
     SessionEvents events_;
     HalfedgeMesh::Revision morph_topology_;  ///< the connectivity of the morph frame shown
+    std::unique_ptr<Journal> journal_;       ///< records every history change (crash recovery)
 };
 
 }  // namespace trilab::viewer

@@ -168,6 +168,36 @@ void unsaved_changes_popup(UnsavedPrompt& prompt, CommandQueue& commands) {
     ImGui::EndPopup();
 }
 
+void recovery_popup(RecoveryPrompt& prompt, CommandQueue& commands) {
+    constexpr const char* kTitle = "Recover the last session?";
+    if (prompt.open_requested) {
+        ImGui::OpenPopup(kTitle);
+        prompt.open_requested = false;
+    }
+    if (!begin_modal_dialog(kTitle, ImGuiWindowFlags_AlwaysAutoResize)) return;
+    ImGui::PushTextWrapPos(
+        std::min(36.0f * ImGui::GetFontSize(), 0.8f * ImGui::GetIO().DisplaySize.x));
+    ImGui::TextUnformatted(
+        "A trilab session did not end cleanly. Its crash journal holds every change that was "
+        "complete; restoring it replaces the current model with that history.");
+    ImGui::TextDisabled("%s", prompt.description.c_str());
+    ImGui::PopTextWrapPos();
+    if (button("Restore")) {
+        commands.push_back(RecoverJournal{prompt.path, true});
+        ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (button("Discard")) {
+        commands.push_back(RecoverJournal{prompt.path, false});
+        ImGui::CloseCurrentPopup();
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("delete %s", prompt.path.c_str());
+    ImGui::SameLine();
+    if (button("Later") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)))
+        ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+}
+
 void error_popup(Notice& notice) {
     if (notice.popup_pending) {
         ImGui::OpenPopup(kErrorPopupTitle);

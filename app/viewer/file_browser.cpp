@@ -24,8 +24,24 @@ bool has_extension(const std::filesystem::path& p, const std::vector<std::string
 }
 
 std::vector<std::string> extensions_for(FileBrowserState::Purpose purpose) {
-    return purpose == FileBrowserState::Purpose::LoadTexture ? supported_image_extensions()
-                                                             : supported_mesh_extensions();
+    switch (purpose) {
+        case FileBrowserState::Purpose::LoadTexture:
+            return supported_image_extensions();
+        case FileBrowserState::Purpose::OpenSession:
+            return {"trilab", "journal"};
+        case FileBrowserState::Purpose::SaveSession:
+            return {"trilab"};
+        case FileBrowserState::Purpose::OpenMesh:
+        case FileBrowserState::Purpose::SaveMesh:
+            break;
+    }
+    return supported_mesh_extensions();
+}
+
+/// Whether the dialog writes a file (an extension is required, an existing file confirmed).
+bool writes(FileBrowserState::Purpose purpose) {
+    return purpose == FileBrowserState::Purpose::SaveMesh ||
+           purpose == FileBrowserState::Purpose::SaveSession;
 }
 
 const char* verb(FileBrowserState::Purpose purpose) {
@@ -36,6 +52,10 @@ const char* verb(FileBrowserState::Purpose purpose) {
             return "Save";
         case FileBrowserState::Purpose::LoadTexture:
             return "Load texture";
+        case FileBrowserState::Purpose::OpenSession:
+            return "Open session";
+        case FileBrowserState::Purpose::SaveSession:
+            return "Save session";
     }
     return "Open";
 }
@@ -81,10 +101,12 @@ void FileBrowserState::request(Purpose p, const std::string& near) {
     std::filesystem::path start =
         near.empty() ? std::filesystem::current_path(ec) : std::filesystem::absolute(near, ec);
     if (!near.empty() && !std::filesystem::is_directory(start, ec)) {
-        name = p == Purpose::SaveMesh ? start.filename().string() : std::string();
+        name = p == Purpose::SaveMesh      ? start.filename().string()
+               : p == Purpose::SaveSession ? start.stem().string() + ".trilab"
+                                           : std::string();
         start = start.parent_path();
     } else {
-        name.clear();
+        name = p == Purpose::SaveSession ? "session.trilab" : "";
     }
     folder = start.empty() ? std::filesystem::path("/") : start;
 }
@@ -150,11 +172,10 @@ void file_browser(FileBrowserState& state, CommandQueue& commands) {
         if (std::filesystem::is_directory(chosen, ec)) {
             state.folder = chosen;
             state.name.clear();
-        } else if (state.purpose == FileBrowserState::Purpose::SaveMesh &&
-                   !has_extension(chosen, exts)) {
+        } else if (writes(state.purpose) && !has_extension(chosen, exts)) {
             state.error = "choose an extension: " + ext_list;
-        } else if (state.purpose == FileBrowserState::Purpose::SaveMesh &&
-                   std::filesystem::exists(chosen, ec) && !state.confirm_overwrite) {
+        } else if (writes(state.purpose) && std::filesystem::exists(chosen, ec) &&
+                   !state.confirm_overwrite) {
             state.error = "exists: press Save again to replace it";
             state.confirm_overwrite = true;
         } else {
@@ -168,6 +189,12 @@ void file_browser(FileBrowserState& state, CommandQueue& commands) {
                     break;
                 case FileBrowserState::Purpose::LoadTexture:
                     commands.push_back(LoadTexture{path});
+                    break;
+                case FileBrowserState::Purpose::OpenSession:
+                    commands.push_back(OpenSession{path});
+                    break;
+                case FileBrowserState::Purpose::SaveSession:
+                    commands.push_back(SaveSession{path});
                     break;
             }
             state.error.clear();

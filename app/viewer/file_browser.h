@@ -15,7 +15,8 @@
 namespace trilab::viewer {
 
 struct FileBrowserState {
-    enum class Purpose { OpenMesh, SaveMesh, LoadTexture };
+    /// Sessions: .trilab files (app/history/session_file.h); opening also takes crash journals.
+    enum class Purpose { OpenMesh, SaveMesh, LoadTexture, OpenSession, SaveSession };
     Purpose purpose = Purpose::OpenMesh;
     bool open_requested = false;  ///< open the dialog on the next frame
     std::filesystem::path folder;
@@ -32,7 +33,8 @@ struct FileBrowserState {
     void request(Purpose p, const std::string& near);
 };
 
-/// Draws the dialog when open; queues LoadFile, SaveFile or LoadTexture.
+/// Draws the dialog when open; queues LoadFile, SaveFile, LoadTexture, OpenSession or
+/// SaveSession.
 void file_browser(FileBrowserState& state, CommandQueue& commands);
 
 /// Most recently used files, newest first, at most kMax.

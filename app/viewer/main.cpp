@@ -13,9 +13,10 @@
 
 namespace {
 
-constexpr const char* kUsage = R"(usage: trilab [options] [MESH]
+constexpr const char* kUsage = R"(usage: trilab [options] [MESH | SESSION.trilab]
 
-Shows MESH (.obj .off .ply .stl .om), or the built-in noisy sphere without one.
+Shows MESH (.obj .off .ply .stl .om), or the built-in noisy sphere without one; a session
+file (File > Save session) or a crash journal restores its whole history, view and panels.
 
 options:
   --size WxH         window size in screen coordinates (default 1280x800)
@@ -35,7 +36,12 @@ options:
                      smoothing-distance, frequency or frequency-mass
   --up y|z           the model's up axis for this run (default: the one chosen in
                      View > Up axis, remembered; +y at first)
-  --op "OPERATION"   apply an operation after loading, e.g. --op "noise --amount 2"
+  --op "OPERATION"   apply an operation after loading, e.g. --op "noise --amount 2";
+                     repeatable: applied in order, each after the one before finished
+  --save-session FILE  write the whole session (history, view, panels) to FILE.trilab
+                     after the last frame (needs --frames)
+  --restore          restore the newest crash journal without asking
+  --no-recovery      no crash journal for this run, and no question about old ones
   --click "SECTION/LABEL"  press the widget with that visible label in that sidebar section
                      (or menu path, e.g. "File/Save as"), after --op; repeatable, in order;
                      fails when there is no such widget or more than one
@@ -132,8 +138,15 @@ std::string parse_args(int argc, char** argv, trilab::viewer::ViewerOptions& opt
             if (!value(v) || v.empty()) return "--pick needs window pixels X,Y, e.g. 640,400";
             options.picks.push_back(v);
         } else if (arg == "--op") {
-            if (!value(options.operation))
-                return "--op needs an operation, e.g. \"noise --amount 2\"";
+            if (!value(v) || v.empty()) return "--op needs an operation, e.g. \"noise --amount 2\"";
+            options.operations.push_back(v);
+        } else if (arg == "--save-session") {
+            if (!value(options.save_session) || options.save_session.empty())
+                return "--save-session needs a file name, e.g. session.trilab";
+        } else if (arg == "--restore") {
+            options.restore = true;
+        } else if (arg == "--no-recovery") {
+            options.no_recovery = true;
         } else if (arg == "--sweep") {
             if (!value(options.sweep_op) || options.sweep_op.empty())
                 return "--sweep needs an operation, e.g. \"smooth --iterations 10\"";
@@ -166,6 +179,12 @@ std::string parse_args(int argc, char** argv, trilab::viewer::ViewerOptions& opt
     if (!options.screenshot.empty() && options.frames == 0) return "--screenshot needs --frames N";
     if (options.print_layout && options.frames == 0) return "--print-layout needs --frames N";
     if (options.morph_t >= 0 && options.frames == 0) return "--morph-t needs --frames N";
+    if (!options.save_session.empty() && options.frames == 0)
+        return "--save-session needs --frames N";
+    if (options.restore && options.no_recovery)
+        return "--restore and --no-recovery exclude each other";
+    if (options.restore && !options.mesh_path.empty())
+        return "--restore restores a crash journal: give no MESH with it";
     if (options.sweep_op.empty() != options.sweep_param.empty() ||
         options.sweep_op.empty() != (options.sweep_count == 0))
         return "--sweep, --param and --range go together";

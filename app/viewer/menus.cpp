@@ -223,6 +223,12 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
         if (shortcut_item("Save as...", KeyAction::SaveFile, false, !context.busy))
             panels.file_browser.request(FileBrowserState::Purpose::SaveMesh, context.document_path);
         ImGui::Separator();
+        if (menu_item("Open session...", nullptr, false, !context.busy))
+            panels.file_browser.request(FileBrowserState::Purpose::OpenSession, "");
+        if (menu_item("Save session...", nullptr, false, !context.busy))
+            panels.file_browser.request(FileBrowserState::Purpose::SaveSession,
+                                        context.document_path);
+        ImGui::Separator();
         if (menu_item("Load texture...", nullptr, false, !context.busy))
             panels.file_browser.request(FileBrowserState::Purpose::LoadTexture, "");
         ImGui::Separator();

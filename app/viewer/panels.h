@@ -133,6 +133,13 @@ struct UnsavedPrompt {
     std::string document_path;  ///< where "Save" writes (empty: only Save as)
 };
 
+/// The crash-recovery question at start-up: the journal of a viewer that did not exit cleanly.
+struct RecoveryPrompt {
+    bool open_requested = false;  ///< open the modal on the next frame
+    std::string path;             ///< the newest orphan journal
+    std::string description;      ///< what it is: file, size, time
+};
+
 /// A generic panel for each registered operation not in `owned` (the operations that have
 /// panels of their own).
 std::vector<OperationPanelState> tool_panels(const std::vector<const OperationDef*>& owned);
@@ -141,6 +148,7 @@ std::string tool_section_title(const OperationDef& def);
 
 struct PanelState {
     UnsavedPrompt unsaved;
+    RecoveryPrompt recovery;
     ScreenshotState screenshot;
     OperationPanelState subdivision{"subdivide"};
     FairingPanelState fairing;
@@ -364,6 +372,10 @@ void screenshot_dialog(ScreenshotState& state, CommandQueue& commands);
 /// The key and mouse bindings (Esc closes it).
 void help_window(PanelState& panels);
 void about_window(PanelState& panels);
+/// Asks whether to restore a crash journal: Restore queues RecoverJournal{path, true}, Discard
+/// RecoverJournal{path, false}; Later closes the question (the journal is offered again at
+/// the next start).
+void recovery_popup(RecoveryPrompt& prompt, CommandQueue& commands);
 /// Modal popup showing an error notice once.
 void error_popup(Notice& notice);
 

@@ -198,13 +198,14 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
         view_.settings.coloring = parse_coloring(options_.color);
         update_coloring();
     }
-    if (!options_.operation.empty()) {  // refuse bad ones now; the panel shows its values
-        const Operation op = parse_operation(options_.operation);
-        for (OperationPanelState* panel : operation_panels())
+    for (const std::string& text : options_.operations) {  // refuse bad ones now
+        const Operation op = parse_operation(text);
+        for (OperationPanelState* panel : operation_panels())  // the panel shows its values
             if (panel->op.def == op.def) panel->op = op;
     }
     open_panels(panels_, options_.show);
     initial_load_ended_ = options_.mesh_path.empty();
+    if (!options_.no_recovery) start_recovery();  // --restore may start a job
     if (!options_.mesh_path.empty()) session_.execute(LoadFile{options_.mesh_path, true});
 }
 
@@ -240,6 +241,8 @@ void Viewer::follow_session() {
         if (view_.style.texture_mode == TextureMode::Off)
             view_.style.texture_mode = TextureMode::Modulate;
     }
+    if (e.texture) texture_path_ = e.texture_path;
+    if (e.session_extras) apply_session_extras(*e.session_extras);
     if (e.saved && continue_after_save_) {  // a prompt's "Save and go on": now go on
         continue_after_save_ = false;
         if (panels_.unsaved.quitting)
@@ -254,7 +257,23 @@ void Viewer::execute(const Command& command) {
         if (c->discard_changes || confirm_discard(false, c->path)) session_.execute(command);
     } else if (auto* save_file = std::get_if<SaveFile>(&command)) {
         continue_after_save_ = save_file->then_continue;
-        session_.execute(command);
+        if (is_session_path(save_file->path))  // a session's own file: the whole session
+            session_.save_session(save_file->path, session_extras());
+        else
+            session_.execute(command);
+    } else if (auto* save_session = std::get_if<SaveSession>(&command)) {
+        session_.save_session(save_session->path, session_extras());
+    } else if (auto* open_session = std::get_if<OpenSession>(&command)) {
+        if (open_session->discard_changes || confirm_discard(false, open_session->path))
+            session_.execute(command);
+    } else if (auto* recover = std::get_if<RecoverJournal>(&command)) {
+        if (recover->restore) {
+            session_.open_session(recover->path, true);
+        } else {
+            std::error_code ec;
+            std::filesystem::remove(recover->path, ec);
+            session_.log().info("discarded the crash journal " + recover->path);
+        }
     } else if (std::holds_alternative<SaveAsAndContinue>(command)) {
         panels_.file_browser.request(FileBrowserState::Purpose::SaveMesh, session_.document().path);
         panels_.file_browser.then_continue = true;
@@ -287,10 +306,7 @@ void Viewer::execute(const Command& command) {
     } else if (auto* quit = std::get_if<Quit>(&command)) {
         if (quit->discard_changes || confirm_discard(true, "")) quit_ = true;
     } else if (std::holds_alternative<SaveAndContinue>(command)) {
-        if (!session_.document().path.empty()) {
-            continue_after_save_ = true;
-            session_.execute(SaveFile{session_.document().path});
-        }
+        if (!session_.document().path.empty()) execute(SaveFile{session_.document().path, true});
     } else {  // the document's commands
         session_.execute(command);
     }
@@ -322,6 +338,7 @@ bool Viewer::prepare_frame() {
         }
     }
     follow_session();
+    journal_settings();
     advance_script();
     scripted_decomposition();
     scripted_picks();
@@ -425,6 +442,7 @@ int Viewer::run() {
             std::string error = write_screenshot(options_.screenshot);
             if (!error.empty()) {
                 std::fprintf(stderr, "trilab: %s\n", error.c_str());
+                session_.close_journal();
                 return 1;
             }
         }
@@ -445,7 +463,15 @@ int Viewer::run() {
         if (last) break;
     }
     if (options_.frames > 0) log_last_frame();
+    if (!options_.save_session.empty()) {
+        const std::string error = save_session_now();
+        if (!error.empty()) {
+            std::fprintf(stderr, "trilab: --save-session: %s\n", error.c_str());
+            exit_status_ = 1;
+        }
+    }
     session_.log().info(quit_ ? "quit after " + std::to_string(frame) + " frames" : "frames done");
+    session_.close_journal();  // a clean exit: nothing to recover
     return exit_status_;
 }
 

@@ -39,9 +39,14 @@ struct ViewerOptions {
     double morph_t = -1;    ///< in [0, 1]: show the current entry's morph at this time
     int width = 1280;       ///< window size in screen coordinates
     int height = 800;
-    std::string mode;          ///< initial render mode name (render_mode_name()), empty: default
-    std::string color;         ///< initial vertex colouring name (coloring_name()), empty: none
-    std::string operation;     ///< an operation to apply after loading, empty: none
+    std::string mode;   ///< initial render mode name (render_mode_name()), empty: default
+    std::string color;  ///< initial vertex colouring name (coloring_name()), empty: none
+    /// --op (repeatable): operations applied after loading, in order, each once the one
+    /// before has finished.
+    std::vector<std::string> operations;
+    std::string save_session;  ///< --save-session: write the session there after the last frame
+    bool restore = false;      ///< --restore: restore the newest crash journal without asking
+    bool no_recovery = false;  ///< --no-recovery: no crash journal, no recovery question
     std::string show;          ///< panels to open at start, comma-separated
     int memory_budget_mb = 0;  ///< the history's budget; 0: a quarter of the RAM
     std::string decompose;     ///< "K" or "K:LO:HI": Frequency panel Decompose (and a band)
@@ -125,8 +130,25 @@ private:
     /// Follows what the session did: recolour, fit, title, recent files, texture, the
     /// unsaved-changes question's next step.
     void follow_session();
-    /// Scripted runs: --op once the initial load has ended.
+    /// Scripted runs: each --op in turn once the initial load (and the --op before) ended.
     void advance_script();
+
+    // Sessions and the crash journal (viewer_session.cpp).
+    /// The view, panels and texture a session file stores beside the history.
+    SessionExtras session_extras() const;
+    /// Applies an opened session's extras (settings that cannot be applied become log notes).
+    void apply_session_extras(const SessionExtras& extras);
+    /// Starts the journal and looks for the journals of viewers that did not exit cleanly:
+    /// --restore restores the newest, an interactive run asks, a scripted run logs it.
+    void start_recovery();
+    /// Each frame: the settings into the journal when they changed (at most once a second),
+    /// and the journal's warning, once.
+    void journal_settings();
+    /// --save-session: writes the session now; returns an error message or "".
+    std::string save_session_now();
+    std::string texture_path_;           ///< the loaded texture's file ("" : none)
+    std::string journaled_settings_;     ///< the settings text last given to the journal
+    double settings_journaled_at_ = -1;  ///< Session::now() of that
     /// Makes the renderer show session_.shown(), uploading only what changed.
     void sync_renderer();
     /// Colours `mesh` by the current colouring (`reference`: the smoothing distance's).
@@ -270,7 +292,8 @@ private:
     bool coloring_pending_ = false;     ///< a colouring was asked for while a job ran
     std::uint64_t shown_version_ = 0;   ///< of session_.shown() on the GPU
     Shown::Kind shown_kind_ = Shown::Kind::Document;
-    bool initial_op_done_ = false;    ///< options_.operation has been queued
+    bool initial_op_done_ = false;    ///< every options_.operations entry has been queued
+    std::size_t next_op_ = 0;         ///< the next options_.operations entry
     bool initial_load_ended_ = true;  ///< options_.mesh_path was read (or failed to be)
     int scripted_decompose_ = 0;      ///< options_.decompose: 0 to do, 1 started, 2 done
     Camera record_camera_;            ///< the recording's framing, fixed for the whole sequence

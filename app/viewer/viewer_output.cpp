@@ -21,6 +21,7 @@
 
 #include "app/ops/operation.h"
 #include "app/ops/operation_entries.h"
+#include "app/record/mp4_encoder.h"
 #include "app/record/recorder.h"
 #include "app/viewer/key_bindings.h"
 #include "app/viewer/viewer_tuning.h"
@@ -157,21 +158,15 @@ void Viewer::finish_recording(bool cancelled) {
     }
     session_.log().info("recorded " + std::to_string(r.frames) + " frames in " + r.folder);
     if (!r.mp4) return;
-    if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0) {
-        session_.log().warning("no ffmpeg on the PATH: the PNG frames are written, no MP4");
-        return;
-    }
-    const std::string pattern = (std::filesystem::path(r.folder) / (r.name + "_%04d.png")).string();
-    const std::string mp4 = (std::filesystem::path(r.folder) / (r.name + ".mp4")).string();
-    const std::string command = "ffmpeg -y -loglevel error -framerate " + std::to_string(r.fps) +
-                                " -i '" + pattern +
-                                "' -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' -c:v libx264 -pix_fmt "
-                                "yuv420p '" +
-                                mp4 + "'";
-    if (std::system(command.c_str()) == 0)
+    // ffmpeg through posix_spawn with an argument vector (no shell): any folder or name is
+    // passed as it is.
+    std::string note;
+    const std::string mp4 =
+        record::encode_mp4(record::Mp4Request{r.folder, r.name, r.frames, r.fps, 4}, note);
+    if (!mp4.empty())
         session_.log().info("wrote " + mp4);
     else
-        session_.log().warning("ffmpeg failed; the PNG frames are in " + r.folder);
+        session_.log().warning("record: " + note);
 }
 
 }  // namespace trilab::viewer

@@ -41,15 +41,17 @@ namespace trilab::viewer {
 using namespace tuning;
 
 void Viewer::advance_script() {
-    // The initial load has ended (or failed): --op runs on what it loaded.
+    // The initial load has ended (or failed): each --op runs on what it loaded, in order, each
+    // once the one before has finished (one job at a time).
     if (!initial_load_ended_ && !session_.busy()) initial_load_ended_ = true;
-    if (initial_load_ended_ && !initial_op_done_) {
-        initial_op_done_ = true;
-        const bool loaded =
-            options_.mesh_path.empty() || session_.document().path == options_.mesh_path;
-        if (!options_.operation.empty() && loaded)
-            commands_.push_back(RunOperation{parse_operation(options_.operation)});
+    if (!initial_load_ended_ || initial_op_done_) return;
+    const bool loaded =
+        options_.mesh_path.empty() || session_.document().path == options_.mesh_path;
+    if (loaded && next_op_ < options_.operations.size()) {
+        if (session_.busy() || !commands_.empty()) return;
+        commands_.push_back(RunOperation{parse_operation(options_.operations[next_op_++])});
     }
+    if (!loaded || next_op_ >= options_.operations.size()) initial_op_done_ = true;
 }
 
 bool Viewer::ready_for_script() const {

@@ -228,6 +228,7 @@ void Viewer::draw_ui() {
     file_browser(panels_.file_browser, commands_);
     error_popup(session_.notice());
     unsaved_changes_popup(panels_.unsaved, commands_);
+    recovery_popup(panels_.recovery, commands_);
 }
 
 void Viewer::update_panels() {

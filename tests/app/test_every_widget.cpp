@@ -656,3 +656,85 @@ TEST_CASE("an optional number has a check box that sets it", "[panels]") {
     CHECK(options_of<RemoveComponentsOptions>(tool.op).min_diameter.has_value());
     CHECK(find_widget(ui, title + "/Apply", WidgetNote::Kind::Button).enabled);
 }
+
+TEST_CASE("File > Open session and Save session ask for a session file, which is queued",
+          "[panels][session]") {
+    RenderStyle style;
+    ViewSettings settings;
+    PanelState panels;
+    MenuContext context;
+    context.document_path = "/tmp/model.obj";
+    RenderContext render;
+    CommandQueue commands;
+    const auto draw = [&] { menu_bar(style, settings, panels, context, render, commands); };
+    const std::pair<const char*, FileBrowserState::Purpose> items[] = {
+        {"File/Open session...", FileBrowserState::Purpose::OpenSession},
+        {"File/Save session...", FileBrowserState::Purpose::SaveSession}};
+    for (const auto& [path, purpose] : items) {
+        INFO(path);
+        Ui ui;
+        panels.file_browser = FileBrowserState{};
+        ui.frame(draw);
+        const auto file = std::find_if(ui.notes().begin(), ui.notes().end(), [](const auto& n) {
+            return n.kind == WidgetNote::Kind::Menu && n.label == "File";
+        });
+        REQUIRE(file != ui.notes().end());
+        press(ui, draw, *file);
+        const WidgetNote item = find_widget(ui, path, WidgetNote::Kind::MenuItem);
+        press(ui, draw, item);
+        CHECK(panels.file_browser.open_requested);
+        CHECK(panels.file_browser.purpose == purpose);
+    }
+    CHECK(panels.file_browser.name == "model.trilab");  // Save session: beside the model
+    // The dialog queues the command of its purpose.
+    for (const auto& [path, purpose] : items) {
+        Ui ui;
+        CommandQueue queued;
+        FileBrowserState browser;
+        browser.request(purpose, "");
+        browser.name = "/tmp/trilab-no-such-folder/x.trilab";
+        const auto dialog = [&] { file_browser(browser, queued); };
+        ui.frame(dialog);
+        ui.frame(dialog);
+        press(ui, dialog,
+              find_widget(ui,
+                          purpose == FileBrowserState::Purpose::OpenSession ? "Open session"
+                                                                            : "Save session",
+                          WidgetNote::Kind::Button));
+        if (purpose == FileBrowserState::Purpose::OpenSession) {
+            REQUIRE(commands_of<OpenSession>(queued).size() == 1);
+            CHECK(commands_of<OpenSession>(queued)[0]->path == browser.name);
+        } else {
+            REQUIRE(commands_of<SaveSession>(queued).size() == 1);
+            CHECK(commands_of<SaveSession>(queued)[0]->path == browser.name);
+        }
+    }
+}
+
+TEST_CASE("the recovery question's buttons: Restore, Discard, Later", "[panels][session]") {
+    const std::pair<const char*, int> buttons[] = {{"Restore", 1}, {"Discard", 0}, {"Later", -1}};
+    for (const auto& [label, restore] : buttons) {
+        INFO(label);
+        Ui ui;
+        RecoveryPrompt prompt;
+        prompt.open_requested = true;
+        prompt.path = "/tmp/state/trilab/recovery/trilab-42.journal";
+        prompt.description = prompt.path;
+        CommandQueue commands;
+        const auto draw = [&] { recovery_popup(prompt, commands); };
+        ui.frame(draw);
+        ui.frame(draw);
+        press(ui, draw, find_widget(ui, label, WidgetNote::Kind::Button));
+        const auto queued = commands_of<RecoverJournal>(commands);
+        if (restore < 0) {
+            CHECK(queued.empty());
+        } else {
+            REQUIRE(queued.size() == 1);
+            CHECK(queued[0]->path == prompt.path);
+            CHECK(queued[0]->restore == (restore == 1));
+        }
+        ui.frame(draw);  // every answer closes the question
+        CHECK(std::none_of(ui.notes().begin(), ui.notes().end(),
+                           [](const WidgetNote& n) { return n.label == "Restore"; }));
+    }
+}
