@@ -22,6 +22,47 @@ void note(const std::string& id, const ImVec2& a, const ImVec2& b) {
     note_widget_rect(id, a.x, a.y, b.x, b.y);
 }
 
+/// Short labels inside the plot (its size never changes, so nothing below moves while a
+/// parameter is dragged) and the whole sentence in its tooltip.
+void describe_curve(ImDrawList* draw, const ImVec2& a0, const ImVec2& a1, double unstable,
+                    float unstable_x, double lambda_lo, double lambda_hi, bool have_spectrum) {
+    const float em = ImGui::GetFontSize();
+    const double x_hi = lambda_hi;
+    char buf[192];
+    const ImU32 text_color = IM_COL32(200, 200, 210, 255);
+    std::snprintf(buf, sizeof buf, "lambda %.3g .. %.3g (log)", lambda_lo, x_hi);
+    draw->AddText(ImVec2(a1.x - ImGui::CalcTextSize(buf).x - 3, a1.y - em - 2), text_color, buf);
+    std::string sentence;
+    if (std::isfinite(unstable) && unstable <= x_hi) {
+        std::snprintf(buf, sizeof buf, "unstable above %.3g", unstable);
+        const float w = ImGui::CalcTextSize(buf).x;
+        const float x = std::clamp(unstable_x - w - 4, a0.x + 2, a1.x - w - 2);
+        draw->AddText(ImVec2(x, a0.y + 2), IM_COL32(255, 120, 120, 255), buf);
+        std::snprintf(buf, sizeof buf,
+                      "Frequencies above lambda = %.4g grow and oscillate (red): this step is "
+                      "unstable on this mesh.",
+                      unstable);
+        sentence = buf;
+    } else if (std::isfinite(unstable)) {
+        std::snprintf(buf, sizeof buf,
+                      "Stable on this mesh: this step goes unstable only above lambda = %.4g, "
+                      "beyond its largest eigenvalue %.4g.",
+                      unstable, lambda_hi);
+        sentence = buf;
+    } else {
+        sentence = "Stable for every frequency (implicit integration).";
+    }
+    if (ImGui::IsMouseHoveringRect(a0, a1))
+        ImGui::SetTooltip(
+            "The gain of these settings at each frequency (eigenvalue lambda of "
+            "the operator, log scale): 1 keeps it, 0 removes it; orange: the "
+            "frequency flips sign each step, red: it grows. %s%s",
+            sentence.c_str(),
+            have_spectrum ? " Ticks: this mesh's computed frequencies; dots: "
+                            "the measured gain of the last run or preview."
+                          : "");
+}
+
 }  // namespace
 
 bool transfer_plot(const FairingOptions& o, const TransferView& view) {
@@ -105,7 +146,6 @@ bool transfer_plot(const FairingOptions& o, const TransferView& view) {
     }
     if (measured_drawn) note("lens: measured", a0, a1);
     // Marks: where the step goes unstable, Taubin's pass band.
-    char buf[192];
     if (std::isfinite(unstable) && unstable <= x_hi) {
         const float x = x_of(unstable);
         draw->AddLine(ImVec2(x, a0.y), ImVec2(x, a1.y), IM_COL32(255, 60, 60, 255), 2.0f);
@@ -119,40 +159,8 @@ bool transfer_plot(const FairingOptions& o, const TransferView& view) {
             note("lens: pass band", ImVec2(x - 2, a0.y), ImVec2(x + 2, a1.y));
         }
     }
-    // What the curve means: short labels inside the plot (its size never changes, so nothing
-    // below moves while a parameter is dragged), the whole sentence in its tooltip.
-    const ImU32 text_color = IM_COL32(200, 200, 210, 255);
-    std::snprintf(buf, sizeof buf, "lambda %.3g .. %.3g (log)", lambda_lo, x_hi);
-    draw->AddText(ImVec2(a1.x - ImGui::CalcTextSize(buf).x - 3, a1.y - em - 2), text_color, buf);
-    std::string sentence;
-    if (std::isfinite(unstable) && unstable <= x_hi) {
-        std::snprintf(buf, sizeof buf, "unstable above %.3g", unstable);
-        const float w = ImGui::CalcTextSize(buf).x;
-        const float x = std::clamp(x_of(unstable) - w - 4, a0.x + 2, a1.x - w - 2);
-        draw->AddText(ImVec2(x, a0.y + 2), IM_COL32(255, 120, 120, 255), buf);
-        std::snprintf(buf, sizeof buf,
-                      "Frequencies above lambda = %.4g grow and oscillate (red): this step is "
-                      "unstable on this mesh.",
-                      unstable);
-        sentence = buf;
-    } else if (std::isfinite(unstable)) {
-        std::snprintf(buf, sizeof buf,
-                      "Stable on this mesh: this step goes unstable only above lambda = %.4g, "
-                      "beyond its largest eigenvalue %.4g.",
-                      unstable, lambda_hi);
-        sentence = buf;
-    } else {
-        sentence = "Stable for every frequency (implicit integration).";
-    }
-    if (ImGui::IsMouseHoveringRect(a0, a1))
-        ImGui::SetTooltip(
-            "The gain of these settings at each frequency (eigenvalue lambda of "
-            "the operator, log scale): 1 keeps it, 0 removes it; orange: the "
-            "frequency flips sign each step, red: it grows. %s%s",
-            sentence.c_str(),
-            have_spectrum ? " Ticks: this mesh's computed frequencies; dots: "
-                            "the measured gain of the last run or preview."
-                          : "");
+    describe_curve(draw, a0, a1, unstable, std::isfinite(unstable) ? x_of(unstable) : 0.0f,
+                   lambda_lo, lambda_hi, have_spectrum);
     if (!view.measured_note.empty()) wrapped_disabled("%s", view.measured_note.c_str());
     bool decompose = false;
     if (!have_spectrum) {
