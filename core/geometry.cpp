@@ -1,5 +1,7 @@
 #include "core/geometry.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -117,6 +119,25 @@ double surface_area(const HalfedgeMesh& mesh) {
 
 double volume(const HalfedgeMesh& mesh) {
     return area_and_volume(mesh, false, true).volume;
+}
+
+double min_face_angle(const HalfedgeMesh& mesh, Face f) {
+    const std::array<Vertex, 3> v = mesh.face_vertices(f);
+    double smallest = 180.0;
+    for (int k = 0; k < 3; ++k) {
+        const Vector3 a = mesh.position(v[(k + 1) % 3]) - mesh.position(v[k]);
+        const Vector3 b = mesh.position(v[(k + 2) % 3]) - mesh.position(v[k]);
+        const double sine = a.cross(b).norm(), cosine = a.dot(b);
+        if (!(sine > 0)) return 0.0;  // degenerate (or a repeated point)
+        smallest = std::min(smallest, std::atan2(sine, cosine) * (180.0 / 3.14159265358979323846));
+    }
+    return smallest;
+}
+
+double min_triangle_angle(const HalfedgeMesh& mesh) {
+    double smallest = 180.0;
+    for (Face f : mesh.faces()) smallest = std::min(smallest, min_face_angle(mesh, f));
+    return smallest;
 }
 
 bool is_closed(const HalfedgeMesh& mesh) {
