@@ -221,18 +221,23 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int le
     check_face_limit(std::size_t(nf) + 2 * step.counts.selected_faces);
     check_no_refined_pillow(m, [&](Face f) { return selected[f.idx()] != 0; });
     const Point* x = m.positions().data();
-    // The relaxed positions of the interior vertices that move, from the coarse ring.
+    // The relaxed positions of the interior vertices that move, from the coarse ring: the
+    // neighbour sums gathered edge by edge and the rule written as subdivide() writes it, so
+    // that a vertex of weight 1 lands where the uniform step puts it, bit for bit.
     std::vector<Point> relaxed(nv, Point::Zero());
+    std::vector<unsigned> valence(nv, 0);
+    for (Index e = 0; e < ne; ++e) {
+        const Index a = m.vertex(Edge(e), 1).idx(), b = m.vertex(Edge(e), 0).idx();
+        relaxed[a] += x[b];
+        relaxed[b] += x[a];
+        ++valence[a];
+        ++valence[b];
+    }
     for (Index v = 0; v < nv; ++v) {
         if (!(w[v] > 0.0f) || m.is_isolated(Vertex(v)) || m.is_boundary(Vertex(v))) continue;
-        Point sum = Point::Zero();
-        unsigned n = 0;
-        for (Vertex u : m.vertices_around(Vertex(v))) {
-            sum += x[u.idx()];
-            ++n;
-        }
-        const double alpha = (4.0 - 2.0 * std::cos(2 * kPi / n)) / 9.0;
-        relaxed[v] = (1.0 - alpha) * x[v] + alpha / n * sum;
+        const unsigned k = valence[v];
+        const double alpha = (4.0 - 2.0 * std::cos(2 * kPi / k)) / 9.0;
+        relaxed[v] = (1.0 - alpha) * x[v] + (alpha / k) * relaxed[v];
     }
     progress.check_cancelled();
     HalfedgeMesh& out = step.level.mesh;
