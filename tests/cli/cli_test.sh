@@ -619,7 +619,7 @@ check "bad --region specs are refused naming the option and the part" bash -c \
      printf '1\n0.5\nabc\n' > '$tmp/w.txt' && \
      ! '$cli' smooth '$tmp/d.obj' '$tmp/bad.ply' --region file:'$tmp/w.txt' 2> '$tmp/e' && \
      grep -q -- \"w.txt:3: expected a weight from 0 to 1, got 'abc'\" '$tmp/e' && \
-     ! '$cli' remove-components '$tmp/d.obj' '$tmp/bad.ply' --region component:0 2> '$tmp/e' && \
+     ! '$cli' remove-components --min-faces 3 '$tmp/d.obj' '$tmp/bad.ply' --region component:0 2> '$tmp/e' && \
      grep -q -- '--region: remove-components does not work on a region yet' '$tmp/e' && \
      ! '$cli' select '$tmp/d.obj' '$tmp/bad.ply' 2> '$tmp/e' && grep -q -- '--region' '$tmp/e' && \
      [ ! -e '$tmp/bad.ply' ] && '$cli' smooth --help | grep -q -- '--region SPEC'"
