@@ -1,6 +1,9 @@
 #include "core/geometry.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "core/prefetch.h"
@@ -117,6 +120,47 @@ double surface_area(const HalfedgeMesh& mesh) {
 
 double volume(const HalfedgeMesh& mesh) {
     return area_and_volume(mesh, false, true).volume;
+}
+
+double min_face_angle(const HalfedgeMesh& mesh, Face f) {
+    const std::array<Vertex, 3> v = mesh.face_vertices(f);
+    // The smallest angle is the one opposite the shortest side: one atan2 per face.
+    int k = 0;
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 3; ++i) {
+        const double l =
+            (mesh.position(v[(i + 1) % 3]) - mesh.position(v[(i + 2) % 3])).squaredNorm();
+        if (l < shortest) {
+            shortest = l;
+            k = i;
+        }
+    }
+    const Vector3 a = mesh.position(v[(k + 1) % 3]) - mesh.position(v[k]);
+    const Vector3 b = mesh.position(v[(k + 2) % 3]) - mesh.position(v[k]);
+    const double sine = a.cross(b).norm(), cosine = a.dot(b);
+    if (!(sine > 0)) return 0.0;  // degenerate (or a repeated point)
+    return std::atan2(sine, cosine) * (180.0 / 3.14159265358979323846);
+}
+
+double min_triangle_angle(const HalfedgeMesh& mesh) {
+    // The face whose smallest angle has the largest cosine (law of cosines, no trigonometry),
+    // then that face's angle exactly.
+    const std::vector<Point>& x = mesh.positions();
+    double largest_cosine = -2.0;
+    Face flattest;
+    for (Face f : mesh.faces()) {
+        const std::array<Vertex, 3> v = mesh.face_vertices(f);
+        const Point &p0 = x[v[0].idx()], &p1 = x[v[1].idx()], &p2 = x[v[2].idx()];
+        double l[3] = {(p1 - p2).squaredNorm(), (p2 - p0).squaredNorm(), (p0 - p1).squaredNorm()};
+        std::sort(l, l + 3);
+        const double denominator = 2.0 * std::sqrt(l[1] * l[2]);
+        const double cosine = denominator > 0 ? (l[1] + l[2] - l[0]) / denominator : 1.0;
+        if (cosine > largest_cosine || !flattest.is_valid()) {
+            largest_cosine = cosine;
+            flattest = f;
+        }
+    }
+    return flattest.is_valid() ? min_face_angle(mesh, flattest) : 180.0;
 }
 
 bool is_closed(const HalfedgeMesh& mesh) {

@@ -42,6 +42,11 @@ struct AreaVolume {
     double area = 0, volume = 0;
 };
 AreaVolume area_and_volume(const HalfedgeMesh& mesh, bool with_area, bool with_volume);
+/// The smallest interior angle of face f, in degrees (0 for a degenerate face). O(1).
+double min_face_angle(const HalfedgeMesh& mesh, Face f);
+/// The smallest interior angle over all live faces, in degrees (180 for a mesh without faces:
+/// nothing is flatter than anything). O(faces).
+double min_triangle_angle(const HalfedgeMesh& mesh);
 /// Whether the mesh has faces and no boundary edges.
 bool is_closed(const HalfedgeMesh& mesh);
 /// Cotangent of the corner opposite to h in face(h) (0 for boundary h or a degenerate face).

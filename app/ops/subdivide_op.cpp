@@ -8,6 +8,7 @@
 
 #include "app/ops/operation_decl.h"
 #include "app/ops/operation_entries.h"
+#include "core/algorithms/region_subdivision.h"
 #include "core/algorithms/subdivision.h"
 #include "core/number_text.h"
 
@@ -22,7 +23,11 @@ OperationResult run_subdivide(const SubdivisionOptions& options, const HalfedgeM
     progress.check_cancelled();
     OperationResult result;
     result.label = "Subdivide";
-    SubdivisionResult sub = subdivide(mesh, o, progress);  // compacts a copy if needed
+    // On a region: the selected faces with their closure (core/algorithms/region_subdivision.h).
+    RegionSubdivisionReport region;
+    SubdivisionResult sub = settings.region
+                                ? subdivide_region(mesh, o, *settings.region, progress, region)
+                                : subdivide(mesh, o, progress);  // compacts a copy if needed
     result.ms = sub.ms;
     char line[160];
     for (std::size_t i = 0; i < sub.level_counts.size(); ++i) {
@@ -37,6 +42,23 @@ OperationResult run_subdivide(const SubdivisionOptions& options, const HalfedgeM
                             ": " + std::to_string(mesh.n_faces()) + " -> " +
                             count_text(faces_after, "face", "faces") + line);
     for (const std::string& note : sub.notes) result.report.push_back("note: " + note);
+    if (settings.region) {
+        for (std::size_t i = 0; i < region.closure.size(); ++i) {
+            const RegionClosureCounts& c = region.closure[i];
+            result.report.push_back(
+                "region level " + std::to_string(i + 1) + ": " +
+                count_text(c.selected_faces, "selected face", "selected faces") + ", " +
+                std::to_string(c.red_faces) +
+                (o.scheme == SubdivisionScheme::Sqrt3 ? " split 1-to-3, "
+                                                      : " split 1-to-4 (red), ") +
+                (o.scheme == SubdivisionScheme::Sqrt3
+                     ? count_text(c.flipped_edges, "edge flipped", "edges flipped")
+                     : std::to_string(c.green_faces) + " split 1-to-2 (green)"));
+        }
+        std::snprintf(line, sizeof(line), "minimum angle: %.3f deg before, %.3f deg after",
+                      region.min_angle_in, region.min_angle_out);
+        result.report.emplace_back(line);
+    }
     std::vector<double> level_vertices, level_faces;
     for (const auto& counts : sub.level_counts) {
         level_vertices.push_back(double(counts[0]));
@@ -48,6 +70,14 @@ OperationResult run_subdivide(const SubdivisionOptions& options, const HalfedgeM
             OperationStep{std::move(level.mesh), std::move(level.correspondence)});
     const HalfedgeMesh& last = result.steps.back().mesh;
     result.values = {{"vertices", double(last.n_vertices())}, {"faces", double(last.n_faces())}};
+    if (settings.region) {
+        result.values.push_back({"min_angle_in", region.min_angle_in});
+        result.values.push_back({"min_angle_out", region.min_angle_out});
+        const RegionClosureCounts& c = region.closure.back();
+        result.values.push_back({"selected_faces", double(c.selected_faces)});
+        result.values.push_back({"red_faces", double(c.red_faces)});
+        result.values.push_back({"green_faces", double(c.green_faces)});
+    }
     sub.levels.clear();  // moved into the steps: the report is the counts, notes and time
     result.typed_report = std::move(sub);
     return result;
@@ -66,7 +96,12 @@ std::unique_ptr<OperationDef> subdivide_operation() {
     d.integer("iterations", &SubdivisionOptions::iterations, 1, 10, "refinement steps")
         .slider(1, 6)
         .counts_steps();
-    d.run(run_subdivide);
+    d.run(run_subdivide)
+        .acts_on_region(
+            "only faces whose three vertices weigh > 0 are refined, with a conforming closure "
+            "(red-green for the 1-to-4 schemes, Kobbelt's adaptive rule for sqrt3); vertices of "
+            "weight 0 stay; --json adds min_angle_in/out and the closure's face counts (last "
+            "iteration)");
     return d.build();
 }
 

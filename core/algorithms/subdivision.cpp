@@ -995,6 +995,27 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
 
 }  // namespace
 
+UniformStep1to4 uniform_step_1to4(const HalfedgeMesh& mesh, SubdivisionScheme scheme,
+                                  Progress& progress) {
+    if (mesh.has_garbage() || scheme == SubdivisionScheme::Sqrt3)
+        throw InvalidArgument(
+            "uniform_step_1to4: expected a compact mesh and a 1-to-4 scheme (loop, butterfly, "
+            "modified-butterfly)");
+    const In m(mesh);
+    const Stage stage{progress, 0.0, 0.5};
+    UniformStep1to4 step;
+    step.positions.resize(std::size_t(m.nv) + m.ne);
+    if (!find_coincident_vertices(mesh).empty())
+        welded_positions_1to4(mesh, scheme, step.positions.data(), stage);
+    else
+        positions_1to4(m, scheme, step.positions.data(), stage);
+    HalfedgeMesh scratch;  // provenance_1to4() writes vertex properties: a vertex-only mesh
+    scratch.resize_elements(std::size_t(m.nv) + m.ne, 0, 0);
+    provenance_1to4(m, scheme, scratch);
+    step.stencils = std::move(scratch.get_vertex_property<int>(kStencilName).vector());
+    return step;
+}
+
 const char* subdivision_stencil_label(SubdivisionStencil stencil) {
     switch (stencil) {
         case SubdivisionStencil::Unknown:
@@ -1023,6 +1044,8 @@ const char* subdivision_stencil_label(SubdivisionStencil stencil) {
             return "odd, face centroid (Sqrt3)";
         case SubdivisionStencil::OddBoundarySplit:
             return "odd, boundary edge split in three (Sqrt3)";
+        case SubdivisionStencil::OddClosureMidpoint:
+            return "odd, edge midpoint (region closure outside the selection)";
     }
     return "unknown";
 }

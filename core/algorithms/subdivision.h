@@ -67,6 +67,7 @@ enum class SubdivisionStencil : int {
     OddCrease,          ///< edge vertex on a seam of coincident copies
     OddFace,            ///< Sqrt3: the centroid of a face
     OddBoundarySplit,   ///< Sqrt3: one of the two vertices splitting a boundary edge in three
+    OddClosureMidpoint,  ///< region subdivision: closure edge outside the selection, its midpoint
 };
 /// Words for a stencil ("even, regular (valence 6)", "odd, face centroid").
 const char* subdivision_stencil_label(SubdivisionStencil stencil);
@@ -111,5 +112,20 @@ struct SubdivisionResult {
 /// `progress` asks to stop.
 SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& options,
                             Progress& progress);
+
+/// What one uniform step of a 1-to-4 scheme (Loop, Butterfly, Modified Butterfly) gives each
+/// vertex, without building the refined mesh (region subdivision,
+/// core/algorithms/region_subdivision.h, refines only part of the mesh with these stencils):
+/// old vertex v at index v, the new vertex of edge e at n_vertices + e; positions computed on
+/// the weld where the mesh has coincident vertices, exactly as subdivide() computes them.
+struct UniformStep1to4 {
+    std::vector<Point> positions;
+    std::vector<int> stencils;  ///< SubdivisionStencil values
+};
+/// The uniform step's positions and stencils on `mesh`, which must be compact (no garbage)
+/// and free of pillows; throws InvalidArgument for garbage or Sqrt3. O(V + E) (plus the
+/// coincidence search, O(V log V)).
+UniformStep1to4 uniform_step_1to4(const HalfedgeMesh& mesh, SubdivisionScheme scheme,
+                                  Progress& progress);
 
 }  // namespace trilab

@@ -620,10 +620,25 @@ check "bad --region specs are refused naming the option and the part" bash -c \
      printf '1\n0.5\nabc\n' > '$tmp/w.txt' && \
      ! '$cli' smooth '$tmp/d.obj' '$tmp/bad.ply' --region file:'$tmp/w.txt' 2> '$tmp/e' && \
      grep -q -- \"w.txt:3: expected a weight from 0 to 1, got 'abc'\" '$tmp/e' && \
-     ! '$cli' subdivide '$tmp/d.obj' '$tmp/bad.ply' --region component:0 2> '$tmp/e' && \
-     grep -q -- '--region: subdivide does not work on a region yet' '$tmp/e' && \
+     ! '$cli' remove-components --min-faces 3 '$tmp/d.obj' '$tmp/bad.ply' --region component:0 2> '$tmp/e' && \
+     grep -q -- '--region: remove-components does not work on a region yet' '$tmp/e' && \
      ! '$cli' select '$tmp/d.obj' '$tmp/bad.ply' 2> '$tmp/e' && grep -q -- '--region' '$tmp/e' && \
      [ ! -e '$tmp/bad.ply' ] && '$cli' smooth --help | grep -q -- '--region SPEC'"
+check "subdivide --region refines a sphere region of every scheme into a valid closed mesh" bash -c \
+    "for s in loop sqrt3 butterfly modified-butterfly; do \
+       '$cli' subdivide --scheme \$s '$tmp/d.obj' '$tmp/rs.ply' --region sphere:0,0,1,0.6 \
+         --json > '$tmp/rs.json' && { $(declare -f json_has); true; } && \
+       json_has '$tmp/rs.json' region_vertices min_angle_in min_angle_out faces selected_faces && \
+       '$cli' info '$tmp/rs.ply' --json > '$tmp/ri.json' && \
+       grep -q '\"valid\": true' '$tmp/ri.json' && grep -q '\"euler\": 2,' '$tmp/ri.json' && \
+       grep -q '\"boundary_edges\": 0,' '$tmp/ri.json' && grep -q '\"manifold\": true' '$tmp/ri.json' \
+       || { echo \"\$s\"; exit 1; }; done"
+check "subdivide --region with all ones gives the unselected mesh" bash -c \
+    "for s in loop sqrt3; do \
+       '$cli' subdivide --scheme \$s '$tmp/d.obj' '$tmp/sa.obj' >/dev/null && \
+       '$cli' subdivide --scheme \$s '$tmp/d.obj' '$tmp/sb.obj' --region file:'$tmp/ones.txt' >/dev/null && \
+       cmp -s '$tmp/sa.obj' '$tmp/sb.obj' \
+       || { echo \"\$s differs\"; exit 1; }; done"
 # Sessions, recipes and replay (issue 27).
 check "session make, info, recipe and replay --check agree bit for bit" bash -c \
     "'$cli' generate icosahedron '$tmp/ico.off' && \

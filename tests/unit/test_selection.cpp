@@ -457,8 +457,9 @@ TEST_CASE("operations take the region as input and report it", "[selection][oper
         if (fx.region[v.idx()] == 0.0f)
             CHECK(same_point(fx.mesh.position(v), r.steps.back().mesh.position(v)));
     // An operation that does not take a region yet refuses it, naming itself.
-    CHECK_THROWS_WITH(run_operation(parse_operation("subdivide"), fx.mesh, progress, settings),
-                      Catch::Matchers::Contains("subdivide does not work on a region"));
+    CHECK_THROWS_WITH(run_operation(parse_operation("remove-components --min-faces 3"), fx.mesh,
+                                    progress, settings),
+                      Catch::Matchers::Contains("remove-components does not work on a region"));
     Selection wrong(4, 1.0f);
     settings.region = &wrong;
     CHECK_THROWS_WITH(run_operation(parse_operation("noise"), fx.mesh, progress, settings),

@@ -1,0 +1,366 @@
+// Subdivision of a region (core/algorithms/region_subdivision.h).
+//
+// Implementation: each iteration works on a bare copy of the level (connectivity and
+// positions, no attributes) with the mesh's own operators: HalfedgeMesh::split(Edge) on every
+// edge to split (each adjacent face is cut from the new vertex to its opposite corner), then
+// the cuts that were made inside red faces and join an old and a new vertex are flipped, which
+// turns each red face into the 1-to-4 pattern (the same sequence as pmp's Loop subdivision)
+// and leaves each green face bisected. Sqrt3: HalfedgeMesh::split(Face) on every selected face,
+// then flip(Edge) on the old edges between two split faces. Old vertices keep their indices;
+// the new ones follow in the order of their edge (face) index. Positions come from the uniform
+// rules on the coarse level (uniform_step_1to4(), the Sqrt3 relaxation below), blended by the
+// weights.
+#include "core/algorithms/region_subdivision.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "core/algorithms/pillows.h"
+#include "core/errors.h"
+#include "core/geometry.h"
+
+namespace trilab {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr std::size_t kMaxFaces = 50'000'000;  // as subdivide()
+
+const char* const kLevelName = "v:subdivision_level";
+const char* const kStencilName = "v:subdivision_stencil";
+const char* const kParentsName = "v:subdivision_parents";
+
+/// A copy of `m`'s connectivity and positions only (`m` compact).
+HalfedgeMesh bare_copy(const HalfedgeMesh& m) {
+    HalfedgeMesh out;
+    out.assign_connectivity(
+        std::vector<Point>(m.positions()), std::vector<Halfedge>(m.vertex_halfedge_array()),
+        std::vector<Vertex>(m.halfedge_to_array()), std::vector<Halfedge>(m.halfedge_next_array()),
+        std::vector<Halfedge>(m.halfedge_prev_array()), std::vector<Face>(m.halfedge_face_array()),
+        std::vector<Halfedge>(m.face_halfedge_array()));
+    return out;
+}
+
+/// One refined level with its carried selection.
+struct RegionStep {
+    SubdivisionLevel level;
+    Selection selection;
+    RegionClosureCounts counts;
+};
+
+/// Per-vertex bookkeeping of a new level, filled by the refinement and written as the level's
+/// properties by finish().
+struct NewVertices {
+    std::vector<int> stencil;
+    std::vector<SubdivisionParents> parents;
+    std::vector<Point> start;  // morph start positions
+    Selection selection;
+    void add(SubdivisionStencil st, const Point& from, float weight, Index a,
+             Index b = kInvalidIndex, Index c = kInvalidIndex) {
+        stencil.push_back(int(st));
+        parents.emplace_back(a, b, c);
+        start.push_back(from);
+        selection.push_back(weight);
+    }
+};
+
+/// Writes levels, provenance, selection, vertex uvs (interpolated from the parents) and the
+/// morph start positions onto the new level.
+void finish(const HalfedgeMesh& coarse, int level, bool morph, NewVertices&& nv, RegionStep& step) {
+    HalfedgeMesh& m = step.level.mesh;
+    const std::size_t n_old = coarse.vertices_size(), n = m.vertices_size();
+    auto& levels = m.add_vertex_property<int>(kLevelName, level).vector();
+    const auto in_levels = coarse.get_vertex_property<int>(kLevelName);
+    for (std::size_t v = 0; v < n_old; ++v)
+        levels[v] = level > 1 && in_levels ? in_levels.vector()[v] : 0;
+    m.add_vertex_property<int>(kStencilName, 0).vector() = std::move(nv.stencil);
+    m.add_vertex_property<SubdivisionParents>(kParentsName,
+                                              SubdivisionParents::Constant(kInvalidIndex))
+        .vector() = std::move(nv.parents);
+    if (const auto uv_in = coarse.get_vertex_property<TexCoord>("v:texcoord")) {
+        auto& uv = m.add_vertex_property<TexCoord>("v:texcoord", TexCoord::Zero()).vector();
+        const auto& parents = m.get_vertex_property<SubdivisionParents>(kParentsName).vector();
+        for (std::size_t v = 0; v < n; ++v) {
+            TexCoord sum = TexCoord::Zero();
+            int k = 0;
+            for (; k < 3 && parents[v][k] != kInvalidIndex; ++k)
+                sum += uv_in.vector()[parents[v][k]];
+            uv[v] = k == 1 ? uv_in.vector()[parents[v][0]] : sum / double(k);
+        }
+    }
+    step.selection = nv.selection;
+    m.add_vertex_property<float>(kSelectionProperty, 0.0f).vector() = std::move(nv.selection);
+    step.level.correspondence.kind = MorphCorrespondence::Kind::FromEarlier;
+    if (morph) step.level.correspondence.positions = std::move(nv.start);
+}
+
+/// Refuses to refine a face of a closed two-triangle pillow (the split would create a double
+/// edge): `refined(f)` says whether face f is refined.
+template <typename Refined>
+void check_no_refined_pillow(const HalfedgeMesh& m, const Refined& refined) {
+    for (Face f : pillow_faces(m))
+        if (refined(f))
+            throw TopologyError("subdivide --region: face " + std::to_string(f.idx()) +
+                                " is half of a closed two-triangle pillow (two faces with the "
+                                "same three vertices) and lies in the region; refining it would "
+                                "create double edges (leave it out of the region)");
+}
+
+void check_face_limit(std::size_t faces) {
+    if (faces > kMaxFaces)
+        throw InvalidArgument("subdivide --region: the refinement would give " +
+                              std::to_string(faces) +
+                              " faces (at most 50 million): use fewer iterations");
+}
+
+/// One red-green step of a 1-to-4 scheme on `m` (compact) with weights `w`.
+RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, SubdivisionScheme scheme,
+                              int level, bool morph, Progress& progress) {
+    const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
+                nf = Index(m.faces_size());
+    const std::vector<std::uint8_t> selected = region_faces(m, w);
+    std::vector<std::uint8_t> split(ne, 0);
+    for (Index f = 0; f < nf; ++f)
+        if (selected[f])
+            for (Halfedge h : m.halfedges_of(Face(f))) split[HalfedgeMesh::edge(h).idx()] = 1;
+    const auto n_split = [&](Face f) {
+        int c = 0;
+        for (Halfedge h : m.halfedges_of(f)) c += split[HalfedgeMesh::edge(h).idx()];
+        return c;
+    };
+    // Closure: a face with two split edges gets its third (red), until nothing changes.
+    std::vector<Face> queue;
+    for (Index f = 0; f < nf; ++f)
+        if (n_split(Face(f)) == 2) queue.push_back(Face(f));
+    while (!queue.empty()) {
+        const Face f = queue.back();
+        queue.pop_back();
+        if (n_split(f) != 2) continue;
+        for (Halfedge h : m.halfedges_of(f)) {
+            const Index e = HalfedgeMesh::edge(h).idx();
+            if (split[e]) continue;
+            split[e] = 1;
+            const Face g = m.face(HalfedgeMesh::twin(h));
+            if (g.is_valid() && n_split(g) == 2) queue.push_back(g);
+        }
+    }
+    RegionStep step;
+    std::vector<std::uint8_t> red(nf, 0);
+    for (Index f = 0; f < nf; ++f) {
+        const int c = n_split(Face(f));
+        step.counts.selected_faces += selected[f];
+        red[f] = c == 3 ? 1 : 0;
+        step.counts.red_faces += c == 3 ? 1 : 0;
+        step.counts.green_faces += c == 1 ? 1 : 0;
+    }
+    check_face_limit(std::size_t(nf) + 3 * step.counts.red_faces + step.counts.green_faces);
+    check_no_refined_pillow(m, [&](Face f) { return n_split(f) > 0; });
+    progress.check_cancelled();
+
+    const UniformStep1to4 uniform = uniform_step_1to4(m, scheme, progress);
+    progress.check_cancelled();
+    HalfedgeMesh& out = step.level.mesh;
+    out = bare_copy(m);
+    const Point* x = m.positions().data();
+    // The coarse face each face of `out` lies in, and which cuts lie in a red face.
+    std::vector<Index> origin(nf);
+    for (Index f = 0; f < nf; ++f) origin[f] = f;
+    std::vector<std::uint8_t> red_cut;
+    NewVertices nvx;
+    for (Index v = 0; v < nv; ++v) {
+        const bool moves = w[v] > 0.0f;
+        nvx.add(moves ? SubdivisionStencil(uniform.stencils[v]) : SubdivisionStencil::EvenKept,
+                x[v], w[v], v);
+    }
+    for (Index e = 0; e < ne; ++e) {
+        if (!split[e]) continue;
+        const Vertex a = m.vertex(Edge(e), 1), b = m.vertex(Edge(e), 0);
+        const Point mid = 0.5 * (x[a.idx()] + x[b.idx()]);
+        const float wmax = std::max(w[a.idx()], w[b.idx()]);
+        const Vertex v = out.split(Edge(e), blend_by_weight(mid, uniform.positions[nv + e], wmax));
+        nvx.add(wmax > 0.0f ? SubdivisionStencil(uniform.stencils[nv + e])
+                            : SubdivisionStencil::OddClosureMidpoint,
+                mid, std::min(w[a.idx()], w[b.idx()]), a.idx(), b.idx());
+        origin.resize(out.faces_size(), kInvalidIndex);
+        red_cut.resize(out.edges_size(), 0);
+        for (Halfedge h : out.halfedges_around(v)) {
+            const Vertex o = out.to_vertex(h);
+            if (o == a || o == b) continue;  // the two halves of e
+            const Face f1 = out.face(h), f2 = out.face(HalfedgeMesh::twin(h));
+            const Index from =
+                origin[f1.idx()] != kInvalidIndex ? origin[f1.idx()] : origin[f2.idx()];
+            origin[f1.idx()] = origin[f2.idx()] = from;
+            red_cut[HalfedgeMesh::edge(h).idx()] = red[from];
+        }
+    }
+    for (Index e = ne; e < Index(red_cut.size()); ++e) {
+        if (!red_cut[e]) continue;
+        const bool old0 = out.vertex(Edge(e), 0).idx() < nv;
+        const bool old1 = out.vertex(Edge(e), 1).idx() < nv;
+        if (old0 != old1) out.flip(Edge(e));
+    }
+    Point* p = out.positions().data();
+    for (Index v = 0; v < nv; ++v)
+        if (w[v] > 0.0f) p[v] = blend_by_weight(x[v], uniform.positions[v], w[v]);
+    finish(m, level, morph, std::move(nvx), step);
+    return step;
+}
+
+/// One adaptive Sqrt3 step on `m` (compact) with weights `w`.
+RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int level, bool morph,
+                               Progress& progress) {
+    const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
+                nf = Index(m.faces_size());
+    const std::vector<std::uint8_t> selected = region_faces(m, w);
+    RegionStep step;
+    for (Index f = 0; f < nf; ++f) step.counts.selected_faces += selected[f];
+    step.counts.red_faces = step.counts.selected_faces;
+    check_face_limit(std::size_t(nf) + 2 * step.counts.selected_faces);
+    check_no_refined_pillow(m, [&](Face f) { return selected[f.idx()] != 0; });
+    const Point* x = m.positions().data();
+    // The relaxed positions of the interior vertices that move, from the coarse ring: the
+    // neighbour sums gathered edge by edge and the rule written as subdivide() writes it, so
+    // that a vertex of weight 1 lands where the uniform step puts it, bit for bit.
+    std::vector<Point> relaxed(nv, Point::Zero());
+    std::vector<unsigned> valence(nv, 0);
+    for (Index e = 0; e < ne; ++e) {
+        const Index a = m.vertex(Edge(e), 1).idx(), b = m.vertex(Edge(e), 0).idx();
+        relaxed[a] += x[b];
+        relaxed[b] += x[a];
+        ++valence[a];
+        ++valence[b];
+    }
+    for (Index v = 0; v < nv; ++v) {
+        if (!(w[v] > 0.0f) || m.is_isolated(Vertex(v)) || m.is_boundary(Vertex(v))) continue;
+        const unsigned k = valence[v];
+        const double alpha = (4.0 - 2.0 * std::cos(2 * kPi / k)) / 9.0;
+        relaxed[v] = (1.0 - alpha) * x[v] + (alpha / k) * relaxed[v];
+    }
+    progress.check_cancelled();
+    HalfedgeMesh& out = step.level.mesh;
+    out = bare_copy(m);
+    NewVertices nvx;
+    for (Index v = 0; v < nv; ++v) {
+        const bool moves = w[v] > 0.0f && !m.is_isolated(Vertex(v)) && !m.is_boundary(Vertex(v));
+        nvx.add(moves ? SubdivisionStencil::EvenRelaxed : SubdivisionStencil::EvenKept, x[v], w[v],
+                v);
+    }
+    for (Index f = 0; f < nf; ++f) {
+        if (!selected[f]) continue;
+        const Halfedge h = m.halfedge(Face(f)), hn = m.next(h);
+        const Index a = m.to_vertex(h).idx(), b = m.to_vertex(hn).idx(),
+                    c = m.to_vertex(m.next(hn)).idx();
+        const Point centroid = (x[a] + x[b] + x[c]) / 3.0;
+        out.split(Face(f), centroid);
+        nvx.add(SubdivisionStencil::OddFace, centroid, std::min({w[a], w[b], w[c]}), a, b, c);
+    }
+    for (Index e = 0; e < ne; ++e) {
+        const Face f0 = m.face(HalfedgeMesh::halfedge(Edge(e), 0));
+        const Face f1 = m.face(HalfedgeMesh::halfedge(Edge(e), 1));
+        if (!f0.is_valid() || !f1.is_valid() || !selected[f0.idx()] || !selected[f1.idx()])
+            continue;
+        out.flip(Edge(e));
+        ++step.counts.flipped_edges;
+    }
+    Point* p = out.positions().data();
+    for (Index v = 0; v < nv; ++v)
+        if (nvx.stencil[v] == int(SubdivisionStencil::EvenRelaxed))
+            p[v] = blend_by_weight(x[v], relaxed[v], w[v]);
+    finish(m, level, morph, std::move(nvx), step);
+    return step;
+}
+
+/// The uniform run, for an all-ones selection: subdivide() itself, with the selection (all
+/// ones) carried onto every level.
+SubdivisionResult subdivide_everything(const HalfedgeMesh& mesh, const SubdivisionOptions& options,
+                                       Progress& progress, RegionSubdivisionReport& report) {
+    SubdivisionResult result = subdivide(mesh, options, progress);
+    std::size_t faces = mesh.n_faces();
+    for (const auto& counts : result.level_counts) {
+        RegionClosureCounts c;
+        c.selected_faces = c.red_faces = faces;
+        report.closure.push_back(c);
+        faces = counts[1];
+    }
+    for (SubdivisionLevel& level : result.levels)
+        level.mesh.add_vertex_property<float>(kSelectionProperty, 1.0f);
+    return result;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> region_faces(const HalfedgeMesh& mesh, const Selection& selection) {
+    std::vector<std::uint8_t> selected(mesh.faces_size(), 0);
+    for (Face f : mesh.faces()) {
+        bool all = true;
+        for (Vertex v : mesh.face_vertices(f)) all = all && selection[v.idx()] > 0.0f;
+        selected[f.idx()] = all ? 1 : 0;
+    }
+    return selected;
+}
+
+SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOptions& options,
+                                   const Selection& selection, Progress& progress,
+                                   RegionSubdivisionReport& report) {
+    const auto t0 = std::chrono::steady_clock::now();
+    check_selection(mesh, selection, "subdivide --region");
+    if (options.iterations < 1 || options.iterations > 10)
+        throw InvalidArgument("subdivide: iterations must be between 1 and 10 (got " +
+                              std::to_string(options.iterations) + ")");
+    report = RegionSubdivisionReport{};
+    report.region_vertices = count_selected(selection);
+    report.min_angle_in = min_triangle_angle(mesh);
+    SubdivisionResult result;
+    if (selects_everything(mesh, selection)) {
+        result = subdivide_everything(mesh, options, progress, report);
+    } else {
+        // A compact copy, its selection following the vertices, when the input has garbage.
+        HalfedgeMesh collected;
+        const HalfedgeMesh* current = &mesh;
+        Selection weights = selection;
+        if (mesh.has_garbage()) {
+            collected = mesh;
+            const IndexRemap remap = collected.garbage_collection();
+            weights.assign(collected.vertices_size(), 0.0f);
+            for (std::size_t v = 0; v < remap.vertices.size(); ++v)
+                if (remap.vertices[v] != kInvalidIndex) weights[remap.vertices[v]] = selection[v];
+            current = &collected;
+        }
+        const bool sqrt3 = options.scheme == SubdivisionScheme::Sqrt3;
+        RegionStep latest;
+        if (options.keep_levels) result.levels.reserve(std::size_t(options.iterations));
+        for (int it = 1; it <= options.iterations; ++it) {
+            progress.check_cancelled();
+            progress.report(double(it - 1) / options.iterations, "subdividing the region");
+            const bool morph = options.morph && (options.keep_levels || it == options.iterations);
+            RegionStep step =
+                sqrt3 ? refine_region_sqrt3(*current, weights, it, morph, progress)
+                      : refine_region_1to4(*current, weights, options.scheme, it, morph, progress);
+            report.closure.push_back(step.counts);
+            result.level_counts.push_back(
+                {step.level.mesh.n_vertices(), step.level.mesh.n_faces()});
+            weights = std::move(step.selection);
+            if (options.keep_levels) {
+                result.levels.push_back(std::move(step.level));
+                current = &result.levels.back().mesh;
+            } else {
+                latest = std::move(step);
+                current = &latest.level.mesh;
+            }
+        }
+        if (!options.keep_levels) result.levels.push_back(std::move(latest.level));
+        if (mesh.get_halfedge_property<TexCoord>("h:texcoord"))
+            result.notes.push_back(
+                "corner texture coordinates (h:texcoord) are not carried by region subdivision");
+    }
+    report.min_angle_out = min_triangle_angle(result.levels.back().mesh);
+    progress.report(1.0, "subdividing the region");
+    result.ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return result;
+}
+
+}  // namespace trilab

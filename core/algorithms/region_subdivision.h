@@ -1,0 +1,81 @@
+#pragma once
+// Subdivision of a region only (issue 26): the faces of a soft selection are refined by the
+// scheme, with a conforming closure around them, and the rest of the mesh is left as it is.
+//
+// Which faces: a face is selected when all three of its vertices have weight > 0.
+// The closure:
+//  - Loop, Butterfly, Modified Butterfly: red-green refinement (Bank, Sherman, Weiser 1983).
+//    Every edge of a selected face is split; then, until nothing changes, a face with two
+//    split edges gets its third one split too (it becomes red). Faces with three split edges
+//    are split 1-to-4 (red), faces with one are bisected from the edge's new vertex to the
+//    opposite corner (green), the rest are kept. No T-junctions: every split edge is split in
+//    both of its faces. Faces: F + 3·red + 1·green.
+//  - Sqrt3: the adaptive rule of Kobbelt's "√3-Subdivision" (SIGGRAPH 2000, section on
+//    adaptive refinement): every selected face is split 1-to-3 at its centroid and an old
+//    edge is flipped only when both of its faces were split (same generation); an edge
+//    between a split and an unsplit face stays, leaving the split side's triangle (a, b,
+//    centroid). No vertex lands on an edge, so the mesh is conforming without any closure
+//    faces. Faces: F + 2·selected. Simplification: generations are not stored, so in a later
+//    iteration (or call) such a triangle is refined as an ordinary one, not first flipped with
+//    its newly split neighbour as the paper's bookkeeping would; boundary edges are never split
+//    (the odd-step boundary rule of subdivision.h in every step).
+// Positions (w: the vertex weights):
+//  - an old vertex with w = 0 keeps its position bit for bit; with w > 0 it gets
+//    p_old + w·(p_scheme − p_old), p_scheme being the uniform scheme's rule on the coarse mesh
+//    (Loop's even rule, Sqrt3's relaxation; the butterflies keep every old vertex);
+//  - the new vertex of a split edge a-b: the edge midpoint blended towards the scheme's
+//    stencil by max(w_a, w_b), so a closure edge with one end inside is at the scheme's
+//    position and one entirely outside (a red closure face's far edge) at its midpoint, on the
+//    untouched surface (stencil "odd, edge midpoint (region closure ...)");
+//  - a Sqrt3 centroid: the centroid.
+// With weights 0 and 1 only, every vertex inside is where the uniform scheme puts it.
+// An all-ones selection runs subdivide() itself, so the result is the unselected one bit for
+// bit (plus the carried selection).
+// The selection is carried: "v:selection" on every level, old vertices keeping their weight,
+// new ones the minimum of their parents' weights (so the region never grows into the closure).
+// Provenance as in subdivision.h: "v:subdivision_level", "v:subdivision_stencil" (a vertex of
+// weight 0 is "even, kept"), "v:subdivision_parents"; "v:texcoord" is interpolated linearly;
+// "h:texcoord" and every other attribute are dropped (a note says so for "h:texcoord").
+// Quality: red faces are similar to their parent; a green bisection and an unflipped Sqrt3
+// triangle are not, and can be flatter than anything in the input (an equilateral triangle
+// bisects into 30°-60°-90° halves): the report gives the minimum angle before and after.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/algorithms/selection.h"
+#include "core/algorithms/subdivision.h"
+
+namespace trilab {
+
+/// What one iteration of region subdivision refined.
+struct RegionClosureCounts {
+    std::size_t selected_faces = 0;  ///< faces whose three vertices weigh > 0
+    std::size_t red_faces = 0;       ///< split 1-to-4 (1-to-4 schemes) or 1-to-3 (Sqrt3)
+    std::size_t green_faces = 0;     ///< split 1-to-2 (1-to-4 schemes only)
+    std::size_t flipped_edges = 0;   ///< Sqrt3: old edges flipped (both faces split)
+};
+
+struct RegionSubdivisionReport {
+    std::size_t region_vertices = 0;           ///< input vertices of weight > 0
+    std::vector<RegionClosureCounts> closure;  ///< one per iteration
+    double min_angle_in = 0;                   ///< degrees, over the input's faces
+    double min_angle_out = 0;                  ///< degrees, over the finest level's faces
+};
+
+/// One flag per face storage index: 1 when the face is live and its three vertices weigh > 0.
+/// `selection` must fit the mesh (check_selection()). O(F).
+std::vector<std::uint8_t> region_faces(const HalfedgeMesh& mesh, const Selection& selection);
+
+/// Subdivides the selected part of a copy of `mesh` (see the file comment) `options.iterations`
+/// times; the levels, counts and notes are those of subdivide(). `report` receives the
+/// closure counts and the minimum angles. Throws InvalidArgument for bad options or a
+/// selection that does not fit the mesh (before anything is done), TopologyError when a
+/// closed two-triangle pillow would be refined, Cancelled from the progress. Complexity: one
+/// copy of the mesh and one pass of the uniform stencils per iteration (O(V + F)), plus
+/// O(size of the refined part).
+SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOptions& options,
+                                   const Selection& selection, Progress& progress,
+                                   RegionSubdivisionReport& report);
+
+}  // namespace trilab

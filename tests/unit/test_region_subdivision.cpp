@@ -1,0 +1,253 @@
+// Subdivision of a region (core/algorithms/region_subdivision.h): on closed meshes every scheme
+// gives a valid closed manifold with the Euler characteristic kept, the face count the closure
+// predicts (computed here independently from the selection), vertices of weight 0 bit for
+// bit where they were, the selection carried, the minimum angles reported as they are, and an
+// all-ones selection gives exactly the unselected result.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <set>
+#include <utility>
+
+#include "app/ops/operation.h"
+#include "core/algorithms/generators.h"
+#include "core/algorithms/region_subdivision.h"
+#include "core/algorithms/selection.h"
+#include "core/algorithms/subdivision.h"
+#include "core/geometry.h"
+#include "core/validate.h"
+#include "test_helpers.h"
+
+using namespace trilab;
+
+namespace {
+
+bool same_point(const Point& a, const Point& b) {
+    return std::memcmp(a.data(), b.data(), sizeof(Point)) == 0;
+}
+
+long euler(const HalfedgeMesh& m) {
+    return long(m.n_vertices()) - long(m.n_edges()) + long(m.n_faces());
+}
+
+/// The red-green face count, computed on vertex pairs (independently of the implementation):
+/// split the edges of the selected faces, then the third edge of every face with two, until
+/// nothing changes; F + 3 red + 1 green.
+std::size_t predicted_red_green_faces(const HalfedgeMesh& m, const Selection& w) {
+    std::vector<std::array<Index, 3>> tris;
+    for (Face f : m.faces()) {
+        const auto v = m.face_vertices(f);
+        tris.push_back({v[0].idx(), v[1].idx(), v[2].idx()});
+    }
+    const auto key = [](Index a, Index b) {
+        return std::make_pair(std::min(a, b), std::max(a, b));
+    };
+    std::set<std::pair<Index, Index>> split;
+    for (const auto& t : tris)
+        if (w[t[0]] > 0 && w[t[1]] > 0 && w[t[2]] > 0)
+            for (int k = 0; k < 3; ++k) split.insert(key(t[k], t[(k + 1) % 3]));
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (const auto& t : tris) {
+            int n = 0;
+            for (int k = 0; k < 3; ++k) n += int(split.count(key(t[k], t[(k + 1) % 3])));
+            if (n == 2) {
+                for (int k = 0; k < 3; ++k) split.insert(key(t[k], t[(k + 1) % 3]));
+                changed = true;
+            }
+        }
+    }
+    std::size_t faces = tris.size();
+    for (const auto& t : tris) {
+        int n = 0;
+        for (int k = 0; k < 3; ++k) n += int(split.count(key(t[k], t[(k + 1) % 3])));
+        faces += n == 3 ? 3 : (n == 1 ? 1 : 0);
+    }
+    return faces;
+}
+
+std::size_t count_selected_faces(const HalfedgeMesh& m, const Selection& w) {
+    std::size_t n = 0;
+    for (Face f : m.faces()) {
+        const auto v = m.face_vertices(f);
+        n += (w[v[0].idx()] > 0 && w[v[1].idx()] > 0 && w[v[2].idx()] > 0) ? 1 : 0;
+    }
+    return n;
+}
+
+/// The smallest corner angle in degrees, every corner by atan2 (a second implementation).
+double brute_min_angle(const HalfedgeMesh& m) {
+    double smallest = 180;
+    for (Face f : m.faces()) {
+        const auto v = m.face_vertices(f);
+        for (int k = 0; k < 3; ++k) {
+            const Vector3 a = m.position(v[(k + 1) % 3]) - m.position(v[k]);
+            const Vector3 b = m.position(v[(k + 2) % 3]) - m.position(v[k]);
+            smallest = std::min(smallest, std::atan2(a.cross(b).norm(), a.dot(b)) * 180 / M_PI);
+        }
+    }
+    return smallest;
+}
+
+struct Fixture {
+    std::string name;
+    HalfedgeMesh mesh;
+};
+
+}  // namespace
+
+TEST_CASE("subdivide_region refines the selected faces with a conforming closure",
+          "[subdivision][selection]") {
+    const auto scheme =
+        GENERATE(SubdivisionScheme::Loop, SubdivisionScheme::Sqrt3, SubdivisionScheme::Butterfly,
+                 SubdivisionScheme::ModifiedButterfly);
+    const bool use_default = GENERATE(true, false);
+    const HalfedgeMesh mesh = use_default ? make_default_model() : make_icosphere(3);
+    INFO(scheme_name(scheme) << (use_default ? " on the default model" : " on an icosphere"));
+    const Point centre = mesh.position(Vertex(0));
+    const Selection region = sphere_selection(mesh, centre, 0.7);
+    REQUIRE(count_selected(region) > 10);
+    REQUIRE(count_selected(region) < mesh.n_vertices() / 2);
+    SubdivisionOptions options;
+    options.scheme = scheme;
+    NullProgress progress;
+    RegionSubdivisionReport report;
+    const SubdivisionResult result = subdivide_region(mesh, options, region, progress, report);
+    REQUIRE(result.levels.size() == 1);
+    const HalfedgeMesh& out = result.levels.back().mesh;
+
+    // A valid closed manifold, the Euler characteristic kept.
+    REQUIRE(validate(out).ok);
+    CHECK(is_closed(out));
+    CHECK(euler(out) == euler(mesh));
+
+    // The face count of the closure, predicted independently.
+    const std::size_t selected = count_selected_faces(mesh, region);
+    REQUIRE(report.closure.size() == 1);
+    CHECK(report.closure[0].selected_faces == selected);
+    if (scheme == SubdivisionScheme::Sqrt3)
+        CHECK(out.n_faces() == mesh.n_faces() + 2 * selected);
+    else
+        CHECK(out.n_faces() == predicted_red_green_faces(mesh, region));
+    CHECK(out.n_faces() > mesh.n_faces());
+    CHECK(out.n_faces() < (scheme == SubdivisionScheme::Sqrt3 ? 3 : 4) * mesh.n_faces());
+
+    // Vertices of weight 0 stay bit for bit; those inside move as the whole-mesh scheme moves
+    // them (Loop, Sqrt3) or stay (the interpolating butterflies).
+    SubdivisionOptions whole_options = options;
+    const SubdivisionResult whole = subdivide(mesh, whole_options, progress);
+    const HalfedgeMesh& uniform = whole.levels.back().mesh;
+    for (Vertex v : mesh.vertices()) {
+        if (region[v.idx()] == 0.0f)
+            CHECK(same_point(out.position(v), mesh.position(v)));
+        else
+            CHECK(same_point(out.position(v), uniform.position(v)));
+    }
+
+    // The selection is carried: old vertices keep theirs, new ones the minimum of their parents.
+    const auto carried = out.get_vertex_property<float>(kSelectionProperty);
+    const auto parents = out.get_vertex_property<SubdivisionParents>("v:subdivision_parents");
+    const auto levels = out.get_vertex_property<int>("v:subdivision_level");
+    REQUIRE(carried);
+    REQUIRE(parents);
+    REQUIRE(levels);
+    for (Vertex v : out.vertices()) {
+        if (v.idx() < mesh.vertices_size()) {
+            CHECK(carried[v] == region[v.idx()]);
+            CHECK(levels[v] == 0);
+            continue;
+        }
+        CHECK(levels[v] == 1);
+        float least = 1.0f;
+        for (int k = 0; k < 3; ++k)
+            if (parents[v][k] != kInvalidIndex) least = std::min(least, region[parents[v][k]]);
+        CHECK(carried[v] == least);
+    }
+
+    // The minimum angles are reported as they are (a green bisection or an unflipped Sqrt3
+    // triangle can be flatter than the input: the report says so, it is not hidden).
+    CHECK(report.min_angle_in == Approx(brute_min_angle(mesh)).margin(1e-9));
+    CHECK(report.min_angle_out == Approx(brute_min_angle(out)).margin(1e-9));
+    CHECK(report.min_angle_out > 0);
+}
+
+TEST_CASE("subdivide_region with an all-ones selection gives the unselected result bit for bit",
+          "[subdivision][selection]") {
+    const auto scheme =
+        GENERATE(SubdivisionScheme::Loop, SubdivisionScheme::Sqrt3, SubdivisionScheme::Butterfly,
+                 SubdivisionScheme::ModifiedButterfly);
+    const HalfedgeMesh mesh = make_default_model();
+    SubdivisionOptions options;
+    options.scheme = scheme;
+    options.iterations = 2;
+    NullProgress progress;
+    RegionSubdivisionReport report;
+    const SubdivisionResult a = subdivide(mesh, options, progress);
+    const SubdivisionResult b =
+        subdivide_region(mesh, options, full_selection(mesh), progress, report);
+    REQUIRE(a.levels.size() == b.levels.size());
+    for (std::size_t i = 0; i < a.levels.size(); ++i) {
+        const HalfedgeMesh& x = a.levels[i].mesh;
+        const HalfedgeMesh& y = b.levels[i].mesh;
+        REQUIRE(x.vertices_size() == y.vertices_size());
+        CHECK(std::memcmp(x.positions().data(), y.positions().data(),
+                          x.positions().size() * sizeof(Point)) == 0);
+        CHECK(x.halfedge_to_array() == y.halfedge_to_array());
+        CHECK(x.face_halfedge_array() == y.face_halfedge_array());
+        const auto carried = y.get_vertex_property<float>(kSelectionProperty);
+        REQUIRE(carried);
+        for (Vertex v : y.vertices()) CHECK(carried[v] == 1.0f);
+    }
+}
+
+TEST_CASE("subdivide_region over several iterations keeps the region and the mesh valid",
+          "[subdivision][selection]") {
+    const auto scheme = GENERATE(SubdivisionScheme::Loop, SubdivisionScheme::Sqrt3);
+    const HalfedgeMesh mesh = make_default_model();
+    Selection region = sphere_selection(mesh, mesh.position(Vertex(5)), 0.6);
+    feather_selection(mesh, region, 0.3);  // fractional weights blend
+    SubdivisionOptions options;
+    options.scheme = scheme;
+    options.iterations = 3;
+    NullProgress progress;
+    RegionSubdivisionReport report;
+    const SubdivisionResult result = subdivide_region(mesh, options, region, progress, report);
+    REQUIRE(result.levels.size() == 3);
+    REQUIRE(report.closure.size() == 3);
+    std::size_t faces = mesh.n_faces();
+    for (const SubdivisionLevel& level : result.levels) {
+        REQUIRE(validate(level.mesh).ok);
+        CHECK(is_closed(level.mesh));
+        CHECK(euler(level.mesh) == 2);
+        CHECK(level.mesh.n_faces() > faces);
+        faces = level.mesh.n_faces();
+        REQUIRE(level.correspondence.positions.size() == level.mesh.vertices_size());
+    }
+    const HalfedgeMesh& last = result.levels.back().mesh;
+    for (Vertex v : mesh.vertices())
+        if (region[v.idx()] == 0.0f) CHECK(same_point(last.position(v), mesh.position(v)));
+}
+
+TEST_CASE("subdivide takes a region through the operation and reports the angles",
+          "[subdivision][selection][operation]") {
+    const HalfedgeMesh mesh = make_default_model();
+    const Selection region = sphere_selection(mesh, mesh.position(Vertex(0)), 0.5);
+    NullProgress progress;
+    RunSettings settings;
+    settings.region = &region;
+    const OperationResult r =
+        run_operation(parse_operation("subdivide --scheme butterfly"), mesh, progress, settings);
+    std::map<std::string, double> values(r.values.begin(), r.values.end());
+    CHECK(values.at("region_vertices") == double(count_selected(region)));
+    CHECK(values.at("faces") == double(r.steps.back().mesh.n_faces()));
+    CHECK(values.at("faces") == double(predicted_red_green_faces(mesh, region)));
+    CHECK(values.count("min_angle_in") == 1);
+    CHECK(values.count("min_angle_out") == 1);
+    CHECK(validate(r.steps.back().mesh).ok);
+    // A selection that does not fit is refused before anything runs.
+    Selection wrong(3, 1.0f);
+    settings.region = &wrong;
+    CHECK_THROWS_AS(run_operation(parse_operation("subdivide"), mesh, progress, settings),
+                    InvalidArgument);
+}
