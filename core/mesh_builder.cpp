@@ -5,6 +5,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "core/errors.h"
 #include "core/number_text.h"
@@ -504,11 +505,17 @@ void add_detached_triangles(const Index* tri, std::size_t n_input_vertices, bool
 
 /// Stage 5a: the mesh takes the connectivity arrays (no copy; c keeps copy_source and
 /// face_tri); positions follow each vertex's source. Counts the isolated vertices.
-HalfedgeMesh assemble_mesh(const PolygonSoup& soup, Connectivity& c, LoadReport& report) {
+HalfedgeMesh assemble_mesh(const PolygonSoup& soup, PolygonSoup* owned, Connectivity& c,
+                           LoadReport& report) {
     std::vector<Point> positions;
-    positions.reserve(c.vhalfedge.size());
-    positions.assign(soup.positions.begin(), soup.positions.end());
-    for (Index s : c.copy_source) positions.push_back(soup.positions[s]);
+    if (owned) {
+        positions = std::move(owned->positions);  // the soup's own array: no copy
+        positions.reserve(c.vhalfedge.size());
+    } else {
+        positions.reserve(c.vhalfedge.size());
+        positions.assign(soup.positions.begin(), soup.positions.end());
+    }
+    for (Index s : c.copy_source) positions.push_back(positions[s]);
     for (const Halfedge& h : c.vhalfedge)
         if (!h.is_valid()) ++report.isolated_vertices;
     HalfedgeMesh mesh;
@@ -520,10 +527,9 @@ HalfedgeMesh assemble_mesh(const PolygonSoup& soup, Connectivity& c, LoadReport&
 
 /// Stage 5b: the soup's attributes onto the mesh: per vertex from each vertex's source
 /// (copy_source for the copies), per corner from each face's triangle.
-void copy_attributes(const PolygonSoup& soup, const Triangles& tris,
+void copy_attributes(const PolygonSoup& soup, std::size_t n_input_vertices, const Triangles& tris,
                      const std::vector<Index>& copy_source, const std::vector<Index>& face_tri,
                      HalfedgeMesh& mesh) {
-    const std::size_t n_input_vertices = soup.positions.size();
     const std::size_t n_v = mesh.vertices_size();
     auto source = [&](std::size_t v) {
         return v < n_input_vertices ? v : std::size_t(copy_source[v - n_input_vertices]);
@@ -562,14 +568,15 @@ void copy_attributes(const PolygonSoup& soup, const Triangles& tris,
     }
 }
 
-}  // namespace
-
-HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
+/// build_mesh for a soup read through `soup`; when `owned` (the same soup) is given, its
+/// arrays are released or moved as soon as they are no longer needed.
+HalfedgeMesh build_from_soup(const PolygonSoup& soup, PolygonSoup* owned, LoadReport& report) {
     check_soup(soup);
     const std::size_t n_input_vertices = soup.positions.size();
     const bool keep_corners = !soup.corner_texcoords.empty();
     Triangles tris;
     make_triangles(soup, keep_corners, report, tris);
+    if (owned) std::vector<std::size_t>().swap(owned->face_offsets);  // no longer read
     Connectivity c;
     {
         EdgeGroups groups;
@@ -581,9 +588,23 @@ HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
     std::vector<ExtraFan> extra_fans = find_fans(c);
     copy_extra_fans(extra_fans, n_input_vertices, c, report);
     add_detached_triangles(tris.tri, n_input_vertices, keep_corners, c, report);
-    HalfedgeMesh mesh = assemble_mesh(soup, c, report);
-    copy_attributes(soup, tris, c.copy_source, c.face_tri, mesh);
+    HalfedgeMesh mesh = assemble_mesh(soup, owned, c, report);
+    copy_attributes(soup, n_input_vertices, tris, c.copy_source, c.face_tri, mesh);
+    if (owned) {
+        owned->face_offsets.assign(1, 0);  // an empty soup's offsets
+        owned->corners.clear();
+    }
     return mesh;
+}
+
+}  // namespace
+
+HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
+    return build_from_soup(soup, nullptr, report);
+}
+
+HalfedgeMesh build_mesh(PolygonSoup&& soup, LoadReport& report) {
+    return build_from_soup(soup, &soup, report);
 }
 
 PolygonSoup to_soup(const HalfedgeMesh& mesh) {
