@@ -74,6 +74,10 @@ struct LoadReport {
 /// if a corner index is out of range or an attribute array has the wrong size; the report
 /// is filled in on success.
 HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report);
+/// The same, consuming the soup: a triangle soup's face offsets are released once the
+/// triangles are known and the positions move into the mesh (no copy), lowering the peak
+/// memory of a large load by about a third of the soup. The result is identical.
+HalfedgeMesh build_mesh(PolygonSoup&& soup, LoadReport& report);
 
 /// The inverse: every live face as a triangle, with per-vertex attributes; vertices are
 /// numbered in storage order with deleted ones skipped.

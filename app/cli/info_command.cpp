@@ -3,8 +3,10 @@
 
 #include <chrono>
 #include <cstdio>
+#include <exception>
 #include <iostream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "app/cli/arg_reader.h"
@@ -154,9 +156,25 @@ int run_info_command(const std::vector<std::string>& args) {
     const LoadedMesh loaded = read_mesh(a.mesh);
     const auto t0 = std::chrono::steady_clock::now();
     MeshInfo info;
-    info.stats = compute_stats(loaded.mesh);
-    info.valid = validate(loaded.mesh);
-    info.pairing = pair_boundary_edges(loaded.mesh);
+    // The three read the mesh only: validate() on a second thread while the statistics
+    // and the boundary pairing run here (the same results, in about half the time).
+    std::exception_ptr validate_error;
+    std::thread validating([&] {
+        try {
+            info.valid = validate(loaded.mesh);
+        } catch (...) {
+            validate_error = std::current_exception();
+        }
+    });
+    try {
+        info.stats = compute_stats(loaded.mesh);
+        info.pairing = pair_boundary_edges(loaded.mesh);
+    } catch (...) {
+        validating.join();
+        throw;
+    }
+    validating.join();
+    if (validate_error) std::rethrow_exception(validate_error);
     info.ms = ms_since(t0);
     const LoadReport& r = loaded.report;
     info.manifold = r.detached_faces == 0 && r.nonmanifold_vertices_split == 0;

@@ -17,6 +17,7 @@
 #include <ostream>
 #include <random>
 #include <streambuf>
+#include <utility>
 #include <vector>
 
 #include "core/errors.h"
@@ -638,17 +639,30 @@ void check_finite_soup(const PolygonSoup& soup, const std::string& path) {
                               std::to_string(soup.selections[i]) + " is not in [0, 1]");
 }
 
-HalfedgeMesh build_mesh_for_file(const PolygonSoup& soup, LoadReport& report,
-                                 const std::string& path) {
+namespace {
+
+template <typename Soup>
+HalfedgeMesh build_checked(Soup&& soup, LoadReport& report, const std::string& path) {
     if (soup.positions.empty()) throw IoError(path, 0, "the file holds no vertices");
     check_finite_soup(soup, path);
     try {
-        return build_mesh(soup, report);
+        return build_mesh(std::forward<Soup>(soup), report);
     } catch (const IoError&) {
         throw;
     } catch (const Error& e) {
         throw IoError(path, 0, e.what());
     }
+}
+
+}  // namespace
+
+HalfedgeMesh build_mesh_for_file(const PolygonSoup& soup, LoadReport& report,
+                                 const std::string& path) {
+    return build_checked(soup, report, path);
+}
+
+HalfedgeMesh build_mesh_for_file(PolygonSoup&& soup, LoadReport& report, const std::string& path) {
+    return build_checked(std::move(soup), report, path);
 }
 
 void check_declared_count(std::size_t count, std::size_t min_bytes_each,

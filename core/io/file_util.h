@@ -76,6 +76,9 @@ std::string temporary_file_prefix(const std::string& file_name);
 /// non-finite value in any attribute (see check_finite_soup).
 HalfedgeMesh build_mesh_for_file(const PolygonSoup& soup, LoadReport& report,
                                  const std::string& path);
+/// The same, consuming the soup: its arrays are released (or moved into the mesh) as soon as
+/// the build no longer needs them, which lowers the peak memory of a large load.
+HalfedgeMesh build_mesh_for_file(PolygonSoup&& soup, LoadReport& report, const std::string& path);
 
 /// Refuses NaN and infinity in every attribute of the soup (positions, normals, colours,
 /// texture coordinates per vertex and per corner), naming `path`, the vertex (or corner)

@@ -247,7 +247,9 @@ public:
     PlyReader(const std::string& path, std::string_view data)
         : path_(path), data_(data), sc_(data, path, '\0') {}
 
-    LoadedMesh read() {
+    /// Parses the file into `out.report` and returns its soup; the mesh is not built yet
+    /// (read_ply releases the file's bytes first).
+    PolygonSoup read(LoadedMesh& out) {
         parse_header();
         assign_roles();
         if (encoding_ == Encoding::kAscii) {
@@ -260,14 +262,12 @@ public:
                 read_binary<true>();
         }
         finish_soup();
-        LoadedMesh out;
         out.report.file = path_;
         out.report.format = "ply";
         out.report.file_vertices = soup_.positions.size();
         out.report.file_faces = file_faces_;
         out.report.notes = notes_;
-        out.mesh = build_mesh_for_file(soup_, out.report, path_);
-        return out;
+        return std::move(soup_);
     }
 
 private:
@@ -805,12 +805,22 @@ std::uint8_t color_byte(float c) {
 }  // namespace
 
 LoadedMesh read_ply(const std::string& path) {
-    return read_ply_bytes(read_file_bytes(path), path);
+    LoadedMesh out;
+    PolygonSoup soup;
+    {
+        const std::string data = read_file_bytes(path);
+        PlyReader reader(path, strip_utf8_bom(data, path));
+        soup = reader.read(out);
+    }  // the file's bytes are released before the mesh is built (peak memory)
+    out.mesh = build_mesh_for_file(std::move(soup), out.report, path);
+    return out;
 }
 
 LoadedMesh read_ply_bytes(const std::string& data, const std::string& path) {
+    LoadedMesh out;
     PlyReader reader(path, strip_utf8_bom(data, path));
-    return reader.read();
+    out.mesh = build_mesh_for_file(reader.read(out), out.report, path);
+    return out;
 }
 
 void write_ply_to(const HalfedgeMesh& mesh, std::ostream& os, const std::string& path,

@@ -12,9 +12,23 @@
 using namespace trilab;
 
 namespace {
+/// build_mesh on the soup, checked against the consuming build_mesh (which must give the same
+/// mesh, array for array, and the same report).
 HalfedgeMesh build(const PolygonSoup& soup, LoadReport* report_out = nullptr) {
     LoadReport report;
     HalfedgeMesh m = build_mesh(soup, report);
+    LoadReport consumed_report;
+    PolygonSoup copy = soup;
+    const HalfedgeMesh consumed = build_mesh(std::move(copy), consumed_report);
+    CHECK(consumed.positions() == m.positions());
+    CHECK(consumed.halfedge_to_array() == m.halfedge_to_array());
+    CHECK(consumed.halfedge_next_array() == m.halfedge_next_array());
+    CHECK(consumed.halfedge_prev_array() == m.halfedge_prev_array());
+    CHECK(consumed.halfedge_face_array() == m.halfedge_face_array());
+    CHECK(consumed.face_halfedge_array() == m.face_halfedge_array());
+    CHECK(consumed.vertex_halfedge_array() == m.vertex_halfedge_array());
+    CHECK(consumed_report.lines() == report.lines());
+    CHECK(copy.positions.empty());  // moved into the mesh
     if (report_out) *report_out = report;
     return m;
 }

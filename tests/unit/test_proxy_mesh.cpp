@@ -1,0 +1,144 @@
+// make_proxy_mesh: vertex clustering for drawing while moving (core/algorithms/proxy_mesh.h).
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "core/algorithms/generators.h"
+#include "core/algorithms/proxy_mesh.h"
+#include "core/algorithms/subdivision.h"
+#include "core/errors.h"
+#include "core/geometry.h"
+#include "core/io/mesh_io.h"
+#include "core/progress.h"
+#include "tests/unit/test_helpers.h"
+
+using namespace trilab;
+
+namespace {
+
+/// Checks what every proxy promises against its mesh.
+void check_proxy(const HalfedgeMesh& mesh, const ProxyMesh& p, std::size_t target) {
+    REQUIRE(p.positions.size() == p.representative.size());
+    CHECK(p.triangles.size() <= target);
+    CHECK(p.error_bound == Approx(p.cell_size * std::sqrt(3.0)));
+    // Every mesh vertex lies within the bound of its cluster's proxy vertex: its cell is the
+    // representative's cell, whose proxy vertex is the cell's mean.
+    const double cell = p.cell_size;
+    BoundingBox box;
+    for (Vertex v : mesh.vertices()) box.extend(mesh.position(v));
+    auto cell_of = [&](const Point& x) {
+        const Vector3 q = (x - box.min) / cell;
+        return std::array<long long, 3>{(long long)q.x(), (long long)q.y(), (long long)q.z()};
+    };
+    std::map<std::array<long long, 3>, std::size_t> proxy_of_cell;
+    for (std::size_t i = 0; i < p.positions.size(); ++i) {
+        const Vertex r(p.representative[i]);
+        REQUIRE(mesh.is_valid(r));
+        CHECK((mesh.position(r) - p.positions[i]).norm() <= p.error_bound);
+        proxy_of_cell[cell_of(mesh.position(r))] = i;
+    }
+    double worst = 0;
+    for (Vertex v : mesh.vertices()) {
+        const auto it = proxy_of_cell.find(cell_of(mesh.position(v)));
+        REQUIRE(it != proxy_of_cell.end());
+        worst = std::max(worst, (mesh.position(v) - p.positions[it->second]).norm());
+    }
+    CHECK(worst <= p.error_bound);
+    // No degenerate triangle, none twice, every index in range.
+    std::set<std::array<Index, 3>> seen;
+    for (const auto& t : p.triangles) {
+        CHECK(t[0] != t[1]);
+        CHECK(t[1] != t[2]);
+        CHECK(t[0] != t[2]);
+        for (Index i : t) REQUIRE(i < p.positions.size());
+        std::array<Index, 3> k = t;
+        std::rotate(k.begin(), std::min_element(k.begin(), k.end()), k.end());
+        CHECK(seen.insert(k).second);
+    }
+}
+
+}  // namespace
+
+TEST_CASE("make_proxy_mesh keeps every vertex within its bound and under the target",
+          "[proxy_mesh]") {
+    const unsigned frequency = GENERATE(8u, 40u);
+    const std::size_t target = GENERATE(std::size_t(100), std::size_t(2000));
+    const HalfedgeMesh sphere = make_icosphere(frequency);
+    ProxyMeshOptions options;
+    options.target_triangles = target;
+    const ProxyMesh p = make_proxy_mesh(sphere, options);
+    INFO("frequency " << frequency << ", target " << target << ", faces " << sphere.n_faces()
+                      << ", proxy " << p.triangles.size() << " triangles, " << p.passes
+                      << " passes");
+    check_proxy(sphere, p, target);
+    // A sphere's proxy is a closed-looking surface of a useful size, not a handful of faces.
+    CHECK(p.triangles.size() >= std::min<std::size_t>(target / 4, sphere.n_faces() / 4));
+}
+
+TEST_CASE("make_proxy_mesh is deterministic, whatever the thread count", "[proxy_mesh]") {
+    const HalfedgeMesh mesh = make_noisy_sphere(60, 0.02, 7);  // 36,000 faces: several chunks
+    ProxyMeshOptions one, many;
+    one.target_triangles = many.target_triangles = 3000;
+    one.threads = 1;
+    many.threads = 5;
+    const ProxyMesh a = make_proxy_mesh(mesh, one), b = make_proxy_mesh(mesh, many),
+                    c = make_proxy_mesh(mesh, many);
+    CHECK(a.triangles == b.triangles);
+    CHECK(b.triangles == c.triangles);
+    CHECK(a.positions == b.positions);
+    CHECK(a.representative == b.representative);
+    CHECK(a.error_bound == b.error_bound);
+    check_proxy(mesh, a, 3000);
+}
+
+TEST_CASE("make_proxy_mesh on the subdivided bunny", "[proxy_mesh]") {
+    const std::string path = test::shared_mesh("stanford-bunny.obj");
+    SKIP_IF_MISSING(path);
+    SubdivisionOptions options;
+    options.iterations = 1;
+    options.keep_levels = false;
+    options.morph = false;
+    NullProgress progress;
+    const HalfedgeMesh mesh =
+        subdivide(read_mesh(path).mesh, options, progress).levels.back().mesh;  // 278k faces
+    ProxyMeshOptions proxy_options;
+    proxy_options.target_triangles = 20000;
+    const ProxyMesh p = make_proxy_mesh(mesh, proxy_options);
+    INFO(mesh.n_faces() << " faces -> " << p.triangles.size() << " in " << p.passes << " passes");
+    check_proxy(mesh, p, 20000);
+    CHECK(p.triangles.size() >= 10000);
+}
+
+TEST_CASE("make_proxy_mesh skips deleted elements and handles edge cases", "[proxy_mesh]") {
+    SECTION("a mesh with garbage") {
+        HalfedgeMesh mesh = make_icosphere(10);
+        for (Halfedge h : mesh.halfedges())
+            if (mesh.is_collapse_ok(h)) {
+                mesh.collapse(h);
+                break;
+            }
+        REQUIRE(mesh.has_garbage());
+        const ProxyMesh p = make_proxy_mesh(mesh, {});
+        check_proxy(mesh, p, 200000);
+        for (Index r : p.representative) CHECK_FALSE(mesh.is_deleted(Vertex(r)));
+    }
+    SECTION("an empty mesh gives an empty proxy") {
+        const ProxyMesh p = make_proxy_mesh(HalfedgeMesh(), {});
+        CHECK(p.positions.empty());
+        CHECK(p.triangles.empty());
+    }
+    SECTION("a single point") {
+        HalfedgeMesh mesh;
+        mesh.add_vertex(Point(1, 2, 3));
+        const ProxyMesh p = make_proxy_mesh(mesh, {});
+        REQUIRE(p.positions.size() == 1);
+        CHECK(p.positions[0] == Point(1, 2, 3));
+        CHECK(p.triangles.empty());
+    }
+    SECTION("a target outside the range is refused") {
+        ProxyMeshOptions options;
+        options.target_triangles = 3;
+        CHECK_THROWS_AS(make_proxy_mesh(make_cube(), options), InvalidArgument);
+    }
+}
