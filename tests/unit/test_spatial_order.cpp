@@ -146,3 +146,32 @@ TEST_CASE("decimating a big mesh gives the same result whatever its vertex order
     for (Vertex v : ma.vertices())
         REQUIRE(a.levels[0].correspondence.positions[sa[v]] == ma.position(v));
 }
+
+TEST_CASE("a region on a big mesh survives the spatial renumbering",
+          "[decimation][spatial_order]") {
+    const HalfedgeMesh mesh = make_noisy_sphere(80, 0.02, 5);
+    // The upper half may collapse, the lower half stays bit for bit.
+    std::vector<float> region(mesh.vertices_size(), 0.0f);
+    std::size_t fixed = 0;
+    for (Vertex v : mesh.vertices()) {
+        region[v.idx()] = mesh.position(v).z() > 0 ? 1.0f : 0.0f;
+        fixed += region[v.idx()] > 0 ? 0 : 1;
+    }
+    DecimationOptions o;
+    o.percent = 90;
+    o.levels = DecimationLevels::Last;
+    o.region = &region;
+    const DecimationResult r = decimate(mesh, o);
+    REQUIRE(r.levels.size() == 1);
+    const HalfedgeMesh& out = r.levels[0].mesh;
+    REQUIRE_VALID(out);
+    REQUIRE(out.n_vertices() < mesh.n_vertices() - (mesh.n_vertices() - fixed) / 2);
+    const auto source = out.get_vertex_property<Index>(kDecimationSourceName);
+    std::size_t kept_fixed = 0;
+    for (Vertex v : out.vertices()) {
+        if (region[source[v]] > 0) continue;
+        ++kept_fixed;
+        REQUIRE(out.position(v) == mesh.position(Vertex(source[v])));
+    }
+    REQUIRE(kept_fixed == fixed);
+}
