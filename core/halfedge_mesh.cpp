@@ -308,7 +308,57 @@ IndexRemap HalfedgeMesh::garbage_collection() {
             h_keep.push_back(2 * e + i);
         }
     }
+    apply_order(remap, v_keep, h_keep, e_keep, f_keep);
+    return remap;
+}
 
+IndexRemap HalfedgeMesh::renumber(const std::vector<Index>& vertex_order,
+                                  const std::vector<Index>& halfedge_order,
+                                  const std::vector<Index>& face_order) {
+    // old -> new, checking that each list holds every live element once.
+    const auto invert = [](const std::vector<Index>& order, std::size_t storage, std::size_t live,
+                           const std::vector<std::uint8_t>& deleted, const char* what,
+                           std::vector<Index>& old_to_new) {
+        if (order.size() != live)
+            throw InvalidArgument(std::string("HalfedgeMesh::renumber: the ") + what +
+                                  " order lists " + std::to_string(order.size()) +
+                                  " elements, the mesh has " + std::to_string(live));
+        old_to_new.assign(storage, kInvalidIndex);
+        for (Index i = 0; i < order.size(); ++i) {
+            const Index old = order[i];
+            if (old >= storage || deleted[old] || old_to_new[old] != kInvalidIndex)
+                throw InvalidArgument(std::string("HalfedgeMesh::renumber: ") + what + " " +
+                                      std::to_string(old) + " (entry " + std::to_string(i) +
+                                      ") is out of range, deleted or listed twice");
+            old_to_new[old] = i;
+        }
+    };
+    IndexRemap remap;
+    invert(vertex_order, vertices_size(), n_vertices(), vdeleted_.vector(), "vertex",
+           remap.vertices);
+    invert(face_order, faces_size(), n_faces(), fdeleted_.vector(), "face", remap.faces);
+    std::vector<std::uint8_t> h_deleted(halfedges_size());
+    for (Index h = 0; h < h_deleted.size(); ++h) h_deleted[h] = edeleted_.vector()[h >> 1];
+    invert(halfedge_order, halfedges_size(), n_halfedges(), h_deleted, "halfedge", remap.halfedges);
+    std::vector<Index> e_keep(halfedge_order.size() / 2);
+    remap.edges.assign(edges_size(), kInvalidIndex);
+    for (Index k = 0; k < e_keep.size(); ++k) {
+        const Index a = halfedge_order[2 * k], b = halfedge_order[2 * k + 1];
+        if ((a ^ 1u) != b)
+            throw InvalidArgument("HalfedgeMesh::renumber: halfedges " + std::to_string(a) +
+                                  " and " + std::to_string(b) + " (entries " +
+                                  std::to_string(2 * k) + ", " + std::to_string(2 * k + 1) +
+                                  ") are not the two halves of one edge");
+        e_keep[k] = a >> 1;
+        remap.edges[a >> 1] = k;
+    }
+    apply_order(remap, vertex_order, halfedge_order, e_keep, face_order);
+    return remap;
+}
+
+void HalfedgeMesh::apply_order(IndexRemap& remap, const std::vector<Index>& v_keep,
+                               const std::vector<Index>& h_keep, const std::vector<Index>& e_keep,
+                               const std::vector<Index>& f_keep) {
     vprops_.gather(v_keep);
     hprops_.gather(h_keep);
     eprops_.gather(e_keep);
@@ -329,7 +379,6 @@ IndexRemap HalfedgeMesh::garbage_collection() {
     hprops_.shrink_to_fit();
     eprops_.shrink_to_fit();
     fprops_.shrink_to_fit();
-    return remap;
 }
 
 }  // namespace trilab

@@ -473,6 +473,17 @@ public:
     void reverse_orientation(const std::vector<std::uint8_t>& edge_mask);
     /// Compacts storage, removing deleted elements. Returns the index remapping.
     IndexRemap garbage_collection();
+    /// Compacts storage into a given order: new vertex i is old vertex vertex_order[i], new face
+    /// i old face face_order[i], new halfedges 2k and 2k + 1 old halfedges halfedge_order[2k]
+    /// and halfedge_order[2k + 1], which must be the two halves of one edge (in either order:
+    /// an edge may turn around). Each list holds every live element exactly once; deleted ones
+    /// are dropped, as by garbage_collection(). halfedge(v) and halfedge(f) stay the same
+    /// halfedges (renumbered); every attribute moves with its element. Throws InvalidArgument
+    /// naming the list and the element when a list is not such a permutation (the mesh is then
+    /// unchanged). Returns the remapping (old index -> new index). O(V + H + F).
+    IndexRemap renumber(const std::vector<Index>& vertex_order,
+                        const std::vector<Index>& halfedge_order,
+                        const std::vector<Index>& face_order);
 
 private:
     template <class T>
@@ -484,6 +495,10 @@ private:
     [[noreturn]] static void throw_name_taken(const std::string& name);
     void checked_remove(PropertyContainer& c, const std::string& name);
     void bind_builtins();
+    /// Gathers every element kind into the given orders (renumber() without its checks).
+    void apply_order(IndexRemap& remap, const std::vector<Index>& v_keep,
+                     const std::vector<Index>& h_keep, const std::vector<Index>& e_keep,
+                     const std::vector<Index>& f_keep);
     void mark_deleted(Vertex v);
     void mark_deleted(Edge e);
     void mark_deleted(Face f);

@@ -10,7 +10,12 @@
 // batches down to max(50,000, 4 x target): each pass selects the cheapest edges, up to half
 // the vertex count (nth_element), and collapses them in memory order (for the cache),
 // skipping edges re-priced during the pass; the exact heap then does the last collapses, the
-// ones that shape the result. Costs:
+// ones that shape the result. Such a mesh is first renumbered into a spatial order
+// (core/algorithms/spatial_order.h: vertices along a Morton curve, edges and faces by their
+// smallest vertex), unless the progressive record is asked for: the ring walks then hit the
+// cache whatever order the input came in, and the result (numbering included) is the same for
+// the same mesh in any vertex or face order; "v:decimation_source" and the geomorph still speak
+// of the input's indices. Costs:
 //  - Quadric (Garland, Heckbert, "Surface simplification using quadric error metrics",
 //    SIGGRAPH 1997): per-vertex quadrics of the incident face planes, summed on collapse; the
 //    kept vertex moves to the minimizer of Q0 + Q1 (the 3x3 system), or, where that is
@@ -76,6 +81,7 @@
 #include "core/algorithms/coincident.h"
 #include "core/algorithms/quadric.h"
 #include "core/algorithms/selection.h"
+#include "core/algorithms/spatial_order.h"
 #include "core/errors.h"
 #include "core/mesh_builder.h"
 #include "core/number_text.h"
@@ -498,13 +504,15 @@ private:
         ++pass_;
         const std::size_t surplus = m_.n_vertices() - floor;
         // Selection by radix: a histogram of the keys' top bits finds the bucket of the
-        // budget-th cheapest edge, nth_element finds it among that bucket's keys alone.
+        // budget-th cheapest edge, nth_element finds it among that bucket's keys alone. Deleted
+        // edges and those that cannot collapse cost kNoCollapse.
+        const Index n_edges = Index(m_.edges_size());
         bucket_count_.assign(std::size_t(1) << kBucketBits, 0);
         std::size_t candidates = 0;
-        for (Edge e : m_.edges()) {
-            const float cost = edge_[e.idx()].cost;
+        for (Index e = 0; e < n_edges; ++e) {
+            const float cost = edge_[e].cost;
             if (cost < kNoCollapse) {
-                ++bucket_count_[bucket(edge_key(cost, e.idx()))];
+                ++bucket_count_[bucket(edge_key(cost, e))];
                 ++candidates;
             }
         }
@@ -514,30 +522,30 @@ private:
         if (budget == 0) return 0;
         std::size_t below = 0, b = 0;  // keys in the buckets before b
         while (below + bucket_count_[b] < budget) below += bucket_count_[b++];
+        // One scan lists the keys of the buckets up to b in memory order (far fewer cache
+        // misses than cost order, the same quality in the benchmark) and bucket b's apart.
         batch_.clear();
-        for (Edge e : m_.edges()) {
-            const float cost = edge_[e.idx()].cost;
-            if (cost < kNoCollapse && bucket(edge_key(cost, e.idx())) == b)
-                batch_.push_back(edge_key(cost, e.idx()));
+        threshold_bucket_.clear();
+        for (Index e = 0; e < n_edges; ++e) {
+            const float cost = edge_[e].cost;
+            if (!(cost < kNoCollapse)) continue;
+            const EdgeKey k = edge_key(cost, e);
+            const std::size_t kb = bucket(k);
+            if (kb > b) continue;
+            batch_.push_back(k);
+            if (kb == b) threshold_bucket_.push_back(k);
         }
-        const auto nth = batch_.begin() + std::ptrdiff_t(budget - 1 - below);
-        std::nth_element(batch_.begin(), nth, batch_.end());
+        const auto nth = threshold_bucket_.begin() + std::ptrdiff_t(budget - 1 - below);
+        std::nth_element(threshold_bucket_.begin(), nth, threshold_bucket_.end());
         const EdgeKey threshold = *nth;
-        // All of them are below the pass's threshold: take them in memory order (far fewer
-        // cache misses than cost order, the same quality in the benchmark). A last scan
-        // lists them in that order (cheaper than sorting them).
-        batch_.clear();
-        for (Edge e : m_.edges()) {
-            const float cost = edge_[e.idx()].cost;
-            if (cost < kNoCollapse && edge_key(cost, e.idx()) <= threshold)
-                batch_.push_back(edge_key(cost, e.idx()));
-        }
         std::size_t done = 0;
         for (std::size_t i = 0; i < batch_.size(); ++i) {
             if (i + kPrefetchAhead < batch_.size())
                 prefetch(Edge(key_edge(batch_[i + kPrefetchAhead])));
             const EdgeKey k = batch_[i];
+            if (k > threshold) continue;
             const Edge e(key_edge(k));
+            // Re-priced by an earlier collapse of the pass: the next pass.
             if (edge_[e.idx()].cost != key_cost(k) || m_.is_deleted(e)) continue;
             EdgeChoice choice;
             if (!evaluate(e, choice)) continue;
@@ -1190,6 +1198,7 @@ private:
     std::vector<Vertex> copy_;              ///< per vertex: its only copy (groups of two)
     std::size_t target_ = 0;                ///< vertex count the current phase aims at
     std::vector<EdgeKey> batch_;
+    std::vector<EdgeKey> threshold_bucket_;    ///< batch selection: the keys of one bucket
     std::vector<std::uint32_t> bucket_count_;  ///< batch selection: keys per bucket
     std::uint32_t pass_ = 0;
     std::vector<std::uint32_t> locked_;
@@ -1263,6 +1272,34 @@ std::size_t percent_base(const HalfedgeMesh& work, const DecimationOptions& opti
     return counted;
 }
 
+/// Prepares the working copy: every vertex's input index in kDecimationSourceName, and a big
+/// mesh (one the batches reduce) renumbered into the spatial order
+/// (core/algorithms/spatial_order.h) for the cache and independence of the input's numbering,
+/// unless the progressive record (in the input's numbering) is asked for or the input has garbage.
+/// Returns each input vertex's working index; a region moves to `region` in the working numbering
+/// (options.region then points there).
+std::vector<Index> prepare_work_mesh(HalfedgeMesh& work, DecimationOptions& options,
+                                     std::vector<float>& region) {
+    {
+        auto source = work.vertex_property<Index>(kDecimationSourceName);
+        std::vector<Index>& s = source.vector();
+        for (Index i = 0; i < s.size(); ++i) s[i] = i;
+    }
+    if (work.n_vertices() <= kExactVertices || options.record_progressive || work.has_garbage()) {
+        std::vector<Index> identity(work.vertices_size());
+        for (Index i = 0; i < identity.size(); ++i) identity[i] = i;
+        return identity;
+    }
+    IndexRemap remap = renumber_spatially(work);
+    if (options.region) {
+        region.assign(work.vertices_size(), 0.0f);
+        for (Index i = 0; i < remap.vertices.size(); ++i)
+            region[remap.vertices[i]] = (*options.region)[i];
+        options.region = &region;
+    }
+    return std::move(remap.vertices);
+}
+
 }  // namespace
 
 DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& options,
@@ -1272,21 +1309,14 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
     const auto t0 = std::chrono::steady_clock::now();
     DecimationResult result;
     DecimationReport& report = result.report;
-
     HalfedgeMesh work = mesh;
-    // Every vertex's index in the input, carried through the collapses and compactions.
-    {
-        auto source = work.vertex_property<Index>(kDecimationSourceName);
-        std::vector<Index>& s = source.vector();
-        for (Index i = 0; i < s.size(); ++i) s[i] = i;
-    }
+    // before_to_work[i]: the working index of vertex i of the mesh before the iteration.
+    DecimationOptions work_options = options;
+    std::vector<float> work_region;
+    std::vector<Index> before_to_work = prepare_work_mesh(work, work_options, work_region);
     ProgressiveMesh* pm = options.record_progressive ? &result.progressive : nullptr;
     if (pm) start_progressive_mesh(work, *pm);
-    Decimater decimater(work, options, pm, report);
-
-    // before_to_work[i]: the working index of vertex i of the mesh before the iteration.
-    std::vector<Index> before_to_work(work.vertices_size());
-    for (Index i = 0; i < before_to_work.size(); ++i) before_to_work[i] = i;
+    Decimater decimater(work, work_options, pm, report);
 
     // Isolated vertices are kept and not counted: V is the number of vertices with faces.
     std::size_t isolated = 0;
@@ -1330,7 +1360,7 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
     for (int it = 0; it < iterations; ++it) {
         progress.check_cancelled();
         const std::size_t v = work.n_vertices() - isolated;
-        const std::size_t counted = percent_base(work, options, v);
+        const std::size_t counted = percent_base(work, work_options, v);
         const std::size_t target =
             options.target_vertices > 0
                 ? options.target_vertices

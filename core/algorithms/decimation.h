@@ -1,7 +1,8 @@
 #pragma once
 // Mesh decimation by edge collapse (section 1.4 of the reference report): the cheapest
 // collapse first (an exact priority queue; meshes above 50,000 vertices are first reduced in
-// batches), until a target vertex count.
+// batches, on a copy renumbered into a spatial order, so their result and speed do not depend on
+// the input's vertex order), until a target vertex count.
 //  - Costs: Quadric (Garland, Heckbert, "Surface simplification using quadric error metrics",
 //    SIGGRAPH 1997; boundaries keep their shape) or Roundness (1.4.2: the smallest normalized
 //    roundness sqrt(1/3)/R of the changed triangles, R = circumradius / shortest edge).
