@@ -180,7 +180,7 @@ TEST_CASE("bad viewer settings lines are notes naming the line, never a throw", 
         "style.wire_width=nan\nstyle.mode=sideways\nnonsense\nno.such=1\n"
         "panel.fairing=subdivide --iterations 1\ncamera.rotation=1 0 0\nstyle.fog=1\n",
         {camera, style, settings, panels, morph});
-    REQUIRE(notes.size() == 7);  // the short camera line: its own note and the camera's
+    REQUIRE(notes.size() == 7);       // the short camera line: its own note and the camera's
     CHECK(style.fog);                 // the good line applies
     CHECK(style.wire_width == 1.0f);  // the bad ones leave their setting
     CHECK(panels.fairing.op.name() == "smooth");
