@@ -3,6 +3,7 @@
 // `distance`), and with --to the distance to M and the traced path's points.
 #include "app/cli/geodesic_command.h"
 
+#include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -32,7 +33,8 @@ options:
   --to M                also trace the geodesic path from vertex M down to a source
   --json                one JSON object: "vertices", "sources", "ms" (the solve),
                         "max_distance", "unreached"; with --to "distance_to",
-                        "path_points", "path_length"
+                        "path_points", "path_vertices" (the points on vertices; the
+                        others cross edges), "path_length"
 )";
 
 /// A vertex index of option `option` ("--from", "--to").
@@ -141,7 +143,12 @@ int run_geodesic_command(const std::vector<std::string>& args) {
                 j.add("distance_to", d[to]);
             else
                 j.add("distance_to", -1.0);
-            j.add("path_points", path.size()).add("path_length", path_length(path));
+            // The path's points: on vertices (path_vertices) or crossing edges.
+            const std::size_t on_vertices = std::size_t(std::count_if(
+                path.begin(), path.end(), [](const SurfacePoint& p) { return p.on_vertex(); }));
+            j.add("path_points", path.size())
+                .add("path_vertices", on_vertices)
+                .add("path_length", path_length(path));
         }
         std::cout << j.str() << "\n";
     } else {

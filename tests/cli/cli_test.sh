@@ -290,7 +290,7 @@ check "compare refuses a bad sample count naming the option" bash -c \
     "! '$cli' compare '$tmp/d.obj' '$tmp/d.obj' --samples abc 2> '$tmp/e' && grep -q -- '--samples' '$tmp/e'"
 check "geodesic --json reports the distances and the path, and writes property distance" bash -c \
     "'$cli' geodesic '$tmp/d.obj' '$tmp/geo.ply' --from 0,10 --to 500 --json > '$tmp/geo.json' && \
-     $(declare -f json_has); json_has '$tmp/geo.json' ms max_distance distance_to path_points && \
+     $(declare -f json_has); json_has '$tmp/geo.json' ms max_distance distance_to path_points path_vertices && \
      ! grep -q '\"max_distance\": 0,' '$tmp/geo.json' && \
      '$cli' convert '$tmp/geo.ply' '$tmp/geo2.ply' --ascii >/dev/null && \
      grep -q '^property double distance' '$tmp/geo2.ply'"
