@@ -90,7 +90,7 @@ std::uint64_t recorded_start_ticks(const std::string& path) {
     bytes.resize(std::size_t(n));
     try {
         const ChunkView c = read_chunk(bytes, kFileHeaderBytes);
-        if (c.type != session_chunk::Journal) return 0;
+        if (c.type != session_chunk::kJournal) return 0;
         ByteReader r(c.payload);
         r.u32("pid");
         return r.u64("start");

@@ -48,9 +48,9 @@ std::uint32_t SessionEncoder::array(const PropertyArray<T>& a, std::uint32_t cod
     head.u64(values.size());
     if constexpr (std::is_same_v<T, std::string>) {
         for (const std::string& s : values) head.str(s);
-        emit(session_chunk::Array, head.bytes());
+        emit(session_chunk::kArray, head.bytes());
     } else {
-        emit(session_chunk::Array, head.bytes(), values.data(), values.size() * sizeof(T));
+        emit(session_chunk::kArray, head.bytes(), values.data(), values.size() * sizeof(T));
     }
     blobs_.emplace(a.values_id(), id);
     return id;
@@ -64,7 +64,7 @@ std::uint32_t SessionEncoder::positions(const std::vector<Point>& p) {
     head.u32(id);
     head.u32(st::kPointCode);
     head.u64(p.size());
-    emit(session_chunk::Array, head.bytes(), p.data(), p.size() * sizeof(Point));
+    emit(session_chunk::kArray, head.bytes(), p.data(), p.size() * sizeof(Point));
     blobs_.emplace(&p, id);
     return id;
 }
@@ -111,7 +111,7 @@ std::uint32_t SessionEncoder::state(const History::StepRecord& step) {
     head.u64(m.faces_size());
     head.u32(count);
     head.raw(props.bytes().data(), props.bytes().size());
-    emit(session_chunk::State, head.bytes());
+    emit(session_chunk::kState, head.bytes());
     states_.emplace(step.id, id);
     return id;
 }
@@ -147,38 +147,38 @@ void SessionEncoder::entry(std::uint32_t index, const History::EntryRecord& e) {
         w.u8(std::uint8_t(e.steps[k].correspondence->kind));
         w.u32(corr_ids[k]);
     }
-    emit(session_chunk::Entry, w.bytes());
+    emit(session_chunk::kEntry, w.bytes());
 }
 
 void SessionEncoder::current(std::uint32_t index) {
     ByteWriter w;
     w.u32(index);
-    emit(session_chunk::Current, w.bytes());
+    emit(session_chunk::kCurrent, w.bytes());
 }
 
 void SessionEncoder::drop_front(std::uint32_t count) {
     ByteWriter w;
     w.u32(count);
-    emit(session_chunk::Drop, w.bytes());
+    emit(session_chunk::kDrop, w.bytes());
 }
 
 void SessionEncoder::keep(std::uint32_t count) {
     ByteWriter w;
     w.u32(count);
-    emit(session_chunk::Keep, w.bytes());
+    emit(session_chunk::kKeep, w.bytes());
 }
 
 void SessionEncoder::viewer_settings(const std::string& text) {
     ByteWriter w;
     w.str(text);
-    emit(session_chunk::View, w.bytes());
+    emit(session_chunk::kView, w.bytes());
 }
 
 void SessionEncoder::texture(const std::string& path, const std::string& bytes) {
     ByteWriter w;
     w.str(path);
     w.u64(bytes.size());
-    emit(session_chunk::Texture, w.bytes(), bytes.data(), bytes.size());
+    emit(session_chunk::kTexture, w.bytes(), bytes.data(), bytes.size());
 }
 
 void SessionEncoder::journal_info(std::uint32_t pid, std::uint64_t start_ticks,
@@ -187,7 +187,7 @@ void SessionEncoder::journal_info(std::uint32_t pid, std::uint64_t start_ticks,
     w.u32(pid);
     w.u64(start_ticks);
     w.str(program);
-    emit(session_chunk::Journal, w.bytes());
+    emit(session_chunk::kJournal, w.bytes());
 }
 
 void SessionEncoder::end(std::uint32_t entries) {
@@ -195,7 +195,7 @@ void SessionEncoder::end(std::uint32_t entries) {
     w.u32(entries);
     w.u32(next_blob_);
     w.u32(next_state_);
-    emit(session_chunk::End, w.bytes());
+    emit(session_chunk::kEnd, w.bytes());
 }
 
 void SessionEncoder::retain_only(const History::Snapshot& live) {

@@ -19,16 +19,16 @@
 namespace trilab {
 
 namespace session_chunk {
-inline constexpr std::uint32_t Array = chunk_type("ARRY");
-inline constexpr std::uint32_t State = chunk_type("STAT");
-inline constexpr std::uint32_t Entry = chunk_type("ENTR");
-inline constexpr std::uint32_t Current = chunk_type("CURR");
-inline constexpr std::uint32_t Drop = chunk_type("DROP");
-inline constexpr std::uint32_t Keep = chunk_type("KEEP");
-inline constexpr std::uint32_t View = chunk_type("VIEW");
-inline constexpr std::uint32_t Texture = chunk_type("TXTR");
-inline constexpr std::uint32_t Journal = chunk_type("JRNL");
-inline constexpr std::uint32_t End = chunk_type("END ");
+inline constexpr std::uint32_t kArray = chunk_type("ARRY");
+inline constexpr std::uint32_t kState = chunk_type("STAT");
+inline constexpr std::uint32_t kEntry = chunk_type("ENTR");
+inline constexpr std::uint32_t kCurrent = chunk_type("CURR");
+inline constexpr std::uint32_t kDrop = chunk_type("DROP");
+inline constexpr std::uint32_t kKeep = chunk_type("KEEP");
+inline constexpr std::uint32_t kView = chunk_type("VIEW");
+inline constexpr std::uint32_t kTexture = chunk_type("TXTR");
+inline constexpr std::uint32_t kJournal = chunk_type("JRNL");
+inline constexpr std::uint32_t kEnd = chunk_type("END ");
 }  // namespace session_chunk
 
 inline constexpr char kSessionMagic[9] = "TRILABSN";

@@ -144,7 +144,7 @@ public:
     void apply(const ChunkView& c);
     /// Whether chunk type `type` completes a record (a journal's prefix may end after it).
     static bool is_commit(std::uint32_t type) {
-        return type != session_chunk::Array && type != session_chunk::State;
+        return type != session_chunk::kArray && type != session_chunk::kState;
     }
 
     bool journal = false;
@@ -319,16 +319,16 @@ void Model::apply(const ChunkView& c) {
         if (entries.empty()) throw ChunkError(std::string(what) + " before the first entry");
     };
     switch (c.type) {
-        case session_chunk::Array:
+        case session_chunk::kArray:
             array(r, bytes);
             return;
-        case session_chunk::State:
+        case session_chunk::kState:
             state(r, bytes);
             return;
-        case session_chunk::Entry:
+        case session_chunk::kEntry:
             entry(r, bytes);
             break;
-        case session_chunk::Current: {
+        case session_chunk::kCurrent: {
             const std::uint32_t i = r.u32("current entry");
             r.finish("current entry");
             need_entries("a current entry");
@@ -338,7 +338,7 @@ void Model::apply(const ChunkView& c) {
             current = i;
             break;
         }
-        case session_chunk::Drop: {
+        case session_chunk::kDrop: {
             const std::uint32_t n = r.u32("dropped entries");
             r.finish("dropped entries");
             need_entries("dropping entries");
@@ -349,7 +349,7 @@ void Model::apply(const ChunkView& c) {
             current -= n;
             break;
         }
-        case session_chunk::Keep: {
+        case session_chunk::kKeep: {
             const std::uint32_t n = r.u32("kept entries");
             r.finish("kept entries");
             need_entries("keeping entries");
@@ -359,13 +359,13 @@ void Model::apply(const ChunkView& c) {
             entries.resize(n);
             break;
         }
-        case session_chunk::View: {
+        case session_chunk::kView: {
             std::string text = r.str("viewer settings");
             r.finish("viewer settings");
             extras.viewer_settings = std::move(text);
             return;
         }
-        case session_chunk::Texture: {
+        case session_chunk::kTexture: {
             std::string path = r.str("texture path", kMaxName);
             const std::uint64_t n = r.u64("texture size");
             if (n != r.left()) throw ChunkError("texture size disagrees with the chunk");
@@ -373,7 +373,7 @@ void Model::apply(const ChunkView& c) {
             extras.texture_path = std::move(path);
             return;
         }
-        case session_chunk::Journal: {
+        case session_chunk::kJournal: {
             if (!journal) throw ChunkError("a journal chunk in a session file");
             const std::uint32_t p = r.u32("process id");
             r.u64("process start");
@@ -383,7 +383,7 @@ void Model::apply(const ChunkView& c) {
             program = std::move(name);
             return;
         }
-        case session_chunk::End: {
+        case session_chunk::kEnd: {
             if (journal) throw ChunkError("an end chunk in a journal");
             const std::uint32_t n = r.u32("entry count");
             r.u32("array count");

@@ -63,6 +63,17 @@ void describe_curve(ImDrawList* draw, const ImVec2& a0, const ImVec2& a1, double
                           : "");
 }
 
+/// fairing_gain() for drawing: the same value where it stays within the plotted range, and
+/// ±(a large number) where it would grow beyond it, without computing an overflowing power
+/// (a step 50 times the stable one raised to many iterations).
+double drawn_gain(const FairingOptions& o, double lambda) {
+    const double g1 = gain_per_iteration(o, lambda);
+    const double n = double(std::max(o.iterations, 1));
+    if (std::abs(g1) <= 1.0 || n * std::log(std::abs(g1)) < 5.0) return fairing_gain(o, lambda);
+    const bool negative = g1 < 0 && (o.iterations % 2 == 1);
+    return negative ? -1e3 : 1e3;
+}
+
 }  // namespace
 
 bool transfer_plot(const FairingOptions& o, const TransferView& view) {
@@ -85,7 +96,8 @@ bool transfer_plot(const FairingOptions& o, const TransferView& view) {
             }
     const double unstable = unstable_eigenvalue(o);
     const double x_hi = lambda_hi;
-    const double lx0 = std::log10(lambda_lo), lx1 = std::log10(x_hi);
+    const double lx1 = std::log10(x_hi);
+    const double lx0 = std::min(std::log10(lambda_lo), lx1 - 1.0);  // at least a decade
 
     const float em = ImGui::GetFontSize();
     const ImVec2 origin = ImGui::GetCursorScreenPos();
@@ -109,7 +121,7 @@ bool transfer_plot(const FairingOptions& o, const TransferView& view) {
     bool grows = false, oscillates = false;
     for (int i = 0; i <= kSamples; ++i) {
         const double lambda = std::pow(10.0, lx0 + (lx1 - lx0) * i / kSamples);
-        const double g = fairing_gain(o, lambda);
+        const double g = drawn_gain(o, lambda);
         const float x = x_of(lambda), x_next = x + (a1.x - a0.x) / kSamples;
         const double g1 = gain_per_iteration(o, lambda);
         if (std::abs(g1) > 1.0 + 1e-12) {  // grows (alternating where g < 0: the explosion)

@@ -290,7 +290,8 @@ ProxyMesh make_proxy_mesh(const HalfedgeMesh& mesh, const ProxyMeshOptions& opti
         const double ratio = double(out.triangles.size()) / double(target);
         if (ratio > 1) {
             cell *= std::sqrt(ratio) * 1.02;  // triangles go as 1 / cell^2
-        } else if (ratio < 0.5 && !shrunk && out.passes == 1) {
+        } else if (ratio < 0.5 && ratio > 0 && !shrunk && out.passes == 1) {
+            // (No triangles at all, e.g. isolated points: no finer cell makes any.)
             shrunk = true;  // far below the target: one finer try
             cell *= std::sqrt(ratio) * 1.02;
         } else {

@@ -672,7 +672,11 @@ check "a bad --op names itself" bash -c \
     "! '$cli' session make '$tmp/ico.off' '$tmp/x.trilab' --op 'smooth --bogus 1' 2> '$tmp/e' && \
      grep -q -- \"--op 'smooth --bogus 1': unknown option '--bogus'\" '$tmp/e' && [ ! -e '$tmp/x.trilab' ]"
 bunny="$data/../../../shared/meshes/stanford-bunny.obj"
-if [ -f "$bunny" ]; then
+if [ -n "${ASAN_OPTIONS:-}" ]; then
+    # AddressSanitizer reserves terabytes of address space for its shadow memory: no binary
+    # built with it starts under a 1 GiB ulimit -v. The Release suite runs the check.
+    echo "skipped: the ulimit -v spectrum check (AddressSanitizer needs more address space)"
+elif [ -f "$bunny" ]; then
     check "a dense spectrum under ulimit -v is refused with the figures, no bad_alloc" bash -c \
         "(ulimit -v 1048576; '$cli' spectrum --full --max-full 100000 --k 10 '$bunny' '$tmp/sp.obj') \
            2> '$tmp/e'; rc=\$?; [ \$rc -eq 1 ] && ! grep -q bad_alloc '$tmp/e' && \
