@@ -439,27 +439,25 @@ void inspector_section(PanelState& panels, const InspectorView& view, CommandQue
         ImGui::PushID(int(g));
         ImGui::Separator();
         ImGui::TextUnformatted(group.title.c_str());
-        if (ImGui::BeginTable("##rows", 2, ImGuiTableFlags_SizingStretchProp)) {
-            ImGui::TableSetupColumn("##label", ImGuiTableColumnFlags_WidthFixed,
-                                    10.0f * ImGui::GetFontSize());
-            ImGui::TableSetupColumn("##value", ImGuiTableColumnFlags_WidthStretch);
-            for (const InspectorView::Row& row : group.rows) {
-                ImGui::TableNextRow();
-                ImGui::TableNextColumn();
-                // Labels wrap in their column, never cut at its edge.
-                ImGui::PushStyleColor(ImGuiCol_Text,
-                                      ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-                ImGui::PushTextWrapPos(0.0f);
-                ImGui::TextUnformatted(row.label.c_str());
-                ImGui::PopTextWrapPos();
-                ImGui::PopStyleColor();
-                ImGui::TableNextColumn();
-                ImGui::PushTextWrapPos(0.0f);
-                ImGui::TextUnformatted(row.text.c_str());
-                ImGui::PopTextWrapPos();
-            }
-            ImGui::EndTable();
+        // Two columns without a table: labels wrap within theirs, values within the rest,
+        // never cut at an edge; the next row starts below the taller of the two.
+        const float em = ImGui::GetFontSize();
+        const float x0 = ImGui::GetCursorPosX(), label_width = 10.0f * em;
+        for (const InspectorView::Row& row : group.rows) {
+            const float y = ImGui::GetCursorPosY();
+            ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+            ImGui::PushTextWrapPos(x0 + label_width - 0.5f * em);
+            ImGui::TextUnformatted(row.label.c_str());
+            ImGui::PopTextWrapPos();
+            ImGui::PopStyleColor();
+            const float label_end = ImGui::GetCursorPosY();
+            ImGui::SetCursorPos(ImVec2(x0 + label_width, y));
+            ImGui::PushTextWrapPos(0.0f);
+            ImGui::TextUnformatted(row.text.c_str());
+            ImGui::PopTextWrapPos();
+            ImGui::SetCursorPos(ImVec2(x0, std::max(label_end, ImGui::GetCursorPosY())));
         }
+        ImGui::Dummy(ImVec2(0.0f, 0.0f));
         ImGui::PopID();
     }
     if (view.moved_by_entry.size() > 1) {
