@@ -93,20 +93,10 @@ struct EntryRef {
     std::vector<StepRef> steps;
 };
 
-/// Bytes per element of a fixed-size type (0 for strings).
-std::size_t element_size(std::uint32_t code) {
-    std::size_t size = 0;
-    st::visit(code, [&](auto tag) {
-        using T = typename decltype(tag)::type;
-        if constexpr (!std::is_same_v<T, std::string>) size = sizeof(T);
-    });
-    return size;
-}
-
 /// Checks that `data` holds exactly `count` values of type `code`.
 void check_values(std::uint32_t code, std::uint64_t count, std::string_view data,
                   const char* what) {
-    const std::size_t size = element_size(code);
+    const std::size_t size = st::element_size(code);
     if (size) {
         if (count > data.size() / size || count * size != data.size())
             throw ChunkError(std::string(what) + ": " + std::to_string(count) + " values of " +

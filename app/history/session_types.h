@@ -2,6 +2,7 @@
 // The element types a session file stores property arrays of (docs/file-formats.md#session-
 // files): a code per type, and the one dispatch from a code to the C++ type. Values are stored
 // as their bytes in memory (little-endian), strings as u32 length + bytes.
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <type_traits>
@@ -82,6 +83,17 @@ bool visit(std::uint32_t code, F&& f) {
     }
 }
 inline constexpr std::uint32_t kFirstCode = 1, kLastCode = 19;
+
+/// Bytes per element of type `code`: the size of a fixed-size type, 0 for strings (stored with
+/// their length) and for an unknown code.
+inline std::size_t element_size(std::uint32_t code) {
+    std::size_t size = 0;
+    visit(code, [&](auto tag) {
+        using T = typename decltype(tag)::type;
+        if constexpr (!std::is_same_v<T, std::string>) size = sizeof(T);
+    });
+    return size;
+}
 inline constexpr std::uint32_t kPointCode = 1;
 
 /// The containers of a mesh: vertices, halfedges, edges, faces.

@@ -8,16 +8,6 @@
 #include "core/algorithms/level_of_detail.h"
 
 namespace trilab::viewer {
-namespace {
-
-Edge edge_between(const HalfedgeMesh& mesh, Vertex a, Vertex b) {
-    if (!mesh.is_valid(a) || mesh.is_isolated(a)) return Edge();
-    for (Halfedge h : mesh.halfedges_around(a))
-        if (mesh.to_vertex(h) == b) return HalfedgeMesh::edge(h);
-    return Edge();
-}
-
-}  // namespace
 
 std::string pick_line(const Pick& pick) {
     auto index = [](auto handle) {
@@ -42,8 +32,8 @@ std::optional<Pick> pick_shown(const Shown& shown, const HalfedgeMesh& document,
         // vertices the fine mesh's (document) vertices: map both back.
         for (int k = 0; k < 3; ++k) pick.corners[k] = Vertex(lod.fine_vertex(hit->corners[k]));
         pick.vertex = pick.corners[hit->nearest_corner];
-        pick.edge = edge_between(document, pick.corners[hit->nearest_edge],
-                                 pick.corners[(hit->nearest_edge + 1) % 3]);
+        pick.edge = document.find_edge(pick.corners[hit->nearest_edge],
+                                       pick.corners[(hit->nearest_edge + 1) % 3]);
         for (Face f : document.faces())
             if (lod.face_of(f.idx()) == hit->triangle) {
                 pick.face = f;
