@@ -236,9 +236,13 @@ void scalar_display_controls(RenderStyle& style) {
     for (int i = 0; i < 4; ++i)
         if (style.scalar_display == displays[i]) current = i;
     ImGui::SetNextItemWidth(8.0f * ImGui::GetFontSize());
-    if (ImGui::BeginCombo("##display", labels[current])) {
-        for (int i = 0; i < 4; ++i)
+    const bool open = ImGui::BeginCombo("##display", labels[current]);
+    note_widget("legend: display");
+    if (open) {
+        for (int i = 0; i < 4; ++i) {
             if (ImGui::Selectable(labels[i], i == current)) style.scalar_display = displays[i];
+            note_widget(std::string("legend: display ") + labels[i]);
+        }
         ImGui::EndCombo();
     }
     if (ImGui::IsItemHovered())
@@ -253,9 +257,11 @@ void scalar_display_controls(RenderStyle& style) {
             if (ImGui::SliderInt("##lines", &lines, kMinScalarSteps - 1, kMaxScalarSteps - 1,
                                  "%d lines", ImGuiSliderFlags_AlwaysClamp))
                 style.scalar_steps = lines + 1;
+            note_widget("legend: lines");
         } else {
             ImGui::SliderInt("##steps", &style.scalar_steps, kMinScalarSteps, kMaxScalarSteps,
                              "%d bands", ImGuiSliderFlags_AlwaysClamp);
+            note_widget("legend: bands");
         }
     }
 }

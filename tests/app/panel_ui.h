@@ -102,13 +102,15 @@ inline void require_disjoint(const std::vector<std::pair<std::string, Box>>& rec
 }
 
 /// The legend window as the viewer draws it, for `colors`.
-inline void draw_legend(const VertexColors& colors, ColoringOptions& options) {
+inline void draw_legend(const VertexColors& colors, ColoringOptions& options,
+                        RenderStyle* style_out = nullptr) {
+    RenderStyle local;
+    RenderStyle& style = style_out ? *style_out : local;
     LegendSlot slot;
     slot.right = 1280;
     slot.bottom = 800;
     slot.max_width = 600;
     slot.max_height = 400;
-    RenderStyle style;
     color_legend(colors, options, style, slot);
 }
 

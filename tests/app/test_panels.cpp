@@ -253,6 +253,44 @@ TEST_CASE("the Fairing panel's transfer curve marks instability, the pass band a
     CHECK(asked[0]->op.name() == "spectrum");
 }
 
+TEST_CASE("the legend's display combo chooses bands or isolines, and its count follows",
+          "[panels][legend]") {
+    Ui ui;
+    VertexColors colors;
+    colors.has_legend = true;
+    colors.label = "mean curvature";
+    colors.range = {-1.0, 1.0};
+    colors.kind = ColorMapKind::Diverging;
+    colors.values = {-1.0, 0.0, 1.0};
+    ColoringOptions options;
+    RenderStyle style;
+    const auto draw = [&] { draw_legend(colors, options, &style); };
+    ui.frame(draw);
+    ui.frame(draw);
+    REQUIRE(ui.has("legend: display"));
+    CHECK_FALSE(ui.has("legend: bands"));  // smooth: no count
+    const auto press = [&](const std::string& id) {
+        const Box b = ui.rect(id);
+        ui.click(draw, 0.5f * (b.x0 + b.x1), 0.5f * (b.y0 + b.y1));
+    };
+    press("legend: display");
+    ui.frame(draw);
+    press("legend: display isolines");
+    CHECK(style.scalar_display == ScalarDisplay::Isolines);
+    ui.frame(draw);
+    CHECK(ui.has("legend: lines"));
+    press("legend: display");
+    ui.frame(draw);
+    press("legend: display bands");
+    CHECK(style.scalar_display == ScalarDisplay::Bands);
+    ui.frame(draw);
+    CHECK(ui.has("legend: bands"));
+    // A categorical colouring has no display choice.
+    colors.kind = ColorMapKind::Categorical;
+    ui.frame(draw);
+    CHECK_FALSE(ui.has("legend: display"));
+}
+
 // ---- legends and plots (issue 16) ------------------------------------------------------------
 
 TEST_CASE("legend labels never overlap, both ends always show, the centre where it fits",
