@@ -48,6 +48,18 @@ options:
   --pick X,Y         pick the model at window pixel X,Y once it is shown (repeatable: the
                      second pick measures from the first); prints "pick: vertex V edge E
                      face F position X Y Z ms T" and opens the Inspector
+  --select SPEC      set the selection once the model is shown, as one history entry:
+                     sphere:X,Y,Z,R[,FEATHER], geodesic:V,R[,FEATHER], component:V or
+                     file:PATH (as trilab-cli --region); repeatable, applied in order
+  --brush "X0,Y0:X1,Y1[:R]"  drag the selection brush (adding; radius R pixels, default
+                     30) from window pixel X0,Y0 to X1,Y1 once the model is shown, and
+                     print "brush: samples=N median_ms=X max_ms=Y"
+  --figure NAME      load a reference figure's mesh kind and settings (e.g. 1.12b; the
+                     list is in Help > Reference figures and docs/viewer.md)
+  --orbit N          once the model is shown and no job runs, turn the camera once around
+                     the model in N frames as if dragged, rest, then print "orbit:
+                     frames=N median_ms=X max_ms=Y rest_ms=Z"
+  --print-timing     after the last frame print "timing: first_frame_ms=X exact_frame_ms=Y"
   --memory-budget MB the history's memory budget (default: a quarter of the RAM)
   --decompose K[:LO:HI]  decompose the model into K frequencies (the Frequency panel's
                      settings) and apply the band LO..HI, for scripts and tests
@@ -137,6 +149,20 @@ std::string parse_args(int argc, char** argv, trilab::viewer::ViewerOptions& opt
         } else if (arg == "--pick") {
             if (!value(v) || v.empty()) return "--pick needs window pixels X,Y, e.g. 640,400";
             options.picks.push_back(v);
+        } else if (arg == "--select") {
+            if (!value(v) || v.empty()) return "--select needs a region, e.g. sphere:0,0,0,0.5";
+            options.selections.push_back(v);
+        } else if (arg == "--brush") {
+            if (!value(options.brush) || options.brush.empty())
+                return "--brush needs \"X0,Y0:X1,Y1[:R]\", e.g. \"600,400:700,420:30\"";
+        } else if (arg == "--figure") {
+            if (!value(options.figure) || options.figure.empty())
+                return "--figure needs a reference figure, e.g. 1.12b";
+        } else if (arg == "--orbit") {
+            if (!value(v) || !parse_count(v, options.orbit_frames))
+                return "--orbit needs a positive number of frames";
+        } else if (arg == "--print-timing") {
+            options.print_timing = true;
         } else if (arg == "--op") {
             if (!value(v) || v.empty()) return "--op needs an operation, e.g. \"noise --amount 2\"";
             options.operations.push_back(v);

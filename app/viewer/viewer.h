@@ -61,6 +61,12 @@ struct ViewerOptions {
     std::vector<std::string> picks;
     double sweep_from = 0, sweep_to = 0;
     int sweep_count = 0;
+    /// --select SPEC (repeatable): selections set once the model is shown (issue 26).
+    std::vector<std::string> selections;
+    std::string brush;          ///< --brush "X0,Y0:X1,Y1[:R]": a scripted brush drag
+    std::string figure;         ///< --figure NAME: a reference figure's mesh and settings
+    int orbit_frames = 0;       ///< --orbit N: one scripted turn around the model in N frames
+    bool print_timing = false;  ///< --print-timing: first and first exact frame times
 };
 
 /// How the document is looked at.
