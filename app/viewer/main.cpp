@@ -94,6 +94,23 @@ bool parse_count(const std::string& text, int& value) {
     return true;
 }
 
+/// The options that need or exclude each other; returns an error message, or "".
+std::string check_combinations(const trilab::viewer::ViewerOptions& options) {
+    if (!options.screenshot.empty() && options.frames == 0) return "--screenshot needs --frames N";
+    if (options.print_layout && options.frames == 0) return "--print-layout needs --frames N";
+    if (options.morph_t >= 0 && options.frames == 0) return "--morph-t needs --frames N";
+    if (!options.save_session.empty() && options.frames == 0)
+        return "--save-session needs --frames N";
+    if (options.restore && options.no_recovery)
+        return "--restore and --no-recovery exclude each other";
+    if (options.restore && !options.mesh_path.empty())
+        return "--restore restores a crash journal: give no MESH with it";
+    if (options.sweep_op.empty() != options.sweep_param.empty() ||
+        options.sweep_op.empty() != (options.sweep_count == 0))
+        return "--sweep, --param and --range go together";
+    return "";
+}
+
 /// Fills `options`; returns an error message, or "" on success.
 std::string parse_args(int argc, char** argv, trilab::viewer::ViewerOptions& options, bool& help) {
     for (int i = 1; i < argc; ++i) {
@@ -202,19 +219,7 @@ std::string parse_args(int argc, char** argv, trilab::viewer::ViewerOptions& opt
             return "more than one mesh file given ('" + arg + "')";
         }
     }
-    if (!options.screenshot.empty() && options.frames == 0) return "--screenshot needs --frames N";
-    if (options.print_layout && options.frames == 0) return "--print-layout needs --frames N";
-    if (options.morph_t >= 0 && options.frames == 0) return "--morph-t needs --frames N";
-    if (!options.save_session.empty() && options.frames == 0)
-        return "--save-session needs --frames N";
-    if (options.restore && options.no_recovery)
-        return "--restore and --no-recovery exclude each other";
-    if (options.restore && !options.mesh_path.empty())
-        return "--restore restores a crash journal: give no MESH with it";
-    if (options.sweep_op.empty() != options.sweep_param.empty() ||
-        options.sweep_op.empty() != (options.sweep_count == 0))
-        return "--sweep, --param and --range go together";
-    return "";
+    return check_combinations(options);
 }
 
 }  // namespace
