@@ -18,6 +18,7 @@
 #include <string>
 #include <utility>
 
+#include "core/algorithms/coincident.h"
 #include "core/algorithms/pillows.h"
 #include "core/errors.h"
 #include "core/geometry.h"
@@ -28,6 +29,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr std::size_t kMaxFaces = 50'000'000;  // as subdivide()
+// A closure edge is flipped only between faces this close to coplanar (before and after), so
+// that the flips move the surface by at most about sin(7.5 deg) / 4 of an edge's length.
+constexpr double kMaxClosureFlipDihedral = 15.0;
 
 const char* const kLevelName = "v:subdivision_level";
 const char* const kStencilName = "v:subdivision_stencil";
@@ -116,9 +120,94 @@ void check_face_limit(std::size_t faces) {
                               " faces (at most 50 million): use fewer iterations");
 }
 
+/// The smallest corner angle of triangle p0 p1 p2 in degrees (atan2 of each corner: exact near
+/// 0 and 180).
+double corner_min_angle(const Point& p0, const Point& p1, const Point& p2) {
+    const Point* p[3] = {&p0, &p1, &p2};
+    double smallest = 180.0;
+    for (int k = 0; k < 3; ++k) {
+        const Vector3 a = *p[(k + 1) % 3] - *p[k], b = *p[(k + 2) % 3] - *p[k];
+        smallest = std::min(smallest, std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / kPi);
+    }
+    return smallest;
+}
+
+double face_min_angle(const HalfedgeMesh& m, Face f) {
+    const auto v = m.face_vertices(f);
+    return corner_min_angle(m.position(v[0]), m.position(v[1]), m.position(v[2]));
+}
+
+/// The angle between two vectors in degrees (180 when one is zero: never "close").
+double angle_between(const Vector3& a, const Vector3& b) {
+    const double n = a.norm() * b.norm();
+    return n > 0 ? std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / kPi : 180.0;
+}
+
+/// Whether flipping interior edge e raises the smaller of its two faces' minimum angles, keeps
+/// the surface where it was (the two faces and the two flipped ones each within
+/// kMaxClosureFlipDihedral degrees of each other) and keeps a valid mesh.
+bool flip_improves(const HalfedgeMesh& m, Edge e) {
+    if (!m.is_flip_ok(e)) return false;
+    const Halfedge h = HalfedgeMesh::halfedge(e, 0), t = HalfedgeMesh::twin(h);
+    const Point& u = m.position(m.to_vertex(t));
+    const Point& v = m.position(m.to_vertex(h));
+    const Point& c = m.position(m.to_vertex(m.next(h)));
+    const Point& d = m.position(m.to_vertex(m.next(t)));
+    const Vector3 n1 = (v - u).cross(c - u), n2 = (u - v).cross(d - v);
+    const Vector3 n3 = (d - u).cross(c - u), n4 = (c - v).cross(d - v);
+    if (angle_between(n1, n2) > kMaxClosureFlipDihedral ||
+        angle_between(n3, n4) > kMaxClosureFlipDihedral ||
+        angle_between(n1 + n2, n3) > kMaxClosureFlipDihedral ||
+        angle_between(n1 + n2, n4) > kMaxClosureFlipDihedral)
+        return false;
+    const double before = std::min(corner_min_angle(u, v, c), corner_min_angle(v, u, d));
+    const double after = std::min(corner_min_angle(u, d, c), corner_min_angle(v, c, d));
+    return after > before + 1e-9;
+}
+
+/// Lawson's max-min-angle flips restricted to the closure: an edge is flipped when both of its
+/// faces are closure faces (`closure`, per face index; a flip keeps both faces' indices, so the
+/// flags stay right) and flip_improves(). Each flip raises the smaller minimum angle of the
+/// pair, so the closure's minimum angle never goes down, and the sorted list of angles rises
+/// with each flip, so it ends. Returns the number of flips.
+std::size_t improve_closure(HalfedgeMesh& m, const std::vector<std::uint8_t>& closure) {
+    const auto candidate = [&](Edge e) {
+        const Face f0 = m.face(HalfedgeMesh::halfedge(e, 0));
+        const Face f1 = m.face(HalfedgeMesh::halfedge(e, 1));
+        return f0.is_valid() && f1.is_valid() && closure[f0.idx()] && closure[f1.idx()];
+    };
+    std::vector<Edge> queue;
+    for (Edge e : m.edges())
+        if (candidate(e)) queue.push_back(e);
+    std::size_t flips = 0;
+    const std::size_t cap = 10 * queue.size() + 10;
+    while (!queue.empty() && flips < cap) {
+        const Edge e = queue.back();
+        queue.pop_back();
+        if (!candidate(e) || !flip_improves(m, e)) continue;
+        m.flip(e);
+        ++flips;
+        const Halfedge h = HalfedgeMesh::halfedge(e, 0), t = HalfedgeMesh::twin(h);
+        for (Halfedge g : {m.next(h), m.prev(h), m.next(t), m.prev(t)}) {
+            const Edge ge = HalfedgeMesh::edge(g);
+            if (candidate(ge)) queue.push_back(ge);
+        }
+    }
+    return flips;
+}
+
+/// The smallest minimum angle over the flagged faces (180 when none is).
+double min_angle_of(const HalfedgeMesh& m, const std::vector<std::uint8_t>& flagged) {
+    double smallest = 180.0;
+    for (std::size_t f = 0; f < flagged.size(); ++f)
+        if (flagged[f]) smallest = std::min(smallest, face_min_angle(m, Face(Index(f))));
+    return smallest;
+}
+
 /// One red-green step of a 1-to-4 scheme on `m` (compact) with weights `w`.
 RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, SubdivisionScheme scheme,
-                              int level, bool morph, Progress& progress) {
+                              int level, bool morph, bool local_closure, double target_angle,
+                              Progress& progress) {
     const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
                 nf = Index(m.faces_size());
     const std::vector<std::uint8_t> selected = region_faces(m, w);
@@ -131,20 +220,67 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
         for (Halfedge h : m.halfedges_of(f)) c += split[HalfedgeMesh::edge(h).idx()];
         return c;
     };
-    // Closure: a face with two split edges gets its third (red), until nothing changes.
+    const Point* x = m.positions().data();
+    // The scheme's rules only where they can be used: old vertices that move and the edges
+    // around them (the whole mesh's pass, across seams, where the mesh has coincident vertices).
+    std::vector<std::uint8_t> vertex_needed(nv, 0), edge_needed(ne, 0);
+    for (Index v = 0; v < nv; ++v) vertex_needed[v] = w[v] > 0.0f ? 1 : 0;
+    for (Index e = 0; e < ne; ++e)
+        edge_needed[e] =
+            vertex_needed[m.vertex(Edge(e), 0).idx()] || vertex_needed[m.vertex(Edge(e), 1).idx()];
+    const UniformStep1to4 uniform =
+        find_coincident_vertices(m).empty()
+            ? uniform_step_1to4_at(m, scheme, vertex_needed, edge_needed, progress)
+            : uniform_step_1to4(m, scheme, progress);
+    progress.check_cancelled();
+    // Where each vertex of the new level will be (the same expressions as below).
+    const auto old_position = [&](Index v) {
+        return w[v] > 0.0f ? blend_by_weight(x[v], uniform.positions[v], w[v]) : x[v];
+    };
+    const auto edge_position = [&](Index e) {
+        const Index a = m.vertex(Edge(e), 1).idx(), b = m.vertex(Edge(e), 0).idx();
+        return blend_by_weight(0.5 * (x[a] + x[b]), uniform.positions[nv + e],
+                               std::max(w[a], w[b]));
+    };
+    // Whether the bisection of face f (one split edge) keeps every angle >= target_angle.
+    const auto green_ok = [&](Face f) {
+        for (Halfedge h : m.halfedges_of(f)) {
+            const Index e = HalfedgeMesh::edge(h).idx();
+            if (!split[e]) continue;
+            const Point a = old_position(m.from_vertex(h).idx());
+            const Point b = old_position(m.to_vertex(h).idx());
+            const Point c = old_position(m.to_vertex(m.next(h)).idx());
+            const Point mid = edge_position(e);
+            return std::min(corner_min_angle(a, mid, c), corner_min_angle(mid, b, c)) >=
+                   target_angle;
+        }
+        return true;
+    };
+    // Closure: a face with two split edges gets its third (red), and (unless local_closure) a
+    // face outside the selection with one split edge whose bisection would be flatter than
+    // target_angle gets its other two (red), until nothing changes.
     std::vector<Face> queue;
-    for (Index f = 0; f < nf; ++f)
-        if (n_split(Face(f)) == 2) queue.push_back(Face(f));
+    for (Index f = 0; f < nf; ++f) {
+        const int c = n_split(Face(f));
+        if (c == 2 || (c == 1 && !local_closure)) queue.push_back(Face(f));
+    }
+    std::size_t grown = 0;
     while (!queue.empty()) {
         const Face f = queue.back();
         queue.pop_back();
-        if (n_split(f) != 2) continue;
+        const int c = n_split(f);
+        if (c == 1) {
+            if (local_closure || selected[f.idx()] || green_ok(f)) continue;
+            ++grown;
+        } else if (c != 2) {
+            continue;
+        }
         for (Halfedge h : m.halfedges_of(f)) {
             const Index e = HalfedgeMesh::edge(h).idx();
             if (split[e]) continue;
             split[e] = 1;
             const Face g = m.face(HalfedgeMesh::twin(h));
-            if (g.is_valid() && n_split(g) == 2) queue.push_back(g);
+            if (g.is_valid()) queue.push_back(g);
         }
     }
     RegionStep step;
@@ -160,11 +296,9 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
     check_no_refined_pillow(m, [&](Face f) { return n_split(f) > 0; });
     progress.check_cancelled();
 
-    const UniformStep1to4 uniform = uniform_step_1to4(m, scheme, progress);
-    progress.check_cancelled();
+    step.counts.grown_faces = grown;
     HalfedgeMesh& out = step.level.mesh;
     out = bare_copy(m);
-    const Point* x = m.positions().data();
     // The coarse face each face of `out` lies in, and which cuts lie in a red face.
     std::vector<Index> origin(nf);
     for (Index f = 0; f < nf; ++f) origin[f] = f;
@@ -205,51 +339,96 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
     Point* p = out.positions().data();
     for (Index v = 0; v < nv; ++v)
         if (w[v] > 0.0f) p[v] = blend_by_weight(x[v], uniform.positions[v], w[v]);
+    // The closure: the faces cut from refined faces outside the selection (green halves, the
+    // children of faces that turned red), improved by max-min-angle flips among themselves.
+    std::vector<std::uint8_t> touched(nf, 0), closure(out.faces_size(), 0);
+    for (Index f = 0; f < nf; ++f) touched[f] = !selected[f] && n_split(Face(f)) > 0;
+    for (std::size_t f = 0; f < closure.size(); ++f)
+        closure[f] = origin[f] != kInvalidIndex && touched[origin[f]];
+    step.counts.closure_flips = improve_closure(out, closure);
+    step.counts.min_angle_touched = min_angle_of(m, touched);
+    step.counts.min_angle_closure = min_angle_of(out, closure);
     finish(m, level, morph, std::move(nvx), step);
     return step;
 }
 
 /// One adaptive Sqrt3 step on `m` (compact) with weights `w`.
 RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int level, bool morph,
-                               Progress& progress) {
+                               bool local_closure, double target_angle, Progress& progress) {
     const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
                 nf = Index(m.faces_size());
     const std::vector<std::uint8_t> selected = region_faces(m, w);
     RegionStep step;
     for (Index f = 0; f < nf; ++f) step.counts.selected_faces += selected[f];
-    step.counts.red_faces = step.counts.selected_faces;
-    check_face_limit(std::size_t(nf) + 2 * step.counts.selected_faces);
-    check_no_refined_pillow(m, [&](Face f) { return selected[f.idx()] != 0; });
     const Point* x = m.positions().data();
     // The relaxed positions of the interior vertices that move, from the coarse ring: the
-    // neighbour sums gathered edge by edge and the rule written as subdivide() writes it, so
-    // that a vertex of weight 1 lands where the uniform step puts it, bit for bit.
+    // neighbours summed in the order of their edges' indices and the rule written as
+    // subdivide() writes it, so that a vertex of weight 1 lands where the uniform step puts
+    // it, bit for bit. Only the vertices that move are visited.
     std::vector<Point> relaxed(nv, Point::Zero());
-    std::vector<unsigned> valence(nv, 0);
-    for (Index e = 0; e < ne; ++e) {
-        const Index a = m.vertex(Edge(e), 1).idx(), b = m.vertex(Edge(e), 0).idx();
-        relaxed[a] += x[b];
-        relaxed[b] += x[a];
-        ++valence[a];
-        ++valence[b];
-    }
+    std::vector<std::pair<Index, Index>> ring;
     for (Index v = 0; v < nv; ++v) {
         if (!(w[v] > 0.0f) || m.is_isolated(Vertex(v)) || m.is_boundary(Vertex(v))) continue;
-        const unsigned k = valence[v];
+        ring.clear();
+        for (Halfedge h : m.halfedges_around(Vertex(v)))
+            ring.emplace_back(HalfedgeMesh::edge(h).idx(), m.to_vertex(h).idx());
+        std::sort(ring.begin(), ring.end());
+        Point sum = Point::Zero();
+        for (const auto& edge_and_neighbour : ring) sum += x[edge_and_neighbour.second];
+        const unsigned k = unsigned(ring.size());
         const double alpha = (4.0 - 2.0 * std::cos(2 * kPi / k)) / 9.0;
-        relaxed[v] = (1.0 - alpha) * x[v] + (alpha / k) * relaxed[v];
+        relaxed[v] = (1.0 - alpha) * x[v] + (alpha / k) * sum;
     }
+    const auto moves = [&](Index v) {
+        return w[v] > 0.0f && !m.is_isolated(Vertex(v)) && !m.is_boundary(Vertex(v));
+    };
+    const auto old_position = [&](Index v) {
+        return moves(v) ? blend_by_weight(x[v], relaxed[v], w[v]) : x[v];
+    };
+    // The faces split 1-to-3: the selected ones and (unless local_closure) those grown into:
+    // an old edge between a split and an unsplit face keeps the split side's triangle (a, b,
+    // centroid); when that triangle would be flatter than target_angle, the unsplit face is
+    // split too, until nothing changes.
+    std::vector<std::uint8_t> split_face = selected;
+    const auto centroid_of = [&](Face f) {
+        const Halfedge h = m.halfedge(f), hn = m.next(h);
+        return Point((x[m.to_vertex(h).idx()] + x[m.to_vertex(hn).idx()] +
+                      x[m.to_vertex(m.next(hn)).idx()]) /
+                     3.0);
+    };
+    if (!local_closure) {
+        std::vector<Face> queue;
+        for (Index f = 0; f < nf; ++f)
+            if (split_face[f]) queue.push_back(Face(f));
+        while (!queue.empty()) {
+            const Face f = queue.back();
+            queue.pop_back();
+            const Point c = centroid_of(f);
+            for (Halfedge h : m.halfedges_of(f)) {
+                const Face g = m.face(HalfedgeMesh::twin(h));
+                if (!g.is_valid() || split_face[g.idx()]) continue;
+                const Point a = old_position(m.from_vertex(h).idx());
+                const Point b = old_position(m.to_vertex(h).idx());
+                if (corner_min_angle(a, b, c) >= target_angle) continue;
+                split_face[g.idx()] = 1;
+                ++step.counts.grown_faces;
+                queue.push_back(g);
+            }
+        }
+    }
+    for (Index f = 0; f < nf; ++f) step.counts.red_faces += split_face[f];
+    check_face_limit(std::size_t(nf) + 2 * step.counts.red_faces);
+    check_no_refined_pillow(m, [&](Face f) { return split_face[f.idx()] != 0; });
     progress.check_cancelled();
     HalfedgeMesh& out = step.level.mesh;
     out = bare_copy(m);
     NewVertices nvx;
     for (Index v = 0; v < nv; ++v) {
-        const bool moves = w[v] > 0.0f && !m.is_isolated(Vertex(v)) && !m.is_boundary(Vertex(v));
-        nvx.add(moves ? SubdivisionStencil::EvenRelaxed : SubdivisionStencil::EvenKept, x[v], w[v],
-                v);
+        nvx.add(moves(v) ? SubdivisionStencil::EvenRelaxed : SubdivisionStencil::EvenKept, x[v],
+                w[v], v);
     }
     for (Index f = 0; f < nf; ++f) {
-        if (!selected[f]) continue;
+        if (!split_face[f]) continue;
         const Halfedge h = m.halfedge(Face(f)), hn = m.next(h);
         const Index a = m.to_vertex(h).idx(), b = m.to_vertex(hn).idx(),
                     c = m.to_vertex(m.next(hn)).idx();
@@ -260,7 +439,7 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int le
     for (Index e = 0; e < ne; ++e) {
         const Face f0 = m.face(HalfedgeMesh::halfedge(Edge(e), 0));
         const Face f1 = m.face(HalfedgeMesh::halfedge(Edge(e), 1));
-        if (!f0.is_valid() || !f1.is_valid() || !selected[f0.idx()] || !selected[f1.idx()])
+        if (!f0.is_valid() || !f1.is_valid() || !split_face[f0.idx()] || !split_face[f1.idx()])
             continue;
         out.flip(Edge(e));
         ++step.counts.flipped_edges;
@@ -269,6 +448,25 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int le
     for (Index v = 0; v < nv; ++v)
         if (nvx.stencil[v] == int(SubdivisionStencil::EvenRelaxed))
             p[v] = blend_by_weight(x[v], relaxed[v], w[v]);
+    // The closure: each old edge between a split and an unsplit face keeps the split side's
+    // triangle (a, b, centroid); it is flipped (towards the pattern of the paper's next
+    // generation) when that raises the pair's minimum angle.
+    std::vector<std::uint8_t> touched(nf, 0), closure(out.faces_size(), 0);
+    for (Index e = 0; e < ne; ++e) {
+        const Face f0 = m.face(HalfedgeMesh::halfedge(Edge(e), 0));
+        const Face f1 = m.face(HalfedgeMesh::halfedge(Edge(e), 1));
+        if (!f0.is_valid() || !f1.is_valid() || split_face[f0.idx()] == split_face[f1.idx()])
+            continue;
+        touched[f0.idx()] = touched[f1.idx()] = 1;
+        if (flip_improves(out, Edge(e))) {
+            out.flip(Edge(e));
+            ++step.counts.closure_flips;
+        }
+        closure[out.face(HalfedgeMesh::halfedge(Edge(e), 0)).idx()] = 1;
+        closure[out.face(HalfedgeMesh::halfedge(Edge(e), 1)).idx()] = 1;
+    }
+    step.counts.min_angle_touched = min_angle_of(m, touched);
+    step.counts.min_angle_closure = min_angle_of(out, closure);
     finish(m, level, morph, std::move(nvx), step);
     return step;
 }
@@ -337,8 +535,10 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
             progress.report(double(it - 1) / options.iterations, "subdividing the region");
             const bool morph = options.morph && (options.keep_levels || it == options.iterations);
             RegionStep step =
-                sqrt3 ? refine_region_sqrt3(*current, weights, it, morph, progress)
-                      : refine_region_1to4(*current, weights, options.scheme, it, morph, progress);
+                sqrt3 ? refine_region_sqrt3(*current, weights, it, morph, options.local_closure,
+                                            report.min_angle_in, progress)
+                      : refine_region_1to4(*current, weights, options.scheme, it, morph,
+                                           options.local_closure, report.min_angle_in, progress);
             report.closure.push_back(step.counts);
             result.level_counts.push_back(
                 {step.level.mesh.n_vertices(), step.level.mesh.n_faces()});

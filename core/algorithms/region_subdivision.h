@@ -54,6 +54,13 @@ struct RegionClosureCounts {
     std::size_t red_faces = 0;       ///< split 1-to-4 (1-to-4 schemes) or 1-to-3 (Sqrt3)
     std::size_t green_faces = 0;     ///< split 1-to-2 (1-to-4 schemes only)
     std::size_t flipped_edges = 0;   ///< Sqrt3: old edges flipped (both faces split)
+    std::size_t closure_flips = 0;   ///< max-min-angle flips in the closure
+    std::size_t grown_faces = 0;     ///< faces split so that the closure keeps the input's angles
+    /// Degrees: the smallest angle of the coarse faces the closure replaced (1-to-4: refined
+    /// faces outside the selection; Sqrt3: the faces on both sides of the region's edge), and
+    /// of the closure's own triangles (180 when there is no closure).
+    double min_angle_touched = 180;
+    double min_angle_closure = 180;
 };
 
 struct RegionSubdivisionReport {
