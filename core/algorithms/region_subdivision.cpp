@@ -13,6 +13,7 @@
 #include "core/algorithms/region_subdivision.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -53,7 +54,79 @@ struct RegionStep {
     SubdivisionLevel level;
     Selection selection;
     RegionClosureCounts counts;
+    std::vector<double> flatness;  ///< face_flatness() of every face of the level
 };
+
+/// The cosine of the smallest corner angle of triangle p0 p1 p2 (the corner opposite the
+/// shortest edge; 1 for a degenerate triangle): larger is flatter. No sort, no trigonometry.
+inline double triangle_flatness(const Point& p0, const Point& p1, const Point& p2) {
+    const double l0 = (p1 - p2).squaredNorm(), l1 = (p2 - p0).squaredNorm(),
+                 l2 = (p0 - p1).squaredNorm();
+    double s, a, b;  // the shortest edge, the two others (squared)
+    if (l0 <= l1 && l0 <= l2) {
+        s = l0, a = l1, b = l2;
+    } else if (l1 <= l2) {
+        s = l1, a = l0, b = l2;
+    } else {
+        s = l2, a = l0, b = l1;
+    }
+    const double denominator = 2.0 * std::sqrt(a * b);
+    return denominator > 0 ? (a + b - s) / denominator : 1.0;
+}
+
+/// The three corners of each face, read from the connectivity arrays directly (the loops over
+/// every face of a level go through here).
+struct FaceCorners {
+    const Vertex* to;
+    const Halfedge* next;
+    const Halfedge* fh;
+    explicit FaceCorners(const HalfedgeMesh& m)
+        : to(m.halfedge_to_array().data()),
+          next(m.halfedge_next_array().data()),
+          fh(m.face_halfedge_array().data()) {}
+    std::array<Index, 3> operator()(std::size_t f) const {
+        const Halfedge h0 = fh[f], h1 = next[h0.idx()], h2 = next[h1.idx()];
+        return {to[h0.idx()].idx(), to[h1.idx()].idx(), to[h2.idx()].idx()};
+    }
+};
+
+/// face_flatness of every face of `m` (compact).
+std::vector<double> flatness_of(const HalfedgeMesh& m) {
+    const FaceCorners corners(m);
+    const Point* x = m.positions().data();
+    std::vector<double> flat(m.faces_size());
+    for (std::size_t f = 0; f < flat.size(); ++f) {
+        const auto v = corners(f);
+        flat[f] = triangle_flatness(x[v[0]], x[v[1]], x[v[2]]);
+    }
+    return flat;
+}
+
+/// The new level's flatness: a face of `out` that is a coarse face left as it was (`changed`
+/// false) keeps the coarse value, every other one is computed.
+std::vector<double> level_flatness(const HalfedgeMesh& out, const std::vector<double>& coarse,
+                                   const std::vector<std::uint8_t>& changed) {
+    const FaceCorners corners(out);
+    const Point* x = out.positions().data();
+    std::vector<double> flat(out.faces_size());
+    for (std::size_t f = 0; f < flat.size(); ++f) {
+        if (f < coarse.size() && !changed[f]) {
+            flat[f] = coarse[f];
+        } else {
+            const auto v = corners(f);
+            flat[f] = triangle_flatness(x[v[0]], x[v[1]], x[v[2]]);
+        }
+    }
+    return flat;
+}
+
+/// The smallest angle in degrees over the faces of `m` whose flatness is `flat` (180 without
+/// faces): the flattest face's angle, computed exactly.
+double min_angle_by_flatness(const HalfedgeMesh& m, const std::vector<double>& flat) {
+    if (flat.empty()) return 180.0;
+    const std::size_t f = std::size_t(std::max_element(flat.begin(), flat.end()) - flat.begin());
+    return min_face_angle(m, Face(Index(f)));
+}
 
 /// Per-vertex bookkeeping of a new level, filled by the refinement and written as the level's
 /// properties by finish().
@@ -207,7 +280,7 @@ double min_angle_of(const HalfedgeMesh& m, const std::vector<std::uint8_t>& flag
 /// One red-green step of a 1-to-4 scheme on `m` (compact) with weights `w`.
 RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, SubdivisionScheme scheme,
                               int level, bool morph, bool local_closure, double target_angle,
-                              Progress& progress) {
+                              const std::vector<double>& coarse_flat, Progress& progress) {
     const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
                 nf = Index(m.faces_size());
     const std::vector<std::uint8_t> selected = region_faces(m, w);
@@ -215,10 +288,12 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
     for (Index f = 0; f < nf; ++f)
         if (selected[f])
             for (Halfedge h : m.halfedges_of(Face(f))) split[HalfedgeMesh::edge(h).idx()] = 1;
+    const Halfedge* next_of = m.halfedge_next_array().data();
+    const Halfedge* face_halfedge = m.face_halfedge_array().data();
     const auto n_split = [&](Face f) {
-        int c = 0;
-        for (Halfedge h : m.halfedges_of(f)) c += split[HalfedgeMesh::edge(h).idx()];
-        return c;
+        const Index h0 = face_halfedge[f.idx()].idx(), h1 = next_of[h0].idx(),
+                    h2 = next_of[h1].idx();
+        return int(split[h0 >> 1]) + int(split[h1 >> 1]) + int(split[h2 >> 1]);
     };
     const Point* x = m.positions().data();
     // The scheme's rules only where they can be used: old vertices that move and the edges
@@ -284,21 +359,27 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
         }
     }
     RegionStep step;
-    std::vector<std::uint8_t> red(nf, 0);
+    std::vector<std::uint8_t> red(nf, 0), splits(nf, 0);
+    std::size_t split_edges = 0;
+    for (Index e = 0; e < ne; ++e) split_edges += split[e];
     for (Index f = 0; f < nf; ++f) {
         const int c = n_split(Face(f));
+        splits[f] = std::uint8_t(c);
         step.counts.selected_faces += selected[f];
         red[f] = c == 3 ? 1 : 0;
         step.counts.red_faces += c == 3 ? 1 : 0;
         step.counts.green_faces += c == 1 ? 1 : 0;
     }
     check_face_limit(std::size_t(nf) + 3 * step.counts.red_faces + step.counts.green_faces);
-    check_no_refined_pillow(m, [&](Face f) { return n_split(f) > 0; });
+    check_no_refined_pillow(m, [&](Face f) { return splits[f.idx()] > 0; });
     progress.check_cancelled();
 
     step.counts.grown_faces = grown;
     HalfedgeMesh& out = step.level.mesh;
     out = bare_copy(m);
+    // Each split edge adds a vertex, its second half and a cut and a face on each side.
+    out.reserve(std::size_t(nv) + split_edges, std::size_t(ne) + 3 * split_edges,
+                std::size_t(nf) + 2 * split_edges);
     // The coarse face each face of `out` lies in, and which cuts lie in a red face.
     std::vector<Index> origin(nf);
     for (Index f = 0; f < nf; ++f) origin[f] = f;
@@ -342,19 +423,28 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
     // The closure: the faces cut from refined faces outside the selection (green halves, the
     // children of faces that turned red), improved by max-min-angle flips among themselves.
     std::vector<std::uint8_t> touched(nf, 0), closure(out.faces_size(), 0);
-    for (Index f = 0; f < nf; ++f) touched[f] = !selected[f] && n_split(Face(f)) > 0;
+    for (Index f = 0; f < nf; ++f) touched[f] = !selected[f] && splits[f] > 0;
     for (std::size_t f = 0; f < closure.size(); ++f)
         closure[f] = origin[f] != kInvalidIndex && touched[origin[f]];
     step.counts.closure_flips = improve_closure(out, closure);
     step.counts.min_angle_touched = min_angle_of(m, touched);
     step.counts.min_angle_closure = min_angle_of(out, closure);
+    // Faces of the coarse level left as they were: not refined, no vertex moved.
+    std::vector<std::uint8_t> changed(nf, 0);
+    const FaceCorners corners(m);
+    for (Index f = 0; f < nf; ++f) {
+        const auto v = corners(f);
+        changed[f] = splits[f] > 0 || w[v[0]] > 0.0f || w[v[1]] > 0.0f || w[v[2]] > 0.0f;
+    }
+    step.flatness = level_flatness(out, coarse_flat, changed);
     finish(m, level, morph, std::move(nvx), step);
     return step;
 }
 
 /// One adaptive Sqrt3 step on `m` (compact) with weights `w`.
 RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int level, bool morph,
-                               bool local_closure, double target_angle, Progress& progress) {
+                               bool local_closure, double target_angle,
+                               const std::vector<double>& coarse_flat, Progress& progress) {
     const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
                 nf = Index(m.faces_size());
     const std::vector<std::uint8_t> selected = region_faces(m, w);
@@ -422,6 +512,9 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int le
     progress.check_cancelled();
     HalfedgeMesh& out = step.level.mesh;
     out = bare_copy(m);
+    out.reserve(std::size_t(nv) + step.counts.red_faces,
+                std::size_t(ne) + 3 * step.counts.red_faces,
+                std::size_t(nf) + 2 * step.counts.red_faces);
     NewVertices nvx;
     for (Index v = 0; v < nv; ++v) {
         nvx.add(moves(v) ? SubdivisionStencil::EvenRelaxed : SubdivisionStencil::EvenKept, x[v],
@@ -467,6 +560,14 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int le
     }
     step.counts.min_angle_touched = min_angle_of(m, touched);
     step.counts.min_angle_closure = min_angle_of(out, closure);
+    // Faces of the coarse level left as they were: not split, not flipped, no vertex moved.
+    std::vector<std::uint8_t> changed(nf, 0);
+    const FaceCorners corners(m);
+    for (Index f = 0; f < nf; ++f) {
+        const auto v = corners(f);
+        changed[f] = split_face[f] || closure[f] || moves(v[0]) || moves(v[1]) || moves(v[2]);
+    }
+    step.flatness = level_flatness(out, coarse_flat, changed);
     finish(m, level, morph, std::move(nvx), step);
     return step;
 }
@@ -492,10 +593,11 @@ SubdivisionResult subdivide_everything(const HalfedgeMesh& mesh, const Subdivisi
 
 std::vector<std::uint8_t> region_faces(const HalfedgeMesh& mesh, const Selection& selection) {
     std::vector<std::uint8_t> selected(mesh.faces_size(), 0);
+    const FaceCorners corners(mesh);
     for (Face f : mesh.faces()) {
-        bool all = true;
-        for (Vertex v : mesh.face_vertices(f)) all = all && selection[v.idx()] > 0.0f;
-        selected[f.idx()] = all ? 1 : 0;
+        const auto v = corners(f.idx());
+        selected[f.idx()] =
+            selection[v[0]] > 0.0f && selection[v[1]] > 0.0f && selection[v[2]] > 0.0f;
     }
     return selected;
 }
@@ -510,10 +612,11 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
                               std::to_string(options.iterations) + ")");
     report = RegionSubdivisionReport{};
     report.region_vertices = count_selected(selection);
-    report.min_angle_in = min_triangle_angle(mesh);
     SubdivisionResult result;
     if (selects_everything(mesh, selection)) {
+        report.min_angle_in = min_triangle_angle(mesh);
         result = subdivide_everything(mesh, options, progress, report);
+        report.min_angle_out = min_triangle_angle(result.levels.back().mesh);
     } else {
         // A compact copy, its selection following the vertices, when the input has garbage.
         HalfedgeMesh collected;
@@ -528,6 +631,8 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
             current = &collected;
         }
         const bool sqrt3 = options.scheme == SubdivisionScheme::Sqrt3;
+        std::vector<double> flatness = flatness_of(*current);
+        report.min_angle_in = min_angle_by_flatness(*current, flatness);
         RegionStep latest;
         if (options.keep_levels) result.levels.reserve(std::size_t(options.iterations));
         for (int it = 1; it <= options.iterations; ++it) {
@@ -536,13 +641,15 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
             const bool morph = options.morph && (options.keep_levels || it == options.iterations);
             RegionStep step =
                 sqrt3 ? refine_region_sqrt3(*current, weights, it, morph, options.local_closure,
-                                            report.min_angle_in, progress)
+                                            report.min_angle_in, flatness, progress)
                       : refine_region_1to4(*current, weights, options.scheme, it, morph,
-                                           options.local_closure, report.min_angle_in, progress);
+                                           options.local_closure, report.min_angle_in, flatness,
+                                           progress);
             report.closure.push_back(step.counts);
             result.level_counts.push_back(
                 {step.level.mesh.n_vertices(), step.level.mesh.n_faces()});
             weights = std::move(step.selection);
+            flatness = std::move(step.flatness);
             if (options.keep_levels) {
                 result.levels.push_back(std::move(step.level));
                 current = &result.levels.back().mesh;
@@ -555,8 +662,8 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
         if (mesh.get_halfedge_property<TexCoord>("h:texcoord"))
             result.notes.push_back(
                 "corner texture coordinates (h:texcoord) are not carried by region subdivision");
+        report.min_angle_out = min_angle_by_flatness(result.levels.back().mesh, flatness);
     }
-    report.min_angle_out = min_triangle_angle(result.levels.back().mesh);
     progress.report(1.0, "subdividing the region");
     result.ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
