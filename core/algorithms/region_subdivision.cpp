@@ -359,14 +359,11 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
         }
     }
     RegionStep step;
-    std::vector<std::uint8_t> red(nf, 0), splits(nf, 0);
-    std::size_t split_edges = 0;
-    for (Index e = 0; e < ne; ++e) split_edges += split[e];
+    std::vector<std::uint8_t> splits(nf, 0);
     for (Index f = 0; f < nf; ++f) {
         const int c = n_split(Face(f));
         splits[f] = std::uint8_t(c);
         step.counts.selected_faces += selected[f];
-        red[f] = c == 3 ? 1 : 0;
         step.counts.red_faces += c == 3 ? 1 : 0;
         step.counts.green_faces += c == 1 ? 1 : 0;
     }
@@ -377,47 +374,124 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
     step.counts.grown_faces = grown;
     HalfedgeMesh& out = step.level.mesh;
     out = bare_copy(m);
-    // Each split edge adds a vertex, its second half and a cut and a face on each side.
-    out.reserve(std::size_t(nv) + split_edges, std::size_t(ne) + 3 * split_edges,
-                std::size_t(nf) + 2 * split_edges);
-    // The coarse face each face of `out` lies in, and which cuts lie in a red face.
-    std::vector<Index> origin(nf);
-    for (Index f = 0; f < nf; ++f) origin[f] = f;
-    std::vector<std::uint8_t> red_cut;
+    // The new elements, numbered in order: the vertex of split edge number k (ascending edge
+    // index) is nv + k and its second half edge ne + k; then, face by face, a red face's three
+    // inner edges and three corner faces, a green face's cut and second half.
+    std::vector<Index> split_number(ne, kInvalidIndex);
+    Index n_split_edges = 0;
+    for (Index e = 0; e < ne; ++e)
+        if (split[e]) split_number[e] = n_split_edges++;
+    std::vector<Index> first_edge(nf, kInvalidIndex), first_face(nf, kInvalidIndex);
+    Index next_edge = ne + n_split_edges, next_face = nf;
+    for (Index f = 0; f < nf; ++f) {
+        if (splits[f] == 3) {
+            first_edge[f] = next_edge, first_face[f] = next_face;
+            next_edge += 3, next_face += 3;
+        } else if (splits[f] == 1) {
+            first_edge[f] = next_edge, first_face[f] = next_face;
+            next_edge += 1, next_face += 1;
+        }
+    }
+    out.resize_elements(std::size_t(nv) + n_split_edges, next_edge, next_face);
+    Vertex* to = out.halfedge_to_array().data();
+    Halfedge* nx = out.halfedge_next_array().data();
+    Halfedge* pv = out.halfedge_prev_array().data();
+    Face* fc = out.halfedge_face_array().data();
+    Halfedge* vh = out.vertex_halfedge_array().data();
+    Halfedge* fh = out.face_halfedge_array().data();
+    const Vertex* to_in = m.halfedge_to_array().data();
+    const Halfedge* next_in = m.halfedge_next_array().data();
+    const Halfedge* prev_in = m.halfedge_prev_array().data();
+    const Face* face_in = m.halfedge_face_array().data();
+    // The halves of a split halfedge h: first(h) from its start to the new vertex, second(h)
+    // from the new vertex to its end. Halfedge 2e keeps the half at its start, 2e + 1 the half
+    // at its end; the new edge ne + k carries the other two.
+    const auto mid_of = [&](Index h) { return nv + split_number[h >> 1]; };
+    const auto first = [&](Index h) { return (h & 1u) ? 2 * (ne + split_number[h >> 1]) + 1 : h; };
+    const auto second = [&](Index h) { return (h & 1u) ? h : 2 * (ne + split_number[h >> 1]); };
+    const auto link = [&](Index a, Index b) {
+        nx[a] = Halfedge(b);
+        pv[b] = Halfedge(a);
+    };
+    const auto triangle = [&](Index f, Index a, Index b, Index c) {
+        link(a, b), link(b, c), link(c, a);
+        fc[a] = fc[b] = fc[c] = Face(f);
+        fh[f] = Halfedge(a);
+    };
+    for (Index e = 0; e < ne; ++e) {
+        if (!split[e]) continue;
+        const Index h = 2 * e, t = h + 1, mv = mid_of(h);
+        to[first(h)] = to[first(t)] = Vertex(mv);
+        to[second(h)] = to_in[h];
+        to[second(t)] = to_in[t];
+        vh[mv] = Halfedge(face_in[t].is_valid() ? second(h) : second(t));
+        if (!face_in[h].is_valid()) vh[mv] = Halfedge(second(h));
+        for (Index g : {h, t}) {
+            if (face_in[g].is_valid()) continue;  // boundary halfedge: first, then second
+            const Index before = prev_in[g].idx(), after = next_in[g].idx();
+            fc[first(g)] = fc[second(g)] = Face();
+            link(split[before >> 1] ? second(before) : before, first(g));
+            link(first(g), second(g));
+            link(second(g), split[after >> 1] ? first(after) : after);
+        }
+    }
+    for (Index v = 0; v < nv; ++v) {
+        const Halfedge g = vh[v];
+        if (g.is_valid() && split[g.idx() >> 1]) vh[v] = Halfedge(first(g.idx()));
+    }
+    // The coarse face each face of `out` lies in.
+    std::vector<Index> origin(next_face);
+    for (Index f = 0; f < nf; ++f) {
+        origin[f] = f;
+        if (splits[f] == 0) continue;
+        Index h[3];
+        h[0] = m.halfedge(Face(f)).idx();
+        h[1] = next_in[h[0]].idx();
+        h[2] = next_in[h[1]].idx();
+        const Index e0 = first_edge[f], f0 = first_face[f];
+        if (splits[f] == 3) {
+            // Corner k (at the end of h[k]): second(h[k]), first(h[k+1]), and the inner edge
+            // e0 + k between the two midpoints; the middle keeps f.
+            Index inner[3];
+            for (int k = 0; k < 3; ++k) {
+                const Index hk = h[k], hn = h[(k + 1) % 3];
+                const Index in = 2 * (e0 + Index(k));  // mid(hn) -> mid(hk), in the corner
+                to[in] = Vertex(mid_of(hk));
+                to[in + 1] = Vertex(mid_of(hn));
+                triangle(f0 + Index(k), second(hk), first(hn), in);
+                origin[f0 + Index(k)] = f;
+                inner[k] = in + 1;  // mid(hk) -> mid(hn), in the middle
+            }
+            triangle(f, inner[0], inner[1], inner[2]);
+        } else {
+            int k = 0;
+            while (!split[h[k] >> 1]) ++k;
+            const Index hs = h[k], h1 = h[(k + 1) % 3], h2 = h[(k + 2) % 3];
+            const Index cut = 2 * e0;  // mid -> the opposite corner
+            to[cut] = to_in[h1];
+            to[cut + 1] = Vertex(mid_of(hs));
+            triangle(f, first(hs), cut, h2);
+            triangle(f0, second(hs), h1, cut + 1);
+            origin[f0] = f;
+        }
+    }
     NewVertices nvx;
     for (Index v = 0; v < nv; ++v) {
         const bool moves = w[v] > 0.0f;
         nvx.add(moves ? SubdivisionStencil(uniform.stencils[v]) : SubdivisionStencil::EvenKept,
                 x[v], w[v], v);
     }
+    Point* p = out.positions().data();
     for (Index e = 0; e < ne; ++e) {
         if (!split[e]) continue;
-        const Vertex a = m.vertex(Edge(e), 1), b = m.vertex(Edge(e), 0);
-        const Point mid = 0.5 * (x[a.idx()] + x[b.idx()]);
-        const float wmax = std::max(w[a.idx()], w[b.idx()]);
-        const Vertex v = out.split(Edge(e), blend_by_weight(mid, uniform.positions[nv + e], wmax));
+        const Index a = to_in[2 * e + 1].idx(), b = to_in[2 * e].idx();
+        const Point mid = 0.5 * (x[a] + x[b]);
+        const float wmax = std::max(w[a], w[b]);
+        p[nv + split_number[e]] = blend_by_weight(mid, uniform.positions[nv + e], wmax);
         nvx.add(wmax > 0.0f ? SubdivisionStencil(uniform.stencils[nv + e])
                             : SubdivisionStencil::OddClosureMidpoint,
-                mid, std::min(w[a.idx()], w[b.idx()]), a.idx(), b.idx());
-        origin.resize(out.faces_size(), kInvalidIndex);
-        red_cut.resize(out.edges_size(), 0);
-        for (Halfedge h : out.halfedges_around(v)) {
-            const Vertex o = out.to_vertex(h);
-            if (o == a || o == b) continue;  // the two halves of e
-            const Face f1 = out.face(h), f2 = out.face(HalfedgeMesh::twin(h));
-            const Index from =
-                origin[f1.idx()] != kInvalidIndex ? origin[f1.idx()] : origin[f2.idx()];
-            origin[f1.idx()] = origin[f2.idx()] = from;
-            red_cut[HalfedgeMesh::edge(h).idx()] = red[from];
-        }
+                mid, std::min(w[a], w[b]), a, b);
     }
-    for (Index e = ne; e < Index(red_cut.size()); ++e) {
-        if (!red_cut[e]) continue;
-        const bool old0 = out.vertex(Edge(e), 0).idx() < nv;
-        const bool old1 = out.vertex(Edge(e), 1).idx() < nv;
-        if (old0 != old1) out.flip(Edge(e));
-    }
-    Point* p = out.positions().data();
     for (Index v = 0; v < nv; ++v)
         if (w[v] > 0.0f) p[v] = blend_by_weight(x[v], uniform.positions[v], w[v]);
     // The closure: the faces cut from refined faces outside the selection (green halves, the

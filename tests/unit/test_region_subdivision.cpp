@@ -478,3 +478,46 @@ TEST_CASE("uniform_step_1to4_at gives the uniform step's values bit for bit wher
                         InvalidArgument);
     }
 }
+
+TEST_CASE("subdivide_region splits boundary edges of an open mesh into a valid boundary",
+          "[subdivision][selection]") {
+    const HalfedgeMesh mesh = make_grid(8);
+    REQUIRE(!is_closed(mesh));
+    // A region at a corner of the grid: its boundary edges are split.
+    const Selection region = sphere_selection(mesh, mesh.position(Vertex(0)), 0.45);
+    REQUIRE(count_selected(region) > 3);
+    NullProgress progress;
+    for (SubdivisionScheme scheme : {SubdivisionScheme::Loop, SubdivisionScheme::Butterfly,
+                                     SubdivisionScheme::ModifiedButterfly}) {
+        for (bool local : {true, false}) {
+            INFO(scheme_name(scheme) << (local ? ", local closure" : ", grown closure"));
+            SubdivisionOptions options;
+            options.scheme = scheme;
+            options.local_closure = local;
+            options.iterations = 2;
+            RegionSubdivisionReport report;
+            const SubdivisionResult result =
+                subdivide_region(mesh, options, region, progress, report);
+            const HalfedgeMesh& first_level = result.levels.front().mesh;
+            const HalfedgeMesh& out = result.levels.back().mesh;
+            REQUIRE(validate(first_level).ok);
+            REQUIRE(validate(out).ok);
+            CHECK(euler(out) == euler(mesh));
+            const SplitsFound splits = splits_in(first_level, mesh.vertices_size());
+            std::size_t boundary_splits = 0;
+            for (const auto& e : splits.edges) {
+                const Edge coarse = mesh.find_edge(Vertex(e.first), Vertex(e.second));
+                REQUIRE(coarse.is_valid());
+                boundary_splits += mesh.is_boundary(coarse) ? 1 : 0;
+            }
+            CHECK(boundary_splits > 0);
+            std::size_t boundary_edges = 0;
+            for (Edge e : first_level.edges()) boundary_edges += first_level.is_boundary(e);
+            std::size_t coarse_boundary = 0;
+            for (Edge e : mesh.edges()) coarse_boundary += mesh.is_boundary(e);
+            CHECK(boundary_edges == coarse_boundary + boundary_splits);
+            for (Vertex v : mesh.vertices())
+                if (region[v.idx()] == 0.0f) CHECK(same_point(out.position(v), mesh.position(v)));
+        }
+    }
+}
