@@ -17,6 +17,7 @@
 #include <chrono>
 #include <cmath>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include "core/algorithms/coincident.h"
@@ -38,15 +39,30 @@ const char* const kLevelName = "v:subdivision_level";
 const char* const kStencilName = "v:subdivision_stencil";
 const char* const kParentsName = "v:subdivision_parents";
 
-/// A copy of `m`'s connectivity and positions only (`m` compact).
-HalfedgeMesh bare_copy(const HalfedgeMesh& m) {
+/// A copy of `m`'s connectivity and positions only (`m` compact), with room for `nv` vertices,
+/// `ne` edges and `nf` faces (at least m's: the elements past m's are invalid, their position
+/// zero), so that the refinement writes into arrays allocated once.
+HalfedgeMesh bare_copy(const HalfedgeMesh& m, std::size_t nv, std::size_t ne, std::size_t nf) {
+    const auto grown = [](const auto& in, std::size_t n, auto fill) {
+        std::vector<std::decay_t<decltype(in[0])>> out;
+        out.reserve(n);
+        out.assign(in.begin(), in.end());
+        out.resize(n, fill);
+        return out;
+    };
     HalfedgeMesh out;
-    out.assign_connectivity(
-        std::vector<Point>(m.positions()), std::vector<Halfedge>(m.vertex_halfedge_array()),
-        std::vector<Vertex>(m.halfedge_to_array()), std::vector<Halfedge>(m.halfedge_next_array()),
-        std::vector<Halfedge>(m.halfedge_prev_array()), std::vector<Face>(m.halfedge_face_array()),
-        std::vector<Halfedge>(m.face_halfedge_array()));
+    out.assign_connectivity(grown(m.positions(), nv, Point(Point::Zero())),
+                            grown(m.vertex_halfedge_array(), nv, Halfedge()),
+                            grown(m.halfedge_to_array(), 2 * ne, Vertex()),
+                            grown(m.halfedge_next_array(), 2 * ne, Halfedge()),
+                            grown(m.halfedge_prev_array(), 2 * ne, Halfedge()),
+                            grown(m.halfedge_face_array(), 2 * ne, Face()),
+                            grown(m.face_halfedge_array(), nf, Halfedge()));
     return out;
+}
+
+HalfedgeMesh bare_copy(const HalfedgeMesh& m) {
+    return bare_copy(m, m.vertices_size(), m.edges_size(), m.faces_size());
 }
 
 /// One refined level with its carried selection.
@@ -135,6 +151,12 @@ struct NewVertices {
     std::vector<SubdivisionParents> parents;
     std::vector<Point> start;  // morph start positions
     Selection selection;
+    void reserve(std::size_t n) {
+        stencil.reserve(n);
+        parents.reserve(n);
+        start.reserve(n);
+        selection.reserve(n);
+    }
     void add(SubdivisionStencil st, const Point& from, float weight, Index a,
              Index b = kInvalidIndex, Index c = kInvalidIndex) {
         stencil.push_back(int(st));
@@ -373,7 +395,6 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
 
     step.counts.grown_faces = grown;
     HalfedgeMesh& out = step.level.mesh;
-    out = bare_copy(m);
     // The new elements, numbered in order: the vertex of split edge number k (ascending edge
     // index) is nv + k and its second half edge ne + k; then, face by face, a red face's three
     // inner edges and three corner faces, a green face's cut and second half.
@@ -392,7 +413,7 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
             next_edge += 1, next_face += 1;
         }
     }
-    out.resize_elements(std::size_t(nv) + n_split_edges, next_edge, next_face);
+    out = bare_copy(m, std::size_t(nv) + n_split_edges, next_edge, next_face);
     Vertex* to = out.halfedge_to_array().data();
     Halfedge* nx = out.halfedge_next_array().data();
     Halfedge* pv = out.halfedge_prev_array().data();
@@ -476,6 +497,7 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
         }
     }
     NewVertices nvx;
+    nvx.reserve(std::size_t(nv) + n_split_edges);
     for (Index v = 0; v < nv; ++v) {
         const bool moves = w[v] > 0.0f;
         nvx.add(moves ? SubdivisionStencil(uniform.stencils[v]) : SubdivisionStencil::EvenKept,
