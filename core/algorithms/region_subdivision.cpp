@@ -61,10 +61,6 @@ HalfedgeMesh bare_copy(const HalfedgeMesh& m, std::size_t nv, std::size_t ne, st
     return out;
 }
 
-HalfedgeMesh bare_copy(const HalfedgeMesh& m) {
-    return bare_copy(m, m.vertices_size(), m.edges_size(), m.faces_size());
-}
-
 /// One refined level with its carried selection.
 struct RegionStep {
     SubdivisionLevel level;
@@ -606,34 +602,89 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int le
     check_face_limit(std::size_t(nf) + 2 * step.counts.red_faces);
     check_no_refined_pillow(m, [&](Face f) { return split_face[f.idx()] != 0; });
     progress.check_cancelled();
+    // Built straight into the arrays. Split face number i (in face order) gets the centroid
+    // nv + i, the spokes ne + 3i + k (from the start of its halfedge k to the centroid) and
+    // keeps one triangle per halfedge ("slot"): slot 0 is face f, slots 1 and 2 the faces
+    // nf + 2i and nf + 2i + 1. Slot x (u -> v, in face F) is the triangle (u, v, c_F) when the
+    // face across x is not split; when it is (G), x becomes c_F -> c_G, the old edge flipped,
+    // and the slot is (c_F, c_G, v).
+    const Index n_split_faces = Index(step.counts.red_faces);
+    std::vector<Index> split_number(nf, kInvalidIndex);
+    for (Index f = 0, i = 0; f < nf; ++f)
+        if (split_face[f]) split_number[f] = i++;
     HalfedgeMesh& out = step.level.mesh;
-    out = bare_copy(m);
-    out.reserve(std::size_t(nv) + step.counts.red_faces,
-                std::size_t(ne) + 3 * step.counts.red_faces,
-                std::size_t(nf) + 2 * step.counts.red_faces);
+    out = bare_copy(m, std::size_t(nv) + n_split_faces, std::size_t(ne) + 3 * n_split_faces,
+                    std::size_t(nf) + 2 * n_split_faces);
+    Vertex* to = out.halfedge_to_array().data();
+    Halfedge* nx = out.halfedge_next_array().data();
+    Halfedge* pv = out.halfedge_prev_array().data();
+    Face* fc = out.halfedge_face_array().data();
+    Halfedge* vh = out.vertex_halfedge_array().data();
+    Halfedge* fh = out.face_halfedge_array().data();
+    const Vertex* to_in = m.halfedge_to_array().data();
+    const Halfedge* next_in = m.halfedge_next_array().data();
+    const Face* face_in = m.halfedge_face_array().data();
+    const auto corner = [&](Index hx) {  // 0, 1, 2: hx's place in its face
+        const Index h0 = m.halfedge(face_in[hx]).idx();
+        return h0 == hx ? 0 : (next_in[h0].idx() == hx ? 1 : 2);
+    };
+    // The spoke of face halfedge x: from x's start to its face's centroid (in) and back (out).
+    const auto spoke_in = [&](Index hx) {
+        return 2 * (ne + 3 * split_number[face_in[hx].idx()] + Index(corner(hx)));
+    };
+    const auto spoke_out = [&](Index hx) { return spoke_in(hx) + 1; };
+    const auto flipped = [&](Index hx) {
+        const Face g = face_in[hx ^ 1u];
+        return g.is_valid() && split_face[g.idx()] != 0;
+    };
     NewVertices nvx;
+    nvx.reserve(std::size_t(nv) + n_split_faces);
     for (Index v = 0; v < nv; ++v) {
         nvx.add(moves(v) ? SubdivisionStencil::EvenRelaxed : SubdivisionStencil::EvenKept, x[v],
                 w[v], v);
     }
+    Point* p = out.positions().data();
     for (Index f = 0; f < nf; ++f) {
         if (!split_face[f]) continue;
-        const Halfedge h = m.halfedge(Face(f)), hn = m.next(h);
-        const Index a = m.to_vertex(h).idx(), b = m.to_vertex(hn).idx(),
-                    c = m.to_vertex(m.next(hn)).idx();
-        const Point centroid = (x[a] + x[b] + x[c]) / 3.0;
-        out.split(Face(f), centroid);
-        nvx.add(SubdivisionStencil::OddFace, centroid, std::min({w[a], w[b], w[c]}), a, b, c);
+        const Index i = split_number[f], c = nv + i;
+        Index h[3];
+        h[0] = m.halfedge(Face(f)).idx();
+        h[1] = next_in[h[0]].idx();
+        h[2] = next_in[h[1]].idx();
+        const Index a = to_in[h[0]].idx(), b = to_in[h[1]].idx(), d = to_in[h[2]].idx();
+        const Point centroid = (x[a] + x[b] + x[d]) / 3.0;
+        p[c] = centroid;
+        nvx.add(SubdivisionStencil::OddFace, centroid, std::min({w[a], w[b], w[d]}), a, b, d);
+        vh[c] = Halfedge(spoke_out(h[0]));
+        for (int k = 0; k < 3; ++k) {
+            const Index xk = h[k], xn = h[(k + 1) % 3];
+            const Index from = to_in[h[(k + 2) % 3]].idx();  // start of xk
+            const Index in = spoke_in(xk);
+            to[in] = Vertex(c);
+            to[in + 1] = Vertex(from);
+            const Index slot = k == 0 ? f : nf + 2 * i + Index(k - 1);
+            Index second, third;
+            if (flipped(xk)) {
+                const Index g = face_in[xk ^ 1u].idx();
+                to[xk] = Vertex(nv + split_number[g]);
+                second = spoke_out(xk ^ 1u);  // c_G -> end of xk
+                third = spoke_in(xn);         // end of xk -> c_F
+            } else {
+                second = spoke_in(xn);  // end of xk -> c_F
+                third = spoke_out(xk);  // c_F -> start of xk
+            }
+            nx[xk] = Halfedge(second), pv[second] = Halfedge(xk);
+            nx[second] = Halfedge(third), pv[third] = Halfedge(second);
+            nx[third] = Halfedge(xk), pv[xk] = Halfedge(third);
+            fc[xk] = fc[second] = fc[third] = Face(slot);
+            fh[slot] = Halfedge(xk);
+            // The start's outgoing halfedge, when it was xk and xk now leaves elsewhere.
+            if (vh[from].idx() == xk && flipped(xk)) vh[from] = Halfedge(in);
+        }
     }
-    for (Index e = 0; e < ne; ++e) {
-        const Face f0 = m.face(HalfedgeMesh::halfedge(Edge(e), 0));
-        const Face f1 = m.face(HalfedgeMesh::halfedge(Edge(e), 1));
-        if (!f0.is_valid() || !f1.is_valid() || !split_face[f0.idx()] || !split_face[f1.idx()])
-            continue;
-        out.flip(Edge(e));
-        ++step.counts.flipped_edges;
-    }
-    Point* p = out.positions().data();
+    for (Index e = 0; e < ne; ++e)
+        step.counts.flipped_edges +=
+            face_in[2 * e].is_valid() && split_face[face_in[2 * e].idx()] && flipped(2 * e);
     for (Index v = 0; v < nv; ++v)
         if (nvx.stencil[v] == int(SubdivisionStencil::EvenRelaxed))
             p[v] = blend_by_weight(x[v], relaxed[v], w[v]);

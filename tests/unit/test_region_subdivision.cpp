@@ -520,4 +520,23 @@ TEST_CASE("subdivide_region splits boundary edges of an open mesh into a valid b
                 if (region[v.idx()] == 0.0f) CHECK(same_point(out.position(v), mesh.position(v)));
         }
     }
+    // Sqrt3 at the boundary: faces on it are split 1-to-3, the boundary edges stay.
+    for (bool local : {true, false}) {
+        SubdivisionOptions options;
+        options.scheme = SubdivisionScheme::Sqrt3;
+        options.local_closure = local;
+        options.iterations = 2;
+        RegionSubdivisionReport report;
+        const SubdivisionResult result = subdivide_region(mesh, options, region, progress, report);
+        for (const SubdivisionLevel& level : result.levels) {
+            REQUIRE(validate(level.mesh).ok);
+            CHECK(euler(level.mesh) == euler(mesh));
+            std::size_t boundary_edges = 0, coarse_boundary = 0;
+            for (Edge e : level.mesh.edges()) boundary_edges += level.mesh.is_boundary(e);
+            for (Edge e : mesh.edges()) coarse_boundary += mesh.is_boundary(e);
+            CHECK(boundary_edges == coarse_boundary);
+        }
+        CHECK(result.levels.front().mesh.n_faces() ==
+              mesh.n_faces() + 2 * report.closure[0].red_faces);
+    }
 }
