@@ -295,17 +295,32 @@ double min_angle_of(const HalfedgeMesh& m, const std::vector<std::uint8_t>& flag
     return smallest;
 }
 
-/// One red-green step of a 1-to-4 scheme on `m` (compact) with weights `w`.
-RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, SubdivisionScheme scheme,
-                              int level, bool morph, bool local_closure, double target_angle,
-                              const std::vector<double>& coarse_flat, Progress& progress) {
-    const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
-                nf = Index(m.faces_size());
-    const std::vector<std::uint8_t> selected = region_faces(m, w);
-    std::vector<std::uint8_t> split(ne, 0);
-    for (Index f = 0; f < nf; ++f)
-        if (selected[f])
-            for (Halfedge h : m.halfedges_of(Face(f))) split[HalfedgeMesh::edge(h).idx()] = 1;
+/// The uniform step's positions and stencils where region subdivision uses them: old vertices
+/// that move and the edges around them (the whole mesh's pass, across seams, where the mesh
+/// has coincident vertices).
+UniformStep1to4 region_stencils(const HalfedgeMesh& m, const Selection& w, SubdivisionScheme scheme,
+                                Progress& progress) {
+    const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size());
+    std::vector<std::uint8_t> vertex_needed(nv, 0), edge_needed(ne, 0);
+    for (Index v = 0; v < nv; ++v) vertex_needed[v] = w[v] > 0.0f ? 1 : 0;
+    for (Index e = 0; e < ne; ++e)
+        edge_needed[e] =
+            vertex_needed[m.vertex(Edge(e), 0).idx()] || vertex_needed[m.vertex(Edge(e), 1).idx()];
+    return find_coincident_vertices(m).empty()
+               ? uniform_step_1to4_at(m, scheme, vertex_needed, edge_needed, progress)
+               : uniform_step_1to4(m, scheme, progress);
+}
+
+/// The red-green closure of the split edges `split` (those of the selected faces on entry):
+/// a face with two split edges gets its third (red), and (unless local_closure) a face outside
+/// the selection with one split edge whose bisection would be flatter than target_angle gets
+/// its other two (red), until nothing changes. Returns the number of faces grown into.
+std::size_t close_red_green(const HalfedgeMesh& m, const Selection& w,
+                            const std::vector<std::uint8_t>& selected,
+                            const UniformStep1to4& uniform, bool local_closure, double target_angle,
+                            std::vector<std::uint8_t>& split) {
+    const Index nv = Index(m.vertices_size()), nf = Index(m.faces_size());
+    const Point* x = m.positions().data();
     const Halfedge* next_of = m.halfedge_next_array().data();
     const Halfedge* face_halfedge = m.face_halfedge_array().data();
     const auto n_split = [&](Face f) {
@@ -313,19 +328,6 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
                     h2 = next_of[h1].idx();
         return int(split[h0 >> 1]) + int(split[h1 >> 1]) + int(split[h2 >> 1]);
     };
-    const Point* x = m.positions().data();
-    // The scheme's rules only where they can be used: old vertices that move and the edges
-    // around them (the whole mesh's pass, across seams, where the mesh has coincident vertices).
-    std::vector<std::uint8_t> vertex_needed(nv, 0), edge_needed(ne, 0);
-    for (Index v = 0; v < nv; ++v) vertex_needed[v] = w[v] > 0.0f ? 1 : 0;
-    for (Index e = 0; e < ne; ++e)
-        edge_needed[e] =
-            vertex_needed[m.vertex(Edge(e), 0).idx()] || vertex_needed[m.vertex(Edge(e), 1).idx()];
-    const UniformStep1to4 uniform =
-        find_coincident_vertices(m).empty()
-            ? uniform_step_1to4_at(m, scheme, vertex_needed, edge_needed, progress)
-            : uniform_step_1to4(m, scheme, progress);
-    progress.check_cancelled();
     // Where each vertex of the new level will be (the same expressions as below).
     const auto old_position = [&](Index v) {
         return w[v] > 0.0f ? blend_by_weight(x[v], uniform.positions[v], w[v]) : x[v];
@@ -349,9 +351,6 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
         }
         return true;
     };
-    // Closure: a face with two split edges gets its third (red), and (unless local_closure) a
-    // face outside the selection with one split edge whose bisection would be flatter than
-    // target_angle gets its other two (red), until nothing changes.
     std::vector<Face> queue;
     for (Index f = 0; f < nf; ++f) {
         const int c = n_split(Face(f));
@@ -376,21 +375,17 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
             if (g.is_valid()) queue.push_back(g);
         }
     }
-    RegionStep step;
-    std::vector<std::uint8_t> splits(nf, 0);
-    for (Index f = 0; f < nf; ++f) {
-        const int c = n_split(Face(f));
-        splits[f] = std::uint8_t(c);
-        step.counts.selected_faces += selected[f];
-        step.counts.red_faces += c == 3 ? 1 : 0;
-        step.counts.green_faces += c == 1 ? 1 : 0;
-    }
-    check_face_limit(std::size_t(nf) + 3 * step.counts.red_faces + step.counts.green_faces);
-    check_no_refined_pillow(m, [&](Face f) { return splits[f.idx()] > 0; });
-    progress.check_cancelled();
+    return grown;
+}
 
-    step.counts.grown_faces = grown;
-    HalfedgeMesh& out = step.level.mesh;
+/// Writes the red-green refinement of `m` (split edges `split`, split counts per face `splits`:
+/// 0, 1 or 3) into `out`: a bare copy of m grown to the new sizes, connectivity only (the new
+/// vertices' positions are left to the caller: the vertex of split edge number k, in edge
+/// order, is nv + k). Returns the coarse face each face of `out` lies in.
+std::vector<Index> build_red_green(const HalfedgeMesh& m, const std::vector<std::uint8_t>& split,
+                                   const std::vector<std::uint8_t>& splits, HalfedgeMesh& out) {
+    const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
+                nf = Index(m.faces_size());
     // The new elements, numbered in order: the vertex of split edge number k (ascending edge
     // index) is nv + k and its second half edge ne + k; then, face by face, a red face's three
     // inner edges and three corner faces, a green face's cut and second half.
@@ -492,20 +487,56 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
             origin[f0] = f;
         }
     }
+    return origin;
+}
+
+/// One red-green step of a 1-to-4 scheme on `m` (compact) with weights `w`.
+RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, SubdivisionScheme scheme,
+                              int level, bool morph, bool local_closure, double target_angle,
+                              const std::vector<double>& coarse_flat, Progress& progress) {
+    const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
+                nf = Index(m.faces_size());
+    const std::vector<std::uint8_t> selected = region_faces(m, w);
+    std::vector<std::uint8_t> split(ne, 0);
+    for (Index f = 0; f < nf; ++f)
+        if (selected[f])
+            for (Halfedge h : m.halfedges_of(Face(f))) split[HalfedgeMesh::edge(h).idx()] = 1;
+    const Point* x = m.positions().data();
+    const UniformStep1to4 uniform = region_stencils(m, w, scheme, progress);
+    progress.check_cancelled();
+    RegionStep step;
+    step.counts.grown_faces =
+        close_red_green(m, w, selected, uniform, local_closure, target_angle, split);
+    std::vector<std::uint8_t> splits(nf, 0);
+    const FaceCorners corners(m);
+    for (Index f = 0; f < nf; ++f) {
+        const Halfedge h0 = m.halfedge(Face(f)), h1 = m.next(h0), h2 = m.next(h1);
+        const int c = split[h0.idx() >> 1] + split[h1.idx() >> 1] + split[h2.idx() >> 1];
+        splits[f] = std::uint8_t(c);
+        step.counts.selected_faces += selected[f];
+        step.counts.red_faces += c == 3 ? 1 : 0;
+        step.counts.green_faces += c == 1 ? 1 : 0;
+    }
+    check_face_limit(std::size_t(nf) + 3 * step.counts.red_faces + step.counts.green_faces);
+    check_no_refined_pillow(m, [&](Face f) { return splits[f.idx()] > 0; });
+    progress.check_cancelled();
+    HalfedgeMesh& out = step.level.mesh;
+    const std::vector<Index> origin = build_red_green(m, split, splits, out);
+    const Vertex* to_in = m.halfedge_to_array().data();
     NewVertices nvx;
-    nvx.reserve(std::size_t(nv) + n_split_edges);
+    nvx.reserve(out.vertices_size());
     for (Index v = 0; v < nv; ++v) {
         const bool moves = w[v] > 0.0f;
         nvx.add(moves ? SubdivisionStencil(uniform.stencils[v]) : SubdivisionStencil::EvenKept,
                 x[v], w[v], v);
     }
     Point* p = out.positions().data();
-    for (Index e = 0; e < ne; ++e) {
+    for (Index e = 0, k = 0; e < ne; ++e) {
         if (!split[e]) continue;
         const Index a = to_in[2 * e + 1].idx(), b = to_in[2 * e].idx();
         const Point mid = 0.5 * (x[a] + x[b]);
         const float wmax = std::max(w[a], w[b]);
-        p[nv + split_number[e]] = blend_by_weight(mid, uniform.positions[nv + e], wmax);
+        p[nv + k++] = blend_by_weight(mid, uniform.positions[nv + e], wmax);
         nvx.add(wmax > 0.0f ? SubdivisionStencil(uniform.stencils[nv + e])
                             : SubdivisionStencil::OddClosureMidpoint,
                 mid, std::min(w[a], w[b]), a, b);
@@ -523,7 +554,6 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
     step.counts.min_angle_closure = min_angle_of(out, closure);
     // Faces of the coarse level left as they were: not refined, no vertex moved.
     std::vector<std::uint8_t> changed(nf, 0);
-    const FaceCorners corners(m);
     for (Index f = 0; f < nf; ++f) {
         const auto v = corners(f);
         changed[f] = splits[f] > 0 || w[v[0]] > 0.0f || w[v[1]] > 0.0f || w[v[2]] > 0.0f;
@@ -533,20 +563,13 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
     return step;
 }
 
-/// One adaptive Sqrt3 step on `m` (compact) with weights `w`.
-RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int level, bool morph,
-                               bool local_closure, double target_angle,
-                               const std::vector<double>& coarse_flat, Progress& progress) {
-    const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
-                nf = Index(m.faces_size());
-    const std::vector<std::uint8_t> selected = region_faces(m, w);
-    RegionStep step;
-    for (Index f = 0; f < nf; ++f) step.counts.selected_faces += selected[f];
+/// Sqrt3's relaxed positions of the interior vertices that move (weight > 0), from the coarse
+/// ring: the neighbours summed in the order of their edges' indices and the rule written as
+/// subdivide() writes it, so that a vertex of weight 1 lands where the uniform step puts it,
+/// bit for bit. Only the vertices that move are visited; the others get zero.
+std::vector<Point> sqrt3_relaxed(const HalfedgeMesh& m, const Selection& w) {
+    const Index nv = Index(m.vertices_size());
     const Point* x = m.positions().data();
-    // The relaxed positions of the interior vertices that move, from the coarse ring: the
-    // neighbours summed in the order of their edges' indices and the rule written as
-    // subdivide() writes it, so that a vertex of weight 1 lands where the uniform step puts
-    // it, bit for bit. Only the vertices that move are visited.
     std::vector<Point> relaxed(nv, Point::Zero());
     std::vector<std::pair<Index, Index>> ring;
     for (Index v = 0; v < nv; ++v) {
@@ -561,24 +584,25 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int le
         const double alpha = (4.0 - 2.0 * std::cos(2 * kPi / k)) / 9.0;
         relaxed[v] = (1.0 - alpha) * x[v] + (alpha / k) * sum;
     }
-    const auto moves = [&](Index v) {
-        return w[v] > 0.0f && !m.is_isolated(Vertex(v)) && !m.is_boundary(Vertex(v));
-    };
-    const auto old_position = [&](Index v) {
-        return moves(v) ? blend_by_weight(x[v], relaxed[v], w[v]) : x[v];
-    };
-    // The faces split 1-to-3: the selected ones and (unless local_closure) those grown into:
-    // an old edge between a split and an unsplit face keeps the split side's triangle (a, b,
-    // centroid); when that triangle would be flatter than target_angle, the unsplit face is
-    // split too, until nothing changes.
-    std::vector<std::uint8_t> split_face = selected;
+    return relaxed;
+}
+
+/// The faces of `split_face` (the selected ones on entry) grown until no old edge between a
+/// split and an unsplit face leaves the split side a triangle (a, b, centroid) flatter than
+/// target_angle (`position`: where each old vertex will be). Returns the number grown into.
+template <typename Position>
+std::size_t grow_sqrt3(const HalfedgeMesh& m, const Position& old_position, double target_angle,
+                       std::vector<std::uint8_t>& split_face) {
+    const Index nf = Index(m.faces_size());
+    const Point* x = m.positions().data();
+    std::size_t grown = 0;
     const auto centroid_of = [&](Face f) {
         const Halfedge h = m.halfedge(f), hn = m.next(h);
         return Point((x[m.to_vertex(h).idx()] + x[m.to_vertex(hn).idx()] +
                       x[m.to_vertex(m.next(hn)).idx()]) /
                      3.0);
     };
-    if (!local_closure) {
+    {
         std::vector<Face> queue;
         for (Index f = 0; f < nf; ++f)
             if (split_face[f]) queue.push_back(Face(f));
@@ -593,11 +617,68 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int le
                 const Point b = old_position(m.to_vertex(h).idx());
                 if (corner_min_angle(a, b, c) >= target_angle) continue;
                 split_face[g.idx()] = 1;
-                ++step.counts.grown_faces;
+                ++grown;
                 queue.push_back(g);
             }
         }
     }
+    return grown;
+}
+
+/// The Sqrt3 closure on `out`: each old edge (of `m`) between a split and an unsplit face
+/// keeps the split side's triangle (a, b, centroid); it is flipped (towards the pattern of
+/// the paper's next generation) when that raises the pair's minimum angle. Fills the flip
+/// counts and closure angles of `counts`; returns the closure's faces (flags per face of
+/// `out`).
+std::vector<std::uint8_t> sqrt3_closure(const HalfedgeMesh& m, HalfedgeMesh& out,
+                                        const std::vector<std::uint8_t>& split_face,
+                                        RegionClosureCounts& counts) {
+    const Index ne = Index(m.edges_size()), nf = Index(m.faces_size());
+    for (Index e = 0; e < ne; ++e) {  // the old edges flipped by the rule itself
+        const Face f0 = m.face(HalfedgeMesh::halfedge(Edge(e), 0));
+        const Face f1 = m.face(HalfedgeMesh::halfedge(Edge(e), 1));
+        counts.flipped_edges +=
+            f0.is_valid() && f1.is_valid() && split_face[f0.idx()] && split_face[f1.idx()];
+    }
+    std::vector<std::uint8_t> touched(nf, 0), closure(out.faces_size(), 0);
+    for (Index e = 0; e < ne; ++e) {
+        const Face f0 = m.face(HalfedgeMesh::halfedge(Edge(e), 0));
+        const Face f1 = m.face(HalfedgeMesh::halfedge(Edge(e), 1));
+        if (!f0.is_valid() || !f1.is_valid() || split_face[f0.idx()] == split_face[f1.idx()])
+            continue;
+        touched[f0.idx()] = touched[f1.idx()] = 1;
+        if (flip_improves(out, Edge(e))) {
+            out.flip(Edge(e));
+            ++counts.closure_flips;
+        }
+        closure[out.face(HalfedgeMesh::halfedge(Edge(e), 0)).idx()] = 1;
+        closure[out.face(HalfedgeMesh::halfedge(Edge(e), 1)).idx()] = 1;
+    }
+    counts.min_angle_touched = min_angle_of(m, touched);
+    counts.min_angle_closure = min_angle_of(out, closure);
+    return closure;
+}
+
+/// One adaptive Sqrt3 step on `m` (compact) with weights `w`.
+RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int level, bool morph,
+                               bool local_closure, double target_angle,
+                               const std::vector<double>& coarse_flat, Progress& progress) {
+    const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
+                nf = Index(m.faces_size());
+    const std::vector<std::uint8_t> selected = region_faces(m, w);
+    RegionStep step;
+    for (Index f = 0; f < nf; ++f) step.counts.selected_faces += selected[f];
+    const Point* x = m.positions().data();
+    const std::vector<Point> relaxed = sqrt3_relaxed(m, w);
+    const auto moves = [&](Index v) {
+        return w[v] > 0.0f && !m.is_isolated(Vertex(v)) && !m.is_boundary(Vertex(v));
+    };
+    const auto old_position = [&](Index v) {
+        return moves(v) ? blend_by_weight(x[v], relaxed[v], w[v]) : x[v];
+    };
+    std::vector<std::uint8_t> split_face = selected;  // and those grown into (grow_sqrt3())
+    if (!local_closure)
+        step.counts.grown_faces = grow_sqrt3(m, old_position, target_angle, split_face);
     for (Index f = 0; f < nf; ++f) step.counts.red_faces += split_face[f];
     check_face_limit(std::size_t(nf) + 2 * step.counts.red_faces);
     check_no_refined_pillow(m, [&](Face f) { return split_face[f.idx()] != 0; });
@@ -682,31 +763,10 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int le
             if (vh[from].idx() == xk && flipped(xk)) vh[from] = Halfedge(in);
         }
     }
-    for (Index e = 0; e < ne; ++e)
-        step.counts.flipped_edges +=
-            face_in[2 * e].is_valid() && split_face[face_in[2 * e].idx()] && flipped(2 * e);
     for (Index v = 0; v < nv; ++v)
         if (nvx.stencil[v] == int(SubdivisionStencil::EvenRelaxed))
             p[v] = blend_by_weight(x[v], relaxed[v], w[v]);
-    // The closure: each old edge between a split and an unsplit face keeps the split side's
-    // triangle (a, b, centroid); it is flipped (towards the pattern of the paper's next
-    // generation) when that raises the pair's minimum angle.
-    std::vector<std::uint8_t> touched(nf, 0), closure(out.faces_size(), 0);
-    for (Index e = 0; e < ne; ++e) {
-        const Face f0 = m.face(HalfedgeMesh::halfedge(Edge(e), 0));
-        const Face f1 = m.face(HalfedgeMesh::halfedge(Edge(e), 1));
-        if (!f0.is_valid() || !f1.is_valid() || split_face[f0.idx()] == split_face[f1.idx()])
-            continue;
-        touched[f0.idx()] = touched[f1.idx()] = 1;
-        if (flip_improves(out, Edge(e))) {
-            out.flip(Edge(e));
-            ++step.counts.closure_flips;
-        }
-        closure[out.face(HalfedgeMesh::halfedge(Edge(e), 0)).idx()] = 1;
-        closure[out.face(HalfedgeMesh::halfedge(Edge(e), 1)).idx()] = 1;
-    }
-    step.counts.min_angle_touched = min_angle_of(m, touched);
-    step.counts.min_angle_closure = min_angle_of(out, closure);
+    const std::vector<std::uint8_t> closure = sqrt3_closure(m, out, split_face, step.counts);
     // Faces of the coarse level left as they were: not split, not flipped, no vertex moved.
     std::vector<std::uint8_t> changed(nf, 0);
     const FaceCorners corners(m);
