@@ -58,6 +58,15 @@ OperationResult run_subdivide(const SubdivisionOptions& options, const HalfedgeM
         std::snprintf(line, sizeof(line), "minimum angle: %.3f deg before, %.3f deg after",
                       region.min_angle_in, region.min_angle_out);
         result.report.emplace_back(line);
+        const RegionClosureCounts& last = region.closure.back();
+        if (last.min_angle_closure < 180) {
+            std::snprintf(line, sizeof(line),
+                          "closure (last level): minimum angle %.3f deg, %.3f deg in the faces it "
+                          "replaced; %zu faces grown into, %zu max-min-angle flips",
+                          last.min_angle_closure, last.min_angle_touched, last.grown_faces,
+                          last.closure_flips);
+            result.report.emplace_back(line);
+        }
     }
     std::vector<double> level_vertices, level_faces;
     for (const auto& counts : sub.level_counts) {
@@ -77,6 +86,10 @@ OperationResult run_subdivide(const SubdivisionOptions& options, const HalfedgeM
         result.values.push_back({"selected_faces", double(c.selected_faces)});
         result.values.push_back({"red_faces", double(c.red_faces)});
         result.values.push_back({"green_faces", double(c.green_faces)});
+        result.values.push_back({"min_angle_closure", c.min_angle_closure});
+        result.values.push_back({"min_angle_touched", c.min_angle_touched});
+        result.values.push_back({"closure_flips", double(c.closure_flips)});
+        result.values.push_back({"grown_faces", double(c.grown_faces)});
     }
     sub.levels.clear();  // moved into the steps: the report is the counts, notes and time
     result.typed_report = std::move(sub);
@@ -96,12 +109,16 @@ std::unique_ptr<OperationDef> subdivide_operation() {
     d.integer("iterations", &SubdivisionOptions::iterations, 1, 10, "refinement steps")
         .slider(1, 6)
         .counts_steps();
+    d.flag("local-closure", &SubdivisionOptions::local_closure,
+           "on a region: keep the closure next to the selection even where it is flatter than "
+           "the input (by default it grows until no closure triangle is)");
     d.run(run_subdivide)
         .acts_on_region(
             "only faces whose three vertices weigh > 0 are refined, with a conforming closure "
             "(red-green for the 1-to-4 schemes, Kobbelt's adaptive rule for sqrt3); vertices of "
-            "weight 0 stay; --json adds min_angle_in/out and the closure's face counts (last "
-            "iteration)");
+            "weight 0 stay; --json adds min_angle_in/out, the closure's face counts, its "
+            "minimum angle (min_angle_closure, 180 without a closure) and that of the faces it "
+            "replaced (min_angle_touched), and its flips (last iteration)");
     return d.build();
 }
 

@@ -13,11 +13,14 @@
 #include "core/algorithms/region_subdivision.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <string>
+#include <type_traits>
 #include <utility>
 
+#include "core/algorithms/coincident.h"
 #include "core/algorithms/pillows.h"
 #include "core/errors.h"
 #include "core/geometry.h"
@@ -28,19 +31,33 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr std::size_t kMaxFaces = 50'000'000;  // as subdivide()
+// A closure edge is flipped only between faces this close to coplanar (before and after), so
+// that the flips move the surface by at most about sin(7.5 deg) / 4 of an edge's length.
+constexpr double kMaxClosureFlipDihedral = 15.0;
 
 const char* const kLevelName = "v:subdivision_level";
 const char* const kStencilName = "v:subdivision_stencil";
 const char* const kParentsName = "v:subdivision_parents";
 
-/// A copy of `m`'s connectivity and positions only (`m` compact).
-HalfedgeMesh bare_copy(const HalfedgeMesh& m) {
+/// A copy of `m`'s connectivity and positions only (`m` compact), with room for `nv` vertices,
+/// `ne` edges and `nf` faces (at least m's: the elements past m's are invalid, their position
+/// zero), so that the refinement writes into arrays allocated once.
+HalfedgeMesh bare_copy(const HalfedgeMesh& m, std::size_t nv, std::size_t ne, std::size_t nf) {
+    const auto grown = [](const auto& in, std::size_t n, auto fill) {
+        std::vector<std::decay_t<decltype(in[0])>> out;
+        out.reserve(n);
+        out.assign(in.begin(), in.end());
+        out.resize(n, fill);
+        return out;
+    };
     HalfedgeMesh out;
-    out.assign_connectivity(
-        std::vector<Point>(m.positions()), std::vector<Halfedge>(m.vertex_halfedge_array()),
-        std::vector<Vertex>(m.halfedge_to_array()), std::vector<Halfedge>(m.halfedge_next_array()),
-        std::vector<Halfedge>(m.halfedge_prev_array()), std::vector<Face>(m.halfedge_face_array()),
-        std::vector<Halfedge>(m.face_halfedge_array()));
+    out.assign_connectivity(grown(m.positions(), nv, Point(Point::Zero())),
+                            grown(m.vertex_halfedge_array(), nv, Halfedge()),
+                            grown(m.halfedge_to_array(), 2 * ne, Vertex()),
+                            grown(m.halfedge_next_array(), 2 * ne, Halfedge()),
+                            grown(m.halfedge_prev_array(), 2 * ne, Halfedge()),
+                            grown(m.halfedge_face_array(), 2 * ne, Face()),
+                            grown(m.face_halfedge_array(), nf, Halfedge()));
     return out;
 }
 
@@ -49,7 +66,79 @@ struct RegionStep {
     SubdivisionLevel level;
     Selection selection;
     RegionClosureCounts counts;
+    std::vector<double> flatness;  ///< face_flatness() of every face of the level
 };
+
+/// The cosine of the smallest corner angle of triangle p0 p1 p2 (the corner opposite the
+/// shortest edge; 1 for a degenerate triangle): larger is flatter. No sort, no trigonometry.
+inline double triangle_flatness(const Point& p0, const Point& p1, const Point& p2) {
+    const double l0 = (p1 - p2).squaredNorm(), l1 = (p2 - p0).squaredNorm(),
+                 l2 = (p0 - p1).squaredNorm();
+    double s, a, b;  // the shortest edge, the two others (squared)
+    if (l0 <= l1 && l0 <= l2) {
+        s = l0, a = l1, b = l2;
+    } else if (l1 <= l2) {
+        s = l1, a = l0, b = l2;
+    } else {
+        s = l2, a = l0, b = l1;
+    }
+    const double denominator = 2.0 * std::sqrt(a * b);
+    return denominator > 0 ? (a + b - s) / denominator : 1.0;
+}
+
+/// The three corners of each face, read from the connectivity arrays directly (the loops over
+/// every face of a level go through here).
+struct FaceCorners {
+    const Vertex* to;
+    const Halfedge* next;
+    const Halfedge* fh;
+    explicit FaceCorners(const HalfedgeMesh& m)
+        : to(m.halfedge_to_array().data()),
+          next(m.halfedge_next_array().data()),
+          fh(m.face_halfedge_array().data()) {}
+    std::array<Index, 3> operator()(std::size_t f) const {
+        const Halfedge h0 = fh[f], h1 = next[h0.idx()], h2 = next[h1.idx()];
+        return {to[h0.idx()].idx(), to[h1.idx()].idx(), to[h2.idx()].idx()};
+    }
+};
+
+/// face_flatness of every face of `m` (compact).
+std::vector<double> flatness_of(const HalfedgeMesh& m) {
+    const FaceCorners corners(m);
+    const Point* x = m.positions().data();
+    std::vector<double> flat(m.faces_size());
+    for (std::size_t f = 0; f < flat.size(); ++f) {
+        const auto v = corners(f);
+        flat[f] = triangle_flatness(x[v[0]], x[v[1]], x[v[2]]);
+    }
+    return flat;
+}
+
+/// The new level's flatness: a face of `out` that is a coarse face left as it was (`changed`
+/// false) keeps the coarse value, every other one is computed.
+std::vector<double> level_flatness(const HalfedgeMesh& out, const std::vector<double>& coarse,
+                                   const std::vector<std::uint8_t>& changed) {
+    const FaceCorners corners(out);
+    const Point* x = out.positions().data();
+    std::vector<double> flat(out.faces_size());
+    for (std::size_t f = 0; f < flat.size(); ++f) {
+        if (f < coarse.size() && !changed[f]) {
+            flat[f] = coarse[f];
+        } else {
+            const auto v = corners(f);
+            flat[f] = triangle_flatness(x[v[0]], x[v[1]], x[v[2]]);
+        }
+    }
+    return flat;
+}
+
+/// The smallest angle in degrees over the faces of `m` whose flatness is `flat` (180 without
+/// faces): the flattest face's angle, computed exactly.
+double min_angle_by_flatness(const HalfedgeMesh& m, const std::vector<double>& flat) {
+    if (flat.empty()) return 180.0;
+    const std::size_t f = std::size_t(std::max_element(flat.begin(), flat.end()) - flat.begin());
+    return min_face_angle(m, Face(Index(f)));
+}
 
 /// Per-vertex bookkeeping of a new level, filled by the refinement and written as the level's
 /// properties by finish().
@@ -58,6 +147,12 @@ struct NewVertices {
     std::vector<SubdivisionParents> parents;
     std::vector<Point> start;  // morph start positions
     Selection selection;
+    void reserve(std::size_t n) {
+        stencil.reserve(n);
+        parents.reserve(n);
+        start.reserve(n);
+        selection.reserve(n);
+    }
     void add(SubdivisionStencil st, const Point& from, float weight, Index a,
              Index b = kInvalidIndex, Index c = kInvalidIndex) {
         stencil.push_back(int(st));
@@ -116,9 +211,289 @@ void check_face_limit(std::size_t faces) {
                               " faces (at most 50 million): use fewer iterations");
 }
 
+/// The smallest corner angle of triangle p0 p1 p2 in degrees (atan2 of each corner: exact near
+/// 0 and 180).
+double corner_min_angle(const Point& p0, const Point& p1, const Point& p2) {
+    const Point* p[3] = {&p0, &p1, &p2};
+    double smallest = 180.0;
+    for (int k = 0; k < 3; ++k) {
+        const Vector3 a = *p[(k + 1) % 3] - *p[k], b = *p[(k + 2) % 3] - *p[k];
+        smallest = std::min(smallest, std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / kPi);
+    }
+    return smallest;
+}
+
+double face_min_angle(const HalfedgeMesh& m, Face f) {
+    const auto v = m.face_vertices(f);
+    return corner_min_angle(m.position(v[0]), m.position(v[1]), m.position(v[2]));
+}
+
+/// The angle between two vectors in degrees (180 when one is zero: never "close").
+double angle_between(const Vector3& a, const Vector3& b) {
+    const double n = a.norm() * b.norm();
+    return n > 0 ? std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / kPi : 180.0;
+}
+
+/// Whether flipping interior edge e raises the smaller of its two faces' minimum angles, keeps
+/// the surface where it was (the two faces and the two flipped ones each within
+/// kMaxClosureFlipDihedral degrees of each other) and keeps a valid mesh.
+bool flip_improves(const HalfedgeMesh& m, Edge e) {
+    if (!m.is_flip_ok(e)) return false;
+    const Halfedge h = HalfedgeMesh::halfedge(e, 0), t = HalfedgeMesh::twin(h);
+    const Point& u = m.position(m.to_vertex(t));
+    const Point& v = m.position(m.to_vertex(h));
+    const Point& c = m.position(m.to_vertex(m.next(h)));
+    const Point& d = m.position(m.to_vertex(m.next(t)));
+    const Vector3 n1 = (v - u).cross(c - u), n2 = (u - v).cross(d - v);
+    const Vector3 n3 = (d - u).cross(c - u), n4 = (c - v).cross(d - v);
+    if (angle_between(n1, n2) > kMaxClosureFlipDihedral ||
+        angle_between(n3, n4) > kMaxClosureFlipDihedral ||
+        angle_between(n1 + n2, n3) > kMaxClosureFlipDihedral ||
+        angle_between(n1 + n2, n4) > kMaxClosureFlipDihedral)
+        return false;
+    const double before = std::min(corner_min_angle(u, v, c), corner_min_angle(v, u, d));
+    const double after = std::min(corner_min_angle(u, d, c), corner_min_angle(v, c, d));
+    return after > before + 1e-9;
+}
+
+/// Lawson's max-min-angle flips restricted to the closure: an edge is flipped when both of its
+/// faces are closure faces (`closure`, per face index; a flip keeps both faces' indices, so the
+/// flags stay right) and flip_improves(). Each flip raises the smaller minimum angle of the
+/// pair, so the closure's minimum angle never goes down, and the sorted list of angles rises
+/// with each flip, so it ends. Returns the number of flips.
+std::size_t improve_closure(HalfedgeMesh& m, const std::vector<std::uint8_t>& closure) {
+    const auto candidate = [&](Edge e) {
+        const Face f0 = m.face(HalfedgeMesh::halfedge(e, 0));
+        const Face f1 = m.face(HalfedgeMesh::halfedge(e, 1));
+        return f0.is_valid() && f1.is_valid() && closure[f0.idx()] && closure[f1.idx()];
+    };
+    std::vector<Edge> queue;
+    for (Edge e : m.edges())
+        if (candidate(e)) queue.push_back(e);
+    std::size_t flips = 0;
+    const std::size_t cap = 10 * queue.size() + 10;
+    while (!queue.empty() && flips < cap) {
+        const Edge e = queue.back();
+        queue.pop_back();
+        if (!candidate(e) || !flip_improves(m, e)) continue;
+        m.flip(e);
+        ++flips;
+        const Halfedge h = HalfedgeMesh::halfedge(e, 0), t = HalfedgeMesh::twin(h);
+        for (Halfedge g : {m.next(h), m.prev(h), m.next(t), m.prev(t)}) {
+            const Edge ge = HalfedgeMesh::edge(g);
+            if (candidate(ge)) queue.push_back(ge);
+        }
+    }
+    return flips;
+}
+
+/// The smallest minimum angle over the flagged faces (180 when none is).
+double min_angle_of(const HalfedgeMesh& m, const std::vector<std::uint8_t>& flagged) {
+    double smallest = 180.0;
+    for (std::size_t f = 0; f < flagged.size(); ++f)
+        if (flagged[f]) smallest = std::min(smallest, face_min_angle(m, Face(Index(f))));
+    return smallest;
+}
+
+/// The uniform step's positions and stencils where region subdivision uses them: old vertices
+/// that move and the edges around them (the whole mesh's pass, across seams, where the mesh
+/// has coincident vertices).
+UniformStep1to4 region_stencils(const HalfedgeMesh& m, const Selection& w, SubdivisionScheme scheme,
+                                Progress& progress) {
+    const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size());
+    std::vector<std::uint8_t> vertex_needed(nv, 0), edge_needed(ne, 0);
+    for (Index v = 0; v < nv; ++v) vertex_needed[v] = w[v] > 0.0f ? 1 : 0;
+    for (Index e = 0; e < ne; ++e)
+        edge_needed[e] =
+            vertex_needed[m.vertex(Edge(e), 0).idx()] || vertex_needed[m.vertex(Edge(e), 1).idx()];
+    return find_coincident_vertices(m).empty()
+               ? uniform_step_1to4_at(m, scheme, vertex_needed, edge_needed, progress)
+               : uniform_step_1to4(m, scheme, progress);
+}
+
+/// The red-green closure of the split edges `split` (those of the selected faces on entry):
+/// a face with two split edges gets its third (red), and (unless local_closure) a face outside
+/// the selection with one split edge whose bisection would be flatter than target_angle gets
+/// its other two (red), until nothing changes. Returns the number of faces grown into.
+std::size_t close_red_green(const HalfedgeMesh& m, const Selection& w,
+                            const std::vector<std::uint8_t>& selected,
+                            const UniformStep1to4& uniform, bool local_closure, double target_angle,
+                            std::vector<std::uint8_t>& split) {
+    const Index nv = Index(m.vertices_size()), nf = Index(m.faces_size());
+    const Point* x = m.positions().data();
+    const Halfedge* next_of = m.halfedge_next_array().data();
+    const Halfedge* face_halfedge = m.face_halfedge_array().data();
+    const auto n_split = [&](Face f) {
+        const Index h0 = face_halfedge[f.idx()].idx(), h1 = next_of[h0].idx(),
+                    h2 = next_of[h1].idx();
+        return int(split[h0 >> 1]) + int(split[h1 >> 1]) + int(split[h2 >> 1]);
+    };
+    // Where each vertex of the new level will be (the same expressions as below).
+    const auto old_position = [&](Index v) {
+        return w[v] > 0.0f ? blend_by_weight(x[v], uniform.positions[v], w[v]) : x[v];
+    };
+    const auto edge_position = [&](Index e) {
+        const Index a = m.vertex(Edge(e), 1).idx(), b = m.vertex(Edge(e), 0).idx();
+        return blend_by_weight(0.5 * (x[a] + x[b]), uniform.positions[nv + e],
+                               std::max(w[a], w[b]));
+    };
+    // Whether the bisection of face f (one split edge) keeps every angle >= target_angle.
+    const auto green_ok = [&](Face f) {
+        for (Halfedge h : m.halfedges_of(f)) {
+            const Index e = HalfedgeMesh::edge(h).idx();
+            if (!split[e]) continue;
+            const Point a = old_position(m.from_vertex(h).idx());
+            const Point b = old_position(m.to_vertex(h).idx());
+            const Point c = old_position(m.to_vertex(m.next(h)).idx());
+            const Point mid = edge_position(e);
+            return std::min(corner_min_angle(a, mid, c), corner_min_angle(mid, b, c)) >=
+                   target_angle;
+        }
+        return true;
+    };
+    std::vector<Face> queue;
+    for (Index f = 0; f < nf; ++f) {
+        const int c = n_split(Face(f));
+        if (c == 2 || (c == 1 && !local_closure)) queue.push_back(Face(f));
+    }
+    std::size_t grown = 0;
+    while (!queue.empty()) {
+        const Face f = queue.back();
+        queue.pop_back();
+        const int c = n_split(f);
+        if (c == 1) {
+            if (local_closure || selected[f.idx()] || green_ok(f)) continue;
+            ++grown;
+        } else if (c != 2) {
+            continue;
+        }
+        for (Halfedge h : m.halfedges_of(f)) {
+            const Index e = HalfedgeMesh::edge(h).idx();
+            if (split[e]) continue;
+            split[e] = 1;
+            const Face g = m.face(HalfedgeMesh::twin(h));
+            if (g.is_valid()) queue.push_back(g);
+        }
+    }
+    return grown;
+}
+
+/// Writes the red-green refinement of `m` (split edges `split`, split counts per face `splits`:
+/// 0, 1 or 3) into `out`: a bare copy of m grown to the new sizes, connectivity only (the new
+/// vertices' positions are left to the caller: the vertex of split edge number k, in edge
+/// order, is nv + k). Returns the coarse face each face of `out` lies in.
+std::vector<Index> build_red_green(const HalfedgeMesh& m, const std::vector<std::uint8_t>& split,
+                                   const std::vector<std::uint8_t>& splits, HalfedgeMesh& out) {
+    const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
+                nf = Index(m.faces_size());
+    // The new elements, numbered in order: the vertex of split edge number k (ascending edge
+    // index) is nv + k and its second half edge ne + k; then, face by face, a red face's three
+    // inner edges and three corner faces, a green face's cut and second half.
+    std::vector<Index> split_number(ne, kInvalidIndex);
+    Index n_split_edges = 0;
+    for (Index e = 0; e < ne; ++e)
+        if (split[e]) split_number[e] = n_split_edges++;
+    std::vector<Index> first_edge(nf, kInvalidIndex), first_face(nf, kInvalidIndex);
+    Index next_edge = ne + n_split_edges, next_face = nf;
+    for (Index f = 0; f < nf; ++f) {
+        if (splits[f] == 3) {
+            first_edge[f] = next_edge, first_face[f] = next_face;
+            next_edge += 3, next_face += 3;
+        } else if (splits[f] == 1) {
+            first_edge[f] = next_edge, first_face[f] = next_face;
+            next_edge += 1, next_face += 1;
+        }
+    }
+    out = bare_copy(m, std::size_t(nv) + n_split_edges, next_edge, next_face);
+    Vertex* to = out.halfedge_to_array().data();
+    Halfedge* nx = out.halfedge_next_array().data();
+    Halfedge* pv = out.halfedge_prev_array().data();
+    Face* fc = out.halfedge_face_array().data();
+    Halfedge* vh = out.vertex_halfedge_array().data();
+    Halfedge* fh = out.face_halfedge_array().data();
+    const Vertex* to_in = m.halfedge_to_array().data();
+    const Halfedge* next_in = m.halfedge_next_array().data();
+    const Halfedge* prev_in = m.halfedge_prev_array().data();
+    const Face* face_in = m.halfedge_face_array().data();
+    // The halves of a split halfedge h: first(h) from its start to the new vertex, second(h)
+    // from the new vertex to its end. Halfedge 2e keeps the half at its start, 2e + 1 the half
+    // at its end; the new edge ne + k carries the other two.
+    const auto mid_of = [&](Index h) { return nv + split_number[h >> 1]; };
+    const auto first = [&](Index h) { return (h & 1u) ? 2 * (ne + split_number[h >> 1]) + 1 : h; };
+    const auto second = [&](Index h) { return (h & 1u) ? h : 2 * (ne + split_number[h >> 1]); };
+    const auto link = [&](Index a, Index b) {
+        nx[a] = Halfedge(b);
+        pv[b] = Halfedge(a);
+    };
+    const auto triangle = [&](Index f, Index a, Index b, Index c) {
+        link(a, b), link(b, c), link(c, a);
+        fc[a] = fc[b] = fc[c] = Face(f);
+        fh[f] = Halfedge(a);
+    };
+    for (Index e = 0; e < ne; ++e) {
+        if (!split[e]) continue;
+        const Index h = 2 * e, t = h + 1, mv = mid_of(h);
+        to[first(h)] = to[first(t)] = Vertex(mv);
+        to[second(h)] = to_in[h];
+        to[second(t)] = to_in[t];
+        vh[mv] = Halfedge(face_in[t].is_valid() ? second(h) : second(t));
+        if (!face_in[h].is_valid()) vh[mv] = Halfedge(second(h));
+        for (Index g : {h, t}) {
+            if (face_in[g].is_valid()) continue;  // boundary halfedge: first, then second
+            const Index before = prev_in[g].idx(), after = next_in[g].idx();
+            fc[first(g)] = fc[second(g)] = Face();
+            link(split[before >> 1] ? second(before) : before, first(g));
+            link(first(g), second(g));
+            link(second(g), split[after >> 1] ? first(after) : after);
+        }
+    }
+    for (Index v = 0; v < nv; ++v) {
+        const Halfedge g = vh[v];
+        if (g.is_valid() && split[g.idx() >> 1]) vh[v] = Halfedge(first(g.idx()));
+    }
+    // The coarse face each face of `out` lies in.
+    std::vector<Index> origin(next_face);
+    for (Index f = 0; f < nf; ++f) {
+        origin[f] = f;
+        if (splits[f] == 0) continue;
+        Index h[3];
+        h[0] = m.halfedge(Face(f)).idx();
+        h[1] = next_in[h[0]].idx();
+        h[2] = next_in[h[1]].idx();
+        const Index e0 = first_edge[f], f0 = first_face[f];
+        if (splits[f] == 3) {
+            // Corner k (at the end of h[k]): second(h[k]), first(h[k+1]), and the inner edge
+            // e0 + k between the two midpoints; the middle keeps f.
+            Index inner[3];
+            for (int k = 0; k < 3; ++k) {
+                const Index hk = h[k], hn = h[(k + 1) % 3];
+                const Index in = 2 * (e0 + Index(k));  // mid(hn) -> mid(hk), in the corner
+                to[in] = Vertex(mid_of(hk));
+                to[in + 1] = Vertex(mid_of(hn));
+                triangle(f0 + Index(k), second(hk), first(hn), in);
+                origin[f0 + Index(k)] = f;
+                inner[k] = in + 1;  // mid(hk) -> mid(hn), in the middle
+            }
+            triangle(f, inner[0], inner[1], inner[2]);
+        } else {
+            int k = 0;
+            while (!split[h[k] >> 1]) ++k;
+            const Index hs = h[k], h1 = h[(k + 1) % 3], h2 = h[(k + 2) % 3];
+            const Index cut = 2 * e0;  // mid -> the opposite corner
+            to[cut] = to_in[h1];
+            to[cut + 1] = Vertex(mid_of(hs));
+            triangle(f, first(hs), cut, h2);
+            triangle(f0, second(hs), h1, cut + 1);
+            origin[f0] = f;
+        }
+    }
+    return origin;
+}
+
 /// One red-green step of a 1-to-4 scheme on `m` (compact) with weights `w`.
 RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, SubdivisionScheme scheme,
-                              int level, bool morph, Progress& progress) {
+                              int level, bool morph, bool local_closure, double target_angle,
+                              const std::vector<double>& coarse_flat, Progress& progress) {
     const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
                 nf = Index(m.faces_size());
     const std::vector<std::uint8_t> selected = region_faces(m, w);
@@ -126,149 +501,280 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
     for (Index f = 0; f < nf; ++f)
         if (selected[f])
             for (Halfedge h : m.halfedges_of(Face(f))) split[HalfedgeMesh::edge(h).idx()] = 1;
-    const auto n_split = [&](Face f) {
-        int c = 0;
-        for (Halfedge h : m.halfedges_of(f)) c += split[HalfedgeMesh::edge(h).idx()];
-        return c;
-    };
-    // Closure: a face with two split edges gets its third (red), until nothing changes.
-    std::vector<Face> queue;
-    for (Index f = 0; f < nf; ++f)
-        if (n_split(Face(f)) == 2) queue.push_back(Face(f));
-    while (!queue.empty()) {
-        const Face f = queue.back();
-        queue.pop_back();
-        if (n_split(f) != 2) continue;
-        for (Halfedge h : m.halfedges_of(f)) {
-            const Index e = HalfedgeMesh::edge(h).idx();
-            if (split[e]) continue;
-            split[e] = 1;
-            const Face g = m.face(HalfedgeMesh::twin(h));
-            if (g.is_valid() && n_split(g) == 2) queue.push_back(g);
-        }
-    }
+    const Point* x = m.positions().data();
+    const UniformStep1to4 uniform = region_stencils(m, w, scheme, progress);
+    progress.check_cancelled();
     RegionStep step;
-    std::vector<std::uint8_t> red(nf, 0);
+    step.counts.grown_faces =
+        close_red_green(m, w, selected, uniform, local_closure, target_angle, split);
+    std::vector<std::uint8_t> splits(nf, 0);
+    const FaceCorners corners(m);
     for (Index f = 0; f < nf; ++f) {
-        const int c = n_split(Face(f));
+        const Halfedge h0 = m.halfedge(Face(f)), h1 = m.next(h0), h2 = m.next(h1);
+        const int c = split[h0.idx() >> 1] + split[h1.idx() >> 1] + split[h2.idx() >> 1];
+        splits[f] = std::uint8_t(c);
         step.counts.selected_faces += selected[f];
-        red[f] = c == 3 ? 1 : 0;
         step.counts.red_faces += c == 3 ? 1 : 0;
         step.counts.green_faces += c == 1 ? 1 : 0;
     }
     check_face_limit(std::size_t(nf) + 3 * step.counts.red_faces + step.counts.green_faces);
-    check_no_refined_pillow(m, [&](Face f) { return n_split(f) > 0; });
-    progress.check_cancelled();
-
-    const UniformStep1to4 uniform = uniform_step_1to4(m, scheme, progress);
+    check_no_refined_pillow(m, [&](Face f) { return splits[f.idx()] > 0; });
     progress.check_cancelled();
     HalfedgeMesh& out = step.level.mesh;
-    out = bare_copy(m);
-    const Point* x = m.positions().data();
-    // The coarse face each face of `out` lies in, and which cuts lie in a red face.
-    std::vector<Index> origin(nf);
-    for (Index f = 0; f < nf; ++f) origin[f] = f;
-    std::vector<std::uint8_t> red_cut;
+    const std::vector<Index> origin = build_red_green(m, split, splits, out);
+    const Vertex* to_in = m.halfedge_to_array().data();
     NewVertices nvx;
+    nvx.reserve(out.vertices_size());
     for (Index v = 0; v < nv; ++v) {
         const bool moves = w[v] > 0.0f;
         nvx.add(moves ? SubdivisionStencil(uniform.stencils[v]) : SubdivisionStencil::EvenKept,
                 x[v], w[v], v);
     }
-    for (Index e = 0; e < ne; ++e) {
+    Point* p = out.positions().data();
+    for (Index e = 0, k = 0; e < ne; ++e) {
         if (!split[e]) continue;
-        const Vertex a = m.vertex(Edge(e), 1), b = m.vertex(Edge(e), 0);
-        const Point mid = 0.5 * (x[a.idx()] + x[b.idx()]);
-        const float wmax = std::max(w[a.idx()], w[b.idx()]);
-        const Vertex v = out.split(Edge(e), blend_by_weight(mid, uniform.positions[nv + e], wmax));
+        const Index a = to_in[2 * e + 1].idx(), b = to_in[2 * e].idx();
+        const Point mid = 0.5 * (x[a] + x[b]);
+        const float wmax = std::max(w[a], w[b]);
+        p[nv + k++] = blend_by_weight(mid, uniform.positions[nv + e], wmax);
         nvx.add(wmax > 0.0f ? SubdivisionStencil(uniform.stencils[nv + e])
                             : SubdivisionStencil::OddClosureMidpoint,
-                mid, std::min(w[a.idx()], w[b.idx()]), a.idx(), b.idx());
-        origin.resize(out.faces_size(), kInvalidIndex);
-        red_cut.resize(out.edges_size(), 0);
-        for (Halfedge h : out.halfedges_around(v)) {
-            const Vertex o = out.to_vertex(h);
-            if (o == a || o == b) continue;  // the two halves of e
-            const Face f1 = out.face(h), f2 = out.face(HalfedgeMesh::twin(h));
-            const Index from =
-                origin[f1.idx()] != kInvalidIndex ? origin[f1.idx()] : origin[f2.idx()];
-            origin[f1.idx()] = origin[f2.idx()] = from;
-            red_cut[HalfedgeMesh::edge(h).idx()] = red[from];
-        }
+                mid, std::min(w[a], w[b]), a, b);
     }
-    for (Index e = ne; e < Index(red_cut.size()); ++e) {
-        if (!red_cut[e]) continue;
-        const bool old0 = out.vertex(Edge(e), 0).idx() < nv;
-        const bool old1 = out.vertex(Edge(e), 1).idx() < nv;
-        if (old0 != old1) out.flip(Edge(e));
-    }
-    Point* p = out.positions().data();
     for (Index v = 0; v < nv; ++v)
         if (w[v] > 0.0f) p[v] = blend_by_weight(x[v], uniform.positions[v], w[v]);
+    // The closure: the faces cut from refined faces outside the selection (green halves, the
+    // children of faces that turned red), improved by max-min-angle flips among themselves.
+    std::vector<std::uint8_t> touched(nf, 0), closure(out.faces_size(), 0);
+    for (Index f = 0; f < nf; ++f) touched[f] = !selected[f] && splits[f] > 0;
+    for (std::size_t f = 0; f < closure.size(); ++f)
+        closure[f] = origin[f] != kInvalidIndex && touched[origin[f]];
+    step.counts.closure_flips = improve_closure(out, closure);
+    step.counts.min_angle_touched = min_angle_of(m, touched);
+    step.counts.min_angle_closure = min_angle_of(out, closure);
+    // Faces of the coarse level left as they were: not refined, no vertex moved.
+    std::vector<std::uint8_t> changed(nf, 0);
+    for (Index f = 0; f < nf; ++f) {
+        const auto v = corners(f);
+        changed[f] = splits[f] > 0 || w[v[0]] > 0.0f || w[v[1]] > 0.0f || w[v[2]] > 0.0f;
+    }
+    step.flatness = level_flatness(out, coarse_flat, changed);
     finish(m, level, morph, std::move(nvx), step);
     return step;
 }
 
+/// Sqrt3's relaxed positions of the interior vertices that move (weight > 0), from the coarse
+/// ring: the neighbours summed in the order of their edges' indices and the rule written as
+/// subdivide() writes it, so that a vertex of weight 1 lands where the uniform step puts it,
+/// bit for bit. Only the vertices that move are visited; the others get zero.
+std::vector<Point> sqrt3_relaxed(const HalfedgeMesh& m, const Selection& w) {
+    const Index nv = Index(m.vertices_size());
+    const Point* x = m.positions().data();
+    std::vector<Point> relaxed(nv, Point::Zero());
+    std::vector<std::pair<Index, Index>> ring;
+    for (Index v = 0; v < nv; ++v) {
+        if (!(w[v] > 0.0f) || m.is_isolated(Vertex(v)) || m.is_boundary(Vertex(v))) continue;
+        ring.clear();
+        for (Halfedge h : m.halfedges_around(Vertex(v)))
+            ring.emplace_back(HalfedgeMesh::edge(h).idx(), m.to_vertex(h).idx());
+        std::sort(ring.begin(), ring.end());
+        Point sum = Point::Zero();
+        for (const auto& edge_and_neighbour : ring) sum += x[edge_and_neighbour.second];
+        const unsigned k = unsigned(ring.size());
+        const double alpha = (4.0 - 2.0 * std::cos(2 * kPi / k)) / 9.0;
+        relaxed[v] = (1.0 - alpha) * x[v] + (alpha / k) * sum;
+    }
+    return relaxed;
+}
+
+/// The faces of `split_face` (the selected ones on entry) grown until no old edge between a
+/// split and an unsplit face leaves the split side a triangle (a, b, centroid) flatter than
+/// target_angle (`position`: where each old vertex will be). Returns the number grown into.
+template <typename Position>
+std::size_t grow_sqrt3(const HalfedgeMesh& m, const Position& old_position, double target_angle,
+                       std::vector<std::uint8_t>& split_face) {
+    const Index nf = Index(m.faces_size());
+    const Point* x = m.positions().data();
+    std::size_t grown = 0;
+    const auto centroid_of = [&](Face f) {
+        const Halfedge h = m.halfedge(f), hn = m.next(h);
+        return Point((x[m.to_vertex(h).idx()] + x[m.to_vertex(hn).idx()] +
+                      x[m.to_vertex(m.next(hn)).idx()]) /
+                     3.0);
+    };
+    {
+        std::vector<Face> queue;
+        for (Index f = 0; f < nf; ++f)
+            if (split_face[f]) queue.push_back(Face(f));
+        while (!queue.empty()) {
+            const Face f = queue.back();
+            queue.pop_back();
+            const Point c = centroid_of(f);
+            for (Halfedge h : m.halfedges_of(f)) {
+                const Face g = m.face(HalfedgeMesh::twin(h));
+                if (!g.is_valid() || split_face[g.idx()]) continue;
+                const Point a = old_position(m.from_vertex(h).idx());
+                const Point b = old_position(m.to_vertex(h).idx());
+                if (corner_min_angle(a, b, c) >= target_angle) continue;
+                split_face[g.idx()] = 1;
+                ++grown;
+                queue.push_back(g);
+            }
+        }
+    }
+    return grown;
+}
+
+/// The Sqrt3 closure on `out`: each old edge (of `m`) between a split and an unsplit face
+/// keeps the split side's triangle (a, b, centroid); it is flipped (towards the pattern of
+/// the paper's next generation) when that raises the pair's minimum angle. Fills the flip
+/// counts and closure angles of `counts`; returns the closure's faces (flags per face of
+/// `out`).
+std::vector<std::uint8_t> sqrt3_closure(const HalfedgeMesh& m, HalfedgeMesh& out,
+                                        const std::vector<std::uint8_t>& split_face,
+                                        RegionClosureCounts& counts) {
+    const Index ne = Index(m.edges_size()), nf = Index(m.faces_size());
+    for (Index e = 0; e < ne; ++e) {  // the old edges flipped by the rule itself
+        const Face f0 = m.face(HalfedgeMesh::halfedge(Edge(e), 0));
+        const Face f1 = m.face(HalfedgeMesh::halfedge(Edge(e), 1));
+        counts.flipped_edges +=
+            f0.is_valid() && f1.is_valid() && split_face[f0.idx()] && split_face[f1.idx()];
+    }
+    std::vector<std::uint8_t> touched(nf, 0), closure(out.faces_size(), 0);
+    for (Index e = 0; e < ne; ++e) {
+        const Face f0 = m.face(HalfedgeMesh::halfedge(Edge(e), 0));
+        const Face f1 = m.face(HalfedgeMesh::halfedge(Edge(e), 1));
+        if (!f0.is_valid() || !f1.is_valid() || split_face[f0.idx()] == split_face[f1.idx()])
+            continue;
+        touched[f0.idx()] = touched[f1.idx()] = 1;
+        if (flip_improves(out, Edge(e))) {
+            out.flip(Edge(e));
+            ++counts.closure_flips;
+        }
+        closure[out.face(HalfedgeMesh::halfedge(Edge(e), 0)).idx()] = 1;
+        closure[out.face(HalfedgeMesh::halfedge(Edge(e), 1)).idx()] = 1;
+    }
+    counts.min_angle_touched = min_angle_of(m, touched);
+    counts.min_angle_closure = min_angle_of(out, closure);
+    return closure;
+}
+
 /// One adaptive Sqrt3 step on `m` (compact) with weights `w`.
 RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int level, bool morph,
-                               Progress& progress) {
+                               bool local_closure, double target_angle,
+                               const std::vector<double>& coarse_flat, Progress& progress) {
     const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
                 nf = Index(m.faces_size());
     const std::vector<std::uint8_t> selected = region_faces(m, w);
     RegionStep step;
     for (Index f = 0; f < nf; ++f) step.counts.selected_faces += selected[f];
-    step.counts.red_faces = step.counts.selected_faces;
-    check_face_limit(std::size_t(nf) + 2 * step.counts.selected_faces);
-    check_no_refined_pillow(m, [&](Face f) { return selected[f.idx()] != 0; });
     const Point* x = m.positions().data();
-    // The relaxed positions of the interior vertices that move, from the coarse ring: the
-    // neighbour sums gathered edge by edge and the rule written as subdivide() writes it, so
-    // that a vertex of weight 1 lands where the uniform step puts it, bit for bit.
-    std::vector<Point> relaxed(nv, Point::Zero());
-    std::vector<unsigned> valence(nv, 0);
-    for (Index e = 0; e < ne; ++e) {
-        const Index a = m.vertex(Edge(e), 1).idx(), b = m.vertex(Edge(e), 0).idx();
-        relaxed[a] += x[b];
-        relaxed[b] += x[a];
-        ++valence[a];
-        ++valence[b];
-    }
-    for (Index v = 0; v < nv; ++v) {
-        if (!(w[v] > 0.0f) || m.is_isolated(Vertex(v)) || m.is_boundary(Vertex(v))) continue;
-        const unsigned k = valence[v];
-        const double alpha = (4.0 - 2.0 * std::cos(2 * kPi / k)) / 9.0;
-        relaxed[v] = (1.0 - alpha) * x[v] + (alpha / k) * relaxed[v];
-    }
+    const std::vector<Point> relaxed = sqrt3_relaxed(m, w);
+    const auto moves = [&](Index v) {
+        return w[v] > 0.0f && !m.is_isolated(Vertex(v)) && !m.is_boundary(Vertex(v));
+    };
+    const auto old_position = [&](Index v) {
+        return moves(v) ? blend_by_weight(x[v], relaxed[v], w[v]) : x[v];
+    };
+    std::vector<std::uint8_t> split_face = selected;  // and those grown into (grow_sqrt3())
+    if (!local_closure)
+        step.counts.grown_faces = grow_sqrt3(m, old_position, target_angle, split_face);
+    for (Index f = 0; f < nf; ++f) step.counts.red_faces += split_face[f];
+    check_face_limit(std::size_t(nf) + 2 * step.counts.red_faces);
+    check_no_refined_pillow(m, [&](Face f) { return split_face[f.idx()] != 0; });
     progress.check_cancelled();
+    // Built straight into the arrays. Split face number i (in face order) gets the centroid
+    // nv + i, the spokes ne + 3i + k (from the start of its halfedge k to the centroid) and
+    // keeps one triangle per halfedge ("slot"): slot 0 is face f, slots 1 and 2 the faces
+    // nf + 2i and nf + 2i + 1. Slot x (u -> v, in face F) is the triangle (u, v, c_F) when the
+    // face across x is not split; when it is (G), x becomes c_F -> c_G, the old edge flipped,
+    // and the slot is (c_F, c_G, v).
+    const Index n_split_faces = Index(step.counts.red_faces);
+    std::vector<Index> split_number(nf, kInvalidIndex);
+    for (Index f = 0, i = 0; f < nf; ++f)
+        if (split_face[f]) split_number[f] = i++;
     HalfedgeMesh& out = step.level.mesh;
-    out = bare_copy(m);
+    out = bare_copy(m, std::size_t(nv) + n_split_faces, std::size_t(ne) + 3 * n_split_faces,
+                    std::size_t(nf) + 2 * n_split_faces);
+    Vertex* to = out.halfedge_to_array().data();
+    Halfedge* nx = out.halfedge_next_array().data();
+    Halfedge* pv = out.halfedge_prev_array().data();
+    Face* fc = out.halfedge_face_array().data();
+    Halfedge* vh = out.vertex_halfedge_array().data();
+    Halfedge* fh = out.face_halfedge_array().data();
+    const Vertex* to_in = m.halfedge_to_array().data();
+    const Halfedge* next_in = m.halfedge_next_array().data();
+    const Face* face_in = m.halfedge_face_array().data();
+    const auto corner = [&](Index hx) {  // 0, 1, 2: hx's place in its face
+        const Index h0 = m.halfedge(face_in[hx]).idx();
+        return h0 == hx ? 0 : (next_in[h0].idx() == hx ? 1 : 2);
+    };
+    // The spoke of face halfedge x: from x's start to its face's centroid (in) and back (out).
+    const auto spoke_in = [&](Index hx) {
+        return 2 * (ne + 3 * split_number[face_in[hx].idx()] + Index(corner(hx)));
+    };
+    const auto spoke_out = [&](Index hx) { return spoke_in(hx) + 1; };
+    const auto flipped = [&](Index hx) {
+        const Face g = face_in[hx ^ 1u];
+        return g.is_valid() && split_face[g.idx()] != 0;
+    };
     NewVertices nvx;
+    nvx.reserve(std::size_t(nv) + n_split_faces);
     for (Index v = 0; v < nv; ++v) {
-        const bool moves = w[v] > 0.0f && !m.is_isolated(Vertex(v)) && !m.is_boundary(Vertex(v));
-        nvx.add(moves ? SubdivisionStencil::EvenRelaxed : SubdivisionStencil::EvenKept, x[v], w[v],
-                v);
-    }
-    for (Index f = 0; f < nf; ++f) {
-        if (!selected[f]) continue;
-        const Halfedge h = m.halfedge(Face(f)), hn = m.next(h);
-        const Index a = m.to_vertex(h).idx(), b = m.to_vertex(hn).idx(),
-                    c = m.to_vertex(m.next(hn)).idx();
-        const Point centroid = (x[a] + x[b] + x[c]) / 3.0;
-        out.split(Face(f), centroid);
-        nvx.add(SubdivisionStencil::OddFace, centroid, std::min({w[a], w[b], w[c]}), a, b, c);
-    }
-    for (Index e = 0; e < ne; ++e) {
-        const Face f0 = m.face(HalfedgeMesh::halfedge(Edge(e), 0));
-        const Face f1 = m.face(HalfedgeMesh::halfedge(Edge(e), 1));
-        if (!f0.is_valid() || !f1.is_valid() || !selected[f0.idx()] || !selected[f1.idx()])
-            continue;
-        out.flip(Edge(e));
-        ++step.counts.flipped_edges;
+        nvx.add(moves(v) ? SubdivisionStencil::EvenRelaxed : SubdivisionStencil::EvenKept, x[v],
+                w[v], v);
     }
     Point* p = out.positions().data();
+    for (Index f = 0; f < nf; ++f) {
+        if (!split_face[f]) continue;
+        const Index i = split_number[f], c = nv + i;
+        Index h[3];
+        h[0] = m.halfedge(Face(f)).idx();
+        h[1] = next_in[h[0]].idx();
+        h[2] = next_in[h[1]].idx();
+        const Index a = to_in[h[0]].idx(), b = to_in[h[1]].idx(), d = to_in[h[2]].idx();
+        const Point centroid = (x[a] + x[b] + x[d]) / 3.0;
+        p[c] = centroid;
+        nvx.add(SubdivisionStencil::OddFace, centroid, std::min({w[a], w[b], w[d]}), a, b, d);
+        vh[c] = Halfedge(spoke_out(h[0]));
+        for (int k = 0; k < 3; ++k) {
+            const Index xk = h[k], xn = h[(k + 1) % 3];
+            const Index from = to_in[h[(k + 2) % 3]].idx();  // start of xk
+            const Index in = spoke_in(xk);
+            to[in] = Vertex(c);
+            to[in + 1] = Vertex(from);
+            const Index slot = k == 0 ? f : nf + 2 * i + Index(k - 1);
+            Index second, third;
+            if (flipped(xk)) {
+                const Index g = face_in[xk ^ 1u].idx();
+                to[xk] = Vertex(nv + split_number[g]);
+                second = spoke_out(xk ^ 1u);  // c_G -> end of xk
+                third = spoke_in(xn);         // end of xk -> c_F
+            } else {
+                second = spoke_in(xn);  // end of xk -> c_F
+                third = spoke_out(xk);  // c_F -> start of xk
+            }
+            nx[xk] = Halfedge(second), pv[second] = Halfedge(xk);
+            nx[second] = Halfedge(third), pv[third] = Halfedge(second);
+            nx[third] = Halfedge(xk), pv[xk] = Halfedge(third);
+            fc[xk] = fc[second] = fc[third] = Face(slot);
+            fh[slot] = Halfedge(xk);
+            // The start's outgoing halfedge, when it was xk and xk now leaves elsewhere.
+            if (vh[from].idx() == xk && flipped(xk)) vh[from] = Halfedge(in);
+        }
+    }
     for (Index v = 0; v < nv; ++v)
         if (nvx.stencil[v] == int(SubdivisionStencil::EvenRelaxed))
             p[v] = blend_by_weight(x[v], relaxed[v], w[v]);
+    const std::vector<std::uint8_t> closure = sqrt3_closure(m, out, split_face, step.counts);
+    // Faces of the coarse level left as they were: not split, not flipped, no vertex moved.
+    std::vector<std::uint8_t> changed(nf, 0);
+    const FaceCorners corners(m);
+    for (Index f = 0; f < nf; ++f) {
+        const auto v = corners(f);
+        changed[f] = split_face[f] || closure[f] || moves(v[0]) || moves(v[1]) || moves(v[2]);
+    }
+    step.flatness = level_flatness(out, coarse_flat, changed);
     finish(m, level, morph, std::move(nvx), step);
     return step;
 }
@@ -294,10 +800,11 @@ SubdivisionResult subdivide_everything(const HalfedgeMesh& mesh, const Subdivisi
 
 std::vector<std::uint8_t> region_faces(const HalfedgeMesh& mesh, const Selection& selection) {
     std::vector<std::uint8_t> selected(mesh.faces_size(), 0);
+    const FaceCorners corners(mesh);
     for (Face f : mesh.faces()) {
-        bool all = true;
-        for (Vertex v : mesh.face_vertices(f)) all = all && selection[v.idx()] > 0.0f;
-        selected[f.idx()] = all ? 1 : 0;
+        const auto v = corners(f.idx());
+        selected[f.idx()] =
+            selection[v[0]] > 0.0f && selection[v[1]] > 0.0f && selection[v[2]] > 0.0f;
     }
     return selected;
 }
@@ -312,10 +819,11 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
                               std::to_string(options.iterations) + ")");
     report = RegionSubdivisionReport{};
     report.region_vertices = count_selected(selection);
-    report.min_angle_in = min_triangle_angle(mesh);
     SubdivisionResult result;
     if (selects_everything(mesh, selection)) {
+        report.min_angle_in = min_triangle_angle(mesh);
         result = subdivide_everything(mesh, options, progress, report);
+        report.min_angle_out = min_triangle_angle(result.levels.back().mesh);
     } else {
         // A compact copy, its selection following the vertices, when the input has garbage.
         HalfedgeMesh collected;
@@ -330,6 +838,8 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
             current = &collected;
         }
         const bool sqrt3 = options.scheme == SubdivisionScheme::Sqrt3;
+        std::vector<double> flatness = flatness_of(*current);
+        report.min_angle_in = min_angle_by_flatness(*current, flatness);
         RegionStep latest;
         if (options.keep_levels) result.levels.reserve(std::size_t(options.iterations));
         for (int it = 1; it <= options.iterations; ++it) {
@@ -337,12 +847,16 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
             progress.report(double(it - 1) / options.iterations, "subdividing the region");
             const bool morph = options.morph && (options.keep_levels || it == options.iterations);
             RegionStep step =
-                sqrt3 ? refine_region_sqrt3(*current, weights, it, morph, progress)
-                      : refine_region_1to4(*current, weights, options.scheme, it, morph, progress);
+                sqrt3 ? refine_region_sqrt3(*current, weights, it, morph, options.local_closure,
+                                            report.min_angle_in, flatness, progress)
+                      : refine_region_1to4(*current, weights, options.scheme, it, morph,
+                                           options.local_closure, report.min_angle_in, flatness,
+                                           progress);
             report.closure.push_back(step.counts);
             result.level_counts.push_back(
                 {step.level.mesh.n_vertices(), step.level.mesh.n_faces()});
             weights = std::move(step.selection);
+            flatness = std::move(step.flatness);
             if (options.keep_levels) {
                 result.levels.push_back(std::move(step.level));
                 current = &result.levels.back().mesh;
@@ -355,8 +869,8 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
         if (mesh.get_halfedge_property<TexCoord>("h:texcoord"))
             result.notes.push_back(
                 "corner texture coordinates (h:texcoord) are not carried by region subdivision");
+        report.min_angle_out = min_angle_by_flatness(result.levels.back().mesh, flatness);
     }
-    report.min_angle_out = min_triangle_angle(result.levels.back().mesh);
     progress.report(1.0, "subdividing the region");
     result.ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

@@ -468,14 +468,16 @@ void loop_positions(const In& m, Point* p, const Stage& stage) {
 /// The corner opposite the wing edge `w` (a halfedge of a face), or its reflection across
 /// `w` when twin(w) is a boundary halfedge. opp[h] is the corner opposite face halfedge h
 /// (to_vertex(next(h))), invalid on boundary halfedges.
-inline Point wing(const In& m, const Index* opp, Index w) {
+template <typename Opp>
+inline Point wing(const In& m, const Opp& opp, Index w) {
     const Index o = opp[w ^ 1u];
     if (o != kInvalidIndex) return m.x[o];
     return m.x[m.to_i(w)] + m.x[m.from_i(w)] - m.x[opp[w]];
 }
 
 /// The 8-point butterfly stencil (w = 1/16) on interior halfedge h.
-inline Point butterfly8(const In& m, const Index* opp, Index h) {
+template <typename Opp>
+inline Point butterfly8(const In& m, const Opp& opp, Index h) {
     const Index t = h ^ 1u;
     const Point& a = m.x[m.from_i(h)];
     const Point& b = m.x[m.to_i(h)];
@@ -993,7 +995,154 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
     return result;
 }
 
+/// The corner opposite face halfedge h, computed where it is needed (invalid on boundary
+/// halfedges): the local counterpart of butterfly_positions()' table.
+struct OppOnTheFly {
+    const In& m;
+    Index operator[](Index h) const { return m.boundary(h) ? kInvalidIndex : m.to_i(m.next_i(h)); }
+};
+
+/// The outgoing halfedges of vertex v (valid halfedge), in rotation order.
+template <typename F>
+void for_each_outgoing(const In& m, Index v, F&& f) {
+    const Index h0 = m.vh[v].idx();
+    Index g = h0;
+    do {
+        f(g);
+        g = m.prev_i(g) ^ 1u;
+    } while (g != h0);
+}
+
+unsigned local_valence(const In& m, Index v) {
+    if (!m.vh[v].is_valid()) return 0;
+    unsigned n = 0;
+    for_each_outgoing(m, v, [&](Index) { ++n; });
+    return n;
+}
+
+bool local_interior(const In& m, Index v) {
+    const Halfedge h = m.vh[v];
+    return h.is_valid() && !m.boundary(h.idx());
+}
+
+/// Loop's even rule at vertex v from its one ring, summing the neighbours in the order of
+/// their edges' indices as loop_positions() does (so the result is the same bit for bit).
+Point loop_even_at(const In& m, Index v, std::vector<std::pair<Index, Index>>& ring) {
+    const Point* x = m.x;
+    const Halfedge h0 = m.vh[v];
+    if (!h0.is_valid()) return x[v];
+    if (m.boundary(h0.idx()))
+        return 0.75 * x[v] + 0.125 * (x[m.to_i(h0.idx())] + x[m.from_i(m.prev_i(h0.idx()))]);
+    ring.clear();
+    for_each_outgoing(m, v, [&](Index g) { ring.emplace_back(g >> 1, m.to_i(g)); });
+    std::sort(ring.begin(), ring.end());
+    Point sum = Point::Zero();
+    for (const auto& edge_and_neighbour : ring) sum += x[edge_and_neighbour.second];
+    const unsigned n = unsigned(ring.size());
+    const double t = 0.375 + 0.25 * std::cos(2 * kPi / n);
+    const double b = (0.625 - t * t) / n;
+    return (1.0 - n * b) * x[v] + b * sum;
+}
+
+/// Loop's odd rule on edge e.
+Point loop_odd_at(const In& m, Index e) {
+    const Index h = 2 * e, t = 2 * e + 1;
+    const Point& a = m.x[m.to_i(t)];
+    const Point& b = m.x[m.to_i(h)];
+    if (m.boundary(h) || m.boundary(t)) return 0.5 * (a + b);
+    const Point& c = m.x[m.to_i(m.next_i(h))];
+    const Point& d = m.x[m.to_i(m.next_i(t))];
+    return 0.375 * (a + b) + 0.125 * (c + d);
+}
+
+/// The butterflies' odd rule on edge e, as butterfly_positions() computes it.
+Point butterfly_odd_at(const In& m, Index e, bool modified, ExtraordinaryWeights& weights) {
+    const Point* x = m.x;
+    const OppOnTheFly opp{m};
+    const Index h = 2 * e, t = 2 * e + 1;
+    if (m.boundary(h) || m.boundary(t)) {
+        const Index bh = m.boundary(h) ? h : t;
+        const Point& a = x[m.from_i(bh)];
+        const Point& b = x[m.to_i(bh)];
+        const Point& a0 = x[m.from_i(m.prev_i(bh))];
+        const Point& b1 = x[m.to_i(m.next_i(bh))];
+        return 0.5625 * (a + b) - 0.0625 * (a0 + b1);
+    }
+    if (!modified) return butterfly8(m, opp, h);
+    const auto extraordinary_vertex = [&](Index v) {
+        return local_interior(m, v) && local_valence(m, v) != 6;
+    };
+    auto extraordinary = [&](Index g0) {
+        const Index a = m.from_i(g0);
+        const unsigned n = local_valence(m, a);
+        const double* s = weights.of(n);
+        Point q = 0.75 * x[a];
+        Index g = g0;
+        for (unsigned j = 0; j < n; ++j, g = m.prev_i(g) ^ 1u) q += s[j] * x[m.to_i(g)];
+        return q;
+    };
+    const bool ea = extraordinary_vertex(m.from_i(h));
+    const bool eb = extraordinary_vertex(m.to_i(h));
+    if (ea && eb) return 0.5 * (extraordinary(h) + extraordinary(t));
+    if (ea) return extraordinary(h);
+    if (eb) return extraordinary(t);
+    return butterfly8(m, opp, h);
+}
+
+/// The stencil provenance_1to4() gives old vertex v.
+SubdivisionStencil even_stencil_at(const In& m, Index v, SubdivisionScheme scheme) {
+    if (scheme != SubdivisionScheme::Loop || !m.vh[v].is_valid())
+        return SubdivisionStencil::EvenKept;
+    if (!local_interior(m, v)) return SubdivisionStencil::EvenBoundary;
+    return local_valence(m, v) == 6 ? SubdivisionStencil::EvenRegular
+                                    : SubdivisionStencil::EvenExtraordinary;
+}
+
+/// The stencil provenance_1to4() gives the new vertex of edge e.
+SubdivisionStencil odd_stencil_at(const In& m, Index e, SubdivisionScheme scheme) {
+    if (m.boundary(2 * e) || m.boundary(2 * e + 1)) return SubdivisionStencil::OddBoundary;
+    const Index a = m.to_i(2 * e + 1), b = m.to_i(2 * e);
+    const auto extraordinary = [&](Index v) {
+        return local_interior(m, v) && local_valence(m, v) != 6;
+    };
+    if (scheme == SubdivisionScheme::ModifiedButterfly && (extraordinary(a) || extraordinary(b)))
+        return SubdivisionStencil::OddExtraordinary;
+    return SubdivisionStencil::OddRegular;
+}
+
 }  // namespace
+
+UniformStep1to4 uniform_step_1to4_at(const HalfedgeMesh& mesh, SubdivisionScheme scheme,
+                                     const std::vector<std::uint8_t>& vertices,
+                                     const std::vector<std::uint8_t>& edges, Progress& progress) {
+    if (mesh.has_garbage() || scheme == SubdivisionScheme::Sqrt3 ||
+        vertices.size() != mesh.vertices_size() || edges.size() != mesh.edges_size())
+        throw InvalidArgument(
+            "uniform_step_1to4_at: expected a compact mesh, a 1-to-4 scheme (loop, butterfly, "
+            "modified-butterfly) and one flag per vertex and per edge");
+    const In m(mesh);
+    UniformStep1to4 step;
+    step.positions.assign(std::size_t(m.nv) + m.ne, Point::Zero());
+    step.stencils.assign(std::size_t(m.nv) + m.ne, int(SubdivisionStencil::EvenKept));
+    std::vector<std::pair<Index, Index>> ring;
+    const bool loop = scheme == SubdivisionScheme::Loop;
+    for (Index v = 0; v < m.nv; ++v) {
+        if (!vertices[v]) continue;
+        if ((v & kCheckMask) == 0) progress.check_cancelled();
+        step.positions[v] = loop ? loop_even_at(m, v, ring) : m.x[v];
+        step.stencils[v] = int(even_stencil_at(m, v, scheme));
+    }
+    ExtraordinaryWeights weights;
+    const bool modified = scheme == SubdivisionScheme::ModifiedButterfly;
+    for (Index e = 0; e < m.ne; ++e) {
+        if (!edges[e]) continue;
+        if ((e & kCheckMask) == 0) progress.check_cancelled();
+        step.positions[m.nv + e] =
+            loop ? loop_odd_at(m, e) : butterfly_odd_at(m, e, modified, weights);
+        step.stencils[m.nv + e] = int(odd_stencil_at(m, e, scheme));
+    }
+    return step;
+}
 
 UniformStep1to4 uniform_step_1to4(const HalfedgeMesh& mesh, SubdivisionScheme scheme,
                                   Progress& progress) {

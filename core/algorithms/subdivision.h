@@ -49,6 +49,10 @@ struct SubdivisionOptions {
     /// Compute each returned level's MorphCorrespondence (the start positions). When false its
     /// `positions` stay empty (check_correspondence() refuses it) and no time is spent on it.
     bool morph = true;
+    /// Region subdivision only (core/algorithms/region_subdivision.h): keep the closure to the
+    /// faces next to the selection (green bisections, unflipped Sqrt3 triangles) even where
+    /// they are flatter than the input, instead of growing it until none is.
+    bool local_closure = false;
 };
 
 /// The rule that placed a vertex in one subdivision step ("v:subdivision_stencil").
@@ -127,5 +131,16 @@ struct UniformStep1to4 {
 /// coincidence search, O(V log V)).
 UniformStep1to4 uniform_step_1to4(const HalfedgeMesh& mesh, SubdivisionScheme scheme,
                                   Progress& progress);
+
+/// The same values as uniform_step_1to4(), bit for bit, computed only for the flagged old
+/// vertices (`vertices`, one flag per vertex) and edges (`edges`, one per edge) from their
+/// one rings: what a region needs. The other entries are zero (positions) and EvenKept
+/// (stencils). The mesh must be compact and must have no coincident vertices (on a weld the
+/// stencils reach across seams: use uniform_step_1to4()); throws InvalidArgument for garbage,
+/// Sqrt3 or flags that do not fit. O(V + E) to scan the flags, plus O(valence) per flagged
+/// element.
+UniformStep1to4 uniform_step_1to4_at(const HalfedgeMesh& mesh, SubdivisionScheme scheme,
+                                     const std::vector<std::uint8_t>& vertices,
+                                     const std::vector<std::uint8_t>& edges, Progress& progress);
 
 }  // namespace trilab

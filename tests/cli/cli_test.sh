@@ -628,7 +628,8 @@ check "subdivide --region refines a sphere region of every scheme into a valid c
     "for s in loop sqrt3 butterfly modified-butterfly; do \
        '$cli' subdivide --scheme \$s '$tmp/d.obj' '$tmp/rs.ply' --region sphere:0,0,1,0.6 \
          --json > '$tmp/rs.json' && { $(declare -f json_has); true; } && \
-       json_has '$tmp/rs.json' region_vertices min_angle_in min_angle_out faces selected_faces && \
+       json_has '$tmp/rs.json' region_vertices min_angle_in min_angle_out faces selected_faces \
+         min_angle_closure min_angle_touched grown_faces closure_flips && \
        '$cli' info '$tmp/rs.ply' --json > '$tmp/ri.json' && \
        grep -q '\"valid\": true' '$tmp/ri.json' && grep -q '\"euler\": 2,' '$tmp/ri.json' && \
        grep -q '\"boundary_edges\": 0,' '$tmp/ri.json' && grep -q '\"manifold\": true' '$tmp/ri.json' \

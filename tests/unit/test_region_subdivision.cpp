@@ -11,11 +11,13 @@
 #include <utility>
 
 #include "app/ops/operation.h"
+#include "core/algorithms/coincident.h"
 #include "core/algorithms/generators.h"
 #include "core/algorithms/region_subdivision.h"
 #include "core/algorithms/selection.h"
 #include "core/algorithms/subdivision.h"
 #include "core/geometry.h"
+#include "core/io/mesh_io.h"
 #include "core/validate.h"
 #include "test_helpers.h"
 
@@ -76,17 +78,22 @@ std::size_t count_selected_faces(const HalfedgeMesh& m, const Selection& w) {
     return n;
 }
 
-/// The smallest corner angle in degrees, every corner by atan2 (a second implementation).
+/// The smallest corner angle of face f in degrees, every corner by atan2 (a second
+/// implementation).
+double brute_face_min_angle(const HalfedgeMesh& m, Face f) {
+    double smallest = 180;
+    const auto v = m.face_vertices(f);
+    for (int k = 0; k < 3; ++k) {
+        const Vector3 a = m.position(v[(k + 1) % 3]) - m.position(v[k]);
+        const Vector3 b = m.position(v[(k + 2) % 3]) - m.position(v[k]);
+        smallest = std::min(smallest, std::atan2(a.cross(b).norm(), a.dot(b)) * 180 / M_PI);
+    }
+    return smallest;
+}
+
 double brute_min_angle(const HalfedgeMesh& m) {
     double smallest = 180;
-    for (Face f : m.faces()) {
-        const auto v = m.face_vertices(f);
-        for (int k = 0; k < 3; ++k) {
-            const Vector3 a = m.position(v[(k + 1) % 3]) - m.position(v[k]);
-            const Vector3 b = m.position(v[(k + 2) % 3]) - m.position(v[k]);
-            smallest = std::min(smallest, std::atan2(a.cross(b).norm(), a.dot(b)) * 180 / M_PI);
-        }
-    }
+    for (Face f : m.faces()) smallest = std::min(smallest, brute_face_min_angle(m, f));
     return smallest;
 }
 
@@ -111,6 +118,7 @@ TEST_CASE("subdivide_region refines the selected faces with a conforming closure
     REQUIRE(count_selected(region) < mesh.n_vertices() / 2);
     SubdivisionOptions options;
     options.scheme = scheme;
+    options.local_closure = true;  // the closure next to the selection, as predicted below
     NullProgress progress;
     RegionSubdivisionReport report;
     const SubdivisionResult result = subdivide_region(mesh, options, region, progress, report);
@@ -136,6 +144,7 @@ TEST_CASE("subdivide_region refines the selected faces with a conforming closure
     // Vertices of weight 0 stay bit for bit; those inside move as the whole-mesh scheme moves
     // them (Loop, Sqrt3) or stay (the interpolating butterflies).
     SubdivisionOptions whole_options = options;
+    whole_options.local_closure = false;
     const SubdivisionResult whole = subdivide(mesh, whole_options, progress);
     const HalfedgeMesh& uniform = whole.levels.back().mesh;
     for (Vertex v : mesh.vertices()) {
@@ -165,11 +174,14 @@ TEST_CASE("subdivide_region refines the selected faces with a conforming closure
         CHECK(carried[v] == least);
     }
 
-    // The minimum angles are reported as they are (a green bisection or an unflipped Sqrt3
-    // triangle can be flatter than the input: the report says so, it is not hidden).
+    // The minimum angles are reported as they are (with the closure kept next to the selection,
+    // a green bisection or an unflipped Sqrt3 triangle can be flatter than the input: the
+    // report says so, it is not hidden).
     CHECK(report.min_angle_in == Approx(brute_min_angle(mesh)).margin(1e-9));
     CHECK(report.min_angle_out == Approx(brute_min_angle(out)).margin(1e-9));
     CHECK(report.min_angle_out > 0);
+    CHECK(report.closure[0].grown_faces == 0);
+    CHECK(report.closure[0].min_angle_closure >= report.min_angle_out);
 }
 
 TEST_CASE("subdivide_region with an all-ones selection gives the unselected result bit for bit",
@@ -236,18 +248,295 @@ TEST_CASE("subdivide takes a region through the operation and reports the angles
     NullProgress progress;
     RunSettings settings;
     settings.region = &region;
-    const OperationResult r =
-        run_operation(parse_operation("subdivide --scheme butterfly"), mesh, progress, settings);
+    const OperationResult r = run_operation(
+        parse_operation("subdivide --scheme butterfly --local-closure"), mesh, progress, settings);
     std::map<std::string, double> values(r.values.begin(), r.values.end());
     CHECK(values.at("region_vertices") == double(count_selected(region)));
     CHECK(values.at("faces") == double(r.steps.back().mesh.n_faces()));
     CHECK(values.at("faces") == double(predicted_red_green_faces(mesh, region)));
     CHECK(values.count("min_angle_in") == 1);
     CHECK(values.count("min_angle_out") == 1);
+    CHECK(values.at("grown_faces") == 0);
+    CHECK(values.at("min_angle_closure") < values.at("min_angle_in"));  // bisections, kept local
     CHECK(validate(r.steps.back().mesh).ok);
+    // By default the closure grows until none of its triangles is flatter than the input.
+    const OperationResult g =
+        run_operation(parse_operation("subdivide --scheme butterfly"), mesh, progress, settings);
+    std::map<std::string, double> grown(g.values.begin(), g.values.end());
+    CHECK(grown.at("grown_faces") > 0);
+    CHECK(grown.at("min_angle_closure") >= grown.at("min_angle_in") - 1e-9);  // rounding
+    bool reported = false;
+    for (const std::string& line : g.report)
+        reported = reported || line.find("closure (last level): minimum angle") == 0;
+    CHECK(reported);
     // A selection that does not fit is refused before anything runs.
     Selection wrong(3, 1.0f);
     settings.region = &wrong;
     CHECK_THROWS_AS(run_operation(parse_operation("subdivide"), mesh, progress, settings),
                     InvalidArgument);
+}
+
+namespace {
+
+/// The coarse faces split by a region step, read back from the output alone: the coarse edges
+/// that got a new vertex (its two parents), and for Sqrt3 the faces that got a centroid.
+struct SplitsFound {
+    std::set<std::pair<Index, Index>> edges;
+    std::size_t centroids = 0;
+};
+
+SplitsFound splits_in(const HalfedgeMesh& out, std::size_t old_vertices) {
+    SplitsFound found;
+    const auto parents = out.get_vertex_property<SubdivisionParents>("v:subdivision_parents");
+    for (Vertex v : out.vertices()) {
+        if (v.idx() < old_vertices) continue;
+        if (parents[v][2] != kInvalidIndex) {
+            ++found.centroids;
+        } else {
+            found.edges.insert(std::make_pair(std::min(parents[v][0], parents[v][1]),
+                                              std::max(parents[v][0], parents[v][1])));
+        }
+    }
+    return found;
+}
+
+struct NamedMesh {
+    std::string name;
+    HalfedgeMesh mesh;
+};
+
+/// The generated default model and the shared bunny, spot and fandisk (skipped when absent).
+std::vector<NamedMesh> closure_fixtures() {
+    std::vector<NamedMesh> meshes;
+    meshes.push_back({"default model", make_default_model()});
+    for (const char* name : {"stanford-bunny.obj", "spot.obj", "fandisk.obj"}) {
+        const std::string path = test::shared_mesh(name);
+        if (!test::present_or_skip(path)) continue;
+        HalfedgeMesh m = read_mesh(path).mesh;
+        m.garbage_collection();
+        meshes.push_back({name, std::move(m)});
+    }
+    return meshes;
+}
+
+}  // namespace
+
+TEST_CASE("subdivide_region's closure is no flatter than the input on real and generated meshes",
+          "[subdivision][selection][slow]") {
+    NullProgress progress;
+    for (const NamedMesh& fixture : closure_fixtures()) {
+        const HalfedgeMesh& mesh = fixture.mesh;
+        const BoundingBox box = bounding_box(mesh);
+        const Selection region = sphere_selection(
+            mesh, mesh.position(Vertex(mesh.n_vertices() / 3)), 0.2 * box.size().norm());
+        REQUIRE(count_selected(region) > 10);
+        REQUIRE(count_selected(region) < mesh.n_vertices());
+        const double input_min = brute_min_angle(mesh);
+        for (SubdivisionScheme scheme :
+             {SubdivisionScheme::Loop, SubdivisionScheme::Butterfly,
+              SubdivisionScheme::ModifiedButterfly, SubdivisionScheme::Sqrt3}) {
+            INFO(fixture.name << ", " << scheme_name(scheme));
+            SubdivisionOptions options;
+            options.scheme = scheme;
+            RegionSubdivisionReport report;
+            const SubdivisionResult result =
+                subdivide_region(mesh, options, region, progress, report);
+            const HalfedgeMesh& out = result.levels.back().mesh;
+            REQUIRE(validate(out).ok);
+            CHECK(is_closed(out) == is_closed(mesh));  // the bunny has holes, the others none
+            CHECK(euler(out) == euler(mesh));
+            for (Vertex v : mesh.vertices())
+                if (region[v.idx()] == 0.0f) CHECK(same_point(out.position(v), mesh.position(v)));
+
+            // The face count the closure predicts, from the splits found in the output: no
+            // coarse face has two split edges (the closure made it red), the split edges are
+            // gone from the output (split on both sides: no T-junction), and the report agrees.
+            const SplitsFound splits = splits_in(out, mesh.vertices_size());
+            const RegionClosureCounts& c = report.closure[0];
+            if (scheme == SubdivisionScheme::Sqrt3) {
+                CHECK(splits.edges.empty());
+                CHECK(splits.centroids == c.red_faces);
+                CHECK(out.n_faces() == mesh.n_faces() + 2 * splits.centroids);
+            } else {
+                std::size_t red = 0, green = 0;
+                for (Face f : mesh.faces()) {
+                    const auto v = mesh.face_vertices(f);
+                    int n = 0;
+                    for (int k = 0; k < 3; ++k) {
+                        const Index a = v[k].idx(), b = v[(k + 1) % 3].idx();
+                        n += int(splits.edges.count({std::min(a, b), std::max(a, b)}));
+                    }
+                    CHECK(n != 2);
+                    red += n == 3 ? 1 : 0;
+                    green += n == 1 ? 1 : 0;
+                }
+                CHECK(red == c.red_faces);
+                CHECK(green == c.green_faces);
+                CHECK(out.n_faces() == mesh.n_faces() + 3 * red + green);
+                for (const auto& e : splits.edges)
+                    CHECK(!out.find_edge(Vertex(e.first), Vertex(e.second)).is_valid());
+            }
+
+            // The closure's triangles, found independently: 1-to-4, every face that is not a
+            // child of a selected face (its vertices' parents are not one selected face's
+            // corners); Sqrt3, every face with at most one centroid (the pattern's triangles
+            // have two). Untouched input faces are among them: they pass trivially.
+            std::set<std::array<Index, 3>> selected_corners;
+            for (Face f : mesh.faces()) {
+                const auto v = mesh.face_vertices(f);
+                std::array<Index, 3> t = {v[0].idx(), v[1].idx(), v[2].idx()};
+                std::sort(t.begin(), t.end());
+                if (region[t[0]] > 0 && region[t[1]] > 0 && region[t[2]] > 0)
+                    selected_corners.insert(t);
+            }
+            const auto parents =
+                out.get_vertex_property<SubdivisionParents>("v:subdivision_parents");
+            double closure_min = 180;
+            for (Face f : out.faces()) {
+                std::set<Index> corners;
+                int centroids = 0;
+                for (Vertex v : out.face_vertices(f)) {
+                    for (int k = 0; k < 3; ++k)
+                        if (parents[v][k] != kInvalidIndex) corners.insert(parents[v][k]);
+                    centroids += parents[v][2] != kInvalidIndex ? 1 : 0;
+                }
+                bool closure;
+                if (scheme == SubdivisionScheme::Sqrt3) {
+                    closure = centroids <= 1;
+                } else {
+                    std::array<Index, 3> t{};
+                    std::size_t k = 0;
+                    for (Index i : corners)
+                        if (k < 3) t[k++] = i;
+                    closure = corners.size() != 3 || selected_corners.count(t) == 0;
+                }
+                if (!closure) continue;
+                closure_min = std::min(closure_min, brute_face_min_angle(out, f));
+            }
+            CHECK(closure_min >= input_min - 1e-9);
+            CHECK(c.min_angle_closure >= report.min_angle_in - 1e-9);
+            CHECK(report.min_angle_in == Approx(input_min).margin(1e-9));
+
+            // All ones: the unselected result, bit for bit.
+            RegionSubdivisionReport ones_report;
+            const SubdivisionResult ones =
+                subdivide_region(mesh, options, full_selection(mesh), progress, ones_report);
+            const SubdivisionResult whole = subdivide(mesh, options, progress);
+            const HalfedgeMesh& x = whole.levels.back().mesh;
+            const HalfedgeMesh& y = ones.levels.back().mesh;
+            REQUIRE(x.vertices_size() == y.vertices_size());
+            CHECK(std::memcmp(x.positions().data(), y.positions().data(),
+                              x.positions().size() * sizeof(Point)) == 0);
+            CHECK(x.halfedge_to_array() == y.halfedge_to_array());
+        }
+    }
+}
+
+TEST_CASE("uniform_step_1to4_at gives the uniform step's values bit for bit where it is asked",
+          "[subdivision][selection]") {
+    NullProgress progress;
+    std::vector<NamedMesh> meshes;
+    meshes.push_back({"default model", make_default_model()});
+    meshes.push_back({"open grid", make_grid(8)});  // boundary rules
+    meshes.push_back({"torus", make_torus(24, 12, 1.0, 0.35)});
+    const std::string bunny = test::shared_mesh("stanford-bunny.obj");
+    if (test::present_or_skip(bunny)) {
+        HalfedgeMesh m = read_mesh(bunny).mesh;
+        m.garbage_collection();
+        meshes.push_back({"bunny", std::move(m)});
+    }
+    for (const NamedMesh& fixture : meshes) {
+        const HalfedgeMesh& mesh = fixture.mesh;
+        REQUIRE(find_coincident_vertices(mesh).empty());
+        for (SubdivisionScheme scheme : {SubdivisionScheme::Loop, SubdivisionScheme::Butterfly,
+                                         SubdivisionScheme::ModifiedButterfly}) {
+            INFO(fixture.name << ", " << scheme_name(scheme));
+            const UniformStep1to4 all = uniform_step_1to4(mesh, scheme, progress);
+            // Every third vertex and every other edge.
+            std::vector<std::uint8_t> vertices(mesh.vertices_size()), edges(mesh.edges_size());
+            for (std::size_t v = 0; v < vertices.size(); ++v) vertices[v] = v % 3 == 0;
+            for (std::size_t e = 0; e < edges.size(); ++e) edges[e] = e % 2 == 1;
+            const UniformStep1to4 some =
+                uniform_step_1to4_at(mesh, scheme, vertices, edges, progress);
+            REQUIRE(some.positions.size() == all.positions.size());
+            std::size_t checked = 0, differ = 0;
+            const std::size_t nv = mesh.vertices_size();
+            for (std::size_t i = 0; i < all.positions.size(); ++i) {
+                const bool asked = i < nv ? vertices[i] != 0 : edges[i - nv] != 0;
+                if (!asked) continue;
+                ++checked;
+                differ += same_point(all.positions[i], some.positions[i]) &&
+                                  all.stencils[i] == some.stencils[i]
+                              ? 0
+                              : 1;
+            }
+            CHECK(checked > 0);
+            CHECK(differ == 0);
+        }
+        // Flags that do not fit are refused.
+        CHECK_THROWS_AS(uniform_step_1to4_at(mesh, SubdivisionScheme::Loop, {1}, {1}, progress),
+                        InvalidArgument);
+    }
+}
+
+TEST_CASE("subdivide_region splits boundary edges of an open mesh into a valid boundary",
+          "[subdivision][selection]") {
+    const HalfedgeMesh mesh = make_grid(8);
+    REQUIRE(!is_closed(mesh));
+    // A region at a corner of the grid: its boundary edges are split.
+    const Selection region = sphere_selection(mesh, mesh.position(Vertex(0)), 0.45);
+    REQUIRE(count_selected(region) > 3);
+    NullProgress progress;
+    for (SubdivisionScheme scheme : {SubdivisionScheme::Loop, SubdivisionScheme::Butterfly,
+                                     SubdivisionScheme::ModifiedButterfly}) {
+        for (bool local : {true, false}) {
+            INFO(scheme_name(scheme) << (local ? ", local closure" : ", grown closure"));
+            SubdivisionOptions options;
+            options.scheme = scheme;
+            options.local_closure = local;
+            options.iterations = 2;
+            RegionSubdivisionReport report;
+            const SubdivisionResult result =
+                subdivide_region(mesh, options, region, progress, report);
+            const HalfedgeMesh& first_level = result.levels.front().mesh;
+            const HalfedgeMesh& out = result.levels.back().mesh;
+            REQUIRE(validate(first_level).ok);
+            REQUIRE(validate(out).ok);
+            CHECK(euler(out) == euler(mesh));
+            const SplitsFound splits = splits_in(first_level, mesh.vertices_size());
+            std::size_t boundary_splits = 0;
+            for (const auto& e : splits.edges) {
+                const Edge coarse = mesh.find_edge(Vertex(e.first), Vertex(e.second));
+                REQUIRE(coarse.is_valid());
+                boundary_splits += mesh.is_boundary(coarse) ? 1 : 0;
+            }
+            CHECK(boundary_splits > 0);
+            std::size_t boundary_edges = 0;
+            for (Edge e : first_level.edges()) boundary_edges += first_level.is_boundary(e);
+            std::size_t coarse_boundary = 0;
+            for (Edge e : mesh.edges()) coarse_boundary += mesh.is_boundary(e);
+            CHECK(boundary_edges == coarse_boundary + boundary_splits);
+            for (Vertex v : mesh.vertices())
+                if (region[v.idx()] == 0.0f) CHECK(same_point(out.position(v), mesh.position(v)));
+        }
+    }
+    // Sqrt3 at the boundary: faces on it are split 1-to-3, the boundary edges stay.
+    for (bool local : {true, false}) {
+        SubdivisionOptions options;
+        options.scheme = SubdivisionScheme::Sqrt3;
+        options.local_closure = local;
+        options.iterations = 2;
+        RegionSubdivisionReport report;
+        const SubdivisionResult result = subdivide_region(mesh, options, region, progress, report);
+        for (const SubdivisionLevel& level : result.levels) {
+            REQUIRE(validate(level.mesh).ok);
+            CHECK(euler(level.mesh) == euler(mesh));
+            std::size_t boundary_edges = 0, coarse_boundary = 0;
+            for (Edge e : level.mesh.edges()) boundary_edges += level.mesh.is_boundary(e);
+            for (Edge e : mesh.edges()) coarse_boundary += mesh.is_boundary(e);
+            CHECK(boundary_edges == coarse_boundary);
+        }
+        CHECK(result.levels.front().mesh.n_faces() ==
+              mesh.n_faces() + 2 * report.closure[0].red_faces);
+    }
 }
