@@ -255,6 +255,11 @@ void Viewer::follow_session() {
 }
 
 void Viewer::execute(const Command& command) {
+    // Pictures of the scene show the exact surface, also while a large state waits for its
+    // upload (viewer_motion.cpp).
+    if (proxy_.exact_pending && (std::holds_alternative<TakeScreenshot>(command) ||
+                                 std::holds_alternative<StartRecording>(command)))
+        upload_shown();
     if (auto* c = std::get_if<LoadFile>(&command)) {
         if (c->discard_changes || confirm_discard(false, c->path)) session_.execute(command);
     } else if (auto* save_file = std::get_if<SaveFile>(&command)) {
