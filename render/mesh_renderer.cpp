@@ -953,4 +953,69 @@ void MeshRenderer::draw(const glm::mat4& view, const glm::mat4& projection,
     glUseProgram(0);
 }
 
+void MeshRenderer::upload_triangles(const std::vector<Point>& positions,
+                                    const std::vector<std::array<Index, 3>>& triangles) {
+    const std::size_t n = positions.size();
+    for (const auto& t : triangles)
+        for (Index v : t)
+            if (v >= n)
+                throw InvalidArgument("MeshRenderer::upload_triangles: corner " +
+                                      std::to_string(v) + " of a list of " + std::to_string(n) +
+                                      " positions");
+    std::vector<Vector3> normals(n, Vector3::Zero());
+    for (const auto& t : triangles) {
+        const Point& p0 = positions[t[0]];
+        const Vector3 nt = (positions[t[1]] - p0).cross(positions[t[2]] - p0);
+        for (Index v : t) normals[v] += nt;
+    }
+    std::vector<GpuVertex> data(n);
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (std::size_t i = 0; i < n; ++i) {
+        const double len = normals[i].norm();
+        const Vector3 nv = len > 0 ? Vector3(normals[i] / len) : Vector3::Zero();
+        const Point& p = positions[i];
+        data[i] = GpuVertex{{float(p.x()), float(p.y()), float(p.z())},
+                            {float(nv.x()), float(nv.y()), float(nv.z())}};
+        lo = glm::min(lo, glm::vec3(data[i].position[0], data[i].position[1], data[i].position[2]));
+        hi = glm::max(hi, glm::vec3(data[i].position[0], data[i].position[1], data[i].position[2]));
+    }
+    if (n == 0) lo = hi = glm::vec3(0.0f);
+    std::vector<GLuint> points(n);
+    for (std::size_t i = 0; i < n; ++i) points[i] = GLuint(i);
+
+    shown_ = {};
+    level_vertices_.clear();
+    gpu_source_.clear();
+    component_of_vertex_.clear();
+    n_components_ = 0;
+    outward_ = false;
+    n_vertices_ = n_gpu_vertices_ = n;
+    bbox_min_ = lo;
+    bbox_max_ = hi;
+    static_assert(sizeof(std::array<Index, 3>) == 3 * sizeof(GLuint) && sizeof(Index) == 4,
+                  "triangles must be tightly packed uint32 triples");
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);  // no VAO bound: safe to use the binding point
+    glBindBuffer(GL_ARRAY_BUFFER, geometry_buffer_);
+    glBufferData(GL_ARRAY_BUFFER, bytes(data.size(), sizeof(GpuVertex)), data.data(),
+                 GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, triangle_buffer_);
+    glBufferData(GL_ARRAY_BUFFER, bytes(triangles.size(), 3 * sizeof(GLuint)), triangles.data(),
+                 GL_STATIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, point_buffer_);
+    glBufferData(GL_ARRAY_BUFFER, bytes(points.size(), sizeof(GLuint)), points.data(),
+                 GL_STATIC_DRAW);
+    n_triangle_indices_ = 3 * triangles.size();
+    n_point_indices_ = points.size();
+    has_texcoords_ = false;
+    glBindBuffer(GL_ARRAY_BUFFER, texcoord_buffer_);
+    glBufferData(GL_ARRAY_BUFFER, 0, nullptr, GL_STATIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    for (GLuint vao : {triangle_vao_, point_vao_}) {
+        glBindVertexArray(vao);
+        glDisableVertexAttribArray(kTexcoord);
+    }
+    glBindVertexArray(0);
+    clear_vertex_colors();
+}
+
 }  // namespace trilab

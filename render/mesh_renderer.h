@@ -196,6 +196,14 @@ public:
     void update_level(LevelOfDetail& lod);
     /// Forgets the uploaded mesh and colours; draw() then draws nothing. Keeps the texture.
     void clear();
+    /// Shows a bare triangle list (a proxy, core/algorithms/proxy_mesh.h): `positions` one per
+    /// vertex, `triangles` over them (non-manifold lists are fine), area-weighted vertex
+    /// normals, every vertex a point. Replaces what was uploaded and drops texture
+    /// coordinates, vertex colours and scalars; set_vertex_colors() then takes one colour
+    /// per position. Back faces are never culled (a proxy need not be closed). Throws
+    /// InvalidArgument for a corner outside `positions`. O(vertices + triangles).
+    void upload_triangles(const std::vector<Point>& positions,
+                          const std::vector<std::array<Index, 3>>& triangles);
 
     /// Per-vertex colours indexed by vertex storage index (size == n_vertices(), the storage
     /// size at the last upload()); they replace front_color while style.vertex_colors is on,

@@ -184,4 +184,29 @@ if(TARGET trilab)
                      $<TARGET_FILE:trilab> $<TARGET_FILE:trilab-cli> 30)
     set_tests_properties(viewer_kill_journal PROPERTIES TIMEOUT 120 PASS_REGULAR_EXPRESSION
                          "kill_test: every journal restored a prefix")
+    # Large meshes, simplified while moving (docs/viewer.md): TRILAB_PROXY_MIN_FACES (tests
+    # only) lowers the proxy threshold so that the built-in model gets a proxy. After --orbit
+    # the rested view equals the unturned view pixel for pixel (the view rectangle of both
+    # screenshots; the status bar shows frame times), and the orbit drew the proxy.
+    add_test(NAME viewer_orbit_rested_view
+             COMMAND python3 ${CMAKE_CURRENT_SOURCE_DIR}/viewer_orbit_check.py
+                     $<TARGET_FILE:trilab> ${CMAKE_CURRENT_BINARY_DIR}/viewer_orbit
+                     --frames 3 --size 640x400)
+    set_tests_properties(viewer_orbit_rested_view PROPERTIES TIMEOUT 240
+                         ENVIRONMENT "TRILAB_PROXY_MIN_FACES=100"
+                         PASS_REGULAR_EXPRESSION "the rested view equals the unturned view")
+    # A small mesh is always drawn exactly: every orbit frame exact, the note never shown.
+    add_test(NAME viewer_orbit_small_exact
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --orbit 10 --frames 3 --print-timing)
+    set_tests_properties(viewer_orbit_small_exact PROPERTIES
+                         PASS_REGULAR_EXPRESSION "orbit: frames=10 median_ms=[0-9.]+ max_ms=[0-9.]+ rest_ms=[0-9.]+\norbit: proxy_frames=0 exact_frames=10.*timing: first_frame_ms=[0-9]+ exact_frame_ms=[0-9]+"
+                         FAIL_REGULAR_EXPRESSION "simplified while moving")
+    # The subdivision level slider dragged over computed levels shows each level's proxy while
+    # it moves (2, 1, 2, ...), and the run ends on the exact surface.
+    add_test(NAME viewer_sweep_levels_proxy
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --sweep "subdivide --scheme loop"
+                     --param iterations --range 2:1:6)
+    set_tests_properties(viewer_sweep_levels_proxy PROPERTIES TIMEOUT 120
+                         ENVIRONMENT "TRILAB_PROXY_MIN_FACES=100"
+                         PASS_REGULAR_EXPRESSION "simplified while moving: .*sweep: previews=6 ")
 endif()

@@ -167,6 +167,7 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
     imgui_ = std::make_unique<ImGuiLayer>(window_.get(), ui_scale_);
 
     renderer_ = std::make_unique<MeshRenderer>();
+    proxy_.renderer = std::make_unique<MeshRenderer>();
     collapse_lines_ = std::make_unique<LineRenderer>();
     checkerboard_ = make_checkerboard();
     update_texture();
@@ -223,7 +224,8 @@ void Viewer::follow_session() {
         surface_area_ = doc.area;
         shown_version_ = 0;  // upload what is shown again, with the new colours
         view_.colors = VertexColors{};
-        renderer_->show(session_.mesh());
+        // A large state is uploaded once its proxy was shown (sync_renderer, viewer_motion.cpp).
+        if (session_.mesh().n_faces() < proxy_min_faces()) renderer_->show(session_.mesh());
         renderer_->clear_vertex_colors();
         if (view_.settings.coloring != VertexColoring::None) update_coloring();
         glfwSetWindowTitle(window_.get(), (doc.name + " - " + kTitle).c_str());
@@ -253,6 +255,11 @@ void Viewer::follow_session() {
 }
 
 void Viewer::execute(const Command& command) {
+    // Pictures of the scene show the exact surface, also while a large state waits for its
+    // upload (viewer_motion.cpp).
+    if (proxy_.exact_pending && (std::holds_alternative<TakeScreenshot>(command) ||
+                                 std::holds_alternative<StartRecording>(command)))
+        upload_shown();
     if (auto* c = std::get_if<LoadFile>(&command)) {
         if (c->discard_changes || confirm_discard(false, c->path)) session_.execute(command);
     } else if (auto* save_file = std::get_if<SaveFile>(&command)) {
@@ -365,6 +372,7 @@ bool Viewer::draw_frame() {
     handle_input();
     draw_ui();
     note_click_commands();
+    update_motion_ui();  // the orbit's camera, the "simplified while moving" note
     ImGui::Render();
 
     const bool had_commands = !commands_.empty();
@@ -379,8 +387,9 @@ bool Viewer::draw_frame() {
 
     // Textured mode on a model without texture coordinates: project them once, on the
     // shape as it is now, so that later vertex drift shows in the texture.
-    if (view_.style.mode == RenderMode::Textured && !renderer_->has_texcoords() &&
-        !session_.document().texcoords_projected && !session_.jobs().busy())
+    if (view_.style.mode == RenderMode::Textured && !proxy_.exact_pending &&
+        !renderer_->has_texcoords() && !session_.document().texcoords_projected &&
+        !session_.jobs().busy())
         session_.project_texcoords(view_.settings.projection, view_.settings.up);
 
     if (panels_.record.running) {
@@ -446,7 +455,10 @@ int Viewer::run() {
                 return 1;
             }
         }
-        if (sweep_.active) glFinish();  // the frame is on the screen when we time it
+        // The frame is on the screen when we time it (sweeps, the orbit, --print-timing).
+        if (sweep_.active || (options_.orbit_frames > 0 && !orbit_.done) ||
+            (options_.print_timing && exact_frame_ms_ < 0))
+            glFinish();
         glfwSwapBuffers(window_.get());
         // The frame time is the time from one frame's end to the next's: the GL driver may
         // finish a frame's work in the next frame's first calls (a software renderer does), so
@@ -457,12 +469,14 @@ int Viewer::run() {
         frame_times_ms_[n_frame_times_++ % frame_times_ms_.size()] = 1000.0 * since;
         last_frame_end = end;
         waited = false;
+        note_frame_end(1000.0 * since);
         if (sweep_.active)
-            step_sweep(session_.shown().kind == Shown::Kind::Preview ||
-                       session_.shown().kind == Shown::Kind::Level);
+            step_sweep(proxy_.shows_current && (session_.shown().kind == Shown::Kind::Preview ||
+                                                session_.shown().kind == Shown::Kind::Level));
         if (last) break;
     }
     if (options_.frames > 0) log_last_frame();
+    if (options_.print_timing) print_timing();
     if (!options_.save_session.empty()) {
         const std::string error = save_session_now();
         if (!error.empty()) {

@@ -5,6 +5,8 @@
 // executes the commands, so loading, fitting and quitting happen in one place.
 #include <array>
 #include <cstddef>
+#include <future>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -14,12 +16,14 @@
 #include "app/viewer/frequency_panel.h"
 #include "app/viewer/panels.h"
 #include "core/algorithms/level_of_detail.h"
+#include "core/algorithms/proxy_mesh.h"
 #include "core/halfedge_mesh.h"
 #include "core/io/image_io.h"
 #include "core/mesh_builder.h"
 #include "render/camera.h"
 #include "render/line_renderer.h"
 #include "render/mesh_renderer.h"
+#include "render/proxy_view.h"
 
 struct GLFWwindow;
 
@@ -316,6 +320,73 @@ private:
     void update_collapsing_edges();
     std::unique_ptr<LineRenderer> collapse_lines_;
     std::string collapse_key_;  ///< what the drawn edges were computed for
+
+    // ---- Large meshes: simplified while moving, exact at rest (viewer_motion.cpp) ----------
+    /// A shown mesh state: its topology and geometry revisions.
+    using MeshKey = std::pair<std::uint64_t, std::uint64_t>;
+    struct ProxyView {
+        std::unique_ptr<MeshRenderer> renderer;  ///< the proxy's GPU mirror
+        MotionClock motion;
+        /// Proxies made, by the state they stand for (a few: the levels a slider visits).
+        std::map<MeshKey, std::shared_ptr<const ProxyMesh>> cache;
+        std::vector<MeshKey> cache_order;  ///< oldest first
+        std::vector<MeshKey> failed;       ///< states whose proxy could not be made
+        /// The proxy being made (on a worker thread, from a copy of the mesh).
+        MeshKey job_key{0, 0};
+        std::future<std::shared_ptr<const ProxyMesh>> job;
+        /// Jobs for states no longer shown: kept until they end (a future's destructor waits).
+        std::vector<std::future<std::shared_ptr<const ProxyMesh>>> abandoned;
+        bool current = false;  ///< the shown state is large enough for a proxy
+        MeshKey current_key{0, 0};
+        bool exact_pending = false;         ///< the shown state is not uploaded yet (sync_renderer)
+        bool proxy_drawn = false;           ///< the current state's proxy was on the screen
+        MeshKey uploaded_key{0, 0};         ///< on `renderer`
+        std::uint64_t uploaded_colors = 0;  ///< colors_stamp of the proxy's colours
+        /// The colours on (or waiting for) the exact renderer, and the state they are for.
+        VertexColors colors;
+        MeshKey colors_key{0, 0};
+        std::uint64_t colors_stamp = 1;
+        bool drew_proxy = false;     ///< this frame drew the proxy
+        bool shows_current = false;  ///< this frame showed the shown state (proxy or exact)
+        bool note = false;           ///< the note is drawn this frame
+        double error_pixels = 0;     ///< of the proxy on the screen
+        std::size_t proxy_frames = 0, exact_frames = 0;  ///< frames of the current run
+    };
+    ProxyView proxy_;
+    struct Orbit {
+        int frame = -1;  ///< -1: not started; 1..N: the orbit's frames; N + 1: resting
+        Camera start;
+        std::vector<double> ms;
+        double motion_end = 0;  ///< glfw time at the end of the last orbit frame
+        std::size_t proxy_frames = 0;
+        bool done = false;
+    };
+    Orbit orbit_;
+    double first_frame_ms_ = -1, exact_frame_ms_ = -1;  ///< --print-timing
+    /// The smallest face count drawn through a proxy while moving (TRILAB_PROXY_MIN_FACES
+    /// overrides it, for tests).
+    static std::size_t proxy_min_faces();
+    /// Whether `shown` is a state that gets a proxy (a large Document or Preview).
+    bool proxy_applies(const Shown& shown) const;
+    /// Starts making the proxy of `mesh` unless it is made, being made or failed.
+    void request_proxy(const HalfedgeMesh& mesh);
+    /// Collects a finished proxy job.
+    void poll_proxy_job();
+    /// Uploads what session_.shown() shows to the exact renderer (sync_renderer's work).
+    void upload_shown();
+    /// Remembers the colours given to the exact renderer (for the proxy's colours).
+    void note_exact_colors(const VertexColors& colors, const HalfedgeMesh& mesh);
+    /// Before the UI is rendered: the orbit's camera, the note.
+    void update_motion_ui();
+    /// In render_scene: decides proxy or exact, uploads the exact state at rest; returns the
+    /// renderer to draw (nullptr: nothing new to draw; the old content stays).
+    MeshRenderer* choose_renderer();
+    /// After each frame's swap: the orbit's and --print-timing's clocks.
+    void note_frame_end(double frame_ms);
+    /// Scripted runs: the orbit and its rest have ended and the exact surface is shown.
+    bool motion_settled() const;
+    /// --print-timing, after the last frame.
+    void print_timing() const;
 };
 
 }  // namespace trilab::viewer

@@ -66,7 +66,8 @@ bool Viewer::script_settled() {
     if (!options_.decompose.empty() && scripted_decompose_ != 2) return false;
     if (clicks_pending() || scripted_picks_pending()) return false;
     if (!options_.sweep_op.empty() && !sweep_started_) return false;
-    if (session_.morph().playing) {  // end it: the next frame shows where it ends
+    if (!motion_settled()) return false;  // the orbit, its rest, the exact surface
+    if (session_.morph().playing) {       // end it: the next frame shows where it ends
         session_.morph().t = 1.0;
         session_.morph().playing = false;
         return false;

@@ -103,7 +103,18 @@ void Viewer::step_sweep(bool frame_shown) {
         return;
     }
     const ParamSpec& spec = s.op.def->params[s.param];
-    if (spec.kind == ParamKind::Integer) value = std::round(value);
+    if (spec.kind == ParamKind::Integer) {
+        value = std::round(value);
+        // A slider over whole numbers moves only when the value changes: with more moves than
+        // whole numbers in the range the sweep drags it back and forth between FROM and TO,
+        // one step a move (2:1:20 shows the computed levels 2, 1, 2, 1, ...).
+        const double lo = std::round(options_.sweep_from), hi = std::round(options_.sweep_to);
+        const int span = int(std::abs(hi - lo));
+        if (span > 0 && n > span + 1) {
+            const int pos = s.next % (2 * span);
+            value = lo + (hi > lo ? 1 : -1) * (pos <= span ? pos : 2 * span - pos);
+        }
+    }
     s.current = s.op;
     s.current.values[s.param].x = value;
     s.current.values[s.param].on = true;

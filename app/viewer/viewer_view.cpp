@@ -86,7 +86,12 @@ void Viewer::fit_view() {
 
 void Viewer::apply_colors(VertexColors colors) {
     view_.colors = std::move(colors);
-    if (view_.settings.coloring == VertexColoring::None || view_.colors.colors.empty())
+    const bool none =
+        view_.settings.coloring == VertexColoring::None || view_.colors.colors.empty();
+    note_exact_colors(none ? VertexColors{} : view_.colors, session_.mesh());
+    // A large state waiting for its upload (viewer_motion.cpp) takes them with it.
+    if (proxy_.exact_pending) return;
+    if (none)
         renderer_->clear_vertex_colors();
     else
         renderer_->set_vertex_colors(view_.colors);
@@ -167,6 +172,7 @@ void Viewer::show_colors_of(const HalfedgeMesh& mesh, const std::vector<Point>& 
             ? frequency_colors(mesh)
             : color_vertices(mesh, view_.settings.coloring, view_.settings.coloring_options,
                              reference.empty() ? nullptr : &reference);
+    note_exact_colors(colors, mesh);
     if (colors.colors.empty())
         renderer_->clear_vertex_colors();
     else
@@ -199,7 +205,10 @@ void Viewer::update_wireframe() {
     // A typical edge of the shown mesh: the side of an equilateral triangle of the mean
     // triangle area (the current state's area over the shown triangles, so previews,
     // morphs and levels of detail count their own density). Two multiplications a frame.
-    const std::size_t triangles = renderer_->n_triangles();
+    // (A large state's own count: its proxy or a pending upload may be on the GPU.)
+    const std::size_t triangles =
+        proxy_.current && session_.shown().mesh ? session_.shown().mesh->n_faces()
+                                                  : renderer_->n_triangles();
     edge_pixels_ = 0;
     if (triangles > 0 && surface_area_ > 0) {
         const double edge = std::sqrt(4.0 * surface_area_ / (std::sqrt(3.0) * double(triangles)));
@@ -235,7 +244,11 @@ void Viewer::render_scene() {
     style.wire_width *= ui_scale_;
     style.isoline_width *= ui_scale_;
     style.point_size *= ui_scale_;
-    renderer_->draw(view_.camera.view(), view_.camera.projection(), style);
+    // Large meshes: the proxy while the view moves, the exact surface at rest.
+    if (MeshRenderer* shown = choose_renderer())
+        shown->draw(view_.camera.view(), view_.camera.projection(), style);
+    else
+        renderer_->draw(view_.camera.view(), view_.camera.projection(), style);
     if (panels_.decimation.show_collapsing_edges)
         collapse_lines_->draw(view_.camera.view(), view_.camera.projection(), LineStyle{},
                               ui_scale_);
@@ -280,10 +293,34 @@ void Viewer::update_collapsing_edges() {
 void Viewer::sync_renderer() {
     const Shown& shown = session_.shown();
     if (shown.version == shown_version_) return;
-    const Shown::Kind before = shown_kind_;
     shown_version_ = shown.version;
-    shown_kind_ = shown.kind;
     active_frames_ = std::max(active_frames_, 2);
+    proxy_.current = proxy_applies(shown);
+    proxy_.exact_pending = false;
+    if (proxy_.current) {
+        const MeshKey key{shown.mesh->topology_revision(), shown.mesh->geometry_revision()};
+        if (key != proxy_.current_key) proxy_.proxy_drawn = false;
+        proxy_.current_key = key;
+        request_proxy(*shown.mesh);
+        // The shown surface changed (a load, an operation, a slider move): the proxy first,
+        // the exact surface once the view rests (viewer_motion.cpp). A preview's colours are
+        // computed with its upload, so a coloured preview is uploaded at once.
+        if (shown.kind == Shown::Kind::Document ||
+            view_.settings.coloring == VertexColoring::None) {
+            proxy_.exact_pending = true;
+            proxy_.motion.note_motion(glfwGetTime());
+            shown_kind_ = shown.kind;
+            return;
+        }
+    }
+    upload_shown();
+}
+
+void Viewer::upload_shown() {
+    const Shown& shown = session_.shown();
+    const Shown::Kind before = shown_kind_;
+    shown_kind_ = shown.kind;
+    proxy_.exact_pending = false;
     try {
         switch (shown.kind) {
             case Shown::Kind::Document:

@@ -1,0 +1,45 @@
+#include "render/proxy_view.h"
+
+#include <string>
+
+#include "core/errors.h"
+
+namespace trilab {
+
+bool MotionClock::frame(const glm::mat4& view, const glm::mat4& projection, double now) {
+    const bool changed = has_camera_ && (view != view_ || projection != projection_);
+    has_camera_ = true;
+    view_ = view;
+    projection_ = projection;
+    if (changed) last_motion_ = now;
+    return changed;
+}
+
+VertexColors sample_proxy_colors(const VertexColors& colors,
+                                 const std::vector<Index>& representative) {
+    VertexColors out;
+    out.range = colors.range;
+    out.kind = colors.kind;
+    out.label = colors.label;
+    out.has_legend = colors.has_legend;
+    out.categories = colors.categories;
+    if (colors.colors.empty()) return out;
+    const bool values = !colors.values.empty();
+    out.colors.reserve(representative.size());
+    if (values) out.values.reserve(representative.size());
+    for (Index r : representative) {
+        if (r >= colors.colors.size() || (values && r >= colors.values.size()))
+            throw InvalidArgument("sample_proxy_colors: representative " + std::to_string(r) +
+                                  " outside the " + std::to_string(colors.colors.size()) +
+                                  " colours");
+        out.colors.push_back(colors.colors[r]);
+        if (values) out.values.push_back(colors.values[r]);
+    }
+    return out;
+}
+
+double proxy_error_pixels(double error_bound, const Camera& camera, float framebuffer_scale) {
+    return error_bound * double(camera.pixels_per_unit()) * double(framebuffer_scale);
+}
+
+}  // namespace trilab

@@ -1,0 +1,148 @@
+// The viewer's simplified-while-moving pieces (render/proxy_view.h) and
+// MeshRenderer::upload_triangles, the proxy's upload.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "core/algorithms/coloring.h"
+#include "core/algorithms/generators.h"
+#include "core/algorithms/proxy_mesh.h"
+#include "render/camera.h"
+#include "render/offscreen.h"
+#include "render/proxy_view.h"
+#include "render_test_util.h"
+#include "test_helpers.h"
+
+using namespace trilab;
+using namespace trilab::test;
+
+TEST_CASE("MotionClock: a camera change is motion, rest comes after the rest time", "[proxy]") {
+    MotionClock clock(0.1);
+    Camera camera;
+    camera.set_viewport(640, 400);
+    camera.fit_sphere(glm::vec3(0.0f), 1.0f);
+    REQUIRE_FALSE(clock.frame(camera.view(), camera.projection(), 0.0));  // first frame
+    REQUIRE_FALSE(clock.moving(0.0));
+    REQUIRE_FALSE(clock.frame(camera.view(), camera.projection(), 0.02));  // unchanged
+    REQUIRE_FALSE(clock.moving(0.02));
+
+    camera.rotate(glm::vec2(300, 200), glm::vec2(310, 200));  // a drag
+    REQUIRE(clock.frame(camera.view(), camera.projection(), 0.04));
+    REQUIRE(clock.moving(0.04));
+    REQUIRE(clock.moving(0.13));
+    REQUIRE_FALSE(clock.frame(camera.view(), camera.projection(), 0.15));
+    REQUIRE_FALSE(clock.moving(0.15));  // 0.11 s after the last change
+
+    camera.zoom(1.0f);  // zoom changes the view matrix
+    REQUIRE(clock.frame(camera.view(), camera.projection(), 0.2));
+    camera.set_viewport(800, 400);  // a resize changes the projection
+    REQUIRE(clock.frame(camera.view(), camera.projection(), 0.4));
+    REQUIRE(clock.last_motion() == 0.4);
+
+    clock.note_motion(1.0);  // the shown surface changed (a slider)
+    REQUIRE(clock.moving(1.05));
+    REQUIRE_FALSE(clock.moving(1.2));
+}
+
+TEST_CASE("sample_proxy_colors takes each proxy vertex's representative", "[proxy]") {
+    VertexColors colors;
+    colors.colors = {Color(1, 0, 0), Color(0, 1, 0), Color(0, 0, 1)};
+    colors.values = {0.0, 1.0, 2.0};
+    colors.range = ValueRange{0.0, 2.0};
+    colors.kind = ColorMapKind::Diverging;
+    colors.label = "test";
+    colors.has_legend = true;
+    const VertexColors sampled = sample_proxy_colors(colors, {2, 0, 2, 1});
+    REQUIRE(sampled.colors.size() == 4);
+    REQUIRE(sampled.colors[0] == colors.colors[2]);
+    REQUIRE(sampled.colors[1] == colors.colors[0]);
+    REQUIRE(sampled.colors[3] == colors.colors[1]);
+    REQUIRE(sampled.values == std::vector<double>{2.0, 0.0, 2.0, 1.0});
+    REQUIRE(sampled.kind == ColorMapKind::Diverging);
+    REQUIRE(sampled.label == "test");
+    REQUIRE(sampled.range.max == 2.0);
+
+    VertexColors no_values = colors;
+    no_values.values.clear();
+    REQUIRE(sample_proxy_colors(no_values, {1}).values.empty());
+    REQUIRE(sample_proxy_colors(VertexColors{}, {0, 1}).colors.empty());
+    REQUIRE_THROWS_AS(sample_proxy_colors(colors, {0, 3}), InvalidArgument);
+}
+
+TEST_CASE("proxy_error_pixels scales the bound by the camera's pixels per unit", "[proxy]") {
+    Camera camera;
+    camera.set_viewport(1280, 800);
+    camera.fit_sphere(glm::vec3(0.0f), 1.0f);
+    const double ppu = camera.pixels_per_unit();
+    REQUIRE(proxy_error_pixels(0.01, camera) == Approx(0.01 * ppu));
+    REQUIRE(proxy_error_pixels(0.01, camera, 2.0f) == Approx(0.02 * ppu));
+    camera.zoom(3.0f);  // closer: the same bound spans more pixels
+    REQUIRE(proxy_error_pixels(0.01, camera) > 0.01 * ppu);
+}
+
+TEST_CASE("upload_triangles draws a mesh's triangles like upload() draws the mesh", "[render]") {
+    OffscreenRenderer& r = offscreen();
+    MeshRenderer& exact = r.mesh_renderer();
+    MeshRenderer list;
+    const HalfedgeMesh sphere = make_noisy_sphere(8, 0.05, 7);
+    std::vector<std::array<Index, 3>> triangles;
+    for (Face f : sphere.faces()) {
+        const auto c = sphere.face_vertices(f);
+        triangles.push_back({c[0].idx(), c[1].idx(), c[2].idx()});
+    }
+    Framebuffer fb;
+    fb.create(160, 120, 1);
+    Camera camera;
+    camera.set_viewport(160, 120);
+    camera.fit_sphere(glm::vec3(0.0f), 1.1f);
+
+    exact.upload(sphere);
+    list.upload_triangles(sphere.positions(), triangles);
+    REQUIRE(list.n_triangles() == sphere.n_faces());
+    REQUIRE(list.n_vertices() == sphere.vertices_size());
+    for (RenderMode mode : {RenderMode::Smooth, RenderMode::Flat, RenderMode::Points}) {
+        RenderStyle style;
+        style.mode = mode;
+        const Image a = draw(exact, fb, camera, style);
+        const Image b = draw(list, fb, camera, style);
+        REQUIRE(foreground(a, style.background).fraction > 0.1);
+        REQUIRE(mean_difference(a, b) < 0.05);
+    }
+    Framebuffer::bind_default();
+    REQUIRE_THROWS_AS(list.upload_triangles(std::vector<Point>(3), {{0, 1, 3}}), InvalidArgument);
+}
+
+TEST_CASE("A coloured proxy looks like the coloured mesh", "[render][proxy]") {
+    OffscreenRenderer& r = offscreen();
+    MeshRenderer& exact = r.mesh_renderer();
+    MeshRenderer proxy_renderer;
+    const HalfedgeMesh sphere = make_icosphere(40);  // 32,000 faces
+    ProxyMeshOptions options;
+    options.target_triangles = 2000;
+    const ProxyMesh proxy = make_proxy_mesh(sphere, options);
+    REQUIRE(proxy.triangles.size() <= 2000);
+    const VertexColors colors =
+        color_vertices(sphere, VertexColoring::Normal, ColoringOptions{}, nullptr);
+
+    Framebuffer fb;
+    fb.create(160, 120, 1);
+    Camera camera;
+    camera.set_viewport(160, 120);
+    camera.fit_sphere(glm::vec3(0.0f), 1.1f);
+    exact.upload(sphere);
+    exact.set_vertex_colors(colors);
+    proxy_renderer.upload_triangles(proxy.positions, proxy.triangles);
+    proxy_renderer.set_vertex_colors(sample_proxy_colors(colors, proxy.representative));
+    RenderStyle style;
+    style.specular = false;
+    const Image a = draw(exact, fb, camera, style);
+    const Image b = draw(proxy_renderer, fb, camera, style);
+    proxy_renderer.clear_vertex_colors();
+    const Image plain = draw(proxy_renderer, fb, camera, style);
+    Framebuffer::bind_default();
+    const PixelStats fa = foreground(a, style.background), fb_ = foreground(b, style.background);
+    REQUIRE(std::abs(fa.fraction - fb_.fraction) < 0.01);  // the same silhouette, nearly
+    // The sampled colours: far closer to the mesh's picture than the uncoloured proxy.
+    REQUIRE(mean_difference(a, b) < 3.0);
+    REQUIRE(mean_difference(a, plain) > 3 * mean_difference(a, b));
+}
