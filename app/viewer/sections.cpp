@@ -289,6 +289,7 @@ void sidebar_sections(PanelState& panels, MorphState& morph, const SidebarContex
                       CommandQueue& commands) {
     const FrequencyDocument no_decomposition;
     tools_section(panels, context.busy, commands);
+    selection_section(panels, context, commands);
     fairing_section(panels, context, commands);
     frequency_window(panels.frequency, context.frequency ? *context.frequency : no_decomposition,
                      context.busy, commands);

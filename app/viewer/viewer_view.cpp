@@ -235,6 +235,7 @@ void Viewer::render_scene() {
     style.wire_width *= ui_scale_;
     style.isoline_width *= ui_scale_;
     style.point_size *= ui_scale_;
+    upload_selection_overlay(style);
     renderer_->draw(view_.camera.view(), view_.camera.projection(), style);
     if (panels_.decimation.show_collapsing_edges)
         collapse_lines_->draw(view_.camera.view(), view_.camera.projection(), LineStyle{},
