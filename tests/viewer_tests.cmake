@@ -184,4 +184,11 @@ if(TARGET trilab)
                      $<TARGET_FILE:trilab> $<TARGET_FILE:trilab-cli> 30)
     set_tests_properties(viewer_kill_journal PROPERTIES TIMEOUT 120 PASS_REGULAR_EXPRESSION
                          "kill_test: every journal restored a prefix")
+    # Selections (issue 26): --select before --op and a timed --brush on the bunny (skipped
+    # without ../shared/meshes).
+    add_test(NAME viewer_selection_bunny
+             COMMAND ${TRILAB_XVFB} bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer/selection_test.sh
+                     $<TARGET_FILE:trilab>
+                     ${PROJECT_SOURCE_DIR}/../shared/meshes/stanford-bunny.obj)
+    set_tests_properties(viewer_selection_bunny PROPERTIES TIMEOUT 120 SKIP_RETURN_CODE 77)
 endif()
