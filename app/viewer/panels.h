@@ -152,7 +152,7 @@ struct SelectionPanelState {
     bool open = false;
     enum class Tool { Brush, Lasso };
     Tool tool = Tool::Brush;     ///< what Ctrl+drag (add) and Alt+drag (remove) draw in the view
-    float brush_radius = 24.0f;  ///< the brush's radius in screen pixels
+    float brush_radius = 30.0f;  ///< the brush's radius in screen pixels
     bool lasso_through = false;  ///< the lasso also takes vertices hidden behind the surface
     SelectionMode mode = SelectionMode::Replace;  ///< how the one-shot selections combine
     float geodesic_radius = 0.25f;                ///< model units
