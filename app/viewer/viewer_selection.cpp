@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <string>
 
 #include "app/viewer/viewer_tuning.h"
@@ -26,6 +27,12 @@ namespace {
 double median(std::vector<double> ms) {
     std::nth_element(ms.begin(), ms.begin() + std::ptrdiff_t(ms.size() / 2), ms.end());
     return ms[ms.size() / 2];
+}
+
+/// Bit for bit equal (NaN, "no value", equals itself here).
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+    return a.size() == b.size() &&
+           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
 }
 
 Eigen::Vector2f eigen(const glm::vec2& p) {
@@ -53,7 +60,7 @@ void Viewer::update_selection() {
                       view_.colors.kind != ColorMapKind::Categorical;
     if (!fits && !session_.coloring_values().empty())
         session_.set_coloring_values({});
-    else if (fits && session_.coloring_values() != values)
+    else if (fits && !same_bits(session_.coloring_values(), values))
         session_.set_coloring_values(values);
 }
 
@@ -187,7 +194,8 @@ bool Viewer::selection_input(const glm::vec2& pos, bool in_view) {
         }
         return true;
     }
-    if (!s.open || !modifier || session_.busy()) return false;
+    // A preview computing does not stop the brush (the selection's entry computes it again).
+    if (!s.open || !modifier || (session_.busy() && !session_.preview_running())) return false;
     if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && drag_in_view_ && in_view) {
         begin_stroke(!io.KeyAlt, lasso, pos);
         return true;
