@@ -824,6 +824,14 @@ void MeshRenderer::clear_vertex_selection() {
     has_selection_ = false;
 }
 
+void MeshRenderer::set_display_uniforms(const GlProgram& program, const RenderStyle& style,
+                                        bool selection, bool scalars) const {
+    if (selection)
+        set_selection_uniforms(program, style, scalars);
+    else if (scalars)
+        set_scalar_uniforms(program, style);
+}
+
 const GlProgram& MeshRenderer::selection_program(bool wires, bool nearest_corner) const {
     return selection_programs_[(wires ? 1 : 0) + (nearest_corner ? 2 : 0)];
 }
@@ -973,10 +981,7 @@ void MeshRenderer::draw(const glm::mat4& view, const glm::mat4& projection,
                                        ? wire_program_
                                        : surface_programs_[(colored ? 1 : 0) + (textured ? 2 : 0)];
         set_common_uniforms(program, view, projection, style);
-        if (selection)
-            set_selection_uniforms(program, style, scalars);
-        else if (scalars)
-            set_scalar_uniforms(program, style);
+        set_display_uniforms(program, style, selection, scalars);
         program.set("u_surface", edges_only ? 2 : hidden_line ? 1 : 0);
         program.set("u_flat", mode == RenderMode::Flat ? 1 : 0);
         set_shading_uniforms(program, style, colored);

@@ -299,6 +299,9 @@ private:
     const GlProgram& selection_program(bool wires, bool nearest_corner) const;
     void set_selection_uniforms(const GlProgram& program, const RenderStyle& style,
                                 bool scalars) const;
+    /// The overlay's (`selection`) or the bands' and isolines' (`scalars`) uniforms, if any.
+    void set_display_uniforms(const GlProgram& program, const RenderStyle& style, bool selection,
+                              bool scalars) const;
 
     /// The revisions of the mesh on the GPU (all 0: none, a level of detail, or positions
     /// given apart from the mesh).

@@ -143,7 +143,7 @@ TEST_CASE("the geodesic ball and the component come from the pick", "[session][s
     CHECK(count_selected(weights_of(s)) == s.mesh().n_vertices());  // one component
 }
 
-TEST_CASE("operations and their morphs keep the selection; the region is what they act on",
+TEST_CASE("operations and their morphs keep the selection, and the region is what they act on",
           "[session][selection]") {
     Session s;
     s.execute(SelectSpec{"sphere:0,0,1,0.7,0.2"});
@@ -188,7 +188,7 @@ TEST_CASE("a preview follows the selection", "[session][selection]") {
         if (w[v.idx()] == 0.0f) CHECK(second[v.idx()] == s.mesh().position(v));
 }
 
-TEST_CASE("saving to PLY keeps the weights; loading reads them back", "[session][selection]") {
+TEST_CASE("saving to PLY keeps the weights and loading reads them back", "[session][selection]") {
     Session s;
     s.execute(SelectSpec{"sphere:0,0,1,0.7,0.3"});
     const Selection w = weights_of(s);
