@@ -79,6 +79,7 @@ struct GpuVertex {
 static_assert(sizeof(GpuVertex) == 6 * sizeof(float), "GpuVertex must be tightly packed");
 
 constexpr GLuint kPosition = 0, kNormal = 1, kColor = 2, kTexcoord = 3, kScalar = 4;
+constexpr GLuint kSelection = 5;  ///< the selection overlay's weight (one float)
 
 /// What upload() derives from the connectivity: the GPU vertices and the index buffers.
 struct Layout {
@@ -263,6 +264,20 @@ GlProgram scalar_variant(bool wires) {
                       with_defines(embedded_shader("mesh.frag.glsl"), defines)});
 }
 
+/// The selection overlay: every input, the scalar display (off without scalars) and the
+/// selection's weight; the geometry stage for edges (`wires`) or categorical colours.
+GlProgram selection_variant(bool wires, bool nearest_corner) {
+    std::vector<std::string> defines{"TRILAB_SCALAR", "TRILAB_SELECTION"};
+    if (wires) defines.push_back("TRILAB_WIREFRAME");
+    if (nearest_corner) defines.push_back("TRILAB_NEAREST_CORNER");
+    if (!wires && !nearest_corner)
+        return GlProgram({with_defines(embedded_shader("mesh.vert.glsl"), defines),
+                          with_defines(embedded_shader("mesh.frag.glsl"), defines)});
+    return GlProgram({with_defines(embedded_shader("mesh.vert.glsl"), defines),
+                      with_defines(embedded_shader("mesh.geom.glsl"), defines),
+                      with_defines(embedded_shader("mesh.frag.glsl"), defines)});
+}
+
 /// The programs with the geometry stage: edges (`wires`) and/or nearest-corner colours.
 GlProgram geometry_stage_variant(bool wires, bool nearest_corner) {
     std::vector<std::string> defines;
@@ -312,12 +327,21 @@ MeshRenderer::MeshRenderer()
     scalar_buffer_ = buffers[5];
     setup_vertex_array(triangle_vao_, triangle_buffer_);
     setup_vertex_array(point_vao_, point_buffer_);
+    glGenBuffers(1, &selection_buffer_);
+    for (GLuint vao : {triangle_vao_, point_vao_}) {
+        glBindVertexArray(vao);
+        glBindBuffer(GL_ARRAY_BUFFER, selection_buffer_);
+        glVertexAttribPointer(kSelection, 1, GL_FLOAT, GL_FALSE, sizeof(float), nullptr);
+    }
+    glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
 MeshRenderer::~MeshRenderer() {
     const GLuint buffers[6] = {geometry_buffer_, color_buffer_, texcoord_buffer_,
                                triangle_buffer_, point_buffer_, scalar_buffer_};
     glDeleteBuffers(6, buffers);
+    glDeleteBuffers(1, &selection_buffer_);
     glDeleteVertexArrays(1, &point_vao_);
     glDeleteVertexArrays(1, &triangle_vao_);
     if (texture_ != 0) glDeleteTextures(1, &texture_);
@@ -412,6 +436,7 @@ void MeshRenderer::upload(const HalfedgeMesh& mesh) {
     }
     glBindVertexArray(0);
     clear_vertex_colors();
+    clear_vertex_selection();
 }
 
 void MeshRenderer::update_positions(const HalfedgeMesh& mesh) {
@@ -529,6 +554,7 @@ void MeshRenderer::upload_level(LevelOfDetail& lod) {
     }
     glBindVertexArray(0);
     clear_vertex_colors();
+    clear_vertex_selection();
     lod.clear_changes();
 }
 
@@ -760,6 +786,68 @@ void MeshRenderer::clear_texture() {
     has_texture_ = false;
 }
 
+void MeshRenderer::set_vertex_selection(const std::vector<float>& weights) {
+    if (weights.size() != n_vertices_)
+        throw InvalidArgument(
+            "MeshRenderer::set_vertex_selection: " + std::to_string(weights.size()) +
+            " weights for a mesh with vertex storage size " + std::to_string(n_vertices_));
+    // Before anything changes, so that a shader that does not build leaves all as it was.
+    if (!selection_programs_[0].is_valid())
+        selection_programs_ = {selection_variant(false, false), selection_variant(true, false),
+                               selection_variant(false, true), selection_variant(true, true)};
+    std::vector<float> data(n_gpu_vertices_, 0.0f);
+    for (std::size_t i = 0; i < n_gpu_vertices_; ++i) {
+        const float w = weights[gpu_source_.empty() ? i : gpu_source_[i]];
+        data[i] = std::isfinite(w) ? std::clamp(w, 0.0f, 1.0f) : 0.0f;
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, selection_buffer_);
+    glBufferData(GL_ARRAY_BUFFER, bytes(data.size(), sizeof(float)), data.data(), GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    for (GLuint vao : {triangle_vao_, point_vao_}) {
+        glBindVertexArray(vao);
+        glEnableVertexAttribArray(kSelection);
+    }
+    glBindVertexArray(0);
+    has_selection_ = true;
+}
+
+void MeshRenderer::clear_vertex_selection() {
+    if (!has_selection_) return;
+    for (GLuint vao : {triangle_vao_, point_vao_}) {
+        glBindVertexArray(vao);
+        glDisableVertexAttribArray(kSelection);
+    }
+    glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, selection_buffer_);
+    glBufferData(GL_ARRAY_BUFFER, 0, nullptr, GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    has_selection_ = false;
+}
+
+void MeshRenderer::set_display_uniforms(const GlProgram& program, const RenderStyle& style,
+                                        bool selection, bool scalars) const {
+    if (selection)
+        set_selection_uniforms(program, style, scalars);
+    else if (scalars)
+        set_scalar_uniforms(program, style);
+}
+
+const GlProgram& MeshRenderer::selection_program(bool wires, bool nearest_corner) const {
+    return selection_programs_[(wires ? 1 : 0) + (nearest_corner ? 2 : 0)];
+}
+
+void MeshRenderer::set_selection_uniforms(const GlProgram& program, const RenderStyle& style,
+                                          bool scalars) const {
+    if (scalars)
+        set_scalar_uniforms(program, style);
+    else
+        program.set("u_scalar_display", 0);
+    program.set("u_selection_tint", style.selection_tint);
+    program.set("u_selection_strength", std::clamp(style.selection_tint_strength, 0.0f, 1.0f));
+    program.set("u_selection_outline", style.selection_outline);
+    program.set("u_selection_outline_width", std::max(style.selection_outline_width, 0.0f));
+}
+
 void MeshRenderer::clear() {
     for (GLuint buffer : {geometry_buffer_, texcoord_buffer_, triangle_buffer_, point_buffer_}) {
         glBindBuffer(GL_ARRAY_BUFFER, buffer);
@@ -767,6 +855,7 @@ void MeshRenderer::clear() {
     }
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     clear_vertex_colors();
+    clear_vertex_selection();
     gpu_source_.clear();
     level_vertices_.clear();
     shown_ = {};
@@ -882,13 +971,17 @@ void MeshRenderer::draw(const glm::mat4& view, const glm::mat4& projection,
         // Bands and isolines on a shaded surface; Smooth keeps the programs without scalars.
         const bool scalars = has_scalars_ && !edges_only && !hidden_line && !nearest_corner &&
                              style.scalar_display != ScalarDisplay::Smooth;
-        const GlProgram& program = nearest_corner ? corner_programs_[wires ? 1 : 0]
-                                   : scalars      ? scalar_programs_[wires ? 1 : 0]
+        // The selection overlay on a shaded surface (its programs do all of the above too).
+        const bool selection =
+            has_selection_ && style.selection_overlay && !edges_only && !hidden_line;
+        const GlProgram& program = selection        ? selection_program(wires, nearest_corner)
+                                   : nearest_corner ? corner_programs_[wires ? 1 : 0]
+                                   : scalars        ? scalar_programs_[wires ? 1 : 0]
                                    : wires
                                        ? wire_program_
                                        : surface_programs_[(colored ? 1 : 0) + (textured ? 2 : 0)];
         set_common_uniforms(program, view, projection, style);
-        if (scalars) set_scalar_uniforms(program, style);
+        set_display_uniforms(program, style, selection, scalars);
         program.set("u_surface", edges_only ? 2 : hidden_line ? 1 : 0);
         program.set("u_flat", mode == RenderMode::Flat ? 1 : 0);
         set_shading_uniforms(program, style, colored);

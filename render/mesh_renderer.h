@@ -124,6 +124,18 @@ struct RenderStyle {
     float vector_length = 0.02f;
     glm::vec3 face_normal_color{0.95f, 0.80f, 0.20f};
     glm::vec3 vertex_normal_color{0.30f, 0.85f, 0.45f};
+
+    /// The selection overlay (MeshRenderer::set_vertex_selection(), issue 26) in the shaded
+    /// modes (Flat, Smooth, Textured): the colour is blended towards selection_tint by
+    /// selection_tint_strength × weight, so the colouring under it still reads, and the
+    /// weight-0.5 contour is drawn as an outline selection_outline_width pixels wide. Points,
+    /// Wireframe and HiddenLine do not show it. Off, or without weights: the image is exactly
+    /// the one without a selection.
+    bool selection_overlay = true;
+    glm::vec3 selection_tint{1.00f, 0.62f, 0.10f};
+    float selection_tint_strength = 0.40f;  ///< in [0, 1]: the blend at weight 1
+    glm::vec3 selection_outline{1.00f, 0.86f, 0.30f};
+    float selection_outline_width = 2.0f;  ///< pixels; 0: no outline
 };
 
 /// How vertex colours fill a triangle between its corners.
@@ -237,6 +249,15 @@ public:
     void clear_vertex_scalars();
     bool has_vertex_scalars() const { return has_scalars_; }
 
+    /// The selection's weight per vertex storage index (size == n_vertices(), each in [0, 1];
+    /// a value outside is clamped) for style.selection_overlay. Kept by update_positions(),
+    /// update_level() and the colour calls; upload(), upload_level() and clear() drop it. The
+    /// first call builds the overlay's shaders. Throws InvalidArgument on a size mismatch,
+    /// GlError when a shader does not build. O(vertices).
+    void set_vertex_selection(const std::vector<float>& weights);
+    void clear_vertex_selection();
+    bool has_vertex_selection() const { return has_selection_; }
+
     /// Uploads `image` (RGBA8, rows top-down) as the texture of Textured mode, with mipmaps
     /// and repeat wrapping; texture coordinate (0, 0) is the image's bottom-left corner (the
     /// OBJ convention). Throws InvalidArgument for an empty image or one above the GL limit.
@@ -281,6 +302,15 @@ private:
     /// The bands' and isolines' uniforms (the program in use has TRILAB_SCALAR).
     void set_scalar_uniforms(const GlProgram& program, const RenderStyle& style) const;
 
+    /// The selection overlay's program for this draw (wires: with the geometry stage's edges;
+    /// nearest_corner: categorical colours), its uniforms set by draw().
+    const GlProgram& selection_program(bool wires, bool nearest_corner) const;
+    void set_selection_uniforms(const GlProgram& program, const RenderStyle& style,
+                                bool scalars) const;
+    /// The overlay's (`selection`) or the bands' and isolines' (`scalars`) uniforms, if any.
+    void set_display_uniforms(const GlProgram& program, const RenderStyle& style, bool selection,
+                              bool scalars) const;
+
     /// The revisions of the mesh on the GPU (all 0: none, a level of detail, or positions
     /// given apart from the mesh).
     HalfedgeMesh::Revision shown_;
@@ -297,6 +327,12 @@ private:
     /// without and with TRILAB_WIREFRAME; built by the first set_vertex_colors() that needs
     /// them (few sessions do; each program costs about 20 ms to build on llvmpipe).
     std::array<GlProgram, 2> corner_programs_;
+    /// The selection overlay: mesh.vert + mesh.frag [TRILAB_SCALAR, TRILAB_SELECTION] with every
+    /// input, indexed by (edges: + mesh.geom, TRILAB_WIREFRAME) + 2 (TRILAB_NEAREST_CORNER);
+    /// built by the first set_vertex_selection().
+    std::array<GlProgram, 4> selection_programs_;
+    GLuint selection_buffer_ = 0;  ///< one float per GPU vertex
+    bool has_selection_ = false;
     GlProgram points_program_;         ///< mesh.vert + mesh.frag [TRILAB_POINTS]
     GlProgram depth_program_;          ///< mesh.vert + depth.frag
     GlProgram face_vector_program_;    ///< vectors.* [TRILAB_FACE_VECTORS]: triangles in

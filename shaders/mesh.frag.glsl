@@ -19,6 +19,11 @@
 //    k = 1..N-1, anti-aliased with fwidth, u_isoline_width pixels wide, over the lit colour:
 //    dark over light colours and light over dark ones, so they read on every part of a map;
 //    they fade out where they would be under 2 pixels apart.
+//  - TRILAB_SELECTION (with TRILAB_SCALAR, any of the variants above but points): the
+//    selection's weight w per vertex, interpolated: the lit colour is blended towards
+//    u_selection_tint by u_selection_strength · w (a tint: the colouring under it still
+//    reads), and the contour w = 1/2 is drawn as an anti-aliased outline
+//    u_selection_outline_width pixels wide (from fwidth(w); none where w is constant).
 // The default variant also compiles with TRILAB_NO_VERTEX_COLOR and/or TRILAB_NO_TEXTURE:
 // inputs a variant does not read are dropped by the linker, and on a software rasterizer
 // every interpolated input costs per-triangle setup work.
@@ -41,6 +46,9 @@ in MeshFragment {
 #ifdef TRILAB_SCALAR
     vec2 scalar;
 #endif
+#ifdef TRILAB_SELECTION
+    float selection;
+#endif
 } fs_in;
 #else
 in MeshVertex {
@@ -50,6 +58,9 @@ in MeshVertex {
     vec2 texcoord;
 #ifdef TRILAB_SCALAR
     vec2 scalar;
+#endif
+#ifdef TRILAB_SELECTION
+    float selection;
 #endif
 } fs_in;
 #endif
@@ -77,6 +88,12 @@ uniform int u_scalar_display;  // bit 1: bands, bit 2: isolines
 uniform int u_scalar_steps;    // N, 2 to 64
 uniform vec3 u_band_colors[64];
 uniform float u_isoline_width;  // total line width in framebuffer pixels
+#endif
+#ifdef TRILAB_SELECTION
+uniform vec3 u_selection_tint;
+uniform float u_selection_strength;  // the tint's blend at weight 1
+uniform vec3 u_selection_outline;
+uniform float u_selection_outline_width;  // total line width in framebuffer pixels
 #endif
 
 out vec4 frag_color;
@@ -135,6 +152,19 @@ vec3 isoline_color(vec3 under) {
 }
 #endif
 
+#ifdef TRILAB_SELECTION
+// How much of this fragment the selection's outline (the contour w = 1/2) covers, 0 to 1.
+// Derivatives first, in uniform flow.
+float selection_outline_coverage() {
+    float w = fs_in.selection;
+    float slope = fwidth(w);  // weight per pixel
+    if (slope <= 0.0) return 0.0;
+    float pixels = abs(w - 0.5) / slope;
+    float half_width = 0.5 * u_selection_outline_width;
+    return 1.0 - smoothstep(half_width - 0.5, half_width + 0.5, pixels);
+}
+#endif
+
 vec3 front_base() {
 #ifdef TRILAB_NO_VERTEX_COLOR
     return u_front_color;
@@ -160,6 +190,9 @@ void main() {
 }
 #else
 void main() {
+#ifdef TRILAB_SELECTION
+    float outline = selection_outline_coverage();
+#endif
     bool back = !gl_FrontFacing && u_back_face_color;
     vec3 color = vec3(0.0);
     if (u_surface == 0) {
@@ -192,6 +225,11 @@ void main() {
 #ifdef TRILAB_SCALAR
         float iso = isoline_coverage();
         color = mix(color, isoline_color(color), iso);
+#endif
+#ifdef TRILAB_SELECTION
+        float weight = clamp(fs_in.selection, 0.0, 1.0);
+        color = mix(color, u_selection_tint, u_selection_strength * weight);
+        color = mix(color, u_selection_outline, outline);
 #endif
         color = apply_fog(color);
     } else if (u_surface == 1) {

@@ -4,7 +4,8 @@
 // which shared vertices cannot carry, so the fragment stage can draw the edges in the same
 // pass. With TRILAB_NEAREST_CORNER it also hands every fragment the three corners' colours
 // unblended (flat), so that the fragment stage can take its nearest corner's colour. With
-// TRILAB_SCALAR the scalar of isolines and bands passes through too.
+// TRILAB_SCALAR the scalar of isolines and bands passes through too, with TRILAB_SELECTION
+// the selection's weight.
 
 layout(triangles) in;
 layout(triangle_strip, max_vertices = 3) out;
@@ -16,6 +17,9 @@ in MeshVertex {
     vec2 texcoord;
 #ifdef TRILAB_SCALAR
     vec2 scalar;
+#endif
+#ifdef TRILAB_SELECTION
+    float selection;
 #endif
 } gs_in[];
 
@@ -33,6 +37,9 @@ out MeshFragment {
 #ifdef TRILAB_SCALAR
     vec2 scalar;
 #endif
+#ifdef TRILAB_SELECTION
+    float selection;
+#endif
 } gs_out;
 
 void main() {
@@ -44,6 +51,9 @@ void main() {
         gs_out.texcoord = gs_in[i].texcoord;
 #ifdef TRILAB_SCALAR
         gs_out.scalar = gs_in[i].scalar;
+#endif
+#ifdef TRILAB_SELECTION
+        gs_out.selection = gs_in[i].selection;
 #endif
         gs_out.barycentric = vec3(i == 0, i == 1, i == 2);
 #ifdef TRILAB_NEAREST_CORNER

@@ -2,7 +2,8 @@
 // Mesh vertex stage: transforms positions and normals to view space and passes the optional
 // per-vertex colour and texture coordinate on (disabled attribute arrays read as zero; the
 // fragment stage's uniforms say whether they are used). With TRILAB_SCALAR also the scalar
-// (value normalized to the legend range times validity, validity): see mesh.frag.
+// (value normalized to the legend range times validity, validity): see mesh.frag. With
+// TRILAB_SELECTION the selection's weight (the overlay of mesh.frag).
 
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
@@ -10,6 +11,9 @@ layout(location = 2) in vec4 a_color;
 layout(location = 3) in vec2 a_texcoord;
 #ifdef TRILAB_SCALAR
 layout(location = 4) in vec2 a_scalar;
+#endif
+#ifdef TRILAB_SELECTION
+layout(location = 5) in float a_selection;
 #endif
 
 uniform mat4 u_model_view;
@@ -25,6 +29,9 @@ out MeshVertex {
 #ifdef TRILAB_SCALAR
     vec2 scalar;
 #endif
+#ifdef TRILAB_SELECTION
+    float selection;
+#endif
 } vs_out;
 
 void main() {
@@ -35,6 +42,9 @@ void main() {
     vs_out.texcoord = a_texcoord;
 #ifdef TRILAB_SCALAR
     vs_out.scalar = a_scalar;
+#endif
+#ifdef TRILAB_SELECTION
+    vs_out.selection = a_selection;
 #endif
     gl_Position = u_projection * p;
     gl_PointSize = u_point_size;

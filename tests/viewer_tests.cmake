@@ -209,4 +209,11 @@ if(TARGET trilab)
     set_tests_properties(viewer_sweep_levels_proxy PROPERTIES TIMEOUT 120
                          ENVIRONMENT "TRILAB_PROXY_MIN_FACES=100"
                          PASS_REGULAR_EXPRESSION "simplified while moving: .*sweep: previews=6 ")
+    # Selections (issue 26): --select before --op and a timed --brush on the bunny (skipped
+    # without ../shared/meshes).
+    add_test(NAME viewer_selection_bunny
+             COMMAND ${TRILAB_XVFB} bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer/selection_test.sh
+                     $<TARGET_FILE:trilab>
+                     ${PROJECT_SOURCE_DIR}/../shared/meshes/stanford-bunny.obj)
+    set_tests_properties(viewer_selection_bunny PROPERTIES TIMEOUT 120 SKIP_RETURN_CODE 77)
 endif()

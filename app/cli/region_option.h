@@ -1,40 +1,18 @@
 #pragma once
 // `--region SPEC`: the region an operation of trilab-cli acts on (core/algorithms/selection.h),
 // and `trilab-cli select IN OUT --region SPEC`, which stores it in the mesh.
-//
-// SPEC is one of
-//   sphere:X,Y,Z,R[,FEATHER]   vertices within R of the point (X, Y, Z)
-//   geodesic:V,R[,FEATHER]     vertices within geodesic distance R of vertex V (heat method)
-//   component:V                the connected component of vertex V
-//   file:PATH                  a text file with one weight in [0, 1] per vertex per line (blank
-//                              lines and lines starting with '#' are skipped), or a mesh file
-//                              whose vertices carry a selection (PLY `selection`, OM custom
-//                              property `selection`) with the same vertex count
-// FEATHER (>= 0) feathers the region along the edges (feather_selection()). Vertex indices are
-// the loaded mesh's (as `trilab-cli info` and `geodesic` count them).
-#include <optional>
+// SPEC: app/ops/region_spec.h.
 #include <string>
 #include <vector>
 
-#include "core/algorithms/selection.h"
-#include "core/halfedge_mesh.h"
+#include "app/ops/region_spec.h"
 
 namespace trilab::cli {
 
-/// A parsed SPEC, before any mesh is read.
-struct RegionSpec {
-    enum class Kind { Sphere, Geodesic, Component, File } kind = Kind::Sphere;
-    std::vector<double> numbers;  ///< X,Y,Z,R[,F] / V,R[,F] / V
-    std::string path;             ///< file:
-    std::string text;             ///< the SPEC as given, for messages
-};
-
-/// Parses SPEC; throws InvalidArgument "--region: ..." naming the part that is wrong.
-RegionSpec parse_region_spec(const std::string& text);
-
-/// The region of `spec` on `mesh`; throws InvalidArgument "--region SPEC: ..." (a vertex out of
-/// range, a file of the wrong length or with a bad weight, naming the line) or IoError.
-Selection make_region(const HalfedgeMesh& mesh, const RegionSpec& spec);
+// The SPEC parser lives in app/ops/region_spec.h (the viewer's --select shares it).
+using trilab::make_region;
+using trilab::parse_region_spec;
+using trilab::RegionSpec;
 
 /// The --help lines of --region.
 extern const char* const kRegionHelp;

@@ -112,6 +112,44 @@ struct SaveAndContinue {};
 /// Ask for a file name (the file browser), save there, then carry out the pending action.
 struct SaveAsAndContinue {};
 
+// ---- selections (issue 26; app/session/session_selection.cpp): each is ONE history entry ----
+/// How a new selection combines with the document's: replace it, add (the larger weight), or
+/// remove (w·(1 − new)).
+enum class SelectionMode { Replace, Add, Remove };
+/// The selection as given, one weight in [0, 1] per vertex storage index (a brush stroke or a
+/// lasso, computed by the window); `label` and `parameters` name the history entry.
+struct SetSelection {
+    std::vector<float> weights;
+    std::string label = "Select";
+    std::string parameters;
+};
+/// A region SPEC (app/ops/region_spec.h: sphere:..., geodesic:..., component:..., file:...).
+struct SelectSpec {
+    std::string spec;
+    SelectionMode mode = SelectionMode::Replace;
+};
+/// The geodesic ball of `radius` around the first pick's vertex, or (`component`) the
+/// connected component under the first pick.
+struct SelectAtPick {
+    bool component = false;
+    double radius = 0;
+    SelectionMode mode = SelectionMode::Replace;
+};
+/// Vertices whose value under the current colouring is above (or below) `value`.
+struct SelectThreshold {
+    double value = 0;
+    bool above = true;
+    SelectionMode mode = SelectionMode::Replace;
+};
+/// Grow or shrink by `rings` rings, invert, clear (no selection: the whole mesh), or feather
+/// over `width` (model units).
+struct EditSelection {
+    enum class Kind { Grow, Shrink, Invert, Clear, Feather };
+    Kind kind = Kind::Clear;
+    int rings = 1;
+    double width = 0;
+};
+
 /// Inspector: forget the picks (and the measurement).
 struct ClearPicks {};
 /// Inspector: make the first pick's point the centre of rotation.
@@ -122,7 +160,8 @@ using Command = std::variant<
     ResetView, Undo, Redo, JumpTo, RunOperation, PreviewOperation, ApplyOperation, CancelPreview,
     BuildLevelOfDetail, ShowLevelOfDetail, ApplyLevelOfDetail, Decompose, PreviewBand, CommitBand,
     RestoreDecomposed, UpdateColoring, ProjectTexCoords, TakeScreenshot, PrintInfo, StartRecording,
-    CancelRecording, CancelJob, Quit, SaveAndContinue, SaveAsAndContinue, ClearPicks, CentreOnPick>;
+    CancelRecording, CancelJob, Quit, SaveAndContinue, SaveAsAndContinue, ClearPicks, CentreOnPick,
+    SetSelection, SelectSpec, SelectAtPick, SelectThreshold, EditSelection>;
 using CommandQueue = std::vector<Command>;
 
 /// The command's type name ("StartRecording"), for logs and scripted clicks.
@@ -161,7 +200,12 @@ inline const char* command_name(const Command& command) {
                                              "SaveAndContinue",
                                              "SaveAsAndContinue",
                                              "ClearPicks",
-                                             "CentreOnPick"};
+                                             "CentreOnPick",
+                                             "SetSelection",
+                                             "SelectSpec",
+                                             "SelectAtPick",
+                                             "SelectThreshold",
+                                             "EditSelection"};
     static_assert(std::size(kNames) == std::variant_size_v<Command>, "a name per command");
     return kNames[command.index()];
 }

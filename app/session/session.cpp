@@ -157,6 +157,7 @@ void Session::show_document() {
 }
 
 void Session::execute(const Command& command) {
+    if (execute_selection(command)) return;
     if (auto* c = std::get_if<LoadFile>(&command)) {
         clear_preview();
         if (is_session_path(c->path))

@@ -27,6 +27,7 @@
 #include "core/algorithms/decimation.h"
 #include "core/algorithms/level_of_detail.h"
 #include "core/algorithms/morph.h"
+#include "core/algorithms/selection.h"
 #include "core/algorithms/spectral.h"
 #include "core/algorithms/texcoords.h"
 #include "core/halfedge_mesh.h"
@@ -213,6 +214,26 @@ public:
         return inspection_future_.valid() || picks_.measurement.computing;
     }
 
+    // ---- selections (session_selection.cpp, issue 26) ----------------------------------------
+    /// The document's selection ("v:selection"), or nullopt when it has none (operations then
+    /// act on the whole mesh).
+    std::optional<Selection> selection() const;
+    /// Vertices of positive weight in the document's selection (0 without one).
+    std::size_t selected_count() const;
+    /// Makes `weights` (checked: one weight in [0, 1] per vertex storage index) the document's
+    /// selection as ONE history entry named `label` (with `parameters`); the shape does not
+    /// move. A preview shown or computing follows: it is computed again on the new selection.
+    /// Refused (an error notice, nothing changes) while a job other than a preview runs, or
+    /// for bad weights. Returns whether the entry was pushed.
+    bool set_selection(const Selection& weights, const std::string& label,
+                       const std::string& parameters = "");
+    /// Removes the selection (one history entry); nothing when there is none.
+    bool clear_selection();
+    /// The current colouring's value per vertex storage index (NaN: none), for SelectThreshold;
+    /// the window hands it over whenever the colouring changes (empty: the colouring has none).
+    void set_coloring_values(std::vector<double> values) { coloring_values_ = std::move(values); }
+    const std::vector<double>& coloring_values() const { return coloring_values_; }
+
     // ---- documents ---------------------------------------------------------------------------
     /// Computes texture coordinates by `projection` on the current shape (a history entry).
     void project_texcoords(TexCoordProjection projection, UpAxis up);
@@ -300,6 +321,10 @@ private:
     void clear_level_of_detail(bool forget);
 
     void update_morph();
+    /// Carries out a selection command (session_selection.cpp); false: not one.
+    bool execute_selection(const Command& command);
+    /// `fresh` combined with the document's selection as `mode` says.
+    Selection combine_selection(Selection fresh, SelectionMode mode) const;
     /// The document's selection ("v:selection", core/algorithms/selection.h) as the region of
     /// `op`: null when the mesh has none, it selects everything, or `op` takes no region.
     std::shared_ptr<const std::vector<float>> region_for(const Operation& op,
@@ -333,6 +358,7 @@ private:
     SessionEvents events_;
     HalfedgeMesh::Revision morph_topology_;  ///< the connectivity of the morph frame shown
     std::unique_ptr<Journal> journal_;       ///< records every history change (crash recovery)
+    std::vector<double> coloring_values_;    ///< the colouring's values (SelectThreshold)
 };
 
 }  // namespace trilab::viewer

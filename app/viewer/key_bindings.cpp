@@ -20,6 +20,8 @@ constexpr PointerBinding kPointerBindings[] = {
     {"Mouse wheel", "zoom"},
     {"Double-click", "fit the model into the view"},
     {"Right click", "rendering menu"},
+    {"Ctrl + left drag", "Selection section open: brush or lasso, adding to the selection"},
+    {"Alt + left drag", "Selection section open: brush or lasso, removing from it"},
 };
 constexpr PointerBinding kDropBinding = {"Drop a file", "open a mesh, or load an image as texture"};
 

@@ -48,9 +48,9 @@ options:
   --pick X,Y         pick the model at window pixel X,Y once it is shown (repeatable: the
                      second pick measures from the first); prints "pick: vertex V edge E
                      face F position X Y Z ms T" and opens the Inspector
-  --select SPEC      set the selection once the model is shown, as one history entry:
+  --select SPEC      set the selection (one history entry each, in order, before --op):
                      sphere:X,Y,Z,R[,FEATHER], geodesic:V,R[,FEATHER], component:V or
-                     file:PATH (as trilab-cli --region); repeatable, applied in order
+                     file:PATH (as trilab-cli --region); repeatable
   --brush "X0,Y0:X1,Y1[:R]"  drag the selection brush (adding; radius R pixels, default
                      30) from window pixel X0,Y0 to X1,Y1 once the model is shown, and
                      print "brush: samples=N median_ms=X max_ms=Y"

@@ -146,7 +146,24 @@ std::vector<OperationPanelState> tool_panels(const std::vector<const OperationDe
 /// "Tools: add noise": a tool's section title, from its operation's label.
 std::string tool_section_title(const OperationDef& def);
 
+/// The Selection section (issue 26; app/viewer/selection_panel.cpp): how the brush and the
+/// lasso draw in the view, and the settings of the one-shot selections and edits.
+struct SelectionPanelState {
+    bool open = false;
+    enum class Tool { Brush, Lasso };
+    Tool tool = Tool::Brush;     ///< what Ctrl+drag (add) and Alt+drag (remove) draw in the view
+    float brush_radius = 30.0f;  ///< the brush's radius in screen pixels
+    bool lasso_through = false;  ///< the lasso also takes vertices hidden behind the surface
+    SelectionMode mode = SelectionMode::Replace;  ///< how the one-shot selections combine
+    float geodesic_radius = 0.25f;                ///< model units
+    float threshold = 0.0f;                       ///< on the current colouring's values
+    bool threshold_above = true;
+    int rings = 1;         ///< Grow / Shrink
+    float feather = 0.1f;  ///< model units
+};
+
 struct PanelState {
+    SelectionPanelState selection;
     UnsavedPrompt unsaved;
     RecoveryPrompt recovery;
     ScreenshotState screenshot;
@@ -293,7 +310,21 @@ struct SidebarContext {
     const FrequencyDocument* frequency = nullptr;    ///< the decomposition (Frequency section)
     const std::vector<std::string>* info = nullptr;  ///< model information lines
     const InspectorView* inspector = nullptr;        ///< the picks (Inspector section)
+    // The Selection section.
+    std::size_t selected = 0;    ///< vertices of positive weight in the document's selection
+    std::size_t n_vertices = 0;  ///< of the document
+    bool has_selection = false;  ///< the document stores one (operations act on it)
+    bool has_pick = false;       ///< a vertex is picked (geodesic ball, component)
+    /// The current colouring has values (the threshold), over this range.
+    bool has_values = false;
+    double values_min = 0, values_max = 0;
 };
+
+/// The Selection section: the count, the brush and lasso settings (they draw in the view with
+/// Ctrl+drag to add and Alt+drag to remove), the geodesic ball and component at the pick, the
+/// threshold on the colouring, grow, shrink, invert, clear and feather; queues SelectAtPick,
+/// SelectThreshold and EditSelection (app/viewer/selection_panel.cpp).
+void selection_section(PanelState& panels, const SidebarContext& context, CommandQueue& commands);
 
 /// Every tool section of the sidebar in order (Tools, Fairing, Frequency decomposition,
 /// Subdivision, Decimation, Morph, Record, Model information), each with its header and,

@@ -239,6 +239,7 @@ void open_panels(PanelState& panels, const std::string& list) {
             panels.history_open = panels.morph_open = panels.log_open = true;
             panels.info_open = panels.fairing.open = panels.subdivision.open = true;
             panels.frequency.open = panels.decimation.open = panels.record.open = true;
+            panels.selection.open = true;
             for (OperationPanelState& tool : panels.tools) tool.open = true;
             continue;
         }
@@ -259,7 +260,8 @@ void open_panels(PanelState& panels, const std::string& list) {
             {"collapsing-edges", &panels.decimation.show_collapsing_edges},
             {"record", &panels.record.open},
             {"log", &panels.log_open},
-            {"info", &panels.info_open}};
+            {"info", &panels.info_open},
+            {"selection", &panels.selection.open}};
         for (const auto& [name, open] : names)
             if (panel == name) flag = open;
         if (OperationPanelState* tool = panels.tool(panel)) flag = &tool->open;
@@ -289,6 +291,7 @@ void sidebar_sections(PanelState& panels, MorphState& morph, const SidebarContex
                       CommandQueue& commands) {
     const FrequencyDocument no_decomposition;
     tools_section(panels, context.busy, commands);
+    selection_section(panels, context, commands);
     fairing_section(panels, context, commands);
     frequency_window(panels.frequency, context.frequency ? *context.frequency : no_decomposition,
                      context.busy, commands);

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "app/session/screen_selection.h"
 #include "app/session/session.h"
 #include "app/viewer/frequency_panel.h"
 #include "app/viewer/panels.h"
@@ -314,6 +315,56 @@ private:
     double frame_ms() const;
     /// The vertex and face counts of what is on the screen (a preview, a level of detail).
     std::pair<std::size_t, std::size_t> shown_counts() const;
+
+    // ---- selections (viewer_selection.cpp, issue 26) -----------------------------------------
+    /// Each frame: the colouring's values for the threshold, --brush (once the model is shown
+    /// and --op and --select are done).
+    void update_selection();
+    /// The Selection section's part of the sidebar's context.
+    void selection_context(SidebarContext& context) const;
+    /// The mouse in the view (`pos`: view pixels): with the Selection section open, Ctrl+drag
+    /// paints (brush) or draws (lasso) adding, Alt+drag removing; returns true while it has
+    /// the mouse (the view does not turn, no pick on release). Draws the brush's circle and
+    /// the lasso.
+    bool selection_input(const glm::vec2& pos, bool in_view);
+    /// Before the scene is drawn: the overlay's weights on the GPU (a stroke's while it is
+    /// drawn, else the shown mesh's "v:selection"); scales its outline by the UI scale.
+    void upload_selection_overlay(RenderStyle& style);
+    /// --select: queues the next SPEC once the model is loaded (before --op); false when
+    /// none is left.
+    bool scripted_selection();
+    /// --select or --brush still to run (a scripted run's last frame waits for them).
+    bool selection_script_pending() const;
+    void begin_stroke(bool add, bool lasso, const glm::vec2& pos);
+    void continue_stroke(const glm::vec2& pos);
+    /// Ends the stroke: its selection as ONE history entry (SetSelection), when it changed any.
+    void end_stroke();
+    /// One step of --brush per frame, timed from the move to the next frame.
+    void scripted_brush();
+    struct SelectionStroke {
+        bool active = false, add = true, lasso = false;
+        ProjectedVertices projected;                ///< the view when the stroke began
+        Selection before;                           ///< the document's weights then
+        Selection weights;                          ///< the brush's weights as painted
+        std::vector<Eigen::Vector2f> lasso_points;  ///< view pixels
+        glm::vec2 last{0.0f};
+        std::size_t dabs = 0, changed = 0;
+        std::uint64_t version = 0;  ///< changes with every dab (the overlay's upload)
+    };
+    struct ScriptedBrush {
+        int state = 0;  ///< 0 not started (or none), 1 dragging, 2 done
+        glm::vec2 from{0.0f}, to{0.0f};
+        float radius = 0;
+        int step = 0, steps = 24;
+        int frames_waited = 0;  ///< frames drawn before it starts (the layout settles)
+        double moved_at = -1;   ///< glfw time of the last move (-1: none waiting)
+        std::vector<double> ms;
+    };
+    SelectionStroke stroke_;
+    ScriptedBrush brush_script_;
+    std::size_t next_scripted_select_ = 0;
+    std::string overlay_key_;  ///< what the overlay's weights on the GPU are of
+    std::uint64_t stroke_counter_ = 0;
 
     /// Rendering > Vectors > Collapsing edges: the next decimation iteration's edges,
     /// recomputed when the mesh or the Decimation panel's options change.

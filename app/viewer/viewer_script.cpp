@@ -47,6 +47,11 @@ void Viewer::advance_script() {
     if (!initial_load_ended_ || initial_op_done_) return;
     const bool loaded =
         options_.mesh_path.empty() || session_.document().path == options_.mesh_path;
+    // --select, one SPEC at a time, before --op (which then acts on the selection).
+    if (loaded && next_scripted_select_ < options_.selections.size()) {
+        if (!session_.busy() && commands_.empty()) scripted_selection();
+        return;
+    }
     if (loaded && next_op_ < options_.operations.size()) {
         if (session_.busy() || !commands_.empty()) return;
         commands_.push_back(RunOperation{parse_operation(options_.operations[next_op_++])});
@@ -64,7 +69,7 @@ bool Viewer::script_settled() {
         !ready_for_script() || sweep_.active || panels_.record.running)
         return false;
     if (!options_.decompose.empty() && scripted_decompose_ != 2) return false;
-    if (clicks_pending() || scripted_picks_pending()) return false;
+    if (clicks_pending() || scripted_picks_pending() || selection_script_pending()) return false;
     if (!options_.sweep_op.empty() && !sweep_started_) return false;
     if (!motion_settled()) return false;  // the orbit, its rest, the exact surface
     if (session_.morph().playing) {       // end it: the next frame shows where it ends

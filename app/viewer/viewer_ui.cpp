@@ -64,10 +64,16 @@ void Viewer::handle_input() {
             press_pos_ = pos;
             turning_ = false;
         }
-        if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && drag_in_view_ && in_view &&
-            !io.KeyShift && !turning_ && !ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left))
+        // The Selection section's brush and lasso take Ctrl/Alt drags (viewer_selection.cpp).
+        const bool selecting = selection_input(pos, in_view);
+        if (selecting) {
+            // the stroke has the mouse: no pick, no turn
+        } else if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && drag_in_view_ && in_view &&
+                   !io.KeyShift && !turning_ && !ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left))
             pick_at(pos, io.KeyCtrl);
-        if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && in_view && drag_in_view_) {
+        if (selecting) {
+            // as above
+        } else if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && in_view && drag_in_view_) {
             if (pick_at(pos, false)) commands_.push_back(CentreOnPick{});
         } else if (moved && drag_in_view_ && ImGui::IsMouseDown(ImGuiMouseButton_Left) &&
                    !io.KeyShift) {
@@ -90,6 +96,8 @@ void Viewer::handle_input() {
             camera_fitted_ = false;
         }
     }
+
+    scripted_brush();  // --brush: one step per frame
 
     // Files dropped on the window: images become the texture, anything else is opened.
     for (const std::string& path : dropped_paths_) {
@@ -195,6 +203,7 @@ void Viewer::draw_ui() {
         sidebar.frequency = &session_.document().frequency;
         sidebar.info = &info;
         sidebar.inspector = &inspector_;
+        selection_context(sidebar);
         sidebar_sections(panels_, session_.morph(), sidebar, commands_);
     }
     if (panels_.sidebar_open) end_region();
@@ -245,6 +254,7 @@ void Viewer::update_panels() {
     update_stable_step();
     update_lens();
     update_region_notes();
+    update_selection();
     // Decimation's level of detail.
     DecimationPanelState& d = panels_.decimation;
     d.lod_ready = session_.has_level_of_detail();

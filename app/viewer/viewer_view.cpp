@@ -244,6 +244,7 @@ void Viewer::render_scene() {
     style.wire_width *= ui_scale_;
     style.isoline_width *= ui_scale_;
     style.point_size *= ui_scale_;
+    upload_selection_overlay(style);
     // Large meshes: the proxy while the view moves, the exact surface at rest.
     if (MeshRenderer* shown = choose_renderer())
         shown->draw(view_.camera.view(), view_.camera.projection(), style);

@@ -98,6 +98,13 @@ struct Sidebar {
         inspector.moved_by_entry = {0.0f, 0.25f, 0.5f};
         inspector.current_entry = 2;
         context.inspector = &inspector;
+        // A selection, a pick and a colouring with values: every Selection button is enabled.
+        context.has_selection = true;
+        context.selected = 10;
+        context.n_vertices = 1002;
+        context.has_pick = true;
+        context.has_values = true;
+        context.values_max = 1.0;
         // The stability warning and its button show (a step above the limit).
         panels.fairing.max_stable_step = 1.0;
         panels.fairing.lens.lambda_max = 2.0;  // the transfer curve over the analytic range
@@ -112,6 +119,7 @@ struct Sidebar {
         panels.frequency.open = panels.subdivision.open = panels.decimation.open = true;
         panels.morph_open = panels.record.open = panels.info_open = true;
         panels.inspector_open = true;
+        panels.selection.open = true;
         panels.decimation.lod_open = true;
     }
     void draw() {
@@ -242,6 +250,21 @@ TEST_CASE("every button of every section queues what it says", "[panels][buttons
             CHECK(commands_of<ApplyOperation>(s.commands).empty());
         });
     };
+    const auto queues_selection_at_pick = [](bool component) {
+        return Check([component](const Sidebar& s) {
+            const auto at = commands_of<SelectAtPick>(s.commands);
+            REQUIRE(at.size() == 1);
+            CHECK(at[0]->component == component);
+            if (!component) CHECK(at[0]->radius == Approx(s.panels.selection.geodesic_radius));
+        });
+    };
+    const auto edits_selection = [](EditSelection::Kind kind) {
+        return Check([kind](const Sidebar& s) {
+            const auto edits = commands_of<EditSelection>(s.commands);
+            REQUIRE(edits.size() == 1);
+            CHECK(edits[0]->kind == kind);
+        });
+    };
     std::map<std::string, Check> expected = {
         {"Fairing/Smooth", applies("smooth")},
         {"Fairing/Cancel", queues_one(CancelPreview{})},
@@ -274,6 +297,24 @@ TEST_CASE("every button of every section queues what it says", "[panels][buttons
         {"Fairing/Decompose for this operator", queues_one(Decompose{})},
         {"Inspector/Centre view here", queues_one(CentreOnPick{})},
         {"Record/Cancel", queues_one(CancelRecording{})},
+        {"Selection/Brush",
+         [](const Sidebar& s) {
+             CHECK(s.panels.selection.tool == SelectionPanelState::Tool::Brush);
+             CHECK(s.commands.empty());
+         }},
+        {"Selection/Lasso",
+         [](const Sidebar& s) {
+             CHECK(s.panels.selection.tool == SelectionPanelState::Tool::Lasso);
+             CHECK(s.commands.empty());
+         }},
+        {"Selection/Geodesic ball at pick", queues_selection_at_pick(false)},
+        {"Selection/Component at pick", queues_selection_at_pick(true)},
+        {"Selection/Threshold", queues_one(SelectThreshold{})},
+        {"Selection/Grow", edits_selection(EditSelection::Kind::Grow)},
+        {"Selection/Shrink", edits_selection(EditSelection::Kind::Shrink)},
+        {"Selection/Invert", edits_selection(EditSelection::Kind::Invert)},
+        {"Selection/Clear", edits_selection(EditSelection::Kind::Clear)},
+        {"Selection/Feather", edits_selection(EditSelection::Kind::Feather)},
     };
     // Every tool from the registry: Apply (where its defaults make a valid run; otherwise it
     // is drawn disabled with the reason) and the preview's Cancel.

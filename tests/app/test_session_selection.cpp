@@ -1,0 +1,251 @@
+// The document's selection in the session (issue 26): every selection edit is one history
+// entry that undo and redo restore, operations and their morphs keep, saving writes; the brush
+// and lasso select what a known view shows.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "app/ops/operation.h"
+#include "app/session/screen_selection.h"
+#include "app/session/session.h"
+#include "core/algorithms/generators.h"
+#include "core/algorithms/selection.h"
+#include "core/io/mesh_io.h"
+#include "core/validate.h"
+
+using namespace trilab;
+using namespace trilab::viewer;
+
+namespace {
+
+/// The document's weights (empty without a selection).
+Selection weights_of(const Session& s) {
+    return s.selection().value_or(Selection{});
+}
+
+/// The vertices as a camera far away on +z (distance 50, looking at the origin) shows them in
+/// a 500 x 500 view: world (x, y) at about pixel (250 + 200 x, 250 − 200 y) (within 2% at
+/// |z| <= 1), depth w = 50 − z.
+ProjectedVertices project_front(const HalfedgeMesh& mesh, bool through) {
+    const double d = 50.0;
+    ScreenView view;
+    view.width = view.height = 500;
+    view.view_projection.setZero();
+    view.view_projection(0, 0) = 0.8 * d;
+    view.view_projection(1, 1) = 0.8 * d;
+    view.view_projection(2, 2) = -1.0;
+    view.view_projection(3, 2) = -1.0;
+    view.view_projection(3, 3) = d;
+    return project_vertices(mesh, mesh.positions(), view, through);
+}
+
+}  // namespace
+
+TEST_CASE("a selection edit is one history entry that undo and redo restore",
+          "[session][selection]") {
+    Session s;
+    const std::size_t before = s.history().size();
+    REQUIRE_FALSE(s.selection());
+    s.execute(SelectSpec{"sphere:0,0,1,0.6"});
+    REQUIRE(s.history().size() == before + 1);
+    const Selection first = weights_of(s);
+    REQUIRE(count_selected(first) > 0);
+    REQUIRE(count_selected(first) < s.mesh().n_vertices());
+    CHECK(s.selected_count() == count_selected(first));
+    CHECK(s.history().info(s.history().current()).label == "Select");
+
+    s.execute(EditSelection{EditSelection::Kind::Grow, 2, 0});
+    REQUIRE(s.history().size() == before + 2);
+    const Selection grown = weights_of(s);
+    CHECK(count_selected(grown) > count_selected(first));
+
+    s.execute(Undo{});
+    CHECK(weights_of(s) == first);
+    s.execute(Undo{});
+    CHECK_FALSE(s.selection());
+    s.execute(Redo{});
+    CHECK(weights_of(s) == first);
+    s.execute(Redo{});
+    CHECK(weights_of(s) == grown);
+
+    // Invert, feather, shrink, clear: one entry each.
+    s.execute(EditSelection{EditSelection::Kind::Invert, 1, 0});
+    CHECK(count_selected(weights_of(s)) == s.mesh().n_vertices() - count_selected(grown));
+    s.execute(EditSelection{EditSelection::Kind::Shrink, 1, 0});
+    s.execute(EditSelection{EditSelection::Kind::Feather, 1, 0.3});
+    const Selection feathered = weights_of(s);
+    CHECK(std::any_of(feathered.begin(), feathered.end(), [](float w) { return w > 0 && w < 1; }));
+    s.execute(EditSelection{EditSelection::Kind::Clear, 1, 0});
+    CHECK_FALSE(s.selection());
+    CHECK(s.history().size() == before + 6);
+    // The shape never moved.
+    CHECK(s.mesh().positions() == s.history().mesh(0, 0).positions());
+    CHECK(validate(s.mesh()).ok);
+}
+
+TEST_CASE("a bad selection is refused with a notice and no entry", "[session][selection]") {
+    Session s;
+    const std::size_t before = s.history().size();
+    s.execute(SetSelection{Selection(3, 1.0f), "Brush", ""});
+    CHECK(s.history().size() == before);
+    CHECK(s.notice().level == Notice::Level::Error);
+    s.execute(SelectSpec{"sphere:0,0"});
+    CHECK(s.history().size() == before);
+    CHECK(s.notice().text.find("--region") != std::string::npos);
+    // No pick yet: the geodesic ball asks for one.
+    s.execute(SelectAtPick{false, 0.5, SelectionMode::Replace});
+    CHECK(s.history().size() == before);
+    CHECK(s.notice().text.find("pick") != std::string::npos);
+    // No values in the colouring: the threshold says so.
+    s.execute(SelectThreshold{0.0, true, SelectionMode::Replace});
+    CHECK(s.history().size() == before);
+    // Nothing to grow.
+    s.execute(EditSelection{EditSelection::Kind::Grow, 1, 0});
+    CHECK(s.history().size() == before);
+}
+
+TEST_CASE("selections combine: add takes the larger weight, remove takes it away",
+          "[session][selection]") {
+    Session s;
+    s.execute(SelectSpec{"sphere:0,0,1,0.5"});
+    const Selection a = weights_of(s);
+    s.execute(SelectSpec{"sphere:0,0,-1,0.5", SelectionMode::Add});
+    const Selection both = weights_of(s);
+    CHECK(count_selected(both) > count_selected(a));
+    s.execute(SelectSpec{"sphere:0,0,-1,0.5", SelectionMode::Remove});
+    CHECK(weights_of(s) == a);
+    // The threshold on the colouring's values (here: z).
+    std::vector<double> z(s.mesh().vertices_size());
+    for (Vertex v : s.mesh().vertices()) z[v.idx()] = s.mesh().position(v).z();
+    s.set_coloring_values(z);
+    s.execute(SelectThreshold{0.5, true, SelectionMode::Replace});
+    for (Vertex v : s.mesh().vertices())
+        CHECK((weights_of(s)[v.idx()] == 1.0f) == (s.mesh().position(v).z() > 0.5));
+}
+
+TEST_CASE("the geodesic ball and the component come from the pick", "[session][selection]") {
+    Session s;
+    Ray ray;
+    ray.origin = Point(0.05, 0.02, 5);
+    ray.direction = Vector3(0, 0, -1);
+    const std::optional<Pick> hit = s.pick(ray, 0.0, false);
+    REQUIRE(hit);
+    s.execute(SelectAtPick{false, 0.4, SelectionMode::Replace});
+    const Selection ball = weights_of(s);
+    REQUIRE(ball.size() == s.mesh().vertices_size());
+    CHECK(ball[hit->vertex.idx()] == 1.0f);
+    CHECK(count_selected(ball) > 1);
+    CHECK(count_selected(ball) < s.mesh().n_vertices() / 2);
+    s.execute(SelectAtPick{true, 0, SelectionMode::Replace});
+    CHECK(count_selected(weights_of(s)) == s.mesh().n_vertices());  // one component
+}
+
+TEST_CASE("operations and their morphs keep the selection, and the region is what they act on",
+          "[session][selection]") {
+    Session s;
+    s.execute(SelectSpec{"sphere:0,0,1,0.7,0.2"});
+    const Selection w = weights_of(s);
+    const std::vector<Point> before = s.mesh().positions();
+    s.execute(RunOperation{parse_operation("smooth --iterations 3")});
+    s.finish_jobs();
+    REQUIRE(s.history().info(s.history().current()).label.find("mooth") != std::string::npos);
+    CHECK(weights_of(s) == w);  // kept by the operation
+    // The morph frame shows a state whose selection is the same.
+    const MorphFrame frame = s.history().morph(s.history().current(), 0.5);
+    REQUIRE(frame.topology);
+    CHECK(stored_selection(*frame.topology) == w);
+    // Weight-0 vertices did not move; some selected ones did.
+    bool moved = false;
+    for (Vertex v : s.mesh().vertices()) {
+        if (w[v.idx()] == 0.0f) CHECK(s.mesh().position(v) == before[v.idx()]);
+        moved = moved || s.mesh().position(v) != before[v.idx()];
+    }
+    CHECK(moved);
+    // Undo goes back to the state with the selection and the old shape.
+    s.execute(Undo{});
+    CHECK(weights_of(s) == w);
+    CHECK(s.mesh().positions() == before);
+}
+
+TEST_CASE("a preview follows the selection", "[session][selection]") {
+    Session s;
+    s.execute(SelectSpec{"sphere:0,0,1,0.5"});
+    const Operation op = parse_operation("smooth --iterations 5");
+    s.execute(PreviewOperation{op});
+    s.finish_jobs();
+    REQUIRE(s.preview_shown(op));
+    const std::vector<Point> first = s.shown().mesh->positions();
+    s.execute(SelectSpec{"sphere:0,0,-1,0.5"});
+    s.finish_jobs();
+    REQUIRE(s.preview_shown(op));  // computed again, on the new selection
+    const std::vector<Point> second = s.shown().mesh->positions();
+    CHECK(first != second);
+    const Selection w = weights_of(s);
+    for (Vertex v : s.mesh().vertices())
+        if (w[v.idx()] == 0.0f) CHECK(second[v.idx()] == s.mesh().position(v));
+}
+
+TEST_CASE("saving to PLY keeps the weights and loading reads them back", "[session][selection]") {
+    Session s;
+    s.execute(SelectSpec{"sphere:0,0,1,0.7,0.3"});
+    const Selection w = weights_of(s);
+    const std::string path =
+        (std::filesystem::temp_directory_path() / "trilab_selection_session.ply").string();
+    s.execute(SaveFile{path});
+    s.finish_jobs();
+    Session t;
+    t.execute(LoadFile{path});
+    t.finish_jobs();
+    REQUIRE(t.document().path == path);
+    CHECK(weights_of(t) == w);
+    std::filesystem::remove(path);
+}
+
+TEST_CASE("the brush and the lasso select what the view shows", "[session][selection]") {
+    const HalfedgeMesh sphere = make_icosphere(8);
+    // Seen from +z: the brush at the centre takes the front cap only.
+    const ProjectedVertices visible = project_front(sphere, false);
+    Selection w(sphere.vertices_size(), 0.0f);
+    const std::size_t painted =
+        paint_brush(visible, Eigen::Vector2f(250, 250), Eigen::Vector2f(250, 250), 40, true, w);
+    CHECK(painted == count_selected(w));
+    REQUIRE(painted > 0);
+    for (Vertex v : sphere.vertices()) {
+        const Point& p = sphere.position(v);
+        const double r = std::hypot(p.x(), p.y());  // pixels ≈ 200 r
+        if (w[v.idx()] > 0) {
+            CHECK(p.z() > 0);
+            CHECK(r < 0.21);
+        } else if (p.z() > 0.3) {
+            CHECK(r > 0.19);
+        }
+    }
+    // A drag covers the segment; removing takes it away again.
+    Selection stroke(sphere.vertices_size(), 0.0f);
+    paint_brush(visible, Eigen::Vector2f(150, 250), Eigen::Vector2f(350, 250), 20, true, stroke);
+    CHECK(count_selected(stroke) > count_selected(w));
+    paint_brush(visible, Eigen::Vector2f(150, 250), Eigen::Vector2f(350, 250), 20, false, stroke);
+    CHECK(count_selected(stroke) == 0);
+
+    // A lasso around the middle: the visible surface only, or through the model.
+    const std::vector<Eigen::Vector2f> square{{200, 200}, {300, 200}, {300, 300}, {200, 300}};
+    const Selection front = lasso_selection(visible, square);
+    const Selection through = lasso_selection(project_front(sphere, true), square);
+    std::size_t n_front = 0, n_back = 0;
+    for (Vertex v : sphere.vertices()) {
+        const Point& p = sphere.position(v);
+        const bool inside = std::abs(p.x()) < 0.24 && std::abs(p.y()) < 0.24;
+        if (front[v.idx()] > 0) {
+            CHECK(p.z() > 0);
+            ++n_front;
+        }
+        if (through[v.idx()] > 0) n_back += p.z() < 0;
+        if (inside && p.z() > 0) CHECK(front[v.idx()] == 1.0f);
+    }
+    CHECK(n_front > 0);
+    CHECK(n_back > 0);
+    CHECK(count_selected(through) > count_selected(front));
+}
