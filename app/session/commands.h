@@ -112,6 +112,12 @@ struct SaveAndContinue {};
 /// Ask for a file name (the file browser), save there, then carry out the pending action.
 struct SaveAsAndContinue {};
 
+/// Help > Reference figures: load the figure's model and run its settings (Session::
+/// load_figure, app/session/reference_figures.h).
+struct LoadFigure {
+    std::string name;  ///< "1.12b"
+};
+
 /// Inspector: forget the picks (and the measurement).
 struct ClearPicks {};
 /// Inspector: make the first pick's point the centre of rotation.
@@ -122,7 +128,8 @@ using Command = std::variant<
     ResetView, Undo, Redo, JumpTo, RunOperation, PreviewOperation, ApplyOperation, CancelPreview,
     BuildLevelOfDetail, ShowLevelOfDetail, ApplyLevelOfDetail, Decompose, PreviewBand, CommitBand,
     RestoreDecomposed, UpdateColoring, ProjectTexCoords, TakeScreenshot, PrintInfo, StartRecording,
-    CancelRecording, CancelJob, Quit, SaveAndContinue, SaveAsAndContinue, ClearPicks, CentreOnPick>;
+    CancelRecording, CancelJob, Quit, SaveAndContinue, SaveAsAndContinue, ClearPicks, CentreOnPick,
+    LoadFigure>;
 using CommandQueue = std::vector<Command>;
 
 /// The command's type name ("StartRecording"), for logs and scripted clicks.
@@ -161,7 +168,8 @@ inline const char* command_name(const Command& command) {
                                              "SaveAndContinue",
                                              "SaveAsAndContinue",
                                              "ClearPicks",
-                                             "CentreOnPick"};
+                                             "CentreOnPick",
+                                             "LoadFigure"};
     static_assert(std::size(kNames) == std::variant_size_v<Command>, "a name per command");
     return kNames[command.index()];
 }

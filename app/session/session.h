@@ -213,6 +213,24 @@ public:
         return inspection_future_.valid() || picks_.measurement.computing;
     }
 
+    // ---- the reference's figures (session_figures.cpp, app/session/reference_figures.h) -------
+    /// Loads the reference figure `name` ("1.12b") as one job: its built-in model as a load
+    /// entry, its setup operations and then its operation as history entries, exactly as the
+    /// panels would run them (a diverging run is stopped and refused as any other). Logs what
+    /// the figure used and the step's translation; an unknown name is an error listing them.
+    void load_figure(const std::string& name);
+    /// The figure loaded last ("" when none).
+    const std::string& figure() const { return figure_; }
+    /// For teaching: shows the explicit fairing `op` run from the current state without its
+    /// health checks, up to its last iteration whose positions are finite, as a marked shown
+    /// state that is never a result (no history entry; Apply runs `op` itself, which is
+    /// refused again; Cancel or Esc returns). Refused with a notice for implicit runs.
+    void show_diverging_run(const Operation& op);
+    /// The diverging run is on the screen.
+    bool diverging_run_shown() const;
+    /// What the diverging run shows (one line, starting "DIVERGED").
+    const std::string& diverging_run_note() const { return diverging_note_; }
+
     // ---- documents ---------------------------------------------------------------------------
     /// Computes texture coordinates by `projection` on the current shape (a history entry).
     void project_texcoords(TexCoordProjection projection, UpAxis up);
@@ -333,6 +351,10 @@ private:
     SessionEvents events_;
     HalfedgeMesh::Revision morph_topology_;  ///< the connectivity of the morph frame shown
     std::unique_ptr<Journal> journal_;       ///< records every history change (crash recovery)
+    // The reference's figures (session_figures.cpp).
+    std::string figure_;             ///< the figure loaded last
+    HalfedgeMesh diverging_mesh_;    ///< the diverging run shown (shown_.mesh points here)
+    std::string diverging_note_;     ///< what it shows
 };
 
 }  // namespace trilab::viewer

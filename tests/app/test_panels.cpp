@@ -495,6 +495,57 @@ TEST_CASE("the frequency plots shade exactly the band's share and mark the visua
     CHECK((marker.x0 + marker.x1) / 2 == Approx(area.x0 + 0.5f / 50 * (area.x1 - area.x0)));
 }
 
+TEST_CASE("the Frequency panel flags a band that splits equal eigenvalues, with the nearest "
+          "bands that do not",
+          "[panels][frequency]") {
+    Ui ui;
+    FrequencyPanelState state;
+    state.open = true;
+    // A sphere's spectrum: 0, the three-fold lambda_1, the five-fold lambda_2.
+    FrequencyDocument doc;
+    doc.decomposition = std::make_shared<const SpectralDecomposition>();
+    doc.valid = true;
+    for (const float v : {0.0f, 0.05f, 0.0501f, 0.0502f, 0.15f, 0.1501f, 0.1502f, 0.1503f,
+                          0.1504f, 0.3f}) {
+        doc.eigenvalues.push_back(v);
+        doc.log_coefficients.push_back(-1.0f);
+    }
+    state.lo = 0;
+    state.hi = 2;  // the noisy sphere's band 0:2 keeps two of the three lambda_1
+    CommandQueue commands;
+    const auto draw = [&] { frequency_window(state, doc, false, commands); };
+    ui.frame(draw);
+    ui.frame(draw);
+    const auto note = std::find_if(ui.notes().begin(), ui.notes().end(),
+                                   [](const WidgetNote& n) { return n.id == "band-split"; });
+    REQUIRE(note != ui.notes().end());
+    CHECK(note->label.find("band 0:2 splits the multiplet 1:3") != std::string::npos);
+    CHECK(note->label.find("0:0") != std::string::npos);
+    CHECK(note->label.find("0:3") != std::string::npos);
+    // The nearest whole band, pressed: the sliders follow and the band is pushed.
+    REQUIRE(ui.has("use 0:0"));
+    const Box wider = ui.rect("use 0:3");
+    commands.clear();
+    ui.click(draw, (wider.x0 + wider.x1) / 2, (wider.y0 + wider.y1) / 2);
+    CHECK(state.lo == 0);
+    CHECK(state.hi == 3);
+    REQUIRE(commands.size() == 2);
+    REQUIRE(std::holds_alternative<PreviewBand>(commands[0]));
+    CHECK(std::get<PreviewBand>(commands[0]).hi == 3);
+    REQUIRE(std::holds_alternative<CommitBand>(commands[1]));
+    CHECK(std::get<CommitBand>(commands[1]).hi == 3);
+    // A band of whole multiplets is not flagged.
+    ui.frame(draw);
+    CHECK_FALSE(ui.has("band-split"));
+    CHECK_FALSE(ui.has("use 0:3"));
+    // Its upper edge inside lambda_2 is flagged again.
+    state.hi = 6;
+    ui.frame(draw);
+    CHECK(ui.has("band-split"));
+    CHECK(ui.has("use 0:3"));
+    CHECK(ui.has("use 0:8"));
+}
+
 TEST_CASE("the up axis is remembered in the settings file, other keys kept", "[panels][prefs]") {
     const std::filesystem::path dir =
         std::filesystem::temp_directory_path() / ("trilab-prefs-" + std::to_string(::getpid()));
