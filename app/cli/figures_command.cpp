@@ -29,11 +29,16 @@ options:
 
 const char* result_name(viewer::FigureResult r) {
     switch (r) {
-        case viewer::FigureResult::Smoothed: return "smoothed";
-        case viewer::FigureResult::Diverges: return "diverges";
-        case viewer::FigureResult::Filtered: return "filtered";
-        case viewer::FigureResult::Subdivided: return "subdivided";
-        case viewer::FigureResult::Decimated: return "decimated";
+        case viewer::FigureResult::Smoothed:
+            return "smoothed";
+        case viewer::FigureResult::Diverges:
+            return "diverges";
+        case viewer::FigureResult::Filtered:
+            return "filtered";
+        case viewer::FigureResult::Subdivided:
+            return "subdivided";
+        case viewer::FigureResult::Decimated:
+            return "decimated";
     }
     return "";
 }

@@ -123,13 +123,14 @@ struct ClearPicks {};
 /// Inspector: make the first pick's point the centre of rotation.
 struct CentreOnPick {};
 
-using Command = std::variant<
-    LoadFile, SaveFile, RevertFile, SaveSession, OpenSession, RecoverJournal, LoadTexture, FitView,
-    ResetView, Undo, Redo, JumpTo, RunOperation, PreviewOperation, ApplyOperation, CancelPreview,
-    BuildLevelOfDetail, ShowLevelOfDetail, ApplyLevelOfDetail, Decompose, PreviewBand, CommitBand,
-    RestoreDecomposed, UpdateColoring, ProjectTexCoords, TakeScreenshot, PrintInfo, StartRecording,
-    CancelRecording, CancelJob, Quit, SaveAndContinue, SaveAsAndContinue, ClearPicks, CentreOnPick,
-    LoadFigure>;
+using Command =
+    std::variant<LoadFile, SaveFile, RevertFile, SaveSession, OpenSession, RecoverJournal,
+                 LoadTexture, FitView, ResetView, Undo, Redo, JumpTo, RunOperation,
+                 PreviewOperation, ApplyOperation, CancelPreview, BuildLevelOfDetail,
+                 ShowLevelOfDetail, ApplyLevelOfDetail, Decompose, PreviewBand, CommitBand,
+                 RestoreDecomposed, UpdateColoring, ProjectTexCoords, TakeScreenshot, PrintInfo,
+                 StartRecording, CancelRecording, CancelJob, Quit, SaveAndContinue,
+                 SaveAsAndContinue, ClearPicks, CentreOnPick, LoadFigure>;
 using CommandQueue = std::vector<Command>;
 
 /// The command's type name ("StartRecording"), for logs and scripted clicks.

@@ -46,10 +46,9 @@ const char* const kDecimationNote =
     "the torus refined by two Loop steps (18,432 vertices) stands in for the reference's "
     "28,264-vertex model";
 
-ReferenceFigure fairing(std::string name, std::string title, std::string reference,
-                        bool head, std::string operation, double reference_step, double step,
-                        std::string translation,
-                        FigureResult result = FigureResult::Smoothed) {
+ReferenceFigure fairing(std::string name, std::string title, std::string reference, bool head,
+                        std::string operation, double reference_step, double step,
+                        std::string translation, FigureResult result = FigureResult::Smoothed) {
     ReferenceFigure f;
     f.name = std::move(name);
     f.title = std::move(title);
@@ -65,9 +64,9 @@ ReferenceFigure fairing(std::string name, std::string title, std::string referen
     return f;
 }
 
-ReferenceFigure other(std::string name, std::string title, std::string reference,
-                      std::string model, std::string model_note, std::vector<std::string> setup,
-                      std::string operation, FigureResult result) {
+ReferenceFigure other(std::string name, std::string title, std::string reference, std::string model,
+                      std::string model_note, std::vector<std::string> setup, std::string operation,
+                      FigureResult result) {
     ReferenceFigure f;
     f.name = std::move(name);
     f.title = std::move(title);
@@ -97,14 +96,13 @@ std::vector<ReferenceFigure> make_figures() {
         fairing("1.4b", "Improved umbrella, one implicit step on the noisy sphere",
                 "noisy sphere (1,026 vertices); improved umbrella, implicit, step 1.0, 1 "
                 "iteration",
-                false,
-                "smooth --operator improved-umbrella --integration implicit --step 66.5", 1.0,
-                sphere_improved, sphere_improved_text),
+                false, "smooth --operator improved-umbrella --integration implicit --step 66.5",
+                1.0, sphere_improved, sphere_improved_text),
         fairing("1.4d", "Improved umbrella, one implicit step on the noisy head",
                 "noisy head (17,358 vertices); improved umbrella, implicit, step 0.0002, 1 "
                 "iteration",
-                true, "smooth --operator improved-umbrella --integration implicit --step 2",
-                0.0002, head_improved,
+                true, "smooth --operator improved-umbrella --integration implicit --step 2", 0.0002,
+                head_improved,
                 "the reference's improved umbrella is in 1/length² (1.7); trilab's is "
                 "scale-free: step 0.0002 / h² with h = 0.01, the mean edge of a head about one "
                 "unit tall with 17,358 vertices = 2 (taken as it is, 0.0002 would barely move "
@@ -117,30 +115,28 @@ std::vector<ReferenceFigure> make_figures() {
                 "smooth --operator curvature-flow --step 1 --iterations 2", 1, 1, kSameUnits),
         fairing("1.10b", "Second-order differences, 8 steps of 1 on the noisy sphere",
                 "noisy sphere (1,026 vertices); second-order difference, step 1.0, 8 iterations",
-                false, "smooth --operator second-order --step 1 --iterations 8", 1, 1,
-                kSameUnits),
+                false, "smooth --operator second-order --step 1 --iterations 8", 1, 1, kSameUnits),
         fairing("1.10d", "Second-order differences, 2 steps of 1 on the noisy head",
                 "noisy head (17,358 vertices); second-order difference, step 1.0, 2 iterations",
-                true, "smooth --operator second-order --step 1 --iterations 2", 1, 1,
-                kSameUnits),
+                true, "smooth --operator second-order --step 1 --iterations 2", 1, 1, kSameUnits),
         [&] {
-            ReferenceFigure f = fairing(
-                "1.12b", "Explicit umbrella at step 20 explodes",
-                "bunny (35,947 vertices); umbrella, explicit, step 20.0, 1 iteration", false,
-                "smooth --operator umbrella --step 20", 20, 20,
-                std::string(kSameUnits) +
-                    "; explicit steps are stable up to about 1.3, so trilab stops this run "
-                    "and keeps nothing (Show the diverging run shows what it did)",
-                FigureResult::Diverges);
+            ReferenceFigure f =
+                fairing("1.12b", "Explicit umbrella at step 20 explodes",
+                        "bunny (35,947 vertices); umbrella, explicit, step 20.0, 1 iteration",
+                        false, "smooth --operator umbrella --step 20", 20, 20,
+                        std::string(kSameUnits) +
+                            "; explicit steps are stable up to about 1.3, so trilab stops this run "
+                            "and keeps nothing (Show the diverging run shows what it did)",
+                        FigureResult::Diverges);
             f.model_note = kBunnyNote;
             return f;
         }(),
         [&] {
-            ReferenceFigure f = fairing(
-                "1.12c", "Implicit umbrella at step 20 smooths",
-                "bunny (35,947 vertices); umbrella, implicit, step 20.0, 1 iteration", false,
-                "smooth --operator umbrella --integration implicit --step 20", 20, 20,
-                std::string(kSameUnits) + "; implicit steps are stable at any size");
+            ReferenceFigure f =
+                fairing("1.12c", "Implicit umbrella at step 20 smooths",
+                        "bunny (35,947 vertices); umbrella, implicit, step 20.0, 1 iteration",
+                        false, "smooth --operator umbrella --integration implicit --step 20", 20,
+                        20, std::string(kSameUnits) + "; implicit steps are stable at any size");
             f.model_note = kBunnyNote;
             return f;
         }(),
@@ -155,9 +151,8 @@ std::vector<ReferenceFigure> make_figures() {
         fairing("1.13b", "Improved umbrella, implicit step: the sphere shrinks",
                 "noisy sphere (1,026 vertices); improved umbrella, implicit, step 1.0, no "
                 "volume preservation",
-                false,
-                "smooth --operator improved-umbrella --integration implicit --step 66.5", 1.0,
-                sphere_improved, sphere_improved_text),
+                false, "smooth --operator improved-umbrella --integration implicit --step 66.5",
+                1.0, sphere_improved, sphere_improved_text),
         fairing("1.13c", "The same with volume preservation (anti-shrinking)",
                 "noisy sphere (1,026 vertices); improved umbrella, implicit, step 1.0, "
                 "anti-shrinking on",
@@ -179,9 +174,8 @@ std::vector<ReferenceFigure> make_figures() {
               "20 vertices to 74, 290, 1,154, 4,610, 18,434 (Loop)", kCube, kCubeNote, {},
               "subdivide --scheme loop --iterations 5", FigureResult::Subdivided),
         other("1.22", "Modified Butterfly subdivision, 5 iterations",
-              "20 vertices to 74, 290, 1,154, 4,610, 18,434 (Modified Butterfly)", kCube,
-              kCubeNote, {}, "subdivide --scheme modified-butterfly --iterations 5",
-              FigureResult::Subdivided),
+              "20 vertices to 74, 290, 1,154, 4,610, 18,434 (Modified Butterfly)", kCube, kCubeNote,
+              {}, "subdivide --scheme modified-butterfly --iterations 5", FigureResult::Subdivided),
         other("1.26", "Sqrt3 subdivision, 5 iterations",
               "20 vertices to 56, 164, 488, 1,460, 4,376 (sqrt3)", kCube, kCubeNote, {},
               "subdivide --scheme sqrt3 --iterations 5", FigureResult::Subdivided),

@@ -352,9 +352,9 @@ private:
     HalfedgeMesh::Revision morph_topology_;  ///< the connectivity of the morph frame shown
     std::unique_ptr<Journal> journal_;       ///< records every history change (crash recovery)
     // The reference's figures (session_figures.cpp).
-    std::string figure_;             ///< the figure loaded last
-    HalfedgeMesh diverging_mesh_;    ///< the diverging run shown (shown_.mesh points here)
-    std::string diverging_note_;     ///< what it shows
+    std::string figure_;           ///< the figure loaded last
+    HalfedgeMesh diverging_mesh_;  ///< the diverging run shown (shown_.mesh points here)
+    std::string diverging_note_;   ///< what it shows
 };
 
 }  // namespace trilab::viewer

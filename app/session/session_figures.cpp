@@ -72,8 +72,8 @@ void Session::load_figure(const std::string& name) {
             if (notice_.level != Notice::Level::Error)
                 notice_ = Notice{Notice::Level::Info,
                                  "Figure " + figure.name + ": " + figure.title,
-                                 {"the reference: " + figure.reference, "here: " + figure.model_note,
-                                  "step: " + figure.translation},
+                                 {"the reference: " + figure.reference,
+                                  "here: " + figure.model_note, "step: " + figure.translation},
                                  false};
         });
     });
@@ -96,8 +96,8 @@ void Session::show_diverging_run(const Operation& op) {
         return;
     }
     if (o.integration == Integration::Implicit) {
-        notice_ = Notice{Notice::Level::Info,
-                         "an implicit run does not diverge: nothing to show", {}, false};
+        notice_ = Notice{
+            Notice::Level::Info, "an implicit run does not diverge: nothing to show", {}, false};
         return;
     }
     clear_preview();

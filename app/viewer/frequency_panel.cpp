@@ -68,8 +68,8 @@ void frequency_bar(const FrequencyDocument& doc, int lo, int hi, int marker, flo
 /// The eigenvalues the band-split check reads: the decomposition's own (double) when they are
 /// the plotted ones, else the plotted floats.
 Eigen::VectorXd band_eigenvalues(const FrequencyDocument& doc) {
-    if (doc.decomposition && std::size_t(doc.decomposition->eigenvalues.size()) ==
-                                 doc.eigenvalues.size())
+    if (doc.decomposition &&
+        std::size_t(doc.decomposition->eigenvalues.size()) == doc.eigenvalues.size())
         return doc.decomposition->eigenvalues;
     Eigen::VectorXd values(Eigen::Index(doc.eigenvalues.size()));
     for (std::size_t i = 0; i < doc.eigenvalues.size(); ++i)

@@ -49,8 +49,7 @@ void require_valid(const HalfedgeMesh& mesh) {
 
 }  // namespace
 
-TEST_CASE("the reference figures are the issue's, by name, with their sub-figures",
-          "[figures]") {
+TEST_CASE("the reference figures are the issue's, by name, with their sub-figures", "[figures]") {
     std::set<std::string> figures;
     for (const ReferenceFigure& f : reference_figures()) {
         INFO(f.name);
@@ -116,8 +115,8 @@ TEST_CASE("every reference figure loads and runs to the kind of result the refer
         CHECK(s.history().info(s.history().current()).operation.text() ==
               parse_operation(f.operation).text());
         const std::size_t input_entry = s.history().size() - 2;  // the figure's input
-        const HalfedgeMesh before = s.history().mesh(
-            input_entry, s.history().info(input_entry).steps.size() - 1);
+        const HalfedgeMesh before =
+            s.history().mesh(input_entry, s.history().info(input_entry).steps.size() - 1);
         const HalfedgeMesh& after = s.mesh();
         require_valid(after);
         switch (f.result) {
@@ -148,7 +147,8 @@ TEST_CASE("every reference figure loads and runs to the kind of result the refer
                 CHECK(double(after.n_vertices()) > 0.7 * expected);
                 break;
             }
-            case FigureResult::Diverges: break;
+            case FigureResult::Diverges:
+                break;
         }
     }
 }
