@@ -9,7 +9,6 @@
 #include "app/cli/json_writer.h"
 #include "app/session/reference_figures.h"
 #include "core/errors.h"
-#include "core/number_text.h"
 
 namespace trilab::cli {
 namespace {
@@ -93,9 +92,8 @@ int run_figures_command(const std::vector<std::string>& args) {
         for (const std::string& s : f.setup) std::printf("    setup:     %s\n", s.c_str());
         std::printf("    operation: %s  (%s)\n", f.operation.c_str(), result_name(f.result));
         if (f.step > 0)
-            std::printf("    step:      %s in the reference = %s here: %s\n",
-                        number_text(f.reference_step).c_str(), number_text(f.step).c_str(),
-                        f.translation.c_str());
+            std::printf("    step:      %g in the reference = %g here: %s\n", f.reference_step,
+                        f.step, f.translation.c_str());
     }
     return 0;
 }
