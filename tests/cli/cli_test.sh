@@ -258,7 +258,9 @@ check "smooth --operator taubin --lambda 0.9 alone: mu follows lambda through th
      grep -q -- '--mu: expected a value below -lambda' '$tmp/e'"
 check "smooth --help states each step's unit" bash -c \
     "'$cli' smooth --help | grep -q 'fraction of the way to its neighbours' && \
-     '$cli' smooth --help | grep -q 'umbrella units'"
+     '$cli' smooth --help | grep -q 'umbrella units' && \
+     '$cli' smooth --help | grep -q \"reference's 1/length² units is s / h² here\" && \
+     '$cli' smooth --step -1 '$tmp/d.obj' '$tmp/x.obj' 2>&1 | grep -q '(scale-free)'"
 check "spectrum --full is refused above the size limit naming it" bash -c \
     "! '$cli' spectrum --full --max-full 500 '$tmp/d.obj' '$tmp/x.obj' 2> '$tmp/e' && \
      grep -q -- '--full: the dense decomposition is limited to 500' '$tmp/e' && [ ! -e '$tmp/x.obj' ]"
