@@ -137,8 +137,10 @@ void Session::request_preview(const Operation& op) {
 
 void Session::wait_for_preview(double seconds) {
     // A preview that is about to finish shows in this frame rather than the next: wait for it
-    // a bounded time (a frame's hiccup, never a freeze).
+    // a bounded time (a frame's hiccup, never a freeze). Not while the spectral prediction is
+    // on the screen: it already shows the change, and the exact result replaces it when ready.
     start_pending_preview();
+    if (prediction_shown()) return;
     const double until = now() + seconds;
     while (is_preview_job() && jobs_.elapsed_seconds() < seconds && now() < until) {
         poll();

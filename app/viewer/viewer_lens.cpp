@@ -42,7 +42,10 @@ void Viewer::update_lens() {
     const HalfedgeMesh* result = nullptr;
     std::vector<Point> input;
     const Shown& shown = session_.shown();
+    // (Not the spectral prediction: its measured gain is the curve by construction, and
+    // measuring it would delay the frame that shows it.)
     if (shown.kind == Shown::Kind::Preview && session_.previewing(panel.op) && shown.mesh &&
+        !session_.prediction_shown() && !session_.diverging_run_shown() &&
         shown.mesh->vertices_size() == session_.mesh().vertices_size()) {
         result = shown.mesh;
         input = session_.mesh().positions();
