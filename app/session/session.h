@@ -219,8 +219,8 @@ public:
     /// panels would run them (a diverging run is stopped and refused as any other). Logs what
     /// the figure used and the step's translation; an unknown name is an error listing them.
     void load_figure(const std::string& name);
-    /// The figure loaded last ("" when none).
-    const std::string& figure() const { return figure_; }
+    /// The figure the document is ("" when none: nothing loaded, or another model since).
+    std::string figure() const;
     /// For teaching: shows the explicit fairing `op` run from the current state without its
     /// health checks, up to its last iteration whose positions are finite, as a marked shown
     /// state that is never a result (no history entry; Apply runs `op` itself, which is

@@ -80,6 +80,12 @@ void Session::load_figure(const std::string& name) {
     if (!started) busy_error();
 }
 
+std::string Session::figure() const {
+    // push_loaded() names the document after the figure; any other load renames it.
+    const std::string prefix = "figure " + figure_ + " (";
+    return !figure_.empty() && document_.name.rfind(prefix, 0) == 0 ? figure_ : std::string();
+}
+
 bool Session::diverging_run_shown() const {
     return !diverging_note_.empty() && shown_.kind == Shown::Kind::Preview &&
            shown_.mesh == &diverging_mesh_;

@@ -27,8 +27,10 @@ void Viewer::update_lens() {
     if (!panel.open) return;  // drawn only when the section is open
     // Per frame, whatever the data below: the figure's translation and the diverged mark.
     std::string figure_note;
-    if (const ReferenceFigure* f = find_reference_figure(session_.figure());
-        f && !session_.figure().empty() && panel.op.text() == parse_operation(f->operation).text())
+    const std::string figure_name = session_.figure();
+    if (const ReferenceFigure* f =
+            figure_name.empty() ? nullptr : find_reference_figure(figure_name);
+        f && panel.op.text() == parse_operation(f->operation).text())
         figure_note = "Figure " + f->name + ": " + f->translation;
     const std::string diverging_note = diverging ? session_.diverging_run_note() : "";
     panel.lens.figure_note = figure_note;

@@ -194,6 +194,14 @@ TEST_CASE("Figure 1.12(b) diverges and is refused; its run is shown marked, neve
     CHECK_FALSE(s.diverging_run_shown());
     CHECK(s.shown().kind == Shown::Kind::Document);
 
+    // Another model: the document is no longer the figure.
+    s.execute(LoadFile{"../shared/meshes/no-such-file.obj", true});
+    settle(s);
+    CHECK(s.figure() == "1.12b");  // the load failed: still the figure
+    s.execute(LoadFigure{"1.12c"});
+    settle(s);
+    CHECK(s.figure() == "1.12c");
+
     // An implicit run does not diverge: nothing is shown.
     s.show_diverging_run(parse_operation(find_reference_figure("1.12c")->operation));
     CHECK_FALSE(s.diverging_run_shown());
