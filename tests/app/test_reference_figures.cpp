@@ -153,7 +153,7 @@ TEST_CASE("every reference figure loads and runs to the kind of result the refer
     }
 }
 
-TEST_CASE("Figure 1.12(b) diverges and is refused; its run is shown marked, never as a result",
+TEST_CASE("Figure 1.12(b) diverges and is refused, and its run is shown marked, never as a result",
           "[figures]") {
     Session s;
     s.execute(LoadFigure{"1.12b"});
