@@ -291,6 +291,11 @@ private:
         /// result arrives: the document's connectivity with the predicted positions.
         std::optional<Operation> predicted_op;
         HalfedgeMesh prediction;
+        /// The exact job waits while the frame that shows a new prediction is drawn (it would
+        /// take the CPU that frame needs): until the next wait_for_preview(), at most
+        /// hold_exact_until on the session's clock.
+        bool hold_exact = false;
+        double hold_exact_until = 0;
     };
     /// Shows the spectral prediction of fairing `op` when the decomposition is of its operator
     /// (core/algorithms/transfer_function.h predict_fairing); false when there is none.
