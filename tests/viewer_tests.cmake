@@ -136,6 +136,21 @@ if(TARGET trilab)
                      --screenshot ${CMAKE_CURRENT_BINARY_DIR}/viewer_frequency.png)
     set_tests_properties(viewer_frequency PROPERTIES
                          PASS_REGULAR_EXPRESSION "Frequency band 0:9 of 30")
+    # --figure (issue 28): a reference figure's model and settings. Figure 1.12(c), the implicit
+    # umbrella at step 20, smooths (an entry); 1.12(b), the explicit one, is stopped and
+    # refused (no entry); an unknown name lists the figures.
+    add_test(NAME viewer_figure_implicit
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --figure 1.12c --frames 3)
+    set_tests_properties(viewer_figure_implicit PROPERTIES PASS_REGULAR_EXPRESSION
+                         "history: 0 Figure 1.12c: default \\| 1 Smooth\n.*status: Figure 1.12c: Implicit umbrella")
+    add_test(NAME viewer_figure_diverges
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --figure 1.12b --frames 3)
+    set_tests_properties(viewer_figure_diverges PROPERTIES PASS_REGULAR_EXPRESSION
+                         "history: 0 Figure 1.12b: default\n.*status: Smooth stopped early, nothing changed")
+    add_test(NAME viewer_figure_unknown
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --figure 1.99 --frames 2)
+    set_tests_properties(viewer_figure_unknown PROPERTIES PASS_REGULAR_EXPRESSION
+                         "no reference figure '1.99'; the figures are 1.2b")
     # Decimation with its panel open and the collapsing-edges overlay drawn.
     add_test(NAME viewer_decimation
              COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab>

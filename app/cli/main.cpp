@@ -13,6 +13,7 @@
 
 #include "app/cli/compare_command.h"
 #include "app/cli/convert_command.h"
+#include "app/cli/figures_command.h"
 #include "app/cli/generate_command.h"
 #include "app/cli/geodesic_command.h"
 #include "app/cli/info_command.h"
@@ -39,6 +40,7 @@ commands:
                                   convert between .obj .off .ply .stl .om (by extension);
                                   .stl and .ply are written binary unless --ascii
   generate NAME OUT [--json]      write a built-in model (see `trilab-cli generate --list`)
+  figures [--json]                the reference's figures the viewer loads (--figure NAME)
   render MESH --out FILE.png [options]
                                   render offscreen to a PNG (`trilab-cli render --help`)
   record MESH --op "OP" --out DIR [options]
@@ -80,6 +82,7 @@ std::optional<int> run_command(const std::string& cmd, const std::vector<std::st
     if (cmd == "info") return run_info_command(args);
     if (cmd == "convert") return run_convert_command(args);
     if (cmd == "generate") return run_generate_command(args);
+    if (cmd == "figures") return run_figures_command(args);
     if (cmd == "render") return run_render_command(args);
     if (cmd == "record") return run_record_command(args);
     if (cmd == "compare") return run_compare_command(args);

@@ -143,8 +143,10 @@ std::unique_ptr<OperationDef> smooth_operation() {
     d.number("step", &FairingOptions::step, 0, 1e6,
              "lambda * dt per iteration, scale-free: umbrella and curvature flow move each vertex "
              "this fraction of the way to its neighbours' average (explicit: stable up to about "
-             "1.3); improved umbrella twice that on equal edges; second order 1 = the relaxation; "
-             "implicit t smooths about like t explicit steps of 1")
+             "1.3); improved umbrella twice that on equal edges (its lengths in units of the mean "
+             "edge h: a step s in the reference's 1/length² units is s / h² here); second order "
+             "1 = the relaxation; implicit t smooths about like t explicit steps of 1",
+             " (scale-free)")
         .slider(1e-4, 100, true)
         .only_if(not_taubin);
     d.integer("iterations", &FairingOptions::iterations, 1, kMaxFairingIterations,

@@ -149,6 +149,11 @@ struct EditSelection {
     int rings = 1;
     double width = 0;
 };
+/// Help > Reference figures: load the figure's model and run its settings (Session::
+/// load_figure, app/session/reference_figures.h).
+struct LoadFigure {
+    std::string name;  ///< "1.12b"
+};
 
 /// Inspector: forget the picks (and the measurement).
 struct ClearPicks {};
@@ -161,7 +166,7 @@ using Command = std::variant<
     BuildLevelOfDetail, ShowLevelOfDetail, ApplyLevelOfDetail, Decompose, PreviewBand, CommitBand,
     RestoreDecomposed, UpdateColoring, ProjectTexCoords, TakeScreenshot, PrintInfo, StartRecording,
     CancelRecording, CancelJob, Quit, SaveAndContinue, SaveAsAndContinue, ClearPicks, CentreOnPick,
-    SetSelection, SelectSpec, SelectAtPick, SelectThreshold, EditSelection>;
+    SetSelection, SelectSpec, SelectAtPick, SelectThreshold, EditSelection, LoadFigure>;
 using CommandQueue = std::vector<Command>;
 
 /// The command's type name ("StartRecording"), for logs and scripted clicks.
@@ -205,7 +210,8 @@ inline const char* command_name(const Command& command) {
                                              "SelectSpec",
                                              "SelectAtPick",
                                              "SelectThreshold",
-                                             "EditSelection"};
+                                             "EditSelection",
+                                             "LoadFigure"};
     static_assert(std::size(kNames) == std::variant_size_v<Command>, "a name per command");
     return kNames[command.index()];
 }

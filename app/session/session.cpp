@@ -223,6 +223,8 @@ void Session::execute(const Command& command) {
         push_band(0, 0, true);
     } else if (std::holds_alternative<CancelJob>(command)) {
         jobs_.cancel();
+    } else if (auto* figure = std::get_if<LoadFigure>(&command)) {
+        load_figure(figure->name);
     }
 }
 

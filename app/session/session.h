@@ -233,6 +233,23 @@ public:
     /// the window hands it over whenever the colouring changes (empty: the colouring has none).
     void set_coloring_values(std::vector<double> values) { coloring_values_ = std::move(values); }
     const std::vector<double>& coloring_values() const { return coloring_values_; }
+    // ---- the reference's figures (session_figures.cpp, app/session/reference_figures.h) -------
+    /// Loads the reference figure `name` ("1.12b") as one job: its built-in model as a load
+    /// entry, its setup operations and then its operation as history entries, exactly as the
+    /// panels would run them (a diverging run is stopped and refused as any other). Logs what
+    /// the figure used and the step's translation; an unknown name is an error listing them.
+    void load_figure(const std::string& name);
+    /// The figure the document is ("" when none: nothing loaded, or another model since).
+    std::string figure() const;
+    /// For teaching: shows the explicit fairing `op` run from the current state without its
+    /// health checks, up to its last iteration whose positions are finite, as a marked shown
+    /// state that is never a result (no history entry; Apply runs `op` itself, which is
+    /// refused again; Cancel or Esc returns). Refused with a notice for implicit runs.
+    void show_diverging_run(const Operation& op);
+    /// The diverging run is on the screen.
+    bool diverging_run_shown() const;
+    /// What the diverging run shows (one line, starting "DIVERGED").
+    const std::string& diverging_run_note() const { return diverging_note_; }
 
     // ---- documents ---------------------------------------------------------------------------
     /// Computes texture coordinates by `projection` on the current shape (a history entry).
@@ -294,6 +311,11 @@ private:
         /// result arrives: the document's connectivity with the predicted positions.
         std::optional<Operation> predicted_op;
         HalfedgeMesh prediction;
+        /// The exact job waits while the frame that shows a new prediction is drawn (it would
+        /// take the CPU that frame needs): until the next wait_for_preview(), at most
+        /// hold_exact_until on the session's clock.
+        bool hold_exact = false;
+        double hold_exact_until = 0;
     };
     /// Shows the spectral prediction of fairing `op` when the decomposition is of its operator
     /// (core/algorithms/transfer_function.h predict_fairing); false when there is none.
@@ -359,6 +381,10 @@ private:
     HalfedgeMesh::Revision morph_topology_;  ///< the connectivity of the morph frame shown
     std::unique_ptr<Journal> journal_;       ///< records every history change (crash recovery)
     std::vector<double> coloring_values_;    ///< the colouring's values (SelectThreshold)
+    // The reference's figures (session_figures.cpp).
+    std::string figure_;           ///< the figure loaded last
+    HalfedgeMesh diverging_mesh_;  ///< the diverging run shown (shown_.mesh points here)
+    std::string diverging_note_;   ///< what it shows
 };
 
 }  // namespace trilab::viewer

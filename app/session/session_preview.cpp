@@ -131,14 +131,24 @@ void Session::request_preview(const Operation& op) {
     if (is_preview_job()) jobs_.cancel();  // outdated: its result would be discarded
     // With a decomposition of the fairing's operator, the spectral prediction shows in this
     // frame; the exact result replaces it when its job ends.
-    if (!show_prediction(op)) preview_.predicted_op.reset();
-    start_pending_preview();  // at once when the runner is free
+    preview_.hold_exact = show_prediction(op);
+    if (preview_.hold_exact)
+        preview_.hold_exact_until = now() + 0.25;  // the coming frame shows the prediction alone
+    else
+        preview_.predicted_op.reset();
+    start_pending_preview();  // at once when the runner is free (and nothing is held)
 }
 
 void Session::wait_for_preview(double seconds) {
     // A preview that is about to finish shows in this frame rather than the next: wait for it
-    // a bounded time (a frame's hiccup, never a freeze).
+    // a bounded time (a frame's hiccup, never a freeze). Not while the spectral prediction is
+    // on the screen: it already shows the change, and the exact result replaces it when ready.
+    if (preview_.hold_exact) {  // this frame shows the new prediction; the exact job follows
+        preview_.hold_exact = false;
+        return;
+    }
     start_pending_preview();
+    if (prediction_shown()) return;
     const double until = now() + seconds;
     while (is_preview_job() && jobs_.elapsed_seconds() < seconds && now() < until) {
         poll();
@@ -148,6 +158,7 @@ void Session::wait_for_preview(double seconds) {
 
 void Session::start_pending_preview() {
     if (!preview_.pending || jobs_.busy()) return;
+    if (preview_.hold_exact && now() < preview_.hold_exact_until) return;
     const Operation op = *preview_.pending;
     preview_.pending.reset();
     const HalfedgeMesh snapshot = document_.mesh();  // copy-on-write: the job's own

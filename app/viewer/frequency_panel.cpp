@@ -9,6 +9,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
+
+#include "core/algorithms/transfer_function.h"
 
 namespace trilab::viewer {
 namespace {
@@ -60,6 +63,56 @@ void frequency_bar(const FrequencyDocument& doc, int lo, int hi, int marker, flo
             "grey: the %zu computed frequencies; green: the band of the current "
             "state; orange: the sliders' band; red: the visualized frequency",
             k);
+}
+
+/// The eigenvalues the band-split check reads: the decomposition's own (double) when they are
+/// the plotted ones, else the plotted floats.
+Eigen::VectorXd band_eigenvalues(const FrequencyDocument& doc) {
+    if (doc.decomposition &&
+        std::size_t(doc.decomposition->eigenvalues.size()) == doc.eigenvalues.size())
+        return doc.decomposition->eigenvalues;
+    Eigen::VectorXd values(Eigen::Index(doc.eigenvalues.size()));
+    for (std::size_t i = 0; i < doc.eigenvalues.size(); ++i)
+        values[Eigen::Index(i)] = double(doc.eigenvalues[i]);
+    return values;
+}
+
+/// A band whose edge splits a set of equal eigenvalues (core/algorithms/transfer_function.h
+/// band_splits_multiplet, the check trilab-cli spectrum prints): the warning, and a button for
+/// each nearest band that splits none (it sets the sliders and pushes that band).
+void band_split_warning(FrequencyPanelState& s, const FrequencyDocument& doc, bool busy,
+                        CommandQueue& commands) {
+    const std::size_t lo = std::size_t(s.lo), hi = std::size_t(s.hi);
+    const MultipletSplit split = band_splits_multiplet(band_eigenvalues(doc), lo, hi);
+    if (!split.splits) return;
+    const std::string text = multiplet_split_text(split, lo, hi);
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.65f, 0.2f, 1.0f));
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextUnformatted(text.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::PopStyleColor();
+    note_widget("band-split", WidgetNote::Kind::Other, text.c_str());
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "equal eigenvalues (a symmetric shape's sets, e.g. a sphere's three-fold lambda_1) "
+            "belong together: a band that keeps only part of a set keeps an arbitrary mix of "
+            "it (the sphere's band 0:2 flattens it into a disc)");
+    if (busy) ImGui::BeginDisabled();
+    bool first = true;
+    for (const std::optional<MultipletSplit::Band>& band : {split.narrower, split.wider}) {
+        if (!band) continue;
+        if (!first) ImGui::SameLine();
+        first = false;
+        const std::string label =
+            "use " + std::to_string(band->first) + ":" + std::to_string(band->second);
+        if (button(label.c_str())) {
+            s.lo = int(band->first);
+            s.hi = int(band->second);
+            commands.push_back(PreviewBand{band->first, band->second});
+            commands.push_back(CommitBand{band->first, band->second});
+        }
+    }
+    if (busy) ImGui::EndDisabled();
 }
 
 }  // namespace
@@ -139,6 +192,9 @@ void frequency_window(FrequencyPanelState& s, const FrequencyDocument& doc, bool
             commands.push_back(PreviewBand{std::size_t(s.lo), std::size_t(s.hi)});
         if (lo_done || hi_done)
             commands.push_back(CommitBand{std::size_t(s.lo), std::size_t(s.hi)});
+        if (busy) ImGui::EndDisabled();
+        band_split_warning(s, doc, busy, commands);
+        if (busy) ImGui::BeginDisabled();
         ImGui::SetNextItemWidth(std::max(4.0f * em, width - 6.0f * em));
         const int old_vis = s.visualize;
         ImGui::SliderInt("visualize", &s.visualize, 0, last);

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "app/viewer/figure_panels.h"
 #include "app/viewer/key_bindings.h"
 #include "app/viewer/panel_helpers.h"
 #include "app/viewer/panels.h"
@@ -280,10 +281,31 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
     }
     if (begin_menu("Help")) {
         shortcut_item("Key bindings", KeyAction::ToggleHelp, &panels.help_open);
+        reference_figures_menu(panels, context.busy, commands);
         menu_item("About trilab", nullptr, &panels.about_open);
         end_menu();
     }
     ImGui::EndMainMenuBar();
+}
+
+void reference_figures_menu(PanelState& panels, bool busy, CommandQueue& commands) {
+    if (!begin_menu("Reference figures")) return;
+    ImGui::TextDisabled("the reference's figures: its models' stand-ins and its settings");
+    for (const ReferenceFigure& f : reference_figures()) {
+        const std::string label = f.name + "  " + f.title;
+        if (menu_item(label.c_str(), nullptr, false, !busy)) {
+            show_figure_in_panels(f, panels);
+            commands.push_back(LoadFigure{f.name});
+        }
+        if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+            std::string tip = "the reference: " + f.reference + "\nhere: " + f.model_note;
+            for (const std::string& s : f.setup) tip += "\nsetup: " + s;
+            tip += "\nruns: " + f.operation;
+            if (f.step > 0) tip += "\nstep: " + f.translation;
+            ImGui::SetTooltip("%s", tip.c_str());
+        }
+    }
+    end_menu();
 }
 
 void view_menu(ViewSettings& settings, CommandQueue& commands) {

@@ -74,9 +74,39 @@ double drawn_gain(const FairingOptions& o, double lambda) {
     return negative ? -1e3 : 1e3;
 }
 
+/// Under the curve: the reference figure's step translation, and the diverging run (its red
+/// mark while shown; otherwise its button, offered when the settings `diverge` on this mesh,
+/// drawn disabled elsewhere so that nothing below moves while a step is dragged across the
+/// limit).
+void figure_and_divergence(TransferView& view, bool diverges) {
+    if (!view.figure_note.empty()) {
+        wrapped_disabled("%s", view.figure_note.c_str());
+        note_widget("lens: figure", WidgetNote::Kind::Other, view.figure_note.c_str());
+    }
+    if (!view.diverging_note.empty()) {
+        // The diverging run on the screen: marked in red, never mistaken for a result.
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.35f, 0.35f, 1.0f));
+        ImGui::PushTextWrapPos(0.0f);
+        ImGui::TextUnformatted(view.diverging_note.c_str());
+        ImGui::PopTextWrapPos();
+        ImGui::PopStyleColor();
+        note_widget("lens: diverged", WidgetNote::Kind::Other, view.diverging_note.c_str());
+    } else {
+        if (!diverges) ImGui::BeginDisabled();
+        if (button("Show the diverging run")) view.show_diverging_pressed = true;
+        if (!diverges) ImGui::EndDisabled();
+        if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+            ImGui::SetTooltip(
+                diverges ? "for teaching: show this explicit run without its checks, up to its "
+                           "last iteration, marked as diverged; it is never a result and nothing "
+                           "is applied (Esc returns)"
+                         : "these settings are stable on this mesh: nothing diverges");
+    }
+}
+
 }  // namespace
 
-bool transfer_plot(const FairingOptions& o, const TransferView& view) {
+bool transfer_plot(const FairingOptions& o, TransferView& view) {
     const bool have_spectrum = !view.eigenvalues.empty();
     // The whole spectrum of the operator: up to the stability estimate's largest eigenvalue
     // (a partial decomposition holds only the lowest frequencies; they are ticked).
@@ -174,6 +204,7 @@ bool transfer_plot(const FairingOptions& o, const TransferView& view) {
     describe_curve(draw, a0, a1, unstable, std::isfinite(unstable) ? x_of(unstable) : 0.0f,
                    lambda_lo, lambda_hi, have_spectrum);
     if (!view.measured_note.empty()) wrapped_disabled("%s", view.measured_note.c_str());
+    figure_and_divergence(view, std::isfinite(unstable) && unstable < lambda_hi);
     bool decompose = false;
     if (!have_spectrum) {
         wrapped_disabled(view.decomposition_of_other_operator

@@ -26,11 +26,22 @@ struct TransferView {
     std::vector<double> measured;
     std::string measured_note;  ///< e.g. "differs by the nonlinearity of curvature flow"
     bool decomposition_of_other_operator = false;
+    /// The reference figure whose settings the panel holds: its step's translation (empty:
+    /// none), shown under the curve.
+    std::string figure_note;
+    /// The diverging run on the screen (Session::show_diverging_run): its note, drawn in red
+    /// instead of the button.
+    std::string diverging_note;
+    /// Set by transfer_plot() when "Show the diverging run" was pressed (offered when the
+    /// settings are unstable on this mesh); the viewer takes it and clears it.
+    bool show_diverging_pressed = false;
 };
 
 /// Draws the curve for options `o` over `view` (test hook ids: "lens: area", "lens: unstable",
-/// "lens: pass band", "lens: grows", "lens: oscillates", "lens: measured"). Returns true when
-/// the user asked for a decomposition of the panel's operator (the button under the curve).
-bool transfer_plot(const FairingOptions& o, const TransferView& view);
+/// "lens: pass band", "lens: grows", "lens: oscillates", "lens: measured", "lens: figure",
+/// "lens: diverged"). Returns true when the user asked for a decomposition of the panel's
+/// operator (the button under the curve); sets view.show_diverging_pressed when the user asked
+/// for the diverging run.
+bool transfer_plot(const FairingOptions& o, TransferView& view);
 
 }  // namespace trilab::viewer

@@ -198,6 +198,12 @@ private:
     void on_decomposed(std::size_t lo, std::size_t hi);
     /// options_.decompose: queues Decompose once the model is there, then the band.
     void scripted_decomposition();
+    // The reference's figures (issue 28; viewer_frequency.cpp, viewer_lens.cpp).
+    /// options_.figure: sets the figure's panels and queues LoadFigure once the initial load
+    /// and --op are done; true once it has run (or there is none), so the other scripted
+    /// actions wait for it.
+    bool scripted_figure();
+    int scripted_figure_ = 0;  ///< options_.figure: 0 to do, 1 queued, 2 done
     /// The Frequency / Frequency mass colours of `mesh` (empty without a fitting decomposition).
     VertexColors frequency_colors(const HalfedgeMesh& mesh) const;
     /// Model and scene information, for the Info panel and the `I` key.

@@ -10,6 +10,8 @@
 
 #include "app/ops/operation_entries.h"
 #include "app/ops/spectrum_op.h"
+#include "app/session/reference_figures.h"
+#include "app/viewer/figure_panels.h"
 #include "app/viewer/viewer.h"
 
 #include "core/algorithms/transfer_function.h"
@@ -25,7 +27,30 @@ void Viewer::on_decomposed(std::size_t /*lo*/, std::size_t hi) {
     if (coloring_needs_field(view_.settings.coloring)) update_coloring();
 }
 
+bool Viewer::scripted_figure() {
+    if (options_.figure.empty() || scripted_figure_ == 2) return true;
+    if (!ready_for_script()) return false;
+    if (scripted_figure_ == 1) {  // queued, and its job has ended
+        scripted_figure_ = 2;
+        return true;
+    }
+    scripted_figure_ = 1;
+    const ReferenceFigure* figure = find_reference_figure(options_.figure);
+    if (!figure) {
+        scripted_figure_ = 2;
+        exit_status_ = 1;
+        session_.notify_error("--figure: no reference figure '" + options_.figure +
+                              "'; the figures are " + reference_figure_names());
+        return true;
+    }
+    show_figure_in_panels(*figure, panels_);
+    commands_.push_back(LoadFigure{figure->name});
+    return false;
+}
+
 void Viewer::scripted_decomposition() {
+    // --figure first: its model is what a --decompose decomposes.
+    if (!scripted_figure()) return;
     if (options_.decompose.empty() || scripted_decompose_ == 2) return;
     // Wait for the initial load (a job) and operation before decomposing.
     if (!ready_for_script()) return;

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "app/ops/operation_entries.h"
+#include "app/session/reference_figures.h"
 #include "app/viewer/viewer.h"
 #include "core/algorithms/selection.h"
 #include "core/algorithms/transfer_function.h"
@@ -15,9 +16,25 @@ namespace trilab::viewer {
 
 void Viewer::update_lens() {
     FairingPanelState& panel = panels_.fairing;
+    if (panel.lens.show_diverging_pressed) {  // the button under the curve
+        panel.lens.show_diverging_pressed = false;
+        if (!session_.busy()) session_.show_diverging_run(panel.op);
+    }
     if (session_.prediction_shown())
         panel.preview_note = "showing the spectral prediction; the exact result follows";
+    const bool diverging = session_.diverging_run_shown();
+    if (diverging) panel.preview_note = "showing the DIVERGED run: not a result (Esc returns)";
     if (!panel.open) return;  // drawn only when the section is open
+    // Per frame, whatever the data below: the figure's translation and the diverged mark.
+    std::string figure_note;
+    const std::string figure_name = session_.figure();
+    if (const ReferenceFigure* f =
+            figure_name.empty() ? nullptr : find_reference_figure(figure_name);
+        f && panel.op.text() == parse_operation(f->operation).text())
+        figure_note = "Figure " + f->name + ": " + f->translation;
+    const std::string diverging_note = diverging ? session_.diverging_run_note() : "";
+    panel.lens.figure_note = figure_note;
+    panel.lens.diverging_note = diverging_note;
     const FairingOptions o = options_of<FairingOptions>(panel.op);
     const FrequencyDocument& doc = session_.document().frequency;
     const SpectralDecomposition* d = doc.valid ? doc.decomposition.get() : nullptr;
@@ -27,7 +44,10 @@ void Viewer::update_lens() {
     const HalfedgeMesh* result = nullptr;
     std::vector<Point> input;
     const Shown& shown = session_.shown();
+    // (Not the spectral prediction: its measured gain is the curve by construction, and
+    // measuring it would delay the frame that shows it.)
     if (shown.kind == Shown::Kind::Preview && session_.previewing(panel.op) && shown.mesh &&
+        !session_.prediction_shown() && !session_.diverging_run_shown() &&
         shown.mesh->vertices_size() == session_.mesh().vertices_size()) {
         result = shown.mesh;
         input = session_.mesh().positions();
@@ -45,6 +65,8 @@ void Viewer::update_lens() {
     lens_key_ = key;
     TransferView& view = panel.lens;
     view = TransferView{};
+    view.figure_note = figure_note;
+    view.diverging_note = diverging_note;
     view.decomposition_of_other_operator = d && !same_operator;
     if (std::isfinite(panel.max_stable_step) && panel.max_stable_step > 0)
         view.lambda_max = 2.0 / panel.max_stable_step;

@@ -157,7 +157,11 @@ std::vector<Point> predict_fairing(const SpectralDecomposition& d, const Fairing
     std::vector<Point> out = input;
     if (d.empty()) return out;
     const Eigen::MatrixXd x = gather(d, input);
-    const Eigen::MatrixXd alpha = coefficients_of(d, x);
+    // The decomposed shape itself (a panel previewing on the state it decomposed): its
+    // coefficients are stored, which halves the cost of a prediction.
+    const bool decomposed_shape =
+        d.coefficients.rows() == Eigen::Index(d.size()) && input == d.base_positions;
+    const Eigen::MatrixXd alpha = decomposed_shape ? d.coefficients : coefficients_of(d, x);
     const std::vector<double> g = fairing_gains(o, d.eigenvalues);
     const double g_edge = d.end == SpectrumEnd::Smallest ? g.back() : g.front();
     Eigen::VectorXd gv(Eigen::Index(g.size()));

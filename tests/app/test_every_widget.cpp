@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "app/session/reference_figures.h"
 #include "app/viewer/panels.h"
 #include "core/algorithms/components.h"
 #include "core/algorithms/fairing.h"
@@ -295,6 +296,11 @@ TEST_CASE("every button of every section queues what it says", "[panels][buttons
         {"Record/Record", queues_one(StartRecording{})},
         {"Inspector/Clear picks", queues_one(ClearPicks{})},
         {"Fairing/Decompose for this operator", queues_one(Decompose{})},
+        {"Fairing/Show the diverging run",
+         [](const Sidebar& s) {
+             CHECK(s.panels.fairing.lens.show_diverging_pressed);  // the viewer takes it
+             CHECK(s.commands.empty());
+         }},
         {"Inspector/Centre view here", queues_one(CentreOnPick{})},
         {"Record/Cancel", queues_one(CancelRecording{})},
         {"Selection/Brush",
@@ -750,6 +756,74 @@ TEST_CASE("File > Open session and Save session ask for a session file, which is
             CHECK(commands_of<SaveSession>(queued)[0]->path == browser.name);
         }
     }
+}
+
+TEST_CASE("Help > Reference figures: each item sets its panel and queues the figure",
+          "[panels][figures]") {
+    RenderStyle style;
+    ViewSettings settings;
+    MenuContext context;
+    RenderContext render;
+    const std::pair<const char*, const char*> items[] = {
+        {"1.12b", "smooth"}, {"1.15c", "spectrum"}, {"1.20", "subdivide"}, {"1.29", "decimate"}};
+    for (const auto& [name, operation] : items) {
+        INFO(name);
+        Ui ui;
+        PanelState panels;
+        CommandQueue commands;
+        const auto draw = [&] { menu_bar(style, settings, panels, context, render, commands); };
+        ui.frame(draw);
+        const auto help = std::find_if(ui.notes().begin(), ui.notes().end(), [](const auto& n) {
+            return n.kind == WidgetNote::Kind::Menu && n.label == "Help";
+        });
+        REQUIRE(help != ui.notes().end());
+        press(ui, draw, *help);
+        press(ui, draw, find_widget(ui, "Help/Reference figures", WidgetNote::Kind::Menu));
+        const ReferenceFigure* figure = find_reference_figure(name);
+        REQUIRE(figure);
+        press(ui, draw,
+              find_widget(ui, "Help/Reference figures/" + figure->name + "  " + figure->title,
+                          WidgetNote::Kind::MenuItem));
+        const auto queued = commands_of<LoadFigure>(commands);
+        REQUIRE(queued.size() == 1);
+        CHECK(queued[0]->name == name);
+        const std::string op = operation;
+        if (op == "smooth") {
+            CHECK(panels.fairing.open);
+            CHECK(panels.fairing.op.text() == parse_operation(figure->operation).text());
+        } else if (op == "spectrum") {
+            CHECK(panels.frequency.open);
+            CHECK(panels.frequency.lo == 0);
+            CHECK(panels.frequency.hi == 2);
+            CHECK(panels.frequency.op.text().find("--k 50") != std::string::npos);
+        } else if (op == "subdivide") {
+            CHECK(panels.subdivision.open);
+            CHECK(panels.subdivision.op.text() == parse_operation(figure->operation).text());
+        } else {
+            CHECK(panels.decimation.open);
+            CHECK(panels.decimation.op.text() == parse_operation(figure->operation).text());
+        }
+    }
+    // While a job runs the items are disabled.
+    Ui ui;
+    PanelState panels;
+    CommandQueue commands;
+    context.busy = true;
+    const auto draw = [&] { menu_bar(style, settings, panels, context, render, commands); };
+    ui.frame(draw);
+    const auto help = std::find_if(ui.notes().begin(), ui.notes().end(), [](const auto& n) {
+        return n.kind == WidgetNote::Kind::Menu && n.label == "Help";
+    });
+    REQUIRE(help != ui.notes().end());
+    press(ui, draw, *help);
+    press(ui, draw, find_widget(ui, "Help/Reference figures", WidgetNote::Kind::Menu));
+    const ReferenceFigure& first = reference_figures().front();
+    const WidgetNote item =
+        find_widget(ui, "Help/Reference figures/" + first.name + "  " + first.title,
+                    WidgetNote::Kind::MenuItem);
+    CHECK_FALSE(item.enabled);
+    press(ui, draw, item);
+    CHECK(commands_of<LoadFigure>(commands).empty());
 }
 
 TEST_CASE("the recovery question's buttons: Restore, Discard, Later", "[panels][session]") {

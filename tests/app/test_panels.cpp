@@ -253,6 +253,58 @@ TEST_CASE("the Fairing panel's transfer curve marks instability, the pass band a
     CHECK(asked[0]->op.name() == "spectrum");
 }
 
+TEST_CASE(
+    "the transfer curve offers the diverging run only where the settings diverge, and "
+    "marks it when shown",
+    "[panels][lens][figures]") {
+    Ui ui(1280, 2000);
+    PanelState panels;
+    panels.fairing.open = true;
+    panels.fairing.max_stable_step = 1.34;
+    panels.fairing.lens.lambda_max = 2.0 / 1.34;
+    CommandQueue commands;
+    const auto draw = [&] {
+        in_sidebar(panels.layout, [&] { fairing_section(panels, closed_mesh(), commands); });
+    };
+    // Figure 1.12(b)'s settings: explicit umbrella at step 20, unstable above 0.1.
+    panels.fairing.op = parse_operation("smooth --operator umbrella --step 20");
+    panels.fairing.lens.figure_note = "Figure 1.12b: its step means the same here";
+    ui.frame(draw);
+    ui.frame(draw);
+    CHECK(ui.has("lens: figure"));
+    REQUIRE(ui.has("Show the diverging run"));
+    const Box show = ui.rect("Show the diverging run");
+    ui.click(draw, (show.x0 + show.x1) / 2, (show.y0 + show.y1) / 2);
+    CHECK(panels.fairing.lens.show_diverging_pressed);  // the viewer takes it
+    CHECK(commands_of<ApplyOperation>(commands).empty());
+    // Shown: the red mark replaces the button.
+    panels.fairing.lens.show_diverging_pressed = false;
+    panels.fairing.lens.diverging_note = "DIVERGED: shown for teaching, not a result";
+    ui.frame(draw);
+    CHECK(ui.has("lens: diverged"));
+    CHECK_FALSE(ui.has("Show the diverging run"));
+    // Stable settings (a step of 1, implicit step 20) offer nothing: the button is drawn
+    // disabled, so that nothing moves while the step is dragged across the limit.
+    panels.fairing.lens.diverging_note.clear();
+    const auto enabled = [&] {
+        for (const WidgetNote& n : ui.notes())
+            if (n.id == "Show the diverging run") return n.enabled;
+        FAIL("no button");
+        return false;
+    };
+    ui.frame(draw);
+    CHECK(enabled());
+    for (const char* text : {"smooth --operator umbrella --step 1",
+                             "smooth --operator umbrella --integration implicit --step 20"}) {
+        INFO(text);
+        panels.fairing.op = parse_operation(text);
+        ui.frame(draw);
+        CHECK_FALSE(enabled());
+        ui.click(draw, (show.x0 + show.x1) / 2, (show.y0 + show.y1) / 2);
+        CHECK_FALSE(panels.fairing.lens.show_diverging_pressed);
+    }
+}
+
 TEST_CASE("the legend's display combo chooses bands or isolines, and its count follows",
           "[panels][legend]") {
     Ui ui;
@@ -493,6 +545,58 @@ TEST_CASE("the frequency plots shade exactly the band's share and mark the visua
     CHECK((band.x1 - band.x0) == Approx((area.x1 - area.x0) / 50).margin(0.01));
     const Box marker = ui.rect("spectrum: marker");
     CHECK((marker.x0 + marker.x1) / 2 == Approx(area.x0 + 0.5f / 50 * (area.x1 - area.x0)));
+}
+
+TEST_CASE(
+    "the Frequency panel flags a band that splits equal eigenvalues, with the nearest "
+    "bands that do not",
+    "[panels][frequency]") {
+    Ui ui;
+    FrequencyPanelState state;
+    state.open = true;
+    // A sphere's spectrum: 0, the three-fold lambda_1, the five-fold lambda_2.
+    FrequencyDocument doc;
+    doc.decomposition = std::make_shared<const SpectralDecomposition>();
+    doc.valid = true;
+    for (const float v :
+         {0.0f, 0.05f, 0.0501f, 0.0502f, 0.15f, 0.1501f, 0.1502f, 0.1503f, 0.1504f, 0.3f}) {
+        doc.eigenvalues.push_back(v);
+        doc.log_coefficients.push_back(-1.0f);
+    }
+    state.lo = 0;
+    state.hi = 2;  // the noisy sphere's band 0:2 keeps two of the three lambda_1
+    CommandQueue commands;
+    const auto draw = [&] { frequency_window(state, doc, false, commands); };
+    ui.frame(draw);
+    ui.frame(draw);
+    const auto note = std::find_if(ui.notes().begin(), ui.notes().end(),
+                                   [](const WidgetNote& n) { return n.id == "band-split"; });
+    REQUIRE(note != ui.notes().end());
+    CHECK(note->label.find("band 0:2 splits the multiplet 1:3") != std::string::npos);
+    CHECK(note->label.find("0:0") != std::string::npos);
+    CHECK(note->label.find("0:3") != std::string::npos);
+    // The nearest whole band, pressed: the sliders follow and the band is pushed.
+    REQUIRE(ui.has("use 0:0"));
+    const Box wider = ui.rect("use 0:3");
+    commands.clear();
+    ui.click(draw, (wider.x0 + wider.x1) / 2, (wider.y0 + wider.y1) / 2);
+    CHECK(state.lo == 0);
+    CHECK(state.hi == 3);
+    REQUIRE(commands.size() == 2);
+    REQUIRE(std::holds_alternative<PreviewBand>(commands[0]));
+    CHECK(std::get<PreviewBand>(commands[0]).hi == 3);
+    REQUIRE(std::holds_alternative<CommitBand>(commands[1]));
+    CHECK(std::get<CommitBand>(commands[1]).hi == 3);
+    // A band of whole multiplets is not flagged.
+    ui.frame(draw);
+    CHECK_FALSE(ui.has("band-split"));
+    CHECK_FALSE(ui.has("use 0:3"));
+    // Its upper edge inside lambda_2 is flagged again.
+    state.hi = 6;
+    ui.frame(draw);
+    CHECK(ui.has("band-split"));
+    CHECK(ui.has("use 0:3"));
+    CHECK(ui.has("use 0:8"));
 }
 
 TEST_CASE("the up axis is remembered in the settings file, other keys kept", "[panels][prefs]") {

@@ -444,6 +444,16 @@ TEST_CASE(
     REQUIRE(s.shown().kind == Shown::Kind::Preview);
     const std::vector<Point> predicted = s.shown().mesh->positions();
     CHECK(predicted != s.mesh().positions());
+    // The exact job waits while the frame that shows the prediction is drawn (the viewer
+    // calls wait_for_preview once per frame), then starts with the next frame.
+    CHECK_FALSE(s.busy());
+    s.update();
+    CHECK_FALSE(s.busy());
+    s.wait_for_preview(0.1);  // the prediction's frame
+    CHECK_FALSE(s.busy());
+    CHECK(s.prediction_shown());
+    s.wait_for_preview(0.0);  // the next frame: the exact job starts
+    CHECK((s.busy() || !s.prediction_shown()));
     s.finish_jobs();
     s.update();
     CHECK_FALSE(s.prediction_shown());

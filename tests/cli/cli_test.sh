@@ -52,6 +52,14 @@ check "an unknown command fails" bash -c "! '$cli' frobnicate 2>/dev/null"
 check "an unknown option fails" bash -c "! '$cli' info '$tmp/d.obj' --bogus 2>/dev/null"
 check "an unknown model fails and lists the names" bash -c \
     "! '$cli' generate nope '$tmp/x.obj' 2> '$tmp/e' && grep -q 'known:' '$tmp/e'"
+check "figures lists the reference's figures with their settings and translations" bash -c \
+    "'$cli' figures > '$tmp/figs' && grep -q '^1.12b  Explicit umbrella at step 20' '$tmp/figs' \
+     && grep -q 'step:      0.0002 in the reference = 2 here' '$tmp/figs' \
+     && [ \$(grep -c '^1\.' '$tmp/figs') -ge 13 ]"
+check "figures --json is one object with every figure" bash -c \
+    "'$cli' figures --json | python3 -c 'import json,sys; f=json.load(sys.stdin)[\"figures\"]; \
+     assert len(f) >= 13; assert any(x[\"name\"] == \"1.12b\" and x[\"result\"] == \"diverges\" for x in f)'"
+check "figures refuses a file argument" bash -c "! '$cli' figures x.obj 2>/dev/null"
 check "a failed save leaves the old file intact" bash -c \
     "cp '$tmp/d.obj' '$tmp/keep.obj' && ! '$cli' convert '$data/bad/off_nan.off' '$tmp/keep.obj' \
      2>/dev/null && cmp -s '$tmp/d.obj' '$tmp/keep.obj'"
@@ -250,7 +258,9 @@ check "smooth --operator taubin --lambda 0.9 alone: mu follows lambda through th
      grep -q -- '--mu: expected a value below -lambda' '$tmp/e'"
 check "smooth --help states each step's unit" bash -c \
     "'$cli' smooth --help | grep -q 'fraction of the way to its neighbours' && \
-     '$cli' smooth --help | grep -q 'umbrella units'"
+     '$cli' smooth --help | grep -q 'umbrella units' && \
+     '$cli' smooth --help | grep -q \"reference's 1/length² units is s / h² here\" && \
+     '$cli' smooth --step -1 '$tmp/d.obj' '$tmp/x.obj' 2>&1 | grep -q '(scale-free)'"
 check "spectrum --full is refused above the size limit naming it" bash -c \
     "! '$cli' spectrum --full --max-full 500 '$tmp/d.obj' '$tmp/x.obj' 2> '$tmp/e' && \
      grep -q -- '--full: the dense decomposition is limited to 500' '$tmp/e' && [ ! -e '$tmp/x.obj' ]"

@@ -161,6 +161,12 @@ TEST_CASE("with a partial decomposition the computed frequencies' gains are stil
         // Where the curve falls (umbrella), the prediction damps the uncomputed rest by the
         // gain at the band's top, no less than the run did: closer to the result than the
         // input is. (Taubin's curve is not monotone: its rest is damped far more by the run.)
+        // On the decomposed shape the stored coefficients stand in for the projection (the
+        // fast path of the instant preview): the same prediction as projecting again.
+        SpectralDecomposition unstored = d;
+        unstored.coefficients.resize(0, 3);
+        CHECK(relative_distance(predict_fairing(d, s.options, mesh.positions()),
+                                predict_fairing(unstored, s.options, mesh.positions())) < 1e-12);
         if (s.options.op == FairingOperator::Taubin) continue;
         const std::vector<Point> p = predict_fairing(d, s.options, mesh.positions());
         CHECK(relative_distance(p, r.mesh.positions()) <
