@@ -85,6 +85,10 @@
 #include "core/errors.h"
 #include "core/mesh_builder.h"
 #include "core/number_text.h"
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+namespace { double cpu_ms(){ timespec ts; clock_gettime(CLOCK_THREAD_CPUTIME_ID,&ts); return ts.tv_sec*1e3+ts.tv_nsec*1e-6;} struct PhaseT { double t=cpu_ms(); void operator()(const char* n){ double u=cpu_ms(); if(std::getenv("DT")) std::fprintf(stderr,"%s %.1f\n",n,u-t); t=u;} }; PhaseT g_pt; }
 
 namespace trilab {
 
@@ -278,6 +282,9 @@ const double kLargestCost = double(std::nextafter(kNoCollapse, 0.0f));
 
 // How many edges ahead the loops over edges ask the cache for their vertices' data.
 constexpr std::size_t kPrefetchAhead = 8;
+// How many edges of a kept vertex's ring the re-pricing after a collapse lists (and asks the
+// cache for) before pricing them; the rest of a larger ring is priced as it is walked.
+constexpr unsigned kRingPrefetch = 32;
 
 // The best collapse of an edge: cost, placement, direction (halfedge(e, dir)'s from-vertex
 // goes). Only the cost is stored per edge (EdgeCost, 8 bytes); the rest is recomputed when the
@@ -305,9 +312,12 @@ struct NormalChange {
 class Decimater {
 public:
     /// Sets the decimator up on `mesh`; with price_edges false (explain()) no edge is priced.
+    /// With `before` (decimate()), the decimator may compact the working mesh's storage
+    /// between passes (compact()); `before` then follows it (see compact()).
     Decimater(HalfedgeMesh& mesh, const DecimationOptions& options, ProgressiveMesh* pm,
-              DecimationReport& report, bool price_edges = true)
-        : m_(mesh), o_(options), pm_(pm), report_(report) {
+              DecimationReport& report, bool price_edges = true,
+              std::vector<Index>* before = nullptr)
+        : m_(mesh), o_(options), pm_(pm), report_(report), before_(before) {
         cos_max_angle_ = std::cos(o_.max_normal_angle * M_PI / 180.0);
         max_error2_ = o_.max_error > 0 ? o_.max_error * o_.max_error
                                        : std::numeric_limits<double>::infinity();
@@ -336,7 +346,15 @@ public:
             }
         }
         report_.coincident_vertices = groups.members.size();
-        init_quadrics();
+        // Compaction renumbers vertices, so it is off where something outside the mesh
+        // speaks of the working indices and would need remapping too: the progressive record,
+        // the coincident groups, and deleted input vertices the geomorph still names.
+        may_compact_ = before_ && !pm_ && groups_.empty() && !m_.has_garbage();
+        if (o_.region) {
+            region_ = *o_.region;
+            region_ptr_ = &region_;
+        }
+        g_pt("coincident"); init_quadrics(); g_pt("quadrics");
         if (!price_edges) return;
         const Index n_edges = Index(m_.edges_size());
         for (Index i = 0; i < n_edges; ++i) {
@@ -365,12 +383,18 @@ public:
         // those whose cost changed since the selection (re-priced by an earlier collapse of
         // the pass: they wait for the next pass). The exact heap does the last, most visible
         // collapses.
+        g_pt("iter-start");
         const std::size_t batch_floor = std::max(kExactVertices, 4 * target);
         target_ = batch_floor;
         while (m_.n_vertices() > batch_floor && !hit_max_error) {
             const std::size_t done = batch_pass(batch_floor, hit_max_error, report_progress);
+            compact_if_sparse();
+            if (std::getenv("DT")) std::fprintf(stderr, "pass V=%zu done=%zu ", m_.n_vertices(), done);
+            g_pt("pass");
             if (done == 0) break;
         }
+        g_pt("batches");
+        compact_if_sparse();
         target_ = target;
         for (int round = 0; m_.n_vertices() > target && !hit_max_error; ++round) {
             fill_heap();
@@ -406,12 +430,16 @@ public:
             if (collapses_this_round == 0 || o_.independent_set || round >= 8) break;
         }
         heap_.clear();
+        g_pt("exact");
         if (m_.n_vertices() <= target) return true;
         stop = hit_max_error             ? DecimationStop::MaxError
                : constraint_refusals > 0 ? DecimationStop::Constraints
                                          : DecimationStop::Topology;
         return false;
     }
+
+    /// The region in the working mesh's current numbering (compact() renumbers it), or null.
+    const std::vector<float>* region() const { return region_ptr_; }
 
     /// The vertex that `v` (alive at some point) finally collapsed into.
     Vertex representative(Vertex v) {
@@ -456,6 +484,51 @@ public:
     }
 
 private:
+    // ---- compaction -------------------------------------------------------------------------
+    // Collapses leave dead vertices and edges spread through the storage, so the ring walks
+    // and per-edge scans of later passes touch ever more cache lines per live element. Once
+    // fewer than half of the stored vertices live, compact() gathers the live ones.
+    void compact_if_sparse() {
+        static const double thr = std::getenv("THR") ? std::atof(std::getenv("THR")) : 0.5;
+        if (may_compact_ && double(m_.n_vertices()) < thr * double(m_.vertices_size())) compact();
+    }
+
+    // Compacts the working mesh (HalfedgeMesh::garbage_collection(), which keeps the live
+    // elements in their order) and the decimator's per-element arrays with it. Every decision
+    // of the decimator depends on element indices only through their order (heap keys tie by
+    // edge index, batches run in memory order), so the result is the same bit for bit, and so
+    // is the output's numbering (a later garbage collection of an order-kept compaction is the
+    // one garbage collection). `before_` (the geomorph's vertices of the previous mesh, in
+    // working indices) moves to each one's representative, renumbered: parent_ starts afresh.
+    // The heap must be empty (it is between passes).
+    void compact() {
+        std::vector<Index>& before = *before_;
+        for (Index& v : before)
+            if (m_.is_deleted(Vertex(v))) v = representative(Vertex(v)).idx();
+        const IndexRemap remap = m_.garbage_collection();
+        for (Index& v : before) v = remap.vertices[v];
+        const auto gather = [](auto& values, const std::vector<Index>& old_to_new,
+                               std::size_t n_new) {
+            using Vec = std::decay_t<decltype(values)>;
+            Vec out(n_new);
+            for (std::size_t i = 0; i < old_to_new.size(); ++i)
+                if (old_to_new[i] != kInvalidIndex) out[old_to_new[i]] = values[i];
+            values = std::move(out);
+        };
+        const std::size_t nv = m_.vertices_size(), ne = m_.edges_size();
+        gather(quadric_, remap.vertices, nv);
+        gather(boundary_, remap.vertices, nv);
+        gather(coincident_, remap.vertices, nv);
+        gather(group_, remap.vertices, nv);
+        gather(copy_, remap.vertices, nv);  // all invalid: there are no groups here
+        gather(locked_, remap.vertices, nv);
+        if (region_ptr_) gather(region_, remap.vertices, nv);
+        parent_.assign(nv, Vertex());
+        gather(edge_, remap.edges, ne);
+        vuv_ = m_.get_vertex_property<TexCoord>("v:texcoord");
+        huv_ = m_.get_halfedge_property<TexCoord>("h:texcoord");
+    }
+
     // ---- setup ------------------------------------------------------------------------------
     void init_quadrics() {
         quadric_.assign(m_.vertices_size(), Quadric());
@@ -573,17 +646,17 @@ private:
     // Asks the cache for what pricing e reads about its two vertices: positions, quadrics
     // (two cache lines each), boundary flags. No effect where unsupported.
     void prefetch(Edge e) const {
+        for (unsigned i = 0; i < 2; ++i) prefetch_vertex(m_.to_vertex(HalfedgeMesh::halfedge(e, i)));
+    }
+    void prefetch_vertex(Vertex v) const {
 #if defined(__GNUC__)
-        for (unsigned i = 0; i < 2; ++i) {
-            const Vertex v = m_.to_vertex(HalfedgeMesh::halfedge(e, i));
-            __builtin_prefetch(&m_.position(v));
-            const char* q = reinterpret_cast<const char*>(&quadric_[v.idx()]);
-            __builtin_prefetch(q);
-            __builtin_prefetch(q + sizeof(Quadric) - 1);
-            __builtin_prefetch(&boundary_[v.idx()]);
-        }
+        __builtin_prefetch(&m_.position(v));
+        const char* q = reinterpret_cast<const char*>(&quadric_[v.idx()]);
+        __builtin_prefetch(q);
+        __builtin_prefetch(q + sizeof(Quadric) - 1);
+        __builtin_prefetch(&boundary_[v.idx()]);
 #else
-        (void)e;
+        (void)v;
 #endif
     }
 
@@ -853,9 +926,9 @@ private:
 
     // Whether e has an end of weight 0 (outside the region): it never collapses.
     bool outside_region(Edge e) const {
-        if (!o_.region) return false;
+        if (!region_ptr_) return false;
         const Halfedge h = HalfedgeMesh::halfedge(e, 0);
-        const std::vector<float>& w = *o_.region;
+        const std::vector<float>& w = *region_ptr_;
         return !(w[m_.from_vertex(h).idx()] > 0.0f && w[m_.to_vertex(h).idx()] > 0.0f);
     }
 
@@ -1165,11 +1238,25 @@ private:
         if (o_.independent_set) locked_[v1.idx()] = iteration_;
 
         // Re-price: the edges at v1 (and, for roundness, at its neighbours, whose faces
-        // changed shape).
+        // changed shape). One walk lists the ring and asks the cache for the neighbours'
+        // data, so the misses overlap instead of coming one pricing after the other.
+        Edge ring[kRingPrefetch];
+        unsigned n_ring = 0;
         do {
-            price(HalfedgeMesh::edge(g));
+            if (n_ring < kRingPrefetch) {
+                ring[n_ring++] = HalfedgeMesh::edge(g);
+                prefetch_vertex(m_.to_vertex(g));
+            }
             g = m_.ccw_rotated(g);
         } while (g != start);
+        for (unsigned i = 0; i < n_ring; ++i) price(ring[i]);
+        if (n_ring == kRingPrefetch) {  // a valence above the list: price the rest in place
+            unsigned i = 0;
+            do {
+                if (i++ >= kRingPrefetch) price(HalfedgeMesh::edge(g));
+                g = m_.ccw_rotated(g);
+            } while (g != start);
+        }
         if (o_.cost == DecimationCost::Roundness) {
             do {
                 const Vertex w = m_.to_vertex(g);
@@ -1188,6 +1275,10 @@ private:
     const DecimationOptions& o_;
     ProgressiveMesh* pm_;
     DecimationReport& report_;
+    std::vector<Index>* before_ = nullptr;  ///< see compact()
+    bool may_compact_ = false;
+    std::vector<float> region_;                       ///< the region, compacted with the mesh
+    const std::vector<float>* region_ptr_ = nullptr;  ///< &region_, or null: no region
     double cos_max_angle_ = 0, max_error2_ = 0;
     std::vector<Quadric> quadric_;
     std::vector<EdgeCost> edge_;            ///< per edge: cost of its best collapse, heap position
@@ -1264,11 +1355,11 @@ void start_progressive_mesh(const HalfedgeMesh& work, ProgressiveMesh& pm) {
 
 /// The vertices a percentage counts: the region's (with faces), or all `with_faces`.
 std::size_t percent_base(const HalfedgeMesh& work, const DecimationOptions& options,
-                         std::size_t with_faces) {
-    if (!options.region || options.target_vertices > 0) return with_faces;
+                         const std::vector<float>* region, std::size_t with_faces) {
+    if (!region || options.target_vertices > 0) return with_faces;
     std::size_t counted = 0;
     for (Vertex u : work.vertices())
-        if ((*options.region)[u.idx()] > 0.0f && !work.is_isolated(u)) ++counted;
+        if ((*region)[u.idx()] > 0.0f && !work.is_isolated(u)) ++counted;
     return counted;
 }
 
@@ -1290,7 +1381,7 @@ std::vector<Index> prepare_work_mesh(HalfedgeMesh& work, DecimationOptions& opti
         for (Index i = 0; i < identity.size(); ++i) identity[i] = i;
         return identity;
     }
-    IndexRemap remap = renumber_spatially(work);
+    g_pt("source"); IndexRemap remap = renumber_spatially(work);
     if (options.region) {
         region.assign(work.vertices_size(), 0.0f);
         for (Index i = 0; i < remap.vertices.size(); ++i)
@@ -1307,6 +1398,7 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
     check_options(options);
     if (options.region) check_selection(mesh, *options.region, "decimate: region");
     const auto t0 = std::chrono::steady_clock::now();
+    g_pt.t = cpu_ms();
     DecimationResult result;
     DecimationReport& report = result.report;
     HalfedgeMesh work = mesh;
@@ -1314,9 +1406,11 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
     DecimationOptions work_options = options;
     std::vector<float> work_region;
     std::vector<Index> before_to_work = prepare_work_mesh(work, work_options, work_region);
+    g_pt("prepare");
     ProgressiveMesh* pm = options.record_progressive ? &result.progressive : nullptr;
     if (pm) start_progressive_mesh(work, *pm);
-    Decimater decimater(work, work_options, pm, report);
+    Decimater decimater(work, work_options, pm, report, true, &before_to_work);
+    g_pt("setup");
 
     // Isolated vertices are kept and not counted: V is the number of vertices with faces.
     std::size_t isolated = 0;
@@ -1360,7 +1454,7 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
     for (int it = 0; it < iterations; ++it) {
         progress.check_cancelled();
         const std::size_t v = work.n_vertices() - isolated;
-        const std::size_t counted = percent_base(work, work_options, v);
+        const std::size_t counted = percent_base(work, work_options, decimater.region(), v);
         const std::size_t target =
             options.target_vertices > 0
                 ? options.target_vertices
@@ -1395,6 +1489,7 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
     }
     if (options.levels == DecimationLevels::Last && any_collapse)
         result.levels.push_back(make_level(work, true, decimater, before_to_work, level_target));
+    g_pt("levels");
     report.output_vertices = final_vertices - isolated;
     report.stop_message = stop_text(report.stop, report, last_target);
     report.ms =
