@@ -76,7 +76,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <limits>
+#include <thread>
 
 #include "core/algorithms/coincident.h"
 #include "core/algorithms/quadric.h"
@@ -194,7 +196,7 @@ public:
         a_.push_back(k);
     }
     void make_heap() {
-        for (std::size_t i = a_.size() / 4 + 1; i-- > 0;)
+        for (std::size_t i = a_.size() / kArity + 1; i-- > 0;)
             if (i < a_.size()) sift_down(i, a_[i]);
     }
     void push(EdgeKey k) {
@@ -232,6 +234,7 @@ public:
     }
 
 private:
+    static constexpr std::size_t kArity = 4;
     void place(std::size_t i, EdgeKey k) {
         a_[i] = k;
         slots_[key_edge(k)].heap_pos = std::uint32_t(i);
@@ -239,7 +242,7 @@ private:
     // Places k at node i or above it.
     void sift_up(std::size_t i, EdgeKey k) {
         while (i > 0) {
-            const std::size_t parent = (i - 1) / 4;
+            const std::size_t parent = (i - 1) / kArity;
             if (!(k < a_[parent])) break;
             place(i, a_[parent]);
             i = parent;
@@ -250,10 +253,10 @@ private:
     void sift_down(std::size_t i, EdgeKey k) {
         const std::size_t n = a_.size();
         for (;;) {
-            const std::size_t first = 4 * i + 1;
+            const std::size_t first = kArity * i + 1;
             if (first >= n) break;
             std::size_t best = first;
-            const std::size_t end = std::min(first + 4, n);
+            const std::size_t end = std::min(first + kArity, n);
             for (std::size_t c = first + 1; c < end; ++c)
                 if (a_[c] < a_[best]) best = c;
             if (!(a_[best] < k)) break;
@@ -265,6 +268,36 @@ private:
     std::vector<Slot>& slots_;
     std::vector<EdgeKey> a_;
 };
+
+// Runs `a` here and `b` on a second thread where the machine has a second core (else one after
+// the other); both must only read what the other writes after. Rethrows an exception of either.
+template <class A, class B>
+void run_pair(const A& a, const B& b) {
+    if (std::thread::hardware_concurrency() < 2) {
+        a();
+        b();
+        return;
+    }
+    std::exception_ptr b_error;
+    std::thread other([&] {
+        try {
+            b();
+        } catch (...) {
+            b_error = std::current_exception();
+        }
+    });
+    try {
+        a();
+    } catch (...) {
+        other.join();
+        throw;
+    }
+    other.join();
+    if (b_error) std::rethrow_exception(b_error);
+}
+
+// Below this many elements a set-up loop runs on one thread (a thread costs more than it saves).
+constexpr std::size_t kParallelMin = 100000;
 
 // Meshes with more vertices than this are first decimated in batches (below), down to
 // max(kExactVertices, 4 x target); the exact priority order takes over from there.
@@ -317,7 +350,7 @@ public:
     Decimater(HalfedgeMesh& mesh, const DecimationOptions& options, ProgressiveMesh* pm,
               DecimationReport& report, bool price_edges = true,
               std::vector<Index>* before = nullptr)
-        : m_(mesh), o_(options), pm_(pm), report_(report), before_(before) {
+        : m_(mesh), c_(mesh), o_(options), pm_(pm), report_(report), before_(before) {
         cos_max_angle_ = std::cos(o_.max_normal_angle * M_PI / 180.0);
         max_error2_ = o_.max_error > 0 ? o_.max_error * o_.max_error
                                        : std::numeric_limits<double>::infinity();
@@ -331,7 +364,13 @@ public:
         // Vertices with a coincident copy (a seam's two sides, the copies of a split vertex)
         // never move alone: a seam vertex with exactly one copy goes together with it, along
         // the seam on both sides (seam_partner()), every other copy stays where it is.
-        groups_ = find_coincident_vertices(m_);
+        // The coincident vertices and the quadrics read the mesh only: side by side.
+        if (m_.n_vertices() >= kParallelMin)
+            run_pair([&] { groups_ = find_coincident_vertices(c_); }, [&] { init_quadrics(); });
+        else {
+            groups_ = find_coincident_vertices(c_);
+            init_quadrics();
+        }
         const CoincidentGroups& groups = groups_;
         coincident_.assign(m_.vertices_size(), 0);
         group_.assign(m_.vertices_size(), kInvalidIndex);
@@ -354,13 +393,15 @@ public:
             region_ = *o_.region;
             region_ptr_ = &region_;
         }
-        g_pt("coincident"); init_quadrics(); g_pt("quadrics");
+        g_pt("coincident+quadrics");
         if (!price_edges) return;
+        // Each edge's price reads the mesh and writes the edge's own cost: two halves at once.
         const Index n_edges = Index(m_.edges_size());
-        for (Index i = 0; i < n_edges; ++i) {
-            if (i + kPrefetchAhead < n_edges) prefetch(Edge(i + kPrefetchAhead));
-            if (!m_.is_deleted(Edge(i))) price(Edge(i));
-        }
+        if (n_edges >= kParallelMin)
+            run_pair([&] { price_range(0, n_edges / 2); },
+                     [&] { price_range(n_edges / 2, n_edges); });
+        else
+            price_range(0, n_edges);
     }
 
     /// Runs one iteration down to `target` vertices; returns whether it got there, and
@@ -502,62 +543,90 @@ private:
     // working indices) moves to each one's representative, renumbered: parent_ starts afresh.
     // The heap must be empty (it is between passes).
     void compact() {
-        std::vector<Index>& before = *before_;
-        for (Index& v : before)
-            if (m_.is_deleted(Vertex(v))) v = representative(Vertex(v)).idx();
-        const IndexRemap remap = m_.garbage_collection();
-        for (Index& v : before) v = remap.vertices[v];
+        // Old index -> new index of the live vertices and edges, in their order: the numbering
+        // garbage_collection() gives them.
+        const auto live_order = [](std::size_t n, const auto& is_deleted) {
+            std::vector<Index> old_to_new(n, kInvalidIndex);
+            Index next = 0;
+            for (std::size_t i = 0; i < n; ++i)
+                if (!is_deleted(Index(i))) old_to_new[i] = next++;
+            return std::make_pair(std::move(old_to_new), std::size_t(next));
+        };
+        const auto [vmap, nv] = live_order(
+            m_.vertices_size(), [&](Index v) { return c_.is_deleted(Vertex(v)); });
+        const auto [emap, ne] =
+            live_order(m_.edges_size(), [&](Index e) { return c_.is_deleted(Edge(e)); });
+        // In place: the order is kept, so no element moves up.
         const auto gather = [](auto& values, const std::vector<Index>& old_to_new,
                                std::size_t n_new) {
-            using Vec = std::decay_t<decltype(values)>;
-            Vec out(n_new);
             for (std::size_t i = 0; i < old_to_new.size(); ++i)
-                if (old_to_new[i] != kInvalidIndex) out[old_to_new[i]] = values[i];
-            values = std::move(out);
+                if (old_to_new[i] != kInvalidIndex) values[old_to_new[i]] = values[i];
+            values.resize(n_new);
         };
-        const std::size_t nv = m_.vertices_size(), ne = m_.edges_size();
-        gather(quadric_, remap.vertices, nv);
-        gather(boundary_, remap.vertices, nv);
-        gather(coincident_, remap.vertices, nv);
-        gather(group_, remap.vertices, nv);
-        gather(copy_, remap.vertices, nv);  // all invalid: there are no groups here
-        gather(locked_, remap.vertices, nv);
-        if (region_ptr_) gather(region_, remap.vertices, nv);
-        parent_.assign(nv, Vertex());
-        gather(edge_, remap.edges, ne);
+        // The mesh here, the decimator's own arrays on the other thread (they do not read it).
+        const auto compact_mine = [&, &vmap = vmap, &emap = emap, nv = nv, ne = ne] {
+            for (Index& v : *before_) {
+                const Vertex r = vmap[v] == kInvalidIndex ? representative(Vertex(v)) : Vertex(v);
+                v = vmap[r.idx()];
+            }
+            gather(quadric_, vmap, nv);
+            gather(boundary_, vmap, nv);
+            gather(coincident_, vmap, nv);
+            gather(group_, vmap, nv);
+            gather(copy_, vmap, nv);  // all invalid: there are no groups here
+            gather(locked_, vmap, nv);
+            if (region_ptr_) gather(region_, vmap, nv);
+            parent_.assign(nv, Vertex());
+            gather(edge_, emap, ne);
+        };
+        if (nv >= kParallelMin)
+            run_pair([&] { m_.garbage_collection(); }, compact_mine);
+        else {
+            m_.garbage_collection();
+            compact_mine();
+        }
         vuv_ = m_.get_vertex_property<TexCoord>("v:texcoord");
         huv_ = m_.get_halfedge_property<TexCoord>("h:texcoord");
+        g_pt("compact");
     }
 
     // ---- setup ------------------------------------------------------------------------------
     void init_quadrics() {
-        quadric_.assign(m_.vertices_size(), Quadric());
-        for (Face f : m_.faces()) {
-            const auto c = m_.face_vertices(f);
-            const Point &a = m_.position(c[0]), &b = m_.position(c[1]), &d = m_.position(c[2]);
+        quadric_.assign(c_.vertices_size(), Quadric());
+        for (Face f : c_.faces()) {
+            const auto c = c_.face_vertices(f);
+            const Point &a = c_.position(c[0]), &b = c_.position(c[1]), &d = c_.position(c[2]);
             Vector3 n = (b - a).cross(d - a);
             const double len = n.norm();
             if (!(len > 0)) continue;
             const Quadric q = Quadric::plane(n / len, a);
             for (Vertex v : c) quadric_[v.idx()] += q;
         }
-        for (Edge e : m_.edges()) {
+        for (Edge e : c_.edges()) {
             for (unsigned i = 0; i < 2; ++i) {
                 const Halfedge h = HalfedgeMesh::halfedge(e, i);
-                if (!m_.is_boundary(h) || m_.is_boundary(HalfedgeMesh::twin(h))) continue;
-                const Face f = m_.face(HalfedgeMesh::twin(h));
-                const auto c = m_.face_vertices(f);
-                const Vector3 fn = (m_.position(c[1]) - m_.position(c[0]))
-                                       .cross(m_.position(c[2]) - m_.position(c[0]));
-                const Point& a = m_.position(m_.from_vertex(h));
-                const Point& b = m_.position(m_.to_vertex(h));
+                if (!c_.is_boundary(h) || c_.is_boundary(HalfedgeMesh::twin(h))) continue;
+                const Face f = c_.face(HalfedgeMesh::twin(h));
+                const auto c = c_.face_vertices(f);
+                const Vector3 fn = (c_.position(c[1]) - c_.position(c[0]))
+                                       .cross(c_.position(c[2]) - c_.position(c[0]));
+                const Point& a = c_.position(c_.from_vertex(h));
+                const Point& b = c_.position(c_.to_vertex(h));
                 Vector3 n = (b - a).cross(fn);
                 const double len = n.norm();
                 if (!(len > 0)) continue;
                 const Quadric q = Quadric::plane(n / len, a, kBoundaryWeight);
-                quadric_[m_.from_vertex(h).idx()] += q;
-                quadric_[m_.to_vertex(h).idx()] += q;
+                quadric_[c_.from_vertex(h).idx()] += q;
+                quadric_[c_.to_vertex(h).idx()] += q;
             }
+        }
+    }
+
+    // Prices the live edges of [begin, end) (no heap yet).
+    void price_range(Index begin, Index end) {
+        for (Index i = begin; i < end; ++i) {
+            if (i + kPrefetchAhead < end) prefetch(Edge(i + kPrefetchAhead));
+            if (!c_.is_deleted(Edge(i))) price(Edge(i));
         }
     }
 
@@ -650,7 +719,7 @@ private:
     }
     void prefetch_vertex(Vertex v) const {
 #if defined(__GNUC__)
-        __builtin_prefetch(&m_.position(v));
+        __builtin_prefetch(&c_.position(v));
         const char* q = reinterpret_cast<const char*>(&quadric_[v.idx()]);
         __builtin_prefetch(q);
         __builtin_prefetch(q + sizeof(Quadric) - 1);
@@ -792,8 +861,8 @@ private:
             const Face f = m_.face(g);
             if (f.is_valid() && f != f0 && f != f1) {
                 const Halfedge n = m_.next(g);
-                r = std::min(r, normalized_roundness(p, m_.position(m_.to_vertex(g)),
-                                                     m_.position(m_.to_vertex(n))));
+                r = std::min(r, normalized_roundness(p, c_.position(m_.to_vertex(g)),
+                                                     c_.position(m_.to_vertex(n))));
             }
             g = m_.ccw_rotated(g);
         } while (g != start);
@@ -809,7 +878,7 @@ private:
         const bool ok0 = direction_allowed(h0, be), ok1 = direction_allowed(h1, be);
         if (!ok0 && !ok1) return false;
         const Vertex a = m_.from_vertex(h0), b = m_.to_vertex(h0);
-        const Point &xa = m_.position(a), &xb = m_.position(b);
+        const Point &xa = c_.position(a), &xb = c_.position(b);
         double cost;
         if (o_.cost == DecimationCost::Quadric) {
             const Quadric q = quadric_[a.idx()] + quadric_[b.idx()];
@@ -883,17 +952,17 @@ private:
             if (o_.cost == DecimationCost::Quadric) {
                 const Quadric q =
                     quadric_[a.idx()] + quadric_[b.idx()] + quadric_[a2.idx()] + quadric_[b2.idx()];
-                cost = q(m_.position(b));
+                cost = q(c_.position(b));
             } else {
                 cost = -std::min(
-                    min_roundness_at(a, m_.position(b), m_.face(h), m_.face(HalfedgeMesh::twin(h))),
-                    min_roundness_at(a2, m_.position(b2), m_.face(h2),
+                    min_roundness_at(a, c_.position(b), m_.face(h), m_.face(HalfedgeMesh::twin(h))),
+                    min_roundness_at(a2, c_.position(b2), m_.face(h2),
                                      m_.face(HalfedgeMesh::twin(h2))));
             }
             if (!any || cost < out.cost) {
                 out.cost = cost;
                 out.dir = std::uint8_t(dir);
-                out.target = m_.position(b);
+                out.target = c_.position(b);
             }
             any = true;
         }
@@ -939,15 +1008,15 @@ private:
     // refusal: the smallest cosine of a normal change, and whether a face degenerates.
     bool normals_ok(Vertex v, const Point& p, Face f0, Face f1,
                     NormalChange* turn = nullptr) const {
-        const Point& x = m_.position(v);
+        const Point& x = c_.position(v);
         const Halfedge start = m_.halfedge(v);
         bool ok = true;
         Halfedge g = start;
         do {
             const Face f = m_.face(g);
             if (f.is_valid() && f != f0 && f != f1) {
-                const Point& a = m_.position(m_.to_vertex(g));
-                const Point& b = m_.position(m_.to_vertex(m_.next(g)));
+                const Point& a = c_.position(m_.to_vertex(g));
+                const Point& b = c_.position(m_.to_vertex(m_.next(g)));
                 const Vector3 before = (a - x).cross(b - x);
                 const Vector3 after = (a - p).cross(b - p);
                 const double nb = before.norm(), na = after.norm();
@@ -1028,7 +1097,7 @@ private:
                 if (why) why->independent_set_refuses = true;
                 if (refuse(Refusal::IndependentSet)) return first;
             }
-            const Point& p2 = m_.position(w1);
+            const Point& p2 = c_.position(w1);
             const Face g0 = m_.face(h2), g1 = m_.face(HalfedgeMesh::twin(h2));
             if ((o_.normal_flip || why) &&
                 (!normals_ok(w0, p2, g0, g1, turn_out) || !normals_ok(w1, p2, g0, g1, turn_out))) {
@@ -1128,7 +1197,7 @@ private:
         const Halfedge h2 = seam_partner(h);  // check() made sure it exists
         const Vertex kept = m_.to_vertex(h), kept2 = m_.to_vertex(h2);
         collapse_one(h, p);
-        collapse_one(h2, m_.position(kept2));
+        collapse_one(h2, c_.position(kept2));
         const Halfedge start = m_.halfedge(kept);
         Halfedge g = start;
         do {
@@ -1146,8 +1215,8 @@ private:
             VertexSplit s;
             s.removed = v0;
             s.kept = v1;
-            s.removed_position = m_.position(v0);
-            s.kept_before = m_.position(v1);
+            s.removed_position = c_.position(v0);
+            s.kept_before = c_.position(v1);
             s.kept_after = p;
             s.faces = {f0, f1};
             // The faces at v1 after the collapse: v0's (moved to v1), then v1's own.
@@ -1169,7 +1238,7 @@ private:
         }
 
         // Texture coordinates: per vertex, interpolated along the edge at p's projection.
-        const Point x0 = m_.position(v0), x1 = m_.position(v1);
+        const Point x0 = c_.position(v0), x1 = c_.position(v1);
         const double len2 = (x1 - x0).squaredNorm();
         const double t =
             len2 > 0 ? std::min(1.0, std::max(0.0, (p - x0).dot(x1 - x0) / len2)) : 1.0;
@@ -1272,6 +1341,9 @@ private:
     }
 
     HalfedgeMesh& m_;
+    // The same mesh for reading: m_'s mutable accessors (chosen even in const members, m_
+    // being a reference) are write accesses that check the array's sharing and mark a change.
+    const HalfedgeMesh& c_;
     const DecimationOptions& o_;
     ProgressiveMesh* pm_;
     DecimationReport& report_;
