@@ -50,7 +50,10 @@
 //
 // Complexity: O(E) per batch pass (a few dozen passes: the mesh shrinks geometrically), O(E)
 // to fill the heap (make_heap), then O(d^2 + d log E) per collapse for valence d; no
-// allocation per collapse (amortized); garbage collection once per iteration.
+// allocation per collapse (amortized); garbage collection once per iteration, and a compaction
+// of the working mesh whenever fewer than half of its stored vertices live (compact(): the same
+// result, fewer cache misses). The set-up steps that only read the mesh run on a second thread
+// where the machine has one (run_pair()).
 //
 // The loop, per iteration:
 //   target = V - floor(P/100 V)   (or the requested vertex count)
@@ -87,10 +90,6 @@
 #include "core/errors.h"
 #include "core/mesh_builder.h"
 #include "core/number_text.h"
-#include <cstdio>
-#include <cstdlib>
-#include <ctime>
-namespace { double cpu_ms(){ timespec ts; clock_gettime(CLOCK_THREAD_CPUTIME_ID,&ts); return ts.tv_sec*1e3+ts.tv_nsec*1e-6;} struct PhaseT { double t=cpu_ms(); void operator()(const char* n){ double u=cpu_ms(); if(std::getenv("DT")) std::fprintf(stderr,"%s %.1f\n",n,u-t); t=u;} }; PhaseT g_pt; }
 
 namespace trilab {
 
@@ -196,7 +195,7 @@ public:
         a_.push_back(k);
     }
     void make_heap() {
-        for (std::size_t i = a_.size() / kArity + 1; i-- > 0;)
+        for (std::size_t i = a_.size() / 4 + 1; i-- > 0;)
             if (i < a_.size()) sift_down(i, a_[i]);
     }
     void push(EdgeKey k) {
@@ -234,7 +233,6 @@ public:
     }
 
 private:
-    static constexpr std::size_t kArity = 4;
     void place(std::size_t i, EdgeKey k) {
         a_[i] = k;
         slots_[key_edge(k)].heap_pos = std::uint32_t(i);
@@ -242,7 +240,7 @@ private:
     // Places k at node i or above it.
     void sift_up(std::size_t i, EdgeKey k) {
         while (i > 0) {
-            const std::size_t parent = (i - 1) / kArity;
+            const std::size_t parent = (i - 1) / 4;
             if (!(k < a_[parent])) break;
             place(i, a_[parent]);
             i = parent;
@@ -253,10 +251,10 @@ private:
     void sift_down(std::size_t i, EdgeKey k) {
         const std::size_t n = a_.size();
         for (;;) {
-            const std::size_t first = kArity * i + 1;
+            const std::size_t first = 4 * i + 1;
             if (first >= n) break;
             std::size_t best = first;
-            const std::size_t end = std::min(first + kArity, n);
+            const std::size_t end = std::min(first + 4, n);
             for (std::size_t c = first + 1; c < end; ++c)
                 if (a_[c] < a_[best]) best = c;
             if (!(a_[best] < k)) break;
@@ -393,7 +391,6 @@ public:
             region_ = *o_.region;
             region_ptr_ = &region_;
         }
-        g_pt("coincident+quadrics");
         if (!price_edges) return;
         // Each edge's price reads the mesh and writes the edge's own cost: two halves at once.
         const Index n_edges = Index(m_.edges_size());
@@ -424,17 +421,13 @@ public:
         // those whose cost changed since the selection (re-priced by an earlier collapse of
         // the pass: they wait for the next pass). The exact heap does the last, most visible
         // collapses.
-        g_pt("iter-start");
         const std::size_t batch_floor = std::max(kExactVertices, 4 * target);
         target_ = batch_floor;
         while (m_.n_vertices() > batch_floor && !hit_max_error) {
             const std::size_t done = batch_pass(batch_floor, hit_max_error, report_progress);
             compact_if_sparse();
-            if (std::getenv("DT")) std::fprintf(stderr, "pass V=%zu done=%zu ", m_.n_vertices(), done);
-            g_pt("pass");
             if (done == 0) break;
         }
-        g_pt("batches");
         compact_if_sparse();
         target_ = target;
         for (int round = 0; m_.n_vertices() > target && !hit_max_error; ++round) {
@@ -471,7 +464,6 @@ public:
             if (collapses_this_round == 0 || o_.independent_set || round >= 8) break;
         }
         heap_.clear();
-        g_pt("exact");
         if (m_.n_vertices() <= target) return true;
         stop = hit_max_error             ? DecimationStop::MaxError
                : constraint_refusals > 0 ? DecimationStop::Constraints
@@ -530,8 +522,7 @@ private:
     // and per-edge scans of later passes touch ever more cache lines per live element. Once
     // fewer than half of the stored vertices live, compact() gathers the live ones.
     void compact_if_sparse() {
-        static const double thr = std::getenv("THR") ? std::atof(std::getenv("THR")) : 0.5;
-        if (may_compact_ && double(m_.n_vertices()) < thr * double(m_.vertices_size())) compact();
+        if (may_compact_ && 2 * m_.n_vertices() < m_.vertices_size()) compact();
     }
 
     // Compacts the working mesh (HalfedgeMesh::garbage_collection(), which keeps the live
@@ -552,8 +543,8 @@ private:
                 if (!is_deleted(Index(i))) old_to_new[i] = next++;
             return std::make_pair(std::move(old_to_new), std::size_t(next));
         };
-        const auto [vmap, nv] = live_order(
-            m_.vertices_size(), [&](Index v) { return c_.is_deleted(Vertex(v)); });
+        const auto [vmap, nv] =
+            live_order(m_.vertices_size(), [&](Index v) { return c_.is_deleted(Vertex(v)); });
         const auto [emap, ne] =
             live_order(m_.edges_size(), [&](Index e) { return c_.is_deleted(Edge(e)); });
         // In place: the order is kept, so no element moves up.
@@ -587,7 +578,6 @@ private:
         }
         vuv_ = m_.get_vertex_property<TexCoord>("v:texcoord");
         huv_ = m_.get_halfedge_property<TexCoord>("h:texcoord");
-        g_pt("compact");
     }
 
     // ---- setup ------------------------------------------------------------------------------
@@ -715,7 +705,8 @@ private:
     // Asks the cache for what pricing e reads about its two vertices: positions, quadrics
     // (two cache lines each), boundary flags. No effect where unsupported.
     void prefetch(Edge e) const {
-        for (unsigned i = 0; i < 2; ++i) prefetch_vertex(m_.to_vertex(HalfedgeMesh::halfedge(e, i)));
+        for (unsigned i = 0; i < 2; ++i)
+            prefetch_vertex(m_.to_vertex(HalfedgeMesh::halfedge(e, i)));
     }
     void prefetch_vertex(Vertex v) const {
 #if defined(__GNUC__)
@@ -1453,7 +1444,7 @@ std::vector<Index> prepare_work_mesh(HalfedgeMesh& work, DecimationOptions& opti
         for (Index i = 0; i < identity.size(); ++i) identity[i] = i;
         return identity;
     }
-    g_pt("source"); IndexRemap remap = renumber_spatially(work);
+    IndexRemap remap = renumber_spatially(work);
     if (options.region) {
         region.assign(work.vertices_size(), 0.0f);
         for (Index i = 0; i < remap.vertices.size(); ++i)
@@ -1470,7 +1461,6 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
     check_options(options);
     if (options.region) check_selection(mesh, *options.region, "decimate: region");
     const auto t0 = std::chrono::steady_clock::now();
-    g_pt.t = cpu_ms();
     DecimationResult result;
     DecimationReport& report = result.report;
     HalfedgeMesh work = mesh;
@@ -1478,11 +1468,9 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
     DecimationOptions work_options = options;
     std::vector<float> work_region;
     std::vector<Index> before_to_work = prepare_work_mesh(work, work_options, work_region);
-    g_pt("prepare");
     ProgressiveMesh* pm = options.record_progressive ? &result.progressive : nullptr;
     if (pm) start_progressive_mesh(work, *pm);
     Decimater decimater(work, work_options, pm, report, true, &before_to_work);
-    g_pt("setup");
 
     // Isolated vertices are kept and not counted: V is the number of vertices with faces.
     std::size_t isolated = 0;
@@ -1561,7 +1549,6 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
     }
     if (options.levels == DecimationLevels::Last && any_collapse)
         result.levels.push_back(make_level(work, true, decimater, before_to_work, level_target));
-    g_pt("levels");
     report.output_vertices = final_vertices - isolated;
     report.stop_message = stop_text(report.stop, report, last_target);
     report.ms =
