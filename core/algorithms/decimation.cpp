@@ -1297,6 +1297,12 @@ private:
         }
         if (o_.independent_set) locked_[v1.idx()] = iteration_;
 
+        reprice_around(v1, start);
+    }
+
+    // Re-prices after a collapse into v1 (start: an outgoing halfedge of v1).
+    void reprice_around(Vertex v1, Halfedge start) {
+        Halfedge g = start;
         // Re-price: the edges at v1 (and, for roundness, at its neighbours, whose faces
         // changed shape). One walk lists the ring and asks the cache for the neighbours'
         // data, so the misses overlap instead of coming one pricing after the other.
