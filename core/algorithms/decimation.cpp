@@ -50,7 +50,10 @@
 //
 // Complexity: O(E) per batch pass (a few dozen passes: the mesh shrinks geometrically), O(E)
 // to fill the heap (make_heap), then O(d^2 + d log E) per collapse for valence d; no
-// allocation per collapse (amortized); garbage collection once per iteration.
+// allocation per collapse (amortized); garbage collection once per iteration, and a compaction
+// of the working mesh whenever fewer than half of its stored vertices live (compact(): the same
+// result, fewer cache misses). The set-up steps that only read the mesh run on a second thread
+// where the machine has one (run_pair()).
 //
 // The loop, per iteration:
 //   target = V - floor(P/100 V)   (or the requested vertex count)
@@ -76,7 +79,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <limits>
+#include <thread>
 
 #include "core/algorithms/coincident.h"
 #include "core/algorithms/quadric.h"
@@ -262,6 +267,36 @@ private:
     std::vector<EdgeKey> a_;
 };
 
+// Runs `a` here and `b` on a second thread where the machine has a second core (else one after
+// the other); both must only read what the other writes after. Rethrows an exception of either.
+template <class A, class B>
+void run_pair(const A& a, const B& b) {
+    if (std::thread::hardware_concurrency() < 2) {
+        a();
+        b();
+        return;
+    }
+    std::exception_ptr b_error;
+    std::thread other([&] {
+        try {
+            b();
+        } catch (...) {
+            b_error = std::current_exception();
+        }
+    });
+    try {
+        a();
+    } catch (...) {
+        other.join();
+        throw;
+    }
+    other.join();
+    if (b_error) std::rethrow_exception(b_error);
+}
+
+// Below this many elements a set-up loop runs on one thread (a thread costs more than it saves).
+constexpr std::size_t kParallelMin = 100000;
+
 // Meshes with more vertices than this are first decimated in batches (below), down to
 // max(kExactVertices, 4 x target); the exact priority order takes over from there.
 constexpr std::size_t kExactVertices = 50000;
@@ -278,6 +313,9 @@ const double kLargestCost = double(std::nextafter(kNoCollapse, 0.0f));
 
 // How many edges ahead the loops over edges ask the cache for their vertices' data.
 constexpr std::size_t kPrefetchAhead = 8;
+// How many edges of a kept vertex's ring the re-pricing after a collapse lists (and asks the
+// cache for) before pricing them; the rest of a larger ring is priced as it is walked.
+constexpr unsigned kRingPrefetch = 32;
 
 // The best collapse of an edge: cost, placement, direction (halfedge(e, dir)'s from-vertex
 // goes). Only the cost is stored per edge (EdgeCost, 8 bytes); the rest is recomputed when the
@@ -305,9 +343,12 @@ struct NormalChange {
 class Decimater {
 public:
     /// Sets the decimator up on `mesh`; with price_edges false (explain()) no edge is priced.
+    /// With `before` (decimate()), the decimator may compact the working mesh's storage
+    /// between passes (compact()); `before` then follows it (see compact()).
     Decimater(HalfedgeMesh& mesh, const DecimationOptions& options, ProgressiveMesh* pm,
-              DecimationReport& report, bool price_edges = true)
-        : m_(mesh), o_(options), pm_(pm), report_(report) {
+              DecimationReport& report, bool price_edges = true,
+              std::vector<Index>* before = nullptr)
+        : m_(mesh), c_(mesh), o_(options), pm_(pm), report_(report), before_(before) {
         cos_max_angle_ = std::cos(o_.max_normal_angle * M_PI / 180.0);
         max_error2_ = o_.max_error > 0 ? o_.max_error * o_.max_error
                                        : std::numeric_limits<double>::infinity();
@@ -321,7 +362,13 @@ public:
         // Vertices with a coincident copy (a seam's two sides, the copies of a split vertex)
         // never move alone: a seam vertex with exactly one copy goes together with it, along
         // the seam on both sides (seam_partner()), every other copy stays where it is.
-        groups_ = find_coincident_vertices(m_);
+        // The coincident vertices and the quadrics read the mesh only: side by side.
+        if (m_.n_vertices() >= kParallelMin)
+            run_pair([&] { groups_ = find_coincident_vertices(c_); }, [&] { init_quadrics(); });
+        else {
+            groups_ = find_coincident_vertices(c_);
+            init_quadrics();
+        }
         const CoincidentGroups& groups = groups_;
         coincident_.assign(m_.vertices_size(), 0);
         group_.assign(m_.vertices_size(), kInvalidIndex);
@@ -336,13 +383,22 @@ public:
             }
         }
         report_.coincident_vertices = groups.members.size();
-        init_quadrics();
-        if (!price_edges) return;
-        const Index n_edges = Index(m_.edges_size());
-        for (Index i = 0; i < n_edges; ++i) {
-            if (i + kPrefetchAhead < n_edges) prefetch(Edge(i + kPrefetchAhead));
-            if (!m_.is_deleted(Edge(i))) price(Edge(i));
+        // Compaction renumbers vertices, so it is off where something outside the mesh
+        // speaks of the working indices and would need remapping too: the progressive record,
+        // the coincident groups, and deleted input vertices the geomorph still names.
+        may_compact_ = before_ && !pm_ && groups_.empty() && !m_.has_garbage();
+        if (o_.region) {
+            region_ = *o_.region;
+            region_ptr_ = &region_;
         }
+        if (!price_edges) return;
+        // Each edge's price reads the mesh and writes the edge's own cost: two halves at once.
+        const Index n_edges = Index(m_.edges_size());
+        if (n_edges >= kParallelMin)
+            run_pair([&] { price_range(0, n_edges / 2); },
+                     [&] { price_range(n_edges / 2, n_edges); });
+        else
+            price_range(0, n_edges);
     }
 
     /// Runs one iteration down to `target` vertices; returns whether it got there, and
@@ -369,8 +425,10 @@ public:
         target_ = batch_floor;
         while (m_.n_vertices() > batch_floor && !hit_max_error) {
             const std::size_t done = batch_pass(batch_floor, hit_max_error, report_progress);
+            compact_if_sparse();
             if (done == 0) break;
         }
+        compact_if_sparse();
         target_ = target;
         for (int round = 0; m_.n_vertices() > target && !hit_max_error; ++round) {
             fill_heap();
@@ -412,6 +470,9 @@ public:
                                          : DecimationStop::Topology;
         return false;
     }
+
+    /// The region in the working mesh's current numbering (compact() renumbers it), or null.
+    const std::vector<float>* region() const { return region_ptr_; }
 
     /// The vertex that `v` (alive at some point) finally collapsed into.
     Vertex representative(Vertex v) {
@@ -456,35 +517,106 @@ public:
     }
 
 private:
+    // ---- compaction -------------------------------------------------------------------------
+    // Collapses leave dead vertices and edges spread through the storage, so the ring walks
+    // and per-edge scans of later passes touch ever more cache lines per live element. Once
+    // fewer than half of the stored vertices live, compact() gathers the live ones.
+    void compact_if_sparse() {
+        if (may_compact_ && 2 * m_.n_vertices() < m_.vertices_size()) compact();
+    }
+
+    // Compacts the working mesh (HalfedgeMesh::garbage_collection(), which keeps the live
+    // elements in their order) and the decimator's per-element arrays with it. Every decision
+    // of the decimator depends on element indices only through their order (heap keys tie by
+    // edge index, batches run in memory order), so the result is the same bit for bit, and so
+    // is the output's numbering (a later garbage collection of an order-kept compaction is the
+    // one garbage collection). `before_` (the geomorph's vertices of the previous mesh, in
+    // working indices) moves to each one's representative, renumbered: parent_ starts afresh.
+    // The heap must be empty (it is between passes).
+    void compact() {
+        // Old index -> new index of the live vertices and edges, in their order: the numbering
+        // garbage_collection() gives them.
+        const auto live_order = [](std::size_t n, const auto& is_deleted) {
+            std::vector<Index> old_to_new(n, kInvalidIndex);
+            Index next = 0;
+            for (std::size_t i = 0; i < n; ++i)
+                if (!is_deleted(Index(i))) old_to_new[i] = next++;
+            return std::make_pair(std::move(old_to_new), std::size_t(next));
+        };
+        const auto [vmap, nv] =
+            live_order(m_.vertices_size(), [&](Index v) { return c_.is_deleted(Vertex(v)); });
+        const auto [emap, ne] =
+            live_order(m_.edges_size(), [&](Index e) { return c_.is_deleted(Edge(e)); });
+        // In place: the order is kept, so no element moves up.
+        const auto gather = [](auto& values, const std::vector<Index>& old_to_new,
+                               std::size_t n_new) {
+            for (std::size_t i = 0; i < old_to_new.size(); ++i)
+                if (old_to_new[i] != kInvalidIndex) values[old_to_new[i]] = values[i];
+            values.resize(n_new);
+        };
+        // The mesh here, the decimator's own arrays on the other thread (they do not read it).
+        const auto compact_mine = [&, &vmap = vmap, &emap = emap, nv = nv, ne = ne] {
+            for (Index& v : *before_) {
+                const Vertex r = vmap[v] == kInvalidIndex ? representative(Vertex(v)) : Vertex(v);
+                v = vmap[r.idx()];
+            }
+            gather(quadric_, vmap, nv);
+            gather(boundary_, vmap, nv);
+            gather(coincident_, vmap, nv);
+            gather(group_, vmap, nv);
+            gather(copy_, vmap, nv);  // all invalid: there are no groups here
+            gather(locked_, vmap, nv);
+            if (region_ptr_) gather(region_, vmap, nv);
+            parent_.assign(nv, Vertex());
+            gather(edge_, emap, ne);
+        };
+        if (nv >= kParallelMin)
+            run_pair([&] { m_.garbage_collection(); }, compact_mine);
+        else {
+            m_.garbage_collection();
+            compact_mine();
+        }
+        vuv_ = m_.get_vertex_property<TexCoord>("v:texcoord");
+        huv_ = m_.get_halfedge_property<TexCoord>("h:texcoord");
+    }
+
     // ---- setup ------------------------------------------------------------------------------
     void init_quadrics() {
-        quadric_.assign(m_.vertices_size(), Quadric());
-        for (Face f : m_.faces()) {
-            const auto c = m_.face_vertices(f);
-            const Point &a = m_.position(c[0]), &b = m_.position(c[1]), &d = m_.position(c[2]);
+        quadric_.assign(c_.vertices_size(), Quadric());
+        for (Face f : c_.faces()) {
+            const auto c = c_.face_vertices(f);
+            const Point &a = c_.position(c[0]), &b = c_.position(c[1]), &d = c_.position(c[2]);
             Vector3 n = (b - a).cross(d - a);
             const double len = n.norm();
             if (!(len > 0)) continue;
             const Quadric q = Quadric::plane(n / len, a);
             for (Vertex v : c) quadric_[v.idx()] += q;
         }
-        for (Edge e : m_.edges()) {
+        for (Edge e : c_.edges()) {
             for (unsigned i = 0; i < 2; ++i) {
                 const Halfedge h = HalfedgeMesh::halfedge(e, i);
-                if (!m_.is_boundary(h) || m_.is_boundary(HalfedgeMesh::twin(h))) continue;
-                const Face f = m_.face(HalfedgeMesh::twin(h));
-                const auto c = m_.face_vertices(f);
-                const Vector3 fn = (m_.position(c[1]) - m_.position(c[0]))
-                                       .cross(m_.position(c[2]) - m_.position(c[0]));
-                const Point& a = m_.position(m_.from_vertex(h));
-                const Point& b = m_.position(m_.to_vertex(h));
+                if (!c_.is_boundary(h) || c_.is_boundary(HalfedgeMesh::twin(h))) continue;
+                const Face f = c_.face(HalfedgeMesh::twin(h));
+                const auto c = c_.face_vertices(f);
+                const Vector3 fn = (c_.position(c[1]) - c_.position(c[0]))
+                                       .cross(c_.position(c[2]) - c_.position(c[0]));
+                const Point& a = c_.position(c_.from_vertex(h));
+                const Point& b = c_.position(c_.to_vertex(h));
                 Vector3 n = (b - a).cross(fn);
                 const double len = n.norm();
                 if (!(len > 0)) continue;
                 const Quadric q = Quadric::plane(n / len, a, kBoundaryWeight);
-                quadric_[m_.from_vertex(h).idx()] += q;
-                quadric_[m_.to_vertex(h).idx()] += q;
+                quadric_[c_.from_vertex(h).idx()] += q;
+                quadric_[c_.to_vertex(h).idx()] += q;
             }
+        }
+    }
+
+    // Prices the live edges of [begin, end) (no heap yet).
+    void price_range(Index begin, Index end) {
+        for (Index i = begin; i < end; ++i) {
+            if (i + kPrefetchAhead < end) prefetch(Edge(i + kPrefetchAhead));
+            if (!c_.is_deleted(Edge(i))) price(Edge(i));
         }
     }
 
@@ -573,17 +705,18 @@ private:
     // Asks the cache for what pricing e reads about its two vertices: positions, quadrics
     // (two cache lines each), boundary flags. No effect where unsupported.
     void prefetch(Edge e) const {
+        for (unsigned i = 0; i < 2; ++i)
+            prefetch_vertex(m_.to_vertex(HalfedgeMesh::halfedge(e, i)));
+    }
+    void prefetch_vertex(Vertex v) const {
 #if defined(__GNUC__)
-        for (unsigned i = 0; i < 2; ++i) {
-            const Vertex v = m_.to_vertex(HalfedgeMesh::halfedge(e, i));
-            __builtin_prefetch(&m_.position(v));
-            const char* q = reinterpret_cast<const char*>(&quadric_[v.idx()]);
-            __builtin_prefetch(q);
-            __builtin_prefetch(q + sizeof(Quadric) - 1);
-            __builtin_prefetch(&boundary_[v.idx()]);
-        }
+        __builtin_prefetch(&c_.position(v));
+        const char* q = reinterpret_cast<const char*>(&quadric_[v.idx()]);
+        __builtin_prefetch(q);
+        __builtin_prefetch(q + sizeof(Quadric) - 1);
+        __builtin_prefetch(&boundary_[v.idx()]);
 #else
-        (void)e;
+        (void)v;
 #endif
     }
 
@@ -719,8 +852,8 @@ private:
             const Face f = m_.face(g);
             if (f.is_valid() && f != f0 && f != f1) {
                 const Halfedge n = m_.next(g);
-                r = std::min(r, normalized_roundness(p, m_.position(m_.to_vertex(g)),
-                                                     m_.position(m_.to_vertex(n))));
+                r = std::min(r, normalized_roundness(p, c_.position(m_.to_vertex(g)),
+                                                     c_.position(m_.to_vertex(n))));
             }
             g = m_.ccw_rotated(g);
         } while (g != start);
@@ -736,7 +869,7 @@ private:
         const bool ok0 = direction_allowed(h0, be), ok1 = direction_allowed(h1, be);
         if (!ok0 && !ok1) return false;
         const Vertex a = m_.from_vertex(h0), b = m_.to_vertex(h0);
-        const Point &xa = m_.position(a), &xb = m_.position(b);
+        const Point &xa = c_.position(a), &xb = c_.position(b);
         double cost;
         if (o_.cost == DecimationCost::Quadric) {
             const Quadric q = quadric_[a.idx()] + quadric_[b.idx()];
@@ -810,17 +943,17 @@ private:
             if (o_.cost == DecimationCost::Quadric) {
                 const Quadric q =
                     quadric_[a.idx()] + quadric_[b.idx()] + quadric_[a2.idx()] + quadric_[b2.idx()];
-                cost = q(m_.position(b));
+                cost = q(c_.position(b));
             } else {
                 cost = -std::min(
-                    min_roundness_at(a, m_.position(b), m_.face(h), m_.face(HalfedgeMesh::twin(h))),
-                    min_roundness_at(a2, m_.position(b2), m_.face(h2),
+                    min_roundness_at(a, c_.position(b), m_.face(h), m_.face(HalfedgeMesh::twin(h))),
+                    min_roundness_at(a2, c_.position(b2), m_.face(h2),
                                      m_.face(HalfedgeMesh::twin(h2))));
             }
             if (!any || cost < out.cost) {
                 out.cost = cost;
                 out.dir = std::uint8_t(dir);
-                out.target = m_.position(b);
+                out.target = c_.position(b);
             }
             any = true;
         }
@@ -853,9 +986,9 @@ private:
 
     // Whether e has an end of weight 0 (outside the region): it never collapses.
     bool outside_region(Edge e) const {
-        if (!o_.region) return false;
+        if (!region_ptr_) return false;
         const Halfedge h = HalfedgeMesh::halfedge(e, 0);
-        const std::vector<float>& w = *o_.region;
+        const std::vector<float>& w = *region_ptr_;
         return !(w[m_.from_vertex(h).idx()] > 0.0f && w[m_.to_vertex(h).idx()] > 0.0f);
     }
 
@@ -866,15 +999,15 @@ private:
     // refusal: the smallest cosine of a normal change, and whether a face degenerates.
     bool normals_ok(Vertex v, const Point& p, Face f0, Face f1,
                     NormalChange* turn = nullptr) const {
-        const Point& x = m_.position(v);
+        const Point& x = c_.position(v);
         const Halfedge start = m_.halfedge(v);
         bool ok = true;
         Halfedge g = start;
         do {
             const Face f = m_.face(g);
             if (f.is_valid() && f != f0 && f != f1) {
-                const Point& a = m_.position(m_.to_vertex(g));
-                const Point& b = m_.position(m_.to_vertex(m_.next(g)));
+                const Point& a = c_.position(m_.to_vertex(g));
+                const Point& b = c_.position(m_.to_vertex(m_.next(g)));
                 const Vector3 before = (a - x).cross(b - x);
                 const Vector3 after = (a - p).cross(b - p);
                 const double nb = before.norm(), na = after.norm();
@@ -955,7 +1088,7 @@ private:
                 if (why) why->independent_set_refuses = true;
                 if (refuse(Refusal::IndependentSet)) return first;
             }
-            const Point& p2 = m_.position(w1);
+            const Point& p2 = c_.position(w1);
             const Face g0 = m_.face(h2), g1 = m_.face(HalfedgeMesh::twin(h2));
             if ((o_.normal_flip || why) &&
                 (!normals_ok(w0, p2, g0, g1, turn_out) || !normals_ok(w1, p2, g0, g1, turn_out))) {
@@ -1055,7 +1188,7 @@ private:
         const Halfedge h2 = seam_partner(h);  // check() made sure it exists
         const Vertex kept = m_.to_vertex(h), kept2 = m_.to_vertex(h2);
         collapse_one(h, p);
-        collapse_one(h2, m_.position(kept2));
+        collapse_one(h2, c_.position(kept2));
         const Halfedge start = m_.halfedge(kept);
         Halfedge g = start;
         do {
@@ -1073,8 +1206,8 @@ private:
             VertexSplit s;
             s.removed = v0;
             s.kept = v1;
-            s.removed_position = m_.position(v0);
-            s.kept_before = m_.position(v1);
+            s.removed_position = c_.position(v0);
+            s.kept_before = c_.position(v1);
             s.kept_after = p;
             s.faces = {f0, f1};
             // The faces at v1 after the collapse: v0's (moved to v1), then v1's own.
@@ -1096,7 +1229,7 @@ private:
         }
 
         // Texture coordinates: per vertex, interpolated along the edge at p's projection.
-        const Point x0 = m_.position(v0), x1 = m_.position(v1);
+        const Point x0 = c_.position(v0), x1 = c_.position(v1);
         const double len2 = (x1 - x0).squaredNorm();
         const double t =
             len2 > 0 ? std::min(1.0, std::max(0.0, (p - x0).dot(x1 - x0) / len2)) : 1.0;
@@ -1164,12 +1297,32 @@ private:
         }
         if (o_.independent_set) locked_[v1.idx()] = iteration_;
 
+        reprice_around(v1, start);
+    }
+
+    // Re-prices after a collapse into v1 (start: an outgoing halfedge of v1).
+    void reprice_around(Vertex v1, Halfedge start) {
+        Halfedge g = start;
         // Re-price: the edges at v1 (and, for roundness, at its neighbours, whose faces
-        // changed shape).
+        // changed shape). One walk lists the ring and asks the cache for the neighbours'
+        // data, so the misses overlap instead of coming one pricing after the other.
+        Edge ring[kRingPrefetch];
+        unsigned n_ring = 0;
         do {
-            price(HalfedgeMesh::edge(g));
+            if (n_ring < kRingPrefetch) {
+                ring[n_ring++] = HalfedgeMesh::edge(g);
+                prefetch_vertex(m_.to_vertex(g));
+            }
             g = m_.ccw_rotated(g);
         } while (g != start);
+        for (unsigned i = 0; i < n_ring; ++i) price(ring[i]);
+        if (n_ring == kRingPrefetch) {  // a valence above the list: price the rest in place
+            unsigned i = 0;
+            do {
+                if (i++ >= kRingPrefetch) price(HalfedgeMesh::edge(g));
+                g = m_.ccw_rotated(g);
+            } while (g != start);
+        }
         if (o_.cost == DecimationCost::Roundness) {
             do {
                 const Vertex w = m_.to_vertex(g);
@@ -1185,9 +1338,16 @@ private:
     }
 
     HalfedgeMesh& m_;
+    // The same mesh for reading: m_'s mutable accessors (chosen even in const members, m_
+    // being a reference) are write accesses that check the array's sharing and mark a change.
+    const HalfedgeMesh& c_;
     const DecimationOptions& o_;
     ProgressiveMesh* pm_;
     DecimationReport& report_;
+    std::vector<Index>* before_ = nullptr;  ///< see compact()
+    bool may_compact_ = false;
+    std::vector<float> region_;                       ///< the region, compacted with the mesh
+    const std::vector<float>* region_ptr_ = nullptr;  ///< &region_, or null: no region
     double cos_max_angle_ = 0, max_error2_ = 0;
     std::vector<Quadric> quadric_;
     std::vector<EdgeCost> edge_;            ///< per edge: cost of its best collapse, heap position
@@ -1264,11 +1424,11 @@ void start_progressive_mesh(const HalfedgeMesh& work, ProgressiveMesh& pm) {
 
 /// The vertices a percentage counts: the region's (with faces), or all `with_faces`.
 std::size_t percent_base(const HalfedgeMesh& work, const DecimationOptions& options,
-                         std::size_t with_faces) {
-    if (!options.region || options.target_vertices > 0) return with_faces;
+                         const std::vector<float>* region, std::size_t with_faces) {
+    if (!region || options.target_vertices > 0) return with_faces;
     std::size_t counted = 0;
     for (Vertex u : work.vertices())
-        if ((*options.region)[u.idx()] > 0.0f && !work.is_isolated(u)) ++counted;
+        if ((*region)[u.idx()] > 0.0f && !work.is_isolated(u)) ++counted;
     return counted;
 }
 
@@ -1316,7 +1476,7 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
     std::vector<Index> before_to_work = prepare_work_mesh(work, work_options, work_region);
     ProgressiveMesh* pm = options.record_progressive ? &result.progressive : nullptr;
     if (pm) start_progressive_mesh(work, *pm);
-    Decimater decimater(work, work_options, pm, report);
+    Decimater decimater(work, work_options, pm, report, true, &before_to_work);
 
     // Isolated vertices are kept and not counted: V is the number of vertices with faces.
     std::size_t isolated = 0;
@@ -1360,7 +1520,7 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
     for (int it = 0; it < iterations; ++it) {
         progress.check_cancelled();
         const std::size_t v = work.n_vertices() - isolated;
-        const std::size_t counted = percent_base(work, work_options, v);
+        const std::size_t counted = percent_base(work, work_options, decimater.region(), v);
         const std::size_t target =
             options.target_vertices > 0
                 ? options.target_vertices

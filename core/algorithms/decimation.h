@@ -17,7 +17,8 @@
 // split that undoes it (core/algorithms/progressive_mesh.h; the level of detail over it:
 // core/algorithms/level_of_detail.h). Throws InvalidArgument naming a bad option; Cancelled from
 // the progress; a run that cannot go on stops and says why (DecimationReport::stop). Complexity:
-// O(E) per batch pass, then O(d² + d log E) per collapse for valence d, no allocation per collapse.
+// O(E) per batch pass, then O(d² + d log E) per collapse for valence d, no allocation per collapse;
+// big meshes use a second core for their set-up where there is one.
 // Method, placement and the seam rules in detail: decimation.cpp.
 #include <array>
 #include <cstdint>

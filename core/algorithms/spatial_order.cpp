@@ -6,13 +6,17 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <exception>
 #include <limits>
+#include <thread>
 #include <vector>
 
 namespace trilab {
 namespace {
 
 constexpr unsigned kMortonBits = 21;  // per axis: 63 bits in all
+// Below this many vertices the edge and face orders are made one after the other.
+constexpr std::size_t kParallelMin = 100000;
 
 // The bits of x (below 2^21) spread to every third bit.
 std::uint64_t spread_bits(std::uint64_t x) {
@@ -102,47 +106,74 @@ IndexRemap renumber_spatially(HalfedgeMesh& mesh) {
     for (Index i = 0; i < vertex_order.size(); ++i) new_vertex[vertex_order[i]] = i;
     const std::size_t n = vertex_order.size();
 
-    // Edges: the halfedge from the smaller new vertex to the larger, by (smaller, larger).
-    struct EdgeItem {
-        Index lo, hi, halfedge;
+    // The edge order and the face order read the mesh only: side by side where there is a
+    // second core.
+    const HalfedgeMesh& read = mesh;
+    std::vector<Index> halfedge_order, face_order;
+    const auto order_edges = [&] {
+        // Edges: the halfedge from the smaller new vertex to the larger, by (smaller, larger).
+        struct EdgeItem {
+            Index lo, hi, halfedge;
+        };
+        std::vector<EdgeItem> edges;
+        edges.reserve(read.n_edges());
+        for (Edge e : read.edges()) {
+            const Halfedge h = HalfedgeMesh::halfedge(e, 0);
+            const Index a = new_vertex[read.from_vertex(h).idx()],
+                        b = new_vertex[read.to_vertex(h).idx()];
+            edges.push_back(a < b ? EdgeItem{a, b, h.idx()} : EdgeItem{b, a, h.idx() ^ 1u});
+        }
+        edges = bucket_sort(
+            edges, n, [](const EdgeItem& x) { return x.lo; },
+            [](const EdgeItem& x, const EdgeItem& y) { return x.hi < y.hi; });
+        halfedge_order.reserve(2 * edges.size());
+        for (const EdgeItem& x : edges) {
+            halfedge_order.push_back(x.halfedge);
+            halfedge_order.push_back(x.halfedge ^ 1u);
+        }
     };
-    std::vector<EdgeItem> edges;
-    edges.reserve(mesh.n_edges());
-    for (Edge e : mesh.edges()) {
-        const Halfedge h = HalfedgeMesh::halfedge(e, 0);
-        const Index a = new_vertex[mesh.from_vertex(h).idx()],
-                    b = new_vertex[mesh.to_vertex(h).idx()];
-        edges.push_back(a < b ? EdgeItem{a, b, h.idx()} : EdgeItem{b, a, h.idx() ^ 1u});
-    }
-    edges = bucket_sort(
-        edges, n, [](const EdgeItem& x) { return x.lo; },
-        [](const EdgeItem& x, const EdgeItem& y) { return x.hi < y.hi; });
-    std::vector<Index> halfedge_order;
-    halfedge_order.reserve(2 * edges.size());
-    for (const EdgeItem& x : edges) {
-        halfedge_order.push_back(x.halfedge);
-        halfedge_order.push_back(x.halfedge ^ 1u);
-    }
-
-    // Faces: by their sorted new vertex indices.
-    struct FaceItem {
-        std::array<Index, 3> v;
-        Index face;
+    const auto order_faces = [&] {
+        // Faces: by their sorted new vertex indices.
+        struct FaceItem {
+            std::array<Index, 3> v;
+            Index face;
+        };
+        std::vector<FaceItem> faces;
+        faces.reserve(read.n_faces());
+        for (Face f : read.faces()) {
+            const auto c = read.face_vertices(f);
+            std::array<Index, 3> v{new_vertex[c[0].idx()], new_vertex[c[1].idx()],
+                                   new_vertex[c[2].idx()]};
+            std::sort(v.begin(), v.end());
+            faces.push_back({v, f.idx()});
+        }
+        faces = bucket_sort(
+            faces, n, [](const FaceItem& x) { return x.v[0]; },
+            [](const FaceItem& x, const FaceItem& y) { return x.v < y.v; });
+        face_order.resize(faces.size());
+        for (std::size_t i = 0; i < faces.size(); ++i) face_order[i] = faces[i].face;
     };
-    std::vector<FaceItem> faces;
-    faces.reserve(mesh.n_faces());
-    for (Face f : mesh.faces()) {
-        const auto c = mesh.face_vertices(f);
-        std::array<Index, 3> v{new_vertex[c[0].idx()], new_vertex[c[1].idx()],
-                               new_vertex[c[2].idx()]};
-        std::sort(v.begin(), v.end());
-        faces.push_back({v, f.idx()});
+    if (n >= kParallelMin && std::thread::hardware_concurrency() >= 2) {
+        std::exception_ptr faces_error;
+        std::thread faces_thread([&] {
+            try {
+                order_faces();
+            } catch (...) {
+                faces_error = std::current_exception();
+            }
+        });
+        try {
+            order_edges();
+        } catch (...) {
+            faces_thread.join();
+            throw;
+        }
+        faces_thread.join();
+        if (faces_error) std::rethrow_exception(faces_error);
+    } else {
+        order_edges();
+        order_faces();
     }
-    faces = bucket_sort(
-        faces, n, [](const FaceItem& x) { return x.v[0]; },
-        [](const FaceItem& x, const FaceItem& y) { return x.v < y.v; });
-    std::vector<Index> face_order(faces.size());
-    for (std::size_t i = 0; i < faces.size(); ++i) face_order[i] = faces[i].face;
 
     IndexRemap remap = mesh.renumber(vertex_order, halfedge_order, face_order);
 
