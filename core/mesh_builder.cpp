@@ -423,6 +423,10 @@ void on_two_threads(bool parallel, const Body& body) {
 // An entry of the fast path's buckets: the corner (bits 0-31), the larger vertex (32-62;
 // check_soup keeps vertex indices below 2^31) and the direction (bit 63: larger to smaller).
 constexpr std::uint64_t kDownward = std::uint64_t(1) << 63;
+// The fast path's per-corner links (step 2), then halfedges (step 3, marked with kNumbered
+// until every corner has one; the fast path needs fewer than 2^30 corners).
+constexpr Index kFirstCorner = kInvalidIndex;
+constexpr Index kNumbered = Index(1) << 31;
 
 /// Fast path step 1: the corner edges bucketed by their smaller vertex, in corner order
 /// within each bucket; `start` gets each bucket's first entry (size n_vertices + 1).
@@ -460,11 +464,11 @@ std::unique_ptr<std::uint64_t[]> bucket_corners_by_pair(const Index* tri, std::s
     return entry;
 }
 
-/// Fast path step 2: partner[c] is the other corner edge of c's pair (kInvalidIndex when c
-/// is alone: a boundary edge). False when some pair has a third corner edge or two in the
-/// same direction.
+/// Fast path step 2: link[c] is kFirstCorner for the first corner edge of each pair (or for
+/// one alone: a boundary edge) and the first corner edge for the second. False when some
+/// pair has a third corner edge or two in the same direction.
 bool pair_corners(std::uint64_t* entry, const std::vector<Index>& start, bool parallel,
-                  std::vector<Index>& partner) {
+                  std::vector<Index>& link) {
     const std::size_t n_vertices = start.size() - 1;
     // The buckets split where half the entries are.
     const std::size_t mid =
@@ -493,17 +497,14 @@ bool pair_corners(std::uint64_t* entry, const std::vector<Index>& start, bool pa
                         break;  // sorted: the group has ended
                     }
                 const Index cx = Index(x);
-                if (matches == 0) {
-                    partner[cx] = kInvalidIndex;
-                    continue;
-                }
+                link[cx] = kFirstCorner;
+                if (matches == 0) continue;
                 const std::uint64_t y = b[at];
                 if (matches > 1 || (x & kDownward) == (y & kDownward)) {
                     conflict.store(true, std::memory_order_relaxed);
                     return;
                 }
-                partner[cx] = Index(y);
-                partner[Index(y)] = cx;
+                link[Index(y)] = cx;
                 b[at] = 0;  // paired: skipped when the loop reaches it
             }
             if (conflict.load(std::memory_order_relaxed)) return;
@@ -512,63 +513,67 @@ bool pair_corners(std::uint64_t* entry, const std::vector<Index>& start, bool pa
     return !conflict.load();
 }
 
-/// Fast path step 3: the halfedges of every corner edge (edges numbered in the order of their
-/// first corner; halfedge 2e runs from the smaller to the larger vertex), then the
-/// connectivity arrays as stage 2c leaves them: every triangle a face, in order.
-void connect_paired_corners(const Index* tri, std::size_t n_corners, std::vector<Index>& partner,
+/// Fast path step 3: the halfedge of every corner edge, in `link` (edges numbered in the
+/// order of their first corner; halfedge 2e runs from the smaller to the larger vertex), then
+/// the connectivity arrays as stage 2c leaves them: every triangle a face, in order. The
+/// link array is released before prev is made (peak memory).
+void connect_paired_corners(const Index* tri, std::size_t n_corners, std::vector<Index>& link,
                             bool keep_corners, bool parallel, Connectivity& c) {
     const std::size_t half = (n_corners / 3 / 2) * 3;
     const std::size_t lo[2] = {0, half}, hi[2] = {half, n_corners};
-    auto is_first = [&](std::size_t k) { return partner[k] > k; };  // kInvalidIndex included
-    auto upward = [&](std::size_t k) { return tri[k] < tri[next_corner(k)]; };
     std::size_t n_first[2] = {0, 0};
     on_two_threads(parallel, [&](int part) {
         std::size_t n = 0;
-        for (std::size_t k = lo[part]; k < hi[part]; ++k) n += is_first(k);
+        for (std::size_t k = lo[part]; k < hi[part]; ++k) n += link[k] == kFirstCorner;
         n_first[part] = n;
     });
-    std::vector<Index> he(n_corners);
     on_two_threads(parallel, [&](int part) {
         Index e = Index(part == 0 ? 0 : n_first[0]);
         for (std::size_t k = lo[part]; k < hi[part]; ++k)
-            if (is_first(k)) he[k] = 2 * e++ + (upward(k) ? 0 : 1);
+            if (link[k] == kFirstCorner)
+                link[k] = kNumbered | (2 * e++ + (tri[k] < tri[next_corner(k)] ? 0 : 1));
     });
+    // A second corner edge takes the other halfedge of its first (numbered above).
     on_two_threads(parallel, [&](int part) {
         for (std::size_t k = lo[part]; k < hi[part]; ++k)
-            if (!is_first(k)) he[k] = he[partner[k]] ^ 1;
+            if (!(link[k] & kNumbered)) link[k] = link[link[k]] ^ 1;
     });
-    std::vector<Index>().swap(partner);
     const std::size_t n_h = 2 * (n_first[0] + n_first[1]), n_tris = n_corners / 3;
     c.n_h = n_h;
     c.hto.resize(n_h);
     c.hnext.resize(n_h);
-    c.hprev.resize(n_h);
     c.hface.resize(n_h);
     c.face_halfedge.resize(n_tris);
     if (keep_corners) c.face_tri.resize(n_tris);
     on_two_threads(parallel, [&](int part) {
         for (std::size_t t = lo[part] / 3; t < hi[part] / 3; ++t) {
-            for (std::size_t k = 3 * t; k < 3 * t + 3; ++k) {
-                const Index h = he[k], n = he[next_corner(k)];
-                c.hto[h] = Vertex(tri[next_corner(k)]);
+            const Index* he = link.data() + 3 * t;
+            for (std::size_t k = 0; k < 3; ++k) {
+                const Index h = he[k] & ~kNumbered;
+                c.hto[h] = Vertex(tri[3 * t + (k + 1) % 3]);
                 c.hface[h] = Face(Index(t));
-                c.hnext[h] = Halfedge(n);
-                c.hprev[n] = Halfedge(h);
+                c.hnext[h] = Halfedge(he[(k + 1) % 3] & ~kNumbered);
             }
-            c.face_halfedge[t] = Halfedge(he[3 * t + 2]);  // ends at corner 0
+            c.face_halfedge[t] = Halfedge(he[2] & ~kNumbered);  // ends at corner 0
             if (keep_corners) c.face_tri[t] = Index(t);
         }
     });
-    // The boundary halfedges (the edges with one corner edge): no face yet, pointing to
-    // the start of their twin, which is where its face's next-but-one halfedge points.
+    std::vector<Index>().swap(link);
+    // The boundary halfedges (of the edges with one corner edge) have no face; each points
+    // to where its twin starts, which is where its twin's next-but-one points. prev
+    // inverts next on the face halfedges (find_fans links the boundary ones).
+    c.hprev.resize(n_h);
     const std::size_t mid_h = (n_h / 4) * 2;
     on_two_threads(parallel, [&](int part) {
         const std::size_t h0 = part == 0 ? 0 : mid_h, h1 = part == 0 ? mid_h : n_h;
-        for (std::size_t h = h0; h < h1; ++h)
-            if (!c.hface[h].is_valid()) {
+        for (std::size_t h = h0; h < h1; ++h) {
+            if (c.hface[h].is_valid()) {
+                c.hprev[c.hnext[h].idx()] = Halfedge(Index(h));
+            } else {
                 const Index inner = Index(h ^ 1);
                 c.hto[h] = c.hto[c.hnext[c.hnext[inner].idx()].idx()];
             }
+        }
     });
 }
 
@@ -577,16 +582,17 @@ void connect_paired_corners(const Index* tri, std::size_t n_corners, std::vector
 bool connect_manifold_triangles(const Triangles& tris, std::size_t n_vertices, bool keep_corners,
                                 Connectivity& c) {
     const std::size_t n_corners = tris.n_corners;
+    if (n_corners >= (std::size_t(1) << 30)) return false;
     const bool parallel =
         n_corners >= (std::size_t(1) << 16) && std::thread::hardware_concurrency() >= 2;
-    std::vector<Index> partner(n_corners);
+    std::vector<Index> link(n_corners);
     {
         std::vector<Index> start;
         std::unique_ptr<std::uint64_t[]> entry =
             bucket_corners_by_pair(tris.tri, n_corners, n_vertices, parallel, start);
-        if (!pair_corners(entry.get(), start, parallel, partner)) return false;
+        if (!pair_corners(entry.get(), start, parallel, link)) return false;
     }
-    connect_paired_corners(tris.tri, n_corners, partner, keep_corners, parallel, c);
+    connect_paired_corners(tris.tri, n_corners, link, keep_corners, parallel, c);
     return true;
 }
 

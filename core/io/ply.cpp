@@ -692,22 +692,40 @@ private:
         reserve_faces(e, n, (size - pos) / 4);
         const bool is_signed = e.props[0].type == ScalarType::kInt32;
         const std::uint64_t nv = n_vertices_declared_;
+        auto index_at = [&](std::size_t at, std::size_t row) {
+            std::uint32_t u;
+            std::memcpy(&u, base + at, 4);
+            if (u >= nv)
+                index_error(
+                    is_signed ? static_cast<long long>(std::int32_t(u)) : static_cast<long long>(u),
+                    e, row, 0);
+            return u;
+        };
+        // The arrays are written in place: the offsets have one entry a row, the corners
+        // grow (by doubling) only for rows of more than three.
+        std::vector<std::size_t>& offsets = soup_.face_offsets;
+        std::vector<Index>& corners = soup_.corners;
+        std::size_t n_offsets = offsets.size(), n_corners = corners.size();
+        offsets.resize(n_offsets + n);
+        corners.resize(corners.capacity());  // as reserve_faces bounded it by the bytes left
         for (std::size_t row = 0; row < n; ++row) {
             if (pos >= size) truncated(e, row);
             const std::size_t k = base[pos++];
             if (4 * k > size - pos) truncated(e, row);
-            for (std::size_t j = 0; j < k; ++j, pos += 4) {
-                std::uint32_t u;
-                std::memcpy(&u, base + pos, 4);
-                if (u >= nv) {
-                    const long long v = is_signed ? static_cast<long long>(std::int32_t(u))
-                                                  : static_cast<long long>(u);
-                    index_error(v, e, row, 0);
-                }
-                soup_.corners.push_back(u);
+            if (n_corners + k > corners.size()) corners.resize(2 * (n_corners + k));
+            Index* out = corners.data() + n_corners;
+            if (k == 3) {
+                out[0] = index_at(pos, row);
+                out[1] = index_at(pos + 4, row);
+                out[2] = index_at(pos + 8, row);
+                pos += 12;
+            } else {
+                for (std::size_t j = 0; j < k; ++j, pos += 4) out[j] = index_at(pos, row);
             }
-            soup_.face_offsets.push_back(soup_.corners.size());
+            n_corners += k;
+            offsets[n_offsets++] = n_corners;
         }
+        corners.resize(n_corners);
         file_faces_ += n;
         faces_without_uv_ = true;
         return pos;
