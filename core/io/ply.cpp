@@ -28,10 +28,12 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <exception>
 #include <limits>
 #include <ostream>
 #include <string>
 #include <string_view>
+#include <thread>
 #include <vector>
 
 #include "core/errors.h"
@@ -624,6 +626,17 @@ private:
     void read_binary() {
         const auto* base = reinterpret_cast<const unsigned char*>(data_.data());
         std::size_t pos = data_offset_;
+        // Fixed-size vertex rows of a large file are decoded on a second thread while the
+        // elements after them are read here (the decoding cannot fail: the counts were
+        // checked); joined before returning or throwing.
+        std::thread vertex_thread;
+        std::exception_ptr vertex_error;
+        struct Join {
+            std::thread& t;
+            ~Join() {
+                if (t.joinable()) t.join();
+            }
+        } join{vertex_thread};
         for (const PlyElement& e : elements_) {
             if (e.count == 0 || e.props.empty()) continue;
             const std::size_t remaining = data_.size() - pos;
@@ -635,7 +648,20 @@ private:
             const std::size_t n = static_cast<std::size_t>(e.count);
             if (!e.has_lists()) {
                 // Fixed-size rows: the check above guarantees n * min_row <= remaining.
-                if (e.kind == ElementKind::kVertex) read_fixed_vertices<Swap>(e, base + pos);
+                if (e.kind == ElementKind::kVertex) {
+                    begin_vertices(e);
+                    const unsigned char* rows = base + pos;
+                    if (n >= (std::size_t(1) << 20) && !vertex_thread.joinable())
+                        vertex_thread = std::thread([this, &e, rows, &vertex_error] {
+                            try {
+                                read_fixed_vertices<Swap>(e, rows);
+                            } catch (...) {
+                                vertex_error = std::current_exception();
+                            }
+                        });
+                    else
+                        read_fixed_vertices<Swap>(e, rows);
+                }
                 pos += n * min_row;
             } else if (!Swap && e.kind == ElementKind::kFace && e.props.size() == 1 &&
                        e.props[0].count_type == ScalarType::kUint8 &&
@@ -646,11 +672,12 @@ private:
                 pos = read_rows<Swap>(e, base, pos);
             }
         }
+        if (vertex_thread.joinable()) vertex_thread.join();
+        if (vertex_error) std::rethrow_exception(vertex_error);
     }
 
     template <bool Swap>
     void read_fixed_vertices(const PlyElement& e, const unsigned char* p) {
-        begin_vertices(e);
         const std::size_t n = static_cast<std::size_t>(e.count);
         const std::size_t stride = e.min_row_bytes();
         struct Field {
@@ -826,8 +853,8 @@ LoadedMesh read_ply(const std::string& path) {
     LoadedMesh out;
     PolygonSoup soup;
     {
-        const std::string data = read_file_bytes(path);
-        PlyReader reader(path, strip_utf8_bom(data, path));
+        const FileBytes data = read_large_file(path);
+        PlyReader reader(path, strip_utf8_bom(data.view(), path));
         soup = reader.read(out);
     }  // the file's bytes are released before the mesh is built (peak memory)
     out.mesh = build_mesh_for_file(std::move(soup), out.report, path);
