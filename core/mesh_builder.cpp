@@ -2,10 +2,19 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
+#include <exception>
 #include <memory>
 #include <string>
+#include <thread>
 #include <utility>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#include <unistd.h>
+#endif
 
 #include "core/errors.h"
 #include "core/number_text.h"
@@ -379,6 +388,256 @@ void accept_triangles(const Triangles& tris, bool keep_corners, EdgeGroups& g, C
         if (c.hface[h].is_valid()) c.hprev[c.hnext[h].idx()] = Halfedge(h);
 }
 
+// Stage 2, the fast path (two threads). When every unordered vertex pair is the corner edge
+// of at most two triangles, and of two only in opposite directions, every triangle is
+// accepted in stage 2c, so its result is known without the ordered pass: edge e is the e-th
+// pair in the order of its first corner, and a corner's partner takes the other halfedge.
+// The corner edges are bucketed by their smaller vertex as in stage 2a (each thread
+// counting and placing half of them), the pairs found within the buckets (each thread half
+// of the entries), the edges numbered by a prefix count of the first corners, and the
+// connectivity arrays scattered per triangle. Each step writes disjoint elements only. The
+// result equals stage 2's element for element; when some pair breaks the condition,
+// nothing is kept and stage 2 runs (a file with flipped, duplicated or non-manifold faces).
+
+/// Runs body(0) on a second thread and body(1) here, or body(0) and body(1) here for small
+/// inputs; rethrows the second thread's exception.
+template <typename Body>
+void on_two_threads(bool parallel, const Body& body) {
+    if (!parallel) {
+        body(0);
+        body(1);
+        return;
+    }
+    std::exception_ptr error;
+    std::thread other([&] {
+        try {
+            body(0);
+        } catch (...) {
+            error = std::current_exception();
+        }
+    });
+    try {
+        body(1);
+    } catch (...) {
+        other.join();
+        throw;
+    }
+    other.join();
+    if (error) std::rethrow_exception(error);
+}
+
+// An entry of the fast path's buckets: the corner (bits 0-31), the larger vertex (32-62;
+// check_soup keeps vertex indices below 2^31) and the direction (bit 63: larger to smaller).
+constexpr std::uint64_t kDownward = std::uint64_t(1) << 63;
+// The fast path's per-corner links (step 2), then halfedges (step 3, marked with kNumbered
+// until every corner has one; the fast path needs fewer than 2^30 corners).
+constexpr Index kFirstCorner = kInvalidIndex;
+constexpr Index kNumbered = Index(1) << 31;
+
+/// Fast path step 1: the corner edges bucketed by their smaller vertex, in corner order
+/// within each bucket; `start` gets each bucket's first entry (size n_vertices + 1).
+std::unique_ptr<std::uint64_t[]> bucket_corners_by_pair(const Index* tri, std::size_t n_corners,
+                                                        std::size_t n_vertices, bool parallel,
+                                                        std::vector<Index>& start) {
+    const std::size_t half = (n_corners / 3 / 2) * 3;
+    const std::size_t lo[2] = {0, half}, hi[2] = {half, n_corners};
+    std::vector<Index> fill[2];
+    on_two_threads(parallel, [&](int part) {
+        std::vector<Index>& count = fill[part];
+        count.assign(n_vertices, 0);
+        for (std::size_t c = lo[part]; c < hi[part]; ++c)
+            ++count[std::min(tri[c], tri[next_corner(c)])];
+    });
+    start.resize(n_vertices + 1);
+    Index running = 0;
+    for (std::size_t v = 0; v < n_vertices; ++v) {
+        start[v] = running;
+        const Index n0 = fill[0][v];
+        running += n0 + fill[1][v];
+        fill[0][v] = start[v];
+        fill[1][v] = start[v] + n0;
+    }
+    start[n_vertices] = running;
+    std::unique_ptr<std::uint64_t[]> entry(new std::uint64_t[n_corners]);  // all written below
+    on_two_threads(parallel, [&](int part) {
+        Index* at = fill[part].data();
+        for (std::size_t c = lo[part]; c < hi[part]; ++c) {
+            const Index a = tri[c], b = tri[next_corner(c)];
+            entry[at[std::min(a, b)]++] =
+                (a < b ? 0 : kDownward) | (std::uint64_t(std::max(a, b)) << 32) | std::uint64_t(c);
+        }
+    });
+    return entry;
+}
+
+/// Fast path step 2: link[c] is kFirstCorner for the first corner edge of each pair (or for
+/// one alone: a boundary edge) and the first corner edge for the second. False when some
+/// pair has a third corner edge or two in the same direction.
+bool pair_corners(std::uint64_t* entry, const std::vector<Index>& start, bool parallel,
+                  Index* link) {
+    const std::size_t n_vertices = start.size() - 1;
+    // The buckets split where half the entries are.
+    const std::size_t mid =
+        std::size_t(std::lower_bound(start.begin(), start.end(), start.back() / 2) - start.begin());
+    const std::size_t from[2] = {0, std::min(mid, n_vertices)}, to[2] = {from[1], n_vertices};
+    std::atomic<bool> conflict{false};
+    constexpr std::uint64_t kPair = ~kDownward;  // the larger vertex and the corner
+    on_two_threads(parallel, [&](int part) {
+        for (std::size_t v = from[part]; v < to[part]; ++v) {
+            std::uint64_t* b = entry + start[v];
+            const std::size_t m = start[v + 1] - start[v];
+            if (m > 16)  // by larger vertex, then corner
+                std::sort(b, b + m, [](std::uint64_t x, std::uint64_t y) {
+                    return (x & kPair) < (y & kPair);
+                });
+            for (std::size_t i = 0; i < m; ++i) {
+                const std::uint64_t x = b[i];
+                if (x == 0) continue;  // a partner already paired (no entry is 0: max > 0)
+                const Index vx = Index((x & kPair) >> 32);
+                std::size_t j = i + 1, matches = 0, at = 0;
+                for (; j < m; ++j)
+                    if (Index((b[j] & kPair) >> 32) == vx) {
+                        ++matches;
+                        at = j;
+                    } else if (m > 16) {
+                        break;  // sorted: the group has ended
+                    }
+                const Index cx = Index(x);
+                link[cx] = kFirstCorner;
+                if (matches == 0) continue;
+                const std::uint64_t y = b[at];
+                if (matches > 1 || (x & kDownward) == (y & kDownward)) {
+                    conflict.store(true, std::memory_order_relaxed);
+                    return;
+                }
+                link[Index(y)] = cx;
+                b[at] = 0;  // paired: skipped when the loop reaches it
+            }
+            if (conflict.load(std::memory_order_relaxed)) return;
+        }
+    });
+    return !conflict.load();
+}
+
+/// Reserves n elements in each of the three arrays and, on Linux, has the kernel map their
+/// fresh pages on two threads (MADV_POPULATE_WRITE, each thread half of each block) before
+/// the caller's resize fills them: the page faults of a large build, which the fill would
+/// otherwise take one at a time on one thread. Only a hint: nothing changes where the
+/// kernel lacks it. The arrays may repeat (one array: pass it three times).
+template <typename A, typename B, typename C>
+void reserve_prefaulted(std::vector<A>& a, std::vector<B>& b, std::vector<C>& c, std::size_t n,
+                        bool parallel) {
+    a.reserve(n);
+    b.reserve(n);
+    c.reserve(n);
+#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+    if (!parallel) return;
+    const std::uintptr_t page = std::uintptr_t(::sysconf(_SC_PAGESIZE));
+    auto populate = [&](const void* data, std::size_t bytes, int part) {
+        const std::uintptr_t begin = reinterpret_cast<std::uintptr_t>(data);
+        const std::uintptr_t mid = begin + bytes / 2;
+        const std::uintptr_t from = ((part == 0 ? begin : mid) + page - 1) & ~(page - 1);
+        const std::uintptr_t to = (part == 0 ? mid : begin + bytes) & ~(page - 1);
+        if (to > from) ::madvise(reinterpret_cast<void*>(from), to - from, MADV_POPULATE_WRITE);
+    };
+    on_two_threads(true, [&](int part) {
+        populate(a.data(), n * sizeof(A), part);
+        if (static_cast<const void*>(b.data()) != a.data()) populate(b.data(), n * sizeof(B), part);
+        if (static_cast<const void*>(c.data()) != a.data() &&
+            static_cast<const void*>(c.data()) != b.data())
+            populate(c.data(), n * sizeof(C), part);
+    });
+#else
+    (void)parallel;
+#endif
+}
+
+/// Fast path step 3: the halfedge of every corner edge, in `link` (edges numbered in the
+/// order of their first corner; halfedge 2e runs from the smaller to the larger vertex), then
+/// the connectivity arrays as stage 2c leaves them: every triangle a face, in order. The
+/// link array is released before prev is made (peak memory).
+void connect_paired_corners(const Index* tri, std::size_t n_corners, std::unique_ptr<Index[]>& link,
+                            bool keep_corners, bool parallel, Connectivity& c) {
+    const std::size_t half = (n_corners / 3 / 2) * 3;
+    const std::size_t lo[2] = {0, half}, hi[2] = {half, n_corners};
+    std::size_t n_first[2] = {0, 0};
+    on_two_threads(parallel, [&](int part) {
+        std::size_t n = 0;
+        for (std::size_t k = lo[part]; k < hi[part]; ++k) n += link[k] == kFirstCorner;
+        n_first[part] = n;
+    });
+    on_two_threads(parallel, [&](int part) {
+        Index e = Index(part == 0 ? 0 : n_first[0]);
+        for (std::size_t k = lo[part]; k < hi[part]; ++k)
+            if (link[k] == kFirstCorner)
+                link[k] = kNumbered | (2 * e++ + (tri[k] < tri[next_corner(k)] ? 0 : 1));
+    });
+    // A second corner edge takes the other halfedge of its first (numbered above).
+    on_two_threads(parallel, [&](int part) {
+        for (std::size_t k = lo[part]; k < hi[part]; ++k)
+            if (!(link[k] & kNumbered)) link[k] = link[link[k]] ^ 1;
+    });
+    const std::size_t n_h = 2 * (n_first[0] + n_first[1]), n_tris = n_corners / 3;
+    c.n_h = n_h;
+    reserve_prefaulted(c.hto, c.hnext, c.hface, n_h, parallel);
+    c.hto.resize(n_h);
+    c.hnext.resize(n_h);
+    c.hface.resize(n_h);
+    c.face_halfedge.resize(n_tris);
+    if (keep_corners) c.face_tri.resize(n_tris);
+    on_two_threads(parallel, [&](int part) {
+        for (std::size_t t = lo[part] / 3; t < hi[part] / 3; ++t) {
+            const Index* he = link.get() + 3 * t;
+            for (std::size_t k = 0; k < 3; ++k) {
+                const Index h = he[k] & ~kNumbered;
+                c.hto[h] = Vertex(tri[3 * t + (k + 1) % 3]);
+                c.hface[h] = Face(Index(t));
+                c.hnext[h] = Halfedge(he[(k + 1) % 3] & ~kNumbered);
+            }
+            c.face_halfedge[t] = Halfedge(he[2] & ~kNumbered);  // ends at corner 0
+            if (keep_corners) c.face_tri[t] = Index(t);
+        }
+    });
+    link.reset();
+    // The boundary halfedges (of the edges with one corner edge) have no face; each points
+    // to where its twin starts, which is where its twin's next-but-one points. prev
+    // inverts next on the face halfedges (find_fans links the boundary ones).
+    reserve_prefaulted(c.hprev, c.hprev, c.hprev, n_h, parallel);
+    c.hprev.resize(n_h);
+    const std::size_t mid_h = (n_h / 4) * 2;
+    on_two_threads(parallel, [&](int part) {
+        const std::size_t h0 = part == 0 ? 0 : mid_h, h1 = part == 0 ? mid_h : n_h;
+        for (std::size_t h = h0; h < h1; ++h) {
+            if (c.hface[h].is_valid()) {
+                c.hprev[c.hnext[h].idx()] = Halfedge(Index(h));
+            } else {
+                const Index inner = Index(h ^ 1);
+                c.hto[h] = c.hto[c.hnext[c.hnext[inner].idx()].idx()];
+            }
+        }
+    });
+}
+
+/// The fast path of stage 2 (see above): true when it applied, c then holding what stage 2
+/// would have made; false, with c untouched, when stage 2 must run.
+bool connect_manifold_triangles(const Triangles& tris, std::size_t n_vertices, bool keep_corners,
+                                Connectivity& c) {
+    const std::size_t n_corners = tris.n_corners;
+    if (n_corners >= (std::size_t(1) << 30)) return false;
+    const bool parallel =
+        n_corners >= (std::size_t(1) << 16) && std::thread::hardware_concurrency() >= 2;
+    // Every entry is written by pair_corners (no zero fill first).
+    std::unique_ptr<Index[]> link(new Index[n_corners]);
+    {
+        std::vector<Index> start;
+        std::unique_ptr<std::uint64_t[]> entry =
+            bucket_corners_by_pair(tris.tri, n_corners, n_vertices, parallel, start);
+        if (!pair_corners(entry.get(), start, parallel, link.get())) return false;
+    }
+    connect_paired_corners(tris.tri, n_corners, link, keep_corners, parallel, c);
+    return true;
+}
+
 /// A fan of a vertex after its first: it gets a copy of the vertex (stage 3).
 struct ExtraFan {
     Index vertex, start;
@@ -582,7 +841,7 @@ HalfedgeMesh build_from_soup(const PolygonSoup& soup, PolygonSoup* owned, LoadRe
     make_triangles(soup, keep_corners, report, tris);
     if (owned) std::vector<std::size_t>().swap(owned->face_offsets);  // no longer read
     Connectivity c;
-    {
+    if (!connect_manifold_triangles(tris, n_input_vertices, keep_corners, c)) {
         EdgeGroups groups;
         bucket_corner_edges(tris.tri, tris.n_corners, n_input_vertices, groups);
         link_groups(n_input_vertices, groups);

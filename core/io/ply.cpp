@@ -28,10 +28,12 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <exception>
 #include <limits>
 #include <ostream>
 #include <string>
 #include <string_view>
+#include <thread>
 #include <vector>
 
 #include "core/errors.h"
@@ -624,6 +626,17 @@ private:
     void read_binary() {
         const auto* base = reinterpret_cast<const unsigned char*>(data_.data());
         std::size_t pos = data_offset_;
+        // Fixed-size vertex rows of a large file are decoded on a second thread while the
+        // elements after them are read here (the decoding cannot fail: the counts were
+        // checked); joined before returning or throwing.
+        std::thread vertex_thread;
+        std::exception_ptr vertex_error;
+        struct Join {
+            std::thread& t;
+            ~Join() {
+                if (t.joinable()) t.join();
+            }
+        } join{vertex_thread};
         for (const PlyElement& e : elements_) {
             if (e.count == 0 || e.props.empty()) continue;
             const std::size_t remaining = data_.size() - pos;
@@ -635,7 +648,20 @@ private:
             const std::size_t n = static_cast<std::size_t>(e.count);
             if (!e.has_lists()) {
                 // Fixed-size rows: the check above guarantees n * min_row <= remaining.
-                if (e.kind == ElementKind::kVertex) read_fixed_vertices<Swap>(e, base + pos);
+                if (e.kind == ElementKind::kVertex) {
+                    begin_vertices(e);
+                    const unsigned char* rows = base + pos;
+                    if (n >= (std::size_t(1) << 20) && !vertex_thread.joinable())
+                        vertex_thread = std::thread([this, &e, rows, &vertex_error] {
+                            try {
+                                read_fixed_vertices<Swap>(e, rows);
+                            } catch (...) {
+                                vertex_error = std::current_exception();
+                            }
+                        });
+                    else
+                        read_fixed_vertices<Swap>(e, rows);
+                }
                 pos += n * min_row;
             } else if (!Swap && e.kind == ElementKind::kFace && e.props.size() == 1 &&
                        e.props[0].count_type == ScalarType::kUint8 &&
@@ -646,11 +672,12 @@ private:
                 pos = read_rows<Swap>(e, base, pos);
             }
         }
+        if (vertex_thread.joinable()) vertex_thread.join();
+        if (vertex_error) std::rethrow_exception(vertex_error);
     }
 
     template <bool Swap>
     void read_fixed_vertices(const PlyElement& e, const unsigned char* p) {
-        begin_vertices(e);
         const std::size_t n = static_cast<std::size_t>(e.count);
         const std::size_t stride = e.min_row_bytes();
         struct Field {
@@ -692,22 +719,40 @@ private:
         reserve_faces(e, n, (size - pos) / 4);
         const bool is_signed = e.props[0].type == ScalarType::kInt32;
         const std::uint64_t nv = n_vertices_declared_;
+        auto index_at = [&](std::size_t at, std::size_t row) {
+            std::uint32_t u;
+            std::memcpy(&u, base + at, 4);
+            if (u >= nv)
+                index_error(
+                    is_signed ? static_cast<long long>(std::int32_t(u)) : static_cast<long long>(u),
+                    e, row, 0);
+            return u;
+        };
+        // The arrays are written in place: the offsets have one entry a row, the corners
+        // grow (by doubling) only for rows of more than three.
+        std::vector<std::size_t>& offsets = soup_.face_offsets;
+        std::vector<Index>& corners = soup_.corners;
+        std::size_t n_offsets = offsets.size(), n_corners = corners.size();
+        offsets.resize(n_offsets + n);
+        corners.resize(corners.capacity());  // as reserve_faces bounded it by the bytes left
         for (std::size_t row = 0; row < n; ++row) {
             if (pos >= size) truncated(e, row);
             const std::size_t k = base[pos++];
             if (4 * k > size - pos) truncated(e, row);
-            for (std::size_t j = 0; j < k; ++j, pos += 4) {
-                std::uint32_t u;
-                std::memcpy(&u, base + pos, 4);
-                if (u >= nv) {
-                    const long long v = is_signed ? static_cast<long long>(std::int32_t(u))
-                                                  : static_cast<long long>(u);
-                    index_error(v, e, row, 0);
-                }
-                soup_.corners.push_back(u);
+            if (n_corners + k > corners.size()) corners.resize(2 * (n_corners + k));
+            Index* out = corners.data() + n_corners;
+            if (k == 3) {
+                out[0] = index_at(pos, row);
+                out[1] = index_at(pos + 4, row);
+                out[2] = index_at(pos + 8, row);
+                pos += 12;
+            } else {
+                for (std::size_t j = 0; j < k; ++j, pos += 4) out[j] = index_at(pos, row);
             }
-            soup_.face_offsets.push_back(soup_.corners.size());
+            n_corners += k;
+            offsets[n_offsets++] = n_corners;
         }
+        corners.resize(n_corners);
         file_faces_ += n;
         faces_without_uv_ = true;
         return pos;
@@ -808,8 +853,8 @@ LoadedMesh read_ply(const std::string& path) {
     LoadedMesh out;
     PolygonSoup soup;
     {
-        const std::string data = read_file_bytes(path);
-        PlyReader reader(path, strip_utf8_bom(data, path));
+        const FileBytes data = read_large_file(path);
+        PlyReader reader(path, strip_utf8_bom(data.view(), path));
         soup = reader.read(out);
     }  // the file's bytes are released before the mesh is built (peak memory)
     out.mesh = build_mesh_for_file(std::move(soup), out.report, path);
