@@ -206,9 +206,9 @@ void Viewer::update_wireframe() {
     // triangle area (the current state's area over the shown triangles, so previews,
     // morphs and levels of detail count their own density). Two multiplications a frame.
     // (A large state's own count: its proxy or a pending upload may be on the GPU.)
-    const std::size_t triangles =
-        proxy_.current && session_.shown().mesh ? session_.shown().mesh->n_faces()
-                                                  : renderer_->n_triangles();
+    const std::size_t triangles = proxy_.current && session_.shown().mesh
+                                      ? session_.shown().mesh->n_faces()
+                                      : renderer_->n_triangles();
     edge_pixels_ = 0;
     if (triangles > 0 && surface_area_ > 0) {
         const double edge = std::sqrt(4.0 * surface_area_ / (std::sqrt(3.0) * double(triangles)));
