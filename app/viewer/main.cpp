@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <exception>
 #include <string>
+#include <vector>
 
 #include "app/platform/heap_tuning.h"
 #include "app/viewer/viewer.h"
@@ -54,6 +55,10 @@ options:
   --brush "X0,Y0:X1,Y1[:R]"  drag the selection brush (adding; radius R pixels, default
                      30) from window pixel X0,Y0 to X1,Y1 once the model is shown, and
                      print "brush: samples=N median_ms=X max_ms=Y"
+  --lasso "X0,Y0:X1,Y1:X2,Y2[:...][:through]"  draw the selection lasso (adding) through
+                     these window pixels (three or more) once the model is shown, as the
+                     mouse does with Ctrl held, over several frames; ":through" also takes
+                     the vertices hidden behind the surface; prints "lasso: vertices=N"
   --figure NAME      load a reference figure's mesh kind and settings (e.g. 1.12b; the
                      list is in Help > Reference figures and docs/viewer.md)
   --orbit N          once the model is shown and no job runs, turn the camera once around
@@ -108,6 +113,13 @@ std::string check_combinations(const trilab::viewer::ViewerOptions& options) {
     if (options.sweep_op.empty() != options.sweep_param.empty() ||
         options.sweep_op.empty() != (options.sweep_count == 0))
         return "--sweep, --param and --range go together";
+    if (!options.lasso.empty()) {
+        std::vector<glm::vec2> points;
+        bool through = false;
+        const std::string error =
+            trilab::viewer::parse_lasso_script(options.lasso, points, through);
+        if (!error.empty()) return "--lasso \"" + options.lasso + "\": " + error;
+    }
     return "";
 }
 
@@ -172,6 +184,10 @@ std::string parse_args(int argc, char** argv, trilab::viewer::ViewerOptions& opt
         } else if (arg == "--brush") {
             if (!value(options.brush) || options.brush.empty())
                 return "--brush needs \"X0,Y0:X1,Y1[:R]\", e.g. \"600,400:700,420:30\"";
+        } else if (arg == "--lasso") {
+            if (!value(options.lasso) || options.lasso.empty())
+                return "--lasso needs \"X0,Y0:X1,Y1:X2,Y2[:...]\", e.g. "
+                       "\"600,300:760,300:700,460\"";
         } else if (arg == "--figure") {
             if (!value(options.figure) || options.figure.empty())
                 return "--figure needs a reference figure, e.g. 1.12b";

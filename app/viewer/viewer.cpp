@@ -368,6 +368,7 @@ bool Viewer::draw_frame() {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     drive_clicks();
+    drive_lasso();  // --lasso: the mouse as a user draws it
     ImGui::NewFrame();
     handle_input();
     draw_ui();

@@ -69,10 +69,17 @@ struct ViewerOptions {
     /// --select SPEC (repeatable): selections set once the model is shown (issue 26).
     std::vector<std::string> selections;
     std::string brush;          ///< --brush "X0,Y0:X1,Y1[:R]": a scripted brush drag
+    std::string lasso;          ///< --lasso "X0,Y0:X1,Y1:X2,Y2[:...][:through]": one lasso
     std::string figure;         ///< --figure NAME: a reference figure's mesh and settings
     int orbit_frames = 0;       ///< --orbit N: one scripted turn around the model in N frames
     bool print_timing = false;  ///< --print-timing: first and first exact frame times
 };
+
+/// Reads --lasso's "X0,Y0:X1,Y1:X2,Y2[:...][:through]" into the polygon's window pixels (at
+/// least three finite points) and whether it selects through the model. Returns "" on
+/// success, else what is wrong (the caller names the option).
+std::string parse_lasso_script(const std::string& text, std::vector<glm::vec2>& points,
+                               bool& through);
 
 /// How the document is looked at.
 struct ViewState {
@@ -347,8 +354,13 @@ private:
     void end_stroke();
     /// One step of --brush per frame, timed from the move to the next frame.
     void scripted_brush();
+    /// --lasso, before ImGui's frame: the mouse (Ctrl held) as a user draws the lasso with the
+    /// Selection section's Lasso tool: over the first point, pressed, moved along the polygon
+    /// over several frames, released; then prints "lasso: vertices=N".
+    void drive_lasso();
     struct SelectionStroke {
-        bool active = false, add = true, lasso = false;
+        /// through: the lasso takes hidden vertices too (fixed when it begins, as projected)
+        bool active = false, add = true, lasso = false, through = false;
         ProjectedVertices projected;                ///< the view when the stroke began
         Selection before;                           ///< the document's weights then
         Selection weights;                          ///< the brush's weights as painted
@@ -366,8 +378,15 @@ private:
         double moved_at = -1;   ///< glfw time of the last move (-1: none waiting)
         std::vector<double> ms;
     };
+    struct ScriptedLasso {
+        int state = 0;                ///< 0 not started (or none), 1 drawing, 2 released, 3 done
+        std::vector<glm::vec2> path;  ///< the mouse's window pixels, one per frame
+        std::size_t step = 0;
+        int frames_waited = 0;
+    };
     SelectionStroke stroke_;
     ScriptedBrush brush_script_;
+    ScriptedLasso lasso_script_;
     std::size_t next_scripted_select_ = 0;
     std::string overlay_key_;  ///< what the overlay's weights on the GPU are of
     std::uint64_t stroke_counter_ = 0;

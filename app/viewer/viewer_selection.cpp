@@ -1,5 +1,6 @@
 // Selections in the window (issue 26): the brush and the lasso in the view, the overlay's
-// weights on the GPU, the Selection section's context, and the scripted --select and --brush.
+// weights on the GPU, the Selection section's context, and the scripted --select, --brush and
+// --lasso.
 // The document's side (one history entry per change) is app/session/session_selection.cpp.
 #include "app/viewer/viewer.h"
 
@@ -10,8 +11,10 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 
@@ -72,7 +75,8 @@ bool Viewer::scripted_selection() {
 
 bool Viewer::selection_script_pending() const {
     return next_scripted_select_ < options_.selections.size() ||
-           (!options_.brush.empty() && brush_script_.state != 2) || stroke_.active;
+           (!options_.brush.empty() && brush_script_.state != 2) ||
+           (!options_.lasso.empty() && lasso_script_.state != 3) || stroke_.active;
 }
 
 namespace {
@@ -106,7 +110,9 @@ void Viewer::begin_stroke(bool add, bool lasso, const glm::vec2& pos) {
     stroke_.active = true;
     stroke_.add = add;
     stroke_.lasso = lasso;
-    const bool through = lasso && panels_.selection.lasso_through;
+    // Fixed for the stroke: the projection below decides which vertices the lasso may take.
+    stroke_.through = lasso && panels_.selection.lasso_through;
+    const bool through = stroke_.through;
     view_.camera.set_viewport(std::max(view_rect_.w, 1.0f), std::max(view_rect_.h, 1.0f));
     stroke_.projected = project_shown(session_, view_.camera, view_rect_, through);
     const HalfedgeMesh& mesh = session_.mesh();
@@ -153,8 +159,7 @@ void Viewer::end_stroke() {
         for (std::size_t i = 0; i < result.size() && i < inside.size(); ++i)
             result[i] = stroke.add ? std::max(result[i], inside[i]) : result[i] * (1 - inside[i]);
         std::snprintf(parameters, sizeof parameters, "%zu points%s (%s)",
-                      stroke.lasso_points.size(),
-                      panels_.selection.lasso_through ? ", through" : "", how);
+                      stroke.lasso_points.size(), stroke.through ? ", through" : "", how);
         if (result != stroke.before || !session_.selection())
             commands_.push_back(SetSelection{std::move(result), "Lasso", parameters});
     } else {
@@ -288,6 +293,89 @@ void Viewer::scripted_brush() {
     if (b.ms.empty()) return;
     std::printf("brush: samples=%zu median_ms=%.2f max_ms=%.2f\n", b.ms.size(), median(b.ms),
                 *std::max_element(b.ms.begin(), b.ms.end()));
+    std::fflush(stdout);
+}
+
+std::string parse_lasso_script(const std::string& text, std::vector<glm::vec2>& points,
+                               bool& through) {
+    points.clear();
+    through = false;
+    std::size_t start = 0;
+    while (start <= text.size()) {
+        const std::size_t colon = std::min(text.find(':', start), text.size());
+        const std::string part = text.substr(start, colon - start);
+        start = colon + 1;
+        if (part == "through" && start > text.size()) {
+            through = true;
+            break;
+        }
+        float x = 0, y = 0;
+        char extra = 0;
+        if (std::sscanf(part.c_str(), "%f,%f%c", &x, &y, &extra) != 2 || !std::isfinite(x) ||
+            !std::isfinite(y))
+            return "point " + std::to_string(points.size() + 1) + " (\"" + part +
+                   "\") is not X,Y in window pixels";
+        points.emplace_back(x, y);
+    }
+    if (points.size() < 3)
+        return "a lasso needs at least three points, got " + std::to_string(points.size());
+    return "";
+}
+
+void Viewer::drive_lasso() {
+    ScriptedLasso& l = lasso_script_;
+    if (options_.lasso.empty() || l.state == 3) return;
+    ImGuiIO& io = ImGui::GetIO();
+    if (l.state == 0) {
+        // After the layout settles, --op, --select and --brush (one stroke at a time).
+        if (++l.frames_waited < 3 || !ready_for_script() || session_.busy() ||
+            next_scripted_select_ < options_.selections.size() || clicks_pending() ||
+            (!options_.brush.empty() && brush_script_.state != 2) || stroke_.active)
+            return;
+        std::vector<glm::vec2> points;
+        bool through = false;
+        const std::string error = parse_lasso_script(options_.lasso, points, through);
+        if (!error.empty()) {  // main() checked it: not reached from the command line
+            session_.notify_error("--lasso: " + error);
+            exit_status_ = 1;
+            l.state = 3;
+            return;
+        }
+        // What the user chooses first: the Selection section open, its Lasso tool.
+        panels_.selection.open = true;
+        panels_.selection.tool = SelectionPanelState::Tool::Lasso;
+        panels_.selection.lasso_through = through;
+        // The mouse's place in each frame: pressed at the first point, moved along each side in
+        // a few steps (the lasso closes itself back to the first point on release).
+        constexpr int kStepsPerSide = 4;
+        l.path = {points[0]};
+        for (std::size_t i = 1; i < points.size(); ++i)
+            for (int k = 1; k <= kStepsPerSide; ++k)
+                l.path.push_back(points[i - 1] +
+                                 (float(k) / kStepsPerSide) * (points[i] - points[i - 1]));
+        l.state = 1;
+        l.step = 0;
+    }
+    if (l.state == 1) {
+        // Frame 0 hovers the first point, frames 1..n hold the button along the path (frame 1
+        // presses), the frame after releases. Ctrl is the lasso's adding modifier.
+        const std::size_t at = l.step == 0 ? 0 : std::min(l.step - 1, l.path.size() - 1);
+        io.MousePos = ImVec2(l.path[at].x, l.path[at].y);
+        io.MouseDown[0] = l.step >= 1 && l.step <= l.path.size();
+        io.KeyCtrl = true;
+        io.KeyAlt = io.KeyShift = false;
+        if (++l.step > l.path.size() + 1) l.state = 2;
+        active_frames_ = std::max(active_frames_, 2);
+        return;
+    }
+    // Released: the mouse goes away and Ctrl up; report once the entry is in the document.
+    io.MousePos = ImVec2(-FLT_MAX, -FLT_MAX);
+    io.MouseDown[0] = false;
+    io.KeyCtrl = false;
+    active_frames_ = std::max(active_frames_, 2);
+    if (stroke_.active || session_.busy() || !commands_.empty()) return;
+    l.state = 3;
+    std::printf("lasso: vertices=%zu\n", session_.selected_count());
     std::fflush(stdout);
 }
 
