@@ -231,4 +231,14 @@ if(TARGET trilab)
                      $<TARGET_FILE:trilab>
                      ${PROJECT_SOURCE_DIR}/../shared/meshes/stanford-bunny.obj)
     set_tests_properties(viewer_selection_bunny PROPERTIES TIMEOUT 120 SKIP_RETURN_CODE 77)
+    # --lasso on the bunny: the mouse's lasso, visible-only against through the model.
+    add_test(NAME viewer_selection_lasso_bunny
+             COMMAND ${TRILAB_XVFB} bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer/selection_test.sh
+                     $<TARGET_FILE:trilab>
+                     ${PROJECT_SOURCE_DIR}/../shared/meshes/stanford-bunny.obj lasso)
+    set_tests_properties(viewer_selection_lasso_bunny PROPERTIES TIMEOUT 120 SKIP_RETURN_CODE 77)
+    add_test(NAME viewer_lasso_bad COMMAND $<TARGET_FILE:trilab> --lasso "600,300:700,x:650,400"
+                                           --frames 1)
+    set_tests_properties(viewer_lasso_bad PROPERTIES PASS_REGULAR_EXPRESSION
+                         "--lasso \"600,300:700,x:650,400\": point 2 \\(\"700,x\"\\) is not X,Y")
 endif()
