@@ -153,7 +153,9 @@ void Viewer::end_stroke() {
     stroke_ = SelectionStroke{};
     const char* how = stroke.add ? "add" : "remove";
     char parameters[96];
-    if (stroke.lasso) {
+    if (stroke.lasso && stroke.lasso_points.size() < 3) {
+        // A click, or a drag too short to enclose anything: no lasso, and no history entry.
+    } else if (stroke.lasso) {
         Selection inside = lasso_selection(stroke.projected, stroke.lasso_points);
         Selection result = stroke.before;
         for (std::size_t i = 0; i < result.size() && i < inside.size(); ++i)

@@ -47,6 +47,13 @@ if [ "$part" = lasso ]; then
     [ "$through" -lt 35947 ] || fail "the lasso through the model selected every vertex"
     [ "$visible" -lt "$through" ] ||
         fail "the visible-only lasso (${visible}) is not smaller than through the model (${through})"
+    # A lasso that encloses nothing (its points within 2 pixels: one point is kept) makes
+    # no history entry.
+    out=$("$trilab" "$mesh" --no-recovery --lasso "809,397:810,397:809,398" --frames 3 2>&1) ||
+        fail "the tiny --lasso exited $?: $out"
+    echo "$out" | grep -q "^lasso: vertices=0$" || fail "the tiny lasso selected something: $out"
+    echo "$out" | grep -q "history: 0 Load stanford-bunny.obj$" ||
+        fail "the tiny lasso made an entry: $(echo "$out" | grep history)"
     echo "selection_test: ok"
     exit 0
 fi
