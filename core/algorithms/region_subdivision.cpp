@@ -66,7 +66,8 @@ struct RegionStep {
     SubdivisionLevel level;
     Selection selection;
     RegionClosureCounts counts;
-    std::vector<double> flatness;  ///< face_flatness() of every face of the level
+    std::vector<double> flatness;  ///< face_flatness() of every face (unless it is the last level)
+    Index flattest = kInvalidIndex;  ///< the level's flattest face (the first of equal ones)
 };
 
 /// The cosine of the smallest corner angle of triangle p0 p1 p2 (the corner opposite the
@@ -114,22 +115,31 @@ std::vector<double> flatness_of(const HalfedgeMesh& m) {
     return flat;
 }
 
-/// The new level's flatness: a face of `out` that is a coarse face left as it was (`changed`
-/// false) keeps the coarse value, every other one is computed.
-std::vector<double> level_flatness(const HalfedgeMesh& out, const std::vector<double>& coarse,
-                                   const std::vector<std::uint8_t>& changed) {
+/// The new level's flatness into step.flatness (only when `keep`: a later level reads it) and
+/// its flattest face into step.flattest: a face of `out` that is a coarse face left as it was
+/// (`changed(f)` false) keeps the coarse value, every other one is computed.
+template <typename Changed>
+void level_flatness(const HalfedgeMesh& out, const std::vector<double>& coarse,
+                    const Changed& changed, bool keep, RegionStep& step) {
     const FaceCorners corners(out);
     const Point* x = out.positions().data();
-    std::vector<double> flat(out.faces_size());
-    for (std::size_t f = 0; f < flat.size(); ++f) {
-        if (f < coarse.size() && !changed[f]) {
-            flat[f] = coarse[f];
+    const std::size_t nf = out.faces_size();
+    if (keep) step.flatness.resize(nf);
+    double flattest = 0;
+    for (std::size_t f = 0; f < nf; ++f) {
+        double flat;
+        if (f < coarse.size() && !changed(Index(f))) {
+            flat = coarse[f];
         } else {
             const auto v = corners(f);
-            flat[f] = triangle_flatness(x[v[0]], x[v[1]], x[v[2]]);
+            flat = triangle_flatness(x[v[0]], x[v[1]], x[v[2]]);
+        }
+        if (keep) step.flatness[f] = flat;
+        if (step.flattest == kInvalidIndex || flat > flattest) {
+            flattest = flat;
+            step.flattest = Index(f);
         }
     }
-    return flat;
 }
 
 /// The smallest angle in degrees over the faces of `m` whose flatness is `flat` (180 without
@@ -140,24 +150,34 @@ double min_angle_by_flatness(const HalfedgeMesh& m, const std::vector<double>& f
     return min_face_angle(m, Face(Index(f)));
 }
 
-/// Per-vertex bookkeeping of a new level, filled by the refinement and written as the level's
-/// properties by finish().
+/// Per-vertex bookkeeping of a new level `out` (built, its vertices counted), written in vertex
+/// order by the refinement: the provenance straight into out's properties (added here, in
+/// the order finish() expects), the selection and the morph start positions (only when
+/// `morph`) into vectors that finish() hands on.
 struct NewVertices {
-    std::vector<int> stencil;
-    std::vector<SubdivisionParents> parents;
+    int* stencil;
+    SubdivisionParents* parents;
+    bool morph;
     std::vector<Point> start;  // morph start positions
     Selection selection;
-    void reserve(std::size_t n) {
-        stencil.reserve(n);
-        parents.reserve(n);
-        start.reserve(n);
-        selection.reserve(n);
+    std::size_t n = 0;
+    NewVertices(HalfedgeMesh& out, bool with_morph) : morph(with_morph) {
+        out.add_vertex_property<int>(kLevelName, 0);  // filled by finish()
+        stencil = out.add_vertex_property<int>(kStencilName, 0).vector().data();
+        parents = out.add_vertex_property<SubdivisionParents>(
+                         kParentsName, SubdivisionParents::Constant(kInvalidIndex))
+                      .vector()
+                      .data();
+        const std::size_t count = out.vertices_size();
+        if (morph) start.reserve(count);
+        selection.reserve(count);
     }
     void add(SubdivisionStencil st, const Point& from, float weight, Index a,
              Index b = kInvalidIndex, Index c = kInvalidIndex) {
-        stencil.push_back(int(st));
-        parents.emplace_back(a, b, c);
-        start.push_back(from);
+        stencil[n] = int(st);
+        parents[n] = SubdivisionParents(a, b, c);
+        ++n;
+        if (morph) start.push_back(from);
         selection.push_back(weight);
     }
 };
@@ -167,14 +187,11 @@ struct NewVertices {
 void finish(const HalfedgeMesh& coarse, int level, bool morph, NewVertices&& nv, RegionStep& step) {
     HalfedgeMesh& m = step.level.mesh;
     const std::size_t n_old = coarse.vertices_size(), n = m.vertices_size();
-    auto& levels = m.add_vertex_property<int>(kLevelName, level).vector();
+    auto& levels = m.get_vertex_property<int>(kLevelName).vector();  // added by NewVertices
     const auto in_levels = coarse.get_vertex_property<int>(kLevelName);
     for (std::size_t v = 0; v < n_old; ++v)
         levels[v] = level > 1 && in_levels ? in_levels.vector()[v] : 0;
-    m.add_vertex_property<int>(kStencilName, 0).vector() = std::move(nv.stencil);
-    m.add_vertex_property<SubdivisionParents>(kParentsName,
-                                              SubdivisionParents::Constant(kInvalidIndex))
-        .vector() = std::move(nv.parents);
+    std::fill(levels.begin() + std::ptrdiff_t(n_old), levels.end(), level);
     if (const auto uv_in = coarse.get_vertex_property<TexCoord>("v:texcoord")) {
         auto& uv = m.add_vertex_property<TexCoord>("v:texcoord", TexCoord::Zero()).vector();
         const auto& parents = m.get_vertex_property<SubdivisionParents>(kParentsName).vector();
@@ -267,9 +284,17 @@ std::size_t improve_closure(HalfedgeMesh& m, const std::vector<std::uint8_t>& cl
         const Face f1 = m.face(HalfedgeMesh::halfedge(e, 1));
         return f0.is_valid() && f1.is_valid() && closure[f0.idx()] && closure[f1.idx()];
     };
+    // The candidates in ascending edge order (as a scan over every edge would list them), found
+    // from the closure's faces.
     std::vector<Edge> queue;
-    for (Edge e : m.edges())
-        if (candidate(e)) queue.push_back(e);
+    for (std::size_t f = 0; f < closure.size(); ++f)
+        if (closure[f])
+            for (Halfedge h : m.halfedges_of(Face(Index(f)))) {
+                const Edge e = HalfedgeMesh::edge(h);
+                if (candidate(e)) queue.push_back(e);
+            }
+    std::sort(queue.begin(), queue.end(), [](Edge a, Edge b) { return a.idx() < b.idx(); });
+    queue.erase(std::unique(queue.begin(), queue.end()), queue.end());
     std::size_t flips = 0;
     const std::size_t cap = 10 * queue.size() + 10;
     while (!queue.empty() && flips < cap) {
@@ -296,19 +321,40 @@ double min_angle_of(const HalfedgeMesh& m, const std::vector<std::uint8_t>& flag
 }
 
 /// The uniform step's positions and stencils where region subdivision uses them: old vertices
-/// that move and the edges around them (the whole mesh's pass, across seams, where the mesh
-/// has coincident vertices).
-UniformStep1to4 region_stencils(const HalfedgeMesh& m, const Selection& w, SubdivisionScheme scheme,
-                                Progress& progress) {
+/// that move (weight > 0) and the edges with such an end, packed (uniform_step_1to4_listed():
+/// a small region allocates little), or the whole mesh's pass, across seams, where the mesh
+/// has coincident vertices.
+struct RegionStencils {
+    std::vector<Index> vertex_slot;  ///< per old vertex: its entry in `step` (moving ones only)
+    std::vector<Index> edge_slot;    ///< per edge: its entry in `step` (those with a moving end)
+    UniformStep1to4 step;
+    const Point& vertex_position(Index v) const { return step.positions[vertex_slot[v]]; }
+    const Point& edge_position(Index e) const { return step.positions[edge_slot[e]]; }
+    int vertex_stencil(Index v) const { return step.stencils[vertex_slot[v]]; }
+    int edge_stencil(Index e) const { return step.stencils[edge_slot[e]]; }
+};
+
+RegionStencils region_stencils(const HalfedgeMesh& m, const Selection& w, SubdivisionScheme scheme,
+                               Progress& progress) {
     const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size());
-    std::vector<std::uint8_t> vertex_needed(nv, 0), edge_needed(ne, 0);
-    for (Index v = 0; v < nv; ++v) vertex_needed[v] = w[v] > 0.0f ? 1 : 0;
+    RegionStencils r;
+    r.vertex_slot.assign(nv, kInvalidIndex);
+    r.edge_slot.assign(ne, kInvalidIndex);
+    if (!find_coincident_vertices(m).empty()) {
+        r.step = uniform_step_1to4(m, scheme, progress);
+        for (Index v = 0; v < nv; ++v) r.vertex_slot[v] = v;
+        for (Index e = 0; e < ne; ++e) r.edge_slot[e] = nv + e;
+        return r;
+    }
+    std::vector<Index> vertices, edges;
+    for (Index v = 0; v < nv; ++v)
+        if (w[v] > 0.0f) r.vertex_slot[v] = Index(vertices.size()), vertices.push_back(v);
+    const Vertex* to = m.halfedge_to_array().data();
     for (Index e = 0; e < ne; ++e)
-        edge_needed[e] =
-            vertex_needed[m.vertex(Edge(e), 0).idx()] || vertex_needed[m.vertex(Edge(e), 1).idx()];
-    return find_coincident_vertices(m).empty()
-               ? uniform_step_1to4_at(m, scheme, vertex_needed, edge_needed, progress)
-               : uniform_step_1to4(m, scheme, progress);
+        if (w[to[2 * e].idx()] > 0.0f || w[to[2 * e + 1].idx()] > 0.0f)
+            r.edge_slot[e] = Index(vertices.size() + edges.size()), edges.push_back(e);
+    r.step = uniform_step_1to4_listed(m, scheme, vertices, edges, progress);
+    return r;
 }
 
 /// The red-green closure of the split edges `split` (those of the selected faces on entry):
@@ -317,9 +363,9 @@ UniformStep1to4 region_stencils(const HalfedgeMesh& m, const Selection& w, Subdi
 /// its other two (red), until nothing changes. Returns the number of faces grown into.
 std::size_t close_red_green(const HalfedgeMesh& m, const Selection& w,
                             const std::vector<std::uint8_t>& selected,
-                            const UniformStep1to4& uniform, bool local_closure, double target_angle,
+                            const RegionStencils& uniform, bool local_closure, double target_angle,
                             std::vector<std::uint8_t>& split) {
-    const Index nv = Index(m.vertices_size()), nf = Index(m.faces_size());
+    const Index nf = Index(m.faces_size());
     const Point* x = m.positions().data();
     const Halfedge* next_of = m.halfedge_next_array().data();
     const Halfedge* face_halfedge = m.face_halfedge_array().data();
@@ -330,12 +376,13 @@ std::size_t close_red_green(const HalfedgeMesh& m, const Selection& w,
     };
     // Where each vertex of the new level will be (the same expressions as below).
     const auto old_position = [&](Index v) {
-        return w[v] > 0.0f ? blend_by_weight(x[v], uniform.positions[v], w[v]) : x[v];
+        return w[v] > 0.0f ? blend_by_weight(x[v], uniform.vertex_position(v), w[v]) : x[v];
     };
     const auto edge_position = [&](Index e) {
         const Index a = m.vertex(Edge(e), 1).idx(), b = m.vertex(Edge(e), 0).idx();
-        return blend_by_weight(0.5 * (x[a] + x[b]), uniform.positions[nv + e],
-                               std::max(w[a], w[b]));
+        const Point mid = 0.5 * (x[a] + x[b]);
+        const float wmax = std::max(w[a], w[b]);
+        return wmax > 0.0f ? blend_by_weight(mid, uniform.edge_position(e), wmax) : mid;
     };
     // Whether the bisection of face f (one split edge) keeps every angle >= target_angle.
     const auto green_ok = [&](Face f) {
@@ -493,7 +540,8 @@ std::vector<Index> build_red_green(const HalfedgeMesh& m, const std::vector<std:
 /// One red-green step of a 1-to-4 scheme on `m` (compact) with weights `w`.
 RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, SubdivisionScheme scheme,
                               int level, bool morph, bool local_closure, double target_angle,
-                              const std::vector<double>& coarse_flat, Progress& progress) {
+                              const std::vector<double>& coarse_flat, bool keep_flatness,
+                              Progress& progress) {
     const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
                 nf = Index(m.faces_size());
     const std::vector<std::uint8_t> selected = region_faces(m, w);
@@ -502,7 +550,7 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
         if (selected[f])
             for (Halfedge h : m.halfedges_of(Face(f))) split[HalfedgeMesh::edge(h).idx()] = 1;
     const Point* x = m.positions().data();
-    const UniformStep1to4 uniform = region_stencils(m, w, scheme, progress);
+    const RegionStencils uniform = region_stencils(m, w, scheme, progress);
     progress.check_cancelled();
     RegionStep step;
     step.counts.grown_faces =
@@ -523,26 +571,25 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
     HalfedgeMesh& out = step.level.mesh;
     const std::vector<Index> origin = build_red_green(m, split, splits, out);
     const Vertex* to_in = m.halfedge_to_array().data();
-    NewVertices nvx;
-    nvx.reserve(out.vertices_size());
+    NewVertices nvx(out, morph);
+    Point* p = out.positions().data();
     for (Index v = 0; v < nv; ++v) {
         const bool moves = w[v] > 0.0f;
-        nvx.add(moves ? SubdivisionStencil(uniform.stencils[v]) : SubdivisionStencil::EvenKept,
-                x[v], w[v], v);
+        nvx.add(
+            moves ? SubdivisionStencil(uniform.vertex_stencil(v)) : SubdivisionStencil::EvenKept,
+            x[v], w[v], v);
+        if (moves) p[v] = blend_by_weight(x[v], uniform.vertex_position(v), w[v]);
     }
-    Point* p = out.positions().data();
     for (Index e = 0, k = 0; e < ne; ++e) {
         if (!split[e]) continue;
         const Index a = to_in[2 * e + 1].idx(), b = to_in[2 * e].idx();
         const Point mid = 0.5 * (x[a] + x[b]);
         const float wmax = std::max(w[a], w[b]);
-        p[nv + k++] = blend_by_weight(mid, uniform.positions[nv + e], wmax);
-        nvx.add(wmax > 0.0f ? SubdivisionStencil(uniform.stencils[nv + e])
+        p[nv + k++] = wmax > 0.0f ? blend_by_weight(mid, uniform.edge_position(e), wmax) : mid;
+        nvx.add(wmax > 0.0f ? SubdivisionStencil(uniform.edge_stencil(e))
                             : SubdivisionStencil::OddClosureMidpoint,
                 mid, std::min(w[a], w[b]), a, b);
     }
-    for (Index v = 0; v < nv; ++v)
-        if (w[v] > 0.0f) p[v] = blend_by_weight(x[v], uniform.positions[v], w[v]);
     // The closure: the faces cut from refined faces outside the selection (green halves, the
     // children of faces that turned red), improved by max-min-angle flips among themselves.
     std::vector<std::uint8_t> touched(nf, 0), closure(out.faces_size(), 0);
@@ -553,12 +600,12 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
     step.counts.min_angle_touched = min_angle_of(m, touched);
     step.counts.min_angle_closure = min_angle_of(out, closure);
     // Faces of the coarse level left as they were: not refined, no vertex moved.
-    std::vector<std::uint8_t> changed(nf, 0);
-    for (Index f = 0; f < nf; ++f) {
+    const auto changed = [&](Index f) {
+        if (splits[f] > 0) return true;
         const auto v = corners(f);
-        changed[f] = splits[f] > 0 || w[v[0]] > 0.0f || w[v[1]] > 0.0f || w[v[2]] > 0.0f;
-    }
-    step.flatness = level_flatness(out, coarse_flat, changed);
+        return w[v[0]] > 0.0f || w[v[1]] > 0.0f || w[v[2]] > 0.0f;
+    };
+    level_flatness(out, coarse_flat, changed, keep_flatness, step);
     finish(m, level, morph, std::move(nvx), step);
     return step;
 }
@@ -662,7 +709,8 @@ std::vector<std::uint8_t> sqrt3_closure(const HalfedgeMesh& m, HalfedgeMesh& out
 /// One adaptive Sqrt3 step on `m` (compact) with weights `w`.
 RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int level, bool morph,
                                bool local_closure, double target_angle,
-                               const std::vector<double>& coarse_flat, Progress& progress) {
+                               const std::vector<double>& coarse_flat, bool keep_flatness,
+                               Progress& progress) {
     const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
                 nf = Index(m.faces_size());
     const std::vector<std::uint8_t> selected = region_faces(m, w);
@@ -718,8 +766,7 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int le
         const Face g = face_in[hx ^ 1u];
         return g.is_valid() && split_face[g.idx()] != 0;
     };
-    NewVertices nvx;
-    nvx.reserve(std::size_t(nv) + n_split_faces);
+    NewVertices nvx(out, morph);
     for (Index v = 0; v < nv; ++v) {
         nvx.add(moves(v) ? SubdivisionStencil::EvenRelaxed : SubdivisionStencil::EvenKept, x[v],
                 w[v], v);
@@ -768,13 +815,13 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int le
             p[v] = blend_by_weight(x[v], relaxed[v], w[v]);
     const std::vector<std::uint8_t> closure = sqrt3_closure(m, out, split_face, step.counts);
     // Faces of the coarse level left as they were: not split, not flipped, no vertex moved.
-    std::vector<std::uint8_t> changed(nf, 0);
     const FaceCorners corners(m);
-    for (Index f = 0; f < nf; ++f) {
+    const auto changed = [&](Index f) {
+        if (split_face[f] || closure[f]) return true;
         const auto v = corners(f);
-        changed[f] = split_face[f] || closure[f] || moves(v[0]) || moves(v[1]) || moves(v[2]);
-    }
-    step.flatness = level_flatness(out, coarse_flat, changed);
+        return moves(v[0]) || moves(v[1]) || moves(v[2]);
+    };
+    level_flatness(out, coarse_flat, changed, keep_flatness, step);
     finish(m, level, morph, std::move(nvx), step);
     return step;
 }
@@ -841,22 +888,25 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
         std::vector<double> flatness = flatness_of(*current);
         report.min_angle_in = min_angle_by_flatness(*current, flatness);
         RegionStep latest;
+        Index flattest = kInvalidIndex;  // the last level's flattest face
         if (options.keep_levels) result.levels.reserve(std::size_t(options.iterations));
         for (int it = 1; it <= options.iterations; ++it) {
             progress.check_cancelled();
             progress.report(double(it - 1) / options.iterations, "subdividing the region");
             const bool morph = options.morph && (options.keep_levels || it == options.iterations);
+            const bool keep_flatness = it < options.iterations;  // the next level reads it
             RegionStep step =
                 sqrt3 ? refine_region_sqrt3(*current, weights, it, morph, options.local_closure,
-                                            report.min_angle_in, flatness, progress)
+                                            report.min_angle_in, flatness, keep_flatness, progress)
                       : refine_region_1to4(*current, weights, options.scheme, it, morph,
                                            options.local_closure, report.min_angle_in, flatness,
-                                           progress);
+                                           keep_flatness, progress);
             report.closure.push_back(step.counts);
             result.level_counts.push_back(
                 {step.level.mesh.n_vertices(), step.level.mesh.n_faces()});
             weights = std::move(step.selection);
             flatness = std::move(step.flatness);
+            flattest = step.flattest;
             if (options.keep_levels) {
                 result.levels.push_back(std::move(step.level));
                 current = &result.levels.back().mesh;
@@ -869,7 +919,9 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
         if (mesh.get_halfedge_property<TexCoord>("h:texcoord"))
             result.notes.push_back(
                 "corner texture coordinates (h:texcoord) are not carried by region subdivision");
-        report.min_angle_out = min_angle_by_flatness(result.levels.back().mesh, flatness);
+        report.min_angle_out = flattest == kInvalidIndex
+                                   ? 180.0
+                                   : min_face_angle(result.levels.back().mesh, Face(flattest));
     }
     progress.report(1.0, "subdividing the region");
     result.ms =
