@@ -72,7 +72,8 @@ struct RegionStep {
 
 /// The cosine of the smallest corner angle of triangle p0 p1 p2 (the corner opposite the
 /// shortest edge; 1 for a degenerate triangle): larger is flatter. No sort, no trigonometry.
-inline double triangle_flatness(const Point& p0, const Point& p1, const Point& p2) {
+__attribute__((always_inline)) inline double triangle_flatness(const Point& p0, const Point& p1,
+                                                               const Point& p2) {
     const double l0 = (p1 - p2).squaredNorm(), l1 = (p2 - p0).squaredNorm(),
                  l2 = (p0 - p1).squaredNorm();
     double s, a, b;  // the shortest edge, the two others (squared)
@@ -103,14 +104,18 @@ struct FaceCorners {
     }
 };
 
-/// face_flatness of every face of `m` (compact).
-std::vector<double> flatness_of(const HalfedgeMesh& m) {
+/// face_flatness of every face of `m` (compact), and its flattest face (the first of equal
+/// ones; invalid without faces) in the same pass.
+std::vector<double> flatness_of(const HalfedgeMesh& m, Index& flattest) {
     const FaceCorners corners(m);
     const Point* x = m.positions().data();
     std::vector<double> flat(m.faces_size());
+    flattest = kInvalidIndex;
+    double largest = 0;
     for (std::size_t f = 0; f < flat.size(); ++f) {
         const auto v = corners(f);
         flat[f] = triangle_flatness(x[v[0]], x[v[1]], x[v[2]]);
+        if (flattest == kInvalidIndex || flat[f] > largest) largest = flat[f], flattest = Index(f);
     }
     return flat;
 }
@@ -140,14 +145,6 @@ void level_flatness(const HalfedgeMesh& out, const std::vector<double>& coarse,
             step.flattest = Index(f);
         }
     }
-}
-
-/// The smallest angle in degrees over the faces of `m` whose flatness is `flat` (180 without
-/// faces): the flattest face's angle, computed exactly.
-double min_angle_by_flatness(const HalfedgeMesh& m, const std::vector<double>& flat) {
-    if (flat.empty()) return 180.0;
-    const std::size_t f = std::size_t(std::max_element(flat.begin(), flat.end()) - flat.begin());
-    return min_face_angle(m, Face(Index(f)));
 }
 
 /// Per-vertex bookkeeping of a new level `out` (built, its vertices counted), written in vertex
@@ -428,9 +425,13 @@ std::size_t close_red_green(const HalfedgeMesh& m, const Selection& w,
 /// Writes the red-green refinement of `m` (split edges `split`, split counts per face `splits`:
 /// 0, 1 or 3) into `out`: a bare copy of m grown to the new sizes, connectivity only (the new
 /// vertices' positions are left to the caller: the vertex of split edge number k, in edge
-/// order, is nv + k). Returns the coarse face each face of `out` lies in.
-std::vector<Index> build_red_green(const HalfedgeMesh& m, const std::vector<std::uint8_t>& split,
-                                   const std::vector<std::uint8_t>& splits, HalfedgeMesh& out) {
+/// order, is nv + k). Returns the flags of the closure's faces in `out`: the faces of refined
+/// coarse faces that `touched` flags (per coarse face).
+std::vector<std::uint8_t> build_red_green(const HalfedgeMesh& m,
+                                          const std::vector<std::uint8_t>& split,
+                                          const std::vector<std::uint8_t>& splits,
+                                          const std::vector<std::uint8_t>& touched,
+                                          HalfedgeMesh& out) {
     const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
                 nf = Index(m.faces_size());
     // The new elements, numbered in order: the vertex of split edge number k (ascending edge
@@ -440,17 +441,9 @@ std::vector<Index> build_red_green(const HalfedgeMesh& m, const std::vector<std:
     Index n_split_edges = 0;
     for (Index e = 0; e < ne; ++e)
         if (split[e]) split_number[e] = n_split_edges++;
-    std::vector<Index> first_edge(nf, kInvalidIndex), first_face(nf, kInvalidIndex);
-    Index next_edge = ne + n_split_edges, next_face = nf;
-    for (Index f = 0; f < nf; ++f) {
-        if (splits[f] == 3) {
-            first_edge[f] = next_edge, first_face[f] = next_face;
-            next_edge += 3, next_face += 3;
-        } else if (splits[f] == 1) {
-            first_edge[f] = next_edge, first_face[f] = next_face;
-            next_edge += 1, next_face += 1;
-        }
-    }
+    Index n_new = 0;  // inner edges and corner faces of red faces, cuts and halves of green ones
+    for (Index f = 0; f < nf; ++f) n_new += splits[f];
+    const Index next_edge = ne + n_split_edges + n_new, next_face = nf + n_new;
     out = bare_copy(m, std::size_t(nv) + n_split_edges, next_edge, next_face);
     Vertex* to = out.halfedge_to_array().data();
     Halfedge* nx = out.halfedge_next_array().data();
@@ -498,16 +491,18 @@ std::vector<Index> build_red_green(const HalfedgeMesh& m, const std::vector<std:
         const Halfedge g = vh[v];
         if (g.is_valid() && split[g.idx() >> 1]) vh[v] = Halfedge(first(g.idx()));
     }
-    // The coarse face each face of `out` lies in.
-    std::vector<Index> origin(next_face);
-    for (Index f = 0; f < nf; ++f) {
-        origin[f] = f;
+    // The faces, in order (the first new edge and face of each refined face follow from the
+    // counts of the ones before it).
+    std::vector<std::uint8_t> closure(next_face, 0);
+    for (Index f = 0, e0 = ne + n_split_edges, f0 = nf; f < nf;
+         e0 += splits[f], f0 += splits[f], ++f) {
         if (splits[f] == 0) continue;
+        if (touched[f])
+            std::fill_n(closure.begin() + std::ptrdiff_t(f0), splits[f], 1), closure[f] = 1;
         Index h[3];
         h[0] = m.halfedge(Face(f)).idx();
         h[1] = next_in[h[0]].idx();
         h[2] = next_in[h[1]].idx();
-        const Index e0 = first_edge[f], f0 = first_face[f];
         if (splits[f] == 3) {
             // Corner k (at the end of h[k]): second(h[k]), first(h[k+1]), and the inner edge
             // e0 + k between the two midpoints; the middle keeps f.
@@ -518,7 +513,6 @@ std::vector<Index> build_red_green(const HalfedgeMesh& m, const std::vector<std:
                 to[in] = Vertex(mid_of(hk));
                 to[in + 1] = Vertex(mid_of(hn));
                 triangle(f0 + Index(k), second(hk), first(hn), in);
-                origin[f0 + Index(k)] = f;
                 inner[k] = in + 1;  // mid(hk) -> mid(hn), in the middle
             }
             triangle(f, inner[0], inner[1], inner[2]);
@@ -531,10 +525,9 @@ std::vector<Index> build_red_green(const HalfedgeMesh& m, const std::vector<std:
             to[cut + 1] = Vertex(mid_of(hs));
             triangle(f, first(hs), cut, h2);
             triangle(f0, second(hs), h1, cut + 1);
-            origin[f0] = f;
         }
     }
-    return origin;
+    return closure;
 }
 
 /// One red-green step of a 1-to-4 scheme on `m` (compact) with weights `w`.
@@ -569,7 +562,12 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
     check_no_refined_pillow(m, [&](Face f) { return splits[f.idx()] > 0; });
     progress.check_cancelled();
     HalfedgeMesh& out = step.level.mesh;
-    const std::vector<Index> origin = build_red_green(m, split, splits, out);
+    // The closure: the faces cut from refined faces outside the selection (green halves, the
+    // children of faces that turned red), improved below by max-min-angle flips among
+    // themselves.
+    std::vector<std::uint8_t> touched(nf, 0);
+    for (Index f = 0; f < nf; ++f) touched[f] = !selected[f] && splits[f] > 0;
+    const std::vector<std::uint8_t> closure = build_red_green(m, split, splits, touched, out);
     const Vertex* to_in = m.halfedge_to_array().data();
     NewVertices nvx(out, morph);
     Point* p = out.positions().data();
@@ -590,12 +588,6 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
                             : SubdivisionStencil::OddClosureMidpoint,
                 mid, std::min(w[a], w[b]), a, b);
     }
-    // The closure: the faces cut from refined faces outside the selection (green halves, the
-    // children of faces that turned red), improved by max-min-angle flips among themselves.
-    std::vector<std::uint8_t> touched(nf, 0), closure(out.faces_size(), 0);
-    for (Index f = 0; f < nf; ++f) touched[f] = !selected[f] && splits[f] > 0;
-    for (std::size_t f = 0; f < closure.size(); ++f)
-        closure[f] = origin[f] != kInvalidIndex && touched[origin[f]];
     step.counts.closure_flips = improve_closure(out, closure);
     step.counts.min_angle_touched = min_angle_of(m, touched);
     step.counts.min_angle_closure = min_angle_of(out, closure);
@@ -885,10 +877,11 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
             current = &collected;
         }
         const bool sqrt3 = options.scheme == SubdivisionScheme::Sqrt3;
-        std::vector<double> flatness = flatness_of(*current);
-        report.min_angle_in = min_angle_by_flatness(*current, flatness);
+        Index flattest = kInvalidIndex;  // of the input, then of the last level built
+        std::vector<double> flatness = flatness_of(*current, flattest);
+        report.min_angle_in =
+            flattest == kInvalidIndex ? 180.0 : min_face_angle(*current, Face(flattest));
         RegionStep latest;
-        Index flattest = kInvalidIndex;  // the last level's flattest face
         if (options.keep_levels) result.levels.reserve(std::size_t(options.iterations));
         for (int it = 1; it <= options.iterations; ++it) {
             progress.check_cancelled();
