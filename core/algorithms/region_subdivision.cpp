@@ -322,35 +322,41 @@ double min_angle_of(const HalfedgeMesh& m, const std::vector<std::uint8_t>& flag
 /// a small region allocates little), or the whole mesh's pass, across seams, where the mesh
 /// has coincident vertices.
 struct RegionStencils {
-    std::vector<Index> vertex_slot;  ///< per old vertex: its entry in `step` (moving ones only)
-    std::vector<Index> edge_slot;    ///< per edge: its entry in `step` (those with a moving end)
+    bool dense = false;  ///< the whole mesh's step: entry v, then nv + e
+    Index nv = 0;
+    std::vector<Index> vertices;  ///< listed (ascending): the moving vertices
+    std::vector<Index> edges;     ///< listed (ascending): the edges with a moving end
     UniformStep1to4 step;
-    const Point& vertex_position(Index v) const { return step.positions[vertex_slot[v]]; }
-    const Point& edge_position(Index e) const { return step.positions[edge_slot[e]]; }
-    int vertex_stencil(Index v) const { return step.stencils[vertex_slot[v]]; }
-    int edge_stencil(Index e) const { return step.stencils[edge_slot[e]]; }
+    /// The entry of a moving vertex, or of an edge with a moving end (binary search: for the
+    /// closure's few look-ups; the passes in order count the entries instead).
+    Index vertex_slot(Index v) const {
+        return dense ? v
+                     : Index(std::lower_bound(vertices.begin(), vertices.end(), v) -
+                             vertices.begin());
+    }
+    Index edge_slot(Index e) const {
+        return dense ? nv + e
+                     : Index(vertices.size()) +
+                           Index(std::lower_bound(edges.begin(), edges.end(), e) - edges.begin());
+    }
 };
 
 RegionStencils region_stencils(const HalfedgeMesh& m, const Selection& w, SubdivisionScheme scheme,
                                Progress& progress) {
     const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size());
     RegionStencils r;
-    r.vertex_slot.assign(nv, kInvalidIndex);
-    r.edge_slot.assign(ne, kInvalidIndex);
+    r.nv = nv;
     if (!find_coincident_vertices(m).empty()) {
+        r.dense = true;
         r.step = uniform_step_1to4(m, scheme, progress);
-        for (Index v = 0; v < nv; ++v) r.vertex_slot[v] = v;
-        for (Index e = 0; e < ne; ++e) r.edge_slot[e] = nv + e;
         return r;
     }
-    std::vector<Index> vertices, edges;
     for (Index v = 0; v < nv; ++v)
-        if (w[v] > 0.0f) r.vertex_slot[v] = Index(vertices.size()), vertices.push_back(v);
+        if (w[v] > 0.0f) r.vertices.push_back(v);
     const Vertex* to = m.halfedge_to_array().data();
     for (Index e = 0; e < ne; ++e)
-        if (w[to[2 * e].idx()] > 0.0f || w[to[2 * e + 1].idx()] > 0.0f)
-            r.edge_slot[e] = Index(vertices.size() + edges.size()), edges.push_back(e);
-    r.step = uniform_step_1to4_listed(m, scheme, vertices, edges, progress);
+        if (w[to[2 * e].idx()] > 0.0f || w[to[2 * e + 1].idx()] > 0.0f) r.edges.push_back(e);
+    r.step = uniform_step_1to4_listed(m, scheme, r.vertices, r.edges, progress);
     return r;
 }
 
@@ -373,13 +379,17 @@ std::size_t close_red_green(const HalfedgeMesh& m, const Selection& w,
     };
     // Where each vertex of the new level will be (the same expressions as below).
     const auto old_position = [&](Index v) {
-        return w[v] > 0.0f ? blend_by_weight(x[v], uniform.vertex_position(v), w[v]) : x[v];
+        return w[v] > 0.0f
+                   ? blend_by_weight(x[v], uniform.step.positions[uniform.vertex_slot(v)], w[v])
+                   : x[v];
     };
     const auto edge_position = [&](Index e) {
         const Index a = m.vertex(Edge(e), 1).idx(), b = m.vertex(Edge(e), 0).idx();
         const Point mid = 0.5 * (x[a] + x[b]);
         const float wmax = std::max(w[a], w[b]);
-        return wmax > 0.0f ? blend_by_weight(mid, uniform.edge_position(e), wmax) : mid;
+        return wmax > 0.0f
+                   ? blend_by_weight(mid, uniform.step.positions[uniform.edge_slot(e)], wmax)
+                   : mid;
     };
     // Whether the bisection of face f (one split edge) keeps every angle >= target_angle.
     const auto green_ok = [&](Face f) {
@@ -537,11 +547,23 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
                               Progress& progress) {
     const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
                 nf = Index(m.faces_size());
-    const std::vector<std::uint8_t> selected = region_faces(m, w);
-    std::vector<std::uint8_t> split(ne, 0);
-    for (Index f = 0; f < nf; ++f)
-        if (selected[f])
-            for (Halfedge h : m.halfedges_of(Face(f))) split[HalfedgeMesh::edge(h).idx()] = 1;
+    // In one pass: the selected faces (region_faces()), their edges (split), and the faces
+    // with a vertex that moves (`near`: changed even when they are not refined).
+    std::vector<std::uint8_t> selected(nf, 0), near(nf, 0), split(ne, 0);
+    {
+        const Vertex* to = m.halfedge_to_array().data();
+        const Halfedge* next_of = m.halfedge_next_array().data();
+        const Halfedge* face_halfedge = m.face_halfedge_array().data();
+        for (Index f = 0; f < nf; ++f) {
+            const Index h0 = face_halfedge[f].idx(), h1 = next_of[h0].idx(), h2 = next_of[h1].idx();
+            const bool in0 = w[to[h0].idx()] > 0.0f, in1 = w[to[h1].idx()] > 0.0f,
+                       in2 = w[to[h2].idx()] > 0.0f;
+            near[f] = in0 || in1 || in2;
+            if (!(in0 && in1 && in2)) continue;
+            selected[f] = 1;
+            split[h0 >> 1] = split[h1 >> 1] = split[h2 >> 1] = 1;
+        }
+    }
     const Point* x = m.positions().data();
     const RegionStencils uniform = region_stencils(m, w, scheme, progress);
     progress.check_cancelled();
@@ -549,7 +571,6 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
     step.counts.grown_faces =
         close_red_green(m, w, selected, uniform, local_closure, target_angle, split);
     std::vector<std::uint8_t> splits(nf, 0);
-    const FaceCorners corners(m);
     for (Index f = 0; f < nf; ++f) {
         const Halfedge h0 = m.halfedge(Face(f)), h1 = m.next(h0), h2 = m.next(h1);
         const int c = split[h0.idx() >> 1] + split[h1.idx() >> 1] + split[h2.idx() >> 1];
@@ -571,32 +592,45 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
     const Vertex* to_in = m.halfedge_to_array().data();
     NewVertices nvx(out, morph);
     Point* p = out.positions().data();
+    // The uniform step's entries in order: the moving vertices counted, the edges with a
+    // moving end walked alongside the split ones (both ascending).
+    const Point* uniform_p = uniform.step.positions.data();
+    const int* uniform_st = uniform.step.stencils.data();
+    Index slot = 0;
     for (Index v = 0; v < nv; ++v) {
         const bool moves = w[v] > 0.0f;
-        nvx.add(
-            moves ? SubdivisionStencil(uniform.vertex_stencil(v)) : SubdivisionStencil::EvenKept,
-            x[v], w[v], v);
-        if (moves) p[v] = blend_by_weight(x[v], uniform.vertex_position(v), w[v]);
+        if (!moves) {
+            nvx.add(SubdivisionStencil::EvenKept, x[v], w[v], v);
+            continue;
+        }
+        const Index i = uniform.dense ? v : slot++;
+        nvx.add(SubdivisionStencil(uniform_st[i]), x[v], w[v], v);
+        p[v] = blend_by_weight(x[v], uniform_p[i], w[v]);
     }
+    std::size_t listed = 0;  // in uniform.edges
     for (Index e = 0, k = 0; e < ne; ++e) {
         if (!split[e]) continue;
         const Index a = to_in[2 * e + 1].idx(), b = to_in[2 * e].idx();
         const Point mid = 0.5 * (x[a] + x[b]);
         const float wmax = std::max(w[a], w[b]);
-        p[nv + k++] = wmax > 0.0f ? blend_by_weight(mid, uniform.edge_position(e), wmax) : mid;
-        nvx.add(wmax > 0.0f ? SubdivisionStencil(uniform.edge_stencil(e))
-                            : SubdivisionStencil::OddClosureMidpoint,
-                mid, std::min(w[a], w[b]), a, b);
+        if (wmax > 0.0f) {
+            Index i = nv + e;
+            if (!uniform.dense) {
+                while (uniform.edges[listed] < e) ++listed;  // e is listed: it has a moving end
+                i = Index(uniform.vertices.size() + listed);
+            }
+            p[nv + k++] = blend_by_weight(mid, uniform_p[i], wmax);
+            nvx.add(SubdivisionStencil(uniform_st[i]), mid, std::min(w[a], w[b]), a, b);
+        } else {
+            p[nv + k++] = mid;
+            nvx.add(SubdivisionStencil::OddClosureMidpoint, mid, std::min(w[a], w[b]), a, b);
+        }
     }
     step.counts.closure_flips = improve_closure(out, closure);
     step.counts.min_angle_touched = min_angle_of(m, touched);
     step.counts.min_angle_closure = min_angle_of(out, closure);
     // Faces of the coarse level left as they were: not refined, no vertex moved.
-    const auto changed = [&](Index f) {
-        if (splits[f] > 0) return true;
-        const auto v = corners(f);
-        return w[v[0]] > 0.0f || w[v[1]] > 0.0f || w[v[2]] > 0.0f;
-    };
+    const auto changed = [&](Index f) { return splits[f] > 0 || near[f]; };
     level_flatness(out, coarse_flat, changed, keep_flatness, step);
     finish(m, level, morph, std::move(nvx), step);
     return step;
