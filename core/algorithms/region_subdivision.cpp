@@ -180,8 +180,9 @@ struct NewVertices {
 };
 
 /// Writes levels, provenance, selection, vertex uvs (interpolated from the parents) and the
-/// morph start positions onto the new level.
-void finish(const HalfedgeMesh& coarse, int level, bool morph, NewVertices&& nv, RegionStep& step) {
+/// morph start positions onto the new level; step.selection gets the weights when `more_levels`.
+void finish(const HalfedgeMesh& coarse, int level, bool morph, bool more_levels, NewVertices&& nv,
+            RegionStep& step) {
     HalfedgeMesh& m = step.level.mesh;
     const std::size_t n_old = coarse.vertices_size(), n = m.vertices_size();
     auto& levels = m.get_vertex_property<int>(kLevelName).vector();  // added by NewVertices
@@ -200,8 +201,8 @@ void finish(const HalfedgeMesh& coarse, int level, bool morph, NewVertices&& nv,
             uv[v] = k == 1 ? uv_in.vector()[parents[v][0]] : sum / double(k);
         }
     }
-    step.selection = nv.selection;
-    m.add_vertex_property<float>(kSelectionProperty, 0.0f).vector() = std::move(nv.selection);
+    if (more_levels) step.selection = nv.selection;  // the next level's weights
+    m.add_vertex_property<float>(kSelectionProperty, 0.0f).vector().swap(nv.selection);
     step.level.correspondence.kind = MorphCorrespondence::Kind::FromEarlier;
     if (morph) step.level.correspondence.positions = std::move(nv.start);
 }
@@ -363,10 +364,12 @@ RegionStencils region_stencils(const HalfedgeMesh& m, const Selection& w, Subdiv
 /// The red-green closure of the split edges `split` (those of the selected faces on entry):
 /// a face with two split edges gets its third (red), and (unless local_closure) a face outside
 /// the selection with one split edge whose bisection would be flatter than target_angle gets
-/// its other two (red), until nothing changes. Returns the number of faces grown into.
+/// its other two (red), until nothing changes. `near`: the faces with a vertex of weight > 0.
+/// Returns the number of faces grown into.
 std::size_t close_red_green(const HalfedgeMesh& m, const Selection& w,
                             const std::vector<std::uint8_t>& selected,
-                            const RegionStencils& uniform, bool local_closure, double target_angle,
+                            const std::vector<std::uint8_t>& near, const RegionStencils& uniform,
+                            bool local_closure, double target_angle,
                             std::vector<std::uint8_t>& split) {
     const Index nf = Index(m.faces_size());
     const Point* x = m.positions().data();
@@ -405,8 +408,11 @@ std::size_t close_red_green(const HalfedgeMesh& m, const Selection& w,
         }
         return true;
     };
+    // On entry only the selected faces' edges are split: a face with a split edge has two
+    // vertices that move, so it is `near`.
     std::vector<Face> queue;
     for (Index f = 0; f < nf; ++f) {
+        if (!near[f]) continue;
         const int c = n_split(Face(f));
         if (c == 2 || (c == 1 && !local_closure)) queue.push_back(Face(f));
     }
@@ -569,7 +575,7 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
     progress.check_cancelled();
     RegionStep step;
     step.counts.grown_faces =
-        close_red_green(m, w, selected, uniform, local_closure, target_angle, split);
+        close_red_green(m, w, selected, near, uniform, local_closure, target_angle, split);
     std::vector<std::uint8_t> splits(nf, 0);
     for (Index f = 0; f < nf; ++f) {
         const Halfedge h0 = m.halfedge(Face(f)), h1 = m.next(h0), h2 = m.next(h1);
@@ -632,7 +638,7 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
     // Faces of the coarse level left as they were: not refined, no vertex moved.
     const auto changed = [&](Index f) { return splits[f] > 0 || near[f]; };
     level_flatness(out, coarse_flat, changed, keep_flatness, step);
-    finish(m, level, morph, std::move(nvx), step);
+    finish(m, level, morph, keep_flatness, std::move(nvx), step);
     return step;
 }
 
@@ -848,7 +854,7 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int le
         return moves(v[0]) || moves(v[1]) || moves(v[2]);
     };
     level_flatness(out, coarse_flat, changed, keep_flatness, step);
-    finish(m, level, morph, std::move(nvx), step);
+    finish(m, level, morph, keep_flatness, std::move(nvx), step);
     return step;
 }
 
