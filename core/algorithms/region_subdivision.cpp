@@ -547,16 +547,40 @@ std::vector<std::uint8_t> build_red_green(const HalfedgeMesh& m,
 }
 
 /// One red-green step of a 1-to-4 scheme on `m` (compact) with weights `w`.
+/// `coarse_flat`: the flatness of m's faces, or empty on the input (then computed here, in the
+/// first pass over the faces, and `target_angle`, the input's minimum angle, set from it).
 RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, SubdivisionScheme scheme,
-                              int level, bool morph, bool local_closure, double target_angle,
-                              const std::vector<double>& coarse_flat, bool keep_flatness,
+                              int level, bool morph, bool local_closure, double& target_angle,
+                              std::vector<double>& coarse_flat, bool keep_flatness,
                               Progress& progress) {
     const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
                 nf = Index(m.faces_size());
     // In one pass: the selected faces (region_faces()), their edges (split), and the faces
     // with a vertex that moves (`near`: changed even when they are not refined).
+    // On the input, the same pass computes the faces' flatness (flatness_of()).
     std::vector<std::uint8_t> selected(nf, 0), near(nf, 0), split(ne, 0);
-    {
+    const Point* x = m.positions().data();
+    if (coarse_flat.empty()) {
+        coarse_flat.resize(nf);
+        Index flattest = kInvalidIndex;
+        double largest = 0;
+        const Vertex* to = m.halfedge_to_array().data();
+        const Halfedge* next_of = m.halfedge_next_array().data();
+        const Halfedge* face_halfedge = m.face_halfedge_array().data();
+        for (Index f = 0; f < nf; ++f) {
+            const Index h0 = face_halfedge[f].idx(), h1 = next_of[h0].idx(), h2 = next_of[h1].idx();
+            const Index v0 = to[h0].idx(), v1 = to[h1].idx(), v2 = to[h2].idx();
+            const double flat = triangle_flatness(x[v0], x[v1], x[v2]);
+            coarse_flat[f] = flat;
+            if (flattest == kInvalidIndex || flat > largest) largest = flat, flattest = f;
+            const bool in0 = w[v0] > 0.0f, in1 = w[v1] > 0.0f, in2 = w[v2] > 0.0f;
+            near[f] = in0 || in1 || in2;
+            if (!(in0 && in1 && in2)) continue;
+            selected[f] = 1;
+            split[h0 >> 1] = split[h1 >> 1] = split[h2 >> 1] = 1;
+        }
+        target_angle = flattest == kInvalidIndex ? 180.0 : min_face_angle(m, Face(flattest));
+    } else {
         const Vertex* to = m.halfedge_to_array().data();
         const Halfedge* next_of = m.halfedge_next_array().data();
         const Halfedge* face_halfedge = m.face_halfedge_array().data();
@@ -570,7 +594,6 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
             split[h0 >> 1] = split[h1 >> 1] = split[h2 >> 1] = 1;
         }
     }
-    const Point* x = m.positions().data();
     const RegionStencils uniform = region_stencils(m, w, scheme, progress);
     progress.check_cancelled();
     RegionStep step;
@@ -917,10 +940,15 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
             current = &collected;
         }
         const bool sqrt3 = options.scheme == SubdivisionScheme::Sqrt3;
-        Index flattest = kInvalidIndex;  // of the input, then of the last level built
-        std::vector<double> flatness = flatness_of(*current, flattest);
-        report.min_angle_in =
-            flattest == kInvalidIndex ? 180.0 : min_face_angle(*current, Face(flattest));
+        Index flattest = kInvalidIndex;  // of the last level built
+        // The input's flatness and minimum angle (the 1-to-4 step computes them in its first
+        // pass over the faces).
+        std::vector<double> flatness;
+        if (sqrt3) {
+            flatness = flatness_of(*current, flattest);
+            report.min_angle_in =
+                flattest == kInvalidIndex ? 180.0 : min_face_angle(*current, Face(flattest));
+        }
         RegionStep latest;
         if (options.keep_levels) result.levels.reserve(std::size_t(options.iterations));
         for (int it = 1; it <= options.iterations; ++it) {
