@@ -66,12 +66,14 @@ struct RegionStep {
     SubdivisionLevel level;
     Selection selection;
     RegionClosureCounts counts;
-    std::vector<double> flatness;  ///< face_flatness() of every face of the level
+    std::vector<double> flatness;  ///< face_flatness() of every face (unless it is the last level)
+    Index flattest = kInvalidIndex;  ///< the level's flattest face (the first of equal ones)
 };
 
 /// The cosine of the smallest corner angle of triangle p0 p1 p2 (the corner opposite the
 /// shortest edge; 1 for a degenerate triangle): larger is flatter. No sort, no trigonometry.
-inline double triangle_flatness(const Point& p0, const Point& p1, const Point& p2) {
+__attribute__((always_inline)) inline double triangle_flatness(const Point& p0, const Point& p1,
+                                                               const Point& p2) {
     const double l0 = (p1 - p2).squaredNorm(), l1 = (p2 - p0).squaredNorm(),
                  l2 = (p0 - p1).squaredNorm();
     double s, a, b;  // the shortest edge, the two others (squared)
@@ -102,79 +104,92 @@ struct FaceCorners {
     }
 };
 
-/// face_flatness of every face of `m` (compact).
-std::vector<double> flatness_of(const HalfedgeMesh& m) {
+/// face_flatness of every face of `m` (compact), and its flattest face (the first of equal
+/// ones; invalid without faces) in the same pass.
+std::vector<double> flatness_of(const HalfedgeMesh& m, Index& flattest) {
     const FaceCorners corners(m);
     const Point* x = m.positions().data();
     std::vector<double> flat(m.faces_size());
+    flattest = kInvalidIndex;
+    double largest = 0;
     for (std::size_t f = 0; f < flat.size(); ++f) {
         const auto v = corners(f);
         flat[f] = triangle_flatness(x[v[0]], x[v[1]], x[v[2]]);
+        if (flattest == kInvalidIndex || flat[f] > largest) largest = flat[f], flattest = Index(f);
     }
     return flat;
 }
 
-/// The new level's flatness: a face of `out` that is a coarse face left as it was (`changed`
-/// false) keeps the coarse value, every other one is computed.
-std::vector<double> level_flatness(const HalfedgeMesh& out, const std::vector<double>& coarse,
-                                   const std::vector<std::uint8_t>& changed) {
+/// The new level's flatness into step.flatness (only when `keep`: a later level reads it) and
+/// its flattest face into step.flattest: a face of `out` that is a coarse face left as it was
+/// (`changed(f)` false) keeps the coarse value, every other one is computed.
+template <typename Changed>
+void level_flatness(const HalfedgeMesh& out, const std::vector<double>& coarse,
+                    const Changed& changed, bool keep, RegionStep& step) {
     const FaceCorners corners(out);
     const Point* x = out.positions().data();
-    std::vector<double> flat(out.faces_size());
-    for (std::size_t f = 0; f < flat.size(); ++f) {
-        if (f < coarse.size() && !changed[f]) {
-            flat[f] = coarse[f];
+    const std::size_t nf = out.faces_size();
+    if (keep) step.flatness.resize(nf);
+    double flattest = 0;
+    for (std::size_t f = 0; f < nf; ++f) {
+        double flat;
+        if (f < coarse.size() && !changed(Index(f))) {
+            flat = coarse[f];
         } else {
             const auto v = corners(f);
-            flat[f] = triangle_flatness(x[v[0]], x[v[1]], x[v[2]]);
+            flat = triangle_flatness(x[v[0]], x[v[1]], x[v[2]]);
+        }
+        if (keep) step.flatness[f] = flat;
+        if (step.flattest == kInvalidIndex || flat > flattest) {
+            flattest = flat;
+            step.flattest = Index(f);
         }
     }
-    return flat;
 }
 
-/// The smallest angle in degrees over the faces of `m` whose flatness is `flat` (180 without
-/// faces): the flattest face's angle, computed exactly.
-double min_angle_by_flatness(const HalfedgeMesh& m, const std::vector<double>& flat) {
-    if (flat.empty()) return 180.0;
-    const std::size_t f = std::size_t(std::max_element(flat.begin(), flat.end()) - flat.begin());
-    return min_face_angle(m, Face(Index(f)));
-}
-
-/// Per-vertex bookkeeping of a new level, filled by the refinement and written as the level's
-/// properties by finish().
+/// Per-vertex bookkeeping of a new level `out` (built, its vertices counted), written in vertex
+/// order by the refinement: the provenance straight into out's properties (added here, in
+/// the order finish() expects), the selection and the morph start positions (only when
+/// `morph`) into vectors that finish() hands on.
 struct NewVertices {
-    std::vector<int> stencil;
-    std::vector<SubdivisionParents> parents;
+    int* stencil;
+    SubdivisionParents* parents;
+    bool morph;
     std::vector<Point> start;  // morph start positions
     Selection selection;
-    void reserve(std::size_t n) {
-        stencil.reserve(n);
-        parents.reserve(n);
-        start.reserve(n);
-        selection.reserve(n);
+    std::size_t n = 0;
+    NewVertices(HalfedgeMesh& out, bool with_morph) : morph(with_morph) {
+        out.add_vertex_property<int>(kLevelName, 0);  // filled by finish()
+        stencil = out.add_vertex_property<int>(kStencilName, 0).vector().data();
+        parents = out.add_vertex_property<SubdivisionParents>(
+                         kParentsName, SubdivisionParents::Constant(kInvalidIndex))
+                      .vector()
+                      .data();
+        const std::size_t count = out.vertices_size();
+        if (morph) start.reserve(count);
+        selection.reserve(count);
     }
     void add(SubdivisionStencil st, const Point& from, float weight, Index a,
              Index b = kInvalidIndex, Index c = kInvalidIndex) {
-        stencil.push_back(int(st));
-        parents.emplace_back(a, b, c);
-        start.push_back(from);
+        stencil[n] = int(st);
+        parents[n] = SubdivisionParents(a, b, c);
+        ++n;
+        if (morph) start.push_back(from);
         selection.push_back(weight);
     }
 };
 
 /// Writes levels, provenance, selection, vertex uvs (interpolated from the parents) and the
-/// morph start positions onto the new level.
-void finish(const HalfedgeMesh& coarse, int level, bool morph, NewVertices&& nv, RegionStep& step) {
+/// morph start positions onto the new level; step.selection gets the weights when `more_levels`.
+void finish(const HalfedgeMesh& coarse, int level, bool morph, bool more_levels, NewVertices&& nv,
+            RegionStep& step) {
     HalfedgeMesh& m = step.level.mesh;
     const std::size_t n_old = coarse.vertices_size(), n = m.vertices_size();
-    auto& levels = m.add_vertex_property<int>(kLevelName, level).vector();
+    auto& levels = m.get_vertex_property<int>(kLevelName).vector();  // added by NewVertices
     const auto in_levels = coarse.get_vertex_property<int>(kLevelName);
     for (std::size_t v = 0; v < n_old; ++v)
         levels[v] = level > 1 && in_levels ? in_levels.vector()[v] : 0;
-    m.add_vertex_property<int>(kStencilName, 0).vector() = std::move(nv.stencil);
-    m.add_vertex_property<SubdivisionParents>(kParentsName,
-                                              SubdivisionParents::Constant(kInvalidIndex))
-        .vector() = std::move(nv.parents);
+    std::fill(levels.begin() + std::ptrdiff_t(n_old), levels.end(), level);
     if (const auto uv_in = coarse.get_vertex_property<TexCoord>("v:texcoord")) {
         auto& uv = m.add_vertex_property<TexCoord>("v:texcoord", TexCoord::Zero()).vector();
         const auto& parents = m.get_vertex_property<SubdivisionParents>(kParentsName).vector();
@@ -186,8 +201,8 @@ void finish(const HalfedgeMesh& coarse, int level, bool morph, NewVertices&& nv,
             uv[v] = k == 1 ? uv_in.vector()[parents[v][0]] : sum / double(k);
         }
     }
-    step.selection = nv.selection;
-    m.add_vertex_property<float>(kSelectionProperty, 0.0f).vector() = std::move(nv.selection);
+    if (more_levels) step.selection = nv.selection;  // the next level's weights
+    m.add_vertex_property<float>(kSelectionProperty, 0.0f).vector().swap(nv.selection);
     step.level.correspondence.kind = MorphCorrespondence::Kind::FromEarlier;
     if (morph) step.level.correspondence.positions = std::move(nv.start);
 }
@@ -267,9 +282,17 @@ std::size_t improve_closure(HalfedgeMesh& m, const std::vector<std::uint8_t>& cl
         const Face f1 = m.face(HalfedgeMesh::halfedge(e, 1));
         return f0.is_valid() && f1.is_valid() && closure[f0.idx()] && closure[f1.idx()];
     };
+    // The candidates in ascending edge order (as a scan over every edge would list them), found
+    // from the closure's faces.
     std::vector<Edge> queue;
-    for (Edge e : m.edges())
-        if (candidate(e)) queue.push_back(e);
+    for (std::size_t f = 0; f < closure.size(); ++f)
+        if (closure[f])
+            for (Halfedge h : m.halfedges_of(Face(Index(f)))) {
+                const Edge e = HalfedgeMesh::edge(h);
+                if (candidate(e)) queue.push_back(e);
+            }
+    std::sort(queue.begin(), queue.end(), [](Edge a, Edge b) { return a.idx() < b.idx(); });
+    queue.erase(std::unique(queue.begin(), queue.end()), queue.end());
     std::size_t flips = 0;
     const std::size_t cap = 10 * queue.size() + 10;
     while (!queue.empty() && flips < cap) {
@@ -296,30 +319,59 @@ double min_angle_of(const HalfedgeMesh& m, const std::vector<std::uint8_t>& flag
 }
 
 /// The uniform step's positions and stencils where region subdivision uses them: old vertices
-/// that move and the edges around them (the whole mesh's pass, across seams, where the mesh
-/// has coincident vertices).
-UniformStep1to4 region_stencils(const HalfedgeMesh& m, const Selection& w, SubdivisionScheme scheme,
-                                Progress& progress) {
+/// that move (weight > 0) and the edges with such an end, packed (uniform_step_1to4_listed():
+/// a small region allocates little), or the whole mesh's pass, across seams, where the mesh
+/// has coincident vertices.
+struct RegionStencils {
+    bool dense = false;  ///< the whole mesh's step: entry v, then nv + e
+    Index nv = 0;
+    std::vector<Index> vertices;  ///< listed (ascending): the moving vertices
+    std::vector<Index> edges;     ///< listed (ascending): the edges with a moving end
+    UniformStep1to4 step;
+    /// The entry of a moving vertex, or of an edge with a moving end (binary search: for the
+    /// closure's few look-ups; the passes in order count the entries instead).
+    Index vertex_slot(Index v) const {
+        return dense ? v
+                     : Index(std::lower_bound(vertices.begin(), vertices.end(), v) -
+                             vertices.begin());
+    }
+    Index edge_slot(Index e) const {
+        return dense ? nv + e
+                     : Index(vertices.size()) +
+                           Index(std::lower_bound(edges.begin(), edges.end(), e) - edges.begin());
+    }
+};
+
+RegionStencils region_stencils(const HalfedgeMesh& m, const Selection& w, SubdivisionScheme scheme,
+                               Progress& progress) {
     const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size());
-    std::vector<std::uint8_t> vertex_needed(nv, 0), edge_needed(ne, 0);
-    for (Index v = 0; v < nv; ++v) vertex_needed[v] = w[v] > 0.0f ? 1 : 0;
+    RegionStencils r;
+    r.nv = nv;
+    if (!find_coincident_vertices(m).empty()) {
+        r.dense = true;
+        r.step = uniform_step_1to4(m, scheme, progress);
+        return r;
+    }
+    for (Index v = 0; v < nv; ++v)
+        if (w[v] > 0.0f) r.vertices.push_back(v);
+    const Vertex* to = m.halfedge_to_array().data();
     for (Index e = 0; e < ne; ++e)
-        edge_needed[e] =
-            vertex_needed[m.vertex(Edge(e), 0).idx()] || vertex_needed[m.vertex(Edge(e), 1).idx()];
-    return find_coincident_vertices(m).empty()
-               ? uniform_step_1to4_at(m, scheme, vertex_needed, edge_needed, progress)
-               : uniform_step_1to4(m, scheme, progress);
+        if (w[to[2 * e].idx()] > 0.0f || w[to[2 * e + 1].idx()] > 0.0f) r.edges.push_back(e);
+    r.step = uniform_step_1to4_listed(m, scheme, r.vertices, r.edges, progress);
+    return r;
 }
 
 /// The red-green closure of the split edges `split` (those of the selected faces on entry):
 /// a face with two split edges gets its third (red), and (unless local_closure) a face outside
 /// the selection with one split edge whose bisection would be flatter than target_angle gets
-/// its other two (red), until nothing changes. Returns the number of faces grown into.
+/// its other two (red), until nothing changes. `near`: the faces with a vertex of weight > 0.
+/// Returns the number of faces grown into.
 std::size_t close_red_green(const HalfedgeMesh& m, const Selection& w,
                             const std::vector<std::uint8_t>& selected,
-                            const UniformStep1to4& uniform, bool local_closure, double target_angle,
+                            const std::vector<std::uint8_t>& near, const RegionStencils& uniform,
+                            bool local_closure, double target_angle,
                             std::vector<std::uint8_t>& split) {
-    const Index nv = Index(m.vertices_size()), nf = Index(m.faces_size());
+    const Index nf = Index(m.faces_size());
     const Point* x = m.positions().data();
     const Halfedge* next_of = m.halfedge_next_array().data();
     const Halfedge* face_halfedge = m.face_halfedge_array().data();
@@ -330,12 +382,17 @@ std::size_t close_red_green(const HalfedgeMesh& m, const Selection& w,
     };
     // Where each vertex of the new level will be (the same expressions as below).
     const auto old_position = [&](Index v) {
-        return w[v] > 0.0f ? blend_by_weight(x[v], uniform.positions[v], w[v]) : x[v];
+        return w[v] > 0.0f
+                   ? blend_by_weight(x[v], uniform.step.positions[uniform.vertex_slot(v)], w[v])
+                   : x[v];
     };
     const auto edge_position = [&](Index e) {
         const Index a = m.vertex(Edge(e), 1).idx(), b = m.vertex(Edge(e), 0).idx();
-        return blend_by_weight(0.5 * (x[a] + x[b]), uniform.positions[nv + e],
-                               std::max(w[a], w[b]));
+        const Point mid = 0.5 * (x[a] + x[b]);
+        const float wmax = std::max(w[a], w[b]);
+        return wmax > 0.0f
+                   ? blend_by_weight(mid, uniform.step.positions[uniform.edge_slot(e)], wmax)
+                   : mid;
     };
     // Whether the bisection of face f (one split edge) keeps every angle >= target_angle.
     const auto green_ok = [&](Face f) {
@@ -351,8 +408,11 @@ std::size_t close_red_green(const HalfedgeMesh& m, const Selection& w,
         }
         return true;
     };
+    // On entry only the selected faces' edges are split: a face with a split edge has two
+    // vertices that move, so it is `near`.
     std::vector<Face> queue;
     for (Index f = 0; f < nf; ++f) {
+        if (!near[f]) continue;
         const int c = n_split(Face(f));
         if (c == 2 || (c == 1 && !local_closure)) queue.push_back(Face(f));
     }
@@ -381,9 +441,13 @@ std::size_t close_red_green(const HalfedgeMesh& m, const Selection& w,
 /// Writes the red-green refinement of `m` (split edges `split`, split counts per face `splits`:
 /// 0, 1 or 3) into `out`: a bare copy of m grown to the new sizes, connectivity only (the new
 /// vertices' positions are left to the caller: the vertex of split edge number k, in edge
-/// order, is nv + k). Returns the coarse face each face of `out` lies in.
-std::vector<Index> build_red_green(const HalfedgeMesh& m, const std::vector<std::uint8_t>& split,
-                                   const std::vector<std::uint8_t>& splits, HalfedgeMesh& out) {
+/// order, is nv + k). Returns the flags of the closure's faces in `out`: the faces of refined
+/// coarse faces that `touched` flags (per coarse face).
+std::vector<std::uint8_t> build_red_green(const HalfedgeMesh& m,
+                                          const std::vector<std::uint8_t>& split,
+                                          const std::vector<std::uint8_t>& splits,
+                                          const std::vector<std::uint8_t>& touched,
+                                          HalfedgeMesh& out) {
     const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
                 nf = Index(m.faces_size());
     // The new elements, numbered in order: the vertex of split edge number k (ascending edge
@@ -393,17 +457,9 @@ std::vector<Index> build_red_green(const HalfedgeMesh& m, const std::vector<std:
     Index n_split_edges = 0;
     for (Index e = 0; e < ne; ++e)
         if (split[e]) split_number[e] = n_split_edges++;
-    std::vector<Index> first_edge(nf, kInvalidIndex), first_face(nf, kInvalidIndex);
-    Index next_edge = ne + n_split_edges, next_face = nf;
-    for (Index f = 0; f < nf; ++f) {
-        if (splits[f] == 3) {
-            first_edge[f] = next_edge, first_face[f] = next_face;
-            next_edge += 3, next_face += 3;
-        } else if (splits[f] == 1) {
-            first_edge[f] = next_edge, first_face[f] = next_face;
-            next_edge += 1, next_face += 1;
-        }
-    }
+    Index n_new = 0;  // inner edges and corner faces of red faces, cuts and halves of green ones
+    for (Index f = 0; f < nf; ++f) n_new += splits[f];
+    const Index next_edge = ne + n_split_edges + n_new, next_face = nf + n_new;
     out = bare_copy(m, std::size_t(nv) + n_split_edges, next_edge, next_face);
     Vertex* to = out.halfedge_to_array().data();
     Halfedge* nx = out.halfedge_next_array().data();
@@ -451,16 +507,18 @@ std::vector<Index> build_red_green(const HalfedgeMesh& m, const std::vector<std:
         const Halfedge g = vh[v];
         if (g.is_valid() && split[g.idx() >> 1]) vh[v] = Halfedge(first(g.idx()));
     }
-    // The coarse face each face of `out` lies in.
-    std::vector<Index> origin(next_face);
-    for (Index f = 0; f < nf; ++f) {
-        origin[f] = f;
+    // The faces, in order (the first new edge and face of each refined face follow from the
+    // counts of the ones before it).
+    std::vector<std::uint8_t> closure(next_face, 0);
+    for (Index f = 0, e0 = ne + n_split_edges, f0 = nf; f < nf;
+         e0 += splits[f], f0 += splits[f], ++f) {
         if (splits[f] == 0) continue;
+        if (touched[f])
+            std::fill_n(closure.begin() + std::ptrdiff_t(f0), splits[f], 1), closure[f] = 1;
         Index h[3];
         h[0] = m.halfedge(Face(f)).idx();
         h[1] = next_in[h[0]].idx();
         h[2] = next_in[h[1]].idx();
-        const Index e0 = first_edge[f], f0 = first_face[f];
         if (splits[f] == 3) {
             // Corner k (at the end of h[k]): second(h[k]), first(h[k+1]), and the inner edge
             // e0 + k between the two midpoints; the middle keeps f.
@@ -471,7 +529,6 @@ std::vector<Index> build_red_green(const HalfedgeMesh& m, const std::vector<std:
                 to[in] = Vertex(mid_of(hk));
                 to[in + 1] = Vertex(mid_of(hn));
                 triangle(f0 + Index(k), second(hk), first(hn), in);
-                origin[f0 + Index(k)] = f;
                 inner[k] = in + 1;  // mid(hk) -> mid(hn), in the middle
             }
             triangle(f, inner[0], inner[1], inner[2]);
@@ -484,31 +541,65 @@ std::vector<Index> build_red_green(const HalfedgeMesh& m, const std::vector<std:
             to[cut + 1] = Vertex(mid_of(hs));
             triangle(f, first(hs), cut, h2);
             triangle(f0, second(hs), h1, cut + 1);
-            origin[f0] = f;
         }
     }
-    return origin;
+    return closure;
 }
 
 /// One red-green step of a 1-to-4 scheme on `m` (compact) with weights `w`.
+/// `coarse_flat`: the flatness of m's faces, or empty on the input (then computed here, in the
+/// first pass over the faces, and `target_angle`, the input's minimum angle, set from it).
 RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, SubdivisionScheme scheme,
-                              int level, bool morph, bool local_closure, double target_angle,
-                              const std::vector<double>& coarse_flat, Progress& progress) {
+                              int level, bool morph, bool local_closure, double& target_angle,
+                              std::vector<double>& coarse_flat, bool keep_flatness,
+                              Progress& progress) {
     const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
                 nf = Index(m.faces_size());
-    const std::vector<std::uint8_t> selected = region_faces(m, w);
-    std::vector<std::uint8_t> split(ne, 0);
-    for (Index f = 0; f < nf; ++f)
-        if (selected[f])
-            for (Halfedge h : m.halfedges_of(Face(f))) split[HalfedgeMesh::edge(h).idx()] = 1;
+    // In one pass: the selected faces (region_faces()), their edges (split), and the faces
+    // with a vertex that moves (`near`: changed even when they are not refined).
+    // On the input, the same pass computes the faces' flatness (flatness_of()).
+    std::vector<std::uint8_t> selected(nf, 0), near(nf, 0), split(ne, 0);
     const Point* x = m.positions().data();
-    const UniformStep1to4 uniform = region_stencils(m, w, scheme, progress);
+    if (coarse_flat.empty()) {
+        coarse_flat.resize(nf);
+        Index flattest = kInvalidIndex;
+        double largest = 0;
+        const Vertex* to = m.halfedge_to_array().data();
+        const Halfedge* next_of = m.halfedge_next_array().data();
+        const Halfedge* face_halfedge = m.face_halfedge_array().data();
+        for (Index f = 0; f < nf; ++f) {
+            const Index h0 = face_halfedge[f].idx(), h1 = next_of[h0].idx(), h2 = next_of[h1].idx();
+            const Index v0 = to[h0].idx(), v1 = to[h1].idx(), v2 = to[h2].idx();
+            const double flat = triangle_flatness(x[v0], x[v1], x[v2]);
+            coarse_flat[f] = flat;
+            if (flattest == kInvalidIndex || flat > largest) largest = flat, flattest = f;
+            const bool in0 = w[v0] > 0.0f, in1 = w[v1] > 0.0f, in2 = w[v2] > 0.0f;
+            near[f] = in0 || in1 || in2;
+            if (!(in0 && in1 && in2)) continue;
+            selected[f] = 1;
+            split[h0 >> 1] = split[h1 >> 1] = split[h2 >> 1] = 1;
+        }
+        target_angle = flattest == kInvalidIndex ? 180.0 : min_face_angle(m, Face(flattest));
+    } else {
+        const Vertex* to = m.halfedge_to_array().data();
+        const Halfedge* next_of = m.halfedge_next_array().data();
+        const Halfedge* face_halfedge = m.face_halfedge_array().data();
+        for (Index f = 0; f < nf; ++f) {
+            const Index h0 = face_halfedge[f].idx(), h1 = next_of[h0].idx(), h2 = next_of[h1].idx();
+            const bool in0 = w[to[h0].idx()] > 0.0f, in1 = w[to[h1].idx()] > 0.0f,
+                       in2 = w[to[h2].idx()] > 0.0f;
+            near[f] = in0 || in1 || in2;
+            if (!(in0 && in1 && in2)) continue;
+            selected[f] = 1;
+            split[h0 >> 1] = split[h1 >> 1] = split[h2 >> 1] = 1;
+        }
+    }
+    const RegionStencils uniform = region_stencils(m, w, scheme, progress);
     progress.check_cancelled();
     RegionStep step;
     step.counts.grown_faces =
-        close_red_green(m, w, selected, uniform, local_closure, target_angle, split);
+        close_red_green(m, w, selected, near, uniform, local_closure, target_angle, split);
     std::vector<std::uint8_t> splits(nf, 0);
-    const FaceCorners corners(m);
     for (Index f = 0; f < nf; ++f) {
         const Halfedge h0 = m.halfedge(Face(f)), h1 = m.next(h0), h2 = m.next(h1);
         const int c = split[h0.idx() >> 1] + split[h1.idx() >> 1] + split[h2.idx() >> 1];
@@ -521,45 +612,56 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
     check_no_refined_pillow(m, [&](Face f) { return splits[f.idx()] > 0; });
     progress.check_cancelled();
     HalfedgeMesh& out = step.level.mesh;
-    const std::vector<Index> origin = build_red_green(m, split, splits, out);
+    // The closure: the faces cut from refined faces outside the selection (green halves, the
+    // children of faces that turned red), improved below by max-min-angle flips among
+    // themselves.
+    std::vector<std::uint8_t> touched(nf, 0);
+    for (Index f = 0; f < nf; ++f) touched[f] = !selected[f] && splits[f] > 0;
+    const std::vector<std::uint8_t> closure = build_red_green(m, split, splits, touched, out);
     const Vertex* to_in = m.halfedge_to_array().data();
-    NewVertices nvx;
-    nvx.reserve(out.vertices_size());
+    NewVertices nvx(out, morph);
+    Point* p = out.positions().data();
+    // The uniform step's entries in order: the moving vertices counted, the edges with a
+    // moving end walked alongside the split ones (both ascending).
+    const Point* uniform_p = uniform.step.positions.data();
+    const int* uniform_st = uniform.step.stencils.data();
+    Index slot = 0;
     for (Index v = 0; v < nv; ++v) {
         const bool moves = w[v] > 0.0f;
-        nvx.add(moves ? SubdivisionStencil(uniform.stencils[v]) : SubdivisionStencil::EvenKept,
-                x[v], w[v], v);
+        if (!moves) {
+            nvx.add(SubdivisionStencil::EvenKept, x[v], w[v], v);
+            continue;
+        }
+        const Index i = uniform.dense ? v : slot++;
+        nvx.add(SubdivisionStencil(uniform_st[i]), x[v], w[v], v);
+        p[v] = blend_by_weight(x[v], uniform_p[i], w[v]);
     }
-    Point* p = out.positions().data();
+    std::size_t listed = 0;  // in uniform.edges
     for (Index e = 0, k = 0; e < ne; ++e) {
         if (!split[e]) continue;
         const Index a = to_in[2 * e + 1].idx(), b = to_in[2 * e].idx();
         const Point mid = 0.5 * (x[a] + x[b]);
         const float wmax = std::max(w[a], w[b]);
-        p[nv + k++] = blend_by_weight(mid, uniform.positions[nv + e], wmax);
-        nvx.add(wmax > 0.0f ? SubdivisionStencil(uniform.stencils[nv + e])
-                            : SubdivisionStencil::OddClosureMidpoint,
-                mid, std::min(w[a], w[b]), a, b);
+        if (wmax > 0.0f) {
+            Index i = nv + e;
+            if (!uniform.dense) {
+                while (uniform.edges[listed] < e) ++listed;  // e is listed: it has a moving end
+                i = Index(uniform.vertices.size() + listed);
+            }
+            p[nv + k++] = blend_by_weight(mid, uniform_p[i], wmax);
+            nvx.add(SubdivisionStencil(uniform_st[i]), mid, std::min(w[a], w[b]), a, b);
+        } else {
+            p[nv + k++] = mid;
+            nvx.add(SubdivisionStencil::OddClosureMidpoint, mid, std::min(w[a], w[b]), a, b);
+        }
     }
-    for (Index v = 0; v < nv; ++v)
-        if (w[v] > 0.0f) p[v] = blend_by_weight(x[v], uniform.positions[v], w[v]);
-    // The closure: the faces cut from refined faces outside the selection (green halves, the
-    // children of faces that turned red), improved by max-min-angle flips among themselves.
-    std::vector<std::uint8_t> touched(nf, 0), closure(out.faces_size(), 0);
-    for (Index f = 0; f < nf; ++f) touched[f] = !selected[f] && splits[f] > 0;
-    for (std::size_t f = 0; f < closure.size(); ++f)
-        closure[f] = origin[f] != kInvalidIndex && touched[origin[f]];
     step.counts.closure_flips = improve_closure(out, closure);
     step.counts.min_angle_touched = min_angle_of(m, touched);
     step.counts.min_angle_closure = min_angle_of(out, closure);
     // Faces of the coarse level left as they were: not refined, no vertex moved.
-    std::vector<std::uint8_t> changed(nf, 0);
-    for (Index f = 0; f < nf; ++f) {
-        const auto v = corners(f);
-        changed[f] = splits[f] > 0 || w[v[0]] > 0.0f || w[v[1]] > 0.0f || w[v[2]] > 0.0f;
-    }
-    step.flatness = level_flatness(out, coarse_flat, changed);
-    finish(m, level, morph, std::move(nvx), step);
+    const auto changed = [&](Index f) { return splits[f] > 0 || near[f]; };
+    level_flatness(out, coarse_flat, changed, keep_flatness, step);
+    finish(m, level, morph, keep_flatness, std::move(nvx), step);
     return step;
 }
 
@@ -662,7 +764,8 @@ std::vector<std::uint8_t> sqrt3_closure(const HalfedgeMesh& m, HalfedgeMesh& out
 /// One adaptive Sqrt3 step on `m` (compact) with weights `w`.
 RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int level, bool morph,
                                bool local_closure, double target_angle,
-                               const std::vector<double>& coarse_flat, Progress& progress) {
+                               const std::vector<double>& coarse_flat, bool keep_flatness,
+                               Progress& progress) {
     const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
                 nf = Index(m.faces_size());
     const std::vector<std::uint8_t> selected = region_faces(m, w);
@@ -718,8 +821,7 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int le
         const Face g = face_in[hx ^ 1u];
         return g.is_valid() && split_face[g.idx()] != 0;
     };
-    NewVertices nvx;
-    nvx.reserve(std::size_t(nv) + n_split_faces);
+    NewVertices nvx(out, morph);
     for (Index v = 0; v < nv; ++v) {
         nvx.add(moves(v) ? SubdivisionStencil::EvenRelaxed : SubdivisionStencil::EvenKept, x[v],
                 w[v], v);
@@ -768,14 +870,14 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int le
             p[v] = blend_by_weight(x[v], relaxed[v], w[v]);
     const std::vector<std::uint8_t> closure = sqrt3_closure(m, out, split_face, step.counts);
     // Faces of the coarse level left as they were: not split, not flipped, no vertex moved.
-    std::vector<std::uint8_t> changed(nf, 0);
     const FaceCorners corners(m);
-    for (Index f = 0; f < nf; ++f) {
+    const auto changed = [&](Index f) {
+        if (split_face[f] || closure[f]) return true;
         const auto v = corners(f);
-        changed[f] = split_face[f] || closure[f] || moves(v[0]) || moves(v[1]) || moves(v[2]);
-    }
-    step.flatness = level_flatness(out, coarse_flat, changed);
-    finish(m, level, morph, std::move(nvx), step);
+        return moves(v[0]) || moves(v[1]) || moves(v[2]);
+    };
+    level_flatness(out, coarse_flat, changed, keep_flatness, step);
+    finish(m, level, morph, keep_flatness, std::move(nvx), step);
     return step;
 }
 
@@ -838,25 +940,34 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
             current = &collected;
         }
         const bool sqrt3 = options.scheme == SubdivisionScheme::Sqrt3;
-        std::vector<double> flatness = flatness_of(*current);
-        report.min_angle_in = min_angle_by_flatness(*current, flatness);
+        Index flattest = kInvalidIndex;  // of the last level built
+        // The input's flatness and minimum angle (the 1-to-4 step computes them in its first
+        // pass over the faces).
+        std::vector<double> flatness;
+        if (sqrt3) {
+            flatness = flatness_of(*current, flattest);
+            report.min_angle_in =
+                flattest == kInvalidIndex ? 180.0 : min_face_angle(*current, Face(flattest));
+        }
         RegionStep latest;
         if (options.keep_levels) result.levels.reserve(std::size_t(options.iterations));
         for (int it = 1; it <= options.iterations; ++it) {
             progress.check_cancelled();
             progress.report(double(it - 1) / options.iterations, "subdividing the region");
             const bool morph = options.morph && (options.keep_levels || it == options.iterations);
+            const bool keep_flatness = it < options.iterations;  // the next level reads it
             RegionStep step =
                 sqrt3 ? refine_region_sqrt3(*current, weights, it, morph, options.local_closure,
-                                            report.min_angle_in, flatness, progress)
+                                            report.min_angle_in, flatness, keep_flatness, progress)
                       : refine_region_1to4(*current, weights, options.scheme, it, morph,
                                            options.local_closure, report.min_angle_in, flatness,
-                                           progress);
+                                           keep_flatness, progress);
             report.closure.push_back(step.counts);
             result.level_counts.push_back(
                 {step.level.mesh.n_vertices(), step.level.mesh.n_faces()});
             weights = std::move(step.selection);
             flatness = std::move(step.flatness);
+            flattest = step.flattest;
             if (options.keep_levels) {
                 result.levels.push_back(std::move(step.level));
                 current = &result.levels.back().mesh;
@@ -869,7 +980,9 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
         if (mesh.get_halfedge_property<TexCoord>("h:texcoord"))
             result.notes.push_back(
                 "corner texture coordinates (h:texcoord) are not carried by region subdivision");
-        report.min_angle_out = min_angle_by_flatness(result.levels.back().mesh, flatness);
+        report.min_angle_out = flattest == kInvalidIndex
+                                   ? 180.0
+                                   : min_face_angle(result.levels.back().mesh, Face(flattest));
     }
     progress.report(1.0, "subdividing the region");
     result.ms =

@@ -99,8 +99,8 @@ std::vector<std::uint8_t> region_faces(const HalfedgeMesh& mesh, const Selection
 /// selection that does not fit the mesh (before anything is done), TopologyError when a
 /// closed two-triangle pillow would be refined, Cancelled from the progress. Complexity: one
 /// copy of the mesh and a few O(V + F) scans of flags per iteration, the scheme's stencils
-/// only at the region's vertices and edges (uniform_step_1to4_at()), plus O(size of the
-/// refined part and its closure).
+/// only at the region's vertices and edges (uniform_step_1to4_listed(), packed), plus
+/// O(size of the refined part and its closure).
 SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOptions& options,
                                    const Selection& selection, Progress& progress,
                                    RegionSubdivisionReport& report);

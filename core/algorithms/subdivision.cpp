@@ -1144,6 +1144,39 @@ UniformStep1to4 uniform_step_1to4_at(const HalfedgeMesh& mesh, SubdivisionScheme
     return step;
 }
 
+UniformStep1to4 uniform_step_1to4_listed(const HalfedgeMesh& mesh, SubdivisionScheme scheme,
+                                         const std::vector<Index>& vertices,
+                                         const std::vector<Index>& edges, Progress& progress) {
+    const In m(mesh);
+    const bool in_range =
+        std::all_of(vertices.begin(), vertices.end(), [&](Index v) { return v < m.nv; }) &&
+        std::all_of(edges.begin(), edges.end(), [&](Index e) { return e < m.ne; });
+    if (mesh.has_garbage() || scheme == SubdivisionScheme::Sqrt3 || !in_range)
+        throw InvalidArgument(
+            "uniform_step_1to4_listed: expected a compact mesh, a 1-to-4 scheme (loop, "
+            "butterfly, modified-butterfly) and vertex and edge indices within the mesh");
+    const std::size_t n = vertices.size() + edges.size();
+    UniformStep1to4 step;
+    step.positions.resize(n);
+    step.stencils.resize(n);
+    std::vector<std::pair<Index, Index>> ring;
+    const bool loop = scheme == SubdivisionScheme::Loop;
+    std::size_t i = 0;
+    for (const Index v : vertices) {
+        if ((i & kCheckMask) == 0) progress.check_cancelled();
+        step.positions[i] = loop ? loop_even_at(m, v, ring) : m.x[v];
+        step.stencils[i++] = int(even_stencil_at(m, v, scheme));
+    }
+    ExtraordinaryWeights weights;
+    const bool modified = scheme == SubdivisionScheme::ModifiedButterfly;
+    for (const Index e : edges) {
+        if ((i & kCheckMask) == 0) progress.check_cancelled();
+        step.positions[i] = loop ? loop_odd_at(m, e) : butterfly_odd_at(m, e, modified, weights);
+        step.stencils[i++] = int(odd_stencil_at(m, e, scheme));
+    }
+    return step;
+}
+
 UniformStep1to4 uniform_step_1to4(const HalfedgeMesh& mesh, SubdivisionScheme scheme,
                                   Progress& progress) {
     if (mesh.has_garbage() || scheme == SubdivisionScheme::Sqrt3)

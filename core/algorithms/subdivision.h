@@ -143,4 +143,12 @@ UniformStep1to4 uniform_step_1to4_at(const HalfedgeMesh& mesh, SubdivisionScheme
                                      const std::vector<std::uint8_t>& vertices,
                                      const std::vector<std::uint8_t>& edges, Progress& progress);
 
+/// The same values again, packed: entry i of the result is old vertex `vertices[i]`, entry
+/// vertices.size() + j the new vertex of edge `edges[j]` (indices must be in range), so that
+/// a small region allocates a small result. Same preconditions and errors as
+/// uniform_step_1to4_at(). O(valence) per listed element.
+UniformStep1to4 uniform_step_1to4_listed(const HalfedgeMesh& mesh, SubdivisionScheme scheme,
+                                         const std::vector<Index>& vertices,
+                                         const std::vector<Index>& edges, Progress& progress);
+
 }  // namespace trilab

@@ -479,6 +479,53 @@ TEST_CASE("uniform_step_1to4_at gives the uniform step's values bit for bit wher
     }
 }
 
+TEST_CASE("uniform_step_1to4_listed gives the uniform step's values bit for bit, packed",
+          "[subdivision][selection]") {
+    NullProgress progress;
+    std::vector<NamedMesh> meshes;
+    meshes.push_back({"default model", make_default_model()});
+    meshes.push_back({"open grid", make_grid(8)});  // boundary rules
+    const std::string bunny = test::shared_mesh("stanford-bunny.obj");
+    if (test::present_or_skip(bunny)) {
+        HalfedgeMesh m = read_mesh(bunny).mesh;
+        m.garbage_collection();
+        meshes.push_back({"bunny", std::move(m)});
+    }
+    for (const NamedMesh& fixture : meshes) {
+        const HalfedgeMesh& mesh = fixture.mesh;
+        const std::size_t nv = mesh.vertices_size();
+        // Every third vertex and every other edge, in the order of the lists.
+        std::vector<Index> vertices, edges;
+        for (std::size_t v = 0; v < nv; v += 3) vertices.push_back(Index(v));
+        for (std::size_t e = 1; e < mesh.edges_size(); e += 2) edges.push_back(Index(e));
+        for (SubdivisionScheme scheme : {SubdivisionScheme::Loop, SubdivisionScheme::Butterfly,
+                                         SubdivisionScheme::ModifiedButterfly}) {
+            INFO(fixture.name << ", " << scheme_name(scheme));
+            const UniformStep1to4 all = uniform_step_1to4(mesh, scheme, progress);
+            const UniformStep1to4 listed =
+                uniform_step_1to4_listed(mesh, scheme, vertices, edges, progress);
+            REQUIRE(listed.positions.size() == vertices.size() + edges.size());
+            REQUIRE(listed.stencils.size() == listed.positions.size());
+            std::size_t differ = 0;
+            for (std::size_t i = 0; i < listed.positions.size(); ++i) {
+                const std::size_t j =
+                    i < vertices.size() ? vertices[i] : nv + edges[i - vertices.size()];
+                differ += same_point(all.positions[j], listed.positions[i]) &&
+                                  all.stencils[j] == listed.stencils[i]
+                              ? 0
+                              : 1;
+            }
+            CHECK(differ == 0);
+        }
+        // Indices out of range and Sqrt3 are refused.
+        CHECK_THROWS_AS(
+            uniform_step_1to4_listed(mesh, SubdivisionScheme::Loop, {Index(nv)}, {}, progress),
+            InvalidArgument);
+        CHECK_THROWS_AS(uniform_step_1to4_listed(mesh, SubdivisionScheme::Sqrt3, {}, {}, progress),
+                        InvalidArgument);
+    }
+}
+
 TEST_CASE("subdivide_region splits boundary edges of an open mesh into a valid boundary",
           "[subdivision][selection]") {
     const HalfedgeMesh mesh = make_grid(8);
