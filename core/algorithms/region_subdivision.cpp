@@ -1,15 +1,15 @@
 // Subdivision of a region (core/algorithms/region_subdivision.h).
 //
-// Implementation: each iteration works on a bare copy of the level (connectivity and
-// positions, no attributes) with the mesh's own operators: HalfedgeMesh::split(Edge) on every
-// edge to split (each adjacent face is cut from the new vertex to its opposite corner), then
-// the cuts that were made inside red faces and join an old and a new vertex are flipped, which
-// turns each red face into the 1-to-4 pattern (the same sequence as pmp's Loop subdivision)
-// and leaves each green face bisected. Sqrt3: HalfedgeMesh::split(Face) on every selected face,
-// then flip(Edge) on the old edges between two split faces. Old vertices keep their indices;
-// the new ones follow in the order of their edge (face) index. Positions come from the uniform
-// rules on the coarse level (uniform_step_1to4(), the Sqrt3 relaxation below), blended by the
-// weights.
+// Implementation: each iteration builds the next level straight into a copy of the coarse
+// level's arrays, allocated once at their final size (bare_copy). 1-to-4 schemes: the stencils
+// are computed only at the region's vertices and edges (uniform_step_1to4_listed(), bit for bit
+// the whole-mesh values), the red-green closure grows until no closure triangle is flatter than
+// the input's flattest face (close_red_green), build_red_green writes the red faces' 1-to-4
+// pattern and the green faces' bisections into the connectivity arrays, and improve_closure
+// flips closure edges that raise the smaller angle of their pair. Sqrt3: the selected faces
+// are split at their centroids, the old edges between two split faces flipped, with Kobbelt's
+// adaptive rule at the region's edge. Old vertices keep their indices; the new ones follow in
+// the order of their edge (face) index. Positions are blended by the weights.
 #include "core/algorithms/region_subdivision.h"
 
 #include <algorithm>
