@@ -140,8 +140,10 @@ TEST_CASE("A coloured proxy looks like the coloured mesh", "[render][proxy]") {
     proxy_renderer.clear_vertex_colors();
     const Image plain = draw(proxy_renderer, fb, camera, style);
     Framebuffer::bind_default();
-    const PixelStats fa = foreground(a, style.background), fb_ = foreground(b, style.background);
-    REQUIRE(std::abs(fa.fraction - fb_.fraction) < 0.01);  // the same silhouette, nearly
+    const PixelStats exact_stats = foreground(a, style.background);
+    const PixelStats proxy_stats = foreground(b, style.background);
+    REQUIRE(std::abs(exact_stats.fraction - proxy_stats.fraction) <
+            0.01);  // the same silhouette, nearly
     // The sampled colours: far closer to the mesh's picture than the uncoloured proxy.
     REQUIRE(mean_difference(a, b) < 3.0);
     REQUIRE(mean_difference(a, plain) > 3 * mean_difference(a, b));
