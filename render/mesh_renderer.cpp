@@ -544,15 +544,7 @@ void MeshRenderer::upload_level(LevelOfDetail& lod) {
     bbox_min_ = lo;
     bbox_max_ = hi;
 
-    has_texcoords_ = false;
-    glBindBuffer(GL_ARRAY_BUFFER, texcoord_buffer_);
-    glBufferData(GL_ARRAY_BUFFER, 0, nullptr, GL_STATIC_DRAW);
-    glBindBuffer(GL_ARRAY_BUFFER, 0);
-    for (GLuint vao : {triangle_vao_, point_vao_}) {
-        glBindVertexArray(vao);
-        glDisableVertexAttribArray(kTexcoord);
-    }
-    glBindVertexArray(0);
+    drop_texcoords();
     clear_vertex_colors();
     clear_vertex_selection();
     lod.clear_changes();
@@ -1099,6 +1091,11 @@ void MeshRenderer::upload_triangles(const std::vector<Point>& positions,
                  GL_STATIC_DRAW);
     n_triangle_indices_ = 3 * triangles.size();
     n_point_indices_ = points.size();
+    drop_texcoords();
+    clear_vertex_colors();
+}
+
+void MeshRenderer::drop_texcoords() {
     has_texcoords_ = false;
     glBindBuffer(GL_ARRAY_BUFFER, texcoord_buffer_);
     glBufferData(GL_ARRAY_BUFFER, 0, nullptr, GL_STATIC_DRAW);
@@ -1108,7 +1105,6 @@ void MeshRenderer::upload_triangles(const std::vector<Point>& positions,
         glDisableVertexAttribArray(kTexcoord);
     }
     glBindVertexArray(0);
-    clear_vertex_colors();
 }
 
 }  // namespace trilab

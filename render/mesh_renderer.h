@@ -290,6 +290,8 @@ public:
     glm::vec3 bbox_max() const { return bbox_max_; }
 
 private:
+    /// No texture coordinates on the GPU (a level of detail or a triangle list has none).
+    void drop_texcoords();
     /// The GPU holds faces and attributes of these revisions (positions may differ).
     bool holds_topology(const HalfedgeMesh::Revision& r) const;
     void write_geometry(const HalfedgeMesh& mesh,
