@@ -123,4 +123,22 @@ inline double mean_difference(const Image& a, const Image& b) {
     return sum / double(a.rgba.size());
 }
 
+/// The unit grid [0, 1]^2 (z = 0) seen from the front in a width x height image, filling most
+/// of it.
+inline Camera front_grid_camera(int width, int height) {
+    Camera camera;
+    camera.set_viewport(float(width), float(height));
+    camera.set_view_angles(0.0f, 0.0f);
+    camera.fit_sphere(glm::vec3(0.5f, 0.5f, 0.0f), 0.6f);
+    return camera;
+}
+
+/// Pixel coordinates (x right, y down, pixel centres at +0.5) of the grid point (x, y, 0) in a
+/// width x height image.
+inline glm::vec2 grid_pixel(const Camera& camera, double x, double y, int width, int height) {
+    const glm::vec4 c =
+        camera.projection() * camera.view() * glm::vec4(float(x), float(y), 0.0f, 1.0f);
+    return {(c.x / c.w * 0.5f + 0.5f) * width, (0.5f - c.y / c.w * 0.5f) * height};
+}
+
 }  // namespace trilab::test

@@ -28,20 +28,12 @@ namespace {
 
 constexpr int kWidth = 640, kHeight = 480;
 
-/// The unit grid [0, 1]^2 (z = 0) seen from the front, filling most of the image.
 Camera grid_camera() {
-    Camera camera;
-    camera.set_viewport(float(kWidth), float(kHeight));
-    camera.set_view_angles(0.0f, 0.0f);
-    camera.fit_sphere(glm::vec3(0.5f, 0.5f, 0.0f), 0.6f);
-    return camera;
+    return front_grid_camera(kWidth, kHeight);
 }
 
-/// Pixel coordinates (x right, y down, pixel centres at +0.5) of a point of the grid.
 glm::vec2 to_pixel(const Camera& camera, double x, double y) {
-    const glm::vec4 c =
-        camera.projection() * camera.view() * glm::vec4(float(x), float(y), 0.0f, 1.0f);
-    return {(c.x / c.w * 0.5f + 0.5f) * kWidth, (0.5f - c.y / c.w * 0.5f) * kHeight};
+    return grid_pixel(camera, x, y, kWidth, kHeight);
 }
 
 /// Unlit (ambient 1), no highlight, both sides in the front colour, no multisampling

@@ -24,17 +24,11 @@ namespace {
 constexpr int kWidth = 320, kHeight = 240;
 
 Camera grid_camera() {
-    Camera camera;
-    camera.set_viewport(float(kWidth), float(kHeight));
-    camera.set_view_angles(0.0f, 0.0f);
-    camera.fit_sphere(glm::vec3(0.5f, 0.5f, 0.0f), 0.6f);
-    return camera;
+    return front_grid_camera(kWidth, kHeight);
 }
 
 glm::vec2 to_pixel(const Camera& camera, double x, double y) {
-    const glm::vec4 c =
-        camera.projection() * camera.view() * glm::vec4(float(x), float(y), 0.0f, 1.0f);
-    return {(c.x / c.w * 0.5f + 0.5f) * kWidth, (0.5f - c.y / c.w * 0.5f) * kHeight};
+    return grid_pixel(camera, x, y, kWidth, kHeight);
 }
 
 /// Weight 1 where x < 1/2 (strictly left of the middle column), 0 elsewhere.
