@@ -258,11 +258,43 @@ double angle_between(const Vector3& a, const Vector3& b) {
     return n > 0 ? std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / kPi : 180.0;
 }
 
+// The angle tests below decide as the atan2 expressions above do, without trigonometry where
+// the answer is clear by a wide margin (the cosine of an angle, or the sign of the sine of
+// its difference to the limit, farther than this from the limit: the rounding of either side
+// is a few 1e-16), and with the atan2 expression itself otherwise, so every decision is the
+// same bit for bit.
+constexpr double kClearMargin = 1e-7;
+
+/// angle_between(a, b) > kMaxClosureFlipDihedral: the sign of |a||b| sin(angle - limit) =
+/// |a x b| cos(limit) - (a . b) sin(limit), which is that of angle - limit for angles in
+/// [0, 180].
+bool bends_more_than_flip_limit(const Vector3& a, const Vector3& b) {
+    static const double cos_limit = std::cos(kMaxClosureFlipDihedral * kPi / 180.0);
+    static const double sin_limit = std::sin(kMaxClosureFlipDihedral * kPi / 180.0);
+    if (a.norm() * b.norm() > 0) {
+        const double y = a.cross(b).norm(), x = a.dot(b);
+        const double r = y * cos_limit - x * sin_limit, margin = kClearMargin * (y + std::abs(x));
+        if (r > margin) return true;
+        if (r < -margin) return false;
+    }
+    return angle_between(a, b) > kMaxClosureFlipDihedral;
+}
+
+/// corner_min_angle(p0, p1, p2) >= angle (degrees; `cos_angle` its cosine): the triangle's
+/// flatness is the cosine of its smallest angle, which falls as the angle rises.
+bool min_angle_at_least(const Point& p0, const Point& p1, const Point& p2, double angle,
+                        double cos_angle) {
+    const double flat = triangle_flatness(p0, p1, p2);
+    if (flat < cos_angle - kClearMargin) return true;
+    if (flat > cos_angle + kClearMargin) return false;
+    return corner_min_angle(p0, p1, p2) >= angle;
+}
+
 /// Whether flipping interior edge e raises the smaller of its two faces' minimum angles, keeps
 /// the surface where it was (the two faces and the two flipped ones each within
-/// kMaxClosureFlipDihedral degrees of each other) and keeps a valid mesh.
+/// kMaxClosureFlipDihedral degrees of each other) and keeps a valid mesh. The validity test
+/// comes last (it searches the ring for the flipped edge), the angles first.
 bool flip_improves(const HalfedgeMesh& m, Edge e) {
-    if (!m.is_flip_ok(e)) return false;
     const Halfedge h = HalfedgeMesh::halfedge(e, 0), t = HalfedgeMesh::twin(h);
     const Point& u = m.position(m.to_vertex(t));
     const Point& v = m.position(m.to_vertex(h));
@@ -270,14 +302,24 @@ bool flip_improves(const HalfedgeMesh& m, Edge e) {
     const Point& d = m.position(m.to_vertex(m.next(t)));
     const Vector3 n1 = (v - u).cross(c - u), n2 = (u - v).cross(d - v);
     const Vector3 n3 = (d - u).cross(c - u), n4 = (c - v).cross(d - v);
-    if (angle_between(n1, n2) > kMaxClosureFlipDihedral ||
-        angle_between(n3, n4) > kMaxClosureFlipDihedral ||
-        angle_between(n1 + n2, n3) > kMaxClosureFlipDihedral ||
-        angle_between(n1 + n2, n4) > kMaxClosureFlipDihedral)
+    if (bends_more_than_flip_limit(n1, n2) || bends_more_than_flip_limit(n3, n4) ||
+        bends_more_than_flip_limit(n1 + n2, n3) || bends_more_than_flip_limit(n1 + n2, n4))
         return false;
-    const double before = std::min(corner_min_angle(u, v, c), corner_min_angle(v, u, d));
-    const double after = std::min(corner_min_angle(u, d, c), corner_min_angle(v, c, d));
-    return after > before + 1e-9;
+    // after > before + 1e-9 degrees. The flatness (cosine) of the smaller angle on each side:
+    // a difference beyond kClearMargin is a difference of at least that many radians.
+    const double flat_before = std::max(triangle_flatness(u, v, c), triangle_flatness(v, u, d));
+    const double flat_after = std::max(triangle_flatness(u, d, c), triangle_flatness(v, c, d));
+    bool raises;
+    if (flat_after < flat_before - kClearMargin) {
+        raises = true;
+    } else if (flat_after > flat_before + kClearMargin) {
+        raises = false;
+    } else {
+        const double before = std::min(corner_min_angle(u, v, c), corner_min_angle(v, u, d));
+        const double after = std::min(corner_min_angle(u, d, c), corner_min_angle(v, c, d));
+        raises = after > before + 1e-9;
+    }
+    return raises && m.is_flip_ok(e);
 }
 
 /// Lawson's max-min-angle flips restricted to the closure: an edge is flipped when both of its
@@ -319,11 +361,24 @@ std::size_t improve_closure(HalfedgeMesh& m, const std::vector<std::uint8_t>& cl
     return flips;
 }
 
-/// The smallest minimum angle over the flagged faces (180 when none is).
+/// The smallest minimum angle over the flagged faces (180 when none is): the minimum of
+/// face_min_angle() over the faces whose flatness is within kClearMargin of the largest (no
+/// other face can hold it).
 double min_angle_of(const HalfedgeMesh& m, const std::vector<std::uint8_t>& flagged) {
+    const FaceCorners corners(m);
+    const Point* x = m.positions().data();
+    std::vector<std::pair<Index, double>> flat;
+    double flattest = -1.0;
+    for (std::size_t f = 0; f < flagged.size(); ++f) {
+        if (!flagged[f]) continue;
+        const auto v = corners(f);
+        flat.emplace_back(Index(f), triangle_flatness(x[v[0]], x[v[1]], x[v[2]]));
+        flattest = std::max(flattest, flat.back().second);
+    }
     double smallest = 180.0;
-    for (std::size_t f = 0; f < flagged.size(); ++f)
-        if (flagged[f]) smallest = std::min(smallest, face_min_angle(m, Face(Index(f))));
+    for (const auto& [f, flatness] : flat)
+        if (!(flatness < flattest - kClearMargin))
+            smallest = std::min(smallest, face_min_angle(m, Face(f)));
     return smallest;
 }
 
@@ -404,6 +459,7 @@ std::size_t close_red_green(const HalfedgeMesh& m, const Selection& w,
                    : mid;
     };
     // Whether the bisection of face f (one split edge) keeps every angle >= target_angle.
+    const double cos_target = std::cos(target_angle * kPi / 180.0);
     const auto green_ok = [&](Face f) {
         for (Halfedge h : m.halfedges_of(f)) {
             const Index e = HalfedgeMesh::edge(h).idx();
@@ -412,8 +468,8 @@ std::size_t close_red_green(const HalfedgeMesh& m, const Selection& w,
             const Point b = old_position(m.to_vertex(h).idx());
             const Point c = old_position(m.to_vertex(m.next(h)).idx());
             const Point mid = edge_position(e);
-            return std::min(corner_min_angle(a, mid, c), corner_min_angle(mid, b, c)) >=
-                   target_angle;
+            return min_angle_at_least(a, mid, c, target_angle, cos_target) &&
+                   min_angle_at_least(mid, b, c, target_angle, cos_target);
         }
         return true;
     };
@@ -706,6 +762,7 @@ std::size_t grow_sqrt3(const HalfedgeMesh& m, const Position& old_position, doub
                        std::vector<std::uint8_t>& split_face) {
     const Index nf = Index(m.faces_size());
     const Point* x = m.positions().data();
+    const double cos_target = std::cos(target_angle * kPi / 180.0);
     std::size_t grown = 0;
     const auto centroid_of = [&](Face f) {
         const Halfedge h = m.halfedge(f), hn = m.next(h);
@@ -726,7 +783,7 @@ std::size_t grow_sqrt3(const HalfedgeMesh& m, const Position& old_position, doub
                 if (!g.is_valid() || split_face[g.idx()]) continue;
                 const Point a = old_position(m.from_vertex(h).idx());
                 const Point b = old_position(m.to_vertex(h).idx());
-                if (corner_min_angle(a, b, c) >= target_angle) continue;
+                if (min_angle_at_least(a, b, c, target_angle, cos_target)) continue;
                 split_face[g.idx()] = 1;
                 ++grown;
                 queue.push_back(g);
