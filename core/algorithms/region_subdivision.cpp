@@ -733,11 +733,14 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
 /// Sqrt3's relaxed positions of the interior vertices that move (weight > 0), from the coarse
 /// ring: the neighbours summed in the order of their edges' indices and the rule written as
 /// subdivide() writes it, so that a vertex of weight 1 lands where the uniform step puts it,
-/// bit for bit. Only the vertices that move are visited; the others get zero.
+/// bit for bit. Only the vertices that move are visited and written; the others' entries are
+/// left unset (Eigen's default constructor: no store, so no page of a small region's array is
+/// touched but its own) and are never read.
 std::vector<Point> sqrt3_relaxed(const HalfedgeMesh& m, const Selection& w) {
     const Index nv = Index(m.vertices_size());
     const Point* x = m.positions().data();
-    std::vector<Point> relaxed(nv, Point::Zero());
+    std::vector<Point> relaxed(nv);
+    std::vector<double> alpha_of;  // by valence, as computed below (the same bits)
     std::vector<std::pair<Index, Index>> ring;
     for (Index v = 0; v < nv; ++v) {
         if (!(w[v] > 0.0f) || m.is_isolated(Vertex(v)) || m.is_boundary(Vertex(v))) continue;
@@ -748,7 +751,9 @@ std::vector<Point> sqrt3_relaxed(const HalfedgeMesh& m, const Selection& w) {
         Point sum = Point::Zero();
         for (const auto& edge_and_neighbour : ring) sum += x[edge_and_neighbour.second];
         const unsigned k = unsigned(ring.size());
-        const double alpha = (4.0 - 2.0 * std::cos(2 * kPi / k)) / 9.0;
+        if (k >= alpha_of.size()) alpha_of.resize(2 * std::size_t(k) + 1, -1.0);
+        if (alpha_of[k] < 0) alpha_of[k] = (4.0 - 2.0 * std::cos(2 * kPi / k)) / 9.0;
+        const double alpha = alpha_of[k];
         relaxed[v] = (1.0 - alpha) * x[v] + (alpha / k) * sum;
     }
     return relaxed;
@@ -935,12 +940,14 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int le
         if (nvx.stencil[v] == int(SubdivisionStencil::EvenRelaxed))
             p[v] = blend_by_weight(x[v], relaxed[v], w[v]);
     const std::vector<std::uint8_t> closure = sqrt3_closure(m, out, split_face, step.counts);
-    // Faces of the coarse level left as they were: not split, not flipped, no vertex moved.
+    // Faces of the coarse level left as they were: not split, not flipped, no vertex of weight
+    // > 0 (a face counted as changed that is not, one with a boundary vertex, gets the same
+    // value computed anew).
     const FaceCorners corners(m);
     const auto changed = [&](Index f) {
         if (split_face[f] || closure[f]) return true;
         const auto v = corners(f);
-        return moves(v[0]) || moves(v[1]) || moves(v[2]);
+        return w[v[0]] > 0.0f || w[v[1]] > 0.0f || w[v[2]] > 0.0f;
     };
     level_flatness(out, coarse_flat, changed, keep_flatness, step);
     finish(m, level, morph, keep_flatness, std::move(nvx), step);
