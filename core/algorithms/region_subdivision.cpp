@@ -16,6 +16,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <utility>
 
@@ -23,6 +24,11 @@
 #include "core/algorithms/pillows.h"
 #include "core/errors.h"
 #include "core/geometry.h"
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#include <unistd.h>
+#endif
 
 namespace trilab {
 
@@ -38,6 +44,23 @@ const char* const kLevelName = "v:subdivision_level";
 const char* const kStencilName = "v:subdivision_stencil";
 const char* const kParentsName = "v:subdivision_parents";
 
+/// Has the kernel map the pages of `v`'s reserved storage in one call (MADV_POPULATE_WRITE,
+/// Linux 5.14 and later) before they are first written: on the region's copy of the mesh
+/// (fresh pages, written once) that costs about a fifth less than a page fault per page.
+/// Only a hint: where the kernel lacks it nothing changes.
+template <typename T>
+void prefault_capacity(const std::vector<T>& v) {
+#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+    static const std::uintptr_t page = std::uintptr_t(::sysconf(_SC_PAGESIZE));
+    const std::uintptr_t begin = reinterpret_cast<std::uintptr_t>(v.data());
+    const std::uintptr_t from = (begin + page - 1) & ~(page - 1);
+    const std::uintptr_t to = (begin + v.capacity() * sizeof(T)) & ~(page - 1);
+    if (to > from) ::madvise(reinterpret_cast<void*>(from), to - from, MADV_POPULATE_WRITE);
+#else
+    (void)v;
+#endif
+}
+
 /// `in` copied into an array of n elements (n >= in.size()), allocated once; the elements
 /// past in's are value-initialized (an invalid handle). The handles' tail is written by
 /// resize(n), whose default-construction loop the compiler vectorizes: resize(n, Handle())
@@ -47,6 +70,7 @@ template <typename H>
 std::vector<H> grown_handles(const std::vector<H>& in, std::size_t n) {
     std::vector<H> out;
     out.reserve(n);
+    prefault_capacity(out);
     out.insert(out.end(), in.begin(), in.end());
     out.resize(n);
     return out;
@@ -58,6 +82,7 @@ std::vector<H> grown_handles(const std::vector<H>& in, std::size_t n) {
 HalfedgeMesh bare_copy(const HalfedgeMesh& m, std::size_t nv, std::size_t ne, std::size_t nf) {
     std::vector<Point> positions;
     positions.reserve(nv);
+    prefault_capacity(positions);
     positions.insert(positions.end(), m.positions().begin(), m.positions().end());
     positions.resize(nv, Point::Zero());
     HalfedgeMesh out;

@@ -1027,7 +1027,8 @@ bool local_interior(const In& m, Index v) {
 
 /// Loop's even rule at vertex v from its one ring, summing the neighbours in the order of
 /// their edges' indices as loop_positions() does (so the result is the same bit for bit).
-Point loop_even_at(const In& m, Index v, std::vector<std::pair<Index, Index>>& ring) {
+Point loop_even_at(const In& m, Index v, std::vector<std::pair<Index, Index>>& ring,
+                   std::vector<double>& beta) {
     const Point* x = m.x;
     const Halfedge h0 = m.vh[v];
     if (!h0.is_valid()) return x[v];
@@ -1039,8 +1040,12 @@ Point loop_even_at(const In& m, Index v, std::vector<std::pair<Index, Index>>& r
     Point sum = Point::Zero();
     for (const auto& edge_and_neighbour : ring) sum += x[edge_and_neighbour.second];
     const unsigned n = unsigned(ring.size());
-    const double t = 0.375 + 0.25 * std::cos(2 * kPi / n);
-    const double b = (0.625 - t * t) / n;
+    if (n >= beta.size()) beta.resize(2 * std::size_t(n) + 1, -1.0);
+    if (beta[n] < 0) {  // as loop_positions() computes it
+        const double t = 0.375 + 0.25 * std::cos(2 * kPi / n);
+        beta[n] = (0.625 - t * t) / n;
+    }
+    const double b = beta[n];
     return (1.0 - n * b) * x[v] + b * sum;
 }
 
@@ -1125,11 +1130,12 @@ UniformStep1to4 uniform_step_1to4_at(const HalfedgeMesh& mesh, SubdivisionScheme
     step.positions.assign(std::size_t(m.nv) + m.ne, Point::Zero());
     step.stencils.assign(std::size_t(m.nv) + m.ne, int(SubdivisionStencil::EvenKept));
     std::vector<std::pair<Index, Index>> ring;
+    std::vector<double> beta;  // Loop's even weight by valence (loop_even_at())
     const bool loop = scheme == SubdivisionScheme::Loop;
     for (Index v = 0; v < m.nv; ++v) {
         if (!vertices[v]) continue;
         if ((v & kCheckMask) == 0) progress.check_cancelled();
-        step.positions[v] = loop ? loop_even_at(m, v, ring) : m.x[v];
+        step.positions[v] = loop ? loop_even_at(m, v, ring, beta) : m.x[v];
         step.stencils[v] = int(even_stencil_at(m, v, scheme));
     }
     ExtraordinaryWeights weights;
@@ -1160,11 +1166,12 @@ UniformStep1to4 uniform_step_1to4_listed(const HalfedgeMesh& mesh, SubdivisionSc
     step.positions.resize(n);
     step.stencils.resize(n);
     std::vector<std::pair<Index, Index>> ring;
+    std::vector<double> beta;  // Loop's even weight by valence (loop_even_at())
     const bool loop = scheme == SubdivisionScheme::Loop;
     std::size_t i = 0;
     for (const Index v : vertices) {
         if ((i & kCheckMask) == 0) progress.check_cancelled();
-        step.positions[i] = loop ? loop_even_at(m, v, ring) : m.x[v];
+        step.positions[i] = loop ? loop_even_at(m, v, ring, beta) : m.x[v];
         step.stencils[i++] = int(even_stencil_at(m, v, scheme));
     }
     ExtraordinaryWeights weights;
