@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/algorithms/components.h"
+#include "core/algorithms/mesh_stats.h"
 #include "core/algorithms/selection.h"
 #include "core/geometry.h"
 
@@ -26,33 +26,43 @@ FlipReport flip_orientation(HalfedgeMesh& mesh, const FlipOptions& options) {
             report.normals_negated = true;
         }
     } else {
-        // The components the region touches, flipped whole.
-        const ComponentLabels labels = label_face_components(mesh);
-        std::vector<std::uint8_t> flip(labels.components.size(), 0);
+        // The components the region touches, flipped whole: label_components() (union-find
+        // over the edges) gives each vertex its component; the faces and edges follow their
+        // vertices. When the region touches every component this is the whole mesh's flip.
+        std::vector<Index> label;
+        const std::size_t n_labels = label_components(mesh, label);
+        std::vector<std::uint8_t> flip(n_labels, 0), present(n_labels, 0);
         for (Vertex v : mesh.vertices()) {
-            const Index c = labels.of_vertex[v.idx()];
-            if (c != kInvalidIndex && (*region)[v.idx()] > 0.0f) flip[c] = 1;
+            if (mesh.is_isolated(v)) continue;
+            const Index c = label[v.idx()];
+            present[c] = 1;
+            if ((*region)[v.idx()] > 0.0f) flip[c] = 1;
         }
-        for (std::size_t c = 0; c < flip.size(); ++c)
-            if (flip[c]) {
-                ++report.components;
-                report.faces += labels.components[c].faces;
-            }
-        const auto flipped = [&](Vertex v) {
-            const Index c = labels.of_vertex[v.idx()];
-            return c != kInvalidIndex && flip[c] != 0;
-        };
-        std::vector<std::uint8_t> edge_mask(mesh.edges_size(), 0);
-        for (Edge e : mesh.edges())
-            edge_mask[e.idx()] = flipped(mesh.to_vertex(HalfedgeMesh::halfedge(e, 0))) ? 1 : 0;
-        mesh.reverse_orientation(edge_mask);
+        std::size_t n_present = 0;
+        for (std::size_t c = 0; c < n_labels; ++c) {
+            n_present += present[c];
+            report.components += flip[c];
+        }
+        const auto flipped = [&](Vertex v) { return flip[label[v.idx()]] != 0; };
+        if (report.components == n_present) {
+            report.faces = mesh.n_faces();
+            mesh.reverse_orientation();
+        } else {
+            for (Face f : mesh.faces()) report.faces += flipped(mesh.to_vertex(mesh.halfedge(f)));
+            std::vector<std::uint8_t> edge_mask(mesh.edges_size(), 0);
+            for (Edge e : mesh.edges())
+                edge_mask[e.idx()] = flipped(mesh.to_vertex(HalfedgeMesh::halfedge(e, 0))) ? 1 : 0;
+            mesh.reverse_orientation(edge_mask);
+        }
         if (auto normals = mesh.get_vertex_property<Vector3>("v:normal")) {
             // An isolated vertex has no component: its normal follows its own weight.
-            for (Vertex v : mesh.vertices())
-                if (flipped(v) || (mesh.is_isolated(v) && (*region)[v.idx()] > 0.0f)) {
+            for (Vertex v : mesh.vertices()) {
+                const bool isolated = mesh.is_isolated(v);
+                if ((!isolated && flipped(v)) || (isolated && (*region)[v.idx()] > 0.0f)) {
                     normals[v] = -normals[v];
                     report.normals_negated = true;
                 }
+            }
         }
     }
     if (closed) report.volume_after = volume(mesh);
