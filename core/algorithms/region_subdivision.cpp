@@ -831,19 +831,28 @@ std::size_t grow_sqrt3(const HalfedgeMesh& m, const Position& old_position, doub
 std::vector<std::uint8_t> sqrt3_closure(const HalfedgeMesh& m, HalfedgeMesh& out,
                                         const std::vector<std::uint8_t>& split_face,
                                         RegionClosureCounts& counts) {
-    const Index ne = Index(m.edges_size()), nf = Index(m.faces_size());
-    for (Index e = 0; e < ne; ++e) {  // the old edges flipped by the rule itself
-        const Face f0 = m.face(HalfedgeMesh::halfedge(Edge(e), 0));
-        const Face f1 = m.face(HalfedgeMesh::halfedge(Edge(e), 1));
-        counts.flipped_edges +=
-            f0.is_valid() && f1.is_valid() && split_face[f0.idx()] && split_face[f1.idx()];
+    const Index nf = Index(m.faces_size());
+    // The old edges of the split faces, the only ones the rule or the closure changes: flipped
+    // by the rule when the face across is split too (counted at their even halfedge, so once),
+    // a closure edge when it is not (met once, from the split side; handled in ascending edge
+    // order below, as a scan over every edge would).
+    std::vector<Index> closure_edges;
+    for (Index f = 0; f < nf; ++f) {
+        if (!split_face[f]) continue;
+        for (Halfedge h : m.halfedges_of(Face(f))) {
+            const Face g = m.face(HalfedgeMesh::twin(h));
+            if (!g.is_valid()) continue;
+            if (split_face[g.idx()])
+                counts.flipped_edges += (h.idx() & 1u) == 0;
+            else
+                closure_edges.push_back(h.idx() >> 1);
+        }
     }
+    std::sort(closure_edges.begin(), closure_edges.end());
     std::vector<std::uint8_t> touched(nf, 0), closure(out.faces_size(), 0);
-    for (Index e = 0; e < ne; ++e) {
+    for (const Index e : closure_edges) {
         const Face f0 = m.face(HalfedgeMesh::halfedge(Edge(e), 0));
         const Face f1 = m.face(HalfedgeMesh::halfedge(Edge(e), 1));
-        if (!f0.is_valid() || !f1.is_valid() || split_face[f0.idx()] == split_face[f1.idx()])
-            continue;
         touched[f0.idx()] = touched[f1.idx()] = 1;
         if (flip_improves(out, Edge(e))) {
             out.flip(Edge(e));
