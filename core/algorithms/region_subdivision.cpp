@@ -446,7 +446,7 @@ RegionStencils region_stencils(const HalfedgeMesh& m, const Selection& w, Subdiv
     const Vertex* to = m.halfedge_to_array().data();
     for (Index e = 0; e < ne; ++e)
         if (w[to[2 * e].idx()] > 0.0f || w[to[2 * e + 1].idx()] > 0.0f) r.edges.push_back(e);
-    r.step = uniform_step_1to4_listed(m, scheme, r.vertices, r.edges, progress);
+    r.step = uniform_step_1to4_listed(m, scheme, r.vertices, r.edges, progress, true);
     return r;
 }
 

@@ -1152,7 +1152,8 @@ UniformStep1to4 uniform_step_1to4_at(const HalfedgeMesh& mesh, SubdivisionScheme
 
 UniformStep1to4 uniform_step_1to4_listed(const HalfedgeMesh& mesh, SubdivisionScheme scheme,
                                          const std::vector<Index>& vertices,
-                                         const std::vector<Index>& edges, Progress& progress) {
+                                         const std::vector<Index>& edges, Progress& progress,
+                                         bool rings_listed) {
     const In m(mesh);
     const bool in_range =
         std::all_of(vertices.begin(), vertices.end(), [&](Index v) { return v < m.nv; }) &&
@@ -1168,18 +1169,58 @@ UniformStep1to4 uniform_step_1to4_listed(const HalfedgeMesh& mesh, SubdivisionSc
     std::vector<std::pair<Index, Index>> ring;
     std::vector<double> beta;  // Loop's even weight by valence (loop_even_at())
     const bool loop = scheme == SubdivisionScheme::Loop;
-    std::size_t i = 0;
-    for (const Index v : vertices) {
-        if ((i & kCheckMask) == 0) progress.check_cancelled();
-        step.positions[i] = loop ? loop_even_at(m, v, ring, beta) : m.x[v];
-        step.stencils[i++] = int(even_stencil_at(m, v, scheme));
+    // Loop's even rule from the listed rings: each listed vertex's neighbours summed over the
+    // listed edges in ascending order, as loop_positions() sums them, then the rule.
+    const bool sum_over_edges = loop && rings_listed;
+    std::vector<Index> slot;        // per vertex: its entry, or invalid
+    std::vector<unsigned> valence;  // per listed vertex
+    if (sum_over_edges) {
+        slot.assign(m.nv, kInvalidIndex);
+        for (std::size_t k = 0; k < vertices.size(); ++k) slot[vertices[k]] = Index(k);
+        valence.assign(vertices.size(), 0);
+        std::fill_n(step.positions.begin(), vertices.size(), Point::Zero());
     }
+    std::size_t i = vertices.size();
     ExtraordinaryWeights weights;
     const bool modified = scheme == SubdivisionScheme::ModifiedButterfly;
     for (const Index e : edges) {
         if ((i & kCheckMask) == 0) progress.check_cancelled();
+        if (sum_over_edges) {
+            const Index a = m.to_i(2 * e + 1), b = m.to_i(2 * e);
+            if (slot[a] != kInvalidIndex) step.positions[slot[a]] += m.x[b], ++valence[slot[a]];
+            if (slot[b] != kInvalidIndex) step.positions[slot[b]] += m.x[a], ++valence[slot[b]];
+        }
         step.positions[i] = loop ? loop_odd_at(m, e) : butterfly_odd_at(m, e, modified, weights);
         step.stencils[i++] = int(odd_stencil_at(m, e, scheme));
+    }
+    i = 0;
+    for (const Index v : vertices) {
+        if ((i & kCheckMask) == 0) progress.check_cancelled();
+        if (!sum_over_edges) {
+            step.positions[i] = loop ? loop_even_at(m, v, ring, beta) : m.x[v];
+            step.stencils[i++] = int(even_stencil_at(m, v, scheme));
+            continue;
+        }
+        const Halfedge h0 = m.vh[v];
+        if (!h0.is_valid()) {  // as loop_even_at() and even_stencil_at()
+            step.positions[i] = m.x[v];
+            step.stencils[i++] = int(SubdivisionStencil::EvenKept);
+        } else if (m.boundary(h0.idx())) {
+            step.positions[i] =
+                0.75 * m.x[v] + 0.125 * (m.x[m.to_i(h0.idx())] + m.x[m.from_i(m.prev_i(h0.idx()))]);
+            step.stencils[i++] = int(SubdivisionStencil::EvenBoundary);
+        } else {
+            const unsigned k = valence[i];
+            if (k >= beta.size()) beta.resize(2 * std::size_t(k) + 1, -1.0);
+            if (beta[k] < 0) {  // as loop_positions() computes it
+                const double t = 0.375 + 0.25 * std::cos(2 * kPi / k);
+                beta[k] = (0.625 - t * t) / k;
+            }
+            const double b = beta[k];
+            step.positions[i] = (1.0 - k * b) * m.x[v] + b * step.positions[i];
+            step.stencils[i++] = int(k == 6 ? SubdivisionStencil::EvenRegular
+                                            : SubdivisionStencil::EvenExtraordinary);
+        }
     }
     return step;
 }

@@ -146,9 +146,13 @@ UniformStep1to4 uniform_step_1to4_at(const HalfedgeMesh& mesh, SubdivisionScheme
 /// The same values again, packed: entry i of the result is old vertex `vertices[i]`, entry
 /// vertices.size() + j the new vertex of edge `edges[j]` (indices must be in range), so that
 /// a small region allocates a small result. Same preconditions and errors as
-/// uniform_step_1to4_at(). O(valence) per listed element.
+/// uniform_step_1to4_at(). O(valence) per listed element. `rings_listed` promises that
+/// `edges` is ascending and holds every edge with an end in `vertices` (region subdivision's
+/// lists): Loop's even rule then sums the neighbours in one pass over those edges (the order
+/// of subdivide()'s own pass, the same bits) instead of sorting each vertex's ring.
 UniformStep1to4 uniform_step_1to4_listed(const HalfedgeMesh& mesh, SubdivisionScheme scheme,
                                          const std::vector<Index>& vertices,
-                                         const std::vector<Index>& edges, Progress& progress);
+                                         const std::vector<Index>& edges, Progress& progress,
+                                         bool rings_listed = false);
 
 }  // namespace trilab

@@ -517,6 +517,32 @@ TEST_CASE("uniform_step_1to4_listed gives the uniform step's values bit for bit,
             }
             CHECK(differ == 0);
         }
+        // With the listed vertices' rings listed (ascending), Loop's even rule sums over the
+        // edges: the same bits again.
+        {
+            std::vector<std::uint8_t> listed_vertex(nv, 0);
+            for (Index v : vertices) listed_vertex[v] = 1;
+            std::vector<Index> ring_edges;
+            for (Edge e : mesh.edges())
+                if (listed_vertex[mesh.vertex(e, 0).idx()] ||
+                    listed_vertex[mesh.vertex(e, 1).idx()])
+                    ring_edges.push_back(e.idx());
+            const UniformStep1to4 all = uniform_step_1to4(mesh, SubdivisionScheme::Loop, progress);
+            const UniformStep1to4 listed = uniform_step_1to4_listed(
+                mesh, SubdivisionScheme::Loop, vertices, ring_edges, progress, true);
+            REQUIRE(listed.positions.size() == vertices.size() + ring_edges.size());
+            std::size_t differ = 0;
+            for (std::size_t i = 0; i < listed.positions.size(); ++i) {
+                const std::size_t j =
+                    i < vertices.size() ? vertices[i] : nv + ring_edges[i - vertices.size()];
+                differ += same_point(all.positions[j], listed.positions[i]) &&
+                                  all.stencils[j] == listed.stencils[i]
+                              ? 0
+                              : 1;
+            }
+            INFO(fixture.name << ", loop over the listed rings");
+            CHECK(differ == 0);
+        }
         // Indices out of range and Sqrt3 are refused.
         CHECK_THROWS_AS(
             uniform_step_1to4_listed(mesh, SubdivisionScheme::Loop, {Index(nv)}, {}, progress),
