@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <future>
+#include <utility>
 
 #include "core/algorithms/mesh_stats.h"
 #include "core/algorithms/selection.h"
@@ -16,8 +18,16 @@ FlipReport flip_orientation(HalfedgeMesh& mesh, const FlipOptions& options) {
     FlipReport report;
     const std::vector<float>* region = options.region;
     if (region) check_selection(mesh, *region, "flip: region");
-    const bool closed = is_closed(mesh);
-    if (closed) report.volume_before = volume(mesh);
+    // A region flips the components it touches: they are labelled (union-find over the edges,
+    // label_components()) on a second thread while this one measures the volume, so that a
+    // region costs no more than the whole mesh. Both only read the mesh.
+    std::vector<Index> label;
+    std::future<std::size_t> labelling;
+    if (region)
+        labelling = std::async(std::launch::async,
+                               [&] { return label_components(std::as_const(mesh), label); });
+    const bool closed = is_closed(std::as_const(mesh));
+    if (closed) report.volume_before = volume(std::as_const(mesh));
     if (!region) {
         report.faces = mesh.n_faces();
         mesh.reverse_orientation();
@@ -26,11 +36,10 @@ FlipReport flip_orientation(HalfedgeMesh& mesh, const FlipOptions& options) {
             report.normals_negated = true;
         }
     } else {
-        // The components the region touches, flipped whole: label_components() (union-find
-        // over the edges) gives each vertex its component; the faces and edges follow their
-        // vertices. When the region touches every component this is the whole mesh's flip.
-        std::vector<Index> label;
-        const std::size_t n_labels = label_components(mesh, label);
+        // The components the region touches, flipped whole: each vertex has its component's
+        // label; the faces and edges follow their vertices. When the region touches every
+        // component this is the whole mesh's flip.
+        const std::size_t n_labels = labelling.get();
         std::vector<std::uint8_t> flip(n_labels, 0), present(n_labels, 0);
         for (Vertex v : mesh.vertices()) {
             if (mesh.is_isolated(v)) continue;
