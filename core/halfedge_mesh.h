@@ -471,6 +471,20 @@ public:
     /// them borders): the rest of the mesh is untouched. Throws InvalidArgument for a mask of
     /// the wrong size.
     void reverse_orientation(const std::vector<std::uint8_t>& edge_mask);
+    /// reverse_orientation() in two steps, so that the reading step can run beside other work
+    /// (a region's flip labels its components meanwhile): reversed_connectivity() computes the
+    /// connectivity with every edge reversed and changes nothing; apply_reversed() sets it,
+    /// for the edges with (*edge_mask)[e] != 0 only when a mask is given (whole components, as
+    /// above; the rest keep theirs). Throws InvalidArgument for a mask of the wrong size or a
+    /// connectivity computed on another mesh.
+    struct ReversedConnectivity {
+        std::vector<Halfedge> next, prev, vertex_halfedge, face_halfedge;
+        std::vector<Face> face;
+        std::vector<Index> corner_source;  ///< the old halfedge whose corner each one takes
+    };
+    ReversedConnectivity reversed_connectivity() const;
+    void apply_reversed(ReversedConnectivity reversed,
+                        const std::vector<std::uint8_t>* edge_mask = nullptr);
     /// Compacts storage, removing deleted elements. Returns the index remapping.
     IndexRemap garbage_collection();
     /// Compacts storage into a given order: new vertex i is old vertex vertex_order[i], new face

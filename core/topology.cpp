@@ -263,7 +263,7 @@ Vertex HalfedgeMesh::split(Face f, const Point& p) {
 }
 
 void HalfedgeMesh::reverse_orientation() {
-    reverse_orientation(std::vector<std::uint8_t>(edges_size(), 1));
+    apply_reversed(reversed_connectivity());
 }
 
 void HalfedgeMesh::reverse_orientation(const std::vector<std::uint8_t>& edge_mask) {
@@ -271,39 +271,79 @@ void HalfedgeMesh::reverse_orientation(const std::vector<std::uint8_t>& edge_mas
         throw InvalidArgument("reverse_orientation: expected one mask entry per edge (" +
                               std::to_string(edges_size()) + "), got " +
                               std::to_string(edge_mask.size()));
-    const auto masked = [&](Halfedge h) { return edge_mask[edge(h).idx()] != 0; };
+    apply_reversed(reversed_connectivity(), &edge_mask);
+}
+
+HalfedgeMesh::ReversedConnectivity HalfedgeMesh::reversed_connectivity() const {
     // Halfedge h keeps its direction (to_vertex) and moves to the other side of its edge:
     //   face'(h) = face(twin(h)),  next'(h) = twin(prev(twin(h))),  prev'(h) = twin(next(twin(h))).
     // Face f then consists of the twins of its old halfedges, in reverse order; a boundary loop
     // likewise. The corner (to_vertex(g), face'(g)) of halfedge g was the corner of the old
     // halfedge prev(twin(g)) of the same face, so halfedge attributes are gathered from there.
     const std::size_t nh = halfedges_size();
-    std::vector<Halfedge> next2(hnext_.vector()), prev2(hprev_.vector());
-    std::vector<Face> face2(hface_.vector());
-    const std::vector<Vertex> to(hto_.vector());
-    std::vector<Index> source(nh);
+    ReversedConnectivity r;
+    r.next.resize(nh);
+    r.prev.resize(nh);
+    r.face.resize(nh);
+    r.corner_source.resize(nh);
     for (std::size_t i = 0; i < nh; ++i) {
         const Halfedge h(static_cast<Index>(i));
-        source[i] = static_cast<Index>(i);
-        if (is_deleted(h) || !masked(h)) continue;
+        if (is_deleted(h)) {
+            r.next[i] = next(h);
+            r.prev[i] = prev(h);
+            r.face[i] = face(h);
+            r.corner_source[i] = static_cast<Index>(i);
+            continue;
+        }
         const Halfedge t = twin(h);
-        face2[i] = face(t);
-        next2[i] = twin(prev(t));
-        prev2[i] = twin(next(t));
-        source[i] = prev(t).idx();
+        r.face[i] = face(t);
+        r.next[i] = twin(prev(t));
+        r.prev[i] = twin(next(t));
+        r.corner_source[i] = prev(t).idx();
     }
-    std::vector<Halfedge> vertex_halfedge(vhalfedge_.vector());
+    r.vertex_halfedge = vhalfedge_.vector();
     for (Vertex v : vertices())
-        if (!is_isolated(v) && masked(halfedge(v)))
-            vertex_halfedge[v.idx()] = twin(prev(halfedge(v)));
-    for (Face f : faces())
-        if (masked(halfedge(f))) fhalfedge_[f] = twin(halfedge(f));
-    hprops_.gather(source);  // every halfedge attribute follows its corner ...
-    hto_.vector() = to;      // ... then the connectivity is set
-    hnext_.vector() = std::move(next2);
-    hprev_.vector() = std::move(prev2);
-    hface_.vector() = std::move(face2);
-    vhalfedge_.vector() = std::move(vertex_halfedge);
+        if (!is_isolated(v)) r.vertex_halfedge[v.idx()] = twin(prev(halfedge(v)));
+    r.face_halfedge = fhalfedge_.vector();
+    for (Face f : faces()) r.face_halfedge[f.idx()] = twin(halfedge(f));
+    return r;
+}
+
+void HalfedgeMesh::apply_reversed(ReversedConnectivity r,
+                                  const std::vector<std::uint8_t>* edge_mask) {
+    const std::size_t nh = halfedges_size();
+    if (r.next.size() != nh || r.prev.size() != nh || r.face.size() != nh ||
+        r.corner_source.size() != nh || r.vertex_halfedge.size() != vertices_size() ||
+        r.face_halfedge.size() != faces_size())
+        throw InvalidArgument("apply_reversed: the reversed connectivity is not this mesh's");
+    if (edge_mask) {
+        if (edge_mask->size() != edges_size())
+            throw InvalidArgument("apply_reversed: expected one mask entry per edge (" +
+                                  std::to_string(edges_size()) + "), got " +
+                                  std::to_string(edge_mask->size()));
+        // The edges outside the mask keep their connectivity.
+        const auto masked = [&](Halfedge h) { return (*edge_mask)[edge(h).idx()] != 0; };
+        for (std::size_t i = 0; i < nh; ++i) {
+            const Halfedge h(static_cast<Index>(i));
+            if (masked(h)) continue;
+            r.next[i] = next(h);
+            r.prev[i] = prev(h);
+            r.face[i] = face(h);
+            r.corner_source[i] = static_cast<Index>(i);
+        }
+        for (Vertex v : vertices())
+            if (!is_isolated(v) && !masked(halfedge(v))) r.vertex_halfedge[v.idx()] = halfedge(v);
+        for (Face f : faces())
+            if (!masked(halfedge(f))) r.face_halfedge[f.idx()] = halfedge(f);
+    }
+    const std::vector<Vertex> to(hto_.vector());
+    hprops_.gather(r.corner_source);  // every halfedge attribute follows its corner ...
+    hto_.vector() = to;               // ... then the connectivity is set
+    hnext_.vector() = std::move(r.next);
+    hprev_.vector() = std::move(r.prev);
+    hface_.vector() = std::move(r.face);
+    vhalfedge_.vector() = std::move(r.vertex_halfedge);
+    fhalfedge_.vector() = std::move(r.face_halfedge);
 }
 
 }  // namespace trilab

@@ -43,9 +43,10 @@ std::size_t label_components(const HalfedgeMesh& mesh, std::vector<Index>& compo
     // vertex. Linear in practice; reads the edges in storage order.
     std::vector<Index> parent(mesh.vertices_size());
     for (Index v = 0; v < parent.size(); ++v) parent[v] = v;
+    const std::vector<Vertex>& to = mesh.halfedge_to_array();  // edge e: halfedges 2e, 2e+1
     for (Edge e : mesh.edges()) {
-        Index a = find_root(parent, mesh.vertex(e, 0).idx());
-        Index b = find_root(parent, mesh.vertex(e, 1).idx());
+        Index a = find_root(parent, to[2 * std::size_t(e.idx())].idx());
+        Index b = find_root(parent, to[2 * std::size_t(e.idx()) + 1].idx());
         if (a == b) continue;
         if (a > b) std::swap(a, b);
         parent[b] = a;

@@ -19,8 +19,9 @@ FlipReport flip_orientation(HalfedgeMesh& mesh, const FlipOptions& options) {
     const std::vector<float>* region = options.region;
     if (region) check_selection(mesh, *region, "flip: region");
     // A region flips the components it touches: they are labelled (union-find over the edges,
-    // label_components()) on a second thread while this one measures the volume, so that a
-    // region costs no more than the whole mesh. Both only read the mesh.
+    // label_components()) on a second thread while this one measures the volume and computes
+    // the reversed connectivity of every edge, which the flip then applies to those
+    // components. Both threads only read the mesh; so a region costs what the whole mesh costs.
     std::vector<Index> label;
     std::future<std::size_t> labelling;
     if (region)
@@ -28,9 +29,10 @@ FlipReport flip_orientation(HalfedgeMesh& mesh, const FlipOptions& options) {
                                [&] { return label_components(std::as_const(mesh), label); });
     const bool closed = is_closed(std::as_const(mesh));
     if (closed) report.volume_before = volume(std::as_const(mesh));
+    HalfedgeMesh::ReversedConnectivity reversed = std::as_const(mesh).reversed_connectivity();
     if (!region) {
         report.faces = mesh.n_faces();
-        mesh.reverse_orientation();
+        mesh.apply_reversed(std::move(reversed));
         if (auto normals = mesh.get_vertex_property<Vector3>("v:normal")) {
             for (Vertex v : mesh.vertices()) normals[v] = -normals[v];
             report.normals_negated = true;
@@ -55,13 +57,13 @@ FlipReport flip_orientation(HalfedgeMesh& mesh, const FlipOptions& options) {
         const auto flipped = [&](Vertex v) { return flip[label[v.idx()]] != 0; };
         if (report.components == n_present) {
             report.faces = mesh.n_faces();
-            mesh.reverse_orientation();
+            mesh.apply_reversed(std::move(reversed));
         } else {
             for (Face f : mesh.faces()) report.faces += flipped(mesh.to_vertex(mesh.halfedge(f)));
             std::vector<std::uint8_t> edge_mask(mesh.edges_size(), 0);
             for (Edge e : mesh.edges())
                 edge_mask[e.idx()] = flipped(mesh.to_vertex(HalfedgeMesh::halfedge(e, 0))) ? 1 : 0;
-            mesh.reverse_orientation(edge_mask);
+            mesh.apply_reversed(std::move(reversed), &edge_mask);
         }
         if (auto normals = mesh.get_vertex_property<Vector3>("v:normal")) {
             // An isolated vertex has no component: its normal follows its own weight.

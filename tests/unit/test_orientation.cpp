@@ -4,13 +4,17 @@
 #include <array>
 #include <cstdio>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "app/ops/operation.h"
 #include "core/algorithms/generators.h"
 #include "core/algorithms/orientation.h"
+#include "core/errors.h"
 #include "core/geometry.h"
 #include "core/io/mesh_io.h"
+#include "core/mesh_builder.h"
 #include "test_helpers.h"
 
 using namespace trilab;
@@ -135,6 +139,58 @@ TEST_CASE("flip_orientation on open meshes, isolated and deleted elements", "[or
         CHECK(r.faces == 0);
         REQUIRE_VALID(m);
     }
+}
+
+TEST_CASE("the reversed connectivity changes nothing until applied, then equals the reversal",
+          "[orientation]") {
+    // Two spheres, the second one reversed alone by a mask: the one-step reversal and the
+    // two steps (reversed_connectivity(), apply_reversed()) give the same arrays.
+    PolygonSoup soup = to_soup(make_icosphere(2));
+    const std::size_t n = soup.positions.size(), c = soup.corners.size(), nf = soup.n_faces();
+    for (std::size_t i = 0; i < n; ++i)
+        soup.positions.push_back(soup.positions[i] + Point(3, 0, 0));
+    for (std::size_t i = 0; i < c; ++i) soup.corners.push_back(soup.corners[i] + Index(n));
+    for (std::size_t i = 1; i <= nf; ++i) soup.face_offsets.push_back(soup.face_offsets[i] + c);
+    LoadReport report;
+    HalfedgeMesh m = build_mesh(soup, report);
+    // The second sphere's edges: those whose vertices are the second copy's.
+    std::vector<std::uint8_t> mask(m.edges_size(), 0);
+    for (Edge e : m.edges()) mask[e.idx()] = m.vertex(e, 0).idx() >= n ? 1 : 0;
+    label_corners(m);
+    const auto arrays = [](const HalfedgeMesh& x) {
+        return std::make_tuple(x.halfedge_to_array(), x.halfedge_next_array(),
+                               x.halfedge_prev_array(), x.halfedge_face_array(),
+                               x.vertex_halfedge_array(), x.face_halfedge_array());
+    };
+    const auto original = arrays(m);
+    HalfedgeMesh::ReversedConnectivity all = std::as_const(m).reversed_connectivity();
+    HalfedgeMesh::ReversedConnectivity part = std::as_const(m).reversed_connectivity();
+    CHECK(arrays(m) == original);  // computing it changed nothing
+
+    HalfedgeMesh one_step = m, two_steps = m, masked_one = m, masked_two = m;
+    one_step.reverse_orientation();
+    two_steps.apply_reversed(std::move(all));
+    CHECK(arrays(two_steps) == arrays(one_step));
+    REQUIRE_VALID(two_steps);
+    require_corner_labels(two_steps);
+    masked_one.reverse_orientation(mask);
+    masked_two.apply_reversed(std::move(part), &mask);
+    CHECK(arrays(masked_two) == arrays(masked_one));
+    REQUIRE_VALID(masked_two);
+    require_corner_labels(masked_two);
+    for (Face f : m.faces()) {
+        const bool second = m.face_vertices(f)[0].idx() >= n;
+        CHECK(reversed(m.face_vertices(f), masked_two.face_vertices(f)) == second);
+    }
+
+    // A connectivity of another mesh, or a mask of the wrong size, is refused.
+    HalfedgeMesh other = make_icosphere(1);
+    CHECK_THROWS_AS(m.apply_reversed(std::as_const(other).reversed_connectivity()),
+                    InvalidArgument);
+    const std::vector<std::uint8_t> short_mask(3, 1);
+    CHECK_THROWS_AS(m.apply_reversed(std::as_const(m).reversed_connectivity(), &short_mask),
+                    InvalidArgument);
+    CHECK(arrays(m) == original);
 }
 
 TEST_CASE("an inward-oriented closed mesh gets a load-report note naming its volume",
