@@ -68,6 +68,12 @@ struct LoadReport {
     std::vector<std::string> lines() const;
 };
 
+/// Checks what build_mesh needs of a soup before it builds anything: fewer vertices than
+/// 32-bit indices number, face offsets matching the corner list, every corner index in range,
+/// finite positions, attribute arrays of the right sizes. Throws InvalidArgument naming the
+/// face and corner (or the vertex, or the attribute). Linear in the soup size.
+void check_polygon_soup(const PolygonSoup& soup);
+
 /// Builds a valid HalfedgeMesh from `soup` (see the file comment). Attributes in the soup
 /// become "v:normal", "v:color", "v:texcoord" and "h:texcoord" (the texture coordinate of
 /// the corner at to_vertex(h) in face(h)). Throws InvalidArgument naming the face and corner
