@@ -693,11 +693,15 @@ template <typename Soup>
 HalfedgeMesh build_checked(Soup&& soup, LoadReport& report, const std::string& path) {
     if (soup.positions.empty()) throw IoError(path, 0, "the file holds no vertices");
     check_finite_soup(soup, path);
-    try {
-        if (t_soup_observer && *t_soup_observer) {
+    if (t_soup_observer && *t_soup_observer) {
+        try {
             check_polygon_soup(soup);  // indices in range before anyone sees the soup
-            (*t_soup_observer)(soup);
+        } catch (const Error& e) {
+            throw IoError(path, 0, e.what());
         }
+        (*t_soup_observer)(soup);  // what it throws (a cancellation) passes unchanged
+    }
+    try {
         return build_mesh(std::forward<Soup>(soup), report);
     } catch (const IoError&) {
         throw;
