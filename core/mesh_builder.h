@@ -89,4 +89,13 @@ HalfedgeMesh build_mesh(PolygonSoup&& soup, LoadReport& report);
 /// numbered in storage order with deleted ones skipped.
 PolygonSoup to_soup(const HalfedgeMesh& mesh);
 
+namespace detail {
+/// Test hook: how many threads build_mesh (and the PLY reader's face decoding) may use for
+/// a large soup (1 or 2; 2 by default, where the machine has two). With 1, every stage runs
+/// its one-thread pass, the reference the two-thread passes are compared with element for
+/// element.
+void set_build_threads(int n);
+int build_threads();
+}  // namespace detail
+
 }  // namespace trilab
