@@ -613,20 +613,15 @@ struct ExtraFan {
     Halfedge first;
 };
 
-/// Stage 3a, for the vertices in [v_lo, v_hi): the fans around each (walked from each of
-/// its face halfedges in index order, so a vertex's first fan is the one holding its lowest
-/// outgoing halfedge). The first fan sets the vertex's halfedge; the further ones are
-/// appended to `extra_fans`. Boundary halfedges are linked where a fan ends. Every write is
-/// to an element the range's vertices own (visited and prev of their outgoing halfedges,
-/// next of their incoming boundary halfedge, their own halfedge), and every read of a
-/// shared array is of one that no range writes, so two ranges can run side by side.
-void find_fans_of(Connectivity& c, std::vector<std::uint8_t>& visited, Index v_lo, Index v_hi,
-                  std::vector<ExtraFan>& extra_fans) {
-    const Index n_h = Index(c.n_h);
-    for (Index h = 0; h < n_h; ++h) {
-        if (!c.hface[h].is_valid()) continue;
-        const Index v = c.hto[h ^ 1].idx();  // where h starts
-        if (v < v_lo || v >= v_hi || visited[h]) continue;
+/// Stage 3a: the fans around each vertex (walked from each face halfedge in index order, so
+/// a vertex's first fan is the one holding its lowest halfedge). The first fan sets the
+/// vertex's halfedge; the further ones are returned. Boundary halfedges are linked where a
+/// fan ends.
+std::vector<ExtraFan> find_fans(Connectivity& c) {
+    std::vector<ExtraFan> extra_fans;
+    std::vector<std::uint8_t> visited(c.n_h, 0);
+    for (Index h = 0; h < c.n_h; ++h) {
+        if (visited[h] || !c.hface[h].is_valid()) continue;
         // Walk counter-clockwise (x -> twin(prev(x))) from h. A closed fan comes back to h
         // and starts at ccw(h) (so that clockwise from there comes back first to h); an open
         // one ends at a boundary halfedge, and its start is then found walking clockwise
@@ -657,32 +652,13 @@ void find_fans_of(Connectivity& c, std::vector<std::uint8_t>& visited, Index v_l
             c.hprev[boundary_out.idx()] = boundary_in;
         }
         const Halfedge first = boundary_out.is_valid() ? boundary_out : Halfedge(start);
+        const Index v = c.hto[h ^ 1].idx();
         if (!c.vhalfedge[v].is_valid())
             c.vhalfedge[v] = first;
         else
             extra_fans.push_back({v, start, first});
     }
-}
-
-/// Stage 3a for every vertex: on two threads for a large mesh, each taking the vertices of
-/// its half (the halfedges split evenly enough: a vertex has about six). Each vertex's fans
-/// are found in the same order either way, and copy_extra_fans orders them by vertex, so
-/// the result is the same element for element.
-std::vector<ExtraFan> find_fans(Connectivity& c, bool parallel) {
-    std::vector<std::uint8_t> visited(c.n_h, 0);
-    const Index n_v = Index(c.vhalfedge.size());
-    if (!parallel) {
-        std::vector<ExtraFan> extra_fans;
-        find_fans_of(c, visited, 0, n_v, extra_fans);
-        return extra_fans;
-    }
-    std::vector<ExtraFan> found[2];
-    const Index mid = n_v / 2;
-    on_two_threads(true, [&](int part) {
-        find_fans_of(c, visited, part == 0 ? 0 : mid, part == 0 ? mid : n_v, found[part]);
-    });
-    found[0].insert(found[0].end(), found[1].begin(), found[1].end());
-    return std::move(found[0]);
+    return extra_fans;
 }
 
 /// Stage 3b: a vertex copy for every further fan, in vertex order, each vertex's fans in the
@@ -844,8 +820,7 @@ HalfedgeMesh build_from_soup(const PolygonSoup& soup, PolygonSoup* owned, LoadRe
     }
 
     c.vhalfedge.resize(n_input_vertices);
-    std::vector<ExtraFan> extra_fans =
-        find_fans(c, worth_two_threads(c.n_h) && detail::build_threads() >= 2);
+    std::vector<ExtraFan> extra_fans = find_fans(c);
 
     copy_extra_fans(extra_fans, n_input_vertices, c, report);
     add_detached_triangles(tris.tri, n_input_vertices, keep_corners, c, report);

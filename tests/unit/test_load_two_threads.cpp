@@ -1,7 +1,7 @@
 // The load's two-thread passes against their one-thread passes (detail::set_build_threads):
-// build_mesh's fan search (each thread the fans of half the vertices) and the PLY reader's
-// triangle rows (each thread half of the rows) must give the same mesh element for element,
-// the same report and the same errors. The meshes are over 65,536 halfedges and rows, so
+// build_mesh's edge pairing (stage 2's fast path) and the PLY reader's triangle rows (each
+// thread half of the rows) must give the same mesh element for element, the same report
+// and the same errors. The meshes are over 65,536 halfedges and rows, so
 // that the two-thread passes run.
 #include <cstdint>
 #include <cstring>
@@ -116,7 +116,7 @@ std::string ply_error(const std::string& bytes) {
 
 }  // namespace
 
-TEST_CASE("build_mesh finds the fans on two threads exactly as on one", "[core][builder]") {
+TEST_CASE("build_mesh builds on two threads exactly what it builds on one", "[core][builder]") {
     const std::string name = GENERATE(as<std::string>(), "two sheets", "icosphere");
     INFO(name);
     const PolygonSoup soup =
