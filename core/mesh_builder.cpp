@@ -20,6 +20,7 @@
 #include "core/number_text.h"
 #include "core/prefetch.h"
 #include "core/triangulate.h"
+#include "core/two_threads.h"
 
 namespace trilab {
 
@@ -48,9 +49,7 @@ std::vector<std::string> LoadReport::lines() const {
     return out;
 }
 
-namespace {
-
-void check_soup(const PolygonSoup& soup) {
+void check_polygon_soup(const PolygonSoup& soup) {
     const std::size_t nv = soup.positions.size();
     if (nv >= std::size_t(kInvalidIndex) / 2)
         throw InvalidArgument("build_mesh: " + std::to_string(nv) +
@@ -83,8 +82,6 @@ void check_soup(const PolygonSoup& soup) {
     check_size(soup.selections.size(), nv, "selections");
     check_size(soup.corner_texcoords.size(), soup.corners.size(), "corner_texcoords");
 }
-
-}  // namespace
 
 namespace {
 
@@ -399,33 +396,6 @@ void accept_triangles(const Triangles& tris, bool keep_corners, EdgeGroups& g, C
 // result equals stage 2's element for element; when some pair breaks the condition,
 // nothing is kept and stage 2 runs (a file with flipped, duplicated or non-manifold faces).
 
-/// Runs body(0) on a second thread and body(1) here, or body(0) and body(1) here for small
-/// inputs; rethrows the second thread's exception.
-template <typename Body>
-void on_two_threads(bool parallel, const Body& body) {
-    if (!parallel) {
-        body(0);
-        body(1);
-        return;
-    }
-    std::exception_ptr error;
-    std::thread other([&] {
-        try {
-            body(0);
-        } catch (...) {
-            error = std::current_exception();
-        }
-    });
-    try {
-        body(1);
-    } catch (...) {
-        other.join();
-        throw;
-    }
-    other.join();
-    if (error) std::rethrow_exception(error);
-}
-
 // An entry of the fast path's buckets: the corner (bits 0-31), the larger vertex (32-62;
 // check_soup keeps vertex indices below 2^31) and the direction (bit 63: larger to smaller).
 constexpr std::uint64_t kDownward = std::uint64_t(1) << 63;
@@ -624,8 +594,7 @@ bool connect_manifold_triangles(const Triangles& tris, std::size_t n_vertices, b
                                 Connectivity& c) {
     const std::size_t n_corners = tris.n_corners;
     if (n_corners >= (std::size_t(1) << 30)) return false;
-    const bool parallel =
-        n_corners >= (std::size_t(1) << 16) && std::thread::hardware_concurrency() >= 2;
+    const bool parallel = worth_two_threads(n_corners) && detail::build_threads() >= 2;
     // Every entry is written by pair_corners (no zero fill first).
     std::unique_ptr<Index[]> link(new Index[n_corners]);
     {
@@ -834,12 +803,14 @@ void copy_attributes(const PolygonSoup& soup, std::size_t n_input_vertices, cons
 /// build_mesh for a soup read through `soup`; when `owned` (the same soup) is given, its
 /// arrays are released or moved as soon as they are no longer needed.
 HalfedgeMesh build_from_soup(const PolygonSoup& soup, PolygonSoup* owned, LoadReport& report) {
-    check_soup(soup);
+    check_polygon_soup(soup);
+
     const std::size_t n_input_vertices = soup.positions.size();
     const bool keep_corners = !soup.corner_texcoords.empty();
     Triangles tris;
     make_triangles(soup, keep_corners, report, tris);
     if (owned) std::vector<std::size_t>().swap(owned->face_offsets);  // no longer read
+
     Connectivity c;
     if (!connect_manifold_triangles(tris, n_input_vertices, keep_corners, c)) {
         EdgeGroups groups;
@@ -847,12 +818,16 @@ HalfedgeMesh build_from_soup(const PolygonSoup& soup, PolygonSoup* owned, LoadRe
         link_groups(n_input_vertices, groups);
         accept_triangles(tris, keep_corners, groups, c);
     }
+
     c.vhalfedge.resize(n_input_vertices);
     std::vector<ExtraFan> extra_fans = find_fans(c);
+
     copy_extra_fans(extra_fans, n_input_vertices, c, report);
     add_detached_triangles(tris.tri, n_input_vertices, keep_corners, c, report);
+
     HalfedgeMesh mesh = assemble_mesh(soup, owned, c, report);
     copy_attributes(soup, n_input_vertices, tris, c.copy_source, c.face_tri, mesh);
+
     if (owned) {
         owned->face_offsets.assign(1, 0);  // an empty soup's offsets
         owned->corners.clear();
@@ -869,6 +844,18 @@ HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report) {
 HalfedgeMesh build_mesh(PolygonSoup&& soup, LoadReport& report) {
     return build_from_soup(soup, &soup, report);
 }
+
+namespace detail {
+namespace {
+std::atomic<int> g_build_threads{2};
+}  // namespace
+void set_build_threads(int n) {
+    g_build_threads.store(n < 2 ? 1 : 2);
+}
+int build_threads() {
+    return g_build_threads.load();
+}
+}  // namespace detail
 
 PolygonSoup to_soup(const HalfedgeMesh& mesh) {
     PolygonSoup soup;

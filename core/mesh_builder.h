@@ -68,6 +68,12 @@ struct LoadReport {
     std::vector<std::string> lines() const;
 };
 
+/// Checks what build_mesh needs of a soup before it builds anything: fewer vertices than
+/// 32-bit indices number, face offsets matching the corner list, every corner index in range,
+/// finite positions, attribute arrays of the right sizes. Throws InvalidArgument naming the
+/// face and corner (or the vertex, or the attribute). Linear in the soup size.
+void check_polygon_soup(const PolygonSoup& soup);
+
 /// Builds a valid HalfedgeMesh from `soup` (see the file comment). Attributes in the soup
 /// become "v:normal", "v:color", "v:texcoord" and "h:texcoord" (the texture coordinate of
 /// the corner at to_vertex(h) in face(h)). Throws InvalidArgument naming the face and corner
@@ -82,5 +88,14 @@ HalfedgeMesh build_mesh(PolygonSoup&& soup, LoadReport& report);
 /// The inverse: every live face as a triangle, with per-vertex attributes; vertices are
 /// numbered in storage order with deleted ones skipped.
 PolygonSoup to_soup(const HalfedgeMesh& mesh);
+
+namespace detail {
+/// Test hook: how many threads build_mesh (and the PLY reader's face decoding) may use for
+/// a large soup (1 or 2; 2 by default, where the machine has two). With 1, every stage runs
+/// its one-thread pass, the reference the two-thread passes are compared with element for
+/// element.
+void set_build_threads(int n);
+int build_threads();
+}  // namespace detail
 
 }  // namespace trilab

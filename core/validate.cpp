@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/prefetch.h"
+#include "core/two_threads.h"
 
 namespace trilab {
 
@@ -26,7 +27,16 @@ constexpr std::size_t kAhead = 8;
 namespace {
 
 // validate() in three stages, one method each: the halfedges, the faces, the vertices (their
-// fans walked side by side). Each returns the first broken invariant ("" when none).
+// fans walked side by side). Each returns the first broken invariant ("" when none). A large
+// mesh's stage runs as two halves on two threads, the stages one after the other (a stage
+// reads only what the stages before it proved in range).
+//
+// The vertex stage first walks each vertex's fan and counts its boundary halfedges without
+// knowing the vertex's degree (walk_fans): once the halfedges are proven, rotation around a
+// vertex is a permutation of its outgoing halfedges, so every fan comes back, and the fans
+// hold every outgoing halfedge exactly when their sizes sum to the number of live halfedges.
+// When that sum is short, or a fan breaks a rule, the exact per-vertex walk (check_vertices,
+// with the degrees counted first) runs to name the first broken vertex, as it always did.
 class Validator {
 public:
     explicit Validator(const HalfedgeMesh& m)
@@ -42,9 +52,18 @@ public:
           fhalfedge_(m.face_halfedge_array()),
           garbage_(m.has_garbage()) {}
 
-    std::string check_halfedges() const;
-    std::string check_faces() const;
+    /// The halfedges in [begin, end); `live` gets how many of them are live.
+    std::string check_halfedges(std::size_t begin, std::size_t end, std::size_t& live) const;
+    /// The faces in [begin, end).
+    std::string check_faces(std::size_t begin, std::size_t end) const;
+    /// The vertices in [begin, end), without their degrees: false when some fan breaks a
+    /// rule; `walked` gets the sum of the fans' sizes.
+    bool walk_fans(std::size_t begin, std::size_t end, std::size_t& walked) const;
+    /// The vertices, each fan against its degree (naming the first broken vertex).
     std::string check_vertices();
+    std::size_t n_halfedges() const { return nh_; }
+    std::size_t n_faces() const { return nf_; }
+    std::size_t n_vertices() const { return nv_; }
 
 private:
     bool live_v(Vertex v) const { return v.idx() < nv_ && !(garbage_ && m_.is_deleted(v)); }
@@ -85,15 +104,18 @@ private:
 // Halfedges: references in range and live, prev(next(h)) == h, no self-loop edges.
 // With next and prev mapping live halfedges to live ones, prev(next(h)) == h for every
 // h makes next a bijection and prev its inverse, so next(prev(h)) == h needs no check.
-std::string Validator::check_halfedges() const {
+std::string Validator::check_halfedges(std::size_t begin, std::size_t end,
+                                       std::size_t& live) const {
     const auto& to = to_;
     const auto& next = next_;
     const auto& prev = prev_;
     const auto& face = face_;
     const std::size_t nh = nh_;
-    for (std::size_t i = 0; i < nh; ++i) {
+    live = 0;
+    for (std::size_t i = begin; i < end; ++i) {
         if (garbage_ && m_.is_deleted(Edge(Index(i >> 1)))) continue;
-        if (i + kAhead < nh) {
+        ++live;
+        if (i + kAhead < end) {
             const Index a = next[i + kAhead].idx();
             if (a < nh) {
                 prefetch(&prev[a]);
@@ -119,14 +141,14 @@ std::string Validator::check_halfedges() const {
 }
 
 // Faces: triangles whose halfedges point back to them.
-std::string Validator::check_faces() const {
+std::string Validator::check_faces(std::size_t begin, std::size_t end) const {
     const auto& to = to_;
     const auto& next = next_;
     const auto& face = face_;
-    for (std::size_t i = 0; i < nf_; ++i) {
+    for (std::size_t i = begin; i < end; ++i) {
         const Face f{Index(i)};
         if (garbage_ && m_.is_deleted(f)) continue;
-        if (i + kAhead < nf_) {
+        if (i + kAhead < end) {
             const Index a = fhalfedge_[i + kAhead].idx();
             if (a < nh_) {
                 prefetch(&face[a]);
@@ -260,15 +282,124 @@ std::string Validator::check_vertices() {
     return {};
 }
 
+// The fans of the vertices in [begin, end), kLanes side by side, each walked until it comes
+// back (see the file comment): a vertex's halfedge is live and outgoing, on the boundary when
+// the vertex is, the fan has at most one boundary halfedge and no two edges to the same
+// neighbour. A vertex without a halfedge is skipped (the sum of the sizes shows whether it
+// has edges).
+bool Validator::walk_fans(std::size_t begin, std::size_t end, std::size_t& walked) const {
+    struct Walk {
+        Index v = kInvalidIndex, h = 0, x = 0;
+        unsigned count = 0, boundary = 0;
+        std::array<Index, kShort> near{};
+        std::vector<Index> many;
+    };
+    std::array<Walk, kLanes> lanes;
+    std::size_t next_vertex = begin;
+    walked = 0;
+    // Starts the lane on the next vertex with a halfedge (false: a broken one).
+    auto start = [&](Walk& w) {
+        w.v = kInvalidIndex;
+        while (next_vertex < end) {
+            const Vertex v(Index(next_vertex++));
+            if (garbage_ && m_.is_deleted(v)) continue;
+            const Halfedge h = m_.halfedge(v);
+            if (!h.is_valid()) continue;
+            if (!live_h(h)) return false;
+            w.v = v.idx();
+            w.h = w.x = h.idx();
+            w.count = w.boundary = 0;
+            w.many.clear();
+            prefetch(&prev_[w.h]);
+            prefetch(&to_[w.h]);
+            prefetch(&face_[w.h]);
+            return true;
+        }
+        return true;
+    };
+    // The checks at the end of a fan.
+    auto finish = [&](Walk& w) {
+        walked += w.count;
+        if (w.boundary > 1 || (w.boundary == 1 && face_[w.h].is_valid())) return false;
+        if (w.count <= kShort) return true;
+        w.many.insert(w.many.end(), w.near.begin(), w.near.end());
+        std::sort(w.many.begin(), w.many.end());
+        return std::adjacent_find(w.many.begin(), w.many.end()) == w.many.end();
+    };
+    auto step = [&](Walk& w) {
+        const Index x = w.x;
+        if (w.count == 0 && to_[x ^ 1].idx() != w.v) return false;
+        const Index n = to_[x].idx();
+        if (w.count < kShort) {
+            for (unsigned i = 0; i < w.count; ++i)
+                if (w.near[i] == n) return false;
+            w.near[w.count] = n;
+        } else {
+            w.many.push_back(n);
+        }
+        ++w.count;
+        if (!face_[x].is_valid()) ++w.boundary;
+        w.x = prev_[x].idx() ^ 1;  // counter-clockwise
+        if (w.x != w.h) {
+            prefetch(&prev_[w.x]);
+            prefetch(&to_[w.x]);
+            prefetch(&face_[w.x]);
+            return true;
+        }
+        return finish(w) && start(w);
+    };
+    for (Walk& w : lanes)
+        if (!start(w)) return false;
+    for (bool busy = true; busy;) {
+        busy = false;
+        for (Walk& w : lanes) {
+            if (w.v == kInvalidIndex) continue;
+            busy = true;
+            if (!step(w)) return false;
+        }
+    }
+    return true;
+}
+
+/// Runs stage(part, begin, end) on the two halves of [0, n) (on two threads for a large n);
+/// returns the first half's error, else the second's.
+template <typename Stage>
+std::string in_halves(std::size_t n, const Stage& stage) {
+    std::string error[2];
+    const std::size_t mid = n / 2;
+    on_two_threads(worth_two_threads(n), [&](int part) {
+        error[part] = part == 0 ? stage(0, 0, mid) : stage(1, mid, n);
+    });
+    return error[0].empty() ? error[1] : error[0];
+}
+
 }  // namespace
 
 ValidationResult validate(const HalfedgeMesh& m) {
     if (m.halfedges_size() != 2 * m.edges_size())
         return {false, "halfedge storage is not twice the edge storage"};
     Validator check(m);
-    std::string error = check.check_halfedges();
-    if (error.empty()) error = check.check_faces();
-    if (error.empty()) error = check.check_vertices();
+    std::size_t live[2] = {0, 0};
+    std::string error = in_halves(check.n_halfedges(), [&](int part, std::size_t b, std::size_t e) {
+        return check.check_halfedges(b, e, live[part]);
+    });
+    if (error.empty())
+        error = in_halves(check.n_faces(), [&](int, std::size_t b, std::size_t e) {
+            return check.check_faces(b, e);
+        });
+    if (error.empty()) {
+        std::size_t walked[2] = {0, 0};
+        bool fans_ok[2] = {true, true};
+        in_halves(check.n_vertices(), [&](int part, std::size_t b, std::size_t e) {
+            fans_ok[part] = check.walk_fans(b, e, walked[part]);
+            return std::string();
+        });
+        if (!fans_ok[0] || !fans_ok[1] || walked[0] + walked[1] != live[0] + live[1])
+            error = check.check_vertices();  // names the broken vertex
+        if (error.empty() &&
+            (!fans_ok[0] || !fans_ok[1] || walked[0] + walked[1] != live[0] + live[1]))
+            error = "the vertices' fans do not hold every halfedge";
+    }
     if (!error.empty()) return {false, std::move(error)};
     return {};
 }

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <thread>
 #include <utility>
@@ -228,36 +229,101 @@ void Session::execute(const Command& command) {
     }
 }
 
+std::shared_ptr<const LoadingPicture> Session::loading_picture() const {
+    const std::lock_guard<std::mutex> lock(picture_slot_->mutex);
+    return picture_slot_->picture;
+}
+
+namespace {
+
+/// The picture of `soup` (null when `maker` makes none), its bounds and fit sphere as the
+/// window's fit_view computes them for the mesh.
+std::shared_ptr<const LoadingPicture> make_loading_picture(const LoadingPictureMaker& maker,
+                                                           const PolygonSoup& soup,
+                                                           const std::string& path) {
+    std::shared_ptr<const ProxyMesh> proxy = maker(soup);
+    if (!proxy) return nullptr;
+    auto picture = std::make_shared<LoadingPicture>();
+    picture->path = path;
+    picture->proxy = std::move(proxy);
+    picture->faces = soup.n_faces();
+    for (const Point& p : soup.positions) picture->bounds.extend(p);
+    picture->center = picture->bounds.empty ? Point::Zero() : picture->bounds.center();
+    double radius2 = 0;
+    for (const Point& p : soup.positions)
+        radius2 = std::max(radius2, (p - picture->center).squaredNorm());
+    picture->radius = std::sqrt(radius2);
+    return picture;
+}
+
+/// Tests only: milliseconds the load job waits once its picture is shown (so that a
+/// scripted run sees the picture before the exact surface, whatever the machine's speed).
+int loading_picture_hold_ms() {
+    const char* env = std::getenv("TRILAB_LOADING_PICTURE_HOLD_MS");
+    return env && *env ? std::max(0, std::atoi(env)) : 0;
+}
+
+}  // namespace
+
 void Session::load(const std::string& path) {
     const std::string name = std::filesystem::path(path).filename().string();
-    const bool started = jobs_.start("Loading " + name, [this, path, name](Progress& progress) {
-        progress.report(-1.0, "reading and building the half-edge mesh");
-        auto loaded = std::make_shared<LoadedMesh>(read_mesh(path));
-        // A closed mesh turned inside out (read_mesh notes it): said where it shows.
-        auto inward = std::make_shared<std::string>(inward_orientation_note(loaded->mesh));
-        // Runs on this thread when the job succeeded and was not cancelled.
-        return JobRunner::Finish([this, loaded, path, name, inward] {
-            log_.info("loaded " + path);
-            for (const std::string& line : loaded->report.lines()) {
-                if (line == *inward)
-                    log_.warning("  " + line);
-                else
-                    log_.info("  " + line);
-            }
-            if (!loaded->texture_path.empty()) log_.info("  texture: " + loaded->texture_path);
-            const bool revert = path == document_.path;
-            std::vector<std::string> report_lines = loaded->report.lines();
-            push_loaded(std::move(loaded->mesh), revert ? "Revert" : "Load " + name, name, path,
-                        std::move(loaded->report));
-            notice_ = Notice{Notice::Level::Info, (revert ? "Reverted to " : "Loaded ") + name,
-                             std::move(report_lines), false};
-            if (!inward->empty())
-                notice_.text +=
-                    ": its faces point inwards (negative volume); Tools > Flip "
-                    "orientation turns them outwards";
-            events_.recent.push_back(path);
+    const bool started =
+        jobs_.start("Loading " + name, [this, path, name, slot = picture_slot_,
+                                        maker = loading_picture_maker_](Progress& progress) {
+            progress.report(-1.0, "reading and building the half-edge mesh");
+            // The picture is handed over through the slot (never the document), once the whole
+            // file is read and checked; a failed picture only means none.
+            std::shared_ptr<const ProxyMesh> picture_proxy;
+            auto on_soup = [&](const PolygonSoup& soup) {
+                if (!maker) return;
+                std::shared_ptr<const LoadingPicture> picture;
+                try {
+                    picture = make_loading_picture(maker, soup, path);
+                } catch (const std::exception&) {
+                    return;
+                }
+                if (!picture) return;
+                picture_proxy = picture->proxy;
+                {
+                    const std::lock_guard<std::mutex> lock(slot->mutex);
+                    slot->picture = std::move(picture);
+                }
+                if (const int hold = loading_picture_hold_ms())
+                    std::this_thread::sleep_for(std::chrono::milliseconds(hold));
+                progress.report(-1.0, "building the half-edge mesh (a simplified picture shows)");
+                progress.check_cancelled();  // a cancelled load stops before the build
+            };
+            auto loaded = std::make_shared<LoadedMesh>(read_mesh(path, on_soup));
+            const LoadReport& r = loaded->report;
+            if (r.polygons_triangulated || r.degenerate_faces_dropped || r.detached_faces ||
+                r.vertex_copies_added)
+                picture_proxy.reset();  // not the mesh's own proxy
+            // A closed mesh turned inside out (read_mesh notes it): said where it shows.
+            auto inward = std::make_shared<std::string>(inward_orientation_note(loaded->mesh));
+            // Runs on this thread when the job succeeded and was not cancelled.
+            return JobRunner::Finish([this, loaded, path, name, inward, picture_proxy] {
+                log_.info("loaded " + path);
+                for (const std::string& line : loaded->report.lines()) {
+                    if (line == *inward)
+                        log_.warning("  " + line);
+                    else
+                        log_.info("  " + line);
+                }
+                if (!loaded->texture_path.empty()) log_.info("  texture: " + loaded->texture_path);
+                const bool revert = path == document_.path;
+                std::vector<std::string> report_lines = loaded->report.lines();
+                push_loaded(std::move(loaded->mesh), revert ? "Revert" : "Load " + name, name, path,
+                            std::move(loaded->report));
+                notice_ = Notice{Notice::Level::Info, (revert ? "Reverted to " : "Loaded ") + name,
+                                 std::move(report_lines), false};
+                if (!inward->empty())
+                    notice_.text +=
+                        ": its faces point inwards (negative volume); Tools > Flip "
+                        "orientation turns them outwards";
+                events_.recent.push_back(path);
+                events_.loaded_proxy = picture_proxy;
+            });
         });
-    });
     if (!started) busy_error();
 }
 
@@ -308,6 +374,11 @@ bool Session::poll() {
     const JobRunner::Outcome outcome = jobs_.poll();
     using Kind = JobRunner::Outcome::Kind;
     if (outcome.kind == Kind::None) return false;
+    {
+        // The job ended (loaded, failed or cancelled): its loading picture goes.
+        const std::lock_guard<std::mutex> lock(picture_slot_->mutex);
+        picture_slot_->picture.reset();
+    }
     const bool preview = outcome.name.rfind("Preview: ", 0) == 0;
     if (preview && outcome.kind == Kind::Failed) preview_.failure = outcome.message;
     if (preview && outcome.kind != Kind::Failed) {

@@ -12,6 +12,7 @@
 #include <functional>
 #include <future>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,9 +28,11 @@
 #include "core/algorithms/decimation.h"
 #include "core/algorithms/level_of_detail.h"
 #include "core/algorithms/morph.h"
+#include "core/algorithms/proxy_mesh.h"
 #include "core/algorithms/selection.h"
 #include "core/algorithms/spectral.h"
 #include "core/algorithms/texcoords.h"
+#include "core/geometry.h"
 #include "core/halfedge_mesh.h"
 #include "core/io/image_io.h"
 #include "core/mesh_builder.h"
@@ -109,7 +112,27 @@ struct SessionEvents {
     bool saved = false;  ///< a save finished (a pending question goes on)
     /// A session was opened: its view, panel and texture settings for the window to apply.
     std::shared_ptr<const SessionExtras> session_extras;
+    /// A load ended whose picture (LoadingPicture) is also the new document's proxy: the file
+    /// was a clean manifold triangle soup, so the mesh has its vertices and triangles in order
+    /// and make_proxy_mesh would make the same proxy (null otherwise).
+    std::shared_ptr<const ProxyMesh> loaded_proxy;
 };
+
+/// A simplified picture of a file still loading, made from its arrays (vertex clustering of
+/// the soup, core/algorithms/proxy_mesh.h) once they are fully read and checked, before the
+/// half-edge mesh is built. The window draws it until the load ends, whatever the outcome.
+struct LoadingPicture {
+    std::string path;                        ///< the file being loaded
+    std::shared_ptr<const ProxyMesh> proxy;  ///< its clustered triangles
+    BoundingBox bounds;                      ///< of the file's vertices
+    Point center;                            ///< bounds' centre
+    double radius = 0;                       ///< the smallest sphere around center holding them
+    std::size_t faces = 0;                   ///< the file's faces
+};
+
+/// Makes a LoadingPicture's proxy from a file's soup, on the load job's thread (pure: no
+/// session state); null for no picture (a small file).
+using LoadingPictureMaker = std::function<std::shared_ptr<const ProxyMesh>(const PolygonSoup&)>;
 
 /// Whether `path` names a session file or a crash journal (.trilab, .journal): opening it
 /// restores a session instead of reading a mesh.
@@ -153,6 +176,13 @@ public:
     const MorphState& morph() const { return morph_; }
     FrequencyDocument& frequency() { return document_.frequency; }
     bool busy() const { return jobs_.busy(); }
+    /// The picture of the file being loaded, once its arrays are read (null otherwise; cleared
+    /// when the load job ends). Safe to call while the job runs.
+    std::shared_ptr<const LoadingPicture> loading_picture() const;
+    /// Loads make their picture with `maker` (none without one: the default).
+    void set_loading_picture_maker(LoadingPictureMaker maker) {
+        loading_picture_maker_ = std::move(maker);
+    }
     /// A preview job runs (its progress shows only after a while).
     bool preview_running() const;
     /// Seconds on the session's clock (the morph's, and the panels' playback start).
@@ -364,6 +394,13 @@ private:
 
     Document document_;
     JobRunner jobs_;
+    /// The load job's picture, handed from the job's thread to the window's.
+    struct PictureSlot {
+        mutable std::mutex mutex;
+        std::shared_ptr<const LoadingPicture> picture;
+    };
+    std::shared_ptr<PictureSlot> picture_slot_ = std::make_shared<PictureSlot>();
+    LoadingPictureMaker loading_picture_maker_;
     Log log_;
     Notice notice_;
     MorphState morph_;

@@ -168,6 +168,14 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
 
     renderer_ = std::make_unique<MeshRenderer>();
     proxy_.renderer = std::make_unique<MeshRenderer>();
+    // A large file shows a simplified picture while it loads (viewer_motion.cpp): made on the
+    // load job's thread from the file's arrays, with the document proxy's own options.
+    session_.set_loading_picture_maker(
+        [](const PolygonSoup& soup) -> std::shared_ptr<const ProxyMesh> {
+            if (soup.n_faces() < proxy_min_faces()) return nullptr;
+            return std::make_shared<ProxyMesh>(
+                make_soup_proxy_mesh(soup, proxy_options(soup.n_faces())));
+        });
     collapse_lines_ = std::make_unique<LineRenderer>();
     checkerboard_ = make_checkerboard();
     update_texture();
@@ -219,6 +227,17 @@ Viewer::~Viewer() {
 void Viewer::follow_session() {
     SessionEvents e = session_.take_events();
     for (const std::string& path : e.recent) recent_.add(path);
+    if (e.loaded_proxy) {
+        // The loading picture is the loaded document's proxy (a clean triangle soup): no
+        // second clustering.
+        const HalfedgeMesh& mesh = session_.mesh();
+        const MeshKey key{mesh.topology_revision(), mesh.geometry_revision()};
+        if (!proxy_.cache.count(key)) {
+            proxy_.cache[key] = e.loaded_proxy;
+            proxy_.cache_order.push_back(key);
+        }
+    }
+    if (e.fit) loading_.restore_camera = false;  // a new model: its view stays
     if (e.state_changed) {
         const Document& doc = session_.document();
         surface_area_ = doc.area;
@@ -331,8 +350,11 @@ double Viewer::frame_ms() const {
 
 bool Viewer::prepare_frame() {
     bool waited = false;
-    // Scripted runs (--frames) show the result of the initial load, not the progress.
+    // Scripted runs (--frames) show the result of the initial load, not the progress; a
+    // loading picture not on the screen yet is drawn (the first picture of a large file).
     while (options_.frames > 0 && session_.jobs().busy() && !session_.preview_running()) {
+        if (const auto picture = session_.loading_picture(); picture && picture != loading_.picture)
+            break;
         session_.poll();
         if (session_.jobs().busy()) glfwWaitEventsTimeout(0.002);
         waited = true;

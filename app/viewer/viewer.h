@@ -429,6 +429,22 @@ private:
         std::size_t proxy_frames = 0, exact_frames = 0;  ///< frames of the current run
     };
     ProxyView proxy_;
+    /// The picture of a file still loading (Session::loading_picture), drawn by the proxy's
+    /// renderer until the load ends.
+    struct LoadingView {
+        std::shared_ptr<const LoadingPicture> picture;  ///< on the proxy's renderer
+        bool drawn = false;                             ///< this frame drew it
+        Camera camera_before;                           ///< the view before the picture was fitted
+        bool restore_camera = false;                    ///< the load has not brought a model yet
+        double error_pixels = 0;
+    };
+    LoadingView loading_;
+    /// In choose_renderer: the loading picture's renderer while a load shows one (null when
+    /// none); restores the view when a picture goes without a new model (a failed load).
+    MeshRenderer* choose_loading_picture();
+    /// The proxy options for a state of `n_faces` faces (the document's and the loading
+    /// picture's: the same options make the same proxy).
+    static ProxyMeshOptions proxy_options(std::size_t n_faces);
     struct Orbit {
         int frame = -1;  ///< -1: not started; 1..N: the orbit's frames; N + 1: resting
         Camera start;

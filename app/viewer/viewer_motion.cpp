@@ -78,6 +78,15 @@ bool Viewer::proxy_applies(const Shown& shown) const {
            shown.mesh && shown.mesh->n_faces() >= proxy_min_faces();
 }
 
+ProxyMeshOptions Viewer::proxy_options(std::size_t n_faces) {
+    ProxyMeshOptions options;
+    std::size_t target = kProxyTriangles;
+    if (const char* env = std::getenv("TRILAB_PROXY_TRIANGLES"); env && *env)
+        target = std::size_t(std::strtoull(env, nullptr, 10));  // measurements only
+    options.target_triangles = std::clamp<std::size_t>(std::min(target, n_faces / 4), 16, 2000000);
+    return options;
+}
+
 void Viewer::request_proxy(const HalfedgeMesh& mesh) {
     const MeshKey key{mesh.topology_revision(), mesh.geometry_revision()};
     if (proxy_.cache.count(key) ||
@@ -85,12 +94,7 @@ void Viewer::request_proxy(const HalfedgeMesh& mesh) {
         return;
     if (proxy_.job.valid() && proxy_.job_key == key) return;
     if (proxy_.job.valid()) proxy_.abandoned.push_back(std::move(proxy_.job));
-    ProxyMeshOptions options;
-    std::size_t target = kProxyTriangles;
-    if (const char* env = std::getenv("TRILAB_PROXY_TRIANGLES"); env && *env)
-        target = std::size_t(std::strtoull(env, nullptr, 10));  // measurements only
-    options.target_triangles =
-        std::clamp<std::size_t>(std::min(target, mesh.n_faces() / 4), 16, 2000000);
+    const ProxyMeshOptions options = proxy_options(mesh.n_faces());
     proxy_.job_key = key;
     // The worker's own copy (copy-on-write): the document may change meanwhile.
     proxy_.job = std::async(std::launch::async, [copy = HalfedgeMesh(mesh), options] {
@@ -136,10 +140,59 @@ void Viewer::note_exact_colors(const VertexColors& colors, const HalfedgeMesh& m
     ++proxy_.colors_stamp;
 }
 
+MeshRenderer* Viewer::choose_loading_picture() {
+    loading_.drawn = false;
+    std::shared_ptr<const LoadingPicture> picture = session_.loading_picture();
+    if (!picture) {
+        if (loading_.picture && loading_.restore_camera) view_.camera = loading_.camera_before;
+        loading_.picture.reset();
+        loading_.restore_camera = false;
+        return nullptr;
+    }
+    MeshRenderer& r = *proxy_.renderer;
+    if (picture != loading_.picture) {
+        try {
+            r.upload_triangles(picture->proxy->positions, picture->proxy->triangles);
+            r.clear_vertex_colors();
+        } catch (const std::exception& e) {
+            session_.log().warning(std::string("no picture while loading: ") + e.what());
+            return nullptr;
+        }
+        proxy_.uploaded_key = {0, 0};  // the proxy's renderer holds the picture now
+        if (!loading_.picture) {
+            loading_.camera_before = view_.camera;
+            loading_.restore_camera = true;
+        }
+        loading_.picture = picture;
+        // The view the loaded model gets (fit_view over the same vertices).
+        fit_center_ = glm::vec3(float(picture->center.x()), float(picture->center.y()),
+                                float(picture->center.z()));
+        fit_radius_ = picture->bounds.empty ? 1.0f : float(picture->radius);
+        view_.camera.reset_rotation(view_.settings.up);
+        view_.camera.set_viewport(std::max(view_rect_.w, 1.0f), std::max(view_rect_.h, 1.0f));
+        view_.camera.fit_sphere(fit_center_, fit_radius_);
+        char line[160];
+        std::snprintf(line, sizeof(line),
+                      "simplified picture while loading: %zu triangles for %zu faces",
+                      picture->proxy->triangles.size(), picture->faces);
+        session_.log().info(line);
+    }
+    loading_.drawn = true;
+    loading_.error_pixels = proxy_error_pixels(picture->proxy->error_bound, view_.camera,
+                                               ImGui::GetIO().DisplayFramebufferScale.y);
+    active_frames_ = std::max(active_frames_, 1);
+    return &r;
+}
+
 MeshRenderer* Viewer::choose_renderer() {
     const double now = glfwGetTime();
     proxy_.motion.frame(view_.camera.view(), view_.camera.projection(), now);
     poll_proxy_job();
+    if (MeshRenderer* picture = choose_loading_picture()) {
+        proxy_.drew_proxy = false;
+        proxy_.shows_current = false;
+        return picture;
+    }
     const bool drew_proxy_before = proxy_.drew_proxy;
     proxy_.drew_proxy = false;
     proxy_.shows_current = true;
@@ -234,11 +287,16 @@ void Viewer::update_motion_ui() {
         }
         active_frames_ = std::max(active_frames_, 1);
     }
-    // The note, while the last frame showed the proxy (it is drawn over the view's corner).
-    if (proxy_.drew_proxy) {
+    // The note, while the last frame showed the proxy or a loading picture (it is drawn over
+    // the view's corner).
+    if (proxy_.drew_proxy || loading_.drawn) {
         char text[96];
-        std::snprintf(text, sizeof(text), "simplified while moving (within %.1f px)",
-                      proxy_.error_pixels);
+        if (loading_.drawn)
+            std::snprintf(text, sizeof(text), "loading... simplified (within %.1f px)",
+                          loading_.error_pixels);
+        else
+            std::snprintf(text, sizeof(text), "simplified while moving (within %.1f px)",
+                          proxy_.error_pixels);
         ImDrawList* list = ImGui::GetForegroundDrawList();
         const float pad = 6.0f * ui_scale_;
         const ImVec2 at(view_rect_.x + 2 * pad, view_rect_.y + 2 * pad);
@@ -254,6 +312,10 @@ void Viewer::note_frame_end(double frame_ms) {
     const bool model_shown =
         initial_load_ended_ &&
         (options_.mesh_path.empty() || session_.document().path == options_.mesh_path);
+    // The loading picture of the file asked for shows the model (simplified).
+    const bool picture_shown = loading_.drawn && !options_.mesh_path.empty() && loading_.picture &&
+                               loading_.picture->path == options_.mesh_path;
+    if (picture_shown && first_frame_ms_ < 0) first_frame_ms_ = ms_since_start();
     if (model_shown && proxy_.shows_current) {
         if (first_frame_ms_ < 0) first_frame_ms_ = ms_since_start();
         if (exact_frame_ms_ < 0 && !proxy_.drew_proxy && !proxy_.exact_pending)

@@ -79,7 +79,7 @@ private:
     std::vector<std::uint64_t> keys_;
 };
 
-/// The mesh's arrays that the passes read.
+/// The mesh's arrays that the passes read (the soup's: SoupView).
 struct MeshView {
     const HalfedgeMesh& mesh;
     const std::vector<Point>& points;
@@ -97,16 +97,54 @@ struct MeshView {
           garbage(m.has_garbage()) {}
     bool live(Vertex v) const { return !(garbage && mesh.is_deleted(v)); }
     bool live(Face f) const { return !(garbage && mesh.is_deleted(f)); }
+    std::size_t n_faces() const { return face_halfedge.size(); }
     std::array<Index, 3> corners(Index f) const {
         const Halfedge h0 = face_halfedge[f], h1 = next[h0.idx()], h2 = next[h1.idx()];
         return {to[h0.idx()].idx(), to[h1.idx()].idx(), to[h2.idx()].idx()};
     }
 };
 
+/// A polygon soup as the passes read it: every vertex and face live, each face a triangle
+/// (the soup's own corner list when every face is one, else each polygon's fan from its
+/// first corner, faces of fewer than three corners skipped).
+struct SoupView {
+    const std::vector<Point>& points;
+    std::vector<Index> own;  ///< the fans, when the soup is not all triangles
+    const Index* tri = nullptr;
+    std::size_t n_tri = 0;
+
+    explicit SoupView(const PolygonSoup& soup) : points(soup.positions) {
+        const std::size_t nf = soup.n_faces();
+        if (soup.corners.size() == 3 * nf && soup.face_offsets.back() == 3 * nf &&
+            std::adjacent_find(soup.face_offsets.begin(), soup.face_offsets.end(),
+                               [](std::size_t a, std::size_t b) { return b != a + 3; }) ==
+                soup.face_offsets.end()) {
+            tri = soup.corners.data();
+            n_tri = nf;
+            return;
+        }
+        for (std::size_t f = 0; f < nf; ++f) {
+            const std::size_t b = soup.face_offsets[f], e = soup.face_offsets[f + 1];
+            for (std::size_t k = b + 1; k + 1 < e; ++k)
+                own.insert(own.end(), {soup.corners[b], soup.corners[k], soup.corners[k + 1]});
+        }
+        tri = own.data();
+        n_tri = own.size() / 3;
+    }
+    bool live(Vertex) const { return true; }
+    bool live(Face) const { return true; }
+    std::size_t n_faces() const { return n_tri; }
+    std::array<Index, 3> corners(Index f) const {
+        const Index* c = tri + 3 * std::size_t(f);
+        return {c[0], c[1], c[2]};
+    }
+};
+
 /// The area of the live faces, from about 2^18 of them evenly spread (an estimate that is
 /// exact for smaller meshes).
-double sampled_area(const MeshView& m) {
-    const std::size_t nf = m.face_halfedge.size();
+template <typename View>
+double sampled_area(const View& m) {
+    const std::size_t nf = m.n_faces();
     const std::size_t stride = std::max<std::size_t>(1, nf >> 18);
     double sum = 0;
     for (std::size_t f = 0; f < nf; f += stride) {
@@ -118,7 +156,8 @@ double sampled_area(const MeshView& m) {
     return sum * double(stride);
 }
 
-BoundingBox live_bounds(const MeshView& m) {
+template <typename View>
+BoundingBox live_bounds(const View& m) {
     BoundingBox box;
     for (std::size_t v = 0; v < m.points.size(); ++v)
         if (m.live(Vertex(Index(v)))) box.extend(m.points[v]);
@@ -157,7 +196,8 @@ private:
 };
 
 /// Pass 1. False when the grid or the cluster count exceed the 21-bit packing.
-bool make_clusters(const MeshView& m, const BoundingBox& box, double cell, Clusters& out) {
+template <typename View>
+bool make_clusters(const View& m, const BoundingBox& box, double cell, Clusters& out) {
     const Vector3 extent = box.max - box.min;
     std::array<std::uint64_t, 3> dims;
     for (int k = 0; k < 3; ++k) {
@@ -190,7 +230,8 @@ bool make_clusters(const MeshView& m, const BoundingBox& box, double cell, Clust
 }
 
 /// The distinct proxy triangles of faces [begin, end), as packed keys in face order.
-std::vector<std::uint64_t> chunk_triangles(const MeshView& m, const Clusters& clusters,
+template <typename View>
+std::vector<std::uint64_t> chunk_triangles(const View& m, const Clusters& clusters,
                                            std::size_t begin, std::size_t end) {
     KeyNumbers seen(1024);
     for (std::size_t f = begin; f < end; ++f) {
@@ -208,9 +249,10 @@ std::vector<std::uint64_t> chunk_triangles(const MeshView& m, const Clusters& cl
 }
 
 /// Pass 2: the proxy triangles, chunks on `threads` threads, merged in chunk order.
-std::vector<std::array<Index, 3>> make_triangles(const MeshView& m, const Clusters& clusters,
+template <typename View>
+std::vector<std::array<Index, 3>> make_triangles(const View& m, const Clusters& clusters,
                                                  unsigned threads) {
-    const std::size_t nf = m.face_halfedge.size();
+    const std::size_t nf = m.n_faces();
     const std::size_t n_chunks = (nf + kChunkFaces - 1) / kChunkFaces;
     std::vector<std::vector<std::uint64_t>> per_chunk(n_chunks);
     std::atomic<std::size_t> next_chunk{0};
@@ -235,7 +277,8 @@ std::vector<std::array<Index, 3>> make_triangles(const MeshView& m, const Cluste
 }
 
 /// Per cluster: its vertex nearest to the mean (the lowest index among equally near ones).
-std::vector<Index> nearest_members(const MeshView& m, const Clusters& clusters) {
+template <typename View>
+std::vector<Index> nearest_members(const View& m, const Clusters& clusters) {
     std::vector<Index> rep(clusters.count(), kInvalidIndex);
     std::vector<double> best(clusters.count(), std::numeric_limits<double>::infinity());
     for (std::size_t v = 0; v < m.points.size(); ++v) {
@@ -252,7 +295,8 @@ std::vector<Index> nearest_members(const MeshView& m, const Clusters& clusters) 
 
 /// The first cell size: from the area for the target, or a 64th of the box for a mesh
 /// without area, or 1 for a single point.
-double first_cell_size(const MeshView& m, const BoundingBox& box, std::size_t target) {
+template <typename View>
+double first_cell_size(const View& m, const BoundingBox& box, std::size_t target) {
     const double area = sampled_area(m);
     const double longest = (box.max - box.min).maxCoeff();
     double cell = area > 0 ? std::sqrt(3.0 * area / double(target)) : longest / 64;
@@ -266,15 +310,14 @@ unsigned thread_count(unsigned asked) {
     return std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
 }
 
-}  // namespace
-
-ProxyMesh make_proxy_mesh(const HalfedgeMesh& mesh, const ProxyMeshOptions& options) {
+/// make_proxy_mesh over either view.
+template <typename View>
+ProxyMesh make_proxy(const View& m, const ProxyMeshOptions& options, const char* name) {
     const std::size_t target = options.target_triangles;
     if (target < 16 || target > 2000000)
-        throw InvalidArgument("make_proxy_mesh: target_triangles " + std::to_string(target) +
+        throw InvalidArgument(std::string(name) + ": target_triangles " + std::to_string(target) +
                               " is outside [16, 2000000]");
     ProxyMesh out;
-    const MeshView m(mesh);
     const BoundingBox box = live_bounds(m);
     if (box.empty) return out;
     double cell = first_cell_size(m, box, target);
@@ -303,6 +346,21 @@ ProxyMesh make_proxy_mesh(const HalfedgeMesh& mesh, const ProxyMeshOptions& opti
     out.cell_size = cell;
     out.error_bound = cell * std::sqrt(3.0);
     return out;
+}
+
+}  // namespace
+
+ProxyMesh make_proxy_mesh(const HalfedgeMesh& mesh, const ProxyMeshOptions& options) {
+    return make_proxy(MeshView(mesh), options, "make_proxy_mesh");
+}
+
+ProxyMesh make_soup_proxy_mesh(const PolygonSoup& soup, const ProxyMeshOptions& options) {
+    for (Index c : soup.corners)
+        if (c >= soup.positions.size())
+            throw InvalidArgument("make_soup_proxy_mesh: corner index " + std::to_string(c) +
+                                  " is out of range (" + std::to_string(soup.positions.size()) +
+                                  " vertices)");
+    return make_proxy(SoupView(soup), options, "make_soup_proxy_mesh");
 }
 
 }  // namespace trilab

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/halfedge_mesh.h"
+#include "core/mesh_builder.h"
 
 namespace trilab {
 
@@ -50,5 +51,14 @@ struct ProxyMesh {
 /// [16, 2,000,000]. Complexity: O(V + F) a pass, the face pass on `threads` threads; about
 /// 0.3 s for 17.8M faces on two cores.
 ProxyMesh make_proxy_mesh(const HalfedgeMesh& mesh, const ProxyMeshOptions& options = {});
+
+/// The same clustering over a polygon soup as a file reader gives it, before any half-edge
+/// mesh is built (the viewer's picture of a file still loading). Every position is a vertex;
+/// a polygon is clustered as the fan from its first corner, a face of fewer than three corners
+/// adds nothing. For the soup of a mesh whose faces are the soup's triangles in order and whose
+/// vertices are the soup's positions (what build_mesh makes of a clean manifold triangle soup)
+/// the result equals make_proxy_mesh of that mesh. Throws InvalidArgument for a corner index
+/// out of range or a target outside [16, 2,000,000]. Complexity: as make_proxy_mesh.
+ProxyMesh make_soup_proxy_mesh(const PolygonSoup& soup, const ProxyMeshOptions& options = {});
 
 }  // namespace trilab

@@ -686,10 +686,21 @@ void check_finite_soup(const PolygonSoup& soup, const std::string& path) {
 
 namespace {
 
+/// This thread's soup observer (ScopedSoupObserver), or null.
+thread_local const SoupObserver* t_soup_observer = nullptr;
+
 template <typename Soup>
 HalfedgeMesh build_checked(Soup&& soup, LoadReport& report, const std::string& path) {
     if (soup.positions.empty()) throw IoError(path, 0, "the file holds no vertices");
     check_finite_soup(soup, path);
+    if (t_soup_observer && *t_soup_observer) {
+        try {
+            check_polygon_soup(soup);  // indices in range before anyone sees the soup
+        } catch (const Error& e) {
+            throw IoError(path, 0, e.what());
+        }
+        (*t_soup_observer)(soup);  // what it throws (a cancellation) passes unchanged
+    }
     try {
         return build_mesh(std::forward<Soup>(soup), report);
     } catch (const IoError&) {
@@ -700,6 +711,14 @@ HalfedgeMesh build_checked(Soup&& soup, LoadReport& report, const std::string& p
 }
 
 }  // namespace
+
+ScopedSoupObserver::ScopedSoupObserver(const SoupObserver* observer) : before_(t_soup_observer) {
+    t_soup_observer = observer;
+}
+
+ScopedSoupObserver::~ScopedSoupObserver() {
+    t_soup_observer = before_;
+}
 
 HalfedgeMesh build_mesh_for_file(const PolygonSoup& soup, LoadReport& report,
                                  const std::string& path) {

@@ -92,6 +92,24 @@ void force_unlinkable_temporary_files(bool on);
 std::string temporary_file_prefix(const std::string& file_name);
 }  // namespace detail
 
+/// Called with a file's soup once the whole file is read and the soup checked (every corner
+/// index in range, every value finite: check_polygon_soup, check_finite_soup), before the
+/// half-edge mesh is built from it; on the reading thread. What it throws ends the read.
+using SoupObserver = std::function<void(const PolygonSoup&)>;
+
+/// While alive, build_mesh_for_file on this thread calls `observer` (read_mesh's on_soup);
+/// the observer set before is restored at the end of the scope.
+class ScopedSoupObserver {
+public:
+    explicit ScopedSoupObserver(const SoupObserver* observer);
+    ~ScopedSoupObserver();
+    ScopedSoupObserver(const ScopedSoupObserver&) = delete;
+    ScopedSoupObserver& operator=(const ScopedSoupObserver&) = delete;
+
+private:
+    const SoupObserver* before_;
+};
+
 /// Runs build_mesh and turns its InvalidArgument into an IoError naming `path`. A soup
 /// without vertices is refused ("the file holds no vertices"), and so is a soup with a
 /// non-finite value in any attribute (see check_finite_soup).

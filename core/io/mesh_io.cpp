@@ -91,6 +91,12 @@ LoadedMesh read_mesh(const std::string& path) {
     return loaded;
 }
 
+LoadedMesh read_mesh(const std::string& path,
+                     const std::function<void(const PolygonSoup&)>& on_soup) {
+    const ScopedSoupObserver observing(&on_soup);
+    return read_mesh(path);
+}
+
 void write_mesh(const HalfedgeMesh& mesh, const std::string& path, const WriteOptions& options) {
     const MeshFormat* format = format_of(path);
     if (!format) unknown_format(path);

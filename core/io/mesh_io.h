@@ -17,6 +17,7 @@
 // (a temporary file in the target's folder, renamed over it; see file_util.h for symbolic
 // links, hard links, permissions and what is never replaced), so a failed write leaves any
 // existing file untouched.
+#include <functional>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -62,6 +63,12 @@ std::string file_extension(const std::string& path);
 /// Reads any supported format (chosen by extension). A closed mesh with a negative volume
 /// gets a note in its report (core/algorithms/orientation.h inward_orientation_note()).
 LoadedMesh read_mesh(const std::string& path);
+/// The same, calling `on_soup` (core/io/file_util.h: SoupObserver) with the file's polygon
+/// soup once the whole file is read and checked (indices in range, values finite), before
+/// the half-edge mesh is built: a caller may show something of a large file early. Called at
+/// most once, on this thread; not for an .om file that holds its half-edge connectivity.
+LoadedMesh read_mesh(const std::string& path,
+                     const std::function<void(const PolygonSoup&)>& on_soup);
 /// Writes any supported format (chosen by extension).
 void write_mesh(const HalfedgeMesh& mesh, const std::string& path,
                 const WriteOptions& options = {});

@@ -3,8 +3,14 @@
 // in CI (the jobs read snapshots, never the session).
 #include <catch2/catch.hpp>
 
+#include <chrono>
 #include <filesystem>
+#include <fstream>
+#include <future>
 #include <string>
+#include <thread>
+
+#include <unistd.h>
 
 #include "app/ops/operation.h"
 #include "app/session/session.h"
@@ -472,4 +478,95 @@ TEST_CASE(
     s.update();
     CHECK(s.preview_shown(flow));
     require_valid(s);
+}
+
+namespace {
+
+/// Waits (polling nothing, so that the job's end is not collected) until the session shows
+/// a loading picture; false after 20 s.
+bool wait_for_loading_picture(const Session& s) {
+    for (int i = 0; i < 20000 && !s.loading_picture(); ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    return s.loading_picture() != nullptr;
+}
+
+}  // namespace
+
+TEST_CASE("a load shows a picture from the file's arrays until the mesh is built",
+          "[session][loading_picture]") {
+    // A folder of this test's own (test::TempDir lives in the unit tests' helpers).
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                      ("trilab-loading-picture-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    struct Remove {
+        std::filesystem::path dir;
+        ~Remove() { std::filesystem::remove_all(dir); }
+    } remove{dir};
+    const std::string path = (dir / "sphere.ply").string();
+    write_mesh(make_icosphere(10), path);
+    ProxyMeshOptions options;
+    options.target_triangles = 200;
+    auto maker = [&](const PolygonSoup& soup) {
+        return std::make_shared<ProxyMesh>(make_soup_proxy_mesh(soup, options));
+    };
+
+    SECTION("a load that succeeds: the picture goes, the mesh comes with it as its proxy") {
+        Session s;
+        s.set_loading_picture_maker(maker);
+        s.take_events();
+        s.execute(LoadFile{path, true});
+        REQUIRE(wait_for_loading_picture(s));  // shown before the job's end is collected
+        const auto picture = s.loading_picture();
+        CHECK(picture->path == path);
+        CHECK(picture->faces == 2000);
+        CHECK(picture->proxy->triangles.size() <= 200);
+        s.finish_jobs();
+        CHECK_FALSE(s.loading_picture());
+        CHECK(s.document().name == "sphere.ply");
+        const SessionEvents e = s.take_events();
+        REQUIRE(e.loaded_proxy);
+        CHECK(e.loaded_proxy == picture->proxy);
+        // The mesh's own proxy is the picture's (what lets the window skip a second one).
+        const ProxyMesh own = make_proxy_mesh(s.mesh(), options);
+        CHECK(own.positions == e.loaded_proxy->positions);
+        CHECK(own.triangles == e.loaded_proxy->triangles);
+        require_valid(s);
+    }
+    SECTION("a load that ends without a mesh: the picture goes, the document stays") {
+        Session s;
+        s.take_events();
+        std::promise<void> go;
+        std::shared_future<void> released = go.get_future().share();
+        s.set_loading_picture_maker([&, released](const PolygonSoup& soup) {
+            released.wait();  // the test cancels meanwhile
+            return maker(soup);
+        });
+        s.execute(LoadFile{path, true});
+        s.execute(CancelJob{});
+        go.set_value();
+        REQUIRE(wait_for_loading_picture(s));
+        s.finish_jobs();
+        CHECK_FALSE(s.loading_picture());
+        CHECK(s.document().name != "sphere. py");
+        CHECK(s.mesh().n_vertices() == 1002);  // still the default model
+        CHECK_FALSE(s.take_events().state_changed);
+    }
+    SECTION("a file with an index out of range shows no picture") {
+        const std::string bad = (dir / "bad.ply").string();
+        std::ofstream(bad)
+            << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+               "property float y\nproperty float z\nelement face 1\nproperty list "
+               "uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n";
+        Session s;
+        bool made = false;
+        s.set_loading_picture_maker([&](const PolygonSoup& soup) {
+            made = true;
+            return maker(soup);
+        });
+        s.execute(LoadFile{bad, true});
+        s.finish_jobs();
+        CHECK_FALSE(made);
+        CHECK_FALSE(s.loading_picture());
+        CHECK(s.notice().level == Notice::Level::Error);
+    }
 }

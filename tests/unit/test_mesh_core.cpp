@@ -530,3 +530,41 @@ TEST_CASE("the connectivity arrays are what navigation reads, and writing copies
     CHECK(copy.topology_revision() != before);
     CHECK(validate(m));
 }
+
+TEST_CASE("validate splits a large mesh's passes over two threads and finds what it always did",
+          "[core][validate]") {
+    // 72,000 faces: each pass runs as two halves (core/validate.cpp); the violations are put
+    // in the second half, where the first half's thread does not look.
+    const HalfedgeMesh big = make_icosphere(60);
+    REQUIRE(big.n_halfedges() >= (std::size_t(1) << 16));
+    REQUIRE_VALID(big);
+    const Index late_v = Index(big.vertices_size() - 10);
+    const Index late_h = Index(big.halfedges_size() - 10);
+    auto message = [](const HalfedgeMesh& mesh) {
+        const ValidationResult r = validate(mesh);
+        REQUIRE_FALSE(r.ok);
+        return r.message;
+    };
+    SECTION("edges but no outgoing halfedge") {
+        HalfedgeMesh m = big;
+        m.set_halfedge(Vertex(late_v), Halfedge());
+        CHECK_THAT(message(m), Catch::Contains("vertex " + std::to_string(late_v) +
+                                               " has edges but no outgoing halfedge"));
+    }
+    SECTION("a halfedge that is not outgoing") {
+        HalfedgeMesh m = big;
+        const Vertex v(late_v);
+        m.set_halfedge(v, HalfedgeMesh::twin(m.halfedge(v)));
+        CHECK_THAT(message(m), Catch::Contains("vertex " + std::to_string(late_v)));
+    }
+    SECTION("a broken next in the second half") {
+        HalfedgeMesh m = big;
+        m.set_next(Halfedge(late_h), Halfedge(late_h));
+        CHECK_FALSE(message(m).empty());
+    }
+    SECTION("a face without its halfedge") {
+        HalfedgeMesh m = big;
+        m.set_face(Halfedge(late_h), Face());
+        CHECK_FALSE(message(m).empty());
+    }
+}

@@ -1,6 +1,8 @@
 // make_proxy_mesh: vertex clustering for drawing while moving (core/algorithms/proxy_mesh.h).
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
 
@@ -141,4 +143,119 @@ TEST_CASE("make_proxy_mesh skips deleted elements and handles edge cases", "[pro
         options.target_triangles = 3;
         CHECK_THROWS_AS(make_proxy_mesh(make_cube(), options), InvalidArgument);
     }
+}
+
+namespace {
+
+/// The two proxies are the same, field by field.
+void check_same_proxy(const ProxyMesh& a, const ProxyMesh& b) {
+    CHECK(a.positions == b.positions);
+    CHECK(a.triangles == b.triangles);
+    CHECK(a.representative == b.representative);
+    CHECK(a.cell_size == b.cell_size);
+    CHECK(a.passes == b.passes);
+}
+
+/// The soup of `mesh`, built back into a mesh: the soup's proxy against the built mesh's.
+void check_soup_proxy_matches(const HalfedgeMesh& mesh, std::size_t target) {
+    const PolygonSoup soup = to_soup(mesh);
+    LoadReport report;
+    const HalfedgeMesh built = build_mesh(soup, report);
+    // A clean manifold soup: the soup's vertices and triangles, in order (isolated vertices
+    // are kept as they are).
+    REQUIRE(report.vertex_copies_added == 0);
+    REQUIRE(report.detached_faces == 0);
+    REQUIRE(report.degenerate_faces_dropped == 0);
+    ProxyMeshOptions options;
+    options.target_triangles = target;
+    const ProxyMesh from_soup = make_soup_proxy_mesh(soup, options);
+    check_same_proxy(from_soup, make_proxy_mesh(built, options));
+    check_proxy(built, from_soup, target);
+}
+
+}  // namespace
+
+TEST_CASE("make_soup_proxy_mesh equals make_proxy_mesh of the mesh built from the soup",
+          "[proxy_mesh]") {
+    SECTION("a noisy sphere") {
+        check_soup_proxy_matches(make_noisy_sphere(40, 0.02, 7), 2000);
+    }
+    SECTION("an open grid") {
+        check_soup_proxy_matches(make_grid(120), 1000);
+    }
+    SECTION("the subdivided bunny") {
+        const std::string path = test::shared_mesh("stanford-bunny.obj");
+        SKIP_IF_MISSING(path);
+        SubdivisionOptions options;
+        options.iterations = 1;
+        options.keep_levels = false;
+        options.morph = false;
+        NullProgress progress;
+        check_soup_proxy_matches(
+            subdivide(read_mesh(path).mesh, options, progress).levels.back().mesh, 20000);
+    }
+}
+
+TEST_CASE("make_soup_proxy_mesh fans polygons and refuses indices out of range", "[proxy_mesh]") {
+    // A grid of quads: each quad is clustered as two triangles, as its triangulated mesh.
+    PolygonSoup quads;
+    const int n = 60;
+    for (int y = 0; y <= n; ++y)
+        for (int x = 0; x <= n; ++x) quads.positions.emplace_back(x, y, 0.01 * ((x * y) % 7));
+    PolygonSoup tris = quads;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            const Index a = Index(y * (n + 1) + x), b = a + 1, c = b + Index(n + 1),
+                        d = a + Index(n + 1);
+            quads.add_face({a, b, c, d});
+            tris.add_face({a, b, c});
+            tris.add_face({a, c, d});
+        }
+    quads.add_face({0, 1});  // fewer than three corners: nothing
+    ProxyMeshOptions options;
+    options.target_triangles = 500;
+    check_same_proxy(make_soup_proxy_mesh(quads, options), make_soup_proxy_mesh(tris, options));
+    tris.add_face({0, 1, Index(tris.positions.size())});
+    CHECK_THROWS_AS(make_soup_proxy_mesh(tris, options), InvalidArgument);
+}
+
+TEST_CASE("read_mesh shows the soup only once the file is read and checked", "[proxy_mesh][io]") {
+    test::TempDir dir;
+    const HalfedgeMesh sphere = make_icosphere(8);
+    const std::string good = dir.path("sphere.ply");
+    write_mesh(sphere, good);
+    std::size_t calls = 0;
+    ProxyMesh seen;
+    const LoadedMesh loaded = read_mesh(good, [&](const PolygonSoup& soup) {
+        ++calls;
+        CHECK(soup.positions.size() == sphere.n_vertices());
+        CHECK(soup.n_faces() == sphere.n_faces());
+        ProxyMeshOptions options;
+        options.target_triangles = 100;
+        seen = make_soup_proxy_mesh(soup, options);
+    });
+    CHECK(calls == 1);
+    ProxyMeshOptions options;
+    options.target_triangles = 100;
+    check_same_proxy(seen, make_proxy_mesh(loaded.mesh, options));
+    // A face with a vertex index out of range: the read fails and the soup is never shown.
+    const std::string bad = dir.path("bad.ply");
+    {
+        std::ofstream out(bad);
+        out << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+               "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+               "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n";
+    }
+    calls = 0;
+    CHECK_THROWS_AS(read_mesh(bad, [&](const PolygonSoup&) { ++calls; }), IoError);
+    CHECK(calls == 0);
+    // A truncated binary file: the same.
+    const std::string cut = dir.path("cut.ply");
+    {
+        std::ifstream in(good, std::ios::binary);
+        std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() - 7);
+    }
+    CHECK_THROWS_AS(read_mesh(cut, [&](const PolygonSoup&) { ++calls; }), IoError);
+    CHECK(calls == 0);
 }

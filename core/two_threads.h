@@ -1,0 +1,42 @@
+#pragma once
+// Splitting a pass over two threads: the large-mesh paths (the builder, validate()) run two
+// halves of a pass side by side and join before the next pass.
+#include <exception>
+#include <thread>
+
+namespace trilab {
+
+/// Whether a pass over `n` elements is worth a second thread: at least 2^16 elements and a
+/// second hardware thread.
+inline bool worth_two_threads(std::size_t n) {
+    return n >= (std::size_t(1) << 16) && std::thread::hardware_concurrency() >= 2;
+}
+
+/// Runs body(0) on a second thread and body(1) here, or body(0) and body(1) here when not
+/// `parallel`; rethrows the second thread's exception (after joining it).
+template <typename Body>
+void on_two_threads(bool parallel, const Body& body) {
+    if (!parallel) {
+        body(0);
+        body(1);
+        return;
+    }
+    std::exception_ptr error;
+    std::thread other([&] {
+        try {
+            body(0);
+        } catch (...) {
+            error = std::current_exception();
+        }
+    });
+    try {
+        body(1);
+    } catch (...) {
+        other.join();
+        throw;
+    }
+    other.join();
+    if (error) std::rethrow_exception(error);
+}
+
+}  // namespace trilab
