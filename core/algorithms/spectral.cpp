@@ -35,6 +35,11 @@
 //    machine has two cores). Each slice is verified at its ends; should either fail (a split
 //    among close eigenvalues, a repair that needed the other slice's vectors), the whole
 //    range is swept once on one thread. The results do not depend on thread timing.
+//    Large meshes (SpectralOptions::solver; Auto from kBlockMinRows rows): there a sparse
+//    factorization costs more than the Lanczos bases, so all k are computed at one negative
+//    shift by block Lanczos (block_shift_invert(): 8 vectors a block, thick restarts, full
+//    reorthogonalization as matrix products) and verified by one count at a cut above the
+//    k-th; a run that does not converge or whose count differs falls back to the bands.
 //  - Partial, largest k: Lanczos on A itself (sparse products only), checked the same way.
 //  - Full: Eigen's dense SelfAdjointEigenSolver on A, refused above max_full_rows (default
 //    5,000) rows: O(n²) memory and O(n³) time. Also refused (InvalidArgument, with the

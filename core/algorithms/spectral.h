@@ -9,7 +9,9 @@
 //  - Partial: the smallest k by shift-invert Lanczos band by band (ARPACK's method in Spectra;
 //    two spectrum slices on two threads, Campos & Roman 2012), the largest k by Lanczos. The
 //    number of eigenvalues found is verified exactly (Sylvester's law of inertia): none is
-//    missed, even of high multiplicity. Deterministic, whatever the threads' timing.
+//    missed, even of high multiplicity. Deterministic, whatever the threads' timing. From
+//    kBlockMinRows rows (SpectralSolver) all k at once by block shift-invert Lanczos with one
+//    factorization and one count, falling back to the bands should it not verify.
 //  - Full: dense, refused above max_full_rows (default 5,000) rows or the memory available.
 //  - Rows: the Laplacian's free rows (free, Neumann boundary by default; fix_boundary: the
 //    Dirichlet problem). Isolated and fixed vertices keep their positions in reconstructions.
