@@ -836,6 +836,32 @@ void ldlt_solve_columns(const Ldlt& ldlt, RowBlock& z, Eigen::Index c0, Eigen::I
     }
 }
 
+/// The thick restart of block_shift_invert(): keeps the Ritz vectors of the largest θ (a
+/// whole number of blocks short of m) in the first columns of v, the residual block after
+/// them, and their projection (diagonal θ, the residual's coupling below) in h. Returns the
+/// number kept.
+Eigen::Index thick_restart(Eigen::MatrixXd& v, Eigen::MatrixXd& h, const Eigen::VectorXd& theta,
+                           const Eigen::MatrixXd& s, const Eigen::MatrixXd& coupling,
+                           Eigen::Index m, Eigen::Index nev, bool two) {
+    const Eigen::Index n = v.rows(), b = kLanczosBlock, half = n / 2;
+    // Thick restart: keep the p Ritz vectors of the largest θ and the residual block.
+    // (m - keep a whole number of blocks, so that the next cycle ends at m again)
+    const Eigen::Index keep = m - b * ((m - std::min(m - 2 * b, nev + (m - nev) / 3)) / b);
+    const Eigen::MatrixXd sp = s.rightCols(keep);
+    Eigen::MatrixXd y(n, keep);
+    run_halves(two, [&](int i) {
+        const Eigen::Index r0 = i ? half : 0, rows = i ? n - half : half;
+        y.middleRows(r0, rows).noalias() = v.block(r0, 0, rows, m) * sp;
+    });
+    v.leftCols(keep) = y;
+    v.middleCols(keep, b) = v.middleCols(m, b);
+    const Eigen::MatrixXd bk = coupling.rightCols(keep);
+    h.setZero();
+    h.topLeftCorner(keep, keep).diagonal() = theta.tail(keep);
+    h.block(keep, 0, b, keep) = bk;
+    return keep;
+}
+
 /// What block_shift_invert() found: the eigenpairs nearest σ (y-space, ascending), or
 /// converged = false.
 struct BlockResult {
@@ -967,22 +993,7 @@ BlockResult block_shift_invert(const Problem& p, const Ldlt& ldlt, double sigma,
             ++report.bands;
             return out;
         }
-        // Thick restart: keep the p Ritz vectors of the largest θ and the residual block.
-        // (m - keep a whole number of blocks, so that the next cycle ends at m again)
-        const Eigen::Index keep = m - b * ((m - std::min(m - 2 * b, nev + (m - nev) / 3)) / b);
-        const Eigen::MatrixXd sp = s.rightCols(keep);
-        Eigen::MatrixXd y(n, keep);
-        run_halves(two, [&](int i) {
-            const Eigen::Index r0 = i ? half : 0, rows = i ? n - half : half;
-            y.middleRows(r0, rows).noalias() = v.block(r0, 0, rows, m) * sp;
-        });
-        v.leftCols(keep) = y;
-        v.middleCols(keep, b) = v.middleCols(m, b);
-        const Eigen::MatrixXd bk = coupling.rightCols(keep);
-        h.setZero();
-        h.topLeftCorner(keep, keep).diagonal() = theta.tail(keep);
-        h.block(keep, 0, b, keep) = bk;
-        filled = keep + b;
+        filled = thick_restart(v, h, theta, s, coupling, m, nev, two) + b;
     }
     return out;
 }
@@ -1079,6 +1090,9 @@ bool block_smallest(const Problem& p, std::size_t k, const SpectralOptions& o, P
     if (!verified) return false;
     out.values = values.head(Eigen::Index(k));
     out.vectors = r.band.vectors.leftCols(Eigen::Index(k));
+    report.solver =
+        "block shift-invert Lanczos + SimplicialLDLT (AMD-ordered rows), "
+        "inertia-checked";
     return true;
 }
 
@@ -1096,15 +1110,10 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
     const std::size_t auto_band = n > 20000 ? 30 : 40;
     std::size_t band = o.band_size ? o.band_size : (k <= 60 ? k + extra : auto_band);
     band = std::min<std::size_t>(band, std::size_t(n - 1));
-    if (use_block(o, std::size_t(n))) {
+    if (use_block(o, std::size_t(n))) {  // the bands take over when it cannot vouch
         Band out;
-        if (block_smallest(p, k, o, progress, report, out)) {
-            report.solver =
-                "block shift-invert Lanczos + SimplicialLDLT (AMD-ordered rows), "
-                "inertia-checked";
-            return out;
-        }
-        ++report.repairs;  // the band-by-band sweep below takes over
+        if (block_smallest(p, k, o, progress, report, out)) return out;
+        ++report.repairs;
     }
     report.solver =
         "Spectra shift-invert Lanczos + SimplicialLDLT (AMD-ordered rows), inertia-checked";
