@@ -35,6 +35,11 @@
 //    machine has two cores). Each slice is verified at its ends; should either fail (a split
 //    among close eigenvalues, a repair that needed the other slice's vectors), the whole
 //    range is swept once on one thread. The results do not depend on thread timing.
+//    Large meshes (SpectralOptions::solver; Auto from kBlockMinRows rows): there a sparse
+//    factorization costs more than the Lanczos bases, so all k are computed at one negative
+//    shift by block Lanczos (block_shift_invert(): 8 vectors a block, thick restarts, full
+//    reorthogonalization as matrix products) and verified by one count at a cut above the
+//    k-th; a run that does not converge or whose count differs falls back to the bands.
 //  - Partial, largest k: Lanczos on A itself (sparse products only), checked the same way.
 //  - Full: Eigen's dense SelfAdjointEigenSolver on A, refused above max_full_rows (default
 //    5,000) rows: O(n²) memory and O(n³) time. Also refused (InvalidArgument, with the
@@ -88,6 +93,7 @@
 #include <Spectra/SymEigsSolver.h>
 #include <Eigen/Eigenvalues>
 #include <Eigen/OrderingMethods>
+#include <Eigen/QR>
 #include <Eigen/SparseCholesky>
 
 #include "core/algorithms/selection.h"
@@ -104,6 +110,9 @@ using Triplet = Eigen::Triplet<double>;
 /// The problem's rows are already in a fill-reducing (AMD) order, so the factorizations need
 /// no permutation of their own (make_problem()).
 using Ldlt = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::NaturalOrdering<int>>;
+
+/// Vectors per block of the block Lanczos method (block_shift_invert()).
+constexpr Eigen::Index kLanczosBlock = 8;
 
 /// Below these (relative) sizes the eigenproblem is refused as degenerate.
 constexpr double kDegenerateAreaRatio = 1e-12;  ///< surface area / bbox diagonal²
@@ -766,6 +775,327 @@ unsigned slice_threads(std::size_t requested) {
     return std::thread::hardware_concurrency() >= 2 ? 2u : 1u;
 }
 
+// ---- block shift-invert Lanczos (one factorization) ------------------------------------------
+
+/// A block of vectors stored by rows, so that the b values of one row are adjacent: the
+/// triangular solves of block_solve() read each entry of the factor once for all b columns.
+using RowBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+/// Runs f(0) and f(1), on two threads when `two` (the halves of a split loop), else in turn.
+void run_halves(bool two, const std::function<void(int)>& f) {
+    if (!two) {
+        f(0);
+        f(1);
+        return;
+    }
+    std::exception_ptr failure;
+    std::thread other([&] {
+        try {
+            f(1);
+        } catch (...) {
+            failure = std::current_exception();
+        }
+    });
+    f(0);
+    other.join();
+    if (failure) std::rethrow_exception(failure);
+}
+
+/// Z <- (LDLᵀ)⁻¹ Z for the columns [c0, c1) of a row-major block (see ldlt_solve_in_place()).
+void ldlt_solve_columns(const Ldlt& ldlt, RowBlock& z, Eigen::Index c0, Eigen::Index c1) {
+    const SparseMatrix& l = ldlt.matrixL().nestedExpression();
+    const Eigen::Index n = l.cols(), b = z.cols();
+    const int* outer = l.outerIndexPtr();
+    const int* nnz = l.innerNonZeroPtr();
+    const int* inner = l.innerIndexPtr();
+    const double* value = l.valuePtr();
+    const auto end = [&](Eigen::Index j) { return nnz ? outer[j] + nnz[j] : outer[j + 1]; };
+    double* zp = z.data();
+    const Eigen::Index w = c1 - c0;
+    for (Eigen::Index j = 0; j < n; ++j) {  // L·W = Z, by columns
+        const double* zj = zp + j * b + c0;
+        for (int k = outer[j]; k < end(j); ++k) {
+            double* zi = zp + Eigen::Index(inner[k]) * b + c0;
+            const double v = value[k];
+            for (Eigen::Index c = 0; c < w; ++c) zi[c] -= v * zj[c];
+        }
+    }
+    const Eigen::VectorXd& d = ldlt.vectorD();
+    for (Eigen::Index j = 0; j < n; ++j)
+        for (Eigen::Index c = 0; c < w; ++c) zp[j * b + c0 + c] /= d[j];
+    std::vector<double> acc(static_cast<std::size_t>(w));
+    for (Eigen::Index j = n - 1; j >= 0; --j) {  // Lᵀ·X = W, by rows of Lᵀ
+        double* zj = zp + j * b + c0;
+        for (Eigen::Index c = 0; c < w; ++c) acc[std::size_t(c)] = zj[c];
+        for (int k = outer[j]; k < end(j); ++k) {
+            const double* zi = zp + Eigen::Index(inner[k]) * b + c0;
+            const double v = value[k];
+            for (Eigen::Index c = 0; c < w; ++c) acc[std::size_t(c)] -= v * zi[c];
+        }
+        for (Eigen::Index c = 0; c < w; ++c) zj[c] = acc[std::size_t(c)];
+    }
+}
+
+/// The thick restart of block_shift_invert(): keeps the Ritz vectors of the largest θ (a
+/// whole number of blocks short of m) in the first columns of v, the residual block after
+/// them, and their projection (diagonal θ, the residual's coupling below) in h. Returns the
+/// number kept.
+Eigen::Index thick_restart(Eigen::MatrixXd& v, Eigen::MatrixXd& h, const Eigen::VectorXd& theta,
+                           const Eigen::MatrixXd& s, const Eigen::MatrixXd& coupling,
+                           Eigen::Index m, Eigen::Index nev, bool two) {
+    const Eigen::Index n = v.rows(), b = kLanczosBlock, half = n / 2;
+    // Thick restart: keep the p Ritz vectors of the largest θ and the residual block.
+    // (m - keep a whole number of blocks, so that the next cycle ends at m again)
+    const Eigen::Index keep = m - b * ((m - std::min(m - 2 * b, nev + (m - nev) / 3)) / b);
+    const Eigen::MatrixXd sp = s.rightCols(keep);
+    Eigen::MatrixXd y(n, keep);
+    run_halves(two, [&](int i) {
+        const Eigen::Index r0 = i ? half : 0, rows = i ? n - half : half;
+        y.middleRows(r0, rows).noalias() = v.block(r0, 0, rows, m) * sp;
+    });
+    v.leftCols(keep) = y;
+    v.middleCols(keep, b) = v.middleCols(m, b);
+    const Eigen::MatrixXd bk = coupling.rightCols(keep);
+    h.setZero();
+    h.topLeftCorner(keep, keep).diagonal() = theta.tail(keep);
+    h.block(keep, 0, b, keep) = bk;
+    return keep;
+}
+
+/// What block_shift_invert() found: the eigenpairs nearest σ (y-space, ascending), or
+/// converged = false.
+struct BlockResult {
+    Band band;
+    bool converged = false;
+};
+
+/// The `nev` eigenvalues of A nearest σ (σ below the spectrum: the smallest) and their
+/// vectors, by block Lanczos on (A - σI)⁻¹ with thick restarts (the symmetric block
+/// Krylov–Schur method: Stewart 2001; Zhou & Saad 2008) and full reorthogonalization by block
+/// classical Gram–Schmidt twice (Giraud et al. 2005). With blocks of b vectors the factor is
+/// read once per block solve and the orthogonalization is matrix-matrix products, where the
+/// single-vector method (shift_invert_band()) spends its time in memory-bound matrix-vector
+/// products over the basis: one factorization serves every frequency, where bands need one
+/// each. A Ritz pair (θ, y) is accepted as Spectra accepts one: |R·s_b| <= tolerance · |θ|,
+/// with R·s_b the part of (A - σI)⁻¹·y outside the basis (exact in Krylov–Schur form).
+/// Products and solves are split over two threads when `two`.
+BlockResult block_shift_invert(const Problem& p, const Ldlt& ldlt, double sigma, Eigen::Index nev,
+                               const SpectralOptions& o, bool two, Progress& progress,
+                               SpectralReport& report,
+                               const std::function<bool(const Eigen::VectorXd&)>& settled) {
+    const Eigen::Index n = p.n(), b = kLanczosBlock;
+    const Eigen::Index wanted = Eigen::Index(std::ceil(o.krylov_factor * double(nev)));
+    const Eigen::Index m = b * ((std::max(wanted, nev + 3 * b) + b - 1) / b);  // basis size
+    BlockResult out;
+    if (m + b > n / 2) return out;  // a small problem: the band method
+    Eigen::MatrixXd v(n, m + b), h = Eigen::MatrixXd::Zero(m + b, m + b);
+    for (Eigen::Index c = 0; c < b; ++c) v.col(c) = start_vector(n, 7919 + std::uint64_t(c));
+    {
+        Eigen::HouseholderQR<Eigen::MatrixXd> qr(v.leftCols(b));
+        v.leftCols(b) = qr.householderQ() * Eigen::MatrixXd::Identity(n, b);
+    }
+    RowBlock w(n, b);
+    Eigen::MatrixXd wc(n, b), coeff, tmp;
+    const Eigen::Index half = n / 2;
+    // y <- Vᵀ x (x: n x b) over the first `cols` columns, the rows split in two halves.
+    const auto project = [&](Eigen::Index cols, const Eigen::MatrixXd& x, Eigen::MatrixXd& y) {
+        Eigen::MatrixXd part[2];
+        run_halves(two, [&](int i) {
+            const Eigen::Index r0 = i ? half : 0, rows = i ? n - half : half;
+            part[i].noalias() = v.block(r0, 0, rows, cols).transpose() * x.middleRows(r0, rows);
+        });
+        y = part[0] + part[1];
+    };
+    // x <- x - V·c over the first `cols` columns.
+    const auto subtract = [&](Eigen::Index cols, const Eigen::MatrixXd& c, Eigen::MatrixXd& x) {
+        run_halves(two, [&](int i) {
+            const Eigen::Index r0 = i ? half : 0, rows = i ? n - half : half;
+            x.middleRows(r0, rows).noalias() -= v.block(r0, 0, rows, cols) * c;
+        });
+    };
+    Eigen::Index filled = b;  // basis columns; the block at [filled - b, filled) is expanded next
+    const int max_cycles = std::max(1, o.max_iterations);
+    const double expected_ops = 2.0 * double(m);
+    for (int cycle = 0; cycle < max_cycles; ++cycle) {
+        while (filled <= m) {
+            progress.check_cancelled();
+            const Eigen::Index j = filled - b;
+            const auto t0 = std::chrono::steady_clock::now();
+            w = v.middleCols(j, b);
+            run_halves(two, [&](int i) {
+                const Eigen::Index c0 = i ? b / 2 : 0, c1 = i ? b : b / 2;
+                ldlt_solve_columns(ldlt, w, c0, c1);
+            });
+            report.solve_ms += ms_since(t0);
+            report.operations += std::size_t(b);
+            wc = w;
+            project(filled, wc, coeff);  // classical Gram–Schmidt, twice
+            subtract(filled, coeff, wc);
+            project(filled, wc, tmp);
+            subtract(filled, tmp, wc);
+            coeff += tmp;
+            // The projection H is block tridiagonal (plus the restart's arrow) in exact
+            // arithmetic: only its diagonal block and the R below are kept, which are
+            // accurate where the couplings become tiny; the coefficients above are rounding
+            // of the size eps·|(A - σI)⁻¹| that would pollute the residual estimates.
+            h.block(j, j, b, b) = coeff.bottomRows(b);
+            Eigen::HouseholderQR<Eigen::MatrixXd> qr(wc);
+            const Eigen::MatrixXd r =
+                qr.matrixQR().topRows(b).triangularView<Eigen::Upper>().toDenseMatrix();
+            const double scale = std::max(coeff.norm(), 1e-300);
+            for (Eigen::Index c = 0; c < b; ++c)
+                if (!(std::abs(r(c, c)) > 1e-10 * scale)) return out;  // an invariant subspace
+            v.middleCols(filled, b) = qr.householderQ() * Eigen::MatrixXd::Identity(n, b);
+            h.block(filled, j, b, b) = r;
+            filled += b;
+            progress.report(
+                std::min(0.9, double(report.operations) /
+                                  std::max(expected_ops, double(report.operations) + 1)),
+                "block Lanczos (shift-invert)");
+        }
+        ++report.restarts;
+        // Rayleigh–Ritz on the symmetric projection (the lower triangle, mirrored).
+        Eigen::MatrixXd hm = h.topLeftCorner(m, m).triangularView<Eigen::Lower>();
+        hm.triangularView<Eigen::StrictlyUpper>() = hm.transpose();
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(hm);
+        if (es.info() != Eigen::Success) return out;
+        const Eigen::VectorXd& theta = es.eigenvalues();  // ascending: the wanted are last
+        const Eigen::MatrixXd& s = es.eigenvectors();
+        const Eigen::MatrixXd coupling = h.block(m, m - b, b, b) * s.bottomRows(b);  // b x m
+        bool all = true;
+        for (Eigen::Index i = m - nev; i < m && all; ++i)
+            all = theta[i] > 0 &&
+                  coupling.col(i).norm() <= o.tolerance * std::max(std::abs(theta[i]), 1e-300);
+        if (!all && settled) {
+            // Once every wanted Ritz value is settled (residual below 1e-4 θ: the values are
+            // then accurate to about 1e-8), `settled` may start work on them on the second
+            // thread; the products and solves then stay on this one.
+            bool near = true;
+            for (Eigen::Index i = m - nev; i < m && near; ++i)
+                near = theta[i] > 0 && coupling.col(i).norm() <= 1e-4 * theta[i];
+            if (near) {
+                Eigen::VectorXd estimate(nev);
+                for (Eigen::Index i = 0; i < nev; ++i) estimate[i] = sigma + 1.0 / theta[m - 1 - i];
+                if (settled(estimate)) two = false;
+            }
+        }
+        if (all) {
+            out.band.values.resize(nev);
+            for (Eigen::Index i = 0; i < nev; ++i)
+                out.band.values[i] = sigma + 1.0 / theta[m - 1 - i];
+            const Eigen::MatrixXd sel = s.rightCols(nev).rowwise().reverse();
+            out.band.vectors.resize(n, nev);
+            run_halves(two, [&](int i) {
+                const Eigen::Index r0 = i ? half : 0, rows = i ? n - half : half;
+                out.band.vectors.middleRows(r0, rows).noalias() = v.block(r0, 0, rows, m) * sel;
+            });
+            out.converged = true;
+            ++report.bands;
+            return out;
+        }
+        filled = thick_restart(v, h, theta, s, coupling, m, nev, two) + b;
+    }
+    return out;
+}
+
+/// Whether the smallest end runs as one block (SpectralOptions::solver).
+bool use_block(const SpectralOptions& o, std::size_t rows) {
+    if (o.solver == SpectralSolver::Auto) return rows >= kBlockMinRows;
+    return o.solver == SpectralSolver::Block;
+}
+
+/// A cut above the k-th of the ascending `values`: in the widest gap among those from the k-th
+/// up (as Slice::step() cuts), or just above the largest when no gap is clear.
+double cut_above_kth(const Eigen::VectorXd& values, std::size_t k, double tiny) {
+    std::vector<double> sorted(values.data(), values.data() + values.size());
+    const double width = std::max(sorted.back() - sorted.front(), tiny);
+    double cut = sorted.back() + 1e-3 * width + tiny;
+    const double mid = widest_gap_midpoint(sorted, k - 1, sorted.size());
+    const auto above_mid = std::upper_bound(sorted.begin(), sorted.end(), mid);
+    if (above_mid != sorted.begin() && above_mid != sorted.end() &&
+        *above_mid - *(above_mid - 1) > 1e-3 * width)
+        cut = mid;
+    return cut;
+}
+
+/// The k smallest eigenpairs by one block shift-invert run at a negative shift
+/// (block_shift_invert()) and one inertia count at a cut above the k-th: two factorizations
+/// in all, the count's on a second thread while the run finishes (from a cut placed among
+/// the settled Ritz values; should the converged values put a different number below it, it
+/// is counted again at a new cut). False when the run did not converge or the count differs
+/// (a missed copy of a repeated eigenvalue): the caller then sweeps band by band, which
+/// repairs such gaps.
+bool block_smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progress& progress,
+                    SpectralReport& report, Band& out) {
+    const Eigen::Index n = p.n();
+    const std::size_t extra = std::max<std::size_t>(4, k / 20);
+    const Eigen::Index nev = Eigen::Index(std::min<std::size_t>(k + extra, std::size_t(n - 1)));
+    const double sigma = -1e-8 * std::max(p.a_max, 1e-300);
+    const double tiny = 1e-12 * std::max(p.a_max, 1e-300);
+    const bool two = slice_threads(o.threads) >= 2;
+    // The early count (second thread): its cut, its count, its own report figures.
+    Ldlt counter;
+    counter.analyzePattern(p.A);
+    std::thread early;
+    std::exception_ptr early_failure;
+    bool early_started = false;
+    double early_cut = 0;
+    std::size_t early_count = 0;
+    SpectralReport early_report;
+    const auto start_count = [&](const Eigen::VectorXd& estimate) {
+        if (!two || early.joinable()) return false;
+        early_cut = cut_above_kth(estimate, k, tiny);
+        early_started = true;
+        early = std::thread([&] {
+            try {
+                early_count = count_below(p, counter, early_cut, early_report);
+            } catch (...) {
+                early_failure = std::current_exception();
+            }
+        });
+        return true;
+    };
+    BlockResult r;
+    try {
+        Ldlt ldlt;
+        ldlt.analyzePattern(p.A);
+        const auto t0 = std::chrono::steady_clock::now();
+        ldlt.factorize(shifted(p, sigma));
+        report.factor_ms += ms_since(t0);
+        ++report.factorizations;
+        const Eigen::VectorXd& dd = ldlt.vectorD();
+        if (ldlt.info() == Eigen::Success && dd.allFinite() && !(dd.array() == 0.0).any())
+            r = block_shift_invert(p, ldlt, sigma, nev, o, two, progress, report, start_count);
+    } catch (...) {
+        if (early.joinable()) early.join();
+        throw;
+    }
+    if (early.joinable()) {
+        early.join();
+        report.factor_ms += early_report.factor_ms;
+        report.factorizations += early_report.factorizations;
+    }
+    if (!r.converged) return false;
+    orthonormalize(r.band.vectors);
+    const Eigen::VectorXd& values = r.band.values;
+    const auto below = [&](double cut) { return std::size_t((values.array() < cut).count()); };
+    // Verify with the eigenvalue count (Sylvester's law of inertia) below a cut above the k-th.
+    bool verified =
+        early_started && !early_failure && below(early_cut) >= k && below(early_cut) == early_count;
+    if (!verified) {
+        const double cut = cut_above_kth(values, k, tiny);
+        const std::size_t found = below(cut);
+        verified = found >= k && found == count_below(p, counter, cut, report);
+    }
+    if (!verified) return false;
+    out.values = values.head(Eigen::Index(k));
+    out.vectors = r.band.vectors.leftCols(Eigen::Index(k));
+    report.solver =
+        "block shift-invert Lanczos + SimplicialLDLT (AMD-ordered rows), "
+        "inertia-checked";
+    return true;
+}
+
 /// The k smallest eigenpairs: a first band at a negative shift, then (with two threads and
 /// enough left to do) the rest of [0, λ_k] in two slices at once, split where Weyl's law
 /// (λ_i grows linearly with i on a surface) extrapolated from the first band puts the middle
@@ -780,6 +1110,11 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
     const std::size_t auto_band = n > 20000 ? 30 : 40;
     std::size_t band = o.band_size ? o.band_size : (k <= 60 ? k + extra : auto_band);
     band = std::min<std::size_t>(band, std::size_t(n - 1));
+    if (use_block(o, std::size_t(n))) {  // the bands take over when it cannot vouch
+        Band out;
+        if (block_smallest(p, k, o, progress, report, out)) return out;
+        ++report.repairs;
+    }
     report.solver =
         "Spectra shift-invert Lanczos + SimplicialLDLT (AMD-ordered rows), inertia-checked";
 
@@ -843,6 +1178,7 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
             // repair that needed vectors of the other slice: one sweep instead.
             SpectralOptions one = o;
             one.threads = 1;
+            one.solver = SpectralSolver::Bands;
             return smallest(p, k, one, progress, report);
         }
     } else {

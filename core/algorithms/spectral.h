@@ -9,7 +9,9 @@
 //  - Partial: the smallest k by shift-invert Lanczos band by band (ARPACK's method in Spectra;
 //    two spectrum slices on two threads, Campos & Roman 2012), the largest k by Lanczos. The
 //    number of eigenvalues found is verified exactly (Sylvester's law of inertia): none is
-//    missed, even of high multiplicity. Deterministic, whatever the threads' timing.
+//    missed, even of high multiplicity. Deterministic, whatever the threads' timing. From
+//    kBlockMinRows rows (SpectralSolver) all k at once by block shift-invert Lanczos with one
+//    factorization and one count, falling back to the bands should it not verify.
 //  - Full: dense, refused above max_full_rows (default 5,000) rows or the memory available.
 //  - Rows: the Laplacian's free rows (free, Neumann boundary by default; fix_boundary: the
 //    Dirichlet problem). Isolated and fixed vertices keep their positions in reconstructions.
@@ -47,6 +49,16 @@ inline constexpr EnumEntry<SpectrumEnd> kSpectrumEnds[] = {
     {SpectrumEnd::Largest, "largest", "Largest"},
 };
 
+/// How the partial method computes the smallest frequencies (see spectral.cpp).
+///  - Bands: band by band, one sparse factorization per band (and per slice).
+///  - Block: all k at once by block shift-invert Lanczos with one factorization (plus one for
+///    the eigenvalue count); should it not converge or its count differ, the bands take over.
+///  - Auto: Block from kBlockMinRows rows up (where a factorization costs more than the
+///    Lanczos basis), else Bands.
+enum class SpectralSolver { Auto, Bands, Block };
+/// Auto chooses the block solver from this many rows up.
+inline constexpr std::size_t kBlockMinRows = 50000;
+
 const char* spectral_method_name(SpectralMethod method);  ///< "partial", "full"
 const char* spectrum_end_name(SpectrumEnd end);           ///< "smallest", "largest"
 /// Throws InvalidArgument listing the names.
@@ -74,6 +86,7 @@ struct SpectralOptions {
     int max_iterations = 1000;   ///< Lanczos restarts per band
     /// Smallest end: threads for spectrum slicing (1 or 2); 0: two when the machine has them.
     std::size_t threads = 0;
+    SpectralSolver solver = SpectralSolver::Auto;  ///< smallest end, partial
 };
 
 /// What a decomposition computed and how.
