@@ -320,9 +320,10 @@ IndexRemap HalfedgeMesh::renumber(const std::vector<Index>& vertex_order,
                                   const std::vector<Index>& halfedge_order,
                                   const std::vector<Index>& face_order) {
     // old -> new, checking that each list holds every live element once.
+    // deleted[old >> shift]: halfedges read their edge's flag.
     const auto invert = [](const std::vector<Index>& order, std::size_t storage, std::size_t live,
-                           const std::vector<std::uint8_t>& deleted, const char* what,
-                           std::vector<Index>& old_to_new) {
+                           const std::vector<std::uint8_t>& deleted, unsigned shift,
+                           const char* what, std::vector<Index>& old_to_new) {
         if (order.size() != live)
             throw InvalidArgument(std::string("HalfedgeMesh::renumber: the ") + what +
                                   " order lists " + std::to_string(order.size()) +
@@ -330,7 +331,7 @@ IndexRemap HalfedgeMesh::renumber(const std::vector<Index>& vertex_order,
         old_to_new.assign(storage, kInvalidIndex);
         for (Index i = 0; i < order.size(); ++i) {
             const Index old = order[i];
-            if (old >= storage || deleted[old] || old_to_new[old] != kInvalidIndex)
+            if (old >= storage || deleted[old >> shift] || old_to_new[old] != kInvalidIndex)
                 throw InvalidArgument(std::string("HalfedgeMesh::renumber: ") + what + " " +
                                       std::to_string(old) + " (entry " + std::to_string(i) +
                                       ") is out of range, deleted or listed twice");
@@ -338,12 +339,11 @@ IndexRemap HalfedgeMesh::renumber(const std::vector<Index>& vertex_order,
         }
     };
     IndexRemap remap;
-    invert(vertex_order, vertices_size(), n_vertices(), vdeleted_.vector(), "vertex",
+    invert(vertex_order, vertices_size(), n_vertices(), vdeleted_.vector(), 0, "vertex",
            remap.vertices);
-    invert(face_order, faces_size(), n_faces(), fdeleted_.vector(), "face", remap.faces);
-    std::vector<std::uint8_t> h_deleted(halfedges_size());
-    for (Index h = 0; h < h_deleted.size(); ++h) h_deleted[h] = edeleted_.vector()[h >> 1];
-    invert(halfedge_order, halfedges_size(), n_halfedges(), h_deleted, "halfedge", remap.halfedges);
+    invert(face_order, faces_size(), n_faces(), fdeleted_.vector(), 0, "face", remap.faces);
+    invert(halfedge_order, halfedges_size(), n_halfedges(), edeleted_.vector(), 1, "halfedge",
+           remap.halfedges);
     std::vector<Index> e_keep(halfedge_order.size() / 2);
     remap.edges.assign(edges_size(), kInvalidIndex);
     for (Index k = 0; k < e_keep.size(); ++k) {
@@ -363,21 +363,34 @@ IndexRemap HalfedgeMesh::renumber(const std::vector<Index>& vertex_order,
 void HalfedgeMesh::apply_order(IndexRemap& remap, const std::vector<Index>& v_keep,
                                const std::vector<Index>& h_keep, const std::vector<Index>& e_keep,
                                const std::vector<Index>& f_keep) {
-    auto map_h = [&](Halfedge h) { return h.is_valid() ? Halfedge(remap.halfedges[h.idx()]) : h; };
-    // Two halves that touch different arrays: the halfedge arrays (gathered, their next and prev
-    // links renumbered) and everything else. Side by side for big meshes where there is a
-    // second core (a thread costs more than it saves on small ones); the same result either way.
-    const auto halfedge_part = [&] {
-        hprops_.gather(h_keep);
-        for (Halfedge& h : hprops_.get<Halfedge>("h:next")->data()) h = map_h(h);
-        for (Halfedge& h : hprops_.get<Halfedge>("h:prev")->data()) h = map_h(h);
+    const Index* const new_h = remap.halfedges.data();
+    const Index* const new_v = remap.vertices.data();
+    const Index* const new_f = remap.faces.data();
+    const auto map_h = [new_h](Halfedge h) { return h.is_valid() ? Halfedge(new_h[h.idx()]) : h; };
+    const auto map_v = [new_v](Vertex v) { return v.is_valid() ? Vertex(new_v[v.idx()]) : v; };
+    const auto map_f = [new_f](Face f) { return f.is_valid() ? Face(new_f[f.idx()]) : f; };
+    // The links are gathered and renumbered in one pass each; every other array is gathered as
+    // it is. Two halves that touch different arrays: the next and prev links, and everything
+    // else. Side by side for big meshes where there is a second core (a thread costs more than
+    // it saves on small ones); the same result either way.
+    const auto links_part = [&] {
+        hnext_.array()->gather_mapped(h_keep, map_h);
+        hprev_.array()->gather_mapped(h_keep, map_h);
     };
     const auto other_part = [&] {
-        vprops_.gather(v_keep);
+        hto_.array()->gather_mapped(h_keep, map_v);
+        hface_.array()->gather_mapped(h_keep, map_f);
+        hprops_.gather_except(h_keep, [&](const BasePropertyArray* a) {
+            return a == hnext_.array() || a == hprev_.array() || a == hto_.array() ||
+                   a == hface_.array();
+        });
+        vhalfedge_.array()->gather_mapped(v_keep, map_h);
+        vprops_.gather_except(v_keep,
+                              [&](const BasePropertyArray* a) { return a == vhalfedge_.array(); });
         eprops_.gather(e_keep);
-        fprops_.gather(f_keep);
-        for (Halfedge& h : vprops_.get<Halfedge>("v:halfedge")->data()) h = map_h(h);
-        for (Halfedge& h : fprops_.get<Halfedge>("f:halfedge")->data()) h = map_h(h);
+        fhalfedge_.array()->gather_mapped(f_keep, map_h);
+        fprops_.gather_except(f_keep,
+                              [&](const BasePropertyArray* a) { return a == fhalfedge_.array(); });
     };
     if (h_keep.size() >= kParallelOrderMin && std::thread::hardware_concurrency() >= 2) {
         std::exception_ptr other_error;
@@ -389,7 +402,7 @@ void HalfedgeMesh::apply_order(IndexRemap& remap, const std::vector<Index>& v_ke
             }
         });
         try {
-            halfedge_part();
+            links_part();
         } catch (...) {
             other.join();
             throw;
@@ -397,14 +410,10 @@ void HalfedgeMesh::apply_order(IndexRemap& remap, const std::vector<Index>& v_ke
         other.join();
         if (other_error) std::rethrow_exception(other_error);
     } else {
-        halfedge_part();
+        links_part();
         other_part();
     }
     bind_builtins();
-    for (Vertex& v : hto_.vector()) v = Vertex(remap.vertices[v.idx()]);
-    for (Face& f : hface_.vector())
-        if (f.is_valid()) f = Face(remap.faces[f.idx()]);
-
     n_deleted_vertices_ = n_deleted_edges_ = n_deleted_faces_ = 0;
     vprops_.shrink_to_fit();
     hprops_.shrink_to_fit();

@@ -162,10 +162,16 @@ public:
         std::swap(d[a], d[b]);
     }
     void gather(const std::vector<Index>& old_index) override {
-        const std::vector<T>& in = *values_;
-        auto out = std::make_shared<std::vector<T>>();
-        out->reserve(old_index.size());
-        for (Index i : old_index) out->push_back(in[i]);
+        gather_mapped(old_index, [](const T& x) -> const T& { return x; });
+    }
+    /// gather() with every kept value passed through `map` (one pass: renumbering links).
+    template <class Map>
+    void gather_mapped(const std::vector<Index>& old_index, const Map& map) {
+        auto out = std::make_shared<std::vector<T>>(old_index.size());
+        const T* in = values_->data();
+        T* to = out->data();
+        const Index* from = old_index.data();
+        for (std::size_t i = 0, n = old_index.size(); i < n; ++i) to[i] = map(in[from[i]]);
         values_ = std::move(out);
         touch();
     }
@@ -194,9 +200,10 @@ public:
             return false;
         }
     }
-    /// The values for writing: copied first when shared with another array.
+    /// The values for writing: copied first when shared with another array. Inline: every
+    /// write through a mutable view comes here (the copy is out of line, unshare()).
     std::vector<T>& data() {
-        if (values_.use_count() != 1) values_ = std::make_shared<std::vector<T>>(*values_);
+        if (values_.use_count() != 1) unshare();
         touch();
         return *values_;
     }
@@ -209,6 +216,9 @@ public:
     const T& default_value() const { return default_; }
 
 private:
+    // Gives this array its own copy of the shared values (the cold path of data()).
+    [[gnu::noinline]] void unshare() { values_ = std::make_shared<std::vector<T>>(*values_); }
+
     std::shared_ptr<std::vector<T>> values_;
     T default_;
 };
@@ -328,6 +338,14 @@ public:
     }
     void gather(const std::vector<Index>& old_index) {
         for (auto& a : arrays_) a->gather(old_index);
+        size_ = old_index.size();
+    }
+    /// gather() of every array but those `skip(array)` accepts, which the caller gathers itself
+    /// (PropertyArray::gather_mapped(), possibly on another thread: this touches none of them).
+    template <class Skip>
+    void gather_except(const std::vector<Index>& old_index, const Skip& skip) {
+        for (auto& a : arrays_)
+            if (!skip(a.get())) a->gather(old_index);
         size_ = old_index.size();
     }
     void shrink_to_fit() {
