@@ -101,6 +101,7 @@
 #include "core/geometry.h"
 #include "core/number_text.h"
 #include "core/system_memory.h"
+#include "core/two_threads.h"
 
 namespace trilab {
 
@@ -781,26 +782,6 @@ unsigned slice_threads(std::size_t requested) {
 /// triangular solves of block_solve() read each entry of the factor once for all b columns.
 using RowBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-/// Runs f(0) and f(1), on two threads when `two` (the halves of a split loop), else in turn.
-void run_halves(bool two, const std::function<void(int)>& f) {
-    if (!two) {
-        f(0);
-        f(1);
-        return;
-    }
-    std::exception_ptr failure;
-    std::thread other([&] {
-        try {
-            f(1);
-        } catch (...) {
-            failure = std::current_exception();
-        }
-    });
-    f(0);
-    other.join();
-    if (failure) std::rethrow_exception(failure);
-}
-
 /// Z <- (LDLᵀ)⁻¹ Z for the columns [c0, c1) of a row-major block (see ldlt_solve_in_place()).
 void ldlt_solve_columns(const Ldlt& ldlt, RowBlock& z, Eigen::Index c0, Eigen::Index c1) {
     const SparseMatrix& l = ldlt.matrixL().nestedExpression();
@@ -849,7 +830,7 @@ Eigen::Index thick_restart(Eigen::MatrixXd& v, Eigen::MatrixXd& h, const Eigen::
     const Eigen::Index keep = m - b * ((m - std::min(m - 2 * b, nev + (m - nev) / 3)) / b);
     const Eigen::MatrixXd sp = s.rightCols(keep);
     Eigen::MatrixXd y(n, keep);
-    run_halves(two, [&](int i) {
+    on_two_threads(two, [&](int i) {
         const Eigen::Index r0 = i ? half : 0, rows = i ? n - half : half;
         y.middleRows(r0, rows).noalias() = v.block(r0, 0, rows, m) * sp;
     });
@@ -900,7 +881,7 @@ BlockResult block_shift_invert(const Problem& p, const Ldlt& ldlt, double sigma,
     // y <- Vᵀ x (x: n x b) over the first `cols` columns, the rows split in two halves.
     const auto project = [&](Eigen::Index cols, const Eigen::MatrixXd& x, Eigen::MatrixXd& y) {
         Eigen::MatrixXd part[2];
-        run_halves(two, [&](int i) {
+        on_two_threads(two, [&](int i) {
             const Eigen::Index r0 = i ? half : 0, rows = i ? n - half : half;
             part[i].noalias() = v.block(r0, 0, rows, cols).transpose() * x.middleRows(r0, rows);
         });
@@ -908,7 +889,7 @@ BlockResult block_shift_invert(const Problem& p, const Ldlt& ldlt, double sigma,
     };
     // x <- x - V·c over the first `cols` columns.
     const auto subtract = [&](Eigen::Index cols, const Eigen::MatrixXd& c, Eigen::MatrixXd& x) {
-        run_halves(two, [&](int i) {
+        on_two_threads(two, [&](int i) {
             const Eigen::Index r0 = i ? half : 0, rows = i ? n - half : half;
             x.middleRows(r0, rows).noalias() -= v.block(r0, 0, rows, cols) * c;
         });
@@ -922,7 +903,7 @@ BlockResult block_shift_invert(const Problem& p, const Ldlt& ldlt, double sigma,
             const Eigen::Index j = filled - b;
             const auto t0 = std::chrono::steady_clock::now();
             w = v.middleCols(j, b);
-            run_halves(two, [&](int i) {
+            on_two_threads(two, [&](int i) {
                 const Eigen::Index c0 = i ? b / 2 : 0, c1 = i ? b : b / 2;
                 ldlt_solve_columns(ldlt, w, c0, c1);
             });
@@ -985,7 +966,7 @@ BlockResult block_shift_invert(const Problem& p, const Ldlt& ldlt, double sigma,
                 out.band.values[i] = sigma + 1.0 / theta[m - 1 - i];
             const Eigen::MatrixXd sel = s.rightCols(nev).rowwise().reverse();
             out.band.vectors.resize(n, nev);
-            run_halves(two, [&](int i) {
+            on_two_threads(two, [&](int i) {
                 const Eigen::Index r0 = i ? half : 0, rows = i ? n - half : half;
                 out.band.vectors.middleRows(r0, rows).noalias() = v.block(r0, 0, rows, m) * sel;
             });

@@ -8,6 +8,7 @@
 #include "core/geometry.h"
 #include "core/io/file_util.h"
 #include "core/io/mesh_io.h"
+#include "core/mesh_builder.h"
 
 namespace trilab::test {
 
@@ -19,6 +20,17 @@ namespace {
     return true;
 }();
 }  // namespace
+
+HalfedgeMesh two_spheres() {
+    PolygonSoup soup = to_soup(make_icosphere(2));
+    const std::size_t n = soup.positions.size(), c = soup.corners.size(), f = soup.n_faces();
+    for (std::size_t i = 0; i < n; ++i)
+        soup.positions.push_back(soup.positions[i] + Point(3, 0, 0));
+    for (std::size_t i = 0; i < c; ++i) soup.corners.push_back(soup.corners[i] + Index(n));
+    for (std::size_t i = 1; i <= f; ++i) soup.face_offsets.push_back(soup.face_offsets[i] + c);
+    LoadReport report;
+    return build_mesh(soup, report);
+}
 
 HalfedgeMesh attributed_sphere() {
     HalfedgeMesh m = make_icosphere(3);

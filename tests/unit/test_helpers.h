@@ -34,6 +34,10 @@ inline bool exists(const std::string& path) {
 /// A sphere with normals, colours and texture coordinates on its vertices.
 HalfedgeMesh attributed_sphere();
 
+/// Two icospheres (subdivision 2) side by side, the second moved by 3 along x, from one soup:
+/// two components, the second's vertices numbered after the first's.
+HalfedgeMesh two_spheres();
+
 /// The first edge of `mesh` that can be flipped (HalfedgeMesh::is_flip_ok), or an invalid one.
 inline Edge first_flippable_edge(const HalfedgeMesh& mesh) {
     for (Edge e : mesh.edges())

@@ -14,7 +14,6 @@
 #include "core/errors.h"
 #include "core/geometry.h"
 #include "core/io/mesh_io.h"
-#include "core/mesh_builder.h"
 #include "test_helpers.h"
 
 using namespace trilab;
@@ -145,14 +144,8 @@ TEST_CASE("the reversed connectivity changes nothing until applied, then equals 
           "[orientation]") {
     // Two spheres, the second one reversed alone by a mask: the one-step reversal and the
     // two steps (reversed_connectivity(), apply_reversed()) give the same arrays.
-    PolygonSoup soup = to_soup(make_icosphere(2));
-    const std::size_t n = soup.positions.size(), c = soup.corners.size(), nf = soup.n_faces();
-    for (std::size_t i = 0; i < n; ++i)
-        soup.positions.push_back(soup.positions[i] + Point(3, 0, 0));
-    for (std::size_t i = 0; i < c; ++i) soup.corners.push_back(soup.corners[i] + Index(n));
-    for (std::size_t i = 1; i <= nf; ++i) soup.face_offsets.push_back(soup.face_offsets[i] + c);
-    LoadReport report;
-    HalfedgeMesh m = build_mesh(soup, report);
+    HalfedgeMesh m = two_spheres();
+    const std::size_t n = m.vertices_size() / 2;  // the second sphere's vertices follow
     // The second sphere's edges: those whose vertices are the second copy's.
     std::vector<std::uint8_t> mask(m.edges_size(), 0);
     for (Edge e : m.edges()) mask[e.idx()] = m.vertex(e, 0).idx() >= n ? 1 : 0;

@@ -55,18 +55,6 @@ std::size_t count_weight(const Selection& s, float w) {
     return std::size_t(std::count(s.begin(), s.end(), w));
 }
 
-/// Two unit spheres side by side (two components), from one soup.
-HalfedgeMesh two_spheres() {
-    PolygonSoup soup = to_soup(make_icosphere(2));
-    const std::size_t n = soup.positions.size(), c = soup.corners.size(), f = soup.n_faces();
-    for (std::size_t i = 0; i < n; ++i)
-        soup.positions.push_back(soup.positions[i] + Point(3, 0, 0));
-    for (std::size_t i = 0; i < c; ++i) soup.corners.push_back(soup.corners[i] + Index(n));
-    for (std::size_t i = 1; i <= f; ++i) soup.face_offsets.push_back(soup.face_offsets[i] + c);
-    LoadReport report;
-    return build_mesh(soup, report);
-}
-
 /// A grid whose every triangle has its own vertices (all edges are seams to weld).
 HalfedgeMesh shattered_grid() {
     const PolygonSoup in = to_soup(make_grid(6));
