@@ -204,6 +204,10 @@ public:
     bool preview_shown(const Operation& op) const;
     /// The preview on the screen is the spectral prediction, not the exact result yet.
     bool prediction_shown() const;
+    /// The view has drawn the shown prediction: its exact job may start (it waits until then,
+    /// at most a quarter second, so that a view drawing a large mesh's prediction gets the CPU
+    /// for that frame, and a slider dragged on keeps cancelling nothing).
+    void prediction_drawn();
     /// Milliseconds from the request to the result of the last preview (negative: none).
     double last_preview_ms() const { return preview_.latency_ms; }
     /// Waits up to `seconds` for a running preview, so that it shows in the coming frame.
@@ -342,8 +346,8 @@ private:
         std::optional<Operation> predicted_op;
         HalfedgeMesh prediction;
         /// The exact job waits while the frame that shows a new prediction is drawn (it would
-        /// take the CPU that frame needs): until the next wait_for_preview(), at most
-        /// hold_exact_until on the session's clock.
+        /// take the CPU that frame needs): until prediction_drawn(), at most hold_exact_until
+        /// on the session's clock.
         bool hold_exact = false;
         double hold_exact_until = 0;
     };

@@ -143,17 +143,19 @@ void Session::wait_for_preview(double seconds) {
     // A preview that is about to finish shows in this frame rather than the next: wait for it
     // a bounded time (a frame's hiccup, never a freeze). Not while the spectral prediction is
     // on the screen: it already shows the change, and the exact result replaces it when ready.
-    if (preview_.hold_exact) {  // this frame shows the new prediction; the exact job follows
-        preview_.hold_exact = false;
-        return;
-    }
-    start_pending_preview();
+    start_pending_preview();  // not while the new prediction waits to be drawn
     if (prediction_shown()) return;
     const double until = now() + seconds;
     while (is_preview_job() && jobs_.elapsed_seconds() < seconds && now() < until) {
         poll();
         if (is_preview_job()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
+}
+
+void Session::prediction_drawn() {
+    // The exact job starts with the next frame's wait_for_preview(), unless a newer request
+    // (a slider still moving) has come by then.
+    if (prediction_shown()) preview_.hold_exact = false;
 }
 
 void Session::start_pending_preview() {

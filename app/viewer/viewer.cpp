@@ -493,6 +493,8 @@ int Viewer::run() {
         last_frame_end = end;
         waited = false;
         note_frame_end(1000.0 * since);
+        // A spectral prediction on the screen lets its exact job start (with the next frame).
+        if (proxy_.shows_current) session_.prediction_drawn();
         if (sweep_.active)
             step_sweep(proxy_.shows_current && (session_.shown().kind == Shown::Kind::Preview ||
                                                 session_.shown().kind == Shown::Kind::Level));

@@ -84,6 +84,7 @@ ProxyMeshOptions Viewer::proxy_options(std::size_t n_faces) {
     if (const char* env = std::getenv("TRILAB_PROXY_TRIANGLES"); env && *env)
         target = std::size_t(std::strtoull(env, nullptr, 10));  // measurements only
     options.target_triangles = std::clamp<std::size_t>(std::min(target, n_faces / 4), 16, 2000000);
+    options.keep_clusters = true;  // for the states that only move the vertices
     return options;
 }
 
@@ -94,9 +95,23 @@ void Viewer::request_proxy(const HalfedgeMesh& mesh) {
         return;
     if (proxy_.job.valid() && proxy_.job_key == key) return;
     if (proxy_.job.valid()) proxy_.abandoned.push_back(std::move(proxy_.job));
-    const ProxyMeshOptions options = proxy_options(mesh.n_faces());
     proxy_.job_key = key;
+    // A state with the connectivity of a proxy already made (a preview, a spectral
+    // prediction, a smoothing step) moves that proxy's clusters: O(V) instead of a new grid.
+    std::shared_ptr<const ProxyMesh> same_connectivity;
+    for (const auto& [k, made] : proxy_.cache)
+        if (k.first == key.first && made->cluster_of.size() == mesh.vertices_size())
+            same_connectivity = made;
     // The worker's own copy (copy-on-write): the document may change meanwhile.
+    if (same_connectivity) {
+        proxy_.job = std::async(std::launch::async,
+                                [copy = HalfedgeMesh(mesh), base = std::move(same_connectivity)] {
+                                    return std::shared_ptr<const ProxyMesh>(
+                                        std::make_shared<ProxyMesh>(moved_proxy_mesh(*base, copy)));
+                                });
+        return;
+    }
+    const ProxyMeshOptions options = proxy_options(mesh.n_faces());
     proxy_.job = std::async(std::launch::async, [copy = HalfedgeMesh(mesh), options] {
         return std::shared_ptr<const ProxyMesh>(
             std::make_shared<ProxyMesh>(make_proxy_mesh(copy, options)));

@@ -345,6 +345,7 @@ ProxyMesh make_proxy(const View& m, const ProxyMeshOptions& options, const char*
     out.representative = nearest_members(m, clusters);
     out.cell_size = cell;
     out.error_bound = cell * std::sqrt(3.0);
+    if (options.keep_clusters) out.cluster_of = std::move(clusters.of_vertex);
     return out;
 }
 
@@ -352,6 +353,44 @@ ProxyMesh make_proxy(const View& m, const ProxyMeshOptions& options, const char*
 
 ProxyMesh make_proxy_mesh(const HalfedgeMesh& mesh, const ProxyMeshOptions& options) {
     return make_proxy(MeshView(mesh), options, "make_proxy_mesh");
+}
+
+ProxyMesh moved_proxy_mesh(const ProxyMesh& proxy, const HalfedgeMesh& mesh) {
+    const std::vector<Point>& x = mesh.positions();
+    if (proxy.cluster_of.size() != x.size())
+        throw InvalidArgument("moved_proxy_mesh: the proxy's clusters are for " +
+                              std::to_string(proxy.cluster_of.size()) + " vertices, the mesh has " +
+                              std::to_string(x.size()) +
+                              (proxy.cluster_of.empty() ? " (make it with keep_clusters)" : ""));
+    ProxyMesh out;
+    const std::size_t nc = proxy.positions.size();
+    out.positions.assign(nc, Point::Zero());
+    std::vector<std::uint32_t> members(nc, 0);
+    for (std::size_t v = 0; v < x.size(); ++v) {
+        const Index c = proxy.cluster_of[v];
+        if (c == kInvalidIndex) continue;
+        if (c >= nc)
+            throw InvalidArgument("moved_proxy_mesh: vertex " + std::to_string(v) +
+                                  " has cluster " + std::to_string(c) + ", the proxy has " +
+                                  std::to_string(nc));
+        out.positions[c] += x[v];
+        ++members[c];
+    }
+    for (std::size_t c = 0; c < nc; ++c)
+        if (members[c]) out.positions[c] /= double(members[c]);
+    double largest = 0;
+    for (std::size_t v = 0; v < x.size(); ++v) {
+        const Index c = proxy.cluster_of[v];
+        if (c != kInvalidIndex)
+            largest = std::max(largest, (x[v] - out.positions[c]).squaredNorm());
+    }
+    out.triangles = proxy.triangles;
+    out.representative = proxy.representative;
+    out.cell_size = proxy.cell_size;
+    out.error_bound = std::sqrt(largest);
+    out.passes = 0;
+    out.cluster_of = proxy.cluster_of;
+    return out;
 }
 
 ProxyMesh make_soup_proxy_mesh(const PolygonSoup& soup, const ProxyMeshOptions& options) {

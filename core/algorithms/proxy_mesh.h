@@ -19,6 +19,8 @@ struct ProxyMeshOptions {
     /// Worker threads for the face pass (0: the hardware's, at most 8). The result does not
     /// depend on it.
     unsigned threads = 0;
+    /// Keep ProxyMesh::cluster_of (one index per mesh vertex), which moved_proxy_mesh needs.
+    bool keep_clusters = false;
 };
 
 /// The proxy: a triangle list over the clusters' vertices.
@@ -42,6 +44,9 @@ struct ProxyMesh {
     double error_bound = 0;
     /// How many grid sizes were tried (1 when the first estimate fitted the target).
     unsigned passes = 0;
+    /// With ProxyMeshOptions::keep_clusters: per mesh vertex storage index its proxy vertex
+    /// (kInvalidIndex for a deleted vertex); empty otherwise.
+    std::vector<Index> cluster_of;
 };
 
 /// Makes the proxy of `mesh`'s live vertices and faces (isolated vertices become proxy
@@ -51,6 +56,14 @@ struct ProxyMesh {
 /// [16, 2,000,000]. Complexity: O(V + F) a pass, the face pass on `threads` threads; about
 /// 0.3 s for 17.8M faces on two cores.
 ProxyMesh make_proxy_mesh(const HalfedgeMesh& mesh, const ProxyMeshOptions& options = {});
+
+/// The proxy of `mesh` when it has the connectivity `proxy` was made for and other positions
+/// (a smoothing's result, a spectral prediction): the same clusters and triangles, each proxy
+/// vertex the mean of its cluster's vertices at their new positions, the representatives
+/// kept, and error_bound the largest distance from a vertex to its proxy vertex (measured:
+/// the moved clusters are no longer grid cells). Throws InvalidArgument when `proxy` has no
+/// cluster_of or one for another vertex count. O(V), about a twentieth of make_proxy_mesh.
+ProxyMesh moved_proxy_mesh(const ProxyMesh& proxy, const HalfedgeMesh& mesh);
 
 /// The same clustering over a polygon soup as a file reader gives it, before any half-edge
 /// mesh is built (the viewer's picture of a file still loading). Every position is a vertex;

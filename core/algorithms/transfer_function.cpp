@@ -12,6 +12,7 @@
 #include <limits>
 
 #include "core/errors.h"
+#include "core/two_threads.h"
 
 namespace trilab {
 namespace {
@@ -51,6 +52,47 @@ Eigen::MatrixXd gather(const SpectralDecomposition& d, const std::vector<Point>&
 /// α = Eᵀ·S·X (k x 3).
 Eigen::MatrixXd coefficients_of(const SpectralDecomposition& d, const Eigen::MatrixXd& x) {
     return d.eigenvectors.transpose() * (d.S.asDiagonal() * x);
+}
+
+/// out[v] = g_edge·input[v] + (E·W)[r] for every row r (vertex v = d.map.vertex_of[r]): E is
+/// read once, in blocks of rows whose three sums stay in cache while the k columns pass
+/// (Eigen's general product re-reads E for its small right-hand side), on two threads for
+/// large decompositions. Each row's sum runs over k in order, so the result does not depend on
+/// the thread count.
+void apply_basis(const SpectralDecomposition& d, const Eigen::MatrixXd& w, double g_edge,
+                 const std::vector<Point>& input, std::vector<Point>& out) {
+    const std::size_t rows = d.rows();
+    const Eigen::Index k = d.eigenvectors.cols();
+    constexpr std::size_t kBlock = 1024;
+    const auto rows_from_to = [&](std::size_t begin, std::size_t end) {
+        double sum[3][kBlock];
+        for (std::size_t r0 = begin; r0 < end; r0 += kBlock) {
+            const std::size_t n = std::min(kBlock, end - r0);
+            for (auto& column : sum) std::fill(column, column + n, 0.0);
+            for (Eigen::Index i = 0; i < k; ++i) {
+                const double* e = d.eigenvectors.col(i).data() + r0;
+                const double w0 = w(i, 0), w1 = w(i, 1), w2 = w(i, 2);
+                for (std::size_t r = 0; r < n; ++r) {
+                    sum[0][r] += w0 * e[r];
+                    sum[1][r] += w1 * e[r];
+                    sum[2][r] += w2 * e[r];
+                }
+            }
+            for (std::size_t r = 0; r < n; ++r) {
+                const Index v = d.map.vertex_of[r0 + r].idx();
+                out[v] = g_edge * input[v] + Point(sum[0][r], sum[1][r], sum[2][r]);
+            }
+        }
+    };
+    // The halves split at a block boundary.
+    const std::size_t half = (rows / 2 + kBlock - 1) / kBlock * kBlock;
+    on_two_threads(worth_two_threads(rows * std::size_t(std::max<Eigen::Index>(k, 1)) / 16),
+                   [&](int part) {
+                       if (part == 0)
+                           rows_from_to(0, std::min(half, rows));
+                       else
+                           rows_from_to(std::min(half, rows), rows);
+                   });
 }
 
 std::string band_text(const MultipletSplit::Band& b) {
@@ -156,21 +198,20 @@ std::vector<Point> predict_fairing(const SpectralDecomposition& d, const Fairing
     check_positions(d, input, "predict_fairing", "the input");
     std::vector<Point> out = input;
     if (d.empty()) return out;
-    const Eigen::MatrixXd x = gather(d, input);
     // The decomposed shape itself (a panel previewing on the state it decomposed): its
     // coefficients are stored, which halves the cost of a prediction.
     const bool decomposed_shape =
         d.coefficients.rows() == Eigen::Index(d.size()) && input == d.base_positions;
-    const Eigen::MatrixXd alpha = decomposed_shape ? d.coefficients : coefficients_of(d, x);
+    const Eigen::MatrixXd alpha =
+        decomposed_shape ? d.coefficients : coefficients_of(d, gather(d, input));
     const std::vector<double> g = fairing_gains(o, d.eigenvalues);
     const double g_edge = d.end == SpectrumEnd::Smallest ? g.back() : g.front();
-    Eigen::VectorXd gv(Eigen::Index(g.size()));
-    for (std::size_t i = 0; i < g.size(); ++i) gv[Eigen::Index(i)] = g[i];
-    // X' = E·(g∘α) + g_edge·(X - E·α) = g_edge·X + E·((g - g_edge)∘α): one product with E.
-    const Eigen::MatrixXd filtered =
-        g_edge * x + d.eigenvectors * ((gv.array() - g_edge).matrix().asDiagonal() * alpha);
-    for (std::size_t r = 0; r < d.rows(); ++r)
-        out[d.map.vertex_of[r].idx()] = filtered.row(Eigen::Index(r)).transpose();
+    // X' = E·(g∘α) + g_edge·(X - E·α) = g_edge·X + E·W with W = (g - g_edge)∘α: one pass
+    // over E, the only large operand (rows x k doubles: 446 MB for 557k rows and k = 100).
+    const Eigen::Index k = Eigen::Index(d.size());
+    Eigen::MatrixXd w(k, 3);
+    for (Eigen::Index i = 0; i < k; ++i) w.row(i) = (g[std::size_t(i)] - g_edge) * alpha.row(i);
+    apply_basis(d, w, g_edge, input, out);
     return out;
 }
 

@@ -450,14 +450,18 @@ TEST_CASE(
     REQUIRE(s.shown().kind == Shown::Kind::Preview);
     const std::vector<Point> predicted = s.shown().mesh->positions();
     CHECK(predicted != s.mesh().positions());
-    // The exact job waits while the frame that shows the prediction is drawn (the viewer
-    // calls wait_for_preview once per frame), then starts with the next frame.
+    // The exact job waits until the view has drawn the prediction (prediction_drawn()), then
+    // starts with the next frame (the viewer calls wait_for_preview once per frame).
     CHECK_FALSE(s.busy());
     s.update();
     CHECK_FALSE(s.busy());
     s.wait_for_preview(0.1);  // the prediction's frame
     CHECK_FALSE(s.busy());
+    s.wait_for_preview(0.0);  // a frame that did not draw it yet (a large mesh's proxy)
+    CHECK_FALSE(s.busy());
     CHECK(s.prediction_shown());
+    s.prediction_drawn();
+    CHECK_FALSE(s.busy());    // not within the frame that drew it
     s.wait_for_preview(0.0);  // the next frame: the exact job starts
     CHECK((s.busy() || !s.prediction_shown()));
     s.finish_jobs();

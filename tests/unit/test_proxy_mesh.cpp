@@ -259,3 +259,50 @@ TEST_CASE("read_mesh shows the soup only once the file is read and checked", "[p
     CHECK_THROWS_AS(read_mesh(cut, [&](const PolygonSoup&) { ++calls; }), IoError);
     CHECK(calls == 0);
 }
+
+TEST_CASE("moved_proxy_mesh keeps the clusters and measures how far the moved vertices are",
+          "[proxy_mesh]") {
+    const HalfedgeMesh mesh = make_noisy_sphere(30, 0.03, 4);
+    ProxyMeshOptions options;
+    options.target_triangles = 800;
+    const ProxyMesh plain = make_proxy_mesh(mesh, options);
+    CHECK(plain.cluster_of.empty());
+    CHECK_THROWS_WITH(moved_proxy_mesh(plain, mesh),
+                      Catch::Contains("keep_clusters") && Catch::Contains("moved_proxy_mesh"));
+    options.keep_clusters = true;
+    const ProxyMesh p = make_proxy_mesh(mesh, options);
+    REQUIRE(p.cluster_of.size() == mesh.vertices_size());
+    CHECK(p.triangles == plain.triangles);
+    CHECK(p.positions == plain.positions);
+    // Not moved: the same proxy, and the measured bound within the grid's.
+    const ProxyMesh same = moved_proxy_mesh(p, mesh);
+    CHECK(same.positions == p.positions);
+    CHECK(same.triangles == p.triangles);
+    CHECK(same.representative == p.representative);
+    CHECK(same.error_bound <= p.error_bound);
+    // Moved (smoothed, then stretched): every vertex within the bound of its cluster's mean,
+    // one at it; the means are the clusters' means.
+    HalfedgeMesh moved = mesh;
+    std::vector<Point> x = mesh.positions();
+    for (Point& q : x) q = Point(2.0 * q.x(), q.y(), 0.5 * q.z());
+    moved.set_positions(x);
+    const ProxyMesh m = moved_proxy_mesh(p, moved);
+    REQUIRE(m.positions.size() == p.positions.size());
+    std::vector<Point> sum(p.positions.size(), Point::Zero());
+    std::vector<int> count(p.positions.size(), 0);
+    for (Vertex v : moved.vertices()) {
+        sum[p.cluster_of[v.idx()]] += moved.position(v);
+        ++count[p.cluster_of[v.idx()]];
+    }
+    double worst = 0;
+    for (std::size_t c = 0; c < sum.size(); ++c) {
+        REQUIRE(count[c] > 0);
+        CHECK((m.positions[c] - sum[c] / count[c]).norm() < 1e-12);
+    }
+    for (Vertex v : moved.vertices())
+        worst = std::max(worst, (moved.position(v) - m.positions[p.cluster_of[v.idx()]]).norm());
+    CHECK(worst == Approx(m.error_bound).epsilon(1e-12));
+    CHECK(m.error_bound > p.error_bound * 0.5);  // stretched by 2: the clusters spread
+    // Another vertex count: refused, saying so.
+    CHECK_THROWS_WITH(moved_proxy_mesh(p, make_icosphere(2)), Catch::Contains("vertices"));
+}

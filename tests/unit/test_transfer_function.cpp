@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/algorithms/coloring.h"
@@ -346,4 +347,43 @@ TEST_CASE("change_by_frequency splits a displacement into the band below and the
     CHECK(colors.has_legend);
     CHECK(colors.kind == ColorMapKind::Sequential);
     CHECK_THAT(colors.label, Catch::Contains("above"));
+}
+
+TEST_CASE("the prediction is g_edge X + E diag(g - g_edge) alpha, on one thread or two",
+          "[transfer_function]") {
+    // 18,000 vertices and 60 frequencies: enough rows times frequencies for the second thread.
+    const HalfedgeMesh mesh = make_noisy_sphere(60, 0.02, 3);
+    SpectralOptions so;
+    so.k = 60;
+    const SpectralDecomposition d = decompose(mesh, so);
+    REQUIRE(d.rows() * d.size() >= (std::size_t(1) << 20));
+    FairingOptions o;
+    o.integration = Integration::Implicit;
+    o.step = 5;
+    o.iterations = 2;
+    // A shape other than the decomposed one (no stored coefficients) and the decomposed one.
+    std::vector<Point> moved = mesh.positions();
+    for (std::size_t v = 0; v < moved.size(); ++v) moved[v] *= 1.0 + 0.01 * double(v % 7);
+    const std::vector<Point>& decomposed = mesh.positions();
+    for (const std::vector<Point>* input : {&decomposed, &std::as_const(moved)}) {
+        Eigen::MatrixXd x(Eigen::Index(d.rows()), 3);
+        for (std::size_t r = 0; r < d.rows(); ++r)
+            x.row(Eigen::Index(r)) = (*input)[d.map.vertex_of[r].idx()].transpose();
+        const Eigen::MatrixXd alpha = d.eigenvectors.transpose() * (d.S.asDiagonal() * x);
+        const std::vector<double> g = fairing_gains(o, d.eigenvalues);
+        Eigen::VectorXd scale(Eigen::Index(g.size()));
+        for (std::size_t k = 0; k < g.size(); ++k) scale[Eigen::Index(k)] = g[k] - g.back();
+        const Eigen::MatrixXd expected =
+            g.back() * x + d.eigenvectors * (scale.asDiagonal() * alpha);
+        const std::vector<Point> p = predict_fairing(d, o, *input);
+        REQUIRE(p.size() == input->size());
+        double worst = 0, size = 0;
+        for (std::size_t r = 0; r < d.rows(); ++r) {
+            const Point e = expected.row(Eigen::Index(r)).transpose();
+            worst = std::max(worst, (p[d.map.vertex_of[r].idx()] - e).norm());
+            size = std::max(size, e.norm());
+        }
+        CHECK(worst <= 1e-12 * size);
+        CHECK(relative_distance(p, *input) > 1e-4);  // it did smooth
+    }
 }
