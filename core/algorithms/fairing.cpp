@@ -59,10 +59,15 @@
 // progress. The input mesh is never modified.
 // Complexity: explicit O(iterations · (V + F)) with one position-sized buffer beyond the
 // result (two for Taubin; umbrella and Taubin build no matrix); implicit one factorization per
-// iteration (one in all for umbrella) plus a solve per iteration.
+// iteration (one in all for umbrella) plus a solve per iteration. A region of an explicit
+// umbrella or Taubin run (without volume preservation or a sliding boundary) costs O(V + F)
+// once, then per iteration only its moving vertices' rings, the faces around them for the
+// area and volume checks and the stable-step estimate's products
+// (UmbrellaOperator::restrict_to_moving(), MovingFaceSums): the same positions bit for bit.
 #include "core/algorithms/fairing.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -180,6 +185,12 @@ struct Box {
         lo = lo.cwiseMin(p);
         hi = hi.cwiseMax(p);
     }
+    /// Adds every point of `other` (nothing when it is empty).
+    void add(const Box& other) {
+        if (!(other.lo.x() <= other.hi.x())) return;
+        add(other.lo);
+        add(other.hi);
+    }
     double diagonal() const { return lo.x() <= hi.x() ? (hi - lo).norm() : 0.0; }
     /// Every coordinate within ±kDivergenceBound (true when empty).
     bool bounded() const {
@@ -187,6 +198,12 @@ struct Box {
                std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()) <= kDivergenceBound;
     }
 };
+
+bool all_finite(const Positions& P) {
+    for (const Point& p : P)
+        if (!p.allFinite()) return false;
+    return true;
+}
 
 bool finite_and_bounded(const Point& p) {
     return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z()) &&
@@ -214,6 +231,57 @@ CandidateSums area_volume(const HalfedgeMesh& mesh, const Positions& P, bool wit
     r.volume = volume / 18.0;
     return r;
 }
+
+/// area_volume() of positions that differ from P0 (given at construction) only at the listed
+/// moving vertices: the faces without a moving vertex are summed once (their area on the first
+/// call that asks for it), the others on every call. Equal to area_volume() up to rounding (the
+/// sums run in another order).
+class MovingFaceSums {
+public:
+    MovingFaceSums(const HalfedgeMesh& mesh, const Positions& P0,
+                   const std::vector<Index>& moving) {
+        std::vector<std::uint8_t> is_moving(mesh.vertices_size(), 0);
+        for (Index v : moving) is_moving[v] = 1;
+        for (Face f : mesh.faces()) {
+            const auto v = mesh.face_vertices(f);
+            const Triangle t{v[0].idx(), v[1].idx(), v[2].idx()};
+            (is_moving[t[0]] || is_moving[t[1]] || is_moving[t[2]] ? moving_faces_ : fixed_faces_)
+                .push_back(t);
+        }
+        fixed_ = sums_over(fixed_faces_, P0, false);
+    }
+
+    CandidateSums sums(const Positions& P, bool with_area) {
+        if (with_area && std::isnan(fixed_.area))
+            fixed_.area = sums_over(fixed_faces_, P, true).area;  // P equals P0 there
+        const CandidateSums m = sums_over(moving_faces_, P, with_area);
+        CandidateSums r;
+        if (with_area) r.area = fixed_.area + m.area;
+        r.volume = (fixed_.volume + m.volume) / 18.0;
+        return r;
+    }
+
+private:
+    using Triangle = std::array<Index, 3>;
+    /// The area (with_area) and 18 times the signed volume of the triangles.
+    static CandidateSums sums_over(const std::vector<Triangle>& faces, const Positions& P,
+                                   bool with_area) {
+        double area = 0, volume = 0;
+        for (const Triangle& t : faces) {
+            const Point &a = P[t[0]], &b = P[t[1]], &c = P[t[2]];
+            const Vector3 n = (b - a).cross(c - a);
+            if (with_area) area += 0.5 * n.norm();
+            volume += (a + b + c).dot(n);
+        }
+        CandidateSums r;
+        if (with_area) r.area = area;
+        r.volume = volume;
+        return r;
+    }
+
+    std::vector<Triangle> moving_faces_, fixed_faces_;
+    CandidateSums fixed_;  ///< of the fixed faces (area NaN until asked for)
+};
 
 /// Lanczos estimate of the largest eigenvalue of D·K·D (D = S^-½ on free entries, 0 on fixed
 /// ones), i.e. of S⁻¹K over the free entries: the largest Ritz value after `steps` steps (no
@@ -274,6 +342,7 @@ public:
     /// out = P + t·L·P (fixed vertices copied); the bounding boxes of P and out over the
     /// vertices with edges, and whether every new coordinate is finite and bounded.
     bool step(const Positions& P, double t, Positions& out, Box& box_before, Box& box_after) {
+        if (restricted_) return step_moving(P, t, out, box_before, box_after);
         const std::size_t nv = P.size();
         out.assign(nv, Point::Zero());
         if (!known_) {
@@ -320,6 +389,14 @@ public:
 
     /// The energy xᵀKx = sum over edges |x_i - x_j|² and the rounding scale sum_i K_ii |x_i|².
     std::pair<double, double> energy(const Positions& P) const {
+        if (restricted_) {
+            auto [e, q] = fixed_energy_;
+            for (const auto& [i, j] : moving_edges_) {
+                e += (P[i] - P[j]).squaredNorm();
+                q += P[i].squaredNorm() + P[j].squaredNorm();
+            }
+            return {e, q};
+        }
         double e = 0, q = 0;
         for (Edge ed : mesh_.edges()) {
             const Halfedge h = HalfedgeMesh::halfedge(ed, 0);
@@ -333,11 +410,7 @@ public:
 
     /// The Lanczos estimate of the largest stable explicit step.
     double max_stable_step(int steps) {
-        if (!known_) {
-            Positions scratch;
-            Box a, b;
-            step(mesh_.positions(), 0.0, scratch, a, b);
-        }
+        if (!known_) find_fixed();
         const std::size_t nv = valence_.size();
         Eigen::VectorXd d = Eigen::VectorXd::Zero(Eigen::Index(nv));
         for (std::size_t v = 0; v < nv; ++v)
@@ -346,9 +419,115 @@ public:
             d, [&](const Eigen::VectorXd& u, Eigen::VectorXd& w) { apply_k(u, w); }, steps));
     }
 
+    /// Restricts every later step, energy and stable-step estimate to the vertices that move
+    /// (neither fixed nor pinned) and the edges around them, when those vertices are at most
+    /// kRestrictedShare of the vertices with edges: one pass over the edges builds, per moving
+    /// vertex, its neighbours in edge order, so that a step costs O(their valences) instead of
+    /// O(V + E). The products are those of the whole-mesh passes bit for bit (each vertex sums
+    /// the same terms in the same order); the energies are equal up to rounding (the fixed
+    /// edges' part is summed once, apart). Valid only while the fixed vertices keep the
+    /// positions they have in P here (the caller's promise: no boundary slide, no volume
+    /// rescaling). Returns whether it restricted.
+    bool restrict_to_moving(const Positions& P) {
+        if (!known_) find_fixed();
+        const std::size_t nv = valence_.size();
+        std::vector<Index> slot(nv, kInvalidIndex);
+        std::size_t with_edges = 0, ring_size = 0;
+        for (std::size_t v = 0; v < nv; ++v) {
+            if (valence_[v] > 0) ++with_edges;
+            if (fixed_[v]) continue;
+            slot[v] = Index(moving_.size());
+            moving_.push_back(Index(v));
+            ring_size += valence_[v];
+        }
+        if (double(moving_.size()) > kRestrictedShare * double(with_edges)) {
+            moving_.clear();
+            return false;
+        }
+        ring_offset_.assign(moving_.size() + 1, 0);
+        for (std::size_t k = 0; k < moving_.size(); ++k)
+            ring_offset_[k + 1] = ring_offset_[k] + valence_[moving_[k]];
+        ring_.resize(ring_size);
+        std::vector<std::size_t> fill(ring_offset_.begin(), ring_offset_.end() - 1);
+        for (Edge e : mesh_.edges()) {
+            const Halfedge h = HalfedgeMesh::halfedge(e, 0);
+            const Index i = mesh_.to_vertex(HalfedgeMesh::twin(h)).idx();
+            const Index j = mesh_.to_vertex(h).idx();
+            if (slot[i] != kInvalidIndex) ring_[fill[slot[i]]++] = j;
+            if (slot[j] != kInvalidIndex) ring_[fill[slot[j]]++] = i;
+            if (slot[i] != kInvalidIndex || slot[j] != kInvalidIndex) {
+                moving_edges_.emplace_back(i, j);
+            } else {
+                fixed_energy_.first += (P[i] - P[j]).squaredNorm();
+                fixed_energy_.second += P[i].squaredNorm() + P[j].squaredNorm();
+            }
+        }
+        for (std::size_t v = 0; v < nv; ++v)
+            if (fixed_[v] && valence_[v] > 0) fixed_box_.add(P[v]);
+        restricted_ = true;
+        return true;
+    }
+
+    /// The moving vertices in index order (restrict_to_moving(); empty before).
+    const std::vector<Index>& moving() const { return moving_; }
+
+    /// Above this share of the vertices with edges moving, the whole-mesh passes are as cheap.
+    static constexpr double kRestrictedShare = 0.75;
+
 private:
+    /// The valences and the fixed vertices (boundary, isolated, pinned): one pass over the
+    /// edges, as the first whole-mesh step makes it.
+    void find_fixed() {
+        const std::size_t nv = mesh_.vertices_size();
+        valence_.assign(nv, 0);
+        fixed_.assign(nv, 0);
+        for (Edge e : mesh_.edges()) {
+            const Halfedge h = HalfedgeMesh::halfedge(e, 0), g = HalfedgeMesh::twin(h);
+            const Index i = mesh_.to_vertex(g).idx(), j = mesh_.to_vertex(h).idx();
+            ++valence_[i];
+            ++valence_[j];
+            if (mesh_.is_boundary(h) || mesh_.is_boundary(g)) fixed_[i] = fixed_[j] = 1;
+        }
+        for (std::size_t v = 0; v < nv; ++v)
+            if (valence_[v] == 0 || (pinned_ && (*pinned_)[v])) fixed_[v] = 1;
+        known_ = true;
+    }
+
+    /// step() on the moving vertices only: out keeps the fixed vertices' positions from the
+    /// call before (copied from P on the first call), the boxes add the fixed vertices' box.
+    bool step_moving(const Positions& P, double t, Positions& out, Box& box_before,
+                     Box& box_after) const {
+        if (out.size() != P.size()) out = P;
+        box_before.add(fixed_box_);
+        box_after.add(fixed_box_);
+        double sum = 0;
+        for (std::size_t k = 0; k < moving_.size(); ++k) {
+            const Index v = moving_[k];
+            Point ring = Point::Zero();
+            for (std::size_t r = ring_offset_[k]; r < ring_offset_[k + 1]; ++r) ring += P[ring_[r]];
+            const Point& p = P[v];
+            out[v] = p + t * (ring / double(valence_[v]) - p);
+            sum += out[v].x() + out[v].y() + out[v].z();
+            box_before.add(p);
+            box_after.add(out[v]);
+        }
+        return std::isfinite(sum) && box_after.bounded();
+    }
+
     /// w = K·u (all entries).
     void apply_k(const Eigen::VectorXd& u, Eigen::VectorXd& w) const {
+        if (restricted_) {
+            // The fixed entries only ever meet a zero of D·K·D: left at zero.
+            w.setZero();
+            for (std::size_t k = 0; k < moving_.size(); ++k) {
+                const Index v = moving_[k];
+                double kv = double(valence_[v]) * u[Eigen::Index(v)];
+                for (std::size_t r = ring_offset_[k]; r < ring_offset_[k + 1]; ++r)
+                    kv -= u[Eigen::Index(ring_[r])];
+                w[Eigen::Index(v)] = kv;
+            }
+            return;
+        }
         for (std::size_t v = 0; v < valence_.size(); ++v)
             w[Eigen::Index(v)] = double(valence_[v]) * u[Eigen::Index(v)];
         for (Edge e : mesh_.edges()) {
@@ -365,6 +544,14 @@ private:
     bool known_ = false;
     std::vector<std::uint32_t> valence_;  ///< 0: isolated or deleted
     std::vector<std::uint8_t> fixed_;     ///< 1: does not move (boundary, isolated, deleted)
+    // restrict_to_moving():
+    bool restricted_ = false;
+    std::vector<Index> moving_;             ///< the vertices that move, in index order
+    std::vector<std::size_t> ring_offset_;  ///< per moving vertex: its neighbours in ring_
+    std::vector<Index> ring_;               ///< neighbours, each vertex's in edge order
+    std::vector<std::pair<Index, Index>> moving_edges_;  ///< edges with a moving end
+    std::pair<double, double> fixed_energy_{0, 0};       ///< energy() of the other edges
+    Box fixed_box_;                                      ///< the fixed vertices with edges
 };
 
 double max_stable_step_laplacian(const Laplacian& lap, int steps) {
@@ -671,6 +858,7 @@ private:
     std::string instability_hint();
     void stop(int iteration, const std::string& why);
     void blend_by_region(const Positions& P);
+    CandidateSums area_volume_of(const Positions& X, bool with_area);
 
     const FairingOptions& o_;
     const Selection* weights_;  ///< the region's weights on res.mesh; nullptr: everything
@@ -683,6 +871,10 @@ private:
     const bool weights_fixed_;
     const bool implicit_;
     const bool fast_;  ///< vertex-space umbrella, no matrix
+    /// fast_ on a region: the umbrella and the checks work on the moving vertices only
+    /// (UmbrellaOperator::restrict_to_moving()); the other vertices' positions never change.
+    bool restricted_ = false;
+    std::optional<MovingFaceSums> moving_sums_;  ///< restricted_: the area and volume sums
     bool closed_ = false;
     CandidateSums last_;  ///< of the last good positions, where known (area: NaN when not)
     bool last_known_ = false;
@@ -767,6 +959,11 @@ void FairingRun::set_up(const Pinned& pinned) {
         res_.report.push_back("boundary: " + std::to_string(slider_->loops()) +
                               " loop(s) sliding along the input's boundary curves");
     }
+    // A region whose unselected vertices keep their positions throughout (no slide, no volume
+    // rescaling) runs on its moving vertices only: the same positions bit for bit.
+    if (fast_ && weights_ && !pinned.empty() && o_.restrict_to_region && !slider_ &&
+        !o_.preserve_volume && all_finite(mesh_.positions()))
+        restricted_ = umbrella_->restrict_to_moving(mesh_.positions());
     if (fast_ && o_.estimate_max_stable_step)
         res_.max_stable_step = umbrella_->max_stable_step(kLanczosSteps);
     if (o_.keep_steps) res_.step_positions.reserve(std::size_t(o_.iterations));
@@ -824,7 +1021,12 @@ void FairingRun::run() {
 /// of the blended positions are not those measured on the candidate: measured again.
 void FairingRun::blend_by_region(const Positions& P) {
     const Selection& w = *weights_;
-    for (std::size_t v = 0; v < cand_.size(); ++v) cand_[v] = blend_by_weight(P[v], cand_[v], w[v]);
+    if (restricted_) {  // the others' candidates are their old positions
+        for (Index v : umbrella_->moving()) cand_[v] = blend_by_weight(P[v], cand_[v], w[v]);
+    } else {
+        for (std::size_t v = 0; v < cand_.size(); ++v)
+            cand_[v] = blend_by_weight(P[v], cand_[v], w[v]);
+    }
     last_known_ = false;
     energy_known_ = false;
 }
@@ -1037,8 +1239,8 @@ bool FairingRun::check_area_and_volume(int iteration, const Positions& P, bool c
         return true;
     }
     if (area_check && !(last_known_ && last_.area >= 0))
-        last_ = area_volume(mesh_, P, true);  // the last good state's area, once
-    const CandidateSums g = area_volume(mesh_, cand_, area_check);
+        last_ = area_volume_of(P, true);  // the last good state's area, once
+    const CandidateSums g = area_volume_of(cand_, area_check);
     if (area_check && last_.area > 0 && g.area < kAreaCollapse * last_.area) {
         stop(iteration, "the surface area fell to " + format_percent(g.area / last_.area) +
                             " of the previous iteration's" + instability_hint());
@@ -1052,6 +1254,14 @@ bool FairingRun::check_area_and_volume(int iteration, const Positions& P, bool c
     last_ = g;
     last_known_ = true;
     return true;
+}
+
+/// area_volume() of the mesh at positions X (the last good state or the candidate); over the
+/// faces around the moving vertices plus a constant for the others when restricted_.
+CandidateSums FairingRun::area_volume_of(const Positions& X, bool with_area) {
+    if (!restricted_) return area_volume(mesh_, X, with_area);
+    if (!moving_sums_) moving_sums_.emplace(mesh_, X, umbrella_->moving());
+    return moving_sums_->sums(X, with_area);
 }
 
 /// Volume preservation: scales the candidate about the centroid of the vertices with edges

@@ -17,9 +17,10 @@
 // limits the smoothing to the selected vertices, blended by their weights.
 // Throws InvalidArgument naming the option before doing anything; Cancelled from the progress.
 // The input mesh is never modified.
-// Complexity: explicit O(iterations · (V + F)); implicit one factorization per iteration (one
-// in all for umbrella) plus a solve per iteration. The details (what `step` means per
-// operator, the health checks and their thresholds, the solver choice): fairing.cpp.
+// Complexity: explicit O(iterations · (V + F)) (explicit umbrella and Taubin on a region:
+// O(V + F) once, then O(iterations · the region's vertices and faces)); implicit one factorization
+// per iteration (one in all for umbrella) plus a solve per iteration. The details (what `step`
+// means per operator, the health checks and their thresholds, the solver choice): fairing.cpp.
 #include <cstddef>
 #include <limits>
 #include <string>
@@ -108,6 +109,12 @@ struct FairingOptions {
     /// --preserve-volume rescales before the blend, so the volume is kept approximately.
     /// Not owned; must outlive the call.
     const std::vector<float>* region = nullptr;
+    /// With a region (some vertices of weight 0), explicit umbrella and Taubin runs without
+    /// --preserve-volume or a sliding boundary work on the moving vertices and the edges and
+    /// faces around them only (when those vertices are at most 3/4 of the mesh's): the same
+    /// positions bit for bit, in time that follows the region's size. false: the whole-mesh
+    /// passes (for comparisons and tests).
+    bool restrict_to_region = true;
 };
 
 struct FairingResult {

@@ -4,6 +4,7 @@
 // neighbours is bounded, and validate() holds after every operation.
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -276,6 +277,161 @@ TEST_CASE("smoothing a feathered region blends into the untouched surface", "[se
     REQUIRE(validate(ri.mesh));
     for (Vertex v : fx.mesh.vertices())
         if (soft[v.idx()] == 0.0f) CHECK(same_point(fx.mesh.position(v), ri.mesh.position(v)));
+}
+
+namespace {
+
+/// Smooths `m` on `region` twice: on the moving vertices only (the default) and through the
+/// whole-mesh passes (FairingOptions::restrict_to_region false).
+std::pair<FairingResult, FairingResult> restricted_and_whole(const HalfedgeMesh& m,
+                                                             const Selection& region,
+                                                             FairingOptions o) {
+    o.region = &region;
+    o.restrict_to_region = true;
+    FairingResult restricted = smooth(m, o);
+    o.restrict_to_region = false;
+    return {std::move(restricted), smooth(m, o)};
+}
+
+/// Every figure of two runs that must agree bit for bit.
+void check_same_run(const FairingResult& a, const FairingResult& b) {
+    CHECK(bit_identical(a.mesh.positions(), b.mesh.positions()));
+    REQUIRE(a.step_positions.size() == b.step_positions.size());
+    for (std::size_t k = 0; k < a.step_positions.size(); ++k)
+        CHECK(bit_identical(a.step_positions[k], b.step_positions[k]));
+    CHECK(std::memcmp(&a.max_stable_step, &b.max_stable_step, sizeof(double)) == 0);
+    CHECK(a.iterations_done == b.iterations_done);
+    CHECK(a.stopped_early == b.stopped_early);
+    CHECK(a.stop_reason == b.stop_reason);
+    CHECK(a.report == b.report);
+    CHECK(std::memcmp(&a.final_volume, &b.final_volume, sizeof(double)) == 0);
+}
+
+/// A unit tetrahedron (weight 1) beside a tiny one (weight 0), one closed mesh.
+HalfedgeMesh big_and_tiny_tetrahedra() {
+    const PolygonSoup one = to_soup(make_tetrahedron());
+    PolygonSoup soup = one;
+    const Index base = Index(one.positions.size());
+    for (const Point& p : one.positions) soup.positions.push_back(Point(10, 0, 0) + 0.01 * p);
+    for (std::size_t f = 0; f < one.n_faces(); ++f) {
+        std::vector<Index> face;
+        for (std::size_t k = one.face_offsets[f]; k < one.face_offsets[f + 1]; ++k)
+            face.push_back(base + one.corners[k]);
+        soup.add_face(face);
+    }
+    LoadReport report;
+    return build_mesh(soup, report);
+}
+
+}  // namespace
+
+TEST_CASE(
+    "explicit smoothing restricted to a region's vertices gives the whole-mesh result bit "
+    "for bit",
+    "[selection][fairing]") {
+    // A feathered region (fractional weights) on the bunny (open: boundary and isolated
+    // vertices) and on a closed noisy sphere (the volume's sign is checked every iteration).
+    const bool bunny = GENERATE(true, false);
+    HalfedgeMesh m;
+    Selection region;
+    if (bunny) {
+        const std::string path = shared_mesh("stanford-bunny.obj");
+        SKIP_IF_MISSING(path);
+        m = read_mesh(path).mesh;
+        region = sphere_selection(m, Point(-0.02, 0.11, 0), 0.05);
+        feather_selection(m, region, 0.03);
+    } else {
+        m = make_noisy_sphere(12, 0.02, 5);
+        region = sphere_selection(m, Point(1, 0, 0), 0.8);
+        feather_selection(m, region, 0.4);
+    }
+    REQUIRE(count_weight(region, 0.0f) > m.n_vertices() / 3);
+    REQUIRE(std::count_if(region.begin(), region.end(),
+                          [](float w) { return w > 0.0f && w < 1.0f; }) > 20);
+    // Umbrella within the provable limit, beyond it (energy and area checks), and Taubin with
+    // and without its energy check.
+    const int variant = GENERATE(0, 1, 2, 3);
+    INFO((bunny ? "bunny" : "noisy sphere") << ", variant " << variant);
+    FairingOptions o;
+    o.iterations = 6;
+    o.step = variant == 1 ? 1.2 : 0.5;
+    if (variant >= 2) o.op = FairingOperator::Taubin;
+    if (variant == 3) {
+        o.taubin_lambda = 0.9;
+        o.taubin_mu = -1.0;
+    }
+    const auto [restricted, whole] = restricted_and_whole(m, region, o);
+    REQUIRE(validate(restricted.mesh));
+    REQUIRE_FALSE(restricted.stopped_early);
+    check_same_run(restricted, whole);
+    std::size_t moved = 0;
+    for (Vertex v : m.vertices()) {
+        if (region[v.idx()] == 0.0f)
+            CHECK(same_point(m.position(v), restricted.mesh.position(v)));
+        else if (!same_point(m.position(v), restricted.mesh.position(v)))
+            ++moved;
+    }
+    CHECK(moved > 20);
+}
+
+TEST_CASE("a region's smoothing that diverges stops with its reason, restricted or not",
+          "[selection][fairing]") {
+    SECTION("an absurd step: the bounding box or the fairing energy grows") {
+        Fixture fx;
+        FairingOptions o;
+        o.step = 50;
+        o.iterations = 3;
+        const auto [restricted, whole] = restricted_and_whole(fx.mesh, fx.region, o);
+        CHECK(restricted.stopped_early);
+        CHECK(restricted.stopped_at_iteration == 1);
+        CHECK_THAT(restricted.stop_reason, Catch::Contains("iteration 1: the") &&
+                                               Catch::Contains("step 50 is above the stable"));
+        CHECK(bit_identical(restricted.mesh.positions(), fx.mesh.positions()));
+        check_same_run(restricted, whole);
+    }
+    SECTION("a stable step that turns the closed mesh inside out") {
+        // Umbrella step 1 reflects the big tetrahedron through its centroid (scaled by 1/3);
+        // the tiny one, unselected, cannot keep the total volume's sign.
+        const HalfedgeMesh m = big_and_tiny_tetrahedra();
+        REQUIRE(validate(m));
+        Selection region(m.vertices_size(), 0.0f);
+        for (Index v = 0; v < 4; ++v) region[v] = 1.0f;
+        FairingOptions o;
+        o.step = 1.0;
+        const auto [restricted, whole] = restricted_and_whole(m, region, o);
+        CHECK(restricted.stopped_early);
+        CHECK_THAT(restricted.stop_reason, Catch::Contains("the volume changed sign"));
+        check_same_run(restricted, whole);
+    }
+}
+
+TEST_CASE("explicit smoothing of a small region costs time that follows the region",
+          "[selection][fairing]") {
+    // 36,002 vertices, about 150 of them selected: 100 umbrella iterations over the whole mesh
+    // cost tens of ms, on the region's vertices a few passes' set-up.
+    const HalfedgeMesh m = make_icosphere(60);
+    const Selection region = sphere_selection(m, Point(0, 0, 1), 0.12);
+    REQUIRE(count_weight(region, 1.0f) > 50);
+    REQUIRE(count_weight(region, 1.0f) < 500);
+    FairingOptions o;
+    o.iterations = 100;
+    o.keep_steps = false;
+    o.region = &region;
+    auto fastest_ms = [&](bool restrict_to_region) {
+        o.restrict_to_region = restrict_to_region;
+        double best = 1e300;
+        for (int k = 0; k < 3; ++k) {
+            const auto t0 = std::chrono::steady_clock::now();
+            const FairingResult r = smooth(m, o);
+            const auto t1 = std::chrono::steady_clock::now();
+            REQUIRE(r.iterations_done == 100);
+            best = std::min(best, std::chrono::duration<double, std::milli>(t1 - t0).count());
+        }
+        return best;
+    };
+    const double whole = fastest_ms(false), restricted = fastest_ms(true);
+    INFO("whole-mesh passes " << whole << " ms, restricted " << restricted << " ms");
+    CHECK(restricted < 0.5 * whole);
 }
 
 TEST_CASE("noise on a region scales each offset by the weight", "[selection]") {
