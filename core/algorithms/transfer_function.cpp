@@ -19,6 +19,7 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr float kFloatInf = std::numeric_limits<float>::infinity();
 
 bool is_taubin(const FairingOptions& o) {
     return o.op == FairingOperator::Taubin;
@@ -54,15 +55,26 @@ Eigen::MatrixXd coefficients_of(const SpectralDecomposition& d, const Eigen::Mat
     return d.eigenvectors.transpose() * (d.S.asDiagonal() * x);
 }
 
-/// out[v] = g_edge·input[v] + (E·W)[r] for every row r (vertex v = d.map.vertex_of[r]): E is
-/// read once, in blocks of rows whose three sums stay in cache while the k columns pass
-/// (Eigen's general product re-reads E for its small right-hand side), on two threads for
-/// large decompositions. Each row's sum runs over k in order, so the result does not depend on
-/// the thread count.
-void apply_basis(const SpectralDecomposition& d, const Eigen::MatrixXd& w, double g_edge,
-                 const std::vector<Point>& input, std::vector<Point>& out) {
-    const std::size_t rows = d.rows();
-    const Eigen::Index k = d.eigenvectors.cols();
+/// W = (g - g_edge) ∘ α (k x 3) for the fairing `o`, and g_edge, the gain at the computed
+/// frequency nearest the rest.
+Eigen::MatrixXd filter_weights(const SpectralDecomposition& d, const FairingOptions& o,
+                               const Eigen::MatrixXd& alpha, double& g_edge) {
+    const std::vector<double> g = fairing_gains(o, d.eigenvalues);
+    g_edge = d.end == SpectrumEnd::Smallest ? g.back() : g.front();
+    Eigen::MatrixXd w(alpha.rows(), 3);
+    for (Eigen::Index i = 0; i < alpha.rows(); ++i)
+        w.row(i) = (g[std::size_t(i)] - g_edge) * alpha.row(i);
+    return w;
+}
+
+/// store(r, (E·W)[r]) for every row r of E (rows x k, by columns) and W (k x 3): E is read
+/// once, in blocks of rows whose three sums stay in cache while the k columns pass (Eigen's
+/// general product re-reads E for its small right-hand side), on two threads for large E. Each
+/// row's sum runs over k in order, so the result does not depend on the thread count.
+template <typename Store>
+void rows_times(const Eigen::MatrixXd& e_all, const Eigen::MatrixXd& w, const Store& store) {
+    const std::size_t rows = std::size_t(e_all.rows());
+    const Eigen::Index k = e_all.cols();
     constexpr std::size_t kBlock = 1024;
     const auto rows_from_to = [&](std::size_t begin, std::size_t end) {
         double sum[3][kBlock];
@@ -70,7 +82,7 @@ void apply_basis(const SpectralDecomposition& d, const Eigen::MatrixXd& w, doubl
             const std::size_t n = std::min(kBlock, end - r0);
             for (auto& column : sum) std::fill(column, column + n, 0.0);
             for (Eigen::Index i = 0; i < k; ++i) {
-                const double* e = d.eigenvectors.col(i).data() + r0;
+                const double* e = e_all.col(i).data() + r0;
                 const double w0 = w(i, 0), w1 = w(i, 1), w2 = w(i, 2);
                 for (std::size_t r = 0; r < n; ++r) {
                     sum[0][r] += w0 * e[r];
@@ -78,21 +90,28 @@ void apply_basis(const SpectralDecomposition& d, const Eigen::MatrixXd& w, doubl
                     sum[2][r] += w2 * e[r];
                 }
             }
-            for (std::size_t r = 0; r < n; ++r) {
-                const Index v = d.map.vertex_of[r0 + r].idx();
-                out[v] = g_edge * input[v] + Point(sum[0][r], sum[1][r], sum[2][r]);
-            }
+            for (std::size_t r = 0; r < n; ++r)
+                store(r0 + r, Point(sum[0][r], sum[1][r], sum[2][r]));
         }
     };
     // The halves split at a block boundary.
-    const std::size_t half = (rows / 2 + kBlock - 1) / kBlock * kBlock;
+    const std::size_t half = std::min(rows, (rows / 2 + kBlock - 1) / kBlock * kBlock);
     on_two_threads(worth_two_threads(rows * std::size_t(std::max<Eigen::Index>(k, 1)) / 16),
                    [&](int part) {
                        if (part == 0)
-                           rows_from_to(0, std::min(half, rows));
+                           rows_from_to(0, half);
                        else
-                           rows_from_to(std::min(half, rows), rows);
+                           rows_from_to(half, rows);
                    });
+}
+
+/// out[v] = g_edge·input[v] + (E·W)[r] for every row r (vertex v = d.map.vertex_of[r]).
+void apply_basis(const SpectralDecomposition& d, const Eigen::MatrixXd& w, double g_edge,
+                 const std::vector<Point>& input, std::vector<Point>& out) {
+    rows_times(d.eigenvectors, w, [&](std::size_t r, const Point& moved) {
+        const Index v = d.map.vertex_of[r].idx();
+        out[v] = g_edge * input[v] + moved;
+    });
 }
 
 std::string band_text(const MultipletSplit::Band& b) {
@@ -204,15 +223,124 @@ std::vector<Point> predict_fairing(const SpectralDecomposition& d, const Fairing
         d.coefficients.rows() == Eigen::Index(d.size()) && input == d.base_positions;
     const Eigen::MatrixXd alpha =
         decomposed_shape ? d.coefficients : coefficients_of(d, gather(d, input));
-    const std::vector<double> g = fairing_gains(o, d.eigenvalues);
-    const double g_edge = d.end == SpectrumEnd::Smallest ? g.back() : g.front();
     // X' = E·(g∘α) + g_edge·(X - E·α) = g_edge·X + E·W with W = (g - g_edge)∘α: one pass
     // over E, the only large operand (rows x k doubles: 446 MB for 557k rows and k = 100).
-    const Eigen::Index k = Eigen::Index(d.size());
-    Eigen::MatrixXd w(k, 3);
-    for (Eigen::Index i = 0; i < k; ++i) w.row(i) = (g[std::size_t(i)] - g_edge) * alpha.row(i);
+    double g_edge = 0;
+    const Eigen::MatrixXd w = filter_weights(d, o, alpha, g_edge);
     apply_basis(d, w, g_edge, input, out);
     return out;
+}
+
+ClusteredBasis cluster_basis(const SpectralDecomposition& d, const std::vector<Index>& cluster_of,
+                             std::size_t clusters) {
+    const std::vector<Point>& x = d.base_positions;
+    if (cluster_of.size() != x.size())
+        throw InvalidArgument("cluster_basis: " + std::to_string(cluster_of.size()) +
+                              " clusters given for " + std::to_string(x.size()) + " vertices");
+    for (std::size_t v = 0; v < cluster_of.size(); ++v)
+        if (cluster_of[v] != kInvalidIndex && cluster_of[v] >= clusters)
+            throw InvalidArgument("cluster_basis: vertex " + std::to_string(v) + " has cluster " +
+                                  std::to_string(cluster_of[v]) + " of " +
+                                  std::to_string(clusters));
+    const Eigen::Index nc = Eigen::Index(clusters), k = Eigen::Index(d.size());
+    ClusteredBasis b;
+    b.vectors = Eigen::MatrixXd::Zero(nc, k);
+    b.positions = Eigen::MatrixXd::Zero(nc, 3);
+    b.others = Eigen::MatrixXd::Zero(nc, 3);
+    b.spread.assign(clusters, 0.0);
+    b.vector_spread = Eigen::MatrixXf::Zero(nc, k);
+    b.others_spread.assign(clusters, 0.0);
+    b.decomposed.assign(clusters, 0);
+    b.other.assign(clusters, 0);
+    const std::vector<Index>& row_of = d.map.row_of;
+    const auto in_rows = [&](std::size_t v) {
+        return v < row_of.size() && row_of[v] != kInvalidIndex;
+    };
+    for (std::size_t v = 0; v < x.size(); ++v) {
+        const Index c = cluster_of[v];
+        if (c == kInvalidIndex) continue;
+        if (in_rows(v)) {
+            b.positions.row(c) += x[v].transpose();
+            ++b.decomposed[c];
+        } else {
+            b.others.row(c) += x[v].transpose();
+            ++b.other[c];
+        }
+    }
+    for (Eigen::Index c = 0; c < nc; ++c) {
+        if (b.decomposed[std::size_t(c)])
+            b.positions.row(c) /= double(b.decomposed[std::size_t(c)]);
+        if (b.other[std::size_t(c)]) b.others.row(c) /= double(b.other[std::size_t(c)]);
+    }
+    for (std::size_t v = 0; v < x.size(); ++v) {
+        const Index c = cluster_of[v];
+        if (c == kInvalidIndex) continue;
+        double& s = in_rows(v) ? b.spread[c] : b.others_spread[c];
+        const Eigen::RowVector3d mean = in_rows(v) ? b.positions.row(c) : b.others.row(c);
+        s = std::max(s, (x[v].transpose() - mean).norm());
+    }
+    // The eigenvectors: column by column (E is stored by columns), first the means, then each
+    // row's squared distance from its cluster's mean, summed over k.
+    const std::size_t rows = d.rows();
+    std::vector<Index> cluster_of_row(rows);
+    for (std::size_t r = 0; r < rows; ++r) cluster_of_row[r] = cluster_of[d.map.vertex_of[r].idx()];
+    for (Eigen::Index i = 0; i < k; ++i) {
+        const double* e = d.eigenvectors.col(i).data();
+        double* mean = b.vectors.col(i).data();
+        for (std::size_t r = 0; r < rows; ++r)
+            if (cluster_of_row[r] != kInvalidIndex) mean[cluster_of_row[r]] += e[r];
+        for (Eigen::Index c = 0; c < nc; ++c)
+            if (b.decomposed[std::size_t(c)]) mean[c] /= double(b.decomposed[std::size_t(c)]);
+    }
+    for (Eigen::Index i = 0; i < k; ++i) {
+        const double* e = d.eigenvectors.col(i).data();
+        const double* mean = b.vectors.col(i).data();
+        float* spread = b.vector_spread.col(i).data();
+        for (std::size_t r = 0; r < rows; ++r) {
+            const Index c = cluster_of_row[r];
+            if (c == kInvalidIndex) continue;
+            // Rounded up to the next float: a bound stays a bound.
+            const float t = std::nextafter(float(std::abs(e[r] - mean[c])), kFloatInf);
+            spread[c] = std::max(spread[c], t);
+        }
+    }
+    return b;
+}
+
+ClusteredPrediction predict_clustered(const ClusteredBasis& b, const SpectralDecomposition& d,
+                                      const FairingOptions& o) {
+    if (d.coefficients.rows() != Eigen::Index(d.size()) || d.coefficients.cols() != 3)
+        throw InvalidArgument("predict_clustered: the decomposition has no stored coefficients");
+    if (b.vectors.cols() != Eigen::Index(d.size()) || b.positions.rows() != b.vectors.rows())
+        throw InvalidArgument("predict_clustered: the clustered basis has " +
+                              std::to_string(b.vectors.cols()) +
+                              " frequencies, the decomposition " + std::to_string(d.size()));
+    double g_edge = 0;
+    const Eigen::MatrixXd w = filter_weights(d, o, d.coefficients, g_edge);
+    // Σ_k |W_k|·vector_spread_k per cluster, column by column.
+    std::vector<double> spread_moved(b.clusters(), 0.0);
+    for (Eigen::Index i = 0; i < w.rows(); ++i) {
+        const double wk = w.row(i).norm();
+        const float* s = b.vector_spread.col(i).data();
+        for (std::size_t c = 0; c < b.clusters(); ++c) spread_moved[c] += wk * double(s[c]);
+    }
+    std::vector<Point> moved(b.clusters());
+    rows_times(b.vectors, w, [&](std::size_t c, const Point& m) { moved[c] = m; });
+    ClusteredPrediction p;
+    p.positions.resize(b.clusters());
+    for (std::size_t c = 0; c < b.clusters(); ++c) {
+        const auto i = Eigen::Index(c);
+        const double n = b.decomposed[c], m = b.other[c];
+        const Point ref = g_edge * Point(b.positions.row(i).transpose()) + moved[c];
+        const Point others = b.others.row(i).transpose();
+        const Point mean = n + m > 0 ? Point((n * ref + m * others) / (n + m)) : Point::Zero();
+        p.positions[c] = mean;
+        double bound = 0;
+        if (n > 0) bound = std::abs(g_edge) * b.spread[c] + spread_moved[c] + (ref - mean).norm();
+        if (m > 0) bound = std::max(bound, b.others_spread[c] + (others - mean).norm());
+        p.bound = std::max(p.bound, bound);
+    }
+    return p;
 }
 
 ChangeByFrequency change_by_frequency(const SpectralDecomposition& d,

@@ -20,6 +20,7 @@
 // Gains are per frequency and dimensionless; a `step` is in the units fairing.h states (the
 // fraction of the way to the neighbours' average for umbrella steps).
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -96,6 +97,45 @@ MeasuredGain measured_gain(const SpectralDecomposition& d, const std::vector<Poi
 /// the decomposed mesh's vertices_size. O(k · rows), no factorization.
 std::vector<Point> predict_fairing(const SpectralDecomposition& d, const FairingOptions& o,
                                    const std::vector<Point>& input);
+
+/// A decomposition averaged over clusters of vertices (a stand-in's, ProxyMesh::cluster_of):
+/// what predict_clustered() needs for the clusters' means of a prediction of the decomposed
+/// shape in O(clusters · k) instead of O(rows · k), with a bound on how far any vertex's
+/// predicted position is from its cluster's mean. A view draws that while a fairing slider
+/// moves on a large mesh. Per cluster c, over its members in the eigenproblem ("decomposed",
+/// n_c of them) and the others (isolated vertices, m_c):
+struct ClusteredBasis {
+    Eigen::MatrixXd vectors;     ///< clusters x k: the decomposed members' mean of e_k
+    Eigen::MatrixXd positions;   ///< clusters x 3: the decomposed members' mean base position
+    Eigen::MatrixXd others;      ///< clusters x 3: the other members' mean position
+    std::vector<double> spread;  ///< max |x_v - mean| over the decomposed members
+    /// clusters x k: max |e_k(v) - mean e_k| over the decomposed members (single precision,
+    /// rounded up: a bound only)
+    Eigen::MatrixXf vector_spread;
+    std::vector<double> others_spread;             ///< max |x_v - mean| over the other members
+    std::vector<std::uint32_t> decomposed, other;  ///< n_c and m_c
+    std::size_t clusters() const { return decomposed.size(); }
+};
+
+/// The clustered basis of `d` for `cluster_of` (one cluster per vertex storage index of the
+/// decomposed mesh, kInvalidIndex for none; clusters numbered below `clusters`). Two passes over
+/// the eigenvectors. Throws InvalidArgument when cluster_of does not fit the decomposed mesh
+/// or names a cluster out of range.
+ClusteredBasis cluster_basis(const SpectralDecomposition& d, const std::vector<Index>& cluster_of,
+                             std::size_t clusters);
+
+/// The clusters' means of predict_fairing(d, o, d.base_positions) (the decomposed shape, from
+/// its stored coefficients) and `bound`, no less than the distance of any member's predicted
+/// position from its cluster's mean: |g_edge|·spread + Σ_k |W_k|·vector_spread_k (W = (g -
+/// g_edge) ∘ α) plus how far the decomposed members' mean lies from the cluster's.
+/// Throws InvalidArgument when the decomposition has no stored coefficients or `b` is not of
+/// its size.
+struct ClusteredPrediction {
+    std::vector<Point> positions;
+    double bound = 0;
+};
+ClusteredPrediction predict_clustered(const ClusteredBasis& b, const SpectralDecomposition& d,
+                                      const FairingOptions& o);
 
 /// What an operation removed, split by frequency: the displacement D = result - input of each
 /// vertex as the part carried by the frequencies below `split` (0-based index into the

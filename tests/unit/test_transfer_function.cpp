@@ -11,6 +11,7 @@
 #include "core/algorithms/coloring.h"
 #include "core/algorithms/fairing.h"
 #include "core/algorithms/generators.h"
+#include "core/algorithms/proxy_mesh.h"
 #include "core/algorithms/spectral.h"
 #include "core/algorithms/transfer_function.h"
 #include "core/errors.h"
@@ -386,4 +387,59 @@ TEST_CASE("the prediction is g_edge X + E diag(g - g_edge) alpha, on one thread 
         CHECK(worst <= 1e-12 * size);
         CHECK(relative_distance(p, *input) > 1e-4);  // it did smooth
     }
+}
+
+TEST_CASE("the clustered prediction is the clusters' mean of the prediction, within its bound",
+          "[transfer_function][proxy_mesh]") {
+    HalfedgeMesh mesh = make_noisy_sphere(20, 0.03, 11);
+    mesh.add_vertex(Point(0.01, 0.02, 0.03));  // isolated: outside the eigenproblem
+    SpectralOptions so;
+    so.k = 40;
+    const SpectralDecomposition d = decompose(mesh, so);
+    REQUIRE(d.rows() + 1 == mesh.vertices_size());
+    ProxyMeshOptions po;
+    po.target_triangles = 300;
+    po.keep_clusters = true;
+    const ProxyMesh proxy = make_proxy_mesh(mesh, po);
+    const std::size_t nc = proxy.positions.size();
+    const ClusteredBasis b = cluster_basis(d, proxy.cluster_of, nc);
+    REQUIRE(b.clusters() == nc);
+    FairingOptions o;
+    for (const double step : {0.5, 5.0, 50.0}) {
+        o.integration = Integration::Implicit;
+        o.step = step;
+        INFO("implicit step " << step);
+        const std::vector<Point> full = predict_fairing(d, o, d.base_positions);
+        std::vector<Point> sum(nc, Point::Zero());
+        std::vector<int> count(nc, 0);
+        for (Vertex v : mesh.vertices()) {
+            sum[proxy.cluster_of[v.idx()]] += full[v.idx()];
+            ++count[proxy.cluster_of[v.idx()]];
+        }
+        const ClusteredPrediction p = predict_clustered(b, d, o);
+        REQUIRE(p.positions.size() == nc);
+        double worst_mean = 0, farthest = 0;
+        for (std::size_t c = 0; c < nc; ++c)
+            worst_mean = std::max(worst_mean, (p.positions[c] - sum[c] / count[c]).norm());
+        for (Vertex v : mesh.vertices())
+            farthest =
+                std::max(farthest, (full[v.idx()] - p.positions[proxy.cluster_of[v.idx()]]).norm());
+        CHECK(worst_mean < 1e-12);
+        CHECK(farthest <= p.bound);
+        CHECK(p.bound < 4 * farthest + 1e-9);  // a bound that tells something
+        // The moved stand-in of the full prediction: the same means, a measured bound.
+        HalfedgeMesh predicted = mesh;
+        predicted.set_positions(full);
+        const ProxyMesh moved = moved_proxy_mesh(proxy, predicted);
+        for (std::size_t c = 0; c < nc; ++c)
+            CHECK((moved.positions[c] - p.positions[c]).norm() < 1e-12);
+        CHECK(moved.error_bound == Approx(farthest).epsilon(1e-9));
+    }
+    CHECK_THROWS_WITH(cluster_basis(d, std::vector<Index>(3, 0), nc), Catch::Contains("3"));
+    std::vector<Index> out_of_range = proxy.cluster_of;
+    out_of_range[0] = Index(nc);
+    CHECK_THROWS_WITH(cluster_basis(d, out_of_range, nc), Catch::Contains("vertex 0"));
+    SpectralDecomposition unstored = d;
+    unstored.coefficients.resize(0, 3);
+    CHECK_THROWS_WITH(predict_clustered(b, unstored, o), Catch::Contains("coefficients"));
 }
