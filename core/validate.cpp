@@ -65,7 +65,8 @@ public:
     /// The fans whose lowest halfedge lies in [begin, end), without the vertices' degrees:
     /// false when some fan breaks a rule; `fans` gets how many were walked.
     bool walk_fans(std::size_t begin, std::size_t end, std::size_t& fans) const;
-    /// The vertices' halfedges against the boundary halfedges (see the definition).
+    /// `with_halfedge` gets how many live vertices have a halfedge; false when one of those
+    /// halfedges is missing or deleted, or a boundary halfedge is not its vertex's halfedge.
     bool check_vertex_halfedges(const std::vector<Index>& boundary,
                                 std::size_t& with_halfedge) const;
     /// The vertices, each fan against its degree (naming the first broken vertex).

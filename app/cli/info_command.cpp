@@ -152,7 +152,7 @@ void print_text(const std::string& file, const MeshInfo& info, const LoadReport&
 /// free, so each stage of a large load faulted in fresh zeroed pages: the file's bytes, the
 /// soup, the builder's sort and link arrays, the mesh. From the heap, with nothing trimmed,
 /// a later stage reuses an earlier one's pages: on 17.8M faces about 0.4 s less system time
-/// for 7 % more peak memory (the holes freed blocks leave). Right for this one-shot command;
+/// for about 8 % more peak memory (the holes freed blocks leave). Right for this one-shot command;
 /// the heap still falls back to mmap where it cannot grow. Nothing to do off glibc.
 void reuse_freed_pages() {
 #if defined(__GLIBC__)
