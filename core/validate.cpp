@@ -27,16 +27,21 @@ constexpr std::size_t kAhead = 8;
 namespace {
 
 // validate() in three stages, one method each: the halfedges, the faces, the vertices (their
-// fans walked side by side). Each returns the first broken invariant ("" when none). A large
-// mesh's stage runs as two halves on two threads, the stages one after the other (a stage
-// reads only what the stages before it proved in range).
+// fans). Each returns the first broken invariant ("" when none). A large mesh's stage runs as
+// two halves on two threads, the stages one after the other (a stage reads only what the
+// stages before it proved in range).
 //
-// The vertex stage first walks each vertex's fan and counts its boundary halfedges without
-// knowing the vertex's degree (walk_fans): once the halfedges are proven, rotation around a
-// vertex is a permutation of its outgoing halfedges, so every fan comes back, and the fans
-// hold every outgoing halfedge exactly when their sizes sum to the number of live halfedges.
-// When that sum is short, or a fan breaks a rule, the exact per-vertex walk (check_vertices,
-// with the degrees counted first) runs to name the first broken vertex, as it always did.
+// The vertex stage first walks the fans without knowing the vertices' degrees (walk_fans):
+// once the halfedges are proven, rotation (x -> twin(prev(x))) is a permutation of the live
+// halfedges whose cycles each stay at one vertex, so every fan comes back. The cycles are
+// walked in storage order, each once from its lowest halfedge; a cycle that holds its
+// vertex's halfedge belongs to that vertex alone, so when every cycle holds its vertex's
+// halfedge and there are as many cycles as vertices with a halfedge, each such vertex has
+// one fan holding all its outgoing halfedges and no other vertex has any. The boundary
+// halfedges (listed by the halfedge stage) must then each be their vertex's halfedge: at
+// most one a fan, and the vertex's halfedge when there is one. When any of this fails, the
+// exact per-vertex walk (check_vertices, with the degrees counted first) runs to name the
+// first broken vertex, as it always did.
 class Validator {
 public:
     explicit Validator(const HalfedgeMesh& m)
@@ -52,13 +57,18 @@ public:
           fhalfedge_(m.face_halfedge_array()),
           garbage_(m.has_garbage()) {}
 
-    /// The halfedges in [begin, end); `live` gets how many of them are live.
-    std::string check_halfedges(std::size_t begin, std::size_t end, std::size_t& live) const;
+    /// The halfedges in [begin, end); `boundary` gets the live ones without a face.
+    std::string check_halfedges(std::size_t begin, std::size_t end,
+                                std::vector<Index>& boundary) const;
     /// The faces in [begin, end).
     std::string check_faces(std::size_t begin, std::size_t end) const;
-    /// The vertices in [begin, end), without their degrees: false when some fan breaks a
-    /// rule; `walked` gets the sum of the fans' sizes.
-    bool walk_fans(std::size_t begin, std::size_t end, std::size_t& walked) const;
+    /// The fans whose lowest halfedge lies in [begin, end), without the vertices' degrees:
+    /// false when some fan breaks a rule; `fans` gets how many were walked.
+    bool walk_fans(std::size_t begin, std::size_t end, std::size_t& fans) const;
+    /// `with_halfedge` gets how many live vertices have a halfedge; false when one of those
+    /// halfedges is missing or deleted, or a boundary halfedge is not its vertex's halfedge.
+    bool check_vertex_halfedges(const std::vector<Index>& boundary,
+                                std::size_t& with_halfedge) const;
     /// The vertices, each fan against its degree (naming the first broken vertex).
     std::string check_vertices();
     std::size_t n_halfedges() const { return nh_; }
@@ -105,16 +115,15 @@ private:
 // With next and prev mapping live halfedges to live ones, prev(next(h)) == h for every
 // h makes next a bijection and prev its inverse, so next(prev(h)) == h needs no check.
 std::string Validator::check_halfedges(std::size_t begin, std::size_t end,
-                                       std::size_t& live) const {
+                                       std::vector<Index>& boundary) const {
     const auto& to = to_;
     const auto& next = next_;
     const auto& prev = prev_;
     const auto& face = face_;
     const std::size_t nh = nh_;
-    live = 0;
+    boundary.clear();
     for (std::size_t i = begin; i < end; ++i) {
         if (garbage_ && m_.is_deleted(Edge(Index(i >> 1)))) continue;
-        ++live;
         if (i + kAhead < end) {
             const Index a = next[i + kAhead].idx();
             if (a < nh) {
@@ -133,7 +142,10 @@ std::string Validator::check_halfedges(std::size_t begin, std::size_t end,
         if (prev[n.idx()] != h) return "prev(next(" + hs(h) + ")) is not itself";
         if (to[n.idx() ^ 1] != t) return "next of " + hs(h) + " does not start where it ends";
         if (face[n.idx()] != f) return hs(h) + " and its next lie in different faces";
-        if (f.is_valid() && !live_f(f)) return hs(h) + " lies in a missing or deleted face";
+        if (!f.is_valid())
+            boundary.push_back(Index(i));
+        else if (!live_f(f))
+            return hs(h) + " lies in a missing or deleted face";
         if ((i & 1) && to[i] == to[i ^ 1])
             return "edge " + std::to_string(i >> 1) + " joins a vertex to itself";
     }
@@ -282,82 +294,79 @@ std::string Validator::check_vertices() {
     return {};
 }
 
-// The fans of the vertices in [begin, end), kLanes side by side, each walked until it comes
-// back (see the file comment): a vertex's halfedge is live and outgoing, on the boundary when
-// the vertex is, the fan has at most one boundary halfedge and no two edges to the same
-// neighbour. A vertex without a halfedge is skipped (the sum of the sizes shows whether it
-// has edges).
-bool Validator::walk_fans(std::size_t begin, std::size_t end, std::size_t& walked) const {
-    struct Walk {
-        Index v = kInvalidIndex, h = 0, x = 0;
-        unsigned count = 0, boundary = 0;
-        std::array<Index, kShort> near{};
-        std::vector<Index> many;
-    };
-    std::array<Walk, kLanes> lanes;
-    std::size_t next_vertex = begin;
-    walked = 0;
-    // Starts the lane on the next vertex with a halfedge (false: a broken one).
-    auto start = [&](Walk& w) {
-        w.v = kInvalidIndex;
-        while (next_vertex < end) {
-            const Vertex v(Index(next_vertex++));
-            if (garbage_ && m_.is_deleted(v)) continue;
-            const Halfedge h = m_.halfedge(v);
-            if (!h.is_valid()) continue;
-            if (!live_h(h)) return false;
-            w.v = v.idx();
-            w.h = w.x = h.idx();
-            w.count = w.boundary = 0;
-            w.many.clear();
-            prefetch(&prev_[w.h]);
-            prefetch(&to_[w.h]);
-            prefetch(&face_[w.h]);
-            return true;
-        }
-        return true;
-    };
-    // The checks at the end of a fan.
-    auto finish = [&](Walk& w) {
-        walked += w.count;
-        if (w.boundary > 1 || (w.boundary == 1 && face_[w.h].is_valid())) return false;
-        if (w.count <= kShort) return true;
-        w.many.insert(w.many.end(), w.near.begin(), w.near.end());
-        std::sort(w.many.begin(), w.many.end());
-        return std::adjacent_find(w.many.begin(), w.many.end()) == w.many.end();
-    };
-    auto step = [&](Walk& w) {
-        const Index x = w.x;
-        if (w.count == 0 && to_[x ^ 1].idx() != w.v) return false;
-        const Index n = to_[x].idx();
-        if (w.count < kShort) {
-            for (unsigned i = 0; i < w.count; ++i)
-                if (w.near[i] == n) return false;
-            w.near[w.count] = n;
-        } else {
-            w.many.push_back(n);
-        }
-        ++w.count;
-        if (!face_[x].is_valid()) ++w.boundary;
-        w.x = prev_[x].idx() ^ 1;  // counter-clockwise
-        if (w.x != w.h) {
-            prefetch(&prev_[w.x]);
-            prefetch(&to_[w.x]);
-            prefetch(&face_[w.x]);
-            return true;
-        }
-        return finish(w) && start(w);
-    };
-    for (Walk& w : lanes)
-        if (!start(w)) return false;
-    for (bool busy = true; busy;) {
-        busy = false;
-        for (Walk& w : lanes) {
-            if (w.v == kInvalidIndex) continue;
-            busy = true;
-            if (!step(w)) return false;
+// The fans met in the halfedges [begin, end), in storage order (see the file comment): each
+// rotation cycle (x -> twin(prev(x))) is walked once, from its lowest halfedge, by the part
+// that holds that halfedge; a cycle reaching below `begin` belongs to the part below (walked
+// here only to mark it seen). A fan must hold its vertex's halfedge and no two edges to the
+// same neighbour. A walk reads only prev and to, and in storage order the fans' lines are
+// mostly in cache already (neighbouring faces share vertices), where a walk in vertex order
+// misses on most steps.
+bool Validator::walk_fans(std::size_t begin, std::size_t end, std::size_t& n_fans) const {
+    std::vector<std::uint64_t> seen((end - begin + 63) / 64, 0);  // one bit a halfedge
+    std::array<Index, kShort> near{};
+    std::vector<Index> many;
+    std::size_t fans = 0;  // counted here, stored at the end (no line shared with the other half)
+    n_fans = 0;
+    for (std::size_t i = begin; i < end; ++i) {
+        const std::size_t bit = i - begin;
+        if ((seen[bit >> 6] >> (bit & 63)) & 1) continue;
+        if (garbage_ && m_.is_deleted(Edge(Index(i >> 1)))) continue;
+        const Index h = Index(i);
+        const Index vh = m_.halfedge(to_[h ^ 1]).idx();
+        bool own = true, holds_vh = false;
+        unsigned count = 0;
+        many.clear();
+        Index x = h;
+        do {
+            if (x < begin) {
+                own = false;
+            } else if (x < end) {
+                const std::size_t b = x - begin;
+                seen[b >> 6] |= std::uint64_t(1) << (b & 63);
+            }
+            if (own) {
+                const Index w = to_[x].idx();
+                if (count < kShort) {
+                    for (unsigned k = 0; k < count; ++k)
+                        if (near[k] == w) return false;
+                    near[count] = w;
+                } else {
+                    many.push_back(w);
+                }
+                holds_vh = holds_vh || x == vh;
+            }
+            if (++count > nh_) return false;  // never: rotation is a permutation
+            x = prev_[x].idx() ^ 1;           // counter-clockwise
+        } while (x != h);
+        if (!own) continue;
+        ++fans;
+        if (!holds_vh) return false;
+        if (count > kShort) {
+            many.insert(many.end(), near.begin(), near.end());
+            std::sort(many.begin(), many.end());
+            if (std::adjacent_find(many.begin(), many.end()) != many.end()) return false;
         }
     }
+    n_fans = fans;
+    return true;
+}
+
+// The vertices: how many live ones have a halfedge (false when one of those is missing or
+// deleted), and whether each boundary halfedge starts at a different vertex whose halfedge
+// it is.
+bool Validator::check_vertex_halfedges(const std::vector<Index>& boundary,
+                                       std::size_t& with_halfedge) const {
+    with_halfedge = 0;
+    for (std::size_t i = 0; i < nv_; ++i) {
+        const Vertex v{Index(i)};
+        if (garbage_ && m_.is_deleted(v)) continue;
+        const Halfedge h = m_.halfedge(v);
+        if (!h.is_valid()) continue;
+        if (!live_h(h)) return false;
+        ++with_halfedge;
+    }
+    for (Index b : boundary)
+        if (m_.halfedge(to_[b ^ 1]).idx() != b) return false;
     return true;
 }
 
@@ -379,26 +388,30 @@ ValidationResult validate(const HalfedgeMesh& m) {
     if (m.halfedges_size() != 2 * m.edges_size())
         return {false, "halfedge storage is not twice the edge storage"};
     Validator check(m);
-    std::size_t live[2] = {0, 0};
+    std::vector<Index> boundary[2];
     std::string error = in_halves(check.n_halfedges(), [&](int part, std::size_t b, std::size_t e) {
-        return check.check_halfedges(b, e, live[part]);
+        return check.check_halfedges(b, e, boundary[part]);
     });
     if (error.empty())
         error = in_halves(check.n_faces(), [&](int, std::size_t b, std::size_t e) {
             return check.check_faces(b, e);
         });
     if (error.empty()) {
-        std::size_t walked[2] = {0, 0};
+        std::size_t fans[2] = {0, 0}, with_halfedge = 0;
         bool fans_ok[2] = {true, true};
-        in_halves(check.n_vertices(), [&](int part, std::size_t b, std::size_t e) {
-            fans_ok[part] = check.walk_fans(b, e, walked[part]);
+        in_halves(check.n_halfedges(), [&](int part, std::size_t b, std::size_t e) {
+            fans_ok[part] = check.walk_fans(b, e, fans[part]);
             return std::string();
         });
-        if (!fans_ok[0] || !fans_ok[1] || walked[0] + walked[1] != live[0] + live[1])
-            error = check.check_vertices();  // names the broken vertex
-        if (error.empty() &&
-            (!fans_ok[0] || !fans_ok[1] || walked[0] + walked[1] != live[0] + live[1]))
-            error = "the vertices' fans do not hold every halfedge";
+        boundary[0].insert(boundary[0].end(), boundary[1].begin(), boundary[1].end());
+        // Each fan holds its own vertex's halfedge, so the fans are as many as the vertices
+        // with a halfedge exactly when each of those has one fan and no other vertex any;
+        // each boundary halfedge being its vertex's halfedge leaves one to a fan.
+        const bool fans_pass = fans_ok[0] && fans_ok[1] &&
+                               check.check_vertex_halfedges(boundary[0], with_halfedge) &&
+                               fans[0] + fans[1] == with_halfedge;
+        if (!fans_pass) error = check.check_vertices();  // names the broken vertex
+        if (error.empty() && !fans_pass) error = "the vertices' fans do not hold every halfedge";
     }
     if (!error.empty()) return {false, std::move(error)};
     return {};

@@ -218,12 +218,18 @@ std::size_t unify_groups(const CoincidentGroups& groups, Point* values) {
 
 BoundaryPairing pair_boundary_edges(const HalfedgeMesh& mesh) {
     // Only boundary vertices matter: every boundary halfedge is the outgoing boundary
-    // halfedge (halfedge(v)) of exactly one vertex, so one pass over the vertices finds them.
+    // halfedge (halfedge(v)) of exactly one vertex, so the vertices the boundary halfedges
+    // start at are the boundary vertices (found by one sequential pass over the halfedges'
+    // faces, where asking each vertex reads a random halfedge).
     BoundaryPairing r;
     const std::size_t n = mesh.vertices_size();
     std::vector<std::uint8_t> skip(n, 1);
-    for (Vertex v : mesh.vertices())
-        if (!mesh.is_isolated(v) && mesh.is_boundary(v)) skip[v.idx()] = 0;
+    const std::vector<Face>& face = mesh.halfedge_face_array();
+    const std::vector<Vertex>& to = mesh.halfedge_to_array();
+    const bool garbage = mesh.has_garbage();
+    for (std::size_t h = 0; h < face.size(); ++h)
+        if (!face[h].is_valid() && !(garbage && mesh.is_deleted(Edge(Index(h >> 1)))))
+            skip[to[h ^ 1].idx()] = 0;
     const CoincidentGroups groups = find_coincident_points(mesh.positions().data(), n, skip.data());
     const std::vector<Index> group = groups.group_of(n);
     // Ids: a group's id is its number, an ungrouped vertex's is n_groups + its index.

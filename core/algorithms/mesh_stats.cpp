@@ -83,8 +83,9 @@ MeshStats compute_stats(const HalfedgeMesh& mesh) {
             s.bbox.max = s.bbox.max.cwiseMax(p);
         }
     }
-    // Area and volume in one pass over the faces (the volume only for a closed mesh).
-    const bool closed = is_closed(mesh);
+    // Area and volume in one pass over the faces (the volume only for a closed mesh). Closed:
+    // faces and no boundary loop, which is no boundary halfedge (is_closed(), without its scan).
+    const bool closed = s.faces > 0 && s.boundary_loops == 0;
     const AreaVolume sums = area_and_volume(mesh, true, closed);
     s.area = sums.area;
     if (closed) s.volume = sums.volume;

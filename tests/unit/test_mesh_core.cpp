@@ -567,4 +567,38 @@ TEST_CASE("validate splits a large mesh's passes over two threads and finds what
         m.set_face(Halfedge(late_h), Face());
         CHECK_FALSE(message(m).empty());
     }
+    SECTION("two fans on one vertex, the second fan in the second half") {
+        // Vertex 0's outgoing halfedges are pointed at from a late vertex's spokes: the
+        // late vertex's fan becomes a second fan of vertex 0 (and the late vertex has none).
+        HalfedgeMesh m = big;
+        const Vertex late(late_v);
+        for (Halfedge h : m.halfedges())
+            if (m.to_vertex(h) == late) m.set_to_vertex(h, Vertex(0));
+        m.set_halfedge(late, Halfedge());
+        CHECK_THAT(message(m), Catch::Contains("vertex 0 is non-manifold"));
+    }
+    SECTION("a boundary vertex whose halfedge is not the boundary one, in the second half") {
+        // An open grid of 80,000 faces: the boundary halfedges are listed by both halves.
+        HalfedgeMesh m = make_grid(200);
+        REQUIRE(m.n_halfedges() >= (std::size_t(1) << 16));
+        REQUIRE_VALID(m);
+        const Vertex v(Index(m.vertices_size() - 1));
+        REQUIRE(m.is_boundary(m.halfedge(v)));
+        m.set_halfedge(v, m.ccw_rotated(m.halfedge(v)));
+        CHECK_THAT(message(m), Catch::Contains("vertex " + std::to_string(v.idx()) +
+                                               " is on the boundary but its halfedge is not"));
+    }
+    SECTION("collapses leave deleted elements in both halves: still valid") {
+        HalfedgeMesh m = big;
+        std::size_t collapsed = 0;
+        for (Index e : {Index(10), Index(m.edges_size() / 2 + 7), Index(m.edges_size() - 20)}) {
+            const Halfedge h = m.halfedge(Edge(e), 0);
+            if (m.is_deleted(Edge(e)) || !m.is_collapse_ok(h)) continue;
+            m.collapse(h);
+            ++collapsed;
+        }
+        REQUIRE(collapsed >= 2);
+        REQUIRE(m.has_garbage());
+        REQUIRE_VALID(m);
+    }
 }
