@@ -401,10 +401,12 @@ bool Session::poll() {
 }
 
 void Session::finish_jobs() {
-    while (jobs_.busy() || preview_.pending) {
+    while (jobs_.busy() || preview_.pending || preview_.prediction_job.valid()) {
+        collect_prediction_job();
         start_pending_preview();
         poll();
-        if (jobs_.busy()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        if (jobs_.busy() || preview_.prediction_job.valid())
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
     poll();
 }
@@ -531,6 +533,7 @@ bool Session::entry_moves() const {
 }
 
 void Session::update() {
+    collect_prediction_job();
     start_pending_preview();
     if (shown_.kind == Shown::Kind::Level || shown_.kind == Shown::Kind::Band) return;
     if (prediction_shown()) return;  // the newest request's prediction, until its exact result

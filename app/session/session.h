@@ -26,6 +26,7 @@
 #include "app/session/log.h"
 #include "app/session/picking.h"
 #include "core/algorithms/decimation.h"
+#include "core/algorithms/fairing.h"
 #include "core/algorithms/level_of_detail.h"
 #include "core/algorithms/morph.h"
 #include "core/algorithms/proxy_mesh.h"
@@ -204,6 +205,17 @@ public:
     bool preview_shown(const Operation& op) const;
     /// The preview on the screen is the spectral prediction, not the exact result yet.
     bool prediction_shown() const;
+    /// A fairing `op` whose spectral prediction comes from the current decomposition's stored
+    /// coefficients (a whole-mesh umbrella or Taubin preview on the decomposed shape): the
+    /// decomposition and the options; nothing otherwise. A view draws a large mesh's prediction
+    /// from it (predict_clustered) before the prediction itself is computed.
+    struct Predictable {
+        std::shared_ptr<const SpectralDecomposition> decomposition;
+        FairingOptions options;
+    };
+    std::optional<Predictable> predictable(const Operation& op) const;
+    /// A large decomposition's prediction is being computed on a worker thread.
+    bool prediction_computing() const { return preview_.prediction_job.valid(); }
     /// The view has drawn the shown prediction: its exact job may start (it waits until then,
     /// at most a quarter second, so that a view drawing a large mesh's prediction gets the CPU
     /// for that frame, and a slider dragged on keeps cancelling nothing).
@@ -350,7 +362,20 @@ private:
         /// on the session's clock.
         bool hold_exact = false;
         double hold_exact_until = 0;
+        /// A large decomposition's prediction (rows x k at least kAsyncPredictionWork) is
+        /// computed on a worker thread, the frame is not held for it: the op and document state
+        /// it is for; the newest request waits in `prediction_next` while one runs.
+        std::future<std::vector<Point>> prediction_job;
+        Operation prediction_job_op;
+        HalfedgeMesh::Revision prediction_job_base;
+        std::optional<Operation> prediction_next;
     };
+    /// Starts the worker prediction of `op` (predictable() on the current document).
+    void start_prediction_job(const Operation& op, Predictable p);
+    /// Shows the worker's prediction when it has ended and is still the newest request's.
+    void collect_prediction_job();
+    /// Shows `positions` as the prediction of `op`.
+    void show_predicted(const Operation& op, std::vector<Point> positions);
     /// Shows the spectral prediction of fairing `op` when the decomposition is of its operator
     /// (core/algorithms/transfer_function.h predict_fairing); false when there is none.
     bool show_prediction(const Operation& op);

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <thread>
 #include <utility>
@@ -64,37 +65,113 @@ bool Session::prediction_shown() const {
            shown_.mesh == &preview_.prediction;
 }
 
-bool Session::show_prediction(const Operation& op) {
-    if (op.name() != "smooth" || region_for(op, document_.mesh())) return false;
+std::optional<Session::Predictable> Session::predictable(const Operation& op) const {
+    if (op.name() != "smooth" || region_for(op, document_.mesh())) return std::nullopt;
     const FrequencyDocument& doc = document_.frequency;
-    const SpectralDecomposition* d = doc.valid ? doc.decomposition.get() : nullptr;
-    if (!d || d->empty()) return false;
+    if (!doc.valid || !doc.decomposition || doc.decomposition->empty()) return std::nullopt;
+    const SpectralDecomposition& d = *doc.decomposition;
     try {
         const FairingOptions o = options_of<FairingOptions>(op);
-        if (d->op != laplacian_of(o.op) || d->mass != MassMatrix::Normalizer ||
-            d->end != SpectrumEnd::Smallest || o.preserve_volume)
-            return false;
-        const HalfedgeMesh& mesh = document_.mesh();
-        if (d->base_positions.size() != mesh.vertices_size()) return false;
-        std::vector<Point> predicted = predict_fairing(*d, o, mesh.positions());
-        for (const Point& p : predicted)
-            if (!p.allFinite()) return false;  // a diverging step: wait for the exact run
-        preview_.prediction = mesh;
-        preview_.prediction.set_positions(std::move(predicted));
-        preview_.predicted_op = op;
-        notice_ = Notice{Notice::Level::Info,
-                         "preview: the spectral prediction of " + op.text() +
-                             " (from the decomposition; the exact result follows)",
-                         {},
-                         false};
-        shown_.kind = Shown::Kind::Preview;
-        shown_.mesh = &preview_.prediction;
-        shown_.positions.clear();
-        shown_.level = nullptr;
-        bump();
+        if (d.op != laplacian_of(o.op) || d.mass != MassMatrix::Normalizer ||
+            d.end != SpectrumEnd::Smallest || o.preserve_volume)
+            return std::nullopt;
+        if (d.base_positions.size() != document_.mesh().vertices_size()) return std::nullopt;
+        return Predictable{doc.decomposition, o};
+    } catch (const std::exception&) {
+        return std::nullopt;  // the exact preview says what is wrong
+    }
+}
+
+void Session::show_predicted(const Operation& op, std::vector<Point> positions) {
+    preview_.prediction = document_.mesh();
+    preview_.prediction.set_positions(std::move(positions));
+    preview_.predicted_op = op;
+    notice_ = Notice{Notice::Level::Info,
+                     "preview: the spectral prediction of " + op.text() +
+                         " (from the decomposition; the exact result follows)",
+                     {},
+                     false};
+    shown_.kind = Shown::Kind::Preview;
+    shown_.mesh = &preview_.prediction;
+    shown_.positions.clear();
+    shown_.level = nullptr;
+    bump();
+}
+
+namespace {
+
+/// From this many rows x frequencies on (200,000 vertices at k = 100: about 50 ms of the frame
+/// on this machine's two cores), the prediction runs on a worker thread.
+constexpr std::size_t kAsyncPredictionWork = 20000000;
+
+std::size_t async_prediction_work() {
+    // For tests only: a smaller threshold sends small decompositions to the worker.
+    if (const char* env = std::getenv("TRILAB_ASYNC_PREDICTION_WORK"); env && *env)
+        return std::size_t(std::strtoull(env, nullptr, 10));
+    return kAsyncPredictionWork;
+}
+
+/// Whether every position is finite (a diverging step is not shown: the exact run says why).
+bool all_finite(const std::vector<Point>& p) {
+    return std::all_of(p.begin(), p.end(), [](const Point& x) { return x.allFinite(); });
+}
+
+}  // namespace
+
+bool Session::show_prediction(const Operation& op) {
+    std::optional<Predictable> p = predictable(op);
+    if (!p) return false;
+    const SpectralDecomposition& d = *p->decomposition;
+    try {
+        if (d.rows() * d.size() >= async_prediction_work()) {
+            if (preview_.prediction_job.valid())
+                preview_.prediction_next = op;  // after the running one
+            else
+                start_prediction_job(op, std::move(*p));
+            return true;
+        }
+        std::vector<Point> predicted = predict_fairing(d, p->options, document_.mesh().positions());
+        if (!all_finite(predicted)) return false;  // a diverging step: wait for the exact run
+        show_predicted(op, std::move(predicted));
         return true;
     } catch (const std::exception&) {
         return false;  // the exact preview says what is wrong
+    }
+}
+
+void Session::start_prediction_job(const Operation& op, Predictable p) {
+    preview_.prediction_job_op = op;
+    preview_.prediction_job_base = document_.mesh().revision();
+    preview_.prediction_next.reset();
+    // The worker's own copy of the positions; the decomposition is shared and immutable.
+    preview_.prediction_job =
+        std::async(std::launch::async, [p = std::move(p), input = document_.mesh().positions()] {
+            return predict_fairing(*p.decomposition, p.options, input);
+        });
+}
+
+void Session::collect_prediction_job() {
+    if (!preview_.prediction_job.valid() ||
+        preview_.prediction_job.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+        return;
+    std::vector<Point> predicted;
+    bool ok = false;
+    try {
+        predicted = preview_.prediction_job.get();
+        ok = all_finite(predicted);
+    } catch (const std::exception&) {  // the exact preview says what is wrong
+    }
+    const Operation op = preview_.prediction_job_op;
+    const bool current = preview_.requested && *preview_.requested == op &&
+                         preview_.prediction_job_base == document_.mesh().revision();
+    if (ok && current && !(preview_.result && preview_.computed_op == op))
+        show_predicted(op, std::move(predicted));
+    if (preview_.prediction_next) {
+        const Operation next = *preview_.prediction_next;
+        preview_.prediction_next.reset();
+        if (preview_.requested && *preview_.requested == next)
+            if (std::optional<Predictable> p = predictable(next))
+                start_prediction_job(next, std::move(*p));
     }
 }
 
@@ -143,6 +220,7 @@ void Session::wait_for_preview(double seconds) {
     // A preview that is about to finish shows in this frame rather than the next: wait for it
     // a bounded time (a frame's hiccup, never a freeze). Not while the spectral prediction is
     // on the screen: it already shows the change, and the exact result replaces it when ready.
+    collect_prediction_job();
     start_pending_preview();  // not while the new prediction waits to be drawn
     if (prediction_shown()) return;
     const double until = now() + seconds;

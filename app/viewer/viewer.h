@@ -18,6 +18,7 @@
 #include "app/viewer/panels.h"
 #include "core/algorithms/level_of_detail.h"
 #include "core/algorithms/proxy_mesh.h"
+#include "core/algorithms/transfer_function.h"
 #include "core/halfedge_mesh.h"
 #include "core/io/image_io.h"
 #include "core/mesh_builder.h"
@@ -427,8 +428,21 @@ private:
         bool note = false;           ///< the note is drawn this frame
         double error_pixels = 0;     ///< of the proxy on the screen
         std::size_t proxy_frames = 0, exact_frames = 0;  ///< frames of the current run
+        /// A large mesh's spectral prediction drawn before it is computed: the decomposition
+        /// averaged over the document's stand-in (cluster_basis, made on a worker thread), for
+        /// that decomposition and document state; null where the document is not the
+        /// decomposed shape.
+        std::shared_ptr<const ClusteredBasis> basis;
+        std::shared_ptr<const SpectralDecomposition> basis_of;
+        MeshKey basis_key{0, 0};
+        std::future<std::shared_ptr<const ClusteredBasis>> basis_job;
+        std::optional<Operation> predicted_for;  ///< the request whose prediction is uploaded
+        bool drew_predicted = false;             ///< this frame drew it
     };
     ProxyView proxy_;
+    /// In choose_renderer: the proxy's renderer with the clustered prediction of the preview
+    /// asked for, while the session computes its prediction (null otherwise).
+    MeshRenderer* choose_clustered_prediction();
     /// The picture of a file still loading (Session::loading_picture), drawn by the proxy's
     /// renderer until the load ends.
     struct LoadingView {

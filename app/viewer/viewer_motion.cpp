@@ -199,6 +199,72 @@ MeshRenderer* Viewer::choose_loading_picture() {
     return &r;
 }
 
+MeshRenderer* Viewer::choose_clustered_prediction() {
+    proxy_.drew_predicted = false;
+    if (ready(proxy_.basis_job)) {
+        try {
+            proxy_.basis = proxy_.basis_job.get();
+        } catch (const std::exception& e) {
+            proxy_.basis.reset();
+            session_.log().warning(std::string("no simplified spectral preview: ") + e.what());
+        }
+    }
+    const HalfedgeMesh& doc = session_.document().mesh();
+    if (doc.n_faces() < proxy_min_faces()) return nullptr;
+    const std::optional<Operation>& request = session_.preview_requested();
+    const std::optional<Session::Predictable> p =
+        request ? session_.predictable(*request) : std::nullopt;
+    if (!p) return nullptr;
+    const MeshKey doc_key{doc.topology_revision(), doc.geometry_revision()};
+    const auto found = proxy_.cache.find(doc_key);
+    if (found == proxy_.cache.end() || found->second->cluster_of.size() != doc.vertices_size())
+        return nullptr;
+    if ((proxy_.basis_of != p->decomposition || proxy_.basis_key != doc_key) &&
+        !proxy_.basis_job.valid()) {
+        // Once per decomposition and document state: two passes over the eigenvectors.
+        proxy_.basis.reset();
+        proxy_.basis_of = p->decomposition;
+        proxy_.basis_key = doc_key;
+        proxy_.basis_job = std::async(
+            std::launch::async,
+            [d = p->decomposition, stand_in = found->second, positions = doc.positions()] {
+                // Only the decomposed shape's prediction comes from the stored coefficients.
+                if (positions != d->base_positions) return std::shared_ptr<const ClusteredBasis>();
+                return std::shared_ptr<const ClusteredBasis>(std::make_shared<ClusteredBasis>(
+                    cluster_basis(*d, stand_in->cluster_of, stand_in->positions.size())));
+            });
+    }
+    if (!proxy_.basis || proxy_.basis_of != p->decomposition || proxy_.basis_key != doc_key ||
+        session_.preview_shown(*request) || !session_.prediction_computing())
+        return nullptr;
+    MeshRenderer& r = *proxy_.renderer;
+    const ProxyMesh& stand_in = *found->second;
+    if (proxy_.predicted_for != *request) {
+        try {
+            const ClusteredPrediction predicted =
+                predict_clustered(*proxy_.basis, *p->decomposition, p->options);
+            for (const Point& x : predicted.positions)
+                if (!x.allFinite()) return nullptr;  // diverging: the exact run says why
+            r.upload_triangles(predicted.positions, stand_in.triangles);
+            if (proxy_.colors_key == doc_key && !proxy_.colors.colors.empty())
+                r.set_vertex_colors(sample_proxy_colors(proxy_.colors, stand_in.representative));
+            else
+                r.clear_vertex_colors();
+            proxy_.error_pixels = proxy_error_pixels(predicted.bound, view_.camera,
+                                                     ImGui::GetIO().DisplayFramebufferScale.y);
+        } catch (const std::exception& e) {
+            session_.log().warning(std::string("no simplified spectral preview: ") + e.what());
+            return nullptr;
+        }
+        proxy_.predicted_for = *request;
+        proxy_.uploaded_key = {0, 0};  // the proxy's renderer holds the prediction now
+    }
+    proxy_.drew_predicted = true;
+    proxy_.motion.note_motion(glfwGetTime());
+    active_frames_ = std::max(active_frames_, 1);
+    return &r;
+}
+
 MeshRenderer* Viewer::choose_renderer() {
     const double now = glfwGetTime();
     proxy_.motion.frame(view_.camera.view(), view_.camera.projection(), now);
@@ -209,6 +275,11 @@ MeshRenderer* Viewer::choose_renderer() {
         return picture;
     }
     const bool drew_proxy_before = proxy_.drew_proxy;
+    if (MeshRenderer* predicted = choose_clustered_prediction()) {
+        proxy_.drew_proxy = true;  // the note: simplified while moving
+        proxy_.shows_current = false;
+        return predicted;
+    }
     proxy_.drew_proxy = false;
     proxy_.shows_current = true;
     if (!proxy_.current) {

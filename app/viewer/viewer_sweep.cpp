@@ -66,8 +66,10 @@ void Viewer::step_sweep(bool frame_shown) {
         return;
     }
     if (s.waiting) {
-        // Done when the frame just drawn showed the preview asked for.
-        if (!frame_shown || !session_.preview_shown(s.current)) return;
+        // Done when the frame just drawn showed the preview asked for (or, on a large mesh,
+        // its clustered spectral prediction while the prediction is computed).
+        const bool predicted = proxy_.drew_predicted && proxy_.predicted_for == s.current;
+        if (!predicted && (!frame_shown || !session_.preview_shown(s.current))) return;
         s.ms.push_back(1000.0 * (glfwGetTime() - s.t0));
         for (OperationPanelState* panel : operation_panels())
             if (panel->op.def == s.current.def) note_preview_latency(*panel, s.ms.back());

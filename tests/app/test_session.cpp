@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <future>
@@ -15,6 +16,7 @@
 #include "app/ops/operation.h"
 #include "app/session/session.h"
 #include "core/algorithms/generators.h"
+#include "core/algorithms/transfer_function.h"
 #include "core/io/mesh_io.h"
 #include "core/validate.h"
 #include "tests/unit/test_helpers.h"
@@ -432,6 +434,50 @@ TEST_CASE("a pick on a morph frame or a level of detail hits what is shown", "[s
     CHECK(lod.vertex_alive()[lod.vertex_of(on_level->vertex.idx())] != 0);
     REQUIRE(on_level->face.is_valid());
     CHECK(lod.face_of(on_level->face.idx()) == lod_hit->triangle);
+}
+
+TEST_CASE(
+    "a large decomposition's prediction is computed on a worker, the newest request's shown "
+    "when it ends, and the exact job follows once it is drawn",
+    "[session][lens]") {
+    Session s;
+    s.execute(Decompose{parse_operation("spectrum --full")});
+    s.finish_jobs();
+    REQUIRE(s.document().frequency.valid);
+    // Every decomposition counts as large here.
+    REQUIRE(setenv("TRILAB_ASYNC_PREDICTION_WORK", "1", 1) == 0);
+    const Operation first = parse_operation("smooth --integration implicit --step 2");
+    const Operation second = parse_operation("smooth --integration implicit --step 4");
+    const std::optional<Session::Predictable> p = s.predictable(second);
+    REQUIRE(p);
+    CHECK(p->decomposition == s.document().frequency.decomposition);
+    CHECK(p->options.step == 4);
+    CHECK_FALSE(s.predictable(parse_operation("smooth --operator curvature-flow")));
+    s.execute(PreviewOperation{first});
+    // Not in this frame: the worker computes it.
+    CHECK(s.prediction_computing());
+    CHECK_FALSE(s.prediction_shown());
+    s.execute(PreviewOperation{second});  // waits for the first to end
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (!s.preview_shown(second) && std::chrono::steady_clock::now() < deadline) {
+        s.update();
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    REQUIRE(s.preview_shown(second));
+    REQUIRE(s.prediction_shown());
+    CHECK_FALSE(s.prediction_computing());
+    const std::vector<Point> expected =
+        predict_fairing(*p->decomposition, p->options, s.mesh().positions());
+    CHECK(s.shown().mesh->positions() == expected);
+    s.prediction_drawn();
+    s.wait_for_preview(0.0);
+    CHECK((s.busy() || !s.prediction_shown()));
+    s.finish_jobs();
+    s.update();
+    CHECK_FALSE(s.prediction_shown());
+    CHECK(s.preview_shown(second));
+    REQUIRE(unsetenv("TRILAB_ASYNC_PREDICTION_WORK") == 0);
+    require_valid(s);
 }
 
 TEST_CASE(
