@@ -235,6 +235,15 @@ if(TARGET trilab)
     set_tests_properties(viewer_sweep_levels_proxy PROPERTIES TIMEOUT 120
                          ENVIRONMENT "TRILAB_PROXY_MIN_FACES=100"
                          PASS_REGULAR_EXPRESSION "simplified while moving: .*sweep: previews=6 ")
+    # A fairing slider dragged over a large decomposition (here every mesh and decomposition
+    # counts as large, and the worker takes 150 ms as on a large mesh): each move first shows
+    # the clustered spectral prediction over the stand-in while the worker computes.
+    add_test(NAME viewer_sweep_clustered_prediction
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --decompose 30
+                     --sweep "smooth --integration implicit" --param step --range 1:20:5)
+    set_tests_properties(viewer_sweep_clustered_prediction PROPERTIES TIMEOUT 120
+                         ENVIRONMENT "TRILAB_PROXY_MIN_FACES=100;TRILAB_ASYNC_PREDICTION_WORK=1;TRILAB_PREDICTION_WORKER_DELAY_MS=150"
+                         PASS_REGULAR_EXPRESSION "spectral prediction drawn simplified while it is computed: [0-9]+ triangles.*sweep: previews=5 ")
     # Selections (issue 26): --select before --op and a timed --brush on the bunny (skipped
     # without ../shared/meshes).
     add_test(NAME viewer_selection_bunny

@@ -144,8 +144,13 @@ void Session::start_prediction_job(const Operation& op, Predictable p) {
     preview_.prediction_job_base = document_.mesh().revision();
     preview_.prediction_next.reset();
     // The worker's own copy of the positions; the decomposition is shared and immutable.
-    preview_.prediction_job =
-        std::async(std::launch::async, [p = std::move(p), input = document_.mesh().positions()] {
+    // For tests only: the worker first waits this long (a large mesh's prediction time).
+    int delay_ms = 0;
+    if (const char* env = std::getenv("TRILAB_PREDICTION_WORKER_DELAY_MS"); env && *env)
+        delay_ms = std::clamp(std::atoi(env), 0, 10000);
+    preview_.prediction_job = std::async(
+        std::launch::async, [p = std::move(p), input = document_.mesh().positions(), delay_ms] {
+            if (delay_ms) std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
             return predict_fairing(*p.decomposition, p.options, input);
         });
 }

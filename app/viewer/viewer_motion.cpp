@@ -211,29 +211,32 @@ MeshRenderer* Viewer::choose_clustered_prediction() {
     }
     const HalfedgeMesh& doc = session_.document().mesh();
     if (doc.n_faces() < proxy_min_faces()) return nullptr;
-    const std::optional<Operation>& request = session_.preview_requested();
-    const std::optional<Session::Predictable> p =
-        request ? session_.predictable(*request) : std::nullopt;
-    if (!p) return nullptr;
     const MeshKey doc_key{doc.topology_revision(), doc.geometry_revision()};
     const auto found = proxy_.cache.find(doc_key);
     if (found == proxy_.cache.end() || found->second->cluster_of.size() != doc.vertices_size())
         return nullptr;
-    if ((proxy_.basis_of != p->decomposition || proxy_.basis_key != doc_key) &&
+    const FrequencyDocument& frequency = session_.document().frequency;
+    if (frequency.valid && frequency.decomposition && !frequency.decomposition->empty() &&
+        (proxy_.basis_of != frequency.decomposition || proxy_.basis_key != doc_key) &&
         !proxy_.basis_job.valid()) {
-        // Once per decomposition and document state: two passes over the eigenvectors.
+        // Once per decomposition and document state, before any slider moves: two passes over
+        // the eigenvectors on a worker thread.
         proxy_.basis.reset();
-        proxy_.basis_of = p->decomposition;
+        proxy_.basis_of = frequency.decomposition;
         proxy_.basis_key = doc_key;
         proxy_.basis_job = std::async(
             std::launch::async,
-            [d = p->decomposition, stand_in = found->second, positions = doc.positions()] {
+            [d = frequency.decomposition, stand_in = found->second, positions = doc.positions()] {
                 // Only the decomposed shape's prediction comes from the stored coefficients.
                 if (positions != d->base_positions) return std::shared_ptr<const ClusteredBasis>();
                 return std::shared_ptr<const ClusteredBasis>(std::make_shared<ClusteredBasis>(
                     cluster_basis(*d, stand_in->cluster_of, stand_in->positions.size())));
             });
     }
+    const std::optional<Operation>& request = session_.preview_requested();
+    const std::optional<Session::Predictable> p =
+        request ? session_.predictable(*request) : std::nullopt;
+    if (!p) return nullptr;
     if (!proxy_.basis || proxy_.basis_of != p->decomposition || proxy_.basis_key != doc_key ||
         session_.preview_shown(*request) || !session_.prediction_computing())
         return nullptr;
@@ -255,6 +258,14 @@ MeshRenderer* Viewer::choose_clustered_prediction() {
         } catch (const std::exception& e) {
             session_.log().warning(std::string("no simplified spectral preview: ") + e.what());
             return nullptr;
+        }
+        if (!proxy_.predicted_for) {
+            char line[200];
+            std::snprintf(line, sizeof(line),
+                          "spectral prediction drawn simplified while it is computed: %zu "
+                          "triangles (within %.1f px)",
+                          stand_in.triangles.size(), proxy_.error_pixels);
+            session_.log().info(line);
         }
         proxy_.predicted_for = *request;
         proxy_.uploaded_key = {0, 0};  // the proxy's renderer holds the prediction now
