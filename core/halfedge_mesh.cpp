@@ -5,8 +5,10 @@
 #include <iterator>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "core/errors.h"
+#include "core/two_threads.h"
 
 namespace trilab {
 
@@ -289,29 +291,48 @@ void HalfedgeMesh::mark_deleted(Face f) {
 
 IndexRemap HalfedgeMesh::garbage_collection() {
     IndexRemap remap;
-    auto build = [](std::size_t n, const std::vector<std::uint8_t>& deleted,
-                    std::vector<Index>& old_to_new, std::vector<Index>& new_to_old) {
-        old_to_new.assign(n, kInvalidIndex);
-        new_to_old.clear();
+    std::vector<Index> v_keep, h_keep, e_keep, f_keep;
+    // Old -> new index and the kept elements (new -> old) of one kind, in their order; for the
+    // edges also the halfedges' two lists (h_old_to_new, h_new_to_old). One pass writing each
+    // array once, front to back, without branches (the deleted elements lie scattered: a branch
+    // would mispredict).
+    const auto build = [](const std::vector<std::uint8_t>& deleted, std::vector<Index>& old_to_new,
+                          std::vector<Index>& new_to_old, std::vector<Index>* h_old_to_new,
+                          std::vector<Index>* h_new_to_old) {
+        const std::size_t n = deleted.size();
+        const std::size_t live = std::size_t(std::count(deleted.begin(), deleted.end(), 0));
+        old_to_new.resize(n);
+        new_to_old.resize(live + 1);  // the last slot takes the writes of deleted elements
+        if (h_old_to_new) {
+            h_old_to_new->resize(2 * n);
+            h_new_to_old->resize(2 * live + 2);
+        }
+        Index next = 0;
         for (std::size_t i = 0; i < n; ++i) {
-            if (deleted[i]) continue;
-            old_to_new[i] = Index(new_to_old.size());
-            new_to_old.push_back(Index(i));
+            const bool gone = deleted[i] != 0;
+            old_to_new[i] = gone ? kInvalidIndex : next;
+            new_to_old[next] = Index(i);
+            if (h_old_to_new) {
+                (*h_old_to_new)[2 * i] = gone ? kInvalidIndex : 2 * next;
+                (*h_old_to_new)[2 * i + 1] = gone ? kInvalidIndex : 2 * next + 1;
+                (*h_new_to_old)[2 * next] = Index(2 * i);
+                (*h_new_to_old)[2 * next + 1] = Index(2 * i + 1);
+            }
+            next += gone ? 0 : 1;
         }
+        new_to_old.pop_back();
+        if (h_new_to_old) h_new_to_old->resize(2 * live);
     };
-    std::vector<Index> v_keep, e_keep, f_keep;
-    build(vertices_size(), vdeleted_.vector(), remap.vertices, v_keep);
-    build(edges_size(), edeleted_.vector(), remap.edges, e_keep);
-    build(faces_size(), fdeleted_.vector(), remap.faces, f_keep);
-    std::vector<Index> h_keep;
-    h_keep.reserve(2 * e_keep.size());
-    remap.halfedges.assign(halfedges_size(), kInvalidIndex);
-    for (Index e : e_keep) {
-        for (unsigned i = 0; i < 2; ++i) {
-            remap.halfedges[2 * e + i] = Index(h_keep.size());
-            h_keep.push_back(2 * e + i);
+    // Vertices and faces, edges and halfedges: side by side on big meshes.
+    on_two_threads(worth_two_threads(halfedges_size()), [&](int part) {
+        if (part == 0) {
+            build(std::as_const(vdeleted_).vector(), remap.vertices, v_keep, nullptr, nullptr);
+            build(std::as_const(fdeleted_).vector(), remap.faces, f_keep, nullptr, nullptr);
+        } else {
+            build(std::as_const(edeleted_).vector(), remap.edges, e_keep, &remap.halfedges,
+                  &h_keep);
         }
-    }
+    });
     apply_order(remap, v_keep, h_keep, e_keep, f_keep);
     return remap;
 }
@@ -339,23 +360,33 @@ IndexRemap HalfedgeMesh::renumber(const std::vector<Index>& vertex_order,
         }
     };
     IndexRemap remap;
-    invert(vertex_order, vertices_size(), n_vertices(), vdeleted_.vector(), 0, "vertex",
-           remap.vertices);
-    invert(face_order, faces_size(), n_faces(), fdeleted_.vector(), 0, "face", remap.faces);
-    invert(halfedge_order, halfedges_size(), n_halfedges(), edeleted_.vector(), 1, "halfedge",
-           remap.halfedges);
-    std::vector<Index> e_keep(halfedge_order.size() / 2);
-    remap.edges.assign(edges_size(), kInvalidIndex);
-    for (Index k = 0; k < e_keep.size(); ++k) {
-        const Index a = halfedge_order[2 * k], b = halfedge_order[2 * k + 1];
-        if ((a ^ 1u) != b)
-            throw InvalidArgument("HalfedgeMesh::renumber: halfedges " + std::to_string(a) +
-                                  " and " + std::to_string(b) + " (entries " +
-                                  std::to_string(2 * k) + ", " + std::to_string(2 * k + 1) +
-                                  ") are not the two halves of one edge");
-        e_keep[k] = a >> 1;
-        remap.edges[a >> 1] = k;
-    }
+    std::vector<Index> e_keep;
+    // The vertex and face lists here, the halfedge list on a second thread for big meshes; a
+    // fault in either list leaves the mesh unchanged, and one in the vertex or face list is the
+    // one reported when both have one (the order of the checks on one thread).
+    on_two_threads(worth_two_threads(halfedges_size()), [&](int part) {
+        if (part == 1) {
+            invert(vertex_order, vertices_size(), n_vertices(), std::as_const(vdeleted_).vector(),
+                   0, "vertex", remap.vertices);
+            invert(face_order, faces_size(), n_faces(), std::as_const(fdeleted_).vector(), 0,
+                   "face", remap.faces);
+            return;
+        }
+        invert(halfedge_order, halfedges_size(), n_halfedges(), std::as_const(edeleted_).vector(),
+               1, "halfedge", remap.halfedges);
+        e_keep.resize(halfedge_order.size() / 2);
+        remap.edges.assign(edges_size(), kInvalidIndex);
+        for (Index k = 0; k < e_keep.size(); ++k) {
+            const Index a = halfedge_order[2 * k], b = halfedge_order[2 * k + 1];
+            if ((a ^ 1u) != b)
+                throw InvalidArgument("HalfedgeMesh::renumber: halfedges " + std::to_string(a) +
+                                      " and " + std::to_string(b) + " (entries " +
+                                      std::to_string(2 * k) + ", " + std::to_string(2 * k + 1) +
+                                      ") are not the two halves of one edge");
+            e_keep[k] = a >> 1;
+            remap.edges[a >> 1] = k;
+        }
+    });
     apply_order(remap, vertex_order, halfedge_order, e_keep, face_order);
     return remap;
 }

@@ -353,6 +353,7 @@ public:
         max_error2_ = o_.max_error > 0 ? o_.max_error * o_.max_error
                                        : std::numeric_limits<double>::infinity();
         edge_.assign(m_.edges_size(), EdgeCost());
+        stale_.assign(m_.edges_size(), 0);
         boundary_.assign(m_.vertices_size(), 0);
         for (Vertex v : m_.vertices()) boundary_[v.idx()] = m_.is_boundary(v) ? 1 : 0;
         locked_.assign(m_.vertices_size(), 0);
@@ -569,6 +570,7 @@ private:
             if (region_ptr_) gather(region_, vmap, nv);
             parent_.assign(nv, Vertex());
             gather(edge_, emap, ne);
+            stale_.assign(ne, 0);  // none between passes
         };
         if (nv >= kParallelMin)
             run_pair([&] { m_.garbage_collection(); }, compact_mine);
@@ -618,6 +620,29 @@ private:
             if (i + kPrefetchAhead < end) prefetch(Edge(i + kPrefetchAhead));
             if (!c_.is_deleted(Edge(i))) price(Edge(i));
         }
+    }
+
+    // Prices the stale edges of [begin, end) (see defer_).
+    void price_stale_range(Index begin, Index end) {
+        for (Index i = begin; i < end; ++i) {
+            if (i + kPrefetchAhead < end && stale_[i + kPrefetchAhead])
+                prefetch(Edge(i + kPrefetchAhead));
+            if (stale_[i]) {
+                stale_[i] = 0;
+                price(Edge(i));
+            }
+        }
+    }
+
+    // Prices every stale edge, in memory order, on two threads for big meshes: each pricing
+    // reads the mesh and writes its own edge's cost only (the heap is not in use).
+    void price_stale() {
+        const Index n_edges = Index(m_.edges_size());
+        if (n_edges >= kParallelMin)
+            run_pair([&] { price_stale_range(0, n_edges / 2); },
+                     [&] { price_stale_range(n_edges / 2, n_edges); });
+        else
+            price_stale_range(0, n_edges);
     }
 
     void fill_heap() {
@@ -671,14 +696,20 @@ private:
         std::nth_element(threshold_bucket_.begin(), nth, threshold_bucket_.end());
         const EdgeKey threshold = *nth;
         std::size_t done = 0;
+        defer_ = groups_.empty();
         for (std::size_t i = 0; i < batch_.size(); ++i) {
             if (i + kPrefetchAhead < batch_.size())
                 prefetch(Edge(key_edge(batch_[i + kPrefetchAhead])));
             const EdgeKey k = batch_[i];
             if (k > threshold) continue;
             const Edge e(key_edge(k));
+            if (m_.is_deleted(e)) continue;
+            if (stale_[e.idx()]) {  // changed by an earlier collapse of the pass: price it now
+                stale_[e.idx()] = 0;
+                price(e);
+            }
             // Re-priced by an earlier collapse of the pass: the next pass.
-            if (edge_[e.idx()].cost != key_cost(k) || m_.is_deleted(e)) continue;
+            if (edge_[e.idx()].cost != key_cost(k)) continue;
             EdgeChoice choice;
             if (!evaluate(e, choice)) continue;
             const Halfedge h = HalfedgeMesh::halfedge(e, choice.dir);
@@ -698,6 +729,8 @@ private:
             report();
             if (m_.n_vertices() <= floor) break;
         }
+        defer_ = false;
+        price_stale();
         return done;
     }
 
@@ -1176,6 +1209,7 @@ private:
     void forget(Edge e) {
         if (heap_.contains(e.idx())) heap_.remove(e.idx());
         edge_[e.idx()].cost = kNoCollapse;
+        stale_[e.idx()] = 0;
     }
 
     // Collapses h to p; a seam collapse (from a coincident vertex) collapses the other side
@@ -1303,6 +1337,21 @@ private:
     // Re-prices after a collapse into v1 (start: an outgoing halfedge of v1).
     void reprice_around(Vertex v1, Halfedge start) {
         Halfedge g = start;
+        if (defer_) {  // a batch pass: mark the same edges stale
+            do {
+                stale_[HalfedgeMesh::edge(g).idx()] = 1;
+                if (o_.cost == DecimationCost::Roundness) {
+                    const Halfedge ws = m_.halfedge(m_.to_vertex(g));
+                    Halfedge k = ws;
+                    do {
+                        stale_[HalfedgeMesh::edge(k).idx()] = 1;
+                        k = m_.ccw_rotated(k);
+                    } while (k != ws);
+                }
+                g = m_.ccw_rotated(g);
+            } while (g != start);
+            return;
+        }
         // Re-price: the edges at v1 (and, for roundness, at its neighbours, whose faces
         // changed shape). One walk lists the ring and asks the cache for the neighbours'
         // data, so the misses overlap instead of coming one pricing after the other.
@@ -1365,6 +1414,14 @@ private:
     std::vector<Vertex> parent_;
     EdgeHeap<EdgeCost> heap_{edge_};
     bool heap_active_ = false;  ///< the exact phase: re-priced edges go into the heap
+    // A batch pass defers re-pricing: a collapse marks the edges it changes stale instead, and
+    // each stale edge is priced once, when the pass reaches it or after the pass (on two
+    // threads). The same costs: an edge's price reads only its ends' quadrics, positions,
+    // flags and rings, which change only in a collapse into one of its ends (or, for
+    // roundness, a neighbour), and that collapse marks it. Not with coincident vertices, whose
+    // price also reads a copy's ring.
+    bool defer_ = false;
+    std::vector<std::uint8_t> stale_;  ///< per edge: its cost awaits re-pricing (defer_)
     VertexProperty<TexCoord> vuv_;
     HalfedgeProperty<TexCoord> huv_;
     std::uint32_t iteration_ = 0;
