@@ -532,7 +532,8 @@ private:
     // edge index, batches run in memory order), so the result is the same bit for bit, and so
     // is the output's numbering (a later garbage collection of an order-kept compaction is the
     // one garbage collection). `before_` (the geomorph's vertices of the previous mesh, in
-    // working indices) moves to each one's representative, renumbered: parent_ starts afresh.
+    // working indices) moves to each one's representative, renumbered, when the geomorph is
+    // asked for (else nothing reads it before decimate() rebuilds it): parent_ starts afresh.
     // The heap must be empty (it is between passes).
     void compact() {
         // Old index -> new index of the live vertices and edges, in their order: the numbering
@@ -557,9 +558,14 @@ private:
         };
         // The mesh here, the decimator's own arrays on the other thread (they do not read it).
         const auto compact_mine = [&, &vmap = vmap, &emap = emap, nv = nv, ne = ne] {
-            for (Index& v : *before_) {
-                const Vertex r = vmap[v] == kInvalidIndex ? representative(Vertex(v)) : Vertex(v);
-                v = vmap[r.idx()];
+            // Without the geomorph nothing reads before_ again (decimate() rebuilds it after a
+            // level): one chase through parent_ per input vertex saved.
+            if (o_.record_geomorph) {
+                for (Index& v : *before_) {
+                    const Vertex r =
+                        vmap[v] == kInvalidIndex ? representative(Vertex(v)) : Vertex(v);
+                    v = vmap[r.idx()];
+                }
             }
             gather(quadric_, vmap, nv);
             gather(boundary_, vmap, nv);
