@@ -670,14 +670,30 @@ private:
         // budget-th cheapest edge, nth_element finds it among that bucket's keys alone. Deleted
         // edges and those that cannot collapse cost kNoCollapse.
         const Index n_edges = Index(m_.edges_size());
-        bucket_count_.assign(std::size_t(1) << kBucketBits, 0);
-        std::size_t candidates = 0;
-        for (Index e = 0; e < n_edges; ++e) {
-            const float cost = edge_[e].cost;
-            if (cost < kNoCollapse) {
-                ++bucket_count_[bucket(edge_key(cost, e))];
-                ++candidates;
+        // Both scans in two halves of the edges, side by side on big meshes: the second half's
+        // counts are added to the first's, its keys appended to the first's (memory order).
+        const bool two = n_edges >= kParallelMin;
+        const Index mid = two ? n_edges / 2 : n_edges;
+        const std::size_t n_buckets = std::size_t(1) << kBucketBits;
+        std::size_t candidates = 0, candidates2 = 0;
+        const auto count_keys = [&](Index begin, Index end, std::vector<std::uint32_t>& counts,
+                                    std::size_t& n) {
+            counts.assign(n_buckets, 0);
+            for (Index e = begin; e < end; ++e) {
+                const float cost = edge_[e].cost;
+                if (cost < kNoCollapse) {
+                    ++counts[bucket(edge_key(cost, e))];
+                    ++n;
+                }
             }
+        };
+        if (two) {
+            run_pair([&] { count_keys(0, mid, bucket_count_, candidates); },
+                     [&] { count_keys(mid, n_edges, bucket_count2_, candidates2); });
+            for (std::size_t i = 0; i < n_buckets; ++i) bucket_count_[i] += bucket_count2_[i];
+            candidates += candidates2;
+        } else {
+            count_keys(0, n_edges, bucket_count_, candidates);
         }
         // At most half of the vertices per pass.
         const std::size_t budget =
@@ -687,16 +703,28 @@ private:
         while (below + bucket_count_[b] < budget) below += bucket_count_[b++];
         // One scan lists the keys of the buckets up to b in memory order (far fewer cache
         // misses than cost order, the same quality in the benchmark) and bucket b's apart.
-        batch_.clear();
-        threshold_bucket_.clear();
-        for (Index e = 0; e < n_edges; ++e) {
-            const float cost = edge_[e].cost;
-            if (!(cost < kNoCollapse)) continue;
-            const EdgeKey k = edge_key(cost, e);
-            const std::size_t kb = bucket(k);
-            if (kb > b) continue;
-            batch_.push_back(k);
-            if (kb == b) threshold_bucket_.push_back(k);
+        const auto collect = [&](Index begin, Index end, std::vector<EdgeKey>& keys,
+                                 std::vector<EdgeKey>& at_b) {
+            keys.clear();
+            at_b.clear();
+            for (Index e = begin; e < end; ++e) {
+                const float cost = edge_[e].cost;
+                if (!(cost < kNoCollapse)) continue;
+                const EdgeKey k = edge_key(cost, e);
+                const std::size_t kb = bucket(k);
+                if (kb > b) continue;
+                keys.push_back(k);
+                if (kb == b) at_b.push_back(k);
+            }
+        };
+        if (two) {
+            run_pair([&] { collect(0, mid, batch_, threshold_bucket_); },
+                     [&] { collect(mid, n_edges, batch2_, threshold_bucket2_); });
+            batch_.insert(batch_.end(), batch2_.begin(), batch2_.end());
+            threshold_bucket_.insert(threshold_bucket_.end(), threshold_bucket2_.begin(),
+                                     threshold_bucket2_.end());
+        } else {
+            collect(0, n_edges, batch_, threshold_bucket_);
         }
         const auto nth = threshold_bucket_.begin() + std::ptrdiff_t(budget - 1 - below);
         std::nth_element(threshold_bucket_.begin(), nth, threshold_bucket_.end());
@@ -1415,6 +1443,9 @@ private:
     std::vector<EdgeKey> batch_;
     std::vector<EdgeKey> threshold_bucket_;    ///< batch selection: the keys of one bucket
     std::vector<std::uint32_t> bucket_count_;  ///< batch selection: keys per bucket
+    // The same for the second half of the edges (batch_pass() scans in two halves).
+    std::vector<EdgeKey> batch2_, threshold_bucket2_;
+    std::vector<std::uint32_t> bucket_count2_;
     std::uint32_t pass_ = 0;
     std::vector<std::uint32_t> locked_;
     std::vector<Vertex> parent_;
