@@ -400,50 +400,78 @@ void HalfedgeMesh::apply_order(IndexRemap& remap, const std::vector<Index>& v_ke
     const auto map_h = [new_h](Halfedge h) { return h.is_valid() ? Halfedge(new_h[h.idx()]) : h; };
     const auto map_v = [new_v](Vertex v) { return v.is_valid() ? Vertex(new_v[v.idx()]) : v; };
     const auto map_f = [new_f](Face f) { return f.is_valid() ? Face(new_f[f.idx()]) : f; };
-    // The links are gathered and renumbered in one pass each; every other array is gathered as
-    // it is. Two halves that touch different arrays: the next and prev links, and everything
-    // else. Side by side for big meshes where there is a second core (a thread costs more than
-    // it saves on small ones); the same result either way.
-    const auto links_part = [&] {
-        hnext_.array()->gather_mapped(h_keep, map_h);
-        hprev_.array()->gather_mapped(h_keep, map_h);
-    };
-    const auto other_part = [&] {
-        hto_.array()->gather_mapped(h_keep, map_v);
-        hface_.array()->gather_mapped(h_keep, map_f);
-        hprops_.gather_except(h_keep, [&](const BasePropertyArray* a) {
-            return a == hnext_.array() || a == hprev_.array() || a == hto_.array() ||
-                   a == hface_.array();
-        });
-        vhalfedge_.array()->gather_mapped(v_keep, map_h);
-        vprops_.gather_except(v_keep,
-                              [&](const BasePropertyArray* a) { return a == vhalfedge_.array(); });
-        eprops_.gather(e_keep);
-        fhalfedge_.array()->gather_mapped(f_keep, map_h);
-        fprops_.gather_except(f_keep,
-                              [&](const BasePropertyArray* a) { return a == fhalfedge_.array(); });
-    };
-    if (h_keep.size() >= kParallelOrderMin && std::thread::hardware_concurrency() >= 2) {
-        std::exception_ptr other_error;
-        std::thread other([&] {
-            try {
-                other_part();
-            } catch (...) {
-                other_error = std::current_exception();
-            }
-        });
-        try {
-            links_part();
-        } catch (...) {
-            other.join();
-            throw;
+    // The built-in arrays (links and positions) are gathered, and the links renumbered, in one
+    // pass each into new arrays, every thread writing its half of each new array; every other
+    // array (attributes, deleted flags) is gathered as it is, the halfedges' and edges' on one
+    // thread, the vertices' and faces' on the other. Side by side for big meshes where there
+    // is a second core (a thread costs more than it saves on small ones); the same result
+    // either way.
+    const std::vector<Vertex>& to = std::as_const(hto_).vector();
+    const std::vector<Halfedge>& next = std::as_const(hnext_).vector();
+    const std::vector<Halfedge>& prev = std::as_const(hprev_).vector();
+    const std::vector<Face>& face = std::as_const(hface_).vector();
+    const std::vector<Halfedge>& vh = std::as_const(vhalfedge_).vector();
+    const std::vector<Point>& pos = std::as_const(vpoint_).vector();
+    const std::vector<Halfedge>& fh = std::as_const(fhalfedge_).vector();
+    std::vector<Vertex> new_to;
+    std::vector<Halfedge> new_next, new_prev, new_vh, new_fh;
+    std::vector<Face> new_face;
+    std::vector<Point> new_pos;
+    const bool parallel =
+        h_keep.size() >= kParallelOrderMin && std::thread::hardware_concurrency() >= 2;
+    on_two_threads(parallel, [&](int part) {  // the new arrays, zeroed and paged in by halves
+        if (part == 0) {
+            new_to.resize(h_keep.size());
+            new_next.resize(h_keep.size());
+            new_vh.resize(v_keep.size());
+            new_fh.resize(f_keep.size());
+        } else {
+            new_prev.resize(h_keep.size());
+            new_face.resize(h_keep.size());
+            new_pos.resize(v_keep.size());
         }
-        other.join();
-        if (other_error) std::rethrow_exception(other_error);
-    } else {
-        links_part();
-        other_part();
-    }
+    });
+    // Writes out[i] = map(in[keep[i]]) for i in this part's half of keep.
+    const auto half = [](int part, const std::vector<Index>& keep, const auto& in, auto& out,
+                         const auto& map) {
+        const std::size_t n = keep.size(), begin = part == 0 ? 0 : n / 2,
+                          end = part == 0 ? n / 2 : n;
+        const Index* from = keep.data();
+        const auto* src = in.data();
+        auto* dst = out.data();
+        for (std::size_t i = begin; i < end; ++i) dst[i] = map(src[from[i]]);
+    };
+    const auto same = [](const Point& p) -> const Point& { return p; };
+    on_two_threads(parallel, [&](int part) {
+        half(part, h_keep, next, new_next, map_h);
+        half(part, h_keep, prev, new_prev, map_h);
+        half(part, h_keep, to, new_to, map_v);
+        half(part, h_keep, face, new_face, map_f);
+        half(part, v_keep, vh, new_vh, map_h);
+        half(part, v_keep, pos, new_pos, same);
+        half(part, f_keep, fh, new_fh, map_h);
+        // The other arrays; none of them is one of the arrays read above.
+        if (part == 0) {
+            hprops_.gather_except(h_keep, [&](const BasePropertyArray* a) {
+                return a == hnext_.array() || a == hprev_.array() || a == hto_.array() ||
+                       a == hface_.array();
+            });
+            eprops_.gather(e_keep);
+        } else {
+            vprops_.gather_except(v_keep, [&](const BasePropertyArray* a) {
+                return a == vhalfedge_.array() || a == vpoint_.array();
+            });
+            fprops_.gather_except(
+                f_keep, [&](const BasePropertyArray* a) { return a == fhalfedge_.array(); });
+        }
+    });
+    hto_.array()->assign(std::move(new_to));
+    hnext_.array()->assign(std::move(new_next));
+    hprev_.array()->assign(std::move(new_prev));
+    hface_.array()->assign(std::move(new_face));
+    vhalfedge_.array()->assign(std::move(new_vh));
+    vpoint_.array()->assign(std::move(new_pos));
+    fhalfedge_.array()->assign(std::move(new_fh));
     bind_builtins();
     n_deleted_vertices_ = n_deleted_edges_ = n_deleted_faces_ = 0;
     vprops_.shrink_to_fit();
