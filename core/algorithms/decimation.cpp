@@ -331,6 +331,9 @@ struct EdgeCost {
     std::uint32_t heap_pos = kNotInHeap;
 };
 
+// Which edges Decimater::price_and_count() prices before counting.
+enum class Pricing { None, Stale, All };
+
 enum class Refusal { None, Topology, NormalFlip, Roundness, IndependentSet, MaxError, Seam };
 
 // The normal change measured for an explanation (Decimater::normals_ok()).
@@ -393,13 +396,9 @@ public:
             region_ptr_ = &region_;
         }
         if (!price_edges) return;
-        // Each edge's price reads the mesh and writes the edge's own cost: two halves at once.
-        const Index n_edges = Index(m_.edges_size());
-        if (n_edges >= kParallelMin)
-            run_pair([&] { price_range(0, n_edges / 2); },
-                     [&] { price_range(n_edges / 2, n_edges); });
-        else
-            price_range(0, n_edges);
+        // Each edge's price reads the mesh and writes the edge's own cost: two halves at once,
+        // each counting its costs for the first batch selection.
+        price_and_count(Pricing::All);
     }
 
     /// Runs one iteration down to `target` vertices; returns whether it got there, and
@@ -430,6 +429,7 @@ public:
             if (done == 0) break;
         }
         compact_if_sparse();
+        counted_ = false;  // the heap re-prices edges from here on
         target_ = target;
         for (int round = 0; m_.n_vertices() > target && !hit_max_error; ++round) {
             fill_heap();
@@ -640,15 +640,48 @@ private:
         }
     }
 
-    // Prices every stale edge, in memory order, on two threads for big meshes: each pricing
-    // reads the mesh and writes its own edge's cost only (the heap is not in use).
-    void price_stale() {
+    // Counts the keys of the candidate edges of [begin, end) per bucket (the batch selection's
+    // histogram) into `counts` (zeroed first), and the candidates into `n`.
+    void count_keys(Index begin, Index end, std::vector<std::uint32_t>& counts,
+                    std::size_t& n) const {
+        counts.assign(std::size_t(1) << kBucketBits, 0);
+        n = 0;
+        for (Index e = begin; e < end; ++e) {
+            const float cost = edge_[e].cost;
+            if (cost < kNoCollapse) {
+                ++counts[bucket(edge_key(cost, e))];
+                ++n;
+            }
+        }
+    }
+
+    // Prices the edges `what` names, then counts the keys of the next batch selection
+    // (bucket_count_, candidates_), in memory order, in two halves of the edges side by side on
+    // big meshes: each pricing reads the mesh and writes its own edge's cost only (the heap is
+    // not in use), and each half counts the costs it priced. One meeting of the threads.
+    void price_and_count(Pricing what) {
         const Index n_edges = Index(m_.edges_size());
-        if (n_edges >= kParallelMin)
-            run_pair([&] { price_stale_range(0, n_edges / 2); },
-                     [&] { price_stale_range(n_edges / 2, n_edges); });
-        else
-            price_stale_range(0, n_edges);
+        const bool two = n_edges >= kParallelMin;
+        const Index mid = two ? n_edges / 2 : n_edges;
+        std::size_t n2 = 0;
+        const auto half = [&](Index begin, Index end, std::vector<std::uint32_t>& counts,
+                              std::size_t& n) {
+            if (what == Pricing::All)
+                price_range(begin, end);
+            else if (what == Pricing::Stale)
+                price_stale_range(begin, end);
+            count_keys(begin, end, counts, n);
+        };
+        if (two) {
+            run_pair([&] { half(0, mid, bucket_count_, candidates_); },
+                     [&] { half(mid, n_edges, bucket_count2_, n2); });
+            for (std::size_t i = 0; i < bucket_count_.size(); ++i)
+                bucket_count_[i] += bucket_count2_[i];
+            candidates_ += n2;
+        } else {
+            half(0, n_edges, bucket_count_, candidates_);
+        }
+        counted_ = true;
     }
 
     void fill_heap() {
@@ -670,31 +703,11 @@ private:
         // budget-th cheapest edge, nth_element finds it among that bucket's keys alone. Deleted
         // edges and those that cannot collapse cost kNoCollapse.
         const Index n_edges = Index(m_.edges_size());
-        // Both scans in two halves of the edges, side by side on big meshes: the second half's
-        // counts are added to the first's, its keys appended to the first's (memory order).
-        const bool two = n_edges >= kParallelMin;
-        const Index mid = two ? n_edges / 2 : n_edges;
-        const std::size_t n_buckets = std::size_t(1) << kBucketBits;
-        std::size_t candidates = 0, candidates2 = 0;
-        const auto count_keys = [&](Index begin, Index end, std::vector<std::uint32_t>& counts,
-                                    std::size_t& n) {
-            counts.assign(n_buckets, 0);
-            for (Index e = begin; e < end; ++e) {
-                const float cost = edge_[e].cost;
-                if (cost < kNoCollapse) {
-                    ++counts[bucket(edge_key(cost, e))];
-                    ++n;
-                }
-            }
-        };
-        if (two) {
-            run_pair([&] { count_keys(0, mid, bucket_count_, candidates); },
-                     [&] { count_keys(mid, n_edges, bucket_count2_, candidates2); });
-            for (std::size_t i = 0; i < n_buckets; ++i) bucket_count_[i] += bucket_count2_[i];
-            candidates += candidates2;
-        } else {
-            count_keys(0, n_edges, bucket_count_, candidates);
-        }
+        // The histogram: made by the previous pass's last step (or here, for the first pass);
+        // compaction keeps it (a bucket is a cost's top bits, deleted edges are not counted).
+        if (!counted_) price_and_count(Pricing::None);
+        counted_ = false;
+        const std::size_t candidates = candidates_;
         // At most half of the vertices per pass.
         const std::size_t budget =
             std::min({surplus, candidates, std::max<std::size_t>(1, m_.n_vertices() / 2)});
@@ -702,7 +715,10 @@ private:
         std::size_t below = 0, b = 0;  // keys in the buckets before b
         while (below + bucket_count_[b] < budget) below += bucket_count_[b++];
         // One scan lists the keys of the buckets up to b in memory order (far fewer cache
-        // misses than cost order, the same quality in the benchmark) and bucket b's apart.
+        // misses than cost order, the same quality in the benchmark) and bucket b's apart: in
+        // two halves side by side on big meshes, the second half's keys appended to the first's.
+        const bool two = n_edges >= kParallelMin;
+        const Index mid = two ? n_edges / 2 : n_edges;
         const auto collect = [&](Index begin, Index end, std::vector<EdgeKey>& keys,
                                  std::vector<EdgeKey>& at_b) {
             keys.clear();
@@ -764,7 +780,7 @@ private:
             if (m_.n_vertices() <= floor) break;
         }
         defer_ = false;
-        price_stale();
+        price_and_count(Pricing::Stale);  // for the next pass
         return done;
     }
 
@@ -1443,6 +1459,8 @@ private:
     std::vector<EdgeKey> batch_;
     std::vector<EdgeKey> threshold_bucket_;    ///< batch selection: the keys of one bucket
     std::vector<std::uint32_t> bucket_count_;  ///< batch selection: keys per bucket
+    std::size_t candidates_ = 0;               ///< batch selection: edges that may collapse
+    bool counted_ = false;  ///< bucket_count_ and candidates_ hold the current costs' counts
     // The same for the second half of the edges (batch_pass() scans in two halves).
     std::vector<EdgeKey> batch2_, threshold_bucket2_;
     std::vector<std::uint32_t> bucket_count2_;
