@@ -9,13 +9,14 @@
 // the kept vertex are re-priced. Meshes of more than 50,000 vertices are first reduced in
 // batches down to max(50,000, 4 x target): each pass selects the cheapest edges, up to half
 // the vertex count (nth_element), and collapses them in memory order (for the cache),
-// skipping edges re-priced during the pass; the exact heap then does the last collapses, the
-// ones that shape the result. Such a mesh is first renumbered into a spatial order
-// (core/algorithms/spatial_order.h: vertices along a Morton curve, edges and faces by their
-// smallest vertex), unless the progressive record is asked for: the ring walks then hit the
-// cache whatever order the input came in, and the result (numbering included) is the same for
-// the same mesh in any vertex or face order; "v:decimation_source" and the geomorph still speak
-// of the input's indices. Costs:
+// skipping edges re-priced during the pass (a pass marks the edges a collapse changes and
+// prices each once: when the pass reaches it, else after the pass, on two threads); the exact
+// heap then does the last collapses, the ones that shape the result. Such a mesh is first
+// renumbered into a spatial order (core/algorithms/spatial_order.h: vertices along a Morton curve,
+// edges and faces by their smallest vertex), unless the progressive record is asked for: the ring
+// walks then hit the cache whatever order the input came in, and the result (numbering included) is
+// the same for the same mesh in any vertex or face order; "v:decimation_source" and the geomorph
+// still speak of the input's indices. Costs:
 //  - Quadric (Garland, Heckbert, "Surface simplification using quadric error metrics",
 //    SIGGRAPH 1997): per-vertex quadrics of the incident face planes, summed on collapse; the
 //    kept vertex moves to the minimizer of Q0 + Q1 (the 3x3 system), or, where that is
