@@ -356,22 +356,26 @@ public:
         cos_max_angle_ = std::cos(o_.max_normal_angle * M_PI / 180.0);
         max_error2_ = o_.max_error > 0 ? o_.max_error * o_.max_error
                                        : std::numeric_limits<double>::infinity();
-        edge_.assign(m_.edges_size(), EdgeCost());
-        stale_.assign(m_.edges_size(), 0);
-        boundary_.assign(m_.vertices_size(), 0);
-        for (Vertex v : m_.vertices()) boundary_[v.idx()] = m_.is_boundary(v) ? 1 : 0;
-        locked_.assign(m_.vertices_size(), 0);
-        parent_.assign(m_.vertices_size(), Vertex());
         vuv_ = m_.get_vertex_property<TexCoord>("v:texcoord");
         huv_ = m_.get_halfedge_property<TexCoord>("h:texcoord");
         // Vertices with a coincident copy (a seam's two sides, the copies of a split vertex)
         // never move alone: a seam vertex with exactly one copy goes together with it, along
         // the seam on both sides (seam_partner()), every other copy stays where it is.
-        // The coincident vertices and the quadrics read the mesh only: side by side.
-        if (m_.n_vertices() >= kParallelMin)
-            run_pair([&] { groups_ = find_coincident_vertices(c_); }, [&] { init_quadrics(); });
-        else {
+        // The coincident vertices (with the per-element arrays) and the quadrics read the mesh
+        // only: side by side.
+        const auto setup = [&] {
+            edge_.assign(m_.edges_size(), EdgeCost());
+            stale_.assign(m_.edges_size(), 0);
+            boundary_.assign(m_.vertices_size(), 0);
+            for (Vertex v : c_.vertices()) boundary_[v.idx()] = c_.is_boundary(v) ? 1 : 0;
+            locked_.assign(m_.vertices_size(), 0);
+            parent_.assign(m_.vertices_size(), Vertex());
             groups_ = find_coincident_vertices(c_);
+        };
+        if (m_.n_vertices() >= kParallelMin)
+            run_pair(setup, [&] { init_quadrics(); });
+        else {
+            setup();
             init_quadrics();
         }
         const CoincidentGroups& groups = groups_;
