@@ -77,6 +77,7 @@
 #include "core/algorithms/decimation.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -297,6 +298,30 @@ void run_pair(const A& a, const B& b) {
 
 // Below this many elements a set-up loop runs on one thread (a thread costs more than it saves).
 constexpr std::size_t kParallelMin = 100000;
+
+// Edges per chunk of the passes over all edges that in_chunks() shares out.
+constexpr std::size_t kEdgeChunk = std::size_t(1) << 15;
+
+// Runs body(begin, end, worker) over [0, n) in chunks of kEdgeChunk that two workers take in
+// turn, this thread (worker 0) and, where `two`, a second one (worker 1): a worker that waits for
+// a core (a busy machine) leaves the remaining chunks to the other instead of holding up the
+// end. Bodies of different chunks must not write the same data.
+template <class Body>
+void in_chunks(bool two, std::size_t n, const Body& body) {
+    if (!two) {
+        for (std::size_t b = 0; b < n; b += kEdgeChunk) body(b, std::min(n, b + kEdgeChunk), 0);
+        return;
+    }
+    std::atomic<std::size_t> next{0};
+    const auto work = [&](int worker) {
+        for (;;) {
+            const std::size_t b = next.fetch_add(kEdgeChunk);
+            if (b >= n) return;
+            body(b, std::min(n, b + kEdgeChunk), worker);
+        }
+    };
+    run_pair([&] { work(0); }, [&] { work(1); });
+}
 
 // Meshes with more vertices than this are first decimated in batches (below), down to
 // max(kExactVertices, 4 x target); the exact priority order takes over from there.
@@ -649,8 +674,6 @@ private:
     // histogram) into `counts` (zeroed first), and the candidates into `n`.
     void count_keys(Index begin, Index end, std::vector<std::uint32_t>& counts,
                     std::size_t& n) const {
-        counts.assign(std::size_t(1) << kBucketBits, 0);
-        n = 0;
         for (Index e = begin; e < end; ++e) {
             const float cost = edge_[e].cost;
             if (cost < kNoCollapse) {
@@ -661,31 +684,25 @@ private:
     }
 
     // Prices the edges `what` names, then counts the keys of the next batch selection
-    // (bucket_count_, candidates_), in memory order, in two halves of the edges side by side on
-    // big meshes: each pricing reads the mesh and writes its own edge's cost only (the heap is
-    // not in use), and each half counts the costs it priced. One meeting of the threads.
+    // (bucket_count_, candidates_), chunk by chunk in memory order, on two threads for big
+    // meshes (in_chunks()): each pricing reads the mesh and writes its own edge's cost only
+    // (the heap is not in use), and each chunk counts the costs it priced, into its worker's
+    // histogram. One meeting of the threads.
     void price_and_count(Pricing what) {
         const Index n_edges = Index(m_.edges_size());
-        const bool two = n_edges >= kParallelMin;
-        const Index mid = two ? n_edges / 2 : n_edges;
-        std::size_t n2 = 0;
-        const auto half = [&](Index begin, Index end, std::vector<std::uint32_t>& counts,
-                              std::size_t& n) {
+        const std::size_t n_buckets = std::size_t(1) << kBucketBits;
+        bucket_count_.assign(n_buckets, 0);
+        bucket_count2_.assign(n_buckets, 0);
+        std::size_t n[2] = {0, 0};
+        in_chunks(n_edges >= kParallelMin, n_edges, [&](std::size_t b, std::size_t e, int w) {
             if (what == Pricing::All)
-                price_range(begin, end);
+                price_range(Index(b), Index(e));
             else if (what == Pricing::Stale)
-                price_stale_range(begin, end);
-            count_keys(begin, end, counts, n);
-        };
-        if (two) {
-            run_pair([&] { half(0, mid, bucket_count_, candidates_); },
-                     [&] { half(mid, n_edges, bucket_count2_, n2); });
-            for (std::size_t i = 0; i < bucket_count_.size(); ++i)
-                bucket_count_[i] += bucket_count2_[i];
-            candidates_ += n2;
-        } else {
-            half(0, n_edges, bucket_count_, candidates_);
-        }
+                price_stale_range(Index(b), Index(e));
+            count_keys(Index(b), Index(e), w == 0 ? bucket_count_ : bucket_count2_, n[w]);
+        });
+        for (std::size_t i = 0; i < n_buckets; ++i) bucket_count_[i] += bucket_count2_[i];
+        candidates_ = n[0] + n[1];
         counted_ = true;
     }
 
@@ -720,32 +737,27 @@ private:
         std::size_t below = 0, b = 0;  // keys in the buckets before b
         while (below + bucket_count_[b] < budget) below += bucket_count_[b++];
         // One scan lists the keys of the buckets up to b in memory order (far fewer cache
-        // misses than cost order, the same quality in the benchmark) and bucket b's apart: in
-        // two halves side by side on big meshes, the second half's keys appended to the first's.
-        const bool two = n_edges >= kParallelMin;
-        const Index mid = two ? n_edges / 2 : n_edges;
-        const auto collect = [&](Index begin, Index end, std::vector<EdgeKey>& keys,
-                                 std::vector<EdgeKey>& at_b) {
+        // misses than cost order, the same quality in the benchmark) and bucket b's apart:
+        // chunk by chunk on two threads for big meshes (in_chunks()), each chunk's keys kept
+        // apart and then appended in chunk order.
+        const std::size_t n_chunks = (std::size_t(n_edges) + kEdgeChunk - 1) / kEdgeChunk;
+        if (chunk_keys_.size() < n_chunks) chunk_keys_.resize(n_chunks);
+        in_chunks(n_edges >= kParallelMin, n_edges, [&](std::size_t begin, std::size_t end, int) {
+            std::vector<EdgeKey>& keys = chunk_keys_[begin / kEdgeChunk];
             keys.clear();
-            at_b.clear();
-            for (Index e = begin; e < end; ++e) {
+            for (Index e = Index(begin); e < Index(end); ++e) {
                 const float cost = edge_[e].cost;
                 if (!(cost < kNoCollapse)) continue;
                 const EdgeKey k = edge_key(cost, e);
-                const std::size_t kb = bucket(k);
-                if (kb > b) continue;
-                keys.push_back(k);
-                if (kb == b) at_b.push_back(k);
+                if (bucket(k) <= b) keys.push_back(k);
             }
-        };
-        if (two) {
-            run_pair([&] { collect(0, mid, batch_, threshold_bucket_); },
-                     [&] { collect(mid, n_edges, batch2_, threshold_bucket2_); });
-            batch_.insert(batch_.end(), batch2_.begin(), batch2_.end());
-            threshold_bucket_.insert(threshold_bucket_.end(), threshold_bucket2_.begin(),
-                                     threshold_bucket2_.end());
-        } else {
-            collect(0, n_edges, batch_, threshold_bucket_);
+        });
+        batch_.clear();
+        threshold_bucket_.clear();
+        for (std::size_t c = 0; c < n_chunks; ++c) {
+            batch_.insert(batch_.end(), chunk_keys_[c].begin(), chunk_keys_[c].end());
+            for (const EdgeKey k : chunk_keys_[c])
+                if (bucket(k) == b) threshold_bucket_.push_back(k);
         }
         const auto nth = threshold_bucket_.begin() + std::ptrdiff_t(budget - 1 - below);
         std::nth_element(threshold_bucket_.begin(), nth, threshold_bucket_.end());
@@ -1466,9 +1478,8 @@ private:
     std::vector<std::uint32_t> bucket_count_;  ///< batch selection: keys per bucket
     std::size_t candidates_ = 0;               ///< batch selection: edges that may collapse
     bool counted_ = false;  ///< bucket_count_ and candidates_ hold the current costs' counts
-    // The same for the second half of the edges (batch_pass() scans in two halves).
-    std::vector<EdgeKey> batch2_, threshold_bucket2_;
-    std::vector<std::uint32_t> bucket_count2_;
+    std::vector<std::vector<EdgeKey>> chunk_keys_;  ///< batch selection: each chunk's keys
+    std::vector<std::uint32_t> bucket_count2_;      ///< the second worker's histogram
     std::uint32_t pass_ = 0;
     std::vector<std::uint32_t> locked_;
     std::vector<Vertex> parent_;
