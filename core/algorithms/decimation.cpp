@@ -663,7 +663,7 @@ private:
         for (Index i = begin; i < end; ++i) {
             if (i + kPrefetchAhead < end && stale_[i + kPrefetchAhead])
                 prefetch(Edge(i + kPrefetchAhead));
-            if (stale_[i]) {
+            if (stale_[i]) {  // forget() unmarks the edges a collapse deletes
                 stale_[i] = 0;
                 price(Edge(i));
             }
