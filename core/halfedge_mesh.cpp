@@ -5,8 +5,10 @@
 #include <iterator>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "core/errors.h"
+#include "core/two_threads.h"
 
 namespace trilab {
 
@@ -289,29 +291,48 @@ void HalfedgeMesh::mark_deleted(Face f) {
 
 IndexRemap HalfedgeMesh::garbage_collection() {
     IndexRemap remap;
-    auto build = [](std::size_t n, const std::vector<std::uint8_t>& deleted,
-                    std::vector<Index>& old_to_new, std::vector<Index>& new_to_old) {
-        old_to_new.assign(n, kInvalidIndex);
-        new_to_old.clear();
+    std::vector<Index> v_keep, h_keep, e_keep, f_keep;
+    // Old -> new index and the kept elements (new -> old) of one kind, in their order; for the
+    // edges also the halfedges' two lists (h_old_to_new, h_new_to_old). One pass writing each
+    // array once, front to back, without branches (the deleted elements lie scattered: a branch
+    // would mispredict).
+    const auto build = [](const std::vector<std::uint8_t>& deleted, std::vector<Index>& old_to_new,
+                          std::vector<Index>& new_to_old, std::vector<Index>* h_old_to_new,
+                          std::vector<Index>* h_new_to_old) {
+        const std::size_t n = deleted.size();
+        const std::size_t live = std::size_t(std::count(deleted.begin(), deleted.end(), 0));
+        old_to_new.resize(n);
+        new_to_old.resize(live + 1);  // the last slot takes the writes of deleted elements
+        if (h_old_to_new) {
+            h_old_to_new->resize(2 * n);
+            h_new_to_old->resize(2 * live + 2);
+        }
+        Index next = 0;
         for (std::size_t i = 0; i < n; ++i) {
-            if (deleted[i]) continue;
-            old_to_new[i] = Index(new_to_old.size());
-            new_to_old.push_back(Index(i));
+            const bool gone = deleted[i] != 0;
+            old_to_new[i] = gone ? kInvalidIndex : next;
+            new_to_old[next] = Index(i);
+            if (h_old_to_new) {
+                (*h_old_to_new)[2 * i] = gone ? kInvalidIndex : 2 * next;
+                (*h_old_to_new)[2 * i + 1] = gone ? kInvalidIndex : 2 * next + 1;
+                (*h_new_to_old)[2 * next] = Index(2 * i);
+                (*h_new_to_old)[2 * next + 1] = Index(2 * i + 1);
+            }
+            next += gone ? 0 : 1;
         }
+        new_to_old.pop_back();
+        if (h_new_to_old) h_new_to_old->resize(2 * live);
     };
-    std::vector<Index> v_keep, e_keep, f_keep;
-    build(vertices_size(), vdeleted_.vector(), remap.vertices, v_keep);
-    build(edges_size(), edeleted_.vector(), remap.edges, e_keep);
-    build(faces_size(), fdeleted_.vector(), remap.faces, f_keep);
-    std::vector<Index> h_keep;
-    h_keep.reserve(2 * e_keep.size());
-    remap.halfedges.assign(halfedges_size(), kInvalidIndex);
-    for (Index e : e_keep) {
-        for (unsigned i = 0; i < 2; ++i) {
-            remap.halfedges[2 * e + i] = Index(h_keep.size());
-            h_keep.push_back(2 * e + i);
+    // Vertices and faces, edges and halfedges: side by side on big meshes.
+    on_two_threads(worth_two_threads(halfedges_size()), [&](int part) {
+        if (part == 0) {
+            build(std::as_const(vdeleted_).vector(), remap.vertices, v_keep, nullptr, nullptr);
+            build(std::as_const(fdeleted_).vector(), remap.faces, f_keep, nullptr, nullptr);
+        } else {
+            build(std::as_const(edeleted_).vector(), remap.edges, e_keep, &remap.halfedges,
+                  &h_keep);
         }
-    }
+    });
     apply_order(remap, v_keep, h_keep, e_keep, f_keep);
     return remap;
 }
@@ -339,23 +360,33 @@ IndexRemap HalfedgeMesh::renumber(const std::vector<Index>& vertex_order,
         }
     };
     IndexRemap remap;
-    invert(vertex_order, vertices_size(), n_vertices(), vdeleted_.vector(), 0, "vertex",
-           remap.vertices);
-    invert(face_order, faces_size(), n_faces(), fdeleted_.vector(), 0, "face", remap.faces);
-    invert(halfedge_order, halfedges_size(), n_halfedges(), edeleted_.vector(), 1, "halfedge",
-           remap.halfedges);
-    std::vector<Index> e_keep(halfedge_order.size() / 2);
-    remap.edges.assign(edges_size(), kInvalidIndex);
-    for (Index k = 0; k < e_keep.size(); ++k) {
-        const Index a = halfedge_order[2 * k], b = halfedge_order[2 * k + 1];
-        if ((a ^ 1u) != b)
-            throw InvalidArgument("HalfedgeMesh::renumber: halfedges " + std::to_string(a) +
-                                  " and " + std::to_string(b) + " (entries " +
-                                  std::to_string(2 * k) + ", " + std::to_string(2 * k + 1) +
-                                  ") are not the two halves of one edge");
-        e_keep[k] = a >> 1;
-        remap.edges[a >> 1] = k;
-    }
+    std::vector<Index> e_keep;
+    // The vertex and face lists here, the halfedge list on a second thread for big meshes; a
+    // fault in either list leaves the mesh unchanged, and one in the vertex or face list is the
+    // one reported when both have one (the order of the checks on one thread).
+    on_two_threads(worth_two_threads(halfedges_size()), [&](int part) {
+        if (part == 1) {
+            invert(vertex_order, vertices_size(), n_vertices(), std::as_const(vdeleted_).vector(),
+                   0, "vertex", remap.vertices);
+            invert(face_order, faces_size(), n_faces(), std::as_const(fdeleted_).vector(), 0,
+                   "face", remap.faces);
+            return;
+        }
+        invert(halfedge_order, halfedges_size(), n_halfedges(), std::as_const(edeleted_).vector(),
+               1, "halfedge", remap.halfedges);
+        e_keep.resize(halfedge_order.size() / 2);
+        remap.edges.assign(edges_size(), kInvalidIndex);
+        for (Index k = 0; k < e_keep.size(); ++k) {
+            const Index a = halfedge_order[2 * k], b = halfedge_order[2 * k + 1];
+            if ((a ^ 1u) != b)
+                throw InvalidArgument("HalfedgeMesh::renumber: halfedges " + std::to_string(a) +
+                                      " and " + std::to_string(b) + " (entries " +
+                                      std::to_string(2 * k) + ", " + std::to_string(2 * k + 1) +
+                                      ") are not the two halves of one edge");
+            e_keep[k] = a >> 1;
+            remap.edges[a >> 1] = k;
+        }
+    });
     apply_order(remap, vertex_order, halfedge_order, e_keep, face_order);
     return remap;
 }
@@ -369,50 +400,78 @@ void HalfedgeMesh::apply_order(IndexRemap& remap, const std::vector<Index>& v_ke
     const auto map_h = [new_h](Halfedge h) { return h.is_valid() ? Halfedge(new_h[h.idx()]) : h; };
     const auto map_v = [new_v](Vertex v) { return v.is_valid() ? Vertex(new_v[v.idx()]) : v; };
     const auto map_f = [new_f](Face f) { return f.is_valid() ? Face(new_f[f.idx()]) : f; };
-    // The links are gathered and renumbered in one pass each; every other array is gathered as
-    // it is. Two halves that touch different arrays: the next and prev links, and everything
-    // else. Side by side for big meshes where there is a second core (a thread costs more than
-    // it saves on small ones); the same result either way.
-    const auto links_part = [&] {
-        hnext_.array()->gather_mapped(h_keep, map_h);
-        hprev_.array()->gather_mapped(h_keep, map_h);
-    };
-    const auto other_part = [&] {
-        hto_.array()->gather_mapped(h_keep, map_v);
-        hface_.array()->gather_mapped(h_keep, map_f);
-        hprops_.gather_except(h_keep, [&](const BasePropertyArray* a) {
-            return a == hnext_.array() || a == hprev_.array() || a == hto_.array() ||
-                   a == hface_.array();
-        });
-        vhalfedge_.array()->gather_mapped(v_keep, map_h);
-        vprops_.gather_except(v_keep,
-                              [&](const BasePropertyArray* a) { return a == vhalfedge_.array(); });
-        eprops_.gather(e_keep);
-        fhalfedge_.array()->gather_mapped(f_keep, map_h);
-        fprops_.gather_except(f_keep,
-                              [&](const BasePropertyArray* a) { return a == fhalfedge_.array(); });
-    };
-    if (h_keep.size() >= kParallelOrderMin && std::thread::hardware_concurrency() >= 2) {
-        std::exception_ptr other_error;
-        std::thread other([&] {
-            try {
-                other_part();
-            } catch (...) {
-                other_error = std::current_exception();
-            }
-        });
-        try {
-            links_part();
-        } catch (...) {
-            other.join();
-            throw;
+    // The built-in arrays (links and positions) are gathered, and the links renumbered, in one
+    // pass each into new arrays, every thread writing its half of each new array; every other
+    // array (attributes, deleted flags) is gathered as it is, the halfedges' and edges' on one
+    // thread, the vertices' and faces' on the other. Side by side for big meshes where there
+    // is a second core (a thread costs more than it saves on small ones); the same result
+    // either way.
+    const std::vector<Vertex>& to = std::as_const(hto_).vector();
+    const std::vector<Halfedge>& next = std::as_const(hnext_).vector();
+    const std::vector<Halfedge>& prev = std::as_const(hprev_).vector();
+    const std::vector<Face>& face = std::as_const(hface_).vector();
+    const std::vector<Halfedge>& vh = std::as_const(vhalfedge_).vector();
+    const std::vector<Point>& pos = std::as_const(vpoint_).vector();
+    const std::vector<Halfedge>& fh = std::as_const(fhalfedge_).vector();
+    std::vector<Vertex> new_to;
+    std::vector<Halfedge> new_next, new_prev, new_vh, new_fh;
+    std::vector<Face> new_face;
+    std::vector<Point> new_pos;
+    const bool parallel =
+        h_keep.size() >= kParallelOrderMin && std::thread::hardware_concurrency() >= 2;
+    on_two_threads(parallel, [&](int part) {  // the new arrays, zeroed and paged in by halves
+        if (part == 0) {
+            new_to.resize(h_keep.size());
+            new_next.resize(h_keep.size());
+            new_vh.resize(v_keep.size());
+            new_fh.resize(f_keep.size());
+        } else {
+            new_prev.resize(h_keep.size());
+            new_face.resize(h_keep.size());
+            new_pos.resize(v_keep.size());
         }
-        other.join();
-        if (other_error) std::rethrow_exception(other_error);
-    } else {
-        links_part();
-        other_part();
-    }
+    });
+    // Writes out[i] = map(in[keep[i]]) for i in this part's half of keep.
+    const auto half = [](int part, const std::vector<Index>& keep, const auto& in, auto& out,
+                         const auto& map) {
+        const std::size_t n = keep.size(), begin = part == 0 ? 0 : n / 2,
+                          end = part == 0 ? n / 2 : n;
+        const Index* from = keep.data();
+        const auto* src = in.data();
+        auto* dst = out.data();
+        for (std::size_t i = begin; i < end; ++i) dst[i] = map(src[from[i]]);
+    };
+    const auto same = [](const Point& p) -> const Point& { return p; };
+    on_two_threads(parallel, [&](int part) {
+        half(part, h_keep, next, new_next, map_h);
+        half(part, h_keep, prev, new_prev, map_h);
+        half(part, h_keep, to, new_to, map_v);
+        half(part, h_keep, face, new_face, map_f);
+        half(part, v_keep, vh, new_vh, map_h);
+        half(part, v_keep, pos, new_pos, same);
+        half(part, f_keep, fh, new_fh, map_h);
+        // The other arrays; none of them is one of the arrays read above.
+        if (part == 0) {
+            hprops_.gather_except(h_keep, [&](const BasePropertyArray* a) {
+                return a == hnext_.array() || a == hprev_.array() || a == hto_.array() ||
+                       a == hface_.array();
+            });
+            eprops_.gather(e_keep);
+        } else {
+            vprops_.gather_except(v_keep, [&](const BasePropertyArray* a) {
+                return a == vhalfedge_.array() || a == vpoint_.array();
+            });
+            fprops_.gather_except(
+                f_keep, [&](const BasePropertyArray* a) { return a == fhalfedge_.array(); });
+        }
+    });
+    hto_.array()->assign(std::move(new_to));
+    hnext_.array()->assign(std::move(new_next));
+    hprev_.array()->assign(std::move(new_prev));
+    hface_.array()->assign(std::move(new_face));
+    vhalfedge_.array()->assign(std::move(new_vh));
+    vpoint_.array()->assign(std::move(new_pos));
+    fhalfedge_.array()->assign(std::move(new_fh));
     bind_builtins();
     n_deleted_vertices_ = n_deleted_edges_ = n_deleted_faces_ = 0;
     vprops_.shrink_to_fit();

@@ -9,13 +9,14 @@
 // the kept vertex are re-priced. Meshes of more than 50,000 vertices are first reduced in
 // batches down to max(50,000, 4 x target): each pass selects the cheapest edges, up to half
 // the vertex count (nth_element), and collapses them in memory order (for the cache),
-// skipping edges re-priced during the pass; the exact heap then does the last collapses, the
-// ones that shape the result. Such a mesh is first renumbered into a spatial order
-// (core/algorithms/spatial_order.h: vertices along a Morton curve, edges and faces by their
-// smallest vertex), unless the progressive record is asked for: the ring walks then hit the
-// cache whatever order the input came in, and the result (numbering included) is the same for
-// the same mesh in any vertex or face order; "v:decimation_source" and the geomorph still speak
-// of the input's indices. Costs:
+// skipping edges re-priced during the pass (a pass marks the edges a collapse changes and
+// prices each once: when the pass reaches it, else after the pass, on two threads); the exact
+// heap then does the last collapses, the ones that shape the result. Such a mesh is first
+// renumbered into a spatial order (core/algorithms/spatial_order.h: vertices along a Morton curve,
+// edges and faces by their smallest vertex), unless the progressive record is asked for: the ring
+// walks then hit the cache whatever order the input came in, and the result (numbering included) is
+// the same for the same mesh in any vertex or face order; "v:decimation_source" and the geomorph
+// still speak of the input's indices. Costs:
 //  - Quadric (Garland, Heckbert, "Surface simplification using quadric error metrics",
 //    SIGGRAPH 1997): per-vertex quadrics of the incident face planes, summed on collapse; the
 //    kept vertex moves to the minimizer of Q0 + Q1 (the 3x3 system), or, where that is
@@ -76,6 +77,7 @@
 #include "core/algorithms/decimation.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -297,6 +299,30 @@ void run_pair(const A& a, const B& b) {
 // Below this many elements a set-up loop runs on one thread (a thread costs more than it saves).
 constexpr std::size_t kParallelMin = 100000;
 
+// Edges per chunk of the passes over all edges that in_chunks() shares out.
+constexpr std::size_t kEdgeChunk = std::size_t(1) << 15;
+
+// Runs body(begin, end, worker) over [0, n) in chunks of kEdgeChunk that two workers take in
+// turn, this thread (worker 0) and, where `two`, a second one (worker 1): a worker that waits for
+// a core (a busy machine) leaves the remaining chunks to the other instead of holding up the
+// end. Bodies of different chunks must not write the same data.
+template <class Body>
+void in_chunks(bool two, std::size_t n, const Body& body) {
+    if (!two) {
+        for (std::size_t b = 0; b < n; b += kEdgeChunk) body(b, std::min(n, b + kEdgeChunk), 0);
+        return;
+    }
+    std::atomic<std::size_t> next{0};
+    const auto work = [&](int worker) {
+        for (;;) {
+            const std::size_t b = next.fetch_add(kEdgeChunk);
+            if (b >= n) return;
+            body(b, std::min(n, b + kEdgeChunk), worker);
+        }
+    };
+    run_pair([&] { work(0); }, [&] { work(1); });
+}
+
 // Meshes with more vertices than this are first decimated in batches (below), down to
 // max(kExactVertices, 4 x target); the exact priority order takes over from there.
 constexpr std::size_t kExactVertices = 50000;
@@ -331,6 +357,9 @@ struct EdgeCost {
     std::uint32_t heap_pos = kNotInHeap;
 };
 
+// Which edges Decimater::price_and_count() prices before counting.
+enum class Pricing { None, Stale, All };
+
 enum class Refusal { None, Topology, NormalFlip, Roundness, IndependentSet, MaxError, Seam };
 
 // The normal change measured for an explanation (Decimater::normals_ok()).
@@ -352,21 +381,26 @@ public:
         cos_max_angle_ = std::cos(o_.max_normal_angle * M_PI / 180.0);
         max_error2_ = o_.max_error > 0 ? o_.max_error * o_.max_error
                                        : std::numeric_limits<double>::infinity();
-        edge_.assign(m_.edges_size(), EdgeCost());
-        boundary_.assign(m_.vertices_size(), 0);
-        for (Vertex v : m_.vertices()) boundary_[v.idx()] = m_.is_boundary(v) ? 1 : 0;
-        locked_.assign(m_.vertices_size(), 0);
-        parent_.assign(m_.vertices_size(), Vertex());
         vuv_ = m_.get_vertex_property<TexCoord>("v:texcoord");
         huv_ = m_.get_halfedge_property<TexCoord>("h:texcoord");
         // Vertices with a coincident copy (a seam's two sides, the copies of a split vertex)
         // never move alone: a seam vertex with exactly one copy goes together with it, along
         // the seam on both sides (seam_partner()), every other copy stays where it is.
-        // The coincident vertices and the quadrics read the mesh only: side by side.
-        if (m_.n_vertices() >= kParallelMin)
-            run_pair([&] { groups_ = find_coincident_vertices(c_); }, [&] { init_quadrics(); });
-        else {
+        // The coincident vertices (with the per-element arrays) and the quadrics read the mesh
+        // only: side by side.
+        const auto setup = [&] {
+            edge_.assign(m_.edges_size(), EdgeCost());
+            stale_.assign(m_.edges_size(), 0);
+            boundary_.assign(m_.vertices_size(), 0);
+            for (Vertex v : c_.vertices()) boundary_[v.idx()] = c_.is_boundary(v) ? 1 : 0;
+            locked_.assign(m_.vertices_size(), 0);
+            parent_.assign(m_.vertices_size(), Vertex());
             groups_ = find_coincident_vertices(c_);
+        };
+        if (m_.n_vertices() >= kParallelMin)
+            run_pair(setup, [&] { init_quadrics(); });
+        else {
+            setup();
             init_quadrics();
         }
         const CoincidentGroups& groups = groups_;
@@ -392,13 +426,9 @@ public:
             region_ptr_ = &region_;
         }
         if (!price_edges) return;
-        // Each edge's price reads the mesh and writes the edge's own cost: two halves at once.
-        const Index n_edges = Index(m_.edges_size());
-        if (n_edges >= kParallelMin)
-            run_pair([&] { price_range(0, n_edges / 2); },
-                     [&] { price_range(n_edges / 2, n_edges); });
-        else
-            price_range(0, n_edges);
+        // Each edge's price reads the mesh and writes the edge's own cost: two halves at once,
+        // each counting its costs for the first batch selection.
+        price_and_count(Pricing::All);
     }
 
     /// Runs one iteration down to `target` vertices; returns whether it got there, and
@@ -429,6 +459,7 @@ public:
             if (done == 0) break;
         }
         compact_if_sparse();
+        counted_ = false;  // the heap re-prices edges from here on
         target_ = target;
         for (int round = 0; m_.n_vertices() > target && !hit_max_error; ++round) {
             fill_heap();
@@ -531,7 +562,8 @@ private:
     // edge index, batches run in memory order), so the result is the same bit for bit, and so
     // is the output's numbering (a later garbage collection of an order-kept compaction is the
     // one garbage collection). `before_` (the geomorph's vertices of the previous mesh, in
-    // working indices) moves to each one's representative, renumbered: parent_ starts afresh.
+    // working indices) moves to each one's representative, renumbered, when the geomorph is
+    // asked for (else nothing reads it before decimate() rebuilds it): parent_ starts afresh.
     // The heap must be empty (it is between passes).
     void compact() {
         // Old index -> new index of the live vertices and edges, in their order: the numbering
@@ -556,9 +588,14 @@ private:
         };
         // The mesh here, the decimator's own arrays on the other thread (they do not read it).
         const auto compact_mine = [&, &vmap = vmap, &emap = emap, nv = nv, ne = ne] {
-            for (Index& v : *before_) {
-                const Vertex r = vmap[v] == kInvalidIndex ? representative(Vertex(v)) : Vertex(v);
-                v = vmap[r.idx()];
+            // Without the geomorph nothing reads before_ again (decimate() rebuilds it after a
+            // level): one chase through parent_ per input vertex saved.
+            if (o_.record_geomorph) {
+                for (Index& v : *before_) {
+                    const Vertex r =
+                        vmap[v] == kInvalidIndex ? representative(Vertex(v)) : Vertex(v);
+                    v = vmap[r.idx()];
+                }
             }
             gather(quadric_, vmap, nv);
             gather(boundary_, vmap, nv);
@@ -569,6 +606,7 @@ private:
             if (region_ptr_) gather(region_, vmap, nv);
             parent_.assign(nv, Vertex());
             gather(edge_, emap, ne);
+            stale_.assign(ne, 0);  // none between passes
         };
         if (nv >= kParallelMin)
             run_pair([&] { m_.garbage_collection(); }, compact_mine);
@@ -620,6 +658,54 @@ private:
         }
     }
 
+    // Prices the stale edges of [begin, end) (see defer_).
+    void price_stale_range(Index begin, Index end) {
+        for (Index i = begin; i < end; ++i) {
+            if (i + kPrefetchAhead < end && stale_[i + kPrefetchAhead])
+                prefetch(Edge(i + kPrefetchAhead));
+            if (stale_[i]) {  // forget() unmarks the edges a collapse deletes
+                stale_[i] = 0;
+                price(Edge(i));
+            }
+        }
+    }
+
+    // Counts the keys of the candidate edges of [begin, end) per bucket (the batch selection's
+    // histogram) into `counts` (zeroed first), and the candidates into `n`.
+    void count_keys(Index begin, Index end, std::vector<std::uint32_t>& counts,
+                    std::size_t& n) const {
+        for (Index e = begin; e < end; ++e) {
+            const float cost = edge_[e].cost;
+            if (cost < kNoCollapse) {
+                ++counts[bucket(edge_key(cost, e))];
+                ++n;
+            }
+        }
+    }
+
+    // Prices the edges `what` names, then counts the keys of the next batch selection
+    // (bucket_count_, candidates_), chunk by chunk in memory order, on two threads for big
+    // meshes (in_chunks()): each pricing reads the mesh and writes its own edge's cost only
+    // (the heap is not in use), and each chunk counts the costs it priced, into its worker's
+    // histogram. One meeting of the threads.
+    void price_and_count(Pricing what) {
+        const Index n_edges = Index(m_.edges_size());
+        const std::size_t n_buckets = std::size_t(1) << kBucketBits;
+        bucket_count_.assign(n_buckets, 0);
+        bucket_count2_.assign(n_buckets, 0);
+        std::size_t n[2] = {0, 0};
+        in_chunks(n_edges >= kParallelMin, n_edges, [&](std::size_t b, std::size_t e, int w) {
+            if (what == Pricing::All)
+                price_range(Index(b), Index(e));
+            else if (what == Pricing::Stale)
+                price_stale_range(Index(b), Index(e));
+            count_keys(Index(b), Index(e), w == 0 ? bucket_count_ : bucket_count2_, n[w]);
+        });
+        for (std::size_t i = 0; i < n_buckets; ++i) bucket_count_[i] += bucket_count2_[i];
+        candidates_ = n[0] + n[1];
+        counted_ = true;
+    }
+
     void fill_heap() {
         heap_.clear();
         heap_.reserve(m_.n_edges());
@@ -639,15 +725,11 @@ private:
         // budget-th cheapest edge, nth_element finds it among that bucket's keys alone. Deleted
         // edges and those that cannot collapse cost kNoCollapse.
         const Index n_edges = Index(m_.edges_size());
-        bucket_count_.assign(std::size_t(1) << kBucketBits, 0);
-        std::size_t candidates = 0;
-        for (Index e = 0; e < n_edges; ++e) {
-            const float cost = edge_[e].cost;
-            if (cost < kNoCollapse) {
-                ++bucket_count_[bucket(edge_key(cost, e))];
-                ++candidates;
-            }
-        }
+        // The histogram: made by the previous pass's last step (or here, for the first pass);
+        // compaction keeps it (a bucket is a cost's top bits, deleted edges are not counted).
+        if (!counted_) price_and_count(Pricing::None);
+        counted_ = false;
+        const std::size_t candidates = candidates_;
         // At most half of the vertices per pass.
         const std::size_t budget =
             std::min({surplus, candidates, std::max<std::size_t>(1, m_.n_vertices() / 2)});
@@ -655,30 +737,46 @@ private:
         std::size_t below = 0, b = 0;  // keys in the buckets before b
         while (below + bucket_count_[b] < budget) below += bucket_count_[b++];
         // One scan lists the keys of the buckets up to b in memory order (far fewer cache
-        // misses than cost order, the same quality in the benchmark) and bucket b's apart.
+        // misses than cost order, the same quality in the benchmark) and bucket b's apart:
+        // chunk by chunk on two threads for big meshes (in_chunks()), each chunk's keys kept
+        // apart and then appended in chunk order.
+        const std::size_t n_chunks = (std::size_t(n_edges) + kEdgeChunk - 1) / kEdgeChunk;
+        if (chunk_keys_.size() < n_chunks) chunk_keys_.resize(n_chunks);
+        in_chunks(n_edges >= kParallelMin, n_edges, [&](std::size_t begin, std::size_t end, int) {
+            std::vector<EdgeKey>& keys = chunk_keys_[begin / kEdgeChunk];
+            keys.clear();
+            for (Index e = Index(begin); e < Index(end); ++e) {
+                const float cost = edge_[e].cost;
+                if (!(cost < kNoCollapse)) continue;
+                const EdgeKey k = edge_key(cost, e);
+                if (bucket(k) <= b) keys.push_back(k);
+            }
+        });
         batch_.clear();
         threshold_bucket_.clear();
-        for (Index e = 0; e < n_edges; ++e) {
-            const float cost = edge_[e].cost;
-            if (!(cost < kNoCollapse)) continue;
-            const EdgeKey k = edge_key(cost, e);
-            const std::size_t kb = bucket(k);
-            if (kb > b) continue;
-            batch_.push_back(k);
-            if (kb == b) threshold_bucket_.push_back(k);
+        for (std::size_t c = 0; c < n_chunks; ++c) {
+            batch_.insert(batch_.end(), chunk_keys_[c].begin(), chunk_keys_[c].end());
+            for (const EdgeKey k : chunk_keys_[c])
+                if (bucket(k) == b) threshold_bucket_.push_back(k);
         }
         const auto nth = threshold_bucket_.begin() + std::ptrdiff_t(budget - 1 - below);
         std::nth_element(threshold_bucket_.begin(), nth, threshold_bucket_.end());
         const EdgeKey threshold = *nth;
         std::size_t done = 0;
+        defer_ = groups_.empty();
         for (std::size_t i = 0; i < batch_.size(); ++i) {
             if (i + kPrefetchAhead < batch_.size())
                 prefetch(Edge(key_edge(batch_[i + kPrefetchAhead])));
             const EdgeKey k = batch_[i];
             if (k > threshold) continue;
             const Edge e(key_edge(k));
+            if (m_.is_deleted(e)) continue;
+            if (stale_[e.idx()]) {  // changed by an earlier collapse of the pass: price it now
+                stale_[e.idx()] = 0;
+                price(e);
+            }
             // Re-priced by an earlier collapse of the pass: the next pass.
-            if (edge_[e.idx()].cost != key_cost(k) || m_.is_deleted(e)) continue;
+            if (edge_[e.idx()].cost != key_cost(k)) continue;
             EdgeChoice choice;
             if (!evaluate(e, choice)) continue;
             const Halfedge h = HalfedgeMesh::halfedge(e, choice.dir);
@@ -698,6 +796,8 @@ private:
             report();
             if (m_.n_vertices() <= floor) break;
         }
+        defer_ = false;
+        price_and_count(Pricing::Stale);  // for the next pass
         return done;
     }
 
@@ -1176,6 +1276,7 @@ private:
     void forget(Edge e) {
         if (heap_.contains(e.idx())) heap_.remove(e.idx());
         edge_[e.idx()].cost = kNoCollapse;
+        stale_[e.idx()] = 0;
     }
 
     // Collapses h to p; a seam collapse (from a coincident vertex) collapses the other side
@@ -1303,6 +1404,21 @@ private:
     // Re-prices after a collapse into v1 (start: an outgoing halfedge of v1).
     void reprice_around(Vertex v1, Halfedge start) {
         Halfedge g = start;
+        if (defer_) {  // a batch pass: mark the same edges stale
+            do {
+                stale_[HalfedgeMesh::edge(g).idx()] = 1;
+                if (o_.cost == DecimationCost::Roundness) {
+                    const Halfedge ws = m_.halfedge(m_.to_vertex(g));
+                    Halfedge k = ws;
+                    do {
+                        stale_[HalfedgeMesh::edge(k).idx()] = 1;
+                        k = m_.ccw_rotated(k);
+                    } while (k != ws);
+                }
+                g = m_.ccw_rotated(g);
+            } while (g != start);
+            return;
+        }
         // Re-price: the edges at v1 (and, for roundness, at its neighbours, whose faces
         // changed shape). One walk lists the ring and asks the cache for the neighbours'
         // data, so the misses overlap instead of coming one pricing after the other.
@@ -1360,11 +1476,23 @@ private:
     std::vector<EdgeKey> batch_;
     std::vector<EdgeKey> threshold_bucket_;    ///< batch selection: the keys of one bucket
     std::vector<std::uint32_t> bucket_count_;  ///< batch selection: keys per bucket
+    std::size_t candidates_ = 0;               ///< batch selection: edges that may collapse
+    bool counted_ = false;  ///< bucket_count_ and candidates_ hold the current costs' counts
+    std::vector<std::vector<EdgeKey>> chunk_keys_;  ///< batch selection: each chunk's keys
+    std::vector<std::uint32_t> bucket_count2_;      ///< the second worker's histogram
     std::uint32_t pass_ = 0;
     std::vector<std::uint32_t> locked_;
     std::vector<Vertex> parent_;
     EdgeHeap<EdgeCost> heap_{edge_};
     bool heap_active_ = false;  ///< the exact phase: re-priced edges go into the heap
+    // A batch pass defers re-pricing: a collapse marks the edges it changes stale instead, and
+    // each stale edge is priced once, when the pass reaches it or after the pass (on two
+    // threads). The same costs: an edge's price reads only its ends' quadrics, positions,
+    // flags and rings, which change only in a collapse into one of its ends (or, for
+    // roundness, a neighbour), and that collapse marks it. Not with coincident vertices, whose
+    // price also reads a copy's ring.
+    bool defer_ = false;
+    std::vector<std::uint8_t> stale_;  ///< per edge: its cost awaits re-pricing (defer_)
     VertexProperty<TexCoord> vuv_;
     HalfedgeProperty<TexCoord> huv_;
     std::uint32_t iteration_ = 0;
