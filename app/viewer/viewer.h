@@ -480,6 +480,10 @@ private:
     void poll_proxy_job();
     /// Uploads what session_.shown() shows to the exact renderer (sync_renderer's work).
     void upload_shown();
+    /// Gives the proxy's renderer the current colouring, sampled through `representative`, when
+    /// it is the colouring of the state `stands_for`; no colours otherwise.
+    void colour_proxy(MeshRenderer& r, const MeshKey& stands_for,
+                      const std::vector<Index>& representative);
     /// Remembers the colours given to the exact renderer (for the proxy's colours).
     void note_exact_colors(const VertexColors& colors, const HalfedgeMesh& mesh);
     /// Before the UI is rendered: the orbit's camera, the note.

@@ -199,6 +199,14 @@ MeshRenderer* Viewer::choose_loading_picture() {
     return &r;
 }
 
+void Viewer::colour_proxy(MeshRenderer& r, const MeshKey& stands_for,
+                          const std::vector<Index>& representative) {
+    if (proxy_.colors_key == stands_for && !proxy_.colors.colors.empty())
+        r.set_vertex_colors(sample_proxy_colors(proxy_.colors, representative));
+    else
+        r.clear_vertex_colors();
+}
+
 MeshRenderer* Viewer::choose_clustered_prediction() {
     proxy_.drew_predicted = false;
     if (ready(proxy_.basis_job)) {
@@ -249,10 +257,7 @@ MeshRenderer* Viewer::choose_clustered_prediction() {
             for (const Point& x : predicted.positions)
                 if (!x.allFinite()) return nullptr;  // diverging: the exact run says why
             r.upload_triangles(predicted.positions, stand_in.triangles);
-            if (proxy_.colors_key == doc_key && !proxy_.colors.colors.empty())
-                r.set_vertex_colors(sample_proxy_colors(proxy_.colors, stand_in.representative));
-            else
-                r.clear_vertex_colors();
+            colour_proxy(r, doc_key, stand_in.representative);
             proxy_.error_pixels = proxy_error_pixels(predicted.bound, view_.camera,
                                                      ImGui::GetIO().DisplayFramebufferScale.y);
         } catch (const std::exception& e) {
@@ -316,10 +321,7 @@ MeshRenderer* Viewer::choose_renderer() {
             }
             if (proxy_.uploaded_colors != proxy_.colors_stamp) {
                 proxy_.uploaded_colors = proxy_.colors_stamp;
-                if (proxy_.colors_key == proxy_.current_key && !proxy_.colors.colors.empty())
-                    r.set_vertex_colors(sample_proxy_colors(proxy_.colors, proxy->representative));
-                else
-                    r.clear_vertex_colors();
+                colour_proxy(r, proxy_.current_key, proxy->representative);
             }
         } catch (const std::exception& e) {
             session_.notify_error(std::string("simplified view: ") + e.what());

@@ -21,6 +21,21 @@ namespace {
 }();
 }  // namespace
 
+std::vector<Point> cluster_means(const HalfedgeMesh& mesh, const std::vector<Point>& x,
+                                 const std::vector<Index>& cluster_of, std::size_t clusters) {
+    std::vector<Point> sum(clusters, Point::Zero());
+    std::vector<int> count(clusters, 0);
+    for (Vertex v : mesh.vertices()) {
+        sum[cluster_of[v.idx()]] += x[v.idx()];
+        ++count[cluster_of[v.idx()]];
+    }
+    for (std::size_t c = 0; c < clusters; ++c) {
+        REQUIRE(count[c] > 0);
+        sum[c] /= count[c];
+    }
+    return sum;
+}
+
 HalfedgeMesh two_spheres() {
     PolygonSoup soup = to_soup(make_icosphere(2));
     const std::size_t n = soup.positions.size(), c = soup.corners.size(), f = soup.n_faces();

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "core/halfedge_mesh.h"
 #include "core/validate.h"
@@ -33,6 +34,11 @@ inline bool exists(const std::string& path) {
 
 /// A sphere with normals, colours and texture coordinates on its vertices.
 HalfedgeMesh attributed_sphere();
+
+/// Per cluster, the mean of the positions `x` (one per storage index) of `mesh`'s vertices in
+/// it (cluster_of: one cluster below `clusters` per storage index); every cluster must have one.
+std::vector<Point> cluster_means(const HalfedgeMesh& mesh, const std::vector<Point>& x,
+                                 const std::vector<Index>& cluster_of, std::size_t clusters);
 
 /// Two icospheres (subdivision 2) side by side, the second moved by 3 along x, from one soup:
 /// two components, the second's vertices numbered after the first's.

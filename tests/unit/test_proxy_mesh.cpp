@@ -19,6 +19,16 @@ using namespace trilab;
 
 namespace {
 
+/// `mesh` Loop-subdivided once.
+HalfedgeMesh loop_once(const HalfedgeMesh& mesh) {
+    SubdivisionOptions options;
+    options.iterations = 1;
+    options.keep_levels = false;
+    options.morph = false;
+    NullProgress progress;
+    return subdivide(mesh, options, progress).levels.back().mesh;
+}
+
 /// Checks what every proxy promises against its mesh.
 void check_proxy(const HalfedgeMesh& mesh, const ProxyMesh& p, std::size_t target) {
     REQUIRE(p.positions.size() == p.representative.size());
@@ -97,13 +107,7 @@ TEST_CASE("make_proxy_mesh is deterministic, whatever the thread count", "[proxy
 TEST_CASE("make_proxy_mesh on the subdivided bunny", "[proxy_mesh]") {
     const std::string path = test::shared_mesh("stanford-bunny.obj");
     SKIP_IF_MISSING(path);
-    SubdivisionOptions options;
-    options.iterations = 1;
-    options.keep_levels = false;
-    options.morph = false;
-    NullProgress progress;
-    const HalfedgeMesh mesh =
-        subdivide(read_mesh(path).mesh, options, progress).levels.back().mesh;  // 278k faces
+    const HalfedgeMesh mesh = loop_once(read_mesh(path).mesh);  // 278k faces
     ProxyMeshOptions proxy_options;
     proxy_options.target_triangles = 20000;
     const ProxyMesh p = make_proxy_mesh(mesh, proxy_options);
@@ -186,13 +190,7 @@ TEST_CASE("make_soup_proxy_mesh equals make_proxy_mesh of the mesh built from th
     SECTION("the subdivided bunny") {
         const std::string path = test::shared_mesh("stanford-bunny.obj");
         SKIP_IF_MISSING(path);
-        SubdivisionOptions options;
-        options.iterations = 1;
-        options.keep_levels = false;
-        options.morph = false;
-        NullProgress progress;
-        check_soup_proxy_matches(
-            subdivide(read_mesh(path).mesh, options, progress).levels.back().mesh, 20000);
+        check_soup_proxy_matches(loop_once(read_mesh(path).mesh), 20000);
     }
 }
 
@@ -288,17 +286,11 @@ TEST_CASE("moved_proxy_mesh keeps the clusters and measures how far the moved ve
     moved.set_positions(x);
     const ProxyMesh m = moved_proxy_mesh(p, moved);
     REQUIRE(m.positions.size() == p.positions.size());
-    std::vector<Point> sum(p.positions.size(), Point::Zero());
-    std::vector<int> count(p.positions.size(), 0);
-    for (Vertex v : moved.vertices()) {
-        sum[p.cluster_of[v.idx()]] += moved.position(v);
-        ++count[p.cluster_of[v.idx()]];
-    }
+    const std::vector<Point> means =
+        test::cluster_means(moved, moved.positions(), p.cluster_of, p.positions.size());
     double worst = 0;
-    for (std::size_t c = 0; c < sum.size(); ++c) {
-        REQUIRE(count[c] > 0);
-        CHECK((m.positions[c] - sum[c] / count[c]).norm() < 1e-12);
-    }
+    for (std::size_t c = 0; c < means.size(); ++c)
+        CHECK((m.positions[c] - means[c]).norm() < 1e-12);
     for (Vertex v : moved.vertices())
         worst = std::max(worst, (moved.position(v) - m.positions[p.cluster_of[v.idx()]]).norm());
     CHECK(worst == Approx(m.error_bound).epsilon(1e-12));

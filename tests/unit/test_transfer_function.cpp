@@ -410,17 +410,12 @@ TEST_CASE("the clustered prediction is the clusters' mean of the prediction, wit
         o.step = step;
         INFO("implicit step " << step);
         const std::vector<Point> full = predict_fairing(d, o, d.base_positions);
-        std::vector<Point> sum(nc, Point::Zero());
-        std::vector<int> count(nc, 0);
-        for (Vertex v : mesh.vertices()) {
-            sum[proxy.cluster_of[v.idx()]] += full[v.idx()];
-            ++count[proxy.cluster_of[v.idx()]];
-        }
+        const std::vector<Point> means = test::cluster_means(mesh, full, proxy.cluster_of, nc);
         const ClusteredPrediction p = predict_clustered(b, d, o);
         REQUIRE(p.positions.size() == nc);
         double worst_mean = 0, farthest = 0;
         for (std::size_t c = 0; c < nc; ++c)
-            worst_mean = std::max(worst_mean, (p.positions[c] - sum[c] / count[c]).norm());
+            worst_mean = std::max(worst_mean, (p.positions[c] - means[c]).norm());
         for (Vertex v : mesh.vertices())
             farthest =
                 std::max(farthest, (full[v.idx()] - p.positions[proxy.cluster_of[v.idx()]]).norm());
