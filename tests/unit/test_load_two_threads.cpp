@@ -1,8 +1,8 @@
 // The load's two-thread passes against their one-thread passes (detail::set_build_threads):
-// build_mesh's edge pairing (stage 2's fast path) and the PLY reader's triangle rows (each
-// thread half of the rows) must give the same mesh element for element, the same report
-// and the same errors. The meshes are over 65,536 halfedges and rows, so
-// that the two-thread passes run.
+// build_mesh's edge pairing (stage 2's fast path), its fan search (stage 3a) and the PLY reader's
+// triangle rows (each thread half of the rows) must give the same mesh element for element, the
+// same report and the same errors. The meshes are over 65,536 halfedges and rows, so that the
+// two-thread passes run.
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -51,9 +51,12 @@ void check_same_report(const LoadReport& a, const LoadReport& b) {
 }
 
 /// Two copies of a 120 x 120 grid (open: boundary fans) that share every 7th vertex and
-/// no edge, so that those vertices have two fans each (split into copies), faces in an
-/// order mixing the two sheets; a few vertices are used by no face.
-PolygonSoup two_sheets_sharing_vertices() {
+/// no edge, so that those vertices have two fans each (split into copies); a few vertices
+/// are used by no face. `mixed`: the faces in an order mixing the two sheets; else the
+/// first sheet's faces, then the second's, so that each shared vertex has its first fan in
+/// the lower half of the halfedges and its second in the upper half (the two-thread fan
+/// search's merge).
+PolygonSoup two_sheets_sharing_vertices(bool mixed) {
     const PolygonSoup sheet = to_soup(make_grid(120));
     const Index n = Index(sheet.positions.size());
     PolygonSoup soup;
@@ -61,6 +64,7 @@ PolygonSoup two_sheets_sharing_vertices() {
     for (const Point& p : sheet.positions) soup.positions.push_back(p + Point(0, 0, 1));
     for (int k = 0; k < 5; ++k) soup.positions.push_back(Point(k, -1, 0));  // isolated
     auto other = [&](Index v) { return v % 7 == 0 ? v : v + n; };
+    std::vector<std::vector<Index>> later;
     for (std::size_t f = 0; f < sheet.n_faces(); ++f) {
         std::vector<Index> mine, theirs;
         for (std::size_t c = sheet.face_offsets[f]; c < sheet.face_offsets[f + 1]; ++c) {
@@ -69,10 +73,14 @@ PolygonSoup two_sheets_sharing_vertices() {
         }
         // The second sheet's faces first for odd faces (a vertex's lowest halfedge is then
         // in one sheet or the other).
-        if (f % 2) std::swap(mine, theirs);
+        if (f % 2 && mixed) std::swap(mine, theirs);
         soup.add_face(mine);
-        soup.add_face(theirs);
+        if (mixed)
+            soup.add_face(theirs);
+        else
+            later.push_back(theirs);
     }
+    for (const std::vector<Index>& face : later) soup.add_face(face);
     return soup;
 }
 
@@ -117,10 +125,12 @@ std::string ply_error(const std::string& bytes) {
 }  // namespace
 
 TEST_CASE("build_mesh builds on two threads exactly what it builds on one", "[core][builder]") {
-    const std::string name = GENERATE(as<std::string>(), "two sheets", "icosphere");
+    const std::string name =
+        GENERATE(as<std::string>(), "two sheets", "two sheets in turn", "icosphere");
     INFO(name);
+    const bool sheets = name != "icosphere";
     const PolygonSoup soup =
-        name == "two sheets" ? two_sheets_sharing_vertices() : to_soup(make_icosphere(60));
+        sheets ? two_sheets_sharing_vertices(name == "two sheets") : to_soup(make_icosphere(60));
     REQUIRE(soup.corners.size() > 65536);
     const auto [one, two] = on_one_then_two_threads([&] {
         LoadReport report;
@@ -131,7 +141,7 @@ TEST_CASE("build_mesh builds on two threads exactly what it builds on one", "[co
     REQUIRE(validate(two.first).ok);
     check_same_mesh(one.first, two.first);
     check_same_report(one.second, two.second);
-    if (name == "two sheets") {
+    if (sheets) {
         // 121 x 121 grid vertices, every 7th shared: each gets one copy.
         CHECK(two.second.nonmanifold_vertices_split == (121 * 121 + 6) / 7);
         CHECK(two.second.vertex_copies_added == (121 * 121 + 6) / 7);
