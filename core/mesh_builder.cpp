@@ -11,13 +11,9 @@
 #include <thread>
 #include <utility>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#include <unistd.h>
-#endif
-
 #include "core/errors.h"
 #include "core/number_text.h"
+#include "core/prefault.h"
 #include "core/prefetch.h"
 #include "core/triangulate.h"
 #include "core/two_threads.h"
@@ -57,19 +53,38 @@ void check_polygon_soup(const PolygonSoup& soup) {
     if (soup.face_offsets.empty() || soup.face_offsets.front() != 0 ||
         soup.face_offsets.back() != soup.corners.size())
         throw InvalidArgument("build_mesh: face_offsets do not match the corner list");
-    for (std::size_t f = 0; f + 1 < soup.face_offsets.size(); ++f) {
-        if (soup.face_offsets[f + 1] < soup.face_offsets[f])
-            throw InvalidArgument("build_mesh: face_offsets decrease at face " + std::to_string(f));
-        for (std::size_t c = soup.face_offsets[f]; c < soup.face_offsets[f + 1]; ++c)
-            if (soup.corners[c] >= nv)
-                throw InvalidArgument("build_mesh: face " + std::to_string(f) + " uses vertex " +
-                                      std::to_string(soup.corners[c]) + " but there are only " +
-                                      std::to_string(nv) + " vertices");
-    }
-    for (std::size_t v = 0; v < nv; ++v)
-        if (!soup.positions[v].allFinite())
-            throw InvalidArgument("build_mesh: vertex " + std::to_string(v) +
-                                  " has a non-finite coordinate");
+    // The faces, then the positions; a large soup's in two halves on two threads, the lower
+    // half's first problem reported before the upper half's (as one pass finds them).
+    const std::size_t nf = soup.n_faces();
+    std::string problem[2][2];  // [faces, positions][half]
+    on_two_threads(worth_two_threads(nf) && worth_two_threads(nv), [&](int half) {
+        for (std::size_t f = half == 0 ? 0 : nf / 2, f_end = half == 0 ? nf / 2 : nf; f < f_end;
+             ++f) {
+            if (soup.face_offsets[f + 1] < soup.face_offsets[f]) {
+                problem[0][half] = "build_mesh: face_offsets decrease at face " + std::to_string(f);
+                break;
+            }
+            bool bad = false;
+            for (std::size_t c = soup.face_offsets[f]; c < soup.face_offsets[f + 1] && !bad; ++c)
+                if (soup.corners[c] >= nv) {
+                    problem[0][half] = "build_mesh: face " + std::to_string(f) + " uses vertex " +
+                                       std::to_string(soup.corners[c]) + " but there are only " +
+                                       std::to_string(nv) + " vertices";
+                    bad = true;
+                }
+            if (bad) break;
+        }
+        for (std::size_t v = half == 0 ? 0 : nv / 2, v_end = half == 0 ? nv / 2 : nv; v < v_end;
+             ++v)
+            if (!soup.positions[v].allFinite()) {
+                problem[1][half] =
+                    "build_mesh: vertex " + std::to_string(v) + " has a non-finite coordinate";
+                break;
+            }
+    });
+    for (const auto& kind : problem)
+        for (const std::string& p : kind)
+            if (!p.empty()) throw InvalidArgument(p);
     auto check_size = [&](std::size_t n, std::size_t want, const char* what) {
         if (n != 0 && n != want)
             throw InvalidArgument(std::string("build_mesh: ") + what + " has " + std::to_string(n) +
@@ -118,14 +133,21 @@ inline std::size_t next_corner(std::size_t c) {
 
 /// True when every face of the soup is a triangle without a repeated corner.
 bool is_clean_triangle_soup(const PolygonSoup& soup) {
-    bool clean = soup.corners.size() == 3 * soup.n_faces();
-    for (std::size_t f = 0; f < soup.n_faces() && clean; ++f) {
-        const std::size_t b = soup.face_offsets[f];
-        clean = soup.face_offsets[f + 1] == b + 3 && soup.corners[b] != soup.corners[b + 1] &&
-                soup.corners[b + 1] != soup.corners[b + 2] &&
-                soup.corners[b] != soup.corners[b + 2];
-    }
-    return clean;
+    const std::size_t nf = soup.n_faces();
+    if (soup.corners.size() != 3 * nf) return false;
+    bool clean[2] = {true, true};  // per half of the faces (two threads for a large soup)
+    on_two_threads(worth_two_threads(nf), [&](int half) {
+        bool ok = true;
+        for (std::size_t f = half == 0 ? 0 : nf / 2, f_end = half == 0 ? nf / 2 : nf;
+             f < f_end && ok; ++f) {
+            const std::size_t b = soup.face_offsets[f];
+            ok = soup.face_offsets[f + 1] == b + 3 && soup.corners[b] != soup.corners[b + 1] &&
+                 soup.corners[b + 1] != soup.corners[b + 2] &&
+                 soup.corners[b] != soup.corners[b + 2];
+        }
+        clean[half] = ok;
+    });
+    return clean[0] && clean[1];
 }
 
 /// True when the n corners at c have fewer than three entries or repeat a vertex (pairwise
@@ -489,39 +511,6 @@ bool pair_corners(std::uint64_t* entry, const std::vector<Index>& start, bool pa
     return !conflict.load();
 }
 
-/// Reserves n elements in each of the three arrays and, on Linux, has the kernel map their
-/// fresh pages on two threads (MADV_POPULATE_WRITE, each thread half of each block) before
-/// the caller's resize fills them: the page faults of a large build, which the fill would
-/// otherwise take one at a time on one thread. Only a hint: nothing changes where the
-/// kernel lacks it. The arrays may repeat (one array: pass it three times).
-template <typename A, typename B, typename C>
-void reserve_prefaulted(std::vector<A>& a, std::vector<B>& b, std::vector<C>& c, std::size_t n,
-                        bool parallel) {
-    a.reserve(n);
-    b.reserve(n);
-    c.reserve(n);
-#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
-    if (!parallel) return;
-    const std::uintptr_t page = std::uintptr_t(::sysconf(_SC_PAGESIZE));
-    auto populate = [&](const void* data, std::size_t bytes, int part) {
-        const std::uintptr_t begin = reinterpret_cast<std::uintptr_t>(data);
-        const std::uintptr_t mid = begin + bytes / 2;
-        const std::uintptr_t from = ((part == 0 ? begin : mid) + page - 1) & ~(page - 1);
-        const std::uintptr_t to = (part == 0 ? mid : begin + bytes) & ~(page - 1);
-        if (to > from) ::madvise(reinterpret_cast<void*>(from), to - from, MADV_POPULATE_WRITE);
-    };
-    on_two_threads(true, [&](int part) {
-        populate(a.data(), n * sizeof(A), part);
-        if (static_cast<const void*>(b.data()) != a.data()) populate(b.data(), n * sizeof(B), part);
-        if (static_cast<const void*>(c.data()) != a.data() &&
-            static_cast<const void*>(c.data()) != b.data())
-            populate(c.data(), n * sizeof(C), part);
-    });
-#else
-    (void)parallel;
-#endif
-}
-
 /// Fast path step 3: the halfedge of every corner edge, in `link` (edges numbered in the
 /// order of their first corner; halfedge 2e runs from the smaller to the larger vertex), then
 /// the connectivity arrays as stage 2c leaves them: every triangle a face, in order. The
@@ -549,11 +538,17 @@ void connect_paired_corners(const Index* tri, std::size_t n_corners, std::unique
     });
     const std::size_t n_h = 2 * (n_first[0] + n_first[1]), n_tris = n_corners / 3;
     c.n_h = n_h;
-    reserve_prefaulted(c.hto, c.hnext, c.hface, n_h, parallel);
-    c.hto.resize(n_h);
-    c.hnext.resize(n_h);
-    c.hface.resize(n_h);
-    c.face_halfedge.resize(n_tris);
+    reserve_prefaulted(n_h, parallel, c.hto, c.hnext, c.hface);
+    reserve_prefaulted(n_tris, parallel, c.face_halfedge);
+    on_two_threads(parallel, [&](int part) {  // each thread sizes its own arrays
+        if (part == 0) {
+            c.hto.resize(n_h);
+            c.face_halfedge.resize(n_tris);
+        } else {
+            c.hnext.resize(n_h);
+            c.hface.resize(n_h);
+        }
+    });
     if (keep_corners) c.face_tri.resize(n_tris);
     on_two_threads(parallel, [&](int part) {
         for (std::size_t t = lo[part] / 3; t < hi[part] / 3; ++t) {
@@ -572,7 +567,7 @@ void connect_paired_corners(const Index* tri, std::size_t n_corners, std::unique
     // The boundary halfedges (of the edges with one corner edge) have no face; each points
     // to where its twin starts, which is where its twin's next-but-one points. prev
     // inverts next on the face halfedges (find_fans links the boundary ones).
-    reserve_prefaulted(c.hprev, c.hprev, c.hprev, n_h, parallel);
+    reserve_prefaulted(n_h, parallel, c.hprev);
     c.hprev.resize(n_h);
     const std::size_t mid_h = (n_h / 4) * 2;
     on_two_threads(parallel, [&](int part) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <vector>
 
@@ -27,9 +28,9 @@ constexpr std::size_t kAhead = 8;
 namespace {
 
 // validate() in three stages, one method each: the halfedges, the faces, the vertices (their
-// fans). Each returns the first broken invariant ("" when none). A large mesh's stage runs as
-// two halves on two threads, the stages one after the other (a stage reads only what the
-// stages before it proved in range).
+// fans). Each returns the first broken invariant ("" when none). A large mesh's stage runs in
+// 32 pieces shared by two threads (in_chunks), the stages one after the other (a stage reads
+// only what the stages before it proved in range).
 //
 // The vertex stage first walks the fans without knowing the vertices' degrees (walk_fans):
 // once the halfedges are proven, rotation (x -> twin(prev(x))) is a permutation of the live
@@ -370,16 +371,23 @@ bool Validator::check_vertex_halfedges(const std::vector<Index>& boundary,
     return true;
 }
 
-/// Runs stage(part, begin, end) on the two halves of [0, n) (on two threads for a large n);
-/// returns the first half's error, else the second's.
+/// Runs stage(chunk, begin, end) on the pieces of [0, n), kChunks of them on two threads for a
+/// large n (each thread takes the next piece left, so that neither waits on the other at the
+/// end), else one; returns the first piece's error in order, as a pass in one piece would.
+constexpr std::size_t kChunks = 32;
 template <typename Stage>
-std::string in_halves(std::size_t n, const Stage& stage) {
-    std::string error[2];
-    const std::size_t mid = n / 2;
-    on_two_threads(worth_two_threads(n), [&](int part) {
-        error[part] = part == 0 ? stage(0, 0, mid) : stage(1, mid, n);
+std::string in_chunks(std::size_t n, const Stage& stage) {
+    const bool parallel = worth_two_threads(n);
+    const std::size_t chunks = parallel ? kChunks : 1;
+    std::array<std::string, kChunks> error;
+    std::atomic<std::size_t> next{0};
+    on_two_threads(parallel, [&](int) {
+        for (std::size_t k; (k = next.fetch_add(1)) < chunks;)
+            error[k] = stage(k, n * k / chunks, n * (k + 1) / chunks);
     });
-    return error[0].empty() ? error[1] : error[0];
+    for (const std::string& e : error)
+        if (!e.empty()) return e;
+    return {};
 }
 
 }  // namespace
@@ -388,28 +396,34 @@ ValidationResult validate(const HalfedgeMesh& m) {
     if (m.halfedges_size() != 2 * m.edges_size())
         return {false, "halfedge storage is not twice the edge storage"};
     Validator check(m);
-    std::vector<Index> boundary[2];
-    std::string error = in_halves(check.n_halfedges(), [&](int part, std::size_t b, std::size_t e) {
-        return check.check_halfedges(b, e, boundary[part]);
-    });
+    std::array<std::vector<Index>, kChunks> boundary;
+    std::string error =
+        in_chunks(check.n_halfedges(), [&](std::size_t k, std::size_t b, std::size_t e) {
+            return check.check_halfedges(b, e, boundary[k]);
+        });
     if (error.empty())
-        error = in_halves(check.n_faces(), [&](int, std::size_t b, std::size_t e) {
+        error = in_chunks(check.n_faces(), [&](std::size_t, std::size_t b, std::size_t e) {
             return check.check_faces(b, e);
         });
     if (error.empty()) {
-        std::size_t fans[2] = {0, 0}, with_halfedge = 0;
-        bool fans_ok[2] = {true, true};
-        in_halves(check.n_halfedges(), [&](int part, std::size_t b, std::size_t e) {
-            fans_ok[part] = check.walk_fans(b, e, fans[part]);
+        std::array<std::size_t, kChunks> fans{};
+        std::array<std::uint8_t, kChunks> fans_ok{};
+        std::size_t with_halfedge = 0;
+        fans_ok.fill(1);
+        in_chunks(check.n_halfedges(), [&](std::size_t k, std::size_t b, std::size_t e) {
+            fans_ok[k] = check.walk_fans(b, e, fans[k]);
             return std::string();
         });
-        boundary[0].insert(boundary[0].end(), boundary[1].begin(), boundary[1].end());
+        for (std::size_t k = 1; k < kChunks; ++k)
+            boundary[0].insert(boundary[0].end(), boundary[k].begin(), boundary[k].end());
         // Each fan holds its own vertex's halfedge, so the fans are as many as the vertices
         // with a halfedge exactly when each of those has one fan and no other vertex any;
         // each boundary halfedge being its vertex's halfedge leaves one to a fan.
-        const bool fans_pass = fans_ok[0] && fans_ok[1] &&
+        std::size_t n_fans = 0;
+        for (std::size_t f : fans) n_fans += f;
+        const bool fans_pass = std::find(fans_ok.begin(), fans_ok.end(), 0) == fans_ok.end() &&
                                check.check_vertex_halfedges(boundary[0], with_halfedge) &&
-                               fans[0] + fans[1] == with_halfedge;
+                               n_fans == with_halfedge;
         if (!fans_pass) error = check.check_vertices();  // names the broken vertex
         if (error.empty() && !fans_pass) error = "the vertices' fans do not hold every halfedge";
     }

@@ -42,6 +42,7 @@
 #include "core/io/file_util.h"
 #include "core/io/mesh_io.h"
 #include "core/io/text_scanner.h"
+#include "core/prefault.h"
 #include "core/two_threads.h"
 
 namespace trilab {
@@ -779,8 +780,15 @@ private:
         std::vector<std::size_t>& offsets = soup_.face_offsets;
         std::vector<Index>& corners = soup_.corners;
         const std::size_t n_offsets = offsets.size(), n_corners = corners.size();
-        offsets.resize(n_offsets + n);
-        corners.resize(n_corners + 3 * n);
+        // Their pages mapped on two threads, each thread sizing one array (prefault.h).
+        reserve_prefaulted(n_offsets + n, true, offsets);
+        reserve_prefaulted(n_corners + 3 * n, true, corners);
+        on_two_threads(true, [&](int part) {
+            if (part == 0)
+                offsets.resize(n_offsets + n);
+            else
+                corners.resize(n_corners + 3 * n);
+        });
         const std::uint64_t nv = n_vertices_declared_;
         std::atomic<bool> irregular{false};
         on_two_threads(true, [&](int part) {

@@ -3,8 +3,10 @@
 // triangle rows (each thread half of the rows) must give the same mesh element for element, the
 // same report and the same errors. The meshes are over 65,536 halfedges and rows, so that the
 // two-thread passes run.
+#include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -189,5 +191,50 @@ TEST_CASE("the PLY reader decodes triangle rows on two threads exactly as on one
         const auto [one, two] = on_one_then_two_threads([&] { return ply_error(bytes); });
         CHECK(one == two);
         CHECK_THAT(two, Catch::Contains("truncated"));
+    }
+}
+
+TEST_CASE(
+    "build_mesh checks a large soup on two threads and names the problem one pass names first",
+    "[core][builder]") {
+    const PolygonSoup good = to_soup(make_icosphere(90));  // both over 65,536
+    REQUIRE(good.n_faces() > 65536);
+    REQUIRE(good.positions.size() > 65536);
+    const std::size_t early = 10, late = good.n_faces() - 10;
+    const auto error_of = [](const PolygonSoup& soup) {
+        const auto [one, two] = on_one_then_two_threads([&] {
+            try {
+                LoadReport report;
+                build_mesh(soup, report);
+            } catch (const InvalidArgument& e) {
+                return std::string(e.what());
+            }
+            return std::string();
+        });
+        CHECK(one == two);
+        return two;
+    };
+    const Index nv = Index(good.positions.size());
+    SECTION("a vertex out of range in each half: the earlier face") {
+        PolygonSoup soup = good;
+        soup.corners[soup.face_offsets[late] + 1] = nv + 1;
+        soup.corners[soup.face_offsets[early]] = nv + 7;
+        CHECK_THAT(error_of(soup), Catch::Contains("face " + std::to_string(early) +
+                                                   " uses vertex " + std::to_string(nv + 7)));
+    }
+    SECTION("a face in the upper half before a position in the lower half") {
+        PolygonSoup soup = good;
+        soup.positions[3].x() = std::nan("");
+        soup.corners[soup.face_offsets[late]] = nv;
+        CHECK_THAT(error_of(soup), Catch::Contains("face " + std::to_string(late)));
+    }
+    SECTION("a non-finite position in each half: the lower vertex") {
+        PolygonSoup soup = good;
+        soup.positions[nv - 2].y() = std::numeric_limits<double>::infinity();
+        soup.positions[5].z() = std::nan("");
+        CHECK_THAT(error_of(soup), Catch::Contains("vertex 5 has a non-finite coordinate"));
+    }
+    SECTION("a clean soup builds the same on both") {
+        CHECK(error_of(good).empty());
     }
 }
