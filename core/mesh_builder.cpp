@@ -440,16 +440,31 @@ std::unique_ptr<std::uint64_t[]> bucket_corners_by_pair(const Index* tri, std::s
         for (std::size_t c = lo[part]; c < hi[part]; ++c)
             ++count[std::min(tri[c], tri[next_corner(c)])];
     });
+    // The buckets' starts (a prefix sum; each half of the vertices on its own thread, the
+    // upper half offset by the lower half's total), and where each thread's entries go in
+    // each bucket: the first half's corners before the second's.
+    reserve_prefaulted(n_vertices + 1, parallel, start);
     start.resize(n_vertices + 1);
-    Index running = 0;
-    for (std::size_t v = 0; v < n_vertices; ++v) {
-        start[v] = running;
-        const Index n0 = fill[0][v];
-        running += n0 + fill[1][v];
-        fill[0][v] = start[v];
-        fill[1][v] = start[v] + n0;
-    }
-    start[n_vertices] = running;
+    const std::size_t v_mid = n_vertices / 2;
+    Index lower_total[2] = {0, 0};  // the lower half's entries, by its two quarters
+    on_two_threads(parallel, [&](int part) {
+        Index sum = 0;
+        for (std::size_t v = part == 0 ? 0 : v_mid / 2; v < (part == 0 ? v_mid / 2 : v_mid); ++v)
+            sum += fill[0][v] + fill[1][v];
+        lower_total[part] = sum;
+    });
+    on_two_threads(parallel, [&](int part) {
+        Index running = part == 0 ? 0 : lower_total[0] + lower_total[1];
+        for (std::size_t v = part == 0 ? 0 : v_mid, end = part == 0 ? v_mid : n_vertices; v < end;
+             ++v) {
+            start[v] = running;
+            const Index n0 = fill[0][v];
+            running += n0 + fill[1][v];
+            fill[0][v] = start[v];
+            fill[1][v] = start[v] + n0;
+        }
+    });
+    start[n_vertices] = Index(n_corners);
     std::unique_ptr<std::uint64_t[]> entry(new std::uint64_t[n_corners]);  // all written below
     on_two_threads(parallel, [&](int part) {
         Index* at = fill[part].data();
@@ -462,49 +477,62 @@ std::unique_ptr<std::uint64_t[]> bucket_corners_by_pair(const Index* tri, std::s
     return entry;
 }
 
+/// One bucket of fast path step 2 (its m entries at b): false when some pair has a third
+/// corner edge or two in the same direction.
+bool pair_bucket(std::uint64_t* b, std::size_t m, Index* link) {
+    constexpr std::uint64_t kPair = ~kDownward;  // the larger vertex and the corner
+    if (m > 16)                                  // by larger vertex, then corner
+        std::sort(b, b + m,
+                  [](std::uint64_t x, std::uint64_t y) { return (x & kPair) < (y & kPair); });
+    for (std::size_t i = 0; i < m; ++i) {
+        const std::uint64_t x = b[i];
+        if (x == 0) continue;  // a partner already paired (no entry is 0: max > 0)
+        const Index vx = Index((x & kPair) >> 32);
+        std::size_t matches = 0, at = 0;
+        for (std::size_t j = i + 1; j < m; ++j)
+            if (Index((b[j] & kPair) >> 32) == vx) {
+                ++matches;
+                at = j;
+            } else if (m > 16) {
+                break;  // sorted: the group has ended
+            }
+        const Index cx = Index(x);
+        link[cx] = kFirstCorner;
+        if (matches == 0) continue;
+        const std::uint64_t y = b[at];
+        if (matches > 1 || (x & kDownward) == (y & kDownward)) return false;
+        link[Index(y)] = cx;
+        b[at] = 0;  // paired: skipped when the loop reaches it
+    }
+    return true;
+}
+
 /// Fast path step 2: link[c] is kFirstCorner for the first corner edge of each pair (or for
 /// one alone: a boundary edge) and the first corner edge for the second. False when some
-/// pair has a third corner edge or two in the same direction.
+/// pair has a third corner edge or two in the same direction. The buckets go in 32 pieces of
+/// about as many entries each, which the two threads take in turn (so that neither waits
+/// long for the other at the end).
 bool pair_corners(std::uint64_t* entry, const std::vector<Index>& start, bool parallel,
                   Index* link) {
     const std::size_t n_vertices = start.size() - 1;
-    // The buckets split where half the entries are.
-    const std::size_t mid =
-        std::size_t(std::lower_bound(start.begin(), start.end(), start.back() / 2) - start.begin());
-    const std::size_t from[2] = {0, std::min(mid, n_vertices)}, to[2] = {from[1], n_vertices};
+    constexpr std::size_t kPieces = 32;
+    const std::size_t pieces = parallel ? kPieces : 1;
+    std::array<std::size_t, kPieces + 1> piece_start{};
+    for (std::size_t k = 1; k < pieces; ++k)
+        piece_start[k] = std::size_t(
+            std::lower_bound(start.begin(), start.end(), Index(start.back() * k / pieces)) -
+            start.begin());
+    piece_start[pieces] = n_vertices;
+    std::atomic<std::size_t> next_piece{0};
     std::atomic<bool> conflict{false};
-    constexpr std::uint64_t kPair = ~kDownward;  // the larger vertex and the corner
-    on_two_threads(parallel, [&](int part) {
-        for (std::size_t v = from[part]; v < to[part]; ++v) {
-            std::uint64_t* b = entry + start[v];
-            const std::size_t m = start[v + 1] - start[v];
-            if (m > 16)  // by larger vertex, then corner
-                std::sort(b, b + m, [](std::uint64_t x, std::uint64_t y) {
-                    return (x & kPair) < (y & kPair);
-                });
-            for (std::size_t i = 0; i < m; ++i) {
-                const std::uint64_t x = b[i];
-                if (x == 0) continue;  // a partner already paired (no entry is 0: max > 0)
-                const Index vx = Index((x & kPair) >> 32);
-                std::size_t j = i + 1, matches = 0, at = 0;
-                for (; j < m; ++j)
-                    if (Index((b[j] & kPair) >> 32) == vx) {
-                        ++matches;
-                        at = j;
-                    } else if (m > 16) {
-                        break;  // sorted: the group has ended
-                    }
-                const Index cx = Index(x);
-                link[cx] = kFirstCorner;
-                if (matches == 0) continue;
-                const std::uint64_t y = b[at];
-                if (matches > 1 || (x & kDownward) == (y & kDownward)) {
+    on_two_threads(parallel, [&](int) {
+        for (std::size_t k; (k = next_piece.fetch_add(1)) < pieces;) {
+            const std::size_t to = std::min(piece_start[k + 1], n_vertices);
+            for (std::size_t v = std::min(piece_start[k], to); v < to; ++v)
+                if (!pair_bucket(entry + start[v], start[v + 1] - start[v], link)) {
                     conflict.store(true, std::memory_order_relaxed);
                     return;
                 }
-                link[Index(y)] = cx;
-                b[at] = 0;  // paired: skipped when the loop reaches it
-            }
             if (conflict.load(std::memory_order_relaxed)) return;
         }
     });
