@@ -464,27 +464,14 @@ public:
     /// their attributes are kept. Halfedge attributes follow their corner: the value of the
     /// corner at (vertex v, face f) stays at that corner (per-corner "h:texcoord"). Boundary
     /// loops are reversed too; halfedge(v) stays a boundary halfedge at boundary vertices.
-    /// O(vertices + halfedges); keeps every invariant.
+    /// In place, edge by edge (no copy of the connectivity; a copy of a halfedge attribute
+    /// only when there is one). O(vertices + halfedges); keeps every invariant.
     void reverse_orientation();
     /// The same for the edges with edge_mask[e] != 0 only (one per edge storage index), which
     /// must be whole connected components (every edge of a face or boundary loop that one of
     /// them borders): the rest of the mesh is untouched. Throws InvalidArgument for a mask of
     /// the wrong size.
     void reverse_orientation(const std::vector<std::uint8_t>& edge_mask);
-    /// reverse_orientation() in two steps, so that the reading step can run beside other work
-    /// (a region's flip labels its components meanwhile): reversed_connectivity() computes the
-    /// connectivity with every edge reversed and changes nothing; apply_reversed() sets it,
-    /// for the edges with (*edge_mask)[e] != 0 only when a mask is given (whole components, as
-    /// above; the rest keep theirs). Throws InvalidArgument for a mask of the wrong size or a
-    /// connectivity computed on another mesh.
-    struct ReversedConnectivity {
-        std::vector<Halfedge> next, prev, vertex_halfedge, face_halfedge;
-        std::vector<Face> face;
-        std::vector<Index> corner_source;  ///< the old halfedge whose corner each one takes
-    };
-    ReversedConnectivity reversed_connectivity() const;
-    void apply_reversed(ReversedConnectivity reversed,
-                        const std::vector<std::uint8_t>* edge_mask = nullptr);
     /// Compacts storage, removing deleted elements. Returns the index remapping.
     IndexRemap garbage_collection();
     /// Compacts storage into a given order: new vertex i is old vertex vertex_order[i], new face
@@ -513,6 +500,8 @@ private:
     void apply_order(IndexRemap& remap, const std::vector<Index>& v_keep,
                      const std::vector<Index>& h_keep, const std::vector<Index>& e_keep,
                      const std::vector<Index>& f_keep);
+    /// reverse_orientation() of every live edge, or of those with (*edge_mask)[e] != 0.
+    void reverse_edges(const std::vector<std::uint8_t>* edge_mask);
     void mark_deleted(Vertex v);
     void mark_deleted(Edge e);
     void mark_deleted(Face f);

@@ -1,7 +1,10 @@
 // Topological operators of HalfedgeMesh: edge collapse, edge flip, edge split, face split,
 // orientation reversal.
 // Each keeps every invariant listed in halfedge_mesh.h; the legality checks say when.
+#include <algorithm>
+#include <iterator>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/errors.h"
@@ -263,7 +266,7 @@ Vertex HalfedgeMesh::split(Face f, const Point& p) {
 }
 
 void HalfedgeMesh::reverse_orientation() {
-    apply_reversed(reversed_connectivity());
+    reverse_edges(nullptr);
 }
 
 void HalfedgeMesh::reverse_orientation(const std::vector<std::uint8_t>& edge_mask) {
@@ -271,79 +274,57 @@ void HalfedgeMesh::reverse_orientation(const std::vector<std::uint8_t>& edge_mas
         throw InvalidArgument("reverse_orientation: expected one mask entry per edge (" +
                               std::to_string(edges_size()) + "), got " +
                               std::to_string(edge_mask.size()));
-    apply_reversed(reversed_connectivity(), &edge_mask);
+    reverse_edges(&edge_mask);
 }
 
-HalfedgeMesh::ReversedConnectivity HalfedgeMesh::reversed_connectivity() const {
+void HalfedgeMesh::reverse_edges(const std::vector<std::uint8_t>* edge_mask) {
     // Halfedge h keeps its direction (to_vertex) and moves to the other side of its edge:
     //   face'(h) = face(twin(h)),  next'(h) = twin(prev(twin(h))),  prev'(h) = twin(next(twin(h))).
     // Face f then consists of the twins of its old halfedges, in reverse order; a boundary loop
-    // likewise. The corner (to_vertex(g), face'(g)) of halfedge g was the corner of the old
-    // halfedge prev(twin(g)) of the same face, so halfedge attributes are gathered from there.
-    const std::size_t nh = halfedges_size();
-    ReversedConnectivity r;
-    r.next.resize(nh);
-    r.prev.resize(nh);
-    r.face.resize(nh);
-    r.corner_source.resize(nh);
-    for (std::size_t i = 0; i < nh; ++i) {
-        const Halfedge h(static_cast<Index>(i));
-        if (is_deleted(h)) {
-            r.next[i] = next(h);
-            r.prev[i] = prev(h);
-            r.face[i] = face(h);
-            r.corner_source[i] = static_cast<Index>(i);
-            continue;
-        }
-        const Halfedge t = twin(h);
-        r.face[i] = face(t);
-        r.next[i] = twin(prev(t));
-        r.prev[i] = twin(next(t));
-        r.corner_source[i] = prev(t).idx();
+    // likewise. The new values of an edge's two halfedges depend on the old values of those two
+    // only, so each edge is rewritten in place. The corner (to_vertex(g), face'(g)) of halfedge
+    // g was the corner of the old halfedge prev(twin(g)) of the same face, so halfedge
+    // attributes are gathered from there, and halfedge(v) becomes twin(prev(halfedge(v))):
+    // both read prev before the edges change it.
+    const std::size_t ne = edges_size();
+    const bool garbage = has_garbage();
+    const auto reversed = [&](std::size_t e) {
+        return (!edge_mask || (*edge_mask)[e] != 0) && !(garbage && edeleted_[Edge(Index(e))]);
+    };
+    std::vector<Halfedge>& next = hnext_.vector();
+    std::vector<Halfedge>& prev = hprev_.vector();
+    std::vector<Face>& face = hface_.vector();
+    if (hprops_.n_properties() > 4) {  // attributes beyond the connectivity
+        std::vector<Index> corner_source(halfedges_size());
+        for (std::size_t h = 0; h < corner_source.size(); ++h)
+            corner_source[h] = reversed(h >> 1) ? prev[h ^ 1].idx() : Index(h);
+        const BasePropertyArray* connectivity[] = {hto_.array(), hnext_.array(), hprev_.array(),
+                                                   hface_.array()};
+        hprops_.gather_except(corner_source, [&](const BasePropertyArray* a) {
+            return std::find(std::begin(connectivity), std::end(connectivity), a) !=
+                   std::end(connectivity);
+        });
     }
-    r.vertex_halfedge = vhalfedge_.vector();
-    for (Vertex v : vertices())
-        if (!is_isolated(v)) r.vertex_halfedge[v.idx()] = twin(prev(halfedge(v)));
-    r.face_halfedge = fhalfedge_.vector();
-    for (Face f : faces()) r.face_halfedge[f.idx()] = twin(halfedge(f));
-    return r;
-}
-
-void HalfedgeMesh::apply_reversed(ReversedConnectivity r,
-                                  const std::vector<std::uint8_t>* edge_mask) {
-    const std::size_t nh = halfedges_size();
-    if (r.next.size() != nh || r.prev.size() != nh || r.face.size() != nh ||
-        r.corner_source.size() != nh || r.vertex_halfedge.size() != vertices_size() ||
-        r.face_halfedge.size() != faces_size())
-        throw InvalidArgument("apply_reversed: the reversed connectivity is not this mesh's");
-    if (edge_mask) {
-        if (edge_mask->size() != edges_size())
-            throw InvalidArgument("apply_reversed: expected one mask entry per edge (" +
-                                  std::to_string(edges_size()) + "), got " +
-                                  std::to_string(edge_mask->size()));
-        // The edges outside the mask keep their connectivity.
-        const auto masked = [&](Halfedge h) { return (*edge_mask)[edge(h).idx()] != 0; };
-        for (std::size_t i = 0; i < nh; ++i) {
-            const Halfedge h(static_cast<Index>(i));
-            if (masked(h)) continue;
-            r.next[i] = next(h);
-            r.prev[i] = prev(h);
-            r.face[i] = face(h);
-            r.corner_source[i] = static_cast<Index>(i);
-        }
-        for (Vertex v : vertices())
-            if (!is_isolated(v) && !masked(halfedge(v))) r.vertex_halfedge[v.idx()] = halfedge(v);
-        for (Face f : faces())
-            if (!masked(halfedge(f))) r.face_halfedge[f.idx()] = halfedge(f);
+    std::vector<Halfedge>& vertex_halfedge = vhalfedge_.vector();
+    for (Vertex v : vertices()) {
+        const Halfedge h = vertex_halfedge[v.idx()];
+        if (h.is_valid() && reversed(h.idx() >> 1)) vertex_halfedge[v.idx()] = twin(prev[h.idx()]);
     }
-    const std::vector<Vertex> to(hto_.vector());
-    hprops_.gather(r.corner_source);  // every halfedge attribute follows its corner ...
-    hto_.vector() = to;               // ... then the connectivity is set
-    hnext_.vector() = std::move(r.next);
-    hprev_.vector() = std::move(r.prev);
-    hface_.vector() = std::move(r.face);
-    vhalfedge_.vector() = std::move(r.vertex_halfedge);
-    fhalfedge_.vector() = std::move(r.face_halfedge);
+    std::vector<Halfedge>& face_halfedge = fhalfedge_.vector();
+    for (Face f : faces()) {
+        const Halfedge h = face_halfedge[f.idx()];
+        if (reversed(h.idx() >> 1)) face_halfedge[f.idx()] = twin(h);
+    }
+    for (std::size_t e = 0; e < ne; ++e) {
+        if (!reversed(e)) continue;
+        const std::size_t h = 2 * e, t = h + 1;
+        const Halfedge next_h = next[h], prev_h = prev[h], next_t = next[t], prev_t = prev[t];
+        next[h] = twin(prev_t);
+        prev[h] = twin(next_t);
+        next[t] = twin(prev_h);
+        prev[t] = twin(next_h);
+        std::swap(face[h], face[t]);
+    }
 }
 
 }  // namespace trilab

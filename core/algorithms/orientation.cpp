@@ -1,11 +1,10 @@
 // Face orientation; see orientation.h. The connectivity part is
-// HalfedgeMesh::reverse_orientation() (core/topology.cpp), which needs the mesh's property
-// containers to move per-halfedge attributes with their corners.
+// HalfedgeMesh::reverse_orientation() (core/topology.cpp, in place), which needs the mesh's
+// property containers to move per-halfedge attributes with their corners.
 #include "core/algorithms/orientation.h"
 
 #include <cmath>
 #include <cstdio>
-#include <future>
 #include <utility>
 
 #include "core/algorithms/mesh_stats.h"
@@ -18,64 +17,44 @@ FlipReport flip_orientation(HalfedgeMesh& mesh, const FlipOptions& options) {
     FlipReport report;
     const std::vector<float>* region = options.region;
     if (region) check_selection(mesh, *region, "flip: region");
-    // A region flips the components it touches. A second thread labels the components
-    // (union-find over the edges, label_components()) and marks those with a vertex of
-    // positive weight, while this one measures the volume and computes the reversed
-    // connectivity of every edge, which the flip then applies to those components. Both
-    // threads only read the mesh; so a region costs what the whole mesh costs.
-    struct Touched {
-        std::vector<Index> label;        ///< per vertex: its component
-        std::vector<std::uint8_t> flip;  ///< per component: it has a vertex of positive weight
-        std::size_t present = 0, flipped = 0;  ///< components with a face; of those, flipped
-    };
-    Touched touched;
-    std::future<void> labelling;
-    if (region)
-        labelling = std::async(std::launch::async, [&] {
-            const HalfedgeMesh& m = mesh;
-            const std::size_t n_labels = label_components(m, touched.label);
-            touched.flip.assign(n_labels, 0);
-            std::vector<std::uint8_t> present(n_labels, 0);
-            for (Vertex v : m.vertices()) {
-                if (m.is_isolated(v)) continue;
-                const Index c = touched.label[v.idx()];
-                present[c] = 1;
-                if ((*region)[v.idx()] > 0.0f) touched.flip[c] = 1;
-            }
-            for (std::size_t c = 0; c < n_labels; ++c) {
-                touched.present += present[c];
-                touched.flipped += touched.flip[c];
-            }
-        });
     const bool closed = is_closed(std::as_const(mesh));
     if (closed) report.volume_before = volume(std::as_const(mesh));
-    HalfedgeMesh::ReversedConnectivity reversed = std::as_const(mesh).reversed_connectivity();
     if (!region) {
         report.faces = mesh.n_faces();
-        mesh.apply_reversed(std::move(reversed));
+        mesh.reverse_orientation();
         if (auto normals = mesh.get_vertex_property<Vector3>("v:normal")) {
             for (Vertex v : mesh.vertices()) normals[v] = -normals[v];
             report.normals_negated = true;
         }
     } else {
         // The components the region touches, flipped whole: each vertex has its component's
-        // label; the faces and edges follow their vertices. When the region touches every
-        // component this is the whole mesh's flip.
-        labelling.get();
-        const std::vector<Index>& label = touched.label;
-        const std::vector<std::uint8_t>& flip = touched.flip;
-        report.components = touched.flipped;
-        const std::size_t n_present = touched.present;
+        // label (union-find over the edges, label_components()); the faces and edges follow
+        // their vertices. When the region touches every component this is the whole mesh's
+        // flip.
+        std::vector<Index> label;
+        const std::size_t n_labels = label_components(std::as_const(mesh), label);
+        std::vector<std::uint8_t> flip(n_labels, 0), present(n_labels, 0);
+        for (Vertex v : mesh.vertices()) {
+            if (mesh.is_isolated(v)) continue;
+            const Index c = label[v.idx()];
+            present[c] = 1;
+            if ((*region)[v.idx()] > 0.0f) flip[c] = 1;
+        }
+        std::size_t n_present = 0;
+        for (std::size_t c = 0; c < n_labels; ++c) {
+            n_present += present[c];
+            report.components += flip[c];
+        }
         const auto flipped = [&](Vertex v) { return flip[label[v.idx()]] != 0; };
         if (report.components == n_present) {
             report.faces = mesh.n_faces();
-            mesh.apply_reversed(std::move(reversed));
+            mesh.reverse_orientation();
         } else {
             for (Face f : mesh.faces()) report.faces += flipped(mesh.to_vertex(mesh.halfedge(f)));
             std::vector<std::uint8_t> edge_mask(mesh.edges_size(), 0);
             for (Edge e : mesh.edges())
                 edge_mask[e.idx()] = flipped(mesh.to_vertex(HalfedgeMesh::halfedge(e, 0))) ? 1 : 0;
-            mesh.apply_reversed(std::move(reversed), &edge_mask);
+            mesh.reverse_orientation(edge_mask);
         }
         if (auto normals = mesh.get_vertex_property<Vector3>("v:normal")) {
             // An isolated vertex has no component: its normal follows its own weight.
