@@ -26,6 +26,7 @@ OperationResult run_flip(const FlipOptions&, const HalfedgeMesh& mesh, Progress&
     const auto t0 = std::chrono::steady_clock::now();
     FlipOptions options;
     options.region = settings.region;
+    options.components = settings.components;
     const FlipReport report = flip_orientation(step.mesh, options);
     result.ms = ms_since(t0);
     progress.report(1, "flipping the orientation");

@@ -87,6 +87,10 @@ struct RunSettings {
     /// it against the mesh and refuses it for an operation that does not take one
     /// (OperationDef::takes_region). Not owned; must outlive the run.
     const std::vector<float>* region = nullptr;
+    /// The input's connected components as label_components() numbers them, when the caller
+    /// has them for this very topology (the viewer keeps its current state's): an operation
+    /// that acts on the components a region touches (flip) then need not find them. Not owned.
+    const std::vector<Index>* components = nullptr;
 };
 
 class OperationDef;

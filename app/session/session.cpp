@@ -103,7 +103,10 @@ void Session::on_state_changed(bool fit) {
     const HalfedgeMesh& mesh = document_.mesh();
     document_.texcoords_projected =
         mesh.has_vertex_property("v:texcoord") && document_.texcoords_projected;
-    const MeshStats s = compute_stats(mesh);
+    auto components = std::make_shared<std::vector<Index>>();
+    const MeshStats s = compute_stats(mesh, components.get());
+    document_.components = std::move(components);
+    document_.components_topology = mesh.topology_revision();
     document_.closed = s.volume.has_value();
     document_.open_seams = s.boundary_loops > 0 && pair_boundary_edges(mesh).paired_edges > 0;
     document_.area = s.area;
@@ -421,10 +424,16 @@ void Session::run_operation_job(const Operation& op) {
     const HalfedgeMesh snapshot = document_.mesh();  // copy-on-write: the job's own
     const HalfedgeMesh::Revision base = snapshot.revision();
     const auto region = region_for(op, snapshot);
+    // The state's components, when the run has a region (a flip then need not find them).
+    const std::shared_ptr<const std::vector<Index>> components =
+        region && document_.components_topology == snapshot.topology_revision()
+            ? document_.components
+            : nullptr;
     const bool started =
-        jobs_.start(op.text(), [this, op, snapshot, base, region](Progress& progress) {
+        jobs_.start(op.text(), [this, op, snapshot, base, region, components](Progress& progress) {
             RunSettings settings;
             settings.region = region.get();
+            settings.components = components.get();
             auto result =
                 std::make_shared<OperationResult>(run_operation(op, snapshot, progress, settings));
             return JobRunner::Finish([this, result, op, base] {

@@ -86,6 +86,10 @@ struct Document {
     bool closed = false;            ///< the current state has no boundary (volume is defined)
     bool open_seams = false;  ///< coincident boundary edges: unwelded seams (Subdivision's note)
     double area = 0;          ///< of the current state
+    /// The current state's components (label_components(), from its statistics) and the
+    /// topology revision they belong to: a region's flip reuses them (RunSettings::components).
+    std::shared_ptr<const std::vector<Index>> components;
+    std::uint64_t components_topology = 0;
     bool texcoords_projected = false;  ///< texture coordinates were computed by projection
     /// The current state differs from the file it came from or was last saved to.
     bool unsaved = false;

@@ -60,7 +60,7 @@ std::size_t label_components(const HalfedgeMesh& mesh, std::vector<Index>& compo
     return n;
 }
 
-MeshStats compute_stats(const HalfedgeMesh& mesh) {
+MeshStats compute_stats(const HalfedgeMesh& mesh, std::vector<Index>* component_of_vertex) {
     MeshStats s;
     s.vertices = mesh.n_vertices();
     s.edges = mesh.n_edges();
@@ -70,6 +70,7 @@ MeshStats compute_stats(const HalfedgeMesh& mesh) {
     s.boundary_loops = count_boundary_loops(mesh);
     std::vector<Index> component;
     s.components = label_components(mesh, component) - s.isolated_vertices;
+    if (component_of_vertex) *component_of_vertex = std::move(component);
     s.euler = (long long)s.vertices - (long long)s.edges + (long long)s.faces;
     const long long chi_surface = s.euler - (long long)s.isolated_vertices;
     s.genus = (2 * (long long)s.components - chi_surface - (long long)s.boundary_loops) / 2;

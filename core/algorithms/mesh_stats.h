@@ -24,7 +24,10 @@ struct MeshStats {
     std::optional<double> volume;
 };
 
-MeshStats compute_stats(const HalfedgeMesh& mesh);
+/// The summary; `component_of_vertex`, when given, gets the labels it counts the components
+/// with (label_components()), for a caller that keeps them (the viewer, for a region's flip).
+MeshStats compute_stats(const HalfedgeMesh& mesh,
+                        std::vector<Index>* component_of_vertex = nullptr);
 /// Number of boundary loops (cycles of boundary halfedges).
 std::size_t count_boundary_loops(const HalfedgeMesh& mesh);
 /// Connected component index for every vertex ("components" ignores isolated vertices, but

@@ -3,12 +3,15 @@
 // property containers to move per-halfedge attributes with their corners.
 #include "core/algorithms/orientation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <utility>
 
 #include "core/algorithms/mesh_stats.h"
 #include "core/algorithms/selection.h"
+#include "core/errors.h"
 #include "core/geometry.h"
 
 namespace trilab {
@@ -28,18 +31,32 @@ FlipReport flip_orientation(HalfedgeMesh& mesh, const FlipOptions& options) {
         }
     } else {
         // The components the region touches, flipped whole: each vertex has its component's
-        // label (union-find over the edges, label_components()); the faces and edges follow
-        // their vertices. When the region touches every component this is the whole mesh's
-        // flip.
-        std::vector<Index> label;
-        const std::size_t n_labels = label_components(std::as_const(mesh), label);
-        std::vector<std::uint8_t> flip(n_labels, 0), present(n_labels, 0);
+        // label (union-find over the edges, label_components(), or the caller's); the faces
+        // and edges follow their vertices. When the region touches every component this is
+        // the whole mesh's flip.
+        std::vector<Index> own_label;
+        const std::vector<Index>& label = options.components ? *options.components : own_label;
+        std::vector<std::uint8_t> flip, present;  // per component
+        if (!options.components) {
+            const std::size_t n_labels = label_components(std::as_const(mesh), own_label);
+            flip.assign(n_labels, 0);
+            present.assign(n_labels, 0);
+        } else if (label.size() != mesh.vertices_size()) {
+            throw InvalidArgument("flip: " + std::to_string(label.size()) +
+                                  " component labels for " + std::to_string(mesh.vertices_size()) +
+                                  " vertices");
+        }
         for (Vertex v : mesh.vertices()) {
             if (mesh.is_isolated(v)) continue;
             const Index c = label[v.idx()];
+            if (c >= flip.size()) {  // the caller's labels: as many as they use
+                flip.resize(std::size_t(c) + 1, 0);
+                present.resize(std::size_t(c) + 1, 0);
+            }
             present[c] = 1;
             if ((*region)[v.idx()] > 0.0f) flip[c] = 1;
         }
+        const std::size_t n_labels = flip.size();
         std::size_t n_present = 0;
         for (std::size_t c = 0; c < n_labels; ++c) {
             n_present += present[c];

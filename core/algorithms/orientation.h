@@ -15,7 +15,7 @@
 
 namespace trilab {
 
-/// flip_orientation()'s only option is its region.
+/// flip_orientation()'s options: its region, and the mesh's components when known.
 struct FlipOptions {
     /// The region (core/algorithms/selection.h): one weight per vertex storage index, or
     /// nullptr for the whole mesh. Orientation belongs to a connected component (flipping part
@@ -23,6 +23,11 @@ struct FlipOptions {
     /// every component with a vertex of positive weight is flipped whole and the others are
     /// left untouched, bit for bit. Not owned.
     const std::vector<float>* region = nullptr;
+    /// With a region: this mesh's components as label_components() numbers them (one label
+    /// per vertex storage index), when the caller has them already (the viewer keeps its
+    /// current state's, computed for its statistics), so that the flip need not find them;
+    /// nullptr: found here. They must be this mesh's (same topology). Not owned.
+    const std::vector<Index>* components = nullptr;
 };
 
 /// What flip_orientation() did.
@@ -39,7 +44,8 @@ struct FlipReport {
 /// negates a stored "v:normal", so shading agrees with the new winding. Boundaries, isolated
 /// and deleted elements are handled; the mesh stays valid (validate()). With a region only the
 /// components it touches are flipped (FlipOptions::region; the volumes are then the whole
-/// mesh's). Throws InvalidArgument only for a region that does not fit (check_selection()).
+/// mesh's). Throws InvalidArgument for a region that does not fit (check_selection()) or
+/// components of the wrong size.
 /// O(vertices + halfedges).
 FlipReport flip_orientation(HalfedgeMesh& mesh, const FlipOptions& options = {});
 

@@ -12,8 +12,11 @@
 #include "app/session/screen_selection.h"
 #include "app/session/session.h"
 #include "core/algorithms/generators.h"
+#include "core/algorithms/mesh_stats.h"
+#include "core/algorithms/orientation.h"
 #include "core/algorithms/selection.h"
 #include "core/io/mesh_io.h"
+#include "core/mesh_builder.h"
 #include "core/validate.h"
 
 using namespace trilab;
@@ -248,4 +251,55 @@ TEST_CASE("the brush and the lasso select what the view shows", "[session][selec
     CHECK(n_front > 0);
     CHECK(n_back > 0);
     CHECK(count_selected(through) > count_selected(front));
+}
+
+TEST_CASE("a region's flip uses the state's components, kept with its topology",
+          "[session][selection]") {
+    // Two icospheres apart, one component each; the selection on the first.
+    HalfedgeMesh two = make_icosphere(2);
+    {
+        PolygonSoup soup = to_soup(two), second = to_soup(two);
+        const Index n = Index(soup.positions.size());
+        for (const Point& p : second.positions) soup.positions.push_back(p + Point(3, 0, 0));
+        for (std::size_t f = 0; f < second.n_faces(); ++f) {
+            std::vector<Index> face;
+            for (std::size_t c = second.face_offsets[f]; c < second.face_offsets[f + 1]; ++c)
+                face.push_back(second.corners[c] + n);
+            soup.add_face(face);
+        }
+        LoadReport report;
+        two = build_mesh(soup, report);
+    }
+    const std::string path =
+        (std::filesystem::temp_directory_path() / "trilab_two_spheres_session.ply").string();
+    write_mesh(two, path);
+    Session s;
+    s.execute(LoadFile{path});
+    s.finish_jobs();
+    std::filesystem::remove(path);
+    // The statistics' labels, for this topology.
+    REQUIRE(s.document().components);
+    CHECK(s.document().components->size() == s.mesh().vertices_size());
+    CHECK(s.document().components_topology == s.mesh().topology_revision());
+    std::vector<Index> labels;
+    CHECK(label_components(s.mesh(), labels) == 2);
+    CHECK(*s.document().components == labels);
+
+    s.execute(SelectSpec{"sphere:0,0,1,0.5"});
+    const HalfedgeMesh before = s.mesh();
+    s.execute(RunOperation{parse_operation("flip")});
+    s.finish_jobs();
+    REQUIRE(s.history().info(s.history().current()).label == "Flip orientation");
+    REQUIRE(validate(s.mesh()));
+    // The first sphere turned, the second did not: what the core's flip does.
+    HalfedgeMesh expected = before;
+    FlipOptions options;
+    const Selection w = weights_of(s);
+    options.region = &w;
+    flip_orientation(expected, options);
+    CHECK(s.mesh().halfedge_next_array() == expected.halfedge_next_array());
+    CHECK(s.mesh().halfedge_face_array() == expected.halfedge_face_array());
+    CHECK(s.mesh().halfedge_next_array() != before.halfedge_next_array());
+    // The new state has its own labels (the flip keeps the components, not the arrays).
+    CHECK(s.document().components_topology == s.mesh().topology_revision());
 }

@@ -14,6 +14,7 @@
 #include "core/algorithms/decimation.h"
 #include "core/algorithms/fairing.h"
 #include "core/algorithms/generators.h"
+#include "core/algorithms/mesh_stats.h"
 #include "core/algorithms/noise.h"
 #include "core/algorithms/orientation.h"
 #include "core/algorithms/selection.h"
@@ -580,6 +581,39 @@ TEST_CASE("flipping a region flips the components it touches", "[selection]") {
     o.region = &ones;
     flip_orientation(all, o);
     CHECK(face_list(all) == face_list(whole));
+
+    // The components given (as the viewer keeps them): the same flip, the same report.
+    std::vector<Index> labels;
+    label_components(m, labels);
+    HalfedgeMesh given = m;
+    o.region = &one;
+    o.components = &labels;
+    const FlipReport r_given = flip_orientation(given, o);
+    CHECK(r_given.components == 1);
+    CHECK(r_given.faces == r.faces);
+    CHECK(given.halfedge_next_array() == part.halfedge_next_array());
+    CHECK(given.halfedge_prev_array() == part.halfedge_prev_array());
+    CHECK(given.halfedge_face_array() == part.halfedge_face_array());
+    CHECK(given.vertex_halfedge_array() == part.vertex_halfedge_array());
+    // Through the operation layer (RunSettings::components): labels that call both spheres
+    // one component flip both, which shows they are the ones used.
+    const std::vector<Index> one_component(m.vertices_size(), 0);
+    RunSettings settings;
+    settings.region = &one;
+    settings.components = &one_component;
+    NullProgress progress;
+    const OperationResult op = run_operation(parse_operation("flip"), m, progress, settings);
+    CHECK(face_list(op.steps.back().mesh) == face_list(whole));
+    settings.components = &labels;
+    CHECK(face_list(
+              run_operation(parse_operation("flip"), m, progress, settings).steps.back().mesh) ==
+          face_list(part));
+    // Labels of another size are refused, and the mesh is left as it was.
+    const std::vector<Index> short_labels(3, 0);
+    o.components = &short_labels;
+    HalfedgeMesh refused = m;
+    CHECK_THROWS_WITH(flip_orientation(refused, o), Catch::Matchers::Contains("component labels"));
+    CHECK(face_list(refused) == face_list(m));
 }
 
 TEST_CASE("operations take the region as input and report it", "[selection][operation]") {
