@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <exception>
+#include <functional>
 #include <memory>
 #include <string>
 #include <thread>
@@ -541,10 +542,13 @@ bool pair_corners(std::uint64_t* entry, const std::vector<Index>& start, bool pa
 
 /// Fast path step 3: the halfedge of every corner edge, in `link` (edges numbered in the
 /// order of their first corner; halfedge 2e runs from the smaller to the larger vertex), then
-/// the connectivity arrays as stage 2c leaves them: every triangle a face, in order. The
-/// link array is released before prev is made (peak memory).
+/// the connectivity arrays as stage 2c leaves them: every triangle a face, in order. For
+/// peak memory, `release_triangles` is called once the triangles are read for the last time
+/// (the caller may free them before the next arrays are made), and the link array is
+/// released before prev is made.
 void connect_paired_corners(const Index* tri, std::size_t n_corners, std::unique_ptr<Index[]>& link,
-                            bool keep_corners, bool parallel, Connectivity& c) {
+                            bool keep_corners, bool parallel,
+                            const std::function<void()>& release_triangles, Connectivity& c) {
     const std::size_t half = (n_corners / 3 / 2) * 3;
     const std::size_t lo[2] = {0, half}, hi[2] = {half, n_corners};
     std::size_t n_first[2] = {0, 0};
@@ -566,14 +570,25 @@ void connect_paired_corners(const Index* tri, std::size_t n_corners, std::unique
     });
     const std::size_t n_h = 2 * (n_first[0] + n_first[1]), n_tris = n_corners / 3;
     c.n_h = n_h;
-    reserve_prefaulted(n_h, parallel, c.hto, c.hnext, c.hface);
+    // Where each halfedge points first: the only pass that reads the triangles, which the
+    // caller may then release before the other arrays are made (peak memory).
+    reserve_prefaulted(n_h, parallel, c.hto);
+    c.hto.resize(n_h);
+    on_two_threads(parallel, [&](int part) {
+        for (std::size_t t = lo[part] / 3; t < hi[part] / 3; ++t) {
+            const Index* he = link.get() + 3 * t;
+            for (std::size_t k = 0; k < 3; ++k)
+                c.hto[he[k] & ~kNumbered] = Vertex(tri[3 * t + (k + 1) % 3]);
+        }
+    });
+    if (release_triangles) release_triangles();
+    reserve_prefaulted(n_h, parallel, c.hnext, c.hface);
     reserve_prefaulted(n_tris, parallel, c.face_halfedge);
     on_two_threads(parallel, [&](int part) {  // each thread sizes its own arrays
         if (part == 0) {
-            c.hto.resize(n_h);
+            c.hnext.resize(n_h);
             c.face_halfedge.resize(n_tris);
         } else {
-            c.hnext.resize(n_h);
             c.hface.resize(n_h);
         }
     });
@@ -583,7 +598,6 @@ void connect_paired_corners(const Index* tri, std::size_t n_corners, std::unique
             const Index* he = link.get() + 3 * t;
             for (std::size_t k = 0; k < 3; ++k) {
                 const Index h = he[k] & ~kNumbered;
-                c.hto[h] = Vertex(tri[3 * t + (k + 1) % 3]);
                 c.hface[h] = Face(Index(t));
                 c.hnext[h] = Halfedge(he[(k + 1) % 3] & ~kNumbered);
             }
@@ -614,7 +628,7 @@ void connect_paired_corners(const Index* tri, std::size_t n_corners, std::unique
 /// The fast path of stage 2 (see above): true when it applied, c then holding what stage 2
 /// would have made; false, with c untouched, when stage 2 must run.
 bool connect_manifold_triangles(const Triangles& tris, std::size_t n_vertices, bool keep_corners,
-                                Connectivity& c) {
+                                const std::function<void()>& release_triangles, Connectivity& c) {
     const std::size_t n_corners = tris.n_corners;
     if (n_corners >= (std::size_t(1) << 30)) return false;
     const bool parallel = worth_two_threads(n_corners) && detail::build_threads() >= 2;
@@ -629,7 +643,7 @@ bool connect_manifold_triangles(const Triangles& tris, std::size_t n_vertices, b
             bucket_corners_by_pair(tris.tri, n_corners, n_vertices, parallel, start);
         if (!pair_corners(entry.get(), start, parallel, link.get())) return false;
     }
-    connect_paired_corners(tris.tri, n_corners, link, keep_corners, parallel, c);
+    connect_paired_corners(tris.tri, n_corners, link, keep_corners, parallel, release_triangles, c);
     return true;
 }
 
@@ -879,7 +893,12 @@ HalfedgeMesh build_from_soup(const PolygonSoup& soup, PolygonSoup* owned, LoadRe
     if (owned) std::vector<std::size_t>().swap(owned->face_offsets);  // no longer read
 
     Connectivity c;
-    if (!connect_manifold_triangles(tris, n_input_vertices, keep_corners, c)) {
+    // Once the fast path has read the triangles for the last time, a consumed soup's own
+    // corner list (the triangles, when clean) is released: nothing after reads it.
+    const std::function<void()> release_triangles = [&] {
+        if (owned && tris.clean) std::vector<Index>().swap(owned->corners);
+    };
+    if (!connect_manifold_triangles(tris, n_input_vertices, keep_corners, release_triangles, c)) {
         EdgeGroups groups;
         bucket_corner_edges(tris.tri, tris.n_corners, n_input_vertices, groups);
         link_groups(n_input_vertices, groups);
