@@ -1,5 +1,6 @@
 #include "core/algorithms/mesh_stats.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -20,19 +21,32 @@ Index find_root(std::vector<Index>& parent, Index v) {
 }  // namespace
 
 std::size_t count_boundary_loops(const HalfedgeMesh& mesh) {
-    std::vector<bool> seen(mesh.halfedges_size(), false);  // one bit a halfedge
+    // The boundary halfedges, found by one sequential pass over the halfedges' faces (a
+    // large scan has a few thousand among tens of millions), then each loop walked once from
+    // its lowest one; seen is kept for those halfedges only (sorted, searched).
+    const std::vector<Face>& face = mesh.halfedge_face_array();
+    const bool garbage = mesh.has_garbage();
+    std::vector<Index> boundary;
+    for (std::size_t h = 0; h < face.size(); ++h)
+        if (!face[h].is_valid() && !(garbage && mesh.is_deleted(Halfedge(Index(h)))))
+            boundary.push_back(Index(h));
+    std::vector<std::uint8_t> seen(boundary.size(), 0);
+    const auto index_of = [&](Halfedge x) {  // boundary.size() when x is not a boundary one
+        return std::size_t(std::lower_bound(boundary.begin(), boundary.end(), x.idx()) -
+                           boundary.begin());
+    };
     std::size_t loops = 0;
-    for (Edge e : mesh.edges()) {
-        for (unsigned i = 0; i < 2; ++i) {
-            const Halfedge h = HalfedgeMesh::halfedge(e, i);
-            if (seen[h.idx()] || !mesh.is_boundary(h)) continue;
-            ++loops;
-            Halfedge x = h;
-            do {
-                seen[x.idx()] = true;
-                x = mesh.next(x);
-            } while (x != h && !seen[x.idx()]);
-        }
+    for (std::size_t i = 0; i < boundary.size(); ++i) {
+        if (seen[i]) continue;
+        ++loops;
+        const Halfedge h(boundary[i]);
+        Halfedge x = h;
+        do {
+            const std::size_t k = index_of(x);
+            if (k == boundary.size() || boundary[k] != x.idx() || seen[k]) break;
+            seen[k] = 1;
+            x = mesh.next(x);
+        } while (x != h);
     }
     return loops;
 }
