@@ -655,8 +655,8 @@ struct ExtraFan {
 
 /// Stage 3a: the fans around each vertex (walked from each face halfedge in index order, so
 /// a vertex's first fan is the one holding its lowest halfedge). The first fan sets the
-/// vertex's halfedge; the further ones are returned. Boundary halfedges are linked where a
-/// fan ends.
+/// vertex's halfedge (c.vhalfedge, sized here to n_v input vertices); the further ones are
+/// returned. Boundary halfedges are linked where a fan ends.
 ///
 /// A large mesh's halfedges split in two halves on two threads (as validate() walks its
 /// fans): each half walks the fans whose lowest face halfedge it holds, and a fan reaching
@@ -665,15 +665,16 @@ struct ExtraFan {
 /// the upper half notes its first fan of each vertex apart, and the merge after gives a
 /// vertex that fan only when the lower half found none (otherwise it is a further fan, as
 /// the one-thread pass finds it). The further fans are ordered by vertex in copy_extra_fans().
-std::vector<ExtraFan> find_fans(Connectivity& c, bool parallel) {
+std::vector<ExtraFan> find_fans(Connectivity& c, std::size_t n_v, bool parallel) {
     const Index n_h = Index(c.n_h), mid = parallel ? (n_h / 2) & ~Index(1) : n_h;
-    const std::size_t n_v = c.vhalfedge.size();
     std::vector<Halfedge> upper_first;  // per vertex: the upper half's first fan
-    if (parallel) upper_first.assign(n_v, Halfedge());
     std::vector<ExtraFan> extra_fans[2];
     on_two_threads(parallel, [&](int part) {
         if (part == 1 && !parallel) return;
         const Index lo = part == 0 ? 0 : mid, hi = part == 0 ? mid : n_h;
+        // Each thread sizes the array it sets.
+        if (part == 0) c.vhalfedge.assign(n_v, Halfedge());
+        if (part == 1) upper_first.assign(n_v, Halfedge());
         std::vector<Halfedge>& first_fan = part == 0 ? c.vhalfedge : upper_first;
         std::vector<std::uint64_t> seen((std::size_t(hi - lo) + 63) / 64, 0);  // one bit a halfedge
         const auto mark = [&](Index x) {
@@ -725,18 +726,26 @@ std::vector<ExtraFan> find_fans(Connectivity& c, bool parallel) {
     });
     std::vector<ExtraFan>& result = extra_fans[0];
     if (parallel) {
-        for (std::size_t v = 0; v < n_v; ++v) {
-            const Halfedge first = upper_first[v];
-            if (!first.is_valid()) continue;
-            if (!c.vhalfedge[v].is_valid()) {
-                c.vhalfedge[v] = first;
-                continue;
+        // The merge, each half of the vertices on its own thread; the upper half's first
+        // fans that come after a lower half's fan of the same vertex are further fans.
+        std::vector<ExtraFan> demoted[2];
+        on_two_threads(true, [&](int part) {
+            for (std::size_t v = part == 0 ? 0 : n_v / 2, end = part == 0 ? n_v / 2 : n_v; v < end;
+                 ++v) {
+                const Halfedge first = upper_first[v];
+                if (!first.is_valid()) continue;
+                if (!c.vhalfedge[v].is_valid()) {
+                    c.vhalfedge[v] = first;
+                    continue;
+                }
+                // An open fan starts where its boundary link comes from.
+                const Index start =
+                    c.hface[first.idx()].is_valid() ? first.idx() : c.hprev[first.idx()].idx() ^ 1;
+                demoted[part].push_back({Index(v), start, first});
             }
-            // A further fan: an open one starts where its boundary link comes from.
-            const Index start =
-                c.hface[first.idx()].is_valid() ? first.idx() : c.hprev[first.idx()].idx() ^ 1;
-            result.push_back({Index(v), start, first});
-        }
+        });
+        for (const std::vector<ExtraFan>& d : demoted)
+            result.insert(result.end(), d.begin(), d.end());
         result.insert(result.end(), extra_fans[1].begin(), extra_fans[1].end());
     }
     return std::move(result);
@@ -905,9 +914,8 @@ HalfedgeMesh build_from_soup(const PolygonSoup& soup, PolygonSoup* owned, LoadRe
         accept_triangles(tris, keep_corners, groups, c);
     }
 
-    c.vhalfedge.resize(n_input_vertices);
     const bool parallel = worth_two_threads(c.n_h) && detail::build_threads() >= 2;
-    std::vector<ExtraFan> extra_fans = find_fans(c, parallel);
+    std::vector<ExtraFan> extra_fans = find_fans(c, n_input_vertices, parallel);
 
     copy_extra_fans(extra_fans, n_input_vertices, c, report);
     add_detached_triangles(tris.tri, n_input_vertices, keep_corners, c, report);
