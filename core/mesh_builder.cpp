@@ -59,8 +59,8 @@ void check_polygon_soup(const PolygonSoup& soup) {
     const std::size_t nf = soup.n_faces();
     std::string problem[2][2];  // [faces, positions][half]
     on_two_threads(worth_two_threads(nf) && worth_two_threads(nv), [&](int half) {
-        for (std::size_t f = half == 0 ? 0 : nf / 2, f_end = half == 0 ? nf / 2 : nf; f < f_end;
-             ++f) {
+        const HalfRange faces = half_of(nf, half);
+        for (std::size_t f = faces.begin; f < faces.end; ++f) {
             if (soup.face_offsets[f + 1] < soup.face_offsets[f]) {
                 problem[0][half] = "build_mesh: face_offsets decrease at face " + std::to_string(f);
                 break;
@@ -75,8 +75,8 @@ void check_polygon_soup(const PolygonSoup& soup) {
                 }
             if (bad) break;
         }
-        for (std::size_t v = half == 0 ? 0 : nv / 2, v_end = half == 0 ? nv / 2 : nv; v < v_end;
-             ++v)
+        const HalfRange vertices = half_of(nv, half);
+        for (std::size_t v = vertices.begin; v < vertices.end; ++v)
             if (!soup.positions[v].allFinite()) {
                 problem[1][half] =
                     "build_mesh: vertex " + std::to_string(v) + " has a non-finite coordinate";
@@ -140,8 +140,8 @@ bool is_clean_triangle_soup(const PolygonSoup& soup) {
     bool clean[2] = {true, true};  // per half of the faces (two threads for a large soup)
     on_two_threads(worth_two_threads(nf), [&](int half) {
         bool ok = true;
-        for (std::size_t f = half == 0 ? 0 : nf / 2, f_end = half == 0 ? nf / 2 : nf;
-             f < f_end && ok; ++f) {
+        const HalfRange faces = half_of(nf, half);
+        for (std::size_t f = faces.begin; f < faces.end && ok; ++f) {
             const std::size_t b = soup.face_offsets[f];
             ok = soup.face_offsets[f + 1] == b + 3 && soup.corners[b] != soup.corners[b + 1] &&
                  soup.corners[b + 1] != soup.corners[b + 2] &&
@@ -451,14 +451,14 @@ std::unique_ptr<std::uint64_t[]> bucket_corners_by_pair(const Index* tri, std::s
     Index lower_total[2] = {0, 0};  // the lower half's entries, by its two quarters
     on_two_threads(parallel, [&](int part) {
         Index sum = 0;
-        for (std::size_t v = part == 0 ? 0 : v_mid / 2; v < (part == 0 ? v_mid / 2 : v_mid); ++v)
-            sum += fill[0][v] + fill[1][v];
+        const HalfRange quarter = half_of(v_mid, part);
+        for (std::size_t v = quarter.begin; v < quarter.end; ++v) sum += fill[0][v] + fill[1][v];
         lower_total[part] = sum;
     });
     on_two_threads(parallel, [&](int part) {
         Index running = part == 0 ? 0 : lower_total[0] + lower_total[1];
-        for (std::size_t v = part == 0 ? 0 : v_mid, end = part == 0 ? v_mid : n_vertices; v < end;
-             ++v) {
+        const HalfRange vertices = half_of(n_vertices, part);  // split at v_mid
+        for (std::size_t v = vertices.begin; v < vertices.end; ++v) {
             start[v] = running;
             const Index n0 = fill[0][v];
             running += n0 + fill[1][v];
@@ -731,8 +731,8 @@ std::vector<ExtraFan> find_fans(Connectivity& c, std::size_t n_v, bool parallel)
         // fans that come after a lower half's fan of the same vertex are further fans.
         std::vector<ExtraFan> demoted[2];
         on_two_threads(true, [&](int part) {
-            for (std::size_t v = part == 0 ? 0 : n_v / 2, end = part == 0 ? n_v / 2 : n_v; v < end;
-                 ++v) {
+            const HalfRange vertices = half_of(n_v, part);
+            for (std::size_t v = vertices.begin; v < vertices.end; ++v) {
                 const Halfedge first = upper_first[v];
                 if (!first.is_valid()) continue;
                 if (!c.vhalfedge[v].is_valid()) {

@@ -1,6 +1,7 @@
 #pragma once
 // Splitting a pass over two threads: the large-mesh paths (the builder, validate()) run two
 // halves of a pass side by side and join before the next pass.
+#include <cstddef>
 #include <exception>
 #include <thread>
 
@@ -10,6 +11,15 @@ namespace trilab {
 /// second hardware thread.
 inline bool worth_two_threads(std::size_t n) {
     return n >= (std::size_t(1) << 16) && std::thread::hardware_concurrency() >= 2;
+}
+
+/// The half of [0, n) that part `part` (0: the lower, 1: the upper) of a two-thread pass
+/// takes: [begin, end).
+struct HalfRange {
+    std::size_t begin, end;
+};
+inline HalfRange half_of(std::size_t n, int part) {
+    return part == 0 ? HalfRange{0, n / 2} : HalfRange{n / 2, n};
 }
 
 /// Runs body(0) on a second thread and body(1) here, or body(0) and body(1) here when not
