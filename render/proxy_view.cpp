@@ -38,6 +38,19 @@ VertexColors sample_proxy_colors(const VertexColors& colors,
     return out;
 }
 
+std::vector<float> sample_proxy_selection(const std::vector<float>& weights,
+                                          const std::vector<Index>& representative) {
+    std::vector<float> out;
+    out.reserve(representative.size());
+    for (Index r : representative) {
+        if (r >= weights.size())
+            throw InvalidArgument("sample_proxy_selection: representative " + std::to_string(r) +
+                                  " outside the " + std::to_string(weights.size()) + " weights");
+        out.push_back(weights[r]);
+    }
+    return out;
+}
+
 double proxy_error_pixels(double error_bound, const Camera& camera, float framebuffer_scale) {
     return error_bound * double(camera.pixels_per_unit()) * double(framebuffer_scale);
 }

@@ -48,6 +48,12 @@ private:
 VertexColors sample_proxy_colors(const VertexColors& colors,
                                  const std::vector<Index>& representative);
 
+/// The selection overlay of a proxy: per proxy vertex the weight of its representative mesh
+/// vertex (as sample_proxy_colors samples colours), for MeshRenderer::set_vertex_selection().
+/// Throws InvalidArgument when a representative is outside `weights` (another mesh's).
+std::vector<float> sample_proxy_selection(const std::vector<float>& weights,
+                                          const std::vector<Index>& representative);
+
 /// How many framebuffer pixels `error_bound` (world units, ProxyMesh::error_bound) spans at
 /// the camera's target depth: error_bound x Camera::pixels_per_unit() x `framebuffer_scale`
 /// (framebuffer pixels per window pixel).

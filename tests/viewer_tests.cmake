@@ -227,6 +227,21 @@ if(TARGET trilab)
     set_tests_properties(viewer_orbit_small_exact PROPERTIES
                          PASS_REGULAR_EXPRESSION "orbit: frames=10 median_ms=[0-9.]+ max_ms=[0-9.]+ rest_ms=[0-9.]+\norbit: proxy_frames=0 exact_frames=10.*timing: first_frame_ms=[0-9]+ exact_frame_ms=[0-9]+"
                          FAIL_REGULAR_EXPRESSION "simplified while moving")
+    # The stand-in drawn while the view turns shows the state's selection (its weights sampled
+    # through the stand-in's representatives; the tint is tested by pixels in
+    # tests/render/test_proxy_view.cpp), and without a selection it shows none.
+    add_test(NAME viewer_orbit_proxy_selection
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --select sphere:0,0,1,0.6 --orbit 6
+                     --frames 3)
+    set_tests_properties(viewer_orbit_proxy_selection PROPERTIES TIMEOUT 120
+                         ENVIRONMENT "TRILAB_PROXY_MIN_FACES=100"
+                         PASS_REGULAR_EXPRESSION "simplified while moving: [0-9]+ triangles for [0-9]+ faces \\(within [0-9.]+ px\\), with the selection\n.*orbit: proxy_frames=6")
+    add_test(NAME viewer_orbit_proxy_no_selection
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --orbit 6 --frames 3)
+    set_tests_properties(viewer_orbit_proxy_no_selection PROPERTIES TIMEOUT 120
+                         ENVIRONMENT "TRILAB_PROXY_MIN_FACES=100"
+                         PASS_REGULAR_EXPRESSION "simplified while moving: [0-9]+ triangles"
+                         FAIL_REGULAR_EXPRESSION "with the selection")
     # The subdivision level slider dragged over computed levels shows each level's proxy while
     # it moves (2, 1, 2, ...), and the run ends on the exact surface.
     add_test(NAME viewer_sweep_levels_proxy

@@ -148,3 +148,41 @@ TEST_CASE("A coloured proxy looks like the coloured mesh", "[render][proxy]") {
     REQUIRE(mean_difference(a, b) < 3.0);
     REQUIRE(mean_difference(a, plain) > 3 * mean_difference(a, b));
 }
+
+TEST_CASE("A proxy shows the selection overlay as the mesh does", "[render][proxy][selection]") {
+    // The weights of a half (x > 0) of a sphere, sampled through the representatives: the
+    // proxy's tinted picture is close to the mesh's, and far from the proxy without them.
+    OffscreenRenderer& r = offscreen();
+    MeshRenderer& exact = r.mesh_renderer();
+    MeshRenderer proxy_renderer;
+    const HalfedgeMesh sphere = make_icosphere(40);
+    ProxyMeshOptions options;
+    options.target_triangles = 2000;
+    const ProxyMesh proxy = make_proxy_mesh(sphere, options);
+    std::vector<float> weights(sphere.vertices_size(), 0.0f);
+    for (Vertex v : sphere.vertices())
+        if (sphere.position(v).x() > 0.0) weights[v.idx()] = 1.0f;
+    const std::vector<float> sampled = sample_proxy_selection(weights, proxy.representative);
+    REQUIRE(sampled.size() == proxy.positions.size());
+    for (std::size_t i = 0; i < sampled.size(); ++i)
+        REQUIRE(sampled[i] == weights[proxy.representative[i]]);
+    REQUIRE_THROWS_AS(sample_proxy_selection(std::vector<float>(3, 1.0f), {0, 3}), InvalidArgument);
+
+    Framebuffer fb;
+    fb.create(160, 120, 1);
+    Camera camera;
+    camera.set_viewport(160, 120);
+    camera.fit_sphere(glm::vec3(0.0f), 1.1f);
+    exact.upload(sphere);
+    exact.set_vertex_selection(weights);
+    proxy_renderer.upload_triangles(proxy.positions, proxy.triangles);
+    RenderStyle style;
+    style.specular = false;
+    const Image plain = draw(proxy_renderer, fb, camera, style);
+    proxy_renderer.set_vertex_selection(sampled);
+    const Image a = draw(exact, fb, camera, style);
+    const Image b = draw(proxy_renderer, fb, camera, style);
+    exact.clear_vertex_selection();
+    Framebuffer::bind_default();
+    REQUIRE(mean_difference(a, plain) > 3 * mean_difference(a, b));
+}
