@@ -1095,6 +1095,28 @@ void MeshRenderer::upload_triangles(const std::vector<Point>& positions,
     clear_vertex_colors();
 }
 
+void MeshRenderer::set_vertex_texcoords(const std::vector<TexCoord>& texcoords) {
+    if (!gpu_source_.empty() || texcoords.size() != n_gpu_vertices_)
+        throw InvalidArgument(
+            "MeshRenderer::set_vertex_texcoords: " + std::to_string(texcoords.size()) +
+            " texture coordinates for " + std::to_string(n_gpu_vertices_) + " vertices" +
+            (gpu_source_.empty() ? "" : " with per-corner texture coordinates"));
+    std::vector<float> data(2 * texcoords.size());
+    for (std::size_t i = 0; i < texcoords.size(); ++i) {
+        data[2 * i] = float(texcoords[i].x());
+        data[2 * i + 1] = float(texcoords[i].y());
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, texcoord_buffer_);
+    glBufferData(GL_ARRAY_BUFFER, bytes(data.size(), sizeof(float)), data.data(), GL_STATIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    for (GLuint vao : {triangle_vao_, point_vao_}) {
+        glBindVertexArray(vao);
+        glEnableVertexAttribArray(kTexcoord);
+    }
+    glBindVertexArray(0);
+    has_texcoords_ = !texcoords.empty();
+}
+
 void MeshRenderer::drop_texcoords() {
     has_texcoords_ = false;
     glBindBuffer(GL_ARRAY_BUFFER, texcoord_buffer_);

@@ -216,6 +216,11 @@ public:
     /// InvalidArgument for a corner outside `positions`. O(vertices + triangles).
     void upload_triangles(const std::vector<Point>& positions,
                           const std::vector<std::array<Index, 3>>& triangles);
+    /// Texture coordinates, one per vertex, for what was uploaded without per-corner ones (the
+    /// triangle list of upload_triangles(): a proxy of a textured mesh): Textured mode then
+    /// draws it with the texture. Throws InvalidArgument on a size mismatch or when the GPU
+    /// holds per-corner vertices (a mesh uploaded with "h:texcoord" seams).
+    void set_vertex_texcoords(const std::vector<TexCoord>& texcoords);
 
     /// Per-vertex colours indexed by vertex storage index (size == n_vertices(), the storage
     /// size at the last upload()); they replace front_color while style.vertex_colors is on,

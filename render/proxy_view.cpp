@@ -51,6 +51,31 @@ std::vector<float> sample_proxy_selection(const std::vector<float>& weights,
     return out;
 }
 
+std::vector<TexCoord> sample_proxy_texcoords(const HalfedgeMesh& mesh,
+                                             const std::vector<Index>& representative) {
+    const auto vertex_uv = mesh.get_vertex_property<TexCoord>("v:texcoord");
+    const auto corner_uv = mesh.get_halfedge_property<TexCoord>("h:texcoord");
+    std::vector<TexCoord> out;
+    if (!vertex_uv && !corner_uv) return out;
+    out.reserve(representative.size());
+    for (Index r : representative) {
+        if (r >= mesh.vertices_size())
+            throw InvalidArgument("sample_proxy_texcoords: representative " + std::to_string(r) +
+                                  " outside the " + std::to_string(mesh.vertices_size()) +
+                                  " vertices");
+        const Vertex v(r);
+        if (vertex_uv) {
+            out.push_back(vertex_uv[v]);
+            continue;
+        }
+        // A corner at v: the halfedge into v from its outgoing halfedge's twin, which lies in
+        // a face (halfedge(v) is the boundary one at a boundary vertex).
+        const Halfedge out_h = mesh.halfedge(v);
+        out.push_back(out_h.is_valid() ? corner_uv[HalfedgeMesh::twin(out_h)] : TexCoord::Zero());
+    }
+    return out;
+}
+
 double proxy_error_pixels(double error_bound, const Camera& camera, float framebuffer_scale) {
     return error_bound * double(camera.pixels_per_unit()) * double(framebuffer_scale);
 }

@@ -54,6 +54,14 @@ VertexColors sample_proxy_colors(const VertexColors& colors,
 std::vector<float> sample_proxy_selection(const std::vector<float>& weights,
                                           const std::vector<Index>& representative);
 
+/// The texture coordinates of a proxy of `mesh`, one per proxy vertex: its representative's
+/// "v:texcoord", or with per-corner "h:texcoord" those of one corner at the representative
+/// (a proxy triangle across a texture seam then stretches the texture between the two
+/// sides, while the view moves); empty when the mesh has neither. Throws InvalidArgument
+/// when a representative is not a vertex of `mesh`.
+std::vector<TexCoord> sample_proxy_texcoords(const HalfedgeMesh& mesh,
+                                             const std::vector<Index>& representative);
+
 /// How many framebuffer pixels `error_bound` (world units, ProxyMesh::error_bound) spans at
 /// the camera's target depth: error_bound x Camera::pixels_per_unit() x `framebuffer_scale`
 /// (framebuffer pixels per window pixel).

@@ -236,12 +236,19 @@ if(TARGET trilab)
     set_tests_properties(viewer_orbit_proxy_selection PROPERTIES TIMEOUT 120
                          ENVIRONMENT "TRILAB_PROXY_MIN_FACES=100"
                          PASS_REGULAR_EXPRESSION "simplified while moving: [0-9]+ triangles for [0-9]+ faces \\(within [0-9.]+ px\\), with the selection\n.*orbit: proxy_frames=6")
+    # In Textured mode the stand-in is drawn textured (its vertices take the texture
+    # coordinates of their representatives; pixels in tests/render/test_proxy_view.cpp).
+    add_test(NAME viewer_orbit_proxy_textured
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --mode textured --orbit 6 --frames 3)
+    set_tests_properties(viewer_orbit_proxy_textured PROPERTIES TIMEOUT 120
+                         ENVIRONMENT "TRILAB_PROXY_MIN_FACES=100"
+                         PASS_REGULAR_EXPRESSION "simplified while moving: [0-9]+ triangles for [0-9]+ faces \\(within [0-9.]+ px\\), textured")
     add_test(NAME viewer_orbit_proxy_no_selection
              COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --orbit 6 --frames 3)
     set_tests_properties(viewer_orbit_proxy_no_selection PROPERTIES TIMEOUT 120
                          ENVIRONMENT "TRILAB_PROXY_MIN_FACES=100"
                          PASS_REGULAR_EXPRESSION "simplified while moving: [0-9]+ triangles"
-                         FAIL_REGULAR_EXPRESSION "with the selection")
+                         FAIL_REGULAR_EXPRESSION "with the selection|textured")
     # The subdivision level slider dragged over computed levels shows each level's proxy while
     # it moves (2, 1, 2, ...), and the run ends on the exact surface.
     add_test(NAME viewer_sweep_levels_proxy

@@ -419,9 +419,9 @@ private:
         bool proxy_drawn = false;           ///< the current state's proxy was on the screen
         MeshKey uploaded_key{0, 0};         ///< on `renderer`
         std::uint64_t uploaded_colors = 0;  ///< colors_stamp of the proxy's colours
-        /// The attribute revision of the state whose selection the proxy's renderer shows (0:
-        /// none given since the last upload).
-        std::uint64_t selection_revision = 0;
+        /// The attribute revision of the state whose selection and texture coordinates the
+        /// proxy's renderer has (0: none given since the last upload).
+        std::uint64_t attributes_revision = 0;
         /// The colours on (or waiting for) the exact renderer, and the state they are for.
         VertexColors colors;
         MeshKey colors_key{0, 0};
@@ -487,10 +487,11 @@ private:
     /// it is the colouring of the state `stands_for`; no colours otherwise.
     void colour_proxy(MeshRenderer& r, const MeshKey& stands_for,
                       const std::vector<Index>& representative);
-    /// Gives the proxy's renderer the selection overlay of `mesh` (the state it stands for):
-    /// its stored weights sampled through `representative`; none when it has no selection.
-    void select_proxy(MeshRenderer& r, const HalfedgeMesh& mesh,
-                      const std::vector<Index>& representative);
+    /// Gives the proxy's renderer the attributes of `mesh` (the state it stands for) sampled
+    /// through `representative`: the selection overlay (none without a selection) and the
+    /// texture coordinates (for Textured mode; none without).
+    void dress_proxy(MeshRenderer& r, const HalfedgeMesh& mesh,
+                     const std::vector<Index>& representative);
     /// Remembers the colours given to the exact renderer (for the proxy's colours).
     void note_exact_colors(const VertexColors& colors, const HalfedgeMesh& mesh);
     /// Before the UI is rendered: the orbit's camera, the note.

@@ -209,15 +209,16 @@ void Viewer::colour_proxy(MeshRenderer& r, const MeshKey& stands_for,
         r.clear_vertex_colors();
 }
 
-void Viewer::select_proxy(MeshRenderer& r, const HalfedgeMesh& mesh,
-                          const std::vector<Index>& representative) {
-    proxy_.selection_revision = mesh.attribute_revision();
+void Viewer::dress_proxy(MeshRenderer& r, const HalfedgeMesh& mesh,
+                         const std::vector<Index>& representative) {
+    proxy_.attributes_revision = mesh.attribute_revision();
     const std::optional<Selection> weights = stored_selection(mesh);
-    if (!weights || weights->size() != mesh.vertices_size()) {
+    if (weights && weights->size() == mesh.vertices_size())
+        r.set_vertex_selection(sample_proxy_selection(*weights, representative));
+    else
         r.clear_vertex_selection();
-        return;
-    }
-    r.set_vertex_selection(sample_proxy_selection(*weights, representative));
+    const std::vector<TexCoord> uv = sample_proxy_texcoords(mesh, representative);
+    if (!uv.empty()) r.set_vertex_texcoords(uv);
 }
 
 MeshRenderer* Viewer::choose_clustered_prediction() {
@@ -271,7 +272,7 @@ MeshRenderer* Viewer::choose_clustered_prediction() {
                 if (!x.allFinite()) return nullptr;  // diverging: the exact run says why
             r.upload_triangles(predicted.positions, stand_in.triangles);
             colour_proxy(r, doc_key, stand_in.representative);
-            select_proxy(r, doc, stand_in.representative);
+            dress_proxy(r, doc, stand_in.representative);
             proxy_.error_pixels = proxy_error_pixels(predicted.bound, view_.camera,
                                                      ImGui::GetIO().DisplayFramebufferScale.y);
         } catch (const std::exception& e) {
@@ -332,15 +333,15 @@ MeshRenderer* Viewer::choose_renderer() {
                 r.upload_triangles(proxy->positions, proxy->triangles);
                 proxy_.uploaded_key = proxy_.current_key;
                 proxy_.uploaded_colors = 0;
-                proxy_.selection_revision = 0;
+                proxy_.attributes_revision = 0;
             }
             if (proxy_.uploaded_colors != proxy_.colors_stamp) {
                 proxy_.uploaded_colors = proxy_.colors_stamp;
                 colour_proxy(r, proxy_.current_key, proxy->representative);
             }
             const HalfedgeMesh& shown = *session_.shown().mesh;
-            if (proxy_.selection_revision != shown.attribute_revision())
-                select_proxy(r, shown, proxy->representative);
+            if (proxy_.attributes_revision != shown.attribute_revision())
+                dress_proxy(r, shown, proxy->representative);
         } catch (const std::exception& e) {
             session_.notify_error(std::string("simplified view: ") + e.what());
             proxy_.failed.push_back(proxy_.current_key);
@@ -355,11 +356,12 @@ MeshRenderer* Viewer::choose_renderer() {
         ++proxy_.proxy_frames;
         if (proxy_.proxy_frames == 1) {
             char line[160];
-            std::snprintf(line, sizeof(line),
-                          "simplified while moving: %zu triangles for %zu faces (within %.1f px)%s",
-                          proxy->triangles.size(), session_.shown().mesh->n_faces(),
-                          proxy_.error_pixels,
-                          r.has_vertex_selection() ? ", with the selection" : "");
+            std::snprintf(
+                line, sizeof(line),
+                "simplified while moving: %zu triangles for %zu faces (within %.1f px)%s%s",
+                proxy->triangles.size(), session_.shown().mesh->n_faces(), proxy_.error_pixels,
+                view_.style.mode == RenderMode::Textured && r.has_texcoords() ? ", textured" : "",
+                r.has_vertex_selection() ? ", with the selection" : "");
             session_.log().info(line);
         }
         return &r;

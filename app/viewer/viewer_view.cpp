@@ -184,6 +184,7 @@ void Viewer::update_texture() {
         view_.settings.use_checkerboard || texture_.empty() ? checkerboard_ : texture_;
     try {
         renderer_->set_texture(image);
+        if (proxy_.renderer) proxy_.renderer->set_texture(image);  // a textured stand-in
     } catch (const std::exception& e) {
         session_.notify_error(std::string("texture: ") + e.what());
     }

@@ -7,6 +7,7 @@
 #include "core/algorithms/coloring.h"
 #include "core/algorithms/generators.h"
 #include "core/algorithms/proxy_mesh.h"
+#include "core/io/image_io.h"
 #include "render/camera.h"
 #include "render/offscreen.h"
 #include "render/proxy_view.h"
@@ -185,4 +186,60 @@ TEST_CASE("A proxy shows the selection overlay as the mesh does", "[render][prox
     exact.clear_vertex_selection();
     Framebuffer::bind_default();
     REQUIRE(mean_difference(a, plain) > 3 * mean_difference(a, b));
+}
+
+TEST_CASE("A proxy of a textured mesh is drawn textured, like the mesh", "[render][proxy]") {
+    // A sphere with planar texture coordinates (no seam) under a checkerboard: the proxy with
+    // its representatives' coordinates draws close to the mesh in Textured mode, and far
+    // closer than without them (then it is drawn like Smooth). Per-corner coordinates: one
+    // corner at each representative.
+    OffscreenRenderer& r = offscreen();
+    MeshRenderer& exact = r.mesh_renderer();
+    MeshRenderer proxy_renderer;
+    HalfedgeMesh sphere = make_icosphere(40);
+    auto uv = sphere.vertex_property<TexCoord>("v:texcoord");
+    for (Vertex v : sphere.vertices())
+        uv[v] = TexCoord(0.5 + 0.5 * sphere.position(v).x(), 0.5 + 0.5 * sphere.position(v).y());
+    ProxyMeshOptions options;
+    options.target_triangles = 2000;
+    const ProxyMesh proxy = make_proxy_mesh(sphere, options);
+    const std::vector<TexCoord> sampled = sample_proxy_texcoords(sphere, proxy.representative);
+    REQUIRE(sampled.size() == proxy.positions.size());
+    for (std::size_t i = 0; i < sampled.size(); ++i)
+        REQUIRE(sampled[i] == uv[Vertex(proxy.representative[i])]);
+    REQUIRE(sample_proxy_texcoords(make_icosphere(1), {0, 1}).empty());  // no coordinates
+    REQUIRE_THROWS_AS(sample_proxy_texcoords(sphere, {Index(sphere.vertices_size())}),
+                      InvalidArgument);
+    {  // per-corner coordinates: a corner of the representative's
+        HalfedgeMesh cornered = sphere;
+        cornered.remove_vertex_property("v:texcoord");
+        auto corner = cornered.halfedge_property<TexCoord>("h:texcoord");
+        for (Halfedge h : cornered.halfedges())
+            if (!cornered.is_boundary(h)) corner[h] = uv[cornered.to_vertex(h)];
+        REQUIRE(sample_proxy_texcoords(cornered, proxy.representative) == sampled);
+    }
+
+    Framebuffer fb;
+    fb.create(160, 120, 1);
+    Camera camera;
+    camera.set_viewport(160, 120);
+    camera.fit_sphere(glm::vec3(0.0f), 1.1f);
+    const Image checker = make_checkerboard(256, 4);
+    exact.set_texture(checker);
+    exact.upload(sphere);
+    proxy_renderer.set_texture(checker);
+    proxy_renderer.upload_triangles(proxy.positions, proxy.triangles);
+    RenderStyle style;
+    style.mode = RenderMode::Textured;
+    style.texture_mode = TextureMode::Replace;
+    style.specular = false;
+    const Image untextured = draw(proxy_renderer, fb, camera, style);
+    proxy_renderer.set_vertex_texcoords(sampled);
+    REQUIRE(proxy_renderer.has_texcoords());
+    const Image a = draw(exact, fb, camera, style);
+    const Image b = draw(proxy_renderer, fb, camera, style);
+    Framebuffer::bind_default();
+    REQUIRE(mean_difference(a, untextured) > 3 * mean_difference(a, b));
+    REQUIRE_THROWS_AS(proxy_renderer.set_vertex_texcoords(std::vector<TexCoord>(3)),
+                      InvalidArgument);
 }
