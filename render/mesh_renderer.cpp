@@ -1093,6 +1093,7 @@ void MeshRenderer::upload_triangles(const std::vector<Point>& positions,
     n_point_indices_ = points.size();
     drop_texcoords();
     clear_vertex_colors();
+    clear_vertex_selection();
 }
 
 void MeshRenderer::set_vertex_texcoords(const std::vector<TexCoord>& texcoords) {
