@@ -212,8 +212,9 @@ public:
     /// vertex, `triangles` over them (non-manifold lists are fine), area-weighted vertex
     /// normals, every vertex a point. Replaces what was uploaded and drops texture
     /// coordinates, vertex colours, scalars and the selection; set_vertex_colors(),
-    /// set_vertex_texcoords() and set_vertex_selection() then take one value per position. Back faces are never culled (a proxy need not be closed). Throws
-    /// InvalidArgument for a corner outside `positions`. O(vertices + triangles).
+    /// set_vertex_texcoords() and set_vertex_selection() then take one value per position.
+    /// Back faces are never culled (a proxy need not be closed). Throws InvalidArgument for a
+    /// corner outside `positions`. O(vertices + triangles).
     void upload_triangles(const std::vector<Point>& positions,
                           const std::vector<std::array<Index, 3>>& triangles);
     /// Texture coordinates, one per vertex, for what was uploaded without per-corner ones (the
