@@ -76,12 +76,16 @@ void check_polygon_soup(const PolygonSoup& soup) {
             if (bad) break;
         }
         const HalfRange vertices = half_of(nv, half);
-        for (std::size_t v = vertices.begin; v < vertices.end; ++v)
-            if (!soup.positions[v].allFinite()) {
+        for (std::size_t v = vertices.begin; v < vertices.end; ++v) {
+            // std::isfinite, not allFinite(): that subtracts, and inf - inf traps under the
+            // sanitizer build's floating-point exceptions.
+            const Point& x = soup.positions[v];
+            if (!(std::isfinite(x.x()) && std::isfinite(x.y()) && std::isfinite(x.z()))) {
                 problem[1][half] =
                     "build_mesh: vertex " + std::to_string(v) + " has a non-finite coordinate";
                 break;
             }
+        }
     });
     for (const auto& kind : problem)
         for (const std::string& p : kind)
