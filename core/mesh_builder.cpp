@@ -529,18 +529,15 @@ bool pair_corners(std::uint64_t* entry, const std::vector<Index>& start, bool pa
             std::lower_bound(start.begin(), start.end(), Index(start.back() * k / pieces)) -
             start.begin());
     piece_start[pieces] = n_vertices;
-    std::atomic<std::size_t> next_piece{0};
     std::atomic<bool> conflict{false};
-    on_two_threads(parallel, [&](int) {
-        for (std::size_t k; (k = next_piece.fetch_add(1)) < pieces;) {
-            const std::size_t to = std::min(piece_start[k + 1], n_vertices);
-            for (std::size_t v = std::min(piece_start[k], to); v < to; ++v)
-                if (!pair_bucket(entry + start[v], start[v + 1] - start[v], link)) {
-                    conflict.store(true, std::memory_order_relaxed);
-                    return;
-                }
-            if (conflict.load(std::memory_order_relaxed)) return;
-        }
+    in_pieces(parallel, pieces, [&](std::size_t k) {
+        if (conflict.load(std::memory_order_relaxed)) return;  // a piece failed: stage 2 runs
+        const std::size_t to = std::min(piece_start[k + 1], n_vertices);
+        for (std::size_t v = std::min(piece_start[k], to); v < to; ++v)
+            if (!pair_bucket(entry + start[v], start[v + 1] - start[v], link)) {
+                conflict.store(true, std::memory_order_relaxed);
+                return;
+            }
     });
     return !conflict.load();
 }

@@ -1,6 +1,7 @@
 #pragma once
 // Splitting a pass over two threads: the large-mesh paths (the builder, validate()) run two
 // halves of a pass side by side and join before the next pass.
+#include <atomic>
 #include <cstddef>
 #include <exception>
 #include <thread>
@@ -47,6 +48,17 @@ void on_two_threads(bool parallel, const Body& body) {
     }
     other.join();
     if (error) std::rethrow_exception(error);
+}
+
+/// Runs body(k) for every k in [0, pieces): on two threads when `parallel`, each taking the
+/// next piece left (so that neither waits long for the other at the end), else in order here.
+/// The pieces are independent; which thread runs a piece is not fixed.
+template <typename Body>
+void in_pieces(bool parallel, std::size_t pieces, const Body& body) {
+    std::atomic<std::size_t> next{0};
+    on_two_threads(parallel, [&](int) {
+        for (std::size_t k; (k = next.fetch_add(1)) < pieces;) body(k);
+    });
 }
 
 }  // namespace trilab

@@ -380,11 +380,8 @@ std::string in_chunks(std::size_t n, const Stage& stage) {
     const bool parallel = worth_two_threads(n);
     const std::size_t chunks = parallel ? kChunks : 1;
     std::array<std::string, kChunks> error;
-    std::atomic<std::size_t> next{0};
-    on_two_threads(parallel, [&](int) {
-        for (std::size_t k; (k = next.fetch_add(1)) < chunks;)
-            error[k] = stage(k, n * k / chunks, n * (k + 1) / chunks);
-    });
+    in_pieces(parallel, chunks,
+              [&](std::size_t k) { error[k] = stage(k, n * k / chunks, n * (k + 1) / chunks); });
     for (const std::string& e : error)
         if (!e.empty()) return e;
     return {};
