@@ -327,4 +327,93 @@ void HalfedgeMesh::reverse_edges(const std::vector<std::uint8_t>* edge_mask) {
     }
 }
 
+HalfedgeMesh::ReversedPart HalfedgeMesh::reverse_orientation_from(
+    const std::vector<Vertex>& seeds) {
+    // A breadth-first flood over the edges. An edge is rewritten as reverse_edges() rewrites
+    // it when it is taken from the queue; first the edges of next(h) and next(twin(h)) are
+    // queued, read from its own values, which no other edge's rewrite touches. Following next
+    // goes around every face and boundary loop the edge borders, and both halves of each edge
+    // are followed, so the flood reaches the whole component. A queue rather than a stack:
+    // the edge taken next was queued long before, so consecutive edges do not wait on each
+    // other's loads. The vertex and face halfedges are set after the flood, in storage order,
+    // from the new values: prev(twin(h)) = twin(next'(h)), so halfedge'(v) =
+    // twin(prev(halfedge(v))) = next'(twin(halfedge(v))). (Setting them in the flood costs
+    // more: random reads, and a vertex's new halfedge lies on an edge still to come.)
+    for (Vertex v : seeds)
+        if (!v.is_valid() || v.idx() >= vertices_size())
+            throw InvalidArgument("reverse_orientation_from: seed vertex " +
+                                  std::to_string(v.idx()) + " is out of range (" +
+                                  std::to_string(vertices_size()) + " vertices)");
+    ReversedPart part;
+    // A byte per edge, not a bit: two pushes into one word would wait on each other.
+    std::vector<std::uint8_t> reached(edges_size(), 0);
+    // The queue is a ring that holds the flood's front (about the square root of a
+    // component's edges on a surface), doubled when it could fill up.
+    std::vector<Index> queue(std::size_t(1) << 12);
+    std::size_t mask = queue.size() - 1, head = 0, tail = 0;
+    // Writes unconditionally and keeps the entry only for an unreached edge: no branch on the
+    // mesh in the flood.
+    const auto push = [&](std::size_t e) {
+        queue[tail & mask] = Index(e);
+        tail += reached[e] ^ 1u;
+        reached[e] = 1;
+    };
+    std::vector<Halfedge>& next = hnext_.vector();
+    std::vector<Halfedge>& prev = hprev_.vector();
+    std::vector<Face>& face = hface_.vector();
+    std::vector<Halfedge>& vertex_halfedge = vhalfedge_.vector();
+    std::vector<Halfedge>& face_halfedge = fhalfedge_.vector();
+    for (Vertex seed : seeds) {
+        const Halfedge start = vertex_halfedge[seed.idx()];
+        if (vdeleted_[seed] || !start.is_valid() || reached[start.idx() >> 1]) continue;
+        ++part.components;
+        push(start.idx() >> 1);
+        while (head != tail) {
+            if (tail - head + 3 > queue.size()) {  // room for the two pushes below
+                std::vector<Index> larger(2 * queue.size());
+                for (std::size_t k = head; k != tail; ++k) larger[k - head] = queue[k & mask];
+                tail -= head;
+                head = 0;
+                queue.swap(larger);
+                mask = queue.size() - 1;
+            }
+            const std::size_t h = 2 * std::size_t(queue[head++ & mask]), t = h + 1;
+            const Halfedge next_h = next[h], prev_h = prev[h], next_t = next[t], prev_t = prev[t];
+            push(next_h.idx() >> 1);
+            push(next_t.idx() >> 1);
+            next[h] = twin(prev_t);
+            prev[h] = twin(next_t);
+            next[t] = twin(prev_h);
+            prev[t] = twin(next_h);
+            std::swap(face[h], face[t]);
+        }
+    }
+    part.vertices.reserve(vertices_size());  // address space: only what is filled is touched
+    for (Vertex v : vertices()) {
+        const Halfedge h = vertex_halfedge[v.idx()];
+        if (!h.is_valid() || !reached[h.idx() >> 1]) continue;
+        vertex_halfedge[v.idx()] = next[h.idx() ^ 1];
+        part.vertices.push_back(v);
+    }
+    for (Face f : faces()) {
+        const Halfedge h = face_halfedge[f.idx()];
+        if (!reached[h.idx() >> 1]) continue;
+        face_halfedge[f.idx()] = twin(h);
+        ++part.faces;
+    }
+    if (hprops_.n_properties() > 4) {  // attributes beyond the connectivity
+        // The corner (to(g), face'(g)) was the old corner of prev(twin(g)) = twin(next'(g)).
+        std::vector<Index> corner_source(halfedges_size());
+        for (std::size_t h = 0; h < corner_source.size(); ++h)
+            corner_source[h] = reached[h >> 1] ? twin(next[h]).idx() : Index(h);
+        const BasePropertyArray* connectivity[] = {hto_.array(), hnext_.array(), hprev_.array(),
+                                                   hface_.array()};
+        hprops_.gather_except(corner_source, [&](const BasePropertyArray* a) {
+            return std::find(std::begin(connectivity), std::end(connectivity), a) !=
+                   std::end(connectivity);
+        });
+    }
+    return part;
+}
+
 }  // namespace trilab

@@ -1,20 +1,92 @@
 // Face orientation; see orientation.h. The connectivity part is
-// HalfedgeMesh::reverse_orientation() (core/topology.cpp, in place), which needs the mesh's
-// property containers to move per-halfedge attributes with their corners.
+// HalfedgeMesh::reverse_orientation() and reverse_orientation_from() (core/topology.cpp, in
+// place), which need the mesh's property containers to move per-halfedge attributes with
+// their corners.
 #include "core/algorithms/orientation.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <utility>
+#include <vector>
 
-#include "core/algorithms/mesh_stats.h"
 #include "core/algorithms/selection.h"
 #include "core/errors.h"
 #include "core/geometry.h"
 
 namespace trilab {
+
+namespace {
+
+// The components with a vertex of positive weight, found while they are reversed
+// (HalfedgeMesh::reverse_orientation_from(): a flood over their edges only), and their
+// vertices' stored normals negated, with those of isolated vertices of positive weight.
+void flip_region_flood(HalfedgeMesh& mesh, const std::vector<float>& region,
+                       VertexProperty<Vector3> normals, FlipReport& report) {
+    std::vector<Vertex> seeds, isolated;
+    for (Vertex v : mesh.vertices()) {
+        if (!(region[v.idx()] > 0.0f)) continue;
+        (mesh.is_isolated(v) ? isolated : seeds).push_back(v);
+    }
+    const HalfedgeMesh::ReversedPart part = mesh.reverse_orientation_from(seeds);
+    report.components = part.components;
+    report.faces = part.faces;
+    if (!normals) return;
+    for (Vertex v : part.vertices) normals[v] = -normals[v];
+    for (Vertex v : isolated) normals[v] = -normals[v];
+    report.normals_negated = !part.vertices.empty() || !isolated.empty();
+}
+
+// The same with the caller's component labels (FlipOptions::components): the components the
+// region touches are marked from their labels; when that is every component, this is the
+// whole mesh's reversal, otherwise the reversal of their edges.
+void flip_region_labelled(HalfedgeMesh& mesh, const std::vector<float>& region,
+                          const std::vector<Index>& label, VertexProperty<Vector3> normals,
+                          FlipReport& report) {
+    if (label.size() != mesh.vertices_size())
+        throw InvalidArgument("flip: " + std::to_string(label.size()) + " component labels for " +
+                              std::to_string(mesh.vertices_size()) + " vertices");
+    std::vector<std::uint8_t> flip, present;  // per component
+    for (Vertex v : mesh.vertices()) {
+        if (mesh.is_isolated(v)) continue;
+        const Index c = label[v.idx()];
+        if (c >= flip.size()) {  // the caller's labels: as many as they use
+            flip.resize(std::size_t(c) + 1, 0);
+            present.resize(std::size_t(c) + 1, 0);
+        }
+        present[c] = 1;
+        if (region[v.idx()] > 0.0f) flip[c] = 1;
+    }
+    std::size_t n_present = 0;
+    for (std::size_t c = 0; c < flip.size(); ++c) {
+        n_present += present[c];
+        report.components += flip[c];
+    }
+    // An isolated vertex has no component: it follows its own weight (for its normal).
+    const auto flipped = [&](Vertex v) {
+        return mesh.is_isolated(v) ? region[v.idx()] > 0.0f : flip[label[v.idx()]] != 0;
+    };
+    if (report.components == n_present) {
+        report.faces = mesh.n_faces();
+        mesh.reverse_orientation();
+    } else {
+        for (Face f : mesh.faces()) report.faces += flipped(mesh.to_vertex(mesh.halfedge(f)));
+        std::vector<std::uint8_t> edge_mask(mesh.edges_size(), 0);
+        for (Edge e : mesh.edges())
+            edge_mask[e.idx()] = flipped(mesh.to_vertex(HalfedgeMesh::halfedge(e, 0))) ? 1 : 0;
+        mesh.reverse_orientation(edge_mask);
+    }
+    if (!normals) return;
+    for (Vertex v : mesh.vertices()) {
+        if (!flipped(v)) continue;
+        normals[v] = -normals[v];
+        report.normals_negated = true;
+    }
+}
+
+}  // namespace
 
 FlipReport flip_orientation(HalfedgeMesh& mesh, const FlipOptions& options) {
     FlipReport report;
@@ -22,67 +94,20 @@ FlipReport flip_orientation(HalfedgeMesh& mesh, const FlipOptions& options) {
     if (region) check_selection(mesh, *region, "flip: region");
     const bool closed = is_closed(std::as_const(mesh));
     if (closed) report.volume_before = volume(std::as_const(mesh));
+    auto normals = mesh.get_vertex_property<Vector3>("v:normal");
     if (!region) {
         report.faces = mesh.n_faces();
         mesh.reverse_orientation();
-        if (auto normals = mesh.get_vertex_property<Vector3>("v:normal")) {
+        if (normals) {
             for (Vertex v : mesh.vertices()) normals[v] = -normals[v];
             report.normals_negated = true;
         }
     } else {
-        // The components the region touches, flipped whole: each vertex has its component's
-        // label (union-find over the edges, label_components(), or the caller's); the faces
-        // and edges follow their vertices. When the region touches every component this is
-        // the whole mesh's flip.
-        std::vector<Index> own_label;
-        const std::vector<Index>& label = options.components ? *options.components : own_label;
-        std::vector<std::uint8_t> flip, present;  // per component
-        if (!options.components) {
-            const std::size_t n_labels = label_components(std::as_const(mesh), own_label);
-            flip.assign(n_labels, 0);
-            present.assign(n_labels, 0);
-        } else if (label.size() != mesh.vertices_size()) {
-            throw InvalidArgument("flip: " + std::to_string(label.size()) +
-                                  " component labels for " + std::to_string(mesh.vertices_size()) +
-                                  " vertices");
-        }
-        for (Vertex v : mesh.vertices()) {
-            if (mesh.is_isolated(v)) continue;
-            const Index c = label[v.idx()];
-            if (c >= flip.size()) {  // the caller's labels: as many as they use
-                flip.resize(std::size_t(c) + 1, 0);
-                present.resize(std::size_t(c) + 1, 0);
-            }
-            present[c] = 1;
-            if ((*region)[v.idx()] > 0.0f) flip[c] = 1;
-        }
-        const std::size_t n_labels = flip.size();
-        std::size_t n_present = 0;
-        for (std::size_t c = 0; c < n_labels; ++c) {
-            n_present += present[c];
-            report.components += flip[c];
-        }
-        const auto flipped = [&](Vertex v) { return flip[label[v.idx()]] != 0; };
-        if (report.components == n_present) {
-            report.faces = mesh.n_faces();
-            mesh.reverse_orientation();
-        } else {
-            for (Face f : mesh.faces()) report.faces += flipped(mesh.to_vertex(mesh.halfedge(f)));
-            std::vector<std::uint8_t> edge_mask(mesh.edges_size(), 0);
-            for (Edge e : mesh.edges())
-                edge_mask[e.idx()] = flipped(mesh.to_vertex(HalfedgeMesh::halfedge(e, 0))) ? 1 : 0;
-            mesh.reverse_orientation(edge_mask);
-        }
-        if (auto normals = mesh.get_vertex_property<Vector3>("v:normal")) {
-            // An isolated vertex has no component: its normal follows its own weight.
-            for (Vertex v : mesh.vertices()) {
-                const bool isolated = mesh.is_isolated(v);
-                if ((!isolated && flipped(v)) || (isolated && (*region)[v.idx()] > 0.0f)) {
-                    normals[v] = -normals[v];
-                    report.normals_negated = true;
-                }
-            }
-        }
+        // The components the region touches, flipped whole.
+        if (options.components)
+            flip_region_labelled(mesh, *region, *options.components, normals, report);
+        else
+            flip_region_flood(mesh, *region, normals, report);
     }
     if (closed) report.volume_after = volume(mesh);
     return report;

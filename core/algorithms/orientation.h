@@ -26,7 +26,10 @@ struct FlipOptions {
     /// With a region: this mesh's components as label_components() numbers them (one label
     /// per vertex storage index), when the caller has them already (the viewer keeps its
     /// current state's, computed for its statistics), so that the flip need not find them;
-    /// nullptr: found here. They must be this mesh's (same topology). Not owned.
+    /// nullptr: the touched components are found while they are flipped, by a flood from the
+    /// region's vertices over their edges only (HalfedgeMesh::reverse_orientation_from()), so
+    /// a region on a small component costs less than the whole flip. They must be this mesh's
+    /// (same topology). Not owned.
     const std::vector<Index>* components = nullptr;
 };
 
@@ -46,7 +49,8 @@ struct FlipReport {
 /// components it touches are flipped (FlipOptions::region; the volumes are then the whole
 /// mesh's). Throws InvalidArgument for a region that does not fit (check_selection()) or
 /// components of the wrong size.
-/// O(vertices + halfedges).
+/// O(vertices + halfedges); with a region and no labels, O(vertices + faces + the touched
+/// components' halfedges).
 FlipReport flip_orientation(HalfedgeMesh& mesh, const FlipOptions& options = {});
 
 /// The load-report note for a closed mesh with a negative signed volume (below -1e-9 of its

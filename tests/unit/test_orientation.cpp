@@ -208,6 +208,72 @@ TEST_CASE("the in-place reversal gives every masked edge its definition and leav
     CHECK(arrays(flipped) == arrays(m));
 }
 
+TEST_CASE("the reversal flooded from seed vertices is the masked reversal of their components",
+          "[orientation]") {
+    // reverse_orientation_from() finds the components while it reverses them; the result must
+    // be, array by array, reverse_orientation() with exactly those components' edges masked,
+    // per-corner labels included. Two spheres (seeds on the second, on both, repeated, with an
+    // isolated and a deleted vertex among them), an open grid (a boundary loop) and none.
+    const std::string name =
+        GENERATE(as<std::string>(), "second sphere", "both spheres", "grid", "garbage", "no seed");
+    INFO(name);
+    HalfedgeMesh m = name == "grid" ? make_grid(6) : two_spheres();
+    const std::size_t n = m.vertices_size() / 2;  // the second sphere's vertices follow
+    std::vector<Vertex> seeds;
+    if (name == "second sphere") seeds = {Vertex(Index(n + 3)), Vertex(Index(n + 7))};
+    if (name == "both spheres" || name == "garbage")
+        seeds = {Vertex(Index(n + 1)), Vertex(0), Vertex(Index(n + 1)), Vertex(5)};
+    if (name == "grid") seeds = {Vertex(0)};  // a corner: on the boundary
+    if (name == "garbage") {
+        const Halfedge h = HalfedgeMesh::halfedge(Edge(10), 0);
+        REQUIRE(m.is_collapse_ok(h));
+        const Vertex gone = m.from_vertex(h);
+        m.collapse(h);
+        REQUIRE(m.is_deleted(gone));
+        seeds.insert(seeds.begin(), gone);
+        seeds.push_back(m.add_vertex(Point(9, 9, 9)));  // isolated
+    }
+    label_corners(m);
+    std::vector<std::uint8_t> mask(m.edges_size(), 0);
+    for (Edge e : m.edges()) {
+        const bool second = m.vertex(e, 0).idx() >= n;
+        mask[e.idx()] = name == "grid" || name == "both spheres" || name == "garbage" ||
+                        (name == "second sphere" && second);
+    }
+    const auto arrays = [](const HalfedgeMesh& x) {
+        return std::make_tuple(x.halfedge_to_array(), x.halfedge_next_array(),
+                               x.halfedge_prev_array(), x.halfedge_face_array(),
+                               x.vertex_halfedge_array(), x.face_halfedge_array());
+    };
+    HalfedgeMesh masked = m, flooded = m;
+    masked.reverse_orientation(mask);
+    const HalfedgeMesh::ReversedPart part = flooded.reverse_orientation_from(seeds);
+    CHECK(arrays(flooded) == arrays(masked));
+    REQUIRE_VALID(flooded);
+    require_corner_labels(flooded);
+    const std::size_t components = name == "no seed"                           ? 0
+                                   : name == "grid" || name == "second sphere" ? 1
+                                                                               : 2;
+    CHECK(part.components == components);
+    std::size_t faces = 0;
+    for (Face f : m.faces()) faces += mask[m.halfedge(f).idx() >> 1];
+    CHECK(part.faces == faces);
+    std::vector<Vertex> expected;
+    for (Vertex v : m.vertices())
+        if (!m.is_isolated(v) && mask[m.halfedge(v).idx() >> 1]) expected.push_back(v);
+    CHECK(part.vertices == expected);
+    // Twice is the identity.
+    flooded.reverse_orientation_from(seeds);
+    CHECK(arrays(flooded) == arrays(m));
+    // A seed out of range is refused before anything changes.
+    std::vector<Vertex> bad = seeds;
+    bad.push_back(Vertex(Index(m.vertices_size())));
+    CHECK_THROWS_WITH(
+        flooded.reverse_orientation_from(bad),
+        Catch::Matchers::Contains("seed vertex") && Catch::Matchers::Contains("out of range"));
+    CHECK(arrays(flooded) == arrays(m));
+}
+
 TEST_CASE("an inward-oriented closed mesh gets a load-report note naming its volume",
           "[orientation]") {
     HalfedgeMesh sphere = make_icosphere(3);

@@ -581,6 +581,12 @@ TEST_CASE("flipping a region flips the components it touches", "[selection]") {
     o.region = &ones;
     flip_orientation(all, o);
     CHECK(face_list(all) == face_list(whole));
+    // Exactly the whole flip, to the array (the region's components are found by a flood).
+    CHECK(all.halfedge_next_array() == whole.halfedge_next_array());
+    CHECK(all.halfedge_prev_array() == whole.halfedge_prev_array());
+    CHECK(all.halfedge_face_array() == whole.halfedge_face_array());
+    CHECK(all.vertex_halfedge_array() == whole.vertex_halfedge_array());
+    CHECK(all.face_halfedge_array() == whole.face_halfedge_array());
 
     // The components given (as the viewer keeps them): the same flip, the same report.
     std::vector<Index> labels;
@@ -595,6 +601,7 @@ TEST_CASE("flipping a region flips the components it touches", "[selection]") {
     CHECK(given.halfedge_prev_array() == part.halfedge_prev_array());
     CHECK(given.halfedge_face_array() == part.halfedge_face_array());
     CHECK(given.vertex_halfedge_array() == part.vertex_halfedge_array());
+    CHECK(given.face_halfedge_array() == part.face_halfedge_array());
     // Through the operation layer (RunSettings::components): labels that call both spheres
     // one component flip both, which shows they are the ones used.
     const std::vector<Index> one_component(m.vertices_size(), 0);
