@@ -476,17 +476,20 @@ public:
     struct ReversedPart {
         std::size_t components = 0;    ///< connected components reversed
         std::size_t faces = 0;         ///< their faces
-        std::vector<Vertex> vertices;  ///< their vertices, each once (isolated ones have none)
+        std::vector<Vertex> vertices;  ///< their vertices (with list_vertices), each once
     };
     /// The same for the connected components that hold one of the seed vertices, found while
     /// they are reversed: one breadth-first flood over their edges, each edge reached from the
     /// faces and boundary loops it borders and rewritten as it is taken; the rest of the mesh
-    /// is untouched. Isolated and deleted seeds are skipped. The result is bit for bit what
-    /// reverse_orientation(edge_mask) gives with those components' edges masked. Throws
-    /// InvalidArgument for a seed out of range (the mesh is then unchanged). O(their halfedges)
-    /// for the flood, plus one pass over the vertex and face halfedges (O(halfedges) with
-    /// halfedge attributes): a small component costs less than the whole mesh's reversal.
-    ReversedPart reverse_orientation_from(const std::vector<Vertex>& seeds);
+    /// is untouched. Isolated and deleted seeds are skipped. Lists the components' vertices
+    /// when list_vertices (for a caller with per-vertex data to follow, e.g. normals). The
+    /// result is bit for bit what reverse_orientation(edge_mask) gives with those components'
+    /// edges masked. Throws InvalidArgument for a seed out of range (the mesh is then
+    /// unchanged). O(their halfedges) for the flood, plus one pass over the vertex and face
+    /// halfedges (O(halfedges) with halfedge attributes): a small component costs less than
+    /// the whole mesh's reversal.
+    ReversedPart reverse_orientation_from(const std::vector<Vertex>& seeds,
+                                          bool list_vertices = true);
     /// Compacts storage, removing deleted elements. Returns the index remapping.
     IndexRemap garbage_collection();
     /// Compacts storage into a given order: new vertex i is old vertex vertex_order[i], new face

@@ -327,8 +327,8 @@ void HalfedgeMesh::reverse_edges(const std::vector<std::uint8_t>* edge_mask) {
     }
 }
 
-HalfedgeMesh::ReversedPart HalfedgeMesh::reverse_orientation_from(
-    const std::vector<Vertex>& seeds) {
+HalfedgeMesh::ReversedPart HalfedgeMesh::reverse_orientation_from(const std::vector<Vertex>& seeds,
+                                                                  bool list_vertices) {
     // A breadth-first flood over the edges. An edge is rewritten as reverse_edges() rewrites
     // it when it is taken from the queue; first the edges of next(h) and next(twin(h)) are
     // queued, read from its own values, which no other edge's rewrite touches. Following next
@@ -388,12 +388,12 @@ HalfedgeMesh::ReversedPart HalfedgeMesh::reverse_orientation_from(
             std::swap(face[h], face[t]);
         }
     }
-    part.vertices.reserve(vertices_size());  // address space: only what is filled is touched
+    if (list_vertices) part.vertices.reserve(vertices_size());  // only what is filled is touched
     for (Vertex v : vertices()) {
         const Halfedge h = vertex_halfedge[v.idx()];
         if (!h.is_valid() || !reached[h.idx() >> 1]) continue;
         vertex_halfedge[v.idx()] = next[h.idx() ^ 1];
-        part.vertices.push_back(v);
+        if (list_vertices) part.vertices.push_back(v);
     }
     for (Face f : faces()) {
         const Halfedge h = face_halfedge[f.idx()];

@@ -20,17 +20,13 @@ namespace trilab {
 
 namespace {
 
-// The components with a vertex of positive weight, found while they are reversed
+// The components that hold a seed, found while they are reversed
 // (HalfedgeMesh::reverse_orientation_from(): a flood over their edges only), and their
-// vertices' stored normals negated, with those of isolated vertices of positive weight.
-void flip_region_flood(HalfedgeMesh& mesh, const std::vector<float>& region,
-                       VertexProperty<Vector3> normals, FlipReport& report) {
-    std::vector<Vertex> seeds, isolated;
-    for (Vertex v : mesh.vertices()) {
-        if (!(region[v.idx()] > 0.0f)) continue;
-        (mesh.is_isolated(v) ? isolated : seeds).push_back(v);
-    }
-    const HalfedgeMesh::ReversedPart part = mesh.reverse_orientation_from(seeds);
+// vertices' stored normals negated, with those of the given isolated vertices.
+void flip_from_seeds(HalfedgeMesh& mesh, const std::vector<Vertex>& seeds,
+                     const std::vector<Vertex>& isolated, VertexProperty<Vector3> normals,
+                     FlipReport& report) {
+    const HalfedgeMesh::ReversedPart part = mesh.reverse_orientation_from(seeds, bool(normals));
     report.components = part.components;
     report.faces = part.faces;
     if (!normals) return;
@@ -39,51 +35,62 @@ void flip_region_flood(HalfedgeMesh& mesh, const std::vector<float>& region,
     report.normals_negated = !part.vertices.empty() || !isolated.empty();
 }
 
-// The same with the caller's component labels (FlipOptions::components): the components the
-// region touches are marked from their labels; when that is every component, this is the
-// whole mesh's reversal, otherwise the reversal of their edges.
+// Without labels: every vertex of positive weight seeds the flood (those in a component
+// already reached cost a look each).
+void flip_region_flood(HalfedgeMesh& mesh, const std::vector<float>& region,
+                       VertexProperty<Vector3> normals, FlipReport& report) {
+    std::vector<Vertex> seeds, isolated;
+    for (Vertex v : mesh.vertices()) {
+        if (!(region[v.idx()] > 0.0f)) continue;
+        (mesh.is_isolated(v) ? isolated : seeds).push_back(v);
+    }
+    flip_from_seeds(mesh, seeds, isolated, normals, report);
+}
+
+// With the caller's component labels (FlipOptions::components): the components the region
+// touches are marked from their labels. When that is every component, this is the whole
+// mesh's reversal (no flood); otherwise one vertex of each seeds the flood.
 void flip_region_labelled(HalfedgeMesh& mesh, const std::vector<float>& region,
                           const std::vector<Index>& label, VertexProperty<Vector3> normals,
                           FlipReport& report) {
     if (label.size() != mesh.vertices_size())
         throw InvalidArgument("flip: " + std::to_string(label.size()) + " component labels for " +
                               std::to_string(mesh.vertices_size()) + " vertices");
-    std::vector<std::uint8_t> flip, present;  // per component
+    std::vector<Vertex> seed_of;  // per component: its first vertex of positive weight
+    std::vector<std::uint8_t> present;
+    std::vector<Vertex> isolated;  // of positive weight
     for (Vertex v : mesh.vertices()) {
-        if (mesh.is_isolated(v)) continue;
+        const bool selected = region[v.idx()] > 0.0f;
+        if (mesh.is_isolated(v)) {
+            if (selected) isolated.push_back(v);
+            continue;
+        }
         const Index c = label[v.idx()];
-        if (c >= flip.size()) {  // the caller's labels: as many as they use
-            flip.resize(std::size_t(c) + 1, 0);
+        if (c >= present.size()) {  // the caller's labels: as many as they use
+            seed_of.resize(std::size_t(c) + 1);
             present.resize(std::size_t(c) + 1, 0);
         }
         present[c] = 1;
-        if (region[v.idx()] > 0.0f) flip[c] = 1;
+        if (selected && !seed_of[c].is_valid()) seed_of[c] = v;
     }
+    std::vector<Vertex> seeds;
     std::size_t n_present = 0;
-    for (std::size_t c = 0; c < flip.size(); ++c) {
+    for (std::size_t c = 0; c < present.size(); ++c) {
         n_present += present[c];
-        report.components += flip[c];
+        if (seed_of[c].is_valid()) seeds.push_back(seed_of[c]);
     }
-    // An isolated vertex has no component: it follows its own weight (for its normal).
-    const auto flipped = [&](Vertex v) {
-        return mesh.is_isolated(v) ? region[v.idx()] > 0.0f : flip[label[v.idx()]] != 0;
-    };
-    if (report.components == n_present) {
-        report.faces = mesh.n_faces();
-        mesh.reverse_orientation();
-    } else {
-        for (Face f : mesh.faces()) report.faces += flipped(mesh.to_vertex(mesh.halfedge(f)));
-        std::vector<std::uint8_t> edge_mask(mesh.edges_size(), 0);
-        for (Edge e : mesh.edges())
-            edge_mask[e.idx()] = flipped(mesh.to_vertex(HalfedgeMesh::halfedge(e, 0))) ? 1 : 0;
-        mesh.reverse_orientation(edge_mask);
+    if (seeds.size() != n_present) {
+        flip_from_seeds(mesh, seeds, isolated, normals, report);
+        return;
     }
+    report.components = n_present;
+    report.faces = mesh.n_faces();
+    mesh.reverse_orientation();
     if (!normals) return;
-    for (Vertex v : mesh.vertices()) {
-        if (!flipped(v)) continue;
-        normals[v] = -normals[v];
-        report.normals_negated = true;
-    }
+    // Every vertex but the isolated ones of weight 0, which belong to no component.
+    for (Vertex v : mesh.vertices())
+        if (!mesh.is_isolated(v) || region[v.idx()] > 0.0f) normals[v] = -normals[v];
+    report.normals_negated = true;
 }
 
 }  // namespace

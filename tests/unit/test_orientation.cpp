@@ -262,9 +262,11 @@ TEST_CASE("the reversal flooded from seed vertices is the masked reversal of the
     for (Vertex v : m.vertices())
         if (!m.is_isolated(v) && mask[m.halfedge(v).idx() >> 1]) expected.push_back(v);
     CHECK(part.vertices == expected);
-    // Twice is the identity.
-    flooded.reverse_orientation_from(seeds);
+    // Twice is the identity; without the list of vertices, the same reversal.
+    const HalfedgeMesh::ReversedPart back = flooded.reverse_orientation_from(seeds, false);
     CHECK(arrays(flooded) == arrays(m));
+    CHECK(back.vertices.empty());
+    CHECK(back.faces == part.faces);
     // A seed out of range is refused before anything changes.
     std::vector<Vertex> bad = seeds;
     bad.push_back(Vertex(Index(m.vertices_size())));
