@@ -289,7 +289,7 @@ void HalfedgeMesh::reverse_edges(const std::vector<std::uint8_t>* edge_mask) {
     const std::size_t ne = edges_size();
     const bool garbage = has_garbage();
     const auto reversed = [&](std::size_t e) {
-        return (!edge_mask || (*edge_mask)[e] != 0) && !(garbage && edeleted_[Edge(Index(e))]);
+        return (!edge_mask || (*edge_mask)[e] != 0) && !(garbage && is_deleted(Edge(Index(e))));
     };
     std::vector<Halfedge>& next = hnext_.vector();
     std::vector<Halfedge>& prev = hprev_.vector();
@@ -365,7 +365,7 @@ HalfedgeMesh::ReversedPart HalfedgeMesh::reverse_orientation_from(const std::vec
     std::vector<Halfedge>& face_halfedge = fhalfedge_.vector();
     for (Vertex seed : seeds) {
         const Halfedge start = vertex_halfedge[seed.idx()];
-        if (vdeleted_[seed] || !start.is_valid() || reached[start.idx() >> 1]) continue;
+        if (is_deleted(seed) || !start.is_valid() || reached[start.idx() >> 1]) continue;
         ++part.components;
         push(start.idx() >> 1);
         while (head != tail) {
