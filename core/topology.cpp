@@ -348,8 +348,9 @@ HalfedgeMesh::ReversedPart HalfedgeMesh::reverse_orientation_from(const std::vec
     // A byte per edge, not a bit: two pushes into one word would wait on each other.
     std::vector<std::uint8_t> reached(edges_size(), 0);
     // The queue is a ring that holds the flood's front (about the square root of a
-    // component's edges on a surface), doubled when it could fill up.
-    std::vector<Index> queue(std::size_t(1) << 12);
+    // component's edges on a surface), doubled when it could fill up: from 64 entries, so
+    // that every flood beyond the smallest meshes goes through the doubling.
+    std::vector<Index> queue(std::size_t(1) << 6);
     std::size_t mask = queue.size() - 1, head = 0, tail = 0;
     // Writes unconditionally and keeps the entry only for an unreached edge: no branch on the
     // mesh in the flood.

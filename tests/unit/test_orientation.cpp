@@ -213,17 +213,22 @@ TEST_CASE("the reversal flooded from seed vertices is the masked reversal of the
     // reverse_orientation_from() finds the components while it reverses them; the result must
     // be, array by array, reverse_orientation() with exactly those components' edges masked,
     // per-corner labels included. Two spheres (seeds on the second, on both, repeated, with an
-    // isolated and a deleted vertex among them), an open grid (a boundary loop) and none.
-    const std::string name =
-        GENERATE(as<std::string>(), "second sphere", "both spheres", "grid", "garbage", "no seed");
+    // isolated and a deleted vertex among them), an open grid (a boundary loop), none, and a
+    // sphere large enough to make the flood's queue grow.
+    const std::string name = GENERATE(as<std::string>(), "second sphere", "both spheres", "grid",
+                                      "garbage", "no seed", "large sphere");
     INFO(name);
-    HalfedgeMesh m = name == "grid" ? make_grid(6) : two_spheres();
+    // The large sphere's flood front (hundreds of edges) outgrows the queue's first ring.
+    HalfedgeMesh m = name == "grid"           ? make_grid(6)
+                     : name == "large sphere" ? make_icosphere(40)
+                                              : two_spheres();
     const std::size_t n = m.vertices_size() / 2;  // the second sphere's vertices follow
     std::vector<Vertex> seeds;
     if (name == "second sphere") seeds = {Vertex(Index(n + 3)), Vertex(Index(n + 7))};
     if (name == "both spheres" || name == "garbage")
         seeds = {Vertex(Index(n + 1)), Vertex(0), Vertex(Index(n + 1)), Vertex(5)};
     if (name == "grid") seeds = {Vertex(0)};  // a corner: on the boundary
+    if (name == "large sphere") seeds = {Vertex(Index(m.vertices_size() / 3))};
     if (name == "garbage") {
         const Halfedge h = HalfedgeMesh::halfedge(Edge(10), 0);
         REQUIRE(m.is_collapse_ok(h));
@@ -238,7 +243,7 @@ TEST_CASE("the reversal flooded from seed vertices is the masked reversal of the
     for (Edge e : m.edges()) {
         const bool second = m.vertex(e, 0).idx() >= n;
         mask[e.idx()] = name == "grid" || name == "both spheres" || name == "garbage" ||
-                        (name == "second sphere" && second);
+                        name == "large sphere" || (name == "second sphere" && second);
     }
     const auto arrays = [](const HalfedgeMesh& x) {
         return std::make_tuple(x.halfedge_to_array(), x.halfedge_next_array(),
@@ -251,9 +256,9 @@ TEST_CASE("the reversal flooded from seed vertices is the masked reversal of the
     CHECK(arrays(flooded) == arrays(masked));
     REQUIRE_VALID(flooded);
     require_corner_labels(flooded);
-    const std::size_t components = name == "no seed"                           ? 0
-                                   : name == "grid" || name == "second sphere" ? 1
-                                                                               : 2;
+    const std::size_t components = name == "no seed"                             ? 0
+                                   : name == "both spheres" || name == "garbage" ? 2
+                                                                                 : 1;
     CHECK(part.components == components);
     std::size_t faces = 0;
     for (Face f : m.faces()) faces += mask[m.halfedge(f).idx() >> 1];
