@@ -520,6 +520,12 @@ private:
                      const std::vector<Index>& f_keep);
     /// reverse_orientation() of every live edge, or of those with (*edge_mask)[e] != 0.
     void reverse_edges(const std::vector<std::uint8_t>* edge_mask);
+    /// After the edges e with reversed(e) (live edges only) were rewritten reversed: sets their
+    /// vertices' and faces' halfedges and moves the halfedge attributes with their corners.
+    /// Appends those vertices to *listed when given; returns the number of faces reversed.
+    /// Defined in topology.cpp, its only user.
+    template <class Reversed>
+    std::size_t finish_reversal(Reversed reversed, std::vector<Vertex>* listed);
     void mark_deleted(Vertex v);
     void mark_deleted(Edge e);
     void mark_deleted(Face f);

@@ -277,27 +277,49 @@ void HalfedgeMesh::reverse_orientation(const std::vector<std::uint8_t>& edge_mas
     reverse_edges(&edge_mask);
 }
 
-void HalfedgeMesh::reverse_edges(const std::vector<std::uint8_t>* edge_mask) {
-    // Halfedge h keeps its direction (to_vertex) and moves to the other side of its edge:
-    //   face'(h) = face(twin(h)),  next'(h) = twin(prev(twin(h))),  prev'(h) = twin(next(twin(h))).
-    // Face f then consists of the twins of its old halfedges, in reverse order; a boundary loop
-    // likewise. The new values of an edge's two halfedges depend on the old values of those two
-    // only, so each edge is rewritten in place. The corner (to_vertex(g), face'(g)) of halfedge
-    // g was the corner of the old halfedge prev(twin(g)) of the same face, so halfedge
-    // attributes are gathered from there, and halfedge(v) becomes twin(prev(halfedge(v))):
-    // both read prev before the edges change it.
-    const std::size_t ne = edges_size();
-    const bool garbage = has_garbage();
-    const auto reversed = [&](std::size_t e) {
-        return (!edge_mask || (*edge_mask)[e] != 0) && !(garbage && is_deleted(Edge(Index(e))));
-    };
-    std::vector<Halfedge>& next = hnext_.vector();
-    std::vector<Halfedge>& prev = hprev_.vector();
-    std::vector<Face>& face = hface_.vector();
+namespace {
+// Rewrites edge (h, t = h + 1) reversed, from its halfedges' old next and prev (see
+// reverse_edges()): its new values depend on these four only.
+inline void reverse_edge_rows(std::vector<Halfedge>& next, std::vector<Halfedge>& prev,
+                              std::vector<Face>& face, std::size_t h, Halfedge next_h,
+                              Halfedge prev_h, Halfedge next_t, Halfedge prev_t) {
+    const std::size_t t = h + 1;
+    next[h] = HalfedgeMesh::twin(prev_t);
+    prev[h] = HalfedgeMesh::twin(next_t);
+    next[t] = HalfedgeMesh::twin(prev_h);
+    prev[t] = HalfedgeMesh::twin(next_h);
+    std::swap(face[h], face[t]);
+}
+}  // namespace
+
+template <class Reversed>
+std::size_t HalfedgeMesh::finish_reversal(Reversed reversed, std::vector<Vertex>* listed) {
+    // From the new values, since prev(twin(h)) = twin(next'(h)): halfedge(v) becomes
+    // twin(prev(halfedge(v))) = next'(twin(halfedge(v))), which keeps a boundary vertex's
+    // halfedge on the boundary; halfedge(f) becomes twin(halfedge(f)); and the corner
+    // (to_vertex(g), face'(g)) was the old corner of prev(twin(g)) = twin(next'(g)), so
+    // halfedge attributes are gathered from there.
+    const std::vector<Halfedge>& next = std::as_const(hnext_).vector();
+    std::vector<Halfedge>& vertex_halfedge = vhalfedge_.vector();
+    if (listed) listed->reserve(vertices_size());  // only what is filled is touched
+    for (Vertex v : vertices()) {
+        const Halfedge h = vertex_halfedge[v.idx()];
+        if (!h.is_valid() || !reversed(h.idx() >> 1)) continue;
+        vertex_halfedge[v.idx()] = next[h.idx() ^ 1];
+        if (listed) listed->push_back(v);
+    }
+    std::vector<Halfedge>& face_halfedge = fhalfedge_.vector();
+    std::size_t faces_reversed = 0;
+    for (Face f : faces()) {
+        const Halfedge h = face_halfedge[f.idx()];
+        if (!reversed(h.idx() >> 1)) continue;
+        face_halfedge[f.idx()] = twin(h);
+        ++faces_reversed;
+    }
     if (hprops_.n_properties() > 4) {  // attributes beyond the connectivity
         std::vector<Index> corner_source(halfedges_size());
         for (std::size_t h = 0; h < corner_source.size(); ++h)
-            corner_source[h] = reversed(h >> 1) ? prev[h ^ 1].idx() : Index(h);
+            corner_source[h] = reversed(h >> 1) ? twin(next[h]).idx() : Index(h);
         const BasePropertyArray* connectivity[] = {hto_.array(), hnext_.array(), hprev_.array(),
                                                    hface_.array()};
         hprops_.gather_except(corner_source, [&](const BasePropertyArray* a) {
@@ -305,26 +327,33 @@ void HalfedgeMesh::reverse_edges(const std::vector<std::uint8_t>* edge_mask) {
                    std::end(connectivity);
         });
     }
-    std::vector<Halfedge>& vertex_halfedge = vhalfedge_.vector();
-    for (Vertex v : vertices()) {
-        const Halfedge h = vertex_halfedge[v.idx()];
-        if (h.is_valid() && reversed(h.idx() >> 1)) vertex_halfedge[v.idx()] = twin(prev[h.idx()]);
-    }
-    std::vector<Halfedge>& face_halfedge = fhalfedge_.vector();
-    for (Face f : faces()) {
-        const Halfedge h = face_halfedge[f.idx()];
-        if (reversed(h.idx() >> 1)) face_halfedge[f.idx()] = twin(h);
-    }
+    return faces_reversed;
+}
+
+void HalfedgeMesh::reverse_edges(const std::vector<std::uint8_t>* edge_mask) {
+    // Halfedge h keeps its direction (to_vertex) and moves to the other side of its edge:
+    //   face'(h) = face(twin(h)),  next'(h) = twin(prev(twin(h))),  prev'(h) = twin(next(twin(h))).
+    // Face f then consists of the twins of its old halfedges, in reverse order; a boundary loop
+    // likewise. The new values of an edge's two halfedges depend on the old values of those two
+    // only, so each edge is rewritten in place; finish_reversal() then sets what depends on
+    // more than one edge.
+    const std::size_t ne = edges_size();
+    const bool garbage = has_garbage();
+    std::vector<Halfedge>& next = hnext_.vector();
+    std::vector<Halfedge>& prev = hprev_.vector();
+    std::vector<Face>& face = hface_.vector();
+    // Captures by value, as the flood's: finish_reversal() keeps its own copy in registers
+    // across the vertex list's push_back.
+    const auto reversed = [this, garbage,
+                           mask = edge_mask ? edge_mask->data() : nullptr](std::size_t e) {
+        return (!mask || mask[e] != 0) && !(garbage && is_deleted(Edge(Index(e))));
+    };
     for (std::size_t e = 0; e < ne; ++e) {
         if (!reversed(e)) continue;
         const std::size_t h = 2 * e, t = h + 1;
-        const Halfedge next_h = next[h], prev_h = prev[h], next_t = next[t], prev_t = prev[t];
-        next[h] = twin(prev_t);
-        prev[h] = twin(next_t);
-        next[t] = twin(prev_h);
-        prev[t] = twin(next_h);
-        std::swap(face[h], face[t]);
+        reverse_edge_rows(next, prev, face, h, next[h], prev[h], next[t], prev[t]);
     }
+    finish_reversal(reversed, nullptr);
 }
 
 HalfedgeMesh::ReversedPart HalfedgeMesh::reverse_orientation_from(const std::vector<Vertex>& seeds,
@@ -335,10 +364,9 @@ HalfedgeMesh::ReversedPart HalfedgeMesh::reverse_orientation_from(const std::vec
     // goes around every face and boundary loop the edge borders, and both halves of each edge
     // are followed, so the flood reaches the whole component. A queue rather than a stack:
     // the edge taken next was queued long before, so consecutive edges do not wait on each
-    // other's loads. The vertex and face halfedges are set after the flood, in storage order,
-    // from the new values: prev(twin(h)) = twin(next'(h)), so halfedge'(v) =
-    // twin(prev(halfedge(v))) = next'(twin(halfedge(v))). (Setting them in the flood costs
-    // more: random reads, and a vertex's new halfedge lies on an edge still to come.)
+    // other's loads. The vertex and face halfedges and the corner attributes are set after the
+    // flood, in storage order, by finish_reversal(). (Setting them in the flood costs more:
+    // random reads, and a vertex's new halfedge lies on an edge still to come.)
     for (Vertex v : seeds)
         if (!v.is_valid() || v.idx() >= vertices_size())
             throw InvalidArgument("reverse_orientation_from: seed vertex " +
@@ -362,10 +390,8 @@ HalfedgeMesh::ReversedPart HalfedgeMesh::reverse_orientation_from(const std::vec
     std::vector<Halfedge>& next = hnext_.vector();
     std::vector<Halfedge>& prev = hprev_.vector();
     std::vector<Face>& face = hface_.vector();
-    std::vector<Halfedge>& vertex_halfedge = vhalfedge_.vector();
-    std::vector<Halfedge>& face_halfedge = fhalfedge_.vector();
     for (Vertex seed : seeds) {
-        const Halfedge start = vertex_halfedge[seed.idx()];
+        const Halfedge start = halfedge(seed);
         if (is_deleted(seed) || !start.is_valid() || reached[start.idx() >> 1]) continue;
         ++part.components;
         push(start.idx() >> 1);
@@ -388,38 +414,11 @@ HalfedgeMesh::ReversedPart HalfedgeMesh::reverse_orientation_from(const std::vec
             const Halfedge next_h = next[h], prev_h = prev[h], next_t = next[t], prev_t = prev[t];
             push(next_h.idx() >> 1);
             push(next_t.idx() >> 1);
-            next[h] = twin(prev_t);
-            prev[h] = twin(next_t);
-            next[t] = twin(prev_h);
-            prev[t] = twin(next_h);
-            std::swap(face[h], face[t]);
+            reverse_edge_rows(next, prev, face, h, next_h, prev_h, next_t, prev_t);
         }
     }
-    if (list_vertices) part.vertices.reserve(vertices_size());  // only what is filled is touched
-    for (Vertex v : vertices()) {
-        const Halfedge h = vertex_halfedge[v.idx()];
-        if (!h.is_valid() || !reached[h.idx() >> 1]) continue;
-        vertex_halfedge[v.idx()] = next[h.idx() ^ 1];
-        if (list_vertices) part.vertices.push_back(v);
-    }
-    for (Face f : faces()) {
-        const Halfedge h = face_halfedge[f.idx()];
-        if (!reached[h.idx() >> 1]) continue;
-        face_halfedge[f.idx()] = twin(h);
-        ++part.faces;
-    }
-    if (hprops_.n_properties() > 4) {  // attributes beyond the connectivity
-        // The corner (to(g), face'(g)) was the old corner of prev(twin(g)) = twin(next'(g)).
-        std::vector<Index> corner_source(halfedges_size());
-        for (std::size_t h = 0; h < corner_source.size(); ++h)
-            corner_source[h] = reached[h >> 1] ? twin(next[h]).idx() : Index(h);
-        const BasePropertyArray* connectivity[] = {hto_.array(), hnext_.array(), hprev_.array(),
-                                                   hface_.array()};
-        hprops_.gather_except(corner_source, [&](const BasePropertyArray* a) {
-            return std::find(std::begin(connectivity), std::end(connectivity), a) !=
-                   std::end(connectivity);
-        });
-    }
+    part.faces = finish_reversal([r = reached.data()](std::size_t e) { return r[e] != 0; },
+                                 list_vertices ? &part.vertices : nullptr);
     return part;
 }
 
