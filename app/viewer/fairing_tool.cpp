@@ -61,10 +61,6 @@ void FairingTool::update_stable_step() {
 
 void FairingTool::update_lens() {
     FairingPanelState& panel = panel_;
-    if (panel.lens.show_diverging_pressed) {  // the button under the curve
-        panel.lens.show_diverging_pressed = false;
-        if (!context_.session.busy()) context_.session.show_diverging_run(panel.op);
-    }
     if (context_.session.prediction_shown())
         panel.preview_note = "showing the spectral prediction; the exact result follows";
     const bool diverging = context_.session.diverging_run_shown();

@@ -41,7 +41,7 @@ void FrameOutput::take_screenshot(const TakeScreenshot& request) {
         context_.session.log().info("screenshot " + request.path + " (" +
                                     std::to_string(request.width) + " x " +
                                     std::to_string(request.height) + ")");
-        context_.session.notice() = Notice{Notice::Level::Info, "Saved " + request.path, {}, false};
+        context_.session.notify(Notice{Notice::Level::Info, "Saved " + request.path, {}, false});
     } catch (const std::exception& e) {
         Framebuffer::bind_default();
         context_.session.notify_error(std::string("screenshot: ") + e.what());
@@ -88,7 +88,7 @@ void FrameOutput::start_recording() {
     framebuffer_viewport(context_.view_rect, x, y, view_w, view_h);
     record_line_scale_ = context_.ui_scale *
                          std::min(float(r.width) / float(view_w), float(r.height) / float(view_h));
-    context_.session.morph().playing = false;
+    context_.session.execute(PlayMorph{false});
     r.running = true;
     r.next = 0;
     context_.session.log().info("recording " + std::to_string(r.frames) + " frames to " + r.folder);
@@ -100,7 +100,8 @@ void FrameOutput::record_next_frame() {
     context_.keep_drawing();
     try {
         // Show frame `next` of the morph (this also updates the window).
-        context_.session.morph().t = r.frames > 1 ? double(r.next) / double(r.frames - 1) : 1.0;
+        context_.session.execute(
+            ShowMorphAt{r.frames > 1 ? double(r.next) / double(r.frames - 1) : 1.0});
         context_.session.update();
         scene_.sync();
         Framebuffer framebuffer;

@@ -101,7 +101,20 @@ void SceneView::ensure_exact() {
     if (proxy_.exact_pending) upload_shown();
 }
 
-bool SceneView::take_pending_coloring() {
+bool SceneView::poll_coloring() {
+    // The session's colouring job ended: its colours, unless the user has already replaced
+    // the colouring; of another state (an entry applied meanwhile), that state is coloured
+    // again.
+    if (const Session::ColoringResult* r = session_.coloring_result();
+        r && r->id != coloring_result_id_) {
+        coloring_result_id_ = r->id;
+        if (view_.settings.coloring == r->coloring) {
+            if (session_.mesh().revision() != r->state)
+                coloring_pending_ = true;
+            else
+                apply_colors(r->colors);
+        }
+    }
     const bool pending = coloring_pending_;
     coloring_pending_ = false;
     return pending;
@@ -494,22 +507,21 @@ void SceneView::update_coloring() {
         geodesic_colored_version_ = session_.picks().version;
         VertexColors colors = (field_colors_ ? field_colors_(session_.mesh()) : VertexColors{});
         if (colors.colors.empty() && geodesic)
-            session_.notice() =
+            session_.notify(
                 Notice{Notice::Level::Info,
                        session_.picks().picks.empty()
                            ? "geodesic distance: click the model to pick where it is measured from"
                            : "geodesic distance: measuring from the picks...",
                        {},
-                       false};
+                       false});
         else if (geodesic && session_.notice().text.rfind("geodesic distance:", 0) == 0)
-            session_.notice() = Notice{};  // the distances arrived
+            session_.notify(Notice{});  // the distances arrived
         else if (colors.colors.empty())
-            session_.notice() =
-                Notice{Notice::Level::Info,
-                       "the frequency colourings need a decomposition (Algorithms > "
-                       "Frequency decomposition)",
-                       {},
-                       false};
+            session_.notify(Notice{Notice::Level::Info,
+                                   "the frequency colourings need a decomposition (Algorithms > "
+                                   "Frequency decomposition)",
+                                   {},
+                                   false});
         apply_colors(std::move(colors));
         return;
     }
@@ -525,27 +537,7 @@ void SceneView::update_coloring() {
         coloring_pending_ = true;
         return;
     }
-    const HalfedgeMesh snapshot = session_.mesh();  // copy-on-write: the job's own
-    const HalfedgeMesh::Revision state = snapshot.revision();
-    const bool started =
-        session_.jobs().start(std::string("Colouring by ") + coloring_name(coloring),
-                              [this, coloring, options, reference, snapshot, state](Progress&) {
-                                  auto colors = std::make_shared<VertexColors>(
-                                      color_vertices(snapshot, coloring, options, reference.get()));
-                                  return JobRunner::Finish([this, colors, coloring, state] {
-                                      // Ignore a result the user has already replaced, or one of
-                                      // another state (an entry applied meanwhile): colour that
-                                      // state again.
-                                      if (view_.settings.coloring != coloring) return;
-                                      if (session_.mesh().revision() != state) {
-                                          coloring_pending_ = true;
-                                          return;
-                                      }
-                                      apply_colors(std::move(*colors));
-                                  });
-                              });
-    if (!started)
-        session_.notify_error("busy: wait for \"" + session_.jobs().name() + "\" or cancel it");
+    session_.execute(ComputeColoring{coloring, options, reference});
 }
 
 void SceneView::show_colors_of(const HalfedgeMesh& mesh, const std::vector<Point>& reference) {

@@ -61,8 +61,10 @@ public:
     /// Computes the colouring of view.settings (as a job for large meshes) and uploads it;
     /// `field_colors` gives the colourings computed from a field (frequency, geodesic).
     void update_coloring();
-    /// A colouring asked for while a job ran is computed once it ends (true: it was pending).
-    bool take_pending_coloring();
+    /// After a job ended: applies the session's colouring result when it is of the current
+    /// colouring and state; returns true when a colouring is still to be computed (one asked
+    /// for while a job ran, or the result was of another state).
+    bool poll_coloring();
     void set_field_colors(std::function<VertexColors(const HalfedgeMesh&)> field_colors) {
         field_colors_ = std::move(field_colors);
     }
@@ -186,10 +188,11 @@ private:
     std::function<VertexColors(const HalfedgeMesh&)> field_colors_;
     std::uint64_t shown_version_ = 0;  ///< of session.shown() on the GPU
     Shown::Kind shown_kind_ = Shown::Kind::Document;
-    double surface_area_ = 0;        ///< of the current state (the wireframe decision)
-    bool wire_auto_on_ = false;      ///< the automatic overlay's last decision (hysteresis)
-    double edge_pixels_ = 0;         ///< a typical edge on the screen (framebuffer pixels)
-    bool coloring_pending_ = false;  ///< a colouring was asked for while a job ran
+    double surface_area_ = 0;               ///< of the current state (the wireframe decision)
+    bool wire_auto_on_ = false;             ///< the automatic overlay's last decision (hysteresis)
+    double edge_pixels_ = 0;                ///< a typical edge on the screen (framebuffer pixels)
+    bool coloring_pending_ = false;         ///< a colouring was asked for while a job ran
+    std::uint64_t coloring_result_id_ = 0;  ///< the session's colouring result applied last
     std::uint64_t geodesic_colored_version_ = 0;
 };
 

@@ -228,16 +228,14 @@ bool ScriptDriver::settled() {
     if (!options_.sweep_op.empty() && !sweep_.started) return false;
     if (!motion_settled()) return false;  // the orbit, its rest, the exact surface
     if (session_.morph().playing) {       // end it: the next frame shows where it ends
-        session_.morph().t = 1.0;
-        session_.morph().playing = false;
+        context_.commands.push_back(ShowMorphAt{1.0});
         return false;
     }
     if (options_.morph_t >= 0 && !morph_t_done_) {
         morph_t_done_ = true;
         if (session_.history().current() == 0 || !session_.morph().moves)
             session_.log().warning("--morph-t: the current state has no morph to show");
-        session_.morph().t = options_.morph_t;
-        session_.morph().playing = false;
+        context_.commands.push_back(ShowMorphAt{options_.morph_t});
         return false;
     }
     return true;

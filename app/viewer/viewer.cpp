@@ -339,7 +339,7 @@ bool Viewer::prepare_frame() {
     }
     if (session.poll()) {
         context_.keep_drawing(kFramesAfterInput);
-        if (scene_->take_pending_coloring())  // asked for while a job ran
+        if (scene_->poll_coloring())  // asked for while a job ran
             context_.commands.push_back(UpdateColoring{});
     }
     follow_session();

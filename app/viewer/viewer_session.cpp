@@ -14,9 +14,10 @@ namespace trilab::viewer {
 SessionExtras Viewer::session_extras() const {
     // The settings functions take references for both directions; writing only reads them.
     ViewerContext& self = const_cast<ViewerContext&>(context_);
+    MorphState morph = context_.session.morph();
     SessionExtras extras;
     extras.viewer_settings = viewer_settings_text(
-        {self.view.camera, self.view.style, self.view.settings, self.panels, self.session.morph()});
+        {self.view.camera, self.view.style, self.view.settings, self.panels, morph});
     extras.texture_path = scene_->texture_path();
     return extras;
 }
@@ -24,10 +25,12 @@ SessionExtras Viewer::session_extras() const {
 void Viewer::apply_session_extras(const SessionExtras& extras) {
     ViewState& view = context_.view;
     Session& session = context_.session;
-    for (const std::string& note : apply_viewer_settings(
-             extras.viewer_settings,
-             {view.camera, view.style, view.settings, context_.panels, session.morph()}))
+    MorphState morph = session.morph();
+    for (const std::string& note :
+         apply_viewer_settings(extras.viewer_settings,
+                               {view.camera, view.style, view.settings, context_.panels, morph}))
         session.log().warning(note);
+    session.execute(SetMorphAnimation{morph.duration, morph.easing, morph.playback});
     view.fitted = false;                                       // the stored camera stays on resize
     const bool checkerboard = view.settings.use_checkerboard;  // as the session stored it
     if (!extras.texture_path.empty()) {
@@ -87,8 +90,8 @@ void Viewer::journal_settings() {
     const std::string warning = journal->take_warning();
     if (!warning.empty()) {  // once; the viewer goes on without a journal
         context_.session.log().warning("crash journal: " + warning);
-        context_.session.notice() =
-            Notice{Notice::Level::Error, "crash journal stopped: " + warning, {}, false};
+        context_.session.notify(
+            Notice{Notice::Level::Error, "crash journal stopped: " + warning, {}, false});
     }
     const double now = context_.session.now();
     if (settings_journaled_at_ >= 0 && now - settings_journaled_at_ < 1.0) return;

@@ -141,8 +141,7 @@ void Viewer::handle_input() {
                              context_.session.jobs().busy(),
                              context_.session.history().current() > 0,
                              scene_->exact().has_texcoords(),
-                             context_.session.preview_requested().has_value(),
-                             glfwGetTime()};
+                             context_.session.preview_requested().has_value()};
     for (const KeyPress& press : presses) dispatch_key(press.key, press.mods, targets, focus);
 }
 
@@ -207,7 +206,6 @@ void Viewer::draw_ui() {
         sidebar.history = &session_.history();
         sidebar.busy = session_.jobs().busy();
         sidebar.closed = session_.document().closed;
-        sidebar.now = glfwGetTime();
         sidebar.can_record =
             session_.history().current() > 0 && session_.morph().moves && !session_.jobs().busy();
         sidebar.open_seams = session_.document().open_seams;
@@ -246,7 +244,7 @@ void Viewer::draw_ui() {
     help_window(panels_);
     about_window(panels_);
     file_browser(panels_.file_browser, commands_);
-    error_popup(session_.notice());
+    error_popup(session_.notice(), commands_);
     unsaved_changes_popup(panels_.unsaved, commands_);
     recovery_popup(panels_.recovery, commands_);
 }
