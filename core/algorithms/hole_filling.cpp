@@ -34,6 +34,8 @@ constexpr int kMaxRefineRounds = 60;
 constexpr int kMaxRelaxPasses = 50;
 constexpr int kSmoothingRounds = 4;
 constexpr int kRepairRounds = 3;
+/// New vertices one loop may get (a loop whose rim spacing is tiny against its size).
+constexpr Index kMaxPatchVertices = 4000000;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 using Triangle = std::array<Vertex, 3>;
@@ -335,14 +337,27 @@ public:
 
     /// Liepa's refinement; false when a cap was hit (said in `note`).
     bool refine(std::string& note) {
+        // A worklist of faces to test: every split and every flip after it queues the faces
+        // it touched, so a refinement that travels along a thin hole goes on in one sweep
+        // (Lawson's flips keep the patch Delaunay after each split).
+        std::vector<Face> work;
+        for (Index fi = f0_; fi < Index(mesh_.faces_size()); ++fi) work.push_back(Face(fi));
         for (int round = 0; round < kMaxRefineRounds; ++round) {
             std::size_t splits = 0;
-            const Index end = Index(mesh_.faces_size());
-            for (Index fi = f0_; fi < end; ++fi) splits += split_if_coarse(Face(fi)) ? 1 : 0;
+            while (!work.empty()) {
+                const Face f = work.back();
+                work.pop_back();
+                splits += split_if_coarse(f, work) ? 1 : 0;
+                if (mesh_.vertices_size() > std::size_t(kMaxPatchVertices) + v0_) {
+                    note = "refinement stopped at " + std::to_string(kMaxPatchVertices) +
+                           " new vertices";
+                    return false;
+                }
+            }
             const Index edges_end = Index(mesh_.edges_size());
-            for (Index e = e0_; e < edges_end; ++e) splits += split_if_long(Edge(e)) ? 1 : 0;
+            for (Index e = e0_; e < edges_end; ++e)
+                if (split_if_long(Edge(e), work)) ++splits;
             if (splits == 0) return true;
-            relax_all();
         }
         note = "refinement stopped after " + std::to_string(kMaxRefineRounds) + " rounds";
         return false;
@@ -455,7 +470,7 @@ private:
     }
     /// Splits a new edge longer than twice its ends' mean spacing at its midpoint: Liepa's
     /// face splits leave long edges where a sliver's centroid sits close to its corners.
-    bool split_if_long(Edge e) {
+    bool split_if_long(Edge e, std::vector<Face>& work) {
         const Vertex a = mesh_.vertex(e, 0), b = mesh_.vertex(e, 1);
         const double s = 0.5 * (spacing_[a.idx()] + spacing_[b.idx()]);
         const Point pa = mesh_.position(a), pb = mesh_.position(b);
@@ -463,9 +478,10 @@ private:
         const Vertex nv = mesh_.split(e, 0.5 * (pa + pb));
         if (spacing_.size() <= nv.idx()) spacing_.resize(nv.idx() + 1, 0);
         spacing_[nv.idx()] = s;
+        for (Face g : mesh_.faces_around(nv)) work.push_back(g);
         return true;
     }
-    bool split_if_coarse(Face f) {
+    bool split_if_coarse(Face f, std::vector<Face>& work) {
         const std::array<Vertex, 3> v = mesh_.face_vertices(f);
         const Point c = (mesh_.position(v[0]) + mesh_.position(v[1]) + mesh_.position(v[2])) / 3;
         const double sc = (spacing_[v[0].idx()] + spacing_[v[1].idx()] + spacing_[v[2].idx()]) / 3;
@@ -479,8 +495,27 @@ private:
         const Vertex nv = mesh_.split(f, c);
         if (spacing_.size() <= nv.idx()) spacing_.resize(nv.idx() + 1, 0);
         spacing_[nv.idx()] = sc;
-        for (Edge e : edges) relax(e);
+        for (Face g : mesh_.faces_around(nv)) work.push_back(g);
+        for (Edge e : edges) relax_around(e, work);
         return true;
+    }
+    /// Lawson's flips from e outwards: each flip queues the four edges around it (and its two
+    /// faces on `work`).
+    void relax_around(Edge first, std::vector<Face>& work) {
+        std::vector<Edge> edges{first};
+        std::size_t budget = 64;  // flips per call; relax_all() finishes anything left
+        while (!edges.empty() && budget > 0) {
+            const Edge e = edges.back();
+            edges.pop_back();
+            if (!relax(e)) continue;
+            --budget;
+            for (int side = 0; side < 2; ++side) {
+                const Halfedge h = HalfedgeMesh::halfedge(e, unsigned(side));
+                work.push_back(mesh_.face(h));
+                edges.push_back(HalfedgeMesh::edge(mesh_.next(h)));
+                edges.push_back(HalfedgeMesh::edge(mesh_.prev(h)));
+            }
+        }
     }
     /// Flips e when it is new and the angles opposite it sum to more than 180 degrees.
     bool relax(Edge e) {
@@ -491,7 +526,7 @@ private:
         const Point& c = mesh_.position(mesh_.to_vertex(mesh_.next(h)));
         const Point& d = mesh_.position(mesh_.to_vertex(mesh_.next(o)));
         if (corner_angle(c, a, b) + corner_angle(d, b, a) <= kPi + 1e-9) return false;
-        // The flipped triangles (c, d, a... ) must have area.
+        // The flipped triangles (c, d, a) and (d, c, b) must have area.
         const double l = std::max((c - d).squaredNorm(), (a - b).squaredNorm());
         if ((d - c).cross(a - c).norm() <= 1e-12 * l || (c - d).cross(b - d).norm() <= 1e-12 * l)
             return false;
@@ -560,7 +595,8 @@ bool solve_fairing(HalfedgeMesh& mesh, Index v0, int order, LaplacianOperator op
     lo.fix_boundary = false;
     lo.mass = op == LaplacianOperator::Umbrella ? MassMatrix::Normalizer : MassMatrix::Voronoi;
     const Laplacian lap = build_laplacian(sub, op, lo);
-    const Eigen::VectorXd s_inv = lap.S.cwiseInverse();
+    Eigen::VectorXd s_inv(lap.S.size());
+    for (Eigen::Index i = 0; i < lap.S.size(); ++i) s_inv[i] = lap.S[i] > 0 ? 1.0 / lap.S[i] : 0.0;
     SparseMatrix a = lap.K * s_inv.asDiagonal() * lap.K;
     if (order == 3) a = SparseMatrix(a * s_inv.asDiagonal() * lap.K);
     // Unknowns: the rows of new vertices; the rest is known.
@@ -699,6 +735,7 @@ std::string fill_loop(HalfedgeMesh& mesh, const BoundaryLoop& loop, std::size_t 
     patch.relax_all();
     std::string note;
     if (!patch.refine(note)) r.notes.push_back("loop " + std::to_string(index) + ": " + note);
+    patch.relax_all();
     patch.smooth_tangentially(false);
     fair_patch(mesh, v0, o.fairing, index, r.notes);
     patch.smooth_tangentially(false);
@@ -762,7 +799,7 @@ HoleFillingReport fill_holes(HalfedgeMesh& mesh, const HoleFillingOptions& optio
     r.vertices_added = mesh.n_vertices() - n_vertices;
     r.faces_added = mesh.n_faces() - n_faces;
     measure_new_faces(mesh, f0, r);
-    set_attributes(mesh, v0, rims, options.select_new);
+    if (r.loops_filled > 0) set_attributes(mesh, v0, rims, options.select_new);
     return r;
 }
 
