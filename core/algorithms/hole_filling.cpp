@@ -87,6 +87,45 @@ std::string vertex_text(Vertex v) {
     return "vertex " + std::to_string(v.idx());
 }
 
+/// Per loop, why its rim is pinched ("" when it is not): a rim vertex at the same position as
+/// another rim vertex, of the same loop (the loop touches itself) or of another (two holes
+/// meeting at a point). Either is a non-manifold rim as loading splits it (one vertex per fan):
+/// filling would close a surface that touches itself there. O(R log R) for R rim vertices.
+std::vector<std::string> pinched_rims(const HalfedgeMesh& mesh,
+                                      const std::vector<BoundaryLoop>& loops) {
+    struct RimVertex {
+        std::array<double, 3> key;
+        std::size_t loop;
+        Vertex v;
+    };
+    std::vector<RimVertex> all;
+    for (std::size_t i = 0; i < loops.size(); ++i)
+        for (Vertex v : loops[i].vertices) {
+            const Point& p = mesh.position(v);
+            all.push_back({{p.x(), p.y(), p.z()}, i, v});
+        }
+    std::sort(all.begin(), all.end(),
+              [](const RimVertex& a, const RimVertex& b) { return a.key < b.key; });
+    std::vector<std::string> why(loops.size());
+    for (std::size_t k = 1; k < all.size(); ++k) {
+        const RimVertex &a = all[k - 1], &b = all[k];
+        if (a.key != b.key) continue;
+        const std::string pair = vertex_text(a.v) + " and " + vertex_text(b.v);
+        if (a.loop == b.loop) {
+            if (why[a.loop].empty())
+                why[a.loop] = "the loop touches itself: " + pair +
+                              " are at the same position (a pinched, non-manifold rim)";
+            continue;
+        }
+        for (const auto& [mine, other] : {std::pair(a.loop, b.loop), std::pair(b.loop, a.loop)})
+            if (why[mine].empty())
+                why[mine] = "the rim touches loop " + std::to_string(other) + ": " + pair +
+                            " are at the same position (a pinched, non-manifold rim; filling "
+                            "both would close a surface that touches itself)";
+    }
+    return why;
+}
+
 /// Why the rim cannot be filled as it is, or "" when it can.
 std::string rim_problem(const HalfedgeMesh& mesh, const BoundaryLoop& loop) {
     const std::vector<Vertex>& rim = loop.vertices;
@@ -99,19 +138,6 @@ std::string rim_problem(const HalfedgeMesh& mesh, const BoundaryLoop& loop) {
             return "the rim edge from " + vertex_text(a) + " to " + vertex_text(b) +
                    " has zero length (weld the mesh first)";
     }
-    std::vector<std::size_t> order(rim.size());
-    std::iota(order.begin(), order.end(), 0);
-    const auto key = [&](std::size_t i) {
-        const Point& p = mesh.position(rim[i]);
-        return std::array<double, 3>{p.x(), p.y(), p.z()};
-    };
-    std::sort(order.begin(), order.end(),
-              [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
-    for (std::size_t i = 1; i < order.size(); ++i)
-        if (key(order[i]) == key(order[i - 1]))
-            return "the loop touches itself: " + vertex_text(rim[order[i - 1]]) + " and " +
-                   vertex_text(rim[order[i]]) +
-                   " are at the same position (a pinched, non-manifold rim)";
     if (rim.size() == 3) {
         const Halfedge h = mesh.find_halfedge(rim[0], rim[1]);
         const Face f = mesh.face(HalfedgeMesh::twin(h));
@@ -783,10 +809,12 @@ HoleFillingReport fill_holes(HalfedgeMesh& mesh, const HoleFillingOptions& optio
     const std::size_t n_vertices = mesh.n_vertices(), n_faces = mesh.n_faces();
     std::vector<double> spacing = rim_spacing(mesh);
     std::vector<std::vector<Vertex>> rims;
+    const std::vector<std::string> pinched = pinched_rims(mesh, loops);
     for (std::size_t i = 0; i < loops.size(); ++i) {
         if (!chosen[i]) continue;
         ++r.loops_chosen;
         std::string why = rim_problem(mesh, loops[i]);
+        if (why.empty()) why = pinched[i];
         if (why.empty()) why = fill_loop(mesh, loops[i], i, options, spacing, r);
         if (!why.empty()) {
             r.refused.push_back({i, loops[i].edges(), why});
