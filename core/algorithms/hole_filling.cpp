@@ -26,7 +26,6 @@ namespace trilab {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 /// Liepa's density factor: a triangle is split while sqrt(2)·|c - v| exceeds the spacing.
 constexpr double kDensityFactor = 1.4142135623730951;
 /// Caps that keep a pathological rim from running away (each hit is reported).
@@ -474,9 +473,13 @@ private:
         for (Face f : mesh_.faces_around(v)) a = std::min(a, min_face_angle(mesh_, f));
         return a;
     }
-    /// The smallest angle of triangle (a, b, c), radians.
+    /// The smallest angle of triangle (a, b, c) in radians: the one opposite the shortest side.
     static double min_angle(const Point& a, const Point& b, const Point& c) {
-        return std::min({corner_angle(a, b, c), corner_angle(b, c, a), corner_angle(c, a, b)});
+        const double ab = (b - a).squaredNorm(), bc = (c - b).squaredNorm(),
+                     ca = (a - c).squaredNorm();
+        if (bc <= ab && bc <= ca) return corner_angle(a, b, c);
+        if (ca <= ab) return corner_angle(b, c, a);
+        return corner_angle(c, a, b);
     }
     bool flip_if_better(Edge e) {
         if (mesh_.is_boundary(e) || !mesh_.is_flip_ok(e)) return false;
@@ -551,7 +554,11 @@ private:
         const Point& b = mesh_.position(mesh_.to_vertex(h));
         const Point& c = mesh_.position(mesh_.to_vertex(mesh_.next(h)));
         const Point& d = mesh_.position(mesh_.to_vertex(mesh_.next(o)));
-        if (corner_angle(c, a, b) + corner_angle(d, b, a) <= kPi + 1e-9) return false;
+        // alpha + beta > 180 degrees exactly when cot(alpha) + cot(beta) < 0.
+        const Vector3 ca = a - c, cb = b - c, da = a - d, db = b - d;
+        const double sc = ca.cross(cb).norm(), sd = da.cross(db).norm();
+        if (!(sc > 0 && sd > 0)) return false;
+        if (ca.dot(cb) / sc + da.dot(db) / sd >= -1e-9) return false;
         // The flipped triangles (c, d, a) and (d, c, b) must have area.
         const double l = std::max((c - d).squaredNorm(), (a - b).squaredNorm());
         if ((d - c).cross(a - c).norm() <= 1e-12 * l || (c - d).cross(b - d).norm() <= 1e-12 * l)

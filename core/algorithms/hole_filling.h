@@ -19,11 +19,16 @@
 //     the full programme: both triangulate over the loop's vertices only).
 //  2. Refinement to the density around the hole (Liepa section 3.2): each rim vertex gets the
 //     mean length s of its edges; a new triangle is split at its centroid c (s(c) the mean of
-//     its corners') while sqrt(2)·|c - v| exceeds both s(c) and s(v) for each corner v; the
-//     new edges are flipped towards a Delaunay triangulation (the two angles opposite an edge
-//     sum to at most 180 degrees) after each round. Then a few rounds of tangential relaxation
-//     and flips to lift the smallest angles (target: none under 20 degrees where the rim
-//     allows it).
+//     its corners') while sqrt(2)·|c - v| exceeds both s(c) and s(v) for each corner v, and a
+//     new edge longer than twice its ends' mean s is split at its midpoint; after each split
+//     Lawson's flips make the new edges Delaunay again (the two angles opposite an edge sum to
+//     at most 180 degrees), and the faces a split or flip touched are tested again (a worklist,
+//     so the refinement runs along a long thin hole in one sweep). Then tangential smoothing
+//     (towards the area-weighted centroid of the one-ring) with flips that raise the smallest
+//     angle, before and after fairing; a new triangle still under 20 degrees gets its longest
+//     new edge split, and is faired and smoothed again (up to three rounds, a vertex moving only
+//     where that raises the smallest angle around it). What remains under 20 degrees is where
+//     the rim allows no better (a rim vertex between a very short and a long rim edge).
 //  3. Fairing with trilab's own implicit Laplacian (core/algorithms/laplacian.h, cotangent
 //     weights with the Voronoi mass, Meyer et al. 2003): the new vertices solve
 //     Δ²x = 0 (C1: tangent continuity at the rim) or Δ³x = 0 (C2: curvature continuity), with

@@ -118,10 +118,12 @@ std::size_t self_intersections_near(const HalfedgeMesh& mesh, Index f0) {
 }
 
 /// Whether every new triangle (index >= f0) with an angle under 20 degrees has a corner at a
-/// rim vertex (index < v0) where no triangulation reaches 20 degrees: its new triangles span
-/// less than 60 degrees there (so at most two of them), and its two rim edges differ in length
-/// by more than a factor 4 (two triangles fanning a corner of under 60 degrees from edges of
-/// lengths s and 4 s cannot both keep 20 degrees at their far corners).
+/// rim vertex v (index < v0) where no triangulation reaches 20 degrees: its new triangles span
+/// less than 60 degrees there, and its two rim edges are s and L > 7.5 s long. Proof: three
+/// triangles at v would have an angle under 20 at v; one (the ear) an angle at its far corner of
+/// at most about s sin(60) / L; with two, (v, w, m) on the short edge and (v, m, u) on the long
+/// one, the law of sines in the first bounds |v m| <= s sin(120) / sin(20) = 2.53 s and in the
+/// second needs |v m| >= L sin(20) = 0.342 L, so L <= 7.4 s.
 bool small_angles_only_where_unavoidable(const HalfedgeMesh& mesh, Index v0, Index f0) {
     for (Index fi = f0; fi < mesh.faces_size(); ++fi) {
         if (min_face_angle(mesh, Face(fi)) >= 20.0) continue;
@@ -144,7 +146,7 @@ bool small_angles_only_where_unavoidable(const HalfedgeMesh& mesh, Index v0, Ind
                 if (rim_edge) rim.push_back(edge_length(mesh, HalfedgeMesh::edge(h)));
             }
             if (span < 60 && rim.size() == 2 &&
-                std::max(rim[0], rim[1]) > 4 * std::min(rim[0], rim[1]))
+                std::max(rim[0], rim[1]) > 7.5 * std::min(rim[0], rim[1]))
                 explained = true;
         }
         if (!explained) return false;
