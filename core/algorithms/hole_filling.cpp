@@ -112,15 +112,18 @@ std::vector<std::string> pinched_rims(const HalfedgeMesh& mesh,
         const std::string pair = vertex_text(a.v) + " and " + vertex_text(b.v);
         if (a.loop == b.loop) {
             if (why[a.loop].empty())
-                why[a.loop] = "the loop touches itself: " + pair +
-                              " are at the same position (a pinched, non-manifold rim)";
+                why[a.loop] =
+                    "the loop touches itself: " + pair +
+                    " are at the same position (a pinched, non-manifold rim, or an open seam: "
+                    "`weld` joins seams)";
             continue;
         }
         for (const auto& [mine, other] : {std::pair(a.loop, b.loop), std::pair(b.loop, a.loop)})
             if (why[mine].empty())
                 why[mine] = "the rim touches loop " + std::to_string(other) + ": " + pair +
-                            " are at the same position (a pinched, non-manifold rim; filling "
-                            "both would close a surface that touches itself)";
+                            " are at the same position (a pinched, non-manifold rim, or the two "
+                            "sides of an open seam: `weld` joins seams; filling would close a "
+                            "surface that touches itself)";
     }
     return why;
 }
