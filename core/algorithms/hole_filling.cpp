@@ -33,6 +33,11 @@ constexpr int kMaxRefineRounds = 60;
 constexpr int kMaxRelaxPasses = 50;
 constexpr int kSmoothingRounds = 4;
 constexpr int kRepairRounds = 3;
+/// A loop whose best triangulation bends by more than this between neighbouring triangles (or
+/// against the old faces) would fold back onto the surface: refused.
+constexpr double kMaxFoldDeg = 150.0;
+/// The largest fill (estimated faces after refinement) a loop may get; above, it is refused.
+constexpr std::size_t kMaxEstimatedFaces = 2000000;
 /// New vertices one loop may get (a loop whose rim spacing is tiny against its size).
 constexpr Index kMaxPatchVertices = 4000000;
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -180,6 +185,12 @@ public:
         return true;
     }
     bool was_cut() const { return cut_; }
+    /// The largest dihedral angle (degrees) of the triangulation, the old faces across the rim
+    /// included.
+    double largest_dihedral_deg() const {
+        return std::acos(std::clamp(1.0 - largest_measure_, -1.0, 1.0)) * 180.0 /
+               3.14159265358979323846;
+    }
 
 private:
     const Point& p(Index i) const { return mesh_.position(rim_[i]); }
@@ -242,6 +253,7 @@ private:
     std::vector<Vector3> outside_;  ///< per rim edge i -> i+1: the old face's unit normal
     std::vector<Triangle> triangles_;
     bool ok_ = true, cut_ = false;
+    double largest_measure_ = 0;
     std::string why_;
 };
 
@@ -309,6 +321,7 @@ void LoopTriangulator::dynamic_programme(const std::vector<Index>& q) {
              "triangles without area (collinear rim vertices)");
         return;
     }
+    largest_measure_ = std::max(largest_measure_, w[m - 1].angle);
     emit(q, best, m, 0, m - 1);
 }
 
@@ -754,6 +767,20 @@ std::vector<double> rim_spacing(const HalfedgeMesh& mesh) {
     return spacing;
 }
 
+/// About how many faces refinement would give the coarse triangulation: its area over that of
+/// an equilateral triangle with the rim's mean spacing as its side.
+double estimated_faces(const HalfedgeMesh& mesh, const BoundaryLoop& loop,
+                       const std::vector<Triangle>& triangles, const std::vector<double>& spacing) {
+    double area = 0, s = 0;
+    for (const Triangle& t : triangles)
+        area += 0.5 * (mesh.position(t[1]) - mesh.position(t[0]))
+                          .cross(mesh.position(t[2]) - mesh.position(t[0]))
+                          .norm();
+    for (Vertex v : loop.vertices) s += spacing[v.idx()];
+    s /= double(loop.vertices.size());
+    return s > 0 ? area / (0.4330127018922193 * s * s) : 0.0;
+}
+
 /// Fills one loop whose rim passed rim_problem(); "" or the reason it was refused.
 std::string fill_loop(HalfedgeMesh& mesh, const BoundaryLoop& loop, std::size_t index,
                       const HoleFillingOptions& o, std::vector<double>& spacing,
@@ -762,6 +789,21 @@ std::string fill_loop(HalfedgeMesh& mesh, const BoundaryLoop& loop, std::size_t 
     std::vector<Triangle> triangles;
     std::string why;
     if (!triangulator.run(triangles, why)) return why;
+    if (triangulator.largest_dihedral_deg() > kMaxFoldDeg)
+        return "every triangulation of it folds back by " +
+               std::to_string(std::lround(triangulator.largest_dihedral_deg())) +
+               " degrees or more onto itself or the surface (over " +
+               std::to_string(std::lround(kMaxFoldDeg)) +
+               "): it is the outer border of an open sheet, not a hole";
+    if (o.refine) {
+        const double estimate = estimated_faces(mesh, loop, triangles, spacing);
+        if (estimate > double(kMaxEstimatedFaces))
+            return "refined to the density around it, the fill would have about " +
+                   std::to_string(std::llround(estimate)) + " faces, over the limit of " +
+                   std::to_string(kMaxEstimatedFaces) +
+                   " (a mesh's outer border, or a hole far larger than its triangles: choose "
+                   "loops with --loops, --max-edges or --max-diameter)";
+    }
     if (triangulator.was_cut()) ++r.loops_cut;
     const Index v0 = Index(mesh.vertices_size()), e0 = Index(mesh.edges_size()),
                 f0 = Index(mesh.faces_size());

@@ -48,8 +48,12 @@
 // never silently skipped): a non-finite rim position, a rim edge of zero length, two rim vertices
 // at the same position (a loop that touches itself, as a pinched, non-manifold rim becomes when
 // loaded), a three-edge loop whose triangle exists already (the fill would cover a face twice),
-// and a loop with no triangulation that avoids the existing edges between rim vertices and
-// triangles without area (collinear rims).
+// a loop with no triangulation that avoids the existing edges between rim vertices and
+// triangles without area (collinear rims), a loop whose best triangulation bends by more than
+// 150 degrees somewhere (it folds back onto the surface: the outer border of a flat sheet), and a
+// loop whose fill, refined to the density around it, would have more than about two million faces
+// (the outer border of a large open scan: estimated before anything is added, as the coarse
+// triangulation's area over an equilateral triangle of the rim's mean edge length).
 //
 // Attributes: new vertices get a normal where the mesh has "v:normal" (and their rim
 // neighbours' normals are recomputed), the mean rim colour where it has "v:color", zero

@@ -323,14 +323,17 @@ TEST_CASE("degenerate rims are refused with the reason, the rest filled", "[hole
         });
         HalfedgeMesh m = pinched;
         const HoleFillingReport r = fill_holes(m);
-        REQUIRE(r.loops_found == 2);   // the grid's border and the pinched loop
-        REQUIRE(r.loops_filled == 1);  // the border
-        REQUIRE(r.refused.size() == 1);
-        REQUIRE(r.refused[0].edges == 8);
-        REQUIRE_THAT(r.refused[0].reason, Catch::Contains("touches itself"));
-        REQUIRE_THAT(r.refused[0].reason, Catch::Contains("pinched, non-manifold rim"));
+        REQUIRE(r.loops_found == 2);  // the grid's border and the pinched loop
+        REQUIRE(r.loops_filled == 0);
+        REQUIRE(r.refused.size() == 2);
+        // The border would fold back onto the flat grid.
+        REQUIRE(r.refused[0].edges == 16);
+        REQUIRE_THAT(r.refused[0].reason, Catch::Contains("outer border of an open sheet"));
+        REQUIRE(r.refused[1].edges == 8);
+        REQUIRE_THAT(r.refused[1].reason, Catch::Contains("touches itself"));
+        REQUIRE_THAT(r.refused[1].reason, Catch::Contains("pinched, non-manifold rim"));
         REQUIRE_VALID(m);
-        REQUIRE(boundary_loops(m).size() == 1);
+        REQUIRE(m.n_faces() == pinched.n_faces());
     }
     SECTION("a rim vertex moved onto another of its loop") {
         // A square hole whose corner vertex 1 is moved onto the opposite corner's position.
@@ -343,11 +346,13 @@ TEST_CASE("degenerate rims are refused with the reason, the rest filled", "[hole
         const BoundaryLoop& hole = loops[1];
         REQUIRE(hole.edges() == 8);
         m.position(hole.vertices[2]) = m.position(hole.vertices[6]);
-        const HoleFillingReport r = fill_holes(m);
+        HoleFillingOptions o;
+        o.loops = {1};
+        const HoleFillingReport r = fill_holes(m, o);
         REQUIRE(r.refused.size() == 1);
         REQUIRE(r.refused[0].loop == 1);
         REQUIRE_THAT(r.refused[0].reason, Catch::Contains("touches itself"));
-        REQUIRE(boundary_loops(m).size() == 1);
+        REQUIRE(boundary_loops(m).size() == 2);
         REQUIRE_VALID(m);
     }
     SECTION("two loops that touch at a point") {
