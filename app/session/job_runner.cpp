@@ -7,6 +7,7 @@ namespace trilab::viewer {
 
 struct JobRunner::State final : Progress {
     std::string name;
+    JobKind kind = JobKind::Document;
     std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
     std::atomic<double> fraction{-1.0};
     std::atomic<bool> cancel{false};
@@ -31,10 +32,11 @@ JobRunner::~JobRunner() {
     if (thread_.joinable()) thread_.join();
 }
 
-bool JobRunner::start(std::string name, Work work) {
+bool JobRunner::start(std::string name, Work work, JobKind kind) {
     if (state_) return false;
     auto state = std::make_shared<State>();
     state->name = std::move(name);
+    state->kind = kind;
     state_ = state;
     thread_ = std::thread([state, work = std::move(work)]() {
         Finish finish;
@@ -74,6 +76,7 @@ JobRunner::Outcome JobRunner::poll() {
     std::shared_ptr<State> state = std::move(state_);
     state_.reset();
     out.name = state->name;
+    out.job = state->kind;
     out.seconds = state->seconds;
     if (state->cancel || state->was_cancelled) {
         out.kind = Outcome::Kind::Cancelled;
@@ -90,6 +93,10 @@ JobRunner::Outcome JobRunner::poll() {
         }
     }
     return out;
+}
+
+JobKind JobRunner::kind() const {
+    return state_ ? state_->kind : JobKind::Document;
 }
 
 std::string JobRunner::name() const {

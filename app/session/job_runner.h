@@ -20,6 +20,10 @@
 
 namespace trilab::viewer {
 
+/// What a job is for (typed, never read from its name): a preview's outcome is the panel's,
+/// any other job's is the document's.
+enum class JobKind { Document, Preview };
+
 class JobRunner {
 public:
     using Finish = std::function<void()>;
@@ -29,7 +33,8 @@ public:
     struct Outcome {
         enum class Kind { None, Succeeded, Failed, Cancelled };
         Kind kind = Kind::None;
-        std::string name;     ///< the job's name
+        std::string name;  ///< the job's name
+        JobKind job = JobKind::Document;
         std::string message;  ///< the error for Failed
         double seconds = 0;   ///< wall time of the work
     };
@@ -41,7 +46,7 @@ public:
     JobRunner& operator=(const JobRunner&) = delete;
 
     /// Starts a job. Returns false (and starts nothing) while another job runs.
-    bool start(std::string name, Work work);
+    bool start(std::string name, Work work, JobKind kind = JobKind::Document);
     /// Asks the running job to stop. A job that cannot notice (a file read) finishes its work
     /// and its result is discarded.
     void cancel();
@@ -52,6 +57,8 @@ public:
 
     /// The running job's name, progress fraction (negative when unknown) and stage.
     std::string name() const;
+    /// The running job's kind (Document when none runs).
+    JobKind kind() const;
     double fraction() const;
     std::string stage() const;
     double elapsed_seconds() const;

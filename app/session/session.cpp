@@ -72,6 +72,13 @@ void Session::notify(Notice notice) {
     notice_ = std::move(notice);
 }
 
+bool Session::asks_before_discarding(bool discard_changes, const std::string& path) {
+    if (discard_changes || !ask_before_discarding_ || !document_.unsaved) return false;
+    log_.info("unsaved changes: asking before opening " + path);
+    events_.confirm_discard = path;
+    return true;
+}
+
 void Session::busy_error() {
     notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
 }
@@ -168,21 +175,35 @@ void Session::execute(const Command& command) {
     if (execute_selection(command)) return;
     if (execute_morph(command)) return;
     if (auto* c = std::get_if<LoadFile>(&command)) {
+        if (asks_before_discarding(c->discard_changes, c->path)) return;
         clear_preview();
         if (is_session_path(c->path))
             open_session(c->path);
         else
             load(c->path);
     } else if (auto* save_file = std::get_if<SaveFile>(&command)) {
-        if (is_session_path(save_file->path))
-            save_session(save_file->path, {});
+        continue_after_save_ = save_file->then_continue;
+        if (is_session_path(save_file->path))  // a session's own file: the whole session
+            save_session(save_file->path, extras());
         else
             save(save_file->path);
     } else if (auto* save_session_command = std::get_if<SaveSession>(&command)) {
-        save_session(save_session_command->path, {});
+        continue_after_save_ = false;
+        save_session(save_session_command->path, extras());
     } else if (auto* open = std::get_if<OpenSession>(&command)) {
+        if (asks_before_discarding(open->discard_changes, open->path)) return;
         clear_preview();
         open_session(open->path);
+    } else if (auto* recover = std::get_if<RecoverJournal>(&command)) {
+        if (recover->restore) {
+            open_session(recover->path, true);
+        } else {
+            std::error_code ec;
+            std::filesystem::remove(recover->path, ec);
+            log_.info("discarded the crash journal " + recover->path);
+        }
+    } else if (std::holds_alternative<ClearPicks>(command)) {
+        clear_picks();
     } else if (std::holds_alternative<RevertFile>(command)) {
         if (is_session_path(document_.path))
             open_session(document_.path);
@@ -347,6 +368,8 @@ void Session::save(const std::string& path) {
                 log_.info("saved " + path);
                 events_.recent.push_back(path);
                 events_.saved = true;
+                events_.continue_after_save = continue_after_save_;
+                continue_after_save_ = false;
                 document_.unsaved = false;
             });
         });
@@ -387,7 +410,7 @@ bool Session::poll() {
         const std::lock_guard<std::mutex> lock(picture_slot_->mutex);
         picture_slot_->picture.reset();
     }
-    const bool preview = outcome.name.rfind("Preview: ", 0) == 0;
+    const bool preview = outcome.job == JobKind::Preview;
     if (preview && outcome.kind == Kind::Failed) preview_.failure = outcome.message;
     if (preview && outcome.kind != Kind::Failed) {
         if (outcome.kind == Kind::Succeeded && preview_.requested &&

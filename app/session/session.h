@@ -114,7 +114,14 @@ struct SessionEvents {
     std::vector<std::string> recent;  ///< files loaded or saved (recent files)
     std::shared_ptr<Image> texture;   ///< a texture image was loaded
     std::string texture_path;
-    bool saved = false;  ///< a save finished (a pending question goes on)
+    bool saved = false;  ///< a save finished
+    /// The save finished was asked for with then_continue (the unsaved-changes question's
+    /// "Save": its action goes on now).
+    bool continue_after_save = false;
+    /// A LoadFile or OpenSession of this path waits: the document has unsaved changes and
+    /// the window asks first (set_ask_before_discarding); it sends the command again with
+    /// discard_changes to go on.
+    std::optional<std::string> confirm_discard;
     /// A session was opened: its view, panel and texture settings for the window to apply.
     std::shared_ptr<const SessionExtras> session_extras;
     /// A load ended whose picture (LoadingPicture) is also the new document's proxy: the file
@@ -188,7 +195,6 @@ public:
     const ColoringResult* coloring_result() const { return coloring_result_.get(); }
     /// The morph playback (changed by PlayMorph, ShowMorphAt and SetMorphAnimation).
     const MorphState& morph() const { return morph_; }
-    FrequencyDocument& frequency() { return document_.frequency; }
     bool busy() const { return jobs_.busy(); }
     /// The picture of the file being loaded, once its arrays are read (null otherwise; cleared
     /// when the load job ends). Safe to call while the job runs.
@@ -326,6 +332,14 @@ public:
     void set_history_budget(std::size_t bytes) { document_.history.set_budget(bytes); }
 
     // ---- session files and the crash journal (session_files.cpp) -----------------------------
+    /// What SaveFile (of a .trilab) and SaveSession store beside the history: the window's
+    /// view, panels and texture (none without a provider: a headless session).
+    void set_extras_provider(std::function<SessionExtras()> provider) {
+        extras_provider_ = std::move(provider);
+    }
+    /// LoadFile and OpenSession of a document with unsaved changes wait for a confirmation
+    /// (SessionEvents::confirm_discard) instead of replacing it; off by default (headless).
+    void set_ask_before_discarding(bool ask) { ask_before_discarding_ = ask; }
     /// Writes the whole history with `extras` to `path` (a .trilab file) as a job; the
     /// texture's bytes are read there when only its path is given.
     void save_session(const std::string& path, SessionExtras extras);
@@ -354,6 +368,10 @@ private:
     void run_operation_job(const Operation& op);
     void commit_result(const Operation& op, OperationResult result);
     void busy_error();
+    /// The document has unsaved changes and the window asks before replacing it: the command
+    /// for `path` waits (SessionEvents::confirm_discard); returns true then.
+    bool asks_before_discarding(bool discard_changes, const std::string& path);
+    SessionExtras extras() const { return extras_provider_ ? extras_provider_() : SessionExtras{}; }
     void show_document();
     void bump() { ++shown_.version; }
 
@@ -467,6 +485,9 @@ private:
     std::unique_ptr<Journal> journal_;       ///< records every history change (crash recovery)
     std::vector<double> coloring_values_;    ///< the colouring's values (SelectThreshold)
     std::shared_ptr<const ColoringResult> coloring_result_;
+    std::function<SessionExtras()> extras_provider_;
+    bool ask_before_discarding_ = false;
+    bool continue_after_save_ = false;  ///< the running save was asked for with then_continue
     // The reference's figures (session_figures.cpp).
     std::string figure_;           ///< the figure loaded last
     HalfedgeMesh diverging_mesh_;  ///< the diverging run shown (shown_.mesh points here)

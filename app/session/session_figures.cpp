@@ -92,7 +92,7 @@ bool Session::diverging_run_shown() const {
 }
 
 void Session::show_diverging_run(const Operation& op) {
-    if (op.name() != "smooth") return;
+    if (!is_operation<FairingOptions>(op)) return;
     FairingOptions o;
     try {
         check_operation(op);

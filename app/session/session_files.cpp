@@ -47,6 +47,8 @@ void Session::save_session(const std::string& path, SessionExtras extras) {
                 notice_ = Notice{Notice::Level::Info, "Saved session " + name, {}, false};
                 events_.recent.push_back(path);
                 events_.saved = true;
+                events_.continue_after_save = continue_after_save_;
+                continue_after_save_ = false;
                 document_.unsaved = false;
             });
         });

@@ -43,7 +43,7 @@ std::size_t only_iterations_differ(const Operation& a, const Operation& b) {
 }  // namespace
 
 bool Session::is_preview_job() const {
-    return jobs_.busy() && jobs_.name().rfind(kPreviewJobPrefix, 0) == 0;
+    return jobs_.busy() && jobs_.kind() == JobKind::Preview;
 }
 
 bool Session::preview_running() const {
@@ -66,7 +66,7 @@ bool Session::prediction_shown() const {
 }
 
 std::optional<Session::Predictable> Session::predictable(const Operation& op) const {
-    if (op.name() != "smooth" || region_for(op, document_.mesh())) return std::nullopt;
+    if (!is_operation<FairingOptions>(op) || region_for(op, document_.mesh())) return std::nullopt;
     const FrequencyDocument& doc = document_.frequency;
     if (!doc.valid || !doc.decomposition || doc.decomposition->empty()) return std::nullopt;
     const SpectralDecomposition& d = *doc.decomposition;
@@ -250,7 +250,8 @@ void Session::start_pending_preview() {
     const HalfedgeMesh::Revision base = snapshot.revision();
     const auto region = region_for(op, snapshot);
     jobs_.start(
-        kPreviewJobPrefix + op.text(), [this, op, base, snapshot, region](Progress& progress) {
+        kPreviewJobPrefix + op.text(),
+        [this, op, base, snapshot, region](Progress& progress) {
             RunSettings settings;
             settings.region = region.get();
             auto result =
@@ -277,7 +278,8 @@ void Session::start_pending_preview() {
                                      false};
                 show_preview();
             });
-        });
+        },
+        JobKind::Preview);
 }
 
 void Session::show_preview() {

@@ -175,6 +175,10 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
     });
     output_ = std::make_unique<FrameOutput>(context_, *scene_);
     script_ = std::make_unique<ScriptDriver>(options_, context_, *scene_, tools_, *output_);
+    // What a session file stores beside the history; the unsaved-changes question (scripted
+    // runs never ask, unless they test the close button).
+    session.set_extras_provider([this] { return session_extras(); });
+    session.set_ask_before_discarding(options_.frames == 0 || options_.close_after != 0);
     // A large file shows a simplified picture while it loads (scene_view.cpp): made on the
     // load job's thread from the file's arrays, with the document stand-in's own options.
     session.set_loading_picture_maker(
@@ -247,8 +251,8 @@ void Viewer::follow_session() {
         if (style.texture_mode == TextureMode::Off) style.texture_mode = TextureMode::Modulate;
     }
     if (e.session_extras) apply_session_extras(*e.session_extras);
-    if (e.saved && continue_after_save_) {  // a prompt's "Save and go on": now go on
-        continue_after_save_ = false;
+    if (e.confirm_discard) ask_before_discarding(false, *e.confirm_discard);
+    if (e.saved && e.continue_after_save) {  // a prompt's "Save and go on": now go on
         const UnsavedPrompt& prompt = context_.panels.unsaved;
         if (prompt.quitting)
             context_.commands.push_back(Quit{true});
@@ -264,35 +268,13 @@ void Viewer::execute(const Command& command) {
     if (std::holds_alternative<TakeScreenshot>(command) ||
         std::holds_alternative<StartRecording>(command))
         scene_->ensure_exact();
-    if (auto* c = std::get_if<LoadFile>(&command)) {
-        if (c->discard_changes || confirm_discard(false, c->path)) session.execute(command);
-    } else if (auto* save_file = std::get_if<SaveFile>(&command)) {
-        continue_after_save_ = save_file->then_continue;
-        if (is_session_path(save_file->path))  // a session's own file: the whole session
-            session.save_session(save_file->path, session_extras());
-        else
-            session.execute(command);
-    } else if (auto* save_session = std::get_if<SaveSession>(&command)) {
-        session.save_session(save_session->path, session_extras());
-    } else if (auto* open_session = std::get_if<OpenSession>(&command)) {
-        if (open_session->discard_changes || confirm_discard(false, open_session->path))
-            session.execute(command);
-    } else if (auto* recover = std::get_if<RecoverJournal>(&command)) {
-        if (recover->restore) {
-            session.open_session(recover->path, true);
-        } else {
-            std::error_code ec;
-            std::filesystem::remove(recover->path, ec);
-            session.log().info("discarded the crash journal " + recover->path);
-        }
-    } else if (std::holds_alternative<SaveAsAndContinue>(command)) {
+    // The window's own commands; every other one is the session's (Session::execute).
+    if (std::holds_alternative<SaveAsAndContinue>(command)) {
         context_.panels.file_browser.request(FileBrowserState::Purpose::SaveMesh,
                                              session.document().path);
         context_.panels.file_browser.then_continue = true;
     } else if (std::holds_alternative<FitView>(command)) {
         fit_view();
-    } else if (std::holds_alternative<ClearPicks>(command)) {
-        session.clear_picks();
     } else if (std::holds_alternative<CentreOnPick>(command)) {
         if (!session.picks().picks.empty()) {
             const Point& p = session.picks().picks.front().position;
@@ -316,7 +298,7 @@ void Viewer::execute(const Command& command) {
         for (const std::string& line : scene_info()) session.log().info(line);
         context_.panels.info_open = true;
     } else if (auto* quit = std::get_if<Quit>(&command)) {
-        if (quit->discard_changes || confirm_discard(true, "")) quit_ = true;
+        if (quit->discard_changes || confirm_quit()) quit_ = true;
     } else if (std::holds_alternative<SaveAndContinue>(command)) {
         if (!session.document().path.empty()) execute(SaveFile{session.document().path, true});
     } else {  // the document's commands

@@ -70,9 +70,10 @@ private:
     /// Follows what the session did: recolour, fit, title, recent files, texture, the
     /// unsaved-changes question's next step.
     void follow_session();
-    /// Whether a Quit or a LoadFile may go ahead now; when changes are unsaved it opens the
-    /// prompt instead and returns false.
-    bool confirm_discard(bool quitting, const std::string& path);
+    /// Whether a Quit may go ahead now; when changes are unsaved it asks instead (false).
+    bool confirm_quit();
+    /// Opens the unsaved-changes question before quitting or opening `path`.
+    void ask_before_discarding(bool quitting, const std::string& path);
     void fit_view();
     /// The default view for the up axis (View > Default view, View > Up axis), fitted; a new
     /// up axis is remembered, and spherical texture coordinates the viewer projected follow it.
@@ -113,7 +114,6 @@ private:
     bool turning_ = false;                    ///< the left drag has moved past the click's slop
     bool drag_in_view_ = false;               ///< the mouse drag began in the view
     bool quit_ = false;
-    bool continue_after_save_ = false;   ///< the unsaved-changes prompt's Save: then go on
     std::string journaled_settings_;     ///< the settings text last given to the journal
     double settings_journaled_at_ = -1;  ///< Session::now() of that
     /// Wall time of the most recent frames (events excluded), for a median that ignores the

@@ -271,20 +271,21 @@ std::vector<std::string> Viewer::scene_info() const {
     return lines;
 }
 
-bool Viewer::confirm_discard(bool quitting, const std::string& path) {
-    // Unchanged documents never ask; scripted runs (--frames) only when they test the
-    // close button (--close-after).
+bool Viewer::confirm_quit() {
     if (!context_.session.document().unsaved || (options_.frames > 0 && options_.close_after == 0))
         return true;
-    context_.session.log().info(quitting ? "unsaved changes: asking before quitting"
-                                         : "unsaved changes: asking before opening " + path);
+    context_.session.log().info("unsaved changes: asking before quitting");
+    ask_before_discarding(true, "");
+    return false;
+}
+
+void Viewer::ask_before_discarding(bool quitting, const std::string& path) {
     UnsavedPrompt& prompt = context_.panels.unsaved;
     prompt.open_requested = true;
     prompt.quitting = quitting;
     prompt.path = path;
     prompt.document_path = context_.session.document().path;
     context_.keep_drawing(kFramesAfterInput);
-    return false;
 }
 
 void Viewer::reset_view() {
