@@ -424,6 +424,16 @@ void check_operation(const Operation& op) {
     def.check(op.values);
 }
 
+void check_region_not_empty(const HalfedgeMesh& mesh, const std::vector<float>& region,
+                            const std::string& label) {
+    if (count_selected(region) > 0) return;
+    throw InvalidArgument(label + ": the region is empty (0 of " +
+                          std::to_string(mesh.n_vertices()) +
+                          " vertices selected, every weight is 0): nothing to do, nothing "
+                          "changed (select some vertices, or clear the selection to act on "
+                          "the whole mesh)");
+}
+
 OperationResult run_operation(const Operation& op, const HalfedgeMesh& mesh, Progress& progress,
                               const RunSettings& settings) {
     check_operation(op);
@@ -432,6 +442,7 @@ OperationResult run_operation(const Operation& op, const HalfedgeMesh& mesh, Pro
             throw InvalidArgument("--region: " + op.def->name +
                                   " does not work on a region yet (it acts on the whole mesh)");
         check_selection(mesh, *settings.region, "--region");
+        check_region_not_empty(mesh, *settings.region, op.def->label);
     }
     const std::size_t n_vertices = mesh.n_vertices();  // before the run may consume `mesh`
     OperationResult result = op.def->run(op.values, mesh, progress, settings);

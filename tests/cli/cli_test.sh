@@ -602,10 +602,13 @@ check "select stores the region as property selection and reports region_vertice
      grep -q '^property float selection' '$tmp/sel2.ply' && \
      '$cli' select '$tmp/d.obj' '$tmp/sel.om' --region geodesic:0,0.5,0.2 --grow 1 --json | \
      grep -q '\"region_vertices\": '"
-check "an empty region leaves the mesh bit for bit, an all-ones one gives the unselected result" bash -c \
-    "'$cli' smooth '$tmp/d.obj' '$tmp/r0.ply' --ascii --iterations 3 --region sphere:100,100,100,0 \
-       --json > '$tmp/r0.json' && grep -q '\"region_vertices\": 0' '$tmp/r0.json' && \
-     '$cli' convert '$tmp/d.obj' '$tmp/d0.ply' --ascii >/dev/null && cmp -s '$tmp/r0.ply' '$tmp/d0.ply' && \
+# Issue 38 item 10: every operation refuses an empty region with one message, writing nothing.
+check "an empty region is refused by every operation, writing nothing; an all-ones one gives the unselected result" bash -c \
+    "for op in 'smooth --iterations 3' 'noise --amount 5' 'decimate --percent 30' 'flip' weld \
+               'subdivide' 'spectrum --k 20 --band 0:9'; do \
+       ! '$cli' \$op '$tmp/d.obj' '$tmp/r0.ply' --region sphere:100,100,100,0 2> '$tmp/e' && \
+       [ \$(wc -l < '$tmp/e') -eq 1 ] && grep -q 'the region is empty (0 of 1002 vertices' '$tmp/e' && \
+       [ ! -e '$tmp/r0.ply' ] || { echo \"\$op\"; cat '$tmp/e'; exit 1; }; done && \
      for i in \$(seq 1002); do echo 1; done > '$tmp/ones.txt' && \
      for op in 'smooth --iterations 3' 'noise --amount 5' 'decimate --percent 30' 'flip' \
                'spectrum --k 20 --band 0:9'; do \

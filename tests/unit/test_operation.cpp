@@ -322,3 +322,38 @@ TEST_CASE("smooth runs fairing as geometry-only steps the history accepts", "[op
                         Catch::Matchers::Contains("--operator"));
     REQUIRE_THROWS_WITH(parse_operation("smooth --step -1"), Catch::Matchers::Contains("--step"));
 }
+
+TEST_CASE("every operation refuses an empty region with one message and changes nothing",
+          "[ops][selection]") {
+    // Issue 38, item 10: with 0 selected vertices subdivision added a no-op entry and the
+    // other operations ran on nothing. The shared run path refuses it, for the CLI and the
+    // viewer alike.
+    const HalfedgeMesh mesh = make_icosphere(2);
+    const HalfedgeMesh before = mesh;
+    const std::vector<float> empty(mesh.vertices_size(), 0.0f);
+    NullProgress progress;
+    RunSettings settings;
+    settings.region = &empty;
+    std::size_t refused = 0;
+    for (const OperationDef* def : operation_defs()) {
+        if (!def->takes_region) continue;
+        INFO(def->name);
+        const Operation op = make_operation(def->name);
+        try {
+            run_operation(op, mesh, progress, settings);
+            FAIL("an empty region was not refused");
+        } catch (const InvalidArgument& e) {
+            CHECK_THAT(e.what(),
+                       Catch::StartsWith(def->label + ": the region is empty (0 of " +
+                                         std::to_string(mesh.n_vertices()) + " vertices selected"));
+            ++refused;
+        }
+        CHECK(mesh.positions() == before.positions());
+    }
+    CHECK(refused >= 6);  // noise, subdivide, smooth, spectrum, decimate, flip, weld
+    // One vertex of positive weight is a region: it runs.
+    std::vector<float> one = empty;
+    one[3] = 0.5f;
+    settings.region = &one;
+    CHECK_NOTHROW(run_operation(parse_operation("smooth"), mesh, progress, settings));
+}
