@@ -2,12 +2,14 @@
 // viewer's `--select SPEC` take it (app/ops/region_spec.h).
 #include "app/ops/region_spec.h"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <fstream>
+#include <cstdint>
 
 #include "core/errors.h"
+#include "core/io/file_util.h"
 #include "core/io/mesh_io.h"
 #include "core/number_text.h"
 
@@ -48,15 +50,37 @@ Vertex spec_vertex(const HalfedgeMesh& mesh, const RegionSpec& spec, double valu
     return v;
 }
 
-/// One weight per line of a text file.
+}  // namespace
+
+std::uint64_t weight_file_budget(std::size_t vertices) {
+    // A weight per line: "0.123456789\n" is 12 bytes; comments and blank lines are allowed,
+    // so 64 bytes a vertex and 1 MiB of slack, never more than a file read may take at all.
+    const std::uint64_t budget = (std::uint64_t(1) << 20) + 64 * std::uint64_t(vertices);
+    return std::min(budget, max_readable_file_bytes());
+}
+
+namespace {
+
+/// One weight per line of a text file, read from a regular file only and within
+/// weight_file_budget() (issue 38, item 15: /dev/zero or a FIFO is refused at once).
 Selection read_weights(const HalfedgeMesh& mesh, const RegionSpec& spec) {
-    std::ifstream in(spec.path);
     const std::string head = "--region " + spec.text + ": ";
-    if (!in) throw InvalidArgument(head + "cannot open '" + spec.path + "'");
+    std::string text;
+    try {
+        text = read_file_bytes(spec.path, weight_file_budget(mesh.vertices_size()));
+    } catch (const IoError& e) {
+        throw IoError(e.file(), e.line(),
+                      e.reason() + " (" + head + "a weight file is a regular file of at most " +
+                          std::to_string(weight_file_budget(mesh.vertices_size())) +
+                          " bytes for this mesh)");
+    }
     Selection weights;
-    std::string line;
-    std::size_t number = 0;
-    while (std::getline(in, line)) {
+    std::size_t number = 0, start = 0;
+    while (start < text.size()) {
+        std::size_t end = text.find('\n', start);
+        if (end == std::string::npos) end = text.size();
+        const std::string line = text.substr(start, end - start);
+        start = end + 1;
         ++number;
         const std::size_t a = line.find_first_not_of(" \t\r");
         if (a == std::string::npos || line[a] == '#') continue;
@@ -66,6 +90,10 @@ Selection read_weights(const HalfedgeMesh& mesh, const RegionSpec& spec) {
         if (!parse_number(word, w) || w < 0 || w > 1)
             throw InvalidArgument(head + spec.path + ":" + std::to_string(number) +
                                   ": expected a weight from 0 to 1, got '" + word + "'");
+        if (weights.size() == mesh.vertices_size())
+            throw InvalidArgument(head + spec.path + ":" + std::to_string(number) +
+                                  ": more weights than the mesh's " +
+                                  std::to_string(mesh.vertices_size()) + " vertices");
         weights.push_back(float(w));
     }
     if (weights.size() != mesh.vertices_size())

@@ -12,6 +12,8 @@
 //                              property `selection`) with the same vertex count
 // FEATHER (>= 0) feathers the region along the edges (feather_selection()). Vertex indices are
 // the loaded mesh's (as `trilab-cli info` and `geodesic` count them).
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -27,6 +29,12 @@ struct RegionSpec {
     std::string path;             ///< file:
     std::string text;             ///< the SPEC as given, for messages
 };
+
+/// The largest weight file (file:PATH with one weight per line) read for a mesh of `vertices`
+/// vertex storage slots: 1 MiB plus 64 bytes a vertex, at most max_readable_file_bytes().
+/// Weight files are read from regular files only (core/io/file_util.h read_file_bytes): a
+/// device (/dev/zero), a FIFO or a directory is refused before it is read.
+std::uint64_t weight_file_budget(std::size_t vertices);
 
 /// Parses SPEC; throws InvalidArgument "--region: ..." naming the part that is wrong.
 RegionSpec parse_region_spec(const std::string& text);

@@ -637,6 +637,16 @@ check "bad --region specs are refused naming the option and the part" bash -c \
      grep -q -- '--region: remove-components does not work on a region yet' '$tmp/e' && \
      ! '$cli' select '$tmp/d.obj' '$tmp/bad.ply' 2> '$tmp/e' && grep -q -- '--region' '$tmp/e' && \
      [ ! -e '$tmp/bad.ply' ] && '$cli' smooth --help | grep -q -- '--region SPEC'"
+# Issue 38 item 15: region files are read from regular files only, within a budget.
+mkfifo "$tmp/fifo_region"
+limit_memory="ulimit -v 4000000;"  # a regression fails here instead of eating the memory
+[ -n "${ASAN_OPTIONS:-}" ] && limit_memory=""  # AddressSanitizer needs the address space
+check "a region file that is a device or a FIFO is refused at once, by every command that reads one" bash -c \
+    "for args in 'smooth' 'select' 'subdivide'; do \
+       for f in /dev/zero '$tmp/fifo_region'; do \
+         ($limit_memory timeout 10 '$cli' \$args '$tmp/d.obj' '$tmp/z.ply' --region file:\$f) 2> '$tmp/e'; \
+         [ \$? -eq 1 ] && [ \$(wc -l < '$tmp/e') -eq 1 ] && grep -q 'not a regular file' '$tmp/e' && \
+         [ ! -e '$tmp/z.ply' ] || { echo \"\$args \$f\"; cat '$tmp/e'; exit 1; }; done; done"
 check "subdivide --region refines a sphere region of every scheme into a valid closed mesh" bash -c \
     "for s in loop sqrt3 butterfly modified-butterfly; do \
        '$cli' subdivide --scheme \$s '$tmp/d.obj' '$tmp/rs.ply' --region sphere:0,0,1,0.6 \
