@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "core/algorithms/coloring.h"
 #include "core/errors.h"
 #include "core/io/file_util.h"
 #include "core/io/mesh_io.h"
@@ -18,7 +19,8 @@ namespace trilab {
 namespace {
 
 constexpr const char* kSpecForms =
-    "sphere:X,Y,Z,R[,FEATHER], geodesic:V,R[,FEATHER], component:V or file:PATH";
+    "sphere:X,Y,Z,R[,FEATHER], geodesic:V,R[,FEATHER], component:V, threshold:QUANTITY,LO,HI "
+    "or file:PATH";
 
 bool parse_number(const std::string& text, double& out) {
     const char* end = text.data() + text.size();
@@ -114,6 +116,67 @@ bool is_mesh_file(const std::string& path) {
 
 }  // namespace
 
+namespace {
+
+/// threshold:QUANTITY,LO,HI after the colon.
+RegionSpec parse_threshold_spec(RegionSpec spec, const std::string& rest) {
+    const std::string head = "--region " + spec.text + ": ";
+    const std::vector<std::string> parts = split_commas(rest);
+    if (parts.size() != 3)
+        throw InvalidArgument(head + "expected threshold:QUANTITY,LO,HI (" +
+                              std::to_string(parts.size()) + " parts given)");
+    spec.kind = RegionSpec::Kind::Threshold;
+    try {
+        parse_coloring(parts[0]);
+    } catch (const InvalidArgument& e) {
+        const std::string what = e.what();
+        throw InvalidArgument(head + "QUANTITY: " + what.substr(what.find(':') + 2));
+    }
+    spec.quantity = parts[0];
+    for (std::size_t i = 1; i < 3; ++i) {
+        double x = 0;
+        if (!parse_number(parts[i], x))
+            throw InvalidArgument(head + (i == 1 ? "LO" : "HI") + ": expected a number, got '" +
+                                  parts[i] + "'");
+        spec.numbers.push_back(x);
+    }
+    if (spec.numbers[0] > spec.numbers[1])
+        throw InvalidArgument(head + "LO " + parts[1] + " is above HI " + parts[2]);
+    return spec;
+}
+
+/// The vertices whose value of the spec's colouring lies in [LO, HI].
+Selection threshold_region(const HalfedgeMesh& mesh, const RegionSpec& spec) {
+    const std::string head = "--region " + spec.text + ": ";
+    const VertexColoring coloring = parse_coloring(spec.quantity);
+    if (coloring == VertexColoring::None || coloring == VertexColoring::Normal)
+        throw InvalidArgument(head + "the colouring '" + spec.quantity +
+                              "' has no value per vertex (use k1, k2, mean, gaussian, "
+                              "shape-index, subdivision or geodesic-distance)");
+    if (coloring == VertexColoring::SmoothingDistance)
+        throw InvalidArgument(head +
+                              "smoothing-distance needs the state before an operation, "
+                              "which a region SPEC does not have");
+    const bool has_distance = mesh.has_vertex_property("v:distance");
+    if (coloring_needs_field(coloring) &&
+        !(coloring == VertexColoring::GeodesicDistance && has_distance))
+        throw InvalidArgument(
+            head + "the colouring '" + spec.quantity + "' needs " +
+            (coloring == VertexColoring::GeodesicDistance
+                 ? std::string("a \"v:distance\" vertex property (trilab-cli geodesic writes it)")
+                 : std::string("a spectral decomposition, which a region SPEC does not compute")));
+    const VertexColors colors = color_vertices(mesh, coloring);
+    const double lo = spec.numbers[0], hi = spec.numbers[1];
+    Selection s(mesh.vertices_size(), 0.0f);
+    for (Vertex v : mesh.vertices()) {
+        const double x = colors.values[v.idx()];
+        if (std::isfinite(x) && x >= lo && x <= hi) s[v.idx()] = 1.0f;
+    }
+    return s;
+}
+
+}  // namespace
+
 RegionSpec parse_region_spec(const std::string& text) {
     RegionSpec spec;
     spec.text = text;
@@ -128,6 +191,7 @@ RegionSpec parse_region_spec(const std::string& text) {
         spec.path = rest;
         return spec;
     }
+    if (kind == "threshold") return parse_threshold_spec(spec, rest);
     std::size_t min_parts = 0, max_parts = 0;
     const char* form = "";
     if (kind == "sphere") {
@@ -181,6 +245,9 @@ Selection make_region(const HalfedgeMesh& mesh, const RegionSpec& spec) {
             break;
         case RegionSpec::Kind::Component:
             s = component_selection(mesh, spec_vertex(mesh, spec, n[0]));
+            break;
+        case RegionSpec::Kind::Threshold:
+            s = threshold_region(mesh, spec);
             break;
         case RegionSpec::Kind::File:
             if (is_mesh_file(spec.path)) {

@@ -6,6 +6,12 @@
 //   sphere:X,Y,Z,R[,FEATHER]   vertices within R of the point (X, Y, Z)
 //   geodesic:V,R[,FEATHER]     vertices within geodesic distance R of vertex V (heat method)
 //   component:V                the connected component of vertex V
+//   threshold:QUANTITY,LO,HI   vertices whose value of the colouring QUANTITY (a name of
+//                              core/algorithms/coloring.h coloring_name(): k1, k2, mean,
+//                              gaussian, shape-index, subdivision, geodesic-distance, ...)
+//                              is in [LO, HI]; vertices without a value are outside. The
+//                              colourings that need a field from elsewhere (a spectral
+//                              decomposition, an earlier state) are refused, naming why
 //   file:PATH                  a text file with one weight in [0, 1] per vertex per line (blank
 //                              lines and lines starting with '#' are skipped), or a mesh file
 //                              whose vertices carry a selection (PLY `selection`, OM custom
@@ -24,8 +30,9 @@ namespace trilab {
 
 /// A parsed SPEC, before any mesh is read.
 struct RegionSpec {
-    enum class Kind { Sphere, Geodesic, Component, File } kind = Kind::Sphere;
-    std::vector<double> numbers;  ///< X,Y,Z,R[,F] / V,R[,F] / V
+    enum class Kind { Sphere, Geodesic, Component, File, Threshold } kind = Kind::Sphere;
+    std::vector<double> numbers;  ///< X,Y,Z,R[,F] / V,R[,F] / V / LO,HI
+    std::string quantity;         ///< threshold: the colouring's name
     std::string path;             ///< file:
     std::string text;             ///< the SPEC as given, for messages
 };

@@ -682,6 +682,34 @@ check "replay --check exits 5 naming the difference" bash -c \
      '$cli' session recipe '$tmp/s2.trilab' '$tmp/r2.json' > /dev/null; \
      '$cli' replay '$tmp/r2.json' '$tmp/ico.off' '$tmp/r2.off' --check '$tmp/s3.trilab' 2> '$tmp/e'; \
      [ \$? -eq 5 ] && grep -q 'differs from .*s3.trilab.*positions differ at index' '$tmp/e'"
+# Issue 38 item 1: recipes keep the selections, and every operation runs on its region.
+check "a session with a selection replays through its recipe bit for bit" bash -c \
+    "'$cli' generate sphere '$tmp/sp.off' && \
+     '$cli' session make '$tmp/sp.off' '$tmp/sel.trilab' --op 'noise --amount 20' \
+       --select sphere:0,0,1,0.5 \
+       --op 'smooth --operator curvature-flow --integration implicit --step 3' > /dev/null && \
+     '$cli' session recipe '$tmp/sel.trilab' '$tmp/sel.json' | \
+       grep -q '2 operations and 1 selections after \"Load sp.off' && \
+     grep -q '\"selection\": \"spec\", \"spec\": \"sphere:0,0,1,0.5\"' '$tmp/sel.json' && \
+     '$cli' replay '$tmp/sel.json' '$tmp/sp.off' '$tmp/sel.off' --check '$tmp/sel.trilab' | \
+       grep -q 'identical to the current state' && \
+     '$cli' compare '$tmp/sp.off' '$tmp/sel.off' --region sphere:0,0,1,0.5 --json > '$tmp/cr.json' && \
+     grep -q '\"region_vertices\": ' '$tmp/cr.json' && grep -q '\"moved_vertices\": ' '$tmp/cr.json'"
+check "threshold:QUANTITY,LO,HI selects by a colouring; compare --region sees the outside unmoved" bash -c \
+    "'$cli' select '$tmp/d.obj' '$tmp/th.ply' --region threshold:mean,-1e9,1e9 --json | \
+       grep -q '\"region_vertices\": 1002' && \
+     '$cli' select '$tmp/d.obj' '$tmp/th.ply' --region threshold:gaussian,1e9,2e9 --json | \
+       grep -q '\"region_vertices\": 0' && \
+     '$cli' smooth '$tmp/d.obj' '$tmp/ths.obj' --iterations 3 --region threshold:k1,-1e9,1.2 --json \
+       > '$tmp/ths.json' && \
+     '$cli' compare '$tmp/d.obj' '$tmp/ths.obj' --region threshold:k1,-1e9,1.2 --json > '$tmp/thc.json' && \
+     grep -q '\"outside_identical\": true' '$tmp/thc.json' && \
+     ! '$cli' select '$tmp/d.obj' '$tmp/th.ply' --region threshold:frequency,0,1 2> '$tmp/e' && \
+     grep -q 'needs a spectral decomposition' '$tmp/e' && \
+     ! '$cli' select '$tmp/d.obj' '$tmp/th.ply' --region threshold:mean,2,1 2> '$tmp/e' && \
+     grep -q 'LO 2 is above HI 1' '$tmp/e' && \
+     ! '$cli' select '$tmp/d.obj' '$tmp/th.ply' --region threshold:bogus,0,1 2> '$tmp/e' && \
+     grep -q 'QUANTITY: unknown colouring' '$tmp/e'"
 check "session export writes an entry as a mesh" bash -c \
     "'$cli' session export '$data/session/icosahedron-history.trilab' --entry 1 '$tmp/e1.off' && \
      '$cli' info '$tmp/e1.off' --json | grep -q '\"vertices\": 42'"
