@@ -424,6 +424,21 @@ void check_operation(const Operation& op) {
     def.check(op.values);
 }
 
+void check_parameter_applies(const Operation& op, const std::string& param) {
+    if (!op.def) throw InvalidArgument("empty operation (known: " + known_names() + ")");
+    const std::size_t i = op.def->index(param);
+    if (const char* why = op.def->why_not(op.values, i))
+        throw InvalidArgument(option(op.def->params[i]) + ": " + why);
+}
+
+std::string run_failure(const OperationResult& result) {
+    if (result.stopped_early)
+        return "stopped early: " +
+               (result.stop_reason.empty() ? std::string("no reason given") : result.stop_reason);
+    if (!result.changed) return "changed nothing";
+    return "";
+}
+
 void check_region_not_empty(const HalfedgeMesh& mesh, const std::vector<float>& region,
                             const std::string& label) {
     if (count_selected(region) > 0) return;

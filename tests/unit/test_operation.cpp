@@ -357,3 +357,34 @@ TEST_CASE("every operation refuses an empty region with one message and changes 
     settings.region = &one;
     CHECK_NOTHROW(run_operation(parse_operation("smooth"), mesh, progress, settings));
 }
+
+TEST_CASE(
+    "a sweep refuses what the command line refuses: a parameter that does not apply, a "
+    "run that diverged",
+    "[ops]") {
+    // Issue 38, item 2: --sweep "smooth --operator taubin" --param step ran although Taubin
+    // takes no step, and a diverging preview counted as a success.
+    const Operation taubin = parse_operation("smooth --operator taubin");
+    CHECK_THROWS_WITH(check_parameter_applies(taubin, "step"),
+                      Catch::StartsWith("--step: does not apply to --operator taubin"));
+    CHECK_NOTHROW(check_parameter_applies(taubin, "lambda"));
+    const Operation umbrella = parse_operation("smooth --iterations 3");
+    CHECK_NOTHROW(check_parameter_applies(umbrella, "step"));
+    CHECK_THROWS_WITH(check_parameter_applies(umbrella, "lambda"),
+                      Catch::StartsWith("--lambda: applies to --operator taubin only"));
+    CHECK_THROWS_WITH(check_parameter_applies(umbrella, "bogus"), Catch::Contains("bogus"));
+    // The same refusal as the command line's.
+    CHECK_THROWS_WITH(parse_operation("smooth --operator taubin --step 0.5"),
+                      Catch::StartsWith("--step: does not apply to --operator taubin"));
+
+    NullProgress progress;
+    const HalfedgeMesh mesh = make_icosphere(2);
+    const OperationResult diverged =
+        run_operation(parse_operation("smooth --iterations 3 --step 30"), mesh, progress);
+    REQUIRE(diverged.stopped_early);
+    CHECK_THAT(run_failure(diverged), Catch::StartsWith("stopped early: iteration 1: "));
+    const OperationResult nothing =
+        run_operation(parse_operation("smooth --step 0"), mesh, progress);
+    CHECK(run_failure(nothing) == (nothing.changed ? "" : "changed nothing"));
+    CHECK(run_failure(run_operation(umbrella, mesh, progress)) == "");
+}
