@@ -656,6 +656,42 @@ std::vector<std::uint8_t> build_red_green(const HalfedgeMesh& m,
     return closure;
 }
 
+/// The split edges per face of `m` (0 to 3), counting the selected, red and green faces.
+std::vector<std::uint8_t> split_counts(const HalfedgeMesh& m,
+                                       const std::vector<std::uint8_t>& split,
+                                       const std::vector<std::uint8_t>& selected,
+                                       RegionClosureCounts& counts) {
+    const Index nf = Index(m.faces_size());
+    std::vector<std::uint8_t> splits(nf, 0);
+    for (Index f = 0; f < nf; ++f) {
+        const Halfedge h0 = m.halfedge(Face(f)), h1 = m.next(h0), h2 = m.next(h1);
+        const int c = split[h0.idx() >> 1] + split[h1.idx() >> 1] + split[h2.idx() >> 1];
+        splits[f] = std::uint8_t(c);
+        counts.selected_faces += selected[f];
+        counts.red_faces += c == 3 ? 1 : 0;
+        counts.green_faces += c == 1 ? 1 : 0;
+    }
+    return splits;
+}
+
+/// This level's closure (per face of the new level) and every face that descends from an
+/// earlier level's closure (`earlier`, per coarse face; a refined face keeps its index for one
+/// child and numbers the others after the coarse faces, in face order: build_red_green()). The
+/// next level reads them, and the closure's flips run over all of them.
+std::vector<std::uint8_t> with_earlier_closure(const std::vector<std::uint8_t>& closure,
+                                               const std::vector<std::uint8_t>& earlier,
+                                               const std::vector<std::uint8_t>& splits) {
+    std::vector<std::uint8_t> all = closure;
+    const Index nf = Index(splits.size());
+    if (!earlier.empty())
+        for (Index f = 0, f0 = nf; f < nf; f0 += splits[f], ++f) {
+            if (!earlier[f]) continue;
+            all[f] = 1;
+            std::fill_n(all.begin() + std::ptrdiff_t(f0), splits[f], 1);
+        }
+    return all;
+}
+
 /// One red-green step of a 1-to-4 scheme on `m` (compact) with weights `w`.
 /// `coarse_flat`: the flatness of m's faces, or empty on the input (then computed here, in the
 /// first pass over the faces, and `target_angle`, the input's minimum angle, set from it).
@@ -712,20 +748,10 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
     // get the midpoint of their ends' new positions, so that the faces cut from refined faces
     // outside are similar to them (and never move again: their weight is 0).
     const std::vector<std::uint8_t> region_edge = split;
-    std::size_t closure_reds = 0;
     step.counts.grown_faces =
         close_red_green(m, w, selected, near, uniform, local_closure, target_angle, earlier_closure,
-                        region_edge, split, closure_reds);
-    step.counts.closure_reds = closure_reds;
-    std::vector<std::uint8_t> splits(nf, 0);
-    for (Index f = 0; f < nf; ++f) {
-        const Halfedge h0 = m.halfedge(Face(f)), h1 = m.next(h0), h2 = m.next(h1);
-        const int c = split[h0.idx() >> 1] + split[h1.idx() >> 1] + split[h2.idx() >> 1];
-        splits[f] = std::uint8_t(c);
-        step.counts.selected_faces += selected[f];
-        step.counts.red_faces += c == 3 ? 1 : 0;
-        step.counts.green_faces += c == 1 ? 1 : 0;
-    }
+                        region_edge, split, step.counts.closure_reds);
+    const std::vector<std::uint8_t> splits = split_counts(m, split, selected, step.counts);
     check_face_limit(std::size_t(nf) + 3 * step.counts.red_faces + step.counts.green_faces);
     check_no_refined_pillow(m, [&](Face f) { return splits[f.idx()] > 0; });
     progress.check_cancelled();
@@ -736,15 +762,7 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
     std::vector<std::uint8_t> touched(nf, 0);
     for (Index f = 0; f < nf; ++f) touched[f] = !selected[f] && splits[f] > 0;
     const std::vector<std::uint8_t> closure = build_red_green(m, split, splits, touched, out);
-    // This level's closure and every face that descends from an earlier one: the next level
-    // reads them, and the flips below run over all of them.
-    std::vector<std::uint8_t> all_closure = closure;
-    if (!earlier_closure.empty())
-        for (Index f = 0, f0 = nf; f < nf; f0 += splits[f], ++f) {
-            if (!earlier_closure[f]) continue;
-            all_closure[f] = 1;
-            std::fill_n(all_closure.begin() + std::ptrdiff_t(f0), splits[f], 1);
-        }
+    std::vector<std::uint8_t> all_closure = with_earlier_closure(closure, earlier_closure, splits);
     const Vertex* to_in = m.halfedge_to_array().data();
     NewVertices nvx(out, morph);
     Point* p = out.positions().data();
