@@ -192,6 +192,12 @@ if(TARGET trilab)
              COMMAND ${TRILAB_XVFB} bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer/session_test.sh
                      $<TARGET_FILE:trilab> $<TARGET_FILE:trilab-cli>)
     set_tests_properties(viewer_session PROPERTIES PASS_REGULAR_EXPRESSION "session_test: save")
+    # Recipes keep the viewer's selections; an empty selection is refused (issue 38, items 1, 10).
+    add_test(NAME viewer_recipe_selection
+             COMMAND ${TRILAB_XVFB} bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer/recipe_test.sh
+                     $<TARGET_FILE:trilab> $<TARGET_FILE:trilab-cli>)
+    set_tests_properties(viewer_recipe_selection PROPERTIES PASS_REGULAR_EXPRESSION
+                         "recipe_test: ok")
     # SIGKILL at 30 random moments of a scripted run: each journal restores a prefix of the
     # history bit for bit (tests/viewer/kill_test.sh).
     add_test(NAME viewer_kill_journal

@@ -32,7 +32,9 @@ bool parse_number(const std::string& text, double& out) {
 
 const char* const kRegionHelp =
     "  --region SPEC (act on a region only: sphere:X,Y,Z,R[,FEATHER], geodesic:V,R[,FEATHER], "
-    "component:V, or file:PATH with one weight per vertex per line or a PLY/OM with a "
+    "component:V, threshold:QUANTITY,LO,HI (vertices whose colouring QUANTITY, e.g. mean, "
+    "gaussian, k1, shape-index, is in [LO, HI]), or file:PATH with one weight per vertex per line "
+    "or a PLY/OM with a "
     "`selection` vertex property; weight-0 vertices stay as they are; --json adds "
     "\"region_vertices\")\n";
 

@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <ostream>
+#include <utility>
 
 #include "app/cli/arg_reader.h"
 #include "app/cli/json_writer.h"
@@ -13,6 +15,7 @@
 #include "app/cli/write_options.h"
 #include "app/history/recipe.h"
 #include "app/history/session_file.h"
+#include "app/ops/region_spec.h"
 #include "core/errors.h"
 #include "core/io/file_util.h"
 #include "core/io/mesh_io.h"
@@ -29,17 +32,20 @@ constexpr const char* kSessionUsage = R"(usage: trilab-cli session SUBCOMMAND ..
   session export FILE --entry K [--step S] OUT [--ascii] [--big-endian]
       writes state K (its last step, or step S) as a mesh file
   session recipe SESSION OUT.json
-      the typed operations from the loaded file to the current entry, as a recipe
-  session make IN OUT.trilab [--op "OPERATION --option value ..."]... [--current K]
-               [--viewer-settings FILE] [--json]
-      loads IN and applies each --op in order as the viewer does (one history entry each),
-      then writes the session; --current makes entry K current (an undo)
+      the typed operations and the selections from the loaded file to the current entry, as
+      a recipe; a state the viewer made otherwise (texture coordinates) is refused by name
+  session make IN OUT.trilab [--op "OPERATION --option value ..."]... [--select SPEC]...
+               [--current K] [--viewer-settings FILE] [--json]
+      loads IN and applies each --op and --select in order as the viewer does (one history
+      entry each; an operation acts on the selection made before it), then writes the
+      session; --current makes entry K current (an undo)
 )";
 
 constexpr const char* kReplayUsage =
     R"(usage: trilab-cli replay RECIPE.json IN OUT [--check SESSION] [--json]
 
-Runs the recipe's operations on IN in order, as the viewer runs them, and writes OUT. With
+Runs the recipe's operations and selections on IN in order, as the viewer runs them (each
+operation on the selection at that point, or on its step's own "region"), and writes OUT. With
 --check, compares the result with SESSION's current state (storage sizes, connectivity and
 positions bit for bit) and exits 5 when they differ.
 )";
@@ -172,13 +178,14 @@ int session_recipe(const std::vector<std::string>& args) {
     const Recipe recipe = recipe_of(s.history);
     const std::string json = recipe_json(recipe);
     write_file_atomically(files[1], [&](std::ostream& os) { os << json; });
-    std::printf("wrote %s: %zu operations after \"%s\"\n", files[1].c_str(),
-                recipe.operations.size(), recipe.source.c_str());
+    std::printf("wrote %s: %zu operations and %zu selections after \"%s\"\n", files[1].c_str(),
+                recipe.operations(), recipe.selections(), recipe.source.c_str());
     return 0;
 }
 
 int session_make(const std::vector<std::string>& args) {
-    std::vector<std::string> files, ops;
+    std::vector<std::string> files;
+    std::vector<std::pair<bool, std::string>> steps;  // (is a selection, its text), in order
     std::string settings_file, current;
     bool json = false;
     // --op repeats (applied in order), so no ArgReader here.
@@ -189,7 +196,9 @@ int session_make(const std::vector<std::string>& args) {
             return args[++i];
         };
         if (a == "--op")
-            ops.push_back(value());
+            steps.emplace_back(false, value());
+        else if (a == "--select")
+            steps.emplace_back(true, value());
         else if (a == "--viewer-settings")
             settings_file = value();
         else if (a == "--current")
@@ -202,12 +211,21 @@ int session_make(const std::vector<std::string>& args) {
             files.push_back(a);
     }
     if (files.size() != 2) throw InvalidArgument("session make: expected IN OUT.trilab");
-    std::vector<Operation> parsed;
-    for (const std::string& text : ops) {
+    Recipe parsed;  // checked before any file is read
+    for (const auto& [select, text] : steps) {
         try {
-            parsed.push_back(parse_operation(text));
+            if (select) {
+                parse_region_spec(text);
+                RecipeStep step;
+                step.kind = RecipeStep::Kind::SetSelection;
+                step.region = text;
+                step.text = "Select " + text;
+                parsed.steps.push_back(std::move(step));
+            } else {
+                parsed.steps.emplace_back(parse_operation(text));
+            }
         } catch (const InvalidArgument& e) {
-            throw InvalidArgument("--op '" + text + "': " + e.what());
+            throw InvalidArgument((select ? "--select '" : "--op '") + text + "': " + e.what());
         }
     }
     SessionExtras extras;
@@ -219,8 +237,18 @@ int session_make(const std::vector<std::string>& args) {
     history.reset(std::move(loaded.mesh), "Load " + name, files[0] == name ? "" : files[0]);
     extras.texture_path = loaded.texture_path;
     std::vector<std::string> notes;
-    for (const Operation& op : parsed) {
-        ReplayStep step = run_recipe_step(op, history.current_mesh());
+    for (const RecipeStep& recipe_step : parsed.steps) {
+        if (recipe_step.kind == RecipeStep::Kind::SetSelection) {
+            // As the viewer's "Select SPEC": the current state with "v:selection" set.
+            HalfedgeMesh mesh = history.current_mesh();
+            apply_selection_step(recipe_step, mesh, "--select " + recipe_step.region);
+            history.push("Select", recipe_step.region, 0.0, {std::move(mesh)},
+                         {MorphCorrespondence{}});
+            continue;
+        }
+        const Operation& op = recipe_step.operation;
+        const std::optional<Selection> region = recipe_region(recipe_step, history.current_mesh());
+        ReplayStep step = run_recipe_step(op, history.current_mesh(), region ? &*region : nullptr);
         if (!step.changed) {
             notes.push_back(op.text() + " changed nothing: no history entry");
             continue;
@@ -310,7 +338,7 @@ int run_replay_command(const std::vector<std::string>& args) {
     if (json) {
         JsonObject j;
         j.add("recipe", files[0]).add("input", files[1]).add("output", files[2]);
-        j.add("operations", recipe.operations.size());
+        j.add("operations", recipe.operations()).add("selections", recipe.selections());
         j.add("vertices", result.n_vertices()).add("faces", result.n_faces());
         if (!check.empty()) {
             j.add("check", check).add("identical", difference.empty());
@@ -319,9 +347,11 @@ int run_replay_command(const std::vector<std::string>& args) {
         j.add("ms", ms);
         std::cout << j.str() << "\n";
     } else {
-        std::printf("wrote %s: %zu operations replayed (%zu vertices, %zu faces, %.1f ms)\n",
-                    files[2].c_str(), recipe.operations.size(), result.n_vertices(),
-                    result.n_faces(), ms);
+        std::printf(
+            "wrote %s: %zu operations and %zu selections replayed (%zu vertices, %zu faces, "
+            "%.1f ms)\n",
+            files[2].c_str(), recipe.operations(), recipe.selections(), result.n_vertices(),
+            result.n_faces(), ms);
         if (!check.empty() && difference.empty())
             std::printf(
                 "identical to the current state of %s (connectivity and positions bit "

@@ -425,6 +425,31 @@ void check_operation(const Operation& op) {
     def.check(op.values);
 }
 
+void check_parameter_applies(const Operation& op, const std::string& param) {
+    if (!op.def) throw InvalidArgument("empty operation (known: " + known_names() + ")");
+    const std::size_t i = op.def->index(param);
+    if (const char* why = op.def->why_not(op.values, i))
+        throw InvalidArgument(option(op.def->params[i]) + ": " + why);
+}
+
+std::string run_failure(const OperationResult& result) {
+    if (result.stopped_early)
+        return "stopped early: " +
+               (result.stop_reason.empty() ? std::string("no reason given") : result.stop_reason);
+    if (!result.changed) return "changed nothing";
+    return "";
+}
+
+void check_region_not_empty(const HalfedgeMesh& mesh, const std::vector<float>& region,
+                            const std::string& label) {
+    if (count_selected(region) > 0) return;
+    throw InvalidArgument(label + ": the region is empty (0 of " +
+                          std::to_string(mesh.n_vertices()) +
+                          " vertices selected, every weight is 0): nothing to do, nothing "
+                          "changed (select some vertices, or clear the selection to act on "
+                          "the whole mesh)");
+}
+
 OperationResult run_operation(const Operation& op, const HalfedgeMesh& mesh, Progress& progress,
                               const RunSettings& settings) {
     check_operation(op);
@@ -433,6 +458,7 @@ OperationResult run_operation(const Operation& op, const HalfedgeMesh& mesh, Pro
             throw InvalidArgument("--region: " + op.def->name +
                                   " does not work on a region yet (it acts on the whole mesh)");
         check_selection(mesh, *settings.region, "--region");
+        check_region_not_empty(mesh, *settings.region, op.def->label);
     }
     const std::size_t n_vertices = mesh.n_vertices();  // before the run may consume `mesh`
     OperationResult result = op.def->run(op.values, mesh, progress, settings);

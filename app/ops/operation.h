@@ -176,8 +176,24 @@ Operation parse_operation(const std::string& text);
 /// Checks values set programmatically (a panel, a sweep): ranges and combinations (values of
 /// parameters that do not apply are not used). Throws InvalidArgument naming the option.
 void check_operation(const Operation& op);
+/// Throws InvalidArgument "--PARAM: WHY" when parameter `param` of `op` does not apply to
+/// op's other values ("--step: does not apply to --operator taubin ..."), as the command line
+/// refuses such an option, or naming the operation's options when it has no such parameter.
+/// For callers that vary one parameter of an operation (the viewer's --sweep), so that they
+/// refuse what the CLI refuses (issue 38, item 2).
+void check_parameter_applies(const Operation& op, const std::string& param);
+/// "" when a run may be kept as the command line keeps it; otherwise why not, one line: it
+/// stopped early ("stopped early: iteration 1: the bounding box grew ...") or changed nothing
+/// ("changed nothing"). A sweep's preview that diverged is a failure, as `--op` is.
+std::string run_failure(const OperationResult& result);
+/// Throws InvalidArgument "LABEL: the region is empty (0 of N vertices selected ...): nothing
+/// to do, nothing changed ..." when no weight of `region` is positive (issue 38, item 10): every
+/// operation, in the CLI and the viewer, refuses an empty region with this one message.
+void check_region_not_empty(const HalfedgeMesh& mesh, const std::vector<float>& region,
+                            const std::string& label);
 /// Runs `op` on a copy of `mesh` (on settings.region of it, where given). Throws
 /// InvalidArgument for bad parameters or a region that does not fit `mesh` or the operation,
+/// or is empty (check_region_not_empty()),
 /// Cancelled when `progress` asks to stop; `mesh` is never changed.
 OperationResult run_operation(const Operation& op, const HalfedgeMesh& mesh, Progress& progress,
                               const RunSettings& settings = {});

@@ -2,12 +2,15 @@
 // viewer's `--select SPEC` take it (app/ops/region_spec.h).
 #include "app/ops/region_spec.h"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <fstream>
+#include <cstdint>
 
+#include "core/algorithms/coloring.h"
 #include "core/errors.h"
+#include "core/io/file_util.h"
 #include "core/io/mesh_io.h"
 #include "core/number_text.h"
 
@@ -16,7 +19,8 @@ namespace trilab {
 namespace {
 
 constexpr const char* kSpecForms =
-    "sphere:X,Y,Z,R[,FEATHER], geodesic:V,R[,FEATHER], component:V or file:PATH";
+    "sphere:X,Y,Z,R[,FEATHER], geodesic:V,R[,FEATHER], component:V, threshold:QUANTITY,LO,HI "
+    "or file:PATH";
 
 bool parse_number(const std::string& text, double& out) {
     const char* end = text.data() + text.size();
@@ -48,15 +52,37 @@ Vertex spec_vertex(const HalfedgeMesh& mesh, const RegionSpec& spec, double valu
     return v;
 }
 
-/// One weight per line of a text file.
+}  // namespace
+
+std::uint64_t weight_file_budget(std::size_t vertices) {
+    // A weight per line: "0.123456789\n" is 12 bytes; comments and blank lines are allowed,
+    // so 64 bytes a vertex and 1 MiB of slack, never more than a file read may take at all.
+    const std::uint64_t budget = (std::uint64_t(1) << 20) + 64 * std::uint64_t(vertices);
+    return std::min(budget, max_readable_file_bytes());
+}
+
+namespace {
+
+/// One weight per line of a text file, read from a regular file only and within
+/// weight_file_budget() (issue 38, item 15: /dev/zero or a FIFO is refused at once).
 Selection read_weights(const HalfedgeMesh& mesh, const RegionSpec& spec) {
-    std::ifstream in(spec.path);
     const std::string head = "--region " + spec.text + ": ";
-    if (!in) throw InvalidArgument(head + "cannot open '" + spec.path + "'");
+    std::string text;
+    try {
+        text = read_file_bytes(spec.path, weight_file_budget(mesh.vertices_size()));
+    } catch (const IoError& e) {
+        throw IoError(e.file(), e.line(),
+                      e.reason() + " (" + head + "a weight file is a regular file of at most " +
+                          std::to_string(weight_file_budget(mesh.vertices_size())) +
+                          " bytes for this mesh)");
+    }
     Selection weights;
-    std::string line;
-    std::size_t number = 0;
-    while (std::getline(in, line)) {
+    std::size_t number = 0, start = 0;
+    while (start < text.size()) {
+        std::size_t end = text.find('\n', start);
+        if (end == std::string::npos) end = text.size();
+        const std::string line = text.substr(start, end - start);
+        start = end + 1;
         ++number;
         const std::size_t a = line.find_first_not_of(" \t\r");
         if (a == std::string::npos || line[a] == '#') continue;
@@ -66,6 +92,10 @@ Selection read_weights(const HalfedgeMesh& mesh, const RegionSpec& spec) {
         if (!parse_number(word, w) || w < 0 || w > 1)
             throw InvalidArgument(head + spec.path + ":" + std::to_string(number) +
                                   ": expected a weight from 0 to 1, got '" + word + "'");
+        if (weights.size() == mesh.vertices_size())
+            throw InvalidArgument(head + spec.path + ":" + std::to_string(number) +
+                                  ": more weights than the mesh's " +
+                                  std::to_string(mesh.vertices_size()) + " vertices");
         weights.push_back(float(w));
     }
     if (weights.size() != mesh.vertices_size())
@@ -86,6 +116,67 @@ bool is_mesh_file(const std::string& path) {
 
 }  // namespace
 
+namespace {
+
+/// threshold:QUANTITY,LO,HI after the colon.
+RegionSpec parse_threshold_spec(RegionSpec spec, const std::string& rest) {
+    const std::string head = "--region " + spec.text + ": ";
+    const std::vector<std::string> parts = split_commas(rest);
+    if (parts.size() != 3)
+        throw InvalidArgument(head + "expected threshold:QUANTITY,LO,HI (" +
+                              std::to_string(parts.size()) + " parts given)");
+    spec.kind = RegionSpec::Kind::Threshold;
+    try {
+        parse_coloring(parts[0]);
+    } catch (const InvalidArgument& e) {
+        const std::string what = e.what();
+        throw InvalidArgument(head + "QUANTITY: " + what.substr(what.find(':') + 2));
+    }
+    spec.quantity = parts[0];
+    for (std::size_t i = 1; i < 3; ++i) {
+        double x = 0;
+        if (!parse_number(parts[i], x))
+            throw InvalidArgument(head + (i == 1 ? "LO" : "HI") + ": expected a number, got '" +
+                                  parts[i] + "'");
+        spec.numbers.push_back(x);
+    }
+    if (spec.numbers[0] > spec.numbers[1])
+        throw InvalidArgument(head + "LO " + parts[1] + " is above HI " + parts[2]);
+    return spec;
+}
+
+/// The vertices whose value of the spec's colouring lies in [LO, HI].
+Selection threshold_region(const HalfedgeMesh& mesh, const RegionSpec& spec) {
+    const std::string head = "--region " + spec.text + ": ";
+    const VertexColoring coloring = parse_coloring(spec.quantity);
+    if (coloring == VertexColoring::None || coloring == VertexColoring::Normal)
+        throw InvalidArgument(head + "the colouring '" + spec.quantity +
+                              "' has no value per vertex (use k1, k2, mean, gaussian, "
+                              "shape-index, subdivision or geodesic-distance)");
+    if (coloring == VertexColoring::SmoothingDistance)
+        throw InvalidArgument(head +
+                              "smoothing-distance needs the state before an operation, "
+                              "which a region SPEC does not have");
+    const bool has_distance = mesh.has_vertex_property("v:distance");
+    if (coloring_needs_field(coloring) &&
+        !(coloring == VertexColoring::GeodesicDistance && has_distance))
+        throw InvalidArgument(
+            head + "the colouring '" + spec.quantity + "' needs " +
+            (coloring == VertexColoring::GeodesicDistance
+                 ? std::string("a \"v:distance\" vertex property (trilab-cli geodesic writes it)")
+                 : std::string("a spectral decomposition, which a region SPEC does not compute")));
+    const VertexColors colors = color_vertices(mesh, coloring);
+    const double lo = spec.numbers[0], hi = spec.numbers[1];
+    Selection s(mesh.vertices_size(), 0.0f);
+    for (Vertex v : mesh.vertices()) {
+        const double x = colors.values[v.idx()];
+        if (std::isfinite(x) && x >= lo && x <= hi) s[v.idx()] = 1.0f;
+    }
+    return s;
+}
+
+}  // namespace
+
 RegionSpec parse_region_spec(const std::string& text) {
     RegionSpec spec;
     spec.text = text;
@@ -100,6 +191,7 @@ RegionSpec parse_region_spec(const std::string& text) {
         spec.path = rest;
         return spec;
     }
+    if (kind == "threshold") return parse_threshold_spec(spec, rest);
     std::size_t min_parts = 0, max_parts = 0;
     const char* form = "";
     if (kind == "sphere") {
@@ -153,6 +245,9 @@ Selection make_region(const HalfedgeMesh& mesh, const RegionSpec& spec) {
             break;
         case RegionSpec::Kind::Component:
             s = component_selection(mesh, spec_vertex(mesh, spec, n[0]));
+            break;
+        case RegionSpec::Kind::Threshold:
+            s = threshold_region(mesh, spec);
             break;
         case RegionSpec::Kind::File:
             if (is_mesh_file(spec.path)) {

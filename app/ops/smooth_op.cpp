@@ -28,7 +28,10 @@ void add_json_values(const SmoothReport& rep, OperationResult& result) {
                      {"factorizations", double(rep.factorizations)},
                      {"cg_iterations", double(rep.cg_iterations)},
                      {"max_smoothing_distance", rep.max_smoothing_distance},
-                     {"mean_smoothing_distance", rep.mean_smoothing_distance}};
+                     {"mean_smoothing_distance", rep.mean_smoothing_distance},
+                     {"mean_smoothing_distance_moved", rep.mean_smoothing_distance_moved},
+                     {"moved_vertices", double(rep.moved_vertices)},
+                     {"solved_rows", double(rep.solved_rows)}};
     result.texts = {{"solver", rep.solver}};
     if (!rep.max_stable_step_estimated && !std::isfinite(rep.max_stable_step))
         result.texts.push_back(
@@ -82,18 +85,24 @@ OperationResult run_smooth(const FairingOptions& options, const HalfedgeMesh& me
     if (result.steps.empty())  // no steps kept (the CLI), or none good: the last good state
         result.steps.push_back(OperationStep{std::move(fairing.mesh), MorphCorrespondence{}});
     // The smoothing distance of the result against the input (the viewer's colouring).
-    const std::vector<double> distance =
-        smoothing_distance(result.steps.back().mesh, consume ? input_positions : mesh.positions());
+    const std::vector<Point>& before = consume ? input_positions : mesh.positions();
+    const HalfedgeMesh& after = result.steps.back().mesh;
+    const std::vector<double> distance = smoothing_distance(after, before);
     double max_distance = 0, sum_distance = 0;
-    for (double d : distance) {
-        max_distance = std::max(max_distance, std::abs(d));
-        sum_distance += std::abs(d);
+    std::size_t moved = 0;
+    for (Vertex v : after.vertices()) {
+        const double d = std::abs(distance[v.idx()]);
+        max_distance = std::max(max_distance, d);
+        sum_distance += d;
+        moved += after.position(v) != before[v.idx()] ? 1 : 0;
     }
     const double mean_distance = n_vertices ? sum_distance / double(n_vertices) : 0;
-    char line[160];
+    const double mean_moved = moved ? sum_distance / double(moved) : 0;
+    char line[240];
     std::snprintf(line, sizeof(line),
-                  "smoothing distance along the normal: largest %.6g, mean %.6g", max_distance,
-                  mean_distance);
+                  "smoothing distance along the normal: largest %.6g, mean %.6g over all %zu "
+                  "vertices, mean %.6g over the %zu that moved",
+                  max_distance, mean_distance, n_vertices, mean_moved, moved);
     result.report.emplace_back(line);
     SmoothReport rep;
     rep.iterations_done = fairing.iterations_done;
@@ -106,6 +115,9 @@ OperationResult run_smooth(const FairingOptions& options, const HalfedgeMesh& me
     rep.cg_iterations = fairing.cg_iterations;
     rep.max_smoothing_distance = max_distance;
     rep.mean_smoothing_distance = mean_distance;
+    rep.mean_smoothing_distance_moved = mean_moved;
+    rep.moved_vertices = moved;
+    rep.solved_rows = fairing.solved_rows;
     rep.solver = fairing.solver;
     add_json_values(rep, result);
     if (o.op == FairingOperator::Taubin) {

@@ -23,8 +23,15 @@ struct SmoothReport {
     std::size_t factorizations = 0;
     std::size_t cg_iterations = 0;
     double max_smoothing_distance = 0;   ///< along the normal, result against input
-    double mean_smoothing_distance = 0;  ///< over the input's vertices
-    std::string solver;                  ///< "none", "SimplicialLDLT", ...
+    double mean_smoothing_distance = 0;  ///< over all the input's vertices (moved or not)
+    /// Over the vertices that moved only (on a region: its moving vertices), so that a small
+    /// region's figure is not diluted by the whole mesh (issue 38, item 3); 0 when none moved.
+    double mean_smoothing_distance_moved = 0;
+    std::size_t moved_vertices = 0;  ///< vertices whose position changed
+    /// Rows of the implicit system solved per iteration (the free vertices of the operator
+    /// built: on a region with the outside fixed, the region's vertices); 0 when explicit.
+    std::size_t solved_rows = 0;
+    std::string solver;  ///< "none", "SimplicialLDLT", ...
 };
 
 }  // namespace trilab

@@ -10,6 +10,7 @@
 #include "app/ops/operation_entries.h"
 #include "core/algorithms/region_subdivision.h"
 #include "core/algorithms/subdivision.h"
+#include "core/errors.h"
 #include "core/number_text.h"
 
 namespace trilab {
@@ -90,6 +91,7 @@ OperationResult run_subdivide(const SubdivisionOptions& options, const HalfedgeM
         result.values.push_back({"min_angle_touched", c.min_angle_touched});
         result.values.push_back({"closure_flips", double(c.closure_flips)});
         result.values.push_back({"grown_faces", double(c.grown_faces)});
+        result.values.push_back({"closure_reds", double(c.closure_reds)});
     }
     sub.levels.clear();  // moved into the steps: the report is the counts, notes and time
     result.typed_report = std::move(sub);
@@ -109,9 +111,18 @@ std::unique_ptr<OperationDef> subdivide_operation() {
     d.integer("iterations", &SubdivisionOptions::iterations, 1, 10, "refinement steps")
         .slider(1, 6)
         .counts_steps();
+    d.flag("global-closure", &SubdivisionOptions::global_closure,
+           "on a region: grow the closure until no closure triangle is flatter than the input (on "
+           "an almost regular mesh over the whole surface; by default it stays next to the "
+           "selection, and repeated levels split the earlier closure 1-to-4 instead of bisecting "
+           "it again)");
     d.flag("local-closure", &SubdivisionOptions::local_closure,
-           "on a region: keep the closure next to the selection even where it is flatter than "
-           "the input (by default it grows until no closure triangle is)");
+           "on a region: keep the closure next to the selection (the default; accepted for "
+           "recipes and sessions written before it was)");
+    d.check([](const SubdivisionOptions& o, const auto&) {
+        if (o.local_closure && o.global_closure)
+            throw InvalidArgument("--local-closure: cannot be given with --global-closure");
+    });
     d.run(run_subdivide)
         .acts_on_region(
             "only faces whose three vertices weigh > 0 are refined, with a conforming closure "

@@ -84,6 +84,7 @@
 #include "core/algorithms/weld.h"
 #include "core/errors.h"
 #include "core/geometry.h"
+#include "core/mesh_builder.h"
 #include "core/number_text.h"
 
 namespace trilab {
@@ -1052,14 +1053,16 @@ void FairingRun::update_laplacian(int it) {
     energy_known_ = false;
     if (!implicit_) return;
     sys_.build(lap_, o_.step);
+    res_.solved_rows = sys_.free_rows.size();
+    res_.operator_rows = lap_.map.rows();
     if (it == 0 && o_.solver == ImplicitSolver::Auto) {
         const double cond = 1.0 + o_.step * gershgorin_bound(lap_);
         use_direct_ = cond > kCgConditionLimit ||
                       (weights_fixed_ && o_.iterations >= kDirectReuseIterations &&
                        lap_.map.rows() <= kDirectRowsLimit);
         std::ostringstream s;
-        s << "solver choice: condition bound " << cond << ", " << lap_.map.rows() << " rows -> "
-          << (use_direct_ ? kLdlt : kCg);
+        s << "solver choice: condition bound " << cond << ", " << sys_.free_rows.size()
+          << " rows solved (of " << lap_.map.rows() << " built) -> " << (use_direct_ ? kLdlt : kCg);
         res_.report.push_back(s.str());
     }
 }
@@ -1428,10 +1431,147 @@ void smooth_coincident(FairingResult& res, const FairingOptions& o, Progress& pr
     res.report.insert(res.report.begin() + 1, s.str());
 }
 
+/// The faces an implicit region run needs (those with a moving vertex, and for second order
+/// the faces that share a vertex with those: the hinges of the moving rows reach that far),
+/// as flags per face storage index; empty when the run cannot be restricted (see smooth()).
+std::vector<std::uint8_t> region_run_faces(const HalfedgeMesh& mesh, const FairingOptions& o) {
+    const bool applies =
+        o.region && o.restrict_to_region && o.integration == Integration::Implicit &&
+        (o.op == FairingOperator::Umbrella || o.op == FairingOperator::CurvatureFlow ||
+         o.op == FairingOperator::SecondOrder) &&
+        o.boundary == BoundaryMode::Fixed && !o.preserve_volume;
+    if (!applies) return {};
+    const Selection& w = *o.region;
+    std::vector<std::uint8_t> marked(mesh.vertices_size(), 0), faces(mesh.faces_size(), 0);
+    for (Vertex v : mesh.vertices()) marked[v.idx()] = w[v.idx()] > 0.0f;
+    const int rings = o.op == FairingOperator::SecondOrder ? 2 : 1;
+    std::size_t count = 0;
+    for (int ring = 0; ring < rings; ++ring) {
+        for (Face f : mesh.faces()) {
+            if (faces[f.idx()]) continue;
+            for (Vertex v : mesh.face_vertices(f))
+                if (marked[v.idx()] == 1) {
+                    faces[f.idx()] = 1;
+                    ++count;
+                    break;
+                }
+        }
+        if (ring + 1 < rings)  // the next ring: every vertex of the faces so far
+            for (Face f : mesh.faces())
+                if (faces[f.idx()])
+                    for (Vertex v : mesh.face_vertices(f)) marked[v.idx()] = 1;
+    }
+    if (4 * count > 3 * mesh.n_faces()) return {};
+    return faces;
+}
+
+/// The whole mesh's volume at each step of a region run (positions differ from P0 only at
+/// `moving`); stops the run at the first step whose volume's sign differs from the input's,
+/// as the whole-mesh run does.
+void check_region_run_volume(FairingResult& res, const Positions& p0,
+                             const std::vector<Index>& moving, const std::vector<Positions>& steps,
+                             const Positions& last) {
+    MovingFaceSums sums(res.mesh, p0, moving);
+    res.initial_volume = sums.sums(p0, false).volume;
+    const BoundingBox box = bounding_box(res.mesh);
+    const double diag = box.diagonal();
+    const bool check = std::abs(res.initial_volume) > 1e-9 * diag * diag * diag;
+    const std::size_t n = std::min(steps.size(), std::size_t(res.iterations_done));
+    for (std::size_t k = 0; k < n && check; ++k) {
+        const double vk = sums.sums(steps[k], false).volume;
+        if (vk * res.initial_volume > 0) continue;
+        res.stopped_early = true;
+        res.stopped_at_iteration = int(k) + 1;
+        res.stop_reason = "iteration " + std::to_string(k + 1) +
+                          ": the volume changed sign (from " + format_number(res.initial_volume) +
+                          " to " + format_number(vk) + ")";
+        res.report.push_back("stopped: " + res.stop_reason);
+        res.iterations_done = int(k);
+        res.mesh.positions() = k == 0 ? p0 : steps[k - 1];
+        res.final_volume = k == 0 ? res.initial_volume : sums.sums(steps[k - 1], false).volume;
+        return;
+    }
+    res.final_volume = sums.sums(last, false).volume;
+}
+
+/// smooth() of a region whose outside is fixed, on the submesh of `faces`
+/// (region_run_faces()): the same rows, values and solver choices as on the whole mesh, its
+/// positions written back to the moving vertices. False (nothing done) when the submesh is not
+/// a plain copy of those faces (the builder would repair something).
+bool smooth_region_on_faces(FairingResult& res, const FairingOptions& o,
+                            const std::vector<std::uint8_t>& faces, Progress& progress) {
+    const HalfedgeMesh& mesh = res.mesh;
+    const Selection& w = *o.region;
+    std::vector<Index> sub_of(mesh.vertices_size(), kInvalidIndex);
+    for (Face f : mesh.faces())
+        if (faces[f.idx()])
+            for (Vertex v : mesh.face_vertices(f)) sub_of[v.idx()] = 0;
+    PolygonSoup soup;
+    std::size_t n_faces = 0;
+    std::vector<Index> whole_of;  // sub vertex -> vertex, ascending
+    Selection sub_w;
+    for (Vertex v : mesh.vertices()) {
+        if (sub_of[v.idx()] == kInvalidIndex) continue;
+        sub_of[v.idx()] = Index(whole_of.size());
+        whole_of.push_back(v.idx());
+        soup.positions.push_back(mesh.position(v));
+        sub_w.push_back(w[v.idx()]);
+    }
+    for (Face f : mesh.faces()) {
+        if (!faces[f.idx()]) continue;
+        const auto c = mesh.face_vertices(f);
+        soup.add_face({sub_of[c[0].idx()], sub_of[c[1].idx()], sub_of[c[2].idx()]});
+        ++n_faces;
+    }
+    LoadReport load;
+    HalfedgeMesh sub = build_mesh(std::move(soup), load);
+    if (sub.vertices_size() != whole_of.size() || sub.n_faces() != n_faces ||
+        load.vertex_copies_added || load.nonmanifold_vertices_split || load.detached_faces ||
+        load.degenerate_faces_dropped || !find_coincident_vertices(sub).empty())
+        return false;
+    FairingOptions so = o;
+    so.region = &sub_w;
+    so.restrict_to_region = false;  // already restricted: the whole-mesh path on the submesh
+    so.keep_steps = true;           // the region's positions per step, for the volume check
+    FairingResult r = smooth(std::move(sub), so, progress);
+    const Positions p0 = mesh.positions();
+    std::vector<Index> moving;
+    for (std::size_t k = 0; k < whole_of.size(); ++k)
+        if (sub_w[k] > 0.0f) moving.push_back(whole_of[k]);
+    const auto whole_positions = [&](const Positions& ps) {
+        Positions p = p0;
+        for (std::size_t k = 0; k < whole_of.size(); ++k)
+            if (sub_w[k] > 0.0f) p[whole_of[k]] = ps[k];
+        return p;
+    };
+    std::vector<Positions> steps;
+    steps.reserve(r.step_positions.size());
+    for (const Positions& ps : r.step_positions) steps.push_back(whole_positions(ps));
+    HalfedgeMesh whole = std::move(res.mesh);
+    whole.positions() = whole_positions(r.mesh.positions());
+    r.mesh = std::move(whole);
+    r.step_positions = std::move(steps);
+    r.report.insert(
+        r.report.begin() + 1,
+        "region: " + std::to_string(moving.size()) + " vertices move; the system is built on the " +
+            std::to_string(n_faces) + " faces around them, the other " +
+            std::to_string(r.mesh.n_vertices() - moving.size()) + " vertices stay fixed");
+    res = std::move(r);
+    if (is_closed(res.mesh)) {
+        const Positions last = res.mesh.positions();
+        check_region_run_volume(res, p0, moving, res.step_positions, last);
+        res.step_positions.resize(std::size_t(res.iterations_done));
+    }
+    if (!o.keep_steps) res.step_positions.clear();
+    return true;
+}
+
 FairingResult smooth_mesh(FairingResult res, const FairingOptions& options, Progress& progress) {
     if (options.region) check_selection(res.mesh, *options.region, "smooth: region");
     if (find_coincident_vertices(res.mesh).empty()) {
         check_options(res.mesh, options);
+        const std::vector<std::uint8_t> faces = region_run_faces(res.mesh, options);
+        if (!faces.empty() && smooth_region_on_faces(res, options, faces, progress)) return res;
         Pinned pinned;
         if (options.region) pin_unselected(res.mesh, *options.region, pinned);
         run_fairing(options, progress, res, pinned, options.region);

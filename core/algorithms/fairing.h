@@ -14,7 +14,14 @@
 // Boundary vertices stay fixed (or slide along their boundary curve); isolated vertices never
 // move; coincident vertices (seams, copies of split vertices) move as one (the run is on the
 // weld, core/algorithms/weld.h). Only positions change. A region (FairingOptions::region)
-// limits the smoothing to the selected vertices, blended by their weights.
+// limits the smoothing to the selected vertices, blended by their weights. An implicit run on a
+// region (umbrella, curvature flow, second order; fixed boundary, no volume preservation, no
+// coincident vertices) whose faces around the moving vertices are at most 3/4 of the mesh's
+// builds and solves its system on those faces only (one ring, two for second order, whose
+// hinges reach that far): the same rows and values as on the whole mesh, so the outside stays
+// bit for bit and the inside agrees to the solver's tolerance, in time that follows the
+// region (FairingResult::solved_rows: the region's vertices). A closed mesh's volume is
+// checked and reported over the whole mesh.
 // Throws InvalidArgument naming the option before doing anything; Cancelled from the progress.
 // The input mesh is never modified.
 // Complexity: explicit O(iterations · (V + F)) (explicit umbrella and Taubin on a region:
@@ -144,6 +151,13 @@ struct FairingResult {
     double solve_ms = 0;               ///< time in implicit solves (either solver)
     LaplacianDiagnostics diagnostics;  ///< summed over all builds (stalled: largest per build)
     double initial_volume = 0, final_volume = 0;  ///< closed meshes (0 otherwise)
+    /// Rows of the implicit system (the operator's free vertices) per solve; 0 when explicit.
+    /// On a region whose outside is fixed, the region's vertices only: the system is built
+    /// on the faces around them (see smooth()).
+    std::size_t solved_rows = 0;
+    /// Rows of the operator built (its live, non-isolated vertices; on a restricted region
+    /// run, those of the faces around the region); 0 for the umbrella's matrix-free path.
+    std::size_t operator_rows = 0;
 };
 
 /// Taubin's μ as smooth() uses it: 1/(k_PB - 1/λ) from taubin_pass_band when that is > 0;

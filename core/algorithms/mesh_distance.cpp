@@ -191,17 +191,36 @@ private:
 
 /// Vertices (with a face) plus area-proportional face samples on the R2 low-discrepancy
 /// sequence (Roberts 2018), folded into each triangle.
-std::vector<Point> sample_surface(const HalfedgeMesh& mesh, std::size_t n) {
+/// `mask` (one flag per face storage index, or nullptr: all) limits both to the flagged faces
+/// and their vertices.
+std::vector<Point> sample_surface(const HalfedgeMesh& mesh, std::size_t n,
+                                  const std::vector<std::uint8_t>* mask) {
     std::vector<Point> samples;
-    for (Vertex v : mesh.vertices())
-        if (!mesh.is_isolated(v)) samples.push_back(mesh.position(v));
-    const double total = surface_area(mesh);
+    const auto sampled = [mask](Face f) { return !mask || (*mask)[f.idx()]; };
+    double total = 0;
+    if (!mask) {
+        for (Vertex v : mesh.vertices())
+            if (!mesh.is_isolated(v)) samples.push_back(mesh.position(v));
+        total = surface_area(mesh);
+    } else {
+        std::vector<std::uint8_t> taken(mesh.vertices_size(), 0);
+        for (Face f : mesh.faces()) {
+            if (!sampled(f)) continue;
+            const auto c = mesh.face_vertices(f);
+            for (Vertex v : c) taken[v.idx()] = 1;
+            const Point &x0 = mesh.position(c[0]), &x1 = mesh.position(c[1]);
+            total += 0.5 * (x1 - x0).cross(mesh.position(c[2]) - x0).norm();
+        }
+        for (Vertex v : mesh.vertices())
+            if (taken[v.idx()]) samples.push_back(mesh.position(v));
+    }
     if (!(total > 0)) return samples;
     const double g = 1.32471795724474602596;  // plastic number
     const double a1 = 1.0 / g, a2 = 1.0 / (g * g);
     double carry = 0;
     std::size_t k = 0;
     for (Face f : mesh.faces()) {
+        if (!sampled(f)) continue;
         const auto c = mesh.face_vertices(f);
         const Point &x0 = mesh.position(c[0]), &x1 = mesh.position(c[1]), &x2 = mesh.position(c[2]);
         const double want = double(n) * 0.5 * (x1 - x0).cross(x2 - x0).norm() / total + carry;
@@ -240,8 +259,8 @@ MeshDistance distance_unscaled(const HalfedgeMesh& a, const HalfedgeMesh& b,
     MeshDistance d;
     d.diagonal = bounding_box(a).diagonal();
     const TriangleTree ta(a), tb(b);
-    const std::vector<Point> sa = sample_surface(a, options.samples);
-    const std::vector<Point> sb = sample_surface(b, options.samples);
+    const std::vector<Point> sa = sample_surface(a, options.samples, options.a_faces);
+    const std::vector<Point> sb = sample_surface(b, options.samples, options.b_faces);
     double s_ab = 0, s_ba = 0;
     one_side(sa, tb, d.a_to_b_max, s_ab);
     one_side(sb, ta, d.b_to_a_max, s_ba);
@@ -280,6 +299,18 @@ HalfedgeMesh scaled_copy(const HalfedgeMesh& m, double s) {
     return out;
 }
 
+void check_face_mask(const HalfedgeMesh& mesh, const std::vector<std::uint8_t>* mask,
+                     const char* name) {
+    if (!mask) return;
+    if (mask->size() != mesh.faces_size())
+        throw InvalidArgument(std::string("mesh_distance: ") + name + " has " +
+                              std::to_string(mask->size()) + " flags for " +
+                              std::to_string(mesh.faces_size()) + " face slots");
+    for (Face f : mesh.faces())
+        if ((*mask)[f.idx()]) return;
+    throw InvalidArgument(std::string("mesh_distance: ") + name + " flags no face");
+}
+
 }  // namespace
 
 MeshDistance mesh_distance(const HalfedgeMesh& a, const HalfedgeMesh& b,
@@ -289,6 +320,8 @@ MeshDistance mesh_distance(const HalfedgeMesh& a, const HalfedgeMesh& b,
                               std::to_string(a.n_faces()) + " and " + std::to_string(b.n_faces()) +
                               ")");
     if (options.samples == 0) throw InvalidArgument("mesh_distance: samples must be at least 1");
+    check_face_mask(a, options.a_faces, "a_faces");
+    check_face_mask(b, options.b_faces, "b_faces");
     // Squared distances and areas of coordinates far from 1 overflow (1e200) or underflow
     // (1e-200): such meshes are measured scaled by a power of two (exact), and the distances
     // scaled back.

@@ -17,6 +17,8 @@
 // Throws InvalidArgument when a mesh has no faces, a non-finite position, when the sample
 // count is 0, or when a distance exceeds the largest double.
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "core/halfedge_mesh.h"
 
@@ -25,6 +27,13 @@ namespace trilab {
 struct MeshDistanceOptions {
     /// Face samples per mesh (vertices are always added); at least 1.
     std::size_t samples = 200000;
+    /// Where given, one flag per face storage index of A (of B): only the flagged faces and
+    /// their vertices are sampled (a region's part of the surface, `trilab-cli compare
+    /// --region`); each sample is still measured against the other mesh's whole surface, so
+    /// no cut edge adds a distance. nullptr: every face. A mask of another size, or one that
+    /// flags no live face, throws InvalidArgument. Not owned.
+    const std::vector<std::uint8_t>* a_faces = nullptr;
+    const std::vector<std::uint8_t>* b_faces = nullptr;
 };
 
 struct MeshDistance {

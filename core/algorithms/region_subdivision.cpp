@@ -101,6 +101,11 @@ struct RegionStep {
     Selection selection;
     RegionClosureCounts counts;
     std::vector<double> flatness;  ///< face_flatness() of every face (unless it is the last level)
+    /// Per face of the new level: 1 for the closure's faces and their descendants (green halves,
+    /// the children of refined faces outside the selection), which a later level never bisects
+    /// again but splits 1-to-4 (red) when one of their edges is split: red-green refinement's
+    /// removal of the previous closure, so that repeated levels do not keep halving angles.
+    std::vector<std::uint8_t> closure_faces;
     Index flattest = kInvalidIndex;  ///< the level's flattest face (the first of equal ones)
 };
 
@@ -459,7 +464,12 @@ std::size_t close_red_green(const HalfedgeMesh& m, const Selection& w,
                             const std::vector<std::uint8_t>& selected,
                             const std::vector<std::uint8_t>& near, const RegionStencils& uniform,
                             bool local_closure, double target_angle,
-                            std::vector<std::uint8_t>& split) {
+                            const std::vector<std::uint8_t>& earlier_closure,
+                            const std::vector<std::uint8_t>& region_edge,
+                            std::vector<std::uint8_t>& split, std::size_t& closure_reds) {
+    const auto was_closure = [&](Face f) {
+        return !earlier_closure.empty() && earlier_closure[f.idx()] != 0;
+    };
     const Index nf = Index(m.faces_size());
     const Point* x = m.positions().data();
     const Halfedge* next_of = m.halfedge_next_array().data();
@@ -477,14 +487,19 @@ std::size_t close_red_green(const HalfedgeMesh& m, const Selection& w,
     };
     const auto edge_position = [&](Index e) {
         const Index a = m.vertex(Edge(e), 1).idx(), b = m.vertex(Edge(e), 0).idx();
+        if (!region_edge[e]) return Point(0.5 * (old_position(a) + old_position(b)));
         const Point mid = 0.5 * (x[a] + x[b]);
         const float wmax = std::max(w[a], w[b]);
         return wmax > 0.0f
                    ? blend_by_weight(mid, uniform.step.positions[uniform.edge_slot(e)], wmax)
                    : mid;
     };
-    // Whether the bisection of face f (one split edge) keeps every angle >= target_angle.
-    const double cos_target = std::cos(target_angle * kPi / 180.0);
+    // Whether the bisection of face f (one split edge) keeps every angle >= the target: the
+    // input's smallest angle growing the closure (global), half of it keeping it local (a
+    // bisection that would cut deeper is split 1-to-4 instead: no closure triangle is ever
+    // flatter than half the input's smallest angle, at any number of levels).
+    const double green_target = local_closure ? 0.5 * target_angle : target_angle;
+    const double cos_target = std::cos(green_target * kPi / 180.0);
     const auto green_ok = [&](Face f) {
         for (Halfedge h : m.halfedges_of(f)) {
             const Index e = HalfedgeMesh::edge(h).idx();
@@ -493,8 +508,8 @@ std::size_t close_red_green(const HalfedgeMesh& m, const Selection& w,
             const Point b = old_position(m.to_vertex(h).idx());
             const Point c = old_position(m.to_vertex(m.next(h)).idx());
             const Point mid = edge_position(e);
-            return min_angle_at_least(a, mid, c, target_angle, cos_target) &&
-                   min_angle_at_least(mid, b, c, target_angle, cos_target);
+            return min_angle_at_least(a, mid, c, green_target, cos_target) &&
+                   min_angle_at_least(mid, b, c, green_target, cos_target);
         }
         return true;
     };
@@ -502,18 +517,23 @@ std::size_t close_red_green(const HalfedgeMesh& m, const Selection& w,
     // vertices that move, so it is `near`.
     std::vector<Face> queue;
     for (Index f = 0; f < nf; ++f) {
-        if (!near[f]) continue;
+        if (!near[f] && !was_closure(Face(f))) continue;
         const int c = n_split(Face(f));
-        if (c == 2 || (c == 1 && !local_closure)) queue.push_back(Face(f));
+        if (c == 2 || c == 1) queue.push_back(Face(f));
     }
     std::size_t grown = 0;
+    closure_reds = 0;
     while (!queue.empty()) {
         const Face f = queue.back();
         queue.pop_back();
         const int c = n_split(f);
         if (c == 1) {
-            if (local_closure || selected[f.idx()] || green_ok(f)) continue;
-            ++grown;
+            if (was_closure(f)) {
+                ++closure_reds;  // an earlier closure face is never bisected again: red
+            } else {
+                if (selected[f.idx()] || green_ok(f)) continue;
+                ++grown;
+            }
         } else if (c != 2) {
             continue;
         }
@@ -636,12 +656,49 @@ std::vector<std::uint8_t> build_red_green(const HalfedgeMesh& m,
     return closure;
 }
 
+/// The split edges per face of `m` (0 to 3), counting the selected, red and green faces.
+std::vector<std::uint8_t> split_counts(const HalfedgeMesh& m,
+                                       const std::vector<std::uint8_t>& split,
+                                       const std::vector<std::uint8_t>& selected,
+                                       RegionClosureCounts& counts) {
+    const Index nf = Index(m.faces_size());
+    std::vector<std::uint8_t> splits(nf, 0);
+    for (Index f = 0; f < nf; ++f) {
+        const Halfedge h0 = m.halfedge(Face(f)), h1 = m.next(h0), h2 = m.next(h1);
+        const int c = split[h0.idx() >> 1] + split[h1.idx() >> 1] + split[h2.idx() >> 1];
+        splits[f] = std::uint8_t(c);
+        counts.selected_faces += selected[f];
+        counts.red_faces += c == 3 ? 1 : 0;
+        counts.green_faces += c == 1 ? 1 : 0;
+    }
+    return splits;
+}
+
+/// This level's closure (per face of the new level) and every face that descends from an
+/// earlier level's closure (`earlier`, per coarse face; a refined face keeps its index for one
+/// child and numbers the others after the coarse faces, in face order: build_red_green()). The
+/// next level reads them, and the closure's flips run over all of them.
+std::vector<std::uint8_t> with_earlier_closure(const std::vector<std::uint8_t>& closure,
+                                               const std::vector<std::uint8_t>& earlier,
+                                               const std::vector<std::uint8_t>& splits) {
+    std::vector<std::uint8_t> all = closure;
+    const Index nf = Index(splits.size());
+    if (!earlier.empty())
+        for (Index f = 0, f0 = nf; f < nf; f0 += splits[f], ++f) {
+            if (!earlier[f]) continue;
+            all[f] = 1;
+            std::fill_n(all.begin() + std::ptrdiff_t(f0), splits[f], 1);
+        }
+    return all;
+}
+
 /// One red-green step of a 1-to-4 scheme on `m` (compact) with weights `w`.
 /// `coarse_flat`: the flatness of m's faces, or empty on the input (then computed here, in the
 /// first pass over the faces, and `target_angle`, the input's minimum angle, set from it).
 RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, SubdivisionScheme scheme,
                               int level, bool morph, bool local_closure, double& target_angle,
-                              std::vector<double>& coarse_flat, bool keep_flatness,
+                              std::vector<double>& coarse_flat,
+                              const std::vector<std::uint8_t>& earlier_closure, bool keep_flatness,
                               Progress& progress) {
     const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
                 nf = Index(m.faces_size());
@@ -687,17 +744,14 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
     const RegionStencils uniform = region_stencils(m, w, scheme, progress);
     progress.check_cancelled();
     RegionStep step;
+    // The edges of the selected faces (refined by the scheme); the closure's other split edges
+    // get the midpoint of their ends' new positions, so that the faces cut from refined faces
+    // outside are similar to them (and never move again: their weight is 0).
+    const std::vector<std::uint8_t> region_edge = split;
     step.counts.grown_faces =
-        close_red_green(m, w, selected, near, uniform, local_closure, target_angle, split);
-    std::vector<std::uint8_t> splits(nf, 0);
-    for (Index f = 0; f < nf; ++f) {
-        const Halfedge h0 = m.halfedge(Face(f)), h1 = m.next(h0), h2 = m.next(h1);
-        const int c = split[h0.idx() >> 1] + split[h1.idx() >> 1] + split[h2.idx() >> 1];
-        splits[f] = std::uint8_t(c);
-        step.counts.selected_faces += selected[f];
-        step.counts.red_faces += c == 3 ? 1 : 0;
-        step.counts.green_faces += c == 1 ? 1 : 0;
-    }
+        close_red_green(m, w, selected, near, uniform, local_closure, target_angle, earlier_closure,
+                        region_edge, split, step.counts.closure_reds);
+    const std::vector<std::uint8_t> splits = split_counts(m, split, selected, step.counts);
     check_face_limit(std::size_t(nf) + 3 * step.counts.red_faces + step.counts.green_faces);
     check_no_refined_pillow(m, [&](Face f) { return splits[f.idx()] > 0; });
     progress.check_cancelled();
@@ -708,6 +762,7 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
     std::vector<std::uint8_t> touched(nf, 0);
     for (Index f = 0; f < nf; ++f) touched[f] = !selected[f] && splits[f] > 0;
     const std::vector<std::uint8_t> closure = build_red_green(m, split, splits, touched, out);
+    std::vector<std::uint8_t> all_closure = with_earlier_closure(closure, earlier_closure, splits);
     const Vertex* to_in = m.halfedge_to_array().data();
     NewVertices nvx(out, morph);
     Point* p = out.positions().data();
@@ -732,7 +787,11 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
         const Index a = to_in[2 * e + 1].idx(), b = to_in[2 * e].idx();
         const Point mid = 0.5 * (x[a] + x[b]);
         const float wmax = std::max(w[a], w[b]);
-        if (wmax > 0.0f) {
+        if (wmax > 0.0f && !region_edge[e]) {
+            // A closure edge with an end that moves: the midpoint of the ends' new positions.
+            p[nv + k++] = 0.5 * (p[a] + p[b]);
+            nvx.add(SubdivisionStencil::OddClosureMidpoint, mid, std::min(w[a], w[b]), a, b);
+        } else if (wmax > 0.0f) {
             Index i = nv + e;
             if (!uniform.dense) {
                 while (uniform.edges[listed] < e) ++listed;  // e is listed: it has a moving end
@@ -745,7 +804,8 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
             nvx.add(SubdivisionStencil::OddClosureMidpoint, mid, std::min(w[a], w[b]), a, b);
         }
     }
-    step.counts.closure_flips = improve_closure(out, closure);
+    step.counts.closure_flips = improve_closure(out, all_closure);
+    if (keep_flatness) step.closure_faces = std::move(all_closure);
     step.counts.min_angle_touched = min_angle_of(m, touched);
     step.counts.min_angle_closure = min_angle_of(out, closure);
     // Faces of the coarse level left as they were: not refined, no vertex moved.
@@ -1057,6 +1117,7 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
                 flattest == kInvalidIndex ? 180.0 : min_face_angle(*current, Face(flattest));
         }
         RegionStep latest;
+        std::vector<std::uint8_t> closure_faces;  // of the last level built (1-to-4 schemes)
         if (options.keep_levels) result.levels.reserve(std::size_t(options.iterations));
         for (int it = 1; it <= options.iterations; ++it) {
             progress.check_cancelled();
@@ -1064,16 +1125,17 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
             const bool morph = options.morph && (options.keep_levels || it == options.iterations);
             const bool keep_flatness = it < options.iterations;  // the next level reads it
             RegionStep step =
-                sqrt3 ? refine_region_sqrt3(*current, weights, it, morph, options.local_closure,
+                sqrt3 ? refine_region_sqrt3(*current, weights, it, morph, !options.global_closure,
                                             report.min_angle_in, flatness, keep_flatness, progress)
                       : refine_region_1to4(*current, weights, options.scheme, it, morph,
-                                           options.local_closure, report.min_angle_in, flatness,
-                                           keep_flatness, progress);
+                                           !options.global_closure, report.min_angle_in, flatness,
+                                           closure_faces, keep_flatness, progress);
             report.closure.push_back(step.counts);
             result.level_counts.push_back(
                 {step.level.mesh.n_vertices(), step.level.mesh.n_faces()});
             weights = std::move(step.selection);
             flatness = std::move(step.flatness);
+            closure_faces = std::move(step.closure_faces);
             flattest = step.flattest;
             if (options.keep_levels) {
                 result.levels.push_back(std::move(step.level));

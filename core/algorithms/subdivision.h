@@ -49,9 +49,14 @@ struct SubdivisionOptions {
     /// Compute each returned level's MorphCorrespondence (the start positions). When false its
     /// `positions` stay empty (check_correspondence() refuses it) and no time is spent on it.
     bool morph = true;
-    /// Region subdivision only (core/algorithms/region_subdivision.h): keep the closure to the
-    /// faces next to the selection (green bisections, unflipped Sqrt3 triangles) even where
-    /// they are flatter than the input, instead of growing it until none is.
+    /// Region subdivision only (core/algorithms/region_subdivision.h): grow the closure until
+    /// none of its triangles is flatter than the input (on an almost regular mesh: over the whole
+    /// connected surface) instead of keeping it next to the selection (the default since issue
+    /// 38: green bisections, unflipped Sqrt3 triangles, the earlier levels' closure split 1-to-4
+    /// rather than bisected again).
+    bool global_closure = false;
+    /// The closure next to the selection: the default now; kept so that recipes and sessions
+    /// written before issue 38 (`--local-closure`) still read. Not with global_closure.
     bool local_closure = false;
 };
 

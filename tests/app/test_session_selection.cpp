@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "app/history/recipe.h"
 #include "app/ops/operation.h"
 #include "app/session/screen_selection.h"
 #include "app/session/session.h"
@@ -302,4 +303,55 @@ TEST_CASE("a region's flip uses the state's components, kept with its topology",
     CHECK(s.mesh().halfedge_next_array() != before.halfedge_next_array());
     // The new state has its own labels (the flip keeps the components, not the arrays).
     CHECK(s.document().components_topology == s.mesh().topology_revision());
+}
+
+TEST_CASE("a session's recipe replays its selections: the viewer's state bit for bit",
+          "[session][selection][recipe]") {
+    // Issue 38, item 1, as the viewer builds the session: noise on everything, a sphere
+    // selected, implicit curvature flow on it, a brush stroke, grown, noise on that, and a
+    // threshold of the colouring (weights only). The recipe replays every state.
+    Session s;
+    const HalfedgeMesh loaded = s.mesh();
+    s.execute(RunOperation{parse_operation("noise --amount 20 --seed 3")});
+    s.finish_jobs();
+    s.execute(SelectSpec{"sphere:0,0,1,0.6"});
+    s.execute(RunOperation{
+        parse_operation("smooth --operator curvature-flow --integration implicit --step 3")});
+    s.finish_jobs();
+    Selection brush(s.mesh().vertices_size(), 0.0f);
+    for (std::size_t i = 0; i < brush.size(); i += 5) brush[i] = i % 2 ? 1.0f : 0.5f;
+    s.execute(SetSelection{brush, "Brush", "radius 12 px"});
+    s.execute(EditSelection{EditSelection::Kind::Grow, 1, 0});
+    s.execute(RunOperation{parse_operation("noise --amount 4 --seed 9")});
+    s.finish_jobs();
+    REQUIRE(s.history().size() == 7);
+    const Recipe recipe = recipe_of(s.history());
+    CHECK(recipe.operations() == 3);
+    CHECK(recipe.selections() == 3);
+    CHECK(recipe.steps[1].from == RecipeStep::From::Spec);
+    const Recipe back = parse_recipe(recipe_json(recipe), "r.json");
+    CHECK(first_difference(replay(back, loaded), s.mesh()) == "");
+    // The smoothing moved the sphere's vertices only.
+    const HalfedgeMesh before = s.history().mesh(2, 0), after = s.history().mesh(3, 0);
+    const Selection sphere = *stored_selection(before);
+    for (Vertex v : before.vertices())
+        if (sphere[v.idx()] == 0.0f) REQUIRE(before.position(v) == after.position(v));
+}
+
+TEST_CASE("an empty selection is refused by every operation, adding no entry",
+          "[session][selection]") {
+    // Issue 38, item 10: a selection of 0 vertices; subdivision added a no-op entry, the
+    // other operations ran and vanished.
+    Session s;
+    s.execute(SelectSpec{"sphere:100,100,100,0.1"});
+    REQUIRE(s.selection());
+    REQUIRE(s.selected_count() == 0);
+    const std::size_t entries = s.history().size();
+    for (const char* text : {"subdivide", "smooth --iterations 3", "noise", "decimate"}) {
+        INFO(text);
+        s.execute(RunOperation{parse_operation(text)});
+        s.finish_jobs();
+        CHECK(s.history().size() == entries);
+        CHECK(s.notice().text.find("the region is empty (0 of") != std::string::npos);
+    }
 }

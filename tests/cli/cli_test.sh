@@ -626,10 +626,13 @@ check "select stores the region as property selection and reports region_vertice
      grep -q '^property float selection' '$tmp/sel2.ply' && \
      '$cli' select '$tmp/d.obj' '$tmp/sel.om' --region geodesic:0,0.5,0.2 --grow 1 --json | \
      grep -q '\"region_vertices\": '"
-check "an empty region leaves the mesh bit for bit, an all-ones one gives the unselected result" bash -c \
-    "'$cli' smooth '$tmp/d.obj' '$tmp/r0.ply' --ascii --iterations 3 --region sphere:100,100,100,0 \
-       --json > '$tmp/r0.json' && grep -q '\"region_vertices\": 0' '$tmp/r0.json' && \
-     '$cli' convert '$tmp/d.obj' '$tmp/d0.ply' --ascii >/dev/null && cmp -s '$tmp/r0.ply' '$tmp/d0.ply' && \
+# Issue 38 item 10: every operation refuses an empty region with one message, writing nothing.
+check "an empty region is refused by every operation, writing nothing; an all-ones one gives the unselected result" bash -c \
+    "for op in 'smooth --iterations 3' 'noise --amount 5' 'decimate --percent 30' 'flip' weld \
+               'subdivide' 'spectrum --k 20 --band 0:9'; do \
+       ! '$cli' \$op '$tmp/d.obj' '$tmp/r0.ply' --region sphere:100,100,100,0 2> '$tmp/e' && \
+       [ \$(wc -l < '$tmp/e') -eq 1 ] && grep -q 'the region is empty (0 of 1002 vertices' '$tmp/e' && \
+       [ ! -e '$tmp/r0.ply' ] || { echo \"\$op\"; cat '$tmp/e'; exit 1; }; done && \
      for i in \$(seq 1002); do echo 1; done > '$tmp/ones.txt' && \
      for op in 'smooth --iterations 3' 'noise --amount 5' 'decimate --percent 30' 'flip' \
                'spectrum --k 20 --band 0:9'; do \
@@ -658,6 +661,16 @@ check "bad --region specs are refused naming the option and the part" bash -c \
      grep -q -- '--region: remove-components does not work on a region yet' '$tmp/e' && \
      ! '$cli' select '$tmp/d.obj' '$tmp/bad.ply' 2> '$tmp/e' && grep -q -- '--region' '$tmp/e' && \
      [ ! -e '$tmp/bad.ply' ] && '$cli' smooth --help | grep -q -- '--region SPEC'"
+# Issue 38 item 15: region files are read from regular files only, within a budget.
+mkfifo "$tmp/fifo_region"
+limit_memory="ulimit -v 4000000;"  # a regression fails here instead of eating the memory
+[ -n "${ASAN_OPTIONS:-}" ] && limit_memory=""  # AddressSanitizer needs the address space
+check "a region file that is a device or a FIFO is refused at once, by every command that reads one" bash -c \
+    "for args in 'smooth' 'select' 'subdivide'; do \
+       for f in /dev/zero '$tmp/fifo_region'; do \
+         ($limit_memory timeout 10 '$cli' \$args '$tmp/d.obj' '$tmp/z.ply' --region file:\$f) 2> '$tmp/e'; \
+         [ \$? -eq 1 ] && [ \$(wc -l < '$tmp/e') -eq 1 ] && grep -q 'not a regular file' '$tmp/e' && \
+         [ ! -e '$tmp/z.ply' ] || { echo \"\$args \$f\"; cat '$tmp/e'; exit 1; }; done; done"
 check "subdivide --region refines a sphere region of every scheme into a valid closed mesh" bash -c \
     "for s in loop sqrt3 butterfly modified-butterfly; do \
        '$cli' subdivide --scheme \$s '$tmp/d.obj' '$tmp/rs.ply' --region sphere:0,0,1,0.6 \
@@ -668,6 +681,20 @@ check "subdivide --region refines a sphere region of every scheme into a valid c
        grep -q '\"valid\": true' '$tmp/ri.json' && grep -q '\"euler\": 2,' '$tmp/ri.json' && \
        grep -q '\"boundary_edges\": 0,' '$tmp/ri.json' && grep -q '\"manifold\": true' '$tmp/ri.json' \
        || { echo \"\$s\"; exit 1; }; done"
+# Issue 38 item 4: the local closure is the default; --global-closure grows it; levels keep it.
+check "subdivide --region keeps a small region's closure local, and levels do not degrade it" bash -c \
+    "'$cli' generate sphere '$tmp/sp4.off' && \
+     '$cli' subdivide --scheme loop --region sphere:0,0,1,0.5 '$tmp/sp4.off' '$tmp/l1.obj' --json \
+       > '$tmp/l1.json' && grep -q '\"faces\": 2288' '$tmp/l1.json' && \
+     '$cli' subdivide --scheme loop --region sphere:0,0,1,0.5 --global-closure '$tmp/sp4.off' \
+       '$tmp/g1.obj' --json | grep -q '\"faces\": 8000' && \
+     '$cli' subdivide --scheme loop --region sphere:0,0,1,0.5 --iterations 3 '$tmp/sp4.off' \
+       '$tmp/l3.obj' --json | python3 -c 'import json,sys; j=json.load(sys.stdin); \
+       sys.exit(0 if j[\"min_angle_closure\"] >= 0.5 * j[\"min_angle_in\"] - 1e-6 and \
+       j[\"closure_reds\"] > 0 else 1)' && \
+     '$cli' subdivide --scheme loop --region sphere:0,0,1,0.5 --local-closure '$tmp/sp4.off' \
+       '$tmp/x.obj' --json | grep -q '\"faces\": 2288' && \
+     ! '$cli' subdivide --local-closure --global-closure '$tmp/sp4.off' '$tmp/x.obj' 2>/dev/null"
 check "subdivide --region with all ones gives the unselected mesh" bash -c \
     "for s in loop sqrt3; do \
        '$cli' subdivide --scheme \$s '$tmp/d.obj' '$tmp/sa.obj' >/dev/null && \
@@ -693,6 +720,34 @@ check "replay --check exits 5 naming the difference" bash -c \
      '$cli' session recipe '$tmp/s2.trilab' '$tmp/r2.json' > /dev/null; \
      '$cli' replay '$tmp/r2.json' '$tmp/ico.off' '$tmp/r2.off' --check '$tmp/s3.trilab' 2> '$tmp/e'; \
      [ \$? -eq 5 ] && grep -q 'differs from .*s3.trilab.*positions differ at index' '$tmp/e'"
+# Issue 38 item 1: recipes keep the selections, and every operation runs on its region.
+check "a session with a selection replays through its recipe bit for bit" bash -c \
+    "'$cli' generate sphere '$tmp/sp.off' && \
+     '$cli' session make '$tmp/sp.off' '$tmp/sel.trilab' --op 'noise --amount 20' \
+       --select sphere:0,0,1,0.5 \
+       --op 'smooth --operator curvature-flow --integration implicit --step 3' > /dev/null && \
+     '$cli' session recipe '$tmp/sel.trilab' '$tmp/sel.json' | \
+       grep -q '2 operations and 1 selections after \"Load sp.off' && \
+     grep -q '\"selection\": \"spec\", \"spec\": \"sphere:0,0,1,0.5\"' '$tmp/sel.json' && \
+     '$cli' replay '$tmp/sel.json' '$tmp/sp.off' '$tmp/sel.off' --check '$tmp/sel.trilab' | \
+       grep -q 'identical to the current state' && \
+     '$cli' compare '$tmp/sp.off' '$tmp/sel.off' --region sphere:0,0,1,0.5 --json > '$tmp/cr.json' && \
+     grep -q '\"region_vertices\": ' '$tmp/cr.json' && grep -q '\"moved_vertices\": ' '$tmp/cr.json'"
+check "threshold:QUANTITY,LO,HI selects by a colouring; compare --region sees the outside unmoved" bash -c \
+    "'$cli' select '$tmp/d.obj' '$tmp/th.ply' --region threshold:mean,-1e9,1e9 --json | \
+       grep -q '\"region_vertices\": 1002' && \
+     '$cli' select '$tmp/d.obj' '$tmp/th.ply' --region threshold:gaussian,1e9,2e9 --json | \
+       grep -q '\"region_vertices\": 0' && \
+     '$cli' smooth '$tmp/d.obj' '$tmp/ths.obj' --iterations 3 --region threshold:k1,-1e9,1.2 --json \
+       > '$tmp/ths.json' && \
+     '$cli' compare '$tmp/d.obj' '$tmp/ths.obj' --region threshold:k1,-1e9,1.2 --json > '$tmp/thc.json' && \
+     grep -q '\"outside_identical\": true' '$tmp/thc.json' && \
+     ! '$cli' select '$tmp/d.obj' '$tmp/th.ply' --region threshold:frequency,0,1 2> '$tmp/e' && \
+     grep -q 'needs a spectral decomposition' '$tmp/e' && \
+     ! '$cli' select '$tmp/d.obj' '$tmp/th.ply' --region threshold:mean,2,1 2> '$tmp/e' && \
+     grep -q 'LO 2 is above HI 1' '$tmp/e' && \
+     ! '$cli' select '$tmp/d.obj' '$tmp/th.ply' --region threshold:bogus,0,1 2> '$tmp/e' && \
+     grep -q 'QUANTITY: unknown colouring' '$tmp/e'"
 check "session export writes an entry as a mesh" bash -c \
     "'$cli' session export '$data/session/icosahedron-history.trilab' --entry 1 '$tmp/e1.off' && \
      '$cli' info '$tmp/e1.off' --json | grep -q '\"vertices\": 42'"

@@ -4,20 +4,26 @@
 // and round-tripped through every file format; then every registered operation runs on each
 // with several parameter sets. Each either works (every step valid, no NaN or infinity) or
 // refuses with a trilab::Error carrying a message; nothing else is acceptable.
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <limits>
 #include <map>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "app/ops/operation.h"
+#include "app/ops/region_spec.h"
 #include "core/algorithms/generators.h"
 #include "core/algorithms/mesh_distance.h"
 #include "core/errors.h"
@@ -525,4 +531,60 @@ TEST_CASE("compare works on finite coordinates near the ends of double's range",
     for (Point& p : far.positions()) p = p * 1e300 + Point(1.5e308, 0, 0);
     for (Point& p : near.positions()) p = p * 1e300 - Point(1.5e308, 0, 0);
     CHECK_THROWS_AS(mesh_distance(far, near, options), InvalidArgument);
+}
+
+TEST_CASE("region and selection files are read from regular files only, within a budget",
+          "[hostile][io][open][selection]") {
+    // Issue 38, item 15: `--region file:/dev/zero` read without end, a FIFO hung for ever.
+    TempDir dir;
+    const HalfedgeMesh mesh = make_icosahedron();
+    REQUIRE(mkfifo(dir.path("fifo").c_str(), 0600) == 0);
+    // If a reader opened the FIFO (and blocked), a writer opened after a while ends the read
+    // at once, so a regression fails this test instead of hanging it.
+    std::promise<void> done;
+    std::thread unblock([&, finished = done.get_future()] {
+        if (finished.wait_for(std::chrono::seconds(2)) == std::future_status::ready) return;
+        const int fd = ::open(dir.path("fifo").c_str(), O_WRONLY | O_NONBLOCK);
+        if (fd >= 0) ::close(fd);
+    });
+    std::filesystem::create_directory(dir.path("folder"));
+    struct Case {
+        std::string path, what;
+    };
+    for (const Case& c :
+         {Case{"/dev/zero", "a character device"}, Case{dir.path("fifo"), "a FIFO (named pipe)"},
+          Case{dir.path("folder"), "a directory"}}) {
+        INFO(c.path);
+        const auto t0 = std::chrono::steady_clock::now();
+        const RegionSpec spec = parse_region_spec("file:" + c.path);
+        const IoError e = read_failure(c.path, [&] { make_region(mesh, spec); });
+        CHECK(std::chrono::steady_clock::now() - t0 < std::chrono::seconds(1));
+        CHECK_THAT(e.reason(), Catch::StartsWith("not a regular file: it is " + c.what) &&
+                                   Catch::Contains("--region file:" + c.path));
+    }
+    done.set_value();
+    unblock.join();
+    // A regular file past the budget (sparse: nothing is written) is refused before reading,
+    // naming its size and the limit.
+    const std::uint64_t budget = weight_file_budget(mesh.vertices_size());
+    CHECK(budget >= (std::uint64_t(1) << 20));
+    CHECK(budget < (std::uint64_t(2) << 20));  // 12 vertices: 1 MiB and a little
+    {
+        std::ofstream(dir.path("big.txt")) << "1\n";
+        std::filesystem::resize_file(dir.path("big.txt"), budget + 1);
+    }
+    const IoError e = read_failure(dir.path("big.txt"), [&] {
+        make_region(mesh, parse_region_spec("file:" + dir.path("big.txt")));
+    });
+    CHECK_THAT(e.reason(), Catch::Contains(std::to_string(budget + 1)) &&
+                               Catch::Contains(std::to_string(budget)));
+    // Within the budget the weights read as before; one too many is refused naming the line.
+    std::string ones;
+    for (std::size_t i = 0; i < mesh.vertices_size(); ++i) ones += "# vertex\n1\n";
+    std::ofstream(dir.path("ones.txt")) << ones;
+    CHECK(count_selected(make_region(mesh, parse_region_spec("file:" + dir.path("ones.txt")))) ==
+          mesh.n_vertices());
+    std::ofstream(dir.path("more.txt")) << ones << "0\n";
+    CHECK_THROWS_WITH(make_region(mesh, parse_region_spec("file:" + dir.path("more.txt"))),
+                      Catch::Contains("more.txt:25: more weights than the mesh's 12 vertices"));
 }

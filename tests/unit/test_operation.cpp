@@ -322,3 +322,69 @@ TEST_CASE("smooth runs fairing as geometry-only steps the history accepts", "[op
                         Catch::Matchers::Contains("--operator"));
     REQUIRE_THROWS_WITH(parse_operation("smooth --step -1"), Catch::Matchers::Contains("--step"));
 }
+
+TEST_CASE("every operation refuses an empty region with one message and changes nothing",
+          "[ops][selection]") {
+    // Issue 38, item 10: with 0 selected vertices subdivision added a no-op entry and the
+    // other operations ran on nothing. The shared run path refuses it, for the CLI and the
+    // viewer alike.
+    const HalfedgeMesh mesh = make_icosphere(2);
+    const HalfedgeMesh before = mesh;
+    const std::vector<float> empty(mesh.vertices_size(), 0.0f);
+    NullProgress progress;
+    RunSettings settings;
+    settings.region = &empty;
+    std::size_t refused = 0;
+    for (const OperationDef* def : operation_defs()) {
+        if (!def->takes_region) continue;
+        INFO(def->name);
+        const Operation op = make_operation(def->name);
+        try {
+            run_operation(op, mesh, progress, settings);
+            FAIL("an empty region was not refused");
+        } catch (const InvalidArgument& e) {
+            CHECK_THAT(e.what(),
+                       Catch::StartsWith(def->label + ": the region is empty (0 of " +
+                                         std::to_string(mesh.n_vertices()) + " vertices selected"));
+            ++refused;
+        }
+        CHECK(mesh.positions() == before.positions());
+    }
+    CHECK(refused >= 6);  // noise, subdivide, smooth, spectrum, decimate, flip, weld
+    // One vertex of positive weight is a region: it runs.
+    std::vector<float> one = empty;
+    one[3] = 0.5f;
+    settings.region = &one;
+    CHECK_NOTHROW(run_operation(parse_operation("smooth"), mesh, progress, settings));
+}
+
+TEST_CASE(
+    "a sweep refuses what the command line refuses: a parameter that does not apply, a "
+    "run that diverged",
+    "[ops]") {
+    // Issue 38, item 2: --sweep "smooth --operator taubin" --param step ran although Taubin
+    // takes no step, and a diverging preview counted as a success.
+    const Operation taubin = parse_operation("smooth --operator taubin");
+    CHECK_THROWS_WITH(check_parameter_applies(taubin, "step"),
+                      Catch::StartsWith("--step: does not apply to --operator taubin"));
+    CHECK_NOTHROW(check_parameter_applies(taubin, "lambda"));
+    const Operation umbrella = parse_operation("smooth --iterations 3");
+    CHECK_NOTHROW(check_parameter_applies(umbrella, "step"));
+    CHECK_THROWS_WITH(check_parameter_applies(umbrella, "lambda"),
+                      Catch::StartsWith("--lambda: applies to --operator taubin only"));
+    CHECK_THROWS_WITH(check_parameter_applies(umbrella, "bogus"), Catch::Contains("bogus"));
+    // The same refusal as the command line's.
+    CHECK_THROWS_WITH(parse_operation("smooth --operator taubin --step 0.5"),
+                      Catch::StartsWith("--step: does not apply to --operator taubin"));
+
+    NullProgress progress;
+    const HalfedgeMesh mesh = make_icosphere(2);
+    const OperationResult diverged =
+        run_operation(parse_operation("smooth --iterations 3 --step 30"), mesh, progress);
+    REQUIRE(diverged.stopped_early);
+    CHECK_THAT(run_failure(diverged), Catch::StartsWith("stopped early: iteration 1: "));
+    const OperationResult nothing =
+        run_operation(parse_operation("smooth --step 0"), mesh, progress);
+    CHECK(run_failure(nothing) == (nothing.changed ? "" : "changed nothing"));
+    CHECK(run_failure(run_operation(umbrella, mesh, progress)) == "");
+}

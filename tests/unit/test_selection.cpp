@@ -8,9 +8,12 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <set>
 
 #include "app/ops/operation.h"
+#include "app/ops/smooth_op.h"
+#include "core/algorithms/coloring.h"
 #include "core/algorithms/decimation.h"
 #include "core/algorithms/fairing.h"
 #include "core/algorithms/generators.h"
@@ -649,4 +652,97 @@ TEST_CASE("operations take the region as input and report it", "[selection][oper
     settings.region = &wrong;
     CHECK_THROWS_WITH(run_operation(parse_operation("noise"), fx.mesh, progress, settings),
                       Catch::Matchers::Contains("--region: expected one weight"));
+}
+
+TEST_CASE("an implicit run on a small region solves the region's rows only, with the same result",
+          "[selection][fairing]") {
+    // Issue 38, item 3: 3,214 region vertices solved as 34,834 rows. Restricted, the system
+    // is built on the faces around the region; the outside stays bit for bit and the inside
+    // agrees with the whole-mesh run to the solver's tolerance; volumes are the whole mesh's.
+    const HalfedgeMesh m = make_noisy_sphere(24, 0.02, 5);
+    const Selection region = sphere_selection(m, Point(0, 0, 1), 0.35);
+    const std::size_t selected = count_selected(region);
+    REQUIRE(selected > 30);
+    REQUIRE(selected * 20 < m.n_vertices());
+    for (FairingOperator op : {FairingOperator::Umbrella, FairingOperator::CurvatureFlow,
+                               FairingOperator::SecondOrder}) {
+        INFO(fairing_operator_name(op));
+        FairingOptions o;
+        o.op = op;
+        o.integration = Integration::Implicit;
+        o.step = 5;
+        o.iterations = 2;
+        o.region = &region;
+        o.max_relative_residual = 1e-10;
+        o.cg_tolerance = 1e-12;
+        const FairingResult part = smooth(m, o);
+        FairingOptions w = o;
+        w.restrict_to_region = false;
+        const FairingResult whole = smooth(m, w);
+        REQUIRE_FALSE(part.stopped_early);
+        REQUIRE_FALSE(whole.stopped_early);
+        REQUIRE(validate(part.mesh));
+        CHECK(part.solved_rows == selected);  // a closed sphere: every selected vertex is free
+        CHECK(whole.solved_rows == selected);
+        CHECK(whole.operator_rows == m.n_vertices());
+        CHECK(part.operator_rows < 4 * selected);  // the region and a ring or two around it
+        CHECK(part.iterations_done == 2);
+        REQUIRE(part.step_positions.size() == 2);
+        CHECK(bit_identical(part.step_positions.back(), part.mesh.positions()));
+        double largest = 0;
+        std::size_t moved = 0;
+        for (Vertex v : m.vertices()) {
+            const Point& p = part.mesh.position(v);
+            if (region[v.idx()] == 0.0f) {
+                REQUIRE(same_point(p, m.position(v)));
+                REQUIRE(same_point(part.step_positions[0][v.idx()], m.position(v)));
+                continue;
+            }
+            moved += same_point(p, m.position(v)) ? 0 : 1;
+            largest = std::max(largest, (p - whole.mesh.position(v)).norm());
+        }
+        CHECK(moved == selected);
+        CHECK(largest < 1e-8);  // the unit sphere: the solver's tolerance
+        CHECK(part.initial_volume == Approx(whole.initial_volume).epsilon(1e-12));
+        CHECK(part.final_volume == Approx(whole.final_volume).epsilon(1e-9));
+        // The CLI's way (no steps kept) gives the same last state.
+        FairingOptions last = o;
+        last.keep_steps = false;
+        const FairingResult cli = smooth(m, last);
+        CHECK(bit_identical(cli.mesh.positions(), part.mesh.positions()));
+        CHECK(cli.step_positions.empty());
+    }
+}
+
+TEST_CASE("smooth on a region reports the smoothing distance over the mesh and over what moved",
+          "[selection][operation]") {
+    // Issue 38, item 3: a region's mean over the whole mesh is diluted by the vertices that
+    // stayed; both are reported, named apart.
+    const HalfedgeMesh m = make_noisy_sphere(16, 0.02, 7);
+    const Selection region = sphere_selection(m, Point(0, 0, 1), 0.4);
+    NullProgress progress;
+    RunSettings settings;
+    settings.region = &region;
+    const OperationResult r = run_operation(
+        parse_operation("smooth --operator curvature-flow --integration implicit --step 5"), m,
+        progress, settings);
+    std::map<std::string, double> v(r.values.begin(), r.values.end());
+    const HalfedgeMesh& out = r.steps.back().mesh;
+    const std::vector<double> d = smoothing_distance(out, m.positions());
+    double sum = 0;
+    std::size_t moved = 0;
+    for (Vertex x : m.vertices()) {
+        sum += std::abs(d[x.idx()]);
+        moved += same_point(out.position(x), m.position(x)) ? 0 : 1;
+    }
+    REQUIRE(moved > 10);
+    REQUIRE(moved <= count_selected(region));
+    CHECK(v.at("moved_vertices") == double(moved));
+    CHECK(v.at("mean_smoothing_distance") == Approx(sum / double(m.n_vertices())));
+    CHECK(v.at("mean_smoothing_distance_moved") == Approx(sum / double(moved)));
+    CHECK(v.at("mean_smoothing_distance_moved") > 5 * v.at("mean_smoothing_distance"));
+    CHECK(v.at("solved_rows") == double(count_selected(region)));
+    const SmoothReport* rep = report_of<SmoothReport>(r);
+    REQUIRE(rep);
+    CHECK(rep->mean_smoothing_distance_moved == v.at("mean_smoothing_distance_moved"));
 }

@@ -10,6 +10,7 @@
 #include <catch2/catch.hpp>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <random>
 #include <set>
 #include <string>
@@ -19,7 +20,9 @@
 #include "app/history/recipe.h"
 #include "app/history/session_file.h"
 #include "app/history/session_types.h"
+#include "app/ops/region_spec.h"
 #include "core/algorithms/generators.h"
+#include "core/algorithms/selection.h"
 #include "core/errors.h"
 #include "core/io/file_util.h"
 #include "core/io/mesh_io.h"
@@ -197,7 +200,7 @@ TEST_CASE("the committed session of this format version reads and replays bit fo
             REQUIRE(validate(s.history.mesh(i, k)));
     // Its recipe (loaded file to current entry) replays to the current state exactly.
     const Recipe recipe = recipe_of(s.history);
-    REQUIRE(recipe.operations.size() == 3);
+    REQUIRE(recipe.operations() == 3);
     const HalfedgeMesh replayed = replay(recipe, s.history.mesh(0, 0));
     CHECK(first_difference(replayed, s.history.current_mesh()) == "");
     // Regenerated today, every state is the same bit for bit (the operations did not change).
@@ -225,9 +228,8 @@ TEST_CASE("recipes round-trip through JSON and replay bit for bit", "[session]")
     const Recipe recipe = recipe_of(history);
     const std::string json = recipe_json(recipe);
     const Recipe back = parse_recipe(json, "r.json");
-    REQUIRE(back.operations.size() == recipe.operations.size());
-    for (std::size_t i = 0; i < back.operations.size(); ++i)
-        CHECK(back.operations[i] == recipe.operations[i]);
+    REQUIRE(back.steps.size() == recipe.steps.size());
+    for (std::size_t i = 0; i < back.steps.size(); ++i) CHECK(back.steps[i] == recipe.steps[i]);
     const HalfedgeMesh replayed = replay(back, history.mesh(0, 0));
     CHECK(first_difference(replayed, history.current_mesh()) == "");
     // A changed state is told apart.
@@ -274,4 +276,177 @@ TEST_CASE("operations give the same bits on every run (recipes rely on it)", "[s
     const HalfedgeMesh two =
         replay(Recipe{"", {parse_operation("spectrum --k 20 --band 0:5 --threads 2")}}, mesh);
     CHECK(first_difference(one, two) == "");
+}
+
+// ---- issue 38, item 1: recipes keep selections --------------------------------------------
+
+namespace {
+
+/// A selection entry as the viewer pushes one (app/session/session_selection.cpp): the current
+/// state with "v:selection" set, one step, no motion.
+void push_selection(History& h, const Selection& weights, const std::string& label,
+                    const std::string& parameters) {
+    HalfedgeMesh m = h.current_mesh();
+    store_selection(m, weights);
+    h.push(label, parameters, 0.0, {std::move(m)}, {MorphCorrespondence{}});
+}
+
+/// Runs `text` on the current state's selection, as the viewer does (Session::region_for: none
+/// without a selection or when it selects everything), and pushes every step.
+void push_on_selection(History& h, const std::string& text) {
+    const Operation op = parse_operation(text);
+    std::optional<Selection> region = stored_selection(h.current_mesh());
+    if (region && selects_everything(h.current_mesh(), *region)) region.reset();
+    ReplayStep r = run_recipe_step(op, h.current_mesh(), region ? &*region : nullptr);
+    REQUIRE(r.changed);
+    std::vector<HalfedgeMesh> meshes;
+    std::vector<MorphCorrespondence> corr;
+    for (OperationStep& s : r.result.steps) {
+        meshes.push_back(std::move(s.mesh));
+        corr.push_back(std::move(s.correspondence));
+    }
+    h.push(r.result.label, r.result.parameters, r.result.ms, std::move(meshes), std::move(corr),
+           op);
+}
+
+/// The issue's session: noise on everything, a sphere selected, implicit curvature flow on it,
+/// then a brush stroke (fractional weights), grown, and noise on that.
+History selection_history() {
+    History h(std::size_t(-1));
+    h.reset(make_icosphere(3), "Load ico.off");
+    push_on_selection(h, "noise --amount 20 --seed 3");
+    const std::string spec = "sphere:0,0,1,0.8";
+    push_selection(h, make_region(h.current_mesh(), parse_region_spec(spec)), "Select", spec);
+    push_on_selection(h, "smooth --operator curvature-flow --integration implicit --step 3");
+    Selection brush(h.current_mesh().vertices_size(), 0.0f);
+    for (std::size_t i = 0; i < brush.size(); i += 7) brush[i] = 0.25f + 0.5f * float(i % 3) / 2;
+    push_selection(h, brush, "Brush", "radius 20 px");
+    Selection grown = brush;
+    grow_selection(h.current_mesh(), grown, 1);
+    push_selection(h, grown, "Grow selection", "1 rings");
+    push_on_selection(h, "noise --amount 5 --seed 8");
+    return h;
+}
+
+}  // namespace
+
+TEST_CASE("recipes replay selections: the spec or the weights, and each step's region",
+          "[session][recipe][selection]") {
+    const History h = selection_history();
+    const Recipe recipe = recipe_of(h);
+    CHECK(recipe.source == "Load ico.off");
+    REQUIRE(recipe.steps.size() == 6);
+    CHECK(recipe.operations() == 3);
+    CHECK(recipe.selections() == 3);
+    using Kind = RecipeStep::Kind;
+    using From = RecipeStep::From;
+    CHECK(recipe.steps[0].kind == Kind::RunOperation);  // the noise before the selection
+    CHECK(recipe.steps[1].kind == Kind::SetSelection);
+    CHECK(recipe.steps[1].from == From::Spec);  // replays as its SPEC: the same weights
+    CHECK(recipe.steps[1].region == "sphere:0,0,1,0.8");
+    CHECK(recipe.steps[3].from == From::Weights);  // a brush stroke: its weights
+    CHECK(recipe.steps[4].from == From::Weights);  // grown: its weights
+    CHECK(recipe.steps[4].text == "Grow selection 1 rings");
+    // Through JSON and back: the same steps, the weights bit for bit.
+    const std::string json = recipe_json(recipe);
+    const Recipe back = parse_recipe(json, "r.json");
+    REQUIRE(back.steps.size() == recipe.steps.size());
+    for (std::size_t i = 0; i < back.steps.size(); ++i) CHECK(back.steps[i] == recipe.steps[i]);
+    // The replay gives the session's state bit for bit; the smoothing moved only the region.
+    const HalfedgeMesh replayed = replay(back, h.mesh(0, 0));
+    CHECK(first_difference(replayed, h.current_mesh()) == "");
+    const HalfedgeMesh noisy = h.mesh(1, 0), smoothed = h.mesh(3, 0);
+    const Selection region = *stored_selection(h.mesh(2, 0));
+    std::size_t moved = 0;
+    for (Vertex v : noisy.vertices()) {
+        if (region[v.idx()] == 0.0f)
+            REQUIRE(noisy.position(v) == smoothed.position(v));
+        else
+            moved += noisy.position(v) != smoothed.position(v) ? 1 : 0;
+    }
+    CHECK(moved > 10);
+    // Without the selections (what recipes did before): not the session's state.
+    Recipe operations_only;
+    for (const RecipeStep& s : recipe.steps)
+        if (s.kind == Kind::RunOperation) operations_only.steps.push_back(s);
+    CHECK(first_difference(replay(operations_only, h.mesh(0, 0)), h.current_mesh()) != "");
+}
+
+TEST_CASE("a recipe step may carry its own region, and a clear selection replays",
+          "[session][recipe][selection]") {
+    const HalfedgeMesh mesh = make_icosphere(3);
+    const std::string head = "{\"format\": \"trilab-recipe\", \"version\": 2, \"operations\": [";
+    const Recipe r =
+        parse_recipe(head +
+                         "{\"operation\": \"smooth\", \"parameters\": {\"iterations\": 3}, "
+                         "\"region\": \"sphere:0,0,1,0.5\"},"
+                         "{\"selection\": \"spec\", \"spec\": \"sphere:0,0,-1,0.5\"},"
+                         "{\"selection\": \"clear\"},"
+                         "{\"operation\": \"noise\", \"parameters\": {\"amount\": 1}}]}",
+                     "r.json");
+    REQUIRE(r.steps.size() == 4);
+    CHECK(r.steps[0].region == "sphere:0,0,1,0.5");
+    const HalfedgeMesh out = replay(r, mesh);
+    // The same as running the two operations by hand: smooth on the sphere, noise on all.
+    NullProgress progress;
+    const Selection region = make_region(mesh, parse_region_spec("sphere:0,0,1,0.5"));
+    RunSettings settings;
+    settings.region = &region;
+    const HalfedgeMesh a =
+        run_operation(parse_operation("smooth --iterations 3"), mesh, progress, settings)
+            .steps.back()
+            .mesh;
+    const HalfedgeMesh b =
+        run_operation(parse_operation("noise --amount 1"), a, progress).steps.back().mesh;
+    CHECK(first_difference(out, b) == "");
+    CHECK_FALSE(out.has_vertex_property(kSelectionProperty));
+}
+
+TEST_CASE("an entry a recipe cannot replay is refused by name, never skipped",
+          "[session][recipe][selection]") {
+    History h(std::size_t(-1));
+    h.reset(make_icosphere(2), "Load ico.off");
+    push_on_selection(h, "noise --amount 5 --seed 1");
+    // Texture coordinates: the same shape, a state the viewer made (not a selection).
+    HalfedgeMesh textured = h.current_mesh();
+    textured.add_vertex_property<TexCoord>("v:texcoord", TexCoord(0.5, 0.5));
+    h.push("Texture coordinates", "planar", 0.0, {std::move(textured)}, {MorphCorrespondence{}});
+    push_on_selection(h, "smooth --iterations 2");
+    CHECK_THROWS_WITH(recipe_of(h), Catch::Contains("entry 2 \"Texture coordinates planar\"") &&
+                                        Catch::Contains("cannot replay"));
+    // A later load starts the recipe afresh: what came before it is not needed.
+    HalfedgeMesh other = make_icosphere(1);
+    MorphCorrespondence none{MorphCorrespondence::Kind::FromEarlier, other.positions()};
+    h.push("Load other.off", "", 0.0, {std::move(other)}, {std::move(none)});
+    push_on_selection(h, "smooth --iterations 1");
+    const Recipe r = recipe_of(h);
+    CHECK(r.source == "Load other.off");
+    CHECK(r.steps.size() == 1);
+    // Weights of another vertex count are refused naming the step.
+    Recipe wrong;
+    RecipeStep s;
+    s.kind = RecipeStep::Kind::SetSelection;
+    s.from = RecipeStep::From::Weights;
+    s.weights = Selection(5, 1.0f);
+    s.text = "Brush";
+    wrong.steps.push_back(s);
+    CHECK_THROWS_WITH(replay(wrong, make_icosphere(1)),
+                      Catch::Contains("step 0 (Brush)") && Catch::Contains("5 vertex weights"));
+    // Bad selection steps in a file are refused naming the step.
+    const std::string head = "{\"format\": \"trilab-recipe\", \"version\": 2, \"operations\": [";
+    CHECK_THROWS_WITH(parse_recipe(head + "{\"selection\": \"lasso\"}]}", "r.json"),
+                      Catch::Contains("r.json: operation 0: unknown selection \"lasso\""));
+    CHECK_THROWS_WITH(
+        parse_recipe(head + "{\"selection\": \"weights\", \"vertices\": 3, \"indices\": [5], "
+                            "\"weights\": [1]}]}",
+                     "r.json"),
+        Catch::Contains("operation 0: weight 0: index"));
+    CHECK_THROWS_WITH(
+        parse_recipe(head + "{\"selection\": \"spec\", \"spec\": \"cube:1\"}]}", "r.json"),
+        Catch::Contains("unknown kind 'cube'"));
+    CHECK_THROWS_WITH(
+        parse_recipe("{\"format\": \"trilab-recipe\", \"version\": 1, \"operations\": "
+                     "[{\"selection\": \"clear\"}]}",
+                     "r.json"),
+        Catch::Contains("needs recipe version 2"));
 }
