@@ -58,6 +58,7 @@ OperationResult run_denoise(const DenoiseOptions& options, const HalfedgeMesh& m
                      {"vertex_iterations_done", double(report.vertex_iterations_done)},
                      {"filtered_faces", double(report.filtered_faces)},
                      {"degenerate_faces", double(report.degenerate_faces)},
+                     {"inverted_faces", double(report.inverted_faces)},
                      {"folded_faces", double(report.folded_faces)},
                      {"mean_normal_change_degrees", report.mean_normal_change_degrees},
                      {"max_normal_change_degrees", report.max_normal_change_degrees},
