@@ -24,6 +24,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 
 #include "core/algorithms/selection.h"
 #include "core/errors.h"
@@ -308,8 +309,11 @@ private:
         const std::size_t nf = corners_.size(), nv = mesh_.vertices_size();
         std::vector<double> phi(edge_faces_.size());
         std::vector<double> vsum(nv, 0.0), vmax(nv, 0.0);
+        for_ranges(phi.size(), [&](std::size_t begin, std::size_t end) {
+            for (std::size_t e = begin; e < end; ++e)
+                phi[e] = (normal_[edge_faces_[e][0]] - normal_[edge_faces_[e][1]]).norm();
+        });
         for (std::size_t e = 0; e < phi.size(); ++e) {
-            phi[e] = (normal_[edge_faces_[e][0]] - normal_[edge_faces_[e][1]]).norm();
             for (Index v : edge_vertices_[e]) {
                 vsum[v] += phi[e];
                 vmax[v] = std::max(vmax[v], phi[e]);
@@ -330,22 +334,26 @@ private:
         return guidance_;
     }
 
-    /// The smallest dot product of two normals of the faces nb_[begin, end): all pairs, the
-    /// normals copied side by side first where they fit (the usual patch has about 13).
-    double smallest_dot(Index begin, Index end) const {
+    /// The area-weighted mean normal (normalized) of the faces nb_[begin, end), and the smallest
+    /// dot product of two of their normals (all pairs; the normals are copied side by side, in
+    /// single precision, plenty for D, where they fit: the usual patch has about 13).
+    std::pair<Vector3, double> patch_normals(Index begin, Index end) const {
         constexpr Index kLocal = 64;
-        double min_dot = 1;
+        Vector3 mean = Vector3::Zero();
         if (end - begin > kLocal) {
-            for (Index a = begin; a < end; ++a)
+            double min_dot = 1;
+            for (Index a = begin; a < end; ++a) {
+                mean += area_[nb_[a]] * normal_[nb_[a]];
                 for (Index b = a + 1; b < end; ++b)
                     min_dot = std::min(min_dot, normal_[nb_[a]].dot(normal_[nb_[b]]));
-            return min_dot;
+            }
+            return {mean, min_dot};
         }
-        // Single precision is plenty for D (a difference of unit normals) and twice as fast.
         float x[kLocal], y[kLocal], z[kLocal];
         const Index m = end - begin;
         for (Index a = 0; a < m; ++a) {
             const Vector3& n = normal_[nb_[begin + a]];
+            mean += area_[nb_[begin + a]] * n;
             x[a] = float(n.x());
             y[a] = float(n.y());
             z[a] = float(n.z());
@@ -358,8 +366,7 @@ private:
             for (Index b = 0; b < count; ++b) row[b] = x[a] * xb[b] + y[a] * yb[b] + z[a] * zb[b];
             for (Index b = 0; b < count; ++b) smallest = row[b] < smallest ? row[b] : smallest;
         }
-        min_dot = double(smallest);
-        return min_dot;
+        return {mean, double(smallest)};
     }
 
     /// Patch N(j)'s consistency D · R and its area-weighted mean normal.
@@ -367,10 +374,8 @@ private:
                      const std::vector<double>& vmax) {
         const Index begin = nb_offset_[j], end = nb_offset_[j + 1];
         if (begin == end) return;
-        Vector3 mean = Vector3::Zero();
-        for (Index a = begin; a < end; ++a) mean += area_[nb_[a]] * normal_[nb_[a]];
+        const auto [mean, min_dot] = patch_normals(begin, end);
         patch_mean_[j] = normalized_or(mean, normal_[j]);
-        const double min_dot = smallest_dot(begin, end);
         const auto& c = corners_[j];
         double sum = vsum[c[0]] + vsum[c[1]] + vsum[c[2]];
         for (Index e : face_edges_[j])
@@ -388,6 +393,7 @@ private:
         // Faces already on the far side of their filtered normals (turned over by the noise)
         // are the vertex update's to untangle, not its folds.
         inverted_at_start_.assign(nf, 0);
+        current_area_.assign(nf, 0.0);
         for (std::size_t f = 0; f < nf; ++f)
             inverted_at_start_[f] = has_normal(f) && !(area_vec_[f].dot(normal_[f]) > 0);
         std::vector<Point> next = pos_, good;
@@ -399,6 +405,7 @@ private:
             for_ranges(nf, [&](std::size_t begin, std::size_t end) {
                 for (std::size_t f = begin; f < end; ++f) {
                     centroid_[f] = centroid(pos_, f);
+                    current_area_[f] = area_vector(pos_, f).norm();
                 }
             });
             move_vertices(next);
@@ -459,7 +466,7 @@ private:
                 for (Index k = fb; k < fe; ++k) {
                     const Index f = vf_[k];
                     delta += normal_[f] * normal_[f].dot(centroid_[f] - pos_[v]);
-                    const double a = area_vector(pos_, f).norm();
+                    const double a = current_area_[f];
                     mean += a * centroid_[f];
                     area += a;
                     n += normal_[f];
@@ -574,7 +581,7 @@ private:
     std::vector<std::array<Index, 3>> corners_;
     std::vector<Vector3> area_vec_, normal_, input_normal_;
     std::vector<Point> centroid_;
-    std::vector<double> area_;
+    std::vector<double> area_, current_area_;
     std::vector<std::uint8_t> active_, inverted_at_start_;
     double mean_area_ = 1, degenerate_area_ = 0;
     std::vector<Index> vf_offset_, vf_, nb_offset_, nb_;
