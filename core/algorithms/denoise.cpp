@@ -11,12 +11,13 @@
 //  - R's sums and maxima over the patch's edges come from per-vertex sums and maxima of φ over
 //    the edges at each vertex: the edges of patch N(j) whose two faces are in the patch are
 //    those at j's three corners (a face at a corner is in the patch), the three edges of j
-//    itself counted twice in the sum of the corners' sums;
+//    itself counted twice in the sum of the corners' sums (rarer edges between two faces of
+//    the patch away from j's corners are left out);
 // and each face takes the mean normal of the patch of smallest D · R among the patches that
 // contain it (N(j) contains i exactly when N(i) contains j).
 // The positions live in a vector of their own until the end, so that a cancellation or a
-// refused option leaves the mesh as it was; an undone vertex iteration simply does not copy its
-// positions over.
+// refused option leaves the mesh as it was; going back to the last good vertex iteration is a
+// copy of that iteration's positions (kept only while later iterations leave folds).
 #include "core/algorithms/denoise.h"
 
 #include <algorithm>
