@@ -76,8 +76,9 @@ std::unique_ptr<OperationDef> denoise_operation() {
         "denoise", "Denoise",
         "Removes noise and keeps sharp edges: filters the face normals (bilateral: Zheng, Fu, "
         "Au, Tai 2011; guided: Zhang, Deng, Zhang, Bouaziz, Liu 2015), then moves the vertices "
-        "so that the faces follow them (Sun et al. 2007). A run that would fold faces stops at "
-        "the last good vertex iteration and says how many.");
+        "so that the faces follow them (Sun et al. 2007). A run whose vertex update leaves "
+        "folded faces goes back to its last vertex iteration without any and says how many "
+        "faces folded.");
     d.choice("method", &DenoiseOptions::method, EnumTableView(kDenoiseMethods),
              "bilateral normal filter, or guided (the guidance normal from the most consistent "
              "patch around each face: keeps edges under stronger noise)");
