@@ -142,8 +142,6 @@ public:
         return report_;
     }
 
-    std::vector<Point>& positions() { return pos_; }
-
 private:
     // ---- set-up --------------------------------------------------------------------------
 
@@ -169,8 +167,49 @@ private:
         }
         std::sort(keys.begin(), keys.end());
         for (std::size_t k = 0; k < keys.size(); ++k) face_order_[k] = Face(keys[k].second);
+        // The vertices too: live ones in Morton order first, then the deleted ones.
+        keys.clear();
+        for (Vertex v : mesh_.vertices())
+            keys.push_back({morton((mesh_.position(v) - box.min) * scale), v.idx()});
+        std::sort(keys.begin(), keys.end());
+        const std::size_t nv = mesh_.vertices_size();
+        old_of_new_.clear();
+        old_of_new_.reserve(nv);
+        new_of_old_.assign(nv, kNone);
+        for (const auto& key : keys) {
+            new_of_old_[key.second] = Index(old_of_new_.size());
+            old_of_new_.push_back(key.second);
+        }
+        for (std::size_t v = 0; v < nv; ++v)
+            if (new_of_old_[v] == kNone) {
+                new_of_old_[v] = Index(old_of_new_.size());
+                old_of_new_.push_back(Index(v));
+            }
+        pos_ = input_positions();
     }
 
+    /// Our vertex number of storage index `v`, and back (the same without a vertex order).
+    Index internal(Index v) const { return new_of_old_.empty() ? v : new_of_old_[v]; }
+    Index storage(Index v) const { return old_of_new_.empty() ? v : old_of_new_[v]; }
+    /// The input's positions in our vertex numbering.
+    std::vector<Point> input_positions() const {
+        const std::vector<Point>& p = mesh_.positions();
+        if (old_of_new_.empty()) return p;
+        std::vector<Point> out(p.size());
+        for (std::size_t v = 0; v < p.size(); ++v) out[v] = p[old_of_new_[v]];
+        return out;
+    }
+
+public:
+    /// The positions in storage order (after run()).
+    std::vector<Point> storage_positions() {
+        if (old_of_new_.empty()) return std::move(pos_);
+        std::vector<Point> out(pos_.size());
+        for (std::size_t v = 0; v < pos_.size(); ++v) out[old_of_new_[v]] = pos_[v];
+        return out;
+    }
+
+private:
     /// The Morton code of a point in [0, 2^21)^3 (its coordinates' bits interleaved).
     static std::uint64_t morton(const Vector3& q) {
         const auto spread = [](double c) {
@@ -192,7 +231,7 @@ private:
         order_faces();
         for (Face f : face_order_) {
             const auto c = mesh_.face_vertices(f);
-            corners_.push_back({c[0].idx(), c[1].idx(), c[2].idx()});
+            corners_.push_back({internal(c[0].idx()), internal(c[1].idx()), internal(c[2].idx())});
         }
         const std::size_t nf = corners_.size();
         area_vec_.resize(nf);
@@ -332,7 +371,8 @@ private:
             if (!has_normal(f) || !has_normal(g)) continue;
             const Index id = Index(edge_faces_.size());
             edge_faces_.push_back({f, g});
-            edge_vertices_.push_back({mesh_.to_vertex(h0).idx(), mesh_.to_vertex(h1).idx()});
+            edge_vertices_.push_back(
+                {internal(mesh_.to_vertex(h0).idx()), internal(mesh_.to_vertex(h1).idx())});
             for (const Index x : {f, g})
                 for (Index& slot : face_edges_[x])
                     if (slot == kNone) {
@@ -475,7 +515,7 @@ private:
         report_.folded_faces = folded;
         report_.vertex_iterations_done = good_iterations;
         if (good_iterations == 0)
-            pos_ = mesh_.positions();
+            pos_ = input_positions();
         else if (!good.empty())
             pos_.swap(good);
         const std::string kept = "kept the state after vertex iteration " +
@@ -550,8 +590,8 @@ private:
             n = normalized_or(n, Vector3::Zero());
             Point mean = Point::Zero();
             int count = 0;
-            for (Vertex u : mesh_.vertices_around(Vertex(v))) {
-                mean += next[u.idx()];
+            for (Vertex u : mesh_.vertices_around(Vertex(storage(v)))) {
+                mean += next[internal(u.idx())];
                 ++count;
             }
             if (count == 0) continue;
@@ -594,7 +634,7 @@ private:
         report_.max_normal_change_degrees = max;
         const std::vector<Point>& input = mesh_.positions();
         for (Vertex v : mesh_.vertices()) {
-            const double d = (pos_[v.idx()] - input[v.idx()]).norm();
+            const double d = (pos_[internal(v.idx())] - input[v.idx()]).norm();
             report_.max_displacement = std::max(report_.max_displacement, d);
             report_.moved_vertices += d > 0;
         }
@@ -611,7 +651,7 @@ private:
         return (p[c[0]] + p[c[1]] + p[c[2]]) / 3.0;
     }
     bool has_normal(std::size_t f) const { return area_[f] > 0; }
-    double weight(Index v) const { return o_.region ? double((*o_.region)[v]) : 1.0; }
+    double weight(Index v) const { return o_.region ? double((*o_.region)[storage(v)]) : 1.0; }
 
     const HalfedgeMesh& mesh_;
     const DenoiseOptions& o_;
@@ -620,6 +660,8 @@ private:
     RangeKernel range_kernel_;
     std::vector<Point> pos_;
     std::vector<Face> face_order_;  ///< dense face number -> face
+    /// Our vertex numbers (a spatial order on large meshes) <-> storage indices; empty: the same.
+    std::vector<Index> new_of_old_, old_of_new_;
     std::vector<std::array<Index, 3>> corners_;
     std::vector<Vector3> area_vec_, normal_, input_normal_;
     std::vector<Point> centroid_;
@@ -643,7 +685,7 @@ DenoiseReport denoise(HalfedgeMesh& mesh, const DenoiseOptions& options, Progres
     Denoiser run(mesh, options, progress);
     const DenoiseReport report = run.run();
     if (report.vertex_iterations_done > 0) {
-        mesh.set_positions(std::move(run.positions()));
+        mesh.set_positions(run.storage_positions());
         if (mesh.get_vertex_property<Vector3>("v:normal")) compute_vertex_normals(mesh);
     }
     return report;
