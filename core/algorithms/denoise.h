@@ -34,8 +34,8 @@
 // Region (DenoiseOptions::region): faces with no vertex of positive weight keep their normals
 // (they still guide their neighbours); each vertex update is scaled by the vertex's weight, so
 // weight-0 vertices stay bit for bit and an all-ones region gives the whole-mesh result.
-// Degenerate faces (area below 1e-12 of the mean edge length squared: no normal) take no part
-// in the filtering nor in the vertex update and are counted in the report
+// Degenerate faces (twice the area at most 1e-12 times the mean edge length squared: no normal)
+// take no part in the filtering nor in the vertex update and are counted in the report
 // (DenoiseReport::degenerate_faces). Isolated vertices do not move. Boundary vertices move like
 // the others (they have fewer faces).
 // Never a silent failure: a face that ends on the far side of its filtered normal (and did not
@@ -51,7 +51,8 @@
 // Complexity: O(F · m) per normal iteration, m the faces per neighbourhood (about 13 on
 // regular meshes; the guided filter adds O(F · m²) for the patches' largest normal difference),
 // O(V + F) per vertex iteration (and the neighbours of the faces left inverted); memory
-// O(F · m). Large meshes run on two threads.
+// O(F · m). Large meshes (65,536 faces and more) are worked on with their faces and vertices
+// in a spatial (Morton) order inside the run, and their passes run on two threads.
 #include <cstddef>
 #include <string>
 #include <vector>
