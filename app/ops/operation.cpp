@@ -311,6 +311,7 @@ const std::vector<const OperationDef*>& operation_defs() {
         v.push_back(noise_operation());
         v.push_back(subdivide_operation());
         v.push_back(smooth_operation());
+        v.push_back(denoise_operation());
         v.push_back(spectrum_operation());
         v.push_back(decimate_operation());
         v.push_back(flip_operation());

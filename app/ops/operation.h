@@ -16,6 +16,7 @@
 //   noise      NoiseOptions (core/algorithms/noise.h)  NoiseReport
 //   subdivide  SubdivisionOptions                    SubdivisionResult (levels empty: the steps)
 //   smooth     FairingOptions                        SmoothReport (app/ops/smooth_op.h)
+//   denoise    DenoiseOptions (core/algorithms/denoise.h)  DenoiseReport
 //   spectrum   SpectrumOptions (spectrum_op.h)       SpectrumReport (app/ops/spectrum_op.h)
 //   decimate   DecimateOptions (decimate_op.h)       DecimationReport
 //   flip       FlipOptions                           FlipReport

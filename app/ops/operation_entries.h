@@ -20,6 +20,8 @@ std::unique_ptr<OperationDef> weld_operation();       ///< app/ops/weld_op.cpp
 std::unique_ptr<OperationDef> remove_components_operation();
 std::unique_ptr<OperationDef> fill_holes_operation();
 
+std::unique_ptr<OperationDef> denoise_operation();
+
 /// The core options of a "spectrum" operation (the Frequency panel's Decompose).
 struct SpectralOptions;
 SpectralOptions spectral_options(const Operation& op);

@@ -1,9 +1,13 @@
 #include "core/algorithms/generators.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
 #include <random>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/errors.h"
 #include "core/mesh_builder.h"
@@ -161,6 +165,53 @@ HalfedgeMesh make_grid(unsigned n) {
     return from_soup(soup);
 }
 
+HalfedgeMesh make_block(unsigned nx, unsigned ny, unsigned nz) {
+    const unsigned n[3] = {nx, ny, nz};
+    for (unsigned c : n)
+        if (c < 1 || c > 1000)
+            throw InvalidArgument("make_block: the cell counts must be from 1 to 1000, got " +
+                                  std::to_string(nx) + " x " + std::to_string(ny) + " x " +
+                                  std::to_string(nz));
+    const double h = 2.0 / double(std::max({nx, ny, nz}));
+    // One vertex per lattice point on the surface, numbered through a full lattice table.
+    std::vector<Index> id(std::size_t(nx + 1) * (ny + 1) * (nz + 1), kInvalidIndex);
+    PolygonSoup soup;
+    const auto vertex = [&](unsigned i, unsigned j, unsigned k) {
+        Index& slot = id[(std::size_t(k) * (ny + 1) + j) * (nx + 1) + i];
+        if (slot == kInvalidIndex) {
+            slot = Index(soup.positions.size());
+            soup.positions.emplace_back((double(i) - 0.5 * nx) * h, (double(j) - 0.5 * ny) * h,
+                                        (double(k) - 0.5 * nz) * h);
+        }
+        return slot;
+    };
+    const auto at = [&](unsigned a, unsigned side, unsigned b, unsigned u, unsigned c, unsigned v) {
+        unsigned p[3];
+        p[a] = side;
+        p[b] = u;
+        p[c] = v;
+        return vertex(p[0], p[1], p[2]);
+    };
+    for (unsigned a = 0; a < 3; ++a) {
+        const unsigned b = (a + 1) % 3, c = (a + 2) % 3;  // e_b x e_c = e_a
+        for (unsigned side : {0u, n[a]})
+            for (unsigned u = 0; u < n[b]; ++u)
+                for (unsigned v = 0; v < n[c]; ++v) {
+                    Index q[4] = {at(a, side, b, u, c, v), at(a, side, b, u + 1, c, v),
+                                  at(a, side, b, u + 1, c, v + 1), at(a, side, b, u, c, v + 1)};
+                    if (side == 0) std::swap(q[1], q[3]);  // outward: -e_a
+                    if ((u + v) % 2 == 0) {
+                        soup.add_face({q[0], q[1], q[2]});
+                        soup.add_face({q[0], q[2], q[3]});
+                    } else {
+                        soup.add_face({q[0], q[1], q[3]});
+                        soup.add_face({q[1], q[2], q[3]});
+                    }
+                }
+    }
+    return from_soup(soup);
+}
+
 HalfedgeMesh make_cylinder(unsigned segments, unsigned rings) {
     if (segments < 3 || rings < 1)
         throw InvalidArgument("make_cylinder: need at least 3 segments and 1 ring");
@@ -184,8 +235,8 @@ HalfedgeMesh make_default_model() {
 }
 
 std::vector<std::string> generator_names() {
-    return {"default",     "sphere", "noisy-sphere", "tetrahedron", "octahedron",
-            "icosahedron", "cube",   "torus",        "grid",        "cylinder"};
+    return {"default", "sphere", "noisy-sphere", "tetrahedron", "octahedron", "icosahedron",
+            "cube",    "torus",  "grid",         "cylinder",    "block"};
 }
 
 HalfedgeMesh generate(const std::string& name) {
@@ -198,6 +249,7 @@ HalfedgeMesh generate(const std::string& name) {
     if (name == "torus") return make_torus(48, 24, 1.0, 0.35);
     if (name == "grid") return make_grid(16);
     if (name == "cylinder") return make_cylinder(32, 8);
+    if (name == "block") return make_block(24, 18, 12);
     std::string list;
     for (const auto& n : generator_names()) list += (list.empty() ? "" : ", ") + n;
     throw InvalidArgument("generate: unknown model '" + name + "' (known: " + list + ")");

@@ -25,6 +25,12 @@ HalfedgeMesh make_torus(unsigned major_segments, unsigned minor_segments, double
                         double minor_radius);
 /// Square grid [0,1]^2 in the z = 0 plane with n x n quads split in two (open, one boundary).
 HalfedgeMesh make_grid(unsigned n);
+/// Closed box of nx x ny x nz unit cells scaled so that the longest side is 2, centred at the
+/// origin: each side a grid of squares split in two along alternating diagonals (a
+/// checkerboard, so no direction is preferred); 2 (nx ny + ny nz + nz nx) squares. A
+/// cube-like block with sharp edges and corners, the denoising tests' CAD-like fixture.
+/// Throws InvalidArgument when a count is 0 or above 1000.
+HalfedgeMesh make_block(unsigned nx, unsigned ny, unsigned nz);
 /// Open cylinder around the z axis (two boundary loops).
 HalfedgeMesh make_cylinder(unsigned segments, unsigned rings);
 
@@ -33,7 +39,8 @@ HalfedgeMesh make_cylinder(unsigned segments, unsigned rings);
 HalfedgeMesh make_default_model();
 
 /// Names accepted by generate(): "default", "sphere", "noisy-sphere", "tetrahedron",
-/// "octahedron", "icosahedron", "cube", "torus", "grid", "cylinder".
+/// "octahedron", "icosahedron", "cube", "torus", "grid", "cylinder", "block" (make_block(24,
+/// 18, 12): 3,744 faces).
 std::vector<std::string> generator_names();
 /// The built-in model of that name. Throws InvalidArgument listing the names otherwise.
 HalfedgeMesh generate(const std::string& name);

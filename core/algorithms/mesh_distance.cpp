@@ -8,6 +8,7 @@
 #include <limits>
 #include <vector>
 
+#include "core/algorithms/selection.h"
 #include "core/errors.h"
 #include "core/geometry.h"
 
@@ -311,7 +312,82 @@ void check_face_mask(const HalfedgeMesh& mesh, const std::vector<std::uint8_t>* 
     throw InvalidArgument(std::string("mesh_distance: ") + name + " flags no face");
 }
 
+/// The power of two that brings the coordinates of `a` and `b` near 1, or 0 when they need none.
+int scale_exponent(const HalfedgeMesh& a, const HalfedgeMesh& b) {
+    const double m =
+        std::max(max_abs_coordinate(a, "the first"), max_abs_coordinate(b, "the second"));
+    if (!(m > 0x1p100 || (m > 0 && m < 0x1p-100))) return 0;
+    int exponent = 0;
+    std::frexp(m, &exponent);
+    return exponent;
+}
+
+constexpr double kDegrees = 57.295779513082320876798154814105;
+
 }  // namespace
+
+bool same_connectivity(const HalfedgeMesh& a, const HalfedgeMesh& b) {
+    if (a.vertices_size() != b.vertices_size() || a.n_faces() != b.n_faces()) return false;
+    auto fb = b.faces().begin();
+    for (Face f : a.faces()) {
+        if (a.face_vertices(f) != b.face_vertices(*fb)) return false;
+        ++fb;
+    }
+    return true;
+}
+
+NormalDeviation normal_deviation(const HalfedgeMesh& a, const HalfedgeMesh& b,
+                                 const std::vector<float>* region) {
+    if (!same_connectivity(a, b))
+        throw InvalidArgument(
+            "normal_deviation: the meshes differ in connectivity (" + std::to_string(a.n_faces()) +
+            " and " + std::to_string(b.n_faces()) +
+            " faces): face normals can only be compared between states of one mesh");
+    if (region) check_selection(a, *region, "normal_deviation: region");
+    NormalDeviation d;
+    double sum = 0;
+    auto fb = b.faces().begin();
+    for (Face f : a.faces()) {
+        const Face g = *fb;
+        ++fb;
+        if (region) {
+            bool inside = true;
+            for (Vertex v : a.face_vertices(f)) inside = inside && (*region)[v.idx()] > 0.0f;
+            if (!inside) {
+                ++d.outside;
+                continue;
+            }
+        }
+        const Vector3 na = face_normal(a, f), nb = face_normal(b, g);
+        if (na.isZero(0.0) || nb.isZero(0.0)) {
+            ++d.degenerate;
+            continue;
+        }
+        // atan2 of |a x b| and a . b: exact 0 for equal normals, accurate for small angles.
+        const double angle = std::atan2(na.cross(nb).norm(), na.dot(nb)) * kDegrees;
+        sum += angle;
+        d.max_degrees = std::max(d.max_degrees, angle);
+        d.flipped += angle > 90.0;
+        ++d.faces;
+    }
+    d.mean_degrees = d.faces ? sum / double(d.faces) : 0.0;
+    return d;
+}
+
+std::vector<double> vertex_surface_distances(const HalfedgeMesh& from, const HalfedgeMesh& to) {
+    if (to.n_faces() == 0)
+        throw InvalidArgument("vertex_surface_distances: the mesh measured against has no faces");
+    const int exponent = scale_exponent(from, to);
+    const double s = std::ldexp(1.0, -exponent);
+    const TriangleTree tree(exponent ? scaled_copy(to, s) : to);
+    std::vector<double> out(from.vertices_size(), std::numeric_limits<double>::quiet_NaN());
+    for (Vertex v : from.vertices()) {
+        if (from.is_isolated(v)) continue;
+        const Point p = exponent ? Point(from.position(v) * s) : from.position(v);
+        out[v.idx()] = std::ldexp(std::sqrt(tree.squared_distance(p)), exponent);
+    }
+    return out;
+}
 
 MeshDistance mesh_distance(const HalfedgeMesh& a, const HalfedgeMesh& b,
                            const MeshDistanceOptions& options) {

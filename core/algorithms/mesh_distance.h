@@ -16,6 +16,13 @@
 // Complexity: O(F log F) to build each tree, O(S log F) for S samples (typical).
 // Throws InvalidArgument when a mesh has no faces, a non-finite position, when the sample
 // count is 0, or when a distance exceeds the largest double.
+//
+// For two states of one mesh (the same connectivity: a clean part and its denoised copy), the
+// face-normal deviation (normal_deviation(): θ, the mean and largest angle between the two
+// normals of each face, and the faces flipped by more than 90 degrees, the figures of the
+// denoising literature, e.g. Zheng et al. 2011, Zhang et al. 2015); for any two meshes, the
+// one-sided distance of each vertex of one to the surface of the other
+// (vertex_surface_distances(), on the same tree).
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -47,6 +54,35 @@ struct MeshDistance {
 
 MeshDistance mesh_distance(const HalfedgeMesh& a, const HalfedgeMesh& b,
                            const MeshDistanceOptions& options = {});
+
+/// Whether `a` and `b` have the same connectivity: as many vertex slots and live faces, and
+/// the k-th live face of each with the same corners in the same order (vertex storage
+/// indices). O(F).
+bool same_connectivity(const HalfedgeMesh& a, const HalfedgeMesh& b);
+
+/// The angles between the normals of the same face in two states of a mesh.
+struct NormalDeviation {
+    double mean_degrees = 0;     ///< θ: the mean angle (0 when no face was compared)
+    double max_degrees = 0;      ///< the largest angle
+    std::size_t faces = 0;       ///< faces compared
+    std::size_t flipped = 0;     ///< faces whose normals are more than 90 degrees apart
+    std::size_t degenerate = 0;  ///< faces left out: no normal in a or in b (zero area)
+    std::size_t outside = 0;     ///< faces left out: not in the region
+    double flipped_share() const { return faces ? double(flipped) / double(faces) : 0.0; }
+};
+
+/// θ and the flipped faces between `a` and `b`, which must have the same connectivity.
+/// `region` (one weight per vertex storage index, core/algorithms/selection.h), when given,
+/// keeps the faces whose three corners have a positive weight. Throws InvalidArgument when the
+/// connectivity differs, or naming the region when it does not fit. O(F).
+NormalDeviation normal_deviation(const HalfedgeMesh& a, const HalfedgeMesh& b,
+                                 const std::vector<float>* region = nullptr);
+
+/// For every vertex storage index of `from`, the distance from that vertex to the closest point
+/// of `to`'s surface (any two meshes); NaN for deleted and isolated vertices. Scaled like
+/// mesh_distance() for coordinates far from 1. Throws InvalidArgument when `to` has no faces or
+/// a position is not finite. O(F log F + V log F) (typical).
+std::vector<double> vertex_surface_distances(const HalfedgeMesh& from, const HalfedgeMesh& to);
 
 /// Closest point to `p` on the triangle (a, b, c) (degenerate triangles included).
 Point closest_point_on_triangle(const Point& p, const Point& a, const Point& b, const Point& c);

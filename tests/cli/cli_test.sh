@@ -147,6 +147,45 @@ if "$cli" render "$tmp/d.obj" --out "$tmp/probe.png" --size 16x16 >/dev/null 2>&
         "! '$cli' record '$tmp/d.obj' --op 'frobnicate' --out '$tmp/rec3' 2> '$tmp/e' && \
          [ \$(wc -l < '$tmp/e') -eq 1 ] && grep -q -- '--op' '$tmp/e' && [ ! -e '$tmp/rec3' ]"
 fi
+check "noise --distribution gaussian takes --sigma and --direction, and refuses --amount" bash -c \
+    "'$cli' generate block '$tmp/blk.obj' && '$cli' noise --distribution gaussian --sigma 0.4 \
+     --direction random --seed 3 '$tmp/blk.obj' '$tmp/blkn.obj' --json > '$tmp/gn.json' && \
+     $(declare -f json_has); json_has '$tmp/gn.json' sigma scale max_displacement && \
+     ! '$cli' noise --distribution gaussian --amount 3 '$tmp/blk.obj' '$tmp/bad.obj' 2> '$tmp/e' && \
+     grep -q -- '--amount' '$tmp/e' && [ ! -e '$tmp/bad.obj' ]"
+check "denoise --json has its keys and compare measures theta against the clean block" bash -c \
+    "'$cli' denoise '$tmp/blkn.obj' '$tmp/blkd.ply' --json > '$tmp/dn.json' && \
+     $(declare -f json_has); json_has '$tmp/dn.json' method normal_iterations_done \
+     vertex_iterations_done degenerate_faces folded_faces max_displacement ms && \
+     '$cli' compare '$tmp/blk.obj' '$tmp/blkn.obj' --samples 1000 --json > '$tmp/c0.json' && \
+     '$cli' compare '$tmp/blk.obj' '$tmp/blkd.ply' --samples 1000 --json > '$tmp/c1.json' && \
+     json_has '$tmp/c1.json' theta_mean theta_max flipped_share flipped_faces \
+     vertex_distance_mean_relative same_connectivity && \
+     python3 -c 'import json,sys; a=json.load(open(sys.argv[1])); b=json.load(open(sys.argv[2])); \
+     assert b[\"theta_mean\"] < a[\"theta_mean\"] / 2 and b[\"flipped_faces\"] == 0, (a, b)' \
+     '$tmp/c0.json' '$tmp/c1.json'"
+check "compare --region restricts theta to the region" bash -c \
+    "'$cli' compare '$tmp/blk.obj' '$tmp/blkd.ply' --samples 1000 --region sphere:1,0.75,0.5,0.5 \
+     --json > '$tmp/c2.json' && $(declare -f json_has); json_has '$tmp/c2.json' region_vertices \
+     region_faces && python3 -c 'import json,sys; c=json.load(open(sys.argv[1])); \
+     assert 0 < c[\"compared_faces\"] < 3744, c' '$tmp/c2.json' && \
+     ! '$cli' compare '$tmp/blk.obj' '$tmp/d.obj' --region component:0 2> '$tmp/e' && \
+     grep -q -- '--region' '$tmp/e'"
+check "compare of different connectivities leaves theta out" bash -c \
+    "'$cli' compare '$tmp/blk.obj' '$tmp/d.obj' --samples 1000 --json | \
+     grep -q '\"same_connectivity\": false' && \
+     '$cli' compare '$tmp/blk.obj' '$tmp/d.obj' --samples 1000 | grep -q 'not compared'"
+check "denoise refuses a bad sigma naming the option, and writes nothing" bash -c \
+    "! '$cli' denoise --sigma-r 0 '$tmp/blkn.obj' '$tmp/bad.obj' 2> '$tmp/e' && \
+     grep -q -- '--sigma-r' '$tmp/e' && [ ! -e '$tmp/bad.obj' ] && \
+     ! '$cli' denoise --sigma-s nan '$tmp/blkn.obj' '$tmp/bad.obj' 2> '$tmp/e' && \
+     grep -q -- '--sigma-s' '$tmp/e' && [ ! -e '$tmp/bad.obj' ]"
+check "denoise that folds faces exits 4 and writes nothing (--keep-partial writes)" bash -c \
+    "'$cli' generate grid '$tmp/gr.obj' && '$cli' noise --distribution gaussian --sigma 2 \
+     --direction random --seed 3 '$tmp/gr.obj' '$tmp/grn.obj' && \
+     '$cli' denoise --method bilateral --normal-iterations 0 --vertex-iterations 200 \
+     '$tmp/grn.obj' '$tmp/fold.obj' 2> '$tmp/e'; [ \$? = 4 ] && [ ! -e '$tmp/fold.obj' ] && \
+     grep -q 'fold' '$tmp/e'"
 check "smooth --json names the solver of implicit steps" bash -c \
     "'$cli' smooth --operator umbrella --integration implicit --step 1 --iterations 2 \
      '$tmp/d.obj' '$tmp/sm.obj' --json | grep -Eq '\"solver\": \"(SimplicialLDLT|ConjugateGradient)'"

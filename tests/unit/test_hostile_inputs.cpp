@@ -134,7 +134,8 @@ bool all_finite(const HalfedgeMesh& mesh) {
 /// Parameter sets per operation; an operation not listed runs with its defaults.
 std::vector<std::string> parameter_sets(const std::string& op) {
     static const std::map<std::string, std::vector<std::string>> sets = {
-        {"noise", {"", "--amount 1000 --seed 3"}},
+        {"noise",
+         {"", "--amount 1000 --seed 3", "--distribution gaussian --sigma 10 --direction random"}},
         {"subdivide",
          {"--scheme loop", "--scheme sqrt3 --iterations 2", "--scheme butterfly",
           "--scheme modified-butterfly"}},
@@ -145,6 +146,10 @@ std::vector<std::string> parameter_sets(const std::string& op) {
           "--operator curvature-flow --integration implicit --preserve-volume"}},
         {"remove-components", {"--min-faces 10", "--min-diameter 1", "--min-faces 0"}},
         {"fill-holes", {"", "--fairing c2", "--fairing none --max-edges 3", "--max-diameter 0.5"}},
+
+        {"denoise",
+         {"", "--method bilateral", "--method guided --sigma-r 0.05 --vertex-iterations 100",
+          "--sigma-s 100 --sigma-r 100"}},
     };
     const auto it = sets.find(op);
     return it == sets.end() ? std::vector<std::string>{""} : it->second;

@@ -128,3 +128,84 @@ TEST_CASE("add_noise refreshes a stored v:normal", "[noise]") {
     REQUIRE(stored);
     for (Vertex v : m.vertices()) REQUIRE(stored[v] == vertex_normal(m, v));
 }
+
+namespace {
+
+NoiseOptions gaussian(double k, std::uint32_t seed, NoiseDirection direction) {
+    NoiseOptions o;
+    o.distribution = NoiseDistribution::Gaussian;
+    o.sigma = k;
+    o.seed = seed;
+    o.direction = direction;
+    return o;
+}
+
+}  // namespace
+
+TEST_CASE("Gaussian noise along the normals has the standard deviation asked for", "[noise]") {
+    const double k = GENERATE(0.3, 0.7);
+    HalfedgeMesh m = make_icosphere(16);  // 2,562 vertices
+    const HalfedgeMesh original = m;
+    const NoiseReport r = add_noise(m, gaussian(k, 5, NoiseDirection::Normal));
+    REQUIRE_VALID(m);
+    const double sigma = k * mean_edge_length(original);
+    REQUIRE(r.scale == Approx(sigma));
+    double sum = 0, sum2 = 0, largest = 0;
+    std::size_t beyond_one = 0;
+    for (Vertex v : m.vertices()) {
+        const Vector3 d = m.position(v) - original.position(v);
+        const Vector3 n = vertex_normal(original, v);
+        REQUIRE(d.cross(n).norm() <= 1e-12 * std::max(1.0, d.norm()));
+        const double x = d.dot(n) / sigma;
+        sum += x;
+        sum2 += x * x;
+        beyond_one += std::abs(x) > 1;
+        largest = std::max(largest, d.norm());
+    }
+    const double n = double(m.n_vertices());
+    CHECK(std::abs(sum / n) < 0.1);                                // mean 0 (standard error 0.02)
+    CHECK(std::sqrt(sum2 / n) == Approx(1.0).epsilon(0.06));       // standard deviation 1
+    CHECK(double(beyond_one) / n == Approx(0.3173).margin(0.03));  // P(|x| > 1)
+    CHECK(r.max_displacement == Approx(largest));
+    CHECK(r.max_displacement > 2.5 * sigma);  // the tail of 2,562 draws
+    CHECK(r.moved_vertices == m.n_vertices());
+}
+
+TEST_CASE("Gaussian noise in random directions: isotropic, the same from the same seed",
+          "[noise]") {
+    HalfedgeMesh m = make_icosphere(16), again = m, other = m;
+    const HalfedgeMesh original = m;
+    add_noise(m, gaussian(0.5, 9, NoiseDirection::Random));
+    add_noise(again, gaussian(0.5, 9, NoiseDirection::Random));
+    add_noise(other, gaussian(0.5, 10, NoiseDirection::Random));
+    REQUIRE(bit_identical(m.positions(), again.positions()));
+    REQUIRE_FALSE(bit_identical(m.positions(), other.positions()));
+    const double sigma = 0.5 * mean_edge_length(original);
+    Vector3 mean_direction = Vector3::Zero();
+    double mean_cos = 0, sum2 = 0;
+    for (Vertex v : m.vertices()) {
+        const Vector3 d = m.position(v) - original.position(v);
+        REQUIRE(d.norm() > 0);
+        mean_direction += d.normalized();
+        mean_cos += std::abs(d.normalized().dot(vertex_normal(original, v)));
+        sum2 += d.squaredNorm() / (sigma * sigma);
+    }
+    const double n = double(m.n_vertices());
+    CHECK((mean_direction / n).norm() < 0.06);        // no preferred direction
+    CHECK(mean_cos / n == Approx(0.5).margin(0.03));  // E|cos| on the sphere is 1/2
+    CHECK(std::sqrt(sum2 / n) == Approx(1.0).epsilon(0.06));
+}
+
+TEST_CASE("add_noise refuses a bad sigma, naming it, and leaves the mesh alone", "[noise]") {
+    const double bad = GENERATE(-0.1, 10.5, std::numeric_limits<double>::quiet_NaN(),
+                                std::numeric_limits<double>::infinity());
+    HalfedgeMesh m = make_icosphere(2);
+    const HalfedgeMesh original = m;
+    NoiseOptions o = gaussian(bad, 1, NoiseDirection::Normal);
+    REQUIRE_THROWS_WITH(add_noise(m, o), Catch::Contains("sigma"));
+    REQUIRE(bit_identical(m.positions(), original.positions()));
+    o.sigma = 0;  // nothing moves
+    const NoiseReport r = add_noise(m, o);
+    REQUIRE(r.moved_vertices == 0);
+    REQUIRE(bit_identical(m.positions(), original.positions()));
+}

@@ -84,6 +84,15 @@ const std::map<std::string, Generator>& generators() {
              if (pick(rng, 0, 3) == 0) text += " --boundary slide";
              return text;
          }},
+        {"denoise",
+         [](Rng& rng, const HalfedgeMesh&) {
+             const std::vector<std::string> sigmas_s = {"0.1", "0.5", "1", "3", "100"};
+             const std::vector<std::string> sigmas_r = {"0.05", "0.2", "0.35", "1", "100"};
+             return std::string("denoise --method ") + (pick(rng, 0, 1) ? "bilateral" : "guided") +
+                    " --normal-iterations " + std::to_string(pick(rng, 0, 30)) +
+                    " --vertex-iterations " + std::to_string(pick(rng, 0, 20)) + " --sigma-s " +
+                    pick_of(rng, sigmas_s) + " --sigma-r " + pick_of(rng, sigmas_r);
+         }},
         {"decimate",
          [](Rng& rng, const HalfedgeMesh&) {
              std::string text =

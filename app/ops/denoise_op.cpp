@@ -1,0 +1,111 @@
+// The "denoise" operation: bilateral or guided normal filtering, then the vertex update
+// (core/algorithms/denoise.h).
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <utility>
+
+#include "app/ops/operation_decl.h"
+#include "app/ops/operation_entries.h"
+#include "core/algorithms/denoise.h"
+#include "core/number_text.h"
+
+namespace trilab {
+namespace {
+
+void add_report_lines(const DenoiseReport& r, const HalfedgeMesh& mesh, OperationResult& result) {
+    char line[200];
+    std::snprintf(line, sizeof(line),
+                  "%d normal and %d vertex iterations; normals filtered on %zu of %zu faces",
+                  r.normal_iterations_done, r.vertex_iterations_done, r.filtered_faces,
+                  mesh.n_faces());
+    result.report.emplace_back(line);
+    if (r.degenerate_faces > 0)
+        result.report.push_back(
+            count_text(r.degenerate_faces, "degenerate face", "degenerate faces") +
+            " (no normal) took no part");
+    std::snprintf(line, sizeof(line),
+                  "face normals turned by %.3g degrees on average, %.3g at most",
+                  r.mean_normal_change_degrees, r.max_normal_change_degrees);
+    result.report.emplace_back(line);
+    std::snprintf(line, sizeof(line),
+                  "moved %zu of %zu vertices, the farthest by %.6g (mean edge %.6g)",
+                  r.moved_vertices, mesh.n_vertices(), r.max_displacement, r.mean_edge_length);
+    result.report.emplace_back(line);
+}
+
+OperationResult run_denoise(const DenoiseOptions& options, const HalfedgeMesh& mesh,
+                            Progress& progress, const RunSettings& settings) {
+    DenoiseOptions o = options;
+    o.region = settings.region;
+    OperationResult result;
+    result.label = "Denoise";
+    const bool consume = settings.consumable == &mesh;
+    OperationStep step{consume ? std::move(*settings.consumable) : mesh,
+                       MorphCorrespondence{MorphCorrespondence::Kind::SameVertices, {}}};
+    const auto t0 = std::chrono::steady_clock::now();
+    const DenoiseReport report = denoise(step.mesh, o, progress);
+    result.ms = ms_since(t0);
+    add_report_lines(report, step.mesh, result);  // positions only: the input's counts
+    if (report.stopped_early) {
+        result.stopped_early = true;
+        result.stop_reason = report.stop_reason;
+        result.report.push_back("stopped early: " + report.stop_reason);
+        result.changed = report.vertex_iterations_done > 0;
+    }
+    result.steps.push_back(std::move(step));
+    result.values = {{"normal_iterations_done", double(report.normal_iterations_done)},
+                     {"vertex_iterations_done", double(report.vertex_iterations_done)},
+                     {"filtered_faces", double(report.filtered_faces)},
+                     {"degenerate_faces", double(report.degenerate_faces)},
+                     {"inverted_faces", double(report.inverted_faces)},
+                     {"folded_faces", double(report.folded_faces)},
+                     {"mean_normal_change_degrees", report.mean_normal_change_degrees},
+                     {"max_normal_change_degrees", report.max_normal_change_degrees},
+                     {"max_displacement", report.max_displacement},
+                     {"moved_vertices", double(report.moved_vertices)},
+                     {"mean_edge_length", report.mean_edge_length}};
+    result.typed_report = report;
+    return result;
+}
+
+}  // namespace
+
+std::unique_ptr<OperationDef> denoise_operation() {
+    OperationDecl<DenoiseOptions> d(
+        "denoise", "Denoise",
+        "Removes noise and keeps sharp edges: filters the face normals (bilateral: Zheng, Fu, "
+        "Au, Tai 2011; guided: Zhang, Deng, Zhang, Bouaziz, Liu 2015), then moves the vertices "
+        "so that the faces follow them (Sun et al. 2007). A run whose vertex update leaves "
+        "folded faces goes back to its last vertex iteration without any and says how many "
+        "faces folded.");
+    d.choice("method", &DenoiseOptions::method, EnumTableView(kDenoiseMethods),
+             "bilateral normal filter, or guided (the guidance normal from the most consistent "
+             "patch around each face: keeps edges under stronger noise)");
+    d.integer("normal-iterations", &DenoiseOptions::normal_iterations, 0, kMaxDenoiseIterations,
+              "normal filtering passes")
+        .slider(0, 100);
+    d.integer("vertex-iterations", &DenoiseOptions::vertex_iterations, 0, kMaxDenoiseIterations,
+              "vertex update passes")
+        .slider(0, 100);
+    d.number("sigma-s", &DenoiseOptions::sigma_s, 0, kMaxDenoiseSigmaS,
+             "the spatial Gaussian's standard deviation", " (multiples of the mean edge length)")
+        .above_min()
+        .label("sigma s (x mean edge)")
+        .slider(0.1, 5, true);
+    d.number("sigma-r", &DenoiseOptions::sigma_r, 0, kMaxDenoiseSigmaR,
+             "the range Gaussian's standard deviation on the normal difference (smaller keeps "
+             "more edges, larger smooths more)",
+             "")
+        .above_min()
+        .label("sigma r")
+        .slider(0.05, 2, true);
+    d.run(run_denoise)
+        .may_stop_early()
+        .acts_on_region(
+            "faces without a selected vertex keep their normals; each vertex moves by its "
+            "weight times its update");
+    return d.build();
+}
+
+}  // namespace trilab

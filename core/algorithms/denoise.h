@@ -1,0 +1,122 @@
+#pragma once
+// Feature-preserving denoising by normal filtering: the face normals are filtered first, then
+// the vertices are moved so that the faces follow the filtered normals.
+//
+// Methods (DenoiseOptions::method):
+//  - Bilateral: the local scheme of Zheng, Fu, Au, Tai, "Bilateral normal filtering for mesh
+//    denoising" (IEEE TVCG 2011). Each iteration replaces a face's normal n_i by the normalized
+//        sum over j in N(i) of  A_j · W_s(|c_i − c_j|) · W_r(|n_i − n_j|) · n_j,
+//    A_j the area and c_j the centroid of face j, W_s and W_r Gaussians of standard deviation
+//    sigma_s (times the mean edge length) and sigma_r; N(i) is face i and every face that
+//    shares a vertex with it.
+//  - Guided: Zhang, Deng, Zhang, Bouaziz, Liu, "Guided mesh normal filtering" (Pacific
+//    Graphics 2015). Each iteration first gives every face a guidance normal g_i: the
+//    area-weighted mean normal of the most consistent patch containing it. The patches are the
+//    N(j) above; a patch's consistency is H = D · R, D the largest normal difference between
+//    two of its faces, R = max φ / (ε + Σ φ) over its edges (φ(e) the normal difference across
+//    edge e), and the patch of smallest H wins. The normals are then filtered by the joint
+//    bilateral filter, W_r taking |g_i − g_j| instead of |n_i − n_j|: a patch that lies on one
+//    side of a crease guides the faces near it, so creases stay sharp under strong noise.
+// Before either filter, a face whose normal points away from the area-weighted mean normal of
+// the faces around it (turned over by the noise: a tangential displacement folds a small
+// triangle) starts from that mean, since no range kernel can bring it back
+// (DenoiseReport::inverted_faces).
+// Then `vertex_iterations` steps of the vertex update of Sun, Rosin, Martin, Langbein,
+// "Fast and effective feature-preserving mesh denoising" (IEEE TVCG 2007):
+//        x_i += 1/|F_i| · sum over faces f at x_i of  n_f (n_f · (c_f − x_i)),
+// the filtered normals n_f fixed and the centroids c_f those of the current positions, plus a
+// tangential relaxation (0.1 of the way to the area-weighted mean of the centroids around x_i,
+// along the plane of the mean filtered normal there: it keeps the triangles from squashing at
+// creases, where a face given the other side's normal would otherwise fold over); the corners of
+// a face left on the far side of its filtered normal then move to the mean of their neighbours
+// along that plane, which untangles the faces the noise turned over.
+//
+// Region (DenoiseOptions::region): faces with no vertex of positive weight keep their normals
+// (they still guide their neighbours); each vertex update is scaled by the vertex's weight, so
+// weight-0 vertices stay bit for bit and an all-ones region gives the whole-mesh result.
+// Degenerate faces (twice the area at most 1e-12 times the mean edge length squared: no normal)
+// take no part in the filtering nor in the vertex update and are counted in the report
+// (DenoiseReport::degenerate_faces). Isolated vertices do not move. Boundary vertices move like
+// the others (they have fewer faces).
+// Never a silent failure: a face that ends on the far side of its filtered normal (and did not
+// start there) or without area is a fold; a run whose last vertex iteration leaves folds goes
+// back to the state after the last iteration that left none, and the report says so and how
+// many faces folded (stopped_early, folded_faces, stop_reason); a non-finite position stops the
+// run at once, at that same state. Only positions change (and "v:normal" is recomputed when the
+// mesh carries it).
+// Throws InvalidArgument before changing anything, naming the option: iterations out of range,
+// sigma_s or sigma_r not finite or not positive (or too large), a mesh without faces, a
+// non-finite position, a region that does not fit the mesh; Cancelled from the progress, the
+// mesh then unchanged.
+// Complexity: O(F · m) per normal iteration, m the faces per neighbourhood (about 13 on
+// regular meshes; the guided filter adds O(F · m²) for the patches' largest normal difference),
+// O(V + F) per vertex iteration (and the neighbours of the faces left inverted); memory
+// O(F · m). Large meshes (65,536 faces and more) are worked on with their faces and vertices
+// in a spatial (Morton) order inside the run, and their passes run on two threads.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "core/enum_table.h"
+#include "core/halfedge_mesh.h"
+#include "core/progress.h"
+
+namespace trilab {
+
+enum class DenoiseMethod { Bilateral, Guided };
+/// The one table of DenoiseMethod (core/enum_table.h).
+inline constexpr EnumEntry<DenoiseMethod> kDenoiseMethods[] = {
+    {DenoiseMethod::Bilateral, "bilateral", "Bilateral normal filter"},
+    {DenoiseMethod::Guided, "guided", "Guided normal filter"},
+};
+
+/// The largest accepted iteration counts and sigmas.
+inline constexpr int kMaxDenoiseIterations = 1000;
+inline constexpr double kMaxDenoiseSigmaS = 100.0;
+inline constexpr double kMaxDenoiseSigmaR = 100.0;
+
+struct DenoiseOptions {
+    DenoiseMethod method = DenoiseMethod::Guided;
+    /// Normal filtering iterations, in [0, 1000].
+    int normal_iterations = 20;
+    /// Vertex update iterations, in [0, 1000].
+    int vertex_iterations = 10;
+    /// The spatial Gaussian's standard deviation in multiples of the mean edge length, in
+    /// (0, 100].
+    double sigma_s = 1.0;
+    /// The range Gaussian's standard deviation on |n_i − n_j| (guided: |g_i − g_j|), in
+    /// (0, 100]; small values keep more edges, large ones smooth more (as sigma_r grows the
+    /// filter becomes a plain area-and-distance-weighted average of the normals).
+    double sigma_r = 0.35;
+    /// The region (core/algorithms/selection.h): one weight in [0, 1] per vertex storage index,
+    /// or nullptr for the whole mesh. Not owned.
+    const std::vector<float>* region = nullptr;
+};
+
+struct DenoiseReport {
+    double mean_edge_length = 0;
+    std::size_t filtered_faces = 0;    ///< faces whose normal was filtered
+    std::size_t degenerate_faces = 0;  ///< faces without a normal: no part in the run
+    /// Faces turned over by the noise (normal away from the mean normal around them): their
+    /// filtering starts from that mean.
+    std::size_t inverted_faces = 0;
+    int normal_iterations_done = 0;
+    int vertex_iterations_done = 0;  ///< the good ones (the state kept)
+    /// Mean and largest angle (degrees) between the input's and the filtered face normals.
+    double mean_normal_change_degrees = 0;
+    double max_normal_change_degrees = 0;
+    double max_displacement = 0;  ///< largest distance a vertex moved
+    std::size_t moved_vertices = 0;
+    /// The run went back to an earlier state (see the file comment); the mesh holds the state
+    /// after `vertex_iterations_done` iterations.
+    bool stopped_early = false;
+    std::size_t folded_faces = 0;  ///< faces the last vertex iteration left folded
+    std::string stop_reason;
+};
+
+/// Denoises `mesh` in place (positions only), as the file comment says.
+DenoiseReport denoise(HalfedgeMesh& mesh, const DenoiseOptions& options, Progress& progress);
+/// The same without progress reports or cancellation.
+DenoiseReport denoise(HalfedgeMesh& mesh, const DenoiseOptions& options = {});
+
+}  // namespace trilab
