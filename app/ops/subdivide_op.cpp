@@ -109,6 +109,17 @@ std::unique_ptr<OperationDef> subdivide_operation() {
     d.integer("iterations", &SubdivisionOptions::iterations, 1, 10, "refinement steps")
         .slider(1, 6)
         .counts_steps();
+    d.choice("features", &SubdivisionOptions::features, EnumTableView(kSubdivisionFeatures),
+             "sharp edges and corners for Loop's crease rules: those stored in the mesh, none, or "
+             "auto (detected at --feature-angle first; on the command line also auto:A)");
+    d.number("feature-angle", &SubdivisionOptions::feature_angle, 0, 180,
+             "with --features auto: the dihedral angle of a sharp edge", " (degrees)")
+        .above_min()
+        .slider(1, 90)
+        .only_if([](const SubdivisionOptions& o) -> const char* {
+            return o.features == SubdivisionFeatures::Auto ? nullptr
+                                                           : "applies only with --features auto";
+        });
     d.flag("local-closure", &SubdivisionOptions::local_closure,
            "on a region: keep the closure next to the selection even where it is flatter than "
            "the input (by default it grows until no closure triangle is)");

@@ -515,6 +515,26 @@ check "remove-components refuses no threshold with one line naming both, writing
 check "remove-components refuses a fraction above 1 naming it" bash -c \
     "! '$cli' remove-components '$pbt' '$tmp/rn.obj' --min-diameter 2 2> '$tmp/e' && \
      grep -q -- '--min-diameter' '$tmp/e' && [ ! -e '$tmp/rn.obj' ]"
+# Features (issue 39): detection with its histogram, files that keep them, crease-aware Loop.
+check "features on a cube: 12 sharp edges in 12 chains, 8 corners, the histogram, an edge element" \
+    bash -c "'$cli' generate cube '$tmp/cube.obj' && \
+     '$cli' features '$tmp/cube.obj' '$tmp/cf.ply' --angle 40 --ascii --json > '$tmp/f.json' && \
+     $(declare -f json_has); json_has '$tmp/f.json' edges chains corners creases darts histogram \
+     plateau verdict && grep -q '\"edges\": 12, \"chains\": 12, \"corners\": 8' '$tmp/f.json' && \
+     grep -q '^element edge 12$' '$tmp/cf.ply'"
+check "features written to .obj are dropped with a note naming them" bash -c \
+    "'$cli' features '$tmp/cube.obj' '$tmp/cf.obj' | grep -q 'note: features not saved.*12 sharp edges'"
+check "features refuses an angle of 0 naming --angle, writing nothing" bash -c \
+    "! '$cli' features '$tmp/cube.obj' '$tmp/cn.ply' --angle 0 2> '$tmp/e' && \
+     grep -q -- '--angle' '$tmp/e' && [ ! -e '$tmp/cn.ply' ]"
+check "subdivide keeps the cube's stored corners; --features none and auto:A" bash -c \
+    "'$cli' subdivide '$tmp/cf.ply' '$tmp/cs.ply' --iterations 2 && \
+     '$cli' info '$tmp/cs.ply' --json | grep -q '\"bbox_min\": \[0, 0, 0\]' && \
+     '$cli' subdivide '$tmp/cf.ply' '$tmp/cp.ply' --iterations 2 --features none && \
+     ! '$cli' info '$tmp/cp.ply' --json | grep -q '\"bbox_min\": \[0, 0, 0\]' && \
+     '$cli' subdivide '$tmp/cube.obj' '$tmp/ca.ply' --iterations 2 --features auto:40 --json | \
+     grep -q 'features detected at 40 deg: 12 sharp edges' && \
+     '$cli' info '$tmp/ca.ply' --json | grep -q '\"bbox_min\": \[0, 0, 0\]'"
 # Scripts and the command line (issue 23, item 12).
 check "a repeated option is refused naming it, never dropped, and nothing is written" bash -c \
     "! '$cli' record '$tmp/d.obj' --op 'noise --amount 2' --op 'subdivide' --out '$tmp/twice' \
