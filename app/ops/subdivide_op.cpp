@@ -111,7 +111,8 @@ std::unique_ptr<OperationDef> subdivide_operation() {
         .counts_steps();
     d.choice("features", &SubdivisionOptions::features, EnumTableView(kSubdivisionFeatures),
              "sharp edges and corners for Loop's crease rules: those stored in the mesh, none, or "
-             "auto (detected at --feature-angle first; on the command line also auto:A)");
+             "auto (detected at --feature-angle first; on the command line also auto:A)")
+        .hide_default();
     d.number("feature-angle", &SubdivisionOptions::feature_angle, 0, 180,
              "with --features auto: the dihedral angle of a sharp edge", " (degrees)")
         .above_min()

@@ -993,6 +993,67 @@ LoadedMesh read_ply_bytes(const std::string& data, const std::string& path) {
     return out;
 }
 
+namespace {
+
+/// The face rows (triangles; with their corner texture coordinates when `corner_uv`, each
+/// written by put_uv).
+template <class PutUv>
+void put_ply_faces(OutBuffer& out, const PolygonSoup& soup, bool ascii, bool corner_uv,
+                   const PutUv& put_uv) {
+    for (std::size_t f = 0; f < soup.n_faces(); ++f) {
+        const std::size_t b = soup.face_offsets[f], e = soup.face_offsets[f + 1];
+        const std::uint8_t n = static_cast<std::uint8_t>(e - b);  // triangles: always 3
+        if (ascii) {
+            out.number(int(n));
+            for (std::size_t c = b; c < e; ++c) {
+                out.text(" ");
+                out.number(static_cast<std::int32_t>(soup.corners[c]));
+            }
+            if (corner_uv) {
+                out.text(" ");
+                out.number(int(2 * n));
+                for (std::size_t c = b; c < e; ++c)
+                    for (int k = 0; k < 2; ++k) put_uv(soup.corner_texcoords[c][k]);
+            }
+            out.text("\n");
+        } else {
+            out.binary(n);
+            for (std::size_t c = b; c < e; ++c)
+                out.binary(static_cast<std::int32_t>(soup.corners[c]));
+            if (corner_uv) {
+                out.binary(static_cast<std::uint8_t>(2 * n));
+                for (std::size_t c = b; c < e; ++c)
+                    for (int k = 0; k < 2; ++k) put_uv(soup.corner_texcoords[c][k]);
+            }
+        }
+        out.maybe_flush();
+    }
+}
+
+/// The rows of the `edge` element: the sharp edges.
+void put_ply_sharp_edges(OutBuffer& out, const PolygonSoup& soup, bool ascii) {
+    // Sharp edges; an infinite sharpness is written as 10 (OpenSubdiv's infinite, read back as
+    // infinity), which every reader can hold.
+    for (const PolygonSoup::SharpEdge& se : soup.sharp_edges) {
+        const float crease = std::min(se.sharpness, kSharpnessActsInfinite);
+        if (ascii) {
+            out.number(static_cast<std::int32_t>(se.a));
+            out.text(" ");
+            out.number(static_cast<std::int32_t>(se.b));
+            out.text(" ");
+            out.number(crease);
+            out.text("\n");
+        } else {
+            out.binary(static_cast<std::int32_t>(se.a));
+            out.binary(static_cast<std::int32_t>(se.b));
+            out.binary(crease);
+        }
+        out.maybe_flush();
+    }
+}
+
+}  // namespace
+
 void write_ply_to(const HalfedgeMesh& mesh, std::ostream& os, const std::string& path,
                   const WriteOptions& options) {
     const PolygonSoup soup = to_soup(mesh);
@@ -1098,52 +1159,8 @@ void write_ply_to(const HalfedgeMesh& mesh, std::ostream& os, const std::string&
         if (ascii) out.text("\n");
         out.maybe_flush();
     }
-    for (std::size_t f = 0; f < soup.n_faces(); ++f) {
-        const std::size_t b = soup.face_offsets[f], e = soup.face_offsets[f + 1];
-        const std::uint8_t n = static_cast<std::uint8_t>(e - b);  // triangles: always 3
-        if (ascii) {
-            out.number(int(n));
-            for (std::size_t c = b; c < e; ++c) {
-                out.text(" ");
-                out.number(static_cast<std::int32_t>(soup.corners[c]));
-            }
-            if (corner_uv) {
-                out.text(" ");
-                out.number(int(2 * n));
-                for (std::size_t c = b; c < e; ++c)
-                    for (int k = 0; k < 2; ++k) put(soup.corner_texcoords[c][k], cuv_d, false);
-            }
-            out.text("\n");
-        } else {
-            out.binary(n);
-            for (std::size_t c = b; c < e; ++c)
-                out.binary(static_cast<std::int32_t>(soup.corners[c]));
-            if (corner_uv) {
-                out.binary(static_cast<std::uint8_t>(2 * n));
-                for (std::size_t c = b; c < e; ++c)
-                    for (int k = 0; k < 2; ++k) put(soup.corner_texcoords[c][k], cuv_d, false);
-            }
-        }
-        out.maybe_flush();
-    }
-    // Sharp edges; an infinite sharpness is written as 10 (OpenSubdiv's infinite, read back as
-    // infinity), which every reader can hold.
-    for (const PolygonSoup::SharpEdge& se : soup.sharp_edges) {
-        const float crease = std::min(se.sharpness, kSharpnessActsInfinite);
-        if (ascii) {
-            out.number(static_cast<std::int32_t>(se.a));
-            out.text(" ");
-            out.number(static_cast<std::int32_t>(se.b));
-            out.text(" ");
-            out.number(crease);
-            out.text("\n");
-        } else {
-            out.binary(static_cast<std::int32_t>(se.a));
-            out.binary(static_cast<std::int32_t>(se.b));
-            out.binary(crease);
-        }
-        out.maybe_flush();
-    }
+    put_ply_faces(out, soup, ascii, corner_uv, [&](double v) { put(v, cuv_d, false); });
+    put_ply_sharp_edges(out, soup, ascii);
     out.flush();
 }
 

@@ -26,6 +26,7 @@ namespace {
 
 using namespace OpenSubdiv;
 
+// NOLINTBEGIN(readability-identifier-naming): the names PrimvarRefiner calls
 struct Vertex3 {
     double p[3];
     void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0; }
@@ -33,6 +34,7 @@ struct Vertex3 {
         for (int k = 0; k < 3; ++k) p[k] += w * s.p[k];
     }
 };
+// NOLINTEND(readability-identifier-naming)
 
 int fail(const std::string& why) {
     std::fprintf(stderr, "trilab_osd_loop_oracle: %s\n", why.c_str());
