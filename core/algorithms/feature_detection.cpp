@@ -38,12 +38,13 @@ std::vector<Vector3> unit_face_normals(const HalfedgeMesh& mesh) {
     return n;
 }
 
-/// The dihedral angle of every interior edge in degrees (-1: boundary, deleted or degenerate)
-/// and the histogram.
-std::vector<float> edge_angles(const HalfedgeMesh& mesh, AngleHistogram& h) {
+/// The histogram of the interior edges' dihedral angles; with `flags`, also each edge's flag:
+/// 1 for an interior edge of angle >= angle_deg, or a boundary edge when `boundary`.
+void edge_angles(const HalfedgeMesh& mesh, AngleHistogram& h, double angle_deg, bool boundary,
+                 std::vector<std::uint8_t>* flags) {
     const std::vector<Vector3> normals = unit_face_normals(mesh);
     const std::size_t ne = mesh.edges_size();
-    std::vector<float> angle(ne, -1.0f);
+    if (flags) flags->assign(ne, 0);
     const bool garbage = mesh.has_garbage();
     std::array<AngleHistogram, 2> part_h;
     on_two_threads(worth_two_threads(ne), [&](int part) {
@@ -53,7 +54,10 @@ std::vector<float> edge_angles(const HalfedgeMesh& mesh, AngleHistogram& h) {
             const Edge e(static_cast<Index>(i));
             if (garbage && mesh.is_deleted(e)) continue;
             const Face f0 = mesh.face(mesh.halfedge(e, 0)), f1 = mesh.face(mesh.halfedge(e, 1));
-            if (!f0.is_valid() || !f1.is_valid()) continue;
+            if (!f0.is_valid() || !f1.is_valid()) {
+                if (flags && boundary) (*flags)[i] = 1;
+                continue;
+            }
             const Vector3& n0 = normals[f0.idx()];
             const Vector3& n1 = normals[f1.idx()];
             if (n0.isZero(0) || n1.isZero(0)) {
@@ -61,7 +65,7 @@ std::vector<float> edge_angles(const HalfedgeMesh& mesh, AngleHistogram& h) {
                 continue;
             }
             const double a = std::acos(std::clamp(n0.dot(n1), -1.0, 1.0)) * kRadToDeg;
-            angle[i] = float(a);
+            if (flags && a >= angle_deg) (*flags)[i] = 1;
             ++ph.counts[std::min<std::size_t>(kAngleBins - 1, std::size_t(a))];
             ++ph.interior_edges;
         }
@@ -72,7 +76,6 @@ std::vector<float> edge_angles(const HalfedgeMesh& mesh, AngleHistogram& h) {
         h.degenerate_edges += ph.degenerate_edges;
     }
     find_plateau(h);
-    return angle;
 }
 
 /// The chains of the flagged edges: maximal paths between vertices where the flagged degree
@@ -174,7 +177,7 @@ void find_plateau(AngleHistogram& h) {
 
 AngleHistogram angle_histogram(const HalfedgeMesh& mesh) {
     AngleHistogram h;
-    edge_angles(mesh, h);
+    edge_angles(mesh, h, 0, false, nullptr);
     return h;
 }
 
@@ -187,14 +190,8 @@ FeatureDetectionReport detect_features(HalfedgeMesh& mesh, const FeatureDetectio
         throw InvalidArgument("features: sharpness must be > 0 or inf (got " +
                               number_text(o.sharpness) + ")");
     FeatureDetectionReport r;
-    const std::vector<float> angle = edge_angles(mesh, r.histogram);
-    std::vector<std::uint8_t> flagged(mesh.edges_size(), 0);
-    for (Edge e : mesh.edges()) {
-        const bool boundary = mesh.is_boundary(e);
-        flagged[e.idx()] =
-            (boundary && o.boundary) || (!boundary && double(angle[e.idx()]) >= o.angle_deg) ? 1
-                                                                                             : 0;
-    }
+    std::vector<std::uint8_t> flagged;
+    edge_angles(mesh, r.histogram, o.angle_deg, o.boundary, &flagged);
     for_each_chain(mesh, flagged, [&](const std::vector<Edge>& edges) {
         if (o.min_chain > 1 && edges.size() < o.min_chain) {
             ++r.dropped_chains;

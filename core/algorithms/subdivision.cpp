@@ -347,14 +347,18 @@ void provenance_1to4(const In& m, SubdivisionScheme scheme, HalfedgeMesh& out, c
     }
     if (!loop || !cr.any()) return;
     // Loop with features: the rules of loop_positions_creased().
-    for (Index e = 0; e < ne; ++e) {
-        const float sh = cr.sharp ? cr.sharp[e] : 0.0f;
-        if (sh > 0.0f && !m.boundary(2 * e) && !m.boundary(2 * e + 1))
-            pr.stencil[nv + e] =
-                int(sh > 1.0f ? SubdivisionStencil::OddSharp : SubdivisionStencil::OddSemiSharp);
+    // Only the ends of sharp interior edges and tagged vertices differ from the rules above.
+    std::vector<std::uint8_t> touched(nv, 0);
+    if (cr.corner) std::copy_n(cr.corner, nv, touched.begin());
+    for (Index e = 0; cr.sharp && e < ne; ++e) {
+        const float sh = cr.sharp[e];
+        if (!(sh > 0.0f) || m.boundary(2 * e) || m.boundary(2 * e + 1)) continue;
+        pr.stencil[nv + e] =
+            int(sh > 1.0f ? SubdivisionStencil::OddSharp : SubdivisionStencil::OddSemiSharp);
+        touched[m.to_i(2 * e)] = touched[m.to_i(2 * e + 1)] = 1;
     }
     for (Index v = 0; v < nv; ++v) {
-        if (!m.vh[v].is_valid()) continue;
+        if (!touched[v] || !m.vh[v].is_valid()) continue;
         unsigned sharp_p = 0, sharp_c = 0, sharp_only = 0;
         for_each_outgoing_edge(m, v, [&](Index h) {
             const bool border = m.boundary(h) || m.boundary(h ^ 1u);
