@@ -12,9 +12,16 @@
 // degrees on the 1.1M-face mesh and, when given, on MESH or with --big on the bunny
 // Loop-subdivided four times (17.8M faces, the big bunny: bound 1 s; about 2 GB of
 // memory); loading and building are not timed. --check exits 1 when a bound is missed.
+// Against OpenSubdiv 3.5 (when libosd-dev is installed; a benchmark-only peer found at configure
+// time): Loop x3 of fandisk with its features at 60 degrees infinitely sharp, trilab's
+// subdivide() (as trilab-cli runs it) against OpenSubdiv's Far::TopologyRefiner (the topology
+// from the same vertices, faces and crease edges, refined uniformly three levels) and
+// Far::PrimvarRefinerReal<double> (the positions), alternating; building OpenSubdiv's
+// descriptor arrays is not timed.
 // --cpu-time times the subdivisions by the thread's CPU time instead (Loop runs on one thread),
 // and detection by the process's CPU time over its two threads: for a busy machine.
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -30,9 +37,69 @@
 #include "core/io/mesh_io.h"
 #include "core/progress.h"
 
+#ifdef TRILAB_HAS_OPENSUBDIV
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#endif
+
 using namespace trilab;
 
 namespace {
+
+#ifdef TRILAB_HAS_OPENSUBDIV
+// NOLINTBEGIN(readability-identifier-naming): the names PrimvarRefiner calls
+struct OsdPoint {
+    double p[3];
+    void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0; }
+    void AddWithWeight(const OsdPoint& s, double w) {
+        for (int k = 0; k < 3; ++k) p[k] += w * s.p[k];
+    }
+};
+// NOLINTEND(readability-identifier-naming)
+
+/// OpenSubdiv's Loop x3 of `mesh` (compact) with its sharp edges: milliseconds, wall-clock.
+double osd_loop3_ms(const HalfedgeMesh& mesh) {
+    using namespace OpenSubdiv;
+    std::vector<int> sizes(mesh.n_faces(), 3), corners, pairs;
+    std::vector<float> weights;
+    for (Face f : mesh.faces())
+        for (Vertex v : mesh.face_vertices(f)) corners.push_back(int(v.idx()));
+    const auto sharp = mesh.get_edge_property<float>(kSharpnessProperty);
+    for (Edge e : mesh.edges()) {
+        if (!sharp || !(sharp[e] > 0.0f)) continue;
+        pairs.push_back(int(mesh.to_vertex(mesh.halfedge(e, 0)).idx()));
+        pairs.push_back(int(mesh.to_vertex(mesh.halfedge(e, 1)).idx()));
+        weights.push_back(std::min(sharp[e], kSharpnessActsInfinite));
+    }
+    std::vector<OsdPoint> base(mesh.n_vertices());
+    for (Vertex v : mesh.vertices())
+        for (int k = 0; k < 3; ++k) base[v.idx()].p[k] = mesh.position(v)[k];
+    const auto t0 = std::chrono::steady_clock::now();
+    Far::TopologyDescriptor d;
+    d.numVertices = int(mesh.n_vertices());
+    d.numFaces = int(mesh.n_faces());
+    d.numVertsPerFace = sizes.data();
+    d.vertIndicesPerFace = corners.data();
+    d.numCreases = int(weights.size());
+    d.creaseVertexIndexPairs = pairs.data();
+    d.creaseWeights = weights.data();
+    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+    Far::TopologyRefiner* refiner =
+        Factory::Create(d, Factory::Options(Sdc::SCHEME_LOOP, Sdc::Options()));
+    refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(3));
+    Far::PrimvarRefinerReal<double> primvar(*refiner);
+    std::vector<OsdPoint> src = base, dst;
+    for (int level = 1; level <= 3; ++level) {
+        dst.resize(std::size_t(refiner->GetLevel(level).GetNumVertices()));
+        const OsdPoint* from = src.data();
+        OsdPoint* to = dst.data();
+        primvar.Interpolate(level, from, to);
+        src.swap(dst);
+    }
+    delete refiner;
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+#endif
 
 double median(std::vector<double> t) {
     std::sort(t.begin(), t.end());
@@ -124,6 +191,34 @@ int main(int argc, char** argv) {
                 median(plain), median(creased), ratio, runs);
     bool ok = ratio <= 1.2;
     std::size_t edges = 0;
+    const std::string fandisk = std::string(TRILAB_SHARED_DIR) + "/meshes/fandisk.obj";
+#ifdef TRILAB_HAS_OPENSUBDIV
+    if (std::filesystem::exists(fandisk)) {
+        HalfedgeMesh f = read_mesh(fandisk).mesh;
+        FeatureDetectionOptions o;
+        o.angle_deg = 60;
+        const std::size_t n = detect_features(f, o).feature_edges;
+        NullProgress progress;
+        SubdivisionOptions so;
+        so.iterations = 3;
+        so.keep_levels = false;
+        so.morph = false;
+        std::vector<double> ours, theirs;
+        for (int r = 0; r <= runs; ++r) {  // the first of each is a warm-up
+            const double a = subdivide(f, so, progress).ms, b = osd_loop3_ms(f);
+            if (r > 0) {
+                ours.push_back(a);
+                theirs.push_back(b);
+            }
+        }
+        std::printf(
+            "fandisk, %zu sharp edges, Loop x3: trilab %.1f ms, OpenSubdiv %.1f ms "
+            "(medians of %d, wall)\n",
+            n, median(ours), median(theirs), runs);
+    }
+#else
+    std::printf("OpenSubdiv not found at configure time (libosd-dev): no comparison\n");
+#endif
     const double d1 = detect_ms(mesh, edges);
     std::printf("detection at 40 deg, %zu faces: %.1f ms (%zu edges)\n", mesh.n_faces(), d1, edges);
     if (!big.empty() || (big_bunny && std::filesystem::exists(bunny))) {
