@@ -6,6 +6,8 @@
 //   sphere:X,Y,Z,R[,FEATHER]   vertices within R of the point (X, Y, Z)
 //   geodesic:V,R[,FEATHER]     vertices within geodesic distance R of vertex V (heat method)
 //   component:V                the connected component of vertex V
+//   feature:K[,FEATHER]        the vertices within K rings of a feature (a sharp edge or a
+//                              corner tag, core/features.h)
 //   file:PATH                  a text file with one weight in [0, 1] per vertex per line (blank
 //                              lines and lines starting with '#' are skipped), or a mesh file
 //                              whose vertices carry a selection (PLY `selection`, OM custom
@@ -22,8 +24,8 @@ namespace trilab {
 
 /// A parsed SPEC, before any mesh is read.
 struct RegionSpec {
-    enum class Kind { Sphere, Geodesic, Component, File } kind = Kind::Sphere;
-    std::vector<double> numbers;  ///< X,Y,Z,R[,F] / V,R[,F] / V
+    enum class Kind { Sphere, Geodesic, Component, File, Feature } kind = Kind::Sphere;
+    std::vector<double> numbers;  ///< X,Y,Z,R[,F] / V,R[,F] / V / K[,F]
     std::string path;             ///< file:
     std::string text;             ///< the SPEC as given, for messages
 };

@@ -181,6 +181,39 @@ AngleHistogram angle_histogram(const HalfedgeMesh& mesh) {
     return h;
 }
 
+std::vector<float> feature_neighbourhood(const HalfedgeMesh& mesh, unsigned rings) {
+    if (!has_features(mesh))
+        throw InvalidArgument(
+            "the mesh has no features (no sharp edge, no corner tag): run `features` first");
+    std::vector<float> w(mesh.vertices_size(), 0.0f);
+    std::vector<Vertex> front;
+    const auto sharp = mesh.get_edge_property<float>(kSharpnessProperty);
+    if (sharp)
+        for (Edge e : mesh.edges())
+            if (sharp[e] > 0.0f)
+                for (int k = 0; k < 2; ++k) {
+                    const Vertex v = mesh.to_vertex(mesh.halfedge(e, k));
+                    if (w[v.idx()] == 0.0f) front.push_back(v);
+                    w[v.idx()] = 1.0f;
+                }
+    for (Vertex v : mesh.vertices())
+        if (is_corner_tagged(mesh, v) && w[v.idx()] == 0.0f) {
+            w[v.idx()] = 1.0f;
+            front.push_back(v);
+        }
+    for (unsigned r = 0; r < rings && !front.empty(); ++r) {
+        std::vector<Vertex> next;
+        for (Vertex v : front)
+            for (Vertex u : mesh.vertices_around(v))
+                if (w[u.idx()] == 0.0f) {
+                    w[u.idx()] = 1.0f;
+                    next.push_back(u);
+                }
+        front.swap(next);
+    }
+    return w;
+}
+
 FeatureDetectionReport detect_features(HalfedgeMesh& mesh, const FeatureDetectionOptions& o) {
     const auto t0 = std::chrono::steady_clock::now();
     if (!(o.angle_deg > 0 && o.angle_deg <= 180))

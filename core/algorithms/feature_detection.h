@@ -68,6 +68,11 @@ struct FeatureDetectionReport {
     double ms = 0;
 };
 
+/// The vertices within `rings` edge rings of a feature vertex (an end of an edge of sharpness
+/// > 0, or a tagged corner): weight 1, the others 0 (a region, core/algorithms/selection.h;
+/// `--region feature:K`). Throws InvalidArgument when the mesh has no features. O(V + E).
+std::vector<float> feature_neighbourhood(const HalfedgeMesh& mesh, unsigned rings);
+
 /// Detects the feature edges of `mesh` by the dihedral angle and stores them (see the file
 /// comment). Throws InvalidArgument naming `angle_deg` (outside (0, 180] or not finite) or
 /// `sharpness` (not > 0) before changing anything. O(V + E + F).

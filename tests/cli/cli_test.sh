@@ -535,6 +535,12 @@ check "subdivide keeps the cube's stored corners; --features none and auto:A" ba
      '$cli' subdivide '$tmp/cube.obj' '$tmp/ca.ply' --iterations 2 --features auto:40 --json | \
      grep -q 'features detected at 40 deg: 12 sharp edges' && \
      '$cli' info '$tmp/ca.ply' --json | grep -q '\"bbox_min\": \[0, 0, 0\]'"
+check "--region feature:K, inverted: smoothing that keeps the features where they are" bash -c \
+    "'$cli' select '$tmp/cs.ply' '$tmp/keep.ply' --region feature:0 --invert && \
+     '$cli' smooth '$tmp/cs.ply' '$tmp/sm.ply' --region 'file:$tmp/keep.ply' --iterations 5 && \
+     '$cli' info '$tmp/sm.ply' --json | grep -q '\"bbox_min\": \[0, 0, 0\]' && \
+     ! '$cli' smooth '$tmp/cube.obj' '$tmp/sx.ply' --region feature:1 2> '$tmp/e' && \
+     grep -q 'no features' '$tmp/e'"
 # Scripts and the command line (issue 23, item 12).
 check "a repeated option is refused naming it, never dropped, and nothing is written" bash -c \
     "! '$cli' record '$tmp/d.obj' --op 'noise --amount 2' --op 'subdivide' --out '$tmp/twice' \

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "app/ops/operation.h"
+#include "app/ops/region_spec.h"
 #include "core/algorithms/feature_detection.h"
 #include "core/algorithms/generators.h"
 #include "core/algorithms/noise.h"
@@ -292,6 +293,41 @@ TEST_CASE("the features operation", "[features][operation]") {
     CHECK(report->corners == 8);
     REQUIRE_THROWS_AS(parse_operation("features --angle 0"), InvalidArgument);
     REQUIRE_THROWS_AS(parse_operation("features --angle 181"), InvalidArgument);
+}
+
+TEST_CASE("the region feature:K: the rings around the features", "[features][selection]") {
+    HalfedgeMesh m = make_icosphere(3);
+    REQUIRE_THROWS_WITH(make_region(m, parse_region_spec("feature:1")),
+                        Catch::Contains("no features"));
+    REQUIRE_THROWS_AS(parse_region_spec("feature:-1"), InvalidArgument);
+    REQUIRE_THROWS_AS(parse_region_spec("feature:1.5"), InvalidArgument);
+    set_sharpness(m, Edge(0), kInfiniteSharpness);
+    const Vertex a = m.to_vertex(m.halfedge(Edge(0), 0)), b = m.to_vertex(m.halfedge(Edge(0), 1));
+    const Selection r0 = make_region(m, parse_region_spec("feature:0"));
+    const Selection r1 = make_region(m, parse_region_spec("feature:1"));
+    std::size_t n0 = 0, n1 = 0;
+    for (Vertex v : m.vertices()) {
+        n0 += r0[v.idx()] > 0;
+        n1 += r1[v.idx()] > 0;
+        // One ring: the ends and their neighbours, checked from the other side.
+        bool near = v == a || v == b;
+        for (Vertex u : m.vertices_around(v)) near = near || u == a || u == b;
+        CHECK((r1[v.idx()] == 1.0f) == near);
+    }
+    CHECK(n0 == 2);
+    CHECK(n1 > n0);
+    // Smoothing outside the features keeps them bit for bit.
+    Selection keep = r0;
+    for (float& w : keep) w = 1.0f - w;
+    NullProgress progress;
+    RunSettings settings;
+    settings.region = &keep;
+    const OperationResult sm =
+        run_operation(parse_operation("smooth --iterations 3"), m, progress, settings);
+    const HalfedgeMesh& out = sm.steps.back().mesh;
+    CHECK(out.position(a) == m.position(a));
+    CHECK(out.position(b) == m.position(b));
+    CHECK(sharpness(out, Edge(0)) == kInfiniteSharpness);  // carried by the copy
 }
 
 TEST_CASE("Loop with features: unchanged without them, carried with s - 1 per level",
