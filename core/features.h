@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "core/enum_table.h"
 #include "core/halfedge_mesh.h"
 
 namespace trilab {
@@ -38,6 +39,16 @@ inline constexpr float kInfiniteSharpness = std::numeric_limits<float>::infinity
 /// Sharpness at and above which an edge acts as infinitely sharp (OpenSubdiv 3.5's
 /// Sdc::Crease::SHARPNESS_INFINITE).
 inline constexpr float kSharpnessActsInfinite = 10.0f;
+
+/// Which features an operation uses (subdivision, decimation): those stored in the mesh, none,
+/// or those detected by angle first (core/algorithms/feature_detection.h).
+enum class FeatureSource { Stored, None, Auto };
+/// The one table of FeatureSource (core/enum_table.h): "stored", "none", "auto".
+inline constexpr EnumEntry<FeatureSource> kFeatureSources[] = {
+    {FeatureSource::Stored, "stored", "stored in the mesh"},
+    {FeatureSource::None, "none", "none"},
+    {FeatureSource::Auto, "auto", "detected by angle"},
+};
 
 /// Whether `s` is a valid sharpness: finite and >= 0, or +infinity.
 inline bool valid_sharpness(float s) {

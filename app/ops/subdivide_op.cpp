@@ -109,7 +109,7 @@ std::unique_ptr<OperationDef> subdivide_operation() {
     d.integer("iterations", &SubdivisionOptions::iterations, 1, 10, "refinement steps")
         .slider(1, 6)
         .counts_steps();
-    d.choice("features", &SubdivisionOptions::features, EnumTableView(kSubdivisionFeatures),
+    d.choice("features", &SubdivisionOptions::features, EnumTableView(kFeatureSources),
              "sharp edges and corners for Loop's crease rules: those stored in the mesh, none, or "
              "auto (detected at --feature-angle first; on the command line also auto:A)")
         .hide_default();

@@ -23,6 +23,7 @@
 
 #include "core/algorithms/morph.h"
 #include "core/enum_table.h"
+#include "core/features.h"
 #include "core/halfedge_mesh.h"
 #include "core/progress.h"
 
@@ -42,13 +43,8 @@ const char* scheme_name(SubdivisionScheme scheme);
 /// Parses scheme_name() strings; throws InvalidArgument listing them otherwise.
 SubdivisionScheme parse_scheme(const std::string& name);
 
-enum class SubdivisionFeatures { Stored, None, Auto };
-/// The one table of SubdivisionFeatures: "stored", "none", "auto".
-inline constexpr EnumEntry<SubdivisionFeatures> kSubdivisionFeatures[] = {
-    {SubdivisionFeatures::Stored, "stored", "stored in the mesh"},
-    {SubdivisionFeatures::None, "none", "none"},
-    {SubdivisionFeatures::Auto, "auto", "detected by angle"},
-};
+/// Which features subdivision uses (core/features.h).
+using SubdivisionFeatures = FeatureSource;
 
 struct SubdivisionOptions {
     SubdivisionScheme scheme = SubdivisionScheme::Loop;

@@ -535,6 +535,13 @@ check "subdivide keeps the cube's stored corners; --features none and auto:A" ba
      '$cli' subdivide '$tmp/cube.obj' '$tmp/ca.ply' --iterations 2 --features auto:40 --json | \
      grep -q 'features detected at 40 deg: 12 sharp edges' && \
      '$cli' info '$tmp/ca.ply' --json | grep -q '\"bbox_min\": \[0, 0, 0\]'"
+check "decimate keeps the cube's corners with its stored features, not with --features none" bash -c \
+    "'$cli' decimate '$tmp/cs.ply' '$tmp/cd.ply' --percent 50 && \
+     '$cli' info '$tmp/cd.ply' --json | grep -q '\"bbox_min\": \[0, 0, 0\], \"bbox_max\": \[1, 1, 1\]' && \
+     '$cli' decimate '$tmp/cs.ply' '$tmp/cn.ply' --percent 50 --features none --json | \
+     grep -q '\"features\": \"none\"' && \
+     '$cli' decimate '$tmp/cube.obj' '$tmp/ca2.ply' --percent 10 --features auto:40 --json | \
+     grep -q '\"feature_angle\": 40'"
 check "--region feature:K, inverted: smoothing that keeps the features where they are" bash -c \
     "'$cli' select '$tmp/cs.ply' '$tmp/keep.ply' --region feature:0 --invert && \
      '$cli' smooth '$tmp/cs.ply' '$tmp/sm.ply' --region 'file:$tmp/keep.ply' --iterations 5 && \

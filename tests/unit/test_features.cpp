@@ -4,6 +4,7 @@
 // subdivision with crease rules against OpenSubdiv 3.5 (the oracle program built from
 // tests/oracle/osd_loop_oracle.cpp where libosd-dev is installed; skipped clearly otherwise).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -16,6 +17,7 @@
 
 #include "app/ops/operation.h"
 #include "app/ops/region_spec.h"
+#include "core/algorithms/decimation.h"
 #include "core/algorithms/feature_detection.h"
 #include "core/algorithms/generators.h"
 #include "core/algorithms/noise.h"
@@ -365,6 +367,50 @@ TEST_CASE("Loop with features: unchanged without them, carried with s - 1 per le
     const HalfedgeMesh off = subdivide(s, so, progress).levels.back().mesh;
     CHECK(off.positions() == a.positions());
     CHECK_FALSE(has_features(off));
+}
+
+TEST_CASE("decimation keeps the features: corners stay, curves keep input vertices",
+          "[features][decimation]") {
+    SKIP_IF_MISSING(test::shared_mesh("fandisk.obj"));
+    HalfedgeMesh m = load_fandisk();
+    FeatureDetectionOptions fo;
+    fo.angle_deg = 60;
+    detect_features(m, fo);
+    const VertexClassification in = classify_vertices(m, false);
+    // Input feature vertices by position, corners apart.
+    std::map<std::array<double, 3>, VertexClass> feature_at;
+    for (Vertex v : m.vertices())
+        if (in.classes[v.idx()] != VertexClass::Smooth)
+            feature_at[{m.position(v).x(), m.position(v).y(), m.position(v).z()}] =
+                in.classes[v.idx()];
+    DecimationOptions o;
+    o.target_vertices = m.n_vertices() / 10;
+    o.levels = DecimationLevels::Last;
+    o.record_geomorph = false;
+    const DecimationResult r = decimate(m, o);
+    const HalfedgeMesh& out = r.levels.back().mesh;
+    REQUIRE_VALID(out);
+    CHECK(out.n_vertices() < m.n_vertices() / 5);
+    const VertexClassification k = classify_vertices(out, false);
+    std::size_t corners = 0;
+    for (Vertex v : out.vertices()) {
+        if (k.classes[v.idx()] == VertexClass::Smooth) continue;
+        // Every output vertex on a feature is an input feature vertex, exactly where it was.
+        const auto it =
+            feature_at.find({out.position(v).x(), out.position(v).y(), out.position(v).z()});
+        REQUIRE(it != feature_at.end());
+        corners += it->second == VertexClass::Corner ? 1 : 0;
+    }
+    // Every corner stays.
+    CHECK(corners == in.corners);
+    // Without features, the decimation moves them.
+    o.features = FeatureSource::None;
+    const HalfedgeMesh plain = decimate(m, o).levels.back().mesh;
+    std::size_t kept = 0;
+    for (Vertex v : plain.vertices())
+        kept +=
+            feature_at.count({plain.position(v).x(), plain.position(v).y(), plain.position(v).z()});
+    CHECK(kept < feature_at.size());
 }
 
 namespace {
