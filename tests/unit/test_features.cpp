@@ -7,13 +7,17 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
 #include <string>
 #include <unordered_map>
 #include <vector>
+
+#include <unistd.h>
 
 #include "app/ops/operation.h"
 #include "app/ops/region_spec.h"
@@ -420,7 +424,18 @@ namespace {
 /// returns its final positions in trilab's numbering (through the parents both record).
 std::vector<Point> oracle_loop(const HalfedgeMesh& m, int levels,
                                const std::vector<HalfedgeMesh>& trilab_levels) {
-    const std::string in = "osd_oracle_in.txt", out = "osd_oracle_out.bin";
+    // In the temporary folder, named by the process: tests may run side by side.
+    const std::string stem = (std::filesystem::temp_directory_path() /
+                              ("trilab_osd_oracle_" + std::to_string(::getpid())))
+                                 .string();
+    const std::string in = stem + ".txt", out = stem + ".bin";
+    struct Cleanup {
+        std::string a, b;
+        ~Cleanup() {
+            std::remove(a.c_str());
+            std::remove(b.c_str());
+        }
+    } cleanup{in, out};
     {
         std::ofstream f(in);
         f.precision(17);
@@ -442,7 +457,7 @@ std::vector<Point> oracle_loop(const HalfedgeMesh& m, int levels,
         for (Index c : corners) f << c << "\n";
     }
     const std::string cmd = std::string("\"") + TRILAB_OSD_ORACLE + "\" " + std::to_string(levels) +
-                            " " + in + " " + out;
+                            " \"" + in + "\" \"" + out + "\"";
     REQUIRE(std::system(cmd.c_str()) == 0);
     std::ifstream f(out, std::ios::binary);
     auto get = [&] {
