@@ -19,6 +19,7 @@
 
 #include <unistd.h>
 
+#include "app/history/session_file.h"
 #include "app/ops/operation.h"
 #include "app/ops/region_spec.h"
 #include "core/algorithms/decimation.h"
@@ -31,6 +32,7 @@
 #include "core/geometry.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh_builder.h"
+#include "session_test_util.h"
 #include "test_helpers.h"
 
 using namespace trilab;
@@ -371,6 +373,22 @@ TEST_CASE("Loop with features: unchanged without them, carried with s - 1 per le
     const HalfedgeMesh off = subdivide(s, so, progress).levels.back().mesh;
     CHECK(off.positions() == a.positions());
     CHECK_FALSE(has_features(off));
+}
+
+TEST_CASE("a session keeps the features of every state", "[features][session]") {
+    History history(std::size_t(-1));
+    history.reset(make_cube(), "Load");
+    test::push_operation(history, "features --angle 40");
+    test::push_operation(history, "subdivide --iterations 2");
+    const std::string path = test::temp_path("features.trilab");
+    const SessionWriteReport w = write_session(path, history.snapshot());
+    CHECK(w.skipped.empty());
+    const SessionContents s = read_session(path);
+    test::require_same_history(history, s.history);
+    const HalfedgeMesh& back = s.history.current_mesh();
+    CHECK(sharp_pairs(back) == sharp_pairs(history.current_mesh()));
+    CHECK(sharp_pairs(back).size() == 48);  // 12 edges, each split in four
+    std::remove(path.c_str());
 }
 
 TEST_CASE("decimation keeps the features: corners stay, curves keep input vertices",
