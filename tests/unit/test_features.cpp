@@ -375,6 +375,33 @@ TEST_CASE("Loop with features: unchanged without them, carried with s - 1 per le
     CHECK_FALSE(has_features(off));
 }
 
+TEST_CASE("smoothing keeps the feature vertices fixed unless told not to", "[features][fairing]") {
+    HalfedgeMesh m = make_icosphere(3);
+    for (Edge e : m.edges())
+        if (e.idx() % 13 == 0) set_sharpness(m, e, 0.5f);
+    NullProgress progress;
+    const std::vector<float> on = feature_neighbourhood(m, 0);
+    for (const char* text : {"smooth --iterations 5",
+                             "smooth --iterations 2 --integration "
+                             "implicit --step 0.5"}) {
+        INFO(text);
+        const OperationResult r = run_operation(parse_operation(text), m, progress);
+        const HalfedgeMesh& out = r.steps.back().mesh;
+        std::size_t moved_feature = 0, moved_other = 0;
+        for (Vertex v : m.vertices())
+            (on[v.idx()] > 0 ? moved_feature : moved_other) += out.position(v) != m.position(v);
+        CHECK(moved_feature == 0);
+        CHECK(moved_other > 0);
+        CHECK(sharp_pairs(out) == sharp_pairs(m));
+    }
+    const OperationResult none =
+        run_operation(parse_operation("smooth --iterations 5 --features none"), m, progress);
+    std::size_t moved = 0;
+    for (Vertex v : m.vertices())
+        moved += on[v.idx()] > 0 && none.steps.back().mesh.position(v) != m.position(v);
+    CHECK(moved > 0);
+}
+
 TEST_CASE("a session keeps the features of every state", "[features][session]") {
     History history(std::size_t(-1));
     history.reset(make_cube(), "Load");
