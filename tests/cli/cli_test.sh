@@ -542,6 +542,11 @@ check "decimate keeps the cube's corners with its stored features, not with --fe
      grep -q '\"features\": \"none\"' && \
      '$cli' decimate '$tmp/cube.obj' '$tmp/ca2.ply' --percent 10 --features auto:40 --json | \
      grep -q '\"feature_angle\": 40'"
+check "smooth keeps the stored feature vertices fixed; --features none does not" bash -c \
+    "'$cli' smooth '$tmp/cs.ply' '$tmp/sf.ply' --iterations 5 | grep -q 'features: .* kept where' && \
+     '$cli' info '$tmp/sf.ply' --json | grep -q '\"bbox_min\": \[0, 0, 0\], \"bbox_max\": \[1, 1, 1\]' && \
+     '$cli' smooth '$tmp/cs.ply' '$tmp/sn.ply' --iterations 5 --features none && \
+     ! '$cli' info '$tmp/sn.ply' --json | grep -q '\"bbox_min\": \[0, 0, 0\]'"
 check "--region feature:K, inverted: smoothing that keeps the features where they are" bash -c \
     "'$cli' select '$tmp/cs.ply' '$tmp/keep.ply' --region feature:0 --invert && \
      '$cli' smooth '$tmp/cs.ply' '$tmp/sm.ply' --region 'file:$tmp/keep.ply' --iterations 5 && \
