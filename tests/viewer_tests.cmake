@@ -58,7 +58,7 @@ if(TARGET trilab)
                      --frames 3
              WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/viewer_click)
     set_tests_properties(viewer_click_record PROPERTIES PASS_REGULAR_EXPRESSION
-                         "click Record/Record: queued StartRecording\n.*click Morph/Before: pressed.*click File/Save as: pressed.*recorded 60 frames in trilab-frames")
+                         "click Record/Record: queued StartRecording\n.*click Morph/Before: queued ShowMorphAt.*click File/Save as: pressed.*recorded 60 frames in trilab-frames")
     add_test(NAME viewer_click_missing
              COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --click "Fairing/Nope" --frames 2)
     set_tests_properties(viewer_click_missing PROPERTIES WILL_FAIL TRUE)

@@ -4,6 +4,7 @@
 #include "app/cli/operation_command.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <map>
 #include <ostream>
@@ -15,6 +16,9 @@
 #include "app/cli/spectrum_filter_command.h"
 #include "app/ops/operation.h"
 #include "app/ops/spectrum_op.h"
+#include "core/algorithms/hole_filling.h"
+#include "core/algorithms/selection.h"
+#include "core/errors.h"
 #include "core/io/file_util.h"
 
 namespace trilab::cli {
@@ -94,6 +98,66 @@ void finish_features(const OperationResult& result, const std::map<std::string, 
     std::printf("%s\n", line.c_str());
 }
 
+/// fill-holes' --loops I,J: the indices, checked as text (before any file is read).
+std::vector<long long> parse_loop_list(const std::string& text) {
+    std::vector<long long> loops;
+    std::size_t start = 0;
+    while (start <= text.size()) {
+        const std::size_t comma = std::min(text.find(',', start), text.size());
+        const std::string item = text.substr(start, comma - start);
+        long long value = -1;
+        const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), value);
+        if (item.empty() || ec != std::errc() || end != item.data() + item.size() || value < 0)
+            throw InvalidArgument(
+                "--loops: expected loop indices I,J,... (whole numbers >= 0, "
+                "as the --json report's \"holes\" numbers them), got '" +
+                text + "'");
+        loops.push_back(value);
+        start = comma + 1;
+    }
+    return loops;
+}
+
+/// The rims of the --loops as a region (weight 1), checked against the mesh's loops.
+bool fill_holes_region(const HalfedgeMesh* mesh, const std::map<std::string, std::string>& values,
+                       Selection& region) {
+    const auto given = values.find("--loops");
+    if (given == values.end()) return false;
+    const std::vector<long long> loops = parse_loop_list(given->second);
+    if (!mesh) return true;
+    const std::vector<BoundaryLoop> all = boundary_loops(*mesh);
+    region = empty_selection(*mesh);
+    for (long long i : loops) {
+        if (std::size_t(i) >= all.size())
+            throw InvalidArgument(
+                "--loops: loop " + std::to_string(i) + " is past the end (the mesh has " +
+                std::to_string(all.size()) + " boundary loop" + (all.size() == 1 ? "" : "s") +
+                (all.empty() ? std::string() : ", 0 to " + std::to_string(all.size() - 1)) + ")");
+        for (Vertex v : all[std::size_t(i)].vertices) region[v.idx()] = 1.0f;
+    }
+    return true;
+}
+
+/// fill-holes' JSON "holes": every loop with its size and what became of it.
+void finish_fill_holes(const OperationResult& result, const std::map<std::string, std::string>&,
+                       JsonObject* json) {
+    const HoleFillingReport* r = report_of<HoleFillingReport>(result);
+    if (!json || !r) return;
+    std::string holes = "[";
+    for (std::size_t i = 0; i < r->loop_edges.size(); ++i) {
+        JsonObject hole;
+        hole.add("loop", i).add("edges", r->loop_edges[i]);
+        const bool filled = std::find(r->filled.begin(), r->filled.end(), i) != r->filled.end();
+        std::string reason;
+        for (const RefusedLoop& f : r->refused)
+            if (f.loop == i) reason = f.reason;
+        hole.add("status", filled ? "filled" : reason.empty() ? "not chosen" : "refused");
+        if (!reason.empty()) hole.add("reason", reason);
+        holes += (i ? ", " : "") + hole.str();
+    }
+    json->raw("holes", holes + "]");
+}
+
 }  // namespace
 
 CommandExtras command_extras(const std::string& name) {
@@ -103,9 +167,17 @@ CommandExtras command_extras(const std::string& name) {
             std::string("  --eigenvalues FILE (write the K eigenvalues, one per line, ascending, "
                         "non-negative)\n") +
                 kSpectrumFilterHelp,
-            finish_spectrum};
-    if (name == "subdivide") return CommandExtras{{}, "", finish_subdivide};
-    if (name == "features") return CommandExtras{{}, "", finish_features};
+            finish_spectrum,
+            {}};
+    if (name == "subdivide") return CommandExtras{{}, "", finish_subdivide, {}};
+    if (name == "fill-holes")
+        return CommandExtras{{"--loops"},
+                             "  --loops I,J,... (fill only these loops, numbered by their "
+                             "smallest vertex index as the --json \"holes\" list them; "
+                             "not with --region)\n",
+                             finish_fill_holes,
+                             fill_holes_region};
+    if (name == "features") return CommandExtras{{}, "", finish_features, {}};
     return {};
 }
 

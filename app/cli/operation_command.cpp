@@ -62,7 +62,7 @@ OperationArgs parse_args(const OperationDef& def, const std::vector<std::string>
             a.keep_partial = reader.flag();
         } else if (is_own_option(extras, s)) {
             const std::string value = reader.value();
-            if (value.empty()) throw InvalidArgument(s + ": missing FILE");
+            if (value.empty()) throw InvalidArgument(s + ": missing value");
             a.own[s] = value;
         } else if (reader.is_option()) {
             // An operation option: it and its value go to the operation, which checks both.
@@ -190,6 +190,13 @@ int run_operation_command(const std::string& name, const std::vector<std::string
                               " does not work on a region yet (it acts on the whole mesh)");
     if (a.files.size() != 2)
         throw InvalidArgument("expected IN and OUT files (see `trilab-cli " + name + " --help`)");
+    Selection own_region;
+    const bool has_own_region = extras.region && extras.region(nullptr, a.own, own_region);
+    if (has_own_region && a.region)
+        throw InvalidArgument(
+            "--region: give either --region or the command's own choice of "
+            "region (" +
+            extras.value_options.front() + "), not both");
 
     LoadedMesh loaded = read_mesh(a.files[0]);  // not timed
     NullProgress progress;
@@ -200,6 +207,10 @@ int run_operation_command(const std::string& name, const std::vector<std::string
     Selection region;                    // not timed, like the reading
     if (a.region) {
         region = make_region(loaded.mesh, *a.region);
+        settings.region = &region;
+    }
+    if (has_own_region) {
+        extras.region(&loaded.mesh, a.own, region);
         settings.region = &region;
     }
     const OperationResult result = run_operation(op, loaded.mesh, progress, settings);

@@ -17,6 +17,7 @@
 
 #include "app/cli/json_writer.h"
 #include "app/ops/operation.h"
+#include "core/algorithms/selection.h"
 
 namespace trilab::cli {
 
@@ -31,6 +32,13 @@ struct CommandExtras {
     std::function<void(const OperationResult&, const std::map<std::string, std::string>& values,
                        JsonObject* json)>
         finish;
+    /// Turns the command's own options into the run's region (fill-holes' --loops I,J: the
+    /// rims of those loops), or returns false when they name none. Called twice: before any
+    /// file is read with `mesh` null (to check the text), then with the loaded mesh (to make
+    /// the region, checked against it). Throws InvalidArgument naming the option.
+    std::function<bool(const HalfedgeMesh* mesh, const std::map<std::string, std::string>& values,
+                       Selection& region)>
+        region;
 };
 
 /// The extras of command `name` (spectrum's eigenvalues, subdivide's levels; none for others).

@@ -3,11 +3,14 @@
 // they queue commands, and the viewer executes them in one place after the UI is drawn.
 #include <cstddef>
 #include <iterator>
+#include <memory>
 #include <string>
 #include <variant>
 #include <vector>
 
 #include "app/ops/operation.h"
+#include "core/algorithms/coloring.h"
+#include "core/algorithms/morph.h"
 
 namespace trilab::viewer {
 
@@ -160,13 +163,43 @@ struct ClearPicks {};
 /// Inspector: make the first pick's point the centre of rotation.
 struct CentreOnPick {};
 
+/// The current entry's morph on the session's clock (the Morph section, Space): play (from
+/// where the playback is) or stop.
+struct PlayMorph {
+    bool play = true;
+};
+/// Shows the current entry's morph at `t` in [0, 1] (0: before, 1: after); stops playback.
+struct ShowMorphAt {
+    double t = 1.0;
+};
+/// The morph animation's settings (the Morph section).
+struct SetMorphAnimation {
+    double duration = 2.0;  ///< seconds for one pass (> 0)
+    Easing easing = Easing::SmoothStep;
+    Playback playback = Playback::PingPong;
+};
+/// Colours the current state by `coloring` on a job (the window's colouring of a large mesh;
+/// Session::coloring_result() when it ends). `reference`: the smoothing distance's positions.
+struct ComputeColoring {
+    VertexColoring coloring = VertexColoring::None;
+    ColoringOptions options;
+    std::shared_ptr<const std::vector<Point>> reference;
+};
+/// The error popup has shown the current notice (it opens once per error).
+struct NoticeShown {};
+/// The transfer curve's "Show the diverging run" (Session::show_diverging_run).
+struct ShowDivergingRun {
+    Operation op;
+};
+
 using Command = std::variant<
     LoadFile, SaveFile, RevertFile, SaveSession, OpenSession, RecoverJournal, LoadTexture, FitView,
     ResetView, Undo, Redo, JumpTo, RunOperation, PreviewOperation, ApplyOperation, CancelPreview,
     BuildLevelOfDetail, ShowLevelOfDetail, ApplyLevelOfDetail, Decompose, PreviewBand, CommitBand,
     RestoreDecomposed, UpdateColoring, ProjectTexCoords, TakeScreenshot, PrintInfo, StartRecording,
     CancelRecording, CancelJob, Quit, SaveAndContinue, SaveAsAndContinue, ClearPicks, CentreOnPick,
-    SetSelection, SelectSpec, SelectAtPick, SelectThreshold, EditSelection, LoadFigure>;
+    SetSelection, SelectSpec, SelectAtPick, SelectThreshold, EditSelection, LoadFigure, PlayMorph,
+    ShowMorphAt, SetMorphAnimation, ShowDivergingRun, NoticeShown, ComputeColoring>;
 using CommandQueue = std::vector<Command>;
 
 /// The command's type name ("StartRecording"), for logs and scripted clicks.
@@ -211,7 +244,13 @@ inline const char* command_name(const Command& command) {
                                              "SelectAtPick",
                                              "SelectThreshold",
                                              "EditSelection",
-                                             "LoadFigure"};
+                                             "LoadFigure",
+                                             "PlayMorph",
+                                             "ShowMorphAt",
+                                             "SetMorphAnimation",
+                                             "ShowDivergingRun",
+                                             "NoticeShown",
+                                             "ComputeColoring"};
     static_assert(std::size(kNames) == std::variant_size_v<Command>, "a name per command");
     return kNames[command.index()];
 }

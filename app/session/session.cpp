@@ -68,6 +68,10 @@ void Session::notify_error(const std::string& text) {
     notice_ = Notice{Notice::Level::Error, text, {}, true};
 }
 
+void Session::notify(Notice notice) {
+    notice_ = std::move(notice);
+}
+
 void Session::busy_error() {
     notify_error("busy: wait for \"" + jobs_.name() + "\" or cancel it");
 }
@@ -162,6 +166,7 @@ void Session::show_document() {
 
 void Session::execute(const Command& command) {
     if (execute_selection(command)) return;
+    if (execute_morph(command)) return;
     if (auto* c = std::get_if<LoadFile>(&command)) {
         clear_preview();
         if (is_session_path(c->path))
@@ -551,6 +556,50 @@ void Session::update() {
         return;
     }
     update_morph();
+}
+
+bool Session::execute_morph(const Command& command) {
+    if (auto* play = std::get_if<PlayMorph>(&command)) {
+        if (play->play && !morph_.playing) {
+            // A pass from the start, on the session's clock.
+            morph_.playing = true;
+            morph_.play_start = now();
+        } else if (!play->play) {
+            morph_.playing = false;
+        }
+    } else if (auto* at = std::get_if<ShowMorphAt>(&command)) {
+        morph_.t = std::isfinite(at->t) ? std::clamp(at->t, 0.0, 1.0) : 1.0;
+        morph_.playing = false;
+    } else if (auto* a = std::get_if<SetMorphAnimation>(&command)) {
+        if (std::isfinite(a->duration) && a->duration > 0) morph_.duration = a->duration;
+        morph_.easing = a->easing;
+        morph_.playback = a->playback;
+    } else if (auto* diverging = std::get_if<ShowDivergingRun>(&command)) {
+        if (!busy()) show_diverging_run(diverging->op);
+    } else if (std::holds_alternative<NoticeShown>(command)) {
+        notice_.popup_pending = false;
+    } else if (auto* c = std::get_if<ComputeColoring>(&command)) {
+        if (jobs_.busy()) {
+            busy_error();
+            return true;
+        }
+        const HalfedgeMesh snapshot = mesh();  // copy-on-write: the job's own
+        jobs_.start(std::string("Colouring by ") + coloring_name(c->coloring),
+                    [this, c = *c, snapshot](Progress&) {
+                        auto result = std::make_shared<ColoringResult>();
+                        result->coloring = c.coloring;
+                        result->state = snapshot.revision();
+                        result->colors =
+                            color_vertices(snapshot, c.coloring, c.options, c.reference.get());
+                        return JobRunner::Finish([this, result] {
+                            result->id = (coloring_result_ ? coloring_result_->id : 0) + 1;
+                            coloring_result_ = result;
+                        });
+                    });
+    } else {
+        return false;
+    }
+    return true;
 }
 
 void Session::update_morph() {

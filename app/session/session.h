@@ -174,10 +174,19 @@ public:
     const Shown& shown() const { return shown_; }
     Log& log() { return log_; }
     const Log& log() const { return log_; }
-    Notice& notice() { return notice_; }
+    /// What the status bar shows (notify(), notify_error(); NoticeShown after the popup).
+    const Notice& notice() const { return notice_; }
     const JobRunner& jobs() const { return jobs_; }
-    JobRunner& jobs() { return jobs_; }
-    MorphState& morph() { return morph_; }
+    /// The colours of the last ComputeColoring job that ended (null: none yet), with the
+    /// colouring and the document state they are of; `id` grows with each result.
+    struct ColoringResult {
+        std::uint64_t id = 0;
+        VertexColoring coloring = VertexColoring::None;
+        HalfedgeMesh::Revision state;
+        VertexColors colors;
+    };
+    const ColoringResult* coloring_result() const { return coloring_result_.get(); }
+    /// The morph playback (changed by PlayMorph, ShowMorphAt and SetMorphAnimation).
     const MorphState& morph() const { return morph_; }
     FrequencyDocument& frequency() { return document_.frequency; }
     bool busy() const { return jobs_.busy(); }
@@ -309,7 +318,10 @@ public:
     std::vector<Point> reference_positions() const;
     /// Whether the current history entry moves any vertex (for the morph controls).
     bool entry_moves() const;
+    /// An error in the status bar, the log and the popup.
     void notify_error(const std::string& text);
+    /// Replaces the status bar's notice (Notice{}: none).
+    void notify(Notice notice);
     /// The history's memory budget in bytes (History::set_budget).
     void set_history_budget(std::size_t bytes) { document_.history.set_budget(bytes); }
 
@@ -406,6 +418,9 @@ private:
     void clear_level_of_detail(bool forget);
 
     void update_morph();
+    /// Carries out a morph command (PlayMorph, ShowMorphAt, SetMorphAnimation),
+    /// ShowDivergingRun, NoticeShown or ComputeColoring; false: not one.
+    bool execute_morph(const Command& command);
     /// Carries out a selection command (session_selection.cpp); false: not one.
     bool execute_selection(const Command& command);
     /// `fresh` combined with the document's selection as `mode` says.
@@ -451,6 +466,7 @@ private:
     HalfedgeMesh::Revision morph_topology_;  ///< the connectivity of the morph frame shown
     std::unique_ptr<Journal> journal_;       ///< records every history change (crash recovery)
     std::vector<double> coloring_values_;    ///< the colouring's values (SelectThreshold)
+    std::shared_ptr<const ColoringResult> coloring_result_;
     // The reference's figures (session_figures.cpp).
     std::string figure_;           ///< the figure loaded last
     HalfedgeMesh diverging_mesh_;  ///< the diverging run shown (shown_.mesh points here)

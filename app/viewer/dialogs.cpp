@@ -198,10 +198,10 @@ void recovery_popup(RecoveryPrompt& prompt, CommandQueue& commands) {
     ImGui::EndPopup();
 }
 
-void error_popup(Notice& notice) {
+void error_popup(const Notice& notice, CommandQueue& commands) {
     if (notice.popup_pending) {
         ImGui::OpenPopup(kErrorPopupTitle);
-        notice.popup_pending = false;
+        commands.push_back(NoticeShown{});
     }
     if (!begin_modal_dialog(kErrorPopupTitle, ImGuiWindowFlags_AlwaysAutoResize)) return;
     ImGui::PushTextWrapPos(

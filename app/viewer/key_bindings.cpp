@@ -181,10 +181,7 @@ void run_key_action(KeyAction action, KeyActionTargets& t) {
             panels.record.open = !panels.record.open;
             break;
         case KeyAction::PlayMorph:
-            if (t.has_entry && t.morph.moves) {
-                t.morph.playing = !t.morph.playing;
-                t.morph.play_start = t.now;
-            }
+            if (t.has_entry && t.morph.moves) t.commands.push_back(PlayMorph{!t.morph.playing});
             break;
         case KeyAction::OpenFile:
             if (!t.busy)

@@ -78,7 +78,7 @@ struct KeyActionTargets {
     PanelState& panels;
     RenderStyle& style;
     ViewSettings& settings;
-    MorphState& morph;
+    const MorphState& morph;  ///< the session's (Space queues PlayMorph)
     CommandQueue& commands;
     Log& log;
     std::string document_path;       ///< where Open and Save as start
@@ -86,7 +86,6 @@ struct KeyActionTargets {
     bool has_entry = false;          ///< the history is past its first state (a morph to play)
     bool has_texcoords = false;      ///< the shown mesh has texture coordinates
     bool preview_requested = false;  ///< an operation preview is up (Esc cancels it)
-    double now = 0.0;                ///< the time a morph playback starts at
 };
 
 /// Carries out `action` on the targets (a command queued, a panel or style setting changed).

@@ -301,7 +301,6 @@ struct SidebarContext {
     const History* history = nullptr;
     bool busy = false;        ///< a job runs: the Apply buttons wait
     bool closed = false;      ///< the mesh has no boundary (volume preservation applies)
-    double now = 0.0;         ///< glfw time, where a morph playback starts
     bool can_record = false;  ///< the current entry has a morph to record
     /// The mesh has coincident boundary edges (unwelded seams): Sqrt3 would leave creases
     /// along them, and the Subdivision section offers the weld.
@@ -329,7 +328,7 @@ void selection_section(PanelState& panels, const SidebarContext& context, Comman
 /// Every tool section of the sidebar in order (Tools, Fairing, Frequency decomposition,
 /// Subdivision, Decimation, Morph, Record, Model information), each with its header and,
 /// when open, its body in an ID scope of its own; every section queues commands.
-void sidebar_sections(PanelState& panels, MorphState& morph, const SidebarContext& context,
+void sidebar_sections(PanelState& panels, const MorphState& morph, const SidebarContext& context,
                       CommandQueue& commands);
 
 /// The tool sections of the sidebar (each draws its header and, when open, its body).
@@ -352,8 +351,9 @@ void open_panels(PanelState& panels, const std::string& list);
 /// operation's summary, its parameters, Apply and the preview's Cancel.
 void tools_section(PanelState& panels, bool busy, CommandQueue& commands);
 /// The morph slider and the animation controls for the current history entry: the one place
-/// they are drawn.
-void morph_section(PanelState& panels, MorphState& morph, const History& history, double now);
+/// they are drawn; they queue PlayMorph, ShowMorphAt and SetMorphAnimation.
+void morph_section(PanelState& panels, const MorphState& morph, const History& history,
+                   CommandQueue& commands);
 /// Record; queues StartRecording / CancelRecording.
 void record_section(PanelState& panels, bool can_record, CommandQueue& commands);
 /// The Inspector: what the picks are and why (InspectorView), the measurement, the
@@ -408,6 +408,6 @@ void about_window(PanelState& panels);
 /// the next start).
 void recovery_popup(RecoveryPrompt& prompt, CommandQueue& commands);
 /// Modal popup showing an error notice once.
-void error_popup(Notice& notice);
+void error_popup(const Notice& notice, CommandQueue& commands);
 
 }  // namespace trilab::viewer

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "app/ops/spectrum_op.h"
 #include "app/viewer/key_bindings.h"
 #include "app/viewer/panel_helpers.h"
 #include "app/viewer/panels.h"
@@ -31,7 +32,7 @@ namespace trilab::viewer {
 using namespace ui;
 
 namespace {
-void morph_controls(MorphState& morph, const History& history, double now);
+void morph_controls(const MorphState& morph, const History& history, CommandQueue& commands);
 }  // namespace
 
 namespace {
@@ -159,10 +160,17 @@ void fairing_section(PanelState& panels, const SidebarContext& context, CommandQ
     ImGui::PushTextWrapPos(0.0f);
     ImGui::TextUnformatted("Transfer curve: what each frequency is multiplied by");
     ImGui::PopTextWrapPos();
-    if (transfer_plot(options_of<FairingOptions>(state.op), state.lens) && !context.busy)
-        commands.push_back(Decompose{parse_operation(
-            std::string("spectrum --k 100 --operator ") +
-            laplacian_operator_name(laplacian_of(options_of<FairingOptions>(state.op).op)))});
+    const TransferPlotRequest request =
+        transfer_plot(options_of<FairingOptions>(state.op), state.lens);
+    if (request == TransferPlotRequest::Decompose && !context.busy) {
+        // The lens's own decomposition: the 100 lowest frequencies of the panel's operator.
+        SpectrumOptions spectrum;
+        spectrum.k = 100;
+        spectrum.spectral.op = laplacian_of(options_of<FairingOptions>(state.op).op);
+        commands.push_back(Decompose{operation_of(spectrum)});
+    }
+    if (request == TransferPlotRequest::ShowDivergingRun && !context.busy)
+        commands.push_back(ShowDivergingRun{state.op});
     ImGui::Separator();
     morph_hint();
 }
@@ -287,7 +295,7 @@ void tools_section(PanelState& panels, bool busy, CommandQueue& commands) {
     }
 }
 
-void sidebar_sections(PanelState& panels, MorphState& morph, const SidebarContext& context,
+void sidebar_sections(PanelState& panels, const MorphState& morph, const SidebarContext& context,
                       CommandQueue& commands) {
     const FrequencyDocument no_decomposition;
     tools_section(panels, context.busy, commands);
@@ -297,7 +305,7 @@ void sidebar_sections(PanelState& panels, MorphState& morph, const SidebarContex
                      context.busy, commands);
     subdivision_section(panels, context, commands);
     decimation_section(panels, context, commands);
-    if (context.history) morph_section(panels, morph, *context.history, context.now);
+    if (context.history) morph_section(panels, morph, *context.history, commands);
     record_section(panels, context.can_record, commands);
     info_section(panels, context.info ? *context.info : std::vector<std::string>{});
     inspector_section(panels, context.inspector ? *context.inspector : InspectorView{}, commands);
@@ -308,7 +316,7 @@ void sidebar_sections(PanelState& panels, MorphState& morph, const SidebarContex
 
 namespace {
 /// The morph slider and animation controls for the current history entry.
-void morph_controls(MorphState& morph, const History& history, double now) {
+void morph_controls(const MorphState& morph, const History& history, CommandQueue& commands) {
     const std::size_t entry = history.current();
     if (entry == 0) {
         ImGui::TextDisabled("morph: the first state has nothing before it");
@@ -324,51 +332,53 @@ void morph_controls(MorphState& morph, const History& history, double now) {
     ImGui::PushTextWrapPos(0.0f);
     ImGui::Text("%s %s: before -> after", info.label.c_str(), info.parameters.c_str());
     ImGui::PopTextWrapPos();
+    // The morph is the session's: every control queues a command (one clock, one owner).
     float t = float(morph.t);
     ImGui::SetNextItemWidth(widget_width(16.0f, 0.0f));
-    if (ImGui::SliderFloat("##t", &t, 0.0f, 1.0f, "t = %.3f")) {
-        morph.t = t;
-        morph.playing = false;
-    }
+    if (ImGui::SliderFloat("##t", &t, 0.0f, 1.0f, "t = %.3f"))
+        commands.push_back(ShowMorphAt{double(t)});
     if (!morph.playing) {
-        if (button("Animate")) {
-            morph.playing = true;
-            morph.play_start = now;
-        }
+        if (button("Animate")) commands.push_back(PlayMorph{true});
     } else if (button("Stop")) {
-        morph.playing = false;
+        commands.push_back(PlayMorph{false});
     }
     ImGui::SameLine();
-    if (button("Before")) {
-        morph.t = 0.0;
-        morph.playing = false;
-    }
+    if (button("Before")) commands.push_back(ShowMorphAt{0.0});
     ImGui::SameLine();
-    if (button("After")) {
-        morph.t = 1.0;
-        morph.playing = false;
-    }
+    if (button("After")) commands.push_back(ShowMorphAt{1.0});
+    SetMorphAnimation animation{morph.duration, morph.easing, morph.playback};
+    bool changed = false;
     float duration = float(morph.duration);
     ImGui::SetNextItemWidth(widget_width(8.0f));
     if (ImGui::SliderFloat("duration", &duration, 0.2f, 20.0f, "%.1f s",
-                           ImGuiSliderFlags_Logarithmic))
-        morph.duration = duration;
+                           ImGuiSliderFlags_Logarithmic)) {
+        animation.duration = duration;
+        changed = true;
+    }
     const char* easings[] = {"linear", "smooth step", "ease in-out (cubic)"};
     int e = int(morph.easing);
     ImGui::SetNextItemWidth(widget_width(8.0f));
-    if (ImGui::Combo("easing", &e, easings, 3)) morph.easing = Easing(e);
+    if (ImGui::Combo("easing", &e, easings, 3)) {
+        animation.easing = Easing(e);
+        changed = true;
+    }
     const char* modes[] = {"once", "loop", "ping-pong"};
     int m = int(morph.playback);
     ImGui::SetNextItemWidth(widget_width(8.0f));
-    if (ImGui::Combo("playback", &m, modes, 3)) morph.playback = Playback(m);
+    if (ImGui::Combo("playback", &m, modes, 3)) {
+        animation.playback = Playback(m);
+        changed = true;
+    }
+    if (changed) commands.push_back(animation);
     if (info.steps.size() > 1) ImGui::TextDisabled("%zu steps, chained", info.steps.size());
 }
 }  // namespace
 
-void morph_section(PanelState& panels, MorphState& morph, const History& history, double now) {
+void morph_section(PanelState& panels, const MorphState& morph, const History& history,
+                   CommandQueue& commands) {
     SidebarSection section("Morph", panels.morph_open);
     if (!section) return;
-    morph_controls(morph, history, now);
+    morph_controls(morph, history, commands);
 }
 
 void record_section(PanelState& panels, bool can_record, CommandQueue& commands) {

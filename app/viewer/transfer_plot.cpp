@@ -78,7 +78,8 @@ double drawn_gain(const FairingOptions& o, double lambda) {
 /// mark while shown; otherwise its button, offered when the settings `diverge` on this mesh,
 /// drawn disabled elsewhere so that nothing below moves while a step is dragged across the
 /// limit).
-void figure_and_divergence(TransferView& view, bool diverges) {
+bool figure_and_divergence(const TransferView& view, bool diverges) {
+    bool pressed = false;
     if (!view.figure_note.empty()) {
         wrapped_disabled("%s", view.figure_note.c_str());
         note_widget("lens: figure", WidgetNote::Kind::Other, view.figure_note.c_str());
@@ -93,7 +94,7 @@ void figure_and_divergence(TransferView& view, bool diverges) {
         note_widget("lens: diverged", WidgetNote::Kind::Other, view.diverging_note.c_str());
     } else {
         if (!diverges) ImGui::BeginDisabled();
-        if (button("Show the diverging run")) view.show_diverging_pressed = true;
+        pressed = button("Show the diverging run");
         if (!diverges) ImGui::EndDisabled();
         if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
             ImGui::SetTooltip(
@@ -102,11 +103,12 @@ void figure_and_divergence(TransferView& view, bool diverges) {
                            "is applied (Esc returns)"
                          : "these settings are stable on this mesh: nothing diverges");
     }
+    return pressed;
 }
 
 }  // namespace
 
-bool transfer_plot(const FairingOptions& o, TransferView& view) {
+TransferPlotRequest transfer_plot(const FairingOptions& o, const TransferView& view) {
     const bool have_spectrum = !view.eigenvalues.empty();
     // The whole spectrum of the operator: up to the stability estimate's largest eigenvalue
     // (a partial decomposition holds only the lowest frequencies; they are ticked).
@@ -115,7 +117,7 @@ bool transfer_plot(const FairingOptions& o, TransferView& view) {
         lambda_hi = view.eigenvalues.back();
     if (!std::isfinite(lambda_hi) || lambda_hi <= 0) {
         ImGui::TextDisabled("transfer curve: waiting for the stability estimate");
-        return false;
+        return TransferPlotRequest::None;
     }
     double lambda_lo = lambda_hi * 1e-4;
     if (have_spectrum)
@@ -204,7 +206,8 @@ bool transfer_plot(const FairingOptions& o, TransferView& view) {
     describe_curve(draw, a0, a1, unstable, std::isfinite(unstable) ? x_of(unstable) : 0.0f,
                    lambda_lo, lambda_hi, have_spectrum);
     if (!view.measured_note.empty()) wrapped_disabled("%s", view.measured_note.c_str());
-    figure_and_divergence(view, std::isfinite(unstable) && unstable < lambda_hi);
+    const bool diverging =
+        figure_and_divergence(view, std::isfinite(unstable) && unstable < lambda_hi);
     bool decompose = false;
     if (!have_spectrum) {
         wrapped_disabled(view.decomposition_of_other_operator
@@ -218,7 +221,8 @@ bool transfer_plot(const FairingOptions& o, TransferView& view) {
                 "compute this operator's 100 lowest frequencies (a job), to draw "
                 "the curve at them and measure runs against it");
     }
-    return decompose;
+    if (diverging) return TransferPlotRequest::ShowDivergingRun;
+    return decompose ? TransferPlotRequest::Decompose : TransferPlotRequest::None;
 }
 
 }  // namespace trilab::viewer

@@ -32,16 +32,19 @@ struct TransferView {
     /// The diverging run on the screen (Session::show_diverging_run): its note, drawn in red
     /// instead of the button.
     std::string diverging_note;
-    /// Set by transfer_plot() when "Show the diverging run" was pressed (offered when the
-    /// settings are unstable on this mesh); the viewer takes it and clears it.
-    bool show_diverging_pressed = false;
+};
+
+/// What a press under the curve asks for.
+enum class TransferPlotRequest {
+    None,
+    Decompose,         ///< "Decompose for this operator"
+    ShowDivergingRun,  ///< "Show the diverging run" (offered when the settings are unstable)
 };
 
 /// Draws the curve for options `o` over `view` (test hook ids: "lens: area", "lens: unstable",
 /// "lens: pass band", "lens: grows", "lens: oscillates", "lens: measured", "lens: figure",
-/// "lens: diverged"). Returns true when the user asked for a decomposition of the panel's
-/// operator (the button under the curve); sets view.show_diverging_pressed when the user asked
-/// for the diverging run.
-bool transfer_plot(const FairingOptions& o, TransferView& view);
+/// "lens: diverged"). Returns what the user asked for with the buttons under the curve (a
+/// decomposition of the panel's operator, the diverging run), for the section to queue.
+TransferPlotRequest transfer_plot(const FairingOptions& o, const TransferView& view);
 
 }  // namespace trilab::viewer

@@ -13,53 +13,57 @@ namespace trilab::viewer {
 
 SessionExtras Viewer::session_extras() const {
     // The settings functions take references for both directions; writing only reads them.
-    Viewer& self = const_cast<Viewer&>(*this);
+    ViewerContext& self = const_cast<ViewerContext&>(context_);
+    MorphState morph = context_.session.morph();
     SessionExtras extras;
-    extras.viewer_settings =
-        viewer_settings_text({self.view_.camera, self.view_.style, self.view_.settings,
-                              self.panels_, self.session_.morph()});
-    extras.texture_path = texture_path_;
+    extras.viewer_settings = viewer_settings_text(
+        {self.view.camera, self.view.style, self.view.settings, self.panels, morph});
+    extras.texture_path = scene_->texture_path();
     return extras;
 }
 
 void Viewer::apply_session_extras(const SessionExtras& extras) {
-    for (const std::string& note : apply_viewer_settings(
-             extras.viewer_settings,
-             {view_.camera, view_.style, view_.settings, panels_, session_.morph()}))
-        session_.log().warning(note);
-    camera_fitted_ = false;  // the stored camera stays on resize
+    ViewState& view = context_.view;
+    Session& session = context_.session;
+    MorphState morph = session.morph();
+    for (const std::string& note :
+         apply_viewer_settings(extras.viewer_settings,
+                               {view.camera, view.style, view.settings, context_.panels, morph}))
+        session.log().warning(note);
+    session.execute(SetMorphAnimation{morph.duration, morph.easing, morph.playback});
+    view.fitted = false;                                       // the stored camera stays on resize
+    const bool checkerboard = view.settings.use_checkerboard;  // as the session stored it
     if (!extras.texture_path.empty()) {
         try {
-            texture_ = extras.texture_bytes.empty()
-                           ? read_image(extras.texture_path)
-                           : read_image_bytes(extras.texture_bytes, extras.texture_path);
-            texture_path_ = extras.texture_path;
+            scene_->set_texture_image(
+                extras.texture_bytes.empty()
+                    ? read_image(extras.texture_path)
+                    : read_image_bytes(extras.texture_bytes, extras.texture_path),
+                extras.texture_path);
+            view.settings.use_checkerboard = checkerboard;
         } catch (const std::exception& e) {
-            session_.log().warning(std::string("the session's texture: ") + e.what());
+            session.log().warning(std::string("the session's texture: ") + e.what());
         }
     }
-    update_texture();
-    view_.colors = VertexColors{};
-    renderer_->clear_vertex_colors();
-    shown_version_ = 0;
-    if (view_.settings.coloring != VertexColoring::None) update_coloring();
+    scene_->update_texture();
+    scene_->state_changed(session.document().area);  // the new colouring, uploaded again
 }
 
 void Viewer::start_recovery() {
     // Journals of viewers that are gone, looked for before this one's exists.
     const std::vector<OrphanJournal> orphans = find_orphan_journals();
-    session_.start_journal(JournalOptions{});
+    context_.session.start_journal(JournalOptions{});
     if (orphans.empty()) {
         if (options_.restore)
-            session_.log().warning("--restore: no crash journal in " +
-                                   default_recovery_directory());
+            context_.session.log().warning("--restore: no crash journal in " +
+                                           default_recovery_directory());
         return;
     }
     const OrphanJournal& newest = orphans.front();
     if (options_.restore) {
-        session_.log().info("--restore: restoring " + newest.path);
-        session_.open_session(newest.path, true);
-        initial_load_ended_ = false;  // --op waits for the restore
+        context_.session.log().info("--restore: restoring " + newest.path);
+        context_.session.open_session(newest.path, true);
+        script_->restore_started();  // --op waits for the restore
         return;
     }
     char when[64] = "";
@@ -70,26 +74,26 @@ void Viewer::start_recovery() {
     std::snprintf(description, sizeof(description), "%s (%.1f kB, written %s, process %u)",
                   newest.path.c_str(), double(newest.bytes) / 1024.0, when, newest.pid);
     if (options_.frames > 0) {  // scripted runs never ask
-        session_.log().info(std::string("a crash journal was found: ") + description +
-                            "; trilab --restore restores it");
+        context_.session.log().info(std::string("a crash journal was found: ") + description +
+                                    "; trilab --restore restores it");
         return;
     }
-    RecoveryPrompt& prompt = panels_.recovery;
+    RecoveryPrompt& prompt = context_.panels.recovery;
     prompt.open_requested = true;
     prompt.path = newest.path;
     prompt.description = description;
 }
 
 void Viewer::journal_settings() {
-    Journal* journal = session_.journal();
+    Journal* journal = context_.session.journal();
     if (!journal) return;
     const std::string warning = journal->take_warning();
     if (!warning.empty()) {  // once; the viewer goes on without a journal
-        session_.log().warning("crash journal: " + warning);
-        session_.notice() =
-            Notice{Notice::Level::Error, "crash journal stopped: " + warning, {}, false};
+        context_.session.log().warning("crash journal: " + warning);
+        context_.session.notify(
+            Notice{Notice::Level::Error, "crash journal stopped: " + warning, {}, false});
     }
-    const double now = session_.now();
+    const double now = context_.session.now();
     if (settings_journaled_at_ >= 0 && now - settings_journaled_at_ < 1.0) return;
     settings_journaled_at_ = now;
     std::string text = session_extras().viewer_settings;
@@ -101,13 +105,14 @@ void Viewer::journal_settings() {
 std::string Viewer::save_session_now() {
     try {
         SessionExtras extras = session_extras();
-        if (!extras.texture_path.empty()) extras.texture_bytes = read_file_bytes(texture_path_);
+        if (!extras.texture_path.empty())
+            extras.texture_bytes = read_file_bytes(scene_->texture_path());
         const SessionWriteReport report =
-            write_session(options_.save_session, session_.history().snapshot(), extras);
+            write_session(options_.save_session, context_.session.history().snapshot(), extras);
         char buf[160];
         std::snprintf(buf, sizeof(buf), " (%zu entries, %zu states, %zu bytes)", report.entries,
                       report.states, report.bytes);
-        session_.log().info("saved session " + options_.save_session + buf);
+        context_.session.log().info("saved session " + options_.save_session + buf);
         return "";
     } catch (const std::exception& e) {
         return e.what();

@@ -21,7 +21,7 @@ struct ViewerSettingsRefs {
     RenderStyle& style;
     ViewSettings& settings;
     PanelState& panels;
-    MorphState& morph;
+    MorphState& morph;  ///< a copy of the session's (SetMorphAnimation applies it)
 };
 
 /// One "key=value" line per setting ('\' and newlines in values escaped as \\ and \n).

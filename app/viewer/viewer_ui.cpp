@@ -43,8 +43,8 @@ using namespace tuning;
 
 void Viewer::handle_input() {
     const ImGuiIO& io = ImGui::GetIO();
-    Camera& camera = view_.camera;
-    const Rect& view = view_rect_;
+    Camera& camera = context_.view.camera;
+    const Rect& view = context_.view_rect;
     // Mouse input in the view's coordinates; drags count when they began in the view.
     const bool in_view = ImGui::IsMousePosValid() && io.MousePos.x >= view.x &&
                          io.MousePos.y >= view.y && io.MousePos.x < view.right() &&
@@ -53,7 +53,13 @@ void Viewer::handle_input() {
         ImGui::IsMouseClicked(ImGuiMouseButton_Middle))
         drag_in_view_ = in_view && !io.WantCaptureMouse;
     if (!io.WantCaptureMouse && ImGui::IsMousePosValid()) {
-        const glm::vec2 pos(io.MousePos.x - view.x, io.MousePos.y - view.y);
+        ViewMouse mouse;
+        mouse.pos = glm::vec2(io.MousePos.x - view.x, io.MousePos.y - view.y);
+        mouse.in_view = in_view;
+        mouse.drag_in_view = drag_in_view_;
+        mouse.ctrl = io.KeyCtrl;
+        mouse.alt = io.KeyAlt;
+        mouse.shift = io.KeyShift;
         const glm::vec2 delta(io.MouseDelta.x, io.MouseDelta.y);
         const bool moved = delta.x != 0.0f || delta.y != 0.0f;
         // A left click that does not drag picks (Ctrl: the second pick, measuring); the view
@@ -61,50 +67,54 @@ void Viewer::handle_input() {
         // so a click never turns it. A double click makes the picked point the centre of
         // rotation (Home fits the view).
         if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && drag_in_view_) {
-            press_pos_ = pos;
+            press_pos_ = mouse.pos;
             turning_ = false;
         }
-        // The Selection section's brush and lasso take Ctrl/Alt drags (viewer_selection.cpp).
-        const bool selecting = selection_input(pos, in_view);
-        if (selecting) {
-            // the stroke has the mouse: no pick, no turn
-        } else if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && drag_in_view_ && in_view &&
-                   !io.KeyShift && !turning_ && !ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left))
-            pick_at(pos, io.KeyCtrl);
-        if (selecting) {
-            // as above
-        } else if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && in_view && drag_in_view_) {
-            if (pick_at(pos, false)) commands_.push_back(CentreOnPick{});
+        const bool double_clicked = ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left);
+        mouse.clicked = ImGui::IsMouseReleased(ImGuiMouseButton_Left) && drag_in_view_ && in_view &&
+                        !turning_ && !double_clicked;
+        mouse.double_clicked = double_clicked && in_view && drag_in_view_;
+        // The tools in turn (the selection's brush and lasso take Ctrl/Alt drags, a click
+        // picks) until one has the mouse; then the view does not turn.
+        bool taken = false;
+        for (const auto& tool : tools_.all)
+            if (tool->mouse(mouse)) {
+                taken = true;
+                break;
+            }
+        const glm::vec2& pos = mouse.pos;
+        if (taken || mouse.double_clicked) {
+            // the tool has the mouse, or a double click centred the view
         } else if (moved && drag_in_view_ && ImGui::IsMouseDown(ImGuiMouseButton_Left) &&
                    !io.KeyShift) {
             if (turning_) {
                 camera.rotate(pos - delta, pos);
-                camera_fitted_ = false;
+                context_.view.fitted = false;
             } else if (glm::length(pos - press_pos_) > kClickSlopPixels) {
                 turning_ = true;
                 camera.rotate(press_pos_, pos);
-                camera_fitted_ = false;
+                context_.view.fitted = false;
             }
         } else if (moved && drag_in_view_ &&
                    (ImGui::IsMouseDown(ImGuiMouseButton_Middle) ||
                     (ImGui::IsMouseDown(ImGuiMouseButton_Left) && io.KeyShift))) {
             camera.pan(delta);
-            camera_fitted_ = false;
+            context_.view.fitted = false;
         }
         if (io.MouseWheel != 0.0f && in_view) {
             camera.zoom(io.MouseWheel);
-            camera_fitted_ = false;
+            context_.view.fitted = false;
         }
     }
 
-    scripted_brush();  // --brush: one step per frame
+    script_->brush_step();  // --brush: one step per frame
 
     // Files dropped on the window: images become the texture, anything else is opened.
     for (const std::string& path : dropped_paths_) {
         const std::vector<std::string> images = supported_image_extensions();
         const bool image =
             std::find(images.begin(), images.end(), file_extension(path)) != images.end();
-        commands_.push_back(image ? Command(LoadTexture{path}) : Command(LoadFile{path}));
+        context_.commands.push_back(image ? Command(LoadTexture{path}) : Command(LoadFile{path}));
     }
     dropped_paths_.clear();
 
@@ -112,7 +122,7 @@ void Viewer::handle_input() {
     if (!io.WantCaptureMouse && in_view && ImGui::IsMouseReleased(ImGuiMouseButton_Right) &&
         ImGui::GetMouseDragDelta(ImGuiMouseButton_Right).x == 0.0f &&
         ImGui::GetMouseDragDelta(ImGuiMouseButton_Right).y == 0.0f)
-        panels_.context_menu_requested = true;
+        context_.panels.context_menu_requested = true;
 
     std::vector<KeyPress> presses;
     presses.swap(key_presses_);
@@ -121,22 +131,25 @@ void Viewer::handle_input() {
     const KeyboardFocus focus = io.WantCaptureKeyboard || io.WantTextInput
                                     ? KeyboardFocus::Widget
                                     : KeyboardFocus::Bindings;
-    KeyActionTargets targets{panels_,
-                             view_.style,
-                             view_.settings,
-                             session_.morph(),
-                             commands_,
-                             session_.log(),
-                             session_.document().path,
-                             session_.jobs().busy(),
-                             session_.history().current() > 0,
-                             renderer_->has_texcoords(),
-                             session_.preview_requested().has_value(),
-                             glfwGetTime()};
+    KeyActionTargets targets{context_.panels,
+                             context_.view.style,
+                             context_.view.settings,
+                             context_.session.morph(),
+                             context_.commands,
+                             context_.session.log(),
+                             context_.session.document().path,
+                             context_.session.jobs().busy(),
+                             context_.session.history().current() > 0,
+                             scene_->exact().has_texcoords(),
+                             context_.session.preview_requested().has_value()};
     for (const KeyPress& press : presses) dispatch_key(press.key, press.mods, targets, focus);
 }
 
 void Viewer::draw_ui() {
+    Session& session_ = context_.session;
+    ViewState& view_ = context_.view;
+    PanelState& panels_ = context_.panels;
+    CommandQueue& commands_ = context_.commands;
     MenuContext context;
     context.has_file = !session_.document().path.empty();
     context.busy = session_.jobs().busy();
@@ -145,12 +158,12 @@ void Viewer::draw_ui() {
     context.document_path = session_.document().path;
     context.recent_files = &recent_.paths();
     RenderContext render;
-    render.has_texcoords = renderer_->has_texcoords();
-    render.has_loaded_texture = !texture_.empty();
+    render.has_texcoords = scene_->exact().has_texcoords();
+    render.has_loaded_texture = !scene_->texture_image().empty();
     const bool checker = view_.settings.use_checkerboard;
     menu_bar(view_.style, view_.settings, panels_, context, render, commands_);
     context_menu(view_.style, view_.settings, panels_, render, commands_);
-    if (checker != view_.settings.use_checkerboard) update_texture();
+    if (checker != view_.settings.use_checkerboard) scene_->update_texture();
 
     // The fixed regions (layout.h). A region the user resizes this frame changes the ones
     // drawn after it, so the layout is computed again after each resizable region.
@@ -169,7 +182,7 @@ void Viewer::draw_ui() {
 
     StatusInfo status;
     // What is on the screen: a preview, a level of detail or a morph frame has its own counts.
-    std::tie(status.n_vertices, status.n_faces) = shown_counts();
+    std::tie(status.n_vertices, status.n_faces) = scene_->shown_counts();
     status.file_name = session_.document().name;
     status.frame_ms = frame_ms();
     // A preview's progress shows only when it takes a while.
@@ -185,8 +198,7 @@ void Viewer::draw_ui() {
     }
     status_bar(status, session_.notice(), show_job ? &job : nullptr, layout.status, commands_);
 
-    update_panels();
-    update_collapsing_edges();
+    for (const auto& tool : tools_.all) tool->update();
     if (panels_.sidebar_open && begin_sidebar(layout.sidebar, sizes)) {
         const std::vector<std::string> info =
             panels_.info_open ? scene_info() : std::vector<std::string>{};
@@ -194,16 +206,12 @@ void Viewer::draw_ui() {
         sidebar.history = &session_.history();
         sidebar.busy = session_.jobs().busy();
         sidebar.closed = session_.document().closed;
-        sidebar.now = glfwGetTime();
         sidebar.can_record =
             session_.history().current() > 0 && session_.morph().moves && !session_.jobs().busy();
         sidebar.open_seams = session_.document().open_seams;
-        sidebar.collapsing_edges =
-            panels_.decimation.show_collapsing_edges ? collapse_lines_->n_segments() : 0;
         sidebar.frequency = &session_.document().frequency;
         sidebar.info = &info;
-        sidebar.inspector = &inspector_;
-        selection_context(sidebar);
+        for (const auto& tool : tools_.all) tool->describe(sidebar);
         sidebar_sections(panels_, session_.morph(), sidebar, commands_);
     }
     if (panels_.sidebar_open) end_region();
@@ -224,94 +232,26 @@ void Viewer::draw_ui() {
         sizes.legend_height = slot.height;
     }
     layout = compute_layout(in, sizes);
-    const bool resized = layout.view.w != view_rect_.w || layout.view.h != view_rect_.h;
-    view_rect_ = layout.view;
-    view_.camera.set_viewport(std::max(view_rect_.w, 1.0f), std::max(view_rect_.h, 1.0f));
+    Rect& view_rect = context_.view_rect;
+    const bool resized = layout.view.w != view_rect.w || layout.view.h != view_rect.h;
+    view_rect = layout.view;
+    view_.camera.set_viewport(std::max(view_rect.w, 1.0f), std::max(view_rect.h, 1.0f));
     // A model framed by Fit stays framed when the view changes size, until the user moves it.
-    if (resized && camera_fitted_) view_.camera.fit_sphere(fit_center_, fit_radius_);
+    if (resized && view_.fitted) view_.camera.fit_sphere(view_.fit_center, view_.fit_radius);
 
     // Dialogs float over the view.
     screenshot_dialog(panels_.screenshot, commands_);
     help_window(panels_);
     about_window(panels_);
     file_browser(panels_.file_browser, commands_);
-    error_popup(session_.notice());
+    error_popup(session_.notice(), commands_);
     unsaved_changes_popup(panels_.unsaved, commands_);
     recovery_popup(panels_.recovery, commands_);
 }
 
-void Viewer::update_panels() {
-    // The operation panels: their previews (Cancel shows), and whether they stay live.
-    const std::optional<Operation>& requested = session_.preview_requested();
-    for (OperationPanelState* panel : operation_panels()) {
-        panel->previewing = session_.previewing(panel->op);
-        if (!requested || requested->def != panel->op.def) continue;
-        const double ms = session_.last_preview_ms();
-        if (ms < 0 || ms == panel->latency_ms || sweep_.active) continue;
-        panel->latency_ms = ms;
-        note_preview_latency(*panel, ms);
-    }
-    update_stable_step();
-    update_lens();
-    update_region_notes();
-    update_selection();
-    // Decimation's level of detail.
-    DecimationPanelState& d = panels_.decimation;
-    d.lod_ready = session_.has_level_of_detail();
-    d.lod_building = session_.level_building();
-    d.lod_note = session_.level_note();
-    if (!d.lod_ready) d.lod_percent = 100.0f;
-}
-
-void Viewer::note_preview_latency(OperationPanelState& panel, double ms) {
-    constexpr double kLiveBudgetMs = 150.0;  ///< previews slower than this wait for the release
-    char buf[160];
-    panel.live = ms <= kLiveBudgetMs;
-    if (panel.live)
-        std::snprintf(buf, sizeof buf, "preview %.0f ms", ms);
-    else
-        std::snprintf(buf, sizeof buf,
-                      "preview %.0f ms: over the %.0f ms budget, previews when a drag ends", ms,
-                      kLiveBudgetMs);
-    panel.preview_note = buf;
-}
-
-void Viewer::update_stable_step() {
-    FairingPanelState& f = panels_.fairing;
-    if (!f.open) return;
-    const int op = int(options_of<FairingOptions>(f.op).op);
-    const HalfedgeMesh::Revision state = session_.mesh().revision();
-    // A preview of this state reports it (any size); small meshes get it at once.
-    const OperationResult* preview = session_.preview_result();
-    const std::optional<Operation>& requested = session_.preview_requested();
-    if (preview && requested && is_operation<FairingOptions>(*requested) &&
-        int(options_of<FairingOptions>(*requested).op) == op) {
-        if (const SmoothReport* r = report_of<SmoothReport>(*preview);
-            r && std::isfinite(r->max_stable_step))
-            f.max_stable_step = r->max_stable_step;
-        f.stable_step_state = state;
-        f.stable_step_operator = op;
-        return;
-    }
-    if (f.stable_step_state == state && f.stable_step_operator == op) return;
-    f.stable_step_state = state;
-    f.stable_step_operator = op;
-    f.max_stable_step = std::numeric_limits<double>::quiet_NaN();
-    constexpr std::size_t kAtOnceVertices = 100000;  // a few ms to tens of ms
-    if (session_.mesh().n_vertices() <= kAtOnceVertices) {
-        try {
-            const FairingOperator fo = op == int(FairingOperator::Taubin)
-                                           ? FairingOperator::Umbrella
-                                           : FairingOperator(op);
-            f.max_stable_step = max_stable_explicit_step(session_.mesh(), fo);
-        } catch (const std::exception& e) {
-            session_.log().warning(std::string("stable step: ") + e.what());
-        }
-    }
-}
-
 std::vector<std::string> Viewer::scene_info() const {
-    std::vector<std::string> lines = session_.document().info;
+    const ViewState& view_ = context_.view;
+    std::vector<std::string> lines = context_.session.document().info;
     const glm::vec3 eye = glm::vec3(glm::inverse(view_.camera.view())[3]);
     char buf[200];
     std::snprintf(buf, sizeof(buf), "camera at (%.3g, %.3g, %.3g), frame %.1f ms", eye.x, eye.y,
@@ -325,40 +265,62 @@ std::vector<std::string> Viewer::scene_info() const {
                       view_.colors.range.min, view_.colors.range.max);
         lines.push_back(buf);
     }
-    if (!texture_.empty())
-        lines.push_back("texture " + std::to_string(texture_.width) + " x " +
-                        std::to_string(texture_.height));
+    if (const Image& texture = scene_->texture_image(); !texture.empty())
+        lines.push_back("texture " + std::to_string(texture.width) + " x " +
+                        std::to_string(texture.height));
     return lines;
-}
-
-std::pair<std::size_t, std::size_t> Viewer::shown_counts() const {
-    const Shown& shown = session_.shown();
-    if (shown.kind == Shown::Kind::Level)
-        return {shown.level->vertices(), renderer_->n_triangles()};
-    return {shown.mesh->n_vertices(), shown.mesh->n_faces()};
-}
-
-std::vector<OperationPanelState*> Viewer::operation_panels() {
-    std::vector<OperationPanelState*> panels = {&panels_.subdivision, &panels_.fairing,
-                                                &panels_.decimation};
-    for (OperationPanelState& tool : panels_.tools) panels.push_back(&tool);
-    return panels;
 }
 
 bool Viewer::confirm_discard(bool quitting, const std::string& path) {
     // Unchanged documents never ask; scripted runs (--frames) only when they test the
     // close button (--close-after).
-    if (!session_.document().unsaved || (options_.frames > 0 && options_.close_after == 0))
+    if (!context_.session.document().unsaved || (options_.frames > 0 && options_.close_after == 0))
         return true;
-    session_.log().info(quitting ? "unsaved changes: asking before quitting"
-                                 : "unsaved changes: asking before opening " + path);
-    UnsavedPrompt& prompt = panels_.unsaved;
+    context_.session.log().info(quitting ? "unsaved changes: asking before quitting"
+                                         : "unsaved changes: asking before opening " + path);
+    UnsavedPrompt& prompt = context_.panels.unsaved;
     prompt.open_requested = true;
     prompt.quitting = quitting;
     prompt.path = path;
-    prompt.document_path = session_.document().path;
-    active_frames_ = std::max(active_frames_, kFramesAfterInput);
+    prompt.document_path = context_.session.document().path;
+    context_.keep_drawing(kFramesAfterInput);
     return false;
+}
+
+void Viewer::reset_view() {
+    ViewState& view_ = context_.view;
+    const UpAxis up = view_.settings.up;
+    view_.camera.reset_rotation(up);
+    fit_view();
+    if (preferences_.up != up) {
+        preferences_.up = up;
+        preferences_.save();
+        context_.session.log().info(std::string("up axis: +") + up_axis_name(up) +
+                                    " (the default view and the spherical texture projection)");
+        // Coordinates the viewer projected around the other axis follow (a history entry).
+        if (context_.session.document().texcoords_projected &&
+            view_.settings.projection == TexCoordProjection::Spherical)
+            context_.session.project_texcoords(view_.settings.projection, view_.settings.up);
+    }
+}
+
+void Viewer::fit_view() {
+    const HalfedgeMesh& mesh = context_.session.mesh();
+    BoundingBox box = bounding_box(mesh);
+    glm::vec3 center(0.0f);
+    float radius = 1.0f;
+    if (!box.empty) {
+        // The smallest sphere around the box centre that holds every vertex: tighter than the
+        // box's own bounding sphere, so round models fill the view.
+        const Point c = box.center();
+        double radius2 = 0.0;
+        for (Vertex v : mesh.vertices())
+            radius2 = std::max(radius2, (mesh.position(v) - c).squaredNorm());
+        center = glm::vec3(float(c.x()), float(c.y()), float(c.z()));
+        radius = float(std::sqrt(radius2));
+    }
+    context_.fit_camera(center, radius);
+    context_.view.fitted = true;
 }
 
 }  // namespace trilab::viewer

@@ -285,22 +285,34 @@ TEST_CASE("every button of every section queues what it says", "[panels][buttons
         {"Decimation/Level of detail/Build levels", queues_one(BuildLevelOfDetail{})},
         {"Decimation/Level of detail/Apply level", queues_one(ApplyLevelOfDetail{})},
         {"Decimation/Level of detail/Cancel", queues_one(CancelPreview{})},
-        {"Morph/Animate", [](const Sidebar& s) { CHECK(s.morph.playing); }},
-        {"Morph/Stop", [](const Sidebar& s) { CHECK_FALSE(s.morph.playing); }},
+        {"Morph/Animate",
+         [](const Sidebar& s) {
+             const auto play = commands_of<PlayMorph>(s.commands);
+             REQUIRE(play.size() == 1);
+             CHECK(play[0]->play);
+         }},
+        {"Morph/Stop",
+         [](const Sidebar& s) {
+             const auto play = commands_of<PlayMorph>(s.commands);
+             REQUIRE(play.size() == 1);
+             CHECK_FALSE(play[0]->play);
+         }},
         {"Morph/Before",
          [](const Sidebar& s) {
-             CHECK(s.morph.t == 0.0);
-             CHECK_FALSE(s.morph.playing);
+             const auto at = commands_of<ShowMorphAt>(s.commands);
+             REQUIRE(at.size() == 1);
+             CHECK(at[0]->t == 0.0);
          }},
-        {"Morph/After", [](const Sidebar& s) { CHECK(s.morph.t == 1.0); }},
+        {"Morph/After",
+         [](const Sidebar& s) {
+             const auto at = commands_of<ShowMorphAt>(s.commands);
+             REQUIRE(at.size() == 1);
+             CHECK(at[0]->t == 1.0);
+         }},
         {"Record/Record", queues_one(StartRecording{})},
         {"Inspector/Clear picks", queues_one(ClearPicks{})},
         {"Fairing/Decompose for this operator", queues_one(Decompose{})},
-        {"Fairing/Show the diverging run",
-         [](const Sidebar& s) {
-             CHECK(s.panels.fairing.lens.show_diverging_pressed);  // the viewer takes it
-             CHECK(s.commands.empty());
-         }},
+        {"Fairing/Show the diverging run", queues_one(ShowDivergingRun{})},
         {"Inspector/Centre view here", queues_one(CentreOnPick{})},
         {"Record/Cancel", queues_one(CancelRecording{})},
         {"Selection/Brush",
@@ -452,7 +464,9 @@ TEST_CASE("the morph controls are drawn once, in the Morph section, and respond 
         if (n.kind == WidgetNote::Kind::Button && n.label == "Animate") ++animate;
     CHECK(animate == 1);
     press(ui, draw, find_widget(ui, "Morph/Animate", WidgetNote::Kind::Button));
-    CHECK(s.morph.playing);
+    const auto play = commands_of<PlayMorph>(s.commands);
+    REQUIRE(play.size() == 1);
+    CHECK(play[0]->play);
 }
 
 TEST_CASE("a typed value outside its range is clamped at once, and every widget shows it",

@@ -275,10 +275,11 @@ TEST_CASE(
     REQUIRE(ui.has("Show the diverging run"));
     const Box show = ui.rect("Show the diverging run");
     ui.click(draw, (show.x0 + show.x1) / 2, (show.y0 + show.y1) / 2);
-    CHECK(panels.fairing.lens.show_diverging_pressed);  // the viewer takes it
+    REQUIRE(commands_of<ShowDivergingRun>(commands).size() == 1);
+    CHECK(commands_of<ShowDivergingRun>(commands)[0]->op == panels.fairing.op);
     CHECK(commands_of<ApplyOperation>(commands).empty());
+    commands.clear();
     // Shown: the red mark replaces the button.
-    panels.fairing.lens.show_diverging_pressed = false;
     panels.fairing.lens.diverging_note = "DIVERGED: shown for teaching, not a result";
     ui.frame(draw);
     CHECK(ui.has("lens: diverged"));
@@ -301,7 +302,7 @@ TEST_CASE(
         ui.frame(draw);
         CHECK_FALSE(enabled());
         ui.click(draw, (show.x0 + show.x1) / 2, (show.y0 + show.y1) / 2);
-        CHECK_FALSE(panels.fairing.lens.show_diverging_pressed);
+        CHECK(commands_of<ShowDivergingRun>(commands).empty());
     }
 }
 
@@ -764,7 +765,7 @@ TEST_CASE("the morph controls offer no animation for a state that moves nothing"
     panels.morph_open = true;
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout, [&] { morph_section(panels, morph, history, 0.0); });
+        in_sidebar(panels.layout, [&] { morph_section(panels, morph, history, commands); });
     };
     ui.frame(draw);
     CHECK(ui.has("Animate"));
@@ -819,7 +820,7 @@ struct KeyFixture {
     CommandQueue commands;
     Log log{false};
     KeyActionTargets targets{panels, style, settings, morph, commands, log, "/data/model.obj",
-                             false,  true,  false,    true,  12.5};
+                             false,  true,  false,    true};
 };
 
 /// A click that opens the menu (or submenu) whose closed header is "menu:LABEL", then a frame
@@ -907,8 +908,8 @@ TEST_CASE("every key binding reaches its action", "[panels][keys]") {
                 CHECK(f.panels.record.open != before.record.open);
                 break;
             case KeyAction::PlayMorph:
-                CHECK(f.morph.playing);
-                CHECK(f.morph.play_start == 12.5);
+                REQUIRE(queued(PlayMorph{}));
+                CHECK(commands_of<PlayMorph>(f.commands).back()->play);
                 break;
             case KeyAction::OpenFile:
                 CHECK(f.panels.file_browser.open_requested);
@@ -962,11 +963,17 @@ TEST_CASE("key actions keep their conditions: busy, no morph, Esc's order, T's c
     CHECK_FALSE(f.panels.file_browser.open_requested);
     f.morph.moves = false;  // nothing to animate
     dispatch_key(GLFW_KEY_SPACE, 0, f.targets);
-    CHECK_FALSE(f.morph.playing);
+    CHECK(commands_of<PlayMorph>(f.commands).empty());
     f.morph.moves = true;
     f.targets.has_entry = false;  // the loaded state: no morph
     dispatch_key(GLFW_KEY_SPACE, 0, f.targets);
-    CHECK_FALSE(f.morph.playing);
+    CHECK(commands_of<PlayMorph>(f.commands).empty());
+    f.targets.has_entry = true;
+    f.morph.playing = true;  // Space while playing stops it
+    dispatch_key(GLFW_KEY_SPACE, 0, f.targets);
+    REQUIRE(commands_of<PlayMorph>(f.commands).size() == 1);
+    CHECK_FALSE(commands_of<PlayMorph>(f.commands)[0]->play);
+    f.commands.clear();
 
     // Esc closes the key bindings, then about, then the screenshot dialog, then the preview.
     f.panels.help_open = f.panels.about_open = f.panels.screenshot.open = true;

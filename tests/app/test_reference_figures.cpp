@@ -36,8 +36,7 @@ double box_diagonal(const HalfedgeMesh& mesh) {
 
 void settle(Session& s) {
     s.finish_jobs();
-    s.morph().t = 1.0;
-    s.morph().playing = false;
+    s.execute(ShowMorphAt{1.0});
     s.update();
 }
 

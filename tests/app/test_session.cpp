@@ -15,6 +15,7 @@
 
 #include "app/ops/operation.h"
 #include "app/session/session.h"
+#include "core/algorithms/coloring.h"
 #include "core/algorithms/generators.h"
 #include "core/algorithms/transfer_function.h"
 #include "core/io/mesh_io.h"
@@ -38,8 +39,7 @@ void require_valid(const Session& s) {
 void load_sphere(Session& s) {
     s.execute(RunOperation{parse_operation("subdivide --scheme loop --iterations 1")});
     s.finish_jobs();
-    s.morph().t = 1.0;
-    s.morph().playing = false;
+    s.execute(ShowMorphAt{1.0});
 }
 
 }  // namespace
@@ -55,6 +55,52 @@ TEST_CASE("a session starts on the default model and shows it", "[session]") {
     CHECK(e.fit);
     CHECK_FALSE(s.document().unsaved);
     require_valid(s);
+}
+
+TEST_CASE("morph commands drive the playback on the session's clock", "[session]") {
+    Session s;
+    load_sphere(s);
+    s.execute(RunOperation{parse_operation("smooth --iterations 3")});
+    s.finish_jobs();
+    s.execute(ShowMorphAt{0.25});
+    CHECK(s.morph().t == 0.25);
+    CHECK_FALSE(s.morph().playing);
+    s.execute(ShowMorphAt{7.0});  // clamped
+    CHECK(s.morph().t == 1.0);
+    s.execute(SetMorphAnimation{0.5, Easing::Linear, Playback::Once});
+    CHECK(s.morph().duration == 0.5);
+    CHECK(s.morph().easing == Easing::Linear);
+    s.execute(SetMorphAnimation{-1.0, Easing::Linear, Playback::Once});  // refused: kept
+    CHECK(s.morph().duration == 0.5);
+    const double before = s.now();
+    s.execute(PlayMorph{true});
+    CHECK(s.morph().playing);
+    CHECK(s.morph().play_start >= before);
+    CHECK(s.morph().play_start <= s.now());
+    s.execute(PlayMorph{false});
+    CHECK_FALSE(s.morph().playing);
+}
+
+TEST_CASE("a colouring job colours the state it was started on, through the one job runner",
+          "[session]") {
+    Session s;
+    load_sphere(s);
+    CHECK(s.coloring_result() == nullptr);
+    ColoringOptions options;
+    s.execute(ComputeColoring{VertexColoring::Mean, options, nullptr});
+    CHECK(s.busy());  // a job of the session's runner
+    s.finish_jobs();
+    const Session::ColoringResult* r = s.coloring_result();
+    REQUIRE(r != nullptr);
+    CHECK(r->id == 1);
+    CHECK(r->coloring == VertexColoring::Mean);
+    CHECK(r->state == s.mesh().revision());
+    const VertexColors direct = color_vertices(s.mesh(), VertexColoring::Mean, options);
+    REQUIRE(r->colors.colors.size() == direct.colors.size());
+    CHECK(r->colors.colors == direct.colors);
+    s.execute(ComputeColoring{VertexColoring::Gaussian, options, nullptr});
+    s.finish_jobs();
+    CHECK(s.coloring_result()->id == 2);
 }
 
 TEST_CASE("a load is a job: the document changes when it succeeds, and not when it fails",
@@ -98,8 +144,7 @@ TEST_CASE("an operation becomes one history entry and plays its morph", "[sessio
     s.update();
     CHECK(s.shown().kind == Shown::Kind::Morph);
     CHECK(s.shown().positions.size() == s.mesh().vertices_size());
-    s.morph().playing = false;
-    s.morph().t = 1.0;
+    s.execute(ShowMorphAt{1.0});
     s.update();
     CHECK(s.shown().kind == Shown::Kind::Document);
     // Undo, redo, jump: the history moves, the view shows the state.
@@ -403,8 +448,7 @@ TEST_CASE("a pick on a morph frame or a level of detail hits what is shown", "[s
     load_sphere(s);
     s.execute(RunOperation{parse_operation("smooth --iterations 10 --step 0.9")});
     s.finish_jobs();
-    s.morph().t = 0.0;  // the frame shows the state before the smoothing
-    s.morph().playing = false;
+    s.execute(ShowMorphAt{0.0});  // the frame shows the state before the smoothing
     s.update();
     REQUIRE(s.shown().kind == Shown::Kind::Morph);
     const Ray ray = ray_down(0.37, 0.21);
@@ -415,7 +459,7 @@ TEST_CASE("a pick on a morph frame or a level of detail hits what is shown", "[s
     CHECK(on_frame->face.idx() == direct->triangle);
     CHECK((on_frame->position - direct->position).norm() < 1e-12);
 
-    s.morph().t = 1.0;
+    s.execute(ShowMorphAt{1.0});
     s.update();
     s.execute(BuildLevelOfDetail{parse_operation("decimate")});
     s.finish_jobs();

@@ -553,6 +553,30 @@ check "--region feature:K, inverted: smoothing that keeps the features where the
      '$cli' info '$tmp/sm.ply' --json | grep -q '\"bbox_min\": \[0, 0, 0\]' && \
      ! '$cli' smooth '$tmp/cube.obj' '$tmp/sx.ply' --region feature:1 2> '$tmp/e' && \
      grep -q 'no features' '$tmp/e'"
+# Hole filling (issue 41).
+"$cli" generate cylinder "$tmp/cyl.obj" > /dev/null
+check "fill-holes closes a cylinder's two loops, with its --json keys and the holes listed" bash -c \
+    "'$cli' fill-holes '$tmp/cyl.obj' '$tmp/fh.ply' --json > '$tmp/fh.json' && \
+     $(declare -f json_has); json_has '$tmp/fh.json' fairing loops_found loops_chosen loops_filled \
+     loops_refused loops_cut faces_added vertices_added min_new_angle_deg new_angles_under_20 holes && \
+     grep -q '\"loops_filled\": 2' '$tmp/fh.json' && grep -q '\"status\": \"filled\"' '$tmp/fh.json' && \
+     '$cli' info '$tmp/fh.ply' --json | grep -q '\"boundary_loops\": 0'"
+check "fill-holes --loops fills only the loops named, --fairing c2 too" bash -c \
+    "'$cli' fill-holes '$tmp/cyl.obj' '$tmp/fl.ply' --loops 1 --fairing c2 --json > '$tmp/fl.json' && \
+     grep -q '\"loops_filled\": 1' '$tmp/fl.json' && grep -q '\"status\": \"not chosen\"' '$tmp/fl.json' && \
+     '$cli' info '$tmp/fl.ply' --json | grep -q '\"boundary_loops\": 1'"
+check "fill-holes refuses a loop index past the end naming --loops, writing nothing" bash -c \
+    "! '$cli' fill-holes '$tmp/cyl.obj' '$tmp/fn.ply' --loops 0,2 2> '$tmp/e' && \
+     grep -q -- '--loops: loop 2 is past the end (the mesh has 2 boundary loops, 0 to 1)' '$tmp/e' && \
+     [ ! -e '$tmp/fn.ply' ]"
+check "fill-holes refuses a negative --max-edges and --loops with --region, writing nothing" bash -c \
+    "! '$cli' fill-holes '$tmp/cyl.obj' '$tmp/fn.ply' --max-edges -1 2> '$tmp/e' && \
+     grep -q -- '--max-edges' '$tmp/e' && \
+     ! '$cli' fill-holes '$tmp/cyl.obj' '$tmp/fn.ply' --loops 0 --region component:0 2> '$tmp/e' && \
+     grep -q -- '--region: give either' '$tmp/e' && ! '$cli' fill-holes '$tmp/cyl.obj' '$tmp/fn.ply' \
+     --loops 1,x 2> '$tmp/e' && grep -q -- '--loops: expected' '$tmp/e' && [ ! -e '$tmp/fn.ply' ]"
+check "fill-holes --help lists --loops and --max-edges" bash -c \
+    "'$cli' fill-holes --help | grep -q -- '--loops I,J' && '$cli' fill-holes --help | grep -q -- '--max-edges'"
 # Scripts and the command line (issue 23, item 12).
 check "a repeated option is refused naming it, never dropped, and nothing is written" bash -c \
     "! '$cli' record '$tmp/d.obj' --op 'noise --amount 2' --op 'subdivide' --out '$tmp/twice' \

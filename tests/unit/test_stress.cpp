@@ -141,6 +141,16 @@ const std::map<std::string, Generator>& generators() {
              if (pick(rng, 0, 1)) text += " --boundary";
              return text;
          }},
+        {"fill-holes",
+         [](Rng& rng, const HalfedgeMesh&) {
+             const std::vector<std::string> fairings = {"none", "c1", "c2"};
+             const std::vector<std::string> fractions = {"0", "0.05", "0.5", "1"};
+             std::string text = "fill-holes --fairing " + pick_of(rng, fairings);
+             const int rule = pick(rng, 0, 3);  // any size, edges, size, or both
+             if (rule & 1) text += " --max-edges " + std::to_string(pick(rng, 0, 60));
+             if (rule & 2) text += " --max-diameter " + pick_of(rng, fractions);
+             return text;
+         }},
     };
     return g;
 }

@@ -1,65 +1,107 @@
-// The spectral lens's data for the Fairing section (app/viewer/transfer_plot.h): the spectrum
-// of the panel's operator when the decomposition is of it, the analytic range otherwise, and
-// the measured gain of the fairing preview shown or of the current entry when it is a
-// smoothing with the panel's settings.
-#include <cmath>
-#include <cstdio>
-#include <string>
+#include "app/viewer/fairing_tool.h"
 
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "app/ops/operation.h"
 #include "app/ops/operation_entries.h"
+#include "app/ops/smooth_op.h"
 #include "app/session/reference_figures.h"
-#include "app/viewer/viewer.h"
-#include "core/algorithms/selection.h"
+#include "core/algorithms/fairing.h"
 #include "core/algorithms/transfer_function.h"
 
 namespace trilab::viewer {
 
-void Viewer::update_lens() {
-    FairingPanelState& panel = panels_.fairing;
-    if (panel.lens.show_diverging_pressed) {  // the button under the curve
-        panel.lens.show_diverging_pressed = false;
-        if (!session_.busy()) session_.show_diverging_run(panel.op);
+FairingTool::FairingTool(ViewerContext& context)
+    : OperationTool(context, {&context.panels.fairing}), panel_(context.panels.fairing) {}
+
+void FairingTool::update() {
+    OperationTool::update();
+    update_stable_step();
+    update_lens();
+}
+
+void FairingTool::update_stable_step() {
+    FairingPanelState& f = panel_;
+    if (!f.open) return;
+    const int op = int(options_of<FairingOptions>(f.op).op);
+    const HalfedgeMesh::Revision state = context_.session.mesh().revision();
+    // A preview of this state reports it (any size); small meshes get it at once.
+    const OperationResult* preview = context_.session.preview_result();
+    const std::optional<Operation>& requested = context_.session.preview_requested();
+    if (preview && requested && is_operation<FairingOptions>(*requested) &&
+        int(options_of<FairingOptions>(*requested).op) == op) {
+        if (const SmoothReport* r = report_of<SmoothReport>(*preview);
+            r && std::isfinite(r->max_stable_step))
+            f.max_stable_step = r->max_stable_step;
+        f.stable_step_state = state;
+        f.stable_step_operator = op;
+        return;
     }
-    if (session_.prediction_shown())
+    if (f.stable_step_state == state && f.stable_step_operator == op) return;
+    f.stable_step_state = state;
+    f.stable_step_operator = op;
+    f.max_stable_step = std::numeric_limits<double>::quiet_NaN();
+    constexpr std::size_t kAtOnceVertices = 100000;  // a few ms to tens of ms
+    if (context_.session.mesh().n_vertices() <= kAtOnceVertices) {
+        try {
+            const FairingOperator fo = op == int(FairingOperator::Taubin)
+                                           ? FairingOperator::Umbrella
+                                           : FairingOperator(op);
+            f.max_stable_step = max_stable_explicit_step(context_.session.mesh(), fo);
+        } catch (const std::exception& e) {
+            context_.session.log().warning(std::string("stable step: ") + e.what());
+        }
+    }
+}
+
+void FairingTool::update_lens() {
+    FairingPanelState& panel = panel_;
+    if (context_.session.prediction_shown())
         panel.preview_note = "showing the spectral prediction; the exact result follows";
-    const bool diverging = session_.diverging_run_shown();
+    const bool diverging = context_.session.diverging_run_shown();
     if (diverging) panel.preview_note = "showing the DIVERGED run: not a result (Esc returns)";
     if (!panel.open) return;  // drawn only when the section is open
     // Per frame, whatever the data below: the figure's translation and the diverged mark.
     std::string figure_note;
-    const std::string figure_name = session_.figure();
+    const std::string figure_name = context_.session.figure();
     if (const ReferenceFigure* f =
             figure_name.empty() ? nullptr : find_reference_figure(figure_name);
         f && panel.op.text() == parse_operation(f->operation).text())
         figure_note = "Figure " + f->name + ": " + f->translation;
-    const std::string diverging_note = diverging ? session_.diverging_run_note() : "";
+    const std::string diverging_note = diverging ? context_.session.diverging_run_note() : "";
     panel.lens.figure_note = figure_note;
     panel.lens.diverging_note = diverging_note;
     const FairingOptions o = options_of<FairingOptions>(panel.op);
-    const FrequencyDocument& doc = session_.document().frequency;
+    const FrequencyDocument& doc = context_.session.document().frequency;
     const SpectralDecomposition* d = doc.valid ? doc.decomposition.get() : nullptr;
     const bool same_operator = d && !d->empty() && d->op == laplacian_of(o.op) &&
                                d->mass == MassMatrix::Normalizer && d->end == SpectrumEnd::Smallest;
     // What was run with these settings: the preview on the screen, or the current entry.
     const HalfedgeMesh* result = nullptr;
     std::vector<Point> input;
-    const Shown& shown = session_.shown();
+    const Shown& shown = context_.session.shown();
     // (Not the spectral prediction: its measured gain is the curve by construction, and
     // measuring it would delay the frame that shows it.)
-    if (shown.kind == Shown::Kind::Preview && session_.previewing(panel.op) && shown.mesh &&
-        !session_.prediction_shown() && !session_.diverging_run_shown() &&
-        shown.mesh->vertices_size() == session_.mesh().vertices_size()) {
+    if (shown.kind == Shown::Kind::Preview && context_.session.previewing(panel.op) && shown.mesh &&
+        !context_.session.prediction_shown() && !context_.session.diverging_run_shown() &&
+        shown.mesh->vertices_size() == context_.session.mesh().vertices_size()) {
         result = shown.mesh;
-        input = session_.mesh().positions();
-    } else if (session_.history().current() > 0 &&
-               session_.history().info(session_.history().current()).operation.text() ==
-                   panel.op.text()) {
-        result = &session_.mesh();
-        input = session_.reference_positions();
+        input = context_.session.mesh().positions();
+    } else if (context_.session.history().current() > 0 &&
+               context_.session.history()
+                       .info(context_.session.history().current())
+                       .operation.text() == panel.op.text()) {
+        result = &context_.session.mesh();
+        input = context_.session.reference_positions();
     }
     const std::string key = panel.op.text() + " " + std::to_string(d ? std::uintptr_t(d) : 0) +
                             " " + std::to_string(shown.version) + " " +
-                            std::to_string(session_.history().current()) + " " +
+                            std::to_string(context_.session.history().current()) + " " +
                             std::to_string(panel.max_stable_step);
     if (key == lens_key_) return;
     lens_key_ = key;
@@ -101,24 +143,6 @@ void Viewer::update_lens() {
     } catch (const std::exception& e) {
         view.measured_note = std::string("measured gain: ") + e.what();
     }
-}
-
-void Viewer::update_region_notes() {
-    const HalfedgeMesh& mesh = session_.mesh();
-    const std::uint64_t state = mesh.attribute_revision() ^ (mesh.topology_revision() << 20);
-    if (state == region_notes_state_) return;
-    region_notes_state_ = state;
-    std::string selected, whole;
-    if (const std::optional<Selection> s = stored_selection(mesh);
-        s && !selects_everything(mesh, *s)) {
-        selected = "acts on the selection: " + std::to_string(count_selected(*s)) + " of " +
-                   std::to_string(mesh.n_vertices()) + " vertices (weight > 0)";
-        whole = "the document has a selection, but this operation acts on the whole mesh";
-    }
-    for (OperationPanelState* panel : operation_panels())
-        panel->region_note = selected.empty()                               ? std::string()
-                             : panel->op.def && panel->op.def->takes_region ? selected
-                                                                            : whole;
 }
 
 }  // namespace trilab::viewer

@@ -1,21 +1,13 @@
-// Picking in the view: the click that picks, the highlight of the picked elements and the
-// geodesic path, the Inspector's rows, and the scripted picks (--pick X,Y).
-#include "app/viewer/viewer.h"
-
-#include <glad/gl.h>
+#include "app/viewer/pick_tool.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <string>
+#include <vector>
 
-#include "app/ops/operation_entries.h"
 #include "app/session/provenance.h"
 #include "core/algorithms/inspect.h"
-#include "core/errors.h"
-#include "core/geometry.h"
-#include "core/number_text.h"
 
 namespace trilab::viewer {
 namespace {
@@ -39,30 +31,30 @@ std::string number(double x) {
 
 }  // namespace
 
-std::optional<Pick> Viewer::pick_at(const glm::vec2& view_pos, bool second) {
-    Camera& camera = view_.camera;
-    camera.set_viewport(std::max(view_rect_.w, 1.0f), std::max(view_rect_.h, 1.0f));
+std::optional<Pick> PickTool::pick_at(const glm::vec2& view_pos, bool second) {
+    Camera& camera = context_.view.camera;
+    camera.set_viewport(std::max(context_.view_rect.w, 1.0f), std::max(context_.view_rect.h, 1.0f));
     glm::dvec3 origin, direction;
     camera.ray_through(view_pos, origin, direction);
     Ray ray;
     ray.origin = Point(origin.x, origin.y, origin.z);
     ray.direction = Vector3(direction.x, direction.y, direction.z);
-    const std::optional<Pick> hit = session_.pick(ray, double(camera.near_plane()), second);
-    if (hit) panels_.inspector_open = true;
+    const std::optional<Pick> hit = context_.session.pick(ray, double(camera.near_plane()), second);
+    if (hit) context_.panels.inspector_open = true;
     return hit;
 }
 
-void Viewer::update_pick_overlay() {
-    const PickSet& set = session_.picks();
-    const Shown& shown = session_.shown();
+void PickTool::update_overlay() {
+    const PickSet& set = context_.session.picks();
+    const Shown& shown = context_.session.shown();
     const std::string key = std::to_string(set.version) + " " + std::to_string(shown.version);
-    if (key == pick_overlay_key_) return;
-    pick_overlay_key_ = key;
-    if (!pick_face_lines_) {
-        pick_face_lines_ = std::make_unique<LineRenderer>();
-        pick_edge_lines_ = std::make_unique<LineRenderer>();
-        pick_vertex_lines_ = std::make_unique<LineRenderer>();
-        pick_path_lines_ = std::make_unique<LineRenderer>();
+    if (key == overlay_key_) return;
+    overlay_key_ = key;
+    if (!face_lines_) {
+        face_lines_ = std::make_unique<LineRenderer>();
+        edge_lines_ = std::make_unique<LineRenderer>();
+        vertex_lines_ = std::make_unique<LineRenderer>();
+        path_lines_ = std::make_unique<LineRenderer>();
     }
     std::vector<glm::vec3> faces, edges, vertices, path;
     // Positions: those shown when the shown surface has the picks' connectivity (a preview of
@@ -101,48 +93,46 @@ void Viewer::update_pick_overlay() {
         path.push_back(to_glm(m.path[i - 1]));
         path.push_back(to_glm(m.path[i]));
     }
-    pick_face_lines_->set_segments(faces);
-    pick_edge_lines_->set_segments(edges);
-    pick_vertex_lines_->set_segments(vertices);
-    pick_path_lines_->set_segments(path);
+    face_lines_->set_segments(faces);
+    edge_lines_->set_segments(edges);
+    vertex_lines_->set_segments(vertices);
+    path_lines_->set_segments(path);
 }
 
-void Viewer::draw_pick_overlay() const {
-    if (!pick_face_lines_ || session_.picks().picks.empty()) return;
-    const glm::mat4 view = view_.camera.view(), projection = view_.camera.projection();
+void PickTool::draw_overlay() {
+    update_overlay();
+    if (!face_lines_ || context_.session.picks().picks.empty()) return;
+    const glm::mat4 view = context_.view.camera.view(),
+                    projection = context_.view.camera.projection();
     LineStyle style;
     style.color = glm::vec3(1.0f, 0.85f, 0.1f);  // face: yellow
     style.width = 2.0f;
-    pick_face_lines_->draw(view, projection, style, ui_scale_);
+    face_lines_->draw(view, projection, style, context_.ui_scale);
     style.color = glm::vec3(1.0f, 0.35f, 0.1f);  // path: orange-red
     style.width = 3.0f;
-    pick_path_lines_->draw(view, projection, style, ui_scale_);
+    path_lines_->draw(view, projection, style, context_.ui_scale);
     style.color = glm::vec3(0.1f, 0.9f, 1.0f);  // edge: cyan
     style.width = 3.5f;
-    pick_edge_lines_->draw(view, projection, style, ui_scale_);
+    edge_lines_->draw(view, projection, style, context_.ui_scale);
     style.color = glm::vec3(1.0f, 0.2f, 0.9f);  // vertex: magenta
     style.width = 3.0f;
-    pick_vertex_lines_->draw(view, projection, style, ui_scale_);
+    vertex_lines_->draw(view, projection, style, context_.ui_scale);
 }
 
-void Viewer::update_inspector() {
+void PickTool::update() {
     // The geodesic colouring follows the picks' distances as they arrive.
-    if (view_.settings.coloring == VertexColoring::GeodesicDistance &&
-        session_.picks().version != geodesic_colored_version_)
-        commands_.push_back(UpdateColoring{});
-    try {
-        session_.set_inspection_options(decimation_options(panels_.decimation.op));
-    } catch (const std::exception&) {
-        // The panel shows its own error; the inspector keeps the last valid options.
-    }
-    const PickSet& set = session_.picks();
-    const FrequencyDocument& frequency = session_.document().frequency;
+    if (context_.view.settings.coloring == VertexColoring::GeodesicDistance &&
+        context_.session.picks().version != geodesic_colored_())
+        context_.commands.push_back(UpdateColoring{});
+    const PickSet& set = context_.session.picks();
+    const FrequencyDocument& frequency = context_.session.document().frequency;
     const std::string key =
-        std::to_string(set.version) + " " + std::to_string(session_.history().current()) + " " +
-        std::to_string(session_.shown().version) + " " +
-        std::to_string(int(view_.settings.coloring)) + " " +
-        std::to_string(view_.colors.colors.size()) + " " + std::to_string(frequency.valid) + " " +
-        std::to_string(panels_.frequency.lo) + " " + std::to_string(panels_.frequency.hi);
+        std::to_string(set.version) + " " + std::to_string(context_.session.history().current()) +
+        " " + std::to_string(context_.session.shown().version) + " " +
+        std::to_string(int(context_.view.settings.coloring)) + " " +
+        std::to_string(context_.view.colors.colors.size()) + " " + std::to_string(frequency.valid) +
+        " " + std::to_string(context_.panels.frequency.lo) + " " +
+        std::to_string(context_.panels.frequency.hi);
     if (key == inspector_key_) return;
     inspector_key_ = key;
     InspectorView& view = inspector_;
@@ -166,19 +156,20 @@ void Viewer::update_inspector() {
             const Index v = p.vertex.idx();
             // What the view shows at this vertex: the colouring's value, the eigenvectors of
             // the band, the band's displacement.
-            if (v < view_.colors.values.size() && !std::isnan(view_.colors.values[v]))
+            if (v < context_.view.colors.values.size() &&
+                !std::isnan(context_.view.colors.values[v]))
                 fields.push_back({"coloring",
-                                  "Colouring (" + view_.colors.label + ")",
-                                  number(view_.colors.values[v]),
-                                  {view_.colors.values[v]}});
+                                  "Colouring (" + context_.view.colors.label + ")",
+                                  number(context_.view.colors.values[v]),
+                                  {context_.view.colors.values[v]}});
             const SpectralDecomposition* d = frequency.decomposition.get();
             if (frequency.valid && d && v < d->map.row_of.size() &&
                 d->map.row_of[v] != kInvalidIndex && mesh.vertices_size() == d->map.row_of.size()) {
                 const Eigen::Index row = Eigen::Index(d->map.row_of[v]);
                 const std::size_t lo =
-                    std::min(std::size_t(std::max(0, panels_.frequency.lo)), d->size() - 1);
+                    std::min(std::size_t(std::max(0, context_.panels.frequency.lo)), d->size() - 1);
                 const std::size_t hi =
-                    std::min(std::size_t(std::max(0, panels_.frequency.hi)), d->size() - 1);
+                    std::min(std::size_t(std::max(0, context_.panels.frequency.hi)), d->size() - 1);
                 constexpr std::size_t kMaxShown = 8;
                 for (std::size_t k = lo; k <= hi && k < lo + kMaxShown; ++k) {
                     const double e = d->eigenvectors(row, Eigen::Index(k));
@@ -192,7 +183,7 @@ void Viewer::update_inspector() {
                                           std::to_string(hi) + " are listed",
                                       {}});
             }
-            const Shown& shown = session_.shown();
+            const Shown& shown = context_.session.shown();
             if (shown.kind == Shown::Kind::Band && v < shown.positions.size() &&
                 v < mesh.vertices_size()) {
                 const Vector3 moved = shown.positions[v] - mesh.position(p.vertex);
@@ -227,45 +218,23 @@ void Viewer::update_inspector() {
         view.groups.push_back(std::move(g));
     }
     // Provenance: how far each entry moved the picked vertex (when it is the document's).
-    if (!p.on_level && mesh.topology_revision() == session_.mesh().topology_revision()) {
-        const std::vector<double> moves = vertex_moves(session_.history(), p.vertex);
+    if (!p.on_level && mesh.topology_revision() == context_.session.mesh().topology_revision()) {
+        const std::vector<double> moves = vertex_moves(context_.session.history(), p.vertex);
         bool any = false;
         for (double d : moves) {
             view.moved_by_entry.push_back(std::isnan(d) ? 0.0f : float(d));
             any = any || (!std::isnan(d) && d > 0);
         }
         if (!any) view.moved_by_entry.clear();
-        view.current_entry = session_.history().current();
+        view.current_entry = context_.session.history().current();
     }
 }
 
-void Viewer::scripted_picks() {
-    if (next_scripted_pick_ >= options_.picks.size() || !ready_for_script() || session_.busy())
-        return;
-    const std::string& spec = options_.picks[next_scripted_pick_];
-    const bool second = next_scripted_pick_ > 0;
-    ++next_scripted_pick_;
-    float x = 0, y = 0;
-    char extra = 0;
-    if (std::sscanf(spec.c_str(), "%f,%f%c", &x, &y, &extra) != 2 || !std::isfinite(x) ||
-        !std::isfinite(y)) {
-        session_.notify_error("--pick: expected X,Y in window pixels, got \"" + spec + "\"");
-        exit_status_ = 1;
-        return;
-    }
-    const glm::vec2 view_pos(x - view_rect_.x, y - view_rect_.y);
-    const std::optional<Pick> hit = pick_at(view_pos, second);
-    if (hit)
-        std::printf("pick: %s\n", pick_line(*hit).c_str());
-    else
-        std::printf("pick: nothing at %g,%g (the background)\n", double(x), double(y));
-    std::fflush(stdout);
-}
-
-bool Viewer::scripted_picks_pending() const {
-    // The last frame of a scripted run shows the Inspector filled in.
-    return next_scripted_pick_ < options_.picks.size() ||
-           (!options_.picks.empty() && session_.picks_pending());
+bool PickTool::mouse(const ViewMouse& mouse) {
+    if (mouse.clicked && !mouse.shift) pick_at(mouse.pos, mouse.ctrl);
+    if (mouse.double_clicked && pick_at(mouse.pos, false))
+        context_.commands.push_back(CentreOnPick{});
+    return false;  // the view still turns on a drag
 }
 
 }  // namespace trilab::viewer

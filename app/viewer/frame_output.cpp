@@ -1,78 +1,54 @@
-// What the viewer writes: screenshots (F12, --screenshot) and recorded morph frames.
-#include "app/viewer/viewer.h"
+// Pictures of the scene (frame_output.h): screenshots and recorded morph frames.
+#include "app/viewer/frame_output.h"
 
-// glad before GLFW: GLFW must not include the system GL header.
 #include <glad/gl.h>
-#define GLFW_INCLUDE_NONE
-#include <GLFW/glfw3.h>
-#include <backends/imgui_impl_glfw.h>
-#include <backends/imgui_impl_opengl3.h>
-#include <imgui.h>
-#include <imgui_internal.h>  // --print-layout reads the window list
 
 #include <algorithm>
-#include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <filesystem>
-#include <tuple>
+#include <string>
+#include <system_error>
 #include <utility>
-#include <vector>
 
-#include "app/ops/operation.h"
-#include "app/ops/operation_entries.h"
 #include "app/record/mp4_encoder.h"
 #include "app/record/recorder.h"
-#include "app/viewer/key_bindings.h"
-#include "app/viewer/viewer_tuning.h"
-#include "core/algorithms/coincident.h"
-#include "core/algorithms/decimation.h"
-#include "core/algorithms/fairing.h"
-#include "core/algorithms/generators.h"
-#include "core/algorithms/mesh_stats.h"
-#include "core/algorithms/orientation.h"
-#include "core/algorithms/texcoords.h"
-#include "core/errors.h"
-#include "core/geometry.h"
-#include "core/io/mesh_io.h"
+#include "app/viewer/scene_view.h"
+#include "core/io/image_io.h"
 #include "render/offscreen.h"
 
 namespace trilab::viewer {
-using namespace tuning;
 
-void Viewer::take_screenshot(const TakeScreenshot& request) {
+void FrameOutput::take_screenshot(const TakeScreenshot& request) {
     try {
         Framebuffer framebuffer;
         framebuffer.create(request.width, request.height, 4);
         framebuffer.bind();
-        RenderStyle style = view_.style;
+        RenderStyle style = context_.view.style;
         // Framed as the view; line widths and point sizes keep their look relative to it.
         int x = 0, y = 0, view_w = 0, view_h = 0;
-        view_viewport(x, y, view_w, view_h);
+        framebuffer_viewport(context_.view_rect, x, y, view_w, view_h);
         const float scale =
             std::min(float(request.width) / float(view_w), float(request.height) / float(view_h));
-        style.wire_width *= ui_scale_ * scale;
-        style.point_size *= ui_scale_ * scale;
+        style.wire_width *= context_.ui_scale * scale;
+        style.point_size *= context_.ui_scale * scale;
         clear_background(style, request.transparent ? 0.0f : 1.0f);
-        Camera camera = view_.camera;
+        Camera camera = context_.view.camera;
         camera.reframe_for_viewport(float(request.width), float(request.height));
-        renderer_->draw(camera.view(), camera.projection(), style);
+        scene_.exact().draw(camera.view(), camera.projection(), style);
         Image image = framebuffer.read_rgba();
         Framebuffer::bind_default();
         if (request.transparent) unpremultiply_alpha(image);
         write_png(image, request.path);
-        session_.log().info("screenshot " + request.path + " (" + std::to_string(request.width) +
-                            " x " + std::to_string(request.height) + ")");
-        session_.notice() = Notice{Notice::Level::Info, "Saved " + request.path, {}, false};
+        context_.session.log().info("screenshot " + request.path + " (" +
+                                    std::to_string(request.width) + " x " +
+                                    std::to_string(request.height) + ")");
+        context_.session.notify(Notice{Notice::Level::Info, "Saved " + request.path, {}, false});
     } catch (const std::exception& e) {
         Framebuffer::bind_default();
-        session_.notify_error(std::string("screenshot: ") + e.what());
+        context_.session.notify_error(std::string("screenshot: ") + e.what());
     }
 }
 
-std::string Viewer::write_screenshot(const std::string& path) const {
-    int w = 0, h = 0;
-    glfwGetFramebufferSize(window_.get(), &w, &h);
+std::string FrameOutput::write_window(const std::string& path, int w, int h) {
     if (w <= 0 || h <= 0) return "the window has no pixels";
     Image image;
     image.width = w;
@@ -95,46 +71,47 @@ std::string Viewer::write_screenshot(const std::string& path) const {
     return "";
 }
 
-void Viewer::start_recording() {
-    RecordState& r = panels_.record;
-    const History& h = session_.history();
+void FrameOutput::start_recording() {
+    RecordState& r = context_.panels.record;
+    const History& h = context_.session.history();
     if (h.current() == 0 || r.running) return;
     std::error_code ec;
     std::filesystem::create_directories(r.folder, ec);
     if (ec || !std::filesystem::is_directory(r.folder)) {
-        session_.notify_error("record: cannot create the folder " + r.folder);
+        context_.session.notify_error("record: cannot create the folder " + r.folder);
         return;
     }
     // Framed as the view, fixed for all frames.
-    record_camera_ = view_.camera;
+    record_camera_ = context_.view.camera;
     record_camera_.reframe_for_viewport(float(r.width), float(r.height));
     int x = 0, y = 0, view_w = 0, view_h = 0;
-    view_viewport(x, y, view_w, view_h);
-    record_line_scale_ =
-        ui_scale_ * std::min(float(r.width) / float(view_w), float(r.height) / float(view_h));
-    session_.morph().playing = false;
+    framebuffer_viewport(context_.view_rect, x, y, view_w, view_h);
+    record_line_scale_ = context_.ui_scale *
+                         std::min(float(r.width) / float(view_w), float(r.height) / float(view_h));
+    context_.session.execute(PlayMorph{false});
     r.running = true;
     r.next = 0;
-    session_.log().info("recording " + std::to_string(r.frames) + " frames to " + r.folder);
+    context_.session.log().info("recording " + std::to_string(r.frames) + " frames to " + r.folder);
 }
 
-void Viewer::record_next_frame() {
-    RecordState& r = panels_.record;
+void FrameOutput::record_next_frame() {
+    RecordState& r = context_.panels.record;
     if (!r.running) return;
-    active_frames_ = std::max(active_frames_, 1);
+    context_.keep_drawing();
     try {
         // Show frame `next` of the morph (this also updates the window).
-        session_.morph().t = r.frames > 1 ? double(r.next) / double(r.frames - 1) : 1.0;
-        session_.update();
-        sync_renderer();
+        context_.session.execute(
+            ShowMorphAt{r.frames > 1 ? double(r.next) / double(r.frames - 1) : 1.0});
+        context_.session.update();
+        scene_.sync();
         Framebuffer framebuffer;
         framebuffer.create(r.width, r.height, 4);
         framebuffer.bind();
-        RenderStyle style = view_.style;
+        RenderStyle style = context_.view.style;
         style.wire_width *= record_line_scale_;
         style.point_size *= record_line_scale_;
         clear_background(style);
-        renderer_->draw(record_camera_.view(), record_camera_.projection(), style);
+        scene_.exact().draw(record_camera_.view(), record_camera_.projection(), style);
         Image image = framebuffer.read_rgba();
         Framebuffer::bind_default();
         write_png(
@@ -142,21 +119,22 @@ void Viewer::record_next_frame() {
             (std::filesystem::path(r.folder) / record::frame_file_name(r.name, r.next)).string());
     } catch (const std::exception& e) {
         Framebuffer::bind_default();
-        session_.notify_error(std::string("record: ") + e.what());
+        context_.session.notify_error(std::string("record: ") + e.what());
         finish_recording(true);
         return;
     }
     if (++r.next >= r.frames) finish_recording(false);
 }
 
-void Viewer::finish_recording(bool cancelled) {
-    RecordState& r = panels_.record;
+void FrameOutput::finish_recording(bool cancelled) {
+    RecordState& r = context_.panels.record;
     r.running = false;
     if (cancelled) {
-        session_.log().warning("recording stopped after " + std::to_string(r.next) + " frames");
+        context_.session.log().warning("recording stopped after " + std::to_string(r.next) +
+                                       " frames");
         return;
     }
-    session_.log().info("recorded " + std::to_string(r.frames) + " frames in " + r.folder);
+    context_.session.log().info("recorded " + std::to_string(r.frames) + " frames in " + r.folder);
     if (!r.mp4) return;
     // ffmpeg through posix_spawn with an argument vector (no shell): any folder or name is
     // passed as it is.
@@ -164,9 +142,9 @@ void Viewer::finish_recording(bool cancelled) {
     const std::string mp4 =
         record::encode_mp4(record::Mp4Request{r.folder, r.name, r.frames, r.fps, 4}, note);
     if (!mp4.empty())
-        session_.log().info("wrote " + mp4);
+        context_.session.log().info("wrote " + mp4);
     else
-        session_.log().warning("record: " + note);
+        context_.session.log().warning("record: " + note);
 }
 
 }  // namespace trilab::viewer

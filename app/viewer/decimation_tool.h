@@ -1,0 +1,29 @@
+#pragma once
+// DecimationTool: the Decimation section's tool. Besides the operation panel's previews it
+// keeps the level-of-detail slider's state in step with the session's progressive mesh, the
+// Inspector's collapse explanation options, and draws Rendering > Vectors > Collapsing edges:
+// the edges the next iteration collapses, recomputed when the mesh or the options change.
+#include <memory>
+#include <string>
+
+#include "app/viewer/operation_tool.h"
+#include "render/line_renderer.h"
+
+namespace trilab::viewer {
+
+class DecimationTool : public OperationTool {
+public:
+    /// Needs the GL context current (the overlay's lines).
+    explicit DecimationTool(ViewerContext& context);
+    void update() override;
+    void describe(SidebarContext& context) const override;
+    void draw_overlay() override;
+
+private:
+    void update_collapsing_edges();
+    DecimationPanelState& panel_;
+    std::unique_ptr<LineRenderer> lines_;
+    std::string key_;  ///< what the drawn edges were computed for
+};
+
+}  // namespace trilab::viewer

@@ -1,0 +1,73 @@
+#include "app/viewer/frequency_tool.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "core/algorithms/coloring.h"
+#include "core/algorithms/transfer_function.h"
+
+namespace trilab::viewer {
+
+FrequencyTool::FrequencyTool(ViewerContext& context) : Tool(context) {
+    // A new decomposition: the band's sliders cover it, the first frequency is visualised.
+    context.session.on_decomposed = [this](std::size_t /*lo*/, std::size_t hi) {
+        FrequencyPanelState& s = context_.panels.frequency;
+        s.lo = 0;
+        s.hi = int(hi);
+        s.visualize = std::min(1, s.hi);
+        if (coloring_needs_field(context_.view.settings.coloring))
+            context_.commands.push_back(UpdateColoring{});
+    };
+}
+
+FrequencyTool::~FrequencyTool() {
+    context_.session.on_decomposed = nullptr;
+}
+
+VertexColors FrequencyTool::field_colors(const HalfedgeMesh& mesh) const {
+    if (context_.view.settings.coloring == VertexColoring::GeodesicDistance) {
+        // A mesh that carries its distances ("v:distance", written by trilab-cli geodesic)
+        // shows them; otherwise the distance from the picks, once measured on this state.
+        if (mesh.has_vertex_property("v:distance"))
+            return color_vertices(mesh, VertexColoring::GeodesicDistance,
+                                  context_.view.settings.coloring_options);
+        const PickSet& picks = context_.session.picks();
+        if (picks.distances.size() != mesh.vertices_size() ||
+            picks.mesh.topology_revision() != mesh.topology_revision())
+            return {};
+        return color_field(mesh, picks.distances, VertexColoring::GeodesicDistance,
+                           context_.view.settings.coloring_options);
+    }
+    const FrequencyDocument& doc = context_.session.document().frequency;
+    const auto& d = doc.decomposition;
+    if (!d || mesh.vertices_size() != d->base_positions.size() || d->empty()) return {};
+    const FrequencyPanelState& s = context_.panels.frequency;
+    const std::size_t last = d->size() - 1;
+    const VertexColoring coloring = context_.view.settings.coloring;
+    if (coloring == VertexColoring::RemovedBelow || coloring == VertexColoring::RemovedAbove) {
+        // What the current entry changed, split at the top of the band: below it is shape,
+        // above it detail and noise (core/algorithms/transfer_function.h).
+        const std::vector<Point> before = context_.session.reference_positions();
+        if (before.size() != mesh.vertices_size()) return {};
+        const std::size_t split = std::min(std::size_t(std::max(s.hi, 0)) + 1, d->size());
+        try {
+            const ChangeByFrequency change =
+                change_by_frequency(*d, before, mesh.positions(), split);
+            return color_field(
+                mesh, coloring == VertexColoring::RemovedBelow ? change.below : change.above,
+                coloring, context_.view.settings.coloring_options);
+        } catch (const std::exception&) {
+            return {};  // e.g. a decomposition of the largest end: the notice says what is needed
+        }
+    }
+    const std::vector<double> values =
+        context_.view.settings.coloring == VertexColoring::Frequency
+            ? frequency_field(*d, std::min(std::size_t(std::max(s.visualize, 0)), last))
+            : band_magnitude_field(*d, std::min(std::size_t(std::max(s.lo, 0)), last),
+                                   std::min(std::size_t(std::max(s.hi, 0)), last),
+                                   BandRest::Include);
+    return color_field(mesh, values, context_.view.settings.coloring,
+                       context_.view.settings.coloring_options);
+}
+
+}  // namespace trilab::viewer

@@ -1,0 +1,20 @@
+#pragma once
+// FrequencyTool: the Frequency decomposition section's tool. The panel queues its commands
+// for the session (app/session/session_frequency.cpp: the decomposition job, the live band,
+// the history entries); the tool sets the band's sliders when a new decomposition arrives
+// and computes the colourings made from fields: Frequency and Frequency mass (the
+// decomposition's eigenvectors over the band), Removed below / above (what the current entry
+// changed, split at the band's top), and the geodesic distance from the picks.
+#include "app/viewer/tool.h"
+#include "core/algorithms/spectral.h"
+
+namespace trilab::viewer {
+
+class FrequencyTool : public Tool {
+public:
+    explicit FrequencyTool(ViewerContext& context);
+    ~FrequencyTool() override;
+    VertexColors field_colors(const HalfedgeMesh& mesh) const override;
+};
+
+}  // namespace trilab::viewer

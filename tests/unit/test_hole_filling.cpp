@@ -1,0 +1,450 @@
+// Hole filling (core/algorithms/hole_filling.h, and the "fill-holes" operation).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "app/ops/operation.h"
+#include "core/algorithms/generators.h"
+#include "core/algorithms/hole_filling.h"
+#include "core/algorithms/selection.h"
+#include "core/errors.h"
+#include "core/geometry.h"
+#include "core/io/mesh_io.h"
+#include "core/mesh_builder.h"
+#include "test_helpers.h"
+
+using namespace trilab;
+
+namespace {
+
+/// `mesh` without the faces `drop` picks (by their vertices), unused vertices dropped too.
+HalfedgeMesh without_faces(const HalfedgeMesh& mesh,
+                           const std::function<bool(const std::array<Point, 3>&)>& drop) {
+    PolygonSoup soup;
+    std::vector<Index> local(mesh.vertices_size(), kInvalidIndex);
+    for (Face f : mesh.faces()) {
+        const std::array<Vertex, 3> v = mesh.face_vertices(f);
+        if (drop({mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2])})) continue;
+        std::vector<Index> corners;
+        for (Vertex u : v) {
+            if (local[u.idx()] == kInvalidIndex) {
+                local[u.idx()] = Index(soup.positions.size());
+                soup.positions.push_back(mesh.position(u));
+            }
+            corners.push_back(local[u.idx()]);
+        }
+        soup.add_face(corners);
+    }
+    LoadReport report;
+    return build_mesh(soup, report);
+}
+
+/// A unit sphere with the cap above z = 0.6 removed.
+HalfedgeMesh capped_sphere(unsigned frequency) {
+    return without_faces(make_icosphere(frequency), [](const std::array<Point, 3>& p) {
+        return std::max({p[0].z(), p[1].z(), p[2].z()}) > 0.6;
+    });
+}
+
+/// The largest |radius - 1| over the vertices from index v0 on.
+double sphere_deviation(const HalfedgeMesh& mesh, Index v0) {
+    double worst = 0;
+    for (Index i = v0; i < mesh.vertices_size(); ++i)
+        worst = std::max(worst, std::abs(mesh.position(Vertex(i)).norm() - 1.0));
+    return worst;
+}
+
+/// Whether segment [p, q] crosses triangle t (Möller–Trumbore, open intervals).
+bool segment_hits(const Point& p, const Point& q, const std::array<Point, 3>& t) {
+    const Vector3 d = q - p, e1 = t[1] - t[0], e2 = t[2] - t[0];
+    const Vector3 h = d.cross(e2);
+    const double a = e1.dot(h);
+    if (std::abs(a) < 1e-14) return false;
+    const Vector3 s = p - t[0];
+    const double u = s.dot(h) / a;
+    if (u <= 1e-9 || u >= 1 - 1e-9) return false;
+    const Vector3 qv = s.cross(e1);
+    const double v = d.dot(qv) / a;
+    if (v <= 1e-9 || u + v >= 1 - 1e-9) return false;
+    const double t_hit = e2.dot(qv) / a;
+    return t_hit > 1e-9 && t_hit < 1 - 1e-9;
+}
+
+std::array<Point, 3> corners_of(const HalfedgeMesh& mesh, Face f) {
+    const std::array<Vertex, 3> v = mesh.face_vertices(f);
+    return {mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2])};
+}
+
+/// Pairs of faces sharing no vertex that cross, among the new faces (index >= f0) against
+/// every face within two rings of them (brute force).
+std::size_t self_intersections_near(const HalfedgeMesh& mesh, Index f0) {
+    std::vector<std::uint8_t> near(mesh.vertices_size(), 0);
+    for (Index fi = f0; fi < mesh.faces_size(); ++fi)
+        for (Vertex v : mesh.face_vertices(Face(fi))) near[v.idx()] = 2;
+    for (int ring = 2; ring > 1; --ring)
+        for (Vertex v : mesh.vertices())
+            if (near[v.idx()] == ring)
+                for (Vertex u : mesh.vertices_around(v))
+                    if (!near[u.idx()]) near[u.idx()] = std::uint8_t(ring - 1);
+    std::vector<Face> others;
+    for (Face f : mesh.faces()) {
+        bool in = false;
+        for (Vertex v : mesh.face_vertices(f)) in = in || near[v.idx()];
+        if (in) others.push_back(f);
+    }
+    std::size_t crossings = 0;
+    for (Index fi = f0; fi < mesh.faces_size(); ++fi) {
+        const std::array<Vertex, 3> a = mesh.face_vertices(Face(fi));
+        const std::array<Point, 3> pa = corners_of(mesh, Face(fi));
+        for (Face g : others) {
+            if (g.idx() == fi) continue;
+            const std::array<Vertex, 3> b = mesh.face_vertices(g);
+            bool shares = false;
+            for (Vertex x : a)
+                for (Vertex y : b) shares = shares || x == y;
+            if (shares) continue;
+            const std::array<Point, 3> pb = corners_of(mesh, g);
+            bool hit = false;
+            for (int k = 0; k < 3 && !hit; ++k)
+                hit = segment_hits(pa[k], pa[(k + 1) % 3], pb) ||
+                      segment_hits(pb[k], pb[(k + 1) % 3], pa);
+            crossings += hit ? 1 : 0;
+        }
+    }
+    return crossings;
+}
+
+/// Whether every new triangle (index >= f0) with an angle under 20 degrees has a corner at a
+/// rim vertex v (index < v0) where no triangulation reaches 20 degrees: its new triangles span
+/// less than 60 degrees there, and its two rim edges are s and L > 7.5 s long. Proof: three
+/// triangles at v would have an angle under 20 at v; one (the ear) an angle at its far corner of
+/// at most about s sin(60) / L; with two, (v, w, m) on the short edge and (v, m, u) on the long
+/// one, the law of sines in the first bounds |v m| <= s sin(120) / sin(20) = 2.53 s and in the
+/// second needs |v m| >= L sin(20) = 0.342 L, so L <= 7.4 s.
+bool small_angles_only_where_unavoidable(const HalfedgeMesh& mesh, Index v0, Index f0) {
+    for (Index fi = f0; fi < mesh.faces_size(); ++fi) {
+        if (min_face_angle(mesh, Face(fi)) >= 20.0) continue;
+        bool explained = false;
+        for (Vertex v : mesh.face_vertices(Face(fi))) {
+            if (v.idx() >= v0) continue;
+            double span = 0;
+            std::vector<double> rim;
+            for (Halfedge h : mesh.halfedges_around(v)) {
+                const Face g = mesh.face(h);
+                if (g.is_valid() && g.idx() >= f0) {
+                    const Vector3 a = mesh.position(mesh.to_vertex(h)) - mesh.position(v);
+                    const Vector3 b =
+                        mesh.position(mesh.to_vertex(mesh.next(h))) - mesh.position(v);
+                    span += std::atan2(a.cross(b).norm(), a.dot(b)) * 180 / M_PI;
+                }
+                const Face other = mesh.face(HalfedgeMesh::twin(h));
+                const bool rim_edge =
+                    g.is_valid() && other.is_valid() && (g.idx() >= f0) != (other.idx() >= f0);
+                if (rim_edge) rim.push_back(edge_length(mesh, HalfedgeMesh::edge(h)));
+            }
+            if (span < 60 && rim.size() == 2 &&
+                std::max(rim[0], rim[1]) > 7.5 * std::min(rim[0], rim[1]))
+                explained = true;
+        }
+        if (!explained) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+TEST_CASE("boundary_loops lists each loop once, ordered by its smallest vertex", "[hole_filling]") {
+    const HalfedgeMesh grid = make_grid(6);
+    const std::vector<BoundaryLoop> loops = boundary_loops(grid);
+    REQUIRE(loops.size() == 1);
+    REQUIRE(loops[0].edges() == 24);
+    REQUIRE(loops[0].length == Approx(4.0));
+    REQUIRE(loops[0].diagonal == Approx(std::sqrt(2.0)));
+    REQUIRE(boundary_loops(make_icosphere(2)).empty());
+    const HalfedgeMesh two = without_faces(make_icosphere(4), [](const std::array<Point, 3>& p) {
+        const double z = std::max({p[0].z(), p[1].z(), p[2].z()});
+        const double w = std::min({p[0].z(), p[1].z(), p[2].z()});
+        return z > 0.8 || w < -0.9;
+    });
+    const std::vector<BoundaryLoop> both = boundary_loops(two);
+    REQUIRE(both.size() == 2);
+    for (const BoundaryLoop& l : both)
+        REQUIRE(*std::min_element(l.vertices.begin(), l.vertices.end()) == l.vertices.front());
+    REQUIRE(both[0].vertices.front() < both[1].vertices.front());
+}
+
+TEST_CASE("a sphere's cut-out cap is refilled close to the sphere", "[hole_filling]") {
+    const HalfedgeMesh holed = capped_sphere(12);
+    const Index v0 = Index(holed.vertices_size());
+    HalfedgeMesh flat = holed, c1 = holed, c2 = holed;
+    HoleFillingOptions o;
+    o.fairing = HoleFairing::None;
+    const HoleFillingReport rf = fill_holes(flat, o);
+    o.fairing = HoleFairing::C1;
+    const HoleFillingReport r1 = fill_holes(c1, o);
+    o.fairing = HoleFairing::C2;
+    const HoleFillingReport r2 = fill_holes(c2, o);
+    for (const HalfedgeMesh* m : {&flat, &c1, &c2}) {
+        REQUIRE_VALID(*m);
+        REQUIRE(is_closed(*m));
+    }
+    for (const HoleFillingReport* r : {&rf, &r1, &r2}) {
+        REQUIRE(r->loops_found == 1);
+        REQUIRE(r->loops_filled == 1);
+        REQUIRE(r->vertices_added > 10);
+        REQUIRE(r->min_new_angle_deg >= 20.0);
+    }
+    // The cap rises 0.4 above the rim's plane: the flat fill misses the sphere by about that,
+    // the faired ones by far less, and C2 (curvature continuous) by less than C1.
+    const double dev_flat = sphere_deviation(flat, v0), dev1 = sphere_deviation(c1, v0),
+                 dev2 = sphere_deviation(c2, v0);
+    INFO("flat " << dev_flat << ", C1 " << dev1 << ", C2 " << dev2);
+    REQUIRE(dev_flat > 0.2);
+    REQUIRE(dev1 < 0.25 * dev_flat);
+    REQUIRE(dev2 < 0.1 * dev1);
+    // The new vertices are the stored selection, and only they.
+    const std::optional<Selection> s = stored_selection(c1);
+    REQUIRE(s);
+    REQUIRE(count_selected(*s) == r1.vertices_added);
+    for (Index i = v0; i < c1.vertices_size(); ++i) REQUIRE((*s)[i] == 1.0f);
+}
+
+TEST_CASE("C2 fairing is smoother than C1 across the rim", "[hole_filling]") {
+    // Smoothness across the rim: how much the dihedral angle changes from the old ring of edges
+    // just outside the rim to the rim edges themselves. On a sphere every edge of the old mesh
+    // bends by about the same angle; a curvature-continuous fill keeps that at the rim.
+    const HalfedgeMesh holed = capped_sphere(12);
+    const Index f0 = Index(holed.faces_size());
+    const auto rim_bend_jump = [&](HoleFairing fairing) {
+        HalfedgeMesh m = holed;
+        HoleFillingOptions o;
+        o.fairing = fairing;
+        fill_holes(m, o);
+        double rim = 0, old = 0;
+        std::size_t n_rim = 0, n_old = 0;
+        for (Edge e : m.edges()) {
+            const Face a = m.face(HalfedgeMesh::halfedge(e, 0)),
+                       b = m.face(HalfedgeMesh::halfedge(e, 1));
+            const double bend =
+                std::acos(std::clamp(face_normal(m, a).dot(face_normal(m, b)), -1.0, 1.0));
+            if ((a.idx() >= f0) != (b.idx() >= f0)) {
+                rim += bend;
+                ++n_rim;
+            } else if (a.idx() < f0 && b.idx() < f0) {
+                old += bend;
+                ++n_old;
+            }
+        }
+        return std::abs(rim / double(n_rim) - old / double(n_old));
+    };
+    const double jump1 = rim_bend_jump(HoleFairing::C1), jump2 = rim_bend_jump(HoleFairing::C2);
+    INFO("C1 " << jump1 << ", C2 " << jump2);
+    REQUIRE(jump2 < jump1);
+}
+
+TEST_CASE("the Stanford bunny's five holes are all filled, closed and clean", "[hole_filling]") {
+    const std::string path = test::shared_mesh("stanford-bunny.obj");
+    SKIP_IF_MISSING(path);
+    HalfedgeMesh mesh = read_mesh(path).mesh;
+    const Index v0 = Index(mesh.vertices_size()), f0 = Index(mesh.faces_size());
+    for (HoleFairing fairing : {HoleFairing::C1, HoleFairing::C2}) {
+        HalfedgeMesh m = mesh;
+        HoleFillingOptions o;
+        o.fairing = fairing;
+        const HoleFillingReport r = fill_holes(m, o);
+        std::vector<std::size_t> sizes = r.loop_edges;
+        std::sort(sizes.begin(), sizes.end());
+        REQUIRE(sizes == std::vector<std::size_t>{22, 39, 40, 42, 80});
+        REQUIRE(r.loops_filled == 5);
+        REQUIRE(r.refused.empty());
+        REQUIRE_VALID(m);
+        REQUIRE(boundary_loops(m).empty());
+        REQUIRE(is_closed(m));
+        REQUIRE(r.faces_added == m.n_faces() - mesh.n_faces());
+        REQUIRE(self_intersections_near(m, f0) == 0);
+        // At most the odd triangle under 20 degrees, and only where the rim leaves no choice.
+        REQUIRE(r.new_angles_under_20 <= 2);
+        REQUIRE(r.min_new_angle_deg > 10.0);
+        REQUIRE(small_angles_only_where_unavoidable(m, v0, f0));
+    }
+}
+
+TEST_CASE("a long slot is cut by chords and filled", "[hole_filling]") {
+    // A 2 x 200 slot in a fine grid: a loop of 404 edges, over kMaxDpLoop.
+    const HalfedgeMesh grid = make_grid(240);
+    const double h = 1.0 / 240;
+    const HalfedgeMesh holed = without_faces(grid, [&](const std::array<Point, 3>& p) {
+        const Point c = (p[0] + p[1] + p[2]) / 3;
+        return c.x() > 20 * h && c.x() < 220 * h && c.y() > 119 * h && c.y() < 121 * h;
+    });
+    HalfedgeMesh m = holed;
+    HoleFillingOptions o;
+    o.loops = {1};  // loop 0 is the grid's outer border (it holds vertex 0)
+    const HoleFillingReport r = fill_holes(m, o);
+    REQUIRE(r.loops_found == 2);
+    REQUIRE(r.loop_edges[1] == 404);
+    REQUIRE(r.loops_filled == 1);
+    REQUIRE(r.loops_cut == 1);
+    REQUIRE_VALID(m);
+    REQUIRE(boundary_loops(m).size() == 1);
+    REQUIRE(r.min_new_angle_deg >= 20.0);
+    // A plane's hole is filled in its plane.
+    for (Index i = Index(holed.vertices_size()); i < m.vertices_size(); ++i)
+        REQUIRE(std::abs(m.position(Vertex(i)).z()) < 1e-9);
+}
+
+TEST_CASE("degenerate rims are refused with the reason, the rest filled", "[hole_filling]") {
+    SECTION("a zero-length rim edge") {
+        HalfedgeMesh m = capped_sphere(6);
+        const BoundaryLoop loop = boundary_loops(m)[0];
+        m.position(loop.vertices[1]) = m.position(loop.vertices[0]);
+        const HalfedgeMesh before = m;
+        const HoleFillingReport r = fill_holes(m);
+        REQUIRE(r.loops_filled == 0);
+        REQUIRE(r.refused.size() == 1);
+        REQUIRE_THAT(r.refused[0].reason, Catch::Contains("zero length"));
+        REQUIRE(m.n_faces() == before.n_faces());
+        REQUIRE(m.positions() == before.positions());
+        REQUIRE_VALID(m);
+    }
+    SECTION("a loop that touches itself (a pinched, non-manifold rim)") {
+        // Two cells of a grid that meet at one corner: the corner has two fans, which loading
+        // splits into two copies at one position, and the two holes become one loop of eight
+        // edges through both copies.
+        const HalfedgeMesh grid = make_grid(4);
+        const HalfedgeMesh pinched = without_faces(grid, [](const std::array<Point, 3>& p) {
+            const Point c = (p[0] + p[1] + p[2]) / 3;
+            const bool cell_a = c.x() > 0.25 && c.x() < 0.5 && c.y() > 0.25 && c.y() < 0.5;
+            const bool cell_b = c.x() > 0.5 && c.x() < 0.75 && c.y() > 0.5 && c.y() < 0.75;
+            return cell_a || cell_b;
+        });
+        HalfedgeMesh m = pinched;
+        const HoleFillingReport r = fill_holes(m);
+        REQUIRE(r.loops_found == 2);  // the grid's border and the pinched loop
+        REQUIRE(r.loops_filled == 0);
+        REQUIRE(r.refused.size() == 2);
+        // The border would fold back onto the flat grid.
+        REQUIRE(r.refused[0].edges == 16);
+        REQUIRE_THAT(r.refused[0].reason, Catch::Contains("outer border of an open sheet"));
+        REQUIRE(r.refused[1].edges == 8);
+        REQUIRE_THAT(r.refused[1].reason, Catch::Contains("touches itself"));
+        REQUIRE_THAT(r.refused[1].reason, Catch::Contains("pinched, non-manifold rim"));
+        REQUIRE_VALID(m);
+        REQUIRE(m.n_faces() == pinched.n_faces());
+    }
+    SECTION("a rim vertex moved onto another of its loop") {
+        // A square hole whose corner vertex 1 is moved onto the opposite corner's position.
+        HalfedgeMesh m = without_faces(make_grid(4), [](const std::array<Point, 3>& p) {
+            const Point c = (p[0] + p[1] + p[2]) / 3;
+            return c.x() > 0.25 && c.x() < 0.75 && c.y() > 0.25 && c.y() < 0.75;
+        });
+        const std::vector<BoundaryLoop> loops = boundary_loops(m);
+        REQUIRE(loops.size() == 2);
+        const BoundaryLoop& hole = loops[1];
+        REQUIRE(hole.edges() == 8);
+        m.position(hole.vertices[2]) = m.position(hole.vertices[6]);
+        HoleFillingOptions o;
+        o.loops = {1};
+        const HoleFillingReport r = fill_holes(m, o);
+        REQUIRE(r.refused.size() == 1);
+        REQUIRE(r.refused[0].loop == 1);
+        REQUIRE_THAT(r.refused[0].reason, Catch::Contains("touches itself"));
+        REQUIRE(boundary_loops(m).size() == 2);
+        REQUIRE_VALID(m);
+    }
+    SECTION("two loops that touch at a point") {
+        HalfedgeMesh m = without_faces(make_grid(6), [](const std::array<Point, 3>& p) {
+            const Point c = (p[0] + p[1] + p[2]) / 3;
+            const bool a = c.x() > 1.0 / 6 && c.x() < 2.0 / 6 && c.y() > 1.0 / 6 && c.y() < 2.0 / 6;
+            const bool b = c.x() > 4.0 / 6 && c.x() < 5.0 / 6 && c.y() > 4.0 / 6 && c.y() < 5.0 / 6;
+            return a || b;
+        });
+        std::vector<BoundaryLoop> loops = boundary_loops(m);
+        REQUIRE(loops.size() == 3);
+        m.position(loops[2].vertices[0]) = m.position(loops[1].vertices[0]);
+        HoleFillingOptions o;
+        o.loops = {1, 2};
+        const HoleFillingReport r = fill_holes(m, o);
+        REQUIRE(r.loops_filled == 0);
+        REQUIRE(r.refused.size() == 2);
+        REQUIRE_THAT(r.refused[0].reason, Catch::Contains("touches loop 2"));
+        REQUIRE_THAT(r.refused[1].reason, Catch::Contains("touches loop 1"));
+        REQUIRE_VALID(m);
+    }
+    SECTION("a three-edge loop whose triangle is a face already") {
+        PolygonSoup soup;
+        soup.positions = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0)};
+        soup.add_face({0, 1, 2});
+        LoadReport report;
+        HalfedgeMesh m = build_mesh(soup, report);
+        const HoleFillingReport r = fill_holes(m);
+        REQUIRE(r.refused.size() == 1);
+        REQUIRE_THAT(r.refused[0].reason, Catch::Contains("a face already"));
+        REQUIRE(m.n_faces() == 1);
+        REQUIRE_VALID(m);
+    }
+}
+
+TEST_CASE("fill_holes refuses bad options and leaves the mesh unchanged", "[hole_filling]") {
+    const HalfedgeMesh holed = capped_sphere(6);
+    HalfedgeMesh m = holed;
+    HoleFillingOptions o;
+    o.loops = {1};
+    REQUIRE_THROWS_WITH(fill_holes(m, o), Catch::Contains("loops: index 1 is past the end"));
+    o = {};
+    o.max_edges = -1;
+    REQUIRE_THROWS_WITH(fill_holes(m, o), Catch::Contains("max-edges"));
+    o = {};
+    o.max_diameter = std::nan("");
+    REQUIRE_THROWS_WITH(fill_holes(m, o), Catch::Contains("max-diameter"));
+    REQUIRE(m.n_faces() == holed.n_faces());
+    REQUIRE(m.positions() == holed.positions());
+    // Size filters: a loop over the limit is not chosen (and not refused).
+    o = {};
+    o.max_edges = 3;
+    const HoleFillingReport r = fill_holes(m, o);
+    REQUIRE(r.loops_found == 1);
+    REQUIRE(r.loops_chosen == 0);
+    REQUIRE(r.refused.empty());
+    REQUIRE(m.n_faces() == holed.n_faces());
+}
+
+TEST_CASE("the fill-holes operation: options, region and report", "[hole_filling]") {
+    const HalfedgeMesh holed = capped_sphere(6);
+    NullProgress progress;
+    const OperationResult result =
+        run_operation(parse_operation("fill-holes --max-edges 100 --fairing c2"), holed, progress);
+    const HalfedgeMesh& out = result.steps.back().mesh;
+    REQUIRE_VALID(out);
+    REQUIRE(is_closed(out));
+    const HoleFillingReport* r = report_of<HoleFillingReport>(result);
+    REQUIRE(r);
+    REQUIRE(r->loops_filled == 1);
+    REQUIRE(holed.positions() ==
+            std::vector<Point>(out.positions().begin(),
+                               out.positions().begin() + std::ptrdiff_t(holed.vertices_size())));
+    REQUIRE_THROWS_WITH(parse_operation("fill-holes --max-edges -1"),
+                        Catch::Contains("--max-edges"));
+    REQUIRE_THROWS_WITH(parse_operation("fill-holes --fairing c3"), Catch::Contains("--fairing"));
+    // A region away from the hole fills nothing; one on its rim fills it.
+    RunSettings settings;
+    Selection away = empty_selection(holed);
+    Vertex lowest = *holed.vertices().begin();
+    for (Vertex v : holed.vertices())
+        if (holed.position(v).z() < holed.position(lowest).z()) lowest = v;
+    away[lowest.idx()] = 1;
+    settings.region = &away;
+    const OperationResult none =
+        run_operation(parse_operation("fill-holes"), holed, progress, settings);
+    REQUIRE(report_of<HoleFillingReport>(none)->loops_chosen == 0);
+    REQUIRE_FALSE(none.changed);
+    Selection rim = empty_selection(holed);
+    rim[boundary_loops(holed)[0].vertices[3].idx()] = 1;
+    settings.region = &rim;
+    const OperationResult one =
+        run_operation(parse_operation("fill-holes"), holed, progress, settings);
+    REQUIRE(report_of<HoleFillingReport>(one)->loops_filled == 1);
+}
