@@ -7,12 +7,14 @@
 #include <cstdint>
 #include <exception>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <thread>
 #include <utility>
 
 #include "core/errors.h"
+#include "core/features.h"
 #include "core/number_text.h"
 #include "core/prefault.h"
 #include "core/prefetch.h"
@@ -101,6 +103,23 @@ void check_polygon_soup(const PolygonSoup& soup) {
     check_size(soup.distances.size(), nv, "distances");
     check_size(soup.selections.size(), nv, "selections");
     check_size(soup.corner_texcoords.size(), soup.corners.size(), "corner_texcoords");
+    check_size(soup.corner_tags.size(), nv, "corner_tags");
+    for (std::size_t i = 0; i < soup.corner_tags.size(); ++i)
+        if (soup.corner_tags[i] > 1)
+            throw InvalidArgument("build_mesh: vertex " + std::to_string(i) + ": corner tag " +
+                                  std::to_string(soup.corner_tags[i]) + " is not 0 or 1");
+    for (std::size_t i = 0; i < soup.sharp_edges.size(); ++i) {
+        const PolygonSoup::SharpEdge& s = soup.sharp_edges[i];
+        if (s.a >= nv || s.b >= nv || s.a == s.b)
+            throw InvalidArgument(
+                "build_mesh: sharp edge " + std::to_string(i) + " joins vertices " +
+                std::to_string(s.a) + " and " + std::to_string(s.b) +
+                (s.a == s.b ? " (the same vertex)"
+                            : " (the soup has " + std::to_string(nv) + " vertices)"));
+        if (!valid_sharpness(s.sharpness))
+            throw InvalidArgument("build_mesh: sharp edge " + std::to_string(i) + ": sharpness " +
+                                  number_text(s.sharpness) + " is not >= 0 (or inf)");
+    }
 }
 
 namespace {
@@ -849,11 +868,52 @@ HalfedgeMesh assemble_mesh(const PolygonSoup& soup, PolygonSoup* owned, Connecti
     return mesh;
 }
 
+/// The soup's corner tags and sharp edges onto the mesh (`source` maps a mesh vertex to its
+/// soup vertex): each mesh edge takes the sharpness listed for its ends' soup vertices.
+template <class Source>
+void copy_features(const PolygonSoup& soup, const Source& source, HalfedgeMesh& mesh,
+                   LoadReport& report) {
+    const std::size_t n_v = mesh.vertices_size();
+    if (!soup.corner_tags.empty()) {
+        auto p = corner_property(mesh);
+        for (std::size_t v = 0; v < n_v; ++v) p[Vertex(Index(v))] = soup.corner_tags[source(v)];
+    }
+    if (soup.sharp_edges.empty()) return;
+    auto key = [](std::size_t a, std::size_t b) {
+        return a < b ? (std::uint64_t(a) << 32) | b : (std::uint64_t(b) << 32) | a;
+    };
+    // Sorted (key, entry) pairs; the last entry of equal keys wins.
+    std::vector<std::pair<std::uint64_t, Index>> listed;
+    listed.reserve(soup.sharp_edges.size());
+    for (std::size_t i = 0; i < soup.sharp_edges.size(); ++i)
+        listed.emplace_back(key(soup.sharp_edges[i].a, soup.sharp_edges[i].b), Index(i));
+    std::sort(listed.begin(), listed.end());
+    std::vector<std::uint8_t> used(listed.size(), 0);
+    auto sharp = sharpness_property(mesh);
+    for (Edge e : mesh.edges()) {
+        const std::uint64_t k = key(source(mesh.to_vertex(mesh.halfedge(e, 0)).idx()),
+                                    source(mesh.to_vertex(mesh.halfedge(e, 1)).idx()));
+        auto it = std::upper_bound(listed.begin(), listed.end(),
+                                   std::make_pair(k, std::numeric_limits<Index>::max()));
+        if (it == listed.begin() || (it - 1)->first != k) continue;
+        --it;
+        sharp[e] = soup.sharp_edges[it->second].sharpness;
+        used[std::size_t(it - listed.begin())] = 1;
+    }
+    std::size_t unmatched = 0;
+    for (std::size_t i = 0; i < listed.size(); ++i)
+        if (!used[i] && (i + 1 == listed.size() || listed[i + 1].first != listed[i].first))
+            ++unmatched;
+    if (unmatched > 0)
+        report.notes.push_back(count_text(unmatched, "sharp edge joins", "sharp edges join") +
+                               " two vertices that no edge of the mesh joins (dropped)");
+}
+
 /// Stage 5b: the soup's attributes onto the mesh: per vertex from each vertex's source
 /// (copy_source for the copies), per corner from each face's triangle.
 void copy_attributes(const PolygonSoup& soup, std::size_t n_input_vertices, const Triangles& tris,
                      const std::vector<Index>& copy_source, const std::vector<Index>& face_tri,
-                     HalfedgeMesh& mesh) {
+                     HalfedgeMesh& mesh, LoadReport& report) {
     const std::size_t n_v = mesh.vertices_size();
     auto source = [&](std::size_t v) {
         return v < n_input_vertices ? v : std::size_t(copy_source[v - n_input_vertices]);
@@ -878,6 +938,7 @@ void copy_attributes(const PolygonSoup& soup, std::size_t n_input_vertices, cons
         auto p = mesh.vertex_property<TexCoord>("v:texcoord");
         for (std::size_t v = 0; v < n_v; ++v) p[Vertex(Index(v))] = soup.texcoords[source(v)];
     }
+    copy_features(soup, source, mesh, report);
     if (!soup.corner_texcoords.empty()) {
         const Index* tri_corner = tris.clean ? nullptr : tris.own_tri_corner.data();
         auto p = mesh.halfedge_property<TexCoord>("h:texcoord", TexCoord::Zero());
@@ -923,7 +984,7 @@ HalfedgeMesh build_from_soup(const PolygonSoup& soup, PolygonSoup* owned, LoadRe
     add_detached_triangles(tris.tri, n_input_vertices, keep_corners, c, report);
 
     HalfedgeMesh mesh = assemble_mesh(soup, owned, c, report);
-    copy_attributes(soup, n_input_vertices, tris, c.copy_source, c.face_tri, mesh);
+    copy_attributes(soup, n_input_vertices, tris, c.copy_source, c.face_tri, mesh, report);
 
     if (owned) {
         owned->face_offsets.assign(1, 0);  // an empty soup's offsets
@@ -967,6 +1028,16 @@ PolygonSoup to_soup(const HalfedgeMesh& mesh) {
     auto distances = mesh.get_vertex_property<double>("v:distance");
     auto selections = mesh.get_vertex_property<float>("v:selection");
     auto corner_uv = mesh.get_halfedge_property<TexCoord>("h:texcoord");
+    const auto corner_tags = mesh.get_vertex_property<std::uint8_t>(kCornerProperty);
+    const auto sharpness = mesh.get_edge_property<float>(kSharpnessProperty);
+    if (sharpness)
+        for (Edge e : mesh.edges())
+            if (sharpness[e] > 0.0f)
+                soup.sharp_edges.push_back({index[mesh.to_vertex(mesh.halfedge(e, 1)).idx()],
+                                            index[mesh.to_vertex(mesh.halfedge(e, 0)).idx()],
+                                            sharpness[e]});
+    if (corner_tags)
+        for (Vertex v : mesh.vertices()) soup.corner_tags.push_back(corner_tags[v]);
     for (Vertex v : mesh.vertices()) {
         if (normals) soup.normals.push_back(normals[v]);
         if (colors) soup.colors.push_back(colors[v]);

@@ -16,6 +16,7 @@
 // Everything done is counted in the LoadReport. Complexity: linear in the soup size (plus
 // O(n log n) per polygon of n > 16 corners), with no copy of a triangle soup's corners
 // (mesh_builder.cpp).
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,17 @@ struct PolygonSoup {
     std::vector<float> selections;
     /// Optional per-corner texture coordinates: empty, or one per entry of `corners`.
     std::vector<TexCoord> corner_texcoords;
+    /// Optional sharp edges (core/features.h): two vertex indices and a sharpness (>= 0, or
+    /// inf). Each becomes "e:sharpness" of the mesh edge joining those vertices (and of the
+    /// edges joining their copies); one that names no edge of the mesh is dropped and counted
+    /// in the report's notes. Listing the same pair twice keeps the last value.
+    struct SharpEdge {
+        Index a = 0, b = 0;
+        float sharpness = 0;
+    };
+    std::vector<SharpEdge> sharp_edges;
+    /// Optional corner tags "v:corner" (core/features.h): empty, or one per position (0 or 1).
+    std::vector<std::uint8_t> corner_tags;
 
     std::size_t n_faces() const { return face_offsets.size() - 1; }
     /// Appends a face; `uv`, when given, holds one texture coordinate per corner.
@@ -76,9 +88,9 @@ void check_polygon_soup(const PolygonSoup& soup);
 
 /// Builds a valid HalfedgeMesh from `soup` (see the file comment). Attributes in the soup
 /// become "v:normal", "v:color", "v:texcoord" and "h:texcoord" (the texture coordinate of
-/// the corner at to_vertex(h) in face(h)). Throws InvalidArgument naming the face and corner
-/// if a corner index is out of range or an attribute array has the wrong size; the report
-/// is filled in on success.
+/// the corner at to_vertex(h) in face(h)), "e:sharpness" and "v:corner". Throws InvalidArgument
+/// naming the face and corner if a corner index is out of range or an attribute array has the wrong
+/// size; the report is filled in on success.
 HalfedgeMesh build_mesh(const PolygonSoup& soup, LoadReport& report);
 /// The same, consuming the soup: a triangle soup's face offsets are released once the
 /// triangles are known and the positions move into the mesh (no copy), lowering the peak

@@ -180,6 +180,7 @@ Vertex HalfedgeMesh::split(Edge e, const Point& p) {
 
     const Vertex v = add_vertex(p);
     const Halfedge h1 = new_edge(v, b), o1 = twin(h1);
+    eprops_.copy_element(e.idx(), edge(h1).idx());  // both halves keep e's attributes
     set_to_vertex(h0, v);
     set_next(h1, hn);
     set_next(h0, h1);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/features.h"
 #include "core/prefetch.h"
 #include "core/two_threads.h"
 
@@ -424,6 +425,7 @@ ValidationResult validate(const HalfedgeMesh& m) {
         if (!fans_pass) error = check.check_vertices();  // names the broken vertex
         if (error.empty() && !fans_pass) error = "the vertices' fans do not hold every halfedge";
     }
+    if (error.empty()) error = check_features(m);
     if (!error.empty()) return {false, std::move(error)};
     return {};
 }

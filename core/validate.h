@@ -1,6 +1,7 @@
 #pragma once
 // validate(): checks every connectivity invariant of a HalfedgeMesh (listed in
-// halfedge_mesh.h) and reports the first violation. Tests call it after every operation.
+// halfedge_mesh.h) and the feature properties (core/features.h: check_features()), and
+// reports the first violation. Tests call it after every operation.
 // Complexity: linear in the mesh size.
 #include <string>
 

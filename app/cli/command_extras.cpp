@@ -1,5 +1,6 @@
 // What single operation commands add to the shared shape of app/cli/operation_command.h:
-// spectrum writes its eigenvalues (--eigenvalues FILE, and the JSON), subdivide its levels.
+// spectrum writes its eigenvalues (--eigenvalues FILE, and the JSON), subdivide its levels,
+// features its histogram of dihedral angles.
 #include "app/cli/operation_command.h"
 
 #include <algorithm>
@@ -75,6 +76,26 @@ void finish_subdivide(const OperationResult& result, const std::map<std::string,
     JsonObject levels;
     levels.add("vertices", vertices).add("faces", faces);
     json->add("levels", levels);
+}
+
+/// Features' histogram of dihedral angles: the JSON's "histogram" (one count per degree), or
+/// the number of edges at or above every 10 degrees as text.
+void finish_features(const OperationResult& result, const std::map<std::string, std::string>&,
+                     JsonObject* json) {
+    std::vector<double> counts;
+    for (const auto& [key, series] : result.series)
+        if (key == "histogram") counts = series;
+    if (json) {
+        json->add("histogram", counts);
+        return;
+    }
+    std::string line = "  edges with an angle >= 10, 20, ..., 170 degrees:";
+    for (std::size_t a = 10; a < counts.size(); a += 10) {
+        double n = 0;
+        for (std::size_t k = a; k < counts.size(); ++k) n += counts[k];
+        line += " " + std::to_string(static_cast<long long>(n));
+    }
+    std::printf("%s\n", line.c_str());
 }
 
 /// fill-holes' --loops I,J: the indices, checked as text (before any file is read).
@@ -156,6 +177,7 @@ CommandExtras command_extras(const std::string& name) {
                              "not with --region)\n",
                              finish_fill_holes,
                              fill_holes_region};
+    if (name == "features") return CommandExtras{{}, "", finish_features, {}};
     return {};
 }
 

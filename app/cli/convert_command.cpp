@@ -55,14 +55,18 @@ int run_convert_command(const std::vector<std::string>& args) {
         throw InvalidArgument("expected IN and OUT files (see `trilab-cli convert --help`)");
     const LoadedMesh loaded = read_mesh(files[0]);
     write_mesh(loaded.mesh, files[1], write);
+    const std::vector<std::string> notes = write_notes(loaded.mesh, files[1]);
     if (json) {
         JsonObject j;
         j.add("input", files[0])
             .add("output", files[1])
             .add("vertices", loaded.mesh.n_vertices())
-            .add("faces", loaded.mesh.n_faces())
-            .add("ms", 0.0);
+            .add("faces", loaded.mesh.n_faces());
+        if (!notes.empty()) j.add("save_notes", notes);
+        j.add("ms", 0.0);
         std::cout << j.str() << "\n";
+    } else {
+        for (const std::string& line : notes) std::fprintf(stderr, "note: %s\n", line.c_str());
     }
     return 0;
 }

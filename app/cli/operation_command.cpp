@@ -67,10 +67,19 @@ OperationArgs parse_args(const OperationDef& def, const std::vector<std::string>
         } else if (reader.is_option()) {
             // An operation option: it and its value go to the operation, which checks both.
             a.op_args.push_back(s);
-            if (is_flag(def, s))
+            if (is_flag(def, s)) {
                 reader.flag();
-            else if (reader.has_value())
-                a.op_args.push_back(reader.value());
+            } else if (reader.has_value()) {
+                const std::string value = reader.value();
+                // subdivide's --features auto:A is --features auto --feature-angle A.
+                if (s == "--features" && value.rfind("auto:", 0) == 0) {
+                    a.op_args.push_back("auto");
+                    a.op_args.push_back("--feature-angle");
+                    a.op_args.push_back(value.substr(5));
+                } else {
+                    a.op_args.push_back(value);
+                }
+            }
         } else {
             a.files.push_back(s);
         }
@@ -211,6 +220,7 @@ int run_operation_command(const std::string& name, const std::vector<std::string
                          "good state)");
     const HalfedgeMesh& out = result.steps.back().mesh;
     write_mesh(out, a.files[1], a.write);  // not timed
+    const std::vector<std::string> save_notes = write_notes(out, a.files[1]);
 
     if (a.json) {
         JsonObject j;
@@ -225,12 +235,14 @@ int run_operation_command(const std::string& name, const std::vector<std::string
         if (extras.finish) extras.finish(result, a.own, &j);
         j.add("stopped_early", result.stopped_early);
         if (result.stopped_early) j.add("stop_reason", result.stop_reason);
+        if (!save_notes.empty()) j.add("save_notes", save_notes);
         j.add("report", result.report).add("ms", result.ms);
         std::cout << j.str() << "\n";
     } else {
         std::printf("wrote %s: %s%s%s (%.1f ms)\n", a.files[1].c_str(), result.label.c_str(),
                     result.parameters.empty() ? "" : " ", result.parameters.c_str(), result.ms);
         for (const std::string& line : result.report) std::printf("  %s\n", line.c_str());
+        for (const std::string& line : save_notes) std::printf("  note: %s\n", line.c_str());
         if (extras.finish) extras.finish(result, a.own, nullptr);
     }
     if (result.stopped_early) {

@@ -141,6 +141,21 @@ std::unique_ptr<OperationDef> decimate_operation() {
          "max-error", [](DecimateOptions & o) -> auto& { return o.core.max_error; }, 0, 1e300,
          "largest quadric error as a distance (0: no limit)")
         .hide_default();
+    d.choice(
+         "features", [](DecimateOptions & o) -> auto& { return o.core.features; },
+         EnumTableView(kFeatureSources),
+         "sharp edges and corners kept: those stored in the mesh, none, or auto (detected at "
+         "--feature-angle first; on the command line also auto:A)")
+        .hide_default();
+    d.number(
+         "feature-angle", [](DecimateOptions & o) -> auto& { return o.core.feature_angle; }, 0, 180,
+         "with --features auto: the dihedral angle of a sharp edge", " (degrees)")
+        .above_min()
+        .slider(1, 90)
+        .only_if([](const DecimateOptions& o) -> const char* {
+            return o.core.features == FeatureSource::Auto ? nullptr
+                                                          : "applies only with --features auto";
+        });
     d.run(run_decimate)
         .acts_on_region(
             "only edges with both ends of positive weight collapse; --percent counts the region's "

@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "core/algorithms/coloring.h"
+#include "core/algorithms/feature_detection.h"
 #include "core/errors.h"
 #include "core/io/file_util.h"
 #include "core/io/mesh_io.h"
@@ -19,8 +20,8 @@ namespace trilab {
 namespace {
 
 constexpr const char* kSpecForms =
-    "sphere:X,Y,Z,R[,FEATHER], geodesic:V,R[,FEATHER], component:V, threshold:QUANTITY,LO,HI "
-    "or file:PATH";
+    "sphere:X,Y,Z,R[,FEATHER], geodesic:V,R[,FEATHER], component:V, threshold:QUANTITY,LO,HI, "
+    "feature:K[,FEATHER] or file:PATH";
 
 bool parse_number(const std::string& text, double& out) {
     const char* end = text.data() + text.size();
@@ -203,6 +204,9 @@ RegionSpec parse_region_spec(const std::string& text) {
     } else if (kind == "component") {
         spec.kind = RegionSpec::Kind::Component;
         min_parts = max_parts = 1, form = "component:V";
+    } else if (kind == "feature") {
+        spec.kind = RegionSpec::Kind::Feature;
+        min_parts = 1, max_parts = 2, form = "feature:K[,FEATHER]";
     } else {
         throw InvalidArgument("--region: unknown kind '" + kind + "' (expected " + kSpecForms +
                               ")");
@@ -217,9 +221,11 @@ RegionSpec parse_region_spec(const std::string& text) {
         if (!parse_number(parts[i], x))
             throw InvalidArgument("--region " + text + ": expected a number, got '" + parts[i] +
                                   "' (in " + form + ")");
-        if (i == 0 && vertex_first && (x < 0 || x != std::floor(x)))
-            throw InvalidArgument("--region " + text + ": V: expected a vertex index, got '" +
-                                  parts[i] + "'");
+        const bool rings = spec.kind == RegionSpec::Kind::Feature;
+        if (i == 0 && vertex_first && (x < 0 || x != std::floor(x) || (rings && x > 1e6)))
+            throw InvalidArgument("--region " + text + ": " + (rings ? "K" : "V") + ": expected " +
+                                  (rings ? "a number of rings (0 to 1000000)" : "a vertex index") +
+                                  ", got '" + parts[i] + "'");
         const bool radius_or_feather = vertex_first ? i >= 1 : i >= 3;
         if (radius_or_feather && x < 0)
             throw InvalidArgument("--region " + text + ": " +
@@ -248,6 +254,14 @@ Selection make_region(const HalfedgeMesh& mesh, const RegionSpec& spec) {
             break;
         case RegionSpec::Kind::Threshold:
             s = threshold_region(mesh, spec);
+            break;
+        case RegionSpec::Kind::Feature:
+            if (!has_features(mesh))
+                throw InvalidArgument("--region " + spec.text +
+                                      ": the mesh has no features (no sharp edge, no corner "
+                                      "tag): run `trilab-cli features` first");
+            s = feature_neighbourhood(mesh, unsigned(n[0]));
+            if (n.size() > 1) feather = n[1];
             break;
         case RegionSpec::Kind::File:
             if (is_mesh_file(spec.path)) {

@@ -12,6 +12,8 @@
 //                              is in [LO, HI]; vertices without a value are outside. The
 //                              colourings that need a field from elsewhere (a spectral
 //                              decomposition, an earlier state) are refused, naming why
+//   feature:K[,FEATHER]        the vertices within K rings of a feature (a sharp edge or a
+//                              corner tag, core/features.h)
 //   file:PATH                  a text file with one weight in [0, 1] per vertex per line (blank
 //                              lines and lines starting with '#' are skipped), or a mesh file
 //                              whose vertices carry a selection (PLY `selection`, OM custom
@@ -30,8 +32,8 @@ namespace trilab {
 
 /// A parsed SPEC, before any mesh is read.
 struct RegionSpec {
-    enum class Kind { Sphere, Geodesic, Component, File, Threshold } kind = Kind::Sphere;
-    std::vector<double> numbers;  ///< X,Y,Z,R[,F] / V,R[,F] / V / LO,HI
+    enum class Kind { Sphere, Geodesic, Component, File, Threshold, Feature } kind = Kind::Sphere;
+    std::vector<double> numbers;  ///< X,Y,Z,R[,F] / V,R[,F] / V / LO,HI / K[,F]
     std::string quantity;         ///< threshold: the colouring's name
     std::string path;             ///< file:
     std::string text;             ///< the SPEC as given, for messages

@@ -205,6 +205,18 @@ std::unique_ptr<OperationDef> smooth_operation() {
                                         ", at least -1: give a --lambda below 1, or --mu)"
                                   : std::string()));
     });
+    d.choice("features", &FairingOptions::features, EnumTableView(kFeatureSources),
+             "feature vertices kept fixed: those stored in the mesh, none, or auto (detected at "
+             "--feature-angle first; on the command line also auto:A)")
+        .hide_default();
+    d.number("feature-angle", &FairingOptions::feature_angle, 0, 180,
+             "with --features auto: the dihedral angle of a sharp edge", " (degrees)")
+        .above_min()
+        .slider(1, 90)
+        .only_if([](const FairingOptions& o) -> const char* {
+            return o.features == FeatureSource::Auto ? nullptr
+                                                     : "applies only with --features auto";
+        });
     d.run(run_smooth)
         .may_stop_early()
         .acts_on_region(

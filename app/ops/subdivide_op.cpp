@@ -116,6 +116,18 @@ std::unique_ptr<OperationDef> subdivide_operation() {
            "an almost regular mesh over the whole surface; by default it stays next to the "
            "selection, and repeated levels split the earlier closure 1-to-4 instead of bisecting "
            "it again)");
+    d.choice("features", &SubdivisionOptions::features, EnumTableView(kFeatureSources),
+             "sharp edges and corners for Loop's crease rules: those stored in the mesh, none, or "
+             "auto (detected at --feature-angle first; on the command line also auto:A)")
+        .hide_default();
+    d.number("feature-angle", &SubdivisionOptions::feature_angle, 0, 180,
+             "with --features auto: the dihedral angle of a sharp edge", " (degrees)")
+        .above_min()
+        .slider(1, 90)
+        .only_if([](const SubdivisionOptions& o) -> const char* {
+            return o.features == SubdivisionFeatures::Auto ? nullptr
+                                                           : "applies only with --features auto";
+        });
     d.flag("local-closure", &SubdivisionOptions::local_closure,
            "on a region: keep the closure next to the selection (the default; accepted for "
            "recipes and sessions written before it was)");

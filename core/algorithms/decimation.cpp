@@ -86,10 +86,12 @@
 #include <thread>
 
 #include "core/algorithms/coincident.h"
+#include "core/algorithms/feature_detection.h"
 #include "core/algorithms/quadric.h"
 #include "core/algorithms/selection.h"
 #include "core/algorithms/spatial_order.h"
 #include "core/errors.h"
+#include "core/features.h"
 #include "core/mesh_builder.h"
 #include "core/number_text.h"
 
@@ -383,6 +385,7 @@ public:
                                        : std::numeric_limits<double>::infinity();
         vuv_ = m_.get_vertex_property<TexCoord>("v:texcoord");
         huv_ = m_.get_halfedge_property<TexCoord>("h:texcoord");
+        fetch_features();
         // Vertices with a coincident copy (a seam's two sides, the copies of a split vertex)
         // never move alone: a seam vertex with exactly one copy goes together with it, along
         // the seam on both sides (seam_partner()), every other copy stays where it is.
@@ -616,6 +619,16 @@ private:
         }
         vuv_ = m_.get_vertex_property<TexCoord>("v:texcoord");
         huv_ = m_.get_halfedge_property<TexCoord>("h:texcoord");
+        fetch_features();
+    }
+
+    // The features (core/features.h) the run keeps, when the options ask and the mesh has any.
+    void fetch_features() {
+        sharp_ = EdgeProperty<float>();
+        corner_ = VertexProperty<std::uint8_t>();
+        if (o_.features == FeatureSource::None || !has_features(m_)) return;
+        sharp_ = m_.get_edge_property<float>(kSharpnessProperty);
+        corner_ = m_.get_vertex_property<std::uint8_t>(kCornerProperty);
     }
 
     // ---- setup ------------------------------------------------------------------------------
@@ -843,17 +856,37 @@ private:
         return false;
     }
 
-    // Whether v stays where it is: a texture seam vertex, or one with a coincident copy.
+    // The number of sharp edges at v (3 for a tagged corner; at most 3); 0 without features.
+    unsigned feature_count(Vertex v) const {
+        if (corner_ && corner_[v]) return 3;
+        if (!sharp_) return 0;
+        const Halfedge start = m_.halfedge(v);
+        if (!start.is_valid()) return 0;
+        unsigned n = 0;
+        Halfedge g = start;
+        do {
+            if (sharp_[HalfedgeMesh::edge(g)] > 0.0f && ++n == 3) return n;
+            g = m_.ccw_rotated(g);
+        } while (g != start);
+        return n;
+    }
+
+    // Whether v stays where it is: a texture seam vertex, one with a coincident copy, or a
+    // feature vertex (on a sharp edge, or a tagged corner).
     bool pinned(Vertex v) const {
-        return coincident_[v.idx()] || on_seam(v);
+        return coincident_[v.idx()] || on_seam(v) || feature_count(v) > 0;
     }
 
     // Whether h (from_vertex moves into to_vertex) is an allowed direction: a boundary vertex
-    // only moves along a boundary edge; pinned vertices never move.
+    // only moves along a boundary edge; a feature vertex only when it is a crease (two sharp
+    // edges) and h runs along one of them (corners and the ends of feature curves never move);
+    // other pinned vertices never move.
     bool direction_allowed(Halfedge h, bool boundary_edge) const {
         const Vertex from = m_.from_vertex(h);
         if (boundary_[from.idx()] && !boundary_edge) return false;
         if (coincident_[from.idx()]) return !on_seam(from) && seam_partner(h).is_valid();
+        if (const unsigned k = feature_count(from); k > 0)
+            return k == 2 && sharp_[HalfedgeMesh::edge(h)] > 0.0f && !on_seam(from);
         return !pinned(from);
     }
 
@@ -975,8 +1008,10 @@ private:
             const Quadric q = quadric_[a.idx()] + quadric_[b.idx()];
             unsigned dir = ok0 ? 0 : 1;
             Point p;
-            if (ok0 && ok1) {
-                // Both may move: optimal placement, else the best of the ends and midpoint.
+            if (ok0 && ok1 && !pinned(a) && !pinned(b)) {
+                // Both may move: optimal placement, else the best of the ends and midpoint
+                // (two crease vertices may each move along their curve, but stay on it: the
+                // branches below keep one where it is).
                 const Point mid = 0.5 * (xa + xb);
                 const double len = (xb - xa).norm();
                 if (q.optimize(p) && (p - mid).norm() <= kMaxPlacementDistance * len) {
@@ -1368,6 +1403,18 @@ private:
         const TexCoord survivor0_uv =
             huv_ && f0.is_valid() ? huv_[HalfedgeMesh::twin(m_.next(h))] : TexCoord::Zero();
 
+        // The edge that survives in each face at h (prev(h), prev(o)) keeps the larger
+        // sharpness of the two edges it merges with (next(h), next(o)): feature curves stay.
+        if (sharp_) {
+            if (f0.is_valid()) {
+                float& s = sharp_[HalfedgeMesh::edge(m_.prev(h))];
+                s = std::max(s, sharp_[HalfedgeMesh::edge(m_.next(h))]);
+            }
+            if (f1.is_valid()) {
+                float& s = sharp_[HalfedgeMesh::edge(m_.prev(o))];
+                s = std::max(s, sharp_[HalfedgeMesh::edge(m_.next(o))]);
+            }
+        }
         // The edges the collapse deletes: h's, and one more per face at it (remove_loop).
         forget(HalfedgeMesh::edge(h));
         if (f0.is_valid()) forget(HalfedgeMesh::edge(m_.next(h)));
@@ -1495,6 +1542,8 @@ private:
     std::vector<std::uint8_t> stale_;  ///< per edge: its cost awaits re-pricing (defer_)
     VertexProperty<TexCoord> vuv_;
     HalfedgeProperty<TexCoord> huv_;
+    EdgeProperty<float> sharp_;            ///< "e:sharpness" when features are kept
+    VertexProperty<std::uint8_t> corner_;  ///< "v:corner" when features are kept
     std::uint32_t iteration_ = 0;
 };
 
@@ -1511,6 +1560,9 @@ void check_options(const DecimationOptions& o) {
     if (!(o.min_roundness > 0 && o.min_roundness <= 1))
         throw InvalidArgument("decimate: min_roundness must be in (0, 1], got " +
                               number_text(o.min_roundness));
+    if (o.features == FeatureSource::Auto && !(o.feature_angle > 0 && o.feature_angle <= 180))
+        throw InvalidArgument("decimate: feature_angle must be in (0, 180] degrees, got " +
+                              number_text(o.feature_angle));
     if (!(o.max_error >= 0) || !std::isfinite(o.max_error))
         throw InvalidArgument("decimate: max_error must be >= 0, got " + number_text(o.max_error));
 }
@@ -1598,6 +1650,11 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
     DecimationResult result;
     DecimationReport& report = result.report;
     HalfedgeMesh work = mesh;
+    if (options.features == FeatureSource::Auto) {
+        FeatureDetectionOptions d;
+        d.angle_deg = options.feature_angle;
+        detect_features(work, d);
+    }
     // before_to_work[i]: the working index of vertex i of the mesh before the iteration.
     DecimationOptions work_options = options;
     std::vector<float> work_region;

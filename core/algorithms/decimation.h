@@ -28,6 +28,7 @@
 #include "core/algorithms/morph.h"
 #include "core/algorithms/progressive_mesh.h"
 #include "core/enum_table.h"
+#include "core/features.h"
 #include "core/halfedge_mesh.h"
 #include "core/progress.h"
 
@@ -82,6 +83,15 @@ struct DecimationOptions {
     /// constraints; `percent` counts the region's vertices (with faces) instead of the mesh's,
     /// while target_vertices stays a vertex count of the whole mesh. Not owned.
     const std::vector<float>* region = nullptr;
+    /// The features kept (core/features.h): the mesh's own (Stored), none, or those detected
+    /// at `feature_angle` degrees first (Auto; the result carries them). A vertex on a sharp
+    /// edge moves only when it is a crease (two sharp edges) and along one of them, into its
+    /// neighbour on the curve; corners (three or more sharp edges, or tagged) and curve ends
+    /// never move, and a kept feature vertex stays where it is (no optimal placement); merged
+    /// edges keep the larger sharpness. So every output vertex on a feature is an input vertex
+    /// on a feature curve. With None the features are carried but not kept.
+    FeatureSource features = FeatureSource::Stored;
+    double feature_angle = 60.0;  ///< FeatureSource::Auto: the angle, in (0, 180]
 };
 
 /// Why a decimation ended.

@@ -80,6 +80,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "core/algorithms/coincident.h"
+#include "core/algorithms/feature_detection.h"
 #include "core/algorithms/selection.h"
 #include "core/algorithms/weld.h"
 #include "core/errors.h"
@@ -1566,8 +1567,39 @@ bool smooth_region_on_faces(FairingResult& res, const FairingOptions& o,
     return true;
 }
 
-FairingResult smooth_mesh(FairingResult res, const FairingOptions& options, Progress& progress) {
-    if (options.region) check_selection(res.mesh, *options.region, "smooth: region");
+/// The region with the feature vertices (ends of sharp edges, tagged corners) at weight 0, or
+/// nothing when the options keep no features or the mesh has none; detects them first (Auto).
+std::optional<Selection> fix_features(HalfedgeMesh& mesh, const FairingOptions& o,
+                                      std::string& line) {
+    if (o.features == FeatureSource::None) return std::nullopt;
+    if (o.features == FeatureSource::Auto) {
+        if (!(o.feature_angle > 0 && o.feature_angle <= 180))
+            throw InvalidArgument("smooth: feature_angle must be in (0, 180] degrees (got " +
+                                  number_text(o.feature_angle) + ")");
+        FeatureDetectionOptions d;
+        d.angle_deg = o.feature_angle;
+        detect_features(mesh, d);
+    }
+    if (!has_features(mesh)) return std::nullopt;
+    Selection w = o.region ? *o.region : Selection(mesh.vertices_size(), 1.0f);
+    const std::vector<float> near = feature_neighbourhood(mesh, 0);
+    std::size_t fixed = 0;
+    for (std::size_t v = 0; v < w.size(); ++v)
+        if (near[v] > 0) {
+            w[v] = 0.0f;
+            ++fixed;
+        }
+    line = "features: " + count_text(fixed, "vertex", "vertices") +
+           " on sharp edges or corners kept where they are";
+    return w;
+}
+
+FairingResult smooth_mesh(FairingResult res, const FairingOptions& given, Progress& progress) {
+    if (given.region) check_selection(res.mesh, *given.region, "smooth: region");
+    std::string feature_line;
+    const std::optional<Selection> with_features = fix_features(res.mesh, given, feature_line);
+    FairingOptions options = given;
+    if (with_features) options.region = &*with_features;
     if (find_coincident_vertices(res.mesh).empty()) {
         check_options(res.mesh, options);
         const std::vector<std::uint8_t> faces = region_run_faces(res.mesh, options);
@@ -1578,6 +1610,7 @@ FairingResult smooth_mesh(FairingResult res, const FairingOptions& options, Prog
     } else {
         smooth_coincident(res, options, progress);
     }
+    if (!feature_line.empty()) res.report.push_back(feature_line);
     return res;
 }
 

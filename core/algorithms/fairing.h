@@ -35,6 +35,7 @@
 
 #include "core/algorithms/laplacian.h"
 #include "core/enum_table.h"
+#include "core/features.h"
 #include "core/halfedge_mesh.h"
 #include "core/progress.h"
 
@@ -122,6 +123,12 @@ struct FairingOptions {
     /// positions bit for bit, in time that follows the region's size. false: the whole-mesh
     /// passes (for comparisons and tests).
     bool restrict_to_region = true;
+    /// Fixed features (core/features.h): the vertices on a sharp edge and the tagged corners
+    /// weigh 0 in the region (they stay bit for bit) when the mesh has features (Stored, the
+    /// default) or after detecting them at `feature_angle` degrees (Auto: the result carries
+    /// them); None smooths them like any vertex. A line of the report counts them.
+    FeatureSource features = FeatureSource::Stored;
+    double feature_angle = 60.0;  ///< FeatureSource::Auto: the angle, in (0, 180]
 };
 
 struct FairingResult {

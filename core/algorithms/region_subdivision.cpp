@@ -23,6 +23,7 @@
 #include "core/algorithms/coincident.h"
 #include "core/algorithms/pillows.h"
 #include "core/errors.h"
+#include "core/features.h"
 #include "core/geometry.h"
 
 #if defined(__linux__)
@@ -1149,6 +1150,10 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
         if (mesh.get_halfedge_property<TexCoord>("h:texcoord"))
             result.notes.push_back(
                 "corner texture coordinates (h:texcoord) are not carried by region subdivision");
+        if (options.features != FeatureSource::None && has_features(mesh))
+            result.notes.push_back(
+                "features (sharp edges, corners) are not used nor carried by region subdivision "
+                "yet: subdivide the whole mesh to keep them");
         report.min_angle_out = flattest == kInvalidIndex
                                    ? 180.0
                                    : min_face_angle(result.levels.back().mesh, Face(flattest));

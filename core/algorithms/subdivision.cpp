@@ -12,6 +12,23 @@
 //                         beta_n = (1/n) (5/8 - (3/8 + 1/4 cos(2 pi / n))^2)
 //   even, boundary:       1/8 v- + 3/4 v + 1/8 v+          (cubic B-spline curve rules)
 //
+// Loop with features (T. DeRose, M. Kass, T. Truong, "Subdivision surfaces in character
+// animation", SIGGRAPH 1998; the rules exactly as OpenSubdiv 3.5's Sdc computes them for its
+// Loop scheme with the default options: uniform creasing, boundary edges infinitely sharp).
+// An edge is sharp when its sharpness s > 0 ("e:sharpness", core/features.h) or it is a
+// boundary edge; a vertex's rule comes from its number of sharp edges (0 smooth, 1 dart,
+// 2 crease, 3 or more corner) or its corner tag ("v:corner": corner):
+//   odd, s > 1:           1/2 (a + b)                                  (crease rule)
+//   odd, 0 < s <= 1:      s 1/2 (a + b) + (1 - s) (3/8 (a + b) + 1/8 (c + d))
+//   even, smooth, dart:   the smooth rule above
+//   even, crease:         3/4 v + 1/8 (e1 + e2), e1, e2 the ends of its two sharp edges
+//   even, corner:         v
+// The children of an edge get s - 1 (0 once s <= 1; s >= 10 never decays, as OpenSubdiv's
+// infinite sharpness). Where a vertex's rule with the children's sharpness differs from its
+// rule now (a semi-sharp crease ends at this level), the result is w P + (1 - w) C with P, C
+// the two rules' positions and w the mean sharpness of its sharp edges with s <= 1 (at most 1).
+// Vertices without a sharp edge, a boundary or a tag take the plain loop's rule, bit for bit.
+//
 // Sqrt3 (L. Kobbelt, "sqrt(3)-Subdivision", SIGGRAPH 2000), approximating: a new vertex at
 // every face centroid (a + b + c) / 3, every old interior edge flipped (the triangle pair at
 // edge a-b becomes (a, d', c') and (b, c', d') with c', d' the new centroids), even interior
@@ -111,9 +128,12 @@
 #include <memory>
 
 #include "core/algorithms/coincident.h"
+#include "core/algorithms/feature_detection.h"
 #include "core/algorithms/pillows.h"
 #include "core/algorithms/weld.h"
 #include "core/errors.h"
+#include "core/features.h"
+#include "core/number_text.h"
 
 namespace trilab {
 
@@ -210,6 +230,35 @@ inline void face_halfedges(const In& m, Index f, Index h[3]) {
     h[2] = m.next_i(h[1]);
 }
 
+/// The outgoing halfedges of vertex v (valid halfedge), in rotation order.
+template <typename F>
+void for_each_outgoing_edge(const In& m, Index v, F&& f) {
+    const Index h0 = m.vh[v].idx();
+    Index g = h0;
+    do {
+        f(g);
+        g = m.prev_i(g) ^ 1u;
+    } while (g != h0);
+}
+
+/// The feature arrays of a level (core/features.h), indexed by edge and vertex storage index;
+/// null where the mesh has none. Boundary edges act as infinitely sharp (OpenSubdiv's default
+/// boundary interpolation, VTX_BOUNDARY_EDGE_ONLY).
+struct Creases {
+    const float* sharp = nullptr;
+    const std::uint8_t* corner = nullptr;
+    bool any() const { return sharp || corner; }
+};
+
+/// The vertex-vertex rule of OpenSubdiv (Sdc::Crease::DetermineVertexVertexRule) from a count
+/// of sharp edges: 0 smooth, 1 dart, 2 crease, 3 or more corner.
+enum class CreaseRule { Smooth, Dart, Crease, Corner };
+inline CreaseRule rule_of(unsigned sharp_edges, bool tagged) {
+    if (tagged || sharp_edges > 2) return CreaseRule::Corner;
+    return sharp_edges == 2 ? CreaseRule::Crease
+                            : (sharp_edges == 1 ? CreaseRule::Dart : CreaseRule::Smooth);
+}
+
 /// The outgoing halfedge of every old vertex with one: map(its old outgoing halfedge).
 template <typename Map>
 void set_old_vertex_halfedges(const In& m, Out& out, const Map& map) {
@@ -268,7 +317,7 @@ struct Provenance {
 
 /// The stencils and parents of a 1-to-4 level (old vertex v keeps index v, edge e's vertex is
 /// nv + e), classified on `m` itself (coincident copies are marked later, mark_creases()).
-void provenance_1to4(const In& m, SubdivisionScheme scheme, HalfedgeMesh& out) {
+void provenance_1to4(const In& m, SubdivisionScheme scheme, HalfedgeMesh& out, const Creases& cr) {
     const Index nv = m.nv, ne = m.ne;
     Provenance pr(out);
     std::vector<unsigned> valence(nv, 0);
@@ -295,6 +344,42 @@ void provenance_1to4(const In& m, SubdivisionScheme scheme, HalfedgeMesh& out) {
         else if (modified && ((interior(a) && valence[a] != 6) || (interior(b) && valence[b] != 6)))
             st = SubdivisionStencil::OddExtraordinary;
         pr.set(nv + e, st, a, b);
+    }
+    if (!loop || !cr.any()) return;
+    // Loop with features: the rules of loop_positions_creased().
+    // Only the ends of sharp interior edges and tagged vertices differ from the rules above.
+    std::vector<std::uint8_t> touched(nv, 0);
+    if (cr.corner) std::copy_n(cr.corner, nv, touched.begin());
+    for (Index e = 0; cr.sharp && e < ne; ++e) {
+        const float sh = cr.sharp[e];
+        if (!(sh > 0.0f) || m.boundary(2 * e) || m.boundary(2 * e + 1)) continue;
+        pr.stencil[nv + e] =
+            int(sh > 1.0f ? SubdivisionStencil::OddSharp : SubdivisionStencil::OddSemiSharp);
+        touched[m.to_i(2 * e)] = touched[m.to_i(2 * e + 1)] = 1;
+    }
+    for (Index v = 0; v < nv; ++v) {
+        if (!touched[v] || !m.vh[v].is_valid()) continue;
+        unsigned sharp_p = 0, sharp_c = 0, sharp_only = 0;
+        for_each_outgoing_edge(m, v, [&](Index h) {
+            const bool border = m.boundary(h) || m.boundary(h ^ 1u);
+            const float sh = border ? kInfiniteSharpness : (cr.sharp ? cr.sharp[h >> 1] : 0.0f);
+            sharp_p += sh > 0.0f ? 1 : 0;
+            sharp_c += child_sharpness(sh) > 0.0f ? 1 : 0;
+            sharp_only += sh > 0.0f && !border ? 1 : 0;
+        });
+        const bool tagged = cr.corner && cr.corner[v] != 0;
+        if (sharp_only == 0 && !tagged) continue;  // smooth or boundary: as without features
+        const CreaseRule parent = rule_of(sharp_p, tagged), child = rule_of(sharp_c, tagged);
+        SubdivisionStencil st = SubdivisionStencil::EvenDart;
+        if (parent == CreaseRule::Smooth || parent == CreaseRule::Dart)
+            st = SubdivisionStencil::EvenDart;
+        else if (parent != child)
+            st = SubdivisionStencil::EvenSemiSharp;
+        else if (parent == CreaseRule::Crease)
+            st = SubdivisionStencil::EvenSharpCrease;
+        else
+            st = tagged ? SubdivisionStencil::EvenTaggedCorner : SubdivisionStencil::EvenCorner;
+        pr.stencil[v] = int(st);
     }
 }
 
@@ -413,6 +498,123 @@ void carry_uv_1to4(const HalfedgeMesh& mesh, HalfedgeMesh& out) {
                 uv[in_h] = md[k];
                 uv[in_h + 1] = md[k1];
             }
+        }
+    }
+}
+
+/// Loop's smooth even rule: (1 - n beta_n) v + beta_n sum(neighbours).
+inline Point loop_smooth_even(const Point& v, unsigned n, const Point& ring_sum) {
+    const double t = 0.375 + 0.25 * std::cos(2 * kPi / n);
+    const double b = (0.625 - t * t) / n;
+    return (1.0 - n * b) * v + b * ring_sum;
+}
+
+/// Loop's even rule at a vertex with features (DeRose, Kass, Truong 1998, as OpenSubdiv 3.5's
+/// Sdc::Scheme::ComputeVertexVertexMask computes it with its default uniform creasing): the
+/// parent's rule from its sharp edges (sharpness > 0; boundary edges count) and corner tag,
+/// the child's from the decremented sharpness; smooth and dart vertices use the smooth mask,
+/// creases 3/4 v + 1/8 (ends), corners stay. Where the parent's and the child's rules differ,
+/// the masks blend with the mean parent sharpness of the edges that become smooth (at most 1).
+Point loop_feature_even(const In& m, const Creases& cr, Index v, unsigned valence,
+                        const Point& ring_sum) {
+    const bool tagged = cr.corner && cr.corner[v] != 0;
+    unsigned sharp_p = 0, sharp_c = 0, transitions = 0;
+    float transition_sum = 0.0f;
+    Point ends_p = Point::Zero(), ends_c = Point::Zero();
+    for_each_outgoing_edge(m, v, [&](Index h) {
+        const bool border = m.boundary(h) || m.boundary(h ^ 1u);
+        const float sh = border ? kInfiniteSharpness : (cr.sharp ? cr.sharp[h >> 1] : 0.0f);
+        if (!(sh > 0.0f)) return;
+        const Point& w = m.x[m.to_i(h)];
+        ++sharp_p;
+        ends_p += w;
+        if (sh <= 1.0f) {
+            transition_sum += sh;
+            ++transitions;
+        }
+        if (child_sharpness(sh) > 0.0f) {
+            ++sharp_c;
+            ends_c += w;
+        }
+    });
+    const Point& x = m.x[v];
+    const CreaseRule parent = rule_of(sharp_p, tagged), child = rule_of(sharp_c, tagged);
+    auto mask = [&](CreaseRule r, const Point& ends) -> Point {
+        switch (r) {
+            case CreaseRule::Smooth:
+            case CreaseRule::Dart:
+                return loop_smooth_even(x, valence, ring_sum);
+            case CreaseRule::Crease:
+                return 0.75 * x + 0.125 * ends;
+            case CreaseRule::Corner:
+                break;
+        }
+        return x;
+    };
+    if (parent == CreaseRule::Smooth || parent == CreaseRule::Dart)
+        return loop_smooth_even(x, valence, ring_sum);
+    const Point pm = mask(parent, ends_p);
+    if (child == parent) return pm;
+    float fraction = transitions ? transition_sum / float(transitions) : 0.0f;
+    if (fraction > 1.0f) fraction = 1.0f;
+    const double pw = fraction;
+    return pw * pm + (1.0 - pw) * mask(child, ends_c);
+}
+
+/// Loop positions with features (loop_positions() with the rules of loop_feature_even() and,
+/// for an edge of sharpness s > 0, the crease rule (the midpoint) when s > 1 and the blend
+/// s midpoint + (1 - s) smooth when s <= 1, as OpenSubdiv's ComputeEdgeVertexMask). Vertices
+/// without a sharp edge, a boundary or a tag take exactly loop_positions()' smooth rule.
+void loop_positions_creased(const In& m, const Creases& cr, Point* p, const Stage& stage) {
+    const Index nv = m.nv, ne = m.ne;
+    const Point* x = m.x;
+    std::vector<unsigned> valence(nv, 0);
+    std::vector<std::uint8_t> special(nv, 0);  // touches a sharp or boundary edge
+    std::fill_n(p, nv, Point::Zero());
+    for (Index e = 0; e < ne; ++e) {
+        stage.tick(e);
+        const Index h = 2 * e, t = 2 * e + 1;
+        const Index ia = m.to_i(t), ib = m.to_i(h);
+        const Point& a = x[ia];
+        const Point& b = x[ib];
+        p[ia] += b;
+        p[ib] += a;
+        ++valence[ia];
+        ++valence[ib];
+        const float sh = cr.sharp ? cr.sharp[e] : 0.0f;
+        if (m.boundary(h) || m.boundary(t) || sh > 1.0f) {
+            special[ia] = special[ib] = 1;
+            p[nv + e] = 0.5 * (a + b);
+            continue;
+        }
+        const Point& c = x[m.to_i(m.next_i(h))];
+        const Point& d = x[m.to_i(m.next_i(t))];
+        if (sh > 0.0f) {
+            special[ia] = special[ib] = 1;
+            const double pw = sh, cw = 1.0 - pw;
+            p[nv + e] = (pw * 0.5 + cw * 0.375) * (a + b) + (cw * 0.125) * (c + d);
+        } else {
+            p[nv + e] = 0.375 * (a + b) + 0.125 * (c + d);
+        }
+    }
+    stage.report(0.6);
+    std::vector<double> beta(8, -1.0);
+    for (Index vi = 0; vi < nv; ++vi) {
+        stage.tick(vi);
+        const Halfedge h0 = m.vh[vi];
+        if (!h0.is_valid()) {
+            p[vi] = x[vi];
+        } else if (special[vi] || (cr.corner && cr.corner[vi])) {
+            p[vi] = loop_feature_even(m, cr, vi, valence[vi], p[vi]);
+        } else {
+            const unsigned n = valence[vi];
+            if (n >= beta.size()) beta.resize(2 * std::size_t(n) + 1, -1.0);
+            if (beta[n] < 0) {
+                const double t = 0.375 + 0.25 * std::cos(2 * kPi / n);
+                beta[n] = (0.625 - t * t) / n;
+            }
+            const double b = beta[n];
+            p[vi] = (1.0 - n * b) * x[vi] + b * p[vi];
         }
     }
 }
@@ -575,11 +777,29 @@ void butterfly_positions(const In& m, Point* p, bool modified, const Stage& stag
 }
 
 /// The positions of the 1-to-4 split of `m` by `scheme`: odd vertex of edge e at p[nv + e].
-void positions_1to4(const In& m, SubdivisionScheme scheme, Point* p, const Stage& stage) {
-    if (scheme == SubdivisionScheme::Loop)
+void positions_1to4(const In& m, SubdivisionScheme scheme, Point* p, const Stage& stage,
+                    const Creases& creases = {}) {
+    if (scheme == SubdivisionScheme::Loop && creases.any())
+        loop_positions_creased(m, creases, p, stage);
+    else if (scheme == SubdivisionScheme::Loop)
         loop_positions(m, p, stage);
     else
         butterfly_positions(m, p, scheme == SubdivisionScheme::ModifiedButterfly, stage);
+}
+
+/// The features of the 1-to-4 split (core/features.h): both halves of old edge e (edges 2e and
+/// 2e + 1) get child_sharpness() of e's, the edges inside old faces are smooth; old vertices
+/// keep their corner tags, new ones have none.
+void carry_features_1to4(const In& m, const Creases& cr, HalfedgeMesh& out) {
+    if (cr.sharp) {
+        std::vector<float>& s = out.add_edge_property<float>(kSharpnessProperty, 0.0f).vector();
+        for (Index e = 0; e < m.ne; ++e) s[2 * e] = s[2 * e + 1] = child_sharpness(cr.sharp[e]);
+    }
+    if (cr.corner) {
+        std::vector<std::uint8_t>& c =
+            out.add_vertex_property<std::uint8_t>(kCornerProperty, 0).vector();
+        std::copy_n(cr.corner, m.nv, c.begin());
+    }
 }
 
 /// The positions of the 1-to-4 split of `mesh` (compact) computed on its weld
@@ -587,12 +807,32 @@ void positions_1to4(const In& m, SubdivisionScheme scheme, Point* p, const Stage
 /// of the welded surface (the partner's faces are the other side of a seam edge), one value for all
 /// copies. The weld keeps the faces in order, so face f's halfedges match the welded face f's.
 void welded_positions_1to4(const HalfedgeMesh& mesh, SubdivisionScheme scheme, Point* p,
-                           const Stage& stage) {
+                           const Stage& stage, const Creases& creases) {
     const WeldResult weld = weld_coincident_vertices(mesh);
     const In w(weld.mesh);
     const In m(mesh);
     std::vector<Point> pw(std::size_t(w.nv) + w.ne);
-    positions_1to4(w, scheme, pw.data(), stage);
+    // The features on the weld: an edge takes the largest sharpness of the edges it joins, a
+    // vertex the tags of its copies.
+    std::vector<float> wsharp;
+    std::vector<std::uint8_t> wcorner;
+    Creases wcreases;
+    if (creases.sharp) {
+        wsharp.assign(w.ne, 0.0f);
+        for (Index f = 0; f < m.nf; ++f) {
+            Index h = m.fh[f].idx(), g = w.fh[f].idx();
+            for (int k = 0; k < 3; ++k, h = m.next_i(h), g = w.next_i(g))
+                wsharp[g >> 1] = std::max(wsharp[g >> 1], creases.sharp[h >> 1]);
+        }
+        wcreases.sharp = wsharp.data();
+    }
+    if (creases.corner) {
+        wcorner.assign(w.nv, 0);
+        for (Index v = 0; v < m.nv; ++v)
+            if (creases.corner[v]) wcorner[weld.vertex_map[v]] = 1;
+        wcreases.corner = wcorner.data();
+    }
+    positions_1to4(w, scheme, pw.data(), stage, wcreases);
     for (Index v = 0; v < m.nv; ++v)  // isolated vertices stay (the weld may join them)
         p[v] = m.vh[v].is_valid() ? pw[weld.vertex_map[v]] : m.x[v];
     for (Index f = 0; f < m.nf; ++f) {
@@ -603,20 +843,28 @@ void welded_positions_1to4(const HalfedgeMesh& mesh, SubdivisionScheme scheme, P
 }
 
 SubdivisionLevel refine_1to4(const HalfedgeMesh& mesh, SubdivisionScheme scheme, int level,
-                             bool morph, bool welded, const Stage& stage) {
+                             bool morph, bool welded, bool features, const Stage& stage) {
     SubdivisionLevel out;
     out.correspondence.kind = MorphCorrespondence::Kind::FromEarlier;
     const In m(mesh);
     build_1to4(m, out.mesh, stage);
     stage.progress.check_cancelled();
+    Creases creases;
+    if (features) {
+        if (const auto s = mesh.get_edge_property<float>(kSharpnessProperty))
+            creases.sharp = s.vector().data();
+        if (const auto c = mesh.get_vertex_property<std::uint8_t>(kCornerProperty))
+            creases.corner = c.vector().data();
+    }
     Point* p = out.mesh.positions().data();
     if (welded)
-        welded_positions_1to4(mesh, scheme, p, stage);
+        welded_positions_1to4(mesh, scheme, p, stage, creases);
     else
-        positions_1to4(m, scheme, p, stage);
+        positions_1to4(m, scheme, p, stage, creases);
     stage.progress.check_cancelled();
     add_levels(mesh, out.mesh, level);
-    provenance_1to4(m, scheme, out.mesh);
+    provenance_1to4(m, scheme, out.mesh, creases);
+    if (features) carry_features_1to4(m, creases, out.mesh);
     carry_uv_1to4(mesh, out.mesh);
     if (morph) {
         // Even vertices start where they were, odd ones at their edge's midpoint.
@@ -1236,12 +1484,12 @@ UniformStep1to4 uniform_step_1to4(const HalfedgeMesh& mesh, SubdivisionScheme sc
     UniformStep1to4 step;
     step.positions.resize(std::size_t(m.nv) + m.ne);
     if (!find_coincident_vertices(mesh).empty())
-        welded_positions_1to4(mesh, scheme, step.positions.data(), stage);
+        welded_positions_1to4(mesh, scheme, step.positions.data(), stage, Creases{});
     else
         positions_1to4(m, scheme, step.positions.data(), stage);
     HalfedgeMesh scratch;  // provenance_1to4() writes vertex properties: a vertex-only mesh
     scratch.resize_elements(std::size_t(m.nv) + m.ne, 0, 0);
-    provenance_1to4(m, scheme, scratch);
+    provenance_1to4(m, scheme, scratch, Creases{});
     step.stencils = std::move(scratch.get_vertex_property<int>(kStencilName).vector());
     return step;
 }
@@ -1276,6 +1524,20 @@ const char* subdivision_stencil_label(SubdivisionStencil stencil) {
             return "odd, boundary edge split in three (Sqrt3)";
         case SubdivisionStencil::OddClosureMidpoint:
             return "odd, edge midpoint (region closure outside the selection)";
+        case SubdivisionStencil::EvenDart:
+            return "even, dart (one sharp edge: the smooth rule)";
+        case SubdivisionStencil::EvenSharpCrease:
+            return "even, crease (two sharp edges: 3/4 v + 1/8 of each crease neighbour)";
+        case SubdivisionStencil::EvenCorner:
+            return "even, corner (three or more sharp edges meet: stays)";
+        case SubdivisionStencil::EvenTaggedCorner:
+            return "even, corner (tagged as a corner: stays)";
+        case SubdivisionStencil::EvenSemiSharp:
+            return "even, semi-sharp (its sharp edges turn smooth at this level: rules blended)";
+        case SubdivisionStencil::OddSharp:
+            return "odd, edge point on a sharp edge (midpoint)";
+        case SubdivisionStencil::OddSemiSharp:
+            return "odd, edge point on a semi-sharp edge (midpoint and smooth rule blended)";
     }
     return "unknown";
 }
@@ -1288,6 +1550,11 @@ bool is_even_stencil(SubdivisionStencil stencil) {
         case SubdivisionStencil::EvenCrease:
         case SubdivisionStencil::EvenKept:
         case SubdivisionStencil::EvenRelaxed:
+        case SubdivisionStencil::EvenDart:
+        case SubdivisionStencil::EvenSharpCrease:
+        case SubdivisionStencil::EvenCorner:
+        case SubdivisionStencil::EvenTaggedCorner:
+        case SubdivisionStencil::EvenSemiSharp:
             return true;
         default:
             return false;
@@ -1398,13 +1665,28 @@ SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& 
                               " iterations would give about " +
                               std::to_string(static_cast<long long>(faces)) +
                               " faces (at most 50 million): use fewer iterations");
+    const bool auto_features = options.features == SubdivisionFeatures::Auto;
+    if (auto_features && !(options.feature_angle > 0 && options.feature_angle <= 180))
+        throw InvalidArgument("subdivide: the feature angle must be in (0, 180] degrees (got " +
+                              number_text(options.feature_angle) + ")");
+    if (const std::string bad = check_features(mesh); !bad.empty())
+        throw InvalidArgument("subdivide: invalid features: " + bad);
     progress.check_cancelled();
     HalfedgeMesh collected;
     const HalfedgeMesh* current = &mesh;
-    if (mesh.has_garbage()) {
+    if (mesh.has_garbage() || auto_features) {
         collected = mesh;
-        collected.garbage_collection();
+        if (mesh.has_garbage()) collected.garbage_collection();
         current = &collected;
+    }
+    std::string detected;
+    if (auto_features) {
+        FeatureDetectionOptions d;
+        d.angle_deg = options.feature_angle;
+        const FeatureDetectionReport r = detect_features(collected, d);
+        detected = "features detected at " + number_text(options.feature_angle) +
+                   " deg: " + count_text(r.feature_edges, "sharp edge", "sharp edges") + ", " +
+                   count_text(r.corners, "corner", "corners");
     }
     SubdivisionResult result;
     // Pillows cannot be refined: they are set aside and put back unchanged on every level.
@@ -1413,6 +1695,18 @@ SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& 
         pillows = split_off_pillows(*current);
         current = &pillows.rest;
         result.notes.push_back(pillow_note(pillows.count));
+    }
+    // Features (core/features.h): Loop's crease rules; the butterflies carry them unused; Sqrt3
+    // drops them.
+    if (!detected.empty()) result.notes.push_back(detected);
+    bool features = options.features != SubdivisionFeatures::None && has_features(*current);
+    if (features && options.scheme != SubdivisionScheme::Loop) {
+        result.notes.push_back(
+            std::string(scheme_name(options.scheme)) +
+            (sqrt3 ? " has no crease rules yet: the features were dropped"
+                   : " has no crease rules yet: the features were carried (sharpness - 1 per "
+                     "level) but not used"));
+        features = !sqrt3;
     }
     // Coincident vertices (seams, copies of a split vertex) are kept together on every level.
     const bool coincident = !find_coincident_vertices(*current).empty();
@@ -1427,9 +1721,9 @@ SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& 
         // Morph start positions for the levels returned, and to find the coincident ones.
         const bool morph = options.morph && (options.keep_levels || it == options.iterations);
         SubdivisionLevel level =
-            sqrt3
-                ? refine_sqrt3(*current, it % 2 == 0, it, morph || coincident, stage)
-                : refine_1to4(*current, options.scheme, it, morph || coincident, coincident, stage);
+            sqrt3 ? refine_sqrt3(*current, it % 2 == 0, it, morph || coincident, stage)
+                  : refine_1to4(*current, options.scheme, it, morph || coincident, coincident,
+                                features, stage);
         if (coincident) {
             keep_coincident_together(level);
             if (!morph) std::vector<Point>().swap(level.correspondence.positions);

@@ -6,13 +6,15 @@
 //  - Modified Butterfly (Zorin, Schröder, Sweldens 1996; interpolating).
 // Every iteration's level is returned by default, each new vertex with where it starts on the
 // coarser surface (for the morph) and every vertex with its level; SubdivisionOptions switches
-// the levels and the morph off. Texture coordinates are interpolated linearly; other
-// attributes are dropped. Coincident vertices (seams, copies of split vertices) stay together
-// on every level; pillows (core/algorithms/pillows.h) come back unchanged with a note.
-// Throws InvalidArgument for iterations outside 1 to 10, above 50 million faces, or a level
-// that overflows to non-finite values; Cancelled from the progress. The input is not modified.
-// Complexity: linear in the mesh size per iteration. The rules (stencils, boundaries,
-// fallbacks) and the handling of seams: subdivision.cpp.
+// the levels and the morph off. Texture coordinates are interpolated linearly; features
+// (core/features.h: sharp edges, corner tags) drive Loop's crease rules (DeRose, Kass, Truong
+// 1998, exactly as OpenSubdiv 3.5) and are carried to every level; other attributes are dropped.
+// Coincident vertices (seams, copies of split vertices) stay together on every level; pillows
+// (core/algorithms/pillows.h) come back unchanged with a note. Throws InvalidArgument for
+// iterations outside 1 to 10, above 50 million faces, invalid features (a negative or NaN
+// sharpness), or a level that overflows to non-finite values; Cancelled from the progress. The
+// input is not modified. Complexity: linear in the mesh size per iteration. The rules (stencils,
+// boundaries, fallbacks) and the handling of seams: subdivision.cpp.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -21,6 +23,7 @@
 
 #include "core/algorithms/morph.h"
 #include "core/enum_table.h"
+#include "core/features.h"
 #include "core/halfedge_mesh.h"
 #include "core/progress.h"
 
@@ -40,6 +43,9 @@ const char* scheme_name(SubdivisionScheme scheme);
 /// Parses scheme_name() strings; throws InvalidArgument listing them otherwise.
 SubdivisionScheme parse_scheme(const std::string& name);
 
+/// Which features subdivision uses (core/features.h).
+using SubdivisionFeatures = FeatureSource;
+
 struct SubdivisionOptions {
     SubdivisionScheme scheme = SubdivisionScheme::Loop;
     int iterations = 1;  ///< 1 to 10 (refused above, or when the result would be absurdly big)
@@ -58,6 +64,15 @@ struct SubdivisionOptions {
     /// The closure next to the selection: the default now; kept so that recipes and sessions
     /// written before issue 38 (`--local-closure`) still read. Not with global_closure.
     bool local_closure = false;
+    /// Which features (core/features.h: sharp and semi-sharp edges, corner tags) to use: the
+    /// mesh's own, none, or those detected at `feature_angle` degrees first (infinitely sharp;
+    /// core/algorithms/feature_detection.h). Loop applies the crease, corner and dart rules
+    /// exactly as OpenSubdiv 3.5 does (DeRose, Kass, Truong 1998; uniform creasing, boundary
+    /// edges infinitely sharp) and every level carries them (sharpness - 1 per level); the
+    /// butterflies carry them unused; Sqrt3 drops them (a note says so). With None the result
+    /// has no features.
+    SubdivisionFeatures features = SubdivisionFeatures::Stored;
+    double feature_angle = 60.0;  ///< SubdivisionFeatures::Auto: the angle, in (0, 180]
 };
 
 /// The rule that placed a vertex in one subdivision step ("v:subdivision_stencil").
@@ -77,6 +92,13 @@ enum class SubdivisionStencil : int {
     OddFace,            ///< Sqrt3: the centroid of a face
     OddBoundarySplit,   ///< Sqrt3: one of the two vertices splitting a boundary edge in three
     OddClosureMidpoint,  ///< region subdivision: closure edge outside the selection, its midpoint
+    EvenDart,            ///< Loop with features: one sharp edge (the smooth rule)
+    EvenSharpCrease,     ///< Loop with features: two sharp edges (3/4, 1/8, 1/8 along them)
+    EvenCorner,          ///< Loop with features: three or more sharp edges (stays)
+    EvenTaggedCorner,    ///< Loop with features: tagged as a corner (stays)
+    EvenSemiSharp,       ///< Loop with features: rules blended (sharp edges turn smooth)
+    OddSharp,            ///< Loop with features: on an edge of sharpness > 1 (midpoint)
+    OddSemiSharp,        ///< Loop with features: sharpness <= 1 (midpoint and smooth blended)
 };
 /// Words for a stencil ("even, regular (valence 6)", "odd, face centroid").
 const char* subdivision_stencil_label(SubdivisionStencil stencil);

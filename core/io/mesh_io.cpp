@@ -7,6 +7,7 @@
 
 #include "core/algorithms/orientation.h"
 #include "core/errors.h"
+#include "core/features.h"
 #include "core/io/file_util.h"
 
 namespace trilab {
@@ -25,11 +26,20 @@ struct MeshFormat {
 /// The one table of mesh formats: read and write dispatch, the lists and the messages.
 /// info: extension, name, normals, colors, texcoords, ascii choice, big-endian choice.
 const MeshFormat kMeshFormats[] = {
-    {{"obj", "Wavefront OBJ", true, false, true, false, false}, read_obj, write_obj, write_obj_to},
-    {{"off", "OFF", true, true, true, false, false}, read_off, write_off, write_off_to},
-    {{"ply", "Stanford PLY", true, true, true, true, true}, read_ply, write_ply, write_ply_to},
-    {{"stl", "STL", false, false, false, true, false}, read_stl, write_stl, write_stl_to},
-    {{"om", "OpenMesh binary", true, true, true, false, false}, read_om, write_om, write_om_to},
+    {{"obj", "Wavefront OBJ", true, false, true, false, false, false},
+     read_obj,
+     write_obj,
+     write_obj_to},
+    {{"off", "OFF", true, true, true, false, false, false}, read_off, write_off, write_off_to},
+    {{"ply", "Stanford PLY", true, true, true, true, true, true},
+     read_ply,
+     write_ply,
+     write_ply_to},
+    {{"stl", "STL", false, false, false, true, false, false}, read_stl, write_stl, write_stl_to},
+    {{"om", "OpenMesh binary", true, true, true, false, false, true},
+     read_om,
+     write_om,
+     write_om_to},
 };
 
 /// The format of `path`'s extension, or null.
@@ -58,6 +68,15 @@ const std::vector<MeshFormatInfo>& mesh_formats() {
         return out;
     }();
     return formats;
+}
+
+std::vector<std::string> write_notes(const HalfedgeMesh& mesh, const std::string& path) {
+    const MeshFormat* f = format_of(path);
+    std::vector<std::string> notes;
+    if (!f) return notes;
+    const std::string features = feature_save_note(mesh, f->info.features);
+    if (!features.empty()) notes.push_back(features);
+    return notes;
 }
 
 std::vector<std::string> supported_mesh_extensions() {

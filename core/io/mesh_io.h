@@ -52,6 +52,7 @@ struct MeshFormatInfo {
     bool texcoords;          ///< writes texture coordinates (WriteOptions::write_texcoords)
     bool ascii_choice;       ///< WriteOptions::ascii applies (binary otherwise)
     bool big_endian_choice;  ///< WriteOptions::big_endian applies
+    bool features;           ///< writes "e:sharpness" and "v:corner" (core/features.h)
 };
 /// Every supported format, in the order of supported_mesh_extensions().
 const std::vector<MeshFormatInfo>& mesh_formats();
@@ -69,6 +70,9 @@ LoadedMesh read_mesh(const std::string& path);
 /// most once, on this thread; not for an .om file that holds its half-edge connectivity.
 LoadedMesh read_mesh(const std::string& path,
                      const std::function<void(const PolygonSoup&)>& on_soup);
+/// The save report: what writing `mesh` to `path` leaves out that the mesh holds (features in a
+/// format without edges); empty when nothing is lost or the extension is unknown.
+std::vector<std::string> write_notes(const HalfedgeMesh& mesh, const std::string& path);
 /// Writes any supported format (chosen by extension).
 void write_mesh(const HalfedgeMesh& mesh, const std::string& path,
                 const WriteOptions& options = {});

@@ -20,15 +20,18 @@
 // manifold vertices, no deleted elements) its arrays are adopted directly, keeping the
 // file's element numbering; otherwise face loops become polygons of a PolygonSoup and
 // build_mesh repairs and triangulates. Face normals, face colours and custom properties
-// (except a float vertex property "selection", read as "v:selection") are skipped (by their
-// computed size or their byte count) and reported.
+// (except a float vertex property "selection", read as "v:selection", a uint8_t vertex
+// property "corner", read as "v:corner", and, in 2.x files, a float edge property "sharpness",
+// read as "e:sharpness") are skipped (by their computed size or their byte count) and reported.
 //
 // Writer: format 2.2, kind 'T', chunks in OpenMesh 11's order (§10). Positions and normals
 // are written as f64 (0x5600 / 0x5620, allowed since 2.1) so that our doubles round-trip
 // exactly; colours are u8, texture coordinates f32 (the only widths the format has for
 // them). The index width is the smallest of 1, 2, 4 bytes that holds every index. Custom
 // attributes are not written, except the selection "v:selection": a custom vertex property
-// "selection" of type float (read back by this reader, and by OpenMesh as a float property).
+// "selection" of type float (read back by this reader, and by OpenMesh as a float property),
+// and the features (core/features.h) when the mesh has any: a custom vertex property "corner"
+// (uint8_t) and a custom edge property "sharpness" (float, +inf kept).
 // Non-finite values, and texture coordinates beyond float32's range, are refused; the reader
 // refuses NaN and infinity in every attribute.
 #include <algorithm>
@@ -41,6 +44,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/features.h"
 #include "core/io/byte_io.h"
 #include "core/io/file_util.h"
 #include "core/io/mesh_io.h"
@@ -116,6 +120,12 @@ constexpr std::uint16_t encode_header(unsigned entity, unsigned type, bool is_si
 /// takes before the data: header, name, type name "float", byte count.
 constexpr const char* kOmSelectionName = "selection";
 constexpr std::uint64_t kOmSelectionChunkHead = 2 + (1 + 9) + (1 + 5) + 4;
+/// The custom edge property that holds "e:sharpness" (float, +inf allowed) and the custom
+/// vertex property that holds "v:corner" (uint8_t, 0 or 1), with their chunk heads.
+constexpr const char* kOmSharpnessName = "sharpness";
+constexpr std::uint64_t kOmSharpnessChunkHead = 2 + (1 + 9) + (1 + 5) + 4;
+constexpr const char* kOmCornerName = "corner";
+constexpr std::uint64_t kOmCornerChunkHead = 2 + (1 + 6) + (1 + 7) + 4;
 
 std::string hex16(std::uint16_t v) {
     static const char digits[] = "0123456789ABCDEF";
@@ -243,6 +253,9 @@ struct OmContents {
     /// The custom vertex property "selection" of type float (n_v weights in [0, 1]), read as
     /// "v:selection"; null when absent.
     Span selection;
+    /// The custom edge property "sharpness" (float, n_e values, 2.x only) and the custom
+    /// vertex property "corner" (uint8_t, n_v values): "e:sharpness", "v:corner".
+    Span sharpness, corner;
     bool custom_on_faces_or_halfedges = false;
     bool face_normals = false, face_colors = false, ignored_1x_halfedge_texcoords = false;
 
@@ -367,6 +380,26 @@ void skip_custom(Cursor& in, const ChunkHeader& h, const std::string& name, OmCo
                         number_text(w) + " is not in [0, 1]");
         }
         c.selection = Span{data};
+        return;
+    }
+    if (c.v2 && h.entity == kEdge && name == kOmSharpnessName && type == "float" &&
+        std::uint64_t(bytes) == 4 * std::uint64_t(c.n_e)) {
+        for (std::size_t e = 0; e < c.n_e; ++e) {
+            const float s = load_le<float>(data + 4 * e);
+            if (!valid_sharpness(s))
+                in.fail("custom property 'sharpness': edge " + std::to_string(e) + ": sharpness " +
+                        number_text(s) + " is not >= 0 (or inf)");
+        }
+        c.sharpness = Span{data};
+        return;
+    }
+    if (h.entity == kVertex && name == kOmCornerName && type == "uint8_t" &&
+        std::uint64_t(bytes) == std::uint64_t(c.n_v)) {
+        for (std::size_t v = 0; v < c.n_v; ++v)
+            if (data[v] > 1)
+                in.fail("custom property 'corner': vertex " + std::to_string(v) + ": tag " +
+                        std::to_string(unsigned(data[v])) + " is not 0 or 1");
+        c.corner = Span{data};
         return;
     }
     c.custom_names.push_back(name);
@@ -520,6 +553,7 @@ void soup_vertices(const OmContents& c, Assembly& a) {
         if (c.colors) s.colors.push_back(color_at(c.colors, v));
         if (c.texcoords) s.texcoords.push_back(texcoord_at(c.texcoords, v));
         if (c.selection) s.selections.push_back(load_le<float>(c.selection.p + 4 * v));
+        if (c.corner) s.corner_tags.push_back(c.corner.p[v]);
     }
 }
 
@@ -751,6 +785,14 @@ bool adopt_2x(const Topology2& t, Assembly& a) {
         auto p = m.vertex_property<float>("v:selection");
         for (std::size_t v = 0; v < n_v; ++v) p.vector()[v] = load_le<float>(c.selection.p + 4 * v);
     }
+    if (c.corner) {
+        auto p = corner_property(m);
+        for (std::size_t v = 0; v < n_v; ++v) p.vector()[v] = c.corner.p[v];
+    }
+    if (c.sharpness) {
+        auto p = sharpness_property(m);
+        for (std::size_t e = 0; e < n_e; ++e) p.vector()[e] = load_le<float>(c.sharpness.p + 4 * e);
+    }
     if (c.halfedge_texcoords) {
         // Boundary halfedges carry no corner; they get zero, as build_mesh gives them.
         auto p = m.halfedge_property<TexCoord>("h:texcoord", TexCoord::Zero());
@@ -793,6 +835,16 @@ void soup_faces_2x(const Topology2& t, Assembly& a) {
             std::rotate(soup.corner_texcoords.begin() + std::ptrdiff_t(begin),
                         soup.corner_texcoords.end() - 1, soup.corner_texcoords.end());
         soup.face_offsets.push_back(soup.corners.size());
+    }
+    if (c.sharpness) {  // by their end vertices: build_mesh finds the edges again
+        for (std::size_t e = 0; e < t.n_h / 2; ++e) {
+            const float s = load_le<float>(c.sharpness.p + 4 * e);
+            if (!(s > 0.0f) || !t.halfedge_live(2 * e)) continue;
+            const Index a0 = Index(t.to(2 * e + 1)), b0 = Index(t.to(2 * e));
+            const Index a1 = vmap.empty() ? a0 : vmap[a0], b1 = vmap.empty() ? b0 : vmap[b0];
+            if (a1 != kInvalidIndex && b1 != kInvalidIndex && a1 != b1)
+                soup.sharp_edges.push_back({a1, b1, s});
+        }
     }
 }
 
@@ -903,7 +955,9 @@ struct OmWritePlan {
     VertexProperty<const Color> colors;
     VertexProperty<const TexCoord> texcoords;
     HalfedgeProperty<const TexCoord> corner_uv;
-    VertexProperty<const float> selection;  ///< "v:selection", a custom chunk
+    VertexProperty<const float> selection;      ///< "v:selection", a custom chunk
+    EdgeProperty<const float> sharpness;        ///< "e:sharpness", a custom chunk
+    VertexProperty<const std::uint8_t> corner;  ///< "v:corner", a custom chunk
     bool write_corner_uv = false;
     std::uint64_t total = 0;  ///< bytes
 };
@@ -962,6 +1016,12 @@ OmWritePlan plan_om_write(const HalfedgeMesh& mesh, const std::string& path,
     if (n_v > 0) w.total += 2 + w.width * n_v;
     w.total += 2 + w.width * n_f;
     if (w.selection) w.total += kOmSelectionChunkHead + 4 * n_v;
+    if (has_features(mesh)) {
+        w.sharpness = mesh.get_edge_property<float>(kSharpnessProperty);
+        w.corner = mesh.get_vertex_property<std::uint8_t>(kCornerProperty);
+    }
+    if (w.corner) w.total += kOmCornerChunkHead + n_v;
+    if (w.sharpness) w.total += kOmSharpnessChunkHead + 4 * w.n_e;
     return w;
 }
 
@@ -1001,6 +1061,15 @@ void put_om_vertices(unsigned char*& p, const HalfedgeMesh& mesh, const OmWriteP
     if (w.texcoords) {
         store_le<std::uint16_t>(p, encode_header(kVertex, kTexcoord, true, true, 2, 0));  // 0x0E40
         for (const TexCoord& x : w.texcoords.vector()) put_uv(p, x);
+    }
+}
+
+/// A custom chunk's property name and type name (u8 length + bytes each).
+void put_names(unsigned char*& p, const std::string& name, const std::string& type) {
+    for (const std::string* text : {&name, &type}) {
+        *p++ = static_cast<unsigned char>(text->size());
+        std::memcpy(p, text->data(), text->size());
+        p += text->size();
     }
 }
 
@@ -1049,6 +1118,20 @@ void put_om_connectivity(unsigned char*& p, const HalfedgeMesh& mesh, const OmWr
         }
         store_le<std::uint32_t>(p, std::uint32_t(4 * n_v));
         for (const float x : w.selection.vector()) store_le<float>(p, x);
+    }
+    if (w.corner) {  // custom vertex chunk of uint8_t (size code 0 = 1 byte)
+        store_le<std::uint16_t>(
+            p, std::uint16_t(encode_header(kVertex, kCustom, false, false, 1, 0) | 2u));
+        put_names(p, kOmCornerName, "uint8_t");
+        store_le<std::uint32_t>(p, std::uint32_t(n_v));
+        for (const std::uint8_t x : w.corner.vector()) *p++ = x;
+    }
+    if (w.sharpness) {  // custom edge chunk of float (header 0x00D2), after the vertex ones
+        store_le<std::uint16_t>(
+            p, std::uint16_t(encode_header(kEdge, kCustom, false, false, 1, 0) | 2u));
+        put_names(p, kOmSharpnessName, "float");
+        store_le<std::uint32_t>(p, std::uint32_t(4 * w.n_e));
+        for (const float x : w.sharpness.vector()) store_le<float>(p, x);
     }
     store_le<std::uint16_t>(p, encode_header(kSentinel, 0, false, false, 1, 0));  // 0x001C
 }

@@ -4,7 +4,9 @@
 // may be ascii, binary_little_endian or binary_big_endian, with elements in any order. The
 // elements "vertex" (x, y, z; nx, ny, nz; red, green, blue; u/v, s/t, texture_u/texture_v or
 // texture_s/texture_t; distance: the per-vertex scalar "v:distance"; selection: the weight
-// "v:selection"), "face" (a vertex_indices or vertex_index list, polygons allowed, and an
+// "v:selection"; corner: the tag "v:corner"), "edge" (vertex1, vertex2 and crease: the
+// sharpness "e:sharpness", 10 or more read as infinity; an edge element without a crease is
+// skipped), "face" (a vertex_indices or vertex_index list, polygons allowed, and an
 // optional per-face "texcoord" list of two floats per corner) and "tristrips" (a vertex_indices
 // list where -1 restarts the strip) are used; every other element and property is skipped, list
 // properties included. All PLY scalar types are accepted under both spellings. Binary rows of fixed
@@ -21,8 +23,10 @@
 // normals and texture coordinates are float32 (a round trip is exact to float precision,
 // ~6e-8 relative), or double for a group whose values float32 cannot hold with full
 // precision (float_range_suffices); colours uchar; a "v:distance" scalar as double
-// `distance`; a "v:selection" weight as float `selection`; faces are
-// "property list uchar int vertex_indices". Non-finite values are refused.
+// `distance`; a "v:selection" weight as float `selection`; a "v:corner" tag as uchar `corner`;
+// faces are "property list uchar int vertex_indices"; sharp edges (sharpness > 0) as an
+// element `edge` (int vertex1, int vertex2, float crease; infinity written as 10, OpenSubdiv's
+// infinite sharpness). Non-finite values are refused.
 #include <algorithm>
 #include <atomic>
 #include <charconv>
@@ -38,6 +42,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/features.h"
 #include "core/io/byte_io.h"
 #include "core/io/file_util.h"
 #include "core/io/mesh_io.h"
@@ -188,6 +193,10 @@ enum Role : std::uint8_t {
     kV,
     kDistance,   // the per-vertex scalar "v:distance"
     kSelection,  // the per-vertex selection weight "v:selection"
+    kCorner,     // the per-vertex corner tag "v:corner"
+    kEdgeV1,     // edge element: first vertex
+    kEdgeV2,     // edge element: second vertex
+    kCrease,     // edge element: the sharpness "e:sharpness"
     kIndices,    // face / tristrips vertex index list
     kTexcoord,   // per-face corner texture coordinate list
     kRoleCount
@@ -202,7 +211,7 @@ struct PlyProperty {
     Role role = kNone;
 };
 
-enum class ElementKind { kOther, kVertex, kFace, kTristrips };
+enum class ElementKind { kOther, kVertex, kFace, kTristrips, kEdge };
 
 struct PlyElement {
     std::string name;
@@ -237,6 +246,8 @@ const char* element_label(const PlyElement& e) {
             return "vertex";
         case ElementKind::kFace:
             return "face";
+        case ElementKind::kEdge:
+            return "edge";
         case ElementKind::kTristrips:
             return "tristrips";
         case ElementKind::kOther:
@@ -380,6 +391,8 @@ private:
                         r = kDistance;
                     else if (n == "selection")
                         r = kSelection;
+                    else if (n == "corner")
+                        r = kCorner;
                     if (r != kNone && !e.has_role(r)) p.role = r;
                     if (r == kRed || r == kGreen || r == kBlue) color_type_ = p.type;
                 }
@@ -390,6 +403,7 @@ private:
                 has_uv_ = e.has_role(kU) && e.has_role(kV);
                 has_distance_ = e.has_role(kDistance);
                 has_selection_ = e.has_role(kSelection);
+                has_corner_ = e.has_role(kCorner);
             } else if (e.name == "face" || e.name == "tristrips") {
                 e.kind = e.name == "face" ? ElementKind::kFace : ElementKind::kTristrips;
                 for (PlyProperty& p : e.props) {
@@ -404,11 +418,56 @@ private:
                 if (!e.has_role(kIndices) && e.count > 0)
                     throw IoError(path_, e.line,
                                   "element '" + e.name + "' lacks a vertex_indices list property");
+            } else if (e.name == "edge" && assign_edge_roles(e)) {
+                e.kind = ElementKind::kEdge;
             } else if (e.count > 0) {
                 notes_.push_back("skipped PLY element '" + e.name + "' (" +
                                  std::to_string(e.count) + " entries)");
             }
         }
+    }
+
+    /// Roles of an `edge` element's vertex1, vertex2 and crease; false (roles unset) when it
+    /// lacks one of them (a wireframe without creases: skipped as any other element).
+    static bool assign_edge_roles(PlyElement& e) {
+        for (PlyProperty& p : e.props) {
+            if (p.is_list) continue;
+            const Role r = p.name == "vertex1"   ? kEdgeV1
+                           : p.name == "vertex2" ? kEdgeV2
+                           : p.name == "crease"  ? kCrease
+                                                 : kNone;
+            if (r != kNone && !e.has_role(r)) p.role = r;
+        }
+        if (e.has_role(kEdgeV1) && e.has_role(kEdgeV2) && e.has_role(kCrease)) return true;
+        for (PlyProperty& p : e.props) p.role = kNone;
+        return false;
+    }
+
+    /// One row of the `edge` element: a sharp edge of the soup (checked: whole indices in
+    /// range, two different vertices, a crease >= 0; 10 or more reads as infinity, see the
+    /// writer). A crease of 0 adds nothing.
+    void store_edge(std::uint64_t row, const double* v, std::size_t line) {
+        const std::string where = "edge " + std::to_string(row);
+        long long ends[2];
+        for (int k = 0; k < 2; ++k) {
+            const double x = v[k == 0 ? kEdgeV1 : kEdgeV2];
+            if (x != std::floor(x) || !(x >= 0) || x >= double(n_vertices_declared_))
+                throw IoError(path_, line,
+                              where + ": vertex index " + number_text(x) +
+                                  " is not a vertex (the file declares " +
+                                  std::to_string(n_vertices_declared_) + " vertices)");
+            ends[k] = static_cast<long long>(x);
+        }
+        if (ends[0] == ends[1])
+            throw IoError(path_, line,
+                          where + ": joins vertex " + std::to_string(ends[0]) + " to itself");
+        const double c = v[kCrease];
+        if (!(c >= 0))
+            throw IoError(path_, line,
+                          where + ": crease " + number_text(c) + " is not >= 0 (a sharpness)");
+        if (c == 0) return;
+        const float s = c >= double(kSharpnessActsInfinite) ? kInfiniteSharpness : float(c);
+        soup_.sharp_edges.push_back({Index(ends[0]), Index(ends[1]), s});
     }
 
     // ---- shared row handling ---------------------------------------------------------------
@@ -420,6 +479,7 @@ private:
         if (has_uv_) soup_.texcoords.resize(n);
         if (has_distance_) soup_.distances.resize(n);
         if (has_selection_) soup_.selections.resize(n);
+        if (has_corner_) soup_.corner_tags.resize(n);
     }
 
     float color_channel(double c) const {
@@ -440,6 +500,7 @@ private:
         if (has_uv_) soup_.texcoords[i] = TexCoord(v[kU], v[kV]);
         if (has_distance_) soup_.distances[i] = v[kDistance];
         if (has_selection_) soup_.selections[i] = float(v[kSelection]);
+        if (has_corner_) soup_.corner_tags[i] = v[kCorner] != 0 ? 1 : 0;
     }
 
     /// Checks one index of face / strip `row` of element e (-1 allowed in strips).
@@ -604,6 +665,8 @@ private:
                 }
                 if (e.kind == ElementKind::kVertex)
                     store_vertex(static_cast<std::size_t>(row), vals);
+                else if (e.kind == ElementKind::kEdge)
+                    store_edge(row, vals, sc_.line());
                 else if (e.kind == ElementKind::kFace)
                     end_face_row(has_uv_list);
                 else if (e.kind == ElementKind::kTristrips)
@@ -649,7 +712,7 @@ private:
                                  min_row, remaining, ("'" + e.name + "' elements").c_str(), path_,
                                  e.line);
             const std::size_t n = static_cast<std::size_t>(e.count);
-            if (!e.has_lists()) {
+            if (!e.has_lists() && e.kind != ElementKind::kEdge) {
                 // Fixed-size rows: the check above guarantees n * min_row <= remaining.
                 if (e.kind == ElementKind::kVertex) {
                     begin_vertices(e);
@@ -874,6 +937,8 @@ private:
             }
             if (e.kind == ElementKind::kVertex)
                 store_vertex(row, vals);
+            else if (e.kind == ElementKind::kEdge)
+                store_edge(row, vals, 0);
             else if (e.kind == ElementKind::kFace)
                 end_face_row(has_uv_list);
             else if (e.kind == ElementKind::kTristrips)
@@ -890,7 +955,7 @@ private:
     std::size_t data_offset_ = 0;
     std::uint64_t n_vertices_declared_ = 0;
     bool has_normals_ = false, has_colors_ = false, has_uv_ = false, has_distance_ = false;
-    bool has_selection_ = false;
+    bool has_selection_ = false, has_corner_ = false;
     ScalarType color_type_ = ScalarType::kUint8;
     PolygonSoup soup_;
     std::size_t file_faces_ = 0;
@@ -928,6 +993,67 @@ LoadedMesh read_ply_bytes(const std::string& data, const std::string& path) {
     return out;
 }
 
+namespace {
+
+/// The face rows (triangles; with their corner texture coordinates when `corner_uv`, each
+/// written by put_uv).
+template <class PutUv>
+void put_ply_faces(OutBuffer& out, const PolygonSoup& soup, bool ascii, bool corner_uv,
+                   const PutUv& put_uv) {
+    for (std::size_t f = 0; f < soup.n_faces(); ++f) {
+        const std::size_t b = soup.face_offsets[f], e = soup.face_offsets[f + 1];
+        const std::uint8_t n = static_cast<std::uint8_t>(e - b);  // triangles: always 3
+        if (ascii) {
+            out.number(int(n));
+            for (std::size_t c = b; c < e; ++c) {
+                out.text(" ");
+                out.number(static_cast<std::int32_t>(soup.corners[c]));
+            }
+            if (corner_uv) {
+                out.text(" ");
+                out.number(int(2 * n));
+                for (std::size_t c = b; c < e; ++c)
+                    for (int k = 0; k < 2; ++k) put_uv(soup.corner_texcoords[c][k]);
+            }
+            out.text("\n");
+        } else {
+            out.binary(n);
+            for (std::size_t c = b; c < e; ++c)
+                out.binary(static_cast<std::int32_t>(soup.corners[c]));
+            if (corner_uv) {
+                out.binary(static_cast<std::uint8_t>(2 * n));
+                for (std::size_t c = b; c < e; ++c)
+                    for (int k = 0; k < 2; ++k) put_uv(soup.corner_texcoords[c][k]);
+            }
+        }
+        out.maybe_flush();
+    }
+}
+
+/// The rows of the `edge` element: the sharp edges.
+void put_ply_sharp_edges(OutBuffer& out, const PolygonSoup& soup, bool ascii) {
+    // Sharp edges; an infinite sharpness is written as 10 (OpenSubdiv's infinite, read back as
+    // infinity), which every reader can hold.
+    for (const PolygonSoup::SharpEdge& se : soup.sharp_edges) {
+        const float crease = std::min(se.sharpness, kSharpnessActsInfinite);
+        if (ascii) {
+            out.number(static_cast<std::int32_t>(se.a));
+            out.text(" ");
+            out.number(static_cast<std::int32_t>(se.b));
+            out.text(" ");
+            out.number(crease);
+            out.text("\n");
+        } else {
+            out.binary(static_cast<std::int32_t>(se.a));
+            out.binary(static_cast<std::int32_t>(se.b));
+            out.binary(crease);
+        }
+        out.maybe_flush();
+    }
+}
+
+}  // namespace
+
 void write_ply_to(const HalfedgeMesh& mesh, std::ostream& os, const std::string& path,
                   const WriteOptions& options) {
     const PolygonSoup soup = to_soup(mesh);
@@ -940,6 +1066,8 @@ void write_ply_to(const HalfedgeMesh& mesh, std::ostream& os, const std::string&
     const bool corner_uv = options.write_texcoords && !uv && !soup.corner_texcoords.empty();
     const bool distance = !soup.distances.empty();
     const bool selection = !soup.selections.empty();
+    const bool corner = !soup.corner_tags.empty();
+    const bool edges = !soup.sharp_edges.empty();
     for (std::size_t i = 0; i < soup.selections.size(); ++i)
         if (!(soup.selections[i] >= 0.0f && soup.selections[i] <= 1.0f))
             throw IoError(
@@ -974,9 +1102,14 @@ void write_ply_to(const HalfedgeMesh& mesh, std::ostream& os, const std::string&
             header += std::string("property ") + type(uv_d) + " " + n + "\n";
     if (distance) header += "property double distance\n";
     if (selection) header += "property float selection\n";
+    if (corner) header += "property uchar corner\n";
     header += "element face " + std::to_string(soup.n_faces()) + "\n";
     header += "property list uchar int vertex_indices\n";
     if (corner_uv) header += std::string("property list uchar ") + type(cuv_d) + " texcoord\n";
+    if (edges) {
+        header += "element edge " + std::to_string(soup.sharp_edges.size()) + "\n";
+        header += "property int vertex1\nproperty int vertex2\nproperty float crease\n";
+    }
     header += "end_header\n";
 
     OutBuffer out(os, !ascii && big == host_is_little_endian());
@@ -1015,37 +1148,19 @@ void write_ply_to(const HalfedgeMesh& mesh, std::ostream& os, const std::string&
             for (int k = 0; k < 2; ++k) put(soup.texcoords[i][k], uv_d, false);
         if (distance) put(soup.distances[i], true, false);
         if (selection) put(soup.selections[i], false, false);
+        if (corner) {
+            if (ascii) {
+                out.text(" ");
+                out.number(int(soup.corner_tags[i]));
+            } else {
+                out.binary(soup.corner_tags[i]);
+            }
+        }
         if (ascii) out.text("\n");
         out.maybe_flush();
     }
-    for (std::size_t f = 0; f < soup.n_faces(); ++f) {
-        const std::size_t b = soup.face_offsets[f], e = soup.face_offsets[f + 1];
-        const std::uint8_t n = static_cast<std::uint8_t>(e - b);  // triangles: always 3
-        if (ascii) {
-            out.number(int(n));
-            for (std::size_t c = b; c < e; ++c) {
-                out.text(" ");
-                out.number(static_cast<std::int32_t>(soup.corners[c]));
-            }
-            if (corner_uv) {
-                out.text(" ");
-                out.number(int(2 * n));
-                for (std::size_t c = b; c < e; ++c)
-                    for (int k = 0; k < 2; ++k) put(soup.corner_texcoords[c][k], cuv_d, false);
-            }
-            out.text("\n");
-        } else {
-            out.binary(n);
-            for (std::size_t c = b; c < e; ++c)
-                out.binary(static_cast<std::int32_t>(soup.corners[c]));
-            if (corner_uv) {
-                out.binary(static_cast<std::uint8_t>(2 * n));
-                for (std::size_t c = b; c < e; ++c)
-                    for (int k = 0; k < 2; ++k) put(soup.corner_texcoords[c][k], cuv_d, false);
-            }
-        }
-        out.maybe_flush();
-    }
+    put_ply_faces(out, soup, ascii, corner_uv, [&](double v) { put(v, cuv_d, false); });
+    put_ply_sharp_edges(out, soup, ascii);
     out.flush();
 }
 

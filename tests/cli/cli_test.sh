@@ -555,6 +555,44 @@ check "remove-components refuses no threshold with one line naming both, writing
 check "remove-components refuses a fraction above 1 naming it" bash -c \
     "! '$cli' remove-components '$pbt' '$tmp/rn.obj' --min-diameter 2 2> '$tmp/e' && \
      grep -q -- '--min-diameter' '$tmp/e' && [ ! -e '$tmp/rn.obj' ]"
+# Features (issue 39): detection with its histogram, files that keep them, crease-aware Loop.
+check "features on a cube: 12 sharp edges in 12 chains, 8 corners, the histogram, an edge element" \
+    bash -c "'$cli' generate cube '$tmp/cube.obj' && \
+     '$cli' features '$tmp/cube.obj' '$tmp/cf.ply' --angle 40 --ascii --json > '$tmp/f.json' && \
+     $(declare -f json_has); json_has '$tmp/f.json' edges chains corners creases darts histogram \
+     plateau verdict && grep -q '\"edges\": 12, \"chains\": 12, \"corners\": 8' '$tmp/f.json' && \
+     grep -q '^element edge 12$' '$tmp/cf.ply'"
+check "features written to .obj are dropped with a note naming them" bash -c \
+    "'$cli' features '$tmp/cube.obj' '$tmp/cf.obj' | grep -q 'note: features not saved.*12 sharp edges'"
+check "features refuses an angle of 0 naming --angle, writing nothing" bash -c \
+    "! '$cli' features '$tmp/cube.obj' '$tmp/cn.ply' --angle 0 2> '$tmp/e' && \
+     grep -q -- '--angle' '$tmp/e' && [ ! -e '$tmp/cn.ply' ]"
+check "subdivide keeps the cube's stored corners; --features none and auto:A" bash -c \
+    "'$cli' subdivide '$tmp/cf.ply' '$tmp/cs.ply' --iterations 2 && \
+     '$cli' info '$tmp/cs.ply' --json | grep -q '\"bbox_min\": \[0, 0, 0\]' && \
+     '$cli' subdivide '$tmp/cf.ply' '$tmp/cp.ply' --iterations 2 --features none && \
+     ! '$cli' info '$tmp/cp.ply' --json | grep -q '\"bbox_min\": \[0, 0, 0\]' && \
+     '$cli' subdivide '$tmp/cube.obj' '$tmp/ca.ply' --iterations 2 --features auto:40 --json | \
+     grep -q 'features detected at 40 deg: 12 sharp edges' && \
+     '$cli' info '$tmp/ca.ply' --json | grep -q '\"bbox_min\": \[0, 0, 0\]'"
+check "decimate keeps the cube's corners with its stored features, not with --features none" bash -c \
+    "'$cli' decimate '$tmp/cs.ply' '$tmp/cd.ply' --percent 50 && \
+     '$cli' info '$tmp/cd.ply' --json | grep -q '\"bbox_min\": \[0, 0, 0\], \"bbox_max\": \[1, 1, 1\]' && \
+     '$cli' decimate '$tmp/cs.ply' '$tmp/cn.ply' --percent 50 --features none --json | \
+     grep -q '\"features\": \"none\"' && \
+     '$cli' decimate '$tmp/cube.obj' '$tmp/ca2.ply' --percent 10 --features auto:40 --json | \
+     grep -q '\"feature_angle\": 40'"
+check "smooth keeps the stored feature vertices fixed; --features none does not" bash -c \
+    "'$cli' smooth '$tmp/cs.ply' '$tmp/sf.ply' --iterations 5 | grep -q 'features: .* kept where' && \
+     '$cli' info '$tmp/sf.ply' --json | grep -q '\"bbox_min\": \[0, 0, 0\], \"bbox_max\": \[1, 1, 1\]' && \
+     '$cli' smooth '$tmp/cs.ply' '$tmp/sn.ply' --iterations 5 --features none && \
+     ! '$cli' info '$tmp/sn.ply' --json | grep -q '\"bbox_min\": \[0, 0, 0\]'"
+check "--region feature:K, inverted: smoothing that keeps the features where they are" bash -c \
+    "'$cli' select '$tmp/cs.ply' '$tmp/keep.ply' --region feature:0 --invert && \
+     '$cli' smooth '$tmp/cs.ply' '$tmp/sm.ply' --region 'file:$tmp/keep.ply' --iterations 5 && \
+     '$cli' info '$tmp/sm.ply' --json | grep -q '\"bbox_min\": \[0, 0, 0\]' && \
+     ! '$cli' smooth '$tmp/cube.obj' '$tmp/sx.ply' --region feature:1 2> '$tmp/e' && \
+     grep -q 'no features' '$tmp/e'"
 # Hole filling (issue 41).
 "$cli" generate cylinder "$tmp/cyl.obj" > /dev/null
 check "fill-holes closes a cylinder's two loops, with its --json keys and the holes listed" bash -c \

@@ -145,6 +145,7 @@ std::vector<std::string> parameter_sets(const std::string& op) {
           "--operator taubin --preserve-volume",
           "--operator curvature-flow --integration implicit --preserve-volume"}},
         {"remove-components", {"--min-faces 10", "--min-diameter 1", "--min-faces 0"}},
+        {"features", {"", "--angle 1 --min-chain 3 --boundary", "--angle 180"}},
         {"fill-holes", {"", "--fairing c2", "--fairing none --max-edges 3", "--max-diameter 0.5"}},
 
         {"denoise",

@@ -143,6 +143,13 @@ const std::map<std::string, Generator>& generators() {
              if (rule != 0) text += " --min-diameter " + pick_of(rng, fractions);
              return text;
          }},
+        {"features",
+         [](Rng& rng, const HalfedgeMesh&) {
+             std::string text = "features --angle " + std::to_string(pick(rng, 1, 180));
+             if (pick(rng, 0, 1)) text += " --min-chain " + std::to_string(pick(rng, 0, 10));
+             if (pick(rng, 0, 1)) text += " --boundary";
+             return text;
+         }},
         {"fill-holes",
          [](Rng& rng, const HalfedgeMesh&) {
              const std::vector<std::string> fairings = {"none", "c1", "c2"};
