@@ -316,6 +316,7 @@ const std::vector<const OperationDef*>& operation_defs() {
         v.push_back(flip_operation());
         v.push_back(weld_operation());
         v.push_back(remove_components_operation());
+        v.push_back(remesh_operation());
         return v;
     }();
     static const std::vector<const OperationDef*> defs = [] {

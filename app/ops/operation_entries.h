@@ -18,6 +18,7 @@ std::unique_ptr<OperationDef> decimate_operation();   ///< app/ops/decimate_op.c
 std::unique_ptr<OperationDef> flip_operation();       ///< app/ops/flip_op.cpp
 std::unique_ptr<OperationDef> weld_operation();       ///< app/ops/weld_op.cpp
 std::unique_ptr<OperationDef> remove_components_operation();
+std::unique_ptr<OperationDef> remesh_operation();
 
 /// The core options of a "spectrum" operation (the Frequency panel's Decompose).
 struct SpectralOptions;

@@ -134,6 +134,14 @@ const std::map<std::string, Generator>& generators() {
              if (rule != 0) text += " --min-diameter " + pick_of(rng, fractions);
              return text;
          }},
+        {"remesh",
+         [](Rng& rng, const HalfedgeMesh& m) {
+             // Keep the meshes small: refine only below 20k faces.
+             const std::vector<std::string> small = {"0.5", "0.8", "1", "1.5", "3"};
+             const std::vector<std::string> large = {"1", "1.5", "3"};
+             return "remesh --relative " + pick_of(rng, m.n_faces() > 20000 ? large : small) +
+                    " --iterations " + std::to_string(pick(rng, 1, 3));
+         }},
     };
     return g;
 }
