@@ -313,8 +313,10 @@ struct InputAttributes {
 
 // ---- options and the plan -------------------------------------------------------------------
 
-/// Power of two that brings the largest coordinate magnitude near 1 when it is far from it.
-double working_scale(const HalfedgeMesh& mesh) {
+/// The exponent e such that 2^-e brings the largest coordinate magnitude near 1 when it is
+/// far from it (0 otherwise). The mesh is worked on times 2^-e and scaled back by ldexp (1 /
+/// 2^-e itself may not be a double: 2^1024).
+int working_exponent(const HalfedgeMesh& mesh) {
     double m = 0;
     for (Vertex v : mesh.vertices()) {
         const Point& p = mesh.position(v);
@@ -323,10 +325,10 @@ double working_scale(const HalfedgeMesh& mesh) {
                                   " has a non-finite position");
         m = std::max(m, p.cwiseAbs().maxCoeff());
     }
-    if (!(m > 0x1p100 || (m > 0 && m < 0x1p-100))) return 1.0;
+    if (!(m > 0x1p100 || (m > 0 && m < 0x1p-100))) return 0;
     int exponent = 0;
     std::frexp(m, &exponent);
-    return std::ldexp(1.0, -exponent);
+    return exponent;
 }
 
 void check_options(const RemeshOptions& o) {
@@ -386,14 +388,18 @@ bool face_free(const HalfedgeMesh& mesh, const std::vector<float>& w, Face f) {
 /// What the plan measures: the target length and the face count, in working (scaled) units.
 struct Plan {
     RemeshReport report;
-    double scale = 1.0;
+    double scale = 1.0;  ///< 2^-exponent
+    int exponent = 0;
+    double unscale(double x) const { return std::ldexp(x, exponent); }
+    double unscale_area(double x) const { return std::ldexp(x, 2 * exponent); }
 };
 
 Plan make_plan(const HalfedgeMesh& mesh, const RemeshOptions& o, const std::vector<float>& w) {
     check_options(o);
     if (mesh.n_faces() == 0) throw InvalidArgument("remesh: the mesh has no faces to remesh");
     Plan plan;
-    plan.scale = working_scale(mesh);
+    plan.exponent = working_exponent(mesh);
+    plan.scale = std::ldexp(1.0, -plan.exponent);
     RemeshReport& r = plan.report;
     r.input_faces = mesh.n_faces();
     double len_sum = 0;
@@ -437,10 +443,10 @@ Plan make_plan(const HalfedgeMesh& mesh, const RemeshOptions& o, const std::vect
     r.predicted_bytes = bytes < 1e18 ? std::size_t(bytes) : std::size_t(1e18);
     if (predicted > 1.0e9 || bytes > double(avail.bytes))
         throw InvalidArgument(
-            "remesh: length " + text_of(length / plan.scale) + " would make about " +
-            text_of(predicted) + " faces (" + text_of(r.remeshed_area / plan.scale / plan.scale) +
+            "remesh: length " + text_of(plan.unscale(length)) + " would make about " +
+            text_of(predicted) + " faces (" + text_of(plan.unscale_area(r.remeshed_area)) +
             " of area over " +
-            text_of(kIdealTriangleArea * length * length / plan.scale / plan.scale) +
+            text_of(plan.unscale_area(kIdealTriangleArea * length * length)) +
             " per ideal triangle), needing about " + format_memory_size(bytes) + "; " +
             avail.limit + " leaves " + format_memory_size(double(avail.bytes)) +
             ": give a larger --length or --relative");
@@ -548,6 +554,16 @@ public:
         }
     }
 
+#ifdef REMESH_DEBUG
+    void debug_iterate(bool project) {
+        const auto chk = [&](const char* w) { auto v = validate(m_); std::printf("%s: %s\n", w, v.ok ? "ok" : v.message.c_str()); };
+        split_long_edges(); chk("split");
+        collapse_short_edges(); chk("collapse");
+        equalize_valences(); chk("flip1");
+        equalize_valences(); chk("flip2");
+        relax(project); chk("relax");
+    }
+#endif
     void iterate(bool project) {
         split_long_edges();
         collapse_short_edges();
@@ -617,6 +633,9 @@ private:
                 const Vertex c = m_.is_boundary(h) ? Vertex() : m_.to_vertex(m_.next(h));
                 const Halfedge o = HalfedgeMesh::twin(h);
                 const Vertex d = m_.is_boundary(o) ? Vertex() : m_.to_vertex(m_.next(o));
+                // A pillow (two faces on the same three corners) would get its new vertex joined
+                // twice to the third corner.
+                if (c.is_valid() && c == d) continue;
                 const Vertex v = m_.split(e, mid);
                 grow_vertex_arrays(v, a);
                 for (Vertex x : {a, b, c, d})
@@ -998,9 +1017,17 @@ private:
     HalfedgeProperty<TexCoord> huv_;
 };
 
-void scale_positions(HalfedgeMesh& mesh, double s) {
-    if (s == 1.0) return;
-    for (Point& p : mesh.positions()) p *= s;
+/// Every position times 2^exponent (exact, unless it leaves the range of double).
+void scale_positions(HalfedgeMesh& mesh, int exponent) {
+    if (exponent == 0) return;
+    for (Point& p : mesh.positions())
+        for (int k = 0; k < 3; ++k) p[k] = std::ldexp(p[k], exponent);
+}
+
+void unscale_report(RemeshReport& r, const Plan& plan) {
+    r.target_length = plan.unscale(r.target_length);
+    r.input_mean_edge = plan.unscale(r.input_mean_edge);
+    r.remeshed_area = plan.unscale_area(r.remeshed_area);
 }
 
 }  // namespace
@@ -1008,9 +1035,7 @@ void scale_positions(HalfedgeMesh& mesh, double s) {
 RemeshReport remesh_plan(const HalfedgeMesh& mesh, const RemeshOptions& options) {
     check_options(options);
     Plan plan = make_plan(mesh, options, initial_weights(mesh, options));
-    plan.report.target_length /= plan.scale;
-    plan.report.input_mean_edge /= plan.scale;
-    plan.report.remeshed_area /= plan.scale * plan.scale;
+    unscale_report(plan.report, plan);
     return plan.report;
 }
 
@@ -1023,7 +1048,7 @@ RemeshReport remesh(HalfedgeMesh& mesh, const RemeshOptions& options, Progress& 
     for (float x : weights)
         if (!(x > 0.0f)) ++r.locked_vertices;
     r.locked_vertices -= mesh.vertices_size() - mesh.n_vertices();
-    scale_positions(mesh, plan.scale);
+    scale_positions(mesh, -plan.exponent);
     try {
         Remesher remesher(mesh, r.target_length, std::move(weights), r);
         progress.report(0, "remeshing: the input surface");
@@ -1039,13 +1064,11 @@ RemeshReport remesh(HalfedgeMesh& mesh, const RemeshOptions& options, Progress& 
         remesher.finish();
     } catch (...) {
         if (mesh.has_garbage()) mesh.garbage_collection();
-        scale_positions(mesh, 1.0 / plan.scale);
+        scale_positions(mesh, plan.exponent);
         throw;
     }
-    scale_positions(mesh, 1.0 / plan.scale);
-    r.target_length /= plan.scale;
-    r.input_mean_edge /= plan.scale;
-    r.remeshed_area /= plan.scale * plan.scale;
+    scale_positions(mesh, plan.exponent);
+    unscale_report(r, plan);
     r.output_faces = mesh.n_faces();
     r.output_vertices = mesh.n_vertices();
     r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
