@@ -428,10 +428,14 @@ Plan make_plan(const HalfedgeMesh& mesh, const RemeshOptions& o, const std::vect
     }
     r.input_mean_edge = n_len ? len_sum / double(n_len) : 0.0;
     const double length = o.length ? *o.length * plan.scale : o.relative * r.input_mean_edge;
-    if (!o.length && !(length > 0))
+    if (n_len == 0)
         throw InvalidArgument(
-            "remesh: the mean edge length of the part to remesh is 0 (nothing to remesh "
-            "there): give --length");
+            "remesh: the region has no face whose three corners are selected (weight above 0): "
+            "nothing to remesh");
+    if (!(length > 0))
+        throw InvalidArgument(
+            "remesh: the mean edge length is 0 (every edge has length 0): "
+            "give --length");
     r.target_length = length;
     const double faces = r.remeshed_area / (kIdealTriangleArea * length * length);
     const double predicted = (std::isfinite(faces) ? faces : 1e300) + double(kept_faces);
@@ -445,8 +449,7 @@ Plan make_plan(const HalfedgeMesh& mesh, const RemeshOptions& o, const std::vect
         throw InvalidArgument(
             "remesh: length " + text_of(plan.unscale(length)) + " would make about " +
             text_of(predicted) + " faces (" + text_of(plan.unscale_area(r.remeshed_area)) +
-            " of area over " +
-            text_of(plan.unscale_area(kIdealTriangleArea * length * length)) +
+            " of area over " + text_of(plan.unscale_area(kIdealTriangleArea * length * length)) +
             " per ideal triangle), needing about " + format_memory_size(bytes) + "; " +
             avail.limit + " leaves " + format_memory_size(double(avail.bytes)) +
             ": give a larger --length or --relative");
@@ -554,16 +557,6 @@ public:
         }
     }
 
-#ifdef REMESH_DEBUG
-    void debug_iterate(bool project) {
-        const auto chk = [&](const char* w) { auto v = validate(m_); std::printf("%s: %s\n", w, v.ok ? "ok" : v.message.c_str()); };
-        split_long_edges(); chk("split");
-        collapse_short_edges(); chk("collapse");
-        equalize_valences(); chk("flip1");
-        equalize_valences(); chk("flip2");
-        relax(project); chk("relax");
-    }
-#endif
     void iterate(bool project) {
         split_long_edges();
         collapse_short_edges();

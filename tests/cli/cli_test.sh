@@ -530,8 +530,11 @@ check "remesh says how many faces a tiny length would make and refuses it" bash 
     "! '$cli' remesh '$tmp/d.obj' '$tmp/rx.obj' --length 1e-9 2> '$tmp/e' && \
      grep -q 'would make about' '$tmp/e' && [ ! -e '$tmp/rx.obj' ]"
 check "remesh works on a region" bash -c \
-    "'$cli' remesh '$tmp/d.obj' '$tmp/rr.ply' --relative 0.7 --region sphere:0,0,0,0.5 --json | \
+    "'$cli' remesh '$tmp/d.obj' '$tmp/rr.ply' --relative 0.7 --region sphere:1,0,0,0.8 --json | \
      grep -q '\"region_vertices\": '"
+check "remesh refuses a region with no face inside, naming the reason, writing nothing" bash -c \
+    "! '$cli' remesh '$tmp/d.obj' '$tmp/rx.ply' --region sphere:5,5,5,0.1 2> '$tmp/e' && \
+     grep -q 'no face whose three corners are selected' '$tmp/e' && [ ! -e '$tmp/rx.ply' ]"
 check "info --quality prints the quality figures and their JSON keys" bash -c \
     "'$cli' info '$tmp/d.obj' --quality | grep -q 'valence 6' && \
      '$cli' info '$tmp/d.obj' --quality --length 0.1 --json > '$tmp/q.json' && \
