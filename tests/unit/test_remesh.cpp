@@ -242,6 +242,40 @@ TEST_CASE("remesh carries texture coordinates and colours from the input surface
     }
 }
 
+TEST_CASE("remesh keeps a texture seam: every corner keeps the uv of its side", "[remesh]") {
+    // A grid whose per-corner uv is (x, y) left of x = 0.5 and (x + 10, y) right of it: the
+    // corners at x = 0.5 have two values, a seam.
+    HalfedgeMesh m = make_grid(12);
+    const auto chart = [](const Point& p, bool right) {
+        return TexCoord(p.x() + (right ? 10 : 0), p.y());
+    };
+    const auto right_side = [&](const HalfedgeMesh& mesh, Face f) {
+        Point c = Point::Zero();
+        for (Vertex v : mesh.vertices_of(f)) c += mesh.position(v) / 3.0;
+        return c.x() > 0.5;
+    };
+    {
+        auto uv = m.halfedge_property<TexCoord>("h:texcoord");
+        for (Face f : m.faces())
+            for (Halfedge h : m.halfedges_of(f))
+                uv[h] = chart(m.position(m.to_vertex(h)), right_side(m, f));
+    }
+    RemeshOptions o;
+    o.relative = 0.6;
+    o.iterations = 4;
+    const RemeshReport r = remesh(m, o);
+    REQUIRE_VALID(m);
+    CHECK(r.locked_vertices == 13);  // the seam's vertices
+    CHECK(r.output_faces > 2 * 12 * 12);
+    const auto uv = m.get_halfedge_property<TexCoord>("h:texcoord");
+    REQUIRE(uv);
+    for (Face f : m.faces()) {
+        const bool right = right_side(m, f);
+        for (Halfedge h : m.halfedges_of(f))
+            CHECK((uv[h] - chart(m.position(m.to_vertex(h)), right)).norm() < 1e-9);
+    }
+}
+
 TEST_CASE("remesh refuses bad options and oversized outputs, changing nothing", "[remesh]") {
     const HalfedgeMesh input = make_icosphere(2);
     const double nan = std::numeric_limits<double>::quiet_NaN();
