@@ -688,7 +688,24 @@ private:
             const Vector3 after = (pa - p1).cross(pb - p1);
             if (!(before.dot(after) > 0.2 * before.norm() * after.norm())) return false;
         }
-        return true;
+        return within_collapse_error(h);
+    }
+    // The removed vertex is at most 0.1 L' from the faces that replace its ring, so that a
+    // collapse does not cut across a crease (the surface keeps its shape to a tenth of L').
+    bool within_collapse_error(Halfedge h) const {
+        const Vertex v0 = m_.from_vertex(h), v1 = m_.to_vertex(h);
+        const Point& p0 = cm_.position(v0);
+        const Point& p1 = cm_.position(v1);
+        double best = std::numeric_limits<double>::infinity();
+        for (Halfedge g : m_.halfedges_around(v0)) {
+            if (m_.is_boundary(g)) continue;
+            const Vertex a = m_.to_vertex(g), b = m_.to_vertex(m_.next(g));
+            if (a == v1 || b == v1) continue;
+            const Point q = closest_point_on_triangle(p0, cm_.position(a), cm_.position(b), p1);
+            best = std::min(best, (q - p0).squaredNorm());
+        }
+        // hi2_ is (4/3 L')^2: (0.1 L')^2 is 0.075^2 of it.
+        return !std::isfinite(best) || best <= 0.075 * 0.075 * hi2_;
     }
 
     // (2) Collapses of the edges shorter than 4/5 L.

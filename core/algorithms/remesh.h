@@ -5,8 +5,9 @@
 // Method: Botsch, Kobbelt, "A remeshing approach to multiresolution modeling", SGP 2004. Each
 // iteration (1) splits every edge longer than 4/3 L' at its midpoint, (2) collapses every edge
 // shorter than 4/5 L' into one of its ends (the one of lower valence goes first) unless that
-// would make an edge longer than 4/3 L', fail the link condition (HalfedgeMesh::is_collapse_ok)
-// or fold a face, (3) flips edges where that brings the valences of the four vertices involved
+// would make an edge longer than 4/3 L', fail the link condition (HalfedgeMesh::is_collapse_ok),
+// fold a face or leave the removed vertex farther than 0.1 L' from the faces that replace its
+// ring, (3) flips edges where that brings the valences of the four vertices involved
 // closer to 6 (4 on the boundary; the sum of the absolute deviations, two sweeps), (4) moves
 // every free vertex towards the mean of its neighbours within its tangent plane (tangential
 // relaxation), and (5) projects the moved vertices back onto the input surface: the closest
@@ -31,8 +32,8 @@
 // region); other corners and per-vertex "v:texcoord" and "v:color" take their values from the
 // input triangle a vertex lies on (barycentric interpolation); "v:normal" is recomputed. Other
 // attributes of new vertices take their default values. Sharp creases are not detected (the
-// features issue): a crease's vertices may move off it, so the chord error there is up to
-// about L/2.
+// features issue): relaxation may move a crease's vertices off it, so the chord error there
+// can reach about L/2 (the bunny's flat base).
 //
 // Region (options.region, core/algorithms/selection.h): only faces whose three corners have a
 // positive weight change, and only where every face at the edge or vertex involved is such a
