@@ -81,6 +81,11 @@ std::unique_ptr<OperationDef> remesh_operation() {
         .only_if([](const RemeshOptions& o) -> const char* {
             return o.length ? "does not apply with --length (give one or the other)" : nullptr;
         });
+    d.number("adaptive", &RemeshOptions::adaptive, 0, 0.5,
+             "adaptive sizing (Dunyach et al. 2013): the chord error allowed, as a fraction of "
+             "the length; edges shrink where the surface curves, down to a tenth (0: uniform)")
+        .hide_default()
+        .slider(0, 0.2);
     d.integer("iterations", &RemeshOptions::iterations, 1, kMaxRemeshIterations,
               "split-collapse-flip-relax rounds")
         .slider(1, 20);

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/algorithms/curvature.h"
 #include "core/algorithms/mesh_distance.h"
 #include "core/algorithms/spatial_order.h"
 #include "core/errors.h"
@@ -338,6 +339,8 @@ void check_options(const RemeshOptions& o) {
     if (!(std::isfinite(o.relative) && o.relative > 0 && o.relative <= 1e6))
         throw InvalidArgument("remesh: relative must be a number in (0, 1e6], got " +
                               text_of(o.relative));
+    if (!(o.adaptive >= 0 && o.adaptive <= 0.5))
+        throw InvalidArgument("remesh: adaptive must be from 0 to 0.5, got " + text_of(o.adaptive));
     if (o.iterations < 1 || o.iterations > kMaxRemeshIterations)
         throw InvalidArgument("remesh: iterations must be from 1 to " +
                               std::to_string(kMaxRemeshIterations) + ", got " +
@@ -392,7 +395,29 @@ struct Plan {
     int exponent = 0;
     double unscale(double x) const { return std::ldexp(x, exponent); }
     double unscale_area(double x) const { return std::ldexp(x, 2 * exponent); }
+    /// Adaptive sizing: each vertex's target length as a fraction of L (empty: 1 everywhere).
+    std::vector<float> size;
 };
+
+/// Dunyach et al. 2013: the longest edge whose chord stays within `error` of a surface of
+/// curvature k is sqrt(6 error / k - 3 error^2); per vertex, as a fraction of `length`, from
+/// the larger absolute principal curvature, in [0.1, 1] (1 where the curvature is unknown).
+std::vector<float> adaptive_sizes(const HalfedgeMesh& mesh, double length, double error) {
+    const VertexCurvatures k = compute_curvatures(mesh);
+    std::vector<float> size(mesh.vertices_size(), 1.0f);
+    for (Vertex v : mesh.vertices()) {
+        const std::size_t i = v.idx();
+        if (!k.valid[i]) continue;
+        // With e = error / length and kl = k length: s / length = sqrt(6 e / kl - 3 e^2).
+        const double kl = std::max(std::abs(k.k1[i]), std::abs(k.k2[i])) * length;
+        if (!(std::isfinite(kl) && kl > 0)) continue;
+        const double e = error;
+        const double f2 = 6 * e / kl - 3 * e * e;
+        const double f = f2 > 0 ? std::sqrt(f2) : 0.0;
+        size[i] = float(std::min(1.0, std::max(0.1, f)));
+    }
+    return size;
+}
 
 Plan make_plan(const HalfedgeMesh& mesh, const RemeshOptions& o, const std::vector<float>& w) {
     check_options(o);
@@ -428,6 +453,20 @@ Plan make_plan(const HalfedgeMesh& mesh, const RemeshOptions& o, const std::vect
     }
     r.input_mean_edge = n_len ? len_sum / double(n_len) : 0.0;
     const double length = o.length ? *o.length * plan.scale : o.relative * r.input_mean_edge;
+    if (o.adaptive > 0 && n_len > 0)
+        plan.size = adaptive_sizes(mesh, plan.unscale(length), o.adaptive);
+    // The ideal triangle's area at each face: (L times the mean of its corners' sizes)^2.
+    double faces = 0;
+    for (Face f : mesh.faces()) {
+        if (!face_free(mesh, w, f)) continue;
+        const auto c = mesh.face_vertices(f);
+        const Point a = plan.scale * mesh.position(c[0]), b = plan.scale * mesh.position(c[1]),
+                    d = plan.scale * mesh.position(c[2]);
+        double s = 1;
+        if (!plan.size.empty())
+            s = (plan.size[c[0].idx()] + plan.size[c[1].idx()] + plan.size[c[2].idx()]) / 3.0;
+        faces += 0.5 * (b - a).cross(d - a).norm() / (s * s);
+    }
     if (n_len == 0)
         throw InvalidArgument(
             "remesh: the region has no face whose three corners are selected (weight above 0): "
@@ -437,7 +476,7 @@ Plan make_plan(const HalfedgeMesh& mesh, const RemeshOptions& o, const std::vect
             "remesh: the mean edge length is 0 (every edge has length 0): "
             "give --length");
     r.target_length = length;
-    const double faces = r.remeshed_area / (kIdealTriangleArea * length * length);
+    faces /= kIdealTriangleArea * length * length;
     const double predicted = (std::isfinite(faces) ? faces : 1e300) + double(kept_faces);
     r.predicted_faces = predicted < 1e18 ? std::size_t(predicted) : std::size_t(1e18);
     const double bytes =
@@ -460,8 +499,10 @@ Plan make_plan(const HalfedgeMesh& mesh, const RemeshOptions& o, const std::vect
 
 class Remesher {
 public:
-    Remesher(HalfedgeMesh& mesh, double length, std::vector<float> weights, RemeshReport& report)
-        : m_(mesh), cm_(mesh), r_(report), w_(std::move(weights)) {
+    Remesher(HalfedgeMesh& mesh, double length, std::vector<float> weights,
+             std::vector<float> sizes, RemeshReport& report)
+        : m_(mesh), cm_(mesh), r_(report), w_(std::move(weights)), size_(std::move(sizes)) {
+        if (size_.empty()) size_.assign(m_.vertices_size(), 1.0f);
         // Botsch and Kobbelt's thresholds for a working length of kWorkingLength L: with L
         // itself the output's edges come out about 4 % short on average (collapses that would
         // make an edge longer than 4/3 L are refused, so the vertices end up too many), and the
@@ -579,6 +620,7 @@ public:
         remap(hint_);
         remap(dirty_);
         remap(corner_);
+        remap(size_);
     }
     void finish() {
         improve_small_angles();
@@ -603,13 +645,19 @@ private:
     double length2(Halfedge h) const {
         return (cm_.position(m_.to_vertex(h)) - cm_.position(m_.from_vertex(h))).squaredNorm();
     }
-    void grow_vertex_arrays(Vertex v, Vertex from) {
+    void grow_vertex_arrays(Vertex from, Vertex to) {
+        size_.push_back(0.5f * (size_[from.idx()] + size_[to.idx()]));
         w_.push_back(w_[from.idx()]);
         hint_.push_back(hint_[from.idx()]);
         dirty_.push_back(1);
         corner_.push_back(0);
-        (void)v;
     }
+    /// (Mean size of the two ends)^2: the thresholds' factor for an edge between them.
+    double size2(Vertex a, Vertex b) const {
+        const double f = 0.5 * (double(size_[a.idx()]) + double(size_[b.idx()]));
+        return f * f;
+    }
+    double size2(Halfedge h) const { return size2(m_.from_vertex(h), m_.to_vertex(h)); }
 
     // (1) Splits, repeated until no edge is longer than 4/3 L.
     void split_long_edges() {
@@ -620,7 +668,7 @@ private:
                 const Edge e{Index(i)};
                 if (m_.is_deleted(e)) continue;
                 const Halfedge h = HalfedgeMesh::halfedge(e, 0);
-                if (length2(h) <= hi2_ || !edge_free(h)) continue;
+                if (length2(h) <= hi2_ * size2(h) || !edge_free(h)) continue;
                 const Vertex a = m_.from_vertex(h), b = m_.to_vertex(h);
                 const Point mid = 0.5 * (cm_.position(a) + cm_.position(b));
                 const Vertex c = m_.is_boundary(h) ? Vertex() : m_.to_vertex(m_.next(h));
@@ -629,8 +677,8 @@ private:
                 // A pillow (two faces on the same three corners) would get its new vertex joined
                 // twice to the third corner.
                 if (c.is_valid() && c == d) continue;
-                const Vertex v = m_.split(e, mid);
-                grow_vertex_arrays(v, a);
+                m_.split(e, mid);
+                grow_vertex_arrays(a, b);
                 for (Vertex x : {a, b, c, d})
                     if (x.is_valid()) dirty_[x.idx()] = 1;
                 ++splits;
@@ -674,7 +722,7 @@ private:
         for (Halfedge g : m_.halfedges_around(v0)) {
             const Vertex n = m_.to_vertex(g);
             if (!is_free(n)) return false;
-            if (n != v1 && (cm_.position(n) - p1).squaredNorm() > hi2_) return false;
+            if (n != v1 && (cm_.position(n) - p1).squaredNorm() > hi2_ * size2(n, v1)) return false;
         }
         if (!m_.is_collapse_ok(h)) return false;
         // No fold: every face of v0 that stays keeps its orientation and some area.
@@ -715,7 +763,8 @@ private:
             const Edge e{Index(i)};
             if (m_.is_deleted(e)) continue;
             Halfedge h = HalfedgeMesh::halfedge(e, 0);
-            if (length2(h) >= lo2_ || !is_free(m_.from_vertex(h)) || !is_free(m_.to_vertex(h)))
+            if (length2(h) >= lo2_ * size2(h) || !is_free(m_.from_vertex(h)) ||
+                !is_free(m_.to_vertex(h)))
                 continue;
             // Remove the end of lower valence first (it is the one with less to spread).
             if (m_.valence(m_.to_vertex(h)) < m_.valence(m_.from_vertex(h)))
@@ -1016,7 +1065,7 @@ private:
     const HalfedgeMesh& cm_;  ///< the same mesh, read only (no write access, no copy)
     RemeshReport& r_;
     double lo2_ = 0, hi2_ = 0;
-    std::vector<float> w_;
+    std::vector<float> w_, size_;
     std::vector<std::uint32_t> hint_;
     std::vector<std::uint8_t> dirty_, moves_, corner_;
     std::vector<int> valence_;
@@ -1060,7 +1109,7 @@ RemeshReport remesh(HalfedgeMesh& mesh, const RemeshOptions& options, Progress& 
     r.locked_vertices -= mesh.vertices_size() - mesh.n_vertices();
     scale_positions(mesh, -plan.exponent);
     try {
-        Remesher remesher(mesh, r.target_length, std::move(weights), r);
+        Remesher remesher(mesh, r.target_length, std::move(weights), std::move(plan.size), r);
         progress.report(0, "remeshing: the input surface");
         remesher.set_up_surface();
         remesher.compact();

@@ -75,6 +75,13 @@ struct RemeshOptions {
     std::optional<double> length;
     double relative = 1.0;  ///< (0, 1e6], used without `length`
     int iterations = 10;    ///< [1, kMaxRemeshIterations]
+    /// Adaptive sizing (Dunyach, Vanderhaeghe, Barthe, Botsch, "Adaptive remeshing for
+    /// real-time mesh deformation", Eurographics 2013): 0 for a uniform length; otherwise the
+    /// chord error allowed, as a fraction of L, in (0, 0.5]: each input vertex gets the length
+    /// sqrt(6 e / k - 3 e^2) for e = adaptive L and k its larger absolute principal curvature
+    /// (core/algorithms/curvature.h), clamped to [L / 10, L]; an edge's thresholds are those of
+    /// the mean of its ends' lengths, and a new vertex takes the mean of its edge's.
+    double adaptive = 0;
     /// Project the moved vertices back onto the input surface (step 5).
     bool project = true;
     /// The region (one weight in [0, 1] per vertex storage index), or nullptr for the whole

@@ -529,6 +529,13 @@ check "remesh refuses a length of 0 with one line naming it, writing nothing" ba
 check "remesh says how many faces a tiny length would make and refuses it" bash -c \
     "! '$cli' remesh '$tmp/d.obj' '$tmp/rx.obj' --length 1e-9 2> '$tmp/e' && \
      grep -q 'would make about' '$tmp/e' && [ ! -e '$tmp/rx.obj' ]"
+check "remesh --adaptive refines where the surface curves: more faces than uniform" bash -c \
+    "'$cli' remesh '$tmp/d.obj' '$tmp/ru.obj' --relative 1.5 --iterations 2 --json > '$tmp/ru.json' && \
+     '$cli' remesh '$tmp/d.obj' '$tmp/ra.obj' --relative 1.5 --iterations 2 --adaptive 0.01 --json > '$tmp/ra.json' && \
+     python3 -c \"import json; u=json.load(open('$tmp/ru.json')); a=json.load(open('$tmp/ra.json')); \
+exit(0 if a['faces'] > u['faces'] and a['adaptive'] == 0.01 else 1)\""
+check "remesh refuses --adaptive above 0.5 naming it" bash -c \
+    "! '$cli' remesh '$tmp/d.obj' '$tmp/rx.obj' --adaptive 0.7 2> '$tmp/e' && grep -q -- '--adaptive' '$tmp/e'"
 check "remesh works on a region" bash -c \
     "'$cli' remesh '$tmp/d.obj' '$tmp/rr.ply' --relative 0.7 --region sphere:1,0,0,0.8 --json | \
      grep -q '\"region_vertices\": '"

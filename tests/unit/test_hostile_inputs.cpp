@@ -138,7 +138,9 @@ std::vector<std::string> parameter_sets(const std::string& op) {
           "--operator taubin --preserve-volume",
           "--operator curvature-flow --integration implicit --preserve-volume"}},
         {"remove-components", {"--min-faces 10", "--min-diameter 1", "--min-faces 0"}},
-        {"remesh", {"", "--relative 0.5 --iterations 2", "--relative 3", "--length 1e-12"}},
+        {"remesh",
+         {"", "--relative 0.5 --iterations 2", "--relative 3", "--length 1e-12",
+          "--adaptive 0.1 --iterations 2"}},
     };
     const auto it = sets.find(op);
     return it == sets.end() ? std::vector<std::string>{""} : it->second;

@@ -276,6 +276,50 @@ TEST_CASE("remesh keeps a texture seam: every corner keeps the uv of its side", 
     }
 }
 
+TEST_CASE("adaptive remeshing makes edges shorter where the surface curves", "[remesh]") {
+    // A grid with a bump in its middle: curved there, flat near the sides.
+    HalfedgeMesh input = make_grid(24);
+    for (Vertex v : input.vertices()) {
+        Point& p = input.position(v);
+        const double r2 = (p.x() - 0.5) * (p.x() - 0.5) + (p.y() - 0.5) * (p.y() - 0.5);
+        p.z() = 0.15 * std::exp(-r2 / 0.01);
+    }
+    RemeshOptions o;
+    o.length = 0.08;
+    o.iterations = 5;
+    HalfedgeMesh uniform = input, adaptive = input;
+    const RemeshReport ru = remesh(uniform, o);
+    o.adaptive = 0.02;
+    const RemeshReport ra = remesh(adaptive, o);
+    REQUIRE_VALID(adaptive);
+    CHECK(ra.predicted_faces > ru.predicted_faces);
+    CHECK(adaptive.n_faces() > uniform.n_faces());
+    // Mean edge length near the bump's top against near the sides.
+    const auto mean_length = [](const HalfedgeMesh& m, bool centre) {
+        double sum = 0;
+        int n = 0;
+        for (Edge e : m.edges()) {
+            const Point c = 0.5 * (m.position(m.vertex(e, 0)) + m.position(m.vertex(e, 1)));
+            const double r = std::hypot(c.x() - 0.5, c.y() - 0.5);
+            if (centre ? r < 0.08 : r > 0.35) {
+                sum += (m.position(m.vertex(e, 0)) - m.position(m.vertex(e, 1))).norm();
+                ++n;
+            }
+        }
+        return n ? sum / n : 0.0;
+    };
+    INFO("adaptive: centre " << mean_length(adaptive, true) << ", sides "
+                             << mean_length(adaptive, false));
+    CHECK(mean_length(adaptive, true) < 0.7 * mean_length(adaptive, false));
+    CHECK(mean_length(adaptive, false) > 0.8 * 0.08);
+    CHECK(mesh_quality(adaptive).min_angle > 15.0);
+    RemeshOptions bad;
+    bad.adaptive = 0.6;
+    HalfedgeMesh m = input;
+    CHECK(error_text<InvalidArgument>([&] { remesh(m, bad); }).find("adaptive") !=
+          std::string::npos);
+}
+
 TEST_CASE("remesh refuses bad options and oversized outputs, changing nothing", "[remesh]") {
     const HalfedgeMesh input = make_icosphere(2);
     const double nan = std::numeric_limits<double>::quiet_NaN();

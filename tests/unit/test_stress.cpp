@@ -139,8 +139,11 @@ const std::map<std::string, Generator>& generators() {
              // Keep the meshes small: refine only below 20k faces.
              const std::vector<std::string> small = {"0.5", "0.8", "1", "1.5", "3"};
              const std::vector<std::string> large = {"1", "1.5", "3"};
-             return "remesh --relative " + pick_of(rng, m.n_faces() > 20000 ? large : small) +
-                    " --iterations " + std::to_string(pick(rng, 1, 3));
+             std::string text = "remesh --relative " +
+                                pick_of(rng, m.n_faces() > 20000 ? large : small) +
+                                " --iterations " + std::to_string(pick(rng, 1, 3));
+             if (pick(rng, 0, 3) == 0) text += " --adaptive 0.05";
+             return text;
          }},
     };
     return g;
