@@ -1,10 +1,13 @@
 // `trilab-cli info`: see info_command.h.
 #include "app/cli/info_command.h"
 
+#include <charconv>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -17,6 +20,7 @@
 #include "app/cli/json_writer.h"
 #include "app/cli/stopwatch.h"
 #include "core/algorithms/coincident.h"
+#include "core/algorithms/mesh_quality.h"
 #include "core/algorithms/mesh_stats.h"
 #include "core/errors.h"
 #include "core/io/mesh_io.h"
@@ -26,7 +30,7 @@ namespace trilab::cli {
 namespace {
 
 constexpr const char* kInfoUsage =
-    R"(usage: trilab-cli info MESH [--json]
+    R"(usage: trilab-cli info MESH [--json] [--quality [--length L]]
 
 Reads MESH and prints its counts (vertices, edges, faces, boundary loops and edges, the
 boundary edges on seams, components, isolated vertices), its Euler characteristic and genus,
@@ -35,12 +39,28 @@ mesh), whether it is valid, and what the loader repaired.
 
 options:
   --json                one JSON object ("ms": the statistics, file reading excluded)
+  --quality             also the triangle quality: the minimum and mean of the per-triangle
+                        smallest angle, the share of angles under 30 degrees, Frey-Borouchaki
+                        Q (minimum and mean), the share of edges within [0.8 L, 4/3 L], the
+                        share of interior vertices of valence 6 (JSON: "quality")
+  --length L            the L of the edge-length band (default: the mean edge length);
+                        only with --quality
 )";
 
 struct InfoArgs {
     std::string mesh;
-    bool json = false, help = false;
+    bool json = false, help = false, quality = false;
+    std::optional<double> length;
 };
+
+double parse_length(const std::string& text) {
+    double x = 0;
+    const char* end = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), end, x);
+    if (text.empty() || ec != std::errc() || ptr != end || !std::isfinite(x) || !(x > 0))
+        throw InvalidArgument("--length: expected a positive number, got '" + text + "'");
+    return x;
+}
 
 InfoArgs parse_args(const std::vector<std::string>& args) {
     InfoArgs a;
@@ -50,6 +70,10 @@ InfoArgs parse_args(const std::vector<std::string>& args) {
             a.help = true;
         else if (reader.is("--json"))
             a.json = reader.flag();
+        else if (reader.is("--quality"))
+            a.quality = reader.flag();
+        else if (reader.is("--length"))
+            a.length = parse_length(reader.value());
         else if (reader.is_option())
             reader.refuse_unknown();
         else if (a.mesh.empty())
@@ -58,6 +82,7 @@ InfoArgs parse_args(const std::vector<std::string>& args) {
             throw InvalidArgument("unexpected argument '" + reader.arg() +
                                   "': expected one MESH file");
     }
+    if (a.length && !a.quality) throw InvalidArgument("--length: applies with --quality only");
     return a;
 }
 
@@ -88,8 +113,42 @@ struct MeshInfo {
     ValidationResult valid;
     BoundaryPairing pairing;
     bool manifold = false;
+    std::optional<MeshQuality> quality;
     double ms = 0;
 };
+
+JsonObject quality_json(const MeshQuality& q) {
+    JsonObject j;
+    j.add("min_angle", q.min_angle)
+        .add("mean_min_angle", q.mean_min_angle)
+        .add("angles_under_30", q.angles_under_30)
+        .add("min_q", q.min_q)
+        .add("mean_q", q.mean_q)
+        .add("length", q.length)
+        .add("edges_in_band", q.edges_in_band)
+        .add("min_edge", q.min_edge)
+        .add("mean_edge", q.mean_edge)
+        .add("max_edge", q.max_edge)
+        .add("interior_vertices", q.interior_vertices)
+        .add("valence6", q.valence6)
+        .add("boundary_vertices", q.boundary_vertices)
+        .add("valence4_boundary", q.valence4_boundary);
+    return j;
+}
+
+void print_quality_text(const MeshQuality& q) {
+    std::printf("quality:\n");
+    std::printf("  min angle:       %.3f deg (mean of per-triangle minimum %.3f deg)\n",
+                q.min_angle, q.mean_min_angle);
+    std::printf("  angles < 30 deg: %.3f %%\n", 100 * q.angles_under_30);
+    std::printf("  Q (Frey-Borouchaki): min %.4f, mean %.4f\n", q.min_q, q.mean_q);
+    std::printf("  edges in [0.8 L, 4/3 L], L = %.6g: %.3f %% (lengths %.6g to %.6g, mean %.6g)\n",
+                q.length, 100 * q.edges_in_band, q.min_edge, q.max_edge, q.mean_edge);
+    std::printf("  valence 6:       %.3f %% of %zu interior vertices\n", 100 * q.valence6,
+                q.interior_vertices);
+    std::printf("  valence 4:       %.3f %% of %zu boundary vertices\n", 100 * q.valence4_boundary,
+                q.boundary_vertices);
+}
 
 void print_json(const std::string& file, const MeshInfo& info, const LoadReport& r) {
     const MeshStats& s = info.stats;
@@ -114,7 +173,9 @@ void print_json(const std::string& file, const MeshInfo& info, const LoadReport&
         j.add("volume", *s.volume);
     else
         j.add_null("volume");  // an open mesh has no volume
-    j.add("valid", info.valid.ok).add("load_report", report_json(r)).add("ms", info.ms);
+    j.add("valid", info.valid.ok).add("load_report", report_json(r));
+    if (info.quality) j.add("quality", quality_json(*info.quality));
+    j.add("ms", info.ms);
     std::cout << j.str() << "\n";
 }
 
@@ -145,6 +206,7 @@ void print_text(const std::string& file, const MeshInfo& info, const LoadReport&
     const auto lines = r.lines();
     if (lines.empty()) std::printf("  clean (nothing repaired)\n");
     for (const auto& l : lines) std::printf("  %s\n", l.c_str());
+    if (info.quality) print_quality_text(*info.quality);
 }
 
 /// Has the allocator keep the pages of freed large blocks for the next ones. glibc serves a
@@ -188,6 +250,7 @@ int run_info_command(const std::vector<std::string>& args) {
     try {
         info.stats = compute_stats(loaded.mesh);
         info.pairing = pair_boundary_edges(loaded.mesh);
+        if (a.quality) info.quality = mesh_quality(loaded.mesh, a.length);
     } catch (...) {
         validating.join();
         throw;

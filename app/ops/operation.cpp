@@ -319,6 +319,8 @@ const std::vector<const OperationDef*>& operation_defs() {
         v.push_back(remove_components_operation());
         v.push_back(features_operation());
         v.push_back(fill_holes_operation());
+
+        v.push_back(remesh_operation());
         return v;
     }();
     static const std::vector<const OperationDef*> defs = [] {

@@ -23,6 +23,8 @@ std::unique_ptr<OperationDef> fill_holes_operation();
 
 std::unique_ptr<OperationDef> denoise_operation();
 
+std::unique_ptr<OperationDef> remesh_operation();
+
 /// The core options of a "spectrum" operation (the Frequency panel's Decompose).
 struct SpectralOptions;
 SpectralOptions spectral_options(const Operation& op);

@@ -617,6 +617,41 @@ check "fill-holes refuses a negative --max-edges and --loops with --region, writ
      --loops 1,x 2> '$tmp/e' && grep -q -- '--loops: expected' '$tmp/e' && [ ! -e '$tmp/fn.ply' ]"
 check "fill-holes --help lists --loops and --max-edges" bash -c \
     "'$cli' fill-holes --help | grep -q -- '--loops I,J' && '$cli' fill-holes --help | grep -q -- '--max-edges'"
+
+check "remesh writes an isotropic mesh and its --json keys" bash -c \
+    "'$cli' remesh '$tmp/d.obj' '$tmp/rm.obj' --relative 1.5 --iterations 3 --json > '$tmp/rm.json' && \
+     $(declare -f json_has); json_has '$tmp/rm.json' target_length input_mean_edge predicted_faces \
+     faces vertices iterations_done splits collapses flips ms && \
+     '$cli' info '$tmp/rm.obj' --json | grep -q '\"valid\": true'"
+check "remesh --length and --relative are one or the other" bash -c \
+    "! '$cli' remesh '$tmp/d.obj' '$tmp/rx.obj' --length 0.1 --relative 2 2> '$tmp/e' && \
+     grep -q -- '--relative' '$tmp/e' && [ ! -e '$tmp/rx.obj' ]"
+check "remesh refuses a length of 0 with one line naming it, writing nothing" bash -c \
+    "! '$cli' remesh '$tmp/d.obj' '$tmp/rx.obj' --length 0 2> '$tmp/e' && [ \$(wc -l < '$tmp/e') -eq 1 ] && \
+     grep -q -- '--length' '$tmp/e' && [ ! -e '$tmp/rx.obj' ]"
+check "remesh says how many faces a tiny length would make and refuses it" bash -c \
+    "! '$cli' remesh '$tmp/d.obj' '$tmp/rx.obj' --length 1e-9 2> '$tmp/e' && \
+     grep -q 'would make about' '$tmp/e' && [ ! -e '$tmp/rx.obj' ]"
+check "remesh --adaptive refines where the surface curves: more faces than uniform" bash -c \
+    "'$cli' remesh '$tmp/d.obj' '$tmp/ru.obj' --relative 1.5 --iterations 2 --json > '$tmp/ru.json' && \
+     '$cli' remesh '$tmp/d.obj' '$tmp/ra.obj' --relative 1.5 --iterations 2 --adaptive 0.01 --json > '$tmp/ra.json' && \
+     python3 -c \"import json; u=json.load(open('$tmp/ru.json')); a=json.load(open('$tmp/ra.json')); \
+exit(0 if a['faces'] > u['faces'] and a['adaptive'] == 0.01 else 1)\""
+check "remesh refuses --adaptive above 0.5 naming it" bash -c \
+    "! '$cli' remesh '$tmp/d.obj' '$tmp/rx.obj' --adaptive 0.7 2> '$tmp/e' && grep -q -- '--adaptive' '$tmp/e'"
+check "remesh works on a region" bash -c \
+    "'$cli' remesh '$tmp/d.obj' '$tmp/rr.ply' --relative 0.7 --region sphere:1,0,0,0.8 --json | \
+     grep -q '\"region_vertices\": '"
+check "remesh refuses a region with no face inside, naming the reason, writing nothing" bash -c \
+    "! '$cli' remesh '$tmp/d.obj' '$tmp/rx.ply' --region sphere:5,5,5,0.1 2> '$tmp/e' && \
+     grep -q 'no face whose three corners are selected' '$tmp/e' && [ ! -e '$tmp/rx.ply' ]"
+check "info --quality prints the quality figures and their JSON keys" bash -c \
+    "'$cli' info '$tmp/d.obj' --quality | grep -q 'valence 6' && \
+     '$cli' info '$tmp/d.obj' --quality --length 0.1 --json > '$tmp/q.json' && \
+     $(declare -f json_has); json_has '$tmp/q.json' quality min_angle mean_min_angle \
+     angles_under_30 min_q mean_q edges_in_band valence6 && grep -q '\"length\": 0.1' '$tmp/q.json'"
+check "info refuses --length without --quality" bash -c \
+    "! '$cli' info '$tmp/d.obj' --length 1 2> '$tmp/e' && grep -q -- '--quality' '$tmp/e'"
 # Scripts and the command line (issue 23, item 12).
 check "a repeated option is refused naming it, never dropped, and nothing is written" bash -c \
     "! '$cli' record '$tmp/d.obj' --op 'noise --amount 2' --op 'subdivide' --out '$tmp/twice' \
@@ -678,7 +713,7 @@ help_options_accepted() {  # help_options_accepted CLI COMMAND
     return $bad
 }
 for cmd in info convert generate render record compare noise subdivide smooth spectrum decimate flip weld \
-    remove-components; do
+    remove-components remesh; do
     check "$cmd --help names only options $cmd takes" bash -c \
         "$(declare -f help_options_accepted); help_options_accepted '$cli' $cmd"
 done

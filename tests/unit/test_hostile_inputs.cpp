@@ -151,6 +151,10 @@ std::vector<std::string> parameter_sets(const std::string& op) {
         {"denoise",
          {"", "--method bilateral", "--method guided --sigma-r 0.05 --vertex-iterations 100",
           "--sigma-s 100 --sigma-r 100"}},
+
+        {"remesh",
+         {"", "--relative 0.5 --iterations 2", "--relative 3", "--length 1e-12",
+          "--adaptive 0.1 --iterations 2"}},
     };
     const auto it = sets.find(op);
     return it == sets.end() ? std::vector<std::string>{""} : it->second;

@@ -160,6 +160,17 @@ const std::map<std::string, Generator>& generators() {
              if (rule & 2) text += " --max-diameter " + pick_of(rng, fractions);
              return text;
          }},
+        {"remesh",
+         [](Rng& rng, const HalfedgeMesh& m) {
+             // Keep the meshes small: refine only below 5k faces, adaptively only there.
+             const std::vector<std::string> small = {"0.5", "0.8", "1", "1.5", "3"};
+             const std::vector<std::string> large = {"1", "1.5", "3"};
+             const bool is_small = m.n_faces() < 5000;
+             std::string text = "remesh --relative " + pick_of(rng, is_small ? small : large) +
+                                " --iterations " + std::to_string(pick(rng, 1, 3));
+             if (is_small && pick(rng, 0, 3) == 0) text += " --adaptive 0.05";
+             return text;
+         }},
     };
     return g;
 }
