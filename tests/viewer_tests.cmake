@@ -72,6 +72,27 @@ if(TARGET trilab)
              COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --sweep "subdivide --scheme loop"
                      --param iterations --range 1:8:2)
     set_tests_properties(viewer_sweep_refused PROPERTIES WILL_FAIL TRUE TIMEOUT 60)
+    # A sweep refuses what the command line refuses (issue 38, item 2): a preview that
+    # diverged (explicit umbrella at step 30 on the default model stops early), and a parameter
+    # that does not apply (Taubin takes no step).
+    add_test(NAME viewer_sweep_diverging
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --sweep "smooth --iterations 3"
+                     --param step --range 30:30:1)
+    set_tests_properties(viewer_sweep_diverging PROPERTIES TIMEOUT 60
+                         PASS_REGULAR_EXPRESSION "--sweep: the preview of .* stopped early")
+    add_test(NAME viewer_sweep_diverging_exit
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --sweep "smooth --iterations 3"
+                     --param step --range 30:30:1)
+    set_tests_properties(viewer_sweep_diverging_exit PROPERTIES WILL_FAIL TRUE TIMEOUT 60)
+    add_test(NAME viewer_sweep_not_applying
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --sweep "smooth --operator taubin"
+                     --param step --range 0.1:1:3)
+    set_tests_properties(viewer_sweep_not_applying PROPERTIES TIMEOUT 60
+                         PASS_REGULAR_EXPRESSION "--sweep: .*step")
+    add_test(NAME viewer_sweep_not_applying_exit
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --sweep "smooth --operator taubin"
+                     --param step --range 0.1:1:3)
+    set_tests_properties(viewer_sweep_not_applying_exit PROPERTIES WILL_FAIL TRUE TIMEOUT 60)
     add_test(NAME viewer_bad_wireframe COMMAND $<TARGET_FILE:trilab> --wireframe sometimes --frames 1)
     set_tests_properties(viewer_bad_wireframe PROPERTIES WILL_FAIL TRUE)
     # The layout rule (viewer_layout_check.cmake) with every panel open, a colour legend and a

@@ -42,6 +42,7 @@
 #include "app/viewer/pick_tool.h"
 #include "app/viewer/scene_view.h"
 #include "app/viewer/selection_tool.h"
+#include "core/errors.h"
 #include "core/up_axis.h"
 
 namespace trilab::viewer {
@@ -304,6 +305,16 @@ void ScriptDriver::start_sweep() {
         s.active = true;
         return;
     }
+    // What the command line refuses, a sweep refuses (Taubin takes no step).
+    try {
+        check_parameter_applies(s.op, options_.sweep_param);
+    } catch (const Error& e) {
+        std::fprintf(stderr, "trilab: --sweep: %s\n", e.what());
+        s.started = true;
+        quit_ = true;
+        exit_status_ = 1;
+        return;
+    }
     const std::size_t i = s.op.def->index(options_.sweep_param);
     s.param = i;
     for (OperationPanelState* panel : operation_panels()) {
@@ -346,6 +357,16 @@ void ScriptDriver::step_sweep(bool frame_shown) {
         // its clustered spectral prediction while the prediction is computed).
         const bool predicted = scene_.drew_prediction_of(s.current);
         if (!predicted && (!frame_shown || !session_.preview_shown(s.current))) return;
+        // A preview that stopped early (a diverging step) is a failure, as --op's run is.
+        const OperationResult* result = session_.preview_result();
+        if (!predicted && result && result->stopped_early) {
+            std::fprintf(stderr, "trilab: --sweep: the preview of %s %s\n",
+                         s.current.text().c_str(), run_failure(*result).c_str());
+            s.active = false;
+            quit_ = true;
+            exit_status_ = 1;
+            return;
+        }
         s.ms.push_back(1000.0 * (glfwGetTime() - s.t0));
         for (OperationPanelState* panel : operation_panels())
             if (panel->op.def == s.current.def)

@@ -169,7 +169,7 @@ void press(Ui& ui, Draw draw, const WidgetNote& n) {
 
 TEST_CASE("no widget ID is used twice in a frame, in any combination of open sections",
           "[panels][ids]") {
-    Ui ui(1280, 4000);  // tall: every widget is on the screen
+    Ui ui(1280, 6000);  // tall: every widget is on the screen
     Sidebar s;
     s.open_all();
     const auto draw = [&] { s.draw(); };
@@ -364,7 +364,7 @@ TEST_CASE("every button of every section queues what it says", "[panels][buttons
     for (const auto& scene : scenes) {
         std::vector<WidgetNote> buttons;
         {
-            Ui ui(1280, 4000);
+            Ui ui(1280, 6000);
             Sidebar s;
             s.open_all();
             scene(s);
@@ -379,7 +379,7 @@ TEST_CASE("every button of every section queues what it says", "[panels][buttons
             INFO("button " << b.path());
             const auto it = expected.find(b.path());
             REQUIRE(it != expected.end());  // a new button needs its expectation here
-            Ui ui(1280, 4000);
+            Ui ui(1280, 6000);
             Sidebar s;
             s.open_all();
             scene(s);
@@ -421,7 +421,7 @@ TEST_CASE("Record's button records: it does not share the section header's ID",
 }
 
 TEST_CASE("sections keep their parameters apart: a slider moves only its own", "[panels][ids]") {
-    Ui ui(1280, 4000);
+    Ui ui(1280, 6000);
     Sidebar s;
     s.panels.fairing.open = s.panels.subdivision.open = s.panels.decimation.open = true;
     s.panels.fairing.op.value("step").x = 0.5;  // no warning
@@ -452,7 +452,7 @@ TEST_CASE("sections keep their parameters apart: a slider moves only its own", "
 
 TEST_CASE("the morph controls are drawn once, in the Morph section, and respond there",
           "[panels]") {
-    Ui ui(1280, 4000);
+    Ui ui(1280, 6000);
     Sidebar s;
     s.open_all();
     s.morph.t = 0.5;
@@ -565,7 +565,7 @@ TEST_CASE("slider grabs leave the value text legible", "[panels]") {
 }
 
 TEST_CASE("sidebar notes are the GUI's words: no command-line options in labels", "[panels]") {
-    Ui ui(1280, 4000);
+    Ui ui(1280, 6000);
     Sidebar s;
     s.open_all();
     s.panels.decimation.op.value("target-vertices").on = false;
@@ -613,7 +613,7 @@ TEST_CASE("every registered operation has a panel: its own, or a tool's from the
         CHECK(own != (panels.tool(def->name) != nullptr));
     }
     // A tool with parameters is a sidebar section named after its label; Apply applies it.
-    Ui ui(1280, 4000);
+    Ui ui(1280, 6000);
     CommandQueue commands;
     for (OperationPanelState& tool : panels.tools) tool.open = true;
     const auto draw = [&] {
@@ -701,7 +701,7 @@ TEST_CASE("panels name options by their labels, not the command line's", "[panel
 }
 
 TEST_CASE("an optional number has a check box that sets it", "[panels]") {
-    Ui ui(1280, 4000);
+    Ui ui(1280, 6000);
     Sidebar s;
     OperationPanelState& tool = *s.panels.tool("remove-components");
     tool.open = true;

@@ -294,7 +294,7 @@ TEST_CASE("denoise on open meshes, with isolated vertices, and with zero iterati
 
 // ---- compare's figures -----------------------------------------------------------------------
 
-TEST_CASE("normal_deviation: a rotation turns every face by its angle; reversal flips all",
+TEST_CASE("normal_deviation: a rotation turns every face by its angle, and reversal flips all",
           "[denoise][compare]") {
     const HalfedgeMesh a = make_torus(24, 12, 1.0, 0.3);
     HalfedgeMesh b = a;
@@ -350,7 +350,7 @@ TEST_CASE("normal_deviation on a region, and refused across connectivities", "[d
     REQUIRE_FALSE(same_connectivity(a, make_icosphere(3)));
 }
 
-TEST_CASE("vertex_surface_distances: a lifted grid is its lift away; a mesh is 0 from itself",
+TEST_CASE("vertex_surface_distances: a lifted grid is its lift away, and a mesh is 0 from itself",
           "[denoise][compare]") {
     const HalfedgeMesh grid = make_grid(10);
     HalfedgeMesh lifted = grid;

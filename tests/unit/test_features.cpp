@@ -151,7 +151,7 @@ TEST_CASE("vertices are classified as OpenSubdiv does", "[features]") {
     CHECK(classify_vertices(grid, false).smooth == grid.n_vertices());
 }
 
-TEST_CASE("PLY and OM save and load the features; OBJ, OFF and STL say they drop them",
+TEST_CASE("PLY and OM save and load the features, and OBJ, OFF and STL say they drop them",
           "[features][io]") {
     HalfedgeMesh m = make_icosphere(2);
     Index k = 0;
@@ -262,7 +262,7 @@ TEST_CASE("detection by the dihedral angle: a cube, chains, boundaries", "[featu
     REQUIRE_VALID(grid);
 }
 
-TEST_CASE("fandisk has a plateau from 30 to 60 degrees; noisy, it has none", "[features]") {
+TEST_CASE("fandisk has a plateau from 30 to 60 degrees, and noisy, it has none", "[features]") {
     SKIP_IF_MISSING(test::shared_mesh("fandisk.obj"));
     HalfedgeMesh m = load_fandisk();
     const AngleHistogram h = angle_histogram(m);
