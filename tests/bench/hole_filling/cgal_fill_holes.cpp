@@ -13,13 +13,13 @@
 // three corner positions are no face of ORIGINAL).
 #include <algorithm>
 #include <array>
-#include <string>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iterator>
 #include <set>
+#include <string>
 #include <vector>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
