@@ -97,7 +97,7 @@ bool is_load(const History& history, std::size_t i) {
 }
 
 /// The labels the viewer gives its selection entries (app/session/session_selection.cpp,
-/// app/viewer/viewer_selection.cpp).
+/// app/viewer/selection_tool.cpp).
 bool is_selection_label(const std::string& label) {
     for (const char* l : {"Select", "Brush", "Lasso", "Grow selection", "Shrink selection",
                           "Invert selection", "Feather selection", "Clear selection"})

@@ -485,7 +485,7 @@ void SceneView::apply_colors(VertexColors colors) {
     const bool none =
         view_.settings.coloring == VertexColoring::None || view_.colors.colors.empty();
     note_exact_colors(none ? VertexColors{} : view_.colors, session_.mesh());
-    // A large state waiting for its upload (viewer_motion.cpp) takes them with it.
+    // A large state waiting for its upload (sync()) takes them with it.
     if (proxy_.exact_pending) return;
     if (none)
         renderer_->clear_vertex_colors();
@@ -608,7 +608,7 @@ void SceneView::sync() {
         proxy_.current_key = key;
         request_proxy(*shown.mesh);
         // The shown surface changed (a load, an operation, a slider move): the proxy first,
-        // the exact surface once the view rests (viewer_motion.cpp). A preview's colours are
+        // the exact surface once the view rests (choose_renderer()). A preview's colours are
         // computed with its upload, so a coloured preview is uploaded at once.
         if (shown.kind == Shown::Kind::Document ||
             view_.settings.coloring == VertexColoring::None) {

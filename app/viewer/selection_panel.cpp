@@ -1,5 +1,5 @@
 // The Selection section of the sidebar (issue 26): see panels.h selection_section(). The brush
-// and the lasso draw in the view (viewer_selection.cpp); this section holds their settings and
+// and the lasso draw in the view (selection_tool.cpp); this section holds their settings and
 // queues the one-shot selections and the edits, each one history entry.
 #include <imgui.h>
 
