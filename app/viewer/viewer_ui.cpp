@@ -146,24 +146,24 @@ void Viewer::handle_input() {
 }
 
 void Viewer::draw_ui() {
-    Session& session_ = context_.session;
-    ViewState& view_ = context_.view;
-    PanelState& panels_ = context_.panels;
-    CommandQueue& commands_ = context_.commands;
+    Session& session = context_.session;
+    ViewState& view = context_.view;
+    PanelState& panels = context_.panels;
+    CommandQueue& commands = context_.commands;
     MenuContext context;
-    context.has_file = !session_.document().path.empty();
-    context.busy = session_.jobs().busy();
-    context.can_undo = session_.history().can_undo();
-    context.can_redo = session_.history().can_redo();
-    context.document_path = session_.document().path;
+    context.has_file = !session.document().path.empty();
+    context.busy = session.jobs().busy();
+    context.can_undo = session.history().can_undo();
+    context.can_redo = session.history().can_redo();
+    context.document_path = session.document().path;
     context.recent_files = &recent_.paths();
     RenderContext render;
     render.has_texcoords = scene_->exact().has_texcoords();
     render.has_loaded_texture = !scene_->texture_image().empty();
-    const bool checker = view_.settings.use_checkerboard;
-    menu_bar(view_.style, view_.settings, panels_, context, render, commands_);
-    context_menu(view_.style, view_.settings, panels_, render, commands_);
-    if (checker != view_.settings.use_checkerboard) scene_->update_texture();
+    const bool checker = view.settings.use_checkerboard;
+    menu_bar(view.style, view.settings, panels, context, render, commands);
+    context_menu(view.style, view.settings, panels, render, commands);
+    if (checker != view.settings.use_checkerboard) scene_->update_texture();
 
     // The fixed regions (layout.h). A region the user resizes this frame changes the ones
     // drawn after it, so the layout is computed again after each resizable region.
@@ -173,60 +173,60 @@ void Viewer::draw_ui() {
     in.height = io.DisplaySize.y;
     in.em = ImGui::GetFontSize();
     in.frame_height = ImGui::GetFrameHeight();
-    in.sidebar = panels_.sidebar_open;
-    in.history = panels_.history_open;
-    in.log = panels_.log_open;
-    in.legend = view_.colors.has_legend;
-    LayoutState& sizes = panels_.layout;
+    in.sidebar = panels.sidebar_open;
+    in.history = panels.history_open;
+    in.log = panels.log_open;
+    in.legend = view.colors.has_legend;
+    LayoutState& sizes = panels.layout;
     Layout layout = compute_layout(in, sizes);
 
     StatusInfo status;
     // What is on the screen: a preview, a level of detail or a morph frame has its own counts.
     std::tie(status.n_vertices, status.n_faces) = scene_->shown_counts();
-    status.file_name = session_.document().name;
+    status.file_name = session.document().name;
     status.frame_ms = frame_ms();
     // A preview's progress shows only when it takes a while.
     JobInfo job;
-    const bool show_job = session_.jobs().busy() &&
-                          !(session_.preview_running() && session_.jobs().elapsed_seconds() < 0.5);
+    const bool show_job = session.jobs().busy() &&
+                          !(session.preview_running() && session.jobs().elapsed_seconds() < 0.5);
     if (show_job) {
-        job.name = session_.jobs().name();
-        job.stage = session_.jobs().stage();
-        job.fraction = session_.jobs().fraction();
-        job.seconds = session_.jobs().elapsed_seconds();
-        job.cancel_requested = session_.jobs().cancel_requested();
+        job.name = session.jobs().name();
+        job.stage = session.jobs().stage();
+        job.fraction = session.jobs().fraction();
+        job.seconds = session.jobs().elapsed_seconds();
+        job.cancel_requested = session.jobs().cancel_requested();
     }
-    status_bar(status, session_.notice(), show_job ? &job : nullptr, layout.status, commands_);
+    status_bar(status, session.notice(), show_job ? &job : nullptr, layout.status, commands);
 
     for (const auto& tool : tools_.all) tool->update();
-    if (panels_.sidebar_open && begin_sidebar(layout.sidebar, sizes)) {
+    if (panels.sidebar_open && begin_sidebar(layout.sidebar, sizes)) {
         const std::vector<std::string> info =
-            panels_.info_open ? scene_info() : std::vector<std::string>{};
+            panels.info_open ? scene_info() : std::vector<std::string>{};
         SidebarContext sidebar;
-        sidebar.history = &session_.history();
-        sidebar.busy = session_.jobs().busy();
-        sidebar.closed = session_.document().closed;
+        sidebar.history = &session.history();
+        sidebar.busy = session.jobs().busy();
+        sidebar.closed = session.document().closed;
         sidebar.can_record =
-            session_.history().current() > 0 && session_.morph().moves && !session_.jobs().busy();
-        sidebar.open_seams = session_.document().open_seams;
-        sidebar.frequency = &session_.document().frequency;
+            session.history().current() > 0 && session.morph().moves && !session.jobs().busy();
+        sidebar.open_seams = session.document().open_seams;
+        sidebar.frequency = &session.document().frequency;
         sidebar.info = &info;
         for (const auto& tool : tools_.all) tool->describe(sidebar);
-        sidebar_sections(panels_, session_.morph(), sidebar, commands_);
+        sidebar_sections(panels, session.morph(), sidebar, commands);
     }
-    if (panels_.sidebar_open) end_region();
+    if (panels.sidebar_open) end_region();
     layout = compute_layout(in, sizes);
-    history_window(panels_, session_.history(), session_.jobs().busy(), layout.history, commands_);
+    history_window(panels, session.history(), session.jobs().busy(), layout.history, commands);
     layout = compute_layout(in, sizes);
-    log_window(panels_, session_.log(), layout.log);
+    log_window(panels, session.log(), layout.log);
     layout = compute_layout(in, sizes);
     LegendSlot slot;
     slot.right = layout.legend.right();
     slot.bottom = layout.legend.bottom();
     slot.max_width = layout.legend_max_width;
     slot.max_height = layout.legend_max_height;
-    if (color_legend(view_.colors, view_.settings.coloring_options, view_.style, slot))
-        commands_.push_back(UpdateColoring{});
+    if (color_legend(view.colors, view.settings.coloring_options, view.style, slot))
+        commands.push_back(UpdateColoring{});
     if (slot.width > 0) {  // its size this frame places it in the next
         sizes.legend_width = slot.width;
         sizes.legend_height = slot.height;
@@ -235,34 +235,34 @@ void Viewer::draw_ui() {
     Rect& view_rect = context_.view_rect;
     const bool resized = layout.view.w != view_rect.w || layout.view.h != view_rect.h;
     view_rect = layout.view;
-    view_.camera.set_viewport(std::max(view_rect.w, 1.0f), std::max(view_rect.h, 1.0f));
+    view.camera.set_viewport(std::max(view_rect.w, 1.0f), std::max(view_rect.h, 1.0f));
     // A model framed by Fit stays framed when the view changes size, until the user moves it.
-    if (resized && view_.fitted) view_.camera.fit_sphere(view_.fit_center, view_.fit_radius);
+    if (resized && view.fitted) view.camera.fit_sphere(view.fit_center, view.fit_radius);
 
     // Dialogs float over the view.
-    screenshot_dialog(panels_.screenshot, commands_);
-    help_window(panels_);
-    about_window(panels_);
-    file_browser(panels_.file_browser, commands_);
-    error_popup(session_.notice(), commands_);
-    unsaved_changes_popup(panels_.unsaved, commands_);
-    recovery_popup(panels_.recovery, commands_);
+    screenshot_dialog(panels.screenshot, commands);
+    help_window(panels);
+    about_window(panels);
+    file_browser(panels.file_browser, commands);
+    error_popup(session.notice(), commands);
+    unsaved_changes_popup(panels.unsaved, commands);
+    recovery_popup(panels.recovery, commands);
 }
 
 std::vector<std::string> Viewer::scene_info() const {
-    const ViewState& view_ = context_.view;
+    const ViewState& view = context_.view;
     std::vector<std::string> lines = context_.session.document().info;
-    const glm::vec3 eye = glm::vec3(glm::inverse(view_.camera.view())[3]);
+    const glm::vec3 eye = glm::vec3(glm::inverse(view.camera.view())[3]);
     char buf[200];
     std::snprintf(buf, sizeof(buf), "camera at (%.3g, %.3g, %.3g), frame %.1f ms", eye.x, eye.y,
                   eye.z, frame_ms());
     lines.push_back(buf);
-    lines.push_back(std::string("mode ") + render_mode_name(view_.style.mode) +
-                    (view_.style.wireframe ? ", wireframe overlay" : "") +
-                    (view_.style.fog ? ", fog" : "") + (view_.style.specular ? ", specular" : ""));
-    if (view_.colors.has_legend) {
-        std::snprintf(buf, sizeof(buf), "colour: %s in [%.4g, %.4g]", view_.colors.label.c_str(),
-                      view_.colors.range.min, view_.colors.range.max);
+    lines.push_back(std::string("mode ") + render_mode_name(view.style.mode) +
+                    (view.style.wireframe ? ", wireframe overlay" : "") +
+                    (view.style.fog ? ", fog" : "") + (view.style.specular ? ", specular" : ""));
+    if (view.colors.has_legend) {
+        std::snprintf(buf, sizeof(buf), "colour: %s in [%.4g, %.4g]", view.colors.label.c_str(),
+                      view.colors.range.min, view.colors.range.max);
         lines.push_back(buf);
     }
     if (const Image& texture = scene_->texture_image(); !texture.empty())
@@ -289,9 +289,9 @@ void Viewer::ask_before_discarding(bool quitting, const std::string& path) {
 }
 
 void Viewer::reset_view() {
-    ViewState& view_ = context_.view;
-    const UpAxis up = view_.settings.up;
-    view_.camera.reset_rotation(up);
+    ViewState& view = context_.view;
+    const UpAxis up = view.settings.up;
+    view.camera.reset_rotation(up);
     fit_view();
     if (preferences_.up != up) {
         preferences_.up = up;
@@ -300,8 +300,8 @@ void Viewer::reset_view() {
                                     " (the default view and the spherical texture projection)");
         // Coordinates the viewer projected around the other axis follow (a history entry).
         if (context_.session.document().texcoords_projected &&
-            view_.settings.projection == TexCoordProjection::Spherical)
-            context_.session.project_texcoords(view_.settings.projection, view_.settings.up);
+            view.settings.projection == TexCoordProjection::Spherical)
+            context_.session.project_texcoords(view.settings.projection, view.settings.up);
     }
 }
 
