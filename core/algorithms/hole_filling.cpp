@@ -746,7 +746,8 @@ void measure_new_faces(const HalfedgeMesh& mesh, Index f0, HoleFillingReport& r)
     r.min_new_angle_deg = std::numeric_limits<double>::quiet_NaN();
     for (Index fi = f0; fi < Index(mesh.faces_size()); ++fi) {
         const double a = min_face_angle(mesh, Face(fi));
-        if (!(a >= r.min_new_angle_deg)) r.min_new_angle_deg = a;
+        if (std::isnan(a)) continue;  // no ordered comparison with NaN (FP traps)
+        if (std::isnan(r.min_new_angle_deg) || a < r.min_new_angle_deg) r.min_new_angle_deg = a;
         if (a < 20.0) ++r.new_angles_under_20;
     }
 }

@@ -246,8 +246,13 @@ TEST_CASE("a process killed at random moments leaves exactly its complete change
                 REQUIRE(found);
                 ++restored;
             } catch (const IoError& e) {
-                // Killed before the first entry was complete.
-                REQUIRE(std::string(e.what()).find("no complete entry") != std::string::npos);
+                // Killed before the first entry was complete (or before the 16-byte header was:
+                // a kill right after the file was created, seen under the sanitizers' slower
+                // start).
+                const std::string what = e.what();
+                INFO(what);
+                REQUIRE((what.find("no complete entry") != std::string::npos ||
+                         what.find("shorter than the 16-byte header") != std::string::npos));
             }
         }
         remove_dir(dir);
