@@ -12,6 +12,7 @@
 #include "core/algorithms/curvature.h"
 #include "core/algorithms/laplacian.h"
 #include "core/algorithms/mesh_distance.h"
+#include "core/algorithms/texcoords.h"
 #include "core/errors.h"
 #include "core/geometry.h"
 #include "core/mesh_builder.h"
@@ -31,25 +32,6 @@ void check_element(const HalfedgeMesh& mesh, H h, const char* function, const ch
                               (h.is_valid() ? std::to_string(h.idx()) : std::string("(invalid)")) +
                               " is not in the mesh (" + count_text(live, what, plural) +
                               ", indices 0 to " + std::to_string(live == 0 ? 0 : live - 1) + ")");
-}
-
-// Whether v's corners carry more than one "h:texcoord" (a texture seam runs through v).
-bool on_texture_seam(const HalfedgeMesh& mesh, Vertex v) {
-    const auto huv = mesh.get_halfedge_property<TexCoord>("h:texcoord");
-    if (!huv || mesh.is_isolated(v)) return false;
-    bool have = false;
-    TexCoord uv = TexCoord::Zero();
-    for (Halfedge g : mesh.halfedges_around(v)) {
-        const Halfedge in = HalfedgeMesh::twin(g);
-        if (mesh.is_boundary(in)) continue;
-        if (!have) {
-            uv = huv[in];
-            have = true;
-        } else if (huv[in] != uv) {
-            return true;
-        }
-    }
-    return false;
 }
 
 // Other live vertices with faces at exactly v's position (coincident.h's exact rule).
@@ -152,7 +134,7 @@ VertexInspection inspect_vertex(const HalfedgeMesh& mesh, Vertex v,
     r.isolated = mesh.is_isolated(v);
     r.valence = r.isolated ? 0 : mesh.valence(v);
     r.boundary = !r.isolated && mesh.is_boundary(v);
-    r.texture_seam = on_texture_seam(mesh, v);
+    r.texture_seam = on_texture_seam(mesh, mesh.get_halfedge_property<TexCoord>("h:texcoord"), v);
     r.coincident_copies = coincident_copies(mesh, v);
 
     const Index i = v.idx();

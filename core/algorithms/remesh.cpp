@@ -21,6 +21,7 @@
 #include "core/algorithms/curvature.h"
 #include "core/algorithms/mesh_distance.h"
 #include "core/algorithms/spatial_order.h"
+#include "core/algorithms/texcoords.h"
 #include "core/errors.h"
 #include "core/geometry.h"
 #include "core/system_memory.h"
@@ -363,22 +364,8 @@ std::vector<float> initial_weights(const HalfedgeMesh& mesh, const RemeshOptions
     }
     const auto huv = mesh.get_halfedge_property<TexCoord>("h:texcoord");
     if (!huv) return w;
-    for (Vertex v : mesh.vertices()) {
-        if (mesh.is_isolated(v)) continue;
-        bool have = false;
-        TexCoord uv = TexCoord::Zero();
-        for (Halfedge g : mesh.halfedges_around(v)) {
-            const Halfedge in = HalfedgeMesh::twin(g);
-            if (mesh.is_boundary(in)) continue;
-            if (!have) {
-                uv = huv[in];
-                have = true;
-            } else if (huv[in] != uv) {
-                w[v.idx()] = 0.0f;
-                break;
-            }
-        }
-    }
+    for (Vertex v : mesh.vertices())
+        if (on_texture_seam(mesh, huv, v)) w[v.idx()] = 0.0f;
     return w;
 }
 

@@ -164,4 +164,22 @@ void project_texcoords(HalfedgeMesh& mesh, TexCoordProjection projection, UpAxis
     for (std::size_t i = 0; i < vs.size(); ++i) prop[vs[i]] = uv[i];
 }
 
+bool on_texture_seam(const HalfedgeMesh& mesh, const HalfedgeProperty<const TexCoord>& corner_uv,
+                     Vertex v) {
+    if (!corner_uv || mesh.is_isolated(v)) return false;
+    bool have = false;
+    TexCoord uv = TexCoord::Zero();
+    for (Halfedge g : mesh.halfedges_around(v)) {
+        const Halfedge in = HalfedgeMesh::twin(g);
+        if (mesh.is_boundary(in)) continue;
+        if (!have) {
+            uv = corner_uv[in];
+            have = true;
+        } else if (corner_uv[in] != uv) {
+            return true;
+        }
+    }
+    return false;
+}
+
 }  // namespace trilab

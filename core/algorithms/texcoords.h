@@ -13,6 +13,12 @@ enum class TexCoordProjection { Planar, Spherical };
 /// Whether the mesh carries texture coordinates ("v:texcoord" or "h:texcoord" of type
 /// TexCoord; an attribute of that name but another type does not count).
 bool has_texcoords(const HalfedgeMesh& mesh);
+
+/// Whether the corners at `v` carry more than one texture coordinate (`corner_uv`, the mesh's
+/// "h:texcoord", read at v's incoming interior halfedges): a texture seam runs through v.
+/// False without per-corner coordinates or for an isolated vertex.
+bool on_texture_seam(const HalfedgeMesh& mesh, const HalfedgeProperty<const TexCoord>& corner_uv,
+                     Vertex v);
 /// Writes "v:texcoord" (created if needed) from the projection, in [0, 1]^2.
 ///
 /// Planar: principal component analysis of the live vertex positions (eigenvectors of their
