@@ -10,7 +10,11 @@
 
 #include "app/ops/operation.h"
 #include "core/algorithms/coloring.h"
+#include "core/algorithms/decimation.h"
 #include "core/algorithms/morph.h"
+#include "core/algorithms/ray_pick.h"
+#include "core/algorithms/texcoords.h"
+#include "core/up_axis.h"
 
 namespace trilab::viewer {
 
@@ -95,8 +99,11 @@ struct CommitBand {
 struct RestoreDecomposed {};
 /// Recompute the vertex colouring (its kind or options changed).
 struct UpdateColoring {};
-/// Compute texture coordinates by the chosen projection (the mesh has none).
-struct ProjectTexCoords {};
+/// Compute texture coordinates by `projection` with `up` up (the mesh has none).
+struct ProjectTexCoords {
+    TexCoordProjection projection = TexCoordProjection::Spherical;
+    UpAxis up = UpAxis::Y;
+};
 /// A PNG of the scene without the panels.
 struct TakeScreenshot {
     std::string path;
@@ -192,6 +199,34 @@ struct ShowDivergingRun {
     Operation op;
 };
 
+/// Casts `ray` (from depth t_min) at the shown surface: a hit replaces the picks, or with
+/// `second` is the second pick (a measurement from the first); a miss clears them.
+struct PickAt {
+    Ray ray;
+    double t_min = 0;
+    bool second = false;
+};
+/// Keep the geodesic distance from the picked vertices up to date (its colouring is shown).
+struct WantPickDistances {
+    bool want = true;
+};
+/// The decimation options the Inspector explains an edge's collapse with (the Decimation
+/// panel's).
+struct SetInspectionOptions {
+    DecimationOptions options;
+};
+/// The current colouring's value per vertex storage index (NaN: none; empty: the colouring
+/// has none), for SelectThreshold.
+struct SetColoringValues {
+    std::vector<double> values;
+};
+/// The view has drawn the shown spectral prediction: the exact preview may start.
+struct PredictionDrawn {};
+/// The window's settings (view, panels) changed: the crash journal records them.
+struct JournalSettings {
+    std::string text;
+};
+
 using Command = std::variant<
     LoadFile, SaveFile, RevertFile, SaveSession, OpenSession, RecoverJournal, LoadTexture, FitView,
     ResetView, Undo, Redo, JumpTo, RunOperation, PreviewOperation, ApplyOperation, CancelPreview,
@@ -199,7 +234,8 @@ using Command = std::variant<
     RestoreDecomposed, UpdateColoring, ProjectTexCoords, TakeScreenshot, PrintInfo, StartRecording,
     CancelRecording, CancelJob, Quit, SaveAndContinue, SaveAsAndContinue, ClearPicks, CentreOnPick,
     SetSelection, SelectSpec, SelectAtPick, SelectThreshold, EditSelection, LoadFigure, PlayMorph,
-    ShowMorphAt, SetMorphAnimation, ShowDivergingRun, NoticeShown, ComputeColoring>;
+    ShowMorphAt, SetMorphAnimation, ShowDivergingRun, NoticeShown, ComputeColoring, PickAt,
+    WantPickDistances, SetInspectionOptions, SetColoringValues, PredictionDrawn, JournalSettings>;
 using CommandQueue = std::vector<Command>;
 
 /// The command's type name ("StartRecording"), for logs and scripted clicks.
@@ -250,7 +286,13 @@ inline const char* command_name(const Command& command) {
                                              "SetMorphAnimation",
                                              "ShowDivergingRun",
                                              "NoticeShown",
-                                             "ComputeColoring"};
+                                             "ComputeColoring",
+                                             "PickAt",
+                                             "WantPickDistances",
+                                             "SetInspectionOptions",
+                                             "SetColoringValues",
+                                             "PredictionDrawn",
+                                             "JournalSettings"};
     static_assert(std::size(kNames) == std::variant_size_v<Command>, "a name per command");
     return kNames[command.index()];
 }

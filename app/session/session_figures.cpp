@@ -1,5 +1,4 @@
-// The reference's figures in the session (Session::load_figure) and the diverging run shown
-// for teaching (Session::show_diverging_run); the table is app/session/reference_figures.h.
+// The reference's figures and the diverging run; see session_figures.h.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -9,7 +8,7 @@
 
 #include "app/ops/operation_entries.h"
 #include "app/session/reference_figures.h"
-#include "app/session/session.h"
+#include "app/session/session_figures.h"
 #include "core/algorithms/fairing.h"
 #include "core/algorithms/generators.h"
 #include "core/algorithms/laplacian.h"
@@ -29,15 +28,15 @@ constexpr int kMaxDivergingIterations = 100;
 
 }  // namespace
 
-void Session::load_figure(const std::string& name) {
+void SessionFigures::load_figure(const std::string& name) {
     const ReferenceFigure* found = find_reference_figure(name);
     if (!found) {
-        notify_error("no reference figure '" + name + "'; the figures are " +
-                     reference_figure_names());
+        core_.notify_error("no reference figure '" + name + "'; the figures are " +
+                           reference_figure_names());
         return;
     }
-    if (jobs_.busy()) return busy_error();
-    clear_preview();
+    if (core_.jobs.busy()) return core_.busy_error();
+    previews_.clear();
     const ReferenceFigure figure = *found;
     struct Loaded {
         HalfedgeMesh model;
@@ -45,70 +44,72 @@ void Session::load_figure(const std::string& name) {
         Operation op;
         OperationResult result;
     };
-    const bool started = jobs_.start("Figure " + figure.name, [this, figure](Progress& progress) {
-        auto loaded = std::make_shared<Loaded>();
-        loaded->model = generate(figure.model);
-        HalfedgeMesh input = loaded->model;
-        for (const std::string& text : figure.setup) {
-            Operation op = parse_operation(text);
-            OperationResult result = run_operation(op, input, progress);
-            input = result.steps.back().mesh;
-            loaded->setup.emplace_back(std::move(op), std::move(result));
-        }
-        loaded->op = parse_operation(figure.operation);
-        loaded->result = run_operation(loaded->op, input, progress);
-        return JobRunner::Finish([this, figure, loaded] {
-            log_.info("Figure " + figure.name + ": " + figure.title);
-            log_.info("  the reference: " + figure.reference);
-            log_.info("  here: " + figure.model_note);
-            log_.info("  step: " + figure.translation);
-            push_loaded(std::move(loaded->model), "Figure " + figure.name + ": " + figure.model,
-                        "figure " + figure.name + " (" + figure.model + ")", "", LoadReport{});
-            for (auto& [op, result] : loaded->setup) commit_result(op, std::move(result));
-            figure_ = figure.name;
-            commit_result(loaded->op, std::move(loaded->result));
-            // A refused run keeps its error in the status bar; otherwise the figure says what
-            // it is and how its step was translated.
-            if (notice_.level != Notice::Level::Error)
-                notice_ = Notice{Notice::Level::Info,
-                                 "Figure " + figure.name + ": " + figure.title,
-                                 {"the reference: " + figure.reference,
-                                  "here: " + figure.model_note, "step: " + figure.translation},
-                                 false};
+    const bool started =
+        core_.jobs.start("Figure " + figure.name, [this, figure](Progress& progress) {
+            auto loaded = std::make_shared<Loaded>();
+            loaded->model = generate(figure.model);
+            HalfedgeMesh input = loaded->model;
+            for (const std::string& text : figure.setup) {
+                Operation op = parse_operation(text);
+                OperationResult result = run_operation(op, input, progress);
+                input = result.steps.back().mesh;
+                loaded->setup.emplace_back(std::move(op), std::move(result));
+            }
+            loaded->op = parse_operation(figure.operation);
+            loaded->result = run_operation(loaded->op, input, progress);
+            return JobRunner::Finish([this, figure, loaded] {
+                core_.log.info("Figure " + figure.name + ": " + figure.title);
+                core_.log.info("  the reference: " + figure.reference);
+                core_.log.info("  here: " + figure.model_note);
+                core_.log.info("  step: " + figure.translation);
+                document_.push_loaded(
+                    std::move(loaded->model), "Figure " + figure.name + ": " + figure.model,
+                    "figure " + figure.name + " (" + figure.model + ")", "", LoadReport{});
+                for (auto& [op, result] : loaded->setup) document_.commit(op, std::move(result));
+                figure_ = figure.name;
+                document_.commit(loaded->op, std::move(loaded->result));
+                // A refused run keeps its error in the status bar; otherwise the figure says what
+                // it is and how its step was translated.
+                if (core_.notice.level != Notice::Level::Error)
+                    core_.notice =
+                        Notice{Notice::Level::Info,
+                               "Figure " + figure.name + ": " + figure.title,
+                               {"the reference: " + figure.reference, "here: " + figure.model_note,
+                                "step: " + figure.translation},
+                               false};
+            });
         });
-    });
-    if (!started) busy_error();
+    if (!started) core_.busy_error();
 }
 
-std::string Session::figure() const {
+std::string SessionFigures::figure() const {
     // push_loaded() names the document after the figure; any other load renames it.
     const std::string prefix = "figure " + figure_ + " (";
-    return !figure_.empty() && document_.name.rfind(prefix, 0) == 0 ? figure_ : std::string();
+    return !figure_.empty() && core_.document.name.rfind(prefix, 0) == 0 ? figure_ : std::string();
 }
 
-bool Session::diverging_run_shown() const {
-    return !diverging_note_.empty() && shown_.kind == Shown::Kind::Preview &&
-           shown_.mesh == &diverging_mesh_;
+bool SessionFigures::diverging_run_shown() const {
+    return !diverging_note_.empty() && core_.shown.kind == Shown::Kind::Preview &&
+           core_.shown.mesh == &diverging_mesh_;
 }
 
-void Session::show_diverging_run(const Operation& op) {
+void SessionFigures::show_diverging_run(const Operation& op) {
     if (!is_operation<FairingOptions>(op)) return;
     FairingOptions o;
     try {
         check_operation(op);
         o = options_of<FairingOptions>(op);
     } catch (const std::exception& e) {
-        notify_error(e.what());
+        core_.notify_error(e.what());
         return;
     }
     if (o.integration == Integration::Implicit) {
-        notice_ = Notice{
-            Notice::Level::Info, "an implicit run does not diverge: nothing to show", {}, false};
+        core_.inform("an implicit run does not diverge: nothing to show");
         return;
     }
-    clear_preview();
-    clear_level_of_detail(false);
-    HalfedgeMesh mesh = document_.mesh();
+    previews_.clear();
+    levels_.clear(false);
+    HalfedgeMesh mesh = core_.mesh();
     Laplacian lap = build_laplacian(mesh, laplacian_of(o.op));
     Eigen::MatrixXd x = gather_positions(mesh, lap.map);
     const double size0 = box_diagonal(x);
@@ -142,13 +143,9 @@ void Session::show_diverging_run(const Operation& op) {
                   op.text().c_str(), done, o.iterations,
                   size0 > 0 ? box_diagonal(last) / size0 : 0.0);
     diverging_note_ = buf;
-    log_.warning(diverging_note_);
-    notice_ = Notice{Notice::Level::Error, diverging_note_, {}, false};
-    shown_.kind = Shown::Kind::Preview;
-    shown_.mesh = &diverging_mesh_;
-    shown_.positions.clear();
-    shown_.level = nullptr;
-    bump();
+    core_.log.warning(diverging_note_);
+    core_.notice = Notice{Notice::Level::Error, diverging_note_, {}, false};
+    core_.show(Shown::Kind::Preview, &diverging_mesh_);
 }
 
 }  // namespace trilab::viewer

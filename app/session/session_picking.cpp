@@ -1,11 +1,10 @@
-// The session's picks and measurements (app/session/picking.h): picking the shown surface,
-// following the document, and the geodesic job.
+// The session's picks and measurements; see session_picking.h.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <utility>
 
-#include "app/session/session.h"
+#include "app/session/session_picking.h"
 #include "core/algorithms/geodesic.h"
 #include "core/errors.h"
 
@@ -20,24 +19,25 @@ std::string format_distance(double d) {
 
 }  // namespace
 
-std::optional<Pick> Session::pick(const Ray& ray, double t_min, bool second) {
+void SessionPicking::pick(const Ray& ray, double t_min, bool second) {
+    const Shown& shown = core_.shown;
     std::optional<Pick> hit;
     try {
-        hit = pick_shown(shown_, document_.mesh(), ray, t_min);
+        hit = pick_shown(shown, core_.mesh(), ray, t_min);
     } catch (const std::exception& e) {
-        notify_error(std::string("pick: ") + e.what());
-        return std::nullopt;
+        core_.notify_error(std::string("pick: ") + e.what());
+        return;
     }
     if (!hit) {
-        clear_picks();
-        return std::nullopt;
+        clear();
+        return;
     }
     // The mesh the indices refer to: the shown mesh (a morph frame with its positions), or
     // the document on a level of detail.
-    HalfedgeMesh mesh = hit->on_level || !shown_.mesh ? document_.mesh() : *shown_.mesh;
-    if (!hit->on_level && shown_.positions.size() == mesh.vertices_size() &&
-        shown_.kind == Shown::Kind::Morph)
-        mesh.set_positions(shown_.positions);
+    HalfedgeMesh mesh = hit->on_level || !shown.mesh ? core_.mesh() : *shown.mesh;
+    if (!hit->on_level && shown.positions.size() == mesh.vertices_size() &&
+        shown.kind == Shown::Kind::Morph)
+        mesh.set_positions(shown.positions);
     const bool same_state = !picks_.picks.empty() &&
                             picks_.mesh.topology_revision() == mesh.topology_revision() &&
                             picks_.mesh.geometry_revision() == mesh.geometry_revision();
@@ -46,70 +46,59 @@ std::optional<Pick> Session::pick(const Ray& ray, double t_min, bool second) {
         picks_.picks.push_back(*hit);
     } else {
         picks_.picks = {*hit};
-        if (!same_state) {
-            picks_.mesh = std::move(mesh);
-            picks_.distances.clear();
-        }
+        if (!same_state) picks_.mesh = std::move(mesh);
     }
+    core_.log.info("picked " + pick_line(*hit));
+    restart(true);
+}
+
+void SessionPicking::restart(bool measure) {
     picks_.measurement = Measurement{};
+    picks_.distances.clear();
+    job_pending_ = false;
+    ++request_;
+    ++picks_.version;
+    if (!measure) return;
     if (picks_.picks.size() == 2) {
-        const Pick& a = picks_.picks[0];
-        const Pick& b = picks_.picks[1];
-        picks_.measurement.straight = (std::as_const(picks_.mesh).position(a.vertex) -
-                                       std::as_const(picks_.mesh).position(b.vertex))
-                                          .norm();
+        const HalfedgeMesh& mesh = picks_.mesh;
+        picks_.measurement.straight =
+            (mesh.position(picks_.picks[0].vertex) - mesh.position(picks_.picks[1].vertex)).norm();
         picks_.measurement.computing = true;
     }
-    picks_.distances.clear();
-    pick_job_pending_ = picks_.picks.size() == 2 || want_pick_distances_;
-    ++pick_request_;
-    ++picks_.version;
-    log_.info("picked " + pick_line(*hit));
-    start_pick_job();
+    job_pending_ = picks_.picks.size() == 2 || want_distances_;
+    start_job();
     start_inspection();
-    return hit;
 }
 
-void Session::clear_picks() {
+void SessionPicking::clear() {
     if (picks_.picks.empty()) return;
     picks_.picks.clear();
-    picks_.measurement = Measurement{};
-    picks_.distances.clear();
-    pick_job_pending_ = false;
-    ++pick_request_;
-    ++picks_.version;
+    restart(false);
 }
 
-void Session::want_pick_distances(bool want) {
-    if (want == want_pick_distances_) return;
-    want_pick_distances_ = want;
+void SessionPicking::want_distances(bool want) {
+    if (want == want_distances_) return;
+    want_distances_ = want;
     if (want && !picks_.picks.empty() && picks_.distances.empty()) {
-        pick_job_pending_ = true;
-        ++pick_request_;
-        start_pick_job();
+        job_pending_ = true;
+        ++request_;
+        start_job();
     }
 }
 
-void Session::follow_picks() {
+void SessionPicking::follow() {
     if (picks_.picks.empty()) return;
-    const HalfedgeMesh& doc = document_.mesh();
+    const HalfedgeMesh& doc = core_.mesh();
     if (doc.topology_revision() == picks_.mesh.topology_revision() &&
         doc.geometry_revision() == picks_.mesh.geometry_revision())
         return;  // the same shape (attributes aside)
     if (doc.topology_revision() != picks_.mesh.topology_revision() ||
         doc.vertices_size() != picks_.mesh.vertices_size()) {
         picks_.picks.clear();
-        picks_.measurement = Measurement{};
-        picks_.distances.clear();
         picks_.mesh = HalfedgeMesh();
-        pick_job_pending_ = false;
-        ++pick_request_;
-        ++picks_.version;
-        log_.info("picks dropped: this state has other vertices and faces (renumbered)");
-        notice_ = Notice{Notice::Level::Info,
-                         "picks dropped: this state's vertices and faces are numbered anew",
-                         {},
-                         false};
+        restart(false);
+        core_.log.info("picks dropped: this state has other vertices and faces (renumbered)");
+        core_.inform("picks dropped: this state's vertices and faces are numbered anew");
         return;
     }
     // A geometry-only step: the same elements, moved. Hits follow their faces.
@@ -118,21 +107,15 @@ void Session::follow_picks() {
         p.position = Point::Zero();
         for (int k = 0; k < 3; ++k) p.position += p.barycentric[k] * doc.position(p.corners[k]);
     }
-    picks_.measurement = Measurement{};
-    if (picks_.picks.size() == 2) {
-        picks_.measurement.straight =
-            (doc.position(picks_.picks[0].vertex) - doc.position(picks_.picks[1].vertex)).norm();
-        picks_.measurement.computing = true;
-    }
-    picks_.distances.clear();
-    pick_job_pending_ = picks_.picks.size() == 2 || want_pick_distances_;
-    ++pick_request_;
-    ++picks_.version;
-    start_pick_job();
-    start_inspection();
+    restart(true);
 }
 
-void Session::set_inspection_options(const DecimationOptions& options) {
+void SessionPicking::update() {
+    start_job();
+    take_inspection();
+}
+
+void SessionPicking::set_inspection_options(const DecimationOptions& options) {
     const DecimationOptions& o = inspection_options_;
     if (o.cost == options.cost && o.min_roundness == options.min_roundness &&
         o.max_normal_angle == options.max_normal_angle && o.max_error == options.max_error &&
@@ -143,14 +126,14 @@ void Session::set_inspection_options(const DecimationOptions& options) {
     if (!picks_.picks.empty()) start_inspection();
 }
 
-void Session::start_inspection() {
+void SessionPicking::start_inspection() {
     picks_.inspection.reset();
     if (picks_.picks.empty()) return;
     const HalfedgeMesh snapshot = picks_.mesh;  // copy-on-write: the worker's own
     const Pick pick = picks_.picks.front();
     const DecimationOptions options = inspection_options_;
-    auto reference = std::make_shared<const std::vector<Point>>(reference_positions());
-    inspection_request_ = pick_request_;
+    auto reference = std::make_shared<const std::vector<Point>>(document_.reference_positions());
+    inspection_request_ = request_;
     // A running inspection finishes on its own (its result is then stale and dropped).
     inspection_future_ = std::async(std::launch::async, [snapshot, pick, options, reference] {
         auto out = std::make_shared<PickInspection>();
@@ -175,25 +158,25 @@ void Session::start_inspection() {
     });
 }
 
-void Session::take_inspection() {
+void SessionPicking::take_inspection() {
     if (!inspection_future_.valid() ||
         inspection_future_.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
         return;
     std::shared_ptr<const PickInspection> result = inspection_future_.get();
-    if (inspection_request_ != pick_request_ || picks_.picks.empty()) return;  // stale
-    if (!result->failure.empty()) log_.warning("inspector: " + result->failure);
+    if (inspection_request_ != request_ || picks_.picks.empty()) return;  // stale
+    if (!result->failure.empty()) core_.log.warning("inspector: " + result->failure);
     picks_.inspection = std::move(result);
     ++picks_.version;
 }
 
-void Session::finish_inspection() {
+void SessionPicking::finish_inspection() {
     if (inspection_future_.valid()) inspection_future_.wait();
     take_inspection();
 }
 
-void Session::start_pick_job() {
-    if (!pick_job_pending_ || jobs_.busy() || picks_.picks.empty()) return;
-    pick_job_pending_ = false;
+void SessionPicking::start_job() {
+    if (!job_pending_ || core_.jobs.busy() || picks_.picks.empty()) return;
+    job_pending_ = false;
     struct Result {
         std::shared_ptr<const GeodesicSolver> solver;
         Measurement measurement;
@@ -205,10 +188,10 @@ void Session::start_pick_job() {
     std::shared_ptr<const GeodesicSolver> cached =
         picks_.solver && picks_.solver_state == state ? picks_.solver : nullptr;
     const std::vector<Pick> picks = picks_.picks;
-    const bool want_distances = want_pick_distances_;
+    const bool want_distances = want_distances_;
     const Measurement start = picks_.measurement;
-    const std::uint64_t request = pick_request_;
-    const bool started = jobs_.start("Geodesic distance", [=](Progress&) {
+    const std::uint64_t request = request_;
+    const bool started = core_.jobs.start("Geodesic distance", [=](Progress&) {
         auto result = std::make_shared<Result>();
         result->measurement = start;
         const auto t0 = std::chrono::steady_clock::now();
@@ -243,7 +226,7 @@ void Session::start_pick_job() {
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                 .count();
         return JobRunner::Finish([this, result, state, request] {
-            if (request != pick_request_) return;  // picks changed meanwhile: stale
+            if (request != request_) return;  // picks changed meanwhile: stale
             if (result->solver) {
                 picks_.solver = result->solver;
                 picks_.solver_state = state;
@@ -252,15 +235,15 @@ void Session::start_pick_job() {
             picks_.distances = std::move(result->distances);
             ++picks_.version;
             if (!result->failure.empty()) {
-                log_.warning("geodesic distance: " + result->failure);
+                core_.log.warning("geodesic distance: " + result->failure);
             } else if (picks_.picks.size() == 2) {
-                log_.info("measure: straight " + format_distance(picks_.measurement.straight) +
-                          " geodesic " + format_distance(picks_.measurement.geodesic) +
-                          " path points " + std::to_string(picks_.measurement.path.size()));
+                core_.log.info("measure: straight " + format_distance(picks_.measurement.straight) +
+                               " geodesic " + format_distance(picks_.measurement.geodesic) +
+                               " path points " + std::to_string(picks_.measurement.path.size()));
             }
         });
     });
-    if (!started) pick_job_pending_ = true;  // the runner is busy: start when it is free
+    if (!started) job_pending_ = true;  // the runner is busy: start when it is free
 }
 
 }  // namespace trilab::viewer

@@ -20,13 +20,13 @@ void DecimationTool::update() {
     Session& session = context_.session;
     // The level of detail.
     DecimationPanelState& d = panel_;
-    d.lod_ready = session.has_level_of_detail();
-    d.lod_building = session.level_building();
-    d.lod_note = session.level_note();
+    d.lod_ready = session.levels().ready();
+    d.lod_building = session.levels().building();
+    d.lod_note = session.levels().note();
     if (!d.lod_ready) d.lod_percent = 100.0f;
     // The Inspector explains a collapse with the panel's options.
     try {
-        session.set_inspection_options(decimation_options(d.op));
+        session.execute(SetInspectionOptions{decimation_options(d.op)});
     } catch (const std::exception&) {
         // The panel shows its own error; the inspector keeps the last valid options.
     }

@@ -31,8 +31,8 @@ void FairingTool::update_stable_step() {
     const int op = int(options_of<FairingOptions>(f.op).op);
     const HalfedgeMesh::Revision state = context_.session.mesh().revision();
     // A preview of this state reports it (any size); small meshes get it at once.
-    const OperationResult* preview = context_.session.preview_result();
-    const std::optional<Operation>& requested = context_.session.preview_requested();
+    const OperationResult* preview = context_.session.previews().result();
+    const std::optional<Operation>& requested = context_.session.previews().requested();
     if (preview && requested && is_operation<FairingOptions>(*requested) &&
         int(options_of<FairingOptions>(*requested).op) == op) {
         if (const SmoothReport* r = report_of<SmoothReport>(*preview);
@@ -61,19 +61,20 @@ void FairingTool::update_stable_step() {
 
 void FairingTool::update_lens() {
     FairingPanelState& panel = panel_;
-    if (context_.session.prediction_shown())
+    if (context_.session.previews().prediction_shown())
         panel.preview_note = "showing the spectral prediction; the exact result follows";
-    const bool diverging = context_.session.diverging_run_shown();
+    const bool diverging = context_.session.figures().diverging_run_shown();
     if (diverging) panel.preview_note = "showing the DIVERGED run: not a result (Esc returns)";
     if (!panel.open) return;  // drawn only when the section is open
     // Per frame, whatever the data below: the figure's translation and the diverged mark.
     std::string figure_note;
-    const std::string figure_name = context_.session.figure();
+    const std::string figure_name = context_.session.figures().figure();
     if (const ReferenceFigure* f =
             figure_name.empty() ? nullptr : find_reference_figure(figure_name);
         f && panel.op.text() == parse_operation(f->operation).text())
         figure_note = "Figure " + f->name + ": " + f->translation;
-    const std::string diverging_note = diverging ? context_.session.diverging_run_note() : "";
+    const std::string diverging_note =
+        diverging ? context_.session.figures().diverging_run_note() : "";
     panel.lens.figure_note = figure_note;
     panel.lens.diverging_note = diverging_note;
     const FairingOptions o = options_of<FairingOptions>(panel.op);
@@ -87,8 +88,9 @@ void FairingTool::update_lens() {
     const Shown& shown = context_.session.shown();
     // (Not the spectral prediction: its measured gain is the curve by construction, and
     // measuring it would delay the frame that shows it.)
-    if (shown.kind == Shown::Kind::Preview && context_.session.previewing(panel.op) && shown.mesh &&
-        !context_.session.prediction_shown() && !context_.session.diverging_run_shown() &&
+    if (shown.kind == Shown::Kind::Preview && context_.session.previews().previewing(panel.op) &&
+        shown.mesh && !context_.session.previews().prediction_shown() &&
+        !context_.session.figures().diverging_run_shown() &&
         shown.mesh->vertices_size() == context_.session.mesh().vertices_size()) {
         result = shown.mesh;
         input = context_.session.mesh().positions();
@@ -97,7 +99,7 @@ void FairingTool::update_lens() {
                        .info(context_.session.history().current())
                        .operation.text() == panel.op.text()) {
         result = &context_.session.mesh();
-        input = context_.session.reference_positions();
+        input = context_.session.editing().reference_positions();
     }
     const std::string key = panel.op.text() + " " + std::to_string(d ? std::uintptr_t(d) : 0) +
                             " " + std::to_string(shown.version) + " " +

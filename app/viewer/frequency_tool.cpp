@@ -8,20 +8,21 @@
 
 namespace trilab::viewer {
 
-FrequencyTool::FrequencyTool(ViewerContext& context) : Tool(context) {
-    // A new decomposition: the band's sliders cover it, the first frequency is visualised.
-    context.session.on_decomposed = [this](std::size_t /*lo*/, std::size_t hi) {
-        FrequencyPanelState& s = context_.panels.frequency;
-        s.lo = 0;
-        s.hi = int(hi);
-        s.visualize = std::min(1, s.hi);
-        if (coloring_needs_field(context_.view.settings.coloring))
-            context_.commands.push_back(UpdateColoring{});
-    };
+void FrequencyTool::update() {
+    const auto& d = context_.session.document().frequency.decomposition;
+    if (d.get() == decomposition_) return;
+    decomposition_ = d.get();
+    if (d && !d->empty()) on_decomposed(d->size() - 1);
 }
 
-FrequencyTool::~FrequencyTool() {
-    context_.session.on_decomposed = nullptr;
+void FrequencyTool::on_decomposed(std::size_t hi) {
+    // A new decomposition: the band's sliders cover it, the first frequency is visualised.
+    FrequencyPanelState& s = context_.panels.frequency;
+    s.lo = 0;
+    s.hi = int(hi);
+    s.visualize = std::min(1, s.hi);
+    if (coloring_needs_field(context_.view.settings.coloring))
+        context_.commands.push_back(UpdateColoring{});
 }
 
 VertexColors FrequencyTool::field_colors(const HalfedgeMesh& mesh) const {
@@ -31,7 +32,7 @@ VertexColors FrequencyTool::field_colors(const HalfedgeMesh& mesh) const {
         if (mesh.has_vertex_property("v:distance"))
             return color_vertices(mesh, VertexColoring::GeodesicDistance,
                                   context_.view.settings.coloring_options);
-        const PickSet& picks = context_.session.picks();
+        const PickSet& picks = context_.session.picking().picks();
         if (picks.distances.size() != mesh.vertices_size() ||
             picks.mesh.topology_revision() != mesh.topology_revision())
             return {};
@@ -47,7 +48,7 @@ VertexColors FrequencyTool::field_colors(const HalfedgeMesh& mesh) const {
     if (coloring == VertexColoring::RemovedBelow || coloring == VertexColoring::RemovedAbove) {
         // What the current entry changed, split at the top of the band: below it is shape,
         // above it detail and noise (core/algorithms/transfer_function.h).
-        const std::vector<Point> before = context_.session.reference_positions();
+        const std::vector<Point> before = context_.session.editing().reference_positions();
         if (before.size() != mesh.vertices_size()) return {};
         const std::size_t split = std::min(std::size_t(std::max(s.hi, 0)) + 1, d->size());
         try {

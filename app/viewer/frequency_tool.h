@@ -12,9 +12,14 @@ namespace trilab::viewer {
 
 class FrequencyTool : public Tool {
 public:
-    explicit FrequencyTool(ViewerContext& context);
-    ~FrequencyTool() override;
+    explicit FrequencyTool(ViewerContext& context) : Tool(context) {}
+    void update() override;
     VertexColors field_colors(const HalfedgeMesh& mesh) const override;
+
+private:
+    void on_decomposed(std::size_t hi);
+    /// The decomposition the sliders were set for.
+    const SpectralDecomposition* decomposition_ = nullptr;
 };
 
 }  // namespace trilab::viewer

@@ -136,11 +136,11 @@ void texture_menu(RenderStyle& style, ViewSettings& settings, PanelState& panels
             ImGui::TextDisabled("no texture coordinates: project them");
             if (menu_item("Planar projection")) {
                 settings.projection = TexCoordProjection::Planar;
-                commands.push_back(ProjectTexCoords{});
+                commands.push_back(ProjectTexCoords{settings.projection, settings.up});
             }
             if (menu_item("Spherical projection")) {
                 settings.projection = TexCoordProjection::Spherical;
-                commands.push_back(ProjectTexCoords{});
+                commands.push_back(ProjectTexCoords{settings.projection, settings.up});
             }
         }
         end_menu();

@@ -11,11 +11,11 @@ namespace trilab::viewer {
 void OperationTool::update() {
     const Session& session = context_.session;
     // The previews (Cancel shows), and whether they stay live.
-    const std::optional<Operation>& requested = session.preview_requested();
+    const std::optional<Operation>& requested = session.previews().requested();
     for (OperationPanelState* panel : panels_) {
-        panel->previewing = session.previewing(panel->op);
+        panel->previewing = session.previews().previewing(panel->op);
         if (!requested || requested->def != panel->op.def) continue;
-        const double ms = session.last_preview_ms();
+        const double ms = session.previews().last_ms();
         if (ms < 0 || ms == panel->latency_ms || context_.sweeping) continue;
         panel->latency_ms = ms;
         note_preview_latency(*panel, ms);

@@ -39,13 +39,17 @@ std::optional<Pick> PickTool::pick_at(const glm::vec2& view_pos, bool second) {
     Ray ray;
     ray.origin = Point(origin.x, origin.y, origin.z);
     ray.direction = Vector3(direction.x, direction.y, direction.z);
-    const std::optional<Pick> hit = context_.session.pick(ray, double(camera.near_plane()), second);
-    if (hit) context_.panels.inspector_open = true;
-    return hit;
+    Session& session = context_.session;
+    const std::uint64_t version = session.picking().picks().version;
+    session.execute(PickAt{ray, double(camera.near_plane()), second});
+    const PickSet& picks = session.picking().picks();
+    if (picks.version == version || picks.picks.empty()) return std::nullopt;  // a miss
+    context_.panels.inspector_open = true;
+    return picks.picks.back();
 }
 
 void PickTool::update_overlay() {
-    const PickSet& set = context_.session.picks();
+    const PickSet& set = context_.session.picking().picks();
     const Shown& shown = context_.session.shown();
     const std::string key = std::to_string(set.version) + " " + std::to_string(shown.version);
     if (key == overlay_key_) return;
@@ -101,7 +105,7 @@ void PickTool::update_overlay() {
 
 void PickTool::draw_overlay() {
     update_overlay();
-    if (!face_lines_ || context_.session.picks().picks.empty()) return;
+    if (!face_lines_ || context_.session.picking().picks().picks.empty()) return;
     const glm::mat4 view = context_.view.camera.view(),
                     projection = context_.view.camera.projection();
     LineStyle style;
@@ -122,9 +126,9 @@ void PickTool::draw_overlay() {
 void PickTool::update() {
     // The geodesic colouring follows the picks' distances as they arrive.
     if (context_.view.settings.coloring == VertexColoring::GeodesicDistance &&
-        context_.session.picks().version != geodesic_colored_())
+        context_.session.picking().picks().version != geodesic_colored_())
         context_.commands.push_back(UpdateColoring{});
-    const PickSet& set = context_.session.picks();
+    const PickSet& set = context_.session.picking().picks();
     const FrequencyDocument& frequency = context_.session.document().frequency;
     const std::string key =
         std::to_string(set.version) + " " + std::to_string(context_.session.history().current()) +

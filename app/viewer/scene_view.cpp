@@ -105,7 +105,7 @@ bool SceneView::poll_coloring() {
     // The session's colouring job ended: its colours, unless the user has already replaced
     // the colouring; of another state (an entry applied meanwhile), that state is coloured
     // again.
-    if (const Session::ColoringResult* r = session_.coloring_result();
+    if (const SessionColoring::Result* r = session_.coloring().result();
         r && r->id != coloring_result_id_) {
         coloring_result_id_ = r->id;
         if (view_.settings.coloring == r->coloring) {
@@ -121,7 +121,7 @@ bool SceneView::poll_coloring() {
 }
 
 bool SceneView::new_loading_picture() const {
-    const auto picture = session_.loading_picture();
+    const auto picture = session_.files().loading_picture();
     return picture && picture != loading_.picture;
 }
 
@@ -267,7 +267,7 @@ void SceneView::note_exact_colors(const VertexColors& colors, const HalfedgeMesh
 
 MeshRenderer* SceneView::choose_loading_picture() {
     loading_.drawn = false;
-    std::shared_ptr<const LoadingPicture> picture = session_.loading_picture();
+    std::shared_ptr<const LoadingPicture> picture = session_.files().loading_picture();
     if (!picture) {
         if (loading_.picture && loading_.restore_camera) view_.camera = loading_.camera_before;
         loading_.picture.reset();
@@ -361,12 +361,12 @@ MeshRenderer* SceneView::choose_clustered_prediction() {
                     cluster_basis(*d, stand_in->cluster_of, stand_in->positions.size())));
             });
     }
-    const std::optional<Operation>& request = session_.preview_requested();
-    const std::optional<Session::Predictable> p =
-        request ? session_.predictable(*request) : std::nullopt;
+    const std::optional<Operation>& request = session_.previews().requested();
+    const std::optional<SessionPreviews::Predictable> p =
+        request ? session_.previews().predictable(*request) : std::nullopt;
     if (!p) return nullptr;
     if (!proxy_.basis || proxy_.basis_of != p->decomposition || proxy_.basis_key != doc_key ||
-        session_.preview_shown(*request) || !session_.prediction_computing())
+        session_.previews().shown(*request) || !session_.previews().prediction_computing())
         return nullptr;
     MeshRenderer& r = *proxy_.renderer;
     const ProxyMesh& stand_in = *found->second;
@@ -496,20 +496,20 @@ void SceneView::apply_colors(VertexColors colors) {
 void SceneView::update_coloring() {
     const VertexColoring coloring = view_.settings.coloring;
     const ColoringOptions options = view_.settings.coloring_options;
-    if (coloring != VertexColoring::GeodesicDistance) session_.want_pick_distances(false);
+    if (coloring != VertexColoring::GeodesicDistance) session_.execute(WantPickDistances{false});
     if (coloring == VertexColoring::None) {
         apply_colors(VertexColors{});
         return;
     }
     if (coloring_needs_field(coloring)) {  // from the decomposition: cheap, on this thread
         const bool geodesic = coloring == VertexColoring::GeodesicDistance;
-        session_.want_pick_distances(geodesic);
-        geodesic_colored_version_ = session_.picks().version;
+        session_.execute(WantPickDistances{geodesic});
+        geodesic_colored_version_ = session_.picking().picks().version;
         VertexColors colors = (field_colors_ ? field_colors_(session_.mesh()) : VertexColors{});
         if (colors.colors.empty() && geodesic)
             session_.notify(
                 Notice{Notice::Level::Info,
-                       session_.picks().picks.empty()
+                       session_.picking().picks().picks.empty()
                            ? "geodesic distance: click the model to pick where it is measured from"
                            : "geodesic distance: measuring from the picks...",
                        {},
@@ -526,7 +526,7 @@ void SceneView::update_coloring() {
         return;
     }
     auto reference = std::make_shared<const std::vector<Point>>(
-        coloring == VertexColoring::SmoothingDistance ? session_.reference_positions()
+        coloring == VertexColoring::SmoothingDistance ? session_.editing().reference_positions()
                                                       : std::vector<Point>{});
     if (session_.mesh().n_faces() < kColoringJobFaces) {
         apply_colors(color_vertices(session_.mesh(), coloring, options, reference.get()));
@@ -649,7 +649,7 @@ void SceneView::upload_shown() {
                 // each vertex keeps its colour while it moves.
                 if (before != Shown::Kind::Morph || !renderer_->shows_topology_of(*shown.mesh)) {
                     if (!renderer_->shows_topology_of(*shown.mesh)) renderer_->upload(*shown.mesh);
-                    show_colors_of(*shown.mesh, session_.reference_positions());
+                    show_colors_of(*shown.mesh, session_.editing().reference_positions());
                 }
                 renderer_->update_positions(*shown.mesh, shown.positions);
                 break;

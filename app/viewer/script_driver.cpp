@@ -170,7 +170,7 @@ bool ScriptDriver::ready() const {
 }
 
 bool ScriptDriver::settled() {
-    if (session_.jobs().busy() || !context_.commands.empty() || session_.preview_pending() ||
+    if (session_.jobs().busy() || !context_.commands.empty() || session_.previews().pending() ||
         !ready() || sweep_.active || context_.panels.record.running)
         return false;
     if (!options_.decompose.empty() && decompose_state_ != 2) return false;
@@ -277,7 +277,7 @@ void ScriptDriver::start_sweep() {
 void ScriptDriver::step_sweep(bool frame_shown) {
     Sweep& s = sweep_;
     if (!s.active) return;
-    if (s.lod && !session_.has_level_of_detail()) {
+    if (s.lod && !session_.levels().ready()) {
         if (!session_.busy()) {  // the build failed (its error is shown)
             std::fprintf(stderr, "trilab: --sweep: no levels of detail could be built\n");
             s.active = false;
@@ -293,9 +293,9 @@ void ScriptDriver::step_sweep(bool frame_shown) {
         ++s.next;
     }
     if (s.waiting &&
-        !session_.preview_failure().empty()) {  // refused: the sweep ends, and says why
+        !session_.previews().failure().empty()) {  // refused: the sweep ends, and says why
         std::fprintf(stderr, "trilab: --sweep: the preview of %s failed: %s\n",
-                     s.current.text().c_str(), session_.preview_failure().c_str());
+                     s.current.text().c_str(), session_.previews().failure().c_str());
         s.active = false;
         quit_ = true;
         exit_status_ = 1;
@@ -305,9 +305,9 @@ void ScriptDriver::step_sweep(bool frame_shown) {
         // Done when the frame just drawn showed the preview asked for (or, on a large mesh,
         // its clustered spectral prediction while the prediction is computed).
         const bool predicted = scene_.drew_prediction_of(s.current);
-        if (!predicted && (!frame_shown || !session_.preview_shown(s.current))) return;
+        if (!predicted && (!frame_shown || !session_.previews().shown(s.current))) return;
         // A preview that stopped early (a diverging step) is a failure, as --op's run is.
-        const OperationResult* result = session_.preview_result();
+        const OperationResult* result = session_.previews().result();
         if (!predicted && result && result->stopped_early) {
             std::fprintf(stderr, "trilab: --sweep: the preview of %s %s\n",
                          s.current.text().c_str(), run_failure(*result).c_str());
@@ -373,7 +373,7 @@ void ScriptDriver::step_sweep(bool frame_shown) {
     s.t0 = glfwGetTime();
     s.waiting = true;
     session_.execute(PreviewOperation{s.current});
-    if (!session_.preview_requested() || *session_.preview_requested() != s.current) {
+    if (!session_.previews().requested() || *session_.previews().requested() != s.current) {
         std::fprintf(stderr, "trilab: --sweep: %s is refused\n", s.current.text().c_str());
         s.active = false;
         quit_ = true;
@@ -406,7 +406,7 @@ void ScriptDriver::next_pick() {
 bool ScriptDriver::picks_pending() const {
     // The last frame of a scripted run shows the Inspector filled in.
     return next_pick_ < options_.picks.size() ||
-           (!options_.picks.empty() && session_.picks_pending());
+           (!options_.picks.empty() && session_.picking().pending());
 }
 
 bool ScriptDriver::next_selection() {
@@ -529,7 +529,7 @@ void ScriptDriver::drive_lasso() {
     context_.keep_drawing(2);
     if (tools_.selection->stroking() || session_.busy() || !context_.commands.empty()) return;
     l.state = 3;
-    std::printf("lasso: vertices=%zu\n", session_.selected_count());
+    std::printf("lasso: vertices=%zu\n", session_.selections().count());
     std::fflush(stdout);
 }
 
@@ -592,7 +592,7 @@ void ScriptDriver::turn_camera() {
     const int n = options_.orbit_frames;
     if (n > 0 && !orbit_.done) {
         if (orbit_.frame < 0) {
-            if (ready() && !session_.preview_pending() && !session_.morph().playing &&
+            if (ready() && !session_.previews().pending() && !session_.morph().playing &&
                 scene_.at_rest(glfwGetTime())) {
                 orbit_.frame = 0;
                 orbit_.start = context_.view.camera;

@@ -59,9 +59,9 @@ void SelectionTool::describe(SidebarContext& context) const {
     const HalfedgeMesh& mesh = context_.session.mesh();
     context.n_vertices = mesh.n_vertices();
     context.has_selection = mesh.has_vertex_property(kSelectionProperty);
-    context.selected = context.has_selection ? context_.session.selected_count() : 0;
-    context.has_pick = !context_.session.picks().picks.empty();
-    const std::vector<double>& values = context_.session.coloring_values();
+    context.selected = context.has_selection ? context_.session.selections().count() : 0;
+    context.has_pick = !context_.session.picking().picks().picks.empty();
+    const std::vector<double>& values = context_.session.coloring().values();
     context.has_values = !values.empty();
     context.values_min = context_.view.colors.range.min;
     context.values_max = context_.view.colors.range.max;
@@ -72,10 +72,10 @@ void SelectionTool::update() {
     const std::vector<double>& values = context_.view.colors.values;
     const bool fits = values.size() == context_.session.mesh().vertices_size() &&
                       context_.view.colors.kind != ColorMapKind::Categorical;
-    if (!fits && !context_.session.coloring_values().empty())
-        context_.session.set_coloring_values({});
-    else if (fits && !same_bits(context_.session.coloring_values(), values))
-        context_.session.set_coloring_values(values);
+    if (!fits && !context_.session.coloring().values().empty())
+        context_.session.execute(SetColoringValues{{}});
+    else if (fits && !same_bits(context_.session.coloring().values(), values))
+        context_.session.execute(SetColoringValues{values});
 }
 
 void SelectionTool::begin_stroke(bool add, bool lasso, const glm::vec2& pos) {
@@ -93,8 +93,8 @@ void SelectionTool::begin_stroke(bool add, bool lasso, const glm::vec2& pos) {
     const HalfedgeMesh& mesh = context_.session.mesh();
     // No selection yet: the brush starts from nothing when it adds, from everything (what an
     // operation acts on without one) when it removes.
-    stroke_.before =
-        context_.session.selection().value_or(add ? empty_selection(mesh) : full_selection(mesh));
+    stroke_.before = context_.session.selections().get().value_or(add ? empty_selection(mesh)
+                                                                      : full_selection(mesh));
     stroke_.weights = stroke_.before;
     stroke_.last = pos;
     stroke_.version = ++stroke_counter_;
@@ -137,12 +137,12 @@ void SelectionTool::end_stroke() {
             result[i] = stroke.add ? std::max(result[i], inside[i]) : result[i] * (1 - inside[i]);
         std::snprintf(parameters, sizeof parameters, "%zu points%s (%s)",
                       stroke.lasso_points.size(), stroke.through ? ", through" : "", how);
-        if (result != stroke.before || !context_.session.selection())
+        if (result != stroke.before || !context_.session.selections().get())
             context_.commands.push_back(SetSelection{std::move(result), "Lasso", parameters});
     } else {
         std::snprintf(parameters, sizeof parameters, "radius %.0f px, %zu dabs (%s)",
                       double(context_.panels.selection.brush_radius), stroke.dabs, how);
-        if (stroke.weights != stroke.before || !context_.session.selection())
+        if (stroke.weights != stroke.before || !context_.session.selections().get())
             context_.commands.push_back(
                 SetSelection{std::move(stroke.weights), "Brush", parameters});
     }
@@ -180,7 +180,7 @@ bool SelectionTool::mouse(const ViewMouse& mouse) {
         return true;
     }
     // A preview computing does not stop the brush (the selection's entry computes it again).
-    if (!s.open || !modifier || (context_.session.busy() && !context_.session.preview_running()))
+    if (!s.open || !modifier || (context_.session.busy() && !context_.session.previews().running()))
         return false;
     if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && mouse.drag_in_view && in_view) {
         begin_stroke(!io.KeyAlt, lasso, pos);

@@ -276,8 +276,8 @@ void Viewer::execute(const Command& command) {
     } else if (std::holds_alternative<FitView>(command)) {
         fit_view();
     } else if (std::holds_alternative<CentreOnPick>(command)) {
-        if (!session.picks().picks.empty()) {
-            const Point& p = session.picks().picks.front().position;
+        if (!session.picking().picks().picks.empty()) {
+            const Point& p = session.picking().picks().picks.front().position;
             context_.view.camera.set_target(glm::vec3(float(p.x()), float(p.y()), float(p.z())));
             context_.view.fitted = false;
         }
@@ -290,8 +290,6 @@ void Viewer::execute(const Command& command) {
     } else if (std::holds_alternative<UpdateColoring>(command)) {
         scene_->update_coloring();
         scene_->invalidate();  // previews and morphs take the new colours too
-    } else if (std::holds_alternative<ProjectTexCoords>(command)) {
-        session.project_texcoords(context_.view.settings.projection, context_.view.settings.up);
     } else if (auto* shot = std::get_if<TakeScreenshot>(&command)) {
         output_->take_screenshot(*shot);
     } else if (std::holds_alternative<PrintInfo>(command)) {
@@ -313,7 +311,7 @@ bool Viewer::prepare_frame() {
     bool waited = false;
     // Scripted runs (--frames) show the result of the initial load, not the progress; a
     // loading picture not on the screen yet is drawn (the first picture of a large file).
-    while (options_.frames > 0 && session.jobs().busy() && !session.preview_running()) {
+    while (options_.frames > 0 && session.jobs().busy() && !session.previews().running()) {
         if (scene_->new_loading_picture()) break;
         session.poll();
         if (session.jobs().busy()) glfwWaitEventsTimeout(0.002);
@@ -364,7 +362,7 @@ bool Viewer::draw_frame() {
     if (view.style.mode == RenderMode::Textured && !scene_->exact_pending() &&
         !scene_->exact().has_texcoords() && !session.document().texcoords_projected &&
         !session.jobs().busy())
-        session.project_texcoords(view.settings.projection, view.settings.up);
+        session.execute(ProjectTexCoords{view.settings.projection, view.settings.up});
 
     if (output_->recording()) {
         output_->record_next_frame();
@@ -468,7 +466,7 @@ int Viewer::run() {
         last_frame_end = end;
         waited = false;
         // A spectral prediction on the screen lets its exact job start (with the next frame).
-        if (scene_->shows_current()) session.prediction_drawn();
+        if (scene_->shows_current()) session.execute(PredictionDrawn{});
         script_->frame_end(1000.0 * since);
         if (last) break;
     }

@@ -62,7 +62,7 @@ void Viewer::start_recovery() {
     const OrphanJournal& newest = orphans.front();
     if (options_.restore) {
         context_.session.log().info("--restore: restoring " + newest.path);
-        context_.session.open_session(newest.path, true);
+        context_.session.execute(RecoverJournal{newest.path, true});
         script_->restore_started();  // --op waits for the restore
         return;
     }
@@ -85,21 +85,14 @@ void Viewer::start_recovery() {
 }
 
 void Viewer::journal_settings() {
-    Journal* journal = context_.session.journal();
-    if (!journal) return;
-    const std::string warning = journal->take_warning();
-    if (!warning.empty()) {  // once; the viewer goes on without a journal
-        context_.session.log().warning("crash journal: " + warning);
-        context_.session.notify(
-            Notice{Notice::Level::Error, "crash journal stopped: " + warning, {}, false});
-    }
+    if (!context_.session.files().journal()) return;
     const double now = context_.session.now();
     if (settings_journaled_at_ >= 0 && now - settings_journaled_at_ < 1.0) return;
     settings_journaled_at_ = now;
     std::string text = session_extras().viewer_settings;
     if (text == journaled_settings_) return;
     journaled_settings_ = text;
-    journal->record_viewer_settings(std::move(text));  // queues only
+    context_.session.execute(JournalSettings{std::move(text)});
 }
 
 std::string Viewer::save_session_now() {

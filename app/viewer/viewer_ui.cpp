@@ -141,7 +141,7 @@ void Viewer::handle_input() {
                              context_.session.jobs().busy(),
                              context_.session.history().current() > 0,
                              scene_->exact().has_texcoords(),
-                             context_.session.preview_requested().has_value()};
+                             context_.session.previews().requested().has_value()};
     for (const KeyPress& press : presses) dispatch_key(press.key, press.mods, targets, focus);
 }
 
@@ -188,7 +188,7 @@ void Viewer::draw_ui() {
     // A preview's progress shows only when it takes a while.
     JobInfo job;
     const bool show_job = session.jobs().busy() &&
-                          !(session.preview_running() && session.jobs().elapsed_seconds() < 0.5);
+                          !(session.previews().running() && session.jobs().elapsed_seconds() < 0.5);
     if (show_job) {
         job.name = session.jobs().name();
         job.stage = session.jobs().stage();
@@ -301,7 +301,7 @@ void Viewer::reset_view() {
         // Coordinates the viewer projected around the other axis follow (a history entry).
         if (context_.session.document().texcoords_projected &&
             view.settings.projection == TexCoordProjection::Spherical)
-            context_.session.project_texcoords(view.settings.projection, view.settings.up);
+            context_.session.execute(ProjectTexCoords{view.settings.projection, view.settings.up});
     }
 }
 

@@ -104,7 +104,7 @@ TEST_CASE("every reference figure loads and runs to the kind of result the refer
         Session s;
         s.execute(LoadFigure{f.name});
         settle(s);
-        CHECK(s.figure() == f.name);
+        CHECK(s.figures().figure() == f.name);
         INFO(s.notice().text);
         REQUIRE(s.notice().level == Notice::Level::Info);
         CHECK(s.notice().text.find("Figure " + f.name) != std::string::npos);
@@ -158,7 +158,7 @@ TEST_CASE("Figure 1.12(b) diverges and is refused, and its run is shown marked, 
     s.execute(LoadFigure{"1.12b"});
     settle(s);
     // The run is stopped as any explicit run above its limit: nothing is kept.
-    CHECK(s.figure() == "1.12b");
+    CHECK(s.figures().figure() == "1.12b");
     REQUIRE(s.history().size() == 1);  // the load alone
     CHECK(s.notice().level == Notice::Level::Error);
     CHECK(s.notice().text.find("stopped early") != std::string::npos);
@@ -166,44 +166,44 @@ TEST_CASE("Figure 1.12(b) diverges and is refused, and its run is shown marked, 
     const Operation op = parse_operation(find_reference_figure("1.12b")->operation);
 
     // Show the diverging run: a marked state, far larger than the model, no history entry.
-    s.show_diverging_run(op);
-    REQUIRE(s.diverging_run_shown());
-    CHECK(s.diverging_run_note().rfind("DIVERGED", 0) == 0);
+    s.execute(ShowDivergingRun{op});
+    REQUIRE(s.figures().diverging_run_shown());
+    CHECK(s.figures().diverging_run_note().rfind("DIVERGED", 0) == 0);
     CHECK(s.notice().text.rfind("DIVERGED", 0) == 0);
     REQUIRE(s.shown().kind == Shown::Kind::Preview);
     REQUIRE(s.shown().mesh);
     CHECK(box_diagonal(*s.shown().mesh) > 1.3 * box_diagonal(input));
     CHECK(s.history().size() == 1);
     CHECK(s.mesh().positions() == input.positions());
-    CHECK_FALSE(s.preview_shown(op));  // not a preview that Apply would commit
-    CHECK_FALSE(s.previewing(op));
+    CHECK_FALSE(s.previews().shown(op));  // not a preview that Apply would commit
+    CHECK_FALSE(s.previews().previewing(op));
 
     // Apply runs the operation itself, which is refused again; the diverged state is gone.
     s.execute(ApplyOperation{op});
     settle(s);
-    CHECK_FALSE(s.diverging_run_shown());
+    CHECK_FALSE(s.figures().diverging_run_shown());
     CHECK(s.history().size() == 1);
     CHECK(s.mesh().positions() == input.positions());
     CHECK(s.notice().level == Notice::Level::Error);
 
     // Esc (Cancel) returns to the document.
-    s.show_diverging_run(op);
-    REQUIRE(s.diverging_run_shown());
+    s.execute(ShowDivergingRun{op});
+    REQUIRE(s.figures().diverging_run_shown());
     s.execute(CancelPreview{});
-    CHECK_FALSE(s.diverging_run_shown());
+    CHECK_FALSE(s.figures().diverging_run_shown());
     CHECK(s.shown().kind == Shown::Kind::Document);
 
     // Another model: the document is no longer the figure.
     s.execute(LoadFile{"../shared/meshes/no-such-file.obj", true});
     settle(s);
-    CHECK(s.figure() == "1.12b");  // the load failed: still the figure
+    CHECK(s.figures().figure() == "1.12b");  // the load failed: still the figure
     s.execute(LoadFigure{"1.12c"});
     settle(s);
-    CHECK(s.figure() == "1.12c");
+    CHECK(s.figures().figure() == "1.12c");
 
     // An implicit run does not diverge: nothing is shown.
-    s.show_diverging_run(parse_operation(find_reference_figure("1.12c")->operation));
-    CHECK_FALSE(s.diverging_run_shown());
+    s.execute(ShowDivergingRun{parse_operation(find_reference_figure("1.12c")->operation)});
+    CHECK_FALSE(s.figures().diverging_run_shown());
     CHECK(s.shown().kind == Shown::Kind::Document);
 }
 

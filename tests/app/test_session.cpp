@@ -14,12 +14,14 @@
 #include <unistd.h>
 
 #include "app/ops/operation.h"
+#include "app/ops/spectrum_op.h"
 #include "app/session/session.h"
 #include "core/algorithms/coloring.h"
 #include "core/algorithms/generators.h"
 #include "core/algorithms/transfer_function.h"
 #include "core/io/mesh_io.h"
 #include "core/validate.h"
+#include "tests/app/pick_helpers.h"
 #include "tests/unit/test_helpers.h"
 
 using namespace trilab;
@@ -85,12 +87,12 @@ TEST_CASE("a colouring job colours the state it was started on, through the one 
           "[session]") {
     Session s;
     load_sphere(s);
-    CHECK(s.coloring_result() == nullptr);
+    CHECK(s.coloring().result() == nullptr);
     ColoringOptions options;
     s.execute(ComputeColoring{VertexColoring::Mean, options, nullptr});
     CHECK(s.busy());  // a job of the session's runner
     s.finish_jobs();
-    const Session::ColoringResult* r = s.coloring_result();
+    const SessionColoring::Result* r = s.coloring().result();
     REQUIRE(r != nullptr);
     CHECK(r->id == 1);
     CHECK(r->coloring == VertexColoring::Mean);
@@ -100,7 +102,7 @@ TEST_CASE("a colouring job colours the state it was started on, through the one 
     CHECK(r->colors.colors == direct.colors);
     s.execute(ComputeColoring{VertexColoring::Gaussian, options, nullptr});
     s.finish_jobs();
-    CHECK(s.coloring_result()->id == 2);
+    CHECK(s.coloring().result()->id == 2);
 }
 
 TEST_CASE("a load is a job: the document changes when it succeeds, and not when it fails",
@@ -168,8 +170,8 @@ TEST_CASE("a preview shows without an entry, Apply commits what is shown, Cancel
     CHECK(s.history().size() == 1);
     REQUIRE(s.shown().kind == Shown::Kind::Preview);
     CHECK(s.shown().mesh->n_faces() == 16 * s.mesh().n_faces());
-    CHECK(s.previewing(loop));
-    CHECK(s.preview_shown(loop));
+    CHECK(s.previews().previewing(loop));
+    CHECK(s.previews().shown(loop));
     // One iteration fewer is shown at once from what was computed.
     const Operation one = parse_operation("subdivide --scheme loop --iterations 1");
     s.execute(PreviewOperation{one});
@@ -208,7 +210,7 @@ TEST_CASE("a refused operation is said, and the document stays", "[session]") {
     // A refused preview is kept as the preview's failure (a sweep ends on it).
     s.execute(PreviewOperation{parse_operation("subdivide --scheme loop --iterations 8")});
     s.finish_jobs();
-    CHECK_FALSE(s.preview_failure().empty());
+    CHECK_FALSE(s.previews().failure().empty());
     CHECK(s.shown().kind == Shown::Kind::Document);
 }
 
@@ -235,8 +237,8 @@ TEST_CASE("the level-of-detail slider shows levels and commits one as an entry",
     const std::size_t entries = s.history().size();
     s.execute(BuildLevelOfDetail{parse_operation("decimate")});
     s.finish_jobs();
-    REQUIRE(s.has_level_of_detail());
-    CHECK_FALSE(s.level_note().empty());
+    REQUIRE(s.levels().ready());
+    CHECK_FALSE(s.levels().note().empty());
     s.execute(ShowLevelOfDetail{25.0});
     REQUIRE(s.shown().kind == Shown::Kind::Level);
     const std::size_t kept = s.shown().level->vertices();
@@ -244,25 +246,24 @@ TEST_CASE("the level-of-detail slider shows levels and commits one as an entry",
     s.execute(ApplyLevelOfDetail{});
     REQUIRE(s.history().size() == entries + 1);
     CHECK(s.mesh().n_vertices() == kept);
-    CHECK_FALSE(s.has_level_of_detail());  // it belonged to the state before
+    CHECK_FALSE(s.levels().ready());  // it belonged to the state before
     require_valid(s);
 }
 
 TEST_CASE("a frequency band shows live and is committed as a geometry-only entry", "[session]") {
     Session s;
-    SpectralOptions options;
+    SpectrumOptions options;
     options.k = 20;
-    std::size_t decomposed_hi = 0;
-    s.on_decomposed = [&](std::size_t, std::size_t hi) { decomposed_hi = hi; };
-    s.decompose(options);
+    s.take_events();
+    s.execute(Decompose{operation_of(options)});
     s.finish_jobs();
     REQUIRE(s.document().frequency.valid);
-    CHECK(decomposed_hi == 19);
-    s.preview_band(0, 5);
+    CHECK(s.take_events().decomposed_hi == std::optional<std::size_t>(19));
+    s.execute(PreviewBand{0, 5});
     REQUIRE(s.shown().kind == Shown::Kind::Band);
     CHECK(s.shown().positions.size() == s.mesh().vertices_size());
     CHECK(s.history().size() == 1);
-    s.push_band(0, 5, false);
+    s.execute(CommitBand{0, 5});
     REQUIRE(s.history().size() == 2);
     CHECK(s.document().frequency.applied);
     CHECK(s.document().frequency.applied_hi == 5);
@@ -291,26 +292,26 @@ TEST_CASE("saving writes the current state and marks the document saved", "[sess
 TEST_CASE("right after Decompose the full band is the mesh: no jump at the first touch",
           "[session]") {
     Session s;
-    SpectralOptions options;
+    SpectrumOptions options;
     options.k = 12;  // far fewer than the 1,002 vertices: most of the shape is in the rest
-    s.decompose(options);
+    s.execute(Decompose{operation_of(options)});
     s.finish_jobs();
     REQUIRE(s.document().frequency.valid);
     // The sliders read 0 .. 11: that band, with the rest, is the mesh as it is.
-    s.preview_band(0, 11);
+    s.execute(PreviewBand{0, 11});
     REQUIRE(s.shown().kind == Shown::Kind::Band);
     double worst = 0;
     for (Vertex v : s.mesh().vertices())
         worst = std::max(worst, (s.shown().positions[v.idx()] - s.mesh().position(v)).norm());
     CHECK(worst < 1e-9);
     // One frequency fewer drops the rest with it: a real change, the user's.
-    s.preview_band(0, 10);
+    s.execute(PreviewBand{0, 10});
     double moved = 0;
     for (Vertex v : s.mesh().vertices())
         moved = std::max(moved, (s.shown().positions[v.idx()] - s.mesh().position(v)).norm());
     CHECK(moved > 1e-3);
     // The entry records the rest, so that replaying it gives the same positions.
-    s.push_band(0, 11, false);
+    s.execute(CommitBand{0, 11});
     REQUIRE(s.history().size() == 2);
     const History::EntryInfo info = s.history().info(1);
     CHECK(info.operation.text().find("--with-rest") != std::string::npos);
@@ -322,7 +323,7 @@ TEST_CASE("the document may change while a job reads its snapshot, and the stale
     load_sphere(s);
     s.execute(BuildLevelOfDetail{parse_operation("decimate")});
     s.finish_jobs();
-    REQUIRE(s.has_level_of_detail());
+    REQUIRE(s.levels().ready());
     s.execute(ShowLevelOfDetail{50.0});
     // A job reads its snapshot on the worker while this thread pushes an entry (ThreadSanitizer
     // watches this in CI): the arrays they share are copy-on-write.
@@ -370,29 +371,29 @@ void require_consistent(const Pick& p, const HalfedgeMesh& mesh) {
 TEST_CASE("a pick names the front face under the ray, its nearest corner and edge",
           "[session][pick]") {
     Session s;
-    const std::optional<Pick> hit = s.pick(ray_down(0.1, 0.05), 0.0, false);
+    const std::optional<Pick> hit = pick(s, ray_down(0.1, 0.05), false);
     REQUIRE(hit);
     CHECK(hit->position.z() > 0.5);  // the front of the sphere, not its back
     CHECK_FALSE(hit->back_face);
     require_consistent(*hit, s.mesh());
-    REQUIRE(s.picks().picks.size() == 1);
+    REQUIRE(s.picking().picks().picks.size() == 1);
     // The background: the picks are cleared.
-    CHECK_FALSE(s.pick(ray_down(5, 5), 0.0, false).has_value());
-    CHECK(s.picks().picks.empty());
+    CHECK_FALSE(pick(s, ray_down(5, 5), false).has_value());
+    CHECK(s.picking().picks().picks.empty());
 }
 
 TEST_CASE("two picks measure: straight, geodesic and a path on the surface", "[session][pick]") {
     Session s;
-    REQUIRE(s.pick(ray_down(0.3, 0.0), 0.0, false));
-    REQUIRE(s.pick(ray_down(-0.3, 0.2), 0.0, true));
-    REQUIRE(s.picks().picks.size() == 2);
-    CHECK(s.picks().measurement.computing);
+    REQUIRE(pick(s, ray_down(0.3, 0.0), false));
+    REQUIRE(pick(s, ray_down(-0.3, 0.2), true));
+    REQUIRE(s.picking().picks().picks.size() == 2);
+    CHECK(s.picking().picks().measurement.computing);
     s.finish_jobs();
-    const Measurement& m = s.picks().measurement;
+    const Measurement& m = s.picking().picks().measurement;
     CHECK_FALSE(m.computing);
     CHECK(m.failure.empty());
-    const Pick& a = s.picks().picks[0];
-    const Pick& b = s.picks().picks[1];
+    const Pick& a = s.picking().picks().picks[0];
+    const Pick& b = s.picking().picks().picks[1];
     CHECK(m.straight == Approx((s.mesh().position(a.vertex) - s.mesh().position(b.vertex)).norm()));
     REQUIRE(std::isfinite(m.geodesic));
     // On a sphere of radius about 1 the surface distance is a little more than the chord;
@@ -404,28 +405,28 @@ TEST_CASE("two picks measure: straight, geodesic and a path on the surface", "[s
     CHECK((m.path.front() - s.mesh().position(b.vertex)).norm() < 1e-12);
     CHECK((m.path.back() - s.mesh().position(a.vertex)).norm() < 1e-12);
     // The factorization is kept for the state: a new second pick reuses it.
-    const auto solver = s.picks().solver;
+    const auto solver = s.picking().picks().solver;
     REQUIRE(solver);
-    REQUIRE(s.pick(ray_down(-0.2, -0.3), 0.0, true));
+    REQUIRE(pick(s, ray_down(-0.2, -0.3), true));
     s.finish_jobs();
-    CHECK(s.picks().solver == solver);
+    CHECK(s.picking().picks().solver == solver);
     // The colouring's distances from both picked vertices.
-    s.want_pick_distances(true);
+    s.execute(WantPickDistances{true});
     s.finish_jobs();
-    REQUIRE(s.picks().distances.size() == s.mesh().vertices_size());
-    CHECK(s.picks().distances[s.picks().picks[0].vertex.idx()] == 0.0);
-    CHECK(s.picks().distances[s.picks().picks[1].vertex.idx()] == 0.0);
+    REQUIRE(s.picking().picks().distances.size() == s.mesh().vertices_size());
+    CHECK(s.picking().picks().distances[s.picking().picks().picks[0].vertex.idx()] == 0.0);
+    CHECK(s.picking().picks().distances[s.picking().picks().picks[1].vertex.idx()] == 0.0);
 }
 
 TEST_CASE("picks follow geometry-only steps and are dropped by steps that renumber",
           "[session][pick]") {
     Session s;
-    const std::optional<Pick> hit = s.pick(ray_down(0.1, 0.1), 0.0, false);
+    const std::optional<Pick> hit = pick(s, ray_down(0.1, 0.1), false);
     REQUIRE(hit);
     s.execute(RunOperation{parse_operation("noise --amount 20 --seed 2")});
     s.finish_jobs();
-    REQUIRE(s.picks().picks.size() == 1);
-    const Pick& kept = s.picks().picks[0];
+    REQUIRE(s.picking().picks().picks.size() == 1);
+    const Pick& kept = s.picking().picks().picks[0];
     CHECK(kept.vertex == hit->vertex);
     CHECK(kept.face == hit->face);
     // The hit point moved with its face.
@@ -436,10 +437,10 @@ TEST_CASE("picks follow geometry-only steps and are dropped by steps that renumb
     CHECK((kept.position - hit->position).norm() > 0);
     // Undo: the same connectivity, the picks stay.
     s.execute(Undo{});
-    CHECK(s.picks().picks.size() == 1);
+    CHECK(s.picking().picks().picks.size() == 1);
     s.execute(RunOperation{parse_operation("subdivide --scheme loop --iterations 1")});
     s.finish_jobs();
-    CHECK(s.picks().picks.empty());
+    CHECK(s.picking().picks().picks.empty());
     CHECK(s.notice().text.find("picks dropped") != std::string::npos);
 }
 
@@ -452,7 +453,7 @@ TEST_CASE("a pick on a morph frame or a level of detail hits what is shown", "[s
     s.update();
     REQUIRE(s.shown().kind == Shown::Kind::Morph);
     const Ray ray = ray_down(0.37, 0.21);
-    std::optional<Pick> on_frame = s.pick(ray, 0.0, false);
+    std::optional<Pick> on_frame = pick(s, ray, false);
     REQUIRE(on_frame);
     const auto direct = pick_face(*s.shown().mesh, s.shown().positions, ray);
     REQUIRE(direct);
@@ -463,11 +464,11 @@ TEST_CASE("a pick on a morph frame or a level of detail hits what is shown", "[s
     s.update();
     s.execute(BuildLevelOfDetail{parse_operation("decimate")});
     s.finish_jobs();
-    REQUIRE(s.has_level_of_detail());
+    REQUIRE(s.levels().ready());
     s.execute(ShowLevelOfDetail{20.0});
     REQUIRE(s.shown().kind == Shown::Kind::Level);
     const LevelOfDetail& lod = *s.shown().level;
-    const std::optional<Pick> on_level = s.pick(ray, 0.0, false);
+    const std::optional<Pick> on_level = pick(s, ray, false);
     REQUIRE(on_level);
     CHECK(on_level->on_level);
     const auto lod_hit = pick_triangle(lod.faces(), lod.face_alive(), lod.positions(), ray);
@@ -492,34 +493,34 @@ TEST_CASE(
     REQUIRE(setenv("TRILAB_ASYNC_PREDICTION_WORK", "1", 1) == 0);
     const Operation first = parse_operation("smooth --integration implicit --step 2");
     const Operation second = parse_operation("smooth --integration implicit --step 4");
-    const std::optional<Session::Predictable> p = s.predictable(second);
+    const std::optional<SessionPreviews::Predictable> p = s.previews().predictable(second);
     REQUIRE(p);
     CHECK(p->decomposition == s.document().frequency.decomposition);
     CHECK(p->options.step == 4);
-    CHECK_FALSE(s.predictable(parse_operation("smooth --operator curvature-flow")));
+    CHECK_FALSE(s.previews().predictable(parse_operation("smooth --operator curvature-flow")));
     s.execute(PreviewOperation{first});
     // Not in this frame: the worker computes it.
-    CHECK(s.prediction_computing());
-    CHECK_FALSE(s.prediction_shown());
+    CHECK(s.previews().prediction_computing());
+    CHECK_FALSE(s.previews().prediction_shown());
     s.execute(PreviewOperation{second});  // waits for the first to end
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-    while (!s.preview_shown(second) && std::chrono::steady_clock::now() < deadline) {
+    while (!s.previews().shown(second) && std::chrono::steady_clock::now() < deadline) {
         s.update();
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
-    REQUIRE(s.preview_shown(second));
-    REQUIRE(s.prediction_shown());
-    CHECK_FALSE(s.prediction_computing());
+    REQUIRE(s.previews().shown(second));
+    REQUIRE(s.previews().prediction_shown());
+    CHECK_FALSE(s.previews().prediction_computing());
     const std::vector<Point> expected =
         predict_fairing(*p->decomposition, p->options, s.mesh().positions());
     CHECK(s.shown().mesh->positions() == expected);
-    s.prediction_drawn();
+    s.execute(PredictionDrawn{});
     s.wait_for_preview(0.0);
-    CHECK((s.busy() || !s.prediction_shown()));
+    CHECK((s.busy() || !s.previews().prediction_shown()));
     s.finish_jobs();
     s.update();
-    CHECK_FALSE(s.prediction_shown());
-    CHECK(s.preview_shown(second));
+    CHECK_FALSE(s.previews().prediction_shown());
+    CHECK(s.previews().shown(second));
     REQUIRE(unsetenv("TRILAB_ASYNC_PREDICTION_WORK") == 0);
     require_valid(s);
 }
@@ -535,8 +536,8 @@ TEST_CASE(
     const Operation op = parse_operation("smooth --integration implicit --step 2 --iterations 2");
     s.execute(PreviewOperation{op});
     // In the same frame: the prediction, marked as one.
-    REQUIRE(s.prediction_shown());
-    CHECK(s.preview_shown(op));
+    REQUIRE(s.previews().prediction_shown());
+    CHECK(s.previews().shown(op));
     REQUIRE(s.shown().kind == Shown::Kind::Preview);
     const std::vector<Point> predicted = s.shown().mesh->positions();
     CHECK(predicted != s.mesh().positions());
@@ -549,15 +550,15 @@ TEST_CASE(
     CHECK_FALSE(s.busy());
     s.wait_for_preview(0.0);  // a frame that did not draw it yet (a large mesh's proxy)
     CHECK_FALSE(s.busy());
-    CHECK(s.prediction_shown());
-    s.prediction_drawn();
+    CHECK(s.previews().prediction_shown());
+    s.execute(PredictionDrawn{});
     CHECK_FALSE(s.busy());    // not within the frame that drew it
     s.wait_for_preview(0.0);  // the next frame: the exact job starts
-    CHECK((s.busy() || !s.prediction_shown()));
+    CHECK((s.busy() || !s.previews().prediction_shown()));
     s.finish_jobs();
     s.update();
-    CHECK_FALSE(s.prediction_shown());
-    REQUIRE(s.preview_shown(op));
+    CHECK_FALSE(s.previews().prediction_shown());
+    REQUIRE(s.previews().shown(op));
     const std::vector<Point>& exact = s.shown().mesh->positions();
     // A closed mesh, a linear operator, every frequency: the prediction is the result.
     double worst = 0;
@@ -567,10 +568,10 @@ TEST_CASE(
     // Another operator than the decomposition's: no prediction, the exact preview only.
     const Operation flow = parse_operation("smooth --operator curvature-flow --step 0.5");
     s.execute(PreviewOperation{flow});
-    CHECK_FALSE(s.prediction_shown());
+    CHECK_FALSE(s.previews().prediction_shown());
     s.finish_jobs();
     s.update();
-    CHECK(s.preview_shown(flow));
+    CHECK(s.previews().shown(flow));
     require_valid(s);
 }
 
@@ -579,9 +580,9 @@ namespace {
 /// Waits (polling nothing, so that the job's end is not collected) until the session shows
 /// a loading picture; false after 20 s.
 bool wait_for_loading_picture(const Session& s) {
-    for (int i = 0; i < 20000 && !s.loading_picture(); ++i)
+    for (int i = 0; i < 20000 && !s.files().loading_picture(); ++i)
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    return s.loading_picture() != nullptr;
+    return s.files().loading_picture() != nullptr;
 }
 
 }  // namespace
@@ -610,12 +611,12 @@ TEST_CASE("a load shows a picture from the file's arrays until the mesh is built
         s.take_events();
         s.execute(LoadFile{path, true});
         REQUIRE(wait_for_loading_picture(s));  // shown before the job's end is collected
-        const auto picture = s.loading_picture();
+        const auto picture = s.files().loading_picture();
         CHECK(picture->path == path);
         CHECK(picture->faces == 2000);
         CHECK(picture->proxy->triangles.size() <= 200);
         s.finish_jobs();
-        CHECK_FALSE(s.loading_picture());
+        CHECK_FALSE(s.files().loading_picture());
         CHECK(s.document().name == "sphere.ply");
         const SessionEvents e = s.take_events();
         REQUIRE(e.loaded_proxy);
@@ -640,7 +641,7 @@ TEST_CASE("a load shows a picture from the file's arrays until the mesh is built
         go.set_value();
         REQUIRE(wait_for_loading_picture(s));
         s.finish_jobs();
-        CHECK_FALSE(s.loading_picture());
+        CHECK_FALSE(s.files().loading_picture());
         CHECK(s.document().name != "sphere. py");
         CHECK(s.mesh().n_vertices() == 1002);  // still the default model
         CHECK_FALSE(s.take_events().state_changed);
@@ -660,7 +661,7 @@ TEST_CASE("a load shows a picture from the file's arrays until the mesh is built
         s.execute(LoadFile{bad, true});
         s.finish_jobs();
         CHECK_FALSE(made);
-        CHECK_FALSE(s.loading_picture());
+        CHECK_FALSE(s.files().loading_picture());
         CHECK(s.notice().level == Notice::Level::Error);
     }
 }

@@ -19,6 +19,7 @@
 #include "core/io/mesh_io.h"
 #include "core/mesh_builder.h"
 #include "core/validate.h"
+#include "tests/app/pick_helpers.h"
 
 using namespace trilab;
 using namespace trilab::viewer;
@@ -27,7 +28,7 @@ namespace {
 
 /// The document's weights (empty without a selection).
 Selection weights_of(const Session& s) {
-    return s.selection().value_or(Selection{});
+    return s.selections().get().value_or(Selection{});
 }
 
 /// The vertices as a camera far away on +z (distance 50, looking at the origin) shows them in
@@ -52,13 +53,13 @@ TEST_CASE("a selection edit is one history entry that undo and redo restore",
           "[session][selection]") {
     Session s;
     const std::size_t before = s.history().size();
-    REQUIRE_FALSE(s.selection());
+    REQUIRE_FALSE(s.selections().get());
     s.execute(SelectSpec{"sphere:0,0,1,0.6"});
     REQUIRE(s.history().size() == before + 1);
     const Selection first = weights_of(s);
     REQUIRE(count_selected(first) > 0);
     REQUIRE(count_selected(first) < s.mesh().n_vertices());
-    CHECK(s.selected_count() == count_selected(first));
+    CHECK(s.selections().count() == count_selected(first));
     CHECK(s.history().info(s.history().current()).label == "Select");
 
     s.execute(EditSelection{EditSelection::Kind::Grow, 2, 0});
@@ -69,7 +70,7 @@ TEST_CASE("a selection edit is one history entry that undo and redo restore",
     s.execute(Undo{});
     CHECK(weights_of(s) == first);
     s.execute(Undo{});
-    CHECK_FALSE(s.selection());
+    CHECK_FALSE(s.selections().get());
     s.execute(Redo{});
     CHECK(weights_of(s) == first);
     s.execute(Redo{});
@@ -83,7 +84,7 @@ TEST_CASE("a selection edit is one history entry that undo and redo restore",
     const Selection feathered = weights_of(s);
     CHECK(std::any_of(feathered.begin(), feathered.end(), [](float w) { return w > 0 && w < 1; }));
     s.execute(EditSelection{EditSelection::Kind::Clear, 1, 0});
-    CHECK_FALSE(s.selection());
+    CHECK_FALSE(s.selections().get());
     CHECK(s.history().size() == before + 6);
     // The shape never moved.
     CHECK(s.mesh().positions() == s.history().mesh(0, 0).positions());
@@ -124,7 +125,7 @@ TEST_CASE("selections combine: add takes the larger weight, remove takes it away
     // The threshold on the colouring's values (here: z).
     std::vector<double> z(s.mesh().vertices_size());
     for (Vertex v : s.mesh().vertices()) z[v.idx()] = s.mesh().position(v).z();
-    s.set_coloring_values(z);
+    s.execute(SetColoringValues{z});
     s.execute(SelectThreshold{0.5, true, SelectionMode::Replace});
     for (Vertex v : s.mesh().vertices())
         CHECK((weights_of(s)[v.idx()] == 1.0f) == (s.mesh().position(v).z() > 0.5));
@@ -135,7 +136,7 @@ TEST_CASE("the geodesic ball and the component come from the pick", "[session][s
     Ray ray;
     ray.origin = Point(0.05, 0.02, 5);
     ray.direction = Vector3(0, 0, -1);
-    const std::optional<Pick> hit = s.pick(ray, 0.0, false);
+    const std::optional<Pick> hit = pick(s, ray, false);
     REQUIRE(hit);
     s.execute(SelectAtPick{false, 0.4, SelectionMode::Replace});
     const Selection ball = weights_of(s);
@@ -180,11 +181,11 @@ TEST_CASE("a preview follows the selection", "[session][selection]") {
     const Operation op = parse_operation("smooth --iterations 5");
     s.execute(PreviewOperation{op});
     s.finish_jobs();
-    REQUIRE(s.preview_shown(op));
+    REQUIRE(s.previews().shown(op));
     const std::vector<Point> first = s.shown().mesh->positions();
     s.execute(SelectSpec{"sphere:0,0,-1,0.5"});
     s.finish_jobs();
-    REQUIRE(s.preview_shown(op));  // computed again, on the new selection
+    REQUIRE(s.previews().shown(op));  // computed again, on the new selection
     const std::vector<Point> second = s.shown().mesh->positions();
     CHECK(first != second);
     const Selection w = weights_of(s);
@@ -344,8 +345,8 @@ TEST_CASE("an empty selection is refused by every operation, adding no entry",
     // other operations ran and vanished.
     Session s;
     s.execute(SelectSpec{"sphere:100,100,100,0.1"});
-    REQUIRE(s.selection());
-    REQUIRE(s.selected_count() == 0);
+    REQUIRE(s.selections().get());
+    REQUIRE(s.selections().count() == 0);
     const std::size_t entries = s.history().size();
     for (const char* text : {"subdivide", "smooth --iterations 3", "noise", "decimate"}) {
         INFO(text);

@@ -204,7 +204,8 @@ TEST_CASE("a session saved and opened through the commands restores every state"
     REQUIRE(a.history().size() == 3);
     SessionExtras extras;
     extras.viewer_settings = "style.fog=1\n";
-    a.save_session(path, extras);
+    a.set_extras_provider([extras] { return extras; });
+    a.execute(SaveSession{path});
     a.finish_jobs();
     REQUIRE(fs::exists(path));
 
@@ -245,13 +246,13 @@ TEST_CASE("the session's journal records every history change and a close remove
     s.execute(RunOperation{parse_operation("noise --amount 2 --seed 1")});
     s.finish_jobs();
     s.execute(Undo{});
-    s.journal()->flush();
-    const std::string path = s.journal()->path();
+    s.flush_journal();
+    const std::string path = s.files().journal()->path();
     REQUIRE_FALSE(path.empty());
     const SessionContents read = read_journal(path);
     CHECK(read.history.size() == 2);
     CHECK(read.history.current() == 0);
     s.close_journal();
     CHECK_FALSE(fs::exists(path));
-    CHECK(s.journal() == nullptr);
+    CHECK(s.files().journal() == nullptr);
 }

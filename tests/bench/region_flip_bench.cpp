@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
     s.execute(LoadFile{mesh_path});
     s.finish_jobs();
     s.execute(SelectSpec{region});
-    const std::size_t selected = s.selected_count();
+    const std::size_t selected = s.selections().count();
     std::vector<double> on_region, whole;
     flip_ms(s);  // warm-up
     for (int k = 0; k < runs; ++k) {
