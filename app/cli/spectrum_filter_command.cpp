@@ -131,22 +131,24 @@ Operation parse_filter(const std::string& text) {
     return op;
 }
 
-/// The spectrum options for the lens: the filter's Laplacian with its own normalizer as S.
+/// The spectrum options for the lens: the filter's Laplacian with its own normalizer as S. An
+/// operator or mass the user gave that differs is refused, not silently replaced.
 SpectralOptions lens_spectral_options(const Operation& spectrum, const FairingOptions& f) {
-    SpectrumOptions so = options_of<SpectrumOptions>(spectrum);
     const LaplacianOperator op = laplacian_of(f.op);
-    if (spectrum.value("operator").given && so.spectral.op != op)
+    SpectrumOptions lens = options_of<SpectrumOptions>(spectrum);
+    lens.spectral.op = op;
+    lens.spectral.mass = MassMatrix::Normalizer;
+    const SpectrumOptions given = given_or(spectrum, lens);
+    if (given.spectral.op != op)
         throw InvalidArgument(
             std::string("--operator: the filter smooths with the ") + fairing_operator_name(f.op) +
             " operator, so the lens needs the decomposition of " + laplacian_operator_name(op) +
-            " (got --operator " + laplacian_operator_name(so.spectral.op) + "; leave it out)");
-    if (spectrum.value("mass").given && so.spectral.mass != MassMatrix::Normalizer)
+            " (got --operator " + laplacian_operator_name(given.spectral.op) + "; leave it out)");
+    if (given.spectral.mass != MassMatrix::Normalizer)
         throw InvalidArgument(
             "--mass: the transfer curve is over the eigenvalues of the operator's own normalizer "
             "(--mass normalizer), which the fairing steps use");
-    so.spectral.op = op;
-    so.spectral.mass = MassMatrix::Normalizer;
-    return spectral_options(so);
+    return spectral_options(lens);
 }
 
 std::string number_text_of(double v) {

@@ -244,6 +244,19 @@ void set_options(Operation& op, const Options& options) {
     store_changed_values(op, op.def->from_options(std::any(options)));
 }
 
+/// The options struct of `op` where its values were given (named on the command line or
+/// changed in a panel) and of `fallback` where they were not: a caller that wants its own
+/// value unless the user chose one asks given_or(op, mine) and compares, never a parameter by
+/// its name. Throws InvalidArgument when `op` is another operation.
+template <class Options>
+Options given_or(const Operation& op, const Options& fallback) {
+    require_options_type(op, typeid(Options), "given_or");
+    ParamValues values = op.def->from_options(std::any(fallback));
+    for (std::size_t i = 0; i < values.size() && i < op.values.size(); ++i)
+        if (op.values[i].given) values[i] = op.values[i];
+    return std::any_cast<Options>(op.def->options(values));
+}
+
 /// The operation of `options`: its defaults, with the values `options` changes marked given.
 template <class Options>
 Operation operation_of(const Options& options) {

@@ -266,6 +266,13 @@ check "spectrum --filter: curvature flow's difference is reported as the nonline
      python3 -c \"import json; j = json.load(open('$tmp/lens.json')); \
 assert j['operator'] == 'curvature-flow' and not j['linear']; assert j['max_difference'] > 1e-6; \
 assert 'nonlinearity' in j['difference_note']\""
+check "spectrum --filter refuses an --operator or --mass it would replace, even the default" bash -c \
+    "'$cli' spectrum --k 10 --operator umbrella --filter 'smooth --operator curvature-flow' \
+     '$tmp/d.obj' '$tmp/refused.obj' 2>&1 | grep -q -- '--operator: the filter smooths with' && \
+     '$cli' spectrum --k 10 --mass barycentric --filter 'smooth --step 0.5' '$tmp/d.obj' \
+     '$tmp/refused.obj' 2>&1 | grep -q -- '--mass: the transfer curve' && \
+     '$cli' spectrum --k 10 --operator umbrella --filter 'smooth --step 0.5' '$tmp/d.obj' \
+     '$tmp/kept.obj' >/dev/null && [ ! -e '$tmp/refused.obj' ]"
 check "spectrum --filter: a diverging explicit step writes the curve, no OUT, and exits 4" bash -c \
     "'$cli' spectrum --k 10 --filter 'smooth --step 20' '$tmp/d.obj' '$tmp/div.obj' \
      --gains '$tmp/div.txt' 2> '$tmp/e'; [ \$? = 4 ] && [ ! -e '$tmp/div.obj' ] && \

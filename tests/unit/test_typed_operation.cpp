@@ -247,6 +247,30 @@ TEST_CASE("operation_of gives the operation a user typing those options would ge
     REQUIRE(operation_of(FlipOptions{}) == make_operation("flip"));
 }
 
+TEST_CASE("given_or takes the user's given values over the caller's own", "[ops][typed]") {
+    SpectrumOptions mine;
+    mine.spectral.op = LaplacianOperator::CurvatureFlow;
+    mine.spectral.mass = MassMatrix::Normalizer;
+    // Not given: the caller's values, even where they differ from the defaults; given (k):
+    // the user's.
+    const Operation plain = parse_operation("spectrum --k 12");
+    SpectrumOptions got = given_or(plain, mine);
+    CHECK(got.spectral.op == LaplacianOperator::CurvatureFlow);
+    CHECK(got.spectral.mass == MassMatrix::Normalizer);
+    REQUIRE(got.k.has_value());
+    CHECK(*got.k == 12);
+    mine.k = 30;
+    CHECK(*given_or(parse_operation("spectrum"), mine).k == 30);
+    // Given: the user's, even where it equals the declaration's default.
+    const std::string default_operator = laplacian_operator_name(SpectrumOptions{}.spectral.op);
+    const Operation named = parse_operation("spectrum --k 12 --operator " + default_operator);
+    got = given_or(named, mine);
+    CHECK(got.spectral.op == SpectrumOptions{}.spectral.op);
+    REQUIRE(got.k.has_value());
+    CHECK(*got.k == 12);
+    CHECK_THROWS_AS(given_or(parse_operation("noise"), mine), InvalidArgument);
+}
+
 TEST_CASE("a switched-off or unset value means the same whatever number it holds", "[ops][typed]") {
     // "--roundness off" parses to 0, the default holds the core's 0.2 while off.
     REQUIRE(parse_operation("decimate --roundness off") == make_operation("decimate"));
