@@ -346,6 +346,28 @@ void Journal::close() {
     if (!p.empty()) unlink(p.c_str());
 }
 
+void Journal::end_unsaved(const std::string& how) {
+    if (!impl_) return;
+    {
+        std::lock_guard<std::mutex> lock(impl_->mutex);
+        impl_->stopping = true;
+    }
+    impl_->wake.notify_all();
+    if (impl_->thread.joinable()) impl_->thread.join();
+    const std::string p = path();
+    if (p.empty()) return;
+    const std::string note = p + ".ended";
+    if (FILE* f = std::fopen(note.c_str(), "w")) {
+        std::fputs(how.c_str(), f);
+        std::fclose(f);
+    }
+}
+
+void remove_journal(const std::string& path) {
+    unlink(path.c_str());
+    unlink((path + ".ended").c_str());
+}
+
 std::string Journal::path() const {
     std::lock_guard<std::mutex> lock(impl_->mutex);
     return impl_->file_path;
@@ -386,7 +408,21 @@ std::vector<OrphanJournal> find_orphan_journals(const std::string& directory) {
             const std::uint64_t recorded = recorded_start_ticks(path);
             if (recorded == 0 || recorded == process_start_ticks(long(pid))) continue;
         }
-        out.push_back({path, pid, std::uint64_t(s.st_size), std::int64_t(s.st_mtime)});
+        OrphanJournal orphan{path, pid, std::uint64_t(s.st_size), std::int64_t(s.st_mtime), ""};
+        const std::string note = path + ".ended";
+        struct stat ns {};
+        if (stat(note.c_str(), &ns) != 0 || !S_ISREG(ns.st_mode)) {
+            out.push_back(std::move(orphan));
+            continue;
+        }
+        orphan.ended = "ended";  // a note that cannot be read still says so
+        if (FILE* f = std::fopen(note.c_str(), "r")) {
+            char how[64] = {};
+            const std::size_t n = std::fread(how, 1, sizeof how - 1, f);
+            std::fclose(f);
+            if (n > 0) orphan.ended.assign(how, n);
+        }
+        out.push_back(std::move(orphan));
     }
     closedir(d);
     std::sort(out.begin(), out.end(), [](const OrphanJournal& a, const OrphanJournal& b) {

@@ -53,6 +53,10 @@ public:
     void flush();
     /// A clean end: writes what is queued, stops the thread and removes the file.
     void close();
+    /// An end without a chance to save (SIGTERM at a logout, `systemctl stop`): writes what is
+    /// queued, stops the thread and keeps the file for recovery, with a note beside it
+    /// (PATH.ended, holding `how`) that the next start reads: not a crash, unsaved work.
+    void end_unsaved(const std::string& how);
 
     /// The journal's path ("" until the writer has created it, or when it could not).
     std::string path() const;
@@ -78,9 +82,14 @@ struct OrphanJournal {
     std::uint32_t pid = 0;
     std::uint64_t bytes = 0;
     std::int64_t modified = 0;  ///< seconds since the epoch
+    /// How its viewer ended without saving ("SIGTERM": Journal::end_unsaved()); "" for a crash.
+    std::string ended;
 };
 /// The journals in `directory` ("": the default) whose process is gone (or is another
 /// process with the same id, told apart by its start time), newest first. Never throws.
 std::vector<OrphanJournal> find_orphan_journals(const std::string& directory = "");
+/// Removes the journal at `path` and its note (PATH.ended), restored or discarded. Never
+/// throws.
+void remove_journal(const std::string& path);
 
 }  // namespace trilab

@@ -42,6 +42,7 @@ struct OpenSession {
 struct RecoverJournal {
     std::string path;
     bool restore = true;
+    bool discard_changes = false;  ///< true: do not ask about unsaved changes
 };
 struct LoadTexture {
     std::string path;

@@ -112,6 +112,9 @@ public:
     void flush_journal() { files_.flush_journal(); }
     /// A clean end: writes what is queued and removes the journal's file.
     void close_journal() { files_.close_journal(); }
+    /// An end without a chance to save (`how`: "SIGTERM"): the journal's file is kept for
+    /// recovery, marked as unsaved work rather than a crash (Journal::end_unsaved).
+    void end_journal_unsaved(const std::string& how) { files_.end_journal_unsaved(how); }
 
 private:
     /// Every owner follows a new current state.

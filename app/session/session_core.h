@@ -110,6 +110,9 @@ struct SessionEvents {
     /// the window asks first (set_ask_before_discarding); it sends the command again with
     /// discard_changes to go on.
     std::optional<std::string> confirm_discard;
+    /// The command that waits is the restoring of the crash journal at confirm_discard
+    /// (RecoverJournal), not a LoadFile.
+    bool confirm_recovery = false;
     /// A session was opened: its view, panel and texture settings for the window to apply.
     std::shared_ptr<const SessionExtras> session_extras;
     /// A load ended whose picture (LoadingPicture) is also the new document's proxy: the file

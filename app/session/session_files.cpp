@@ -17,6 +17,24 @@
 
 namespace trilab::viewer {
 
+namespace {
+
+/// "bunny.obj (recovered)": the model the newest load at or before the current entry read,
+/// or the first entry's title.
+std::string recovered_name(const History& history) {
+    std::string name;
+    for (std::size_t i = 0; i < history.size() && i <= history.current(); ++i) {
+        const std::string label = history.info(i).label;
+        if (label.rfind("Load ", 0) == 0 && label.size() > 5)
+            name = label.substr(5);
+        else if (name.empty())
+            name = label;
+    }
+    return (name.empty() ? std::string("work") : name) + " (recovered)";
+}
+
+}  // namespace
+
 bool SessionFiles::asks_before_discarding(bool discard_changes, const std::string& path) {
     if (discard_changes || !ask_before_discarding_ || !core_.document.unsaved) return false;
     core_.log.info("unsaved changes: asking before opening " + path);
@@ -47,12 +65,14 @@ bool SessionFiles::execute(const Command& command) {
         previews_.clear();
         open_session(open->path);
     } else if (auto* recover = std::get_if<RecoverJournal>(&command)) {
-        if (recover->restore) {
-            open_session(recover->path, true);
-        } else {
-            std::error_code ec;
-            std::filesystem::remove(recover->path, ec);
+        if (!recover->restore) {
+            remove_journal(recover->path);
             core_.log.info("discarded the crash journal " + recover->path);
+        } else if (asks_before_discarding(recover->discard_changes, recover->path)) {
+            core_.events.confirm_recovery = true;
+        } else {
+            previews_.clear();
+            open_session(recover->path, true);
         }
     } else if (std::holds_alternative<RevertFile>(command)) {
         if (is_session_path(document.path))
@@ -258,10 +278,7 @@ void SessionFiles::open_session(const std::string& path, bool remove_after) {
                 std::make_shared<SessionContents>(read_session_or_journal(path, budget));
             return JobRunner::Finish([this, contents, path, remove_after] {
                 restore_session(std::move(*contents), path);
-                if (remove_after) {
-                    std::error_code ec;
-                    std::filesystem::remove(path, ec);
-                }
+                if (remove_after) remove_journal(path);
             });
         });
     if (!started) core_.busy_error();
@@ -276,7 +293,8 @@ void SessionFiles::restore_session(SessionContents contents, const std::string& 
     core_.log_history_messages(contents.messages);
     core_.log_history_messages(core_.document.history.trim_to_budget());
     const std::string name = std::filesystem::path(path).filename().string();
-    document.name = name;
+    // A journal is named after the model it holds (its file is removed once restored).
+    document.name = contents.journal ? recovered_name(core_.document.history) : name;
     // A journal is no document of its own: Save asks for a file name.
     document.path = contents.journal ? std::string() : path;
     document.report = LoadReport{};
@@ -323,6 +341,12 @@ void SessionFiles::check_journal() {
 
 void SessionFiles::flush_journal() {
     if (journal_) journal_->flush();
+}
+
+void SessionFiles::end_journal_unsaved(const std::string& how) {
+    if (!journal_) return;
+    journal_->end_unsaved(how);
+    journal_.reset();
 }
 
 void SessionFiles::close_journal() {

@@ -57,6 +57,8 @@ public:
     void flush_journal();
     /// A clean end: writes what is queued and removes the journal's file.
     void close_journal();
+    /// An end without saving: the journal's file stays, marked (Journal::end_unsaved).
+    void end_journal_unsaved(const std::string& how);
 
 private:
     void load(const std::string& path);

@@ -135,11 +135,13 @@ void unsaved_changes_popup(UnsavedPrompt& prompt, CommandQueue& commands) {
     if (!begin_modal_dialog(kTitle, ImGuiWindowFlags_AlwaysAutoResize)) return;
     ImGui::PushTextWrapPos(
         std::min(36.0f * ImGui::GetFontSize(), 0.8f * ImGui::GetIO().DisplaySize.x));
-    ImGui::TextUnformatted(prompt.quitting
-                               ? "The mesh has changes that are not saved to a file. Quit anyway?"
-                               : "The mesh has changes that are not saved to a file. Open the "
-                                 "other file anyway? (The changes stay in the history: Edit -> "
-                                 "Undo brings them back.)");
+    ImGui::TextUnformatted(
+        prompt.quitting  ? "The mesh has changes that are not saved to a file. Quit anyway?"
+        : prompt.recover ? "The mesh has changes that are not saved to a file. Restoring the "
+                           "recovered work replaces the whole history: save first to keep them."
+                         : "The mesh has changes that are not saved to a file. Open the other "
+                           "file anyway? (The changes stay in the history: Edit -> Undo brings "
+                           "them back.)");
     ImGui::PopTextWrapPos();
     if (!prompt.document_path.empty()) {
         if (button("Save (overwrite)")) {
@@ -155,9 +157,13 @@ void unsaved_changes_popup(UnsavedPrompt& prompt, CommandQueue& commands) {
         ImGui::CloseCurrentPopup();
     }
     ImGui::SameLine();
-    if (button(prompt.quitting ? "Discard and quit" : "Discard and open")) {
+    if (button(prompt.quitting  ? "Discard and quit"
+               : prompt.recover ? "Discard and restore"
+                                : "Discard and open")) {
         if (prompt.quitting)
             commands.push_back(Quit{true});
+        else if (prompt.recover)
+            commands.push_back(RecoverJournal{prompt.path, true, true});
         else
             commands.push_back(LoadFile{prompt.path, true});
         ImGui::CloseCurrentPopup();
@@ -177,9 +183,14 @@ void recovery_popup(RecoveryPrompt& prompt, CommandQueue& commands) {
     if (!begin_modal_dialog(kTitle, ImGuiWindowFlags_AlwaysAutoResize)) return;
     ImGui::PushTextWrapPos(
         std::min(36.0f * ImGui::GetFontSize(), 0.8f * ImGui::GetIO().DisplaySize.x));
-    ImGui::TextUnformatted(
-        "A trilab session did not end cleanly. Its crash journal holds every change that was "
-        "complete; restoring it replaces the current model with that history.");
+    constexpr const char* kRestore =
+        "Its journal holds every change that was complete; restoring it replaces the current "
+        "model with that history (asking first when the model has unsaved changes).";
+    if (prompt.ended.empty())
+        ImGui::Text("A trilab session did not end cleanly. %s", kRestore);
+    else
+        ImGui::Text("A trilab session was ended by %s before its work was saved. %s",
+                    prompt.ended.c_str(), kRestore);
     ImGui::TextDisabled("%s", prompt.description.c_str());
     ImGui::PopTextWrapPos();
     if (button("Restore")) {

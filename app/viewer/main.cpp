@@ -10,7 +10,10 @@
 #include <vector>
 
 #include "app/platform/heap_tuning.h"
+#include "app/platform/termination.h"
 #include "app/viewer/viewer.h"
+
+#include <GLFW/glfw3.h>  // after glad (viewer.h): glfwPostEmptyEvent
 
 namespace {
 
@@ -244,6 +247,9 @@ int main(int argc, char** argv) {
     // llvmpipe page-faults on every frame when glibc keeps trimming and unmapping its large
     // buffers (docs/toolchain.md, section 5): keep big blocks mapped.
     trilab::tune_heap_for_large_meshes();
+    // SIGTERM and SIGHUP end the viewer like a quit that keeps its journal (termination.h);
+    // first, so that every thread inherits the blocked signals.
+    trilab::watch_termination([] { glfwPostEmptyEvent(); });
 
     trilab::viewer::ViewerOptions options;
     bool help = false;

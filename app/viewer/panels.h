@@ -129,6 +129,7 @@ struct ViewSettings {
 struct UnsavedPrompt {
     bool open_requested = false;  ///< open the modal on the next frame
     bool quitting = false;        ///< the pending action: quit (true) or open `path`
+    bool recover = false;         ///< opening `path` restores a crash journal (RecoverJournal)
     std::string path;
     std::string document_path;  ///< where "Save" writes (empty: only Save as)
 };
@@ -138,6 +139,8 @@ struct RecoveryPrompt {
     bool open_requested = false;  ///< open the modal on the next frame
     std::string path;             ///< the newest orphan journal
     std::string description;      ///< what it is: file, size, time
+    /// How the viewer that wrote it ended without saving ("SIGTERM"); "" for a crash.
+    std::string ended;
 };
 
 /// A generic panel for each registered operation not in `owned` (the operations that have

@@ -20,6 +20,7 @@
 
 #include "app/ops/operation.h"
 #include "app/ops/operation_entries.h"
+#include "app/platform/termination.h"
 #include "app/record/recorder.h"
 #include "app/viewer/key_bindings.h"
 #include "app/viewer/viewer_tuning.h"
@@ -251,11 +252,13 @@ void Viewer::follow_session() {
         if (style.texture_mode == TextureMode::Off) style.texture_mode = TextureMode::Modulate;
     }
     if (e.session_extras) apply_session_extras(*e.session_extras);
-    if (e.confirm_discard) ask_before_discarding(false, *e.confirm_discard);
+    if (e.confirm_discard) ask_before_discarding(false, *e.confirm_discard, e.confirm_recovery);
     if (e.saved && e.continue_after_save) {  // a prompt's "Save and go on": now go on
         const UnsavedPrompt& prompt = context_.panels.unsaved;
         if (prompt.quitting)
             context_.commands.push_back(Quit{true});
+        else if (prompt.recover)
+            context_.commands.push_back(RecoverJournal{prompt.path, true, true});
         else
             context_.commands.push_back(LoadFile{prompt.path, true});
     }
@@ -407,7 +410,7 @@ int Viewer::run() {
     double last_frame_end = -1.0;  // glfw time at the end of the last frame drawn
     bool waited = false;           // the loop slept since then (no frame to time)
     context_.active_frames = kFramesAfterInput;
-    while (!quit_ && !script_->quit()) {
+    while (!quit_ && !script_->quit() && !termination_signal()) {
         // The window's close button asks like File -> Quit does.
         if (glfwWindowShouldClose(window_.get())) {
             glfwSetWindowShouldClose(window_.get(), GLFW_FALSE);
@@ -478,6 +481,14 @@ int Viewer::run() {
             std::fprintf(stderr, "trilab: --save-session: %s\n", error.c_str());
             status = 1;
         }
+    }
+    if (const char* signal = termination_signal()) {
+        // Ended from outside (a logout): no question could be asked, so the work stays in the
+        // journal, marked as not saved rather than crashed.
+        session.log().info(std::string("ended by ") + signal + " after " + std::to_string(frame) +
+                           " frames: the work is kept for recovery");
+        session.end_journal_unsaved(signal);
+        return status;
     }
     session.log().info(quit_ || script_->quit() ? "quit after " + std::to_string(frame) + " frames"
                                                 : "frames done");

@@ -73,7 +73,7 @@ private:
     /// Whether a Quit may go ahead now; when changes are unsaved it asks instead (false).
     bool confirm_quit();
     /// Opens the unsaved-changes question before quitting or opening `path`.
-    void ask_before_discarding(bool quitting, const std::string& path);
+    void ask_before_discarding(bool quitting, const std::string& path, bool recover = false);
     void fit_view();
     /// The default view for the up axis (View > Default view, View > Up axis), fitted; a new
     /// up axis is remembered, and spherical texture coordinates the viewer projected follow it.

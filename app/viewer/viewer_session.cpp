@@ -74,14 +74,18 @@ void Viewer::start_recovery() {
     std::snprintf(description, sizeof(description), "%s (%.1f kB, written %s, process %u)",
                   newest.path.c_str(), double(newest.bytes) / 1024.0, when, newest.pid);
     if (options_.frames > 0) {  // scripted runs never ask
-        context_.session.log().info(std::string("a crash journal was found: ") + description +
-                                    "; trilab --restore restores it");
+        const std::string found = newest.ended.empty()
+                                      ? "a crash journal was found: "
+                                      : "unsaved work was found (its viewer was ended by " +
+                                            newest.ended + " before saving): ";
+        context_.session.log().info(found + description + "; trilab --restore restores it");
         return;
     }
     RecoveryPrompt& prompt = context_.panels.recovery;
     prompt.open_requested = true;
     prompt.path = newest.path;
     prompt.description = description;
+    prompt.ended = newest.ended;
 }
 
 void Viewer::journal_settings() {

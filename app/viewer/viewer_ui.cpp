@@ -279,10 +279,11 @@ bool Viewer::confirm_quit() {
     return false;
 }
 
-void Viewer::ask_before_discarding(bool quitting, const std::string& path) {
+void Viewer::ask_before_discarding(bool quitting, const std::string& path, bool recover) {
     UnsavedPrompt& prompt = context_.panels.unsaved;
     prompt.open_requested = true;
     prompt.quitting = quitting;
+    prompt.recover = recover;
     prompt.path = path;
     prompt.document_path = context_.session.document().path;
     context_.keep_drawing(kFramesAfterInput);

@@ -19,7 +19,9 @@
 #include "app/record/recorder.h"
 #include "app/session/session.h"
 #include "app/viewer/viewer_settings.h"
+#include "core/algorithms/generators.h"
 #include "core/io/image_io.h"
+#include "core/io/mesh_io.h"
 
 using namespace trilab;
 using namespace trilab::viewer;
@@ -255,4 +257,51 @@ TEST_CASE("the session's journal records every history change and a close remove
     s.close_journal();
     CHECK_FALSE(fs::exists(path));
     CHECK(s.files().journal() == nullptr);
+}
+
+TEST_CASE("restoring a journal asks before replacing unsaved work and names the model",
+          "[session][journal]") {
+    TempDir dir("trilab-viewer-recover");
+    const std::string model = (dir.path / "ball.off").string();
+    write_mesh(make_default_model(), model);
+    // The work of a viewer that ended: a load and an operation, journaled.
+    Session a;
+    JournalOptions options;
+    options.directory = dir.path.string();
+    options.sync = false;
+    a.start_journal(options);
+    a.execute(LoadFile{model});
+    a.finish_jobs();
+    a.execute(RunOperation{parse_operation("noise --amount 2 --seed 1")});
+    a.finish_jobs();
+    a.flush_journal();
+    const std::string journal = (dir.path / "copy.journal").string();
+    fs::copy_file(a.files().journal()->path(), journal);
+    std::ofstream(journal + ".ended") << "SIGTERM";
+    a.close_journal();
+
+    // Unsaved work open here: the restore waits for the window's question.
+    Session b;
+    b.set_ask_before_discarding(true);
+    b.execute(RunOperation{parse_operation("smooth --iterations 2")});
+    b.finish_jobs();
+    REQUIRE(b.document().unsaved);
+    b.take_events();
+    b.execute(RecoverJournal{journal, true});
+    b.finish_jobs();
+    SessionEvents e = b.take_events();
+    REQUIRE(e.confirm_discard == std::optional<std::string>(journal));
+    CHECK(e.confirm_recovery);
+    CHECK(b.history().info(1).label == "Smooth");  // nothing replaced
+    CHECK(fs::exists(journal));
+    // The answer "discard": restored, named after its model, and removed with its note.
+    b.execute(RecoverJournal{journal, true, true});
+    b.finish_jobs();
+    REQUIRE(b.history().size() == 2);  // the load and the noise
+    CHECK(b.history().info(1).label == "Add noise");
+    CHECK(b.document().name == "ball.off (recovered)");
+    CHECK(b.document().path.empty());
+    CHECK(b.document().unsaved);
+    CHECK_FALSE(fs::exists(journal));
+    CHECK_FALSE(fs::exists(journal + ".ended"));
 }

@@ -336,6 +336,48 @@ TEST_CASE("find_orphan_journals lists journals of processes that are gone", "[jo
     const std::vector<OrphanJournal> orphans = find_orphan_journals(dir);
     REQUIRE(orphans.size() == 1);
     CHECK(orphans[0].pid == std::uint32_t(child));
+    CHECK(orphans[0].ended.empty());  // no note: a crash
     CHECK(find_orphan_journals(dir + "/missing").empty());
+    remove_dir(dir);
+}
+
+TEST_CASE("a journal ended without saving is kept, marked, and removed with its note",
+          "[journal]") {
+    const std::string dir = temp_dir("journal-ended");
+    // A viewer ended by SIGTERM: its journal holds the history and says how it ended.
+    const pid_t child = fork();
+    REQUIRE(child >= 0);
+    if (child == 0) {
+        JournalOptions options;
+        options.directory = dir;
+        options.sync = false;
+        Journal journal(options);
+        History h(std::size_t(-1));
+        scripted_run(h, &journal, true);
+        journal.end_unsaved("SIGTERM");
+        _exit(journal.path().empty() ? 1 : 0);
+    }
+    int status = 0;
+    waitpid(child, &status, 0);
+    REQUIRE(WIFEXITED(status));
+    REQUIRE(WEXITSTATUS(status) == 0);
+    std::vector<OrphanJournal> orphans = find_orphan_journals(dir);
+    REQUIRE(orphans.size() == 1);  // the note is no journal of its own
+    CHECK(orphans[0].ended == "SIGTERM");
+    const SessionContents contents = read_journal(orphans[0].path);
+    CHECK(contents.complete);
+    CHECK(contents.history.size() > 1);
+    // A note that is no regular file (a FIFO) is not read: the journal counts as a crash.
+    const std::string note = orphans[0].path + ".ended";
+    REQUIRE(std::remove(note.c_str()) == 0);
+    REQUIRE(mkfifo(note.c_str(), 0600) == 0);
+    orphans = find_orphan_journals(dir);
+    REQUIRE(orphans.size() == 1);
+    CHECK(orphans[0].ended.empty());
+    remove_journal(orphans[0].path);
+    struct stat st {};
+    CHECK(stat(orphans[0].path.c_str(), &st) != 0);
+    CHECK(stat(note.c_str(), &st) != 0);
+    CHECK(find_orphan_journals(dir).empty());
     remove_dir(dir);
 }

@@ -5,7 +5,8 @@
 #  2. `trilab s.trilab` restores the history, the current state and the settings (the log's
 #     last-frame line shows the state; no setting is refused);
 #  3. a viewer killed with SIGKILL leaves its journal: a scripted run says so, `--restore`
-#     restores it (the same last state) and removes it; --no-recovery writes no journal.
+#     restores it (the same last state) and removes it; --no-recovery writes no journal;
+#  4. SIGTERM ends the viewer at once and keeps its journal, marked as unsaved work.
 # usage: session_test.sh TRILAB TRILAB_CLI
 set -u
 trilab=$1
@@ -66,6 +67,31 @@ grep -q "recovered .*: 3 entries" restore.log || fail "not recovered: $(head -5 
 grep -q "last frame: state 2 of 3: Smooth" restore.log ||
     fail "--restore: $(grep 'last frame' restore.log)"
 [ -f "$j" ] && fail "--restore kept the journal it restored"
+# A normal end from outside (SIGTERM: a logout): the viewer stops at once, keeps its journal
+# for recovery and marks it, and the next start says the work was not saved, not a crash.
+rm -rf "$recovery"
+"$trilab" --op "noise --amount 2 --seed 5" --op "smooth --iterations 3" --frames 100000 \
+    > term.log 2>&1 &
+pid=$!
+for ((w = 0; w < 1000; ++w)); do
+    j=$(ls "$recovery"/*.journal 2> /dev/null | head -1)
+    [ -n "$j" ] && "$cli" session info "$j" 2> /dev/null | grep -q "3 entries" && break
+    sleep 0.01
+done
+kill -TERM $pid
+for ((w = 0; w < 500; ++w)); do kill -0 $pid 2> /dev/null || break; sleep 0.02; done
+kill -0 $pid 2> /dev/null && { kill -KILL $pid; fail "SIGTERM did not end the viewer"; }
+wait $pid
+grep -q "ended by SIGTERM after .* frames: the work is kept for recovery" term.log ||
+    fail "SIGTERM: $(tail -3 term.log)"
+[ -f "$j" ] && [ -f "$j.ended" ] || fail "SIGTERM: the journal or its note is gone: $(ls "$recovery")"
+"$trilab" --frames 2 > term-found.log 2>&1
+grep -q "unsaved work was found (its viewer was ended by SIGTERM before saving): .*--restore" \
+    term-found.log || fail "the ended journal is not told apart: $(grep found term-found.log)"
+"$trilab" --restore --frames 2 > term-restore.log 2>&1 || fail "--restore after SIGTERM failed"
+grep -q "last frame: state 2 of 3: Smooth" term-restore.log ||
+    fail "--restore after SIGTERM: $(grep 'last frame' term-restore.log)"
+[ -e "$j" ] || [ -e "$j.ended" ] && fail "--restore kept the journal or its note"
 rm -rf "$recovery"
 "$trilab" --no-recovery --op "noise --amount 2" --frames 400 > nojournal.log 2>&1 &
 pid=$!
@@ -73,4 +99,4 @@ sleep 1
 [ -z "$(ls "$recovery" 2> /dev/null)" ] || fail "--no-recovery wrote a journal"
 kill -KILL $pid 2> /dev/null
 wait $pid 2> /dev/null
-echo "session_test: save, open, crash journal, --restore and --no-recovery work"
+echo "session_test: save, open, crash journal, SIGTERM, --restore and --no-recovery work"
