@@ -11,6 +11,7 @@
 #include "app/ops/operation.h"
 #include "core/algorithms/coloring.h"
 #include "core/algorithms/decimation.h"
+#include "core/algorithms/fairing.h"
 #include "core/algorithms/morph.h"
 #include "core/algorithms/ray_pick.h"
 #include "core/algorithms/texcoords.h"
@@ -223,6 +224,16 @@ struct SetColoringValues {
 };
 /// The view has drawn the shown spectral prediction: the exact preview may start.
 struct PredictionDrawn {};
+/// Fairing's guidance: estimate the current state's largest stable explicit step for `op`
+/// (SessionGuidance, off the render thread).
+struct EstimateStableStep {
+    FairingOperator op = FairingOperator::Umbrella;
+};
+/// Decimation's overlay: find the edges the next iteration of `op` (a decimation) collapses
+/// on the current state (SessionGuidance, off the render thread).
+struct FindCollapsingEdges {
+    Operation op;
+};
 /// The window's settings (view, panels) changed: the crash journal records them.
 struct JournalSettings {
     std::string text;
@@ -236,7 +247,8 @@ using Command = std::variant<
     CancelRecording, CancelJob, Quit, SaveAndContinue, SaveAsAndContinue, ClearPicks, CentreOnPick,
     SetSelection, SelectSpec, SelectAtPick, SelectThreshold, EditSelection, LoadFigure, PlayMorph,
     ShowMorphAt, SetMorphAnimation, ShowDivergingRun, NoticeShown, ComputeColoring, PickAt,
-    WantPickDistances, SetInspectionOptions, SetColoringValues, PredictionDrawn, JournalSettings>;
+    WantPickDistances, SetInspectionOptions, SetColoringValues, PredictionDrawn, JournalSettings,
+    EstimateStableStep, FindCollapsingEdges>;
 using CommandQueue = std::vector<Command>;
 
 /// The command's type name ("StartRecording"), for logs and scripted clicks.
@@ -293,7 +305,9 @@ inline const char* command_name(const Command& command) {
                                              "SetInspectionOptions",
                                              "SetColoringValues",
                                              "PredictionDrawn",
-                                             "JournalSettings"};
+                                             "JournalSettings",
+                                             "EstimateStableStep",
+                                             "FindCollapsingEdges"};
     static_assert(std::size(kNames) == std::variant_size_v<Command>, "a name per command");
     return kNames[command.index()];
 }

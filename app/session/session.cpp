@@ -114,6 +114,10 @@ bool Session::execute_other(const Command& command) {
         coloring_.compute(*c);
     } else if (auto* values = std::get_if<SetColoringValues>(&command)) {
         coloring_.set_values(values->values);
+    } else if (auto* step = std::get_if<EstimateStableStep>(&command)) {
+        guidance_.estimate_stable_step(step->op);
+    } else if (auto* edges = std::get_if<FindCollapsingEdges>(&command)) {
+        guidance_.find_collapsing_edges(edges->op);
     } else if (std::holds_alternative<NoticeShown>(command)) {
         core_.notice.popup_pending = false;
     } else {
@@ -124,6 +128,7 @@ bool Session::execute_other(const Command& command) {
 
 bool Session::poll() {
     picking_.update();
+    guidance_.update();
     files_.check_journal();
     const JobRunner::Outcome outcome = core_.jobs.poll();
     using Kind = JobRunner::Outcome::Kind;
@@ -153,6 +158,7 @@ void Session::finish_jobs() {
         if (core_.jobs.busy() || previews_.prediction_computing())
             std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
+    guidance_.finish();
     poll();
 }
 

@@ -12,6 +12,7 @@
 //   SessionFigures    the reference's figures and the diverging run
 //   SessionColoring   the colouring job and the colouring's values
 //   SessionMorph      the current entry's morph on the session's clock
+//   SessionGuidance   Fairing's stable step and Decimation's collapsing edges, off the thread
 // The window (and the headless tests) change it only through the typed commands the panels
 // queue (commands.h), one executor for all of them, and read it through const views: shown()
 // is what the view shows now (the document, a preview step, a morph frame, a level of detail
@@ -34,6 +35,7 @@
 #include "app/session/session_figures.h"
 #include "app/session/session_files.h"
 #include "app/session/session_frequency.h"
+#include "app/session/session_guidance.h"
 #include "app/session/session_levels.h"
 #include "app/session/session_morph.h"
 #include "app/session/session_picking.h"
@@ -84,6 +86,7 @@ public:
     const SessionFiles& files() const { return files_; }
     const SessionFigures& figures() const { return figures_; }
     const SessionColoring& coloring() const { return coloring_; }
+    const SessionGuidance& guidance() const { return guidance_; }
 
     // ---- messages: the log (thread-safe) and the status bar ----------------------------------
     Log& log() { return core_.log; }
@@ -136,6 +139,7 @@ private:
     SessionFrequency frequency_{core_, morph_};
     SessionFiles files_{core_, document_, previews_};
     SessionFigures figures_{core_, document_, previews_, levels_};
+    SessionGuidance guidance_{core_};
 };
 
 }  // namespace trilab::viewer

@@ -14,9 +14,12 @@
 #include <unistd.h>
 
 #include "app/ops/operation.h"
+#include "app/ops/operation_entries.h"
 #include "app/ops/spectrum_op.h"
 #include "app/session/session.h"
 #include "core/algorithms/coloring.h"
+#include "core/algorithms/decimation.h"
+#include "core/algorithms/fairing.h"
 #include "core/algorithms/generators.h"
 #include "core/algorithms/transfer_function.h"
 #include "core/io/mesh_io.h"
@@ -664,4 +667,38 @@ TEST_CASE("a load shows a picture from the file's arrays until the mesh is built
         CHECK_FALSE(s.files().loading_picture());
         CHECK(s.notice().level == Notice::Level::Error);
     }
+}
+
+TEST_CASE("the panels' guidance is computed off the render thread for the state asked about",
+          "[session][guidance]") {
+    Session s;
+    s.execute(EstimateStableStep{FairingOperator::CurvatureFlow});
+    s.execute(FindCollapsingEdges{parse_operation("decimate --percent 5")});
+    s.finish_jobs();
+    const SessionGuidance::StableStep* step = s.guidance().stable_step();
+    REQUIRE(step);
+    CHECK(step->state == s.mesh().revision());
+    CHECK(step->op == FairingOperator::CurvatureFlow);
+    CHECK(step->step == max_stable_explicit_step(s.mesh(), FairingOperator::CurvatureFlow));
+    const SessionGuidance::CollapsingEdges* edges = s.guidance().collapsing_edges();
+    REQUIRE(edges);
+    CHECK(edges->failure.empty());
+    const auto pairs =
+        next_collapses(s.mesh(), decimation_options(parse_operation("decimate --percent 5")));
+    REQUIRE(edges->segments.size() == pairs.size());
+    REQUIRE_FALSE(pairs.empty());
+    CHECK(edges->segments.front()[0] == s.mesh().position(pairs.front()[0]));
+    CHECK(edges->segments.back()[1] == s.mesh().position(pairs.back()[1]));
+    // Another state: what was computed stays marked with its own state until asked again.
+    s.execute(RunOperation{parse_operation("noise --amount 5")});
+    s.finish_jobs();
+    CHECK(s.guidance().stable_step()->state != s.mesh().revision());
+    s.execute(EstimateStableStep{FairingOperator::Umbrella});
+    // Asked twice while it computes: one estimate, of the newest request.
+    s.execute(EstimateStableStep{FairingOperator::Umbrella});
+    s.finish_jobs();
+    step = s.guidance().stable_step();
+    CHECK(step->state == s.mesh().revision());
+    CHECK(step->op == FairingOperator::Umbrella);
+    CHECK(step->step == max_stable_explicit_step(s.mesh(), FairingOperator::Umbrella));
 }

@@ -15,7 +15,8 @@ ctags --version | grep -q "Universal Ctags" ||
 # none over 50 methods (issue 37, part 3).
 limits="trilab::viewer::Viewer 30 40"
 for c in Session SessionCore SessionDocument SessionPreviews SessionLevels SessionSelection \
-         SessionPicking SessionFrequency SessionFiles SessionFigures SessionColoring SessionMorph; do
+         SessionPicking SessionFrequency SessionFiles SessionFigures SessionColoring SessionMorph \
+         SessionGuidance; do
     limits="$limits trilab::viewer::$c 50 40"
 done
 ctags -R --languages=C++ --kinds-C++=+p-l --extras=-q -x --_xformat="%{kind}|%{scope}|%N" app render |
