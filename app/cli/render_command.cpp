@@ -39,7 +39,8 @@ options:
   --color QUANTITY      colour the vertices: none (default), normal, k1, k2, mean,
                         gaussian, shape-index, subdivision (categorical: one colour per
                         level), smoothing-distance, geodesic-distance (the per-vertex
-                        `distance` that trilab-cli geodesic writes to PLY)
+                        `distance` that trilab-cli geodesic writes to PLY), min-angle and
+                        quality (triangle quality: the worst of the vertex's triangles)
   --bands N             a banded map: the legend range cut into N equal steps (2 to 64),
                         each one colour (the map's colour at the step's centre)
   --isolines N          N isolines (1 to 63), evenly spaced inside the legend range: at
@@ -194,9 +195,10 @@ void set_steps(const RenderArgs& a, RenderSetup& setup) {
     const VertexColoring c = setup.coloring;
     if (c == VertexColoring::None || c == VertexColoring::Normal ||
         c == VertexColoring::SubdivisionLevel)
-        throw InvalidArgument(std::string(option) + ": needs a scalar --color (k1, k2, mean, " +
-                              "gaussian, shape-index, smoothing-distance, geodesic-distance), " +
-                              "got --color " + a.color);
+        throw InvalidArgument(
+            std::string(option) + ": needs a scalar --color (k1, k2, mean, " +
+            "gaussian, shape-index, smoothing-distance, geodesic-distance, min-angle, quality), " +
+            "got --color " + a.color);
     if (a.bands && a.isolines && a.bands != a.isolines)
         throw InvalidArgument("--bands " + std::to_string(a.bands) + " and --isolines " +
                               std::to_string(a.isolines - 1) +

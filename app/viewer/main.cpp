@@ -37,7 +37,7 @@ options:
                      unsaved-changes question)
   --mode MODE        wireframe, hidden-line, flat, gouraud, points or textured
   --color C          none, normal, k1, k2, mean, gaussian, shape-index, subdivision,
-                     smoothing-distance, frequency or frequency-mass
+                     smoothing-distance, frequency, frequency-mass, min-angle or quality
   --up y|z           the model's up axis for this run (default: the one chosen in
                      View > Up axis, remembered; +y at first)
   --op "OPERATION"   apply an operation after loading, e.g. --op "noise --amount 2";

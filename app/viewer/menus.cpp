@@ -77,7 +77,9 @@ void coloring_menu(ViewSettings& settings, CommandQueue& commands) {
                                             VertexColoring::FrequencyMass,
                                             VertexColoring::GeodesicDistance,
                                             VertexColoring::RemovedBelow,
-                                            VertexColoring::RemovedAbove};
+                                            VertexColoring::RemovedAbove,
+                                            VertexColoring::MinAngle,
+                                            VertexColoring::TriangleQuality};
         const char* labels[] = {"None",
                                 "Normal direction",
                                 "First principal curvature",
@@ -91,7 +93,9 @@ void coloring_menu(ViewSettings& settings, CommandQueue& commands) {
                                 "Frequency mass (geometry in the band)",
                                 "Geodesic distance (from the picks)",
                                 "Removed below the band's top (shape)",
-                                "Removed above the band's top (detail, noise)"};
+                                "Removed above the band's top (detail, noise)",
+                                "Triangle quality: smallest angle",
+                                "Triangle quality: Q (1: equilateral)"};
         for (std::size_t i = 0; i < std::size(colorings); ++i) {
             if (menu_item(labels[i], nullptr, settings.coloring == colorings[i]) &&
                 settings.coloring != colorings[i]) {

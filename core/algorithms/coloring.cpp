@@ -31,6 +31,7 @@
 #include <sstream>
 
 #include "core/algorithms/curvature.h"
+#include "core/algorithms/mesh_quality.h"
 #include "core/errors.h"
 #include "core/geometry.h"
 
@@ -82,7 +83,7 @@ struct ColoringEntry {
     const char* label;
 };
 
-constexpr std::array<ColoringEntry, 14> kColorings = {{
+constexpr std::array<ColoringEntry, 16> kColorings = {{
     {VertexColoring::None, "none", ""},
     {VertexColoring::Normal, "normal", "vertex normal"},
     {VertexColoring::K1, "k1", "first principal curvature k1"},
@@ -98,6 +99,9 @@ constexpr std::array<ColoringEntry, 14> kColorings = {{
     {VertexColoring::GeodesicDistance, "geodesic-distance", "geodesic distance"},
     {VertexColoring::RemovedBelow, "removed-below", "change in the frequencies below the split"},
     {VertexColoring::RemovedAbove, "removed-above", "change in the frequencies above the split"},
+    {VertexColoring::MinAngle, "min-angle", "smallest triangle angle at the vertex (degrees)"},
+    {VertexColoring::TriangleQuality, "quality",
+     "smallest triangle quality Q at the vertex (1: equilateral)"},
 }};
 
 const ColoringEntry& entry(VertexColoring coloring) {
@@ -239,6 +243,33 @@ std::vector<double> smoothing_distance(const HalfedgeMesh& mesh,
     return d;
 }
 
+namespace {
+
+/// MinAngle and TriangleQuality: per vertex the worst value of its triangles
+/// (face_quality_field), over a fixed range so that two meshes compare by colour.
+VertexColors triangle_quality_colors(const HalfedgeMesh& mesh, bool min_angle, const char* label) {
+    const std::vector<double> faces = face_quality_field(mesh, min_angle);
+    VertexColors out;
+    out.label = label;
+    out.kind = ColorMapKind::Sequential;
+    out.has_legend = true;
+    out.range = min_angle ? ValueRange{0, 60} : ValueRange{0, 1};
+    const std::size_t n = mesh.vertices_size();
+    out.colors.assign(n, kInvalidColor);
+    out.values.assign(n, std::numeric_limits<double>::quiet_NaN());
+    for (Vertex v : mesh.vertices()) {
+        double worst = std::numeric_limits<double>::infinity();
+        for (Face f : mesh.faces_around(v))
+            if (std::isfinite(faces[f.idx()])) worst = std::min(worst, faces[f.idx()]);
+        if (!std::isfinite(worst)) continue;  // isolated, or only degenerate triangles
+        out.values[v.idx()] = worst;
+        out.colors[v.idx()] = map_color(worst, out.range, out.kind);
+    }
+    return out;
+}
+
+}  // namespace
+
 VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
                             const ColoringOptions& options, const std::vector<Point>* reference) {
     check_percentiles("color_vertices", "low_percentile", options.low_percentile, "high_percentile",
@@ -317,6 +348,9 @@ VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
     }
 
     if (coloring == VertexColoring::GeodesicDistance) return stored_distance_colors(mesh, options);
+
+    if (coloring == VertexColoring::MinAngle || coloring == VertexColoring::TriangleQuality)
+        return triangle_quality_colors(mesh, coloring == VertexColoring::MinAngle, e.label);
 
     if (coloring_needs_field(coloring))
         throw InvalidArgument(std::string("color_vertices: the '") + e.name +

@@ -56,6 +56,11 @@ enum class VertexColoring {
     /// (core/algorithms/transfer_function.h change_by_frequency()): noise or shape removed.
     RemovedBelow,
     RemovedAbove,
+    /// Triangle quality (core/algorithms/mesh_quality.h) at each vertex: the smallest angle
+    /// of its triangles, in degrees, over the fixed range [0, 60] (sequential: dark is bad).
+    MinAngle,
+    /// The smallest Frey-Borouchaki Q of the vertex's triangles, over [0, 1] (1: equilateral).
+    TriangleQuality,
 };
 
 struct ColoringOptions {

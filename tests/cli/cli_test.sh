@@ -365,6 +365,11 @@ if "$cli" render "$tmp/d.obj" --out "$tmp/probe.png" --size 16x16 >/dev/null 2>&
     check "render refuses a reference with other vertices" bash -c \
         "! '$cli' render '$tmp/sm2.obj' --reference '$tmp/grid0.obj' --color smoothing-distance \
          --out '$tmp/sd2.png' --size 64x48 2> '$tmp/e' && grep -q -- '--reference' '$tmp/e'"
+    check "render --color min-angle and quality colour by triangle quality, with a legend" bash -c \
+        "'$cli' render '$tmp/d.obj' --color min-angle --out '$tmp/q1.png' --size 64x48 --json | \
+         grep -q 'smallest triangle angle' && \
+         '$cli' render '$tmp/d.obj' --color quality --bands 5 --out '$tmp/q2.png' --size 64x48 \
+         --json | grep -q 'triangle quality Q' && [ -s '$tmp/q1.png' ] && [ -s '$tmp/q2.png' ]"
     check "render --color geodesic-distance --isolines colours the output of geodesic" bash -c \
         "'$cli' render '$tmp/geo.ply' --color geodesic-distance --isolines 12 --out '$tmp/gi.png' \
          --size 96x64 --json > '$tmp/gi.json' && grep -q '\"label\": \"geodesic distance\"' '$tmp/gi.json' && \

@@ -1,4 +1,5 @@
 // Colour maps, percentile ranges and vertex colourings.
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -7,6 +8,7 @@
 #include "core/algorithms/coloring.h"
 #include "core/algorithms/curvature.h"
 #include "core/algorithms/generators.h"
+#include "core/algorithms/mesh_quality.h"
 #include "core/errors.h"
 #include "core/geometry.h"
 #include "core/mesh_builder.h"
@@ -403,4 +405,47 @@ TEST_CASE("smoothing distance is the displacement along the normal", "[coloring]
     CHECK(parse_coloring("smoothing-distance") == VertexColoring::SmoothingDistance);
     std::vector<Point> wrong(3, Point::Zero());
     CHECK_THROWS_AS(smoothing_distance(after, wrong), InvalidArgument);
+}
+
+TEST_CASE("triangle quality colourings: the worst triangle at each vertex, on fixed ranges",
+          "[coloring][quality]") {
+    // A fan of four triangles around vertex 0: three equilateral-ish ones and one sliver.
+    std::vector<Point> p = {Point(0, 0, 0),
+                            Point(1, 0, 0),
+                            Point(0.5, 0.8660254037844386, 0),
+                            Point(-0.5, 0.8660254037844386, 0),
+                            Point(-1, 0, 0),
+                            Point(-0.5, -0.05, 0)};
+    PolygonSoup soup;
+    soup.positions = p;
+    for (const std::array<Index, 3> f :
+         {std::array<Index, 3>{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}}) {
+        soup.corners.insert(soup.corners.end(), f.begin(), f.end());
+        soup.face_offsets.push_back(soup.corners.size());
+    }
+    LoadReport report;
+    const HalfedgeMesh mesh = build_mesh(soup, report);
+    const VertexColors angle = color_vertices(mesh, VertexColoring::MinAngle, {});
+    const VertexColors q = color_vertices(mesh, VertexColoring::TriangleQuality, {});
+    CHECK(angle.range.min == 0.0);
+    CHECK(angle.range.max == 60.0);
+    CHECK(q.range.max == 1.0);
+    CHECK(angle.kind == ColorMapKind::Sequential);
+    // Vertex 1 has only the first, equilateral triangle: 60 degrees and Q = 1.
+    CHECK(angle.values[1] == Approx(60.0).epsilon(1e-9));
+    CHECK(q.values[1] == Approx(1.0).epsilon(1e-9));
+    // Vertex 0 sees the sliver too: its smallest angle, computed here from the corners.
+    const auto corner = [&](int a, int b, int c) {
+        const Vector3 u = p[b] - p[a], v = p[c] - p[a];
+        return std::acos(u.dot(v) / (u.norm() * v.norm())) * 180.0 / 3.14159265358979323846;
+    };
+    const double sliver = std::min({corner(0, 4, 5), corner(4, 5, 0), corner(5, 0, 4)});
+    CHECK(angle.values[0] == Approx(sliver).epsilon(1e-9));
+    CHECK(angle.values[5] == Approx(sliver).epsilon(1e-9));
+    CHECK(q.values[0] < 0.5);
+    CHECK(q.values[0] == Approx(triangle_quality(mesh, Face(3))).epsilon(1e-12));
+    // Worse triangles are darker on the sequential map.
+    CHECK(angle.colors[0].norm() < angle.colors[1].norm());
+    CHECK(parse_coloring("min-angle") == VertexColoring::MinAngle);
+    CHECK(parse_coloring("quality") == VertexColoring::TriangleQuality);
 }
