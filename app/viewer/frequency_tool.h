@@ -15,6 +15,15 @@ public:
     explicit FrequencyTool(ViewerContext& context);
     ~FrequencyTool() override;
     VertexColors field_colors(const HalfedgeMesh& mesh) const override;
+    void section(const SidebarContext& context, CommandQueue& commands) override;
+    PanelEntries panels() override;
+    void settings(SettingsVisitor& v) override;
+    /// A "spectrum" figure: its count, and its band on the sliders.
+    bool show_figure(const Operation& op) override;
+    FrequencyPanelState& panel() { return panel_; }
+
+private:
+    FrequencyPanelState panel_;
 };
 
 }  // namespace trilab::viewer
