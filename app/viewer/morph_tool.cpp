@@ -13,8 +13,8 @@ MorphTool::~MorphTool() {
 }
 
 void MorphTool::section(const SidebarContext& context, CommandQueue& commands) {
-    if (context.history) morph_section(morph_open_, context_.session.morph(), *context.history,
-                                       commands);
+    if (context.history && context.morph)
+        morph_section(morph_open_, *context.morph, *context.history, commands);
     record_section(record_, context.can_record, commands);
 }
 

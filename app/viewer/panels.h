@@ -315,6 +315,7 @@ struct InspectorView {
 /// What the sidebar's sections show besides the panels' own state.
 struct SidebarContext {
     const History* history = nullptr;
+    const MorphState* morph = nullptr;  ///< the session's (the Morph section; nullptr: none)
     bool busy = false;        ///< a job runs: the Apply buttons wait
     bool closed = false;      ///< the mesh has no boundary (volume preservation applies)
     bool can_record = false;  ///< the current entry has a morph to record

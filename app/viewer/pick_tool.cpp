@@ -237,8 +237,10 @@ bool PickTool::mouse(const ViewMouse& mouse) {
     return false;  // the view still turns on a drag
 }
 
-void PickTool::section(const SidebarContext& /*context*/, CommandQueue& commands) {
-    inspector_section(inspector_open_, inspector_, commands);
+void PickTool::section(const SidebarContext& context, CommandQueue& commands) {
+    // The rows describe() handed the sidebar (the tests hand their own).
+    inspector_section(inspector_open_, context.inspector ? *context.inspector : inspector_,
+                      commands);
 }
 
 PanelEntries PickTool::panels() {

@@ -205,6 +205,7 @@ void Viewer::draw_ui() {
             panels.info_open ? scene_info() : std::vector<std::string>{};
         SidebarContext sidebar;
         sidebar.history = &session.history();
+        sidebar.morph = &session.morph();
         sidebar.busy = session.jobs().busy();
         sidebar.closed = session.document().closed;
         sidebar.can_record =
