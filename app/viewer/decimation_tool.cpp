@@ -57,8 +57,7 @@ void DecimationTool::update() {
 }
 
 void DecimationTool::describe(SidebarContext& context) const {
-    context.collapsing_edges =
-        panel_.show_collapsing_edges && lines_ ? lines_->n_segments() : 0;
+    context.collapsing_edges = panel_.show_collapsing_edges && lines_ ? lines_->n_segments() : 0;
 }
 
 void DecimationTool::draw_overlay() {

@@ -80,8 +80,7 @@ void DenoiseTool::update_bands() {
     const HalfedgeMesh& mesh = session.mesh();
     char key[160];
     std::snprintf(key, sizeof key, "%p %p %p %llu", static_cast<const void*>(preview),
-                  static_cast<const void*>(f.decomposition.get()),
-                  static_cast<const void*>(&mesh),
+                  static_cast<const void*>(f.decomposition.get()), static_cast<const void*>(&mesh),
                   static_cast<unsigned long long>(mesh.geometry_revision()));
     if (bands_key_ == key) return;
     bands_key_ = key;
@@ -126,13 +125,12 @@ void band_plot(const BandEnergies& e) {
             if (!(v > 0)) continue;
             const float t = float((std::log10(v) - lo) / (hi - lo));
             const float bx0 = x0 + slot * (0.15f + 0.35f * float(side));
-            const ImU32 color = side == 0 ? IM_COL32(150, 150, 150, 255)
-                                          : IM_COL32(255, 170, 60, 255);
+            const ImU32 color =
+                side == 0 ? IM_COL32(150, 150, 150, 255) : IM_COL32(255, 170, 60, 255);
             draw->AddRectFilled(ImVec2(bx0, p0.y + height * (1.0f - t)),
                                 ImVec2(bx0 + 0.33f * slot, p0.y + height), color);
         }
-        note_widget_rect("denoise: band " + std::to_string(b), x0, p0.y, x0 + slot,
-                         p0.y + height);
+        note_widget_rect("denoise: band " + std::to_string(b), x0, p0.y, x0 + slot, p0.y + height);
     }
 }
 

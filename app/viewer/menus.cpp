@@ -227,9 +227,8 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
     if (shortcut_item("Screenshot...", KeyAction::Screenshot)) panels.screenshot.open = true;
 }
 
-void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
-              const ToolList& tools, const MenuContext& context, const RenderContext& render,
-              CommandQueue& commands) {
+void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels, const ToolList& tools,
+              const MenuContext& context, const RenderContext& render, CommandQueue& commands) {
     PanelEntries entries;
     for (Tool* tool : tools)
         for (PanelEntry& entry : tool->panels()) entries.push_back(std::move(entry));

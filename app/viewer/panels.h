@@ -177,9 +177,9 @@ struct PanelEntry {
     std::string title;  ///< the menu item ("Fairing", "Add noise...")
     bool* open = nullptr;
     PanelMenu menu = PanelMenu::None;
-    int shortcut = -1;     ///< the KeyAction (key_bindings.h) that toggles it (-1: none)
-    bool in_all = true;    ///< --panels all opens it
-    bool in_tools = false; ///< --panels tools opens it (the Tools menu's sections)
+    int shortcut = -1;      ///< the KeyAction (key_bindings.h) that toggles it (-1: none)
+    bool in_all = true;     ///< --panels all opens it
+    bool in_tools = false;  ///< --panels tools opens it (the Tools menu's sections)
     /// A menu action instead of a panel (an operation without parameters): the menu item
     /// applies it.
     const Operation* action = nullptr;
@@ -247,9 +247,8 @@ void apply_panel_style(ImGuiStyle& style);
 
 /// File, Edit, View, Tools, Algorithms, Rendering, Window and Help menus; the tools' panels
 /// are listed where their entries say (Tool::panels()).
-void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
-              const ToolList& tools, const MenuContext& context, const RenderContext& render,
-              CommandQueue& commands);
+void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels, const ToolList& tools,
+              const MenuContext& context, const RenderContext& render, CommandQueue& commands);
 /// The Rendering menu's items (also the right-click popup in the view); `entries` gives
 /// Vectors > Collapsing edges (the panel entry "collapsing-edges").
 void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState& panels,
@@ -259,8 +258,7 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
 void view_menu(ViewSettings& settings, CommandQueue& commands);
 /// The right-click popup with the rendering items.
 void context_menu(RenderStyle& style, ViewSettings& settings, PanelState& panels,
-                  const PanelEntries& entries, const RenderContext& render,
-                  CommandQueue& commands);
+                  const PanelEntries& entries, const RenderContext& render, CommandQueue& commands);
 // ---- fixed regions (layout.h) ---------------------------------------------------------------
 
 /// Begins the window of a fixed region at `r`: not movable, no saved settings. The user may
@@ -316,9 +314,9 @@ struct InspectorView {
 struct SidebarContext {
     const History* history = nullptr;
     const MorphState* morph = nullptr;  ///< the session's (the Morph section; nullptr: none)
-    bool busy = false;        ///< a job runs: the Apply buttons wait
-    bool closed = false;      ///< the mesh has no boundary (volume preservation applies)
-    bool can_record = false;  ///< the current entry has a morph to record
+    bool busy = false;                  ///< a job runs: the Apply buttons wait
+    bool closed = false;                ///< the mesh has no boundary (volume preservation applies)
+    bool can_record = false;            ///< the current entry has a morph to record
     /// The mesh has coincident boundary edges (unwelded seams): Sqrt3 would leave creases
     /// along them, and the Subdivision section offers the weld.
     bool open_seams = false;
@@ -344,8 +342,7 @@ void selection_section(SelectionPanelState& state, const SidebarContext& context
                        CommandQueue& commands);
 
 /// Every tool's sections in the tools' order (the sidebar), then the sidebar's closing note.
-void sidebar_sections(const ToolList& tools, const SidebarContext& context,
-                      CommandQueue& commands);
+void sidebar_sections(const ToolList& tools, const SidebarContext& context, CommandQueue& commands);
 
 /// The sections the tools draw (each its header and, when open, its body in an ID scope of
 /// its own; every section queues commands). The tools own the state they are drawn over.

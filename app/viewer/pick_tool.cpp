@@ -131,8 +131,7 @@ void PickTool::update() {
         " " + std::to_string(context_.session.shown().version) + " " +
         std::to_string(int(context_.view.settings.coloring)) + " " +
         std::to_string(context_.view.colors.colors.size()) + " " + std::to_string(frequency.valid) +
-        " " + std::to_string(band_lo()) + " " +
-        std::to_string(band_hi());
+        " " + std::to_string(band_lo()) + " " + std::to_string(band_hi());
     if (key == inspector_key_) return;
     inspector_key_ = key;
     InspectorView& view = inspector_;
@@ -166,10 +165,8 @@ void PickTool::update() {
             if (frequency.valid && d && v < d->map.row_of.size() &&
                 d->map.row_of[v] != kInvalidIndex && mesh.vertices_size() == d->map.row_of.size()) {
                 const Eigen::Index row = Eigen::Index(d->map.row_of[v]);
-                const std::size_t lo =
-                    std::min(std::size_t(std::max(0, band_lo())), d->size() - 1);
-                const std::size_t hi =
-                    std::min(std::size_t(std::max(0, band_hi())), d->size() - 1);
+                const std::size_t lo = std::min(std::size_t(std::max(0, band_lo())), d->size() - 1);
+                const std::size_t hi = std::min(std::size_t(std::max(0, band_hi())), d->size() - 1);
                 constexpr std::size_t kMaxShown = 8;
                 for (std::size_t k = lo; k <= hi && k < lo + kMaxShown; ++k) {
                     const double e = d->eigenvectors(row, Eigen::Index(k));

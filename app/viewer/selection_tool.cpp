@@ -111,9 +111,8 @@ void SelectionTool::continue_stroke(const glm::vec2& pos) {
             (eigen(pos) - stroke_.lasso_points.back()).norm() >= 2.0f)
             stroke_.lasso_points.push_back(eigen(pos));
     } else {
-        const std::size_t changed =
-            paint_brush(stroke_.projected, eigen(stroke_.last), eigen(pos),
-                        panel_.brush_radius, stroke_.add, stroke_.weights);
+        const std::size_t changed = paint_brush(stroke_.projected, eigen(stroke_.last), eigen(pos),
+                                                panel_.brush_radius, stroke_.add, stroke_.weights);
         ++stroke_.dabs;
         stroke_.changed += changed;
         if (changed > 0) stroke_.version = ++stroke_counter_;

@@ -167,8 +167,8 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
     ViewState& view = context_.view;
     scene_ = std::make_unique<SceneView>(context_);
     SceneView& scene = *scene_;
-    tools_ = make_tools(context_, &scene.exact(),
-                        [&scene] { return scene.geodesic_colored_version(); });
+    tools_ =
+        make_tools(context_, &scene.exact(), [&scene] { return scene.geodesic_colored_version(); });
     scene_->set_field_colors([this](const HalfedgeMesh& mesh) {
         for (const auto& tool : tools_.all)
             if (VertexColors colors = tool->field_colors(mesh); !colors.colors.empty())

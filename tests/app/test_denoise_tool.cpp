@@ -10,8 +10,8 @@
 
 #include "app/ops/operation_entries.h"
 #include "app/viewer/denoise_tool.h"
-#include "core/algorithms/spectral.h"
 #include "core/algorithms/generators.h"
+#include "core/algorithms/spectral.h"
 #include "core/errors.h"
 #include "tests/app/panel_ui.h"
 #include "tests/app/test_tools.h"
@@ -37,9 +37,10 @@ double s_norm2(const SpectralDecomposition& d, const Eigen::MatrixXd& y) {
 
 /// The energy of X in the computed frequencies [lo, hi], as the S-norm of its projection
 /// P = E_b E_bᵀ S X (not as a sum of coefficients), and of the rest X - E Eᵀ S X.
-double projected_energy(const SpectralDecomposition& d, const Eigen::MatrixXd& x,
-                        std::size_t lo, std::size_t hi) {
-    const Eigen::MatrixXd e = d.eigenvectors.middleCols(Eigen::Index(lo), Eigen::Index(hi - lo + 1));
+double projected_energy(const SpectralDecomposition& d, const Eigen::MatrixXd& x, std::size_t lo,
+                        std::size_t hi) {
+    const Eigen::MatrixXd e =
+        d.eigenvectors.middleCols(Eigen::Index(lo), Eigen::Index(hi - lo + 1));
     return s_norm2(d, e * (e.transpose() * d.S.asDiagonal() * x));
 }
 double rest_energy(const SpectralDecomposition& d, const Eigen::MatrixXd& x) {
@@ -58,7 +59,8 @@ void check_energies(const SpectralDecomposition& d, const std::vector<Point>& be
         double sum = 0;
         for (std::size_t b = 0; b < computed; ++b) {
             INFO("band " << b << ": " << e.lo[b] << ".." << e.hi[b]);
-            CHECK(got[b] == Approx(projected_energy(d, x, e.lo[b], e.hi[b])).epsilon(1e-8).margin(1e-14));
+            CHECK(got[b] ==
+                  Approx(projected_energy(d, x, e.lo[b], e.hi[b])).epsilon(1e-8).margin(1e-14));
             sum += got[b];
         }
         if (e.rest) {
@@ -71,8 +73,7 @@ void check_energies(const SpectralDecomposition& d, const std::vector<Point>& be
 
 }  // namespace
 
-TEST_CASE("band energies: the S-norm of each band's projection, and the rest",
-          "[denoise_tool]") {
+TEST_CASE("band energies: the S-norm of each band's projection, and the rest", "[denoise_tool]") {
     const HalfedgeMesh mesh = make_default_model();
     SpectralOptions options;
     options.k = 20;

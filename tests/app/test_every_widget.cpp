@@ -742,7 +742,9 @@ TEST_CASE("File > Open session and Save session ask for a session file, which is
     context.document_path = "/tmp/model.obj";
     RenderContext render;
     CommandQueue commands;
-    const auto draw = [&] { menu_bar(style, settings, panels, panels.list(), context, render, commands); };
+    const auto draw = [&] {
+        menu_bar(style, settings, panels, panels.list(), context, render, commands);
+    };
     const std::pair<const char*, FileBrowserState::Purpose> items[] = {
         {"File/Open session...", FileBrowserState::Purpose::OpenSession},
         {"File/Save session...", FileBrowserState::Purpose::SaveSession}};
@@ -800,7 +802,9 @@ TEST_CASE("Help > Reference figures: each item sets its panel and queues the fig
         Ui ui;
         TestPanels panels;
         CommandQueue commands;
-        const auto draw = [&] { menu_bar(style, settings, panels, panels.list(), context, render, commands); };
+        const auto draw = [&] {
+            menu_bar(style, settings, panels, panels.list(), context, render, commands);
+        };
         ui.frame(draw);
         const auto help = std::find_if(ui.notes().begin(), ui.notes().end(), [](const auto& n) {
             return n.kind == WidgetNote::Kind::Menu && n.label == "Help";
@@ -838,7 +842,9 @@ TEST_CASE("Help > Reference figures: each item sets its panel and queues the fig
     TestPanels panels;
     CommandQueue commands;
     context.busy = true;
-    const auto draw = [&] { menu_bar(style, settings, panels, panels.list(), context, render, commands); };
+    const auto draw = [&] {
+        menu_bar(style, settings, panels, panels.list(), context, render, commands);
+    };
     ui.frame(draw);
     const auto help = std::find_if(ui.notes().begin(), ui.notes().end(), [](const auto& n) {
         return n.kind == WidgetNote::Kind::Menu && n.label == "Help";

@@ -40,7 +40,8 @@ TEST_CASE("the Subdivision panel's Subdivide queues the typed operation it shows
     panels.subdivision.open = true;
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout, [&] { subdivision_section(panels.subdivision, SidebarContext{}, commands); });
+        in_sidebar(panels.layout,
+                   [&] { subdivision_section(panels.subdivision, SidebarContext{}, commands); });
     };
     ui.frame(draw);
     ui.frame(draw);  // auto-resized windows take their size on the second frame
@@ -63,7 +64,8 @@ TEST_CASE("dragging a slider previews live with the new typed value", "[panels]"
     panels.decimation.open = true;
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout, [&] { decimation_section(panels.decimation, SidebarContext{}, commands); });
+        in_sidebar(panels.layout,
+                   [&] { decimation_section(panels.decimation, SidebarContext{}, commands); });
     };
     ui.frame(draw);
     ui.frame(draw);
@@ -89,7 +91,8 @@ TEST_CASE("slow panels preview once, when the drag is released", "[panels]") {
     panels.decimation.live = false;  // the viewer found the last preview over the budget
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout, [&] { decimation_section(panels.decimation, SidebarContext{}, commands); });
+        in_sidebar(panels.layout,
+                   [&] { decimation_section(panels.decimation, SidebarContext{}, commands); });
     };
     ui.frame(draw);
     ui.frame(draw);
@@ -115,7 +118,8 @@ TEST_CASE("the Fairing panel shows only the parameters that apply", "[panels]") 
     panels.fairing.open = true;
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout, [&] { fairing_section(panels.fairing, closed_mesh(), commands); });
+        in_sidebar(panels.layout,
+                   [&] { fairing_section(panels.fairing, closed_mesh(), commands); });
     };
     ui.frame(draw);
     ui.frame(draw);
@@ -168,7 +172,8 @@ TEST_CASE("the Fairing panel marks a step above the stable limit and offers impl
     panels.fairing.max_stable_step = 1.35;
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout, [&] { fairing_section(panels.fairing, closed_mesh(), commands); });
+        in_sidebar(panels.layout,
+                   [&] { fairing_section(panels.fairing, closed_mesh(), commands); });
     };
     ui.frame(draw);
     ui.frame(draw);
@@ -199,7 +204,8 @@ TEST_CASE("the Fairing panel's transfer curve marks instability, the pass band a
     panels.fairing.lens.lambda_max = 4.0;
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout, [&] { fairing_section(panels.fairing, closed_mesh(), commands); });
+        in_sidebar(panels.layout,
+                   [&] { fairing_section(panels.fairing, closed_mesh(), commands); });
     };
     FairingOptions o = options_of<FairingOptions>(panels.fairing.op);
     o.op = FairingOperator::Umbrella;
@@ -265,7 +271,8 @@ TEST_CASE(
     panels.fairing.lens.lambda_max = 2.0 / 1.34;
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout, [&] { fairing_section(panels.fairing, closed_mesh(), commands); });
+        in_sidebar(panels.layout,
+                   [&] { fairing_section(panels.fairing, closed_mesh(), commands); });
     };
     // Figure 1.12(b)'s settings: explicit umbrella at step 20, unstable above 0.1.
     panels.fairing.op = parse_operation("smooth --operator umbrella --step 20");
@@ -766,7 +773,8 @@ TEST_CASE("the morph controls offer no animation for a state that moves nothing"
     panels.morph_open = true;
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout, [&] { morph_section(panels.morph_open, morph, history, commands); });
+        in_sidebar(panels.layout,
+                   [&] { morph_section(panels.morph_open, morph, history, commands); });
     };
     ui.frame(draw);
     CHECK(ui.has("Animate"));
@@ -820,8 +828,9 @@ struct KeyFixture {
     MorphState morph;
     CommandQueue commands;
     Log log{false};
-    KeyActionTargets targets{panels, style,   settings, morph, commands,         log,
-                             "/data/model.obj", false, true, false, true, panels.entries()};
+    KeyActionTargets targets{
+        panels, style, settings, morph, commands,        log, "/data/model.obj",
+        false,  true,  false,    true,  panels.entries()};
 };
 
 /// A click that opens the menu (or submenu) whose closed header is "menu:LABEL", then a frame
@@ -1046,7 +1055,9 @@ TEST_CASE("the menus show the key bindings' shortcut texts, F1 lists every bindi
         MenuContext context;
         RenderContext render;
         CommandQueue commands;
-        const auto draw = [&] { menu_bar(style, settings, panels, panels.list(), context, render, commands); };
+        const auto draw = [&] {
+            menu_bar(style, settings, panels, panels.list(), context, render, commands);
+        };
         ui.frame(draw);
         open_menu(ui, draw, menu, shortcuts);
         if (menu == "Rendering")

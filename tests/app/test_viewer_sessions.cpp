@@ -19,8 +19,8 @@
 #include "app/record/recorder.h"
 #include "app/session/session.h"
 #include "app/viewer/viewer_settings.h"
-#include "tests/app/test_tools.h"
 #include "core/io/image_io.h"
+#include "tests/app/test_tools.h"
 
 using namespace trilab;
 using namespace trilab::viewer;
@@ -142,7 +142,8 @@ TEST_CASE("the viewer settings text reads back bit for bit", "[session]") {
     morph.duration = 2.0 / 3.0;
     morph.easing = Easing::EaseInOutCubic;
 
-    const std::string text = viewer_settings_text({camera, style, settings, panels, morph, panels.list()});
+    const std::string text =
+        viewer_settings_text({camera, style, settings, panels, morph, panels.list()});
     Camera camera2;
     RenderStyle style2;
     ViewSettings settings2;
@@ -169,7 +170,8 @@ TEST_CASE("the viewer settings text reads back bit for bit", "[session]") {
     CHECK(panels2.frequency.lo == 3);
     CHECK(morph2.duration == morph.duration);
     CHECK(morph2.easing == Easing::EaseInOutCubic);
-    CHECK(viewer_settings_text({camera2, style2, settings2, panels2, morph2, panels2.list()}) == text);
+    CHECK(viewer_settings_text({camera2, style2, settings2, panels2, morph2, panels2.list()}) ==
+          text);
 }
 
 TEST_CASE("bad viewer settings lines are notes naming the line, never a throw", "[session]") {
