@@ -70,6 +70,9 @@ void DenoiseTool::update() {
 }
 
 void DenoiseTool::update_bands() {
+    // O(k · rows) on the render thread: only while the section shows them (opening it
+    // computes them for the preview shown then).
+    if (!panel_.open) return;
     const Session& session = context_.session;
     const std::optional<Operation>& requested = session.preview_requested();
     const OperationResult* preview =

@@ -4,7 +4,8 @@
 // decomposition of the current mesh, what the preview shown does to each frequency band: the
 // energy of the document's positions and of the preview's in each band, drawn side by side
 // (a denoiser should take out the high bands' noise and keep the high bands that carry the
-// edges, where smoothing takes them all). Computed when the preview result changes, cached.
+// edges, where smoothing takes them all). Computed while the section is open, when the preview
+// result changes (O(k · rows) on the render thread), and cached.
 // The worked example of docs/recipes.md "A new operation with a panel of its own".
 #include <cstddef>
 #include <string>

@@ -100,6 +100,7 @@ TEST_CASE("the Denoise tool compares the preview's bands with the document's, on
           "[denoise_tool]") {
     TestPanels panels;
     DenoiseTool& tool = find_tool<DenoiseTool>(panels.all_tools);
+    panels.denoise.open = true;  // computed while the section shows them
     Session& s = panels.context.session;
     const Operation denoise = make_operation("denoise");
     // No decomposition: no bands, even with a preview.
@@ -121,7 +122,13 @@ TEST_CASE("the Denoise tool compares the preview's bands with the document's, on
     s.finish_jobs();
     s.update();
     REQUIRE(s.preview_result());
+    panels.denoise.open = false;  // a closed section computes nothing
     tool.update();
+    CHECK(tool.bands().size() == 0);
+    CHECK(tool.computations() == 0);
+    panels.denoise.open = true;
+    tool.update();
+    CHECK(tool.computations() == 1);
     const BandEnergies& e = tool.bands();
     REQUIRE(e.size() > 0);
     const HalfedgeMesh& after = s.preview_result()->steps.back().mesh;
