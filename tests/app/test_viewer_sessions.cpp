@@ -219,3 +219,89 @@ TEST_CASE("the tools keep the saved settings' keys the panels had", "[viewer_set
     CHECK(panels2.denoise.op == panels.denoise.op);
     CHECK(panels2.tool("noise")->op == panels.tool("noise")->op);
 }
+
+TEST_CASE("bad viewer settings lines are notes naming the line, never a throw", "[session]") {
+    Camera camera;
+    RenderStyle style;
+    ViewSettings settings;
+    TestPanels panels;
+    MorphState morph;
+    const std::vector<std::string> notes = apply_viewer_settings(
+        "style.wire_width=nan\nstyle.mode=sideways\nnonsense\nno.such=1\n"
+        "panel.fairing=subdivide --iterations 1\ncamera.rotation=1 0 0\nstyle.fog=1\n",
+        {camera, style, settings, panels, morph, panels.list()});
+    REQUIRE(notes.size() == 7);       // the short camera line: its own note and the camera's
+    CHECK(style.fog);                 // the good line applies
+    CHECK(style.wire_width == 1.0f);  // the bad ones leave their setting
+    CHECK(panels.fairing.op.name() == "smooth");
+    std::string all;
+    for (const std::string& n : notes) all += n + "\n";
+    CHECK(all.find("line 1: style.wire_width") != std::string::npos);
+    CHECK(all.find("line 3: expected key=value") != std::string::npos);
+    CHECK(all.find("unknown setting 'no.such'") != std::string::npos);
+    CHECK(all.find("camera") != std::string::npos);
+}
+
+TEST_CASE("a session saved and opened through the commands restores every state", "[session]") {
+    TempDir dir("trilab-viewer-session");
+    const std::string path = (dir.path / "s.trilab").string();
+    Session a;
+    a.execute(RunOperation{parse_operation("noise --amount 2 --seed 9")});
+    a.finish_jobs();
+    a.execute(RunOperation{parse_operation("smooth --iterations 2")});
+    a.finish_jobs();
+    a.execute(Undo{});
+    REQUIRE(a.history().size() == 3);
+    SessionExtras extras;
+    extras.viewer_settings = "style.fog=1\n";
+    a.save_session(path, extras);
+    a.finish_jobs();
+    REQUIRE(fs::exists(path));
+
+    Session b;
+    b.execute(OpenSession{path});
+    b.finish_jobs();
+    const SessionEvents events = b.take_events();
+    REQUIRE(events.session_extras);
+    CHECK(events.session_extras->viewer_settings == "style.fog=1\n");
+    REQUIRE(b.history().size() == 3);
+    CHECK(b.history().current() == 1);
+    CHECK(b.document().path == path);
+    for (std::size_t i = 0; i < 3; ++i) {
+        CHECK(b.history().info(i).label == a.history().info(i).label);
+        const HalfedgeMesh ma = a.history().mesh(i, a.history().info(i).steps.size() - 1);
+        const HalfedgeMesh mb = b.history().mesh(i, b.history().info(i).steps.size() - 1);
+        CHECK(ma.positions() == mb.positions());
+        CHECK(ma.faces_size() == mb.faces_size());
+    }
+    // A file that is no session: an error in the window, the document unchanged.
+    const std::string bad = (dir.path / "bad.trilab").string();
+    std::ofstream(bad) << "not a session";
+    b.execute(OpenSession{bad});
+    b.finish_jobs();
+    CHECK(b.notice().level == Notice::Level::Error);
+    CHECK(b.notice().text.find("bad.trilab") != std::string::npos);
+    CHECK(b.history().size() == 3);
+}
+
+TEST_CASE("the session's journal records every history change and a close removes it",
+          "[session]") {
+    TempDir dir("trilab-viewer-journal");
+    Session s;
+    JournalOptions options;
+    options.directory = dir.path.string();
+    options.sync = false;
+    s.start_journal(options);
+    s.execute(RunOperation{parse_operation("noise --amount 2 --seed 1")});
+    s.finish_jobs();
+    s.execute(Undo{});
+    s.journal()->flush();
+    const std::string path = s.journal()->path();
+    REQUIRE_FALSE(path.empty());
+    const SessionContents read = read_journal(path);
+    CHECK(read.history.size() == 2);
+    CHECK(read.history.current() == 0);
+    s.close_journal();
+    CHECK_FALSE(fs::exists(path));
+    CHECK(s.journal() == nullptr);
+}
