@@ -10,10 +10,33 @@
 
 namespace trilab::viewer {
 
-DecimationTool::DecimationTool(ViewerContext& context)
-    : OperationTool(context, {&context.panels.decimation}),
-      panel_(context.panels.decimation),
-      lines_(std::make_unique<LineRenderer>()) {}
+DecimationTool::DecimationTool(ViewerContext& context) : OperationTool(context, {}) {
+    set_panels({&panel_});
+}
+
+void DecimationTool::section(const SidebarContext& context, CommandQueue& commands) {
+    decimation_section(panel_, context, commands);
+}
+
+PanelEntries DecimationTool::panels() {
+    PanelEntry decimation;
+    decimation.name = "decimation";
+    decimation.title = "Decimation";
+    decimation.open = &panel_.open;
+    decimation.menu = PanelMenu::Algorithms;
+    PanelEntry edges;  // Rendering > Vectors > Collapsing edges
+    edges.name = "collapsing-edges";
+    edges.title = "Collapsing edges";
+    edges.open = &panel_.show_collapsing_edges;
+    edges.in_all = false;
+    return {decimation, edges};
+}
+
+void DecimationTool::settings(SettingsVisitor& v) {
+    operation_setting(v, "panel.decimation", panel_);
+    v.number("decimation.lod_percent", panel_.lod_percent);
+    v.flag("decimation.show_collapsing_edges", panel_.show_collapsing_edges);
+}
 
 void DecimationTool::update() {
     OperationTool::update();
@@ -34,11 +57,11 @@ void DecimationTool::update() {
 }
 
 void DecimationTool::describe(SidebarContext& context) const {
-    context.collapsing_edges = panel_.show_collapsing_edges ? lines_->n_segments() : 0;
+    context.collapsing_edges = panel_.show_collapsing_edges && lines_ ? lines_->n_segments() : 0;
 }
 
 void DecimationTool::draw_overlay() {
-    if (!panel_.show_collapsing_edges) return;
+    if (!panel_.show_collapsing_edges || !lines_) return;
     const Camera& camera = context_.view.camera;
     lines_->draw(camera.view(), camera.projection(), LineStyle{}, context_.ui_scale);
 }
@@ -51,8 +74,9 @@ void DecimationTool::update_collapsing_edges() {
     // computed for.
     const std::string key = std::to_string(mesh.topology_revision()) + " " +
                             std::to_string(mesh.geometry_revision()) + " " + d.op.text();
-    if (key == key_) return;
+    if (key == key_ && lines_) return;
     key_ = key;
+    if (!lines_) lines_ = std::make_unique<LineRenderer>();  // the GL context is current here
     std::vector<glm::vec3> points;
     // Computed on the render thread: a dry run of the next iteration, a fraction of a second
     // up to a few hundred thousand vertices; bigger meshes skip the overlay.

@@ -13,15 +13,20 @@ namespace trilab::viewer {
 
 class DecimationTool : public OperationTool {
 public:
-    /// Needs the GL context current (the overlay's lines).
+    /// The overlay's lines are made when first drawn (with the GL context current).
     explicit DecimationTool(ViewerContext& context);
     void update() override;
     void describe(SidebarContext& context) const override;
     void draw_overlay() override;
+    void section(const SidebarContext& context, CommandQueue& commands) override;
+    PanelEntries panels() override;
+    void settings(SettingsVisitor& v) override;
+    bool show_figure(const Operation& op) override { return take_figure(panel_, op); }
+    DecimationPanelState& panel() { return panel_; }
 
 private:
     void update_collapsing_edges();
-    DecimationPanelState& panel_;
+    DecimationPanelState panel_;
     std::unique_ptr<LineRenderer> lines_;
     std::string key_;  ///< what the drawn edges were computed for
 };

@@ -16,8 +16,22 @@
 
 namespace trilab::viewer {
 
-FairingTool::FairingTool(ViewerContext& context)
-    : OperationTool(context, {&context.panels.fairing}), panel_(context.panels.fairing) {}
+FairingTool::FairingTool(ViewerContext& context) : OperationTool(context, {}) {
+    set_panels({&panel_});
+}
+
+void FairingTool::section(const SidebarContext& context, CommandQueue& commands) {
+    fairing_section(panel_, context, commands);
+}
+
+PanelEntries FairingTool::panels() {
+    PanelEntry entry;
+    entry.name = "fairing";
+    entry.title = "Fairing";
+    entry.open = &panel_.open;
+    entry.menu = PanelMenu::Algorithms;
+    return {entry};
+}
 
 void FairingTool::update() {
     OperationTool::update();

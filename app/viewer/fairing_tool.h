@@ -14,11 +14,16 @@ class FairingTool : public OperationTool {
 public:
     explicit FairingTool(ViewerContext& context);
     void update() override;
+    void section(const SidebarContext& context, CommandQueue& commands) override;
+    PanelEntries panels() override;
+    void settings(SettingsVisitor& v) override { operation_setting(v, "panel.fairing", panel_); }
+    bool show_figure(const Operation& op) override { return take_figure(panel_, op); }
+    FairingPanelState& panel() { return panel_; }
 
 private:
     void update_stable_step();
     void update_lens();
-    FairingPanelState& panel_;
+    FairingPanelState panel_;
     std::string lens_key_;  ///< what the transfer curve was computed for
 };
 

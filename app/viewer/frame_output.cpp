@@ -72,7 +72,8 @@ std::string FrameOutput::write_window(const std::string& path, int w, int h) {
 }
 
 void FrameOutput::start_recording() {
-    RecordState& r = context_.panels.record;
+    if (!context_.record) return;
+    RecordState& r = *context_.record;
     const History& h = context_.session.history();
     if (h.current() == 0 || r.running) return;
     std::error_code ec;
@@ -95,7 +96,8 @@ void FrameOutput::start_recording() {
 }
 
 void FrameOutput::record_next_frame() {
-    RecordState& r = context_.panels.record;
+    if (!context_.record) return;
+    RecordState& r = *context_.record;
     if (!r.running) return;
     context_.keep_drawing();
     try {
@@ -127,7 +129,8 @@ void FrameOutput::record_next_frame() {
 }
 
 void FrameOutput::finish_recording(bool cancelled) {
-    RecordState& r = context_.panels.record;
+    if (!context_.record) return;
+    RecordState& r = *context_.record;
     r.running = false;
     if (cancelled) {
         context_.session.log().warning("recording stopped after " + std::to_string(r.next) +

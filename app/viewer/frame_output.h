@@ -23,7 +23,7 @@ public:
     void start_recording();
     void record_next_frame();
     void finish_recording(bool cancelled);
-    bool recording() const { return context_.panels.record.running; }
+    bool recording() const { return context_.record && context_.record->running; }
 
 private:
     ViewerContext& context_;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <vector>
 
+#include "app/ops/operation_entries.h"
+#include "app/ops/spectrum_op.h"
 #include "core/algorithms/coloring.h"
 #include "core/algorithms/transfer_function.h"
 
@@ -17,12 +19,47 @@ void FrequencyTool::update() {
 
 void FrequencyTool::on_decomposed(std::size_t hi) {
     // A new decomposition: the band's sliders cover it, the first frequency is visualised.
-    FrequencyPanelState& s = context_.panels.frequency;
+    FrequencyPanelState& s = panel_;
     s.lo = 0;
     s.hi = int(hi);
     s.visualize = std::min(1, s.hi);
     if (coloring_needs_field(context_.view.settings.coloring))
         context_.commands.push_back(UpdateColoring{});
+}
+
+void FrequencyTool::section(const SidebarContext& context, CommandQueue& commands) {
+    const FrequencyDocument no_decomposition;
+    frequency_window(panel_, context.frequency ? *context.frequency : no_decomposition,
+                     context.busy, commands);
+}
+
+PanelEntries FrequencyTool::panels() {
+    PanelEntry entry;
+    entry.name = "frequency";
+    entry.title = "Frequency decomposition";
+    entry.open = &panel_.open;
+    entry.menu = PanelMenu::Algorithms;
+    return {entry};
+}
+
+void FrequencyTool::settings(SettingsVisitor& v) {
+    v.operation("panel.frequency", panel_.op);
+    v.number("frequency.lo", panel_.lo);
+    v.number("frequency.hi", panel_.hi);
+    v.number("frequency.visualize", panel_.visualize);
+}
+
+bool FrequencyTool::show_figure(const Operation& op) {
+    if (!is_operation<SpectrumOptions>(op)) return false;
+    SpectrumOptions o = options_of<SpectrumOptions>(op);
+    if (o.band) {
+        panel_.lo = int(o.band->first);
+        panel_.hi = int(o.band->second);
+    }
+    o.band.reset();  // the panel's band is its sliders
+    set_options(panel_.op, o);
+    panel_.open = true;
+    return true;
 }
 
 VertexColors FrequencyTool::field_colors(const HalfedgeMesh& mesh) const {
@@ -42,7 +79,7 @@ VertexColors FrequencyTool::field_colors(const HalfedgeMesh& mesh) const {
     const FrequencyDocument& doc = context_.session.document().frequency;
     const auto& d = doc.decomposition;
     if (!d || mesh.vertices_size() != d->base_positions.size() || d->empty()) return {};
-    const FrequencyPanelState& s = context_.panels.frequency;
+    const FrequencyPanelState& s = panel_;
     const std::size_t last = d->size() - 1;
     const VertexColoring coloring = context_.view.settings.coloring;
     if (coloring == VertexColoring::RemovedBelow || coloring == VertexColoring::RemovedAbove) {

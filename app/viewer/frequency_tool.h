@@ -15,9 +15,16 @@ public:
     explicit FrequencyTool(ViewerContext& context) : Tool(context) {}
     void update() override;
     VertexColors field_colors(const HalfedgeMesh& mesh) const override;
+    void section(const SidebarContext& context, CommandQueue& commands) override;
+    PanelEntries panels() override;
+    void settings(SettingsVisitor& v) override;
+    /// A "spectrum" figure: its count, and its band on the sliders.
+    bool show_figure(const Operation& op) override;
+    FrequencyPanelState& panel() { return panel_; }
 
 private:
     void on_decomposed(std::size_t hi);
+    FrequencyPanelState panel_;
     /// The decomposition the sliders were set for.
     const SpectralDecomposition* decomposition_ = nullptr;
 };

@@ -175,10 +175,9 @@ void run_key_action(KeyAction action, KeyActionTargets& t) {
             panels.history_open = !panels.history_open;
             break;
         case KeyAction::ToggleMorph:
-            panels.morph_open = !panels.morph_open;
-            break;
         case KeyAction::ToggleRecord:
-            panels.record.open = !panels.record.open;
+            for (const PanelEntry& entry : t.entries)
+                if (entry.open && entry.shortcut == int(action)) *entry.open = !*entry.open;
             break;
         case KeyAction::PlayMorph:
             if (t.has_entry && t.morph.moves) t.commands.push_back(PlayMorph{!t.morph.playing});

@@ -86,6 +86,9 @@ struct KeyActionTargets {
     bool has_entry = false;          ///< the history is past its first state (a morph to play)
     bool has_texcoords = false;      ///< the shown mesh has texture coordinates
     bool preview_requested = false;  ///< an operation preview is up (Esc cancels it)
+    /// The tools' panels: a key that toggles a panel toggles the entry with its shortcut
+    /// (M the Morph section, R the Record section).
+    PanelEntries entries = {};
 };
 
 /// Carries out `action` on the targets (a command queued, a panel or style setting changed).

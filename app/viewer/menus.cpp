@@ -18,6 +18,7 @@
 #include "app/viewer/panel_helpers.h"
 #include "app/viewer/panels.h"
 #include "app/viewer/plots.h"
+#include "app/viewer/tool.h"
 #include "app/viewer/widgets.h"
 #include "core/algorithms/fairing.h"
 #include "core/number_text.h"
@@ -107,6 +108,23 @@ void coloring_menu(ViewSettings& settings, CommandQueue& commands) {
     }
 }
 
+/// The items of the tools' panels listed in `menu`, in the tools' order: a toggle of the
+/// panel (with its key's shortcut), or an action that applies its operation.
+void panel_menu_items(const PanelEntries& entries, PanelMenu menu, bool busy,
+                      CommandQueue& commands) {
+    for (const PanelEntry& entry : entries) {
+        if (entry.menu != menu) continue;
+        if (entry.action) {
+            if (menu_item(entry.title.c_str(), nullptr, false, !busy))
+                commands.push_back(ApplyOperation{*entry.action});
+        } else if (entry.shortcut >= 0) {
+            shortcut_item(entry.title.c_str(), KeyAction(entry.shortcut), entry.open);
+        } else {
+            menu_item(entry.title.c_str(), nullptr, entry.open);
+        }
+    }
+}
+
 /// Rendering > Texture: the texture mode, the image, and projections for a model without
 /// texture coordinates.
 void texture_menu(RenderStyle& style, ViewSettings& settings, PanelState& panels,
@@ -154,7 +172,8 @@ void texture_menu(RenderStyle& style, ViewSettings& settings, PanelState& panels
 }  // namespace
 
 void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState& panels,
-                          const RenderContext& render, CommandQueue& commands) {
+                          const PanelEntries& entries, const RenderContext& render,
+                          CommandQueue& commands) {
     const RenderMode modes[] = {RenderMode::Wireframe, RenderMode::HiddenLine,
                                 RenderMode::Flat,      RenderMode::Smooth,
                                 RenderMode::Points,    RenderMode::Textured};
@@ -180,9 +199,11 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
     if (begin_menu("Vectors")) {
         menu_item("Face normals", nullptr, &style.face_normals);
         menu_item("Vertex normals", nullptr, &style.vertex_normals);
-        menu_item("Collapsing edges", nullptr, &panels.decimation.show_collapsing_edges);
-        if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("The edges the Decimation panel's next iteration collapses");
+        if (const PanelEntry* edges = find_panel(entries, "collapsing-edges")) {
+            menu_item("Collapsing edges", nullptr, edges->open);
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("The edges the Decimation panel's next iteration collapses");
+        }
         ImGui::SetNextItemWidth(10.0f * ImGui::GetFontSize());
         ImGui::SliderFloat("length", &style.vector_length, 0.002f, 0.2f, "%.3f",
                            ImGuiSliderFlags_Logarithmic);
@@ -210,8 +231,11 @@ void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState
     if (shortcut_item("Screenshot...", KeyAction::Screenshot)) panels.screenshot.open = true;
 }
 
-void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
+void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels, const ToolList& tools,
               const MenuContext& context, const RenderContext& render, CommandQueue& commands) {
+    PanelEntries entries;
+    for (Tool* tool : tools)
+        for (PanelEntry& entry : tool->panels()) entries.push_back(std::move(entry));
     if (!ImGui::BeginMainMenuBar()) return;
     panels.layout.menu_height = ImGui::GetWindowHeight();
     if (begin_menu("File")) {
@@ -247,34 +271,21 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
             commands.push_back(Redo{});
         ImGui::Separator();
         shortcut_item("History", KeyAction::ToggleHistory, &panels.history_open);
-        shortcut_item("Morph", KeyAction::ToggleMorph, &panels.morph_open);
-        shortcut_item("Record", KeyAction::ToggleRecord, &panels.record.open);
+        panel_menu_items(entries, PanelMenu::Edit, context.busy, commands);
         end_menu();
     }
     view_menu(settings, commands);
     if (begin_menu("Tools")) {
-        // Every tool from the registry: an action, or its section (PanelState::tools).
-        for (OperationPanelState& tool : panels.tools) {
-            const OperationDef& def = *tool.op.def;
-            if (def.params.empty()) {
-                if (menu_item(def.label.c_str(), nullptr, false, !context.busy))
-                    commands.push_back(ApplyOperation{tool.op});
-            } else {
-                menu_item((def.label + "...").c_str(), nullptr, &tool.open);
-            }
-        }
+        // Every tool from the registry: an action, or its section.
+        panel_menu_items(entries, PanelMenu::Tools, context.busy, commands);
         end_menu();
     }
     if (begin_menu("Algorithms")) {
-        // The operation panels arrive with their issues; listed so the menu shows the plan.
-        menu_item("Fairing", nullptr, &panels.fairing.open);
-        menu_item("Frequency decomposition", nullptr, &panels.frequency.open);
-        menu_item("Subdivision", nullptr, &panels.subdivision.open);
-        menu_item("Decimation", nullptr, &panels.decimation.open);
+        panel_menu_items(entries, PanelMenu::Algorithms, context.busy, commands);
         end_menu();
     }
     if (begin_menu("Rendering")) {
-        rendering_menu_items(style, settings, panels, render, commands);
+        rendering_menu_items(style, settings, panels, entries, render, commands);
         end_menu();
     }
     if (begin_menu("Window")) {
@@ -285,20 +296,20 @@ void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
     }
     if (begin_menu("Help")) {
         shortcut_item("Key bindings", KeyAction::ToggleHelp, &panels.help_open);
-        reference_figures_menu(panels, context.busy, commands);
+        reference_figures_menu(tools, context.busy, commands);
         menu_item("About trilab", nullptr, &panels.about_open);
         end_menu();
     }
     ImGui::EndMainMenuBar();
 }
 
-void reference_figures_menu(PanelState& panels, bool busy, CommandQueue& commands) {
+void reference_figures_menu(const ToolList& tools, bool busy, CommandQueue& commands) {
     if (!begin_menu("Reference figures")) return;
     ImGui::TextDisabled("the reference's figures: its models' stand-ins and its settings");
     for (const ReferenceFigure& f : reference_figures()) {
         const std::string label = f.name + "  " + f.title;
         if (menu_item(label.c_str(), nullptr, false, !busy)) {
-            show_figure_in_panels(f, panels);
+            show_figure_in_panels(f, tools);
             commands.push_back(LoadFigure{f.name});
         }
         if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
@@ -334,13 +345,14 @@ void view_menu(ViewSettings& settings, CommandQueue& commands) {
 }
 
 void context_menu(RenderStyle& style, ViewSettings& settings, PanelState& panels,
-                  const RenderContext& render, CommandQueue& commands) {
+                  const PanelEntries& entries, const RenderContext& render,
+                  CommandQueue& commands) {
     if (panels.context_menu_requested) {
         ImGui::OpenPopup("##rendering_context");
         panels.context_menu_requested = false;
     }
     if (ImGui::BeginPopup("##rendering_context")) {
-        rendering_menu_items(style, settings, panels, render, commands);
+        rendering_menu_items(style, settings, panels, entries, render, commands);
         ImGui::EndPopup();
     }
 }

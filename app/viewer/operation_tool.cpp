@@ -38,6 +38,60 @@ void OperationTool::update() {
                                                                             : whole;
 }
 
+bool OperationTool::take_figure(OperationPanelState& panel, const Operation& op) {
+    if (op.def != panel.op.def) return false;
+    panel.op = op;
+    panel.open = true;
+    return true;
+}
+
+GenericOperationTool::GenericOperationTool(ViewerContext& context,
+                                           const std::vector<const OperationDef*>& owned)
+    : OperationTool(context, {}), tools_(tool_panels(owned)) {
+    set_panels(pointers(tools_));
+}
+
+std::vector<OperationPanelState*> GenericOperationTool::pointers(
+    std::vector<OperationPanelState>& tools) {
+    std::vector<OperationPanelState*> out;
+    for (OperationPanelState& tool : tools) out.push_back(&tool);
+    return out;
+}
+
+void GenericOperationTool::section(const SidebarContext& context, CommandQueue& commands) {
+    tools_section(tools_, context.busy, commands);
+}
+
+PanelEntries GenericOperationTool::panels() {
+    PanelEntries entries;
+    for (OperationPanelState& tool : tools_) {
+        PanelEntry entry;
+        entry.name = tool.op.name();
+        entry.open = &tool.open;
+        entry.menu = PanelMenu::Tools;
+        entry.in_tools = true;
+        if (tool.op.def->params.empty()) {
+            entry.title = tool.op.def->label;
+            entry.action = &tool.op;
+        } else {
+            entry.title = tool.op.def->label + "...";
+        }
+        entries.push_back(std::move(entry));
+    }
+    return entries;
+}
+
+void GenericOperationTool::settings(SettingsVisitor& v) {
+    for (OperationPanelState& tool : tools_)
+        operation_setting(v, "panel.tool." + tool.op.def->name, tool);
+}
+
+OperationPanelState* GenericOperationTool::panel(const std::string& name) {
+    for (OperationPanelState& tool : tools_)
+        if (tool.op.name() == name) return &tool;
+    return nullptr;
+}
+
 void OperationTool::note_preview_latency(OperationPanelState& panel, double ms) {
     constexpr double kLiveBudgetMs = 150.0;  ///< previews slower than this wait for the release
     char buf[160];

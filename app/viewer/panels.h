@@ -27,6 +27,11 @@ struct ImGuiStyle;
 
 namespace trilab::viewer {
 
+class Tool;
+/// The viewer's tools in sidebar order (tool.h, tools.h): the menus, --panels, the key
+/// bindings, saved settings and scripts find a tool's panel by looping over them.
+using ToolList = std::vector<Tool*>;
+
 /// The screenshot dialog: a PNG of the scene without the panels, at any resolution.
 struct ScreenshotState {
     bool open = false;
@@ -143,8 +148,8 @@ struct RecoveryPrompt {
     std::string ended;
 };
 
-/// A generic panel for each registered operation not in `owned` (the operations that have
-/// panels of their own).
+/// A generic panel for each registered operation not in `owned` (the operations whose tools
+/// have panels of their own), in the registry's order.
 std::vector<OperationPanelState> tool_panels(const std::vector<const OperationDef*>& owned);
 /// "Tools: add noise": a tool's section title, from its operation's label.
 std::string tool_section_title(const OperationDef& def);
@@ -165,32 +170,38 @@ struct SelectionPanelState {
     float feather = 0.1f;  ///< model units
 };
 
+/// Where a tool's panel is listed in the menu bar.
+enum class PanelMenu { None, Edit, Tools, Algorithms };
+
+/// A tool's panel as the window finds it, by its stable name: --panels, the menus, the key
+/// bindings and --click. The tool owns the flag `open` points to.
+struct PanelEntry {
+    std::string name;   ///< the --panels name ("fairing", "collapsing-edges", "noise")
+    std::string title;  ///< the menu item ("Fairing", "Add noise...")
+    bool* open = nullptr;
+    PanelMenu menu = PanelMenu::None;
+    int shortcut = -1;      ///< the KeyAction (key_bindings.h) that toggles it (-1: none)
+    bool in_all = true;     ///< --panels all opens it
+    bool in_tools = false;  ///< --panels tools opens it (the Tools menu's sections)
+    /// A menu action instead of a panel (an operation without parameters): the menu item
+    /// applies it.
+    const Operation* action = nullptr;
+};
+using PanelEntries = std::vector<PanelEntry>;
+/// The entry named `name` (nullptr: none).
+const PanelEntry* find_panel(const PanelEntries& entries, const std::string& name);
+
+/// The window's own panels and dialogs; every tool's panel state is the tool's (tool.h).
 struct PanelState {
-    SelectionPanelState selection;
     UnsavedPrompt unsaved;
     RecoveryPrompt recovery;
     ScreenshotState screenshot;
-    OperationPanelState subdivision{"subdivide"};
-    FairingPanelState fairing;
-    FrequencyPanelState frequency;
-    DecimationPanelState decimation;
-    RecordState record;
-    /// The small tools: one generic panel for every registered operation that none of the
-    /// panels above holds (Add noise, Weld coincident vertices, Flip orientation, and any
-    /// operation registered later), in the registry's order. One without parameters is a menu
-    /// action (Tools > Flip orientation); the others are sidebar sections "Tools: ...".
-    std::vector<OperationPanelState> tools =
-        tool_panels({subdivision.op.def, fairing.op.def, frequency.op.def, decimation.op.def});
-    /// The tool panel of the operation `name` (nullptr: none).
-    OperationPanelState* tool(const std::string& name);
     bool history_open = false;
-    bool morph_open = false;
     FileBrowserState file_browser;
     bool help_open = false;
     bool about_open = false;
     bool log_open = false;
     bool info_open = false;
-    bool inspector_open = false;
     bool context_menu_requested = false;  ///< right click in the view: open the Rendering popup
     LayoutState layout;                   ///< the regions' sizes (layout.h)
     bool sidebar_open = true;             ///< Window > Sidebar
@@ -237,17 +248,20 @@ struct RenderContext {
 /// text legible.
 void apply_panel_style(ImGuiStyle& style);
 
-/// File, Algorithms, Rendering, Window and Help menus.
-void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels,
+/// File, Edit, View, Tools, Algorithms, Rendering, Window and Help menus; the tools' panels
+/// are listed where their entries say (Tool::panels()).
+void menu_bar(RenderStyle& style, ViewSettings& settings, PanelState& panels, const ToolList& tools,
               const MenuContext& context, const RenderContext& render, CommandQueue& commands);
-/// The Rendering menu's items (also the right-click popup in the view).
+/// The Rendering menu's items (also the right-click popup in the view); `entries` gives
+/// Vectors > Collapsing edges (the panel entry "collapsing-edges").
 void rendering_menu_items(RenderStyle& style, ViewSettings& settings, PanelState& panels,
-                          const RenderContext& render, CommandQueue& commands);
+                          const PanelEntries& entries, const RenderContext& render,
+                          CommandQueue& commands);
 /// The View menu (in the menu bar): Default view, and Up axis (+y or +z; queues ResetView).
 void view_menu(ViewSettings& settings, CommandQueue& commands);
 /// The right-click popup with the rendering items.
 void context_menu(RenderStyle& style, ViewSettings& settings, PanelState& panels,
-                  const RenderContext& render, CommandQueue& commands);
+                  const PanelEntries& entries, const RenderContext& render, CommandQueue& commands);
 // ---- fixed regions (layout.h) ---------------------------------------------------------------
 
 /// Begins the window of a fixed region at `r`: not movable, no saved settings. The user may
@@ -302,9 +316,10 @@ struct InspectorView {
 /// What the sidebar's sections show besides the panels' own state.
 struct SidebarContext {
     const History* history = nullptr;
-    bool busy = false;        ///< a job runs: the Apply buttons wait
-    bool closed = false;      ///< the mesh has no boundary (volume preservation applies)
-    bool can_record = false;  ///< the current entry has a morph to record
+    const MorphState* morph = nullptr;  ///< the session's (the Morph section; nullptr: none)
+    bool busy = false;                  ///< a job runs: the Apply buttons wait
+    bool closed = false;                ///< the mesh has no boundary (volume preservation applies)
+    bool can_record = false;            ///< the current entry has a morph to record
     /// The mesh has coincident boundary edges (unwelded seams): Sqrt3 would leave creases
     /// along them, and the Subdivision section offers the weld.
     bool open_seams = false;
@@ -326,44 +341,53 @@ struct SidebarContext {
 /// Ctrl+drag to add and Alt+drag to remove), the geodesic ball and component at the pick, the
 /// threshold on the colouring, grow, shrink, invert, clear and feather; queues SelectAtPick,
 /// SelectThreshold and EditSelection (app/viewer/selection_panel.cpp).
-void selection_section(PanelState& panels, const SidebarContext& context, CommandQueue& commands);
+void selection_section(SelectionPanelState& state, const SidebarContext& context,
+                       CommandQueue& commands);
 
-/// Every tool section of the sidebar in order (Tools, Fairing, Frequency decomposition,
-/// Subdivision, Decimation, Morph, Record, Model information), each with its header and,
-/// when open, its body in an ID scope of its own; every section queues commands.
-void sidebar_sections(PanelState& panels, const MorphState& morph, const SidebarContext& context,
-                      CommandQueue& commands);
+/// Every tool's sections in the tools' order (the sidebar), then the sidebar's closing note.
+void sidebar_sections(const ToolList& tools, const SidebarContext& context, CommandQueue& commands);
 
-/// The tool sections of the sidebar (each draws its header and, when open, its body).
+/// The sections the tools draw (each its header and, when open, its body in an ID scope of
+/// its own; every section queues commands). The tools own the state they are drawn over.
+/// The parameters of an operation panel, its Apply button (labelled `apply`), the preview's
+/// Cancel and notes; queues PreviewOperation (live, or when a drag ends) and ApplyOperation.
+void operation_panel_body(OperationPanelState& state, const char* apply, bool busy,
+                          CommandQueue& commands);
+/// Where the morph of a result is: one place, the Morph section.
+void morph_hint();
 /// Subdivision: scheme, iterations, Subdivide; queues PreviewOperation and ApplyOperation;
 /// with `context.open_seams` a note about Sqrt3 and a Weld button.
-void subdivision_section(PanelState& panels, const SidebarContext& context, CommandQueue& commands);
+void subdivision_section(OperationPanelState& state, const SidebarContext& context,
+                         CommandQueue& commands);
 /// Fairing (operator, integration, step, iterations, volume preservation, Smooth).
 /// `context.closed` says whether the mesh has a volume (volume preservation is disabled
 /// otherwise, with a note saying why).
-void fairing_section(PanelState& panels, const SidebarContext& context, CommandQueue& commands);
+void fairing_section(FairingPanelState& state, const SidebarContext& context,
+                     CommandQueue& commands);
 /// Decimation (cost, the three constraints with their thresholds, percentage per iteration,
 /// iterations, Decimate, the level-of-detail slider, the collapsing-edges overlay).
-void decimation_section(PanelState& panels, const SidebarContext& context, CommandQueue& commands);
-/// Opens the panels named in `list`, comma-separated: all, tools (every tool), history, morph,
-/// fairing, subdivision, frequency, decimation, collapsing-edges, record, log, info, the
-/// dialogs help, about, screenshot, and any tool by its operation's name (noise, weld).
+void decimation_section(DecimationPanelState& state, const SidebarContext& context,
+                        CommandQueue& commands);
+/// Opens the panels named in `list`, comma-separated: all, tools (every Tools section), the
+/// window's history, log, info, the dialogs help, about, screenshot, and every tool's panel
+/// by its entry's name (morph, fairing, subdivision, frequency, decimation,
+/// collapsing-edges, record, selection, and any tool by its operation's name: noise, weld).
 /// Throws InvalidArgument naming an unknown one and listing the known.
-void open_panels(PanelState& panels, const std::string& list);
-/// The tools' sections (PanelState::tools with parameters), each "Tools: LABEL" with the
+void open_panels(PanelState& panels, const PanelEntries& entries, const std::string& list);
+/// The generic tools' sections (those with parameters), each "Tools: LABEL" with the
 /// operation's summary, its parameters, Apply and the preview's Cancel.
-void tools_section(PanelState& panels, bool busy, CommandQueue& commands);
+void tools_section(std::vector<OperationPanelState>& tools, bool busy, CommandQueue& commands);
 /// The morph slider and the animation controls for the current history entry: the one place
 /// they are drawn; they queue PlayMorph, ShowMorphAt and SetMorphAnimation.
-void morph_section(PanelState& panels, const MorphState& morph, const History& history,
+void morph_section(bool& open, const MorphState& morph, const History& history,
                    CommandQueue& commands);
 /// Record; queues StartRecording / CancelRecording.
-void record_section(PanelState& panels, bool can_record, CommandQueue& commands);
+void record_section(RecordState& record, bool can_record, CommandQueue& commands);
 /// The Inspector: what the picks are and why (InspectorView), the measurement, the
 /// provenance plot; Clear picks (ClearPicks) and Centre view here (CentreOnPick).
-void inspector_section(PanelState& panels, const InspectorView& view, CommandQueue& commands);
+void inspector_section(bool& open, const InspectorView& view, CommandQueue& commands);
 /// Model and scene information (the `I` key prints the same lines to the console).
-void info_section(PanelState& panels, const std::vector<std::string>& lines);
+void info_section(bool& open, const std::vector<std::string>& lines);
 
 /// The running job's text for a progress bar `width` wide: the name, the stage and the time,
 /// or as much as fits by dropping whole parts from the end (the tooltip shows it all), never

@@ -44,7 +44,7 @@ std::optional<Pick> PickTool::pick_at(const glm::vec2& view_pos, bool second) {
     session.execute(PickAt{ray, double(camera.near_plane()), second});
     const PickSet& picks = session.picking().picks();
     if (picks.version == version || picks.picks.empty()) return std::nullopt;  // a miss
-    context_.panels.inspector_open = true;
+    inspector_open_ = true;
     return picks.picks.back();
 }
 
@@ -135,8 +135,7 @@ void PickTool::update() {
         " " + std::to_string(context_.session.shown().version) + " " +
         std::to_string(int(context_.view.settings.coloring)) + " " +
         std::to_string(context_.view.colors.colors.size()) + " " + std::to_string(frequency.valid) +
-        " " + std::to_string(context_.panels.frequency.lo) + " " +
-        std::to_string(context_.panels.frequency.hi);
+        " " + std::to_string(band_lo()) + " " + std::to_string(band_hi());
     if (key == inspector_key_) return;
     inspector_key_ = key;
     InspectorView& view = inspector_;
@@ -170,10 +169,8 @@ void PickTool::update() {
             if (frequency.valid && d && v < d->map.row_of.size() &&
                 d->map.row_of[v] != kInvalidIndex && mesh.vertices_size() == d->map.row_of.size()) {
                 const Eigen::Index row = Eigen::Index(d->map.row_of[v]);
-                const std::size_t lo =
-                    std::min(std::size_t(std::max(0, context_.panels.frequency.lo)), d->size() - 1);
-                const std::size_t hi =
-                    std::min(std::size_t(std::max(0, context_.panels.frequency.hi)), d->size() - 1);
+                const std::size_t lo = std::min(std::size_t(std::max(0, band_lo())), d->size() - 1);
+                const std::size_t hi = std::min(std::size_t(std::max(0, band_hi())), d->size() - 1);
                 constexpr std::size_t kMaxShown = 8;
                 for (std::size_t k = lo; k <= hi && k < lo + kMaxShown; ++k) {
                     const double e = d->eigenvectors(row, Eigen::Index(k));
@@ -239,6 +236,21 @@ bool PickTool::mouse(const ViewMouse& mouse) {
     if (mouse.double_clicked && pick_at(mouse.pos, false))
         context_.commands.push_back(CentreOnPick{});
     return false;  // the view still turns on a drag
+}
+
+void PickTool::section(const SidebarContext& context, CommandQueue& commands) {
+    // The rows describe() handed the sidebar (the tests hand their own).
+    inspector_section(inspector_open_, context.inspector ? *context.inspector : inspector_,
+                      commands);
+}
+
+PanelEntries PickTool::panels() {
+    PanelEntry entry;
+    entry.name = "inspector";
+    entry.title = "Inspector";
+    entry.open = &inspector_open_;
+    entry.in_all = false;
+    return {entry};
 }
 
 }  // namespace trilab::viewer

@@ -26,6 +26,11 @@ public:
     void draw_overlay() override;
     /// Picks at `view_pos` (pixels relative to the view's top left); opens the Inspector.
     std::optional<Pick> pick_at(const glm::vec2& view_pos, bool second);
+    void section(const SidebarContext& context, CommandQueue& commands) override;
+    PanelEntries panels() override;
+    /// The frequency band the Inspector explains a vertex in (the Frequency tool's sliders).
+    void set_band(const FrequencyPanelState* band) { band_ = band; }
+    bool& inspector_open() { return inspector_open_; }
 
 private:
     void update_overlay();
@@ -34,6 +39,10 @@ private:
     std::string overlay_key_;
     std::string inspector_key_;
     InspectorView inspector_;
+    bool inspector_open_ = false;
+    const FrequencyPanelState* band_ = nullptr;
+    int band_lo() const { return band_ ? band_->lo : 0; }
+    int band_hi() const { return band_ ? band_->hi : 0; }
 };
 
 }  // namespace trilab::viewer

@@ -27,8 +27,10 @@
 #include "app/ops/operation_entries.h"
 #include "app/ops/spectrum_op.h"
 #include "app/session/reference_figures.h"
+#include "app/viewer/decimation_tool.h"
 #include "app/viewer/figure_panels.h"
 #include "app/viewer/frame_output.h"
+#include "app/viewer/frequency_tool.h"
 #include "app/viewer/operation_tool.h"
 #include "app/viewer/pick_tool.h"
 #include "app/viewer/scene_view.h"
@@ -171,7 +173,7 @@ bool ScriptDriver::ready() const {
 
 bool ScriptDriver::settled() {
     if (session_.jobs().busy() || !context_.commands.empty() || session_.previews().pending() ||
-        !ready() || sweep_.active || context_.panels.record.running)
+        !ready() || sweep_.active || output_.recording())
         return false;
     if (!options_.decompose.empty() && decompose_state_ != 2) return false;
     if (clicks_pending() || picks_pending() || selections_pending()) return false;
@@ -248,8 +250,8 @@ void ScriptDriver::start_sweep() {
     // Decimation's level-of-detail slider is "lod" (percent of the vertices kept).
     s.lod = is_operation<DecimateOptions>(s.op) && options_.sweep_param == "lod";
     if (s.lod) {
-        context_.panels.decimation.open = true;
-        context_.panels.decimation.op = s.op;
+        tools_.decimation->panel().open = true;
+        tools_.decimation->panel().op = s.op;
         session_.execute(BuildLevelOfDetail{s.op});
         s.active = true;
         return;
@@ -345,7 +347,7 @@ void ScriptDriver::step_sweep(bool frame_shown) {
             exit_status_ = 1;
             return;
         }
-        context_.panels.decimation.lod_percent = float(value);
+        tools_.decimation->panel().lod_percent = float(value);
         s.t0 = glfwGetTime();
         s.waiting = true;
         session_.execute(ShowLevelOfDetail{value});
@@ -435,7 +437,7 @@ void ScriptDriver::brush_step() {
         if (++b.frames_waited < 3 || !ready() || session_.busy() ||
             next_select_ < options_.selections.size())
             return;
-        float x0 = 0, y0 = 0, x1 = 0, y1 = 0, r = context_.panels.selection.brush_radius;
+        float x0 = 0, y0 = 0, x1 = 0, y1 = 0, r = tools_.selection->panel().brush_radius;
         char extra = 0;
         const int n =
             std::sscanf(options_.brush.c_str(), "%f,%f:%f,%f:%f%c", &x0, &y0, &x1, &y1, &r, &extra);
@@ -450,7 +452,7 @@ void ScriptDriver::brush_step() {
         }
         b.from = glm::vec2(x0 - context_.view_rect.x, y0 - context_.view_rect.y);
         b.to = glm::vec2(x1 - context_.view_rect.x, y1 - context_.view_rect.y);
-        context_.panels.selection.brush_radius = r;
+        tools_.selection->panel().brush_radius = r;
         b.state = 1;
         tools_.selection->set_scripted(true);  // the real mouse waits
         b.step = 0;
@@ -496,9 +498,9 @@ void ScriptDriver::drive_lasso() {
             return;
         }
         // What the user chooses first: the Selection section open, its Lasso tool.
-        context_.panels.selection.open = true;
-        context_.panels.selection.tool = SelectionPanelState::Tool::Lasso;
-        context_.panels.selection.lasso_through = through;
+        tools_.selection->panel().open = true;
+        tools_.selection->panel().tool = SelectionPanelState::Tool::Lasso;
+        tools_.selection->panel().lasso_through = through;
         // The mouse's place in each frame: pressed at the first point, moved along each side in
         // a few steps (the lasso closes itself back to the first point on release).
         constexpr int kStepsPerSide = 4;
@@ -541,7 +543,7 @@ void ScriptDriver::decompose() {
     if (!ready()) return;
     unsigned k = 0, lo = 0, hi = 0;
     const int n = std::sscanf(options_.decompose.c_str(), "%u:%u:%u", &k, &lo, &hi);
-    FrequencyPanelState& s = context_.panels.frequency;
+    FrequencyPanelState& s = tools_.frequency->panel();
     if (decompose_state_ == 0) {
         decompose_state_ = 1;
         if (n < 1 || k < 1) {
@@ -583,7 +585,7 @@ bool ScriptDriver::figure() {
                               "'; the figures are " + reference_figure_names());
         return true;
     }
-    show_figure_in_panels(*figure, context_.panels);
+    show_figure_in_panels(*figure, tools_.list());
     context_.commands.push_back(LoadFigure{figure->name});
     return false;
 }

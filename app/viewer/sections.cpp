@@ -1,6 +1,6 @@
-// The sidebar's tool sections: Tools, Fairing, Subdivision, Decimation, Morph, Record and
-// Model information, each an ID scope of its own, and sidebar_sections() in order; see
-// panels.h.
+// The sections the tools draw: Tools, Fairing, Subdivision, Decimation, Morph, Record, Model
+// information and Inspector, each an ID scope of its own; sidebar_sections() draws every
+// tool's in the tools' order; see panels.h.
 
 #include <imgui.h>
 #include <imgui_internal.h>
@@ -20,6 +20,7 @@
 #include "app/viewer/panel_helpers.h"
 #include "app/viewer/panels.h"
 #include "app/viewer/plots.h"
+#include "app/viewer/tool.h"
 #include "app/viewer/widgets.h"
 #include "core/algorithms/fairing.h"
 #include "core/algorithms/transfer_function.h"
@@ -35,9 +36,6 @@ namespace {
 void morph_controls(const MorphState& morph, const History& history, CommandQueue& commands);
 }  // namespace
 
-namespace {
-
-/// The parameters of an operation panel, its Apply button, and the preview's note.
 void operation_panel_body(OperationPanelState& state, const char* apply, bool busy,
                           CommandQueue& commands) {
     if (!state.region_note.empty()) wrapped_disabled("%s", state.region_note.c_str());
@@ -70,6 +68,12 @@ void operation_panel_body(OperationPanelState& state, const char* apply, bool bu
     }
     if (!state.preview_note.empty()) wrapped_disabled("%s", state.preview_note.c_str());
 }
+
+void morph_hint() {
+    wrapped_disabled("the morph of each result: the Morph section (M)");
+}
+
+namespace {
 
 /// The largest stable explicit step of the mesh and operator; a larger explicit step in red
 /// with the reason, and a button that switches to implicit integration. The warning's lines
@@ -114,16 +118,10 @@ void stability_guidance(FairingPanelState& state) {
     if (used < reserved) ImGui::Dummy(ImVec2(1.0f, reserved - used - style.ItemSpacing.y));
 }
 
-/// Where the morph of a result is: one place, the Morph section.
-void morph_hint() {
-    wrapped_disabled("the morph of each result: the Morph section (M)");
-}
-
 }  // namespace
 
-void subdivision_section(PanelState& panels, const SidebarContext& context,
+void subdivision_section(OperationPanelState& state, const SidebarContext& context,
                          CommandQueue& commands) {
-    OperationPanelState& state = panels.subdivision;
     SidebarSection section("Subdivision", state.open);
     if (!section) return;
     operation_panel_body(state, "Subdivide", context.busy, commands);
@@ -143,8 +141,8 @@ void subdivision_section(PanelState& panels, const SidebarContext& context,
     morph_hint();
 }
 
-void fairing_section(PanelState& panels, const SidebarContext& context, CommandQueue& commands) {
-    FairingPanelState& state = panels.fairing;
+void fairing_section(FairingPanelState& state, const SidebarContext& context,
+                     CommandQueue& commands) {
     SidebarSection section("Fairing", state.open);
     if (!section) return;
     stability_guidance(state);
@@ -175,8 +173,8 @@ void fairing_section(PanelState& panels, const SidebarContext& context, CommandQ
     morph_hint();
 }
 
-void decimation_section(PanelState& panels, const SidebarContext& context, CommandQueue& commands) {
-    DecimationPanelState& d = panels.decimation;
+void decimation_section(DecimationPanelState& d, const SidebarContext& context,
+                        CommandQueue& commands) {
     SidebarSection section("Decimation", d.open);
     if (!section) return;
     const bool busy = context.busy;
@@ -230,62 +228,50 @@ std::string tool_section_title(const OperationDef& def) {
     return "Tools: " + label;
 }
 
-OperationPanelState* PanelState::tool(const std::string& name) {
-    for (OperationPanelState& t : tools)
-        if (t.op.name() == name) return &t;
+const PanelEntry* find_panel(const PanelEntries& entries, const std::string& name) {
+    for (const PanelEntry& entry : entries)
+        if (entry.name == name) return &entry;
     return nullptr;
 }
 
-void open_panels(PanelState& panels, const std::string& list) {
+void open_panels(PanelState& panels, const PanelEntries& entries, const std::string& list) {
+    // The window's own panels and dialogs; every tool's panel by its entry's name.
+    const std::pair<const char*, bool*> names[] = {{"help", &panels.help_open},
+                                                   {"about", &panels.about_open},
+                                                   {"screenshot", &panels.screenshot.open},
+                                                   {"history", &panels.history_open},
+                                                   {"log", &panels.log_open},
+                                                   {"info", &panels.info_open}};
     for (std::size_t pos = 0; pos < list.size();) {
         std::size_t comma = list.find(',', pos);
         if (comma == std::string::npos) comma = list.size();
         const std::string panel = list.substr(pos, comma - pos);
         pos = comma + 1;
+        if (panel == "all" || panel == "tools") {  // every panel (not the dialogs), every tool
+            const bool all = panel == "all";
+            if (all) panels.history_open = panels.log_open = panels.info_open = true;
+            for (const PanelEntry& entry : entries)
+                if (entry.open && (all ? entry.in_all : entry.in_tools)) *entry.open = true;
+            continue;
+        }
         bool* flag = nullptr;
-        if (panel == "all") {  // every panel (not the dialogs)
-            panels.history_open = panels.morph_open = panels.log_open = true;
-            panels.info_open = panels.fairing.open = panels.subdivision.open = true;
-            panels.frequency.open = panels.decimation.open = panels.record.open = true;
-            panels.selection.open = true;
-            for (OperationPanelState& tool : panels.tools) tool.open = true;
-            continue;
-        }
-        if (panel == "tools") {  // every tool's section
-            for (OperationPanelState& tool : panels.tools) tool.open = true;
-            continue;
-        }
-        const std::pair<const char*, bool*> names[] = {
-            {"help", &panels.help_open},
-            {"about", &panels.about_open},
-            {"screenshot", &panels.screenshot.open},
-            {"history", &panels.history_open},
-            {"morph", &panels.morph_open},
-            {"fairing", &panels.fairing.open},
-            {"subdivision", &panels.subdivision.open},
-            {"frequency", &panels.frequency.open},
-            {"decimation", &panels.decimation.open},
-            {"collapsing-edges", &panels.decimation.show_collapsing_edges},
-            {"record", &panels.record.open},
-            {"log", &panels.log_open},
-            {"info", &panels.info_open},
-            {"selection", &panels.selection.open}};
         for (const auto& [name, open] : names)
             if (panel == name) flag = open;
-        if (OperationPanelState* tool = panels.tool(panel)) flag = &tool->open;
+        if (const PanelEntry* entry = find_panel(entries, panel); entry && entry->open)
+            flag = entry->open;
         if (!flag) {
             std::string known = "all, tools";
             for (const auto& [name, open] : names) known += std::string(", ") + name;
-            for (const OperationPanelState& tool : panels.tools)
-                if (!tool.op.def->params.empty()) known += ", " + tool.op.name();
+            for (const PanelEntry& entry : entries)
+                if (entry.open && !entry.action) known += ", " + entry.name;
             throw InvalidArgument("--show: unknown panel '" + panel + "' (" + known + ")");
         }
         *flag = true;
     }
 }
 
-void tools_section(PanelState& panels, bool busy, CommandQueue& commands) {
-    for (OperationPanelState& tool : panels.tools) {
+void tools_section(std::vector<OperationPanelState>& tools, bool busy, CommandQueue& commands) {
+    for (OperationPanelState& tool : tools) {
         if (tool.op.def->params.empty()) continue;  // a menu action (Tools > Flip orientation)
         const std::string title = tool_section_title(*tool.op.def);
         if (SidebarSection section(title.c_str(), tool.open); section) {
@@ -295,20 +281,9 @@ void tools_section(PanelState& panels, bool busy, CommandQueue& commands) {
     }
 }
 
-void sidebar_sections(PanelState& panels, const MorphState& morph, const SidebarContext& context,
+void sidebar_sections(const ToolList& tools, const SidebarContext& context,
                       CommandQueue& commands) {
-    const FrequencyDocument no_decomposition;
-    tools_section(panels, context.busy, commands);
-    selection_section(panels, context, commands);
-    fairing_section(panels, context, commands);
-    frequency_window(panels.frequency, context.frequency ? *context.frequency : no_decomposition,
-                     context.busy, commands);
-    subdivision_section(panels, context, commands);
-    decimation_section(panels, context, commands);
-    if (context.history) morph_section(panels, morph, *context.history, commands);
-    record_section(panels, context.can_record, commands);
-    info_section(panels, context.info ? *context.info : std::vector<std::string>{});
-    inspector_section(panels, context.inspector ? *context.inspector : InspectorView{}, commands);
+    for (Tool* tool : tools) tool->section(context, commands);
     ImGui::Spacing();
     wrapped_disabled(
         "The Tools and Algorithms menus open these sections; H the history, L the log.");
@@ -374,15 +349,14 @@ void morph_controls(const MorphState& morph, const History& history, CommandQueu
 }
 }  // namespace
 
-void morph_section(PanelState& panels, const MorphState& morph, const History& history,
+void morph_section(bool& open, const MorphState& morph, const History& history,
                    CommandQueue& commands) {
-    SidebarSection section("Morph", panels.morph_open);
+    SidebarSection section("Morph", open);
     if (!section) return;
     morph_controls(morph, history, commands);
 }
 
-void record_section(PanelState& panels, bool can_record, CommandQueue& commands) {
-    RecordState& r = panels.record;
+void record_section(RecordState& r, bool can_record, CommandQueue& commands) {
     if (r.running) r.open = true;  // the progress and Cancel stay visible
     SidebarSection section("Record", r.open);
     if (!section) return;
@@ -425,16 +399,16 @@ void record_section(PanelState& panels, bool can_record, CommandQueue& commands)
     }
 }
 
-void info_section(PanelState& panels, const std::vector<std::string>& lines) {
-    SidebarSection section("Model information", panels.info_open);
+void info_section(bool& open, const std::vector<std::string>& lines) {
+    SidebarSection section("Model information", open);
     if (!section) return;
     ImGui::PushTextWrapPos(0.0f);
     for (const std::string& line : lines) ImGui::TextUnformatted(line.c_str());
     ImGui::PopTextWrapPos();
 }
 
-void inspector_section(PanelState& panels, const InspectorView& view, CommandQueue& commands) {
-    SidebarSection section("Inspector", panels.inspector_open);
+void inspector_section(bool& open, const InspectorView& view, CommandQueue& commands) {
+    SidebarSection section("Inspector", open);
     if (!section) return;
     if (!view.has_picks) {
         wrapped_disabled(

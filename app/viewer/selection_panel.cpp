@@ -25,8 +25,8 @@ void tool_choice(const char* label, SelectionPanelState::Tool value,
 
 }  // namespace
 
-void selection_section(PanelState& panels, const SidebarContext& context, CommandQueue& commands) {
-    SelectionPanelState& s = panels.selection;
+void selection_section(SelectionPanelState& s, const SidebarContext& context,
+                       CommandQueue& commands) {
     SidebarSection section("Selection", s.open);
     if (!section) return;
     if (context.has_selection)
@@ -36,12 +36,12 @@ void selection_section(PanelState& panels, const SidebarContext& context, Comman
     note_widget("selected-count");
 
     // The brush and the lasso draw in the view.
-    using Tool = SelectionPanelState::Tool;
-    tool_choice("Brush", Tool::Brush, s.tool);
+    using Stroke = SelectionPanelState::Tool;
+    tool_choice("Brush", Stroke::Brush, s.tool);
     ImGui::SameLine();
-    tool_choice("Lasso", Tool::Lasso, s.tool);
+    tool_choice("Lasso", Stroke::Lasso, s.tool);
     const float w = widget_width(10.0f);
-    if (s.tool == Tool::Brush) {
+    if (s.tool == Stroke::Brush) {
         ImGui::SetNextItemWidth(w);
         ImGui::SliderFloat("radius (pixels)", &s.brush_radius, 2.0f, 200.0f, "%.0f");
         note_widget("brush-radius");

@@ -84,7 +84,7 @@ void SelectionTool::begin_stroke(bool add, bool lasso, const glm::vec2& pos) {
     stroke_.add = add;
     stroke_.lasso = lasso;
     // Fixed for the stroke: the projection below decides which vertices the lasso may take.
-    stroke_.through = lasso && context_.panels.selection.lasso_through;
+    stroke_.through = lasso && panel_.lasso_through;
     const bool through = stroke_.through;
     context_.view.camera.set_viewport(std::max(context_.view_rect.w, 1.0f),
                                       std::max(context_.view_rect.h, 1.0f));
@@ -111,9 +111,8 @@ void SelectionTool::continue_stroke(const glm::vec2& pos) {
             (eigen(pos) - stroke_.lasso_points.back()).norm() >= 2.0f)
             stroke_.lasso_points.push_back(eigen(pos));
     } else {
-        const std::size_t changed =
-            paint_brush(stroke_.projected, eigen(stroke_.last), eigen(pos),
-                        context_.panels.selection.brush_radius, stroke_.add, stroke_.weights);
+        const std::size_t changed = paint_brush(stroke_.projected, eigen(stroke_.last), eigen(pos),
+                                                panel_.brush_radius, stroke_.add, stroke_.weights);
         ++stroke_.dabs;
         stroke_.changed += changed;
         if (changed > 0) stroke_.version = ++stroke_counter_;
@@ -141,7 +140,7 @@ void SelectionTool::end_stroke() {
             context_.commands.push_back(SetSelection{std::move(result), "Lasso", parameters});
     } else {
         std::snprintf(parameters, sizeof parameters, "radius %.0f px, %zu dabs (%s)",
-                      double(context_.panels.selection.brush_radius), stroke.dabs, how);
+                      double(panel_.brush_radius), stroke.dabs, how);
         if (stroke.weights != stroke.before || !context_.session.selections().get())
             context_.commands.push_back(
                 SetSelection{std::move(stroke.weights), "Brush", parameters});
@@ -154,7 +153,7 @@ bool SelectionTool::mouse(const ViewMouse& mouse) {
     const glm::vec2& pos = mouse.pos;
     const bool in_view = mouse.in_view;
     const ImGuiIO& io = ImGui::GetIO();
-    const SelectionPanelState& s = context_.panels.selection;
+    const SelectionPanelState& s = panel_;
     const bool lasso = s.tool == SelectionPanelState::Tool::Lasso;
     const bool modifier = (io.KeyCtrl || io.KeyAlt) && !io.KeyShift;
     // The brush's circle (or the lasso) where the tool would draw.
@@ -191,6 +190,7 @@ bool SelectionTool::mouse(const ViewMouse& mouse) {
 
 void SelectionTool::before_surface(RenderStyle& style) {
     style.selection_outline_width *= context_.ui_scale;
+    if (!surface_) return;
     const Shown& shown = context_.session.shown();
     std::string key;
     if (stroke_.active && !stroke_.lasso) {
@@ -202,19 +202,19 @@ void SelectionTool::before_surface(RenderStyle& style) {
               std::to_string(std::uintptr_t(shown.mesh));
     }
     if (key.empty()) {
-        if (surface_.has_vertex_selection()) surface_.clear_vertex_selection();
+        if (surface_->has_vertex_selection()) surface_->clear_vertex_selection();
         overlay_key_.clear();
         return;
     }
-    if (key == overlay_key_ && surface_.has_vertex_selection()) return;
+    if (key == overlay_key_ && surface_->has_vertex_selection()) return;
     try {
         if (stroke_.active) {
-            if (stroke_.weights.size() != surface_.n_vertices()) return;
-            surface_.set_vertex_selection(stroke_.weights);
+            if (stroke_.weights.size() != surface_->n_vertices()) return;
+            surface_->set_vertex_selection(stroke_.weights);
         } else {
             const std::optional<Selection> weights = stored_selection(*shown.mesh);
-            if (!weights || weights->size() != surface_.n_vertices()) return;
-            surface_.set_vertex_selection(*weights);
+            if (!weights || weights->size() != surface_->n_vertices()) return;
+            surface_->set_vertex_selection(*weights);
         }
         overlay_key_ = key;
     } catch (const std::exception& e) {

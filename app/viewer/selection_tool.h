@@ -19,7 +19,9 @@ namespace trilab::viewer {
 class SelectionTool : public Tool {
 public:
     /// `surface`: the exact renderer, whose overlay the tool keeps.
-    SelectionTool(ViewerContext& context, MeshRenderer& surface)
+    /// `surface`: the exact surface the selection overlay is uploaded to (nullptr: none, as
+    /// in the panel tests).
+    SelectionTool(ViewerContext& context, MeshRenderer* surface)
         : Tool(context), surface_(surface) {}
     void update() override;
     void describe(SidebarContext& context) const override;
@@ -34,6 +36,17 @@ public:
     bool stroking() const { return stroke_.active; }
     /// A scripted brush holds the mouse: the real one waits.
     void set_scripted(bool scripted) { scripted_ = scripted; }
+    void section(const SidebarContext& context, CommandQueue& commands) override {
+        selection_section(panel_, context, commands);
+    }
+    PanelEntries panels() override {
+        PanelEntry entry;
+        entry.name = "selection";
+        entry.title = "Selection";
+        entry.open = &panel_.open;
+        return {entry};
+    }
+    SelectionPanelState& panel() { return panel_; }
 
 private:
     struct SelectionStroke {
@@ -47,7 +60,8 @@ private:
         std::size_t dabs = 0, changed = 0;
         std::uint64_t version = 0;  ///< changes with every dab (the overlay's upload)
     };
-    trilab::MeshRenderer& surface_;
+    trilab::MeshRenderer* surface_;
+    SelectionPanelState panel_;
     SelectionStroke stroke_;
     std::string overlay_key_;  ///< what the overlay's weights on the GPU are of
     std::uint64_t stroke_counter_ = 0;

@@ -1,12 +1,16 @@
 #pragma once
-// Tool: one of the viewer's tools (Fairing, Decimation, Frequency, Selection, Pick and
-// Inspector, the operation panels). A tool owns the state its section shows besides the
-// operation's values (the stable step, the transfer curve, the collapsing edges, the brush
-// stroke, the Inspector's rows), its overlays in the view and its mouse handling, and reaches
-// the document only through the session's read-only views and the command queue. The viewer
-// keeps a list of tools and calls each in turn every frame (the pattern of Polyscope's
-// Quantity: each owns its UI, drawing and picking); it knows none of them by name.
+// Tool: one of the viewer's tools (the generic operation panels, Selection, Fairing,
+// Frequency, Subdivision, Decimation, Denoise, Morph and Record, Pick and Inspector). A tool
+// owns its panel: the panel's state (the operation's values, open or not, the stable step,
+// the transfer curve, the collapsing edges, the brush, the Inspector's rows), its sidebar
+// section(s), the panel entries the menus, --panels and the key bindings find it by, and its
+// saved settings; and its overlays in the view and its mouse handling. It reaches the
+// document only through the session's read-only views and the command queue. The viewer
+// keeps a list of tools and calls each in turn every frame, the sidebar in the list's order
+// (the pattern of Polyscope's Quantity: each owns its UI, drawing and picking); it knows none
+// of them by name.
 #include <glm/glm.hpp>
+#include <string>
 #include <vector>
 
 #include "app/viewer/viewer_context.h"
@@ -21,6 +25,19 @@ struct ViewMouse {
     bool clicked = false;       ///< the left button was released without turning the view
     bool double_clicked = false;
     bool ctrl = false, alt = false, shift = false;
+};
+
+/// The saved settings of a tool (viewer_settings.cpp writes and reads them through one, by
+/// key: "panel.fairing", "record.frames"; docs/file-formats.md#session-files).
+class SettingsVisitor {
+public:
+    virtual ~SettingsVisitor() = default;
+    virtual void number(const std::string& key, int& v) = 0;
+    virtual void number(const std::string& key, float& v) = 0;
+    virtual void flag(const std::string& key, bool& v) = 0;
+    virtual void text(const std::string& key, std::string& v) = 0;
+    /// The operation's text (Operation::text()); one that does not parse is left as it is.
+    virtual void operation(const std::string& key, Operation& op) = 0;
 };
 
 class Tool {
@@ -48,6 +65,17 @@ public:
     virtual VertexColors field_colors(const HalfedgeMesh& /*mesh*/) const { return {}; }
     /// The operation panels this tool holds (their previews, notes and sweeps).
     virtual std::vector<OperationPanelState*> operation_panels() { return {}; }
+
+    // ---- the tool's panel -------------------------------------------------------------------
+    /// The tool's sidebar section(s): header and, when open, body; widgets queue commands.
+    virtual void section(const SidebarContext& /*context*/, CommandQueue& /*commands*/) {}
+    /// Its panels as the menus, --panels, the key bindings and --click find them, by name.
+    virtual PanelEntries panels() { return {}; }
+    /// Writes or reads its saved settings through `v`.
+    virtual void settings(SettingsVisitor& /*v*/) {}
+    /// A reference figure's operation: the tool takes it into its panel and opens the panel
+    /// when the operation is its own (returns true).
+    virtual bool show_figure(const Operation& /*op*/) { return false; }
 
 protected:
     ViewerContext& context_;

@@ -167,7 +167,9 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
     Session& session = context_.session;
     ViewState& view = context_.view;
     scene_ = std::make_unique<SceneView>(context_);
-    tools_ = make_tools(context_, *scene_);
+    SceneView& scene = *scene_;
+    tools_ =
+        make_tools(context_, &scene.exact(), [&scene] { return scene.geodesic_colored_version(); });
     scene_->set_field_colors([this](const HalfedgeMesh& mesh) {
         for (const auto& tool : tools_.all)
             if (VertexColors colors = tool->field_colors(mesh); !colors.colors.empty())
@@ -220,7 +222,7 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
             for (OperationPanelState* panel : tool->operation_panels())
                 if (panel->op.def == op.def) panel->op = op;
     }
-    open_panels(context_.panels, options_.show);
+    open_panels(context_.panels, tools_.entries(), options_.show);
     if (!options_.no_recovery) start_recovery();  // --restore may start a job
     if (!options_.mesh_path.empty()) session.execute(LoadFile{options_.mesh_path, true});
 }

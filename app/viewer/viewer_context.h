@@ -32,8 +32,11 @@ struct ViewerContext {
     Session session;  ///< the document, its history, jobs and operations (no GL)
     ViewState view;
     CommandQueue commands;
-    /// The panels' own state (what each section edits).
+    /// The window's own panels and dialogs (each tool owns its panel's state: tool.h).
     PanelState panels;
+    /// The Record settings, owned by the Morph tool (morph_tool.h); FrameOutput reads them
+    /// while it records (nullptr: no such tool).
+    RecordState* record = nullptr;
     Rect view_rect;         ///< where the model is drawn (window pixels), from the layout
     float ui_scale = 1.0f;  ///< content scale of the monitor (HiDPI)
     /// A scripted sweep times the previews itself (the panels' latency notes wait).

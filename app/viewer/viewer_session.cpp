@@ -17,7 +17,7 @@ SessionExtras Viewer::session_extras() const {
     MorphState morph = context_.session.morph();
     SessionExtras extras;
     extras.viewer_settings = viewer_settings_text(
-        {self.view.camera, self.view.style, self.view.settings, self.panels, morph});
+        {self.view.camera, self.view.style, self.view.settings, self.panels, morph, tools_.list()});
     extras.texture_path = scene_->texture_path();
     return extras;
 }
@@ -26,9 +26,9 @@ void Viewer::apply_session_extras(const SessionExtras& extras) {
     ViewState& view = context_.view;
     Session& session = context_.session;
     MorphState morph = session.morph();
-    for (const std::string& note :
-         apply_viewer_settings(extras.viewer_settings,
-                               {view.camera, view.style, view.settings, context_.panels, morph}))
+    for (const std::string& note : apply_viewer_settings(
+             extras.viewer_settings,
+             {view.camera, view.style, view.settings, context_.panels, morph, tools_.list()}))
         session.log().warning(note);
     session.execute(SetMorphAnimation{morph.duration, morph.easing, morph.playback});
     view.fitted = false;                                       // the stored camera stays on resize

@@ -1,6 +1,8 @@
 // The viewer's settings as key=value text; see viewer_settings.h.
 #include "app/viewer/viewer_settings.h"
 
+#include "app/viewer/tool.h"
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -173,6 +175,21 @@ struct Reader {
     }
 };
 
+/// A tool's settings through the writer or the reader (Tool::settings()).
+template <class V>
+class ToolSettings : public SettingsVisitor {
+public:
+    explicit ToolSettings(V& v) : v_(v) {}
+    void number(const std::string& key, int& x) override { v_.number(key, x); }
+    void number(const std::string& key, float& x) override { v_.number(key, x); }
+    void flag(const std::string& key, bool& x) override { v_.flag(key, x); }
+    void text(const std::string& key, std::string& x) override { v_.text_value(key, x); }
+    void operation(const std::string& key, Operation& op) override { v_.operation(key, op); }
+
+private:
+    V& v_;
+};
+
 template <class V>
 void visit(V& v, const ViewerSettingsRefs& r) {
     RenderStyle& s = r.style;
@@ -215,25 +232,10 @@ void visit(V& v, const ViewerSettingsRefs& r) {
              [](const std::string& name) { return parse_up_axis(name, "view.up"); });
     v.flag("view.use_checkerboard", vs.use_checkerboard);
 
+    // Every tool's panel (its operation's values, its own settings), then the window's.
+    ToolSettings<V> tools(v);
+    for (Tool* tool : r.tools) tool->settings(tools);
     PanelState& p = r.panels;
-    v.operation("panel.subdivision", p.subdivision.op);
-    v.operation("panel.fairing", p.fairing.op);
-    v.operation("panel.decimation", p.decimation.op);
-    v.operation("panel.frequency", p.frequency.op);
-    for (OperationPanelState& tool : p.tools)
-        v.operation("panel.tool." + tool.op.def->name, tool.op);
-    v.number("frequency.lo", p.frequency.lo);
-    v.number("frequency.hi", p.frequency.hi);
-    v.number("frequency.visualize", p.frequency.visualize);
-    v.number("decimation.lod_percent", p.decimation.lod_percent);
-    v.flag("decimation.show_collapsing_edges", p.decimation.show_collapsing_edges);
-    v.number("record.frames", p.record.frames);
-    v.number("record.fps", p.record.fps);
-    v.number("record.width", p.record.width);
-    v.number("record.height", p.record.height);
-    v.text_value("record.folder", p.record.folder);
-    v.text_value("record.name", p.record.name);
-    v.flag("record.mp4", p.record.mp4);
     v.text_value("screenshot.path", p.screenshot.path);
     v.number("screenshot.width", p.screenshot.width);
     v.number("screenshot.height", p.screenshot.height);

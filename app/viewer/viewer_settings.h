@@ -21,7 +21,8 @@ struct ViewerSettingsRefs {
     RenderStyle& style;
     ViewSettings& settings;
     PanelState& panels;
-    MorphState& morph;  ///< a copy of the session's (SetMorphAnimation applies it)
+    MorphState& morph;      ///< a copy of the session's (SetMorphAnimation applies it)
+    const ToolList& tools;  ///< each writes and reads its own (Tool::settings())
 };
 
 /// One "key=value" line per setting ('\' and newlines in values escaped as \\ and \n).

@@ -141,7 +141,8 @@ void Viewer::handle_input() {
                              context_.session.jobs().busy(),
                              context_.session.history().current() > 0,
                              scene_->exact().has_texcoords(),
-                             context_.session.previews().requested().has_value()};
+                             context_.session.previews().requested().has_value(),
+                             tools_.entries()};
     for (const KeyPress& press : presses) dispatch_key(press.key, press.mods, targets, focus);
 }
 
@@ -161,8 +162,8 @@ void Viewer::draw_ui() {
     render.has_texcoords = scene_->exact().has_texcoords();
     render.has_loaded_texture = !scene_->texture_image().empty();
     const bool checker = view.settings.use_checkerboard;
-    menu_bar(view.style, view.settings, panels, context, render, commands);
-    context_menu(view.style, view.settings, panels, render, commands);
+    menu_bar(view.style, view.settings, panels, tools_.list(), context, render, commands);
+    context_menu(view.style, view.settings, panels, tools_.entries(), render, commands);
     if (checker != view.settings.use_checkerboard) scene_->update_texture();
 
     // The fixed regions (layout.h). A region the user resizes this frame changes the ones
@@ -204,6 +205,7 @@ void Viewer::draw_ui() {
             panels.info_open ? scene_info() : std::vector<std::string>{};
         SidebarContext sidebar;
         sidebar.history = &session.history();
+        sidebar.morph = &session.morph();
         sidebar.busy = session.jobs().busy();
         sidebar.closed = session.document().closed;
         sidebar.can_record =
@@ -212,7 +214,7 @@ void Viewer::draw_ui() {
         sidebar.frequency = &session.document().frequency;
         sidebar.info = &info;
         for (const auto& tool : tools_.all) tool->describe(sidebar);
-        sidebar_sections(panels, session.morph(), sidebar, commands);
+        sidebar_sections(tools_.list(), sidebar, commands);
     }
     if (panels.sidebar_open) end_region();
     layout = compute_layout(in, sizes);

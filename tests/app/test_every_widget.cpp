@@ -26,6 +26,7 @@
 #include "core/algorithms/generators.h"
 #include "core/errors.h"
 #include "tests/app/panel_ui.h"
+#include "tests/app/test_tools.h"
 
 using namespace trilab;
 using namespace trilab::viewer;
@@ -61,7 +62,7 @@ namespace {
 
 /// Everything the sidebar shows, in one place that does not move (the context points into it).
 struct Sidebar {
-    PanelState panels;
+    TestPanels panels;
     MorphState morph;
     History history;
     FrequencyDocument frequency;
@@ -84,6 +85,7 @@ struct Sidebar {
         frequency.eigenvalues = {0.0f, 0.5f, 1.0f, 2.0f};
         frequency.log_coefficients = {1.0f, 0.0f, -1.0f, -2.0f};
         context.history = &history;
+        context.morph = &morph;
         context.closed = true;
         context.can_record = true;
         context.open_seams = true;
@@ -122,9 +124,10 @@ struct Sidebar {
         panels.inspector_open = true;
         panels.selection.open = true;
         panels.decimation.lod_open = true;
+        panels.denoise.open = true;
     }
     void draw() {
-        in_sidebar(panels.layout, [&] { sidebar_sections(panels, morph, context, commands); });
+        in_sidebar(panels.layout, [&] { sidebar_sections(panels.list(), context, commands); });
     }
 };
 
@@ -195,6 +198,8 @@ TEST_CASE("no widget ID is used twice in a frame, in any combination of open sec
         s.panels.decimation.previewing = s.panels.tool("noise")->previewing = (mask & 8u) != 0;
         s.morph.playing = (mask & 16u) != 0;
         s.panels.inspector_open = (mask & 32u) != 0;
+        s.panels.denoise.open = s.panels.fairing.open;  // one more section, no more frames
+        s.panels.denoise.previewing = (mask & 8u) != 0;
         ui.frame(draw);  // the sections take their new state
         const std::vector<std::string> duplicates = duplicate_ids(ui, draw);
         INFO("open sections mask " << mask);
@@ -208,12 +213,12 @@ TEST_CASE("the menus and dialogs use no widget ID twice", "[panels][ids]") {
     Ui ui;
     RenderStyle style;
     ViewSettings settings;
-    PanelState panels;
+    TestPanels panels;
     CommandQueue commands;
     MenuContext menu;
     RenderContext render;
     const auto draw = [&] {
-        menu_bar(style, settings, panels, menu, render, commands);
+        menu_bar(style, settings, panels, panels.list(), menu, render, commands);
         screenshot_dialog(panels.screenshot, commands);
     };
     panels.screenshot.open = true;
@@ -278,6 +283,8 @@ TEST_CASE("every button of every section queues what it says", "[panels][buttons
         {"Frequency decomposition/Decompose", queues_one(Decompose{})},
         {"Frequency decomposition/Restore", queues_one(RestoreDecomposed{})},
         {"Subdivision/Subdivide", applies("subdivide")},
+        {"Denoise/Denoise", applies("denoise")},
+        {"Denoise/Cancel", queues_one(CancelPreview{})},
         {"Subdivision/Cancel", queues_one(CancelPreview{})},
         {"Subdivision/Weld coincident vertices", applies("weld")},
         {"Decimation/Decimate", applies("decimate")},
@@ -336,7 +343,8 @@ TEST_CASE("every button of every section queues what it says", "[panels][buttons
     };
     // Every tool from the registry: Apply (where its defaults make a valid run; otherwise it
     // is drawn disabled with the reason) and the preview's Cancel.
-    for (const OperationPanelState& tool : PanelState().tools) {
+    const TestPanels registry;
+    for (const OperationPanelState& tool : registry.tools) {
         if (tool.op.def->params.empty()) continue;  // a menu action
         const std::string title = tool_section_title(*tool.op.def);
         bool valid = true;
@@ -353,7 +361,7 @@ TEST_CASE("every button of every section queues what it says", "[panels][buttons
         [](Sidebar& s) { s.morph.t = 0.5; },
         [](Sidebar& s) {
             s.panels.fairing.previewing = s.panels.subdivision.previewing = true;
-            s.panels.decimation.previewing = true;
+            s.panels.decimation.previewing = s.panels.denoise.previewing = true;
             for (OperationPanelState& tool : s.panels.tools) tool.previewing = true;
             s.panels.decimation.lod_ready = true;
             s.panels.record.running = true;
@@ -603,21 +611,28 @@ TEST_CASE("the Frequency section says whether the mesh shows a band", "[panels][
 
 TEST_CASE("every registered operation has a panel: its own, or a tool's from the registry",
           "[panels][tools]") {
-    PanelState panels;
-    const std::vector<const OperationDef*> owned = {panels.subdivision.op.def,
-                                                    panels.fairing.op.def, panels.frequency.op.def,
-                                                    panels.decimation.op.def};
+    TestPanels panels;
+    // Exactly one tool holds each operation (the Frequency tool the decomposition's).
     for (const OperationDef* def : operation_defs()) {
         INFO(def->name);
-        const bool own = std::find(owned.begin(), owned.end(), def) != owned.end();
-        CHECK(own != (panels.tool(def->name) != nullptr));
+        int holders = def == panels.frequency.op.def ? 1 : 0;
+        for (Tool* tool : panels.list())
+            for (OperationPanelState* panel : tool->operation_panels())
+                if (panel->op.def == def) ++holders;
+        CHECK(holders == 1);
     }
+    // The operations with tools of their own have no generic panel.
+    for (const char* own : {"smooth", "subdivide", "decimate", "spectrum", "denoise"}) {
+        INFO(own);
+        CHECK(panels.tool(own) == nullptr);
+    }
+    CHECK(panels.tool("noise") != nullptr);
     // A tool with parameters is a sidebar section named after its label; Apply applies it.
     Ui ui(1280, 6000);
     CommandQueue commands;
     for (OperationPanelState& tool : panels.tools) tool.open = true;
     const auto draw = [&] {
-        in_sidebar(panels.layout, [&] { tools_section(panels, false, commands); });
+        in_sidebar(panels.layout, [&] { tools_section(panels.tools, false, commands); });
     };
     ui.frame(draw);
     ui.frame(draw);
@@ -647,15 +662,15 @@ TEST_CASE("every registered operation has a panel: its own, or a tool's from the
 
 TEST_CASE("open_panels (--show) opens panels by name, tools by their operation name",
           "[panels][tools]") {
-    PanelState panels;
-    open_panels(panels, "history,weld,collapsing-edges");
+    TestPanels panels;
+    open_panels(panels, panels.entries(), "history,weld,collapsing-edges");
     CHECK(panels.history_open);
     CHECK(panels.tool("weld")->open);
     CHECK_FALSE(panels.tool("noise")->open);
     CHECK(panels.decimation.show_collapsing_edges);
-    open_panels(panels, "tools");
+    open_panels(panels, panels.entries(), "tools");
     CHECK(panels.tool("noise")->open);
-    CHECK_THROWS_WITH(open_panels(panels, "history,nope"),
+    CHECK_THROWS_WITH(open_panels(panels, panels.entries(), "history,nope"),
                       Catch::Contains("unknown panel 'nope'") && Catch::Contains("weld"));
 }
 
@@ -722,12 +737,14 @@ TEST_CASE("File > Open session and Save session ask for a session file, which is
           "[panels][session]") {
     RenderStyle style;
     ViewSettings settings;
-    PanelState panels;
+    TestPanels panels;
     MenuContext context;
     context.document_path = "/tmp/model.obj";
     RenderContext render;
     CommandQueue commands;
-    const auto draw = [&] { menu_bar(style, settings, panels, context, render, commands); };
+    const auto draw = [&] {
+        menu_bar(style, settings, panels, panels.list(), context, render, commands);
+    };
     const std::pair<const char*, FileBrowserState::Purpose> items[] = {
         {"File/Open session...", FileBrowserState::Purpose::OpenSession},
         {"File/Save session...", FileBrowserState::Purpose::SaveSession}};
@@ -783,9 +800,11 @@ TEST_CASE("Help > Reference figures: each item sets its panel and queues the fig
     for (const auto& [name, operation] : items) {
         INFO(name);
         Ui ui;
-        PanelState panels;
+        TestPanels panels;
         CommandQueue commands;
-        const auto draw = [&] { menu_bar(style, settings, panels, context, render, commands); };
+        const auto draw = [&] {
+            menu_bar(style, settings, panels, panels.list(), context, render, commands);
+        };
         ui.frame(draw);
         const auto help = std::find_if(ui.notes().begin(), ui.notes().end(), [](const auto& n) {
             return n.kind == WidgetNote::Kind::Menu && n.label == "Help";
@@ -820,10 +839,12 @@ TEST_CASE("Help > Reference figures: each item sets its panel and queues the fig
     }
     // While a job runs the items are disabled.
     Ui ui;
-    PanelState panels;
+    TestPanels panels;
     CommandQueue commands;
     context.busy = true;
-    const auto draw = [&] { menu_bar(style, settings, panels, context, render, commands); };
+    const auto draw = [&] {
+        menu_bar(style, settings, panels, panels.list(), context, render, commands);
+    };
     ui.frame(draw);
     const auto help = std::find_if(ui.notes().begin(), ui.notes().end(), [](const auto& n) {
         return n.kind == WidgetNote::Kind::Menu && n.label == "Help";

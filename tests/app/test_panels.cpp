@@ -25,6 +25,7 @@
 #include "core/algorithms/fairing.h"
 #include "core/algorithms/generators.h"
 #include "tests/app/panel_ui.h"
+#include "tests/app/test_tools.h"
 
 using namespace trilab;
 using namespace trilab::viewer;
@@ -33,13 +34,14 @@ using namespace trilab::viewer::testing;
 
 TEST_CASE("the Subdivision panel's Subdivide queues the typed operation it shows", "[panels]") {
     Ui ui;
-    PanelState panels;
+    TestPanels panels;
     MorphState morph;
     History history;
     panels.subdivision.open = true;
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout, [&] { subdivision_section(panels, SidebarContext{}, commands); });
+        in_sidebar(panels.layout,
+                   [&] { subdivision_section(panels.subdivision, SidebarContext{}, commands); });
     };
     ui.frame(draw);
     ui.frame(draw);  // auto-resized windows take their size on the second frame
@@ -56,13 +58,14 @@ TEST_CASE("the Subdivision panel's Subdivide queues the typed operation it shows
 
 TEST_CASE("dragging a slider previews live with the new typed value", "[panels]") {
     Ui ui;
-    PanelState panels;
+    TestPanels panels;
     MorphState morph;
     History history;
     panels.decimation.open = true;
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout, [&] { decimation_section(panels, SidebarContext{}, commands); });
+        in_sidebar(panels.layout,
+                   [&] { decimation_section(panels.decimation, SidebarContext{}, commands); });
     };
     ui.frame(draw);
     ui.frame(draw);
@@ -81,14 +84,15 @@ TEST_CASE("dragging a slider previews live with the new typed value", "[panels]"
 
 TEST_CASE("slow panels preview once, when the drag is released", "[panels]") {
     Ui ui;
-    PanelState panels;
+    TestPanels panels;
     MorphState morph;
     History history;
     panels.decimation.open = true;
     panels.decimation.live = false;  // the viewer found the last preview over the budget
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout, [&] { decimation_section(panels, SidebarContext{}, commands); });
+        in_sidebar(panels.layout,
+                   [&] { decimation_section(panels.decimation, SidebarContext{}, commands); });
     };
     ui.frame(draw);
     ui.frame(draw);
@@ -108,13 +112,14 @@ TEST_CASE("slow panels preview once, when the drag is released", "[panels]") {
 
 TEST_CASE("the Fairing panel shows only the parameters that apply", "[panels]") {
     Ui ui;
-    PanelState panels;
+    TestPanels panels;
     MorphState morph;
     History history;
     panels.fairing.open = true;
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout, [&] { fairing_section(panels, closed_mesh(), commands); });
+        in_sidebar(panels.layout,
+                   [&] { fairing_section(panels.fairing, closed_mesh(), commands); });
     };
     ui.frame(draw);
     ui.frame(draw);
@@ -140,11 +145,11 @@ TEST_CASE("the Fairing panel shows only the parameters that apply", "[panels]") 
 
 TEST_CASE("Cancel shows while a preview is up and queues CancelPreview", "[panels]") {
     Ui ui;
-    PanelState panels;
+    TestPanels panels;
     panels.tool("noise")->open = true;
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout, [&] { tools_section(panels, false, commands); });
+        in_sidebar(panels.layout, [&] { tools_section(panels.tools, false, commands); });
     };
     ui.frame(draw);
     ui.frame(draw);
@@ -160,14 +165,15 @@ TEST_CASE("Cancel shows while a preview is up and queues CancelPreview", "[panel
 
 TEST_CASE("the Fairing panel marks a step above the stable limit and offers implicit", "[panels]") {
     Ui ui;
-    PanelState panels;
+    TestPanels panels;
     MorphState morph;
     History history;
     panels.fairing.open = true;
     panels.fairing.max_stable_step = 1.35;
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout, [&] { fairing_section(panels, closed_mesh(), commands); });
+        in_sidebar(panels.layout,
+                   [&] { fairing_section(panels.fairing, closed_mesh(), commands); });
     };
     ui.frame(draw);
     ui.frame(draw);
@@ -192,13 +198,14 @@ TEST_CASE("the Fairing panel marks a step above the stable limit and offers impl
 TEST_CASE("the Fairing panel's transfer curve marks instability, the pass band and measurements",
           "[panels][lens]") {
     Ui ui(1280, 2000);
-    PanelState panels;
+    TestPanels panels;
     panels.fairing.open = true;
     panels.fairing.max_stable_step = 0.5;  // lambda_max = 4 from the stability estimate
     panels.fairing.lens.lambda_max = 4.0;
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout, [&] { fairing_section(panels, closed_mesh(), commands); });
+        in_sidebar(panels.layout,
+                   [&] { fairing_section(panels.fairing, closed_mesh(), commands); });
     };
     FairingOptions o = options_of<FairingOptions>(panels.fairing.op);
     o.op = FairingOperator::Umbrella;
@@ -258,13 +265,14 @@ TEST_CASE(
     "marks it when shown",
     "[panels][lens][figures]") {
     Ui ui(1280, 2000);
-    PanelState panels;
+    TestPanels panels;
     panels.fairing.open = true;
     panels.fairing.max_stable_step = 1.34;
     panels.fairing.lens.lambda_max = 2.0 / 1.34;
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout, [&] { fairing_section(panels, closed_mesh(), commands); });
+        in_sidebar(panels.layout,
+                   [&] { fairing_section(panels.fairing, closed_mesh(), commands); });
     };
     // Figure 1.12(b)'s settings: explicit umbrella at step 20, unstable above 0.1.
     panels.fairing.op = parse_operation("smooth --operator umbrella --step 20");
@@ -707,11 +715,11 @@ TEST_CASE("the layout's regions tile the window at every size, scale and panel s
 
 TEST_CASE("dragging the sidebar's edge resizes it and the view follows", "[layout]") {
     Ui ui;
-    PanelState panels;
+    TestPanels panels;
     CommandQueue commands;
     panels.tool("noise")->open = true;
     const auto draw = [&] {
-        in_sidebar(panels.layout, [&] { tools_section(panels, false, commands); });
+        in_sidebar(panels.layout, [&] { tools_section(panels.tools, false, commands); });
     };
     ui.frame(draw);
     ui.frame(draw);
@@ -735,10 +743,10 @@ TEST_CASE("dragging the sidebar's edge resizes it and the view follows", "[layou
 
 TEST_CASE("a section opened elsewhere shows its body, its header closes it", "[layout]") {
     Ui ui;
-    PanelState panels;
+    TestPanels panels;
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout, [&] { tools_section(panels, false, commands); });
+        in_sidebar(panels.layout, [&] { tools_section(panels.tools, false, commands); });
     };
     ui.frame(draw);
     CHECK_FALSE(ui.has("Apply"));  // collapsed: only the header
@@ -755,7 +763,7 @@ TEST_CASE("a section opened elsewhere shows its body, its header closes it", "[l
 
 TEST_CASE("the morph controls offer no animation for a state that moves nothing", "[panels]") {
     Ui ui;
-    PanelState panels;
+    TestPanels panels;
     MorphState morph;
     History history;
     HalfedgeMesh a = make_default_model();
@@ -765,7 +773,8 @@ TEST_CASE("the morph controls offer no animation for a state that moves nothing"
     panels.morph_open = true;
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout, [&] { morph_section(panels, morph, history, commands); });
+        in_sidebar(panels.layout,
+                   [&] { morph_section(panels.morph_open, morph, history, commands); });
     };
     ui.frame(draw);
     CHECK(ui.has("Animate"));
@@ -793,7 +802,7 @@ TEST_CASE("the unsaved-changes question offers Save as", "[panels]") {
 
 TEST_CASE("Esc closes the key bindings", "[panels]") {
     Ui ui;
-    PanelState panels;
+    TestPanels panels;
     panels.help_open = true;
     ImGuiIO& io = ImGui::GetIO();
     io.KeyMap[ImGuiKey_Escape] = 256;  // any free slot of KeysDown
@@ -813,14 +822,15 @@ namespace {
 /// The viewer's state the key actions work on, fresh: a morph that moves, an operation
 /// preview up, no dialog open, no job running, no texture coordinates.
 struct KeyFixture {
-    PanelState panels;
+    TestPanels panels;
     RenderStyle style;
     ViewSettings settings;
     MorphState morph;
     CommandQueue commands;
     Log log{false};
-    KeyActionTargets targets{panels, style, settings, morph, commands, log, "/data/model.obj",
-                             false,  true,  false,    true};
+    KeyActionTargets targets{
+        panels, style, settings, morph, commands,        log, "/data/model.obj",
+        false,  true,  false,    true,  panels.entries()};
 };
 
 /// A click that opens the menu (or submenu) whose closed header is "menu:LABEL", then a frame
@@ -854,6 +864,7 @@ TEST_CASE("every key binding reaches its action", "[panels][keys]") {
         REQUIRE(find_key_binding(b.key, b.mods) == &b);  // no binding shadows another
         KeyFixture f;
         const PanelState before = f.panels;
+        const bool morph_before = f.panels.morph_open, record_before = f.panels.record.open;
         const RenderStyle style = f.style;
         REQUIRE(dispatch_key(b.key, b.mods, f.targets));
         const auto queued = [&](auto command) {
@@ -902,10 +913,10 @@ TEST_CASE("every key binding reaches its action", "[panels][keys]") {
                 CHECK(f.panels.history_open != before.history_open);
                 break;
             case KeyAction::ToggleMorph:
-                CHECK(f.panels.morph_open != before.morph_open);
+                CHECK(f.panels.morph_open != morph_before);
                 break;
             case KeyAction::ToggleRecord:
-                CHECK(f.panels.record.open != before.record.open);
+                CHECK(f.panels.record.open != record_before);
                 break;
             case KeyAction::PlayMorph:
                 REQUIRE(queued(PlayMorph{}));
@@ -1040,11 +1051,13 @@ TEST_CASE("the menus show the key bindings' shortcut texts, F1 lists every bindi
         Ui ui;
         RenderStyle style;
         ViewSettings settings;
-        PanelState panels;
+        TestPanels panels;
         MenuContext context;
         RenderContext render;
         CommandQueue commands;
-        const auto draw = [&] { menu_bar(style, settings, panels, context, render, commands); };
+        const auto draw = [&] {
+            menu_bar(style, settings, panels, panels.list(), context, render, commands);
+        };
         ui.frame(draw);
         open_menu(ui, draw, menu, shortcuts);
         if (menu == "Rendering")

@@ -10,6 +10,7 @@
 
 #include "app/viewer/panels.h"
 #include "tests/app/panel_ui.h"
+#include "tests/app/test_tools.h"
 
 using namespace trilab;
 using namespace trilab::viewer;
@@ -30,13 +31,13 @@ bool enabled(const Ui& ui, const std::string& label) {
 TEST_CASE("the Selection section offers what the document allows and queues its settings",
           "[panels][selection]") {
     Ui ui;
-    PanelState panels;
+    TestPanels panels;
     panels.selection.open = true;
     SidebarContext context;
     context.n_vertices = 1002;
     CommandQueue commands;
     const auto draw = [&] {
-        in_sidebar(panels.layout, [&] { selection_section(panels, context, commands); });
+        in_sidebar(panels.layout, [&] { selection_section(panels.selection, context, commands); });
     };
     ui.frame(draw);
     ui.frame(draw);

@@ -22,9 +22,11 @@
 #include "core/algorithms/generators.h"
 #include "core/io/image_io.h"
 #include "core/io/mesh_io.h"
+#include "tests/app/test_tools.h"
 
 using namespace trilab;
 using namespace trilab::viewer;
+using namespace trilab::viewer::testing;
 namespace fs = std::filesystem;
 
 namespace {
@@ -134,7 +136,7 @@ TEST_CASE("the viewer settings text reads back bit for bit", "[session]") {
     settings.coloring_options.low_percentile = 1.0 / 3.0;
     settings.coloring_options.high_percentile = 97.123456789012345;
     settings.up = UpAxis::Z;
-    PanelState panels;
+    TestPanels panels;
     panels.fairing.op = parse_operation("smooth --iterations 7 --step 0.123");
     panels.record.folder = "odd\\name\nwith newline";
     panels.frequency.lo = 3;
@@ -142,14 +144,15 @@ TEST_CASE("the viewer settings text reads back bit for bit", "[session]") {
     morph.duration = 2.0 / 3.0;
     morph.easing = Easing::EaseInOutCubic;
 
-    const std::string text = viewer_settings_text({camera, style, settings, panels, morph});
+    const std::string text =
+        viewer_settings_text({camera, style, settings, panels, morph, panels.list()});
     Camera camera2;
     RenderStyle style2;
     ViewSettings settings2;
-    PanelState panels2;
+    TestPanels panels2;
     MorphState morph2;
     const std::vector<std::string> notes =
-        apply_viewer_settings(text, {camera2, style2, settings2, panels2, morph2});
+        apply_viewer_settings(text, {camera2, style2, settings2, panels2, morph2, panels2.list()});
     CHECK(notes.empty());
     CHECK(camera2.rotation() == camera.rotation());
     CHECK(camera2.target() == camera.target());
@@ -169,19 +172,66 @@ TEST_CASE("the viewer settings text reads back bit for bit", "[session]") {
     CHECK(panels2.frequency.lo == 3);
     CHECK(morph2.duration == morph.duration);
     CHECK(morph2.easing == Easing::EaseInOutCubic);
-    CHECK(viewer_settings_text({camera2, style2, settings2, panels2, morph2}) == text);
+    CHECK(viewer_settings_text({camera2, style2, settings2, panels2, morph2, panels2.list()}) ==
+          text);
+}
+
+TEST_CASE("the tools keep the saved settings' keys the panels had", "[viewer_settings]") {
+    // Session files and journals written before the tools owned their panels load: every key
+    // is where it was (docs/file-formats.md#session-files).
+    Camera camera;
+    RenderStyle style;
+    ViewSettings settings;
+    TestPanels panels;
+    MorphState morph;
+    panels.denoise.op = parse_operation("denoise --normal-iterations 5");
+    panels.tool("noise")->op = parse_operation("noise --amount 12");
+    const std::string text =
+        "\n" + viewer_settings_text({camera, style, settings, panels, morph, panels.list()});
+    for (const char* key : {"panel.subdivision=",
+                            "panel.fairing=",
+                            "panel.decimation=",
+                            "panel.frequency=",
+                            "panel.tool.noise=",
+                            "panel.tool.weld=",
+                            "panel.tool.denoise=",
+                            "frequency.lo=",
+                            "frequency.hi=",
+                            "frequency.visualize=",
+                            "decimation.lod_percent=",
+                            "decimation.show_collapsing_edges=",
+                            "record.frames=",
+                            "record.fps=",
+                            "record.width=",
+                            "record.height=",
+                            "record.folder=",
+                            "record.name=",
+                            "record.mp4=",
+                            "screenshot.path=",
+                            "morph.duration="}) {
+        INFO(key);
+        CHECK(text.find(std::string("\n") + key) != std::string::npos);
+    }
+    // The lines the generic Denoise panel wrote reach the Denoise tool.
+    TestPanels panels2;
+    CHECK(apply_viewer_settings("panel.tool.denoise=" + panels.denoise.op.text() +
+                                    "\npanel.tool.noise=" + panels.tool("noise")->op.text() + "\n",
+                                {camera, style, settings, panels2, morph, panels2.list()})
+              .empty());
+    CHECK(panels2.denoise.op == panels.denoise.op);
+    CHECK(panels2.tool("noise")->op == panels.tool("noise")->op);
 }
 
 TEST_CASE("bad viewer settings lines are notes naming the line, never a throw", "[session]") {
     Camera camera;
     RenderStyle style;
     ViewSettings settings;
-    PanelState panels;
+    TestPanels panels;
     MorphState morph;
     const std::vector<std::string> notes = apply_viewer_settings(
         "style.wire_width=nan\nstyle.mode=sideways\nnonsense\nno.such=1\n"
         "panel.fairing=subdivide --iterations 1\ncamera.rotation=1 0 0\nstyle.fog=1\n",
-        {camera, style, settings, panels, morph});
+        {camera, style, settings, panels, morph, panels.list()});
     REQUIRE(notes.size() == 7);       // the short camera line: its own note and the camera's
     CHECK(style.fog);                 // the good line applies
     CHECK(style.wire_width == 1.0f);  // the bad ones leave their setting
