@@ -69,35 +69,22 @@ void DecimationTool::draw_overlay() {
 void DecimationTool::update_collapsing_edges() {
     const DecimationPanelState& d = panel_;
     if (!d.show_collapsing_edges) return;
-    const HalfedgeMesh& mesh = context_.session.mesh();
-    // The mesh state (its topology and geometry revisions) and the options the edges were
-    // computed for.
-    const std::string key = std::to_string(mesh.topology_revision()) + " " +
-                            std::to_string(mesh.geometry_revision()) + " " + d.op.text();
-    if (key == key_ && lines_) return;
-    key_ = key;
+    Session& session = context_.session;
+    // The session finds them off the render thread (SessionGuidance): a dry run of the next
+    // iteration; meshes over its size limit get none. Until the edges of this state and these
+    // options arrive, none are drawn (the last ones would be of another shape).
+    session.execute(FindCollapsingEdges{d.op});
+    const SessionGuidance::CollapsingEdges* found = session.guidance().collapsing_edges();
+    const bool current = found && found->state == session.mesh().revision() && found->op == d.op;
+    if (!current) found = nullptr;
+    if (found == drawn_ && lines_) return;
+    drawn_ = found;
     if (!lines_) lines_ = std::make_unique<LineRenderer>();  // the GL context is current here
     std::vector<glm::vec3> points;
-    // Computed on the render thread: a dry run of the next iteration, a fraction of a second
-    // up to a few hundred thousand vertices; bigger meshes skip the overlay.
-    constexpr std::size_t kMaxOverlayVertices = 300000;
-    if (mesh.n_vertices() > kMaxOverlayVertices) {
-        context_.session.log().warning(
-            "Collapsing edges: shown for meshes of up to 300,000 vertices only");
-        lines_->set_segments(points);
-        return;
-    }
-    try {
-        const DecimationOptions o = decimation_options(d.op);
-        for (const auto& pair : next_collapses(mesh, o)) {
-            const Point& a = mesh.position(pair[0]);
-            const Point& b = mesh.position(pair[1]);
-            points.emplace_back(float(a.x()), float(a.y()), float(a.z()));
-            points.emplace_back(float(b.x()), float(b.y()), float(b.z()));
-        }
-    } catch (const Error& e) {
-        context_.session.notify_error(std::string("Collapsing edges: ") + e.what());
-    }
+    if (found)
+        for (const std::array<Point, 2>& segment : found->segments)
+            for (const Point& p : segment)
+                points.emplace_back(float(p.x()), float(p.y()), float(p.z()));
     lines_->set_segments(points);
 }
 

@@ -28,7 +28,8 @@ private:
     void update_collapsing_edges();
     DecimationPanelState panel_;
     std::unique_ptr<LineRenderer> lines_;
-    std::string key_;  ///< what the drawn edges were computed for
+    /// The session's edges that are drawn (null: none of the current state yet).
+    const SessionGuidance::CollapsingEdges* drawn_ = nullptr;
 };
 
 }  // namespace trilab::viewer

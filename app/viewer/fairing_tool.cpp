@@ -42,13 +42,14 @@ void FairingTool::update() {
 void FairingTool::update_stable_step() {
     FairingPanelState& f = panel_;
     if (!f.open) return;
-    const int op = int(options_of<FairingOptions>(f.op).op);
-    const HalfedgeMesh::Revision state = context_.session.mesh().revision();
-    // A preview of this state reports it (any size); small meshes get it at once.
-    const OperationResult* preview = context_.session.previews().result();
-    const std::optional<Operation>& requested = context_.session.previews().requested();
+    Session& session = context_.session;
+    const FairingOperator op = options_of<FairingOptions>(f.op).op;
+    const HalfedgeMesh::Revision state = session.mesh().revision();
+    // A preview of this state reports it (any size).
+    const OperationResult* preview = session.previews().result();
+    const std::optional<Operation>& requested = session.previews().requested();
     if (preview && requested && is_operation<FairingOptions>(*requested) &&
-        int(options_of<FairingOptions>(*requested).op) == op) {
+        options_of<FairingOptions>(*requested).op == op) {
         if (const SmoothReport* r = report_of<SmoothReport>(*preview);
             r && std::isfinite(r->max_stable_step))
             f.max_stable_step = r->max_stable_step;
@@ -57,19 +58,16 @@ void FairingTool::update_stable_step() {
         return;
     }
     if (f.stable_step_state == state && f.stable_step_operator == op) return;
-    f.stable_step_state = state;
-    f.stable_step_operator = op;
-    f.max_stable_step = std::numeric_limits<double>::quiet_NaN();
-    constexpr std::size_t kAtOnceVertices = 100000;  // a few ms to tens of ms
-    if (context_.session.mesh().n_vertices() <= kAtOnceVertices) {
-        try {
-            const FairingOperator fo = op == int(FairingOperator::Taubin)
-                                           ? FairingOperator::Umbrella
-                                           : FairingOperator(op);
-            f.max_stable_step = max_stable_explicit_step(context_.session.mesh(), fo);
-        } catch (const std::exception& e) {
-            context_.session.log().warning(std::string("stable step: ") + e.what());
-        }
+    // Otherwise the session estimates it off the render thread (SessionGuidance): NaN (not
+    // known) until the estimate of this state and operator arrives.
+    session.execute(EstimateStableStep{op});
+    const SessionGuidance::StableStep* estimate = session.guidance().stable_step();
+    if (estimate && estimate->state == state && estimate->op == op) {
+        f.max_stable_step = estimate->step;
+        f.stable_step_state = state;
+        f.stable_step_operator = op;
+    } else {
+        f.max_stable_step = std::numeric_limits<double>::quiet_NaN();
     }
 }
 

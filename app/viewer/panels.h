@@ -78,8 +78,8 @@ struct FairingPanelState : OperationPanelState {
     FairingPanelState() : OperationPanelState("smooth") {}
     /// The largest stable explicit step of the current mesh and operator (NaN: not known yet).
     double max_stable_step = std::numeric_limits<double>::quiet_NaN();
-    HalfedgeMesh::Revision stable_step_state;  ///< the mesh state it was estimated on
-    int stable_step_operator = -1;             ///< and the operator
+    HalfedgeMesh::Revision stable_step_state;             ///< the mesh state it was estimated on
+    std::optional<FairingOperator> stable_step_operator;  ///< and the operator
     /// The spectral lens: what the transfer curve is drawn over (the viewer fills it).
     TransferView lens;
 };

@@ -173,7 +173,7 @@ bool ScriptDriver::ready() const {
 
 bool ScriptDriver::settled() {
     if (session_.jobs().busy() || !context_.commands.empty() || session_.previews().pending() ||
-        !ready() || sweep_.active || output_.recording())
+        session_.guidance().computing() || !ready() || sweep_.active || output_.recording())
         return false;
     if (!options_.decompose.empty() && decompose_state_ != 2) return false;
     if (clicks_pending() || picks_pending() || selections_pending()) return false;
