@@ -68,6 +68,7 @@ void SelectionTool::describe(SidebarContext& context) const {
 }
 
 void SelectionTool::update() {
+    size_for_model();
     // The threshold works on what the colouring shows: its values, per vertex of the document.
     const std::vector<double>& values = context_.view.colors.values;
     const bool fits = values.size() == context_.session.mesh().vertices_size() &&
@@ -76,6 +77,17 @@ void SelectionTool::update() {
         context_.session.execute(SetColoringValues{{}});
     else if (fits && !same_bits(context_.session.coloring().values(), values))
         context_.session.execute(SetColoringValues{values});
+}
+
+void SelectionTool::size_for_model() {
+    // Lengths in model units follow the model (issue 38, item 14): the geodesic ball's radius
+    // 10 % and the feather width 4 % of the fitted sphere's radius (5 % and 2 % of about the
+    // bounding box's diagonal), each while it is still the value set for the last model.
+    const float r = context_.view.fit_radius;
+    if (r == sized_for_ || !(r > 0)) return;
+    sized_for_ = r;
+    if (panel_.geodesic_radius == auto_radius_) panel_.geodesic_radius = auto_radius_ = 0.1f * r;
+    if (panel_.feather == auto_feather_) panel_.feather = auto_feather_ = 0.04f * r;
 }
 
 void SelectionTool::begin_stroke(bool add, bool lasso, const glm::vec2& pos) {

@@ -49,6 +49,8 @@ public:
     SelectionPanelState& panel() { return panel_; }
 
 private:
+    /// The geodesic radius and feather width from the model's size (its fitted sphere).
+    void size_for_model();
     struct SelectionStroke {
         /// through: the lasso takes hidden vertices too (fixed when it begins, as projected)
         bool active = false, add = true, lasso = false, through = false;
@@ -66,6 +68,11 @@ private:
     std::string overlay_key_;  ///< what the overlay's weights on the GPU are of
     std::uint64_t stroke_counter_ = 0;
     bool scripted_ = false;
+    /// The model size the lengths were set for, and the values set then (a value the user
+    /// changed is left alone).
+    float sized_for_ = 0;
+    float auto_radius_ = SelectionPanelState{}.geodesic_radius;
+    float auto_feather_ = SelectionPanelState{}.feather;
 };
 
 }  // namespace trilab::viewer

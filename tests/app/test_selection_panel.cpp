@@ -92,3 +92,21 @@ TEST_CASE("the Selection section offers what the document allows and queues its 
     CHECK(ui.has("through the model"));
     CHECK_FALSE(ui.has("brush-radius"));
 }
+
+TEST_CASE("the Selection section's lengths follow the model's size unless the user set them",
+          "[panels][selection]") {
+    // Issue 38, item 14: a ball of 0.25 model units selected nearly all of a head scan 0.1
+    // tall. The radius is 10 % and the feather 4 % of the fitted sphere's radius.
+    TestPanels panels;
+    SelectionTool& tool = find_tool<SelectionTool>(panels.all_tools);
+    panels.context.view.fit_radius = 0.075f;  // the bunny: about 0.15 across
+    tool.update();
+    CHECK(panels.selection.geodesic_radius == Approx(0.0075f));
+    CHECK(panels.selection.feather == Approx(0.003f));
+    // The user's radius stays when another model comes; the untouched feather follows it.
+    panels.selection.geodesic_radius = 0.02f;
+    panels.context.view.fit_radius = 10.0f;
+    tool.update();
+    CHECK(panels.selection.geodesic_radius == 0.02f);
+    CHECK(panels.selection.feather == Approx(0.4f));
+}
