@@ -59,6 +59,17 @@ if(TARGET trilab)
              WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/viewer_click)
     set_tests_properties(viewer_click_record PROPERTIES PASS_REGULAR_EXPRESSION
                          "click Record/Record: queued StartRecording\n.*click Morph/Before: queued ShowMorphAt.*click File/Save as: pressed.*recorded 60 frames in trilab-frames")
+    # Issue 38, item 9: a click right after a job waits for what the job enables (Record after
+    # a two-level subdivision), follows a button that moves (Animate turning into Stop),
+    # and scrolls a long sidebar to a section below the fold (Fairing, Decimation and
+    # Frequency open push Morph and Decimate's button out of sight).
+    add_test(NAME viewer_click_waits_and_scrolls
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --op "subdivide --iterations 2"
+                     --show record,fairing,decimation,frequency,morph --click "Record/Record"
+                     --click "Morph/Before" --click "Decimation/Decimate" --frames 10
+             WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/viewer_click)
+    set_tests_properties(viewer_click_waits_and_scrolls PROPERTIES PASS_REGULAR_EXPRESSION
+                         "click Record/Record: queued StartRecording\n.*click Morph/Before: queued ShowMorphAt.*click Decimation/Decimate: queued ApplyOperation")
     add_test(NAME viewer_click_missing
              COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --click "Fairing/Nope" --frames 2)
     set_tests_properties(viewer_click_missing PROPERTIES WILL_FAIL TRUE)

@@ -15,7 +15,7 @@ MorphTool::~MorphTool() {
 void MorphTool::section(const SidebarContext& context, CommandQueue& commands) {
     if (context.history && context.morph)
         morph_section(morph_open_, *context.morph, *context.history, commands);
-    record_section(record_, context.can_record, commands);
+    record_section(record_, context.can_record, context.record_why_not, commands);
 }
 
 PanelEntries MorphTool::panels() {

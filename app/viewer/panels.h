@@ -320,6 +320,7 @@ struct SidebarContext {
     bool busy = false;                  ///< a job runs: the Apply buttons wait
     bool closed = false;                ///< the mesh has no boundary (volume preservation applies)
     bool can_record = false;            ///< the current entry has a morph to record
+    std::string record_why_not;         ///< why not, in the panel's words
     /// The mesh has coincident boundary edges (unwelded seams): Sqrt3 would leave creases
     /// along them, and the Subdivision section offers the weld.
     bool open_seams = false;
@@ -382,7 +383,8 @@ void tools_section(std::vector<OperationPanelState>& tools, bool busy, CommandQu
 void morph_section(bool& open, const MorphState& morph, const History& history,
                    CommandQueue& commands);
 /// Record; queues StartRecording / CancelRecording.
-void record_section(RecordState& record, bool can_record, CommandQueue& commands);
+void record_section(RecordState& record, bool can_record, const std::string& why_not,
+                    CommandQueue& commands);
 /// The Inspector: what the picks are and why (InspectorView), the measurement, the
 /// provenance plot; Clear picks (ClearPicks) and Centre view here (CentreOnPick).
 void inspector_section(bool& open, const InspectorView& view, CommandQueue& commands);

@@ -74,6 +74,10 @@ void ScriptDriver::fail_click(const std::string& why) {
     clicks_.next = options_.clicks.size();  // no further clicks
 }
 
+namespace {
+constexpr int kMaxScrolls = 200;  ///< wheel steps a click takes at most to reach its target
+}  // namespace
+
 void ScriptDriver::drive_clicks() {
     ScriptedClicks& c = clicks_;
     c.shown.swap(c.drawing);
@@ -112,7 +116,25 @@ void ScriptDriver::drive_clicks() {
                 return;
             }
             if (!target->enabled) {
+                // The widgets are last frame's: a job that ended since (or the morph it
+                // started) may have enabled it by now. Fail only once it stays disabled.
+                constexpr int kDisabledFrames = 10;
+                if (++c.disabled_frames < kDisabledFrames) {
+                    context_.keep_drawing(2);
+                    return;
+                }
                 fail_click("'" + script_path(*target) + "' is disabled now");
+                return;
+            }
+            c.disabled_frames = 0;
+            if (!target->visible && c.scrolls < kMaxScrolls) {
+                // Scrolled out of its window (a long sidebar): the wheel over that window
+                // brings it in, as a user would scroll, then it is looked for again.
+                ++c.scrolls;
+                io.MousePos = ImVec2(0.5f * (target->window_x0 + target->window_x1),
+                                     0.5f * (target->window_y0 + target->window_y1));
+                io.MouseWheel += target->y1 > target->window_y1 ? -1.0f : 1.0f;
+                context_.keep_drawing(2);
                 return;
             }
             c.target = script_path(*target);
@@ -125,11 +147,22 @@ void ScriptDriver::drive_clicks() {
             break;
         }
         case 1:
-        case 2:
+        case 2: {
+            // Follow the target: the layout may move between frames (a button's text changes
+            // as a playback ends); a target gone or disabled is looked for again.
+            const std::vector<const WidgetNote*> now = widgets_at(c.shown, c.target);
+            if (now.size() != 1 || !now[0]->enabled) {
+                io.MouseDown[0] = false;
+                c.phase = 0;
+                break;
+            }
+            c.x = 0.5f * (now[0]->x0 + now[0]->x1);
+            c.y = 0.5f * (now[0]->y0 + now[0]->y1);
             io.MousePos = ImVec2(c.x, c.y);
             io.MouseDown[0] = c.phase == 1;
             ++c.phase;
             break;
+        }
         default: {
             io.MousePos = ImVec2(-FLT_MAX, -FLT_MAX);  // away, so nothing stays hovered
             io.MouseDown[0] = false;
@@ -142,6 +175,7 @@ void ScriptDriver::drive_clicks() {
                                              : "queued " + did));
             ++c.next;
             c.openings = 0;
+            c.scrolls = 0;
             break;
         }
     }

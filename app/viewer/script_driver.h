@@ -72,6 +72,10 @@ private:
         std::string target;    ///< what this press is for: the click's path or an opener
         bool opening = false;  ///< the press opens a section or menu on the way
         int openings = 0;      ///< for this click (bounded)
+        /// Frames the target has been found disabled: a press waits a few for what is in
+        /// flight to end (a job's result enables it), as a user would, before it fails.
+        int disabled_frames = 0;
+        int scrolls = 0;  ///< wheel steps taken to bring the target into view (bounded)
         float x = 0, y = 0;
         std::vector<WidgetNote> shown, drawing;  ///< last frame's widgets, this frame's
         std::vector<std::string> queued;         ///< commands the press queued

@@ -312,9 +312,12 @@ void morph_controls(const MorphState& morph, const History& history, CommandQueu
     ImGui::SetNextItemWidth(widget_width(16.0f, 0.0f));
     if (ImGui::SliderFloat("##t", &t, 0.0f, 1.0f, "t = %.3f"))
         commands.push_back(ShowMorphAt{double(t)});
+    // One width for both, so that Before and After stay where they are when a play ends.
+    const float play_width =
+        ImGui::CalcTextSize("Animate").x + 2 * ImGui::GetStyle().FramePadding.x;
     if (!morph.playing) {
-        if (button("Animate")) commands.push_back(PlayMorph{true});
-    } else if (button("Stop")) {
+        if (button("Animate", play_width)) commands.push_back(PlayMorph{true});
+    } else if (button("Stop", play_width)) {
         commands.push_back(PlayMorph{false});
     }
     ImGui::SameLine();
@@ -356,7 +359,8 @@ void morph_section(bool& open, const MorphState& morph, const History& history,
     morph_controls(morph, history, commands);
 }
 
-void record_section(RecordState& r, bool can_record, CommandQueue& commands) {
+void record_section(RecordState& r, bool can_record, const std::string& why_not,
+                    CommandQueue& commands) {
     if (r.running) r.open = true;  // the progress and Cancel stay visible
     SidebarSection section("Record", r.open);
     if (!section) return;
@@ -394,7 +398,7 @@ void record_section(RecordState& r, bool can_record, CommandQueue& commands) {
         if (!can_record) {
             ImGui::EndDisabled();
             ImGui::SameLine();
-            ImGui::TextDisabled("(apply an operation first)");
+            ImGui::TextDisabled("(%s)", why_not.empty() ? "nothing to record" : why_not.c_str());
         }
     }
 }

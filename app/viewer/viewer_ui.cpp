@@ -210,6 +210,11 @@ void Viewer::draw_ui() {
         sidebar.closed = session.document().closed;
         sidebar.can_record =
             session.history().current() > 0 && session.morph().moves && !session.jobs().busy();
+        sidebar.record_why_not =
+            session.history().current() == 0 ? "apply an operation first"
+            : !session.morph().moves         ? "this entry moves no vertex: nothing to animate"
+            : session.jobs().busy()          ? "wait for \"" + session.jobs().name() + "\""
+                                             : "";
         sidebar.open_seams = session.document().open_seams;
         sidebar.frequency = &session.document().frequency;
         sidebar.info = &info;

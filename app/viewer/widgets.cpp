@@ -54,6 +54,15 @@ void note_widget(const std::string& id, WidgetNote::Kind kind, const char* label
     note.x1 = b.x;
     note.y1 = b.y;
     note.enabled = last_item_enabled();
+    // Whole inside the part of its window that shows content (a press on a half-hidden widget
+    // may land on the window's padding).
+    const ImRect inner = ImGui::GetCurrentWindow()->ClipRect;
+    note.visible = a.y >= inner.Min.y && b.y <= inner.Max.y && a.x >= inner.Min.x - 1 &&
+                   a.x < inner.Max.x;
+    note.window_x0 = inner.Min.x;
+    note.window_y0 = inner.Min.y;
+    note.window_x1 = inner.Max.x;
+    note.window_y1 = inner.Max.y;
     widget_hook(note);
 }
 
@@ -81,6 +90,12 @@ WidgetSection::~WidgetSection() {
 
 bool button(const char* label, const char* id) {
     const bool pressed = ImGui::Button(label);
+    note_widget(id ? id : visible_label(label), WidgetNote::Kind::Button, label);
+    return pressed;
+}
+
+bool button(const char* label, float width, const char* id) {
+    const bool pressed = ImGui::Button(label, ImVec2(width, 0.0f));
     note_widget(id ? id : visible_label(label), WidgetNote::Kind::Button, label);
     return pressed;
 }

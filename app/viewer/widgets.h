@@ -23,6 +23,10 @@ struct WidgetNote {
     unsigned imgui_id = 0;
     float x0 = 0, y0 = 0, x1 = 0, y1 = 0;
     bool enabled = true;  ///< false: drawn disabled (a press does nothing)
+    /// Whether it is inside its window's visible part (false: scrolled out of a sidebar), and
+    /// that window's rectangle (a scripted click scrolls there with the wheel first).
+    bool visible = true;
+    float window_x0 = 0, window_y0 = 0, window_x1 = 0, window_y1 = 0;
 
     /// "SECTION/LABEL" (or "LABEL" at the top): what `--click` names.
     std::string path() const { return section.empty() ? label : section + "/" + label; }
@@ -58,6 +62,9 @@ private:
 
 /// ImGui::Button, reported. `id` defaults to the visible label.
 bool button(const char* label, const char* id = nullptr);
+/// A button `width` pixels wide (0: fit the label), so that a label that changes (Animate,
+/// Stop) moves nothing beside it.
+bool button(const char* label, float width, const char* id = nullptr);
 /// ImGui::Checkbox, reported.
 bool checkbox(const char* label, bool* value, const char* id = nullptr);
 /// ImGui::MenuItem (with an optional shortcut text), reported.
