@@ -11,6 +11,7 @@
 
 #include "app/platform/heap_tuning.h"
 #include "app/viewer/viewer.h"
+#include "trilab/version.h"
 
 namespace {
 
@@ -77,6 +78,7 @@ options:
                      record, log, info, a tool by its operation's name (noise, weld,
                      remove-components), and the dialogs help, about, screenshot
   --help             this text
+  --version          print "trilab VERSION" (the project's version) and exit
 )";
 
 /// Parses "WxH" with both numbers in [1, 16384].
@@ -245,6 +247,11 @@ int main(int argc, char** argv) {
     // buffers (docs/toolchain.md, section 5): keep big blocks mapped.
     trilab::tune_heap_for_large_meshes();
 
+    for (int i = 1; i < argc; ++i)
+        if (std::string(argv[i]) == "--version") {
+            std::printf("trilab %s\n", TRILAB_VERSION);
+            return 0;
+        }
     trilab::viewer::ViewerOptions options;
     bool help = false;
     const std::string error = parse_args(argc, argv, options, help);
