@@ -7,11 +7,13 @@
 
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/algorithms/geodesic.h"
+#include "core/algorithms/inspect.h"
 #include "core/algorithms/laplacian.h"
 #include "core/algorithms/spectral.h"
 #include "core/errors.h"
@@ -245,6 +247,39 @@ py::array_t<double> geodesic(const MeshHandle& h, const std::vector<long long>& 
     return py::array_t<double>(py::ssize_t(d.size()), d.data());
 }
 
+/// inspect(vertex=i | edge=i | face=i): the inspector's fields (trilab-cli inspect --json's
+/// element fields): numbers, lists of numbers, or text where the value is words.
+py::dict inspect(const MeshHandle& h, std::optional<long long> vertex,
+                 std::optional<long long> edge, std::optional<long long> face) {
+    const HalfedgeMesh& m = h.mesh;
+    if (int(vertex.has_value()) + int(edge.has_value()) + int(face.has_value()) != 1)
+        throw InvalidArgument("inspect: give exactly one of vertex=, edge=, face=");
+    const auto check = [](long long i, std::size_t size, const char* what) {
+        if (i < 0 || std::size_t(i) >= size)
+            throw InvalidArgument(std::string("inspect: ") + what + " " + std::to_string(i) +
+                                  " is out of range (" + std::to_string(size) + ")");
+        return Index(i);
+    };
+    std::vector<InspectionField> fields;
+    if (vertex)
+        fields = inspection_fields(
+            inspect_vertex(m, Vertex(check(*vertex, m.vertices_size(), "vertex"))));
+    else if (edge)
+        fields = inspection_fields(inspect_edge(m, Edge(check(*edge, m.edges_size(), "edge"))));
+    else
+        fields = inspection_fields(inspect_face(m, Face(check(*face, m.faces_size(), "face"))));
+    py::dict d;
+    for (const InspectionField& f : fields) {
+        if (f.numbers.empty())
+            d[f.key.c_str()] = f.text;
+        else if (f.numbers.size() == 1)
+            d[f.key.c_str()] = f.numbers[0];
+        else
+            d[f.key.c_str()] = f.numbers;
+    }
+    return d;
+}
+
 }  // namespace
 
 void bind_mesh_constructor(py::class_<MeshHandle, std::shared_ptr<MeshHandle>>& cls) {
@@ -276,6 +311,10 @@ void bind_mesh_arrays(py::class_<MeshHandle, std::shared_ptr<MeshHandle>>& cls) 
             py::arg("normalized") = false,
             "The operator's symmetric matrix K (normalized=True: L = -S^-1 K) as a "
             "scipy.sparse.csr_matrix (n, n); ImportError without SciPy.");
+    cls.def("inspect", &inspect, py::kw_only(), py::arg("vertex") = py::none(),
+            py::arg("edge") = py::none(), py::arg("face") = py::none(),
+            "What the viewer's inspector shows for one element (as `trilab-cli inspect --json`): "
+            "a dict of numbers, lists and words.");
     cls.def("geodesic", &geodesic, py::arg("sources"), py::arg("mass") = "barycentric",
             py::arg("time_factor") = 1.0,
             "Heat-method geodesic distances (n,) from the nearest of the source vertices.");

@@ -1,5 +1,7 @@
 """trilab.Mesh's arrays: V views the mesh's memory (read-only, shared), F, properties, the
 constructor from any dtype and memory order, and bad input refused with a clear ValueError."""
+import json
+
 import numpy as np
 import pytest
 
@@ -79,15 +81,19 @@ def test_bad_input_is_refused(V, F, message):
         trilab.Mesh(V, F)
 
 
-def test_vertex_properties(meshes):
-    m = trilab.load(meshes["default"])
-    sel = m.smooth(step=0.5, region="sphere:0,0,1,0.8")
-    normals = m.vertex_property("normal") if "v:normal" in m.vertex_property_names() else None
-    if normals is not None:
-        assert normals.shape == (m.n_vertices, 3)
+def test_vertex_property_selection(cli, meshes, tmp_path):
+    from conftest import run_cli
+    out = str(tmp_path / "sel.ply")
+    code, _, err = run_cli(cli, "select", meshes["default"], out, "--region", "sphere:0,0,1,0.8")
+    assert code == 0, err
+    m = trilab.load(out)
+    sel = m.vertex_property("selection")
+    assert np.array_equal(m.vertex_property("v:selection"), sel)
+    inside = np.linalg.norm(m.V - [0, 0, 1], axis=1) <= 0.8
+    assert sel.shape == (m.n_vertices,) and inside.any() and not inside.all()
+    assert np.array_equal(sel > 0, inside)
     with pytest.raises(KeyError, match="no vertex property 'nothing'"):
         m.vertex_property("nothing")
-    assert sel.n_vertices == m.n_vertices
 
 
 def test_geodesic_matches_the_cli_distance(cli, meshes, tmp_path):
@@ -124,3 +130,20 @@ def test_spectrum_operation_reports_eigenvalues(meshes):
     r = m.spectrum_op(k=10)
     values, _ = m.spectrum(10)
     assert np.allclose(r.report["eigenvalues"], np.maximum(values, 0), rtol=1e-8, atol=1e-10)
+
+
+def test_inspect_matches_the_cli(cli, meshes):
+    from conftest import run_cli
+    m = trilab.load(meshes["torus"])
+    for kind, i in (("vertex", 5), ("edge", 7), ("face", 3)):
+        fields = m.inspect(**{kind: i})
+        code, out, err = run_cli(cli, "inspect", meshes["torus"], "--" + kind, str(i), "--json")
+        assert code == 0, err
+        expected = json.loads(out)
+        assert fields, kind
+        for key, value in fields.items():
+            assert expected[key] == value, (kind, key)
+    with pytest.raises(ValueError, match="out of range"):
+        m.inspect(vertex=m.n_vertices)
+    with pytest.raises(ValueError, match="exactly one"):
+        m.inspect(vertex=1, face=2)
