@@ -18,6 +18,12 @@ struct MeshHandle {
     /// Mesh.report: the dict of `trilab-cli OP --json` (less "ms") for an operation's result,
     /// None otherwise.
     pybind11::object report = pybind11::none();
+    /// Mesh.ms: for an operation's result, the operation's own time (the CLI's --json "ms",
+    /// OperationResult::ms); negative otherwise (Mesh.ms is then None).
+    double ms = -1;
+    /// Mesh.run_ms: the whole run_operation() call (the operation layer's report figures
+    /// included, which the CLI also computes outside its "ms"); negative when not a result.
+    double run_ms = -1;
     /// What loading or building did (LoadReport::lines()), for Mesh.load_report.
     std::vector<std::string> load_report;
 };

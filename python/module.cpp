@@ -3,10 +3,12 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cstdlib>
 #include <string>
 #include <utility>
 
 #include "app/ops/operation.h"
+#include "app/platform/heap_tuning.h"
 #include "core/errors.h"
 #include "core/io/mesh_io.h"
 #include "core/progress.h"
@@ -79,6 +81,20 @@ PYBIND11_MODULE(trilab, m) {
     cls.def_readonly("report", &MeshHandle::report,
                      "The dict `trilab-cli OP --json` prints (less \"ms\") for an operation's "
                      "result; None for a loaded or built mesh.");
+    cls.def_property_readonly(
+        "ms",
+        [](const MeshHandle& h) -> py::object {
+            return h.ms < 0 ? py::object(py::none()) : py::object(py::float_(h.ms));
+        },
+        "For an operation's result: the operation's own time in ms (the CLI's --json \"ms\", "
+        "which .report leaves out); None otherwise.");
+    cls.def_property_readonly(
+        "run_ms",
+        [](const MeshHandle& h) -> py::object {
+            return h.run_ms < 0 ? py::object(py::none()) : py::object(py::float_(h.run_ms));
+        },
+        "For an operation's result: the whole run in ms (ms plus the operation layer's report "
+        "figures, which trilab-cli also computes outside its \"ms\"); None otherwise.");
     cls.def_readonly("load_report", &MeshHandle::load_report,
                      "What loading or building repaired, one line each.");
     cls.def("__repr__", &repr);
@@ -87,4 +103,10 @@ PYBIND11_MODULE(trilab, m) {
     m.def("load", &load, py::arg("path"),
           "Reads a mesh file (.obj .off .ply .stl .om) as trilab-cli does.");
     m.def("operations", &trilab::operation_names, "The names of the registered operations.");
+    m.def("tune_heap_for_large_meshes", &trilab::tune_heap_for_large_meshes,
+          "Keeps large freed buffers in the process's heap (glibc mallopt), as trilab-cli and "
+          "the viewer do at start: a large mesh's next buffers then cost no page faults. "
+          "Called on import unless the environment has TRILAB_HEAP_TUNING=0.");
+    const char* tuning = std::getenv("TRILAB_HEAP_TUNING");
+    if (!tuning || std::string(tuning) != "0") trilab::tune_heap_for_large_meshes();
 }

@@ -9,6 +9,7 @@
 #include <pybind11/pybind11.h>
 
 #include <algorithm>
+#include <chrono>
 #include <map>
 #include <optional>
 #include <string>
@@ -133,6 +134,7 @@ std::shared_ptr<MeshHandle> run(const MeshHandle& self, const std::string& name,
     if (extras.region) settings.region = &*extras.region;
     PythonProgress progress(extras.progress);
     std::optional<OperationResult> result;
+    const auto t0 = std::chrono::steady_clock::now();
     try {
         py::gil_scoped_release release;
         result = run_operation(op, self.mesh, progress, settings);
@@ -140,6 +142,8 @@ std::shared_ptr<MeshHandle> run(const MeshHandle& self, const std::string& name,
         progress.rethrow_if_stopped();
         throw;
     }
+    const double run_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     if (result->stopped_early && !extras.keep_partial)
         throw RunStopped(result->stop_reason +
                          " (nothing returned; keep_partial=True returns the last good state)");
@@ -147,6 +151,8 @@ std::shared_ptr<MeshHandle> run(const MeshHandle& self, const std::string& name,
     cli::add_operation_report(json, op, *result, cli::command_extras(name), {}, {});
     std::shared_ptr<MeshHandle> out = make_handle(std::move(result->steps.back().mesh));
     out->report = py::module_::import("json").attr("loads")(json.str());
+    out->ms = result->ms;
+    out->run_ms = run_ms;
     return out;
 }
 

@@ -73,6 +73,8 @@ def test_same_file_and_report_as_cli(cli, meshes, tmp_path, op, kwargs, args, na
             expected.pop(key)
         assert without_times(r.report) == without_times(expected)
         assert np.array_equal(m.V, V0), "the input changed"
+        assert m.report is None and m.ms is None and m.run_ms is None
+        assert 0 <= r.ms <= r.run_ms
         assert r.n_faces == expected["faces"]
 
 
