@@ -35,6 +35,8 @@ std::shared_ptr<MeshHandle> make_handle(HalfedgeMesh mesh);
 void bind_mesh_arrays(pybind11::class_<MeshHandle, std::shared_ptr<MeshHandle>>& cls);
 /// Binds trilab.Mesh(V, F) (the constructor from arrays).
 void bind_mesh_constructor(pybind11::class_<MeshHandle, std::shared_ptr<MeshHandle>>& cls);
+/// Binds trilab.Session and trilab.replay on module `m`.
+void bind_session(pybind11::module_& m);
 /// Binds one method per registered operation (app/ops/operation.h) on `cls`.
 void bind_operations(pybind11::class_<MeshHandle, std::shared_ptr<MeshHandle>>& cls);
 

@@ -100,6 +100,7 @@ PYBIND11_MODULE(trilab, m) {
     cls.def("__repr__", &repr);
     trilab::python::bind_mesh_arrays(cls);
     trilab::python::bind_operations(cls);
+    trilab::python::bind_session(m);
     m.def("load", &load, py::arg("path"),
           "Reads a mesh file (.obj .off .ply .stl .om) as trilab-cli does.");
     m.def("operations", &trilab::operation_names, "The names of the registered operations.");
