@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/algorithms/coloring.h"
 #include "core/algorithms/geodesic.h"
 #include "core/algorithms/inspect.h"
 #include "core/algorithms/laplacian.h"
@@ -247,6 +248,20 @@ py::array_t<double> geodesic(const MeshHandle& h, const std::vector<long long>& 
     return py::array_t<double>(py::ssize_t(d.size()), d.data());
 }
 
+/// coloring(name): the value per vertex the viewer's colouring NAME shows (k1, k2, mean,
+/// gaussian, shape-index, subdivision, geodesic-distance, ...); NaN where a vertex has none.
+py::array_t<double> coloring(const MeshHandle& h, const std::string& name) {
+    const VertexColoring c = parse_coloring(name);
+    if (c == VertexColoring::None || c == VertexColoring::Normal)
+        throw InvalidArgument("coloring: '" + name + "' has no value per vertex");
+    VertexColors colors;
+    {
+        py::gil_scoped_release release;
+        colors = color_vertices(h.mesh, c);
+    }
+    return py::array_t<double>(py::ssize_t(colors.values.size()), colors.values.data());
+}
+
 /// inspect(vertex=i | edge=i | face=i): the inspector's fields (trilab-cli inspect --json's
 /// element fields): numbers, lists of numbers, or text where the value is words.
 py::dict inspect(const MeshHandle& h, std::optional<long long> vertex,
@@ -311,6 +326,10 @@ void bind_mesh_arrays(py::class_<MeshHandle, std::shared_ptr<MeshHandle>>& cls) 
             py::arg("normalized") = false,
             "The operator's symmetric matrix K (normalized=True: L = -S^-1 K) as a "
             "scipy.sparse.csr_matrix (n, n); ImportError without SciPy.");
+    cls.def("coloring", &coloring, py::arg("name"),
+            "The value per vertex of the viewer's colouring NAME (k1, k2, mean, gaussian, "
+            "shape-index, subdivision, geodesic-distance with a \"distance\" property, ...), "
+            "(n,) float64, NaN where a vertex has none.");
     cls.def("inspect", &inspect, py::kw_only(), py::arg("vertex") = py::none(),
             py::arg("edge") = py::none(), py::arg("face") = py::none(),
             "What the viewer's inspector shows for one element (as `trilab-cli inspect --json`): "

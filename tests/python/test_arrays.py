@@ -147,3 +147,18 @@ def test_inspect_matches_the_cli(cli, meshes):
         m.inspect(vertex=m.n_vertices)
     with pytest.raises(ValueError, match="exactly one"):
         m.inspect(vertex=1, face=2)
+
+
+def test_coloring_matches_the_inspector(meshes):
+    m = trilab.load(meshes["torus"])
+    mean = m.coloring("mean")
+    gauss = m.coloring("gaussian")
+    assert mean.shape == gauss.shape == (m.n_vertices,)
+    for i in (0, 17, 101):
+        fields = m.inspect(vertex=i)
+        assert np.isclose(mean[i], fields["mean_curvature"], rtol=1e-9, atol=1e-12)
+        assert np.isclose(gauss[i], fields["gaussian_curvature"], rtol=1e-9, atol=1e-12)
+    with pytest.raises(ValueError):
+        m.coloring("nothing")
+    with pytest.raises(ValueError, match="no value per vertex"):
+        m.coloring("normal")
