@@ -32,6 +32,8 @@ CASES = [
     ("remesh", dict(iterations=2), ["--iterations", "2"], ["grid"]),
     ("fill-holes", dict(max_edges=1000), ["--max-edges", "1000"], ["grid"]),
     ("flip", dict(), [], ["default"]),
+    ("weld", dict(), [], ["grid"]),
+    ("remove-components", dict(min_faces=10), ["--min-faces", "10"], ["torus"]),
     ("features", dict(), [], ["torus"]),
     ("spectrum", dict(k=12, band=(0, 5)), ["--k", "12", "--band", "0:5"], ["default"]),
     ("smooth", dict(step=0.5, region="sphere:0,0,1,0.8"),
@@ -76,6 +78,10 @@ def test_same_file_and_report_as_cli(cli, meshes, tmp_path, op, kwargs, args, na
         assert m.report is None and m.ms is None and m.run_ms is None
         assert 0 <= r.ms <= r.run_ms
         assert r.n_faces == expected["faces"]
+
+
+def test_every_operation_is_compared_with_the_cli():
+    assert {case[0] for case in CASES} == set(trilab.operations())
 
 
 def test_every_operation_is_a_method():
