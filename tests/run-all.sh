@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
 # Every test, as CI runs it (.ci/run calls this script; it is README's set-up command 2):
 #  1. installs the Debian packages that are missing (third_party/install-deps.sh);
-#  2. Release build of everything and the whole CTest suite (build/);
+#  2. Release build of everything and the whole CTest suite (build/), the Python module's
+#     pytest files (label `python`, /usr/bin/python3) and the staging install included;
 #  3. naming check: clang-tidy with .clang-tidy on the C++ files the change touches
 #     (tests/lint/check-naming.sh; TRILAB_TIDY_BASE=all checks every file);
 #  4. sanitizer job: RelWithDebInfo build with AddressSanitizer and UndefinedBehaviorSanitizer
 #     (-DTRILAB_SANITIZE=ON) and floating-point traps in the tests (-DTRILAB_FP_TRAPS=ON), and
-#     the whole CTest suite again (build-asan/);
+#     the whole CTest suite again (build-asan/); the Python module and the staging install are
+#     not built or registered there (CMakeLists.txt: an uninstrumented python3 cannot load an
+#     ASan module without LD_PRELOAD);
 #  5. ThreadSanitizer job: RelWithDebInfo build with -DTRILAB_TSAN=ON of the tests labelled
 #     `tsan` only (the job runner, the log, the panels, the headless session: target
 #     trilab_tsan_tests), run with `ctest -L tsan`; any race report fails the run (build-tsan/);

@@ -28,6 +28,7 @@
 #include "app/ops/operation.h"
 #include "app/platform/heap_tuning.h"
 #include "core/errors.h"
+#include "trilab/version.h"
 
 namespace trilab::cli {
 namespace {
@@ -58,6 +59,7 @@ commands:
   replay RECIPE.json IN OUT [--check SESSION] [--json]
                                   run a session's recipe headless; --check compares bit for bit
   help                            this text
+  --version                       print "trilab-cli VERSION" (the project's version)
 
 operations (options: `trilab-cli NAME --help`):
 )";
@@ -77,6 +79,10 @@ std::string usage_text() {
 std::optional<int> run_command(const std::string& cmd, const std::vector<std::string>& args) {
     if (cmd == "help" || cmd == "--help" || cmd == "-h") {
         std::fputs(usage_text().c_str(), stdout);
+        return 0;
+    }
+    if (cmd == "--version" || cmd == "version") {
+        std::printf("trilab-cli %s\n", TRILAB_VERSION);
         return 0;
     }
     if (cmd == "info") return run_info_command(args);

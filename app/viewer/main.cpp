@@ -12,6 +12,7 @@
 #include "app/platform/heap_tuning.h"
 #include "app/platform/termination.h"
 #include "app/viewer/viewer.h"
+#include "trilab/version.h"
 
 #include <GLFW/glfw3.h>  // after glad (viewer.h): glfwPostEmptyEvent
 
@@ -80,6 +81,7 @@ options:
                      record, log, info, a tool by its operation's name (noise, weld,
                      remove-components), and the dialogs help, about, screenshot
   --help             this text
+  --version          print "trilab VERSION" (the project's version) and exit
 )";
 
 /// Parses "WxH" with both numbers in [1, 16384].
@@ -251,6 +253,11 @@ int main(int argc, char** argv) {
     // first, so that every thread inherits the blocked signals.
     trilab::watch_termination([] { glfwPostEmptyEvent(); });
 
+    for (int i = 1; i < argc; ++i)
+        if (std::string(argv[i]) == "--version") {
+            std::printf("trilab %s\n", TRILAB_VERSION);
+            return 0;
+        }
     trilab::viewer::ViewerOptions options;
     bool help = false;
     const std::string error = parse_args(argc, argv, options, help);
