@@ -13,8 +13,8 @@
 namespace trilab::viewer {
 namespace {
 
-/// Whether every step of `result` is `mesh` itself: the same connectivity and positions, bit
-/// for bit (what the history would store and the morph would show).
+/// Whether every step of `result` is `mesh` itself: the same connectivity, properties and
+/// positions, bit for bit (what the history would store and the morph would show).
 bool leaves_unchanged(const HalfedgeMesh& mesh, const OperationResult& result) {
     for (const OperationStep& step : result.steps) {
         const HalfedgeMesh& m = step.mesh;
@@ -22,6 +22,9 @@ bool leaves_unchanged(const HalfedgeMesh& mesh, const OperationResult& result) {
         if (m.topology_revision() != mesh.topology_revision() ||
             m.vertices_size() != mesh.vertices_size())
             return false;
+        // Properties written (feature edges detected, texture coordinates): a change even
+        // where no vertex moves.
+        if (m.attribute_revision() != mesh.attribute_revision()) return false;
         if (m.positions() != mesh.positions()) return false;
     }
     return true;

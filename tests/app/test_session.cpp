@@ -702,3 +702,21 @@ TEST_CASE("the panels' guidance is computed off the render thread for the state 
     CHECK(step->op == FairingOperator::Umbrella);
     CHECK(step->step == max_stable_explicit_step(s.mesh(), FairingOperator::Umbrella));
 }
+
+TEST_CASE("an operation that only writes properties is a history entry", "[session]") {
+    // Detecting features moves no vertex but stores the feature edges: a change to keep (it
+    // was once taken for "changed nothing").
+    Session s;
+    const std::string path =
+        (std::filesystem::temp_directory_path() / "trilab_session_props_cube.off").string();
+    write_mesh(generate("cube"), path);
+    s.execute(LoadFile{path});
+    s.finish_jobs();
+    std::filesystem::remove(path);
+    const std::size_t entries = s.history().size();
+    s.execute(RunOperation{parse_operation("features --angle 60")});
+    s.finish_jobs();
+    REQUIRE(s.history().size() == entries + 1);
+    CHECK(s.mesh().has_edge_property("e:sharpness"));
+    require_valid(s);
+}
