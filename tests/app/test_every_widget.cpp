@@ -125,6 +125,7 @@ struct Sidebar {
         panels.selection.open = true;
         panels.decimation.lod_open = true;
         panels.denoise.open = true;
+        panels.features.open = true;
     }
     void draw() {
         in_sidebar(panels.layout, [&] { sidebar_sections(panels.list(), context, commands); });
@@ -200,6 +201,8 @@ TEST_CASE("no widget ID is used twice in a frame, in any combination of open sec
         s.panels.inspector_open = (mask & 32u) != 0;
         s.panels.denoise.open = s.panels.fairing.open;  // one more section, no more frames
         s.panels.denoise.previewing = (mask & 8u) != 0;
+        s.panels.features.open = s.panels.fairing.open;
+        s.panels.features.previewing = (mask & 8u) != 0;
         ui.frame(draw);  // the sections take their new state
         const std::vector<std::string> duplicates = duplicate_ids(ui, draw);
         INFO("open sections mask " << mask);
@@ -285,6 +288,8 @@ TEST_CASE("every button of every section queues what it says", "[panels][buttons
         {"Subdivision/Subdivide", applies("subdivide")},
         {"Denoise/Denoise", applies("denoise")},
         {"Denoise/Cancel", queues_one(CancelPreview{})},
+        {"Features/Detect", applies("features")},
+        {"Features/Cancel", queues_one(CancelPreview{})},
         {"Subdivision/Cancel", queues_one(CancelPreview{})},
         {"Subdivision/Weld coincident vertices", applies("weld")},
         {"Decimation/Decimate", applies("decimate")},
@@ -362,6 +367,7 @@ TEST_CASE("every button of every section queues what it says", "[panels][buttons
         [](Sidebar& s) {
             s.panels.fairing.previewing = s.panels.subdivision.previewing = true;
             s.panels.decimation.previewing = s.panels.denoise.previewing = true;
+            s.panels.features.previewing = true;
             for (OperationPanelState& tool : s.panels.tools) tool.previewing = true;
             s.panels.decimation.lod_ready = true;
             s.panels.record.running = true;
@@ -622,7 +628,7 @@ TEST_CASE("every registered operation has a panel: its own, or a tool's from the
         CHECK(holders == 1);
     }
     // The operations with tools of their own have no generic panel.
-    for (const char* own : {"smooth", "subdivide", "decimate", "spectrum", "denoise"}) {
+    for (const char* own : {"smooth", "subdivide", "decimate", "spectrum", "denoise", "features"}) {
         INFO(own);
         CHECK(panels.tool(own) == nullptr);
     }

@@ -1,0 +1,109 @@
+// The Features tool (app/viewer/features_tool.h): its panel previews the detection with the
+// histogram and the counts, its lines are the shown surface's sharp edges, and its widgets
+// queue the features operation (issue 39, item 5).
+#include <imgui.h>
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "app/viewer/features_tool.h"
+#include "core/algorithms/feature_detection.h"
+#include "core/algorithms/generators.h"
+#include "core/features.h"
+#include "core/io/mesh_io.h"
+#include "tests/app/panel_ui.h"
+#include "tests/app/test_tools.h"
+
+using namespace trilab;
+using namespace trilab::viewer;
+using namespace trilab::viewer::testing;
+
+TEST_CASE("feature lines are the sharp edges at the shown positions", "[features_tool]") {
+    HalfedgeMesh cube = generate("cube");
+    CHECK(feature_segments(cube, {}).empty());  // no sharpness stored: no lines
+    FeatureDetectionOptions o;
+    o.angle_deg = 60;
+    const FeatureDetectionReport r = detect_features(cube, o);
+    REQUIRE(r.feature_edges > 0);
+    const auto lines = feature_segments(cube, {});
+    CHECK(lines.size() == r.feature_edges);
+    const auto sharpness = cube.get_edge_property<float>(kSharpnessProperty);
+    std::size_t k = 0;
+    for (Edge e : cube.edges()) {
+        if (!(sharpness[e] > 0)) continue;
+        const Halfedge h = HalfedgeMesh::halfedge(e, 0);
+        CHECK(lines[k][0] == cube.position(cube.from_vertex(h)));
+        CHECK(lines[k][1] == cube.position(cube.to_vertex(h)));
+        ++k;
+    }
+    // Other positions (a morph frame): the same edges there.
+    std::vector<Point> moved = cube.positions();
+    for (Point& p : moved) p *= 2.0;
+    const auto frame = feature_segments(cube, moved);
+    REQUIRE(frame.size() == lines.size());
+    CHECK(frame.front()[0] == 2.0 * lines.front()[0]);
+}
+
+TEST_CASE("the Features tool previews the detection with its histogram and lines",
+          "[features_tool]") {
+    TestPanels panels;
+    FeaturesTool& tool = find_tool<FeaturesTool>(panels.all_tools);
+    Session& s = panels.context.session;
+    HalfedgeMesh cube = generate("cube");
+    const std::string path =
+        (std::filesystem::temp_directory_path() / "trilab_features_tool_cube.off").string();
+    write_mesh(cube, path);
+    s.execute(LoadFile{path});
+    s.finish_jobs();
+    std::filesystem::remove(path);
+    REQUIRE(s.mesh().n_faces() == cube.n_faces());
+    Operation op = tool.panel().op;
+    op.value("angle").x = 60;
+    s.execute(PreviewOperation{op});
+    s.finish_jobs();
+    s.update();
+    tool.update();
+    const FeatureDetectionReport* r = tool.report();
+    REQUIRE(r);
+    FeatureDetectionOptions o;
+    o.angle_deg = 60;
+    const FeatureDetectionReport direct = detect_features(cube, o);
+    CHECK(r->feature_edges == direct.feature_edges);
+    CHECK(r->histogram.counts == direct.histogram.counts);
+    CHECK(tool.lines().size() == direct.feature_edges);
+}
+
+TEST_CASE("the Features panel's widgets queue the features operation", "[features_tool][panels]") {
+    Ui ui;
+    TestPanels panels;
+    FeaturesTool& tool = find_tool<FeaturesTool>(panels.all_tools);
+    tool.panel().open = true;
+    CommandQueue commands;
+    SidebarContext context;
+    const auto draw = [&] { in_sidebar(panels.layout, [&] { tool.section(context, commands); }); };
+    ui.frame(draw);
+    ui.frame(draw);
+    CHECK_FALSE(ui.has("section:Tools: detect features"));  // its own panel
+    REQUIRE(ui.has("section:Features"));
+    const Box detect = ui.rect("Detect");
+    commands.clear();
+    ui.click(draw, 0.5f * (detect.x0 + detect.x1), 0.5f * (detect.y0 + detect.y1));
+    const auto applied = commands_of<ApplyOperation>(commands);
+    REQUIRE(applied.size() == 1);
+    CHECK(applied[0]->op == tool.panel().op);
+    // The angle previews live.
+    tool.panel().op.value("angle").x = 30;
+    tool.panel().dirty = true;
+    commands.clear();
+    ui.frame(draw);
+    const auto previews = commands_of<PreviewOperation>(commands);
+    REQUIRE(previews.size() == 1);
+    CHECK(previews[0]->op.value("angle").x == 30);
+    const PanelEntries entries = panels.entries();
+    const PanelEntry* entry = find_panel(entries, "features");
+    REQUIRE(entry);
+    CHECK(entry->open == &tool.panel().open);
+    CHECK(entry->menu == PanelMenu::Tools);
+}
