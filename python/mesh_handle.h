@@ -26,6 +26,9 @@ struct MeshHandle {
     double run_ms = -1;
     /// What loading or building did (LoadReport::lines()), for Mesh.load_report.
     std::vector<std::string> load_report;
+    /// Mesh.session: for the mesh Mesh.show() returned, the viewer's history (a
+    /// trilab.Session); None otherwise.
+    pybind11::object session = pybind11::none();
 };
 
 /// A handle owning `mesh`, compacted when it holds deleted elements.
@@ -37,6 +40,8 @@ void bind_mesh_arrays(pybind11::class_<MeshHandle, std::shared_ptr<MeshHandle>>&
 void bind_mesh_constructor(pybind11::class_<MeshHandle, std::shared_ptr<MeshHandle>>& cls);
 /// Binds trilab.Session and trilab.replay on module `m`.
 void bind_session(pybind11::module_& m);
+/// Binds Mesh.show() and Mesh.session (python/show.cpp).
+void bind_show(pybind11::class_<MeshHandle, std::shared_ptr<MeshHandle>>& cls);
 /// Binds one method per registered operation (app/ops/operation.h) on `cls`.
 void bind_operations(pybind11::class_<MeshHandle, std::shared_ptr<MeshHandle>>& cls);
 

@@ -101,6 +101,7 @@ PYBIND11_MODULE(trilab, m) {
     trilab::python::bind_mesh_arrays(cls);
     trilab::python::bind_operations(cls);
     trilab::python::bind_session(m);
+    trilab::python::bind_show(cls);
     m.def("load", &load, py::arg("path"),
           "Reads a mesh file (.obj .off .ply .stl .om) as trilab-cli does.");
     m.def("operations", &trilab::operation_names, "The names of the registered operations.");

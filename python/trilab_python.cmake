@@ -7,7 +7,7 @@ pybind11_add_module(trilab_python MODULE NO_EXTRAS
                     ${CMAKE_CURRENT_LIST_DIR}/module.cpp ${CMAKE_CURRENT_LIST_DIR}/mesh_arrays.cpp
                     ${CMAKE_CURRENT_LIST_DIR}/operations.cpp
                     ${CMAKE_CURRENT_LIST_DIR}/python_progress.cpp
-                    ${CMAKE_CURRENT_LIST_DIR}/session.cpp)
+                    ${CMAKE_CURRENT_LIST_DIR}/session.cpp ${CMAKE_CURRENT_LIST_DIR}/show.cpp)
 target_link_libraries(trilab_python PRIVATE trilab_cli_commands trilab_app)
 target_compile_options(trilab_python PRIVATE ${TRILAB_WARNINGS})
 # Only PyInit_trilab is exported: the static libraries' symbols stay inside the module.
