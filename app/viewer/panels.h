@@ -396,6 +396,15 @@ void info_section(bool& open, const std::vector<std::string>& lines);
 /// a text cut at the edge. `text_width` measures a text (ImGui's CalcTextSize in the viewer).
 std::string job_label(const JobInfo& job, float width,
                       const std::function<float(const std::string&)>& text_width);
+/// `text` as it fits in `width`: whole, or its longest start that fits followed by "..." (cut
+/// between UTF-8 characters, after a space where one is near the end), never cut at an edge.
+/// `text_width` measures a text (ImGui's CalcTextSize in the viewer).
+std::string fit_text(const std::string& text, float width,
+                     const std::function<float(const std::string&)>& text_width);
+/// `text` broken into lines of at most `width` at its spaces only: a number ("-0.053496") or a
+/// word is never split (one longer than `width` gets a line of its own).
+std::vector<std::string> wrap_at_spaces(const std::string& text, float width,
+                                        const std::function<float(const std::string&)>& text_width);
 /// The status bar along the bottom edge: counts, file, frame time, the last notice, and the
 /// running job (name, progress, Cancel) when `job` is set.
 void status_bar(const StatusInfo& info, const Notice& notice, const JobInfo* job,

@@ -106,12 +106,12 @@ void status_bar(const StatusInfo& info, const Notice& notice, const JobInfo* job
         if (notice.level != Notice::Level::None &&
             ImGui::GetItemRectMax().x + 3.0f * style.ItemSpacing.x < text_right) {
             ImGui::SameLine(0.0f, 3.0f * style.ItemSpacing.x);
-            ImGui::PushClipRect(
-                ImGui::GetCursorScreenPos(),
-                ImVec2(ImGui::GetWindowPos().x + text_right, ImGui::GetWindowPos().y + region.h),
-                true);
-            ImGui::TextColored(notice_color(notice.level), "%s", notice.text.c_str());
-            ImGui::PopClipRect();
+            // As much as fits, ending in "..." (the whole text in the tooltip and the log).
+            const float room = ImGui::GetWindowPos().x + text_right - ImGui::GetCursorScreenPos().x;
+            const std::string shown = fit_text(notice.text, room, [](const std::string& t) {
+                return ImGui::CalcTextSize(t.c_str()).x;
+            });
+            ImGui::TextColored(notice_color(notice.level), "%s", shown.c_str());
             if (ImGui::IsItemHovered()) {  // the whole text (the bar may clip it) and details
                 ImGui::BeginTooltip();
                 ImGui::TextUnformatted(notice.text.c_str());
@@ -165,6 +165,55 @@ std::string job_label(const JobInfo& job, float width,
         words = space == std::string::npos ? std::string() : words.substr(0, space);
     }
     return words.empty() ? std::string() : words + "...";
+}
+
+std::string fit_text(const std::string& text, float width,
+                     const std::function<float(const std::string&)>& text_width) {
+    if (text_width(text) <= width) return text;
+    // The longest start (at a UTF-8 character boundary) that fits with the ellipsis.
+    std::size_t lo = 0, hi = text.size();
+    const auto boundary = [&](std::size_t n) {
+        while (n > 0 && n < text.size() && (static_cast<unsigned char>(text[n]) & 0xC0) == 0x80)
+            --n;
+        return n;
+    };
+    while (lo < hi) {
+        const std::size_t mid = boundary((lo + hi + 1) / 2);
+        if (mid <= lo) break;
+        if (text_width(text.substr(0, mid) + "...") <= width)
+            lo = mid;
+        else
+            hi = mid - 1;
+    }
+    std::size_t n = boundary(lo);
+    // End at a word's end when one is close: "... use a sma..." reads worse than "... use a...".
+    const std::size_t space = text.rfind(' ', n);
+    if (space != std::string::npos && space > 0 && n - space < 12) n = space;
+    while (n > 0 && text[n - 1] == ' ') --n;
+    return n == 0 ? std::string() : text.substr(0, n) + "...";
+}
+
+std::vector<std::string> wrap_at_spaces(
+    const std::string& text, float width,
+    const std::function<float(const std::string&)>& text_width) {
+    std::vector<std::string> lines;
+    std::string line;
+    std::size_t i = 0;
+    while (i <= text.size()) {
+        std::size_t end = text.find(' ', i);
+        if (end == std::string::npos) end = text.size();
+        const std::string word = text.substr(i, end - i);
+        const std::string joined = line.empty() ? word : line + " " + word;
+        if (!line.empty() && text_width(joined) > width) {
+            lines.push_back(line);
+            line = word;
+        } else {
+            line = joined;
+        }
+        i = end + 1;
+    }
+    if (!line.empty() || lines.empty()) lines.push_back(line);
+    return lines;
 }
 
 void history_window(PanelState& panels, const History& history, bool busy, const Rect& region,

@@ -430,22 +430,29 @@ void inspector_section(bool& open, const InspectorView& view, CommandQueue& comm
         ImGui::PushID(int(g));
         ImGui::Separator();
         ImGui::TextUnformatted(group.title.c_str());
-        // Two columns without a table: labels wrap within theirs, values within the rest,
-        // never cut at an edge; the next row starts below the taller of the two.
+        // Two columns without a table where the sidebar is wide enough, else each label over
+        // its value; values break at spaces only (a number never splits: "0." / "038977"),
+        // labels too, and nothing is cut at an edge.
         const float em = ImGui::GetFontSize();
-        const float x0 = ImGui::GetCursorPosX(), label_width = 10.0f * em;
+        const float x0 = ImGui::GetCursorPosX(), avail = ImGui::GetContentRegionAvail().x;
+        const bool columns = avail >= 24.0f * em;
+        const float label_width = columns ? std::min(10.0f * em, 0.4f * avail) : avail;
+        const auto measure = [](const std::string& t) { return ImGui::CalcTextSize(t.c_str()).x; };
         for (const InspectorView::Row& row : group.rows) {
             const float y = ImGui::GetCursorPosY();
             ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-            ImGui::PushTextWrapPos(x0 + label_width - 0.5f * em);
-            ImGui::TextUnformatted(row.label.c_str());
-            ImGui::PopTextWrapPos();
+            for (const std::string& line :
+                 wrap_at_spaces(row.label, label_width - 0.5f * em, measure))
+                ImGui::TextUnformatted(line.c_str());
             ImGui::PopStyleColor();
             const float label_end = ImGui::GetCursorPosY();
-            ImGui::SetCursorPos(ImVec2(x0 + label_width, y));
-            ImGui::PushTextWrapPos(0.0f);
-            ImGui::TextUnformatted(row.text.c_str());
-            ImGui::PopTextWrapPos();
+            const float value_x = columns ? x0 + label_width : x0 + em;
+            if (columns) ImGui::SetCursorPosY(y);
+            for (const std::string& line :
+                 wrap_at_spaces(row.text, x0 + avail - value_x, measure)) {
+                ImGui::SetCursorPosX(value_x);
+                ImGui::TextUnformatted(line.c_str());
+            }
             ImGui::SetCursorPos(ImVec2(x0, std::max(label_end, ImGui::GetCursorPosY())));
         }
         ImGui::Dummy(ImVec2(0.0f, 0.0f));

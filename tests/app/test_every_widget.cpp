@@ -680,6 +680,53 @@ TEST_CASE("open_panels (--show) opens panels by name, tools by their operation n
                       Catch::Contains("unknown panel 'nope'") && Catch::Contains("weld"));
 }
 
+TEST_CASE("long messages end with an ellipsis, numbers never wrap (issue 38, item 12)",
+          "[panels][status]") {
+    const auto chars = [](const std::string& t) { return float(t.size()); };
+    const std::string notice =
+        "the explicit step is above the largest stable one: use a smaller step or implicit";
+    CHECK(fit_text(notice, 200.0f, chars) == notice);  // fits: whole
+    for (float width : {0.0f, 3.0f, 10.0f, 30.0f, 60.0f, 79.0f}) {
+        const std::string shown = fit_text(notice, width, chars);
+        INFO(width << ": '" << shown << "'");
+        CHECK(chars(shown) <= width);
+        if (!shown.empty()) {
+            REQUIRE(shown.size() >= 3);
+            CHECK(shown.substr(shown.size() - 3) == "...");
+            const std::string start = shown.substr(0, shown.size() - 3);
+            CHECK(notice.compare(0, start.size(), start) == 0);
+            CHECK(start.back() != ' ');
+        }
+    }
+    // Cut at a word's end when one is near: never "... use a sma...".
+    CHECK(fit_text(notice, 64.0f, chars) ==
+          "the explicit step is above the largest stable one: use a...");
+    // UTF-8 is cut between characters only.
+    const std::string degrees = "angle 27.0\u00b0 \u00b0\u00b0\u00b0\u00b0\u00b0\u00b0";
+    for (float width = 4; width < 20; ++width) {
+        const std::string shown = fit_text(degrees, width, chars);
+        for (std::size_t i = 0; i + 3 < shown.size(); ++i)
+            if ((static_cast<unsigned char>(shown[i]) & 0xC0) == 0xC0) {  // a lead byte
+                INFO(width);
+                CHECK((static_cast<unsigned char>(shown[i + 1]) & 0xC0) == 0x80);
+            }
+    }
+    // The Inspector's values break at spaces only.
+    const std::string position = "-0.053496 0.108443 0.038977";
+    for (float width : {10.0f, 12.0f, 19.0f, 20.0f, 27.0f, 100.0f}) {
+        INFO(width);
+        std::string joined;
+        for (const std::string& line : wrap_at_spaces(position, width, chars)) {
+            CHECK((chars(line) <= width || line.find(' ') == std::string::npos));
+            joined += (joined.empty() ? "" : " ") + line;
+        }
+        CHECK(joined == position);  // nothing split or lost
+    }
+    CHECK(wrap_at_spaces(position, 19.0f, chars) ==
+          std::vector<std::string>{"-0.053496 0.108443", "0.038977"});
+    CHECK(wrap_at_spaces(position, 5.0f, chars).size() == 3);  // a number wider: its own line
+}
+
 TEST_CASE("the job's progress text drops whole parts instead of being cut", "[panels][status]") {
     JobInfo job;
     job.name = "Loading stanford-bunny-loop4.ply";
