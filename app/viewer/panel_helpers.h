@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "app/session/session.h"
+#include "app/viewer/panels.h"
 
 namespace trilab::viewer::ui {
 
@@ -39,6 +40,23 @@ void wrapped_disabled(const char* format, Args... args) {
     ImGui::PushTextWrapPos(0.0f);
     ImGui::TextDisabled(format, args...);
     ImGui::PopTextWrapPos();
+}
+
+/// `text` on the rest of the current line, as much as fits there ending in "..." (fit_text()),
+/// the whole in a tooltip: a message that comes and goes never moves the rows below.
+inline void fitted_text(const ImVec4& color, const std::string& text) {
+    if (text.empty()) return;
+    const float room = ImGui::GetContentRegionAvail().x;
+    const std::string shown =
+        fit_text(text, room, [](const std::string& t) { return ImGui::CalcTextSize(t.c_str()).x; });
+    ImGui::TextColored(color, "%s", shown.c_str());
+    if (shown != text && ImGui::IsItemHovered()) {
+        ImGui::BeginTooltip();
+        ImGui::PushTextWrapPos(30.0f * ImGui::GetFontSize());
+        ImGui::TextUnformatted(text.c_str());
+        ImGui::PopTextWrapPos();
+        ImGui::EndTooltip();
+    }
 }
 
 /// Coloured text that wraps at the sidebar's edge.

@@ -45,7 +45,6 @@ void operation_panel_body(OperationPanelState& state, const char* apply, bool bu
         state.input_note.clear();
     }
     if (!notes.empty()) state.input_note = notes.back();
-    if (!state.input_note.empty()) wrapped_disabled("%s", state.input_note.c_str());
     std::string error;
     try {
         check_operation(state.op);
@@ -57,7 +56,6 @@ void operation_panel_body(OperationPanelState& state, const char* apply, bool bu
         commands.push_back(PreviewOperation{state.op});
         state.dirty = false;
     }
-    if (!error.empty()) wrapped_colored(kErrorColor, "%s", panel_words(error).c_str());
     if ((busy && !state.previewing) || !error.empty()) ImGui::BeginDisabled();
     if (button(apply)) commands.push_back(ApplyOperation{state.op});
     if ((busy && !state.previewing) || !error.empty()) ImGui::EndDisabled();
@@ -66,7 +64,18 @@ void operation_panel_body(OperationPanelState& state, const char* apply, bool bu
         if (button("Cancel")) commands.push_back(CancelPreview{});
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("back to the state before (Esc)");
     }
-    if (!state.preview_note.empty()) wrapped_disabled("%s", state.preview_note.c_str());
+    // The panel's one message on the Apply row (issue 38, item 13: a message that comes never
+    // moves what is below): an error first, then a typed value that was clamped, then the
+    // preview's note; as much as fits, the whole in the tooltip.
+    const std::string message = !error.empty()              ? panel_words(error)
+                                : !state.input_note.empty() ? state.input_note
+                                                            : state.preview_note;
+    if (!message.empty()) {
+        ImGui::SameLine();
+        ImGui::AlignTextToFramePadding();
+        fitted_text(!error.empty() ? kErrorColor : ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled),
+                    message);
+    }
 }
 
 void morph_hint() {
@@ -75,9 +84,9 @@ void morph_hint() {
 
 namespace {
 
-/// The largest stable explicit step of the mesh and operator; a larger explicit step in red
-/// with the reason, and a button that switches to implicit integration. The warning's lines
-/// are kept free while it is not shown, so that nothing below moves when it comes or goes.
+/// The largest stable explicit step of the mesh and operator on one row that never changes
+/// height (issue 38, item 13): a larger explicit step turns it red with the reason, and a
+/// button on the same row switches to implicit integration.
 void stability_guidance(FairingPanelState& state) {
     const double limit = state.max_stable_step;
     const FairingOptions o = options_of<FairingOptions>(state.op);
@@ -88,34 +97,45 @@ void stability_guidance(FairingPanelState& state) {
     const bool known = !std::isnan(limit) && limit > 0;
     const double step = taubin ? o.taubin_lambda : o.step;
     const char* what = taubin ? "lambda" : "step";
-    if (known)
-        wrapped_disabled("largest stable explicit %s: %.3g", what, limit);
-    else
-        wrapped_disabled("largest stable explicit %s: estimating...", what);
-    note_widget("stable-step");
-    char warning[160];
-    std::snprintf(warning, sizeof warning, "%s %.3g is above it: the run would diverge and stop",
-                  what, step);
-    const float wrap = ImGui::GetContentRegionAvail().x;
-    const ImVec2 text = ImGui::CalcTextSize(warning, nullptr, false, wrap);
-    const ImGuiStyle& style = ImGui::GetStyle();
-    const float reserved = text.y + (taubin ? 0.0f : style.ItemSpacing.y + ImGui::GetFrameHeight());
-    if (!(known && explicit_run && step > limit)) {
-        ImGui::Dummy(ImVec2(1.0f, reserved));
+    const bool unstable = known && explicit_run && step > limit;
+    ImGui::AlignTextToFramePadding();
+    char text[200];
+    if (!known) {
+        std::snprintf(text, sizeof text, "largest stable explicit %s: estimating...", what);
+    } else if (!unstable) {
+        std::snprintf(text, sizeof text, "largest stable explicit %s: %.3g", what, limit);
+    } else {
+        std::snprintf(text, sizeof text,
+                      "%s %.3g is above the largest stable %.3g: the run would diverge and stop",
+                      what, step, limit);
+    }
+    if (unstable && !taubin) {
+        // The button at the row's right end, the text in what is left of the row.
+        const char* label = "Use implicit";
+        const float button_w =
+            ImGui::CalcTextSize(label).x + 2.0f * ImGui::GetStyle().FramePadding.x;
+        ImGui::PushItemWidth(-1.0f);
+        const float room =
+            ImGui::GetContentRegionAvail().x - button_w - ImGui::GetStyle().ItemSpacing.x;
+        const std::string shown = fit_text(
+            text, room, [](const std::string& t) { return ImGui::CalcTextSize(t.c_str()).x; });
+        ImGui::TextColored(kErrorColor, "%s", shown.c_str());
+        note_widget("unstable");
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
+        ImGui::PopItemWidth();
+        ImGui::SameLine(ImGui::GetContentRegionMax().x - button_w);
+        if (button(label, 0.0f, "Use implicit integration")) {
+            FairingOptions implicit = options_of<FairingOptions>(state.op);
+            implicit.integration = Integration::Implicit;
+            set_options(state.op, implicit);
+            state.dirty = true;
+        }
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("switch to implicit integration: stable at any step");
         return;
     }
-    const float top = ImGui::GetCursorPosY();
-    wrapped_colored(kErrorColor, "%s", warning);
-    note_widget("unstable");
-    if (!taubin && button("Use implicit integration")) {
-        FairingOptions implicit = options_of<FairingOptions>(state.op);
-        implicit.integration = Integration::Implicit;
-        set_options(state.op, implicit);
-        state.dirty = true;
-    }
-    // Whatever the text's last line did, the rows below start where they always do.
-    const float used = ImGui::GetCursorPosY() - top - style.ItemSpacing.y;
-    if (used < reserved) ImGui::Dummy(ImVec2(1.0f, reserved - used - style.ItemSpacing.y));
+    fitted_text(unstable ? kErrorColor : ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled), text);
+    note_widget(unstable ? "unstable" : "stable-step");
 }
 
 }  // namespace

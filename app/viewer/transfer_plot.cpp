@@ -30,13 +30,16 @@ void describe_curve(ImDrawList* draw, const ImVec2& a0, const ImVec2& a1, double
     const double x_hi = lambda_hi;
     char buf[192];
     const ImU32 text_color = IM_COL32(200, 200, 210, 255);
+    // The x axis's label under the plot, clear of its ticks and shading (issue 38, item 12).
     std::snprintf(buf, sizeof buf, "lambda %.3g .. %.3g (log)", lambda_lo, x_hi);
-    draw->AddText(ImVec2(a1.x - ImGui::CalcTextSize(buf).x - 3, a1.y - em - 2), text_color, buf);
+    draw->AddText(ImVec2(a1.x - ImGui::CalcTextSize(buf).x - 3, a1.y + 1), text_color, buf);
     std::string sentence;
     if (std::isfinite(unstable) && unstable <= x_hi) {
         std::snprintf(buf, sizeof buf, "unstable above %.3g", unstable);
         const float w = ImGui::CalcTextSize(buf).x;
-        const float x = std::clamp(unstable_x - w - 4, a0.x + 2, a1.x - w - 2);
+        // Right of the gain axis's "1" label, never over it.
+        const float left = a0.x + ImGui::CalcTextSize("1").x + 0.5f * em;
+        const float x = std::clamp(unstable_x - w - 4, left, std::max(left, a1.x - w - 2));
         draw->AddText(ImVec2(x, a0.y + 2), IM_COL32(255, 120, 120, 255), buf);
         std::snprintf(buf, sizeof buf,
                       "Frequencies above lambda = %.4g grow and oscillate (red): this step is "
@@ -134,7 +137,7 @@ TransferPlotRequest transfer_plot(const FairingOptions& o, const TransferView& v
     const float em = ImGui::GetFontSize();
     const ImVec2 origin = ImGui::GetCursorScreenPos();
     const float width = std::max(12.0f * em, ImGui::GetContentRegionAvail().x), height = 7.0f * em;
-    ImGui::Dummy(ImVec2(width, height));
+    ImGui::Dummy(ImVec2(width, height + em + 2.0f));  // the plot, and its x label under it
     ImDrawList* draw = ImGui::GetWindowDrawList();
     const ImVec2 a0 = origin, a1(origin.x + width, origin.y + height);
     draw->AddRectFilled(a0, a1, IM_COL32(20, 22, 26, 255));

@@ -57,8 +57,8 @@ void note_widget(const std::string& id, WidgetNote::Kind kind, const char* label
     // Whole inside the part of its window that shows content (a press on a half-hidden widget
     // may land on the window's padding).
     const ImRect inner = ImGui::GetCurrentWindow()->ClipRect;
-    note.visible = a.y >= inner.Min.y && b.y <= inner.Max.y && a.x >= inner.Min.x - 1 &&
-                   a.x < inner.Max.x;
+    note.visible =
+        a.y >= inner.Min.y && b.y <= inner.Max.y && a.x >= inner.Min.x - 1 && a.x < inner.Max.x;
     note.window_x0 = inner.Min.x;
     note.window_y0 = inner.Min.y;
     note.window_x1 = inner.Max.x;

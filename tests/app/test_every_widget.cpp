@@ -277,7 +277,7 @@ TEST_CASE("every button of every section queues what it says", "[panels][buttons
     std::map<std::string, Check> expected = {
         {"Fairing/Smooth", applies("smooth")},
         {"Fairing/Cancel", queues_one(CancelPreview{})},
-        {"Fairing/Use implicit integration",
+        {"Fairing/Use implicit",
          [](const Sidebar& s) {
              const auto previews = commands_of<PreviewOperation>(s.commands);
              REQUIRE_FALSE(previews.empty());
@@ -557,6 +557,21 @@ TEST_CASE("the stability warning and its button move nothing below them", "[pane
     ui.frame(draw);
     CHECK_FALSE(ui.has("unstable"));
     CHECK(ui.rect("Smooth").y0 == smooth_stable.y0);
+    // Issue 38, item 13: a clamped value's note, Cancel and the preview's note come on the
+    // Apply row; the transfer curve and its button below do not move.
+    REQUIRE(ui.has("Show the diverging run"));
+    const Box diverging = ui.rect("Show the diverging run");
+    s.panels.fairing.input_note = "step 1e+09 is above the largest allowed; using 1e+06";
+    s.panels.fairing.preview_note = "preview 2 ms";
+    s.panels.fairing.previewing = true;
+    ui.frame(draw);
+    ui.frame(draw);
+    CHECK(ui.has("Cancel"));
+    CHECK(ui.rect("Smooth").y0 == smooth_stable.y0);
+    CHECK(ui.rect("Show the diverging run").y0 == diverging.y0);
+    s.panels.fairing.input_note.clear();
+    ui.frame(draw);
+    CHECK(ui.rect("Show the diverging run").y0 == diverging.y0);
 }
 
 TEST_CASE("an optional number's check box carries the parameter's label", "[panels]") {
