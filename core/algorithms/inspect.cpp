@@ -12,6 +12,7 @@
 #include "core/algorithms/curvature.h"
 #include "core/algorithms/laplacian.h"
 #include "core/algorithms/mesh_distance.h"
+#include "core/algorithms/mesh_quality.h"
 #include "core/algorithms/texcoords.h"
 #include "core/errors.h"
 #include "core/geometry.h"
@@ -247,6 +248,7 @@ FaceInspection inspect_face(const HalfedgeMesh& mesh, Face f) {
     const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
     r.aspect_ratio = r.area > 0 ? std::sqrt(3.0) * longest * longest / (4.0 * r.area)
                                 : std::numeric_limits<double>::infinity();
+    r.quality = triangle_quality(mesh, f);
     const ComponentLabels labels = label_face_components(mesh);
     r.component = labels.of_face[f.idx()];
     r.components = labels.components.size();
@@ -534,6 +536,7 @@ std::vector<InspectionField> inspection_fields(const FaceInspection& f) {
                    {f.angles[0], f.angles[1], f.angles[2]}});
     out.push_back(vector_field("normal", "Normal", f.normal));
     out.push_back(number_field("aspect_ratio", "Aspect ratio (1: equilateral)", f.aspect_ratio));
+    out.push_back(number_field("quality", "Quality Q (1: equilateral)", f.quality));
     out.push_back({"component",
                    "Component",
                    std::to_string(f.component) + " of " + std::to_string(f.components),

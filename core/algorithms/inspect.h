@@ -114,6 +114,9 @@ struct FaceInspection {
     /// Longest edge over the shortest altitude, times sqrt(3)/2: 1 for an equilateral
     /// triangle, growing without bound towards a sliver; infinity when degenerate.
     double aspect_ratio = 0;
+    /// Frey and Borouchaki's shape measure (core/algorithms/mesh_quality.h): 1 for an
+    /// equilateral triangle, 0 for a degenerate one.
+    double quality = 0;
     Index component = kInvalidIndex;  ///< label_face_components() numbering
     std::size_t components = 0;       ///< how many the mesh has
 };

@@ -114,7 +114,7 @@ check "inspect --edge --json holds the costs and the constraints' numbers" bash 
      quadric_cost roundness_cost collapse refusal normal_flip roundness max_error"
 check "inspect --point picks the nearest face and names its corner and side" bash -c \
     "'$cli' inspect '$tmp/d.obj' --point 0,0,0 --json > '$tmp/ip.json' && \
-     $(declare -f json_has); json_has '$tmp/ip.json' face area angles aspect_ratio component \
+     $(declare -f json_has); json_has '$tmp/ip.json' face area angles aspect_ratio quality component \
      nearest_vertex nearest_edge"
 check "inspect refuses a bad index naming the option" bash -c \
     "! '$cli' inspect '$tmp/d.obj' --face 99999999 2> '$tmp/e' && grep -q -- '--face: face 99999999' '$tmp/e' && \

@@ -274,6 +274,10 @@ TEST_CASE("inspect_face on hand-made triangles", "[inspect]") {
     CHECK(r.components == 2);
     const FaceInspection eq = inspect_face(mesh, Face(1));
     CHECK(eq.aspect_ratio == Approx(1));
+    // Frey-Borouchaki Q = 4 sqrt(3) A / (P h_max): the right triangle's 4 sqrt(3) / ((3 +
+    // sqrt(5)) sqrt(5)), the equilateral one's 1 (issue 41, item 3).
+    CHECK(r.quality == Approx(4 * s3 / ((3 + std::sqrt(5.0)) * std::sqrt(5.0))));
+    CHECK(eq.quality == Approx(1));
     CHECK(eq.component != r.component);
     CHECK(eq.component == label_face_components(mesh).of_face[1]);
     CHECK_THROWS_AS(inspect_face(mesh, Face(2)), InvalidArgument);
