@@ -129,12 +129,19 @@ void SessionPicking::set_inspection_options(const DecimationOptions& options) {
 void SessionPicking::start_inspection() {
     picks_.inspection.reset();
     if (picks_.picks.empty()) return;
+    // A running inspection finishes first (its result is stale then and dropped):
+    // take_inspection() starts this one when it has ended, so the frame never waits for it.
+    inspection_pending_ = true;
+    if (!inspection_future_.valid()) launch_inspection();
+}
+
+void SessionPicking::launch_inspection() {
+    inspection_pending_ = false;
     const HalfedgeMesh snapshot = picks_.mesh;  // copy-on-write: the worker's own
     const Pick pick = picks_.picks.front();
     const DecimationOptions options = inspection_options_;
     auto reference = std::make_shared<const std::vector<Point>>(document_.reference_positions());
     inspection_request_ = request_;
-    // A running inspection finishes on its own (its result is then stale and dropped).
     inspection_future_ = std::async(std::launch::async, [snapshot, pick, options, reference] {
         auto out = std::make_shared<PickInspection>();
         const auto t0 = std::chrono::steady_clock::now();
@@ -163,6 +170,10 @@ void SessionPicking::take_inspection() {
         inspection_future_.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
         return;
     std::shared_ptr<const PickInspection> result = inspection_future_.get();
+    if (inspection_pending_ && !picks_.picks.empty()) {  // picked again meanwhile: its turn
+        launch_inspection();
+        return;
+    }
     if (inspection_request_ != request_ || picks_.picks.empty()) return;  // stale
     if (!result->failure.empty()) core_.log.warning("inspector: " + result->failure);
     picks_.inspection = std::move(result);
@@ -170,8 +181,10 @@ void SessionPicking::take_inspection() {
 }
 
 void SessionPicking::finish_inspection() {
-    if (inspection_future_.valid()) inspection_future_.wait();
-    take_inspection();
+    while (inspection_future_.valid()) {
+        inspection_future_.wait();
+        take_inspection();
+    }
 }
 
 void SessionPicking::start_job() {

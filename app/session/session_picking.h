@@ -46,6 +46,7 @@ public:
 private:
     void start_job();
     void start_inspection();
+    void launch_inspection();
     void take_inspection();
     /// Forgets what was measured; with `measure` a new measurement and distance job follow.
     void restart(bool measure);
@@ -59,6 +60,7 @@ private:
     DecimationOptions inspection_options_;
     std::future<std::shared_ptr<const PickInspection>> inspection_future_;
     std::uint64_t inspection_request_ = 0;  ///< the pick request the future inspects
+    bool inspection_pending_ = false;       ///< an inspection waits for the running one
 };
 
 }  // namespace trilab::viewer

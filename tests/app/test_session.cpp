@@ -720,3 +720,21 @@ TEST_CASE("an operation that only writes properties is a history entry", "[sessi
     CHECK(s.mesh().has_edge_property("e:sharpness"));
     require_valid(s);
 }
+
+TEST_CASE("picking again while the Inspector computes never waits, and shows the last pick",
+          "[session][pick]") {
+    Session s;
+    std::optional<Pick> last;
+    for (double x : {0.3, -0.2, 0.1, -0.35}) last = pick(s, ray_down(x, 0.1), false);
+    REQUIRE(last);
+    // Every pick returned at once; the inspection that arrives is of the last one.
+    for (int i = 0; i < 5000 && s.picking().pending(); ++i) {
+        s.poll();
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    REQUIRE_FALSE(s.picking().pending());
+    const auto& inspection = s.picking().picks().inspection;
+    REQUIRE(inspection);
+    REQUIRE(inspection->vertex);
+    CHECK(inspection->vertex->vertex == last->vertex);
+}
