@@ -292,6 +292,10 @@ void Journal::Impl::run() {
 Journal::Journal(JournalOptions options) : impl_(std::make_unique<Impl>(std::move(options))) {}
 
 Journal::~Journal() {
+    stop();
+}
+
+void Journal::stop() {
     if (!impl_) return;
     {
         std::lock_guard<std::mutex> lock(impl_->mutex);
@@ -336,24 +340,14 @@ void Journal::flush() {
 
 void Journal::close() {
     if (!impl_) return;
-    {
-        std::lock_guard<std::mutex> lock(impl_->mutex);
-        impl_->stopping = true;
-    }
-    impl_->wake.notify_all();
-    if (impl_->thread.joinable()) impl_->thread.join();
+    stop();
     const std::string p = path();
     if (!p.empty()) unlink(p.c_str());
 }
 
 void Journal::end_unsaved(const std::string& how) {
     if (!impl_) return;
-    {
-        std::lock_guard<std::mutex> lock(impl_->mutex);
-        impl_->stopping = true;
-    }
-    impl_->wake.notify_all();
-    if (impl_->thread.joinable()) impl_->thread.join();
+    stop();
     const std::string p = path();
     if (p.empty()) return;
     const std::string note = p + ".ended";

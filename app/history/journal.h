@@ -72,6 +72,8 @@ public:
     Stats stats() const;
 
 private:
+    /// Writes what is queued and stops the writer thread (the file stays).
+    void stop();
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

@@ -14,20 +14,40 @@ namespace trilab::viewer {
 
 using namespace ui;
 
-std::vector<std::array<Point, 2>> feature_segments(const HalfedgeMesh& mesh,
-                                                   const std::vector<Point>& positions) {
-    std::vector<std::array<Point, 2>> out;
+namespace {
+
+/// The ends of `mesh`'s edges of positive sharpness, in edge order.
+std::vector<std::array<Vertex, 2>> sharp_edges(const HalfedgeMesh& mesh) {
+    std::vector<std::array<Vertex, 2>> out;
     const auto sharpness = mesh.get_edge_property<float>(kSharpnessProperty);
     if (!sharpness) return out;
-    const bool own = positions.size() != mesh.vertices_size();
     for (Edge e : mesh.edges()) {
         if (!(sharpness[e] > 0)) continue;
-        const Halfedge h = mesh.halfedge(e, 0);
-        const Vertex a = mesh.from_vertex(h), b = mesh.to_vertex(h);
-        out.push_back(own ? std::array<Point, 2>{mesh.position(a), mesh.position(b)}
-                          : std::array<Point, 2>{positions[a.idx()], positions[b.idx()]});
+        const Halfedge h = HalfedgeMesh::halfedge(e, 0);
+        out.push_back({mesh.from_vertex(h), mesh.to_vertex(h)});
     }
     return out;
+}
+
+/// The segments of `edges` at `positions`, or at the mesh's own positions when its size
+/// differs.
+std::vector<std::array<Point, 2>> segments_of(const std::vector<std::array<Vertex, 2>>& edges,
+                                              const HalfedgeMesh& mesh,
+                                              const std::vector<Point>& positions) {
+    const bool own = positions.size() != mesh.vertices_size();
+    std::vector<std::array<Point, 2>> out;
+    out.reserve(edges.size());
+    for (const auto& [a, b] : edges)
+        out.push_back(own ? std::array<Point, 2>{mesh.position(a), mesh.position(b)}
+                          : std::array<Point, 2>{positions[a.idx()], positions[b.idx()]});
+    return out;
+}
+
+}  // namespace
+
+std::vector<std::array<Point, 2>> feature_segments(const HalfedgeMesh& mesh,
+                                                   const std::vector<Point>& positions) {
+    return segments_of(sharp_edges(mesh), mesh, positions);
 }
 
 FeaturesTool::FeaturesTool(ViewerContext& context) : OperationTool(context, {}) {
@@ -45,13 +65,21 @@ void FeaturesTool::update() {
     OperationTool::update();
     // The feature lines of what is shown (a preview of the detection, the document, a morph
     // frame); none on a level of detail, whose edges are not the document's.
+    // A morph frame changes the version every frame: the sharp edges are found once per
+    // connectivity and properties, and only their ends' positions are gathered per frame.
     const Shown& shown = context_.session.shown();
     if (shown.version == lines_version_) return;
     lines_version_ = shown.version;
     lines_.clear();
-    if (shown.mesh && shown.kind != Shown::Kind::Level)
-        lines_ = feature_segments(*shown.mesh, shown.positions);
     upload_ = true;
+    if (!shown.mesh || shown.kind == Shown::Kind::Level) return;
+    const HalfedgeMesh& mesh = *shown.mesh;
+    const std::array<std::uint64_t, 2> key{mesh.topology_revision(), mesh.attribute_revision()};
+    if (key != edges_key_) {
+        edges_key_ = key;
+        edges_ = sharp_edges(mesh);
+    }
+    lines_ = segments_of(edges_, mesh, shown.positions);
 }
 
 void FeaturesTool::draw_overlay() {

@@ -41,6 +41,9 @@ public:
 private:
     OperationPanelState panel_{"features"};
     bool show_lines_ = true;  ///< Features > show feature lines
+    /// The shown mesh's sharp edges, for its connectivity and properties (edges_key_).
+    std::vector<std::array<Vertex, 2>> edges_;
+    std::array<std::uint64_t, 2> edges_key_{0, 0};
     std::vector<std::array<Point, 2>> lines_;
     std::uint64_t lines_version_ = ~std::uint64_t(0);  ///< the shown state they are of
     bool upload_ = false;                              ///< lines_ changed since the upload
