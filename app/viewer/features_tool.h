@@ -35,6 +35,8 @@ public:
     OperationPanelState& panel() { return panel_; }
     /// The feature lines of the shown surface (what draw_overlay() draws).
     const std::vector<std::array<Point, 2>>& lines() const { return lines_; }
+    /// Whether the feature lines are drawn (the panel's check box).
+    bool show_lines() const { return show_lines_; }
     /// The detection report of the preview shown (null: none).
     const FeatureDetectionReport* report() const;
 

@@ -101,6 +101,13 @@ TEST_CASE("the Features panel's widgets queue the features operation", "[feature
     const auto previews = commands_of<PreviewOperation>(commands);
     REQUIRE(previews.size() == 1);
     CHECK(previews[0]->op.value("angle").x == 30);
+    // The check box turns the feature lines off, queueing nothing.
+    REQUIRE(tool.show_lines());
+    const Box lines = ui.rect("show feature lines");
+    commands.clear();
+    ui.click(draw, 0.5f * (lines.x0 + lines.x1), 0.5f * (lines.y0 + lines.y1));
+    CHECK_FALSE(tool.show_lines());
+    CHECK(commands.empty());
     const PanelEntries entries = panels.entries();
     const PanelEntry* entry = find_panel(entries, "features");
     REQUIRE(entry);
