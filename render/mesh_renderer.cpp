@@ -861,7 +861,8 @@ namespace {
 /// The lighting and colour uniforms of the programs that shade points and surfaces: the
 /// front and back colours, vertex colours (`colored`), ambient and specular terms.
 void set_shading_uniforms(const GlProgram& program, const RenderStyle& style, bool colored) {
-    program.set("u_back_face_color", style.back_face_color ? 1 : 0);
+    program.set("u_back_face_color", style.back_face_color && !style.facing_normals ? 1 : 0);
+    program.set("u_facing_normals", style.facing_normals ? 1 : 0);
     program.set("u_use_vertex_color", colored ? 1 : 0);
     program.set("u_front_color", style.front_color);
     program.set("u_back_color", style.back_color);

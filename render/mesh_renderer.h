@@ -82,6 +82,11 @@ struct RenderStyle {
     bool back_face_color = true;
     /// Let draw() skip back faces where none can be seen (see culls_back_faces()).
     bool cull_hidden_back_faces = true;
+    /// Shade each fragment of the shaded modes with its interpolated normal turned towards
+    /// the viewer, and no back colour: for a clustered stand-in, whose folded triangles (a
+    /// cluster mean that inverts a triangle) would otherwise show as dark back-face specks
+    /// inside a surface that faces the viewer.
+    bool facing_normals = false;
     glm::vec3 front_color{0.50f, 0.62f, 0.80f};  ///< base colour without vertex colours
     glm::vec3 back_color{0.85f, 0.42f, 0.30f};
 

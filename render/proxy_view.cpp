@@ -76,6 +76,11 @@ std::vector<TexCoord> sample_proxy_texcoords(const HalfedgeMesh& mesh,
     return out;
 }
 
+RenderStyle stand_in_style(RenderStyle style) {
+    style.facing_normals = true;
+    return style;
+}
+
 double proxy_error_pixels(double error_bound, const Camera& camera, float framebuffer_scale) {
     return error_bound * double(camera.pixels_per_unit()) * double(framebuffer_scale);
 }

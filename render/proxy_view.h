@@ -9,6 +9,7 @@
 #include "core/algorithms/coloring.h"
 #include "core/halfedge_mesh.h"
 #include "render/camera.h"
+#include "render/mesh_renderer.h"
 
 namespace trilab {
 
@@ -61,6 +62,11 @@ std::vector<float> sample_proxy_selection(const std::vector<float>& weights,
 /// when a representative is not a vertex of `mesh`.
 std::vector<TexCoord> sample_proxy_texcoords(const HalfedgeMesh& mesh,
                                              const std::vector<Index>& representative);
+
+/// The style a stand-in is drawn with in place of the surface's `style`: normals turned
+/// towards the viewer and no back colour (RenderStyle::facing_normals), so that its folded
+/// clustered triangles leave no dark specks; the rest as the surface is drawn.
+RenderStyle stand_in_style(RenderStyle style);
 
 /// How many framebuffer pixels `error_bound` (world units, ProxyMesh::error_bound) spans at
 /// the camera's target depth: error_bound x Camera::pixels_per_unit() x `framebuffer_scale`

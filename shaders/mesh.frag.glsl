@@ -68,6 +68,7 @@ in MeshVertex {
 uniform int u_surface;  // 0 shaded, 1 background colour (HiddenLine), 2 none (Wireframe)
 uniform bool u_flat;
 uniform bool u_back_face_color;
+uniform bool u_facing_normals;  // the normal turned towards the viewer (a stand-in's folds)
 uniform bool u_use_vertex_color;
 uniform vec3 u_front_color;
 uniform vec3 u_back_color;
@@ -201,6 +202,8 @@ void main() {
             // The triangle's plane from screen-space derivatives; this normal always faces
             // the viewer, so it is not flipped for back faces.
             n = cross(dFdx(fs_in.position), dFdy(fs_in.position));
+        } else if (u_facing_normals) {
+            n = dot(fs_in.normal, fs_in.position) > 0.0 ? -fs_in.normal : fs_in.normal;
         } else {
             n = gl_FrontFacing ? fs_in.normal : -fs_in.normal;
         }

@@ -226,7 +226,12 @@ struct StatusInfo {
     std::size_t n_vertices = 0;
     std::size_t n_faces = 0;
     std::string file_name;
-    double frame_ms = 0.0;
+    double frame_ms = 0.0;  ///< of the recent frames drawn as the last one was
+    /// The file whose simplified picture is on the screen while it loads ("": none): the bar
+    /// names it and its face count, not the model still open.
+    std::string loading;
+    /// The stand-in on the screen ("": the exact surface), e.g. "simplified: 60000 triangles".
+    std::string simplified;
 };
 
 /// The running job, for the progress shown in the status bar.
@@ -405,6 +410,9 @@ std::string fit_text(const std::string& text, float width,
 /// word is never split (one longer than `width` gets a line of its own).
 std::vector<std::string> wrap_at_spaces(const std::string& text, float width,
                                         const std::function<float(const std::string&)>& text_width);
+/// The status bar's first part: the counts, the file and the frame time of what is on the
+/// screen; while a file loads, its name and face count.
+std::string status_text(const StatusInfo& info);
 /// The status bar along the bottom edge: counts, file, frame time, the last notice, and the
 /// running job (name, progress, Cancel) when `job` is set.
 void status_bar(const StatusInfo& info, const Notice& notice, const JobInfo* job,

@@ -81,6 +81,18 @@ bool section_header(const char* label, bool& open) {
     return open;
 }
 
+std::string status_text(const StatusInfo& info) {
+    char text[512];
+    if (!info.loading.empty())
+        std::snprintf(text, sizeof(text), "loading %s   %zu faces   %.1f ms",
+                      info.loading.c_str(), info.n_faces, info.frame_ms);
+    else
+        std::snprintf(text, sizeof(text), "%zu vertices   %zu faces   %s   %.1f ms%s%s",
+                      info.n_vertices, info.n_faces, info.file_name.c_str(), info.frame_ms,
+                      info.simplified.empty() ? "" : "   ", info.simplified.c_str());
+    return text;
+}
+
 void status_bar(const StatusInfo& info, const Notice& notice, const JobInfo* job,
                 const Rect& region, CommandQueue& commands) {
     const ImGuiStyle& style = ImGui::GetStyle();
@@ -101,8 +113,7 @@ void status_bar(const StatusInfo& info, const Notice& notice, const JobInfo* job
         const float job_w = job ? std::min(30.0f * em, 0.55f * region.w) : 0.0f;
         const float text_right = region.w - job_w - 2.0f * style.FramePadding.x;
         ImGui::AlignTextToFramePadding();
-        ImGui::Text("%zu vertices   %zu faces   %s   %.1f ms", info.n_vertices, info.n_faces,
-                    info.file_name.c_str(), info.frame_ms);
+        ImGui::TextUnformatted(status_text(info).c_str());
         if (notice.level != Notice::Level::None &&
             ImGui::GetItemRectMax().x + 3.0f * style.ItemSpacing.x < text_right) {
             ImGui::SameLine(0.0f, 3.0f * style.ItemSpacing.x);

@@ -147,14 +147,23 @@ bool SceneView::settled(double now) const {
 
 void SceneView::draw(const RenderStyle& style) {
     if (MeshRenderer* shown = choose_renderer())
-        shown->draw(view_.camera.view(), view_.camera.projection(), style);
+        shown->draw(view_.camera.view(), view_.camera.projection(),
+                    shown == proxy_.renderer.get() ? stand_in_style(style) : style);
     else
         renderer_->draw(view_.camera.view(), view_.camera.projection(), style);
+    // The note is drawn with the UI, before the scene: when it told otherwise than what this
+    // frame drew (the view came to rest), one more frame corrects it, even where the loop
+    // would sleep now.
+    if (note_shown_ != (proxy_.drew_proxy || loading_.drawn)) context_.keep_drawing();
 }
 
-void SceneView::draw_note() const {
-    // While the last frame showed the stand-in or a loading picture (over the view's corner).
-    if (!proxy_.drew_proxy && !loading_.drawn) return;
+void SceneView::draw_note() {
+    // While the stand-in or a loading picture is on the screen (over the view's corner). It is
+    // drawn before the frame decides: the last frame's stand-in counts only while the view
+    // still moves or the exact surface still waits.
+    note_shown_ = loading_.drawn || (proxy_.drew_proxy && (proxy_.motion.moving(glfwGetTime()) ||
+                                                           proxy_.exact_pending));
+    if (!note_shown_) return;
     char text[96];
     if (loading_.drawn)
         std::snprintf(text, sizeof(text), "loading... simplified (within %.1f px)",
@@ -571,12 +580,26 @@ void SceneView::update_wireframe() {
     // triangle area (the current state's area over the shown triangles, so previews,
     // morphs and levels of detail count their own density). Two multiplications a frame.
     // (A large state's own count: its proxy or a pending upload may be on the GPU.)
-    const std::size_t triangles = proxy_.current && session_.shown().mesh
-                                      ? session_.shown().mesh->n_faces()
-                                      : renderer_->n_triangles();
+    // A file's picture while it loads: the file's own faces over the picture's area (its
+    // coarse triangles' edges are not the surface's), not the model still open.
+    std::size_t triangles = proxy_.current && session_.shown().mesh
+                                ? session_.shown().mesh->n_faces()
+                                : renderer_->n_triangles();
+    double area = surface_area_;
+    if (const std::shared_ptr<const LoadingPicture> picture = session_.files().loading_picture()) {
+        if (picture != loading_.area_of) {
+            loading_.area_of = picture;
+            loading_.area = 0;
+            const std::vector<Point>& x = picture->proxy->positions;
+            for (const auto& t : picture->proxy->triangles)
+                loading_.area += 0.5 * (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]).norm();
+        }
+        triangles = picture->faces;
+        area = loading_.area;
+    }
     edge_pixels_ = 0;
-    if (triangles > 0 && surface_area_ > 0) {
-        const double edge = std::sqrt(4.0 * surface_area_ / (std::sqrt(3.0) * double(triangles)));
+    if (triangles > 0 && area > 0) {
+        const double edge = std::sqrt(4.0 * area / (std::sqrt(3.0) * double(triangles)));
         edge_pixels_ = edge * double(view_.camera.pixels_per_unit()) *
                        double(ImGui::GetIO().DisplayFramebufferScale.y);
     }

@@ -75,8 +75,9 @@ public:
     /// Draws the shown state with `style` over the current viewport: the stand-in while the
     /// view moves, the exact surface at rest; then the note over the view's corner.
     void draw(const RenderStyle& style);
-    /// Draws "simplified while moving" over the view's corner (ImGui foreground list).
-    void draw_note() const;
+    /// Draws "simplified while moving" over the view's corner (ImGui foreground list), in the
+    /// UI pass before draw(): while the stand-in is expected on the screen this frame.
+    void draw_note();
 
     MeshRenderer& exact() { return *renderer_; }
     const MeshRenderer& exact() const { return *renderer_; }
@@ -99,6 +100,9 @@ public:
     bool new_loading_picture() const;
     const std::string* loading_picture_path() const {
         return loading_.picture ? &loading_.picture->path : nullptr;
+    }
+    std::size_t loading_picture_faces() const {
+        return loading_.picture ? loading_.picture->faces : 0;
     }
     /// The view's stand-in is ready (made or failed) or none applies, and nothing moves:
     /// scripted actions that time the view may start.
@@ -157,6 +161,9 @@ private:
         Camera camera_before;                           ///< the view before the picture was fitted
         bool restore_camera = false;                    ///< the load has not brought a model yet
         double error_pixels = 0;
+        /// The surface area of a picture's triangles (the automatic wireframe's rule).
+        std::shared_ptr<const LoadingPicture> area_of;
+        double area = 0;
     };
 
     void upload_shown();
@@ -194,6 +201,7 @@ private:
     bool coloring_pending_ = false;         ///< a colouring was asked for while a job ran
     std::uint64_t coloring_result_id_ = 0;  ///< the session's colouring result applied last
     std::uint64_t geodesic_colored_version_ = 0;
+    bool note_shown_ = false;  ///< this frame's UI showed "simplified" (draw_note())
 };
 
 }  // namespace trilab::viewer

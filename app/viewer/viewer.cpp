@@ -467,7 +467,8 @@ int Viewer::run() {
         // the pass alone counts.
         const double end = glfwGetTime();
         const double since = waited || last_frame_end < 0 ? end - start : end - last_frame_end;
-        frame_times_ms_[n_frame_times_++ % frame_times_ms_.size()] = 1000.0 * since;
+        frame_times_ms_[n_frame_times_++ % frame_times_ms_.size()] = {
+            1000.0 * since, scene_->drew_proxy() || scene_->loading_picture_drawn()};
         last_frame_end = end;
         waited = false;
         // A spectral prediction on the screen lets its exact job start (with the next frame).
@@ -498,12 +499,15 @@ int Viewer::run() {
     return status;
 }
 
-double Viewer::frame_ms() const {
-    std::size_t n = std::min(n_frame_times_, frame_times_ms_.size());
-    if (n == 0) return 0.0;
-    auto sorted = frame_times_ms_;
-    std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.begin() + n);
-    return sorted[n / 2];
+double Viewer::frame_ms(std::optional<bool> simplified) const {
+    const std::size_t n = std::min(n_frame_times_, frame_times_ms_.size());
+    std::vector<double> times;
+    for (std::size_t i = 0; i < n; ++i)
+        if (!simplified || frame_times_ms_[i].second == *simplified)
+            times.push_back(frame_times_ms_[i].first);
+    if (times.empty()) return 0.0;
+    std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
+    return times[times.size() / 2];
 }
 
 }  // namespace trilab::viewer

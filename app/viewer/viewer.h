@@ -8,6 +8,7 @@
 #include <array>
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -80,8 +81,9 @@ private:
     void reset_view();
     /// Model and scene information, for the Info panel and the `I` key.
     std::vector<std::string> scene_info() const;
-    /// The median wall time of the most recent frames.
-    double frame_ms() const;
+    /// The median wall time of the most recent frames; with `simplified` set, of those among
+    /// them that drew the stand-in (true) or the exact surface (false) only.
+    double frame_ms(std::optional<bool> simplified = std::nullopt) const;
 
     // Sessions and the crash journal (viewer_session.cpp).
     /// The view, panels and texture a session file stores beside the history.
@@ -118,7 +120,9 @@ private:
     double settings_journaled_at_ = -1;  ///< Session::now() of that
     /// Wall time of the most recent frames (events excluded), for a median that ignores the
     /// slow first frame (shader compilation, font upload).
-    std::array<double, 15> frame_times_ms_{};
+    /// Each with whether it drew the stand-in (the status bar times frames of the kind on the
+    /// screen: turning a large mesh is not timed by its last exact frame).
+    std::array<std::pair<double, bool>, 15> frame_times_ms_{};
     std::size_t n_frame_times_ = 0;
 };
 

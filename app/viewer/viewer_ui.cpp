@@ -185,7 +185,16 @@ void Viewer::draw_ui() {
     // What is on the screen: a preview, a level of detail or a morph frame has its own counts.
     std::tie(status.n_vertices, status.n_faces) = scene_->shown_counts();
     status.file_name = session.document().name;
-    status.frame_ms = frame_ms();
+    // Frames of the kind on the screen: turning a large mesh shows the stand-in's time.
+    const bool simplified = scene_->drew_proxy() || scene_->loading_picture_drawn();
+    status.frame_ms = frame_ms(simplified);
+    if (const std::string* loading = scene_->loading_picture_path();
+        loading && scene_->loading_picture_drawn()) {
+        status.loading = std::filesystem::path(*loading).filename().string();
+        status.n_faces = scene_->loading_picture_faces();
+    } else if (scene_->drew_proxy()) {
+        status.simplified = "simplified while moving";
+    }
     // A preview's progress shows only when it takes a while.
     JobInfo job;
     const bool show_job = session.jobs().busy() &&
