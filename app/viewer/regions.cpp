@@ -84,8 +84,8 @@ bool section_header(const char* label, bool& open) {
 std::string status_text(const StatusInfo& info) {
     char text[512];
     if (!info.loading.empty())
-        std::snprintf(text, sizeof(text), "loading %s   %zu faces   %.1f ms",
-                      info.loading.c_str(), info.n_faces, info.frame_ms);
+        std::snprintf(text, sizeof(text), "loading %s   %zu faces   %.1f ms", info.loading.c_str(),
+                      info.n_faces, info.frame_ms);
     else
         std::snprintf(text, sizeof(text), "%zu vertices   %zu faces   %s   %.1f ms%s%s",
                       info.n_vertices, info.n_faces, info.file_name.c_str(), info.frame_ms,

@@ -25,6 +25,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <thread>
 
 #include "app/viewer/viewer_tuning.h"
 #include "core/algorithms/selection.h"
@@ -146,7 +147,8 @@ bool SceneView::settled(double now) const {
 }
 
 void SceneView::draw(const RenderStyle& style) {
-    if (MeshRenderer* shown = choose_renderer())
+    MeshRenderer* shown = choose_renderer();
+    if (shown)
         shown->draw(view_.camera.view(), view_.camera.projection(),
                     shown == proxy_.renderer.get() ? stand_in_style(style) : style);
     else
@@ -155,14 +157,28 @@ void SceneView::draw(const RenderStyle& style) {
     // frame drew (the view came to rest), one more frame corrects it, even where the loop
     // would sleep now.
     if (note_shown_ != (proxy_.drew_proxy || loading_.drawn)) context_.keep_drawing();
+    // Tests only: an exact frame of a large mesh as slow as a 17.8M-face one in a software
+    // renderer (input that happens during it is tested with a small mesh).
+    static const int exact_delay_ms = [] {
+        const char* env = std::getenv("TRILAB_EXACT_FRAME_DELAY_MS");
+        return env && *env ? std::atoi(env) : 0;
+    }();
+    if (exact_delay_ms > 0 && proxy_.current && shown != proxy_.renderer.get())
+        std::this_thread::sleep_for(std::chrono::milliseconds(exact_delay_ms));
+}
+
+void SceneView::note_input() {
+    if (!proxy_.current) return;
+    proxy_.motion.note_motion(glfwGetTime());
+    context_.keep_drawing();
 }
 
 void SceneView::draw_note() {
     // While the stand-in or a loading picture is on the screen (over the view's corner). It is
     // drawn before the frame decides: the last frame's stand-in counts only while the view
     // still moves or the exact surface still waits.
-    note_shown_ = loading_.drawn || (proxy_.drew_proxy && (proxy_.motion.moving(glfwGetTime()) ||
-                                                           proxy_.exact_pending));
+    note_shown_ = loading_.drawn || (proxy_.drew_proxy &&
+                                     (proxy_.motion.moving(glfwGetTime()) || proxy_.exact_pending));
     if (!note_shown_) return;
     char text[96];
     if (loading_.drawn)
@@ -596,6 +612,20 @@ void SceneView::update_wireframe() {
         }
         triangles = picture->faces;
         area = loading_.area;
+        const bool first = picture != loading_.wire_logged;
+        loading_.wire_logged = picture;
+        if (first) {
+            const double edge = triangles > 0 && area > 0
+                                    ? std::sqrt(4.0 * area / (std::sqrt(3.0) * double(triangles)))
+                                    : 0.0;
+            const double px = edge * double(view_.camera.pixels_per_unit());
+            char line[128];
+            std::snprintf(line, sizeof(line),
+                          "loading picture: automatic wireframe %s (the file's edges %.2f px)",
+                          px >= kWireOnLineWidths * std::max(1.0f, style.wire_width) ? "on" : "off",
+                          px);
+            session_.log().info(line);
+        }
     }
     edge_pixels_ = 0;
     if (triangles > 0 && area > 0) {

@@ -70,6 +70,9 @@ public:
     }
     /// Uploads the texture chosen in view.settings (checkerboard or the loaded image).
     void update_texture();
+    /// The user drags in the view this frame: a large mesh's stand-in is drawn (an exact
+    /// frame would delay the drag's next events by seconds).
+    void note_input();
     /// Decides the wireframe overlay for this frame (view.style.wireframe).
     void update_wireframe();
     /// Draws the shown state with `style` over the current viewport: the stand-in while the
@@ -164,6 +167,7 @@ private:
         /// The surface area of a picture's triangles (the automatic wireframe's rule).
         std::shared_ptr<const LoadingPicture> area_of;
         double area = 0;
+        std::shared_ptr<const LoadingPicture> wire_logged;  ///< its wireframe decision logged
     };
 
     void upload_shown();

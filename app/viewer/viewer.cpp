@@ -115,8 +115,16 @@ GLFWwindow* Viewer::create_window(const ViewerOptions& options, Viewer* viewer) 
     glfwSetWindowUserPointer(window, viewer);
     // Every input or window event keeps the loop drawing for a few frames; otherwise it
     // sleeps in glfwWaitEvents. Installed before ImGui's, which call these in turn.
-    glfwSetCursorPosCallback(window, [](GLFWwindow* w, double, double) { wake(w); });
-    glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int, int, int) { wake(w); });
+    // The mouse's events also go to the pointer trail, in order and where each happened (a
+    // drag during a slow frame turns the view, pointer_trail.h).
+    glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) {
+        wake(w);
+        if (Viewer* v = from(w)) v->pointer_trail_.move(x, y);
+    });
+    glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) {
+        wake(w);
+        if (Viewer* v = from(w)) v->pointer_trail_.button(button, action == GLFW_PRESS);
+    });
     glfwSetScrollCallback(window, [](GLFWwindow* w, double, double) { wake(w); });
     glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) {
         wake(w);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "app/viewer/frame_output.h"
+#include "app/viewer/pointer_trail.h"
 #include "app/viewer/scene_view.h"
 #include "app/viewer/script_driver.h"
 #include "app/viewer/tools.h"
@@ -112,9 +113,12 @@ private:
     Preferences preferences_;                 ///< remembered settings (interactive sessions only)
     std::vector<KeyPress> key_presses_;       ///< since the last frame
     std::vector<std::string> dropped_paths_;  ///< files dropped on the window since the last frame
-    glm::vec2 press_pos_{0.0f};               ///< where the left button went down (a click picks)
-    bool turning_ = false;                    ///< the left drag has moved past the click's slop
-    bool drag_in_view_ = false;               ///< the mouse drag began in the view
+    PointerTrail pointer_trail_;  ///< the mouse's events since the last frame (GLFW's callbacks)
+    bool left_down_ = false;      ///< the left button is down, by the trail's events
+    glm::vec2 drag_last_{0.0f};   ///< the left drag's last position (view coordinates)
+    glm::vec2 press_pos_{0.0f};   ///< where the left button went down (a click picks)
+    bool turning_ = false;        ///< the left drag has moved past the click's slop
+    bool drag_in_view_ = false;   ///< the mouse drag began in the view
     bool quit_ = false;
     std::string journaled_settings_;     ///< the settings text last given to the journal
     double settings_journaled_at_ = -1;  ///< Session::now() of that

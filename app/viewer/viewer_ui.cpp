@@ -46,12 +46,19 @@ void Viewer::handle_input() {
     Camera& camera = context_.view.camera;
     const Rect& view = context_.view_rect;
     // Mouse input in the view's coordinates; drags count when they began in the view.
-    const bool in_view = ImGui::IsMousePosValid() && io.MousePos.x >= view.x &&
-                         io.MousePos.y >= view.y && io.MousePos.x < view.right() &&
-                         io.MousePos.y < view.bottom();
+    const auto inside = [&](const glm::vec2& p) {
+        return p.x >= view.x && p.y >= view.y && p.x < view.right() && p.y < view.bottom();
+    };
+    const bool in_view = ImGui::IsMousePosValid() && inside({io.MousePos.x, io.MousePos.y});
+    // The mouse's events since the last frame, where they happened: a press, drag and release
+    // during one slow frame turn the view instead of clicking where the cursor is by then.
+    const LeftDrag drag = left_drag(pointer_trail_.take(), left_down_);
+    left_down_ = drag.pressed ? !drag.released : (!drag.released && left_down_);
     if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) ||
         ImGui::IsMouseClicked(ImGuiMouseButton_Middle))
-        drag_in_view_ = in_view && !io.WantCaptureMouse;
+        drag_in_view_ = (drag.pressed ? inside(drag.press_pos) : in_view) && !io.WantCaptureMouse;
+    // A frame that handles a drag in the view draws a large mesh's stand-in.
+    if (drag_in_view_ && (drag.pressed || !drag.path.empty())) scene_->note_input();
     if (!io.WantCaptureMouse && ImGui::IsMousePosValid()) {
         ViewMouse mouse;
         mouse.pos = glm::vec2(io.MousePos.x - view.x, io.MousePos.y - view.y);
@@ -66,8 +73,10 @@ void Viewer::handle_input() {
         // turns once the cursor has moved past the click's slop (from where it was pressed),
         // so a click never turns it. A double click makes the picked point the centre of
         // rotation (Home fits the view).
+        const glm::vec2 origin(view.x, view.y);
         if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && drag_in_view_) {
-            press_pos_ = mouse.pos;
+            press_pos_ = drag.pressed ? drag.press_pos - origin : mouse.pos;
+            drag_last_ = press_pos_;
             turning_ = false;
         }
         const bool double_clicked = ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left);
@@ -85,8 +94,22 @@ void Viewer::handle_input() {
         const glm::vec2& pos = mouse.pos;
         if (taken || mouse.double_clicked) {
             // the tool has the mouse, or a double click centred the view
-        } else if (moved && drag_in_view_ && ImGui::IsMouseDown(ImGuiMouseButton_Left) &&
-                   !io.KeyShift) {
+        } else if (!drag.path.empty() && drag_in_view_ && !io.KeyShift) {
+            // Along the events' path: every position the cursor took, in order.
+            for (const glm::vec2& at : drag.path) {
+                const glm::vec2 p = at - origin;
+                if (turning_) {
+                    camera.rotate(drag_last_, p);
+                } else if (glm::length(p - press_pos_) > kClickSlopPixels) {
+                    turning_ = true;
+                    camera.rotate(press_pos_, p);
+                }
+                drag_last_ = p;
+            }
+            if (turning_) context_.view.fitted = false;
+        } else if (drag.path.empty() && moved && drag_in_view_ &&
+                   ImGui::IsMouseDown(ImGuiMouseButton_Left) && !io.KeyShift) {
+            // Input without window events (scripted): ImGui's frame positions.
             if (turning_) {
                 camera.rotate(pos - delta, pos);
                 context_.view.fitted = false;

@@ -956,3 +956,25 @@ TEST_CASE("the recovery question's buttons: Restore, Discard, Later", "[panels][
                            [](const WidgetNote& n) { return n.label == "Restore"; }));
     }
 }
+
+TEST_CASE("The status bar names the file being loaded and what is drawn", "[panels][status]") {
+    // Issue 38 item 8: while a file loads, the bar showed the open model's counts under the
+    // file's picture; while a large mesh turns, nothing said the surface was simplified.
+    StatusInfo info;
+    info.n_vertices = 1002;
+    info.n_faces = 2000;
+    info.file_name = "default model";
+    info.frame_ms = 12.5;
+    CHECK(status_text(info) == "1002 vertices   2000 faces   default model   12.5 ms");
+    StatusInfo loading = info;
+    loading.loading = "bunny17.ply";
+    loading.n_faces = 17829952;
+    const std::string text = status_text(loading);
+    CHECK(text == "loading bunny17.ply   17829952 faces   12.5 ms");
+    CHECK(text.find("default model") == std::string::npos);
+    StatusInfo turning = info;
+    turning.simplified = "simplified while moving";
+    turning.frame_ms = 38.0;
+    CHECK(status_text(turning) ==
+          "1002 vertices   2000 faces   default model   38.0 ms   simplified while moving");
+}

@@ -12,9 +12,9 @@
 #include "core/algorithms/proxy_mesh.h"
 #include "core/algorithms/subdivision.h"
 #include "core/geometry.h"
+#include "core/io/image_io.h"
 #include "core/io/mesh_io.h"
 #include "core/progress.h"
-#include "core/io/image_io.h"
 #include "render/camera.h"
 #include "render/offscreen.h"
 #include "render/proxy_view.h"
@@ -302,7 +302,8 @@ TEST_CASE("A large mesh's stand-in has no specks of back faces where the surface
             std::vector<double> ring;
             for (int j = -3; j <= 3; ++j)
                 for (int i = -3; i <= 3; ++i)
-                    if (std::max(std::abs(i), std::abs(j)) == 3) ring.push_back(lum(image, x + i, y + j));
+                    if (std::max(std::abs(i), std::abs(j)) == 3)
+                        ring.push_back(lum(image, x + i, y + j));
             std::nth_element(ring.begin(), ring.begin() + ring.size() / 2, ring.end());
             const double median = ring[ring.size() / 2];
             if (lum(image, x, y) >= median - 0.12) return false;
