@@ -4,6 +4,7 @@
 #include "app/viewer/denoise_tool.h"
 #include "app/viewer/fairing_tool.h"
 #include "app/viewer/features_tool.h"
+#include "app/viewer/fill_holes_tool.h"
 #include "app/viewer/frequency_tool.h"
 #include "app/viewer/morph_tool.h"
 #include "app/viewer/operation_tool.h"
@@ -58,6 +59,7 @@ Tools make_tools(ViewerContext& context, MeshRenderer* exact,
     tools.decimation = add(tools, std::make_unique<DecimationTool>(context));
     add(tools, std::make_unique<DenoiseTool>(context));
     add(tools, std::make_unique<FeaturesTool>(context));
+    add(tools, std::make_unique<FillHolesTool>(context));
     add(tools, std::make_unique<MorphTool>(context));
     add(tools, std::make_unique<InfoTool>(context));
     tools.pick = add(tools, std::make_unique<PickTool>(context, std::move(geodesic_colored)));

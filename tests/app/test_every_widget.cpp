@@ -126,6 +126,7 @@ struct Sidebar {
         panels.decimation.lod_open = true;
         panels.denoise.open = true;
         panels.features.open = true;
+        panels.fill_holes.open = true;
     }
     void draw() {
         in_sidebar(panels.layout, [&] { sidebar_sections(panels.list(), context, commands); });
@@ -203,6 +204,8 @@ TEST_CASE("no widget ID is used twice in a frame, in any combination of open sec
         s.panels.denoise.previewing = (mask & 8u) != 0;
         s.panels.features.open = s.panels.fairing.open;
         s.panels.features.previewing = (mask & 8u) != 0;
+        s.panels.fill_holes.open = s.panels.fairing.open;
+        s.panels.fill_holes.previewing = (mask & 8u) != 0;
         ui.frame(draw);  // the sections take their new state
         const std::vector<std::string> duplicates = duplicate_ids(ui, draw);
         INFO("open sections mask " << mask);
@@ -290,6 +293,8 @@ TEST_CASE("every button of every section queues what it says", "[panels][buttons
         {"Denoise/Cancel", queues_one(CancelPreview{})},
         {"Features/Detect", applies("features")},
         {"Features/Cancel", queues_one(CancelPreview{})},
+        {"Fill holes/Fill", applies("fill-holes")},
+        {"Fill holes/Cancel", queues_one(CancelPreview{})},
         {"Subdivision/Cancel", queues_one(CancelPreview{})},
         {"Subdivision/Weld coincident vertices", applies("weld")},
         {"Decimation/Decimate", applies("decimate")},
@@ -368,6 +373,7 @@ TEST_CASE("every button of every section queues what it says", "[panels][buttons
             s.panels.fairing.previewing = s.panels.subdivision.previewing = true;
             s.panels.decimation.previewing = s.panels.denoise.previewing = true;
             s.panels.features.previewing = true;
+            s.panels.fill_holes.previewing = true;
             for (OperationPanelState& tool : s.panels.tools) tool.previewing = true;
             s.panels.decimation.lod_ready = true;
             s.panels.record.running = true;

@@ -11,6 +11,7 @@
 #include "app/viewer/denoise_tool.h"
 #include "app/viewer/fairing_tool.h"
 #include "app/viewer/features_tool.h"
+#include "app/viewer/fill_holes_tool.h"
 #include "app/viewer/frequency_tool.h"
 #include "app/viewer/morph_tool.h"
 #include "app/viewer/operation_tool.h"
@@ -53,6 +54,7 @@ struct TestPanels {
     DecimationPanelState& decimation = find_tool<DecimationTool>(all_tools).panel();
     OperationPanelState& denoise = find_tool<DenoiseTool>(all_tools).panel();
     OperationPanelState& features = find_tool<FeaturesTool>(all_tools).panel();
+    OperationPanelState& fill_holes = find_tool<FillHolesTool>(all_tools).panel();
     RecordState& record = find_tool<MorphTool>(all_tools).record();
     bool& morph_open = find_tool<MorphTool>(all_tools).morph_open();
     bool& inspector_open = find_tool<PickTool>(all_tools).inspector_open();
