@@ -9,6 +9,7 @@
 #include "app/viewer/morph_tool.h"
 #include "app/viewer/operation_tool.h"
 #include "app/viewer/pick_tool.h"
+#include "app/viewer/remesh_tool.h"
 #include "app/viewer/selection_tool.h"
 #include "app/viewer/subdivision_tool.h"
 
@@ -60,6 +61,7 @@ Tools make_tools(ViewerContext& context, MeshRenderer* exact,
     add(tools, std::make_unique<DenoiseTool>(context));
     add(tools, std::make_unique<FeaturesTool>(context));
     add(tools, std::make_unique<FillHolesTool>(context));
+    add(tools, std::make_unique<RemeshTool>(context));
     add(tools, std::make_unique<MorphTool>(context));
     add(tools, std::make_unique<InfoTool>(context));
     tools.pick = add(tools, std::make_unique<PickTool>(context, std::move(geodesic_colored)));

@@ -127,6 +127,7 @@ struct Sidebar {
         panels.denoise.open = true;
         panels.features.open = true;
         panels.fill_holes.open = true;
+        panels.remesh.open = true;
     }
     void draw() {
         in_sidebar(panels.layout, [&] { sidebar_sections(panels.list(), context, commands); });
@@ -206,6 +207,8 @@ TEST_CASE("no widget ID is used twice in a frame, in any combination of open sec
         s.panels.features.previewing = (mask & 8u) != 0;
         s.panels.fill_holes.open = s.panels.fairing.open;
         s.panels.fill_holes.previewing = (mask & 8u) != 0;
+        s.panels.remesh.open = s.panels.fairing.open;
+        s.panels.remesh.previewing = (mask & 8u) != 0;
         ui.frame(draw);  // the sections take their new state
         const std::vector<std::string> duplicates = duplicate_ids(ui, draw);
         INFO("open sections mask " << mask);
@@ -295,6 +298,8 @@ TEST_CASE("every button of every section queues what it says", "[panels][buttons
         {"Features/Cancel", queues_one(CancelPreview{})},
         {"Fill holes/Fill", applies("fill-holes")},
         {"Fill holes/Cancel", queues_one(CancelPreview{})},
+        {"Remesh/Remesh", applies("remesh")},
+        {"Remesh/Cancel", queues_one(CancelPreview{})},
         {"Subdivision/Cancel", queues_one(CancelPreview{})},
         {"Subdivision/Weld coincident vertices", applies("weld")},
         {"Decimation/Decimate", applies("decimate")},
@@ -374,6 +379,7 @@ TEST_CASE("every button of every section queues what it says", "[panels][buttons
             s.panels.decimation.previewing = s.panels.denoise.previewing = true;
             s.panels.features.previewing = true;
             s.panels.fill_holes.previewing = true;
+            s.panels.remesh.previewing = true;
             for (OperationPanelState& tool : s.panels.tools) tool.previewing = true;
             s.panels.decimation.lod_ready = true;
             s.panels.record.running = true;

@@ -16,6 +16,7 @@
 #include "app/viewer/morph_tool.h"
 #include "app/viewer/operation_tool.h"
 #include "app/viewer/pick_tool.h"
+#include "app/viewer/remesh_tool.h"
 #include "app/viewer/selection_tool.h"
 #include "app/viewer/subdivision_tool.h"
 #include "app/viewer/tools.h"
@@ -55,6 +56,7 @@ struct TestPanels {
     OperationPanelState& denoise = find_tool<DenoiseTool>(all_tools).panel();
     OperationPanelState& features = find_tool<FeaturesTool>(all_tools).panel();
     OperationPanelState& fill_holes = find_tool<FillHolesTool>(all_tools).panel();
+    OperationPanelState& remesh = find_tool<RemeshTool>(all_tools).panel();
     RecordState& record = find_tool<MorphTool>(all_tools).record();
     bool& morph_open = find_tool<MorphTool>(all_tools).morph_open();
     bool& inspector_open = find_tool<PickTool>(all_tools).inspector_open();

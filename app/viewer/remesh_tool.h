@@ -1,0 +1,55 @@
+#pragma once
+// RemeshTool: the Remesh section's tool (the "remesh" operation, app/ops/remesh_op.cpp,
+// issue 41). Its panel is the operation's live-preview panel and, beside it, what a user
+// needs before and after a remeshing: before it runs, the target length and how many faces
+// it will make (remesh_plan(): the area over the ideal triangle's, refused past the memory
+// this process may allocate), updated as the parameters change; and the quality of the
+// document against the preview shown (mesh_quality(): the smallest angle, the mean of the
+// per-face smallest angles, the share of angles under 30 degrees, of edges within
+// [0.8 L, 4/3 L], of valence-6 vertices), so the gain is read, not guessed. Both are computed
+// on the render thread once per document state, parameters or preview (each O(F)).
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/viewer/operation_tool.h"
+#include "core/algorithms/mesh_quality.h"
+#include "core/algorithms/remesh.h"
+
+namespace trilab::viewer {
+
+/// The lines of the before/after quality table: {label, before, after} with the numbers
+/// formatted ("-" where `after` is absent).
+std::vector<std::array<std::string, 3>> quality_rows(const MeshQuality& before,
+                                                     const MeshQuality* after);
+
+class RemeshTool : public OperationTool {
+public:
+    explicit RemeshTool(ViewerContext& context);
+    void update() override;
+    void section(const SidebarContext& context, CommandQueue& commands) override;
+    PanelEntries panels() override;
+    void settings(SettingsVisitor& v) override;
+    bool show_figure(const Operation& op) override { return take_figure(panel_, op); }
+    OperationPanelState& panel() { return panel_; }
+    /// The plan of the panel's parameters on the document (empty with plan_error() set when
+    /// they cannot run).
+    const std::optional<RemeshReport>& plan() const { return plan_; }
+    const std::string& plan_error() const { return plan_error_; }
+    /// The document's quality and the preview's (empty: no remeshing preview shown), at the
+    /// plan's target length.
+    const std::optional<MeshQuality>& before() const { return before_; }
+    const std::optional<MeshQuality>& after() const { return after_; }
+
+private:
+    OperationPanelState panel_{"remesh"};
+    std::optional<RemeshReport> plan_;
+    std::string plan_error_;
+    std::string plan_key_;  ///< the parameters and document state the plan is of
+    std::optional<MeshQuality> before_, after_;
+    std::string before_key_;
+    const OperationResult* after_of_ = nullptr;  ///< the preview result `after_` is of
+};
+
+}  // namespace trilab::viewer
