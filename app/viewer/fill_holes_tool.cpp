@@ -81,8 +81,8 @@ void FillHolesTool::holes_list(const SidebarContext& context, CommandQueue& comm
         wrapped_disabled("no boundary loops: the surface is closed");
         return;
     }
-    ImGui::Text("%zu boundary loop%s (holes), outlined in the view", loops_.size(),
-                loops_.size() == 1 ? "" : "s");
+    ImGui::TextWrapped("%zu boundary loop%s (holes), outlined in the view", loops_.size(),
+                       loops_.size() == 1 ? "" : "s");
     if (button("Check all")) {
         checked_.assign(loops_.size(), 1);
         upload_ = true;
