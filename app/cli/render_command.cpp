@@ -14,6 +14,7 @@
 #include "app/cli/legend_output.h"
 #include "app/cli/stopwatch.h"
 #include "core/algorithms/coloring.h"
+#include "core/algorithms/mesh_distance.h"
 #include "core/algorithms/texcoords.h"
 #include "core/errors.h"
 #include "core/io/image_io.h"
@@ -39,8 +40,9 @@ options:
   --color QUANTITY      colour the vertices: none (default), normal, k1, k2, mean,
                         gaussian, shape-index, subdivision (categorical: one colour per
                         level), smoothing-distance, geodesic-distance (the per-vertex
-                        `distance` that trilab-cli geodesic writes to PLY), min-angle and
-                        quality (triangle quality: the worst of the vertex's triangles)
+                        `distance` that trilab-cli geodesic writes to PLY), min-angle,
+                        quality (triangle quality: the worst of the vertex's triangles) and
+                        surface-distance (to the surface of --reference MESH)
   --bands N             a banded map: the legend range cut into N equal steps (2 to 64),
                         each one colour (the map's colour at the step's centre)
   --isolines N          N isolines (1 to 63), evenly spaced inside the legend range: at
@@ -49,7 +51,9 @@ options:
                         --color (not none, normal or subdivision)
   --reference MESH      the state before smoothing, for --color smoothing-distance: each
                         vertex's displacement from it, signed along the normal (MESH must
-                        have the same vertices, e.g. the input of trilab-cli smooth)
+                        have the same vertices, e.g. the input of trilab-cli smooth); for
+                        --color surface-distance any other mesh: each vertex's distance to
+                        its surface (required there)
   --texture IMG         texture image for --mode textured (BMP, PNG, PNM, XBM, XPM); implies
                         --mode textured when no --mode is given. Without it textured mode
                         uses a built-in checkerboard. Meshes without texture coordinates get
@@ -239,12 +243,18 @@ RenderSetup make_setup(const RenderArgs& a) {
     } catch (const InvalidArgument& e) {
         throw InvalidArgument(std::string("--color: ") + e.what());
     }
-    if (!a.reference.empty() && setup.coloring != VertexColoring::SmoothingDistance)
+    const bool surface = setup.coloring == VertexColoring::SurfaceDistance;
+    if (!a.reference.empty() && setup.coloring != VertexColoring::SmoothingDistance && !surface)
         throw InvalidArgument(
-            "--reference: only --color smoothing-distance uses a reference "
+            "--reference: only --color smoothing-distance and surface-distance use a reference "
             "mesh (got --color " +
             a.color + ")");
-    if (coloring_needs_field(setup.coloring) && setup.coloring != VertexColoring::GeodesicDistance)
+    if (surface && a.reference.empty())
+        throw InvalidArgument(
+            "--color surface-distance: give the surface to measure against with --reference "
+            "MESH");
+    if (coloring_needs_field(setup.coloring) && !surface &&
+        setup.coloring != VertexColoring::GeodesicDistance)
         throw InvalidArgument("--color: '" + a.color +
                               "' needs a spectral decomposition (the viewer's Frequency panel)");
     set_steps(a, setup);
@@ -270,6 +280,28 @@ struct Prepared {
     std::vector<std::string> notes;
 };
 
+/// The colouring of `mesh` by `coloring` (against --reference for the smoothing distance).
+VertexColors reference_colors(const RenderArgs& a, const HalfedgeMesh& mesh,
+                              VertexColoring coloring) {
+    std::vector<Point> reference;
+    if (!a.reference.empty()) {
+        const LoadedMesh before = read_mesh(a.reference);
+        if (before.mesh.vertices_size() != mesh.vertices_size())
+            throw InvalidArgument("--reference: " + a.reference + " has " +
+                                  std::to_string(before.mesh.vertices_size()) + " vertices, " +
+                                  a.mesh + " has " + std::to_string(mesh.vertices_size()) +
+                                  " (it must be the same mesh before smoothing)");
+        reference = before.mesh.positions();
+    }
+    if (coloring == VertexColoring::GeodesicDistance &&
+        !mesh.get_vertex_property<double>("v:distance"))
+        throw InvalidArgument("--color geodesic-distance: " + a.mesh +
+                              " has no per-vertex distance (write one with `trilab-cli geodesic " +
+                              "IN OUT.ply --from N`)");
+    return color_vertices(mesh, coloring, ColoringOptions{},
+                          a.reference.empty() ? nullptr : &reference);
+}
+
 /// Projects texture coordinates where textured mode needs them and computes the colouring
 /// (against --reference for the smoothing distance) into `setup`.
 Prepared prepare_mesh(const RenderArgs& a, HalfedgeMesh& mesh, RenderSetup& setup) {
@@ -284,23 +316,13 @@ Prepared prepare_mesh(const RenderArgs& a, HalfedgeMesh& mesh, RenderSetup& setu
             std::string(up_axis_name(setup.options.up)) + ")");
     }
     if (setup.coloring == VertexColoring::None) return p;
-    std::vector<Point> reference;
-    if (!a.reference.empty()) {
-        const LoadedMesh before = read_mesh(a.reference);
-        if (before.mesh.vertices_size() != mesh.vertices_size())
-            throw InvalidArgument("--reference: " + a.reference + " has " +
-                                  std::to_string(before.mesh.vertices_size()) + " vertices, " +
-                                  a.mesh + " has " + std::to_string(mesh.vertices_size()) +
-                                  " (it must be the same mesh before smoothing)");
-        reference = before.mesh.positions();
+    if (setup.coloring == VertexColoring::SurfaceDistance) {
+        // Any other mesh: each vertex's distance to its surface.
+        p.colors = color_field(mesh, vertex_surface_distances(mesh, read_mesh(a.reference).mesh),
+                               VertexColoring::SurfaceDistance);
+    } else {
+        p.colors = reference_colors(a, mesh, setup.coloring);
     }
-    if (setup.coloring == VertexColoring::GeodesicDistance &&
-        !mesh.get_vertex_property<double>("v:distance"))
-        throw InvalidArgument("--color geodesic-distance: " + a.mesh +
-                              " has no per-vertex distance (write one with `trilab-cli geodesic " +
-                              "IN OUT.ply --from N`)");
-    p.colors = color_vertices(mesh, setup.coloring, ColoringOptions{},
-                              a.reference.empty() ? nullptr : &reference);
     setup.options.vertex_colors = p.colors.colors;
     setup.options.vertex_color_blend = color_blend(p.colors.kind);
     if (setup.options.style.scalar_display != ScalarDisplay::Smooth) {

@@ -76,6 +76,8 @@ VertexColors FrequencyTool::field_colors(const HalfedgeMesh& mesh) const {
         return color_field(mesh, picks.distances, VertexColoring::GeodesicDistance,
                            context_.view.settings.coloring_options);
     }
+    if (context_.view.settings.coloring == VertexColoring::SurfaceDistance)
+        return {};  // the Compare tool's
     const FrequencyDocument& doc = context_.session.document().frequency;
     const auto& d = doc.decomposition;
     if (!d || mesh.vertices_size() != d->base_positions.size() || d->empty()) return {};

@@ -80,7 +80,8 @@ void coloring_menu(ViewSettings& settings, CommandQueue& commands) {
                                             VertexColoring::RemovedBelow,
                                             VertexColoring::RemovedAbove,
                                             VertexColoring::MinAngle,
-                                            VertexColoring::TriangleQuality};
+                                            VertexColoring::TriangleQuality,
+                                            VertexColoring::SurfaceDistance};
         const char* labels[] = {"None",
                                 "Normal direction",
                                 "First principal curvature",
@@ -96,7 +97,8 @@ void coloring_menu(ViewSettings& settings, CommandQueue& commands) {
                                 "Removed below the band's top (shape)",
                                 "Removed above the band's top (detail, noise)",
                                 "Triangle quality: smallest angle",
-                                "Triangle quality: Q (1: equilateral)"};
+                                "Triangle quality: Q (1: equilateral)",
+                                "Distance to a state or a file (Compare)"};
         for (std::size_t i = 0; i < std::size(colorings); ++i) {
             if (menu_item(labels[i], nullptr, settings.coloring == colorings[i]) &&
                 settings.coloring != colorings[i]) {

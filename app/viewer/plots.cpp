@@ -126,6 +126,54 @@ constexpr ImU32 kLine = IM_COL32(120, 190, 255, 255);
 
 // ---- legend ---------------------------------------------------------------------------------
 
+std::vector<std::size_t> value_histogram(const std::vector<double>& values, const ValueRange& range,
+                                         std::size_t bins) {
+    std::vector<std::size_t> counts(bins, 0);
+    if (bins == 0 || !(range.max > range.min)) return counts;
+    const double scale = double(bins) / (range.max - range.min);
+    for (double v : values) {
+        if (!std::isfinite(v)) continue;
+        const double t = std::floor((v - range.min) * scale);
+        const std::size_t k =
+            t <= 0 ? 0 : (t >= double(bins - 1) ? bins - 1 : std::size_t(t));  // ends clamped
+        ++counts[k];
+    }
+    return counts;
+}
+
+namespace {
+
+/// The values' histogram over the bar's width (`p0`, `size`), cached per set of values.
+void legend_histogram(const VertexColors& colors, const ImVec2& p0, const ImVec2& size) {
+    static const double* cached_data = nullptr;
+    static std::size_t cached_size = 0;
+    static ValueRange cached_range;
+    static std::vector<std::size_t> counts;
+    const ValueRange& r = colors.range;
+    if (colors.values.data() != cached_data || colors.values.size() != cached_size ||
+        r.min != cached_range.min || r.max != cached_range.max) {
+        cached_data = colors.values.data();
+        cached_size = colors.values.size();
+        cached_range = r;
+        counts = value_histogram(colors.values, r, 48);
+    }
+    std::size_t most = 1;
+    for (std::size_t c : counts) most = std::max(most, c);
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    const float w = size.x / float(counts.size());
+    for (std::size_t k = 0; k < counts.size(); ++k) {
+        if (counts[k] == 0) continue;
+        const float h = size.y * float(double(counts[k]) / double(most));
+        draw->AddRectFilled(ImVec2(p0.x + float(k) * w, p0.y + size.y - h),
+                            ImVec2(p0.x + float(k + 1) * w - 1.0f, p0.y + size.y),
+                            IM_COL32(180, 185, 200, 220));
+    }
+    ImGui::Dummy(size);
+    note("legend: histogram", p0, ImVec2(p0.x + size.x, p0.y + size.y));
+}
+
+}  // namespace
+
 bool legend_contents(const VertexColors& colors, ColoringOptions& options, float max_width) {
     const float em = ImGui::GetFontSize();
     ImDrawList* draw = ImGui::GetWindowDrawList();
@@ -149,9 +197,13 @@ bool legend_contents(const VertexColors& colors, ColoringOptions& options, float
         return false;
     }
 
-    // The bar: the map sampled in 48 steps, from range.min (left) to range.max (right).
+    // The bar: the map sampled in 48 steps, from range.min (left) to range.max (right), under
+    // the histogram of the values (how many vertices each colour has; the ends hold the
+    // values beyond the range).
     const ValueRange& r = colors.range;
     const ImVec2 size(std::max(4.0f * em, std::min(14.0f * em, max_width)), 1.2f * em);
+    if (!colors.values.empty())
+        legend_histogram(colors, ImGui::GetCursorScreenPos(), ImVec2(size.x, 2.0f * em));
     const ImVec2 p0 = ImGui::GetCursorScreenPos();
     const int steps = 48;
     for (int i = 0; i < steps; ++i) {

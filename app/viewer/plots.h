@@ -60,6 +60,10 @@ std::string tick_text(double value);
 /// with its label and vertex count, and no range control. Returns true when the user changed
 /// the options. Test hook ids: "legend: bar", "legend: label TEXT", "legend: swatch LABEL",
 /// "legend: percentiles". The bar is at most `max_width` wide (at least 4 em).
+/// How many of `values` fall in each of `bins` equal bins over `range` (values beyond the
+/// range count in the end bins; non-finite ones nowhere): the legend's histogram.
+std::vector<std::size_t> value_histogram(const std::vector<double>& values, const ValueRange& range,
+                                         std::size_t bins);
 bool legend_contents(const VertexColors& colors, ColoringOptions& options, float max_width = 1e30f);
 
 /// A line plot of values over their index (see the file comment), with a y axis title above,

@@ -539,8 +539,16 @@ void SceneView::update_coloring() {
                            : "geodesic distance: measuring from the picks...",
                        {},
                        false});
-        else if (geodesic && session_.notice().text.rfind("geodesic distance:", 0) == 0)
+        else if (!colors.colors.empty() &&
+                 (session_.notice().text.rfind("geodesic distance:", 0) == 0 ||
+                  session_.notice().text.rfind("distance:", 0) == 0))
             session_.notify(Notice{});  // the distances arrived
+        else if (colors.colors.empty() && coloring == VertexColoring::SurfaceDistance)
+            session_.notify(Notice{Notice::Level::Info,
+                                   "distance: measuring against the surface chosen in the Compare "
+                                   "section (Tools > Compare)...",
+                                   {},
+                                   false});
         else if (colors.colors.empty())
             session_.notify(Notice{Notice::Level::Info,
                                    "the frequency colourings need a decomposition (Algorithms > "

@@ -1,5 +1,6 @@
 #include "app/viewer/tools.h"
 
+#include "app/viewer/compare_tool.h"
 #include "app/viewer/decimation_tool.h"
 #include "app/viewer/denoise_tool.h"
 #include "app/viewer/fairing_tool.h"
@@ -62,6 +63,7 @@ Tools make_tools(ViewerContext& context, MeshRenderer* exact,
     add(tools, std::make_unique<FeaturesTool>(context));
     add(tools, std::make_unique<FillHolesTool>(context));
     add(tools, std::make_unique<RemeshTool>(context));
+    add(tools, std::make_unique<CompareTool>(context));
     add(tools, std::make_unique<MorphTool>(context));
     add(tools, std::make_unique<InfoTool>(context));
     tools.pick = add(tools, std::make_unique<PickTool>(context, std::move(geodesic_colored)));

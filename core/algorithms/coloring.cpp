@@ -83,7 +83,7 @@ struct ColoringEntry {
     const char* label;
 };
 
-constexpr std::array<ColoringEntry, 16> kColorings = {{
+constexpr std::array<ColoringEntry, 17> kColorings = {{
     {VertexColoring::None, "none", ""},
     {VertexColoring::Normal, "normal", "vertex normal"},
     {VertexColoring::K1, "k1", "first principal curvature k1"},
@@ -102,6 +102,7 @@ constexpr std::array<ColoringEntry, 16> kColorings = {{
     {VertexColoring::MinAngle, "min-angle", "smallest triangle angle at the vertex (degrees)"},
     {VertexColoring::TriangleQuality, "quality",
      "smallest triangle quality Q at the vertex (1: equilateral)"},
+    {VertexColoring::SurfaceDistance, "surface-distance", "distance to the compared surface"},
 }};
 
 const ColoringEntry& entry(VertexColoring coloring) {
@@ -394,7 +395,8 @@ VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
 bool coloring_needs_field(VertexColoring coloring) {
     return coloring == VertexColoring::Frequency || coloring == VertexColoring::FrequencyMass ||
            coloring == VertexColoring::GeodesicDistance ||
-           coloring == VertexColoring::RemovedBelow || coloring == VertexColoring::RemovedAbove;
+           coloring == VertexColoring::RemovedBelow || coloring == VertexColoring::RemovedAbove ||
+           coloring == VertexColoring::SurfaceDistance;
 }
 
 VertexColors color_field(const HalfedgeMesh& mesh, const std::vector<double>& values,
@@ -412,8 +414,9 @@ VertexColors color_field(const HalfedgeMesh& mesh, const std::vector<double>& va
         coloring == VertexColoring::Frequency ? ColorMapKind::Diverging : ColorMapKind::Sequential;
     out.range = percentile_range(values, {}, options.low_percentile, options.high_percentile);
     if (out.kind == ColorMapKind::Diverging) out.range = symmetric_range(out.range);
-    if (coloring == VertexColoring::GeodesicDistance) {
-        // Distances start at the source: [0, high percentile].
+    if (coloring == VertexColoring::GeodesicDistance ||
+        coloring == VertexColoring::SurfaceDistance) {
+        // Distances start at 0 (the source, the other surface): [0, high percentile].
         const double high = percentile_range(values, {}, 0.0, options.high_percentile).max;
         out.range = {0.0, high > 0 ? high : 1e-12};
     }

@@ -61,6 +61,10 @@ enum class VertexColoring {
     MinAngle,
     /// The smallest Frey-Borouchaki Q of the vertex's triangles, over [0, 1] (1: equilateral).
     TriangleQuality,
+    /// The distance from each vertex to another surface (a state of the history, a file:
+    /// mesh_distance.h vertex_surface_distances()), over [0, high percentile]. A field from
+    /// outside (coloring_needs_field()).
+    SurfaceDistance,
 };
 
 struct ColoringOptions {

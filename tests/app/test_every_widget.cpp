@@ -128,6 +128,7 @@ struct Sidebar {
         panels.features.open = true;
         panels.fill_holes.open = true;
         panels.remesh.open = true;
+        panels.compare_open = true;
     }
     void draw() {
         in_sidebar(panels.layout, [&] { sidebar_sections(panels.list(), context, commands); });
@@ -209,6 +210,7 @@ TEST_CASE("no widget ID is used twice in a frame, in any combination of open sec
         s.panels.fill_holes.previewing = (mask & 8u) != 0;
         s.panels.remesh.open = s.panels.fairing.open;
         s.panels.remesh.previewing = (mask & 8u) != 0;
+        s.panels.compare_open = s.panels.fairing.open;
         ui.frame(draw);  // the sections take their new state
         const std::vector<std::string> duplicates = duplicate_ids(ui, draw);
         INFO("open sections mask " << mask);
@@ -300,6 +302,11 @@ TEST_CASE("every button of every section queues what it says", "[panels][buttons
         {"Fill holes/Cancel", queues_one(CancelPreview{})},
         {"Remesh/Remesh", applies("remesh")},
         {"Remesh/Cancel", queues_one(CancelPreview{})},
+        {"Compare/Colour by the distance",
+         [](const Sidebar& s) {
+             CHECK(commands_of<UpdateColoring>(s.commands).size() == 1);
+             CHECK(s.panels.context.view.settings.coloring == VertexColoring::SurfaceDistance);
+         }},
         {"Subdivision/Cancel", queues_one(CancelPreview{})},
         {"Subdivision/Weld coincident vertices", applies("weld")},
         {"Decimation/Decimate", applies("decimate")},

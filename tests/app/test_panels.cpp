@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <string>
 #include <variant>
@@ -1091,4 +1092,41 @@ TEST_CASE("the menus show the key bindings' shortcut texts, F1 lists every bindi
     }
     CHECK(chord_text(GLFW_KEY_Z, GLFW_MOD_CONTROL | GLFW_MOD_SHIFT) == "Ctrl+Shift+Z");
     CHECK(chord_text(GLFW_KEY_ESCAPE, 0) == "Esc");
+}
+
+TEST_CASE("the legend shows the histogram of the values over its bar", "[panels][legend]") {
+    // Issue 40: the distance colouring's legend has the histogram of the distances.
+    const std::vector<double> values = {0.0, 0.1, 0.1,  0.2,
+                                        0.9, 5.0, -1.0, std::numeric_limits<double>::quiet_NaN()};
+    const std::vector<std::size_t> counts = value_histogram(values, {0.0, 1.0}, 10);
+    REQUIRE(counts.size() == 10);
+    CHECK(counts[0] == 2);  // 0 and -1 (below the range: the first bin)
+    CHECK(counts[1] == 2);
+    CHECK(counts[2] == 1);
+    CHECK(counts[9] == 2);  // 0.9 and 5 (above: the last bin)
+    std::size_t total = 0;
+    for (std::size_t c : counts) total += c;
+    CHECK(total == 7);  // NaN nowhere
+    CHECK(value_histogram(values, {1.0, 1.0}, 4) == std::vector<std::size_t>(4, 0));
+
+    Ui ui;
+    ColoringOptions options;
+    VertexColors colors;
+    colors.has_legend = true;
+    colors.kind = ColorMapKind::Sequential;
+    colors.label = "distance to the compared surface";
+    colors.range = {0.0, 1.0};
+    const auto draw = [&] { draw_legend(colors, options); };
+    ui.frame(draw);
+    ui.frame(draw);
+    CHECK_FALSE(ui.has("legend: histogram"));  // no values: no histogram
+    colors.values = values;
+    ui.frame(draw);
+    ui.frame(draw);
+    REQUIRE(ui.has("legend: histogram"));
+    const Box histogram = ui.rect("legend: histogram");
+    const Box bar = ui.rect("legend: bar");
+    CHECK(histogram.x0 == Approx(bar.x0));
+    CHECK(histogram.x1 == Approx(bar.x1));
+    CHECK(histogram.y1 <= bar.y0 + 0.01f);  // above the bar
 }

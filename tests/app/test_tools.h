@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "app/viewer/compare_tool.h"
 #include "app/viewer/decimation_tool.h"
 #include "app/viewer/denoise_tool.h"
 #include "app/viewer/fairing_tool.h"
@@ -57,6 +58,7 @@ struct TestPanels {
     OperationPanelState& features = find_tool<FeaturesTool>(all_tools).panel();
     OperationPanelState& fill_holes = find_tool<FillHolesTool>(all_tools).panel();
     OperationPanelState& remesh = find_tool<RemeshTool>(all_tools).panel();
+    bool& compare_open = find_tool<CompareTool>(all_tools).open();
     RecordState& record = find_tool<MorphTool>(all_tools).record();
     bool& morph_open = find_tool<MorphTool>(all_tools).morph_open();
     bool& inspector_open = find_tool<PickTool>(all_tools).inspector_open();
