@@ -318,6 +318,7 @@ const std::vector<const OperationDef*>& operation_defs() {
         v.push_back(weld_operation());
         v.push_back(remove_components_operation());
         v.push_back(features_operation());
+        v.push_back(sharpen_operation());
         v.push_back(fill_holes_operation());
 
         v.push_back(remesh_operation());

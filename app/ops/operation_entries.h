@@ -19,6 +19,7 @@ std::unique_ptr<OperationDef> flip_operation();       ///< app/ops/flip_op.cpp
 std::unique_ptr<OperationDef> weld_operation();       ///< app/ops/weld_op.cpp
 std::unique_ptr<OperationDef> remove_components_operation();
 std::unique_ptr<OperationDef> features_operation();
+std::unique_ptr<OperationDef> sharpen_operation();
 std::unique_ptr<OperationDef> fill_holes_operation();
 
 std::unique_ptr<OperationDef> denoise_operation();

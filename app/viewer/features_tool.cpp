@@ -4,10 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <optional>
 #include <string>
 
 #include "app/viewer/panel_helpers.h"
 #include "app/viewer/widgets.h"
+#include "core/algorithms/ray_pick.h"
 #include "core/features.h"
 
 namespace trilab::viewer {
@@ -82,6 +85,44 @@ void FeaturesTool::update() {
     lines_ = segments_of(edges_, mesh, shown.positions);
 }
 
+Operation FeaturesTool::sharpen_selection(bool clear) const {
+    char text[96];
+    if (clear)
+        std::snprintf(text, sizeof(text), "sharpen --clear");
+    else if (infinite_)
+        std::snprintf(text, sizeof(text), "sharpen");
+    else
+        std::snprintf(text, sizeof(text), "sharpen --sharpness %g", double(sharpness_));
+    return parse_operation(text);
+}
+
+Operation FeaturesTool::toggle_edge(Edge e) const {
+    const bool sharp = trilab::sharpness(context_.session.mesh(), e) > 0.0f;
+    Operation op = sharpen_selection(sharp);
+    op.value("edge").x = double(e.idx());
+    return op;
+}
+
+bool FeaturesTool::mouse(const ViewMouse& mouse) {
+    // With tagging on (and the section open), a click tags instead of picking.
+    if (!tag_by_click_ || !panel_.open || !mouse.clicked || !mouse.in_view) return false;
+    const Session& session = context_.session;
+    if (session.shown().kind != Shown::Kind::Document || session.jobs().busy()) return true;
+    Camera& camera = context_.view.camera;
+    glm::dvec3 origin, direction;
+    camera.ray_through(mouse.pos, origin, direction);
+    Ray ray;
+    ray.origin = Point(origin.x, origin.y, origin.z);
+    ray.direction = Vector3(direction.x, direction.y, direction.z);
+    const HalfedgeMesh& mesh = session.mesh();
+    const std::optional<RayHit> hit =
+        pick_face(mesh, mesh.positions(), ray, double(camera.near_plane()));
+    if (!hit) return true;  // a miss tags nothing (and picks nothing)
+    const Edge e = HalfedgeMesh::edge(face_side(mesh, Face(hit->triangle), hit->nearest_edge));
+    context_.commands.push_back(RunOperation{toggle_edge(e)});
+    return true;
+}
+
 void FeaturesTool::draw_overlay() {
     if (!show_lines_ || lines_.empty()) return;
     if (!renderer_) renderer_ = std::make_unique<LineRenderer>();  // the GL context is current
@@ -133,6 +174,29 @@ void histogram_plot(const AngleHistogram& h, double angle) {
 
 }  // namespace
 
+void FeaturesTool::tagging(const SidebarContext& context, CommandQueue& commands) {
+    ImGui::Separator();
+    ImGui::TextUnformatted("Tagging by hand");
+    checkbox("tag edges by clicking", &tag_by_click_);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("a click on the model makes the nearest edge sharp, or smooth again");
+    checkbox("infinitely sharp", &infinite_);
+    if (!infinite_) {
+        ImGui::SetNextItemWidth(widget_width());
+        ImGui::SliderFloat("sharpness", &sharpness_, 0.1f, 10.0f, "%.2f",
+                           ImGuiSliderFlags_AlwaysClamp);
+        note_widget("features: sharpness");
+    }
+    const bool can = context.has_selection && context.selected > 1 && !context.busy;
+    if (!can) ImGui::BeginDisabled();
+    if (button("Sharpen the selection's edges"))
+        commands.push_back(RunOperation{sharpen_selection(false)});
+    ImGui::SameLine();
+    if (button("Clear them")) commands.push_back(RunOperation{sharpen_selection(true)});
+    if (!can) ImGui::EndDisabled();
+    if (!context.has_selection) wrapped_disabled("select vertices to tag the edges between them");
+}
+
 void FeaturesTool::section(const SidebarContext& context, CommandQueue& commands) {
     SidebarSection section("Features", panel_.open);
     if (!section) return;
@@ -141,6 +205,7 @@ void FeaturesTool::section(const SidebarContext& context, CommandQueue& commands
     checkbox("show feature lines", &show_lines_);
     ImGui::SameLine();
     ImGui::TextDisabled("(%zu shown)", lines_.size());
+    tagging(context, commands);
     ImGui::Separator();
     ImGui::TextUnformatted("Dihedral angles (log count per degree)");
     const FeatureDetectionReport* r = report();
@@ -174,6 +239,9 @@ void FeaturesTool::settings(SettingsVisitor& v) {
     // The key the generic panel saved it under before the tool had its own panel.
     operation_setting(v, "panel.tool.features", panel_);
     v.flag("features.show_lines", show_lines_);
+    v.flag("features.tag_by_click", tag_by_click_);
+    v.flag("features.infinite", infinite_);
+    v.number("features.sharpness", sharpness_);
 }
 
 }  // namespace trilab::viewer

@@ -6,6 +6,10 @@
 // its plateau marked (where the count barely changes: the natural threshold) and the chosen
 // angle; on a mesh with no plateau it says so and points to denoising. The feature lines of
 // the shown surface (its edges of positive sharpness) are drawn over every render mode.
+// Tagging by hand (the "sharpen" operation, one history entry each): with "tag edges by
+// clicking" on, a click on the model toggles the edge nearest to it (sharp at the panel's
+// sharpness, or smooth again); "Sharpen the selection's edges" and "Clear them" tag every
+// edge with both ends selected.
 // Made by following docs/recipes.md "A new operation with a panel of its own".
 #include <array>
 #include <cstdint>
@@ -29,6 +33,7 @@ public:
     void update() override;
     void section(const SidebarContext& context, CommandQueue& commands) override;
     void draw_overlay() override;
+    bool mouse(const ViewMouse& mouse) override;
     PanelEntries panels() override;
     void settings(SettingsVisitor& v) override;
     bool show_figure(const Operation& op) override { return take_figure(panel_, op); }
@@ -39,10 +44,24 @@ public:
     bool show_lines() const { return show_lines_; }
     /// The detection report of the preview shown (null: none).
     const FeatureDetectionReport* report() const;
+    /// Tagging: clicks toggle edges; the sharpness they and the selection's buttons give
+    /// (`infinite`, or `sharpness`).
+    bool& tag_by_click() { return tag_by_click_; }
+    bool& infinite() { return infinite_; }
+    float& sharpness() { return sharpness_; }
+    /// The "sharpen" operation that toggles edge `e` of the document: smooth again when it is
+    /// sharp, else sharp as the panel says.
+    Operation toggle_edge(Edge e) const;
+    /// The "sharpen" operation for the selection's edges (`clear`: smooth again).
+    Operation sharpen_selection(bool clear) const;
 
 private:
     OperationPanelState panel_{"features"};
+    void tagging(const SidebarContext& context, CommandQueue& commands);
     bool show_lines_ = true;  ///< Features > show feature lines
+    bool tag_by_click_ = false;
+    bool infinite_ = true;
+    float sharpness_ = 2.0f;
     /// The shown mesh's sharp edges, for its connectivity and properties (edges_key_).
     std::vector<std::array<Vertex, 2>> edges_;
     std::array<std::uint64_t, 2> edges_key_{0, 0};

@@ -298,6 +298,19 @@ TEST_CASE("every button of every section queues what it says", "[panels][buttons
         {"Denoise/Cancel", queues_one(CancelPreview{})},
         {"Features/Detect", applies("features")},
         {"Features/Cancel", queues_one(CancelPreview{})},
+        {"Features/Sharpen the selection's edges",
+         [](const Sidebar& s) {
+             const auto runs = commands_of<RunOperation>(s.commands);
+             REQUIRE(runs.size() == 1);
+             CHECK(runs[0]->op.name() == "sharpen");
+             CHECK(runs[0]->op.text().find("--clear") == std::string::npos);
+         }},
+        {"Features/Clear them",
+         [](const Sidebar& s) {
+             const auto runs = commands_of<RunOperation>(s.commands);
+             REQUIRE(runs.size() == 1);
+             CHECK(runs[0]->op.text().find("--clear") != std::string::npos);
+         }},
         {"Fill holes/Fill", applies("fill-holes")},
         {"Fill holes/Cancel", queues_one(CancelPreview{})},
         {"Remesh/Remesh", applies("remesh")},

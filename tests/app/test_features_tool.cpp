@@ -4,15 +4,19 @@
 #include <imgui.h>
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "app/viewer/features_tool.h"
 #include "core/algorithms/feature_detection.h"
 #include "core/algorithms/generators.h"
+#include "core/algorithms/selection.h"
 #include "core/features.h"
 #include "core/io/mesh_io.h"
+#include "core/validate.h"
 #include "tests/app/panel_ui.h"
 #include "tests/app/test_tools.h"
 
@@ -113,4 +117,77 @@ TEST_CASE("the Features panel's widgets queue the features operation", "[feature
     REQUIRE(entry);
     CHECK(entry->open == &tool.panel().open);
     CHECK(entry->menu == PanelMenu::Tools);
+}
+
+TEST_CASE("tagging by hand: a click toggles an edge, the selection's edges are sharpened",
+          "[features_tool]") {
+    // Issue 39, item 2: click an edge to toggle it, sharpen or clear the edges of a selection,
+    // set a sharpness value; each one "sharpen" history entry.
+    TestPanels panels;
+    FeaturesTool& tool = find_tool<FeaturesTool>(panels.all_tools);
+    Session& s = panels.context.session;  // the built-in model, no features
+    const Edge e(Index(10));
+    Operation op = tool.toggle_edge(e);
+    CHECK(op.name() == "sharpen");
+    CHECK(op.value("edge").x == 10.0);
+    s.execute(RunOperation{op});
+    s.finish_jobs();
+    CHECK(std::isinf(sharpness(s.mesh(), e)));
+    CHECK(s.history().info(s.history().current()).label == "Sharpen edges");
+    // The same edge again: smooth again.
+    s.execute(RunOperation{tool.toggle_edge(e)});
+    s.finish_jobs();
+    CHECK(sharpness(s.mesh(), e) == 0.0f);
+    // A semi-sharp value for the selection's edges.
+    tool.infinite() = false;
+    tool.sharpness() = 2.5f;
+    s.execute(SelectSpec{"sphere:0,0,1,0.3"});
+    s.finish_jobs();
+    s.execute(RunOperation{tool.sharpen_selection(false)});
+    s.finish_jobs();
+    const std::optional<Selection> w = stored_selection(s.mesh());
+    REQUIRE(w);
+    std::size_t inside = 0;
+    for (Edge x : s.mesh().edges()) {
+        const Halfedge h = HalfedgeMesh::halfedge(x, 0);
+        const bool both =
+            (*w)[s.mesh().from_vertex(h).idx()] > 0 && (*w)[s.mesh().to_vertex(h).idx()] > 0;
+        CHECK(sharpness(s.mesh(), x) == (both ? 2.5f : 0.0f));
+        inside += both ? 1 : 0;
+    }
+    CHECK(inside > 10);
+    CHECK(validate(s.mesh()).ok);
+    // Undo takes the tags back.
+    s.execute(Undo{});
+    CHECK_FALSE(has_features(s.mesh()));
+}
+
+TEST_CASE("with tagging on, a click on the model tags the edge under it instead of picking",
+          "[features_tool]") {
+    TestPanels panels;
+    FeaturesTool& tool = find_tool<FeaturesTool>(panels.all_tools);
+    ViewerContext& c = panels.context;
+    c.view_rect = Rect{0, 0, 800, 600};
+    c.fit_camera(glm::vec3(0.0f), 1.0f);  // the built-in model: a sphere of radius 1
+    ViewMouse click;
+    click.pos = glm::vec2(400, 300);  // the middle of the view: on the sphere
+    click.in_view = click.drag_in_view = click.clicked = true;
+    // Off (the default), or with the section closed: the click is left to the pick.
+    CHECK_FALSE(tool.mouse(click));
+    tool.tag_by_click() = true;
+    CHECK_FALSE(tool.mouse(click));
+    tool.panel().open = true;
+    c.commands.clear();
+    CHECK(tool.mouse(click));  // taken: no pick
+    const auto runs = commands_of<RunOperation>(c.commands);
+    REQUIRE(runs.size() == 1);
+    CHECK(runs[0]->op.name() == "sharpen");
+    const double edge = runs[0]->op.value("edge").x;
+    CHECK(edge >= 0);
+    CHECK(edge < double(c.session.mesh().edges_size()));
+    // A click beside the model tags nothing, and is still not a pick.
+    click.pos = glm::vec2(5, 5);
+    c.commands.clear();
+    CHECK(tool.mouse(click));
+    CHECK(c.commands.empty());
 }
