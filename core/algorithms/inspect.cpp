@@ -206,7 +206,39 @@ VertexInspection inspect_vertex(const HalfedgeMesh& mesh, Vertex v,
     }
     if (const auto source = mesh.get_vertex_property<Index>(kDecimationSourceName))
         r.decimation_source = source[v];
+    const auto sharp = mesh.get_edge_property<float>(kSharpnessProperty);
+    const auto corner = mesh.get_vertex_property<std::uint8_t>(kCornerProperty);
+    if (sharp || corner) {
+        VertexInspection::FeatureRole f;
+        if (sharp)
+            for (Halfedge h : mesh.halfedges_around(v))
+                if (sharp[HalfedgeMesh::edge(h)] > 0.0f) ++f.sharp_edges;
+        f.tagged = corner && corner[v] != 0;
+        f.cls = f.tagged || f.sharp_edges >= 3 ? VertexClass::Corner
+                : f.sharp_edges == 2           ? VertexClass::Crease
+                : f.sharp_edges == 1           ? VertexClass::Dart
+                                               : VertexClass::Smooth;
+        r.feature = f;
+    }
     return r;
+}
+
+std::string feature_role_text(const VertexInspection::FeatureRole& role) {
+    const std::string edges =
+        std::to_string(role.sharp_edges) + " sharp edge" + (role.sharp_edges == 1 ? "" : "s");
+    switch (role.cls) {
+        case VertexClass::Corner:
+            return role.tagged ? "corner: tagged (Loop keeps it where it is)"
+                               : "corner: " + edges + " meet (Loop keeps it where it is)";
+        case VertexClass::Crease:
+            return "crease: " + edges +
+                   " (Loop's crease rule: 3/4 itself, 1/8 each end along them)";
+        case VertexClass::Dart:
+            return "dart: 1 sharp edge ending here (the smooth rule)";
+        case VertexClass::Smooth:
+            break;
+    }
+    return "smooth: no sharp edge";
 }
 
 EdgeInspection inspect_edge(const HalfedgeMesh& mesh, Edge e, const DecimationOptions& options) {
@@ -223,6 +255,8 @@ EdgeInspection inspect_edge(const HalfedgeMesh& mesh, Edge e, const DecimationOp
             r.dihedral_angle = std::acos(std::clamp(n0.dot(n1), -1.0, 1.0)) * 180.0 / kPi;
     }
     r.cotangent_weight = cotangent_weight(mesh, e);
+    if (const auto sharp = mesh.get_edge_property<float>(kSharpnessProperty))
+        r.sharpness = sharp[e];
     r.selected_cost = options.cost;
     for (const auto& entry : kDecimationCosts) {
         DecimationOptions o = options;
@@ -378,6 +412,11 @@ std::vector<InspectionField> inspection_fields(const VertexInspection& v) {
         f.text += " (length " + short_text(v.displacement->norm()) + ")";
         out.push_back(f);
     }
+    if (v.feature)
+        out.push_back({"feature_class",
+                       "Feature class",
+                       feature_role_text(*v.feature),
+                       {double(int(v.feature->cls)), double(v.feature->sharp_edges)}});
     if (v.subdivision) {
         const SubdivisionOrigin& o = *v.subdivision;
         out.push_back(index_field("subdivision_level", "Subdivision level", Index(o.level)));
@@ -454,6 +493,16 @@ std::vector<InspectionField> inspection_fields(const EdgeInspection& e) {
         out.push_back(words_field("dihedral_angle", "Dihedral angle (between the normals)",
                                   e.boundary ? "none (boundary edge)" : "none (degenerate face)"));
     out.push_back(number_field("cotangent_weight", "Cotangent weight", e.cotangent_weight));
+    if (e.sharpness) {
+        const float s = *e.sharpness;
+        const std::string text = std::isinf(s) ? "infinite (a crease at every level)"
+                                 : s > 0.0f
+                                     ? short_text(double(s)) + " (semi-sharp: the sharp rule for " +
+                                           std::to_string(int(std::floor(s))) + " level" +
+                                           (std::floor(s) == 1.0f ? "" : "s") + ", then blended)"
+                                     : "0 (smooth)";
+        out.push_back({"sharpness", "Sharpness", text, {double(s)}});
+    }
     for (const CostInspection& c : e.costs) {
         const std::string id = snake(decimation_cost_name(c.cost));
         const std::string name = enum_label<DecimationCost>(kDecimationCosts, c.cost);

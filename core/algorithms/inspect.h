@@ -22,6 +22,7 @@
 
 #include "core/algorithms/decimation.h"
 #include "core/algorithms/subdivision.h"
+#include "core/features.h"
 #include "core/halfedge_mesh.h"
 
 namespace trilab {
@@ -82,7 +83,18 @@ struct VertexInspection {
     std::optional<Vector3> displacement;       ///< from InspectionInputs::displacement
     std::optional<SubdivisionOrigin> subdivision;
     std::optional<Index> decimation_source;  ///< "v:decimation_source": index in the input
+    /// Its role among the features (core/features.h), when the mesh stores sharpness or
+    /// corner tags: the class Loop's crease rules give it, and why.
+    struct FeatureRole {
+        VertexClass cls = VertexClass::Smooth;
+        unsigned sharp_edges = 0;  ///< its edges of sharpness > 0
+        bool tagged = false;       ///< tagged a corner
+    };
+    std::optional<FeatureRole> feature;
 };
+
+/// Words for a vertex's feature role: its class and why ("corner: 3 sharp edges meet ...").
+std::string feature_role_text(const VertexInspection::FeatureRole& role);
 
 /// The decimator's view of one edge under one cost (explain_collapse()).
 struct CostInspection {
@@ -99,6 +111,8 @@ struct EdgeInspection {
     /// boundary edge or when a face is degenerate.
     std::optional<double> dihedral_angle;
     double cotangent_weight = 0;  ///< cotangent_weight(): (cot alpha + cot beta) / 2
+    /// Its sharpness (core/features.h), when the mesh stores sharpness.
+    std::optional<float> sharpness;
     /// The collapse under each DecimationCost (kDecimationCosts order), with the constraints
     /// of the options passed in; `costs[options.cost]` is what a run would do.
     std::vector<CostInspection> costs;

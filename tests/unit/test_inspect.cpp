@@ -10,12 +10,14 @@
 #include "core/algorithms/components.h"
 #include "core/algorithms/curvature.h"
 #include "core/algorithms/decimation.h"
+#include "core/algorithms/feature_detection.h"
 #include "core/algorithms/generators.h"
 #include "core/algorithms/inspect.h"
 #include "core/algorithms/laplacian.h"
 #include "core/algorithms/mesh_distance.h"
 #include "core/algorithms/subdivision.h"
 #include "core/errors.h"
+#include "core/features.h"
 #include "core/geometry.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh_builder.h"
@@ -441,4 +443,50 @@ TEST_CASE("decimation: every surviving vertex knows its index in the input",
         CHECK(*x.decimation_source == source[Vertex(3)]);
     }
     CHECK_FALSE(mesh.has_vertex_property(kDecimationSourceName));  // the input is untouched
+}
+
+TEST_CASE("The Inspector says a vertex's feature class and why, and an edge's sharpness",
+          "[inspect][features]") {
+    // Issue 39: which rule made a vertex and why (a corner because three sharp edges meet).
+    HalfedgeMesh cube = generate("cube");
+    CHECK_FALSE(inspect_vertex(cube, Vertex(0)).feature);  // no features stored: no row
+    FeatureDetectionOptions o;
+    o.angle_deg = 60;
+    detect_features(cube, o);
+    // Every cube corner has three sharp edges.
+    const VertexInspection corner = inspect_vertex(cube, Vertex(0));
+    REQUIRE(corner.feature);
+    CHECK(corner.feature->cls == VertexClass::Corner);
+    CHECK(corner.feature->sharp_edges == 3);
+    CHECK(feature_role_text(*corner.feature) ==
+          "corner: 3 sharp edges meet (Loop keeps it where it is)");
+    bool shown = false;
+    for (const InspectionField& f : inspection_fields(corner))
+        shown = shown || (f.id == "feature_class" && f.text.rfind("corner: 3 sharp", 0) == 0);
+    CHECK(shown);
+    // Classes from the counts, as classify_vertices() gives them.
+    const VertexClassification classes = classify_vertices(cube, false);
+    for (Vertex v : cube.vertices()) {
+        const VertexInspection i = inspect_vertex(cube, v);
+        REQUIRE(i.feature);
+        CHECK(i.feature->cls == classes.classes[v.idx()]);
+    }
+    VertexInspection::FeatureRole crease{VertexClass::Crease, 2, false};
+    CHECK(feature_role_text(crease).rfind("crease: 2 sharp edges", 0) == 0);
+    VertexInspection::FeatureRole tagged{VertexClass::Corner, 0, true};
+    CHECK(feature_role_text(tagged) == "corner: tagged (Loop keeps it where it is)");
+    // An edge's sharpness in words.
+    Edge sharp_edge, smooth_edge;
+    for (Edge e : cube.edges()) (sharpness(cube, e) > 0 ? sharp_edge : smooth_edge) = e;
+    const EdgeInspection se = inspect_edge(cube, sharp_edge, DecimationOptions{});
+    REQUIRE(se.sharpness);
+    CHECK(std::isinf(*se.sharpness));
+    set_sharpness(cube, sharp_edge, 2.5f);
+    bool semi = false;
+    for (const InspectionField& f :
+         inspection_fields(inspect_edge(cube, sharp_edge, DecimationOptions{})))
+        semi = semi || (f.id == "sharpness" &&
+                        f.text == "2.5 (semi-sharp: the sharp rule for 2 levels, then blended)");
+    CHECK(semi);
+    CHECK(*inspect_edge(cube, smooth_edge, DecimationOptions{}).sharpness == 0.0f);
 }
