@@ -67,7 +67,7 @@ std::unique_ptr<OperationDef> features_operation() {
         "Marks the sharp edges: those whose faces' normals differ by at least the angle. The "
         "histogram of the angles has a plateau where the count barely changes (the natural "
         "threshold); a noisy mesh has none (denoise first). The edges become infinitely sharp "
-        "for Loop subdivision.");
+        "for subdivision (every scheme), decimation and smoothing.");
     d.number("angle", &FeatureDetectionOptions::angle_deg, 0, 180, "dihedral angle threshold",
              " (degrees)")
         .above_min()
