@@ -1646,6 +1646,9 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
                           Progress& progress) {
     check_options(options);
     if (options.region) check_selection(mesh, *options.region, "decimate: region");
+    if (options.features == FeatureSource::Stored)
+        if (const std::string bad = check_features(mesh); !bad.empty())
+            throw InvalidArgument("decimate: invalid features: " + bad);
     const auto t0 = std::chrono::steady_clock::now();
     DecimationResult result;
     DecimationReport& report = result.report;

@@ -312,8 +312,10 @@ FeatureDetectionReport detect_features(HalfedgeMesh& mesh, const FeatureDetectio
                 ++r.darts;
             else if (d == 2)
                 ++r.creases;
-            else if (d >= 3)
+            else if (d >= 3) {
                 ++r.corners;
+                ++r.junctions;
+            }
             d = 0;  // counted once
         }
     r.verdict = verdict_of(r.histogram, o.angle_deg);
