@@ -478,6 +478,7 @@ public:
         return best_on(q, line, closed_[id] != 0, lo, hi);
     }
 
+private:
     /// The placement on [lo, hi] (unwrapped; kept a little off both ends) that minimizes q: on
     /// each segment the minimum of q (a parabola) or an end.
     static Placement best_on(const Quadric& q, const std::vector<Point>& line, bool closed,
