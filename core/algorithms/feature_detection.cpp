@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <utility>
 
 #include "core/errors.h"
 #include "core/number_text.h"
@@ -295,7 +296,7 @@ FeatureDetectionReport detect_features(HalfedgeMesh& mesh, const FeatureDetectio
     // Replace the features: only now is the mesh changed.
     clear_features(mesh);
     auto sharp = sharpness_property(mesh);
-    const Face* face = mesh.halfedge_face_array().data();
+    const Face* face = std::as_const(mesh).halfedge_face_array().data();
     for (Index e : list) {
         sharp[Edge(e)] = o.sharpness;
         if (!face[2 * e].is_valid() || !face[2 * e + 1].is_valid()) ++r.boundary_edges;
@@ -304,7 +305,7 @@ FeatureDetectionReport detect_features(HalfedgeMesh& mesh, const FeatureDetectio
     // The vertex classes (classify_vertices() with o.boundary: the flagged edges are exactly
     // the sharp ones and no vertex is tagged), from the flagged degrees of the list's ends.
     std::vector<std::uint8_t> degree = flagged_degrees(mesh, list);
-    const Vertex* to = mesh.halfedge_to_array().data();
+    const Vertex* to = std::as_const(mesh).halfedge_to_array().data();
     for (Index e : list)
         for (Index k = 0; k < 2; ++k) {
             std::uint8_t& d = degree[to[2 * e + k].idx()];
