@@ -1,6 +1,7 @@
 // Bad feature input (issue 39): a sharpness below 0 or not a number, an edge index past the
 // end, a feature file written for another mesh, non-manifold feature junctions. Each gets a
 // clear error (or, for the junctions, the corner rule and a line saying so) and changes nothing.
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -11,6 +12,7 @@
 #include "core/algorithms/fairing.h"
 #include "core/algorithms/feature_detection.h"
 #include "core/algorithms/generators.h"
+#include "core/algorithms/level_of_detail.h"
 #include "core/algorithms/subdivision.h"
 #include "core/errors.h"
 #include "core/features.h"
@@ -151,5 +153,50 @@ TEST_CASE("non-manifold feature junctions are corners, and the report says so",
         const SubdivisionResult s = subdivide(m, so, progress);
         for (const SubdivisionLevel& l : s.levels) REQUIRE_VALID(l.mesh);
         for (Vertex v : m.vertices()) CHECK(s.levels.back().mesh.position(v) == m.position(v));
+    }
+}
+
+TEST_CASE("the level-of-detail slider keeps the features at every level",
+          "[features][creases][lod]") {
+    HalfedgeMesh block = make_block(3, 3, 3);
+    FeatureDetectionOptions fo;
+    fo.angle_deg = 60;
+    detect_features(block, fo);
+    // The block spans [-1, 1]^3: a vertex keeps the box's shape when its largest coordinate is
+    // 1 in magnitude; a corner when all three are.
+    const auto on_box = [](const Point& p) {
+        return std::abs(p.lpNorm<Eigen::Infinity>() - 1.0) < 1e-12;
+    };
+    const auto corners_at = [](const LevelOfDetail& lod) {
+        std::size_t n = 0;
+        for (Index v : lod.live_vertices()) {
+            const Point& p = lod.positions()[v];
+            n += std::abs(std::abs(p.x()) - 1) < 1e-12 && std::abs(std::abs(p.y()) - 1) < 1e-12 &&
+                         std::abs(std::abs(p.z()) - 1) < 1e-12
+                     ? 1
+                     : 0;
+        }
+        return n;
+    };
+    NullProgress progress;
+    for (FeatureSource source : {FeatureSource::Stored, FeatureSource::None}) {
+        DecimationOptions o;
+        o.features = source;
+        const ProgressiveBuild pb = build_progressive_mesh(block, o, 10, progress);
+        LevelOfDetail lod(pb.progressive);
+        bool all_on_box = true;
+        std::size_t fewest_corners = 8;
+        for (std::size_t level : {std::size_t(0), lod.max_level() / 2, lod.max_level()}) {
+            lod.set_level(level);
+            for (Index v : lod.live_vertices())
+                all_on_box = all_on_box && on_box(lod.positions()[v]);
+            fewest_corners = std::min(fewest_corners, corners_at(lod));
+        }
+        if (source == FeatureSource::Stored) {
+            CHECK(all_on_box);
+            CHECK(fewest_corners == 8);
+        } else {  // without the features the slider wears the box down
+            CHECK_FALSE((all_on_box && fewest_corners == 8));
+        }
     }
 }
