@@ -532,6 +532,10 @@ public:
         huv_ = m_.get_halfedge_property<TexCoord>("h:texcoord");
         fetch_features();
         if (sharp_) curves_.build(m_, sharp_, corner_);
+        if (sharp_ || corner_) {
+            fcount_.assign(m_.vertices_size(), 0);
+            for (Vertex v : c_.vertices()) fcount_[v.idx()] = std::uint8_t(count_features_at(v));
+        }
         // Vertices with a coincident copy (a seam's two sides, the copies of a split vertex)
         // never move alone: a seam vertex with exactly one copy goes together with it, along
         // the seam on both sides (seam_partner()), every other copy stays where it is.
@@ -753,6 +757,7 @@ private:
             gather(copy_, vmap, nv);  // all invalid: there are no groups here
             gather(locked_, vmap, nv);
             if (region_ptr_) gather(region_, vmap, nv);
+            if (!fcount_.empty()) gather(fcount_, vmap, nv);
             if (!curves_.empty()) {
                 gather(curves_.curves(), vmap, nv);
                 gather(curves_.params(), vmap, nv);
@@ -1007,7 +1012,14 @@ private:
     }
 
     // The number of sharp edges at v (3 for a tagged corner; at most 3); 0 without features.
+    // Cached per vertex (fcount_, refreshed around each collapse): the legality checks ask it
+    // for both ends of every edge they price.
     unsigned feature_count(Vertex v) const {
+        if (!sharp_ && !corner_) return 0;
+        return fcount_[v.idx()];
+    }
+    // The same, counted on v's ring.
+    unsigned count_features_at(Vertex v) const {
         if (corner_ && corner_[v]) return 3;
         if (!sharp_) return 0;
         const Halfedge start = m_.halfedge(v);
@@ -1507,6 +1519,29 @@ private:
         } while (g != start);
     }
 
+    // Before collapsing h (faces f0 at h, f1 at its twin): the edge that survives in each face
+    // (prev(h), prev(o)) keeps the larger sharpness of the two edges it merges with (next(h),
+    // next(o)), so feature curves stay. Returns the faces' third corners (invalid where a face
+    // is missing): with the kept vertex, the vertices whose sharp edges may have merged.
+    std::array<Vertex, 2> merge_sharpness(Halfedge h, Face f0, Face f1) {
+        const Halfedge o = HalfedgeMesh::twin(h);
+        const Vertex third0 = f0.is_valid() ? m_.to_vertex(m_.next(h)) : Vertex();
+        const Vertex third1 = f1.is_valid() ? m_.to_vertex(m_.next(o)) : Vertex();
+        // The edge that survives in each face at h (prev(h), prev(o)) keeps the larger
+        // sharpness of the two edges it merges with (next(h), next(o)): feature curves stay.
+        if (sharp_) {
+            if (f0.is_valid()) {
+                float& s = sharp_[HalfedgeMesh::edge(m_.prev(h))];
+                s = std::max(s, sharp_[HalfedgeMesh::edge(m_.next(h))]);
+            }
+            if (f1.is_valid()) {
+                float& s = sharp_[HalfedgeMesh::edge(m_.prev(o))];
+                s = std::max(s, sharp_[HalfedgeMesh::edge(m_.next(o))]);
+            }
+        }
+        return {third0, third1};
+    }
+
     void collapse_one(Halfedge h, const Point& p) {
         const Halfedge o = HalfedgeMesh::twin(h);
         const Vertex v0 = m_.from_vertex(h), v1 = m_.to_vertex(h);
@@ -1580,23 +1615,15 @@ private:
         const TexCoord survivor0_uv =
             huv_ && f0.is_valid() ? huv_[HalfedgeMesh::twin(m_.next(h))] : TexCoord::Zero();
 
-        // The edge that survives in each face at h (prev(h), prev(o)) keeps the larger
-        // sharpness of the two edges it merges with (next(h), next(o)): feature curves stay.
-        if (sharp_) {
-            if (f0.is_valid()) {
-                float& s = sharp_[HalfedgeMesh::edge(m_.prev(h))];
-                s = std::max(s, sharp_[HalfedgeMesh::edge(m_.next(h))]);
-            }
-            if (f1.is_valid()) {
-                float& s = sharp_[HalfedgeMesh::edge(m_.prev(o))];
-                s = std::max(s, sharp_[HalfedgeMesh::edge(m_.next(o))]);
-            }
-        }
+        const std::array<Vertex, 2> thirds = merge_sharpness(h, f0, f1);
         // The edges the collapse deletes: h's, and one more per face at it (remove_loop).
         forget(HalfedgeMesh::edge(h));
         if (f0.is_valid()) forget(HalfedgeMesh::edge(m_.next(h)));
         if (f1.is_valid()) forget(HalfedgeMesh::edge(m_.next(o)));
         m_.collapse_unchecked(h);  // check() ran is_collapse_ok(h)
+        if (!fcount_.empty())
+            for (Vertex v : {v1, thirds[0], thirds[1]})
+                if (v.is_valid()) fcount_[v.idx()] = std::uint8_t(count_features_at(v));
         if (pinned_corners) {
             if (survivor0.is_valid() && !m_.is_deleted(survivor0)) huv_[survivor0] = survivor0_uv;
             if (survivor1.is_valid() && !m_.is_deleted(survivor1)) huv_[survivor1] = corner_uv;
@@ -1691,6 +1718,7 @@ private:
     double cos_max_angle_ = 0, max_error2_ = 0;
     std::vector<Quadric> quadric_;
     FeatureCurves curves_;                  ///< the input's feature curves, when features are kept
+    std::vector<std::uint8_t> fcount_;      ///< feature_count() per vertex, when features are kept
     std::vector<EdgeCost> edge_;            ///< per edge: cost of its best collapse, heap position
     std::vector<std::uint8_t> boundary_;    ///< per vertex; v1 inherits v0's on collapse
     std::vector<std::uint8_t> coincident_;  ///< per vertex: has a coincident copy
