@@ -1191,9 +1191,10 @@ private:
             unsigned dir = ok0 ? 0 : 1;
             Point p;
             if (ok0 && along_curve(a, b, e)) {
+                // (No room between the outer neighbours: b stays where it is.)
                 const FeatureCurves::Placement pl = curve_placement(a, b);
-                p = pl.p;
-                cost = pl.cost;
+                p = std::isfinite(pl.cost) ? pl.p : xb;
+                cost = std::isfinite(pl.cost) ? pl.cost : q(xb);
             } else if (ok0 && ok1 && !pinned(a) && !pinned(b)) {
                 // Both may move: optimal placement, else the best of the ends and midpoint
                 // (two crease vertices may each move along their curve, but stay on it: the
@@ -1548,7 +1549,8 @@ private:
         const Face f0 = m_.face(h), f1 = m_.face(o);
         // Along a feature curve the kept vertex takes the parameter of its new place.
         if (along_curve(v0, v1, HalfedgeMesh::edge(h)))
-            curves_.params()[v1.idx()] = curve_placement(v0, v1).t;
+            if (const FeatureCurves::Placement pl = curve_placement(v0, v1); std::isfinite(pl.cost))
+                curves_.params()[v1.idx()] = pl.t;
 
         if (pm_) {
             VertexSplit s;
