@@ -32,9 +32,14 @@ OperationResult run_features(const FeatureDetectionOptions& o, const HalfedgeMes
         result.report.push_back("dropped " + count_text(r.dropped_chains, "chain", "chains") +
                                 " of fewer than " + std::to_string(o.min_chain) + " edges (" +
                                 count_text(r.dropped_edges, "edge", "edges") + ")");
-    result.report.push_back(count_text(r.corners, "corner", "corners") + ", " +
-                            count_text(r.creases, "crease vertex", "crease vertices") + ", " +
-                            count_text(r.darts, "dart", "darts"));
+    result.report.push_back(count_text(r.corners, "corner", "corners") +
+                            (r.junctions ? " (" + std::to_string(r.junctions) +
+                                               " where three or more sharp edges meet: "
+                                               "non-manifold junctions of the feature curves, "
+                                               "kept as corners)"
+                                         : std::string()) +
+                            ", " + count_text(r.creases, "crease vertex", "crease vertices") +
+                            ", " + count_text(r.darts, "dart", "darts"));
     result.report.push_back(r.verdict);
     if (r.histogram.degenerate_edges > 0)
         result.report.push_back(count_text(r.histogram.degenerate_edges, "edge", "edges") +
@@ -45,6 +50,7 @@ OperationResult run_features(const FeatureDetectionOptions& o, const HalfedgeMes
                      {"corners", double(r.corners)},
                      {"creases", double(r.creases)},
                      {"darts", double(r.darts)},
+                     {"junctions", double(r.junctions)},
                      {"dropped_chains", double(r.dropped_chains)},
                      {"dropped_edges", double(r.dropped_edges)},
                      {"boundary_edges", double(r.boundary_edges)},
@@ -67,7 +73,7 @@ std::unique_ptr<OperationDef> features_operation() {
         "Marks the sharp edges: those whose faces' normals differ by at least the angle. The "
         "histogram of the angles has a plateau where the count barely changes (the natural "
         "threshold); a noisy mesh has none (denoise first). The edges become infinitely sharp "
-        "for Loop subdivision.");
+        "for subdivision (every scheme), decimation and smoothing.");
     d.number("angle", &FeatureDetectionOptions::angle_deg, 0, 180, "dihedral angle threshold",
              " (degrees)")
         .above_min()

@@ -116,9 +116,11 @@ std::unique_ptr<OperationDef> subdivide_operation() {
            "an almost regular mesh over the whole surface; by default it stays next to the "
            "selection, and repeated levels split the earlier closure 1-to-4 instead of bisecting "
            "it again)");
-    d.choice("features", &SubdivisionOptions::features, EnumTableView(kFeatureSources),
-             "sharp edges and corners for Loop's crease rules: those stored in the mesh, none, or "
-             "auto (detected at --feature-angle first; on the command line also auto:A)")
+    d.choice(
+         "features", &SubdivisionOptions::features, EnumTableView(kFeatureSources),
+         "sharp edges and corners for the crease rules of every scheme: those stored in the mesh, "
+         "none, or "
+         "auto (detected at --feature-angle first; on the command line also auto:A)")
         .hide_default();
     d.number("feature-angle", &SubdivisionOptions::feature_angle, 0, 180,
              "with --features auto: the dihedral angle of a sharp edge", " (degrees)")

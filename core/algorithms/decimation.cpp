@@ -371,6 +371,151 @@ struct NormalChange {
     bool refused = false;     ///< a face turns past the angle
 };
 
+// The feature curves of a run that keeps features: the input's chains of sharp edges through
+// crease vertices (two sharp edges, no tag), each as its polyline of input positions, and per
+// working vertex the curve it lies on and its parameter along it (segment index + fraction;
+// corners and curve ends are on none: they never move). A collapse of a crease vertex into its
+// neighbour on the same curve places the kept vertex at the minimum of the quadric over the
+// input polyline between the two (place()): the feature curve keeps exactly the input's shape
+// while its vertices move along it, as the free placement lets the other vertices move.
+class FeatureCurves {
+public:
+    static constexpr Index kNone = kInvalidIndex;
+    bool empty() const { return lines_.empty(); }
+    Index curve(Vertex v) const { return curve_[v.idx()]; }
+    double param(Vertex v) const { return param_[v.idx()]; }
+    std::vector<Index>& curves() { return curve_; }
+    std::vector<double>& params() { return param_; }
+
+    /// Builds the curves of `m` from its sharp edges (`sharp` > 0) and corner tags.
+    void build(const HalfedgeMesh& m, const EdgeProperty<float>& sharp,
+               const VertexProperty<std::uint8_t>& corner) {
+        curve_.assign(m.vertices_size(), kNone);
+        param_.assign(m.vertices_size(), 0.0);
+        lines_.clear();
+        closed_.clear();
+        if (!sharp) return;
+        std::vector<std::uint8_t> degree(m.vertices_size(), 0);
+        for (Edge e : m.edges())
+            if (sharp[e] > 0.0f)
+                for (unsigned k = 0; k < 2; ++k) {
+                    std::uint8_t& d = degree[m.to_vertex(m.halfedge(e, k)).idx()];
+                    d = std::uint8_t(std::min(3, d + 1));
+                }
+        const auto crease = [&](Vertex v) {
+            return degree[v.idx()] == 2 && !(corner && corner[v]);
+        };
+        std::vector<std::uint8_t> used(m.edges_size(), 0);
+        // From vertex `from` along sharp halfedge h through crease vertices.
+        const auto walk = [&](Halfedge h, bool closed) {
+            const Index id = Index(lines_.size());
+            std::vector<Point> line{m.position(m.from_vertex(h))};
+            if (closed) {
+                curve_[m.from_vertex(h).idx()] = id;
+                param_[m.from_vertex(h).idx()] = 0.0;
+            }
+            while (true) {
+                used[HalfedgeMesh::edge(h).idx()] = 1;
+                const Vertex w = m.to_vertex(h);
+                if (!crease(w) || (closed && curve_[w.idx()] == id)) break;
+                curve_[w.idx()] = id;
+                param_[w.idx()] = double(line.size());
+                line.push_back(m.position(w));
+                Halfedge next;
+                for (Halfedge g : m.halfedges_around(w))
+                    if (sharp[HalfedgeMesh::edge(g)] > 0.0f && !used[HalfedgeMesh::edge(g).idx()])
+                        next = g;
+                if (!next.is_valid()) break;
+                h = next;
+            }
+            if (!closed) line.push_back(m.position(m.to_vertex(h)));
+            lines_.push_back(std::move(line));
+            closed_.push_back(closed ? 1 : 0);
+        };
+        for (Vertex v : m.vertices()) {
+            if (degree[v.idx()] == 0 || crease(v)) continue;
+            for (Halfedge h : m.halfedges_around(v))
+                if (sharp[HalfedgeMesh::edge(h)] > 0.0f && !used[HalfedgeMesh::edge(h).idx()])
+                    walk(h, false);
+        }
+        for (Edge e : m.edges())
+            if (sharp[e] > 0.0f && !used[e.idx()]) walk(m.halfedge(e, 0), true);
+    }
+
+    /// The minimum of q over the input polyline between the neighbours c (of a) and d (of b)
+    /// of crease vertices a and b of one curve, through a and b (c or d invalid, or off the
+    /// curve: a curve end, the polyline's end on that side); the point, its parameter and q
+    /// there. A small margin keeps the point off c and d.
+    struct Placement {
+        Point p;
+        double t = 0, cost = 0;
+    };
+    Placement place(const Quadric& q, Vertex a, Vertex b, Vertex c, Vertex d) const {
+        const Index id = curve_[a.idx()];
+        const std::vector<Point>& line = lines_[id];
+        const double ta = param_[a.idx()], tb = param_[b.idx()];
+        const auto on = [&](Vertex v) { return v.is_valid() && curve_[v.idx()] == id; };
+        double lo, hi;  // the parameter range, unwrapped
+        if (closed_[id]) {
+            const double n = double(line.size());
+            const auto fwd = [&](double from, double to) { return std::fmod(to - from + n, n); };
+            // Forward from a to b, unless that arc holds c (then the curve runs b -> a).
+            bool forward = true;
+            if (on(c)) forward = !(fwd(ta, param_[c.idx()]) < fwd(ta, tb));
+            const double first = forward ? ta : tb, second = forward ? tb : ta;
+            const Vertex before = forward ? c : d, after = forward ? d : c;
+            lo = on(before) ? param_[before.idx()] : first;
+            if (fwd(lo, first) > fwd(lo, second)) lo = first;  // wrapped the wrong way
+            hi = lo + fwd(lo, second);
+            if (on(after)) hi = std::max(hi, lo + fwd(lo, param_[after.idx()]));
+            if (hi > lo + n) hi = lo + n;
+        } else {
+            const bool forward = ta < tb;
+            const Vertex before = forward ? c : d, after = forward ? d : c;
+            lo = on(before) ? param_[before.idx()] : 0.0;
+            hi = on(after) ? param_[after.idx()] : double(line.size() - 1);
+        }
+        return best_on(q, line, closed_[id] != 0, lo, hi);
+    }
+
+private:
+    /// The placement on [lo, hi] (unwrapped; kept a little off both ends) that minimizes q: on
+    /// each segment the minimum of q (a parabola) or an end.
+    static Placement best_on(const Quadric& q, const std::vector<Point>& line, bool closed,
+                             double lo, double hi) {
+        constexpr double kMargin = 1e-3;
+        const double ta = lo + kMargin, tb = hi - kMargin;
+        Placement best;
+        best.cost = std::numeric_limits<double>::infinity();
+        const std::size_t n = line.size();
+        for (double k = std::floor(ta); k < tb; k += 1.0) {
+            const double s0 = std::max(ta, k) - k, s1 = std::min(tb, k + 1.0) - k;
+            const Point& p0 = line[std::size_t(k) % n];
+            const Point& p1 = line[(std::size_t(k) + 1) % n];
+            // q along the segment is a parabola in s: its minimum on [s0, s1].
+            const auto at = [&](double s) { return Point(p0 + s * (p1 - p0)); };
+            const double f0 = q(at(0.0)), fh = q(at(0.5)), f1 = q(at(1.0));
+            const double a2 = 2.0 * (f0 - 2.0 * fh + f1);  // the parabola's s^2 coefficient
+            double s = s0;
+            if (a2 > 0) s = std::clamp((3.0 * f0 - 4.0 * fh + f1) / (2.0 * a2), s0, s1);
+            for (double cand : {s, s0, s1}) {
+                const double f = q(at(cand));
+                if (f < best.cost) {
+                    best.cost = f;
+                    best.p = at(cand);
+                    best.t = closed ? std::fmod(k + cand, double(n)) : k + cand;
+                }
+            }
+        }
+        return best;
+    }
+
+    std::vector<Index> curve_;
+    std::vector<double> param_;
+    std::vector<std::vector<Point>> lines_;
+    std::vector<std::uint8_t> closed_;
+};
+
 class Decimater {
 public:
     /// Sets the decimator up on `mesh`; with price_edges false (explain()) no edge is priced.
@@ -386,6 +531,11 @@ public:
         vuv_ = m_.get_vertex_property<TexCoord>("v:texcoord");
         huv_ = m_.get_halfedge_property<TexCoord>("h:texcoord");
         fetch_features();
+        if (sharp_) curves_.build(m_, sharp_, corner_);
+        if (sharp_ || corner_) {
+            fcount_.assign(m_.vertices_size(), 0);
+            for (Vertex v : c_.vertices()) fcount_[v.idx()] = std::uint8_t(count_features_at(v));
+        }
         // Vertices with a coincident copy (a seam's two sides, the copies of a split vertex)
         // never move alone: a seam vertex with exactly one copy goes together with it, along
         // the seam on both sides (seam_partner()), every other copy stays where it is.
@@ -607,6 +757,11 @@ private:
             gather(copy_, vmap, nv);  // all invalid: there are no groups here
             gather(locked_, vmap, nv);
             if (region_ptr_) gather(region_, vmap, nv);
+            if (!fcount_.empty()) gather(fcount_, vmap, nv);
+            if (!curves_.empty()) {
+                gather(curves_.curves(), vmap, nv);
+                gather(curves_.params(), vmap, nv);
+            }
             parent_.assign(nv, Vertex());
             gather(edge_, emap, ne);
             stale_.assign(ne, 0);  // none between passes
@@ -857,7 +1012,14 @@ private:
     }
 
     // The number of sharp edges at v (3 for a tagged corner; at most 3); 0 without features.
+    // Cached per vertex (fcount_, refreshed around each collapse): the legality checks ask it
+    // for both ends of every edge they price.
     unsigned feature_count(Vertex v) const {
+        if (!sharp_ && !corner_) return 0;
+        return fcount_[v.idx()];
+    }
+    // The same, counted on v's ring.
+    unsigned count_features_at(Vertex v) const {
         if (corner_ && corner_[v]) return 3;
         if (!sharp_) return 0;
         const Halfedge start = m_.halfedge(v);
@@ -993,6 +1155,26 @@ private:
         return r;
     }
 
+    // Whether collapsing `from` into `kept` along edge e moves the kept vertex along their
+    // feature curve (both crease vertices of one input curve, e sharp): FeatureCurves.
+    bool along_curve(Vertex from, Vertex kept, Edge e) const {
+        if (curves_.empty() || !(sharp_[e] > 0.0f)) return false;
+        const Index c = curves_.curve(from);
+        return c != FeatureCurves::kNone && c == curves_.curve(kept);
+    }
+    // The placement of such a collapse: the quadric's minimum over the input curve between them.
+    FeatureCurves::Placement curve_placement(Vertex from, Vertex kept) const {
+        // The other neighbours along the curve: of from, and of kept.
+        const auto beyond = [&](Vertex v, Vertex other) {
+            for (Halfedge g : m_.halfedges_around(v))
+                if (sharp_[HalfedgeMesh::edge(g)] > 0.0f && m_.to_vertex(g) != other)
+                    return m_.to_vertex(g);
+            return Vertex();
+        };
+        return curves_.place(quadric_[from.idx()] + quadric_[kept.idx()], from, kept,
+                             beyond(from, kept), beyond(kept, from));
+    }
+
     // The best collapse of edge e: false when no direction is allowed.
     bool evaluate(Edge e, EdgeChoice& out) const {
         const Halfedge h0 = HalfedgeMesh::halfedge(e, 0), h1 = HalfedgeMesh::halfedge(e, 1);
@@ -1008,7 +1190,12 @@ private:
             const Quadric q = quadric_[a.idx()] + quadric_[b.idx()];
             unsigned dir = ok0 ? 0 : 1;
             Point p;
-            if (ok0 && ok1 && !pinned(a) && !pinned(b)) {
+            if (ok0 && along_curve(a, b, e)) {
+                // (No room between the outer neighbours: b stays where it is.)
+                const FeatureCurves::Placement pl = curve_placement(a, b);
+                p = std::isfinite(pl.cost) ? pl.p : xb;
+                cost = std::isfinite(pl.cost) ? pl.cost : q(xb);
+            } else if (ok0 && ok1 && !pinned(a) && !pinned(b)) {
                 // Both may move: optimal placement, else the best of the ends and midpoint
                 // (two crease vertices may each move along their curve, but stay on it: the
                 // branches below keep one where it is).
@@ -1333,10 +1520,37 @@ private:
         } while (g != start);
     }
 
+    // Before collapsing h (faces f0 at h, f1 at its twin): the edge that survives in each face
+    // (prev(h), prev(o)) keeps the larger sharpness of the two edges it merges with (next(h),
+    // next(o)), so feature curves stay. Returns the faces' third corners (invalid where a face
+    // is missing): with the kept vertex, the vertices whose sharp edges may have merged.
+    std::array<Vertex, 2> merge_sharpness(Halfedge h, Face f0, Face f1) {
+        const Halfedge o = HalfedgeMesh::twin(h);
+        const Vertex third0 = f0.is_valid() ? m_.to_vertex(m_.next(h)) : Vertex();
+        const Vertex third1 = f1.is_valid() ? m_.to_vertex(m_.next(o)) : Vertex();
+        // The edge that survives in each face at h (prev(h), prev(o)) keeps the larger
+        // sharpness of the two edges it merges with (next(h), next(o)): feature curves stay.
+        if (sharp_) {
+            if (f0.is_valid()) {
+                float& s = sharp_[HalfedgeMesh::edge(m_.prev(h))];
+                s = std::max(s, sharp_[HalfedgeMesh::edge(m_.next(h))]);
+            }
+            if (f1.is_valid()) {
+                float& s = sharp_[HalfedgeMesh::edge(m_.prev(o))];
+                s = std::max(s, sharp_[HalfedgeMesh::edge(m_.next(o))]);
+            }
+        }
+        return {third0, third1};
+    }
+
     void collapse_one(Halfedge h, const Point& p) {
         const Halfedge o = HalfedgeMesh::twin(h);
         const Vertex v0 = m_.from_vertex(h), v1 = m_.to_vertex(h);
         const Face f0 = m_.face(h), f1 = m_.face(o);
+        // Along a feature curve the kept vertex takes the parameter of its new place.
+        if (along_curve(v0, v1, HalfedgeMesh::edge(h)))
+            if (const FeatureCurves::Placement pl = curve_placement(v0, v1); std::isfinite(pl.cost))
+                curves_.params()[v1.idx()] = pl.t;
 
         if (pm_) {
             VertexSplit s;
@@ -1403,23 +1617,15 @@ private:
         const TexCoord survivor0_uv =
             huv_ && f0.is_valid() ? huv_[HalfedgeMesh::twin(m_.next(h))] : TexCoord::Zero();
 
-        // The edge that survives in each face at h (prev(h), prev(o)) keeps the larger
-        // sharpness of the two edges it merges with (next(h), next(o)): feature curves stay.
-        if (sharp_) {
-            if (f0.is_valid()) {
-                float& s = sharp_[HalfedgeMesh::edge(m_.prev(h))];
-                s = std::max(s, sharp_[HalfedgeMesh::edge(m_.next(h))]);
-            }
-            if (f1.is_valid()) {
-                float& s = sharp_[HalfedgeMesh::edge(m_.prev(o))];
-                s = std::max(s, sharp_[HalfedgeMesh::edge(m_.next(o))]);
-            }
-        }
+        const std::array<Vertex, 2> thirds = merge_sharpness(h, f0, f1);
         // The edges the collapse deletes: h's, and one more per face at it (remove_loop).
         forget(HalfedgeMesh::edge(h));
         if (f0.is_valid()) forget(HalfedgeMesh::edge(m_.next(h)));
         if (f1.is_valid()) forget(HalfedgeMesh::edge(m_.next(o)));
         m_.collapse_unchecked(h);  // check() ran is_collapse_ok(h)
+        if (!fcount_.empty())
+            for (Vertex v : {v1, thirds[0], thirds[1]})
+                if (v.is_valid()) fcount_[v.idx()] = std::uint8_t(count_features_at(v));
         if (pinned_corners) {
             if (survivor0.is_valid() && !m_.is_deleted(survivor0)) huv_[survivor0] = survivor0_uv;
             if (survivor1.is_valid() && !m_.is_deleted(survivor1)) huv_[survivor1] = corner_uv;
@@ -1513,6 +1719,8 @@ private:
     const std::vector<float>* region_ptr_ = nullptr;  ///< &region_, or null: no region
     double cos_max_angle_ = 0, max_error2_ = 0;
     std::vector<Quadric> quadric_;
+    FeatureCurves curves_;                  ///< the input's feature curves, when features are kept
+    std::vector<std::uint8_t> fcount_;      ///< feature_count() per vertex, when features are kept
     std::vector<EdgeCost> edge_;            ///< per edge: cost of its best collapse, heap position
     std::vector<std::uint8_t> boundary_;    ///< per vertex; v1 inherits v0's on collapse
     std::vector<std::uint8_t> coincident_;  ///< per vertex: has a coincident copy
@@ -1646,6 +1854,9 @@ DecimationResult decimate(const HalfedgeMesh& mesh, const DecimationOptions& opt
                           Progress& progress) {
     check_options(options);
     if (options.region) check_selection(mesh, *options.region, "decimate: region");
+    if (options.features == FeatureSource::Stored)
+        if (const std::string bad = check_features(mesh); !bad.empty())
+            throw InvalidArgument("decimate: invalid features: " + bad);
     const auto t0 = std::chrono::steady_clock::now();
     DecimationResult result;
     DecimationReport& report = result.report;

@@ -84,6 +84,7 @@
 #include "core/algorithms/selection.h"
 #include "core/algorithms/weld.h"
 #include "core/errors.h"
+#include "core/features.h"
 #include "core/geometry.h"
 #include "core/mesh_builder.h"
 #include "core/number_text.h"
@@ -1572,6 +1573,9 @@ bool smooth_region_on_faces(FairingResult& res, const FairingOptions& o,
 std::optional<Selection> fix_features(HalfedgeMesh& mesh, const FairingOptions& o,
                                       std::string& line) {
     if (o.features == FeatureSource::None) return std::nullopt;
+    if (o.features == FeatureSource::Stored)
+        if (const std::string bad = check_features(mesh); !bad.empty())
+            throw InvalidArgument("smooth: invalid features: " + bad);
     if (o.features == FeatureSource::Auto) {
         if (!(o.feature_angle > 0 && o.feature_angle <= 180))
             throw InvalidArgument("smooth: feature_angle must be in (0, 180] degrees (got " +

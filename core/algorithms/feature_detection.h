@@ -61,6 +61,9 @@ struct FeatureDetectionReport {
     std::size_t dropped_chains = 0;  ///< chains shorter than min_chain
     std::size_t dropped_edges = 0;   ///< their edges
     std::size_t corners = 0, creases = 0, darts = 0;  ///< vertex classes (core/features.h)
+    /// Corners where three or more feature edges meet: junctions where the feature curves are
+    /// not a 1-manifold (the corner rule: they stay under subdivision and decimation).
+    std::size_t junctions = 0;
     AngleHistogram histogram;
     /// What the histogram says: the plateau and a suggested angle, or that there is none
     /// (a noisy mesh: denoise first), or that no edge is sharp.

@@ -130,6 +130,7 @@
 #include "core/algorithms/coincident.h"
 #include "core/algorithms/feature_detection.h"
 #include "core/algorithms/pillows.h"
+#include "core/algorithms/subdivision_creases.h"
 #include "core/algorithms/weld.h"
 #include "core/errors.h"
 #include "core/features.h"
@@ -344,6 +345,14 @@ void provenance_1to4(const In& m, SubdivisionScheme scheme, HalfedgeMesh& out, c
         else if (modified && ((interior(a) && valence[a] != 6) || (interior(b) && valence[b] != 6)))
             st = SubdivisionStencil::OddExtraordinary;
         pr.set(nv + e, st, a, b);
+    }
+    if (!loop && cr.sharp) {  // the butterflies' crease rules (subdivision_creases.h)
+        for (Index e = 0; e < ne; ++e) {
+            const float sh = cr.sharp[e];
+            if (!(sh > 0.0f) || m.boundary(2 * e) || m.boundary(2 * e + 1)) continue;
+            pr.stencil[nv + e] = int(sh > 1.0f ? SubdivisionStencil::OddFourPoint
+                                               : SubdivisionStencil::OddSemiSharp);
+        }
     }
     if (!loop || !cr.any()) return;
     // Loop with features: the rules of loop_positions_creased().
@@ -783,6 +792,11 @@ void positions_1to4(const In& m, SubdivisionScheme scheme, Point* p, const Stage
         loop_positions_creased(m, creases, p, stage);
     else if (scheme == SubdivisionScheme::Loop)
         loop_positions(m, p, stage);
+    else if (creases.any())
+        butterfly_positions_creased(subdivision_detail::MeshArrays(m.nv, m.ne, m.nf, m.to, m.next,
+                                                                   m.prev, m.face, m.vh, m.fh, m.x),
+                                    creases.sharp, creases.corner,
+                                    scheme == SubdivisionScheme::ModifiedButterfly, p);
     else
         butterfly_positions(m, p, scheme == SubdivisionScheme::ModifiedButterfly, stage);
 }
@@ -1194,10 +1208,44 @@ void provenance_sqrt3(const In& m, const Sqrt3Numbering n, bool even_step, Halfe
     }
 }
 
+/// One Sqrt3 iteration with creases (core/algorithms/subdivision_creases.h): the level, its
+/// provenance, levels and vertex texture coordinates (old vertices keep theirs, centroids and
+/// split points interpolate); corner texture coordinates are not carried.
+SubdivisionLevel refine_sqrt3_creased(const HalfedgeMesh& mesh, bool even_step, int level,
+                                      bool morph, const Stage& stage) {
+    subdivision_detail::Sqrt3CreaseStep step =
+        subdivision_detail::sqrt3_creased_step(mesh, even_step, stage.progress);
+    SubdivisionLevel result;
+    result.mesh = std::move(step.mesh);
+    result.correspondence.kind = MorphCorrespondence::Kind::FromEarlier;
+    add_levels(mesh, result.mesh, level);
+    Provenance pr(result.mesh);
+    std::copy(step.stencil.begin(), step.stencil.end(), pr.stencil);
+    std::copy(step.parents.begin(), step.parents.end(), pr.parents);
+    if (auto vuv = mesh.get_vertex_property<TexCoord>("v:texcoord")) {
+        auto uv = result.mesh.add_vertex_property<TexCoord>("v:texcoord", TexCoord::Zero());
+        for (std::size_t v = 0; v < step.parents.size(); ++v) {
+            const SubdivisionParents& q = step.parents[v];
+            if (q[1] == kInvalidIndex) {
+                uv.vector()[v] = vuv.vector()[q[0]];
+            } else if (q[2] != kInvalidIndex) {
+                uv.vector()[v] =
+                    (vuv.vector()[q[0]] + vuv.vector()[q[1]] + vuv.vector()[q[2]]) / 3.0;
+            } else {  // a split point, a third of the way from its first parent (the nearer)
+                uv.vector()[v] = (2.0 * vuv.vector()[q[0]] + vuv.vector()[q[1]]) / 3.0;
+            }
+        }
+    }
+    if (morph) result.correspondence.positions = std::move(step.start);
+    stage.report(1.0);
+    return result;
+}
+
 /// One Sqrt3 iteration (see Sqrt3Numbering): the connectivity, written once per halfedge,
 /// then the positions (and morph start positions), the levels and the texture coordinates.
 SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int level, bool morph,
-                              const Stage& stage) {
+                              const Stage& stage, bool features = false) {
+    if (features) return refine_sqrt3_creased(mesh, even_step, level, morph, stage);
     const In m(mesh);
     const Index nv = m.nv, ne = m.ne, nf = m.nf;
     std::unique_ptr<Sqrt3Ids[]> ids(new Sqrt3Ids[2 * std::size_t(ne)]);
@@ -1537,7 +1585,14 @@ const char* subdivision_stencil_label(SubdivisionStencil stencil) {
         case SubdivisionStencil::OddSharp:
             return "odd, edge point on a sharp edge (midpoint)";
         case SubdivisionStencil::OddSemiSharp:
-            return "odd, edge point on a semi-sharp edge (midpoint and smooth rule blended)";
+            return "odd, edge point on a semi-sharp edge (sharp and smooth rules blended)";
+        case SubdivisionStencil::EvenCreaseCurve:
+            return "even, crease (two sharp edges: kept in odd Sqrt3 steps, 4/27, 19/27, 4/27 "
+                   "along them in even ones)";
+        case SubdivisionStencil::OddCreaseSplit:
+            return "odd, sharp edge split in three (Sqrt3)";
+        case SubdivisionStencil::OddFourPoint:
+            return "odd, edge point on a sharp edge (four-point rule along the crease)";
     }
     return "unknown";
 }
@@ -1555,6 +1610,7 @@ bool is_even_stencil(SubdivisionStencil stencil) {
         case SubdivisionStencil::EvenCorner:
         case SubdivisionStencil::EvenTaggedCorner:
         case SubdivisionStencil::EvenSemiSharp:
+        case SubdivisionStencil::EvenCreaseCurve:
             return true;
         default:
             return false;
@@ -1696,18 +1752,10 @@ SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& 
         current = &pillows.rest;
         result.notes.push_back(pillow_note(pillows.count));
     }
-    // Features (core/features.h): Loop's crease rules; the butterflies carry them unused; Sqrt3
-    // drops them.
+    // Features (core/features.h): the crease rules of every scheme (Loop here, Sqrt3 and the
+    // butterflies in subdivision_creases.cpp).
     if (!detected.empty()) result.notes.push_back(detected);
-    bool features = options.features != SubdivisionFeatures::None && has_features(*current);
-    if (features && options.scheme != SubdivisionScheme::Loop) {
-        result.notes.push_back(
-            std::string(scheme_name(options.scheme)) +
-            (sqrt3 ? " has no crease rules yet: the features were dropped"
-                   : " has no crease rules yet: the features were carried (sharpness - 1 per "
-                     "level) but not used"));
-        features = !sqrt3;
-    }
+    const bool features = options.features != SubdivisionFeatures::None && has_features(*current);
     // Coincident vertices (seams, copies of a split vertex) are kept together on every level.
     const bool coincident = !find_coincident_vertices(*current).empty();
     result.levels.reserve(options.keep_levels ? std::size_t(options.iterations) : 1);
@@ -1721,7 +1769,7 @@ SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& 
         // Morph start positions for the levels returned, and to find the coincident ones.
         const bool morph = options.morph && (options.keep_levels || it == options.iterations);
         SubdivisionLevel level =
-            sqrt3 ? refine_sqrt3(*current, it % 2 == 0, it, morph || coincident, stage)
+            sqrt3 ? refine_sqrt3(*current, it % 2 == 0, it, morph || coincident, stage, features)
                   : refine_1to4(*current, options.scheme, it, morph || coincident, coincident,
                                 features, stage);
         if (coincident) {

@@ -8,7 +8,9 @@
 // coarser surface (for the morph) and every vertex with its level; SubdivisionOptions switches
 // the levels and the morph off. Texture coordinates are interpolated linearly; features
 // (core/features.h: sharp edges, corner tags) drive Loop's crease rules (DeRose, Kass, Truong
-// 1998, exactly as OpenSubdiv 3.5) and are carried to every level; other attributes are dropped.
+// 1998, exactly as OpenSubdiv 3.5), Sqrt3's (Kobbelt 2000's boundary rule along creases) and
+// the butterflies' (the four-point rule along creases; core/algorithms/subdivision_creases.h)
+// and are carried to every level; other attributes are dropped.
 // Coincident vertices (seams, copies of split vertices) stay together on every level; pillows
 // (core/algorithms/pillows.h) come back unchanged with a note. Throws InvalidArgument for
 // iterations outside 1 to 10, above 50 million faces, invalid features (a negative or NaN
@@ -68,9 +70,10 @@ struct SubdivisionOptions {
     /// mesh's own, none, or those detected at `feature_angle` degrees first (infinitely sharp;
     /// core/algorithms/feature_detection.h). Loop applies the crease, corner and dart rules
     /// exactly as OpenSubdiv 3.5 does (DeRose, Kass, Truong 1998; uniform creasing, boundary
-    /// edges infinitely sharp) and every level carries them (sharpness - 1 per level); the
-    /// butterflies carry them unused; Sqrt3 drops them (a note says so). With None the result
-    /// has no features.
+    /// edges infinitely sharp); Sqrt3 treats sharp edges as boundaries (Kobbelt 2000), the
+    /// butterflies use the four-point rule along them (core/algorithms/subdivision_creases.h);
+    /// every level carries them (sharpness - 1 per level, per step for Sqrt3). With None the
+    /// result has no features.
     SubdivisionFeatures features = SubdivisionFeatures::Stored;
     double feature_angle = 60.0;  ///< SubdivisionFeatures::Auto: the angle, in (0, 180]
 };
@@ -98,7 +101,10 @@ enum class SubdivisionStencil : int {
     EvenTaggedCorner,    ///< Loop with features: tagged as a corner (stays)
     EvenSemiSharp,       ///< Loop with features: rules blended (sharp edges turn smooth)
     OddSharp,            ///< Loop with features: on an edge of sharpness > 1 (midpoint)
-    OddSemiSharp,        ///< Loop with features: sharpness <= 1 (midpoint and smooth blended)
+    OddSemiSharp,        ///< with features: sharpness <= 1 (sharp and smooth rules blended)
+    EvenCreaseCurve,     ///< Sqrt3 with features: two sharp edges (kept, or 4/19/4 along them)
+    OddCreaseSplit,      ///< Sqrt3 with features: one of the two points splitting a sharp edge
+    OddFourPoint,        ///< butterflies with features: the four-point rule along a sharp edge
 };
 /// Words for a stencil ("even, regular (valence 6)", "odd, face centroid").
 const char* subdivision_stencil_label(SubdivisionStencil stencil);

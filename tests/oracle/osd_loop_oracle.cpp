@@ -4,8 +4,11 @@
 // positions in double precision with Far::PrimvarRefinerReal<double>. Built only where
 // libosd-dev is installed (tests/CMakeLists.txt); never linked into trilab.
 //
-//   trilab_osd_loop_oracle LEVELS IN OUT
+//   trilab_osd_loop_oracle LEVELS IN OUT [--ms]
 //
+// With --ms it prints "ms T" on stdout: the milliseconds of OpenSubdiv's own work (building the
+// topology, refining it, interpolating every level's positions), what the features benchmark
+// (tests/bench/features_cli.sh) sets against `trilab-cli subdivide --json`'s "ms".
 // IN (text): "nv nf ncreases ncorners", nv lines "x y z", nf lines "a b c", ncreases lines
 // "a b sharpness" (inf allowed: OpenSubdiv's infinite sharpness 10), ncorners lines "v".
 // OUT (binary, little-endian host order): for each level 1..LEVELS: int32 n, then n pairs of
@@ -14,6 +17,7 @@
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -48,7 +52,8 @@ void put(std::ofstream& out, std::int32_t v) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc != 4) return fail("usage: trilab_osd_loop_oracle LEVELS IN OUT");
+    const bool timed = argc == 5 && std::string(argv[4]) == "--ms";
+    if (argc != 4 && !timed) return fail("usage: trilab_osd_loop_oracle LEVELS IN OUT [--ms]");
     const int levels = std::atoi(argv[1]);
     if (levels < 1 || levels > 6) return fail("LEVELS must be 1 to 6");
     std::ifstream in(argv[2]);
@@ -74,6 +79,9 @@ int main(int argc, char** argv) {
         if (!(in >> c)) return fail("bad corner");
     std::vector<float> corner_weights(std::size_t(nk), 10.0f);
 
+    using Clock = std::chrono::steady_clock;
+    Clock::duration work{};
+    Clock::time_point t0 = Clock::now();
     Far::TopologyDescriptor desc;
     desc.numVertices = nv;
     desc.numFaces = nf;
@@ -90,6 +98,7 @@ int main(int argc, char** argv) {
     Far::TopologyRefiner* refiner = Factory::Create(desc, Factory::Options(Sdc::SCHEME_LOOP, sdc));
     if (!refiner) return fail("OpenSubdiv refused the topology");
     refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(levels));
+    work += Clock::now() - t0;
 
     std::ofstream out(argv[3], std::ios::binary);
     std::vector<Vertex3> src = base, dst;
@@ -114,14 +123,17 @@ int main(int argc, char** argv) {
             put(out, a[std::size_t(i)]);
             put(out, b[std::size_t(i)]);
         }
+        t0 = Clock::now();
         dst.assign(std::size_t(n), Vertex3{});
         const Vertex3* from = src.data();
         Vertex3* to = dst.data();
         primvar.Interpolate(level, from, to);
         src.swap(dst);
+        work += Clock::now() - t0;
     }
     put(out, std::int32_t(src.size()));
     for (const Vertex3& v : src) out.write(reinterpret_cast<const char*>(v.p), sizeof v.p);
     delete refiner;
+    if (timed) std::printf("ms %.3f\n", std::chrono::duration<double, std::milli>(work).count());
     return out ? 0 : fail("cannot write " + std::string(argv[3]));
 }

@@ -25,6 +25,7 @@
 #include "core/algorithms/decimation.h"
 #include "core/algorithms/feature_detection.h"
 #include "core/algorithms/generators.h"
+#include "core/algorithms/mesh_distance.h"
 #include "core/algorithms/noise.h"
 #include "core/algorithms/subdivision.h"
 #include "core/errors.h"
@@ -424,20 +425,34 @@ TEST_CASE("a session keeps the features of every state", "[features][session]") 
     std::remove(path.c_str());
 }
 
-TEST_CASE("decimation keeps the features: corners stay, curves keep input vertices",
+TEST_CASE("decimation keeps the features: corners stay, curve vertices stay on the input curves",
           "[features][decimation]") {
     SKIP_IF_MISSING(test::shared_mesh("fandisk.obj"));
     HalfedgeMesh m = load_fandisk();
     FeatureDetectionOptions fo;
     fo.angle_deg = 60;
     detect_features(m, fo);
+    const double diagonal = bounding_box(m).diagonal();
     const VertexClassification in = classify_vertices(m, false);
-    // Input feature vertices by position, corners apart.
-    std::map<std::array<double, 3>, VertexClass> feature_at;
+    // The input feature curves as segments, and the corners by position.
+    std::vector<std::array<Point, 2>> segments;
+    for (Edge e : m.edges())
+        if (sharpness(m, e) > 0.0f)
+            segments.push_back({m.position(m.from_vertex(m.halfedge(e, 0))),
+                                m.position(m.to_vertex(m.halfedge(e, 0)))});
+    std::map<std::array<double, 3>, int> corner_at;
     for (Vertex v : m.vertices())
-        if (in.classes[v.idx()] != VertexClass::Smooth)
-            feature_at[{m.position(v).x(), m.position(v).y(), m.position(v).z()}] =
-                in.classes[v.idx()];
+        if (in.classes[v.idx()] == VertexClass::Corner)
+            corner_at[{m.position(v).x(), m.position(v).y(), m.position(v).z()}] = 1;
+    const auto to_curves = [&](const Point& p) {
+        double best = std::numeric_limits<double>::infinity();
+        for (const auto& s : segments) {
+            const Vector3 d = s[1] - s[0];
+            const double t = std::clamp((p - s[0]).dot(d) / d.squaredNorm(), 0.0, 1.0);
+            best = std::min(best, (s[0] + t * d - p).norm());
+        }
+        return best;
+    };
     DecimationOptions o;
     o.target_vertices = m.n_vertices() / 10;
     o.levels = DecimationLevels::Last;
@@ -445,27 +460,37 @@ TEST_CASE("decimation keeps the features: corners stay, curves keep input vertic
     const DecimationResult r = decimate(m, o);
     const HalfedgeMesh& out = r.levels.back().mesh;
     REQUIRE_VALID(out);
-    CHECK(out.n_vertices() < m.n_vertices() / 5);
+    CHECK(out.n_vertices() <= m.n_vertices() / 10);
     const VertexClassification k = classify_vertices(out, false);
     std::size_t corners = 0;
+    double worst = 0;
     for (Vertex v : out.vertices()) {
         if (k.classes[v.idx()] == VertexClass::Smooth) continue;
-        // Every output vertex on a feature is an input feature vertex, exactly where it was.
-        const auto it =
-            feature_at.find({out.position(v).x(), out.position(v).y(), out.position(v).z()});
-        REQUIRE(it != feature_at.end());
-        corners += it->second == VertexClass::Corner ? 1 : 0;
+        // Every output vertex on a feature lies on an input feature curve (crease vertices
+        // slide along it to the quadric's minimum), every corner exactly where it was.
+        worst = std::max(worst, to_curves(out.position(v)));
+        if (k.classes[v.idx()] == VertexClass::Corner)
+            corners +=
+                corner_at.count({out.position(v).x(), out.position(v).y(), out.position(v).z()});
     }
-    // Every corner stays.
+    CHECK(worst <= 1e-9 * diagonal);
     CHECK(corners == in.corners);
-    // Without features, the decimation moves them.
+    CHECK(k.corners == in.corners);
+    // Without features the decimation moves them off the curves; with them the distance to the
+    // input stays close to the featureless run's (0.0030 against 0.0024 of a diagonal of 7.6:
+    // the curves keep their vertices on the input polyline, which costs the surface some).
     o.features = FeatureSource::None;
     const HalfedgeMesh plain = decimate(m, o).levels.back().mesh;
-    std::size_t kept = 0;
+    double plain_worst = 0;
     for (Vertex v : plain.vertices())
-        kept +=
-            feature_at.count({plain.position(v).x(), plain.position(v).y(), plain.position(v).z()});
-    CHECK(kept < feature_at.size());
+        if (to_curves(plain.position(v)) < 1e-3 * diagonal)
+            plain_worst = std::max(plain_worst, to_curves(plain.position(v)));
+    CHECK(plain_worst > 1e-9 * diagonal);
+    MeshDistanceOptions md;
+    md.samples = 20000;
+    const double with = mesh_distance(m, out, md).hausdorff;
+    const double without = mesh_distance(m, plain, md).hausdorff;
+    CHECK(with <= 1.4 * without);
 }
 
 namespace {
