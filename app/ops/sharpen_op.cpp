@@ -6,6 +6,7 @@
 // is one history entry, undone like any operation, and replayed by recipes.
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -19,10 +20,10 @@ namespace trilab {
 namespace {
 
 struct SharpenOptions {
-    bool semi = false;       ///< --sharpness S given (otherwise: infinitely sharp)
-    double sharpness = 1.0;  ///< S, when semi
-    long long edge = -1;     ///< one edge (-1: the region's edges)
-    bool clear = false;      ///< sharpness 0: smooth again
+    bool semi = false;              ///< --sharpness S given (otherwise: infinitely sharp)
+    double sharpness = 1.0;         ///< S, when semi
+    std::optional<long long> edge;  ///< one edge (unset: the region's edges)
+    bool clear = false;             ///< sharpness 0: smooth again
 };
 
 OperationResult run_sharpen(const SharpenOptions& o, const HalfedgeMesh& mesh, Progress& progress,
@@ -37,12 +38,13 @@ OperationResult run_sharpen(const SharpenOptions& o, const HalfedgeMesh& mesh, P
         if (sharpness(m, e) != value) ++changed;
         set_sharpness(m, e, value);
     };
-    if (o.edge >= 0) {
-        if (std::size_t(o.edge) >= m.edges_size() || m.is_deleted(Edge(Index(o.edge))))
-            throw InvalidArgument("--edge: edge " + std::to_string(o.edge) +
+    if (o.edge) {
+        const long long e = *o.edge;
+        if (e < 0 || std::size_t(e) >= m.edges_size() || m.is_deleted(Edge(Index(e))))
+            throw InvalidArgument("--edge: edge " + std::to_string(e) +
                                   " is not an edge of the mesh (it has " +
                                   std::to_string(m.edges_size()) + " edges)");
-        tag(Edge(Index(o.edge)));
+        tag(Edge(Index(e)));
     } else {
         if (!settings.region)
             throw InvalidArgument(
@@ -85,8 +87,7 @@ std::unique_ptr<OperationDef> sharpen_operation() {
          "the edges' sharpness (infinite: a crease at every level)")
         .above_min()
         .label("sharpness");
-    d.integer("edge", &SharpenOptions::edge, -1, 4e9,
-              "one edge by its index (-1: the region's edges)")
+    d.integer("edge", &SharpenOptions::edge, 0, 4e9, "one edge by its index")
         .default_note("the region's edges");
     d.flag("clear", &SharpenOptions::clear, "make the edges smooth again (sharpness 0)");
     d.run(run_sharpen)

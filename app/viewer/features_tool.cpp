@@ -85,22 +85,29 @@ void FeaturesTool::update() {
     lines_ = segments_of(edges_, mesh, shown.positions);
 }
 
-Operation FeaturesTool::sharpen_selection(bool clear) const {
-    char text[96];
+namespace {
+
+/// "sharpen" with the panel's sharpness (or --clear), for `edge` (empty: the region's).
+Operation sharpen_text(bool clear, bool infinite, float sharpness, const std::string& edge) {
+    char text[128];
     if (clear)
         std::snprintf(text, sizeof(text), "sharpen --clear");
-    else if (infinite_)
+    else if (infinite)
         std::snprintf(text, sizeof(text), "sharpen");
     else
-        std::snprintf(text, sizeof(text), "sharpen --sharpness %g", double(sharpness_));
-    return parse_operation(text);
+        std::snprintf(text, sizeof(text), "sharpen --sharpness %g", double(sharpness));
+    return parse_operation(std::string(text) + (edge.empty() ? "" : " --edge " + edge));
+}
+
+}  // namespace
+
+Operation FeaturesTool::sharpen_selection(bool clear) const {
+    return sharpen_text(clear, infinite_, sharpness_, "");
 }
 
 Operation FeaturesTool::toggle_edge(Edge e) const {
     const bool sharp = trilab::sharpness(context_.session.mesh(), e) > 0.0f;
-    Operation op = sharpen_selection(sharp);
-    op.value("edge").x = double(e.idx());
-    return op;
+    return sharpen_text(sharp, infinite_, sharpness_, std::to_string(e.idx()));
 }
 
 bool FeaturesTool::mouse(const ViewMouse& mouse) {

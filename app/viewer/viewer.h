@@ -64,6 +64,8 @@ private:
     /// commands ran.
     bool draw_frame();
     /// The mouse in the view (the tools first, then the camera), dropped files, the keys.
+    /// Turns the view along a left drag's path (pointer_trail.h), past the click's slop.
+    void turn_along(const std::vector<glm::vec2>& path, const glm::vec2& origin);
     void handle_input();
     void draw_ui();
     void render_scene();

@@ -41,6 +41,23 @@
 namespace trilab::viewer {
 using namespace tuning;
 
+void Viewer::turn_along(const std::vector<glm::vec2>& path, const glm::vec2& origin) {
+    // Every position the cursor took while the left button was down, in order (window
+    // coordinates; `origin` is the view's corner): the view turns once past the click's slop.
+    Camera& camera = context_.view.camera;
+    for (const glm::vec2& at : path) {
+        const glm::vec2 p = at - origin;
+        if (turning_) {
+            camera.rotate(drag_last_, p);
+        } else if (glm::length(p - press_pos_) > kClickSlopPixels) {
+            turning_ = true;
+            camera.rotate(press_pos_, p);
+        }
+        drag_last_ = p;
+    }
+    if (turning_) context_.view.fitted = false;
+}
+
 void Viewer::handle_input() {
     const ImGuiIO& io = ImGui::GetIO();
     Camera& camera = context_.view.camera;
@@ -95,18 +112,7 @@ void Viewer::handle_input() {
         if (taken || mouse.double_clicked) {
             // the tool has the mouse, or a double click centred the view
         } else if (!drag.path.empty() && drag_in_view_ && !io.KeyShift) {
-            // Along the events' path: every position the cursor took, in order.
-            for (const glm::vec2& at : drag.path) {
-                const glm::vec2 p = at - origin;
-                if (turning_) {
-                    camera.rotate(drag_last_, p);
-                } else if (glm::length(p - press_pos_) > kClickSlopPixels) {
-                    turning_ = true;
-                    camera.rotate(press_pos_, p);
-                }
-                drag_last_ = p;
-            }
-            if (turning_) context_.view.fitted = false;
+            turn_along(drag.path, origin);
         } else if (drag.path.empty() && moved && drag_in_view_ &&
                    ImGui::IsMouseDown(ImGuiMouseButton_Left) && !io.KeyShift) {
             // Input without window events (scripted): ImGui's frame positions.

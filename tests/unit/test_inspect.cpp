@@ -462,7 +462,7 @@ TEST_CASE("The Inspector says a vertex's feature class and why, and an edge's sh
           "corner: 3 sharp edges meet (Loop keeps it where it is)");
     bool shown = false;
     for (const InspectionField& f : inspection_fields(corner))
-        shown = shown || (f.id == "feature_class" && f.text.rfind("corner: 3 sharp", 0) == 0);
+        shown = shown || (f.key == "feature_class" && f.text.rfind("corner: 3 sharp", 0) == 0);
     CHECK(shown);
     // Classes from the counts, as classify_vertices() gives them.
     const VertexClassification classes = classify_vertices(cube, false);
@@ -485,7 +485,7 @@ TEST_CASE("The Inspector says a vertex's feature class and why, and an edge's sh
     bool semi = false;
     for (const InspectionField& f :
          inspection_fields(inspect_edge(cube, sharp_edge, DecimationOptions{})))
-        semi = semi || (f.id == "sharpness" &&
+        semi = semi || (f.key == "sharpness" &&
                         f.text == "2.5 (semi-sharp: the sharp rule for 2 levels, then blended)");
     CHECK(semi);
     CHECK(*inspect_edge(cube, smooth_edge, DecimationOptions{}).sharpness == 0.0f);

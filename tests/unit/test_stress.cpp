@@ -150,6 +150,17 @@ const std::map<std::string, Generator>& generators() {
              if (pick(rng, 0, 1)) text += " --boundary";
              return text;
          }},
+        {"sharpen",
+         [](Rng& rng, const HalfedgeMesh& m) {
+             // One edge of the mesh (the stress runs have no region): sharp, semi-sharp or
+             // cleared.
+             std::string text =
+                 "sharpen --edge " + std::to_string(pick(rng, 0, int(m.edges_size()) - 1));
+             const int kind = pick(rng, 0, 2);
+             if (kind == 1) text += " --sharpness " + std::to_string(pick(rng, 0, 5));
+             if (kind == 2) text += " --clear";
+             return text;
+         }},
         {"fill-holes",
          [](Rng& rng, const HalfedgeMesh&) {
              const std::vector<std::string> fairings = {"none", "c1", "c2"};
