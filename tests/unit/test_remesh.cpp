@@ -14,6 +14,7 @@
 #include "core/algorithms/mesh_quality.h"
 #include "core/algorithms/mesh_stats.h"
 #include "core/algorithms/morph.h"
+#include "core/algorithms/noise.h"
 #include "core/algorithms/remesh.h"
 #include "core/algorithms/selection.h"
 #include "core/errors.h"
@@ -181,6 +182,63 @@ TEST_CASE("remesh removes 1-degree triangles and keeps the square's boundary", "
     // About the predicted count (area over the ideal triangle's, plus the boundary's share).
     CHECK(double(r.output_faces) > 0.7 * double(r.predicted_faces));
     CHECK(double(r.output_faces) < 1.5 * double(r.predicted_faces));
+}
+
+TEST_CASE(
+    "the cotangent Laplacian's spread: weights as geometry.h gives them, one negative "
+    "weight across a long diagonal, and remeshing shrinks the spread",
+    "[remesh][quality][spread]") {
+    // An independent count: cotangent_weight() per edge (geometry.h).
+    HalfedgeMesh sphere = make_icosphere(2);
+    NoiseOptions n;
+    n.amount_percent = 20;
+    add_noise(sphere, n);
+    const CotangentSpread s = cotangent_spread(sphere);
+    std::size_t negative = 0;
+    double low = 1e300, high = -1e300;
+    std::vector<double> magnitudes;
+    for (Edge e : sphere.edges()) {
+        const double w = cotangent_weight(sphere, e);
+        negative += w < 0;
+        low = std::min(low, w);
+        high = std::max(high, w);
+        magnitudes.push_back(std::abs(w));
+    }
+    CHECK(s.edges == sphere.n_edges());
+    CHECK(s.negative_weights == negative);
+    CHECK(s.min_weight == Approx(low));
+    CHECK(s.max_weight == Approx(high));
+    CHECK(s.vertices == sphere.n_vertices());
+    CHECK(s.degenerate_corners == 0);
+    std::sort(magnitudes.begin(), magnitudes.end());
+    CHECK(s.weight_ratio == Approx(magnitudes.back() / magnitudes[magnitudes.size() / 2]));
+    CHECK(s.diagonal_ratio >= 1.0);
+
+    // Two triangles over a long diagonal, their far corners at 169 degrees: its weight is
+    // negative, the others positive.
+    PolygonSoup kite;
+    kite.positions = {Point(0, 0, 0), Point(2, 0, 0), Point(1, 0.1, 0), Point(1, -0.1, 0)};
+    kite.add_face({0, 1, 2});
+    kite.add_face({1, 0, 3});
+    LoadReport report;
+    const CotangentSpread k = cotangent_spread(build_mesh(kite, report));
+    CHECK(k.negative_weights == 1);
+    CHECK(k.negative_share == Approx(1.0 / 5.0));
+    CHECK(k.min_weight < -4);
+    CHECK(cotangent_spread(HalfedgeMesh()).edges == 0);
+
+    // Remeshing the 1-degree square: the weights' and the diagonal's spreads drop.
+    const HalfedgeMesh needles = needle_square();
+    HalfedgeMesh m = needles;
+    RemeshOptions o;
+    o.length = 0.1;
+    remesh(m, o);
+    const CotangentSpread before = cotangent_spread(needles), after = cotangent_spread(m);
+    INFO("weight ratio " << before.weight_ratio << " -> " << after.weight_ratio
+                         << ", largest weight " << before.max_weight << " -> " << after.max_weight);
+    CHECK(before.max_weight > 25);  // cot 1 degree / 2
+    CHECK(after.max_weight < 2);
+    CHECK(after.weight_ratio < before.weight_ratio / 10);
 }
 
 TEST_CASE("remesh on a region leaves every face outside it bit for bit", "[remesh]") {
