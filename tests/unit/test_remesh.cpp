@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/ops/operation.h"
+#include "core/algorithms/feature_detection.h"
 #include "core/algorithms/generators.h"
 #include "core/algorithms/mesh_distance.h"
 #include "core/algorithms/mesh_quality.h"
@@ -18,6 +19,7 @@
 #include "core/algorithms/remesh.h"
 #include "core/algorithms/selection.h"
 #include "core/errors.h"
+#include "core/features.h"
 #include "core/geometry.h"
 #include "core/mesh_builder.h"
 #include "test_helpers.h"
@@ -239,6 +241,62 @@ TEST_CASE(
     CHECK(before.max_weight > 25);  // cot 1 degree / 2
     CHECK(after.max_weight < 2);
     CHECK(after.weight_ratio < before.weight_ratio / 10);
+}
+
+namespace {
+
+/// The sharp edges of `mesh` as pairs of end positions (ordered), for comparing across a
+/// renumbering.
+std::set<std::array<double, 6>> sharp_edge_positions(const HalfedgeMesh& mesh) {
+    std::set<std::array<double, 6>> out;
+    for (Edge e : mesh.edges()) {
+        if (sharpness(mesh, e) <= 0) continue;
+        Point a = mesh.position(mesh.vertex(e, 0)), b = mesh.position(mesh.vertex(e, 1));
+        if (std::lexicographical_compare(b.data(), b.data() + 3, a.data(), a.data() + 3))
+            std::swap(a, b);
+        out.insert({a.x(), a.y(), a.z(), b.x(), b.y(), b.z()});
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("remesh keeps stored features: every sharp edge and corner stays as it is",
+          "[remesh][features]") {
+    HalfedgeMesh block = make_block(12, 9, 6);  // its 12 edges are its only sharp ones
+    FeatureDetectionOptions d;
+    d.angle_deg = 60;
+    const FeatureDetectionReport found = detect_features(block, d);
+    REQUIRE(found.feature_edges > 0);
+    REQUIRE(found.corners == 8);
+    const auto before = sharp_edge_positions(block);
+    RemeshOptions o;
+    o.relative = 0.7;
+    HalfedgeMesh kept = block;
+    const RemeshReport r = remesh(kept, o);
+    REQUIRE_VALID(kept);
+    CHECK(r.feature_vertices > 0);
+    CHECK(r.locked_vertices >= r.feature_vertices);
+    CHECK(sharp_edge_positions(kept) == before);
+    CHECK(classify_vertices(kept, false).corners == 8);
+    CHECK(kept.n_faces() > block.n_faces());  // the rest was remeshed finer
+    // Without them the sharp edges are split like the others (their ends move apart).
+    HalfedgeMesh ignored = block;
+    o.features = FeatureSource::None;
+    const RemeshReport none = remesh(ignored, o);
+    REQUIRE_VALID(ignored);
+    CHECK(none.feature_vertices == 0);
+    CHECK(sharp_edge_positions(ignored) != before);
+    // Auto detects them first; a bad angle is refused before anything changes.
+    HalfedgeMesh plain = make_block(12, 9, 6);
+    o.features = FeatureSource::Auto;
+    o.feature_angle = 60;
+    CHECK(remesh(plain, o).feature_vertices > 0);
+    CHECK(has_features(plain));
+    HalfedgeMesh untouched = make_block(12, 9, 6);
+    o.feature_angle = 0;
+    CHECK_THROWS_WITH(remesh(untouched, o), Catch::Contains("feature_angle"));
+    CHECK_FALSE(has_features(untouched));
 }
 
 TEST_CASE("remesh on a region leaves every face outside it bit for bit", "[remesh]") {
