@@ -542,10 +542,9 @@ private:
 
     /// The area-weighted mean normal (normalized) of the faces nb_[begin, end), and the smallest
     /// dot product of two of their normals (all pairs). The normals are copied side by side in
-    /// single precision (plenty for D) into lanes of a fixed width (16 or 32, the usual patch
-    /// has about 13 faces), the lanes past the patch repeating its first normal (a pair of the
-    /// patch too, so the minimum is unchanged): each row is then a fixed-length loop of
-    /// independent lanes that the compiler vectorizes, not a chain of scalar minima.
+    /// single precision (plenty for D) into lanes of a fixed width (16 or 32; the usual patch
+    /// has about 13 faces): each offset is then a fixed-length pass over independent lanes
+    /// that the compiler vectorizes, not a chain of scalar minima (patch_normals_lanes()).
     std::pair<Vector3, double> patch_normals(Index begin, Index end) const {
         const Index m = end - begin;
         if (m <= 16) return patch_normals_lanes<16>(begin, end);
@@ -563,13 +562,13 @@ private:
     /// Four single-precision lanes (GCC and Clang vector extension: SSE, NEON or scalar code).
     typedef float Lanes4 __attribute__((vector_size(16)));
 
-    /// The normals are written twice over, x[t] = x[t mod m] for t < 2 · kLanes: lane b of
+    /// The normals are written twice over, x[t] = x[t mod m] for t < 2 · Lanes: lane b of
     /// offset s is the pair (b, b + s), and the offsets 1 to m / 2 cover every pair of the m
     /// normals (offsets s and m − s give the same pairs; the lanes past m repeat pairs).
-    template <int kLanes>
+    template <int Lanes>
     std::pair<Vector3, double> patch_normals_lanes(Index begin, Index end) const {
-        constexpr int kGroups = kLanes / 4;
-        alignas(16) float x[2 * kLanes], y[2 * kLanes], z[2 * kLanes];
+        constexpr int kGroupCount = Lanes / 4;
+        alignas(16) float x[2 * Lanes], y[2 * Lanes], z[2 * Lanes];
         float mx = 0, my = 0, mz = 0;
         const int m = int(end - begin);
         for (int a = 0; a < m; ++a) {
@@ -581,20 +580,20 @@ private:
             my += n[3] * n[1];
             mz += n[3] * n[2];
         }
-        for (int t = m; t < 2 * kLanes; ++t) {
+        for (int t = m; t < 2 * Lanes; ++t) {
             x[t] = x[t - m];
             y[t] = y[t - m];
             z[t] = z[t - m];
         }
-        Lanes4 vx[kGroups], vy[kGroups], vz[kGroups], low[kGroups];
-        for (int g = 0; g < kGroups; ++g) {
+        Lanes4 vx[kGroupCount], vy[kGroupCount], vz[kGroupCount], low[kGroupCount];
+        for (int g = 0; g < kGroupCount; ++g) {
             std::memcpy(&vx[g], x + 4 * g, sizeof(Lanes4));
             std::memcpy(&vy[g], y + 4 * g, sizeof(Lanes4));
             std::memcpy(&vz[g], z + 4 * g, sizeof(Lanes4));
             low[g] = Lanes4{1, 1, 1, 1};
         }
         for (int offset = 1; offset <= m / 2; ++offset) {
-            for (int g = 0; g < kGroups; ++g) {
+            for (int g = 0; g < kGroupCount; ++g) {
                 Lanes4 sx, sy, sz;
                 std::memcpy(&sx, x + 4 * g + offset, sizeof(Lanes4));
                 std::memcpy(&sy, y + 4 * g + offset, sizeof(Lanes4));
@@ -603,7 +602,7 @@ private:
                 low[g] = d < low[g] ? d : low[g];
             }
         }
-        for (int g = 1; g < kGroups; ++g) low[0] = low[g] < low[0] ? low[g] : low[0];
+        for (int g = 1; g < kGroupCount; ++g) low[0] = low[g] < low[0] ? low[g] : low[0];
         const float smallest =
             std::min(std::min(low[0][0], low[0][1]), std::min(low[0][2], low[0][3]));
         return {Vector3(mx, my, mz), double(smallest)};
