@@ -65,6 +65,7 @@ OperationResult run_denoise(const DenoiseOptions& options, const HalfedgeMesh& m
                      {"degenerate_faces", double(report.degenerate_faces)},
                      {"inverted_faces", double(report.inverted_faces)},
                      {"folded_faces", double(report.folded_faces)},
+                     {"held_vertices", double(report.held_vertices)},
                      {"feature_edges", double(report.feature_edges)},
                      {"feature_vertices", double(report.feature_vertices)},
                      {"mean_normal_change_degrees", report.mean_normal_change_degrees},

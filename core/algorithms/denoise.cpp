@@ -663,6 +663,15 @@ private:
             }
             report_.vertex_iterations_done = it + 1;
         }
+        if (folded == 0) return;
+        // The last iteration left folds (the ones before may, on the way to untangling the
+        // faces the noise turned over): keep its state but where it folds, there going back
+        // towards the last state without folds.
+        const std::vector<Point> base = good_iterations == 0 ? input_positions() : good;
+        if (good_iterations == 0 || !good.empty()) {
+            hold_folds(pos_, base);
+            folded = count_folds();
+        }
         if (folded > 0) stop(o_.vertex_iterations - 1, folded, good_iterations, good);
     }
 
@@ -727,6 +736,37 @@ private:
         finite_ = finite;
     }
 
+    /// Whether area vector `a` of face f is a fold: no area, or on the far side of the face's
+    /// filtered normal (and the face did not start there).
+    bool folds(const Vector3& a, std::size_t f) const {
+        return !(a.norm() > degenerate_area_) ||
+               (!inverted_at_start_[f] && !(a.dot(normal_[f]) > 0));
+    }
+
+    /// Unfolds `next` towards `base`, a state without folds: the corners of a face that `next`
+    /// folds go half way back to their places in `base`, up to kHalvings times, then all the
+    /// way back; again until no face folds (at worst every vertex is back in `base`). Counts
+    /// the vertices held back in the report. O(F) a round.
+    void hold_folds(std::vector<Point>& next, const std::vector<Point>& base) {
+        constexpr int kHalvings = 4;
+        std::vector<Index> marked, held;
+        for (int round = 0; round <= kHalvings + int(corners_.size()); ++round) {
+            marked.clear();
+            for (std::size_t f = 0; f < corners_.size(); ++f)
+                if (has_normal(f) && folds(area_vector(next, f), f))
+                    for (Index v : corners_[f]) marked.push_back(v);
+            if (marked.empty()) break;
+            std::sort(marked.begin(), marked.end());
+            marked.erase(std::unique(marked.begin(), marked.end()), marked.end());
+            for (Index v : marked) {
+                next[v] = round < kHalvings ? Point(0.5 * (base[v] + next[v])) : base[v];
+                held.push_back(v);
+            }
+        }
+        std::sort(held.begin(), held.end());
+        report_.held_vertices = std::size_t(std::unique(held.begin(), held.end()) - held.begin());
+    }
+
     /// Untangles the faces that `next` leaves on the far side of their filtered normals: each
     /// corner of such a face moves to the mean of its neighbours, along the plane of the mean
     /// filtered normal of its faces (a tangential step: it does not pull the surface in).
@@ -770,9 +810,7 @@ private:
             std::size_t count = 0;
             for (std::size_t f = begin; f < end; ++f) {
                 if (!has_normal(f)) continue;
-                const Vector3 a = area_vector(pos_, f);
-                count += !(a.norm() > degenerate_area_) ||
-                         (!inverted_at_start_[f] && !(a.dot(normal_[f]) > 0));
+                count += folds(area_vector(pos_, f), f);
             }
             folded += count;
         });

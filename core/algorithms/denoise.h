@@ -52,10 +52,14 @@
 // (DenoiseReport::degenerate_faces). Isolated vertices do not move. Boundary vertices move like
 // the others (they have fewer faces).
 // Never a silent failure: a face that ends on the far side of its filtered normal (and did not
-// start there) or without area is a fold; a run whose last vertex iteration leaves folds goes
+// start there) or without area is a fold. The iterations on the way may leave folds (untangling
+// the faces the noise turned over passes through them); where the last one does, the corners
+// of each folded face go half way back to the last state without folds, up to four times, then
+// all the way back, until no face folds (DenoiseReport::held_vertices counts them: the rest of
+// the mesh keeps the last iteration's result). As a guard, a run that still leaves folds goes
 // back to the state after the last iteration that left none, and the report says so and how
-// many faces folded (stopped_early, folded_faces, stop_reason); a non-finite position stops the
-// run at once, at that same state. Only positions change (and "v:normal" is recomputed when the
+// many faces folded (stopped_early, folded_faces, stop_reason); a non-finite position stops
+// the run at once, at that same state. Only positions change (and "v:normal" is recomputed when the
 // mesh carries it).
 // Throws InvalidArgument before changing anything, naming the option: iterations out of range,
 // sigma_s or sigma_r not finite or not positive (or too large), a mesh without faces, a
@@ -134,6 +138,9 @@ struct DenoiseReport {
     /// after `vertex_iterations_done` iterations.
     bool stopped_early = false;
     std::size_t folded_faces = 0;  ///< faces the last vertex iteration left folded
+    /// Vertices the last iteration left folding a face, moved back towards the last state
+    /// without folds (see the file comment).
+    std::size_t held_vertices = 0;
     std::string stop_reason;
 };
 
