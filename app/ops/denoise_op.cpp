@@ -25,6 +25,10 @@ void add_report_lines(const DenoiseReport& r, const HalfedgeMesh& mesh, Operatio
                                 count_text(r.feature_edges, "sharp edge", "sharp edges") + " (" +
                                 count_text(r.feature_vertices, "vertex", "vertices") +
                                 " on them or tagged corners)");
+    if (r.held_vertices > 0)
+        result.report.push_back(count_text(r.held_vertices, "vertex", "vertices") +
+                                " held back towards the last state without folds (the last "
+                                "vertex iteration folded faces there)");
     if (r.degenerate_faces > 0)
         result.report.push_back(
             count_text(r.degenerate_faces, "degenerate face", "degenerate faces") +
