@@ -42,7 +42,9 @@ options:
   --quality             also the triangle quality: the minimum and mean of the per-triangle
                         smallest angle, the share of angles under 30 degrees, Frey-Borouchaki
                         Q (minimum and mean), the share of edges within [0.8 L, 4/3 L], the
-                        share of interior vertices of valence 6 (JSON: "quality")
+                        share of interior vertices of valence 6, and the cotangent Laplacian's
+                        spread: negative weights, the weight and diagonal ratios (JSON:
+                        "quality", its "cotangent_laplacian")
   --length L            the L of the edge-length band (default: the mean edge length);
                         only with --quality
 )";
@@ -114,10 +116,26 @@ struct MeshInfo {
     BoundaryPairing pairing;
     bool manifold = false;
     std::optional<MeshQuality> quality;
+    std::optional<CotangentSpread> spread;  ///< with the quality
     double ms = 0;
 };
 
-JsonObject quality_json(const MeshQuality& q) {
+JsonObject spread_json(const CotangentSpread& c) {
+    JsonObject j;
+    j.add("edges", c.edges)
+        .add("negative_weights", c.negative_weights)
+        .add("negative_share", c.negative_share)
+        .add("min_weight", c.min_weight)
+        .add("max_weight", c.max_weight)
+        .add("weight_ratio", c.weight_ratio)
+        .add("degenerate_corners", c.degenerate_corners)
+        .add("nonpositive_diagonal", c.nonpositive_diagonal)
+        .add("diagonal_ratio", c.diagonal_ratio)
+        .add("normalized_diagonal_ratio", c.normalized_diagonal_ratio);
+    return j;
+}
+
+JsonObject quality_json(const MeshQuality& q, const CotangentSpread& c) {
     JsonObject j;
     j.add("min_angle", q.min_angle)
         .add("mean_min_angle", q.mean_min_angle)
@@ -132,11 +150,12 @@ JsonObject quality_json(const MeshQuality& q) {
         .add("interior_vertices", q.interior_vertices)
         .add("valence6", q.valence6)
         .add("boundary_vertices", q.boundary_vertices)
-        .add("valence4_boundary", q.valence4_boundary);
+        .add("valence4_boundary", q.valence4_boundary)
+        .add("cotangent_laplacian", spread_json(c));
     return j;
 }
 
-void print_quality_text(const MeshQuality& q) {
+void print_quality_text(const MeshQuality& q, const CotangentSpread& c) {
     std::printf("quality:\n");
     std::printf("  min angle:       %.3f deg (mean of per-triangle minimum %.3f deg)\n",
                 q.min_angle, q.mean_min_angle);
@@ -148,6 +167,13 @@ void print_quality_text(const MeshQuality& q) {
                 q.interior_vertices);
     std::printf("  valence 4:       %.3f %% of %zu boundary vertices\n", 100 * q.valence4_boundary,
                 q.boundary_vertices);
+    std::printf(
+        "  cotangent Laplacian: %zu negative weights (%.3f %% of edges), weights %.4g to "
+        "%.4g (|w| ratio %.4g), diagonal ratio %.4g (over the vertex areas %.4g), %zu "
+        "vertices with a diagonal <= 0, %zu degenerate corners\n",
+        c.negative_weights, 100 * c.negative_share, c.min_weight, c.max_weight, c.weight_ratio,
+        c.diagonal_ratio, c.normalized_diagonal_ratio, c.nonpositive_diagonal,
+        c.degenerate_corners);
 }
 
 void print_json(const std::string& file, const MeshInfo& info, const LoadReport& r) {
@@ -174,7 +200,7 @@ void print_json(const std::string& file, const MeshInfo& info, const LoadReport&
     else
         j.add_null("volume");  // an open mesh has no volume
     j.add("valid", info.valid.ok).add("load_report", report_json(r));
-    if (info.quality) j.add("quality", quality_json(*info.quality));
+    if (info.quality) j.add("quality", quality_json(*info.quality, *info.spread));
     j.add("ms", info.ms);
     std::cout << j.str() << "\n";
 }
@@ -206,7 +232,7 @@ void print_text(const std::string& file, const MeshInfo& info, const LoadReport&
     const auto lines = r.lines();
     if (lines.empty()) std::printf("  clean (nothing repaired)\n");
     for (const auto& l : lines) std::printf("  %s\n", l.c_str());
-    if (info.quality) print_quality_text(*info.quality);
+    if (info.quality) print_quality_text(*info.quality, *info.spread);
 }
 
 /// Has the allocator keep the pages of freed large blocks for the next ones. glibc serves a
@@ -250,7 +276,10 @@ int run_info_command(const std::vector<std::string>& args) {
     try {
         info.stats = compute_stats(loaded.mesh);
         info.pairing = pair_boundary_edges(loaded.mesh);
-        if (a.quality) info.quality = mesh_quality(loaded.mesh, a.length);
+        if (a.quality) {
+            info.quality = mesh_quality(loaded.mesh, a.length);
+            info.spread = cotangent_spread(loaded.mesh);
+        }
     } catch (...) {
         validating.join();
         throw;

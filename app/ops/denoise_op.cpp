@@ -20,6 +20,15 @@ void add_report_lines(const DenoiseReport& r, const HalfedgeMesh& mesh, Operatio
                   r.normal_iterations_done, r.vertex_iterations_done, r.filtered_faces,
                   mesh.n_faces());
     result.report.emplace_back(line);
+    if (r.feature_edges > 0)
+        result.report.push_back("features: no normal filtered across " +
+                                count_text(r.feature_edges, "sharp edge", "sharp edges") + " (" +
+                                count_text(r.feature_vertices, "vertex", "vertices") +
+                                " on them or tagged corners)");
+    if (r.held_vertices > 0)
+        result.report.push_back(count_text(r.held_vertices, "vertex", "vertices") +
+                                " held back towards the last state without folds (the last "
+                                "vertex iteration folded faces there)");
     if (r.degenerate_faces > 0)
         result.report.push_back(
             count_text(r.degenerate_faces, "degenerate face", "degenerate faces") +
@@ -60,6 +69,9 @@ OperationResult run_denoise(const DenoiseOptions& options, const HalfedgeMesh& m
                      {"degenerate_faces", double(report.degenerate_faces)},
                      {"inverted_faces", double(report.inverted_faces)},
                      {"folded_faces", double(report.folded_faces)},
+                     {"held_vertices", double(report.held_vertices)},
+                     {"feature_edges", double(report.feature_edges)},
+                     {"feature_vertices", double(report.feature_vertices)},
                      {"mean_normal_change_degrees", report.mean_normal_change_degrees},
                      {"max_normal_change_degrees", report.max_normal_change_degrees},
                      {"max_displacement", report.max_displacement},
@@ -100,6 +112,18 @@ std::unique_ptr<OperationDef> denoise_operation() {
         .above_min()
         .label("sigma r")
         .slider(0.05, 2, true);
+    d.choice("features", &DenoiseOptions::features, EnumTableView(kFeatureSources),
+             "sharp edges and corners honoured (no normal filtered across a sharp edge): those "
+             "stored in the mesh, none, or auto (detected at --feature-angle first)")
+        .hide_default();
+    d.number("feature-angle", &DenoiseOptions::feature_angle, 0, 180,
+             "with --features auto: the dihedral angle of a sharp edge", " (degrees)")
+        .above_min()
+        .slider(1, 90)
+        .only_if([](const DenoiseOptions& o) -> const char* {
+            return o.features == FeatureSource::Auto ? nullptr
+                                                     : "applies only with --features auto";
+        });
     d.run(run_denoise)
         .may_stop_early()
         .acts_on_region(

@@ -44,7 +44,9 @@ OperationResult run_remesh(const RemeshOptions& options, const HalfedgeMesh& mes
                             count_text(r.output_vertices, "vertex", "vertices"));
     if (r.locked_vertices > 0)
         result.report.push_back(count_text(r.locked_vertices, "vertex", "vertices") +
-                                " kept as they are (outside the region or on a texture seam)");
+                                " kept as they are (outside the region, on a texture seam, or "
+                                "on a sharp edge or corner: " +
+                                std::to_string(r.feature_vertices) + ")");
     result.steps.push_back(std::move(step));
     result.values = {{"target_length", r.target_length},
                      {"input_mean_edge", r.input_mean_edge},
@@ -57,7 +59,8 @@ OperationResult run_remesh(const RemeshOptions& options, const HalfedgeMesh& mes
                      {"collapses", double(r.collapses)},
                      {"flips", double(r.flips)},
                      {"angle_flips", double(r.angle_flips)},
-                     {"locked_vertices", double(r.locked_vertices)}};
+                     {"locked_vertices", double(r.locked_vertices)},
+                     {"feature_vertices", double(r.feature_vertices)}};
     result.typed_report = r;
     return result;
 }
@@ -89,6 +92,18 @@ std::unique_ptr<OperationDef> remesh_operation() {
     d.integer("iterations", &RemeshOptions::iterations, 1, kMaxRemeshIterations,
               "split-collapse-flip-relax rounds")
         .slider(1, 20);
+    d.choice("features", &RemeshOptions::features, EnumTableView(kFeatureSources),
+             "sharp edges and corners kept as they are, with the faces around them: those "
+             "stored in the mesh, none, or auto (detected at --feature-angle first)")
+        .hide_default();
+    d.number("feature-angle", &RemeshOptions::feature_angle, 0, 180,
+             "with --features auto: the dihedral angle of a sharp edge", " (degrees)")
+        .above_min()
+        .slider(1, 90)
+        .only_if([](const RemeshOptions& o) -> const char* {
+            return o.features == FeatureSource::Auto ? nullptr
+                                                     : "applies only with --features auto";
+        });
     d.run(run_remesh)
         .acts_on_region(
             "only faces with three corners of positive weight change, with a conforming border; "

@@ -24,11 +24,14 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <utility>
 
+#include "core/algorithms/feature_detection.h"
 #include "core/algorithms/selection.h"
 #include "core/errors.h"
+#include "core/features.h"
 #include "core/geometry.h"
 #include "core/number_text.h"
 #include "core/two_threads.h"
@@ -75,6 +78,13 @@ void check_options(const HalfedgeMesh& mesh, const DenoiseOptions& o) {
             throw InvalidArgument("denoise: vertex " + std::to_string(v.idx()) +
                                   " has a non-finite position");
     if (o.region) check_selection(mesh, *o.region, "denoise: region");
+    if (o.features != FeatureSource::Stored && o.features != FeatureSource::None &&
+        o.features != FeatureSource::Auto)
+        throw InvalidArgument("denoise: features must be " +
+                              enum_ids(EnumTableView(kFeatureSources)));
+    if (o.features == FeatureSource::Auto && !(o.feature_angle > 0 && o.feature_angle <= 180))
+        throw InvalidArgument("denoise: feature_angle must be in (0, 180] degrees, got " +
+                              number_text(o.feature_angle));
 }
 
 /// Runs body(begin, end) over [0, n) in pieces, on two threads for large n.
@@ -134,6 +144,7 @@ public:
         report_.mean_edge_length = mean_edge_length(mesh_);
         number_faces();
         build_vertex_faces();
+        find_sectors();
         build_neighbourhoods();
         turn_inverted_normals();
         filter_normals();
@@ -283,14 +294,16 @@ private:
         nb_offset_.assign(nf + 1, 0);
         nb_.reserve(14 * nf);
         spatial_.reserve(14 * nf);
-        std::vector<Index> mark(nf, kNone);
+        std::vector<Index> mark(nf, kNone), blocked(sector_.empty() ? 0 : nf, kNone);
         for (std::size_t i = 0; i < nf; ++i) {
             nb_offset_[i] = Index(nb_.size());
             if (!has_normal(i)) continue;
+            if (!sector_.empty()) block_other_sectors(Index(i), blocked);
             for (Index v : corners_[i])
                 for (Index k = vf_offset_[v]; k < vf_offset_[v + 1]; ++k) {
                     const Index j = vf_[k];
-                    if (mark[j] == Index(i)) continue;
+                    if (mark[j] == Index(i) || (!blocked.empty() && blocked[j] == Index(i)))
+                        continue;
                     mark[j] = Index(i);
                     nb_.push_back(j);
                     const double d2 = (centroid_[i] - centroid_[j]).squaredNorm();
@@ -301,13 +314,85 @@ private:
         nb_offset_[nf] = Index(nb_.size());
     }
 
+    // ---- stored features -----------------------------------------------------------------
+
+    /// With features (DenoiseOptions::features): the sharp edges cut the fan of faces around
+    /// each vertex into sectors; sector_[3 f + c] is face f's sector at its corner c, and
+    /// feature_vertex_ marks the vertices on a sharp edge and the tagged corners.
+    void find_sectors() {
+        if (o_.features == FeatureSource::None || !has_features(mesh_)) return;
+        const std::size_t nf = corners_.size();
+        std::vector<Index> dense(mesh_.faces_size(), kNone);
+        for (std::size_t k = 0; k < nf; ++k) dense[face_order_[k].idx()] = Index(k);
+        sector_.assign(3 * nf, 0);
+        feature_vertex_.assign(mesh_.vertices_size(), 0);
+        for (Edge e : mesh_.edges()) report_.feature_edges += sharpness(mesh_, e) > 0;
+        std::vector<std::pair<Index, std::uint16_t>> fan;  // (dense face, sector)
+        std::vector<Halfedge> out;                         // the outgoing halfedges
+        std::vector<std::uint8_t> cut;                     // whether the fan is cut there
+        for (Vertex v : mesh_.vertices()) {
+            if (mesh_.is_isolated(v)) continue;
+            const Index iv = internal(v.idx());
+            feature_vertex_[iv] = is_corner_tagged(mesh_, v);
+            fan.clear();
+            out.clear();
+            for (Halfedge h : mesh_.halfedges_around(v)) out.push_back(h);
+            cut.assign(out.size(), 0);
+            std::size_t sharp_edges = 0, last_sharp = 0;
+            for (std::size_t k = 0; k < out.size(); ++k)
+                if (sharpness(mesh_, HalfedgeMesh::edge(out[k])) > 0) {
+                    cut[k] = 1;
+                    ++sharp_edges;
+                    last_sharp = k;
+                }
+            const bool inner = !mesh_.is_boundary(v);
+            // A dart (one sharp edge, inside): its fan is also cut at the edge half way round,
+            // so the faces on either side of the sharp edge stay apart up to its tip.
+            if (inner && sharp_edges == 1) cut[(last_sharp + out.size() / 2) % out.size()] = 1;
+            if (sharp_edges > 0) feature_vertex_[iv] = 1;
+            std::uint16_t sector = 0;
+            for (std::size_t k = 0; k < out.size(); ++k) {
+                sector = std::uint16_t(sector + cut[k]);
+                if (!mesh_.is_boundary(out[k]))
+                    fan.push_back({dense[mesh_.face(out[k]).idx()], sector});
+            }
+            // Around an inner vertex the last sector runs on into the first.
+            for (const auto& [f, sec] : fan) {
+                const std::uint16_t label = inner && sec == sector ? 0 : sec;
+                for (std::size_t c = 0; c < 3; ++c)
+                    if (corners_[f][c] == iv) sector_[3 * std::size_t(f) + c] = label;
+            }
+        }
+        for (std::uint8_t fv : feature_vertex_) report_.feature_vertices += fv;
+    }
+
+    /// blocked[j] = i for the faces j that share a corner with face i but lie in another
+    /// sector there (across a sharp edge from it).
+    void block_other_sectors(Index i, std::vector<Index>& blocked) const {
+        for (std::size_t c = 0; c < 3; ++c) {
+            const Index v = corners_[i][c];
+            const std::uint16_t own = sector_[3 * std::size_t(i) + c];
+            for (Index k = vf_offset_[v]; k < vf_offset_[v + 1]; ++k) {
+                const Index j = vf_[k];
+                for (std::size_t d = 0; d < 3; ++d)
+                    if (corners_[j][d] == v && sector_[3 * std::size_t(j) + d] != own)
+                        blocked[j] = i;
+            }
+        }
+    }
+
     // ---- normal filtering ----------------------------------------------------------------
 
     /// A face whose normal points away from the mean normal of the faces around it was turned
     /// over by the noise (a tangential displacement folds a small triangle): no range kernel
     /// can bring it back (it is its own only similar neighbour), so its filtering starts from
     /// that mean instead. The face itself is untangled by the vertex update.
+    /// Such a face's own normal says nothing about its neighbours', so it takes no part in
+    /// their filtering (its spatial weight in the others' N(i) is 0): two adjacent turned-over
+    /// faces no longer hold each other on a blend of both sides of a crease (fandisk at k = 0.7:
+    /// theta about 0.4 degrees lower).
     void turn_inverted_normals() {
+        std::vector<std::uint8_t> inverted(corners_.size(), 0);
         std::vector<Vector3> start = normal_;
         for (std::size_t i = 0; i < corners_.size(); ++i) {
             if (!active_[i]) continue;
@@ -316,10 +401,15 @@ private:
                 if (nb_[k] != Index(i)) mean += area_[nb_[k]] * normal_[nb_[k]];
             if (mean.dot(normal_[i]) < 0) {
                 start[i] = normalized_or(mean, normal_[i]);
+                inverted[i] = 1;
                 ++report_.inverted_faces;
             }
         }
         normal_.swap(start);
+        if (report_.inverted_faces == 0) return;
+        for (std::size_t i = 0; i < corners_.size(); ++i)
+            for (Index k = nb_offset_[i]; k < nb_offset_[i + 1]; ++k)
+                if (nb_[k] != Index(i) && inverted[nb_[k]]) spatial_[k] = 0;
     }
 
     void filter_normals() {
@@ -383,6 +473,8 @@ private:
         guidance_.assign(nf, Vector3::Zero());
         patch_mean_.assign(nf, Vector3::Zero());
         patch_score_.assign(nf, 0.0);
+        vertex_best_.assign(mesh_.vertices_size(), kNone);
+        packed_.assign(nf, {0, 0, 0, 0});
     }
 
     /// Every face's guidance normal from the current normals.
@@ -401,14 +493,47 @@ private:
             }
         }
         for_ranges(nf, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t f = begin; f < end; ++f) {
+                const Vector3& n = normal_[f];
+                packed_[f] = {float(n.x()), float(n.y()), float(n.z()),
+                              float(area_[f] / mean_area_)};
+            }
+        });
+        for_ranges(nf, [&](std::size_t begin, std::size_t end) {
             for (std::size_t j = begin; j < end; ++j) score_patch(j, phi, vsum, vmax);
+        });
+        if (!sector_.empty()) {  // features: N(i) is no longer every face at i's corners
+            for_ranges(nf, [&](std::size_t begin, std::size_t end) {
+                for (std::size_t i = begin; i < end; ++i) {
+                    if (!active_[i]) continue;
+                    Index best = kNone;
+                    for (Index k = nb_offset_[i]; k < nb_offset_[i + 1]; ++k)
+                        if (best == kNone || patch_score_[nb_[k]] < patch_score_[best])
+                            best = nb_[k];
+                    guidance_[i] = best == kNone ? normal_[i] : patch_mean_[best];
+                }
+            });
+            return guidance_;
+        }
+        // The patches containing face i are N(j) for the faces j at its corners, so the best
+        // one is the best of each corner's best (3 look-ups a face, not one per neighbour).
+        for_ranges(nv, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t v = begin; v < end; ++v) {
+                Index best = kNone;
+                for (Index k = vf_offset_[v]; k < vf_offset_[v + 1]; ++k)
+                    if (best == kNone || patch_score_[vf_[k]] < patch_score_[best]) best = vf_[k];
+                vertex_best_[v] = best;
+            }
         });
         for_ranges(nf, [&](std::size_t begin, std::size_t end) {
             for (std::size_t i = begin; i < end; ++i) {
                 if (!active_[i]) continue;
                 Index best = kNone;
-                for (Index k = nb_offset_[i]; k < nb_offset_[i + 1]; ++k)
-                    if (best == kNone || patch_score_[nb_[k]] < patch_score_[best]) best = nb_[k];
+                for (Index v : corners_[i]) {
+                    const Index b = vertex_best_[v];
+                    if (b != kNone && (best == kNone || patch_score_[b] < patch_score_[best]))
+                        best = b;
+                }
                 guidance_[i] = best == kNone ? normal_[i] : patch_mean_[best];
             }
         });
@@ -416,38 +541,71 @@ private:
     }
 
     /// The area-weighted mean normal (normalized) of the faces nb_[begin, end), and the smallest
-    /// dot product of two of their normals (all pairs; the normals are copied side by side, in
-    /// single precision, plenty for D, where they fit: the usual patch has about 13).
+    /// dot product of two of their normals (all pairs). The normals are copied side by side in
+    /// single precision (plenty for D) into lanes of a fixed width (16 or 32; the usual patch
+    /// has about 13 faces): each offset is then a fixed-length pass over independent lanes
+    /// that the compiler vectorizes, not a chain of scalar minima (patch_normals_lanes()).
     std::pair<Vector3, double> patch_normals(Index begin, Index end) const {
-        constexpr Index kLocal = 64;
-        Vector3 mean = Vector3::Zero();
-        if (end - begin > kLocal) {
-            double min_dot = 1;
-            for (Index a = begin; a < end; ++a) {
-                mean += area_[nb_[a]] * normal_[nb_[a]];
-                for (Index b = a + 1; b < end; ++b)
-                    min_dot = std::min(min_dot, normal_[nb_[a]].dot(normal_[nb_[b]]));
-            }
-            return {mean, min_dot};
-        }
-        float x[kLocal], y[kLocal], z[kLocal];
         const Index m = end - begin;
-        for (Index a = 0; a < m; ++a) {
-            const Vector3& n = normal_[nb_[begin + a]];
-            mean += area_[nb_[begin + a]] * n;
-            x[a] = float(n.x());
-            y[a] = float(n.y());
-            z[a] = float(n.z());
+        if (m <= 16) return patch_normals_lanes<16>(begin, end);
+        if (m <= 32) return patch_normals_lanes<32>(begin, end);
+        Vector3 mean = Vector3::Zero();
+        double min_dot = 1;
+        for (Index a = begin; a < end; ++a) {
+            mean += area_[nb_[a]] * normal_[nb_[a]];
+            for (Index b = a + 1; b < end; ++b)
+                min_dot = std::min(min_dot, normal_[nb_[a]].dot(normal_[nb_[b]]));
         }
-        float smallest = 1;
-        for (Index a = 0; a + 1 < m; ++a) {
-            float row[kLocal];
-            const Index count = m - a - 1;
-            const float *xb = x + a + 1, *yb = y + a + 1, *zb = z + a + 1;
-            for (Index b = 0; b < count; ++b) row[b] = x[a] * xb[b] + y[a] * yb[b] + z[a] * zb[b];
-            for (Index b = 0; b < count; ++b) smallest = row[b] < smallest ? row[b] : smallest;
+        return {mean, min_dot};
+    }
+
+    /// Four single-precision lanes (GCC and Clang vector extension: SSE, NEON or scalar code).
+    typedef float Lanes4 __attribute__((vector_size(16)));
+
+    /// The normals are written twice over, x[t] = x[t mod m] for t < 2 · Lanes: lane b of
+    /// offset s is the pair (b, b + s), and the offsets 1 to m / 2 cover every pair of the m
+    /// normals (offsets s and m − s give the same pairs; the lanes past m repeat pairs).
+    template <int Lanes>
+    std::pair<Vector3, double> patch_normals_lanes(Index begin, Index end) const {
+        constexpr int kGroupCount = Lanes / 4;
+        alignas(16) float x[2 * Lanes], y[2 * Lanes], z[2 * Lanes];
+        float mx = 0, my = 0, mz = 0;
+        const int m = int(end - begin);
+        for (int a = 0; a < m; ++a) {
+            const std::array<float, 4>& n = packed_[nb_[begin + Index(a)]];
+            x[a] = n[0];
+            y[a] = n[1];
+            z[a] = n[2];
+            mx += n[3] * n[0];
+            my += n[3] * n[1];
+            mz += n[3] * n[2];
         }
-        return {mean, double(smallest)};
+        for (int t = m; t < 2 * Lanes; ++t) {
+            x[t] = x[t - m];
+            y[t] = y[t - m];
+            z[t] = z[t - m];
+        }
+        Lanes4 vx[kGroupCount], vy[kGroupCount], vz[kGroupCount], low[kGroupCount];
+        for (int g = 0; g < kGroupCount; ++g) {
+            std::memcpy(&vx[g], x + 4 * g, sizeof(Lanes4));
+            std::memcpy(&vy[g], y + 4 * g, sizeof(Lanes4));
+            std::memcpy(&vz[g], z + 4 * g, sizeof(Lanes4));
+            low[g] = Lanes4{1, 1, 1, 1};
+        }
+        for (int offset = 1; offset <= m / 2; ++offset) {
+            for (int g = 0; g < kGroupCount; ++g) {
+                Lanes4 sx, sy, sz;
+                std::memcpy(&sx, x + 4 * g + offset, sizeof(Lanes4));
+                std::memcpy(&sy, y + 4 * g + offset, sizeof(Lanes4));
+                std::memcpy(&sz, z + 4 * g + offset, sizeof(Lanes4));
+                const Lanes4 d = vx[g] * sx + vy[g] * sy + vz[g] * sz;
+                low[g] = d < low[g] ? d : low[g];
+            }
+        }
+        for (int g = 1; g < kGroupCount; ++g) low[0] = low[g] < low[0] ? low[g] : low[0];
+        const float smallest =
+            std::min(std::min(low[0][0], low[0][1]), std::min(low[0][2], low[0][3]));
+        return {Vector3(mx, my, mz), double(smallest)};
     }
 
     /// Patch N(j)'s consistency D · R and its area-weighted mean normal.
@@ -505,6 +663,15 @@ private:
             }
             report_.vertex_iterations_done = it + 1;
         }
+        if (folded == 0) return;
+        // The last iteration left folds (the ones before may, on the way to untangling the
+        // faces the noise turned over): keep its state but where it folds, there going back
+        // towards the last state without folds.
+        const std::vector<Point> base = good_iterations == 0 ? input_positions() : good;
+        if (good_iterations == 0 || !good.empty()) {
+            hold_folds(pos_, base);
+            folded = count_folds();
+        }
         if (folded > 0) stop(o_.vertex_iterations - 1, folded, good_iterations, good);
     }
 
@@ -553,7 +720,9 @@ private:
                     n += normal_[f];
                 }
                 delta /= double(fe - fb);
-                if (area > 0) {  // the tangential relaxation
+                // The tangential relaxation (not on features: it would pull a crease's
+                // vertices off its line and round a corner).
+                if (area > 0 && (feature_vertex_.empty() || !feature_vertex_[v])) {
                     n = normalized_or(n, Vector3::Zero());
                     Vector3 t = mean / area - pos_[v];
                     t -= n * n.dot(t);
@@ -565,6 +734,37 @@ private:
             if (!ok) finite = false;
         });
         finite_ = finite;
+    }
+
+    /// Whether area vector `a` of face f is a fold: no area, or on the far side of the face's
+    /// filtered normal (and the face did not start there).
+    bool folds(const Vector3& a, std::size_t f) const {
+        return !(a.norm() > degenerate_area_) ||
+               (!inverted_at_start_[f] && !(a.dot(normal_[f]) > 0));
+    }
+
+    /// Unfolds `next` towards `base`, a state without folds: the corners of a face that `next`
+    /// folds go half way back to their places in `base`, up to kHalvings times, then all the
+    /// way back; again until no face folds (at worst every vertex is back in `base`). Counts
+    /// the vertices held back in the report. O(F) a round.
+    void hold_folds(std::vector<Point>& next, const std::vector<Point>& base) {
+        constexpr int kHalvings = 4;
+        std::vector<Index> marked, held;
+        for (int round = 0; round <= kHalvings + int(corners_.size()); ++round) {
+            marked.clear();
+            for (std::size_t f = 0; f < corners_.size(); ++f)
+                if (has_normal(f) && folds(area_vector(next, f), f))
+                    for (Index v : corners_[f]) marked.push_back(v);
+            if (marked.empty()) break;
+            std::sort(marked.begin(), marked.end());
+            marked.erase(std::unique(marked.begin(), marked.end()), marked.end());
+            for (Index v : marked) {
+                next[v] = round < kHalvings ? Point(0.5 * (base[v] + next[v])) : base[v];
+                held.push_back(v);
+            }
+        }
+        std::sort(held.begin(), held.end());
+        report_.held_vertices = std::size_t(std::unique(held.begin(), held.end()) - held.begin());
     }
 
     /// Untangles the faces that `next` leaves on the far side of their filtered normals: each
@@ -610,9 +810,7 @@ private:
             std::size_t count = 0;
             for (std::size_t f = begin; f < end; ++f) {
                 if (!has_normal(f)) continue;
-                const Vector3 a = area_vector(pos_, f);
-                count += !(a.norm() > degenerate_area_) ||
-                         (!inverted_at_start_[f] && !(a.dot(normal_[f]) > 0));
+                count += folds(area_vector(pos_, f), f);
             }
             folded += count;
         });
@@ -675,6 +873,17 @@ private:
     std::vector<std::array<Index, 3>> face_edges_;
     std::vector<Vector3> guidance_, patch_mean_;
     std::vector<double> patch_score_;
+    /// Per face its normal and area over the mean area, in single precision side by side (the
+    /// patches' gathers read 16 bytes a face).
+    std::vector<std::array<float, 4>> packed_;
+    std::vector<Index> vertex_best_;
+    /// Features: each face corner's sector around its vertex, and the feature vertices (empty
+    /// without features).
+    std::vector<std::uint16_t> sector_;
+    std::vector<std::uint8_t> feature_vertex_;
+    /// Per face its normal and range vector in single precision (filter_once()).
+    std::vector<std::array<float, 6>>
+        filter_input_;  ///< per vertex, the face of best patch score around it
     bool finite_ = true;
 };
 
@@ -682,6 +891,11 @@ private:
 
 DenoiseReport denoise(HalfedgeMesh& mesh, const DenoiseOptions& options, Progress& progress) {
     check_options(mesh, options);
+    if (options.features == FeatureSource::Auto) {
+        FeatureDetectionOptions d;
+        d.angle_deg = options.feature_angle;
+        detect_features(mesh, d);
+    }
     Denoiser run(mesh, options, progress);
     const DenoiseReport report = run.run();
     if (report.vertex_iterations_done > 0) {

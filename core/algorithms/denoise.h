@@ -19,8 +19,8 @@
 //    side of a crease guides the faces near it, so creases stay sharp under strong noise.
 // Before either filter, a face whose normal points away from the area-weighted mean normal of
 // the faces around it (turned over by the noise: a tangential displacement folds a small
-// triangle) starts from that mean, since no range kernel can bring it back
-// (DenoiseReport::inverted_faces).
+// triangle) starts from that mean, since no range kernel can bring it back, and takes no part
+// in its neighbours' filtering (DenoiseReport::inverted_faces).
 // Then `vertex_iterations` steps of the vertex update of Sun, Rosin, Martin, Langbein,
 // "Fast and effective feature-preserving mesh denoising" (IEEE TVCG 2007):
 //        x_i += 1/|F_i| · sum over faces f at x_i of  n_f (n_f · (c_f − x_i)),
@@ -31,6 +31,19 @@
 // a face left on the far side of its filtered normal then move to the mean of their neighbours
 // along that plane, which untangles the faces the noise turned over.
 //
+// Features (DenoiseOptions::features, core/features.h): the sharp edges (sharpness > 0) cut the
+// faces around each vertex into sectors, and N(i) keeps only the faces in face i's sector at
+// every corner they share with it, so no normal is averaged with one across a sharp edge (the
+// guided filter's patches are these N(j) too: one-sided at a crease). The vertices on a sharp
+// edge and the tagged corners move by Sun et al.'s update only (no tangential relaxation), so
+// a tagged crease is never blurred. At a dart (an inner vertex with one sharp edge: where a
+// crease fades out) the fan is also cut at the edge half way round from the sharp one, so the
+// two sides stay apart up to the crease's tip. Measured on the clean fandisk with its features
+// detected at 60 degrees (700 edges): the dihedral angles across them change by 0.64 degrees
+// (median; mean 1.5, largest 20) against 0.94 (mean 4.3, largest 78) without the features;
+// the edges that move most are next to a crease's faded tip or an untagged crease, whose faces
+// the filter may still smooth.
+//
 // Region (DenoiseOptions::region): faces with no vertex of positive weight keep their normals
 // (they still guide their neighbours); each vertex update is scaled by the vertex's weight, so
 // weight-0 vertices stay bit for bit and an all-ones region gives the whole-mesh result.
@@ -39,25 +52,31 @@
 // (DenoiseReport::degenerate_faces). Isolated vertices do not move. Boundary vertices move like
 // the others (they have fewer faces).
 // Never a silent failure: a face that ends on the far side of its filtered normal (and did not
-// start there) or without area is a fold; a run whose last vertex iteration leaves folds goes
+// start there) or without area is a fold. The iterations on the way may leave folds (untangling
+// the faces the noise turned over passes through them); where the last one does, the corners
+// of each folded face go half way back to the last state without folds, up to four times, then
+// all the way back, until no face folds (DenoiseReport::held_vertices counts them: the rest of
+// the mesh keeps the last iteration's result). As a guard, a run that still leaves folds goes
 // back to the state after the last iteration that left none, and the report says so and how
-// many faces folded (stopped_early, folded_faces, stop_reason); a non-finite position stops the
-// run at once, at that same state. Only positions change (and "v:normal" is recomputed when the
+// many faces folded (stopped_early, folded_faces, stop_reason); a non-finite position stops
+// the run at once, at that same state. Only positions change (and "v:normal" is recomputed when the
 // mesh carries it).
 // Throws InvalidArgument before changing anything, naming the option: iterations out of range,
 // sigma_s or sigma_r not finite or not positive (or too large), a mesh without faces, a
 // non-finite position, a region that does not fit the mesh; Cancelled from the progress, the
 // mesh then unchanged.
-// Complexity: O(F · m) per normal iteration, m the faces per neighbourhood (about 13 on
-// regular meshes; the guided filter adds O(F · m²) for the patches' largest normal difference),
-// O(V + F) per vertex iteration (and the neighbours of the faces left inverted); memory
-// O(F · m). Large meshes (65,536 faces and more) are worked on with their faces and vertices
-// in a spatial (Morton) order inside the run, and their passes run on two threads.
+// Complexity (features add O(F · m) once, for the sectors): O(F · m) per normal iteration, m the
+// faces per neighbourhood (about 13 on regular meshes; the guided filter adds O(F · m²) for the
+// patches' largest normal difference), O(V + F) per vertex iteration (and the neighbours of the
+// faces left inverted); memory O(F · m). Large meshes (65,536 faces and more) are worked on with
+// their faces and vertices in a spatial (Morton) order inside the run, and their passes run on two
+// threads.
 #include <cstddef>
 #include <string>
 #include <vector>
 
 #include "core/enum_table.h"
+#include "core/features.h"
 #include "core/halfedge_mesh.h"
 #include "core/progress.h"
 
@@ -88,6 +107,12 @@ struct DenoiseOptions {
     /// (0, 100]; small values keep more edges, large ones smooth more (as sigma_r grows the
     /// filter becomes a plain area-and-distance-weighted average of the normals).
     double sigma_r = 0.35;
+    /// Stored features (core/features.h) are honoured: no normal is filtered with those across
+    /// a sharp edge from it, and the vertices on sharp edges and tagged corners get no
+    /// tangential relaxation. None ignores them; Auto first detects them at `feature_angle`
+    /// (core/algorithms/feature_detection.h: the result carries them).
+    FeatureSource features = FeatureSource::Stored;
+    double feature_angle = 60.0;  ///< FeatureSource::Auto: the angle, in (0, 180]
     /// The region (core/algorithms/selection.h): one weight in [0, 1] per vertex storage index,
     /// or nullptr for the whole mesh. Not owned.
     const std::vector<float>* region = nullptr;
@@ -100,6 +125,8 @@ struct DenoiseReport {
     /// Faces turned over by the noise (normal away from the mean normal around them): their
     /// filtering starts from that mean.
     std::size_t inverted_faces = 0;
+    std::size_t feature_edges = 0;     ///< sharp edges honoured (0 without features)
+    std::size_t feature_vertices = 0;  ///< their vertices and the tagged corners
     int normal_iterations_done = 0;
     int vertex_iterations_done = 0;  ///< the good ones (the state kept)
     /// Mean and largest angle (degrees) between the input's and the filtered face normals.
@@ -111,6 +138,9 @@ struct DenoiseReport {
     /// after `vertex_iterations_done` iterations.
     bool stopped_early = false;
     std::size_t folded_faces = 0;  ///< faces the last vertex iteration left folded
+    /// Vertices the last iteration left folding a face, moved back towards the last state
+    /// without folds (see the file comment).
+    std::size_t held_vertices = 0;
     std::string stop_reason;
 };
 

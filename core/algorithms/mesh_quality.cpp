@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "core/geometry.h"
 
 namespace trilab {
 namespace {
@@ -131,6 +132,88 @@ MeshQuality mesh_quality(const HalfedgeMesh& mesh, std::optional<double> length)
     q.valence6 = q.interior_vertices ? double(v6) / double(q.interior_vertices) : 0.0;
     q.valence4_boundary = q.boundary_vertices ? double(v4) / double(q.boundary_vertices) : 0.0;
     return q;
+}
+
+namespace {
+
+/// The cotangent of the corner opposite to halfedge h, or nothing for a face without area.
+std::optional<double> opposite_cotangent(const HalfedgeMesh& mesh, Halfedge h) {
+    const Point& a = mesh.position(mesh.from_vertex(h));
+    const Point& b = mesh.position(mesh.to_vertex(h));
+    const Point& c = mesh.position(mesh.to_vertex(mesh.next(h)));
+    const Vector3 u = a - c, w = b - c;
+    const double sin_scaled = u.cross(w).norm();
+    if (!(sin_scaled > 0) || !std::isfinite(sin_scaled)) return std::nullopt;
+    return u.dot(w) / sin_scaled;
+}
+
+/// The largest over the smallest positive value of `v` (0 when none is positive).
+double positive_ratio(const std::vector<double>& v) {
+    double low = std::numeric_limits<double>::infinity(), high = 0;
+    for (double x : v)
+        if (x > 0) {
+            low = std::min(low, x);
+            high = std::max(high, x);
+        }
+    return high > 0 ? high / low : 0.0;
+}
+
+}  // namespace
+
+CotangentSpread cotangent_spread(const HalfedgeMesh& mesh) {
+    CotangentSpread s;
+    std::vector<double> diagonal(mesh.vertices_size(), 0.0), mass(mesh.vertices_size(), 0.0);
+    for (Face f : mesh.faces()) {
+        const auto c = mesh.face_vertices(f);
+        const double third = face_area(mesh, f) / 3.0;
+        for (Vertex v : c) mass[v.idx()] += third;
+    }
+    std::vector<double> magnitude;
+    magnitude.reserve(mesh.n_edges());
+    bool first = true;
+    for (Edge e : mesh.edges()) {
+        double w = 0;
+        for (unsigned side = 0; side < 2; ++side) {
+            const Halfedge h = HalfedgeMesh::halfedge(e, side);
+            if (mesh.is_boundary(h)) continue;
+            const std::optional<double> cot = opposite_cotangent(mesh, h);
+            if (cot)
+                w += 0.5 * *cot;
+            else
+                ++s.degenerate_corners;
+        }
+        ++s.edges;
+        s.negative_weights += w < 0;
+        s.min_weight = first ? w : std::min(s.min_weight, w);
+        s.max_weight = first ? w : std::max(s.max_weight, w);
+        first = false;
+        magnitude.push_back(std::abs(w));
+        diagonal[mesh.vertex(e, 0).idx()] += w;
+        diagonal[mesh.vertex(e, 1).idx()] += w;
+    }
+    s.negative_share = s.edges ? double(s.negative_weights) / double(s.edges) : 0.0;
+    if (!magnitude.empty()) {
+        auto middle = magnitude.begin() + std::ptrdiff_t(magnitude.size() / 2);
+        std::nth_element(magnitude.begin(), middle, magnitude.end());
+        const double median = *middle;
+        const double largest = *std::max_element(magnitude.begin(), magnitude.end());
+        s.weight_ratio = median > 0 ? largest / median : 0.0;
+    }
+    std::vector<double> k, normalized;
+    for (Vertex v : mesh.vertices()) {
+        if (mesh.is_isolated(v)) continue;
+        ++s.vertices;
+        const double d = diagonal[v.idx()];
+        if (!(d > 0)) {
+            ++s.nonpositive_diagonal;
+            continue;
+        }
+        k.push_back(d);
+        if (mass[v.idx()] > 0) normalized.push_back(d / mass[v.idx()]);
+    }
+    s.diagonal_ratio = positive_ratio(k);
+    s.normalized_diagonal_ratio = positive_ratio(normalized);
+    return s;
 }
 
 }  // namespace trilab

@@ -47,4 +47,31 @@ struct MeshQuality {
 /// The figures above; `length` is L for the band (absent: the mean edge length).
 MeshQuality mesh_quality(const HalfedgeMesh& mesh, std::optional<double> length = std::nullopt);
 
+/// The spread of the cotangent Laplacian L = -M⁻¹K (Pinkall and Polthier 1993; Meyer et al.
+/// 2003): what makes curvature-flow fairing and the spectral decomposition suffer on a mesh
+/// with bad triangles, and what remeshing improves (the spectral lens shows it before and
+/// after an operation). With w_ij = (cot a_ij + cot b_ij) / 2 the weight of edge ij (the
+/// corners opposite it; one corner on the boundary), K's diagonal entry at vertex i is
+/// k_i = sum_j w_ij and M's is m_i = a third of the area of the faces at i.
+/// No preconditions: a mesh without faces gives zeros. A corner of a face without area has no
+/// cotangent (counted in degenerate_corners, its weight left out). O(V + E + F).
+struct CotangentSpread {
+    std::size_t edges = 0;
+    std::size_t negative_weights = 0;  ///< edges with w_ij < 0 (not Delaunay)
+    double negative_share = 0;         ///< of the edges
+    double min_weight = 0, max_weight = 0;
+    /// The largest |w_ij| over the median |w_ij| (1 inside a grid of equilateral triangles;
+    /// a corner of 1 degree alone gives about 57; 0 when the median is 0).
+    double weight_ratio = 0;
+    std::size_t degenerate_corners = 0;  ///< corners of faces without area
+    std::size_t vertices = 0;            ///< live vertices with faces
+    /// Vertices whose diagonal k_i is not positive (their row of K is indefinite).
+    std::size_t nonpositive_diagonal = 0;
+    /// The largest k_i over the smallest positive one, and the same for k_i / m_i (the
+    /// diagonal of L itself, where the mesh's size drops out: the spread of the time scales an
+    /// explicit step must respect). 0 where no vertex has a positive one.
+    double diagonal_ratio = 0, normalized_diagonal_ratio = 0;
+};
+CotangentSpread cotangent_spread(const HalfedgeMesh& mesh);
+
 }  // namespace trilab

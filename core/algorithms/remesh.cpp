@@ -19,11 +19,15 @@
 #include <vector>
 
 #include "core/algorithms/curvature.h"
+#include "core/algorithms/feature_detection.h"
 #include "core/algorithms/mesh_distance.h"
 #include "core/algorithms/spatial_order.h"
 #include "core/algorithms/texcoords.h"
+#include "core/enum_table.h"
 #include "core/errors.h"
+#include "core/features.h"
 #include "core/geometry.h"
+#include "core/number_text.h"
 #include "core/system_memory.h"
 #include "core/two_threads.h"
 
@@ -346,6 +350,21 @@ void check_options(const RemeshOptions& o) {
         throw InvalidArgument("remesh: iterations must be from 1 to " +
                               std::to_string(kMaxRemeshIterations) + ", got " +
                               std::to_string(o.iterations));
+    if (o.features != FeatureSource::Stored && o.features != FeatureSource::None &&
+        o.features != FeatureSource::Auto)
+        throw InvalidArgument("remesh: features must be " +
+                              enum_ids(EnumTableView(kFeatureSources)));
+    if (o.features == FeatureSource::Auto && !(o.feature_angle > 0 && o.feature_angle <= 180))
+        throw InvalidArgument("remesh: feature_angle must be in (0, 180] degrees, got " +
+                              number_text(o.feature_angle));
+}
+
+/// Detects the features first where the options ask (Auto).
+void detect_if_asked(HalfedgeMesh& mesh, const RemeshOptions& o) {
+    if (o.features != FeatureSource::Auto) return;
+    FeatureDetectionOptions d;
+    d.angle_deg = o.feature_angle;
+    detect_features(mesh, d);
 }
 
 /// The weight of each vertex storage index: the region's, 1 without one; 0 for deleted
@@ -361,6 +380,11 @@ std::vector<float> initial_weights(const HalfedgeMesh& mesh, const RemeshOptions
             throw InvalidArgument("remesh: region weight of vertex " + std::to_string(v.idx()) +
                                   " is not in [0, 1]");
         w[v.idx()] = x;
+    }
+    if (o.features != FeatureSource::None && has_features(mesh)) {
+        const std::vector<float> near = feature_neighbourhood(mesh, 0);
+        for (Vertex v : mesh.vertices())
+            if (near[v.idx()] > 0) w[v.idx()] = 0.0f;
     }
     const auto huv = mesh.get_halfedge_property<TexCoord>("h:texcoord");
     if (!huv) return w;
@@ -1080,6 +1104,13 @@ void unscale_report(RemeshReport& r, const Plan& plan) {
 
 RemeshReport remesh_plan(const HalfedgeMesh& mesh, const RemeshOptions& options) {
     check_options(options);
+    if (options.features == FeatureSource::Auto) {  // detect on a copy: the plan changes nothing
+        HalfedgeMesh detected = mesh;
+        detect_if_asked(detected, options);
+        Plan plan = make_plan(detected, options, initial_weights(detected, options));
+        unscale_report(plan.report, plan);
+        return plan.report;
+    }
     Plan plan = make_plan(mesh, options, initial_weights(mesh, options));
     unscale_report(plan.report, plan);
     return plan.report;
@@ -1088,9 +1119,19 @@ RemeshReport remesh_plan(const HalfedgeMesh& mesh, const RemeshOptions& options)
 RemeshReport remesh(HalfedgeMesh& mesh, const RemeshOptions& options, Progress& progress) {
     const auto t0 = std::chrono::steady_clock::now();
     check_options(options);
+    if (options.features == FeatureSource::Auto) {
+        HalfedgeMesh detected = mesh;  // the mesh changes only once the plan holds
+        detect_if_asked(detected, options);
+        make_plan(detected, options, initial_weights(detected, options));
+        mesh = std::move(detected);
+    }
     std::vector<float> weights = initial_weights(mesh, options);
     Plan plan = make_plan(mesh, options, weights);
     RemeshReport& r = plan.report;
+    if (options.features != FeatureSource::None && has_features(mesh)) {
+        const std::vector<float> near = feature_neighbourhood(mesh, 0);
+        for (Vertex v : mesh.vertices()) r.feature_vertices += near[v.idx()] > 0;
+    }
     for (float x : weights)
         if (!(x > 0.0f)) ++r.locked_vertices;
     r.locked_vertices -= mesh.vertices_size() - mesh.n_vertices();

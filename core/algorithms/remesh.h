@@ -31,9 +31,12 @@
 // are kept as they are: their vertices and the faces around them are frozen (as outside a
 // region); other corners and per-vertex "v:texcoord" and "v:color" take their values from the
 // input triangle a vertex lies on (barycentric interpolation); "v:normal" is recomputed. Other
-// attributes of new vertices take their default values. Sharp creases are not detected (the
-// features issue): relaxation may move a crease's vertices off it, so the chord error there
-// can reach about L/2 (the bunny's flat base).
+// attributes of new vertices take their default values. Stored features (options.features)
+// are frozen the same way: the vertices of every sharp edge and the tagged corners, with the
+// faces around them, stay as they are, so no sharp edge is split, collapsed, flipped or moved
+// (the band of faces along a crease keeps the input's triangles: its edges are not remeshed
+// along the crease). Untagged creases are not detected: relaxation may move a crease's
+// vertices off it, so the chord error there can reach about L/2 (the bunny's flat base).
 //
 // Region (options.region, core/algorithms/selection.h): only faces whose three corners have a
 // positive weight change, and only where every face at the edge or vertex involved is such a
@@ -61,6 +64,7 @@
 #include <string>
 #include <vector>
 
+#include "core/features.h"
 #include "core/halfedge_mesh.h"
 #include "core/progress.h"
 
@@ -84,6 +88,12 @@ struct RemeshOptions {
     double adaptive = 0;
     /// Project the moved vertices back onto the input surface (step 5).
     bool project = true;
+    /// Stored features (core/features.h) are kept: the ends of every sharp edge and the tagged
+    /// corners are frozen with the faces around them, so every sharp edge and corner stays as
+    /// it is. None remeshes across them; Auto first detects them at `feature_angle`
+    /// (core/algorithms/feature_detection.h; the result carries them).
+    FeatureSource features = FeatureSource::Stored;
+    double feature_angle = 60.0;  ///< FeatureSource::Auto: the angle, in (0, 180]
     /// The region (one weight in [0, 1] per vertex storage index), or nullptr for the whole
     /// mesh. Not owned.
     const std::vector<float>* region = nullptr;
@@ -100,7 +110,8 @@ struct RemeshReport {
     std::size_t available_bytes = 0;  ///< what the process may still allocate
     std::size_t output_faces = 0, output_vertices = 0;
     std::size_t splits = 0, collapses = 0, flips = 0, angle_flips = 0;
-    std::size_t locked_vertices = 0;  ///< vertices kept as they are (seams, region border)
+    std::size_t locked_vertices = 0;   ///< vertices kept as they are (seams, region border)
+    std::size_t feature_vertices = 0;  ///< of which on sharp edges or tagged corners
     int iterations_done = 0;
     double ms = 0;
 };

@@ -181,12 +181,12 @@ check "denoise refuses a bad sigma naming the option, and writes nothing" bash -
      grep -q -- '--sigma-r' '$tmp/e' && [ ! -e '$tmp/bad.obj' ] && \
      ! '$cli' denoise --sigma-s nan '$tmp/blkn.obj' '$tmp/bad.obj' 2> '$tmp/e' && \
      grep -q -- '--sigma-s' '$tmp/e' && [ ! -e '$tmp/bad.obj' ]"
-check "denoise that folds faces exits 4 and writes nothing (--keep-partial writes)" bash -c \
+check "denoise whose last iteration folds faces holds their vertices back and says so" bash -c \
     "'$cli' generate grid '$tmp/gr.obj' && '$cli' noise --distribution gaussian --sigma 2 \
      --direction random --seed 3 '$tmp/gr.obj' '$tmp/grn.obj' && \
      '$cli' denoise --method bilateral --normal-iterations 0 --vertex-iterations 200 \
-     '$tmp/grn.obj' '$tmp/fold.obj' 2> '$tmp/e'; [ \$? = 4 ] && [ ! -e '$tmp/fold.obj' ] && \
-     grep -q 'fold' '$tmp/e'"
+     '$tmp/grn.obj' '$tmp/fold.obj' --json > '$tmp/fold.json' && [ -s '$tmp/fold.obj' ] && \
+     grep -Eq '\"held_vertices\": [1-9]' '$tmp/fold.json' && grep -q 'held back' '$tmp/fold.json'"
 check "smooth --json names the solver of implicit steps" bash -c \
     "'$cli' smooth --operator umbrella --integration implicit --step 1 --iterations 2 \
      '$tmp/d.obj' '$tmp/sm.obj' --json | grep -Eq '\"solver\": \"(SimplicialLDLT|ConjugateGradient)'"
@@ -661,7 +661,16 @@ check "info --quality prints the quality figures and their JSON keys" bash -c \
     "'$cli' info '$tmp/d.obj' --quality | grep -q 'valence 6' && \
      '$cli' info '$tmp/d.obj' --quality --length 0.1 --json > '$tmp/q.json' && \
      $(declare -f json_has); json_has '$tmp/q.json' quality min_angle mean_min_angle \
-     angles_under_30 min_q mean_q edges_in_band valence6 && grep -q '\"length\": 0.1' '$tmp/q.json'"
+     angles_under_30 min_q mean_q edges_in_band valence6 cotangent_laplacian negative_weights \
+     weight_ratio diagonal_ratio normalized_diagonal_ratio && grep -q '\"length\": 0.1' '$tmp/q.json'"
+check "denoise honours stored features and says so; --features none ignores them" bash -c \
+    "'$cli' generate block '$tmp/fb.obj' > /dev/null && \
+     '$cli' features --angle 60 '$tmp/fb.obj' '$tmp/fb.ply' > /dev/null && \
+     '$cli' denoise '$tmp/fb.ply' '$tmp/fd.ply' --json > '$tmp/fd.json' && \
+     grep -Eq '\"feature_edges\": [1-9]' '$tmp/fd.json' && \
+     '$cli' denoise '$tmp/fb.ply' '$tmp/fn.ply' --features none --json | grep -q '\"feature_edges\": 0' && \
+     ! '$cli' denoise '$tmp/fb.ply' '$tmp/fx.ply' --feature-angle 30 2> '$tmp/e' && \
+     grep -q 'features auto' '$tmp/e'"
 check "info refuses --length without --quality" bash -c \
     "! '$cli' info '$tmp/d.obj' --length 1 2> '$tmp/e' && grep -q -- '--quality' '$tmp/e'"
 # Scripts and the command line (issue 23, item 12).

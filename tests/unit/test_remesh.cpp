@@ -9,14 +9,17 @@
 #include <vector>
 
 #include "app/ops/operation.h"
+#include "core/algorithms/feature_detection.h"
 #include "core/algorithms/generators.h"
 #include "core/algorithms/mesh_distance.h"
 #include "core/algorithms/mesh_quality.h"
 #include "core/algorithms/mesh_stats.h"
 #include "core/algorithms/morph.h"
+#include "core/algorithms/noise.h"
 #include "core/algorithms/remesh.h"
 #include "core/algorithms/selection.h"
 #include "core/errors.h"
+#include "core/features.h"
 #include "core/geometry.h"
 #include "core/mesh_builder.h"
 #include "test_helpers.h"
@@ -181,6 +184,119 @@ TEST_CASE("remesh removes 1-degree triangles and keeps the square's boundary", "
     // About the predicted count (area over the ideal triangle's, plus the boundary's share).
     CHECK(double(r.output_faces) > 0.7 * double(r.predicted_faces));
     CHECK(double(r.output_faces) < 1.5 * double(r.predicted_faces));
+}
+
+TEST_CASE(
+    "the cotangent Laplacian's spread: weights as geometry.h gives them, one negative "
+    "weight across a long diagonal, and remeshing shrinks the spread",
+    "[remesh][quality][spread]") {
+    // An independent count: cotangent_weight() per edge (geometry.h).
+    HalfedgeMesh sphere = make_icosphere(2);
+    NoiseOptions n;
+    n.amount_percent = 20;
+    add_noise(sphere, n);
+    const CotangentSpread s = cotangent_spread(sphere);
+    std::size_t negative = 0;
+    double low = 1e300, high = -1e300;
+    std::vector<double> magnitudes;
+    for (Edge e : sphere.edges()) {
+        const double w = cotangent_weight(sphere, e);
+        negative += w < 0;
+        low = std::min(low, w);
+        high = std::max(high, w);
+        magnitudes.push_back(std::abs(w));
+    }
+    CHECK(s.edges == sphere.n_edges());
+    CHECK(s.negative_weights == negative);
+    CHECK(s.min_weight == Approx(low));
+    CHECK(s.max_weight == Approx(high));
+    CHECK(s.vertices == sphere.n_vertices());
+    CHECK(s.degenerate_corners == 0);
+    std::sort(magnitudes.begin(), magnitudes.end());
+    CHECK(s.weight_ratio == Approx(magnitudes.back() / magnitudes[magnitudes.size() / 2]));
+    CHECK(s.diagonal_ratio >= 1.0);
+
+    // Two triangles over a long diagonal, their far corners at 169 degrees: its weight is
+    // negative, the others positive.
+    PolygonSoup kite;
+    kite.positions = {Point(0, 0, 0), Point(2, 0, 0), Point(1, 0.1, 0), Point(1, -0.1, 0)};
+    kite.add_face({0, 1, 2});
+    kite.add_face({1, 0, 3});
+    LoadReport report;
+    const CotangentSpread k = cotangent_spread(build_mesh(kite, report));
+    CHECK(k.negative_weights == 1);
+    CHECK(k.negative_share == Approx(1.0 / 5.0));
+    CHECK(k.min_weight < -4);
+    CHECK(cotangent_spread(HalfedgeMesh()).edges == 0);
+
+    // Remeshing the 1-degree square: the weights' and the diagonal's spreads drop.
+    const HalfedgeMesh needles = needle_square();
+    HalfedgeMesh m = needles;
+    RemeshOptions o;
+    o.length = 0.1;
+    remesh(m, o);
+    const CotangentSpread before = cotangent_spread(needles), after = cotangent_spread(m);
+    INFO("weight ratio " << before.weight_ratio << " -> " << after.weight_ratio
+                         << ", largest weight " << before.max_weight << " -> " << after.max_weight);
+    CHECK(before.max_weight > 25);  // cot 1 degree / 2
+    CHECK(after.max_weight < 2);
+    CHECK(after.weight_ratio < before.weight_ratio / 10);
+}
+
+namespace {
+
+/// The sharp edges of `mesh` as pairs of end positions (ordered), for comparing across a
+/// renumbering.
+std::set<std::array<double, 6>> sharp_edge_positions(const HalfedgeMesh& mesh) {
+    std::set<std::array<double, 6>> out;
+    for (Edge e : mesh.edges()) {
+        if (sharpness(mesh, e) <= 0) continue;
+        Point a = mesh.position(mesh.vertex(e, 0)), b = mesh.position(mesh.vertex(e, 1));
+        if (std::lexicographical_compare(b.data(), b.data() + 3, a.data(), a.data() + 3))
+            std::swap(a, b);
+        out.insert({a.x(), a.y(), a.z(), b.x(), b.y(), b.z()});
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("remesh keeps stored features: every sharp edge and corner stays as it is",
+          "[remesh][features]") {
+    HalfedgeMesh block = make_block(12, 9, 6);  // its 12 edges are its only sharp ones
+    FeatureDetectionOptions d;
+    d.angle_deg = 60;
+    const FeatureDetectionReport found = detect_features(block, d);
+    REQUIRE(found.feature_edges > 0);
+    REQUIRE(found.corners == 8);
+    const auto before = sharp_edge_positions(block);
+    RemeshOptions o;
+    o.relative = 0.7;
+    HalfedgeMesh kept = block;
+    const RemeshReport r = remesh(kept, o);
+    REQUIRE_VALID(kept);
+    CHECK(r.feature_vertices > 0);
+    CHECK(r.locked_vertices >= r.feature_vertices);
+    CHECK(sharp_edge_positions(kept) == before);
+    CHECK(classify_vertices(kept, false).corners == 8);
+    CHECK(kept.n_faces() > block.n_faces());  // the rest was remeshed finer
+    // Without them the sharp edges are split like the others (their ends move apart).
+    HalfedgeMesh ignored = block;
+    o.features = FeatureSource::None;
+    const RemeshReport none = remesh(ignored, o);
+    REQUIRE_VALID(ignored);
+    CHECK(none.feature_vertices == 0);
+    CHECK(sharp_edge_positions(ignored) != before);
+    // Auto detects them first; a bad angle is refused before anything changes.
+    HalfedgeMesh plain = make_block(12, 9, 6);
+    o.features = FeatureSource::Auto;
+    o.feature_angle = 60;
+    CHECK(remesh(plain, o).feature_vertices > 0);
+    CHECK(has_features(plain));
+    HalfedgeMesh untouched = make_block(12, 9, 6);
+    o.feature_angle = 0;
+    CHECK_THROWS_WITH(remesh(untouched, o), Catch::Contains("feature_angle"));
+    CHECK_FALSE(has_features(untouched));
 }
 
 TEST_CASE("remesh on a region leaves every face outside it bit for bit", "[remesh]") {
