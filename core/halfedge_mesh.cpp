@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/errors.h"
+#include "core/parallel.h"
 #include "core/two_threads.h"
 
 namespace trilab {
@@ -418,7 +419,7 @@ void HalfedgeMesh::apply_order(IndexRemap& remap, const std::vector<Index>& v_ke
     std::vector<Face> new_face;
     std::vector<Point> new_pos;
     const bool parallel =
-        h_keep.size() >= kParallelOrderMin && std::thread::hardware_concurrency() >= 2;
+        h_keep.size() >= kParallelOrderMin && unsigned(trilab::thread_count()) >= 2;
     on_two_threads(parallel, [&](int part) {  // the new arrays, zeroed and paged in by halves
         if (part == 0) {
             new_to.resize(h_keep.size());
