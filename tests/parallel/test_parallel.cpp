@@ -3,12 +3,16 @@
 // are big enough (over kBlock elements) that every pass is split over several blocks.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <stdexcept>
 #include <vector>
 
+#include "core/algorithms/coincident.h"
 #include "core/algorithms/fairing.h"
 #include "core/algorithms/generators.h"
 #include "core/algorithms/mesh_stats.h"
@@ -177,4 +181,56 @@ TEST_CASE("explicit fairing, normals, statistics: the same bits for 1, 2 and 7 t
     });
     CHECK(stats[1] == stats[0]);
     CHECK(stats[2] == stats[0]);
+}
+
+TEST_CASE("exact coincident groups: the same groups for 1, 2 and 7 threads, as a map finds them",
+          "[parallel]") {
+    // 30,000 points on a lattice; every 5th repeats an earlier one (some as -0 for +0).
+    std::vector<Point> p;
+    std::uint64_t state = 1;
+    for (int i = 0; i < 30000; ++i) {
+        if (i % 5 == 4) {
+            state = state * 6364136223846793005ull + 1442695040888963407ull;
+            Point q = p[std::size_t((state >> 33) % std::uint64_t(i))];
+            if (q.x() == 0) q.x() = -0.0;
+            p.push_back(q);
+        } else {
+            p.emplace_back(double(i % 31), double(i / 31 % 37), double(i / (31 * 37)));
+        }
+    }
+    const auto groups = with_1_2_7_threads([&] {
+        const CoincidentGroups g = find_coincident_points(p.data(), p.size());
+        return std::make_pair(g.members, g.offsets);
+    });
+    CHECK(groups[1] == groups[0]);
+    CHECK(groups[2] == groups[0]);
+    // Independently: each point's first equal point, groups of two or more ordered by it.
+    std::map<std::array<double, 3>, std::vector<Index>> by_point;
+    for (std::size_t i = 0; i < p.size(); ++i)
+        by_point[{p[i].x() == 0 ? 0.0 : p[i].x(), p[i].y(), p[i].z()}].push_back(Index(i));
+    std::vector<std::vector<Index>> expected;
+    for (const auto& [point, members] : by_point)
+        if (members.size() > 1) expected.push_back(members);
+    std::sort(expected.begin(), expected.end());
+    std::vector<std::vector<Index>> found;
+    const auto& [members, offsets] = groups[0];
+    for (std::size_t g = 0; g + 1 < offsets.size(); ++g)
+        found.emplace_back(members.begin() + std::ptrdiff_t(offsets[g]),
+                           members.begin() + std::ptrdiff_t(offsets[g + 1]));
+    CHECK(found == expected);
+    CHECK(found.size() > 1000);
+}
+
+TEST_CASE("components and validate(): the same for 1, 2 and 7 threads", "[parallel]") {
+    const HalfedgeMesh mesh = make_torus(120, 60, 2.0, 0.5);
+    const auto labels = with_1_2_7_threads([&] {
+        std::vector<Index> component;
+        const std::size_t n = label_components(mesh, component);
+        return std::make_pair(n, component);
+    });
+    CHECK(labels[0].first == 1);
+    CHECK(labels[1] == labels[0]);
+    CHECK(labels[2] == labels[0]);
+    const auto valid = with_1_2_7_threads([&] { return validate(mesh).ok; });
+    CHECK(valid == std::vector<bool>{true, true, true});
 }
