@@ -334,18 +334,42 @@ double lanczos_largest(const Eigen::VectorXd& d, const ApplyK& apply_k, int step
     q /= qn;
     std::vector<double> alpha, beta;
     double beta_prev = 0;
+    // The vector steps fused into three passes, each in fixed blocks on every thread with its
+    // sums added in block order (core/parallel.h): the same bits for any number of threads.
+    const auto sum = [](double x, double y) { return x + y; };
+    const auto rows = std::size_t(n);
     for (int j = 0; j < steps; ++j) {
-        u = d.cwiseProduct(q);
+        parallel_for(0, rows, [&](std::size_t i) {
+            u[Eigen::Index(i)] = d[Eigen::Index(i)] * q[Eigen::Index(i)];
+        });
         apply_k(u, w);
-        w = d.cwiseProduct(w);
-        const double a = w.dot(q);
+        const double a = parallel_reduce(
+            0, rows, 0.0,
+            [&](std::size_t begin, std::size_t end) {
+                double part = 0;
+                for (auto i = Eigen::Index(begin); i < Eigen::Index(end); ++i) {
+                    w[i] = d[i] * w[i];
+                    part += w[i] * q[i];
+                }
+                return part;
+            },
+            sum);
         alpha.push_back(a);
-        w -= a * q + beta_prev * q_prev;
-        const double b = w.norm();
+        const double b = std::sqrt(parallel_reduce(
+            0, rows, 0.0,
+            [&](std::size_t begin, std::size_t end) {
+                double part = 0;
+                for (auto i = Eigen::Index(begin); i < Eigen::Index(end); ++i) {
+                    w[i] -= a * q[i] + beta_prev * q_prev[i];
+                    part += w[i] * w[i];
+                }
+                return part;
+            },
+            sum));
         if (!std::isfinite(b) || b <= 1e-12 * std::abs(a)) break;
         if (j + 1 < steps) beta.push_back(b);
         q_prev.swap(q);
-        q = w / b;
+        parallel_for(0, rows, [&](std::size_t i) { q[Eigen::Index(i)] = w[Eigen::Index(i)] / b; });
         beta_prev = b;
     }
     const auto k = Eigen::Index(alpha.size());

@@ -104,7 +104,7 @@ TEST_CASE("parallel_reduce sums in block order: the same bits for 1, 2 and 7 thr
     CHECK(plain != expected);
 }
 
-TEST_CASE("a block's exception reaches the caller; nested loops run", "[parallel]") {
+TEST_CASE("a block's exception reaches the caller, and nested loops run", "[parallel]") {
     const auto outcomes = with_1_2_7_threads([] {
         std::atomic<long> total{0};
         parallel_for(0, 8 * kBlock, [&](std::size_t i) {
