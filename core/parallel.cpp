@@ -7,6 +7,8 @@
 #include <mutex>
 #include <thread>
 
+#include <unistd.h>
+
 #include "core/errors.h"
 
 namespace trilab {
@@ -46,21 +48,15 @@ struct Job {
 };
 
 /// The pool: workers wait for a job's generation; the first `wanted` of them join it. Grows on
-/// demand (thread_count() - 1 workers at most are used at once); joined at exit.
+/// demand (thread_count() - 1 workers at most are used at once).
 class Pool {
 public:
-    ~Pool() {
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            stop_ = true;
-        }
-        wake_.notify_all();
-        for (std::thread& t : workers_) t.join();
-    }
-
     /// Runs `job` on the calling thread and `helpers` workers. False (nothing run) when another
     /// thread's job holds the pool.
     bool run(Job& job, int helpers) {
+        // A child of fork() has none of the workers (and maybe a lock held at the fork): it
+        // runs its loops in order on its one thread.
+        if (::getpid() != owner_) return false;
         std::unique_lock<std::mutex> busy(busy_, std::try_to_lock);
         if (!busy.owns_lock()) return false;
         {
@@ -94,8 +90,7 @@ private:
             Job* job = nullptr;
             {
                 std::unique_lock<std::mutex> lock(mutex_);
-                wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
-                if (stop_) return;
+                wake_.wait(lock, [&] { return generation_ != seen; });
                 seen = generation_;
                 if (id >= wanted_) continue;
                 job = job_;
@@ -108,19 +103,21 @@ private:
         }
     }
 
-    std::mutex busy_;  // held by the thread whose job is in flight
+    const pid_t owner_ = ::getpid();  // the process whose threads these are
+    std::mutex busy_;                 // held by the thread whose job is in flight
     std::mutex mutex_;
     std::condition_variable wake_, done_;
     std::vector<std::thread> workers_;
     Job* job_ = nullptr;
     std::uint64_t generation_ = 0;
     int wanted_ = 0, active_ = 0;
-    bool stop_ = false;
 };
 
+/// Never destroyed: its workers wait for work until the process ends (a destructor would have
+/// to join them at exit, and a forked child, which has none of them, could not).
 Pool& pool() {
-    static Pool p;
-    return p;
+    static Pool* p = new Pool;
+    return *p;
 }
 
 int from_environment() {
