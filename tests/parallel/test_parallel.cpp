@@ -12,6 +12,9 @@
 #include <stdexcept>
 #include <vector>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include "core/algorithms/coincident.h"
 #include "core/algorithms/fairing.h"
 #include "core/algorithms/generators.h"
@@ -234,3 +237,31 @@ TEST_CASE("components and validate(): the same for 1, 2 and 7 threads", "[parall
     const auto valid = with_1_2_7_threads([&] { return validate(mesh).ok; });
     CHECK(valid == std::vector<bool>{true, true, true});
 }
+
+#if !defined(__SANITIZE_THREAD__)  // ThreadSanitizer does not support a multi-threaded fork
+TEST_CASE("a forked child runs its loops on its own thread (the pool's workers stay behind)",
+          "[parallel]") {
+    set_thread_count(2);
+    parallel_for(0, 4 * kBlock, [](std::size_t) {});  // the pool has its worker now
+    const pid_t child = fork();
+    REQUIRE(child >= 0);
+    if (child == 0) {
+        alarm(20);  // a loop waiting for the parent's workers would hang: SIGALRM ends it
+        std::vector<double> v = spread_values(8 * kBlock);
+        const double s = parallel_reduce(
+            0, v.size(), 0.0,
+            [&](std::size_t b, std::size_t e) {
+                double part = 0;
+                for (std::size_t i = b; i < e; ++i) part += v[i];
+                return part;
+            },
+            [](double a, double b) { return a + b; });
+        _exit(std::isfinite(s) ? 0 : 1);
+    }
+    int status = 0;
+    REQUIRE(waitpid(child, &status, 0) == child);
+    CHECK(WIFEXITED(status));
+    CHECK(WEXITSTATUS(status) == 0);
+    set_thread_count(0);
+}
+#endif
