@@ -1,7 +1,6 @@
 #include "core/algorithms/mesh_stats.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -14,6 +13,15 @@ namespace {
 
 /// The boundary scan's block: big, since few halfedges are on the boundary.
 constexpr std::size_t kScanBlock = std::size_t(1) << 16;
+
+/// Union-find root with path halving.
+Index find_root(std::vector<Index>& parent, Index v) {
+    while (parent[v] != v) {
+        parent[v] = parent[parent[v]];
+        v = parent[v];
+    }
+    return v;
+}
 
 }  // namespace
 
@@ -59,43 +67,23 @@ std::size_t count_boundary_loops(const HalfedgeMesh& mesh) {
 }
 
 std::size_t label_components(const HalfedgeMesh& mesh, std::vector<Index>& component) {
-    // Union-find over the edges on every thread (core/parallel.h), a root always being the
-    // smallest vertex of its set: a union links the larger of the two roots under the smaller
-    // by compare-and-swap, retrying when another thread moved either root first. The sets are
-    // the connected components whatever the order of the unions, and each set's root is its
-    // smallest vertex, so numbering the roots in vertex order numbers the components by their
-    // first vertex: the same labels for any number of threads.
-    const std::size_t nv = mesh.vertices_size();
-    std::vector<std::atomic<Index>> parent(nv);
-    parallel_for(0, nv,
-                 [&](std::size_t v) { parent[v].store(Index(v), std::memory_order_relaxed); });
-    const auto find = [&](Index v) {
-        for (;;) {  // with path halving: v's parent becomes its grandparent (an ancestor)
-            Index p = parent[v].load(std::memory_order_relaxed);
-            if (p == v) return v;
-            const Index g = parent[p].load(std::memory_order_relaxed);
-            if (g != p) parent[v].compare_exchange_weak(p, g, std::memory_order_relaxed);
-            v = g;
-        }
-    };
+    // Union-find over the edges, a root always being the smallest vertex of its set, so
+    // that numbering the roots in vertex order numbers the components by their first
+    // vertex. Linear in practice; reads the edges in storage order.
+    std::vector<Index> parent(mesh.vertices_size());
+    for (Index v = 0; v < parent.size(); ++v) parent[v] = v;
     const std::vector<Vertex>& to = mesh.halfedge_to_array();  // edge e: halfedges 2e, 2e+1
-    const bool garbage = mesh.has_garbage();
-    parallel_for(0, mesh.edges_size(), [&](std::size_t e) {
-        if (garbage && mesh.is_deleted(Edge(Index(e)))) return;
-        Index a = to[2 * e].idx(), b = to[2 * e + 1].idx();
-        for (;;) {
-            a = find(a);
-            b = find(b);
-            if (a == b) return;
-            if (a > b) std::swap(a, b);
-            Index expected = b;  // link root b under root a, unless b stopped being a root
-            if (parent[b].compare_exchange_strong(expected, a, std::memory_order_relaxed)) return;
-        }
-    });
-    component.assign(nv, kInvalidIndex);
+    for (Edge e : mesh.edges()) {
+        Index a = find_root(parent, to[2 * std::size_t(e.idx())].idx());
+        Index b = find_root(parent, to[2 * std::size_t(e.idx()) + 1].idx());
+        if (a == b) continue;
+        if (a > b) std::swap(a, b);
+        parent[b] = a;
+    }
+    component.assign(mesh.vertices_size(), kInvalidIndex);
     Index n = 0;
     for (Vertex v : mesh.vertices()) {
-        const Index root = find(v.idx());
+        const Index root = find_root(parent, v.idx());
         component[v.idx()] = root == v.idx() ? n++ : component[root];
     }
     return n;
