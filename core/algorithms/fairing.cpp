@@ -391,14 +391,20 @@ double stable_step_of(double rho) {
 /// either way; `pinned` vertices too); products by one pass over the edges.
 class UmbrellaOperator {
 public:
-    explicit UmbrellaOperator(const HalfedgeMesh& mesh, const Pinned* pinned = nullptr)
-        : mesh_(mesh), pinned_(pinned) {}
+    /// `gather`: the whole-mesh products gather each vertex's row (built once, on every thread)
+    /// instead of scattering over the edges on one thread; worth it from a few products on (a
+    /// run of several iterations, the stable-step estimate). The same bits either way.
+    explicit UmbrellaOperator(const HalfedgeMesh& mesh, const Pinned* pinned = nullptr,
+                              bool gather = true)
+        : mesh_(mesh), pinned_(pinned), gather_(gather) {}
 
     /// out = P + t·L·P (fixed vertices copied); the bounding boxes of P and out over the
     /// vertices with edges, and whether every new coordinate is finite and bounded.
     bool step(const Positions& P, double t, Positions& out, Box& box_before, Box& box_after) {
         if (restricted_) return step_moving(P, t, out, box_before, box_after);
+        if (!gather_) return step_scatter(P, t, out, box_before, box_after);
         if (!known_) find_fixed();
+        if (!rows_built_) build_rows();
         const std::size_t nv = P.size();
         out.resize(nv);  // every entry is written below
         // Each vertex sums its row (its neighbours in edge order: the bits of the edge-order
@@ -467,6 +473,7 @@ public:
     /// The Lanczos estimate of the largest stable explicit step.
     double max_stable_step(int steps) {
         if (!known_) find_fixed();
+        if (!restricted_ && !rows_built_) build_rows();  // apply_k() reads them
         const std::size_t nv = valence_.size();
         Eigen::VectorXd d = Eigen::VectorXd::Zero(Eigen::Index(nv));
         for (std::size_t v = 0; v < nv; ++v)
@@ -563,6 +570,18 @@ private:
             for (std::size_t v = lo; v < hi; ++v)
                 if (valence_[v] == 0 || (pinned_ && (*pinned_)[v])) fixed_[v] = 1;
         });
+        known_ = true;
+    }
+
+    /// Every vertex's row (its neighbours in the order of their edges' indices: row_offset_,
+    /// row_) by an owner scan over the edges, after find_fixed().
+    void build_rows() {
+        const std::size_t nv = mesh_.vertices_size(), ne = mesh_.edges_size();
+        const Vertex* to = mesh_.halfedge_to_array().data();
+        const bool garbage = mesh_.has_garbage();
+        const auto live = [&](std::size_t e) {
+            return !garbage || !mesh_.is_deleted(Edge(Index(e)));
+        };
         row_offset_.assign(nv + 1, 0);
         for (std::size_t v = 0; v < nv; ++v) row_offset_[v + 1] = row_offset_[v] + valence_[v];
         row_.resize(row_offset_[nv]);
@@ -577,7 +596,54 @@ private:
                 if (in_j) row_[fill[j - lo]++] = i;
             }
         });
-        known_ = true;
+        rows_built_ = true;
+    }
+
+    /// step() over the whole mesh on one thread, scattering over the edges (a run of one
+    /// product: building the rows would cost more than it saves); the first product also counts
+    /// the valences and finds the boundary.
+    bool step_scatter(const Positions& P, double t, Positions& out, Box& box_before,
+                      Box& box_after) {
+        const std::size_t nv = P.size();
+        out.assign(nv, Point::Zero());
+        if (!known_) {
+            valence_.assign(nv, 0);
+            fixed_.assign(nv, 0);
+            for (Edge e : mesh_.edges()) {
+                const Halfedge h = HalfedgeMesh::halfedge(e, 0), g = HalfedgeMesh::twin(h);
+                const Index i = mesh_.to_vertex(g).idx(), j = mesh_.to_vertex(h).idx();
+                out[i] += P[j];
+                out[j] += P[i];
+                ++valence_[i];
+                ++valence_[j];
+                if (mesh_.is_boundary(h) || mesh_.is_boundary(g)) fixed_[i] = fixed_[j] = 1;
+            }
+            for (std::size_t v = 0; v < nv; ++v)
+                if (valence_[v] == 0 || (pinned_ && (*pinned_)[v])) fixed_[v] = 1;
+            known_ = true;
+        } else {
+            for (Edge e : mesh_.edges()) {
+                const Halfedge h = HalfedgeMesh::halfedge(e, 0);
+                const Index i = mesh_.to_vertex(HalfedgeMesh::twin(h)).idx();
+                const Index j = mesh_.to_vertex(h).idx();
+                out[i] += P[j];
+                out[j] += P[i];
+            }
+        }
+        double sum = 0;
+        for (std::size_t v = 0; v < nv; ++v) {
+            const Point& p = P[v];
+            if (fixed_[v]) {
+                out[v] = p;
+                if (valence_[v] == 0) continue;
+            } else {
+                out[v] = p + t * (out[v] / double(valence_[v]) - p);
+                sum += out[v].x() + out[v].y() + out[v].z();
+            }
+            box_before.add(p);
+            box_after.add(out[v]);
+        }
+        return std::isfinite(sum) && box_after.bounded();
     }
 
     /// step() on the moving vertices only: out keeps the fixed vertices' positions from the
@@ -631,6 +697,8 @@ private:
     std::vector<std::uint8_t> fixed_;      ///< 1: does not move (boundary, isolated, deleted)
     std::vector<std::size_t> row_offset_;  ///< per vertex: its neighbours in row_
     std::vector<Index> row_;               ///< neighbours, each vertex's in edge order
+    bool gather_ = true;                   ///< products by rows (else the one-thread scatter)
+    bool rows_built_ = false;
     // restrict_to_moving():
     bool restricted_ = false;
     std::vector<Index> moving_;             ///< the vertices that move, in index order
@@ -1040,7 +1108,9 @@ void FairingRun::set_up(const Pinned& pinned) {
     const double diag0 = closed_ ? bounding_box(mesh_).diagonal() : 0.0;
     check_volume_sign_ = closed_ && std::abs(v0_) > 1e-9 * diag0 * diag0 * diag0;
     lap_options_.fixed_vertices = pinned;
-    if (fast_) umbrella_.emplace(mesh_, pinned.empty() ? nullptr : &pinned);
+    // The rows pay from two products on: several iterations, or the stable-step estimate.
+    const bool gather = o_.iterations >= 2 || o_.estimate_max_stable_step;
+    if (fast_) umbrella_.emplace(mesh_, pinned.empty() ? nullptr : &pinned, gather);
     if (o_.boundary == BoundaryMode::Slide && !closed_) {
         slider_.emplace(mesh_, pinned);
         res_.report.push_back("boundary: " + std::to_string(slider_->loops()) +
