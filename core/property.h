@@ -326,6 +326,12 @@ public:
         for (auto& a : arrays_) a->resize(n);
         size_ = n;
     }
+    /// resize() in pieces, for a caller that resizes the arrays of several containers at once
+    /// on several threads (HalfedgeMesh::resize_elements()): resize_array(k, n) for every k
+    /// below n_properties() (each on any thread, no two on the same k at once), then
+    /// set_size(n).
+    void resize_array(std::size_t k, std::size_t n) { arrays_[k]->resize(n); }
+    void set_size(std::size_t n) { size_ = n; }
     void push_back() {
         for (auto& a : arrays_) a->push_back();
         ++size_;

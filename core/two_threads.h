@@ -6,12 +6,14 @@
 #include <exception>
 #include <thread>
 
+#include "core/parallel.h"
+
 namespace trilab {
 
-/// Whether a pass over `n` elements is worth a second thread: at least 2^16 elements and a
-/// second hardware thread.
+/// Whether a pass over `n` elements is worth a second thread: at least 2^16 elements and
+/// thread_count() (core/parallel.h: --threads, TRILAB_THREADS) of at least 2.
 inline bool worth_two_threads(std::size_t n) {
-    return n >= (std::size_t(1) << 16) && std::thread::hardware_concurrency() >= 2;
+    return n >= (std::size_t(1) << 16) && thread_count() >= 2;
 }
 
 /// The half of [0, n) that part `part` (0: the lower, 1: the upper) of a two-thread pass

@@ -372,17 +372,18 @@ bool Validator::check_vertex_halfedges(const std::vector<Index>& boundary,
     return true;
 }
 
-/// Runs stage(chunk, begin, end) on the pieces of [0, n), kChunks of them on two threads for a
-/// large n (each thread takes the next piece left, so that neither waits on the other at the
-/// end), else one; returns the first piece's error in order, as a pass in one piece would.
+/// Runs stage(chunk, begin, end) on the pieces of [0, n), kChunks of them on every thread
+/// (core/parallel.h; each thread takes the next piece left) for a large n, else one; returns
+/// the first piece's error in order, as a pass in one piece would.
 constexpr std::size_t kChunks = 32;
 template <typename Stage>
 std::string in_chunks(std::size_t n, const Stage& stage) {
     const bool parallel = worth_two_threads(n);
     const std::size_t chunks = parallel ? kChunks : 1;
     std::array<std::string, kChunks> error;
-    in_pieces(parallel, chunks,
-              [&](std::size_t k) { error[k] = stage(k, n * k / chunks, n * (k + 1) / chunks); });
+    parallel_for(
+        0, chunks,
+        [&](std::size_t k) { error[k] = stage(k, n * k / chunks, n * (k + 1) / chunks); }, 1);
     for (const std::string& e : error)
         if (!e.empty()) return e;
     return {};

@@ -28,6 +28,7 @@
 #include "app/ops/operation.h"
 #include "app/platform/heap_tuning.h"
 #include "core/errors.h"
+#include "core/parallel.h"
 #include "trilab/version.h"
 
 namespace trilab::cli {
@@ -60,6 +61,10 @@ commands:
                                   run a session's recipe headless; --check compares bit for bit
   help                            this text
   --version                       print "trilab-cli VERSION" (the project's version)
+
+every command: --threads N        the threads of the parallel passes (0 or left out: every
+                                  core; TRILAB_THREADS=N does the same); results are the same
+                                  bits for any N (`spectrum --threads 1|2` is its own option)
 
 operations (options: `trilab-cli NAME --help`):
 )";
@@ -103,6 +108,38 @@ std::optional<int> run_command(const std::string& cmd, const std::vector<std::st
     return std::nullopt;
 }
 
+/// Takes the global `--threads N` (or `--threads=N`) out of `args` and applies it
+/// (core/parallel.h), after TRILAB_THREADS; the operation `cmd` keeps the option when it
+/// declares its own "threads" (spectrum's slicing threads). Throws InvalidArgument for a value
+/// that does not parse or an option given twice.
+void take_threads_option(const std::string& cmd, std::vector<std::string>& args) {
+    trilab::apply_thread_environment();
+    for (const trilab::OperationDef* def : trilab::operation_defs())
+        if (def->name == cmd)
+            for (const trilab::ParamSpec& param : def->params)
+                if (param.name == "threads") return;
+    bool seen = false;
+    for (std::size_t i = 0; i < args.size();) {
+        std::string value;
+        std::size_t taken = 0;
+        if (args[i] == "--threads") {
+            if (i + 1 >= args.size()) throw trilab::InvalidArgument("--threads: missing value");
+            value = args[i + 1];
+            taken = 2;
+        } else if (args[i].rfind("--threads=", 0) == 0) {
+            value = args[i].substr(10);
+            taken = 1;
+        } else {
+            ++i;
+            continue;
+        }
+        if (seen) throw trilab::InvalidArgument("--threads: given more than once");
+        seen = true;
+        trilab::set_thread_count(trilab::parse_thread_count(value, "--threads"));
+        args.erase(args.begin() + std::ptrdiff_t(i), args.begin() + std::ptrdiff_t(i + taken));
+    }
+}
+
 /// Reports a failure: one line on stderr, "trilab-cli CMD: MESSAGE" (MESSAGE's own "CMD: "
 /// prefix, which the core's messages carry, is not repeated; "trilab-cli: MESSAGE" for an
 /// unknown command), and with --json one object on stdout. Returns `exit_code`.
@@ -129,11 +166,26 @@ int main(int argc, char** argv) {
         std::fputs(usage_text().c_str(), stderr);
         return 2;
     }
-    const std::string cmd = argv[1];
-    const std::vector<std::string> args(argv + 2, argv + argc);
+    // `--threads N` may also come before the command (`trilab-cli --threads 2 smooth ...`).
+    int first = 1;
+    std::vector<std::string> leading;
+    while (first < argc && std::string(argv[first]).rfind("--threads", 0) == 0) {
+        leading.push_back(argv[first]);
+        if (std::string(argv[first]) == "--threads" && first + 1 < argc)
+            leading.push_back(argv[++first]);
+        ++first;
+    }
+    if (first >= argc) {
+        std::fputs(usage_text().c_str(), stderr);
+        return 2;
+    }
+    const std::string cmd = argv[first];
+    std::vector<std::string> args(argv + first + 1, argv + argc);
+    args.insert(args.end(), leading.begin(), leading.end());
     // --json anywhere among the arguments asks for a JSON answer, a failure's included.
     const bool json = std::find(args.begin(), args.end(), "--json") != args.end();
     try {
+        take_threads_option(cmd, args);
         if (const std::optional<int> exit_code = run_command(cmd, args)) return *exit_code;
         return fail(cmd, false, "unknown command '" + cmd + "' (try `trilab-cli help`)", 2, json);
     } catch (const trilab::RunStopped& e) {

@@ -10,6 +10,7 @@
 #include "core/errors.h"
 #include "core/hash.h"
 #include "core/number_text.h"
+#include "core/parallel.h"
 
 namespace trilab {
 
@@ -58,29 +59,74 @@ CoincidentGroups groups_from_representatives(const std::vector<Index>& rep) {
     return g;
 }
 
+/// Exact groups: the points partitioned by their hash's top bits (kParts parts, a fixed number),
+/// each part's points listed in index order, then each part hashed into a table of its own
+/// (small enough to stay in the cache), the parts on every thread (core/parallel.h). A point's
+/// representative is the first point (in index order) at the same position, whatever the
+/// number of threads: equal points hash alike, so they fall in the same part.
 CoincidentGroups exact_groups(const Point* p, std::size_t n, const std::uint8_t* skip) {
-    std::size_t size = 16;
-    while (size < 2 * n) size *= 2;
-    const std::uint64_t mask = size - 1;
-    std::vector<Index> table(size, kInvalidIndex);
-    std::vector<Index> rep(n, kInvalidIndex);
-    for (std::size_t i = 0; i < n; ++i) {
-        if ((skip && skip[i]) || !p[i].allFinite()) continue;
-        std::uint64_t h = hash_point(p[i]) & mask;
-        for (;;) {
-            const Index j = table[h];
-            if (j == kInvalidIndex) {
-                table[h] = Index(i);
-                rep[i] = Index(i);
-                break;
+    constexpr unsigned kPartBits = 6;
+    constexpr std::size_t kParts = std::size_t(1) << kPartBits;
+    constexpr std::uint64_t kSkipped = ~std::uint64_t(0);  // not a point to group
+    std::vector<std::uint64_t> hash(n);
+    const std::size_t blocks = block_count(0, n);
+    std::vector<std::size_t> count(blocks * kParts, 0);  // [block][part]
+    parallel_for_blocks(0, n, [&](std::size_t begin, std::size_t end) {
+        std::size_t* c = count.data() + (begin / kBlock) * kParts;
+        for (std::size_t i = begin; i < end; ++i) {
+            if ((skip && skip[i]) || !p[i].allFinite()) {
+                hash[i] = kSkipped;
+                continue;
             }
-            if (p[j] == p[i]) {  // -0 == +0 as numbers
-                rep[i] = j;
-                break;
-            }
-            h = (h + 1) & mask;
+            hash[i] = hash_point(p[i]);
+            if (hash[i] == kSkipped) hash[i] = 0;
+            ++c[hash[i] >> (64 - kPartBits)];
+        }
+    });
+    // Each part's points: the blocks' in block order, so in index order.
+    std::vector<std::size_t> part_begin(kParts + 1, 0);
+    std::size_t total = 0;
+    for (std::size_t q = 0; q < kParts; ++q) {
+        part_begin[q] = total;
+        for (std::size_t k = 0; k < blocks; ++k) {
+            const std::size_t c = count[k * kParts + q];
+            count[k * kParts + q] = total;  // now where block k's points of part q start
+            total += c;
         }
     }
+    part_begin[kParts] = total;
+    std::vector<Index> listed(total);
+    parallel_for_blocks(0, n, [&](std::size_t begin, std::size_t end) {
+        std::size_t* at = count.data() + (begin / kBlock) * kParts;
+        for (std::size_t i = begin; i < end; ++i)
+            if (hash[i] != kSkipped) listed[at[hash[i] >> (64 - kPartBits)]++] = Index(i);
+    });
+    std::vector<Index> rep(n, kInvalidIndex);
+    parallel_for(
+        0, kParts,
+        [&](std::size_t q) {
+            const std::size_t m = part_begin[q + 1] - part_begin[q];
+            std::size_t size = 16;
+            while (size < 2 * m) size *= 2;
+            const std::uint64_t mask = size - 1;
+            std::vector<Index> table(size, kInvalidIndex);
+            for (std::size_t k = part_begin[q]; k < part_begin[q + 1]; ++k) {
+                const Index i = listed[k];
+                for (std::uint64_t h = hash[i] & mask;; h = (h + 1) & mask) {
+                    const Index j = table[h];
+                    if (j == kInvalidIndex) {
+                        table[h] = i;
+                        rep[i] = i;
+                        break;
+                    }
+                    if (p[j] == p[i]) {  // -0 == +0 as numbers
+                        rep[i] = j;
+                        break;
+                    }
+                }
+            }
+        },
+        1);
     return groups_from_representatives(rep);
 }
 

@@ -34,6 +34,7 @@
 #include "core/algorithms/mesh_quality.h"
 #include "core/errors.h"
 #include "core/geometry.h"
+#include "core/parallel.h"
 
 namespace trilab {
 
@@ -236,11 +237,13 @@ std::vector<double> smoothing_distance(const HalfedgeMesh& mesh,
                               " reference positions for " + std::to_string(mesh.vertices_size()) +
                               " vertices");
     std::vector<double> d(mesh.vertices_size(), 0.0);
-    for (Vertex v : mesh.vertices()) {
+    parallel_for(0, mesh.vertices_size(), [&](std::size_t i) {  // each from its own ring
+        const Vertex v(static_cast<Index>(i));
+        if (mesh.is_deleted(v)) return;
         const Vector3 normal = vertex_normal(mesh, v);
-        const double value = (mesh.position(v) - reference[v.idx()]).dot(normal);
-        if (std::isfinite(value)) d[v.idx()] = value;
-    }
+        const double value = (mesh.position(v) - reference[i]).dot(normal);
+        if (std::isfinite(value)) d[i] = value;
+    });
     return d;
 }
 

@@ -94,6 +94,7 @@
 #include "core/features.h"
 #include "core/mesh_builder.h"
 #include "core/number_text.h"
+#include "core/parallel.h"
 
 namespace trilab {
 
@@ -275,7 +276,7 @@ private:
 // the other); both must only read what the other writes after. Rethrows an exception of either.
 template <class A, class B>
 void run_pair(const A& a, const B& b) {
-    if (std::thread::hardware_concurrency() < 2) {
+    if (unsigned(trilab::thread_count()) < 2) {
         a();
         b();
         return;

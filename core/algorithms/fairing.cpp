@@ -88,6 +88,7 @@
 #include "core/geometry.h"
 #include "core/mesh_builder.h"
 #include "core/number_text.h"
+#include "core/parallel.h"
 
 namespace trilab {
 
@@ -202,6 +203,19 @@ struct Box {
     }
 };
 
+/// A block's part of an explicit step's figures: the finiteness sum and the two boxes.
+struct StepPart {
+    double sum = 0;
+    Box before, after;
+    static StepPart combine(const StepPart& a, const StepPart& b) {
+        StepPart r = a;
+        r.sum += b.sum;
+        r.before.add(b.before);
+        r.after.add(b.after);
+        return r;
+    }
+};
+
 bool all_finite(const Positions& P) {
     for (const Point& p : P)
         if (!p.allFinite()) return false;
@@ -221,17 +235,32 @@ struct CandidateSums {
 /// Signed volume (as geometry.h's volume()) over positions P and, with `with_area`, the
 /// surface area (the square roots are most of the pass's cost).
 CandidateSums area_volume(const HalfedgeMesh& mesh, const Positions& P, bool with_area) {
+    // Over the faces in fixed blocks, the partial sums added in block order (the same bits for
+    // any number of threads).
+    const Vertex* to = mesh.halfedge_to_array().data();
+    const Halfedge* next = mesh.halfedge_next_array().data();
+    const Halfedge* fh = mesh.face_halfedge_array().data();
+    using Sums = std::pair<double, double>;
+    const Sums sums = parallel_reduce(
+        0, mesh.faces_size(), Sums{0, 0},
+        [&](std::size_t begin, std::size_t end) {
+            double area = 0, volume = 0;
+            for (std::size_t f = begin; f < end; ++f) {
+                if (mesh.is_deleted(Face(Index(f)))) continue;
+                const Index h0 = fh[f].idx(), h1 = next[h0].idx(), h2 = next[h1].idx();
+                const Point &a = P[to[h0].idx()], &b = P[to[h1].idx()], &c = P[to[h2].idx()];
+                const Vector3 n = (b - a).cross(c - a);
+                if (with_area) area += 0.5 * n.norm();
+                volume += (a + b + c).dot(n);
+            }
+            return Sums{area, volume};
+        },
+        [](const Sums& x, const Sums& y) {
+            return Sums{x.first + y.first, x.second + y.second};
+        });
     CandidateSums r;
-    double area = 0, volume = 0;
-    for (Face f : mesh.faces()) {
-        const auto v = mesh.face_vertices(f);
-        const Point &a = P[v[0].idx()], &b = P[v[1].idx()], &c = P[v[2].idx()];
-        const Vector3 n = (b - a).cross(c - a);
-        if (with_area) area += 0.5 * n.norm();
-        volume += (a + b + c).dot(n);
-    }
-    if (with_area) r.area = area;
-    r.volume = volume / 18.0;
+    if (with_area) r.area = sums.first;
+    r.volume = sums.second / 18.0;
     return r;
 }
 
@@ -306,18 +335,42 @@ double lanczos_largest(const Eigen::VectorXd& d, const ApplyK& apply_k, int step
     q /= qn;
     std::vector<double> alpha, beta;
     double beta_prev = 0;
+    // The vector steps fused into three passes, each in fixed blocks on every thread with its
+    // sums added in block order (core/parallel.h): the same bits for any number of threads.
+    const auto sum = [](double x, double y) { return x + y; };
+    const auto rows = std::size_t(n);
     for (int j = 0; j < steps; ++j) {
-        u = d.cwiseProduct(q);
+        parallel_for(0, rows, [&](std::size_t i) {
+            u[Eigen::Index(i)] = d[Eigen::Index(i)] * q[Eigen::Index(i)];
+        });
         apply_k(u, w);
-        w = d.cwiseProduct(w);
-        const double a = w.dot(q);
+        const double a = parallel_reduce(
+            0, rows, 0.0,
+            [&](std::size_t begin, std::size_t end) {
+                double part = 0;
+                for (auto i = Eigen::Index(begin); i < Eigen::Index(end); ++i) {
+                    w[i] = d[i] * w[i];
+                    part += w[i] * q[i];
+                }
+                return part;
+            },
+            sum);
         alpha.push_back(a);
-        w -= a * q + beta_prev * q_prev;
-        const double b = w.norm();
+        const double b = std::sqrt(parallel_reduce(
+            0, rows, 0.0,
+            [&](std::size_t begin, std::size_t end) {
+                double part = 0;
+                for (auto i = Eigen::Index(begin); i < Eigen::Index(end); ++i) {
+                    w[i] -= a * q[i] + beta_prev * q_prev[i];
+                    part += w[i] * w[i];
+                }
+                return part;
+            },
+            sum));
         if (!std::isfinite(b) || b <= 1e-12 * std::abs(a)) break;
         if (j + 1 < steps) beta.push_back(b);
         q_prev.swap(q);
-        q = w / b;
+        parallel_for(0, rows, [&](std::size_t i) { q[Eigen::Index(i)] = w[Eigen::Index(i)] / b; });
         beta_prev = b;
     }
     const auto k = Eigen::Index(alpha.size());
@@ -339,55 +392,51 @@ double stable_step_of(double rho) {
 /// either way; `pinned` vertices too); products by one pass over the edges.
 class UmbrellaOperator {
 public:
-    explicit UmbrellaOperator(const HalfedgeMesh& mesh, const Pinned* pinned = nullptr)
-        : mesh_(mesh), pinned_(pinned) {}
+    /// `gather`: the whole-mesh products gather each vertex's row (built once, on every thread)
+    /// instead of scattering over the edges on one thread; worth it from a few products on (a
+    /// run of several iterations, the stable-step estimate). The same bits either way.
+    explicit UmbrellaOperator(const HalfedgeMesh& mesh, const Pinned* pinned = nullptr,
+                              bool gather = true)
+        : mesh_(mesh), pinned_(pinned), gather_(gather) {}
 
     /// out = P + t·L·P (fixed vertices copied); the bounding boxes of P and out over the
     /// vertices with edges, and whether every new coordinate is finite and bounded.
     bool step(const Positions& P, double t, Positions& out, Box& box_before, Box& box_after) {
         if (restricted_) return step_moving(P, t, out, box_before, box_after);
+        if (!gather_) return step_scatter(P, t, out, box_before, box_after);
+        if (!known_) find_fixed();
+        if (!rows_built_) build_rows();
         const std::size_t nv = P.size();
-        out.assign(nv, Point::Zero());
-        if (!known_) {
-            // The first product also counts valences and finds the boundary.
-            valence_.assign(nv, 0);
-            fixed_.assign(nv, 0);
-            for (Edge e : mesh_.edges()) {
-                const Halfedge h = HalfedgeMesh::halfedge(e, 0), g = HalfedgeMesh::twin(h);
-                const Index i = mesh_.to_vertex(g).idx(), j = mesh_.to_vertex(h).idx();
-                out[i] += P[j];
-                out[j] += P[i];
-                ++valence_[i];
-                ++valence_[j];
-                if (mesh_.is_boundary(h) || mesh_.is_boundary(g)) fixed_[i] = fixed_[j] = 1;
-            }
-            for (std::size_t v = 0; v < nv; ++v)
-                if (valence_[v] == 0 || (pinned_ && (*pinned_)[v])) fixed_[v] = 1;
-            known_ = true;
-        } else {
-            for (Edge e : mesh_.edges()) {
-                const Halfedge h = HalfedgeMesh::halfedge(e, 0);
-                const Index i = mesh_.to_vertex(HalfedgeMesh::twin(h)).idx();
-                const Index j = mesh_.to_vertex(h).idx();
-                out[i] += P[j];
-                out[j] += P[i];
-            }
-        }
-        // NaN and infinities propagate into the sum; the box bounds the magnitude.
-        double sum = 0;
-        for (std::size_t v = 0; v < nv; ++v) {
-            const Point& p = P[v];
-            if (fixed_[v]) {
-                out[v] = p;
-                if (valence_[v] == 0) continue;
-            } else {
-                out[v] = p + t * (out[v] / double(valence_[v]) - p);
-                sum += out[v].x() + out[v].y() + out[v].z();
-            }
-            box_before.add(p);
-            box_after.add(out[v]);
-        }
-        return std::isfinite(sum) && box_after.bounded();
+        out.resize(nv);  // every entry is written below
+        // Each vertex sums its row (its neighbours in edge order: the bits of the edge-order
+        // scatter), in fixed blocks on every thread; the finiteness sum and the boxes are
+        // reduced in block order. NaN and infinities propagate into the sum; the box bounds
+        // the magnitude.
+        const StepPart all = parallel_reduce(
+            0, nv, StepPart{},
+            [&](std::size_t begin, std::size_t end) {
+                StepPart part;
+                for (std::size_t v = begin; v < end; ++v) {
+                    const Point& p = P[v];
+                    if (fixed_[v]) {
+                        out[v] = p;
+                        if (valence_[v] == 0) continue;
+                    } else {
+                        Point ring = Point::Zero();
+                        for (std::size_t r = row_offset_[v]; r < row_offset_[v + 1]; ++r)
+                            ring += P[row_[r]];
+                        out[v] = p + t * (ring / double(valence_[v]) - p);
+                        part.sum += out[v].x() + out[v].y() + out[v].z();
+                    }
+                    part.before.add(p);
+                    part.after.add(out[v]);
+                }
+                return part;
+            },
+            StepPart::combine);
+        box_before.add(all.before);
+        box_after.add(all.after);
+        return std::isfinite(all.sum) && box_after.bounded();
     }
 
     /// The energy xᵀKx = sum over edges |x_i - x_j|² and the rounding scale sum_i K_ii |x_i|².
@@ -400,20 +449,32 @@ public:
             }
             return {e, q};
         }
-        double e = 0, q = 0;
-        for (Edge ed : mesh_.edges()) {
-            const Halfedge h = HalfedgeMesh::halfedge(ed, 0);
-            const Point& a = P[mesh_.to_vertex(HalfedgeMesh::twin(h)).idx()];
-            const Point& b = P[mesh_.to_vertex(h).idx()];
-            e += (a - b).squaredNorm();
-            q += a.squaredNorm() + b.squaredNorm();
-        }
-        return {e, q};
+        // Over the edges in fixed blocks, the partial sums added in block order.
+        const Vertex* to = mesh_.halfedge_to_array().data();
+        const std::size_t ne = mesh_.edges_size();
+        using Sums = std::pair<double, double>;
+        return parallel_reduce(
+            0, ne, Sums{0, 0},
+            [&](std::size_t begin, std::size_t end) {
+                double e = 0, q = 0;
+                for (std::size_t ed = begin; ed < end; ++ed) {
+                    if (mesh_.is_deleted(Edge(Index(ed)))) continue;
+                    const Point& a = P[to[2 * ed + 1].idx()];
+                    const Point& b = P[to[2 * ed].idx()];
+                    e += (a - b).squaredNorm();
+                    q += a.squaredNorm() + b.squaredNorm();
+                }
+                return Sums{e, q};
+            },
+            [](const Sums& x, const Sums& y) {
+                return Sums{x.first + y.first, x.second + y.second};
+            });
     }
 
     /// The Lanczos estimate of the largest stable explicit step.
     double max_stable_step(int steps) {
         if (!known_) find_fixed();
+        if (!restricted_ && !rows_built_) build_rows();  // apply_k() reads them
         const std::size_t nv = valence_.size();
         Eigen::VectorXd d = Eigen::VectorXd::Zero(Eigen::Index(nv));
         for (std::size_t v = 0; v < nv; ++v)
@@ -478,22 +539,112 @@ public:
     static constexpr double kRestrictedShare = 0.75;
 
 private:
-    /// The valences and the fixed vertices (boundary, isolated, pinned): one pass over the
-    /// edges, as the first whole-mesh step makes it.
+    /// The valences, the fixed vertices (boundary, isolated, pinned) and every vertex's row
+    /// (its neighbours in the order of their edges' indices: row_offset_, row_), by two owner
+    /// scans over the edges (core/parallel.h, parallel_ranges(): each thread reads every edge
+    /// in order and writes only its own vertices), the same arrays for any number of threads.
     void find_fixed() {
-        const std::size_t nv = mesh_.vertices_size();
+        const std::size_t nv = mesh_.vertices_size(), ne = mesh_.edges_size();
         valence_.assign(nv, 0);
         fixed_.assign(nv, 0);
-        for (Edge e : mesh_.edges()) {
-            const Halfedge h = HalfedgeMesh::halfedge(e, 0), g = HalfedgeMesh::twin(h);
-            const Index i = mesh_.to_vertex(g).idx(), j = mesh_.to_vertex(h).idx();
-            ++valence_[i];
-            ++valence_[j];
-            if (mesh_.is_boundary(h) || mesh_.is_boundary(g)) fixed_[i] = fixed_[j] = 1;
-        }
-        for (std::size_t v = 0; v < nv; ++v)
-            if (valence_[v] == 0 || (pinned_ && (*pinned_)[v])) fixed_[v] = 1;
+        const Vertex* to = mesh_.halfedge_to_array().data();
+        const Face* face = mesh_.halfedge_face_array().data();
+        const bool garbage = mesh_.has_garbage();
+        const auto live = [&](std::size_t e) {
+            return !garbage || !mesh_.is_deleted(Edge(Index(e)));
+        };
+        parallel_ranges(0, nv, [&](std::size_t lo, std::size_t hi) {
+            for (std::size_t e = 0; e < ne; ++e) {
+                const Index i = to[2 * e + 1].idx(), j = to[2 * e].idx();
+                const bool in_i = i - lo < hi - lo, in_j = j - lo < hi - lo;
+                if (!(in_i || in_j) || !live(e)) continue;
+                const bool border = !face[2 * e].is_valid() || !face[2 * e + 1].is_valid();
+                if (in_i) {
+                    ++valence_[i];
+                    if (border) fixed_[i] = 1;
+                }
+                if (in_j) {
+                    ++valence_[j];
+                    if (border) fixed_[j] = 1;
+                }
+            }
+            for (std::size_t v = lo; v < hi; ++v)
+                if (valence_[v] == 0 || (pinned_ && (*pinned_)[v])) fixed_[v] = 1;
+        });
         known_ = true;
+    }
+
+    /// Every vertex's row (its neighbours in the order of their edges' indices: row_offset_,
+    /// row_) by an owner scan over the edges, after find_fixed().
+    void build_rows() {
+        const std::size_t nv = mesh_.vertices_size(), ne = mesh_.edges_size();
+        const Vertex* to = mesh_.halfedge_to_array().data();
+        const bool garbage = mesh_.has_garbage();
+        const auto live = [&](std::size_t e) {
+            return !garbage || !mesh_.is_deleted(Edge(Index(e)));
+        };
+        row_offset_.assign(nv + 1, 0);
+        for (std::size_t v = 0; v < nv; ++v) row_offset_[v + 1] = row_offset_[v] + valence_[v];
+        row_.resize(row_offset_[nv]);
+        parallel_ranges(0, nv, [&](std::size_t lo, std::size_t hi) {
+            std::vector<std::size_t> fill(row_offset_.begin() + std::ptrdiff_t(lo),
+                                          row_offset_.begin() + std::ptrdiff_t(hi));
+            for (std::size_t e = 0; e < ne; ++e) {
+                const Index i = to[2 * e + 1].idx(), j = to[2 * e].idx();
+                const bool in_i = i - lo < hi - lo, in_j = j - lo < hi - lo;
+                if (!(in_i || in_j) || !live(e)) continue;
+                if (in_i) row_[fill[i - lo]++] = j;
+                if (in_j) row_[fill[j - lo]++] = i;
+            }
+        });
+        rows_built_ = true;
+    }
+
+    /// step() over the whole mesh on one thread, scattering over the edges (a run of one
+    /// product: building the rows would cost more than it saves); the first product also counts
+    /// the valences and finds the boundary.
+    bool step_scatter(const Positions& P, double t, Positions& out, Box& box_before,
+                      Box& box_after) {
+        const std::size_t nv = P.size();
+        out.assign(nv, Point::Zero());
+        if (!known_) {
+            valence_.assign(nv, 0);
+            fixed_.assign(nv, 0);
+            for (Edge e : mesh_.edges()) {
+                const Halfedge h = HalfedgeMesh::halfedge(e, 0), g = HalfedgeMesh::twin(h);
+                const Index i = mesh_.to_vertex(g).idx(), j = mesh_.to_vertex(h).idx();
+                out[i] += P[j];
+                out[j] += P[i];
+                ++valence_[i];
+                ++valence_[j];
+                if (mesh_.is_boundary(h) || mesh_.is_boundary(g)) fixed_[i] = fixed_[j] = 1;
+            }
+            for (std::size_t v = 0; v < nv; ++v)
+                if (valence_[v] == 0 || (pinned_ && (*pinned_)[v])) fixed_[v] = 1;
+            known_ = true;
+        } else {
+            for (Edge e : mesh_.edges()) {
+                const Halfedge h = HalfedgeMesh::halfedge(e, 0);
+                const Index i = mesh_.to_vertex(HalfedgeMesh::twin(h)).idx();
+                const Index j = mesh_.to_vertex(h).idx();
+                out[i] += P[j];
+                out[j] += P[i];
+            }
+        }
+        double sum = 0;
+        for (std::size_t v = 0; v < nv; ++v) {
+            const Point& p = P[v];
+            if (fixed_[v]) {
+                out[v] = p;
+                if (valence_[v] == 0) continue;
+            } else {
+                out[v] = p + t * (out[v] / double(valence_[v]) - p);
+                sum += out[v].x() + out[v].y() + out[v].z();
+            }
+            box_before.add(p);
+            box_after.add(out[v]);
+        }
+        return std::isfinite(sum) && box_after.bounded();
     }
 
     /// step() on the moving vertices only: out keeps the fixed vertices' positions from the
@@ -531,22 +682,24 @@ private:
             }
             return;
         }
-        for (std::size_t v = 0; v < valence_.size(); ++v)
-            w[Eigen::Index(v)] = double(valence_[v]) * u[Eigen::Index(v)];
-        for (Edge e : mesh_.edges()) {
-            const Halfedge h = HalfedgeMesh::halfedge(e, 0);
-            const auto i = Eigen::Index(mesh_.to_vertex(HalfedgeMesh::twin(h)).idx());
-            const auto j = Eigen::Index(mesh_.to_vertex(h).idx());
-            w[i] -= u[j];
-            w[j] -= u[i];
-        }
+        // Each entry from its row (the bits of the edge-order scatter), on every thread.
+        parallel_for(0, valence_.size(), [&](std::size_t v) {
+            double kv = double(valence_[v]) * u[Eigen::Index(v)];
+            for (std::size_t r = row_offset_[v]; r < row_offset_[v + 1]; ++r)
+                kv -= u[Eigen::Index(row_[r])];
+            w[Eigen::Index(v)] = kv;
+        });
     }
 
     const HalfedgeMesh& mesh_;
     const Pinned* pinned_;
     bool known_ = false;
-    std::vector<std::uint32_t> valence_;  ///< 0: isolated or deleted
-    std::vector<std::uint8_t> fixed_;     ///< 1: does not move (boundary, isolated, deleted)
+    std::vector<std::uint32_t> valence_;   ///< 0: isolated or deleted
+    std::vector<std::uint8_t> fixed_;      ///< 1: does not move (boundary, isolated, deleted)
+    std::vector<std::size_t> row_offset_;  ///< per vertex: its neighbours in row_
+    std::vector<Index> row_;               ///< neighbours, each vertex's in edge order
+    bool gather_ = true;                   ///< products by rows (else the one-thread scatter)
+    bool rows_built_ = false;
     // restrict_to_moving():
     bool restricted_ = false;
     std::vector<Index> moving_;             ///< the vertices that move, in index order
@@ -956,7 +1109,9 @@ void FairingRun::set_up(const Pinned& pinned) {
     const double diag0 = closed_ ? bounding_box(mesh_).diagonal() : 0.0;
     check_volume_sign_ = closed_ && std::abs(v0_) > 1e-9 * diag0 * diag0 * diag0;
     lap_options_.fixed_vertices = pinned;
-    if (fast_) umbrella_.emplace(mesh_, pinned.empty() ? nullptr : &pinned);
+    // The rows pay from two products on: several iterations, or the stable-step estimate.
+    const bool gather = o_.iterations >= 2 || o_.estimate_max_stable_step;
+    if (fast_) umbrella_.emplace(mesh_, pinned.empty() ? nullptr : &pinned, gather);
     if (o_.boundary == BoundaryMode::Slide && !closed_) {
         slider_.emplace(mesh_, pinned);
         res_.report.push_back("boundary: " + std::to_string(slider_->loops()) +

@@ -18,6 +18,7 @@
 #include "core/geometry.h"
 #include "core/mesh_builder.h"
 #include "core/number_text.h"
+#include "core/parallel.h"
 
 namespace trilab {
 
@@ -311,7 +312,7 @@ Face nearest_face(const HalfedgeMesh& mesh, const Point& p) {
             if (d2 < best.d2 || best.f == kInvalidIndex) best = {d2, f};
         }
     };
-    const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+    const unsigned hw = std::max(1u, unsigned(trilab::thread_count()));
     const unsigned threads = nf < 200000 ? 1u : std::min(hw, 16u);
     std::vector<Best> best(threads);
     std::vector<std::thread> pool;

@@ -5,9 +5,14 @@
 #include <utility>
 #include <vector>
 
+#include "core/parallel.h"
+
 namespace trilab {
 
 namespace {
+
+/// The boundary scan's block: big, since few halfedges are on the boundary.
+constexpr std::size_t kScanBlock = std::size_t(1) << 16;
 
 /// Union-find root with path halving.
 Index find_root(std::vector<Index>& parent, Index v) {
@@ -26,10 +31,20 @@ std::size_t count_boundary_loops(const HalfedgeMesh& mesh) {
     // its lowest one; seen is kept for those halfedges only (sorted, searched).
     const std::vector<Face>& face = mesh.halfedge_face_array();
     const bool garbage = mesh.has_garbage();
+    // The scan in fixed blocks on every thread, each block's list appended in block order.
+    std::vector<std::vector<Index>> found(block_count(0, face.size(), kScanBlock));
+    parallel_for_blocks(
+        0, face.size(),
+        [&](std::size_t begin, std::size_t end) {
+            std::vector<Index>& list = found[begin / kScanBlock];
+            for (std::size_t h = begin; h < end; ++h)
+                if (!face[h].is_valid() && !(garbage && mesh.is_deleted(Halfedge(Index(h)))))
+                    list.push_back(Index(h));
+        },
+        kScanBlock);
     std::vector<Index> boundary;
-    for (std::size_t h = 0; h < face.size(); ++h)
-        if (!face[h].is_valid() && !(garbage && mesh.is_deleted(Halfedge(Index(h)))))
-            boundary.push_back(Index(h));
+    for (const std::vector<Index>& list : found)
+        boundary.insert(boundary.end(), list.begin(), list.end());
     std::vector<std::uint8_t> seen(boundary.size(), 0);
     const auto index_of = [&](Halfedge x) {  // boundary.size() when x is not a boundary one
         return std::size_t(std::lower_bound(boundary.begin(), boundary.end(), x.idx()) -
@@ -79,8 +94,36 @@ MeshStats compute_stats(const HalfedgeMesh& mesh, std::vector<Index>* component_
     s.vertices = mesh.n_vertices();
     s.edges = mesh.n_edges();
     s.faces = mesh.n_faces();
-    for (Vertex v : mesh.vertices())
-        if (mesh.is_isolated(v)) ++s.isolated_vertices;
+    // The isolated vertices and the bounding box: one pass over the vertices in fixed blocks
+    // on every thread (a count and a min/max: the same for any order).
+    const std::vector<Point>& x = mesh.positions();
+    const std::vector<Halfedge>& vh = mesh.vertex_halfedge_array();
+    const bool garbage = mesh.has_garbage();
+    struct VertexPart {
+        std::size_t isolated = 0;
+        BoundingBox box;
+    };
+    const VertexPart vp = parallel_reduce(
+        0, x.size(), VertexPart{},
+        [&](std::size_t begin, std::size_t end) {
+            VertexPart part;
+            for (std::size_t v = begin; v < end; ++v) {
+                if (garbage && mesh.is_deleted(Vertex(Index(v)))) continue;
+                if (!vh[v].is_valid()) ++part.isolated;
+                part.box.extend(x[v]);
+            }
+            return part;
+        },
+        [](VertexPart a, const VertexPart& b) {
+            a.isolated += b.isolated;
+            if (!b.box.empty) {
+                a.box.extend(b.box.min);
+                a.box.extend(b.box.max);
+            }
+            return a;
+        });
+    s.isolated_vertices = vp.isolated;
+    s.bbox = vp.box;
     s.boundary_loops = count_boundary_loops(mesh);
     std::vector<Index> component;
     s.components = label_components(mesh, component) - s.isolated_vertices;
@@ -88,16 +131,6 @@ MeshStats compute_stats(const HalfedgeMesh& mesh, std::vector<Index>* component_
     s.euler = (long long)s.vertices - (long long)s.edges + (long long)s.faces;
     const long long chi_surface = s.euler - (long long)s.isolated_vertices;
     s.genus = (2 * (long long)s.components - chi_surface - (long long)s.boundary_loops) / 2;
-    for (Vertex v : mesh.vertices()) {  // bounding_box(mesh), inlined
-        const Point& p = mesh.position(v);
-        if (s.bbox.empty) {
-            s.bbox.min = s.bbox.max = p;
-            s.bbox.empty = false;
-        } else {
-            s.bbox.min = s.bbox.min.cwiseMin(p);
-            s.bbox.max = s.bbox.max.cwiseMax(p);
-        }
-    }
     // Area and volume in one pass over the faces (the volume only for a closed mesh). Closed:
     // faces and no boundary loop, which is no boundary halfedge (is_closed(), without its scan).
     const bool closed = s.faces > 0 && s.boundary_loops == 0;

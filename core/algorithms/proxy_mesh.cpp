@@ -20,6 +20,7 @@
 
 #include "core/errors.h"
 #include "core/geometry.h"
+#include "core/parallel.h"
 
 namespace trilab {
 namespace {
@@ -307,7 +308,7 @@ double first_cell_size(const View& m, const BoundingBox& box, std::size_t target
 
 unsigned thread_count(unsigned asked) {
     if (asked) return asked;
-    return std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
+    return std::max(1u, std::min(8u, unsigned(trilab::thread_count())));
 }
 
 /// make_proxy_mesh over either view.

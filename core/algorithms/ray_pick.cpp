@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "core/errors.h"
+#include "core/parallel.h"
 
 namespace trilab {
 namespace {
@@ -66,8 +67,7 @@ void check_ray(const Ray& ray) {
 template <typename Scan>
 Candidate scan_all(std::size_t n, Scan scan) {
     const std::size_t threads =
-        n < kParallelTriangles ? 1
-                               : std::max(1u, std::min(16u, std::thread::hardware_concurrency()));
+        n < kParallelTriangles ? 1 : std::max(1u, std::min(16u, unsigned(trilab::thread_count())));
     std::vector<Candidate> best(threads);
     if (threads == 1) {
         scan(std::size_t(0), n, best[0]);

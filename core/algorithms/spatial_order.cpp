@@ -11,6 +11,8 @@
 #include <thread>
 #include <vector>
 
+#include "core/parallel.h"
+
 namespace trilab {
 namespace {
 
@@ -153,7 +155,7 @@ IndexRemap renumber_spatially(HalfedgeMesh& mesh) {
         face_order.resize(faces.size());
         for (std::size_t i = 0; i < faces.size(); ++i) face_order[i] = faces[i].face;
     };
-    if (n >= kParallelMin && std::thread::hardware_concurrency() >= 2) {
+    if (n >= kParallelMin && unsigned(trilab::thread_count()) >= 2) {
         std::exception_ptr faces_error;
         std::thread faces_thread([&] {
             try {

@@ -100,6 +100,7 @@
 #include "core/errors.h"
 #include "core/geometry.h"
 #include "core/number_text.h"
+#include "core/parallel.h"
 #include "core/system_memory.h"
 #include "core/two_threads.h"
 
@@ -773,7 +774,7 @@ void collect(const Accepted& acc, double upper,
 /// machine has them.
 unsigned slice_threads(std::size_t requested) {
     if (requested > 0) return unsigned(std::min<std::size_t>(requested, 2));
-    return std::thread::hardware_concurrency() >= 2 ? 2u : 1u;
+    return unsigned(trilab::thread_count()) >= 2 ? 2u : 1u;
 }
 
 // ---- block shift-invert Lanczos (one factorization) ------------------------------------------

@@ -135,6 +135,7 @@
 #include "core/errors.h"
 #include "core/features.h"
 #include "core/number_text.h"
+#include "core/parallel.h"
 
 namespace trilab {
 
@@ -263,10 +264,10 @@ inline CreaseRule rule_of(unsigned sharp_edges, bool tagged) {
 /// The outgoing halfedge of every old vertex with one: map(its old outgoing halfedge).
 template <typename Map>
 void set_old_vertex_halfedges(const In& m, Out& out, const Map& map) {
-    for (Index vi = 0; vi < m.nv; ++vi) {
+    parallel_for(0, m.nv, [&](std::size_t vi) {
         const Halfedge h = m.vh[vi];
         if (h.is_valid()) out.vh[vi] = Halfedge(map(h.idx()));
-    }
+    });
 }
 
 /// Progress within one iteration, mapped onto the whole run.
@@ -321,23 +322,30 @@ struct Provenance {
 void provenance_1to4(const In& m, SubdivisionScheme scheme, HalfedgeMesh& out, const Creases& cr) {
     const Index nv = m.nv, ne = m.ne;
     Provenance pr(out);
+    // The valences by an owner scan of the halfedges, the stencils in fixed blocks, on every
+    // thread (core/parallel.h).
     std::vector<unsigned> valence(nv, 0);
-    for (Index hi = 0; hi < 2 * ne; ++hi) ++valence[m.to_i(hi)];
+    parallel_ranges(0, nv, [&](std::size_t lo, std::size_t hi) {
+        for (Index h = 0; h < 2 * ne; ++h)
+            if (m.to_i(h) - lo < hi - lo) ++valence[m.to_i(h)];
+    });
     const bool loop = scheme == SubdivisionScheme::Loop;
     const auto interior = [&](Index v) {
         const Halfedge h = m.vh[v];
         return h.is_valid() && !m.boundary(h.idx());
     };
-    for (Index v = 0; v < nv; ++v) {
+    parallel_for(0, nv, [&](std::size_t vs) {
+        const Index v = Index(vs);
         SubdivisionStencil st = SubdivisionStencil::EvenKept;
         if (loop && m.vh[v].is_valid())
             st = !interior(v)      ? SubdivisionStencil::EvenBoundary
                  : valence[v] == 6 ? SubdivisionStencil::EvenRegular
                                    : SubdivisionStencil::EvenExtraordinary;
         pr.set(v, st, v);
-    }
+    });
     const bool modified = scheme == SubdivisionScheme::ModifiedButterfly;
-    for (Index e = 0; e < ne; ++e) {
+    parallel_for(0, ne, [&](std::size_t es) {
+        const Index e = Index(es);
         const Index a = m.to_i(2 * e + 1), b = m.to_i(2 * e);
         SubdivisionStencil st = SubdivisionStencil::OddRegular;
         if (m.boundary(2 * e) || m.boundary(2 * e + 1))
@@ -345,7 +353,7 @@ void provenance_1to4(const In& m, SubdivisionScheme scheme, HalfedgeMesh& out, c
         else if (modified && ((interior(a) && valence[a] != 6) || (interior(b) && valence[b] != 6)))
             st = SubdivisionStencil::OddExtraordinary;
         pr.set(nv + e, st, a, b);
-    }
+    });
     if (!loop && cr.sharp) {  // the butterflies' crease rules (subdivision_creases.h)
         for (Index e = 0; e < ne; ++e) {
             const float sh = cr.sharp[e];
@@ -430,7 +438,10 @@ void build_1to4(const In& m, HalfedgeMesh& mesh, const Stage& stage) {
     // Face f: corner faces 4f + k (at to_vertex(h_k)), centre face 4f + 3; interior edge k
     // joins mid(h_k) and mid(h_k1): halfedge `in` (mid(h_k1) -> mid(h_k)) in corner face k,
     // its twin in the centre face.
-    for (Index fi = 0; fi < nf; ++fi) {
+    // Every face, edge and vertex writes only its own new elements: fixed blocks on every
+    // thread (core/parallel.h), the same arrays for any number of threads.
+    parallel_for(0, nf, [&](std::size_t fs) {
+        const Index fi = Index(fs);
         stage.tick(fi);
         Index h[3];
         face_halfedges(m, fi, h);
@@ -445,12 +456,13 @@ void build_1to4(const In& m, HalfedgeMesh& mesh, const Stage& stage) {
             out.fh[4 * fi + k] = Halfedge(half_b(h[k]));
         }
         out.fh[4 * fi + 3] = Halfedge(first + 1);
-    }
+    });
     stage.report(0.3);
     // Old halfedge h (from a to b, in corner k of face f) becomes A = half_a(h) (a -> mid, in
     // corner face k - 1) and B = half_b(h) (mid -> b, in corner face k); on the boundary A
     // and B follow each other.
-    for (Index e = 0; e < ne; ++e) {
+    parallel_for(0, ne, [&](std::size_t es) {
+        const Index e = Index(es);
         stage.tick(e);
         const Index mid = nv + e;
         for (Index hi = 2 * e; hi <= 2 * e + 1; ++hi) {
@@ -472,7 +484,7 @@ void build_1to4(const In& m, HalfedgeMesh& mesh, const Stage& stage) {
         }
         // The odd vertex's outgoing halfedge: the boundary one if the edge has one.
         out.vh[mid] = Halfedge(half_b(m.boundary(2 * e + 1) ? 2 * e + 1 : 2 * e));
-    }
+    });
     set_old_vertex_halfedges(m, out, half_a);
 }
 
@@ -628,52 +640,68 @@ void loop_positions_creased(const In& m, const Creases& cr, Point* p, const Stag
     }
 }
 
-/// Loop positions of the refined mesh. One pass over the edges computes the odd vertices and
-/// sums each even vertex's neighbours (into its slot of `p`) and valence; a pass over the
-/// vertices then applies the even rules.
+/// Loop positions of the refined mesh: the odd vertices over the edges in fixed blocks, then
+/// the even vertices by an owner scan (core/parallel.h, parallel_ranges()): each thread owns a
+/// range of vertices, reads every edge in order and sums the neighbours of its own vertices
+/// only, so that each sum runs in edge order (the bits of a one-thread scatter, and of
+/// uniform_step_1to4()'s loop_even_at()) for any number of threads; the even rules then run on
+/// the same range.
 void loop_positions(const In& m, Point* p, const Stage& stage) {
     const Index nv = m.nv, ne = m.ne;
     const Point* x = m.x;
-    std::vector<unsigned> valence(nv, 0);
-    std::fill_n(p, nv, Point::Zero());
-    for (Index e = 0; e < ne; ++e) {
-        stage.tick(e);
-        const Index h = 2 * e, t = 2 * e + 1;
-        const Index ia = m.to_i(t), ib = m.to_i(h);
-        const Point& a = x[ia];
-        const Point& b = x[ib];
-        p[ia] += b;
-        p[ib] += a;
-        ++valence[ia];
-        ++valence[ib];
-        if (m.boundary(h) || m.boundary(t)) {
-            p[nv + e] = 0.5 * (a + b);
-        } else {
-            const Point& c = x[m.to_i(m.next_i(h))];
-            const Point& d = x[m.to_i(m.next_i(t))];
-            p[nv + e] = 0.375 * (a + b) + 0.125 * (c + d);
-        }
-    }
-    stage.report(0.6);
-    std::vector<double> beta(8, -1.0);
-    for (Index vi = 0; vi < nv; ++vi) {
-        stage.tick(vi);
-        const Halfedge h0 = m.vh[vi];
-        if (!h0.is_valid()) {
-            p[vi] = x[vi];
-        } else if (m.boundary(h0.idx())) {
-            p[vi] = 0.75 * x[vi] + 0.125 * (x[m.to_i(h0.idx())] + x[m.from_i(m.prev_i(h0.idx()))]);
-        } else {
-            const unsigned n = valence[vi];
-            if (n >= beta.size()) beta.resize(2 * std::size_t(n) + 1, -1.0);
-            if (beta[n] < 0) {
-                const double t = 0.375 + 0.25 * std::cos(2 * kPi / n);
-                beta[n] = (0.625 - t * t) / n;
+    parallel_for_blocks(0, ne, [&](std::size_t b, std::size_t end) {
+        stage.tick(b);
+        for (Index e = Index(b); e < Index(end); ++e) {
+            const Index h = 2 * e, t = 2 * e + 1;
+            const Point& pa = x[m.to_i(t)];
+            const Point& pb = x[m.to_i(h)];
+            if (m.boundary(h) || m.boundary(t)) {
+                p[nv + e] = 0.5 * (pa + pb);
+            } else {
+                const Point& c = x[m.to_i(m.next_i(h))];
+                const Point& d = x[m.to_i(m.next_i(t))];
+                p[nv + e] = 0.375 * (pa + pb) + 0.125 * (c + d);
             }
-            const double b = beta[n];
-            p[vi] = (1.0 - n * b) * x[vi] + b * p[vi];
         }
-    }
+    });
+    stage.report(0.6);
+    std::vector<unsigned> valence(nv);
+    parallel_ranges(0, nv, [&](std::size_t lo, std::size_t hi) {
+        const Index first = Index(lo), count = Index(hi - lo);
+        std::fill(p + lo, p + hi, Point::Zero());
+        std::fill(valence.begin() + std::ptrdiff_t(lo), valence.begin() + std::ptrdiff_t(hi), 0u);
+        for (Index e = 0; e < ne; ++e) {
+            stage.tick(e);
+            const Index ia = m.to_i(2 * e + 1), ib = m.to_i(2 * e);
+            if (ia - first < count) {
+                p[ia] += x[ib];
+                ++valence[ia];
+            }
+            if (ib - first < count) {
+                p[ib] += x[ia];
+                ++valence[ib];
+            }
+        }
+        std::vector<double> beta(8, -1.0);
+        for (Index vi = first; vi < Index(hi); ++vi) {
+            const Halfedge h0 = m.vh[vi];
+            if (!h0.is_valid()) {
+                p[vi] = x[vi];
+            } else if (m.boundary(h0.idx())) {
+                p[vi] =
+                    0.75 * x[vi] + 0.125 * (x[m.to_i(h0.idx())] + x[m.from_i(m.prev_i(h0.idx()))]);
+            } else {
+                const unsigned n = valence[vi];
+                if (n >= beta.size()) beta.resize(2 * std::size_t(n) + 1, -1.0);
+                if (beta[n] < 0) {
+                    const double t = 0.375 + 0.25 * std::cos(2 * kPi / n);
+                    beta[n] = (0.625 - t * t) / n;
+                }
+                const double b = beta[n];
+                p[vi] = (1.0 - n * b) * x[vi] + b * p[vi];
+            }
+        }
+    });
 }
 
 /// The corner opposite the wing edge `w` (a halfedge of a face), or its reflection across
@@ -1661,8 +1689,17 @@ void check_finite_level(const HalfedgeMesh& m, SubdivisionScheme scheme, int ite
                               " (the input's values are too large for the scheme's weights; "
                               "scale the mesh down)");
     };
-    for (Vertex v : m.vertices())
-        if (!m.position(v).allFinite()) refuse("position", v.idx());
+    // The first vertex with a non-finite position, found in fixed blocks on every thread.
+    const Point* x = m.positions().data();
+    const Index bad = parallel_reduce(
+        0, m.vertices_size(), kInvalidIndex,
+        [&](std::size_t begin, std::size_t end) {
+            for (std::size_t v = begin; v < end; ++v)
+                if (!x[v].allFinite() && !m.is_deleted(Vertex(Index(v)))) return Index(v);
+            return kInvalidIndex;
+        },
+        [](Index a, Index b) { return std::min(a, b); });
+    if (bad != kInvalidIndex) refuse("position", bad);
     if (const auto p = m.get_vertex_property<TexCoord>("v:texcoord"))
         for (Vertex v : m.vertices())
             if (!p[v].allFinite()) refuse("texture coordinate", v.idx());

@@ -1,0 +1,267 @@
+// core/parallel.h: the pool's loops over fixed blocks, and the passes that run on it, give the
+// same bits for 1, 2 and 7 threads. Runs under ThreadSanitizer too (label `tsan`): the meshes
+// are big enough (over kBlock elements) that every pass is split over several blocks.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <stdexcept>
+#include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "core/algorithms/coincident.h"
+#include "core/algorithms/fairing.h"
+#include "core/algorithms/generators.h"
+#include "core/algorithms/mesh_stats.h"
+#include "core/algorithms/subdivision.h"
+#include "core/errors.h"
+#include "core/geometry.h"
+#include "core/parallel.h"
+#include "core/validate.h"
+
+using namespace trilab;
+
+namespace {
+
+/// Runs `run` with 1, 2 and 7 threads (restoring the count at the end) and returns the three
+/// results.
+template <typename Run>
+auto with_1_2_7_threads(const Run& run) {
+    struct Restore {
+        int n = thread_count();
+        ~Restore() { set_thread_count(n); }
+    } restore;
+    std::vector<decltype(run())> results;
+    for (int n : {1, 2, 7}) {
+        set_thread_count(n);
+        REQUIRE(thread_count() == n);
+        results.push_back(run());
+    }
+    return results;
+}
+
+/// Pseudo-random doubles of widely different magnitudes (a sum's rounding depends on order).
+std::vector<double> spread_values(std::size_t n) {
+    std::vector<double> v(n);
+    std::uint64_t s = 0x2545F4914F6CDD1Dull;
+    for (double& x : v) {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        x = double(s % 1000003) * std::pow(10.0, double(int(s >> 60) - 8)) * ((s & 1) ? 1 : -1);
+    }
+    return v;
+}
+
+HalfedgeMesh sphere() {
+    return make_icosphere(24);  // 5,762 vertices, 17,280 edges, 11,520 faces
+}
+
+}  // namespace
+
+TEST_CASE("parallel_for visits every index once, for any thread count", "[parallel]") {
+    for (const std::size_t n :
+         {std::size_t(0), std::size_t(1), kBlock - 1, kBlock + 1, std::size_t(10) * kBlock + 17}) {
+        const auto counts = with_1_2_7_threads([&] {
+            std::vector<std::atomic<int>> seen(n);
+            parallel_for(0, n, [&](std::size_t i) { seen[i].fetch_add(1); });
+            std::vector<int> out;
+            for (auto& s : seen) out.push_back(s.load());
+            return out;
+        });
+        for (const auto& c : counts) CHECK(c == std::vector<int>(n, 1));
+    }
+}
+
+TEST_CASE("parallel_reduce sums in block order: the same bits for 1, 2 and 7 threads",
+          "[parallel]") {
+    const std::vector<double> v = spread_values(20 * kBlock + 5);
+    const auto sums = with_1_2_7_threads([&] {
+        return parallel_reduce(
+            0, v.size(), 0.0,
+            [&](std::size_t b, std::size_t e) {
+                double s = 0;
+                for (std::size_t i = b; i < e; ++i) s += v[i];
+                return s;
+            },
+            [](double a, double b) { return a + b; });
+    });
+    // The same sum computed here, block by block, in block order.
+    double expected = 0;
+    for (std::size_t b = 0; b < v.size(); b += kBlock) {
+        double s = 0;
+        for (std::size_t i = b; i < std::min(v.size(), b + kBlock); ++i) s += v[i];
+        expected += s;
+    }
+    for (double s : sums) CHECK(s == expected);
+    // The order matters on these values: a plain left-to-right sum differs (so the test can
+    // fail when blocks are combined in another order).
+    double plain = 0;
+    for (double x : v) plain += x;
+    CHECK(plain != expected);
+}
+
+TEST_CASE("a block's exception reaches the caller, and nested loops run", "[parallel]") {
+    const auto outcomes = with_1_2_7_threads([] {
+        std::atomic<long> total{0};
+        parallel_for(0, 8 * kBlock, [&](std::size_t i) {
+            if (i % kBlock == 0)  // a loop inside a block runs in order on its thread
+                parallel_for(0, 100, [&](std::size_t) { total.fetch_add(1); });
+        });
+        bool thrown = false;
+        try {
+            parallel_for(0, 8 * kBlock, [](std::size_t i) {
+                if (i == 5 * kBlock + 3) throw InvalidArgument("block 5");
+            });
+        } catch (const InvalidArgument& e) {
+            thrown = std::string(e.what()) == "block 5";
+        }
+        return std::make_pair(total.load(), thrown);
+    });
+    for (const auto& [total, thrown] : outcomes) {
+        CHECK(total == 800);
+        CHECK(thrown);
+    }
+}
+
+TEST_CASE("thread counts are checked: --threads and TRILAB_THREADS values", "[parallel]") {
+    CHECK(parse_thread_count("7", "--threads") == 7);
+    CHECK(parse_thread_count("0", "--threads") == 0);
+    CHECK_THROWS_WITH(parse_thread_count("-1", "--threads"),
+                      Catch::Contains("--threads: expected a whole number"));
+    CHECK_THROWS_WITH(parse_thread_count("two", "TRILAB_THREADS"),
+                      Catch::Contains("TRILAB_THREADS") && Catch::Contains("'two'"));
+    CHECK_THROWS_AS(parse_thread_count("5000", "--threads"), InvalidArgument);
+    CHECK_THROWS_AS(set_thread_count(-3), InvalidArgument);
+    CHECK(hardware_threads() >= 1);
+}
+
+TEST_CASE("Loop subdivision: the same bits for 1, 2 and 7 threads", "[parallel]") {
+    const HalfedgeMesh closed = sphere(), open = make_grid(80);  // boundary rules too
+    for (const HalfedgeMesh* mesh : {&closed, &open}) {
+        SubdivisionOptions o;
+        o.keep_levels = false;
+        o.morph = false;
+        const auto levels = with_1_2_7_threads([&] {
+            NullProgress progress;
+            return subdivide(*mesh, o, progress).levels.back().mesh;
+        });
+        REQUIRE(validate(levels[0]).ok);
+        for (const HalfedgeMesh& m : levels) {
+            CHECK(m.positions() == levels[0].positions());
+            CHECK(m.halfedge_to_array() == levels[0].halfedge_to_array());
+            CHECK(m.halfedge_next_array() == levels[0].halfedge_next_array());
+            CHECK(m.vertex_halfedge_array() == levels[0].vertex_halfedge_array());
+        }
+    }
+}
+
+TEST_CASE("explicit fairing, normals, statistics: the same bits for 1, 2 and 7 threads",
+          "[parallel]") {
+    const HalfedgeMesh mesh = make_noisy_sphere(24, 0.05, 7);
+    FairingOptions o;
+    o.iterations = 4;
+    const auto faired = with_1_2_7_threads([&] { return smooth(mesh, o).mesh.positions(); });
+    CHECK(faired[1] == faired[0]);
+    CHECK(faired[2] == faired[0]);
+    const auto normals = with_1_2_7_threads([&] {
+        HalfedgeMesh m = mesh;
+        compute_vertex_normals(m);
+        return m.get_vertex_property<Vector3>("v:normal").vector();
+    });
+    CHECK(normals[1] == normals[0]);
+    CHECK(normals[2] == normals[0]);
+    const auto stats = with_1_2_7_threads([&] {
+        const MeshStats s = compute_stats(mesh);
+        return std::vector<double>{double(s.vertices), double(s.edges), double(s.faces),
+                                   double(s.boundary_loops), double(s.components)};
+    });
+    CHECK(stats[1] == stats[0]);
+    CHECK(stats[2] == stats[0]);
+}
+
+TEST_CASE("exact coincident groups: the same groups for 1, 2 and 7 threads, as a map finds them",
+          "[parallel]") {
+    // 30,000 points on a lattice; every 5th repeats an earlier one (some as -0 for +0).
+    std::vector<Point> p;
+    std::uint64_t state = 1;
+    for (int i = 0; i < 30000; ++i) {
+        if (i % 5 == 4) {
+            state = state * 6364136223846793005ull + 1442695040888963407ull;
+            Point q = p[std::size_t((state >> 33) % std::uint64_t(i))];
+            if (q.x() == 0) q.x() = -0.0;
+            p.push_back(q);
+        } else {
+            p.emplace_back(double(i % 31), double(i / 31 % 37), double(i / (31 * 37)));
+        }
+    }
+    const auto groups = with_1_2_7_threads([&] {
+        const CoincidentGroups g = find_coincident_points(p.data(), p.size());
+        return std::make_pair(g.members, g.offsets);
+    });
+    CHECK(groups[1] == groups[0]);
+    CHECK(groups[2] == groups[0]);
+    // Independently: each point's first equal point, groups of two or more ordered by it.
+    std::map<std::array<double, 3>, std::vector<Index>> by_point;
+    for (std::size_t i = 0; i < p.size(); ++i)
+        by_point[{p[i].x() == 0 ? 0.0 : p[i].x(), p[i].y(), p[i].z()}].push_back(Index(i));
+    std::vector<std::vector<Index>> expected;
+    for (const auto& [point, members] : by_point)
+        if (members.size() > 1) expected.push_back(members);
+    std::sort(expected.begin(), expected.end());
+    std::vector<std::vector<Index>> found;
+    const auto& [members, offsets] = groups[0];
+    for (std::size_t g = 0; g + 1 < offsets.size(); ++g)
+        found.emplace_back(members.begin() + std::ptrdiff_t(offsets[g]),
+                           members.begin() + std::ptrdiff_t(offsets[g + 1]));
+    CHECK(found == expected);
+    CHECK(found.size() > 1000);
+}
+
+TEST_CASE("components and validate(): the same for 1, 2 and 7 threads", "[parallel]") {
+    const HalfedgeMesh mesh = make_torus(120, 60, 2.0, 0.5);
+    const auto labels = with_1_2_7_threads([&] {
+        std::vector<Index> component;
+        const std::size_t n = label_components(mesh, component);
+        return std::make_pair(n, component);
+    });
+    CHECK(labels[0].first == 1);
+    CHECK(labels[1] == labels[0]);
+    CHECK(labels[2] == labels[0]);
+    const auto valid = with_1_2_7_threads([&] { return validate(mesh).ok; });
+    CHECK(valid == std::vector<bool>{true, true, true});
+}
+
+#if !defined(__SANITIZE_THREAD__)  // ThreadSanitizer does not support a multi-threaded fork
+TEST_CASE("a forked child runs its loops on its own thread (the pool's workers stay behind)",
+          "[parallel]") {
+    set_thread_count(2);
+    parallel_for(0, 4 * kBlock, [](std::size_t) {});  // the pool has its worker now
+    const pid_t child = fork();
+    REQUIRE(child >= 0);
+    if (child == 0) {
+        alarm(20);  // a loop waiting for the parent's workers would hang: SIGALRM ends it
+        std::vector<double> v = spread_values(8 * kBlock);
+        const double s = parallel_reduce(
+            0, v.size(), 0.0,
+            [&](std::size_t b, std::size_t e) {
+                double part = 0;
+                for (std::size_t i = b; i < e; ++i) part += v[i];
+                return part;
+            },
+            [](double a, double b) { return a + b; });
+        _exit(std::isfinite(s) ? 0 : 1);
+    }
+    int status = 0;
+    REQUIRE(waitpid(child, &status, 0) == child);
+    CHECK(WIFEXITED(status));
+    CHECK(WEXITSTATUS(status) == 0);
+    set_thread_count(0);
+}
+#endif
