@@ -197,6 +197,13 @@ if(TARGET trilab)
              COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --op flip --up z --mode textured --frames 6)
     set_tests_properties(viewer_up_axis_flip PROPERTIES PASS_REGULAR_EXPRESSION
                          "volume 4.15508 -> -4.15508.*spherical, \\+z up texture coordinates")
+    # --threads (issue 43): a bad count is refused naming the option; a good one runs.
+    add_test(NAME viewer_bad_threads COMMAND $<TARGET_FILE:trilab> --threads many --frames 1)
+    set_tests_properties(viewer_bad_threads PROPERTIES PASS_REGULAR_EXPRESSION
+                         "trilab: --threads")
+    add_test(NAME viewer_threads
+             COMMAND ${TRILAB_XVFB} $<TARGET_FILE:trilab> --threads 2 --op "smooth" --frames 3)
+    set_tests_properties(viewer_threads PROPERTIES PASS_REGULAR_EXPRESSION "smooth .* done")
     add_test(NAME viewer_bad_up_axis COMMAND $<TARGET_FILE:trilab> --up x --frames 1)
     set_tests_properties(viewer_bad_up_axis PROPERTIES WILL_FAIL TRUE)
     add_test(NAME viewer_bad_operation COMMAND $<TARGET_FILE:trilab> --op "noise --amount -1"

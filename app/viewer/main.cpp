@@ -12,6 +12,7 @@
 #include "app/platform/heap_tuning.h"
 #include "app/platform/termination.h"
 #include "app/viewer/viewer.h"
+#include "core/parallel.h"
 #include "trilab/version.h"
 
 #include <GLFW/glfw3.h>  // after glad (viewer.h): glfwPostEmptyEvent
@@ -80,6 +81,8 @@ options:
                      morph, subdivision, fairing, frequency, decimation, collapsing-edges,
                      record, log, info, a tool by its operation's name (noise, weld,
                      remove-components), and the dialogs help, about, screenshot
+  --threads N        threads of the parallel passes (0: every core, the default; also
+                     TRILAB_THREADS); results are the same bits for any N
   --help             this text
   --version          print "trilab VERSION" (the project's version) and exit
 )";
@@ -128,8 +131,21 @@ std::string check_combinations(const trilab::viewer::ViewerOptions& options) {
     return "";
 }
 
+/// --threads N: the parallel passes' threads (core/parallel.h; the same bits for any count).
+/// Returns false with `error` set when N does not parse.
+bool apply_threads(const std::string& text, std::string& error) {
+    try {
+        trilab::set_thread_count(trilab::parse_thread_count(text, "--threads"));
+        return true;
+    } catch (const std::exception& e) {
+        error = e.what();
+        return false;
+    }
+}
+
 /// Fills `options`; returns an error message, or "" on success.
 std::string parse_args(int argc, char** argv, trilab::viewer::ViewerOptions& options, bool& help) {
+    std::string error = "--threads needs a count (0: every core)";
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         auto value = [&](std::string& out) {
@@ -140,6 +156,8 @@ std::string parse_args(int argc, char** argv, trilab::viewer::ViewerOptions& opt
         std::string v;
         if (arg == "--help" || arg == "-h") {
             help = true;
+        } else if (arg == "--threads") {
+            if (!value(v) || !apply_threads(v, error)) return error;
         } else if (arg == "--size") {
             if (!value(v) || !parse_size(v, options.width, options.height))
                 return "--size needs WxH, e.g. 1280x800";
@@ -260,7 +278,13 @@ int main(int argc, char** argv) {
         }
     trilab::viewer::ViewerOptions options;
     bool help = false;
-    const std::string error = parse_args(argc, argv, options, help);
+    std::string error;
+    try {
+        trilab::apply_thread_environment();  // TRILAB_THREADS, before --threads overrides it
+    } catch (const std::exception& e) {
+        error = e.what();
+    }
+    if (error.empty()) error = parse_args(argc, argv, options, help);
     if (help) {
         std::fputs(kUsage, stdout);
         return 0;

@@ -35,6 +35,7 @@ CASES = [
     ("weld", dict(), [], ["grid"]),
     ("remove-components", dict(min_faces=10), ["--min-faces", "10"], ["torus"]),
     ("features", dict(), [], ["torus"]),
+    ("sharpen", dict(edge=5, sharpness=2.0), ["--edge", "5", "--sharpness", "2"], ["torus"]),
     ("spectrum", dict(k=12, band=(0, 5)), ["--k", "12", "--band", "0:5"], ["default"]),
     ("smooth", dict(step=0.5, region="sphere:0,0,1,0.8"),
      ["--step", "0.5", "--region", "sphere:0,0,1,0.8"], ["default"]),
