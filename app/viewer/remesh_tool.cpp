@@ -22,9 +22,15 @@ std::string fixed(double value, const char* format) {
 
 }  // namespace
 
-std::vector<std::array<std::string, 3>> quality_rows(const MeshQuality& before,
-                                                     const MeshQuality* after) {
+RemeshQuality remesh_quality(const HalfedgeMesh& mesh, std::optional<double> length) {
+    return {mesh_quality(mesh, length), cotangent_spread(mesh)};
+}
+
+std::vector<std::array<std::string, 3>> quality_rows(const RemeshQuality& before_all,
+                                                     const RemeshQuality* after_all) {
     std::vector<std::array<std::string, 3>> rows;
+    const MeshQuality& before = before_all.quality;
+    const MeshQuality* after = after_all ? &after_all->quality : nullptr;
     const auto row = [&](const char* label, double b, double a, const char* format) {
         rows.push_back({label, fixed(b, format), after ? fixed(a, format) : "-"});
     };
@@ -38,6 +44,12 @@ std::vector<std::array<std::string, 3>> quality_rows(const MeshQuality& before,
     row("edges in [0.8 L, 4/3 L] (%)", 100.0 * before.edges_in_band, 100.0 * x.edges_in_band,
         "%.1f");
     row("valence 6 (%)", 100.0 * before.valence6, 100.0 * x.valence6, "%.1f");
+    const CotangentSpread no_spread;
+    const CotangentSpread& s = after_all ? after_all->spread : no_spread;
+    row("cotangent weight, largest / median", before_all.spread.weight_ratio, s.weight_ratio,
+        "%.3g");
+    row("negative cotangent weights (%)", 100.0 * before_all.spread.negative_share,
+        100.0 * s.negative_share, "%.1f");
     return rows;
 }
 
@@ -68,7 +80,7 @@ void RemeshTool::update() {
     const std::string quality_key = key;
     if (quality_key != before_key_) {
         before_key_ = quality_key;
-        before_ = mesh_quality(mesh, length);
+        before_ = remesh_quality(mesh, length);
         after_of_ = nullptr;  // at a new length, the preview's too
     }
     const OperationResult* result = session.previews().result();
@@ -77,7 +89,7 @@ void RemeshTool::update() {
         after_of_ = nullptr;
     } else if (result != after_of_) {
         after_of_ = result;
-        after_ = mesh_quality(result->steps.back().mesh, length);
+        after_ = remesh_quality(result->steps.back().mesh, length);
     }
 }
 

@@ -6,7 +6,9 @@
 // this process may allocate), updated as the parameters change; and the quality of the
 // document against the preview shown (mesh_quality(): the smallest angle, the mean of the
 // per-face smallest angles, the share of angles under 30 degrees, of edges within
-// [0.8 L, 4/3 L], of valence-6 vertices), so the gain is read, not guessed. Both are computed
+// [0.8 L, 4/3 L], of valence-6 vertices) and the cotangent Laplacian's spread (the largest
+// weight over the median, the share of negative weights: cotangent_spread()), so the gain,
+// and why fairing gains from it, is read, not guessed. Both are computed
 // on the render thread once per document state, parameters or preview (each O(F)).
 #include <array>
 #include <optional>
@@ -19,10 +21,19 @@
 
 namespace trilab::viewer {
 
+/// A mesh's quality figures and its cotangent Laplacian's spread (why a remeshing helps
+/// curvature-flow fairing and the spectral decomposition: 1-degree triangles give weights
+/// hundreds of times the median, and negative ones).
+struct RemeshQuality {
+    MeshQuality quality;
+    CotangentSpread spread;
+};
+RemeshQuality remesh_quality(const HalfedgeMesh& mesh, std::optional<double> length);
+
 /// The lines of the before/after quality table: {label, before, after} with the numbers
 /// formatted ("-" where `after` is absent).
-std::vector<std::array<std::string, 3>> quality_rows(const MeshQuality& before,
-                                                     const MeshQuality* after);
+std::vector<std::array<std::string, 3>> quality_rows(const RemeshQuality& before,
+                                                     const RemeshQuality* after);
 
 class RemeshTool : public OperationTool {
 public:
@@ -39,15 +50,15 @@ public:
     const std::string& plan_error() const { return plan_error_; }
     /// The document's quality and the preview's (empty: no remeshing preview shown), at the
     /// plan's target length.
-    const std::optional<MeshQuality>& before() const { return before_; }
-    const std::optional<MeshQuality>& after() const { return after_; }
+    const std::optional<RemeshQuality>& before() const { return before_; }
+    const std::optional<RemeshQuality>& after() const { return after_; }
 
 private:
     OperationPanelState panel_{"remesh"};
     std::optional<RemeshReport> plan_;
     std::string plan_error_;
     std::string plan_key_;  ///< the parameters and document state the plan is of
-    std::optional<MeshQuality> before_, after_;
+    std::optional<RemeshQuality> before_, after_;
     std::string before_key_;
     const OperationResult* after_of_ = nullptr;  ///< the preview result `after_` is of
 };

@@ -31,7 +31,7 @@ TEST_CASE("the Remesh tool predicts the faces and compares the preview's quality
     CHECK(tool.plan()->predicted_faces == direct.predicted_faces);
     CHECK(tool.plan()->predicted_faces > 3 * s.mesh().n_faces());
     REQUIRE(tool.before());
-    CHECK(tool.before()->faces == s.mesh().n_faces());
+    CHECK(tool.before()->quality.faces == s.mesh().n_faces());
     CHECK_FALSE(tool.after());
     // A preview: its quality beside the document's, at the plan's length.
     s.execute(PreviewOperation{op});
@@ -42,11 +42,16 @@ TEST_CASE("the Remesh tool predicts the faces and compares the preview's quality
     REQUIRE(tool.after());
     const MeshQuality preview =
         mesh_quality(s.previews().result()->steps.back().mesh, tool.plan()->target_length);
-    CHECK(tool.after()->faces == preview.faces);
-    CHECK(tool.after()->edges_in_band == Approx(preview.edges_in_band));
-    CHECK(tool.after()->edges_in_band > tool.before()->edges_in_band);
+    CHECK(tool.after()->quality.faces == preview.faces);
+    CHECK(tool.after()->quality.edges_in_band == Approx(preview.edges_in_band));
+    CHECK(tool.after()->quality.edges_in_band > tool.before()->quality.edges_in_band);
+    // The cotangent Laplacian's spread, before and after (the lens of issue 41).
+    const CotangentSpread spread = cotangent_spread(s.previews().result()->steps.back().mesh);
+    CHECK(tool.after()->spread.weight_ratio == spread.weight_ratio);
+    CHECK(tool.before()->spread.weight_ratio == cotangent_spread(s.mesh()).weight_ratio);
     const auto rows = quality_rows(*tool.before(), &*tool.after());
-    REQUIRE(rows.size() == 6);
+    REQUIRE(rows.size() == 8);
+    CHECK(rows[6][0] == "cotangent weight, largest / median");
     CHECK(rows[0][1] == std::to_string(s.mesh().n_faces()));
     CHECK(rows[0][2] == std::to_string(preview.faces));
     // Parameters that cannot run say why before anything runs.
