@@ -1769,7 +1769,8 @@ void check_options(const DecimationOptions& o) {
     if (!(o.min_roundness > 0 && o.min_roundness <= 1))
         throw InvalidArgument("decimate: min_roundness must be in (0, 1], got " +
                               number_text(o.min_roundness));
-    if (o.features == FeatureSource::Auto && !(o.feature_angle > 0 && o.feature_angle <= 180))
+    if (o.features == FeatureSource::Auto &&
+        !(std::isfinite(o.feature_angle) && o.feature_angle > 0 && o.feature_angle <= 180))
         throw InvalidArgument("decimate: feature_angle must be in (0, 180] degrees, got " +
                               number_text(o.feature_angle));
     if (!(o.max_error >= 0) || !std::isfinite(o.max_error))

@@ -82,7 +82,8 @@ void check_options(const HalfedgeMesh& mesh, const DenoiseOptions& o) {
         o.features != FeatureSource::Auto)
         throw InvalidArgument("denoise: features must be " +
                               enum_ids(EnumTableView(kFeatureSources)));
-    if (o.features == FeatureSource::Auto && !(o.feature_angle > 0 && o.feature_angle <= 180))
+    if (o.features == FeatureSource::Auto &&
+        !(std::isfinite(o.feature_angle) && o.feature_angle > 0 && o.feature_angle <= 180))
         throw InvalidArgument("denoise: feature_angle must be in (0, 180] degrees, got " +
                               number_text(o.feature_angle));
 }

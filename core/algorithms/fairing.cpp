@@ -1732,7 +1732,7 @@ std::optional<Selection> fix_features(HalfedgeMesh& mesh, const FairingOptions& 
         if (const std::string bad = check_features(mesh); !bad.empty())
             throw InvalidArgument("smooth: invalid features: " + bad);
     if (o.features == FeatureSource::Auto) {
-        if (!(o.feature_angle > 0 && o.feature_angle <= 180))
+        if (!(std::isfinite(o.feature_angle) && o.feature_angle > 0 && o.feature_angle <= 180))
             throw InvalidArgument("smooth: feature_angle must be in (0, 180] degrees (got " +
                                   number_text(o.feature_angle) + ")");
         FeatureDetectionOptions d;

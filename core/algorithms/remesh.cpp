@@ -354,7 +354,8 @@ void check_options(const RemeshOptions& o) {
         o.features != FeatureSource::Auto)
         throw InvalidArgument("remesh: features must be " +
                               enum_ids(EnumTableView(kFeatureSources)));
-    if (o.features == FeatureSource::Auto && !(o.feature_angle > 0 && o.feature_angle <= 180))
+    if (o.features == FeatureSource::Auto &&
+        !(std::isfinite(o.feature_angle) && o.feature_angle > 0 && o.feature_angle <= 180))
         throw InvalidArgument("remesh: feature_angle must be in (0, 180] degrees, got " +
                               number_text(o.feature_angle));
 }

@@ -1759,7 +1759,8 @@ SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& 
                               std::to_string(static_cast<long long>(faces)) +
                               " faces (at most 50 million): use fewer iterations");
     const bool auto_features = options.features == SubdivisionFeatures::Auto;
-    if (auto_features && !(options.feature_angle > 0 && options.feature_angle <= 180))
+    if (auto_features && !(std::isfinite(options.feature_angle) && options.feature_angle > 0 &&
+                           options.feature_angle <= 180))
         throw InvalidArgument("subdivide: the feature angle must be in (0, 180] degrees (got " +
                               number_text(options.feature_angle) + ")");
     if (const std::string bad = check_features(mesh); !bad.empty())
