@@ -151,33 +151,9 @@ const char* const kParentsName = "v:subdivision_parents";
 
 /// Plain pointers into a mesh's connectivity and position arrays (its built-in properties),
 /// fetched once so that the inner loops index arrays instead of going through the property
-/// views. `Out` is taken after resize_elements() and stays valid while no element is added.
-struct In {
-    Index nv, ne, nf;
-    const Vertex* to;
-    const Halfedge* next;
-    const Halfedge* prev;
-    const Face* face;
-    const Halfedge* vh;
-    const Halfedge* fh;
-    const Point* x;
-    explicit In(const HalfedgeMesh& m)
-        : nv(Index(m.vertices_size())),
-          ne(Index(m.edges_size())),
-          nf(Index(m.faces_size())),
-          to(m.halfedge_to_array().data()),
-          next(m.halfedge_next_array().data()),
-          prev(m.halfedge_prev_array().data()),
-          face(m.halfedge_face_array().data()),
-          vh(m.vertex_halfedge_array().data()),
-          fh(m.face_halfedge_array().data()),
-          x(m.positions().data()) {}
-    Index to_i(Index h) const { return to[h].idx(); }
-    Index from_i(Index h) const { return to[h ^ 1u].idx(); }
-    Index next_i(Index h) const { return next[h].idx(); }
-    Index prev_i(Index h) const { return prev[h].idx(); }
-    bool boundary(Index h) const { return !face[h].is_valid(); }
-};
+/// views (subdivision_creases.h's MeshArrays, which the crease rules read too). `Out` is taken
+/// after resize_elements() and stays valid while no element is added.
+using In = subdivision_detail::MeshArrays;
 
 struct Out {
     Vertex* to;
@@ -821,9 +797,7 @@ void positions_1to4(const In& m, SubdivisionScheme scheme, Point* p, const Stage
     else if (scheme == SubdivisionScheme::Loop)
         loop_positions(m, p, stage);
     else if (creases.any())
-        butterfly_positions_creased(subdivision_detail::MeshArrays(m.nv, m.ne, m.nf, m.to, m.next,
-                                                                   m.prev, m.face, m.vh, m.fh, m.x),
-                                    creases.sharp, creases.corner,
+        butterfly_positions_creased(m, creases.sharp, creases.corner,
                                     scheme == SubdivisionScheme::ModifiedButterfly, p);
     else
         butterfly_positions(m, p, scheme == SubdivisionScheme::ModifiedButterfly, stage);

@@ -77,20 +77,6 @@ struct MeshArrays {
           vh(m.vertex_halfedge_array().data()),
           fh(m.face_halfedge_array().data()),
           x(m.positions().data()) {}
-    MeshArrays(Index n_vertices, Index n_edges, Index n_faces, const Vertex* to_vertex,
-               const Halfedge* next_halfedge, const Halfedge* prev_halfedge,
-               const Face* halfedge_face, const Halfedge* vertex_halfedge,
-               const Halfedge* face_halfedge, const Point* positions)
-        : nv(n_vertices),
-          ne(n_edges),
-          nf(n_faces),
-          to(to_vertex),
-          next(next_halfedge),
-          prev(prev_halfedge),
-          face(halfedge_face),
-          vh(vertex_halfedge),
-          fh(face_halfedge),
-          x(positions) {}
     Index to_i(Index h) const { return to[h].idx(); }
     Index from_i(Index h) const { return to[h ^ 1u].idx(); }
     Index next_i(Index h) const { return next[h].idx(); }
