@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <numeric>
+#include <utility>
 
 #include "app/viewer/panels.h"
 
@@ -145,17 +147,22 @@ namespace {
 
 /// The values' histogram over the bar's width (`p0`, `size`), cached per set of values.
 void legend_histogram(const VertexColors& colors, const ImVec2& p0, const ImVec2& size) {
-    static const double* cached_data = nullptr;
-    static std::size_t cached_size = 0;
-    static ValueRange cached_range;
+    // The key: where the values are, their count, the range, the label and a few values (a
+    // new set of colours may reuse the old one's memory).
+    const auto key_of = [](const VertexColors& c) {
+        std::vector<double> key = {double(reinterpret_cast<std::uintptr_t>(c.values.data())),
+                                   double(c.values.size()), c.range.min, c.range.max};
+        const std::size_t n = c.values.size();
+        for (std::size_t i : {std::size_t(0), n / 3, n / 2, 2 * n / 3, n - 1})
+            if (i < n) key.push_back(std::isnan(c.values[i]) ? 1e308 : c.values[i]);
+        return std::make_pair(key, c.label);
+    };
+    static std::pair<std::vector<double>, std::string> cached_key;
     static std::vector<std::size_t> counts;
-    const ValueRange& r = colors.range;
-    if (colors.values.data() != cached_data || colors.values.size() != cached_size ||
-        r.min != cached_range.min || r.max != cached_range.max) {
-        cached_data = colors.values.data();
-        cached_size = colors.values.size();
-        cached_range = r;
-        counts = value_histogram(colors.values, r, 48);
+    auto key = key_of(colors);
+    if (key != cached_key) {
+        cached_key = std::move(key);
+        counts = value_histogram(colors.values, colors.range, 48);
     }
     std::size_t most = 1;
     for (std::size_t c : counts) most = std::max(most, c);
