@@ -94,6 +94,19 @@ TEST_CASE("the Compare panel's button colours by the distance", "[compare_tool][
     ui.frame(draw);
     ui.frame(draw);
     REQUIRE(ui.has("section:Compare"));
+    // The source's radio buttons: a mesh file (its path field shows), then a state again.
+    const auto press = [&](const std::string& id) {
+        const Box r = ui.rect(id);
+        ui.click(draw, 0.5f * (r.x0 + r.x1), 0.5f * (r.y0 + r.y1));
+    };
+    press("compare: file");
+    CHECK(tool.target().source == CompareTool::Source::File);
+    ui.frame(draw);
+    CHECK(ui.has("compare: path"));
+    press("compare: state");
+    CHECK(tool.target().source == CompareTool::Source::State);
+    ui.frame(draw);
+    CHECK(ui.has("compare: entry"));
     const Box b = ui.rect("Colour by the distance");
     commands.clear();
     ui.click(draw, 0.5f * (b.x0 + b.x1), 0.5f * (b.y0 + b.y1));

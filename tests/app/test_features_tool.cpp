@@ -112,6 +112,19 @@ TEST_CASE("the Features panel's widgets queue the features operation", "[feature
     ui.click(draw, 0.5f * (lines.x0 + lines.x1), 0.5f * (lines.y0 + lines.y1));
     CHECK_FALSE(tool.show_lines());
     CHECK(commands.empty());
+    // Tagging's check boxes: clicking tags, and a semi-sharp value (its slider shows).
+    REQUIRE_FALSE(tool.tag_by_click());
+    const Box tag = ui.rect("tag edges by clicking");
+    ui.click(draw, 0.5f * (tag.x0 + tag.x1), 0.5f * (tag.y0 + tag.y1));
+    CHECK(tool.tag_by_click());
+    REQUIRE(tool.infinite());
+    CHECK_FALSE(ui.has("features: sharpness"));
+    const Box infinite = ui.rect("infinitely sharp");
+    ui.click(draw, 0.5f * (infinite.x0 + infinite.x1), 0.5f * (infinite.y0 + infinite.y1));
+    CHECK_FALSE(tool.infinite());
+    ui.frame(draw);
+    CHECK(ui.has("features: sharpness"));
+    CHECK(tool.sharpen_selection(false).text().find("--sharpness") != std::string::npos);
     const PanelEntries entries = panels.entries();
     const PanelEntry* entry = find_panel(entries, "features");
     REQUIRE(entry);
