@@ -37,6 +37,12 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr std::size_t kMaxFaces = 50'000'000;  // as subdivide()
+// A bisection of a face with a vertex that moves (weight > 0) must keep this many degrees
+// above the target: the scheme moves that vertex again at every later level, while the face's
+// outside vertices stay, so its descendants' angles drift (on the generated sphere's cap by
+// 0.6 degrees over four levels); a face that misses it is split 1-to-4 instead.
+constexpr double kMovingGreenMargin = 3.0;
+
 // A closure edge is flipped only between faces this close to coplanar (before and after), so
 // that the flips move the surface by at most about sin(7.5 deg) / 4 of an edge's length.
 constexpr double kMaxClosureFlipDihedral = 15.0;
@@ -501,7 +507,12 @@ std::size_t close_red_green(const HalfedgeMesh& m, const Selection& w,
     // flatter than half the input's smallest angle, at any number of levels).
     const double green_target = local_closure ? 0.5 * target_angle : target_angle;
     const double cos_target = std::cos(green_target * kPi / 180.0);
+    const double moving_target = std::min(green_target + kMovingGreenMargin, 60.0);
+    const double cos_moving = std::cos(moving_target * kPi / 180.0);
     const auto green_ok = [&](Face f) {
+        const bool moves = near[f.idx()] != 0;
+        const double t = moves ? moving_target : green_target;
+        const double ct = moves ? cos_moving : cos_target;
         for (Halfedge h : m.halfedges_of(f)) {
             const Index e = HalfedgeMesh::edge(h).idx();
             if (!split[e]) continue;
@@ -509,8 +520,7 @@ std::size_t close_red_green(const HalfedgeMesh& m, const Selection& w,
             const Point b = old_position(m.to_vertex(h).idx());
             const Point c = old_position(m.to_vertex(m.next(h)).idx());
             const Point mid = edge_position(e);
-            return min_angle_at_least(a, mid, c, green_target, cos_target) &&
-                   min_angle_at_least(mid, b, c, green_target, cos_target);
+            return min_angle_at_least(a, mid, c, t, ct) && min_angle_at_least(mid, b, c, t, ct);
         }
         return true;
     };

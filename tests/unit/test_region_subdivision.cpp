@@ -134,10 +134,19 @@ TEST_CASE("subdivide_region refines the selected faces with a conforming closure
     const std::size_t selected = count_selected_faces(mesh, region);
     REQUIRE(report.closure.size() == 1);
     CHECK(report.closure[0].selected_faces == selected);
-    if (scheme == SubdivisionScheme::Sqrt3)
+    // 1-to-4 schemes: the red-green count, plus 3 per face grown into where a bisection of a
+    // face with a moving vertex would come within kMovingGreenMargin of the bound (each such
+    // face turns from green, +1, into red, +3, and may make its neighbours green).
+    if (scheme == SubdivisionScheme::Sqrt3) {
         CHECK(out.n_faces() == mesh.n_faces() + 2 * selected);
-    else
-        CHECK(out.n_faces() == predicted_red_green_faces(mesh, region));
+    } else {
+        const auto& c = report.closure[0];
+        CHECK(out.n_faces() == mesh.n_faces() + 3 * c.red_faces + c.green_faces);
+        if (c.grown_faces == 0)
+            CHECK(out.n_faces() == predicted_red_green_faces(mesh, region));
+        else
+            CHECK(out.n_faces() > predicted_red_green_faces(mesh, region));
+    }
     CHECK(out.n_faces() > mesh.n_faces());
     CHECK(out.n_faces() < (scheme == SubdivisionScheme::Sqrt3 ? 3 : 4) * mesh.n_faces());
 
@@ -179,7 +188,8 @@ TEST_CASE("subdivide_region refines the selected faces with a conforming closure
     CHECK(report.min_angle_in == Approx(brute_min_angle(mesh)).margin(1e-9));
     CHECK(report.min_angle_out == Approx(brute_min_angle(out)).margin(1e-9));
     CHECK(report.min_angle_out > 0);
-    CHECK(report.closure[0].grown_faces == 0);
+    // Local: a few faces grown at most, never the surface.
+    CHECK(out.n_faces() < mesh.n_faces() + 20 * selected);
     CHECK(report.closure[0].min_angle_closure >= report.min_angle_out);
 }
 
@@ -252,10 +262,10 @@ TEST_CASE("subdivide takes a region through the operation and reports the angles
     std::map<std::string, double> values(r.values.begin(), r.values.end());
     CHECK(values.at("region_vertices") == double(count_selected(region)));
     CHECK(values.at("faces") == double(r.steps.back().mesh.n_faces()));
-    CHECK(values.at("faces") == double(predicted_red_green_faces(mesh, region)));
+    CHECK(values.at("faces") >= double(predicted_red_green_faces(mesh, region)));
     CHECK(values.count("min_angle_in") == 1);
     CHECK(values.count("min_angle_out") == 1);
-    CHECK(values.at("grown_faces") == 0);
+    CHECK(values.at("grown_faces") <= values.at("selected_faces"));
     CHECK(values.at("min_angle_closure") < values.at("min_angle_in"));  // bisections, kept local
     CHECK(validate(r.steps.back().mesh).ok);
     // --global-closure grows the closure until none of its triangles is flatter than the input.
@@ -653,19 +663,43 @@ TEST_CASE("a small region's closure stays local by default and repeated levels d
         CHECK(g.levels[0].mesh.n_faces() == 4 * mesh.n_faces());
         CHECK(global_report.closure[0].min_angle_closure >= input_min - 1e-9);
     }
-    // More levels (Loop): the closure's smallest angle stays near half the input's, where before
-    // it halved with every level. The region's border vertices move with every level, so the
-    // 1-to-4 split of an earlier closure face is similar to it up to that motion: 26.4 degrees
-    // at level 4 for a bound of 27.0 (docs/cli.md).
-    SubdivisionOptions five;
-    five.iterations = 5;
-    five.keep_levels = false;
-    RegionSubdivisionReport report;
-    const SubdivisionResult r = subdivide_region(mesh, five, region, progress, report);
-    for (std::size_t k = 0; k < report.closure.size(); ++k) {
-        INFO("level " << k + 1);
-        CHECK(report.closure[k].min_angle_closure >= 0.48 * input_min);
+    // More levels: no angle under half the input's smallest at any of five levels, where before
+    // the closure halved its angles with every level. (The region's border vertices move with
+    // every level, so a bisection of a face with such a vertex keeps a margin above the bound:
+    // without it Loop's closure drifted to 26.4 degrees at level 4 for a bound of 27.02.)
+    // On the default model and on the generated sphere (`trilab-cli generate sphere`, the
+    // issue's input). Modified Butterfly only on the sphere: on the default model its
+    // extraordinary-vertex stencils at the region's border read the closure's flat, irregular
+    // neighbourhood and the region's own border triangles fall to 16.4 degrees at level 3
+    // (docs/cli.md).
+    const HalfedgeMesh sphere = make_icosphere(10);
+    const Selection cap = sphere_selection(sphere, Point(0, 0, 1), 0.5);
+    const double sphere_min = brute_min_angle(sphere);
+    struct Case {
+        const HalfedgeMesh* mesh;
+        const Selection* region;
+        double input_min;
+        SubdivisionScheme scheme;
+    };
+    for (const Case& c : {Case{&mesh, &region, input_min, SubdivisionScheme::Loop},
+                          Case{&mesh, &region, input_min, SubdivisionScheme::Butterfly},
+                          Case{&sphere, &cap, sphere_min, SubdivisionScheme::Loop},
+                          Case{&sphere, &cap, sphere_min, SubdivisionScheme::Butterfly},
+                          Case{&sphere, &cap, sphere_min, SubdivisionScheme::ModifiedButterfly}}) {
+        INFO(scheme_name(c.scheme)
+             << (c.mesh == &mesh ? " on the default model" : " on the sphere"));
+        SubdivisionOptions five;
+        five.scheme = c.scheme;
+        five.iterations = 5;
+        RegionSubdivisionReport report;
+        const SubdivisionResult r = subdivide_region(*c.mesh, five, *c.region, progress, report);
+        REQUIRE(r.levels.size() == 5);
+        for (std::size_t k = 0; k < report.closure.size(); ++k) {
+            INFO("level " << k + 1);
+            CHECK(report.closure[k].min_angle_closure >= 0.5 * c.input_min - 1e-9);
+            CHECK(brute_min_angle(r.levels[k].mesh) >= 0.5 * c.input_min - 1e-9);
+        }
+        CHECK(report.min_angle_out >= 0.5 * c.input_min - 1e-9);
+        CHECK(validate(r.levels.back().mesh).ok);
     }
-    CHECK(report.min_angle_out >= 0.48 * input_min);
-    CHECK(validate(r.levels.back().mesh).ok);
 }
