@@ -53,7 +53,9 @@ OperationResult run_subdivide(const SubdivisionOptions& options, const HalfedgeM
                 (o.scheme == SubdivisionScheme::Sqrt3 ? " split 1-to-3, "
                                                       : " split 1-to-4 (red), ") +
                 (o.scheme == SubdivisionScheme::Sqrt3
-                     ? count_text(c.flipped_edges, "edge flipped", "edges flipped")
+                     ? count_text(c.flipped_edges, "edge flipped", "edges flipped") + ", " +
+                           std::to_string(c.completed_edges) +
+                           " earlier closure triangles completed"
                      : std::to_string(c.green_faces) + " split 1-to-2 (green)"));
         }
         std::snprintf(line, sizeof(line), "minimum angle: %.3f deg before, %.3f deg after",
@@ -92,6 +94,7 @@ OperationResult run_subdivide(const SubdivisionOptions& options, const HalfedgeM
         result.values.push_back({"closure_flips", double(c.closure_flips)});
         result.values.push_back({"grown_faces", double(c.grown_faces)});
         result.values.push_back({"closure_reds", double(c.closure_reds)});
+        result.values.push_back({"completed_edges", double(c.completed_edges)});
     }
     sub.levels.clear();  // moved into the steps: the report is the counts, notes and time
     result.typed_report = std::move(sub);

@@ -103,6 +103,13 @@ HalfedgeMesh bare_copy(const HalfedgeMesh& m, std::size_t nv, std::size_t ne, st
 }
 
 /// One refined level with its carried selection.
+/// A Sqrt3 closure triangle (a, b, centroid of the split face) left unflipped beside an unsplit
+/// face: its halfedge a -> b and its apex (the centroid).
+struct OddTriangle {
+    Index halfedge;
+    Index apex;
+};
+
 struct RegionStep {
     SubdivisionLevel level;
     Selection selection;
@@ -113,6 +120,9 @@ struct RegionStep {
     /// again but splits 1-to-4 (red) when one of their edges is split: red-green refinement's
     /// removal of the previous closure, so that repeated levels do not keep halving angles.
     std::vector<std::uint8_t> closure_faces;
+    /// Sqrt3: the closure's triangles left unflipped (Kobbelt's odd generation): a later level
+    /// completes them (complete_sqrt3()).
+    std::vector<OddTriangle> odd_triangles;
     Index flattest = kInvalidIndex;  ///< the level's flattest face (the first of equal ones)
 };
 
@@ -901,7 +911,8 @@ std::size_t grow_sqrt3(const HalfedgeMesh& m, const Position& old_position, doub
 /// `out`).
 std::vector<std::uint8_t> sqrt3_closure(const HalfedgeMesh& m, HalfedgeMesh& out,
                                         const std::vector<std::uint8_t>& split_face,
-                                        RegionClosureCounts& counts) {
+                                        RegionClosureCounts& counts,
+                                        std::vector<OddTriangle>& odd_triangles) {
     const Index nf = Index(m.faces_size());
     // The old edges of the split faces, the only ones the rule or the closure changes: flipped
     // by the rule when the face across is split too (counted at their even halfedge, so once),
@@ -928,6 +939,10 @@ std::vector<std::uint8_t> sqrt3_closure(const HalfedgeMesh& m, HalfedgeMesh& out
         if (flip_improves(out, Edge(e))) {
             out.flip(Edge(e));
             ++counts.closure_flips;
+        } else {
+            // The split side keeps its halfedge (the triangle a, b, centroid).
+            const Halfedge h = HalfedgeMesh::halfedge(Edge(e), split_face[f0.idx()] ? 0 : 1);
+            odd_triangles.push_back({h.idx(), out.to_vertex(out.next(h)).idx()});
         }
         closure[out.face(HalfedgeMesh::halfedge(Edge(e), 0)).idx()] = 1;
         closure[out.face(HalfedgeMesh::halfedge(Edge(e), 1)).idx()] = 1;
@@ -937,9 +952,10 @@ std::vector<std::uint8_t> sqrt3_closure(const HalfedgeMesh& m, HalfedgeMesh& out
     return closure;
 }
 
-/// One adaptive Sqrt3 step on `m` (compact) with weights `w`.
-RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int level, bool morph,
-                               bool local_closure, double target_angle,
+/// One adaptive Sqrt3 step on `m` (compact) with weights `w`. The vertices from `n_level` on
+/// are the centroids complete_sqrt3() added to the previous level: new vertices of this one.
+RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, Index n_level, int level,
+                               bool morph, bool local_closure, double target_angle,
                                const std::vector<double>& coarse_flat, bool keep_flatness,
                                Progress& progress) {
     const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
@@ -998,9 +1014,16 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int le
         return g.is_valid() && split_face[g.idx()] != 0;
     };
     NewVertices nvx(out, morph);
-    for (Index v = 0; v < nv; ++v) {
+    for (Index v = 0; v < std::min(nv, n_level); ++v) {
         nvx.add(moves(v) ? SubdivisionStencil::EvenRelaxed : SubdivisionStencil::EvenKept, x[v],
                 w[v], v);
+    }
+    if (n_level < nv) {
+        const auto completion = m.get_vertex_property<SubdivisionParents>(kParentsName);
+        for (Index v = n_level; v < nv; ++v) {
+            const SubdivisionParents& q = completion[Vertex(v)];
+            nvx.add(SubdivisionStencil::OddFace, x[v], w[v], q[0], q[1], q[2]);
+        }
     }
     Point* p = out.positions().data();
     for (Index f = 0; f < nf; ++f) {
@@ -1044,7 +1067,8 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int le
     for (Index v = 0; v < nv; ++v)
         if (nvx.stencil[v] == int(SubdivisionStencil::EvenRelaxed))
             p[v] = blend_by_weight(x[v], relaxed[v], w[v]);
-    const std::vector<std::uint8_t> closure = sqrt3_closure(m, out, split_face, step.counts);
+    const std::vector<std::uint8_t> closure =
+        sqrt3_closure(m, out, split_face, step.counts, step.odd_triangles);
     // Faces of the coarse level left as they were: not split, not flipped, no vertex of weight
     // > 0 (a face counted as changed that is not, one with a boundary vertex, gets the same
     // value computed anew).
@@ -1057,6 +1081,90 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, int le
     level_flatness(out, coarse_flat, changed, keep_flatness, step);
     finish(m, level, morph, keep_flatness, std::move(nvx), step);
     return step;
+}
+
+/// Kobbelt's completion of earlier levels' odd triangles ("√3-Subdivision", SIGGRAPH 2000,
+/// adaptive refinement): a closure triangle T = (a, b, centroid of F) left unflipped beside an
+/// unsplit face M is, when T is to be refined now (its three vertices weigh > 0), first
+/// completed as the uniform step would have made it: M is split at its centroid and the edge
+/// a-b flipped, giving the regular pair (c_F, c_M, b), (c_M, c_F, a) instead of refining the
+/// flat T again (which halved its angles at every level: 29 to 12 degrees over five levels on
+/// the generated sphere's cap). A face M beside two such triangles is split once, and its
+/// other two old edges are then flipped where that raises the smaller angle of their pair
+/// (max-min-angle, within 15 degrees of coplanar). A completion whose pair would be flatter
+/// than `min_angle` degrees (M itself flat, an earlier odd triangle) is not done: T is
+/// refined as an ordinary face. The new centroids weigh the least of M's weights (0: M was
+/// not selected) and carry the level `level`, the one being built (its step reports them as
+/// new face points of M: refine_region_sqrt3()'s `n_level`). `w` and `flatness` grow with
+/// the mesh; every face changed has a new centroid as a corner and is measured anew. An odd
+/// triangle not refined now is kept in `odd` for a later level; one that a flip has changed
+/// since is dropped. Returns the number of edges flipped. O(odd triangles).
+std::size_t complete_sqrt3(HalfedgeMesh& m, Selection& w, std::vector<double>& flatness,
+                           std::vector<OddTriangle>& odd, int level, double min_angle) {
+    std::vector<std::uint8_t> completed(m.faces_size(), 0);  // children of a split M
+    auto levels = m.get_vertex_property<int>(kLevelName);
+    auto stencils = m.get_vertex_property<int>(kStencilName);
+    auto parents = m.get_vertex_property<SubdivisionParents>(kParentsName);
+    auto uv = m.get_vertex_property<TexCoord>("v:texcoord");
+    const double cos_min = std::cos(min_angle * kPi / 180.0);
+    const auto fair = [&](const Point& p0, const Point& p1, const Point& p2) {
+        return min_angle_at_least(p0, p1, p2, min_angle, cos_min);
+    };
+    std::vector<OddTriangle> kept;
+    std::vector<Edge> outer;  // M's old edges but a-b: max-min-angle flips after
+    const Index first_new = Index(m.vertices_size());
+    std::size_t flips = 0;
+    for (const OddTriangle& o : odd) {
+        const Halfedge h(o.halfedge);
+        if (o.halfedge >= m.halfedges_size() || m.is_boundary(h) ||
+            m.to_vertex(m.next(h)).idx() != o.apex)
+            continue;  // flipped or refined since
+        const Halfedge t = HalfedgeMesh::twin(h);
+        if (m.is_boundary(t)) continue;
+        const Vertex a = m.from_vertex(h), b = m.to_vertex(h), apex(o.apex);
+        if (!(w[a.idx()] > 0.0f && w[b.idx()] > 0.0f && w[o.apex] > 0.0f)) {
+            kept.push_back(o);  // not refined at this level: perhaps at a later one
+            continue;
+        }
+        const Face mate = m.face(t);
+        const Vertex d = m.to_vertex(m.next(t));
+        const Point &pa = m.position(a), &pb = m.position(b), &pc = m.position(apex);
+        const bool split_now = !completed[mate.idx()];
+        const Point cm = split_now ? Point((pa + pb + m.position(d)) / 3.0) : m.position(d);
+        if (!fair(pc, cm, pb) || !fair(cm, pc, pa)) continue;
+        if (split_now) {
+            const float weight = std::min({w[a.idx()], w[b.idx()], w[d.idx()]});
+            const Vertex c = m.split(mate, cm);
+            w.resize(m.vertices_size(), 0.0f);
+            w[c.idx()] = weight;
+            if (levels) levels[c] = level;
+            if (stencils) stencils[c] = int(SubdivisionStencil::OddFace);
+            if (parents) parents[c] = SubdivisionParents(a.idx(), b.idx(), d.idx());
+            if (uv) uv[c] = (uv[a] + uv[b] + uv[d]) / 3.0;
+            outer.push_back(m.find_edge(b, d));
+            outer.push_back(m.find_edge(d, a));
+            completed.resize(m.faces_size(), 0);
+            for (Halfedge g : m.halfedges_around(c)) completed[m.face(g).idx()] = 1;
+        }
+        const Edge e = HalfedgeMesh::edge(h);
+        if (!m.is_flip_ok(e)) continue;
+        m.flip(e);
+        ++flips;
+    }
+    for (const Edge e : outer)
+        if (e.is_valid() && !m.is_boundary(e) && flip_improves(m, e)) m.flip(e);
+    // Every face the completion changed has a new centroid as a corner: measured anew.
+    flatness.resize(m.faces_size(), 0.0);
+    for (Index v = first_new; v < Index(m.vertices_size()); ++v)
+        for (Halfedge g : m.halfedges_around(Vertex(v))) {
+            const Face f = m.face(g);
+            if (!f.is_valid()) continue;
+            const auto c = m.face_vertices(f);
+            flatness[f.idx()] =
+                triangle_flatness(m.position(c[0]), m.position(c[1]), m.position(c[2]));
+        }
+    odd = std::move(kept);
+    return flips;
 }
 
 /// The uniform run, for an all-ones selection: subdivide() itself, with the selection (all
@@ -1129,24 +1237,38 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
         }
         RegionStep latest;
         std::vector<std::uint8_t> closure_faces;  // of the last level built (1-to-4 schemes)
+        std::vector<OddTriangle> odd_triangles;   // of the levels built (Sqrt3)
+        HalfedgeMesh completed;                   // Sqrt3: the last level, completed
         if (options.keep_levels) result.levels.reserve(std::size_t(options.iterations));
         for (int it = 1; it <= options.iterations; ++it) {
             progress.check_cancelled();
             progress.report(double(it - 1) / options.iterations, "subdividing the region");
             const bool morph = options.morph && (options.keep_levels || it == options.iterations);
             const bool keep_flatness = it < options.iterations;  // the next level reads it
+            std::size_t completions = 0;
+            const Index n_level = Index(current->vertices_size());
+            if (sqrt3 && !odd_triangles.empty()) {
+                completed = *current;
+                completions = complete_sqrt3(completed, weights, flatness, odd_triangles, it,
+                                             0.5 * report.min_angle_in);
+                current = &completed;
+            }
             RegionStep step =
-                sqrt3 ? refine_region_sqrt3(*current, weights, it, morph, !options.global_closure,
-                                            report.min_angle_in, flatness, keep_flatness, progress)
+                sqrt3 ? refine_region_sqrt3(*current, weights, n_level, it, morph,
+                                            !options.global_closure, report.min_angle_in, flatness,
+                                            keep_flatness, progress)
                       : refine_region_1to4(*current, weights, options.scheme, it, morph,
                                            !options.global_closure, report.min_angle_in, flatness,
                                            closure_faces, keep_flatness, progress);
+            step.counts.completed_edges = completions;
             report.closure.push_back(step.counts);
             result.level_counts.push_back(
                 {step.level.mesh.n_vertices(), step.level.mesh.n_faces()});
             weights = std::move(step.selection);
             flatness = std::move(step.flatness);
             closure_faces = std::move(step.closure_faces);
+            odd_triangles.insert(odd_triangles.end(), step.odd_triangles.begin(),
+                                 step.odd_triangles.end());
             flattest = step.flattest;
             if (options.keep_levels) {
                 result.levels.push_back(std::move(step.level));

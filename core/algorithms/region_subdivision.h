@@ -27,10 +27,11 @@
 //    centroid). When that triangle would be flatter than the input's smallest angle, the
 //    unsplit face is split too ("grown"), until nothing changes. No vertex lands on an edge,
 //    so the mesh is conforming without any closure faces. Faces: F + 2·split faces.
-//    Simplification: generations are not stored, so in a later iteration (or call) such a
-//    triangle is refined as an ordinary one, not first flipped with its newly split neighbour
-//    as the paper's bookkeeping would; boundary edges are never split (the odd-step boundary
-//    rule of subdivision.h in every step).
+//    Generations (the paper's bookkeeping, within one call): a closure triangle (a, b,
+//    centroid) left unflipped is completed before a later iteration refines it (its
+//    neighbour split at the centroid, the old edge flipped: complete_sqrt3 in the .cpp);
+//    between calls such triangles are refined as ordinary ones. Boundary edges are never
+//    split (the odd-step boundary rule of subdivision.h in every step).
 //  - Then Lawson's max-min-angle flips among the closure's triangles (1-to-4: the faces cut
 //    from refined faces outside the selection; Sqrt3: the edge between a split and an unsplit
 //    face), only between faces within 15° of coplanar (before and after): each flip raises
@@ -48,9 +49,10 @@
 //  25-35°, and no conforming 2:1 transition between equilateral meshes keeps 60°), so the
 //  closure grows over the whole connected surface (its outside refined at midpoints: the same
 //  surface, four times the faces); on scanned and CAD meshes (bunny, spot, fandisk) it grows by
-//  a few faces at most. Sqrt3 keeps its simplification above: a later level refines an earlier
-//  level's unflipped triangles as ordinary ones (on that cap its closure goes from 29° at one
-//  level to 12° at five).
+//  a few faces at most. Sqrt3's closure triangles are half their face's angles by design, and
+//  the region's relaxed border faces lose more: on that cap the minimum goes 29.2, 27.0, 21.4,
+//  21.3, 18.7° over five levels (12.3° at five before the completion), above a third of the
+//  input's smallest but not half.
 // Positions (w: the vertex weights):
 //  - an old vertex with w = 0 keeps its position bit for bit; with w > 0 it gets
 //    p_old + w·(p_scheme − p_old), p_scheme being the uniform scheme's rule on the coarse mesh
@@ -90,6 +92,9 @@ struct RegionClosureCounts {
     /// Faces of an earlier level's closure split 1-to-4 rather than bisected again (1-to-4
     /// schemes, from the second level on).
     std::size_t closure_reds = 0;
+    /// Sqrt3: the previous level's unflipped closure triangles completed before this level
+    /// refined them (their neighbour split at its centroid, the old edge flipped).
+    std::size_t completed_edges = 0;
     /// Degrees: the smallest angle of the coarse faces the closure replaced (1-to-4: refined
     /// faces outside the selection; Sqrt3: the faces on both sides of the region's edge), and
     /// of the closure's own triangles (180 when there is no closure).
