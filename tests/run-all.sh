@@ -14,14 +14,14 @@
 #     `tsan` only (the job runner, the log, the panels, the headless session: target
 #     trilab_tsan_tests), run with `ctest -L tsan`; any race report fails the run (build-tsan/);
 #  6. fuzz job: the libFuzzer targets built with clang (-DTRILAB_FUZZ=ON, build-fuzz/), each
-#     run for TRILAB_FUZZ_SECONDS (default 20) on its seed corpus; any failure fails the run.
+#     run for TRILAB_FUZZ_SECONDS (default 15) on its seed corpus; any failure fails the run.
 # The sanitizer, ThreadSanitizer and fuzz builds keep line tables only (-g1): their reports
 # name files and lines, and the builds take less of CI's 45 minutes than with full -g.
 # Every build has -DTRILAB_WERROR=ON: a warning in our code fails the run.
 # Stops at the first failing step. See README "Tests" and "Hardening".
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
-fuzz_seconds="${TRILAB_FUZZ_SECONDS:-20}"
+fuzz_seconds="${TRILAB_FUZZ_SECONDS:-15}"
 line_tables=(-DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG"
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG")
 
