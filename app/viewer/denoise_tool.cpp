@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -70,9 +71,19 @@ void DenoiseTool::update() {
 }
 
 void DenoiseTool::update_bands() {
-    // O(k · rows) on the render thread: only while the section shows them (opening it
-    // computes them for the preview shown then).
-    if (!panel_.open) return;
+    // O(k · rows) on a worker thread, from copies of the positions and a share of the
+    // decomposition; only while the section shows them (opening it computes them for the
+    // preview shown then).
+    if (bands_job_.valid() &&
+        bands_job_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+        try {
+            bands_ = bands_job_.get();
+            ++computations_;
+        } catch (const std::exception& e) {
+            context_.session.log().warning(std::string("Denoise: band energies: ") + e.what());
+        }
+    }
+    if (!panel_.open || bands_job_.valid()) return;  // one computation at a time
     const Session& session = context_.session;
     const std::optional<Operation>& requested = session.previews().requested();
     const OperationResult* preview =
@@ -91,12 +102,15 @@ void DenoiseTool::update_bands() {
     if (!after || !f.valid || !f.decomposition || f.decomposition->empty()) return;
     const std::size_t n = f.decomposition->base_positions.size();
     if (mesh.vertices_size() != n || after->vertices_size() != n) return;
-    try {
-        bands_ = band_energies(*f.decomposition, mesh.positions(), after->positions(), kBands);
-        ++computations_;
-    } catch (const std::exception& e) {
-        context_.session.log().warning(std::string("Denoise: band energies: ") + e.what());
-    }
+    bands_job_ = std::async(std::launch::async, [d = f.decomposition, before = mesh.positions(),
+                                                 now = after->positions()] {
+        return band_energies(*d, before, now, kBands);
+    });
+}
+
+void DenoiseTool::finish() {
+    if (bands_job_.valid()) bands_job_.wait();
+    update_bands();
 }
 
 namespace {

@@ -5,9 +5,10 @@
 // energy of the document's positions and of the preview's in each band, drawn side by side
 // (a denoiser should take out the high bands' noise and keep the high bands that carry the
 // edges, where smoothing takes them all). Computed while the section is open, when the preview
-// result changes (O(k · rows) on the render thread), and cached.
+// result changes (O(k · rows) on a worker thread, from copies), and cached.
 // The worked example of docs/recipes.md "A new operation with a panel of its own".
 #include <cstddef>
+#include <future>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,8 @@ public:
     const BandEnergies& bands() const { return bands_; }
     /// How many times the energies were computed (the cache's test).
     std::size_t computations() const { return computations_; }
+    /// Waits for the energies being computed on the worker thread and takes them (tests).
+    void finish();
 
     static constexpr std::size_t kBands = 8;
 
@@ -57,8 +60,9 @@ private:
     void update_bands();
     OperationPanelState panel_{"denoise"};
     BandEnergies bands_;
-    std::string bands_key_;  ///< what bands_ was computed for
+    std::string bands_key_;  ///< what bands_ was (is being) computed for
     std::size_t computations_ = 0;
+    std::future<BandEnergies> bands_job_;  ///< O(k · rows), off the render thread
 };
 
 }  // namespace trilab::viewer

@@ -2,6 +2,7 @@
 
 #include <imgui.h>
 
+#include <chrono>
 #include <cstdio>
 #include <exception>
 
@@ -57,39 +58,75 @@ RemeshTool::RemeshTool(ViewerContext& context) : OperationTool(context, {}) {
     set_panels({&panel_});
 }
 
+void RemeshTool::take_results() {
+    const auto ready = [](const auto& job) {
+        return job.valid() && job.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+    };
+    if (ready(plan_job_)) {
+        Planned p = plan_job_.get();
+        if (p.key == plan_key_) {  // not overtaken by newer parameters
+            plan_ = std::move(p.plan);
+            plan_error_ = std::move(p.error);
+            before_ = std::move(p.before);
+        }
+    }
+    if (ready(after_job_)) after_ = after_job_.get();
+}
+
 void RemeshTool::update() {
     OperationTool::update();
+    take_results();
     if (!panel_.open) return;
     const Session& session = context_.session;
     const HalfedgeMesh& mesh = session.mesh();
     const std::string state =
         std::to_string(mesh.topology_revision()) + "/" + std::to_string(mesh.geometry_revision());
     const std::string key = panel_.op.text() + "@" + state;
-    if (key != plan_key_) {
+    if (key != plan_key_ && !plan_job_.valid()) {  // one computation at a time
         plan_key_ = key;
-        plan_.reset();
-        plan_error_.clear();
+        after_of_ = nullptr;  // at a new length, the preview's quality too
+        RemeshOptions options;
+        bool valid = true;
+        std::string error;
         try {
-            plan_ = remesh_plan(mesh, options_of<RemeshOptions>(panel_.op));
+            options = options_of<RemeshOptions>(panel_.op);
         } catch (const std::exception& e) {
-            plan_error_ = e.what();
+            valid = false;
+            error = e.what();
         }
-    }
-    const std::optional<double> length =
-        plan_ ? std::optional<double>(plan_->target_length) : std::nullopt;
-    const std::string quality_key = key;
-    if (quality_key != before_key_) {
-        before_key_ = quality_key;
-        before_ = remesh_quality(mesh, length);
-        after_of_ = nullptr;  // at a new length, the preview's too
+        plan_job_ = std::async(std::launch::async, [key, copy = mesh, options, valid, error] {
+            Planned p{key, std::nullopt, error, {}};
+            if (valid) {
+                try {
+                    p.plan = remesh_plan(copy, options);
+                } catch (const std::exception& e) {
+                    p.error = e.what();
+                }
+            }
+            const std::optional<double> length =
+                p.plan ? std::optional<double>(p.plan->target_length) : std::nullopt;
+            p.before = remesh_quality(copy, length);
+            return p;
+        });
     }
     const OperationResult* result = session.previews().result();
     if (!result || !panel_.previewing || result->steps.empty()) {
         after_.reset();
         after_of_ = nullptr;
-    } else if (result != after_of_) {
+    } else if (result != after_of_ && plan_ && !plan_job_.valid() && !after_job_.valid()) {
         after_of_ = result;
-        after_ = remesh_quality(result->steps.back().mesh, length);
+        after_job_ = std::async(std::launch::async,
+                                [copy = result->steps.back().mesh, length = plan_->target_length] {
+                                    return remesh_quality(copy, length);
+                                });
+    }
+}
+
+void RemeshTool::finish() {
+    for (int i = 0; i < 3; ++i) {  // the plan, then the preview's quality it enables
+        if (plan_job_.valid()) plan_job_.wait();
+        if (after_job_.valid()) after_job_.wait();
+        update();
     }
 }
 
@@ -106,6 +143,7 @@ void RemeshTool::section(const SidebarContext& context, CommandQueue& commands) 
     } else if (!plan_error_.empty()) {
         wrapped_colored(kErrorColor, "%s", plan_error_.c_str());
     }
+    if (computing()) wrapped_disabled("%s", "measuring the quality...");
     if (before_ && ImGui::BeginTable("remesh quality", 3, ImGuiTableFlags_SizingFixedFit)) {
         ImGui::TableSetupColumn("quality");
         ImGui::TableSetupColumn("now");

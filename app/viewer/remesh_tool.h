@@ -8,9 +8,12 @@
 // per-face smallest angles, the share of angles under 30 degrees, of edges within
 // [0.8 L, 4/3 L], of valence-6 vertices) and the cotangent Laplacian's spread (the largest
 // weight over the median, the share of negative weights: cotangent_spread()), so the gain,
-// and why fairing gains from it, is read, not guessed. Both are computed
-// on the render thread once per document state, parameters or preview (each O(F)).
+// and why fairing gains from it, is read, not guessed. Both are computed on a worker thread
+// from copies, once per document state and parameters (the plan and the document's quality)
+// and once per preview (its quality): each is O(F), tens of milliseconds on a million faces,
+// never a frame's wait.
 #include <array>
+#include <future>
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,15 +55,28 @@ public:
     /// plan's target length.
     const std::optional<RemeshQuality>& before() const { return before_; }
     const std::optional<RemeshQuality>& after() const { return after_; }
+    /// Whether a computation is running.
+    bool computing() const { return plan_job_.valid() || after_job_.valid(); }
+    /// Waits for the running computations and takes their results (tests).
+    void finish();
 
 private:
+    /// What the worker computes for one document state and parameters.
+    struct Planned {
+        std::string key;
+        std::optional<RemeshReport> plan;
+        std::string error;
+        RemeshQuality before;
+    };
+    void take_results();
     OperationPanelState panel_{"remesh"};
     std::optional<RemeshReport> plan_;
     std::string plan_error_;
-    std::string plan_key_;  ///< the parameters and document state the plan is of
+    std::string plan_key_;  ///< the parameters and document state the plan is (being) made of
     std::optional<RemeshQuality> before_, after_;
-    std::string before_key_;
-    const OperationResult* after_of_ = nullptr;  ///< the preview result `after_` is of
+    const OperationResult* after_of_ = nullptr;  ///< the preview result `after_` is (being) of
+    std::future<Planned> plan_job_;
+    std::future<RemeshQuality> after_job_;
 };
 
 }  // namespace trilab::viewer

@@ -128,6 +128,7 @@ TEST_CASE("the Denoise tool compares the preview's bands with the document's, on
     CHECK(tool.computations() == 0);
     panels.denoise.open = true;
     tool.update();
+    tool.finish();  // computed on a worker thread
     CHECK(tool.computations() == 1);
     const BandEnergies& e = tool.bands();
     REQUIRE(e.size() > 0);
@@ -137,6 +138,7 @@ TEST_CASE("the Denoise tool compares the preview's bands with the document's, on
     const std::size_t computed = tool.computations();
     tool.update();
     tool.update();
+    tool.finish();
     CHECK(tool.computations() == computed);  // cached until the preview changes
     s.execute(CancelPreview{});
     tool.update();

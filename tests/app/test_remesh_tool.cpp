@@ -25,7 +25,7 @@ TEST_CASE("the Remesh tool predicts the faces and compares the preview's quality
     Operation op = tool.panel().op;
     op.value("relative").x = 0.5;  // half the mean edge: about four times the faces
     tool.panel().op = op;
-    tool.update();
+    tool.finish();  // the plan and the quality come from a worker thread
     REQUIRE(tool.plan());
     const RemeshReport direct = remesh_plan(s.mesh(), options_of<RemeshOptions>(op));
     CHECK(tool.plan()->predicted_faces == direct.predicted_faces);
@@ -38,7 +38,7 @@ TEST_CASE("the Remesh tool predicts the faces and compares the preview's quality
     s.finish_jobs();
     s.update();
     tool.panel().previewing = true;
-    tool.update();
+    tool.finish();
     REQUIRE(tool.after());
     const MeshQuality preview =
         mesh_quality(s.previews().result()->steps.back().mesh, tool.plan()->target_length);
@@ -57,7 +57,7 @@ TEST_CASE("the Remesh tool predicts the faces and compares the preview's quality
     // Parameters that cannot run say why before anything runs.
     op.value("relative").x = 1e-6;
     tool.panel().op = op;
-    tool.update();
+    tool.finish();
     CHECK_FALSE(tool.plan());
     CHECK_FALSE(tool.plan_error().empty());
     // Its Remesh button applies the panel's operation.
