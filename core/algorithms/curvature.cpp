@@ -27,8 +27,9 @@
 // H = K = k1 = k2 = S = 0 exactly instead of noise amplified by the square root in k1,2 and
 // by the ratio in S.
 //
-// Everything is accumulated in one pass over the faces; per face the cotangents come from
-// cot = (a . b) / |a x b| with |a x b| = twice the face area, and two angles from
+// Each vertex gathers the terms of the faces around it, in the order of its fan, on every
+// thread (core/parallel.h: the same bits for any number of threads); per face the cotangents
+// come from cot = (a . b) / |a x b| with |a x b| = twice the face area, and two angles from
 // atan2(|a x b|, a . b), the third being pi minus those, so a face's three angles sum to pi,
 // also when it is degenerate (a collinear face has angles 0, 0, pi; a face with coincident
 // corners gets pi shared among those corners). Hence sum_v (K_G A_mixed) = 2 pi chi up to
@@ -39,13 +40,15 @@
 // whose mixed area is zero (all incident faces degenerate) and vertices whose values would not
 // be finite (non-finite positions, overflow) get valid = 0 and all values 0 (area included).
 //
-// Complexity: O(V + F) time, O(V) scratch memory; no allocation per face.
+// Complexity: O(V + F) time (each face's terms computed once per corner), no scratch memory
+// beyond the output; no allocation per face.
 #include "core/algorithms/curvature.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "core/parallel.h"
 #include "core/types.h"
 
 namespace trilab {
@@ -57,16 +60,17 @@ constexpr double kPi = 3.14159265358979323846;
 /// noise (double precision gives ~1e-16 per operation) and is taken as exactly zero.
 constexpr double kCancellation = 1e-12;
 
-/// Per-vertex sums gathered from the faces.
-struct Accumulators {
-    std::vector<double> area;       ///< mixed Voronoi area
-    std::vector<double> angle;      ///< sum of the corner angles
-    std::vector<Vector3> laplace;   ///< sum_j (cot alpha_ij + cot beta_ij) (x_i - x_j)
-    std::vector<double> magnitude;  ///< sum of the L1 norms of the terms of `laplace`
-    std::vector<Vector3> normal;    ///< sum of the incident faces' area vectors
+/// Per-vertex sums gathered from the faces around it.
+struct Sums {
+    double area = 0;           ///< mixed Voronoi area
+    double angle = 0;          ///< sum of the corner angles
+    Vector3 laplace{0, 0, 0};  ///< sum_j (cot alpha_ij + cot beta_ij) (x_i - x_j)
+    double magnitude = 0;      ///< sum of the L1 norms of the terms of `laplace`
+    Vector3 normal{0, 0, 0};   ///< sum of the incident faces' area vectors
 };
 
-void accumulate_face(const HalfedgeMesh& mesh, Face f, Accumulators& acc) {
+/// Adds to `sums` what face f gives its corner at vertex `at`.
+void add_corner(const HalfedgeMesh& mesh, Face f, Vertex at, Sums& sums) {
     const auto v = mesh.face_vertices(f);
     const Point* p[3] = {&mesh.position(v[0]), &mesh.position(v[1]), &mesh.position(v[2])};
     // e[k] is the edge opposite to corner k, from corner k+1 to corner k+2.
@@ -106,40 +110,28 @@ void accumulate_face(const HalfedgeMesh& mesh, Face f, Accumulators& acc) {
         // Non-finite corners (or an overflowing area): the corners' values are undefined.
         angle[0] = angle[1] = angle[2] = std::numeric_limits<double>::quiet_NaN();
     }
-
+    const int k = v[0] == at ? 0 : (v[1] == at ? 1 : 2);
+    const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+    sums.angle += angle[k];
+    sums.normal += area_vector;
+    // The edge opposite to corner j, from corner j+1 to corner j+2 (e[j]), has weight cot[j]
+    // and term cot[j] e[j], which its first end subtracts and its second adds: corner k is the
+    // second end of the edge opposite k1 and the first end of the edge opposite k2.
+    const Vector3 to_second = cot[k1] * e[k1], to_first = cot[k2] * e[k2];
+    sums.laplace += to_second - to_first;
+    sums.magnitude += to_second.lpNorm<1>() + to_first.lpNorm<1>();
+    if (!proper) return;
     const bool obtuse = dot[0] < 0 || dot[1] < 0 || dot[2] < 0;
-    for (int k = 0; k < 3; ++k) {
-        const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
-        const Index i = v[k].idx();
-        acc.angle[i] += angle[k];
-        acc.normal[i] += area_vector;
-        // The edge opposite to k joins k1 and k2 with weight cot[k].
-        const Vector3 term = cot[k] * e[k];
-        const double term_magnitude = term.lpNorm<1>();
-        acc.laplace[v[k1].idx()] -= term;
-        acc.laplace[v[k2].idx()] += term;
-        acc.magnitude[v[k1].idx()] += term_magnitude;
-        acc.magnitude[v[k2].idx()] += term_magnitude;
-        if (!proper) continue;
-        if (!obtuse)
-            acc.area[i] += 0.125 * (e[k1].squaredNorm() * cot[k1] + e[k2].squaredNorm() * cot[k2]);
-        else
-            acc.area[i] += (dot[k] < 0 ? 0.25 : 0.125) * twice_area;
-    }
+    if (!obtuse)
+        sums.area += 0.125 * (e[k1].squaredNorm() * cot[k1] + e[k2].squaredNorm() * cot[k2]);
+    else
+        sums.area += (dot[k] < 0 ? 0.25 : 0.125) * twice_area;
 }
 
 }  // namespace
 
 VertexCurvatures compute_curvatures(const HalfedgeMesh& mesh) {
     const std::size_t n = mesh.vertices_size();
-    Accumulators acc;
-    acc.area.assign(n, 0.0);
-    acc.angle.assign(n, 0.0);
-    acc.laplace.assign(n, Vector3::Zero());
-    acc.normal.assign(n, Vector3::Zero());
-    acc.magnitude.assign(n, 0.0);
-    for (Face f : mesh.faces()) accumulate_face(mesh, f, acc);
-
     VertexCurvatures c;
     c.mean.assign(n, 0.0);
     c.gaussian.assign(n, 0.0);
@@ -148,33 +140,42 @@ VertexCurvatures compute_curvatures(const HalfedgeMesh& mesh) {
     c.shape_index.assign(n, 0.0);
     c.valid.assign(n, 0);
     c.area.assign(n, 0.0);
-    for (Vertex v : mesh.vertices()) {
-        const Index i = v.idx();
-        const double area = acc.area[i];
-        if (mesh.is_boundary(v) || !(area > 0) || !std::isfinite(area)) continue;
-        // Sums that cancel down to rounding noise are flat: exactly zero.
-        const Vector3& laplace = acc.laplace[i];
-        const double h_abs = laplace.lpNorm<1>() <= kCancellation * acc.magnitude[i]
-                                 ? 0.0
-                                 : laplace.norm() / (4.0 * area);
-        const double mean = laplace.dot(acc.normal[i]) < 0 ? -h_abs : h_abs;
-        const double deficit = 2.0 * kPi - acc.angle[i];
-        const double gaussian =
-            std::abs(deficit) <= kCancellation * 2.0 * kPi ? 0.0 : deficit / area;
-        const double root = std::sqrt(std::max(mean * mean - gaussian, 0.0));
-        const double k1 = mean + root, k2 = mean - root;
-        const double shape = (2.0 / kPi) * std::atan2(k1 + k2, k1 - k2);
-        if (!std::isfinite(mean) || !std::isfinite(gaussian) || !std::isfinite(k1) ||
-            !std::isfinite(k2) || !std::isfinite(shape))
-            continue;
-        c.mean[i] = mean;
-        c.gaussian[i] = gaussian;
-        c.k1[i] = k1;
-        c.k2[i] = k2;
-        c.shape_index[i] = shape;
-        c.valid[i] = 1;
-        c.area[i] = area;
-    }
+    const bool garbage = mesh.has_garbage();
+    // Each vertex gathers its faces' terms in the order of its fan and writes only its own
+    // values: the same bits for any number of threads (core/parallel.h).
+    parallel_for_blocks(0, n, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            const Vertex v(static_cast<Index>(i));
+            if ((garbage && mesh.is_deleted(v)) || mesh.is_isolated(v) || mesh.is_boundary(v))
+                continue;
+            Sums sums;
+            for (Face f : mesh.faces_around(v)) add_corner(mesh, f, v, sums);
+            const double area = sums.area;
+            if (!(area > 0) || !std::isfinite(area)) continue;
+            // Sums that cancel down to rounding noise are flat: exactly zero.
+            const Vector3& laplace = sums.laplace;
+            const double h_abs = laplace.lpNorm<1>() <= kCancellation * sums.magnitude
+                                     ? 0.0
+                                     : laplace.norm() / (4.0 * area);
+            const double mean = laplace.dot(sums.normal) < 0 ? -h_abs : h_abs;
+            const double deficit = 2.0 * kPi - sums.angle;
+            const double gaussian =
+                std::abs(deficit) <= kCancellation * 2.0 * kPi ? 0.0 : deficit / area;
+            const double root = std::sqrt(std::max(mean * mean - gaussian, 0.0));
+            const double k1 = mean + root, k2 = mean - root;
+            const double shape = (2.0 / kPi) * std::atan2(k1 + k2, k1 - k2);
+            if (!std::isfinite(mean) || !std::isfinite(gaussian) || !std::isfinite(k1) ||
+                !std::isfinite(k2) || !std::isfinite(shape))
+                continue;
+            c.mean[i] = mean;
+            c.gaussian[i] = gaussian;
+            c.k1[i] = k1;
+            c.k2[i] = k2;
+            c.shape_index[i] = shape;
+            c.valid[i] = 1;
+            c.area[i] = area;
+        }
+    });
     return c;
 }
 

@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "core/algorithms/coincident.h"
+#include "core/algorithms/curvature.h"
 #include "core/algorithms/fairing.h"
 #include "core/algorithms/generators.h"
 #include "core/algorithms/mesh_stats.h"
@@ -184,6 +185,21 @@ TEST_CASE("explicit fairing, normals, statistics: the same bits for 1, 2 and 7 t
     });
     CHECK(stats[1] == stats[0]);
     CHECK(stats[2] == stats[0]);
+}
+
+TEST_CASE("curvatures: the same bits for 1, 2 and 7 threads", "[parallel]") {
+    const HalfedgeMesh mesh = make_noisy_sphere(24, 0.05, 3);  // two blocks of vertices
+    const auto curvatures = with_1_2_7_threads([&] {
+        const VertexCurvatures c = compute_curvatures(mesh);
+        std::vector<double> all = c.mean;
+        for (const auto* v : {&c.gaussian, &c.k1, &c.k2, &c.shape_index, &c.area})
+            all.insert(all.end(), v->begin(), v->end());
+        for (std::uint8_t valid : c.valid) all.push_back(valid);
+        return all;
+    });
+    REQUIRE(curvatures[0].size() == 7 * mesh.vertices_size());
+    CHECK(curvatures[1] == curvatures[0]);
+    CHECK(curvatures[2] == curvatures[0]);
 }
 
 TEST_CASE("exact coincident groups: the same groups for 1, 2 and 7 threads, as a map finds them",
