@@ -3,7 +3,7 @@
 //     a cluster number, numbered in vertex order), summing positions for the means;
 //  2. triangles: every live face maps its corners to clusters; a face with two corners in
 //     one cluster is dropped, the others are kept once per (rotation-normalized) triangle.
-//     Faces are cut into fixed chunks handled by worker threads, each chunk listing its own
+//     Faces are cut into fixed chunks handled on core/parallel.h's pool, each listing its own
 //     distinct triangles in face order; the chunks are then merged in order, so the result is
 //     the sequential one whatever the thread count.
 // The cell is first sized from the mesh's area (a surface of area A meets about 1.5 A / h^2
@@ -12,11 +12,9 @@
 #include "core/algorithms/proxy_mesh.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <thread>
 
 #include "core/errors.h"
 #include "core/geometry.h"
@@ -249,23 +247,21 @@ std::vector<std::uint64_t> chunk_triangles(const View& m, const Clusters& cluste
     return seen.keys();
 }
 
-/// Pass 2: the proxy triangles, chunks on `threads` threads, merged in chunk order.
+/// Pass 2: the proxy triangles, chunks on the pool's threads (core/parallel.h), merged in
+/// chunk order.
 template <typename View>
-std::vector<std::array<Index, 3>> make_triangles(const View& m, const Clusters& clusters,
-                                                 unsigned threads) {
+std::vector<std::array<Index, 3>> make_triangles(const View& m, const Clusters& clusters) {
     const std::size_t nf = m.n_faces();
     const std::size_t n_chunks = (nf + kChunkFaces - 1) / kChunkFaces;
     std::vector<std::vector<std::uint64_t>> per_chunk(n_chunks);
-    std::atomic<std::size_t> next_chunk{0};
-    auto work = [&] {
-        for (std::size_t k; (k = next_chunk++) < n_chunks;)
-            per_chunk[k] =
-                chunk_triangles(m, clusters, k * kChunkFaces, std::min(nf, (k + 1) * kChunkFaces));
-    };
-    std::vector<std::thread> pool;
-    for (unsigned t = 1; t < std::min<std::size_t>(threads, n_chunks); ++t) pool.emplace_back(work);
-    work();
-    for (std::thread& t : pool) t.join();
+    parallel_for_blocks(
+        0, n_chunks,
+        [&](std::size_t begin, std::size_t end) {
+            for (std::size_t k = begin; k < end; ++k)
+                per_chunk[k] = chunk_triangles(m, clusters, k * kChunkFaces,
+                                               std::min(nf, (k + 1) * kChunkFaces));
+        },
+        1);
     KeyNumbers all(1u << 16);
     for (const std::vector<std::uint64_t>& keys : per_chunk)
         for (std::uint64_t key : keys) all.number(key);
@@ -306,11 +302,6 @@ double first_cell_size(const View& m, const BoundingBox& box, std::size_t target
     return cell > 0 && std::isfinite(cell) ? cell : 1.0;
 }
 
-unsigned thread_count(unsigned asked) {
-    if (asked) return asked;
-    return std::max(1u, std::min(8u, unsigned(trilab::thread_count())));
-}
-
 /// make_proxy_mesh over either view.
 template <typename View>
 ProxyMesh make_proxy(const View& m, const ProxyMeshOptions& options, const char* name) {
@@ -330,7 +321,7 @@ ProxyMesh make_proxy(const View& m, const ProxyMeshOptions& options, const char*
             cell *= 2;  // too fine for the packing
             continue;
         }
-        out.triangles = make_triangles(m, clusters, thread_count(options.threads));
+        out.triangles = make_triangles(m, clusters);
         const double ratio = double(out.triangles.size()) / double(target);
         if (ratio > 1) {
             cell *= std::sqrt(ratio) * 1.02;  // triangles go as 1 / cell^2

@@ -12,6 +12,7 @@
 #include "core/errors.h"
 #include "core/geometry.h"
 #include "core/io/mesh_io.h"
+#include "core/parallel.h"
 #include "core/progress.h"
 #include "tests/unit/test_helpers.h"
 
@@ -90,12 +91,14 @@ TEST_CASE("make_proxy_mesh keeps every vertex within its bound and under the tar
 
 TEST_CASE("make_proxy_mesh is deterministic, whatever the thread count", "[proxy_mesh]") {
     const HalfedgeMesh mesh = make_noisy_sphere(60, 0.02, 7);  // 36,000 faces: several chunks
-    ProxyMeshOptions one, many;
-    one.target_triangles = many.target_triangles = 3000;
-    one.threads = 1;
-    many.threads = 5;
-    const ProxyMesh a = make_proxy_mesh(mesh, one), b = make_proxy_mesh(mesh, many),
-                    c = make_proxy_mesh(mesh, many);
+    ProxyMeshOptions options;
+    options.target_triangles = 3000;
+    const int threads = thread_count();
+    set_thread_count(1);
+    const ProxyMesh a = make_proxy_mesh(mesh, options);
+    set_thread_count(5);
+    const ProxyMesh b = make_proxy_mesh(mesh, options), c = make_proxy_mesh(mesh, options);
+    set_thread_count(threads);
     CHECK(a.triangles == b.triangles);
     CHECK(b.triangles == c.triangles);
     CHECK(a.positions == b.positions);
