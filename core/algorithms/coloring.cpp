@@ -63,6 +63,19 @@ constexpr std::array<ControlPoint, 5> kDiverging = {{
     {1.00, 0.820, 0.155, 0.170},
 }};
 
+/// Runs fn(v) for every live vertex on core/parallel.h's pool: each call writes only vertex
+/// v's entries, so the colours are the same for any number of threads.
+template <typename Fn>
+void each_vertex(const HalfedgeMesh& mesh, const Fn& fn) {
+    const bool garbage = mesh.has_garbage();
+    parallel_for_blocks(0, mesh.vertices_size(), [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            const Vertex v(static_cast<Index>(i));
+            if (!(garbage && mesh.is_deleted(v))) fn(v);
+        }
+    });
+}
+
 const Color kFrontColor(0.5f, 0.62f, 0.8f);
 const Color kInvalidColor(0.55f, 0.55f, 0.55f);
 
@@ -261,14 +274,14 @@ VertexColors triangle_quality_colors(const HalfedgeMesh& mesh, bool min_angle, c
     const std::size_t n = mesh.vertices_size();
     out.colors.assign(n, kInvalidColor);
     out.values.assign(n, std::numeric_limits<double>::quiet_NaN());
-    for (Vertex v : mesh.vertices()) {
+    each_vertex(mesh, [&](Vertex v) {
         double worst = std::numeric_limits<double>::infinity();
         for (Face f : mesh.faces_around(v))
             if (std::isfinite(faces[f.idx()])) worst = std::min(worst, faces[f.idx()]);
-        if (!std::isfinite(worst)) continue;  // isolated, or only degenerate triangles
+        if (!std::isfinite(worst)) return;  // isolated, or only degenerate triangles
         out.values[v.idx()] = worst;
         out.colors[v.idx()] = map_color(worst, out.range, out.kind);
-    }
+    });
     return out;
 }
 
@@ -289,12 +302,12 @@ VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
     }
     if (coloring == VertexColoring::Normal) {
         out.colors.assign(n, kInvalidColor);
-        for (Vertex v : mesh.vertices()) {
+        each_vertex(mesh, [&](Vertex v) {
             const Vector3 normal = vertex_normal(mesh, v);
             // Isolated vertices and fully degenerate fans have no normal: neutral grey.
             if (normal != Vector3::Zero())
                 out.colors[v.idx()] = ((normal + Vector3::Ones()) * 0.5).cast<float>();
-        }
+        });
         out.range = {-1, 1};
         return out;
     }
@@ -387,11 +400,11 @@ VertexColors color_vertices(const HalfedgeMesh& mesh, VertexColoring coloring,
                                                        options.high_percentile));
     out.colors.assign(n, kInvalidColor);
     out.values.assign(n, std::numeric_limits<double>::quiet_NaN());
-    for (Vertex v : mesh.vertices())
-        if (c.valid[v.idx()]) {
-            out.colors[v.idx()] = map_color((*field)[v.idx()], out.range, out.kind);
-            out.values[v.idx()] = (*field)[v.idx()];
-        }
+    each_vertex(mesh, [&](Vertex v) {
+        if (!c.valid[v.idx()]) return;
+        out.colors[v.idx()] = map_color((*field)[v.idx()], out.range, out.kind);
+        out.values[v.idx()] = (*field)[v.idx()];
+    });
     return out;
 }
 
@@ -425,11 +438,11 @@ VertexColors color_field(const HalfedgeMesh& mesh, const std::vector<double>& va
     }
     out.colors.assign(values.size(), kInvalidColor);
     out.values.assign(values.size(), std::numeric_limits<double>::quiet_NaN());
-    for (Vertex v : mesh.vertices())
-        if (std::isfinite(values[v.idx()])) {
-            out.colors[v.idx()] = map_color(values[v.idx()], out.range, out.kind);
-            out.values[v.idx()] = values[v.idx()];
-        }
+    each_vertex(mesh, [&](Vertex v) {
+        if (!std::isfinite(values[v.idx()])) return;
+        out.colors[v.idx()] = map_color(values[v.idx()], out.range, out.kind);
+        out.values[v.idx()] = values[v.idx()];
+    });
     return out;
 }
 

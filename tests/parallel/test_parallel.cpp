@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <map>
 #include <stdexcept>
 #include <vector>
@@ -16,6 +17,7 @@
 #include <unistd.h>
 
 #include "core/algorithms/coincident.h"
+#include "core/algorithms/coloring.h"
 #include "core/algorithms/curvature.h"
 #include "core/algorithms/fairing.h"
 #include "core/algorithms/generators.h"
@@ -200,6 +202,27 @@ TEST_CASE("curvatures: the same bits for 1, 2 and 7 threads", "[parallel]") {
     REQUIRE(curvatures[0].size() == 7 * mesh.vertices_size());
     CHECK(curvatures[1] == curvatures[0]);
     CHECK(curvatures[2] == curvatures[0]);
+}
+
+TEST_CASE("vertex colourings: the same colours and values for 1, 2 and 7 threads", "[parallel]") {
+    const HalfedgeMesh mesh = make_noisy_sphere(24, 0.05, 5);
+    for (VertexColoring coloring : {VertexColoring::Mean, VertexColoring::ShapeIndex,
+                                    VertexColoring::MinAngle, VertexColoring::Normal}) {
+        INFO(coloring_name(coloring));
+        const auto colors = with_1_2_7_threads([&] {
+            const VertexColors c = color_vertices(mesh, coloring, ColoringOptions{});
+            std::vector<double> all(c.values.begin(), c.values.end());
+            for (const Color& k : c.colors) all.insert(all.end(), {k.x(), k.y(), k.z()});
+            return all;
+        });
+        REQUIRE(colors[0].size() >= 3 * mesh.vertices_size());
+        // NaN != NaN: compare the bits.
+        for (std::size_t t = 1; t < 3; ++t) {
+            REQUIRE(colors[t].size() == colors[0].size());
+            CHECK(std::memcmp(colors[t].data(), colors[0].data(),
+                              colors[0].size() * sizeof(double)) == 0);
+        }
+    }
 }
 
 TEST_CASE("exact coincident groups: the same groups for 1, 2 and 7 threads, as a map finds them",
