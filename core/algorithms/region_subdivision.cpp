@@ -952,6 +952,24 @@ std::vector<std::uint8_t> sqrt3_closure(const HalfedgeMesh& m, HalfedgeMesh& out
     return closure;
 }
 
+/// The provenance of `m`'s vertices on the new level: relaxed or kept, and from `n_level` on
+/// the centroids complete_sqrt3() added (new face points of this level).
+template <typename Moves>
+void add_sqrt3_old_vertices(const HalfedgeMesh& m, const Selection& w, Index n_level,
+                            const Moves& moves, NewVertices& nvx) {
+    const Index nv = Index(m.vertices_size());
+    const Point* x = m.positions().data();
+    for (Index v = 0; v < std::min(nv, n_level); ++v)
+        nvx.add(moves(v) ? SubdivisionStencil::EvenRelaxed : SubdivisionStencil::EvenKept, x[v],
+                w[v], v);
+    if (n_level >= nv) return;
+    const auto completion = m.get_vertex_property<SubdivisionParents>(kParentsName);
+    for (Index v = n_level; v < nv; ++v) {
+        const SubdivisionParents& q = completion[Vertex(v)];
+        nvx.add(SubdivisionStencil::OddFace, x[v], w[v], q[0], q[1], q[2]);
+    }
+}
+
 /// One adaptive Sqrt3 step on `m` (compact) with weights `w`. The vertices from `n_level` on
 /// are the centroids complete_sqrt3() added to the previous level: new vertices of this one.
 RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, Index n_level, int level,
@@ -1014,17 +1032,7 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, Index 
         return g.is_valid() && split_face[g.idx()] != 0;
     };
     NewVertices nvx(out, morph);
-    for (Index v = 0; v < std::min(nv, n_level); ++v) {
-        nvx.add(moves(v) ? SubdivisionStencil::EvenRelaxed : SubdivisionStencil::EvenKept, x[v],
-                w[v], v);
-    }
-    if (n_level < nv) {
-        const auto completion = m.get_vertex_property<SubdivisionParents>(kParentsName);
-        for (Index v = n_level; v < nv; ++v) {
-            const SubdivisionParents& q = completion[Vertex(v)];
-            nvx.add(SubdivisionStencil::OddFace, x[v], w[v], q[0], q[1], q[2]);
-        }
-    }
+    add_sqrt3_old_vertices(m, w, n_level, moves, nvx);
     Point* p = out.positions().data();
     for (Index f = 0; f < nf; ++f) {
         if (!split_face[f]) continue;
