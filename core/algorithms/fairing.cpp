@@ -1784,7 +1784,7 @@ std::optional<Selection> fix_features(HalfedgeMesh& mesh, const FairingOptions& 
 /// Sliding features: the crease vertices that slide (feature_fairing.h) get their region weight
 /// back in `weights` (fix_features() set every feature vertex to 0), so the blend keeps their
 /// curve step; they stay fixed rows of the surface operator (the caller pins them).
-FeatureCurveFairing slide_features(const HalfedgeMesh& mesh, const FairingOptions& o,
+FeatureCurveFairing sliding_curves(const HalfedgeMesh& mesh, const FairingOptions& o,
                                    Selection& weights, std::string& line) {
     FeatureCurveFairing curves(mesh, o.region);
     const std::vector<float> near = feature_neighbourhood(mesh, 0);
@@ -1805,11 +1805,10 @@ FeatureCurveFairing slide_features(const HalfedgeMesh& mesh, const FairingOption
 FairingResult smooth_mesh(FairingResult res, const FairingOptions& given, Progress& progress) {
     if (given.region) check_selection(res.mesh, *given.region, "smooth: region");
     std::string feature_line;
-    const std::optional<Selection> with_features = fix_features(res.mesh, given, feature_line);
-    std::optional<Selection> weights = with_features;
+    std::optional<Selection> weights = fix_features(res.mesh, given, feature_line);
     std::optional<FeatureCurveFairing> curves;
     if (weights && given.feature_mode == FeatureMode::Slide)
-        curves = slide_features(res.mesh, given, *weights, feature_line);
+        curves = sliding_curves(res.mesh, given, *weights, feature_line);
     FairingOptions options = given;
     if (weights) options.region = &*weights;
     if (curves) options.restrict_to_region = false;  // the fixed rows move: the whole mesh
