@@ -206,7 +206,8 @@ std::unique_ptr<OperationDef> smooth_operation() {
                                   : std::string()));
     });
     d.choice("features", &FairingOptions::features, EnumTableView(kFeatureSources),
-             "feature vertices kept fixed: those stored in the mesh, none, or auto (detected at "
+             "the features kept (see --feature-mode): those stored in the mesh, none, or auto "
+             "(detected at "
              "--feature-angle first; on the command line also auto:A)")
         .hide_default();
     d.number("feature-angle", &FairingOptions::feature_angle, 0, 180,
@@ -216,6 +217,15 @@ std::unique_ptr<OperationDef> smooth_operation() {
         .only_if([](const FairingOptions& o) -> const char* {
             return o.features == FeatureSource::Auto ? nullptr
                                                      : "applies only with --features auto";
+        });
+    d.choice("feature-mode", &FairingOptions::feature_mode, EnumTableView(kFeatureModes),
+             "the feature vertices stay fixed, or the crease vertices (two sharp edges) slide "
+             "along their feature curve with the curve's 1-D Laplacian, corners and curve ends "
+             "fixed")
+        .hide_default()
+        .only_if([](const FairingOptions& o) -> const char* {
+            return o.features == FeatureSource::None ? "does not apply with --features none"
+                                                     : nullptr;
         });
     d.run(run_smooth)
         .may_stop_early()

@@ -335,6 +335,14 @@ constexpr double kBoundaryWeight = 100.0;
 // An optimal placement farther than this many edge lengths from the edge's midpoint is
 // treated as ill-conditioned.
 constexpr double kMaxPlacementDistance = 3.0;
+// Features kept (FeatureCurves): the weight of the feature planes (per sharp edge and face, as
+// a face's own plane weighs 1), the weight of a curve collapse's chord error against the
+// quadric, the placements tried along the curve, and the polyline vertices a chord error reads
+// at most. Tuned on fandisk at 5, 10 and 20 % (docs/cli.md).
+constexpr double kFeaturePlaneWeight = 1.0;
+constexpr double kChordWeight = 0.25;
+constexpr int kChordCandidates = 16;
+constexpr double kChordSamples = 64.0;
 
 constexpr float kNoCollapse = std::numeric_limits<float>::max();
 // The largest cost an edge that can collapse gets (the float below kNoCollapse).
@@ -450,6 +458,7 @@ public:
     struct Placement {
         Point p;
         double t = 0, cost = 0;
+        double chord = 0;  ///< squared distance of the input polyline from the new chords
     };
     Placement place(const Quadric& q, Vertex a, Vertex b, Vertex c, Vertex d) const {
         const Index id = curve_[a.idx()];
@@ -476,10 +485,67 @@ public:
             lo = on(before) ? param_[before.idx()] : 0.0;
             hi = on(after) ? param_[after.idx()] : double(line.size() - 1);
         }
-        return best_on(q, line, closed_[id] != 0, lo, hi);
+        Placement best = best_on(q, line, closed_[id] != 0, lo, hi);
+        if (!std::isfinite(best.cost)) return best;
+        const bool closed = closed_[id] != 0;
+        const double n = double(line.size());
+        double t0 = best.t;
+        if (closed)  // back into [lo, hi] (unwrapped)
+            t0 = lo + std::fmod(t0 - std::fmod(lo, n) + 2.0 * n, n);
+        // The chord error as a quadric-like cost: the quadric's plane count (its trace: unit
+        // normals) times the squared error, weighted; the quadric's minimum and evenly spread
+        // candidates compete on the larger of the two.
+        const double* qd = q.data();
+        const double w = kChordWeight * (qd[0] + qd[4] + qd[7]);
+        best.chord = chord_error(line, closed, lo, t0, hi);
+        best.cost = std::max(best.cost, w * best.chord);
+        constexpr double kMargin = 1e-3;
+        for (int j = 1; j < kChordCandidates; ++j) {
+            const double t =
+                std::clamp(lo + (hi - lo) * j / kChordCandidates, lo + kMargin, hi - kMargin);
+            Placement x;
+            x.p = at_param(line, closed, t);
+            x.chord = chord_error(line, closed, lo, t, hi);
+            x.cost = std::max(q(x.p), w * x.chord);
+            x.t = closed ? std::fmod(t, n) : t;
+            if (x.cost < best.cost) best = x;
+        }
+        return best;
     }
 
 private:
+    /// The point of the polyline at (unwrapped) parameter u.
+    static Point at_param(const std::vector<Point>& line, bool closed, double u) {
+        const std::size_t n = line.size();
+        double k = std::floor(u);
+        if (!closed && k >= double(n - 1)) k = double(n - 2);
+        const double s = u - k;
+        const std::size_t i = std::size_t(k) % n;
+        return Point((1 - s) * line[i] + s * line[(i + 1) % n]);
+    }
+    /// The largest squared distance of the polyline's vertices strictly between lo and hi from
+    /// the two chords (lo, t) and (t, hi).
+    static double chord_error(const std::vector<Point>& line, bool closed, double lo, double t,
+                              double hi) {
+        const Point a = at_param(line, closed, lo), p = at_param(line, closed, t),
+                    b = at_param(line, closed, hi);
+        const auto dist2 = [](const Point& x, const Point& s0, const Point& s1) {
+            const Vector3 d = s1 - s0;
+            const double dd = d.squaredNorm();
+            const double u = dd > 0 ? std::clamp((x - s0).dot(d) / dd, 0.0, 1.0) : 0.0;
+            return (s0 + u * d - x).squaredNorm();
+        };
+        const std::size_t n = line.size();
+        double worst = 0;
+        // Long spans are sampled (at most about kChordSamples vertices: the cost stays O(1)).
+        const double stride = std::max(1.0, std::floor((hi - lo) / kChordSamples));
+        for (double k = std::floor(lo) + 1; k < hi; k += stride) {
+            const Point& x = line[std::size_t(k) % n];
+            worst = std::max(worst, k < t ? dist2(x, a, p) : dist2(x, p, b));
+        }
+        return worst;
+    }
+
     /// The placement on [lo, hi] (unwrapped; kept a little off both ends) that minimizes q: on
     /// each segment the minimum of q (a parabola) or an end.
     static Placement best_on(const Quadric& q, const std::vector<Point>& line, bool closed,
@@ -813,6 +879,32 @@ private:
                 const double len = n.norm();
                 if (!(len > 0)) continue;
                 const Quadric q = Quadric::plane(n / len, a, kBoundaryWeight);
+                quadric_[c_.from_vertex(h).idx()] += q;
+                quadric_[c_.to_vertex(h).idx()] += q;
+            }
+        }
+        if (sharp_) add_feature_planes();
+    }
+
+    // Feature planes (Garland and Heckbert's boundary constraint, along the sharp edges): each
+    // interior sharp edge adds, to both its ends, the plane through it perpendicular to each of
+    // its two faces, so a collapse that bends a feature curve or pulls the surface across it
+    // costs its distance to the curve.
+    void add_feature_planes() {
+        const double w = kFeaturePlaneWeight;
+        for (Edge e : c_.edges()) {
+            if (!(sharp_[e] > 0.0f) || c_.is_boundary(e)) continue;
+            const Halfedge h = HalfedgeMesh::halfedge(e, 0);
+            const Point& a = c_.position(c_.from_vertex(h));
+            const Point& b = c_.position(c_.to_vertex(h));
+            for (Halfedge g : {h, HalfedgeMesh::twin(h)}) {
+                const auto c = c_.face_vertices(c_.face(g));
+                const Vector3 fn = (c_.position(c[1]) - c_.position(c[0]))
+                                       .cross(c_.position(c[2]) - c_.position(c[0]));
+                Vector3 n = (b - a).cross(fn);
+                const double len = n.norm();
+                if (!(len > 0)) continue;
+                const Quadric q = Quadric::plane(n / len, a, w);
                 quadric_[c_.from_vertex(h).idx()] += q;
                 quadric_[c_.to_vertex(h).idx()] += q;
             }

@@ -86,10 +86,11 @@ struct DecimationOptions {
     /// The features kept (core/features.h): the mesh's own (Stored), none, or those detected
     /// at `feature_angle` degrees first (Auto; the result carries them). A vertex on a sharp
     /// edge moves only when it is a crease (two sharp edges) and along one of them, into its
-    /// neighbour on the curve; corners (three or more sharp edges, or tagged) and curve ends
-    /// never move, and a kept feature vertex stays where it is (no optimal placement); merged
-    /// edges keep the larger sharpness. So every output vertex on a feature is an input vertex
-    /// on a feature curve. With None the features are carried but not kept.
+    /// neighbour on the curve, which slides along the input polyline (costed by the larger of
+    /// the quadric and the chord error against the input curve: decimation.cpp); corners
+    /// (three or more sharp edges, or tagged) and curve ends never move; merged edges keep the
+    /// larger sharpness. So every output vertex on a feature lies on an input feature curve.
+    /// With None the features are carried but not kept.
     FeatureSource features = FeatureSource::Stored;
     double feature_angle = 60.0;  ///< FeatureSource::Auto: the angle, in (0, 180]
 };

@@ -992,7 +992,7 @@ struct StepFigures {
 class FairingRun {
 public:
     FairingRun(const FairingOptions& o, Progress& progress, FairingResult& res,
-               const Pinned& pinned, const Selection* weights);
+               const Pinned& pinned, const Selection* weights, const FeatureCurveFairing* curves);
     /// The iterations (until one stops the run), then the summary lines of the report.
     void run();
 
@@ -1008,6 +1008,7 @@ private:
                       Eigen::MatrixXd& y, std::ostringstream& line);
     bool check_step(int iteration, const Positions& P, const StepFigures& s);
     void slide_boundary();
+    bool slide_features(int iteration, const Positions& P);
     bool check_area_and_volume(int iteration, const Positions& P, bool check_energy);
     bool restore_volume(int iteration);
     void report_summary();
@@ -1017,7 +1018,8 @@ private:
     CandidateSums area_volume_of(const Positions& X, bool with_area);
 
     const FairingOptions& o_;
-    const Selection* weights_;  ///< the region's weights on res.mesh; nullptr: everything
+    const Selection* weights_;           ///< the region's weights on res.mesh; nullptr: everything
+    const FeatureCurveFairing* curves_;  ///< sliding features (FeatureMode::Slide), or null
     Progress& progress_;
     FairingResult& res_;
     HalfedgeMesh& mesh_;
@@ -1053,9 +1055,11 @@ private:
 };
 
 FairingRun::FairingRun(const FairingOptions& o, Progress& progress, FairingResult& res,
-                       const Pinned& pinned, const Selection* weights)
+                       const Pinned& pinned, const Selection* weights,
+                       const FeatureCurveFairing* curves)
     : o_(o),
       weights_(weights),
+      curves_(curves),
       progress_(progress),
       res_(res),
       mesh_(res.mesh),
@@ -1163,6 +1167,7 @@ void FairingRun::run() {
             break;
         if (!check_step(iteration, P, s)) break;
         if (slider_) slide_boundary();
+        if (curves_ && !slide_features(iteration, P)) break;
         if (!check_area_and_volume(iteration, P, s.check_energy)) break;
         if (o_.preserve_volume && !restore_volume(iteration)) break;
         if (weights_) blend_by_region(P);
@@ -1388,6 +1393,22 @@ void FairingRun::slide_boundary() {
     energy_known_ = false;
 }
 
+/// Moves the crease vertices of the candidate along their feature curves with the curve's 1-D
+/// Laplacian (core/algorithms/feature_fairing.h); implicit above an explicit step of 1. False
+/// when the run is stopped.
+bool FairingRun::slide_features(int iteration, const Positions& P) {
+    CurveStep s;
+    s.t = taubin_ ? o_.taubin_lambda : o_.step;
+    s.mu = taubin_ ? mu_ : 0.0;
+    s.implicit = implicit_ || (!taubin_ && s.t > 1.0);
+    s.length_weighted =
+        lop_ == LaplacianOperator::CurvatureFlow || lop_ == LaplacianOperator::ImprovedUmbrella;
+    energy_known_ = false;
+    if (curves_->step(s, P, cand_)) return true;
+    stop(iteration, "a feature curve's step is not finite");
+    return false;
+}
+
 /// The area collapse check runs with the energy check and for the geometry-dependent
 /// operators; the volume's sign is checked on every iteration of a closed mesh (a provably
 /// stable step can still turn a very coarse mesh inside out: umbrella step 1 maps a
@@ -1491,8 +1512,9 @@ void FairingRun::report_summary() {
 
 /// One smooth() run on res.mesh (the caller's copy or moved-in mesh).
 void run_fairing(const FairingOptions& o, Progress& progress, FairingResult& res,
-                 const Pinned& pinned, const Selection* weights = nullptr) {
-    FairingRun(o, progress, res, pinned, weights).run();
+                 const Pinned& pinned, const Selection* weights = nullptr,
+                 const FeatureCurveFairing* curves = nullptr) {
+    FairingRun(o, progress, res, pinned, weights, curves).run();
 }
 
 /// Pins the live vertices of weight 0 (in `pinned`, sized on demand).
@@ -1547,7 +1569,8 @@ namespace {
 /// (core/algorithms/weld.h), where a seam is interior and the copies of a split vertex are one
 /// vertex, with the copies that the weld cannot join fixed; every copy then takes its welded
 /// vertex's positions.
-void smooth_coincident(FairingResult& res, const FairingOptions& o, Progress& progress) {
+void smooth_coincident(FairingResult& res, const FairingOptions& o, Progress& progress,
+                       std::optional<FeatureCurveFairing> curves) {
     WeldResult weld = weld_coincident_vertices(res.mesh);
     check_options(weld.mesh, o);  // closed when welded: volume preservation applies
     Pinned pinned(weld.mesh.vertices_size(), 0);
@@ -1564,9 +1587,14 @@ void smooth_coincident(FairingResult& res, const FairingOptions& o, Progress& pr
         }
         pin_unselected(weld.mesh, *welded_weights, pinned);
     }
+    if (curves) {  // sliding features, renumbered onto the weld and fixed for the operator
+        curves->remap(weld.vertex_map);
+        for (Index v : curves->moving()) pinned[v] = 1;
+    }
     FairingResult welded;
     welded.mesh = std::move(weld.mesh);
-    run_fairing(o, progress, welded, pinned, welded_weights ? &*welded_weights : nullptr);
+    run_fairing(o, progress, welded, pinned, welded_weights ? &*welded_weights : nullptr,
+                curves ? &*curves : nullptr);
     HalfedgeMesh mesh = std::move(res.mesh);
     auto unweld = [&](const Positions& pw) {
         Positions p = mesh.positions();
@@ -1753,21 +1781,49 @@ std::optional<Selection> fix_features(HalfedgeMesh& mesh, const FairingOptions& 
     return w;
 }
 
+/// Sliding features: the crease vertices that slide (feature_fairing.h) get their region weight
+/// back in `weights` (fix_features() set every feature vertex to 0), so the blend keeps their
+/// curve step; they stay fixed rows of the surface operator (the caller pins them).
+FeatureCurveFairing sliding_curves(const HalfedgeMesh& mesh, const FairingOptions& o,
+                                   Selection& weights, std::string& line) {
+    FeatureCurveFairing curves(mesh, o.region);
+    const std::vector<float> near = feature_neighbourhood(mesh, 0);
+    const auto on =
+        std::size_t(std::count_if(near.begin(), near.end(), [](float w) { return w > 0; }));
+    for (Index v : curves.moving()) weights[v] = o.region ? (*o.region)[v] : 1.0f;
+    line =
+        "features: " + count_text(on, "vertex", "vertices") + " on sharp edges or corners: " +
+        count_text(curves.moving().size(), "crease vertex slides", "crease vertices slide") +
+        " along their curves, the other " + std::to_string(on - curves.moving().size()) +
+        " stay where they are (1-D Laplacian" +
+        (o.op != FairingOperator::Taubin && o.integration == Integration::Explicit && o.step > 1.0
+             ? ", implicit: an explicit step above 1 is unstable on a curve)"
+             : ")");
+    return curves;
+}
+
 FairingResult smooth_mesh(FairingResult res, const FairingOptions& given, Progress& progress) {
     if (given.region) check_selection(res.mesh, *given.region, "smooth: region");
     std::string feature_line;
-    const std::optional<Selection> with_features = fix_features(res.mesh, given, feature_line);
+    std::optional<Selection> weights = fix_features(res.mesh, given, feature_line);
+    std::optional<FeatureCurveFairing> curves;
+    if (weights && given.feature_mode == FeatureMode::Slide)
+        curves = sliding_curves(res.mesh, given, *weights, feature_line);
     FairingOptions options = given;
-    if (with_features) options.region = &*with_features;
+    if (weights) options.region = &*weights;
+    if (curves) options.restrict_to_region = false;  // the fixed rows move: the whole mesh
     if (find_coincident_vertices(res.mesh).empty()) {
         check_options(res.mesh, options);
         const std::vector<std::uint8_t> faces = region_run_faces(res.mesh, options);
         if (!faces.empty() && smooth_region_on_faces(res, options, faces, progress)) return res;
         Pinned pinned;
         if (options.region) pin_unselected(res.mesh, *options.region, pinned);
-        run_fairing(options, progress, res, pinned, options.region);
+        if (curves && pinned.empty()) pinned.assign(res.mesh.vertices_size(), 0);
+        if (curves)
+            for (Index v : curves->moving()) pinned[v] = 1;  // for the surface operator
+        run_fairing(options, progress, res, pinned, options.region, curves ? &*curves : nullptr);
     } else {
-        smooth_coincident(res, options, progress);
+        smooth_coincident(res, options, progress, std::move(curves));
     }
     if (!feature_line.empty()) res.report.push_back(feature_line);
     return res;

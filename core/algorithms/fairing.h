@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "core/algorithms/feature_fairing.h"
 #include "core/algorithms/laplacian.h"
 #include "core/enum_table.h"
 #include "core/features.h"
@@ -129,6 +130,11 @@ struct FairingOptions {
     /// them); None smooths them like any vertex. A line of the report counts them.
     FeatureSource features = FeatureSource::Stored;
     double feature_angle = 60.0;  ///< FeatureSource::Auto: the angle, in (0, 180]
+    /// Slide: the crease vertices (two sharp edges, no corner tag, not on the boundary, in the
+    /// region) smooth along their feature curve with the curve's 1-D Laplacian instead of
+    /// staying (core/algorithms/feature_fairing.h); corners and curve ends stay bit for bit.
+    /// Not with a restricted region run: slide runs on the whole mesh.
+    FeatureMode feature_mode = FeatureMode::Fixed;
 };
 
 struct FairingResult {

@@ -477,8 +477,10 @@ TEST_CASE("decimation keeps the features: corners stay, curve vertices stay on t
     CHECK(corners == in.corners);
     CHECK(k.corners == in.corners);
     // Without features the decimation moves them off the curves; with them the distance to the
-    // input stays close to the featureless run's (0.0030 against 0.0024 of a diagonal of 7.6:
-    // the curves keep their vertices on the input polyline, which costs the surface some).
+    // input stays close to the featureless run's: 0.0026 against 0.0023 of a diagonal of 7.6
+    // here (0.0030 before curve collapses were costed by their chord error), and at 5 % 0.0074
+    // against 0.0063 (0.0124 before). Issue 39 asks for at most the featureless run's: not
+    // reached (docs/cli.md, "features").
     o.features = FeatureSource::None;
     const HalfedgeMesh plain = decimate(m, o).levels.back().mesh;
     double plain_worst = 0;
@@ -490,7 +492,20 @@ TEST_CASE("decimation keeps the features: corners stay, curve vertices stay on t
     md.samples = 20000;
     const double with = mesh_distance(m, out, md).hausdorff;
     const double without = mesh_distance(m, plain, md).hausdorff;
-    CHECK(with <= 1.4 * without);
+    CHECK(with <= 1.2 * without);
+    // At 5 %, where the curves' chord error dominated (twice the featureless run's).
+    o.target_vertices = m.n_vertices() / 20;
+    const HalfedgeMesh plain5 = decimate(m, o).levels.back().mesh;
+    o.features = FeatureSource::Stored;
+    const HalfedgeMesh out5 = decimate(m, o).levels.back().mesh;
+    REQUIRE_VALID(out5);
+    const VertexClassification k5 = classify_vertices(out5, false);
+    double worst5 = 0;
+    for (Vertex v : out5.vertices())
+        if (k5.classes[v.idx()] != VertexClass::Smooth)
+            worst5 = std::max(worst5, to_curves(out5.position(v)));
+    CHECK(worst5 <= 1e-9 * diagonal);
+    CHECK(mesh_distance(m, out5, md).hausdorff <= 1.3 * mesh_distance(m, plain5, md).hausdorff);
 }
 
 namespace {
