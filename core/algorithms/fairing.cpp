@@ -739,51 +739,76 @@ private:
         rows_built_ = true;
     }
 
-    /// step() over the whole mesh on one thread, scattering over the edges (a run of one
-    /// product: building the rows would cost more than it saves); the first product also counts
-    /// the valences and finds the boundary.
+    /// step() over the whole mesh by an owner scan of the edges (a run of one product: building
+    /// the rows would cost more than it saves): each thread reads every edge in order and sums
+    /// the neighbours of its own range of vertices only (core/parallel.h, parallel_ranges()), so
+    /// that each sum runs in edge order, the bits of the one-thread scatter, for any number of
+    /// threads; the first product also counts the valences and finds the boundary.
     bool step_scatter(const Positions& P, double t, Positions& out, Box& box_before,
                       Box& box_after) {
-        const std::size_t nv = P.size();
-        out.assign(nv, Point::Zero());
-        if (!known_) {
+        const std::size_t nv = P.size(), ne = mesh_.edges_size();
+        out.resize(nv);
+        const Vertex* to = mesh_.halfedge_to_array().data();
+        const Face* face = mesh_.halfedge_face_array().data();
+        const bool garbage = mesh_.has_garbage();
+        const bool count = !known_;
+        if (count) {
             valence_.assign(nv, 0);
             fixed_.assign(nv, 0);
-            for (Edge e : mesh_.edges()) {
-                const Halfedge h = HalfedgeMesh::halfedge(e, 0), g = HalfedgeMesh::twin(h);
-                const Index i = mesh_.to_vertex(g).idx(), j = mesh_.to_vertex(h).idx();
-                out[i] += P[j];
-                out[j] += P[i];
-                ++valence_[i];
-                ++valence_[j];
-                if (mesh_.is_boundary(h) || mesh_.is_boundary(g)) fixed_[i] = fixed_[j] = 1;
-            }
-            for (std::size_t v = 0; v < nv; ++v)
-                if (valence_[v] == 0 || (pinned_ && (*pinned_)[v])) fixed_[v] = 1;
-            known_ = true;
-        } else {
-            for (Edge e : mesh_.edges()) {
-                const Halfedge h = HalfedgeMesh::halfedge(e, 0);
-                const Index i = mesh_.to_vertex(HalfedgeMesh::twin(h)).idx();
-                const Index j = mesh_.to_vertex(h).idx();
-                out[i] += P[j];
-                out[j] += P[i];
-            }
         }
-        double sum = 0;
-        for (std::size_t v = 0; v < nv; ++v) {
-            const Point& p = P[v];
-            if (fixed_[v]) {
-                out[v] = p;
-                if (valence_[v] == 0) continue;
-            } else {
-                out[v] = p + t * (out[v] / double(valence_[v]) - p);
-                sum += out[v].x() + out[v].y() + out[v].z();
+        parallel_ranges(0, nv, [&](std::size_t lo, std::size_t hi) {
+            std::fill(out.begin() + std::ptrdiff_t(lo), out.begin() + std::ptrdiff_t(hi),
+                      Point::Zero());
+            for (std::size_t e = 0; e < ne; ++e) {
+                const Index i = to[2 * e + 1].idx(), j = to[2 * e].idx();
+                const bool in_i = i - lo < hi - lo, in_j = j - lo < hi - lo;
+                if (!(in_i || in_j) || (garbage && mesh_.is_deleted(Edge(Index(e))))) continue;
+                const bool border =
+                    count && (!face[2 * e].is_valid() || !face[2 * e + 1].is_valid());
+                if (in_i) {
+                    out[i] += P[j];
+                    if (count) {
+                        ++valence_[i];
+                        if (border) fixed_[i] = 1;
+                    }
+                }
+                if (in_j) {
+                    out[j] += P[i];
+                    if (count) {
+                        ++valence_[j];
+                        if (border) fixed_[j] = 1;
+                    }
+                }
             }
-            box_before.add(p);
-            box_after.add(out[v]);
-        }
-        return std::isfinite(sum) && box_after.bounded();
+            if (count)
+                for (std::size_t v = lo; v < hi; ++v)
+                    if (valence_[v] == 0 || (pinned_ && (*pinned_)[v])) fixed_[v] = 1;
+        });
+        known_ = true;
+        // The update in fixed blocks, the finiteness sum and the boxes reduced in block order
+        // (as step()).
+        const StepPart all = parallel_reduce(
+            0, nv, StepPart{},
+            [&](std::size_t begin, std::size_t end) {
+                StepPart part;
+                for (std::size_t v = begin; v < end; ++v) {
+                    const Point& p = P[v];
+                    if (fixed_[v]) {
+                        out[v] = p;
+                        if (valence_[v] == 0) continue;
+                    } else {
+                        out[v] = p + t * (out[v] / double(valence_[v]) - p);
+                        part.sum += out[v].x() + out[v].y() + out[v].z();
+                    }
+                    part.before.add(p);
+                    part.after.add(out[v]);
+                }
+                return part;
+            },
+            StepPart::combine);
+        box_before.add(all.before);
+        box_after.add(all.after);
+        return std::isfinite(all.sum) && box_after.bounded();
     }
 
     /// step() on the moving vertices only: out keeps the fixed vertices' positions from the
