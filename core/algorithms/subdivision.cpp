@@ -260,7 +260,7 @@ struct Stage {
 /// earlier subdivision, is not carried: the input's vertices are level 0) and `level` for
 /// the new ones, as `out`'s "v:subdivision_level".
 void add_levels(const HalfedgeMesh& m, HalfedgeMesh& out, int level) {
-    auto& levels = out.add_vertex_property<int>(kLevelName, level).vector();
+    auto& levels = out.vertex_property<int>(kLevelName, level).vector();
     const std::size_t nv = m.vertices_size();
     if (level > 1) {
         if (auto in = m.get_vertex_property<int>(kLevelName)) {
@@ -271,14 +271,24 @@ void add_levels(const HalfedgeMesh& m, HalfedgeMesh& out, int level) {
     std::fill_n(levels.begin(), nv, 0);
 }
 
+/// Adds the vertex properties of a level (add_levels(), Provenance) to the empty mesh `out`
+/// with their defaults, before its arrays are sized: resize_elements() then fills them with the
+/// connectivity's, one array per task on every thread, instead of one after the other here.
+void add_level_properties(HalfedgeMesh& out, int level) {
+    out.add_vertex_property<int>(kLevelName, level);
+    out.add_vertex_property<int>(kStencilName, 0);
+    out.add_vertex_property<SubdivisionParents>(kParentsName,
+                                                SubdivisionParents::Constant(kInvalidIndex));
+}
+
 /// Provenance arrays of a new level ("v:subdivision_stencil", "v:subdivision_parents"), all
 /// entries Unknown and without parents.
 struct Provenance {
     int* stencil;
     SubdivisionParents* parents;
     explicit Provenance(HalfedgeMesh& out)
-        : stencil(out.add_vertex_property<int>(kStencilName, 0).vector().data()),
-          parents(out.add_vertex_property<SubdivisionParents>(
+        : stencil(out.vertex_property<int>(kStencilName, 0).vector().data()),
+          parents(out.vertex_property<SubdivisionParents>(
                          kParentsName, SubdivisionParents::Constant(kInvalidIndex))
                       .vector()
                       .data()) {}
@@ -871,6 +881,7 @@ SubdivisionLevel refine_1to4(const HalfedgeMesh& mesh, SubdivisionScheme scheme,
     SubdivisionLevel out;
     out.correspondence.kind = MorphCorrespondence::Kind::FromEarlier;
     const In m(mesh);
+    add_level_properties(out.mesh, level);
     build_1to4(m, out.mesh, stage);
     stage.progress.check_cancelled();
     Creases creases;
@@ -1267,6 +1278,7 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
 
     SubdivisionLevel result;
     HalfedgeMesh& mesh_out = result.mesh;
+    add_level_properties(mesh_out, level);
     mesh_out.resize_elements(std::size_t(nv) + nf + 2 * std::size_t(nb),
                              std::size_t(ne) + 3 * std::size_t(nf) + 4 * std::size_t(nb),
                              3 * std::size_t(nf) + 2 * std::size_t(nb));
