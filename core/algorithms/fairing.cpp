@@ -64,6 +64,10 @@
 // once, then per iteration only its moving vertices' rings, the faces around them for the
 // area and volume checks and the stable-step estimate's products
 // (UmbrellaOperator::restrict_to_moving(), MovingFaceSums): the same positions bit for bit.
+// A whole-mesh explicit umbrella or Taubin run on a big mesh (from 65,536 vertices; no region,
+// slide or volume rescaling) works in a Morton order of the operator
+// (UmbrellaOperator::localize(): the neighbour gathers, which bound these passes, close in
+// memory), its positions permuted in and out once: the same positions bit for bit.
 #include "core/algorithms/fairing.h"
 
 #include <algorithm>
