@@ -497,30 +497,36 @@ public:
     /// rounding). Whole-mesh gathering operators on meshes without garbage only.
     void localize(const Positions& P) {
         if (!known_) find_fixed();
-        if (!rows_built_) build_rows();
-        const std::size_t nv = valence_.size();
+        const std::size_t nv = valence_.size(), ne = mesh_.edges_size();
         order_ = morton_order(P);
         rank_.resize(nv);
-        parallel_for(0, nv, [&](std::size_t k) { rank_[order_[k]] = Index(k); });
         std::vector<std::uint32_t> valence(nv);
         std::vector<std::uint8_t> fixed(nv);
-        std::vector<std::size_t> offset(nv + 1, 0);
-        for (std::size_t k = 0; k < nv; ++k) {
+        parallel_for(0, nv, [&](std::size_t k) {
+            rank_[order_[k]] = Index(k);
             valence[k] = valence_[order_[k]];
             fixed[k] = fixed_[order_[k]];
-            offset[k + 1] = offset[k] + valence[k];
-        }
-        std::vector<Index> row(row_.size());
-        parallel_for(0, nv, [&](std::size_t k) {
-            std::size_t o = offset[k];
-            const std::size_t v = order_[k];
-            for (std::size_t r = row_offset_[v]; r < row_offset_[v + 1]; ++r)
-                row[o++] = rank_[row_[r]];
         });
         valence_.swap(valence);
         fixed_.swap(fixed);
-        row_offset_.swap(offset);
-        row_.swap(row);
+        row_offset_.assign(nv + 1, 0);
+        for (std::size_t k = 0; k < nv; ++k) row_offset_[k + 1] = row_offset_[k] + valence_[k];
+        row_.resize(row_offset_[nv]);
+        // The rows in the new numbering by an owner scan over the edges (as build_rows()): each
+        // row in edge order.
+        const Vertex* to = mesh_.halfedge_to_array().data();
+        const bool garbage = mesh_.has_garbage();
+        parallel_ranges(0, nv, [&](std::size_t lo, std::size_t hi) {
+            std::vector<std::size_t> fill(row_offset_.begin() + std::ptrdiff_t(lo),
+                                          row_offset_.begin() + std::ptrdiff_t(hi));
+            for (std::size_t e = 0; e < ne; ++e) {
+                if (garbage && mesh_.is_deleted(Edge(Index(e)))) continue;
+                const Index i = rank_[to[2 * e + 1].idx()], j = rank_[to[2 * e].idx()];
+                if (i - lo < hi - lo) row_[fill[i - lo]++] = j;
+                if (j - lo < hi - lo) row_[fill[j - lo]++] = i;
+            }
+        });
+        rows_built_ = true;
         local_ = true;
     }
     bool local() const { return local_; }
