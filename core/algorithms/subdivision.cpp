@@ -1650,13 +1650,6 @@ SubdivisionScheme parse_scheme(const std::string& name) {
 
 namespace {
 
-/// Refuses a mesh where two faces have the same three vertices (a closed two-triangle
-/// "pillow"; subdivide() sets the input's aside, so this only guards the levels): the 1-to-4 split
-/// would join two of its edge midpoints twice and Sqrt3 would join its two centroids three
-/// times, i.e. the result would have double edges. No two edges join the same two vertices
-/// (a mesh invariant), so two faces share their three vertices exactly when they share their
-/// three edges: face f is half of a pillow when the twins of its three halfedges lie in one
-/// face. Reports the pillow of the lowest face index.
 /// The lowest face of a pillow (both faces' three halfedges are twins of each other's), or
 /// kInvalidIndex: in fixed blocks on every thread, the blocks' first finds combined by minimum.
 Index first_pillow_face(const In& m) {
@@ -1673,6 +1666,13 @@ Index first_pillow_face(const In& m) {
         [](Index a, Index b) { return std::min(a, b); });
 }
 
+/// Refuses a mesh where two faces have the same three vertices (a closed two-triangle
+/// "pillow"; subdivide() sets the input's aside, so this only guards the levels): the 1-to-4 split
+/// would join two of its edge midpoints twice and Sqrt3 would join its two centroids three
+/// times, i.e. the result would have double edges. No two edges join the same two vertices
+/// (a mesh invariant), so two faces share their three vertices exactly when they share their
+/// three edges: face f is half of a pillow when the twins of its three halfedges lie in one
+/// face. Reports the pillow of the lowest face index.
 void check_no_pillows(const HalfedgeMesh& mesh, int iteration) {
     const In m(mesh);
     const Index fi = first_pillow_face(m);
