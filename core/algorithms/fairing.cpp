@@ -64,6 +64,10 @@
 // once, then per iteration only its moving vertices' rings, the faces around them for the
 // area and volume checks and the stable-step estimate's products
 // (UmbrellaOperator::restrict_to_moving(), MovingFaceSums): the same positions bit for bit.
+// A whole-mesh explicit umbrella or Taubin run on a big mesh (from 65,536 vertices; no region,
+// slide or volume rescaling) works in a Morton order of the operator
+// (UmbrellaOperator::localize(): the neighbour gathers, which bound these passes, close in
+// memory), its positions permuted in and out once: the same positions bit for bit.
 #include "core/algorithms/fairing.h"
 
 #include <algorithm>
@@ -234,7 +238,10 @@ struct CandidateSums {
 
 /// Signed volume (as geometry.h's volume()) over positions P and, with `with_area`, the
 /// surface area (the square roots are most of the pass's cost).
-CandidateSums area_volume(const HalfedgeMesh& mesh, const Positions& P, bool with_area) {
+/// `map` (optional): P is in another numbering, vertex v at P[map[v]] (the same sums, bit for
+/// bit: the faces and corners are visited in the same order).
+CandidateSums area_volume(const HalfedgeMesh& mesh, const Positions& P, bool with_area,
+                          const Index* map = nullptr) {
     // Over the faces in fixed blocks, the partial sums added in block order (the same bits for
     // any number of threads).
     const Vertex* to = mesh.halfedge_to_array().data();
@@ -248,7 +255,9 @@ CandidateSums area_volume(const HalfedgeMesh& mesh, const Positions& P, bool wit
             for (std::size_t f = begin; f < end; ++f) {
                 if (mesh.is_deleted(Face(Index(f)))) continue;
                 const Index h0 = fh[f].idx(), h1 = next[h0].idx(), h2 = next[h1].idx();
-                const Point &a = P[to[h0].idx()], &b = P[to[h1].idx()], &c = P[to[h2].idx()];
+                Index i0 = to[h0].idx(), i1 = to[h1].idx(), i2 = to[h2].idx();
+                if (map) i0 = map[i0], i1 = map[i1], i2 = map[i2];
+                const Point &a = P[i0], &b = P[i1], &c = P[i2];
                 const Vector3 n = (b - a).cross(c - a);
                 if (with_area) area += 0.5 * n.norm();
                 volume += (a + b + c).dot(n);
@@ -315,46 +324,62 @@ private:
     CandidateSums fixed_;  ///< of the fixed faces (area NaN until asked for)
 };
 
+/// w = D·w and the sum of w_i·q_i over fixed blocks, added in block order: the second half of
+/// a Lanczos product for operators that compute K·u apart (the Laplacian's matrix).
+double scale_and_dot(const Eigen::VectorXd& d, Eigen::VectorXd& w, const Eigen::VectorXd& q) {
+    return parallel_reduce(
+        0, std::size_t(w.size()), 0.0,
+        [&](std::size_t begin, std::size_t end) {
+            double part = 0;
+            for (auto i = Eigen::Index(begin); i < Eigen::Index(end); ++i) {
+                w[i] = d[i] * w[i];
+                part += w[i] * q[i];
+            }
+            return part;
+        },
+        [](double x, double y) { return x + y; });
+}
+
 /// Lanczos estimate of the largest eigenvalue of D·K·D (D = S^-½ on free entries, 0 on fixed
 /// ones), i.e. of S⁻¹K over the free entries: the largest Ritz value after `steps` steps (no
 /// reorthogonalization: only the extreme Ritz value is used). The start vector is a fixed
 /// pseudo-random sign pattern. Returns 0 when nothing is free.
-template <class ApplyK>
-double lanczos_largest(const Eigen::VectorXd& d, const ApplyK& apply_k, int steps) {
+/// `apply_dk_dot(u, w, q)` sets w = D·K·u and returns the sum of w_i·q_i over fixed blocks of
+/// kBlock rows, added in block order (scale_and_dot()), so that an operator can fuse the
+/// product with the scaling and the dot product (one pass instead of two).
+/// `order` (optional): entry i stands for vertex order[i] (a renumbered operator,
+/// UmbrellaOperator::localize()), which gets the sign the pattern gives that vertex.
+template <class ApplyDKDot>
+double lanczos_largest(const Eigen::VectorXd& d, const ApplyDKDot& apply_dk_dot, int steps,
+                       const std::vector<Index>* order = nullptr) {
     const Eigen::Index n = d.size();
     Eigen::VectorXd q = Eigen::VectorXd::Zero(n), q_prev = q, u(n), w(n);
+    std::vector<double> sign(static_cast<std::size_t>(n));
     std::uint64_t state = 0x9E3779B97F4A7C15ull;
-    for (Eigen::Index i = 0; i < n; ++i) {
+    for (std::size_t i = 0; i < std::size_t(n); ++i) {
         state ^= state << 13;
         state ^= state >> 7;
         state ^= state << 17;
-        if (d[i] > 0) q[i] = (state & 1) ? 1.0 : -1.0;
+        sign[i] = (state & 1) ? 1.0 : -1.0;
     }
+    for (Eigen::Index i = 0; i < n; ++i)
+        if (d[i] > 0) q[i] = sign[order ? (*order)[std::size_t(i)] : std::size_t(i)];
     const double qn = q.norm();
     if (!(qn > 0)) return 0;
     q /= qn;
     std::vector<double> alpha, beta;
     double beta_prev = 0;
-    // The vector steps fused into three passes, each in fixed blocks on every thread with its
-    // sums added in block order (core/parallel.h): the same bits for any number of threads.
+    // The vector steps fused into three passes (the product with its scaling and dot product;
+    // the update with its norm; the next vector with the next product's input), each in fixed
+    // blocks on every thread with its sums added in block order (core/parallel.h): the same
+    // bits for any number of threads.
     const auto sum = [](double x, double y) { return x + y; };
     const auto rows = std::size_t(n);
+    parallel_for(0, rows, [&](std::size_t i) {
+        u[Eigen::Index(i)] = d[Eigen::Index(i)] * q[Eigen::Index(i)];
+    });
     for (int j = 0; j < steps; ++j) {
-        parallel_for(0, rows, [&](std::size_t i) {
-            u[Eigen::Index(i)] = d[Eigen::Index(i)] * q[Eigen::Index(i)];
-        });
-        apply_k(u, w);
-        const double a = parallel_reduce(
-            0, rows, 0.0,
-            [&](std::size_t begin, std::size_t end) {
-                double part = 0;
-                for (auto i = Eigen::Index(begin); i < Eigen::Index(end); ++i) {
-                    w[i] = d[i] * w[i];
-                    part += w[i] * q[i];
-                }
-                return part;
-            },
-            sum);
+        const double a = apply_dk_dot(u, w, q);
         alpha.push_back(a);
         const double b = std::sqrt(parallel_reduce(
             0, rows, 0.0,
@@ -367,10 +392,14 @@ double lanczos_largest(const Eigen::VectorXd& d, const ApplyK& apply_k, int step
                 return part;
             },
             sum));
-        if (!std::isfinite(b) || b <= 1e-12 * std::abs(a)) break;
-        if (j + 1 < steps) beta.push_back(b);
+        if (!std::isfinite(b) || b <= 1e-12 * std::abs(a) || j + 1 == steps) break;
+        beta.push_back(b);
         q_prev.swap(q);
-        parallel_for(0, rows, [&](std::size_t i) { q[Eigen::Index(i)] = w[Eigen::Index(i)] / b; });
+        parallel_for(0, rows, [&](std::size_t i) {
+            const auto e = Eigen::Index(i);
+            q[e] = w[e] / b;
+            u[e] = d[e] * q[e];
+        });
         beta_prev = b;
     }
     const auto k = Eigen::Index(alpha.size());
@@ -387,6 +416,65 @@ double stable_step_of(double rho) {
     return rho > 0 ? 2.0 / rho : std::numeric_limits<double>::infinity();
 }
 
+/// Vertices from this many on: explicit umbrella and Taubin runs renumber the operator
+/// (UmbrellaOperator::localize()); fairing_detail::set_locality_threshold() changes it.
+std::size_t g_locality_threshold = std::size_t(1) << 16;
+
+/// 10 bits spread to every third bit (bit k to bit 3k).
+inline std::uint32_t spread_bits(std::uint32_t x) {
+    x &= 0x3FFu;
+    x = (x | (x << 16)) & 0x030000FFu;
+    x = (x | (x << 8)) & 0x0300F00Fu;
+    x = (x | (x << 4)) & 0x030C30C3u;
+    x = (x | (x << 2)) & 0x09249249u;
+    return x;
+}
+
+/// The vertices in the order of a Morton (Z-order) curve through their positions quantized to
+/// 2^10 steps per axis of the bounding box of the finite ones (ties, and non-finite positions,
+/// which go first, in storage order): entry k is the storage index of the k-th. A stable LSD
+/// radix sort (two 15-bit digits), O(V), on one thread: the same order for any thread count.
+std::vector<Index> morton_order(const Positions& P) {
+    const std::size_t n = P.size();
+    Box box;
+    for (const Point& p : P)
+        if (p.allFinite()) box.add(p);
+    Point scale = Point::Zero();
+    for (int a = 0; a < 3 && box.lo.x() <= box.hi.x(); ++a) {
+        const double extent = box.hi[a] - box.lo[a];
+        if (extent > 0 && std::isfinite(extent)) scale[a] = 1023.0 / extent;
+    }
+    std::vector<std::uint32_t> code(n);
+    parallel_for(0, n, [&](std::size_t i) {
+        const Point& p = P[i];
+        std::uint32_t c = 0;
+        if (p.allFinite())
+            for (int a = 0; a < 3; ++a) {
+                const double q = std::min(1023.0, std::max(0.0, (p[a] - box.lo[a]) * scale[a]));
+                c |= spread_bits(std::uint32_t(q)) << a;
+            }
+        code[i] = c;
+    });
+    constexpr std::uint32_t kDigit = 15, kBuckets = 1u << kDigit;
+    std::vector<Index> order(n), from(n);
+    for (std::size_t i = 0; i < n; ++i) from[i] = Index(i);
+    std::vector<std::size_t> count(kBuckets);
+    for (std::uint32_t shift = 0; shift < 2 * kDigit; shift += kDigit) {
+        std::fill(count.begin(), count.end(), 0);
+        for (std::size_t i = 0; i < n; ++i) ++count[(code[from[i]] >> shift) & (kBuckets - 1)];
+        std::size_t sum = 0;
+        for (std::size_t& c : count) {
+            const std::size_t here = c;
+            c = sum;
+            sum += here;
+        }
+        for (std::size_t i = 0; i < n; ++i)
+            order[count[(code[from[i]] >> shift) & (kBuckets - 1)]++] = from[i];
+        order.swap(from);
+    }
+    return from;
+}
+
 /// The umbrella operator in vertex space, without a matrix: per vertex storage index its
 /// valence and whether it is fixed (found by the first product, one pass over the edges
 /// either way; `pinned` vertices too); products by one pass over the edges.
@@ -398,6 +486,61 @@ public:
     explicit UmbrellaOperator(const HalfedgeMesh& mesh, const Pinned* pinned = nullptr,
                               bool gather = true)
         : mesh_(mesh), pinned_(pinned), gather_(gather) {}
+
+    /// Renumbers the operator along a Morton curve of P (morton_order()): its rows (in the new
+    /// numbering, each still in edge order), valences and fixed flags, so that a product gathers
+    /// neighbours that lie close in memory (on a big mesh whose numbering does not follow the
+    /// surface, such as a subdivided one, about twice as fast). Afterwards step(), energy() and
+    /// the stable-step estimate take positions in that order (to_local(), to_storage()); each
+    /// vertex sums the same neighbours in the same order, so the positions are those of the
+    /// storage order bit for bit (the estimate's sums run in the new order: equal up to
+    /// rounding). Whole-mesh gathering operators on meshes without garbage only.
+    void localize(const Positions& P) {
+        if (!known_) find_fixed();
+        const std::size_t nv = valence_.size(), ne = mesh_.edges_size();
+        order_ = morton_order(P);
+        rank_.resize(nv);
+        std::vector<std::uint32_t> valence(nv);
+        std::vector<std::uint8_t> fixed(nv);
+        parallel_for(0, nv, [&](std::size_t k) {
+            rank_[order_[k]] = Index(k);
+            valence[k] = valence_[order_[k]];
+            fixed[k] = fixed_[order_[k]];
+        });
+        valence_.swap(valence);
+        fixed_.swap(fixed);
+        row_offset_.assign(nv + 1, 0);
+        for (std::size_t k = 0; k < nv; ++k) row_offset_[k + 1] = row_offset_[k] + valence_[k];
+        row_.resize(row_offset_[nv]);
+        // The rows in the new numbering by an owner scan over the edges (as build_rows()): each
+        // row in edge order.
+        const Vertex* to = mesh_.halfedge_to_array().data();
+        const bool garbage = mesh_.has_garbage();
+        parallel_ranges(0, nv, [&](std::size_t lo, std::size_t hi) {
+            std::vector<std::size_t> fill(row_offset_.begin() + std::ptrdiff_t(lo),
+                                          row_offset_.begin() + std::ptrdiff_t(hi));
+            for (std::size_t e = 0; e < ne; ++e) {
+                if (garbage && mesh_.is_deleted(Edge(Index(e)))) continue;
+                const Index i = rank_[to[2 * e + 1].idx()], j = rank_[to[2 * e].idx()];
+                if (i - lo < hi - lo) row_[fill[i - lo]++] = j;
+                if (j - lo < hi - lo) row_[fill[j - lo]++] = i;
+            }
+        });
+        rows_built_ = true;
+        local_ = true;
+    }
+    bool local() const { return local_; }
+    /// localize(): the new number of each storage index (null before).
+    const Index* rank() const { return local_ ? rank_.data() : nullptr; }
+    /// Positions in storage order to the localize() order, and back.
+    void to_local(const Positions& in, Positions& out) const {
+        out.resize(in.size());
+        parallel_for(0, in.size(), [&](std::size_t k) { out[k] = in[order_[k]]; });
+    }
+    void to_storage(const Positions& in, Positions& out) const {
+        out.resize(in.size());
+        parallel_for(0, in.size(), [&](std::size_t k) { out[order_[k]] = in[k]; });
+    }
 
     /// out = P + t·L·P (fixed vertices copied); the bounding boxes of P and out over the
     /// vertices with edges, and whether every new coordinate is finite and bounded.
@@ -459,8 +602,10 @@ public:
                 double e = 0, q = 0;
                 for (std::size_t ed = begin; ed < end; ++ed) {
                     if (mesh_.is_deleted(Edge(Index(ed)))) continue;
-                    const Point& a = P[to[2 * ed + 1].idx()];
-                    const Point& b = P[to[2 * ed].idx()];
+                    Index i = to[2 * ed + 1].idx(), j = to[2 * ed].idx();
+                    if (local_) i = rank_[i], j = rank_[j];
+                    const Point& a = P[i];
+                    const Point& b = P[j];
                     e += (a - b).squaredNorm();
                     q += a.squaredNorm() + b.squaredNorm();
                 }
@@ -480,7 +625,11 @@ public:
         for (std::size_t v = 0; v < nv; ++v)
             if (!fixed_[v]) d[Eigen::Index(v)] = 1.0 / std::sqrt(double(valence_[v]));
         return stable_step_of(lanczos_largest(
-            d, [&](const Eigen::VectorXd& u, Eigen::VectorXd& w) { apply_k(u, w); }, steps));
+            d,
+            [&](const Eigen::VectorXd& u, Eigen::VectorXd& w, const Eigen::VectorXd& q) {
+                return apply_dk_dot(d, u, w, q);
+            },
+            steps, local_ ? &order_ : nullptr));
     }
 
     /// Restricts every later step, energy and stable-step estimate to the vertices that move
@@ -600,51 +749,76 @@ private:
         rows_built_ = true;
     }
 
-    /// step() over the whole mesh on one thread, scattering over the edges (a run of one
-    /// product: building the rows would cost more than it saves); the first product also counts
-    /// the valences and finds the boundary.
+    /// step() over the whole mesh by an owner scan of the edges (a run of one product: building
+    /// the rows would cost more than it saves): each thread reads every edge in order and sums
+    /// the neighbours of its own range of vertices only (core/parallel.h, parallel_ranges()), so
+    /// that each sum runs in edge order, the bits of the one-thread scatter, for any number of
+    /// threads; the first product also counts the valences and finds the boundary.
     bool step_scatter(const Positions& P, double t, Positions& out, Box& box_before,
                       Box& box_after) {
-        const std::size_t nv = P.size();
-        out.assign(nv, Point::Zero());
-        if (!known_) {
+        const std::size_t nv = P.size(), ne = mesh_.edges_size();
+        out.resize(nv);
+        const Vertex* to = mesh_.halfedge_to_array().data();
+        const Face* face = mesh_.halfedge_face_array().data();
+        const bool garbage = mesh_.has_garbage();
+        const bool count = !known_;
+        if (count) {
             valence_.assign(nv, 0);
             fixed_.assign(nv, 0);
-            for (Edge e : mesh_.edges()) {
-                const Halfedge h = HalfedgeMesh::halfedge(e, 0), g = HalfedgeMesh::twin(h);
-                const Index i = mesh_.to_vertex(g).idx(), j = mesh_.to_vertex(h).idx();
-                out[i] += P[j];
-                out[j] += P[i];
-                ++valence_[i];
-                ++valence_[j];
-                if (mesh_.is_boundary(h) || mesh_.is_boundary(g)) fixed_[i] = fixed_[j] = 1;
-            }
-            for (std::size_t v = 0; v < nv; ++v)
-                if (valence_[v] == 0 || (pinned_ && (*pinned_)[v])) fixed_[v] = 1;
-            known_ = true;
-        } else {
-            for (Edge e : mesh_.edges()) {
-                const Halfedge h = HalfedgeMesh::halfedge(e, 0);
-                const Index i = mesh_.to_vertex(HalfedgeMesh::twin(h)).idx();
-                const Index j = mesh_.to_vertex(h).idx();
-                out[i] += P[j];
-                out[j] += P[i];
-            }
         }
-        double sum = 0;
-        for (std::size_t v = 0; v < nv; ++v) {
-            const Point& p = P[v];
-            if (fixed_[v]) {
-                out[v] = p;
-                if (valence_[v] == 0) continue;
-            } else {
-                out[v] = p + t * (out[v] / double(valence_[v]) - p);
-                sum += out[v].x() + out[v].y() + out[v].z();
+        parallel_ranges(0, nv, [&](std::size_t lo, std::size_t hi) {
+            std::fill(out.begin() + std::ptrdiff_t(lo), out.begin() + std::ptrdiff_t(hi),
+                      Point::Zero());
+            for (std::size_t e = 0; e < ne; ++e) {
+                const Index i = to[2 * e + 1].idx(), j = to[2 * e].idx();
+                const bool in_i = i - lo < hi - lo, in_j = j - lo < hi - lo;
+                if (!(in_i || in_j) || (garbage && mesh_.is_deleted(Edge(Index(e))))) continue;
+                const bool border =
+                    count && (!face[2 * e].is_valid() || !face[2 * e + 1].is_valid());
+                if (in_i) {
+                    out[i] += P[j];
+                    if (count) {
+                        ++valence_[i];
+                        if (border) fixed_[i] = 1;
+                    }
+                }
+                if (in_j) {
+                    out[j] += P[i];
+                    if (count) {
+                        ++valence_[j];
+                        if (border) fixed_[j] = 1;
+                    }
+                }
             }
-            box_before.add(p);
-            box_after.add(out[v]);
-        }
-        return std::isfinite(sum) && box_after.bounded();
+            if (count)
+                for (std::size_t v = lo; v < hi; ++v)
+                    if (valence_[v] == 0 || (pinned_ && (*pinned_)[v])) fixed_[v] = 1;
+        });
+        known_ = true;
+        // The update in fixed blocks, the finiteness sum and the boxes reduced in block order
+        // (as step()).
+        const StepPart all = parallel_reduce(
+            0, nv, StepPart{},
+            [&](std::size_t begin, std::size_t end) {
+                StepPart part;
+                for (std::size_t v = begin; v < end; ++v) {
+                    const Point& p = P[v];
+                    if (fixed_[v]) {
+                        out[v] = p;
+                        if (valence_[v] == 0) continue;
+                    } else {
+                        out[v] = p + t * (out[v] / double(valence_[v]) - p);
+                        part.sum += out[v].x() + out[v].y() + out[v].z();
+                    }
+                    part.before.add(p);
+                    part.after.add(out[v]);
+                }
+                return part;
+            },
+            StepPart::combine);
+        box_before.add(all.before);
+        box_after.add(all.after);
+        return std::isfinite(all.sum) && box_after.bounded();
     }
 
     /// step() on the moving vertices only: out keeps the fixed vertices' positions from the
@@ -666,6 +840,32 @@ private:
             box_after.add(out[v]);
         }
         return std::isfinite(sum) && box_after.bounded();
+    }
+
+    /// w = D·K·u and the sum of w_i·q_i over fixed blocks, added in block order (the product of
+    /// lanczos_largest(), its scaling and dot product in one pass over the rows; the same bits
+    /// as apply_k() then scale_and_dot()).
+    double apply_dk_dot(const Eigen::VectorXd& d, const Eigen::VectorXd& u, Eigen::VectorXd& w,
+                        const Eigen::VectorXd& q) const {
+        if (restricted_) {
+            apply_k(u, w);
+            return scale_and_dot(d, w, q);
+        }
+        return parallel_reduce(
+            0, valence_.size(), 0.0,
+            [&](std::size_t begin, std::size_t end) {
+                double part = 0;
+                for (std::size_t v = begin; v < end; ++v) {
+                    const auto i = Eigen::Index(v);
+                    double kv = double(valence_[v]) * u[i];
+                    for (std::size_t r = row_offset_[v]; r < row_offset_[v + 1]; ++r)
+                        kv -= u[Eigen::Index(row_[r])];
+                    w[i] = d[i] * kv;
+                    part += w[i] * q[i];
+                }
+                return part;
+            },
+            [](double x, double y) { return x + y; });
     }
 
     /// w = K·u (all entries).
@@ -708,6 +908,10 @@ private:
     std::vector<std::pair<Index, Index>> moving_edges_;  ///< edges with a moving end
     std::pair<double, double> fixed_energy_{0, 0};       ///< energy() of the other edges
     Box fixed_box_;                                      ///< the fixed vertices with edges
+    // localize():
+    bool local_ = false;
+    std::vector<Index> order_;  ///< new number -> storage index
+    std::vector<Index> rank_;   ///< storage index -> new number
 };
 
 double max_stable_step_laplacian(const Laplacian& lap, int steps) {
@@ -716,7 +920,12 @@ double max_stable_step_laplacian(const Laplacian& lap, int steps) {
     for (Eigen::Index r = 0; r < n; ++r)
         if (!lap.fixed[std::size_t(r)]) d[r] = 1.0 / std::sqrt(lap.S[r]);
     return stable_step_of(lanczos_largest(
-        d, [&](const Eigen::VectorXd& u, Eigen::VectorXd& w) { w.noalias() = lap.K * u; }, steps));
+        d,
+        [&](const Eigen::VectorXd& u, Eigen::VectorXd& w, const Eigen::VectorXd& q) {
+            w.noalias() = lap.K * u;
+            return scale_and_dot(d, w, q);
+        },
+        steps));
 }
 
 /// Gershgorin's bound on the eigenvalues of S⁻¹K over the free rows: max_i sum_j |K_ij| / S_i
@@ -1032,6 +1241,9 @@ private:
     /// fast_ on a region: the umbrella and the checks work on the moving vertices only
     /// (UmbrellaOperator::restrict_to_moving()); the other vertices' positions never change.
     bool restricted_ = false;
+    /// fast_ on a big mesh (UmbrellaOperator::localize()): during run() the mesh's positions
+    /// are in the operator's order (restored before the summary).
+    bool local_ = false;
     std::optional<MovingFaceSums> moving_sums_;  ///< restricted_: the area and volume sums
     bool closed_ = false;
     CandidateSums last_;  ///< of the last good positions, where known (area: NaN when not)
@@ -1126,6 +1338,17 @@ void FairingRun::set_up(const Pinned& pinned) {
     if (fast_ && weights_ && !pinned.empty() && o_.restrict_to_region && !slider_ &&
         !o_.preserve_volume && all_finite(mesh_.positions()))
         restricted_ = umbrella_->restrict_to_moving(mesh_.positions());
+    // A whole-mesh run whose steps read no per-vertex data in storage order (no region
+    // weights, slide or volume rescaling) runs in the operator's Morton order: the same
+    // positions bit for bit, the gathers close in memory.
+    if (fast_ && gather && !restricted_ && !weights_ && !slider_ && !o_.preserve_volume &&
+        !mesh_.has_garbage() && mesh_.vertices_size() >= g_locality_threshold) {
+        umbrella_->localize(mesh_.positions());
+        Positions local;
+        umbrella_->to_local(mesh_.positions(), local);
+        mesh_.positions().swap(local);
+        local_ = true;
+    }
     if (fast_ && o_.estimate_max_stable_step)
         res_.max_stable_step = umbrella_->max_stable_step(kLanczosSteps);
     if (o_.keep_steps) res_.step_positions.reserve(std::size_t(o_.iterations));
@@ -1174,7 +1397,18 @@ void FairingRun::run() {
         // Commit: the candidate becomes the mesh's positions (a swap, no copy).
         std::swap(mesh_.positions(), cand_);
         ++res_.iterations_done;
-        if (o_.keep_steps) res_.step_positions.push_back(mesh_.positions());
+        if (o_.keep_steps) {
+            res_.step_positions.emplace_back();
+            if (local_)
+                umbrella_->to_storage(mesh_.positions(), res_.step_positions.back());
+            else
+                res_.step_positions.back() = mesh_.positions();
+        }
+    }
+    if (local_) {  // back to storage order
+        umbrella_->to_storage(mesh_.positions(), cand_);
+        std::swap(mesh_.positions(), cand_);
+        local_ = false;
     }
     report_summary();
 }
@@ -1440,7 +1674,7 @@ bool FairingRun::check_area_and_volume(int iteration, const Positions& P, bool c
 /// area_volume() of the mesh at positions X (the last good state or the candidate); over the
 /// faces around the moving vertices plus a constant for the others when restricted_.
 CandidateSums FairingRun::area_volume_of(const Positions& X, bool with_area) {
-    if (!restricted_) return area_volume(mesh_, X, with_area);
+    if (!restricted_) return area_volume(mesh_, X, with_area, local_ ? umbrella_->rank() : nullptr);
     if (!moving_sums_) moving_sums_.emplace(mesh_, X, umbrella_->moving());
     return moving_sums_->sums(X, with_area);
 }
@@ -1843,12 +2077,22 @@ FairingResult smooth(HalfedgeMesh&& mesh, const FairingOptions& options, Progres
     return smooth_mesh(std::move(res), options, progress);
 }
 
+namespace fairing_detail {
+std::size_t set_locality_threshold(std::size_t vertices) {
+    const std::size_t before = g_locality_threshold;
+    g_locality_threshold = vertices;
+    return before;
+}
+}  // namespace fairing_detail
+
 double max_stable_explicit_step(const HalfedgeMesh& mesh, FairingOperator op, int lanczos_steps) {
     if (lanczos_steps < 1 || lanczos_steps > 1000)
         throw InvalidArgument("max_stable_explicit_step: lanczos_steps must be in [1, 1000] (got " +
                               std::to_string(lanczos_steps) + ")");
     if (op == FairingOperator::Umbrella || op == FairingOperator::Taubin) {
         UmbrellaOperator umbrella(mesh);
+        if (!mesh.has_garbage() && mesh.vertices_size() >= g_locality_threshold)
+            umbrella.localize(mesh.positions());  // as smooth() does
         return umbrella.max_stable_step(lanczos_steps);
     }
     const Laplacian lap =

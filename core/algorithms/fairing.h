@@ -194,4 +194,13 @@ FairingResult smooth(HalfedgeMesh&& mesh, const FairingOptions& options, Progres
 double max_stable_explicit_step(const HalfedgeMesh& mesh, FairingOperator op,
                                 int lanczos_steps = 20);
 
+namespace fairing_detail {
+/// Explicit umbrella and Taubin runs on the whole of a mesh without garbage, and
+/// max_stable_explicit_step() for them, renumber the operator along a Morton curve of the
+/// positions (fairing.cpp, UmbrellaOperator::localize(): the same positions bit for bit, the
+/// neighbour gathers close in memory) from this many vertices on (default 65,536). Sets it and
+/// returns the previous value: for tests, which compare both paths. Not thread-safe.
+std::size_t set_locality_threshold(std::size_t vertices);
+}  // namespace fairing_detail
+
 }  // namespace trilab

@@ -260,7 +260,7 @@ struct Stage {
 /// earlier subdivision, is not carried: the input's vertices are level 0) and `level` for
 /// the new ones, as `out`'s "v:subdivision_level".
 void add_levels(const HalfedgeMesh& m, HalfedgeMesh& out, int level) {
-    auto& levels = out.add_vertex_property<int>(kLevelName, level).vector();
+    auto& levels = out.vertex_property<int>(kLevelName, level).vector();
     const std::size_t nv = m.vertices_size();
     if (level > 1) {
         if (auto in = m.get_vertex_property<int>(kLevelName)) {
@@ -271,14 +271,24 @@ void add_levels(const HalfedgeMesh& m, HalfedgeMesh& out, int level) {
     std::fill_n(levels.begin(), nv, 0);
 }
 
+/// Adds the vertex properties of a level (add_levels(), Provenance) to the empty mesh `out`
+/// with their defaults, before its arrays are sized: resize_elements() then fills them with the
+/// connectivity's, one array per task on every thread, instead of one after the other here.
+void add_level_properties(HalfedgeMesh& out, int level) {
+    out.add_vertex_property<int>(kLevelName, level);
+    out.add_vertex_property<int>(kStencilName, 0);
+    out.add_vertex_property<SubdivisionParents>(kParentsName,
+                                                SubdivisionParents::Constant(kInvalidIndex));
+}
+
 /// Provenance arrays of a new level ("v:subdivision_stencil", "v:subdivision_parents"), all
 /// entries Unknown and without parents.
 struct Provenance {
     int* stencil;
     SubdivisionParents* parents;
     explicit Provenance(HalfedgeMesh& out)
-        : stencil(out.add_vertex_property<int>(kStencilName, 0).vector().data()),
-          parents(out.add_vertex_property<SubdivisionParents>(
+        : stencil(out.vertex_property<int>(kStencilName, 0).vector().data()),
+          parents(out.vertex_property<SubdivisionParents>(
                          kParentsName, SubdivisionParents::Constant(kInvalidIndex))
                       .vector()
                       .data()) {}
@@ -295,16 +305,22 @@ struct Provenance {
 
 /// The stencils and parents of a 1-to-4 level (old vertex v keeps index v, edge e's vertex is
 /// nv + e), classified on `m` itself (coincident copies are marked later, mark_creases()).
-void provenance_1to4(const In& m, SubdivisionScheme scheme, HalfedgeMesh& out, const Creases& cr) {
+/// `known_valence`: the valences when the caller has them (loop_positions()).
+void provenance_1to4(const In& m, SubdivisionScheme scheme, HalfedgeMesh& out, const Creases& cr,
+                     const std::vector<unsigned>* known_valence = nullptr) {
     const Index nv = m.nv, ne = m.ne;
     Provenance pr(out);
-    // The valences by an owner scan of the halfedges, the stencils in fixed blocks, on every
-    // thread (core/parallel.h).
-    std::vector<unsigned> valence(nv, 0);
-    parallel_ranges(0, nv, [&](std::size_t lo, std::size_t hi) {
-        for (Index h = 0; h < 2 * ne; ++h)
-            if (m.to_i(h) - lo < hi - lo) ++valence[m.to_i(h)];
-    });
+    // The valences by an owner scan of the halfedges (unless known), the stencils in fixed
+    // blocks, on every thread (core/parallel.h).
+    std::vector<unsigned> counted;
+    if (!known_valence) {
+        counted.assign(nv, 0);
+        parallel_ranges(0, nv, [&](std::size_t lo, std::size_t hi) {
+            for (Index h = 0; h < 2 * ne; ++h)
+                if (m.to_i(h) - lo < hi - lo) ++counted[m.to_i(h)];
+        });
+    }
+    const std::vector<unsigned>& valence = known_valence ? *known_valence : counted;
     const bool loop = scheme == SubdivisionScheme::Loop;
     const auto interior = [&](Index v) {
         const Halfedge h = m.vh[v];
@@ -621,8 +637,8 @@ void loop_positions_creased(const In& m, const Creases& cr, Point* p, const Stag
 /// range of vertices, reads every edge in order and sums the neighbours of its own vertices
 /// only, so that each sum runs in edge order (the bits of a one-thread scatter, and of
 /// uniform_step_1to4()'s loop_even_at()) for any number of threads; the even rules then run on
-/// the same range.
-void loop_positions(const In& m, Point* p, const Stage& stage) {
+/// the same range. The valences stay in `valence` (provenance_1to4() reads them).
+void loop_positions(const In& m, Point* p, const Stage& stage, std::vector<unsigned>& valence) {
     const Index nv = m.nv, ne = m.ne;
     const Point* x = m.x;
     parallel_for_blocks(0, ne, [&](std::size_t b, std::size_t end) {
@@ -641,7 +657,7 @@ void loop_positions(const In& m, Point* p, const Stage& stage) {
         }
     });
     stage.report(0.6);
-    std::vector<unsigned> valence(nv);
+    valence.resize(nv);
     parallel_ranges(0, nv, [&](std::size_t lo, std::size_t hi) {
         const Index first = Index(lo), count = Index(hi - lo);
         std::fill(p + lo, p + hi, Point::Zero());
@@ -790,12 +806,14 @@ void butterfly_positions(const In& m, Point* p, bool modified, const Stage& stag
 }
 
 /// The positions of the 1-to-4 split of `m` by `scheme`: odd vertex of edge e at p[nv + e].
+/// Plain Loop leaves the valences in `valence` when given.
 void positions_1to4(const In& m, SubdivisionScheme scheme, Point* p, const Stage& stage,
-                    const Creases& creases = {}) {
+                    const Creases& creases = {}, std::vector<unsigned>* valence = nullptr) {
+    std::vector<unsigned> scratch;
     if (scheme == SubdivisionScheme::Loop && creases.any())
         loop_positions_creased(m, creases, p, stage);
     else if (scheme == SubdivisionScheme::Loop)
-        loop_positions(m, p, stage);
+        loop_positions(m, p, stage, valence ? *valence : scratch);
     else if (creases.any())
         butterfly_positions_creased(m, creases.sharp, creases.corner,
                                     scheme == SubdivisionScheme::ModifiedButterfly, p);
@@ -863,6 +881,7 @@ SubdivisionLevel refine_1to4(const HalfedgeMesh& mesh, SubdivisionScheme scheme,
     SubdivisionLevel out;
     out.correspondence.kind = MorphCorrespondence::Kind::FromEarlier;
     const In m(mesh);
+    add_level_properties(out.mesh, level);
     build_1to4(m, out.mesh, stage);
     stage.progress.check_cancelled();
     Creases creases;
@@ -873,13 +892,14 @@ SubdivisionLevel refine_1to4(const HalfedgeMesh& mesh, SubdivisionScheme scheme,
             creases.corner = c.vector().data();
     }
     Point* p = out.mesh.positions().data();
+    std::vector<unsigned> valence;  // plain Loop on `m` itself: its valences, for the stencils
     if (welded)
         welded_positions_1to4(mesh, scheme, p, stage, creases);
     else
-        positions_1to4(m, scheme, p, stage, creases);
+        positions_1to4(m, scheme, p, stage, creases, &valence);
     stage.progress.check_cancelled();
     add_levels(mesh, out.mesh, level);
-    provenance_1to4(m, scheme, out.mesh, creases);
+    provenance_1to4(m, scheme, out.mesh, creases, valence.empty() ? nullptr : &valence);
     if (features) carry_features_1to4(m, creases, out.mesh);
     carry_uv_1to4(mesh, out.mesh);
     if (morph) {
@@ -1258,6 +1278,7 @@ SubdivisionLevel refine_sqrt3(const HalfedgeMesh& mesh, bool even_step, int leve
 
     SubdivisionLevel result;
     HalfedgeMesh& mesh_out = result.mesh;
+    add_level_properties(mesh_out, level);
     mesh_out.resize_elements(std::size_t(nv) + nf + 2 * std::size_t(nb),
                              std::size_t(ne) + 3 * std::size_t(nf) + 4 * std::size_t(nb),
                              3 * std::size_t(nf) + 2 * std::size_t(nb));
@@ -1629,6 +1650,22 @@ SubdivisionScheme parse_scheme(const std::string& name) {
 
 namespace {
 
+/// The lowest face of a pillow (both faces' three halfedges are twins of each other's), or
+/// kInvalidIndex: in fixed blocks on every thread, the blocks' first finds combined by minimum.
+Index first_pillow_face(const In& m) {
+    return parallel_reduce(
+        0, m.nf, kInvalidIndex,
+        [&](std::size_t begin, std::size_t end) {
+            for (Index fi = Index(begin); fi < Index(end); ++fi) {
+                const Index h0 = m.fh[fi].idx(), h1 = m.next_i(h0), h2 = m.next_i(h1);
+                const Face g = m.face[h0 ^ 1u];
+                if (g.is_valid() && m.face[h1 ^ 1u] == g && m.face[h2 ^ 1u] == g) return fi;
+            }
+            return kInvalidIndex;
+        },
+        [](Index a, Index b) { return std::min(a, b); });
+}
+
 /// Refuses a mesh where two faces have the same three vertices (a closed two-triangle
 /// "pillow"; subdivide() sets the input's aside, so this only guards the levels): the 1-to-4 split
 /// would join two of its edge midpoints twice and Sqrt3 would join its two centroids three
@@ -1638,10 +1675,10 @@ namespace {
 /// face. Reports the pillow of the lowest face index.
 void check_no_pillows(const HalfedgeMesh& mesh, int iteration) {
     const In m(mesh);
-    for (Index fi = 0; fi < m.nf; ++fi) {
+    const Index fi = first_pillow_face(m);
+    if (fi != kInvalidIndex) {
         const Index h0 = m.fh[fi].idx(), h1 = m.next_i(h0), h2 = m.next_i(h1);
         const Face g = m.face[h0 ^ 1u];
-        if (!g.is_valid() || m.face[h1 ^ 1u] != g || m.face[h2 ^ 1u] != g) continue;
         Index v[3] = {m.to_i(h0), m.to_i(h1), m.to_i(h2)};
         std::sort(v, v + 3);
         throw TopologyError(
@@ -1759,7 +1796,10 @@ SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& 
     SubdivisionResult result;
     // Pillows cannot be refined: they are set aside and put back unchanged on every level.
     PillowSplit pillows;
-    if (!pillow_faces(*current).empty()) {
+    // The parallel scan finds the pillows pillow_faces() lists (the same test); without any,
+    // the first iteration's check_no_pillows() is that scan again and is skipped.
+    const bool had_pillows = first_pillow_face(In(*current)) != kInvalidIndex;
+    if (had_pillows) {
         pillows = split_off_pillows(*current);
         current = &pillows.rest;
         result.notes.push_back(pillow_note(pillows.count));
@@ -1775,7 +1815,7 @@ SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& 
     const double span = 1.0 / options.iterations;
     for (int it = 1; it <= options.iterations; ++it) {
         progress.check_cancelled();
-        check_no_pillows(*current, it);
+        if (it > 1 || had_pillows) check_no_pillows(*current, it);
         Stage stage{progress, (it - 1) * span, span};
         stage.report(0);
         // Morph start positions for the levels returned, and to find the coincident ones.

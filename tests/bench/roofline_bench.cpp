@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "app/platform/heap_tuning.h"
@@ -96,6 +97,20 @@ struct Sizes {
             2 * e1 * (16 + 1) + v1 * (4 + 1 + 24 + 4 + 4 + 12) + e1 * 1 + f1 * (4 + 1);
         return read + write;
     }
+    /// Sqrt3, one (odd) step: the same reads; the refined mesh has V + F vertices, E + 3F
+    /// edges and 3F faces, written as for Loop.
+    double sqrt3() const {
+        const double read = 2 * e * 12 + v * 4 + f * 4 + v * 24;
+        const double v1 = v + f, e1 = e + 3 * f, f1 = 3 * f;
+        const double write =
+            2 * e1 * (16 + 1) + v1 * (4 + 1 + 24 + 4 + 4 + 12) + e1 * 1 + f1 * (4 + 1);
+        return read + write;
+    }
+    /// The stable-step estimate (20 Lanczos steps): per step the rows (4 B per neighbour,
+    /// 8 B offsets, valence and fixed flag) and three passes over 8-byte vectors (the product
+    /// reads u, d, q and writes w; the update reads w, q, q_prev and writes w; the next vector
+    /// reads w, d and writes q, u: 12 vector accesses per row).
+    double estimate() const { return 20 * (2 * e * 4 + v * 13 + v * 12 * 8); }
     /// One explicit umbrella iteration: the positions read, the rows (4 B per neighbour, 8 B
     /// offsets), valence and fixed flags (5 B), the candidate written; the volume check reads
     /// the faces' three corners (fh, next, to: 4 + 2 x 4 + 3 x 4 B) and the candidate again.
@@ -123,12 +138,34 @@ std::vector<Op> operations(const HalfedgeMesh& mesh) {
                        const SubdivisionResult r = subdivide(mesh, o, progress);
                        if (r.levels.back().mesh.n_faces() != 4 * mesh.n_faces()) std::abort();
                    }});
+    for (const auto& [name, scheme, bytes] :
+         {std::tuple{"Sqrt3, one step", SubdivisionScheme::Sqrt3, s.sqrt3()},
+          std::tuple{"Butterfly, one step", SubdivisionScheme::Butterfly, s.loop()}})
+        ops.push_back({name, bytes, [&mesh, scheme = scheme] {
+                           SubdivisionOptions o;
+                           o.scheme = scheme;
+                           o.keep_levels = false;
+                           o.morph = false;
+                           NullProgress progress;
+                           const SubdivisionResult r = subdivide(mesh, o, progress);
+                           if (r.levels.back().mesh.n_faces() < 3 * mesh.n_faces()) std::abort();
+                       }});
     ops.push_back({"umbrella, 10 explicit iterations", 10 * s.umbrella(), [&mesh] {
                        FairingOptions o;
                        o.iterations = 10;
                        o.estimate_max_stable_step = false;
                        const FairingResult r = smooth(mesh, o);
                        if (r.iterations_done != 10) std::abort();
+                   }});
+    ops.push_back({"umbrella, 10 iterations + stable-step estimate (as the CLI)",
+                   10 * s.umbrella() + s.estimate(), [&mesh] {
+                       FairingOptions o;
+                       o.iterations = 10;
+                       o.keep_steps = false;
+                       HalfedgeMesh copy = mesh;
+                       NullProgress progress;
+                       const FairingResult r = smooth(std::move(copy), o, progress);
+                       if (r.iterations_done != 10 || !(r.max_stable_step > 0)) std::abort();
                    }});
     ops.push_back({"vertex normals", s.normals(), [&mesh] {
                        HalfedgeMesh m = mesh;

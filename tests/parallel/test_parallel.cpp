@@ -223,6 +223,51 @@ TEST_CASE("vertex colourings: the same colours and values for 1, 2 and 7 threads
                               colors[0].size() * sizeof(double)) == 0);
         }
     }
+TEST_CASE("explicit umbrella and Taubin in the Morton order: the bits of the storage order",
+          "[parallel]") {
+    // fairing_detail::set_locality_threshold(): 0 renumbers every run, the largest never does.
+    struct Restore {
+        std::size_t before = fairing_detail::set_locality_threshold(0);
+        ~Restore() { fairing_detail::set_locality_threshold(before); }
+    } restore;
+    HalfedgeMesh open = make_grid(80);  // boundary vertices stay fixed
+    std::uint64_t state = 0x9E3779B97F4A7C15ull;
+    for (Point& p : open.positions()) {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        p.z() = double(state % 1000) * 1e-3;
+    }
+    const HalfedgeMesh closed = make_noisy_sphere(24, 0.05, 7);  // the volume check per step
+    struct Case {
+        FairingOperator op;
+        double step;  // 1.5: the energy and area checks run too
+    };
+    for (const HalfedgeMesh* mesh : {static_cast<const HalfedgeMesh*>(&open), &closed})
+        for (const Case c :
+             {Case{FairingOperator::Umbrella, 0.5}, Case{FairingOperator::Umbrella, 1.5},
+              Case{FairingOperator::Taubin, 0}}) {
+            FairingOptions o;
+            o.op = c.op;
+            o.step = c.step;
+            o.iterations = 3;
+            fairing_detail::set_locality_threshold(std::size_t(-1));
+            const FairingResult storage = smooth(*mesh, o);
+            fairing_detail::set_locality_threshold(0);
+            const auto local = with_1_2_7_threads([&] { return smooth(*mesh, o); });
+            for (const FairingResult& r : local) {
+                CHECK(r.iterations_done == storage.iterations_done);
+                CHECK(r.stopped_early == storage.stopped_early);
+                CHECK(r.mesh.positions() == storage.mesh.positions());
+                CHECK(r.step_positions == storage.step_positions);
+                CHECK(r.final_volume == storage.final_volume);
+                // The estimate's sums run in the other order: equal up to rounding, and the
+                // same bits for any thread count and as max_stable_explicit_step() gives.
+                CHECK(r.max_stable_step == Approx(storage.max_stable_step).epsilon(1e-9));
+                CHECK(r.max_stable_step == local[0].max_stable_step);
+            }
+            CHECK(local[0].max_stable_step == max_stable_explicit_step(*mesh, o.op));
+        }
 }
 
 TEST_CASE("exact coincident groups: the same groups for 1, 2 and 7 threads, as a map finds them",
