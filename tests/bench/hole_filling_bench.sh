@@ -7,7 +7,8 @@
 # links CGAL) and builds tests/bench/hole_filling/cgal_fill_holes.cpp into BUILD_DIR. "ms" is
 # the filling alone for both (reading and writing excluded): trilab's --json "ms", the median
 # of 5 runs each. Floors (exit 1 when missed): the bunny's five holes under 100 ms, the
-# 5,004-vertex hole under 1,000 ms, every fill closed, the C2 fill at least as smooth across its
+# 5,004-vertex hole under 1,000 ms and triangulated over its Delaunay edges (Zou, Ju and Carr
+# 2013; not cut by chords), every fill closed, the C2 fill at least as smooth across its
 # rim as CGAL's (rim_jump_deg: the mean dihedral angle across the rim edges minus the mean over
 # the old edges at the rim vertices; `cgal_fill_holes --rim` measures trilab's fill the same way).
 set -euo pipefail
@@ -48,6 +49,7 @@ print(json.dumps({"loops": last["loops_found"], "filled": last["loops_filled"],
                   "vertices_added": last["vertices_added"],
                   "min_new_angle_deg": round(last["min_new_angle_deg"], 2),
                   "new_angles_under_20": last["new_angles_under_20"],
+                  "loops_delaunay": last.get("loops_delaunay", 0),
                   "loops_cut": last["loops_cut"]}))
 PY
 }
@@ -95,6 +97,7 @@ for name, r in (("bunny c1", t1), ("bunny c2", t2)):
     if r["ms"] >= 100: fails.append(name + ": %.1f ms, the floor is 100 ms" % r["ms"])
 if s["filled"] != 1: fails.append("slot: not filled")
 if s["ms"] >= 1000: fails.append("slot: %.1f ms, the floor is 1000 ms" % s["ms"])
+if s["loops_delaunay"] != 1: fails.append("slot: not triangulated over its Delaunay edges (Zou et al.)")
 for f in fails: print("FLOOR MISSED: " + f)
 print("floors: " + ("all met" if not fails else "%d missed" % len(fails)))
 sys.exit(1 if fails else 0)
