@@ -28,10 +28,16 @@
 //     at most 180 degrees), and the faces a split or flip touched are tested again (a worklist,
 //     so the refinement runs along a long thin hole in one sweep). Then tangential smoothing
 //     (towards the area-weighted centroid of the one-ring) with flips that raise the smallest
-//     angle, before and after fairing; a new triangle still under 20 degrees gets its longest
-//     new edge split, and is faired and smoothed again (up to three rounds, a vertex moving only
-//     where that raises the smallest angle around it). What remains under 20 degrees is where
-//     the rim allows no better (a rim vertex between a very short and a long rim edge).
+//     angle, before and after fairing. Then every new vertex with an angle under 25 degrees
+//     around it is moved, in its tangent plane, to where the smallest angle of its triangles
+//     (their angles at the rim included) is largest (a compass search, no triangle folding),
+//     with flips that raise the smallest angle; a new triangle still under 20 degrees gets its
+//     longest new edge split (the longest whose split leaves each rim corner across it room: k
+//     new triangles spanning an angle S at a rim vertex have an angle of at most S / k there),
+//     is faired, and optimized again (up to three rounds). What remains under 20 degrees is
+//     where the rim allows no better: a rim vertex whose new triangles span less than 60 degrees
+//     between a very short and a long rim edge (over 7.4 times longer), where neither one, two
+//     nor three triangles can keep 20 degrees without bending the fill out of the surface.
 //  3. Fairing with trilab's own implicit Laplacian (core/algorithms/laplacian.h, cotangent
 //     weights with the Voronoi mass, Meyer et al. 2003): the new vertices solve
 //     Δ²x = 0 (C1: tangent continuity at the rim) or Δ³x = 0 (C2: curvature continuity), with

@@ -230,9 +230,11 @@ bool segments_meet(const P2& a, const P2& b, const P2& c, const P2& d, double ep
     const auto sign = [eps](double o) { return o > eps ? 1 : (o < -eps ? -1 : 0); };
     const int s1 = sign(o1), s2 = sign(o2), s3 = sign(o3), s4 = sign(o4);
     if (s1 * s2 < 0 && s3 * s4 < 0) return true;
-    const auto within = [](const P2& p, const P2& q, const P2& r) {  // r in the box of pq
-        return std::min(p.x, q.x) <= r.x && r.x <= std::max(p.x, q.x) &&
-               std::min(p.y, q.y) <= r.y && r.y <= std::max(p.y, q.y);
+    // r in the box of pq, widened by a hair (the box of two collinear points has no height).
+    const double hair = 1e-6 * std::sqrt(eps);
+    const auto within = [hair](const P2& p, const P2& q, const P2& r) {
+        return std::min(p.x, q.x) - hair <= r.x && r.x <= std::max(p.x, q.x) + hair &&
+               std::min(p.y, q.y) - hair <= r.y && r.y <= std::max(p.y, q.y) + hair;
     };
     return (s1 == 0 && within(a, b, c)) || (s2 == 0 && within(a, b, d)) ||
            (s3 == 0 && within(c, d, a)) || (s4 == 0 && within(c, d, b));

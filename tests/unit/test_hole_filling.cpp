@@ -267,9 +267,11 @@ TEST_CASE("the Stanford bunny's five holes are all filled, closed and clean", "[
         REQUIRE(is_closed(m));
         REQUIRE(r.faces_added == m.n_faces() - mesh.n_faces());
         REQUIRE(self_intersections_near(m, f0) == 0);
-        // At most the odd triangle under 20 degrees, and only where the rim leaves no choice.
-        REQUIRE(r.new_angles_under_20 <= 2);
-        REQUIRE(r.min_new_angle_deg > 10.0);
+        // Triangles under 20 degrees only where the rim leaves no choice: the three at rim
+        // vertex 18288 (new triangles spanning 55 degrees between rim edges of 0.00035 and
+        // 0.00304), whose best flat fan keeps about 16 degrees (docs/benchmarks.md).
+        REQUIRE(r.new_angles_under_20 <= 3);
+        REQUIRE(r.min_new_angle_deg > 15.0);
         REQUIRE(small_angles_only_where_unavoidable(m, v0, f0));
     }
 }
@@ -320,8 +322,12 @@ TEST_CASE("a slot wrapped around a cylinder falls back to chords, and says why",
     REQUIRE(r.loops_delaunay == 0);
     REQUIRE(r.loops_cut == 1);
     bool said = false;
-    for (const std::string& note : r.notes)
+    std::string notes;
+    for (const std::string& note : r.notes) {
+        notes += note + "\n";
         said = said || note.find("not a simple polygon") != std::string::npos;
+    }
+    INFO(notes);
     REQUIRE(said);
     REQUIRE_VALID(m);
     REQUIRE(boundary_loops(m).size() == 2);  // the cylinder's two ends
