@@ -69,17 +69,50 @@ public:
         pts_.push_back({cx, cy + r});
         tris_.push_back(
             {{std::uint32_t(n), std::uint32_t(n + 1), std::uint32_t(n + 2)}, {kNo, kNo, kNo}});
-        for (std::uint32_t i = 0; i < n; ++i)
+        // A random order (Fisher-Yates with a fixed seed, so the result is reproducible): in
+        // loop order a loop's long straight sides would make every insertion's cavity span
+        // the whole side (O(n^2)); a random order makes it O(n log n) expected.
+        std::vector<std::uint32_t> order(n);
+        for (std::uint32_t i = 0; i < n; ++i) order[i] = i;
+        std::uint64_t state = 0x9E3779B97F4A7C15ull;
+        for (std::size_t i = n; i > 1; --i) {
+            state = state * 6364136223846793005ull + 1442695040888963407ull;
+            std::swap(order[i - 1], order[std::size_t((state >> 33) % i)]);
+        }
+        tri_of_.assign(n + 3, kNo);
+        inserted_.assign(n, 0);
+        for (std::uint32_t i : order) {
             if (!insert(i)) return false;
+            inserted_[i] = 1;
+        }
         return true;
     }
     const std::vector<Tri>& triangles() const { return tris_; }
     const P2& point(std::uint32_t i) const { return pts_[i]; }
 
 private:
-    /// The triangle containing p (on its border included), walking from the last one.
-    std::uint32_t locate(const P2& p) const {
-        std::uint32_t t = last_;
+    /// A triangle to start the walk to point i from: one at the nearest point along the loop
+    /// inserted already (the loop's points are near in space where they are near along it),
+    /// else the last one made. Scanning outwards costs O(n / k) after k insertions in a random
+    /// order: O(n log n) in all.
+    std::uint32_t start_for(std::uint32_t i) const {
+        const std::size_t n = inserted_.size();
+        for (std::size_t d = 1; d < n; ++d)
+            for (std::size_t j : {(i + d) % n, (i + n - d % n) % n})
+                if (inserted_[j]) {
+                    const std::uint32_t t = tri_of_[j];
+                    const auto& v = tris_[t].v;
+                    if (v[0] == j || v[1] == j || v[2] == j) return t;
+                    return last_;
+                }
+        return last_;
+    }
+    /// Notes triangle t at each of its corners (the walks' starts).
+    void note(std::uint32_t t) {
+        for (std::uint32_t v : tris_[t].v) tri_of_[v] = t;
+    }
+    /// The triangle containing p (on its border included), walking from `t`.
+    std::uint32_t locate(const P2& p, std::uint32_t t) const {
         for (std::size_t step = 0; step < 4 * tris_.size() + 16; ++step) {
             const Tri& tr = tris_[t];
             std::uint32_t next = kNo;
@@ -106,7 +139,7 @@ private:
     }
     bool insert(std::uint32_t i) {
         const P2& p = pts_[i];
-        const std::uint32_t t = locate(p);
+        const std::uint32_t t = locate(p, start_for(i));
         if (t == kNo) return false;
         const Tri tr = tris_[t];
         int on_edge = -1;
@@ -137,7 +170,10 @@ private:
         tris_.push_back({{i, old.v[0], old.v[1]}, {old.n[2], t, t1}});
         relink(old.n[1], t, t1);
         relink(old.n[2], t, t2);
-        for (std::uint32_t x : {t, t1, t2}) stack.emplace_back(x, 0);
+        for (std::uint32_t x : {t, t1, t2}) {
+            note(x);
+            stack.emplace_back(x, 0);
+        }
     }
     /// p on the edge of t opposite its corner k (shared with triangle u): four triangles.
     void split_edge(std::uint32_t t, int k, std::uint32_t i,
@@ -159,7 +195,10 @@ private:
         tris_.push_back({{i, x, d}, {n_xd, u, t}});
         relink(n_yc, t, t2);
         relink(n_xd, u, u2);
-        for (std::uint32_t z : {t, t2, u, u2}) stack.emplace_back(z, 0);
+        for (std::uint32_t z : {t, t2, u, u2}) {
+            note(z);
+            stack.emplace_back(z, 0);
+        }
     }
     /// Lawson's flips: each queued (triangle, corner 0 = the new point i) edge opposite i is
     /// flipped while the point across it lies inside the circle.
@@ -186,6 +225,8 @@ private:
             tris_[u] = {{i, d, y}, {n_dy, n_yi, t}};
             relink(n_xd, u, t);
             relink(n_yi, t, u);
+            note(t);
+            note(u);
             stack.emplace_back(t, 0);
             stack.emplace_back(u, 0);
         }
@@ -194,6 +235,8 @@ private:
     std::vector<P2> pts_;
     std::vector<Tri> tris_;
     std::uint32_t last_ = 0;
+    std::vector<std::uint32_t> tri_of_;  ///< per point: a triangle at it (may be stale)
+    std::vector<std::uint8_t> inserted_;
 };
 
 std::uint64_t key(std::uint32_t a, std::uint32_t b) {

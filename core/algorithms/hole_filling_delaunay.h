@@ -21,8 +21,8 @@
 // triangulation is not constrained: a rim whose projection has a vertex closer to a rim edge
 // than that edge's own diametral circle allows), or when the triangles found inside do not
 // cover the polygon's area exactly once (a check against rounding in the predicates).
-// Complexity: O(n log n) expected for the insertion (each point is located by walking from the
-// last triangle, in loop order), O(n) for the rest; memory O(n).
+// Complexity: O(n log n) expected for the insertion (in a random order, fixed seed), plus the
+// walks that locate each point from the last triangle made; O(n) for the rest; memory O(n).
 #include <cstdint>
 #include <string>
 #include <utility>
