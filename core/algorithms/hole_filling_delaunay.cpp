@@ -157,7 +157,7 @@ private:
             split_edge(t, on_edge, i, stack);
         legalize(i, stack);
         last_ = std::uint32_t(tris_.size() - 1);
-        return true;
+        return flips_ <= 64 * pts_.size() + 1024;
     }
     /// p inside t: three triangles (t reused). Queues the edges opposite p.
     void split_triangle(std::uint32_t t, std::uint32_t i,
@@ -216,6 +216,7 @@ private:
             const std::uint32_t d = b.v[ku];
             const P2 &pa = pts_[a.v[0]], &pb = pts_[a.v[1]], &pc = pts_[a.v[2]], &pd = pts_[d];
             if (!in_circle(pa, pb, pc, pd)) continue;
+            if (++flips_ > 64 * pts_.size() + 1024) return;  // rounding cycling: build() fails
             // t = (i, x, y), u = (d, y, x) -> t = (i, x, d), u = (i, d, y).
             const std::uint32_t x = a.v[1], y = a.v[2];
             if (!(orient(pa, pts_[x], pd) > 0 && orient(pa, pd, pts_[y]) > 0)) continue;
@@ -235,6 +236,7 @@ private:
     std::vector<P2> pts_;
     std::vector<Tri> tris_;
     std::uint32_t last_ = 0;
+    std::size_t flips_ = 0;              ///< all flips so far (capped: a safeguard against cycling)
     std::vector<std::uint32_t> tri_of_;  ///< per point: a triangle at it (may be stale)
     std::vector<std::uint8_t> inserted_;
 };
@@ -404,7 +406,9 @@ LoopDelaunay loop_delaunay_edges(const std::vector<Point>& loop) {
     }
     Delaunay2 dt;
     if (!dt.build(p, scale)) {
-        r.why = "two rim vertices project onto the same point";
+        r.why =
+            "its 2-D Delaunay triangulation failed (two rim vertices project onto one point, "
+            "or rounding kept flipping)";
         return r;
     }
     const std::vector<std::uint32_t> inside = inside_triangles(dt, n);

@@ -1153,6 +1153,8 @@ private:
     void relax_along_curve(Vertex v) {
         Vertex a, b;
         if (feat_[v.idx()] != kCrease || !curve_neighbours(v, a, b)) return;
+        for (Halfedge g : m_.halfedges_around(v))  // a region's border stays (see relax())
+            if (!is_free(m_.to_vertex(g))) return;
         const Point& p = cm_.position(v);
         const Point mid = 0.5 * (cm_.position(a) + cm_.position(b));
         std::uint32_t seg = seg_[v.idx()];
