@@ -39,6 +39,10 @@ std::vector<std::string> report_lines(const HoleFillingReport& r) {
                         count_text(r.vertices_added, "vertex", "vertices") +
                         "; smallest new angle " + degrees_text(r.min_new_angle_deg) + " deg (" +
                         std::to_string(r.new_angles_under_20) + " new triangles under 20 deg)");
+    if (r.loops_delaunay)
+        lines.push_back(count_text(r.loops_delaunay, "loop", "loops") + " longer than " +
+                        std::to_string(kMaxDpLoop) +
+                        " vertices triangulated over their Delaunay edges (Zou et al. 2013)");
     if (r.loops_cut)
         lines.push_back(count_text(r.loops_cut, "loop", "loops") + " longer than " +
                         std::to_string(kMaxDpLoop) + " vertices cut by chords first");
@@ -71,6 +75,7 @@ OperationResult run_fill_holes(const HoleFillingOptions& options, const Halfedge
                      {"loops_chosen", double(r.loops_chosen)},
                      {"loops_filled", double(r.loops_filled)},
                      {"loops_refused", double(r.refused.size())},
+                     {"loops_delaunay", double(r.loops_delaunay)},
                      {"loops_cut", double(r.loops_cut)},
                      {"faces_added", double(r.faces_added)},
                      {"vertices_added", double(r.vertices_added)},
@@ -88,9 +93,11 @@ std::unique_ptr<OperationDef> fill_holes_operation() {
     OperationDecl<HoleFillingOptions> d(
         "fill-holes", "Fill holes",
         "Closes boundary loops (holes) after Liepa 2003: each loop is triangulated by dynamic "
-        "programming (the largest dihedral angle, then the area, minimised; loops over " +
+        "programming (the largest dihedral angle, then the area, minimised; over loops of more "
+        "than " +
             std::to_string(kMaxDpLoop) +
-            " vertices are cut by chords first), refined to the density around it with "
+            " vertices restricted to the edges of their 2-D Delaunay triangulation, Zou et "
+            "al. 2013), refined to the density around it with "
             "Delaunay flips, and faired with the implicit Laplacian (C1 or C2 at the rim). "
             "Loops are numbered by their smallest vertex index; the --json report lists every "
             "loop's size and what became of it. Degenerate rims are refused with the reason. "

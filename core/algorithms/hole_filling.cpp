@@ -16,6 +16,7 @@
 
 #include <Eigen/SparseCholesky>
 
+#include "core/algorithms/hole_filling_delaunay.h"
 #include "core/algorithms/laplacian.h"
 #include "core/algorithms/selection.h"
 #include "core/errors.h"
@@ -33,6 +34,9 @@ constexpr int kMaxRefineRounds = 60;
 constexpr int kMaxRelaxPasses = 50;
 constexpr int kSmoothingRounds = 4;
 constexpr int kRepairRounds = 3;
+constexpr int kOptimizeSweeps = 3;
+/// Only new vertices with an angle under this around them are moved by the angle optimization.
+constexpr double kOptimizeBelowDeg = 25.0;
 /// A loop whose best triangulation bends by more than this between neighbouring triangles (or
 /// against the old faces) would fold back onto the surface: refused.
 constexpr double kMaxFoldDeg = 150.0;
@@ -173,6 +177,10 @@ public:
     }
     /// The triangles, or false with `why` set.
     bool run(std::vector<Triangle>& out, std::string& why) {
+        if (rim_.size() > kMaxDpLoop && try_delaunay()) {
+            out = std::move(triangles_);
+            return true;
+        }
         std::vector<Index> all(rim_.size());
         std::iota(all.begin(), all.end(), Index(0));
         ok_ = true;
@@ -185,6 +193,9 @@ public:
         return true;
     }
     bool was_cut() const { return cut_; }
+    bool used_delaunay() const { return delaunay_; }
+    /// Why a large loop was not triangulated over its Delaunay edges ("" when it was).
+    const std::string& delaunay_fallback() const { return fallback_; }
     /// The largest dihedral angle (degrees) of the triangulation, the old faces across the rim
     /// included.
     double largest_dihedral_deg() const {
@@ -239,6 +250,35 @@ private:
         ok_ = false;
     }
     void dynamic_programme(const std::vector<Index>& q);
+    using CandidateEdges = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
+    bool try_delaunay() {
+        std::vector<Point> points;
+        for (Vertex v : rim_) points.push_back(mesh_.position(v));
+        const LoopDelaunay d = loop_delaunay_edges(points);
+        if (d.why.empty() && restricted_programme(d.edges)) return delaunay_ = true;
+        triangles_.clear();
+        fallback_ = d.why.empty() ? "no triangulation over its Delaunay edges avoids the edges "
+                                    "that exist already and triangles without area"
+                                  : d.why;
+        return false;
+    }
+    bool restricted_programme(const CandidateEdges& edges);
+    /// The candidate edge (i, j), i < j, or kNoEdge.
+    std::uint32_t find_edge(const CandidateEdges& edges, const std::vector<std::uint32_t>& row,
+                            std::uint32_t i, std::uint32_t j) const {
+        const auto first = edges.begin() + row[i], last = edges.begin() + row[i + 1];
+        const auto it = std::lower_bound(first, last, std::pair(i, j));
+        return it != last && it->second == j ? std::uint32_t(it - edges.begin()) : kNoEdge;
+    }
+    void emit_restricted(const CandidateEdges& edges, const std::vector<std::uint32_t>& row,
+                         const std::vector<std::uint32_t>& best, std::uint32_t i, std::uint32_t j) {
+        if (j < i + 2) return;
+        const std::uint32_t k = best[find_edge(edges, row, i, j)];
+        emit_restricted(edges, row, best, i, k);
+        emit_restricted(edges, row, best, k, j);
+        triangles_.push_back({rim_[i], rim_[k], rim_[j]});
+    }
+    static constexpr std::uint32_t kNoEdge = std::numeric_limits<std::uint32_t>::max();
     void emit(const std::vector<Index>& q, const std::vector<int>& best, std::size_t m,
               std::size_t i, std::size_t j) {
         if (j < i + 2) return;
@@ -252,7 +292,8 @@ private:
     const std::vector<Vertex>& rim_;
     std::vector<Vector3> outside_;  ///< per rim edge i -> i+1: the old face's unit normal
     std::vector<Triangle> triangles_;
-    bool ok_ = true, cut_ = false;
+    bool ok_ = true, cut_ = false, delaunay_ = false;
+    std::string fallback_;
     double largest_measure_ = 0;
     std::string why_;
 };
@@ -323,6 +364,63 @@ void LoopTriangulator::dynamic_programme(const std::vector<Index>& q) {
     }
     largest_measure_ = std::max(largest_measure_, w[m - 1].angle);
     emit(q, best, m, 0, m - 1);
+}
+
+/// Liepa's programme over the candidate edges only (Zou, Ju and Carr 2013): the sub-polygon
+/// between loop positions i < j exists only where (i, j) is a candidate edge, and is split by
+/// a triangle (i, k, j) only where (i, k) and (k, j) are candidates too. Sub-polygons are
+/// solved by increasing j - i. False (nothing emitted) when the whole loop has no solution.
+bool LoopTriangulator::restricted_programme(const CandidateEdges& edges) {
+    const std::uint32_t n = std::uint32_t(rim_.size());
+    std::vector<std::uint32_t> row(n + 1, 0);  // edges from i: [row[i], row[i + 1])
+    for (const auto& e : edges) ++row[e.first + 1];
+    for (std::uint32_t i = 0; i < n; ++i) row[i + 1] += row[i];
+    std::vector<std::uint32_t> order(edges.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return edges[a].second - edges[a].first < edges[b].second - edges[b].first;
+    });
+    std::vector<Weight> w(edges.size());
+    std::vector<std::uint32_t> best(edges.size(), kNoEdge);
+    std::vector<Vector3> normal(edges.size(), Vector3::Zero());
+    for (std::uint32_t id : order) {
+        const auto [i, j] = edges[id];
+        if (j == i + 1) {
+            w[id] = {0, 0};
+            continue;
+        }
+        const bool root = i == 0 && j == n - 1;
+        if (!root && is_edge(Index(i), Index(j))) continue;  // stays infinite
+        for (std::uint32_t r = row[i]; r < row[i + 1]; ++r) {
+            const std::uint32_t k = edges[r].second;
+            if (k >= j) break;
+            const std::uint32_t kj = find_edge(edges, row, k, j);
+            if (kj == kNoEdge || w[r].area == kInf || w[kj].area == kInf) continue;
+            const Point &pi = p(Index(i)), &pk = p(Index(k)), &pj = p(Index(j));
+            Vector3 nrm = (pk - pi).cross(pj - pi);
+            const double longest = std::max(
+                {(pk - pi).squaredNorm(), (pj - pk).squaredNorm(), (pj - pi).squaredNorm()});
+            const double twice_area = nrm.norm();
+            if (!(twice_area > 1e-10 * longest)) continue;
+            nrm /= twice_area;
+            const Vector3 across_ik = k == i + 1 ? outside_[i] : normal[r];
+            const Vector3 across_kj = j == k + 1 ? outside_[k] : normal[kj];
+            Weight c{std::max({w[r].angle, w[kj].angle, dihedral_measure(nrm, across_ik),
+                               dihedral_measure(nrm, across_kj)}),
+                     w[r].area + w[kj].area + 0.5 * twice_area};
+            if (root) c.angle = std::max(c.angle, dihedral_measure(nrm, outside_[n - 1]));
+            if (c.better_than(w[id])) {
+                w[id] = c;
+                best[id] = k;
+                normal[id] = nrm;
+            }
+        }
+    }
+    const std::uint32_t root = find_edge(edges, row, 0, n - 1);
+    if (root == kNoEdge || w[root].area == kInf) return false;
+    largest_measure_ = std::max(largest_measure_, w[root].angle);
+    emit_restricted(edges, row, best, 0, n - 1);
+    return true;
 }
 
 // ---- insertion --------------------------------------------------------------------------------
@@ -448,15 +546,20 @@ public:
         std::vector<Edge> to_split;
         for (Index fi = f0_; fi < Index(mesh_.faces_size()); ++fi) {
             if (min_face_angle(mesh_, Face(fi)) >= 20.0) continue;
-            Edge longest;
-            double length = 0;
+            // Its new edges, longest first; the first whose split leaves every rim corner
+            // room for one more triangle.
+            std::vector<std::pair<double, Edge>> edges;
             for (Halfedge h : mesh_.halfedges_of(Face(fi))) {
                 const Edge e = HalfedgeMesh::edge(h);
-                if (e.idx() < e0_ || edge_length(mesh_, e) <= length) continue;
-                length = edge_length(mesh_, e);
-                longest = e;
+                if (e.idx() >= e0_) edges.emplace_back(edge_length(mesh_, e), e);
             }
-            if (longest.is_valid()) to_split.push_back(longest);
+            std::sort(edges.begin(), edges.end(),
+                      [](const auto& a, const auto& b) { return a.first > b.first; });
+            for (const auto& [length, e] : edges)
+                if (split_leaves_room(e)) {
+                    to_split.push_back(e);
+                    break;
+                }
         }
         std::sort(to_split.begin(), to_split.end());
         to_split.erase(std::unique(to_split.begin(), to_split.end()), to_split.end());
@@ -468,8 +571,124 @@ public:
         }
         return to_split.size();
     }
+    /// Whether splitting e (which gives the vertex opposite it in each of its faces one more
+    /// new triangle) leaves every such rim vertex its angle: the new triangles at a rim vertex
+    /// span a fixed angle there, so k + 1 of them have an angle of at most span / (k + 1). A
+    /// split that brings that bound under 20 degrees is made only where the bound stays well
+    /// above the smallest angle the vertex's triangles have now (a corner too narrow for its
+    /// rim edges: a third triangle may still help, a fourth no more).
+    bool split_leaves_room(Edge e) const {
+        for (int side = 0; side < 2; ++side) {
+            const Halfedge h = HalfedgeMesh::halfedge(e, unsigned(side));
+            if (mesh_.is_boundary(h)) continue;
+            const Vertex c = mesh_.to_vertex(mesh_.next(h));
+            if (c.idx() >= v0_) continue;
+            double span = 0, smallest = 180;
+            int count = 0;
+            for (Face f : mesh_.faces_around(c)) {
+                if (f.idx() < f0_) continue;
+                const std::array<Vertex, 3> v = mesh_.face_vertices(f);
+                const int k = v[0] == c ? 0 : (v[1] == c ? 1 : 2);
+                span += corner_angle(mesh_.position(c), mesh_.position(v[(k + 1) % 3]),
+                                     mesh_.position(v[(k + 2) % 3])) *
+                        180.0 / 3.14159265358979323846;
+                smallest = std::min(smallest, min_face_angle(mesh_, f));
+                ++count;
+            }
+            const double bound = span / (count + 1);
+            if (bound < 20.0 && !(bound > 1.15 * smallest)) return false;
+        }
+        return true;
+    }
+    /// Moves every new vertex, within its tangent plane, to where the smallest angle of its
+    /// triangles (all three angles of each, so also those at its rim and new neighbours) is
+    /// largest: a compass search (eight directions, the step halved when none is better),
+    /// never folding a triangle. `sweeps` passes over the new vertices; returns the moves.
+    std::size_t optimize_positions(int sweeps) {
+        std::size_t moves = 0;
+        for (int sweep = 0; sweep < sweeps; ++sweep) {
+            std::size_t moved = 0;
+            for (Index vi = v0_; vi < Index(mesh_.vertices_size()); ++vi)
+                if (fan_min_angle(Vertex(vi)) < kOptimizeBelowDeg)
+                    moved += optimize_vertex(Vertex(vi)) ? 1 : 0;
+            moves += moved;
+            if (moved == 0) break;
+        }
+        return moves;
+    }
+    /// New triangles with an angle under 20 degrees.
+    std::size_t count_small_angles() const {
+        std::size_t n = 0;
+        for (Index fi = f0_; fi < Index(mesh_.faces_size()); ++fi)
+            n += min_face_angle(mesh_, Face(fi)) < 20.0 ? 1 : 0;
+        return n;
+    }
 
 private:
+    /// The smallest angle (degrees) of v's triangles with v at p, or -1 where one of them
+    /// would turn by more than 60 degrees from its normal before the move (a fold).
+    double fan_min_angle_at(Vertex v, const Point& p,
+                            const std::vector<std::pair<Face, Vector3>>& fan) const {
+        double worst = 180;
+        for (const auto& [f, normal] : fan) {
+            std::array<Point, 3> c;
+            int k = 0;
+            for (Vertex u : mesh_.face_vertices(f)) c[k++] = u == v ? p : mesh_.position(u);
+            const Vector3 n = (c[1] - c[0]).cross(c[2] - c[0]);
+            const double l = n.norm();
+            if (!(l > 0) || !(n.dot(normal) > 0.5 * l)) return -1;
+            worst = std::min(worst, min_angle(c[0], c[1], c[2]) * 180.0 / 3.14159265358979323846);
+        }
+        return worst;
+    }
+    bool optimize_vertex(Vertex v) {
+        std::vector<std::pair<Face, Vector3>> fan;
+        double spacing = 0;
+        int k = 0;
+        for (Face f : mesh_.faces_around(v)) fan.emplace_back(f, face_normal(mesh_, f));
+        for (Vertex u : mesh_.vertices_around(v)) {
+            spacing += (mesh_.position(u) - mesh_.position(v)).norm();
+            ++k;
+        }
+        const Vector3 normal = vertex_normal(mesh_, v);
+        if (fan.empty() || k == 0 || !(normal.squaredNorm() > 0)) return false;
+        // Two directions spanning the tangent plane.
+        Vector3 t1 = normal.unitOrthogonal(), t2 = normal.cross(t1);
+        const std::array<Vector3, 8> directions{t1,
+                                                -t1,
+                                                t2,
+                                                -t2,
+                                                (t1 + t2).normalized(),
+                                                (-t1 - t2).normalized(),
+                                                (t1 - t2).normalized(),
+                                                (t2 - t1).normalized()};
+        Point p = mesh_.position(v);
+        double value = fan_min_angle_at(v, p, fan);
+        if (value < 0) return false;
+        const Point start = p;
+        double step = 0.25 * spacing / k;
+        const double smallest = 1e-3 * step;
+        for (int it = 0; it < 40 && step > smallest; ++it) {
+            double best = value;
+            Point best_p = p;
+            for (const Vector3& d : directions) {
+                const Point q = p + step * d;
+                const double a = fan_min_angle_at(v, q, fan);
+                if (a > best + 1e-9) {
+                    best = a;
+                    best_p = q;
+                }
+            }
+            if (best > value) {
+                value = best;
+                p = best_p;
+            } else {
+                step *= 0.5;
+            }
+        }
+        mesh_.position(v) = p;
+        return p != start;
+    }
     Point centroid_target(Vertex v) const {
         Point c = Point::Zero();
         double weight = 0;
@@ -806,6 +1025,12 @@ std::string fill_loop(HalfedgeMesh& mesh, const BoundaryLoop& loop, std::size_t 
                    "loops with --loops, --max-edges or --max-diameter)";
     }
     if (triangulator.was_cut()) ++r.loops_cut;
+    if (triangulator.used_delaunay()) ++r.loops_delaunay;
+    if (!triangulator.delaunay_fallback().empty())
+        r.notes.push_back("loop " + std::to_string(index) + " (" + std::to_string(loop.edges()) +
+                          " edges): not restricted to Delaunay "
+                          "edges (" +
+                          triangulator.delaunay_fallback() + "); cut by chords instead");
     const Index v0 = Index(mesh.vertices_size()), e0 = Index(mesh.edges_size()),
                 f0 = Index(mesh.faces_size());
     for (const Triangle& t : triangles) insert_triangle(mesh, t);
@@ -820,9 +1045,14 @@ std::string fill_loop(HalfedgeMesh& mesh, const BoundaryLoop& loop, std::size_t 
     patch.smooth_tangentially(false);
     fair_patch(mesh, v0, o.fairing, index, r.notes);
     patch.raise_min_angles();
-    for (int round = 0; round < kRepairRounds && patch.split_small_angles() > 0; ++round) {
+    patch.optimize_positions(kOptimizeSweeps);
+    for (int round = 0; round < kRepairRounds && patch.count_small_angles() > 0; ++round) {
+        if (patch.split_small_angles() == 0) break;
         fair_patch(mesh, v0, o.fairing, index, r.notes);
-        patch.smooth_tangentially(true);
+        patch.raise_min_angles();
+        patch.optimize_positions(kOptimizeSweeps);
+        patch.raise_min_angles();
+        patch.optimize_positions(kOptimizeSweeps);
     }
     return "";
 }

@@ -8,15 +8,18 @@
 //     dihedral angle between adjacent triangles (new ones, and the old faces across the rim)
 //     and the total area. O(n^3) time, O(n^2) memory for n rim vertices. A diagonal that is an
 //     edge of the mesh already and a triangle without area are never used.
-//     Restriction for large loops (in place of Zou, Ju and Carr 2013's Delaunay restriction):
-//     a loop of more than kMaxDpLoop vertices is first cut in two by a chord, recursively,
-//     until every piece has at most kMaxDpLoop vertices; each piece is then triangulated by the
-//     dynamic programme above. A chord joins two vertices of the piece that are between a third
-//     and two thirds of the piece apart along it, the shortest (in space) such pair that is not
-//     an edge already. Cost O(n^2) for the cuts plus O(n kMaxDpLoop^2) for the pieces: a loop
-//     of 5,000 vertices takes a few tens of milliseconds. A loop that bends back over itself so
-//     far that a chord leaves the hole is not handled well by this cut (nor is such a loop by
-//     the full programme: both triangulate over the loop's vertices only).
+//     Restriction for large loops (Zou, Ju and Carr 2013; core/algorithms/hole_filling_delaunay.h):
+//     a loop of more than kMaxDpLoop vertices is triangulated by the same programme over the
+//     triangles whose edges are candidates only: the edges of the 2-D Delaunay triangulation
+//     of the loop projected onto its Newell plane that lie inside the polygon, plus the other
+//     diagonal of each convex pair of such triangles. O(n log n) for the triangulation, O(n)
+//     candidate edges and triangles: a loop of 5,000 vertices takes a few milliseconds.
+//     Where that is refused (the projection is not simple, a rim edge is not a Delaunay edge,
+//     or no solution avoids the existing edges; a note says which), the loop is cut in two by
+//     a chord, recursively, until every piece has at most kMaxDpLoop vertices, and each piece
+//     is triangulated by the full programme. A chord joins two vertices of the piece between a
+//     third and two thirds of the piece apart along it, the shortest (in space) such pair that
+//     is not an edge already: O(n^2) for the cuts plus O(n kMaxDpLoop^2) for the pieces.
 //  2. Refinement to the density around the hole (Liepa section 3.2): each rim vertex gets the
 //     mean length s of its edges; a new triangle is split at its centroid c (s(c) the mean of
 //     its corners') while sqrt(2)·|c - v| exceeds both s(c) and s(v) for each corner v, and a
@@ -25,10 +28,16 @@
 //     at most 180 degrees), and the faces a split or flip touched are tested again (a worklist,
 //     so the refinement runs along a long thin hole in one sweep). Then tangential smoothing
 //     (towards the area-weighted centroid of the one-ring) with flips that raise the smallest
-//     angle, before and after fairing; a new triangle still under 20 degrees gets its longest
-//     new edge split, and is faired and smoothed again (up to three rounds, a vertex moving only
-//     where that raises the smallest angle around it). What remains under 20 degrees is where
-//     the rim allows no better (a rim vertex between a very short and a long rim edge).
+//     angle, before and after fairing. Then every new vertex with an angle under 25 degrees
+//     around it is moved, in its tangent plane, to where the smallest angle of its triangles
+//     (their angles at the rim included) is largest (a compass search, no triangle folding),
+//     with flips that raise the smallest angle; a new triangle still under 20 degrees gets its
+//     longest new edge split (the longest whose split leaves each rim corner across it room: k
+//     new triangles spanning an angle S at a rim vertex have an angle of at most S / k there),
+//     is faired, and optimized again (up to three rounds). What remains under 20 degrees is
+//     where the rim allows no better: a rim vertex whose new triangles span less than 60 degrees
+//     between a very short and a long rim edge (over 7.4 times longer), where neither one, two
+//     nor three triangles can keep 20 degrees without bending the fill out of the surface.
 //  3. Fairing with trilab's own implicit Laplacian (core/algorithms/laplacian.h, cotangent
 //     weights with the Voronoi mass, Meyer et al. 2003): the new vertices solve
 //     Δ²x = 0 (C1: tangent continuity at the rim) or Δ³x = 0 (C2: curvature continuity), with
@@ -135,7 +144,9 @@ struct HoleFillingReport {
     std::vector<RefusedLoop> refused;     ///< chosen but refused, with the reason
     std::size_t faces_added = 0;
     std::size_t vertices_added = 0;
-    std::size_t loops_cut = 0;  ///< loops longer than kMaxDpLoop (cut by chords)
+    /// Loops longer than kMaxDpLoop triangulated over their Delaunay edges (Zou et al.).
+    std::size_t loops_delaunay = 0;
+    std::size_t loops_cut = 0;  ///< loops longer than kMaxDpLoop cut by chords (the fallback)
     /// The smallest angle of the new triangles in degrees; NaN when none was added.
     double min_new_angle_deg = 0;
     /// How many new triangles have an angle under 20 degrees.

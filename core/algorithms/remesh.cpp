@@ -382,11 +382,6 @@ std::vector<float> initial_weights(const HalfedgeMesh& mesh, const RemeshOptions
                                   " is not in [0, 1]");
         w[v.idx()] = x;
     }
-    if (o.features != FeatureSource::None && has_features(mesh)) {
-        const std::vector<float> near = feature_neighbourhood(mesh, 0);
-        for (Vertex v : mesh.vertices())
-            if (near[v.idx()] > 0) w[v.idx()] = 0.0f;
-    }
     const auto huv = mesh.get_halfedge_property<TexCoord>("h:texcoord");
     if (!huv) return w;
     for (Vertex v : mesh.vertices())
@@ -512,8 +507,13 @@ Plan make_plan(const HalfedgeMesh& mesh, const RemeshOptions& o, const std::vect
 class Remesher {
 public:
     Remesher(HalfedgeMesh& mesh, double length, std::vector<float> weights,
-             std::vector<float> sizes, RemeshReport& report)
-        : m_(mesh), cm_(mesh), r_(report), w_(std::move(weights)), size_(std::move(sizes)) {
+             std::vector<float> sizes, bool features, RemeshReport& report)
+        : m_(mesh),
+          cm_(mesh),
+          r_(report),
+          w_(std::move(weights)),
+          size_(std::move(sizes)),
+          use_features_(features) {
         if (size_.empty()) size_.assign(m_.vertices_size(), 1.0f);
         // Botsch and Kobbelt's thresholds for a working length of kWorkingLength L: with L
         // itself the output's edges come out about 4 % short on average (collapses that would
@@ -541,6 +541,7 @@ public:
         tree_.build(std::move(tris));
         tree_.set_corners(std::move(corners), m_.vertices_size());
         mark_corners();
+        set_up_features();
         record_attributes();
     }
 
@@ -633,6 +634,9 @@ public:
         remap(dirty_);
         remap(corner_);
         remap(size_);
+        remap(feat_);
+        remap(seg_);
+        if (sharp_) sharp_ = m_.get_edge_property<float>(kSharpnessProperty);
     }
     void finish() {
         improve_small_angles();
@@ -663,6 +667,8 @@ private:
         hint_.push_back(hint_[from.idx()]);
         dirty_.push_back(1);
         corner_.push_back(0);
+        feat_.push_back(0);
+        seg_.push_back(kNone);
     }
     /// (Mean size of the two ends)^2: the thresholds' factor for an edge between them.
     double size2(Vertex a, Vertex b) const {
@@ -689,8 +695,10 @@ private:
                 // A pillow (two faces on the same three corners) would get its new vertex joined
                 // twice to the third corner.
                 if (c.is_valid() && c == d) continue;
-                m_.split(e, mid);
+                const bool sharp = is_sharp(e);
+                const Vertex nv = m_.split(e, mid);
                 grow_vertex_arrays(a, b);
+                if (sharp) put_on_curve(nv, a, b);
                 for (Vertex x : {a, b, c, d})
                     if (x.is_valid()) dirty_[x.idx()] = 1;
                 ++splits;
@@ -729,6 +737,7 @@ private:
         const Vertex v0 = m_.from_vertex(h), v1 = m_.to_vertex(h);
         const bool b0 = m_.is_boundary(v0);
         if (b0 && !boundary_vertex_removable(h)) return false;
+        if (!feature_collapse_ok(h)) return false;
         const Point& p1 = cm_.position(v1);
         const Point& p0 = cm_.position(v0);
         for (Halfedge g : m_.halfedges_around(v0)) {
@@ -792,6 +801,7 @@ private:
     }
     void collapse(Halfedge h) {
         const Vertex v1 = m_.to_vertex(h);
+        const CollapseSharpness keep = merged_sharpness(h);
         // The faces' surviving halfedges take over a neighbour face's corner at v1 (see
         // HalfedgeMesh::remove_loop): keep that corner's uv.
         if (huv_) {
@@ -812,6 +822,7 @@ private:
         } else {
             m_.collapse_unchecked(h);
         }
+        restore_sharpness(keep);
         dirty_[v1.idx()] = 1;
         ++r_.collapses;
     }
@@ -849,7 +860,7 @@ private:
             const Edge e{Index(i)};
             if (m_.is_deleted(e) || m_.is_boundary(e)) continue;
             const Halfedge h = HalfedgeMesh::halfedge(e, 0);
-            if (!edge_free(h)) continue;
+            if (!edge_free(h) || is_sharp(e)) continue;
             const Vertex a = m_.from_vertex(h), b = m_.to_vertex(h);
             const Vertex c = m_.to_vertex(m_.next(h));
             const Vertex d = m_.to_vertex(m_.next(HalfedgeMesh::twin(h)));
@@ -900,6 +911,10 @@ private:
     }
     void relax_vertex(Vertex v, bool project) {
         if (m_.is_deleted(v) || m_.is_isolated(v) || !is_free(v) || m_.is_boundary(v)) return;
+        if (feat_[v.idx()] != kSmooth) {
+            relax_along_curve(v);
+            return;
+        }
         const Point& p = cm_.position(v);
         Point sum = Point::Zero();
         int k = 0;
@@ -988,6 +1003,7 @@ private:
                 const Vertex v0 = m_.from_vertex(h);
                 if (!is_free(v0) || !is_free(m_.to_vertex(h))) continue;
                 if (m_.is_boundary(v0) && !boundary_vertex_removable(h)) continue;
+                if (!feature_collapse_ok(h)) continue;
                 double before = 0, after = 0;
                 if (!collapse_angles(h, before, after) || !(after < before - 1e-9) ||
                     !(after < best_after) || !m_.is_collapse_ok(h))
@@ -1006,7 +1022,7 @@ private:
                 const Edge e{Index(i)};
                 if (m_.is_deleted(e) || m_.is_boundary(e)) continue;
                 const Halfedge h = HalfedgeMesh::halfedge(e, 0);
-                if (!edge_free(h)) continue;
+                if (!edge_free(h) || is_sharp(e)) continue;
                 const Vertex va = m_.from_vertex(h), vb = m_.to_vertex(h);
                 const Vertex vc = m_.to_vertex(m_.next(h));
                 const Vertex vd = m_.to_vertex(m_.next(HalfedgeMesh::twin(h)));
@@ -1023,6 +1039,172 @@ private:
             r_.angle_flips += flips;
             if (flips == 0) break;
         }
+    }
+
+    // ---- features: sharp edges split and collapse only along their curves -------------
+    /// A feature vertex slides along its curve (a crease: two sharp edges) or stays (a tagged
+    /// corner, the end of a curve, a meeting of three or more, a feature on the boundary).
+    static constexpr std::uint8_t kSmooth = 0, kCrease = 1, kFixed = 2;
+
+    bool is_sharp(Edge e) const { return sharp_ && sharp_[e] > 0.0f; }
+
+    /// Classifies the vertices and records the input's sharp edges (the curves new and moved
+    /// feature vertices are projected onto).
+    void set_up_features() {
+        feat_.assign(m_.vertices_size(), kSmooth);
+        seg_.assign(m_.vertices_size(), kNone);
+        if (use_features_) sharp_ = m_.get_edge_property<float>(kSharpnessProperty);
+        if (!sharp_) return;
+        const auto tag = m_.get_vertex_property<std::uint8_t>(kCornerProperty);
+        std::vector<int> count(m_.vertices_size(), 0);
+        curve_star_begin_.assign(m_.vertices_size() + 1, 0);
+        for (Edge e : m_.edges()) {
+            if (!is_sharp(e)) continue;
+            const Vertex a = m_.vertex(e, 0), b = m_.vertex(e, 1);
+            for (Vertex x : {a, b}) {
+                ++count[x.idx()];
+                ++curve_star_begin_[x.idx() + 1];
+                seg_[x.idx()] = std::uint32_t(curve_.size());
+            }
+            curve_.push_back({cm_.position(a), cm_.position(b), a.idx(), b.idx()});
+        }
+        for (std::size_t i = 0; i + 1 < curve_star_begin_.size(); ++i)
+            curve_star_begin_[i + 1] += curve_star_begin_[i];
+        curve_star_.resize(curve_star_begin_.back());
+        std::vector<std::uint32_t> fill(curve_star_begin_.begin(), curve_star_begin_.end() - 1);
+        for (std::uint32_t i = 0; i < curve_.size(); ++i)
+            for (std::uint32_t x : {curve_[i].va, curve_[i].vb}) curve_star_[fill[x]++] = i;
+        for (Vertex v : m_.vertices()) {
+            const int c = count[v.idx()];
+            const bool tagged = tag && tag[v] != 0;
+            if (tagged || (c > 0 && (c != 2 || m_.is_boundary(v))))
+                feat_[v.idx()] = kFixed;
+            else if (c == 2)
+                feat_[v.idx()] = kCrease;
+            if (feat_[v.idx()] == kFixed) corner_[v.idx()] = 1;
+        }
+    }
+    /// The closest point to p on input curve segment i, with its parameter t in [0, 1].
+    Point closest_on_segment(const Point& p, std::uint32_t i, double& t) const {
+        const Vector3 d = curve_[i].b - curve_[i].a;
+        const double l2 = d.squaredNorm();
+        t = l2 > 0 ? std::min(1.0, std::max(0.0, (p - curve_[i].a).dot(d) / l2)) : 0.0;
+        return curve_[i].a + t * d;
+    }
+    /// The closest point to p on the input's sharp edges, walking along them from segment
+    /// `seg` (updated); every segment when `seg` is none.
+    Point project_to_curve(const Point& p, std::uint32_t& seg) const {
+        double t = 0;
+        if (seg >= curve_.size()) {
+            double best = std::numeric_limits<double>::infinity();
+            Point q = p;
+            for (std::uint32_t i = 0; i < curve_.size(); ++i) {
+                const Point c = closest_on_segment(p, i, t);
+                if ((c - p).squaredNorm() < best) {
+                    best = (c - p).squaredNorm();
+                    q = c;
+                    seg = i;
+                }
+            }
+            return q;
+        }
+        Point q = closest_on_segment(p, seg, t);
+        double d2 = (q - p).squaredNorm();
+        for (std::size_t step = 0; step < curve_.size() && (t <= 0 || t >= 1); ++step) {
+            const std::uint32_t w = t <= 0 ? curve_[seg].va : curve_[seg].vb;
+            std::uint32_t next = seg;
+            double next_t = t;
+            for (std::uint32_t k = curve_star_begin_[w]; k < curve_star_begin_[w + 1]; ++k) {
+                double tk = 0;
+                const Point c = closest_on_segment(p, curve_star_[k], tk);
+                if ((c - p).squaredNorm() < d2) {
+                    d2 = (c - p).squaredNorm();
+                    q = c;
+                    next = curve_star_[k];
+                    next_t = tk;
+                }
+            }
+            if (next == seg) break;
+            seg = next;
+            t = next_t;
+        }
+        return q;
+    }
+    /// A vertex new on a sharp edge between a and b: a crease vertex on the input's curve.
+    void put_on_curve(Vertex v, Vertex a, Vertex b) {
+        feat_[v.idx()] = kCrease;
+        std::uint32_t seg = seg_[a.idx()] < curve_.size() ? seg_[a.idx()] : seg_[b.idx()];
+        m_.position(v) = project_to_curve(cm_.position(v), seg);
+        seg_[v.idx()] = seg;
+    }
+    /// The two vertices joined to v by sharp edges; false unless there are exactly two.
+    bool curve_neighbours(Vertex v, Vertex& a, Vertex& b) const {
+        int k = 0;
+        for (Halfedge g : m_.halfedges_around(v)) {
+            if (!is_sharp(HalfedgeMesh::edge(g))) continue;
+            if (k == 0) a = m_.to_vertex(g);
+            if (k == 1) b = m_.to_vertex(g);
+            ++k;
+        }
+        return k == 2;
+    }
+    /// Tangential relaxation of a crease vertex: towards the midpoint of its two curve
+    /// neighbours, back onto the input's curve. Fixed vertices stay.
+    void relax_along_curve(Vertex v) {
+        Vertex a, b;
+        if (feat_[v.idx()] != kCrease || !curve_neighbours(v, a, b)) return;
+        for (Halfedge g : m_.halfedges_around(v))  // a region's border stays (see relax())
+            if (!is_free(m_.to_vertex(g))) return;
+        const Point& p = cm_.position(v);
+        const Point mid = 0.5 * (cm_.position(a) + cm_.position(b));
+        std::uint32_t seg = seg_[v.idx()];
+        const Point q = project_to_curve(p + double(w_[v.idx()]) * (mid - p), seg);
+        if (!q.allFinite()) return;
+        seg_[v.idx()] = seg;
+        target_[v.idx()] = q;
+        moves_[v.idx()] = 1;
+    }
+    /// Whether the features allow collapsing h: a fixed vertex is never removed, a crease
+    /// vertex only along its curve (a sharp edge), into its neighbour there, when it is at
+    /// most 0.1 L' from the curve's new edge.
+    bool feature_collapse_ok(Halfedge h) const {
+        const Vertex v0 = m_.from_vertex(h), v1 = m_.to_vertex(h);
+        const std::uint8_t f0 = feat_[v0.idx()];
+        if (f0 == kSmooth) return true;
+        if (f0 == kFixed || !is_sharp(HalfedgeMesh::edge(h))) return false;
+        Vertex a, b;
+        if (!curve_neighbours(v0, a, b)) return false;
+        const Vertex u = a == v1 ? b : a;
+        const Point &p = cm_.position(v0), &pu = cm_.position(u), &p1 = cm_.position(v1);
+        const Vector3 d = p1 - pu;
+        const double l2 = d.squaredNorm();
+        const double t = l2 > 0 ? std::min(1.0, std::max(0.0, (p - pu).dot(d) / l2)) : 0.0;
+        return (pu + t * d - p).squaredNorm() <= 0.075 * 0.075 * hi2_;
+    }
+    /// A collapse merges, in each face at the edge, the removed vertex's edge into the kept
+    /// vertex's (HalfedgeMesh::remove_loop keeps the former): the survivor takes the larger
+    /// sharpness, so no sharp edge is lost.
+    struct CollapseSharpness {
+        Edge keep[2];
+        float value[2] = {0, 0};
+    };
+    CollapseSharpness merged_sharpness(Halfedge h) const {
+        CollapseSharpness c;
+        if (!sharp_) return c;
+        const Halfedge o = HalfedgeMesh::twin(h);
+        if (!m_.is_boundary(h)) {
+            c.keep[0] = HalfedgeMesh::edge(m_.prev(h));
+            c.value[0] = std::max(sharp_[c.keep[0]], sharp_[HalfedgeMesh::edge(m_.next(h))]);
+        }
+        if (!m_.is_boundary(o)) {
+            c.keep[1] = HalfedgeMesh::edge(m_.prev(o));
+            c.value[1] = std::max(sharp_[c.keep[1]], sharp_[HalfedgeMesh::edge(m_.next(o))]);
+        }
+        return c;
+    }
+    void restore_sharpness(const CollapseSharpness& c) {
+        for (int k = 0; k < 2; ++k)
+            if (c.keep[k].is_valid() && !m_.is_deleted(c.keep[k])) sharp_[c.keep[k]] = c.value[k];
     }
 
     // ---- attributes ---------------------------------------------------------------------
@@ -1086,6 +1268,19 @@ private:
     SurfaceTree tree_;
     InputAttributes in_;
     HalfedgeProperty<TexCoord> huv_;
+    // Features: the class of each vertex, the input curve segment it was last projected
+    // onto, the input's sharp edges (with their ends' input indices) and, per input vertex,
+    // the segments at it.
+    struct CurveSegment {
+        Point a, b;
+        std::uint32_t va = 0, vb = 0;
+    };
+    bool use_features_ = true;
+    EdgeProperty<float> sharp_;
+    std::vector<std::uint8_t> feat_;
+    std::vector<std::uint32_t> seg_;
+    std::vector<CurveSegment> curve_;
+    std::vector<std::uint32_t> curve_star_begin_, curve_star_;
 };
 
 /// Every position times 2^exponent (exact, unless it leaves the range of double).
@@ -1138,7 +1333,8 @@ RemeshReport remesh(HalfedgeMesh& mesh, const RemeshOptions& options, Progress& 
     r.locked_vertices -= mesh.vertices_size() - mesh.n_vertices();
     scale_positions(mesh, -plan.exponent);
     try {
-        Remesher remesher(mesh, r.target_length, std::move(weights), std::move(plan.size), r);
+        Remesher remesher(mesh, r.target_length, std::move(weights), std::move(plan.size),
+                          options.features != FeatureSource::None, r);
         progress.report(0, "remeshing: the input surface");
         remesher.set_up_surface();
         remesher.compact();

@@ -31,12 +31,22 @@
 // are kept as they are: their vertices and the faces around them are frozen (as outside a
 // region); other corners and per-vertex "v:texcoord" and "v:color" take their values from the
 // input triangle a vertex lies on (barycentric interpolation); "v:normal" is recomputed. Other
-// attributes of new vertices take their default values. Stored features (options.features)
-// are frozen the same way: the vertices of every sharp edge and the tagged corners, with the
-// faces around them, stay as they are, so no sharp edge is split, collapsed, flipped or moved
-// (the band of faces along a crease keeps the input's triangles: its edges are not remeshed
-// along the crease). Untagged creases are not detected: relaxation may move a crease's
-// vertices off it, so the chord error there can reach about L/2 (the bunny's flat base).
+// attributes of new vertices take their default values.
+//
+// Stored features (options.features; core/features.h) are remeshed along their curves (Botsch
+// and Kobbelt's feature handling): a sharp edge (sharpness > 0) is split at its midpoint like any
+// other (both halves keep its sharpness) and the new vertex is put on the input's sharp edges
+// (the closest point, found by a walk along them); it is never flipped; a crease vertex (exactly
+// two sharp edges, not on the boundary) is removed only by collapsing one of its sharp edges into
+// the neighbour along the curve, when it is at most 0.1 L' from the curve's new edge, and its
+// relaxation moves it towards the midpoint of its two curve neighbours and back onto the input's
+// sharp edges; corners (tagged, or three or more sharp edges), the ends of open curves (one sharp
+// edge) and feature vertices on the boundary never move and are never removed. A collapse that
+// merges a sharp edge with another keeps the larger sharpness on the survivor. So every feature
+// vertex stays on an input curve, every corner where it was, and the curves' edges get lengths
+// near L like the rest. Untagged creases are not detected (options.features Auto detects them
+// first): relaxation may move a crease's vertices off it, so the chord error there can reach
+// about L/2 (the bunny's flat base).
 //
 // Region (options.region, core/algorithms/selection.h): only faces whose three corners have a
 // positive weight change, and only where every face at the edge or vertex involved is such a

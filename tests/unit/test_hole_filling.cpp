@@ -3,12 +3,14 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "app/ops/operation.h"
 #include "core/algorithms/generators.h"
 #include "core/algorithms/hole_filling.h"
+#include "core/algorithms/hole_filling_delaunay.h"
 #include "core/algorithms/selection.h"
 #include "core/errors.h"
 #include "core/geometry.h"
@@ -265,14 +267,16 @@ TEST_CASE("the Stanford bunny's five holes are all filled, closed and clean", "[
         REQUIRE(is_closed(m));
         REQUIRE(r.faces_added == m.n_faces() - mesh.n_faces());
         REQUIRE(self_intersections_near(m, f0) == 0);
-        // At most the odd triangle under 20 degrees, and only where the rim leaves no choice.
-        REQUIRE(r.new_angles_under_20 <= 2);
-        REQUIRE(r.min_new_angle_deg > 10.0);
+        // Triangles under 20 degrees only where the rim leaves no choice: the three at rim
+        // vertex 18288 (new triangles spanning 55 degrees between rim edges of 0.00035 and
+        // 0.00304), whose best flat fan keeps about 16 degrees (docs/benchmarks.md).
+        REQUIRE(r.new_angles_under_20 <= 3);
+        REQUIRE(r.min_new_angle_deg > 15.0);
         REQUIRE(small_angles_only_where_unavoidable(m, v0, f0));
     }
 }
 
-TEST_CASE("a long slot is cut by chords and filled", "[hole_filling]") {
+TEST_CASE("a long slot is triangulated over its Delaunay edges and filled", "[hole_filling]") {
     // A 2 x 200 slot in a fine grid: a loop of 404 edges, over kMaxDpLoop.
     const HalfedgeMesh grid = make_grid(240);
     const double h = 1.0 / 240;
@@ -287,13 +291,95 @@ TEST_CASE("a long slot is cut by chords and filled", "[hole_filling]") {
     REQUIRE(r.loops_found == 2);
     REQUIRE(r.loop_edges[1] == 404);
     REQUIRE(r.loops_filled == 1);
-    REQUIRE(r.loops_cut == 1);
+    REQUIRE(r.loops_delaunay == 1);
+    REQUIRE(r.loops_cut == 0);
     REQUIRE_VALID(m);
     REQUIRE(boundary_loops(m).size() == 1);
     REQUIRE(r.min_new_angle_deg >= 20.0);
     // A plane's hole is filled in its plane.
     for (Index i = Index(holed.vertices_size()); i < m.vertices_size(); ++i)
         REQUIRE(std::abs(m.position(Vertex(i)).z()) < 1e-9);
+}
+
+TEST_CASE("a slot wrapped around a cylinder falls back to chords, and says why", "[hole_filling]") {
+    // 320 degrees of a 200-segment cylinder: the loop's projection folds onto itself.
+    const HalfedgeMesh cylinder = make_cylinder(200, 40);
+    const HalfedgeMesh holed = without_faces(cylinder, [](const std::array<Point, 3>& p) {
+        const Point c = (p[0] + p[1] + p[2]) / 3;
+        const double a = std::atan2(c.y(), c.x()) * 180 / M_PI;
+        return std::abs(c.z()) < 0.05 && std::abs(a) > 20;
+    });
+    HalfedgeMesh m = holed;
+    HoleFillingOptions o;
+    o.max_edges = 1000;
+    o.fairing = HoleFairing::None;
+    const std::vector<BoundaryLoop> loops = boundary_loops(holed);
+    for (std::size_t i = 0; i < loops.size(); ++i)
+        if (loops[i].edges() > 200) o.loops.push_back((long long)i);
+    REQUIRE(o.loops.size() == 1);
+    const HoleFillingReport r = fill_holes(m, o);
+    REQUIRE(r.loops_filled == 1);
+    REQUIRE(r.loops_delaunay == 0);
+    REQUIRE(r.loops_cut == 1);
+    bool said = false;
+    std::string notes;
+    for (const std::string& note : r.notes) {
+        notes += note + "\n";
+        said = said || note.find("not a simple polygon") != std::string::npos;
+    }
+    INFO(notes);
+    REQUIRE(said);
+    REQUIRE_VALID(m);
+    REQUIRE(boundary_loops(m).size() == 2);  // the cylinder's two ends
+}
+
+TEST_CASE("loop_delaunay_edges holds every Delaunay edge of a convex loop", "[hole_filling]") {
+    // 40 points on a circle, radii and angles jittered (convex, in general position): every
+    // triangle with an empty circumcircle (brute force) must have its edges among the
+    // candidates, and the candidates are O(n).
+    const std::size_t n = 40;
+    std::vector<Point> loop;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double a = 2 * M_PI * (double(i) + 0.3 * std::sin(7.0 * double(i))) / double(n);
+        const double r = 1 + 0.01 * std::cos(5.0 * double(i));
+        loop.emplace_back(r * std::cos(a), r * std::sin(a), 0.2 * std::cos(a));
+    }
+    const LoopDelaunay d = loop_delaunay_edges(loop);
+    REQUIRE(d.why.empty());
+    const std::set<std::pair<std::uint32_t, std::uint32_t>> edges(d.edges.begin(), d.edges.end());
+    for (std::uint32_t i = 0; i < n; ++i)
+        REQUIRE(edges.count({std::min(i, std::uint32_t((i + 1) % n)),
+                             std::max(i, std::uint32_t((i + 1) % n))}) == 1);
+    // In the plane z = 0.2 x (the loop's plane) the circles are those of the points (x, y)
+    // scaled along x by sqrt(1.04); compare in that plane's own coordinates.
+    const auto planar = [&](std::size_t i) {
+        return Eigen::Vector2d(loop[i].x() * std::sqrt(1.04), loop[i].y());
+    };
+    std::size_t delaunay_triangles = 0;
+    for (std::size_t a = 0; a < n; ++a)
+        for (std::size_t b = a + 1; b < n; ++b)
+            for (std::size_t c = b + 1; c < n; ++c) {
+                const Eigen::Vector2d pa = planar(a), pb = planar(b), pc = planar(c);
+                const Eigen::Vector2d ab = pb - pa, ac = pc - pa;
+                const double den = 2 * (ab.x() * ac.y() - ab.y() * ac.x());
+                const Eigen::Vector2d o(
+                    (ac.y() * ab.squaredNorm() - ab.y() * ac.squaredNorm()) / den,
+                    (ab.x() * ac.squaredNorm() - ac.x() * ab.squaredNorm()) / den);
+                const double r2 = o.squaredNorm();
+                bool empty = true;
+                for (std::size_t k = 0; k < n && empty; ++k)
+                    if (k != a && k != b && k != c)
+                        empty = (planar(k) - pa - o).squaredNorm() > r2 * (1 + 1e-9);
+                if (!empty) continue;
+                ++delaunay_triangles;
+                const std::uint32_t ua = std::uint32_t(a), ub = std::uint32_t(b),
+                                    uc = std::uint32_t(c);
+                REQUIRE(edges.count({ua, ub}) == 1);
+                REQUIRE(edges.count({ub, uc}) == 1);
+                REQUIRE(edges.count({ua, uc}) == 1);
+            }
+    REQUIRE(delaunay_triangles == n - 2);
+    REQUIRE(edges.size() <= 3 * n);
 }
 
 TEST_CASE("degenerate rims are refused with the reason, the rest filled", "[hole_filling]") {

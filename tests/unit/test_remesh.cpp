@@ -21,6 +21,7 @@
 #include "core/errors.h"
 #include "core/features.h"
 #include "core/geometry.h"
+#include "core/io/mesh_io.h"
 #include "core/mesh_builder.h"
 #include "test_helpers.h"
 
@@ -245,23 +246,58 @@ TEST_CASE(
 
 namespace {
 
-/// The sharp edges of `mesh` as pairs of end positions (ordered), for comparing across a
-/// renumbering.
-std::set<std::array<double, 6>> sharp_edge_positions(const HalfedgeMesh& mesh) {
-    std::set<std::array<double, 6>> out;
-    for (Edge e : mesh.edges()) {
-        if (sharpness(mesh, e) <= 0) continue;
-        Point a = mesh.position(mesh.vertex(e, 0)), b = mesh.position(mesh.vertex(e, 1));
-        if (std::lexicographical_compare(b.data(), b.data() + 3, a.data(), a.data() + 3))
-            std::swap(a, b);
-        out.insert({a.x(), a.y(), a.z(), b.x(), b.y(), b.z()});
-    }
+/// The sharp edges of `mesh` as segments.
+std::vector<std::array<Point, 2>> sharp_segments(const HalfedgeMesh& mesh) {
+    std::vector<std::array<Point, 2>> out;
+    for (Edge e : mesh.edges())
+        if (sharpness(mesh, e) > 0)
+            out.push_back({mesh.position(mesh.vertex(e, 0)), mesh.position(mesh.vertex(e, 1))});
+    return out;
+}
+
+double segment_distance(const Point& p, const std::array<Point, 2>& s) {
+    const Vector3 d = s[1] - s[0];
+    const double l2 = d.squaredNorm();
+    const double t = l2 > 0 ? std::clamp((p - s[0]).dot(d) / l2, 0.0, 1.0) : 0.0;
+    return (s[0] + t * d - p).norm();
+}
+
+/// The largest distance from an end of a sharp edge of `out` to the sharp edges of `in`
+/// (brute force).
+double feature_drift(const HalfedgeMesh& in, const HalfedgeMesh& out) {
+    const auto curves = sharp_segments(in);
+    double worst = 0;
+    for (const auto& s : sharp_segments(out))
+        for (const Point& p : s) {
+            double d = std::numeric_limits<double>::infinity();
+            for (const auto& c : curves) d = std::min(d, segment_distance(p, c));
+            worst = std::max(worst, d);
+        }
+    return worst;
+}
+
+double total_length(const std::vector<std::array<Point, 2>>& segments) {
+    double sum = 0;
+    for (const auto& s : segments) sum += (s[1] - s[0]).norm();
+    return sum;
+}
+
+/// The positions of the corners (classify_vertices) of `mesh`, sorted.
+std::vector<std::array<double, 3>> corner_positions(const HalfedgeMesh& mesh) {
+    const VertexClassification c = classify_vertices(mesh, false);
+    std::vector<std::array<double, 3>> out;
+    for (Vertex v : mesh.vertices())
+        if (c.classes[v.idx()] == VertexClass::Corner) {
+            const Point& p = mesh.position(v);
+            out.push_back({p.x(), p.y(), p.z()});
+        }
+    std::sort(out.begin(), out.end());
     return out;
 }
 
 }  // namespace
 
-TEST_CASE("remesh keeps stored features: every sharp edge and corner stays as it is",
+TEST_CASE("remesh splits and collapses sharp edges only along their curves; corners stay",
           "[remesh][features]") {
     HalfedgeMesh block = make_block(12, 9, 6);  // its 12 edges are its only sharp ones
     FeatureDetectionOptions d;
@@ -269,24 +305,34 @@ TEST_CASE("remesh keeps stored features: every sharp edge and corner stays as it
     const FeatureDetectionReport found = detect_features(block, d);
     REQUIRE(found.feature_edges > 0);
     REQUIRE(found.corners == 8);
-    const auto before = sharp_edge_positions(block);
+    const double diagonal = bounding_box(block).diagonal();
     RemeshOptions o;
-    o.relative = 0.7;
+    o.relative = 0.4;  // about half the block's grid spacing: its sharp edges must be split
     HalfedgeMesh kept = block;
     const RemeshReport r = remesh(kept, o);
     REQUIRE_VALID(kept);
     CHECK(r.feature_vertices > 0);
-    CHECK(r.locked_vertices >= r.feature_vertices);
-    CHECK(sharp_edge_positions(kept) == before);
+    // Every feature vertex on an input curve, the curves whole, the corners where they were.
+    CHECK(feature_drift(block, kept) <= 1e-9 * diagonal);
+    CHECK(total_length(sharp_segments(kept)) ==
+          Approx(total_length(sharp_segments(block))).epsilon(1e-9));
+    CHECK(corner_positions(kept) == corner_positions(block));
     CHECK(classify_vertices(kept, false).corners == 8);
-    CHECK(kept.n_faces() > block.n_faces());  // the rest was remeshed finer
-    // Without them the sharp edges are split like the others (their ends move apart).
+    // The curves were remeshed with the rest: finer, their edges near L.
+    CHECK(sharp_segments(kept).size() > sharp_segments(block).size());
+    std::size_t in_band = 0;
+    for (const auto& s : sharp_segments(kept)) {
+        const double l = (s[1] - s[0]).norm();
+        in_band += l >= 0.8 * r.target_length && l <= 4.0 / 3.0 * r.target_length;
+    }
+    CHECK(in_band >= 0.9 * double(sharp_segments(kept).size()));
+    CHECK(kept.n_faces() > block.n_faces());
+    // Without them the block's edges are cut across (vertices leave them).
     HalfedgeMesh ignored = block;
     o.features = FeatureSource::None;
     const RemeshReport none = remesh(ignored, o);
     REQUIRE_VALID(ignored);
     CHECK(none.feature_vertices == 0);
-    CHECK(sharp_edge_positions(ignored) != before);
     // Auto detects them first; a bad angle is refused before anything changes.
     HalfedgeMesh plain = make_block(12, 9, 6);
     o.features = FeatureSource::Auto;
@@ -495,4 +541,33 @@ TEST_CASE("the remesh operation parses, runs and refuses", "[remesh]") {
     const OperationResult a =
         run_operation(parse_operation("remesh --length 0.2"), input, progress);
     CHECK(report_of<RemeshReport>(a)->target_length == 0.2);
+}
+
+TEST_CASE("remeshing fandisk keeps its creases: vertices on the curves, corners in place",
+          "[remesh][features]") {
+    const std::string path = shared_mesh("fandisk.obj");
+    SKIP_IF_MISSING(path);
+    HalfedgeMesh input = read_mesh(path).mesh;
+    FeatureDetectionOptions d;
+    d.angle_deg = 60;
+    detect_features(input, d);
+    REQUIRE(has_features(input));
+    HalfedgeMesh m = input;
+    RemeshOptions o;  // L = the mean edge length, 10 iterations, the stored features
+    const RemeshReport r = remesh(m, o);
+    REQUIRE_VALID(m);
+    const double diagonal = bounding_box(input).diagonal();
+    CHECK(feature_drift(input, m) <= 1e-9 * diagonal);
+    CHECK(corner_positions(m) == corner_positions(input));
+    // The curves keep their length (chords of a curved crease are a little shorter).
+    const double before = total_length(sharp_segments(input));
+    CHECK(total_length(sharp_segments(m)) == Approx(before).epsilon(0.01));
+    std::size_t in_band = 0;
+    const auto curves = sharp_segments(m);
+    for (const auto& s : curves) {
+        const double l = (s[1] - s[0]).norm();
+        in_band += l >= 0.8 * r.target_length && l <= 4.0 / 3.0 * r.target_length;
+    }
+    INFO("sharp edges " << curves.size() << ", in the band " << in_band);
+    CHECK(in_band >= 0.85 * double(curves.size()));
 }
