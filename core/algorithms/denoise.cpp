@@ -135,15 +135,12 @@ private:
 class Denoiser {
 public:
     Denoiser(const HalfedgeMesh& mesh, const DenoiseOptions& o, Progress& progress)
-        : mesh_(mesh),
-          o_(o),
-          progress_(progress),
-          range_kernel_(o.sigma_r),
-          pos_(mesh.positions()) {}
+        : mesh_(mesh), o_(o), progress_(progress), pos_(mesh.positions()) {}
 
     DenoiseReport run() {
         report_.mean_edge_length = mean_edge_length(mesh_);
         number_faces();
+        pick_sigma_r();
         build_vertex_faces();
         find_sectors();
         build_neighbourhoods();
@@ -270,6 +267,32 @@ private:
         const std::size_t good = nf - report_.degenerate_faces;
         mean_area_ = good ? total_area / double(good) : 1.0;
         input_normal_ = normal_;
+    }
+
+    /// The noise level (the median of |n_f − n_g| over the interior edges between two active
+    /// faces) and the range sigma: the given one, or kDenoiseSigmaRPerNoise times the noise
+    /// level within the automatic bounds (DenoiseOptions::fixed_sigma_r). O(E).
+    void pick_sigma_r() {
+        std::vector<Index> dense(mesh_.faces_size(), kNone);
+        for (std::size_t k = 0; k < face_order_.size(); ++k) dense[face_order_[k].idx()] = Index(k);
+        std::vector<double> differences;
+        differences.reserve(mesh_.n_edges());
+        for (Edge e : mesh_.edges()) {
+            const Halfedge h0 = HalfedgeMesh::halfedge(e, 0), h1 = HalfedgeMesh::halfedge(e, 1);
+            if (mesh_.is_boundary(h0) || mesh_.is_boundary(h1)) continue;
+            const Index f = dense[mesh_.face(h0).idx()], g = dense[mesh_.face(h1).idx()];
+            if (active_[f] && active_[g]) differences.push_back((normal_[f] - normal_[g]).norm());
+        }
+        if (!differences.empty()) {
+            const auto middle = differences.begin() + std::ptrdiff_t(differences.size() / 2);
+            std::nth_element(differences.begin(), middle, differences.end());
+            report_.noise_level = *middle;
+        }
+        sigma_r_ = o_.fixed_sigma_r ? o_.sigma_r
+                                    : std::clamp(kDenoiseSigmaRPerNoise * report_.noise_level,
+                                                 kDenoiseAutoSigmaRMin, kDenoiseAutoSigmaRMax);
+        report_.sigma_r = sigma_r_;
+        range_kernel_ = RangeKernel(sigma_r_);
     }
 
     /// For every vertex storage index, its non-degenerate faces (CSR).
@@ -856,7 +879,8 @@ private:
     const DenoiseOptions& o_;
     Progress& progress_;
     DenoiseReport report_;
-    RangeKernel range_kernel_;
+    double sigma_r_ = 0;
+    RangeKernel range_kernel_{1.0};  ///< replaced by pick_sigma_r()
     std::vector<Point> pos_;
     std::vector<Face> face_order_;  ///< dense face number -> face
     /// Our vertex numbers (a spatial order on large meshes) <-> storage indices; empty: the same.
