@@ -120,7 +120,7 @@ std::unique_ptr<OperationDef> denoise_operation() {
                      number_text(kDenoiseAutoSigmaRMin) + ", " +
                      number_text(kDenoiseAutoSigmaRMax) + "]")
         .above_min()
-        .label("sigma r")
+        .label("sigma r (off: auto)")
         .slider(0.05, 2, true);
     d.choice("features", &DenoiseOptions::features, EnumTableView(kFeatureSources),
              "sharp edges and corners honoured (no normal filtered across a sharp edge): those "
