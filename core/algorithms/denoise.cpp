@@ -21,7 +21,6 @@
 #include "core/algorithms/denoise.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -34,7 +33,7 @@
 #include "core/features.h"
 #include "core/geometry.h"
 #include "core/number_text.h"
-#include "core/two_threads.h"
+#include "core/parallel.h"
 
 namespace trilab {
 namespace {
@@ -86,17 +85,6 @@ void check_options(const HalfedgeMesh& mesh, const DenoiseOptions& o) {
         !(std::isfinite(o.feature_angle) && o.feature_angle > 0 && o.feature_angle <= 180))
         throw InvalidArgument("denoise: feature_angle must be in (0, 180] degrees, got " +
                               number_text(o.feature_angle));
-}
-
-/// Runs body(begin, end) over [0, n) in pieces, on two threads for large n.
-template <class Body>
-void for_ranges(std::size_t n, const Body& body) {
-    constexpr std::size_t kPieces = 64;
-    if (!worth_two_threads(n)) {
-        body(std::size_t(0), n);
-        return;
-    }
-    in_pieces(true, kPieces, [&](std::size_t k) { body(n * k / kPieces, n * (k + 1) / kPieces); });
 }
 
 Vector3 normalized_or(const Vector3& v, const Vector3& fallback) {
@@ -418,22 +406,31 @@ private:
     void turn_inverted_normals() {
         std::vector<std::uint8_t> inverted(corners_.size(), 0);
         std::vector<Vector3> start = normal_;
-        for (std::size_t i = 0; i < corners_.size(); ++i) {
-            if (!active_[i]) continue;
-            Vector3 mean = Vector3::Zero();
-            for (Index k = nb_offset_[i]; k < nb_offset_[i + 1]; ++k)
-                if (nb_[k] != Index(i)) mean += area_[nb_[k]] * normal_[nb_[k]];
-            if (mean.dot(normal_[i]) < 0) {
-                start[i] = normalized_or(mean, normal_[i]);
-                inverted[i] = 1;
-                ++report_.inverted_faces;
+        const auto turn = [&](std::size_t begin, std::size_t end) {
+            std::size_t count = 0;
+            for (std::size_t i = begin; i < end; ++i) {
+                if (!active_[i]) continue;
+                Vector3 mean = Vector3::Zero();
+                for (Index k = nb_offset_[i]; k < nb_offset_[i + 1]; ++k)
+                    if (nb_[k] != Index(i)) mean += area_[nb_[k]] * normal_[nb_[k]];
+                if (mean.dot(normal_[i]) < 0) {
+                    start[i] = normalized_or(mean, normal_[i]);
+                    inverted[i] = 1;
+                    ++count;
+                }
             }
-        }
+            return count;
+        };
+        report_.inverted_faces =
+            parallel_reduce(std::size_t(0), corners_.size(), std::size_t(0), turn,
+                            [](std::size_t a, std::size_t b) { return a + b; });
         normal_.swap(start);
         if (report_.inverted_faces == 0) return;
-        for (std::size_t i = 0; i < corners_.size(); ++i)
-            for (Index k = nb_offset_[i]; k < nb_offset_[i + 1]; ++k)
-                if (nb_[k] != Index(i) && inverted[nb_[k]]) spatial_[k] = 0;
+        parallel_for_blocks(0, corners_.size(), [&](std::size_t begin, std::size_t end) {
+            for (std::size_t i = begin; i < end; ++i)
+                for (Index k = nb_offset_[i]; k < nb_offset_[i + 1]; ++k)
+                    if (nb_[k] != Index(i) && inverted[nb_[k]]) spatial_[k] = 0;
+        });
     }
 
     void filter_normals() {
@@ -454,7 +451,7 @@ private:
 
     /// One pass of the (joint) bilateral filter: the range kernel reads `range`.
     void filter_once(const std::vector<Vector3>& range, std::vector<Vector3>& out) const {
-        for_ranges(corners_.size(), [&](std::size_t begin, std::size_t end) {
+        parallel_for_blocks(0, corners_.size(), [&](std::size_t begin, std::size_t end) {
             for (std::size_t i = begin; i < end; ++i) {
                 if (!active_[i]) {
                     out[i] = normal_[i];
@@ -506,7 +503,7 @@ private:
         const std::size_t nf = corners_.size(), nv = mesh_.vertices_size();
         std::vector<double> phi(edge_faces_.size());
         std::vector<double> vsum(nv, 0.0), vmax(nv, 0.0);
-        for_ranges(phi.size(), [&](std::size_t begin, std::size_t end) {
+        parallel_for_blocks(0, phi.size(), [&](std::size_t begin, std::size_t end) {
             for (std::size_t e = begin; e < end; ++e)
                 phi[e] = (normal_[edge_faces_[e][0]] - normal_[edge_faces_[e][1]]).norm();
         });
@@ -516,18 +513,18 @@ private:
                 vmax[v] = std::max(vmax[v], phi[e]);
             }
         }
-        for_ranges(nf, [&](std::size_t begin, std::size_t end) {
+        parallel_for_blocks(0, nf, [&](std::size_t begin, std::size_t end) {
             for (std::size_t f = begin; f < end; ++f) {
                 const Vector3& n = normal_[f];
                 packed_[f] = {float(n.x()), float(n.y()), float(n.z()),
                               float(area_[f] / mean_area_)};
             }
         });
-        for_ranges(nf, [&](std::size_t begin, std::size_t end) {
+        parallel_for_blocks(0, nf, [&](std::size_t begin, std::size_t end) {
             for (std::size_t j = begin; j < end; ++j) score_patch(j, phi, vsum, vmax);
         });
         if (!sector_.empty()) {  // features: N(i) is no longer every face at i's corners
-            for_ranges(nf, [&](std::size_t begin, std::size_t end) {
+            parallel_for_blocks(0, nf, [&](std::size_t begin, std::size_t end) {
                 for (std::size_t i = begin; i < end; ++i) {
                     if (!active_[i]) continue;
                     Index best = kNone;
@@ -541,7 +538,7 @@ private:
         }
         // The patches containing face i are N(j) for the faces j at its corners, so the best
         // one is the best of each corner's best (3 look-ups a face, not one per neighbour).
-        for_ranges(nv, [&](std::size_t begin, std::size_t end) {
+        parallel_for_blocks(0, nv, [&](std::size_t begin, std::size_t end) {
             for (std::size_t v = begin; v < end; ++v) {
                 Index best = kNone;
                 for (Index k = vf_offset_[v]; k < vf_offset_[v + 1]; ++k)
@@ -549,7 +546,7 @@ private:
                 vertex_best_[v] = best;
             }
         });
-        for_ranges(nf, [&](std::size_t begin, std::size_t end) {
+        parallel_for_blocks(0, nf, [&](std::size_t begin, std::size_t end) {
             for (std::size_t i = begin; i < end; ++i) {
                 if (!active_[i]) continue;
                 Index best = kNone;
@@ -665,7 +662,7 @@ private:
         for (int it = 0; it < o_.vertex_iterations; ++it) {
             progress_.check_cancelled();
             progress_.report(double(o_.normal_iterations + it) / total, "moving the vertices");
-            for_ranges(nf, [&](std::size_t begin, std::size_t end) {
+            parallel_for_blocks(0, nf, [&](std::size_t begin, std::size_t end) {
                 for (std::size_t f = begin; f < end; ++f) {
                     centroid_[f] = centroid(pos_, f);
                     current_area_[f] = area_vector(pos_, f).norm();
@@ -724,8 +721,7 @@ private:
 
     /// next = the positions after one step of Sun et al.'s update.
     void move_vertices(std::vector<Point>& next) {
-        std::atomic<bool> finite{true};
-        for_ranges(mesh_.vertices_size(), [&](std::size_t begin, std::size_t end) {
+        const auto block = [&](std::size_t begin, std::size_t end) {
             bool ok = true;
             for (std::size_t v = begin; v < end; ++v) {
                 next[v] = pos_[v];
@@ -755,9 +751,10 @@ private:
                 next[v] = o_.region ? Point(pos_[v] + w * delta) : Point(pos_[v] + delta);
                 ok = ok && next[v].allFinite();
             }
-            if (!ok) finite = false;
-        });
-        finite_ = finite;
+            return ok;
+        };
+        finite_ = parallel_reduce(std::size_t(0), mesh_.vertices_size(), true, block,
+                                  [](bool a, bool b) { return a && b; });
     }
 
     /// Whether area vector `a` of face f is a fold: no area, or on the far side of the face's
@@ -829,16 +826,15 @@ private:
     /// Faces that pos_ folds: on the far side of their filtered normal (and not at the start),
     /// or without area.
     std::size_t count_folds() const {
-        std::atomic<std::size_t> folded{0};
-        for_ranges(corners_.size(), [&](std::size_t begin, std::size_t end) {
-            std::size_t count = 0;
-            for (std::size_t f = begin; f < end; ++f) {
-                if (!has_normal(f)) continue;
-                count += folds(area_vector(pos_, f), f);
-            }
-            folded += count;
-        });
-        return folded;
+        return parallel_reduce(
+            std::size_t(0), corners_.size(), std::size_t(0),
+            [&](std::size_t begin, std::size_t end) {
+                std::size_t count = 0;
+                for (std::size_t f = begin; f < end; ++f)
+                    if (has_normal(f)) count += folds(area_vector(pos_, f), f);
+                return count;
+            },
+            [](std::size_t a, std::size_t b) { return a + b; });
     }
 
     void finish_report() {
