@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "core/algorithms/coincident.h"
+#include "core/algorithms/denoise.h"
 #include "core/algorithms/fairing.h"
 #include "core/algorithms/generators.h"
 #include "core/algorithms/mesh_stats.h"
@@ -184,6 +185,43 @@ TEST_CASE("explicit fairing, normals, statistics: the same bits for 1, 2 and 7 t
     });
     CHECK(stats[1] == stats[0]);
     CHECK(stats[2] == stats[0]);
+}
+
+TEST_CASE("denoise: the same bits for 1, 2 and 7 threads", "[parallel]") {
+    // 32,000 faces: 8 blocks of every per-face pass; few iterations keep it fast.
+    const HalfedgeMesh mesh = make_noisy_sphere(40, 0.05, 3);
+    REQUIRE(mesh.n_faces() > 4 * kBlock);
+    std::vector<float> half(mesh.vertices_size());
+    for (Vertex v : mesh.vertices()) half[v.idx()] = mesh.position(v).z() > 0 ? 1.0f : 0.25f;
+    for (int variant = 0; variant < 3; ++variant) {
+        DenoiseOptions o;
+        o.normal_iterations = 4;
+        o.vertex_iterations = 3;
+        if (variant == 1) {  // the sectors' path: guidance from every patch of N(i)
+            o.features = FeatureSource::Auto;
+            o.feature_angle = 12;
+        }
+        if (variant == 2) {
+            o.method = DenoiseMethod::Bilateral;
+            o.region = &half;
+        }
+        INFO("variant " << variant);
+        const auto runs = with_1_2_7_threads([&] {
+            HalfedgeMesh m = mesh;
+            const DenoiseReport r = denoise(m, o);
+            CHECK(validate(m).ok);
+            return std::make_pair(
+                m.positions(),
+                std::vector<double>{r.noise_level, r.sigma_r, double(r.inverted_faces),
+                                    double(r.feature_edges), double(r.vertex_iterations_done),
+                                    r.mean_normal_change_degrees, r.max_displacement,
+                                    double(r.moved_vertices), double(r.folded_faces)});
+        });
+        CHECK(runs[0].second[7] > 0.5 * double(mesh.n_vertices()));  // it did move the mesh
+        if (variant == 1) CHECK(runs[0].second[3] > 0);              // and found features
+        CHECK(runs[1] == runs[0]);
+        CHECK(runs[2] == runs[0]);
+    }
 }
 
 TEST_CASE("exact coincident groups: the same groups for 1, 2 and 7 threads, as a map finds them",
