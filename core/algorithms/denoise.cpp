@@ -491,6 +491,16 @@ private:
                         break;
                     }
         }
+        // Per vertex its edges, in edge order (CSR).
+        const std::size_t nv = mesh_.vertices_size();
+        ve_offset_.assign(nv + 1, 0);
+        for (const auto& ev : edge_vertices_)
+            for (Index v : ev) ++ve_offset_[v + 1];
+        for (std::size_t v = 0; v < nv; ++v) ve_offset_[v + 1] += ve_offset_[v];
+        ve_.resize(ve_offset_[nv]);
+        std::vector<Index> fill(ve_offset_.begin(), ve_offset_.end() - 1);
+        for (std::size_t e = 0; e < edge_vertices_.size(); ++e)
+            for (Index v : edge_vertices_[e]) ve_[fill[v]++] = Index(e);
         guidance_.assign(nf, Vector3::Zero());
         patch_mean_.assign(nf, Vector3::Zero());
         patch_score_.assign(nf, 0.0);
@@ -507,12 +517,14 @@ private:
             for (std::size_t e = begin; e < end; ++e)
                 phi[e] = (normal_[edge_faces_[e][0]] - normal_[edge_faces_[e][1]]).norm();
         });
-        for (std::size_t e = 0; e < phi.size(); ++e) {
-            for (Index v : edge_vertices_[e]) {
-                vsum[v] += phi[e];
-                vmax[v] = std::max(vmax[v], phi[e]);
-            }
-        }
+        // Each vertex gathers its edges' φ in edge order: the sums of a scatter over the edges.
+        parallel_for_blocks(0, nv, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t v = begin; v < end; ++v)
+                for (Index k = ve_offset_[v]; k < ve_offset_[v + 1]; ++k) {
+                    vsum[v] += phi[ve_[k]];
+                    vmax[v] = std::max(vmax[v], phi[ve_[k]]);
+                }
+        });
         parallel_for_blocks(0, nf, [&](std::size_t begin, std::size_t end) {
             for (std::size_t f = begin; f < end; ++f) {
                 const Vector3& n = normal_[f];
@@ -792,11 +804,17 @@ private:
     /// corner of such a face moves to the mean of its neighbours, along the plane of the mean
     /// filtered normal of its faces (a tangential step: it does not pull the surface in).
     void repair_inverted(std::vector<Point>& next) {
+        // Each block lists its faces' corners (scratch of its own), then the lists are joined.
+        std::vector<std::vector<Index>> found(block_count(0, corners_.size()));
+        parallel_for_blocks(0, corners_.size(), [&](std::size_t begin, std::size_t end) {
+            std::vector<Index>& list = found[begin / kBlock];
+            for (std::size_t f = begin; f < end; ++f) {
+                if (!has_normal(f) || area_vector(next, f).dot(normal_[f]) > 0) continue;
+                for (Index v : corners_[f]) list.push_back(v);
+            }
+        });
         std::vector<Index> marked;
-        for (std::size_t f = 0; f < corners_.size(); ++f) {
-            if (!has_normal(f) || area_vector(next, f).dot(normal_[f]) > 0) continue;
-            for (Index v : corners_[f]) marked.push_back(v);
-        }
+        for (const auto& list : found) marked.insert(marked.end(), list.begin(), list.end());
         if (marked.empty()) return;
         std::sort(marked.begin(), marked.end());
         marked.erase(std::unique(marked.begin(), marked.end()), marked.end());
@@ -891,6 +909,7 @@ private:
     std::vector<float> spatial_;
     // guided
     std::vector<std::array<Index, 2>> edge_faces_, edge_vertices_;
+    std::vector<Index> ve_offset_, ve_;  ///< per vertex its edges (prepare_guided())
     std::vector<std::array<Index, 3>> face_edges_;
     std::vector<Vector3> guidance_, patch_mean_;
     std::vector<double> patch_score_;
