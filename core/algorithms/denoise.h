@@ -71,8 +71,9 @@
 // faces per neighbourhood (about 13 on regular meshes; the guided filter adds O(F · m²) for the
 // patches' largest normal difference), O(V + F) per vertex iteration (and the neighbours of the
 // faces left inverted); memory O(F · m). Large meshes (65,536 faces and more) are worked on with
-// their faces and vertices in a spatial (Morton) order inside the run, and their passes run on two
-// threads.
+// their faces and vertices in a spatial (Morton) order inside the run. The per-face and
+// per-vertex passes run on core/parallel.h's pool over fixed blocks (the set-up is serial): the
+// result is the same bits for any thread count.
 #include <cstddef>
 #include <string>
 #include <vector>
