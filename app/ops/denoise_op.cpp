@@ -20,6 +20,9 @@ void add_report_lines(const DenoiseReport& r, const HalfedgeMesh& mesh, Operatio
                   r.normal_iterations_done, r.vertex_iterations_done, r.filtered_faces,
                   mesh.n_faces());
     result.report.emplace_back(line);
+    std::snprintf(line, sizeof(line), "sigma_r %.3g (measured noise level %.3g)", r.sigma_r,
+                  r.noise_level);
+    result.report.emplace_back(line);
     if (r.feature_edges > 0)
         result.report.push_back("features: no normal filtered across " +
                                 count_text(r.feature_edges, "sharp edge", "sharp edges") + " (" +
@@ -76,7 +79,9 @@ OperationResult run_denoise(const DenoiseOptions& options, const HalfedgeMesh& m
                      {"max_normal_change_degrees", report.max_normal_change_degrees},
                      {"max_displacement", report.max_displacement},
                      {"moved_vertices", double(report.moved_vertices)},
-                     {"mean_edge_length", report.mean_edge_length}};
+                     {"mean_edge_length", report.mean_edge_length},
+                     {"noise_level", report.noise_level},
+                     {"sigma_r", report.sigma_r}};
     result.typed_report = report;
     return result;
 }
@@ -105,12 +110,17 @@ std::unique_ptr<OperationDef> denoise_operation() {
         .above_min()
         .label("sigma s (x mean edge)")
         .slider(0.1, 5, true);
-    d.number("sigma-r", &DenoiseOptions::sigma_r, 0, kMaxDenoiseSigmaR,
-             "the range Gaussian's standard deviation on the normal difference (smaller keeps "
-             "more edges, larger smooths more)",
-             "")
+    d.switchable("sigma-r", &DenoiseOptions::fixed_sigma_r, &DenoiseOptions::sigma_r, 0,
+                 kMaxDenoiseSigmaR, "auto",
+                 "the range Gaussian's standard deviation on the normal difference (smaller "
+                 "keeps more edges, larger smooths more), or auto: " +
+                     number_text(kDenoiseSigmaRPerNoise) +
+                     " x the measured noise (the median normal difference across the edges), "
+                     "within [" +
+                     number_text(kDenoiseAutoSigmaRMin) + ", " +
+                     number_text(kDenoiseAutoSigmaRMax) + "]")
         .above_min()
-        .label("sigma r")
+        .label("sigma r (off: auto)")
         .slider(0.05, 2, true);
     d.choice("features", &DenoiseOptions::features, EnumTableView(kFeatureSources),
              "sharp edges and corners honoured (no normal filtered across a sharp edge): those "

@@ -21,7 +21,6 @@
 #include "core/algorithms/denoise.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -34,7 +33,7 @@
 #include "core/features.h"
 #include "core/geometry.h"
 #include "core/number_text.h"
-#include "core/two_threads.h"
+#include "core/parallel.h"
 
 namespace trilab {
 namespace {
@@ -88,17 +87,6 @@ void check_options(const HalfedgeMesh& mesh, const DenoiseOptions& o) {
                               number_text(o.feature_angle));
 }
 
-/// Runs body(begin, end) over [0, n) in pieces, on two threads for large n.
-template <class Body>
-void for_ranges(std::size_t n, const Body& body) {
-    constexpr std::size_t kPieces = 64;
-    if (!worth_two_threads(n)) {
-        body(std::size_t(0), n);
-        return;
-    }
-    in_pieces(true, kPieces, [&](std::size_t k) { body(n * k / kPieces, n * (k + 1) / kPieces); });
-}
-
 Vector3 normalized_or(const Vector3& v, const Vector3& fallback) {
     const double len = v.norm();
     return len > 0 && std::isfinite(len) ? Vector3(v / len) : fallback;
@@ -135,15 +123,12 @@ private:
 class Denoiser {
 public:
     Denoiser(const HalfedgeMesh& mesh, const DenoiseOptions& o, Progress& progress)
-        : mesh_(mesh),
-          o_(o),
-          progress_(progress),
-          range_kernel_(o.sigma_r),
-          pos_(mesh.positions()) {}
+        : mesh_(mesh), o_(o), progress_(progress), pos_(mesh.positions()) {}
 
     DenoiseReport run() {
         report_.mean_edge_length = mean_edge_length(mesh_);
         number_faces();
+        pick_sigma_r();
         build_vertex_faces();
         find_sectors();
         build_neighbourhoods();
@@ -272,6 +257,32 @@ private:
         input_normal_ = normal_;
     }
 
+    /// The noise level (the median of |n_f − n_g| over the interior edges between two active
+    /// faces) and the range sigma: the given one, or kDenoiseSigmaRPerNoise times the noise
+    /// level within the automatic bounds (DenoiseOptions::fixed_sigma_r). O(E).
+    void pick_sigma_r() {
+        std::vector<Index> dense(mesh_.faces_size(), kNone);
+        for (std::size_t k = 0; k < face_order_.size(); ++k) dense[face_order_[k].idx()] = Index(k);
+        std::vector<double> differences;
+        differences.reserve(mesh_.n_edges());
+        for (Edge e : mesh_.edges()) {
+            const Halfedge h0 = HalfedgeMesh::halfedge(e, 0), h1 = HalfedgeMesh::halfedge(e, 1);
+            if (mesh_.is_boundary(h0) || mesh_.is_boundary(h1)) continue;
+            const Index f = dense[mesh_.face(h0).idx()], g = dense[mesh_.face(h1).idx()];
+            if (active_[f] && active_[g]) differences.push_back((normal_[f] - normal_[g]).norm());
+        }
+        if (!differences.empty()) {
+            const auto middle = differences.begin() + std::ptrdiff_t(differences.size() / 2);
+            std::nth_element(differences.begin(), middle, differences.end());
+            report_.noise_level = *middle;
+        }
+        sigma_r_ = o_.fixed_sigma_r ? o_.sigma_r
+                                    : std::clamp(kDenoiseSigmaRPerNoise * report_.noise_level,
+                                                 kDenoiseAutoSigmaRMin, kDenoiseAutoSigmaRMax);
+        report_.sigma_r = sigma_r_;
+        range_kernel_ = RangeKernel(sigma_r_);
+    }
+
     /// For every vertex storage index, its non-degenerate faces (CSR).
     void build_vertex_faces() {
         const std::size_t nv = mesh_.vertices_size(), nf = corners_.size();
@@ -395,22 +406,31 @@ private:
     void turn_inverted_normals() {
         std::vector<std::uint8_t> inverted(corners_.size(), 0);
         std::vector<Vector3> start = normal_;
-        for (std::size_t i = 0; i < corners_.size(); ++i) {
-            if (!active_[i]) continue;
-            Vector3 mean = Vector3::Zero();
-            for (Index k = nb_offset_[i]; k < nb_offset_[i + 1]; ++k)
-                if (nb_[k] != Index(i)) mean += area_[nb_[k]] * normal_[nb_[k]];
-            if (mean.dot(normal_[i]) < 0) {
-                start[i] = normalized_or(mean, normal_[i]);
-                inverted[i] = 1;
-                ++report_.inverted_faces;
+        const auto turn = [&](std::size_t begin, std::size_t end) {
+            std::size_t count = 0;
+            for (std::size_t i = begin; i < end; ++i) {
+                if (!active_[i]) continue;
+                Vector3 mean = Vector3::Zero();
+                for (Index k = nb_offset_[i]; k < nb_offset_[i + 1]; ++k)
+                    if (nb_[k] != Index(i)) mean += area_[nb_[k]] * normal_[nb_[k]];
+                if (mean.dot(normal_[i]) < 0) {
+                    start[i] = normalized_or(mean, normal_[i]);
+                    inverted[i] = 1;
+                    ++count;
+                }
             }
-        }
+            return count;
+        };
+        report_.inverted_faces =
+            parallel_reduce(std::size_t(0), corners_.size(), std::size_t(0), turn,
+                            [](std::size_t a, std::size_t b) { return a + b; });
         normal_.swap(start);
         if (report_.inverted_faces == 0) return;
-        for (std::size_t i = 0; i < corners_.size(); ++i)
-            for (Index k = nb_offset_[i]; k < nb_offset_[i + 1]; ++k)
-                if (nb_[k] != Index(i) && inverted[nb_[k]]) spatial_[k] = 0;
+        parallel_for_blocks(0, corners_.size(), [&](std::size_t begin, std::size_t end) {
+            for (std::size_t i = begin; i < end; ++i)
+                for (Index k = nb_offset_[i]; k < nb_offset_[i + 1]; ++k)
+                    if (nb_[k] != Index(i) && inverted[nb_[k]]) spatial_[k] = 0;
+        });
     }
 
     void filter_normals() {
@@ -431,7 +451,7 @@ private:
 
     /// One pass of the (joint) bilateral filter: the range kernel reads `range`.
     void filter_once(const std::vector<Vector3>& range, std::vector<Vector3>& out) const {
-        for_ranges(corners_.size(), [&](std::size_t begin, std::size_t end) {
+        parallel_for_blocks(0, corners_.size(), [&](std::size_t begin, std::size_t end) {
             for (std::size_t i = begin; i < end; ++i) {
                 if (!active_[i]) {
                     out[i] = normal_[i];
@@ -471,6 +491,16 @@ private:
                         break;
                     }
         }
+        // Per vertex its edges, in edge order (CSR).
+        const std::size_t nv = mesh_.vertices_size();
+        ve_offset_.assign(nv + 1, 0);
+        for (const auto& ev : edge_vertices_)
+            for (Index v : ev) ++ve_offset_[v + 1];
+        for (std::size_t v = 0; v < nv; ++v) ve_offset_[v + 1] += ve_offset_[v];
+        ve_.resize(ve_offset_[nv]);
+        std::vector<Index> fill(ve_offset_.begin(), ve_offset_.end() - 1);
+        for (std::size_t e = 0; e < edge_vertices_.size(); ++e)
+            for (Index v : edge_vertices_[e]) ve_[fill[v]++] = Index(e);
         guidance_.assign(nf, Vector3::Zero());
         patch_mean_.assign(nf, Vector3::Zero());
         patch_score_.assign(nf, 0.0);
@@ -483,28 +513,30 @@ private:
         const std::size_t nf = corners_.size(), nv = mesh_.vertices_size();
         std::vector<double> phi(edge_faces_.size());
         std::vector<double> vsum(nv, 0.0), vmax(nv, 0.0);
-        for_ranges(phi.size(), [&](std::size_t begin, std::size_t end) {
+        parallel_for_blocks(0, phi.size(), [&](std::size_t begin, std::size_t end) {
             for (std::size_t e = begin; e < end; ++e)
                 phi[e] = (normal_[edge_faces_[e][0]] - normal_[edge_faces_[e][1]]).norm();
         });
-        for (std::size_t e = 0; e < phi.size(); ++e) {
-            for (Index v : edge_vertices_[e]) {
-                vsum[v] += phi[e];
-                vmax[v] = std::max(vmax[v], phi[e]);
-            }
-        }
-        for_ranges(nf, [&](std::size_t begin, std::size_t end) {
+        // Each vertex gathers its edges' φ in edge order: the sums of a scatter over the edges.
+        parallel_for_blocks(0, nv, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t v = begin; v < end; ++v)
+                for (Index k = ve_offset_[v]; k < ve_offset_[v + 1]; ++k) {
+                    vsum[v] += phi[ve_[k]];
+                    vmax[v] = std::max(vmax[v], phi[ve_[k]]);
+                }
+        });
+        parallel_for_blocks(0, nf, [&](std::size_t begin, std::size_t end) {
             for (std::size_t f = begin; f < end; ++f) {
                 const Vector3& n = normal_[f];
                 packed_[f] = {float(n.x()), float(n.y()), float(n.z()),
                               float(area_[f] / mean_area_)};
             }
         });
-        for_ranges(nf, [&](std::size_t begin, std::size_t end) {
+        parallel_for_blocks(0, nf, [&](std::size_t begin, std::size_t end) {
             for (std::size_t j = begin; j < end; ++j) score_patch(j, phi, vsum, vmax);
         });
         if (!sector_.empty()) {  // features: N(i) is no longer every face at i's corners
-            for_ranges(nf, [&](std::size_t begin, std::size_t end) {
+            parallel_for_blocks(0, nf, [&](std::size_t begin, std::size_t end) {
                 for (std::size_t i = begin; i < end; ++i) {
                     if (!active_[i]) continue;
                     Index best = kNone;
@@ -518,7 +550,7 @@ private:
         }
         // The patches containing face i are N(j) for the faces j at its corners, so the best
         // one is the best of each corner's best (3 look-ups a face, not one per neighbour).
-        for_ranges(nv, [&](std::size_t begin, std::size_t end) {
+        parallel_for_blocks(0, nv, [&](std::size_t begin, std::size_t end) {
             for (std::size_t v = begin; v < end; ++v) {
                 Index best = kNone;
                 for (Index k = vf_offset_[v]; k < vf_offset_[v + 1]; ++k)
@@ -526,7 +558,7 @@ private:
                 vertex_best_[v] = best;
             }
         });
-        for_ranges(nf, [&](std::size_t begin, std::size_t end) {
+        parallel_for_blocks(0, nf, [&](std::size_t begin, std::size_t end) {
             for (std::size_t i = begin; i < end; ++i) {
                 if (!active_[i]) continue;
                 Index best = kNone;
@@ -642,7 +674,7 @@ private:
         for (int it = 0; it < o_.vertex_iterations; ++it) {
             progress_.check_cancelled();
             progress_.report(double(o_.normal_iterations + it) / total, "moving the vertices");
-            for_ranges(nf, [&](std::size_t begin, std::size_t end) {
+            parallel_for_blocks(0, nf, [&](std::size_t begin, std::size_t end) {
                 for (std::size_t f = begin; f < end; ++f) {
                     centroid_[f] = centroid(pos_, f);
                     current_area_[f] = area_vector(pos_, f).norm();
@@ -701,8 +733,7 @@ private:
 
     /// next = the positions after one step of Sun et al.'s update.
     void move_vertices(std::vector<Point>& next) {
-        std::atomic<bool> finite{true};
-        for_ranges(mesh_.vertices_size(), [&](std::size_t begin, std::size_t end) {
+        const auto block = [&](std::size_t begin, std::size_t end) {
             bool ok = true;
             for (std::size_t v = begin; v < end; ++v) {
                 next[v] = pos_[v];
@@ -732,9 +763,10 @@ private:
                 next[v] = o_.region ? Point(pos_[v] + w * delta) : Point(pos_[v] + delta);
                 ok = ok && next[v].allFinite();
             }
-            if (!ok) finite = false;
-        });
-        finite_ = finite;
+            return ok;
+        };
+        finite_ = parallel_reduce(std::size_t(0), mesh_.vertices_size(), true, block,
+                                  [](bool a, bool b) { return a && b; });
     }
 
     /// Whether area vector `a` of face f is a fold: no area, or on the far side of the face's
@@ -772,11 +804,17 @@ private:
     /// corner of such a face moves to the mean of its neighbours, along the plane of the mean
     /// filtered normal of its faces (a tangential step: it does not pull the surface in).
     void repair_inverted(std::vector<Point>& next) {
+        // Each block lists its faces' corners (scratch of its own), then the lists are joined.
+        std::vector<std::vector<Index>> found(block_count(0, corners_.size()));
+        parallel_for_blocks(0, corners_.size(), [&](std::size_t begin, std::size_t end) {
+            std::vector<Index>& list = found[begin / kBlock];
+            for (std::size_t f = begin; f < end; ++f) {
+                if (!has_normal(f) || area_vector(next, f).dot(normal_[f]) > 0) continue;
+                for (Index v : corners_[f]) list.push_back(v);
+            }
+        });
         std::vector<Index> marked;
-        for (std::size_t f = 0; f < corners_.size(); ++f) {
-            if (!has_normal(f) || area_vector(next, f).dot(normal_[f]) > 0) continue;
-            for (Index v : corners_[f]) marked.push_back(v);
-        }
+        for (const auto& list : found) marked.insert(marked.end(), list.begin(), list.end());
         if (marked.empty()) return;
         std::sort(marked.begin(), marked.end());
         marked.erase(std::unique(marked.begin(), marked.end()), marked.end());
@@ -806,16 +844,15 @@ private:
     /// Faces that pos_ folds: on the far side of their filtered normal (and not at the start),
     /// or without area.
     std::size_t count_folds() const {
-        std::atomic<std::size_t> folded{0};
-        for_ranges(corners_.size(), [&](std::size_t begin, std::size_t end) {
-            std::size_t count = 0;
-            for (std::size_t f = begin; f < end; ++f) {
-                if (!has_normal(f)) continue;
-                count += folds(area_vector(pos_, f), f);
-            }
-            folded += count;
-        });
-        return folded;
+        return parallel_reduce(
+            std::size_t(0), corners_.size(), std::size_t(0),
+            [&](std::size_t begin, std::size_t end) {
+                std::size_t count = 0;
+                for (std::size_t f = begin; f < end; ++f)
+                    if (has_normal(f)) count += folds(area_vector(pos_, f), f);
+                return count;
+            },
+            [](std::size_t a, std::size_t b) { return a + b; });
     }
 
     void finish_report() {
@@ -856,7 +893,8 @@ private:
     const DenoiseOptions& o_;
     Progress& progress_;
     DenoiseReport report_;
-    RangeKernel range_kernel_;
+    double sigma_r_ = 0;
+    RangeKernel range_kernel_{1.0};  ///< replaced by pick_sigma_r()
     std::vector<Point> pos_;
     std::vector<Face> face_order_;  ///< dense face number -> face
     /// Our vertex numbers (a spatial order on large meshes) <-> storage indices; empty: the same.
@@ -871,6 +909,7 @@ private:
     std::vector<float> spatial_;
     // guided
     std::vector<std::array<Index, 2>> edge_faces_, edge_vertices_;
+    std::vector<Index> ve_offset_, ve_;  ///< per vertex its edges (prepare_guided())
     std::vector<std::array<Index, 3>> face_edges_;
     std::vector<Vector3> guidance_, patch_mean_;
     std::vector<double> patch_score_;

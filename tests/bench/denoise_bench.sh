@@ -66,6 +66,12 @@ print("%6.2f  %6.3f%%  %.5f%%" % (d["theta_mean"], 100 * d["flipped_share"],
     fi
 }
 
+echo "load average at the start: $(cut -d' ' -f1-3 /proc/loadavg)"
+if command -v MeshDenoiser >/dev/null; then
+    echo "peer: $(command -v MeshDenoiser) (meshsdfilter-tools $(dpkg-query -W -f='${Version}' meshsdfilter-tools 2>/dev/null || echo '?'))"
+else
+    echo "peer: MeshDenoiser absent: its rows are left out"
+fi
 printf '%-28s %-10s %8s %9s %10s %10s\n' input denoiser theta flipped "dist/diag" time
 run_case() {  # run_case NAME CLEAN K METHOD_ARGS...
     local name=$1 clean=$2 k=$3
@@ -126,3 +132,4 @@ if [ "$big" = 1 ]; then
         echo "SKIP: $bunny is absent"
     fi
 fi
+echo "load average at the end: $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -156,7 +156,11 @@ check "noise --distribution gaussian takes --sigma and --direction, and refuses 
 check "denoise --json has its keys and compare measures theta against the clean block" bash -c \
     "'$cli' denoise '$tmp/blkn.obj' '$tmp/blkd.ply' --json > '$tmp/dn.json' && \
      $(declare -f json_has); json_has '$tmp/dn.json' method normal_iterations_done \
-     vertex_iterations_done degenerate_faces folded_faces max_displacement ms && \
+     vertex_iterations_done degenerate_faces folded_faces max_displacement noise_level sigma_r \
+     ms && python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); \
+     assert abs(d[\"sigma_r\"] - min(0.35, max(0.2, 0.6 * d[\"noise_level\"]))) < 1e-12, d' \
+     '$tmp/dn.json' && '$cli' denoise --sigma-r 0.3 '$tmp/blkn.obj' '$tmp/blkf.ply' --json | \
+     grep -q '\"sigma_r\": 0.3,' && \
      '$cli' compare '$tmp/blk.obj' '$tmp/blkn.obj' --samples 1000 --json > '$tmp/c0.json' && \
      '$cli' compare '$tmp/blk.obj' '$tmp/blkd.ply' --samples 1000 --json > '$tmp/c1.json' && \
      json_has '$tmp/c1.json' theta_mean theta_max flipped_share flipped_faces \
