@@ -7,18 +7,19 @@
 // non-negative and its eigenvectors are S-orthonormal (Taubin 1995 for the signal-processing
 // view; Vallet & Lévy 2008, "Spectral geometry processing with manifold harmonics"). With
 // y = S^½·x it is the standard problem A·y = λ·y, A = S^-½·K·S^-½ (exact: S is diagonal).
-//  - Partial, smallest k: shift-invert Lanczos (Lehoucq, Sorensen, Yang: ARPACK's implicitly
-//    restarted Lanczos, in Spectra 1.0 SymEigsShiftSolver) on (A - σI)⁻¹ with one sparse LDLᵀ
-//    of A - σI per shift (Eigen SimplicialLDLT; the rows are numbered once in the approximate
-//    minimum degree order of K, so the factors need no permutation, and the solves run
-//    straight over the factor's arrays). A - σI = S^-½ (K - σS) S^-½ is congruent to K - σS.
-//    σ is first strictly negative (-1e-8 x the largest diagonal of A), so A - σI is SPD even
-//    with several zero eigenvalues (disconnected meshes). More than `band_size` frequencies
-//    are computed band by band (Vallet & Lévy 2008): each band is the band_size eigenvalues
-//    nearest a shift (both sides); the next shift lies 35% of the band's width above a cut in
-//    the widest gap of the band's top fifth, so consecutive bands overlap (and it moves past
-//    a band that is one cluster of repeated eigenvalues); eigenvectors found twice are
-//    de-duplicated by S-orthogonal projection against accepted ones of the same eigenvalue.
+//  - Partial, smallest k: shift-invert Lanczos (thick restarts, Wu & Simon 2000: equivalent to
+//    ARPACK's implicitly restarted Lanczos; ThickRestartLanczos below, with ARPACK's one-pass
+//    reorthogonalization; Spectra 1.0 SymEigsShiftSolver for bases of every row) on
+//    (A - σI)⁻¹ with one sparse LDLᵀ of A - σI per shift (Eigen SimplicialLDLT; the rows are
+//    numbered once in the approximate minimum degree order of K, so the factors need no
+//    permutation, and the solves run straight over the factor's arrays). A - σI = S^-½ (K - σS)
+//    S^-½ is congruent to K - σS. σ is first strictly negative (-1e-8 x the largest diagonal of A),
+//    so A - σI is SPD even with several zero eigenvalues (disconnected meshes). More than
+//    `band_size` frequencies are computed band by band (Vallet & Lévy 2008): each band is the
+//    band_size eigenvalues nearest a shift (both sides); the next shift lies 35% of the band's
+//    width above a cut in the widest gap of the band's top fifth, so consecutive bands overlap (and
+//    it moves past a band that is one cluster of repeated eigenvalues); eigenvectors found twice
+//    are de-duplicated by S-orthogonal projection against accepted ones of the same eigenvalue.
 //    Verification: Lanczos can miss copies of a repeated eigenvalue (symmetric meshes: a
 //    sphere's l(l+1) has multiplicity 2l+1), and bands could leave a gap. The number of
 //    eigenvalues below a shift τ is exact by Sylvester's law of inertia: the negative pivots
@@ -1234,7 +1235,8 @@ bool block_smallest(const Problem& p, std::size_t k, const SpectralOptions& o, P
     return true;
 }
 
-/// The k smallest eigenpairs: a first band at a negative shift, then (with two threads and
+/// The k smallest eigenpairs: a first band at a negative shift (with two slices ahead, half a
+/// band: it runs alone, and the second thread starts sooner), then (with two threads and
 /// enough left to do) the rest of [0, λ_k] in two slices at once, split where Weyl's law
 /// (λ_i grows linearly with i on a surface) extrapolated from the first band puts the middle
 /// of the remaining eigenvalues; otherwise one sweep. Returns values (ascending) and y-space
@@ -1259,9 +1261,7 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
     const double sigma0 = -1e-8 * std::max(p.a_max, 1e-300);
     Slice first(p, o, k, band, progress, report, -std::numeric_limits<double>::infinity(), 0,
                 sigma0);
-    // The first band runs alone (the split is extrapolated from it): with two slices ahead it
-    // is half a band, so that the second thread starts sooner.
-    const bool slicing = slice_threads(o.threads) >= 2;
+    const bool slicing = slice_threads(o.threads) >= 2;  // a half first band: see above
     if (slicing && k >= 3 * band && band >= 16) first.set_band(band / 2);
     std::vector<std::pair<double, const double*>> found;
     std::size_t duplicates = 0;
