@@ -369,6 +369,8 @@ public:
         return out;
     }
     int restarts = 0;
+    /// The wanted Ritz pairs that had converged at the last Rayleigh–Ritz.
+    std::size_t converged() const { return converged_; }
 
 private:
     /// Lanczos steps from column `from` (the first new one) to the basis size; the residual
@@ -474,12 +476,14 @@ Band shift_invert_band(const Problem& p, Ldlt& ldlt, double sigma, Eigen::Index 
         ShiftInvertOp op(p, ldlt, progress, base, span, 2.0 * double(ncv));
         const Eigen::VectorXd v0 = start_vector(n, std::uint64_t(report.bands));
         bool ok = false;
+        std::size_t got = 0;
         Band band;
         if (ncv + 1 < n) {        // the thick-restart Lanczos above
             op.set_shift(sigma);  // (Spectra's solver sets it itself)
             ThickRestartLanczos lanczos(op, m, ncv, o.tolerance);
             ok = lanczos.run(v0, max_it);
             report.restarts += std::size_t(lanczos.restarts);
+            got = lanczos.converged();
             if (ok) band = lanczos.band(sigma);
         } else {  // a basis of every row: Spectra (small problems)
             Spectra::SymEigsShiftSolver<ShiftInvertOp> eigs(op, m, ncv, sigma);
@@ -488,6 +492,7 @@ Band shift_invert_band(const Problem& p, Ldlt& ldlt, double sigma, Eigen::Index 
                          Spectra::SortRule::SmallestAlge);
             report.restarts += std::size_t(eigs.num_iterations());
             ok = eigs.info() == Spectra::CompInfo::Successful;
+            got = std::size_t(eigs.eigenvalues().size());
             if (ok) band = Band{eigs.eigenvalues(), eigs.eigenvectors()};
         }
         report.factorizations += op.factorizations;
@@ -499,8 +504,8 @@ Band shift_invert_band(const Problem& p, Ldlt& ldlt, double sigma, Eigen::Index 
             return band;
         }
         if (attempt == 1)
-            throw Error(
-                not_converged(0, std::size_t(m), ("around sigma = " + number_text(sigma)).c_str()));
+            throw Error(not_converged(got, std::size_t(m),
+                                      ("around sigma = " + number_text(sigma)).c_str()));
         ncv = std::min(n, 2 * ncv);
         max_it *= 2;
     }
