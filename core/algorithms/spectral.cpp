@@ -7,18 +7,19 @@
 // non-negative and its eigenvectors are S-orthonormal (Taubin 1995 for the signal-processing
 // view; Vallet & Lévy 2008, "Spectral geometry processing with manifold harmonics"). With
 // y = S^½·x it is the standard problem A·y = λ·y, A = S^-½·K·S^-½ (exact: S is diagonal).
-//  - Partial, smallest k: shift-invert Lanczos (Lehoucq, Sorensen, Yang: ARPACK's implicitly
-//    restarted Lanczos, in Spectra 1.0 SymEigsShiftSolver) on (A - σI)⁻¹ with one sparse LDLᵀ
-//    of A - σI per shift (Eigen SimplicialLDLT; the rows are numbered once in the approximate
-//    minimum degree order of K, so the factors need no permutation, and the solves run
-//    straight over the factor's arrays). A - σI = S^-½ (K - σS) S^-½ is congruent to K - σS.
-//    σ is first strictly negative (-1e-8 x the largest diagonal of A), so A - σI is SPD even
-//    with several zero eigenvalues (disconnected meshes). More than `band_size` frequencies
-//    are computed band by band (Vallet & Lévy 2008): each band is the band_size eigenvalues
-//    nearest a shift (both sides); the next shift lies 35% of the band's width above a cut in
-//    the widest gap of the band's top fifth, so consecutive bands overlap (and it moves past
-//    a band that is one cluster of repeated eigenvalues); eigenvectors found twice are
-//    de-duplicated by S-orthogonal projection against accepted ones of the same eigenvalue.
+//  - Partial, smallest k: shift-invert Lanczos (thick restarts, Wu & Simon 2000: equivalent to
+//    ARPACK's implicitly restarted Lanczos; ThickRestartLanczos below, with ARPACK's one-pass
+//    reorthogonalization; Spectra 1.0 SymEigsShiftSolver for bases of every row) on
+//    (A - σI)⁻¹ with one sparse LDLᵀ of A - σI per shift (Eigen SimplicialLDLT; the rows are
+//    numbered once in the approximate minimum degree order of K, so the factors need no
+//    permutation, and the solves run straight over the factor's arrays). A - σI = S^-½ (K - σS)
+//    S^-½ is congruent to K - σS. σ is first strictly negative (-1e-8 x the largest diagonal of A),
+//    so A - σI is SPD even with several zero eigenvalues (disconnected meshes). More than
+//    `band_size` frequencies are computed band by band (Vallet & Lévy 2008): each band is the
+//    band_size eigenvalues nearest a shift (both sides); the next shift lies 35% of the band's
+//    width above a cut in the widest gap of the band's top fifth, so consecutive bands overlap (and
+//    it moves past a band that is one cluster of repeated eigenvalues); eigenvectors found twice
+//    are de-duplicated by S-orthogonal projection against accepted ones of the same eigenvalue.
 //    Verification: Lanczos can miss copies of a repeated eigenvalue (symmetric meshes: a
 //    sphere's l(l+1) has multiplicity 2l+1), and bands could leave a gap. The number of
 //    eigenvalues below a shift τ is exact by Sylvester's law of inertia: the negative pivots
@@ -319,6 +320,150 @@ struct Band {
     Eigen::MatrixXd vectors;
 };
 
+/// Thick-restart Lanczos (Wu & Simon 2000, "Thick-restart Lanczos method for large symmetric
+/// eigenvalue problems"; the symmetric Krylov–Schur method of Stewart 2001) for the `nev`
+/// eigenvalues θ of largest magnitude of the symmetric operator `op` ((A - σI)⁻¹: the
+/// eigenvalues of A nearest σ, both sides), with a basis of `ncv` vectors. It computes what
+/// Spectra's SymEigsShiftSolver computes (the same Ritz values, the same acceptance test:
+/// |β·s_last| <= tolerance · max(eps^⅔, |θ|)) with less memory traffic: each step
+/// orthogonalizes against the basis once, as ARPACK does (classical Gram–Schmidt, repeated
+/// only when it removed more than 1 - 1/√2 of the vector: Daniel, Gragg, Kaufman & Stewart
+/// 1976), where Spectra's Lanczos repeats it until |Vᵀf| <= eps·|f| (two to five passes over
+/// the basis per step, the larger part of a band's time). The projection is kept as the
+/// tridiagonal (plus the restart's arrow); the rest of the coefficients are rounding.
+class ThickRestartLanczos {
+public:
+    ThickRestartLanczos(const ShiftInvertOp& op, Eigen::Index nev, Eigen::Index ncv, double tol)
+        : op_(op),
+          n_(op.rows()),
+          nev_(nev),
+          m_(ncv),
+          tol_(tol),
+          v_(n_, ncv + 1),
+          t_(Eigen::MatrixXd::Zero(ncv, ncv)) {}
+    /// Runs up to `max_restarts` cycles from v0; true when every wanted pair converged.
+    bool run(const Eigen::VectorXd& v0, int max_restarts) {
+        v_.col(0) = v0 / v0.norm();
+        Eigen::Index kept = 0;
+        for (restarts = 0; restarts < std::max(1, max_restarts); ++restarts) {
+            extend(kept);
+            if (ritz()) return true;
+            kept = restart();
+        }
+        return false;
+    }
+    /// The converged eigenvalues λ = σ + 1/θ (ascending) and their vectors (after run()).
+    Band band(double sigma) const {
+        std::vector<Eigen::Index> order(wanted_.begin(), wanted_.end());
+        std::sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) {
+            return 1.0 / theta_[a] < 1.0 / theta_[b];
+        });
+        Band out;
+        out.values.resize(nev_);
+        Eigen::MatrixXd sel(m_, nev_);
+        for (Eigen::Index i = 0; i < nev_; ++i) {
+            out.values[i] = sigma + 1.0 / theta_[order[std::size_t(i)]];
+            sel.col(i) = s_.col(order[std::size_t(i)]);
+        }
+        out.vectors.noalias() = v_.leftCols(m_) * sel;
+        return out;
+    }
+    int restarts = 0;
+    /// The wanted Ritz pairs that had converged at the last Rayleigh–Ritz.
+    std::size_t converged() const { return converged_; }
+
+private:
+    /// Lanczos steps from column `from` (the first new one) to the basis size; the residual
+    /// ends normalized in column m with its norm in beta_.
+    void extend(Eigen::Index from) {
+        Eigen::VectorXd w(n_), h;
+        for (Eigen::Index j = from; j < m_; ++j) {
+            op_.perform_op(v_.col(j).data(), w.data());
+            // The three-term recurrence first (cheap), so that the full projection below
+            // removes only what rounding left and its repetition is rarely needed.
+            const double alpha = v_.col(j).dot(w);
+            w -= alpha * v_.col(j);
+            if (j > from) w -= t_(j, j - 1) * v_.col(j - 1);
+            const double before = w.norm();
+            h.noalias() = v_.leftCols(j + 1).transpose() * w;
+            w.noalias() -= v_.leftCols(j + 1) * h;
+            double beta = w.norm();
+            if (beta < 0.7071067811865476 * before) {  // DGKS: once more
+                const Eigen::VectorXd c = v_.leftCols(j + 1).transpose() * w;
+                w.noalias() -= v_.leftCols(j + 1) * c;
+                h += c;
+                beta = w.norm();
+            }
+            t_(j, j) = alpha + h[j];
+            if (!(beta > 1e-13 * std::max(std::abs(alpha) + before, 1e-300))) {
+                // An invariant subspace: go on from a new direction orthogonal to the basis
+                // (the coupling is zero).
+                w = start_vector(n_, 4099 + std::uint64_t(j));
+                for (int pass = 0; pass < 2; ++pass)
+                    w -= v_.leftCols(j + 1) * (v_.leftCols(j + 1).transpose() * w);
+                beta = 0;
+                v_.col(j + 1) = w / w.norm();
+            } else {
+                v_.col(j + 1) = w / beta;
+            }
+            if (j + 1 < m_) t_(j + 1, j) = t_(j, j + 1) = beta;
+            beta_ = beta;
+        }
+    }
+    /// Rayleigh–Ritz on T; true when the nev wanted Ritz pairs have converged.
+    bool ritz() {
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(t_);
+        if (es.info() != Eigen::Success)
+            throw Error("spectrum: the Lanczos projection's eigen solver failed");
+        theta_ = es.eigenvalues();
+        s_ = es.eigenvectors();
+        std::vector<Eigen::Index> order(static_cast<std::size_t>(m_));
+        for (Eigen::Index i = 0; i < m_; ++i) order[std::size_t(i)] = i;
+        std::stable_sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) {
+            return std::abs(theta_[a]) > std::abs(theta_[b]);
+        });
+        by_magnitude_ = order;
+        wanted_.assign(order.begin(), order.begin() + nev_);
+        const double eps23 = std::pow(std::numeric_limits<double>::epsilon(), 2.0 / 3.0);
+        converged_ = 0;
+        for (Eigen::Index i : wanted_)
+            if (std::abs(beta_ * s_(m_ - 1, i)) <= tol_ * std::max(eps23, std::abs(theta_[i])))
+                ++converged_;
+        return converged_ == std::size_t(nev_);
+    }
+    /// Keeps the Ritz vectors of the largest |θ| (nev plus up to half the rest, as many more
+    /// as have converged: ARPACK's choice), the residual after them, and their arrow
+    /// projection. Returns the number kept.
+    Eigen::Index restart() {
+        const Eigen::Index keep = std::min(
+            m_ - 1, nev_ + std::min<Eigen::Index>(Eigen::Index(converged_), (m_ - nev_) / 2));
+        Eigen::MatrixXd sel(m_, keep);
+        Eigen::VectorXd diag(keep), arrow(keep);
+        for (Eigen::Index i = 0; i < keep; ++i) {
+            const Eigen::Index c = by_magnitude_[std::size_t(i)];
+            sel.col(i) = s_.col(c);
+            diag[i] = theta_[c];
+            arrow[i] = beta_ * s_(m_ - 1, c);
+        }
+        const Eigen::MatrixXd y = v_.leftCols(m_) * sel;
+        v_.leftCols(keep) = y;
+        v_.col(keep) = v_.col(m_);
+        t_.setZero();
+        t_.topLeftCorner(keep, keep).diagonal() = diag;
+        t_.block(keep, 0, 1, keep) = arrow.transpose();
+        t_.block(0, keep, keep, 1) = arrow;
+        return keep;
+    }
+
+    const ShiftInvertOp& op_;
+    Eigen::Index n_, nev_, m_;
+    double tol_, beta_ = 0;
+    Eigen::MatrixXd v_, t_, s_;
+    Eigen::VectorXd theta_;
+    std::vector<Eigen::Index> by_magnitude_, wanted_;
+    std::size_t converged_ = 0;
+};
+
 Band shift_invert_band(const Problem& p, Ldlt& ldlt, double sigma, Eigen::Index m,
                        const SpectralOptions& o, Progress& progress, double base, double span,
                        SpectralReport& report) {
@@ -329,22 +474,37 @@ Band shift_invert_band(const Problem& p, Ldlt& ldlt, double sigma, Eigen::Index 
     for (int attempt = 0; attempt < 2; ++attempt) {
         progress.check_cancelled();
         ShiftInvertOp op(p, ldlt, progress, base, span, 2.0 * double(ncv));
-        Spectra::SymEigsShiftSolver<ShiftInvertOp> eigs(op, m, ncv, sigma);
         const Eigen::VectorXd v0 = start_vector(n, std::uint64_t(report.bands));
-        eigs.init(v0.data());
-        eigs.compute(Spectra::SortRule::LargestMagn, max_it, o.tolerance,
-                     Spectra::SortRule::SmallestAlge);
+        bool ok = false;
+        std::size_t got = 0;
+        Band band;
+        if (ncv + 1 < n) {        // the thick-restart Lanczos above
+            op.set_shift(sigma);  // (Spectra's solver sets it itself)
+            ThickRestartLanczos lanczos(op, m, ncv, o.tolerance);
+            ok = lanczos.run(v0, max_it);
+            report.restarts += std::size_t(lanczos.restarts);
+            got = lanczos.converged();
+            if (ok) band = lanczos.band(sigma);
+        } else {  // a basis of every row: Spectra (small problems)
+            Spectra::SymEigsShiftSolver<ShiftInvertOp> eigs(op, m, ncv, sigma);
+            eigs.init(v0.data());
+            eigs.compute(Spectra::SortRule::LargestMagn, max_it, o.tolerance,
+                         Spectra::SortRule::SmallestAlge);
+            report.restarts += std::size_t(eigs.num_iterations());
+            ok = eigs.info() == Spectra::CompInfo::Successful;
+            got = std::size_t(eigs.eigenvalues().size());
+            if (ok) band = Band{eigs.eigenvalues(), eigs.eigenvectors()};
+        }
         report.factorizations += op.factorizations;
         report.operations += op.operations;
         report.factor_ms += op.factor_ms;
         report.solve_ms += op.solve_ms;
-        report.restarts += std::size_t(eigs.num_iterations());
-        if (eigs.info() == Spectra::CompInfo::Successful) {
+        if (ok) {
             ++report.bands;
-            return Band{eigs.eigenvalues(), eigs.eigenvectors()};
+            return band;
         }
         if (attempt == 1)
-            throw Error(not_converged(std::size_t(eigs.eigenvalues().size()), std::size_t(m),
+            throw Error(not_converged(got, std::size_t(m),
                                       ("around sigma = " + number_text(sigma)).c_str()));
         ncv = std::min(n, 2 * ncv);
         max_it *= 2;
@@ -558,6 +718,8 @@ public:
         acc.vectors.resize(p.n(),
                            Eigen::Index(std::min<std::size_t>(k + band, std::size_t(p.n()))));
     }
+    /// Sets the number of eigenvalues per band from the next band on.
+    void set_band(std::size_t band) { band_ = band; }
     /// Ends the slice at `upper`, below which `below_upper` eigenvalues lie in all.
     void set_upper(double upper, std::size_t below_upper) {
         upper_ = upper;
@@ -1078,7 +1240,8 @@ bool block_smallest(const Problem& p, std::size_t k, const SpectralOptions& o, P
     return true;
 }
 
-/// The k smallest eigenpairs: a first band at a negative shift, then (with two threads and
+/// The k smallest eigenpairs: a first band at a negative shift (with two slices ahead, half a
+/// band: it runs alone, and the second thread starts sooner), then (with two threads and
 /// enough left to do) the rest of [0, λ_k] in two slices at once, split where Weyl's law
 /// (λ_i grows linearly with i on a surface) extrapolated from the first band puts the middle
 /// of the remaining eigenvalues; otherwise one sweep. Returns values (ascending) and y-space
@@ -1103,6 +1266,8 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
     const double sigma0 = -1e-8 * std::max(p.a_max, 1e-300);
     Slice first(p, o, k, band, progress, report, -std::numeric_limits<double>::infinity(), 0,
                 sigma0);
+    const bool slicing = slice_threads(o.threads) >= 2;  // a half first band: see above
+    if (slicing && k >= 3 * band && band >= 16) first.set_band(band / 2);
     std::vector<std::pair<double, const double*>> found;
     std::size_t duplicates = 0;
     std::atomic<bool> stop{false};
@@ -1110,7 +1275,9 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
     std::unique_ptr<Slice> second;
     SpectralReport second_report;
     double split = std::numeric_limits<double>::infinity();
-    if (first.step() && slice_threads(o.threads) >= 2 && k >= first.total() + 2 * band) {
+    const bool more = first.step();
+    first.set_band(band);
+    if (more && slicing && k >= first.total() + 2 * band) {
         // Weyl: λ_i ≈ hi · i / c_hi from the first band's largest value hi (c_hi found).
         const double hi = *std::max_element(first.acc.values.begin(), first.acc.values.end());
         const double c_hi = double(first.total());

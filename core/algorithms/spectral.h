@@ -6,7 +6,7 @@
 // positions' coefficients α_k = e_kᵀ·S·X, and reconstruction Σ_{lo<=k<=hi} e_k·α_kᵀ from a
 // band. With every frequency of a full decomposition it returns the mesh (~1e-12 relative);
 // of a partial one, with the rest (BandRest: the part the computed frequencies miss) too.
-//  - Partial: the smallest k by shift-invert Lanczos band by band (ARPACK's method in Spectra;
+//  - Partial: the smallest k by shift-invert Lanczos band by band (thick restarts, ARPACK's;
 //    two spectrum slices on two threads, Campos & Roman 2012), the largest k by Lanczos. The
 //    number of eigenvalues found is verified exactly (Sylvester's law of inertia): none is
 //    missed, even of high multiplicity. Deterministic, whatever the threads' timing. From

@@ -70,7 +70,7 @@ struct Case {
 int main(int argc, char** argv) {
     tune_heap_for_large_meshes();
     int runs = 3;
-    bool check = false, skip_1000 = false, baseline = false;
+    bool check = false, skip_1000 = false, baseline = false, cow_only = false;
     SpectralOptions base;
     base.op = LaplacianOperator::CurvatureFlow;
     for (int i = 1; i < argc; ++i) {
@@ -83,7 +83,14 @@ int main(int argc, char** argv) {
             baseline = true;
         else if (a == "--skip-1000")
             skip_1000 = true;
-        else if (a == "--operator" && i + 1 < argc)
+        else if (a == "--cow-only")
+            cow_only = true;
+        else if (a == "--solver" && i + 1 < argc) {
+            const std::string v = argv[++i];
+            base.solver = v == "block"   ? SpectralSolver::Block
+                          : v == "bands" ? SpectralSolver::Bands
+                                         : SpectralSolver::Auto;
+        } else if (a == "--operator" && i + 1 < argc)
             base.op = parse_laplacian_operator(argv[++i]);
         else if (a == "--tol" && i + 1 < argc)
             base.tolerance = std::atof(argv[++i]);
@@ -97,7 +104,7 @@ int main(int argc, char** argv) {
             std::fprintf(stderr,
                          "usage: trilab_spectral_bench [--runs N] [--check] [--operator OP] "
                          "[--band-size B] [--krylov F] [--tol T] [--threads T] [--skip-1000] "
-                         "[--baseline]\n");
+                         "[--baseline] [--cow-only] [--solver auto|bands|block]\n");
             return 2;
         }
     }
@@ -123,7 +130,9 @@ int main(int argc, char** argv) {
 
     std::vector<Case> cases = {{"cow 11,610 V, 150 lowest", &cow, 150, 1000, runs},
                                {"bunny 34,834 V, 150 lowest", &bunny, 150, 4000, runs}};
-    if (!skip_1000) cases.push_back({"bunny 34,834 V, 1,000 lowest", &bunny, 1000, 120000, 1});
+    if (cow_only) cases.pop_back();
+    if (!skip_1000 && !cow_only)
+        cases.push_back({"bunny 34,834 V, 1,000 lowest", &bunny, 1000, 120000, 1});
     bool ok = true;
     std::printf("%-30s %10s %10s %7s %6s %6s %8s %7s %10s\n", "case", "median ms", "floor ms",
                 "ratio", "bands", "facts", "ops", "repairs", "residual");
