@@ -224,168 +224,168 @@ TEST_CASE("vertex colourings: the same colours and values for 1, 2 and 7 threads
                               colors[0].size() * sizeof(double)) == 0);
         }
     }
-    TEST_CASE("explicit umbrella and Taubin in the Morton order: the bits of the storage order",
-              "[parallel]") {
-        // fairing_detail::set_locality_threshold(): 0 renumbers every run, the largest never does.
-        struct Restore {
-            std::size_t before = fairing_detail::set_locality_threshold(0);
-            ~Restore() { fairing_detail::set_locality_threshold(before); }
-        } restore;
-        HalfedgeMesh open = make_grid(80);  // boundary vertices stay fixed
-        std::uint64_t state = 0x9E3779B97F4A7C15ull;
-        for (Point& p : open.positions()) {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            p.z() = double(state % 1000) * 1e-3;
-        }
-        const HalfedgeMesh closed = make_noisy_sphere(24, 0.05, 7);  // the volume check per step
-        struct Case {
-            FairingOperator op;
-            double step;  // 1.5: the energy and area checks run too
-        };
-        for (const HalfedgeMesh* mesh : {static_cast<const HalfedgeMesh*>(&open), &closed})
-            for (const Case c :
-                 {Case{FairingOperator::Umbrella, 0.5}, Case{FairingOperator::Umbrella, 1.5},
-                  Case{FairingOperator::Taubin, 0}}) {
-                FairingOptions o;
-                o.op = c.op;
-                o.step = c.step;
-                o.iterations = 3;
-                fairing_detail::set_locality_threshold(std::size_t(-1));
-                const FairingResult storage = smooth(*mesh, o);
-                fairing_detail::set_locality_threshold(0);
-                const auto local = with_1_2_7_threads([&] { return smooth(*mesh, o); });
-                for (const FairingResult& r : local) {
-                    CHECK(r.iterations_done == storage.iterations_done);
-                    CHECK(r.stopped_early == storage.stopped_early);
-                    CHECK(r.mesh.positions() == storage.mesh.positions());
-                    CHECK(r.step_positions == storage.step_positions);
-                    CHECK(r.final_volume == storage.final_volume);
-                    // The estimate's sums run in the other order: equal up to rounding, and the
-                    // same bits for any thread count and as max_stable_explicit_step() gives.
-                    CHECK(r.max_stable_step == Approx(storage.max_stable_step).epsilon(1e-9));
-                    CHECK(r.max_stable_step == local[0].max_stable_step);
-                }
-                CHECK(local[0].max_stable_step == max_stable_explicit_step(*mesh, o.op));
-            }
-        TEST_CASE("denoise: the same bits for 1, 2 and 7 threads", "[parallel]") {
-            // 32,000 faces: 8 blocks of every per-face pass; few iterations keep it fast.
-            const HalfedgeMesh mesh = make_noisy_sphere(40, 0.05, 3);
-            REQUIRE(mesh.n_faces() > 4 * kBlock);
-            std::vector<float> half(mesh.vertices_size());
-            for (Vertex v : mesh.vertices())
-                half[v.idx()] = mesh.position(v).z() > 0 ? 1.0f : 0.25f;
-            for (int variant = 0; variant < 3; ++variant) {
-                DenoiseOptions o;
-                o.normal_iterations = 4;
-                o.vertex_iterations = 3;
-                if (variant == 1) {  // the sectors' path: guidance from every patch of N(i)
-                    o.features = FeatureSource::Auto;
-                    o.feature_angle = 12;
-                }
-                if (variant == 2) {
-                    o.method = DenoiseMethod::Bilateral;
-                    o.region = &half;
-                }
-                INFO("variant " << variant);
-                const auto runs = with_1_2_7_threads([&] {
-                    HalfedgeMesh m = mesh;
-                    const DenoiseReport r = denoise(m, o);
-                    CHECK(validate(m).ok);
-                    return std::make_pair(
-                        m.positions(),
-                        std::vector<double>{r.noise_level, r.sigma_r, double(r.inverted_faces),
-                                            double(r.feature_edges),
-                                            double(r.vertex_iterations_done),
-                                            r.mean_normal_change_degrees, r.max_displacement,
-                                            double(r.moved_vertices), double(r.folded_faces)});
-                });
-                CHECK(runs[0].second[7] > 0.5 * double(mesh.n_vertices()));  // it did move the mesh
-                if (variant == 1) CHECK(runs[0].second[3] > 0);              // and found features
-                CHECK(runs[1] == runs[0]);
-                CHECK(runs[2] == runs[0]);
-            }
-        }
+}
 
-        TEST_CASE(
-            "exact coincident groups: the same groups for 1, 2 and 7 threads, as a map finds them",
-            "[parallel]") {
-            // 30,000 points on a lattice; every 5th repeats an earlier one (some as -0 for +0).
-            std::vector<Point> p;
-            std::uint64_t state = 1;
-            for (int i = 0; i < 30000; ++i) {
-                if (i % 5 == 4) {
-                    state = state * 6364136223846793005ull + 1442695040888963407ull;
-                    Point q = p[std::size_t((state >> 33) % std::uint64_t(i))];
-                    if (q.x() == 0) q.x() = -0.0;
-                    p.push_back(q);
-                } else {
-                    p.emplace_back(double(i % 31), double(i / 31 % 37), double(i / (31 * 37)));
-                }
-            }
-            const auto groups = with_1_2_7_threads([&] {
-                const CoincidentGroups g = find_coincident_points(p.data(), p.size());
-                return std::make_pair(g.members, g.offsets);
-            });
-            CHECK(groups[1] == groups[0]);
-            CHECK(groups[2] == groups[0]);
-            // Independently: each point's first equal point, groups of two or more ordered by it.
-            std::map<std::array<double, 3>, std::vector<Index>> by_point;
-            for (std::size_t i = 0; i < p.size(); ++i)
-                by_point[{p[i].x() == 0 ? 0.0 : p[i].x(), p[i].y(), p[i].z()}].push_back(Index(i));
-            std::vector<std::vector<Index>> expected;
-            for (const auto& [point, members] : by_point)
-                if (members.size() > 1) expected.push_back(members);
-            std::sort(expected.begin(), expected.end());
-            std::vector<std::vector<Index>> found;
-            const auto& [members, offsets] = groups[0];
-            for (std::size_t g = 0; g + 1 < offsets.size(); ++g)
-                found.emplace_back(members.begin() + std::ptrdiff_t(offsets[g]),
-                                   members.begin() + std::ptrdiff_t(offsets[g + 1]));
-            CHECK(found == expected);
-            CHECK(found.size() > 1000);
+TEST_CASE("exact coincident groups: the same groups for 1, 2 and 7 threads, as a map finds them",
+          "[parallel]") {
+    // 30,000 points on a lattice; every 5th repeats an earlier one (some as -0 for +0).
+    std::vector<Point> p;
+    std::uint64_t state = 1;
+    for (int i = 0; i < 30000; ++i) {
+        if (i % 5 == 4) {
+            state = state * 6364136223846793005ull + 1442695040888963407ull;
+            Point q = p[std::size_t((state >> 33) % std::uint64_t(i))];
+            if (q.x() == 0) q.x() = -0.0;
+            p.push_back(q);
+        } else {
+            p.emplace_back(double(i % 31), double(i / 31 % 37), double(i / (31 * 37)));
         }
+    }
+    const auto groups = with_1_2_7_threads([&] {
+        const CoincidentGroups g = find_coincident_points(p.data(), p.size());
+        return std::make_pair(g.members, g.offsets);
+    });
+    CHECK(groups[1] == groups[0]);
+    CHECK(groups[2] == groups[0]);
+    // Independently: each point's first equal point, groups of two or more ordered by it.
+    std::map<std::array<double, 3>, std::vector<Index>> by_point;
+    for (std::size_t i = 0; i < p.size(); ++i)
+        by_point[{p[i].x() == 0 ? 0.0 : p[i].x(), p[i].y(), p[i].z()}].push_back(Index(i));
+    std::vector<std::vector<Index>> expected;
+    for (const auto& [point, members] : by_point)
+        if (members.size() > 1) expected.push_back(members);
+    std::sort(expected.begin(), expected.end());
+    std::vector<std::vector<Index>> found;
+    const auto& [members, offsets] = groups[0];
+    for (std::size_t g = 0; g + 1 < offsets.size(); ++g)
+        found.emplace_back(members.begin() + std::ptrdiff_t(offsets[g]),
+                           members.begin() + std::ptrdiff_t(offsets[g + 1]));
+    CHECK(found == expected);
+    CHECK(found.size() > 1000);
+}
 
-        TEST_CASE("components and validate(): the same for 1, 2 and 7 threads", "[parallel]") {
-            const HalfedgeMesh mesh = make_torus(120, 60, 2.0, 0.5);
-            const auto labels = with_1_2_7_threads([&] {
-                std::vector<Index> component;
-                const std::size_t n = label_components(mesh, component);
-                return std::make_pair(n, component);
-            });
-            CHECK(labels[0].first == 1);
-            CHECK(labels[1] == labels[0]);
-            CHECK(labels[2] == labels[0]);
-            const auto valid = with_1_2_7_threads([&] { return validate(mesh).ok; });
-            CHECK(valid == std::vector<bool>{true, true, true});
+TEST_CASE("components and validate(): the same for 1, 2 and 7 threads", "[parallel]") {
+    const HalfedgeMesh mesh = make_torus(120, 60, 2.0, 0.5);
+    const auto labels = with_1_2_7_threads([&] {
+        std::vector<Index> component;
+        const std::size_t n = label_components(mesh, component);
+        return std::make_pair(n, component);
+    });
+    CHECK(labels[0].first == 1);
+    CHECK(labels[1] == labels[0]);
+    CHECK(labels[2] == labels[0]);
+    const auto valid = with_1_2_7_threads([&] { return validate(mesh).ok; });
+    CHECK(valid == std::vector<bool>{true, true, true});
+}
+
+TEST_CASE("explicit umbrella and Taubin in the Morton order: the bits of the storage order",
+          "[parallel]") {
+    // fairing_detail::set_locality_threshold(): 0 renumbers every run, the largest never does.
+    struct Restore {
+        std::size_t before = fairing_detail::set_locality_threshold(0);
+        ~Restore() { fairing_detail::set_locality_threshold(before); }
+    } restore;
+    HalfedgeMesh open = make_grid(80);  // boundary vertices stay fixed
+    std::uint64_t state = 0x9E3779B97F4A7C15ull;
+    for (Point& p : open.positions()) {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        p.z() = double(state % 1000) * 1e-3;
+    }
+    const HalfedgeMesh closed = make_noisy_sphere(24, 0.05, 7);  // the volume check per step
+    struct Case {
+        FairingOperator op;
+        double step;  // 1.5: the energy and area checks run too
+    };
+    for (const HalfedgeMesh* mesh : {static_cast<const HalfedgeMesh*>(&open), &closed})
+        for (const Case c :
+             {Case{FairingOperator::Umbrella, 0.5}, Case{FairingOperator::Umbrella, 1.5},
+              Case{FairingOperator::Taubin, 0}}) {
+            FairingOptions o;
+            o.op = c.op;
+            o.step = c.step;
+            o.iterations = 3;
+            fairing_detail::set_locality_threshold(std::size_t(-1));
+            const FairingResult storage = smooth(*mesh, o);
+            fairing_detail::set_locality_threshold(0);
+            const auto local = with_1_2_7_threads([&] { return smooth(*mesh, o); });
+            for (const FairingResult& r : local) {
+                CHECK(r.iterations_done == storage.iterations_done);
+                CHECK(r.stopped_early == storage.stopped_early);
+                CHECK(r.mesh.positions() == storage.mesh.positions());
+                CHECK(r.step_positions == storage.step_positions);
+                CHECK(r.final_volume == storage.final_volume);
+                // The estimate's sums run in the other order: equal up to rounding, and the
+                // same bits for any thread count and as max_stable_explicit_step() gives.
+                CHECK(r.max_stable_step == Approx(storage.max_stable_step).epsilon(1e-9));
+                CHECK(r.max_stable_step == local[0].max_stable_step);
+            }
+            CHECK(local[0].max_stable_step == max_stable_explicit_step(*mesh, o.op));
         }
+}
+
+TEST_CASE("denoise: the same bits for 1, 2 and 7 threads", "[parallel]") {
+    // 32,000 faces: 8 blocks of every per-face pass; few iterations keep it fast.
+    const HalfedgeMesh mesh = make_noisy_sphere(40, 0.05, 3);
+    REQUIRE(mesh.n_faces() > 4 * kBlock);
+    std::vector<float> half(mesh.vertices_size());
+    for (Vertex v : mesh.vertices()) half[v.idx()] = mesh.position(v).z() > 0 ? 1.0f : 0.25f;
+    for (int variant = 0; variant < 3; ++variant) {
+        DenoiseOptions o;
+        o.normal_iterations = 4;
+        o.vertex_iterations = 3;
+        if (variant == 1) {  // the sectors' path: guidance from every patch of N(i)
+            o.features = FeatureSource::Auto;
+            o.feature_angle = 12;
+        }
+        if (variant == 2) {
+            o.method = DenoiseMethod::Bilateral;
+            o.region = &half;
+        }
+        INFO("variant " << variant);
+        const auto runs = with_1_2_7_threads([&] {
+            HalfedgeMesh m = mesh;
+            const DenoiseReport r = denoise(m, o);
+            CHECK(validate(m).ok);
+            return std::make_pair(
+                m.positions(),
+                std::vector<double>{r.noise_level, r.sigma_r, double(r.inverted_faces),
+                                    double(r.feature_edges), double(r.vertex_iterations_done),
+                                    r.mean_normal_change_degrees, r.max_displacement,
+                                    double(r.moved_vertices), double(r.folded_faces)});
+        });
+        CHECK(runs[0].second[7] > 0.5 * double(mesh.n_vertices()));  // it did move the mesh
+        if (variant == 1) CHECK(runs[0].second[3] > 0);              // and found features
+        CHECK(runs[1] == runs[0]);
+        CHECK(runs[2] == runs[0]);
+    }
+}
 
 #if !defined(__SANITIZE_THREAD__)  // ThreadSanitizer does not support a multi-threaded fork
-        TEST_CASE(
-            "a forked child runs its loops on its own thread (the pool's workers stay behind)",
-            "[parallel]") {
-            set_thread_count(2);
-            parallel_for(0, 4 * kBlock, [](std::size_t) {});  // the pool has its worker now
-            const pid_t child = fork();
-            REQUIRE(child >= 0);
-            if (child == 0) {
-                alarm(20);  // a loop waiting for the parent's workers would hang: SIGALRM ends it
-                std::vector<double> v = spread_values(8 * kBlock);
-                const double s = parallel_reduce(
-                    0, v.size(), 0.0,
-                    [&](std::size_t b, std::size_t e) {
-                        double part = 0;
-                        for (std::size_t i = b; i < e; ++i) part += v[i];
-                        return part;
-                    },
-                    [](double a, double b) { return a + b; });
-                _exit(std::isfinite(s) ? 0 : 1);
-            }
-            int status = 0;
-            REQUIRE(waitpid(child, &status, 0) == child);
-            CHECK(WIFEXITED(status));
-            CHECK(WEXITSTATUS(status) == 0);
-            set_thread_count(0);
-        }
+TEST_CASE("a forked child runs its loops on its own thread (the pool's workers stay behind)",
+          "[parallel]") {
+    set_thread_count(2);
+    parallel_for(0, 4 * kBlock, [](std::size_t) {});  // the pool has its worker now
+    const pid_t child = fork();
+    REQUIRE(child >= 0);
+    if (child == 0) {
+        alarm(20);  // a loop waiting for the parent's workers would hang: SIGALRM ends it
+        std::vector<double> v = spread_values(8 * kBlock);
+        const double s = parallel_reduce(
+            0, v.size(), 0.0,
+            [&](std::size_t b, std::size_t e) {
+                double part = 0;
+                for (std::size_t i = b; i < e; ++i) part += v[i];
+                return part;
+            },
+            [](double a, double b) { return a + b; });
+        _exit(std::isfinite(s) ? 0 : 1);
+    }
+    int status = 0;
+    REQUIRE(waitpid(child, &status, 0) == child);
+    CHECK(WIFEXITED(status));
+    CHECK(WEXITSTATUS(status) == 0);
+    set_thread_count(0);
+}
 #endif
