@@ -297,7 +297,7 @@ std::vector<std::array<double, 3>> corner_positions(const HalfedgeMesh& mesh) {
 
 }  // namespace
 
-TEST_CASE("remesh splits and collapses sharp edges only along their curves; corners stay",
+TEST_CASE("remesh splits and collapses sharp edges only along their curves, and corners stay",
           "[remesh][features]") {
     HalfedgeMesh block = make_block(12, 9, 6);  // its 12 edges are its only sharp ones
     FeatureDetectionOptions d;
