@@ -9,7 +9,8 @@
 # of 5 runs each. Floors (exit 1 when missed): the bunny's five holes under 100 ms, the
 # 5,004-vertex hole under 1,000 ms and triangulated over its Delaunay edges (Zou, Ju and Carr
 # 2013; not cut by chords), every fill closed, the C1 and C2 fills at least as smooth across their
-# rim as CGAL's (rim_jump_deg: the mean dihedral angle across the rim edges minus the mean over
+# rim as CGAL's, over the five together and hole by hole (rim_jump_deg: the mean dihedral angle
+# across the rim edges minus the mean over
 # the old edges at the rim vertices; `cgal_fill_holes --rim` measures trilab's fill the same way).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/../.."
@@ -91,9 +92,23 @@ python3 - "$t1" "$t2" "$s" "$r1" "$r2" "$c" << 'PY'
 import json, sys
 t1, t2, s, r1, r2, c = (json.loads(a) for a in sys.argv[1:7])
 fails = []
+# Rim smoothness over the five fills together and hole by hole (a fill is matched to CGAL's by
+# its first rim point, an input position both outputs keep).
+def same_key(a, b):
+    return all(abs(x - y) <= 1e-6 * max(1.0, abs(x)) for x, y in zip(a, b))
 for name, r in (("bunny c1", r1), ("bunny c2", r2)):
     if r["rim_jump_deg"] > c["rim_jump_deg"]:
         fails.append("%s: rim jump %.2f deg, CGAL's is %.2f" % (name, r["rim_jump_deg"], c["rim_jump_deg"]))
+    if len(r["holes"]) != len(c["holes"]):
+        fails.append("%s: %d fills, CGAL has %d" % (name, len(r["holes"]), len(c["holes"])))
+        continue
+    for k, (h, g) in enumerate(zip(r["holes"], c["holes"])):
+        if not same_key(h["key"], g["key"]):
+            fails.append("%s: hole %d is not CGAL's hole %d" % (name, k, k))
+        elif h["rim_jump_deg"] > g["rim_jump_deg"]:
+            fails.append("%s, hole at %s: rim jump %.2f deg, CGAL's is %.2f" %
+                         (name, h["key"], h["rim_jump_deg"], g["rim_jump_deg"]))
+        print("%s hole %d: rim jump %.2f deg, CGAL's %.2f" % (name, k, h["rim_jump_deg"], g["rim_jump_deg"]))
 for name, r in (("bunny c1", t1), ("bunny c2", t2)):
     if r["filled"] != 5: fails.append(name + ": not all five holes filled")
     if r["ms"] >= 100: fails.append(name + ": %.1f ms, the floor is 100 ms" % r["ms"])

@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iterator>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -58,21 +59,49 @@ double dihedral_deg(const Mesh& m, Face a, Face b) {
 
 struct RimFigures {
     double rim = 0, near = 0;
+    std::size_t n_rim = 0, n_near = 0;
+    std::array<double, 3> key{0, 0, 0};  ///< per hole: its lexicographically first rim point
 };
 
-/// The rim figures of a mesh whose new faces are marked.
-RimFigures rim_figures(const Mesh& m, const std::vector<char>& is_new) {
-    std::vector<char> rim_vertex(m.number_of_vertices() + m.number_of_removed_vertices(), 0);
-    RimFigures r;
-    std::size_t n_rim = 0, n_near = 0;
+/// The rim figures of a mesh whose new faces are marked: over every fill together (the
+/// first), then per fill (a connected set of new faces), each keyed by its first rim point
+/// (the input's position, the same in every program's output), sorted by key.
+std::vector<RimFigures> rim_figures(const Mesh& m, const std::vector<char>& is_new) {
+    // The fills: new faces joined across edges between two new faces (union-find).
+    std::vector<std::size_t> parent(is_new.size());
+    for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = i;
+    const auto find = [&](std::size_t x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    };
+    for (auto e : m.edges()) {
+        if (m.is_border(e)) continue;
+        const Halfedge h = m.halfedge(e);
+        const Face a = m.face(h), b = m.face(m.opposite(h));
+        if (is_new[a] && is_new[b]) parent[find(std::size_t(a))] = find(std::size_t(b));
+    }
+    std::map<std::size_t, RimFigures> fills;
+    const auto point = [&](Vertex v) {
+        const auto& q = m.point(v);
+        return std::array<double, 3>{CGAL::to_double(q.x()), CGAL::to_double(q.y()),
+                                     CGAL::to_double(q.z())};
+    };
+    // Per rim vertex: the fill it borders.
+    std::map<Vertex, std::size_t> rim_vertex;
+    RimFigures all;
     for (auto e : m.edges()) {
         const Halfedge h = m.halfedge(e);
         if (m.is_border(e)) continue;
         const Face a = m.face(h), b = m.face(m.opposite(h));
-        if (is_new[a] != is_new[b]) {
-            r.rim += dihedral_deg(m, a, b);
-            ++n_rim;
-            rim_vertex[m.source(h)] = rim_vertex[m.target(h)] = 1;
+        if (is_new[a] == is_new[b]) continue;
+        const std::size_t fill = find(std::size_t(is_new[a] ? a : b));
+        RimFigures& r = fills[fill];
+        const double d = dihedral_deg(m, a, b);
+        for (RimFigures* x : {&r, &all}) x->rim += d, ++x->n_rim;
+        for (Vertex v : {m.source(h), m.target(h)}) {
+            rim_vertex[v] = fill;
+            const auto p = point(v);
+            if (r.n_rim == 1 || p < r.key) r.key = p;
         }
     }
     for (auto e : m.edges()) {
@@ -80,14 +109,24 @@ RimFigures rim_figures(const Mesh& m, const std::vector<char>& is_new) {
         if (m.is_border(e)) continue;
         const Face a = m.face(h), b = m.face(m.opposite(h));
         if (is_new[a] || is_new[b]) continue;
-        if (rim_vertex[m.source(h)] || rim_vertex[m.target(h)]) {
-            r.near += dihedral_deg(m, a, b);
-            ++n_near;
+        for (Vertex v : {m.source(h), m.target(h)}) {
+            const auto it = rim_vertex.find(v);
+            if (it == rim_vertex.end()) continue;
+            const double d = dihedral_deg(m, a, b);
+            RimFigures& r = fills[it->second];
+            for (RimFigures* x : {&r, &all}) x->near += d, ++x->n_near;
+            break;  // an edge with both ends on the rim counts once
         }
     }
-    if (n_rim) r.rim /= double(n_rim);
-    if (n_near) r.near /= double(n_near);
-    return r;
+    std::vector<RimFigures> out{all};
+    for (auto& [fill, r] : fills) out.push_back(r);
+    std::sort(out.begin() + 1, out.end(),
+              [](const RimFigures& x, const RimFigures& y) { return x.key < y.key; });
+    for (RimFigures& r : out) {
+        if (r.n_rim) r.rim /= double(r.n_rim);
+        if (r.n_near) r.near /= double(r.n_near);
+    }
+    return out;
 }
 
 std::array<double, 9> corner_key(const Mesh& m, Face f) {
@@ -100,9 +139,21 @@ std::array<double, 9> corner_key(const Mesh& m, Face f) {
     return {p[0][0], p[0][1], p[0][2], p[1][0], p[1][1], p[1][2], p[2][0], p[2][1], p[2][2]};
 }
 
-void print_rim(const RimFigures& r) {
-    std::printf("\"rim_bend_deg\": %.2f, \"near_bend_deg\": %.2f, \"rim_jump_deg\": %.2f", r.rim,
-                r.near, std::abs(r.rim - r.near));
+/// The figures over every fill, then "holes": one entry per fill, sorted by its key.
+void print_rim(const std::vector<RimFigures>& all) {
+    const auto one = [](const RimFigures& r) {
+        std::printf("\"rim_bend_deg\": %.2f, \"near_bend_deg\": %.2f, \"rim_jump_deg\": %.2f",
+                    r.rim, r.near, std::abs(r.rim - r.near));
+    };
+    one(all[0]);
+    std::printf(", \"holes\": [");
+    for (std::size_t i = 1; i < all.size(); ++i) {
+        std::printf("%s{\"key\": [%.9g, %.9g, %.9g], ", i > 1 ? ", " : "", all[i].key[0],
+                    all[i].key[1], all[i].key[2]);
+        one(all[i]);
+        std::printf("}");
+    }
+    std::printf("]");
 }
 
 int compare_rim(const char* original, const char* filled) {
@@ -126,7 +177,7 @@ struct Run {
     double ms = 0, min_angle = 180;
     std::size_t loops = 0, filled = 0, faces = 0, vertices = 0;
     bool closed = false;
-    RimFigures rim;
+    std::vector<RimFigures> rim;
 };
 
 Run fill(Mesh m) {
