@@ -496,7 +496,8 @@ TEST_CASE("vertex_surface_distances: a lifted grid is its lift away, and a mesh 
     REQUIRE_THROWS_AS(vertex_surface_distances(grid, HalfedgeMesh()), InvalidArgument);
 }
 
-TEST_CASE("the automatic sigma_r follows the measured noise, and a given one is kept", "[denoise]") {
+TEST_CASE("the automatic sigma_r follows the measured noise, and a given one is kept",
+          "[denoise]") {
     const HalfedgeMesh clean = make_block(12, 9, 6);
     double last_level = 0;
     for (const double k : {0.1, 0.3, 0.6}) {
