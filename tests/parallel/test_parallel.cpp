@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <vector>
@@ -109,6 +110,26 @@ TEST_CASE("parallel_reduce sums in block order: the same bits for 1, 2 and 7 thr
     double plain = 0;
     for (double x : v) plain += x;
     CHECK(plain != expected);
+}
+
+TEST_CASE("parallel_reduce of bool: each block writes its own partial", "[parallel]") {
+    // Block partials of type bool must not share a word (std::vector<bool>): the ThreadSanitizer
+    // job runs this with 7 threads over 64 one-element blocks.
+    std::vector<double> v(64, 1.0);
+    v[41] = std::numeric_limits<double>::quiet_NaN();
+    const auto all_finite = [&](std::size_t b, std::size_t e) {
+        bool finite = true;
+        for (std::size_t i = b; i < e; ++i) finite = finite && std::isfinite(v[i]);
+        return finite;
+    };
+    const auto both = [](bool a, bool b) { return a && b; };
+    const auto found = with_1_2_7_threads(
+        [&] { return int(parallel_reduce(0, v.size(), true, all_finite, both, 1)); });
+    for (int f : found) CHECK(f == 0);
+    v[41] = 2.0;
+    const auto none = with_1_2_7_threads(
+        [&] { return int(parallel_reduce(0, v.size(), true, all_finite, both, 1)); });
+    for (int f : none) CHECK(f == 1);
 }
 
 TEST_CASE("a block's exception reaches the caller, and nested loops run", "[parallel]") {
