@@ -555,8 +555,26 @@ public:
         // scatter), in fixed blocks on every thread; the finiteness sum and the boxes are
         // reduced in block order. NaN and infinities propagate into the sum; the box bounds
         // the magnitude.
+        return finish_step(
+            P, t, out,
+            [&](std::size_t v) {
+                Point ring = Point::Zero();
+                for (std::size_t r = row_offset_[v]; r < row_offset_[v + 1]; ++r)
+                    ring += P[row_[r]];
+                return ring;
+            },
+            box_before, box_after);
+    }
+
+    /// out[v] = p + t·(ring(v) / valence - p) for the moving vertices, p for the fixed ones,
+    /// in fixed blocks on every thread; the finiteness sum and the boxes of P and out over the
+    /// vertices with edges reduced in block order (NaN and infinities propagate into the sum;
+    /// the box bounds the magnitude). ring(v) is read before out[v] is written.
+    template <typename Ring>
+    bool finish_step(const Positions& P, double t, Positions& out, const Ring& ring,
+                     Box& box_before, Box& box_after) {
         const StepPart all = parallel_reduce(
-            0, nv, StepPart{},
+            0, P.size(), StepPart{},
             [&](std::size_t begin, std::size_t end) {
                 StepPart part;
                 for (std::size_t v = begin; v < end; ++v) {
@@ -565,10 +583,7 @@ public:
                         out[v] = p;
                         if (valence_[v] == 0) continue;
                     } else {
-                        Point ring = Point::Zero();
-                        for (std::size_t r = row_offset_[v]; r < row_offset_[v + 1]; ++r)
-                            ring += P[row_[r]];
-                        out[v] = p + t * (ring / double(valence_[v]) - p);
+                        out[v] = p + t * (ring(v) / double(valence_[v]) - p);
                         part.sum += out[v].x() + out[v].y() + out[v].z();
                     }
                     part.before.add(p);
@@ -797,28 +812,8 @@ private:
         known_ = true;
         // The update in fixed blocks, the finiteness sum and the boxes reduced in block order
         // (as step()).
-        const StepPart all = parallel_reduce(
-            0, nv, StepPart{},
-            [&](std::size_t begin, std::size_t end) {
-                StepPart part;
-                for (std::size_t v = begin; v < end; ++v) {
-                    const Point& p = P[v];
-                    if (fixed_[v]) {
-                        out[v] = p;
-                        if (valence_[v] == 0) continue;
-                    } else {
-                        out[v] = p + t * (out[v] / double(valence_[v]) - p);
-                        part.sum += out[v].x() + out[v].y() + out[v].z();
-                    }
-                    part.before.add(p);
-                    part.after.add(out[v]);
-                }
-                return part;
-            },
-            StepPart::combine);
-        box_before.add(all.before);
-        box_after.add(all.after);
-        return std::isfinite(all.sum) && box_after.bounded();
+        return finish_step(
+            P, t, out, [&](std::size_t v) { return Point(out[v]); }, box_before, box_after);
     }
 
     /// step() on the moving vertices only: out keeps the fixed vertices' positions from the
