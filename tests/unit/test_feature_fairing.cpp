@@ -20,21 +20,6 @@
 
 using namespace trilab;
 
-namespace {
-
-/// The distance from p to the nearest of the segments.
-double to_segments(const Point& p, const std::vector<std::array<Point, 2>>& segments) {
-    double best = std::numeric_limits<double>::infinity();
-    for (const auto& s : segments) {
-        const Vector3 d = s[1] - s[0];
-        const double t = std::clamp((p - s[0]).dot(d) / d.squaredNorm(), 0.0, 1.0);
-        best = std::min(best, (s[0] + t * d - p).norm());
-    }
-    return best;
-}
-
-}  // namespace
-
 TEST_CASE("sliding features smooth a noisy crease towards the clean curve, corners stay",
           "[features][fairing]") {
     SKIP_IF_MISSING(test::shared_mesh("fandisk.obj"));
@@ -43,14 +28,9 @@ TEST_CASE("sliding features smooth a noisy crease towards the clean curve, corne
     fo.angle_deg = 60;
     detect_features(clean, fo);
     const VertexClassification cls = classify_vertices(clean, false);
-    std::vector<std::array<Point, 2>> curves;  // the clean feature curves
+    const std::vector<std::array<Point, 2>> curves = test::sharp_segments(clean);  // clean curves
     double mean_length = 0;
-    for (Edge e : clean.edges())
-        if (sharpness(clean, e) > 0.0f) {
-            curves.push_back({clean.position(clean.from_vertex(clean.halfedge(e, 0))),
-                              clean.position(clean.to_vertex(clean.halfedge(e, 0)))});
-            mean_length += (curves.back()[1] - curves.back()[0]).norm();
-        }
+    for (const auto& c : curves) mean_length += (c[1] - c[0]).norm();
     REQUIRE(curves.size() > 600);
     mean_length /= double(curves.size());
     // Noise on the crease vertices only: a fifth of the curves' mean edge length, in a random
@@ -72,7 +52,7 @@ TEST_CASE("sliding features smooth a noisy crease towards the clean curve, corne
     REQUIRE(fixed_features.size() >= 22);
     const auto mean_to_curves = [&](const HalfedgeMesh& m) {
         double sum = 0;
-        for (Vertex v : creases) sum += to_segments(m.position(v), curves);
+        for (Vertex v : creases) sum += test::segments_distance(m.position(v), curves);
         return sum / double(creases.size());
     };
     const double before = mean_to_curves(noisy);

@@ -435,24 +435,12 @@ TEST_CASE("decimation keeps the features: corners stay, curve vertices stay on t
     const double diagonal = bounding_box(m).diagonal();
     const VertexClassification in = classify_vertices(m, false);
     // The input feature curves as segments, and the corners by position.
-    std::vector<std::array<Point, 2>> segments;
-    for (Edge e : m.edges())
-        if (sharpness(m, e) > 0.0f)
-            segments.push_back({m.position(m.from_vertex(m.halfedge(e, 0))),
-                                m.position(m.to_vertex(m.halfedge(e, 0)))});
+    const std::vector<std::array<Point, 2>> segments = test::sharp_segments(m);
     std::map<std::array<double, 3>, int> corner_at;
     for (Vertex v : m.vertices())
         if (in.classes[v.idx()] == VertexClass::Corner)
             corner_at[{m.position(v).x(), m.position(v).y(), m.position(v).z()}] = 1;
-    const auto to_curves = [&](const Point& p) {
-        double best = std::numeric_limits<double>::infinity();
-        for (const auto& s : segments) {
-            const Vector3 d = s[1] - s[0];
-            const double t = std::clamp((p - s[0]).dot(d) / d.squaredNorm(), 0.0, 1.0);
-            best = std::min(best, (s[0] + t * d - p).norm());
-        }
-        return best;
-    };
+    const auto to_curves = [&](const Point& p) { return test::segments_distance(p, segments); };
     DecimationOptions o;
     o.target_vertices = m.n_vertices() / 10;
     o.levels = DecimationLevels::Last;

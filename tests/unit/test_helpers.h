@@ -2,11 +2,15 @@
 // Shared helpers for the unit tests: fixture paths, temporary folders, validity checks.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
+#include "core/features.h"
 #include "core/halfedge_mesh.h"
 #include "core/validate.h"
 #include "tests/support/cancelling_progress.h"
@@ -15,6 +19,30 @@
 #include "tests/support/skip.h"
 
 namespace trilab::test {
+
+/// The sharp edges of `mesh` (core/features.h: sharpness > 0) as segments.
+inline std::vector<std::array<Point, 2>> sharp_segments(const HalfedgeMesh& mesh) {
+    std::vector<std::array<Point, 2>> out;
+    for (Edge e : mesh.edges())
+        if (sharpness(mesh, e) > 0.0f)
+            out.push_back({mesh.position(mesh.vertex(e, 0)), mesh.position(mesh.vertex(e, 1))});
+    return out;
+}
+
+/// The distance from p to segment s (to its first end when it has no length).
+inline double segment_distance(const Point& p, const std::array<Point, 2>& s) {
+    const Vector3 d = s[1] - s[0];
+    const double l2 = d.squaredNorm();
+    const double t = l2 > 0 ? std::clamp((p - s[0]).dot(d) / l2, 0.0, 1.0) : 0.0;
+    return (s[0] + t * d - p).norm();
+}
+
+/// The distance from p to the nearest of the segments (brute force).
+inline double segments_distance(const Point& p, const std::vector<std::array<Point, 2>>& segments) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& s : segments) best = std::min(best, segment_distance(p, s));
+    return best;
+}
 
 /// ../shared beside the repository, or $TRILAB_SHARED_DIR when set (may be absent: tests using
 /// it record a skip, see tests/support/skip.h).

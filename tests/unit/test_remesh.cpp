@@ -247,32 +247,13 @@ TEST_CASE(
 namespace {
 
 /// The sharp edges of `mesh` as segments.
-std::vector<std::array<Point, 2>> sharp_segments(const HalfedgeMesh& mesh) {
-    std::vector<std::array<Point, 2>> out;
-    for (Edge e : mesh.edges())
-        if (sharpness(mesh, e) > 0)
-            out.push_back({mesh.position(mesh.vertex(e, 0)), mesh.position(mesh.vertex(e, 1))});
-    return out;
-}
-
-double segment_distance(const Point& p, const std::array<Point, 2>& s) {
-    const Vector3 d = s[1] - s[0];
-    const double l2 = d.squaredNorm();
-    const double t = l2 > 0 ? std::clamp((p - s[0]).dot(d) / l2, 0.0, 1.0) : 0.0;
-    return (s[0] + t * d - p).norm();
-}
-
 /// The largest distance from an end of a sharp edge of `out` to the sharp edges of `in`
 /// (brute force).
 double feature_drift(const HalfedgeMesh& in, const HalfedgeMesh& out) {
-    const auto curves = sharp_segments(in);
+    const auto curves = test::sharp_segments(in);
     double worst = 0;
-    for (const auto& s : sharp_segments(out))
-        for (const Point& p : s) {
-            double d = std::numeric_limits<double>::infinity();
-            for (const auto& c : curves) d = std::min(d, segment_distance(p, c));
-            worst = std::max(worst, d);
-        }
+    for (const auto& s : test::sharp_segments(out))
+        for (const Point& p : s) worst = std::max(worst, test::segments_distance(p, curves));
     return worst;
 }
 
@@ -314,18 +295,18 @@ TEST_CASE("remesh splits and collapses sharp edges only along their curves, and 
     CHECK(r.feature_vertices > 0);
     // Every feature vertex on an input curve, the curves whole, the corners where they were.
     CHECK(feature_drift(block, kept) <= 1e-9 * diagonal);
-    CHECK(total_length(sharp_segments(kept)) ==
-          Approx(total_length(sharp_segments(block))).epsilon(1e-9));
+    CHECK(total_length(test::sharp_segments(kept)) ==
+          Approx(total_length(test::sharp_segments(block))).epsilon(1e-9));
     CHECK(corner_positions(kept) == corner_positions(block));
     CHECK(classify_vertices(kept, false).corners == 8);
     // The curves were remeshed with the rest: finer, their edges near L.
-    CHECK(sharp_segments(kept).size() > sharp_segments(block).size());
+    CHECK(test::sharp_segments(kept).size() > test::sharp_segments(block).size());
     std::size_t in_band = 0;
-    for (const auto& s : sharp_segments(kept)) {
+    for (const auto& s : test::sharp_segments(kept)) {
         const double l = (s[1] - s[0]).norm();
         in_band += l >= 0.8 * r.target_length && l <= 4.0 / 3.0 * r.target_length;
     }
-    CHECK(in_band >= 0.9 * double(sharp_segments(kept).size()));
+    CHECK(in_band >= 0.9 * double(test::sharp_segments(kept).size()));
     CHECK(kept.n_faces() > block.n_faces());
     // Without them the block's edges are cut across (vertices leave them).
     HalfedgeMesh ignored = block;
@@ -560,10 +541,10 @@ TEST_CASE("remeshing fandisk keeps its creases: vertices on the curves, corners 
     CHECK(feature_drift(input, m) <= 1e-9 * diagonal);
     CHECK(corner_positions(m) == corner_positions(input));
     // The curves keep their length (chords of a curved crease are a little shorter).
-    const double before = total_length(sharp_segments(input));
-    CHECK(total_length(sharp_segments(m)) == Approx(before).epsilon(0.01));
+    const double before = total_length(test::sharp_segments(input));
+    CHECK(total_length(test::sharp_segments(m)) == Approx(before).epsilon(0.01));
     std::size_t in_band = 0;
-    const auto curves = sharp_segments(m);
+    const auto curves = test::sharp_segments(m);
     for (const auto& s : curves) {
         const double l = (s[1] - s[0]).norm();
         in_band += l >= 0.8 * r.target_length && l <= 4.0 / 3.0 * r.target_length;
