@@ -869,18 +869,7 @@ private:
             for (unsigned i = 0; i < 2; ++i) {
                 const Halfedge h = HalfedgeMesh::halfedge(e, i);
                 if (!c_.is_boundary(h) || c_.is_boundary(HalfedgeMesh::twin(h))) continue;
-                const Face f = c_.face(HalfedgeMesh::twin(h));
-                const auto c = c_.face_vertices(f);
-                const Vector3 fn = (c_.position(c[1]) - c_.position(c[0]))
-                                       .cross(c_.position(c[2]) - c_.position(c[0]));
-                const Point& a = c_.position(c_.from_vertex(h));
-                const Point& b = c_.position(c_.to_vertex(h));
-                Vector3 n = (b - a).cross(fn);
-                const double len = n.norm();
-                if (!(len > 0)) continue;
-                const Quadric q = Quadric::plane(n / len, a, kBoundaryWeight);
-                quadric_[c_.from_vertex(h).idx()] += q;
-                quadric_[c_.to_vertex(h).idx()] += q;
+                add_edge_plane(h, c_.face(HalfedgeMesh::twin(h)), kBoundaryWeight);
             }
         }
         if (sharp_) add_feature_planes();
@@ -891,24 +880,28 @@ private:
     // its two faces, so a collapse that bends a feature curve or pulls the surface across it
     // costs its distance to the curve.
     void add_feature_planes() {
-        const double w = kFeaturePlaneWeight;
         for (Edge e : c_.edges()) {
             if (!(sharp_[e] > 0.0f) || c_.is_boundary(e)) continue;
             const Halfedge h = HalfedgeMesh::halfedge(e, 0);
-            const Point& a = c_.position(c_.from_vertex(h));
-            const Point& b = c_.position(c_.to_vertex(h));
-            for (Halfedge g : {h, HalfedgeMesh::twin(h)}) {
-                const auto c = c_.face_vertices(c_.face(g));
-                const Vector3 fn = (c_.position(c[1]) - c_.position(c[0]))
-                                       .cross(c_.position(c[2]) - c_.position(c[0]));
-                Vector3 n = (b - a).cross(fn);
-                const double len = n.norm();
-                if (!(len > 0)) continue;
-                const Quadric q = Quadric::plane(n / len, a, w);
-                quadric_[c_.from_vertex(h).idx()] += q;
-                quadric_[c_.to_vertex(h).idx()] += q;
-            }
+            for (Halfedge g : {h, HalfedgeMesh::twin(h)})
+                add_edge_plane(h, c_.face(g), kFeaturePlaneWeight);
         }
+    }
+
+    // Adds to both ends of h the plane through h perpendicular to face f (none when h and f's
+    // normal are parallel or f is degenerate).
+    void add_edge_plane(Halfedge h, Face f, double weight) {
+        const auto c = c_.face_vertices(f);
+        const Vector3 fn =
+            (c_.position(c[1]) - c_.position(c[0])).cross(c_.position(c[2]) - c_.position(c[0]));
+        const Point& a = c_.position(c_.from_vertex(h));
+        const Point& b = c_.position(c_.to_vertex(h));
+        const Vector3 n = (b - a).cross(fn);
+        const double len = n.norm();
+        if (!(len > 0)) return;
+        const Quadric q = Quadric::plane(n / len, a, weight);
+        quadric_[c_.from_vertex(h).idx()] += q;
+        quadric_[c_.to_vertex(h).idx()] += q;
     }
 
     // Prices the live edges of [begin, end) (no heap yet).
