@@ -56,7 +56,10 @@ OperationResult run_subdivide(const SubdivisionOptions& options, const HalfedgeM
                      ? count_text(c.flipped_edges, "edge flipped", "edges flipped") + ", " +
                            std::to_string(c.completed_edges) +
                            " earlier closure triangles completed"
-                     : std::to_string(c.green_faces) + " split 1-to-2 (green)"));
+                     : std::to_string(c.green_faces) + " split 1-to-2 (green)" +
+                           (c.damped_vertices > 0 ? ", " + std::to_string(c.damped_vertices) +
+                                                        " edge vertices moved toward their midpoint"
+                                                  : std::string())));
         }
         std::snprintf(line, sizeof(line), "minimum angle: %.3f deg before, %.3f deg after",
                       region.min_angle_in, region.min_angle_out);
@@ -95,6 +98,7 @@ OperationResult run_subdivide(const SubdivisionOptions& options, const HalfedgeM
         result.values.push_back({"grown_faces", double(c.grown_faces)});
         result.values.push_back({"closure_reds", double(c.closure_reds)});
         result.values.push_back({"completed_edges", double(c.completed_edges)});
+        result.values.push_back({"damped_vertices", double(c.damped_vertices)});
     }
     sub.levels.clear();  // moved into the steps: the report is the counts, notes and time
     result.typed_report = std::move(sub);

@@ -44,15 +44,15 @@
 //  moved vertices (as the refined region's own triangles do: min_angle_closure reports them;
 //  on the generated sphere's cap (54°), Loop's, Butterfly's and Modified Butterfly's closures
 //  stay at 27.02° through six levels, for a target of 27.02°, where bisecting again gave 27.8,
-//  14.3, 9.5, 7.3°). With options.global_closure the price of the full target: on an almost regular
-//  input (the default model, 47.6°) no bisection passes (halving an angle of 50-70° gives
-//  25-35°, and no conforming 2:1 transition between equilateral meshes keeps 60°), so the
-//  closure grows over the whole connected surface (its outside refined at midpoints: the same
-//  surface, four times the faces); on scanned and CAD meshes (bunny, spot, fandisk) it grows by
-//  a few faces at most. Sqrt3's closure triangles are half their face's angles by design, and
-//  the region's relaxed border faces lose more: on that cap the minimum goes 29.2, 27.0, 21.4,
-//  21.3, 18.7° over five levels (12.3° at five before the completion), above a third of the
-//  input's smallest but not half.
+//  14.3, 9.5, 7.3°; on the default model (47.56°) all three keep 23.80° through six levels). With
+//  options.global_closure the price of the full target: on an almost regular input (the default
+//  model, 47.6°) no bisection passes (halving an angle of 50-70° gives 25-35°, and no conforming
+//  2:1 transition between equilateral meshes keeps 60°), so the closure grows over the whole
+//  connected surface (its outside refined at midpoints: the same surface, four times the faces); on
+//  scanned and CAD meshes (bunny, spot, fandisk) it grows by a few faces at most. Sqrt3's closure
+//  triangles are half their face's angles by design, and the region's relaxed border faces lose
+//  more: on that cap the minimum goes 29.2, 27.0, 21.4, 21.3, 18.7° over five levels (12.3° at five
+//  before the completion), above a third of the input's smallest but not half.
 // Positions (w: the vertex weights):
 //  - an old vertex with w = 0 keeps its position bit for bit; with w > 0 it gets
 //    p_old + w·(p_scheme − p_old), p_scheme being the uniform scheme's rule on the coarse mesh
@@ -60,9 +60,14 @@
 //  - the new vertex of a split edge a-b: the edge midpoint blended towards the scheme's
 //    stencil by max(w_a, w_b), so a closure edge with one end inside is at the scheme's
 //    position and one entirely outside (a red closure face's far edge) at its midpoint, on the
-//    untouched surface (stencil "odd, edge midpoint (region closure ...)");
+//    untouched surface (stencil "odd, edge midpoint (region closure ...)"); Butterfly and
+//    Modified Butterfly move an edge vertex whose stencil would make a new triangle flatter
+//    than half the input's smallest angle back toward its edge's midpoint, halving its offset
+//    until none is (`damped_vertices`: a 1-to-4 split at midpoints keeps its face's angles,
+//    and these schemes never move a vertex again);
 //  - a Sqrt3 centroid: the centroid.
-// With weights 0 and 1 only, every vertex inside is where the uniform scheme puts it.
+// With weights 0 and 1 only, every vertex inside is where the uniform scheme puts it (but for
+// those damped edge vertices).
 // An all-ones selection runs subdivide() itself, so the result is the unselected one bit for
 // bit (plus the carried selection).
 // The selection is carried: "v:selection" on every level, old vertices keeping their weight,
@@ -95,6 +100,9 @@ struct RegionClosureCounts {
     /// Sqrt3: the previous level's unflipped closure triangles completed before this level
     /// refined them (their neighbour split at its centroid, the old edge flipped).
     std::size_t completed_edges = 0;
+    /// Butterfly and Modified Butterfly: edge vertices moved from their stencil toward their
+    /// edge's midpoint so that no new triangle is flatter than half the input's smallest angle.
+    std::size_t damped_vertices = 0;
     /// Degrees: the smallest angle of the coarse faces the closure replaced (1-to-4: refined
     /// faces outside the selection; Sqrt3: the faces on both sides of the region's edge), and
     /// of the closure's own triangles (180 when there is no closure).
