@@ -21,10 +21,12 @@
 #include <utility>
 
 #include "core/algorithms/coincident.h"
+#include "core/algorithms/feature_detection.h"
 #include "core/algorithms/pillows.h"
 #include "core/errors.h"
 #include "core/features.h"
 #include "core/geometry.h"
+#include "core/number_text.h"
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -369,13 +371,16 @@ bool flip_improves(const HalfedgeMesh& m, Edge e) {
     return raises && m.is_flip_ok(e);
 }
 
-/// Lawson's max-min-angle flips restricted to the closure: an edge is flipped when both of its
-/// faces are closure faces (`closure`, per face index; a flip keeps both faces' indices, so the
-/// flags stay right) and flip_improves(). Each flip raises the smaller minimum angle of the
-/// pair, so the closure's minimum angle never goes down, and the sorted list of angles rises
-/// with each flip, so it ends. Returns the number of flips.
+/// Lawson's max-min-angle flips restricted to the closure: an edge is flipped when it is not a
+/// feature (sharpness 0) and both of its faces are closure faces (`closure`, per face index; a flip
+/// keeps both faces' indices, so the flags stay right) and flip_improves(). Each flip raises the
+/// smaller minimum angle of the pair, so the closure's minimum angle never goes down, and the
+/// sorted list of angles rises with each flip, so it ends. Returns the number of flips.
 std::size_t improve_closure(HalfedgeMesh& m, const std::vector<std::uint8_t>& closure) {
+    const auto sharpness = m.get_edge_property<float>(kSharpnessProperty);
+    const float* sharp = sharpness ? sharpness.vector().data() : nullptr;
     const auto candidate = [&](Edge e) {
+        if (sharp && sharp[e.idx()] > 0.0f) return false;  // a feature edge is never flipped
         const Face f0 = m.face(HalfedgeMesh::halfedge(e, 0));
         const Face f1 = m.face(HalfedgeMesh::halfedge(e, 1));
         return f0.is_valid() && f1.is_valid() && closure[f0.idx()] && closure[f1.idx()];
@@ -432,7 +437,7 @@ double min_angle_of(const HalfedgeMesh& m, const std::vector<std::uint8_t>& flag
 /// The uniform step's positions and stencils where region subdivision uses them: old vertices
 /// that move (weight > 0) and the edges with such an end, packed (uniform_step_1to4_listed():
 /// a small region allocates little), or the whole mesh's pass, across seams, where the mesh
-/// has coincident vertices.
+/// has coincident vertices, and by the crease rules where it has features in use.
 struct RegionStencils {
     bool dense = false;  ///< the whole mesh's step: entry v, then nv + e
     Index nv = 0;
@@ -454,13 +459,13 @@ struct RegionStencils {
 };
 
 RegionStencils region_stencils(const HalfedgeMesh& m, const Selection& w, SubdivisionScheme scheme,
-                               Progress& progress) {
+                               bool features, Progress& progress) {
     const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size());
     RegionStencils r;
     r.nv = nv;
-    if (!find_coincident_vertices(m).empty()) {
+    if (features || !find_coincident_vertices(m).empty()) {
         r.dense = true;
-        r.step = uniform_step_1to4(m, scheme, progress);
+        r.step = uniform_step_1to4(m, scheme, progress, features);
         return r;
     }
     for (Index v = 0; v < nv; ++v)
@@ -769,12 +774,39 @@ std::size_t damp_flat_edge_vertices(HalfedgeMesh& out, const std::vector<Index>&
     return moved;
 }
 
+/// The features of `m` (core/features.h) carried onto its red-green refinement `out`
+/// (build_red_green()'s numbering: old edge e keeps index e, the second half of split edge
+/// number k is edge ne + k): both halves of a split edge take child_sharpness() of its
+/// sharpness (one level finer, as subdivide() carries them), an edge not split keeps its own,
+/// the red faces' inner edges and the green cuts are smooth; old vertices keep their corner
+/// tags, new ones have none. O(V + E).
+void carry_region_features(const HalfedgeMesh& m, const std::vector<std::uint8_t>& split,
+                           HalfedgeMesh& out) {
+    const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size());
+    if (const auto in = m.get_edge_property<float>(kSharpnessProperty)) {
+        std::vector<float>& sharp = out.add_edge_property<float>(kSharpnessProperty, 0.0f).vector();
+        for (Index e = 0, k = 0; e < ne; ++e) {
+            const float s = in.vector()[e];
+            if (!split[e]) {
+                sharp[e] = s;
+                continue;
+            }
+            sharp[e] = sharp[ne + k++] = child_sharpness(s);
+        }
+    }
+    if (const auto in = m.get_vertex_property<std::uint8_t>(kCornerProperty)) {
+        std::vector<std::uint8_t>& corner =
+            out.add_vertex_property<std::uint8_t>(kCornerProperty, 0).vector();
+        std::copy_n(in.vector().begin(), nv, corner.begin());
+    }
+}
+
 /// One red-green step of a 1-to-4 scheme on `m` (compact) with weights `w`.
 /// `coarse_flat`: the flatness of m's faces, or empty on the input (then computed here, in the
 /// first pass over the faces, and `target_angle`, the input's minimum angle, set from it).
 RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, SubdivisionScheme scheme,
-                              int level, bool morph, bool local_closure, double& target_angle,
-                              std::vector<double>& coarse_flat,
+                              bool features, int level, bool morph, bool local_closure,
+                              double& target_angle, std::vector<double>& coarse_flat,
                               const std::vector<std::uint8_t>& earlier_closure, bool keep_flatness,
                               Progress& progress) {
     const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
@@ -818,7 +850,7 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
             split[h0 >> 1] = split[h1 >> 1] = split[h2 >> 1] = 1;
         }
     }
-    const RegionStencils uniform = region_stencils(m, w, scheme, progress);
+    const RegionStencils uniform = region_stencils(m, w, scheme, features, progress);
     progress.check_cancelled();
     RegionStep step;
     // The edges of the selected faces (refined by the scheme); the closure's other split edges
@@ -839,6 +871,7 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
     std::vector<std::uint8_t> touched(nf, 0);
     for (Index f = 0; f < nf; ++f) touched[f] = !selected[f] && splits[f] > 0;
     const std::vector<std::uint8_t> closure = build_red_green(m, split, splits, touched, out);
+    if (features) carry_region_features(m, split, out);
     std::vector<std::uint8_t> all_closure = with_earlier_closure(closure, earlier_closure, splits);
     const Vertex* to_in = m.halfedge_to_array().data();
     NewVertices nvx(out, morph);
@@ -1275,6 +1308,7 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
     if (options.iterations < 1 || options.iterations > 10)
         throw InvalidArgument("subdivide: iterations must be between 1 and 10 (got " +
                               std::to_string(options.iterations) + ")");
+    check_subdivision_features(mesh, options);
     report = RegionSubdivisionReport{};
     report.region_vertices = count_selected(selection);
     SubdivisionResult result;
@@ -1296,6 +1330,21 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
             current = &collected;
         }
         const bool sqrt3 = options.scheme == SubdivisionScheme::Sqrt3;
+        // Features: the 1-to-4 schemes refine by their crease rules and carry them; Sqrt3's
+        // adaptive rule does not know them yet (a note says so, and they are dropped).
+        if (options.features == SubdivisionFeatures::Auto && !sqrt3) {
+            if (current != &collected) collected = mesh;
+            current = &collected;
+            FeatureDetectionOptions d;
+            d.angle_deg = options.feature_angle;
+            const FeatureDetectionReport r = detect_features(collected, d);
+            result.notes.push_back(
+                "features detected at " + number_text(options.feature_angle) +
+                " deg: " + count_text(r.feature_edges, "sharp edge", "sharp edges") + ", " +
+                count_text(r.corners, "corner", "corners"));
+        }
+        const bool features =
+            options.features != SubdivisionFeatures::None && has_features(*current);
         Index flattest = kInvalidIndex;  // of the last level built
         // The input's flatness and minimum angle (the 1-to-4 step computes them in its first
         // pass over the faces).
@@ -1327,7 +1376,7 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
                 sqrt3 ? refine_region_sqrt3(*current, weights, n_level, it, morph,
                                             !options.global_closure, report.min_angle_in, flatness,
                                             keep_flatness, progress)
-                      : refine_region_1to4(*current, weights, options.scheme, it, morph,
+                      : refine_region_1to4(*current, weights, options.scheme, features, it, morph,
                                            !options.global_closure, report.min_angle_in, flatness,
                                            closure_faces, keep_flatness, progress);
             step.counts.completed_edges = completions;
@@ -1352,10 +1401,11 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
         if (mesh.get_halfedge_property<TexCoord>("h:texcoord"))
             result.notes.push_back(
                 "corner texture coordinates (h:texcoord) are not carried by region subdivision");
-        if (options.features != FeatureSource::None && has_features(mesh))
+        if (sqrt3 && (options.features == FeatureSource::Auto ||
+                      (options.features == FeatureSource::Stored && has_features(mesh))))
             result.notes.push_back(
-                "features (sharp edges, corners) are not used nor carried by region subdivision "
-                "yet: subdivide the whole mesh to keep them");
+                "features (sharp edges, corners) are not used nor carried by Sqrt3's region "
+                "subdivision yet: use Loop or a butterfly, or subdivide the whole mesh");
         report.min_angle_out = flattest == kInvalidIndex
                                    ? 180.0
                                    : min_face_angle(result.levels.back().mesh, Face(flattest));

@@ -75,6 +75,12 @@
 // Provenance as in subdivision.h: "v:subdivision_level", "v:subdivision_stencil" (a vertex of
 // weight 0 is "even, kept"), "v:subdivision_parents"; "v:texcoord" is interpolated linearly;
 // "h:texcoord" and every other attribute are dropped (a note says so for "h:texcoord").
+// Features (core/features.h; options.features as in subdivide()): Loop and the butterflies
+// compute their stencils by the crease rules (the whole mesh's step, uniform_step_1to4() with
+// features), never flip a sharp edge in the closure, and carry them (both halves of a split
+// edge child_sharpness(), an edge not split its own sharpness, the new inner edges and cuts
+// smooth, old vertices their corner tags). Sqrt3's adaptive rule does not know them yet: a
+// note says so and the result has none.
 // The report gives the minimum angle before and after, and per iteration that of the closure's
 // triangles and of the coarse faces they replaced.
 #include <cstddef>

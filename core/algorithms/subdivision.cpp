@@ -1544,8 +1544,18 @@ UniformStep1to4 uniform_step_1to4_listed(const HalfedgeMesh& mesh, SubdivisionSc
     return step;
 }
 
+void check_subdivision_features(const HalfedgeMesh& mesh, const SubdivisionOptions& options) {
+    if (options.features == SubdivisionFeatures::Auto &&
+        !(std::isfinite(options.feature_angle) && options.feature_angle > 0 &&
+          options.feature_angle <= 180))
+        throw InvalidArgument("subdivide: the feature angle must be in (0, 180] degrees (got " +
+                              number_text(options.feature_angle) + ")");
+    if (const std::string bad = check_features(mesh); !bad.empty())
+        throw InvalidArgument("subdivide: invalid features: " + bad);
+}
+
 UniformStep1to4 uniform_step_1to4(const HalfedgeMesh& mesh, SubdivisionScheme scheme,
-                                  Progress& progress) {
+                                  Progress& progress, bool features) {
     if (mesh.has_garbage() || scheme == SubdivisionScheme::Sqrt3)
         throw InvalidArgument(
             "uniform_step_1to4: expected a compact mesh and a 1-to-4 scheme (loop, butterfly, "
@@ -1554,13 +1564,20 @@ UniformStep1to4 uniform_step_1to4(const HalfedgeMesh& mesh, SubdivisionScheme sc
     const Stage stage{progress, 0.0, 0.5};
     UniformStep1to4 step;
     step.positions.resize(std::size_t(m.nv) + m.ne);
+    Creases creases;
+    if (features) {
+        if (const auto s = mesh.get_edge_property<float>(kSharpnessProperty))
+            creases.sharp = s.vector().data();
+        if (const auto c = mesh.get_vertex_property<std::uint8_t>(kCornerProperty))
+            creases.corner = c.vector().data();
+    }
     if (!find_coincident_vertices(mesh).empty())
-        welded_positions_1to4(mesh, scheme, step.positions.data(), stage, Creases{});
+        welded_positions_1to4(mesh, scheme, step.positions.data(), stage, creases);
     else
-        positions_1to4(m, scheme, step.positions.data(), stage);
+        positions_1to4(m, scheme, step.positions.data(), stage, creases);
     HalfedgeMesh scratch;  // provenance_1to4() writes vertex properties: a vertex-only mesh
     scratch.resize_elements(std::size_t(m.nv) + m.ne, 0, 0);
-    provenance_1to4(m, scheme, scratch, Creases{});
+    provenance_1to4(m, scheme, scratch, creases);
     step.stencils = std::move(scratch.get_vertex_property<int>(kStencilName).vector());
     return step;
 }
@@ -1770,12 +1787,7 @@ SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& 
                               std::to_string(static_cast<long long>(faces)) +
                               " faces (at most 50 million): use fewer iterations");
     const bool auto_features = options.features == SubdivisionFeatures::Auto;
-    if (auto_features && !(std::isfinite(options.feature_angle) && options.feature_angle > 0 &&
-                           options.feature_angle <= 180))
-        throw InvalidArgument("subdivide: the feature angle must be in (0, 180] degrees (got " +
-                              number_text(options.feature_angle) + ")");
-    if (const std::string bad = check_features(mesh); !bad.empty())
-        throw InvalidArgument("subdivide: invalid features: " + bad);
+    check_subdivision_features(mesh, options);
     progress.check_cancelled();
     HalfedgeMesh collected;
     const HalfedgeMesh* current = &mesh;

@@ -150,6 +150,10 @@ struct SubdivisionResult {
 SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& options,
                             Progress& progress);
 
+/// Throws InvalidArgument for a feature angle outside (0, 180] with SubdivisionFeatures::Auto,
+/// or features that check_features() refuses (core/features.h). O(V + E).
+void check_subdivision_features(const HalfedgeMesh& mesh, const SubdivisionOptions& options);
+
 /// What one uniform step of a 1-to-4 scheme (Loop, Butterfly, Modified Butterfly) gives each
 /// vertex, without building the refined mesh (region subdivision,
 /// core/algorithms/region_subdivision.h, refines only part of the mesh with these stencils):
@@ -160,10 +164,11 @@ struct UniformStep1to4 {
     std::vector<int> stencils;  ///< SubdivisionStencil values
 };
 /// The uniform step's positions and stencils on `mesh`, which must be compact (no garbage)
-/// and free of pillows; throws InvalidArgument for garbage or Sqrt3. O(V + E) (plus the
-/// coincidence search, O(V log V)).
+/// and free of pillows; with `features`, by the crease rules of the mesh's features (as
+/// subdivide() with SubdivisionFeatures::Stored). Throws InvalidArgument for garbage or Sqrt3.
+/// O(V + E) (plus the coincidence search, O(V log V)).
 UniformStep1to4 uniform_step_1to4(const HalfedgeMesh& mesh, SubdivisionScheme scheme,
-                                  Progress& progress);
+                                  Progress& progress, bool features = false);
 
 /// The same values as uniform_step_1to4(), bit for bit, computed only for the flagged old
 /// vertices (`vertices`, one flag per vertex) and edges (`edges`, one per edge) from their
