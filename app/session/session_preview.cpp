@@ -10,6 +10,7 @@
 
 #include "app/ops/operation_entries.h"
 #include "core/algorithms/transfer_function.h"
+#include "core/features.h"
 
 namespace trilab::viewer {
 namespace {
@@ -55,6 +56,11 @@ std::optional<SessionPreviews::Predictable> SessionPreviews::predictable(
         const FairingOptions o = options_of<FairingOptions>(op);
         if (d.op != laplacian_of(o.op) || d.mass != MassMatrix::Normalizer ||
             d.end != SpectrumEnd::Smallest || o.preserve_volume)
+            return std::nullopt;
+        // Features in use (fixed, or sliding along their curves) change the operator's rows
+        // at the feature vertices, which the spectrum does not know: no prediction.
+        if (o.features == FeatureSource::Auto ||
+            (o.features == FeatureSource::Stored && has_features(core_.mesh())))
             return std::nullopt;
         if (d.base_positions.size() != core_.mesh().vertices_size()) return std::nullopt;
         return Predictable{doc.decomposition, o};

@@ -13,6 +13,7 @@
 #include "app/session/reference_figures.h"
 #include "core/algorithms/fairing.h"
 #include "core/algorithms/transfer_function.h"
+#include "core/features.h"
 
 namespace trilab::viewer {
 
@@ -143,7 +144,17 @@ void FairingTool::update_lens() {
             if (std::isfinite(view.measured[k]))
                 worst = std::max(worst, std::abs(view.measured[k] - predicted[k]));
         char buf[200];
-        if (fairing_is_linear(o.op))
+        const bool features =
+            o.features == FeatureSource::Auto ||
+            (o.features == FeatureSource::Stored && has_features(context_.session.mesh()));
+        if (features)
+            std::snprintf(
+                buf, sizeof buf,
+                "measured (dots): up to %.2g from the curve: the feature vertices %s, "
+                "which the spectrum does not know",
+                worst,
+                o.feature_mode == FeatureMode::Slide ? "slide along their curves" : "stay fixed");
+        else if (fairing_is_linear(o.op))
             std::snprintf(buf, sizeof buf,
                           "measured (dots): within %.2g of the curve (exact on a closed mesh; "
                           "fixed boundary vertices make the difference on an open one)",

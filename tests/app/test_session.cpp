@@ -22,6 +22,7 @@
 #include "core/algorithms/fairing.h"
 #include "core/algorithms/generators.h"
 #include "core/algorithms/transfer_function.h"
+#include "core/features.h"
 #include "core/io/mesh_io.h"
 #include "core/validate.h"
 #include "tests/app/pick_helpers.h"
@@ -525,6 +526,30 @@ TEST_CASE(
     CHECK_FALSE(s.previews().prediction_shown());
     CHECK(s.previews().shown(second));
     REQUIRE(unsetenv("TRILAB_ASYNC_PREDICTION_WORK") == 0);
+    require_valid(s);
+}
+
+TEST_CASE("a fairing run that uses features gets no spectral prediction", "[session][lens]") {
+    Session s;
+    s.execute(RunOperation{parse_operation("features --angle 5")});
+    s.finish_jobs();
+    REQUIRE(has_features(s.mesh()));
+    s.execute(Decompose{parse_operation("spectrum --full")});
+    s.finish_jobs();
+    REQUIRE(s.document().frequency.valid);
+    // The feature vertices stay (or slide along their curves): the spectrum does not know.
+    CHECK_FALSE(s.previews().predictable(parse_operation("smooth --integration implicit")));
+    CHECK_FALSE(s.previews().predictable(
+        parse_operation("smooth --integration implicit --feature-mode slide")));
+    CHECK_FALSE(s.previews().predictable(
+        parse_operation("smooth --integration implicit --features auto --feature-angle 30")));
+    // Told to ignore them, the run is the spectrum's filter again.
+    CHECK(
+        s.previews().predictable(parse_operation("smooth --integration implicit --features none")));
+    const Operation op = parse_operation("smooth --integration implicit --step 2");
+    s.execute(PreviewOperation{op});
+    CHECK_FALSE(s.previews().prediction_shown());
+    s.finish_jobs();
     require_valid(s);
 }
 
