@@ -1001,12 +1001,13 @@ std::size_t grow_sqrt3(const HalfedgeMesh& m, const Position& old_position, doub
 
 /// The Sqrt3 closure on `out`: each old edge (of `m`) between a split and an unsplit face
 /// keeps the split side's triangle (a, b, centroid); it is flipped (towards the pattern of
-/// the paper's next generation) when that raises the pair's minimum angle. Fills the flip
+/// the paper's next generation) when that raises the pair's minimum angle and it is not a
+/// feature edge (`sharp`: sharpness per edge, or null). Fills the flip
 /// counts and closure angles of `counts`; returns the closure's faces (flags per face of
 /// `out`).
 std::vector<std::uint8_t> sqrt3_closure(const HalfedgeMesh& m, HalfedgeMesh& out,
                                         const std::vector<std::uint8_t>& split_face,
-                                        RegionClosureCounts& counts,
+                                        const float* sharp, RegionClosureCounts& counts,
                                         std::vector<OddTriangle>& odd_triangles) {
     const Index nf = Index(m.faces_size());
     // The old edges of the split faces, the only ones the rule or the closure changes: flipped
@@ -1020,7 +1021,7 @@ std::vector<std::uint8_t> sqrt3_closure(const HalfedgeMesh& m, HalfedgeMesh& out
             const Face g = m.face(HalfedgeMesh::twin(h));
             if (!g.is_valid()) continue;
             if (split_face[g.idx()])
-                counts.flipped_edges += (h.idx() & 1u) == 0;
+                counts.flipped_edges += (h.idx() & 1u) == 0 && !(sharp && sharp[h.idx() >> 1] > 0);
             else
                 closure_edges.push_back(h.idx() >> 1);
         }
@@ -1031,7 +1032,9 @@ std::vector<std::uint8_t> sqrt3_closure(const HalfedgeMesh& m, HalfedgeMesh& out
         const Face f0 = m.face(HalfedgeMesh::halfedge(Edge(e), 0));
         const Face f1 = m.face(HalfedgeMesh::halfedge(Edge(e), 1));
         touched[f0.idx()] = touched[f1.idx()] = 1;
-        if (flip_improves(out, Edge(e))) {
+        if (sharp && sharp[e] > 0) {
+            // A feature edge stays (Kobbelt's boundary rule): neither flipped nor completed.
+        } else if (flip_improves(out, Edge(e))) {
             out.flip(Edge(e));
             ++counts.closure_flips;
         } else {
@@ -1065,12 +1068,37 @@ void add_sqrt3_old_vertices(const HalfedgeMesh& m, const Selection& w, Index n_l
     }
 }
 
+/// The features of `m` carried onto its adaptive Sqrt3 step `out` (old edge e keeps index e,
+/// the spokes follow): an old edge at a split face takes child_sharpness() of its sharpness
+/// (one step finer, as subdivide() carries them), one between unsplit faces keeps its own,
+/// the spokes are smooth; old vertices keep their corner tags, centroids have none. O(V + E).
+void carry_sqrt3_features(const HalfedgeMesh& m, const std::vector<std::uint8_t>& split_face,
+                          HalfedgeMesh& out) {
+    const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size());
+    if (const auto in = m.get_edge_property<float>(kSharpnessProperty)) {
+        std::vector<float>& sharp = out.add_edge_property<float>(kSharpnessProperty, 0.0f).vector();
+        for (Index e = 0; e < ne; ++e) {
+            const Face f0 = m.face(HalfedgeMesh::halfedge(Edge(e), 0));
+            const Face f1 = m.face(HalfedgeMesh::halfedge(Edge(e), 1));
+            const bool refined =
+                (f0.is_valid() && split_face[f0.idx()]) || (f1.is_valid() && split_face[f1.idx()]);
+            const float s = in.vector()[e];
+            sharp[e] = refined ? child_sharpness(s) : s;
+        }
+    }
+    if (const auto in = m.get_vertex_property<std::uint8_t>(kCornerProperty)) {
+        std::vector<std::uint8_t>& corner =
+            out.add_vertex_property<std::uint8_t>(kCornerProperty, 0).vector();
+        std::copy_n(in.vector().begin(), nv, corner.begin());
+    }
+}
+
 /// One adaptive Sqrt3 step on `m` (compact) with weights `w`. The vertices from `n_level` on
 /// are the centroids complete_sqrt3() added to the previous level: new vertices of this one.
-RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, Index n_level, int level,
-                               bool morph, bool local_closure, double target_angle,
-                               const std::vector<double>& coarse_flat, bool keep_flatness,
-                               Progress& progress) {
+RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, bool features,
+                               Index n_level, int level, bool morph, bool local_closure,
+                               double target_angle, const std::vector<double>& coarse_flat,
+                               bool keep_flatness, Progress& progress) {
     const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size()),
                 nf = Index(m.faces_size());
     const std::vector<std::uint8_t> selected = region_faces(m, w);
@@ -1078,8 +1106,20 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, Index 
     for (Index f = 0; f < nf; ++f) step.counts.selected_faces += selected[f];
     const Point* x = m.positions().data();
     const std::vector<Point> relaxed = sqrt3_relaxed(m, w);
+    // Features: sharp edges act as boundaries (Kobbelt 2000, section 4: never flipped, and in
+    // this odd-step rule never split), crease and corner vertices stay.
+    const float* sharp = nullptr;
+    if (features)
+        if (const auto sharpness = m.get_edge_property<float>(kSharpnessProperty))
+            sharp = sharpness.vector().data();
+    std::vector<VertexClass> classes;
+    if (features) classes = classify_vertices(m, false).classes;
+    const auto on_feature = [&](Index v) {
+        return !classes.empty() && classes[v] >= VertexClass::Crease;
+    };
     const auto moves = [&](Index v) {
-        return w[v] > 0.0f && !m.is_isolated(Vertex(v)) && !m.is_boundary(Vertex(v));
+        return w[v] > 0.0f && !m.is_isolated(Vertex(v)) && !m.is_boundary(Vertex(v)) &&
+               !on_feature(v);
     };
     const auto old_position = [&](Index v) {
         return moves(v) ? blend_by_weight(x[v], relaxed[v], w[v]) : x[v];
@@ -1124,10 +1164,15 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, Index 
     const auto spoke_out = [&](Index hx) { return spoke_in(hx) + 1; };
     const auto flipped = [&](Index hx) {
         const Face g = face_in[hx ^ 1u];
-        return g.is_valid() && split_face[g.idx()] != 0;
+        return g.is_valid() && split_face[g.idx()] != 0 && !(sharp && sharp[hx >> 1] > 0.0f);
     };
     NewVertices nvx(out, morph);
     add_sqrt3_old_vertices(m, w, n_level, moves, nvx);
+    for (Index v = 0; v < std::min(nv, n_level); ++v)
+        if (w[v] > 0.0f && on_feature(v))
+            nvx.stencil[v] =
+                int(classes[v] == VertexClass::Corner ? SubdivisionStencil::EvenCorner
+                                                      : SubdivisionStencil::EvenCreaseCurve);
     Point* p = out.positions().data();
     for (Index f = 0; f < nf; ++f) {
         if (!split_face[f]) continue;
@@ -1171,7 +1216,8 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, Index 
         if (nvx.stencil[v] == int(SubdivisionStencil::EvenRelaxed))
             p[v] = blend_by_weight(x[v], relaxed[v], w[v]);
     const std::vector<std::uint8_t> closure =
-        sqrt3_closure(m, out, split_face, step.counts, step.odd_triangles);
+        sqrt3_closure(m, out, split_face, sharp, step.counts, step.odd_triangles);
+    if (features) carry_sqrt3_features(m, split_face, out);
     // Faces of the coarse level left as they were: not split, not flipped, no vertex of weight
     // > 0 (a face counted as changed that is not, one with a boundary vertex, gets the same
     // value computed anew).
@@ -1254,8 +1300,11 @@ std::size_t complete_sqrt3(HalfedgeMesh& m, Selection& w, std::vector<double>& f
         m.flip(e);
         ++flips;
     }
+    const auto sharpness = m.get_edge_property<float>(kSharpnessProperty);
     for (const Edge e : outer)
-        if (e.is_valid() && !m.is_boundary(e) && flip_improves(m, e)) m.flip(e);
+        if (e.is_valid() && !m.is_boundary(e) &&
+            !(sharpness && sharpness.vector()[e.idx()] > 0.0f) && flip_improves(m, e))
+            m.flip(e);
     // Every face the completion changed has a new centroid as a corner: measured anew.
     flatness.resize(m.faces_size(), 0.0);
     for (Index v = first_new; v < Index(m.vertices_size()); ++v)
@@ -1330,9 +1379,9 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
             current = &collected;
         }
         const bool sqrt3 = options.scheme == SubdivisionScheme::Sqrt3;
-        // Features: the 1-to-4 schemes refine by their crease rules and carry them; Sqrt3's
-        // adaptive rule does not know them yet (a note says so, and they are dropped).
-        if (options.features == SubdivisionFeatures::Auto && !sqrt3) {
+        // Features: the 1-to-4 schemes refine by their crease rules, Sqrt3 keeps sharp edges as
+        // boundaries; both carry them.
+        if (options.features == SubdivisionFeatures::Auto) {
             if (current != &collected) collected = mesh;
             current = &collected;
             FeatureDetectionOptions d;
@@ -1373,7 +1422,7 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
                 current = &completed;
             }
             RegionStep step =
-                sqrt3 ? refine_region_sqrt3(*current, weights, n_level, it, morph,
+                sqrt3 ? refine_region_sqrt3(*current, weights, features, n_level, it, morph,
                                             !options.global_closure, report.min_angle_in, flatness,
                                             keep_flatness, progress)
                       : refine_region_1to4(*current, weights, options.scheme, features, it, morph,
@@ -1401,11 +1450,6 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
         if (mesh.get_halfedge_property<TexCoord>("h:texcoord"))
             result.notes.push_back(
                 "corner texture coordinates (h:texcoord) are not carried by region subdivision");
-        if (sqrt3 && (options.features == FeatureSource::Auto ||
-                      (options.features == FeatureSource::Stored && has_features(mesh))))
-            result.notes.push_back(
-                "features (sharp edges, corners) are not used nor carried by Sqrt3's region "
-                "subdivision yet: use Loop or a butterfly, or subdivide the whole mesh");
         report.min_angle_out = flattest == kInvalidIndex
                                    ? 180.0
                                    : min_face_angle(result.levels.back().mesh, Face(flattest));

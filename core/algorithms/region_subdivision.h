@@ -79,8 +79,10 @@
 // compute their stencils by the crease rules (the whole mesh's step, uniform_step_1to4() with
 // features), never flip a sharp edge in the closure, and carry them (both halves of a split
 // edge child_sharpness(), an edge not split its own sharpness, the new inner edges and cuts
-// smooth, old vertices their corner tags). Sqrt3's adaptive rule does not know them yet: a
-// note says so and the result has none.
+// smooth, old vertices their corner tags). Sqrt3 treats sharp edges as boundaries (Kobbelt
+// 2000, section 4, its odd-step rule at every level: never flipped, completed nor split), keeps
+// crease and corner vertices where they are, and carries them (an old edge at a split face one
+// step less sharp).
 // The report gives the minimum angle before and after, and per iteration that of the closure's
 // triangles and of the coarse faces they replaced.
 #include <cstddef>
