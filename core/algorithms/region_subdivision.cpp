@@ -774,31 +774,37 @@ std::size_t damp_flat_edge_vertices(HalfedgeMesh& out, const std::vector<Index>&
     return moved;
 }
 
-/// The features of `m` (core/features.h) carried onto its red-green refinement `out`
-/// (build_red_green()'s numbering: old edge e keeps index e, the second half of split edge
-/// number k is edge ne + k): both halves of a split edge take child_sharpness() of its
-/// sharpness (one level finer, as subdivide() carries them), an edge not split keeps its own,
-/// the red faces' inner edges and the green cuts are smooth; old vertices keep their corner
-/// tags, new ones have none. O(V + E).
-void carry_region_features(const HalfedgeMesh& m, const std::vector<std::uint8_t>& split,
-                           HalfedgeMesh& out) {
-    const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size());
+/// The features of `m` (core/features.h) carried onto a refinement `out` in which old edges
+/// and old vertices keep their indices: carry_edge(sharpness of out, e, s) writes what old
+/// edge e (sharpness s) leaves (new edges are smooth unless it writes them); old vertices keep
+/// their corner tags, new ones have none. O(V + E).
+template <typename CarryEdge>
+void carry_features(const HalfedgeMesh& m, HalfedgeMesh& out, CarryEdge&& carry_edge) {
     if (const auto in = m.get_edge_property<float>(kSharpnessProperty)) {
         std::vector<float>& sharp = out.add_edge_property<float>(kSharpnessProperty, 0.0f).vector();
-        for (Index e = 0, k = 0; e < ne; ++e) {
-            const float s = in.vector()[e];
-            if (!split[e]) {
-                sharp[e] = s;
-                continue;
-            }
-            sharp[e] = sharp[ne + k++] = child_sharpness(s);
-        }
+        for (Index e = 0; e < Index(m.edges_size()); ++e) carry_edge(sharp, e, in.vector()[e]);
     }
     if (const auto in = m.get_vertex_property<std::uint8_t>(kCornerProperty)) {
         std::vector<std::uint8_t>& corner =
             out.add_vertex_property<std::uint8_t>(kCornerProperty, 0).vector();
-        std::copy_n(in.vector().begin(), nv, corner.begin());
+        std::copy_n(in.vector().begin(), m.vertices_size(), corner.begin());
     }
+}
+
+/// The features of `m` carried onto its red-green refinement `out` (build_red_green()'s
+/// numbering: the second half of split edge number k is edge ne + k): both halves of a split
+/// edge take child_sharpness() of its sharpness (one level finer, as subdivide() carries them),
+/// an edge not split keeps its own, the red faces' inner edges and the green cuts are smooth.
+void carry_region_features(const HalfedgeMesh& m, const std::vector<std::uint8_t>& split,
+                           HalfedgeMesh& out) {
+    const Index ne = Index(m.edges_size());
+    Index k = 0;  // split edges so far
+    carry_features(m, out, [&](std::vector<float>& sharp, Index e, float s) {
+        if (!split[e])
+            sharp[e] = s;
+        else
+            sharp[e] = sharp[ne + k++] = child_sharpness(s);
+    });
 }
 
 /// One red-green step of a 1-to-4 scheme on `m` (compact) with weights `w`.
@@ -1068,29 +1074,21 @@ void add_sqrt3_old_vertices(const HalfedgeMesh& m, const Selection& w, Index n_l
     }
 }
 
-/// The features of `m` carried onto its adaptive Sqrt3 step `out` (old edge e keeps index e,
-/// the spokes follow): an old edge at a split face takes child_sharpness() of its sharpness
-/// (one step finer, as subdivide() carries them), one between unsplit faces keeps its own,
-/// the spokes are smooth; old vertices keep their corner tags, centroids have none. O(V + E).
+/// The features of `m` carried onto its adaptive Sqrt3 step `out` (the spokes follow the old
+/// edges): an old edge at a split face takes child_sharpness() of its sharpness (one step finer,
+/// as subdivide() carries them), one between unsplit faces keeps its own, the spokes are
+/// smooth.
 void carry_sqrt3_features(const HalfedgeMesh& m, const std::vector<std::uint8_t>& split_face,
                           HalfedgeMesh& out) {
-    const Index nv = Index(m.vertices_size()), ne = Index(m.edges_size());
-    if (const auto in = m.get_edge_property<float>(kSharpnessProperty)) {
-        std::vector<float>& sharp = out.add_edge_property<float>(kSharpnessProperty, 0.0f).vector();
-        for (Index e = 0; e < ne; ++e) {
-            const Face f0 = m.face(HalfedgeMesh::halfedge(Edge(e), 0));
-            const Face f1 = m.face(HalfedgeMesh::halfedge(Edge(e), 1));
-            const bool refined =
-                (f0.is_valid() && split_face[f0.idx()]) || (f1.is_valid() && split_face[f1.idx()]);
-            const float s = in.vector()[e];
-            sharp[e] = refined ? child_sharpness(s) : s;
-        }
-    }
-    if (const auto in = m.get_vertex_property<std::uint8_t>(kCornerProperty)) {
-        std::vector<std::uint8_t>& corner =
-            out.add_vertex_property<std::uint8_t>(kCornerProperty, 0).vector();
-        std::copy_n(in.vector().begin(), nv, corner.begin());
-    }
+    const auto split_at = [&](Halfedge h) {
+        const Face f = m.face(h);
+        return f.is_valid() && split_face[f.idx()] != 0;
+    };
+    carry_features(m, out, [&](std::vector<float>& sharp, Index e, float s) {
+        const bool refined = split_at(HalfedgeMesh::halfedge(Edge(e), 0)) ||
+                             split_at(HalfedgeMesh::halfedge(Edge(e), 1));
+        sharp[e] = refined ? child_sharpness(s) : s;
+    });
 }
 
 /// One adaptive Sqrt3 step on `m` (compact) with weights `w`. The vertices from `n_level` on
