@@ -727,10 +727,12 @@ std::vector<std::uint8_t> with_earlier_closure(const std::vector<std::uint8_t>& 
 /// the extraordinary-vertex stencils read the closure's flat, irregular ring and put the
 /// vertex up to a tenth of the edge off the chord: Modified Butterfly on the default model fell
 /// to 16.4 degrees at level 3 for a bound of 23.8.) `placed`: the new vertices at a stencil
-/// (ascending), `midpoint`: their edges' midpoints. Returns the number moved.
+/// (ascending), `midpoint`: their edges' midpoints; `stencil`: the level's provenance, where
+/// each vertex moved is marked SubdivisionStencil::OddDamped. Returns the number moved.
 /// O(placed and their faces).
 std::size_t damp_flat_edge_vertices(HalfedgeMesh& out, const std::vector<Index>& placed,
-                                    const std::vector<Point>& midpoint, double bound) {
+                                    const std::vector<Point>& midpoint, double bound,
+                                    int* stencil_of) {
     if (placed.empty()) return 0;
     const double cos_bound = std::cos(bound * kPi / 180.0);
     Point* p = out.positions().data();
@@ -740,7 +742,7 @@ std::size_t damp_flat_edge_vertices(HalfedgeMesh& out, const std::vector<Index>&
     const auto slot = [&](Index v) {
         return v < first || v - first >= slot_of.size() ? kInvalidIndex : slot_of[v - first];
     };
-    std::vector<Point> stencil(placed.size());
+    std::vector<Point> scheme_position(placed.size());
     std::vector<int> halvings(placed.size(), 0);  // 5: at the midpoint
     std::vector<Index> pending, next;
     // The placed vertices of the triangles at `v` flatter than the bound, still movable.
@@ -762,11 +764,14 @@ std::size_t damp_flat_edge_vertices(HalfedgeMesh& out, const std::vector<Index>&
         next.clear();
         for (Index i : pending) {
             const Index v = placed[i];
-            if (halvings[i] == 0) stencil[i] = p[v], ++moved;
+            if (halvings[i] == 0) {
+                scheme_position[i] = p[v], ++moved;
+                stencil_of[v] = int(SubdivisionStencil::OddDamped);
+            }
             ++halvings[i];
             p[v] = halvings[i] == 5 ? midpoint[i]
                                     : Point(midpoint[i] + std::ldexp(1.0, -halvings[i]) *
-                                                              (stencil[i] - midpoint[i]));
+                                                              (scheme_position[i] - midpoint[i]));
         }
         for (Index i : pending) flat_triangles_at(placed[i], next);
         pending.swap(next);
@@ -925,7 +930,7 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
         }
     }
     step.counts.damped_vertices =
-        damp_flat_edge_vertices(out, placed, placed_midpoint, 0.5 * target_angle);
+        damp_flat_edge_vertices(out, placed, placed_midpoint, 0.5 * target_angle, nvx.stencil);
     step.counts.closure_flips = improve_closure(out, all_closure);
     if (keep_flatness) step.closure_faces = std::move(all_closure);
     step.counts.min_angle_touched = min_angle_of(m, touched);

@@ -1633,6 +1633,9 @@ const char* subdivision_stencil_label(SubdivisionStencil stencil) {
             return "odd, sharp edge split in three (Sqrt3)";
         case SubdivisionStencil::OddFourPoint:
             return "odd, edge point on a sharp edge (four-point rule along the crease)";
+        case SubdivisionStencil::OddDamped:
+            return "odd, edge point moved from its stencil toward the edge's midpoint (region "
+                   "subdivision: no triangle flatter than half the input's smallest angle)";
     }
     return "unknown";
 }

@@ -105,6 +105,7 @@ enum class SubdivisionStencil : int {
     EvenCreaseCurve,     ///< Sqrt3 with features: two sharp edges (kept, or 4/19/4 along them)
     OddCreaseSplit,      ///< Sqrt3 with features: one of the two points splitting a sharp edge
     OddFourPoint,        ///< butterflies with features: the four-point rule along a sharp edge
+    OddDamped,           ///< region subdivision: moved from its stencil toward its edge's midpoint
 };
 /// Words for a stencil ("even, regular (valence 6)", "odd, face centroid").
 const char* subdivision_stencil_label(SubdivisionStencil stencil);
