@@ -827,40 +827,29 @@ RegionStep refine_region_1to4(const HalfedgeMesh& m, const Selection& w, Subdivi
     // On the input, the same pass computes the faces' flatness (flatness_of()).
     std::vector<std::uint8_t> selected(nf, 0), near(nf, 0), split(ne, 0);
     const Point* x = m.positions().data();
-    if (coarse_flat.empty()) {
-        coarse_flat.resize(nf);
-        Index flattest = kInvalidIndex;
-        double largest = 0;
-        const Vertex* to = m.halfedge_to_array().data();
-        const Halfedge* next_of = m.halfedge_next_array().data();
-        const Halfedge* face_halfedge = m.face_halfedge_array().data();
-        for (Index f = 0; f < nf; ++f) {
-            const Index h0 = face_halfedge[f].idx(), h1 = next_of[h0].idx(), h2 = next_of[h1].idx();
-            const Index v0 = to[h0].idx(), v1 = to[h1].idx(), v2 = to[h2].idx();
+    const bool measure = coarse_flat.empty();
+    if (measure) coarse_flat.resize(nf);
+    Index flattest = kInvalidIndex;
+    double largest = 0;
+    const Vertex* to = m.halfedge_to_array().data();
+    const Halfedge* next_of = m.halfedge_next_array().data();
+    const Halfedge* face_halfedge = m.face_halfedge_array().data();
+    for (Index f = 0; f < nf; ++f) {
+        const Index h0 = face_halfedge[f].idx(), h1 = next_of[h0].idx(), h2 = next_of[h1].idx();
+        const Index v0 = to[h0].idx(), v1 = to[h1].idx(), v2 = to[h2].idx();
+        if (measure) {
             const double flat = triangle_flatness(x[v0], x[v1], x[v2]);
             coarse_flat[f] = flat;
             if (flattest == kInvalidIndex || flat > largest) largest = flat, flattest = f;
-            const bool in0 = w[v0] > 0.0f, in1 = w[v1] > 0.0f, in2 = w[v2] > 0.0f;
-            near[f] = in0 || in1 || in2;
-            if (!(in0 && in1 && in2)) continue;
-            selected[f] = 1;
-            split[h0 >> 1] = split[h1 >> 1] = split[h2 >> 1] = 1;
         }
-        target_angle = flattest == kInvalidIndex ? 180.0 : min_face_angle(m, Face(flattest));
-    } else {
-        const Vertex* to = m.halfedge_to_array().data();
-        const Halfedge* next_of = m.halfedge_next_array().data();
-        const Halfedge* face_halfedge = m.face_halfedge_array().data();
-        for (Index f = 0; f < nf; ++f) {
-            const Index h0 = face_halfedge[f].idx(), h1 = next_of[h0].idx(), h2 = next_of[h1].idx();
-            const bool in0 = w[to[h0].idx()] > 0.0f, in1 = w[to[h1].idx()] > 0.0f,
-                       in2 = w[to[h2].idx()] > 0.0f;
-            near[f] = in0 || in1 || in2;
-            if (!(in0 && in1 && in2)) continue;
-            selected[f] = 1;
-            split[h0 >> 1] = split[h1 >> 1] = split[h2 >> 1] = 1;
-        }
+        const bool in0 = w[v0] > 0.0f, in1 = w[v1] > 0.0f, in2 = w[v2] > 0.0f;
+        near[f] = in0 || in1 || in2;
+        if (!(in0 && in1 && in2)) continue;
+        selected[f] = 1;
+        split[h0 >> 1] = split[h1 >> 1] = split[h2 >> 1] = 1;
     }
+    if (measure)
+        target_angle = flattest == kInvalidIndex ? 180.0 : min_face_angle(m, Face(flattest));
     const RegionStencils uniform = region_stencils(m, w, scheme, features, progress);
     progress.check_cancelled();
     RegionStep step;
@@ -1096,8 +1085,37 @@ void carry_sqrt3_features(const HalfedgeMesh& m, const std::vector<std::uint8_t>
     });
 }
 
+/// The features a Sqrt3 region step keeps (Kobbelt 2000, section 4: creases as boundaries):
+/// sharp edges are never flipped (nor, in this odd-step rule, split), crease and corner
+/// vertices stay. Without features (or none stored) nothing is kept.
+struct Sqrt3Features {
+    const float* sharp = nullptr;      ///< sharpness per edge, or null
+    std::vector<VertexClass> classes;  ///< per vertex, or empty
+    Sqrt3Features(const HalfedgeMesh& m, bool features) {
+        if (!features) return;
+        if (const auto sharpness = m.get_edge_property<float>(kSharpnessProperty))
+            sharp = sharpness.vector().data();
+        classes = classify_vertices(m, false).classes;
+    }
+    bool on_feature(Index v) const { return !classes.empty() && classes[v] >= VertexClass::Crease; }
+    /// The provenance of the first `n` old vertices that weigh > 0 and stay on a feature.
+    void label_kept(const Selection& w, Index n, int* stencil) const {
+        for (Index v = 0; v < n; ++v)
+            if (w[v] > 0.0f && on_feature(v))
+                stencil[v] =
+                    int(classes[v] == VertexClass::Corner ? SubdivisionStencil::EvenCorner
+                                                          : SubdivisionStencil::EvenCreaseCurve);
+    }
+};
+
 /// One adaptive Sqrt3 step on `m` (compact) with weights `w`. The vertices from `n_level` on
 /// are the centroids complete_sqrt3() added to the previous level: new vertices of this one.
+/// Built straight into the arrays. Split face number i (in face order) gets the centroid
+/// nv + i, the spokes ne + 3i + k (from the start of its halfedge k to the centroid) and keeps
+/// one triangle per halfedge ("slot"): slot 0 is face f, slots 1 and 2 the faces nf + 2i and
+/// nf + 2i + 1. Slot x (u -> v, in face F) is the triangle (u, v, c_F) when the face across x
+/// is not split; when it is (G), x becomes c_F -> c_G, the old edge flipped, and the slot is
+/// (c_F, c_G, v).
 RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, bool features,
                                Index n_level, int level, bool morph, bool local_closure,
                                double target_angle, const std::vector<double>& coarse_flat,
@@ -1109,20 +1127,10 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, bool f
     for (Index f = 0; f < nf; ++f) step.counts.selected_faces += selected[f];
     const Point* x = m.positions().data();
     const std::vector<Point> relaxed = sqrt3_relaxed(m, w);
-    // Features: sharp edges act as boundaries (Kobbelt 2000, section 4: never flipped, and in
-    // this odd-step rule never split), crease and corner vertices stay.
-    const float* sharp = nullptr;
-    if (features)
-        if (const auto sharpness = m.get_edge_property<float>(kSharpnessProperty))
-            sharp = sharpness.vector().data();
-    std::vector<VertexClass> classes;
-    if (features) classes = classify_vertices(m, false).classes;
-    const auto on_feature = [&](Index v) {
-        return !classes.empty() && classes[v] >= VertexClass::Crease;
-    };
+    const Sqrt3Features kept(m, features);
     const auto moves = [&](Index v) {
         return w[v] > 0.0f && !m.is_isolated(Vertex(v)) && !m.is_boundary(Vertex(v)) &&
-               !on_feature(v);
+               !kept.on_feature(v);
     };
     const auto old_position = [&](Index v) {
         return moves(v) ? blend_by_weight(x[v], relaxed[v], w[v]) : x[v];
@@ -1134,12 +1142,6 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, bool f
     check_face_limit(std::size_t(nf) + 2 * step.counts.red_faces);
     check_no_refined_pillow(m, [&](Face f) { return split_face[f.idx()] != 0; });
     progress.check_cancelled();
-    // Built straight into the arrays. Split face number i (in face order) gets the centroid
-    // nv + i, the spokes ne + 3i + k (from the start of its halfedge k to the centroid) and
-    // keeps one triangle per halfedge ("slot"): slot 0 is face f, slots 1 and 2 the faces
-    // nf + 2i and nf + 2i + 1. Slot x (u -> v, in face F) is the triangle (u, v, c_F) when the
-    // face across x is not split; when it is (G), x becomes c_F -> c_G, the old edge flipped,
-    // and the slot is (c_F, c_G, v).
     const Index n_split_faces = Index(step.counts.red_faces);
     std::vector<Index> split_number(nf, kInvalidIndex);
     for (Index f = 0, i = 0; f < nf; ++f)
@@ -1167,15 +1169,12 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, bool f
     const auto spoke_out = [&](Index hx) { return spoke_in(hx) + 1; };
     const auto flipped = [&](Index hx) {
         const Face g = face_in[hx ^ 1u];
-        return g.is_valid() && split_face[g.idx()] != 0 && !(sharp && sharp[hx >> 1] > 0.0f);
+        return g.is_valid() && split_face[g.idx()] != 0 &&
+               !(kept.sharp && kept.sharp[hx >> 1] > 0.0f);
     };
     NewVertices nvx(out, morph);
     add_sqrt3_old_vertices(m, w, n_level, moves, nvx);
-    for (Index v = 0; v < std::min(nv, n_level); ++v)
-        if (w[v] > 0.0f && on_feature(v))
-            nvx.stencil[v] =
-                int(classes[v] == VertexClass::Corner ? SubdivisionStencil::EvenCorner
-                                                      : SubdivisionStencil::EvenCreaseCurve);
+    kept.label_kept(w, std::min(nv, n_level), nvx.stencil);
     Point* p = out.positions().data();
     for (Index f = 0; f < nf; ++f) {
         if (!split_face[f]) continue;
@@ -1219,7 +1218,7 @@ RegionStep refine_region_sqrt3(const HalfedgeMesh& m, const Selection& w, bool f
         if (nvx.stencil[v] == int(SubdivisionStencil::EvenRelaxed))
             p[v] = blend_by_weight(x[v], relaxed[v], w[v]);
     const std::vector<std::uint8_t> closure =
-        sqrt3_closure(m, out, split_face, sharp, step.counts, step.odd_triangles);
+        sqrt3_closure(m, out, split_face, kept.sharp, step.counts, step.odd_triangles);
     if (features) carry_sqrt3_features(m, split_face, out);
     // Faces of the coarse level left as they were: not split, not flipped, no vertex of weight
     // > 0 (a face counted as changed that is not, one with a boundary vertex, gets the same
