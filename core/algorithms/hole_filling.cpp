@@ -43,6 +43,8 @@ constexpr int kRepairRounds = 3;
 constexpr int kOptimizeSweeps = 3;
 /// Random moves tried per cluster of new vertices around a triangle still under 20 degrees.
 constexpr int kClusterTries = 2000;
+/// Rounds of the last fairing, each holding more vertices where a triangle got too narrow.
+constexpr int kRefairRounds = 4;
 /// Only new vertices with an angle under this around them are moved by the angle optimization.
 constexpr double kOptimizeBelowDeg = 25.0;
 /// A loop whose best triangulation bends by more than this between neighbouring triangles (or
@@ -966,8 +968,8 @@ PolygonSoup neighbourhood(const HalfedgeMesh& mesh, Index v0, int rings,
 }
 
 /// Solves L^order x = 0 for the new vertices over `op`'s weights; false with `why` on failure.
-bool solve_fairing(HalfedgeMesh& mesh, Index v0, int order, LaplacianOperator op,
-                   std::string& why) {
+bool solve_fairing(HalfedgeMesh& mesh, Index v0, int order, LaplacianOperator op, std::string& why,
+                   const std::vector<std::uint8_t>* held = nullptr) {
     std::vector<Vertex> local;
     PolygonSoup soup = neighbourhood(mesh, v0, order, local);
     LoadReport load;
@@ -986,7 +988,8 @@ bool solve_fairing(HalfedgeMesh& mesh, Index v0, int order, LaplacianOperator op
     std::vector<Index> row_of_unknown;
     for (std::size_t r = 0; r < rows; ++r) {
         const Index li = lap.map.vertex_of[r].idx();
-        if (li < local.size() && local[li].idx() >= v0) {
+        if (li < local.size() && local[li].idx() >= v0 &&
+            !(held && (*held)[local[li].idx() - v0])) {
             unknown_of[r] = Index(row_of_unknown.size());
             row_of_unknown.push_back(Index(r));
         }
@@ -1042,6 +1045,35 @@ void fair_patch(HalfedgeMesh& mesh, Index v0, HoleFairing fairing, std::size_t l
     std::copy(before.begin(), before.end(), mesh.positions().begin() + v0);
     notes.push_back("loop " + std::to_string(loop) + ": fairing failed (" + why_umbrella +
                     "); the patch is refined but not faired");
+}
+
+/// A last fairing of the patch after the angle repairs (which moved vertices off the faired
+/// surface): new vertices of any triangle it would take under 20 degrees, or under its smallest
+/// angle now when that is under 20, are held where they are and the rest faired again (up to
+/// kRefairRounds rounds); nothing changes where that does not settle or the solve fails.
+void refair_keeping_angles(HalfedgeMesh& mesh, Index v0, Index f0, HoleFairing fairing) {
+    if (fairing == HoleFairing::None || v0 >= mesh.vertices_size()) return;
+    const int order = fairing == HoleFairing::C2 ? 3 : 2;
+    const std::vector<Point> before(mesh.positions().begin() + v0, mesh.positions().end());
+    std::vector<double> angle_before;
+    for (Index fi = f0; fi < Index(mesh.faces_size()); ++fi)
+        angle_before.push_back(min_face_angle(mesh, Face(fi)));
+    std::vector<std::uint8_t> held(before.size(), 0);
+    for (int round = 0; round < kRefairRounds; ++round) {
+        std::string why;
+        if (!solve_fairing(mesh, v0, order, LaplacianOperator::CurvatureFlow, why, &held)) break;
+        bool worse = false;
+        for (Index fi = f0; fi < Index(mesh.faces_size()); ++fi) {
+            const double a = min_face_angle(mesh, Face(fi)), b = angle_before[fi - f0];
+            if (!(a < 20.0 && a < b - 1e-9) && !std::isnan(a)) continue;
+            worse = true;
+            for (Vertex v : mesh.face_vertices(Face(fi)))
+                if (v.idx() >= v0) held[v.idx() - v0] = 1;
+        }
+        if (!worse) return;
+        std::copy(before.begin(), before.end(), mesh.positions().begin() + v0);
+    }
+    std::copy(before.begin(), before.end(), mesh.positions().begin() + v0);
 }
 
 // ---- attributes -------------------------------------------------------------------------------
@@ -1167,6 +1199,7 @@ std::string fill_loop(HalfedgeMesh& mesh, const BoundaryLoop& loop, std::size_t 
         patch.raise_min_angles();
         patch.optimize_positions(kOptimizeSweeps);
     }
+    refair_keeping_angles(mesh, v0, f0, o.fairing);
     if (patch.count_small_angles() > 0) patch.optimize_clusters();
     return "";
 }
