@@ -29,11 +29,11 @@ namespace trilab {
 namespace {
 
 /// The density factor: a triangle is split while kDensityFactor·|c - v| exceeds the spacing.
-/// Liepa's sqrt(2) leaves the fill's edges 13-20 % longer than the old edges within two rings
-/// of the rim (the bunny's five holes, holes cut in spot and the horse; CGAL's fills, also
-/// sqrt(2), the same), and its rim triangles as much taller, so the fill bends across the rim
-/// more than the surface next to it; 1.6 brings the mean edge length within 1-8 % of the old.
-/// (On the cow, whose triangles vary widely in size, the fill was 12 % finer and becomes 16 %.)
+/// Liepa's sqrt(2) leaves the fill's edges 13-22 % longer than the old edges within two rings
+/// of the rim (the bunny's five holes, holes cut in spot and the horse, a sphere's cap; CGAL's
+/// fills, also sqrt(2), 14-20 %), and a coarser fill bends more across its rim than the surface
+/// beside it; 1.6 brings the mean edge length within 1-9 % of the old. (On the cow, whose
+/// triangles vary widely in size, the fill was 12 % finer and becomes 16 % finer.)
 constexpr double kDensityFactor = 1.6;
 /// Caps that keep a pathological rim from running away (each hit is reported).
 constexpr int kMaxRefineRounds = 60;

@@ -23,9 +23,9 @@
 //  2. Refinement to the density around the hole (Liepa section 3.2): each rim vertex gets the
 //     mean length s of its edges; a new triangle is split at its centroid c (s(c) the mean of
 //     its corners') while 1.6·|c - v| exceeds both s(c) and s(v) for each corner v (Liepa's
-//     factor is sqrt(2), which leaves the fill's edges 13-20 % longer than the old ones around
+//     factor is sqrt(2), which leaves the fill's edges 13-22 % longer than the old ones around
 //     the hole and the fill bending more across its rim than the surface beside it; 1.6 brings
-//     them within 1-8 %), and a
+//     them within 1-9 %), and a
 //     new edge longer than twice its ends' mean s is split at its midpoint; after each split
 //     Lawson's flips make the new edges Delaunay again (the two angles opposite an edge sum to
 //     at most 180 degrees), and the faces a split or flip touched are tested again (a worklist,
