@@ -731,22 +731,29 @@ private:
         mesh_.position(v) = p;
         return p != start;
     }
+    /// A triangle of a group: its corners and its unit normal before the moves.
+    struct GroupFace {
+        std::array<Vertex, 3> corners;
+        Vector3 normal;
+    };
     /// The smallest angles (degrees, ascending) of `faces` that are under 20 degrees, each
-    /// face's smallest; {-1} where one turned by more than 60 degrees from its normal.
-    std::vector<double> small_angles(const std::vector<std::pair<Face, Vector3>>& faces) const {
-        std::vector<double> small;
-        for (const auto& [f, normal] : faces) {
-            const std::array<Vertex, 3> v = mesh_.face_vertices(f);
-            const Point &a = mesh_.position(v[0]), &b = mesh_.position(v[1]),
-                        &c = mesh_.position(v[2]);
+    /// face's smallest, into `small`; {-1} where one turned by more than 60 degrees from its
+    /// normal.
+    void small_angles(const std::vector<GroupFace>& faces, std::vector<double>& small) const {
+        small.clear();
+        for (const GroupFace& f : faces) {
+            const Point &a = mesh_.position(f.corners[0]), &b = mesh_.position(f.corners[1]),
+                        &c = mesh_.position(f.corners[2]);
             const Vector3 n = (b - a).cross(c - a);
             const double l = n.norm();
-            if (!(l > 0) || !(n.dot(normal) > 0.5 * l)) return {-1.0};
+            if (!(l > 0) || !(n.dot(f.normal) > 0.5 * l)) {
+                small.assign(1, -1.0);
+                return;
+            }
             const double angle = min_angle(a, b, c) * 180.0 / 3.14159265358979323846;
             if (angle < 20.0) small.push_back(angle);
         }
         std::sort(small.begin(), small.end());
-        return small;
     }
     /// Whether `now` is better than `before` (small_angles()): no more of them, and the first
     /// that differs by more than a tolerance is larger (a missing entry counts as 20).
@@ -761,12 +768,12 @@ private:
     }
     /// optimize_clusters() for one group; true when it moved.
     bool optimize_cluster(const std::vector<Vertex>& cluster, std::mt19937& random) {
-        std::vector<std::pair<Face, Vector3>> faces;
+        std::vector<Face> around;
         std::vector<std::array<Vector3, 2>> tangents;
         double length = 0;
         int k = 0;
         for (Vertex v : cluster) {
-            for (Face f : mesh_.faces_around(v)) faces.emplace_back(f, face_normal(mesh_, f));
+            for (Face f : mesh_.faces_around(v)) around.push_back(f);
             for (Vertex u : mesh_.vertices_around(v)) {
                 length += (mesh_.position(u) - mesh_.position(v)).norm();
                 ++k;
@@ -776,17 +783,17 @@ private:
             const Vector3 t1 = n.unitOrthogonal();
             tangents.push_back({t1, n.cross(t1)});
         }
-        std::sort(faces.begin(), faces.end(),
-                  [](const auto& a, const auto& b) { return a.first < b.first; });
-        faces.erase(std::unique(faces.begin(), faces.end(),
-                                [](const auto& a, const auto& b) { return a.first == b.first; }),
-                    faces.end());
-        std::vector<double> value = small_angles(faces);
+        std::sort(around.begin(), around.end());
+        around.erase(std::unique(around.begin(), around.end()), around.end());
+        std::vector<GroupFace> faces;
+        for (Face f : around) faces.push_back({mesh_.face_vertices(f), face_normal(mesh_, f)});
+        std::vector<double> value, now;
+        small_angles(faces, value);
         if (k == 0 || value.empty() || value[0] < 0) return false;
-        double step = 0.1 * length / k;
         bool moved = false;
         std::vector<Point> old(cluster.size());
         const auto uniform = [&random] { return 2.0 * double(random()) / 4294967295.0 - 1.0; };
+        double step = 0.1 * length / k;
         for (int it = 0; it < kClusterTries && !value.empty(); ++it) {
             if (it > 0 && it % (kClusterTries / 10) == 0) step *= 0.6;
             for (std::size_t i = 0; i < cluster.size(); ++i) {
@@ -794,9 +801,9 @@ private:
                 const double a = uniform(), b = uniform();
                 mesh_.position(cluster[i]) += step * (a * tangents[i][0] + b * tangents[i][1]);
             }
-            std::vector<double> now = small_angles(faces);
+            small_angles(faces, now);
             if (leximin_better(now, value)) {
-                value = std::move(now);
+                std::swap(value, now);
                 moved = true;
                 continue;
             }
