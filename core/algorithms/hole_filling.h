@@ -22,7 +22,10 @@
 //     is not an edge already: O(n^2) for the cuts plus O(n kMaxDpLoop^2) for the pieces.
 //  2. Refinement to the density around the hole (Liepa section 3.2): each rim vertex gets the
 //     mean length s of its edges; a new triangle is split at its centroid c (s(c) the mean of
-//     its corners') while sqrt(2)·|c - v| exceeds both s(c) and s(v) for each corner v, and a
+//     its corners') while 1.6·|c - v| exceeds both s(c) and s(v) for each corner v (Liepa's
+//     factor is sqrt(2), which leaves the fill's edges 13-22 % longer than the old ones around
+//     the hole and the fill bending more across its rim than the surface beside it; 1.6 brings
+//     them within 1-9 %), and a
 //     new edge longer than twice its ends' mean s is split at its midpoint; after each split
 //     Lawson's flips make the new edges Delaunay again (the two angles opposite an edge sum to
 //     at most 180 degrees), and the faces a split or flip touched are tested again (a worklist,
@@ -34,10 +37,16 @@
 //     with flips that raise the smallest angle; a new triangle still under 20 degrees gets its
 //     longest new edge split (the longest whose split leaves each rim corner across it room: k
 //     new triangles spanning an angle S at a rim vertex have an angle of at most S / k there),
-//     is faired, and optimized again (up to three rounds). What remains under 20 degrees is
-//     where the rim allows no better: a rim vertex whose new triangles span less than 60 degrees
-//     between a very short and a long rim edge (over 7.4 times longer), where neither one, two
-//     nor three triangles can keep 20 degrees without bending the fill out of the surface.
+//     is faired, and optimized again (up to three rounds). Then one last fairing (the angle
+//     repairs moved vertices off the faired surface), holding in place the new vertices of any
+//     triangle it would take under 20 degrees (or under its smallest angle, when that is under
+//     20 already). What remains under 20 degrees is where the rim allows no better: a rim vertex
+//     whose new triangles span less than 60 degrees between a very short and a long rim edge
+//     (over 7.4 times longer), where neither one, two nor three triangles can keep 20 degrees
+//     without bending the fill out of the surface. There the new vertices of each such rim
+//     corner's fan move together, in their tangent planes (a random search with a fixed seed,
+//     keeping a move when the triangles under 20 degrees, sorted, compare larger and are no
+//     more): the smallest angle is shared by two of them, and moving one alone cannot raise it.
 //  3. Fairing with trilab's own implicit Laplacian (core/algorithms/laplacian.h, cotangent
 //     weights with the Voronoi mass, Meyer et al. 2003): the new vertices solve
 //     Δ²x = 0 (C1: tangent continuity at the rim) or Δ³x = 0 (C2: curvature continuity), with

@@ -156,6 +156,75 @@ bool small_angles_only_where_unavoidable(const HalfedgeMesh& mesh, Index v0, Ind
     return true;
 }
 
+/// The rim figures of one fill (a set of new faces joined across new edges), as
+/// tests/bench/hole_filling/cgal_fill_holes.cpp measures them for trilab and CGAL alike:
+/// jump = |mean dihedral angle across the rim edges - mean over the old edges at rim vertices|
+/// (degrees), key = the fill's lexicographically smallest rim point.
+struct RimJump {
+    std::array<double, 3> key{};
+    double jump = 0;
+};
+
+double dihedral_deg(const HalfedgeMesh& m, Face a, Face b) {
+    return std::acos(std::clamp(face_normal(m, a).dot(face_normal(m, b)), -1.0, 1.0)) * 180 / M_PI;
+}
+
+/// Every fill's RimJump (new faces: index >= f0), sorted by key.
+std::vector<RimJump> rim_jumps(const HalfedgeMesh& m, Index f0) {
+    std::vector<Index> parent(m.faces_size());
+    for (Index i = 0; i < parent.size(); ++i) parent[i] = i;
+    const std::function<Index(Index)> find = [&](Index x) {
+        return parent[x] == x ? x : parent[x] = find(parent[x]);
+    };
+    const auto faces_of = [&](Edge e) {
+        return std::pair(m.face(HalfedgeMesh::halfedge(e, 0)),
+                         m.face(HalfedgeMesh::halfedge(e, 1)));
+    };
+    for (Edge e : m.edges()) {
+        const auto [a, b] = faces_of(e);
+        if (a.is_valid() && b.is_valid() && a.idx() >= f0 && b.idx() >= f0)
+            parent[find(a.idx())] = find(b.idx());
+    }
+    struct Sums {
+        double rim = 0, near = 0;
+        std::size_t n_rim = 0, n_near = 0;
+        std::array<double, 3> key{};
+    };
+    std::vector<Sums> fills(m.faces_size());
+    std::vector<Index> fill_of_vertex(m.vertices_size(), kInvalidIndex);
+    for (Edge e : m.edges()) {
+        const auto [a, b] = faces_of(e);
+        if (!a.is_valid() || !b.is_valid() || (a.idx() >= f0) == (b.idx() >= f0)) continue;
+        const Index fill = find(std::max(a.idx(), b.idx()));
+        Sums& s = fills[fill];
+        s.rim += dihedral_deg(m, a, b);
+        ++s.n_rim;
+        for (Vertex v : {m.vertex(e, 0), m.vertex(e, 1)}) {
+            fill_of_vertex[v.idx()] = fill;
+            const Point& p = m.position(v);
+            const std::array<double, 3> q{p.x(), p.y(), p.z()};
+            if (s.n_rim == 1 || q < s.key) s.key = q;
+        }
+    }
+    for (Edge e : m.edges()) {
+        const auto [a, b] = faces_of(e);
+        if (!a.is_valid() || !b.is_valid() || a.idx() >= f0 || b.idx() >= f0) continue;
+        for (Vertex v : {m.vertex(e, 0), m.vertex(e, 1)}) {
+            if (fill_of_vertex[v.idx()] == kInvalidIndex) continue;
+            Sums& s = fills[fill_of_vertex[v.idx()]];
+            s.near += dihedral_deg(m, a, b);
+            ++s.n_near;
+            break;  // an edge with both ends on the rim counts once
+        }
+    }
+    std::vector<RimJump> out;
+    for (const Sums& s : fills)
+        if (s.n_rim && s.n_near)
+            out.push_back({s.key, std::abs(s.rim / double(s.n_rim) - s.near / double(s.n_near))});
+    std::sort(out.begin(), out.end(),
+              [](const RimJump& x, const RimJump& y) { return x.key < y.key; });
+    return out;
+}
 }  // namespace
 
 TEST_CASE("boundary_loops lists each loop once, ordered by its smallest vertex", "[hole_filling]") {
@@ -271,9 +340,77 @@ TEST_CASE("the Stanford bunny's five holes are all filled, closed and clean", "[
         // vertex 18288 (new triangles spanning 55 degrees between rim edges of 0.00035 and
         // 0.00304), whose best flat fan keeps about 16 degrees (docs/benchmarks.md).
         REQUIRE(r.new_angles_under_20 <= 3);
-        REQUIRE(r.min_new_angle_deg > 15.0);
+        // The fan's new vertices move together there (no worse than the 16.0 degrees C1 and
+        // 15.74 C2 reached before they did).
+        REQUIRE(r.min_new_angle_deg > (fairing == HoleFairing::C1 ? 15.99 : 15.74));
         REQUIRE(small_angles_only_where_unavoidable(m, v0, f0));
     }
+}
+
+TEST_CASE("every bunny hole is filled at least as smoothly across its rim as CGAL's",
+          "[hole_filling]") {
+    // CGAL 5's triangulate_refine_and_fair_hole on the same holes, measured by
+    // tests/bench/hole_filling_bench.sh (the same figure, computed the same way as rim_jumps()):
+    // the rim jump of each hole, in the order of its smallest rim point. The fills' density
+    // (refined to the old edges' length) and the last fairing after the angle repairs are what
+    // bring trilab's under these.
+    const std::string path = test::shared_mesh("stanford-bunny.obj");
+    SKIP_IF_MISSING(path);
+    const HalfedgeMesh mesh = read_mesh(path).mesh;
+    const Index f0 = Index(mesh.faces_size());
+    const std::array<double, 5> cgal{5.15, 3.31, 14.73, 23.05, 3.35};
+    for (HoleFairing fairing : {HoleFairing::C1, HoleFairing::C2}) {
+        HalfedgeMesh m = mesh;
+        HoleFillingOptions o;
+        o.fairing = fairing;
+        REQUIRE(fill_holes(m, o).loops_filled == 5);
+        const std::vector<RimJump> jumps = rim_jumps(m, f0);
+        REQUIRE(jumps.size() == cgal.size());
+        for (std::size_t i = 0; i < cgal.size(); ++i) {
+            INFO((fairing == HoleFairing::C1 ? "C1" : "C2")
+                 << ", hole " << i << " at " << jumps[i].key[0] << ", " << jumps[i].key[1] << ", "
+                 << jumps[i].key[2] << ": " << jumps[i].jump << " against " << cgal[i]);
+            REQUIRE(jumps[i].jump <= cgal[i]);
+        }
+    }
+}
+
+TEST_CASE("a fill is refined to the length of the old edges around it", "[hole_filling]") {
+    // Liepa's density factor sqrt(2) leaves the new edges longer than the old ones around the
+    // hole (here 1.22 times); the fill should come close to them (1.09 times).
+    const HalfedgeMesh holed = capped_sphere(12);
+    const Index v0 = Index(holed.vertices_size());
+    HalfedgeMesh m = holed;
+    fill_holes(m);
+    // The old vertices within two rings of the rim.
+    std::vector<std::uint8_t> near(m.vertices_size(), 0);
+    for (Vertex v : holed.vertices())
+        if (holed.is_boundary(v)) near[v.idx()] = 1;
+    for (int ring = 0; ring < 2; ++ring) {
+        std::vector<std::uint8_t> next = near;
+        for (Vertex v : holed.vertices())
+            if (near[v.idx()])
+                for (Vertex u : holed.vertices_around(v)) next[u.idx()] = 1;
+        near = std::move(next);
+    }
+    double new_sum = 0, old_sum = 0;
+    std::size_t n_new = 0, n_old = 0;
+    for (Edge e : m.edges()) {
+        const Vertex a = m.vertex(e, 0), b = m.vertex(e, 1);
+        const double l = edge_length(m, e);
+        if (a.idx() >= v0 || b.idx() >= v0) {
+            new_sum += l;
+            ++n_new;
+        } else if (near[a.idx()] && near[b.idx()]) {
+            old_sum += l;
+            ++n_old;
+        }
+    }
+    REQUIRE(n_new > 100);
+    const double ratio = (new_sum / double(n_new)) / (old_sum / double(n_old));
+    INFO("mean new edge / mean old edge near the rim: " << ratio);
+    REQUIRE(ratio > 0.9);
+    REQUIRE(ratio < 1.12);
 }
 
 TEST_CASE("a long slot is triangulated over its Delaunay edges and filled", "[hole_filling]") {
