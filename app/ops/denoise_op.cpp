@@ -71,6 +71,7 @@ OperationResult run_denoise(const DenoiseOptions& options, const HalfedgeMesh& m
                      {"filtered_faces", double(report.filtered_faces)},
                      {"degenerate_faces", double(report.degenerate_faces)},
                      {"inverted_faces", double(report.inverted_faces)},
+                     {"side_corrected_faces", double(report.side_corrected_faces)},
                      {"folded_faces", double(report.folded_faces)},
                      {"held_vertices", double(report.held_vertices)},
                      {"feature_edges", double(report.feature_edges)},
