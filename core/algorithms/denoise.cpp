@@ -453,7 +453,7 @@ private:
             normal_.swap(next);
             ++report_.normal_iterations_done;
         }
-        if (report_.normal_iterations_done > 0) check_sides(next);
+        if (o_.side_check && report_.normal_iterations_done > 0) check_sides(next);
     }
 
     /// The side check (see the file comment of denoise.h): a face whose filtered normal is that

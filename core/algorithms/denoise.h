@@ -143,6 +143,9 @@ struct DenoiseOptions {
     /// (core/algorithms/feature_detection.h: the result carries them).
     FeatureSource features = FeatureSource::Stored;
     double feature_angle = 60.0;  ///< FeatureSource::Auto: the angle, in (0, 180]
+    /// Whether the side check runs after the normal filtering (see the file comment); off only
+    /// to measure what it changes.
+    bool side_check = true;
     /// The region (core/algorithms/selection.h): one weight in [0, 1] per vertex storage index,
     /// or nullptr for the whole mesh. Not owned.
     const std::vector<float>* region = nullptr;
