@@ -941,6 +941,10 @@ private:
     }
 
     void finish_report() {
+        for (std::size_t f = 0; f < corners_.size(); ++f)
+            if (has_normal(f) && inverted_at_start_[f] &&
+                !(area_vector(pos_, f).dot(normal_[f]) > 0))
+                ++report_.inverted_left_faces;
         double sum = 0, max = 0;
         std::size_t n = 0;
         for (std::size_t f = 0; f < corners_.size(); ++f) {
