@@ -32,6 +32,10 @@ void add_report_lines(const DenoiseReport& r, const HalfedgeMesh& mesh, Operatio
         result.report.push_back(count_text(r.held_vertices, "vertex", "vertices") +
                                 " held back towards the last state without folds (the last "
                                 "vertex iteration folded faces there)");
+    if (r.inverted_left_faces > 0)
+        result.report.push_back(
+            count_text(r.inverted_left_faces, "face", "faces") +
+            " turned over by the noise still on the far side of the filtered normal");
     if (r.degenerate_faces > 0)
         result.report.push_back(
             count_text(r.degenerate_faces, "degenerate face", "degenerate faces") +
@@ -71,6 +75,8 @@ OperationResult run_denoise(const DenoiseOptions& options, const HalfedgeMesh& m
                      {"filtered_faces", double(report.filtered_faces)},
                      {"degenerate_faces", double(report.degenerate_faces)},
                      {"inverted_faces", double(report.inverted_faces)},
+                     {"side_corrected_faces", double(report.side_corrected_faces)},
+                     {"inverted_left_faces", double(report.inverted_left_faces)},
                      {"folded_faces", double(report.folded_faces)},
                      {"held_vertices", double(report.held_vertices)},
                      {"feature_edges", double(report.feature_edges)},

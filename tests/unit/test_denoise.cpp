@@ -68,18 +68,17 @@ NormalDeviation denoised_deviation(const HalfedgeMesh& clean, double k, std::uin
 
 // ---- the issue's figures ---------------------------------------------------------------------
 
-// The issue asks for no flipped face whatever the seed; over seeds 1 to 20 in both directions two
-// runs leave one: seed 4 along the normals (so did the earlier defaults) and seed 16 in random
-// directions, a face at a 90-degree crease that the filter gives the other side's normal (90.7
-// to 92 degrees off). This test holds seed 4 to that one face, and the others to none.
-TEST_CASE("denoise with the defaults: fandisk at k = 0.3 within 3.6 degrees, at most one flip",
+// The issue asks for no flipped face whatever the seed. Before the side check, two runs of seeds
+// 1 to 20 in both directions left one: seed 4 along the normals and seed 16 in random
+// directions (a face at a 90-degree crease that the filter gave the other side's normal, 90.7 to
+// 92 degrees off); docs/benchmarks.md has all forty runs.
+TEST_CASE("denoise with the defaults: fandisk at k = 0.3 within 3.6 degrees, no flip",
           "[denoise][shared]") {
     const HalfedgeMesh* clean = fandisk();
     if (!clean) SKIP_TEST("../shared/meshes/fandisk.obj is absent");
     // Seeds 4 to 6 were the hardest of 1 to 10 with the earlier defaults (a fixed sigma_r of
-    // 0.35 and 10 vertex iterations: 3.61 and 3.90 degrees at seeds 5 and 6 along the normals);
-    // docs/benchmarks.md has all of them.
-    const std::uint32_t seed = GENERATE(1u, 4u, 5u, 6u);
+    // 0.35 and 10 vertex iterations: 3.61 and 3.90 degrees at seeds 5 and 6 along the normals).
+    const std::uint32_t seed = GENERATE(1u, 4u, 5u, 16u);
     const NoiseDirection direction = GENERATE(NoiseDirection::Normal, NoiseDirection::Random);
     double before = 0;
     const NormalDeviation d = denoised_deviation(*clean, 0.3, seed, direction, {}, &before);
@@ -87,13 +86,13 @@ TEST_CASE("denoise with the defaults: fandisk at k = 0.3 within 3.6 degrees, at 
                  << " (noisy " << before << "), flipped " << d.flipped);
     CHECK(d.mean_degrees <= 3.6);
     CHECK(d.mean_degrees < before / 3);
-    CHECK(d.flipped <= (seed == 4 && direction == NoiseDirection::Normal ? 1u : 0u));
+    CHECK(d.flipped == 0);
     CHECK(d.faces == clean->n_faces());
 }
 
-// The issue asks for no flipped face here; the run leaves one or two of fandisk's 12,946 (faces at
-// a crease given the other side's normal by the filter, which the vertex update then follows):
-// this test holds that share under 0.02 % (MeshDenoiser: 8.8 %).
+// The issue asks for no flipped face here; over seeds 1 to 20 in both directions the run leaves 17
+// faces flipped in 9 of the 40 runs (62 before the side check), none at seeds 1 to 3: this test
+// holds that share under 0.02 % (MeshDenoiser: 8.8 %).
 TEST_CASE("guided denoising of fandisk at k = 0.7: under 11 degrees, almost nothing flipped",
           "[denoise][shared]") {
     const HalfedgeMesh* clean = fandisk();
@@ -109,6 +108,34 @@ TEST_CASE("guided denoising of fandisk at k = 0.7: under 11 degrees, almost noth
     CHECK(d.mean_degrees < 11.0);
     CHECK(d.mean_degrees < before / 4);
     CHECK(d.flipped_share() < 0.0002);
+}
+
+// The side check (core/algorithms/denoise.h): on a block (right-angled creases) under strong noise
+// along the normals, without it the filter gives a few faces beside the creases the other side's
+// normal and the vertex update turns them over (2 and 3 faces more than 90 degrees off at seeds 2
+// and 3); with it none.
+TEST_CASE("the side check keeps faces beside a crease from turning over", "[denoise]") {
+    const HalfedgeMesh clean = make_block(24, 18, 12);
+    const std::uint32_t seed = GENERATE(2u, 3u);
+    const HalfedgeMesh input = noisy(clean, 1.0, seed, NoiseDirection::Normal);
+    DenoiseOptions without;
+    without.side_check = false;
+    HalfedgeMesh a = input;
+    const DenoiseReport ra = denoise(a, without);
+    REQUIRE_VALID(a);
+    CHECK(ra.side_corrected_faces == 0);
+    HalfedgeMesh b = input;
+    const DenoiseReport rb = denoise(b, {});
+    REQUIRE_VALID(b);
+    REQUIRE_FALSE(rb.stopped_early);
+    const NormalDeviation da = normal_deviation(clean, a), db = normal_deviation(clean, b);
+    INFO("seed " << seed << ": without the check theta " << da.mean_degrees << ", flipped "
+                 << da.flipped << "; with it " << db.mean_degrees << ", flipped " << db.flipped
+                 << " (" << rb.side_corrected_faces << " faces corrected)");
+    CHECK(da.flipped > 0);  // the case folds without the check
+    CHECK(db.flipped == 0);
+    CHECK(rb.side_corrected_faces > 0);
+    CHECK(db.mean_degrees < 20.0);
 }
 
 TEST_CASE("denoise with the defaults: a block at k = 0.4 within 7.4 degrees", "[denoise]") {
