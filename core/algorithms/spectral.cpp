@@ -1263,6 +1263,53 @@ bool block_smallest(const Problem& p, std::size_t k, const SpectralOptions& o, P
     return true;
 }
 
+/// Where two spectrum slices meet: τ, the number of eigenvalues below it, and the second
+/// slice's first shift.
+struct SliceSplit {
+    double tau = 0;
+    std::size_t below = 0;
+    double sigma = 0;
+};
+
+/// The split after the first band (its eigenvalues `found`, `total` below its top counted):
+/// Weyl's law (λ_i ≈ hi · i / c_hi from the band's largest value hi) puts τ at the middle of
+/// the remaining eigenvalues and one factorization counts those below it. The low end of a
+/// surface's spectrum often departs from Weyl's law (the cow's first 20 put the middle of 150
+/// at the 54th): when the count is more than a quarter band off the middle, one secant step
+/// between the band's top and the count, and a second count, balance the slices' work. False
+/// when no τ leaves real work (half a band) on both sides.
+bool split_slices(const Problem& p, const std::vector<double>& found, std::size_t total,
+                  std::size_t k, std::size_t band, SpectralReport& report, SliceSplit& out) {
+    const double hi = *std::max_element(found.begin(), found.end());
+    const double c_hi = double(total);
+    const double target = 0.5 * (c_hi + double(k));
+    const auto balanced = [&](std::size_t below) {
+        return below >= total + band / 2 && below + band / 2 <= k;
+    };
+    double tau = hi * target / c_hi, spacing = hi / c_hi;
+    if (!(std::isfinite(tau) && tau > hi)) return false;
+    Ldlt counter;
+    counter.analyzePattern(p.A);
+    std::size_t below = count_below(p, counter, tau, report);
+    if (double(below) > c_hi && std::abs(double(below) - target) > double(band) / 4) {
+        const double measured = (tau - hi) / (double(below) - c_hi);
+        const double tau2 = tau + (target - double(below)) * measured;
+        if (std::isfinite(tau2) && tau2 > hi) {
+            const std::size_t below2 = count_below(p, counter, tau2, report);
+            if (balanced(below2) || !balanced(below)) {
+                tau = tau2;
+                below = below2;
+                spacing = measured;
+            }
+        }
+    }
+    if (!balanced(below)) return false;
+    // The second slice's first band (the band eigenvalues nearest its shift) must reach down
+    // to τ: its shift lies half a band's width (by the spacing the counts measured) above τ.
+    out = SliceSplit{tau, below, tau + 0.5 * spacing * double(band)};
+    return true;
+}
+
 /// The k smallest eigenpairs: a first band at a negative shift (with two slices ahead, half a
 /// band: it runs alone, and the second thread starts sooner), then (with two threads and
 /// enough left to do) the rest of [0, λ_k] in two slices at once, split where Weyl's law
@@ -1300,46 +1347,13 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
     double split = std::numeric_limits<double>::infinity();
     const bool more = first.step();
     first.set_band(band);
-    if (more && slicing && k >= first.total() + 2 * band) {
-        // Weyl: λ_i ≈ hi · i / c_hi from the first band's largest value hi (c_hi found).
-        const double hi = *std::max_element(first.acc.values.begin(), first.acc.values.end());
-        const double c_hi = double(first.total());
-        const double target = 0.5 * (c_hi + double(k));
-        // Split only where the estimate left real work on both sides.
-        const auto balanced = [&](std::size_t below) {
-            return below >= first.total() + band / 2 && below + band / 2 <= k;
-        };
-        double tau = hi * target / c_hi, spacing = hi / c_hi;
-        if (std::isfinite(tau) && tau > hi) {
-            Ldlt counter;
-            counter.analyzePattern(p.A);
-            std::size_t below = count_below(p, counter, tau, report);
-            // The low end of a surface's spectrum often departs from Weyl's law (the cow's
-            // first 20 put the middle of 150 at the 54th): one secant step between the first
-            // band's top and this count, and a second count, balance the slices' work.
-            if (double(below) > c_hi && std::abs(double(below) - target) > double(band) / 4) {
-                const double measured = (tau - hi) / (double(below) - c_hi);
-                const double tau2 = tau + (target - double(below)) * measured;
-                if (std::isfinite(tau2) && tau2 > hi) {
-                    const std::size_t below2 = count_below(p, counter, tau2, report);
-                    if (balanced(below2) || !balanced(below)) {
-                        tau = tau2;
-                        below = below2;
-                        spacing = measured;
-                    }
-                }
-            }
-            if (balanced(below)) {
-                split = tau;
-                first.set_upper(tau, below);
-                // The second slice's first band (the band eigenvalues nearest its shift) must
-                // reach down to τ: its shift lies half a band's width (by the spacing the
-                // counts measured) above τ.
-                const double width = spacing * double(band);
-                second = std::make_unique<Slice>(p, o, k, band, worker, second_report, tau, below,
-                                                 tau + 0.5 * width);
-            }
-        }
+    SliceSplit cut;
+    if (more && slicing && k >= first.total() + 2 * band &&
+        split_slices(p, first.acc.values, first.total(), k, band, report, cut)) {
+        split = cut.tau;
+        first.set_upper(cut.tau, cut.below);
+        second = std::make_unique<Slice>(p, o, k, band, worker, second_report, cut.tau, cut.below,
+                                         cut.sigma);
     }
     if (second) {
         first.count_progress_of(*second);
