@@ -31,18 +31,19 @@
 //    Spectrum slicing (Campos & Roman 2012): because the counts are exact, [0, λ_k] splits
 //    into slices that are independent problems. After the first band, Weyl's law (λ_i grows
 //    linearly in i on a surface) extrapolated from it places a split τ near the middle of the
-//    remaining eigenvalues, one factorization counts the eigenvalues below τ (when that count
-//    is more than a quarter band off the middle, a secant step between the first band's top and
-//    the count moves τ, and a second factorization counts again: the low end of a surface's
-//    spectrum is often sparser than Weyl's law says), and the two slices are swept band by band
-//    on two threads at once (`threads`; 0: two when the machine has two cores). Each slice is
-//    verified at its ends; should either fail (a split among close eigenvalues, a repair that
-//    needed the other slice's vectors), the whole range is swept once on one thread. The results do
-//    not depend on thread timing. Large meshes (SpectralOptions::solver; Auto from kBlockMinRows
-//    rows): there a sparse factorization costs more than the Lanczos bases, so all k are computed
-//    at one negative shift by block Lanczos (block_shift_invert(): 8 vectors a block, thick
-//    restarts, full reorthogonalization as matrix products) and verified by one count at a cut
-//    above the k-th; a run that does not converge or whose count differs falls back to the bands.
+//    remaining eigenvalues, one factorization counts the eigenvalues below τ (when that
+//    count is more than a quarter band off the middle, a secant step between the first
+//    band's top and the count moves τ and a second factorization counts again: the low end
+//    of a surface's spectrum is often sparser than Weyl's law says), and the two slices are
+//    swept band by band on two threads at once (`threads`; 0: two when the machine has two
+//    cores). Each slice is verified at its ends; should either fail (a split among close
+//    eigenvalues, a repair that needed the other slice's vectors), the whole range is swept
+//    once on one thread. The results do not depend on thread timing.
+//    Large meshes (SpectralOptions::solver; Auto from kBlockMinRows rows): there a sparse
+//    factorization costs more than the Lanczos bases, so all k are computed at one negative
+//    shift by block Lanczos (block_shift_invert(): 8 vectors a block, thick restarts, full
+//    reorthogonalization as matrix products) and verified by one count at a cut above the
+//    k-th; a run that does not converge or whose count differs falls back to the bands.
 //  - Partial, largest k: Lanczos on A itself (sparse products only), checked the same way.
 //  - Full: Eigen's dense SelfAdjointEigenSolver on A, refused above max_full_rows (default
 //    5,000) rows: O(n²) memory and O(n³) time. Also refused (InvalidArgument, with the
