@@ -1298,16 +1298,20 @@ bool split_slices(const Problem& p, const std::vector<double>& found, std::size_
         if (std::isfinite(tau2) && tau2 > hi) {
             const std::size_t below2 = count_below(p, counter, tau2, report);
             if (balanced(below2) || !balanced(below)) {
+                // The spacing near τ2: between the two counts when they differ.
+                spacing = below2 != below
+                              ? std::abs(tau2 - tau) / std::abs(double(below2) - double(below))
+                              : measured;
                 tau = tau2;
                 below = below2;
-                spacing = measured;
             }
         }
     }
     if (!balanced(below)) return false;
     // The second slice's first band (the band eigenvalues nearest its shift) must reach down
-    // to τ: its shift lies half a band's width (by the spacing the counts measured) above τ.
-    out = SliceSplit{tau, below, tau + 0.5 * spacing * double(band)};
+    // to τ: its shift lies 45 % of a band's width (by the spacing the counts measured, a
+    // little less than half for a spectrum that grows denser) above τ.
+    out = SliceSplit{tau, below, tau + 0.45 * spacing * double(band)};
     return true;
 }
 
