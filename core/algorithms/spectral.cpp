@@ -31,11 +31,14 @@
 //    Spectrum slicing (Campos & Roman 2012): because the counts are exact, [0, λ_k] splits
 //    into slices that are independent problems. After the first band, Weyl's law (λ_i grows
 //    linearly in i on a surface) extrapolated from it places a split τ near the middle of the
-//    remaining eigenvalues, one factorization counts the eigenvalues below τ, and the two
-//    slices are swept band by band on two threads at once (`threads`; 0: two when the
-//    machine has two cores). Each slice is verified at its ends; should either fail (a split
-//    among close eigenvalues, a repair that needed the other slice's vectors), the whole
-//    range is swept once on one thread. The results do not depend on thread timing.
+//    remaining eigenvalues, one factorization counts the eigenvalues below τ (when that
+//    count is more than a quarter band off the middle, a secant step between the first
+//    band's top and the count moves τ and a second factorization counts again: the low end
+//    of a surface's spectrum is often sparser than Weyl's law says), and the two slices are
+//    swept band by band on two threads at once (`threads`; 0: two when the machine has two
+//    cores). Each slice is verified at its ends; should either fail (a split among close
+//    eigenvalues, a repair that needed the other slice's vectors), the whole range is swept
+//    once on one thread. The results do not depend on thread timing.
 //    Large meshes (SpectralOptions::solver; Auto from kBlockMinRows rows): there a sparse
 //    factorization costs more than the Lanczos bases, so all k are computed at one negative
 //    shift by block Lanczos (block_shift_invert(): 8 vectors a block, thick restarts, full
@@ -621,6 +624,27 @@ void orthonormalize(Eigen::MatrixXd& y) {
     Eigen::LLT<Eigen::MatrixXd> llt(g);
     if (llt.info() != Eigen::Success) return;  // dependent columns: left to the caller
     y = llt.matrixU().solve<Eigen::OnTheRight>(y);
+}
+
+/// orthonormalize() over two fixed halves of the rows, on two threads when `two`: the Gram
+/// matrix is the sum of the halves' (in that order, on one thread or two alike, so the bits
+/// do not depend on `two`), and the triangular solve runs on each half. For the final
+/// O(rows · k²) pass over all k vectors, which would otherwise run alone after the slices.
+void orthonormalize_halves(Eigen::MatrixXd& y, bool two) {
+    const Eigen::Index n = y.rows(), c = y.cols(), half = n / 2;
+    Eigen::MatrixXd g[2];
+    on_two_threads(two, [&](int i) {
+        const Eigen::Index r0 = i ? half : 0, rows = i ? n - half : half;
+        g[i].setZero(c, c);
+        g[i].selfadjointView<Eigen::Lower>().rankUpdate(y.middleRows(r0, rows).transpose());
+    });
+    g[0] += g[1];
+    Eigen::LLT<Eigen::MatrixXd> llt(g[0]);
+    if (llt.info() != Eigen::Success) return;  // dependent columns: left to the caller
+    on_two_threads(two, [&](int i) {
+        const Eigen::Index r0 = i ? half : 0, rows = i ? n - half : half;
+        y.middleRows(r0, rows) = llt.matrixU().solve<Eigen::OnTheRight>(y.middleRows(r0, rows));
+    });
 }
 
 /// The accepted eigenpairs (unsorted), with the de-duplication of new candidates.
@@ -1240,6 +1264,57 @@ bool block_smallest(const Problem& p, std::size_t k, const SpectralOptions& o, P
     return true;
 }
 
+/// Where two spectrum slices meet: τ, the number of eigenvalues below it, and the second
+/// slice's first shift.
+struct SliceSplit {
+    double tau = 0;
+    std::size_t below = 0;
+    double sigma = 0;
+};
+
+/// The split after the first band (its eigenvalues `found`, `total` below its top counted):
+/// Weyl's law (λ_i ≈ hi · i / c_hi from the band's largest value hi) puts τ at the middle of
+/// the remaining eigenvalues and one factorization counts those below it. The low end of a
+/// surface's spectrum often departs from Weyl's law (the cow's first 20 put the middle of 150
+/// at the 54th): when the count is more than a quarter band off the middle, one secant step
+/// between the band's top and the count, and a second count, balance the slices' work. False
+/// when no τ leaves real work (half a band) on both sides.
+bool split_slices(const Problem& p, const std::vector<double>& found, std::size_t total,
+                  std::size_t k, std::size_t band, SpectralReport& report, SliceSplit& out) {
+    const double hi = *std::max_element(found.begin(), found.end());
+    const double c_hi = double(total);
+    const double target = 0.5 * (c_hi + double(k));
+    const auto balanced = [&](std::size_t below) {
+        return below >= total + band / 2 && below + band / 2 <= k;
+    };
+    double tau = hi * target / c_hi, spacing = hi / c_hi;
+    if (!(std::isfinite(tau) && tau > hi)) return false;
+    Ldlt counter;
+    counter.analyzePattern(p.A);
+    std::size_t below = count_below(p, counter, tau, report);
+    if (double(below) > c_hi && std::abs(double(below) - target) > double(band) / 4) {
+        const double measured = (tau - hi) / (double(below) - c_hi);
+        const double tau2 = tau + (target - double(below)) * measured;
+        if (std::isfinite(tau2) && tau2 > hi) {
+            const std::size_t below2 = count_below(p, counter, tau2, report);
+            if (balanced(below2) || !balanced(below)) {
+                // The spacing near τ2: between the two counts when they differ.
+                spacing = below2 != below
+                              ? std::abs(tau2 - tau) / std::abs(double(below2) - double(below))
+                              : measured;
+                tau = tau2;
+                below = below2;
+            }
+        }
+    }
+    if (!balanced(below)) return false;
+    // The second slice's first band (the band eigenvalues nearest its shift) must reach down
+    // to τ: its shift lies 45 % of a band's width (by the spacing the counts measured, a
+    // little less than half for a spectrum that grows denser) above τ.
+    out = SliceSplit{tau, below, tau + 0.45 * spacing * double(band)};
+    return true;
+}
+
 /// The k smallest eigenpairs: a first band at a negative shift (with two slices ahead, half a
 /// band: it runs alone, and the second thread starts sooner), then (with two threads and
 /// enough left to do) the rest of [0, λ_k] in two slices at once, split where Weyl's law
@@ -1277,25 +1352,13 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
     double split = std::numeric_limits<double>::infinity();
     const bool more = first.step();
     first.set_band(band);
-    if (more && slicing && k >= first.total() + 2 * band) {
-        // Weyl: λ_i ≈ hi · i / c_hi from the first band's largest value hi (c_hi found).
-        const double hi = *std::max_element(first.acc.values.begin(), first.acc.values.end());
-        const double c_hi = double(first.total());
-        const double target = 0.5 * (c_hi + double(k));
-        const double tau = hi * target / c_hi;
-        if (std::isfinite(tau) && tau > hi) {
-            Ldlt counter;
-            counter.analyzePattern(p.A);
-            const std::size_t below = count_below(p, counter, tau, report);
-            // Split only where the estimate left real work on both sides.
-            if (below >= first.total() + band / 2 && below + band / 2 <= k) {
-                split = tau;
-                first.set_upper(tau, below);
-                const double width = hi * double(band) / c_hi;
-                second = std::make_unique<Slice>(p, o, k, band, worker, second_report, tau, below,
-                                                 tau + 0.5 * width);
-            }
-        }
+    SliceSplit cut;
+    if (more && slicing && k >= first.total() + 2 * band &&
+        split_slices(p, first.acc.values, first.total(), k, band, report, cut)) {
+        split = cut.tau;
+        first.set_upper(cut.tau, cut.below);
+        second = std::make_unique<Slice>(p, o, k, band, worker, second_report, cut.tau, cut.below,
+                                         cut.sigma);
     }
     if (second) {
         first.count_progress_of(*second);
@@ -1363,7 +1426,7 @@ Band smallest(const Problem& p, std::size_t k, const SpectralOptions& o, Progres
     if (keep < k) throw Error(not_converged(keep, k, "(band by band)"));
     // Ritz vectors of different bands are orthogonal only to (residual / gap): one Cholesky QR
     // over all of them (O(rows · k²)) makes them orthonormal to rounding.
-    if (report.bands > 1) orthonormalize(out.vectors);
+    if (report.bands > 1) orthonormalize_halves(out.vectors, slicing);
     return out;
 }
 
@@ -1643,14 +1706,22 @@ SpectralDecomposition decompose(const HalfedgeMesh& mesh, const SpectralOptions&
     const Eigen::MatrixXd x = gather_positions(mesh, p.map);
     d.coefficients = d.eigenvectors.transpose() * (p.S.asDiagonal() * x);
 
-    // Residuals |K e - λ S e| / (|K|_inf |e|).
-    const Eigen::MatrixXd ke = p.K * d.eigenvectors;
-    for (Eigen::Index j = 0; j < ke.cols(); ++j) {
-        const double r =
-            (ke.col(j) - d.eigenvalues[j] * p.S.cwiseProduct(d.eigenvectors.col(j))).norm();
-        d.report.max_residual = std::max(
-            d.report.max_residual, r / (std::max(p.k_norm, 1e-300) * d.eigenvectors.col(j).norm()));
-    }
+    // Residuals |K e - λ S e| / (|K|_inf |e|), each column's on its own (two halves of the
+    // columns on two threads when the machine has them: the same bits either way).
+    const Eigen::Index cols = d.eigenvectors.cols(), half = cols / 2;
+    Eigen::VectorXd residual(cols);
+    on_two_threads(cols >= 16 && thread_count() >= 2, [&](int i) {
+        const Eigen::Index c0 = i ? half : 0, count = i ? cols - half : half;
+        if (count == 0) return;
+        const Eigen::MatrixXd ke = p.K * d.eigenvectors.middleCols(c0, count);
+        for (Eigen::Index j = 0; j < count; ++j) {
+            const auto e = d.eigenvectors.col(c0 + j);
+            const double r = (ke.col(j) - d.eigenvalues[c0 + j] * p.S.cwiseProduct(e)).norm();
+            residual[c0 + j] = r / (std::max(p.k_norm, 1e-300) * e.norm());
+        }
+    });
+    for (Eigen::Index j = 0; j < cols; ++j)
+        d.report.max_residual = std::max(d.report.max_residual, residual[j]);
     d.map = std::move(p.map);
     d.S = std::move(p.S);
     d.base_positions = mesh.positions();

@@ -24,6 +24,7 @@
 #include "core/algorithms/fairing.h"
 #include "core/algorithms/generators.h"
 #include "core/algorithms/mesh_stats.h"
+#include "core/algorithms/spectral.h"
 #include "core/algorithms/subdivision.h"
 #include "core/errors.h"
 #include "core/geometry.h"
@@ -69,6 +70,31 @@ HalfedgeMesh sphere() {
 }
 
 }  // namespace
+
+TEST_CASE("a sliced frequency decomposition gives the same bits on 1, 2 and 7 threads",
+          "[parallel][spectral]") {
+    // Two spectrum slices (their own two threads), then the final orthonormalization over two
+    // fixed halves of the rows and the residuals over two halves of the columns, on two threads
+    // or one as the pool allows: the bits must not depend on it.
+    const HalfedgeMesh mesh = make_icosphere(8);
+    SpectralOptions o;
+    o.op = LaplacianOperator::CurvatureFlow;
+    o.mass = MassMatrix::Voronoi;
+    o.k = 60;
+    o.band_size = 16;
+    o.threads = 2;
+    const auto results = with_1_2_7_threads([&] { return decompose(mesh, o); });
+    REQUIRE(results[0].report.slices == 2);
+    REQUIRE(results[0].size() == o.k);
+    CHECK(results[0].report.max_residual < 1e-8);
+    CHECK(s_orthonormality_error(results[0]) < 1e-8);
+    for (std::size_t i = 1; i < results.size(); ++i) {
+        CHECK(results[i].eigenvalues == results[0].eigenvalues);
+        CHECK(results[i].eigenvectors == results[0].eigenvectors);
+        CHECK(results[i].coefficients == results[0].coefficients);
+        CHECK(results[i].report.max_residual == results[0].report.max_residual);
+    }
+}
 
 TEST_CASE("parallel_for visits every index once, for any thread count", "[parallel]") {
     for (const std::size_t n :
