@@ -46,17 +46,19 @@ void FairingTool::update_stable_step() {
     Session& session = context_.session;
     const FairingOperator op = options_of<FairingOptions>(f.op).op;
     const HalfedgeMesh::Revision state = session.mesh().revision();
-    // A preview of this state reports it (any size).
+    // A preview of this state reports it (where the run estimated it).
     const OperationResult* preview = session.previews().result();
     const std::optional<Operation>& requested = session.previews().requested();
     if (preview && requested && is_operation<FairingOptions>(*requested) &&
         options_of<FairingOptions>(*requested).op == op) {
         if (const SmoothReport* r = report_of<SmoothReport>(*preview);
-            r && std::isfinite(r->max_stable_step))
+            r && std::isfinite(r->max_stable_step)) {
             f.max_stable_step = r->max_stable_step;
-        f.stable_step_state = state;
-        f.stable_step_operator = op;
-        return;
+            f.stable_step_state = state;
+            f.stable_step_operator = op;
+            return;
+        }
+        // A large mesh's preview of an umbrella step up to 1 does not estimate it: below.
     }
     if (f.stable_step_state == state && f.stable_step_operator == op) return;
     // Otherwise the session estimates it off the render thread (SessionGuidance): NaN (not

@@ -357,3 +357,30 @@ TEST_CASE("every run reports a typed report that agrees with its JSON values", "
     REQUIRE(sub->level_counts.size() == 2);
     REQUIRE(sub->level_counts.back()[1] == subdivide.steps.back().mesh.n_faces());
 }
+
+TEST_CASE("smooth leaves out the stable-step estimate where a Gershgorin bound decides it",
+          "[ops][fairing]") {
+    // From 65,536 vertices an explicit umbrella step up to 1 is not estimated (stable on any
+    // mesh: the umbrella's eigenvalues lie in [0, 2]); a larger step, another operator and a
+    // smaller mesh still are.
+    const HalfedgeMesh large = make_icosphere(81);  // 65,612 vertices
+    REQUIRE(large.n_vertices() >= 65536);
+    const HalfedgeMesh small = make_icosphere(8);
+    NullProgress progress;
+    const auto run = [&](const HalfedgeMesh& m, const std::string& op) {
+        const OperationResult r = run_operation(parse_operation(op), m, progress);
+        const SmoothReport* sr = report_of<SmoothReport>(r);
+        REQUIRE(sr != nullptr);
+        CHECK(sr->iterations_done == 1);
+        bool note = false;
+        for (const auto& [key, text] : r.texts) note = note || key == "max_stable_step_note";
+        CHECK(note == !std::isfinite(sr->max_stable_step));
+        return sr->max_stable_step;
+    };
+    CHECK(std::isnan(run(large, "smooth --step 1 --iterations 1")));
+    const double limit = run(large, "smooth --step 1.2 --iterations 1");
+    CHECK(limit > 1.0);  // the icosphere's umbrella: about 1.33
+    CHECK(
+        std::isfinite(run(large, "smooth --operator improved-umbrella --step 0.5 --iterations 1")));
+    CHECK(std::isfinite(run(small, "smooth --step 0.5 --iterations 1")));
+}
