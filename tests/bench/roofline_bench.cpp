@@ -184,7 +184,7 @@ std::vector<Op> operations(const HalfedgeMesh& mesh) {
                        const FairingResult r = smooth(mesh, o);
                        if (r.iterations_done != 10) std::abort();
                    }});
-    ops.push_back({"umbrella, 10 iterations + stable-step estimate (as the CLI)",
+    ops.push_back({"umbrella, 10 iterations + stable-step estimate (CLI, step > 1)",
                    10 * s.umbrella() + s.estimate(), [&mesh] {
                        FairingOptions o;
                        o.iterations = 10;
