@@ -228,6 +228,16 @@ struct Creases {
     bool any() const { return sharp || corner; }
 };
 
+/// The features of `mesh` as crease arrays (null where it has no such property).
+Creases creases_of(const HalfedgeMesh& mesh) {
+    Creases creases;
+    if (const auto s = mesh.get_edge_property<float>(kSharpnessProperty))
+        creases.sharp = s.vector().data();
+    if (const auto c = mesh.get_vertex_property<std::uint8_t>(kCornerProperty))
+        creases.corner = c.vector().data();
+    return creases;
+}
+
 /// The vertex-vertex rule of OpenSubdiv (Sdc::Crease::DetermineVertexVertexRule) from a count
 /// of sharp edges: 0 smooth, 1 dart, 2 crease, 3 or more corner.
 enum class CreaseRule { Smooth, Dart, Crease, Corner };
@@ -884,13 +894,7 @@ SubdivisionLevel refine_1to4(const HalfedgeMesh& mesh, SubdivisionScheme scheme,
     add_level_properties(out.mesh, level);
     build_1to4(m, out.mesh, stage);
     stage.progress.check_cancelled();
-    Creases creases;
-    if (features) {
-        if (const auto s = mesh.get_edge_property<float>(kSharpnessProperty))
-            creases.sharp = s.vector().data();
-        if (const auto c = mesh.get_vertex_property<std::uint8_t>(kCornerProperty))
-            creases.corner = c.vector().data();
-    }
+    const Creases creases = features ? creases_of(mesh) : Creases{};
     Point* p = out.mesh.positions().data();
     std::vector<unsigned> valence;  // plain Loop on `m` itself: its valences, for the stencils
     if (welded)
@@ -1564,13 +1568,7 @@ UniformStep1to4 uniform_step_1to4(const HalfedgeMesh& mesh, SubdivisionScheme sc
     const Stage stage{progress, 0.0, 0.5};
     UniformStep1to4 step;
     step.positions.resize(std::size_t(m.nv) + m.ne);
-    Creases creases;
-    if (features) {
-        if (const auto s = mesh.get_edge_property<float>(kSharpnessProperty))
-            creases.sharp = s.vector().data();
-        if (const auto c = mesh.get_vertex_property<std::uint8_t>(kCornerProperty))
-            creases.corner = c.vector().data();
-    }
+    const Creases creases = features ? creases_of(mesh) : Creases{};
     if (!find_coincident_vertices(mesh).empty())
         welded_positions_1to4(mesh, scheme, step.positions.data(), stage, creases);
     else
