@@ -21,12 +21,10 @@
 #include <utility>
 
 #include "core/algorithms/coincident.h"
-#include "core/algorithms/feature_detection.h"
 #include "core/algorithms/pillows.h"
 #include "core/errors.h"
 #include "core/features.h"
 #include "core/geometry.h"
-#include "core/number_text.h"
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -1386,13 +1384,7 @@ SubdivisionResult subdivide_region(const HalfedgeMesh& mesh, const SubdivisionOp
         if (options.features == SubdivisionFeatures::Auto) {
             if (current != &collected) collected = mesh;
             current = &collected;
-            FeatureDetectionOptions d;
-            d.angle_deg = options.feature_angle;
-            const FeatureDetectionReport r = detect_features(collected, d);
-            result.notes.push_back(
-                "features detected at " + number_text(options.feature_angle) +
-                " deg: " + count_text(r.feature_edges, "sharp edge", "sharp edges") + ", " +
-                count_text(r.corners, "corner", "corners"));
+            result.notes.push_back(detect_subdivision_features(collected, options));
         }
         const bool features =
             options.features != SubdivisionFeatures::None && has_features(*current);

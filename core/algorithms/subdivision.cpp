@@ -1558,6 +1558,15 @@ void check_subdivision_features(const HalfedgeMesh& mesh, const SubdivisionOptio
         throw InvalidArgument("subdivide: invalid features: " + bad);
 }
 
+std::string detect_subdivision_features(HalfedgeMesh& mesh, const SubdivisionOptions& options) {
+    FeatureDetectionOptions d;
+    d.angle_deg = options.feature_angle;
+    const FeatureDetectionReport r = detect_features(mesh, d);
+    return "features detected at " + number_text(options.feature_angle) +
+           " deg: " + count_text(r.feature_edges, "sharp edge", "sharp edges") + ", " +
+           count_text(r.corners, "corner", "corners");
+}
+
 UniformStep1to4 uniform_step_1to4(const HalfedgeMesh& mesh, SubdivisionScheme scheme,
                                   Progress& progress, bool features) {
     if (mesh.has_garbage() || scheme == SubdivisionScheme::Sqrt3)
@@ -1797,15 +1806,8 @@ SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& 
         if (mesh.has_garbage()) collected.garbage_collection();
         current = &collected;
     }
-    std::string detected;
-    if (auto_features) {
-        FeatureDetectionOptions d;
-        d.angle_deg = options.feature_angle;
-        const FeatureDetectionReport r = detect_features(collected, d);
-        detected = "features detected at " + number_text(options.feature_angle) +
-                   " deg: " + count_text(r.feature_edges, "sharp edge", "sharp edges") + ", " +
-                   count_text(r.corners, "corner", "corners");
-    }
+    const std::string detected =
+        auto_features ? detect_subdivision_features(collected, options) : std::string();
     SubdivisionResult result;
     // Pillows cannot be refined: they are set aside and put back unchanged on every level.
     PillowSplit pillows;

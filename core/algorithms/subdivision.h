@@ -154,6 +154,10 @@ SubdivisionResult subdivide(const HalfedgeMesh& mesh, const SubdivisionOptions& 
 /// Throws InvalidArgument for a feature angle outside (0, 180] with SubdivisionFeatures::Auto,
 /// or features that check_features() refuses (core/features.h). O(V + E).
 void check_subdivision_features(const HalfedgeMesh& mesh, const SubdivisionOptions& options);
+/// Detects the features of `mesh` at options.feature_angle degrees (infinitely sharp; stored
+/// on it, core/algorithms/feature_detection.h) and returns the note subdivide() reports ("features
+/// detected at A deg: N sharp edges, M corners"). O(V + E).
+std::string detect_subdivision_features(HalfedgeMesh& mesh, const SubdivisionOptions& options);
 
 /// What one uniform step of a 1-to-4 scheme (Loop, Butterfly, Modified Butterfly) gives each
 /// vertex, without building the refined mesh (region subdivision,
